@@ -1,0 +1,340 @@
+"""Simultaneous Bit Flip (SBF) moves and the logic functions that allow them.
+
+An SBF move flips the four edges of one plaquette in one robot's path (``mask ^ plaquette.edge_mask``).
+Whether it may be applied is a boolean function of the robot's edges near the plaquette: its four edges
+``ab, bc, cd, da`` and its corners' outer edges. Two rules are provided:
+
+``paper``
+    ``f = f1 AND f2 AND f3`` exactly as the paper writes them: f1 = some plaquette edge is set; f2 = the
+    plaquette edges are not ``1010`` or ``0101``; f3 = no corner has both of its outer edges set (a corner
+    with fewer than two outer edges contributes nothing).
+
+``exact``
+    Allows a flip of a feasible path exactly when it can be shown from the plaquette's neighbourhood that
+    the result is feasible. With ``q_v`` the number of plaquette edges at corner ``v`` in the path:
+
+    * no plaquette edge set: never (the flip adds a closed 4-cycle);
+    * two opposite plaquette edges (``1010``/``0101``): the flip reconnects two distant pieces of the path,
+      and whether that leaves a loop depends on the order in which the path visits them, which no local
+      function can see. Allowed only when the robot's start and goal are diagonal corners of the plaquette
+      (then it is always feasible); forbidden otherwise;
+    * otherwise: every corner with ``q_v = 0`` must be free (not the robot's start or goal and no outer
+      edge set), because the flip gives it two new edges.
+
+    On every feasible path this is "the flip is feasible" except for the opposite-edges case, where feasible
+    flips are missed; :mod:`tests.gridcover.sbf_test` shows both facts exhaustively and counts the misses.
+
+Each rule is compiled, per robot and plaquette, into a :class:`SbfLogic`: a short straight-line program of
+"XOR an AND of literals into a bit" steps (exactly what multi-controlled X gates compute). What is known
+when compiling (boundary corners with fewer outer edges, edges that are not variables in ``hard`` mode,
+which corners are the robot's endpoints) is folded into the program, and for ``exact`` the remaining
+function is simplified using what a feasible path cannot look like (see :func:`_exact_logic`).
+
+Example:
+    >>> from gridcover.scenario import scenario_from_dict
+    >>> from gridcover.paths import initial_path
+    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+    >>> p = initial_path(s, 0)
+    >>> [sbf_logic(s, 0, q).evaluate(p) for q in s.grid.plaquettes]
+    [False, True, False, False]
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Literal as TypingLiteral
+
+from gridcover.grid import Plaquette
+from gridcover.paths import enumerate_paths, initial_path
+from gridcover.scenario import Scenario
+
+Rule = TypingLiteral["exact", "paper"]
+RULES: tuple[Rule, ...] = ("exact", "paper")
+
+# corner -> its two plaquette edges, as positions in (ab, bc, cd, da)
+_CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))
+
+
+@dataclass(frozen=True)
+class Lit:
+    """One literal: ``signal == value``. ``signal >= 0`` is a grid edge of the robot's path;
+    ``signal < 0`` is the temporary bit ``~signal`` (so ``-1`` is temporary 0)."""
+
+    signal: int
+    value: bool
+
+    @property
+    def is_temp(self) -> bool:
+        return self.signal < 0
+
+    @property
+    def temp(self) -> int:
+        return ~self.signal
+
+
+@dataclass(frozen=True)
+class XorStep:
+    """``temps[target] ^= AND(literals)``; no literals means ``temps[target] ^= 1``."""
+
+    target: int
+    literals: tuple[Lit, ...]
+
+
+@dataclass(frozen=True)
+class SbfLogic:
+    """A compiled logic function for one robot and one plaquette.
+
+    Attributes:
+        rule: ``exact`` or ``paper``.
+        robot: Robot index.
+        plaquette: Plaquette index.
+        num_temps: Temporary bits used (ancillas in the circuit); all start at 0.
+        output: The temporary holding the result.
+        steps: The program; run it forwards to compute, backwards to uncompute.
+    """
+
+    rule: Rule
+    robot: int
+    plaquette: int
+    num_temps: int
+    output: int
+    steps: tuple[XorStep, ...]
+
+    @property
+    def never(self) -> bool:
+        """True when the move is never allowed (the partial mixer is folded away)."""
+        return not any(s.target == self.output for s in self.steps)
+
+    @property
+    def inputs(self) -> tuple[int, ...]:
+        """Grid edges the function reads (ascending)."""
+        return tuple(sorted({lit.signal for s in self.steps for lit in s.literals if not lit.is_temp}))
+
+    def evaluate(self, mask: int) -> bool:
+        """Run the program on the robot's path ``mask``."""
+        temps = [False] * self.num_temps
+        for s in self.steps:
+            if all(
+                (temps[~lit.signal] if lit.signal < 0 else bool((mask >> lit.signal) & 1)) == lit.value
+                for lit in s.literals
+            ):
+                temps[s.target] = not temps[s.target]
+        return temps[self.output]
+
+
+def apply_sbf(mask: int, plaquette: Plaquette) -> int:
+    """Flip the plaquette's four edges in ``mask``.
+
+    Example:
+        >>> from gridcover.grid import Grid
+        >>> q = Grid(2, 2).plaquettes[0]
+        >>> apply_sbf(q.edge_mask, q)
+        0
+    """
+    return mask ^ plaquette.edge_mask
+
+
+# ---------------------------------------------------------------- compilation
+
+
+def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule = "exact") -> SbfLogic:
+    """Compile the rule's logic function for ``robot`` on ``plaquette``, specialised to the scenario.
+
+    Args:
+        scenario: The scenario (obstacle mode and endpoints are folded in).
+        robot: Robot index.
+        plaquette: The plaquette.
+        rule: ``exact`` (default) or ``paper``.
+
+    Returns:
+        The :class:`SbfLogic`; ``.never`` when no flip can be allowed (e.g. a plaquette edge touches an
+        obstacle in hard mode).
+    """
+    if rule not in RULES:
+        raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    return _sbf_logic_cached(scenario, robot, plaquette.index, rule)
+
+
+@lru_cache(maxsize=65536)
+def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -> SbfLogic:
+    plaq = scenario.grid.plaquettes[pindex]
+    vmask = scenario.variable_mask
+    if any(not (vmask >> e) & 1 for e in plaq.edges):
+        return SbfLogic(rule, robot, pindex, 1, 0, ())
+    rb = scenario.robots[robot]
+    endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
+    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
+    if rule == "paper":
+        return _paper_logic(robot, pindex, plaq.edges, outer)
+    diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
+    return _exact_logic(robot, pindex, plaq.edges, outer, endpoints, diagonal)
+
+
+def _exact_logic(
+    robot: int,
+    pindex: int,
+    pedges: tuple[int, int, int, int],
+    outer: tuple[tuple[int, ...], ...],
+    endpoints: tuple[bool, ...],
+    diagonal: bool,
+) -> SbfLogic:
+    """The exact rule as a three-level network (see the module docstring for the rule).
+
+    * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
+      the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
+      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so its first
+      outer edge alone tells whether it is busy; corners with fewer outer edges are never busy.
+    * ``pattern = NOT (0000 OR 1010 OR 0101)`` on ``ab, bc, cd, da``; the 0000 term is dropped when an
+      endpoint corner already blocks it, the opposite terms when start and goal are diagonal.
+    * ``out = pattern AND NOT blocked[v] for all v``.
+    """
+    ab, bc, cd, da = pedges
+    steps: list[XorStep] = []
+    blocked: list[int] = []
+    for v, (i, j) in enumerate(_CORNER_EDGES):
+        if endpoints[v]:
+            lits: tuple[Lit, ...] = (Lit(pedges[i], False), Lit(pedges[j], False))
+        elif len(outer[v]) == 2:
+            lits = (Lit(pedges[i], False), Lit(pedges[j], False), Lit(outer[v][0], True))
+        else:
+            continue
+        blocked.append(len(blocked))
+        steps.append(XorStep(blocked[-1], lits))
+    excluded = []
+    if not any(endpoints):
+        excluded.append((False, False, False, False))
+    if not diagonal:
+        excluded += [(True, False, True, False), (False, True, False, True)]
+    final = [Lit(~t, False) for t in blocked]
+    if excluded:
+        g = len(blocked)
+        steps.append(XorStep(g, ()))
+        for pat in excluded:
+            steps.append(XorStep(g, tuple(Lit(e, val) for e, val in zip((ab, bc, cd, da), pat))))
+        final.insert(0, Lit(~g, True))
+    out = len(blocked) + (1 if excluded else 0)
+    steps.append(XorStep(out, tuple(final)))
+    return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
+
+
+def _paper_logic(
+    robot: int, pindex: int, pedges: tuple[int, int, int, int], outer: tuple[tuple[int, ...], ...]
+) -> SbfLogic:
+    ab, bc, cd, da = pedges
+    f1, f2 = 0, 1
+    steps = [
+        XorStep(f1, ()),
+        XorStep(f1, (Lit(ab, False), Lit(bc, False), Lit(cd, False), Lit(da, False))),
+        XorStep(f2, ()),
+        XorStep(f2, (Lit(ab, True), Lit(bc, False), Lit(cd, True), Lit(da, False))),
+        XorStep(f2, (Lit(ab, False), Lit(bc, True), Lit(cd, False), Lit(da, True))),
+    ]
+    corner_temps = []
+    for oe in outer:
+        if len(oe) == 2:  # a corner with fewer than two outer edges cannot be passed through
+            t = 2 + len(corner_temps)
+            corner_temps.append(t)
+            steps.append(XorStep(t, (Lit(oe[0], True), Lit(oe[1], True))))
+    out = 2 + len(corner_temps)
+    final = [Lit(~f1, True), Lit(~f2, True)] + [Lit(~t, False) for t in corner_temps]
+    steps.append(XorStep(out, tuple(final)))
+    return SbfLogic("paper", robot, pindex, out + 1, out, tuple(steps))
+
+
+def exact_rule_value(
+    pbits: Sequence[int], outer_counts: Sequence[int], endpoints: Sequence[bool], diagonal: bool
+) -> bool:
+    """The ``exact`` rule on one local configuration (the specification :func:`sbf_logic` compiles).
+
+    Args:
+        pbits: Bits of ``ab, bc, cd, da``.
+        outer_counts: Number of set outer edges at corners ``a, b, c, d``.
+        endpoints: Whether each corner is the robot's start or goal.
+        diagonal: Whether start and goal are diagonal corners of the plaquette.
+    """
+    k = sum(pbits)
+    if k == 0 or k == 4:
+        return False
+    if k == 2 and pbits[0] == pbits[2]:
+        return diagonal
+    for v, (e1, e2) in enumerate(_CORNER_EDGES):
+        if pbits[e1] + pbits[e2] == 0 and (endpoints[v] or outer_counts[v] > 0):
+            return False
+    return True
+
+
+# ---------------------------------------------------------------- the move graph
+
+
+def allowed_moves(scenario: Scenario, robot: int, mask: int, rule: Rule = "exact") -> list[int]:
+    """Indices of the plaquettes whose flip the rule allows on ``mask``."""
+    return [
+        q.index for q in scenario.grid.plaquettes if sbf_logic(scenario, robot, q, rule).evaluate(mask)
+    ]
+
+
+def reachable_paths(
+    scenario: Scenario, robot: int, rule: Rule = "exact", start: int | None = None
+) -> list[int]:
+    """All paths reachable from ``start`` (default: :func:`~gridcover.paths.initial_path`) by allowed SBF
+    moves, in breadth-first order. With the ``paper`` rule this can include infeasible edge sets."""
+    if start is None:
+        start = initial_path(scenario, robot)
+    plaqs = scenario.grid.plaquettes
+    logics = [sbf_logic(scenario, robot, q, rule) for q in plaqs]
+    seen = {start}
+    order = [start]
+    queue = deque([start])
+    while queue:
+        m = queue.popleft()
+        for q, lg in zip(plaqs, logics):
+            if lg.evaluate(m):
+                n = m ^ q.edge_mask
+                if n not in seen:
+                    seen.add(n)
+                    order.append(n)
+                    queue.append(n)
+    return order
+
+
+def move_components(scenario: Scenario, robot: int, rule: Rule = "exact") -> list[list[int]]:
+    """Split all feasible paths of a robot into the connected components of the move graph.
+
+    The component holding :func:`~gridcover.paths.initial_path` comes first; the others follow in the
+    order of their first path in :func:`~gridcover.paths.enumerate_paths`. Each component lists its paths in
+    breadth-first order from its first path (its representative). Moves that leave the feasible set (the
+    ``paper`` rule's failures) are not followed.
+    """
+    paths = enumerate_paths(scenario, robot)
+    feasible = set(paths)
+    plaqs = scenario.grid.plaquettes
+    logics = [sbf_logic(scenario, robot, q, rule) for q in plaqs]
+    init = initial_path(scenario, robot)
+    seeds = [init] + [p for p in paths if p != init]
+    assigned: set[int] = set()
+    comps: list[list[int]] = []
+    for seed in seeds:
+        if seed in assigned:
+            continue
+        comp = [seed]
+        assigned.add(seed)
+        queue = deque([seed])
+        while queue:
+            m = queue.popleft()
+            for q, lg in zip(plaqs, logics):
+                if lg.evaluate(m):
+                    n = m ^ q.edge_mask
+                    if n in feasible and n not in assigned:
+                        assigned.add(n)
+                        comp.append(n)
+                        queue.append(n)
+        comps.append(comp)
+    return comps
+
+
+def representatives(scenario: Scenario, robot: int, rule: Rule = "exact") -> tuple[int, ...]:
+    """One path per move-graph component (the initial path's component first)."""
+    return tuple(c[0] for c in move_components(scenario, robot, rule))
