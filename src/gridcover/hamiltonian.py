@@ -16,7 +16,7 @@ Example:
     >>> from gridcover.scenario import scenario_from_dict
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
     >>> H = ising_hamiltonian(s)
-    >>> H.num_qubits, H.evaluate(np.array([1, 0, 0, 1]))   # the path (0,0)-(0,1)-(1,1)
+    >>> H.num_qubits, H.evaluate(np.array([1, 0, 1, 0]))   # the path (0,0)-(0,1)-(1,1)
     (4, 2.0)
 """
 
@@ -58,8 +58,7 @@ class IsingHamiltonian:
         """``(i, j, J_ij)`` for every ``|J_ij| > tol``, row-major (``i < j``)."""
         ii, jj = np.nonzero(np.abs(self.J) > tol)
         vals = self.J[ii, jj]
-        for i, j, v in zip(ii.tolist(), jj.tolist(), vals.tolist(), strict=True):
-            yield i, j, v
+        yield from zip(ii.tolist(), jj.tolist(), vals.tolist(), strict=True)
 
     def num_quadratic_terms(self, tol: float = 0.0) -> int:
         return int(np.count_nonzero(np.abs(self.J) > tol))

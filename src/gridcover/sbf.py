@@ -36,7 +36,7 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
     >>> p = initial_path(s, 0)
     >>> [sbf_logic(s, 0, q).evaluate(p) for q in s.grid.plaquettes]
-    [False, True, False, False]
+    [True, True, False, True]
 """
 
 from __future__ import annotations

@@ -394,7 +394,8 @@ def scenario_from_dict(data: Mapping[str, Any]) -> Scenario:
             raise ScenarioError(f"grid.{k}", "missing")
     rows, cols = _int(grid_d["rows"], "grid.rows"), _int(grid_d["cols"], "grid.cols")
     if rows < 2 or cols < 2:
-        raise ScenarioError("grid.rows" if rows < 2 else "grid.cols", f"the grid must be at least 2x2, got {rows}x{cols}")
+        field_name = "grid.rows" if rows < 2 else "grid.cols"
+        raise ScenarioError(field_name, f"the grid must be at least 2x2, got {rows}x{cols}")
     obstacles = [
         _node(o, f"grid.obstacles[{i}]") for i, o in enumerate(_list(grid_d.get("obstacles", []), "grid.obstacles"))
     ]
