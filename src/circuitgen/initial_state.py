@@ -1,0 +1,126 @@
+"""Initial states: each robot on its initial path, or on a uniform superposition of representative paths.
+
+``initial_path`` (default, the paper's): an X gate on every data qubit whose edge lies on the robot's
+:func:`~gridcover.paths.initial_path`.
+
+``representatives``: when SBF moves split a robot's feasible paths into several components (hard
+obstacles), one path per component (:func:`~gridcover.sbf.representatives`) is put in uniform superposition
+``sum_k |s_k> / sqrt(K)``, robot by robot, so the mixer can reach every component. The state-preparation
+circuit is a binary decision tree over the qubits (the sparse form of Grover-Rudolph state preparation):
+
+* ``prepare(S, C)`` for the set of bit strings ``S`` on the branch selected by the conditions ``C``
+  (qubit = value pairs fixed by earlier rotations): set every not-yet-fixed qubit on which all of ``S``
+  agree (X controlled on ``C``); if ``|S| > 1``, take the lowest qubit ``q`` on which ``S`` splits into
+  ``S0`` (bit 0) and ``S1`` (bit 1), rotate it with ``RY(2 acos(sqrt(|S0|/|S|)))`` controlled on ``C``, then
+  ``prepare(S0, C + {q: 0})`` and ``prepare(S1, C + {q: 1})``.
+* A gate controlled on one condition uses ``cx``/``cry`` (X-conjugated for a 0 condition); on two or more, the
+  conjunction is computed into one clean ``logic`` ancilla with an ``mcx``, used, and uncomputed.
+
+With ``K = 1`` this is just the X gates of the single path.
+
+Example:
+    >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
+    ['ry', 'x', 'cx', 'x', 'cx']
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from gridcover.paths import initial_path, path_bits
+from gridcover.sbf import Rule, representatives
+from gridcover.scenario import Scenario
+
+from .gates import Gate, cry, mcx, ry, x
+
+
+def _conditioned(
+    gate_on: int, conditions: list[tuple[int, int]], ancilla: int | None, kind: str, theta: float = 0.0
+) -> list[Gate]:
+    """X (``kind='x'``) or RY(theta) (``kind='ry'``) on ``gate_on`` controlled on all ``(qubit, value)``."""
+    if not conditions:
+        return [x(gate_on)] if kind == "x" else [ry(theta, gate_on)]
+    if kind == "x":
+        qs = [q for q, _ in conditions]
+        return [mcx(qs, gate_on, "".join(str(v) for _, v in conditions))]
+    if len(conditions) == 1:
+        (q, v), = conditions
+        flip = [] if v else [x(q)]
+        return [*flip, cry(theta, q, gate_on), *flip]
+    if ancilla is None:
+        raise ValueError("a controlled rotation with several conditions needs an ancilla")
+    qs = [q for q, _ in conditions]
+    flag = mcx(qs, ancilla, "".join(str(v) for _, v in conditions))
+    return [flag, cry(theta, ancilla, gate_on), flag]
+
+
+def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: int | None = None) -> list[Gate]:
+    """Gates preparing ``sum_k |strings[k]> / sqrt(K)`` from |0...0> (see the module docstring).
+
+    Args:
+        strings: Distinct bit strings; bit ``i`` of each belongs to ``qubits[i]``.
+        qubits: The qubits, in bit order.
+        ancilla: A clean qubit, needed only when a rotation has two or more conditions.
+
+    Returns:
+        The gate list.
+    """
+    if len(set(strings)) != len(strings) or not strings:
+        raise ValueError("need a non-empty list of distinct bit strings")
+    n = len(qubits)
+    out: list[Gate] = []
+
+    def prepare(group: list[int], conditions: list[tuple[int, int]], fixed: set[int]) -> None:
+        split = None
+        for i in range(n):
+            if i in fixed:
+                continue
+            bits = {(s >> i) & 1 for s in group}
+            if len(bits) == 1:
+                if bits == {1}:
+                    out.extend(_conditioned(qubits[i], conditions, ancilla, "x"))
+                fixed = fixed | {i}
+            elif split is None:
+                split = i
+        if split is None:
+            return
+        zeros = [s for s in group if not (s >> split) & 1]
+        ones = [s for s in group if (s >> split) & 1]
+        theta = 2 * math.acos(math.sqrt(len(zeros) / len(group)))
+        out.extend(_conditioned(qubits[split], conditions, ancilla, "ry", theta))
+        fixed = fixed | {split}
+        prepare(zeros, [*conditions, (qubits[split], 0)], fixed)
+        prepare(ones, [*conditions, (qubits[split], 1)], fixed)
+
+    prepare(list(strings), [], set())
+    return out
+
+
+def initial_state_gates(
+    scenario: Scenario,
+    initial: str = "initial_path",
+    rule: Rule = "exact",
+    ancilla: int | None = None,
+) -> list[Gate]:
+    """The initial-state preparation on the data qubits (variable ``i`` on qubit ``i``).
+
+    Args:
+        scenario: The scenario.
+        initial: ``initial_path`` or ``representatives`` (see the module docstring).
+        rule: SBF rule deciding the move-graph components (``representatives`` only).
+        ancilla: Clean qubit for multiply-controlled rotations (``representatives`` only).
+
+    Returns:
+        The gate list.
+    """
+    if initial not in ("initial_path", "representatives"):
+        raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
+    v = scenario.edges_per_robot
+    out: list[Gate] = []
+    for r in range(scenario.num_robots):
+        qubits = list(range(r * v, (r + 1) * v))
+        masks = [initial_path(scenario, r)] if initial == "initial_path" else list(representatives(scenario, r, rule))
+        strings = [int("".join(map(str, path_bits(scenario, m)[::-1])), 2) for m in masks]
+        out.extend(superposition_gates(strings, qubits, ancilla))
+    return out
