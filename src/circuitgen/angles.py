@@ -111,9 +111,7 @@ class Angle:
     _const: float
     _terms: Terms
 
-    def __init__(
-        self, constant: float = 0.0, terms: Iterable[tuple[str, float]] | Mapping[str, float] = ()
-    ) -> None:
+    def __init__(self, constant: float = 0.0, terms: Iterable[tuple[str, float]] | Mapping[str, float] = ()) -> None:
         items = terms.items() if isinstance(terms, Mapping) else terms
         acc: dict[str, float] = {}
         for name, coeff in items:

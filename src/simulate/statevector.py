@@ -1,0 +1,155 @@
+"""Dense numpy statevector simulator for any :class:`~circuitgen.circuit.Circuit`.
+
+Convention (Qiskit's ``Statevector``): bit ``i`` of a basis index is qubit ``i``, so qubit 0
+is the least significant bit. Gate actions come from :mod:`circuitgen.gates`: permutation
+gates through :func:`~circuitgen.gates.controlled_x_pattern` (a slice swap), diagonal gates
+through :func:`~circuitgen.gates.diagonal` (a broadcast multiply), all others through
+:func:`~circuitgen.gates.unitary` (a tensor contraction on the gate's axes). The sparse
+simulator uses the same three functions, so the two cannot silently disagree.
+
+Practical limits: ~26 qubits for :func:`simulate_statevector` (1 GiB of amplitudes),
+~12 qubits for :func:`circuit_unitary`.
+
+>>> from circuitgen.circuit import Circuit, Section
+>>> from circuitgen.gates import cx, h
+>>> bell = Circuit([("data", 2)], [Section("s", [h(0), cx(0, 1)])])
+>>> np.round(simulate_statevector(bell), 6).tolist()
+[(0.707107+0j), 0j, 0j, (0.707107+0j)]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from circuitgen.angles import UnboundParameterError
+from circuitgen.circuit import Circuit
+from circuitgen.gates import GATE_SPECS, Gate, controlled_x_pattern, diagonal, unitary
+
+__all__ = ["MAX_UNITARY_QUBITS", "circuit_unitary", "simulate_statevector"]
+
+MAX_UNITARY_QUBITS = 14
+"""Refuse :func:`circuit_unitary` beyond this many qubits (4**14 amplitudes = 4 GiB)."""
+
+
+def _bound(circuit: Circuit, bindings: Mapping[str, float] | None) -> Circuit:
+    if bindings:
+        circuit = circuit.bind(bindings)
+    if circuit.symbols:
+        raise UnboundParameterError(circuit.symbols, "simulation")
+    return circuit
+
+
+def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
+    """Apply ``gate`` to ``psi`` of shape ``(2,)*n + (batch,)``; axis of qubit q is n-1-q."""
+    name, qubits = gate[0], gate[1]
+    spec = GATE_SPECS[name]
+    if spec.permutation:
+        controls, state, target = controlled_x_pattern(gate)
+        idx: list[int | slice] = [slice(None)] * (n + 1)
+        for c, bit in zip(controls, state, strict=True):
+            idx[n - 1 - c] = 1 if bit == "1" else 0
+        ax = n - 1 - target
+        idx[ax] = 0
+        i0 = tuple(idx)
+        idx[ax] = 1
+        i1 = tuple(idx)
+        tmp = psi[i0].copy()
+        psi[i0] = psi[i1]
+        psi[i1] = tmp
+        return psi
+    k = len(qubits)
+    if spec.diagonal:
+        d = diagonal(gate).reshape((2,) * k)  # axis a <-> local bit k-1-a <-> qubits[k-1-a]
+        order = sorted(range(k), key=lambda j: -qubits[j])  # local bits in psi-axis order
+        d = d.transpose([k - 1 - j for j in order])
+        shape = [1] * (n + 1)
+        for j in order:
+            shape[n - 1 - qubits[j]] = 2
+        psi *= d.reshape(shape)
+        return psi
+    u = unitary(gate)
+    if k == 1:
+        # view psi as (A, 2, C) with the gate's axis in the middle (C includes the batch axis)
+        c = psi.size >> (n - qubits[0])
+        if c >= 16:
+            return np.matmul(u, psi.reshape(-1, 2, c)).reshape(psi.shape)
+        # tiny C: matmul would loop over 2x2 blocks; one GEMM against kron(u, I_C) is faster
+        m = np.kron(u, np.eye(c)).T
+        return (psi.reshape(-1, 2 * c) @ m).reshape(psi.shape)
+    ut = u.reshape((2,) * (2 * k))
+    axes = [n - 1 - qubits[j] for j in range(k - 1, -1, -1)]  # psi axes of local bits k-1..0
+    out = np.tensordot(ut, psi, axes=(list(range(k, 2 * k)), axes))
+    return np.ascontiguousarray(np.moveaxis(out, list(range(k)), axes))
+
+
+def _run(circuit: Circuit, psi: np.ndarray) -> np.ndarray:
+    n = circuit.num_qubits
+    for gate in circuit.gates:
+        psi = _apply(psi, gate, n)
+    return psi
+
+
+def simulate_statevector(
+    circuit: Circuit,
+    initial: int | np.ndarray = 0,
+    bindings: Mapping[str, float] | None = None,
+) -> np.ndarray:
+    """Final statevector of ``circuit``.
+
+    Args:
+        circuit: any circuit (any gate level), at most ~26 qubits.
+        initial: a basis-state index, or a vector of length ``2**num_qubits``.
+        bindings: symbol values, applied with :meth:`Circuit.bind` first.
+
+    Returns:
+        Complex vector of length ``2**num_qubits`` (index bit i = qubit i).
+
+    Raises:
+        UnboundParameterError: some symbol has no value.
+
+    >>> from circuitgen.circuit import Circuit, Section
+    >>> from circuitgen.gates import x
+    >>> simulate_statevector(Circuit([("data", 2)], [Section("s", [x(1)])])).argmax()
+    np.int64(2)
+    """
+    circuit = _bound(circuit, bindings)
+    n = circuit.num_qubits
+    dim = 1 << n
+    if isinstance(initial, (int, np.integer)):
+        if not 0 <= initial < dim:
+            raise ValueError(f"basis index {initial} out of range for {n} qubits")
+        psi = np.zeros(dim, dtype=complex)
+        psi[int(initial)] = 1.0
+    else:
+        psi = np.array(initial, dtype=complex).reshape(-1)
+        if psi.shape != (dim,):
+            raise ValueError(f"initial state has {psi.size} amplitudes, expected {dim}")
+    psi = _run(circuit, psi.reshape((2,) * n + (1,)))
+    return psi.reshape(dim)
+
+
+def circuit_unitary(circuit: Circuit, bindings: Mapping[str, float] | None = None) -> np.ndarray:
+    """Matrix of the whole circuit (column ``j`` = image of basis state ``j``).
+
+    Args:
+        circuit: a circuit with at most :data:`MAX_UNITARY_QUBITS` qubits (~12 is fast).
+        bindings: symbol values.
+
+    Returns:
+        ``2**n x 2**n`` complex array.
+
+    >>> from circuitgen.circuit import Circuit, Section
+    >>> from circuitgen.gates import cz, h
+    >>> u = circuit_unitary(Circuit([("data", 2)], [Section("s", [h(1), cz(0, 1), h(1)])]))
+    >>> np.round(u.real, 12).astype(int).tolist()  # = cx(0, 1)
+    [[1, 0, 0, 0], [0, 0, 0, 1], [0, 0, 1, 0], [0, 1, 0, 0]]
+    """
+    circuit = _bound(circuit, bindings)
+    n = circuit.num_qubits
+    if n > MAX_UNITARY_QUBITS:
+        raise ValueError(f"{n} qubits is too many for a dense unitary")
+    dim = 1 << n
+    psi = np.eye(dim, dtype=complex).reshape((2,) * n + (dim,))
+    return _run(circuit, psi).reshape(dim, dim)
