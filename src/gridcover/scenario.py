@@ -250,12 +250,20 @@ def _validate(s: Scenario) -> None:
     _check_number(ob.obstacle_weight, "objective.obstacle_weight")
     _check_number(ob.free_weight, "objective.free_weight")
     _check_number(ob.edge_length, "objective.edge_length", positive=True)
+    seen_edges: set[tuple[Node, Node]] = set()
     for i, ((u, v), d) in enumerate(ob.edge_lengths):
         _check_node(g, u, f"objective.edge_lengths[{i}]")
         _check_node(g, v, f"objective.edge_lengths[{i}]")
         if abs(u[0] - v[0]) + abs(u[1] - v[1]) != 1:
             raise ScenarioError(f"objective.edge_lengths[{i}]", f"{u} and {v} are not grid neighbours")
         _check_number(d, f"objective.edge_lengths[{i}]", positive=True)
+        if u > v:
+            raise ScenarioError(f"objective.edge_lengths[{i}]", f"write the edge as ({v}, {u}), row-major first")
+        if (u, v) in seen_edges:
+            raise ScenarioError(f"objective.edge_lengths[{i}]", f"the edge {u}-{v} is listed twice")
+        seen_edges.add((u, v))
+    if list(ob.edge_lengths) != sorted(ob.edge_lengths):
+        raise ScenarioError("objective.edge_lengths", "must be sorted by edge (use scenario_from_dict)")
     for name, value, allowed in (
         ("objective.obstacles", ob.obstacles, ("soft", "hard")),
         ("objective.balance", ob.balance, ("chain", "all-pairs")),
@@ -355,7 +363,10 @@ def _int(x: Any, name: str) -> int:
 def _float(x: Any, name: str) -> float:
     if isinstance(x, bool) or not isinstance(x, (int, float)):
         raise ScenarioError(name, f"expected a number, got {x!r}")
-    return float(x)
+    try:
+        return float(x)
+    except OverflowError:  # an integer too large for a float (JSON allows any length)
+        raise ScenarioError(name, f"expected a finite number, got an integer of {len(str(x))} digits") from None
 
 
 def _str(x: Any, name: str) -> str:
@@ -399,6 +410,12 @@ def scenario_from_dict(data: Mapping[str, Any]) -> Scenario:
     obstacles = [
         _node(o, f"grid.obstacles[{i}]") for i, o in enumerate(_list(grid_d.get("obstacles", []), "grid.obstacles"))
     ]
+    # per-entry checks here, before sorting, so that errors name the entry as written
+    grid = Grid(rows, cols)
+    for i, o in enumerate(obstacles):
+        _check_node(grid, o, f"grid.obstacles[{i}]")
+        if o in obstacles[:i]:
+            raise ScenarioError(f"grid.obstacles[{i}]", f"{o} is listed twice")
     if "robots" not in data:
         raise ScenarioError("robots", "missing (at least one robot with start and goal)")
     robots = []
@@ -425,7 +442,15 @@ def scenario_from_dict(data: Mapping[str, Any]) -> Scenario:
         if len(item) != 3:
             raise ScenarioError(name, f"expected [[row, col], [row, col], length], got {item!r}")
         u, v = _node(item[0], name), _node(item[1], name)
-        lengths.append(((min(u, v), max(u, v)), _float(item[2], name)))
+        _check_node(grid, u, name)
+        _check_node(grid, v, name)
+        if abs(u[0] - v[0]) + abs(u[1] - v[1]) != 1:
+            raise ScenarioError(name, f"{u} and {v} are not grid neighbours")
+        edge, length = (min(u, v), max(u, v)), _float(item[2], name)
+        _check_number(length, name, positive=True)
+        if any(e == edge for e, _ in lengths):
+            raise ScenarioError(name, f"the edge {edge[0]}-{edge[1]} is listed twice")
+        lengths.append((edge, length))
     objective = Objective(
         alpha=alpha,
         obstacle_weight=_float(od.get("obstacle_weight", defaults.obstacle_weight), "objective.obstacle_weight"),
@@ -437,7 +462,7 @@ def scenario_from_dict(data: Mapping[str, Any]) -> Scenario:
         degree_target=_str(od.get("degree_target", defaults.degree_target), "objective.degree_target"),  # type: ignore[arg-type]
     )
     name = _str(data.get("name", ""), "name")
-    return Scenario(Grid(rows, cols), tuple(robots), tuple(sorted(obstacles)), objective, name)
+    return Scenario(grid, tuple(robots), tuple(sorted(obstacles)), objective, name)
 
 
 def scenario_to_dict(s: Scenario) -> dict[str, Any]:
@@ -476,6 +501,8 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario:
         text = p.read_text(encoding="utf-8")
     except OSError as exc:
         raise ScenarioError(str(p), f"cannot read the file ({exc.strerror or exc})") from None
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(str(p), f"not valid UTF-8 text ({exc.reason} at byte {exc.start})") from None
     try:
         if p.suffix.lower() == ".json":
             data = json.loads(text)
@@ -497,10 +524,28 @@ def _toml_value(v: Any) -> str:
     if isinstance(v, (int, float)):
         return repr(v)
     if isinstance(v, str):
-        return json.dumps(v)
+        return _toml_string(v)
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     raise TypeError(f"cannot write {v!r} as TOML")
+
+
+def _toml_string(v: str) -> str:
+    """A TOML basic string. Not ``json.dumps``: JSON escapes characters beyond U+FFFF as surrogate pairs,
+    which TOML rejects. Quote, backslash and control characters are escaped, everything else is literal."""
+    out = ['"']
+    for ch in v:
+        o = ord(ch)
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif o < 0x20 or o == 0x7F:
+            out.append(f"\\u{o:04X}")
+        elif 0xD800 <= o <= 0xDFFF:
+            raise ScenarioError("name", f"contains the lone surrogate U+{o:04X}, which TOML cannot hold (save as JSON)")
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
 
 
 def scenario_to_toml(s: Scenario) -> str:
