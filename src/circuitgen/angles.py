@@ -333,7 +333,7 @@ def format_float(x: float) -> str:
     >>> format_float(0.1), format_float(1e-5), format_float(-2.0)
     ('0.1', '1.0e-05', '-2.0')
     """
-    s = repr(float(x))
+    s = repr(x) if type(x) is float else repr(float(x))
     if "." not in s:
         if "e" in s:
             return s.replace("e", ".0e")
@@ -368,6 +368,13 @@ def format_angle(value: float | Angle, style: Literal["qasm2", "qasm3"] = "qasm3
         return format_float(value._const)
     if style == "qasm2":
         raise UnboundParameterError(value.symbols, "OpenQASM 2 has no symbolic parameters")
+    if len(value._terms) == 1 and value._const == 0.0:  # fast path: c*name
+        name, coeff = value._terms[0]
+        if coeff == 1.0:
+            return name
+        if coeff == -1.0:
+            return "-" + name
+        return f"{format_float(coeff)}*{name}"
     parts: list[str] = []
     for i, (name, coeff) in enumerate(value._terms):
         mag = abs(coeff)

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from operator import itemgetter
 from typing import overload
 
+from ._perf import gc_paused
 from .angles import Angle, symbol_sort_key
 from .gates import GATE_SPECS, Gate
 
@@ -314,6 +315,7 @@ class Circuit:
             raise ValueError(f"incompatible layouts {a} and {b}")
         return Circuit._trusted(regs, self._sections + other._sections)
 
+    @gc_paused()
     def bind(self, mapping: Mapping[str, float]) -> Circuit:
         """Substitute symbol values; fully bound angles become plain floats.
 
@@ -324,7 +326,7 @@ class Circuit:
             The bound circuit (partially symbolic if ``mapping`` misses some symbols).
         """
         mapping = {k: float(v) for k, v in mapping.items()}
-        cache: dict[int, object] = {}  # Angle objects are often shared between gates
+        new_gate = tuple.__new__
         secs = []
         for sec in self._sections:
             gates = list(sec.gates)
@@ -332,22 +334,17 @@ class Circuit:
                 params = g[2]
                 if not params:
                     continue
-                changed = False
-                new = []
-                for p in params:
-                    if type(p) is Angle:
-                        key = id(p)
-                        b = cache.get(key)
-                        if b is None:
-                            ba = p.bind(mapping)
-                            b = ba.constant if ba.is_bound else ba
-                            cache[key] = b
-                        new.append(b)
-                        changed = True
-                    else:
-                        new.append(p)
-                if changed:
-                    gates[i] = tuple.__new__(Gate, (g[0], g[1], tuple(new), g[3]))
+                p = params[0]
+                if len(params) == 1 and type(p) is Angle:
+                    terms = p._terms
+                    if len(terms) == 1:  # the common case, inlined
+                        value = mapping.get(terms[0][0])
+                        if value is not None:
+                            gates[i] = new_gate(Gate, (g[0], g[1], (p._const + terms[0][1] * value,), g[3]))
+                        continue
+                bound = g.bind(mapping)
+                if bound is not g:
+                    gates[i] = bound
             secs.append(Section(sec.name, tuple(gates)))
         remaining = None
         if self._symbols is not None:
@@ -450,6 +447,7 @@ class CircuitBuilder:
                     del target[start:]
                     raise TypeError(f"expected a Gate with a known name, got {g!r}")
 
+    @gc_paused()
     def build(self) -> Circuit:
         """Freeze into a :class:`Circuit` (gates are range-checked against the layout)."""
         n = self.num_qubits

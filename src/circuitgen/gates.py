@@ -46,6 +46,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from numbers import Real
 from types import MappingProxyType
 from typing import NamedTuple
 
@@ -223,11 +224,11 @@ def _bind_param(p: Param, mapping: Mapping[str, float]) -> Param:
 
 # --- constructors ---------------------------------------------------------------------------
 def _param(theta: object) -> Param:
-    if type(theta) is float or isinstance(theta, Angle):
+    if type(theta) is float or type(theta) is Angle or isinstance(theta, Angle):
         return theta  # type: ignore[return-value]
-    if isinstance(theta, bool):
-        raise TypeError("angle must be a number or an Angle, not bool")
-    return float(theta)  # type: ignore[arg-type]
+    if isinstance(theta, bool) or not isinstance(theta, Real):
+        raise TypeError(f"angle must be a real number or an Angle, got {theta!r}")
+    return float(theta)
 
 
 def _distinct(*qubits: int) -> tuple[int, ...]:
@@ -241,38 +242,51 @@ def _distinct(*qubits: int) -> tuple[int, ...]:
     return tuple(int(q) for q in qubits)
 
 
+# Fast paths for the common case (plain non-negative distinct ints); _distinct reports errors.
+def _q1(q: int) -> tuple[int]:
+    if type(q) is int and q >= 0:
+        return (q,)
+    return _distinct(q)  # type: ignore[return-value]
+
+
+def _q2(a: int, b: int) -> tuple[int, int]:
+    if type(a) is int and type(b) is int and a != b and a >= 0 and b >= 0:
+        return (a, b)
+    return _distinct(a, b)  # type: ignore[return-value]
+
+
 def x(q: int) -> Gate:
     """Pauli X on ``q``.
 
     >>> x(0)
     Gate(name='x', qubits=(0,), params=(), ctrl_state=None)
     """
-    return _new(Gate, ("x", _distinct(q), (), None))
+    return _new(Gate, ("x", _q1(q), (), None))
 
 
 def h(q: int) -> Gate:
     """Hadamard on ``q``."""
-    return _new(Gate, ("h", _distinct(q), (), None))
+    return _new(Gate, ("h", _q1(q), (), None))
 
 
 def t(q: int) -> Gate:
     """T = diag(1, e^{iπ/4}) on ``q``."""
-    return _new(Gate, ("t", _distinct(q), (), None))
+    return _new(Gate, ("t", _q1(q), (), None))
 
 
 def tdg(q: int) -> Gate:
     """T† on ``q``."""
-    return _new(Gate, ("tdg", _distinct(q), (), None))
+    return _new(Gate, ("tdg", _q1(q), (), None))
 
 
 def s(q: int) -> Gate:
     """S = diag(1, i) on ``q``."""
-    return _new(Gate, ("s", _distinct(q), (), None))
+    return _new(Gate, ("s", _q1(q), (), None))
 
 
 def sdg(q: int) -> Gate:
     """S† on ``q``."""
-    return _new(Gate, ("sdg", _distinct(q), (), None))
+    return _new(Gate, ("sdg", _q1(q), (), None))
 
 
 def rz(theta: Param, q: int) -> Gate:
@@ -288,37 +302,37 @@ def rz(theta: Param, q: int) -> Gate:
     >>> rz(Angle.symbol("gamma_0"), 2)
     Gate(name='rz', qubits=(2,), params=(Angle('gamma_0'),), ctrl_state=None)
     """
-    return _new(Gate, ("rz", _distinct(q), (_param(theta),), None))
+    return _new(Gate, ("rz", _q1(q), (_param(theta),), None))
 
 
 def rx(theta: Param, q: int) -> Gate:
     """RX(θ) = exp(-iθX/2) on ``q``."""
-    return _new(Gate, ("rx", _distinct(q), (_param(theta),), None))
+    return _new(Gate, ("rx", _q1(q), (_param(theta),), None))
 
 
 def ry(theta: Param, q: int) -> Gate:
     """RY(θ) = exp(-iθY/2) on ``q``."""
-    return _new(Gate, ("ry", _distinct(q), (_param(theta),), None))
+    return _new(Gate, ("ry", _q1(q), (_param(theta),), None))
 
 
 def cx(c: int, t: int) -> Gate:
     """CNOT with control ``c`` and target ``t``."""
-    return _new(Gate, ("cx", _distinct(c, t), (), None))
+    return _new(Gate, ("cx", _q2(c, t), (), None))
 
 
 def cz(a: int, b: int) -> Gate:
     """Controlled Z (symmetric)."""
-    return _new(Gate, ("cz", _distinct(a, b), (), None))
+    return _new(Gate, ("cz", _q2(a, b), (), None))
 
 
 def crz(theta: Param, c: int, t: int) -> Gate:
     """RZ(θ) on ``t`` controlled by ``c`` (Qiskit's ``crz``)."""
-    return _new(Gate, ("crz", _distinct(c, t), (_param(theta),), None))
+    return _new(Gate, ("crz", _q2(c, t), (_param(theta),), None))
 
 
 def cry(theta: Param, c: int, t: int) -> Gate:
     """RY(θ) on ``t`` controlled by ``c``."""
-    return _new(Gate, ("cry", _distinct(c, t), (_param(theta),), None))
+    return _new(Gate, ("cry", _q2(c, t), (_param(theta),), None))
 
 
 def rzz(theta: Param, a: int, b: int) -> Gate:
@@ -327,7 +341,7 @@ def rzz(theta: Param, a: int, b: int) -> Gate:
     >>> rzz(0.1, 0, 1).spec.diagonal
     True
     """
-    return _new(Gate, ("rzz", _distinct(a, b), (_param(theta),), None))
+    return _new(Gate, ("rzz", _q2(a, b), (_param(theta),), None))
 
 
 def ccx(a: int, b: int, t: int) -> Gate:

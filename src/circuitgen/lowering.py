@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
 
+from ._perf import gc_paused
 from .angles import Param
 from .circuit import Circuit, Register, Section
 from .gates import GATE_SPECS, Gate
@@ -110,6 +111,7 @@ def _expand_mcx(g: Gate, work: Sequence[int], out: list[Gate]) -> None:
     out.extend(flips)
 
 
+@gc_paused()
 def lower_mcx(circuit: Circuit) -> Circuit:
     """Replace every ``mcx`` by X-conjugated ``x``/``cx``/``ccx`` gates.
 
@@ -184,8 +186,9 @@ def _cry(g: Gate) -> list[Gate]:
 
 
 def _rzz(g: Gate) -> list[Gate]:
-    a, b = g[1]
-    return [_g("cx", (a, b)), _g("rz", (b,), g[2]), _g("cx", (a, b))]
+    qubits = g[1]
+    cx = _new(Gate, ("cx", qubits, (), None))  # immutable, so one object serves twice
+    return [cx, _new(Gate, ("rz", (qubits[1],), g[2], None)), cx]
 
 
 def _rx(g: Gate) -> list[Gate]:
@@ -242,6 +245,20 @@ _RULES: dict[str, Callable[[Gate], list[Gate]]] = {
     "mcx": _mcx_small,
 }
 
+# Gate names each rule can emit (lets lower_to_basis skip re-checking outputs).
+_RULE_OUTPUTS: dict[str, frozenset[str]] = {
+    "ccx": frozenset({"h", "cx", "t", "tdg"}),
+    "crz": frozenset({"rz", "cx"}),
+    "cry": frozenset({"ry", "cx"}),
+    "rzz": frozenset({"rz", "cx"}),
+    "rx": frozenset({"h", "rz"}),
+    "ry": frozenset({"sdg", "h", "rz", "s"}),
+    "cz": frozenset({"h", "cx"}),
+    "sbf": frozenset({"h", "cx", "rz"}),
+    "csbf": frozenset({"h", "cx", "crz"}),
+    "mcx": frozenset({"x", "cx", "ccx"}),
+}
+
 
 def decompose_gate(gate: Gate) -> list[Gate]:
     """One decomposition step of ``gate`` (the rule :func:`lower_to_basis` applies).
@@ -278,6 +295,7 @@ def _check_basis(basis: Iterable[str]) -> frozenset[str]:
     return basis
 
 
+@gc_paused()
 def lower_to_basis(circuit: Circuit, basis: Iterable[str] = DEFAULT_BASIS) -> Circuit:
     """Rewrite every gate not in ``basis`` with exact decompositions, recursively.
 
@@ -302,14 +320,21 @@ def lower_to_basis(circuit: Circuit, basis: Iterable[str] = DEFAULT_BASIS) -> Ci
     if "mcx" not in basis:
         circuit = lower_mcx(circuit)
     secs = []
+    # names whose one-step decomposition is already entirely in the basis
+    direct = {name: rule for name, rule in _RULES.items() if _RULE_OUTPUTS[name] <= basis}
     for sec in circuit.sections:
         out: list[Gate] = []
-        append = out.append
+        append, extend = out.append, out.extend
         for g in sec.gates:
-            if g[0] in basis:
+            name = g[0]
+            if name in basis:
                 append(g)
             else:
-                _expand(g, basis, out)
+                rule = direct.get(name)
+                if rule is not None:
+                    extend(rule(g))
+                else:
+                    _expand(g, basis, out)
         secs.append(Section(sec.name, tuple(out)))
     return Circuit._trusted(circuit.registers, tuple(secs), circuit._symbols)
 
@@ -334,36 +359,43 @@ def _peephole_gates(gates: Sequence[Gate], num_qubits: int) -> list[Gate]:
     out: list[Gate | None] = []
     # stacks[q]: indices into ``out`` of the live gates on qubit q, latest last
     stacks: list[list[int]] = [[] for _ in range(num_qubits)]
+    inverse_name = _INVERSE_NAME
+    push = out.append
     for g in gates:
-        name, qubits, params = g[0], g[1], g[2]
+        name, qubits, params, _ = g
         if name == "rz" and params[0] == 0.0:
             continue
         st = stacks[qubits[0]]
         if st:
             j = st[-1]
             prev = out[j]
-            assert prev is not None
-            if prev[1] == qubits and all(stacks[q][-1] == j for q in qubits[1:]):
-                if name == "rz" and prev[0] == "rz":
-                    total = prev[2][0] + params[0]
-                    if total == 0.0:
+            # cheap name test first: almost every gate fails it
+            if prev[0] == inverse_name[name] and prev[1] == qubits:  # type: ignore[index]
+                n_q = len(qubits)
+                if n_q == 1 or (
+                    stacks[qubits[1]][-1] == j if n_q == 2 else all(stacks[q][-1] == j for q in qubits[1:])
+                ):
+                    if name == "rz":
+                        total = prev[2][0] + params[0]  # type: ignore[index]
+                        if total == 0.0:
+                            out[j] = None
+                            st.pop()
+                        else:
+                            out[j] = _new(Gate, ("rz", qubits, (total,), None))
+                        continue
+                    if _cancels(prev, g):  # type: ignore[arg-type]
                         out[j] = None
-                        st.pop()
-                    else:
-                        out[j] = _new(Gate, ("rz", qubits, (total,), None))
-                    continue
-                if _cancels(prev, g):
-                    out[j] = None
-                    for q in qubits:
-                        stacks[q].pop()
-                    continue
+                        for q in qubits:
+                            stacks[q].pop()
+                        continue
         idx = len(out)
-        out.append(g)
+        push(g)
         for q in qubits:
             stacks[q].append(idx)
     return [g for g in out if g is not None]
 
 
+@gc_paused()
 def peephole(circuit: Circuit) -> Circuit:
     """Cancel adjacent inverse pairs and merge adjacent ``rz``, within each section.
 
@@ -391,6 +423,7 @@ def peephole(circuit: Circuit) -> Circuit:
     return Circuit._trusted(circuit.registers, secs)
 
 
+@gc_paused()
 def lower(circuit: Circuit, basis: Iterable[str] = DEFAULT_BASIS, peephole: bool = True) -> Circuit:
     """:func:`lower_mcx`, then :func:`lower_to_basis`, then (optionally) :func:`peephole`.
 

@@ -64,7 +64,8 @@ import tempfile
 from collections.abc import Callable, Iterator
 from typing import Literal
 
-from .angles import Angle, Param, UnboundParameterError, format_angle, format_float
+from ._perf import gc_paused
+from .angles import Param, UnboundParameterError, format_angle, format_float
 from .circuit import Circuit
 from .gates import GATE_SPECS, Gate
 
@@ -256,17 +257,9 @@ def _check_symbol_names(symbols: tuple[str, ...]) -> None:
 
 def _param_formatter(version: Version) -> Callable[[Param], str]:
     style: Literal["qasm2", "qasm3"] = "qasm2" if version == 2 else "qasm3"
-    cache: dict[Angle, str] = {}
 
     def fmt(p: Param) -> str:
-        if type(p) is float:
-            return format_float(p)
-        if type(p) is Angle:
-            text = cache.get(p)
-            if text is None:
-                text = cache[p] = format_angle(p, style)
-            return text
-        return format_angle(p, style)
+        return format_float(p) if type(p) is float else format_angle(p, style)
 
     return fmt
 
@@ -281,21 +274,27 @@ def _body(circuit: Circuit, version: Version) -> Iterator[str]:
         for start in range(0, max(len(gates), 1), _CHUNK):
             lines = [f"// section {sec.name}"] if start == 0 else []
             append = lines.append
-            for name, qubits, params, state in itertools.islice(gates, start, start + _CHUNK):
-                head = heads.get(name)
-                if head is None:  # mcx: the name encodes k and the polarity
-                    k = len(qubits) - 1
-                    head = _mcx_name(k, state or "1" * k)
-                if params:
-                    head = f"{head}({','.join(map(fmt, params))})"
-                if len(qubits) == 1:
-                    append(f"{head} {qn[qubits[0]]};")
-                elif len(qubits) == 2:
-                    append(f"{head} {qn[qubits[0]]},{qn[qubits[1]]};")
-                else:
-                    append(f"{head} {','.join([qn[i] for i in qubits])};")
-            lines.append("")
-            yield "\n".join(lines)
+            with gc_paused():  # never held across the yield below
+                for name, qubits, params, state in itertools.islice(gates, start, start + _CHUNK):
+                    head = heads.get(name)
+                    if head is None:  # mcx: the name encodes k and the polarity
+                        k = len(qubits) - 1
+                        head = _mcx_name(k, state or "1" * k)
+                    if params:
+                        if len(params) == 1:
+                            p = params[0]
+                            head = f"{head}({format_float(p) if type(p) is float else fmt(p)})"
+                        else:
+                            head = f"{head}({','.join(map(fmt, params))})"
+                    if len(qubits) == 1:
+                        append(f"{head} {qn[qubits[0]]};")
+                    elif len(qubits) == 2:
+                        append(f"{head} {qn[qubits[0]]},{qn[qubits[1]]};")
+                    else:
+                        append(f"{head} {','.join([qn[i] for i in qubits])};")
+                lines.append("")
+                text = "\n".join(lines)
+            yield text
 
 
 def iter_qasm(circuit: Circuit, version: Version = 3) -> Iterator[str]:
