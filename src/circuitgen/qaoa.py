@@ -4,7 +4,9 @@
 
 * registers ``data`` (qubit ``i`` = decision variable ``i``, see :mod:`gridcover.scenario`) and ``logic``
   (the SBF logic ancillas, shared by every partial mixer because each returns them to |0>);
-* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``;
+* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every partial mixer is a
+  section of its own (all named ``mixer_k``), so lowering passes never act across two partial mixers and each
+  partial mixer's lowered cost is self-contained (see ``docs/architecture.md``);
 * ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
 
 The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - c0)) |x_0>``; the
@@ -15,7 +17,7 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
     >>> c = qaoa_circuit(s, p=1)
     >>> c.symbols, [sec.name for sec in c.sections]
-    (('gamma_0', 'beta_0'), ['initial_state', 'phase_0', 'mixer_0'])
+    (('gamma_0', 'beta_0'), ['initial_state', 'phase_0', 'mixer_0', 'mixer_0', 'mixer_0', 'mixer_0'])
 """
 
 from __future__ import annotations
@@ -27,9 +29,9 @@ from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .angles import Angle
-from .circuit import Circuit, CircuitBuilder, Register
+from .circuit import Circuit, Register, Section
 from .initial_state import initial_state_gates
-from .mixer import full_mixer_gates, logic_width
+from .mixer import logic_width, partial_mixer_gates
 from .phase import phase_separator_gates
 
 
@@ -81,12 +83,17 @@ def qaoa_circuit(
     registers = [Register("data", n)]
     if width:
         registers.append(Register("logic", width))
-    builder = CircuitBuilder(registers)
     ancilla = n if width else None
-    builder.append(initial_state_gates(scenario, initial, rule, ancilla), section="initial_state")
+    sections = [Section("initial_state", tuple(initial_state_gates(scenario, initial, rule, ancilla)))]
     hamiltonian = ising_hamiltonian(scenario) if p else None
     for k in range(p):
         assert hamiltonian is not None
-        builder.append(phase_separator_gates(hamiltonian, f"gamma_{k}"), section=f"phase_{k}")
-        builder.append(full_mixer_gates(scenario, Angle.symbol(f"beta_{k}"), n, rule), section=f"mixer_{k}")
-    return builder.build()
+        sections.append(Section(f"phase_{k}", tuple(phase_separator_gates(hamiltonian, f"gamma_{k}"))))
+        beta = Angle.symbol(f"beta_{k}")
+        # one section per partial mixer (all named mixer_k): passes stay inside a partial mixer
+        for r in range(scenario.num_robots):
+            for q in scenario.grid.plaquettes:
+                gates = partial_mixer_gates(scenario, r, q, beta, n, rule)
+                if gates:
+                    sections.append(Section(f"mixer_{k}", tuple(gates)))
+    return Circuit(registers, sections)
