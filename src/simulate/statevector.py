@@ -60,6 +60,27 @@ def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
         psi[i1] = tmp
         return psi
     k = len(qubits)
+    if k == 1:
+        # view psi as (A, 2, C), the gate's axis in the middle (C includes the batch axis)
+        c = psi.size >> (n - qubits[0])
+        view = psi.reshape(-1, 2, c)
+        if spec.diagonal:
+            d0, d1 = diagonal(gate).tolist()
+            if d0 != 1:
+                view[:, 0, :] *= d0
+            view[:, 1, :] *= d1
+            return psi
+        u = unitary(gate)
+        if c >= 16:  # long contiguous rows: one batched GEMM
+            return np.matmul(u, view).reshape(psi.shape)
+        # short rows: matmul would loop over tiny blocks; update the two halves in place
+        a0, a1 = view[:, 0, :], view[:, 1, :]
+        top = u[0, 0] * a0
+        top += u[0, 1] * a1
+        a1 *= u[1, 1]
+        a1 += u[1, 0] * a0
+        a0[...] = top
+        return psi
     if spec.diagonal:
         d = diagonal(gate).reshape((2,) * k)  # axis a <-> local bit k-1-a <-> qubits[k-1-a]
         order = sorted(range(k), key=lambda j: -qubits[j])  # local bits in psi-axis order
@@ -70,14 +91,6 @@ def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
         psi *= d.reshape(shape)
         return psi
     u = unitary(gate)
-    if k == 1:
-        # view psi as (A, 2, C) with the gate's axis in the middle (C includes the batch axis)
-        c = psi.size >> (n - qubits[0])
-        if c >= 16:
-            return np.matmul(u, psi.reshape(-1, 2, c)).reshape(psi.shape)
-        # tiny C: matmul would loop over 2x2 blocks; one GEMM against kron(u, I_C) is faster
-        m = np.kron(u, np.eye(c)).T
-        return (psi.reshape(-1, 2 * c) @ m).reshape(psi.shape)
     ut = u.reshape((2,) * (2 * k))
     axes = [n - 1 - qubits[j] for j in range(k - 1, -1, -1)]  # psi axes of local bits k-1..0
     out = np.tensordot(ut, psi, axes=(list(range(k, 2 * k)), axes))

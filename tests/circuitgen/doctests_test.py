@@ -1,0 +1,27 @@
+"""Run the docstring examples of the IR and simulator modules."""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+
+import pytest
+
+MODULES = [
+    "circuitgen.angles",
+    "circuitgen.gates",
+    "circuitgen.circuit",
+    "circuitgen.lowering",
+    "circuitgen.qasm",
+    "circuitgen.testing",
+    "circuitgen._perf",
+    "simulate.statevector",
+    "simulate.sparse",
+]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_docstring_examples(name: str) -> None:
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.attempted > 0
+    assert result.failed == 0

@@ -1,0 +1,252 @@
+"""Tests for circuitgen.qasm: Qiskit cross-checks, naming, parameters, atomic writes."""
+
+from __future__ import annotations
+
+import os
+import re
+from collections import Counter
+
+import numpy as np
+import pytest
+import qiskit.qasm2 as qasm2
+import qiskit.qasm3 as qasm3
+from hypothesis import given, settings
+from qiskit import QuantumCircuit, transpile
+from qiskit.quantum_info import Operator, Statevector
+
+from circuitgen import gates as G
+from circuitgen.angles import Angle, UnboundParameterError
+from circuitgen.circuit import Circuit, CircuitBuilder, Section
+from circuitgen.gates import Gate, unitary
+from circuitgen.lowering import lower
+from circuitgen.qasm import CUSTOM_PREFIX, ir_gate_name, iter_qasm, qasm_gate_name, to_qasm2, to_qasm3, write_qasm
+from circuitgen.testing import circuits
+from simulate.statevector import simulate_statevector
+
+VALUES = {"gamma_0": 0.37, "beta_0": -1.3, "gamma_1": 2.1}
+
+# qelib1.inc as Qiskit reads it by default, plus everything its legacy mode adds
+QISKIT_QELIB1 = {
+    "u3", "u2", "u1", "cx", "id", "x", "y", "z", "h", "s", "sdg", "t", "tdg", "rx", "ry", "rz",
+    "cz", "cy", "ch", "ccx", "crz", "cu1", "cu3", "U", "CX",
+}  # fmt: skip
+QISKIT_LEGACY = {ci.name for ci in qasm2.LEGACY_CUSTOM_INSTRUCTIONS}
+
+
+def qiskit_counts(qc: QuantumCircuit) -> dict[str, int]:
+    out: Counter[str] = Counter()
+    for name, count in qc.count_ops().items():
+        out[ir_gate_name(name)] += count
+    return dict(out)
+
+
+def all_gates_circuit() -> Circuit:
+    b = CircuitBuilder([("data", 7)])
+    b.append([G.h(q) for q in range(7)], section="initial_state")
+    b.append(
+        [
+            G.x(0), G.t(1), G.tdg(2), G.s(3), G.sdg(4), G.rz(0.3, 5), G.rx(-0.4, 6), G.ry(1.1, 0),
+            G.cx(0, 1), G.cz(1, 2), G.crz(0.7, 2, 3), G.cry(-0.8, 3, 4), G.rzz(0.9, 4, 5),
+            G.ccx(0, 1, 2), G.sbf(0.5, 0, 2, 4, 6), G.csbf(-0.6, 1, 0, 3, 5, 6),
+        ],
+        section="phase_0",
+    )  # fmt: skip
+    b.append(
+        [
+            G.mcx([0], 1, "0"), G.mcx([2, 3], 4, "10"), G.mcx([0, 1, 2], 3, "011"),
+            G.mcx([0, 1, 2, 3, 4], 5), G.mcx([6, 5, 4, 3, 2, 1], 0, "101100"),
+        ],
+        section="mixer_0",
+    )  # fmt: skip
+    return b.build()
+
+
+def check_against_qiskit(c: Circuit) -> None:
+    ours = simulate_statevector(c, 0, VALUES)
+    bound = c.bind(VALUES)
+    expected_counts = bound.count_ops()
+    for text, loaded in [
+        (to_qasm2(bound), lambda s: qasm2.loads(s)),
+        (to_qasm2(bound), lambda s: qasm2.loads(s, custom_instructions=qasm2.LEGACY_CUSTOM_INSTRUCTIONS)),
+        (to_qasm2(bound), lambda s: qasm2.loads(s, strict=True)),
+        (to_qasm3(bound), qasm3.loads),
+    ]:
+        qc = loaded(text)
+        assert qc.num_qubits == c.num_qubits
+        np.testing.assert_allclose(Statevector(qc).data, ours, atol=1e-9)  # exact phase
+        assert qiskit_counts(qc) == expected_counts
+
+
+def test_every_gate_against_qiskit_high_level_and_lowered() -> None:
+    c = all_gates_circuit()
+    check_against_qiskit(c)
+    low = lower(c)
+    check_against_qiskit(low)
+    # lowered circuits use standard names only: Qiskit's raw count_ops match ours directly
+    assert dict(qasm2.loads(to_qasm2(low)).count_ops()) == low.count_ops()
+    assert dict(qasm3.loads(to_qasm3(low)).count_ops()) == low.count_ops()
+
+
+@settings(max_examples=25, deadline=None)
+@given(circuits(max_qubits=6, max_gates=8, max_controls=5, symbolic=True))
+def test_random_circuits_against_qiskit(c: Circuit) -> None:
+    check_against_qiskit(c)
+    check_against_qiskit(lower(c))
+
+
+def flattened(qc: QuantumCircuit) -> QuantumCircuit:
+    """Inline the custom definitions (Qiskit's Operator on nested definitions is very slow)."""
+    return transpile(qc, basis_gates=["cx", "ccx", "h", "x", "u1", "cu1", "p", "cp"], optimization_level=0)
+
+
+@pytest.mark.parametrize("k", [3, 4, 5, 6])
+def test_mcx_definitions_are_exact(k: int) -> None:
+    rng = np.random.default_rng(k)
+    for state in ["1" * k, "0" * k, "".join(rng.choice(["0", "1"], k))]:
+        gate = G.mcx(list(range(k)), k, state)
+        c = Circuit([("data", k + 1)], [Section("s", [gate])])
+        for text, load in [(to_qasm2(c), qasm2.loads), (to_qasm3(c), qasm3.loads)]:
+            np.testing.assert_allclose(Operator(flattened(load(text))).data, unitary(gate), atol=1e-9)
+
+
+def test_mcx_definition_with_eight_controls() -> None:
+    k, state = 8, "10110010"
+    gate = G.mcx(list(range(k)), k, state)
+    c = Circuit([("data", k + 1)], [Section("s", [gate])])
+    fire = int(state[::-1], 2)
+    inputs = [fire, fire | 1 << k, fire ^ 1, fire ^ 0b1000_0000, 0, 2 ** (k + 1) - 1]
+    u = unitary(gate)
+    for text, load in [(to_qasm2(c), qasm2.loads), (to_qasm3(c), qasm3.loads)]:
+        qc = flattened(load(text))
+        for i in inputs:
+            out = Statevector.from_int(i, 2 ** (k + 1)).evolve(qc).data
+            np.testing.assert_allclose(out, u[:, i], atol=1e-9)
+
+
+def test_custom_names_never_collide_with_qiskit() -> None:
+    c = all_gates_circuit()
+    for text in [to_qasm2(c), to_qasm3(c)]:
+        defined = re.findall(r"^gate (\w+)", text, flags=re.M)
+        assert defined, "expected custom definitions"
+        for name in defined:
+            assert name.startswith(CUSTOM_PREFIX)
+            assert name not in QISKIT_QELIB1 | QISKIT_LEGACY
+        assert len(defined) == len(set(defined))
+
+
+def test_only_used_definitions_are_emitted() -> None:
+    c = Circuit([("data", 2)], [Section("s", [G.h(0), G.cx(0, 1)])])
+    assert "gate " not in to_qasm2(c) and "gate " not in to_qasm3(c)
+    assert "qcpp_cry" not in to_qasm3(Circuit([("data", 2)], [Section("s", [G.cry(0.1, 0, 1)])]))
+    assert "gate qcpp_cry" in to_qasm2(Circuit([("data", 2)], [Section("s", [G.cry(0.1, 0, 1)])]))
+
+
+def test_name_mapping() -> None:
+    assert qasm_gate_name(G.rzz(0.1, 0, 1), 2) == "qcpp_rzz"
+    assert qasm_gate_name(G.rzz(0.1, 0, 1), 3) == "qcpp_rzz"
+    assert qasm_gate_name(G.mcx([0, 1, 2, 3], 4, "0110"), 2) == "qcpp_mcx4_0110"
+    assert qasm_gate_name(G.ccx(0, 1, 2), 2) == "ccx"
+    for name in ["rzz", "cry", "sbf", "csbf", "mcx"]:
+        assert ir_gate_name(f"{CUSTOM_PREFIX}{name}" if name != "mcx" else "qcpp_mcx3_111") == name
+
+
+def test_layout_and_sections_in_text() -> None:
+    c = all_gates_circuit()
+    text = to_qasm3(c)
+    assert "qubit[7] q;" in text
+    assert re.findall(r"^// section (\w+)", text, flags=re.M) == ["initial_state", "phase_0", "mixer_0"]
+    assert "qreg q[7];" in to_qasm2(c)
+    # one statement per IR gate
+    body = [ln for ln in to_qasm2(c).splitlines() if ln.endswith("];") and not ln.startswith("qreg")]
+    assert len(body) == len(c)
+
+
+def test_float_parameters_round_trip_exactly() -> None:
+    thetas = [0.1, 1e-5, -2.5e-300, 1 / 3, 12345.678901234567, -0.0, 3e20]
+    c = Circuit([("data", 1)], [Section("s", [G.rz(th, 0) for th in thetas])])
+    for qc in [qasm2.loads(to_qasm2(c)), qasm3.loads(to_qasm3(c))]:
+        assert [float(inst.operation.params[0]) for inst in qc.data] == thetas
+
+
+def test_qasm2_unbound_symbols_raise() -> None:
+    c = Circuit(
+        [("data", 2)],
+        [Section("s", [G.rzz(Angle.symbol("gamma_1"), 0, 1), G.rx(Angle.symbol("beta_0") + 1, 0)])],
+    )
+    with pytest.raises(UnboundParameterError) as err:
+        to_qasm2(c)
+    assert isinstance(err.value, ValueError)
+    assert err.value.symbols == ("beta_0", "gamma_1")
+    assert "beta_0" in str(err.value) and "gamma_1" in str(err.value)
+    to_qasm2(c.bind({"gamma_1": 1.0, "beta_0": 2.0}))  # fine once bound
+
+
+def test_qasm3_inputs_become_qiskit_parameters() -> None:
+    g0, b0 = Angle.symbol("gamma_0"), Angle.symbol("beta_0")
+    b = CircuitBuilder([("data", 3)])
+    b.append([G.h(q) for q in range(3)], section="initial_state")
+    b.append([G.rzz(2.5 * g0 + 0.1, 0, 1), G.rz(-g0, 2), G.crz(g0 - 0.5, 1, 2)], section="phase_0")
+    b.append([G.rx(2 * b0, q) for q in range(3)] + [G.csbf(b0, 0, 1, 2, 3, 4)], section="mixer_0")
+    b.add_register(("logic", 2))
+    c = b.build()
+    text = to_qasm3(c)
+    assert "input float[64] gamma_0;" in text and "input float[64] beta_0;" in text
+    assert text.index("gamma_0;") < text.index("beta_0;")
+    assert "qcpp_rzz(2.5*gamma_0 + 0.1)" in text
+    qc = qasm3.loads(text)
+    assert sorted(p.name for p in qc.parameters) == ["beta_0", "gamma_0"]
+    values = {"gamma_0": 0.4, "beta_0": -0.9}
+    bound = qc.assign_parameters({p: values[p.name] for p in qc.parameters})
+    np.testing.assert_allclose(Statevector(bound).data, simulate_statevector(c, 0, values), atol=1e-9)
+
+
+def test_bad_symbol_names_are_rejected_for_qasm3() -> None:
+    for bad in ["q", "pi", "input", "rz", "qcpp_x"]:
+        c = Circuit([("data", 1)], [Section("s", [G.rz(Angle.symbol(bad), 0)])])
+        with pytest.raises(ValueError):
+            to_qasm3(c)
+
+
+def test_iter_qasm_streams_and_validates_version() -> None:
+    c = all_gates_circuit()
+    chunks = list(iter_qasm(c, 3))
+    assert len(chunks) > 1 and "".join(chunks) == to_qasm3(c)
+    with pytest.raises(ValueError):
+        iter_qasm(c, 4)  # type: ignore[arg-type]
+
+
+def test_write_qasm_writes_whole_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    c = all_gates_circuit()
+    path = tmp_path / "out.qasm"
+    write_qasm(c, path, version=2)
+    assert path.read_text() == to_qasm2(c)
+    write_qasm(c, str(path), version=3)
+    assert path.read_text() == to_qasm3(c)
+    assert os.listdir(tmp_path) == ["out.qasm"]
+    assert (path.stat().st_mode & 0o777) == 0o644
+
+
+def failing_circuit() -> Circuit:
+    """A circuit whose last section cannot be formatted (a NaN angle): fails mid-write."""
+    big = [G.h(q % 5) for q in range(100_000)]
+    return Circuit([("data", 5)], [Section("ok", big), Section("bad", [Gate("rz", (0,), (float("nan"),))])])
+
+
+def test_write_qasm_failure_leaves_destination_untouched(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "out.qasm"
+    path.write_text("previous content\n")
+    with pytest.raises(ValueError, match="non-finite"):
+        write_qasm(failing_circuit(), path, version=3)
+    assert path.read_text() == "previous content\n"
+    assert os.listdir(tmp_path) == ["out.qasm"]  # no temp file left behind
+
+
+def test_write_qasm_failure_leaves_no_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "new.qasm"
+    with pytest.raises(ValueError):
+        write_qasm(failing_circuit(), path, version=2)
+    assert os.listdir(tmp_path) == []
+    unbound = Circuit([("data", 1)], [Section("s", [G.rz(Angle.symbol("gamma_0"), 0)])])
+    with pytest.raises(UnboundParameterError):
+        write_qasm(unbound, path, version=2)
+    assert os.listdir(tmp_path) == []
