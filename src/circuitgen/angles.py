@@ -279,6 +279,9 @@ class Angle:
     def __repr__(self) -> str:
         return f"Angle({format_angle(self, 'qasm3')!r})"
 
+    def __str__(self) -> str:
+        return format_angle(self, "qasm3")
+
 
 _set_const = Angle._const.__set__  # type: ignore[attr-defined]
 _set_terms = Angle._terms.__set__  # type: ignore[attr-defined]

@@ -85,6 +85,8 @@ class Section:
     gates: tuple[Gate, ...] = field(default=())
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not _NAME_RE.match(self.name):
+            raise ValueError(f"invalid section name {self.name!r}: use an identifier such as 'phase_0'")
         if type(self.gates) is not tuple:
             object.__setattr__(self, "gates", tuple(self.gates))
 
@@ -134,19 +136,16 @@ class Circuit:
         self,
         registers: Iterable[Register | tuple[str, int]],
         sections: Iterable[Section] = (),
-        *,
-        _checked: bool = False,
     ) -> None:
         self._registers = _as_registers(registers)
         self._sections = tuple(sections)
         self._n_gates: int | None = None
         self._symbols: tuple[str, ...] | None = None
-        if not _checked:
-            n = self.num_qubits
-            for sec in self._sections:
-                if not isinstance(sec, Section):
-                    raise TypeError(f"expected Section, got {type(sec).__name__}")
-                _check_qubits(sec.gates, n)
+        n = self.num_qubits
+        for sec in self._sections:
+            if not isinstance(sec, Section):
+                raise TypeError(f"expected Section, got {type(sec).__name__}")
+            _check_qubits(sec.gates, n)
 
     @classmethod
     def _trusted(

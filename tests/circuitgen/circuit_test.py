@@ -96,6 +96,12 @@ def test_builder_grows_layout_and_continues_from_circuit() -> None:
     assert len(c) == 1 and len(c2) == 2 and c2.sections[0].name == "s"
 
 
+def test_section_names_are_identifiers() -> None:
+    with pytest.raises(ValueError):
+        Section("phase 0\nh q[0];", [])
+    assert Section("mixer_0").gates == ()
+
+
 def test_circuit_constructor_checks() -> None:
     with pytest.raises(ValueError):
         Circuit([("data", 1)], [Section("s", [cx(0, 1)])])

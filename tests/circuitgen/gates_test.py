@@ -169,6 +169,7 @@ def test_value_semantics() -> None:
         a.name = "rz"  # type: ignore[misc]
     assert a.is_parametrized and not G.rz(0.1, 0).is_parametrized
     assert str(G.mcx([0, 1, 2], 3, "101")) == "mcx[101] 0 1 2 3"
+    assert str(G.rz(2 * Angle.symbol("gamma_0") + 0.5, 4)) == "rz(2.0*gamma_0 + 0.5) 4"
 
 
 def test_bind_converts_bound_angles_to_float() -> None:
