@@ -1,0 +1,374 @@
+"""The feasible-subspace QAOA simulator against an independent dense 2^n reference.
+
+The reference knows nothing of bases or pairs: it keeps the full state vector over all data qubits (index
+``sum_i x_i 2^i``), applies the phase from ``ising_hamiltonian(...).evaluate`` on every basis state, and each
+partial mixer as the explicit map "if allowed(x): |x> -> cos(b/2)|x> - i sin(b/2)|x^P>" on every basis state,
+with ``allowed`` from ``sbf_logic(...).evaluate`` on the masks decoded by ``mask_from_bits``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gridcover.cost import cost, separable_cost
+from gridcover.hamiltonian import ising_hamiltonian
+from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
+from gridcover.sbf import move_components, reachable_paths, representatives, sbf_logic
+from gridcover.scenario import Scenario, scenario_from_dict
+from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
+
+
+def make(rows: int, cols: int, robots: list[tuple[tuple[int, int], tuple[int, int]]], **extra: object) -> Scenario:
+    d: dict[str, object] = {
+        "grid": {"rows": rows, "cols": cols, "obstacles": extra.pop("obstacles", [])},
+        "robots": [{"start": list(a), "goal": list(b)} for a, b in robots],
+    }
+    d.update(extra)
+    return scenario_from_dict(d)
+
+
+SINGLE_2x2 = make(2, 2, [((0, 0), (1, 1))])
+SINGLE_2x3 = make(2, 3, [((0, 0), (1, 2))])
+SINGLE_3x3 = make(3, 3, [((0, 0), (2, 2))], obstacles=[[1, 1]])
+SINGLE_3x3_SIDE = make(3, 3, [((0, 0), (0, 2))])
+TWO_2x3 = make(2, 3, [((0, 0), (1, 2)), ((1, 0), (0, 2))])
+THREE_2x2 = make(2, 2, [((0, 0), (1, 1)), ((0, 1), (1, 0)), ((1, 1), (0, 1))])  # 12 qubits, 2 paths each
+# hard obstacle that splits the move graph of the exact rule into several components
+HARD_3x4 = make(3, 4, [((0, 0), (2, 3))], obstacles=[[1, 1]], objective={"obstacles": "hard"})
+
+
+# ---------------------------------------------------------------- the dense reference
+
+
+def _allowed_table(s: Scenario, robot: int, q: int, rule: str) -> np.ndarray:
+    """allowed[local] for every one of the robot's 2^V local bit patterns."""
+    v = s.edges_per_robot
+    logic = sbf_logic(s, robot, s.grid.plaquettes[q], rule)  # type: ignore[arg-type]
+    out = np.zeros(1 << v, dtype=bool)
+    for local in range(1 << v):
+        bits = [(local >> k) & 1 for k in range(v)]
+        out[local] = logic.evaluate(mask_from_bits(s, bits))
+    return out
+
+
+def dense_reference(
+    s: Scenario, angles: list[float], rule: str = "exact", initial: str = "initial_path", offset: float | None = None
+) -> np.ndarray:
+    n = s.num_variables
+    v = s.edges_per_robot
+    assert n <= 14
+    dim = 1 << n
+    idx = np.arange(dim)
+    allbits = ((idx[:, None] >> np.arange(n)) & 1).astype(np.uint8)
+    ham = ising_hamiltonian(s)
+    energy = ham.evaluate(allbits)
+    off = ham.c0 if offset is None else offset
+    # initial state
+    per_robot = []
+    for r in range(s.num_robots):
+        starts = [initial_path(s, r)] if initial == "initial_path" else list(representatives(s, r, rule))  # type: ignore[arg-type]
+        vec = np.zeros(1 << v)
+        for m in starts:
+            local = sum(int(b) << k for k, b in enumerate(path_bits(s, m)))
+            vec[local] = 1.0
+        per_robot.append(vec / np.linalg.norm(vec))
+    psi = np.zeros(dim, dtype=complex)
+    locals_ = [(idx >> (r * v)) & ((1 << v) - 1) for r in range(s.num_robots)]
+    psi[:] = 1.0
+    for r in range(s.num_robots):
+        psi *= per_robot[r][locals_[r]]
+    # layers
+    for g, b in zip(angles[0::2], angles[1::2]):
+        psi = psi * np.exp(-1j * g * (energy - off))
+        c, sn = np.cos(b / 2), np.sin(b / 2)
+        for r in range(s.num_robots):
+            for q, plaq in enumerate(s.grid.plaquettes):
+                allowed = _allowed_table(s, r, q, rule)[locals_[r]]
+                pbits = sum(1 << (r * v + k) for k, e in enumerate(s.variable_edges) if (plaq.edge_mask >> e) & 1)
+                flipped = idx ^ pbits
+                # column by column, as the circuit acts on |x>: |x> -> c|x> - i s|x^P> when allowed(x)
+                new = np.where(allowed, c * psi, psi)
+                new[flipped[allowed]] += -1j * sn * psi[allowed]  # x -> x^P is a bijection: no repeats
+                psi = new
+    return psi
+
+
+def subspace_as_dense(q: SubspaceQAOA, angles: list[float]) -> np.ndarray:
+    """Map the subspace state to 2^n using gridcover's own assignment_bits (independent of dense_state)."""
+    n = q.scenario.num_variables
+    out = np.zeros(1 << n, dtype=complex)
+    psi = q.state(angles)
+    for idx in np.ndindex(*q.dims):
+        bits = assignment_bits(q.scenario, q.assignment(idx))
+        out[int(sum(int(b) << i for i, b in enumerate(bits)))] = psi[idx]
+    return out
+
+
+CASES = [
+    ("2x2", SINGLE_2x2, [0.7, 1.3]),
+    ("2x3", SINGLE_2x3, [0.4, 0.9, -0.3, 2.1]),
+    ("3x3-obstacle", SINGLE_3x3, [0.21, 1.1, 0.13, 0.6]),
+    ("3x3-side", SINGLE_3x3_SIDE, [0.3, 2.5]),
+    ("2x3-two-robots", TWO_2x3, [0.11, 1.7, 0.05, 0.8]),
+    ("2x2-three-robots", THREE_2x2, [0.09, 1.3]),
+]
+
+
+@pytest.mark.parametrize(("name", "s", "angles"), CASES, ids=[c[0] for c in CASES])
+def test_matches_dense_reference(name: str, s: Scenario, angles: list[float]) -> None:
+    q = SubspaceQAOA(s)
+    ref = dense_reference(s, angles)
+    sub = subspace_as_dense(q, angles)
+    assert np.abs(sub - ref).max() < 1e-10
+    # no weight outside the reachable feasible subspace: the reference's support is inside ours
+    outside = np.ones(ref.size, dtype=bool)
+    outside[np.abs(sub) > 0] = False
+    assert np.abs(ref[outside]).max(initial=0.0) < 1e-10
+    assert np.allclose(q.dense_state(angles), sub, atol=1e-12)
+    assert abs(np.linalg.norm(ref) - 1) < 1e-10
+
+
+def test_matches_dense_reference_with_plain_phase() -> None:
+    angles = [0.37, 0.8]
+    q = SubspaceQAOA(TWO_2x3, phase_offset=0.0)
+    assert np.abs(subspace_as_dense(q, angles) - dense_reference(TWO_2x3, angles, offset=0.0)).max() < 1e-10
+
+
+def test_representatives_on_split_move_graph() -> None:
+    comps = move_components(HARD_3x4, 0, "exact")
+    assert len(comps) > 1  # the scenario really splits
+    q0 = SubspaceQAOA(HARD_3x4)
+    q1 = SubspaceQAOA(HARD_3x4, initial="representatives")
+    assert q0.dims == (len(comps[0]),)
+    assert sorted(q1.bases[0]) == sorted(enumerate_paths(HARD_3x4, 0))
+    angles = [0.3, 1.2, 0.2, 0.5]
+    ref = dense_reference(HARD_3x4, angles, initial="representatives")
+    assert np.abs(subspace_as_dense(q1, angles) - ref).max() < 1e-10
+    # initial state: uniform over the representatives, real positive
+    psi0 = q1.initial_state()
+    reps = [q1.index_of([m])[0] for m in representatives(HARD_3x4, 0, "exact")]
+    assert np.allclose(psi0[reps], 1 / np.sqrt(len(comps)))
+    assert np.isclose(np.abs(psi0).sum(), len(comps) / np.sqrt(len(comps)))
+
+
+# ---------------------------------------------------------------- structural properties
+
+
+def test_basis_is_the_reachable_feasible_set() -> None:
+    for s in (SINGLE_3x3, SINGLE_3x3_SIDE, TWO_2x3):
+        q = SubspaceQAOA(s)
+        for r, paths in enumerate(q.bases):
+            assert paths[0] == initial_path(s, r)
+            assert all(is_feasible(s, r, m) for m in paths)
+            assert sorted(paths) == sorted(move_components(s, r, "exact")[0])
+        for b in q.robot_bases:
+            for pq, i, j in b.pairs:
+                mask = s.grid.plaquettes[pq].edge_mask
+                assert np.all(i < j)
+                assert all(b.paths[a] ^ mask == b.paths[c] for a, c in zip(i, j))
+                assert len(set(i.tolist()) | set(j.tolist())) == 2 * len(i)  # disjoint pairs
+
+
+def test_basis_order_and_vectorised_logic_match_gridcover() -> None:
+    for s, rule in ((SINGLE_3x3, "exact"), (TWO_2x3, "exact"), (make(3, 3, [((0, 0), (2, 2))]), "paper")):
+        q = SubspaceQAOA(s, rule=rule)  # type: ignore[arg-type]
+        for r in range(s.num_robots):
+            assert list(q.bases[r]) == reachable_paths(s, r, rule)  # type: ignore[arg-type]
+            masks = enumerate_paths(s, r)
+            for plaq in s.grid.plaquettes:
+                lg = sbf_logic(s, r, plaq, rule)  # type: ignore[arg-type]
+                got = evaluate_logic(lg, np.array(masks, dtype=object))
+                assert got.tolist() == [lg.evaluate(m) for m in masks]
+
+
+def test_cost_levels_reproduce_the_separable_tensor() -> None:
+    q = SubspaceQAOA(TWO_2x3)
+    levels = q.cost_levels()
+    assert levels is not None
+    values, lev = levels
+    assert np.all(np.diff(values) > 0) and lev.shape == q.dims
+    full = separable_cost(TWO_2x3, q.bases).full_tensor()
+    assert np.allclose(values[lev], full, rtol=0, atol=1e-9)
+    assert np.array_equal(q.cost_diagonal(), values[lev])
+
+
+def test_cost_diagonal_matches_ising_and_cost() -> None:
+    q = SubspaceQAOA(TWO_2x3)
+    ham = ising_hamiltonian(TWO_2x3)
+    diag = q.cost_diagonal()
+    assert not diag.flags.writeable
+    for idx in np.ndindex(*q.dims):
+        masks = q.assignment(idx)
+        assert np.isclose(diag[idx], cost(TWO_2x3, masks))
+        assert np.isclose(diag[idx], ham.evaluate(assignment_bits(TWO_2x3, masks)))
+
+
+def test_norm_is_preserved() -> None:
+    rng = np.random.default_rng(5)
+    q = SubspaceQAOA(TWO_2x3)
+    for p in (1, 2, 3):
+        angles = rng.uniform(-3, 3, 2 * p)
+        assert abs(np.linalg.norm(q.state(angles)) - 1) < 1e-12
+        assert abs(q.probabilities(angles).sum() - 1) < 1e-12
+
+
+@pytest.mark.parametrize("offset", [None, 0.0, 2.5])
+def test_beta_zero_only_phases_the_initial_path(offset: float | None) -> None:
+    s = SINGLE_3x3
+    q = SubspaceQAOA(s, phase_offset=offset)
+    off = ising_hamiltonian(s).c0 if offset is None else offset
+    assert q.phase_offset == off
+    gamma = 0.37
+    psi = q.state([gamma, 0.0])
+    c_init = cost(s, [initial_path(s, 0)])
+    assert q.index_of([initial_path(s, 0)]) == (0,)
+    assert np.isclose(psi[0], np.exp(-1j * gamma * (c_init - off)), atol=1e-12)
+    assert np.abs(psi[1:]).max() == 0.0
+    assert np.isclose(q.expectation([gamma, 0.0]), c_init)
+
+
+def test_gamma_zero_mixer_is_independent_of_the_offset() -> None:
+    a, b = SubspaceQAOA(SINGLE_3x3), SubspaceQAOA(SINGLE_3x3, phase_offset=0.0)
+    angles = [0.3, 0.9, 0.2, 1.4]
+    # the offset is a global phase: probabilities agree, amplitudes differ by one phase factor
+    assert np.allclose(a.probabilities(angles), b.probabilities(angles), atol=1e-12)
+    ratio = a.state(angles)[0] / b.state(angles)[0]
+    assert np.allclose(a.state(angles), ratio * b.state(angles), atol=1e-12)
+
+
+def test_split_angles_validates() -> None:
+    with pytest.raises(ValueError, match="even"):
+        split_angles([0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="even"):
+        split_angles([])
+    with pytest.raises(ValueError, match="finite"):
+        split_angles([0.1, float("nan")])
+
+
+def test_bad_options() -> None:
+    with pytest.raises(ValueError, match="rule"):
+        SubspaceQAOA(SINGLE_2x2, rule="nope")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="initial"):
+        SubspaceQAOA(SINGLE_2x2, initial="nope")  # type: ignore[arg-type]
+
+
+# ---------------------------------------------------------------- the paper rule
+
+
+def test_paper_rule_symmetric_case_is_simulated() -> None:
+    s = make(3, 3, [((0, 0), (2, 2))])  # corner endpoints: the paper rule's reachable set stays feasible
+    q = SubspaceQAOA(s, rule="paper")
+    assert all(f.all() for f in q.feasible)
+    angles = [0.2, 1.0, 0.1, 0.7]
+    assert np.abs(subspace_as_dense(q, angles) - dense_reference(s, angles, rule="paper")).max() < 1e-10
+
+
+def test_paper_rule_leaving_the_feasible_set_is_refused() -> None:
+    s = make(3, 3, [((0, 1), (2, 1))])  # mid-side endpoints: a flip gives the start two new edges
+    with pytest.raises(NonUnitaryMixerError, match="not unitary"):
+        SubspaceQAOA(s, rule="paper")
+    # ... and that is a real non-unitarity of the explicit map, not a simulator limitation: the dense map
+    # "if allowed(x): rotate (x, x^P)" loses norm on this scenario
+    ref = dense_reference(s, [0.0, 1.3, 0.0, 0.9, 0.0, 1.7], rule="paper")
+    assert abs(np.linalg.norm(ref) - 1) > 1e-3
+    # the exact rule is fine here
+    assert SubspaceQAOA(s).dims[0] == len(enumerate_paths(s, 0))
+
+
+def test_robot_basis_reports_unitarity_per_robot() -> None:
+    s = make(2, 3, [((0, 0), (1, 2)), ((0, 1), (1, 0))])
+    robot_basis(s, 0, "paper")
+    with pytest.raises(NonUnitaryMixerError, match="robot 1"):
+        robot_basis(s, 1, "paper")
+
+
+# ---------------------------------------------------------------- read-outs
+
+
+def test_p_optimum_amplitude_and_state_dict() -> None:
+    s = TWO_2x3
+    q = SubspaceQAOA(s)
+    angles = [0.3, 1.1, 0.2, 0.4]
+    probs = q.probabilities(angles)
+    costs = {idx: cost(s, q.assignment(idx)) for idx in np.ndindex(*q.dims)}
+    best = min(costs.values())
+    expected = sum(probs[i] for i, c in costs.items() if np.isclose(c, best))
+    assert np.isclose(q.p_optimum(angles), expected, atol=1e-12)
+    assert q.optimum()[0] == pytest.approx(best)
+    assert set(q.optimal_assignments()) == {q.assignment(i) for i, c in costs.items() if np.isclose(c, best)}
+    assert np.isclose(q.expectation(angles), sum(probs[i] * c for i, c in costs.items()))
+    psi = q.state(angles)
+    idx = (1, 2)
+    masks = q.assignment(idx)
+    assert q.amplitude(angles, masks) == psi[idx]
+    assert q.amplitude(angles, (0, 0)) == 0j
+    by_masks = q.state_dict(angles, key="masks")
+    by_index = q.state_dict(angles, key="index")
+    by_bits = q.state_dict(angles, key="bits")
+    dense = q.dense_state(angles)
+    assert by_masks[masks] == psi[idx]
+    assert len(by_masks) == len(by_index) == len(by_bits) == np.count_nonzero(psi)
+    for k, amp in by_index.items():
+        assert dense[k] == amp
+    for bits, amp in by_bits.items():
+        masks_b = tuple(
+            mask_from_bits(s, [int(ch) for ch in bits[r * s.edges_per_robot : (r + 1) * s.edges_per_robot]])
+            for r in range(2)
+        )
+        assert by_masks[masks_b] == amp
+
+
+def test_sampling_is_seeded_and_matches_probabilities() -> None:
+    q = SubspaceQAOA(SINGLE_3x3)
+    angles = [0.25, 1.2, 0.15, 0.8]
+    shots = 20000
+    a = q.sample(angles, shots, seed=7)
+    assert a == q.sample(angles, shots, seed=7)
+    assert a != q.sample(angles, shots, seed=8)
+    probs = q.probabilities(angles)
+    counts = np.zeros(q.dims)
+    for m in a:
+        counts[q.index_of(m)] += 1
+    assert counts.sum() == shots
+    keep = probs > 0
+    assert counts[~keep].sum() == 0
+    expected = probs[keep] * shots
+    chi2 = float((((counts[keep] - expected) ** 2) / expected).sum())
+    dof = int(keep.sum()) - 1
+    # chi-square with dof degrees of freedom: mean dof, sd sqrt(2 dof); 6 sd is a very loose bound
+    assert chi2 < dof + 6 * np.sqrt(2 * dof)
+
+
+# ---------------------------------------------------------------- gradient
+
+
+@pytest.mark.parametrize(("s", "p"), [(SINGLE_3x3, 2), (TWO_2x3, 2), (HARD_3x4, 1)])
+def test_gradient_matches_finite_differences(s: Scenario, p: int) -> None:
+    q = SubspaceQAOA(s, initial="representatives")
+    rng = np.random.default_rng(11)
+    angles = rng.uniform(0.1, 1.5, 2 * p)
+    energy, grad = q.value_and_gradient(angles)
+    assert np.isclose(energy, q.expectation(angles), rtol=1e-12)
+    h = 1e-5
+    fd = np.array([(q.expectation(angles + h * e) - q.expectation(angles - h * e)) / (2 * h) for e in np.eye(2 * p)])
+    assert np.allclose(grad, fd, rtol=1e-6, atol=1e-6 * np.abs(fd).max())
+    assert np.array_equal(q.gradient(angles), grad)
+
+
+def test_buffer_size_does_not_change_results() -> None:
+    angles = [0.3, 1.1, 0.2, 0.4]
+    for s in (TWO_2x3, THREE_2x2):
+        a = SubspaceQAOA(s)
+        b = SubspaceQAOA(s, buffer=1)  # one leading index per block of the transposed buffer
+        assert np.allclose(a.state(angles), b.state(angles), atol=1e-14)
+        assert np.allclose(a.gradient(angles), b.gradient(angles), atol=1e-12)
+
+
+def test_doctests() -> None:
+    import doctest
+
+    import simulate.subspace
+
+    result = doctest.testmod(simulate.subspace)
+    assert result.attempted > 0 and result.failed == 0
