@@ -19,7 +19,7 @@ Practical limits: ~26 qubits for :func:`simulate_statevector` (1 GiB of amplitud
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -41,36 +41,47 @@ def _bound(circuit: Circuit, bindings: Mapping[str, float] | None) -> Circuit:
     return circuit
 
 
-def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
-    """Apply ``gate`` to ``psi`` of shape ``(2,)*n + (batch,)``; axis of qubit q is n-1-q."""
-    name, qubits = gate[0], gate[1]
-    spec = GATE_SPECS[name]
-    if spec.permutation:
-        controls, state, target = controlled_x_pattern(gate)
-        idx: list[int | slice] = [slice(None)] * (n + 1)
-        for c, bit in zip(controls, state, strict=True):
-            idx[n - 1 - c] = 1 if bit == "1" else 0
-        ax = n - 1 - target
-        idx[ax] = 0
-        i0 = tuple(idx)
-        idx[ax] = 1
-        i1 = tuple(idx)
-        tmp = psi[i0].copy()
-        psi[i0] = psi[i1]
-        psi[i1] = tmp
+def _apply_permutation(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
+    controls, state, target = controlled_x_pattern(gate)
+    idx: list[int | slice] = [slice(None)] * (n + 1)
+    for c, bit in zip(controls, state, strict=True):
+        idx[n - 1 - c] = 1 if bit == "1" else 0
+    ax = n - 1 - target
+    idx[ax] = 0
+    i0 = tuple(idx)
+    idx[ax] = 1
+    i1 = tuple(idx)
+    tmp = psi[i0].copy()
+    psi[i0] = psi[i1]
+    psi[i1] = tmp
+    return psi
+
+
+def _apply_diagonal(psi: np.ndarray, qubits: Sequence[int], d: np.ndarray, n: int) -> np.ndarray:
+    k = len(qubits)
+    if k == 1:
+        view = psi.reshape(-1, 2, psi.size >> (n - qubits[0]))
+        d0, d1 = d.tolist()
+        if d0 != 1:
+            view[:, 0, :] *= d0
+        view[:, 1, :] *= d1
         return psi
+    dt = d.reshape((2,) * k)  # axis a <-> local bit k-1-a <-> qubits[k-1-a]
+    order = sorted(range(k), key=lambda j: -qubits[j])  # local bits in psi-axis order
+    dt = dt.transpose([k - 1 - j for j in order])
+    shape = [1] * (n + 1)
+    for j in order:
+        shape[n - 1 - qubits[j]] = 2
+    psi *= dt.reshape(shape)
+    return psi
+
+
+def _apply_matrix(psi: np.ndarray, qubits: Sequence[int], u: np.ndarray, n: int) -> np.ndarray:
     k = len(qubits)
     if k == 1:
         # view psi as (A, 2, C), the gate's axis in the middle (C includes the batch axis)
         c = psi.size >> (n - qubits[0])
         view = psi.reshape(-1, 2, c)
-        if spec.diagonal:
-            d0, d1 = diagonal(gate).tolist()
-            if d0 != 1:
-                view[:, 0, :] *= d0
-            view[:, 1, :] *= d1
-            return psi
-        u = unitary(gate)
         if c >= 16:  # long contiguous rows: one batched GEMM
             return np.matmul(u, view).reshape(psi.shape)
         # short rows: matmul would loop over tiny blocks; update the two halves in place
@@ -81,26 +92,76 @@ def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
         a1 += u[1, 0] * a0
         a0[...] = top
         return psi
-    if spec.diagonal:
-        d = diagonal(gate).reshape((2,) * k)  # axis a <-> local bit k-1-a <-> qubits[k-1-a]
-        order = sorted(range(k), key=lambda j: -qubits[j])  # local bits in psi-axis order
-        d = d.transpose([k - 1 - j for j in order])
-        shape = [1] * (n + 1)
-        for j in order:
-            shape[n - 1 - qubits[j]] = 2
-        psi *= d.reshape(shape)
-        return psi
-    u = unitary(gate)
     ut = u.reshape((2,) * (2 * k))
     axes = [n - 1 - qubits[j] for j in range(k - 1, -1, -1)]  # psi axes of local bits k-1..0
     out = np.tensordot(ut, psi, axes=(list(range(k, 2 * k)), axes))
     return np.ascontiguousarray(np.moveaxis(out, list(range(k)), axes))
 
 
+def _apply(psi: np.ndarray, gate: Gate, n: int) -> np.ndarray:
+    """Apply ``gate`` to ``psi`` of shape ``(2,)*n + (batch,)``; axis of qubit q is n-1-q."""
+    spec = GATE_SPECS[gate[0]]
+    if spec.permutation:
+        return _apply_permutation(psi, gate, n)
+    if spec.diagonal:
+        return _apply_diagonal(psi, gate[1], diagonal(gate), n)
+    return _apply_matrix(psi, gate[1], unitary(gate), n)
+
+
+_SWAP = np.eye(4)[[0, 2, 1, 3]]
+
+
+def _embed(gate: Gate, block: tuple[int, ...]) -> np.ndarray:
+    """Matrix of ``gate`` on the qubits ``block`` (one or two; block[0] is the low bit)."""
+    u = unitary(gate)
+    qubits = gate[1]
+    if len(block) == 1:
+        return u
+    if len(qubits) == 2:
+        return u if qubits == block else _SWAP @ u @ _SWAP
+    return np.kron(np.eye(2), u) if qubits[0] == block[0] else np.kron(u, np.eye(2))
+
+
+def _flush(psi: np.ndarray, block: tuple[int, ...], gates: list[Gate], n: int) -> np.ndarray:
+    """Apply a run of gates confined to one or two qubits, fused when that saves passes."""
+    if len(gates) == 1:
+        return _apply(psi, gates[0], n)
+    m = _embed(gates[0], block)
+    for g in gates[1:]:
+        m = _embed(g, block) @ m
+    d = np.diag(m)
+    if np.count_nonzero(m) == np.count_nonzero(d):  # e.g. cx rz cx: one multiply, not 3 passes
+        return _apply_diagonal(psi, block, d.copy(), n)
+    if len(block) == 1:
+        return _apply_matrix(psi, block, m, n)
+    # a dense 4x4 costs more than a few cheap gates: apply them one by one
+    for g in gates:
+        psi = _apply(psi, g, n)
+    return psi
+
+
 def _run(circuit: Circuit, psi: np.ndarray) -> np.ndarray:
+    """Apply all gates, fusing runs of gates that stay on the same one or two qubits."""
     n = circuit.num_qubits
+    block: tuple[int, ...] = ()
+    pending: list[Gate] = []
     for gate in circuit.gates:
-        psi = _apply(psi, gate, n)
+        qubits = gate[1]
+        if len(qubits) <= 2:
+            union = block + tuple(q for q in qubits if q not in block)
+            if len(union) <= 2:
+                block = union
+                pending.append(gate)
+                continue
+        if pending:
+            psi = _flush(psi, block, pending, n)
+        if len(qubits) <= 2:
+            block, pending = tuple(qubits), [gate]
+        else:
+            block, pending = (), []
+            psi = _apply(psi, gate, n)
+    if pending:
+        psi = _flush(psi, block, pending, n)
     return psi
 
 

@@ -73,6 +73,17 @@ def test_every_gate_on_scattered_qubits() -> None:
     np.testing.assert_allclose(circuit_unitary(c), reference_unitary(c), atol=1e-12)
 
 
+def test_fused_runs_on_one_and_two_qubits() -> None:
+    # runs the simulator fuses (same one or two qubits, both orders), split by 3-qubit gates
+    gates = [
+        G.cx(3, 1), G.rz(0.4, 1), G.cx(3, 1), G.h(1), G.h(1), G.rzz(0.3, 1, 3), G.crz(0.2, 3, 1),
+        G.t(3), G.cry(0.5, 1, 3), G.x(1), G.ccx(0, 1, 2), G.s(2), G.rx(0.1, 2), G.sdg(2),
+        G.cz(2, 0), G.cx(0, 2), G.rz(-1.0, 2), G.cx(0, 2), G.h(0),
+    ]  # fmt: skip
+    c = Circuit([("data", 4)], [Section("s", gates)])
+    np.testing.assert_allclose(circuit_unitary(c), reference_unitary(c), atol=1e-12)
+
+
 def test_initial_state_validation() -> None:
     c = Circuit([("data", 2)], [Section("s", [G.h(0)])])
     with pytest.raises(ValueError):
