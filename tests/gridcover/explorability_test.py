@@ -52,6 +52,7 @@ def free_pairs(rows: int, cols: int) -> list[tuple[Node, Node]]:
 # ---------------------------------------------------------------- free grids
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("rows", "cols"), [(3, 3), (3, 4), (4, 4), (5, 5)])
 def test_exact_rule_reaches_every_path_from_the_initial_path(rows: int, cols: int) -> None:
     for start, goal in free_pairs(rows, cols):
@@ -63,6 +64,7 @@ def test_exact_rule_reaches_every_path_from_the_initial_path(rows: int, cols: in
         assert set(reached) == set(paths), (start, goal)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("rows", "cols"), [(3, 3), (3, 4), (4, 4), (5, 5)])
 def test_paper_rule_restricted_to_feasible_moves_is_connected_too(rows: int, cols: int) -> None:
     for start, goal in free_pairs(rows, cols):
@@ -165,6 +167,7 @@ def _check_components(s: Scenario) -> tuple[int, tuple[int, ...]]:
     return len(paths), tuple(len(c) for c in comps)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("rows", "cols"), list(SWEEP))
 def test_hard_obstacle_components(rows: int, cols: int) -> None:
     results = hard_sweep(rows, cols)

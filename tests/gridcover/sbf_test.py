@@ -243,6 +243,7 @@ def test_exact_allows_opposite_edges_exactly_when_endpoints_are_diagonal() -> No
                 assert np.array_equal(on, c.opposite)
 
 
+@pytest.mark.slow
 def test_exact_sound_and_complete_with_hard_obstacles() -> None:
     """The same two checks with one hard obstacle anywhere on 3x3 and 3x4 (edges at it are not variables)."""
     checked = 0
