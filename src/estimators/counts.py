@@ -1,0 +1,322 @@
+"""Exact resource counts of a circuit: qubits, gates per name, T count, depth and two-qubit depth.
+
+:func:`count` works on any :class:`~circuitgen.circuit.Circuit`, high level (``mcx``, ``csbf``, ``rzz``, ...) or
+lowered (``{cx, x, h, rz, t, tdg, s, sdg}``). It reads the circuit's own gate tuples, i.e. the very gate list
+that :mod:`circuitgen.qasm` writes (one OpenQASM statement per IR gate), so the numbers equal what a reader of
+the emitted file counts.
+
+Definitions (the same as Qiskit's, checked in ``tests/estimators/counts_test.py`` against
+``qiskit.qasm2.loads(to_qasm2(c))``):
+
+* qubits: ``data_qubits`` = size of the ``data`` register (0 if there is none), ``ancillas`` = every other qubit
+  (``logic``, ``work``, ...), ``qubits`` = their sum (Qiskit's ``num_qubits``);
+* ``ops``: gates per name (Qiskit's ``count_ops()``); ``cx``: the ``cx`` count; ``single_qubit`` /
+  ``two_qubit`` / ``multi_qubit``: gates on 1 / 2 / 3 or more qubits; ``t``: ``t`` + ``tdg``;
+* ``depth``: ASAP layering in which every gate counts one layer on all of its qubits (Qiskit's
+  ``QuantumCircuit.depth()``);
+* ``two_qubit_depth``: Qiskit's ``depth(filter_function=lambda i: i.operation.num_qubits == 2)``: a two-qubit
+  gate adds one layer, a single-qubit gate adds nothing, and a gate on three or more qubits adds nothing but
+  synchronises its qubits to their latest level (that is what Qiskit's filtered depth does).
+
+Breakdown by section name (``initial_state``, ``phase_k``, ``mixer_k``, ...): sections sharing a name are added
+up (gate counts), and their depth is the ASAP depth of all gates of sections of that name, in circuit order,
+taken alone (so when every partial mixer of layer ``k`` is its own ``mixer_k`` section, ``sections["mixer_k"]``
+is the whole mixer layer ``k``, and its depth is that layer's depth). Section depths do not add up to the
+circuit's depth in general: ASAP layering lets gates of a later section start before an earlier section ends.
+
+Speed: one tight loop over the gate tuples with per-qubit level lists (no per-gate object creation); about 1 s for
+the 770,000 gates of the lowered 10x10, 4-robot, p=1 circuit.
+
+Example:
+    >>> from circuitgen.circuit import CircuitBuilder
+    >>> from circuitgen.gates import cx, h, t
+    >>> b = CircuitBuilder([("data", 2), ("work", 1)])
+    >>> b.append([h(0), cx(0, 1), t(2)], section="s")
+    >>> rc = count(b.build())
+    >>> rc.qubits, rc.data_qubits, rc.ancillas, rc.cx, rc.t, rc.depth, rc.two_qubit_depth
+    (3, 2, 1, 1, 1, 2, 1)
+    >>> rc.sections["s"].ops
+    {'cx': 1, 'h': 1, 't': 1}
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from operator import itemgetter
+from typing import Any
+
+from circuitgen.circuit import Circuit
+from circuitgen.gates import GATE_SPECS
+
+__all__ = ["GateCount", "ResourceCount", "count", "count_gates"]
+
+DATA_REGISTER = "data"
+_T_NAMES = ("t", "tdg")
+
+
+@dataclass(frozen=True)
+class GateCount:
+    """Gate statistics of a gate sequence (a whole circuit or the sections sharing one name).
+
+    Attributes:
+        ops: gates per name, sorted by name.
+        size: total number of gates.
+        single_qubit: gates acting on one qubit.
+        two_qubit: gates acting on two qubits.
+        multi_qubit: gates acting on three or more qubits.
+        cx: number of ``cx`` gates.
+        t: number of ``t`` plus ``tdg`` gates.
+        depth: ASAP depth, every gate counts (Qiskit's ``depth()``).
+        two_qubit_depth: ASAP depth counting only two-qubit gates (see the module docstring).
+    """
+
+    ops: Mapping[str, int] = field(default_factory=dict)
+    size: int = 0
+    single_qubit: int = 0
+    two_qubit: int = 0
+    multi_qubit: int = 0
+    cx: int = 0
+    t: int = 0
+    depth: int = 0
+    two_qubit_depth: int = 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict (``ops`` as a plain dict)."""
+        return {
+            "ops": dict(self.ops),
+            "size": self.size,
+            "single_qubit": self.single_qubit,
+            "two_qubit": self.two_qubit,
+            "multi_qubit": self.multi_qubit,
+            "cx": self.cx,
+            "t": self.t,
+            "depth": self.depth,
+            "two_qubit_depth": self.two_qubit_depth,
+        }
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> GateCount:
+        """Inverse of :meth:`to_dict`."""
+        return cls(**{**d, "ops": {str(k): int(v) for k, v in d["ops"].items()}})
+
+
+@dataclass(frozen=True)
+class ResourceCount(GateCount):
+    """Exact resources of one circuit: qubits, the :class:`GateCount` fields, and a per-section breakdown.
+
+    Attributes:
+        qubits: total number of qubits.
+        data_qubits: size of the ``data`` register.
+        ancillas: all other qubits (``logic``, ``work``, ...).
+        registers: ``(name, size)`` of every register, in layout order.
+        sections: section name -> :class:`GateCount`, in order of first appearance (sections sharing a name
+            are merged, see the module docstring).
+    """
+
+    qubits: int = 0
+    data_qubits: int = 0
+    ancillas: int = 0
+    registers: tuple[tuple[str, int], ...] = ()
+    sections: Mapping[str, GateCount] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict (sections as nested dicts)."""
+        d = super().to_dict()
+        d.update(
+            qubits=self.qubits,
+            data_qubits=self.data_qubits,
+            ancillas=self.ancillas,
+            registers=[list(r) for r in self.registers],
+            sections={name: s.to_dict() for name, s in self.sections.items()},
+        )
+        return d
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> ResourceCount:
+        """Inverse of :meth:`to_dict`."""
+        base = GateCount.from_dict({k: d[k] for k in GateCount.__dataclass_fields__})
+        return cls(
+            **{k: getattr(base, k) for k in GateCount.__dataclass_fields__},
+            qubits=int(d["qubits"]),
+            data_qubits=int(d["data_qubits"]),
+            ancillas=int(d["ancillas"]),
+            registers=tuple((str(n), int(s)) for n, s in d["registers"]),
+            sections={name: GateCount.from_dict(s) for name, s in d["sections"].items()},
+        )
+
+
+def _arity(ops: Counter[str], gates: Iterable[tuple[Any, ...]]) -> Counter[int]:
+    """Gates per number of qubits: from the spec table, looking at single gates only for variadic names."""
+    arity: Counter[int] = Counter()
+    variadic = set()
+    for name, k in ops.items():
+        spec = GATE_SPECS.get(name)
+        if spec is None or spec.num_qubits is None:
+            variadic.add(name)
+        else:
+            arity[spec.num_qubits] += k
+    if variadic:
+        arity.update(len(g[1]) for g in gates if g[0] in variadic)
+    return arity
+
+
+def _stats(ops: Counter[str], arity: Counter[int], depth: int, depth2: int) -> GateCount:
+    return GateCount(
+        ops=dict(sorted(ops.items())),
+        size=sum(ops.values()),
+        single_qubit=arity.get(1, 0),
+        two_qubit=arity.get(2, 0),
+        multi_qubit=sum(v for k, v in arity.items() if k >= 3),
+        cx=ops.get("cx", 0),
+        t=sum(ops.get(n, 0) for n in _T_NAMES),
+        depth=depth,
+        two_qubit_depth=depth2,
+    )
+
+
+_qubits_of = itemgetter(1)
+
+
+def _levels(gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int]) -> None:
+    """Advance the ASAP levels ``lv`` (every gate) and ``l2`` (two-qubit gates only) over ``gates``, in place."""
+    for qs in map(_qubits_of, gates):
+        n = len(qs)
+        if n == 1:
+            lv[qs[0]] += 1
+        elif n == 2:
+            a, b = qs
+            x = lv[a]
+            y = lv[b]
+            m = (x if x > y else y) + 1
+            lv[a] = m
+            lv[b] = m
+            x = l2[a]
+            y = l2[b]
+            m = (x if x > y else y) + 1
+            l2[a] = m
+            l2[b] = m
+        elif n:
+            m = max([lv[q] for q in qs]) + 1
+            m2 = max([l2[q] for q in qs])
+            for q in qs:
+                lv[q] = m
+                l2[q] = m2
+
+
+def _levels_twice(
+    gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int], sv: list[int], s2: list[int]
+) -> None:
+    """:func:`_levels` on two pairs of level lists at once (the whole circuit's and one section name's)."""
+    for qs in map(_qubits_of, gates):
+        n = len(qs)
+        if n == 1:
+            q = qs[0]
+            lv[q] += 1
+            sv[q] += 1
+        elif n == 2:
+            a, b = qs
+            x = lv[a]
+            y = lv[b]
+            m = (x if x > y else y) + 1
+            lv[a] = m
+            lv[b] = m
+            x = l2[a]
+            y = l2[b]
+            m = (x if x > y else y) + 1
+            l2[a] = m
+            l2[b] = m
+            x = sv[a]
+            y = sv[b]
+            m = (x if x > y else y) + 1
+            sv[a] = m
+            sv[b] = m
+            x = s2[a]
+            y = s2[b]
+            m = (x if x > y else y) + 1
+            s2[a] = m
+            s2[b] = m
+        elif n:
+            m = max([lv[q] for q in qs]) + 1
+            m2 = max([l2[q] for q in qs])
+            ms = max([sv[q] for q in qs]) + 1
+            ms2 = max([s2[q] for q in qs])
+            for q in qs:
+                lv[q] = m
+                l2[q] = m2
+                sv[q] = ms
+                s2[q] = ms2
+
+
+def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
+    """:class:`GateCount` of a plain gate sequence.
+
+    Args:
+        gates: gate tuples ``(name, qubits, ...)`` (:class:`~circuitgen.gates.Gate` or plain tuples).
+        num_qubits: one more than the largest qubit index used.
+
+    Returns:
+        The statistics.
+
+    >>> count_gates([("h", (0,)), ("cx", (0, 1)), ("ccx", (0, 1, 2)), ("cx", (1, 2))], 3).two_qubit_depth
+    2
+    """
+    gates = list(gates)
+    lv = [0] * num_qubits
+    l2 = [0] * num_qubits
+    _levels(gates, lv, l2)
+    ops = Counter(map(itemgetter(0), gates))
+    return _stats(ops, _arity(ops, gates), max(lv, default=0), max(l2, default=0))
+
+
+def count(circuit: Circuit) -> ResourceCount:
+    """Count the resources of ``circuit`` (see the module docstring for every definition).
+
+    Args:
+        circuit: any circuit, high level or lowered; symbolic angles are fine.
+
+    Returns:
+        The :class:`ResourceCount`.
+
+    >>> from circuitgen.circuit import CircuitBuilder
+    >>> from circuitgen.gates import cx, x
+    >>> b = CircuitBuilder([("data", 2)])
+    >>> b.append([x(0), cx(0, 1)], section="mixer_0")
+    >>> b.append([x(1)], section="phase_1")
+    >>> b.append([cx(0, 1)], section="mixer_0")
+    >>> rc = count(b.build())
+    >>> rc.depth, rc.sections["mixer_0"].ops, rc.sections["mixer_0"].depth
+    (4, {'cx': 2, 'x': 1}, 3)
+    """
+    n = circuit.num_qubits
+    lv = [0] * n
+    l2 = [0] * n
+    per_name: dict[str, tuple[Counter[str], Counter[int], list[int], list[int]]] = {}
+    for sec in circuit.sections:
+        gates = sec.gates
+        acc = per_name.get(sec.name)
+        if acc is None:
+            acc = per_name[sec.name] = (Counter(), Counter(), [0] * n, [0] * n)
+        sec_ops = Counter(map(itemgetter(0), gates))
+        acc[0].update(sec_ops)
+        acc[1].update(_arity(sec_ops, gates))
+        _levels_twice(gates, lv, l2, acc[2], acc[3])
+    ops: Counter[str] = Counter()
+    arity: Counter[int] = Counter()
+    sections: dict[str, GateCount] = {}
+    for name, (s_ops, s_arity, s_lv, s_l2) in per_name.items():
+        ops.update(s_ops)
+        arity.update(s_arity)
+        sections[name] = _stats(s_ops, s_arity, max(s_lv, default=0), max(s_l2, default=0))
+    total = _stats(ops, arity, max(lv, default=0), max(l2, default=0))
+    registers = tuple((r.name, r.size) for r in circuit.registers)
+    data = sum(size for name, size in registers if name == DATA_REGISTER)
+    return ResourceCount(
+        **{k: getattr(total, k) for k in GateCount.__dataclass_fields__},
+        qubits=n,
+        data_qubits=data,
+        ancillas=n - data,
+        registers=registers,
+        sections=sections,
+    )
