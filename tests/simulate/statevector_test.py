@@ -74,11 +74,15 @@ def test_every_gate_on_scattered_qubits() -> None:
 
 
 def test_fused_runs_on_one_and_two_qubits() -> None:
-    # runs the simulator fuses (same one or two qubits, both orders), split by 3-qubit gates
+    # runs the simulator fuses (same one or two qubits, gates in both qubit orders), split by ccx
     gates = [
-        G.cx(3, 1), G.rz(0.4, 1), G.cx(3, 1), G.h(1), G.h(1), G.rzz(0.3, 1, 3), G.crz(0.2, 3, 1),
-        G.t(3), G.cry(0.5, 1, 3), G.x(1), G.ccx(0, 1, 2), G.s(2), G.rx(0.1, 2), G.sdg(2),
-        G.cz(2, 0), G.cx(0, 2), G.rz(-1.0, 2), G.cx(0, 2), G.h(0),
+        G.cx(3, 1), G.rz(0.4, 1), G.cx(3, 1), G.crz(0.2, 1, 3), G.rzz(0.3, 1, 3), G.t(3),  # diagonal
+        G.ccx(0, 1, 2),
+        G.cz(2, 0), G.cx(0, 2), G.rz(-1.0, 2), G.cx(0, 2), G.crz(0.7, 0, 2),  # diagonal
+        G.ccx(1, 2, 3),
+        G.h(1), G.x(1), G.rx(0.1, 1), G.s(1),  # one qubit
+        G.ccx(0, 1, 3),
+        G.cry(0.5, 3, 1), G.h(1), G.h(1), G.cx(1, 3),  # dense: applied gate by gate
     ]  # fmt: skip
     c = Circuit([("data", 4)], [Section("s", gates)])
     np.testing.assert_allclose(circuit_unitary(c), reference_unitary(c), atol=1e-12)
