@@ -160,7 +160,7 @@ def _parity_body(qs: list[str], core: str) -> list[str]:
     return [*hs, *ladder, core, *reversed(ladder), *hs]
 
 
-def _fixed_defs(version: Version) -> dict[str, str]:
+def _fixed_defs() -> dict[str, str]:
     return {
         "rzz": _gate_def("qcpp_rzz", "theta", ["a", "b"], ["cx a, b;", "rz(theta) b;", "cx a, b;"]),
         "cry": _gate_def(
@@ -234,7 +234,7 @@ def _definitions(circuit: Circuit, version: Version) -> list[str]:
     unknown = names - set(GATE_SPECS)
     if unknown:
         raise ValueError(f"unknown gate names: {sorted(unknown)}")
-    fixed = _fixed_defs(version)
+    fixed = _fixed_defs()
     out = [fixed[name] for name in ("rzz", "cry", "sbf", "csbf") if name in names - _NATIVE[version]]
     mcx_defs = []
     phases: set[int] = set()
