@@ -58,6 +58,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cache
 from typing import Literal
 
 import numpy as np
@@ -262,21 +263,31 @@ def robot_basis(
 
 
 def split_angles(angles: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Split ``[gamma_0, beta_0, gamma_1, beta_1, ...]`` into ``(gammas, betas)``.
+    """Split ``[gamma_0, beta_0, gamma_1, beta_1, ...]`` into ``(gammas, betas)`` (empty for ``p = 0``).
 
     Raises:
-        ValueError: if the vector is empty, of odd length, or not finite.
+        ValueError: if the vector has odd length or a value that is not finite.
 
     Example:
         >>> [g.tolist() for g in split_angles([0.1, 0.2, 0.3, 0.4])]
         [[0.1, 0.3], [0.2, 0.4]]
     """
     a = np.asarray(angles, dtype=float).reshape(-1)
-    if a.size == 0 or a.size % 2:
-        raise ValueError(f"angles must be [gamma_0, beta_0, ...] of even positive length, got {a.size} values")
+    if a.size % 2:
+        raise ValueError(f"angles must be [gamma_0, beta_0, ...] of even length, got {a.size} values")
     if not np.all(np.isfinite(a)):
         raise ValueError("angles must be finite")
     return a[0::2].copy(), a[1::2].copy()
+
+
+@cache
+def _check_lapack_in_place() -> None:
+    """The kernels rely on f2py handing ``zrot`` the caller's buffer (``overwrite_x=1`` on a contiguous
+    complex128 array); make sure this build of scipy does, once per process."""
+    x = np.array([1.0, 0.0], dtype=np.complex128)
+    zrot(x, x, 0.0, 1.0 + 0j, 1, 0, 1, 1, 1, 1, 1)
+    if not np.allclose(x, [0.0, -1.0]):
+        raise RuntimeError("scipy's LAPACK zrot did not work in place; the subspace simulator cannot run here")
 
 
 class SubspaceQAOA:
@@ -316,6 +327,7 @@ class SubspaceQAOA:
         phase_offset: float | None = None,
         buffer: int = _DEFAULT_BUFFER,
     ) -> None:
+        _check_lapack_in_place()
         self.scenario = scenario
         self.rule: Rule = rule
         self.initial: InitialState = initial
@@ -486,7 +498,8 @@ class SubspaceQAOA:
         """The QAOA state ``prod_k U_M(beta_k) exp(-i gamma_k (C - offset)) |psi_0>``, shape :attr:`dims`.
 
         Args:
-            angles: ``[gamma_0, beta_0, gamma_1, beta_1, ...]`` (``p`` layers, ``2p`` values).
+            angles: ``[gamma_0, beta_0, gamma_1, beta_1, ...]`` (``p`` layers, ``2p`` values; empty for the
+                initial state).
         """
         gammas, betas = split_angles(angles)
         psi = self.initial_state()
@@ -632,6 +645,7 @@ class SubspaceQAOA:
         """
         gammas, betas = split_angles(angles)
         p = len(gammas)
+        self._build_cost()
         psi = self.state(angles)
         lam = np.empty_like(psi)
         pflat, lflat = psi.reshape(-1), lam.reshape(-1)
@@ -699,7 +713,7 @@ class SubspaceQAOA:
         ``arrays`` (same shape). Long trailing runs are used in place; short ones go through a transposed
         scratch buffer of about :attr:`buffer` amplitudes per array."""
         pre, n, post = self._layout(r)
-        if post >= _DIRECT_MIN or (pre == 1 and post >= 1):
+        if post >= _DIRECT_MIN or pre == 1:
             flats = [a.reshape(-1) for a in arrays]
             for p in range(pre):
                 fn(flats, p * n * post, post)

@@ -14,7 +14,7 @@ import pytest
 from gridcover.cost import cost, separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
-from gridcover.sbf import move_components, reachable_paths, representatives, sbf_logic
+from gridcover.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
 from gridcover.scenario import Scenario, scenario_from_dict
 from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
 
@@ -204,6 +204,12 @@ def test_cost_diagonal_matches_ising_and_cost() -> None:
         assert np.isclose(diag[idx], ham.evaluate(assignment_bits(TWO_2x3, masks)))
 
 
+def test_zero_layers_is_the_initial_state() -> None:
+    q = SubspaceQAOA(HARD_3x4, initial="representatives")
+    assert np.array_equal(q.state([]), q.initial_state())
+    assert np.array_equal(q.gradient([]), np.zeros(0))
+
+
 def test_norm_is_preserved() -> None:
     rng = np.random.default_rng(5)
     q = SubspaceQAOA(TWO_2x3)
@@ -240,8 +246,7 @@ def test_gamma_zero_mixer_is_independent_of_the_offset() -> None:
 def test_split_angles_validates() -> None:
     with pytest.raises(ValueError, match="even"):
         split_angles([0.1, 0.2, 0.3])
-    with pytest.raises(ValueError, match="even"):
-        split_angles([])
+    assert [g.size for g in split_angles([])] == [0, 0]  # p = 0: the initial state
     with pytest.raises(ValueError, match="finite"):
         split_angles([0.1, float("nan")])
 
@@ -281,6 +286,37 @@ def test_robot_basis_reports_unitarity_per_robot() -> None:
     robot_basis(s, 0, "paper")
     with pytest.raises(NonUnitaryMixerError, match="robot 1"):
         robot_basis(s, 1, "paper")
+
+
+def test_infeasible_basis_states_are_ordinary_basis_states(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A symmetric rule that leaves the feasible set (here: every flip always allowed, patched into both the
+    simulator and the reference) is simulated exactly, the infeasible edge sets flagged and kept out of the
+    optimum."""
+    import simulate.subspace as sub
+
+    def always(scenario: Scenario, robot: int, plaquette: object, rule: str = "exact") -> SbfLogic:
+        return SbfLogic(rule, robot, plaquette.index, 1, 0, (XorStep(0, ()),))  # type: ignore[arg-type, attr-defined]
+
+    monkeypatch.setattr(sub, "sbf_logic", always)
+    monkeypatch.setitem(globals(), "sbf_logic", always)
+    s = SINGLE_3x3_SIDE
+    q = SubspaceQAOA(s, rule="paper")
+    start = initial_path(s, 0)
+    span = {start}
+    for pl in s.grid.plaquettes:
+        span |= {m ^ pl.edge_mask for m in span}
+    assert set(q.bases[0]) == span and len(span) == 16
+    flags = q.feasible[0]
+    assert flags.tolist() == [is_feasible(s, 0, m) for m in q.bases[0]] and not flags.all()
+    angles = [0.4, 0.9, -0.3, 2.1]
+    assert np.abs(subspace_as_dense(q, angles) - dense_reference(s, angles, rule="paper")).max() < 1e-10
+    best = min(cost(s, [m]) for m, ok in zip(q.bases[0], flags) if ok)
+    assert q.optimum()[0] == pytest.approx(best)
+    assert all(is_feasible(s, 0, m[0]) for m in q.optimal_assignments())
+    probs = q.probabilities(angles)
+    assert q.p_optimum(angles) == pytest.approx(
+        sum(probs[i] for i, m in enumerate(q.bases[0]) if flags[i] and np.isclose(cost(s, [m]), best))
+    )
 
 
 # ---------------------------------------------------------------- read-outs
@@ -363,6 +399,25 @@ def test_buffer_size_does_not_change_results() -> None:
         b = SubspaceQAOA(s, buffer=1)  # one leading index per block of the transposed buffer
         assert np.allclose(a.state(angles), b.state(angles), atol=1e-14)
         assert np.allclose(a.gradient(angles), b.gradient(angles), atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("s", "rule", "initial"),
+    [(TWO_2x3, "exact", "initial_path"), (HARD_3x4, "exact", "representatives"), (SINGLE_2x3, "paper", "initial_path")],
+    ids=["two-robots", "representatives", "paper-rule"],
+)
+def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial: str) -> None:
+    """The data-register amplitudes of the compiled circuit (ancillas back in |0>, above the data qubits)."""
+    from circuitgen.qaoa import qaoa_circuit
+    from simulate.sparse import simulate_sparse
+
+    angles = [0.3, 1.1, 0.17, 0.6]
+    circ = qaoa_circuit(s, 2, rule=rule, initial=initial)  # type: ignore[arg-type]
+    bindings = {"gamma_0": angles[0], "beta_0": angles[1], "gamma_1": angles[2], "beta_1": angles[3]}
+    gate_level = simulate_sparse(circ, 0, bindings)
+    mine = SubspaceQAOA(s, rule=rule, initial=initial).state_dict(angles, key="index")  # type: ignore[arg-type]
+    for k in set(gate_level) | set(mine):
+        assert abs(gate_level.get(k, 0) - mine.get(k, 0)) < 1e-10
 
 
 def test_doctests() -> None:
