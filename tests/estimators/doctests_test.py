@@ -15,6 +15,7 @@ MODULES = [
     "estimators.sweep",
     "estimators.tables",
     "estimators.plots",
+    "estimators.report",
 ]
 
 

@@ -1,0 +1,99 @@
+"""``qcpp estimate``: exact resource counts, the paper's estimates and the closed-form formulas.
+
+A thin layer over :mod:`estimators.report`: it parses options, prints, and maps bad input to exit code 2 with one
+line on stderr. ``register(app)`` adds the command to a typer app.
+
+Examples::
+
+    qcpp estimate --grid 3x3 --robots 1
+    qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
+    qcpp estimate --grid 3x3..6x6 --robots 1..3 --compare paper --plot estimates.png
+    qcpp estimate --scenario examples/two_robots.toml -p 2 --json
+    qcpp estimate --formula
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from estimators.report import estimate_report, formula_report, points_from_options
+from estimators.tables import FORMATS
+from gridcover.errors import ScenarioError
+
+__all__ = ["estimate", "register"]
+
+HELP = (
+    "Exact resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), optionally beside the "
+    "paper's estimates, plus labelled fault-tolerant estimates. Ranges: --grid AxB..CxD means every rows in A..C "
+    "and every cols in B..D; --robots and -p take N or A..B."
+)
+
+
+def _fail(message: str) -> typer.Exit:
+    typer.echo(f"qcpp estimate: error: {message}", err=True)
+    return typer.Exit(code=2)
+
+
+def estimate(
+    grid: Annotated[
+        str | None, typer.Option("--grid", help="ROWSxCOLS or AxB..CxD (every rows in A..C, cols in B..D).")
+    ] = None,
+    robots: Annotated[str, typer.Option("--robots", help="Robots: N or A..B (1 to 4, corner placement).")] = "1",
+    p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
+    scenario: Annotated[
+        Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
+    ] = None,
+    rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
+    compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
+    fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv or json.")] = "table",
+    as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here.")] = None,
+    formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
+    no_cache: Annotated[bool, typer.Option("--no-cache", help="Neither read nor write the estimate cache.")] = False,
+    jobs: Annotated[int | None, typer.Option("--jobs", "-j", help="Worker processes (default: all cores).")] = None,
+    epsilon: Annotated[
+        float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
+    ] = 1e-3,
+) -> None:
+    """Exact resource counts (see ``qcpp estimate --help``)."""
+    if as_json:
+        fmt = "json"
+    if fmt not in FORMATS:
+        raise _fail(f"bad --format {fmt!r}: expected one of {', '.join(FORMATS)}")
+    if formula:
+        typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
+        return
+    if compare not in (None, "paper"):
+        raise _fail(f"bad --compare {compare!r}: the only comparison is 'paper'")
+    if jobs is not None and jobs < 1:
+        raise _fail(f"bad --jobs {jobs}: must be at least 1")
+    if not 0.0 < epsilon < 1.0:
+        raise _fail(f"bad --epsilon {epsilon}: must be in (0, 1)")
+    try:
+        points = points_from_options(grid, robots, p, scenario, rule)
+    except ScenarioError as exc:
+        raise _fail(str(exc)) from None
+    except ValueError as exc:
+        raise _fail(str(exc)) from None
+    text = estimate_report(
+        points,
+        fmt=fmt,  # type: ignore[arg-type]
+        compare_paper=compare == "paper",
+        plot=plot,
+        use_cache=not no_cache,
+        jobs=jobs,
+        epsilon=epsilon,
+        progress=sys.stderr.isatty(),
+    )
+    typer.echo(text, nl=False)
+    if plot is not None:
+        typer.echo(f"wrote {plot}", err=True)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``estimate`` to ``app``."""
+    app.command("estimate", help=HELP)(estimate)

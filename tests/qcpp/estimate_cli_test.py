@@ -1,0 +1,140 @@
+"""``qcpp estimate``: formats, ranges, scenario files, plot, cache switch, formulas, and bad input (exit 2)."""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import io
+import json
+from pathlib import Path
+
+import pytest
+import typer
+from typer.testing import CliRunner
+
+from circuitgen.lowering import lower
+from circuitgen.qaoa import qaoa_circuit
+from estimators.counts import count
+from estimators.formulas import QUANTITIES
+from gridcover.presets import default_scenario
+from gridcover.scenario import save_scenario
+from qcpp.commands.estimate import register
+
+
+def _app() -> typer.Typer:
+    if importlib.util.find_spec("qcpp.cli") is not None:  # the real CLI, once it registers the command
+        from qcpp import cli
+
+        app = getattr(cli, "app", None)
+        if isinstance(app, typer.Typer) and any(c.name == "estimate" for c in app.registered_commands):
+            return app
+    app = typer.Typer()
+    register(app)
+
+    @app.callback()
+    def main() -> None:
+        """qcpp"""
+
+    return app
+
+
+@pytest.fixture
+def run(tmp_path: Path):  # type: ignore[no-untyped-def]
+    runner = CliRunner()
+    env = {"QCPP_CACHE_DIR": str(tmp_path / "cache")}
+
+    def invoke(*args: str):  # type: ignore[no-untyped-def]
+        return runner.invoke(_app(), ["estimate", *args], env=env)
+
+    return invoke
+
+
+def test_json_one_point_has_the_exact_counts(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "3x3", "--robots", "1", "--json")
+    assert res.exit_code == 0, res.output
+    rows = json.loads(res.stdout)
+    assert len(rows) == 1
+    rc = count(lower(qaoa_circuit(default_scenario(3, 3, 1), 1)))
+    row = rows[0]
+    for key in ("rows", "cols", "robots", "p", "qubits", "data_qubits", "ancillas", "cx", "single_qubit", "t"):
+        assert key in row
+    assert (row["qubits"], row["cx"], row["depth"], row["two_qubit_depth"]) == (rc.qubits, rc.cx, rc.depth,
+                                                                                rc.two_qubit_depth)
+    assert set(row["sections"]) == {"initial_state", "phase_0", "mixer_0"}
+
+
+def test_ranges_and_compare_paper_in_csv(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "2x2..2x3", "--robots", "1..2", "-p", "1..2", "--compare", "paper", "--format", "csv")
+    assert res.exit_code == 0, res.output
+    rows = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert [(r["rows"], r["cols"], r["robots"], r["p"]) for r in rows] == [
+        (r, c, k, p) for r, c in [("2", "2"), ("2", "3")] for k in "12" for p in "12"
+    ]
+    assert all(r["paper_cx"] and r["ratio_cx"] for r in rows)
+
+
+def test_markdown_and_table(run) -> None:  # type: ignore[no-untyped-def]
+    md = run("--grid", "2x2", "--format", "md", "--compare", "paper")
+    assert md.exit_code == 0
+    lines = md.stdout.splitlines()
+    assert lines[0].startswith("| rows |") and "paper_cx" in lines[0] and len(lines) == 3
+    table = run("--grid", "2x2")
+    assert table.exit_code == 0 and "two_qubit_depth" in table.stdout
+
+
+def test_plot_is_written_atomically(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    out = tmp_path / "plots" / "est.png"
+    res = run("--grid", "2x2..3x3", "--robots", "1..2", "--compare", "paper", "--plot", str(out), "--json")
+    assert res.exit_code == 0, res.output
+    assert out.read_bytes()[:4] == b"\x89PNG"
+    assert [p.name for p in out.parent.iterdir()] == ["est.png"]
+    assert len(json.loads(res.stdout)) == 8
+
+
+def test_scenario_file_and_rule(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "s.toml"
+    save_scenario(default_scenario(2, 3, 2), path)
+    from_file = json.loads(run("--scenario", str(path), "-p", "1..2", "--json").stdout)
+    default = json.loads(run("--grid", "2x3", "--robots", "2", "-p", "1..2", "--json").stdout)
+    assert [r["cx"] for r in from_file] == [r["cx"] for r in default]
+    assert [r["scenario"] for r in from_file] == ["file", "file"]
+    paper_rule = json.loads(run("--grid", "3x3", "--rule", "paper", "--json").stdout)[0]
+    exact_rule = json.loads(run("--grid", "3x3", "--json").stdout)[0]
+    assert paper_rule["rule"] == "paper" and paper_rule["cx"] != exact_rule["cx"]
+
+
+def test_no_cache_writes_nothing(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    assert run("--grid", "2x2", "--no-cache", "--json").exit_code == 0
+    assert not (tmp_path / "cache").exists()
+    assert run("--grid", "2x2", "--json").exit_code == 0
+    assert len(list((tmp_path / "cache").glob("*.json"))) == 1
+
+
+def test_formula(run) -> None:  # type: ignore[no-untyped-def]
+    text = run("--formula")
+    assert text.exit_code == 0 and "V = 2*cols*rows - cols - rows" in text.stdout
+    data = json.loads(run("--formula", "--json").stdout)
+    assert set(data["formulas"]) == set(QUANTITIES)
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("--grid", "3"),
+        ("--grid", "1x3"),
+        ("--grid", "4x4..3x3"),
+        ("--robots", "5"),
+        ("--robots", "0..2"),
+        ("-p", "x"),
+        ("--rule", "fast"),
+        ("--format", "xml"),
+        ("--compare", "qiskit"),
+        ("--scenario", "/nonexistent/file.toml"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(run, args: tuple[str, ...]) -> None:  # type: ignore[no-untyped-def]
+    res = run(*args)
+    assert res.exit_code == 2
+    assert res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and "error" in lines[0]
