@@ -256,7 +256,12 @@ def robot_basis(
     amp = np.zeros(len(paths))
     amp[[lookup[st] for st in starts]] = 1.0
     amp /= np.sqrt(amp.sum())
-    feasible = np.array([is_feasible(scenario, robot, m) for m in paths], dtype=bool)
+    if rule == "exact":
+        # the exact rule only allows flips whose result is feasible (gridcover.sbf, checked exhaustively in
+        # its tests), and every start is a feasible path
+        feasible = np.ones(len(paths), dtype=bool)
+    else:
+        feasible = np.array([is_feasible(scenario, robot, m) for m in paths], dtype=bool)
     basis = RobotBasis(robot, tuple(paths), feasible, amp, tuple(pairs))
     object.__setattr__(basis, "_lookup", lookup)
     return basis
@@ -401,9 +406,9 @@ class SubspaceQAOA:
         """The cost ``C`` of every basis assignment, shape :attr:`dims`, float64, read-only.
 
         Built once from :func:`gridcover.cost.separable_cost` (one full-size float array; for two robots the
-        pairwise matrix itself becomes the diagonal) and then kept as :meth:`cost_levels` when the cost takes
-        at most 65,536 distinct values (it typically takes a few hundred); this method then expands the
-        levels again (bit-identical values, a new array per call).
+        pairwise matrix itself becomes the diagonal) and then kept as :meth:`cost_levels` when a table of at
+        most 65,536 values covers it (it typically takes a few hundred distinct values); this method then
+        expands the levels again (bit-identical values, a new array per call).
         """
         self._build_cost()
         if self._diag is not None:
@@ -414,8 +419,9 @@ class SubspaceQAOA:
         return out
 
     def cost_levels(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """``(values, levels)`` with ``cost_diagonal() == values[levels]``: the sorted distinct costs and a
-        ``uint8``/``uint16`` array of shape :attr:`dims`; ``None`` when there are too many distinct values."""
+        """``(values, levels)`` with ``cost_diagonal() == values[levels]``: a sorted table of costs (the distinct
+        values, or for integer costs every integer from the minimum to the maximum) and a ``uint8``/``uint16``
+        array of shape :attr:`dims`; ``None`` when the table would exceed 65,536 values."""
         self._build_cost()
         if self._levels is None:
             return None
@@ -787,7 +793,22 @@ def _abs2(a: np.ndarray) -> np.ndarray:
 
 
 def _compress(flat: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """Sorted distinct values and a uint8/uint16 level per element, or ``None`` if there are too many."""
+    """A sorted value table and a uint8/uint16 level per element (``table[levels] == flat`` exactly), or
+    ``None`` when more than :data:`_MAX_LEVELS` values are needed.
+
+    Integer-valued costs (the default objective's) take a fast path: the table is every integer from the
+    minimum to the maximum and a level is ``cost - minimum``. Otherwise the table is the distinct values."""
+    lo, hi = float(flat.min()), float(flat.max())
+    if hi - lo < _MAX_LEVELS and lo == np.rint(lo):
+        size = int(hi - lo) + 1
+        levels = np.empty(flat.size, dtype=np.uint8 if size <= 256 else np.uint16)
+        for sl in _chunks(flat.size):
+            shifted = flat[sl] - lo
+            levels[sl] = shifted
+            if not np.array_equal(levels[sl], shifted):  # a non-integer cost: use the general path
+                break
+        else:
+            return lo + np.arange(size, dtype=np.float64), levels
     values = np.empty(0)
     for sl in _chunks(flat.size):
         ch = flat[sl]
