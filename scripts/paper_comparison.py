@@ -78,6 +78,18 @@ def main(argv: list[str]) -> int:
             f"{m.logic_qubits} | {m.work_qubits} |"
         )
     print()
+    print("## Depth (ours; the paper gives none) and the fault-tolerant view (epsilon = 1e-3)")
+    print("| grid | robots | depth | phase depth | mixer depth | 2q depth | T (Toffoli=7T) | T (logical AND) | "
+          "rotations | T per rotation |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for res in results:
+        pt, c, ft = res.point, res.counts, res.fault_tolerant
+        print(
+            f"| {pt.rows}x{pt.cols} | {pt.robots} | {c.depth:,} | {c.sections['phase_0'].depth:,} | "
+            f"{c.sections['mixer_0'].depth:,} | {c.two_qubit_depth:,} | {ft.t_toffoli7:,} | {ft.t_logical_and:,} | "
+            f"{ft.rotations:,} | {ft.t_per_rotation} |"
+        )
+    print()
     print("## Multi-controlled X with l controls: Toffolis")
     print("| l | ours (clean v-chain, 2l-3) | paper (4(l-2), Barenco Lemma 7.2) |")
     print("|---:|---:|---:|")
