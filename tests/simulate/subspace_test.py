@@ -17,6 +17,7 @@ from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_f
 from gridcover.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
 from gridcover.scenario import Scenario, scenario_from_dict
 from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
+from simulate.training import cost_scale
 
 
 def make(rows: int, cols: int, robots: list[tuple[tuple[int, int], tuple[int, int]]], **extra: object) -> Scenario:
@@ -208,6 +209,49 @@ def test_zero_layers_is_the_initial_state() -> None:
     q = SubspaceQAOA(HARD_3x4, initial="representatives")
     assert np.array_equal(q.state([]), q.initial_state())
     assert np.array_equal(q.gradient([]), np.zeros(0))
+
+
+FRACTIONAL_2x3 = make(
+    2,
+    3,
+    [((0, 0), (1, 2)), ((1, 0), (0, 2))],
+    obstacles=[[0, 1]],
+    objective={"alpha": [1.0, 0.37, 0.5], "obstacle_weight": 0.3, "free_weight": -0.45, "edge_length": 1.7},
+)
+
+
+def test_non_integer_costs_use_the_distinct_value_table() -> None:
+    q = SubspaceQAOA(FRACTIONAL_2x3)
+    levels = q.cost_levels()
+    assert levels is not None
+    values, lev = levels
+    full = separable_cost(FRACTIONAL_2x3, q.bases).full_tensor()
+    assert not np.allclose(values, np.rint(values))  # really the general path
+    assert np.array_equal(np.unique(values[lev]), values)  # exactly the distinct values
+    assert np.allclose(values[lev], full, rtol=0, atol=1e-9)
+    angles = [0.21, 1.3, 0.4, 0.7]
+    assert np.abs(subspace_as_dense(q, angles) - dense_reference(FRACTIONAL_2x3, angles)).max() < 1e-10
+
+
+def test_float_diagonal_fallback(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Too many distinct costs for a level table: the float64 diagonal is used, with the same results."""
+    import simulate.subspace as sub
+
+    monkeypatch.setattr(sub, "_MAX_LEVELS", 2)
+    assert sub._compress(np.array([0.5, 1.5, 2.25, 0.5])) is None
+    for s in (FRACTIONAL_2x3, TWO_2x3):
+        q = SubspaceQAOA(s)
+        assert q.cost_levels() is None
+        angles = np.array([0.21, 1.3, 0.4, 0.7])
+        assert np.abs(subspace_as_dense(q, list(angles)) - dense_reference(s, list(angles))).max() < 1e-10
+        monkeypatch.setattr(sub, "_MAX_LEVELS", 1 << 16)
+        ref = SubspaceQAOA(s)
+        assert ref.cost_levels() is not None
+        assert np.isclose(q.expectation(angles), ref.expectation(angles), rtol=1e-12)
+        assert np.allclose(q.gradient(angles), ref.gradient(angles), rtol=1e-10, atol=1e-12)
+        assert np.array_equal(q.cost_diagonal(), ref.cost_diagonal())
+        assert cost_scale(q) == pytest.approx(cost_scale(ref), rel=1e-12)
+        monkeypatch.setattr(sub, "_MAX_LEVELS", 2)
 
 
 def test_norm_is_preserved() -> None:
