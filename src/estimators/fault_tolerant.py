@@ -51,6 +51,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass
+from operator import attrgetter
 from typing import Any, Literal
 
 from circuitgen.angles import Angle
@@ -75,6 +76,8 @@ T_PER_TOFFOLI = 7
 T_PER_AND = 4
 
 _ONE = ("one",)
+# diagonal gates that are not permutations (rz, rzz, t, ...) never change a computational basis value
+_PASSIVE = frozenset(n for n, spec in GATE_SPECS.items() if spec.diagonal and not spec.permutation)
 
 
 def rotation_t_cost(epsilon: float, model: SynthesisModel = "ross-selinger") -> int:
@@ -143,7 +146,10 @@ def toffoli_roles(circuit: Circuit) -> ToffoliRoles:
     compute = uncompute = full = 0
     empty: frozenset[Any] = frozenset()
     for g in circuit.gates:
-        name, qubits = g[0], g[1]
+        name = g[0]
+        if name in _PASSIVE:
+            continue
+        qubits = g[1]
         spec = GATE_SPECS[name]
         if name == "x":
             q = qubits[0]
@@ -204,6 +210,9 @@ class RotationCount:
     clifford: int
 
 
+_is_bound = attrgetter("is_bound")
+
+
 def _angle_class(theta: object) -> str:
     if isinstance(theta, Angle):
         if not theta.is_bound:
@@ -229,9 +238,10 @@ def count_rotations(gates: Iterable[tuple[Any, ...]]) -> RotationCount:
     RotationCount(arbitrary=1, t_like=1, clifford=1)
     """
     angles = [g[2][0] for g in gates if g[0] == "rz"]
-    symbolic = sum(1 for a in angles if type(a) is Angle and not a.is_bound)
-    counts = {"arbitrary": symbolic, "t_like": 0, "clifford": 0}
-    if symbolic < len(angles):
+    symbolic = [a for a in angles if type(a) is Angle]
+    unbound = len(symbolic) - sum(map(_is_bound, symbolic))
+    counts = {"arbitrary": unbound, "t_like": 0, "clifford": 0}
+    if unbound < len(angles):
         for a in angles:
             if not (type(a) is Angle and not a.is_bound):
                 counts[_angle_class(a)] += 1
