@@ -26,13 +26,14 @@ Example:
 from __future__ import annotations
 
 import contextlib
+import gc
 import hashlib
 import json
 import os
 import re
 import tempfile
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
@@ -254,8 +255,27 @@ def estimate_point(
         synthesis: rotation synthesis model.
 
     Returns:
-        The :class:`PointResult`.
+        The :class:`PointResult`. The cyclic garbage collector is paused meanwhile.
     """
+    with _gc_paused():
+        return _estimate_point(point, epsilon, synthesis)
+
+
+@contextlib.contextmanager
+def _gc_paused() -> Iterator[None]:
+    """Suspend the cyclic garbage collector: the circuits are millions of small acyclic tuples, which it would
+    rescan over and over (building the 10x10, four-robot circuit takes half the time with it off); reference
+    counting still frees everything."""
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was_enabled:
+            gc.enable()
+
+
+def _estimate_point(point: Point, epsilon: float, synthesis: SynthesisModel) -> PointResult:
     clock = time.process_time
     t0 = clock()
     scenario = point.build_scenario()
