@@ -103,6 +103,12 @@ def test_scenario_file_and_rule(run, tmp_path: Path) -> None:  # type: ignore[no
     assert paper_rule["rule"] == "paper" and paper_rule["cx"] != exact_rule["cx"]
 
 
+def test_paper_doubling_reading(run) -> None:  # type: ignore[no-untyped-def]
+    literal = json.loads(run("--grid", "3x3", "--compare", "paper", "--json").stdout)[0]
+    logic = json.loads(run("--grid", "3x3", "--compare", "paper", "--paper-doubling", "logic", "--json").stdout)[0]
+    assert literal["paper_cx"] - logic["paper_cx"] == 4 * 8  # four partial mixers, the 8-CNOT rotation once less
+
+
 def test_no_cache_writes_nothing(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     assert run("--grid", "2x2", "--no-cache", "--json").exit_code == 0
     assert not (tmp_path / "cache").exists()
@@ -130,6 +136,9 @@ def test_formula(run) -> None:  # type: ignore[no-untyped-def]
         ("--format", "xml"),
         ("--compare", "qiskit"),
         ("--scenario", "/nonexistent/file.toml"),
+        ("--paper-doubling", "rotation"),
+        ("--jobs", "0"),
+        ("--epsilon", "2"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(run, args: tuple[str, ...]) -> None:  # type: ignore[no-untyped-def]

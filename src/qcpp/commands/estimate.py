@@ -20,6 +20,7 @@ from typing import Annotated
 
 import typer
 
+from estimators.paper import DOUBLINGS
 from estimators.report import estimate_report, formula_report, points_from_options
 from estimators.tables import FORMATS
 from gridcover.errors import ScenarioError
@@ -58,6 +59,13 @@ def estimate(
     epsilon: Annotated[
         float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
     ] = 1e-3,
+    paper_doubling: Annotated[
+        str,
+        typer.Option(
+            "--paper-doubling",
+            help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
+        ),
+    ] = "partial-mixer",
 ) -> None:
     """Exact resource counts (see ``qcpp estimate --help``)."""
     if as_json:
@@ -69,6 +77,8 @@ def estimate(
         return
     if compare not in (None, "paper"):
         raise _fail(f"bad --compare {compare!r}: the only comparison is 'paper'")
+    if paper_doubling not in DOUBLINGS:
+        raise _fail(f"bad --paper-doubling {paper_doubling!r}: expected one of {', '.join(DOUBLINGS)}")
     if jobs is not None and jobs < 1:
         raise _fail(f"bad --jobs {jobs}: must be at least 1")
     if not 0.0 < epsilon < 1.0:
@@ -87,6 +97,7 @@ def estimate(
         use_cache=not no_cache,
         jobs=jobs,
         epsilon=epsilon,
+        doubling=paper_doubling,  # type: ignore[arg-type]
         progress=sys.stderr.isatty(),
     )
     typer.echo(text, nl=False)
