@@ -41,14 +41,18 @@ FORMULA_DOMAIN = (
 
 
 def points_from_options(
-    grid: str | None, robots: str, p: str, scenario: str | os.PathLike[str] | None = None, rule: str = "exact"
+    grid: str | None,
+    robots: str | None,
+    p: str,
+    scenario: str | os.PathLike[str] | None = None,
+    rule: str = "exact",
 ) -> list[Point]:
     """Sweep points from the CLI's option texts.
 
     Args:
-        grid: ``3x4`` or ``AxB..CxD`` (every rows in A..C and cols in B..D); ``None`` means ``3x3`` (ignored with
-            ``scenario``).
-        robots: ``N`` or ``A..B`` (1 to 4; ignored with ``scenario``).
+        grid: ``3x4`` or ``AxB..CxD`` (every rows in A..C and cols in B..D); ``None`` means ``3x3``. Must be
+            ``None`` with ``scenario``.
+        robots: ``N`` or ``A..B`` (1 to 4); ``None`` means ``1``. Must be ``None`` with ``scenario``.
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
         rule: SBF rule.
@@ -63,10 +67,12 @@ def points_from_options(
         raise ValueError(f"bad rule {rule!r}: expected one of {', '.join(RULES)}")
     layers = parse_int_range(p, "p", 0)
     if scenario is not None:
+        if grid is not None or robots is not None:
+            raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
         s = load_scenario(scenario)
         return [Point.from_scenario(s, k, rule) for k in layers]
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
-    ks = parse_int_range(robots, "robots", 1, MAX_DEFAULT_ROBOTS)
+    ks = parse_int_range(robots if robots is not None else "1", "robots", 1, MAX_DEFAULT_ROBOTS)
     return grid_points(grids, ks, layers, rule)
 
 

@@ -137,6 +137,7 @@ def test_formula(run) -> None:  # type: ignore[no-untyped-def]
         ("--compare", "qiskit"),
         ("--scenario", "/nonexistent/file.toml"),
         ("--paper-doubling", "rotation"),
+        ("--scenario", "examples/paper_3x3.toml", "--grid", "3x3"),
         ("--jobs", "0"),
         ("--epsilon", "2"),
     ],

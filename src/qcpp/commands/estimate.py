@@ -41,9 +41,12 @@ def _fail(message: str) -> typer.Exit:
 
 def estimate(
     grid: Annotated[
-        str | None, typer.Option("--grid", help="ROWSxCOLS or AxB..CxD (every rows in A..C, cols in B..D).")
+        str | None,
+        typer.Option("--grid", help="ROWSxCOLS or AxB..CxD (every rows in A..C, cols in B..D; default 3x3)."),
     ] = None,
-    robots: Annotated[str, typer.Option("--robots", help="Robots: N or A..B (1 to 4, corner placement).")] = "1",
+    robots: Annotated[
+        str | None, typer.Option("--robots", help="Robots: N or A..B (1 to 4, corner placement; default 1).")
+    ] = None,
     p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
