@@ -147,4 +147,4 @@ def test_bad_input_exits_2_with_one_line(run, args: tuple[str, ...]) -> None:  #
     assert res.exit_code == 2
     assert res.stdout == ""
     lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and "error" in lines[0]
+    assert len(lines) == 1 and lines[0].startswith("error: ")

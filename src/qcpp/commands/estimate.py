@@ -1,7 +1,8 @@
 """``qcpp estimate``: exact resource counts, the paper's estimates and the closed-form formulas.
 
-A thin layer over :mod:`estimators.report`: it parses options, prints, and maps bad input to exit code 2 with one
-line on stderr. ``register(app)`` adds the command to a typer app.
+A thin layer over :mod:`estimators.report`: it parses options and prints. Bad input gives exit code 2 and one line
+``error: <message>`` on stderr, the format of the CLI's shared handler (:mod:`qcpp.cli`), which also catches
+anything the command itself does not (e.g. an unwritable ``--plot`` path). ``register(app)`` adds the command.
 
 Examples::
 
@@ -35,7 +36,7 @@ HELP = (
 
 
 def _fail(message: str) -> typer.Exit:
-    typer.echo(f"qcpp estimate: error: {message}", err=True)
+    typer.echo(f"error: {message}", err=True)
     return typer.Exit(code=2)
 
 
