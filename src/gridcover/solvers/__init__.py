@@ -1,0 +1,87 @@
+"""Classical solvers for the coverage-path-planning cost (the paper's baselines) and a method registry.
+
+* :func:`dfs` -- exhaustive search over all combinations of the robots' simple paths (exact optimum);
+* :func:`anneal` -- simulated annealing with SBF moves;
+* :func:`genetic` -- the paper's genetic algorithm with SBF mutations;
+
+all returning a :class:`Solution`. :data:`SOLVERS` maps method names to callables with one uniform
+signature (:class:`SolveMethod`), which is what front ends dispatch on; :func:`solve` is the shortcut.
+Methods living in higher layers (QAOA) are added by the front end with a function of the same signature.
+
+Example:
+    >>> from gridcover.scenario import scenario_from_dict
+    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+    >>> sorted(SOLVERS)
+    ['anneal', 'dfs', 'genetic']
+    >>> solve(s, "dfs").cost.total == solve(s, "anneal", seed=2).cost.total
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Protocol
+
+from gridcover.sbf import Rule
+from gridcover.scenario import Scenario
+from gridcover.solvers.annealing import anneal
+from gridcover.solvers.exhaustive import dfs
+from gridcover.solvers.genetic_algorithm import genetic
+from gridcover.solvers.moves import AUTO_COMPONENT_NODES, CostCache, MoveSpace
+from gridcover.solvers.result import ProgressFn, Solution, solution_to_dict
+
+__all__ = [
+    "AUTO_COMPONENT_NODES",
+    "SOLVERS",
+    "CostCache",
+    "MoveSpace",
+    "ProgressFn",
+    "Solution",
+    "SolveMethod",
+    "anneal",
+    "dfs",
+    "genetic",
+    "solution_to_dict",
+    "solve",
+]
+
+
+class SolveMethod(Protocol):
+    """The uniform solver signature front ends call (options a method does not use are ignored)."""
+
+    def __call__(
+        self, scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None
+    ) -> Solution: ...
+
+
+def _dfs(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
+    # exhaustive search is deterministic and scores every feasible path: seed and rule do not apply
+    return dfs(scenario, progress=progress)
+
+
+def _anneal(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
+    return anneal(scenario, seed=seed, rule=rule, progress=progress)
+
+
+def _genetic(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
+    return genetic(scenario, seed=seed, rule=rule, progress=progress)
+
+
+SOLVERS: Mapping[str, SolveMethod] = MappingProxyType({"dfs": _dfs, "anneal": _anneal, "genetic": _genetic})
+"""Method name -> :class:`SolveMethod` with default settings (read-only)."""
+
+
+def solve(
+    scenario: Scenario, method: str, *, seed: int = 0, rule: Rule = "exact", progress: ProgressFn | None = None
+) -> Solution:
+    """Run the registered classical method ``method`` with its default settings.
+
+    Raises:
+        ValueError: if ``method`` is not in :data:`SOLVERS`.
+    """
+    try:
+        fn = SOLVERS[method]
+    except KeyError:
+        raise ValueError(f"unknown method {method!r} (expected one of {', '.join(SOLVERS)})") from None
+    return fn(scenario, seed=seed, rule=rule, progress=progress)
