@@ -153,6 +153,7 @@ def test_traces_are_best_so_far(build) -> None:
         ({"t0": 0.0}, "t0"),
         ({"cooling": 1.5}, "cooling"),
         ({"cycles": 0}, "cycles"),
+        ({"iterations": 5}, "cycles"),  # the default 10 cycles do not fit in 5 iterations
         ({"rule": "fast"}, "rule"),
         ({"components": "some"}, "component"),
     ],

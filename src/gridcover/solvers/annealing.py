@@ -4,10 +4,14 @@ State: one feasible path per robot, starting from the initial paths. Each iterat
 *allowed* SBF flip: a uniformly random robot among those that can move, then a uniformly random plaquette
 among those its SBF rule allows (:meth:`~gridcover.solvers.moves.MoveSpace.random_flip`). The proposal is
 accepted by the Metropolis rule (always if the cost does not rise, else with probability
-``exp(-delta / T)``) and the temperature cools geometrically, ``T_k = t0 * cooling**k``.
+``exp(-delta / T)``) and the temperature cools geometrically, ``T_k = t0 * cooling**k``. A run of
+``iterations`` is split into ``cycles`` annealing cycles (default 10): each reheats to ``t0`` and restarts
+from the best state of the run so far (reheating found the optimum in more seeds than one long cycle on
+the two-robot 4x4 and 5x5 test scenarios at the same budget).
 
-Defaults: ``t0`` is calibrated as the mean absolute cost change of 50 random moves from the start (1.0 if
-they are all zero); ``cooling`` makes the temperature fall by a factor 1000 over one run.
+Defaults: 20,000 iterations; ``t0`` is calibrated as the mean absolute cost change of a 50-move random walk
+from the start (1.0 if it never changes the cost); ``cooling`` makes the temperature fall by a factor
+1000 over one cycle. ``evaluated`` counts every cost lookup, the calibration walk's included.
 
 Components: when a robot's feasible paths split into several move-graph components (hard obstacles, or
 the ``paper`` rule), no sequence of moves crosses between them. The annealer therefore **restarts from
@@ -38,6 +42,7 @@ from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace
 from gridcover.solvers.result import ProgressFn, Solution
 
 CALIBRATION_MOVES = 50
+DEFAULT_CYCLES = 10
 FINAL_TEMPERATURE_RATIO = 1e-3
 
 
@@ -48,7 +53,7 @@ def anneal(
     iterations: int = 20000,
     t0: float | None = None,
     cooling: float | None = None,
-    cycles: int = 10,
+    cycles: int = DEFAULT_CYCLES,
     rule: Rule = "exact",
     components: ComponentMode = "auto",
     progress: ProgressFn | None = None,
@@ -60,7 +65,9 @@ def anneal(
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         iterations: Iterations per restart (one proposal each).
         t0: Initial temperature (``None``: calibrated from random moves).
-        cooling: Geometric factor per iteration in ``(0, 1]`` (``None``: ``1e-3 ** (1 / iterations)``).
+        cooling: Geometric factor per iteration in ``(0, 1]`` (``None``: ``1e-3 ** (1 / cycle length)``).
+        cycles: Annealing cycles per restart (at most ``iterations``); each reheats to ``t0`` from the run's
+            best state and lasts ``iterations / cycles`` iterations.
         rule: SBF rule deciding the allowed moves (``exact`` or ``paper``).
         components: Move-graph component handling: ``all``, ``initial`` or ``auto``
             (see :mod:`gridcover.solvers.moves`).
@@ -70,8 +77,8 @@ def anneal(
         The best assignment seen, with ``trace``, ``seed``, ``rule`` and the component fields filled in.
 
     Raises:
-        ValueError: on a non-positive ``iterations`` or ``t0``, a ``cooling`` outside ``(0, 1]``, or an unknown
-            rule / component mode.
+        ValueError: on a non-positive ``iterations`` or ``t0``, a ``cooling`` outside ``(0, 1]``, ``cycles``
+            outside ``1 .. iterations``, or an unknown rule / component mode.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
