@@ -1,0 +1,135 @@
+"""simulate.evaluate (method dispatch) and simulate.qaoa_solver (QAOA read as a solver)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gridcover.cost import cost
+from gridcover.paths import enumerate_paths
+from gridcover.scenario import Scenario, scenario_from_dict
+from gridcover.solvers import dfs, solution_to_dict
+from simulate.evaluate import MAX_STATEVECTOR_QUBITS, evaluate, resolve_angles
+from simulate.qaoa_solver import qaoa_method, qaoa_to_dict, solve_qaoa
+from simulate.subspace import SubspaceQAOA
+from simulate.training import initial_angles
+
+
+def small() -> Scenario:
+    """One robot on 2x3 with a soft obstacle: 12 qubits once compiled, a cost with several levels."""
+    return scenario_from_dict(
+        {"grid": {"rows": 2, "cols": 3, "obstacles": [[0, 1]]}, "robots": [{"start": [0, 0], "goal": [0, 2]}]}
+    )
+
+
+def wall_3x3() -> Scenario:
+    return scenario_from_dict(
+        {"grid": {"rows": 3, "cols": 3, "obstacles": [[0, 1], [1, 1]]}, "robots": [{"start": [0, 0], "goal": [0, 2]}]}
+    )
+
+
+def test_subspace_and_statevector_agree() -> None:
+    s = small()
+    angles = [0.37, 1.3, -0.2, 0.8]
+    a = evaluate(s, 2, "subspace", angles=angles)
+    b = evaluate(s, 2, "statevector", angles=angles)
+    assert b.expectation == pytest.approx(a.expectation, abs=1e-9)
+    assert b.p_optimum == pytest.approx(a.p_optimum, abs=1e-9)
+    assert a.amplitudes_held == 1.0 and b.amplitudes_held == pytest.approx(1.0, abs=1e-10)
+    assert a.qubits is None and b.qubits is not None and b.basis_states == 1 << b.qubits
+    assert a.angles == b.angles == tuple(angles) and a.p == b.p == 2
+
+
+def test_subspace_numbers_from_their_definitions() -> None:
+    s = small()
+    angles = [0.5, 0.9]
+    q = SubspaceQAOA(s)
+    probs = q.probabilities(angles).reshape(-1)
+    costs = np.array([cost(s, [m]) for m in q.bases[0]])
+    best = min(cost(s, [m]) for m in enumerate_paths(s, 0))
+    ev = evaluate(s, 1, "subspace", angles=angles)
+    assert ev.expectation == pytest.approx(float(probs @ costs))
+    assert ev.p_optimum == pytest.approx(float(probs[costs == best].sum()))
+    assert 0 < ev.p_optimum < 1
+
+
+def test_statevector_measures_what_leaves_the_feasible_set() -> None:
+    # start and goal adjacent on 2x3: the paper rule's flips are not reversible there (see simulate.subspace)
+    s = scenario_from_dict({"grid": {"rows": 2, "cols": 3}, "robots": [{"start": [0, 0], "goal": [0, 1]}]})
+    with pytest.raises(ValueError):
+        SubspaceQAOA(s, rule="paper")  # not unitary on the data register: no subspace state exists
+    ev = evaluate(s, 3, "statevector", seed=1, rule="paper")
+    assert ev.amplitudes_held < 0.9
+    exact = evaluate(s, 3, "statevector", seed=1, rule="exact")
+    assert exact.amplitudes_held == pytest.approx(1.0, abs=1e-10)
+
+
+def test_random_angles_are_seeded_and_shared_by_the_methods() -> None:
+    s = small()
+    a = resolve_angles(s, 2, seed=5)
+    assert np.array_equal(a, resolve_angles(s, 2, seed=5))
+    assert not np.array_equal(a, resolve_angles(s, 2, seed=6))
+    assert np.array_equal(a, initial_angles(SubspaceQAOA(s), 2, "random", 5))
+    assert evaluate(s, 2, "subspace", seed=5).angles == tuple(a)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"method": "dense"}, "unknown method"),
+        ({"rule": "fuzzy"}, "unknown SBF rule"),
+        ({"angles": [0.1, 0.2, 0.3]}, "needs 2 angles"),
+        ({"angles": [0.1, float("nan")]}, "finite"),
+    ],
+)
+def test_bad_input(kwargs: dict[str, object], message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        evaluate(small(), 1, **kwargs)  # type: ignore[arg-type]
+
+
+def test_too_many_qubits_for_the_statevector() -> None:
+    s = scenario_from_dict({"grid": {"rows": 4, "cols": 4}, "robots": [{"start": [0, 0], "goal": [3, 3]}]})
+    with pytest.raises(ValueError, match=f"more than {MAX_STATEVECTOR_QUBITS}"):
+        evaluate(s, 1, "statevector", angles=[0.1, 0.2])
+    with pytest.raises(ValueError, match="p must be"):
+        evaluate(s, 0, "subspace")
+
+
+# ---------------------------------------------------------------- QAOA as a solver
+
+
+def test_solve_qaoa_finds_the_optimum_of_the_paper_scenario() -> None:
+    s = wall_3x3()
+    res = solve_qaoa(s, p=1, seed=0)
+    best = dfs(s)
+    assert res.solution.paths == best.paths and res.solution.cost == best.cost
+    assert res.probability > 0.9 and res.p_optimum == pytest.approx(res.probability)
+    assert res.solution.trace == res.trace and len(res.trace) == 101  # nesterov: start + 100 steps
+    assert res.solution.evaluated == res.training.num_evaluations
+    q = SubspaceQAOA(s)
+    assert q.probabilities(res.angles)[q.index_of(res.solution.paths)] == pytest.approx(res.probability)
+    again = solve_qaoa(s, p=1, seed=0)
+    assert again.angles == res.angles
+
+
+def test_qaoa_json_has_the_solver_keys_and_the_qaoa_ones() -> None:
+    s = wall_3x3()
+    res = solve_qaoa(s, p=2, optimizer="lbfgsb", maxiter=20, seed=1)
+    d = qaoa_to_dict(s, res)
+    base = solution_to_dict(s, res.solution, include_trace=False)
+    assert {k: d[k] for k in base} == base
+    assert d["p"] == 2 and len(d["angles"]) == 4 and d["trace"] == list(res.trace)
+    assert d["probability"] == res.probability and d["optimizer"] == "lbfgsb"
+
+
+def test_qaoa_method_has_the_uniform_signature() -> None:
+    s = wall_3x3()
+    sol = qaoa_method(p=1, optimizer="cobyla", maxiter=30)(s, seed=3, rule="exact", progress=None)
+    assert sol.method == "qaoa" and sol.seed == 3 and sol.rule == "exact"
+    calls: list[tuple[int, int]] = []
+    solve_qaoa(s, p=1, maxiter=2, progress=lambda d, t: calls.append((d, t)))
+    assert calls == [(0, 1), (1, 1)]
+    with pytest.raises(ValueError, match="unknown optimizer"):
+        solve_qaoa(s, optimizer="adam")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="unknown init"):
+        solve_qaoa(s, init="zeros")  # type: ignore[arg-type]
