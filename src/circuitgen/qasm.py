@@ -55,14 +55,13 @@ qcpp_rzz(2.0*gamma_0) q[0],q[1];
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import os
 import re
-import stat
-import tempfile
 from collections.abc import Callable, Iterator
 from typing import Literal
+
+from gridcover.atomic import atomic_open
 
 from ._perf import gc_paused
 from .angles import Param, UnboundParameterError, format_angle, format_float
@@ -368,23 +367,7 @@ def write_qasm(circuit: Circuit, path: str | os.PathLike[str], version: Version 
         path: destination file.
         version: 2 or 3.
     """
-    path = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(path))
     chunks = iter_qasm(circuit, version)  # argument errors surface before any file is made
-    try:
-        mode = stat.S_IMODE(os.stat(path).st_mode)
-    except FileNotFoundError:
-        mode = 0o644
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{os.path.basename(path)}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            for chunk in chunks:
-                f.write(chunk)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
+    with atomic_open(path) as f:
+        for chunk in chunks:
+            f.write(chunk)

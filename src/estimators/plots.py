@@ -18,12 +18,12 @@ Example:
 
 from __future__ import annotations
 
-import contextlib
 import os
-import tempfile
 from collections import defaultdict
 from collections.abc import Sequence
 from typing import Any
+
+from gridcover.atomic import save_figure_atomic
 
 from .paper import paper_estimate
 
@@ -86,15 +86,8 @@ def plot_rows(rows: Sequence[dict[str, Any]], path: str | os.PathLike[str]) -> s
     target = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(target))
     os.makedirs(folder, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=".png")
     try:
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=120)
-        os.replace(tmp, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+        save_figure_atomic(fig, target, dpi=120)
     finally:
         plt.close(fig)
     return target

@@ -31,7 +31,6 @@ import hashlib
 import json
 import os
 import re
-import tempfile
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -42,6 +41,7 @@ from typing import Any
 
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_circuit
+from gridcover.atomic import atomic_open
 from gridcover.errors import ScenarioError
 from gridcover.presets import MAX_DEFAULT_ROBOTS, default_scenario
 from gridcover.sbf import RULES
@@ -332,15 +332,8 @@ def _read_cache(path: Path) -> PointResult | None:
 
 def _write_cache(path: Path, result: PointResult) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".json")
-    try:
-        with os.fdopen(fd, "w") as f:
-            json.dump(result.to_dict(), f)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+    with atomic_open(path) as f:
+        json.dump(result.to_dict(), f)
 
 
 # --- sweep -------------------------------------------------------------------------------------------------------

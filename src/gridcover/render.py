@@ -32,10 +32,10 @@ Example:
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
+from gridcover.atomic import save_figure_atomic
 from gridcover.paths import edges_of
 from gridcover.scenario import Scenario
 
@@ -123,26 +123,9 @@ def render_ascii(scenario: Scenario, paths: Sequence[int] | None = None, *, lege
     return "\n".join(lines)
 
 
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
 def _save_atomic(fig: object, file: str | os.PathLike[str], **savefig: object) -> Path:
-    """``fig.savefig(**savefig)`` to a temporary file next to ``file``, then rename it over ``file``."""
-    target = Path(file)
-    fmt = target.suffix[1:].lower() or "png"
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, format=fmt, **savefig)  # type: ignore[attr-defined]
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give the file the usual permissions
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
+    """``fig.savefig(**savefig)`` into ``file``, whole or not at all."""
+    return save_figure_atomic(fig, file, **savefig)
 
 
 def plot_paths(

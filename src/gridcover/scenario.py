@@ -24,7 +24,6 @@ import json
 import math
 import os
 import sys
-import tempfile
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -34,6 +33,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from gridcover.atomic import write_text_atomic
 from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node
 
@@ -561,19 +561,6 @@ def scenario_to_toml(s: Scenario) -> str:
     lines += ["", "[objective]"]
     lines += [f"{k} = {_toml_value(v)}" for k, v in d["objective"].items()]
     return "\n".join(lines) + "\n"
-
-
-def write_text_atomic(path: str | os.PathLike[str], text: str) -> None:
-    """Write ``text`` to ``path`` whole or not at all (temp file in the same folder, then rename)."""
-    p = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=p.parent or ".", prefix=f".{p.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
