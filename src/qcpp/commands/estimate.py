@@ -22,7 +22,6 @@ from typing import Annotated
 import typer
 
 from estimators.paper import DOUBLINGS
-from estimators.report import estimate_report, formula_report, points_from_options
 from estimators.tables import FORMATS
 from gridcover.errors import ScenarioError
 
@@ -72,6 +71,9 @@ def estimate(
     ] = "partial-mixer",
 ) -> None:
     """Exact resource counts (see ``qcpp estimate --help``)."""
+    # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
+    from estimators.report import estimate_report, formula_report, points_from_options
+
     if as_json:
         fmt = "json"
     if fmt not in FORMATS:
