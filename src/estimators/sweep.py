@@ -170,7 +170,8 @@ def _grid(text: str) -> tuple[int, int]:
 
 
 def parse_grid_range(text: str) -> list[tuple[int, int]]:
-    """Grids of ``3x4`` or ``AxB..CxD`` (every rows in A..C, every cols in B..D), rows-major order.
+    """Grids of ``3x4``, ``AxB..CxD`` (every rows in A..C, every cols in B..D, rows-major order), or a
+    comma-separated list of either (``3x3,4x4,5x5``; duplicates dropped, first occurrence kept).
 
     Args:
         text: the range text.
@@ -183,7 +184,12 @@ def parse_grid_range(text: str) -> list[tuple[int, int]]:
 
     >>> parse_grid_range("2x3..3x4")
     [(2, 3), (2, 4), (3, 3), (3, 4)]
+    >>> parse_grid_range("3x3,5x5,3x3")
+    [(3, 3), (5, 5)]
     """
+    if "," in text:
+        grids = [g for item in text.split(",") for g in parse_grid_range(item.strip())]
+        return list(dict.fromkeys(grids))
     parts = text.split("..")
     if len(parts) == 1:
         return [_grid(parts[0])]

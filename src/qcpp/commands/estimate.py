@@ -42,7 +42,10 @@ def _fail(message: str) -> typer.Exit:
 def estimate(
     grid: Annotated[
         str | None,
-        typer.Option("--grid", help="ROWSxCOLS or AxB..CxD (every rows in A..C, cols in B..D; default 3x3)."),
+        typer.Option(
+            "--grid",
+            help="ROWSxCOLS, AxB..CxD (every rows in A..C, cols in B..D) or a comma list of these; default 3x3.",
+        ),
     ] = None,
     robots: Annotated[
         str | None, typer.Option("--robots", help="Robots: N or A..B (1 to 4, corner placement; default 1).")
