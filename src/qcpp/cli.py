@@ -36,7 +36,12 @@ __all__ = ["COMMAND_MODULES", "LIBRARY_ERRORS", "QcppTyper", "app", "error_line"
 LIBRARY_ERRORS: tuple[type[BaseException], ...] = (ScenarioError, ValueError, OSError)
 """Exceptions that mean bad input or environment (exit code 2 with one line), not a bug (traceback)."""
 
-COMMAND_MODULES: tuple[str, ...] = ("qcpp.commands.solve", "qcpp.commands.compile", "qcpp.commands.estimate")
+COMMAND_MODULES: tuple[str, ...] = (
+    "qcpp.commands.solve",
+    "qcpp.commands.simulate",
+    "qcpp.commands.compile",
+    "qcpp.commands.estimate",
+)
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
 F = TypeVar("F", bound=Callable[..., Any])

@@ -46,12 +46,14 @@ class QaoaSolution:
         solution: The :class:`~gridcover.solvers.Solution` (method ``qaoa``).
         probability: Probability of ``solution.paths`` in the trained state.
         p_optimum: Probability of the optimal assignments in the trained state.
+        optimum: The optimal cost over the simulator's basis.
         training: The full :class:`~simulate.training.TrainingResult`.
     """
 
     solution: Solution
     probability: float
     p_optimum: float
+    optimum: float
     training: TrainingResult
 
     @property
@@ -126,7 +128,7 @@ def solve_qaoa(
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
     )
-    return QaoaSolution(solution, prob, result.p_optimum, result)
+    return QaoaSolution(solution, prob, result.p_optimum, best, result)
 
 
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:

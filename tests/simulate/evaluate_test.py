@@ -133,3 +133,16 @@ def test_qaoa_method_has_the_uniform_signature() -> None:
         solve_qaoa(s, optimizer="adam")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="unknown init"):
         solve_qaoa(s, init="zeros")  # type: ignore[arg-type]
+
+
+@pytest.mark.slow
+def test_tensor_amplitudes_agree_with_subspace() -> None:
+    pytest.importorskip("simulate.tensor")
+    s = small()
+    angles = [0.37, 1.3]
+    a = evaluate(s, 1, "subspace", angles=angles)
+    t = evaluate(s, 1, "tensor", angles=angles)
+    assert t.expectation == pytest.approx(a.expectation, abs=1e-9)
+    assert t.p_optimum == pytest.approx(a.p_optimum, abs=1e-9)
+    assert t.amplitudes_held == pytest.approx(1.0, abs=1e-9)
+    assert t.basis_states == len(enumerate_paths(s, 0))

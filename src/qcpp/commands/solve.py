@@ -5,17 +5,23 @@ Examples::
     qcpp solve examples/paper_3x3.toml --method dfs
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
     qcpp solve examples/two_robots_5x5.toml --method genetic --rule paper --json
+    qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --plot-trace trace.png
 
 Methods come from :data:`SOLVE_METHODS` (name -> :class:`gridcover.solvers.SolveMethod`); ``--method``
-accepts exactly its keys. Adding a method (e.g. QAOA) is one entry: a function
+accepts exactly its keys. Adding a method is one entry: a function
 ``f(scenario, *, seed, rule, progress) -> gridcover.solvers.Solution`` stored under its name.
+
+``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
+solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
+``-p``, ``--optimizer`` and ``--maxiter``, and adds ``probability``, ``p_optimum``, ``p``, ``angles``,
+``optimizer`` and ``trace`` (``<C>`` per training iteration) to the JSON and a trace sparkline to the text.
 """
 
 from __future__ import annotations
 
 import json
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated
@@ -30,14 +36,64 @@ from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 
-__all__ = ["SOLVE_METHODS", "progress_reporter", "register", "solve_command"]
+__all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "solve_command", "sparkline"]
 
-SOLVE_METHODS: dict[str, SolveMethod] = dict(SOLVERS)
+QAOA_DEFAULTS = {"p": 1, "optimizer": "nesterov", "maxiter": 100}
+"""Defaults of the QAOA-only options (any other value with another method is an error)."""
+
+
+def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
+    """The ``qaoa`` entry with default settings (``solve_command`` passes its QAOA options itself)."""
+    from simulate.qaoa_solver import solve_qaoa
+
+    return solve_qaoa(scenario, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
+
+
+SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa}
 """``--method`` name -> solver. Register new methods here (the CLI reads the keys at call time)."""
+
+_SPARK = "▁▂▃▄▅▆▇█"
+
+
+def plot_qaoa_trace(trace: Sequence[float], file: Path, *, title: str, optimum: float | None = None) -> Path:
+    """Plot QAOA's training trace (``<C>`` per iteration) to ``file``, whole or not at all."""
+    from matplotlib.figure import Figure
+
+    from gridcover.atomic import save_figure_atomic
+
+    fig = Figure(figsize=(6.0, 3.6))
+    ax = fig.add_subplot()
+    ax.plot(range(len(trace)), list(trace), color="#1f77b4", lw=1.8, label="expectation <C>")
+    if optimum is not None:
+        ax.axhline(optimum, color="#d62728", ls="--", lw=1.2, label=f"optimum {optimum:g}")
+    ax.set_xlabel("training iteration")
+    ax.set_ylabel("cost")
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(frameon=False)
+    fig.tight_layout()
+    return save_figure_atomic(fig, file)
+
+
+def sparkline(values: Sequence[float], width: int = 60) -> str:
+    """A one-line bar chart of ``values`` (resampled to at most ``width`` bars; low = short).
+
+    Example:
+        >>> sparkline([3.0, 2.0, 1.0, 0.0])
+        '█▆▃▁'
+    """
+    if not values:
+        return ""
+    idx = [round(i * (len(values) - 1) / max(1, width - 1)) for i in range(min(width, len(values)))]
+    pts = [values[i] for i in idx]
+    lo, hi = min(pts), max(pts)
+    span = hi - lo or 1.0
+    return "".join(_SPARK[round((v - lo) / span * (len(_SPARK) - 1))] for v in pts)
 
 HELP = (
     "Solve a scenario (dfs = exhaustive optimum, anneal = simulated annealing, genetic = the paper's GA with "
-    "SBF mutations) and print the paths on the grid, the cost and its parts."
+    "SBF mutations, qaoa = QAOA trained on the feasible-subspace simulator, answering with its most probable "
+    "assignment) and print the paths on the grid, the cost and its parts."
 )
 
 
@@ -83,35 +139,65 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 
 def solve_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
-    method: Annotated[str, typer.Option("--method", "-m", help="Solver: dfs, anneal or genetic.")] = "anneal",
-    seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic).")] = 0,
+    method: Annotated[str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic or qaoa.")] = "anneal",
+    seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object instead of the drawing.")] = False,
     plot: Annotated[
         Path | None, typer.Option("--plot", help="Also draw the paths to this image (PNG, SVG, ...).")
     ] = None,
     plot_trace_file: Annotated[
-        Path | None, typer.Option("--plot-trace", help="Also plot the best-so-far cost trace (anneal, genetic).")
+        Path | None,
+        typer.Option("--plot-trace", help="Also plot the cost trace (anneal, genetic: best so far; qaoa: <C>)."),
     ] = None,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (qaoa).")] = QAOA_DEFAULTS["p"],
+    optimizer: Annotated[
+        str, typer.Option("--optimizer", help="QAOA optimiser (qaoa): nesterov, cobyla or lbfgsb.")
+    ] = QAOA_DEFAULTS["optimizer"],
+    maxiter: Annotated[
+        int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations (qaoa).")
+    ] = QAOA_DEFAULTS["maxiter"],
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
     if method not in SOLVE_METHODS:
         raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
+    qaoa_options = {"p": p, "optimizer": optimizer, "maxiter": maxiter}
+    if method != "qaoa":
+        for name, value in qaoa_options.items():
+            if value != QAOA_DEFAULTS[name]:
+                flag = "-p" if name == "p" else f"--{name}"
+                raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
     s = load_scenario(scenario)
+    qaoa = None
     with progress_reporter(f"{method} on {scenario.name}") as progress:
-        sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
+        if method == "qaoa":
+            from simulate.qaoa_solver import solve_qaoa
+
+            qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
+            sol = qaoa.solution
+        else:
+            sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
     if plot is not None:
         plot_paths(s, sol.paths, plot, title=f"{s.name or scenario.name}: {method}, cost {sol.cost.total:g}")
     if plot_trace_file is not None:
         if not sol.trace:
             raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
-        unit = "generation" if method == "genetic" else "iteration"
-        plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
+        if qaoa is not None:
+            plot_qaoa_trace(qaoa.trace, plot_trace_file, title=f"qaoa p={p} ({optimizer}) on {s.name or scenario.name}",
+                            optimum=qaoa.optimum)
+        else:
+            unit = "generation" if method == "genetic" else "iteration"
+            plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
 
     if as_json:
-        out = {"scenario": str(scenario), **solution_to_dict(s, sol, include_trace=False)}
+        if qaoa is not None:
+            from simulate.qaoa_solver import qaoa_to_dict
+
+            out = {"scenario": str(scenario), **qaoa_to_dict(s, qaoa)}
+        else:
+            out = {"scenario": str(scenario), **solution_to_dict(s, sol, include_trace=False)}
         if sol.trace:
             out["trace_length"] = len(sol.trace)
         typer.echo(json.dumps(out))
@@ -128,6 +214,17 @@ def solve_command(
     if sol.rule is not None:
         details.append(f"rule {sol.rule}")
     console.print(", ".join(details), highlight=False)
+    if qaoa is not None:
+        console.print(
+            f"most probable assignment (drawn above): probability {qaoa.probability:.4g}; "
+            f"probability of an optimal assignment {qaoa.p_optimum:.4g}",
+            highlight=False,
+            soft_wrap=True,
+        )
+        tr = qaoa.trace
+        console.print(f"<C> per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}", highlight=False, soft_wrap=True)
+        console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
+                      highlight=False, soft_wrap=True)
     for note in sol.notes:
         console.print(f"[dim]note: {note}[/dim]", highlight=False)
     for path in (plot, plot_trace_file):

@@ -1,0 +1,103 @@
+"""``qcpp simulate``: JSON keys and values, methods that must agree, one-line errors with exit code 2."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from gridcover.scenario import load_scenario
+from qcpp.cli import app
+from qcpp.commands.simulate import parse_angles
+from simulate.subspace import SubspaceQAOA
+from simulate.training import initial_angles
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PAPER = str(EXAMPLES / "paper_3x3.toml")
+KEYS = {"scenario", "method", "p", "angles", "expectation", "p_optimum", "amplitudes_held", "seconds", "qubits",
+        "basis_states", "rule"}
+
+
+def run(*args: str):  # type: ignore[no-untyped-def]
+    return CliRunner().invoke(app, list(args))
+
+
+def run_json(*args: str) -> dict[str, object]:
+    res = run(*args, "--json")
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
+    assert res.exit_code == 2, res.output
+    assert res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    for f in fragments:
+        assert f in lines[0]
+
+
+def test_subspace_json_against_the_simulator() -> None:
+    out = run_json("simulate", PAPER, "-p", "2", "--angles", "0.3,1.2,-0.1,0.7")
+    assert set(out) == KEYS
+    q = SubspaceQAOA(load_scenario(PAPER))
+    angles = [0.3, 1.2, -0.1, 0.7]
+    assert out["method"] == "subspace" and out["p"] == 2 and out["angles"] == angles
+    assert out["expectation"] == pytest.approx(q.expectation(angles), abs=1e-12)
+    assert out["p_optimum"] == pytest.approx(q.p_optimum(angles), abs=1e-12)
+    assert out["amplitudes_held"] == 1.0 and out["qubits"] is None and out["basis_states"] == q.dimension
+
+
+@pytest.mark.slow
+def test_statevector_matches_subspace_on_the_paper_scenario() -> None:
+    sub = run_json("simulate", PAPER, "-p", "1", "--angles", "0.3,1.2")
+    dense = run_json("simulate", PAPER, "-p", "1", "--angles", "0.3,1.2", "--method", "statevector")
+    assert set(dense) == KEYS and dense["method"] == "statevector"
+    assert abs(dense["expectation"] - sub["expectation"]) < 1e-8
+    assert abs(dense["p_optimum"] - sub["p_optimum"]) < 1e-8
+    assert abs(dense["amplitudes_held"] - 1.0) < 1e-8  # measured: the compiled circuit stays feasible, clean
+    assert dense["qubits"] > 12 and dense["basis_states"] == 2 ** dense["qubits"]
+
+
+def test_random_angles_come_from_the_seed() -> None:
+    a = run_json("simulate", PAPER, "-p", "2", "--seed", "7")
+    b = run_json("simulate", PAPER, "-p", "2", "--seed", "7")
+    c = run_json("simulate", PAPER, "-p", "2", "--seed", "8")
+    assert a["angles"] == b["angles"] != c["angles"]
+    expected = initial_angles(SubspaceQAOA(load_scenario(PAPER)), 2, "random", 7)
+    assert a["angles"] == pytest.approx(expected.tolist())
+
+
+def test_text_output() -> None:
+    res = run("simulate", PAPER, "-p", "1", "--angles", "0.3,1.2")
+    assert res.exit_code == 0, res.output
+    for fragment in ("expectation <C>", "probability of the optimum", "angles [g0, b0, ...]", "0.3, 1.2"):
+        assert fragment in res.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (["--method", "dense"], ["--method", "dense"]),
+        (["--angles", "0.1,0.2,0.3"], ["needs 2 angles"]),
+        (["--angles", "0.1,abc"], ["--angles", "'abc'"]),
+        (["-p", "0"], ["-p", "at least 1"]),
+        (["--rule", "fuzzy"], ["--rule"]),
+    ],
+)
+def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str]) -> None:
+    assert_one_line_error(run("simulate", PAPER, *args), *fragments)
+
+
+def test_missing_file_and_too_many_qubits() -> None:
+    assert_one_line_error(run("simulate", "no/such.toml"), "no/such.toml")
+    big = str(EXAMPLES / "two_robots_4x4.toml")
+    assert_one_line_error(run("simulate", big, "--method", "statevector", "--angles", "0.1,0.2"), "more than 26")
+
+
+def test_parse_angles() -> None:
+    assert parse_angles("1, -2.5,3e-1") == [1.0, -2.5, 0.3]
+    with pytest.raises(ValueError, match="'x'"):
+        parse_angles("1,x")

@@ -1,0 +1,105 @@
+"""``qcpp solve --method qaoa``: the solver keys plus QAOA's, the drawing and trace, the trace plot, errors."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from gridcover.paths import path_from_nodes
+from gridcover.render import render_ascii
+from gridcover.scenario import load_scenario
+from gridcover.solvers import dfs
+from qcpp.cli import app
+from qcpp.commands.solve import SOLVE_METHODS, sparkline
+from simulate.qaoa_solver import solve_qaoa
+from simulate.subspace import SubspaceQAOA
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PAPER = str(EXAMPLES / "paper_3x3.toml")
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def run(*args: str):  # type: ignore[no-untyped-def]
+    return CliRunner().invoke(app, list(args))
+
+
+def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
+    assert res.exit_code == 2, res.output
+    assert res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    for f in fragments:
+        assert f in lines[0]
+
+
+def test_json_has_the_common_keys_and_the_qaoa_ones() -> None:
+    res = run("solve", PAPER, "--method", "qaoa", "-p", "2", "--optimizer", "lbfgsb", "--seed", "3", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    for key in ("method", "paths", "cost", "cost_parts", "seconds", "probability", "p", "angles", "trace"):
+        assert key in out
+    assert out["method"] == "qaoa" and out["p"] == 2 and len(out["angles"]) == 4
+    assert out["optimizer"] == "lbfgsb" and out["trace_length"] == len(out["trace"])
+    s = load_scenario(PAPER)
+    mask = path_from_nodes(s.grid, [tuple(n) for n in out["paths"][0]])
+    assert out["cost"] == dfs(s).cost.total  # the paper scenario: the most probable path is the optimum
+    q = SubspaceQAOA(s)
+    assert out["probability"] == pytest.approx(float(q.probabilities(out["angles"])[q.index_of([mask])]))
+    assert out["trace"][-1] == pytest.approx(q.expectation(out["angles"]))
+    direct = solve_qaoa(s, p=2, optimizer="lbfgsb", seed=3)
+    assert out["angles"] == list(direct.angles)  # the CLI is the library call
+
+
+def test_text_draws_the_assignment_and_the_trace() -> None:
+    res = run("solve", PAPER, "--method", "qaoa", "--maxiter", "40")
+    assert res.exit_code == 0, res.output
+    s = load_scenario(PAPER)
+    sol = solve_qaoa(s, maxiter=40)
+    assert render_ascii(s, sol.solution.paths, legend=False) in res.stdout
+    assert f"probability {sol.probability:.4g}" in res.stdout
+    assert sparkline(sol.trace) in res.stdout and "angles [g0, b0, ...]" in res.stdout
+
+
+def test_plot_files_are_written_whole(tmp_path: Path) -> None:
+    trace, paths = tmp_path / "trace.png", tmp_path / "paths.png"
+    res = run("solve", PAPER, "--method", "qaoa", "--maxiter", "20", "--plot-trace", str(trace), "--plot", str(paths))
+    assert res.exit_code == 0, res.output
+    for f in (trace, paths):
+        assert f.read_bytes()[:8] == PNG
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["paths.png", "trace.png"]  # no temporary files left
+
+
+def test_a_failed_plot_leaves_nothing(tmp_path: Path) -> None:
+    target = tmp_path / "missing-dir" / "trace.png"
+    assert_one_line_error(run("solve", PAPER, "--method", "qaoa", "--maxiter", "2", "--plot-trace", str(target)))
+    assert not target.parent.exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (["--method", "qaoa", "--optimizer", "adam"], ["unknown optimizer", "adam"]),
+        (["--method", "qaoa", "-p", "0"], ["p must be"]),
+        (["--method", "dfs", "-p", "2"], ["-p", "qaoa only"]),
+        (["--method", "anneal", "--optimizer", "cobyla"], ["--optimizer", "qaoa only"]),
+    ],
+)
+def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str]) -> None:
+    assert_one_line_error(run("solve", PAPER, *args), *fragments)
+
+
+def test_qaoa_is_registered_beside_the_classical_methods() -> None:
+    assert {"dfs", "anneal", "genetic", "qaoa"} <= set(SOLVE_METHODS)
+    s = load_scenario(PAPER)
+    sol = SOLVE_METHODS["qaoa"](s, seed=0, rule="exact", progress=None)
+    assert sol.method == "qaoa" and sol.cost == dfs(s).cost
+
+
+def test_sparkline() -> None:
+    assert sparkline([]) == ""
+    assert sparkline([1.0, 1.0]) == "▁▁"
+    line = sparkline(list(range(500)), width=40)
+    assert len(line) == 40 and line[0] == "▁" and line[-1] == "█"
