@@ -22,7 +22,8 @@ Besides ``<C>``, QAOA angles can be fitted to other functions of the exact state
 derivative-free COBYLA): the conditional value at risk ``CVaR_alpha`` (mean cost of the cheapest ``alpha``
 probability mass; Barkoutsos et al., Quantum 4, 256, 2020; :func:`cvar`) and, as a reference that needs the
 optimum and so is no algorithm, ``p_opt`` itself (the most any angles at that depth can put on the optimum,
-as far as the local optimiser finds).
+as far as the local optimiser finds). :func:`layers_to_reach` gives the depth below which an assignment's
+amplitude is exactly zero whatever the angles.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -62,6 +63,7 @@ __all__ = [
     "cost_distribution",
     "cvar",
     "fit_angles",
+    "layers_to_reach",
     "shots_for",
     "state_metrics",
     "success_probability",
@@ -259,6 +261,56 @@ def uniform_hit_probability(qaoa: SubspaceQAOA) -> float:
     return len(qaoa.optimum()[1]) / n_feasible
 
 
+def layers_to_reach(qaoa: SubspaceQAOA, assignment: Sequence[int], max_layers: int = 1000) -> int | None:
+    """Fewest QAOA layers after which ``assignment`` can carry amplitude at all.
+
+    The support of the state grows by a fixed rule whatever the angles: the phase separator is diagonal, and
+    each partial mixer (in the circuit's order: plaquettes ascending, per robot) can move amplitude across
+    its pairs only. Each robot's support is propagated through one layer's ordered partial mixers until it
+    holds the robot's path; the assignment needs the largest of these counts. Below that depth the
+    amplitude is exactly zero for every choice of angles; from it on it is non-zero for generic angles
+    (accidental cancellations aside).
+
+    Args:
+        qaoa: The simulator.
+        assignment: One edge mask per robot.
+        max_layers: Give up after this many layers.
+
+    Returns:
+        The number of layers (0 if the assignment is in the initial support), or ``None`` if it is not
+        reachable within ``max_layers`` (e.g. outside the basis).
+
+    Example:
+        >>> from gridcover.scenario import scenario_from_dict
+        >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[0, 1], [1, 1]]},
+        ...                         "robots": [{"start": [0, 0], "goal": [0, 2]}]})
+        >>> q = SubspaceQAOA(s)
+        >>> layers_to_reach(q, q.optimal_assignments()[0]), layers_to_reach(q, q.assignment((0,)))
+        (1, 0)
+    """
+    worst = 0
+    for basis, mask in zip(qaoa.robot_bases, assignment, strict=True):
+        try:
+            target = basis.index(mask)
+        except KeyError:
+            return None
+        support = basis.initial > 0
+        layers = 0
+        while not support[target]:
+            if layers == max_layers:
+                return None
+            before = support.copy()
+            for _, ii, jj in basis.pairs:
+                both = support[ii] | support[jj]
+                support[ii] = both
+                support[jj] = both
+            layers += 1
+            if np.array_equal(before, support):  # closed: the target is not reachable
+                return None
+        worst = max(worst, layers)
+    return worst
+
+
 @dataclass(frozen=True)
 class AngleFit:
     """The outcome of :func:`fit_angles`.
@@ -345,7 +397,8 @@ def fit_angles(
         rhobeg: COBYLA's initial step (radians).
 
     Returns:
-        The :class:`AngleFit` of the best start (lowest objective; highest for ``p_optimum``).
+        The :class:`AngleFit` of the best point evaluated over all starts (lowest objective; highest for
+        ``p_optimum``).
 
     Raises:
         ValueError: for an unknown objective, no starts, or starts of different or odd lengths.
@@ -373,8 +426,9 @@ def fit_angles(
     best: tuple[float, np.ndarray, np.ndarray, list[float]] | None = None
     for x0 in x0s:
         trace: list[float] = []
+        seen: list[tuple[float, np.ndarray]] = []  # (signed value, x) of the best evaluation so far
 
-        def fun(x: np.ndarray, trace: list[float] = trace) -> float:
+        def fun(x: np.ndarray, trace: list[float] = trace, seen: list[tuple[float, np.ndarray]] = seen) -> float:
             nonlocal evaluations
             evaluations += 1
             psi = qaoa.state(x)
@@ -385,11 +439,12 @@ def fit_angles(
             else:
                 v = qaoa.p_optimum_from_state(psi)
             trace.append(v)
+            if not seen or sign * v < seen[0][0]:
+                seen[:] = [(sign * v, np.array(x, dtype=float))]
             return sign * v
 
-        res = minimize(fun, x0, method="COBYLA", options={"maxiter": maxiter, "rhobeg": rhobeg})
-        x = np.asarray(res.x, dtype=float)
-        val = float(res.fun)
+        minimize(fun, x0, method="COBYLA", options={"maxiter": maxiter, "rhobeg": rhobeg})
+        val, x = seen[0]  # the best point evaluated (COBYLA's last iterate need not be it on a short budget)
         if best is None or val < best[0]:
             best = (val, x, x0, trace)
     assert best is not None
