@@ -1,6 +1,6 @@
 """Numbers behind docs/paper-notes.md ("Resource estimates: ...") and docs/resource-estimates.md.
 
-Run: ``python scripts/paper_comparison.py`` (uses the estimate cache; add ``--no-cache`` to recompute). Prints,
+Run: ``python benchmarks/paper_comparison.py`` (uses the estimate cache; add ``--no-cache`` to recompute). Prints,
 for a few grids at p = 1, our exact counts of the lowered circuit next to the paper's estimate, split into the
 phase separator and the mixer, plus the per-partial-mixer table of our construction and the multi-controlled-X
 decomposition sizes. Every number in the two documents comes from this output.
