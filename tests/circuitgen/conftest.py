@@ -21,7 +21,7 @@ def scenarios(
     n_obs = draw(st.integers(0, min(3, len(nodes) - 2))) if obstacles else 0
     obs = sorted(draw(st.lists(st.sampled_from(nodes), min_size=n_obs, max_size=n_obs, unique=True)))
     free = [n for n in nodes if n not in obs]
-    k = draw(st.integers(1, max_robots))
+    k = draw(st.integers(1, min(max_robots, len(free))))
     robots = []
     used_starts: set[tuple[int, int]] = set()
     for _ in range(k):
