@@ -198,15 +198,6 @@ def test_mcx_unitary_every_polarity(k: int) -> None:
             assert u[expected, col] == 1
 
 
-def test_creating_many_gates_is_cheap() -> None:
-    import time
-
-    start = time.process_time()
-    out = [G.rzz(0.5, i % 700, 700) for i in range(200_000)]
-    assert len(out) == 200_000
-    assert time.process_time() - start < 3.0
-
-
 @given(st.integers(0, 40), st.integers(0, 40))
 def test_two_qubit_fast_path_validation(a: int, b: int) -> None:
     if a == b:

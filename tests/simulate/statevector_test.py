@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -127,9 +125,7 @@ def test_twenty_qubits() -> None:
     high = b.build()
     low = lower(high)
     assert low.num_qubits == 20 and len(low) > 200
-    start = time.process_time()
     psi = simulate_statevector(low)
-    assert time.process_time() - start < 30
     assert abs(np.linalg.norm(psi) - 1) < 1e-9
     # the work qubits (the two high bits) end in |0>, and the data part matches the high level
     np.testing.assert_allclose(psi[2**n :], 0, atol=1e-9)
