@@ -1,0 +1,381 @@
+"""Validate a compiled QAOA circuit against the exact feasible-subspace simulator (behind ``qcpp validate``).
+
+:func:`validate` compiles the **lowered** circuit of a scenario (:func:`circuitgen.compile.compile_scenario`), binds
+angles (given, or seeded random in ``[0.1, pi - 0.1]``; ``[gamma_0, beta_0, gamma_1, ...]``), runs it from
+``|0...0>`` (its ``initial_state`` section prepares the initial paths) with one gate-level simulator and checks:
+
+1. **ancilla probability**: the probability that every ancilla (the ``logic`` and ``work`` registers, all qubits
+   after the data) is measured in |0> is 1 to ``tolerance``;
+2. **amplitudes**: for every feasible assignment (per robot :func:`gridcover.paths.enumerate_paths`, together with
+   the subspace simulator's basis, which under the ``paper`` rule may hold infeasible edge sets; product over
+   robots) the amplitude of the basis state "data qubits = the assignment's bits
+   (:func:`gridcover.paths.assignment_bits`), ancillas 0" equals the amplitude of
+   :class:`simulate.subspace.SubspaceQAOA` (0 for an assignment outside its basis) to ``tolerance``.
+
+Backends:
+
+``statevector``
+    The dense state (:func:`simulate.statevector.simulate_statevector`, up to 26 qubits): both checks exactly, every
+    assignment.
+``sparse``
+    The sparse state (:func:`simulate.sparse.simulate_sparse`): the same, at any width while the support stays small.
+``tensor``
+    Two independent tensor-network methods (:mod:`simulate.tensor`):
+
+    * exact contraction (:class:`~simulate.tensor.TensorCircuit`) of ``<y|U|0>`` for every assignment, or for a
+      seeded random sample of ``max_amplitudes`` of them when there are more (the contraction path is found once
+      and reused for every bit string);
+    * the matrix product state of the whole circuit (:class:`~simulate.tensor.MPSCircuit`, ancillas placed in the
+      middle of the chain, singular values cut below 1e-13): the ancilla probability ``<psi|P_0|psi>`` and the
+      amplitudes of *every* assignment. With ``mps=False`` the ancilla probability comes from an exact contraction
+      of ``<psi|P_0|psi>`` instead (refused beyond :data:`simulate.tensor.DEFAULT_MAX_WIDTH`; then the check is
+      reported as skipped), or, when every assignment was contracted, from the lower bound
+      ``sum |amplitude|^2 <= P(ancillas 0) <= 1``.
+
+Every check reports what it compared; :attr:`ValidationReport.passed` is true when no check failed.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> r = validate(default_scenario(2, 2, 1), p=1, backend="statevector", seed=3)
+    >>> r.passed, r.amplitudes_checked, r.max_amplitude_error < 1e-10
+    (True, 2, True)
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from gridcover.paths import enumerate_paths
+from gridcover.sbf import RULES, Rule
+from gridcover.scenario import Scenario
+
+__all__ = ["BACKENDS", "Backend", "Check", "ValidationReport", "random_angles", "validate"]
+
+Backend = Literal["tensor", "statevector", "sparse"]
+BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse")
+DEFAULT_TOLERANCE = 1e-8
+MAX_STATEVECTOR_QUBITS = 26
+
+
+@dataclass(frozen=True)
+class Check:
+    """One check of a validation.
+
+    Attributes:
+        name: ``ancilla_probability`` or ``amplitudes``.
+        method: How it was computed (e.g. ``statevector``, ``tensor contraction``, ``tensor MPS``).
+        value: The ancilla probability, or the largest ``|amplitude - subspace amplitude|``.
+        error: ``|1 - value|`` for the probability, ``value`` for amplitudes.
+        count: Amplitudes compared (1 for the probability).
+        status: ``pass``, ``fail`` or ``skipped``.
+        seconds: Wall time of this check (simulation included).
+        note: What was compared, or why it was skipped.
+    """
+
+    name: str
+    method: str
+    value: float
+    error: float
+    count: int
+    status: Literal["pass", "fail", "skipped"]
+    seconds: float
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class ValidationReport:
+    """Result of :func:`validate`.
+
+    Attributes:
+        scenario: Scenario name.
+        backend: Simulator used.
+        p: QAOA layers.
+        rule: SBF rule.
+        seed: Seed of the random angles and of the amplitude sample (``None``: angles given, no sample).
+        angles: ``[gamma_0, beta_0, ...]``.
+        qubits: Qubits of the lowered circuit.
+        gates: Gates of the lowered circuit.
+        feasible_assignments: Number of assignments whose amplitudes the checks are about.
+        tolerance: Allowed deviation.
+        checks: The checks, in order.
+        seconds: Total wall time.
+    """
+
+    scenario: str
+    backend: str
+    p: int
+    rule: str
+    seed: int | None
+    angles: tuple[float, ...]
+    qubits: int
+    gates: int
+    feasible_assignments: int
+    tolerance: float
+    checks: tuple[Check, ...] = field(default_factory=tuple)
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        """True when no check failed (skipped checks do not fail)."""
+        return all(c.status != "fail" for c in self.checks)
+
+    @property
+    def ancilla_probability(self) -> float:
+        """The first computed ancilla probability (NaN if skipped)."""
+        for c in self.checks:
+            if c.name == "ancilla_probability" and c.status != "skipped":
+                return c.value
+        return math.nan
+
+    @property
+    def max_amplitude_error(self) -> float:
+        """Largest amplitude error over the amplitude checks (NaN if none ran)."""
+        errs = [c.value for c in self.checks if c.name == "amplitudes" and c.status != "skipped"]
+        return max(errs) if errs else math.nan
+
+    @property
+    def amplitudes_checked(self) -> int:
+        """Distinct assignments compared by at least one amplitude check (the largest count)."""
+        counts = [c.count for c in self.checks if c.name == "amplitudes" and c.status != "skipped"]
+        return max(counts) if counts else 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: every field, the summary properties and ``passed``."""
+        d = asdict(self)
+        d["angles"] = list(self.angles)
+        d["checks"] = [asdict(c) for c in self.checks]
+        d.update(
+            passed=self.passed,
+            ancilla_probability=_json_float(self.ancilla_probability),
+            max_amplitude_error=_json_float(self.max_amplitude_error),
+            amplitudes_checked=self.amplitudes_checked,
+        )
+        for c in d["checks"]:
+            c["value"], c["error"] = _json_float(c["value"]), _json_float(c["error"])
+        return d
+
+
+def _json_float(x: float) -> float | None:
+    return None if math.isnan(x) else float(x)
+
+
+def random_angles(p: int, seed: int | None) -> np.ndarray:
+    """Seeded random angles ``[gamma_0, beta_0, ...]`` uniform in ``[0.1, pi - 0.1]`` (away from 0 and pi).
+
+    Example:
+        >>> a = random_angles(2, seed=1)
+        >>> a.shape, bool(np.all((a > 0.1) & (a < math.pi - 0.1)))
+        ((4,), True)
+    """
+    return np.random.default_rng(seed).uniform(0.1, math.pi - 0.1, 2 * p)
+
+
+def _assignments(scenario: Scenario, bases: Sequence[Sequence[int]]) -> list[tuple[int, ...]]:
+    per_robot = []
+    for r in range(scenario.num_robots):
+        per_robot.append(list(dict.fromkeys([*enumerate_paths(scenario, r), *bases[r]])))
+    return list(itertools.product(*per_robot))
+
+
+def _amplitude_check(method: str, got: np.ndarray, ref: np.ndarray, tol: float, t0: float, note: str) -> Check:
+    err = float(np.max(np.abs(got - ref))) if len(ref) else 0.0
+    status: Literal["pass", "fail"] = "pass" if err <= tol else "fail"
+    return Check("amplitudes", method, err, err, len(ref), status, time.perf_counter() - t0, note)
+
+
+def _probability_check(method: str, prob: float, tol: float, t0: float, note: str) -> Check:
+    err = abs(1.0 - prob)
+    status: Literal["pass", "fail"] = "pass" if err <= tol else "fail"
+    return Check("ancilla_probability", method, prob, err, 1, status, time.perf_counter() - t0, note)
+
+
+def _mps_layout(scenario: Scenario, num_qubits: int) -> list[int]:
+    """Site order with the ancillas between the first half of the robots and the rest (or mid-data for one)."""
+    n = scenario.num_variables
+    cut = (scenario.num_robots // 2) * scenario.edges_per_robot if scenario.num_robots > 1 else n // 2
+    return [*range(cut), *range(n, num_qubits), *range(cut, n)]
+
+
+def validate(
+    scenario: Scenario,
+    p: int,
+    backend: Backend = "tensor",
+    angles: Sequence[float] | None = None,
+    seed: int | None = 0,
+    rule: Rule = "exact",
+    *,
+    tolerance: float = DEFAULT_TOLERANCE,
+    max_amplitudes: int | None = 256,
+    mps: bool = True,
+    cache_dir: str | Path | None = None,
+) -> ValidationReport:
+    """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers (>= 1).
+        backend: ``tensor``, ``statevector`` or ``sparse`` (see the module docstring).
+        angles: ``[gamma_0, beta_0, ...]`` (``2p`` values); default :func:`random_angles` of ``seed``.
+        seed: Seed of the random angles and of the ``tensor`` backend's amplitude sample.
+        rule: SBF rule, ``exact`` or ``paper``.
+        tolerance: Allowed deviation of each check.
+        max_amplitudes: ``tensor``: contract at most this many assignments exactly (a seeded random sample when
+            there are more; ``None``: all).
+        mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude).
+        cache_dir: ``tensor``: contraction-path cache (default :func:`simulate.tensor.default_cache_dir`).
+
+    Returns:
+        The :class:`ValidationReport`.
+
+    Raises:
+        ValueError: bad backend, rule, ``p`` or angles; the statevector backend beyond 26 qubits; a ``paper``-rule
+            mixer that is not unitary on the data (:class:`simulate.subspace.NonUnitaryMixerError`).
+    """
+    from circuitgen.compile import compile_scenario
+    from simulate.subspace import SubspaceQAOA
+
+    t_start = time.perf_counter()
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend {backend!r} (expected one of {', '.join(BACKENDS)})")
+    if rule not in RULES:
+        raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    if not isinstance(p, int) or p < 1:
+        raise ValueError(f"p must be a positive integer, got {p!r}")
+    if not tolerance > 0:
+        raise ValueError(f"tolerance must be positive, got {tolerance}")
+    x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
+    if x.size != 2 * p or not np.all(np.isfinite(x)):
+        raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
+    bindings = {f"gamma_{k}": float(x[2 * k]) for k in range(p)} | {f"beta_{k}": float(x[2 * k + 1]) for k in range(p)}
+
+    sub = SubspaceQAOA(scenario, rule)
+    psi_sub = sub.state(x)
+    assignments = _assignments(scenario, sub.bases)
+    ref = np.zeros(len(assignments), dtype=np.complex128)
+    for k, masks in enumerate(assignments):
+        with contextlib.suppress(KeyError):  # outside the subspace basis: amplitude 0
+            ref[k] = psi_sub[sub.index_of(masks)]
+    index = np.array([sub.data_index(m) for m in assignments], dtype=object)  # ancillas (above the data) are 0
+
+    circuit = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=bindings).circuit
+    n, nq = scenario.num_variables, circuit.num_qubits
+    ancillas = list(range(n, nq))
+    tol = tolerance
+    checks: list[Check] = []
+    all_note = f"all {len(assignments)} feasible assignments"
+
+    if backend == "statevector":
+        if nq > MAX_STATEVECTOR_QUBITS:
+            raise ValueError(
+                f"statevector: {nq} qubits exceed {MAX_STATEVECTOR_QUBITS} (2^{nq} amplitudes); use --backend tensor"
+            )
+        from simulate.statevector import simulate_statevector
+
+        t0 = time.perf_counter()
+        sv = simulate_statevector(circuit)
+        clean = sv[: 1 << n]  # ancilla bits (above the data bits) all 0
+        checks.append(_probability_check("statevector", float(np.vdot(clean, clean).real), tol, t0, "sum over 2^n"))
+        t0 = time.perf_counter()
+        got = sv[np.array(index, dtype=np.int64)]
+        checks.append(_amplitude_check("statevector", got, ref, tol, t0, all_note))
+    elif backend == "sparse":
+        from simulate.sparse import simulate_sparse
+
+        t0 = time.perf_counter()
+        state = simulate_sparse(circuit)
+        prob = float(sum(abs(a) ** 2 for k, a in state.items() if k >> n == 0))
+        checks.append(_probability_check("sparse", prob, tol, t0, f"{len(state)} stored amplitudes"))
+        t0 = time.perf_counter()
+        got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
+        checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
+    else:
+        checks.extend(
+            _tensor_checks(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir)
+        )
+
+    return ValidationReport(
+        scenario=scenario.name,
+        backend=backend,
+        p=p,
+        rule=rule,
+        seed=seed if angles is None or backend == "tensor" else None,
+        angles=tuple(float(v) for v in x),
+        qubits=nq,
+        gates=len(circuit),
+        feasible_assignments=len(assignments),
+        tolerance=tolerance,
+        checks=tuple(checks),
+        seconds=time.perf_counter() - t_start,
+    )
+
+
+def _tensor_checks(
+    scenario: Scenario,
+    circuit: Any,
+    ancillas: list[int],
+    index: np.ndarray,
+    ref: np.ndarray,
+    seed: int | None,
+    tol: float,
+    max_amplitudes: int | None,
+    mps: bool,
+    cache_dir: str | Path | None,
+) -> list[Check]:
+    from simulate.tensor import ContractionTooWideError, MPSCircuit, TensorCircuit
+
+    checks: list[Check] = []
+    total = len(index)
+    if mps:
+        t0 = time.perf_counter()
+        m = MPSCircuit(circuit, layout=_mps_layout(scenario, circuit.num_qubits))
+        note = f"max bond {m.max_bond}, simulated in {m.seconds:.1f} s"
+        checks.append(_probability_check("tensor MPS", m.zero_probability(ancillas), tol, t0, note))
+        t0 = time.perf_counter()
+        got = m.amplitudes(int(k) for k in index)
+        checks.append(_amplitude_check("tensor MPS", got, ref, tol, t0, f"all {total} feasible assignments"))
+
+    t0 = time.perf_counter()
+    tc = TensorCircuit(circuit, cache_dir=cache_dir)
+    if max_amplitudes is None or max_amplitudes >= total:
+        pick = np.arange(total)
+        note = f"all {total} feasible assignments"
+    else:
+        pick = np.sort(np.random.default_rng(seed).choice(total, size=max_amplitudes, replace=False))
+        held = float(np.sum(np.abs(ref[pick]) ** 2))
+        note = f"seeded sample of {len(pick)} of {total} assignments, holding probability {held:.6f}"
+    got = tc.amplitudes(int(index[k]) for k in pick)
+    checks.append(_amplitude_check("tensor contraction", got, ref[pick], tol, t0, note))
+
+    if not mps:
+        t0 = time.perf_counter()
+        try:
+            prob = tc.zero_probability(ancillas)
+            checks.append(_probability_check("tensor contraction", prob, tol, t0, "<psi|P_0|psi> contracted"))
+        except ContractionTooWideError as exc:
+            if len(pick) == total:
+                bound = float(np.sum(np.abs(got) ** 2))
+                note = f"lower bound sum |amplitude|^2 over every feasible assignment ({exc})"
+                checks.append(_probability_check("tensor contraction", bound, tol, t0, note))
+            else:
+                checks.append(
+                    Check(
+                        "ancilla_probability",
+                        "tensor contraction",
+                        math.nan,
+                        math.nan,
+                        0,
+                        "skipped",
+                        time.perf_counter() - t0,
+                        str(exc),
+                    )
+                )
+    return checks
