@@ -25,20 +25,19 @@ Example:
 
 from __future__ import annotations
 
-import contextlib
-import gc
 import hashlib
 import json
 import os
 import re
 import time
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
+from circuitgen._perf import gc_paused  # the cyclic GC rescans millions of acyclic gate tuples
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_circuit
 from gridcover.atomic import atomic_open
@@ -263,22 +262,8 @@ def estimate_point(
     Returns:
         The :class:`PointResult`. The cyclic garbage collector is paused meanwhile.
     """
-    with _gc_paused():
+    with gc_paused():
         return _estimate_point(point, epsilon, synthesis)
-
-
-@contextlib.contextmanager
-def _gc_paused() -> Iterator[None]:
-    """Suspend the cyclic garbage collector: the circuits are millions of small acyclic tuples, which it would
-    rescan over and over (building the 10x10, four-robot circuit takes half the time with it off); reference
-    counting still frees everything."""
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def _estimate_point(point: Point, epsilon: float, synthesis: SynthesisModel) -> PointResult:

@@ -35,10 +35,9 @@ import time
 
 import numpy as np
 
-from gridcover.cost import cost_parts
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
-from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace
+from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
 from gridcover.solvers.result import ProgressFn, Solution
 
 CALIBRATION_MOVES = 50
@@ -137,19 +136,7 @@ def anneal(
 
     notes = [f"{len(starts)} restart(s) (one per combination of component representatives)", *space.notes()]
     notes.append(f"t0={t0:.6g}, cooling={cooling:.6g}, {len(cost)} distinct assignments scored")
-    return Solution(
-        method="anneal",
-        paths=best,
-        cost=cost_parts(scenario, best),
-        seconds=time.perf_counter() - t_start,
-        evaluated=cost.calls,
-        trace=tuple(trace),
-        num_components=space.num_components,
-        components_visited=tuple(tuple(sorted(v)) for v in visited),
-        seed=seed,
-        rule=rule,
-        notes=tuple(notes),
-    )
+    return search_solution("anneal", scenario, best, t_start, cost, trace, space, visited, seed, rule, notes)
 
 
 def _visit(space: MoveSpace, visited: list[set[int]], masks: tuple[int, ...]) -> None:

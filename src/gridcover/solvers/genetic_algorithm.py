@@ -40,10 +40,9 @@ from typing import Literal
 
 import numpy as np
 
-from gridcover.cost import cost_parts
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
-from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace
+from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
 from gridcover.solvers.result import ProgressFn, Solution
 
 MutationMode = Literal["all", "random"]
@@ -161,19 +160,7 @@ def genetic(
         *space.notes(),
         f"{len(cost)} distinct assignments scored",
     ]
-    return Solution(
-        method="genetic",
-        paths=best,
-        cost=cost_parts(scenario, best),
-        seconds=time.perf_counter() - t_start,
-        evaluated=cost.calls,
-        trace=tuple(trace),
-        num_components=space.num_components,
-        components_visited=tuple(tuple(sorted(v)) for v in visited),
-        seed=seed,
-        rule=rule,
-        notes=tuple(notes),
-    )
+    return search_solution("genetic", scenario, best, t_start, cost, trace, space, visited, seed, rule, notes)
 
 
 def _initial_population(space: MoveSpace, size: int, rng: np.random.Generator) -> list[Assignment]:

@@ -26,14 +26,17 @@ Example:
 from __future__ import annotations
 
 import itertools
+import time
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
 
-from gridcover.cost import quadratic_cost
+from gridcover.cost import cost_parts, quadratic_cost
 from gridcover.paths import initial_path, is_feasible, path_bits
 from gridcover.sbf import RULES, Rule, move_components, sbf_logic
 from gridcover.scenario import Scenario
+from gridcover.solvers.result import Solution
 
 ComponentMode = Literal["auto", "all", "initial"]
 COMPONENT_MODES: tuple[ComponentMode, ...] = ("auto", "all", "initial")
@@ -166,3 +169,49 @@ class CostCache:
             x = np.concatenate(parts)
             val = self._values[masks] = float(self._const + x @ self._linear + 0.5 * (x @ self._quad @ x))
         return val
+
+
+def search_solution(
+    method: str,
+    scenario: Scenario,
+    best: tuple[int, ...],
+    started: float,
+    cost: CostCache,
+    trace: Sequence[float],
+    space: MoveSpace,
+    visited: Sequence[set[int]],
+    seed: int,
+    rule: Rule,
+    notes: Sequence[str],
+) -> Solution:
+    """The :class:`~gridcover.solvers.result.Solution` of a local search over SBF moves (anneal, genetic).
+
+    Args:
+        method: Solver name.
+        scenario: The scenario.
+        best: Best assignment found.
+        started: ``time.perf_counter()`` at the start of the search.
+        cost: The cost cache (its ``calls`` is the number of evaluations).
+        trace: Best-so-far cost per iteration.
+        space: The move space (components).
+        visited: Per robot, the components its state was in.
+        seed: The seed used.
+        rule: The SBF rule used.
+        notes: Free-text notes.
+
+    Returns:
+        The solution.
+    """
+    return Solution(
+        method=method,
+        paths=best,
+        cost=cost_parts(scenario, best),
+        seconds=time.perf_counter() - started,
+        evaluated=cost.calls,
+        trace=tuple(trace),
+        num_components=space.num_components,
+        components_visited=tuple(tuple(sorted(v)) for v in visited),
+        seed=seed,
+        rule=rule,
+        notes=tuple(notes),
+    )
