@@ -41,6 +41,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.commands.simulate",
     "qcpp.commands.compile",
     "qcpp.commands.estimate",
+    "qcpp.commands.validate",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
