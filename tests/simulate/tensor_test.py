@@ -342,3 +342,54 @@ def test_validate_rejects_bad_input() -> None:
         validate(sc, 1, rule="fuzzy")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="exceed 26"):
         validate(default_scenario(3, 4, 2), 1, backend="statevector")
+
+
+# ------------------------------------------------------------------------------------------------ qcpp validate
+
+
+@pytest.fixture
+def scenario_file(tmp_path: Path) -> Path:
+    from gridcover.scenario import save_scenario
+
+    path = tmp_path / "one_robot_3x3.toml"
+    save_scenario(default_scenario(3, 3, 1), path)
+    return path
+
+
+def test_cli_validate_prints_the_checks_and_exits_0(scenario_file: Path) -> None:
+    from typer.testing import CliRunner
+
+    from qcpp.cli import app
+
+    res = CliRunner().invoke(app, ["validate", str(scenario_file), "-p", "1", "--backend", "sparse", "--seed", "3"])
+    assert res.exit_code == 0, res.output
+    assert "ancilla_probability" in res.stdout and "amplitudes" in res.stdout and "PASSED" in res.stdout
+    res = CliRunner().invoke(app, ["validate", str(scenario_file), "-p", "1", "--backend", "statevector", "--json"])
+    assert res.exit_code == 0
+    d = json.loads(res.stdout)
+    assert d["passed"] is True and d["amplitudes_checked"] == 12 and d["max_amplitude_error"] <= 1e-8
+    assert abs(1 - d["ancilla_probability"]) <= 1e-8 and d["seconds"] >= 0
+
+
+def test_cli_validate_exit_codes_for_failures_and_bad_input(
+    scenario_file: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from typer.testing import CliRunner
+
+    import simulate.validate as sv
+    from qcpp.cli import app
+
+    res = CliRunner().invoke(app, ["validate", str(scenario_file), "--backend", "gpu"])
+    assert res.exit_code == 2 and res.stderr.startswith("error: --backend")
+    real = sv.validate
+
+    def failing(*args, **kwargs):  # type: ignore[no-untyped-def]
+        r = real(*args, **kwargs)
+        bad = sv.Check("amplitudes", "injected", 0.5, 0.5, 12, "fail", 0.0, "a wrong amplitude")
+        return sv.ValidationReport(**{**r.__dict__, "checks": (*r.checks, bad)})
+
+    monkeypatch.setattr(sv, "validate", failing)
+    res = CliRunner().invoke(app, ["validate", str(scenario_file), "--backend", "sparse"])
+    assert res.exit_code == 1 and "FAILED" in res.stdout
+    res = CliRunner().invoke(app, ["validate", str(scenario_file), "--backend", "sparse", "--json"])
+    assert res.exit_code == 1 and json.loads(res.stdout)["passed"] is False
