@@ -28,6 +28,7 @@ from .gates import GATE_SPECS, Gate
 
 __all__ = [
     "DEFAULT_BASIS",
+    "LOGICAL_BASIS",
     "WORK_REGISTER",
     "decompose_gate",
     "lower",
@@ -39,6 +40,10 @@ __all__ = [
 
 DEFAULT_BASIS: frozenset[str] = frozenset({"cx", "x", "h", "rz", "t", "tdg", "s", "sdg"})
 """Target gate set of :func:`lower`."""
+
+LOGICAL_BASIS: frozenset[str] = DEFAULT_BASIS | {"and", "and_dg", "ccx"}
+"""The fault-tolerant view's basis: ANDs (4 T to compute, a measurement and no T to uncompute) and full
+Toffolis stay whole, everything else is lowered as usual."""
 
 WORK_REGISTER = "work"
 """Name of the register of clean work ancillas used by :func:`lower_mcx`."""
