@@ -60,11 +60,15 @@ _CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))
 
 @dataclass(frozen=True)
 class Lit:
-    """One literal: ``signal == value``. ``signal >= 0`` is a grid edge of the robot's path;
-    ``signal < 0`` is the temporary bit ``~signal`` (so ``-1`` is temporary 0)."""
+    """One literal: ``signal == value``, or ``signal XOR xor == value`` when ``xor`` is set.
+
+    ``signal >= 0`` is a grid edge of the robot's path; ``signal < 0`` is the temporary bit ``~signal`` (so ``-1``
+    is temporary 0). ``xor``, when not ``None``, is a second grid edge: the literal then reads the parity of two
+    edges (the exact rule reads corner parities, which the circuit holds on a qubit after a CX ladder)."""
 
     signal: int
     value: bool
+    xor: int | None = None
 
     @property
     def is_temp(self) -> bool:
@@ -73,6 +77,13 @@ class Lit:
     @property
     def temp(self) -> int:
         return ~self.signal
+
+    @property
+    def edges(self) -> tuple[int, ...]:
+        """The grid edges the literal reads (none for a temporary)."""
+        if self.signal < 0:
+            return ()
+        return (self.signal,) if self.xor is None else (self.signal, self.xor)
 
 
 @dataclass(frozen=True)
@@ -111,18 +122,24 @@ class SbfLogic:
     @property
     def inputs(self) -> tuple[int, ...]:
         """Grid edges the function reads (ascending)."""
-        return tuple(sorted({lit.signal for s in self.steps for lit in s.literals if not lit.is_temp}))
+        return tuple(sorted({e for s in self.steps for lit in s.literals for e in lit.edges}))
 
     def evaluate(self, mask: int) -> bool:
         """Run the program on the robot's path ``mask``."""
         temps = [False] * self.num_temps
         for s in self.steps:
-            if all(
-                (temps[~lit.signal] if lit.signal < 0 else bool((mask >> lit.signal) & 1)) == lit.value
-                for lit in s.literals
-            ):
+            if all(_lit_value(lit, temps, mask) == lit.value for lit in s.literals):
                 temps[s.target] = not temps[s.target]
         return temps[self.output]
+
+
+def _lit_value(lit: Lit, temps: Sequence[bool], mask: int) -> bool:
+    if lit.signal < 0:
+        return temps[~lit.signal]
+    v = (mask >> lit.signal) & 1
+    if lit.xor is not None:
+        v ^= (mask >> lit.xor) & 1
+    return bool(v)
 
 
 def apply_sbf(mask: int, plaquette: Plaquette) -> int:
@@ -181,41 +198,40 @@ def _exact_logic(
     endpoints: tuple[bool, ...],
     diagonal: bool,
 ) -> SbfLogic:
-    """The exact rule as a three-level network (see the module docstring for the rule).
+    """The exact rule in the parity basis (equal to the rule on every feasible path; see the module docstring).
 
-    * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
-      the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
-      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so its first
-      outer edge alone tells whether it is busy; corners with fewer outer edges are never busy.
-    * ``pattern = NOT (0000 OR 1010 OR 0101)`` on ``ab, bc, cd, da``; the 0000 term is dropped when an
-      endpoint corner already blocks it, the opposite terms when start and goal are diagonal.
-    * ``out = pattern AND NOT blocked[v] for all v``.
+    With ``s_v`` the parity of corner ``v``'s two plaquette edges (on a feasible path 1 iff ``v`` has exactly
+    one plaquette edge) and ``o_v`` a corner's first variable outer edge:
+
+    * ``blocked[v] = NOT s_v AND o_v`` for every non-endpoint corner with two variable outer edges (B): on a
+      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so ``o_v`` tells
+      whether it is busy, and a corner with two plaquette edges has none set;
+    * ``equal = (ab XOR cd == 0) AND (bc XOR da == 0)``: all four ``s_v`` equal, i.e. the pattern is 0000,
+      1111, 1010 or 0101 (dropped when start and goal are diagonal corners: the opposite patterns are then
+      always feasible, and 0000/1111 are excluded by the endpoints);
+    * ``out = AND(s_v for each endpoint corner v) AND NOT blocked[v] ... AND NOT equal``: an endpoint has
+      degree 1 on a feasible path, so it needs exactly one plaquette edge.
+
+    Every literal reads a corner parity, an outer edge or a temporary, never a single plaquette edge, so the
+    function is unchanged by the flip: the circuit computes it once, rotates and uncomputes.
+    ``tests/gridcover/sbf_test.py`` checks it against :func:`exact_rule_value` on every feasible path.
     """
-    ab, bc, cd, da = pedges
     steps: list[XorStep] = []
-    blocked: list[int] = []
+    final: list[Lit] = []
     for v, (i, j) in enumerate(_CORNER_EDGES):
+        parity = (pedges[i], pedges[j])
         if endpoints[v]:
-            lits: tuple[Lit, ...] = (Lit(pedges[i], False), Lit(pedges[j], False))
+            final.append(Lit(parity[0], True, parity[1]))
         elif len(outer[v]) == 2:
-            lits = (Lit(pedges[i], False), Lit(pedges[j], False), Lit(outer[v][0], True))
-        else:
-            continue
-        blocked.append(len(blocked))
-        steps.append(XorStep(blocked[-1], lits))
-    excluded = []
-    if not any(endpoints):
-        excluded.append((False, False, False, False))
+            t = len(steps)
+            steps.append(XorStep(t, (Lit(parity[0], False, parity[1]), Lit(outer[v][0], True))))
+            final.append(Lit(~t, False))
     if not diagonal:
-        excluded += [(True, False, True, False), (False, True, False, True)]
-    final = [Lit(~t, False) for t in blocked]
-    if excluded:
-        g = len(blocked)
-        steps.append(XorStep(g, ()))
-        for pat in excluded:
-            steps.append(XorStep(g, tuple(Lit(e, val) for e, val in zip((ab, bc, cd, da), pat))))
-        final.insert(0, Lit(~g, True))
-    out = len(blocked) + (1 if excluded else 0)
+        ab, bc, cd, da = pedges
+        t = len(steps)
+        steps.append(XorStep(t, (Lit(ab, False, cd), Lit(bc, False, da))))
+        final.append(Lit(~t, False))
+    out = len(steps)
     steps.append(XorStep(out, tuple(final)))
     return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
 

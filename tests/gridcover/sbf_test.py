@@ -78,6 +78,8 @@ def run_program(logic: SbfLogic, bits: np.ndarray) -> np.ndarray:
         cond = np.ones(len(bits), dtype=bool)
         for lit in step.literals:
             col = temps[:, lit.temp] if lit.is_temp else bits[:, lit.signal]
+            if lit.xor is not None:
+                col = col ^ bits[:, lit.xor]
             cond &= col == lit.value
         temps[:, step.target] ^= cond
     return temps
