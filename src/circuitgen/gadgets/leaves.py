@@ -31,7 +31,7 @@ Example:
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 from circuitgen.angles import Param
 from circuitgen.cost import Cost
@@ -59,7 +59,7 @@ LEAF_NAMES: tuple[str, ...] = (*_FIXED, "mcx")
 """Every leaf kind."""
 
 
-@lru_cache(maxsize=None)
+@cache
 def leaf_cost(name: str, k: int = 0) -> Cost:
     """Lowered cost of one leaf (``k``: controls of an ``mcx``, all positive).
 
@@ -73,7 +73,7 @@ def leaf_cost(name: str, k: int = 0) -> Cost:
     return _cost(name, k, _FIXED)
 
 
-@lru_cache(maxsize=None)
+@cache
 def leaf_logical_cost(name: str, k: int = 0) -> Cost:
     """Like :func:`leaf_cost` with ANDs, their uncomputes and Toffolis kept whole (the fault-tolerant view)."""
     return _cost(name, k, _LOGICAL)

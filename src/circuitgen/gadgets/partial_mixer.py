@@ -39,7 +39,6 @@ import heapq
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from itertools import combinations
 
 from gridcover.grid import Plaquette
 from gridcover.sbf import Lit, Rule, SbfLogic, sbf_logic
