@@ -22,6 +22,7 @@ Example:
 
 from __future__ import annotations
 
+import dataclasses
 from collections import Counter
 from collections.abc import Hashable, Iterator
 from dataclasses import dataclass, field
@@ -143,7 +144,7 @@ class QaoaPlan:
             yield f"phase_{k}", WholeSpacePhase(self._phase.hamiltonian, f"gamma_{k}")
             beta = Angle.symbol(f"beta_{k}")
             for m in self._mixers:
-                yield f"mixer_{k}", type(m)(m.plan, m.kind_key, m.plaquette_qubits, m.outer_qubits, m.logic_offset, beta)
+                yield f"mixer_{k}", dataclasses.replace(m, beta=beta)
 
     def kinds(self) -> dict[str, Counter[Hashable]]:
         """Gadget kinds and multiplicities of one layer's parts: ``initial_state``, ``phase``, ``mixer``."""

@@ -187,7 +187,8 @@ _INVERSE_1Q = {"t": "tdg", "tdg": "t", "s": "sdg", "sdg": "s"}
 
 
 def _and_defs(circuit: Circuit) -> list[str]:
-    """``qcpp_and_<state>`` (RCCX then sdg on the target ``c``: exact on a clean target) and ``qcpp_and_dg_<state>`` (its inverse)."""
+    """``qcpp_and_<state>`` (RCCX then sdg on the target ``c``: exact on a clean target) and
+    ``qcpp_and_dg_<state>`` (its inverse)."""
     used = sorted({(g[0], g[3] or "11") for g in circuit.gates if g[0] in ("and", "and_dg")})
     out = []
     for name, state in used:
