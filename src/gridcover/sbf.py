@@ -236,6 +236,53 @@ def _exact_logic(
     return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
 
 
+def _direct_exact_logic(
+    robot: int,
+    pindex: int,
+    pedges: tuple[int, int, int, int],
+    outer: tuple[tuple[int, ...], ...],
+    endpoints: tuple[bool, ...],
+    diagonal: bool,
+) -> SbfLogic:
+    """The exact rule as qcpp 0.1's three-level network on plain edges (see :func:`direct_exact_logic`).
+
+    * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
+      the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
+      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so its first
+      outer edge alone tells whether it is busy; corners with fewer outer edges are never busy.
+    * ``pattern = NOT (0000 OR 1010 OR 0101)`` on ``ab, bc, cd, da``; the 0000 term is dropped when an
+      endpoint corner already blocks it, the opposite terms when start and goal are diagonal.
+    * ``out = pattern AND NOT blocked[v] for all v``.
+    """
+    ab, bc, cd, da = pedges
+    steps: list[XorStep] = []
+    blocked: list[int] = []
+    for v, (i, j) in enumerate(_CORNER_EDGES):
+        if endpoints[v]:
+            lits: tuple[Lit, ...] = (Lit(pedges[i], False), Lit(pedges[j], False))
+        elif len(outer[v]) == 2:
+            lits = (Lit(pedges[i], False), Lit(pedges[j], False), Lit(outer[v][0], True))
+        else:
+            continue
+        blocked.append(len(blocked))
+        steps.append(XorStep(blocked[-1], lits))
+    excluded = []
+    if not any(endpoints):
+        excluded.append((False, False, False, False))
+    if not diagonal:
+        excluded += [(True, False, True, False), (False, True, False, True)]
+    final = [Lit(~t, False) for t in blocked]
+    if excluded:
+        g = len(blocked)
+        steps.append(XorStep(g, ()))
+        for pat in excluded:
+            steps.append(XorStep(g, tuple(Lit(e, val) for e, val in zip((ab, bc, cd, da), pat))))
+        final.insert(0, Lit(~g, True))
+    out = len(blocked) + (1 if excluded else 0)
+    steps.append(XorStep(out, tuple(final)))
+    return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
+
+
 def _paper_logic(
     robot: int, pindex: int, pedges: tuple[int, int, int, int], outer: tuple[tuple[int, ...], ...]
 ) -> SbfLogic:
@@ -258,6 +305,29 @@ def _paper_logic(
     final = [Lit(~f1, True), Lit(~f2, True)] + [Lit(~t, False) for t in corner_temps]
     steps.append(XorStep(out, tuple(final)))
     return SbfLogic("paper", robot, pindex, out + 1, out, tuple(steps))
+
+
+def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> SbfLogic:
+    """The exact rule as a network on plain edges (qcpp 0.1's form), for comparisons only.
+
+    It reads the plaquette edges themselves (``blocked[v] = NOT e1 AND NOT e2 [AND o_v]``, a 4-literal pattern
+    test) instead of corner parities, which is what a circuit without the parity basis (the paper's structure:
+    multi-controlled X gates into ancillas, then the controlled XXXX rotation) computes. On every feasible path
+    it equals :func:`sbf_logic` with ``rule="exact"`` (``tests/gridcover/sbf_test.py``); the benchmarks build
+    the paper-structured comparison circuit from it.
+
+    Returns:
+        The program (``.never`` when a plaquette edge is not a variable).
+    """
+    plaq = plaquette
+    vmask = scenario.variable_mask
+    if any(not (vmask >> e) & 1 for e in plaq.edges):
+        return SbfLogic("exact", robot, plaq.index, 1, 0, ())
+    rb = scenario.robots[robot]
+    endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
+    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
+    diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
+    return _direct_exact_logic(robot, plaq.index, plaq.edges, outer, endpoints, diagonal)
 
 
 def exact_rule_value(
