@@ -148,7 +148,8 @@ def paper_structured(s: Scenario) -> Circuit:
                 state = "".join("1" if lit.value else "0" for lit in st.literals)
                 steps.append(mcx(controls, n + st.target, state))
             data = [s.variable_index(r, e) for e in q.edges]
-            sections.append(Section("mixer_0", (*steps, csbf(Angle.symbol("beta_0"), n + lg.output, *data), *reversed(steps))))
+            rotation = csbf(Angle.symbol("beta_0"), n + lg.output, *data)
+            sections.append(Section("mixer_0", (*steps, rotation, *reversed(steps))))
     width = max(width, ours.register("logic").size if ours.has_register("logic") else 0)
     return Circuit([Register("data", n), Register("logic", width)], sections)
 
