@@ -242,15 +242,16 @@ _FIXED_DEFS = {
     ),
 }
 
-# Qiskit's RCCXGate definition (u2(0, pi) = h, u1(±pi/4) = t/tdg exactly): Toffoli up to a relative phase,
-# and its own inverse (a real matrix whose square is the identity)
-_RCCX_BODY = ["h t;", "t t;", "cx c1, t;", "tdg t;", "cx c0, t;", "t t;", "cx c1, t;", "tdg t;", "h t;"]
+# Qiskit's RCCXGate definition (u2(0, pi) = h, u1(±pi/4) = t/tdg exactly) on controls a, b and target c (a
+# qubit argument must not be named like a gate, e.g. `t`): Toffoli up to a relative phase, and its own inverse
+# (a real matrix whose square is the identity)
+_RCCX_BODY = ["h c;", "t c;", "cx b, c;", "tdg c;", "cx a, c;", "t c;", "cx b, c;", "tdg c;", "h c;"]
 
 
 def _and_def(name: str, state: str) -> str:
-    flips = [f"x c{i};" for i, bit in enumerate(state) if bit == "0"]
-    core = [*_RCCX_BODY, "sdg t;"] if name == "and" else ["s t;", *_RCCX_BODY]
-    return _gate_def(f"{CUSTOM_PREFIX}{name}_{state}", "", ["c0", "c1", "t"], [*flips, *core, *flips])
+    flips = [f"x {q};" for q, bit in zip("ab", state, strict=True) if bit == "0"]
+    core = [*_RCCX_BODY, "sdg c;"] if name == "and" else ["s c;", *_RCCX_BODY]
+    return _gate_def(f"{CUSTOM_PREFIX}{name}_{state}", "", ["a", "b", "c"], [*flips, *core, *flips])
 
 
 def _mcphase_def(n: int, version: Version) -> str:

@@ -55,7 +55,7 @@ def all_gates_circuit() -> Circuit:
     b.append(
         [
             G.x(0), G.t(1), G.tdg(2), G.s(3), G.sdg(4), G.rz(0.3, 5), G.rx(-0.4, 6), G.ry(1.1, 0),
-            G.cx(0, 1), G.cz(1, 2), G.crz(0.7, 2, 3), G.cry(-0.8, 3, 4), G.rzz(0.9, 4, 5),
+            G.cx(0, 1), G.cz(1, 2), G.crz(0.7, 2, 3), G.cry(-0.8, 3, 4), G.rzz(0.9, 4, 5), G.crx(0.35, 5, 6),
             G.ccx(0, 1, 2), G.sbf(0.5, 0, 2, 4, 6), G.csbf(-0.6, 1, 0, 3, 5, 6),
         ],
         section="phase_0",
@@ -157,8 +157,13 @@ def test_name_mapping() -> None:
     assert qasm_gate_name(G.mcx([0, 1, 2, 3], 4, "0110"), 3) == "negctrl @ ctrl(2) @ negctrl @ x"
     assert qasm_gate_name(G.mcx([0], 1, "0"), 3) == "negctrl @ x"
     assert qasm_gate_name(G.ccx(0, 1, 2), 2) == "ccx"
-    for name in ["rzz", "cry", "sbf", "csbf", "mcx"]:
+    for name in ["rzz", "cry", "crx", "sbf", "csbf", "mcx"]:
         assert ir_gate_name(f"{CUSTOM_PREFIX}{name}" if name != "mcx" else "qcpp_mcx3_111") == name
+    assert qasm_gate_name(G.and_(0, 1, 2, "01"), 3) == "qcpp_and_01"
+    assert qasm_gate_name(G.and_dg(0, 1, 2), 2) == "qcpp_and_dg_11"
+    assert qasm_gate_name(G.crx(0.1, 0, 1), 3) == "crx" and qasm_gate_name(G.crx(0.1, 0, 1), 2) == "qcpp_crx"
+    for state in ["00", "01", "10", "11"]:
+        assert ir_gate_name(f"qcpp_and_{state}") == "and" and ir_gate_name(f"qcpp_and_dg_{state}") == "and_dg"
 
 
 def test_layout_and_sections_in_text() -> None:
@@ -397,3 +402,32 @@ def test_pytket_reads_a_lowered_qaoa_circuit_gate_for_gate() -> None:
     assert dict(Counter(g.name for g in gates)) == low.count_ops()
     back = Circuit([("q", n)], [Section("s", gates)])
     np.testing.assert_allclose(simulate_statevector(back), simulate_statevector(low), atol=1e-9)
+
+
+# --- and / and_dg: exact on a clean target (their contract) --------------------------------------------------
+@pytest.mark.parametrize("state", ["00", "01", "10", "11"])
+def test_and_definitions_are_exact_on_their_contract(state: str) -> None:
+    """``and`` equals the IR permutation on inputs with a clean target; ``and_dg`` returns the AND to |0>."""
+    fire = int(state[::-1], 2)  # controls q0, q1 matching the state (q0 the low bit)
+    for gate in [G.and_(0, 1, 2, state), G.and_dg(0, 1, 2, state)]:
+        c = Circuit([("data", 3)], [Section("s", [gate])])
+        u = unitary(gate)
+        for text, load in [(to_qasm2(c), qasm2.loads), (to_qasm3(c), qasm3.loads)]:
+            got = Operator(load(text)).data
+            for controls in range(4):
+                target = int(controls == fire) if gate.name == "and_dg" else 0
+                col = controls | target << 2
+                np.testing.assert_allclose(got[:, col], u[:, col], atol=1e-12)  # exact, phase included
+
+
+def test_and_compute_uncompute_against_qiskit() -> None:
+    b = CircuitBuilder([("data", 4)])
+    b.add_register(("logic", 2))
+    b.append([G.h(0), G.ry(0.7, 1), G.h(2), G.ry(-1.1, 3)], section="initial_state")
+    compute = [G.and_(0, 1, 4, "10"), G.and_(4, 2, 5, "01")]
+    body = [G.crx(0.8, 5, 3), G.crz(-0.4, 4, 2), G.rzz(0.3, 5, 0)]
+    uncompute = [G.and_dg(4, 2, 5, "01"), G.and_dg(0, 1, 4, "10")]
+    b.append([*compute, *body, *uncompute], section="mixer_0")
+    c = b.build()
+    check_against_qiskit(c)
+    check_against_qiskit(lower(c))
