@@ -1,0 +1,189 @@
+"""Independent equivalence checking with MQT QCEC: a lowered circuit against its high-level circuit.
+
+QCEC (decision diagrams, ZX calculus and simulation, from the Munich Quantum Toolkit) is a checker we did not
+write. :func:`to_qiskit` turns one of our circuits into a Qiskit ``QuantumCircuit`` with the *IR's* meaning of
+every gate (``and`` / ``and_dg`` are the controlled-X permutation of :mod:`circuitgen.gates`, not their
+relative-phase lowering), qubits from ``num_plain`` on in an ``AncillaRegister`` (QCEC's *ancillary* qubits:
+they start in |0>, and with ``check_partial_equivalence`` off their final state is compared too, so a lowering
+that leaves an ancilla dirty is caught). :func:`check_equivalence` asks QCEC whether the two are equal on every
+input whose ancillas are |0>; equal up to a global phase counts as equivalent only if ``global_phase_ok``.
+
+Whole QAOA circuits can be checked at once (:func:`check_equivalence`) or section by section
+(:func:`check_sections`): the lowering never moves a gate across a section boundary and every section returns
+the ancillas to |0>, so equal sections compose into an equal circuit; QCEC's alternating checker stays fast on
+each section, while on a whole 30-qubit, p = 2 circuit it can take minutes.
+
+Requires ``qiskit`` and ``mqt.qcec`` (the ``test`` extra).
+
+Example:
+    >>> from circuitgen.circuit import Circuit, Section
+    >>> from circuitgen.gates import mcx
+    >>> from circuitgen.lowering import lower
+    >>> high = Circuit([("data", 5)], [Section("s", [mcx([0, 1, 2, 3], 4, "1011")])])
+    >>> check_equivalence(high, lower(high), num_plain=5).equivalent
+    True
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from circuitgen.circuit import Circuit, Section
+
+__all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "to_qiskit"]
+
+_EQUIVALENT = frozenset({"equivalent", "equivalent_up_to_global_phase"})
+
+
+@dataclass(frozen=True)
+class EquivalenceResult:
+    """QCEC's verdict on two circuits.
+
+    Attributes:
+        criterion: QCEC's ``EquivalenceCriterion`` name (``equivalent``, ``equivalent_up_to_global_phase``,
+            ``not_equivalent``, ``probably_equivalent``, ``no_information``, ...).
+        equivalent: The criterion proves equality (a global phase only if it was allowed).
+        seconds: Wall time of the check (conversion included).
+        sections: Sections checked (1 for a whole-circuit check).
+    """
+
+    criterion: str
+    equivalent: bool
+    seconds: float
+    sections: int = 1
+
+
+def _qiskit() -> Any:
+    try:
+        import qiskit
+        from mqt import qcec  # noqa: F401
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("equivalence checking needs qiskit and mqt.qcec (pip install 'qcpp[test]')") from exc
+    return qiskit
+
+
+def _parity(qc: Any, qs: tuple[int, ...], core: Callable[[], None]) -> None:
+    a, b, c, d = qs
+    for q in qs:
+        qc.h(q)
+    qc.cx(a, b)
+    qc.cx(b, c)
+    qc.cx(c, d)
+    core()
+    qc.cx(c, d)
+    qc.cx(b, c)
+    qc.cx(a, b)
+    for q in qs:
+        qc.h(q)
+
+
+def to_qiskit(circuit: Circuit, num_plain: int | None = None, num_qubits: int | None = None) -> Any:
+    """A Qiskit circuit with the IR's meaning of every gate; qubits ``>= num_plain`` are ancillary.
+
+    Args:
+        circuit: A bound circuit (any level).
+        num_plain: Qubits ``0 .. num_plain-1`` are plain (data) qubits, the rest go into an ``AncillaRegister``;
+            default all plain.
+        num_qubits: Pad with idle ancillary qubits up to this many (e.g. the lowered circuit's ``work``).
+
+    Returns:
+        ``qiskit.QuantumCircuit``.
+
+    Raises:
+        ValueError: an unbound symbol or a gate name this converter does not know.
+    """
+    qiskit = _qiskit()
+    from qiskit.circuit.library import MCXGate
+
+    if circuit.symbols:
+        raise ValueError(f"bind the symbols first: {', '.join(circuit.symbols)}")
+    n = circuit.num_qubits if num_qubits is None else max(num_qubits, circuit.num_qubits)
+    plain = n if num_plain is None else min(num_plain, n)
+    regs = [qiskit.QuantumRegister(plain, "q")] if plain else []
+    if n > plain:
+        regs.append(qiskit.AncillaRegister(n - plain, "anc"))
+    qc = qiskit.QuantumCircuit(*regs)
+    simple = {"x", "h", "t", "tdg", "s", "sdg", "cx", "cz", "ccx"}
+    angled = {"rz", "rx", "ry", "crz", "cry", "crx", "rzz"}
+    for name, qubits, params, state in circuit.gates:
+        if name in simple:
+            getattr(qc, name)(*qubits)
+        elif name in angled:
+            getattr(qc, name)(float(params[0]), *qubits)
+        elif name in ("mcx", "and", "and_dg"):  # the IR's permutation: X on the target if the controls match
+            k = len(qubits) - 1
+            bits = state or "1" * k
+            qc.append(MCXGate(k, ctrl_state=int(bits[::-1], 2)), list(qubits))
+        elif name == "sbf":
+            theta = float(params[0])
+            _parity(qc, qubits, lambda q=qubits, th=theta: qc.rz(th, q[3]))
+        elif name == "csbf":
+            theta, ctrl, data = float(params[0]), qubits[0], qubits[1:]
+            _parity(qc, data, lambda c=ctrl, q=data, th=theta: qc.crz(th, c, q[3]))
+        else:
+            raise ValueError(f"to_qiskit: no Qiskit form for gate {name!r}")
+    return qc
+
+
+def check_equivalence(
+    high: Circuit,
+    low: Circuit,
+    num_plain: int,
+    *,
+    global_phase_ok: bool = False,
+    timeout: float | None = None,
+    **options: Any,
+) -> EquivalenceResult:
+    """Ask QCEC whether ``low`` equals ``high`` on every input whose ancillas (qubits ``>= num_plain``) are |0>.
+
+    Args:
+        high: The reference circuit (bound).
+        low: The circuit to check (bound; may have more qubits, e.g. ``work``, which are ancillary).
+        num_plain: Number of leading plain qubits (the data); every later qubit is an ancilla.
+        global_phase_ok: Accept ``equivalent_up_to_global_phase`` (our lowering is exact, so default no).
+        timeout: QCEC's timeout in seconds (``no_information`` when hit).
+        **options: Further QCEC configuration options.
+
+    Returns:
+        The :class:`EquivalenceResult`.
+    """
+    from mqt import qcec
+
+    t0 = time.perf_counter()
+    n = max(high.num_qubits, low.num_qubits)
+    a = to_qiskit(high, num_plain, n)
+    b = to_qiskit(low, num_plain, n)
+    if timeout is not None:
+        options["timeout"] = timeout
+    result = qcec.verify(a, b, **options)
+    name = str(result.equivalence).rsplit(".", 1)[-1]
+    ok = name == "equivalent" or (global_phase_ok and name in _EQUIVALENT)
+    return EquivalenceResult(name, ok, time.perf_counter() - t0)
+
+
+def check_sections(
+    high: Circuit, low: Circuit, num_plain: int, *, global_phase_ok: bool = False, **options: Any
+) -> EquivalenceResult:
+    """:func:`check_equivalence` of each pair of corresponding sections (same names, same order).
+
+    Returns:
+        The first failing section's result, or an equivalent result covering every section.
+
+    Raises:
+        ValueError: the two circuits do not have the same section names in the same order.
+    """
+    t0 = time.perf_counter()
+    names_h = [s.name for s in high.sections]
+    names_l = [s.name for s in low.sections]
+    if names_h != names_l:
+        raise ValueError(f"section mismatch: {names_h[:5]}... vs {names_l[:5]}...")
+    for sh, sl in zip(high.sections, low.sections, strict=True):
+        a = Circuit(high.registers, [Section(sh.name, sh.gates)])
+        b = Circuit(low.registers, [Section(sl.name, sl.gates)])
+        r = check_equivalence(a, b, num_plain, global_phase_ok=global_phase_ok, **options)
+        if not r.equivalent:
+            return EquivalenceResult(r.criterion, False, time.perf_counter() - t0, len(high.sections))
+    return EquivalenceResult("equivalent", True, time.perf_counter() - t0, len(high.sections))
