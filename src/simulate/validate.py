@@ -32,6 +32,11 @@ Backends:
       reported as skipped), or, when every assignment was contracted, from the lower bound
       ``sum |amplitude|^2 <= P(ancillas 0) <= 1``.
 
+``qcec``
+    Not a simulation: MQT QCEC (:mod:`simulate.equivalence`, needs ``mqt.qcec`` and ``qiskit``) proves the lowered
+    circuit equal to the high-level circuit at the same angles on every input with clean ancillas, section by
+    section (one ``equivalence`` check; ``skipped`` if QCEC gives no proof in time).
+
 Every check reports what it compared; :attr:`ValidationReport.passed` is true when no check failed.
 
 Example:
@@ -60,8 +65,8 @@ from gridcover.scenario import Scenario
 
 __all__ = ["BACKENDS", "Backend", "Check", "ValidationReport", "random_angles", "validate"]
 
-Backend = Literal["tensor", "statevector", "sparse"]
-BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse")
+Backend = Literal["tensor", "statevector", "sparse", "qcec"]
+BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse", "qcec")
 DEFAULT_TOLERANCE = 1e-8
 MAX_STATEVECTOR_QUBITS = 26
 
@@ -217,6 +222,7 @@ def validate(
     max_amplitudes: int | None = 256,
     mps: bool = True,
     cache_dir: str | Path | None = None,
+    dask: str | None = None,
 ) -> ValidationReport:
     """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
 
@@ -234,6 +240,9 @@ def validate(
             21-27 without the optional ``kahypar``; the MPS checks still run).
         mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude).
         cache_dir: ``tensor``: contraction-path cache (default :func:`simulate.tensor.default_cache_dir`).
+        dask: ``tensor``: a dask scheduler address, or ``'local'`` for a LocalCluster
+            (:func:`simulate.tensor.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
+            cotengra and the slices run on the cluster instead of being skipped. ``None``: in-process.
 
     Returns:
         The :class:`ValidationReport`.
@@ -299,9 +308,11 @@ def validate(
         t0 = time.perf_counter()
         got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
         checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
+    elif backend == "qcec":
+        checks.append(_qcec_check(scenario, p, rule, bindings, circuit))
     else:
         checks.extend(
-            _tensor_checks(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir)
+            _tensor_checks(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, dask)
         )
 
     return ValidationReport(
@@ -320,6 +331,20 @@ def validate(
     )
 
 
+def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any) -> Check:
+    from circuitgen.compile import compile_scenario
+    from simulate.equivalence import check_sections
+
+    t0 = time.perf_counter()
+    high = compile_scenario(scenario, p, rule=rule, bindings=bindings).circuit
+    r = check_sections(high, low, scenario.num_variables)
+    note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
+    if r.equivalent:
+        return Check("equivalence", "qcec", 0.0, 0.0, r.sections, "pass", time.perf_counter() - t0, note)
+    status: Literal["fail", "skipped"] = "fail" if r.criterion == "not_equivalent" else "skipped"
+    return Check("equivalence", "qcec", 1.0, 1.0, r.sections, status, time.perf_counter() - t0, note)
+
+
 def _tensor_checks(
     scenario: Scenario,
     circuit: Any,
@@ -331,6 +356,30 @@ def _tensor_checks(
     max_amplitudes: int | None,
     mps: bool,
     cache_dir: str | Path | None,
+    dask: str | None = None,
+) -> list[Check]:
+    from simulate.tensor import dask_client
+
+    if dask is None:
+        return _tensor_checks_with(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir)
+    with dask_client(dask) as client:
+        return _tensor_checks_with(
+            scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
+        )
+
+
+def _tensor_checks_with(
+    scenario: Scenario,
+    circuit: Any,
+    ancillas: list[int],
+    index: np.ndarray,
+    ref: np.ndarray,
+    seed: int | None,
+    tol: float,
+    max_amplitudes: int | None,
+    mps: bool,
+    cache_dir: str | Path | None,
+    client: Any = None,
 ) -> list[Check]:
     from simulate.tensor import ContractionTooWideError, MPSCircuit, TensorCircuit
 
@@ -346,7 +395,7 @@ def _tensor_checks(
         checks.append(_amplitude_check("tensor MPS", got, ref, tol, t0, f"all {total} feasible assignments"))
 
     t0 = time.perf_counter()
-    tc = TensorCircuit(circuit, cache_dir=cache_dir)
+    tc = TensorCircuit(circuit, cache_dir=cache_dir, client=client)
     if max_amplitudes == 0:
         checks.append(
             Check("amplitudes", "tensor contraction", math.nan, math.nan, 0, "skipped", 0.0, "max_amplitudes=0")

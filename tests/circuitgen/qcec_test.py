@@ -62,7 +62,7 @@ def scenario_pair(rows: int, cols: int, robots: int, p: int) -> tuple[Circuit, C
     return high, low, s.num_variables
 
 
-@pytest.mark.parametrize("p", [1, 2])
+@pytest.mark.parametrize("p", [1, pytest.param(2, marks=pytest.mark.heavy)])
 def test_whole_one_robot_3x3_circuit_is_proven_equivalent(p: int) -> None:
     high, low, n = scenario_pair(3, 3, 1, p)
     r = check_equivalence(high, low, n)
@@ -127,3 +127,20 @@ def test_to_qiskit_rejects_unknown_gates_and_unbound_symbols() -> None:
         to_qiskit(Circuit([("q", 1)], [Section("s", [Gate("future", (0,))])]))
     with pytest.raises(ValueError, match="gamma_0"):
         to_qiskit(Circuit([("q", 1)], [Section("s", [rz(Angle.symbol("gamma_0"), 0)])]))
+
+
+def test_validate_cli_qcec_backend() -> None:
+    import json
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from qcpp.cli import app
+
+    example = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
+    res = CliRunner().invoke(app, ["validate", str(example), "-p", "2", "--backend", "qcec", "--json"])
+    assert res.exit_code == 0, res.stderr
+    d = json.loads(res.stdout)
+    assert d["passed"] is True and d["backend"] == "qcec"
+    [check] = d["checks"]
+    assert check["name"] == "equivalence" and check["method"] == "qcec" and check["status"] == "pass"

@@ -58,3 +58,35 @@ def test_validate_cli_json_and_exit_codes() -> None:
     assert d["passed"] is True and d["backend"] == "tensor" and d["amplitudes_checked"] == d["feasible_assignments"]
     bad = CliRunner().invoke(app, ["validate", str(EXAMPLE), "-p", "1", "--angles", "0.1"])
     assert bad.exit_code == 2 and "--angles" in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
+
+
+# --- slicing and dask ------------------------------------------------------------------------------------------
+def test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one(tmp_path: Path) -> None:
+    import numpy as np
+    from dask.distributed import Client, LocalCluster
+
+    from circuitgen.compile import compile_scenario
+    from simulate.statevector import simulate_statevector
+    from simulate.tensor import TensorCircuit, contract_sliced
+
+    angles = {"gamma_0": 0.4, "beta_0": 0.9, "gamma_1": 0.3, "beta_1": 1.2}
+    c = compile_scenario(default_scenario(3, 3, 1), 2, lowered=True, bindings=angles).circuit
+    dense = simulate_statevector(c)
+    state = int(np.argmax(np.abs(dense)))
+    tc = TensorCircuit(c, cache_dir=tmp_path)
+    unsliced = tc.amplitude(state)
+    assert abs(unsliced - dense[state]) < 1e-10
+    tn = tc._amplitude_network(state)
+    tree, info = tc._tree(tn)
+    assert info.width >= 8  # wide enough that slicing has something to cut
+    assert abs(contract_sliced(tn, tree, target_slices=8) - unsliced) < 1e-10  # in-process slices
+    with Client(LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None)) as client:
+        assert abs(contract_sliced(tn, tree, target_slices=8, client=client) - unsliced) < 1e-10
+        # TensorCircuit slices a contraction wider than max_width and runs the slices on the cluster
+        narrow = TensorCircuit(c, cache_dir=tmp_path, client=client, max_width=info.width - 3)
+        assert abs(narrow.amplitude(state) - unsliced) < 1e-10
+
+
+def test_validate_cli_rejects_dask_without_the_tensor_backend() -> None:
+    res = CliRunner().invoke(app, ["validate", str(EXAMPLE), "--backend", "sparse", "--dask", "local"])
+    assert res.exit_code == 2 and "--dask" in res.stderr and len(res.stderr.strip().splitlines()) == 1

@@ -4,6 +4,8 @@ Examples::
 
     qcpp validate examples/paper_3x3.toml -p 2 --backend tensor
     qcpp validate examples/two_robots_4x4.toml -p 1 --backend sparse --json
+    qcpp validate examples/paper_3x3.toml -p 2 --backend qcec
+    qcpp validate examples/two_robots_4x4.toml -p 2 --dask tcp://scheduler:8786
 
 Exit code 0 when every check passes, 1 when one fails; bad input is one line on stderr and exit code 2 (the CLI's
 shared handler).
@@ -26,14 +28,15 @@ __all__ = ["register", "validate_command"]
 HELP = (
     "Compile the lowered QAOA circuit, run it with a gate-level simulator (tensor = quimb exact contraction + MPS, "
     "statevector, sparse) at given or seeded random angles, and check that the ancillas end in |0> and every "
-    "feasible assignment's amplitude equals the exact feasible-subspace simulator's. Exit 1 if a check fails."
+    "feasible assignment's amplitude equals the exact feasible-subspace simulator's; or (qcec) prove the lowered "
+    "circuit equal to the high-level one with MQT QCEC. Exit 1 if a check fails."
 )
 
 
 def validate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.", min=1)] = 1,
-    backend: Annotated[str, typer.Option("--backend", help="tensor, statevector or sparse.")] = "tensor",
+    backend: Annotated[str, typer.Option("--backend", help="tensor, statevector, sparse or qcec.")] = "tensor",
     angles: Annotated[
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
     ] = None,
@@ -43,12 +46,24 @@ def validate_command(
         int, typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly.")
     ] = 256,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
+    dask: Annotated[
+        str | None,
+        typer.Option(
+            "--dask",
+            help="tensor: run sliced wide contractions on a dask cluster: a scheduler address "
+            "(tcp://host:8786) or 'local' for a LocalCluster on this machine. Default: in-process.",
+        ),
+    ] = None,
 ) -> None:
     """Validate a compiled circuit (see ``qcpp validate --help``)."""
     from simulate.validate import validate  # imports quimb: only when the command runs
 
-    if backend not in ("tensor", "statevector", "sparse"):
-        raise ValueError(f"--backend: expected tensor, statevector or sparse, got {backend!r}")
+    if backend not in ("tensor", "statevector", "sparse", "qcec"):
+        raise ValueError(f"--backend: expected tensor, statevector, sparse or qcec, got {backend!r}")
+    if dask is not None and backend != "tensor":
+        raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
+    if dask is not None and not dask.strip():
+        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     values = None
@@ -59,6 +74,12 @@ def validate_command(
             raise ValueError(f"--angles: expected comma-separated numbers, got {angles!r}") from None
         if len(values) != 2 * p:
             raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
+    if backend == "qcec":
+        try:
+            import mqt.qcec  # noqa: F401
+            import qiskit  # noqa: F401
+        except ImportError as exc:
+            raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
     report = validate(
         load_scenario(scenario),
         p,
@@ -67,6 +88,7 @@ def validate_command(
         seed=seed,
         rule=rule,  # type: ignore[arg-type]
         max_amplitudes=max_amplitudes,
+        dask=dask,
     )
     if as_json:
         typer.echo(json.dumps(report.to_dict()))
