@@ -327,6 +327,88 @@ def to_quimb(
     return qc
 
 
+# ------------------------------------------------------------------------------------------------ ancilla-clean blocks
+
+MAX_BLOCK_DATA_QUBITS = 11
+"""Largest block (data qubits) :func:`collapse_ancilla_blocks` turns into one dense operator (2^22 entries)."""
+
+
+def _block_operator(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequence[int]) -> np.ndarray:
+    """``(I ⊗ <0|) B (I ⊗ |0>)`` of a block of gates: the matrix on ``data`` (first qubit most significant)."""
+    local = {q: i for i, q in enumerate([*data, *ancillas])}
+    qc = qtn.Circuit(len(local), gate_contract=False)
+    for g in gates:
+        _apply(qc, g._replace(qubits=tuple(local[q] for q in g[1])))
+    uni = qc.get_uni()
+    k = len(data)
+    fix = {f"{side}{i}": 0 for i in range(k, len(local)) for side in "kb"}
+    uni.isel_(fix)
+    uni.astype_("complex128")
+    outs = [f"k{i}" for i in range(k)]
+    ins = [f"b{i}" for i in range(k)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t = uni.contract(all, output_inds=[*outs, *ins], optimize="greedy")  # small blocks: no search
+    t = t if isinstance(t, qtn.Tensor) else qtn.Tensor(np.asarray(t), inds=())
+    return t.to_dense(outs, ins)
+
+
+def collapse_ancilla_blocks(
+    circuit: Circuit, ancillas: Sequence[int], atol: float = 1e-9
+) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
+    """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
+
+    A section that touches an ancilla (a partial mixer: compute, controlled rotation, uncompute) becomes the
+    matrix ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches; if ``T`` is not unitary (the section
+    leaves an ancilla dirty, e.g. one leaf of a longer construction) the following sections are added until it
+    is. A unitary ``T`` of an isometry ``S (I ⊗ |0>)`` proves that no amplitude leaks into dirty ancillas
+    (``||T psi||^2 = 1``), so on inputs with clean ancillas the circuit equals the product of these operators,
+    exactly: the logic compute/uncompute pairs simplify away before any path search.
+
+    Args:
+        circuit: A bound circuit whose ancillas start in |0>.
+        ancillas: The ancilla qubits (the rest are data, renumbered ``0..`` in order).
+        atol: Tolerance of the unitarity check.
+
+    Returns:
+        ``[(data qubits, gate or matrix), ...]`` in time order (qubits renumbered; a matrix has its first qubit
+        most significant, as quimb's raw gates), or ``None`` if some block would exceed
+        :data:`MAX_BLOCK_DATA_QUBITS`.
+
+    Example:
+        >>> from circuitgen.circuit import Circuit, Section
+        >>> from circuitgen.gates import ccx, crx, h
+        >>> c = Circuit([("d", 3), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 3), crx(0.5, 3, 2), ccx(0, 1, 3)])])
+        >>> [(qs, getattr(op, "shape", None)) for qs, op in collapse_ancilla_blocks(c, [3])]
+        [((0, 1, 2), (8, 8))]
+    """
+    anc = set(ancillas)
+    data_index = {q: i for i, q in enumerate(q for q in range(circuit.num_qubits) if q not in anc)}
+    out: list[tuple[tuple[int, ...], Gate | np.ndarray]] = []
+    sections = list(circuit.sections)
+    i = 0
+    while i < len(sections):
+        gates = list(sections[i].gates)
+        i += 1
+        if not any(q in anc for g in gates for q in g[1]):
+            out.extend((tuple(data_index[q] for q in g[1]), g) for g in gates)
+            continue
+        while True:
+            touched = sorted({q for g in gates for q in g[1]})
+            data = [q for q in touched if q not in anc]
+            if len(data) > MAX_BLOCK_DATA_QUBITS:
+                return None
+            t = _block_operator(gates, data, [q for q in touched if q in anc])
+            if np.allclose(t.conj().T @ t, np.eye(t.shape[0]), atol=atol):
+                break
+            if i == len(sections):
+                return None
+            gates.extend(sections[i].gates)
+            i += 1
+        out.append((tuple(data_index[q] for q in data), t))
+    return out
+
+
 # ------------------------------------------------------------------------------------------------ simulation
 
 
@@ -343,6 +425,10 @@ class TensorCircuit:
         client: A ``dask.distributed.Client`` (see :func:`dask_client`): a contraction wider than ``max_width`` is
             then sliced by cotengra into pieces of at most ``2**max_width`` entries and the slices run on the
             cluster (:func:`contract_sliced`) instead of raising :class:`ContractionTooWideError`.
+        ancillas: Qubits that start in |0> and that the circuit returns to |0> block by block (``logic``,
+            ``work``): amplitudes are then contracted on the data qubits alone, each block that uses ancillas
+            contracted first into one verified-unitary operator (:func:`collapse_ancilla_blocks`); an amplitude
+            with an ancilla bit set is exactly 0. If a block cannot be collapsed, the full network is used.
 
     Example:
         >>> from circuitgen.circuit import Circuit, Section
@@ -362,6 +448,7 @@ class TensorCircuit:
         cache_dir: str | Path | None = None,
         max_width: float = DEFAULT_MAX_WIDTH,
         client: Any = None,
+        ancillas: Sequence[int] = (),
     ) -> None:
         self.circuit = _bound(circuit, bindings)
         self.num_qubits = self.circuit.num_qubits
@@ -370,19 +457,47 @@ class TensorCircuit:
         self.optimizer = optimizer if optimizer is not None else path_optimizer(cache_dir)
         self.max_width = max_width
         self.client = client
+        self.ancillas = tuple(sorted({int(q) for q in ancillas}))
         self._base: Any = None
+        self._data_qubits: tuple[int, ...] | None = None  # set when the ancilla blocks were collapsed
 
     # -- networks ------------------------------------------------------------------------------------------
+
+    def _collapsed_circuit(self) -> Any:
+        """The data-only quimb circuit of :func:`collapse_ancilla_blocks`, or ``None``."""
+        if not self.ancillas or any(self.psi0_bits[q] for q in self.ancillas):
+            return None
+        ops = collapse_ancilla_blocks(self.circuit, self.ancillas)
+        if ops is None:
+            return None
+        anc = set(self.ancillas)
+        data = tuple(q for q in range(self.num_qubits) if q not in anc)
+        psi0 = qtn.MPS_computational_state("".join(str(self.psi0_bits[q]) for q in data), dtype="complex128")
+        qc = qtn.Circuit(len(data), psi0=psi0, gate_contract=False)
+        for qubits, op in ops:
+            if isinstance(op, np.ndarray):
+                qc.apply_gate_raw(op, qubits)
+            else:
+                _apply(qc, op._replace(qubits=qubits))
+        self._data_qubits = data
+        return qc
 
     def _base_state(self) -> Any:
         """``U|psi0>`` simplified once with every output index kept (copy before modifying)."""
         if self._base is None:
-            self._base = self.quimb.get_psi_simplified(seq=_SIMPLIFY, atol=_ATOL)
+            qc = self._collapsed_circuit()
+            self._base = (qc if qc is not None else self.quimb).get_psi_simplified(seq=_SIMPLIFY, atol=_ATOL)
         return self._base
 
     def _amplitude_network(self, state: BasisState) -> Any:
+        """The closed network of ``<state|U|psi0>``, or ``None`` when it is exactly 0 (an ancilla bit set)."""
         bits = state_bits(state, self.num_qubits)
-        tn = self._base_state().copy()
+        base = self._base_state()
+        if self._data_qubits is not None:
+            if any(bits[q] for q in self.ancillas):
+                return None
+            bits = tuple(bits[q] for q in self._data_qubits)
+        tn = base.copy()
         tn.isel_({tn.site_ind(i): b for i, b in enumerate(bits)})
         tn.astype_("complex128")
         return tn
@@ -412,14 +527,14 @@ class TensorCircuit:
             out[q] = b
         return out
 
-    def _tree(self, tn: Any) -> tuple[Any, ContractionInfo]:
+    def _tree(self, tn: Any, output_inds: Sequence[str] = ()) -> tuple[Any, ContractionInfo]:
         t0 = time.perf_counter()
         if tn.num_tensors <= 1:
             info = ContractionInfo(0.0, 0.0, tn.num_tensors, time.perf_counter() - t0)
             return None, info
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "Couldn't import kahypar" at every new search
-            tree = tn.contraction_tree(output_inds=(), optimize=self.optimizer)
+            tree = tn.contraction_tree(output_inds=tuple(output_inds), optimize=self.optimizer)
         info = ContractionInfo(
             float(tree.contraction_width()),
             float(math.log10(max(float(tree.contraction_cost()), 1.0))),
@@ -429,6 +544,8 @@ class TensorCircuit:
         return tree, info
 
     def _contract(self, tn: Any) -> complex:
+        if tn is None:
+            return 0j
         tree, info = self._tree(tn)
         if info.width > self.max_width and self.client is not None:
             return contract_sliced(tn, tree, target_size=2 ** int(self.max_width), client=self.client)
@@ -458,18 +575,79 @@ class TensorCircuit:
         """
         return self._contract(self._amplitude_network(state))
 
-    def amplitudes(self, states: Iterable[BasisState]) -> np.ndarray:
+    def amplitudes(self, states: Iterable[BasisState], open_qubits: Sequence[int] = ()) -> np.ndarray:
         """:meth:`amplitude` of each state (the contraction path is found once and reused).
+
+        Args:
+            states: Basis states.
+            open_qubits: Contract with these qubits' output indices left open: one contraction then gives the
+                ``2**len(open_qubits)`` amplitudes of all states that agree on the other qubits (e.g. the last
+                robot's data qubits: one contraction per assignment of the other robots). A group whose open
+                contraction would exceed ``max_width`` falls back to one contraction per state.
 
         Returns:
             complex128 array, one entry per state.
+
+        Example:
+            >>> from circuitgen.circuit import Circuit, Section
+            >>> from circuitgen.gates import cx, h
+            >>> tc = TensorCircuit(Circuit([("q", 3)], [Section("s", [h(0), cx(0, 1), h(2)])]))
+            >>> bool(np.allclose(tc.amplitudes([0, 3, 7, 4], open_qubits=[2]), tc.amplitudes([0, 3, 7, 4])))
+            True
         """
-        return np.array([self.amplitude(s) for s in states], dtype=np.complex128)
+        states = list(states)
+        if not open_qubits:
+            return np.array([self.amplitude(st) for st in states], dtype=np.complex128)
+        opened = [int(q) for q in open_qubits]
+        if set(opened) & set(self.ancillas) or len(set(opened)) != len(opened):
+            raise ValueError(f"open_qubits must be distinct non-ancilla qubits, got {opened}")
+        out = np.zeros(len(states), dtype=np.complex128)
+        groups: dict[tuple[int, ...], list[tuple[int, tuple[int, ...]]]] = {}
+        for k, st in enumerate(states):
+            bits = state_bits(st, self.num_qubits)
+            key = tuple(0 if q in opened else b for q, b in enumerate(bits))
+            groups.setdefault(key, []).append((k, bits))
+        for key, members in groups.items():
+            block = self._open_block(key, opened)
+            for k, bits in members:
+                if block is None:
+                    out[k] = self.amplitude(bits)
+                elif not isinstance(block, str):
+                    out[k] = block[tuple(bits[q] for q in opened)]
+        return out
+
+    def _open_block(self, key: tuple[int, ...], opened: list[int]) -> Any:
+        """Amplitudes over the open qubits with the others fixed to ``key``: an array, ``'zero'`` (an ancilla bit
+        is set), or ``None`` (too wide: contract state by state)."""
+        base = self._base_state()
+        where = {q: q for q in range(self.num_qubits)}
+        if self._data_qubits is not None:
+            if any(key[q] for q in self.ancillas):
+                return "zero"
+            where = {q: i for i, q in enumerate(self._data_qubits)}
+        tn = base.copy()
+        inds = [tn.site_ind(where[q]) for q in opened]
+        # fix the other outputs by attaching basis vectors, not by selecting and simplifying again: the network
+        # then has the same structure for every key and one cached path serves them all (re-simplifying after
+        # the selection gave a different network per key: a new path search each, 2-50 s at 38 qubits, p = 2)
+        for q, b in enumerate(key):
+            if q in where and q not in opened:
+                tn.add_tensor(qtn.Tensor(np.eye(2, dtype=np.complex128)[b], inds=(tn.site_ind(where[q]),)))
+        tn.astype_("complex128")
+        tree, info = self._tree(tn, inds)
+        if info.width > self.max_width:
+            return None
+        value = tn.contract(all, output_inds=inds, optimize=tree) if tree is not None else tn.contract(all)
+        if isinstance(value, qtn.Tensor):
+            return value.transpose(*inds).data
+        return np.asarray(value).reshape((2,) * len(inds))
 
     def rehearse_amplitude(self, state: BasisState = 0) -> ContractionInfo:
         """Simplify and find (and cache) the path of one amplitude without contracting it."""
         t0 = time.perf_counter()
         tn = self._amplitude_network(state)
+        if tn is None:
+            return ContractionInfo(0.0, 0.0, 0, time.perf_counter() - t0)
         _, info = self._tree(tn)
         return ContractionInfo(info.width, info.log10_flops, info.num_tensors, time.perf_counter() - t0)
 

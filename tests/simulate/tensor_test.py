@@ -90,3 +90,39 @@ def test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one(tmp_
 def test_validate_cli_rejects_dask_without_the_tensor_backend() -> None:
     res = CliRunner().invoke(app, ["validate", str(EXAMPLE), "--backend", "sparse", "--dask", "local"])
     assert res.exit_code == 2 and "--dask" in res.stderr and len(res.stderr.strip().splitlines()) == 1
+
+
+# --- ancilla blocks collapsed, open-qubit batches ----------------------------------------------------------------
+def test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes(tmp_path: Path) -> None:
+    import numpy as np
+
+    from circuitgen.compile import compile_scenario
+    from simulate.statevector import simulate_statevector
+    from simulate.tensor import TensorCircuit, collapse_ancilla_blocks
+
+    s = default_scenario(2, 3, 2)
+    angles = {"gamma_0": 0.4, "beta_0": 0.9, "gamma_1": 0.3, "beta_1": 1.2}
+    c = compile_scenario(s, 2, lowered=True, bindings=angles).circuit
+    n = s.num_variables
+    ancillas = list(range(n, c.num_qubits))
+    ops = collapse_ancilla_blocks(c, ancillas)
+    assert ops is not None and any(isinstance(op, np.ndarray) for _, op in ops)
+    dense = simulate_statevector(c)
+    states = [int(k) for k in np.argsort(-np.abs(dense))[:40]] + [1 << n]  # the last one has an ancilla set
+    tc = TensorCircuit(c, cache_dir=tmp_path, ancillas=ancillas)
+    np.testing.assert_allclose(tc.amplitudes(states), dense[states], atol=1e-10)
+    opened = list(range(n - s.edges_per_robot, n))
+    np.testing.assert_allclose(tc.amplitudes(states, open_qubits=opened), dense[states], atol=1e-10)
+
+
+def test_a_block_that_leaves_an_ancilla_dirty_is_not_collapsed() -> None:
+    from circuitgen.circuit import Circuit, Section
+    from circuitgen.gates import ccx, h
+    from simulate.tensor import collapse_ancilla_blocks
+
+    leaky = Circuit([("d", 2), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 2)])])  # no uncompute
+    assert collapse_ancilla_blocks(leaky, [2]) is None
+    # a later section that uncomputes makes the pair one clean block
+    fixed = Circuit([("d", 2), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 2)]), Section("t", [ccx(0, 1, 2)])])
+    [(qubits, op)] = collapse_ancilla_blocks(fixed, [2])
+    assert qubits == (0, 1) and op.shape == (4, 4)
