@@ -340,7 +340,8 @@ def validate(
 
 def _open_qubits(scenario: Scenario) -> list[int]:
     """Data qubits left open in each exact contraction: the last robot's (one contraction per assignment of the
-    other robots, measured 0.01-1 s each at 38 qubits), or every data qubit of a small single-robot scenario."""
+    other robots: 0.01 s each at 38 qubits p = 1, 3-6 s at p = 2), or every data qubit of a small single-robot
+    scenario."""
     n, per = scenario.num_variables, scenario.edges_per_robot
     if scenario.num_robots > 1:
         return list(range(n - per, n))
