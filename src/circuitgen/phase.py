@@ -1,10 +1,21 @@
-"""The phase separator ``exp(-i gamma (C - c0))`` from the exact Ising Hamiltonian.
+"""The phase separator: ``exp(-i gamma (C - K))`` on every state the QAOA circuit can hold.
 
-``C = c0 + sum_i h_i Z_i + sum_{i<j} J_ij Z_i Z_j`` is diagonal, so its exponential is a product of
-``RZ(2 gamma h_i)`` on each qubit (``RZ(t) = exp(-i t Z / 2)``) and ``RZZ(2 gamma J_ij)`` on each coupled pair;
-the constant ``c0`` is a global phase and emits nothing. Zero coefficients emit nothing either.
+Two representations of the cost ``C``:
 
-Order: the RZ gates by qubit, then the RZZ gates row-major by ``(i, j)``; all of them commute.
+* ``whole-space`` -- the exact Ising Hamiltonian ``C = c0 + sum h_i Z_i + sum J_ij Z_i Z_j``
+  (:func:`gridcover.hamiltonian.ising_hamiltonian`): ``RZ(2 gamma h_i)`` on each qubit and ``RZZ(2 gamma J_ij)``
+  on each coupled pair (:func:`phase_separator_gates`), ``K = c0``. Exact on every bit string; its balance
+  term couples every edge of two robots, so it costs ``O((re)^2)`` CX.
+* ``feasible`` (default) -- :func:`gridcover.feasible_cost.feasible_cost`, exact on every feasible assignment
+  (the only states the constrained mixer ever produces). Each term group gets the cheapest exact construction
+  for the target (:func:`phase_plan`): the linear part as RZ gates, each node that several robots can pass as
+  visit bits (:class:`~circuitgen.gadgets.phase_visits.VisitPhase`) or couplings, the balance term as
+  arithmetic on path-length registers (:class:`~circuitgen.gadgets.phase_sums.SumsPhase`) or couplings, and on
+  the ``ft`` target equal-angle rotations merged by Hamming-weight phasing. ``O(re log re)`` CX.
+
+Cost models (:func:`score`): ``nisq`` minimises CX, then rotations; ``ft`` minimises T gates with an AND
+at 4 T (its uncompute 0 T: measurement-based), a Toffoli at 7 T and an arbitrary rotation at
+:data:`ROTATION_T_COST` T, then CX.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -14,17 +25,38 @@ Example:
     >>> gates = phase_separator_gates(ising_hamiltonian(s), "gamma_0")
     >>> sorted({g.name for g in gates}), str(gates[0].params[0])
     (['rz', 'rzz'], '1.0*gamma_0')
+    >>> from gridcover.presets import default_scenario
+    >>> plan = phase_plan(default_scenario(4, 4, 2))
+    >>> plan.cost().cx < phase_plan(default_scenario(4, 4, 2), representation="whole-space").cost().cx
+    True
 """
 
 from __future__ import annotations
 
-from gridcover.hamiltonian import IsingHamiltonian
+from dataclasses import dataclass
+from typing import Literal
+
+from gridcover.feasible_cost import SumsGroup, VisitGroup, feasible_cost
+from gridcover.hamiltonian import IsingHamiltonian, ising_hamiltonian
+from gridcover.scenario import Scenario
 
 from .angles import Angle
+from .cost import TARGETS, Cost, Target
+from .gadgets import Gadget
+from .gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
+from .gadgets.phase_sums import SumsPhase
+from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
 
-#: Coefficients smaller than this (absolute) are treated as zero: they only arise from float round-off.
-COEFFICIENT_TOLERANCE = 1e-12
+__all__ = [
+    "COEFFICIENT_TOLERANCE",
+    "ROTATION_T_COST",
+    "PhasePlan",
+    "ft_t_count",
+    "phase_plan",
+    "phase_separator_gates",
+    "score",
+]
 
 
 def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset: int = 0) -> list[Gate]:
@@ -45,3 +77,277 @@ def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset
         for i, j, jij in hamiltonian.quadratic_terms(tol)
     ]
     return out
+
+
+# ----------------------------------------------------------------------------- plans
+
+ROTATION_T_COST = 30
+"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
+Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
+the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
+
+Representation = Literal["feasible", "whole-space"]
+Optimize = Literal["cx", "depth"]
+
+
+def ft_t_count(logical: Cost) -> int:
+    """T count of a logical cost in the ``ft`` model: AND 4, its uncompute 0, Toffoli 7, T 1, rotation
+    :data:`ROTATION_T_COST`."""
+    return 4 * logical["and"] + 7 * logical["ccx"] + logical.t + ROTATION_T_COST * logical.rotations
+
+
+def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
+    """Sort key of a construction under the target's cost model (smaller is cheaper)."""
+    if target == "ft":
+        return (ft_t_count(logical), cost.cx, cost.total)
+    return (cost.cx, cost.rotations, cost.total)
+
+
+def _summary(cost: Cost, logical: Cost) -> dict[str, int]:
+    return {"cx": cost.cx, "rotations": cost.rotations, "t_ft": ft_t_count(logical)}
+
+
+def _coupling_cost(products: int) -> Cost:
+    """Estimated price of ``products`` extra couplings: one RZZ each (their linear parts land on qubits that
+    carry an RZ anyway)."""
+    return Cost.of(cx=2 * products, rz=products)
+
+
+@dataclass(frozen=True, eq=False)
+class PhasePlan:
+    """The phase separator of one scenario: which construction implements which term group.
+
+    Build it with :func:`phase_plan`. On every feasible assignment ``x`` (every bit string for ``whole-space``)
+    the gadgets, in order, apply ``exp(-i gamma (C(x) - reference_constant))`` and return every ancilla to
+    |0> (on every input).
+
+    Attributes:
+        num_ancillas: Clean ancillas the gadgets need (reused by each gadget in turn).
+        reference_constant: ``K`` above.
+        representation, target, optimize: As requested.
+    """
+
+    num_ancillas: int
+    reference_constant: float
+    representation: Representation
+    target: Target
+    optimize: Optimize
+    num_variables: int
+    _data_linear: tuple[tuple[int, float], ...]
+    _data_couplings: tuple[tuple[int, int, float], ...]
+    _hamming: tuple[tuple[float, tuple[int, ...]], ...]
+    _visits: tuple[VisitGroup, ...]
+    _sums: tuple[SumsGroup, ...]
+    _explain: tuple[dict, ...]
+
+    def gadgets(self, gamma: str, data_offset: int = 0, ancilla_offset: int | None = None) -> tuple[Gadget, ...]:
+        """The gadgets, each meant for its own section.
+
+        Args:
+            gamma: The layer's symbol name (e.g. ``"gamma_0"``).
+            data_offset: Qubit of variable 0.
+            ancilla_offset: First of :attr:`num_ancillas` clean ancillas (default: right after the data).
+
+        Returns:
+            The gadgets in application order (all diagonal, so any order gives the same operator).
+        """
+        d = data_offset
+        a0 = d + self.num_variables if ancilla_offset is None else ancilla_offset
+        anc = tuple(range(a0, a0 + self.num_ancillas))
+        out: list[Gadget] = []
+        if self._data_linear or self._data_couplings:
+            out.append(
+                IsingPhase(
+                    gamma,
+                    tuple((d + i, v) for i, v in self._data_linear),
+                    tuple((d + i, d + j, v) for i, j, v in self._data_couplings),
+                )
+            )
+        for coeff, qs in self._hamming:
+            out.append(SumsPhase(gamma, (tuple((d + q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
+        for grp in self._visits:
+            out.append(VisitPhase(gamma, grp.coefficient, tuple(tuple(d + q for q in v) for v in grp.visitors), anc))
+        for grp in self._sums:
+            forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
+            out.append(SumsPhase(gamma, forms, grp.matrix, (0.0,) * len(forms), anc))
+        return tuple(out)
+
+    def cost(self) -> Cost:
+        """Lowered cost of all gadgets (no gate is emitted)."""
+        return Cost.sum(g.cost() for g in self.gadgets("gamma"))
+
+    def logical_cost(self) -> Cost:
+        """The same with ANDs kept whole (the fault-tolerant view)."""
+        return Cost.sum(g.logical_cost() for g in self.gadgets("gamma"))
+
+    def explain(self) -> list[dict]:
+        """Per term group: ``group``, chosen ``construction``, its ``cost`` (``cx``, ``rotations``, ``t_ft``),
+        ``alternatives`` (construction -> the same figures) and ``count`` (groups of that kind)."""
+        return [dict(row) for row in self._explain]
+
+
+def phase_plan(
+    scenario: Scenario,
+    *,
+    target: Target = "nisq",
+    representation: Representation = "feasible",
+    optimize: Optimize = "cx",
+) -> PhasePlan:
+    """Choose the phase separator's constructions for a scenario.
+
+    Args:
+        scenario: The scenario.
+        target: ``nisq`` (minimise CX) or ``ft`` (minimise T, rotations priced at :data:`ROTATION_T_COST`).
+        representation: ``feasible`` (exact on feasible assignments, cheap) or ``whole-space`` (the exact Ising
+            Hamiltonian, today's RZ/RZZ circuit).
+        optimize: ``cx`` (cheapest under the target) or ``depth`` (couplings only: shallow RZZ layers, no
+            arithmetic).
+
+    Returns:
+        The :class:`PhasePlan`.
+
+    Raises:
+        ValueError: for an unknown option.
+    """
+    if target not in TARGETS:
+        raise ValueError(f"unknown target {target!r}; expected one of {', '.join(TARGETS)}")
+    if representation not in ("feasible", "whole-space"):
+        raise ValueError(f"unknown representation {representation!r}; expected feasible or whole-space")
+    if optimize not in ("cx", "depth"):
+        raise ValueError(f"unknown optimize {optimize!r}; expected cx or depth")
+    if representation == "whole-space":
+        return _whole_space_plan(scenario, target, optimize)
+    return _feasible_plan(scenario, target, optimize)
+
+
+def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) -> PhasePlan:
+    ham = ising_hamiltonian(scenario)
+    tol = COEFFICIENT_TOLERANCE
+    lin = tuple(ham.linear_terms(tol))
+    quad = tuple(ham.quadratic_terms(tol))
+    g = IsingPhase("gamma", lin, quad)
+    row = {"group": "whole-space Ising", "construction": "couplings", "count": 1,
+           "cost": _summary(g.cost(), g.logical_cost()), "alternatives": {}}  # fmt: skip
+    return PhasePlan(0, ham.c0, "whole-space", target, optimize, scenario.num_variables, lin, quad, (), (), (), (row,))
+
+
+def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize) -> PhasePlan:
+    fc = feasible_cost(scenario)
+    n = fc.num_variables
+    lin: dict[int, float] = dict(fc.linear)
+    quad: dict[tuple[int, int], float] = {}
+    rows: list[dict] = []
+    ancillas = 0
+    const = fc.constant
+
+    def better(a: tuple[Cost, Cost], b: tuple[Cost, Cost]) -> bool:
+        return score(a[0], a[1], target) <= score(b[0], b[1], target)
+
+    # node visits
+    chosen_visits: list[VisitGroup] = []
+    v_rows: dict[str, list] = {"visit bits": [0, Cost(), Cost()], "couplings": [0, Cost(), Cost()]}
+    alt_tot = {"visit bits": [Cost(), Cost()], "couplings": [Cost(), Cost()]}
+    for grp in fc.visits:
+        gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 8)))
+        arith = (gad.cost(), gad.logical_cost())
+        prods = sum(len(a) * len(b) for i, a in enumerate(grp.visitors) for b in grp.visitors[i + 1 :])
+        coup = (_coupling_cost(prods), _coupling_cost(prods))
+        for name, c in (("visit bits", arith), ("couplings", coup)):
+            alt_tot[name][0] += c[0]
+            alt_tot[name][1] += c[1]
+        if optimize == "cx" and better(arith, coup):
+            chosen_visits.append(grp)
+            const += gad.constant
+            ancillas = max(ancillas, visit_ancillas(tuple(len(v) for v in grp.visitors)))
+            r = v_rows["visit bits"]
+        else:
+            q = grp.coefficient / 4
+            for i, a in enumerate(grp.visitors):
+                for b in grp.visitors[i + 1 :]:
+                    for e in a:
+                        for f in b:
+                            key = (e, f) if e < f else (f, e)
+                            quad[key] = quad.get(key, 0.0) + q
+            r = v_rows["couplings"]
+        r[0] += 1
+    if fc.visits:
+        used = [k for k, r in v_rows.items() if r[0]]
+        rows.append({
+            "group": "node visits", "count": len(fc.visits),
+            "construction": " + ".join(f"{k} ({v_rows[k][0]})" for k in used),
+            "alternatives": {f"all {k}": _summary(*alt_tot[k]) for k in alt_tot},
+        })  # fmt: skip
+    # squared sums (balance)
+    chosen_sums: list[SumsGroup] = []
+    for grp in fc.sums:
+        sizes = [len(f) for f in grp.forms]
+        m = grp.matrix
+        prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(len(sizes)) if abs(m[a][a]) > 0) + sum(
+            sizes[a] * sizes[b] for a in range(len(sizes)) for b in range(a + 1, len(sizes)) if abs(m[a][b]) > 0
+        )
+        coup = (_coupling_cost(prods), _coupling_cost(prods))
+        alts = {"couplings": _summary(*coup)}
+        arith_ok = grp.integral
+        if arith_ok:
+            forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
+            gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
+            arith = (gad.cost(), gad.logical_cost())
+            alts["arithmetic"] = _summary(*arith)
+        if arith_ok and optimize == "cx" and better(arith, coup):
+            chosen_sums.append(grp)
+            const += gad.constant
+            ancillas = max(ancillas, gad.num_ancillas)
+            choice, c = "arithmetic", arith
+        else:
+            el, eq = grp.expanded()
+            for i, v in el.items():
+                lin[i] = lin.get(i, 0.0) + v
+            for k, v in eq.items():
+                quad[k] = quad.get(k, 0.0) + v
+            choice, c = "couplings", coup
+        row_alts = {k: v for k, v in alts.items() if k != choice}
+        note = "" if grp.integral else " (non-integer lengths: couplings only)"
+        rows.append({"group": grp.name + note, "count": 1, "construction": choice,
+                     "cost": _summary(*c), "alternatives": row_alts})  # fmt: skip
+    # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
+    hamming: list[tuple[float, tuple[int, ...]]] = []
+    if target == "ft" and optimize == "cx":
+        coupled = {q for k in quad for q in k}
+        classes: dict[float, list[int]] = {}
+        for q, v in sorted(lin.items()):
+            if q not in coupled and abs(v) > COEFFICIENT_TOLERANCE:
+                classes.setdefault(round(v, 10), []).append(q)
+        hw_cost, hw_log, plain = Cost(), Cost(), 0
+        for qs in classes.values():
+            if len(qs) < 3:
+                continue
+            coeff = lin[qs[0]]
+            gad = SumsPhase("gamma", (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,))
+            alt = Cost.of(rz=len(qs))
+            if better((gad.cost(), gad.logical_cost()), (alt, alt)):
+                hamming.append((coeff, tuple(qs)))
+                const += gad.constant
+                for q in qs:
+                    del lin[q]
+                ancillas = max(ancillas, gad.num_ancillas)
+                hw_cost += gad.cost()
+                hw_log += gad.logical_cost()
+                plain += len(qs)
+        if hamming:
+            rows.append({"group": "equal-angle rotations", "count": len(hamming),
+                         "construction": "hamming-weight phasing", "cost": _summary(hw_cost, hw_log),
+                         "alternatives": {"rotations": _summary(Cost.of(rz=plain), Cost.of(rz=plain))}})  # fmt: skip
+    c0, h, j = ising_form(lin, quad)
+    const += c0
+    data_lin = tuple(sorted(h.items()))
+    data_quad = tuple(sorted((a, b, v) for (a, b), v in j.items()))
+    ising = IsingPhase("gamma", data_lin, data_quad)
+    rows.insert(0, {"group": "linear + couplings", "count": 1, "construction": "rz/rzz",
+                    "cost": _summary(ising.cost(), ising.logical_cost()), "alternatives": {}})  # fmt: skip
+    for r in rows:
+        if "cost" not in r:
+            r["cost"] = {}
+    return PhasePlan(
+        ancillas, const, "feasible", target, optimize, n, data_lin, data_quad,
+        tuple(hamming), tuple(chosen_visits), tuple(chosen_sums), tuple(rows),
+    )  # fmt: skip

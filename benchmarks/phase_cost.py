@@ -1,0 +1,82 @@
+"""Phase-separator cost per QAOA layer: today's whole-space RZ/RZZ circuit against the feasible-subspace plan.
+
+Run: ``PYTHONPATH=src python benchmarks/phase_cost.py`` (about a minute; ``--quick`` stops at 10x10). Prints one
+table (markdown) for the default scenarios (:func:`gridcover.presets.default_scenario`; 6 and 8 robots, which
+it does not place, go on the boundary, see :func:`boundary_scenario`):
+
+* ``today CX`` = 2 per nonzero coupling of :func:`gridcover.hamiltonian.ising_hamiltonian` (the whole-space
+  plan, exactly what ``circuitgen.phase.phase_separator_gates`` emits); ``ours CX`` = ``phase_plan(s).cost()``
+  (target ``nisq``); rotations likewise;
+* ``T (ft)``: T count of the layer's phase separator in the fault-tolerant model of
+  :func:`circuitgen.phase.ft_t_count` (AND 4 T, uncompute 0, rotation 30 T at eps = 1e-3), today's against the
+  ``ft`` plan;
+* ``ancillas``: clean ancillas the plan needs; ``plan s``: wall time of ``phase_plan(s).cost()``.
+
+Every figure is an exact count of lowered gates (``tests/circuitgen/phase_test.py`` checks ``cost()`` against
+the emitted, lowered gates).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from circuitgen.phase import ft_t_count, phase_plan
+from gridcover.grid import Grid
+from gridcover.presets import MAX_DEFAULT_ROBOTS, default_scenario
+from gridcover.scenario import Robot, Scenario
+
+POINTS = [(3, 3, 1), (4, 4, 2), (5, 5, 2), (6, 6, 3), (8, 8, 3), (10, 10, 4), (12, 12, 4), (16, 16, 6)]
+LARGE = (30, 30, 8)
+
+
+def boundary_scenario(rows: int, cols: int, robots: int) -> Scenario:
+    """``robots`` robots spread evenly on the boundary (clockwise from the top-left corner), each going to
+    the boundary node half-way round."""
+    ring = [(0, c) for c in range(cols)] + [(r, cols - 1) for r in range(1, rows)]
+    ring += [(rows - 1, c) for c in range(cols - 2, -1, -1)] + [(r, 0) for r in range(rows - 2, 0, -1)]
+    p = len(ring)
+    placed = tuple(Robot(ring[i * p // robots], ring[(i * p // robots + p // 2) % p]) for i in range(robots))
+    return Scenario(Grid(rows, cols), placed, name=f"boundary {rows}x{cols}, {robots} robot(s)")
+
+
+def scenario(rows: int, cols: int, robots: int) -> Scenario:
+    """The default scenario, or :func:`boundary_scenario` beyond the default placement's robots."""
+    if robots <= MAX_DEFAULT_ROBOTS:
+        return default_scenario(rows, cols, robots)
+    return boundary_scenario(rows, cols, robots)
+
+
+def main(argv: list[str]) -> int:
+    points = [p for p in POINTS if not ("--quick" in argv and p[0] > 10)]
+    print("| grid | robots | today CX | ours CX | ratio | today rot. | ours rot. | today T (ft) | ours T (ft) "
+          "| T ratio | ancillas | plan s |")  # fmt: skip
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for rows, cols, robots in points:
+        s = scenario(rows, cols, robots)
+        whole = phase_plan(s, representation="whole-space")
+        wc, wl = whole.cost(), whole.logical_cost()
+        t0 = time.perf_counter()
+        plan = phase_plan(s)
+        oc = plan.cost()
+        dt = time.perf_counter() - t0
+        ft = phase_plan(s, target="ft")
+        tw, to = ft_t_count(wl), ft_t_count(ft.logical_cost())
+        print(
+            f"| {rows}x{cols} | {robots} | {wc.cx:,} | {oc.cx:,} | {oc.cx / max(wc.cx, 1):.3f} | {wc.rotations:,} | "
+            f"{oc.rotations:,} | {tw:,} | {to:,} | {to / max(tw, 1):.4f} | {plan.num_ancillas} | {dt:.2f} |"
+        )
+    if "--quick" not in argv:
+        rows, cols, robots = LARGE
+        s = scenario(rows, cols, robots)
+        t0 = time.perf_counter()
+        oc = phase_plan(s).cost()
+        dt = time.perf_counter() - t0
+        print()
+        print(f"{rows}x{cols}, {robots} robots ({s.num_variables:,} variables): ours {oc.cx:,} CX, "
+              f"{oc.rotations:,} rotations; phase_plan(...).cost() in {dt:.2f} s (whole-space not built)")  # fmt: skip
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
