@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from circuitgen.phase import phase_plan
 from gridcover.cost import cost, separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
@@ -118,7 +119,7 @@ CASES = [
 
 @pytest.mark.parametrize(("name", "s", "angles"), CASES, ids=[c[0] for c in CASES])
 def test_matches_dense_reference(name: str, s: Scenario, angles: list[float]) -> None:
-    q = SubspaceQAOA(s)
+    q = SubspaceQAOA(s, phase_offset="whole-space")  # the dense reference phases with the Ising Hamiltonian
     ref = dense_reference(s, angles)
     sub = subspace_as_dense(q, angles)
     assert np.abs(sub - ref).max() < 1e-10
@@ -267,7 +268,7 @@ def test_norm_is_preserved() -> None:
 def test_beta_zero_only_phases_the_initial_path(offset: float | None) -> None:
     s = SINGLE_3x3
     q = SubspaceQAOA(s, phase_offset=offset)
-    off = ising_hamiltonian(s).c0 if offset is None else offset
+    off = phase_plan(s).reference_constant if offset is None else offset
     assert q.phase_offset == off
     gamma = 0.37
     psi = q.state([gamma, 0.0])
@@ -471,3 +472,12 @@ def test_doctests() -> None:
 
     result = doctest.testmod(simulate.subspace)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_phase_offset_names_the_compiled_representation() -> None:
+    s = TWO_2x3
+    assert SubspaceQAOA(s, phase_offset="whole-space").phase_offset == ising_hamiltonian(s).c0
+    assert SubspaceQAOA(s, phase_offset="feasible").phase_offset == phase_plan(s).reference_constant
+    assert SubspaceQAOA(s).phase_offset == phase_plan(s).reference_constant
+    with pytest.raises(ValueError, match="phase_offset"):
+        SubspaceQAOA(s, phase_offset="half")  # type: ignore[arg-type]
