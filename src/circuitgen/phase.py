@@ -36,7 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-from gridcover.feasible_cost import SumsGroup, VisitGroup, feasible_cost
+from gridcover.feasible_cost import FeasibleCost, SumsGroup, VisitGroup, feasible_cost
 from gridcover.hamiltonian import IsingHamiltonian, ising_hamiltonian
 from gridcover.scenario import Scenario
 
@@ -44,7 +44,7 @@ from .angles import Angle
 from .cost import TARGETS, Cost, Target
 from .gadgets import Gadget
 from .gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
-from .gadgets.phase_sums import SumsPhase
+from .gadgets.phase_sums import SumsPhase, SumsRegister
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
 
@@ -113,6 +113,34 @@ def _coupling_cost(products: int) -> Cost:
     return Cost.of(cx=2 * products, rz=products)
 
 
+EXACT_EXPANSION_LIMIT = 30_000
+"""A balance group with at most this many products is expanded to price its couplings exactly (products that
+merge with others' or cancel cost nothing); larger ones are priced at one coupling per product."""
+
+
+def _visit_products(grp: VisitGroup) -> dict[tuple[int, int], float]:
+    """``y_a y_b = (sum E_a)(sum E_b) / 4`` as products of edge bits."""
+    q = grp.coefficient / 4
+    out: dict[tuple[int, int], float] = {}
+    for i, a in enumerate(grp.visitors):
+        for b in grp.visitors[i + 1 :]:
+            for e in a:
+                for f in b:
+                    key = (e, f) if e < f else (f, e)
+                    out[key] = out.get(key, 0.0) + q
+    return out
+
+
+def _new_couplings(quad: dict[tuple[int, int], float], extra: dict[tuple[int, int], float]) -> int:
+    """How many couplings adding ``extra`` to ``quad`` creates (net of those it cancels)."""
+    tol = COEFFICIENT_TOLERANCE
+    delta = 0
+    for k, v in extra.items():
+        old = quad.get(k, 0.0)
+        delta += (abs(old + v) > tol) - (abs(old) > tol)
+    return max(delta, 0)
+
+
 @dataclass(frozen=True, eq=False)
 class PhasePlan:
     """The phase separator of one scenario: which construction implements which term group.
@@ -137,7 +165,7 @@ class PhasePlan:
     _data_couplings: tuple[tuple[int, int, float], ...]
     _hamming: tuple[tuple[float, tuple[int, ...]], ...]
     _visits: tuple[VisitGroup, ...]
-    _sums: tuple[SumsGroup, ...]
+    _sums: tuple[tuple[SumsGroup, str], ...]
     _explain: tuple[dict, ...]
 
     def gadgets(self, gamma: str, data_offset: int = 0, ancilla_offset: int | None = None) -> tuple[Gadget, ...]:
@@ -167,9 +195,12 @@ class PhasePlan:
             out.append(SumsPhase(gamma, (tuple((d + q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
         for grp in self._visits:
             out.append(VisitPhase(gamma, grp.coefficient, tuple(tuple(d + q for q in v) for v in grp.visitors), anc))
-        for grp in self._sums:
+        for grp, variant in self._sums:
             forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
-            out.append(SumsPhase(gamma, forms, grp.matrix, (0.0,) * len(forms), anc))
+            if variant == "registers":
+                out.extend(_register_gadgets(gamma, forms, grp.matrix, anc))
+            else:
+                out.append(SumsPhase(gamma, forms, grp.matrix, (0.0,) * len(forms), anc))
         return tuple(out)
 
     def cost(self) -> Cost:
@@ -192,6 +223,7 @@ def phase_plan(
     target: Target = "nisq",
     representation: Representation = "feasible",
     optimize: Optimize = "cx",
+    ancilla_budget: int | None = None,
 ) -> PhasePlan:
     """Choose the phase separator's constructions for a scenario.
 
@@ -202,6 +234,9 @@ def phase_plan(
             Hamiltonian, today's RZ/RZZ circuit).
         optimize: ``cx`` (cheapest under the target) or ``depth`` (couplings only: shallow RZZ layers, no
             arithmetic).
+        ancilla_budget: Most clean ancillas the plan may use (``None``: no limit). Constructions that need more
+            are not considered; the balance term then tries its register variant (one tree at a time, the
+            sums held in small registers: about twice the arithmetic's CX), then couplings.
 
     Returns:
         The :class:`PhasePlan`.
@@ -215,9 +250,49 @@ def phase_plan(
         raise ValueError(f"unknown representation {representation!r}; expected feasible or whole-space")
     if optimize not in ("cx", "depth"):
         raise ValueError(f"unknown optimize {optimize!r}; expected cx or depth")
+    if ancilla_budget is not None and (not isinstance(ancilla_budget, int) or ancilla_budget < 0):
+        raise ValueError(f"ancilla_budget must be a non-negative integer or None, got {ancilla_budget!r}")
     if representation == "whole-space":
         return _whole_space_plan(scenario, target, optimize)
-    return _feasible_plan(scenario, target, optimize)
+    return _feasible_plan(scenario, target, optimize, ancilla_budget)
+
+
+def _register_gadgets(
+    gamma: str, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
+    anc: tuple[int, ...],
+) -> list[Gadget]:
+    """The register variant of a sums group: copy each sum into a register (one tree at a time), phase the
+    registers, clear them again (the same gadgets in reverse order)."""
+    whole = SumsPhase(gamma, forms, matrix, (0.0,) * len(forms))
+    regs: list[SumsRegister] = []
+    registers: list[list[int | None]] = []
+    nxt = 0
+    active = [f for f, on in zip(forms, whole._active) if on]
+    widths = [SumsRegister(f, ()).width for f in active]
+    pool = anc[sum(widths) :]
+    for f, on in zip(forms, whole._active):
+        if not on:
+            registers.append([])
+            continue
+        present = SumsRegister(f, ())._count[3]
+        row: list[int | None] = []
+        qubits = []
+        for p in present:
+            if p:
+                row.append(anc[nxt])
+                qubits.append(anc[nxt])
+                nxt += 1
+            else:
+                row.append(None)
+        registers.append(row)
+        regs.append(SumsRegister(f, tuple(qubits), pool))
+    _, phase = whole.phase(registers)
+    return [*regs, phase, *reversed(regs)]
+
+
+def _register_ancillas(forms: tuple[tuple[tuple[int, int], ...], ...], active: tuple[bool, ...]) -> int:
+    trees = [SumsRegister(f, ()) for f, on in zip(forms, active) if on]
+    return sum(t.width for t in trees) + max((t.num_ancillas for t in trees), default=0)
 
 
 def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) -> PhasePlan:
@@ -231,8 +306,66 @@ def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) ->
     return PhasePlan(0, ham.c0, "whole-space", target, optimize, scenario.num_variables, lin, quad, (), (), (), (row,))
 
 
-def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize) -> PhasePlan:
+def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budget: int | None) -> PhasePlan:
+    """Choose the balance construction by building the whole plan for each candidate (the couplings of the
+    balance and of the node visits overlap, so the groups are not independent), the rest greedily."""
     fc = feasible_cost(scenario)
+    balance: list[dict] = []
+    for grp in fc.sums:
+        balance.append(_sums_options(grp, fc.num_variables, optimize, budget))
+    # candidates: every combination is too many in general; there is one balance group at most
+    choices: list[tuple[str, ...]] = [()]
+    for opts in balance:
+        choices = [(*c, k) for c in choices for k in opts["options"]]
+    best: PhasePlan | None = None
+    best_key: tuple[int, ...] | None = None
+    for choice in choices:
+        plan = _assemble(fc, target, optimize, budget, balance, choice)
+        key = score(plan.cost(), plan.logical_cost(), target)
+        if best_key is None or key < best_key:
+            best, best_key = plan, key
+    assert best is not None
+    return best
+
+
+def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None) -> dict:
+    """The constructions a sums group may use, with their own costs and ancillas."""
+    sizes = [len(f) for f in grp.forms]
+    m = grp.matrix
+    prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(len(sizes)) if abs(m[a][a]) > 0) + sum(
+        sizes[a] * sizes[b] for a in range(len(sizes)) for b in range(a + 1, len(sizes)) if abs(m[a][b]) > 0
+    )
+    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": []}
+    out["costs"]["couplings"] = (_coupling_cost(prods), _coupling_cost(prods))
+    out["ancillas"]["couplings"] = 0
+    if grp.integral and optimize == "cx":
+        forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
+        gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
+        out["constant"] = gad.constant
+        out["costs"]["arithmetic"] = (gad.cost(), gad.logical_cost())
+        out["ancillas"]["arithmetic"] = gad.num_ancillas
+        reg_anc = _register_ancillas(forms, gad._active)
+        reg_gads = _register_gadgets("gamma", forms, m, tuple(range(n, n + reg_anc)))
+        out["costs"]["registers"] = (Cost.sum(g.cost() for g in reg_gads), Cost.sum(g.logical_cost() for g in reg_gads))
+        out["ancillas"]["registers"] = reg_anc
+        for k in ("arithmetic", "registers"):
+            if budget is None or out["ancillas"][k] <= budget:
+                out["options"].append(k)
+                if k == "arithmetic":
+                    break  # the register variant only pays off when the arithmetic does not fit
+    if prods <= EXACT_EXPANSION_LIMIT or not out["options"]:
+        out["options"].append("couplings")
+    return out
+
+
+def _assemble(
+    fc: FeasibleCost,
+    target: Target,
+    optimize: Optimize,
+    budget: int | None,
+    balance: list[dict],
+    choice: tuple[str, ...],
+) -> PhasePlan:
     n = fc.num_variables
     lin: dict[int, float] = dict(fc.linear)
     quad: dict[tuple[int, int], float] = {}
@@ -243,72 +376,59 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize) -> Ph
     def better(a: tuple[Cost, Cost], b: tuple[Cost, Cost]) -> bool:
         return score(a[0], a[1], target) <= score(b[0], b[1], target)
 
-    # node visits
-    chosen_visits: list[VisitGroup] = []
-    v_rows: dict[str, list] = {"visit bits": [0, Cost(), Cost()], "couplings": [0, Cost(), Cost()]}
-    alt_tot = {"visit bits": [Cost(), Cost()], "couplings": [Cost(), Cost()]}
-    for grp in fc.visits:
-        gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 8)))
-        arith = (gad.cost(), gad.logical_cost())
-        prods = sum(len(a) * len(b) for i, a in enumerate(grp.visitors) for b in grp.visitors[i + 1 :])
-        coup = (_coupling_cost(prods), _coupling_cost(prods))
-        for name, c in (("visit bits", arith), ("couplings", coup)):
-            alt_tot[name][0] += c[0]
-            alt_tot[name][1] += c[1]
-        if optimize == "cx" and better(arith, coup):
-            chosen_visits.append(grp)
-            const += gad.constant
-            ancillas = max(ancillas, visit_ancillas(tuple(len(v) for v in grp.visitors)))
-            r = v_rows["visit bits"]
-        else:
-            q = grp.coefficient / 4
-            for i, a in enumerate(grp.visitors):
-                for b in grp.visitors[i + 1 :]:
-                    for e in a:
-                        for f in b:
-                            key = (e, f) if e < f else (f, e)
-                            quad[key] = quad.get(key, 0.0) + q
-            r = v_rows["couplings"]
-        r[0] += 1
-    if fc.visits:
-        used = [k for k, r in v_rows.items() if r[0]]
-        rows.append({
-            "group": "node visits", "count": len(fc.visits),
-            "construction": " + ".join(f"{k} ({v_rows[k][0]})" for k in used),
-            "alternatives": {f"all {k}": _summary(*alt_tot[k]) for k in alt_tot},
-        })  # fmt: skip
-    # squared sums (balance)
-    chosen_sums: list[SumsGroup] = []
-    for grp in fc.sums:
-        sizes = [len(f) for f in grp.forms]
-        m = grp.matrix
-        prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(len(sizes)) if abs(m[a][a]) > 0) + sum(
-            sizes[a] * sizes[b] for a in range(len(sizes)) for b in range(a + 1, len(sizes)) if abs(m[a][b]) > 0
-        )
-        coup = (_coupling_cost(prods), _coupling_cost(prods))
-        alts = {"couplings": _summary(*coup)}
-        arith_ok = grp.integral
-        if arith_ok:
-            forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
-            gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
-            arith = (gad.cost(), gad.logical_cost())
-            alts["arithmetic"] = _summary(*arith)
-        if arith_ok and optimize == "cx" and better(arith, coup):
-            chosen_sums.append(grp)
-            const += gad.constant
-            ancillas = max(ancillas, gad.num_ancillas)
-            choice, c = "arithmetic", arith
-        else:
+    def fits(k: int) -> bool:
+        return budget is None or k <= budget
+
+    # squared sums (balance) first: their couplings, when chosen, make most visit couplings free
+    chosen_sums: list[tuple[SumsGroup, str]] = []
+    for grp, opts, pick in zip(fc.sums, balance, choice):
+        costs = dict(opts["costs"])
+        if pick == "couplings":
             el, eq = grp.expanded()
+            new = _new_couplings(quad, eq)
+            costs["couplings"] = (_coupling_cost(new), _coupling_cost(new))
             for i, v in el.items():
                 lin[i] = lin.get(i, 0.0) + v
             for k, v in eq.items():
                 quad[k] = quad.get(k, 0.0) + v
-            choice, c = "couplings", coup
-        row_alts = {k: v for k, v in alts.items() if k != choice}
+        else:
+            chosen_sums.append((grp, pick))
+            const += opts["constant"]
+            ancillas = max(ancillas, opts["ancillas"][pick])
         note = "" if grp.integral else " (non-integer lengths: couplings only)"
-        rows.append({"group": grp.name + note, "count": 1, "construction": choice,
-                     "cost": _summary(*c), "alternatives": row_alts})  # fmt: skip
+        rows.append({"group": grp.name + note, "count": 1, "construction": pick,
+                     "cost": _summary(*costs[pick]),
+                     "alternatives": {k: _summary(*c) for k, c in costs.items() if k != pick}})  # fmt: skip
+    # node visits
+    chosen_visits: list[VisitGroup] = []
+    v_rows: dict[str, int] = {"visit bits": 0, "couplings": 0}
+    alt_tot = {"visit bits": [Cost(), Cost()], "couplings": [Cost(), Cost()]}
+    for grp in fc.visits:
+        gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 8)))
+        arith = (gad.cost(), gad.logical_cost())
+        products = _visit_products(grp)
+        new = _new_couplings(quad, products)
+        coup = (_coupling_cost(new), _coupling_cost(new))
+        for name, c in (("visit bits", arith), ("couplings", coup)):
+            alt_tot[name][0] += c[0]
+            alt_tot[name][1] += c[1]
+        need = visit_ancillas(tuple(len(v) for v in grp.visitors))
+        if optimize == "cx" and fits(need) and better(arith, coup) and arith != coup:
+            chosen_visits.append(grp)
+            const += gad.constant
+            ancillas = max(ancillas, need)
+            v_rows["visit bits"] += 1
+        else:
+            for key, v in products.items():
+                quad[key] = quad.get(key, 0.0) + v
+            v_rows["couplings"] += 1
+    if fc.visits:
+        used = [k for k, r in v_rows.items() if r]
+        rows.append({
+            "group": "node visits", "count": len(fc.visits), "cost": {},
+            "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
+            "alternatives": {f"each by {k}": _summary(*alt_tot[k]) for k in alt_tot},
+        })  # fmt: skip
     # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
     hamming: list[tuple[float, tuple[int, ...]]] = []
     if target == "ft" and optimize == "cx":
@@ -316,22 +436,22 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize) -> Ph
         classes: dict[float, list[int]] = {}
         for q, v in sorted(lin.items()):
             if q not in coupled and abs(v) > COEFFICIENT_TOLERANCE:
-                classes.setdefault(round(v, 10), []).append(q)
+                classes.setdefault(round(v, 12), []).append(q)
         hw_cost, hw_log, plain = Cost(), Cost(), 0
         for qs in classes.values():
             if len(qs) < 3:
                 continue
             coeff = lin[qs[0]]
-            gad = SumsPhase("gamma", (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,))
+            hw = SumsPhase("gamma", (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,))
             alt = Cost.of(rz=len(qs))
-            if better((gad.cost(), gad.logical_cost()), (alt, alt)):
+            if fits(hw.num_ancillas) and better((hw.cost(), hw.logical_cost()), (alt, alt)):
                 hamming.append((coeff, tuple(qs)))
-                const += gad.constant
+                const += hw.constant
                 for q in qs:
                     del lin[q]
-                ancillas = max(ancillas, gad.num_ancillas)
-                hw_cost += gad.cost()
-                hw_log += gad.logical_cost()
+                ancillas = max(ancillas, hw.num_ancillas)
+                hw_cost += hw.cost()
+                hw_log += hw.logical_cost()
                 plain += len(qs)
         if hamming:
             rows.append({"group": "equal-angle rotations", "count": len(hamming),
@@ -344,9 +464,6 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize) -> Ph
     ising = IsingPhase("gamma", data_lin, data_quad)
     rows.insert(0, {"group": "linear + couplings", "count": 1, "construction": "rz/rzz",
                     "cost": _summary(ising.cost(), ising.logical_cost()), "alternatives": {}})  # fmt: skip
-    for r in rows:
-        if "cost" not in r:
-            r["cost"] = {}
     return PhasePlan(
         ancillas, const, "feasible", target, optimize, n, data_lin, data_quad,
         tuple(hamming), tuple(chosen_visits), tuple(chosen_sums), tuple(rows),

@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_ising import IsingPhase
-from circuitgen.gadgets.phase_sums import SumsPhase
+from circuitgen.gadgets.phase_sums import SumsPhase, SumsRegister
 from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
 from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.phase import ROTATION_T_COST, PhasePlan, phase_plan, phase_separator_gates
@@ -236,3 +236,38 @@ def test_sums_gadget_cost_and_exactness(g: SumsPhase) -> None:
 def test_ising_gadget_cost() -> None:
     g = IsingPhase("gamma_0", ((0, 0.5), (2, -1.0)), ((0, 1, 0.25), (1, 2, 2.0), (0, 2, -0.5)))
     assert _counts(g) == (g.cost(), g.logical_cost())
+
+
+@pytest.mark.parametrize("budget", [0, 4, 26, 31])
+def test_ancilla_budget_is_respected_and_exact(budget: int) -> None:
+    s = default_scenario(4, 4, 3) if budget > 26 else default_scenario(4, 4, 2)
+    plan = phase_plan(s, ancilla_budget=budget)
+    assert plan.num_ancillas <= budget
+    circ = lowered(plan, s.num_variables)
+    assert Cost.count(circ.gates) == plan.cost()
+    rng = random.Random(budget)
+    others = [[rng.randint(0, 1) for _ in range(s.num_variables)] for _ in range(3)]
+    check_states(s, plan, circ, sample_combos(s, 8, budget), others)
+    if budget == 31:  # the arithmetic needs 48: the register variant (one tree at a time) fits
+        assert any(r["construction"] == "registers" for r in plan.explain())
+
+
+@settings(max_examples=30, deadline=None)
+@given(weights=st.lists(st.integers(-5, 7).filter(bool), min_size=1, max_size=7))
+def test_sums_register_gadget(weights: list[int]) -> None:
+    form = tuple(enumerate(weights))
+    n = len(form)
+    probe = SumsRegister(form, ())
+    g = SumsRegister(form, tuple(range(n, n + probe.width)), tuple(range(n + probe.width, n + probe.width + 40)))
+    assert _counts(g) == (g.cost(), g.logical_cost())
+    c = lower(Circuit([("q", n + probe.width + probe.num_ancillas)], [Section("s", tuple(g.emit()))]))
+    for bits in itertools.islice(itertools.product((0, 1), repeat=n), 40):
+        idx = sum(b << i for i, b in enumerate(bits))
+        out = simulate_sparse(c, idx)
+        ((key, amp),) = [(k, a) for k, a in out.items() if abs(a) > TOL]
+        assert abs(amp - 1) < TOL and key & ((1 << n) - 1) == idx
+        assert key >> (n + probe.width) == 0  # tree ancillas clean
+        value = sum(abs(w) * (b ^ (w < 0)) for b, (_, w) in zip(bits, form))
+        reg = key >> n
+        cols = [k for k, p in enumerate(probe._count[3]) if p]
+        assert sum(((reg >> j) & 1) << k for j, k in enumerate(cols)) == value

@@ -32,7 +32,7 @@ Example:
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Hashable
+from collections.abc import Hashable, Iterator
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -77,6 +77,52 @@ def column_counts(weights: list[int]) -> tuple[int, int, int, tuple[bool, ...]]:
         present.append(n == 1)
         k += 1
     return fa, ha, copies, tuple(present)
+
+
+def popcount_layout(form: tuple[tuple[int, int], ...], ancillas: Iterator[int]) -> tuple[list[Gate], list[int | None]]:
+    """Gates computing ``sum |w| b`` of one form into one bit per column (steps 1-3 of the module docstring).
+
+    Args:
+        form: ``(qubit, integer weight)`` pairs.
+        ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
+
+    Returns:
+        ``(gates, register)``: ``register[k]`` is the qubit holding column ``k`` (``None``: column empty).
+    """
+    gates: list[Gate] = [x(q) for q, w in form if w < 0]
+    cols: dict[int, deque[int]] = {}
+    for q, w in form:
+        w, k, first = abs(w), 0, True
+        while w:
+            if w & 1:
+                if first:
+                    cols.setdefault(k, deque()).append(q)
+                    first = False
+                else:
+                    a = next(ancillas)
+                    gates.append(cx(q, a))
+                    cols.setdefault(k, deque()).append(a)
+            w >>= 1
+            k += 1
+    reg: list[int | None] = []
+    k = 0
+    while cols and k <= max(cols):
+        col = cols.get(k, deque())
+        while len(col) >= 3:
+            a, b, c = col.popleft(), col.popleft(), col.popleft()
+            t = next(ancillas)
+            gates += [cx(a, b), cx(a, c), and_(b, c, t), cx(a, t), cx(b, c), cx(a, c)]
+            col.append(c)
+            cols.setdefault(k + 1, deque()).append(t)
+        if len(col) == 2:
+            a, b = col.popleft(), col.popleft()
+            t = next(ancillas)
+            gates += [and_(a, b, t), cx(a, b)]
+            col.append(b)
+            cols.setdefault(k + 1, deque()).append(t)
+        reg.append(col[0] if col else None)
+        k += 1
+    return gates, reg
 
 
 @dataclass(frozen=True)
@@ -204,41 +250,8 @@ class SumsPhase:
             if not on:
                 registers.append([])
                 continue
-            for q, w in form:
-                if w < 0:
-                    gates.append(x(q))
-            cols: dict[int, deque[int]] = {}
-            for q, w in form:
-                w, k, first = abs(w), 0, True
-                while w:
-                    if w & 1:
-                        if first:
-                            cols.setdefault(k, deque()).append(q)
-                            first = False
-                        else:
-                            a = next(anc)
-                            gates.append(cx(q, a))
-                            cols.setdefault(k, deque()).append(a)
-                    w >>= 1
-                    k += 1
-            reg: list[int | None] = []
-            k = 0
-            while cols and k <= max(cols):
-                col = cols.get(k, deque())
-                while len(col) >= 3:
-                    a, b, c = col.popleft(), col.popleft(), col.popleft()
-                    t = next(anc)
-                    gates += [cx(a, b), cx(a, c), and_(b, c, t), cx(a, t), cx(b, c), cx(a, c)]
-                    col.append(c)
-                    cols.setdefault(k + 1, deque()).append(t)
-                if len(col) == 2:
-                    a, b = col.popleft(), col.popleft()
-                    t = next(anc)
-                    gates += [and_(a, b, t), cx(a, b)]
-                    col.append(b)
-                    cols.setdefault(k + 1, deque()).append(t)
-                reg.append(col[0] if col else None)
-                k += 1
+            g, reg = popcount_layout(form, anc)
+            gates += g
             registers.append(reg)
         return gates, registers
 
@@ -246,3 +259,62 @@ class SumsPhase:
         compute, registers = self._layout()
         _, ph = self.phase(registers)
         return [*compute, *ph.emit(), *(g.inverse() for g in reversed(compute))]
+
+
+@dataclass(frozen=True)
+class SumsRegister:
+    """Copy one form's sum into a clean register, leaving nothing else behind (Bennett's compute-copy-uncompute).
+
+    ``register[j]`` receives (XOR) column ``k`` of the sum for the ``j``-th nonempty column ``k``; the tree's
+    ancillas are back at |0> when the gadget ends, so several forms' registers can be held at once while only
+    one tree's ancillas exist. The gadget is its own inverse: applied again it clears the register. Cost
+    ``CX = 16 F + 8 A + 2 P + B`` with ``F + A`` ANDs and their mirrors (``B`` copied bits).
+
+    Attributes:
+        form: ``(qubit, integer weight)`` pairs.
+        register: One clean qubit per nonempty column (:func:`column_counts`).
+        ancillas: Clean ancillas for the tree (``F + A + P``).
+    """
+
+    form: tuple[tuple[int, int], ...]
+    register: tuple[int, ...]
+    ancillas: tuple[int, ...] = ()
+
+    @property
+    def kind(self) -> Hashable:
+        return ("sums-register", tuple(w for _, w in self.form))
+
+    @cached_property
+    def _count(self) -> tuple[int, int, int, tuple[bool, ...]]:
+        return column_counts([abs(w) for _, w in self.form])
+
+    @property
+    def num_ancillas(self) -> int:
+        """Tree ancillas (the register is separate)."""
+        return sum(self._count[:3])
+
+    @property
+    def width(self) -> int:
+        """Register qubits needed."""
+        return sum(self._count[3])
+
+    def _costs(self) -> tuple[int, Cost]:
+        fa, ha, cp, present = self._count
+        neg = sum(1 for _, w in self.form if w < 0)
+        return fa + ha, Cost.of(cx=2 * (5 * fa + ha + cp) + sum(present), x=2 * neg)
+
+    def cost(self) -> Cost:
+        ands, rest = self._costs()
+        return ands * (AND_COST + AND_DG_COST) + rest
+
+    def logical_cost(self) -> Cost:
+        ands, rest = self._costs()
+        return Cost.of({"and": ands, "and_dg": ands}) + rest
+
+    def emit(self) -> list[Gate]:
+        compute, reg = popcount_layout(self.form, iter(self.ancillas))
+        bits = [q for q in reg if q is not None]
+        if len(bits) != len(self.register):
+            raise ValueError(f"the register needs {len(bits)} qubits, got {len(self.register)}")
+        copy = [cx(q, r) for q, r in zip(bits, self.register)]
+        return [*compute, *copy, *(g.inverse() for g in reversed(compute))]
