@@ -69,6 +69,23 @@ def main(argv: list[str]) -> int:
             f"{oc.cx / max(wc.cx, 1):.3f} | {wc.rotations:,} | "
             f"{oc.rotations:,} | {tw:,} | {to:,} | {to / max(tw, 1):.4f} | {plan.num_ancillas} | {dt:.2f} |"
         )
+    print()
+    print("Fewer ancillas: ``ancilla_budget`` set to what the balance term's register variant needs (one robot's")
+    print("tree at a time, the path lengths held in small registers).")
+    print()
+    print("| grid | robots | ancillas (no budget) | CX (no budget) | budget | ours CX | ratio to today | ancillas |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for rows, cols, robots in points:
+        s = scenario(rows, cols, robots)
+        plan = phase_plan(s)
+        bal = [r for r in plan.explain() if r["group"] == "balance"]
+        if not bal or "registers" not in (bal[0]["alternatives"] | {bal[0]["construction"]: 0}):
+            continue
+        need = bal[0]["alternatives"].get("registers", bal[0]["cost"]).get("ancillas", 0)
+        few = phase_plan(s, ancilla_budget=max(need, 8))
+        today = phase_plan(s, representation="whole-space").cost().cx
+        print(f"| {rows}x{cols} | {robots} | {plan.num_ancillas} | {plan.cost().cx:,} | {max(need, 8)} | "
+              f"{few.cost().cx:,} | {few.cost().cx / today:.3f} | {few.num_ancillas} |")  # fmt: skip
     if "--quick" not in argv:
         rows, cols, robots = LARGE
         s = scenario(rows, cols, robots)

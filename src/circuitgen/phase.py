@@ -103,8 +103,11 @@ def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
     return (cost.cx, cost.rotations, cost.total)
 
 
-def _summary(cost: Cost, logical: Cost) -> dict[str, int]:
-    return {"cx": cost.cx, "rotations": cost.rotations, "t_ft": ft_t_count(logical)}
+def _summary(cost: Cost, logical: Cost, ancillas: int | None = None) -> dict[str, int]:
+    out = {"cx": cost.cx, "rotations": cost.rotations, "t_ft": ft_t_count(logical)}
+    if ancillas is not None:
+        out["ancillas"] = ancillas
+    return out
 
 
 def _coupling_cost(products: int) -> Cost:
@@ -213,7 +216,8 @@ class PhasePlan:
 
     def explain(self) -> list[dict]:
         """Per term group: ``group``, chosen ``construction``, its ``cost`` (``cx``, ``rotations``, ``t_ft``),
-        ``alternatives`` (construction -> the same figures) and ``count`` (groups of that kind)."""
+        ``alternatives`` (construction -> the same figures) and ``count`` (groups of that kind); the balance
+        rows also give each construction's ``ancillas``."""
         return [dict(row) for row in self._explain]
 
 
@@ -396,9 +400,9 @@ def _assemble(
             const += opts["constant"]
             ancillas = max(ancillas, opts["ancillas"][pick])
         note = "" if grp.integral else " (non-integer lengths: couplings only)"
+        alternatives = {k: _summary(*c, opts["ancillas"][k]) for k, c in costs.items() if k != pick}
         rows.append({"group": grp.name + note, "count": 1, "construction": pick,
-                     "cost": _summary(*costs[pick]),
-                     "alternatives": {k: _summary(*c) for k, c in costs.items() if k != pick}})  # fmt: skip
+                     "cost": _summary(*costs[pick], opts["ancillas"][pick]), "alternatives": alternatives})  # fmt: skip
     # node visits
     chosen_visits: list[VisitGroup] = []
     v_rows: dict[str, int] = {"visit bits": 0, "couplings": 0}
