@@ -24,7 +24,7 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
     >>> gates = phase_separator_gates(ising_hamiltonian(s), "gamma_0")
     >>> sorted({g.name for g in gates}), str(gates[0].params[0])
-    (['rz', 'rzz'], '1.0*gamma_0')
+    (['rz', 'rzz'], '3.0*gamma_0')
     >>> from gridcover.presets import default_scenario
     >>> plan = phase_plan(default_scenario(4, 4, 2))
     >>> plan.cost().cx < phase_plan(default_scenario(4, 4, 2), representation="whole-space").cost().cx

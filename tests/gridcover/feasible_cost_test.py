@@ -72,6 +72,15 @@ def test_dead_variables_are_never_used(s: Scenario) -> None:
     assert not x[:, dead].any()
 
 
+def test_docstring_examples() -> None:
+    import doctest
+
+    import gridcover.feasible_cost as mod
+
+    result = doctest.testmod(mod)
+    assert result.attempted > 0 and result.failed == 0
+
+
 def test_one_robot_is_linear_and_visit_groups_have_two_to_four_edges() -> None:
     assert not feasible_cost(default_scenario(4, 4, 1)).visits
     f = feasible_cost(default_scenario(4, 4, 3))

@@ -17,7 +17,7 @@ Example:
     (1.0, {0: -1.0, 1: -0.5}, {(0, 1): 0.5})
     >>> g = IsingPhase("gamma_0", tuple(h.items()), tuple((a, b, v) for (a, b), v in J.items()))
     >>> [str(x) for x in g.emit()]
-    ['rz(-2.0*gamma_0) 0', 'rz(-1.0*gamma_0) 1', 'rzz(1.0*gamma_0) 0 1']
+    ['rz(-2.0*gamma_0) 0', 'rz(-gamma_0) 1', 'rzz(gamma_0) 0 1']
     >>> g.cost().to_dict()
     {'cx': 2, 'rz': 3}
 """
