@@ -196,8 +196,16 @@ class PhasePlan:
             )
         for coeff, qs in self._hamming:
             out.append(SumsPhase(gamma, (tuple((d + q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
+        # each node's visit bits go to the next ancillas of the pool (round robin): gadgets of different nodes
+        # then share no qubit and can run side by side when the pool is larger than one gadget's need
+        start = 0
         for grp in self._visits:
-            out.append(VisitPhase(gamma, grp.coefficient, tuple(tuple(d + q for q in v) for v in grp.visitors), anc))
+            need = visit_ancillas(tuple(len(v) for v in grp.visitors))
+            if start + need > len(anc):
+                start = 0
+            window = anc[start : start + need]
+            start += need
+            out.append(VisitPhase(gamma, grp.coefficient, tuple(tuple(d + q for q in v) for v in grp.visitors), window))
         for grp, variant in self._sums:
             forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
             if variant == "registers":
