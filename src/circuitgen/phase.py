@@ -167,7 +167,7 @@ class PhasePlan:
     _data_linear: tuple[tuple[int, float], ...]
     _data_couplings: tuple[tuple[int, int, float], ...]
     _hamming: tuple[tuple[float, tuple[int, ...]], ...]
-    _visits: tuple[VisitGroup, ...]
+    _visits: tuple[tuple[VisitGroup, bool], ...]
     _sums: tuple[tuple[SumsGroup, str], ...]
     _explain: tuple[dict, ...]
 
@@ -199,13 +199,14 @@ class PhasePlan:
         # each node's visit bits go to the next ancillas of the pool (round robin): gadgets of different nodes
         # then share no qubit and can run side by side when the pool is larger than one gadget's need
         start = 0
-        for grp in self._visits:
-            need = visit_ancillas(tuple(len(v) for v in grp.visitors))
+        for grp, products in self._visits:
+            need = visit_ancillas(tuple(len(v) for v in grp.visitors), products)
             if start + need > len(anc):
                 start = 0
             window = anc[start : start + need]
             start += need
-            out.append(VisitPhase(gamma, grp.coefficient, tuple(tuple(d + q for q in v) for v in grp.visitors), window))
+            visitors = tuple(tuple(d + q for q in v) for v in grp.visitors)
+            out.append(VisitPhase(gamma, grp.coefficient, visitors, window, products))
         for grp, variant in self._sums:
             forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
             if variant == "registers":
@@ -412,32 +413,45 @@ def _assemble(
         rows.append({"group": grp.name + note, "count": 1, "construction": pick,
                      "cost": _summary(*costs[pick], opts["ancillas"][pick]), "alternatives": alternatives})  # fmt: skip
     # node visits
-    chosen_visits: list[VisitGroup] = []
-    v_rows: dict[str, int] = {"visit bits": 0, "couplings": 0}
-    alt_tot = {"visit bits": [Cost(), Cost()], "couplings": [Cost(), Cost()]}
+    chosen_visits: list[tuple[VisitGroup, bool]] = []
+    names = ("visit bits", "visit pairs", "couplings")
+    v_rows = dict.fromkeys(names, 0)
+    alt_tot = {k: [Cost(), Cost()] for k in names}
+    chosen_tot = [Cost(), Cost()]
     for grp in fc.visits:
-        gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 8)))
-        arith = (gad.cost(), gad.logical_cost())
+        sizes = tuple(len(v) for v in grp.visitors)
         products = _visit_products(grp)
         new = _new_couplings(quad, products)
         coup = (_coupling_cost(new), _coupling_cost(new))
-        for name, c in (("visit bits", arith), ("couplings", coup)):
+        opts: list[tuple[str, tuple[Cost, Cost], VisitPhase | None]] = []
+        for name, prod in (("visit bits", False), ("visit pairs", True)):
+            gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 16)), prod)
+            c = (gad.cost(), gad.logical_cost())
             alt_tot[name][0] += c[0]
             alt_tot[name][1] += c[1]
-        need = visit_ancillas(tuple(len(v) for v in grp.visitors))
-        if optimize == "cx" and fits(need) and better(arith, coup) and arith != coup:
-            chosen_visits.append(grp)
+            if optimize == "cx" and fits(visit_ancillas(sizes, prod)):
+                opts.append((name, c, gad))
+        alt_tot["couplings"][0] += coup[0]
+        alt_tot["couplings"][1] += coup[1]
+        pick = ("couplings", coup, None)
+        for o in opts:  # ties go to the couplings (no ancilla)
+            if better(o[1], pick[1]) and o[1] != pick[1]:
+                pick = o
+        name, c, gad = pick
+        v_rows[name] += 1
+        chosen_tot[0] += c[0]
+        chosen_tot[1] += c[1]
+        if gad is not None:
+            chosen_visits.append((grp, gad.products))
             const += gad.constant
-            ancillas = max(ancillas, need)
-            v_rows["visit bits"] += 1
+            ancillas = max(ancillas, visit_ancillas(sizes, gad.products))
         else:
             for key, v in products.items():
                 quad[key] = quad.get(key, 0.0) + v
-            v_rows["couplings"] += 1
     if fc.visits:
         used = [k for k, r in v_rows.items() if r]
         rows.append({
-            "group": "node visits", "count": len(fc.visits), "cost": {},
+            "group": "node visits", "count": len(fc.visits), "cost": _summary(*chosen_tot),
             "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
             "alternatives": {f"each by {k}": _summary(*alt_tot[k]) for k in alt_tot},
         })  # fmt: skip

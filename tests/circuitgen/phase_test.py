@@ -173,18 +173,21 @@ def _counts(g) -> tuple[Cost, Cost]:  # type: ignore[no-untyped-def]
     return Cost.count(lower(c).gates), Cost.count(lower(c, basis=LOGICAL_BASIS).gates)
 
 
+@pytest.mark.parametrize("products", [False, True])
 @pytest.mark.parametrize("sizes", [s for k in (2, 3, 4) for s in itertools.product((2, 3, 4), repeat=k)])
-def test_visit_gadget_cost(sizes: tuple[int, ...]) -> None:
+def test_visit_gadget_cost(sizes: tuple[int, ...], products: bool) -> None:
     q = iter(range(100))
     visitors = tuple(tuple(next(q) for _ in range(k)) for k in sizes)
-    g = VisitPhase("gamma_0", 8.0, visitors, tuple(range(100, 100 + visit_ancillas(sizes))))
+    g = VisitPhase("gamma_0", 8.0, visitors, tuple(range(100, 100 + visit_ancillas(sizes, products))), products)
     assert _counts(g) == (g.cost(), g.logical_cost())
 
 
-def test_visit_gadget_is_exact_with_clean_ancillas() -> None:
+@pytest.mark.parametrize("products", [False, True])
+def test_visit_gadget_is_exact_with_clean_ancillas(products: bool) -> None:
     visitors = ((0, 1, 2, 3), (4, 5, 6), (7, 8))
-    g = VisitPhase("gamma_0", 3.5, visitors, (9, 10, 11))
-    c = lower(Circuit([("q", 12)], [Section("phase_0", tuple(g.emit()))])).bind({"gamma_0": GAMMA})
+    anc = tuple(range(9, 9 + visit_ancillas((4, 3, 2), products)))
+    g = VisitPhase("gamma_0", 3.5, visitors, anc, products)
+    c = lower(Circuit([("q", 9 + len(anc))], [Section("phase_0", tuple(g.emit()))])).bind({"gamma_0": GAMMA})
     for bits in itertools.product((0, 1), repeat=9):
         idx = sum(b << i for i, b in enumerate(bits))
         out = simulate_sparse(c, idx)

@@ -11,6 +11,10 @@ On a feasible assignment a robot uses 0 or 2 of its edges at a node it does not 
    pair (:func:`~circuitgen.gadgets.phase_ising.ising_form`, complemented bits handled by sign);
 3. uncomputes with the mirror (``and_dg``, X): ancillas return to |0> on every input, not only feasible ones.
 
+With ``products`` (chosen for the fault-tolerant target) the gadget also computes ``z_ab = AND(y_a, y_b)`` for
+every pair into clean ancillas and phases ``coefficient * sum z_ab`` with one RZ per pair: ``C(m, 2)`` more ANDs
+(4 T each, the uncompute free) buy ``m`` fewer rotations (30 T each) and no RZZ.
+
 Cost with ``m`` visitors of which ``m3`` have three and ``m4`` four usable edges:
 ``CX = 6 m3 + 12 m4 + 2 C(m, 2)``, rotations ``m + C(m, 2)``, ANDs ``m3 + 2 m4`` (4 T each in the
 fault-tolerant view; their uncompute 0 T). The coupling alternative (expand ``y_a y_b`` into the
@@ -40,9 +44,10 @@ AND_DG_COST = Cost.of(cx=3, h=2, t=2, tdg=2, s=1)
 """Lowered ``and_dg``."""
 
 
-def visit_ancillas(sizes: tuple[int, ...]) -> int:
+def visit_ancillas(sizes: tuple[int, ...], products: bool = False) -> int:
     """Clean ancillas :class:`VisitPhase` needs for visitors with these numbers of usable edges."""
-    return sum({2: 0, 3: 1, 4: 2}[k] for k in sizes)
+    m = len(sizes)
+    return sum({2: 0, 3: 1, 4: 2}[k] for k in sizes) + (m * (m - 1) // 2 if products else 0)
 
 
 @dataclass(frozen=True)
@@ -60,10 +65,11 @@ class VisitPhase:
     coefficient: float
     visitors: tuple[tuple[int, ...], ...]
     ancillas: tuple[int, ...]
+    products: bool = False
 
     @property
     def kind(self) -> Hashable:
-        return ("visits", tuple(len(v) for v in self.visitors))
+        return ("visits", tuple(len(v) for v in self.visitors), self.products)
 
     def _layout(self) -> tuple[list[Gate], list[tuple[int, bool]]]:
         """The compute gates and, per visitor, ``(qubit, holds the complement)``."""
@@ -86,8 +92,28 @@ class VisitPhase:
                 raise ValueError(f"a visitor has {k} usable edges; 2 to 4 are possible on a grid")
         return gates, bits
 
+    def _products_layout(self) -> tuple[list[Gate], list[int]]:
+        """Visit bits made positive (X on the complemented ones), then one AND per pair into clean ancillas."""
+        gates, bits = self._layout()
+        used = sum(1 for q, neg in bits if neg) + sum(1 for v in self.visitors if len(v) == 4)
+        anc = iter(self.ancillas[used:])
+        gates += [x(q) for q, neg in bits if neg]
+        zs: list[int] = []
+        for a in range(len(bits)):
+            for b in range(a + 1, len(bits)):
+                z = next(anc)
+                gates.append(and_(bits[a][0], bits[b][0], z))
+                zs.append(z)
+        return gates, zs
+
     def phase(self, labels: list[tuple[int, bool]] | None = None) -> tuple[float, IsingPhase]:
-        """``(c0, the RZ/RZZ gadget)`` of ``coefficient * sum y_a y_b`` on the visit bits."""
+        """``(c0, the RZ/RZZ gadget)`` of ``coefficient * sum y_a y_b`` on the visit bits (or, with
+        :attr:`products`, of ``coefficient * sum z_ab`` on the pair ANDs: one RZ each)."""
+        if self.products:
+            m = len(self.visitors)
+            zs = [z for z, _ in labels] if labels is not None else list(range(m * (m - 1) // 2))
+            c0, h, _ = ising_form(dict.fromkeys(zs, self.coefficient), {})
+            return c0, IsingPhase(self.gamma, tuple(h.items()), ())
         bits = labels if labels is not None else [(i, len(v) > 2) for i, v in enumerate(self.visitors)]
         quad = {(bits[a][0], bits[b][0]): self.coefficient for a in range(len(bits)) for b in range(a + 1, len(bits))}
         c0, h, j = ising_form({}, quad, negated=[q for q, neg in bits if neg])
@@ -98,19 +124,30 @@ class VisitPhase:
         """``c0``: the gadget applies ``exp(-i gamma (value - c0))``."""
         return self.phase()[0]
 
-    def cost(self) -> Cost:
+    def _counts(self) -> tuple[int, int]:
+        m = len(self.visitors)
         m3 = sum(1 for v in self.visitors if len(v) == 3)
         m4 = sum(1 for v in self.visitors if len(v) == 4)
         ands = m3 + 2 * m4
-        return (ands * (AND_COST + AND_DG_COST) + Cost.of(x=4 * m3 + 6 * m4)) + self.phase()[1].cost()
+        xs = 4 * m3 + 6 * m4
+        if self.products:
+            ands += m * (m - 1) // 2
+            xs += 2 * (m3 + m4)
+        return ands, xs
+
+    def cost(self) -> Cost:
+        ands, xs = self._counts()
+        return (ands * (AND_COST + AND_DG_COST) + Cost.of(x=xs)) + self.phase()[1].cost()
 
     def logical_cost(self) -> Cost:
-        m3 = sum(1 for v in self.visitors if len(v) == 3)
-        m4 = sum(1 for v in self.visitors if len(v) == 4)
-        ands = m3 + 2 * m4
-        return Cost.of({"and": ands, "and_dg": ands}, x=4 * m3 + 6 * m4) + self.phase()[1].cost()
+        ands, xs = self._counts()
+        return Cost.of({"and": ands, "and_dg": ands}, x=xs) + self.phase()[1].cost()
 
     def emit(self) -> list[Gate]:
-        compute, bits = self._layout()
-        _, ph = self.phase(bits)
+        if self.products:
+            compute, zs = self._products_layout()
+            _, ph = self.phase([(z, False) for z in zs])
+        else:
+            compute, bits = self._layout()
+            _, ph = self.phase(bits)
         return [*compute, *ph.emit(), *(g.inverse() for g in reversed(compute))]
