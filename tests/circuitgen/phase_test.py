@@ -137,6 +137,16 @@ def test_feasible_beats_whole_space_and_explains_itself() -> None:
     assert phase_plan(s, target="ft").logical_cost().rotations <= ours.logical_cost().rotations
 
 
+def test_non_integer_lengths_fall_back_to_couplings() -> None:
+    from ..gridcover.conftest import make_scenario
+
+    s = make_scenario(3, 3, [((0, 0), (2, 2)), ((0, 2), (2, 0))], edge_lengths=[[[0, 0], [0, 1], 2**0.5]])
+    plan = phase_plan(s)
+    bal = next(r for r in plan.explain() if r["group"].startswith("balance"))
+    assert bal["construction"] == "couplings" and "non-integer" in bal["group"]
+    check_states(s, plan, lowered(plan, s.num_variables), sample_combos(s, 10))
+
+
 def test_rotation_price_matches_the_estimators() -> None:
     assert rotation_t_cost(1e-3) == ROTATION_T_COST
 
@@ -148,15 +158,21 @@ def test_bad_options() -> None:
             phase_plan(s, **kw)  # type: ignore[arg-type]
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(d=scenario_dicts(max_size=5, max_robots=3), target=st.sampled_from(["nisq", "ft"]), seed=st.integers(0, 99))
-def test_random_scenarios(d, target, seed) -> None:  # type: ignore[no-untyped-def]
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    d=scenario_dicts(max_size=5, max_robots=3),
+    target=st.sampled_from(["nisq", "ft"]),
+    budget=st.sampled_from([None, None, 0, 6, 24]),
+    seed=st.integers(0, 99),
+)
+def test_random_scenarios(d, target, budget, seed) -> None:  # type: ignore[no-untyped-def]
     from gridcover.scenario import scenario_from_dict
 
     s = scenario_from_dict(d)
     if any(not enumerate_paths(s, r) for r in range(s.num_robots)):
         return
-    plan = phase_plan(s, target=target)
+    plan = phase_plan(s, target=target, ancilla_budget=budget)
+    assert budget is None or plan.num_ancillas <= budget
     circ = lowered(plan, s.num_variables)
     assert Cost.count(circ.gates) == plan.cost()
     rng = random.Random(seed)
