@@ -180,7 +180,10 @@ class PhasePlan:
             ancilla_offset: First of :attr:`num_ancillas` clean ancillas (default: right after the data).
 
         Returns:
-            The gadgets in application order (all diagonal, so any order gives the same operator).
+            The gadgets in application order; run them consecutively, each in its own section. Every gadget but
+            those of a balance term in the ``registers`` variant is diagonal and returns its ancillas to |0> on
+            every input; that variant is a run ``SumsRegister..., phase, SumsRegister...`` whose register
+            ancillas hold the path lengths between its own gadgets and are |0> again after the run.
         """
         d = data_offset
         a0 = d + self.num_variables if ancilla_offset is None else ancilla_offset
