@@ -33,6 +33,7 @@ Example:
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 from typing import Literal
 
@@ -230,7 +231,7 @@ class PhasePlan:
         """Per term group: ``group``, chosen ``construction``, its ``cost`` (``cx``, ``rotations``, ``t_ft``),
         ``alternatives`` (construction -> the same figures) and ``count`` (groups of that kind); the balance
         rows also give each construction's ``ancillas``."""
-        return [dict(row) for row in self._explain]
+        return copy.deepcopy(list(self._explain))
 
 
 def phase_plan(
