@@ -65,7 +65,7 @@ def points_from_options(
     """
     if rule not in RULES:
         raise ValueError(f"bad rule {rule!r}: expected one of {', '.join(RULES)}")
-    layers = parse_int_range(p, "p", 0)
+    layers = parse_int_range(p, "p", 1)
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
@@ -86,6 +86,8 @@ def estimate_report(
     epsilon: float = DEFAULT_EPSILON,
     doubling: Doubling = "partial-mixer",
     progress: bool = True,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
 ) -> str:
     """Estimate ``points`` and render the rows.
 
@@ -99,6 +101,7 @@ def estimate_report(
         epsilon: rotation synthesis precision of the fault-tolerant columns.
         doubling: reading of the paper's doubling.
         progress: progress bar on stderr.
+        columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
 
     Returns:
         The rendered text.
@@ -109,7 +112,7 @@ def estimate_report(
     rows = make_rows(results, compare_paper, doubling)
     if plot is not None:
         plot_rows(rows, plot)
-    return render(rows, fmt)
+    return render(rows, fmt, columns=columns, wide=wide)
 
 
 def formula_report(fmt: Format = "table") -> str:
