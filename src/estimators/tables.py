@@ -8,8 +8,9 @@ ft_t_per_rotation, ft_epsilon``, and ``sections`` (section name -> counts, see :
 ``paper_data_qubits`` (``re``), ``paper_cx``, ``paper_single_qubit`` and the ratios ours / paper
 ``ratio_qubits``, ``ratio_cx``, ``ratio_single_qubit``.
 
-Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same columns as a Markdown table), ``csv`` (every
-scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested).
+Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
+columns as a Markdown table), ``csv`` (every scalar column plus ``section.<name>.<field>`` columns), ``json`` (a
+list of row objects, sections nested).
 
 Example:
     >>> from estimators.sweep import Point, sweep

@@ -169,6 +169,8 @@ def _stdout(mode: str) -> Iterator[IO[Any]]:
     try:
         yield stream
         stream.flush()
+    except BrokenPipeError:  # the reader left (``| head``): not an error of ours, the caller decides
+        raise
     except OSError as exc:
         if exc.filename is None:
             raise OutputError("standard output", _reason(exc), exc.errno) from None

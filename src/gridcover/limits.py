@@ -14,8 +14,8 @@ Example:
     >>> try:
     ...     check_grid_size(10000, 10000)
     ... except SizeError as exc:
-    ...     print(exc)
-    grid: a 10000x10000 grid has 100,000,000 nodes, over the limit of 2,500 (50x50); pass --allow-large to build it anyway
+    ...     print(exc.reason)
+    a 10000x10000 grid has 100,000,000 nodes, over the limit of 2,500 (50x50); pass --allow-large to build it anyway
     >>> with allow_large():
     ...     check_grid_size(10000, 10000)
 """
@@ -99,4 +99,6 @@ def check_layers(p: int, flag: str = "-p") -> None:
         >>> check_layers(3)
     """
     if p > MAX_LAYERS and not large_allowed():
-        raise SizeError(flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; pass {OVERRIDE_FLAG} to run it anyway")
+        raise SizeError(
+            flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; pass {OVERRIDE_FLAG} to run it anyway"
+        )

@@ -33,6 +33,7 @@ Example:
 from __future__ import annotations
 
 import contextlib
+import errno
 import functools
 import importlib
 import inspect
@@ -95,6 +96,8 @@ NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "j
 """Integer parameters checked in every command, by parameter name: the smallest value allowed."""
 
 F = TypeVar("F", bound=Callable[..., Any])
+
+_WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EIO, errno.EFBIG, errno.EDQUOT})
 
 
 def error_line(exc: BaseException | str) -> str:
@@ -169,8 +172,15 @@ def handle_errors(fn: F) -> F:
             _check_numbers(kwargs)
             with allow_large(bool(large)):
                 return fn(*args, **kwargs)
+        except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
+            raise
         except LIBRARY_ERRORS as exc:
-            typer.echo(f"error: {error_line(exc)}", err=True)
+            message = error_line(exc)
+            if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:
+                # named files fail as gridcover.atomic.OutputError (with the name): this was stdout
+                _stdout_failure()
+                message = f"cannot write standard output: {exc.strerror}"
+            typer.echo(f"error: {message}", err=True)
             raise typer.Exit(code=EXIT_USAGE) from None
 
     if not own_flag:
@@ -305,20 +315,30 @@ for _name in COMMAND_MODULES:
     importlib.import_module(_name).register(app)
 
 
+def _stdout_failure() -> str | None:
+    """Flush stdout; if that fails (``> /dev/full``), point it at ``/dev/null`` and return the reason."""
+    try:
+        sys.stdout.flush()
+        return None
+    except OSError as exc:
+        reason = exc.strerror or str(exc) or type(exc).__name__
+    with contextlib.suppress(OSError, ValueError, AttributeError):  # keep later flushes from failing again
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    return reason
+
+
 def _finish_stdout(code: Any) -> Any:
     """Flush stdout; a failed flush (``> /dev/full``) is one error line and exit code 2, not a traceback."""
     try:
         sys.stdout.flush()
     except BrokenPipeError:  # the reader left (``| head``): nothing to report
-        code = code or 1
-    except OSError as exc:
-        typer.echo(f"error: cannot write standard output: {exc.strerror or exc}", err=True)
-        code = EXIT_USAGE
-    else:
-        return code
-    with contextlib.suppress(OSError):  # keep the interpreter's own final flush from failing again
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+        _stdout_failure()
+        return code or 1
+    except OSError:
+        reason = _stdout_failure()
+        typer.echo(f"error: cannot write standard output: {reason}", err=True)
+        return EXIT_USAGE
     return code
 
 

@@ -103,7 +103,8 @@ def test_bad_scenario_names_the_field(tmp_path: Path) -> None:
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "--method", "magic"), "--method"),
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "--rule", "fast"), "--rule"),
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot-trace", "t.png"), "trace"),
-        (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot", "/no/such/dir/p.png"), "folder /no/such/dir does not exist"),
+        (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot", "/no/such/dir/p.png"),
+         "folder /no/such/dir does not exist"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(args: tuple[str, ...], fragment: str) -> None:
