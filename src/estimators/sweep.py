@@ -43,6 +43,7 @@ from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_circuit
 from gridcover.atomic import atomic_open
 from gridcover.errors import ScenarioError
+from gridcover.limits import check_grid_size
 from gridcover.presets import MAX_DEFAULT_ROBOTS, default_scenario
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
@@ -242,7 +243,9 @@ def grid_points(
     """
     if rule not in RULES:
         raise ValueError(f"unknown rule {rule!r} (expected one of {', '.join(RULES)})")
-    robots, ps = list(robots), list(ps)
+    grids, robots, ps = list(grids), list(robots), list(ps)
+    for r, c in grids:
+        check_grid_size(r, c)  # here, in this process: before any worker builds a huge grid
     for k in robots:
         if not 1 <= k <= MAX_DEFAULT_ROBOTS:
             raise ScenarioError("robots", f"the default placement supports 1 to {MAX_DEFAULT_ROBOTS} robots, got {k}")

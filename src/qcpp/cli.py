@@ -343,7 +343,7 @@ def _finish_stdout(code: Any) -> Any:
 
 
 def main() -> None:
-    """Entry point of the ``qcpp`` console script (and ``python -m qcpp``): Ctrl-C/SIGTERM handling, then the app."""
+    """Run the app with Ctrl-C/SIGTERM handling (the console script enters through :func:`qcpp.__main__.main`)."""
     from qcpp.interrupt import install
 
     install()
