@@ -7,7 +7,8 @@ Examples::
 
 Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
 run (``INCOMPLETE``, e.g. a tensor contraction too wide: a check that did not run never reports PASSED); bad
-input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict``.
+input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict`` (``passed``,
+``failed`` or ``incomplete``), and its ``passed`` is true only for ``passed``.
 """
 
 from __future__ import annotations
@@ -72,7 +73,7 @@ def validate_command(
     skipped = [c.name for c in report.checks if c.status == "skipped"]
     verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
     if as_json:
-        typer.echo(json.dumps({**report.to_dict(), "verdict": verdict}))
+        typer.echo(json.dumps({**report.to_dict(), "passed": verdict == "passed", "verdict": verdict}))
     else:
         table = Table(title=f"{scenario.name}: p={p}, backend={backend}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
