@@ -20,6 +20,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from gridcover.limits import check_layers
 from gridcover.presets import MAX_DEFAULT_ROBOTS
 from gridcover.sbf import RULES
 from gridcover.scenario import load_scenario
@@ -66,6 +67,8 @@ def points_from_options(
     if rule not in RULES:
         raise ValueError(f"bad rule {rule!r}: expected one of {', '.join(RULES)}")
     layers = parse_int_range(p, "p", 1)
+    for k in layers:
+        check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
