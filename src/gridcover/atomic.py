@@ -135,8 +135,10 @@ def check_output(path: str | os.PathLike[str]) -> None:
         return
     folder = os.path.dirname(real)
     if not os.path.isdir(folder):
-        shown = os.path.dirname(target) or "."
-        raise OutputError(target, f"the folder {shown} does not exist", errno.ENOENT)
+        given = os.path.dirname(target) or "."
+        if os.path.isdir(given):  # a symlink into a missing folder
+            raise OutputError(target, f"it links into the folder {folder}, which does not exist", errno.ENOENT)
+        raise OutputError(target, f"the folder {given} does not exist", errno.ENOENT)
 
 
 def _open_fifo(real: str, target: str) -> int:
