@@ -5,8 +5,9 @@ default, one JSON object on stdout with ``--json``; progress and messages go to 
 
 One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 130 interrupted):
 
-* A :class:`~gridcover.errors.ScenarioError`, ``ValueError`` or ``OSError`` escaping a command becomes **one
-  line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback (:func:`handle_errors`).
+* A :class:`~gridcover.errors.ScenarioError`, ``ValueError``, ``OSError`` or ``MemoryError`` escaping a command
+  becomes **one line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback
+  (:func:`handle_errors`). Anything else is a bug and keeps its traceback.
 * Usage errors found while parsing (unknown option, a number that is not a number, a missing argument) are the
   same one line plus a hint, ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')``,
   exit code 2 (:class:`QcppGroup`), instead of click's framed box.
@@ -174,6 +175,9 @@ def handle_errors(fn: F) -> F:
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise
+        except MemoryError:
+            typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
+            raise typer.Exit(code=EXIT_USAGE) from None
         except LIBRARY_ERRORS as exc:
             message = error_line(exc)
             if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:

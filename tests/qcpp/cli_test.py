@@ -130,7 +130,8 @@ def test_every_registered_command_gets_the_error_handler() -> None:
     @demo.command("boom")
     def boom(kind: str) -> None:
         raise {"scenario": ScenarioError("grid.rows", "bad"), "value": ValueError("two\nlines"),
-               "os": FileNotFoundError(2, "No such file or directory", "x.png"), "bug": RuntimeError("bug")}[kind]
+               "os": FileNotFoundError(2, "No such file or directory", "x.png"), "bug": RuntimeError("bug"),
+               "memory": MemoryError()}[kind]
 
     @demo.callback()
     def root() -> None:
@@ -140,6 +141,8 @@ def test_every_registered_command_gets_the_error_handler() -> None:
     assert_one_line_error(runner.invoke(demo, ["boom", "scenario"]), "grid.rows: bad")
     assert_one_line_error(runner.invoke(demo, ["boom", "value"]), "two lines")
     assert_one_line_error(runner.invoke(demo, ["boom", "os"]), "x.png")
+    assert_one_line_error(runner.invoke(demo, ["boom", "memory"]), "out of memory")
+    assert_one_line_error(runner.invoke(demo, ["boom", "--bogus"]), "No such option: --bogus")
     res = runner.invoke(demo, ["boom", "bug"])  # a bug is not an input error: it is not swallowed
     assert res.exit_code == 1 and isinstance(res.exception, RuntimeError)
     assert isinstance(demo, typer.Typer)
