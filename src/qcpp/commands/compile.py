@@ -56,11 +56,21 @@ def compile_command(
     initial: Annotated[
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
     ] = "initial_path",
+    target: Annotated[
+        str,
+        typer.Option(
+            "--target",
+            help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
+            "or ft (fewest T and rotations).",
+        ),
+    ] = "nisq",
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
+    if target not in ("nisq", "ft"):
+        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     extra = list(assignments or [])
@@ -76,7 +86,9 @@ def compile_command(
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
-    result = compile_scenario(s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial)  # type: ignore[arg-type]
+    result = compile_scenario(
+        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target  # type: ignore[arg-type]
+    )
     if qasm is not None:
         write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
     summary = result.summary()
@@ -86,7 +98,8 @@ def compile_command(
         typer.echo(json.dumps(summary))
         return
     console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
-    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, {'lowered' if lowered else 'high level'}")
+    form = "lowered" if lowered else "high level"
+    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():
