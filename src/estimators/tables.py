@@ -223,6 +223,8 @@ def table_columns(
     """
     defaults = _columns(rows)
     if columns is not None:
+        if not columns:
+            raise ValueError("--columns: name at least one column")
         known = [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]
         for c in columns:
             if c not in known:

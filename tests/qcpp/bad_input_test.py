@@ -53,6 +53,7 @@ def scratch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     (tmp_path / "target.qasm").write_text(LINK_TARGET_TEXT)
     (tmp_path / "link.qasm").symlink_to("target.qasm")
     (tmp_path / "dangling.qasm").symlink_to("missing/x.qasm")
+    (tmp_path / "loop").symlink_to("loop")
     return tmp_path
 
 
@@ -118,6 +119,7 @@ BAD = [
     ("estimate", "--grid", "10000x10000"),
     ("estimate", "--robots", "0"),
     ("estimate", "--grid", "2x2", "--columns", "rows,nonsense"),
+    ("estimate", "--grid", "2x2", "--columns", ","),
     # scenario files
     ("solve", "missing.toml"),
     ("solve", "folder.toml"),
@@ -137,6 +139,7 @@ BAD = [
     ("compile", EX, "--qasm", "dangling.qasm"),
     ("compile", EX, "--qasm", "-", "--json"),
     ("compile", EX, "--qasm", ""),
+    ("compile", EX, "--qasm", "loop"),
     ("solve", EX, "-m", "dfs", "--plot", "missing/p.png"),
     ("solve", EX, "-m", "anneal", "--plot-trace", "missing/t.png"),
     ("solve", EX, "-m", "dfs", "--plot", "/dev/full"),
