@@ -101,6 +101,8 @@ def install() -> None:
     signal.signal(signal.SIGTERM, _raise_interrupt)
     # also when inherited as ignored (a shell's `cmd &`): an explicit `kill -INT` must stop the command too
     signal.signal(signal.SIGINT, signal.default_int_handler)
+    if os.name != "posix":  # pragma: no cover - the wakeup pipe and fork hooks are POSIX
+        return
     read_fd, write_fd = os.pipe()
     os.set_blocking(write_fd, False)
     signal.set_wakeup_fd(write_fd, warn_on_full_buffer=False)
