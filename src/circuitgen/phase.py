@@ -45,7 +45,7 @@ from .angles import Angle
 from .cost import TARGETS, Cost, Target
 from .gadgets import Gadget
 from .gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
-from .gadgets.phase_sums import SumsPhase, SumsRegister
+from .gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
 
@@ -215,6 +215,8 @@ class PhasePlan:
             forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
             if variant == "registers":
                 out.extend(_register_gadgets(gamma, forms, grp.matrix, anc))
+            elif variant == "accumulator":
+                out.extend(_accumulator_gadgets(gamma, forms, grp.matrix, anc)[0])
             else:
                 out.append(SumsPhase(gamma, forms, grp.matrix, (0.0,) * len(forms), anc))
         return tuple(out)
@@ -307,6 +309,55 @@ def _register_gadgets(
     return [*regs, phase, *reversed(regs)]
 
 
+def _accumulator_layout(
+    forms: tuple[tuple[tuple[int, int], ...], ...], active: tuple[bool, ...]
+) -> tuple[list[tuple[int, list[tuple[tuple[int, int], ...]]]], int]:
+    """Per active form ``(B, chunks)`` (``B`` accumulator bits, chunks of ``4 B`` terms, at least 8) and the
+    ancillas the accumulator variant needs (registers + the largest chunk's tree and carries)."""
+    out = []
+    regs = work = 0
+    for f, on in zip(forms, active):
+        if not on:
+            continue
+        width = max(1, sum(abs(w) for _, w in f).bit_length())
+        size = max(8, 4 * width)
+        chunks = [f[i : i + size] for i in range(0, len(f), size)]
+        out.append((width, chunks))
+        regs += width
+        for ch in chunks:
+            work = max(work, SumsAccumulate(ch, tuple(range(width))).num_ancillas)
+    return out, regs + work
+
+
+def _accumulator_gadgets(
+    gamma: str, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
+    anc: tuple[int, ...],
+) -> tuple[list[Gadget], float]:
+    """The accumulator variant of a sums group: each form's chunks added into a ``B``-bit register (tree per
+    chunk, ripple-carry adder), the registers phased, the chunks subtracted again. Returns the gadgets and the
+    constant ``c0`` of the register phase."""
+    whole = SumsPhase(gamma, forms, matrix, (0.0,) * len(forms))
+    layout, _ = _accumulator_layout(forms, whole._active)
+    nregs = sum(width for width, _ in layout)
+    pool = anc[nregs:]
+    nxt = 0
+    adds: list[SumsAccumulate] = []
+    registers: list[list[int | None]] = []
+    it = iter(layout)
+    for on in whole._active:
+        if not on:
+            registers.append([])
+            continue
+        width, chunks = next(it)
+        acc = anc[nxt : nxt + width]
+        nxt += width
+        registers.append(list(acc))
+        adds += [SumsAccumulate(ch, acc, pool) for ch in chunks]
+    c0, phase = whole.phase(registers)
+    subs = [SumsAccumulate(g.chunk, g.accumulator, g.ancillas, subtract=True) for g in reversed(adds)]
+    return [*adds, phase, *subs], c0
+
+
 def _register_ancillas(forms: tuple[tuple[tuple[int, int], ...], ...], active: tuple[bool, ...]) -> int:
     trees = [SumsRegister(f, ()) for f, on in zip(forms, active) if on]
     return sum(t.width for t in trees) + max((t.num_ancillas for t in trees), default=0)
@@ -334,6 +385,8 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budge
     choices: list[tuple[str, ...]] = [()]
     for opts in balance:
         choices = [(*c, k) for c in choices for k in opts["options"]]
+    if len(choices) == 1:
+        return _assemble(fc, target, optimize, budget, balance, choices[0])
     best: PhasePlan | None = None
     best_key: tuple[int, ...] | None = None
     for choice in choices:
@@ -358,18 +411,24 @@ def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None
     if grp.integral and optimize == "cx":
         forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
         gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
-        out["constant"] = gad.constant
         out["costs"]["arithmetic"] = (gad.cost(), gad.logical_cost())
         out["ancillas"]["arithmetic"] = gad.num_ancillas
         reg_anc = _register_ancillas(forms, gad._active)
         reg_gads = _register_gadgets("gamma", forms, m, tuple(range(n, n + reg_anc)))
         out["costs"]["registers"] = (Cost.sum(g.cost() for g in reg_gads), Cost.sum(g.logical_cost() for g in reg_gads))
         out["ancillas"]["registers"] = reg_anc
-        for k in ("arithmetic", "registers"):
+        _, acc_anc = _accumulator_layout(forms, gad._active)
+        acc_gads, acc_c0 = _accumulator_gadgets("gamma", forms, m, tuple(range(n, n + acc_anc)))
+        out["costs"]["accumulator"] = (
+            Cost.sum(g.cost() for g in acc_gads),
+            Cost.sum(g.logical_cost() for g in acc_gads),
+        )
+        out["ancillas"]["accumulator"] = acc_anc
+        out["constants"] = {"arithmetic": gad.constant, "registers": gad.constant, "accumulator": acc_c0}
+        for k in ("arithmetic", "registers", "accumulator"):
             if budget is None or out["ancillas"][k] <= budget:
                 out["options"].append(k)
-                if k == "arithmetic":
-                    break  # the register variant only pays off when the arithmetic does not fit
+                break  # each variant only pays off when the ones before it (fewer CX) do not fit
     if prods <= EXACT_EXPANSION_LIMIT or not out["options"]:
         out["options"].append("couplings")
     return out
@@ -410,7 +469,7 @@ def _assemble(
                 quad[k] = quad.get(k, 0.0) + v
         else:
             chosen_sums.append((grp, pick))
-            const += opts["constant"]
+            const += opts["constants"][pick]
             ancillas = max(ancillas, opts["ancillas"][pick])
         note = "" if grp.integral else " (non-integer lengths: couplings only)"
         alternatives = {k: _summary(*c, opts["ancillas"][k]) for k, c in costs.items() if k != pick}
@@ -424,8 +483,12 @@ def _assemble(
     chosen_tot = [Cost(), Cost()]
     for grp in fc.visits:
         sizes = tuple(len(v) for v in grp.visitors)
-        products = _visit_products(grp)
-        new = _new_couplings(quad, products)
+        products: dict[tuple[int, int], float] | None = None
+        if quad:
+            products = _visit_products(grp)
+            new = _new_couplings(quad, products)
+        else:  # within one node every product pairs two different robots' edges: all distinct
+            new = sum(a * b for i, a in enumerate(sizes) for b in sizes[i + 1 :])
         coup = (_coupling_cost(new), _coupling_cost(new))
         opts: list[tuple[str, tuple[Cost, Cost], VisitPhase | None]] = []
         for name, prod in (("visit bits", False), ("visit pairs", True)):
@@ -450,7 +513,7 @@ def _assemble(
             const += gad.constant
             ancillas = max(ancillas, visit_ancillas(sizes, gad.products))
         else:
-            for key, v in products.items():
+            for key, v in (products if products is not None else _visit_products(grp)).items():
                 quad[key] = quad.get(key, 0.0) + v
     if fc.visits:
         used = [k for k, r in v_rows.items() if r]

@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_ising import IsingPhase
-from circuitgen.gadgets.phase_sums import SumsPhase, SumsRegister
+from circuitgen.gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
 from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
 from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.phase import ROTATION_T_COST, PhasePlan, phase_plan, phase_separator_gates
@@ -257,9 +257,10 @@ def test_ising_gadget_cost() -> None:
     assert _counts(g) == (g.cost(), g.logical_cost())
 
 
-@pytest.mark.parametrize("budget", [0, 4, 26, 31])
+@pytest.mark.parametrize("budget", [0, 4, 26, 31, 40])
 def test_ancilla_budget_is_respected_and_exact(budget: int) -> None:
-    s = default_scenario(4, 4, 3) if budget > 26 else default_scenario(4, 4, 2)
+    grid = {40: (5, 5, 2), 31: (4, 4, 3)}.get(budget, (4, 4, 2))
+    s = default_scenario(*grid)
     plan = phase_plan(s, ancilla_budget=budget)
     assert plan.num_ancillas <= budget
     circ = lowered(plan, s.num_variables)
@@ -269,6 +270,8 @@ def test_ancilla_budget_is_respected_and_exact(budget: int) -> None:
     check_states(s, plan, circ, sample_combos(s, 8, budget), others)
     if budget == 31:  # the arithmetic needs 48: the register variant (one tree at a time) fits
         assert any(r["construction"] == "registers" for r in plan.explain())
+    if budget == 40:  # 5x5: arithmetic 64, registers 44, accumulator 38
+        assert any(r["construction"] == "accumulator" for r in plan.explain())
 
 
 @settings(max_examples=30, deadline=None)
@@ -290,3 +293,31 @@ def test_sums_register_gadget(weights: list[int]) -> None:
         reg = key >> n
         cols = [k for k, p in enumerate(probe._count[3]) if p]
         assert sum(((reg >> j) & 1) << k for j, k in enumerate(cols)) == value
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    weights=st.lists(st.sampled_from([1, 1, 1, 2, 3, -1, 5, -2]), min_size=1, max_size=6),
+    extra=st.integers(0, 2),
+    subtract=st.booleans(),
+    seed=st.integers(0, 99),
+)
+def test_sums_accumulate_gadget(weights: list[int], extra: int, subtract: bool, seed: int) -> None:
+    n = len(weights)
+    chunk = tuple(enumerate(weights))
+    width = sum(abs(w) for w in weights).bit_length() + extra
+    acc = tuple(range(n, n + width))
+    anc = tuple(range(n + width, n + width + SumsAccumulate(chunk, acc).num_ancillas))
+    g = SumsAccumulate(chunk, acc, anc, subtract)
+    assert _counts(g) == (g.cost(), g.logical_cost())
+    c = lower(Circuit([("q", n + width + len(anc))], [Section("s", tuple(g.emit()))]))
+    rng = random.Random(seed)
+    for _ in range(6):
+        bits = [rng.randint(0, 1) for _ in range(n)]
+        val = sum(abs(w) * (b ^ (w < 0)) for b, w in zip(bits, weights))
+        a0 = rng.randint(val, (1 << width) - 1) if subtract else rng.randint(0, (1 << width) - 1 - val)
+        idx = sum(b << i for i, b in enumerate(bits)) | (a0 << n)
+        ((key, amp),) = [(k, a) for k, a in simulate_sparse(c, idx).items() if abs(a) > TOL]
+        assert abs(amp - 1) < TOL and key & ((1 << n) - 1) == idx & ((1 << n) - 1)
+        assert key >> (n + width) == 0  # tree ancillas and carries clean
+        assert (key >> n) & ((1 << width) - 1) == (a0 - val if subtract else a0 + val)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import dataclass
+from functools import cache
 
 from circuitgen.cost import Cost
 from circuitgen.gates import Gate, and_, x
@@ -37,6 +38,16 @@ from circuitgen.gates import Gate, and_, x
 from .phase_ising import IsingPhase, ising_form
 
 __all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas"]
+
+
+@cache
+def _visit_costs(sizes: tuple[int, ...], products: bool, nonzero: bool) -> tuple[Cost, Cost]:
+    """``(cost, logical cost)`` of a :class:`VisitPhase`: they depend on its kind only (memoised; a 30x30 plan
+    prices thousands of nodes)."""
+    g = VisitPhase("g", 1.0 if nonzero else 0.0, tuple(tuple(range(k)) for k in sizes), (), products)
+    ands, xs = g._counts()
+    ph = g.phase()[1].cost()
+    return ands * (AND_COST + AND_DG_COST) + Cost.of(x=xs) + ph, Cost.of({"and": ands, "and_dg": ands}, x=xs) + ph
 
 AND_COST = Cost.of(cx=3, h=2, t=2, tdg=2, sdg=1)
 """Lowered ``and``."""
@@ -136,12 +147,10 @@ class VisitPhase:
         return ands, xs
 
     def cost(self) -> Cost:
-        ands, xs = self._counts()
-        return (ands * (AND_COST + AND_DG_COST) + Cost.of(x=xs)) + self.phase()[1].cost()
+        return _visit_costs(tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)[0]
 
     def logical_cost(self) -> Cost:
-        ands, xs = self._counts()
-        return Cost.of({"and": ands, "and_dg": ands}, x=xs) + self.phase()[1].cost()
+        return _visit_costs(tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)[1]
 
     def emit(self) -> list[Gate]:
         if self.products:
