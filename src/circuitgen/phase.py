@@ -182,9 +182,10 @@ class PhasePlan:
 
         Returns:
             The gadgets in application order; run them consecutively, each in its own section. Every gadget but
-            those of a balance term in the ``registers`` variant is diagonal and returns its ancillas to |0> on
-            every input; that variant is a run ``SumsRegister..., phase, SumsRegister...`` whose register
-            ancillas hold the path lengths between its own gadgets and are |0> again after the run.
+            those of a balance term in the ``registers`` or ``accumulator`` variant is diagonal and returns its
+            ancillas to |0> on every input; those variants are runs (``SumsRegister..., phase,
+            SumsRegister...`` or ``SumsAccumulate..., phase, SumsAccumulate(subtract)...``) whose register
+            ancillas hold the path lengths between their own gadgets and are |0> again after the run.
         """
         d = data_offset
         a0 = d + self.num_variables if ancilla_offset is None else ancilla_offset
@@ -254,8 +255,9 @@ def phase_plan(
         optimize: ``cx`` (cheapest under the target) or ``depth`` (couplings only: shallow RZZ layers, no
             arithmetic).
         ancilla_budget: Most clean ancillas the plan may use (``None``: no limit). Constructions that need more
-            are not considered; the balance term then tries its register variant (one tree at a time, the
-            sums held in small registers: about twice the arithmetic's CX), then couplings.
+            are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
+            sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
+            variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
 
     Returns:
         The :class:`PhasePlan`.
