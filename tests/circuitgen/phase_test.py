@@ -162,7 +162,7 @@ def test_bad_options() -> None:
 @given(
     d=scenario_dicts(max_size=5, max_robots=3),
     target=st.sampled_from(["nisq", "ft"]),
-    budget=st.sampled_from([None, None, 0, 6, 24]),
+    budget=st.sampled_from([None, None, 0, 6, 24, 40]),
     seed=st.integers(0, 99),
 )
 def test_random_scenarios(d, target, budget, seed) -> None:  # type: ignore[no-untyped-def]
