@@ -64,9 +64,33 @@ def compile_command(
             "or ft (fewest T and rotations).",
         ),
     ] = "nisq",
+    phase: Annotated[
+        str,
+        typer.Option(
+            "--phase",
+            help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
+            "(the Ising Hamiltonian, O((re)^2)).",
+        ),
+    ] = "feasible",
+    optimize: Annotated[
+        str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+    ] = "cx",
+    ancilla_budget: Annotated[
+        int | None,
+        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+    ] = None,
+    explain: Annotated[
+        bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
+    if phase not in ("feasible", "whole-space"):
+        raise ValueError(f"--phase: expected feasible or whole-space, got {phase!r}")
+    if optimize not in ("cx", "depth"):
+        raise ValueError(f"--optimize: expected cx or depth, got {optimize!r}")
+    if ancilla_budget is not None and ancilla_budget < 0:
+        raise ValueError(f"--ancilla-budget: must be at least 0, got {ancilla_budget}")
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     if target not in ("nisq", "ft"):
@@ -87,13 +111,16 @@ def compile_command(
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
     result = compile_scenario(
-        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target  # type: ignore[arg-type]
-    )
+        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
+        phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
+    )  # fmt: skip
     if qasm is not None:
         write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
     summary = result.summary()
     if qasm is not None:
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    if explain:
+        summary["phase_explain"] = result.phase_explain
     if as_json:
         typer.echo(json.dumps(summary))
         return
@@ -114,6 +141,25 @@ def compile_command(
     if qasm is not None:
         where = "standard output" if to_stdout else qasm
         console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
+    if explain:
+        console.print(explain_table(result.phase_explain))
+
+
+def explain_table(rows: list[dict]) -> Table:
+    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs."""
+    table = Table(title="phase separator: construction per term group (cost of one layer)")
+    for col in ("group", "count", "chosen", "cx", "rotations", "T (ft)", "alternatives (cx / rotations / T)"):
+        table.add_column(col, justify="right" if col in ("count", "cx", "rotations", "T (ft)") else "left")
+    for row in rows:
+        c = row["cost"]
+        alts = "\n".join(
+            f"{name}: {a['cx']:,} / {a['rotations']:,} / {a['t_ft']:,}" for name, a in row["alternatives"].items()
+        )
+        table.add_row(
+            str(row["group"]), str(row.get("count", 1)), str(row["construction"]),
+            f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
+        )  # fmt: skip
+    return table
 
 
 def register(app: typer.Typer) -> None:
