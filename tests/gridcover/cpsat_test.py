@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -16,14 +17,14 @@ from gridcover.paths import enumerate_paths, is_feasible
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, CpSatResult, cpsat, dfs, solve
-from gridcover.solvers.cpsat import exact_rational
+from gridcover.solvers.cpsat import exact_rational, scenario_symmetries
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def check_against_dfs(s: Scenario) -> CpSatResult:
+def check_against_dfs(s: Scenario, **options: Any) -> CpSatResult:
     """CP-SAT proves DFS's optimum and returns feasible paths whose re-scored cost is that optimum."""
-    res = cpsat(s)
+    res = cpsat(s, **options)
     best = dfs(s).cost.total
     tol = 1e-9 * max(1.0, abs(best))
     assert res.proven_optimal and res.status == "OPTIMAL"
@@ -90,7 +91,32 @@ def test_equals_dfs_on_random_scenarios(random_scenarios, data) -> None:  # type
     s = data.draw(random_scenarios(max_size=4, max_robots=3))
     if math.prod(len(enumerate_paths(s, r)) for r in range(s.num_robots)) > 50_000:
         return  # exhaustive search would be slow; every other scenario is checked
-    check_against_dfs(s)
+    check_against_dfs(s, symmetry_breaking=data.draw(st.booleans(), label="symmetry_breaking"))
+
+
+@pytest.mark.parametrize(("n", "robots", "symmetries"), [(3, 1, 3), (3, 2, 7), (3, 3, 0), (4, 2, 7), (4, 3, 0)])
+def test_default_placements_with_and_without_symmetry_breaking(n: int, robots: int, symmetries: int) -> None:
+    # corner to opposite corner: two robots' paths must cross (the crossing cut); one robot keeps its diagonal
+    # (3 symmetries), two robots are swapped by the others (7); the third robot has the second's endpoints,
+    # which makes the robot permutation ambiguous, so no symmetry is used
+    s = default_scenario(n, n, robots)
+    assert len(scenario_symmetries(s)) == symmetries
+    a, b = check_against_dfs(s), check_against_dfs(s, symmetry_breaking=True)
+    assert a.solution.cost.total == b.solution.cost.total
+
+
+@settings(max_examples=30, deadline=None)
+@given(data=st.data())
+def test_symmetries_preserve_the_cost(random_scenarios, data) -> None:  # type: ignore[no-untyped-def]
+    s = data.draw(random_scenarios(max_size=4, max_robots=3))
+    lists = [enumerate_paths(s, r) for r in range(s.num_robots)]
+    masks = [data.draw(st.sampled_from(pl)) for pl in lists]
+    for perm, emap in scenario_symmetries(s):
+        image = [0] * s.num_robots
+        for r, m in enumerate(masks):
+            image[perm[r]] = sum(1 << emap[e] for e in range(s.grid.num_edges) if (m >> e) & 1)
+        assert all(is_feasible(s, r, m) for r, m in enumerate(image))
+        assert cost_parts(s, image).total == pytest.approx(cost_parts(s, masks).total, abs=1e-9)
 
 
 # ----------------------------------------------------------------------------- time limit, bound, registry
