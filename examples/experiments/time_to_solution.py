@@ -19,7 +19,7 @@ Methods, one process, one thread each:
   run's time times the fraction of its trace before the first optimal value: iterations are taken as equally
   long). Both with ``components="initial"``: on these grids every robot's paths form one move-graph component.
 * **QAOA** where the feasible-subspace simulator holds the whole state (``QAOA_MAX_DIM`` assignments): angles
-  fitted on the exact state for CVaR_0.2 (COBYLA from the linear ramp and two random starts; the 4x4 study in
+  fitted on the exact state for CVaR_0.2 (COBYLA, 80 evaluations, from the linear ramp and one random start;
   ``qaoa_two_robots.py`` found that fitting ``<C>`` never leaves the initial paths), the probability of the
   optimum ``p_opt`` for p = 1..3, the shots for 99% success, and a **projected** hardware time per shot from
   the compiled circuit's depth (``estimators.counts.count(lower(qaoa_circuit(...)))``) with the gate-time model
@@ -84,7 +84,7 @@ class Config:
     qaoa_random_starts: int
 
 
-FULL = Config((3, 4, 5, 6, 7, 8), (1, 2, 3), 1e8, 20.0, 60.0, 3, 5000, 20, 40_000, (1, 2, 3), 150, 2)
+FULL = Config((3, 4, 5, 6, 7, 8), (1, 2, 3), 1e8, 20.0, 60.0, 3, 5000, 20, 40_000, (1, 2, 3), 80, 1)
 QUICK = Config((3, 4), (1, 2), 1e6, 2.0, 2.0, 2, 1000, 5, 200, (1, 2), 30, 0)
 
 
@@ -150,6 +150,16 @@ def run_local(inst: Instance, cfg: Config, method: str) -> list[dict[str, Any]]:
             sol = genetic(inst.scenario, seed=k, generations=cfg.ga_generations, components="initial")
         out.append({"seed": k, "seconds": sol.seconds, "cost": sol.cost.total, "trace": list(sol.trace),
                     "evaluated": sol.evaluated})
+    return out
+
+
+def _without_traces(results: dict[str, Any]) -> dict[str, Any]:
+    """The results for the JSON file: each SA/GA run's trace replaced by its time to the optimum."""
+    opt = results["optimum"]["value"]
+    out = dict(results)
+    for m in ("anneal", "genetic"):
+        out[m] = [{k: v for k, v in r.items() if k != "trace"} | {"time_to_optimum": time_to_reach(r, opt)}
+                  for r in results[m]]
     return out
 
 
@@ -234,7 +244,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     print(f"wrote {opts.results / f'{NAME}.csv'}")
     dump = {"config": cfg.__dict__, "gate_model": GATE_MODEL, "seconds": time.perf_counter() - t_all,
             "instances": [{"label": i.label, "n": i.n, "robots": i.robots, "obstacles": list(map(list,
-                           i.scenario.obstacles)), **i.results} for i in instances]}
+                           i.scenario.obstacles)), **_without_traces(i.results)} for i in instances]}
     write_text_atomic(opts.results / f"{NAME}.json", json.dumps(dump, indent=1, default=_json_default) + "\n")
     print(f"wrote {opts.results / f'{NAME}.json'}")
     notes = [
@@ -386,8 +396,10 @@ def _figure(opts, instances: list[Instance]) -> None:  # type: ignore[no-untyped
             group = [i for i in instances if i.robots == nr and i.obstacles == obst]
             series: dict[str, list[tuple[int, float]]] = {k: [] for k in colours}
             unproven: list[tuple[int, float]] = []
+            best_known: dict[str, list[tuple[int, float]]] = {k: [] for k in colours}
             for inst in group:
                 r, opt = inst.results, inst.results["optimum"]["value"]
+                target = series if r["optimum"]["proven"] else best_known
                 if r["dfs"]["attempted"]:
                     series["DFS"].append((inst.n, r["dfs"]["seconds"]))
                 if r["cpsat"]["proven"]:
@@ -397,7 +409,7 @@ def _figure(opts, instances: list[Instance]) -> None:  # type: ignore[no-untyped
                 for key, m in (("SA", "anneal"), ("GA", "genetic")):
                     _, med = _median_time(r[m], opt)
                     if med is not None:
-                        series[key].append((inst.n, med))
+                        target[key].append((inst.n, med))
                 qb = _best_qaoa(r.get("qaoa"))
                 if qb is not None and math.isfinite(qb["projected_s"]):
                     series["QAOA (projected hardware)"].append((inst.n, qb["projected_s"]))
@@ -405,13 +417,18 @@ def _figure(opts, instances: list[Instance]) -> None:  # type: ignore[no-untyped
                 if pts:
                     xs, ys = zip(*pts)
                     ax.plot(xs, ys, ls, marker="o", color=colours[key], label=key if not obst else None)
+            for key, pts in best_known.items():
+                if pts:
+                    xs, ys = zip(*pts)
+                    ax.plot(xs, ys, "o", mfc="white", color=colours[key])
             if unproven:
                 xs, ys = zip(*unproven)
                 ax.plot(xs, ys, "x", color=colours["CP-SAT proof"], ms=9, mew=2,
                         label="CP-SAT: not proven at its limit" if not obst else None)
         ax.set_yscale("log")
         ax.set_xlabel("grid size n (n x n)")
-        ax.set_title(f"{nr} robot(s): solid = no obstacles, dashed = soft obstacles", fontsize=9)
+        ax.set_title(f"{nr} robot(s): solid = no obstacles, dashed = soft obstacles\n"
+                     "hollow = time to the best known cost (no proof of optimality)", fontsize=9)
         ax.grid(alpha=0.3, which="both")
         ax.set_xticks(sorted({i.n for i in instances}))
     axes[0][0].set_ylabel("seconds to the optimum (SA/GA: median over successful seeds)")
