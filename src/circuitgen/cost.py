@@ -23,8 +23,9 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Literal
 
-__all__ = ["ONE_QUBIT_NAMES", "TWO_QUBIT_NAMES", "Cost"]
+__all__ = ["ONE_QUBIT_NAMES", "TARGETS", "TWO_QUBIT_NAMES", "Cost", "Target"]
 
 ONE_QUBIT_NAMES = frozenset({"x", "h", "rz", "t", "tdg", "s", "sdg", "rx", "ry"})
 """Gate names that act on one qubit."""
@@ -137,3 +138,10 @@ class Cost:
 
     def __str__(self) -> str:
         return ", ".join(f"{n}: {v}" for n, v in self.items) or "nothing"
+
+
+Target = Literal["nisq", "ft"]
+"""What a construction is chosen for: ``nisq`` minimises CNOTs (arbitrary rotations are cheap), ``ft`` minimises
+T gates and arbitrary rotations (each rotation costs a synthesised T sequence; ANDs are logical ANDs)."""
+
+TARGETS: tuple[Target, ...] = ("nisq", "ft")

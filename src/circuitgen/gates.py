@@ -21,6 +21,12 @@ crz    controlled RZ (Qiskit's ``crz``), control first
 cry    controlled RY, control first
 rzz    RZZ(θ) = exp(-iθ Z⊗Z/2)
 ccx    Toffoli, controls first
+and    AND into a clean target: X on the last qubit if both controls match ``ctrl_state``
+       (a permutation, like ``ccx``); lowered to a 3-CX relative-phase Toffoli plus ``sdg``,
+       which is exact only when the target starts in |0> (the gadget's contract)
+and_dg the uncompute of ``and`` (same permutation; lowered to the exact inverse of ``and``'s
+       lowering, so it returns a target holding the AND to |0>)
+crx    controlled RX, control first
 mcx    X on the last qubit, controlled by all others; ``ctrl_state[i]`` is the
        required value of ``qubits[i]`` ('1' = control on |1>, '0' = on |0>).
        Note: reading order, *not* Qiskit's little-endian ``ctrl_state`` integer.
@@ -58,8 +64,11 @@ __all__ = [
     "GATE_SPECS",
     "Gate",
     "GateSpec",
+    "and_",
+    "and_dg",
     "ccx",
     "controlled_x_pattern",
+    "crx",
     "cry",
     "crz",
     "csbf",
@@ -121,6 +130,9 @@ _SPEC_LIST = (
     GateSpec("cry", 2, 1, "negate"),
     GateSpec("rzz", 2, 1, "negate", diagonal=True),
     GateSpec("ccx", 3, 0, "self", permutation=True),
+    GateSpec("and", 3, 0, "and_dg", permutation=True),
+    GateSpec("and_dg", 3, 0, "and", permutation=True),
+    GateSpec("crx", 2, 1, "negate"),
     GateSpec("mcx", None, 0, "self", permutation=True),
     GateSpec("sbf", 4, 1, "negate"),
     GateSpec("csbf", 5, 1, "negate"),
@@ -349,6 +361,32 @@ def ccx(a: int, b: int, t: int) -> Gate:
     return _new(Gate, ("ccx", _distinct(a, b, t), (), None))
 
 
+def and_(a: int, b: int, target: int, ctrl_state: str = "11") -> Gate:
+    """AND of two controls into a clean ``target`` (see the module table; uncompute with :func:`and_dg`).
+
+    Args:
+        a, b: controls.
+        target: a qubit in |0> (the lowering is exact only then).
+        ctrl_state: required values of ``a``, ``b`` (``'1'``: on |1>).
+
+    >>> and_(0, 1, 2, "10")
+    Gate(name='and', qubits=(0, 1, 2), params=(), ctrl_state='10')
+    """
+    if len(ctrl_state) != 2 or ctrl_state.strip("01"):
+        raise ValueError(f"ctrl_state {ctrl_state!r} must be 2 characters of '0'/'1'")
+    return _new(Gate, ("and", _distinct(a, b, target), (), ctrl_state))
+
+
+def and_dg(a: int, b: int, target: int, ctrl_state: str = "11") -> Gate:
+    """Uncompute of :func:`and_` (the same arguments)."""
+    return and_(a, b, target, ctrl_state).inverse()
+
+
+def crx(theta: Param, c: int, t: int) -> Gate:
+    """Controlled RX(θ), control first."""
+    return _new(Gate, ("crx", _q2(c, t), (_param(theta),), None))
+
+
 def mcx(controls: Sequence[int], target: int, ctrl_state: str | None = None) -> Gate:
     """Multi-controlled X, normalised to the smallest equivalent gate name.
 
@@ -396,7 +434,7 @@ def csbf(theta: Param, ctrl: int, a: int, b: int, c: int, d: int) -> Gate:
 def controlled_x_pattern(gate: Gate) -> tuple[tuple[int, ...], str, int]:
     """Controls, required control values and target of a permutation gate.
 
-    Every permutation gate of the set (``x``, ``cx``, ``ccx``, ``mcx``) is an X on the target
+    Every permutation gate of the set (``x``, ``cx``, ``ccx``, ``mcx``, ``and``, ``and_dg``) is an X on the target
     conditioned on each control having the given value.
 
     Args:
@@ -531,6 +569,8 @@ def unitary(gate: Gate) -> np.ndarray:
         return _ry(_angle(gate))
     if name == "cry":
         return _controlled(_ry(_angle(gate)))
+    if name == "crx":
+        return _controlled(_rx(_angle(gate)))
     if name == "sbf":
         return _sbf(_angle(gate))
     if name == "csbf":

@@ -14,7 +14,7 @@
 >>> [r.name for r in low.registers], low.num_qubits
 (['data', 'work'], 7)
 >>> sorted(low.count_ops().items())
-[('cx', 32), ('h', 10), ('rz', 1), ('t', 20), ('tdg', 15), ('x', 2)]
+[('cx', 20), ('h', 10), ('rz', 1), ('s', 2), ('sdg', 2), ('t', 12), ('tdg', 11), ('x', 2)]
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from .gates import GATE_SPECS, Gate
 
 __all__ = [
     "DEFAULT_BASIS",
+    "LOGICAL_BASIS",
     "WORK_REGISTER",
     "decompose_gate",
     "lower",
@@ -39,6 +40,10 @@ __all__ = [
 
 DEFAULT_BASIS: frozenset[str] = frozenset({"cx", "x", "h", "rz", "t", "tdg", "s", "sdg"})
 """Target gate set of :func:`lower`."""
+
+LOGICAL_BASIS: frozenset[str] = DEFAULT_BASIS | {"and", "and_dg", "ccx"}
+"""The fault-tolerant view's basis: ANDs (4 T to compute, a measurement and no T to uncompute) and full
+Toffolis stay whole, everything else is lowered as usual."""
 
 WORK_REGISTER = "work"
 """Name of the register of clean work ancillas used by :func:`lower_mcx`."""
@@ -86,14 +91,14 @@ def _work_layout(circuit: Circuit, need: int) -> tuple[tuple[Register, ...], ran
 
 
 def _mcx_chain(controls: Sequence[int], target: int, work: Sequence[int], out: list[Gate]) -> None:
-    """All-positive k-controlled X with k >= 3 as a clean-ancilla Toffoli v-chain."""
+    """All-positive k-controlled X with k >= 3: ``k - 2`` clean ANDs into work, one Toffoli, the mirrors."""
     k = len(controls)
-    ladder = [_g("ccx", (controls[0], controls[1], work[0]))]
+    ladder = [_new(Gate, ("and", (controls[0], controls[1], work[0]), (), "11"))]
     for i in range(1, k - 2):
-        ladder.append(_g("ccx", (controls[i + 1], work[i - 1], work[i])))
+        ladder.append(_new(Gate, ("and", (controls[i + 1], work[i - 1], work[i]), (), "11")))
     out.extend(ladder)
     out.append(_g("ccx", (controls[k - 1], work[k - 3], target)))
-    out.extend(reversed(ladder))
+    out.extend(g.inverse() for g in reversed(ladder))
 
 
 def _expand_mcx(g: Gate, work: Sequence[int], out: list[Gate]) -> None:
@@ -115,11 +120,11 @@ def _expand_mcx(g: Gate, work: Sequence[int], out: list[Gate]) -> None:
 def lower_mcx(circuit: Circuit) -> Circuit:
     """Replace every ``mcx`` by X-conjugated ``x``/``cx``/``ccx`` gates.
 
-    A gate with ``k >= 3`` controls becomes a v-chain of Toffolis on ``k - 2`` clean work
-    ancillas: a compute ladder of ``k - 2`` Toffolis, the Toffoli onto the target, and the
-    uncompute ladder, ``2k - 3`` Toffolis in all (the clean-ancilla form of Barenco et al.
-    1995's construction; their Lemma 7.2 needs ``4(k - 2)`` Toffolis for *dirty* ancillas).
-    Negative controls are conjugated by X. ``k = 1``/``2`` give ``cx``/``ccx``.
+    A gate with ``k >= 3`` controls becomes a v-chain on ``k - 2`` clean work ancillas: a
+    compute ladder of ``k - 2`` clean ``and`` gates (3 CX each once lowered), the one full
+    Toffoli onto the target (which may hold data, 6 CX), and the ``and_dg`` mirrors: ``6k - 6``
+    CX in all (Barenco et al. 1995's Lemma 7.2 needs ``4(k - 2)`` full Toffolis for *dirty*
+    ancillas). Negative controls are conjugated by X. ``k = 1``/``2`` give ``cx``/``ccx``.
 
     The work ancillas are the register ``work`` (added at the end of the layout, or grown if
     it is already the last register) whose size is the peak need over the whole circuit; every
@@ -136,7 +141,7 @@ def lower_mcx(circuit: Circuit) -> Circuit:
     >>> c = Circuit([("data", 6)], [Section("m", [mcx([0, 1, 2, 3, 4], 5)])])
     >>> low = lower_mcx(c)
     >>> low.count_ops(), list(low.qubits_of("work"))
-    ({'ccx': 7}, [6, 7, 8])
+    ({'and': 3, 'and_dg': 3, 'ccx': 1}, [6, 7, 8])
     """
     if not any(g[0] == "mcx" for g in circuit.gates):
         return circuit
@@ -171,6 +176,33 @@ def _ccx(g: Gate) -> list[Gate]:
         _g("t", (b,)), _g("t", (c,)), _g("h", (c,)),
         _g("cx", (a, b)), _g("t", (a,)), _g("tdg", (b,)), _g("cx", (a, b)),
     ]  # fmt: skip
+
+
+# Qiskit's RCCX (a Toffoli up to relative phases, 3 CX) then S-dagger on the target: on a target in |0> this
+# is exactly |a, b, 0> -> |a, b, a AND b> (tests/circuitgen/lowering_test.py checks every input).
+def _and_body(a: int, b: int, t: int) -> list[Gate]:
+    return [
+        _g("h", (t,)), _g("t", (t,)), _g("cx", (b, t)), _g("tdg", (t,)), _g("cx", (a, t)),
+        _g("t", (t,)), _g("cx", (b, t)), _g("tdg", (t,)), _g("h", (t,)), _g("sdg", (t,)),
+    ]  # fmt: skip
+
+
+def _negated(g: Gate, body: list[Gate]) -> list[Gate]:
+    flips = [_g("x", (c,)) for c, bit in zip(g[1][:2], g[3] or "11", strict=True) if bit == "0"]
+    return [*flips, *body, *flips] if flips else body
+
+
+def _and(g: Gate) -> list[Gate]:
+    return _negated(g, _and_body(*g[1]))
+
+
+def _and_dg(g: Gate) -> list[Gate]:
+    return _negated(g, [x.inverse() for x in reversed(_and_body(*g[1]))])
+
+
+def _crx(g: Gate) -> list[Gate]:
+    c, t = g[1]
+    return [_g("h", (t,)), *_crz(_g("crz", (c, t), g[2])), _g("h", (t,))]
 
 
 def _crz(g: Gate) -> list[Gate]:
@@ -234,6 +266,9 @@ def _mcx_small(g: Gate) -> list[Gate]:
 
 _RULES: dict[str, Callable[[Gate], list[Gate]]] = {
     "ccx": _ccx,
+    "and": _and,
+    "and_dg": _and_dg,
+    "crx": _crx,
     "crz": _crz,
     "cry": _cry,
     "rzz": _rzz,
@@ -248,6 +283,9 @@ _RULES: dict[str, Callable[[Gate], list[Gate]]] = {
 # Gate names each rule can emit (lets lower_to_basis skip re-checking outputs).
 _RULE_OUTPUTS: dict[str, frozenset[str]] = {
     "ccx": frozenset({"h", "cx", "t", "tdg"}),
+    "and": frozenset({"x", "h", "cx", "t", "tdg", "sdg"}),
+    "and_dg": frozenset({"x", "h", "cx", "t", "tdg", "s"}),
+    "crx": frozenset({"h", "rz", "cx"}),
     "crz": frozenset({"rz", "cx"}),
     "cry": frozenset({"ry", "cx"}),
     "rzz": frozenset({"rz", "cx"}),
@@ -299,7 +337,9 @@ def _check_basis(basis: Iterable[str]) -> frozenset[str]:
 def lower_to_basis(circuit: Circuit, basis: Iterable[str] = DEFAULT_BASIS) -> Circuit:
     """Rewrite every gate not in ``basis`` with exact decompositions, recursively.
 
-    Rules: ``ccx`` -> 6 cx + 9 of h/t/tdg (Nielsen-Chuang); ``crz(θ)`` -> rz(θ/2), cx,
+    Rules: ``ccx`` -> 6 cx + 9 of h/t/tdg (Nielsen-Chuang); ``and`` -> 3 cx + 7 of
+    h/t/tdg/sdg, ``and_dg`` its inverse (exact on a clean target, see :func:`circuitgen.gates.and_`);
+    ``crx(θ)`` -> h, crz(θ), h; ``crz(θ)`` -> rz(θ/2), cx,
     rz(-θ/2), cx; ``rzz`` -> cx, rz, cx; ``sbf`` -> H⊗4, cx ladder, rz, ladder back, H⊗4;
     ``csbf`` -> the same with ``crz`` from the control in place of the rz; ``rx`` -> h rz h;
     ``ry`` -> sdg h rz h s; ``cz`` -> h cx h; ``cry(θ)`` -> ry(θ/2), cx, ry(-θ/2), cx; ``mcx``

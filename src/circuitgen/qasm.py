@@ -86,7 +86,7 @@ Version = Literal[2, 3]
 
 _NATIVE: dict[int, frozenset[str]] = {
     2: frozenset({"x", "h", "t", "tdg", "s", "sdg", "rz", "rx", "ry", "cx", "cz", "crz", "ccx"}),
-    3: frozenset({"x", "h", "t", "tdg", "s", "sdg", "rz", "rx", "ry", "cx", "cz", "crz", "ccx", "cry"}),
+    3: frozenset({"x", "h", "t", "tdg", "s", "sdg", "rz", "rx", "ry", "cx", "cz", "crz", "ccx", "cry", "crx"}),
 }
 _PHASE = {2: ("u1", "cu1"), 3: ("p", "cp")}
 
@@ -120,7 +120,8 @@ def ir_gate_name(qasm_name: str) -> str:
     rest = qasm_name[len(CUSTOM_PREFIX) :]
     if re.match(r"^mcx\d+_[01]+$", rest):
         return "mcx"
-    return rest
+    m = re.match(r"^(and|and_dg)_[01]{2}$", rest)
+    return m.group(1) if m else rest
 
 
 def qasm_gate_name(gate: Gate, version: Version) -> str:
@@ -137,6 +138,8 @@ def qasm_gate_name(gate: Gate, version: Version) -> str:
         return name
     if name == "mcx":
         return _mcx_name(len(gate[1]) - 1, gate[3] or "1" * (len(gate[1]) - 1))
+    if name in ("and", "and_dg"):
+        return f"{CUSTOM_PREFIX}{name}_{gate[3] or '11'}"
     if name not in GATE_SPECS:
         raise ValueError(f"unknown gate {name!r}")
     return CUSTOM_PREFIX + name
@@ -168,6 +171,7 @@ def _fixed_defs() -> dict[str, str]:
             ["c", "t"],
             ["ry(theta/2) t;", "cx c, t;", "ry(-theta/2) t;", "cx c, t;"],
         ),
+        "crx": _gate_def("qcpp_crx", "theta", ["c", "t"], ["h t;", "crz(theta) c, t;", "h t;"]),
         "sbf": _gate_def("qcpp_sbf", "theta", ["a", "b", "c", "d"], _parity_body(["a", "b", "c", "d"], "rz(theta) d;")),
         "csbf": _gate_def(
             "qcpp_csbf",
@@ -176,6 +180,24 @@ def _fixed_defs() -> dict[str, str]:
             _parity_body(["a", "b", "c", "d"], "crz(theta) k, d;"),
         ),
     }
+
+
+_AND_BODY = ["h c;", "t c;", "cx b, c;", "tdg c;", "cx a, c;", "t c;", "cx b, c;", "tdg c;", "h c;", "sdg c;"]
+_INVERSE_1Q = {"t": "tdg", "tdg": "t", "s": "sdg", "sdg": "s"}
+
+
+def _and_defs(circuit: Circuit) -> list[str]:
+    """``qcpp_and_<state>`` (RCCX then sdg on the target ``c``: exact on a clean target) and
+    ``qcpp_and_dg_<state>`` (its inverse)."""
+    used = sorted({(g[0], g[3] or "11") for g in circuit.gates if g[0] in ("and", "and_dg")})
+    out = []
+    for name, state in used:
+        body = _AND_BODY
+        if name == "and_dg":
+            body = [" ".join([_INVERSE_1Q.get(st.split()[0], st.split()[0]), *st.split()[1:]]) for st in body[::-1]]
+        flips = [f"x {c};" for c, bit in zip("ab", state, strict=True) if bit == "0"]
+        out.append(_gate_def(f"{CUSTOM_PREFIX}{name}_{state}", "", ["a", "b", "c"], [*flips, *body, *flips]))
+    return out
 
 
 def _mcphase_def(n: int, version: Version) -> str:
@@ -234,7 +256,8 @@ def _definitions(circuit: Circuit, version: Version) -> list[str]:
     if unknown:
         raise ValueError(f"unknown gate names: {sorted(unknown)}")
     fixed = _fixed_defs()
-    out = [fixed[name] for name in ("rzz", "cry", "sbf", "csbf") if name in names - _NATIVE[version]]
+    out = [fixed[name] for name in ("rzz", "cry", "crx", "sbf", "csbf") if name in names - _NATIVE[version]]
+    out += _and_defs(circuit)
     mcx_defs = []
     phases: set[int] = set()
     for k, state in sorted(patterns):
@@ -266,7 +289,7 @@ def _param_formatter(version: Version) -> Callable[[Param], str]:
 def _body(circuit: Circuit, version: Version) -> Iterator[str]:
     qn = [f"q[{i}]" for i in range(circuit.num_qubits)]
     heads = {name: name for name in _NATIVE[version]}
-    heads.update({name: CUSTOM_PREFIX + name for name in ("rzz", "cry", "sbf", "csbf") if name not in heads})
+    heads.update({name: CUSTOM_PREFIX + name for name in ("rzz", "cry", "crx", "sbf", "csbf") if name not in heads})
     fmt = _param_formatter(version)
     for sec in circuit.sections:
         gates = sec.gates
@@ -276,9 +299,14 @@ def _body(circuit: Circuit, version: Version) -> Iterator[str]:
             with gc_paused():  # never held across the yield below
                 for name, qubits, params, state in itertools.islice(gates, start, start + _CHUNK):
                     head = heads.get(name)
-                    if head is None:  # mcx: the name encodes k and the polarity
-                        k = len(qubits) - 1
-                        head = _mcx_name(k, state or "1" * k)
+                    if head is None:  # mcx, and, and_dg: the name encodes the polarity (and k)
+                        if name == "mcx":
+                            k = len(qubits) - 1
+                            head = _mcx_name(k, state or "1" * k)
+                        elif name in ("and", "and_dg"):
+                            head = f"{CUSTOM_PREFIX}{name}_{state or '11'}"
+                        else:
+                            raise ValueError(f"no OpenQASM form for gate {name!r}")
                     if params:
                         if len(params) == 1:
                             p = params[0]

@@ -32,11 +32,11 @@ def qiskit_matrix(gate: Gate) -> np.ndarray:
         getattr(qc, name)(theta, 0)
     elif name in ("cx", "cz"):
         getattr(qc, name)(0, 1)
-    elif name in ("crz", "cry", "rzz"):
+    elif name in ("crz", "cry", "crx", "rzz"):
         getattr(qc, name)(theta, 0, 1)
     elif name == "ccx":
         qc.ccx(0, 1, 2)
-    elif name == "mcx":
+    elif name in ("mcx", "and", "and_dg"):
         # Qiskit's ctrl_state string is big-endian (last char = first control); ours is not
         qc.mcx(qs[:-1], n - 1, ctrl_state=gate.ctrl_state[::-1])
     elif name == "sbf":
@@ -57,7 +57,8 @@ def _pauli_rotation(label: str, theta: float) -> UnitaryGate:
 ONE_OF_EACH = [
     G.x(0), G.h(0), G.t(0), G.tdg(0), G.s(0), G.sdg(0),
     G.rz(0.7, 0), G.rx(-1.1, 0), G.ry(2.3, 0),
-    G.cx(0, 1), G.cz(0, 1), G.crz(0.9, 0, 1), G.cry(-0.4, 0, 1), G.rzz(1.3, 0, 1),
+    G.cx(0, 1), G.cz(0, 1), G.crz(0.9, 0, 1), G.cry(-0.4, 0, 1), G.crx(0.5, 0, 1), G.rzz(1.3, 0, 1),
+    G.and_(0, 1, 2, "10"), G.and_dg(0, 1, 2, "01"),
     G.ccx(0, 1, 2), G.mcx([0], 1, "0"), G.mcx([0, 1], 2, "01"), G.mcx([0, 1, 2], 3, "110"),
     G.mcx([0, 1, 2, 3], 4, "1111"), G.sbf(0.6, 0, 1, 2, 3), G.csbf(-1.2, 0, 1, 2, 3, 4),
 ]  # fmt: skip

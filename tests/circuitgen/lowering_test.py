@@ -61,9 +61,11 @@ def test_mcx_lowering_exhaustive_on_basis_states(k: int) -> None:
         assert len(work) == max(0, k - 2)
         names = low.count_ops()
         if k >= 3:
-            assert names.get("ccx", 0) == 2 * k - 3
+            assert names.get("ccx", 0) == 1
+            assert names.get("and", 0) == names.get("and_dg", 0) == k - 2
             assert names.get("x", 0) == 2 * state.count("0")
-            assert set(names) <= {"ccx", "x"}
+            assert set(names) <= {"ccx", "x", "and", "and_dg"}
+            assert lower_to_basis(low).count_ops()["cx"] == 6 * k - 6
         for inp in range(2 ** (k + 1)):
             out = simulate_sparse(low, inp)
             assert len(out) == 1
@@ -80,7 +82,7 @@ def test_mcx_work_register_is_shared_and_sized_by_peak() -> None:
     assert mcx_work_need(c) == 4
     low = lower_mcx(c)
     assert low.registers[-1] == Register("work", 4)
-    assert low.count_ops() == {"ccx": 3 + 9 + 5, "x": 6}
+    assert low.count_ops() == {"ccx": 3, "and": 1 + 4 + 2, "and_dg": 1 + 4 + 2, "x": 6}
     work = set(low.qubits_of("work"))
     used = {q for g in low.gates for q in g.qubits if q in work}
     assert used == work
@@ -127,6 +129,9 @@ def test_ccx_gives_6_cx_and_9_single_qubit_gates() -> None:
         (G.cry(0.3, 0, 1), {"cx": 2, "h": 4, "rz": 2, "s": 2, "sdg": 2}),
         (G.sbf(0.3, 0, 1, 2, 3), {"h": 8, "cx": 6, "rz": 1}),
         (G.csbf(0.3, 0, 1, 2, 3, 4), {"h": 8, "cx": 8, "rz": 2}),
+        (G.crx(0.3, 0, 1), {"h": 2, "cx": 2, "rz": 2}),
+        (G.and_(0, 1, 2), {"h": 2, "cx": 3, "t": 2, "tdg": 2, "sdg": 1}),
+        (G.and_dg(0, 1, 2, "01"), {"h": 2, "cx": 3, "t": 2, "tdg": 2, "s": 1, "x": 2}),
     ],
 )
 def test_rule_counts(gate: Gate, expected: dict[str, int]) -> None:
@@ -146,7 +151,8 @@ def test_rule_orders() -> None:
 
 DECOMPOSABLE = [
     G.ccx(0, 1, 2), G.crz(0.7, 1, 0), G.cry(-0.9, 0, 1), G.rzz(1.7, 1, 0), G.rx(0.4, 0), G.ry(-2.2, 0),
-    G.cz(1, 0), G.sbf(0.8, 3, 1, 0, 2), G.csbf(-0.6, 4, 0, 2, 1, 3), G.mcx([1], 0, "0"), G.mcx([2, 0], 1, "10"),
+    G.cz(1, 0), G.crx(0.3, 1, 0), G.sbf(0.8, 3, 1, 0, 2), G.csbf(-0.6, 4, 0, 2, 1, 3),
+    G.mcx([1], 0, "0"), G.mcx([2, 0], 1, "10"),
 ]  # fmt: skip
 
 
@@ -166,8 +172,8 @@ def test_symbolic_angles_survive_lowering() -> None:
 
 def test_custom_basis() -> None:
     c = one(G.rzz(0.3, 0, 1), G.cry(0.2, 1, 2), G.mcx([0, 1, 2], 3))
-    keep = lower_to_basis(c, DEFAULT_BASIS | {"rzz", "ry", "ccx"})
-    assert keep.count_ops() == {"ccx": 3, "rzz": 1, "ry": 2, "cx": 2}
+    keep = lower_to_basis(c, DEFAULT_BASIS | {"rzz", "ry", "ccx", "and", "and_dg"})
+    assert keep.count_ops() == {"ccx": 1, "and": 1, "and_dg": 1, "rzz": 1, "ry": 2, "cx": 2}
     keep_mcx = lower_to_basis(c, DEFAULT_BASIS | {"mcx"})
     assert keep_mcx.count_ops()["mcx"] == 1 and not keep_mcx.has_register("work")
     with pytest.raises(ValueError):
@@ -222,6 +228,20 @@ def test_lower_guarantees() -> None:
     assert [s.name for s in low.sections] == ["s"]
     assert lower(low) == low  # idempotent on lowered circuits
     assert len(lower(c, peephole=False)) >= len(low)
+
+
+@pytest.mark.parametrize("state", ["11", "10", "01", "00"])
+def test_and_is_exact_on_a_clean_target_and_and_dg_undoes_it(state: str) -> None:
+    """On every input with the target |0>, ``and`` lowers to exactly the AND (no phase); ``and_dg`` inverts it."""
+    gate = G.and_(0, 1, 2, state)
+    # columns 0..3: inputs with the target (qubit 2, the high bit) in |0>; the AND must be exact there
+    full = circuit_unitary(lower_to_basis(one(gate)))
+    ideal = circuit_unitary(one(gate))
+    np.testing.assert_allclose(full[:, :4], ideal[:, :4], atol=1e-12)
+    assert not np.allclose(full, ideal)  # a relative-phase construction: not a Toffoli on a dirty target
+    pair = lower_to_basis(one(gate, G.and_dg(0, 1, 2, state)))
+    np.testing.assert_allclose(circuit_unitary(pair), np.eye(8), atol=1e-12)
+    assert peephole(one(gate, G.and_dg(0, 1, 2, state))).count_ops() == {}
 
 
 @settings(max_examples=60, deadline=None)

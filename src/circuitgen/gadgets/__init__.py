@@ -8,6 +8,8 @@ the :class:`Gadget` protocol:
   computed from the gadget's parameters alone (a closed form or a sum over the gadgets it calls), never by
   emitting. ``tests/circuitgen/gadgets_test.py`` asserts, for every kind the compiler emits, that
   ``cost() == Cost.count(lower(<circuit of emit()>))``;
+* ``logical_cost()`` - the same for ``lower(..., basis=LOGICAL_BASIS)``: ``and``/``and_dg``/``ccx`` kept whole,
+  which is what the fault-tolerant view prices (an AND costs 4 T, its uncompute a measurement and no T);
 * ``kind`` - a hashable key: two gadgets with equal kinds have equal costs. Estimates sum
   ``cost(kind) * multiplicity`` over a circuit's call graph and never materialise a gate list.
 
@@ -39,6 +41,10 @@ class Gadget(Protocol):
 
     def cost(self) -> Cost:
         """Lowered cost, without emitting."""
+        ...
+
+    def logical_cost(self) -> Cost:
+        """Cost with ``and``/``and_dg``/``ccx`` kept whole, without emitting."""
         ...
 
     def emit(self) -> Sequence[Gate]:

@@ -5,6 +5,10 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
+    qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
+
+Output files follow :mod:`gridcover.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
 handler as one line on stderr and exit code 2.
@@ -13,6 +17,7 @@ handler as one line on stderr and exit code 2.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -22,6 +27,7 @@ from rich.table import Table
 
 from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm import write_qasm
+from gridcover.atomic import check_output
 from gridcover.scenario import load_scenario
 
 __all__ = ["compile_command", "register"]
@@ -37,30 +43,52 @@ def compile_command(
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.", min=0)] = 1,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
     rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
     ] = None,
-    qasm: Annotated[Path | None, typer.Option("--qasm", help="Write OpenQASM to this file.")] = None,
+    qasm: Annotated[
+        str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
+    ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
     initial: Annotated[
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
     ] = "initial_path",
+    target: Annotated[
+        str,
+        typer.Option(
+            "--target",
+            help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
+            "or ft (fewest T and rotations).",
+        ),
+    ] = "nisq",
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
+    if target not in ("nisq", "ft"):
+        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = parse_bindings([*(bind or []), *extra])
+    for name, value in bindings.items():
+        if not math.isfinite(value):
+            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    to_stdout = qasm == "-"
+    if to_stdout and as_json:
+        raise ValueError("--qasm - and --json both write to standard output; choose one")
+    if qasm is not None:
+        check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
-    result = compile_scenario(s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial)  # type: ignore[arg-type]
+    result = compile_scenario(
+        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target  # type: ignore[arg-type]
+    )
     if qasm is not None:
         write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
     summary = result.summary()
@@ -69,8 +97,9 @@ def compile_command(
     if as_json:
         typer.echo(json.dumps(summary))
         return
-    console = Console()
-    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, {'lowered' if lowered else 'high level'}")
+    console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
+    form = "lowered" if lowered else "high level"
+    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():
@@ -83,7 +112,8 @@ def compile_command(
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
-        console.print(f"wrote {qasm} (OpenQASM {qasm_version})")
+        where = "standard output" if to_stdout else qasm
+        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
 
 
 def register(app: typer.Typer) -> None:

@@ -36,6 +36,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from gridcover.atomic import check_output
 from gridcover.render import plot_paths, plot_trace, render_ascii
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
@@ -190,6 +191,9 @@ def solve_command(
     if time_limit is not None and method != "cpsat":
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
     _cpsat_time_limit(time_limit)
+    for out in (plot, plot_trace_file):
+        if out is not None:
+            check_output(out)  # a bad destination fails before solving, not after
     s = load_scenario(scenario)
     qaoa = None
     exact = None
