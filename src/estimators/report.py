@@ -20,6 +20,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from gridcover.limits import check_layers
 from gridcover.presets import MAX_DEFAULT_ROBOTS
 from gridcover.sbf import RULES
 from gridcover.scenario import load_scenario
@@ -65,7 +66,9 @@ def points_from_options(
     """
     if rule not in RULES:
         raise ValueError(f"bad rule {rule!r}: expected one of {', '.join(RULES)}")
-    layers = parse_int_range(p, "p", 0)
+    layers = parse_int_range(p, "p", 1)
+    for k in layers:
+        check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
@@ -86,6 +89,8 @@ def estimate_report(
     epsilon: float = DEFAULT_EPSILON,
     doubling: Doubling = "partial-mixer",
     progress: bool = True,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
 ) -> str:
     """Estimate ``points`` and render the rows.
 
@@ -99,6 +104,7 @@ def estimate_report(
         epsilon: rotation synthesis precision of the fault-tolerant columns.
         doubling: reading of the paper's doubling.
         progress: progress bar on stderr.
+        columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
 
     Returns:
         The rendered text.
@@ -109,7 +115,7 @@ def estimate_report(
     rows = make_rows(results, compare_paper, doubling)
     if plot is not None:
         plot_rows(rows, plot)
-    return render(rows, fmt)
+    return render(rows, fmt, columns=columns, wide=wide)
 
 
 def formula_report(fmt: Format = "table") -> str:

@@ -29,6 +29,7 @@ import hashlib
 import json
 import os
 import re
+import signal
 import time
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -42,6 +43,7 @@ from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_circuit
 from gridcover.atomic import atomic_open
 from gridcover.errors import ScenarioError
+from gridcover.limits import check_grid_size
 from gridcover.presets import MAX_DEFAULT_ROBOTS, default_scenario
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
@@ -241,7 +243,9 @@ def grid_points(
     """
     if rule not in RULES:
         raise ValueError(f"unknown rule {rule!r} (expected one of {', '.join(RULES)})")
-    robots, ps = list(robots), list(ps)
+    grids, robots, ps = list(grids), list(robots), list(ps)
+    for r, c in grids:
+        check_grid_size(r, c)  # here, in this process: before any worker builds a huge grid
     for k in robots:
         if not 1 <= k <= MAX_DEFAULT_ROBOTS:
             raise ScenarioError("robots", f"the default placement supports 1 to {MAX_DEFAULT_ROBOTS} robots, got {k}")
@@ -328,6 +332,21 @@ def _write_cache(path: Path, result: PointResult) -> None:
 
 
 # --- sweep -------------------------------------------------------------------------------------------------------
+def _leave_sigint_to_parent() -> None:
+    """Pool worker initializer: Ctrl-C reaches the whole process group; the parent alone handles it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Cancel the queued points and end the running ones now (``shutdown(wait=True)`` would wait for each)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())  # no public terminate() before Python 3.14
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in procs:
+        proc.terminate()
+    for proc in procs:
+        proc.join(timeout=1.0)
+
+
 def _progress(total: int, enabled: bool) -> Any:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
@@ -369,6 +388,9 @@ def sweep(
 
     Returns:
         Results in the order of ``points``.
+
+    Interruption (Ctrl-C, SIGTERM) or an error cancels the queued points and terminates the workers at once;
+    every result finished before is already in the cache (written atomically), so a rerun resumes from there.
     """
     options = {"epsilon": epsilon, "synthesis": synthesis}
     folder = Path(cache) if cache is not None else cache_dir()
@@ -400,9 +422,13 @@ def sweep(
                 finish(estimate_point(pt, epsilon, synthesis))
                 bar.update(task, advance=1, last=pt.label)
         else:
-            with ProcessPoolExecutor(max_workers=workers) as pool:
-                futures = {pool.submit(estimate_point, pt, epsilon, synthesis): pt for pt in todo}
-                for fut in as_completed(futures):
-                    finish(fut.result())
-                    bar.update(task, advance=1, last=futures[fut].label)
+            with ProcessPoolExecutor(max_workers=workers, initializer=_leave_sigint_to_parent) as pool:
+                try:
+                    futures = {pool.submit(estimate_point, pt, epsilon, synthesis): pt for pt in todo}
+                    for fut in as_completed(futures):
+                        finish(fut.result())
+                        bar.update(task, advance=1, last=futures[fut].label)
+                except BaseException:  # Ctrl-C, SIGTERM or a failed point: stop now, keep what is cached
+                    _stop_pool(pool)
+                    raise
     return [done[pt] for pt in points]

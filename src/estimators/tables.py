@@ -8,8 +8,9 @@ ft_t_per_rotation, ft_epsilon``, and ``sections`` (section name -> counts, see :
 ``paper_data_qubits`` (``re``), ``paper_cx``, ``paper_single_qubit`` and the ratios ours / paper
 ``ratio_qubits``, ``ratio_cx``, ``ratio_single_qubit``.
 
-Formats: ``table`` (rich, the main columns), ``md`` (the same columns as a Markdown table), ``csv`` (every
-scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested).
+Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
+columns as a Markdown table), ``csv`` (every scalar column plus ``section.<name>.<field>`` columns), ``json`` (a
+list of row objects, sections nested).
 
 Example:
     >>> from estimators.sweep import Point, sweep
@@ -25,13 +26,25 @@ from __future__ import annotations
 import csv
 import io
 import json
+import shutil
 from collections.abc import Iterable, Sequence
 from typing import Any, Literal
 
 from .paper import Doubling, paper_estimate
 from .sweep import PointResult
 
-__all__ = ["FORMATS", "MAIN_COLUMNS", "PAPER_COLUMNS", "Format", "make_row", "make_rows", "render"]
+__all__ = [
+    "DROP_ORDER",
+    "FORMATS",
+    "MAIN_COLUMNS",
+    "PAPER_COLUMNS",
+    "Format",
+    "make_row",
+    "make_rows",
+    "render",
+    "table_columns",
+    "terminal_width",
+]
 
 Format = Literal["table", "md", "csv", "json"]
 FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json")
@@ -144,15 +157,120 @@ def _flat(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def render(rows: Sequence[dict[str, Any]], fmt: Format = "table") -> str:
+DROP_ORDER: tuple[str, ...] = (
+    "two_qubit_depth",
+    "data_qubits",
+    "ancillas",
+    "paper_single_qubit",
+    "paper_qubits",
+    "depth",
+    "single_qubit",
+    "t",
+    "ratio_cx",
+)
+"""Columns the ``table`` format hides first, in order, when the terminal is too narrow for all of them."""
+
+
+def terminal_width() -> int:
+    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
+    return shutil.get_terminal_size((80, 24)).columns
+
+
+def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
+    from rich.table import Table
+
+    table = Table(title="Exact resource counts (lowered circuit)" + (" vs the paper" if paper else ""))
+    for c in cols:
+        table.add_column(c, justify="right")
+    for r in rows:
+        table.add_row(*(_cell(r.get(c)) for c in cols))
+    return table
+
+
+def _text(renderable: Any, width: int) -> str:
+    from rich.console import Console
+
+    buf = io.StringIO()
+    Console(file=buf, width=width, force_terminal=False, color_system=None).print(renderable)
+    return buf.getvalue()
+
+
+def _natural_width(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> int:
+    text = _text(_rich_table(rows, cols, paper), 100_000)
+    return max((len(line.rstrip()) for line in text.splitlines()), default=0)
+
+
+def table_columns(
+    rows: Sequence[dict[str, Any]],
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> tuple[list[str], list[str]]:
+    """The columns of the ``table`` format and the default columns it hides.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        width: characters available (default :func:`terminal_width`).
+        columns: exactly these columns (any row key except ``sections``); overrides ``wide`` and ``width``.
+        wide: every default column, however wide the table gets.
+
+    Returns:
+        ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`PAPER_COLUMNS` when
+        comparing) minus those of :data:`DROP_ORDER` that do not fit, and the hidden ones.
+
+    Raises:
+        ValueError: an unknown column name.
+    """
+    defaults = _columns(rows)
+    if columns is not None:
+        if not columns:
+            raise ValueError("--columns: name at least one column")
+        known = [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]
+        for c in columns:
+            if c not in known:
+                raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
+        return list(dict.fromkeys(columns)), []
+    if wide:
+        return defaults, []
+    limit = terminal_width() if width is None else width
+    paper = "paper_cx" in defaults
+    shown = list(defaults)
+    for c in DROP_ORDER:
+        if _natural_width(rows, shown, paper) <= limit:
+            break
+        if c in shown:
+            shown.remove(c)
+    return shown, [c for c in defaults if c not in shown]
+
+
+def render(
+    rows: Sequence[dict[str, Any]],
+    fmt: Format = "table",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> str:
     """Rows as text in one of :data:`FORMATS`.
 
     Args:
         rows: rows from :func:`make_rows`.
         fmt: ``table`` (rich), ``md``, ``csv`` or ``json``.
+        width: ``table`` only: fit this many characters (default :func:`terminal_width`); columns of
+            :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer.
+        columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
+        wide: ``table`` only: show every default column, whatever the width.
+
+    ``md``, ``csv`` and ``json`` always keep all their columns.
 
     Returns:
         The text (ending with a newline).
+
+    Example:
+        >>> rows = [{"rows": 3, "cols": 3, "robots": 1, "p": 1, "qubits": 26, "cx": 320}]
+        >>> text = render(rows, "table", columns=["rows", "cols", "cx"])
+        >>> [line.strip() for line in text.splitlines()][3]
+        '┃ rows ┃ cols ┃  cx ┃'
     """
     if fmt == "json":
         return json.dumps(list(rows), indent=2) + "\n"
@@ -167,21 +285,21 @@ def render(rows: Sequence[dict[str, Any]], fmt: Format = "table") -> str:
         for r in flat:
             w.writerow({k: _cell(r.get(k)) if isinstance(r.get(k), float) else r.get(k, "") for k in fields})
         return buf.getvalue()
-    cols = _columns(rows)
     if fmt == "md":
+        cols = _columns(rows)
         lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---:" for _ in cols) + "|"]
         lines += ["| " + " | ".join(_cell(r.get(c)) for c in cols) + " |" for r in rows]
         return "\n".join(lines) + "\n"
     if fmt == "table":
-        from rich.console import Console
-        from rich.table import Table
-
-        table = Table(title="Exact resource counts (lowered circuit)" + (" vs the paper" if "paper_cx" in cols else ""))
-        for c in cols:
-            table.add_column(c, justify="right")
-        for r in rows:
-            table.add_row(*(_cell(r.get(c)) for c in cols))
-        buf = io.StringIO()
-        Console(file=buf, width=max(80, 12 * len(cols)), force_terminal=False).print(table)
-        return buf.getvalue()
+        limit = terminal_width() if width is None else width
+        shown, hidden = table_columns(rows, limit, columns, wide)
+        paper = "paper_cx" in _columns(rows)
+        table = _rich_table(rows, shown, paper)
+        text_width = limit if columns is None and not wide else max(limit, _natural_width(rows, shown, paper))
+        text = _text(table, text_width)
+        if hidden:
+            note = f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; " \
+                   "--format csv/json/md keep every column)"
+            text += _text(note, limit)
+        return text
     raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")

@@ -5,6 +5,10 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
+    qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
+
+Output files follow :mod:`gridcover.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
 handler as one line on stderr and exit code 2.
@@ -13,6 +17,7 @@ handler as one line on stderr and exit code 2.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -22,6 +27,7 @@ from rich.table import Table
 
 from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm import write_qasm
+from gridcover.atomic import check_output
 from gridcover.scenario import load_scenario
 
 __all__ = ["compile_command", "register"]
@@ -37,13 +43,15 @@ def compile_command(
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.", min=0)] = 1,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
     rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
     ] = None,
-    qasm: Annotated[Path | None, typer.Option("--qasm", help="Write OpenQASM to this file.")] = None,
+    qasm: Annotated[
+        str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
+    ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
     initial: Annotated[
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
@@ -56,9 +64,33 @@ def compile_command(
             "or ft (fewest T and rotations).",
         ),
     ] = "nisq",
+    phase: Annotated[
+        str,
+        typer.Option(
+            "--phase",
+            help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
+            "(the Ising Hamiltonian, O((re)^2)).",
+        ),
+    ] = "feasible",
+    optimize: Annotated[
+        str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+    ] = "cx",
+    ancilla_budget: Annotated[
+        int | None,
+        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+    ] = None,
+    explain: Annotated[
+        bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
+    if phase not in ("feasible", "whole-space"):
+        raise ValueError(f"--phase: expected feasible or whole-space, got {phase!r}")
+    if optimize not in ("cx", "depth"):
+        raise ValueError(f"--optimize: expected cx or depth, got {optimize!r}")
+    if ancilla_budget is not None and ancilla_budget < 0:
+        raise ValueError(f"--ancilla-budget: must be at least 0, got {ancilla_budget}")
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     if target not in ("nisq", "ft"):
@@ -69,19 +101,30 @@ def compile_command(
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = parse_bindings([*(bind or []), *extra])
+    for name, value in bindings.items():
+        if not math.isfinite(value):
+            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    to_stdout = qasm == "-"
+    if to_stdout and as_json:
+        raise ValueError("--qasm - and --json both write to standard output; choose one")
+    if qasm is not None:
+        check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
     result = compile_scenario(
-        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target  # type: ignore[arg-type]
-    )
+        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
+        phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
+    )  # fmt: skip
     if qasm is not None:
         write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
     summary = result.summary()
     if qasm is not None:
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    if explain:
+        summary["phase_explain"] = result.phase_explain
     if as_json:
         typer.echo(json.dumps(summary))
         return
-    console = Console()
+    console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
     form = "lowered" if lowered else "high level"
     table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
@@ -96,7 +139,27 @@ def compile_command(
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
-        console.print(f"wrote {qasm} (OpenQASM {qasm_version})")
+        where = "standard output" if to_stdout else qasm
+        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
+    if explain:
+        console.print(explain_table(result.phase_explain))
+
+
+def explain_table(rows: list[dict]) -> Table:
+    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs."""
+    table = Table(title="phase separator: construction per term group (cost of one layer)")
+    for col in ("group", "count", "chosen", "cx", "rotations", "T (ft)", "alternatives (cx / rotations / T)"):
+        table.add_column(col, justify="right" if col in ("count", "cx", "rotations", "T (ft)") else "left")
+    for row in rows:
+        c = row["cost"]
+        alts = "\n".join(
+            f"{name}: {a['cx']:,} / {a['rotations']:,} / {a['t_ft']:,}" for name, a in row["alternatives"].items()
+        )
+        table.add_row(
+            str(row["group"]), str(row.get("count", 1)), str(row["construction"]),
+            f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
+        )  # fmt: skip
+    return table
 
 
 def register(app: typer.Typer) -> None:

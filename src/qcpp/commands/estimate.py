@@ -23,6 +23,7 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
+from gridcover.atomic import check_output
 from gridcover.errors import ScenarioError
 
 __all__ = ["estimate", "register"]
@@ -58,7 +59,14 @@ def estimate(
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
     fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv or json.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
-    plot: Annotated[Path | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here.")] = None,
+    plot: Annotated[
+        str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
+    ] = None,
+    columns: Annotated[
+        str | None,
+        typer.Option("--columns", help="Table columns, comma-separated (any CSV column; default: what fits)."),
+    ] = None,
+    wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
     no_cache: Annotated[bool, typer.Option("--no-cache", help="Neither read nor write the estimate cache.")] = False,
     jobs: Annotated[int | None, typer.Option("--jobs", "-j", help="Worker processes (default: all cores).")] = None,
@@ -88,10 +96,10 @@ def estimate(
         raise _fail(f"bad --compare {compare!r}: the only comparison is 'paper'")
     if paper_doubling not in DOUBLINGS:
         raise _fail(f"bad --paper-doubling {paper_doubling!r}: expected one of {', '.join(DOUBLINGS)}")
-    if jobs is not None and jobs < 1:
-        raise _fail(f"bad --jobs {jobs}: must be at least 1")
     if not 0.0 < epsilon < 1.0:
         raise _fail(f"bad --epsilon {epsilon}: must be in (0, 1)")
+    if plot is not None:
+        check_output(plot)  # a bad destination fails before the sweep, not after
     try:
         points = points_from_options(grid, robots, p, scenario, rule)
     except ScenarioError as exc:
@@ -108,6 +116,8 @@ def estimate(
         epsilon=epsilon,
         doubling=paper_doubling,  # type: ignore[arg-type]
         progress=sys.stderr.isatty(),
+        columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
+        wide=wide,
     )
     typer.echo(text, nl=False)
     if plot is not None:
