@@ -53,6 +53,7 @@ from circuitgen.mixer import logic_width, partial_mixer_gates
 from gridcover.presets import default_scenario
 
 __all__ = [
+    "FORMULA_DOMAIN",
     "GATE_NAMES",
     "P_EXPR",
     "QUANTITIES",
@@ -68,6 +69,12 @@ __all__ = [
     "robots",
     "rows",
 ]
+
+FORMULA_DOMAIN = (
+    "rows, cols >= 2; 1 <= robots <= 4 (default corner placement); p >= 1; exact rule; default objective; "
+    "lowered circuit (cx x h rz t tdg s sdg, peephole on)"
+)
+"""Where :func:`formula_table` holds."""
 
 rows, cols, robots, p = sp.symbols("rows cols robots p", integer=True, positive=True)
 

@@ -47,7 +47,7 @@ def test_extra_robots_are_spread_around_the_boundary() -> None:
     extra = [r.start for r in s.robots[4:]]
     ring = boundary_nodes(10, 10)
     pos = sorted(ring.index(n) for n in extra)
-    gaps = [b - a for a, b in zip(pos, pos[1:] + [pos[0] + len(ring)])]
+    gaps = [b - a for a, b in zip(pos, [*pos[1:], pos[0] + len(ring)])]
     assert max(gaps) - min(gaps) <= 2  # even spacing up to the corners skipped
 
 

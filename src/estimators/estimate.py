@@ -1,0 +1,385 @@
+"""Resource estimates of one QAOA circuit from its gadgets' costs, without building a gate list.
+
+:func:`estimate_point` asks the circuit's plan (:func:`circuitgen.qaoa.qaoa_plan`) what it costs: every gadget
+reports its lowered cost and its logical cost (ANDs and Toffolis kept whole) without emitting a gate, and the
+plan sums them over its call graph. Layers are alike up to their angles, so the cost of ``p`` layers is
+``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` (and one with ``p = 0``, for the
+logical cost of the state preparation) serves every ``p``, and :class:`LayerCosts` is cached per scenario and
+options. ``tests/estimators/estimate_test.py`` checks that these numbers equal the counts of the compiled,
+lowered circuit (:func:`estimators.counts.count`) on every scenario the tests compile.
+
+Depth cannot be summed exactly (ASAP layering overlaps consecutive pieces), so it is either
+
+* ``exact``: computed on the compiled circuit (built from the plan's gadgets, lowered and layered), when the
+  circuit has at most ``depth_budget`` gates (``depth="auto"``, the default) or when asked (``depth="exact"``);
+* ``bound``: an upper bound, the sum over the circuit's gadgets of each gadget's own depth (computed once per
+  gadget kind on its lowered gates; a gadget of more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate
+  numbers instead), which ASAP layering can only shorten;
+* absent (``depth="none"``).
+
+The row says which (``depth_kind``); nothing is silently estimated.
+
+Example:
+    >>> from estimators.estimate import EstimateOptions, Point, estimate_point
+    >>> est = estimate_point(Point(2, 2, 1, 1))
+    >>> est.qubits, est.depth.kind
+    (7, 'exact')
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Hashable, Mapping
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Any, Literal
+
+from circuitgen.circuit import Circuit, Register, Section
+from circuitgen.cost import Cost
+from circuitgen.lowering import lower
+from gridcover.presets import default_scenario
+from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
+
+from ._plan import qaoa_plan
+from .depth import Depth, depths
+from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
+from .physical import (
+    DEFAULT_ERROR_BUDGET,
+    DEFAULT_QEC_SCHEME,
+    DEFAULT_QUBIT_MODEL,
+    LogicalCounts,
+    PhysicalEstimate,
+    physical_estimate,
+)
+
+__all__ = [
+    "DEFAULT_DEPTH_BUDGET",
+    "DEFAULT_OPTIONS",
+    "DEFAULT_PLAN",
+    "DEPTH_MODES",
+    "GADGET_DEPTH_LIMIT",
+    "DepthMode",
+    "Estimate",
+    "EstimateOptions",
+    "LayerCosts",
+    "PlanOptions",
+    "Point",
+    "estimate_point",
+    "layer_costs",
+]
+
+DepthMode = Literal["auto", "exact", "bound", "none"]
+DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
+DEFAULT_DEPTH_BUDGET = 300_000
+"""``depth="auto"`` compiles the circuit for its exact depth up to this many lowered gates (about 1 s)."""
+GADGET_DEPTH_LIMIT = 50_000
+"""A gadget with more lowered gates than this contributes its gate counts to a depth bound (not its layering)."""
+
+
+@dataclass(frozen=True)
+class PlanOptions:
+    """How the circuit is built (the keyword options of :func:`circuitgen.qaoa.qaoa_plan`)."""
+
+    rule: str = "exact"
+    initial: str = "initial_path"
+    target: str = "nisq"
+    phase: str = "feasible"
+    optimize: str = "cx"
+
+    def plan(self, scenario: Scenario, p: int) -> Any:
+        """The plan of ``scenario`` with ``p`` layers."""
+        return qaoa_plan(
+            scenario,
+            p,
+            rule=self.rule,
+            initial=self.initial,
+            target=self.target,
+            phase=self.phase,
+            optimize=self.optimize,
+        )
+
+
+@dataclass(frozen=True)
+class EstimateOptions:
+    """What to estimate beyond the exact counts.
+
+    Attributes:
+        plan: circuit construction options.
+        epsilon, synthesis, toffoli_t: the fault-tolerant model (:mod:`estimators.fault_tolerant`).
+        depth: ``auto``, ``exact``, ``bound`` or ``none`` (see the module docstring).
+        depth_budget: largest circuit (lowered gates) whose depth ``auto`` computes exactly.
+        physical: run the QDK resource estimator (:mod:`estimators.physical`).
+        qubit_model, qec_scheme, error_budget: its model.
+    """
+
+    plan: PlanOptions = field(default_factory=PlanOptions)
+    epsilon: float = DEFAULT_EPSILON
+    synthesis: SynthesisModel = "ross-selinger"
+    toffoli_t: int = 7
+    depth: DepthMode = "auto"
+    depth_budget: int = DEFAULT_DEPTH_BUDGET
+    physical: bool = False
+    qubit_model: str = DEFAULT_QUBIT_MODEL
+    qec_scheme: str = DEFAULT_QEC_SCHEME
+    error_budget: float = DEFAULT_ERROR_BUDGET
+
+
+DEFAULT_PLAN = PlanOptions()
+DEFAULT_OPTIONS = EstimateOptions()
+
+
+@dataclass(frozen=True)
+class Point:
+    """One circuit: the default scenario of a grid and robot count (or a given scenario) with ``p`` layers.
+
+    Attributes:
+        rows, cols, robots: the grid and robot count.
+        p: QAOA layers.
+        scenario: canonical JSON of a given scenario, or ``None`` for :func:`gridcover.presets.default_scenario`.
+    """
+
+    rows: int
+    cols: int
+    robots: int
+    p: int
+    scenario: str | None = None
+
+    def build_scenario(self) -> Scenario:
+        """The scenario of this point."""
+        if self.scenario is not None:
+            return _scenario_from_json(self.scenario)
+        return _default(self.rows, self.cols, self.robots)
+
+    @classmethod
+    def from_scenario(cls, scenario: Scenario, p: int) -> Point:
+        """A point for a given scenario."""
+        text = json.dumps(scenario_to_dict(scenario), sort_keys=True)
+        g = scenario.grid
+        return cls(g.rows, g.cols, scenario.num_robots, p, text)
+
+    @property
+    def label(self) -> str:
+        """Short text such as ``3x4 r2 p1``."""
+        return f"{self.rows}x{self.cols} r{self.robots} p{self.p}" + ("" if self.scenario is None else " (file)")
+
+
+@lru_cache(maxsize=64)
+def _default(rows: int, cols: int, robots: int) -> Scenario:
+    return default_scenario(rows, cols, robots)
+
+
+@lru_cache(maxsize=64)
+def _scenario_from_json(text: str) -> Scenario:
+    return scenario_from_dict(json.loads(text))
+
+
+def _minus(a: Cost, b: Cost) -> Cost:
+    """``a - b`` for costs with ``b <= a`` name by name."""
+    out = a.to_dict()
+    for k, v in b.items:
+        out[k] = out.get(k, 0) - v
+        if out[k] < 0:
+            raise ArithmeticError(f"cost of one layer is negative for {k!r}: the plan is not linear in p")
+    return Cost.of(out)
+
+
+@dataclass(frozen=True)
+class LayerCosts:
+    """What one scenario costs, independent of ``p`` (one plan with ``p = 0`` and one with ``p = 1``).
+
+    Attributes:
+        registers0, registers: ``(name, size)`` of the registers for ``p = 0`` and for ``p >= 1``.
+        sections: per-layer costs by section kind: ``initial_state``, ``phase``, ``mixer``.
+        logical_initial, logical_layer: logical costs of the state preparation and of one layer.
+    """
+
+    registers0: tuple[tuple[str, int], ...]
+    registers: tuple[tuple[str, int], ...]
+    sections: Mapping[str, Cost]
+    logical_initial: Cost
+    logical_layer: Cost
+
+    def cost(self, p: int) -> Cost:
+        """Lowered cost of ``p`` layers."""
+        s = self.sections
+        return s.get("initial_state", Cost()) + p * (s.get("phase", Cost()) + s.get("mixer", Cost()))
+
+    def logical_cost(self, p: int) -> Cost:
+        """Logical cost of ``p`` layers."""
+        return self.logical_initial + p * self.logical_layer
+
+    def registers_for(self, p: int) -> tuple[tuple[str, int], ...]:
+        """The register layout with ``p`` layers."""
+        return self.registers if p else self.registers0
+
+
+@lru_cache(maxsize=256)
+def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayerCosts:
+    """The :class:`LayerCosts` of a scenario (cached: a sweep over ``p`` asks once).
+
+    Args:
+        scenario: the scenario.
+        options: circuit construction options.
+
+    Returns:
+        The layer costs.
+    """
+    plan0 = options.plan(scenario, 0)
+    plan1 = options.plan(scenario, 1)
+    by_section = dict(plan1.cost_by_section())
+    logical0 = plan0.logical_cost()
+    return LayerCosts(
+        registers0=tuple((r.name, r.size) for r in plan0.registers),
+        registers=tuple((r.name, r.size) for r in plan1.registers),
+        sections={k: by_section[k] for k in ("initial_state", "phase", "mixer") if k in by_section},
+        logical_initial=logical0,
+        logical_layer=_minus(plan1.logical_cost(), logical0),
+    )
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """Counts and estimates of one point.
+
+    Attributes:
+        point: the point.
+        options: the options used.
+        registers: ``(name, size)`` of every register.
+        cost: lowered gate counts (exact).
+        logical: logical gate counts (ANDs and Toffolis whole; exact).
+        sections: per-layer lowered costs (``initial_state``, ``phase``, ``mixer``).
+        depth: the depths, exact or a bound, or ``None``.
+        fault_tolerant: logical-AND model T counts.
+        physical: QDK estimator figures, or ``None``.
+        seconds: wall-clock seconds spent on this point (excluding cached layer costs).
+    """
+
+    point: Point
+    options: EstimateOptions
+    registers: tuple[tuple[str, int], ...]
+    cost: Cost
+    logical: Cost
+    sections: Mapping[str, Cost]
+    depth: Depth | None
+    fault_tolerant: FaultTolerantEstimate
+    physical: PhysicalEstimate | None
+    seconds: float
+
+    @property
+    def qubits(self) -> int:
+        """All qubits."""
+        return sum(size for _, size in self.registers)
+
+    @property
+    def data_qubits(self) -> int:
+        """The ``data`` register."""
+        return sum(size for name, size in self.registers if name == "data")
+
+    @property
+    def logical_counts(self) -> LogicalCounts:
+        """The physical estimator's input (rotation depth: this estimate's, or the rotation count if none)."""
+        rot_depth = self.depth.rotation_depth if self.depth is not None else self.logical.rotations
+        return LogicalCounts(
+            num_qubits=self.qubits,
+            t_count=self.logical.t,
+            rotation_count=self.logical.rotations,
+            rotation_depth=rot_depth,
+            ccz_count=self.logical["ccx"],
+            ccix_count=self.logical["and"],
+            measurement_count=self.logical["and_dg"] + self.data_qubits,
+        )
+
+
+def _compiled(scenario: Scenario, p: int, options: PlanOptions) -> Circuit:
+    """The circuit built from the plan's gadgets, lowered."""
+    plan = options.plan(scenario, p)
+    secs = [Section(name, tuple(g.emit())) for name, g in plan.sections()]
+    return lower(Circuit(tuple(plan.registers), secs))
+
+
+def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
+    """Depths of the compiled, lowered circuit (builds it: mind its size)."""
+    circ = _compiled(scenario, p, options)
+    return depths(circ.gates, circ.num_qubits)
+
+
+def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache: dict[Hashable, Depth]) -> Depth:
+    key = gadget.kind
+    hit = cache.get(key)
+    if hit is None:
+        c = gadget.cost()
+        if c.total > GADGET_DEPTH_LIMIT:
+            hit = Depth(c.total, c.two_qubit, c.rotations, "bound")
+        else:
+            circ = lower(Circuit(registers, [Section(name, tuple(gadget.emit()))]))
+            hit = depths(circ.gates, circ.num_qubits)
+        cache[key] = hit
+    return hit
+
+
+@lru_cache(maxsize=256)
+def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
+    """Depth bounds of the state preparation and of one layer: sums of per-gadget depths."""
+    plan = options.plan(scenario, 1)
+    regs = tuple(plan.registers)
+    cache: dict[Hashable, Depth] = {}
+    init, layer = Depth(), Depth()
+    for name, gadget in plan.sections():
+        d = _gadget_depth(name, gadget, regs, cache)
+        if name == "initial_state":
+            init = init + d
+        else:
+            layer = layer + d
+    return init, layer
+
+
+def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
+    """An upper bound on the depths of ``p`` layers: the sum over gadgets of their own depths.
+
+    >>> from gridcover.presets import default_scenario
+    >>> s = default_scenario(3, 3, 1)
+    >>> depth_bound(s, 2).depth >= exact_depth(s, 2).depth
+    True
+    """
+    init, layer = _layer_depth_bounds(scenario, options)
+    d = init + p * layer
+    return Depth(d.depth, d.two_qubit_depth, d.rotation_depth, "bound")
+
+
+def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> Estimate:
+    """Counts and estimates of one point (see the module docstring).
+
+    Args:
+        point: the point.
+        options: what to estimate and how.
+
+    Returns:
+        The :class:`Estimate`.
+
+    Raises:
+        gridcover.errors.ScenarioError: the grid cannot host the robots.
+        estimators.physical.PhysicalEstimateError: the physical estimator refused the counts.
+    """
+    start = time.perf_counter()
+    scenario = point.build_scenario()
+    lc = layer_costs(scenario, options.plan)
+    p = point.p
+    cost = lc.cost(p)
+    logical = lc.logical_cost(p)
+    mode = options.depth
+    if mode == "auto":
+        mode = "exact" if cost.total <= options.depth_budget else "bound"
+    depth: Depth | None = None
+    if mode == "exact":
+        depth = exact_depth(scenario, p, options.plan)
+    elif mode == "bound":
+        depth = depth_bound(scenario, p, options.plan)
+    ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
+    est = Estimate(point, options, lc.registers_for(p), cost, logical, lc.sections, depth, ft, None, 0.0)
+    phys = None
+    if options.physical:
+        phys = physical_estimate(est.logical_counts, options.qubit_model, options.qec_scheme, options.error_budget)
+    return Estimate(
+        point, options, est.registers, cost, logical, lc.sections, depth, ft, phys, time.perf_counter() - start
+    )
