@@ -8,6 +8,11 @@ Examples::
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
 handler as one line on stderr and exit code 2.
+
+Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
+costs (:func:`estimators.guard.predict_size`, exact, in well under a second); a circuit over ``--max-gates``
+(default :data:`estimators.guard.DEFAULT_MAX_GATES`, about 7.5 GB of memory, sized for a 24 GB machine) is
+refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
 """
 
 from __future__ import annotations
@@ -22,7 +27,8 @@ from rich.table import Table
 
 from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm import write_qasm
-from gridcover.scenario import load_scenario
+from estimators.guard import DEFAULT_MAX_GATES
+from gridcover.scenario import Scenario, load_scenario
 
 __all__ = ["compile_command", "register"]
 
@@ -49,6 +55,11 @@ def compile_command(
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
     ] = "initial_path",
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
+    max_gates: Annotated[
+        int,
+        typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
+    ] = DEFAULT_MAX_GATES,
+    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     if rule not in ("exact", "paper"):
@@ -60,6 +71,8 @@ def compile_command(
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = parse_bindings([*(bind or []), *extra])
     s = load_scenario(scenario)
+    if not force:
+        _guard(s, p, rule, initial, max_gates)
     result = compile_scenario(s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial)  # type: ignore[arg-type]
     if qasm is not None:
         write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
@@ -84,6 +97,19 @@ def compile_command(
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
         console.print(f"wrote {qasm} (OpenQASM {qasm_version})")
+
+
+def _guard(s: Scenario, p: int, rule: str, initial: str, max_gates: int) -> None:
+    """Refuse (ValueError: one line, exit 2) a circuit predicted to exceed ``max_gates`` lowered gates."""
+    from estimators.estimate import PlanOptions
+    from estimators.guard import predict_size
+
+    size = predict_size(s, p, PlanOptions(rule=rule, initial=initial))
+    if not size.fits(max_gates):
+        raise ValueError(
+            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
+            "(raise it with --max-gates N, or pass --force)"
+        )
 
 
 def register(app: typer.Typer) -> None:
