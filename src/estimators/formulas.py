@@ -35,7 +35,7 @@ Example:
     >>> f["data_qubits"]
     robots*(2*cols*rows - cols - rows)
     >>> evaluate(3, 3, 1, 1)["cx"]
-    940
+    596
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ import sympy as sp
 
 from circuitgen.angles import Angle
 from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.lowering import lower, lower_mcx
+from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.mixer import logic_width, partial_mixer_gates
 from gridcover.presets import default_scenario
 
@@ -149,7 +149,7 @@ def partial_mixer_types() -> tuple[MixerType, ...]:
 
     >>> t = {(m.robot_class, m.row_class, m.col_class): m for m in partial_mixer_types()}
     >>> t["main", "middle", "middle"].key, t["main", "middle", "middle"].toffoli
-    ('BBBB', 68)
+    ('BBBB', 62)
     """
     out = []
     beta = Angle.symbol("beta_0")
@@ -177,29 +177,22 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
     circ = Circuit([Register("data", n), Register("logic", width)], [Section("mixer_0", gates)])
     low = lower(circ)
     ops = low.count_ops()
-    mcx_low = lower_mcx(circ)
-    toffoli = sum(1 for g in mcx_low.gates if g[0] == "ccx")
+    logical = lower(circ, LOGICAL_BASIS).count_ops()
+    toffoli = sum(logical.get(g, 0) for g in ("ccx", "and", "and_dg"))
     used_logic = 1 + max(q for g in gates for q in g[1]) - n
     work = low.num_qubits - circ.num_qubits
     return MixerType(key, rc, rcls, ccls, {g: ops.get(g, 0) for g in GATE_NAMES}, toffoli, used_logic, work)
 
 
-def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool) -> sp.Expr:
-    """Sum of ``metric`` over the plaquettes of one robot of one class, for one grid case.
-
-    Returns the per-robot polynomial; it is the same for both robot classes (mirror images), which is checked.
-    """
+def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool, robot_class: str) -> sp.Expr:
+    """Sum of ``metric`` over the plaquettes of one robot of ``robot_class``, for one grid case."""
     rcls = {c for c, _, _ in (_SMALL if small_rows else _LARGE)}
     ccls = {c for c, _, _ in (_SMALL if small_cols else _LARGE)}
-    per_class: dict[str, sp.Expr] = {"main": sp.Integer(0), "anti": sp.Integer(0)}
+    total = sp.Integer(0)
     for m in partial_mixer_types():
-        if m.row_class in rcls and m.col_class in ccls:
-            term = _class_count(m.row_class, rows) * _class_count(m.col_class, cols) * metric(m)
-            per_class[m.robot_class] += term
-    main, anti = (sp.expand(per_class[c]) for c in ("main", "anti"))
-    if sp.expand(main - anti) != 0:  # pragma: no cover - would need robot-class-dependent formulas
-        raise AssertionError("partial mixer costs differ between mirror-image robots")
-    return main
+        if m.robot_class == robot_class and m.row_class in rcls and m.col_class in ccls:
+            total += _class_count(m.row_class, rows) * _class_count(m.col_class, cols) * metric(m)
+    return sp.expand(total)
 
 
 _GRID_CASES = (
@@ -210,14 +203,27 @@ _GRID_CASES = (
 )
 
 
-def _per_robot_mixer(metric: Callable[[MixerType], int]) -> sp.Expr:
+def _per_robot_mixer(metric: Callable[[MixerType], int], robot_class: str = "main") -> sp.Expr:
     """One robot's full mixer (one layer): a Piecewise over the grid cases (or one polynomial)."""
-    pieces = [(sp.factor(_mixer_sum(metric, r, c)), cond) for r, c, cond in _GRID_CASES]
+    pieces = [(sp.factor(_mixer_sum(metric, r, c, robot_class)), cond) for r, c, cond in _GRID_CASES]
     if all(sp.expand(e - pieces[-1][0]) == 0 for e, _ in pieces):
         return pieces[-1][0]
     # drop cases equal to the general polynomial evaluated there
     kept = [(e, c) for e, c in pieces[:-1] if sp.expand(e - pieces[-1][0].subs(_case_subs(c))) != 0]
     return sp.Piecewise(*kept, pieces[-1]) if kept else pieces[-1][0]
+
+
+N_ANTI = sp.Min(robots - 1, 2)
+"""Robots on the anti-diagonal (robots 1 and 2 of the default placement, 1 <= robots <= 4)."""
+
+
+def _all_robots_mixer(metric: Callable[[MixerType], int]) -> sp.Expr:
+    """Every robot's mixer (one layer): ``(robots - N_ANTI) main + N_ANTI anti`` (``robots * main`` when the
+    mirror-image robots cost the same)."""
+    main, anti = _per_robot_mixer(metric, "main"), _per_robot_mixer(metric, "anti")
+    if sp.simplify(main - anti) == 0:
+        return robots * main
+    return (robots - N_ANTI) * main + N_ANTI * anti
 
 
 def _case_subs(cond: sp.Basic) -> dict[sp.Symbol, int]:
@@ -263,21 +269,21 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         ),
     )
     init_x = robots * (rows + cols - 2)
-    mixer = {g: _per_robot_mixer(lambda m, g=g: m.ops[g]) for g in GATE_NAMES}
+    mixer = {g: _all_robots_mixer(lambda m, g=g: m.ops[g]) for g in GATE_NAMES}
 
     def mixer_of(gate_names: tuple[str, ...]) -> sp.Expr:
-        return _per_robot_mixer(lambda m: sum(m.ops[g] for g in gate_names))
+        return _all_robots_mixer(lambda m: sum(m.ops[g] for g in gate_names))
 
     gate: dict[str, sp.Expr] = {}
     for g in GATE_NAMES:
         if g == "cx":
-            gate[g] = p * (2 * zz + robots * mixer[g])
+            gate[g] = p * (2 * zz + mixer[g])
         elif g == "rz":
-            gate[g] = p * (robots * V + zz + robots * mixer[g])
+            gate[g] = p * (robots * V + zz + mixer[g])
         elif g == "x":
-            gate[g] = init_x + p * robots * mixer[g]
+            gate[g] = init_x + p * mixer[g]
         else:
-            gate[g] = p * robots * mixer[g]
+            gate[g] = p * mixer[g]
 
     work = sp.Piecewise((0, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))), (2, sp.Min(rows, cols) < 4), (3, True))
     logic = sp.Piecewise((3, sp.Eq(sp.Min(rows, cols), 2)), (4, sp.Eq(sp.Min(rows, cols), 3)), (6, True))
@@ -294,12 +300,12 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         "work_qubits": work,
         "ancillas": ancillas,
         "qubits": robots * V + ancillas,
-        "gates": init_x + p * (robots * V + 3 * zz + robots * mixer_of(GATE_NAMES)),
+        "gates": init_x + p * (robots * V + 3 * zz + mixer_of(GATE_NAMES)),
         "cx": gate["cx"],
         "two_qubit": gate["cx"],
-        "single_qubit": init_x + p * (robots * V + zz + robots * mixer_of(singles)),
-        "t_count": p * robots * mixer_of(("t", "tdg")),
-        "toffoli": p * robots * _per_robot_mixer(lambda m: m.toffoli),
+        "single_qubit": init_x + p * (robots * V + zz + mixer_of(singles)),
+        "t_count": p * mixer_of(("t", "tdg")),
+        "toffoli": p * _all_robots_mixer(lambda m: m.toffoli),
         "rotations": gate["rz"],
         "nonzero_zz": zz,
         "partial_mixers": p * robots * (rows - 1) * (cols - 1),
