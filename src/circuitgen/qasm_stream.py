@@ -47,10 +47,11 @@ def _header(
             key = (g[0], len(g[1]), g[3])
             if key not in reps:
                 reps[key] = tuple.__new__(Gate, (g[0], g[1], tuple(0.0 for _ in g[2]), g[3]))
-    if version == 2 and symbols:
-        raise UnboundParameterError(tuple(sorted(symbols, key=symbol_sort_key)), "OpenQASM 2 has no symbolic parameters")
-    skeleton = [*reps.values(), *(rz(Angle.symbol(s), 0) for s in sorted(symbols))]
-    return next(iter_qasm(Circuit(registers, [Section("header", skeleton)]), version)), tuple(sorted(symbols, key=symbol_sort_key))
+    ordered = tuple(sorted(symbols, key=symbol_sort_key))
+    if version == 2 and ordered:
+        raise UnboundParameterError(ordered, "OpenQASM 2 has no symbolic parameters")
+    skeleton = [*reps.values(), *(rz(Angle.symbol(s), 0) for s in ordered)]
+    return next(iter_qasm(Circuit(registers, [Section("header", skeleton)]), version)), ordered
 
 
 def write_qasm_sections(
