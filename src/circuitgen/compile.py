@@ -18,6 +18,7 @@ from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .circuit import Circuit
+from .cost import Target
 from .lowering import lower
 from .qaoa import QubitMap, qaoa_circuit, qubit_map
 
@@ -67,6 +68,7 @@ def compile_scenario(
     lowered: bool = False,
     bindings: Mapping[str, float] | None = None,
     initial: str = "initial_path",
+    target: Target = "nisq",
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
@@ -77,6 +79,8 @@ def compile_scenario(
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
         initial: ``initial_path`` or ``representatives``.
+        target: ``nisq`` (fewest CNOTs) or ``ft`` (fewest T and rotations); see
+            :mod:`circuitgen.gadgets.partial_mixer`.
 
     Returns:
         The :class:`CompileResult`.
@@ -85,7 +89,7 @@ def compile_scenario(
         ValueError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
-    circuit = qaoa_circuit(scenario, p, rule=rule, initial=initial)
+    circuit = qaoa_circuit(scenario, p, rule=rule, initial=initial, target=target)
     if bindings:
         unknown = sorted(set(bindings) - set(circuit.symbols))
         if unknown:

@@ -1,14 +1,9 @@
-"""Constrained SBF mixers: partial mixers (one robot, one plaquette) and the full mixer.
+"""Constrained SBF mixers as gate lists: partial mixers (one robot, one plaquette) and the full mixer.
 
-A partial mixer for robot ``r`` and plaquette ``q`` is, in time order:
-
-1. *compute*: the steps of the SBF logic network (:func:`gridcover.sbf.sbf_logic`) as multi-controlled X
-   gates from the robot's data qubits (and earlier temporaries) into the ``logic`` ancillas;
-2. ``csbf(beta)``: the SBF rotation ``exp(-i beta X_ab X_bc X_cd X_da / 2)`` controlled by the output ancilla;
-3. *uncompute*: the same steps in reverse order, returning every ``logic`` ancilla to |0>.
-
-Logic that is decided at compile time is folded away in the network itself (boundary corners, known
-endpoints, hard-mode obstacle edges); a plaquette whose flip can never be allowed emits nothing.
+The constructions live in :mod:`circuitgen.gadgets.partial_mixer` (each partial mixer is a gadget that knows its
+cost); this module gives their gates. A partial mixer applies ``exp(-i beta/2 X_ab X_bc X_cd X_da)`` to the
+robot's plaquette edges when the SBF rule allows the flip and the identity otherwise, and returns every
+``logic`` ancilla to |0>. A plaquette whose flip can never be allowed emits nothing.
 
 The full mixer applies the partial mixers robot-major (robot 0 first), plaquettes row-major within a robot.
 Robots act on disjoint data qubits (only the clean ``logic`` ancillas are shared), so the robot order does not
@@ -19,8 +14,8 @@ Example:
     >>> from circuitgen.angles import Angle
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
     >>> gates = partial_mixer_gates(s, 0, s.grid.plaquettes[0], Angle.symbol("beta_0"), logic_offset=4)
-    >>> [g.name for g in gates]
-    ['mcx', 'mcx', 'ccx', 'csbf', 'ccx', 'mcx', 'mcx']
+    >>> sorted({g.name for g in gates})
+    ['cx', 'h', 'rz', 'x']
 """
 
 from __future__ import annotations
@@ -28,39 +23,15 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from gridcover.grid import Plaquette
-from gridcover.sbf import Rule, SbfLogic, XorStep, sbf_logic
+from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .angles import Param
-from .gates import Gate, csbf, mcx
+from .cost import Target
+from .gadgets.partial_mixer import logic_width, partial_mixer
+from .gates import Gate
 
-
-def logic_width(scenario: Scenario, rule: Rule = "exact") -> int:
-    """Number of ``logic`` ancillas the full mixer needs (the largest network; they are reused)."""
-    widths = [
-        lg.num_temps
-        for r in range(scenario.num_robots)
-        for q in scenario.grid.plaquettes
-        if not (lg := sbf_logic(scenario, r, q, rule)).never
-    ]
-    return max(widths, default=0)
-
-
-def _step_gate(scenario: Scenario, robot: int, step: XorStep, logic_offset: int) -> Gate:
-    controls = []
-    state = []
-    for lit in step.literals:
-        if lit.is_temp:
-            controls.append(logic_offset + lit.temp)
-        else:
-            controls.append(scenario.variable_index(robot, lit.signal))
-        state.append("1" if lit.value else "0")
-    return mcx(controls, logic_offset + step.target, "".join(state))
-
-
-def logic_gates(scenario: Scenario, logic: SbfLogic, logic_offset: int) -> list[Gate]:
-    """The compute half of a partial mixer: one (multi-)controlled X per network step."""
-    return [_step_gate(scenario, logic.robot, st, logic_offset) for st in logic.steps]
+__all__ = ["full_mixer_gates", "logic_width", "partial_mixer_gates"]
 
 
 def partial_mixer_gates(
@@ -70,6 +41,7 @@ def partial_mixer_gates(
     beta: Param,
     logic_offset: int,
     rule: Rule = "exact",
+    target: Target = "nisq",
 ) -> list[Gate]:
     """Gates of one partial mixer (empty when the flip is never allowed).
 
@@ -80,23 +52,19 @@ def partial_mixer_gates(
         beta: The mixing angle (usually ``Angle.symbol("beta_k")``).
         logic_offset: Qubit index of the first ``logic`` ancilla.
         rule: SBF rule, ``exact`` or ``paper``.
+        target: ``nisq`` or ``ft``.
 
     Returns:
-        compute gates, ``csbf``, uncompute gates.
+        compute gates, the controlled rotation, uncompute gates.
     """
-    logic = sbf_logic(scenario, robot, plaquette, rule)
-    if logic.never:
-        return []
-    compute = logic_gates(scenario, logic, logic_offset)
-    data = [scenario.variable_index(robot, e) for e in plaquette.edges]
-    rotation = csbf(beta, logic_offset + logic.output, *data)
-    return [*compute, rotation, *reversed(compute)]
+    m = partial_mixer(scenario, robot, plaquette, beta, logic_offset, rule, target)
+    return [] if m is None else m.emit()
 
 
 def full_mixer_gates(
-    scenario: Scenario, beta: Param, logic_offset: int, rule: Rule = "exact"
+    scenario: Scenario, beta: Param, logic_offset: int, rule: Rule = "exact", target: Target = "nisq"
 ) -> Iterator[Gate]:
     """All partial mixers, robot-major, plaquettes row-major (see the module docstring)."""
     for r in range(scenario.num_robots):
         for q in scenario.grid.plaquettes:
-            yield from partial_mixer_gates(scenario, r, q, beta, logic_offset, rule)
+            yield from partial_mixer_gates(scenario, r, q, beta, logic_offset, rule, target)

@@ -182,12 +182,13 @@ def _fixed_defs() -> dict[str, str]:
     }
 
 
-_AND_BODY = ["h t;", "t t;", "cx b, t;", "tdg t;", "cx a, t;", "t t;", "cx b, t;", "tdg t;", "h t;", "sdg t;"]
+_AND_BODY = ["h c;", "t c;", "cx b, c;", "tdg c;", "cx a, c;", "t c;", "cx b, c;", "tdg c;", "h c;", "sdg c;"]
 _INVERSE_1Q = {"t": "tdg", "tdg": "t", "s": "sdg", "sdg": "s"}
 
 
 def _and_defs(circuit: Circuit) -> list[str]:
-    """``qcpp_and_<state>`` (RCCX then sdg: exact on a clean target) and ``qcpp_and_dg_<state>`` (its inverse)."""
+    """``qcpp_and_<state>`` (RCCX then sdg on the target ``c``: exact on a clean target) and
+    ``qcpp_and_dg_<state>`` (its inverse)."""
     used = sorted({(g[0], g[3] or "11") for g in circuit.gates if g[0] in ("and", "and_dg")})
     out = []
     for name, state in used:
@@ -195,7 +196,7 @@ def _and_defs(circuit: Circuit) -> list[str]:
         if name == "and_dg":
             body = [" ".join([_INVERSE_1Q.get(st.split()[0], st.split()[0]), *st.split()[1:]]) for st in body[::-1]]
         flips = [f"x {c};" for c, bit in zip("ab", state, strict=True) if bit == "0"]
-        out.append(_gate_def(f"{CUSTOM_PREFIX}{name}_{state}", "", ["a", "b", "t"], [*flips, *body, *flips]))
+        out.append(_gate_def(f"{CUSTOM_PREFIX}{name}_{state}", "", ["a", "b", "c"], [*flips, *body, *flips]))
     return out
 
 

@@ -60,7 +60,7 @@ def crosscheck(case: Case) -> list[str]:
     """
     s, p, plan = case.scenario, case.p, case.plan
     est = estimate_point(Point.from_scenario(s, p), EstimateOptions(plan=plan, depth="auto"))
-    circ = qaoa_circuit(s, p, rule=plan.rule, initial=plan.initial)  # type: ignore[arg-type]
+    circ = qaoa_circuit(s, p, rule=plan.rule, initial=plan.initial, target=plan.target)  # type: ignore[arg-type]
     low = lower(circ)
     rc = count(low)
     out = []

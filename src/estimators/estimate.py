@@ -3,18 +3,19 @@
 :func:`estimate_point` asks the circuit's plan (:func:`circuitgen.qaoa.qaoa_plan`) what it costs: every gadget
 reports its lowered cost and its logical cost (ANDs and Toffolis kept whole) without emitting a gate, and the
 plan sums them over its call graph. Layers are alike up to their angles, so the cost of ``p`` layers is
-``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` (and one with ``p = 0``, for the
-logical cost of the state preparation) serves every ``p``, and :class:`LayerCosts` is cached per scenario and
-options. ``tests/estimators/estimate_test.py`` checks that these numbers equal the counts of the compiled,
-lowered circuit (:func:`estimators.counts.count`) on every scenario the tests compile.
+``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` serves every ``p``
+(:meth:`circuitgen.qaoa.QaoaPlan.cost_by_section`), and :class:`LayerCosts` is cached per scenario and options.
+:mod:`estimators.crosscheck` (run by the tests and ``benchmarks/estimate_speed.py``) checks that these numbers
+equal the counts of the compiled, lowered circuit (:func:`estimators.counts.count`).
 
 Depth cannot be summed exactly (ASAP layering overlaps consecutive pieces), so it is either
 
 * ``exact``: computed on the compiled circuit (built from the plan's gadgets, lowered and layered), when the
   circuit has at most ``depth_budget`` gates (``depth="auto"``, the default) or when asked (``depth="exact"``);
 * ``bound``: an upper bound, the sum over the circuit's gadgets of each gadget's own depth (computed once per
-  gadget kind on its lowered gates; a gadget of more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate
-  numbers instead), which ASAP layering can only shorten;
+  gadget kind on its lowered gates, equal kinds being equal constructions up to the qubits they act on; a
+  gadget of more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate numbers instead), which ASAP layering
+  can only shorten;
 * absent (``depth="none"``).
 
 The row says which (``depth_kind``); nothing is silently estimated.
@@ -23,14 +24,14 @@ Example:
     >>> from estimators.estimate import EstimateOptions, Point, estimate_point
     >>> est = estimate_point(Point(2, 2, 1, 1))
     >>> est.qubits, est.depth.kind
-    (7, 'exact')
+    (4, 'exact')
 """
 
 from __future__ import annotations
 
 import json
 import time
-from collections.abc import Hashable, Mapping
+from collections.abc import Hashable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any, Literal
@@ -38,10 +39,10 @@ from typing import Any, Literal
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.cost import Cost
 from circuitgen.lowering import lower
+from circuitgen.qaoa import qaoa_plan
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 
-from ._plan import qaoa_plan
 from .depth import Depth, depths
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .physical import (
@@ -67,6 +68,7 @@ __all__ = [
     "Point",
     "estimate_point",
     "layer_costs",
+    "registers_for",
 ]
 
 DepthMode = Literal["auto", "exact", "bound", "none"]
@@ -88,16 +90,39 @@ class PlanOptions:
     optimize: str = "cx"
 
     def plan(self, scenario: Scenario, p: int) -> Any:
-        """The plan of ``scenario`` with ``p`` layers."""
-        return qaoa_plan(
-            scenario,
-            p,
-            rule=self.rule,
-            initial=self.initial,
-            target=self.target,
-            phase=self.phase,
-            optimize=self.optimize,
-        )
+        """The plan of ``scenario`` with ``p`` layers (phase separator options are passed only when set, so
+        that a plan without them still works with the defaults)."""
+        extra = {k: v for k, v in (("phase", self.phase), ("optimize", self.optimize)) if v != _DEFAULT_EXTRA[k]}
+        try:
+            return qaoa_plan(
+                scenario,
+                p,
+                rule=self.rule,
+                initial=self.initial,
+                target=self.target,
+                **extra,  # type: ignore[arg-type]
+            )
+        except TypeError as exc:
+            raise ValueError(f"this compiler has no such option: {exc}") from None
+
+
+_DEFAULT_EXTRA = {"phase": "feasible", "optimize": "cx"}
+
+
+def gadget_blocks(gadget: Any) -> list[Sequence[Any]]:
+    """A gadget's gates as the sections the circuit gives it (``emit_blocks()`` if it has them, else one)."""
+    blocks = getattr(gadget, "emit_blocks", None)
+    return list(blocks()) if blocks is not None else [gadget.emit()]
+
+
+def plan_sections(plan: Any, registers: Sequence[Register], lowered: bool) -> Iterator[Section]:
+    """The sections of a plan's circuit, one gadget at a time (lowered one by one if asked, which equals lowering
+    the whole circuit: passes never cross sections and ``registers`` already hold the ``work`` register)."""
+    for name, gadget in plan.sections():
+        secs = [Section(name, tuple(b)) for b in gadget_blocks(gadget)]
+        if lowered:
+            secs = list(lower(Circuit(registers, secs)).sections)
+        yield from secs
 
 
 @dataclass(frozen=True)
@@ -186,32 +211,34 @@ def _minus(a: Cost, b: Cost) -> Cost:
 
 @dataclass(frozen=True)
 class LayerCosts:
-    """What one scenario costs, independent of ``p`` (one plan with ``p = 0`` and one with ``p = 1``).
+    """What one scenario costs, independent of ``p`` (from one plan with ``p = 1``).
 
     Attributes:
-        registers0, registers: ``(name, size)`` of the registers for ``p = 0`` and for ``p >= 1``.
-        sections: per-layer costs by section kind: ``initial_state``, ``phase``, ``mixer``.
-        logical_initial, logical_layer: logical costs of the state preparation and of one layer.
+        registers: ``(name, size)`` of the registers for ``p >= 1`` (``work`` included; with ``p = 0`` there is
+            no mixer and the ``work`` register may be smaller: :func:`estimate_point` asks a ``p = 0`` plan).
+        sections: lowered costs of ``initial_state`` and of one layer's ``phase`` and ``mixer``.
+        logical: the same with ANDs and Toffolis kept whole.
     """
 
-    registers0: tuple[tuple[str, int], ...]
     registers: tuple[tuple[str, int], ...]
     sections: Mapping[str, Cost]
-    logical_initial: Cost
-    logical_layer: Cost
+    logical: Mapping[str, Cost]
 
     def cost(self, p: int) -> Cost:
         """Lowered cost of ``p`` layers."""
-        s = self.sections
-        return s.get("initial_state", Cost()) + p * (s.get("phase", Cost()) + s.get("mixer", Cost()))
+        return _total(self.sections, p)
 
     def logical_cost(self, p: int) -> Cost:
         """Logical cost of ``p`` layers."""
-        return self.logical_initial + p * self.logical_layer
+        return _total(self.logical, p)
 
-    def registers_for(self, p: int) -> tuple[tuple[str, int], ...]:
-        """The register layout with ``p`` layers."""
-        return self.registers if p else self.registers0
+
+def _total(parts: Mapping[str, Cost], p: int) -> Cost:
+    return parts.get("initial_state", Cost()) + p * (parts.get("phase", Cost()) + parts.get("mixer", Cost()))
+
+
+def _layout(plan: Any) -> tuple[tuple[str, int], ...]:
+    return tuple((r.name, r.size) for r in plan.registers)
 
 
 @lru_cache(maxsize=256)
@@ -225,17 +252,24 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
     Returns:
         The layer costs.
     """
-    plan0 = options.plan(scenario, 0)
     plan1 = options.plan(scenario, 1)
-    by_section = dict(plan1.cost_by_section())
-    logical0 = plan0.logical_cost()
+    keys = ("initial_state", "phase", "mixer")
+    lowered, logical = plan1.cost_by_section(), plan1.cost_by_section(logical=True)
     return LayerCosts(
-        registers0=tuple((r.name, r.size) for r in plan0.registers),
-        registers=tuple((r.name, r.size) for r in plan1.registers),
-        sections={k: by_section[k] for k in ("initial_state", "phase", "mixer") if k in by_section},
-        logical_initial=logical0,
-        logical_layer=_minus(plan1.logical_cost(), logical0),
+        registers=_layout(plan1),
+        sections={k: lowered[k] for k in keys if k in lowered},
+        logical={k: logical[k] for k in keys if k in logical},
     )
+
+
+@lru_cache(maxsize=64)
+def _registers0(scenario: Scenario, options: PlanOptions) -> tuple[tuple[str, int], ...]:
+    return _layout(options.plan(scenario, 0))
+
+
+def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
+    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built)."""
+    return layer_costs(scenario, options).registers if p else _registers0(scenario, options)
 
 
 @dataclass(frozen=True)
@@ -294,8 +328,8 @@ class Estimate:
 def _compiled(scenario: Scenario, p: int, options: PlanOptions) -> Circuit:
     """The circuit built from the plan's gadgets, lowered."""
     plan = options.plan(scenario, p)
-    secs = [Section(name, tuple(g.emit())) for name, g in plan.sections()]
-    return lower(Circuit(tuple(plan.registers), secs))
+    registers = tuple(plan.registers)
+    return Circuit(registers, list(plan_sections(plan, registers, lowered=True)))
 
 
 def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
@@ -312,7 +346,8 @@ def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache
         if c.total > GADGET_DEPTH_LIMIT:
             hit = Depth(c.total, c.two_qubit, c.rotations, "bound")
         else:
-            circ = lower(Circuit(registers, [Section(name, tuple(gadget.emit()))]))
+            secs = [Section(name, tuple(b)) for b in gadget_blocks(gadget)]
+            circ = lower(Circuit(registers, secs))
             hit = depths(circ.gates, circ.num_qubits)
         cache[key] = hit
     return hit
@@ -376,7 +411,8 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     elif mode == "bound":
         depth = depth_bound(scenario, p, options.plan)
     ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
-    est = Estimate(point, options, lc.registers_for(p), cost, logical, lc.sections, depth, ft, None, 0.0)
+    registers = registers_for(scenario, p, options.plan)
+    est = Estimate(point, options, registers, cost, logical, lc.sections, depth, ft, None, 0.0)
     phys = None
     if options.physical:
         phys = physical_estimate(est.logical_counts, options.qubit_model, options.qec_scheme, options.error_budget)

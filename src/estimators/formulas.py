@@ -35,7 +35,7 @@ Example:
     >>> f["data_qubits"]
     robots*(2*cols*rows - cols - rows)
     >>> evaluate(3, 3, 1, 1)["cx"]
-    596
+    152
 """
 
 from __future__ import annotations
@@ -47,9 +47,7 @@ from functools import lru_cache
 import sympy as sp
 
 from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.mixer import logic_width, partial_mixer_gates
+from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
 from gridcover.presets import default_scenario
 
 __all__ = [
@@ -141,15 +139,16 @@ def partial_mixer_types() -> tuple[MixerType, ...]:
 
     The representative is plaquette ``(i, j)`` of ``default_scenario(R, C, 2)`` with ``R = 2, i = 0`` for the
     ``only`` class and ``R = 4, i = 0, 1, 2`` for ``first, middle, last`` (same for columns): its corners have
-    exactly the classes of every plaquette of that class in every grid. Its partial mixer is compiled alone
-    with :func:`circuitgen.lowering.lower`.
+    exactly the classes of every plaquette of that class in every grid. Its cost is the partial-mixer gadget's
+    own (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`, default ``exact`` rule and ``nisq`` target),
+    computed from its kind without emitting a gate.
 
     Returns:
         All types (2 robot classes x 16 row/column class pairs).
 
     >>> t = {(m.robot_class, m.row_class, m.col_class): m for m in partial_mixer_types()}
     >>> t["main", "middle", "middle"].key, t["main", "middle", "middle"].toffoli
-    ('BBBB', 62)
+    ('BBBB', 16)
     """
     out = []
     beta = Angle.symbol("beta_0")
@@ -171,17 +170,13 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
         key += "E" if corner in (rb.start, rb.goal) else ("B" if len(plaq.outer_edges[v]) == 2 else "N")
     if {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]}):
         key += "D"
-    n = s.num_variables
-    width = logic_width(s)
-    gates = partial_mixer_gates(s, robot, plaq, beta, n)
-    circ = Circuit([Register("data", n), Register("logic", width)], [Section("mixer_0", gates)])
-    low = lower(circ)
-    ops = low.count_ops()
-    logical = lower(circ, LOGICAL_BASIS).count_ops()
-    toffoli = sum(logical.get(g, 0) for g in ("ccx", "and", "and_dg"))
-    used_logic = 1 + max(q for g in gates for q in g[1]) - n
-    work = low.num_qubits - circ.num_qubits
-    return MixerType(key, rc, rcls, ccls, {g: ops.get(g, 0) for g in GATE_NAMES}, toffoli, used_logic, work)
+    gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
+    if gadget is None:  # the flip is never allowed: nothing is emitted
+        return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)
+    ops, logical = gadget.cost(), gadget.logical_cost()
+    toffoli = logical["and"] + logical["and_dg"] + logical["ccx"]
+    work = mixer_work_need([gadget])
+    return MixerType(key, rc, rcls, ccls, {g: ops[g] for g in GATE_NAMES}, toffoli, gadget.num_temps, work)
 
 
 def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool, robot_class: str) -> sp.Expr:
@@ -208,9 +203,13 @@ def _per_robot_mixer(metric: Callable[[MixerType], int], robot_class: str = "mai
     pieces = [(sp.factor(_mixer_sum(metric, r, c, robot_class)), cond) for r, c, cond in _GRID_CASES]
     if all(sp.expand(e - pieces[-1][0]) == 0 for e, _ in pieces):
         return pieces[-1][0]
-    # drop cases equal to the general polynomial evaluated there
-    kept = [(e, c) for e, c in pieces[:-1] if sp.expand(e - pieces[-1][0].subs(_case_subs(c))) != 0]
-    return sp.Piecewise(*kept, pieces[-1]) if kept else pieces[-1][0]
+    # drop a case when the pieces after it (those kept) already give its value there
+    kept = [pieces[-1]]
+    for e, c in reversed(pieces[:-1]):
+        later = sp.Piecewise(*kept).subs(_case_subs(c))
+        if sp.expand(e - later) != 0:
+            kept.insert(0, (e, c))
+    return sp.Piecewise(*kept) if len(kept) > 1 else kept[0][0]
 
 
 N_ANTI = sp.Min(robots - 1, 2)
@@ -232,6 +231,31 @@ def _case_subs(cond: sp.Basic) -> dict[sp.Symbol, int]:
     if cond == sp.Eq(cols, 2):
         return {cols: 2}
     return {rows: 2, cols: 2}
+
+
+_SIZE_CLASSES = {2: {"only"}, 3: {"first", "last"}, 4: {"first", "middle", "last"}}  # 4 stands for >= 4
+
+
+def _widest(*metrics: Callable[[MixerType], int]) -> sp.Expr:
+    """Largest value over the partial mixers present (both robot classes), as a Piecewise in the smaller and the
+    larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``, ``3`` or ``>= 4`` (the sum of the
+    maxima when several metrics are given). The value is checked to be symmetric in rows and cols."""
+    values: dict[tuple[int, int], int] = {}
+    for nr, rset in _SIZE_CLASSES.items():
+        for nc, cset in _SIZE_CLASSES.items():
+            present = [m for m in partial_mixer_types() if m.row_class in rset and m.col_class in cset]
+            values[nr, nc] = sum(max((f(m) for m in present), default=0) for f in metrics)
+    if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
+        raise AssertionError("ancilla widths are not symmetric in rows and cols")
+    lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
+    pieces = []
+    for a, b in [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]:
+        cond = sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)
+        pieces.append((values[a, b], cond))
+    last = values[4, 4]
+    if all(v == last for v, _ in pieces):
+        return sp.Integer(last)
+    return sp.Piecewise(*pieces, (last, True), evaluate=False)
 
 
 V, P = sp.symbols("V P", integer=True, positive=True)
@@ -285,14 +309,9 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         else:
             gate[g] = p * mixer[g]
 
-    work = sp.Piecewise((0, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))), (2, sp.Min(rows, cols) < 4), (3, True))
-    logic = sp.Piecewise((3, sp.Eq(sp.Min(rows, cols), 2)), (4, sp.Eq(sp.Min(rows, cols), 3)), (6, True))
-    ancillas = sp.Piecewise(
-        (3, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))),
-        (5, sp.Eq(sp.Min(rows, cols), 2)),
-        (6, sp.Eq(sp.Min(rows, cols), 3)),
-        (9, True),
-    )
+    logic = _widest(lambda m: m.logic_qubits)
+    work = _widest(lambda m: m.work_qubits)
+    ancillas = _widest(lambda m: m.logic_qubits, lambda m: m.work_qubits)
     singles = tuple(g for g in GATE_NAMES if g != "cx")
     table: dict[str, sp.Expr] = {
         "data_qubits": robots * V,
@@ -336,7 +355,7 @@ def evaluate(n_rows: int, n_cols: int, n_robots: int, layers: int) -> dict[str, 
         name -> integer value.
 
     >>> evaluate(2, 2, 1, 1)["qubits"]
-    7
+    4
     """
     if n_rows < 2 or n_cols < 2 or not 1 <= n_robots <= 4 or layers < 1:
         raise ValueError("formulas hold for rows, cols >= 2, 1 <= robots <= 4 and p >= 1")

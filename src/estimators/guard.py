@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from gridcover.scenario import Scenario
 
-from .estimate import DEFAULT_PLAN, PlanOptions, layer_costs
+from .estimate import DEFAULT_PLAN, PlanOptions, layer_costs, registers_for
 
 __all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "predict_size"]
 
@@ -71,5 +71,5 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     """
     lc = layer_costs(scenario, options)
     gates = lc.cost(p).total
-    qubits = sum(size for _, size in lc.registers_for(p))
+    qubits = sum(size for _, size in registers_for(scenario, p, options))
     return SizePrediction(gates, qubits, gates * BYTES_PER_GATE)

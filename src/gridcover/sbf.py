@@ -60,11 +60,15 @@ _CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))
 
 @dataclass(frozen=True)
 class Lit:
-    """One literal: ``signal == value``. ``signal >= 0`` is a grid edge of the robot's path;
-    ``signal < 0`` is the temporary bit ``~signal`` (so ``-1`` is temporary 0)."""
+    """One literal: ``signal == value``, or ``signal XOR xor == value`` when ``xor`` is set.
+
+    ``signal >= 0`` is a grid edge of the robot's path; ``signal < 0`` is the temporary bit ``~signal`` (so ``-1``
+    is temporary 0). ``xor``, when not ``None``, is a second grid edge: the literal then reads the parity of two
+    edges (the exact rule reads corner parities, which the circuit holds on a qubit after a CX ladder)."""
 
     signal: int
     value: bool
+    xor: int | None = None
 
     @property
     def is_temp(self) -> bool:
@@ -73,6 +77,13 @@ class Lit:
     @property
     def temp(self) -> int:
         return ~self.signal
+
+    @property
+    def edges(self) -> tuple[int, ...]:
+        """The grid edges the literal reads (none for a temporary)."""
+        if self.signal < 0:
+            return ()
+        return (self.signal,) if self.xor is None else (self.signal, self.xor)
 
 
 @dataclass(frozen=True)
@@ -111,18 +122,24 @@ class SbfLogic:
     @property
     def inputs(self) -> tuple[int, ...]:
         """Grid edges the function reads (ascending)."""
-        return tuple(sorted({lit.signal for s in self.steps for lit in s.literals if not lit.is_temp}))
+        return tuple(sorted({e for s in self.steps for lit in s.literals for e in lit.edges}))
 
     def evaluate(self, mask: int) -> bool:
         """Run the program on the robot's path ``mask``."""
         temps = [False] * self.num_temps
         for s in self.steps:
-            if all(
-                (temps[~lit.signal] if lit.signal < 0 else bool((mask >> lit.signal) & 1)) == lit.value
-                for lit in s.literals
-            ):
+            if all(_lit_value(lit, temps, mask) == lit.value for lit in s.literals):
                 temps[s.target] = not temps[s.target]
         return temps[self.output]
+
+
+def _lit_value(lit: Lit, temps: Sequence[bool], mask: int) -> bool:
+    if lit.signal < 0:
+        return temps[~lit.signal]
+    v = (mask >> lit.signal) & 1
+    if lit.xor is not None:
+        v ^= (mask >> lit.xor) & 1
+    return bool(v)
 
 
 def apply_sbf(mask: int, plaquette: Plaquette) -> int:
@@ -181,7 +198,53 @@ def _exact_logic(
     endpoints: tuple[bool, ...],
     diagonal: bool,
 ) -> SbfLogic:
-    """The exact rule as a three-level network (see the module docstring for the rule).
+    """The exact rule in the parity basis (equal to the rule on every feasible path; see the module docstring).
+
+    With ``s_v`` the parity of corner ``v``'s two plaquette edges (on a feasible path 1 iff ``v`` has exactly
+    one plaquette edge) and ``o_v`` a corner's first variable outer edge:
+
+    * ``blocked[v] = NOT s_v AND o_v`` for every non-endpoint corner with two variable outer edges (B): on a
+      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so ``o_v`` tells
+      whether it is busy, and a corner with two plaquette edges has none set;
+    * ``equal = (ab XOR cd == 0) AND (bc XOR da == 0)``: all four ``s_v`` equal, i.e. the pattern is 0000,
+      1111, 1010 or 0101 (dropped when start and goal are diagonal corners: the opposite patterns are then
+      always feasible, and 0000/1111 are excluded by the endpoints);
+    * ``out = AND(s_v for each endpoint corner v) AND NOT blocked[v] ... AND NOT equal``: an endpoint has
+      degree 1 on a feasible path, so it needs exactly one plaquette edge.
+
+    Every literal reads a corner parity, an outer edge or a temporary, never a single plaquette edge, so the
+    function is unchanged by the flip: the circuit computes it once, rotates and uncomputes.
+    ``tests/gridcover/sbf_test.py`` checks it against :func:`exact_rule_value` on every feasible path.
+    """
+    steps: list[XorStep] = []
+    final: list[Lit] = []
+    for v, (i, j) in enumerate(_CORNER_EDGES):
+        parity = (pedges[i], pedges[j])
+        if endpoints[v]:
+            final.append(Lit(parity[0], True, parity[1]))
+        elif len(outer[v]) == 2:
+            t = len(steps)
+            steps.append(XorStep(t, (Lit(parity[0], False, parity[1]), Lit(outer[v][0], True))))
+            final.append(Lit(~t, False))
+    if not diagonal:
+        ab, bc, cd, da = pedges
+        t = len(steps)
+        steps.append(XorStep(t, (Lit(ab, False, cd), Lit(bc, False, da))))
+        final.append(Lit(~t, False))
+    out = len(steps)
+    steps.append(XorStep(out, tuple(final)))
+    return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
+
+
+def _direct_exact_logic(
+    robot: int,
+    pindex: int,
+    pedges: tuple[int, int, int, int],
+    outer: tuple[tuple[int, ...], ...],
+    endpoints: tuple[bool, ...],
+    diagonal: bool,
+) -> SbfLogic:
+    """The exact rule as qcpp 0.1's three-level network on plain edges (see :func:`direct_exact_logic`).
 
     * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
       the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
@@ -242,6 +305,29 @@ def _paper_logic(
     final = [Lit(~f1, True), Lit(~f2, True)] + [Lit(~t, False) for t in corner_temps]
     steps.append(XorStep(out, tuple(final)))
     return SbfLogic("paper", robot, pindex, out + 1, out, tuple(steps))
+
+
+def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> SbfLogic:
+    """The exact rule as a network on plain edges (qcpp 0.1's form), for comparisons only.
+
+    It reads the plaquette edges themselves (``blocked[v] = NOT e1 AND NOT e2 [AND o_v]``, a 4-literal pattern
+    test) instead of corner parities, which is what a circuit without the parity basis (the paper's structure:
+    multi-controlled X gates into ancillas, then the controlled XXXX rotation) computes. On every feasible path
+    it equals :func:`sbf_logic` with ``rule="exact"`` (``tests/gridcover/sbf_test.py``); the benchmarks build
+    the paper-structured comparison circuit from it.
+
+    Returns:
+        The program (``.never`` when a plaquette edge is not a variable).
+    """
+    plaq = plaquette
+    vmask = scenario.variable_mask
+    if any(not (vmask >> e) & 1 for e in plaq.edges):
+        return SbfLogic("exact", robot, plaq.index, 1, 0, ())
+    rb = scenario.robots[robot]
+    endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
+    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
+    diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
+    return _direct_exact_logic(robot, plaq.index, plaq.edges, outer, endpoints, diagonal)
 
 
 def exact_rule_value(

@@ -167,6 +167,11 @@ def evaluate_logic(logic: SbfLogic, masks: np.ndarray) -> np.ndarray:
                 v = bits.get(lit.signal)
                 if v is None:
                     v = bits[lit.signal] = ((masks >> lit.signal) & 1).astype(bool)
+                if lit.xor is not None:
+                    w = bits.get(lit.xor)
+                    if w is None:
+                        w = bits[lit.xor] = ((masks >> lit.xor) & 1).astype(bool)
+                    v = v ^ w
             acc &= v if lit.value else ~v
         temps[step.target] ^= acc
     return temps[logic.output]

@@ -18,6 +18,7 @@ from estimators.estimate import (
     estimate_point,
     exact_depth,
     layer_costs,
+    registers_for,
 )
 from gridcover.errors import ScenarioError
 from gridcover.presets import default_scenario
@@ -43,7 +44,7 @@ def test_p_layers_cost_state_preparation_plus_p_times_a_layer() -> None:
         circ = qaoa_circuit(s, p)
         assert lc.cost(p) == Cost.count(lower(circ).gates)
         assert lc.logical_cost(p) == Cost.count(lower(circ, LOGICAL_BASIS).gates)
-        assert dict(lc.registers_for(p)) == {r.name: r.size for r in lower(circ).registers}
+        assert dict(registers_for(s, p)) == {r.name: r.size for r in lower(circ).registers}
 
 
 def test_depth_modes() -> None:

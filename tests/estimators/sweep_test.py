@@ -60,5 +60,9 @@ def test_sweep_equals_single_points() -> None:
     pts = grid_points([(2, 2), (3, 4)], [1, 3], [1, 3])
     for est in sweep(pts):
         alone = estimate_point(est.point)
-        assert (est.cost, est.logical, est.registers, est.depth) == (alone.cost, alone.logical, alone.registers,
-                                                                     alone.depth)
+        assert (est.cost, est.logical, est.registers, est.depth) == (
+            alone.cost,
+            alone.logical,
+            alone.registers,
+            alone.depth,
+        )

@@ -28,13 +28,17 @@ from __future__ import annotations
 
 import functools
 import itertools
+import random
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node, Plaquette
 from gridcover.paths import enumerate_paths, is_feasible
 from gridcover.sbf import (
@@ -42,6 +46,7 @@ from gridcover.sbf import (
     SbfLogic,
     allowed_moves,
     apply_sbf,
+    direct_exact_logic,
     exact_rule_value,
     reachable_paths,
     sbf_logic,
@@ -78,6 +83,8 @@ def run_program(logic: SbfLogic, bits: np.ndarray) -> np.ndarray:
         cond = np.ones(len(bits), dtype=bool)
         for lit in step.literals:
             col = temps[:, lit.temp] if lit.is_temp else bits[:, lit.signal]
+            if lit.xor is not None:
+                col = col ^ bits[:, lit.xor]
             cond &= col == lit.value
         temps[:, step.target] ^= cond
     return temps
@@ -489,3 +496,85 @@ def test_sweep_totals_add_up() -> None:
         lines.append(f"{size[0]}x{size[1]}: pairs={len(pairs_of(*size))} paths={paths} "
                      + " ".join(f"{k}={v}" for k, v in n.items()) + f" ambiguous-opposite-classes={amb}")
     print("\n" + "\n".join(lines))
+
+
+# ---------------------------------------------------------------- the parity form (what the circuit computes)
+
+
+@pytest.mark.parametrize(("rows", "cols"), ALL_SIZES)
+def test_parity_program_equals_the_direct_network_on_every_feasible_path(rows: int, cols: int) -> None:
+    """The exact rule's parity-basis program equals qcpp 0.1's plain-edge network on every feasible path."""
+    for c in sweep(rows, cols):
+        direct = direct_exact_logic(c.scenario, 0, c.plaquette)
+        bits = bit_matrix(c.masks, c.scenario.grid.num_edges)
+        assert np.array_equal(run_program(direct, bits)[:, direct.output], c.allowed["exact"])
+
+
+def random_simple_path(s: Scenario, robot: int, rng: random.Random) -> int:
+    """A random simple start-goal path (randomised depth-first search over the free graph)."""
+    g, rb = s.grid, s.robots[robot]
+    adj: dict[Node, list[tuple[Node, int]]] = {n: [] for n in g.nodes}
+    for e, (a, b) in enumerate(g.edges):
+        if (s.variable_mask >> e) & 1:
+            adj[a].append((b, e))
+            adj[b].append((a, e))
+    stack = [(rb.start, 0, frozenset([rb.start]))]
+    while stack:
+        node, mask, seen = stack.pop()
+        if node == rb.goal:
+            return mask
+        nxt = [(n, e) for n, e in adj[node] if n not in seen]
+        rng.shuffle(nxt)
+        stack.extend((n, mask | 1 << e, seen | {n}) for n, e in nxt)
+    raise AssertionError("no path")
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    rows=st.integers(2, 7),
+    cols=st.integers(2, 7),
+    seed=st.integers(0, 2**32 - 1),
+    mode=st.sampled_from(["soft", "hard"]),
+)
+def test_parity_program_equals_specification_on_random_feasible_paths(
+    rows: int, cols: int, seed: int, mode: str
+) -> None:
+    """Beyond the exhaustive sweep: random grids up to 7x7 with obstacles, random endpoints, random simple paths."""
+    rng = random.Random(seed)
+    g = Grid(rows, cols)
+    nodes = list(g.nodes)
+    start, goal = rng.sample(nodes, 2)
+    obstacles = tuple(n for n in rng.sample(nodes, min(2, len(nodes) - 2)) if n not in (start, goal))
+    try:
+        s = scenario(rows, cols, start, goal, obstacles, mode)
+        path = random_simple_path(s, 0, rng)
+    except (ScenarioError, AssertionError):
+        return
+    assert is_feasible(s, 0, path)
+    for q in g.plaquettes:
+        lg = sbf_logic(s, 0, q)
+        if lg.never:
+            continue
+        pbits = [(path >> e) & 1 for e in q.edges]
+        counts = [sum((path >> e) & 1 for e in oe if (s.variable_mask >> e) & 1) for oe in q.outer_edges]
+        rb = s.robots[0]
+        endpoints = [c in (rb.start, rb.goal) for c in q.corners]
+        diagonal = {rb.start, rb.goal} in ({q.corners[0], q.corners[2]}, {q.corners[1], q.corners[3]})
+        assert lg.evaluate(path) == exact_rule_value(pbits, counts, endpoints, diagonal)
+        assert lg.evaluate(path) == direct_exact_logic(s, 0, q).evaluate(path)
+
+
+@settings(max_examples=60, deadline=None)
+@given(rows=st.integers(2, 6), cols=st.integers(2, 6), seed=st.integers(0, 2**32 - 1))
+def test_parity_program_is_unchanged_by_its_own_flip_on_every_input(rows: int, cols: int, seed: int) -> None:
+    """On ANY edge set (feasible or not) the exact program reads only parities, outer edges and temporaries, so
+    flipping the plaquette does not change it: the circuit's compute and uncompute see the same value."""
+    rng = random.Random(seed)
+    g = Grid(rows, cols)
+    start, goal = rng.sample(list(g.nodes), 2)
+    s = scenario(rows, cols, start, goal)
+    for q in g.plaquettes:
+        lg = sbf_logic(s, 0, q)
+        for _ in range(8):
+            m = rng.getrandbits(g.num_edges)
+            assert lg.evaluate(m) == lg.evaluate(m ^ q.edge_mask)

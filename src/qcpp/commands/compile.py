@@ -63,6 +63,14 @@ def compile_command(
     initial: Annotated[
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
     ] = "initial_path",
+    target: Annotated[
+        str,
+        typer.Option(
+            "--target",
+            help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
+            "or ft (fewest T and rotations).",
+        ),
+    ] = "nisq",
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
     max_gates: Annotated[
         int,
@@ -73,6 +81,8 @@ def compile_command(
     """Compile a scenario (see ``qcpp compile --help``)."""
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
+    if target not in ("nisq", "ft"):
+        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     extra = list(assignments or [])
@@ -80,19 +90,30 @@ def compile_command(
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = parse_bindings([*(bind or []), *extra])
     s = load_scenario(scenario)
+    if target not in ("nisq", "ft"):
+        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
     if not force:
-        _guard(s, p, rule, initial, max_gates)
+        _guard(s, p, rule, initial, target, max_gates)
     if qasm is not None:
-        summary = _stream(s, p, rule, initial, lowered, bindings, qasm, qasm_version)
+        summary = _stream(s, p, rule, initial, target, lowered, bindings, qasm, qasm_version)
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
-        result = compile_scenario(s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial)  # type: ignore[arg-type]
+        result = compile_scenario(
+            s,
+            p,
+            rule=rule,
+            lowered=lowered,
+            bindings=bindings,
+            initial=initial,
+            target=target,  # type: ignore[arg-type]
+        )
         summary = result.summary()
     if as_json:
         typer.echo(json.dumps(summary))
         return
     console = Console()
-    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, {'lowered' if lowered else 'high level'}")
+    form = "lowered" if lowered else "high level"
+    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():
@@ -108,12 +129,12 @@ def compile_command(
         console.print(f"wrote {qasm} (OpenQASM {qasm_version})")
 
 
-def _guard(s: Scenario, p: int, rule: str, initial: str, max_gates: int) -> None:
+def _guard(s: Scenario, p: int, rule: str, initial: str, target: str, max_gates: int) -> None:
     """Refuse (ValueError: one line, exit 2) a circuit predicted to exceed ``max_gates`` lowered gates."""
     from estimators.estimate import PlanOptions
     from estimators.guard import predict_size
 
-    size = predict_size(s, p, PlanOptions(rule=rule, initial=initial))
+    size = predict_size(s, p, PlanOptions(rule=rule, initial=initial, target=target))
     if not size.fits(max_gates):
         raise ValueError(
             f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
@@ -126,6 +147,7 @@ def _stream(
     p: int,
     rule: str,
     initial: str,
+    target: str,
     lowered: bool,
     bindings: dict[str, float],
     qasm: Path,
@@ -141,7 +163,7 @@ def _stream(
     if unknown:
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
-    plan = PlanOptions(rule=rule, initial=initial).plan(s, p)
+    plan = PlanOptions(rule=rule, initial=initial, target=target).plan(s, p)
     registers = tuple(plan.registers)
 
     def sections() -> Iterator[Section]:
