@@ -45,6 +45,7 @@ from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 
 from .depth import Depth, depths
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
+from .mixer_count import mixer_layer
 from .physical import (
     DEFAULT_ERROR_BUDGET,
     DEFAULT_QEC_SCHEME,
@@ -245,6 +246,11 @@ def _layout(plan: Any) -> tuple[tuple[str, int], ...]:
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayerCosts:
     """The :class:`LayerCosts` of a scenario (cached: a sweep over ``p`` asks once).
 
+    On a grid without obstacles the mixer's cost comes from :func:`estimators.mixer_count.mixer_layer`
+    (signature counting, ``O(robots)``), the state preparation's and the phase separator's from the plan's own
+    gadgets; otherwise from :meth:`circuitgen.qaoa.QaoaPlan.cost_by_section`. Both agree
+    (``tests/estimators/mixer_count_test.py``).
+
     Args:
         scenario: the scenario.
         options: circuit construction options.
@@ -253,18 +259,41 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
         The layer costs.
     """
     plan1 = options.plan(scenario, 1)
-    keys = ("initial_state", "phase", "mixer")
-    lowered, logical = plan1.cost_by_section(), plan1.cost_by_section(logical=True)
+    if scenario.obstacles:
+        keys = ("initial_state", "phase", "mixer")
+        lowered, logical = plan1.cost_by_section(), plan1.cost_by_section(logical=True)
+        return LayerCosts(
+            registers=_layout(plan1),
+            sections={k: lowered[k] for k in keys if k in lowered},
+            logical={k: logical[k] for k in keys if k in logical},
+        )
+    mixer = mixer_layer(scenario, options.rule, options.target)
+    # the plan's own state-preparation and phase gadgets (QaoaPlan builds them apart from its partial mixers)
+    prep, phase = plan1._prep, plan1._phase
     return LayerCosts(
-        registers=_layout(plan1),
-        sections={k: lowered[k] for k in keys if k in lowered},
-        logical={k: logical[k] for k in keys if k in logical},
+        registers=_registers(scenario, options, mixer.logic_width, max(mixer.work_need, _prep_work(prep))),
+        sections={"initial_state": prep.cost(), "phase": phase.cost(), "mixer": mixer.cost},
+        logical={"initial_state": prep.logical_cost(), "phase": phase.logical_cost(), "mixer": mixer.logical},
     )
+
+
+def _prep_work(prep: Any) -> int:
+    return max((len(g.qubits) - 3 for g in prep.gates if g.name == "mcx"), default=0)
+
+
+def _registers(scenario: Scenario, options: PlanOptions, logic: int, work: int) -> tuple[tuple[str, int], ...]:
+    """The layout :attr:`circuitgen.qaoa.QaoaPlan.registers` gives: ``data``, ``logic``, ``work`` (non-empty)."""
+    logic = max(logic, 1 if options.initial == "representatives" else 0)
+    regs = [("data", scenario.num_variables), ("logic", logic), ("work", work)]
+    return tuple(r for r in regs if r[0] == "data" or r[1])
 
 
 @lru_cache(maxsize=64)
 def _registers0(scenario: Scenario, options: PlanOptions) -> tuple[tuple[str, int], ...]:
-    return _layout(options.plan(scenario, 0))
+    if scenario.obstacles:
+        return _layout(options.plan(scenario, 0))
+    mixer = mixer_layer(scenario, options.rule, options.target)
+    return _registers(scenario, options, mixer.logic_width, _prep_work(options.plan(scenario, 0)._prep))
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
