@@ -384,10 +384,18 @@ def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache
 
 @lru_cache(maxsize=256)
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
-    """Depth bounds of the state preparation and of one layer: sums of per-gadget depths."""
+    """Depth bounds of the state preparation and of one layer: sums of per-gadget depths (per signature count
+    for the mixer of a grid without obstacles, :mod:`estimators.mixer_count`)."""
     plan = options.plan(scenario, 1)
-    regs = tuple(plan.registers)
+    regs = tuple(Register(name, size) for name, size in layer_costs(scenario, options).registers)
     cache: dict[Hashable, Depth] = {}
+    if not scenario.obstacles:
+        init = _gadget_depth("initial_state", plan._prep, regs, cache)
+        layer = _gadget_depth("phase_0", plan._phase, regs, cache)
+        mixer = mixer_layer(scenario, options.rule, options.target)
+        for gadget, n in mixer.gadgets(scenario, options.rule, options.target):
+            layer = layer + n * _gadget_depth("mixer_0", gadget, regs, cache)
+        return init, layer
     init, layer = Depth(), Depth()
     for name, gadget in plan.sections():
         d = _gadget_depth(name, gadget, regs, cache)

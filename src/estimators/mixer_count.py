@@ -32,12 +32,14 @@ from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import lru_cache
 
+from circuitgen.angles import Angle
 from circuitgen.cost import Cost
 from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
 from gridcover.scenario import Scenario
 
 __all__ = ["MixerLayer", "mixer_layer"]
 
+_BETA = Angle.symbol("beta_0")  # symbolic, as in the circuit: a numeric 0 would let the lowering drop rotations
 Node = tuple[int, int]
 Signature = tuple[Hashable, ...]
 
@@ -51,12 +53,25 @@ class MixerLayer:
         logical: logical cost (ANDs and Toffolis whole).
         logic_width: ``logic`` ancillas the largest partial mixer needs.
         work_need: ``work`` ancillas its largest multi-controlled X needs.
+        kinds: ``(robot, (i, j), count)`` per signature: a representative partial mixer (robot and plaquette
+            ``(i, j)``) and how many partial mixers of the layer share its signature.
     """
 
     cost: Cost
     logical: Cost
     logic_width: int
     work_need: int
+    kinds: tuple[tuple[int, tuple[int, int], int], ...] = ()
+
+    def gadgets(self, scenario: Scenario, rule: str = "exact", target: str = "nisq") -> list[tuple[object, int]]:
+        """``(representative gadget, count)`` per signature (for per-kind figures such as depth)."""
+        out = []
+        for robot, (i, j), n in self.kinds:
+            plaq = scenario.grid.plaquettes[i * (scenario.grid.cols - 1) + j]
+            g = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+            if g is not None:
+                out.append((g, n))
+        return out
 
 
 def _corners(i: int, j: int) -> tuple[Node, Node, Node, Node]:
@@ -100,7 +115,7 @@ def _kind_cost(sig: Signature, rule: str, target: str, scenario: Scenario, robot
     """Cost, logical cost, temporaries and work need of the partial mixer of ``sig`` (one representative)."""
     del sig  # the cache key; the representative realises it
     plaq = scenario.grid.plaquettes[pindex]
-    g = partial_mixer(scenario, robot, plaq, 0.0, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+    g = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
     if g is None:
         return Cost(), Cost(), 0, 0
     return g.cost(), g.logical_cost(), g.num_temps, mixer_work_need([g])
@@ -159,6 +174,7 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
                 reps[sig] = (robot, ij)
     cost, logical = Cost(), Cost()
     width = work = 0
+    kinds = []
     for sig, n in counts.items():
         if n <= 0:
             continue
@@ -170,7 +186,8 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
         logical += n * lc
         if c.total:
             width, work = max(width, temps), max(work, need)
-    return MixerLayer(cost, logical, width, work)
+            kinds.append((robot, ij, n))
+    return MixerLayer(cost, logical, width, work, tuple(kinds))
 
 
 def _find(scenario: Scenario, sig: Signature) -> tuple[int, tuple[int, int]]:
