@@ -145,9 +145,11 @@ def paper_structured(s: Scenario) -> Circuit:
             steps = []
             for st in lg.steps:
                 controls = [n + lit.temp if lit.is_temp else s.variable_index(r, lit.signal) for lit in st.literals]
-                steps.append(mcx(controls, n + st.target, "".join("1" if lit.value else "0" for lit in st.literals)))
+                state = "".join("1" if lit.value else "0" for lit in st.literals)
+                steps.append(mcx(controls, n + st.target, state))
             data = [s.variable_index(r, e) for e in q.edges]
-            sections.append(Section("mixer_0", (*steps, csbf(Angle.symbol("beta_0"), n + lg.output, *data), *reversed(steps))))
+            rotation = csbf(Angle.symbol("beta_0"), n + lg.output, *data)
+            sections.append(Section("mixer_0", (*steps, rotation, *reversed(steps))))
     width = max(width, ours.register("logic").size if ours.has_register("logic") else 0)
     return Circuit([Register("data", n), Register("logic", width)], sections)
 
@@ -159,6 +161,44 @@ def qiskit_cx(circuit: Circuit) -> tuple[int, float]:
     t = time.perf_counter()
     out = transpile(qc, basis_gates=["cx", "rz", "sx", "x", "h", "s", "sdg", "t", "tdg"], optimization_level=3)
     return int(out.count_ops().get("cx", 0)), time.perf_counter() - t
+
+
+def corner_classes(s: Scenario, robot: int, q) -> str:  # type: ignore[no-untyped-def]
+    rb, vmask = s.robots[robot], s.variable_mask
+    out = ""
+    for corner, outer in zip(q.corners, q.outer_edges, strict=True):
+        if corner in (rb.start, rb.goal):
+            out += "E"
+        elif sum(1 for e in outer if (vmask >> e) & 1) == 2:
+            out += "B"
+        else:
+            out += "N"
+    diagonal = {rb.start, rb.goal} in ({q.corners[0], q.corners[2]}, {q.corners[1], q.corners[3]})
+    return out + ("-D" if diagonal else "")
+
+
+def kinds_table(cases: list[tuple[str, Scenario]]) -> None:
+    """One row per partial-mixer kind met in ``cases``: corner classes (a b c d), cost per target."""
+    seen: dict[object, tuple[str, object, object]] = {}
+    for _, s in cases:
+        for r in range(s.num_robots):
+            for q in s.grid.plaquettes:
+                m = partial_mixer(s, r, q, 0.5, s.num_variables, "exact", "nisq")
+                f = partial_mixer(s, r, q, 0.5, s.num_variables, "exact", "ft")
+                if m is not None and m.kind not in seen:
+                    seen[m.kind] = (corner_classes(s, r, q), m, f)
+    print("\npartial-mixer kinds (corner classes a b c d: E endpoint, B two variable outer edges, N neither;")
+    print("-D: start and goal on the diagonal); lowered cost of one partial mixer")
+    print(
+        f"{'kind':<8} {'nisq cx':>7} {'rz':>3} {'t+tdg':>5} {'temps':>5}   "
+        f"{'ft cx':>5} {'rz':>3} {'ANDs':>4} {'temps':>5}"
+    )
+    for label, m, f in sorted(seen.values(), key=lambda v: (v[1].cost().cx, v[0])):  # type: ignore[attr-defined]
+        mc, fc, fl = m.cost(), f.cost(), f.logical_cost()  # type: ignore[attr-defined]
+        print(
+            f"{label:<8} {mc.cx:>7} {mc.rotations:>3} {mc.t:>5} {m.num_temps:>5}   "  # type: ignore[attr-defined]
+            f"{fc.cx:>5} {fc.rotations:>3} {fl['and']:>4} {f.num_temps:>5}"  # type: ignore[attr-defined]
+        )
 
 
 def main(argv: list[str]) -> int:
@@ -185,6 +225,7 @@ def main(argv: list[str]) -> int:
             peer_ours, t2 = qiskit_cx(high)
             row += f" {peer:>20,} {ours:>7,} {ours / peer:>7.3f} {peer_ours:>17,} {t1 + t2:>6.1f}"
         print(row, flush=True)
+    kinds_table(cases)
     return 0
 
 

@@ -84,9 +84,7 @@ def plot_rows(rows: Sequence[dict[str, Any]], path: str | os.PathLike[str]) -> s
     fig.suptitle(f"QAOA coverage path planning, p = {p_min}, rule = {rule}")
     fig.tight_layout()
     target = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(target))
-    os.makedirs(folder, exist_ok=True)
-    try:
+    try:  # the folder must exist (gridcover.atomic: one rule for every output option)
         save_figure_atomic(fig, target, dpi=120)
     finally:
         plt.close(fig)

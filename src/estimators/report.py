@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from gridcover.errors import ScenarioError
+from gridcover.limits import check_layers
 from gridcover.presets import max_default_robots
 from gridcover.scenario import load_scenario
 
@@ -75,7 +76,9 @@ def points_from_options(
         ValueError: a malformed range (``gridcover.errors.ScenarioError`` for a bad file, or when no grid of the
             range can host the robots).
     """
-    layers = parse_int_range(p, "p", 0)
+    layers = parse_int_range(p, "p", 1)
+    for k in layers:
+        check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
@@ -101,6 +104,8 @@ def estimate_report(
     compare_paper: bool = False,
     plot: str | os.PathLike[str] | None = None,
     doubling: Doubling = "partial-mixer",
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
 ) -> Iterator[str]:
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
@@ -109,26 +114,24 @@ def estimate_report(
         fmt: one of :data:`estimators.tables.FORMATS`.
         options: what to estimate.
         compare_paper: add the paper's estimates and ratios.
-        plot: also write the comparison plot (PNG) here, once every row is done.
+        plot: also write the comparison plot (PNG) here; then the rows are printed after the plot is written
+            (a failed plot prints nothing), not streamed.
         doubling: reading of the paper's doubling.
+        columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
 
     Yields:
         Text pieces (see :func:`estimators.tables.render_stream`).
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    kept: list[dict] = []
-
-    def rows() -> Iterator[dict]:
-        for est in sweep(points, options):
-            row = make_row(est, compare_paper, doubling)
-            if plot is not None:
-                kept.append(row)
-            yield row
-
-    yield from render_stream(rows(), fmt)
-    if plot is not None:
-        plot_rows(kept, plot)
+    rows = (make_row(est, compare_paper, doubling) for est in sweep(points, options))
+    if plot is None:
+        yield from render_stream(rows, fmt, columns=columns, wide=wide)
+        return
+    # a plot needs every row: draw it first, so that a failed plot prints nothing
+    kept = list(rows)
+    plot_rows(kept, plot)
+    yield from render_stream(kept, fmt, columns=columns, wide=wide)
 
 
 def formula_report(fmt: Format = "table") -> str:

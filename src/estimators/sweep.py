@@ -25,6 +25,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator
 
+from gridcover.limits import check_grid_size
 from gridcover.presets import max_default_robots
 
 from .estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point, estimate_point
@@ -116,7 +117,9 @@ def grid_points(grids: Iterable[tuple[int, int]], robots: Iterable[int], ps: Ite
     >>> [p.label for p in grid_points([(2, 2)], [1, 2], [1])]
     ['2x2 r1 p1', '2x2 r2 p1']
     """
-    robots, ps = list(robots), list(ps)
+    grids, robots, ps = list(grids), list(robots), list(ps)
+    for r, c in grids:
+        check_grid_size(r, c)  # before any scenario of a huge grid is built
     return [Point(r, c, k, p) for r, c in grids for k in robots if k <= max_default_robots(r, c) for p in ps]
 
 

@@ -18,7 +18,8 @@ A row is a plain dict (:func:`make_row`) with
   ``ratio_single_qubit``;
 * ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
 
-Formats: ``table`` (rich, the main columns), ``md`` (the same columns as a Markdown table), ``csv`` (every
+Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
+columns as a Markdown table), ``csv`` (every
 scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
 ``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
 ``table``.
@@ -37,6 +38,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import shutil
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, Literal
 
@@ -46,6 +48,7 @@ from .estimate import Estimate
 from .paper import Doubling, paper_estimate
 
 __all__ = [
+    "DROP_ORDER",
     "FORMATS",
     "MAIN_COLUMNS",
     "PAPER_COLUMNS",
@@ -55,6 +58,8 @@ __all__ = [
     "make_rows",
     "render",
     "render_stream",
+    "table_columns",
+    "terminal_width",
 ]
 
 Format = Literal["table", "md", "csv", "json", "jsonl"]
@@ -226,12 +231,20 @@ def _csv_line(values: Iterable[Any]) -> str:
     return buf.getvalue()
 
 
-def render_stream(rows: Iterable[dict[str, Any]], fmt: Format = "csv") -> Iterator[str]:
+def render_stream(
+    rows: Iterable[dict[str, Any]],
+    fmt: Format = "csv",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> Iterator[str]:
     """Rows as text pieces, each yielded as soon as its row arrives (``table`` waits for every row).
 
     Args:
         rows: rows (any iterable, e.g. a generator over a sweep).
         fmt: one of :data:`FORMATS`.
+        width, columns, wide: the ``table`` format's options (:func:`render`).
 
     Yields:
         Text pieces whose concatenation is :func:`render` of the same rows.
@@ -239,7 +252,7 @@ def render_stream(rows: Iterable[dict[str, Any]], fmt: Format = "csv") -> Iterat
     if fmt not in FORMATS:
         raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")
     if fmt == "table":
-        yield render(list(rows), "table")
+        yield render(list(rows), "table", width=width, columns=columns, wide=wide)
         return
     first = True
     fields: list[str] = []
@@ -269,29 +282,139 @@ def render_stream(rows: Iterable[dict[str, Any]], fmt: Format = "csv") -> Iterat
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
 
 
-def render(rows: Sequence[dict[str, Any]], fmt: Format = "table") -> str:
-    """Rows as text in one of :data:`FORMATS`.
+DROP_ORDER: tuple[str, ...] = (
+    "physical_t_factories",
+    "ft_total_t",
+    "two_qubit_depth",
+    "data_qubits",
+    "ancillas",
+    "paper_single_qubit",
+    "paper_qubits",
+    "depth_kind",
+    "depth",
+    "single_qubit",
+    "t",
+    "ratio_cx",
+)
+"""Columns the ``table`` format hides first, in order, when the terminal is too narrow for all of them."""
 
-    Args:
-        rows: rows from :func:`make_rows`.
-        fmt: ``table`` (rich), ``md``, ``csv``, ``json`` or ``jsonl``.
 
-    Returns:
-        The text (ending with a newline, unless there are no rows in ``jsonl``/``csv``).
-    """
-    if fmt != "table":
-        return "".join(render_stream(rows, fmt))
-    cols = _columns(rows[0] if rows else None)
-    from rich.console import Console
+def terminal_width() -> int:
+    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
+    return shutil.get_terminal_size((80, 24)).columns
+
+
+def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
     from rich.table import Table
 
-    title = "Resource counts (lowered circuit, from the gadgets' costs)"
-    title += " vs the paper" if "paper_cx" in cols else ""
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
     table = Table(title=title)
     for c in cols:
         table.add_column(c, justify="right")
     for r in rows:
         table.add_row(*(_cell(r.get(c)) for c in cols))
+    return table
+
+
+def _text(renderable: Any, width: int) -> str:
+    from rich.console import Console
+
     buf = io.StringIO()
-    Console(file=buf, width=max(80, 12 * len(cols)), force_terminal=False).print(table)
+    Console(file=buf, width=width, force_terminal=False, color_system=None).print(renderable)
     return buf.getvalue()
+
+
+def _natural_width(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> int:
+    text = _text(_rich_table(rows, cols, paper), 100_000)
+    return max((len(line.rstrip()) for line in text.splitlines()), default=0)
+
+
+def table_columns(
+    rows: Sequence[dict[str, Any]],
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> tuple[list[str], list[str]]:
+    """The columns of the ``table`` format and the default columns it hides.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        width: characters available (default :func:`terminal_width`).
+        columns: exactly these columns (any row key except ``sections``); overrides ``wide`` and ``width``.
+        wide: every default column, however wide the table gets.
+
+    Returns:
+        ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`PAPER_COLUMNS` when
+        comparing) minus those of :data:`DROP_ORDER` that do not fit, and the hidden ones.
+
+    Raises:
+        ValueError: an unknown column name.
+    """
+    defaults = _columns(rows[0] if rows else None)
+    if columns is not None:
+        if not columns:
+            raise ValueError("--columns: name at least one column")
+        known = [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]
+        for c in columns:
+            if c not in known:
+                raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
+        return list(dict.fromkeys(columns)), []
+    if wide:
+        return defaults, []
+    limit = terminal_width() if width is None else width
+    paper = "paper_cx" in defaults
+    shown = list(defaults)
+    for c in DROP_ORDER:
+        if _natural_width(rows, shown, paper) <= limit:
+            break
+        if c in shown:
+            shown.remove(c)
+    return shown, [c for c in defaults if c not in shown]
+
+
+def render(
+    rows: Sequence[dict[str, Any]],
+    fmt: Format = "table",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> str:
+    """Rows as text in one of :data:`FORMATS`.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        fmt: ``table`` (rich), ``md``, ``csv``, ``json`` or ``jsonl``.
+        width: ``table`` only: fit this many characters (default :func:`terminal_width`); columns of
+            :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer.
+        columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
+        wide: ``table`` only: show every default column, whatever the width.
+
+    ``md``, ``csv``, ``json`` and ``jsonl`` always keep all their columns (and stream: :func:`render_stream`).
+
+    Returns:
+        The text (ending with a newline).
+
+    Example:
+        >>> rows = [{"rows": 3, "cols": 3, "robots": 1, "p": 1, "qubits": 26, "cx": 320}]
+        >>> text = render(rows, "table", columns=["rows", "cols", "cx"])
+        >>> [line.strip() for line in text.splitlines()][3]
+        '┃ rows ┃ cols ┃  cx ┃'
+    """
+    if fmt != "table":
+        return "".join(render_stream(rows, fmt))
+    if fmt == "table":
+        limit = terminal_width() if width is None else width
+        shown, hidden = table_columns(rows, limit, columns, wide)
+        paper = "paper_cx" in _columns(rows[0] if rows else None)
+        table = _rich_table(rows, shown, paper)
+        text_width = limit if columns is None and not wide else max(limit, _natural_width(rows, shown, paper))
+        text = _text(table, text_width)
+        if hidden:
+            note = (
+                f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
+                "--format csv/json/md keep every column)"
+            )
+            text += _text(note, limit)
+        return text
+    raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")

@@ -1,9 +1,20 @@
-"""Write files whole or not at all: the one implementation every package uses.
+"""Write output files whole or not at all: the one implementation every package and every output option uses.
 
-The content goes to a temporary file in the destination's folder, is flushed to disk, gets the permissions a
-plain ``open(path, "w")`` would give (an existing file's mode, else ``0o666`` less the umask; ``mkstemp`` alone
-would leave ``0o600``), and is renamed over the destination with :func:`os.replace`. On any error the temporary
-file is removed and the destination is left as it was.
+The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every other output path):
+
+* **Regular files** (or a new path): the content goes to a temporary file in the destination's folder, is
+  flushed to disk, gets the permissions a plain ``open(path, "w")`` would give (an existing file's mode, else
+  ``0o666`` less the umask; ``mkstemp`` alone would leave ``0o600``) and is renamed over the destination with
+  :func:`os.replace`. On any error (or Ctrl-C) the temporary file is removed and the destination is left as it
+  was.
+* **Symbolic links** are followed: the file the link points to is replaced, the link stays a link.
+* **Existing non-regular files** (a device such as ``/dev/null`` or ``/dev/full``, a FIFO) are written straight
+  to, never replaced. A FIFO must get a reader within :data:`FIFO_WAIT` seconds.
+* ``-`` means standard output.
+* **Missing folders are not created**: writing ``out/x.qasm`` when ``out`` does not exist is an error (as for
+  ``cp`` or a compiler's ``-o``), so a typo in a folder name never silently makes a new tree.
+* Every failure is an :class:`OutputError` (an ``OSError``) whose message names the path **as the caller gave
+  it**, e.g. ``cannot write out/x.qasm: the folder out does not exist`` -- never the temporary name.
 
 Example:
     >>> import os, tempfile
@@ -12,17 +23,65 @@ Example:
     ...     _ = f.write("hello")
     >>> open(os.path.join(d, "out.txt")).read()
     'hello'
+    >>> try:
+    ...     write_text_atomic(os.path.join(d, "no", "x.txt"), "hi")
+    ... except OutputError as exc:
+    ...     print(str(exc).replace(d, "D"))
+    cannot write D/no/x.txt: the folder D/no does not exist
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import stat
+import sys
 import tempfile
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any, Literal
+
+__all__ = [
+    "FIFO_WAIT",
+    "OutputError",
+    "atomic_open",
+    "check_output",
+    "discard_pending",
+    "save_figure_atomic",
+    "write_text_atomic",
+]
+
+FIFO_WAIT = 3.0
+"""Seconds to wait for a reader to open a FIFO before giving up (a blocking open could wait for ever)."""
+
+_PENDING: set[str] = set()
+"""Temporary files being written now (removed by :func:`discard_pending` if the process must die at once)."""
+
+
+class OutputError(OSError):
+    """An output file cannot be written; ``str()`` is ``cannot write <path as given>: <reason>``.
+
+    Args:
+        path: the destination as the caller (user) gave it.
+        reason: what went wrong.
+        code: the ``errno`` value, if any.
+    """
+
+    def __init__(self, path: str, reason: str, code: int | None = None) -> None:
+        super().__init__(code, reason, path)
+
+    def __str__(self) -> str:
+        return f"cannot write {self.filename}: {self.strerror}"
+
+
+def _reason(exc: OSError) -> str:
+    return exc.strerror or str(exc) or type(exc).__name__
+
+
+def _wrap(target: str, exc: OSError) -> OutputError:
+    return exc if isinstance(exc, OutputError) else OutputError(target, _reason(exc), exc.errno)
 
 
 def _target_mode(path: str) -> int:
@@ -34,36 +93,165 @@ def _target_mode(path: str) -> int:
         return 0o666 & ~mask
 
 
-@contextlib.contextmanager
-def atomic_open(path: str | os.PathLike[str], mode: Literal["w", "wb"] = "w") -> Iterator[IO[Any]]:
-    """Open a temporary file that replaces ``path`` when the ``with`` block ends without an error.
+def _existing(real: str) -> os.stat_result | None:
+    try:
+        return os.stat(real)
+    except FileNotFoundError:
+        return None
+
+
+def check_output(path: str | os.PathLike[str]) -> None:
+    """Fail early (before any expensive work) if ``path`` cannot be an output file.
+
+    Checks that the destination is not a folder and that its folder exists. It does not create anything.
 
     Args:
-        path: Destination file (its folder must exist).
+        path: the destination as given by the user (``-`` is standard output and always fine).
+
+    Raises:
+        OutputError: naming ``path``.
+
+    Example:
+        >>> check_output("-")
+        >>> try:
+        ...     check_output("/")
+        ... except OutputError as exc:
+        ...     print(exc)
+        cannot write /: it is a folder
+    """
+    target = os.fspath(path)
+    if target == "-":
+        return
+    if not target:
+        raise OutputError(target, "empty file name")
+    real = os.path.realpath(target)
+    try:
+        st = _existing(real)
+    except OSError as exc:
+        raise _wrap(target, exc) from None
+    if st is not None:
+        if stat.S_ISDIR(st.st_mode):
+            raise OutputError(target, "it is a folder", errno.EISDIR)
+        return
+    folder = os.path.dirname(real)
+    if not os.path.isdir(folder):
+        given = os.path.dirname(target) or "."
+        if os.path.isdir(given):  # a symlink into a missing folder
+            raise OutputError(target, f"it links into the folder {folder}, which does not exist", errno.ENOENT)
+        raise OutputError(target, f"the folder {given} does not exist", errno.ENOENT)
+
+
+def _open_fifo(real: str, target: str) -> int:
+    deadline = time.monotonic() + FIFO_WAIT
+    while True:
+        try:
+            fd = os.open(real, os.O_WRONLY | os.O_NONBLOCK)
+        except OSError as exc:
+            if exc.errno != errno.ENXIO:
+                raise
+            if time.monotonic() >= deadline:
+                raise OutputError(
+                    target, f"no process opened the FIFO for reading within {FIFO_WAIT:g} s", errno.ENXIO
+                ) from None
+            time.sleep(0.05)
+            continue
+        os.set_blocking(fd, True)
+        return fd
+
+
+def _fdopen(fd: int, mode: str) -> IO[Any]:
+    if mode == "wb":
+        return os.fdopen(fd, "wb")
+    return os.fdopen(fd, "w", encoding="utf-8", newline="\n")
+
+
+@contextlib.contextmanager
+def _stdout(mode: str) -> Iterator[IO[Any]]:
+    stream: IO[Any] = sys.stdout.buffer if mode == "wb" else sys.stdout
+    try:
+        yield stream
+        stream.flush()
+    except BrokenPipeError:  # the reader left (``| head``): not an error of ours, the caller decides
+        raise
+    except OSError as exc:
+        if exc.filename is None:
+            raise OutputError("standard output", _reason(exc), exc.errno) from None
+        raise
+
+
+@contextlib.contextmanager
+def _direct(real: str, target: str, st: os.stat_result, mode: str) -> Iterator[IO[Any]]:
+    try:
+        fd = _open_fifo(real, target) if stat.S_ISFIFO(st.st_mode) else os.open(real, os.O_WRONLY)
+        f = _fdopen(fd, mode)
+    except OSError as exc:
+        raise _wrap(target, exc) from None
+    try:
+        with f:
+            yield f
+            f.flush()
+    except OSError as exc:
+        if exc.filename is None:  # our write/flush/close, not an error of the caller's own
+            raise _wrap(target, exc) from None
+        raise
+
+
+@contextlib.contextmanager
+def atomic_open(path: str | os.PathLike[str], mode: Literal["w", "wb"] = "w") -> Iterator[IO[Any]]:
+    """Open ``path`` for writing by the rules of the module docstring (atomic for regular files).
+
+    Args:
+        path: Destination (``-`` for standard output). Its folder must exist.
         mode: ``"w"`` (UTF-8 text, ``\\n`` newlines) or ``"wb"``.
 
     Yields:
-        The open temporary file.
+        The open (temporary, device, FIFO or standard output) file.
+
+    Raises:
+        OutputError: the destination cannot be written (the message names ``path``).
     """
     target = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(target))
-    file_mode = _target_mode(target)
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{os.path.basename(target)}.", suffix=".tmp")
+    if target == "-":
+        with _stdout(mode) as f:
+            yield f
+        return
+    check_output(target)
+    real = os.path.realpath(target)
+    st = _existing(real)
+    if st is not None and not stat.S_ISREG(st.st_mode):
+        with _direct(real, target, st, mode) as f:
+            yield f
+        return
+    file_mode = _target_mode(real)
     try:
-        if mode == "wb":
-            f: IO[Any] = os.fdopen(fd, "wb")
-        else:
-            f = os.fdopen(fd, "w", encoding="utf-8", newline="\n")
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(real), prefix=f".{os.path.basename(real)}.", suffix=".tmp")
+    except OSError as exc:
+        raise _wrap(target, exc) from None
+    _PENDING.add(tmp)
+    try:
+        f = _fdopen(fd, mode)
         with f:
             yield f
             f.flush()
             os.fsync(f.fileno())
         os.chmod(tmp, file_mode)
-        os.replace(tmp, target)
-    except BaseException:
+        os.replace(tmp, real)
+    except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and (exc.filename is None or exc.filename in (tmp, real)):
+            raise _wrap(target, exc) from None
         raise
+    finally:
+        _PENDING.discard(tmp)
+
+
+def discard_pending() -> None:
+    """Remove the temporary files of writes still in progress (for a process about to ``os._exit``)."""
+    for tmp in list(_PENDING):
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        _PENDING.discard(tmp)
 
 
 def write_text_atomic(path: str | os.PathLike[str], text: str) -> None:
@@ -76,6 +264,8 @@ def save_figure_atomic(fig: Any, path: str | os.PathLike[str], **savefig: Any) -
     """``fig.savefig`` (format from the suffix, default PNG) into ``path``, whole or not at all."""
     target = Path(path)
     fmt = target.suffix[1:].lower() or "png"
-    with atomic_open(target, "wb") as f:
+    if os.fspath(path) == "-":
+        fmt = "png"
+    with atomic_open(path, "wb") as f:
         fig.savefig(f, format=fmt, **savefig)
     return target

@@ -18,3 +18,7 @@ class ScenarioError(ValueError):
         self.field = field
         self.reason = reason
         super().__init__(f"{field}: {reason}" if field else reason)
+
+    def __reduce__(self) -> tuple[type[ScenarioError], tuple[str, str]]:
+        # picklable with both arguments, so that errors cross process-pool boundaries intact
+        return (type(self), (self.field, self.reason))

@@ -36,11 +36,15 @@ import numpy as np
 from gridcover.atomic import write_text_atomic
 from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node
+from gridcover.limits import check_grid_size
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
+
+MAX_SCENARIO_BYTES = 16 << 20
+"""Largest scenario file :func:`load_scenario` reads (16 MiB)."""
 
 ObstacleMode = Literal["soft", "hard"]
 BalanceMode = Literal["chain", "all-pairs"]
@@ -213,6 +217,7 @@ def _validate(s: Scenario) -> None:
             raise ScenarioError(name, f"expected an integer, got {value!r}")
         if value < 2:
             raise ScenarioError(name, f"the grid must be at least 2x2, got {value}")
+    check_grid_size(g.rows, g.cols)
     seen: set[Node] = set()
     for i, o in enumerate(s.obstacles):
         _check_node(g, o, f"grid.obstacles[{i}]")
@@ -407,6 +412,7 @@ def scenario_from_dict(data: Mapping[str, Any]) -> Scenario:
     if rows < 2 or cols < 2:
         field_name = "grid.rows" if rows < 2 else "grid.cols"
         raise ScenarioError(field_name, f"the grid must be at least 2x2, got {rows}x{cols}")
+    check_grid_size(rows, cols)  # before anything of the grid's size is built
     obstacles = [
         _node(o, f"grid.obstacles[{i}]") for i, o in enumerate(_list(grid_d.get("obstacles", []), "grid.obstacles"))
     ]
@@ -492,13 +498,20 @@ def scenario_to_dict(s: Scenario) -> dict[str, Any]:
 def load_scenario(path: str | os.PathLike[str]) -> Scenario:
     """Load a scenario from a ``.toml`` or ``.json`` file.
 
+    The file is UTF-8, with or without a byte order mark.
+
     Raises:
         ScenarioError: if the file is missing, unreadable, not valid TOML/JSON, or describes a bad scenario
-            (the field is prefixed by the file name).
+            (the field is prefixed by the file name; a grid over :data:`gridcover.limits.MAX_GRID_NODES`
+            nodes is refused unless :func:`gridcover.limits.allow_large` is in effect).
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        with open(p, "rb") as f:
+            raw = f.read(MAX_SCENARIO_BYTES + 1)  # bounded: /dev/zero or a huge file must not fill the memory
+        if len(raw) > MAX_SCENARIO_BYTES:
+            raise ScenarioError(str(p), f"the file is larger than {MAX_SCENARIO_BYTES >> 20} MiB; not a scenario")
+        text = raw.decode("utf-8-sig")  # a leading UTF-8 byte order mark is not content
     except OSError as exc:
         raise ScenarioError(str(p), f"cannot read the file ({exc.strerror or exc})") from None
     except UnicodeDecodeError as exc:

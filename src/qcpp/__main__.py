@@ -1,6 +1,26 @@
-"""``python -m qcpp``: the same as the ``qcpp`` command."""
+"""``python -m qcpp`` and the ``qcpp`` console script: signal handling first, then the CLI.
 
-from qcpp.cli import main
+Ctrl-C/SIGTERM handling (:mod:`qcpp.interrupt`) is installed before the heavy imports (numpy, sympy, typer, ...),
+so even an interrupt during start-up is one line ``interrupted`` and exit code 130, never a traceback.
+"""
+
+from __future__ import annotations
+
+import os
+
+
+def main() -> None:
+    """Install the signal handling, import the CLI and run it."""
+    from qcpp.interrupt import EXIT_CODE, install, report_interrupted
+
+    install()
+    try:
+        from qcpp.cli import main as cli_main
+    except KeyboardInterrupt:
+        report_interrupted()
+        os._exit(EXIT_CODE)
+    cli_main()
+
 
 if __name__ == "__main__":
     main()

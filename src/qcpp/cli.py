@@ -3,35 +3,83 @@
 Every command is a thin layer: it parses options, calls library functions and prints (human-readable by
 default, one JSON object on stdout with ``--json``; progress and messages go to stderr).
 
-Errors: the app is a :class:`QcppTyper`, whose ``command()`` wraps every registered callback in
-:func:`handle_errors`: a :class:`~gridcover.errors.ScenarioError`, ``ValueError`` or ``OSError`` escaping a
-command becomes **one line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback. Commands
-get this for free by being registered on :data:`app` (``register(app)`` in their module).
+One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 130 interrupted):
+
+* A :class:`~gridcover.errors.ScenarioError`, ``ValueError``, ``OSError`` or ``MemoryError`` escaping a command
+  becomes **one line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback
+  (:func:`handle_errors`). Anything else is a bug and keeps its traceback.
+* Usage errors found while parsing (unknown option, a number that is not a number, a missing argument) are the
+  same one line plus a hint, ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')``,
+  exit code 2 (:class:`QcppGroup`), instead of click's framed box.
+* Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
+  ``--maxiter``, ``--max-amplitudes``, ``--jobs`` must be at least 1 (a zero-work request is refused, not
+  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`.
+* Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.interrupt`).
+* ``--allow-large`` (every command) lifts the size guards of :mod:`gridcover.limits`.
 
 Adding a command: write ``qcpp/commands/<name>.py`` with the command function and
 ``register(app)`` (``app.command("<name>", help=...)(function)``), give it a ``--json`` option, and add the
-module to :data:`COMMAND_MODULES`.
+module to :data:`COMMAND_MODULES`. Registering on :data:`app` (a :class:`QcppTyper`) gives it all of the above.
 
 Example:
     >>> from typer.testing import CliRunner
     >>> res = CliRunner().invoke(app, ["solve", "no/such/file.toml"])
     >>> res.exit_code, res.stderr.startswith("error: no/such/file.toml: cannot read the file")
     (2, True)
+    >>> res = CliRunner().invoke(app, ["solve", "x.toml", "--bogus"])
+    >>> res.exit_code, res.stderr
+    (2, "error: No such option: --bogus (see 'qcpp solve --help')\\n")
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import functools
 import importlib
-from collections.abc import Callable
-from typing import Annotated, Any, TypeVar
+import inspect
+import os
+import sys
+from collections.abc import Callable, Sequence
+from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
+from typer.core import TyperCommand, TyperGroup
 
 from gridcover.errors import ScenarioError
+from gridcover.limits import OVERRIDE_FLAG, allow_large, check_layers
 from qcpp import __version__
 
-__all__ = ["COMMAND_MODULES", "LIBRARY_ERRORS", "QcppTyper", "app", "error_line", "handle_errors", "main"]
+try:  # typer >= 0.25 ships its own copy of click
+    from typer._click import exceptions as _click_exc
+    from typer._click.core import Context, Parameter
+    from typer._click.globals import get_current_context
+except ImportError:  # pragma: no cover - older typer on the real click
+    from click import exceptions as _click_exc  # type: ignore[no-redef]
+    from click.core import Context, Parameter  # type: ignore[no-redef,assignment]
+    from click.globals import get_current_context  # type: ignore[no-redef]
+
+__all__ = [
+    "COMMAND_MODULES",
+    "EXIT_INTERRUPTED",
+    "EXIT_USAGE",
+    "LIBRARY_ERRORS",
+    "NUMERIC_OPTIONS",
+    "QcppCommand",
+    "QcppGroup",
+    "QcppTyper",
+    "app",
+    "error_line",
+    "handle_errors",
+    "main",
+    "usage_error_line",
+]
+
+EXIT_USAGE = 2
+"""Exit code of every bad-input error."""
+
+EXIT_INTERRUPTED = 130
+"""Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell convention)."""
 
 LIBRARY_ERRORS: tuple[type[BaseException], ...] = (ScenarioError, ValueError, OSError)
 """Exceptions that mean bad input or environment (exit code 2 with one line), not a bug (traceback)."""
@@ -45,33 +93,195 @@ COMMAND_MODULES: tuple[str, ...] = (
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
+NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "jobs": 1, "seed": 0}
+"""Integer parameters checked in every command, by parameter name: the smallest value allowed."""
+
 F = TypeVar("F", bound=Callable[..., Any])
 
+_WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EIO, errno.EFBIG, errno.EDQUOT})
 
-def error_line(exc: BaseException) -> str:
+
+def error_line(exc: BaseException | str) -> str:
     """``exc`` as one line of text (newlines folded; the exception type if it has no message)."""
     text = " ".join(part.strip() for part in str(exc).splitlines() if part.strip())
-    return text or type(exc).__name__
+    return text or (type(exc).__name__ if isinstance(exc, BaseException) else "error")
+
+
+def _is_option(param: Parameter) -> bool:
+    return param.param_type_name == "option"
+
+
+def _param_name(param: Parameter) -> str:
+    if _is_option(param):
+        return "/".join(param.opts)
+    return (param.name or "argument").upper()
+
+
+def usage_error_line(exc: Exception) -> str:
+    """A click usage error as ``error: <what>: <why> (see '<command> --help')``.
+
+    Example:
+        >>> usage_error_line(_click_exc.UsageError("No such option: --x"))
+        'error: No such option: --x'
+    """
+    param = getattr(exc, "param", None)
+    if isinstance(exc, _click_exc.BadParameter) and param is not None and not isinstance(
+        exc, _click_exc.MissingParameter
+    ):
+        text = f"{_param_name(param)}: {error_line(exc.message)}"
+    else:
+        text = error_line(exc.format_message() if isinstance(exc, _click_exc.ClickException) else str(exc))
+    ctx = getattr(exc, "ctx", None)
+    if ctx is not None:
+        text += f" (see '{ctx.command_path} --help')"
+    return f"error: {text}"
+
+
+def _report_interrupt() -> None:
+    from qcpp.interrupt import report_interrupted
+
+    report_interrupted()
+
+
+def _check_numbers(kwargs: dict[str, Any]) -> None:
+    ctx = get_current_context(silent=True)
+    for name, low in NUMERIC_OPTIONS.items():
+        value = kwargs.get(name)
+        if not isinstance(value, int) or isinstance(value, bool):
+            continue
+        param = next((q for q in ctx.command.params if q.name == name), None) if ctx else None
+        flag = _param_name(param) if param is not None else name
+        if value < low:
+            raise _click_exc.BadParameter(f"must be at least {low}, got {value}", ctx=ctx, param=param)
+        if name == "p":
+            check_layers(value, flag)
 
 
 def handle_errors(fn: F) -> F:
-    """Wrap a command callback: :data:`LIBRARY_ERRORS` become ``error: <message>`` on stderr and exit code 2."""
+    """Wrap a command callback: the exit-code rules of the module docstring, plus ``--allow-large``.
+
+    The wrapper's signature is ``fn``'s plus a keyword ``allow_large`` flag (unless ``fn`` has its own), so every
+    command accepts ``--allow-large``.
+    """
+    sig = inspect.signature(fn, eval_str=True)
+    own_flag = "allow_large" in sig.parameters
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
+        large = kwargs["allow_large"] if own_flag else kwargs.pop("allow_large", False)
         try:
-            return fn(*args, **kwargs)
+            _check_numbers(kwargs)
+            with allow_large(bool(large)):
+                return fn(*args, **kwargs)
+        except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
+            raise
+        except MemoryError:
+            typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
+            raise typer.Exit(code=EXIT_USAGE) from None
         except LIBRARY_ERRORS as exc:
-            typer.echo(f"error: {error_line(exc)}", err=True)
-            raise typer.Exit(code=2) from None
+            message = error_line(exc)
+            if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:
+                # named files fail as gridcover.atomic.OutputError (with the name): this was stdout
+                _stdout_failure()
+                message = f"cannot write standard output: {exc.strerror}"
+            typer.echo(f"error: {message}", err=True)
+            raise typer.Exit(code=EXIT_USAGE) from None
 
+    if not own_flag:
+        flag = inspect.Parameter(
+            "allow_large",
+            inspect.Parameter.KEYWORD_ONLY,
+            default=False,
+            annotation=Annotated[
+                bool, typer.Option(OVERRIDE_FLAG, help="Lift the size guards (grids over 50x50, p over 1000).")
+            ],
+        )
+        wrapper.__signature__ = sig.replace(parameters=[*sig.parameters.values(), flag])  # type: ignore[attr-defined]
+        hints = get_type_hints(fn, include_extras=True)
+        wrapper.__annotations__ = {**hints, "allow_large": flag.annotation}
     return wrapper  # type: ignore[return-value]
 
 
+def _tidy_help(params: Sequence[Parameter]) -> None:
+    """Show flags as flags (no ``<bool>``) and arguments by an upper-case name (``SCENARIO``)."""
+    for param in params:
+        if _is_option(param):
+            if getattr(param, "is_flag", False) and param.metavar is None:
+                param.metavar = ""
+        elif param.metavar is None and param.name:
+            param.metavar = param.name.upper()
+
+
+class QcppCommand(TyperCommand):
+    """A typer command whose help shows flags as flags."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        _tidy_help(self.params)
+
+    def get_help_option(self, ctx: Context) -> Any:
+        option = super().get_help_option(ctx)
+        if option is not None:
+            _tidy_help([option])
+        return option
+
+
+class QcppGroup(TyperGroup):
+    """The top-level group: one-line usage errors (exit 2) and ``interrupted`` (exit 130)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        _tidy_help(self.params)
+
+    def get_help_option(self, ctx: Context) -> Any:
+        option = super().get_help_option(ctx)
+        if option is not None:
+            _tidy_help([option])
+        return option
+
+    def invoke(self, ctx: Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            _report_interrupt()
+            raise typer.Exit(code=EXIT_INTERRUPTED) from None
+
+    def main(  # type: ignore[override]
+        self,
+        args: Sequence[str] | None = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        **extra: Any,
+    ) -> Any:
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except _click_exc.NoArgsIsHelpError as exc:
+            typer.echo(exc.format_message(), err=True)
+            sys.exit(EXIT_USAGE)
+        except _click_exc.ClickException as exc:
+            typer.echo(usage_error_line(exc), err=True)
+            sys.exit(EXIT_USAGE)
+        except typer.Abort:
+            _report_interrupt()
+            sys.exit(EXIT_INTERRUPTED)
+        except KeyboardInterrupt:
+            _report_interrupt()
+            sys.exit(EXIT_INTERRUPTED)
+        sys.exit(rv if isinstance(rv, int) and not isinstance(rv, bool) else 0)
+
+
 class QcppTyper(typer.Typer):
-    """A :class:`typer.Typer` whose ``command()`` registers callbacks wrapped in :func:`handle_errors`."""
+    """A :class:`typer.Typer` built on :class:`QcppGroup` whose commands are wrapped in :func:`handle_errors`."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("cls", QcppGroup)
+        super().__init__(*args, **kwargs)
 
     def command(self, name: str | None = None, **kwargs: Any) -> Callable[[F], F]:  # type: ignore[override]
+        kwargs.setdefault("cls", QcppCommand)
         register = super().command(name, **kwargs)
 
         def decorator(fn: F) -> F:
@@ -87,6 +297,7 @@ app = QcppTyper(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_show_locals=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
 )
 
 
@@ -109,6 +320,47 @@ for _name in COMMAND_MODULES:
     importlib.import_module(_name).register(app)
 
 
+def _stdout_failure() -> str | None:
+    """Flush stdout; if that fails (``> /dev/full``), point it at ``/dev/null`` and return the reason."""
+    try:
+        sys.stdout.flush()
+        return None
+    except OSError as exc:
+        reason = exc.strerror or str(exc) or type(exc).__name__
+    with contextlib.suppress(OSError, ValueError, AttributeError):  # keep later flushes from failing again
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    return reason
+
+
+def _finish_stdout(code: Any) -> Any:
+    """Flush stdout; a failed flush (``> /dev/full``) is one error line and exit code 2, not a traceback."""
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left (``| head``): nothing to report
+        _stdout_failure()
+        return code or 1
+    except OSError:
+        reason = _stdout_failure()
+        typer.echo(f"error: cannot write standard output: {reason}", err=True)
+        return EXIT_USAGE
+    return code
+
+
 def main() -> None:
-    """Entry point of the ``qcpp`` console script."""
-    app(prog_name="qcpp")
+    """Run the app with Ctrl-C/SIGTERM handling (the console script enters through :func:`qcpp.__main__.main`)."""
+    from qcpp.interrupt import install
+
+    install()
+    try:
+        app(prog_name="qcpp")
+    except SystemExit as exc:
+        code = exc.code
+    else:  # pragma: no cover - the group always exits
+        code = 0
+    code = _finish_stdout(code)
+    if code == EXIT_INTERRUPTED:  # skip freeing what the interrupted work built (seconds for millions of gates)
+        with contextlib.suppress(OSError, ValueError):
+            sys.stderr.flush()
+        os._exit(EXIT_INTERRUPTED)
+    sys.exit(code)

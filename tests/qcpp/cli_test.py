@@ -103,7 +103,8 @@ def test_bad_scenario_names_the_field(tmp_path: Path) -> None:
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "--method", "magic"), "--method"),
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "--rule", "fast"), "--rule"),
         (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot-trace", "t.png"), "trace"),
-        (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot", "/no/such/dir/p.png"), "No such file"),
+        (("solve", str(EXAMPLES / "paper_3x3.toml"), "-m", "dfs", "--plot", "/no/such/dir/p.png"),
+         "folder /no/such/dir does not exist"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(args: tuple[str, ...], fragment: str) -> None:
@@ -129,7 +130,8 @@ def test_every_registered_command_gets_the_error_handler() -> None:
     @demo.command("boom")
     def boom(kind: str) -> None:
         raise {"scenario": ScenarioError("grid.rows", "bad"), "value": ValueError("two\nlines"),
-               "os": FileNotFoundError(2, "No such file or directory", "x.png"), "bug": RuntimeError("bug")}[kind]
+               "os": FileNotFoundError(2, "No such file or directory", "x.png"), "bug": RuntimeError("bug"),
+               "memory": MemoryError()}[kind]
 
     @demo.callback()
     def root() -> None:
@@ -139,6 +141,8 @@ def test_every_registered_command_gets_the_error_handler() -> None:
     assert_one_line_error(runner.invoke(demo, ["boom", "scenario"]), "grid.rows: bad")
     assert_one_line_error(runner.invoke(demo, ["boom", "value"]), "two lines")
     assert_one_line_error(runner.invoke(demo, ["boom", "os"]), "x.png")
+    assert_one_line_error(runner.invoke(demo, ["boom", "memory"]), "out of memory")
+    assert_one_line_error(runner.invoke(demo, ["boom", "--bogus"]), "No such option: --bogus")
     res = runner.invoke(demo, ["boom", "bug"])  # a bug is not an input error: it is not swallowed
     assert res.exit_code == 1 and isinstance(res.exception, RuntimeError)
     assert isinstance(demo, typer.Typer)

@@ -41,6 +41,7 @@ def test_default_qasm3_loads_in_qiskit_and_gives_our_state(tmp_path: Path) -> No
     assert np.allclose(theirs, ours, atol=1e-9)
 
 
+@pytest.mark.heavy  # Qiskit's dense statevector of the lowered circuit (with work qubits): ~30-50 s
 def test_lowered_bound_qasm2_matches_our_state_and_counts(tmp_path: Path) -> None:
     out = tmp_path / "out2.qasm"
     code, stdout, err = run(

@@ -79,12 +79,15 @@ def test_markdown_and_table(run) -> None:  # type: ignore[no-untyped-def]
     assert md.exit_code == 0
     lines = md.stdout.splitlines()
     assert lines[0].startswith("| rows |") and "paper_cx" in lines[0] and len(lines) == 3
-    table = run("--grid", "2x2")
+    table = run("--grid", "2x2", "--wide")
     assert table.exit_code == 0 and "two_qubit_depth" in table.stdout
 
 
 def test_plot_is_written_atomically(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     out = tmp_path / "plots" / "est.png"
+    missing = run("--grid", "2x2", "--plot", str(out), "--json")  # folders are never created
+    assert missing.exit_code == 2 and "folder" in missing.stderr and not out.parent.exists()
+    out.parent.mkdir()
     res = run("--grid", "2x2..3x3", "--robots", "1..2", "--compare", "paper", "--plot", str(out), "--json")
     assert res.exit_code == 0, res.output
     assert out.read_bytes()[:4] == b"\x89PNG"

@@ -82,7 +82,7 @@ def test_a_failed_plot_leaves_nothing(tmp_path: Path) -> None:
     ("args", "fragments"),
     [
         (["--method", "qaoa", "--optimizer", "adam"], ["unknown optimizer", "adam"]),
-        (["--method", "qaoa", "-p", "0"], ["p must be"]),
+        (["--method", "qaoa", "-p", "0"], ["-p/--layers", "must be at least 1"]),
         (["--method", "dfs", "-p", "2"], ["-p", "qaoa only"]),
         (["--method", "anneal", "--optimizer", "cobyla"], ["--optimizer", "qaoa only"]),
     ],

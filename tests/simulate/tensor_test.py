@@ -5,6 +5,8 @@ Each case compiles the lowered circuit, runs it from |0...0> at seeded random an
 independent tensor methods (an MPS of the whole circuit, and exact contraction with a reused cotengra path),
 that the ancillas end in |0> (probability 1 to 1e-8) and that feasible assignments' amplitudes equal the exact
 feasible-subspace simulator's (1e-8).
+
+The 18-40 qubit checks are ``heavy`` (CI runs them in a second step); the CLI check stays in the default run.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from simulate.validate import validate
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
 
 
+@pytest.mark.heavy  # 30 s to 2 min each on 2 cores: CI's second step
 @pytest.mark.parametrize(
     ("rows", "cols", "robots", "p", "max_amplitudes"),
     [
@@ -43,6 +46,7 @@ def test_compiled_circuit_matches_subspace_simulator(
     assert report.amplitudes_checked == report.feasible_assignments
 
 
+@pytest.mark.heavy
 def test_tensor_agrees_with_dense_statevector_on_the_paper_example() -> None:
     s = load_scenario(EXAMPLE)
     dense = validate(s, 2, backend="statevector", seed=3)

@@ -5,6 +5,10 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
+    qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
+
+Output files follow :mod:`gridcover.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
 handler as one line on stderr and exit code 2.
@@ -14,7 +18,7 @@ Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one
 same, byte for byte, as writing the whole circuit.
 
 Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
-costs (:func:`estimators.guard.predict_size`, exact, in well under a second); a circuit over ``--max-gates``
+costs (:func:`estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
 (default :data:`estimators.guard.DEFAULT_MAX_GATES`, about 7.5 GB of memory, sized for a 24 GB machine) is
 refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
 """
@@ -22,6 +26,7 @@ refused with one line naming the predicted size and the override (``--max-gates 
 from __future__ import annotations
 
 import json
+import math
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -34,9 +39,9 @@ from rich.table import Table
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Section
 from circuitgen.compile import compile_scenario, parse_bindings
-from circuitgen.lowering import lower
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES
+from gridcover.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
 
 __all__ = ["compile_command", "register"]
@@ -52,13 +57,15 @@ def compile_command(
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.", min=0)] = 1,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
     rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
     ] = None,
-    qasm: Annotated[Path | None, typer.Option("--qasm", help="Write OpenQASM to this file.")] = None,
+    qasm: Annotated[
+        str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
+    ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
     initial: Annotated[
         str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
@@ -89,9 +96,15 @@ def compile_command(
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = parse_bindings([*(bind or []), *extra])
+    for name, value in bindings.items():
+        if not math.isfinite(value):
+            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    to_stdout = qasm == "-"
+    if to_stdout and as_json:
+        raise ValueError("--qasm - and --json both write to standard output; choose one")
+    if qasm is not None:
+        check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
-    if target not in ("nisq", "ft"):
-        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
     if not force:
         _guard(s, p, rule, initial, target, max_gates)
     if qasm is not None:
@@ -111,7 +124,7 @@ def compile_command(
     if as_json:
         typer.echo(json.dumps(summary))
         return
-    console = Console()
+    console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
     form = "lowered" if lowered else "high level"
     table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
@@ -126,7 +139,8 @@ def compile_command(
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
-        console.print(f"wrote {qasm} (OpenQASM {qasm_version})")
+        where = "standard output" if to_stdout else qasm
+        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
 
 
 def _guard(s: Scenario, p: int, rule: str, initial: str, target: str, max_gates: int) -> None:
@@ -150,12 +164,12 @@ def _stream(
     target: str,
     lowered: bool,
     bindings: dict[str, float],
-    qasm: Path,
+    qasm: str,
     version: int,
 ) -> dict[str, Any]:
     """Build, lower, bind and write the circuit one plan section at a time (peak memory independent of ``p``);
     return the summary :meth:`circuitgen.compile.CompileResult.summary` would give."""
-    from estimators.estimate import PlanOptions
+    from estimators.estimate import PlanOptions, plan_sections
 
     start = time.perf_counter()
     known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
@@ -164,16 +178,12 @@ def _stream(
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
     plan = PlanOptions(rule=rule, initial=initial, target=target).plan(s, p)
-    registers = tuple(plan.registers)
+    # the lowered circuit has the plan's registers (work included); the high-level one has no work register
+    registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
     def sections() -> Iterator[Section]:
-        for name, gadget in plan.sections():
-            c = Circuit(registers, [Section(name, tuple(gadget.emit()))])
-            if lowered:
-                c = lower(c)
-            if bindings:
-                c = c.bind(bindings)
-            yield c.sections[0]
+        for sec in plan_sections(plan, tuple(plan.registers), lowered):
+            yield Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
 
     ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
     n = s.num_variables

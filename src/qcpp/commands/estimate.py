@@ -18,7 +18,9 @@ Examples::
 
 from __future__ import annotations
 
+import signal
 import sys
+import threading
 from pathlib import Path
 from typing import Annotated
 
@@ -26,6 +28,7 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
+from gridcover.atomic import check_output
 from gridcover.errors import ScenarioError
 
 __all__ = ["estimate", "register"]
@@ -70,7 +73,14 @@ def estimate(
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
     fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
-    plot: Annotated[Path | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here.")] = None,
+    plot: Annotated[
+        str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
+    ] = None,
+    columns: Annotated[
+        str | None,
+        typer.Option("--columns", help="Table columns, comma-separated (any CSV column; default: what fits)."),
+    ] = None,
+    wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
     depth: Annotated[
         str,
@@ -149,6 +159,8 @@ def estimate(
     for bad, message in checks:
         if bad:
             raise _fail(message)
+    if plot is not None:
+        check_output(plot)  # a bad destination fails before the sweep, not after
     try:
         points = points_from_options(grid, robots, p, scenario)
     except (ScenarioError, ValueError) as exc:
@@ -177,11 +189,11 @@ def estimate(
         compare_paper=compare == "paper",
         plot=plot,
         doubling=paper_doubling,  # type: ignore[arg-type]
+        columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
+        wide=wide,
     )
-    out = sys.stdout
     for piece in pieces:
-        out.write(piece)
-        out.flush()
+        _write_whole(piece)
     if physical:
         typer.echo(
             f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
@@ -190,6 +202,28 @@ def estimate(
         )
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
+
+
+def _write_whole(text: str) -> None:
+    """Write ``text`` to standard output now, whole even if Ctrl-C or SIGTERM arrives meanwhile: the signals are
+    only recorded during the write and raised as ``KeyboardInterrupt`` once the piece is out, so that an
+    interrupted stream ends with a complete row. (The CLI's watchdog still ends a write stuck for too long.)"""
+    out = sys.stdout
+    if threading.current_thread() is not threading.main_thread():  # signal handlers belong to the main thread
+        out.write(text)
+        out.flush()
+        return
+    caught: list[int] = []
+    stops = (signal.SIGINT, signal.SIGTERM)
+    previous = {sig: signal.signal(sig, lambda signum, frame: caught.append(signum)) for sig in stops}
+    try:
+        out.write(text)
+        out.flush()
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    if caught:
+        raise KeyboardInterrupt
 
 
 def register(app: typer.Typer) -> None:

@@ -14,6 +14,7 @@ Examples::
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -39,7 +40,7 @@ def parse_angles(text: str) -> list[float]:
     """``"g0,b0,g1,b1"`` -> floats.
 
     Raises:
-        ValueError: naming the item that is not a number.
+        ValueError: naming the item that is not a finite number.
 
     Example:
         >>> parse_angles("0.3, 1.2")
@@ -49,22 +50,25 @@ def parse_angles(text: str) -> list[float]:
     for part in text.split(","):
         item = part.strip()
         try:
-            out.append(float(item))
+            value = float(item)
         except ValueError:
             raise ValueError(f"--angles: {item!r} is not a number (expected g0,b0,g1,b1,...)") from None
+        if not math.isfinite(value):
+            raise ValueError(f"--angles: {item!r} is not a finite number")
+        out.append(value)
     return out
 
 
 def simulate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.")] = 1,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Simulator: subspace, statevector or tensor.")
     ] = "subspace",
     angles: Annotated[
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (2p values); default: random from --seed.")
     ] = None,
-    seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles.")] = 0,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles (at least 0).")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF mixer rule: exact or paper.")] = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
@@ -73,8 +77,6 @@ def simulate_command(
         raise ValueError(f"--method: expected one of {', '.join(METHODS)}, got {method!r}")
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
-    if p < 1:
-        raise ValueError(f"-p: must be at least 1, got {p}")
     values = parse_angles(angles) if angles is not None else None
     s = load_scenario(scenario)
     res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

@@ -31,6 +31,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from gridcover.atomic import check_output
 from gridcover.render import plot_paths, plot_trace, render_ascii
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
@@ -169,6 +170,9 @@ def solve_command(
             if value != QAOA_DEFAULTS[name]:
                 flag = "-p" if name == "p" else f"--{name}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    for out in (plot, plot_trace_file):
+        if out is not None:
+            check_output(out)  # a bad destination fails before solving, not after
     s = load_scenario(scenario)
     qaoa = None
     with progress_reporter(f"{method} on {scenario.name}") as progress:

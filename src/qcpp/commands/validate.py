@@ -5,8 +5,10 @@ Examples::
     qcpp validate examples/paper_3x3.toml -p 2 --backend tensor
     qcpp validate examples/two_robots_4x4.toml -p 1 --backend sparse --json
 
-Exit code 0 when every check passes, 1 when one fails; bad input is one line on stderr and exit code 2 (the CLI's
-shared handler).
+Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
+run (``INCOMPLETE``, e.g. a tensor contraction too wide: a check that did not run never reports PASSED); bad
+input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict`` (``passed``,
+``failed`` or ``incomplete``), and its ``passed`` is true only for ``passed``.
 """
 
 from __future__ import annotations
@@ -20,19 +22,21 @@ from rich.console import Console
 from rich.table import Table
 
 from gridcover.scenario import load_scenario
+from qcpp.commands.simulate import parse_angles
 
 __all__ = ["register", "validate_command"]
 
 HELP = (
     "Compile the lowered QAOA circuit, run it with a gate-level simulator (tensor = quimb exact contraction + MPS, "
     "statevector, sparse) at given or seeded random angles, and check that the ancillas end in |0> and every "
-    "feasible assignment's amplitude equals the exact feasible-subspace simulator's. Exit 1 if a check fails."
+    "feasible assignment's amplitude equals the exact feasible-subspace simulator's. Exit 0 only if every check "
+    "ran and passed; 1 if one failed or was skipped (INCOMPLETE)."
 )
 
 
 def validate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers.", min=1)] = 1,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
     backend: Annotated[str, typer.Option("--backend", help="tensor, statevector or sparse.")] = "tensor",
     angles: Annotated[
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
@@ -40,7 +44,8 @@ def validate_command(
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles and the amplitude sample.")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
     max_amplitudes: Annotated[
-        int, typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly.")
+        int,
+        typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly (at least 1)."),
     ] = 256,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
 ) -> None:
@@ -53,10 +58,7 @@ def validate_command(
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     values = None
     if angles is not None:
-        try:
-            values = [float(x) for x in angles.split(",") if x.strip()]
-        except ValueError:
-            raise ValueError(f"--angles: expected comma-separated numbers, got {angles!r}") from None
+        values = parse_angles(angles)
         if len(values) != 2 * p:
             raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
     report = validate(
@@ -68,8 +70,10 @@ def validate_command(
         rule=rule,  # type: ignore[arg-type]
         max_amplitudes=max_amplitudes,
     )
+    skipped = [c.name for c in report.checks if c.status == "skipped"]
+    verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
     if as_json:
-        typer.echo(json.dumps(report.to_dict()))
+        typer.echo(json.dumps({**report.to_dict(), "passed": verdict == "passed", "verdict": verdict}))
     else:
         table = Table(title=f"{scenario.name}: p={p}, backend={backend}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
@@ -85,11 +89,13 @@ def validate_command(
         for c in report.checks:
             if c.note:
                 console.print(f"{c.name} ({c.method}): {c.note}")
+        detail = f" ({len(skipped)} check(s) skipped: {', '.join(skipped)})" if skipped else ""
         console.print(
-            f"{'PASSED' if report.passed else 'FAILED'}: {report.feasible_assignments} feasible assignments, "
-            f"tolerance {report.tolerance:g}, {report.seconds:.1f} s"
+            f"{verdict.upper()}{detail}: {report.feasible_assignments} feasible assignments, "
+            f"tolerance {report.tolerance:g}, {report.seconds:.1f} s",
+            markup=False,
         )
-    if not report.passed:
+    if verdict != "passed":
         raise typer.Exit(code=1)
 
 

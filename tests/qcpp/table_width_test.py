@@ -1,0 +1,82 @@
+"""The resource table fits the terminal: no line wider than ``COLUMNS``; ``--wide``/``--columns`` ask for more;
+CSV, JSON and Markdown keep every column whatever the width."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from typer.testing import CliRunner
+
+from estimators.estimate import Point, estimate_point
+from estimators.tables import MAIN_COLUMNS, PAPER_COLUMNS, make_rows, render, table_columns
+from qcpp.cli import app
+
+GOAL = ["estimate", "--grid", "3x3..6x6", "--robots", "1..3", "--compare", "paper"]
+
+
+@pytest.fixture(scope="module")
+def rows() -> list[dict]:
+    points = [Point(r, c, k, 1) for r, c in [(2, 2), (3, 3), (4, 5)] for k in (1, 3)]
+    return make_rows([estimate_point(pt) for pt in points], compare_paper=True)
+
+
+def widths(text: str) -> list[int]:
+    return [len(line) for line in text.splitlines()]
+
+
+def test_the_issue_command_fits_100_columns(tmp_path: Path) -> None:
+    res = CliRunner().invoke(app, [*GOAL, "-j", "2"], env={"COLUMNS": "100", "QCPP_CACHE_DIR": str(tmp_path)})
+    assert res.exit_code == 0, res.stderr
+    assert max(widths(res.stdout)) <= 100 and max(widths(res.stderr), default=0) <= 100
+    header = next(line for line in res.stdout.splitlines() if "rows" in line)
+    assert all(c in header for c in ("rows", "cols", "robots", "qubits", "cx", "paper_cx"))
+    assert "hidden to fit 100 columns" in res.stdout and "--wide" in res.stdout
+    assert len([line for line in res.stdout.splitlines() if line.startswith("│")]) == 16 * 3
+
+
+@settings(max_examples=10, deadline=None)
+@given(width=st.integers(40, 250))
+def test_no_table_line_is_wider_than_the_width(rows: list[dict], width: int) -> None:
+    text = render(rows, "table", width=width)
+    assert max(widths(text)) <= width
+    shown, hidden = table_columns(rows, width)
+    assert set(shown) | set(hidden) == set(MAIN_COLUMNS) | set(PAPER_COLUMNS)
+    assert {"rows", "cols", "robots", "p", "qubits", "cx", "paper_cx"} <= set(shown)
+
+
+def test_wider_terminals_show_at_least_as_many_columns(rows: list[dict]) -> None:
+    counts = [len(table_columns(rows, w)[0]) for w in range(60, 260, 10)]
+    assert counts == sorted(counts) and counts[-1] == len(MAIN_COLUMNS) + len(PAPER_COLUMNS)
+
+
+def test_wide_and_columns(rows: list[dict]) -> None:
+    wide = render(rows, "table", width=60, wide=True)
+    assert "two_qubit_depth" in wide and "paper_single_qubit" in wide and "hidden" not in wide
+    picked = render(rows, "table", width=60, columns=["rows", "gates", "toffoli"])
+    header = next(line for line in picked.splitlines() if "rows" in line)
+    assert "gates" in header and "toffoli" in header and "qubits" not in header
+    with pytest.raises(ValueError, match="unknown column 'nope'"):
+        render(rows, "table", columns=["rows", "nope"])
+
+
+@pytest.mark.parametrize("fmt", ["csv", "json", "md"])
+def test_machine_formats_keep_every_column_at_any_width(tmp_path: Path, fmt: str) -> None:
+    env = {"COLUMNS": "40", "QCPP_CACHE_DIR": str(tmp_path)}
+    narrow = CliRunner().invoke(app, ["estimate", "--grid", "3x3", "--compare", "paper", "--format", fmt], env=env)
+    env["COLUMNS"] = "300"
+    wide = CliRunner().invoke(app, ["estimate", "--grid", "3x3", "--compare", "paper", "--format", fmt], env=env)
+    assert narrow.exit_code == wide.exit_code == 0
+    assert narrow.stdout == wide.stdout
+    if fmt == "csv":
+        header = next(csv.reader(io.StringIO(narrow.stdout)))
+        assert {"two_qubit_depth", "paper_single_qubit", "ft_total_t"} <= set(header)
+    elif fmt == "json":
+        assert "two_qubit_depth" in json.loads(narrow.stdout)[0]
+    else:
+        assert all(c in narrow.stdout.splitlines()[0] for c in (*MAIN_COLUMNS, *PAPER_COLUMNS))
