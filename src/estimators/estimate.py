@@ -33,7 +33,7 @@ import json
 import time
 from collections.abc import Hashable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Any, Literal
 
 from circuitgen.circuit import Circuit, Register, Section
@@ -227,15 +227,23 @@ class LayerCosts:
 
     def cost(self, p: int) -> Cost:
         """Lowered cost of ``p`` layers."""
-        return _total(self.sections, p)
+        return _total(self.sections, p, self._layer)
 
     def logical_cost(self, p: int) -> Cost:
         """Logical cost of ``p`` layers."""
-        return _total(self.logical, p)
+        return _total(self.logical, p, self._logical_layer)
+
+    @cached_property
+    def _layer(self) -> Cost:
+        return self.sections.get("phase", Cost()) + self.sections.get("mixer", Cost())
+
+    @cached_property
+    def _logical_layer(self) -> Cost:
+        return self.logical.get("phase", Cost()) + self.logical.get("mixer", Cost())
 
 
-def _total(parts: Mapping[str, Cost], p: int) -> Cost:
-    return parts.get("initial_state", Cost()) + p * (parts.get("phase", Cost()) + parts.get("mixer", Cost()))
+def _total(parts: Mapping[str, Cost], p: int, layer: Cost) -> Cost:
+    return parts.get("initial_state", Cost()) + p * layer
 
 
 def _layout(plan: Any) -> tuple[tuple[str, int], ...]:
@@ -268,12 +276,21 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
             logical={k: logical[k] for k in keys if k in logical},
         )
     mixer = mixer_layer(scenario, options.rule, options.target)
-    # the plan's own state-preparation and phase gadgets (QaoaPlan builds them apart from its partial mixers)
-    prep, phase = plan1._prep, plan1._phase
+    # the plan's own phase gadget (QaoaPlan builds it apart from its partial mixers)
+    phase = plan1._phase
+    if options.initial == "initial_path":
+        # on a grid without obstacles each robot's initial path is the L-shaped path (feasible), prepared by one
+        # X per edge: its length is the Manhattan distance (the tests compare with the plan's StatePrep)
+        steps = sum(abs(rb.goal[0] - rb.start[0]) + abs(rb.goal[1] - rb.start[1]) for rb in scenario.robots)
+        prep_cost = prep_logical = Cost.of(x=steps)
+        prep_work = 0
+    else:
+        prep = plan1._prep
+        prep_cost, prep_logical, prep_work = prep.cost(), prep.logical_cost(), _prep_work(prep)
     return LayerCosts(
-        registers=_registers(scenario, options, mixer.logic_width, max(mixer.work_need, _prep_work(prep))),
-        sections={"initial_state": prep.cost(), "phase": phase.cost(), "mixer": mixer.cost},
-        logical={"initial_state": prep.logical_cost(), "phase": phase.logical_cost(), "mixer": mixer.logical},
+        registers=_registers(scenario, options, mixer.logic_width, max(mixer.work_need, prep_work)),
+        sections={"initial_state": prep_cost, "phase": phase.cost(), "mixer": mixer.cost},
+        logical={"initial_state": prep_logical, "phase": phase.logical_cost(), "mixer": mixer.logical},
     )
 
 

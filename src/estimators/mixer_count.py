@@ -172,7 +172,8 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
         for sig, ij in where.items():  # a plain representative this robot does not touch
             if sig not in reps and ij not in touched:
                 reps[sig] = (robot, ij)
-    cost, logical = Cost(), Cost()
+    cost: Counter[str] = Counter()
+    logical: Counter[str] = Counter()
     width = work = 0
     kinds = []
     for sig, n in counts.items():
@@ -182,12 +183,14 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
             reps[sig] = _find(scenario, sig)
         robot, ij = reps[sig]
         c, lc, temps, need = _kind(sig, rule, target, scenario, robot, ij)
-        cost += n * c
-        logical += n * lc
+        for name, k in c.items:
+            cost[name] += n * k
+        for name, k in lc.items:
+            logical[name] += n * k
         if c.total:
             width, work = max(width, temps), max(work, need)
             kinds.append((robot, ij, n))
-    return MixerLayer(cost, logical, width, work, tuple(kinds))
+    return MixerLayer(Cost.of(cost), Cost.of(logical), width, work, tuple(kinds))
 
 
 def _find(scenario: Scenario, sig: Signature) -> tuple[int, tuple[int, int]]:

@@ -61,3 +61,12 @@ def test_obstacles_are_refused() -> None:
     d["grid"]["obstacles"] = [[1, 1]]
     with pytest.raises(ValueError):
         mixer_layer(scenario_from_dict(d))
+
+
+@pytest.mark.parametrize("rows, cols, robots", [(3, 3, 1), (3, 4, 2)])
+def test_representatives_initial_state_uses_the_plans_state_preparation(rows: int, cols: int, robots: int) -> None:
+    s = default_scenario(rows, cols, robots)
+    plan = qaoa_plan(s, 1, initial="representatives")
+    lc = layer_costs(s, PlanOptions(initial="representatives"))
+    assert lc.sections == plan.cost_by_section() and lc.logical == plan.cost_by_section(logical=True)
+    assert dict(lc.registers) == {r.name: r.size for r in plan.registers}
