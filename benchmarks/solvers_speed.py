@@ -2,9 +2,11 @@
 
 Two tables:
 
-* ``dfs``: exhaustive search -- paths per robot, assignments scored, wall-clock seconds, and the process's
-  peak resident memory after the run (``ru_maxrss`` only grows; for two robots on 5x5 it is dominated by
-  :func:`gridcover.cost.separable_cost`'s full pairwise matrix and its temporaries);
+* ``dfs`` and ``cpsat`` side by side: exhaustive search -- paths per robot, assignments scored, wall-clock
+  seconds, and the process's peak resident memory after the run (``ru_maxrss`` only grows; for two robots on
+  5x5 it is dominated by :func:`gridcover.cost.separable_cost`'s full pairwise matrix and its temporaries) --
+  and CP-SAT (:func:`gridcover.solvers.cpsat`, one worker): seconds to the proven optimum, when it first found
+  it, and its cost (checked equal to DFS's);
 * ``anneal`` / ``genetic`` with default settings over several seeds: mean seconds, the cost of seed 0, and in
   how many seeds the exhaustive optimum was found.
 
@@ -25,7 +27,7 @@ from pathlib import Path
 
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers import anneal, dfs, genetic
+from gridcover.solvers import anneal, cpsat, dfs, genetic
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -55,16 +57,22 @@ def main() -> None:
     args = parser.parse_args()
 
     optimum: dict[str, float] = {}
-    print("dfs (exhaustive)")
-    print(f"{'scenario':36} {'paths/robot':>14} {'assignments':>14} {'seconds':>8} {'peak MB':>8} {'cost':>7}")
+    print("dfs (exhaustive) and cpsat (CP-SAT, 1 worker, proven optimum)")
+    print(f"{'scenario':36} {'paths/robot':>14} {'assignments':>14} {'dfs s':>8} {'peak MB':>8} {'cost':>7} "
+          f"{'cpsat s':>8} {'found at':>8} {'proven':>6}")
     for name, s in _scenarios(args.quick):
         t = time.perf_counter()
         sol = dfs(s)
         sec = time.perf_counter() - t
         optimum[name] = sol.cost.total
+        peak = _peak_mb()
+        exact = cpsat(s)
+        assert math.isclose(exact.solution.cost.total, sol.cost.total, abs_tol=1e-9), name
+        found = exact.time_to_cost(sol.cost.total)
         ppr = " x ".join(str(n) for n in sol.paths_per_robot)
-        print(f"{name:36} {ppr:>14} {sol.evaluated:>14,} {sec:>8.2f} {_peak_mb():>8.0f} {sol.cost.total:>7g}",
-              flush=True)
+        print(f"{name:36} {ppr:>14} {sol.evaluated:>14,} {sec:>8.2f} {peak:>8.0f} {sol.cost.total:>7g} "
+              f"{exact.solution.seconds:>8.2f} {found if found is None else round(found, 2)!s:>8} "
+              f"{'yes' if exact.proven_optimal else 'no':>6}", flush=True)
 
     print()
     print(f"anneal / genetic (defaults), seeds 0..{args.seeds - 1}")

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from gridcover.sbf import Rule
@@ -20,7 +20,8 @@ from gridcover.scenario import Scenario
 from .circuit import Circuit
 from .cost import Target
 from .lowering import lower
-from .qaoa import QubitMap, qaoa_circuit, qubit_map
+from .phase import Optimize, Representation
+from .qaoa import QubitMap, qaoa_plan, qubit_map
 
 
 @dataclass(frozen=True)
@@ -33,6 +34,7 @@ class CompileResult:
         qubit_map: Data qubit -> (robot, edge); ancilla qubits.
         lowered: Whether :func:`circuitgen.lowering.lower` was applied.
         seconds: Wall time of building, lowering and binding.
+        phase_explain: The phase plan's choice per term group (:meth:`circuitgen.phase.PhasePlan.explain`).
     """
 
     scenario: Scenario
@@ -40,6 +42,7 @@ class CompileResult:
     qubit_map: QubitMap
     lowered: bool
     seconds: float
+    phase_explain: list[dict] = field(default_factory=list)
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready summary: ``qubits``, ``gates`` (count per name), ``seconds``, ``symbols``, ``registers``
@@ -69,6 +72,9 @@ def compile_scenario(
     bindings: Mapping[str, float] | None = None,
     initial: str = "initial_path",
     target: Target = "nisq",
+    phase: Representation = "feasible",
+    optimize: Optimize = "cx",
+    ancilla_budget: int | None = None,
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
@@ -80,7 +86,8 @@ def compile_scenario(
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
         initial: ``initial_path`` or ``representatives``.
         target: ``nisq`` (fewest CNOTs) or ``ft`` (fewest T and rotations); see
-            :mod:`circuitgen.gadgets.partial_mixer`.
+            :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`.
+        phase, optimize, ancilla_budget: The phase separator's options (:func:`circuitgen.phase.phase_plan`).
 
     Returns:
         The :class:`CompileResult`.
@@ -89,7 +96,8 @@ def compile_scenario(
         ValueError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
-    circuit = qaoa_circuit(scenario, p, rule=rule, initial=initial, target=target)
+    plan = qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget)
+    circuit = plan.circuit()
     if bindings:
         unknown = sorted(set(bindings) - set(circuit.symbols))
         if unknown:
@@ -99,7 +107,10 @@ def compile_scenario(
         circuit = lower(circuit)
     if bindings:
         circuit = circuit.bind(bindings)
-    return CompileResult(scenario, circuit, qubit_map(scenario, circuit), lowered, time.perf_counter() - start)
+    explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
+    return CompileResult(
+        scenario, circuit, qubit_map(scenario, circuit), lowered, time.perf_counter() - start, explain
+    )
 
 
 def parse_bindings(items: list[str]) -> dict[str, float]:

@@ -1,10 +1,21 @@
-"""The phase separator ``exp(-i gamma (C - c0))`` from the exact Ising Hamiltonian.
+"""The phase separator: ``exp(-i gamma (C - K))`` on every state the QAOA circuit can hold.
 
-``C = c0 + sum_i h_i Z_i + sum_{i<j} J_ij Z_i Z_j`` is diagonal, so its exponential is a product of
-``RZ(2 gamma h_i)`` on each qubit (``RZ(t) = exp(-i t Z / 2)``) and ``RZZ(2 gamma J_ij)`` on each coupled pair;
-the constant ``c0`` is a global phase and emits nothing. Zero coefficients emit nothing either.
+Two representations of the cost ``C``:
 
-Order: the RZ gates by qubit, then the RZZ gates row-major by ``(i, j)``; all of them commute.
+* ``whole-space`` -- the exact Ising Hamiltonian ``C = c0 + sum h_i Z_i + sum J_ij Z_i Z_j``
+  (:func:`gridcover.hamiltonian.ising_hamiltonian`): ``RZ(2 gamma h_i)`` on each qubit and ``RZZ(2 gamma J_ij)``
+  on each coupled pair (:func:`phase_separator_gates`), ``K = c0``. Exact on every bit string; its balance
+  term couples every edge of two robots, so it costs ``O((re)^2)`` CX.
+* ``feasible`` (default) -- :func:`gridcover.feasible_cost.feasible_cost`, exact on every feasible assignment
+  (the only states the constrained mixer ever produces). Each term group gets the cheapest exact construction
+  for the target (:func:`phase_plan`): the linear part as RZ gates, each node that several robots can pass as
+  visit bits (:class:`~circuitgen.gadgets.phase_visits.VisitPhase`) or couplings, the balance term as
+  arithmetic on path-length registers (:class:`~circuitgen.gadgets.phase_sums.SumsPhase`) or couplings, and on
+  the ``ft`` target equal-angle rotations merged by Hamming-weight phasing. ``O(re log re)`` CX.
+
+Cost models (:func:`score`): ``nisq`` minimises CX, then rotations; ``ft`` minimises T gates with an AND
+at 4 T (its uncompute 0 T: measurement-based), a Toffoli at 7 T and an arbitrary rotation at
+:data:`ROTATION_T_COST` T, then CX.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -13,18 +24,40 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
     >>> gates = phase_separator_gates(ising_hamiltonian(s), "gamma_0")
     >>> sorted({g.name for g in gates}), str(gates[0].params[0])
-    (['rz', 'rzz'], '1.0*gamma_0')
+    (['rz', 'rzz'], '3.0*gamma_0')
+    >>> from gridcover.presets import default_scenario
+    >>> plan = phase_plan(default_scenario(4, 4, 2))
+    >>> plan.cost().cx < phase_plan(default_scenario(4, 4, 2), representation="whole-space").cost().cx
+    True
 """
 
 from __future__ import annotations
 
-from gridcover.hamiltonian import IsingHamiltonian
+import copy
+from dataclasses import dataclass
+from typing import Literal
+
+from gridcover.feasible_cost import FeasibleCost, SumsGroup, VisitGroup, feasible_cost
+from gridcover.hamiltonian import IsingHamiltonian, ising_hamiltonian
+from gridcover.scenario import Scenario
 
 from .angles import Angle
+from .cost import TARGETS, Cost, Target
+from .gadgets import Gadget
+from .gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
+from .gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
+from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
 
-#: Coefficients smaller than this (absolute) are treated as zero: they only arise from float round-off.
-COEFFICIENT_TOLERANCE = 1e-12
+__all__ = [
+    "COEFFICIENT_TOLERANCE",
+    "ROTATION_T_COST",
+    "PhasePlan",
+    "ft_t_count",
+    "phase_plan",
+    "phase_separator_gates",
+    "score",
+]
 
 
 def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset: int = 0) -> list[Gate]:
@@ -45,3 +78,488 @@ def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset
         for i, j, jij in hamiltonian.quadratic_terms(tol)
     ]
     return out
+
+
+# ----------------------------------------------------------------------------- plans
+
+ROTATION_T_COST = 30
+"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
+Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
+the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
+
+Representation = Literal["feasible", "whole-space"]
+Optimize = Literal["cx", "depth"]
+
+
+def ft_t_count(logical: Cost) -> int:
+    """T count of a logical cost in the ``ft`` model: AND 4, its uncompute 0, Toffoli 7, T 1, rotation
+    :data:`ROTATION_T_COST`."""
+    return 4 * logical["and"] + 7 * logical["ccx"] + logical.t + ROTATION_T_COST * logical.rotations
+
+
+def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
+    """Sort key of a construction under the target's cost model (smaller is cheaper)."""
+    if target == "ft":
+        return (ft_t_count(logical), cost.cx, cost.total)
+    return (cost.cx, cost.rotations, cost.total)
+
+
+def _summary(cost: Cost, logical: Cost, ancillas: int | None = None) -> dict[str, int]:
+    out = {"cx": cost.cx, "rotations": cost.rotations, "t_ft": ft_t_count(logical)}
+    if ancillas is not None:
+        out["ancillas"] = ancillas
+    return out
+
+
+def _coupling_cost(products: int) -> Cost:
+    """Estimated price of ``products`` extra couplings: one RZZ each (their linear parts land on qubits that
+    carry an RZ anyway)."""
+    return Cost.of(cx=2 * products, rz=products)
+
+
+EXACT_EXPANSION_LIMIT = 30_000
+"""A balance group with at most this many products is expanded to price its couplings exactly (products that
+merge with others' or cancel cost nothing); larger ones are priced at one coupling per product."""
+
+
+def _visit_products(grp: VisitGroup) -> dict[tuple[int, int], float]:
+    """``y_a y_b = (sum E_a)(sum E_b) / 4`` as products of edge bits."""
+    q = grp.coefficient / 4
+    out: dict[tuple[int, int], float] = {}
+    for i, a in enumerate(grp.visitors):
+        for b in grp.visitors[i + 1 :]:
+            for e in a:
+                for f in b:
+                    key = (e, f) if e < f else (f, e)
+                    out[key] = out.get(key, 0.0) + q
+    return out
+
+
+def _new_couplings(quad: dict[tuple[int, int], float], extra: dict[tuple[int, int], float]) -> int:
+    """How many couplings adding ``extra`` to ``quad`` creates (net of those it cancels)."""
+    tol = COEFFICIENT_TOLERANCE
+    delta = 0
+    for k, v in extra.items():
+        old = quad.get(k, 0.0)
+        delta += (abs(old + v) > tol) - (abs(old) > tol)
+    return max(delta, 0)
+
+
+@dataclass(frozen=True, eq=False)
+class PhasePlan:
+    """The phase separator of one scenario: which construction implements which term group.
+
+    Build it with :func:`phase_plan`. On every feasible assignment ``x`` (every bit string for ``whole-space``)
+    the gadgets, in order, apply ``exp(-i gamma (C(x) - reference_constant))`` and return every ancilla to
+    |0> (on every input).
+
+    Attributes:
+        num_ancillas: Clean ancillas the gadgets need (reused by each gadget in turn).
+        reference_constant: ``K`` above.
+        representation, target, optimize: As requested.
+    """
+
+    num_ancillas: int
+    reference_constant: float
+    representation: Representation
+    target: Target
+    optimize: Optimize
+    num_variables: int
+    _data_linear: tuple[tuple[int, float], ...]
+    _data_couplings: tuple[tuple[int, int, float], ...]
+    _hamming: tuple[tuple[float, tuple[int, ...]], ...]
+    _visits: tuple[tuple[VisitGroup, bool], ...]
+    _sums: tuple[tuple[SumsGroup, str], ...]
+    _explain: tuple[dict, ...]
+
+    def gadgets(self, gamma: str, data_offset: int = 0, ancilla_offset: int | None = None) -> tuple[Gadget, ...]:
+        """The gadgets, each meant for its own section.
+
+        Args:
+            gamma: The layer's symbol name (e.g. ``"gamma_0"``).
+            data_offset: Qubit of variable 0.
+            ancilla_offset: First of :attr:`num_ancillas` clean ancillas (default: right after the data).
+
+        Returns:
+            The gadgets in application order; run them consecutively, each in its own section. Every gadget but
+            those of a balance term in the ``registers`` or ``accumulator`` variant is diagonal and returns its
+            ancillas to |0> on every input; those variants are runs (``SumsRegister..., phase,
+            SumsRegister...`` or ``SumsAccumulate..., phase, SumsAccumulate(subtract)...``) whose register
+            ancillas hold the path lengths between their own gadgets and are |0> again after the run.
+        """
+        d = data_offset
+        a0 = d + self.num_variables if ancilla_offset is None else ancilla_offset
+        anc = tuple(range(a0, a0 + self.num_ancillas))
+        out: list[Gadget] = []
+        if self._data_linear or self._data_couplings:
+            out.append(
+                IsingPhase(
+                    gamma,
+                    tuple((d + i, v) for i, v in self._data_linear),
+                    tuple((d + i, d + j, v) for i, j, v in self._data_couplings),
+                )
+            )
+        for coeff, qs in self._hamming:
+            out.append(SumsPhase(gamma, (tuple((d + q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
+        # each node's visit bits go to the next ancillas of the pool (round robin): gadgets of different nodes
+        # then share no qubit and can run side by side when the pool is larger than one gadget's need
+        start = 0
+        for grp, products in self._visits:
+            need = visit_ancillas(tuple(len(v) for v in grp.visitors), products)
+            if start + need > len(anc):
+                start = 0
+            window = anc[start : start + need]
+            start += need
+            visitors = tuple(tuple(d + q for q in v) for v in grp.visitors)
+            out.append(VisitPhase(gamma, grp.coefficient, visitors, window, products))
+        for grp, variant in self._sums:
+            forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
+            if variant == "registers":
+                out.extend(_register_gadgets(gamma, forms, grp.matrix, anc))
+            elif variant == "accumulator":
+                out.extend(_accumulator_gadgets(gamma, forms, grp.matrix, anc)[0])
+            else:
+                out.append(SumsPhase(gamma, forms, grp.matrix, (0.0,) * len(forms), anc))
+        return tuple(out)
+
+    def cost(self) -> Cost:
+        """Lowered cost of all gadgets (no gate is emitted)."""
+        return Cost.sum(g.cost() for g in self.gadgets("gamma"))
+
+    def logical_cost(self) -> Cost:
+        """The same with ANDs kept whole (the fault-tolerant view)."""
+        return Cost.sum(g.logical_cost() for g in self.gadgets("gamma"))
+
+    def explain(self) -> list[dict]:
+        """Per term group: ``group``, chosen ``construction``, its ``cost`` (``cx``, ``rotations``, ``t_ft``),
+        ``alternatives`` (construction -> the same figures) and ``count`` (groups of that kind); the balance
+        rows also give each construction's ``ancillas``."""
+        return copy.deepcopy(list(self._explain))
+
+
+def phase_plan(
+    scenario: Scenario,
+    *,
+    target: Target = "nisq",
+    representation: Representation = "feasible",
+    optimize: Optimize = "cx",
+    ancilla_budget: int | None = None,
+) -> PhasePlan:
+    """Choose the phase separator's constructions for a scenario.
+
+    Args:
+        scenario: The scenario.
+        target: ``nisq`` (minimise CX) or ``ft`` (minimise T, rotations priced at :data:`ROTATION_T_COST`).
+        representation: ``feasible`` (exact on feasible assignments, cheap) or ``whole-space`` (the exact Ising
+            Hamiltonian, today's RZ/RZZ circuit).
+        optimize: ``cx`` (cheapest under the target) or ``depth`` (couplings only: shallow RZZ layers, no
+            arithmetic).
+        ancilla_budget: Most clean ancillas the plan may use (``None``: no limit). Constructions that need more
+            are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
+            sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
+            variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
+
+    Returns:
+        The :class:`PhasePlan`.
+
+    Raises:
+        ValueError: for an unknown option.
+    """
+    if target not in TARGETS:
+        raise ValueError(f"unknown target {target!r}; expected one of {', '.join(TARGETS)}")
+    if representation not in ("feasible", "whole-space"):
+        raise ValueError(f"unknown representation {representation!r}; expected feasible or whole-space")
+    if optimize not in ("cx", "depth"):
+        raise ValueError(f"unknown optimize {optimize!r}; expected cx or depth")
+    if ancilla_budget is not None and (not isinstance(ancilla_budget, int) or ancilla_budget < 0):
+        raise ValueError(f"ancilla_budget must be a non-negative integer or None, got {ancilla_budget!r}")
+    if representation == "whole-space":
+        return _whole_space_plan(scenario, target, optimize)
+    return _feasible_plan(scenario, target, optimize, ancilla_budget)
+
+
+def _register_gadgets(
+    gamma: str, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
+    anc: tuple[int, ...],
+) -> list[Gadget]:
+    """The register variant of a sums group: copy each sum into a register (one tree at a time), phase the
+    registers, clear them again (the same gadgets in reverse order)."""
+    whole = SumsPhase(gamma, forms, matrix, (0.0,) * len(forms))
+    regs: list[SumsRegister] = []
+    registers: list[list[int | None]] = []
+    nxt = 0
+    active = [f for f, on in zip(forms, whole._active) if on]
+    widths = [SumsRegister(f, ()).width for f in active]
+    pool = anc[sum(widths) :]
+    for f, on in zip(forms, whole._active):
+        if not on:
+            registers.append([])
+            continue
+        present = SumsRegister(f, ())._count[3]
+        row: list[int | None] = []
+        qubits = []
+        for p in present:
+            if p:
+                row.append(anc[nxt])
+                qubits.append(anc[nxt])
+                nxt += 1
+            else:
+                row.append(None)
+        registers.append(row)
+        regs.append(SumsRegister(f, tuple(qubits), pool))
+    _, phase = whole.phase(registers)
+    return [*regs, phase, *reversed(regs)]
+
+
+def _accumulator_layout(
+    forms: tuple[tuple[tuple[int, int], ...], ...], active: tuple[bool, ...]
+) -> tuple[list[tuple[int, list[tuple[tuple[int, int], ...]]]], int]:
+    """Per active form ``(B, chunks)`` (``B`` accumulator bits, chunks of ``4 B`` terms, at least 8) and the
+    ancillas the accumulator variant needs (registers + the largest chunk's tree and carries)."""
+    out = []
+    regs = work = 0
+    for f, on in zip(forms, active):
+        if not on:
+            continue
+        width = max(1, sum(abs(w) for _, w in f).bit_length())
+        size = max(8, 4 * width)
+        chunks = [f[i : i + size] for i in range(0, len(f), size)]
+        out.append((width, chunks))
+        regs += width
+        for ch in chunks:
+            work = max(work, SumsAccumulate(ch, tuple(range(width))).num_ancillas)
+    return out, regs + work
+
+
+def _accumulator_gadgets(
+    gamma: str, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
+    anc: tuple[int, ...],
+) -> tuple[list[Gadget], float]:
+    """The accumulator variant of a sums group: each form's chunks added into a ``B``-bit register (tree per
+    chunk, ripple-carry adder), the registers phased, the chunks subtracted again. Returns the gadgets and the
+    constant ``c0`` of the register phase."""
+    whole = SumsPhase(gamma, forms, matrix, (0.0,) * len(forms))
+    layout, _ = _accumulator_layout(forms, whole._active)
+    nregs = sum(width for width, _ in layout)
+    pool = anc[nregs:]
+    nxt = 0
+    adds: list[SumsAccumulate] = []
+    registers: list[list[int | None]] = []
+    it = iter(layout)
+    for on in whole._active:
+        if not on:
+            registers.append([])
+            continue
+        width, chunks = next(it)
+        acc = anc[nxt : nxt + width]
+        nxt += width
+        registers.append(list(acc))
+        adds += [SumsAccumulate(ch, acc, pool) for ch in chunks]
+    c0, phase = whole.phase(registers)
+    subs = [SumsAccumulate(g.chunk, g.accumulator, g.ancillas, subtract=True) for g in reversed(adds)]
+    return [*adds, phase, *subs], c0
+
+
+def _register_ancillas(forms: tuple[tuple[tuple[int, int], ...], ...], active: tuple[bool, ...]) -> int:
+    trees = [SumsRegister(f, ()) for f, on in zip(forms, active) if on]
+    return sum(t.width for t in trees) + max((t.num_ancillas for t in trees), default=0)
+
+
+def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) -> PhasePlan:
+    ham = ising_hamiltonian(scenario)
+    tol = COEFFICIENT_TOLERANCE
+    lin = tuple(ham.linear_terms(tol))
+    quad = tuple(ham.quadratic_terms(tol))
+    g = IsingPhase("gamma", lin, quad)
+    row = {"group": "whole-space Ising", "construction": "couplings", "count": 1,
+           "cost": _summary(g.cost(), g.logical_cost()), "alternatives": {}}  # fmt: skip
+    return PhasePlan(0, ham.c0, "whole-space", target, optimize, scenario.num_variables, lin, quad, (), (), (), (row,))
+
+
+def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budget: int | None) -> PhasePlan:
+    """Choose the balance construction by building the whole plan for each candidate (the couplings of the
+    balance and of the node visits overlap, so the groups are not independent), the rest greedily."""
+    fc = feasible_cost(scenario)
+    balance: list[dict] = []
+    for grp in fc.sums:
+        balance.append(_sums_options(grp, fc.num_variables, optimize, budget))
+    # candidates: every combination is too many in general; there is one balance group at most
+    choices: list[tuple[str, ...]] = [()]
+    for opts in balance:
+        choices = [(*c, k) for c in choices for k in opts["options"]]
+    if len(choices) == 1:
+        return _assemble(fc, target, optimize, budget, balance, choices[0])
+    best: PhasePlan | None = None
+    best_key: tuple[int, ...] | None = None
+    for choice in choices:
+        plan = _assemble(fc, target, optimize, budget, balance, choice)
+        key = score(plan.cost(), plan.logical_cost(), target)
+        if best_key is None or key < best_key:
+            best, best_key = plan, key
+    assert best is not None
+    return best
+
+
+def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None) -> dict:
+    """The constructions a sums group may use, with their own costs and ancillas."""
+    sizes = [len(f) for f in grp.forms]
+    m = grp.matrix
+    prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(len(sizes)) if abs(m[a][a]) > 0) + sum(
+        sizes[a] * sizes[b] for a in range(len(sizes)) for b in range(a + 1, len(sizes)) if abs(m[a][b]) > 0
+    )
+    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": []}
+    out["costs"]["couplings"] = (_coupling_cost(prods), _coupling_cost(prods))
+    out["ancillas"]["couplings"] = 0
+    if grp.integral and optimize == "cx":
+        forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
+        gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
+        out["costs"]["arithmetic"] = (gad.cost(), gad.logical_cost())
+        out["ancillas"]["arithmetic"] = gad.num_ancillas
+        reg_anc = _register_ancillas(forms, gad._active)
+        reg_gads = _register_gadgets("gamma", forms, m, tuple(range(n, n + reg_anc)))
+        out["costs"]["registers"] = (Cost.sum(g.cost() for g in reg_gads), Cost.sum(g.logical_cost() for g in reg_gads))
+        out["ancillas"]["registers"] = reg_anc
+        _, acc_anc = _accumulator_layout(forms, gad._active)
+        acc_gads, acc_c0 = _accumulator_gadgets("gamma", forms, m, tuple(range(n, n + acc_anc)))
+        out["costs"]["accumulator"] = (
+            Cost.sum(g.cost() for g in acc_gads),
+            Cost.sum(g.logical_cost() for g in acc_gads),
+        )
+        out["ancillas"]["accumulator"] = acc_anc
+        out["constants"] = {"arithmetic": gad.constant, "registers": gad.constant, "accumulator": acc_c0}
+        for k in ("arithmetic", "registers", "accumulator"):
+            if budget is None or out["ancillas"][k] <= budget:
+                out["options"].append(k)
+                break  # each variant only pays off when the ones before it (fewer CX) do not fit
+    if prods <= EXACT_EXPANSION_LIMIT or not out["options"]:
+        out["options"].append("couplings")
+    return out
+
+
+def _assemble(
+    fc: FeasibleCost,
+    target: Target,
+    optimize: Optimize,
+    budget: int | None,
+    balance: list[dict],
+    choice: tuple[str, ...],
+) -> PhasePlan:
+    n = fc.num_variables
+    lin: dict[int, float] = dict(fc.linear)
+    quad: dict[tuple[int, int], float] = {}
+    rows: list[dict] = []
+    ancillas = 0
+    const = fc.constant
+
+    def better(a: tuple[Cost, Cost], b: tuple[Cost, Cost]) -> bool:
+        return score(a[0], a[1], target) <= score(b[0], b[1], target)
+
+    def fits(k: int) -> bool:
+        return budget is None or k <= budget
+
+    # squared sums (balance) first: their couplings, when chosen, make most visit couplings free
+    chosen_sums: list[tuple[SumsGroup, str]] = []
+    for grp, opts, pick in zip(fc.sums, balance, choice):
+        costs = dict(opts["costs"])
+        if pick == "couplings":
+            el, eq = grp.expanded()
+            new = _new_couplings(quad, eq)
+            costs["couplings"] = (_coupling_cost(new), _coupling_cost(new))
+            for i, v in el.items():
+                lin[i] = lin.get(i, 0.0) + v
+            for k, v in eq.items():
+                quad[k] = quad.get(k, 0.0) + v
+        else:
+            chosen_sums.append((grp, pick))
+            const += opts["constants"][pick]
+            ancillas = max(ancillas, opts["ancillas"][pick])
+        note = "" if grp.integral else " (non-integer lengths: couplings only)"
+        alternatives = {k: _summary(*c, opts["ancillas"][k]) for k, c in costs.items() if k != pick}
+        rows.append({"group": grp.name + note, "count": 1, "construction": pick,
+                     "cost": _summary(*costs[pick], opts["ancillas"][pick]), "alternatives": alternatives})  # fmt: skip
+    # node visits
+    chosen_visits: list[tuple[VisitGroup, bool]] = []
+    names = ("visit bits", "visit pairs", "couplings")
+    v_rows = dict.fromkeys(names, 0)
+    alt_tot = {k: [Cost(), Cost()] for k in names}
+    chosen_tot = [Cost(), Cost()]
+    for grp in fc.visits:
+        sizes = tuple(len(v) for v in grp.visitors)
+        products: dict[tuple[int, int], float] | None = None
+        if quad:
+            products = _visit_products(grp)
+            new = _new_couplings(quad, products)
+        else:  # within one node every product pairs two different robots' edges: all distinct
+            new = sum(a * b for i, a in enumerate(sizes) for b in sizes[i + 1 :])
+        coup = (_coupling_cost(new), _coupling_cost(new))
+        opts: list[tuple[str, tuple[Cost, Cost], VisitPhase | None]] = []
+        for name, prod in (("visit bits", False), ("visit pairs", True)):
+            gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 16)), prod)
+            c = (gad.cost(), gad.logical_cost())
+            alt_tot[name][0] += c[0]
+            alt_tot[name][1] += c[1]
+            if optimize == "cx" and fits(visit_ancillas(sizes, prod)):
+                opts.append((name, c, gad))
+        alt_tot["couplings"][0] += coup[0]
+        alt_tot["couplings"][1] += coup[1]
+        pick = ("couplings", coup, None)
+        for o in opts:  # ties go to the couplings (no ancilla)
+            if better(o[1], pick[1]) and o[1] != pick[1]:
+                pick = o
+        name, c, gad = pick
+        v_rows[name] += 1
+        chosen_tot[0] += c[0]
+        chosen_tot[1] += c[1]
+        if gad is not None:
+            chosen_visits.append((grp, gad.products))
+            const += gad.constant
+            ancillas = max(ancillas, visit_ancillas(sizes, gad.products))
+        else:
+            for key, v in (products if products is not None else _visit_products(grp)).items():
+                quad[key] = quad.get(key, 0.0) + v
+    if fc.visits:
+        used = [k for k, r in v_rows.items() if r]
+        rows.append({
+            "group": "node visits", "count": len(fc.visits), "cost": _summary(*chosen_tot),
+            "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
+            "alternatives": {f"each by {k}": _summary(*alt_tot[k]) for k in alt_tot},
+        })  # fmt: skip
+    # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
+    hamming: list[tuple[float, tuple[int, ...]]] = []
+    if target == "ft" and optimize == "cx":
+        coupled = {q for k in quad for q in k}
+        classes: dict[float, list[int]] = {}
+        for q, v in sorted(lin.items()):
+            if q not in coupled and abs(v) > COEFFICIENT_TOLERANCE:
+                classes.setdefault(round(v, 12), []).append(q)
+        hw_cost, hw_log, plain = Cost(), Cost(), 0
+        for qs in classes.values():
+            if len(qs) < 3:
+                continue
+            coeff = lin[qs[0]]
+            hw = SumsPhase("gamma", (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,))
+            alt = Cost.of(rz=len(qs))
+            if fits(hw.num_ancillas) and better((hw.cost(), hw.logical_cost()), (alt, alt)):
+                hamming.append((coeff, tuple(qs)))
+                const += hw.constant
+                for q in qs:
+                    del lin[q]
+                ancillas = max(ancillas, hw.num_ancillas)
+                hw_cost += hw.cost()
+                hw_log += hw.logical_cost()
+                plain += len(qs)
+        if hamming:
+            rows.append({"group": "equal-angle rotations", "count": len(hamming),
+                         "construction": "hamming-weight phasing", "cost": _summary(hw_cost, hw_log),
+                         "alternatives": {"rotations": _summary(Cost.of(rz=plain), Cost.of(rz=plain))}})  # fmt: skip
+    c0, h, j = ising_form(lin, quad)
+    const += c0
+    data_lin = tuple(sorted(h.items()))
+    data_quad = tuple(sorted((a, b, v) for (a, b), v in j.items()))
+    ising = IsingPhase("gamma", data_lin, data_quad)
+    rows.insert(0, {"group": "linear + couplings", "count": 1, "construction": "rz/rzz",
+                    "cost": _summary(ising.cost(), ising.logical_cost()), "alternatives": {}})  # fmt: skip
+    return PhasePlan(
+        ancillas, const, "feasible", target, optimize, n, data_lin, data_quad,
+        tuple(hamming), tuple(chosen_visits), tuple(chosen_sums), tuple(rows),
+    )  # fmt: skip

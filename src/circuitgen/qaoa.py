@@ -3,14 +3,19 @@
 ``qaoa_circuit(scenario, p)`` returns a :class:`~circuitgen.circuit.Circuit` with
 
 * registers ``data`` (qubit ``i`` = decision variable ``i``, see :mod:`gridcover.scenario`) and ``logic``
-  (the SBF logic ancillas, shared by every partial mixer because each returns them to |0>);
-* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every partial mixer is a
-  section of its own (all named ``mixer_k``), so lowering passes never act across two partial mixers and each
-  partial mixer's lowered cost is self-contained (see ``docs/architecture.md``);
+  (clean ancillas shared by every gadget: each returns them to |0>);
+* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every gadget is a section
+  of its own (all phase gadgets of layer ``k`` are named ``phase_k``, all partial mixers ``mixer_k``), so lowering
+  passes never act across two gadgets and each gadget's lowered cost is its reported cost
+  (see ``docs/architecture.md``);
 * ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
 
-The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - c0)) |x_0>``; the
-feasible-subspace simulator (:mod:`simulate.subspace`) implements the very same operator.
+:class:`QaoaPlan` holds the same circuit as gadgets and sums their costs by kind without emitting anything.
+
+The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>`` on the feasible
+assignments it reaches, ``K`` the phase plan's :attr:`QaoaPlan.reference_constant` (the Ising constant ``c0`` for
+``phase="whole-space"``); the feasible-subspace simulator (:mod:`simulate.subspace`) implements the very same
+operator.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -18,6 +23,10 @@ Example:
     >>> c = qaoa_circuit(s, p=1)
     >>> c.symbols, [sec.name for sec in c.sections]
     (('gamma_0', 'beta_0'), ['initial_state', 'phase_0', 'mixer_0', 'mixer_0', 'mixer_0', 'mixer_0'])
+    >>> from circuitgen.lowering import lower
+    >>> plan = qaoa_plan(s, p=1)
+    >>> plan.cost() == Cost.count(lower(c).gates)
+    True
 """
 
 from __future__ import annotations
@@ -25,11 +34,10 @@ from __future__ import annotations
 import dataclasses
 from collections import Counter
 from collections.abc import Hashable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
-from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
@@ -37,9 +45,10 @@ from .angles import Angle
 from .circuit import Circuit, Register, Section
 from .cost import Cost, Target
 from .gadgets import Gadget
-from .gadgets.blocks import StatePrep, WholeSpacePhase
+from .gadgets.blocks import StatePrep
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
 from .lowering import WORK_REGISTER
+from .phase import Optimize, PhasePlan, Representation, phase_plan
 
 
 @dataclass(frozen=True)
@@ -73,8 +82,10 @@ class QaoaPlan:
         p: Layers.
         rule: SBF rule.
         initial: Initial state.
-        target: ``nisq`` or ``ft`` (which partial-mixer construction is cheapest).
-        options: Reserved for the phase separator's options.
+        target: ``nisq`` or ``ft`` (which constructions are cheapest).
+        phase: ``feasible`` (exact on feasible assignments, default) or ``whole-space`` (the Ising Hamiltonian).
+        optimize: ``cx`` or ``depth`` (phase separator: couplings only, shallow).
+        ancilla_budget: Most ancillas the phase separator may use (``None``: as many as the cheapest needs).
     """
 
     scenario: Scenario
@@ -82,7 +93,9 @@ class QaoaPlan:
     rule: Rule = "exact"
     initial: str = "initial_path"
     target: Target = "nisq"
-    options: tuple[tuple[str, Any], ...] = field(default=())
+    phase: Representation = "feasible"
+    optimize: Optimize = "cx"
+    ancilla_budget: int | None = None
 
     # -- layout
     @cached_property
@@ -103,13 +116,37 @@ class QaoaPlan:
         return StatePrep.build(s, self.initial, self.rule, ancilla)
 
     @cached_property
-    def _phase(self) -> WholeSpacePhase | None:
-        return WholeSpacePhase(ising_hamiltonian(self.scenario), "gamma") if self.p else None
+    def phase_plan(self) -> PhasePlan | None:
+        """The phase separator's plan (``None`` when ``p = 0``)."""
+        if not self.p:
+            return None
+        return phase_plan(
+            self.scenario,
+            target=self.target,
+            representation=self.phase,
+            optimize=self.optimize,
+            ancilla_budget=self.ancilla_budget,
+        )
+
+    @property
+    def reference_constant(self) -> float:
+        """On every feasible ``x`` a layer applies ``exp(-i gamma (C(x) - reference_constant))`` before its mixer
+        (pass it to the subspace simulator as ``phase_offset`` to compare amplitudes)."""
+        return self.phase_plan.reference_constant if self.phase_plan else 0.0
+
+    @cached_property
+    def _phase_gadgets(self) -> tuple[Gadget, ...]:
+        if self.phase_plan is None:
+            return ()
+        return self.phase_plan.gadgets("gamma", 0, self.scenario.num_variables)
 
     @cached_property
     def logic_width(self) -> int:
-        """Shared clean ``logic`` ancillas: the largest partial mixer (at least 1 for ``representatives``)."""
+        """Shared clean ``logic`` ancillas: the largest partial mixer or phase-separator need (at least 1 for
+        ``representatives``)."""
         width = max((m.num_temps for m in self._mixers), default=0)
+        if self.phase_plan is not None:
+            width = max(width, self.phase_plan.num_ancillas)
         return max(width, 1 if self.initial == "representatives" else 0)
 
     @cached_property
@@ -140,8 +177,9 @@ class QaoaPlan:
         separator and one section per partial mixer (robot-major, plaquettes row-major)."""
         yield "initial_state", self._prep
         for k in range(self.p):
-            assert self._phase is not None
-            yield f"phase_{k}", WholeSpacePhase(self._phase.hamiltonian, f"gamma_{k}")
+            assert self.phase_plan is not None
+            for g in self.phase_plan.gadgets(f"gamma_{k}", 0, self.scenario.num_variables):
+                yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
             for m in self._mixers:
                 yield f"mixer_{k}", dataclasses.replace(m, beta=beta)
@@ -150,7 +188,7 @@ class QaoaPlan:
         """Gadget kinds and multiplicities of one layer's parts: ``initial_state``, ``phase``, ``mixer``."""
         out: dict[str, Counter[Hashable]] = {
             "initial_state": Counter([self._prep.kind]),
-            "phase": Counter([self._phase.kind] if self._phase else []),
+            "phase": Counter(g.kind for g in self._phase_gadgets),
             "mixer": Counter(m.kind for m in self._mixers),
         }
         return out
@@ -164,7 +202,7 @@ class QaoaPlan:
             if m.kind not in by_kind:
                 by_kind[m.kind] = of(m)
         mixer = Cost.sum(by_kind[m.kind] for m in self._mixers)
-        phase = of(self._phase) if self._phase else Cost()
+        phase = Cost.sum(of(g) for g in self._phase_gadgets)
         return {"initial_state": of(self._prep), "phase": phase, "mixer": mixer}
 
     def cost_by_section(self, logical: bool = False) -> dict[str, Cost]:
@@ -198,6 +236,9 @@ def qaoa_plan(
     rule: Rule = "exact",
     initial: str = "initial_path",
     target: Target = "nisq",
+    phase: Representation = "feasible",
+    optimize: Optimize = "cx",
+    ancilla_budget: int | None = None,
 ) -> QaoaPlan:
     """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`."""
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
@@ -206,7 +247,9 @@ def qaoa_plan(
         raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
     if target not in ("nisq", "ft"):
         raise ValueError(f"unknown target {target!r} (expected 'nisq' or 'ft')")
-    return QaoaPlan(scenario, p, rule, initial, target)
+    if ancilla_budget is not None and ancilla_budget < 0:
+        raise ValueError(f"ancilla_budget must be >= 0, got {ancilla_budget}")
+    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget)
 
 
 def qaoa_circuit(
@@ -215,6 +258,9 @@ def qaoa_circuit(
     rule: Rule = "exact",
     initial: str = "initial_path",
     target: Target = "nisq",
+    phase: Representation = "feasible",
+    optimize: Optimize = "cx",
+    ancilla_budget: int | None = None,
 ) -> Circuit:
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
@@ -223,10 +269,13 @@ def qaoa_circuit(
         p: Number of layers (>= 0).
         rule: SBF logic rule, ``exact`` (default) or ``paper``.
         initial: ``initial_path`` (default) or ``representatives`` (see :mod:`circuitgen.initial_state`).
-        target: ``nisq`` (default) or ``ft``: which partial-mixer construction is cheapest
-            (see :mod:`circuitgen.gadgets.partial_mixer`).
+        target: ``nisq`` (default) or ``ft``: which constructions are cheapest
+            (see :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`).
+        phase: ``feasible`` (default) or ``whole-space`` phase separator (see :mod:`circuitgen.phase`).
+        optimize: ``cx`` (default) or ``depth`` for the phase separator.
+        ancilla_budget: Most ancillas the phase separator may use (default: as many as its cheapest form needs).
 
     Returns:
         The circuit (see the module docstring for its layout).
     """
-    return qaoa_plan(scenario, p, rule, initial, target).circuit()
+    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget).circuit()

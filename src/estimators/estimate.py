@@ -89,25 +89,20 @@ class PlanOptions:
     target: str = "nisq"
     phase: str = "feasible"
     optimize: str = "cx"
+    ancilla_budget: int | None = None
 
     def plan(self, scenario: Scenario, p: int) -> Any:
-        """The plan of ``scenario`` with ``p`` layers (phase separator options are passed only when set, so
-        that a plan without them still works with the defaults)."""
-        extra = {k: v for k, v in (("phase", self.phase), ("optimize", self.optimize)) if v != _DEFAULT_EXTRA[k]}
-        try:
-            return qaoa_plan(
-                scenario,
-                p,
-                rule=self.rule,
-                initial=self.initial,
-                target=self.target,
-                **extra,  # type: ignore[arg-type]
-            )
-        except TypeError as exc:
-            raise ValueError(f"this compiler has no such option: {exc}") from None
-
-
-_DEFAULT_EXTRA = {"phase": "feasible", "optimize": "cx"}
+        """The plan of ``scenario`` with ``p`` layers."""
+        return qaoa_plan(
+            scenario,
+            p,
+            rule=self.rule,  # type: ignore[arg-type]
+            initial=self.initial,
+            target=self.target,  # type: ignore[arg-type]
+            phase=self.phase,  # type: ignore[arg-type]
+            optimize=self.optimize,  # type: ignore[arg-type]
+            ancilla_budget=self.ancilla_budget,
+        )
 
 
 def gadget_blocks(gadget: Any) -> list[Sequence[Any]]:
@@ -276,8 +271,7 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
             logical={k: logical[k] for k in keys if k in logical},
         )
     mixer = mixer_layer(scenario, options.rule, options.target)
-    # the plan's own phase gadget (QaoaPlan builds it apart from its partial mixers)
-    phase = plan1._phase
+    phase = plan1.phase_plan  # the plan's own phase separator (built apart from its partial mixers)
     if options.initial == "initial_path":
         # on a grid without obstacles each robot's initial path is the L-shaped path (feasible), prepared by one
         # X per edge: its length is the Manhattan distance (the tests compare with the plan's StatePrep)
@@ -288,7 +282,9 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
         prep = plan1._prep
         prep_cost, prep_logical, prep_work = prep.cost(), prep.logical_cost(), _prep_work(prep)
     return LayerCosts(
-        registers=_registers(scenario, options, mixer.logic_width, max(mixer.work_need, prep_work)),
+        registers=_registers(
+            scenario, options, max(mixer.logic_width, phase.num_ancillas), max(mixer.work_need, prep_work)
+        ),
         sections={"initial_state": prep_cost, "phase": phase.cost(), "mixer": mixer.cost},
         logical={"initial_state": prep_logical, "phase": phase.logical_cost(), "mixer": mixer.logical},
     )
@@ -310,6 +306,7 @@ def _registers0(scenario: Scenario, options: PlanOptions) -> tuple[tuple[str, in
     if scenario.obstacles:
         return _layout(options.plan(scenario, 0))
     mixer = mixer_layer(scenario, options.rule, options.target)
+    # p = 0: no phase separator (its ancillas are not needed), the partial mixers still size the logic register
     return _registers(scenario, options, mixer.logic_width, _prep_work(options.plan(scenario, 0)._prep))
 
 
@@ -408,7 +405,9 @@ def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth
     cache: dict[Hashable, Depth] = {}
     if not scenario.obstacles:
         init = _gadget_depth("initial_state", plan._prep, regs, cache)
-        layer = _gadget_depth("phase_0", plan._phase, regs, cache)
+        layer = Depth()
+        for gadget in plan.phase_plan.gadgets("gamma_0", 0, scenario.num_variables):
+            layer = layer + _gadget_depth("phase_0", gadget, regs, cache)
         mixer = mixer_layer(scenario, options.rule, options.target)
         for gadget, n in mixer.gadgets(scenario, options.rule, options.target):
             layer = layer + n * _gadget_depth("mixer_0", gadget, regs, cache)

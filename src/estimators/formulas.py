@@ -1,7 +1,11 @@
-"""Closed-form resource counts of qcpp's own construction (default options, default placement).
+"""Closed-form resource counts of qcpp's own construction (default placement, whole-space phase separator).
 
 Symbols: ``rows``, ``cols`` (>= 2), ``robots`` (1..4, :func:`gridcover.presets.default_scenario`) and ``p`` (>= 1).
-Every expression equals the exact count of ``lower(qaoa_circuit(default_scenario(rows, cols, robots), p))``
+Every expression equals the exact count of
+``lower(qaoa_circuit(default_scenario(rows, cols, robots), p, phase="whole-space"))``: the mixer part is a sum over
+partial-mixer gadget kinds, the phase part counts the Ising Hamiltonian's terms. The default phase separator
+(``feasible``: arithmetic on path lengths, visit bits, chosen per term group) has no closed form here, so the
+formulas are restricted to the whole-space form; ``qcpp estimate`` always sums the gadgets actually compiled
 (``tests/estimators/formulas_test.py`` checks every quantity on every grid from 2x2 to 8x8, 1-4 robots, p = 1,
 and p = 2, 3 on a subset). Depth and two-qubit depth have no closed form here: ASAP layering of the phase
 separator and of the chain of partial mixers (which share the ``logic``/``work`` ancillas) does not decompose
@@ -69,8 +73,9 @@ __all__ = [
 ]
 
 FORMULA_DOMAIN = (
-    "rows, cols >= 2; 1 <= robots <= 4 (default corner placement); p >= 1; exact rule; default objective; "
-    "lowered circuit (cx x h rz t tdg s sdg, peephole on)"
+    "rows, cols >= 2; 1 <= robots <= 4 (default corner placement); p >= 1; exact rule; nisq target; default "
+    "objective; whole-space (Ising) phase separator, i.e. --phase whole-space (the default feasible-subspace phase "
+    "separator has no closed form here); lowered circuit (cx x h rz t tdg s sdg, peephole on)"
 )
 """Where :func:`formula_table` holds."""
 
@@ -270,7 +275,8 @@ P_EXPR = 6 * rows * cols - 6 * rows - 6 * cols + 4
 def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     """Every quantity of :data:`QUANTITIES` as a sympy expression in ``rows, cols, robots, p``.
 
-    Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, default objective and
+    Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, the whole-space phase
+    separator, default objective and
     the default placement. Gate counts are for the lowered circuit (basis ``cx x h rz t tdg s sdg``, peephole
     on); ``toffoli`` counts Toffolis after multi-controlled-X lowering; ``rotations`` counts arbitrary-angle
     RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate count is written as

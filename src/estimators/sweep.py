@@ -15,7 +15,7 @@ Range syntax (:func:`parse_grid_range`, :func:`parse_int_range`): ``3x4`` is one
 
 Example:
     >>> [e.cost.cx for e in sweep(grid_points([(2, 2)], [1, 5], [1]))]
-    [18]
+    [10]
     >>> skipped_points([(2, 2)], [1, 5], [1])
     1
 """

@@ -28,7 +28,7 @@ Example:
     >>> from estimators.estimate import Point, estimate_point
     >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1))], compare_paper=True)
     >>> rows[0]["cx"], rows[0]["paper_cx"], rows[0]["ratio_cx"], rows[0]["depth_kind"]
-    (18, 564, 0.0319, 'exact')
+    (10, 564, 0.0177, 'exact')
     >>> render(rows, "csv").splitlines()[0].split(",")[:7]
     ['rows', 'cols', 'robots', 'p', 'rule', 'target', 'scenario']
 """

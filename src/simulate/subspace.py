@@ -14,9 +14,11 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
   the bases hold every component.
 * **Layer k** (angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``): the phase separator multiplies the
   amplitude of ``x`` by ``exp(-i gamma_k (C(x) - phase_offset))``, with ``C`` the cost (equal to
-  :func:`~gridcover.hamiltonian.ising_hamiltonian` on basis states) and ``phase_offset`` defaulting to that
-  Hamiltonian's constant ``c0`` (the circuit's RZ/RZZ gates drop it as a global phase; pass
-  ``phase_offset=0.0`` for plain ``exp(-i gamma C)``). Then the mixer: for robot ``r = 0..R-1`` and
+  :func:`~gridcover.hamiltonian.ising_hamiltonian` on basis states) and ``phase_offset`` the constant the
+  compiled phase separator leaves out as a global phase: by default (``"feasible"``) the reference constant of
+  :func:`circuitgen.phase.phase_plan` (the feasible-subspace representation), ``"whole-space"`` the Ising
+  constant ``c0`` (the whole-space RZ/RZZ circuit), or a number (``0.0`` for plain ``exp(-i gamma C)``).
+  Then the mixer: for robot ``r = 0..R-1`` and
   plaquette ``q = 0..P-1`` (row-major), if ``sbf_logic(scenario, r, q, rule).evaluate(path_r)`` the pair
   ``(x, x with path_r flipped on q)`` is rotated by ``exp(-i beta_k X / 2)``:
   ``|x> -> cos(beta_k/2)|x> - i sin(beta_k/2)|x'>``; otherwise ``x`` is untouched.
@@ -65,6 +67,7 @@ import numpy as np
 from scipy.linalg.blas import zdotc
 from scipy.linalg.lapack import zrot
 
+from circuitgen.phase import phase_plan
 from gridcover.cost import separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import initial_path, is_feasible, path_bits
@@ -300,6 +303,17 @@ def _check_lapack_in_place() -> None:
         raise RuntimeError("scipy's LAPACK zrot did not work in place; the subspace simulator cannot run here")
 
 
+def _phase_offset(scenario: Scenario, offset: float | str | None) -> float:
+    """Resolve ``phase_offset`` (see :class:`SubspaceQAOA`)."""
+    if offset is None or offset == "feasible":
+        return float(phase_plan(scenario).reference_constant)
+    if offset == "whole-space":
+        return float(ising_hamiltonian(scenario).c0)
+    if isinstance(offset, str):
+        raise ValueError(f"unknown phase_offset {offset!r}; expected a number, 'feasible' or 'whole-space'")
+    return float(offset)
+
+
 class SubspaceQAOA:
     """The constrained-mixer QAOA on the product of the robots' reachable path sets.
 
@@ -307,8 +321,10 @@ class SubspaceQAOA:
         scenario: The scenario.
         rule: SBF rule of the mixer, ``exact`` (default) or ``paper`` (see the module docstring).
         initial: ``initial_path`` (default) or ``representatives``.
-        phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``; default (``None``) the
-            Ising constant ``c0``, as in the compiled circuit.
+        phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``: a number, ``"feasible"``
+            (default; ``None`` means the same) for the reference constant of the default
+            :func:`circuitgen.phase.phase_plan`, or ``"whole-space"`` for the Ising constant ``c0``. Use the
+            constant of the representation the compared circuit was compiled with.
         buffer: Amplitudes in the scratch buffer used for axes with short contiguous runs (memory
             ``16 * buffer`` bytes, twice during a gradient).
 
@@ -334,7 +350,7 @@ class SubspaceQAOA:
         scenario: Scenario,
         rule: Rule = "exact",
         initial: InitialState = "initial_path",
-        phase_offset: float | None = None,
+        phase_offset: float | Literal["feasible", "whole-space"] | None = None,
         buffer: int = _DEFAULT_BUFFER,
     ) -> None:
         _check_lapack_in_place()
@@ -344,7 +360,7 @@ class SubspaceQAOA:
         self.robot_bases: tuple[RobotBasis, ...] = tuple(
             robot_basis(scenario, r, rule, initial) for r in range(scenario.num_robots)
         )
-        self.phase_offset = float(ising_hamiltonian(scenario).c0 if phase_offset is None else phase_offset)
+        self.phase_offset = _phase_offset(scenario, phase_offset)
         self.buffer = max(1, int(buffer))
         self._pair_lists = tuple(tuple((i.tolist(), j.tolist()) for _, i, j in b.pairs) for b in self.robot_bases)
         self._levels: np.ndarray | None = None  # compact diagonal: values[levels]

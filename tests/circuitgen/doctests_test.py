@@ -15,6 +15,10 @@ MODULES = [
     "circuitgen.qasm",
     "circuitgen.testing",
     "circuitgen._perf",
+    "circuitgen.phase",
+    "circuitgen.gadgets.phase_ising",
+    "circuitgen.gadgets.phase_visits",
+    "circuitgen.gadgets.phase_sums",
     "simulate.statevector",
     "simulate.sparse",
 ]

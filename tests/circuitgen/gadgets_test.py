@@ -3,7 +3,8 @@ emitted, lowered gates; and every partial-mixer kind is exact on every feasible 
 
 * ``test_reported_cost_equals_lowered_count_for_every_kind``: all partial-mixer kinds (both rules, both
   targets) that occur on a sweep of scenarios (every grid 2x2..6x6 with 1..4 default robots, obstacles soft and
-  hard, interior and boundary endpoints), plus the state preparation and phase-separator gadgets, and every leaf.
+  hard, interior and boundary endpoints), plus the state preparation and the phase-separator gadgets of both
+  representations and targets (per phase gadget kind: ``tests/circuitgen/phase_test.py``), and every leaf.
 * ``test_every_partial_mixer_kind_is_exact_on_every_feasible_local_input``: for every start/goal pair on
   2x2..4x4 (and obstacle variants), every feasible path and every plaquette, the local input of the partial
   mixer (its plaquette edges and the outer edges it reads) is collected per kind; each distinct (kind, local
@@ -21,13 +22,13 @@ import pytest
 from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
-from circuitgen.gadgets.blocks import StatePrep, WholeSpacePhase
+from circuitgen.gadgets.blocks import StatePrep
 from circuitgen.gadgets.leaves import LEAF_NAMES, ccrx_gates, leaf_cost, leaf_logical_cost
 from circuitgen.gadgets.partial_mixer import partial_mixer
 from circuitgen.gates import and_, and_dg, crx, csbf, cx, mcx, x
 from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.phase import phase_plan
 from gridcover.grid import Grid
-from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import enumerate_paths
 from gridcover.presets import default_scenario
 from gridcover.scenario import Objective, Robot, Scenario
@@ -78,10 +79,13 @@ def test_reported_cost_equals_lowered_count_for_every_kind(kinds: dict) -> None:
         n = s.num_variables + m.num_temps + 8  # room for the work register of paper-rule mcx leaves
         assert m.cost() == lowered_cost(m, n), m.kind
         assert m.logical_cost() == lowered_cost(m, n, LOGICAL_BASIS), m.kind
-    for s in sweep_scenarios()[:12]:
-        for gadget in (StatePrep.build(s), WholeSpacePhase(ising_hamiltonian(s), "gamma_0")):
-            assert gadget.cost() == lowered_cost(gadget, s.num_variables)
-            assert gadget.logical_cost() == lowered_cost(gadget, s.num_variables, LOGICAL_BASIS)
+    for s in sweep_scenarios()[::7]:
+        plans = [phase_plan(s, target=t, representation=r) for t in ("nisq", "ft") for r in ("feasible", "whole-space")]
+        gadgets = [StatePrep.build(s), *(g for pl in plans for g in pl.gadgets("gamma_0", 0, s.num_variables))]
+        width = s.num_variables + max(pl.num_ancillas for pl in plans)
+        for gadget in gadgets:
+            assert gadget.cost() == lowered_cost(gadget, width), gadget.kind
+            assert gadget.logical_cost() == lowered_cost(gadget, width, LOGICAL_BASIS)
 
 
 def test_state_prep_with_representatives_reports_its_lowered_cost() -> None:

@@ -19,7 +19,8 @@ def _check(rows: int, cols: int, robots: int, rule: str, target: str) -> None:
     ml = mixer_layer(s, rule, target)
     assert ml.cost == plan.cost_by_section()["mixer"]
     assert ml.logical == plan.cost_by_section(logical=True)["mixer"]
-    assert ml.logic_width == plan.logic_width
+    phase_ancillas = plan.phase_plan.num_ancillas if plan.phase_plan is not None else 0
+    assert max(ml.logic_width, phase_ancillas) == plan.logic_width
     lc = layer_costs(s, PlanOptions(rule=rule, target=target))
     assert dict(lc.registers) == {r.name: r.size for r in plan.registers}
     assert lc.sections == plan.cost_by_section() and lc.logical == plan.cost_by_section(logical=True)

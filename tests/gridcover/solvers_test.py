@@ -233,7 +233,7 @@ def test_restarts_cover_every_combination_of_representatives(build) -> None:
 
 def test_registry_and_solve() -> None:
     s = load_scenario(EXAMPLES / "paper_3x3.toml")
-    assert set(SOLVERS) == {"dfs", "anneal", "genetic"}
+    assert set(SOLVERS) == {"dfs", "anneal", "genetic", "cpsat"}
     calls: list[tuple[int, int]] = []
     sol = solve(s, "dfs", progress=lambda done, total: calls.append((done, total)))
     assert sol.method == "dfs" and calls and calls[-1][0] == calls[-1][1] == sol.evaluated

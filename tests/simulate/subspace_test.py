@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from circuitgen.phase import phase_plan
 from gridcover.cost import cost, separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
@@ -64,7 +65,9 @@ def dense_reference(
     allbits = ((idx[:, None] >> np.arange(n)) & 1).astype(np.uint8)
     ham = ising_hamiltonian(s)
     energy = ham.evaluate(allbits)
-    off = ham.c0 if offset is None else offset
+    # the whole-space Hamiltonian as the phase operator (exact on every bit string), offset by the constant the
+    # subspace simulator leaves out by default: the feasible plan's reference constant
+    off = phase_plan(s).reference_constant if offset is None else offset
     # initial state
     per_robot = []
     for r in range(s.num_robots):
@@ -267,7 +270,7 @@ def test_norm_is_preserved() -> None:
 def test_beta_zero_only_phases_the_initial_path(offset: float | None) -> None:
     s = SINGLE_3x3
     q = SubspaceQAOA(s, phase_offset=offset)
-    off = ising_hamiltonian(s).c0 if offset is None else offset
+    off = phase_plan(s).reference_constant if offset is None else offset
     assert q.phase_offset == off
     gamma = 0.37
     psi = q.state([gamma, 0.0])
@@ -471,3 +474,12 @@ def test_doctests() -> None:
 
     result = doctest.testmod(simulate.subspace)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_phase_offset_names_the_compiled_representation() -> None:
+    s = TWO_2x3
+    assert SubspaceQAOA(s, phase_offset="whole-space").phase_offset == ising_hamiltonian(s).c0
+    assert SubspaceQAOA(s, phase_offset="feasible").phase_offset == phase_plan(s).reference_constant
+    assert SubspaceQAOA(s).phase_offset == phase_plan(s).reference_constant
+    with pytest.raises(ValueError, match="phase_offset"):
+        SubspaceQAOA(s, phase_offset="half")  # type: ignore[arg-type]

@@ -1,5 +1,5 @@
-"""Gadgets for the parts of a QAOA circuit that are not partial mixers: state preparation and the whole-space
-phase separator.
+"""The state preparation as a gadget (partial mixers: :mod:`.partial_mixer`; phase separator: :mod:`.phase_ising`,
+:mod:`.phase_visits`, :mod:`.phase_sums`).
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -15,21 +15,16 @@ from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import cached_property
 
-from gridcover.hamiltonian import IsingHamiltonian
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
-from ..angles import Angle
 from ..circuit import Circuit, Section
 from ..cost import Cost
-from ..gates import Gate, rz, rzz
+from ..gates import Gate
 from ..initial_state import initial_state_gates
 from ..lowering import LOGICAL_BASIS, lower
 
-__all__ = ["COEFFICIENT_TOLERANCE", "StatePrep", "WholeSpacePhase"]
-
-#: Coefficients smaller than this (absolute) are treated as zero: they only arise from float round-off.
-COEFFICIENT_TOLERANCE = 1e-12
+__all__ = ["StatePrep"]
 
 
 @dataclass(frozen=True)
@@ -82,49 +77,3 @@ class StatePrep:
     def emit(self) -> list[Gate]:
         """The gates."""
         return list(self.gates)
-
-
-@dataclass(frozen=True)
-class WholeSpacePhase:
-    """``exp(-i gamma (C - c0))`` on every basis state: one RZ per linear and one RZZ per quadratic term.
-
-    Cost: ``rz`` per linear term; ``cx, rz, cx`` per quadratic term (2 CX each, the ``(re)^2`` growth).
-
-    Attributes:
-        hamiltonian: the exact Ising Hamiltonian.
-        gamma: the layer's symbol.
-        data_offset: qubit of variable 0.
-    """
-
-    hamiltonian: IsingHamiltonian
-    gamma: str
-    data_offset: int = 0
-
-    @property
-    def kind(self) -> Hashable:
-        """Term counts (the cost depends on nothing else)."""
-        return ("whole_space_phase", self._terms)
-
-    @cached_property
-    def _terms(self) -> tuple[int, int]:
-        tol = COEFFICIENT_TOLERANCE
-        return sum(1 for _ in self.hamiltonian.linear_terms(tol)), self.hamiltonian.num_quadratic_terms(tol)
-
-    def cost(self) -> Cost:
-        """``rz`` per linear term, ``2 cx + rz`` per coupling."""
-        lin, quad = self._terms
-        return Cost.of(rz=lin + quad, cx=2 * quad)
-
-    def logical_cost(self) -> Cost:
-        """Same as :meth:`cost` (no ANDs)."""
-        return self.cost()
-
-    def emit(self) -> list[Gate]:
-        """RZ gates by qubit, then RZZ row-major by ``(i, j)``; all commute."""
-        tol, off, gamma = COEFFICIENT_TOLERANCE, self.data_offset, self.gamma
-        out = [rz(Angle.symbol(gamma, 2.0 * hi), off + i) for i, hi in self.hamiltonian.linear_terms(tol)]
-        out += [
-            rzz(Angle.symbol(gamma, 2.0 * jij), off + i, off + j)
-            for i, j, jij in self.hamiltonian.quadratic_terms(tol)
-        ]
-        return out

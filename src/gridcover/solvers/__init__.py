@@ -3,6 +3,8 @@
 * :func:`dfs` -- exhaustive search over all combinations of the robots' simple paths (exact optimum);
 * :func:`anneal` -- simulated annealing with SBF moves;
 * :func:`genetic` -- the paper's genetic algorithm with SBF mutations;
+* :func:`cpsat` -- the cost modelled for OR-Tools CP-SAT (exact optimum with a proof, or best found and a bound
+  at a time limit; the full answer is a :class:`CpSatResult`);
 
 all returning a :class:`Solution`. :data:`SOLVERS` maps method names to callables with one uniform
 signature (:class:`SolveMethod`), which is what front ends dispatch on; :func:`solve` is the shortcut.
@@ -12,8 +14,8 @@ Example:
     >>> from gridcover.scenario import scenario_from_dict
     >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
     >>> sorted(SOLVERS)
-    ['anneal', 'dfs', 'genetic']
-    >>> solve(s, "dfs").cost.total == solve(s, "anneal", seed=2).cost.total
+    ['anneal', 'cpsat', 'dfs', 'genetic']
+    >>> solve(s, "dfs").cost.total == solve(s, "anneal", seed=2).cost.total == solve(s, "cpsat").cost.total
     True
 """
 
@@ -26,6 +28,7 @@ from typing import Protocol
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers.annealing import anneal
+from gridcover.solvers.cpsat import CpSatResult, cpsat
 from gridcover.solvers.exhaustive import dfs
 from gridcover.solvers.genetic_algorithm import genetic
 from gridcover.solvers.moves import AUTO_COMPONENT_NODES, CostCache, MoveSpace
@@ -35,11 +38,13 @@ __all__ = [
     "AUTO_COMPONENT_NODES",
     "SOLVERS",
     "CostCache",
+    "CpSatResult",
     "MoveSpace",
     "ProgressFn",
     "Solution",
     "SolveMethod",
     "anneal",
+    "cpsat",
     "dfs",
     "genetic",
     "solution_to_dict",
@@ -68,7 +73,14 @@ def _genetic(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn 
     return genetic(scenario, seed=seed, rule=rule, progress=progress)
 
 
-SOLVERS: Mapping[str, SolveMethod] = MappingProxyType({"dfs": _dfs, "anneal": _anneal, "genetic": _genetic})
+def _cpsat(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
+    # an exact model of the cost: no moves, so no rule; runs until the optimum is proven
+    return cpsat(scenario, seed=seed, progress=progress).solution
+
+
+SOLVERS: Mapping[str, SolveMethod] = MappingProxyType(
+    {"dfs": _dfs, "anneal": _anneal, "genetic": _genetic, "cpsat": _cpsat}
+)
 """Method name -> :class:`SolveMethod` with default settings (read-only)."""
 
 

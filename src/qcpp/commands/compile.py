@@ -40,6 +40,7 @@ from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Section
 from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm_stream import write_qasm_sections
+from estimators.estimate import PlanOptions
 from estimators.guard import DEFAULT_MAX_GATES
 from gridcover.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
@@ -78,6 +79,24 @@ def compile_command(
             "or ft (fewest T and rotations).",
         ),
     ] = "nisq",
+    phase: Annotated[
+        str,
+        typer.Option(
+            "--phase",
+            help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
+            "(the Ising Hamiltonian, O((re)^2)).",
+        ),
+    ] = "feasible",
+    optimize: Annotated[
+        str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+    ] = "cx",
+    ancilla_budget: Annotated[
+        int | None,
+        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+    ] = None,
+    explain: Annotated[
+        bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
     max_gates: Annotated[
         int,
@@ -86,6 +105,12 @@ def compile_command(
     force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
+    if phase not in ("feasible", "whole-space"):
+        raise ValueError(f"--phase: expected feasible or whole-space, got {phase!r}")
+    if optimize not in ("cx", "depth"):
+        raise ValueError(f"--optimize: expected cx or depth, got {optimize!r}")
+    if ancilla_budget is not None and ancilla_budget < 0:
+        raise ValueError(f"--ancilla-budget: must be at least 0, got {ancilla_budget}")
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     if target not in ("nisq", "ft"):
@@ -105,22 +130,22 @@ def compile_command(
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
+    options = PlanOptions(
+        rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
+    )
     if not force:
-        _guard(s, p, rule, initial, target, max_gates)
+        _guard(s, p, options, max_gates)
     if qasm is not None:
-        summary = _stream(s, p, rule, initial, target, lowered, bindings, qasm, qasm_version)
+        summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version)
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
         result = compile_scenario(
-            s,
-            p,
-            rule=rule,
-            lowered=lowered,
-            bindings=bindings,
-            initial=initial,
-            target=target,  # type: ignore[arg-type]
-        )
-        summary = result.summary()
+            s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
+            phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
+        )  # fmt: skip
+        summary, phase_explain = result.summary(), result.phase_explain
+    if explain:
+        summary["phase_explain"] = phase_explain
     if as_json:
         typer.echo(json.dumps(summary))
         return
@@ -141,14 +166,32 @@ def compile_command(
     if qasm is not None:
         where = "standard output" if to_stdout else qasm
         console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
+    if explain:
+        console.print(explain_table(phase_explain))
 
 
-def _guard(s: Scenario, p: int, rule: str, initial: str, target: str, max_gates: int) -> None:
+def explain_table(rows: list[dict]) -> Table:
+    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs."""
+    table = Table(title="phase separator: construction per term group (cost of one layer)")
+    for col in ("group", "count", "chosen", "cx", "rotations", "T (ft)", "alternatives (cx / rotations / T)"):
+        table.add_column(col, justify="right" if col in ("count", "cx", "rotations", "T (ft)") else "left")
+    for row in rows:
+        c = row["cost"]
+        alts = "\n".join(
+            f"{name}: {a['cx']:,} / {a['rotations']:,} / {a['t_ft']:,}" for name, a in row["alternatives"].items()
+        )
+        table.add_row(
+            str(row["group"]), str(row.get("count", 1)), str(row["construction"]),
+            f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
+        )  # fmt: skip
+    return table
+
+
+def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int) -> None:
     """Refuse (ValueError: one line, exit 2) a circuit predicted to exceed ``max_gates`` lowered gates."""
-    from estimators.estimate import PlanOptions
     from estimators.guard import predict_size
 
-    size = predict_size(s, p, PlanOptions(rule=rule, initial=initial, target=target))
+    size = predict_size(s, p, options)
     if not size.fits(max_gates):
         raise ValueError(
             f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
@@ -159,17 +202,15 @@ def _guard(s: Scenario, p: int, rule: str, initial: str, target: str, max_gates:
 def _stream(
     s: Scenario,
     p: int,
-    rule: str,
-    initial: str,
-    target: str,
+    options: PlanOptions,
     lowered: bool,
     bindings: dict[str, float],
     qasm: str,
     version: int,
-) -> dict[str, Any]:
+) -> tuple[dict[str, Any], list[dict]]:
     """Build, lower, bind and write the circuit one plan section at a time (peak memory independent of ``p``);
-    return the summary :meth:`circuitgen.compile.CompileResult.summary` would give."""
-    from estimators.estimate import PlanOptions, plan_sections
+    return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the phase plan's choices."""
+    from estimators.estimate import plan_sections
 
     start = time.perf_counter()
     known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
@@ -177,7 +218,7 @@ def _stream(
     if unknown:
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
-    plan = PlanOptions(rule=rule, initial=initial, target=target).plan(s, p)
+    plan = options.plan(s, p)
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
@@ -193,7 +234,7 @@ def _stream(
     for q in range(n):
         robot, e = s.variable_of(q)
         data.append({"qubit": q, "robot": robot, "edge": [list(edges[e][0]), list(edges[e][1])]})
-    return {
+    summary = {
         "qubits": num_qubits,
         "gates": dict(sorted(ops.items())),
         "total_gates": sum(ops.values()),
@@ -203,6 +244,7 @@ def _stream(
         "seconds": time.perf_counter() - start,
         "qubit_map": {"data": data, "ancillas": list(range(n, num_qubits))},
     }
+    return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
 
 
 def register(app: typer.Typer) -> None:

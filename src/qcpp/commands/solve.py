@@ -6,6 +6,7 @@ Examples::
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
     qcpp solve examples/two_robots_5x5.toml --method genetic --rule paper --json
     qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --plot-trace trace.png
+    qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
 
 Methods come from :data:`SOLVE_METHODS` (name -> :class:`gridcover.solvers.SolveMethod`); ``--method``
 accepts exactly its keys. Adding a method is one entry: a function
@@ -15,11 +16,15 @@ accepts exactly its keys. Adding a method is one entry: a function
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
 ``-p``, ``--optimizer`` and ``--maxiter``, and adds ``probability``, ``p_optimum``, ``p``, ``angles``,
 ``optimizer`` and ``trace`` (``<C>`` per training iteration) to the JSON and a trace sparkline to the text.
+
+``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
+proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -41,6 +46,12 @@ __all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "s
 
 QAOA_DEFAULTS = {"p": 1, "optimizer": "nesterov", "maxiter": 100}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
+
+
+def _cpsat_time_limit(value: float | None) -> float | None:
+    if value is not None and not (value > 0 and value != float("inf")):
+        raise ValueError(f"--time-limit: expected a positive number of seconds, got {value:g}")
+    return value
 
 
 def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
@@ -140,7 +151,9 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 
 def solve_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
-    method: Annotated[str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic or qaoa.")] = "anneal",
+    method: Annotated[
+        str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic, qaoa or cpsat.")
+    ] = "anneal",
     seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object instead of the drawing.")] = False,
@@ -158,6 +171,11 @@ def solve_command(
     maxiter: Annotated[
         int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations (qaoa).")
     ] = QAOA_DEFAULTS["maxiter"],
+    time_limit: Annotated[
+        float | None,
+        typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
+                     show_default="until proven"),
+    ] = None,
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
     if method not in SOLVE_METHODS:
@@ -170,13 +188,22 @@ def solve_command(
             if value != QAOA_DEFAULTS[name]:
                 flag = "-p" if name == "p" else f"--{name}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    if time_limit is not None and method != "cpsat":
+        raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
+    _cpsat_time_limit(time_limit)
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
     s = load_scenario(scenario)
     qaoa = None
+    exact = None
     with progress_reporter(f"{method} on {scenario.name}") as progress:
-        if method == "qaoa":
+        if method == "cpsat" and SOLVE_METHODS["cpsat"] is SOLVERS["cpsat"]:
+            from gridcover.solvers import cpsat
+
+            exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress)
+            sol = exact.solution
+        elif method == "qaoa":
             from simulate.qaoa_solver import solve_qaoa
 
             qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
@@ -202,6 +229,10 @@ def solve_command(
             out = {"scenario": str(scenario), **qaoa_to_dict(s, qaoa)}
         else:
             out = {"scenario": str(scenario), **solution_to_dict(s, sol, include_trace=False)}
+        if exact is not None:
+            known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
+            out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,
+                       gap=exact.gap if known else None, status=exact.status)
         if sol.trace:
             out["trace_length"] = len(sol.trace)
         typer.echo(json.dumps(out))
@@ -229,6 +260,9 @@ def solve_command(
         console.print(f"<C> per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}", highlight=False, soft_wrap=True)
         console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
                       highlight=False, soft_wrap=True)
+    if exact is not None:
+        verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
+        console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
     for note in sol.notes:
         console.print(f"[dim]note: {note}[/dim]", highlight=False)
     for path in (plot, plot_trace_file):

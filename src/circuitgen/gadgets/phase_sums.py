@@ -1,0 +1,437 @@
+"""Phases of quadratic functions of integer sums, by arithmetic: compute the sums, phase the registers, uncompute.
+
+The gadget applies ``exp(-i gamma (g - c0))`` with ``g = sum_{a,b} M_ab G_a G_b + sum_a m_a G_a`` and
+``G_a = sum_j w_aj x_j`` integer linear forms over bits held on qubits (each qubit in at most one form). It
+
+1. flips (X) every qubit with a negative weight, so ``w x = |w| (NOT x) - |w|``: all weights positive;
+2. puts each bit in the columns of its weight's binary digits (a weight with ``d`` set digits costs ``d - 1``
+   copies into clean ancillas, 1 CX each);
+3. reduces every form's columns, lowest first, to one bit per column with a carry-save tree (a Wallace tree
+   popcount): while a column holds three bits a full adder (``cx a b; cx a c; and b c t; cx a t; cx b c;
+   cx a c``: 5 CX + one AND into a clean ancilla ``t``, 8 CX) leaves their sum in ``c`` and sends the carry
+   ``t`` to the next column; two bits left go through a half adder (``and a b t; cx a b``: 4 CX);
+4. applies the phase of ``g`` on the resulting register bits (``H_a = sum_k 2^k b_ak``): one RZ per bit and
+   one RZZ per pair of bits with a nonzero product coefficient (:func:`~.phase_ising.ising_form`);
+5. uncomputes steps 3, 2, 1 with the exact mirror: every ancilla returns to |0> on every input.
+
+With ``F`` full adders, ``A`` half adders, ``P`` copies and ``B`` register bits the lowered cost is
+``CX = 16 F + 8 A + 2 P + 2 J`` and ``F + A`` ANDs (+ their mirrors), rotations ``B + J`` (``J`` the
+nonzero bit pairs, at most ``C(B, 2)``); ancillas ``F + A + P``. For one unit-weight form of ``n`` bits
+``F + A <= n``, ``B = floor(log2 n) + 1``: ``O(n)`` CX against the ``O(n^2)`` of pairwise couplings.
+With ``M = 0`` and one form of equal-angle rotations this is Hamming-weight phasing (Gidney 2018): ``n``
+rotations become ``B`` rotations and ``n - B``-ish ANDs.
+
+Example:
+    >>> g = SumsPhase("gamma_0", (((0, 1), (1, 1), (2, 1)),), ((1.0,),), (0.0,), tuple(range(3, 10)))
+    >>> g.adders(), g.num_ancillas
+    ((1, 0, 0), 1)
+    >>> g.cost().cx, g.cost().rotations
+    (18, 3)
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Hashable, Iterator
+from dataclasses import dataclass
+from functools import cached_property
+
+from circuitgen.cost import Cost
+from circuitgen.gates import Gate, and_, cx, x
+
+from .phase_ising import IsingPhase, ising_form
+from .phase_visits import AND_COST, AND_DG_COST
+
+__all__ = ["SumsPhase", "column_counts"]
+
+
+def column_counts(weights: list[int]) -> tuple[int, int, int, tuple[bool, ...]]:
+    """Full adders, half adders, copies and which columns keep a bit, for one form's absolute weights.
+
+    The same reduction :class:`SumsPhase` emits, counted without building a gate.
+    """
+    cols: dict[int, int] = {}
+    copies = 0
+    for w in weights:
+        k, first = 0, True
+        while w:
+            if w & 1:
+                cols[k] = cols.get(k, 0) + 1
+                copies += 0 if first else 1
+                first = False
+            w >>= 1
+            k += 1
+    fa = ha = 0
+    present: list[bool] = []
+    k = 0
+    while cols and k <= max(cols):
+        n = cols.get(k, 0)
+        f = (n - 1) // 2 if n >= 3 else 0
+        n -= 2 * f
+        h = 1 if n == 2 else 0
+        n -= h
+        if f + h:
+            cols[k + 1] = cols.get(k + 1, 0) + f + h
+        fa += f
+        ha += h
+        present.append(n == 1)
+        k += 1
+    return fa, ha, copies, tuple(present)
+
+
+def popcount_layout(form: tuple[tuple[int, int], ...], ancillas: Iterator[int]) -> tuple[list[Gate], list[int | None]]:
+    """Gates computing ``sum |w| b`` of one form into one bit per column (steps 1-3 of the module docstring).
+
+    Args:
+        form: ``(qubit, integer weight)`` pairs.
+        ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
+
+    Returns:
+        ``(gates, register)``: ``register[k]`` is the qubit holding column ``k`` (``None``: column empty).
+    """
+    gates: list[Gate] = [x(q) for q, w in form if w < 0]
+    cols: dict[int, deque[int]] = {}
+    for q, w in form:
+        w, k, first = abs(w), 0, True
+        while w:
+            if w & 1:
+                if first:
+                    cols.setdefault(k, deque()).append(q)
+                    first = False
+                else:
+                    a = next(ancillas)
+                    gates.append(cx(q, a))
+                    cols.setdefault(k, deque()).append(a)
+            w >>= 1
+            k += 1
+    reg: list[int | None] = []
+    k = 0
+    while cols and k <= max(cols):
+        col = cols.get(k, deque())
+        while len(col) >= 3:
+            a, b, c = col.popleft(), col.popleft(), col.popleft()
+            t = next(ancillas)
+            gates += [cx(a, b), cx(a, c), and_(b, c, t), cx(a, t), cx(b, c), cx(a, c)]
+            col.append(c)
+            cols.setdefault(k + 1, deque()).append(t)
+        if len(col) == 2:
+            a, b = col.popleft(), col.popleft()
+            t = next(ancillas)
+            gates += [and_(a, b, t), cx(a, b)]
+            col.append(b)
+            cols.setdefault(k + 1, deque()).append(t)
+        reg.append(col[0] if col else None)
+        k += 1
+    return gates, reg
+
+
+@dataclass(frozen=True)
+class SumsPhase:
+    """Compute integer sums into registers, phase a quadratic function of them, uncompute.
+
+    Attributes:
+        gamma: Symbol name of the layer's angle.
+        forms: Per form, ``(qubit, integer weight)`` pairs (nonzero weights; each qubit in one form only).
+        matrix: ``M`` (rows; symmetric).
+        linear: ``m`` (one per form).
+        ancillas: Clean ancillas, at least :attr:`num_ancillas` of them.
+    """
+
+    gamma: str
+    forms: tuple[tuple[tuple[int, int], ...], ...]
+    matrix: tuple[tuple[float, ...], ...]
+    linear: tuple[float, ...]
+    ancillas: tuple[int, ...] = ()
+
+    @property
+    def kind(self) -> Hashable:
+        return ("sums", tuple(tuple(w for _, w in f) for f in self.forms), self.matrix, self.linear)
+
+    @cached_property
+    def _counts(self) -> list[tuple[int, int, int, tuple[bool, ...]]]:
+        return [column_counts([abs(w) for _, w in f]) for f in self.forms]
+
+    @cached_property
+    def _active(self) -> tuple[bool, ...]:
+        """Forms whose register bits some phase term touches; the others are not computed at all (their bits
+        carry no phase, so computing them would only be undone again)."""
+        _, ph = self.phase()
+        touched = {q for q, _ in ph.linear} | {q for a, b, _ in ph.couplings for q in (a, b)}
+        return tuple(any((a, k) in touched for k in range(len(c[3]))) for a, c in enumerate(self._counts))
+
+    def adders(self) -> tuple[int, int, int]:
+        """``(full adders, half adders, copies)`` over the computed forms."""
+        act = [c for c, on in zip(self._counts, self._active) if on]
+        return (sum(c[0] for c in act), sum(c[1] for c in act), sum(c[2] for c in act))
+
+    @property
+    def num_ancillas(self) -> int:
+        """Clean ancillas needed: one per adder carry and per copy."""
+        return sum(self.adders())
+
+    def phase(self, registers: list[list[int | None]] | None = None) -> tuple[float, IsingPhase]:
+        """``(c0, the RZ/RZZ gadget)`` of ``g`` on the register bits (abstract labels when not given)."""
+        if registers is None:
+            registers = [
+                [(a, k) if p else None for k, p in enumerate(c[3])]  # type: ignore[misc]
+                for a, c in enumerate(self._counts)
+            ]
+        n = len(self.forms)
+        offs = [sum(-w for _, w in f if w < 0) for f in self.forms]  # G_a = H_a - offs_a
+        const = 0.0
+        lin_h = [float(self.linear[a]) for a in range(n)]
+        for a in range(n):
+            const -= self.linear[a] * offs[a]
+            for b in range(n):
+                mab = self.matrix[a][b]
+                const += mab * offs[a] * offs[b]
+                lin_h[a] -= 2 * mab * offs[b]
+        linear: dict[object, float] = {}
+        quad: dict[tuple[object, object], float] = {}
+        for a in range(n):
+            bits_a = [(k, q) for k, q in enumerate(registers[a]) if q is not None]
+            if not bits_a:
+                continue
+            for k, q in bits_a:
+                v = lin_h[a] * (1 << k) + self.matrix[a][a] * (1 << (2 * k))
+                if v:
+                    linear[q] = linear.get(q, 0.0) + v
+            if self.matrix[a][a]:
+                for i, (k, q) in enumerate(bits_a):
+                    for l_, p in bits_a[i + 1 :]:
+                        # higher column first: never the same qubit pair, in the same order, as a copy's CX
+                        quad[(p, q)] = 2 * self.matrix[a][a] * (1 << (k + l_))
+            for b in range(a + 1, n):
+                mab = self.matrix[a][b] + self.matrix[b][a]
+                if not mab:
+                    continue
+                for k, q in bits_a:
+                    for l_, p in enumerate(registers[b]):
+                        if p is not None:
+                            quad[(q, p)] = mab * (1 << (k + l_))
+        c0, h, j = ising_form(linear, quad, constant=const)  # type: ignore[arg-type]
+        return c0, IsingPhase(self.gamma, tuple(h.items()), tuple((a, b, v) for (a, b), v in j.items()))  # type: ignore[misc]
+
+    @property
+    def constant(self) -> float:
+        """``c0``: the gadget applies ``exp(-i gamma (g - c0))``."""
+        return self.phase()[0]
+
+    def _compute_cost(self) -> tuple[int, int, int, int]:
+        fa, ha, cp = self.adders()
+        neg = sum(1 for f, on in zip(self.forms, self._active) if on for _, w in f if w < 0)
+        return fa, ha, cp, neg
+
+    def cost(self) -> Cost:
+        fa, ha, cp, neg = self._compute_cost()
+        ands = fa + ha
+        return (
+            ands * (AND_COST + AND_DG_COST)
+            + Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
+            + self.phase()[1].cost()
+        )
+
+    def logical_cost(self) -> Cost:
+        fa, ha, cp, neg = self._compute_cost()
+        ands = fa + ha
+        return Cost.of({"and": ands, "and_dg": ands}, cx=2 * (5 * fa + ha + cp), x=2 * neg) + self.phase()[1].cost()
+
+    def _layout(self) -> tuple[list[Gate], list[list[int | None]]]:
+        """The compute gates and each form's register (qubit per column, ``None`` for an empty column)."""
+        anc = iter(self.ancillas)
+        gates: list[Gate] = []
+        registers: list[list[int | None]] = []
+        seen: set[int] = set()
+        for form, on in zip(self.forms, self._active):
+            for q, _ in form:
+                if q in seen:
+                    raise ValueError(f"qubit {q} appears in two terms")
+                seen.add(q)
+            if not on:
+                registers.append([])
+                continue
+            g, reg = popcount_layout(form, anc)
+            gates += g
+            registers.append(reg)
+        return gates, registers
+
+    def emit(self) -> list[Gate]:
+        compute, registers = self._layout()
+        _, ph = self.phase(registers)
+        return [*compute, *ph.emit(), *(g.inverse() for g in reversed(compute))]
+
+
+@dataclass(frozen=True)
+class SumsRegister:
+    """Copy one form's sum into a clean register, leaving nothing else behind (Bennett's compute-copy-uncompute).
+
+    ``register[j]`` receives (XOR) column ``k`` of the sum for the ``j``-th nonempty column ``k``; the tree's
+    ancillas are back at |0> when the gadget ends, so several forms' registers can be held at once while only
+    one tree's ancillas exist. The gadget is its own inverse: applied again it clears the register. Cost
+    ``CX = 16 F + 8 A + 2 P + B`` with ``F + A`` ANDs and their mirrors (``B`` copied bits).
+
+    Attributes:
+        form: ``(qubit, integer weight)`` pairs.
+        register: One clean qubit per nonempty column (:func:`column_counts`).
+        ancillas: Clean ancillas for the tree (``F + A + P``).
+    """
+
+    form: tuple[tuple[int, int], ...]
+    register: tuple[int, ...]
+    ancillas: tuple[int, ...] = ()
+
+    @property
+    def kind(self) -> Hashable:
+        return ("sums-register", tuple(w for _, w in self.form))
+
+    @cached_property
+    def _count(self) -> tuple[int, int, int, tuple[bool, ...]]:
+        return column_counts([abs(w) for _, w in self.form])
+
+    @property
+    def num_ancillas(self) -> int:
+        """Tree ancillas (the register is separate)."""
+        return sum(self._count[:3])
+
+    @property
+    def width(self) -> int:
+        """Register qubits needed."""
+        return sum(self._count[3])
+
+    def _costs(self) -> tuple[int, Cost]:
+        fa, ha, cp, present = self._count
+        neg = sum(1 for _, w in self.form if w < 0)
+        return fa + ha, Cost.of(cx=2 * (5 * fa + ha + cp) + sum(present), x=2 * neg)
+
+    def cost(self) -> Cost:
+        ands, rest = self._costs()
+        return ands * (AND_COST + AND_DG_COST) + rest
+
+    def logical_cost(self) -> Cost:
+        ands, rest = self._costs()
+        return Cost.of({"and": ands, "and_dg": ands}) + rest
+
+    def emit(self) -> list[Gate]:
+        compute, reg = popcount_layout(self.form, iter(self.ancillas))
+        bits = [q for q in reg if q is not None]
+        if len(bits) != len(self.register):
+            raise ValueError(f"the register needs {len(bits)} qubits, got {len(self.register)}")
+        copy = [cx(q, r) for q, r in zip(bits, self.register)]
+        return [*compute, *copy, *(g.inverse() for g in reversed(compute))]
+
+
+def _adder_gates(acc: tuple[int, ...], chunk: list[int | None], carries: tuple[int, ...]) -> list[Gate]:
+    """``acc += chunk`` (little-endian bit lists; ``None``: a zero bit), carries in clean ancillas, no overflow.
+
+    Ripple carry with one AND per carry (``c' = (a xor c)(x xor c) xor c``) and the mirror that writes the sum
+    bit while it returns each carry to |0> (the uncompute needs no Toffoli on data).
+    """
+    b = len(acc)
+    xs = [chunk[i] if i < len(chunk) else None for i in range(b)]
+    present = [i for i, q in enumerate(xs) if q is not None]
+    if not present:
+        return []
+    low = present[0]
+    c = {i: carries[i - low - 1] for i in range(low + 1, b)}
+    out: list[Gate] = []
+    for i in range(low, b - 1):
+        xq = xs[i]
+        if i == low:
+            assert xq is not None
+            out.append(and_(acc[i], xq, c[i + 1]))
+        elif xq is not None:
+            out += [cx(c[i], acc[i]), cx(c[i], xq), and_(acc[i], xq, c[i + 1]), cx(c[i], c[i + 1])]
+        else:
+            out.append(and_(acc[i], c[i], c[i + 1]))
+    top = b - 1
+    if xs[top] is not None:
+        out.append(cx(xs[top], acc[top]))  # type: ignore[arg-type]
+    if top > low:
+        out.append(cx(c[top], acc[top]))
+    for i in range(b - 2, low - 1, -1):
+        xq = xs[i]
+        if i == low:
+            assert xq is not None
+            out += [and_(acc[i], xq, c[i + 1]).inverse(), cx(xq, acc[i])]
+        elif xq is not None:
+            out += [cx(c[i], c[i + 1]), and_(acc[i], xq, c[i + 1]).inverse(), cx(c[i], xq), cx(xq, acc[i])]
+        else:
+            out += [and_(acc[i], c[i], c[i + 1]).inverse(), cx(c[i], acc[i])]
+    return out
+
+
+def _adder_counts(width: int, chunk_present: tuple[bool, ...]) -> tuple[int, int]:
+    """``(ANDs, CX)`` of :func:`_adder_gates` (each AND has its mirror too)."""
+    xs = [i < len(chunk_present) and chunk_present[i] for i in range(width)]
+    present = [i for i, p in enumerate(xs) if p]
+    if not present:
+        return 0, 0
+    low = present[0]
+    ands = cxs = 0
+    for i in range(low, width - 1):
+        ands += 1
+        if i != low:
+            cxs += 3 if xs[i] else 0
+    cxs += (1 if xs[width - 1] else 0) + (1 if width - 1 > low else 0)
+    for i in range(width - 2, low - 1, -1):
+        cxs += 1 if i == low else (3 if xs[i] else 1)
+    return ands, cxs
+
+
+@dataclass(frozen=True)
+class SumsAccumulate:
+    """Add one chunk's sum into an accumulator register (or subtract it): the low-ancilla balance arithmetic.
+
+    The chunk's popcount tree (:func:`popcount_layout`) runs, a ripple-carry adder adds its bits into the
+    accumulator (``B`` bits, carries in ``B - 1`` clean ancillas), and the tree is undone: only the
+    accumulator changes. With ``subtract`` the adder runs backwards. A form of ``n`` bits cut into chunks of
+    ``c`` needs ``c``-ish tree ancillas and ``B - 1`` carries instead of ``n``; it costs about ``16 c + 12 B``
+    CX per chunk against ``8 c`` for the tree alone (twice that over the add and the subtract).
+
+    Attributes:
+        chunk: ``(qubit, integer weight)`` pairs.
+        accumulator: The register, little-endian (its sum must stay below ``2^B``).
+        ancillas: Clean ancillas: the tree's, then ``B - 1`` carries.
+        subtract: Subtract instead of add.
+    """
+
+    chunk: tuple[tuple[int, int], ...]
+    accumulator: tuple[int, ...]
+    ancillas: tuple[int, ...] = ()
+    subtract: bool = False
+
+    @property
+    def kind(self) -> Hashable:
+        return ("sums-accumulate", tuple(w for _, w in self.chunk), len(self.accumulator), self.subtract)
+
+    @cached_property
+    def _count(self) -> tuple[int, int, int, tuple[bool, ...]]:
+        return column_counts([abs(w) for _, w in self.chunk])
+
+    @property
+    def num_ancillas(self) -> int:
+        """Tree ancillas plus carries."""
+        return sum(self._count[:3]) + max(len(self.accumulator) - 1, 0)
+
+    def _costs(self) -> tuple[int, Cost]:
+        fa, ha, cp, present = self._count
+        neg = sum(1 for _, w in self.chunk if w < 0)
+        add_ands, add_cx = _adder_counts(len(self.accumulator), present)
+        return fa + ha + add_ands, Cost.of(cx=2 * (5 * fa + ha + cp) + add_cx, x=2 * neg)
+
+    def cost(self) -> Cost:
+        ands, rest = self._costs()
+        return ands * (AND_COST + AND_DG_COST) + rest
+
+    def logical_cost(self) -> Cost:
+        ands, rest = self._costs()
+        return Cost.of({"and": ands, "and_dg": ands}) + rest
+
+    def emit(self) -> list[Gate]:
+        tree = sum(self._count[:3])
+        compute, reg = popcount_layout(self.chunk, iter(self.ancillas[:tree]))
+        carries = self.ancillas[tree : tree + max(len(self.accumulator) - 1, 0)]
+        add = _adder_gates(self.accumulator, reg, carries)
+        if self.subtract:
+            add = [g.inverse() for g in reversed(add)]
+        return [*compute, *add, *(g.inverse() for g in reversed(compute))]
