@@ -1,10 +1,10 @@
 """Closed-form formulas equal the exact counts, for every published quantity.
 
 The formulas describe the circuit with the whole-space (Ising) phase separator (``--phase whole-space``); the
-default feasible-subspace phase separator has no closed form here. Every grid from 2x2 to 8x8 (rectangles included) with 1 to 4 robots at p = 1, and p = 2, 3 on a subset. The exact
-numbers are the gadget-summed counts of :func:`estimators.estimate.estimate_point` (themselves equal to the counts
-of the compiled, lowered circuit: ``tests/estimators/estimate_test.py``), the Hamiltonian and the registers, never
-the formulas.
+default feasible-subspace phase separator has no closed form here. Every grid from 2x2 to 8x8 (rectangles
+included) with 1 to 4 robots at p = 1, and p = 2, 3 on a subset. The exact numbers are the gadget-summed counts
+of :func:`estimators.estimate.estimate_point` (themselves equal to the counts of the compiled, lowered circuit:
+``tests/estimators/estimate_test.py``), the Hamiltonian and the registers, never the formulas.
 """
 
 from __future__ import annotations
