@@ -19,7 +19,7 @@ same, byte for byte, as writing the whole circuit.
 
 Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
 costs (:func:`estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
-(default :data:`estimators.guard.DEFAULT_MAX_GATES`, about 7.5 GB of memory, sized for a 24 GB machine) is
+(default :data:`estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
 refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
 """
 
