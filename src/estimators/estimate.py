@@ -13,9 +13,9 @@ Depth cannot be summed exactly (ASAP layering overlaps consecutive pieces), so i
 * ``exact``: computed on the compiled circuit (built from the plan's gadgets, lowered and layered), when the
   circuit has at most ``depth_budget`` gates (``depth="auto"``, the default) or when asked (``depth="exact"``);
 * ``bound``: an upper bound, the sum over the circuit's gadgets of each gadget's own depth (computed once per
-  gadget kind on its lowered gates, equal kinds being equal constructions up to the qubits they act on; a
-  gadget of more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate numbers instead), which ASAP layering
-  can only shorten;
+  partial-mixer kind on its lowered gates, a kind being the whole program; each phase gadget's own; a gadget of
+  more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate numbers instead), which ASAP layering can only
+  shorten;
 * absent (``depth="none"``).
 
 The row says which (``depth_kind``); nothing is silently estimated.
@@ -38,6 +38,7 @@ from typing import Any, Literal
 
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.cost import Cost
+from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_plan
 from gridcover.presets import default_scenario
@@ -245,6 +246,12 @@ def _layout(plan: Any) -> tuple[tuple[str, int], ...]:
     return tuple((r.name, r.size) for r in plan.registers)
 
 
+@lru_cache(maxsize=16)
+def _plan1(scenario: Scenario, options: PlanOptions) -> Any:
+    """One layer's plan, shared by the costs and the depth bound (its phase plan is the expensive part)."""
+    return options.plan(scenario, 1)
+
+
 @lru_cache(maxsize=256)
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayerCosts:
     """The :class:`LayerCosts` of a scenario (cached: a sweep over ``p`` asks once).
@@ -261,7 +268,7 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
     Returns:
         The layer costs.
     """
-    plan1 = options.plan(scenario, 1)
+    plan1 = _plan1(scenario, options)
     if scenario.obstacles:
         keys = ("initial_state", "phase", "mixer")
         lowered, logical = plan1.cost_by_section(), plan1.cost_by_section(logical=True)
@@ -382,8 +389,15 @@ def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
 
 
 def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache: dict[Hashable, Depth]) -> Depth:
-    key = gadget.kind
-    hit = cache.get(key)
+    """One gadget's own depths (lowered alone), cached by kind where the kind is the whole construction up to the
+    qubits: partial mixers (their program) and the arithmetic and visit-bit phase gadgets (their weights and
+    products). The Ising phase gadget's kind holds only its term counts (two coupling graphs of one size can layer
+    differently), so its depth is computed each time."""
+    kind = gadget.kind
+    cacheable = isinstance(gadget, ParityPartialMixer | McxPartialMixer) or (
+        isinstance(kind, tuple) and bool(kind) and kind[0] in _STRUCTURAL_PHASE_KINDS
+    )
+    hit = cache.get(kind) if cacheable else None
     if hit is None:
         c = gadget.cost()
         if c.total > GADGET_DEPTH_LIMIT:
@@ -392,17 +406,23 @@ def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache
             secs = [Section(name, tuple(b)) for b in gadget_blocks(gadget)]
             circ = lower(Circuit(registers, secs))
             hit = depths(circ.gates, circ.num_qubits)
-        cache[key] = hit
+        if cacheable:
+            cache[kind] = hit
     return hit
+
+
+_STRUCTURAL_PHASE_KINDS = frozenset({"sums", "sums-register", "sums-accumulate", "visits"})
+_DEPTH_BY_KIND: dict[Hashable, Depth] = {}
+"""Depth of one partial mixer per kind, shared by every scenario (see :func:`_gadget_depth`)."""
 
 
 @lru_cache(maxsize=256)
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
     """Depth bounds of the state preparation and of one layer: sums of per-gadget depths (per signature count
     for the mixer of a grid without obstacles, :mod:`estimators.mixer_count`)."""
-    plan = options.plan(scenario, 1)
+    plan = _plan1(scenario, options)
     regs = tuple(Register(name, size) for name, size in layer_costs(scenario, options).registers)
-    cache: dict[Hashable, Depth] = {}
+    cache = _DEPTH_BY_KIND
     if not scenario.obstacles:
         init = _gadget_depth("initial_state", plan._prep, regs, cache)
         layer = Depth()
