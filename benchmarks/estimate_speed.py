@@ -1,6 +1,8 @@
 """Speed and memory of ``qcpp estimate`` / the compile guard, and the gadget-vs-compiled cross-check.
 
-Run: ``python benchmarks/estimate_speed.py [--quick]``. Each command runs in its own process (``python -m qcpp``,
+Run: ``python benchmarks/estimate_speed.py [--quick] [--sweep-seconds S]`` (the sweep is interrupted after
+``S`` seconds, default 150, and the rows it printed by then are reported). Each command runs in its own process
+(``python -m qcpp``,
 measured from outside: wall clock, and peak resident memory from ``getrusage`` of that child), so start-up is
 included. Prints one table with the goals of issue 10:
 
@@ -15,6 +17,7 @@ included. Prints one table with the goals of issue 10:
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -29,13 +32,16 @@ from gridcover.scenario import save_scenario
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _run(args: list[str]) -> tuple[float, float, float | None, int, str, str]:
-    """Wall seconds, peak RSS in GB, seconds to the first stdout line, exit code, stdout, stderr."""
+def _run(args: list[str], limit: float | None = None) -> tuple[float, float, float | None, int, str, str]:
+    """Wall seconds, peak RSS in GB, seconds to the first stdout line, exit code, stdout, stderr (the command is
+    killed once ``limit`` seconds have passed; its exit code is then negative)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
     # GNU time reports this child's own peak RSS (getrusage of the waited process), in KiB
     cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args]
     start = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT)
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT, start_new_session=True
+    )
     assert proc.stdout is not None and proc.stderr is not None
     first = None
     chunks = []
@@ -43,24 +49,30 @@ def _run(args: list[str]) -> tuple[float, float, float | None, int, str, str]:
         if first is None:
             first = time.perf_counter() - start
         chunks.append(line)
+        if limit is not None and time.perf_counter() - start > limit:
+            os.killpg(proc.pid, signal.SIGINT)  # our own session: qcpp says "interrupted", GNU time still reports
+            break
     err = proc.stderr.read()
     code = proc.wait()
     wall = time.perf_counter() - start
-    *err_lines, rss = err.rstrip("\n").split("\n")
-    return wall, int(rss) / 1e6 * 1.024, first, code, "".join(chunks), "\n".join(err_lines)
+    *err_lines, rss = err.rstrip("\n").split("\n") if err.strip() else ["", "0"]
+    rss_gb = int(rss) / 1e6 * 1.024 if rss.strip().isdigit() else float("nan")
+    return wall, rss_gb, first, code, "".join(chunks), "\n".join(err_lines)
 
 
 def main(argv: list[str]) -> int:
     quick = "--quick" in argv
+    sweep_limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 150.0
     rows = []
     wall, rss, _, code, out, _ = _run(["estimate", "--grid", "30x30", "--robots", "8", "-p", "3", "--json"])
     ok = code == 0 and wall < 5 and rss < 1
     rows.append(("estimate 30x30 / 8 robots / p=3 --json", f"{wall:.2f} s", f"{rss:.2f} GB", "< 5 s, < 1 GB", ok))
     args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
-    wall, rss, first, code, out, err = _run(args)
+    wall, rss, first, code, out, err = _run(args, limit=sweep_limit)
     n = max(0, len(out.splitlines()) - 1)
     ok = code == 0 and wall < 120
-    note = f"{n:,} rows, first after {first or 0:.2f} s; {err.strip().splitlines()[0] if err.strip() else ''}"
+    done = "done" if code == 0 else f"STOPPED after {sweep_limit:.0f} s"
+    note = f"{n:,} of 60,800 rows ({done}), first row after {first or 0:.2f} s"
     rows.append(("estimate 2x2..40x40 / 1..8 / p=1..5 csv", f"{wall:.1f} s", f"{rss:.2f} GB", "< 120 s", ok))
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "big.toml"
