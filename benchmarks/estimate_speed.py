@@ -56,6 +56,7 @@ def _run(args: list[str], limit: float | None = None) -> tuple[float, float, flo
     code = proc.wait()
     wall = time.perf_counter() - start
     *err_lines, rss = err.rstrip("\n").split("\n") if err.strip() else ["", "0"]
+    err_lines = [line for line in err_lines if not line.startswith("Command ")]  # GNU time's own notes
     rss_gb = int(rss) / 1e6 * 1.024 if rss.strip().isdigit() else float("nan")
     return wall, rss_gb, first, code, "".join(chunks), "\n".join(err_lines)
 
