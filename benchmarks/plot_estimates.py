@@ -55,6 +55,7 @@ def main(argv: list[str]) -> int:
     seconds = time.perf_counter() - start
 
     import matplotlib
+    import matplotlib.ticker
 
     matplotlib.use("Agg", force=True)
     import matplotlib.pyplot as plt
@@ -65,6 +66,9 @@ def main(argv: list[str]) -> int:
             ax.plot(s["n"], s[key], "o-", ms=3, label=f"{robots} robot{'s' if robots > 1 else ''}")
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ticks = [n for n in (2, 3, 4, 6, 10, 20, 30, 40) if n <= max_side]
+        ax.set_xticks(ticks, [str(n) for n in ticks])
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("grid side n (n x n grid, log scale)")
         ax.set_title(label)
         ax.grid(True, which="both", alpha=0.3)
