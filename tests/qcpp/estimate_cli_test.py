@@ -153,6 +153,15 @@ def test_depth_kinds_and_toffoli_model(run) -> None:  # type: ignore[no-untyped-
     assert four["ft_t_logic"] == exact["ft_t_logic"] - 3 * exact["ft_toffoli_full"]
 
 
+def test_phase_separator_options(run) -> None:  # type: ignore[no-untyped-def]
+    feasible = json.loads(run("--grid", "4x4", "--robots", "2", "--json").stdout)[0]
+    whole = json.loads(run("--grid", "4x4", "--robots", "2", "--phase", "whole-space", "--json").stdout)[0]
+    shallow = json.loads(run("--grid", "4x4", "--robots", "2", "--optimize", "depth", "--json").stdout)[0]
+    assert feasible["sections"]["phase"]["cx"] < whole["sections"]["phase"]["cx"]
+    assert feasible["sections"]["mixer"] == whole["sections"]["mixer"] == shallow["sections"]["mixer"]
+    assert run("--phase", "ising").exit_code == 2 and run("--optimize", "t").exit_code == 2
+
+
 def test_formula(run) -> None:  # type: ignore[no-untyped-def]
     text = run("--formula")
     assert text.exit_code == 0 and "V = 2*cols*rows - cols - rows" in text.stdout

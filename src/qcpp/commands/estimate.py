@@ -70,6 +70,10 @@ def estimate(
     target: Annotated[
         str, typer.Option("--target", help="Constructions chosen for: nisq (fewest CNOTs) or ft (fewest T).")
     ] = "nisq",
+    phase: Annotated[
+        str, typer.Option("--phase", help="Phase separator: feasible (default) or whole-space (the Ising form).")
+    ] = "feasible",
+    optimize: Annotated[str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth.")] = "cx",
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
     fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
@@ -146,6 +150,8 @@ def estimate(
          f"{', '.join(DOUBLINGS)}"),
         (rule not in ("exact", "paper"), f"bad --rule {rule!r}: expected exact or paper"),
         (target not in ("nisq", "ft"), f"bad --target {target!r}: expected nisq or ft"),
+        (phase not in ("feasible", "whole-space"), f"bad --phase {phase!r}: expected feasible or whole-space"),
+        (optimize not in ("cx", "depth"), f"bad --optimize {optimize!r}: expected cx or depth"),
         (jobs is not None and jobs < 1, f"bad --jobs {jobs}: must be at least 1"),
         (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
         (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
@@ -172,7 +178,7 @@ def estimate(
             err=True,
         )
     options = EstimateOptions(
-        plan=PlanOptions(rule=rule, target=target),
+        plan=PlanOptions(rule=rule, target=target, phase=phase, optimize=optimize),
         epsilon=epsilon,
         toffoli_t=toffoli_t,
         depth=depth,  # type: ignore[arg-type]
