@@ -205,9 +205,7 @@ def _levels(gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int]) -> N
                 l2[q] = m2
 
 
-def _levels_twice(
-    gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int], sv: list[int], s2: list[int]
-) -> None:
+def _levels_twice(gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int], sv: list[int], s2: list[int]) -> None:
     """:func:`_levels` on two pairs of level lists at once (the whole circuit's and one section name's)."""
     for qs in map(_qubits_of, gates):
         n = len(qs)

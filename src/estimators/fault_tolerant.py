@@ -1,83 +1,60 @@
-"""Fault-tolerant (Clifford+T) estimates, labelled as estimates, beside the exact counts.
+"""Fault-tolerant (Clifford+T) estimates from a circuit's logical cost, labelled as estimates.
 
-Three non-Clifford costs are estimated for a circuit *before* the Clifford+T step (high level, with ``mcx``, or
-after :func:`circuitgen.lowering.lower_mcx`):
+The input is a *logical cost* (:meth:`circuitgen.gadgets.Gadget.logical_cost`, or
+``Cost.count(lower(circuit, basis=LOGICAL_BASIS).gates)``): the lowered gate counts with ``and``, ``and_dg`` and
+``ccx`` kept whole. The model (the **logical-AND model**):
 
-1. **Toffoli = 7 T.** Every Toffoli left after multi-controlled-X lowering costs 7 T (the Nielsen-Chuang
-   decomposition that :func:`circuitgen.lowering.lower_to_basis` uses has 4 ``t`` + 3 ``tdg``), so this equals the
-   exact T count of the lowered circuit.
-2. **Logical AND** (Gidney 2018, "Halving the cost of quantum addition", Quantum 2, 74): a Toffoli whose target
-   is a clean ancilla (|0>) computes a temporary logical AND for 4 T; the mirror-image Toffoli that later
-   returns that ancilla to |0> is replaced by an X-basis measurement and a classically controlled CZ, 0 T.
-   In our circuits the pairs are (a) the compute and uncompute ladders of every clean-ancilla v-chain (the
-   ``k - 2`` Toffolis into the ``work`` register, always mirrored inside one multi-controlled X), and (b) the
-   Toffoli onto a ``logic`` temporary that holds 0 (the corner ``blocked`` bits and the output bit of an SBF
-   logic network) together with its mirror in the network's uncompute half. Toffolis XOR-ing into a bit that
-   already holds a value (the pattern bit, which starts at 1 and collects three terms) stay 7 T.
-3. **Rotation synthesis**: each arbitrary-angle RZ (symbolic, or not a multiple of pi/4) is approximated to
-   precision epsilon with about ``3 log2(1/epsilon) + O(log log(1/epsilon))`` T gates (Ross & Selinger,
-   "Optimal ancilla-free Clifford+T approximation of z-rotations", Quantum Inf. Comput. 16, 901 (2016),
-   arXiv:1403.2975: "In the typical case, this yields circuit approximations of T-count
-   3 log_2(1/epsilon) + O(log(log(1/epsilon)))"). We use the leading term ``ceil(3 log2(1/epsilon))`` and
-   omit the O(log log) term (model ``ross-selinger``); model ``selinger`` uses the earlier bound
-   ``4 log2(1/epsilon) + 10`` ("T-count K + 4 log2(1/epsilon), where K is approximately equal to 10",
-   Selinger, "Efficient Clifford+T approximation of single-qubit operators", Quantum Inf. Comput. 15, 159
-   (2015), arXiv:1212.6253). An RZ whose angle is an odd multiple of pi/4 is one T gate (up to Cliffords);
-   a multiple of pi/2 is Clifford.
-
-How compute/uncompute pairs are found: each ancilla (every qubit outside the ``data`` register) carries the
-XOR of the AND terms written into it so far (a term = its controls' qubits, required values, X parity and, for
-ancilla controls, their own contents). A Toffoli (or the target step of a multi-controlled X) into an ancilla
-that holds nothing is an AND computation; one whose term is exactly what the ancilla holds is its
-uncomputation. This is valid when the controls still have the same Boolean value at the uncompute, which our
-mixers guarantee: the SBF flip that runs between compute and uncompute never changes the logic network's
-values (that is why the network's uncompute returns the ancillas to |0>, which circuitgen's tests check).
+1. **AND compute = 4 T.** An ``and`` computes ``a AND b`` into a clean ancilla (Gidney 2018, "Halving the cost of
+   quantum addition", Quantum 2, 74: a temporary logical AND for 4 T).
+2. **AND uncompute = 0 T.** Its mirror ``and_dg`` is done by an X-basis measurement and a classically
+   controlled CZ (Gidney 2018): one measurement, no T. (The gate-level circuit that ``qcpp compile`` emits
+   implements it unitarily, 4 T, which the exact ``t`` column counts.)
+3. **Full Toffoli** (``ccx``, the target holds data) = **7 T** by default, the T-optimal ancilla-free Clifford+T
+   circuit (Amy, Maslov, Mosca, Roetteler 2013, "A meet-in-the-middle algorithm for fast synthesis of
+   depth-optimal quantum circuits"; the decomposition :func:`circuitgen.lowering.lower_to_basis` uses), or
+   **4 T** with ``toffoli_t=4`` (Jones 2013, "Low-overhead constructions for the fault-tolerant Toffoli gate",
+   PRA 87, 022328: one ancilla and a measurement).
+4. **Explicit ``t``/``tdg``** count 1 T each; ``s``, ``h``, ``cx``, ``x`` are Clifford (0 T).
+5. **Rotations**: each ``rz`` (every ``rz`` of a lowered circuit has an arbitrary angle: Clifford and T phases
+   are lowered to ``s``/``t`` gates) is approximated to precision epsilon with about
+   ``3 log2(1/epsilon) + O(log log(1/epsilon))`` T gates (Ross & Selinger, "Optimal ancilla-free Clifford+T
+   approximation of z-rotations", Quantum Inf. Comput. 16, 901 (2016), arXiv:1403.2975). We use the leading
+   term ``ceil(3 log2(1/epsilon))`` (model ``ross-selinger``); model ``selinger`` uses the earlier
+   ``4 log2(1/epsilon) + 10`` (Selinger, Quantum Inf. Comput. 15, 159 (2015), arXiv:1212.6253).
 
 Example:
-    >>> from circuitgen.circuit import CircuitBuilder
-    >>> from circuitgen.gates import mcx
-    >>> b = CircuitBuilder([("data", 4), ("logic", 1)])
-    >>> step = mcx([0, 1, 2, 3], 4, "0101")
-    >>> b.append([step, step], section="m")   # compute into a clean bit, then uncompute it
-    >>> ft = fault_tolerant_estimate(b.build(), epsilon=1e-3)
-    >>> ft.toffoli, ft.and_compute, ft.and_uncompute, ft.toffoli_full
-    (10, 5, 5, 0)
-    >>> ft.t_toffoli7, ft.t_logical_and
-    (70, 20)
+    >>> from circuitgen.cost import Cost
+    >>> ft = fault_tolerant_from_cost(Cost.of({"and": 5, "and_dg": 5, "ccx": 2, "rz": 3, "t": 1}), epsilon=1e-3)
+    >>> ft.t_logic, ft.t_rotations, ft.total_t, ft.measurements
+    (35, 90, 125, 5)
+    >>> fault_tolerant_from_cost(Cost.of(ccx=2), toffoli_t=4).t_logic
+    8
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
 from dataclasses import asdict, dataclass
-from operator import attrgetter
 from typing import Any, Literal
 
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit
-from circuitgen.gates import GATE_SPECS
-from circuitgen.lowering import lower
+from circuitgen.cost import Cost
 
 __all__ = [
+    "DEFAULT_EPSILON",
     "SYNTHESIS_MODELS",
+    "TOFFOLI_T_CHOICES",
     "FaultTolerantEstimate",
-    "RotationCount",
-    "count_rotations",
-    "fault_tolerant_estimate",
+    "SynthesisModel",
+    "fault_tolerant_from_cost",
     "rotation_t_cost",
-    "toffoli_roles",
 ]
 
 SynthesisModel = Literal["ross-selinger", "selinger"]
 SYNTHESIS_MODELS: tuple[SynthesisModel, ...] = ("ross-selinger", "selinger")
 DEFAULT_EPSILON = 1e-3
-T_PER_TOFFOLI = 7
 T_PER_AND = 4
-
-_ONE = ("one",)
-# diagonal gates that are not permutations (rz, rzz, t, ...) never change a computational basis value
-_PASSIVE = frozenset(n for n, spec in GATE_SPECS.items() if spec.diagonal and not spec.permutation)
+TOFFOLI_T_CHOICES: tuple[int, ...] = (7, 4)
+"""T per full Toffoli: 7 (ancilla-free, the default) or 4 (Jones 2013, with an ancilla and a measurement)."""
 
 
 def rotation_t_cost(epsilon: float, model: SynthesisModel = "ross-selinger") -> int:
@@ -104,232 +81,88 @@ def rotation_t_cost(epsilon: float, model: SynthesisModel = "ross-selinger") -> 
 
 
 @dataclass(frozen=True)
-class ToffoliRoles:
-    """Toffolis (after multi-controlled-X lowering) by their role for the logical-AND construction.
-
-    Attributes:
-        and_compute: Toffolis computing an AND into a clean ancilla (4 T each).
-        and_uncompute: their mirror images (0 T each, measurement-based).
-        full: every other Toffoli (7 T each).
-    """
-
-    and_compute: int
-    and_uncompute: int
-    full: int
-
-    @property
-    def total(self) -> int:
-        """All Toffolis."""
-        return self.and_compute + self.and_uncompute + self.full
-
-
-def toffoli_roles(circuit: Circuit) -> ToffoliRoles:
-    """Classify the Toffolis that :func:`circuitgen.lowering.lower_mcx` would produce (see the module docstring).
-
-    Args:
-        circuit: a circuit before the Clifford+T step (``mcx``/``ccx``/``cx``/``x`` and any other gates).
-
-    Returns:
-        The :class:`ToffoliRoles`; ``total`` equals the ``ccx`` count of ``lower_mcx(circuit)``.
-
-    >>> from circuitgen.circuit import CircuitBuilder
-    >>> from circuitgen.gates import ccx, x
-    >>> b = CircuitBuilder([("data", 2), ("logic", 1)])
-    >>> b.append([x(2), ccx(0, 1, 2), ccx(0, 1, 2), x(2)], section="s")
-    >>> toffoli_roles(b.build())   # the target is not clean: both are full Toffolis
-    ToffoliRoles(and_compute=0, and_uncompute=0, full=2)
-    """
-    data = set(circuit.qubits_of("data")) if circuit.has_register("data") else set()
-    state: dict[int, frozenset[Any]] = {}
-    parity: dict[int, int] = {}
-    dirty = 0
-    compute = uncompute = full = 0
-    empty: frozenset[Any] = frozenset()
-    for g in circuit.gates:
-        name = g[0]
-        if name in _PASSIVE:
-            continue
-        qubits = g[1]
-        spec = GATE_SPECS[name]
-        if name == "x":
-            q = qubits[0]
-            parity[q] = parity.get(q, 0) ^ 1
-            if q not in data:
-                state[q] = state.get(q, empty) ^ {_ONE}
-            continue
-        if spec.permutation:  # cx, ccx, mcx
-            controls, target = qubits[:-1], qubits[-1]
-            ctrl_state = g[3] if g[3] is not None else "1" * len(controls)
-            k = len(controls)
-            if k >= 3:  # clean-ancilla v-chain: k - 2 ANDs into work qubits and their mirrors
-                compute += k - 2
-                uncompute += k - 2
-            term = tuple(
-                sorted(
-                    (c, (bit == "1") ^ parity.get(c, 0), None if c in data else state.get(c, empty))
-                    for c, bit in zip(controls, ctrl_state, strict=True)
-                )
-            )
-            if target in data:
-                if k >= 2:
-                    full += 1
-                continue
-            held = state.get(target, empty)
-            if k >= 2:
-                if not held:
-                    compute += 1
-                elif held == {term}:
-                    uncompute += 1
-                else:
-                    full += 1
-            state[target] = held ^ {term}
-            continue
-        # Other gates: controls (first qubit of controlled gates) and diagonal gates keep basis values.
-        touched = qubits[1:] if name in ("crz", "cry", "csbf") else qubits
-        if spec.diagonal:
-            continue
-        for q in touched:
-            if q not in data:
-                dirty += 1
-                state[q] = frozenset({("dirty", dirty)})
-    return ToffoliRoles(compute, uncompute, full)
-
-
-@dataclass(frozen=True)
-class RotationCount:
-    """Single-qubit Z rotations of a lowered circuit by synthesis cost.
-
-    Attributes:
-        arbitrary: RZ with a symbolic angle or one that is not a multiple of pi/4.
-        t_like: RZ by an odd multiple of pi/4 (one T up to Cliffords).
-        clifford: RZ by a multiple of pi/2.
-    """
-
-    arbitrary: int
-    t_like: int
-    clifford: int
-
-
-_is_bound = attrgetter("is_bound")
-
-
-def _angle_class(theta: object) -> str:
-    if isinstance(theta, Angle):
-        if not theta.is_bound:
-            return "arbitrary"
-        theta = theta.constant
-    quarters = float(theta) / (math.pi / 4)  # type: ignore[arg-type]
-    nearest = round(quarters)
-    if abs(quarters - nearest) > 1e-9:
-        return "arbitrary"
-    return "clifford" if nearest % 2 == 0 else "t_like"
-
-
-def count_rotations(gates: Iterable[tuple[Any, ...]]) -> RotationCount:
-    """Classify the ``rz`` gates of a lowered gate sequence.
-
-    Args:
-        gates: gate tuples; only ``rz`` gates are looked at.
-
-    Returns:
-        The :class:`RotationCount`.
-
-    >>> count_rotations([("rz", (0,), (math.pi / 2,)), ("rz", (0,), (math.pi / 4,)), ("rz", (1,), (0.1,))])
-    RotationCount(arbitrary=1, t_like=1, clifford=1)
-    """
-    angles = [g[2][0] for g in gates if g[0] == "rz"]
-    symbolic = [a for a in angles if type(a) is Angle]
-    unbound = len(symbolic) - sum(map(_is_bound, symbolic))
-    counts = {"arbitrary": unbound, "t_like": 0, "clifford": 0}
-    if unbound < len(angles):
-        for a in angles:
-            if not (type(a) is Angle and not a.is_bound):
-                counts[_angle_class(a)] += 1
-    return RotationCount(**counts)
-
-
-@dataclass(frozen=True)
 class FaultTolerantEstimate:
-    """Clifford+T estimates (labelled as estimates; the exact counts are in :class:`~estimators.counts.ResourceCount`).
+    """Clifford+T estimates in the logical-AND model (labelled as estimates; exact counts live elsewhere).
 
     Attributes:
-        toffoli: Toffolis after multi-controlled-X lowering.
-        and_compute, and_uncompute, toffoli_full: their roles (see :func:`toffoli_roles`).
-        explicit_t: ``t``/``tdg`` gates already present before the Clifford+T step.
-        rotations: arbitrary-angle RZ of the lowered circuit.
-        t_like_rotations: RZ by odd multiples of pi/4.
+        and_compute: ``and`` gates (4 T each).
+        and_uncompute: ``and_dg`` gates (measurement-based, 0 T).
+        toffoli_full: ``ccx`` gates (``toffoli_t`` T each).
+        explicit_t: ``t``/``tdg`` gates.
+        rotations: arbitrary-angle ``rz`` gates.
+        measurements: measurement-based uncomputes (``and_dg``); the final read-out is not included.
         epsilon: synthesis precision per rotation.
-        synthesis: the rotation synthesis model.
-        t_per_rotation: T gates per arbitrary rotation.
-        t_toffoli7: T count of the logic with Toffoli = 7 T (plus explicit and pi/4 T gates).
-        t_logical_and: the same with logical-AND compute = 4 T and uncompute = 0 T.
+        synthesis: rotation synthesis model.
+        toffoli_t: T per full Toffoli (7 or 4).
+        t_per_rotation: T per rotation.
+        t_logic: ``4 and_compute + toffoli_t toffoli_full + explicit_t``.
         t_rotations: ``rotations * t_per_rotation``.
-        total_t_toffoli7: ``t_toffoli7 + t_rotations``.
-        total_t_logical_and: ``t_logical_and + t_rotations``.
+        total_t: ``t_logic + t_rotations``.
     """
 
-    toffoli: int
     and_compute: int
     and_uncompute: int
     toffoli_full: int
     explicit_t: int
     rotations: int
-    t_like_rotations: int
+    measurements: int
     epsilon: float
     synthesis: str
+    toffoli_t: int
     t_per_rotation: int
-    t_toffoli7: int
-    t_logical_and: int
+    t_logic: int
     t_rotations: int
-    total_t_toffoli7: int
-    total_t_logical_and: int
+    total_t: int
+
+    @property
+    def toffoli(self) -> int:
+        """ANDs and full Toffolis (every three-qubit gate of the logical circuit)."""
+        return self.and_compute + self.and_uncompute + self.toffoli_full
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
         return asdict(self)
 
 
-def fault_tolerant_estimate(
-    circuit: Circuit,
-    lowered: Circuit | None = None,
+def fault_tolerant_from_cost(
+    logical: Cost,
     epsilon: float = DEFAULT_EPSILON,
     synthesis: SynthesisModel = "ross-selinger",
+    toffoli_t: int = 7,
 ) -> FaultTolerantEstimate:
-    """Clifford+T estimates of ``circuit`` (see the module docstring).
+    """The logical-AND model's T counts of a logical cost (see the module docstring).
 
     Args:
-        circuit: the circuit before the Clifford+T step (e.g. ``qaoa_circuit(...)``).
-        lowered: ``lower(circuit)`` if already at hand (its ``rz`` gates are the rotations); computed if None.
+        logical: gate counts with ``and``/``and_dg``/``ccx`` kept whole (a gadget's or plan's ``logical_cost()``).
         epsilon: synthesis precision per rotation.
         synthesis: rotation synthesis model (:func:`rotation_t_cost`).
+        toffoli_t: T per full Toffoli, 7 or 4.
 
     Returns:
         The :class:`FaultTolerantEstimate`.
+
+    Raises:
+        ValueError: a bad ``epsilon``, ``synthesis`` or ``toffoli_t``.
     """
-    roles = toffoli_roles(circuit)
-    explicit_t = sum(1 for g in circuit.gates if g[0] in ("t", "tdg"))
-    if lowered is None:
-        lowered = lower(circuit)
-    rot = count_rotations(lowered.gates)
+    if toffoli_t not in TOFFOLI_T_CHOICES:
+        raise ValueError(f"toffoli_t must be one of {TOFFOLI_T_CHOICES}, got {toffoli_t!r}")
     per_rot = rotation_t_cost(epsilon, synthesis)
-    extra = explicit_t + rot.t_like
-    t7 = T_PER_TOFFOLI * roles.total + extra
-    t_and = T_PER_AND * roles.and_compute + T_PER_TOFFOLI * roles.full + extra
-    t_rot = rot.arbitrary * per_rot
+    ands, undo, full = logical["and"], logical["and_dg"], logical["ccx"]
+    explicit = logical.t
+    t_logic = T_PER_AND * ands + toffoli_t * full + explicit
+    t_rot = logical.rotations * per_rot
     return FaultTolerantEstimate(
-        toffoli=roles.total,
-        and_compute=roles.and_compute,
-        and_uncompute=roles.and_uncompute,
-        toffoli_full=roles.full,
-        explicit_t=explicit_t,
-        rotations=rot.arbitrary,
-        t_like_rotations=rot.t_like,
+        and_compute=ands,
+        and_uncompute=undo,
+        toffoli_full=full,
+        explicit_t=explicit,
+        rotations=logical.rotations,
+        measurements=undo,
         epsilon=epsilon,
         synthesis=synthesis,
+        toffoli_t=toffoli_t,
         t_per_rotation=per_rot,
-        t_toffoli7=t7,
-        t_logical_and=t_and,
+        t_logic=t_logic,
         t_rotations=t_rot,
-        total_t_toffoli7=t7 + t_rot,
-        total_t_logical_and=t_and + t_rot,
+        total_t=t_logic + t_rot,
     )

@@ -1,7 +1,11 @@
-"""Closed-form resource counts of qcpp's own construction (default options, default placement).
+"""Closed-form resource counts of qcpp's own construction (default placement, whole-space phase separator).
 
 Symbols: ``rows``, ``cols`` (>= 2), ``robots`` (1..4, :func:`gridcover.presets.default_scenario`) and ``p`` (>= 1).
-Every expression equals the exact count of ``lower(qaoa_circuit(default_scenario(rows, cols, robots), p))``
+Every expression equals the exact count of
+``lower(qaoa_circuit(default_scenario(rows, cols, robots), p, phase="whole-space"))``: the mixer part is a sum over
+partial-mixer gadget kinds, the phase part counts the Ising Hamiltonian's terms. The default phase separator
+(``feasible``: arithmetic on path lengths, visit bits, chosen per term group) has no closed form here, so the
+formulas are restricted to the whole-space form; ``qcpp estimate`` always sums the gadgets actually compiled
 (``tests/estimators/formulas_test.py`` checks every quantity on every grid from 2x2 to 8x8, 1-4 robots, p = 1,
 and p = 2, 3 on a subset). Depth and two-qubit depth have no closed form here: ASAP layering of the phase
 separator and of the chain of partial mixers (which share the ``logic``/``work`` ancillas) does not decompose
@@ -35,7 +39,7 @@ Example:
     >>> f["data_qubits"]
     robots*(2*cols*rows - cols - rows)
     >>> evaluate(3, 3, 1, 1)["cx"]
-    940
+    152
 """
 
 from __future__ import annotations
@@ -47,12 +51,11 @@ from functools import lru_cache
 import sympy as sp
 
 from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.lowering import lower, lower_mcx
-from circuitgen.mixer import logic_width, partial_mixer_gates
+from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
 from gridcover.presets import default_scenario
 
 __all__ = [
+    "FORMULA_DOMAIN",
     "GATE_NAMES",
     "P_EXPR",
     "QUANTITIES",
@@ -68,6 +71,13 @@ __all__ = [
     "robots",
     "rows",
 ]
+
+FORMULA_DOMAIN = (
+    "rows, cols >= 2; 1 <= robots <= 4 (default corner placement); p >= 1; exact rule; nisq target; default "
+    "objective; whole-space (Ising) phase separator, i.e. --phase whole-space (the default feasible-subspace phase "
+    "separator has no closed form here); lowered circuit (cx x h rz t tdg s sdg, peephole on)"
+)
+"""Where :func:`formula_table` holds."""
 
 rows, cols, robots, p = sp.symbols("rows cols robots p", integer=True, positive=True)
 
@@ -134,15 +144,16 @@ def partial_mixer_types() -> tuple[MixerType, ...]:
 
     The representative is plaquette ``(i, j)`` of ``default_scenario(R, C, 2)`` with ``R = 2, i = 0`` for the
     ``only`` class and ``R = 4, i = 0, 1, 2`` for ``first, middle, last`` (same for columns): its corners have
-    exactly the classes of every plaquette of that class in every grid. Its partial mixer is compiled alone
-    with :func:`circuitgen.lowering.lower`.
+    exactly the classes of every plaquette of that class in every grid. Its cost is the partial-mixer gadget's
+    own (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`, default ``exact`` rule and ``nisq`` target),
+    computed from its kind without emitting a gate.
 
     Returns:
         All types (2 robot classes x 16 row/column class pairs).
 
     >>> t = {(m.robot_class, m.row_class, m.col_class): m for m in partial_mixer_types()}
     >>> t["main", "middle", "middle"].key, t["main", "middle", "middle"].toffoli
-    ('BBBB', 68)
+    ('BBBB', 16)
     """
     out = []
     beta = Angle.symbol("beta_0")
@@ -164,35 +175,24 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
         key += "E" if corner in (rb.start, rb.goal) else ("B" if len(plaq.outer_edges[v]) == 2 else "N")
     if {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]}):
         key += "D"
-    n = s.num_variables
-    width = logic_width(s)
-    gates = partial_mixer_gates(s, robot, plaq, beta, n)
-    circ = Circuit([Register("data", n), Register("logic", width)], [Section("mixer_0", gates)])
-    low = lower(circ)
-    ops = low.count_ops()
-    mcx_low = lower_mcx(circ)
-    toffoli = sum(1 for g in mcx_low.gates if g[0] == "ccx")
-    used_logic = 1 + max(q for g in gates for q in g[1]) - n
-    work = low.num_qubits - circ.num_qubits
-    return MixerType(key, rc, rcls, ccls, {g: ops.get(g, 0) for g in GATE_NAMES}, toffoli, used_logic, work)
+    gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
+    if gadget is None:  # the flip is never allowed: nothing is emitted
+        return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)
+    ops, logical = gadget.cost(), gadget.logical_cost()
+    toffoli = logical["and"] + logical["and_dg"] + logical["ccx"]
+    work = mixer_work_need([gadget])
+    return MixerType(key, rc, rcls, ccls, {g: ops[g] for g in GATE_NAMES}, toffoli, gadget.num_temps, work)
 
 
-def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool) -> sp.Expr:
-    """Sum of ``metric`` over the plaquettes of one robot of one class, for one grid case.
-
-    Returns the per-robot polynomial; it is the same for both robot classes (mirror images), which is checked.
-    """
+def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool, robot_class: str) -> sp.Expr:
+    """Sum of ``metric`` over the plaquettes of one robot of ``robot_class``, for one grid case."""
     rcls = {c for c, _, _ in (_SMALL if small_rows else _LARGE)}
     ccls = {c for c, _, _ in (_SMALL if small_cols else _LARGE)}
-    per_class: dict[str, sp.Expr] = {"main": sp.Integer(0), "anti": sp.Integer(0)}
+    total = sp.Integer(0)
     for m in partial_mixer_types():
-        if m.row_class in rcls and m.col_class in ccls:
-            term = _class_count(m.row_class, rows) * _class_count(m.col_class, cols) * metric(m)
-            per_class[m.robot_class] += term
-    main, anti = (sp.expand(per_class[c]) for c in ("main", "anti"))
-    if sp.expand(main - anti) != 0:  # pragma: no cover - would need robot-class-dependent formulas
-        raise AssertionError("partial mixer costs differ between mirror-image robots")
-    return main
+        if m.robot_class == robot_class and m.row_class in rcls and m.col_class in ccls:
+            total += _class_count(m.row_class, rows) * _class_count(m.col_class, cols) * metric(m)
+    return sp.expand(total)
 
 
 _GRID_CASES = (
@@ -203,14 +203,31 @@ _GRID_CASES = (
 )
 
 
-def _per_robot_mixer(metric: Callable[[MixerType], int]) -> sp.Expr:
+def _per_robot_mixer(metric: Callable[[MixerType], int], robot_class: str = "main") -> sp.Expr:
     """One robot's full mixer (one layer): a Piecewise over the grid cases (or one polynomial)."""
-    pieces = [(sp.factor(_mixer_sum(metric, r, c)), cond) for r, c, cond in _GRID_CASES]
+    pieces = [(sp.factor(_mixer_sum(metric, r, c, robot_class)), cond) for r, c, cond in _GRID_CASES]
     if all(sp.expand(e - pieces[-1][0]) == 0 for e, _ in pieces):
         return pieces[-1][0]
-    # drop cases equal to the general polynomial evaluated there
-    kept = [(e, c) for e, c in pieces[:-1] if sp.expand(e - pieces[-1][0].subs(_case_subs(c))) != 0]
-    return sp.Piecewise(*kept, pieces[-1]) if kept else pieces[-1][0]
+    # drop a case when the pieces after it (those kept) already give its value there
+    kept = [pieces[-1]]
+    for e, c in reversed(pieces[:-1]):
+        later = sp.Piecewise(*kept).subs(_case_subs(c))
+        if sp.expand(e - later) != 0:
+            kept.insert(0, (e, c))
+    return sp.Piecewise(*kept) if len(kept) > 1 else kept[0][0]
+
+
+N_ANTI = sp.Min(robots - 1, 2)
+"""Robots on the anti-diagonal (robots 1 and 2 of the default placement, 1 <= robots <= 4)."""
+
+
+def _all_robots_mixer(metric: Callable[[MixerType], int]) -> sp.Expr:
+    """Every robot's mixer (one layer): ``(robots - N_ANTI) main + N_ANTI anti`` (``robots * main`` when the
+    mirror-image robots cost the same)."""
+    main, anti = _per_robot_mixer(metric, "main"), _per_robot_mixer(metric, "anti")
+    if sp.simplify(main - anti) == 0:
+        return robots * main
+    return (robots - N_ANTI) * main + N_ANTI * anti
 
 
 def _case_subs(cond: sp.Basic) -> dict[sp.Symbol, int]:
@@ -219,6 +236,31 @@ def _case_subs(cond: sp.Basic) -> dict[sp.Symbol, int]:
     if cond == sp.Eq(cols, 2):
         return {cols: 2}
     return {rows: 2, cols: 2}
+
+
+_SIZE_CLASSES = {2: {"only"}, 3: {"first", "last"}, 4: {"first", "middle", "last"}}  # 4 stands for >= 4
+
+
+def _widest(*metrics: Callable[[MixerType], int]) -> sp.Expr:
+    """Largest value over the partial mixers present (both robot classes), as a Piecewise in the smaller and the
+    larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``, ``3`` or ``>= 4`` (the sum of the
+    maxima when several metrics are given). The value is checked to be symmetric in rows and cols."""
+    values: dict[tuple[int, int], int] = {}
+    for nr, rset in _SIZE_CLASSES.items():
+        for nc, cset in _SIZE_CLASSES.items():
+            present = [m for m in partial_mixer_types() if m.row_class in rset and m.col_class in cset]
+            values[nr, nc] = sum(max((f(m) for m in present), default=0) for f in metrics)
+    if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
+        raise AssertionError("ancilla widths are not symmetric in rows and cols")
+    lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
+    pieces = []
+    for a, b in [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]:
+        cond = sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)
+        pieces.append((values[a, b], cond))
+    last = values[4, 4]
+    if all(v == last for v, _ in pieces):
+        return sp.Integer(last)
+    return sp.Piecewise(*pieces, (last, True), evaluate=False)
 
 
 V, P = sp.symbols("V P", integer=True, positive=True)
@@ -233,7 +275,8 @@ P_EXPR = 6 * rows * cols - 6 * rows - 6 * cols + 4
 def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     """Every quantity of :data:`QUANTITIES` as a sympy expression in ``rows, cols, robots, p``.
 
-    Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, default objective and
+    Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, the whole-space phase
+    separator, default objective and
     the default placement. Gate counts are for the lowered circuit (basis ``cx x h rz t tdg s sdg``, peephole
     on); ``toffoli`` counts Toffolis after multi-controlled-X lowering; ``rotations`` counts arbitrary-angle
     RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate count is written as
@@ -256,30 +299,25 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         ),
     )
     init_x = robots * (rows + cols - 2)
-    mixer = {g: _per_robot_mixer(lambda m, g=g: m.ops[g]) for g in GATE_NAMES}
+    mixer = {g: _all_robots_mixer(lambda m, g=g: m.ops[g]) for g in GATE_NAMES}
 
     def mixer_of(gate_names: tuple[str, ...]) -> sp.Expr:
-        return _per_robot_mixer(lambda m: sum(m.ops[g] for g in gate_names))
+        return _all_robots_mixer(lambda m: sum(m.ops[g] for g in gate_names))
 
     gate: dict[str, sp.Expr] = {}
     for g in GATE_NAMES:
         if g == "cx":
-            gate[g] = p * (2 * zz + robots * mixer[g])
+            gate[g] = p * (2 * zz + mixer[g])
         elif g == "rz":
-            gate[g] = p * (robots * V + zz + robots * mixer[g])
+            gate[g] = p * (robots * V + zz + mixer[g])
         elif g == "x":
-            gate[g] = init_x + p * robots * mixer[g]
+            gate[g] = init_x + p * mixer[g]
         else:
-            gate[g] = p * robots * mixer[g]
+            gate[g] = p * mixer[g]
 
-    work = sp.Piecewise((0, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))), (2, sp.Min(rows, cols) < 4), (3, True))
-    logic = sp.Piecewise((3, sp.Eq(sp.Min(rows, cols), 2)), (4, sp.Eq(sp.Min(rows, cols), 3)), (6, True))
-    ancillas = sp.Piecewise(
-        (3, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))),
-        (5, sp.Eq(sp.Min(rows, cols), 2)),
-        (6, sp.Eq(sp.Min(rows, cols), 3)),
-        (9, True),
-    )
+    logic = _widest(lambda m: m.logic_qubits)
+    work = _widest(lambda m: m.work_qubits)
+    ancillas = _widest(lambda m: m.logic_qubits, lambda m: m.work_qubits)
     singles = tuple(g for g in GATE_NAMES if g != "cx")
     table: dict[str, sp.Expr] = {
         "data_qubits": robots * V,
@@ -287,12 +325,12 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         "work_qubits": work,
         "ancillas": ancillas,
         "qubits": robots * V + ancillas,
-        "gates": init_x + p * (robots * V + 3 * zz + robots * mixer_of(GATE_NAMES)),
+        "gates": init_x + p * (robots * V + 3 * zz + mixer_of(GATE_NAMES)),
         "cx": gate["cx"],
         "two_qubit": gate["cx"],
-        "single_qubit": init_x + p * (robots * V + zz + robots * mixer_of(singles)),
-        "t_count": p * robots * mixer_of(("t", "tdg")),
-        "toffoli": p * robots * _per_robot_mixer(lambda m: m.toffoli),
+        "single_qubit": init_x + p * (robots * V + zz + mixer_of(singles)),
+        "t_count": p * mixer_of(("t", "tdg")),
+        "toffoli": p * _all_robots_mixer(lambda m: m.toffoli),
         "rotations": gate["rz"],
         "nonzero_zz": zz,
         "partial_mixers": p * robots * (rows - 1) * (cols - 1),
@@ -323,7 +361,7 @@ def evaluate(n_rows: int, n_cols: int, n_robots: int, layers: int) -> dict[str, 
         name -> integer value.
 
     >>> evaluate(2, 2, 1, 1)["qubits"]
-    7
+    4
     """
     if n_rows < 2 or n_cols < 2 or not 1 <= n_robots <= 4 or layers < 1:
         raise ValueError("formulas hold for rows, cols >= 2, 1 <= robots <= 4 and p >= 1")

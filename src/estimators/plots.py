@@ -8,9 +8,9 @@ SBF rule of the rows are drawn (named in the title).
 
 Example:
     >>> import tempfile, os
-    >>> from estimators.sweep import Point, sweep
+    >>> from estimators.estimate import Point, estimate_point
     >>> from estimators.tables import make_rows
-    >>> rows = make_rows(sweep([Point(2, 2, 1, 1), Point(2, 3, 1, 1)], use_cache=False, progress=False), True)
+    >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1)), estimate_point(Point(2, 3, 1, 1))], True)
     >>> path = os.path.join(tempfile.mkdtemp(), "plot.png")
     >>> plot_rows(rows, path) == path, os.path.getsize(path) > 1000
     (True, True)
@@ -79,7 +79,7 @@ def plot_rows(rows: Sequence[dict[str, Any]], path: str | os.PathLike[str]) -> s
         ax.set_xlabel("grid size: nodes = rows x cols (log scale)")
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
-        ax.set_title(f"{label}: exact (lowered) vs the paper's estimate")
+        ax.set_title(f"{label}: ours (lowered) vs the paper's estimate")
     axes[0].legend(fontsize=7, ncol=2)
     fig.suptitle(f"QAOA coverage path planning, p = {p_min}, rule = {rule}")
     fig.tight_layout()

@@ -1,44 +1,57 @@
 """What ``qcpp estimate`` does, as plain functions (the CLI only parses options and prints).
 
-* :func:`points_from_options`: the ``--grid / --robots / -p / --scenario / --rule`` texts to sweep points;
-* :func:`estimate_report`: sweep, rows, optional paper comparison and plot, rendered in one format;
+* :func:`points_from_options`: the ``--grid / --robots / -p / --scenario`` texts to points (and how many grid and
+  robot-count pairs were skipped because the grid cannot host the robots);
+* :func:`estimate_report`: estimates, rows, optional paper comparison and plot, rendered in one format, as a
+  stream of text pieces (rows appear as soon as they are computed, except in the ``table`` format);
 * :func:`formula_report`: the closed-form formulas (:mod:`estimators.formulas`) as text.
 
 Example:
-    >>> [p.label for p in points_from_options("2x2..2x3", "1", "1")]
-    ['2x2 r1 p1', '2x3 r1 p1']
-    >>> text = estimate_report(points_from_options("2x2", "1", "1"), fmt="csv", use_cache=False, progress=False)
-    >>> text.splitlines()[1].split(",")[:6]
-    ['2', '2', '1', '1', 'exact', 'default']
+    >>> pts = points_from_options("2x2..2x3", "1", "1")
+    >>> [p.label for p in pts.points], pts.skipped
+    (['2x2 r1 p1', '2x3 r1 p1'], 0)
+    >>> text = "".join(estimate_report(points_from_options("2x2", "1", "1").points, fmt="csv"))
+    >>> text.splitlines()[1].split(",")[:7]
+    ['2', '2', '1', '1', 'exact', 'nisq', 'default']
 """
 
 from __future__ import annotations
 
 import json
 import os
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
 
 import sympy as sp
 
+from gridcover.errors import ScenarioError
 from gridcover.limits import check_layers
-from gridcover.presets import MAX_DEFAULT_ROBOTS
-from gridcover.sbf import RULES
+from gridcover.presets import max_default_robots
 from gridcover.scenario import load_scenario
 
-from .fault_tolerant import DEFAULT_EPSILON
-from .formulas import P_EXPR, QUANTITIES, V_EXPR, formula_table
+from .estimate import DEFAULT_OPTIONS, EstimateOptions, Point
+from .formulas import FORMULA_DOMAIN, P_EXPR, QUANTITIES, V_EXPR, formula_table
 from .paper import Doubling
 from .plots import plot_rows
-from .sweep import Point, grid_points, parse_grid_range, parse_int_range, sweep
-from .tables import FORMATS, Format, make_rows, render
+from .sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
+from .tables import FORMATS, Format, make_row, render_stream
 
-__all__ = ["DEFAULT_GRID", "estimate_report", "formula_report", "points_from_options"]
+__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "formula_report", "points_from_options"]
 
 DEFAULT_GRID = "3x3"
-FORMULA_DOMAIN = (
-    "rows, cols >= 2; 1 <= robots <= 4 (default corner placement); p >= 1; exact rule; default objective; "
-    "lowered circuit (cx x h rz t tdg s sdg, peephole on)"
-)
+
+
+@dataclass(frozen=True)
+class PointSet:
+    """Points to estimate and the number of (grid, robots, p) combinations left out.
+
+    Attributes:
+        points: the points, grid-major.
+        skipped: combinations whose grid cannot host the robot count (default placement).
+    """
+
+    points: list[Point]
+    skipped: int
 
 
 def points_from_options(
@@ -46,26 +59,23 @@ def points_from_options(
     robots: str | None,
     p: str,
     scenario: str | os.PathLike[str] | None = None,
-    rule: str = "exact",
-) -> list[Point]:
-    """Sweep points from the CLI's option texts.
+) -> PointSet:
+    """Points from the CLI's option texts.
 
     Args:
-        grid: ``3x4`` or ``AxB..CxD`` (every rows in A..C and cols in B..D); ``None`` means ``3x3``. Must be
-            ``None`` with ``scenario``.
-        robots: ``N`` or ``A..B`` (1 to 4); ``None`` means ``1``. Must be ``None`` with ``scenario``.
+        grid: ``3x4``, ``AxB..CxD`` (every rows in A..C and cols in B..D) or a comma list; ``None`` means
+            ``3x3``. Must be ``None`` with ``scenario``.
+        robots: ``N`` or ``A..B``; ``None`` means ``1``. Must be ``None`` with ``scenario``.
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
-        rule: SBF rule.
 
     Returns:
-        The points.
+        The :class:`PointSet`.
 
     Raises:
-        ValueError: a malformed range or an unknown rule (``gridcover.errors.ScenarioError`` for a bad file).
+        ValueError: a malformed range (``gridcover.errors.ScenarioError`` for a bad file, or when no grid of the
+            range can host the robots).
     """
-    if rule not in RULES:
-        raise ValueError(f"bad rule {rule!r}: expected one of {', '.join(RULES)}")
     layers = parse_int_range(p, "p", 1)
     for k in layers:
         check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
@@ -73,49 +83,55 @@ def points_from_options(
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
         s = load_scenario(scenario)
-        return [Point.from_scenario(s, k, rule) for k in layers]
+        return PointSet([Point.from_scenario(s, k) for k in layers], 0)
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
-    ks = parse_int_range(robots if robots is not None else "1", "robots", 1, MAX_DEFAULT_ROBOTS)
-    return grid_points(grids, ks, layers, rule)
+    ks = parse_int_range(robots if robots is not None else "1", "robots", 1)
+    points = grid_points(grids, ks, layers)
+    if not points:
+        most = max(max_default_robots(r, c) for r, c in grids)
+        raise ScenarioError(
+            "robots",
+            f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
+            f"at most {most} there: one per boundary node); use --scenario for other placements",
+        )
+    return PointSet(points, skipped_points(grids, ks, layers))
 
 
 def estimate_report(
     points: Sequence[Point],
     fmt: Format = "table",
+    options: EstimateOptions = DEFAULT_OPTIONS,
     compare_paper: bool = False,
     plot: str | os.PathLike[str] | None = None,
-    use_cache: bool = True,
-    jobs: int | None = None,
-    epsilon: float = DEFAULT_EPSILON,
     doubling: Doubling = "partial-mixer",
-    progress: bool = True,
     columns: Sequence[str] | None = None,
     wide: bool = False,
-) -> str:
-    """Estimate ``points`` and render the rows.
+) -> Iterator[str]:
+    """Estimate ``points`` and render the rows, as a stream of text pieces.
 
     Args:
         points: from :func:`points_from_options`.
         fmt: one of :data:`estimators.tables.FORMATS`.
+        options: what to estimate.
         compare_paper: add the paper's estimates and ratios.
-        plot: also write the comparison plot (PNG) here.
-        use_cache: use the on-disk cache.
-        jobs: worker processes (default: all cores).
-        epsilon: rotation synthesis precision of the fault-tolerant columns.
+        plot: also write the comparison plot (PNG) here; then the rows are printed after the plot is written
+            (a failed plot prints nothing), not streamed.
         doubling: reading of the paper's doubling.
-        progress: progress bar on stderr.
         columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
 
-    Returns:
-        The rendered text.
+    Yields:
+        Text pieces (see :func:`estimators.tables.render_stream`).
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    results = sweep(points, jobs=jobs, use_cache=use_cache, progress=progress, epsilon=epsilon)
-    rows = make_rows(results, compare_paper, doubling)
-    if plot is not None:
-        plot_rows(rows, plot)
-    return render(rows, fmt, columns=columns, wide=wide)
+    rows = (make_row(est, compare_paper, doubling) for est in sweep(points, options))
+    if plot is None:
+        yield from render_stream(rows, fmt, columns=columns, wide=wide)
+        return
+    # a plot needs every row: draw it first, so that a failed plot prints nothing
+    kept = list(rows)
+    plot_rows(kept, plot)
+    yield from render_stream(kept, fmt, columns=columns, wide=wide)
 
 
 def formula_report(fmt: Format = "table") -> str:
@@ -135,14 +151,14 @@ def formula_report(fmt: Format = "table") -> str:
     """
     explicit, structured = formula_table(), formula_table(structured=True)
     abbrev = {"V": sp.sstr(V_EXPR), "P": sp.sstr(P_EXPR)}
-    if fmt == "json":
+    if fmt in ("json", "jsonl"):
         data = {
             "domain": FORMULA_DOMAIN,
             "abbreviations": abbrev,
             "formulas": {k: sp.sstr(explicit[k]) for k in QUANTITIES},
             "structured": {k: sp.sstr(structured[k]) for k in QUANTITIES},
         }
-        return json.dumps(data, indent=2) + "\n"
+        return json.dumps(data, indent=2 if fmt == "json" else None) + "\n"
     if fmt == "csv":
         lines = ["name,expression"] + [f'{k},"{sp.sstr(explicit[k])}"' for k in QUANTITIES]
         return "\n".join(lines) + "\n"
@@ -158,5 +174,3 @@ def formula_report(fmt: Format = "table") -> str:
             out += ["    " + line for line in sp.pretty(structured[k], use_unicode=True, wrap_line=False).splitlines()]
         return "\n".join(out) + "\n"
     raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-
-

@@ -1,24 +1,36 @@
-"""Result rows and their text formats: rich table, Markdown, CSV and JSON.
+"""Result rows and their text formats: rich table, Markdown, CSV, JSON and JSON lines, streamed where possible.
 
-A row is a plain dict (:func:`make_row`) with at least ``rows, cols, robots, p, rule, qubits, data_qubits,
-ancillas, gates, cx, single_qubit, two_qubit, t, depth, two_qubit_depth`` (exact counts of the lowered circuit),
-``toffoli`` and the labelled fault-tolerant estimates ``ft_t_toffoli7, ft_t_logical_and, ft_rotations,
-ft_t_per_rotation, ft_epsilon``, and ``sections`` (section name -> counts, see :mod:`estimators.counts`). With
-``compare_paper=True`` it also has the paper's estimate (:mod:`estimators.paper`): ``paper_qubits`` (``re + 8r``),
-``paper_data_qubits`` (``re``), ``paper_cx``, ``paper_single_qubit`` and the ratios ours / paper
-``ratio_qubits``, ``ratio_cx``, ``ratio_single_qubit``.
+A row is a plain dict (:func:`make_row`) with
+
+* the point and options: ``rows, cols, robots, p, rule, target, scenario``;
+* exact counts of the lowered circuit, from the gadgets' costs: ``qubits, data_qubits, ancillas, gates, cx,
+  single_qubit, two_qubit, t, rotations``; ``depth, two_qubit_depth, rotation_depth`` with ``depth_kind``
+  (``exact``: computed on the compiled circuit; ``bound``: an upper bound, see :mod:`estimators.estimate`;
+  empty: not computed);
+* the labelled fault-tolerant estimates (logical-AND model, :mod:`estimators.fault_tolerant`): ``toffoli``
+  (ANDs, their uncomputes and full Toffolis), ``ft_and``, ``ft_toffoli_full``, ``ft_measurements``,
+  ``ft_rotations``, ``ft_t_per_rotation``, ``ft_epsilon``, ``ft_toffoli_t``, ``ft_t_logic``, ``ft_total_t``;
+* with ``--physical``, the QDK resource estimator's figures (:mod:`estimators.physical`): ``physical_qubits,
+  physical_runtime_s, physical_algorithm_qubits, physical_t_factory_qubits, physical_t_factories,
+  physical_t_states, physical_code_distance, physical_model`` (``qubit model / QEC scheme / error budget``);
+* with ``compare_paper=True``, the paper's estimate (:mod:`estimators.paper`): ``paper_qubits``,
+  ``paper_data_qubits``, ``paper_cx``, ``paper_single_qubit`` and the ratios ``ratio_qubits``, ``ratio_cx``,
+  ``ratio_single_qubit``;
+* ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
 
 Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
-columns as a Markdown table), ``csv`` (every scalar column plus ``section.<name>.<field>`` columns), ``json`` (a
-list of row objects, sections nested).
+columns as a Markdown table), ``csv`` (every
+scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
+``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
+``table``.
 
 Example:
-    >>> from estimators.sweep import Point, sweep
-    >>> rows = make_rows(sweep([Point(2, 2, 1, 1)], use_cache=False, progress=False), compare_paper=True)
-    >>> rows[0]["cx"], rows[0]["paper_cx"], rows[0]["ratio_cx"]
-    (52, 564, 0.0922)
+    >>> from estimators.estimate import Point, estimate_point
+    >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1))], compare_paper=True)
+    >>> rows[0]["cx"], rows[0]["paper_cx"], rows[0]["ratio_cx"], rows[0]["depth_kind"]
+    (10, 564, 0.0177, 'exact')
     >>> render(rows, "csv").splitlines()[0].split(",")[:7]
-    ['rows', 'cols', 'robots', 'p', 'rule', 'scenario', 'qubits']
+    ['rows', 'cols', 'robots', 'p', 'rule', 'target', 'scenario']
 """
 
 from __future__ import annotations
@@ -27,27 +39,31 @@ import csv
 import io
 import json
 import shutil
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, Literal
 
+from circuitgen.cost import Cost
+
+from .estimate import Estimate
 from .paper import Doubling, paper_estimate
-from .sweep import PointResult
 
 __all__ = [
     "DROP_ORDER",
     "FORMATS",
     "MAIN_COLUMNS",
     "PAPER_COLUMNS",
+    "PHYSICAL_COLUMNS",
     "Format",
     "make_row",
     "make_rows",
     "render",
+    "render_stream",
     "table_columns",
     "terminal_width",
 ]
 
-Format = Literal["table", "md", "csv", "json"]
-FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json")
+Format = Literal["table", "md", "csv", "json", "jsonl"]
+FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json", "jsonl")
 
 MAIN_COLUMNS: tuple[str, ...] = (
     "rows",
@@ -62,81 +78,123 @@ MAIN_COLUMNS: tuple[str, ...] = (
     "t",
     "depth",
     "two_qubit_depth",
+    "depth_kind",
 )
-"""Columns of the ``table`` and ``md`` formats (plus :data:`PAPER_COLUMNS` when comparing)."""
+"""Columns of the ``table`` and ``md`` formats (plus :data:`PHYSICAL_COLUMNS` and :data:`PAPER_COLUMNS`)."""
 
 PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
+PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
 
-_SECTION_FIELDS = ("size", "cx", "single_qubit", "t", "depth", "two_qubit_depth")
+_SCALARS: tuple[str, ...] = (
+    "rows", "cols", "robots", "p", "rule", "target", "scenario",
+    "qubits", "data_qubits", "ancillas", "gates", "cx", "single_qubit", "two_qubit", "t", "rotations",
+    "depth", "two_qubit_depth", "rotation_depth", "depth_kind",
+    "toffoli", "ft_and", "ft_toffoli_full", "ft_measurements", "ft_rotations", "ft_t_per_rotation", "ft_epsilon",
+    "ft_toffoli_t", "ft_t_logic", "ft_total_t",
+)  # fmt: skip
+_PHYSICAL: tuple[str, ...] = (
+    "physical_qubits", "physical_runtime_s", "physical_algorithm_qubits", "physical_t_factory_qubits",
+    "physical_t_factories", "physical_t_states", "physical_code_distance", "physical_model",
+)  # fmt: skip
+_PAPER: tuple[str, ...] = (
+    "paper_qubits", "paper_data_qubits", "paper_cx", "paper_single_qubit", "ratio_qubits", "ratio_cx",
+    "ratio_single_qubit",
+)  # fmt: skip
+_SECTION_NAMES = ("initial_state", "phase", "mixer")
+_SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
 
 
 def _ratio(ours: int, paper: int) -> float | None:
     return round(ours / paper, 4) if paper else None
 
 
-def make_row(result: PointResult, compare_paper: bool = False, doubling: Doubling = "partial-mixer") -> dict[str, Any]:
-    """One result as a row dict (see the module docstring for the keys).
+def _section(c: Cost) -> dict[str, int]:
+    return {"gates": c.total, "cx": c.cx, "single_qubit": c.single_qubit, "t": c.t, "rotations": c.rotations}
+
+
+def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "partial-mixer") -> dict[str, Any]:
+    """One estimate as a row dict (see the module docstring for the keys).
 
     Args:
-        result: a sweep result.
+        est: an estimate.
         compare_paper: add the paper's estimate and the ratios.
         doubling: the reading of the paper's doubling (:func:`estimators.paper.paper_partial_mixer`).
 
     Returns:
         The row.
     """
-    pt, c, ft = result.point, result.counts, result.fault_tolerant
+    pt, c, ft, d, plan = est.point, est.cost, est.fault_tolerant, est.depth, est.options.plan
     row: dict[str, Any] = {
         "rows": pt.rows,
         "cols": pt.cols,
         "robots": pt.robots,
         "p": pt.p,
-        "rule": pt.rule,
+        "rule": plan.rule,
+        "target": plan.target,
         "scenario": "default" if pt.scenario is None else "file",
-        "qubits": c.qubits,
-        "data_qubits": c.data_qubits,
-        "ancillas": c.ancillas,
-        "gates": c.size,
+        "qubits": est.qubits,
+        "data_qubits": est.data_qubits,
+        "ancillas": est.qubits - est.data_qubits,
+        "gates": c.total,
         "cx": c.cx,
         "single_qubit": c.single_qubit,
         "two_qubit": c.two_qubit,
         "t": c.t,
-        "depth": c.depth,
-        "two_qubit_depth": c.two_qubit_depth,
+        "rotations": c.rotations,
+        "depth": d.depth if d else None,
+        "two_qubit_depth": d.two_qubit_depth if d else None,
+        "rotation_depth": d.rotation_depth if d else None,
+        "depth_kind": d.kind if d else None,
         "toffoli": ft.toffoli,
-        "ft_t_toffoli7": ft.t_toffoli7,
-        "ft_t_logical_and": ft.t_logical_and,
+        "ft_and": ft.and_compute,
+        "ft_toffoli_full": ft.toffoli_full,
+        "ft_measurements": ft.measurements,
         "ft_rotations": ft.rotations,
         "ft_t_per_rotation": ft.t_per_rotation,
         "ft_epsilon": ft.epsilon,
-        "ft_total_t_toffoli7": ft.total_t_toffoli7,
-        "ft_total_t_logical_and": ft.total_t_logical_and,
+        "ft_toffoli_t": ft.toffoli_t,
+        "ft_t_logic": ft.t_logic,
+        "ft_total_t": ft.total_t,
     }
-    if compare_paper:
-        est = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
+    ph = est.physical
+    if ph is not None:
         row.update(
-            paper_qubits=est.qubits,
-            paper_data_qubits=est.data_qubits,
-            paper_cx=est.cx,
-            paper_single_qubit=est.single_qubit,
-            ratio_qubits=_ratio(c.qubits, est.qubits),
-            ratio_cx=_ratio(c.cx, est.cx),
-            ratio_single_qubit=_ratio(c.single_qubit, est.single_qubit),
+            physical_qubits=ph.physical_qubits,
+            physical_runtime_s=ph.runtime_s,
+            physical_algorithm_qubits=ph.algorithm_qubits,
+            physical_t_factory_qubits=ph.t_factory_qubits,
+            physical_t_factories=ph.t_factories,
+            physical_t_states=ph.t_states,
+            physical_code_distance=ph.code_distance,
+            physical_model=f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}",
         )
-    row["sections"] = {name: s.to_dict() for name, s in c.sections.items()}
+    if compare_paper:
+        paper = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
+        row.update(
+            paper_qubits=paper.qubits,
+            paper_data_qubits=paper.data_qubits,
+            paper_cx=paper.cx,
+            paper_single_qubit=paper.single_qubit,
+            ratio_qubits=_ratio(est.qubits, paper.qubits),
+            ratio_cx=_ratio(c.cx, paper.cx),
+            ratio_single_qubit=_ratio(c.single_qubit, paper.single_qubit),
+        )
+    row["sections"] = {name: _section(est.sections[name]) for name in _SECTION_NAMES if name in est.sections}
     return row
 
 
 def make_rows(
-    results: Iterable[PointResult], compare_paper: bool = False, doubling: Doubling = "partial-mixer"
+    estimates: Iterable[Estimate], compare_paper: bool = False, doubling: Doubling = "partial-mixer"
 ) -> list[dict[str, Any]]:
-    """:func:`make_row` of every result, in order."""
-    return [make_row(r, compare_paper, doubling) for r in results]
+    """:func:`make_row` of every estimate, in order."""
+    return [make_row(e, compare_paper, doubling) for e in estimates]
 
 
-def _columns(rows: Sequence[dict[str, Any]]) -> list[str]:
+def _columns(row: dict[str, Any] | None) -> list[str]:
     cols = list(MAIN_COLUMNS)
-    if rows and "paper_cx" in rows[0]:
+    if row and "physical_qubits" in row:
+        cols += list(PHYSICAL_COLUMNS)
+    if row and "paper_cx" in row:
         cols += list(PAPER_COLUMNS)
     return cols
 
@@ -149,6 +207,16 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
+def _csv_fields(row: dict[str, Any]) -> list[str]:
+    fields = list(_SCALARS)
+    if "physical_qubits" in row:
+        fields += _PHYSICAL
+    if "paper_cx" in row:
+        fields += _PAPER
+    fields += [f"section.{n}.{f}" for n in _SECTION_NAMES if n in row["sections"] for f in _SECTION_FIELDS]
+    return fields
+
+
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
     out = {k: v for k, v in row.items() if k != "sections"}
     for name, sec in row.get("sections", {}).items():
@@ -157,12 +225,72 @@ def _flat(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _csv_line(values: Iterable[Any]) -> str:
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(list(values))
+    return buf.getvalue()
+
+
+def render_stream(
+    rows: Iterable[dict[str, Any]],
+    fmt: Format = "csv",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> Iterator[str]:
+    """Rows as text pieces, each yielded as soon as its row arrives (``table`` waits for every row).
+
+    Args:
+        rows: rows (any iterable, e.g. a generator over a sweep).
+        fmt: one of :data:`FORMATS`.
+        width, columns, wide: the ``table`` format's options (:func:`render`).
+
+    Yields:
+        Text pieces whose concatenation is :func:`render` of the same rows.
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")
+    if fmt == "table":
+        yield render(list(rows), "table", width=width, columns=columns, wide=wide)
+        return
+    first = True
+    fields: list[str] = []
+    cols: list[str] = []
+    for row in rows:
+        if fmt == "jsonl":
+            yield json.dumps(row) + "\n"
+        elif fmt == "json":
+            body = "\n".join("  " + line for line in json.dumps(row, indent=2).splitlines())
+            yield ("[\n" if first else ",\n") + body
+        elif fmt == "csv":
+            if first:
+                fields = _csv_fields(row)
+                yield _csv_line(fields)
+            flat = _flat(row)
+            yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
+        else:  # md
+            if first:
+                cols = _columns(row)
+                yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+            yield "| " + " | ".join(_cell(row.get(c)) for c in cols) + " |\n"
+        first = False
+    if fmt == "json":
+        yield "[]\n" if first else "\n]\n"
+    elif fmt == "md" and first:
+        cols = _columns(None)
+        yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+
+
 DROP_ORDER: tuple[str, ...] = (
+    "physical_t_factories",
+    "ft_total_t",
     "two_qubit_depth",
     "data_qubits",
     "ancillas",
     "paper_single_qubit",
     "paper_qubits",
+    "depth_kind",
     "depth",
     "single_qubit",
     "t",
@@ -179,7 +307,8 @@ def terminal_width() -> int:
 def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
     from rich.table import Table
 
-    table = Table(title="Exact resource counts (lowered circuit)" + (" vs the paper" if paper else ""))
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    table = Table(title=title)
     for c in cols:
         table.add_column(c, justify="right")
     for r in rows:
@@ -221,7 +350,7 @@ def table_columns(
     Raises:
         ValueError: an unknown column name.
     """
-    defaults = _columns(rows)
+    defaults = _columns(rows[0] if rows else None)
     if columns is not None:
         if not columns:
             raise ValueError("--columns: name at least one column")
@@ -255,13 +384,13 @@ def render(
 
     Args:
         rows: rows from :func:`make_rows`.
-        fmt: ``table`` (rich), ``md``, ``csv`` or ``json``.
+        fmt: ``table`` (rich), ``md``, ``csv``, ``json`` or ``jsonl``.
         width: ``table`` only: fit this many characters (default :func:`terminal_width`); columns of
             :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer.
         columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
         wide: ``table`` only: show every default column, whatever the width.
 
-    ``md``, ``csv`` and ``json`` always keep all their columns.
+    ``md``, ``csv``, ``json`` and ``jsonl`` always keep all their columns (and stream: :func:`render_stream`).
 
     Returns:
         The text (ending with a newline).
@@ -272,34 +401,20 @@ def render(
         >>> [line.strip() for line in text.splitlines()][3]
         '┃ rows ┃ cols ┃  cx ┃'
     """
-    if fmt == "json":
-        return json.dumps(list(rows), indent=2) + "\n"
-    if fmt == "csv":
-        flat = [_flat(r) for r in rows]
-        fields: list[str] = []
-        for r in flat:
-            fields.extend(k for k in r if k not in fields)
-        buf = io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
-        w.writeheader()
-        for r in flat:
-            w.writerow({k: _cell(r.get(k)) if isinstance(r.get(k), float) else r.get(k, "") for k in fields})
-        return buf.getvalue()
-    if fmt == "md":
-        cols = _columns(rows)
-        lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---:" for _ in cols) + "|"]
-        lines += ["| " + " | ".join(_cell(r.get(c)) for c in cols) + " |" for r in rows]
-        return "\n".join(lines) + "\n"
+    if fmt != "table":
+        return "".join(render_stream(rows, fmt))
     if fmt == "table":
         limit = terminal_width() if width is None else width
         shown, hidden = table_columns(rows, limit, columns, wide)
-        paper = "paper_cx" in _columns(rows)
+        paper = "paper_cx" in _columns(rows[0] if rows else None)
         table = _rich_table(rows, shown, paper)
         text_width = limit if columns is None and not wide else max(limit, _natural_width(rows, shown, paper))
         text = _text(table, text_width)
         if hidden:
-            note = f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; " \
-                   "--format csv/json/md keep every column)"
+            note = (
+                f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
+                "--format csv/json/md keep every column)"
+            )
             text += _text(note, limit)
         return text
     raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")

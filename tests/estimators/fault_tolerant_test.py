@@ -1,120 +1,66 @@
-"""Clifford+T estimates: hand examples for the Toffoli roles and rotation costs, and consistency with exact counts."""
+"""Logical-AND model: hand examples, rotation costs, and consistency with the logical-basis counts of circuits."""
 
 from __future__ import annotations
 
 import math
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
-from circuitgen.angles import Angle
 from circuitgen.circuit import CircuitBuilder
-from circuitgen.gates import ccx, cx, h, mcx, rz, x
-from circuitgen.lowering import lower, lower_mcx
+from circuitgen.cost import Cost
+from circuitgen.gates import mcx
+from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.qaoa import qaoa_circuit
-from estimators.counts import count
-from estimators.fault_tolerant import (
-    count_rotations,
-    fault_tolerant_estimate,
-    rotation_t_cost,
-    toffoli_roles,
-)
+from estimators.fault_tolerant import fault_tolerant_from_cost, rotation_t_cost
 from gridcover.presets import default_scenario
-from gridcover.sbf import sbf_logic
 
 
-def build(gates: list, logic: int = 2, data: int = 4):  # type: ignore[no-untyped-def]
-    b = CircuitBuilder([("data", data), ("logic", logic)])
-    b.append(gates, section="s")
-    return b.build()
+def test_mcx_into_a_clean_bit_costs_ands_and_one_toffoli() -> None:
+    # a 5-control X: 3 clean ANDs on the work ladder (4 T each), one full Toffoli (7 T), 3 measured uncomputes
+    b = CircuitBuilder([("data", 5), ("logic", 1)])
+    b.append([mcx([0, 1, 2, 3, 4], 5)], section="m")
+    logical = Cost.count(lower(b.build(), LOGICAL_BASIS).gates)
+    ft = fault_tolerant_from_cost(logical)
+    assert (ft.and_compute, ft.and_uncompute, ft.toffoli_full, ft.measurements) == (3, 3, 1, 3)
+    assert ft.t_logic == 3 * 4 + 7 and ft.toffoli == 7
+    assert fault_tolerant_from_cost(logical, toffoli_t=4).t_logic == 3 * 4 + 4
+    assert ft.rotations == 0 and ft.total_t == ft.t_logic
 
 
-def test_and_into_clean_bit_then_its_mirror() -> None:
-    step = mcx([0, 1, 2, 3], 4, "1001")  # 4 controls: ladder of 2 into work, 1 onto the target, 2 back
-    roles = toffoli_roles(build([step, step]))
-    # per mcx: 2 ladder ANDs (4 T) + 2 ladder un-ANDs (0 T); the target Toffoli: AND first, un-AND second
-    assert (roles.and_compute, roles.and_uncompute, roles.full) == (2 + 1 + 2, 2 + 1 + 2, 0)
-    ft = fault_tolerant_estimate(build([step, step]))
-    assert ft.toffoli == 10 == sum(1 for g in lower_mcx(build([step, step])).gates if g[0] == "ccx")
-    assert ft.t_toffoli7 == 7 * 10
-    assert ft.t_logical_and == 4 * 5 + 0 * 5
-
-
-def test_target_holding_a_value_needs_full_toffolis() -> None:
-    # x then two XORs of the same AND: the bit holds 1 at both, so neither is a clean AND
-    roles = toffoli_roles(build([x(4), ccx(0, 1, 4), ccx(0, 1, 4), x(4)]))
-    assert (roles.and_compute, roles.and_uncompute, roles.full) == (0, 0, 2)
-
-
-def test_flipped_control_makes_a_different_term() -> None:
-    # between the two Toffolis the control q0 is flipped: the second is not the mirror of the first
-    roles = toffoli_roles(build([ccx(0, 1, 4), x(0), ccx(0, 1, 4)]))
-    assert (roles.and_compute, roles.and_uncompute, roles.full) == (1, 0, 1)
-
-
-def test_non_diagonal_gate_on_an_ancilla_spoils_it() -> None:
-    roles = toffoli_roles(build([h(4), ccx(0, 1, 4)]))
-    assert (roles.and_compute, roles.full) == (0, 1)
-    roles = toffoli_roles(build([rz(0.3, 4), ccx(0, 1, 4)]))  # diagonal: still |0>
-    assert roles.and_compute == 1
-
-
-def test_copy_into_ancilla_is_tracked() -> None:
-    # cx copies q0 into the ancilla; a later Toffoli into it is not an AND into |0>
-    roles = toffoli_roles(build([cx(0, 4), ccx(1, 2, 4)]))
-    assert roles.full == 1
-
-
-def test_toffoli_into_data_qubit_is_full() -> None:
-    assert toffoli_roles(build([ccx(0, 1, 2)])).full == 1
+@given(
+    st.integers(0, 50), st.integers(0, 50), st.integers(0, 50), st.integers(0, 50), st.integers(0, 50),
+    st.sampled_from([1e-2, 1e-3, 1e-6]), st.sampled_from([7, 4]),
+)  # fmt: skip
+def test_totals_add_up(ands: int, undo: int, ccx: int, t: int, rz: int, eps: float, tt: int) -> None:
+    c = Cost.of({"and": ands, "and_dg": undo, "ccx": ccx, "t": t, "tdg": t, "rz": rz, "cx": 9, "h": 4})
+    ft = fault_tolerant_from_cost(c, eps, toffoli_t=tt)
+    assert ft.t_logic == 4 * ands + tt * ccx + 2 * t
+    assert ft.t_rotations == rz * rotation_t_cost(eps) and ft.total_t == ft.t_logic + ft.t_rotations
+    # scaling the circuit scales every estimate
+    ft3 = fault_tolerant_from_cost(3 * c, eps, toffoli_t=tt)
+    assert ft3.total_t == 3 * ft.total_t and ft3.measurements == 3 * ft.measurements
 
 
 def test_rotation_t_cost_formulas() -> None:
-    for eps in [1e-2, 1e-3, 1e-6, 1e-10]:
-        assert rotation_t_cost(eps) == math.ceil(3 * math.log2(1 / eps))
-        assert rotation_t_cost(eps, "selinger") == math.ceil(4 * math.log2(1 / eps)) + 10
-    assert rotation_t_cost(2**-10) == 30  # exactly 3 * 10, no rounding up
-    for bad in [0.0, 1.0, -1e-3]:
+    for eps in (1e-1, 1e-3, 1e-6, 1e-10):
+        assert rotation_t_cost(eps) == math.ceil(3 * math.log2(1 / eps) - 1e-9)
+        assert rotation_t_cost(eps, "selinger") == math.ceil(4 * math.log2(1 / eps) - 1e-9) + 10
+    for bad in (0.0, 1.0, -1e-3, 2.0):
         with pytest.raises(ValueError):
             rotation_t_cost(bad)
     with pytest.raises(ValueError):
-        rotation_t_cost(1e-3, "solovay-kitaev")  # type: ignore[arg-type]
+        rotation_t_cost(1e-3, "solovay")  # type: ignore[arg-type]
+    with pytest.raises(ValueError):
+        fault_tolerant_from_cost(Cost(), toffoli_t=5)
 
 
-def test_count_rotations_by_angle() -> None:
-    gates = [
-        rz(math.pi / 2, 0),  # S: Clifford
-        rz(math.pi, 0),  # Z: Clifford
-        rz(-math.pi / 4, 0),  # T-like
-        rz(3 * math.pi / 4, 1),  # T-like
-        rz(0.1, 1),  # arbitrary
-        rz(Angle.symbol("gamma_0", 2.0), 1),  # symbolic: arbitrary
-        rz(Angle(math.pi / 4), 1),  # a bound Angle: T-like
-    ]
-    r = count_rotations(gates)
-    assert (r.arbitrary, r.t_like, r.clifford) == (2, 3, 2)
-
-
-def test_qaoa_circuits_toffoli_count_and_t_count_match_exact_counts() -> None:
-    for rows, cols, robots, rule in [(3, 3, 1, "exact"), (2, 3, 2, "exact"), (3, 4, 2, "paper")]:
-        circ = qaoa_circuit(default_scenario(rows, cols, robots), 1, rule=rule)  # type: ignore[arg-type]
-        low = lower(circ)
-        ft = fault_tolerant_estimate(circ, low, epsilon=1e-4)
-        rc = count(low)
-        assert ft.toffoli == sum(1 for g in lower_mcx(circ).gates if g[0] == "ccx")
-        assert ft.t_toffoli7 == rc.t  # Nielsen-Chuang Toffoli: 7 T, nothing else has T
-        assert ft.rotations == rc.ops["rz"]  # every RZ angle is symbolic
-        assert ft.and_compute == ft.and_uncompute  # every temporary AND is uncomputed
+def test_qaoa_circuit_every_and_is_uncomputed_and_rotations_are_the_rz_gates() -> None:
+    for rows, cols, robots in [(3, 3, 1), (2, 3, 2), (3, 4, 5)]:
+        circ = qaoa_circuit(default_scenario(rows, cols, robots), 1)
+        logical = Cost.count(lower(circ, LOGICAL_BASIS).gates)
+        ft = fault_tolerant_from_cost(logical, epsilon=1e-4)
+        assert ft.and_compute == ft.and_uncompute > 0  # every temporary AND is uncomputed
+        assert ft.rotations == Cost.count(lower(circ).gates).rotations
         assert ft.t_rotations == ft.rotations * math.ceil(3 * math.log2(1e4))
-        assert ft.total_t_logical_and == ft.t_logical_and + ft.t_rotations
-
-
-def test_three_by_three_full_toffolis_are_the_pattern_steps() -> None:
-    # The pattern bit starts at 1 (an X) and collects one 4-control term per excluded pattern; those target
-    # Toffolis (one per pattern step, in the compute and the uncompute half) are the only full ones.
-    s = default_scenario(3, 3, 1)
-    patterns = sum(
-        sum(1 for st in sbf_logic(s, 0, q).steps if len(st.literals) == 4) for q in s.grid.plaquettes
-    )
-    ft = fault_tolerant_estimate(qaoa_circuit(s, 1))
-    assert ft.toffoli_full == 2 * patterns
-    assert ft.t_logical_and == 4 * ft.and_compute + 7 * ft.toffoli_full

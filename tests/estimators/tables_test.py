@@ -1,4 +1,4 @@
-"""Rows, text formats and the plot."""
+"""Rows, text formats (streamed and whole) and the plot."""
 
 from __future__ import annotations
 
@@ -9,42 +9,52 @@ from pathlib import Path
 
 import pytest
 
+from estimators.estimate import EstimateOptions, Point, estimate_point
 from estimators.paper import paper_estimate
 from estimators.plots import plot_rows
-from estimators.sweep import Point, sweep
-from estimators.tables import FORMATS, MAIN_COLUMNS, make_rows, render
+from estimators.tables import FORMATS, MAIN_COLUMNS, make_row, make_rows, render, render_stream
 
 REQUIRED = {
-    "rows", "cols", "robots", "p", "qubits", "data_qubits", "ancillas", "cx", "single_qubit", "t", "depth",
-    "two_qubit_depth", "sections",
+    "rows", "cols", "robots", "p", "rule", "target", "qubits", "data_qubits", "ancillas", "gates", "cx",
+    "single_qubit", "t", "rotations", "depth", "two_qubit_depth", "rotation_depth", "depth_kind", "ft_total_t",
+    "sections",
 }  # fmt: skip
 PAPER = {"paper_qubits", "paper_cx", "paper_single_qubit", "ratio_qubits", "ratio_cx", "ratio_single_qubit"}
 
 
 @pytest.fixture(scope="module")
 def results():  # type: ignore[no-untyped-def]
-    return sweep([Point(2, 2, 1, 1), Point(2, 3, 2, 1), Point(3, 3, 1, 2)], use_cache=False, progress=False)
+    return [estimate_point(pt) for pt in (Point(2, 2, 1, 1), Point(2, 3, 2, 1), Point(3, 3, 1, 2))]
 
 
 def test_rows_have_the_required_keys(results) -> None:  # type: ignore[no-untyped-def]
     plain, compared = make_rows(results), make_rows(results, compare_paper=True)
     for row in plain:
-        assert set(row) >= REQUIRED and not PAPER & set(row)
-    for row, res in zip(compared, results):
+        assert set(row) >= REQUIRED and not PAPER & set(row) and "physical_qubits" not in row
+    for row, est in zip(compared, results):
         assert set(row) >= REQUIRED | PAPER
-        est = paper_estimate(row["rows"], row["cols"], row["robots"], row["p"])
-        assert (row["paper_qubits"], row["paper_cx"]) == (est.qubits, est.cx)
-        assert row["ratio_cx"] == round(res.counts.cx / est.cx, 4)
-        assert row["cx"] == res.counts.cx and row["depth"] == res.counts.depth
-        assert set(row["sections"]) == set(res.counts.sections)
-    assert set(compared[2]["sections"]) == {"initial_state", "phase_0", "mixer_0", "phase_1", "mixer_1"}
+        paper = paper_estimate(row["rows"], row["cols"], row["robots"], row["p"])
+        assert (row["paper_qubits"], row["paper_cx"]) == (paper.qubits, paper.cx)
+        assert row["ratio_cx"] == round(est.cost.cx / paper.cx, 4)
+        assert row["cx"] == est.cost.cx and row["depth"] == est.depth.depth and row["depth_kind"] == "exact"
+        assert set(row["sections"]) == {"initial_state", "phase", "mixer"}
+        layer = row["sections"]["phase"]["cx"] + row["sections"]["mixer"]["cx"]
+        assert row["cx"] == row["sections"]["initial_state"]["cx"] + row["p"] * layer
 
 
-def test_json_is_a_list_of_row_objects(results) -> None:  # type: ignore[no-untyped-def]
+def test_physical_columns() -> None:
+    row = make_row(estimate_point(Point(2, 3, 1, 1), EstimateOptions(physical=True)))
+    assert row["physical_qubits"] > row["qubits"] and row["physical_runtime_s"] > 0
+    assert "qubit_gate_ns_e3" in row["physical_model"] and "surface_code" in row["physical_model"]
+    table = render([row], "table")
+    assert "physical_qubits" in table
+
+
+def test_json_and_jsonl(results) -> None:  # type: ignore[no-untyped-def]
     rows = make_rows(results, compare_paper=True)
-    data = json.loads(render(rows, "json"))
-    assert isinstance(data, list) and len(data) == 3
-    assert data[1]["sections"]["phase_0"]["cx"] == rows[1]["sections"]["phase_0"]["cx"]
+    assert json.loads(render(rows, "json")) == rows
+    assert [json.loads(line) for line in render(rows, "jsonl").splitlines()] == rows
+    assert json.loads(render([], "json")) == [] and render([], "jsonl") == ""
 
 
 def test_csv_has_every_scalar_and_section_column(results) -> None:  # type: ignore[no-untyped-def]
@@ -52,8 +62,26 @@ def test_csv_has_every_scalar_and_section_column(results) -> None:  # type: igno
     parsed = list(csv.DictReader(io.StringIO(render(rows, "csv"))))
     assert len(parsed) == 3
     assert int(parsed[0]["cx"]) == rows[0]["cx"]
-    assert int(parsed[2]["section.mixer_1.depth"]) == rows[2]["sections"]["mixer_1"]["depth"]
-    assert parsed[0]["section.mixer_1.depth"] == ""  # p = 1 has no second layer
+    assert int(parsed[2]["section.mixer.cx"]) == rows[2]["sections"]["mixer"]["cx"]
+    assert parsed[1]["depth_kind"] == "exact"
+
+
+def test_streaming_yields_each_row_before_the_next_is_made(results) -> None:  # type: ignore[no-untyped-def]
+    made: list[int] = []
+
+    def rows():  # type: ignore[no-untyped-def]
+        for i, est in enumerate(results):
+            made.append(i)
+            yield make_row(est)
+
+    for fmt in ("csv", "jsonl", "json", "md"):
+        made.clear()
+        stream = render_stream(rows(), fmt)  # type: ignore[arg-type]
+        next(stream)
+        assert made == [0], fmt
+        list(stream)
+    whole = render(make_rows(results), "csv")
+    assert "".join(render_stream(iter(make_rows(results)), "csv")) == whole
 
 
 def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
@@ -66,7 +94,7 @@ def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
     assert "paper_cx" in table and str(rows[1]["cx"]) in table
     with pytest.raises(ValueError):
         render(rows, "xml")  # type: ignore[arg-type]
-    assert set(FORMATS) == {"table", "md", "csv", "json"}
+    assert set(FORMATS) == {"table", "md", "csv", "json", "jsonl"}
 
 
 def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]

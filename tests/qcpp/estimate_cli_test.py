@@ -1,4 +1,4 @@
-"""``qcpp estimate``: formats, ranges, scenario files, plot, cache switch, formulas, and bad input (exit 2)."""
+"""``qcpp estimate``: formats, ranges, skipped grids, scenario files, plot, physical estimates, formulas, bad input."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def _app() -> typer.Typer:
 @pytest.fixture
 def run(tmp_path: Path):  # type: ignore[no-untyped-def]
     runner = CliRunner()
-    env = {"QCPP_CACHE_DIR": str(tmp_path / "cache")}
+    env = {"QCPP_CACHE_DIR": str(tmp_path / "cache"), "COLUMNS": "250"}
 
     def invoke(*args: str):  # type: ignore[no-untyped-def]
         return runner.invoke(_app(), ["estimate", *args], env=env)
@@ -60,7 +60,8 @@ def test_json_one_point_has_the_exact_counts(run) -> None:  # type: ignore[no-un
         assert key in row
     assert (row["qubits"], row["cx"], row["depth"], row["two_qubit_depth"]) == (rc.qubits, rc.cx, rc.depth,
                                                                                 rc.two_qubit_depth)
-    assert set(row["sections"]) == {"initial_state", "phase_0", "mixer_0"}
+    assert row["depth_kind"] == "exact"
+    assert set(row["sections"]) == {"initial_state", "phase", "mixer"}
 
 
 def test_ranges_and_compare_paper_in_csv(run) -> None:  # type: ignore[no-untyped-def]
@@ -112,11 +113,53 @@ def test_paper_doubling_reading(run) -> None:  # type: ignore[no-untyped-def]
     assert literal["paper_cx"] - logic["paper_cx"] == 4 * 8  # four partial mixers, the 8-CNOT rotation once less
 
 
-def test_no_cache_writes_nothing(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    assert run("--grid", "2x2", "--no-cache", "--json").exit_code == 0
-    assert not (tmp_path / "cache").exists()
+def test_no_cache_and_jobs_are_accepted_and_write_nothing(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    assert run("--grid", "2x2", "--no-cache", "--jobs", "2", "--json").exit_code == 0
     assert run("--grid", "2x2", "--json").exit_code == 0
-    assert len(list((tmp_path / "cache").glob("*.json"))) == 1
+    assert not (tmp_path / "cache").exists()
+
+
+def test_any_robot_count_and_skipped_grids_reported_once(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "2x2..2x3", "--robots", "4..6", "--format", "jsonl")
+    assert res.exit_code == 0, res.output
+    rows = [json.loads(line) for line in res.stdout.splitlines()]
+    assert [(r["cols"], r["robots"]) for r in rows] == [(2, 4), (3, 4), (3, 5), (3, 6)]
+    assert res.stderr.count("skipped") == 1 and "skipped 2 of 6 points" in res.stderr
+    none = run("--grid", "2x2", "--robots", "5")
+    assert none.exit_code == 2 and none.stderr.startswith("error: ") and len(none.stderr.splitlines()) == 1
+
+
+def test_physical_estimates(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "3x3", "--robots", "2", "--physical", "--json")
+    assert res.exit_code == 0, res.output
+    row = json.loads(res.stdout)[0]
+    assert row["physical_qubits"] > row["qubits"] and row["physical_runtime_s"] > 0
+    assert "qubit_gate_ns_e3" in row["physical_model"] and "QDK resource estimator" in res.stderr
+    maj = run("--grid", "3x3", "--physical", "--qubit-model", "qubit_maj_ns_e6", "--qec-scheme", "floquet_code",
+              "--error-budget", "0.01", "--json")
+    assert maj.exit_code == 0, maj.output
+    assert "floquet_code" in json.loads(maj.stdout)[0]["physical_model"]
+    refused = run("--grid", "3x3", "--physical", "--qec-scheme", "floquet_code")
+    assert refused.exit_code == 2 and len(refused.stderr.strip().splitlines()) == 1
+
+
+def test_depth_kinds_and_toffoli_model(run) -> None:  # type: ignore[no-untyped-def]
+    bound = json.loads(run("--grid", "3x3", "--depth", "bound", "--json").stdout)[0]
+    exact = json.loads(run("--grid", "3x3", "--depth", "exact", "--json").stdout)[0]
+    none = json.loads(run("--grid", "3x3", "--depth", "none", "--json").stdout)[0]
+    assert (bound["depth_kind"], exact["depth_kind"], none["depth_kind"]) == ("bound", "exact", None)
+    assert bound["depth"] >= exact["depth"] and none["depth"] is None
+    four = json.loads(run("--grid", "3x3", "--toffoli-t", "4", "--json").stdout)[0]
+    assert four["ft_t_logic"] == exact["ft_t_logic"] - 3 * exact["ft_toffoli_full"]
+
+
+def test_phase_separator_options(run) -> None:  # type: ignore[no-untyped-def]
+    feasible = json.loads(run("--grid", "4x4", "--robots", "2", "--json").stdout)[0]
+    whole = json.loads(run("--grid", "4x4", "--robots", "2", "--phase", "whole-space", "--json").stdout)[0]
+    shallow = json.loads(run("--grid", "4x4", "--robots", "2", "--optimize", "depth", "--json").stdout)[0]
+    assert feasible["sections"]["phase"]["cx"] < whole["sections"]["phase"]["cx"]
+    assert feasible["sections"]["mixer"] == whole["sections"]["mixer"] == shallow["sections"]["mixer"]
+    assert run("--phase", "ising").exit_code == 2 and run("--optimize", "t").exit_code == 2
 
 
 def test_formula(run) -> None:  # type: ignore[no-untyped-def]
@@ -132,7 +175,7 @@ def test_formula(run) -> None:  # type: ignore[no-untyped-def]
         ("--grid", "3"),
         ("--grid", "1x3"),
         ("--grid", "4x4..3x3"),
-        ("--robots", "5"),
+        ("--robots", "9"),
         ("--robots", "0..2"),
         ("-p", "x"),
         ("--rule", "fast"),
@@ -143,6 +186,12 @@ def test_formula(run) -> None:  # type: ignore[no-untyped-def]
         ("--scenario", "examples/paper_3x3.toml", "--grid", "3x3"),
         ("--jobs", "0"),
         ("--epsilon", "2"),
+        ("--depth", "deep"),
+        ("--toffoli-t", "5"),
+        ("--target", "qpu"),
+        ("--qubit-model", "transmon"),
+        ("--qec-scheme", "color"),
+        ("--error-budget", "0"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(run, args: tuple[str, ...]) -> None:  # type: ignore[no-untyped-def]

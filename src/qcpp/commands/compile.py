@@ -12,23 +12,38 @@ written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
 handler as one line on stderr and exit code 2.
+
+Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one section of its plan at a time
+(:func:`circuitgen.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is the
+same, byte for byte, as writing the whole circuit.
+
+Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
+costs (:func:`estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
+(default :data:`estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
+refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import time
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
 from rich.table import Table
 
+from circuitgen.angles import symbol_sort_key
+from circuitgen.circuit import Circuit, Section
 from circuitgen.compile import compile_scenario, parse_bindings
-from circuitgen.qasm import write_qasm
+from circuitgen.qasm_stream import write_qasm_sections
+from estimators.estimate import PlanOptions
+from estimators.guard import DEFAULT_MAX_GATES
 from gridcover.atomic import check_output
-from gridcover.scenario import load_scenario
+from gridcover.scenario import Scenario, load_scenario
 
 __all__ = ["compile_command", "register"]
 
@@ -83,6 +98,11 @@ def compile_command(
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
+    max_gates: Annotated[
+        int,
+        typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
+    ] = DEFAULT_MAX_GATES,
+    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     if phase not in ("feasible", "whole-space"):
@@ -110,17 +130,22 @@ def compile_command(
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario)
-    result = compile_scenario(
-        s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
-        phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
-    )  # fmt: skip
+    options = PlanOptions(
+        rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
+    )
+    if not force:
+        _guard(s, p, options, max_gates)
     if qasm is not None:
-        write_qasm(result.circuit, qasm, version=qasm_version)  # type: ignore[arg-type]
-    summary = result.summary()
-    if qasm is not None:
+        summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version)
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    else:
+        result = compile_scenario(
+            s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
+            phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
+        )  # fmt: skip
+        summary, phase_explain = result.summary(), result.phase_explain
     if explain:
-        summary["phase_explain"] = result.phase_explain
+        summary["phase_explain"] = phase_explain
     if as_json:
         typer.echo(json.dumps(summary))
         return
@@ -142,7 +167,7 @@ def compile_command(
         where = "standard output" if to_stdout else qasm
         console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
     if explain:
-        console.print(explain_table(result.phase_explain))
+        console.print(explain_table(phase_explain))
 
 
 def explain_table(rows: list[dict]) -> Table:
@@ -160,6 +185,66 @@ def explain_table(rows: list[dict]) -> Table:
             f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
         )  # fmt: skip
     return table
+
+
+def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int) -> None:
+    """Refuse (ValueError: one line, exit 2) a circuit predicted to exceed ``max_gates`` lowered gates."""
+    from estimators.guard import predict_size
+
+    size = predict_size(s, p, options)
+    if not size.fits(max_gates):
+        raise ValueError(
+            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
+            "(raise it with --max-gates N, or pass --force)"
+        )
+
+
+def _stream(
+    s: Scenario,
+    p: int,
+    options: PlanOptions,
+    lowered: bool,
+    bindings: dict[str, float],
+    qasm: str,
+    version: int,
+) -> tuple[dict[str, Any], list[dict]]:
+    """Build, lower, bind and write the circuit one plan section at a time (peak memory independent of ``p``);
+    return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the phase plan's choices."""
+    from estimators.estimate import plan_sections
+
+    start = time.perf_counter()
+    known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+    unknown = sorted(set(bindings) - known)
+    if unknown:
+        have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
+        raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+    plan = options.plan(s, p)
+    # the lowered circuit has the plan's registers (work included); the high-level one has no work register
+    registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
+
+    def sections() -> Iterator[Section]:
+        for sec in plan_sections(plan, tuple(plan.registers), lowered):
+            yield Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
+
+    ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
+    n = s.num_variables
+    num_qubits = sum(r.size for r in registers)
+    edges = s.grid.edges
+    data = []
+    for q in range(n):
+        robot, e = s.variable_of(q)
+        data.append({"qubit": q, "robot": robot, "edge": [list(edges[e][0]), list(edges[e][1])]})
+    summary = {
+        "qubits": num_qubits,
+        "gates": dict(sorted(ops.items())),
+        "total_gates": sum(ops.values()),
+        "lowered": lowered,
+        "symbols": list(symbols),
+        "registers": {r.name: r.size for r in registers},
+        "seconds": time.perf_counter() - start,
+        "qubit_map": {"data": data, "ancillas": list(range(n, num_qubits))},
+    }
+    return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
 
 
 def register(app: typer.Typer) -> None:

@@ -1,21 +1,26 @@
-"""``qcpp estimate``: exact resource counts, the paper's estimates and the closed-form formulas.
+"""``qcpp estimate``: resource counts from the gadgets' costs, fault-tolerant and physical estimates, formulas.
 
-A thin layer over :mod:`estimators.report`: it parses options and prints. Bad input gives exit code 2 and one line
-``error: <message>`` on stderr, the format of the CLI's shared handler (:mod:`qcpp.cli`), which also catches
-anything the command itself does not (e.g. an unwritable ``--plot`` path). ``register(app)`` adds the command.
+A thin layer over :mod:`estimators.report`: it parses options and prints, row by row as rows are computed (for
+every format but ``table``). Bad input gives exit code 2 and one line ``error: <message>`` on stderr, the format
+of the CLI's shared handler (:mod:`qcpp.cli`), which also catches anything the command itself does not (e.g. an
+unwritable ``--plot`` path). ``register(app)`` adds the command.
 
 Examples::
 
     qcpp estimate --grid 3x3 --robots 1
+    qcpp estimate --grid 30x30 --robots 8 -p 3 --json
+    qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format jsonl > sweep.jsonl
+    qcpp estimate --grid 10x10 --robots 4 --physical --qubit-model qubit_maj_ns_e6 --qec-scheme floquet_code
     qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
-    qcpp estimate --grid 3x3..6x6 --robots 1..3 --compare paper --plot estimates.png
     qcpp estimate --scenario examples/two_robots.toml -p 2 --json
     qcpp estimate --formula
 """
 
 from __future__ import annotations
 
+import signal
 import sys
+import threading
 from pathlib import Path
 from typing import Annotated
 
@@ -29,9 +34,10 @@ from gridcover.errors import ScenarioError
 __all__ = ["estimate", "register"]
 
 HELP = (
-    "Exact resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), optionally beside the "
-    "paper's estimates, plus labelled fault-tolerant estimates. Ranges: --grid AxB..CxD means every rows in A..C "
-    "and every cols in B..D; --robots and -p take N or A..B."
+    "Resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), summed from the costs of its "
+    "gadgets without building it; labelled fault-tolerant estimates; physical estimates with --physical (QDK "
+    "resource estimator). Ranges: --grid AxB..CxD means every rows in A..C and every cols in B..D; --robots and "
+    "-p take N or A..B; grids too small for a robot count are skipped (counted once on stderr)."
 )
 
 
@@ -49,15 +55,27 @@ def estimate(
         ),
     ] = None,
     robots: Annotated[
-        str | None, typer.Option("--robots", help="Robots: N or A..B (1 to 4, corner placement; default 1).")
+        str | None,
+        typer.Option(
+            "--robots",
+            help="Robots: N or A..B (default 1). Default placement: corners, then the other boundary nodes "
+            "(up to 2(rows+cols)-4 robots); --scenario for anything else.",
+        ),
     ] = None,
     p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
     ] = None,
     rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
+    target: Annotated[
+        str, typer.Option("--target", help="Constructions chosen for: nisq (fewest CNOTs) or ft (fewest T).")
+    ] = "nisq",
+    phase: Annotated[
+        str, typer.Option("--phase", help="Phase separator: feasible (default) or whole-space (the Ising form).")
+    ] = "feasible",
+    optimize: Annotated[str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth.")] = "cx",
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
-    fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv or json.")] = "table",
+    fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
     plot: Annotated[
         str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
@@ -68,10 +86,39 @@ def estimate(
     ] = None,
     wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
-    no_cache: Annotated[bool, typer.Option("--no-cache", help="Neither read nor write the estimate cache.")] = False,
-    jobs: Annotated[int | None, typer.Option("--jobs", "-j", help="Worker processes (default: all cores).")] = None,
+    depth: Annotated[
+        str,
+        typer.Option(
+            "--depth",
+            help="Depth: exact (compile the circuit), bound (sum of per-gadget depths), none, or auto (exact up "
+            "to --depth-budget gates, else bound). The depth_kind column says which.",
+        ),
+    ] = "auto",
+    depth_budget: Annotated[
+        int, typer.Option("--depth-budget", help="Largest circuit (lowered gates) auto compiles for its depth.")
+    ] = 300_000,
     epsilon: Annotated[
         float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
+    ] = 1e-3,
+    toffoli_t: Annotated[
+        int, typer.Option("--toffoli-t", help="T per full Toffoli: 7 (ancilla-free) or 4 (Jones 2013).")
+    ] = 7,
+    physical: Annotated[
+        bool, typer.Option("--physical", help="Add physical estimates from the QDK resource estimator.")
+    ] = False,
+    qubit_model: Annotated[
+        str,
+        typer.Option(
+            "--qubit-model",
+            help="QDK qubit preset: qubit_gate_ns_e3, qubit_gate_ns_e4, qubit_gate_us_e3, qubit_gate_us_e4, "
+            "qubit_maj_ns_e4, qubit_maj_ns_e6.",
+        ),
+    ] = "qubit_gate_ns_e3",
+    qec_scheme: Annotated[
+        str, typer.Option("--qec-scheme", help="QDK QEC scheme: surface_code or floquet_code (Majorana only).")
+    ] = "surface_code",
+    error_budget: Annotated[
+        float, typer.Option("--error-budget", help="Total error budget of the physical estimate.")
     ] = 1e-3,
     paper_doubling: Annotated[
         str,
@@ -80,9 +127,14 @@ def estimate(
             help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
         ),
     ] = "partial-mixer",
+    no_cache: Annotated[bool, typer.Option("--no-cache", hidden=True, help="No effect (no cache any more).")] = False,
+    jobs: Annotated[int | None, typer.Option("--jobs", "-j", hidden=True, help="No effect (one process).")] = None,
 ) -> None:
-    """Exact resource counts (see ``qcpp estimate --help``)."""
+    """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
+    from estimators.estimate import DEPTH_MODES, EstimateOptions, PlanOptions
+    from estimators.fault_tolerant import TOFFOLI_T_CHOICES
+    from estimators.physical import QEC_SCHEMES, QUBIT_MODELS
     from estimators.report import estimate_report, formula_report, points_from_options
 
     if as_json:
@@ -92,36 +144,92 @@ def estimate(
     if formula:
         typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
         return
-    if compare not in (None, "paper"):
-        raise _fail(f"bad --compare {compare!r}: the only comparison is 'paper'")
-    if paper_doubling not in DOUBLINGS:
-        raise _fail(f"bad --paper-doubling {paper_doubling!r}: expected one of {', '.join(DOUBLINGS)}")
-    if not 0.0 < epsilon < 1.0:
-        raise _fail(f"bad --epsilon {epsilon}: must be in (0, 1)")
+    checks = [
+        (compare not in (None, "paper"), f"bad --compare {compare!r}: the only comparison is 'paper'"),
+        (paper_doubling not in DOUBLINGS, f"bad --paper-doubling {paper_doubling!r}: expected one of "
+         f"{', '.join(DOUBLINGS)}"),
+        (rule not in ("exact", "paper"), f"bad --rule {rule!r}: expected exact or paper"),
+        (target not in ("nisq", "ft"), f"bad --target {target!r}: expected nisq or ft"),
+        (phase not in ("feasible", "whole-space"), f"bad --phase {phase!r}: expected feasible or whole-space"),
+        (optimize not in ("cx", "depth"), f"bad --optimize {optimize!r}: expected cx or depth"),
+        (jobs is not None and jobs < 1, f"bad --jobs {jobs}: must be at least 1"),
+        (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
+        (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
+        (depth not in DEPTH_MODES, f"bad --depth {depth!r}: expected one of {', '.join(DEPTH_MODES)}"),
+        (depth_budget < 0, f"bad --depth-budget {depth_budget}: must be >= 0"),
+        (qubit_model not in QUBIT_MODELS, f"bad --qubit-model {qubit_model!r}: expected one of "
+         f"{', '.join(QUBIT_MODELS)}"),
+        (qec_scheme not in QEC_SCHEMES, f"bad --qec-scheme {qec_scheme!r}: expected one of {', '.join(QEC_SCHEMES)}"),
+        (not 0.0 < error_budget < 1.0, f"bad --error-budget {error_budget}: must be in (0, 1)"),
+    ]  # fmt: skip
+    for bad, message in checks:
+        if bad:
+            raise _fail(message)
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
     try:
-        points = points_from_options(grid, robots, p, scenario, rule)
-    except ScenarioError as exc:
+        points = points_from_options(grid, robots, p, scenario)
+    except (ScenarioError, ValueError) as exc:
         raise _fail(str(exc)) from None
-    except ValueError as exc:
-        raise _fail(str(exc)) from None
-    text = estimate_report(
-        points,
+    if points.skipped:
+        typer.echo(
+            f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "
+            "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
+            err=True,
+        )
+    options = EstimateOptions(
+        plan=PlanOptions(rule=rule, target=target, phase=phase, optimize=optimize),
+        epsilon=epsilon,
+        toffoli_t=toffoli_t,
+        depth=depth,  # type: ignore[arg-type]
+        depth_budget=depth_budget,
+        physical=physical,
+        qubit_model=qubit_model,
+        qec_scheme=qec_scheme,
+        error_budget=error_budget,
+    )
+    pieces = estimate_report(
+        points.points,
         fmt=fmt,  # type: ignore[arg-type]
+        options=options,
         compare_paper=compare == "paper",
         plot=plot,
-        use_cache=not no_cache,
-        jobs=jobs,
-        epsilon=epsilon,
         doubling=paper_doubling,  # type: ignore[arg-type]
-        progress=sys.stderr.isatty(),
         columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
         wide=wide,
     )
-    typer.echo(text, nl=False)
+    for piece in pieces:
+        _write_whole(piece)
+    if physical:
+        typer.echo(
+            f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
+            f"{error_budget:g}), from the logical counts",
+            err=True,
+        )
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
+
+
+def _write_whole(text: str) -> None:
+    """Write ``text`` to standard output now, whole even if Ctrl-C or SIGTERM arrives meanwhile: the signals are
+    only recorded during the write and raised as ``KeyboardInterrupt`` once the piece is out, so that an
+    interrupted stream ends with a complete row. (The CLI's watchdog still ends a write stuck for too long.)"""
+    out = sys.stdout
+    if threading.current_thread() is not threading.main_thread():  # signal handlers belong to the main thread
+        out.write(text)
+        out.flush()
+        return
+    caught: list[int] = []
+    stops = (signal.SIGINT, signal.SIGTERM)
+    previous = {sig: signal.signal(sig, lambda signum, frame: caught.append(signum)) for sig in stops}
+    try:
+        out.write(text)
+        out.flush()
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    if caught:
+        raise KeyboardInterrupt
 
 
 def register(app: typer.Typer) -> None:

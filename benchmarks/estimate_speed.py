@@ -1,0 +1,111 @@
+"""Speed and memory of ``qcpp estimate`` / the compile guard, and the gadget-vs-compiled cross-check.
+
+Run: ``python benchmarks/estimate_speed.py [--quick] [--sweep-seconds S]`` (the sweep is interrupted after
+``S`` seconds, default 150, and the rows it printed by then are reported). Each command runs in its own process
+(``python -m qcpp``,
+measured from outside: wall clock, and peak resident memory from ``getrusage`` of that child), so start-up is
+included. Prints one table with the goals of issue 10:
+
+* ``qcpp estimate --grid 30x30 --robots 8 -p 3 --json``: < 5 s wall, < 1 GB peak;
+* ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv`` (60,840 requested rows; grids too
+  small for the robots are skipped): < 120 s, with the time to the first row (rows stream out as computed);
+* ``qcpp compile`` of a 40x40 / 8 robots / p = 5 scenario: refused within 10 s, one line, exit 2;
+* counts from gadgets == counts of the compiled circuit (:mod:`estimators.crosscheck`): 0 mismatches, on every
+  cross-check case (``--quick``: the sample the default test run uses), on all cores (minutes).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+from estimators.crosscheck import crosscheck, crosscheck_cases
+from gridcover.presets import default_scenario
+from gridcover.scenario import save_scenario
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _run(args: list[str], limit: float | None = None) -> tuple[float, float, float | None, int, str, str]:
+    """Wall seconds, peak RSS in GB, seconds to the first stdout line, exit code, stdout, stderr (the command is
+    killed once ``limit`` seconds have passed; its exit code is then negative)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    # GNU time reports this child's own peak RSS (getrusage of the waited process), in KiB
+    cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args]
+    start = time.perf_counter()
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT, start_new_session=True
+    )
+    assert proc.stdout is not None and proc.stderr is not None
+    first = None
+    chunks = []
+    for line in proc.stdout:
+        if first is None:
+            first = time.perf_counter() - start
+        chunks.append(line)
+        if limit is not None and time.perf_counter() - start > limit:
+            os.killpg(proc.pid, signal.SIGINT)  # our own session: qcpp says "interrupted", GNU time still reports
+            break
+    err = proc.stderr.read()
+    code = proc.wait()
+    wall = time.perf_counter() - start
+    *err_lines, rss = err.rstrip("\n").split("\n") if err.strip() else ["", "0"]
+    err_lines = [line for line in err_lines if not line.startswith("Command ")]  # GNU time's own notes
+    rss_gb = int(rss) / 1e6 * 1.024 if rss.strip().isdigit() else float("nan")
+    return wall, rss_gb, first, code, "".join(chunks), "\n".join(err_lines)
+
+
+def main(argv: list[str]) -> int:
+    quick = "--quick" in argv
+    sweep_limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 150.0
+    rows = []
+    wall, rss, _, code, out, _ = _run(["estimate", "--grid", "30x30", "--robots", "8", "-p", "3", "--json"])
+    ok = code == 0 and wall < 5 and rss < 1
+    rows.append(("estimate 30x30 / 8 robots / p=3 --json", f"{wall:.2f} s", f"{rss:.2f} GB", "< 5 s, < 1 GB", ok))
+    args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
+    wall, rss, first, code, out, err = _run(args, limit=sweep_limit)
+    n = max(0, len(out.splitlines()) - 1)
+    ok = code == 0 and wall < 120
+    done = "done" if code == 0 else f"STOPPED after {sweep_limit:.0f} s"
+    note = f"{n:,} of 60,800 rows ({done}), first row after {first or 0:.2f} s"
+    rows.append(("estimate 2x2..40x40 / 1..8 / p=1..5 csv", f"{wall:.1f} s", f"{rss:.2f} GB", "< 120 s", ok))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "big.toml"
+        save_scenario(default_scenario(40, 40, 8), path)
+        wall, rss, _, code, out, err = _run(["compile", str(path), "-p", "5", "--lowered", "--qasm", f"{tmp}/o.qasm"])
+    lines = err.strip().splitlines()
+    ok = code == 2 and wall < 10 and len(lines) == 1
+    rows.append(("compile 40x40 / 8 robots / p=5 (refused)", f"{wall:.2f} s", f"{rss:.2f} GB", "< 10 s, exit 2, 1 line",
+                 ok))  # fmt: skip
+    refusal = lines[0] if lines else ""
+    t0 = time.perf_counter()
+    cases = list(crosscheck_cases(full=not quick))
+    with ProcessPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        mismatches = [m for found in pool.map(crosscheck, cases, chunksize=4) for m in found]
+    check_s = time.perf_counter() - t0
+    rows.append(
+        (f"gadget counts == compiled counts ({len(cases)} cases)", f"{check_s:.0f} s", "",
+         "0 mismatches", not mismatches)
+    )  # fmt: skip
+    print("| check | wall | peak RSS | goal | met |")
+    print("|---|---:|---:|---|---|")
+    for name, w, m, goal, met in rows:
+        print(f"| {name} | {w} | {m} | {goal} | {'yes' if met else 'NO'} |")
+    print()
+    print(f"sweep: {note}")
+    print(f"refusal: {refusal}")
+    print(f"cross-check: {len(mismatches)} mismatches over {len(cases)} cases" + ("" if not quick else " (--quick)"))
+    for m in mismatches[:10]:
+        print("  " + m)
+    print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))

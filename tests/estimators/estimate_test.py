@@ -1,0 +1,88 @@
+"""Counts summed from the gadgets equal the counts of the compiled circuit; depth is exact or a true bound."""
+
+from __future__ import annotations
+
+import pytest
+
+from circuitgen.cost import Cost
+from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.qaoa import qaoa_circuit
+from estimators.counts import count
+from estimators.crosscheck import Case, crosscheck, crosscheck_cases, with_obstacles
+from estimators.depth import Depth, depths
+from estimators.estimate import (
+    EstimateOptions,
+    PlanOptions,
+    Point,
+    depth_bound,
+    estimate_point,
+    exact_depth,
+    layer_costs,
+    registers_for,
+)
+from gridcover.errors import ScenarioError
+from gridcover.presets import default_scenario
+
+
+@pytest.mark.parametrize("case", list(crosscheck_cases()), ids=lambda c: c.label)
+def test_gadget_counts_equal_compiled_counts_sample(case: Case) -> None:
+    assert crosscheck(case) == []
+
+
+FULL = list(crosscheck_cases(full=True))
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("part", range(8))
+def test_gadget_counts_equal_compiled_counts_everywhere(part: int) -> None:
+    assert len(FULL) > 500
+    mismatches = [m for c in FULL[part::8] for m in crosscheck(c)]
+    assert mismatches == []
+
+
+def test_p_layers_cost_state_preparation_plus_p_times_a_layer() -> None:
+    s = default_scenario(3, 4, 2)
+    lc = layer_costs(s, PlanOptions())
+    for p in (0, 1, 3):
+        circ = qaoa_circuit(s, p)
+        assert lc.cost(p) == Cost.count(lower(circ).gates)
+        assert lc.logical_cost(p) == Cost.count(lower(circ, LOGICAL_BASIS).gates)
+        assert dict(registers_for(s, p)) == {r.name: r.size for r in lower(circ).registers}
+
+
+def test_depth_modes() -> None:
+    s = default_scenario(3, 3, 2)
+    rc = count(lower(qaoa_circuit(s, 2)))
+    exact = estimate_point(Point(3, 3, 2, 2), EstimateOptions(depth="exact")).depth
+    assert exact == Depth(rc.depth, rc.two_qubit_depth, exact.rotation_depth, "exact")
+    auto_small = estimate_point(Point(3, 3, 2, 2)).depth
+    assert auto_small == exact
+    auto_big = estimate_point(Point(3, 3, 2, 2), EstimateOptions(depth_budget=10)).depth
+    bound = estimate_point(Point(3, 3, 2, 2), EstimateOptions(depth="bound")).depth
+    assert auto_big == bound and bound.kind == "bound"
+    assert bound.depth >= exact.depth and bound.two_qubit_depth >= exact.two_qubit_depth
+    assert bound.rotation_depth >= exact.rotation_depth
+    assert estimate_point(Point(3, 3, 2, 2), EstimateOptions(depth="none")).depth is None
+
+
+@pytest.mark.parametrize("rows, cols, robots, p", [(2, 2, 1, 1), (3, 3, 1, 3), (3, 4, 3, 2), (4, 4, 2, 1)])
+def test_depth_bound_is_an_upper_bound(rows: int, cols: int, robots: int, p: int) -> None:
+    s = default_scenario(rows, cols, robots)
+    b, e = depth_bound(s, p), exact_depth(s, p)
+    assert (b.depth, b.two_qubit_depth, b.rotation_depth) >= (0, 0, 0)
+    assert b.depth >= e.depth and b.two_qubit_depth >= e.two_qubit_depth and b.rotation_depth >= e.rotation_depth
+
+
+def test_obstacle_scenario_and_rotation_depth_against_a_direct_count() -> None:
+    s = with_obstacles(default_scenario(4, 4, 2), "hard")
+    assert s is not None and s.obstacles
+    est = estimate_point(Point.from_scenario(s, 1))
+    low = lower(qaoa_circuit(s, 1))
+    assert est.depth == depths(low.gates, low.num_qubits)
+    rz_only = [g for g in low.gates if g[0] == "rz"]
+    assert 0 < est.depth.rotation_depth <= len(rz_only)
+
+
+def test_too_many_robots_for_the_grid() -> None:
+    with pytest.raises(ScenarioError):
+        estimate_point(Point(2, 2, 5, 1))

@@ -1,0 +1,82 @@
+"""``qcpp compile``: the size guard (predicted from the plan, refused in one line with exit 2, --max-gates / --force)
+and streamed OpenQASM (the same file as writing the whole circuit)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from circuitgen.compile import compile_scenario, parse_bindings
+from circuitgen.lowering import lower
+from circuitgen.qaoa import qaoa_circuit
+from circuitgen.qasm import to_qasm2, to_qasm3
+from estimators.guard import BYTES_PER_GATE, predict_size
+from gridcover.presets import default_scenario
+from gridcover.scenario import load_scenario, save_scenario
+from qcpp.cli import app
+
+EXAMPLE = "examples/paper_3x3.toml"
+
+
+def test_prediction_is_the_lowered_gate_count() -> None:
+    for rows, cols, robots, p in [(3, 3, 1, 2), (2, 4, 5, 1), (4, 3, 2, 3)]:
+        s = default_scenario(rows, cols, robots)
+        size = predict_size(s, p)
+        low = lower(qaoa_circuit(s, p))
+        assert (size.gates, size.qubits) == (len(low), low.num_qubits)
+        assert size.bytes == size.gates * BYTES_PER_GATE
+
+
+def test_over_the_limit_is_refused_in_one_line(tmp_path: Path) -> None:
+    out = tmp_path / "c.qasm"
+    gates = predict_size(load_scenario(EXAMPLE), 2).gates
+    args = ["compile", EXAMPLE, "-p", "2", "--lowered", "--max-gates", "100", "--qasm", str(out)]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2 and res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: refusing to build")
+    assert f"{gates:,} gates" in lines[0] and "--max-gates" in lines[0] and "--force" in lines[0]
+    assert not out.exists()
+
+
+def test_force_and_a_higher_limit_build(tmp_path: Path) -> None:
+    for extra in (["--max-gates", "100", "--force"], ["--max-gates", "10000000"]):
+        res = CliRunner().invoke(app, ["compile", EXAMPLE, "-p", "1", *extra, "--json"])
+        assert res.exit_code == 0, res.output
+
+
+def test_the_guard_runs_before_building(tmp_path: Path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "big.toml"
+    save_scenario(default_scenario(6, 6, 3), path)
+
+    def boom(*args, **kwargs):  # type: ignore[no-untyped-def]
+        raise AssertionError("the circuit was built")
+
+    monkeypatch.setattr("qcpp.commands.compile.compile_scenario", boom)
+    res = CliRunner().invoke(app, ["compile", str(path), "-p", "5", "--max-gates", "1000"])
+    assert res.exit_code == 2 and "refusing to build" in res.stderr
+
+
+@pytest.mark.parametrize("lowered", [True, False])
+def test_streamed_qasm_equals_the_whole_circuit_written_at_once(tmp_path: Path, lowered: bool) -> None:
+    out = tmp_path / "s.qasm"
+    flags = ["--lowered"] if lowered else []
+    for version, binds in (("3", []), ("2", ["--bind", "gamma_0=0.1", "beta_0=0.2", "gamma_1=0.3", "beta_1=0.4"])):
+        args = ["compile", EXAMPLE, "-p", "2", *flags, "--qasm", str(out), "--qasm-version", version, *binds, "--json"]
+        res = CliRunner().invoke(app, args)
+        assert res.exit_code == 0, res.output
+        bindings = parse_bindings(binds[1:])
+        whole = compile_scenario(load_scenario(EXAMPLE), 2, lowered=lowered, bindings=bindings).circuit
+        assert out.read_text() == (to_qasm3(whole) if version == "3" else to_qasm2(whole))
+        summary = json.loads(res.stdout)
+        assert summary["gates"] == dict(sorted(whole.count_ops().items()))
+        assert summary["symbols"] == list(whole.symbols) and summary["qubits"] == whole.num_qubits
+
+
+def test_streamed_compile_rejects_unknown_bindings(tmp_path: Path) -> None:
+    out = tmp_path / "s.qasm"
+    res = CliRunner().invoke(app, ["compile", EXAMPLE, "-p", "1", "--qasm", str(out), "--bind", "gamma_7=1"])
+    assert res.exit_code == 2 and "gamma_7" in res.stderr and not out.exists()
