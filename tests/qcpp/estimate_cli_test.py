@@ -200,3 +200,16 @@ def test_bad_input_exits_2_with_one_line(run, args: tuple[str, ...]) -> None:  #
     assert res.stdout == ""
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ")
+
+
+def test_ancilla_budget_trades_ancillas_for_cnots_and_matches_the_compiled_circuit(run) -> None:  # type: ignore[no-untyped-def]
+    free = json.loads(run("--grid", "5x5", "--robots", "2", "--json").stdout)[0]
+    res = run("--grid", "5x5", "--robots", "2", "--ancilla-budget", "40", "--json")
+    assert res.exit_code == 0, res.output
+    tight = json.loads(res.stdout)[0]
+    assert tight["ancillas"] <= 40 < free["ancillas"]
+    assert tight["cx"] > free["cx"]
+    rc = count(lower(qaoa_circuit(default_scenario(5, 5, 2), 1, ancilla_budget=40)))
+    assert (tight["qubits"], tight["cx"], tight["t"]) == (rc.qubits, rc.cx, rc.t)
+    bad = run("--grid", "3x3", "--ancilla-budget", "-1")
+    assert bad.exit_code == 2

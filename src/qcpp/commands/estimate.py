@@ -74,6 +74,10 @@ def estimate(
         str, typer.Option("--phase", help="Phase separator: feasible (default) or whole-space (the Ising form).")
     ] = "feasible",
     optimize: Annotated[str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth.")] = "cx",
+    ancilla_budget: Annotated[
+        int | None,
+        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+    ] = None,
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
     fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
@@ -152,6 +156,7 @@ def estimate(
         (target not in ("nisq", "ft"), f"bad --target {target!r}: expected nisq or ft"),
         (phase not in ("feasible", "whole-space"), f"bad --phase {phase!r}: expected feasible or whole-space"),
         (optimize not in ("cx", "depth"), f"bad --optimize {optimize!r}: expected cx or depth"),
+        (ancilla_budget is not None and ancilla_budget < 0, f"bad --ancilla-budget {ancilla_budget}: must be >= 0"),
         (jobs is not None and jobs < 1, f"bad --jobs {jobs}: must be at least 1"),
         (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
         (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
@@ -178,7 +183,7 @@ def estimate(
             err=True,
         )
     options = EstimateOptions(
-        plan=PlanOptions(rule=rule, target=target, phase=phase, optimize=optimize),
+        plan=PlanOptions(rule=rule, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget),
         epsilon=epsilon,
         toffoli_t=toffoli_t,
         depth=depth,  # type: ignore[arg-type]
