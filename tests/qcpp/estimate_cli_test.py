@@ -213,3 +213,10 @@ def test_ancilla_budget_trades_ancillas_for_cnots_and_matches_the_compiled_circu
     assert (tight["qubits"], tight["cx"], tight["t"]) == (rc.qubits, rc.cx, rc.t)
     bad = run("--grid", "3x3", "--ancilla-budget", "-1")
     assert bad.exit_code == 2
+
+
+def test_explain_names_the_chosen_phase_construction_and_its_alternatives(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "5x5", "--robots", "2", "--explain", "--json")
+    assert res.exit_code == 0, res.output
+    json.loads(res.stdout)  # stdout stays machine-readable
+    assert "balance" in res.stderr and "arithmetic" in res.stderr and "couplings:" in res.stderr

@@ -21,8 +21,9 @@ from __future__ import annotations
 import signal
 import sys
 import threading
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -78,6 +79,12 @@ def estimate(
         int | None,
         typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
     ] = None,
+    explain: Annotated[
+        bool,
+        typer.Option(
+            "--explain", help="Also show, per scenario, which phase construction each term group got and why (stderr)."
+        ),
+    ] = False,
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
     fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
@@ -213,6 +220,35 @@ def estimate(
         )
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
+    if explain:
+        _explain(points.points, options.plan)
+
+
+def _explain(points: Sequence[Any], plan: Any) -> None:
+    """The phase plan's choices per distinct scenario, as tables on standard error."""
+    from rich.console import Console
+
+    from circuitgen.phase import phase_plan
+
+    from .compile import explain_table
+
+    console = Console(stderr=True)
+    seen: set[object] = set()
+    for point in points:
+        s = point.build_scenario()
+        if s in seen:
+            continue
+        seen.add(s)
+        pp = phase_plan(
+            s,
+            target=plan.target,  # type: ignore[arg-type]
+            representation=plan.phase,  # type: ignore[arg-type]
+            optimize=plan.optimize,  # type: ignore[arg-type]
+            ancilla_budget=plan.ancilla_budget,
+        )
+        table = explain_table(pp.explain())
+        table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
+        console.print(table)
 
 
 def _write_whole(text: str) -> None:
