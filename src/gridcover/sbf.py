@@ -178,16 +178,29 @@ def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule =
 @lru_cache(maxsize=65536)
 def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -> SbfLogic:
     plaq = scenario.grid.plaquettes[pindex]
+    local = _neighbourhood(scenario, robot, plaq)
+    if local is None:
+        return SbfLogic(rule, robot, pindex, 1, 0, ())
+    endpoints, outer, diagonal = local
+    if rule == "paper":
+        return _paper_logic(robot, pindex, plaq.edges, outer)
+    return _exact_logic(robot, pindex, plaq.edges, outer, endpoints, diagonal)
+
+
+def _neighbourhood(
+    scenario: Scenario, robot: int, plaq: Plaquette
+) -> tuple[tuple[bool, ...], tuple[tuple[int, ...], ...], bool] | None:
+    """What a rule reads of the scenario at ``plaq``: which corners are the robot's endpoints, each corner's
+    variable outer edges, whether start and goal are diagonal corners; ``None`` when a plaquette edge is not a
+    variable (no flip can be allowed)."""
     vmask = scenario.variable_mask
     if any(not (vmask >> e) & 1 for e in plaq.edges):
-        return SbfLogic(rule, robot, pindex, 1, 0, ())
+        return None
     rb = scenario.robots[robot]
     endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
     outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
-    if rule == "paper":
-        return _paper_logic(robot, pindex, plaq.edges, outer)
     diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
-    return _exact_logic(robot, pindex, plaq.edges, outer, endpoints, diagonal)
+    return endpoints, outer, diagonal
 
 
 def _exact_logic(
@@ -319,15 +332,11 @@ def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> 
     Returns:
         The program (``.never`` when a plaquette edge is not a variable).
     """
-    plaq = plaquette
-    vmask = scenario.variable_mask
-    if any(not (vmask >> e) & 1 for e in plaq.edges):
-        return SbfLogic("exact", robot, plaq.index, 1, 0, ())
-    rb = scenario.robots[robot]
-    endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
-    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
-    diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
-    return _direct_exact_logic(robot, plaq.index, plaq.edges, outer, endpoints, diagonal)
+    local = _neighbourhood(scenario, robot, plaquette)
+    if local is None:
+        return SbfLogic("exact", robot, plaquette.index, 1, 0, ())
+    endpoints, outer, diagonal = local
+    return _direct_exact_logic(robot, plaquette.index, plaquette.edges, outer, endpoints, diagonal)
 
 
 def exact_rule_value(
