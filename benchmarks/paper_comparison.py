@@ -59,7 +59,7 @@ def main(argv: list[str]) -> int:
         )
     print()
     print("## Phase separator (one layer)")
-    print("| grid | robots | re | re(re+1) paper CNOT | nonzero ZZ | our CNOT = 2 ZZ | pairs i<j | ZZ share |")
+    print("| grid | robots | re | re(re+1) paper CNOT | nonzero ZZ | our CNOT (feasible form) | pairs i<j | ZZ share |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for res in results:
         pt = res.point
