@@ -110,7 +110,8 @@ class QaoaPlan:
         return tuple(out)
 
     @cached_property
-    def _prep(self) -> StatePrep:
+    def state_prep(self) -> StatePrep:
+        """The initial-state gadget."""
         s = self.scenario
         ancilla = s.num_variables if self.initial == "representatives" else None
         return StatePrep.build(s, self.initial, self.rule, ancilla)
@@ -153,7 +154,7 @@ class QaoaPlan:
     def work_width(self) -> int:
         """``work`` ancillas the lowering adds for multi-controlled X with three or more controls."""
         mixer = max((len(sl) - 3 for m in self._mixers for name, sl in m.plan.compute if name == "mcx"), default=0)
-        prep = max((len(g.qubits) - 3 for g in self._prep.gates if g.name == "mcx"), default=0)
+        prep = max((len(g.qubits) - 3 for g in self.state_prep.gates if g.name == "mcx"), default=0)
         return max(mixer if self.p else 0, prep, 0)
 
     @property
@@ -175,7 +176,7 @@ class QaoaPlan:
     def sections(self) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
         separator and one section per partial mixer (robot-major, plaquettes row-major)."""
-        yield "initial_state", self._prep
+        yield "initial_state", self.state_prep
         for k in range(self.p):
             assert self.phase_plan is not None
             for g in self.phase_plan.gadgets(f"gamma_{k}", 0, self.scenario.num_variables):
@@ -187,7 +188,7 @@ class QaoaPlan:
     def kinds(self) -> dict[str, Counter[Hashable]]:
         """Gadget kinds and multiplicities of one layer's parts: ``initial_state``, ``phase``, ``mixer``."""
         out: dict[str, Counter[Hashable]] = {
-            "initial_state": Counter([self._prep.kind]),
+            "initial_state": Counter([self.state_prep.kind]),
             "phase": Counter(g.kind for g in self._phase_gadgets),
             "mixer": Counter(m.kind for m in self._mixers),
         }
@@ -203,7 +204,7 @@ class QaoaPlan:
                 by_kind[m.kind] = of(m)
         mixer = Cost.sum(by_kind[m.kind] for m in self._mixers)
         phase = Cost.sum(of(g) for g in self._phase_gadgets)
-        return {"initial_state": of(self._prep), "phase": phase, "mixer": mixer}
+        return {"initial_state": of(self.state_prep), "phase": phase, "mixer": mixer}
 
     def cost_by_section(self, logical: bool = False) -> dict[str, Cost]:
         """Cost of the state preparation and of ONE layer's phase separator and mixer (keys ``initial_state``,

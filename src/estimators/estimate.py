@@ -286,7 +286,7 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
         prep_cost = prep_logical = Cost.of(x=steps)
         prep_work = 0
     else:
-        prep = plan1._prep
+        prep = plan1.state_prep
         prep_cost, prep_logical, prep_work = prep.cost(), prep.logical_cost(), _prep_work(prep)
     return LayerCosts(
         registers=_registers(
@@ -314,7 +314,7 @@ def _registers0(scenario: Scenario, options: PlanOptions) -> tuple[tuple[str, in
         return _layout(options.plan(scenario, 0))
     mixer = mixer_layer(scenario, options.rule, options.target)
     # p = 0: no phase separator (its ancillas are not needed), the partial mixers still size the logic register
-    return _registers(scenario, options, mixer.logic_width, _prep_work(options.plan(scenario, 0)._prep))
+    return _registers(scenario, options, mixer.logic_width, _prep_work(options.plan(scenario, 0).state_prep))
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
@@ -424,7 +424,7 @@ def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth
     regs = tuple(Register(name, size) for name, size in layer_costs(scenario, options).registers)
     cache = _DEPTH_BY_KIND
     if not scenario.obstacles:
-        init = _gadget_depth("initial_state", plan._prep, regs, cache)
+        init = _gadget_depth("initial_state", plan.state_prep, regs, cache)
         layer = Depth()
         for gadget in plan.phase_plan.gadgets("gamma_0", 0, scenario.num_variables):
             layer = layer + _gadget_depth("phase_0", gadget, regs, cache)
