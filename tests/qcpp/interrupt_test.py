@@ -69,7 +69,8 @@ def test_interrupting_a_single_process_command(tmp_path: Path) -> None:
     proc = start(args, {})
     wait_until_catching_sigterm(proc)
     # into the computation (the sweep runs for minutes). Earlier, under load, the signal can land inside a C
-    # extension's import, which Python reports as "ImportError: initialization failed" (see the helper's report).
+    # extension's import, which Python reports as "ImportError: initialization failed" (seen once under heavy load;
+    # an open item in the closing note of the session that wrote this test).
     time.sleep(3.0)
     proc.send_signal(signal.SIGINT)
     try:
