@@ -119,6 +119,37 @@ def test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes(tmp_
     np.testing.assert_allclose(tc.amplitudes(states, open_qubits=opened), dense[states], atol=1e-10)
 
 
+def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_not(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import numpy as np
+
+    import simulate.tensor as tensor
+    from circuitgen.circuit import Circuit, Section
+    from circuitgen.gates import ccx, cx, h, rz
+    from simulate.statevector import simulate_statevector
+
+    monkeypatch.setattr(tensor, "MAX_BLOCK_DATA_QUBITS", 1)  # every ancilla block here is "too wide" for a matrix
+    regs = [("d", 3), ("a", 1)]
+    mix = Section("h", [h(0), h(1), h(2)])
+    # compute x0 AND x1 into the ancilla, phase it, uncompute: diagonal on the data, ancilla clean
+    phase = Section("p", [ccx(0, 1, 3), rz(0.7, 3), cx(3, 2), rz(0.3, 2), cx(3, 2), ccx(0, 1, 3), rz(0.2, 0)])
+    c = Circuit(regs, [mix, phase, mix, phase, Section("t", [h(1), rz(0.4, 2)])])
+    ops = tensor.collapse_ancilla_blocks(c, [3])
+    diagonals = [op for _, op in ops if isinstance(op, np.ndarray)]
+    assert len(diagonals) == 2 and all(op.shape == (8,) for op in diagonals)
+    dense = simulate_statevector(c)
+    tc = tensor.TensorCircuit(c, cache_dir=tmp_path, ancillas=[3])
+    np.testing.assert_allclose(tc.amplitudes(range(16)), dense, atol=1e-12)
+    assert tc.block_leak is not None and tc.block_leak < 1e-12
+    # a clean-ancilla Toffoli on the data is unitary but not diagonal: too wide for a matrix, so not collapsed
+    toffoli = Circuit(regs, [mix, Section("t", [ccx(0, 1, 3), cx(3, 2), ccx(0, 1, 3)])])
+    assert tensor.collapse_ancilla_blocks(toffoli, [3]) is None
+    monkeypatch.setattr(tensor, "MAX_BLOCK_DATA_QUBITS", 11)
+    [_, _, _, (qubits, op)] = tensor.collapse_ancilla_blocks(toffoli, [3])
+    assert qubits == (0, 1, 2) and op.shape == (8, 8)
+
+
 def test_a_block_that_leaves_an_ancilla_dirty_is_not_collapsed() -> None:
     from circuitgen.circuit import Circuit, Section
     from circuitgen.gates import ccx, h
