@@ -1,11 +1,12 @@
-"""Tensor-network validation speed (quimb + cotengra) of compiled, lowered QAOA circuits at 15-38 qubits.
+"""Tensor-network validation speed (quimb + cotengra) of compiled, lowered QAOA circuits at 15-50 qubits.
 
 Run: ``python benchmarks/tensor_speed.py``. Each row is what ``qcpp validate SCENARIO -p P --backend tensor``
 does with its defaults (seed 0, at most 256 contracted amplitudes, MPS up to bond 32), timed end to end in this
 process: qubits, gates, seconds of each check (MPS ancilla probability and amplitudes, exact contraction with the
-partial mixers collapsed into data operators, path search included) and the largest amplitude error against the
-subspace simulator. Paths are cached in a fresh temporary directory, so the first row of each scenario includes
-every path search; the ``(cached)`` row repeats a case with the paths found (a second ``qcpp validate`` run).
+partial mixers collapsed into data operators and the phase arithmetic into diagonals, path search included) and
+the largest amplitude error against the subspace simulator. Paths are cached in a fresh temporary directory, so
+the first row of each scenario includes every path search; the ``(cached)`` row repeats a case with the paths
+found (a second ``qcpp validate`` run).
 """
 
 from __future__ import annotations

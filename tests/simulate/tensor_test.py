@@ -1,4 +1,4 @@
-"""Tensor-network validation of compiled, lowered QAOA circuits at 15-38 qubits (quimb + cotengra), slicing on dask.
+"""Tensor-network validation of compiled, lowered QAOA circuits at 15-50 qubits (quimb + cotengra), slicing on dask.
 
 Everything that uses quimb lives in this one module: numba compiles quimb's kernels once per process.
 Each case compiles the lowered circuit, runs it from |0...0> at seeded random angles and checks, with two
@@ -31,7 +31,7 @@ EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
     [
         (3, 3, 1, 1, None),  # 18 qubits: every feasible amplitude
         (3, 3, 2, 1, 16),  # 30 qubits
-        pytest.param(3, 4, 2, 1, None, marks=pytest.mark.heavy),  # 38 qubits: all 1,444 amplitudes, both methods
+        pytest.param(3, 4, 2, 1, None, marks=pytest.mark.heavy),  # 50 qubits: all 1,444 amplitudes, both methods
     ],
 )
 def test_compiled_circuit_matches_subspace_simulator(
