@@ -212,32 +212,28 @@ def _tidy_help(params: Sequence[Parameter]) -> None:
             param.metavar = param.name.upper()
 
 
-class QcppCommand(TyperCommand):
+class _TidyHelp:
+    """Mixin for click commands and groups: help shows flags as flags (see :func:`_tidy_help`)."""
+
+    params: list[Any]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        _tidy_help(self.params)
+
+    def get_help_option(self, ctx: Context) -> Any:
+        option = super().get_help_option(ctx)  # type: ignore[misc]
+        if option is not None:
+            _tidy_help([option])
+        return option
+
+
+class QcppCommand(_TidyHelp, TyperCommand):
     """A typer command whose help shows flags as flags."""
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        _tidy_help(self.params)
 
-    def get_help_option(self, ctx: Context) -> Any:
-        option = super().get_help_option(ctx)
-        if option is not None:
-            _tidy_help([option])
-        return option
-
-
-class QcppGroup(TyperGroup):
+class QcppGroup(_TidyHelp, TyperGroup):
     """The top-level group: one-line usage errors (exit 2) and ``interrupted`` (exit 130)."""
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        _tidy_help(self.params)
-
-    def get_help_option(self, ctx: Context) -> Any:
-        option = super().get_help_option(ctx)
-        if option is not None:
-            _tidy_help([option])
-        return option
 
     def invoke(self, ctx: Context) -> Any:
         try:

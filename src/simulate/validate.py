@@ -376,11 +376,11 @@ def _tensor_checks(
     cache_dir: str | Path | None,
     dask: str | None = None,
 ) -> list[Check]:
+    from contextlib import nullcontext
+
     from simulate.tensor import dask_client
 
-    if dask is None:
-        return _tensor_checks_with(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir)
-    with dask_client(dask) as client:
+    with dask_client(dask) if dask is not None else nullcontext(None) as client:
         return _tensor_checks_with(
             scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
         )
