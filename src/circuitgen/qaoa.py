@@ -46,7 +46,7 @@ from .circuit import Circuit, Register, Section
 from .cost import Cost, Target
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
-from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
+from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
 from .lowering import WORK_REGISTER
 from .phase import Optimize, PhasePlan, Representation, phase_plan
 
@@ -153,7 +153,7 @@ class QaoaPlan:
     @cached_property
     def work_width(self) -> int:
         """``work`` ancillas the lowering adds for multi-controlled X with three or more controls."""
-        mixer = max((len(sl) - 3 for m in self._mixers for name, sl in m.plan.compute if name == "mcx"), default=0)
+        mixer = mixer_work_need(self._mixers)
         prep = max((len(g.qubits) - 3 for g in self.state_prep.gates if g.name == "mcx"), default=0)
         return max(mixer if self.p else 0, prep, 0)
 

@@ -36,7 +36,7 @@ Example:
 from __future__ import annotations
 
 import heapq
-from collections.abc import Hashable, Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -126,14 +126,14 @@ class MixerPlan:
     rotation: tuple[str, tuple[Slot, ...]]
     num_temps: int
 
-    def _sum(self, leaf: object) -> Cost:
-        fn = leaf  # leaf_cost or leaf_logical_cost
-        half = Cost.sum(fn(name, len(slots) - 1) if name == "mcx" else fn(name) for name, slots in self.compute)  # type: ignore[operator]
-        mirror = Cost.sum(
-            fn(name, len(slots) - 1) if name == "mcx" else fn("and_dg" if name == "and" else name)  # type: ignore[operator]
-            for name, slots in self.compute
-        )
-        return half + mirror + fn(self.rotation[0])  # type: ignore[operator]
+    def _sum(self, leaf: Callable[[str, int], Cost]) -> Cost:
+        """Compute leaves, their mirrors (an AND is undone by ``and_dg``, everything else by itself) and the
+        rotation, priced by ``leaf`` (:func:`leaf_cost` or :func:`leaf_logical_cost`)."""
+        total = leaf(self.rotation[0], 0)
+        for name, slots in self.compute:
+            k = len(slots) - 1 if name == "mcx" else 0
+            total += leaf(name, k) + leaf("and_dg" if name == "and" else name, k)
+        return total
 
     def cost(self) -> Cost:
         """Lowered cost: the compute leaves, their mirrors and the rotation."""
@@ -143,8 +143,6 @@ class MixerPlan:
         """The same with ANDs and Toffolis kept whole."""
         return self._sum(leaf_logical_cost)
 
-
-_ROTATION_READY_CACHE: dict[tuple[int, ...], int | None] = {}
 
 
 def _carrier(forms: tuple[int, ...]) -> int | None:
