@@ -45,6 +45,7 @@ from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 
 from .depth import Depth, depths
+from .depth_compose import LayeredDepth
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .mixer_count import mixer_layer
 from .physical import (
@@ -382,10 +383,30 @@ def _compiled(scenario: Scenario, p: int, options: PlanOptions) -> Circuit:
     return Circuit(registers, list(plan_sections(plan, registers, lowered=True)))
 
 
-def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
-    """Depths of the compiled, lowered circuit (builds it: mind its size)."""
+def compiled_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
+    """Depths of the compiled, lowered circuit (builds it: mind its size; the tests' reference)."""
     circ = _compiled(scenario, p, options)
     return depths(circ.gates, circ.num_qubits)
+
+
+@lru_cache(maxsize=8)
+def layered_depth(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayeredDepth:
+    """The scenario's :class:`~estimators.depth_compose.LayeredDepth` (cached: consecutive points of a sweep,
+    ``p = 1, 2, ...`` of one scenario, carry one frontier)."""
+    plan = _plan1(scenario, options)
+    return LayeredDepth.from_sections(plan.sections(), tuple(plan.registers))
+
+
+def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
+    """Exact depths of the lowered circuit with ``p`` layers, composed from per-gadget transfer profiles
+    (:mod:`estimators.depth_compose`; equal to :func:`compiled_depth`, without building the circuit).
+
+    >>> from gridcover.presets import default_scenario
+    >>> s = default_scenario(3, 3, 1)
+    >>> exact_depth(s, 2) == compiled_depth(s, 2)
+    True
+    """
+    return layered_depth(scenario, options).depth(p)
 
 
 def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache: dict[Hashable, Depth]) -> Depth:

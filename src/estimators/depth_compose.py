@@ -1,0 +1,347 @@
+"""Exact ASAP depths of a circuit built from gadgets, without building the circuit: max-plus transfer profiles.
+
+ASAP layering (:func:`estimators.depth.depths`) is a longest-path computation. Every gate sets the level of its
+qubits to ``max(levels of its qubits) + c`` (``c`` = 1 for every gate in ``depth``; 1 for two-qubit gates and 0
+for the others in ``two_qubit_depth``; 0 for multi-qubit gates in ``rotation_depth``, whose only adding gate is a
+one-qubit ``rz``), and a one-qubit gate adds its ``c`` to its qubit. Both are max-plus linear maps, so a whole
+gadget is one: with ``f`` the levels of its ``k`` qubits before it, the levels after it are
+
+    ``f'[j] = max_i (f[i] + D[i][j])``,
+
+``D[i][j]`` the most levels on a path from the gadget's input on its qubit ``i`` to its output on qubit ``j``
+(``-inf`` if there is no path; ``D[j][j] >= 0``: a qubit always reaches itself). Composing these maps section by
+section, starting from zeros, gives exactly the levels :func:`~estimators.depth.depths` computes on the
+concatenated lowered gates, and the depth is the largest level. Lowering never crosses a section boundary
+(``docs/architecture.md``), so each gadget is lowered alone, as the compiler does.
+
+A gadget's ``D`` (:func:`transfer_profile`, the three depths stacked into one block-diagonal matrix) is computed
+once from its lowered gates and cached:
+
+* *anchored* gadgets (partial mixers, visit-bit phase gadgets; :data:`ANCHORS`) name their qubits in a fixed slot
+  order, and their kind fixes their gates up to those slots, so ``D`` is cached per kind (on slots) across every
+  scenario: a gadget costs one dictionary look-up. ``tests/estimators/depth_compose_test.py`` checks the
+  premise on every gadget of many scenarios (the cached profile equals the gadget's own);
+* any other gadget (state preparation, RZ/RZZ and arithmetic phase gadgets, gadget kinds added later) is emitted
+  and lowered once per scenario: its ``D`` is cached per lowered structure (gates with qubits renamed by first
+  appearance) when it has at most :data:`MATRIX_QUBITS` qubits; a wider gadget is kept as its lowered gates and
+  propagated gate by gate (:class:`GateStep`), exact as well.
+
+:class:`LayeredDepth` holds one scenario's steps (the state preparation, then one layer: layers differ only in
+their angles) and carries the frontier from ``p`` to ``p + 1``, so a sweep over ``p = 1..P`` propagates ``P``
+layers in all. Cost: about 3-4 us per gadget and layer (numpy on a ``3k x 3k`` matrix, ``k`` the gadget's
+qubits), plus the emission and lowering of the non-anchored gadgets once per scenario.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from estimators.estimate import DEFAULT_PLAN, compiled_depth, layered_depth
+    >>> s = default_scenario(3, 3, 2)
+    >>> layered_depth(s, DEFAULT_PLAN).depth(2) == compiled_depth(s, 2)
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable, Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from circuitgen.circuit import Circuit, Register, Section
+from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
+from circuitgen.gadgets.phase_visits import VisitPhase
+from circuitgen.lowering import WORK_REGISTER, lower
+
+from .depth import Depth
+
+__all__ = [
+    "ANCHORS",
+    "MATRIX_QUBITS",
+    "NEG",
+    "GateStep",
+    "LayeredDepth",
+    "MatrixStep",
+    "anchored_profile",
+    "gadget_step",
+    "lowered_gates",
+    "transfer_profile",
+]
+
+NEG = -(1 << 40)
+"""``-inf`` of the integer profiles: no path (far below any sum of real levels, far above int64 overflow)."""
+MATRIX_QUBITS = 48
+"""Widest gadget kept as a transfer matrix; wider ones are propagated gate by gate."""
+
+_ROT = "rz"  # the only gate that adds a rotation level (lowered circuits: an arbitrary rotation is an rz)
+
+
+def lowered_gates(gadget: Any, registers: Sequence[Register], name: str = "g") -> list[tuple[Any, ...]]:
+    """A gadget's lowered gates: each block (``emit_blocks()`` if it has them, else ``emit()``) its own section,
+    lowered with the circuit's ``registers`` (``work`` included), as the compiler lowers it."""
+    blocks = getattr(gadget, "emit_blocks", None)
+    secs = [Section(name, tuple(b)) for b in (blocks() if blocks is not None else [gadget.emit()])]
+    return list(lower(Circuit(registers, secs)).gates)
+
+
+def transfer_profile(gates: Iterable[tuple[Any, ...]], qubits: Sequence[int]) -> np.ndarray:
+    """The ``(3k, 3k)`` max-plus transfer matrix of ``gates`` on ``qubits`` (in that order).
+
+    Block ``t`` (rows and columns ``t*k .. t*k + k - 1``) is depth ``t`` of :class:`~estimators.depth.Depth`
+    (all gates, two-qubit gates, rotations); ``M[t*k + i][t*k + j]`` is the most levels on a path from qubit
+    ``i``'s input to qubit ``j``'s output, :data:`NEG` if none (and off the diagonal blocks).
+
+    Args:
+        gates: lowered gate tuples ``(name, qubits, ...)``, every qubit in ``qubits``.
+        qubits: the gadget's qubits; position ``i`` is row/column ``i`` of each block.
+
+    Returns:
+        The matrix (``int64``).
+
+    >>> m = transfer_profile([("h", (5,)), ("cx", (5, 7)), ("rz", (7,), (0.1,))], [5, 7])
+    >>> m[:2, :2].tolist()  # all gates: h, cx on qubit 5; h, cx, rz from 5 to 7; cx, rz from 7 to 7
+    [[2, 3], [1, 2]]
+    """
+    pos = {q: i for i, q in enumerate(qubits)}
+    k = len(qubits)
+    # lv[t, j, i]: depth t's levels from each input i to qubit j's current output
+    lv = np.full((3, k, k), NEG, dtype=np.int64)
+    for t in range(3):
+        np.fill_diagonal(lv[t], 0)
+    one = np.array([1, 0, 0], dtype=np.int64)[:, None]
+    one_rz = np.array([1, 0, 1], dtype=np.int64)[:, None]
+    two = np.array([1, 1, 0], dtype=np.int64)[:, None]
+    for g in gates:
+        qs = [pos[q] for q in g[1]]
+        if len(qs) == 1:
+            lv[:, qs[0]] += one_rz if g[0] == _ROT else one
+            continue
+        lv[:, qs] = (lv[:, qs].max(axis=1) + (two if len(qs) == 2 else one))[:, None, :]
+    out = np.full((3 * k, 3 * k), NEG, dtype=np.int64)
+    for t in range(3):
+        out[t * k : (t + 1) * k, t * k : (t + 1) * k] = lv[t].T  # D[i][j] = lv[j][i]
+    out[out < NEG // 2] = NEG  # unreachable stays NEG however many gates added to it
+    return out
+
+
+# --- anchors: gadgets whose kind fixes their gates up to a slot order of their qubits -------------------------
+def _mixer_anchors(g: ParityPartialMixer | McxPartialMixer) -> tuple[Hashable, tuple[int, ...]]:
+    temps = range(g.logic_offset, g.logic_offset + g.num_temps)
+    return (type(g).__name__, g.kind), (*g.plaquette_qubits, *g.outer_qubits, *temps)
+
+
+def _visit_anchors(g: VisitPhase) -> tuple[Hashable, tuple[int, ...]]:
+    # a zero coefficient emits no phase (its cost differs), so it is part of the key
+    return ("VisitPhase", g.kind, g.coefficient != 0), (*(q for v in g.visitors for q in v), *g.ancillas)
+
+
+ANCHORS: dict[type, Callable[[Any], tuple[Hashable, tuple[int, ...]]]] = {
+    ParityPartialMixer: _mixer_anchors,
+    McxPartialMixer: _mixer_anchors,
+    VisitPhase: _visit_anchors,
+}
+"""Per gadget class: ``gadget -> (key, slot qubits)``. Gadgets with equal keys have equal lowered gates once
+their slot qubits are renamed by slot (plus ``work`` ancillas, at the same offsets of the ``work`` register)."""
+
+
+@dataclass(frozen=True, eq=False)
+class MatrixStep:
+    """A gadget as a transfer matrix on its qubits.
+
+    Attributes:
+        index: positions in the flat frontier (``3n``: the three depths of ``n`` qubits) of the matrix's rows.
+        matrix: the :func:`transfer_profile`.
+    """
+
+    index: np.ndarray
+    matrix: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class GateStep:
+    """A wide gadget as its lowered gates: ``(qubits, is_rz)`` per gate."""
+
+    gates: tuple[tuple[tuple[int, ...], bool], ...]
+
+
+Step = MatrixStep | GateStep
+
+_ANCHORED: dict[Hashable, tuple[np.ndarray, tuple[int, ...]] | None] = {}
+"""key -> (profile on slots + work qubits, work offsets), or ``None`` when the key cannot be anchored."""
+_BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
+_CACHE_LIMIT = 20_000
+
+
+def _remember(cache: dict, key: Hashable, value: Any) -> None:
+    if len(cache) >= _CACHE_LIMIT:
+        cache.clear()  # a bound on memory; a sweep re-derives what it needs
+    cache[key] = value
+
+
+def _work_start(registers: Sequence[Register]) -> int:
+    start = 0
+    for r in registers:
+        if r.name == WORK_REGISTER:
+            return start
+        start += r.size
+    return start
+
+
+def _index(qubits: Sequence[int], n: int) -> np.ndarray:
+    q = np.asarray(qubits, dtype=np.intp)
+    return np.concatenate([q, q + n, q + 2 * n])
+
+
+def anchored_profile(gadget: Any, registers: Sequence[Register]) -> tuple[tuple[int, ...], np.ndarray] | None:
+    """``(qubits, profile)`` of an anchored gadget from the per-kind cache (``None`` if it is not anchored).
+
+    Args:
+        gadget: any gadget.
+        registers: the circuit's registers (for the ``work`` register's position).
+
+    Returns:
+        The gadget's qubits in slot order (then its ``work`` ancillas) and the cached :func:`transfer_profile`.
+    """
+    anchors = ANCHORS.get(type(gadget))
+    if anchors is None:
+        return None
+    key, slots = anchors(gadget)
+    if len(set(slots)) != len(slots):
+        return None
+    work0 = _work_start(registers)
+    hit = _ANCHORED.get(key, False)
+    if hit is False:
+        gates = lowered_gates(gadget, registers)
+        seen = set(slots)
+        extra = sorted({q for g in gates for q in g[1] if q not in seen})
+        if any(q < work0 for q in extra):
+            hit = None  # touches a qubit outside its slots and the work register: not anchorable
+        else:
+            hit = (transfer_profile(gates, (*slots, *extra)), tuple(q - work0 for q in extra))
+        _remember(_ANCHORED, key, hit)
+    if hit is None:
+        return None
+    matrix, work = hit
+    return (*slots, *(work0 + o for o in work)), matrix
+
+
+def gadget_step(gadget: Any, registers: Sequence[Register]) -> Step:
+    """One gadget as a :class:`MatrixStep` (anchored, or at most :data:`MATRIX_QUBITS` qubits) or a
+    :class:`GateStep`.
+
+    Args:
+        gadget: any gadget (``emit()``, optionally ``emit_blocks()``).
+        registers: the circuit's registers, ``work`` included.
+
+    Returns:
+        The step.
+    """
+    n = sum(r.size for r in registers)
+    hit = anchored_profile(gadget, registers)
+    if hit is not None:
+        return MatrixStep(_index(hit[0], n), hit[1])
+    gates = lowered_gates(gadget, registers)
+    qubits = list(dict.fromkeys(q for g in gates for q in g[1]))
+    if len(qubits) > MATRIX_QUBITS:
+        return GateStep(tuple((tuple(g[1]), g[0] == _ROT) for g in gates))
+    pos = {q: i for i, q in enumerate(qubits)}
+    key = tuple((tuple(pos[q] for q in g[1]), g[0] == _ROT) for g in gates)
+    matrix = _BY_STRUCTURE.get(key)
+    if matrix is None:
+        matrix = transfer_profile(gates, qubits)
+        _remember(_BY_STRUCTURE, key, matrix)
+    return MatrixStep(_index(qubits, n), matrix)
+
+
+def _propagate(levels: np.ndarray, steps: Sequence[Step], n: int) -> None:
+    """Apply ``steps`` to the flat frontier ``levels`` (``3n``) in place."""
+    for st in steps:
+        if isinstance(st, MatrixStep):
+            idx = st.index
+            if not len(idx):
+                continue
+            levels[idx] = (levels[idx][:, None] + st.matrix).max(axis=0)
+        else:
+            _propagate_gates(levels, st, n)
+
+
+def _propagate_gates(levels: np.ndarray, step: GateStep, n: int) -> None:
+    """Gate by gate, as :func:`~estimators.depth.depths` (on the gadget's qubits only)."""
+    touched = sorted({q for qs, _ in step.gates for q in qs})
+    idx = np.asarray(touched, dtype=np.intp)
+    lv = dict(zip(touched, levels[idx].tolist()))
+    l2 = dict(zip(touched, levels[idx + n].tolist()))
+    lr = dict(zip(touched, levels[idx + 2 * n].tolist()))
+    for qs, is_rz in step.gates:
+        if len(qs) == 1:
+            q = qs[0]
+            lv[q] += 1
+            if is_rz:
+                lr[q] += 1
+            continue
+        m = max([lv[q] for q in qs]) + 1
+        m2 = max([l2[q] for q in qs]) + (1 if len(qs) == 2 else 0)
+        mr = max([lr[q] for q in qs])
+        for q in qs:
+            lv[q] = m
+            l2[q] = m2
+            lr[q] = mr
+    levels[idx] = [lv[q] for q in touched]
+    levels[idx + n] = [l2[q] for q in touched]
+    levels[idx + 2 * n] = [lr[q] for q in touched]
+
+
+def _depth(levels: np.ndarray, n: int) -> Depth:
+    if n == 0:
+        return Depth()
+    return Depth(int(levels[:n].max()), int(levels[n : 2 * n].max()), int(levels[2 * n :].max()), "exact")
+
+
+class LayeredDepth:
+    """Exact depths of ``initial steps + p x layer steps`` for any ``p``, carried from ``p`` to ``p + 1``.
+
+    Build it with :meth:`from_sections`. :meth:`depth` answers any ``p``: the depths of every ``p`` it has passed
+    are kept (three integers each), the frontier only for the largest, so asking ``p = 1, 2, ..., P`` in turn
+    propagates ``P`` layers in all, and asking a smaller ``p`` afterwards costs nothing.
+    """
+
+    def __init__(self, num_qubits: int, initial: Sequence[Step], layer: Sequence[Step]) -> None:
+        self.num_qubits = num_qubits
+        self.initial = tuple(initial)
+        self.layer = tuple(layer)
+        self._levels: np.ndarray | None = None
+        self._depths: list[Depth] = []
+
+    @classmethod
+    def from_sections(
+        cls, sections: Iterable[tuple[str, Any]], registers: Sequence[Register], initial: str = "initial_state"
+    ) -> LayeredDepth:
+        """From ``(section name, gadget)`` of a plan with ONE layer (:meth:`circuitgen.qaoa.QaoaPlan.sections`):
+        the gadgets of section ``initial`` form the state preparation, all others the layer.
+
+        Args:
+            sections: the plan's sections, in circuit order.
+            registers: the lowered circuit's registers (``work`` included).
+            initial: name of the state preparation's section.
+
+        Returns:
+            The :class:`LayeredDepth`.
+        """
+        init: list[Step] = []
+        layer: list[Step] = []
+        for name, gadget in sections:
+            (init if name == initial else layer).append(gadget_step(gadget, registers))
+        return cls(sum(r.size for r in registers), init, layer)
+
+    def depth(self, p: int) -> Depth:
+        """Exact depths of the state preparation and ``p`` layers."""
+        if p < 0:
+            raise ValueError(f"p must be >= 0, got {p}")
+        n = self.num_qubits
+        if self._levels is None:
+            self._levels = np.zeros(3 * n, dtype=np.int64)
+            _propagate(self._levels, self.initial, n)
+            self._depths.append(_depth(self._levels, n))
+        while len(self._depths) <= p:
+            _propagate(self._levels, self.layer, n)
+            self._depths.append(_depth(self._levels, n))
+        return self._depths[p]
