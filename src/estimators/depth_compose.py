@@ -23,8 +23,9 @@ once from its lowered gates and cached:
   premise on every gadget of many scenarios (the cached profile equals the gadget's own);
 * any other gadget (state preparation, RZ/RZZ and arithmetic phase gadgets, gadget kinds added later) is emitted
   and lowered once per scenario: its ``D`` is cached per lowered structure (gates with qubits renamed by first
-  appearance) when it has at most :data:`MATRIX_QUBITS` qubits; a wider gadget is kept as its lowered gates and
-  propagated gate by gate (:class:`GateStep`), exact as well.
+  appearance); a gadget on more than :data:`MATRIX_QUBITS` qubits is cut into consecutive runs of gates on at most
+  that many qubits, one matrix per run (composing runs is exact like composing gadgets; the runs of an
+  arithmetic phase gadget repeat a few dozen structures).
 
 :class:`LayeredDepth` holds one scenario's steps (the state preparation, then one layer: layers differ only in
 their angles) and carries the frontier from ``p`` to ``p + 1``, so a sweep over ``p = 1..P`` propagates ``P``
@@ -41,7 +42,7 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable, Iterable, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -58,19 +59,20 @@ __all__ = [
     "ANCHORS",
     "MATRIX_QUBITS",
     "NEG",
-    "GateStep",
     "LayeredDepth",
     "MatrixStep",
     "anchored_profile",
-    "gadget_step",
+    "gadget_depth",
+    "gadget_steps",
     "lowered_gates",
     "transfer_profile",
 ]
 
 NEG = -(1 << 40)
 """``-inf`` of the integer profiles: no path (far below any sum of real levels, far above int64 overflow)."""
-MATRIX_QUBITS = 48
-"""Widest gadget kept as a transfer matrix; wider ones are propagated gate by gate."""
+MATRIX_QUBITS = 24
+"""Widest transfer matrix of a non-anchored gadget; a wider gadget is cut into consecutive runs of gates on at
+most this many qubits (one matrix each; wider matrices cost more per application than they save)."""
 
 _ROT = "rz"  # the only gate that adds a rotation level (lowered circuits: an arbitrary rotation is an rz)
 
@@ -156,15 +158,6 @@ class MatrixStep:
     matrix: np.ndarray
 
 
-@dataclass(frozen=True, eq=False)
-class GateStep:
-    """A wide gadget as its lowered gates: ``(qubits, is_rz)`` per gate."""
-
-    gates: tuple[tuple[tuple[int, ...], bool], ...]
-
-
-Step = MatrixStep | GateStep
-
 _ANCHORED: dict[Hashable, tuple[np.ndarray, tuple[int, ...]] | None] = {}
 """key -> (profile on slots + work qubits, work offsets), or ``None`` when the key cannot be anchored."""
 _BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
@@ -224,70 +217,86 @@ def anchored_profile(gadget: Any, registers: Sequence[Register]) -> tuple[tuple[
     return (*slots, *(work0 + o for o in work)), matrix
 
 
-def gadget_step(gadget: Any, registers: Sequence[Register]) -> Step:
-    """One gadget as a :class:`MatrixStep` (anchored, or at most :data:`MATRIX_QUBITS` qubits) or a
-    :class:`GateStep`.
+def _chunks(gates: Sequence[tuple[Any, ...]], limit: int) -> Iterator[list[tuple[Any, ...]]]:
+    """Consecutive runs of ``gates``, each on at most ``limit`` qubits (a gate on more is a run of its own)."""
+    cur: list[tuple[Any, ...]] = []
+    seen: set[int] = set()
+    for g in gates:
+        new = seen.union(g[1])
+        if cur and len(new) > limit:
+            yield cur
+            cur, new = [], set(g[1])
+        cur.append(g)
+        seen = new
+    if cur:
+        yield cur
+
+
+def gadget_steps(gadget: Any, registers: Sequence[Register]) -> list[MatrixStep]:
+    """One gadget as transfer matrices: one (cached per kind) if it is anchored, else its lowered gates cut into
+    consecutive runs of at most :data:`MATRIX_QUBITS` qubits, one matrix per run (cached per run structure: the
+    gates with qubits renamed by first appearance). Composing the runs is exact like composing gadgets.
 
     Args:
         gadget: any gadget (``emit()``, optionally ``emit_blocks()``).
         registers: the circuit's registers, ``work`` included.
 
     Returns:
-        The step.
+        The steps, in order.
     """
     n = sum(r.size for r in registers)
     hit = anchored_profile(gadget, registers)
     if hit is not None:
-        return MatrixStep(_index(hit[0], n), hit[1])
-    gates = lowered_gates(gadget, registers)
-    qubits = list(dict.fromkeys(q for g in gates for q in g[1]))
-    if len(qubits) > MATRIX_QUBITS:
-        return GateStep(tuple((tuple(g[1]), g[0] == _ROT) for g in gates))
-    pos = {q: i for i, q in enumerate(qubits)}
-    key = tuple((tuple(pos[q] for q in g[1]), g[0] == _ROT) for g in gates)
-    matrix = _BY_STRUCTURE.get(key)
-    if matrix is None:
-        matrix = transfer_profile(gates, qubits)
-        _remember(_BY_STRUCTURE, key, matrix)
-    return MatrixStep(_index(qubits, n), matrix)
+        return [MatrixStep(_index(hit[0], n), hit[1])] if hit[0] else []
+    out = []
+    for run in _chunks(lowered_gates(gadget, registers), MATRIX_QUBITS):
+        pos: dict[int, int] = {}
+        key = tuple((tuple(pos.setdefault(q, len(pos)) for q in g[1]), g[0] == _ROT) for g in run)
+        matrix = _BY_STRUCTURE.get(key)
+        if matrix is None:
+            matrix = transfer_profile(run, list(pos))
+            _remember(_BY_STRUCTURE, key, matrix)
+        out.append(MatrixStep(_index(list(pos), n), matrix))
+    return out
 
 
-def _propagate(levels: np.ndarray, steps: Sequence[Step], n: int) -> None:
-    """Apply ``steps`` to the flat frontier ``levels`` (``3n``) in place."""
+def _propagate(levels: np.ndarray, steps: Sequence[MatrixStep]) -> None:
+    """Apply ``steps`` to the flat frontier ``levels`` (``3n``: the three depths of ``n`` qubits) in place."""
     for st in steps:
-        if isinstance(st, MatrixStep):
-            idx = st.index
-            if not len(idx):
-                continue
-            levels[idx] = (levels[idx][:, None] + st.matrix).max(axis=0)
+        idx = st.index
+        levels[idx] = (levels[idx][:, None] + st.matrix).max(axis=0)
+
+
+def gadget_depth(gadget: Any, registers: Sequence[Register]) -> Depth:
+    """A gadget's own depths (lowered alone, from an idle start): exact, and cached per kind when anchored.
+
+    Args:
+        gadget: any gadget.
+        registers: the circuit's registers, ``work`` included.
+
+    Returns:
+        An ``exact`` :class:`~estimators.depth.Depth` of the gadget alone.
+    """
+    anchors = ANCHORS.get(type(gadget))
+    key = anchors(gadget)[0] if anchors is not None else None
+    hit = _OWN_DEPTH.get(key) if key is not None else None
+    if hit is None:
+        steps = gadget_steps(gadget, registers)
+        if len(steps) == 1:
+            m = steps[0].matrix
+            k = len(m) // 3
+            hit = Depth(*(max(int(m[t * k : (t + 1) * k].max()), 0) if k else 0 for t in range(3)), "exact")  # type: ignore[arg-type]
         else:
-            _propagate_gates(levels, st, n)
+            n = sum(r.size for r in registers)
+            levels = np.zeros(3 * n, dtype=np.int64)
+            _propagate(levels, steps)
+            hit = _depth(levels, n)
+        if key is not None and anchored_profile(gadget, registers) is not None:
+            _remember(_OWN_DEPTH, key, hit)
+    return hit
 
 
-def _propagate_gates(levels: np.ndarray, step: GateStep, n: int) -> None:
-    """Gate by gate, as :func:`~estimators.depth.depths` (on the gadget's qubits only)."""
-    touched = sorted({q for qs, _ in step.gates for q in qs})
-    idx = np.asarray(touched, dtype=np.intp)
-    lv = dict(zip(touched, levels[idx].tolist()))
-    l2 = dict(zip(touched, levels[idx + n].tolist()))
-    lr = dict(zip(touched, levels[idx + 2 * n].tolist()))
-    for qs, is_rz in step.gates:
-        if len(qs) == 1:
-            q = qs[0]
-            lv[q] += 1
-            if is_rz:
-                lr[q] += 1
-            continue
-        m = max([lv[q] for q in qs]) + 1
-        m2 = max([l2[q] for q in qs]) + (1 if len(qs) == 2 else 0)
-        mr = max([lr[q] for q in qs])
-        for q in qs:
-            lv[q] = m
-            l2[q] = m2
-            lr[q] = mr
-    levels[idx] = [lv[q] for q in touched]
-    levels[idx + n] = [l2[q] for q in touched]
-    levels[idx + 2 * n] = [lr[q] for q in touched]
+_OWN_DEPTH: dict[Hashable, Depth] = {}
 
 
 def _depth(levels: np.ndarray, n: int) -> Depth:
@@ -304,7 +313,7 @@ class LayeredDepth:
     propagates ``P`` layers in all, and asking a smaller ``p`` afterwards costs nothing.
     """
 
-    def __init__(self, num_qubits: int, initial: Sequence[Step], layer: Sequence[Step]) -> None:
+    def __init__(self, num_qubits: int, initial: Sequence[MatrixStep], layer: Sequence[MatrixStep]) -> None:
         self.num_qubits = num_qubits
         self.initial = tuple(initial)
         self.layer = tuple(layer)
@@ -326,10 +335,10 @@ class LayeredDepth:
         Returns:
             The :class:`LayeredDepth`.
         """
-        init: list[Step] = []
-        layer: list[Step] = []
+        init: list[MatrixStep] = []
+        layer: list[MatrixStep] = []
         for name, gadget in sections:
-            (init if name == initial else layer).append(gadget_step(gadget, registers))
+            (init if name == initial else layer).extend(gadget_steps(gadget, registers))
         return cls(sum(r.size for r in registers), init, layer)
 
     def depth(self, p: int) -> Depth:
@@ -339,9 +348,9 @@ class LayeredDepth:
         n = self.num_qubits
         if self._levels is None:
             self._levels = np.zeros(3 * n, dtype=np.int64)
-            _propagate(self._levels, self.initial, n)
+            _propagate(self._levels, self.initial)
             self._depths.append(_depth(self._levels, n))
         while len(self._depths) <= p:
-            _propagate(self._levels, self.layer, n)
+            _propagate(self._levels, self.layer)
             self._depths.append(_depth(self._levels, n))
         return self._depths[p]

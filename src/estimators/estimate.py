@@ -36,16 +36,17 @@ from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 from typing import Any, Literal
 
+from circuitgen.angles import Angle
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.cost import Cost
-from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
+from circuitgen.gadgets.partial_mixer import partial_mixer
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_plan
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 
 from .depth import Depth, depths
-from .depth_compose import LayeredDepth
+from .depth_compose import LayeredDepth, gadget_depth
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .mixer_count import mixer_layer
 from .physical import (
@@ -62,7 +63,6 @@ __all__ = [
     "DEFAULT_OPTIONS",
     "DEFAULT_PLAN",
     "DEPTH_MODES",
-    "GADGET_DEPTH_LIMIT",
     "DepthMode",
     "Estimate",
     "EstimateOptions",
@@ -78,8 +78,6 @@ DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
 DEFAULT_DEPTH_BUDGET = 300_000
 """``depth="auto"`` compiles the circuit for its exact depth up to this many lowered gates (about 1 s)."""
-GADGET_DEPTH_LIMIT = 50_000
-"""A gadget with more lowered gates than this contributes its gate counts to a depth bound (not its layering)."""
 
 
 @dataclass(frozen=True)
@@ -409,62 +407,62 @@ def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
     return layered_depth(scenario, options).depth(p)
 
 
-def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache: dict[Hashable, Depth]) -> Depth:
-    """One gadget's own depths (lowered alone), cached by kind where the kind is the whole construction up to the
-    qubits: partial mixers (their program) and the arithmetic and visit-bit phase gadgets (their weights and
-    products). The Ising phase gadget's kind holds only its term counts (two coupling graphs of one size can layer
-    differently), so its depth is computed each time."""
-    kind = gadget.kind
-    cacheable = isinstance(gadget, ParityPartialMixer | McxPartialMixer) or (
-        isinstance(kind, tuple) and bool(kind) and kind[0] in _STRUCTURAL_PHASE_KINDS
-    )
-    hit = cache.get(kind) if cacheable else None
-    if hit is None:
-        c = gadget.cost()
-        if c.total > GADGET_DEPTH_LIMIT:
-            hit = Depth(c.total, c.two_qubit, c.rotations, "bound")
-        else:
-            secs = [Section(name, tuple(b)) for b in gadget_blocks(gadget)]
-            circ = lower(Circuit(registers, secs))
-            hit = depths(circ.gates, circ.num_qubits)
-        if cacheable:
-            cache[kind] = hit
-    return hit
+_MIXER_DEPTH: dict[tuple[Hashable, str, str], Depth] = {}
+"""Own depth of a partial mixer per signature (:mod:`estimators.mixer_count`), rule and target."""
 
 
-_STRUCTURAL_PHASE_KINDS = frozenset({"sums", "sums-register", "sums-accumulate", "visits"})
-_DEPTH_BY_KIND: dict[Hashable, Depth] = {}
-"""Depth of one partial mixer per kind, shared by every scenario (see :func:`_gadget_depth`)."""
+def _mixer_depth_sum(scenario: Scenario, options: PlanOptions, registers: tuple[Register, ...]) -> Depth:
+    """Sum over one layer's partial mixers of their own depths, by signature counts (a grid without obstacles)."""
+    mixer = mixer_layer(scenario, options.rule, options.target)
+    total = Depth()
+    for sig, (robot, (i, j), n) in zip(mixer.signatures, mixer.kinds, strict=True):
+        key = (sig, options.rule, options.target)
+        d = _MIXER_DEPTH.get(key)
+        if d is None:
+            plaq = scenario.grid.plaquettes[i * (scenario.grid.cols - 1) + j]
+            g = partial_mixer(scenario, robot, plaq, Angle.symbol("beta_0"), scenario.num_variables,
+                              options.rule, options.target)  # type: ignore[arg-type]  # fmt: skip
+            d = _MIXER_DEPTH[key] = gadget_depth(g, registers) if g is not None else Depth()
+        total = total + n * d
+    return total
 
 
 @lru_cache(maxsize=256)
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
-    """Depth bounds of the state preparation and of one layer: sums of per-gadget depths (per signature count
-    for the mixer of a grid without obstacles, :mod:`estimators.mixer_count`)."""
-    plan = _plan1(scenario, options)
-    regs = tuple(Register(name, size) for name, size in layer_costs(scenario, options).registers)
-    cache = _DEPTH_BY_KIND
-    if not scenario.obstacles:
-        init = _gadget_depth("initial_state", plan.state_prep, regs, cache)
-        layer = Depth()
-        for gadget in plan.phase_plan.gadgets("gamma_0", 0, scenario.num_variables):
-            layer = layer + _gadget_depth("phase_0", gadget, regs, cache)
-        mixer = mixer_layer(scenario, options.rule, options.target)
-        for gadget, n in mixer.gadgets(scenario, options.rule, options.target):
-            layer = layer + n * _gadget_depth("mixer_0", gadget, regs, cache)
+    """The state preparation's depths (exact) and a bound on one layer's (see :func:`depth_bound`)."""
+    lc = layer_costs(scenario, options)
+    regs = tuple(Register(name, size) for name, size in lc.registers)
+    if scenario.obstacles:
+        plan = _plan1(scenario, options)
+        init, layer = Depth(), Depth()
+        for name, gadget in plan.sections():
+            d = gadget_depth(gadget, regs)
+            if name == "initial_state":
+                init = d
+            else:
+                layer = layer + d
         return init, layer
-    init, layer = Depth(), Depth()
-    for name, gadget in plan.sections():
-        d = _gadget_depth(name, gadget, regs, cache)
-        if name == "initial_state":
-            init = init + d
-        else:
-            layer = layer + d
+    if options.initial == "initial_path":
+        # one X per edge of each robot's L-shaped initial path: distinct qubits, one layer (tested against the
+        # plan's state preparation)
+        init = Depth(1, 0, 0) if lc.sections["initial_state"].total else Depth()
+    else:
+        init = gadget_depth(_plan1(scenario, options).state_prep, regs)
+    phase = lc.sections.get("phase", Cost())
+    # the phase separator by its gate counts (depth <= gates): its gadgets are not listed, which would cost
+    # O(variables) per scenario
+    layer = Depth(phase.total, phase.two_qubit, phase.rotations, "bound") + _mixer_depth_sum(scenario, options, regs)
     return init, layer
 
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
-    """An upper bound on the depths of ``p`` layers: the sum over gadgets of their own depths.
+    """An upper bound on the depths of ``p`` layers, in ``O(robots)`` per scenario once the counts are known.
+
+    ``depth(A then B) <= depth(A) + depth(B)`` (ASAP layering can only shorten a concatenation), so the bound is
+    the state preparation's depth (exact) plus ``p`` times one layer's bound: the sum of the partial mixers' own
+    depths (one per signature, :mod:`estimators.mixer_count`, times its multiplicity) plus the phase separator's
+    gate counts (a depth is at most the number of gates; likewise two-qubit gates and rotations). With obstacles
+    the layer's bound is the sum of every gadget's own depth (the plan's gadgets are listed).
 
     >>> from gridcover.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)

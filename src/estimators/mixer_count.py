@@ -55,6 +55,7 @@ class MixerLayer:
         work_need: ``work`` ancillas its largest multi-controlled X needs.
         kinds: ``(robot, (i, j), count)`` per signature: a representative partial mixer (robot and plaquette
             ``(i, j)``) and how many partial mixers of the layer share its signature.
+        signatures: the signature of each entry of ``kinds`` (a key for per-kind figures such as depth).
     """
 
     cost: Cost
@@ -62,6 +63,7 @@ class MixerLayer:
     logic_width: int
     work_need: int
     kinds: tuple[tuple[int, tuple[int, int], int], ...] = ()
+    signatures: tuple[Signature, ...] = ()
 
     def gadgets(self, scenario: Scenario, rule: str = "exact", target: str = "nisq") -> list[tuple[object, int]]:
         """``(representative gadget, count)`` per signature (for per-kind figures such as depth)."""
@@ -176,6 +178,7 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
     logical: Counter[str] = Counter()
     width = work = 0
     kinds = []
+    sigs = []
     for sig, n in counts.items():
         if n <= 0:
             continue
@@ -190,7 +193,8 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
         if c.total:
             width, work = max(width, temps), max(work, need)
             kinds.append((robot, ij, n))
-    return MixerLayer(Cost.of(cost), Cost.of(logical), width, work, tuple(kinds))
+            sigs.append(sig)
+    return MixerLayer(Cost.of(cost), Cost.of(logical), width, work, tuple(kinds), tuple(sigs))
 
 
 def _find(scenario: Scenario, sig: Signature) -> tuple[int, tuple[int, int]]:
