@@ -217,19 +217,27 @@ def anchored_profile(gadget: Any, registers: Sequence[Register]) -> tuple[tuple[
     return (*slots, *(work0 + o for o in work)), matrix
 
 
-def _chunks(gates: Sequence[tuple[Any, ...]], limit: int) -> Iterator[list[tuple[Any, ...]]]:
-    """Consecutive runs of ``gates``, each on at most ``limit`` qubits (a gate on more is a run of its own)."""
-    cur: list[tuple[Any, ...]] = []
-    seen: set[int] = set()
+def _runs(gates: Sequence[tuple[Any, ...]], limit: int) -> Iterator[tuple[Hashable, list[int], list[tuple]]]:
+    """Consecutive runs of ``gates`` on at most ``limit`` qubits each (a gate on more is a run of its own), as
+    ``(structure key, qubits in first-appearance order, gates)``; the key is the run with qubits renamed by first
+    appearance (and whether each one-qubit gate is an ``rz``), all a transfer matrix depends on."""
+    pos: dict[int, int] = {}
+    flat: list[int] = []
+    run: list[tuple] = []
     for g in gates:
-        new = seen.union(g[1])
-        if cur and len(new) > limit:
-            yield cur
-            cur, new = [], set(g[1])
-        cur.append(g)
-        seen = new
-    if cur:
-        yield cur
+        qs = g[1]
+        if run and len(pos) + sum(1 for q in qs if q not in pos) > limit:
+            yield tuple(flat), list(pos), run
+            pos, flat, run = {}, [], []
+        flat.append(-1 if len(qs) == 1 and g[0] == _ROT else -len(qs) - 1)  # arity marker, rz marked apart
+        for q in qs:
+            i = pos.get(q)
+            if i is None:
+                i = pos[q] = len(pos)
+            flat.append(i)
+        run.append(g)
+    if run:
+        yield tuple(flat), list(pos), run
 
 
 def gadget_steps(gadget: Any, registers: Sequence[Register]) -> list[MatrixStep]:
@@ -249,14 +257,12 @@ def gadget_steps(gadget: Any, registers: Sequence[Register]) -> list[MatrixStep]
     if hit is not None:
         return [MatrixStep(_index(hit[0], n), hit[1])] if hit[0] else []
     out = []
-    for run in _chunks(lowered_gates(gadget, registers), MATRIX_QUBITS):
-        pos: dict[int, int] = {}
-        key = tuple((tuple(pos.setdefault(q, len(pos)) for q in g[1]), g[0] == _ROT) for g in run)
+    for key, qubits, run in _runs(lowered_gates(gadget, registers), MATRIX_QUBITS):
         matrix = _BY_STRUCTURE.get(key)
         if matrix is None:
-            matrix = transfer_profile(run, list(pos))
+            matrix = transfer_profile(run, qubits)
             _remember(_BY_STRUCTURE, key, matrix)
-        out.append(MatrixStep(_index(list(pos), n), matrix))
+        out.append(MatrixStep(_index(qubits, n), matrix))
     return out
 
 

@@ -69,6 +69,7 @@ __all__ = [
     "LayerCosts",
     "PlanOptions",
     "Point",
+    "estimate_depth",
     "estimate_point",
     "layer_costs",
     "registers_for",
@@ -76,8 +77,9 @@ __all__ = [
 
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
-DEFAULT_DEPTH_BUDGET = 300_000
-"""``depth="auto"`` compiles the circuit for its exact depth up to this many lowered gates (about 1 s)."""
+DEFAULT_DEPTH_BUDGET = 10_000
+"""``depth="auto"`` computes exact depths when the state preparation and one layer have at most this many lowered
+gates (see the module docstring: the size of one layer, not of ``p`` layers, sets the cost)."""
 
 
 @dataclass(frozen=True)
@@ -129,7 +131,8 @@ class EstimateOptions:
         plan: circuit construction options.
         epsilon, synthesis, toffoli_t: the fault-tolerant model (:mod:`estimators.fault_tolerant`).
         depth: ``auto``, ``exact``, ``bound`` or ``none`` (see the module docstring).
-        depth_budget: largest circuit (lowered gates) whose depth ``auto`` computes exactly.
+        depth_budget: ``auto`` computes exact depths when the state preparation and one layer have at most this
+            many lowered gates (``bound`` otherwise).
         physical: run the QDK resource estimator (:mod:`estimators.physical`).
         qubit_model, qec_scheme, error_budget: its model.
     """
@@ -474,6 +477,37 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
     return Depth(d.depth, d.two_qubit_depth, d.rotation_depth, "bound")
 
 
+def estimate_depth(
+    scenario: Scenario, p: int, options: EstimateOptions = DEFAULT_OPTIONS, costs: LayerCosts | None = None
+) -> Depth | None:
+    """The depths :func:`estimate_point` reports: ``exact``, a ``bound`` or ``None`` as ``options.depth`` says
+    (``auto``: exact when the state preparation and one layer have at most ``options.depth_budget`` lowered
+    gates, a bound otherwise; see the module docstring).
+
+    Args:
+        scenario: the scenario.
+        p: layers.
+        options: the options.
+        costs: the scenario's :func:`layer_costs` (looked up if not given).
+
+    Returns:
+        The depths, or ``None`` for ``depth="none"``.
+
+    >>> from gridcover.presets import default_scenario
+    >>> estimate_depth(default_scenario(3, 3, 1), 2).kind
+    'exact'
+    """
+    mode = options.depth
+    if mode == "auto":
+        lc = costs if costs is not None else layer_costs(scenario, options.plan)
+        mode = "exact" if lc.cost(1).total <= options.depth_budget else "bound"
+    if mode == "exact":
+        return exact_depth(scenario, p, options.plan)
+    if mode == "bound":
+        return depth_bound(scenario, p, options.plan)
+    return None
+
+
 def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> Estimate:
     """Counts and estimates of one point (see the module docstring).
 
@@ -494,14 +528,7 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     p = point.p
     cost = lc.cost(p)
     logical = lc.logical_cost(p)
-    mode = options.depth
-    if mode == "auto":
-        mode = "exact" if cost.total <= options.depth_budget else "bound"
-    depth: Depth | None = None
-    if mode == "exact":
-        depth = exact_depth(scenario, p, options.plan)
-    elif mode == "bound":
-        depth = depth_bound(scenario, p, options.plan)
+    depth = estimate_depth(scenario, p, options, lc)
     ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
     registers = registers_for(scenario, p, options.plan)
     est = Estimate(point, options, registers, cost, logical, lc.sections, depth, ft, None, 0.0)

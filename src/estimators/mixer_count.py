@@ -135,8 +135,10 @@ def _kind(sig: Signature, rule: str, target: str, scenario: Scenario, robot: int
     return hit
 
 
+@lru_cache(maxsize=64)
 def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -> MixerLayer:
-    """One layer's mixer cost by signature counting (see the module docstring).
+    """One layer's mixer cost by signature counting (see the module docstring; cached: the counts and the depth
+    bound of a scenario both ask).
 
     Args:
         scenario: a scenario without obstacles.

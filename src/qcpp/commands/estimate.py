@@ -101,13 +101,18 @@ def estimate(
         str,
         typer.Option(
             "--depth",
-            help="Depth: exact (compile the circuit), bound (sum of per-gadget depths), none, or auto (exact up "
-            "to --depth-budget gates, else bound). The depth_kind column says which.",
+            help="Depth: exact (composed from per-gadget transfer profiles, equal to the compiled circuit's), bound "
+            "(an upper bound from per-gadget depths and gate counts), none, or auto (exact when one layer has at "
+            "most --depth-budget gates, else bound). The depth_kind column says which.",
         ),
     ] = "auto",
     depth_budget: Annotated[
-        int, typer.Option("--depth-budget", help="Largest circuit (lowered gates) auto compiles for its depth.")
-    ] = 300_000,
+        int,
+        typer.Option(
+            "--depth-budget",
+            help="auto: exact depths when the state preparation plus one layer has at most this many lowered gates.",
+        ),
+    ] = 10_000,
     epsilon: Annotated[
         float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
     ] = 1e-3,

@@ -1,0 +1,95 @@
+"""Speed of the depths of ``qcpp estimate``: exact by composition, the bound, and the depth part of the big sweep.
+
+Run: ``python benchmarks/depth_speed.py [--stride N]`` (one process, so one core). Prints two tables:
+
+1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
+   (what ``--depth-budget`` compares), the seconds to build the exact composition (emit and lower the
+   non-anchored gadgets, look up the anchored ones), to propagate p = 1..5 (carried from p to p + 1), to compile
+   the circuit and layer it (the reference, :func:`estimators.estimate.compiled_depth`, only where it is small),
+   the bound's seconds, and exact depth / bound at p = 5;
+2. the depth part of ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5`` (60,840 requested rows) under
+   the default policy (``depth="auto"``): every ``N``-th grid of the sweep (row-major, default ``N`` = 13) with
+   robots 1..8 and p = 1..5, in sweep order; each scenario's counts are computed first and NOT timed (they are
+   cached per scenario, as in the sweep), then :func:`estimators.estimate.estimate_depth` is timed for its five
+   points; the total is scaled by ``N`` to the whole sweep.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from estimators.estimate import (
+    DEFAULT_OPTIONS,
+    DEFAULT_PLAN,
+    compiled_depth,
+    depth_bound,
+    estimate_depth,
+    layer_costs,
+    layered_depth,
+)
+from gridcover.presets import default_scenario, max_default_robots
+
+SCENARIOS = [(4, 4, 2), (6, 6, 2), (8, 8, 4), (12, 12, 8), (20, 20, 4), (30, 30, 8), (40, 40, 8)]
+COMPILE_LIMIT = 400_000  # compile the reference only up to this many lowered gates at p = 5
+
+
+def per_scenario() -> None:
+    print("| scenario | gates (prep + 1 layer) | exact: build | exact: p=1..5 | compile p=5 | bound | "
+          "depth p=5 exact / bound |")  # fmt: skip
+    print("|---|---:|---:|---:|---:|---:|---|")
+    for r, c, k in SCENARIOS:
+        s = default_scenario(r, c, k)
+        lc = layer_costs(s, DEFAULT_PLAN)
+        t = time.perf_counter()
+        ld = layered_depth(s, DEFAULT_PLAN)
+        build = time.perf_counter() - t
+        t = time.perf_counter()
+        exact = [ld.depth(p) for p in range(1, 6)][-1]
+        layers = time.perf_counter() - t
+        t = time.perf_counter()
+        bound = depth_bound(s, 5, DEFAULT_PLAN)
+        tb = time.perf_counter() - t
+        comp = "-"
+        if lc.cost(5).total <= COMPILE_LIMIT:
+            t = time.perf_counter()
+            ref = compiled_depth(s, 5, DEFAULT_PLAN)
+            comp = f"{time.perf_counter() - t:.2f} s" + ("" if ref == exact else " MISMATCH")
+        ratio = f"{exact.depth:,} / {bound.depth:,} ({bound.depth / exact.depth:.2f}x)"
+        print(f"| {r}x{c} / {k} | {lc.cost(1).total:,} | {build:.3f} s | {layers:.3f} s | {comp} | "
+              f"{tb * 1e3:.1f} ms | {ratio} |")  # fmt: skip
+
+
+def sweep_depth(stride: int) -> None:
+    grids = [(r, c) for r in range(2, 41) for c in range(2, 41)][::stride]
+    n_points = exact_rows = 0
+    seconds = 0.0
+    for r, c in grids:
+        for k in range(1, 9):
+            if k > max_default_robots(r, c):
+                continue
+            s = default_scenario(r, c, k)
+            lc = layer_costs(s, DEFAULT_PLAN)  # the counts: not timed
+            t = time.perf_counter()
+            ds = [estimate_depth(s, p, DEFAULT_OPTIONS, lc) for p in range(1, 6)]
+            seconds += time.perf_counter() - t
+            n_points += len(ds)
+            exact_rows += sum(1 for d in ds if d is not None and d.kind == "exact")
+    print()
+    print(f"| depth part of the 2x2..40x40 / 1..8 / p=1..5 sweep (budget {DEFAULT_OPTIONS.depth_budget:,}) | value |")
+    print("|---|---:|")
+    print(f"| sample: every {stride}th grid ({len(grids)} grids), points | {n_points:,} |")
+    print(f"| sample: exact / bound rows | {exact_rows:,} / {n_points - exact_rows:,} |")
+    print(f"| sample: depth seconds (one core) | {seconds:.1f} s |")
+    print(f"| whole sweep, scaled by {stride} | {seconds * stride:.0f} s, ~{exact_rows * stride:,} exact rows |")
+
+
+def main(argv: list[str]) -> int:
+    stride = int(argv[argv.index("--stride") + 1]) if "--stride" in argv else 13
+    per_scenario()
+    sweep_depth(stride)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))

@@ -1,0 +1,229 @@
+"""Exact depth by composing per-gadget transfer profiles == depths of the compiled circuit; carry over p; policy."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from estimators.crosscheck import crosscheck_cases, with_obstacles
+from estimators.depth import Depth, depths
+from estimators.depth_compose import (
+    LayeredDepth,
+    MatrixStep,
+    anchored_profile,
+    gadget_depth,
+    lowered_gates,
+    transfer_profile,
+)
+from estimators.estimate import (
+    DEFAULT_PLAN,
+    EstimateOptions,
+    PlanOptions,
+    compiled_depth,
+    depth_bound,
+    estimate_depth,
+    exact_depth,
+    layer_costs,
+)
+from gridcover.errors import ScenarioError
+from gridcover.presets import default_scenario, max_default_robots
+from gridcover.scenario import Scenario, scenario_from_dict
+
+OPTIONS = [
+    PlanOptions(),
+    PlanOptions(rule="paper"),
+    PlanOptions(target="ft"),
+    PlanOptions(phase="whole-space"),
+    PlanOptions(optimize="depth"),
+    PlanOptions(initial="representatives"),
+    PlanOptions(ancilla_budget=0),
+]
+
+
+def _defaults(max_side: int, max_robots: int) -> list[Scenario]:
+    return [
+        default_scenario(r, c, k)
+        for r in range(2, max_side + 1)
+        for c in range(2, max_side + 1)
+        for k in range(1, max_robots + 1)
+        if k <= max_default_robots(r, c)
+    ]
+
+
+# --- the max-plus composition itself, on random gate lists -------------------------------------------------------
+GATE = st.one_of(
+    st.tuples(st.sampled_from(["h", "x", "rz", "t"]), st.integers(0, 5).map(lambda q: (q,))),
+    st.lists(st.integers(0, 5), min_size=2, max_size=4, unique=True).map(lambda qs: ("cx" if len(qs) == 2 else "mcx",
+                                                                                       tuple(qs))),
+)  # fmt: skip
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(GATE, max_size=40), st.lists(st.integers(0, 40), max_size=4))
+def test_composing_transfer_profiles_of_any_split_equals_depths(gates: list, cuts: list[int]) -> None:
+    """Any cut of a gate list into consecutive pieces, each a transfer matrix on its own qubits, composes to the
+    ASAP depths of the whole list."""
+    n = 6
+    bounds = sorted({0, len(gates), *(min(c, len(gates)) for c in cuts)})
+    steps = []
+    for a, b in zip(bounds, bounds[1:]):
+        piece = gates[a:b]
+        qubits = list(dict.fromkeys(q for g in piece for q in g[1]))
+        idx = np.concatenate([np.asarray(qubits, dtype=np.intp) + t * n for t in range(3)])
+        steps.append(MatrixStep(idx, transfer_profile(piece, qubits)))
+    got = LayeredDepth(n, steps, []).depth(0)
+    assert got == depths(gates, n)
+
+
+def test_transfer_profile_of_a_small_gadget() -> None:
+    m = transfer_profile([("h", (0,)), ("cx", (0, 1)), ("rz", (1,), (0.5,)), ("ccx", (1, 2, 3))], [0, 1, 2, 3])
+    no = -(1 << 40)
+    # all gates: h, cx, rz, ccx from qubit 0 to 1, 2, 3; qubit 0 is left after the cx; 2, 3 never reach it
+    assert m[:4, :4].tolist() == [[2, 4, 4, 4], [1, 3, 3, 3], [no, 1, 1, 1], [no, 1, 1, 1]]
+    # two-qubit gates: the cx adds a level, the ccx only synchronises its qubits
+    assert m[4:8, 4:8].tolist() == [[1, 1, 1, 1], [1, 1, 1, 1], [no, 0, 0, 0], [no, 0, 0, 0]]
+    # rotations: the rz on qubit 1, reached from qubits 0 and 1
+    assert m[8:, 8:].tolist() == [[0, 1, 1, 1], [0, 1, 1, 1], [no, 0, 0, 0], [no, 0, 0, 0]]
+    assert m[:4, 4:].max() == no  # the three depths do not mix
+
+
+# --- exact by composition == compiled -----------------------------------------------------------------------------
+@pytest.mark.parametrize("s", _defaults(4, 3), ids=lambda s: s.name)
+def test_exact_depth_equals_the_compiled_circuit_small_defaults(s: Scenario) -> None:
+    for p in (0, 1, 2):
+        assert exact_depth(s, p) == compiled_depth(s, p)
+
+
+@pytest.mark.parametrize("options", OPTIONS, ids=repr)
+def test_exact_depth_equals_the_compiled_circuit_every_option(options: PlanOptions) -> None:
+    scenarios = [default_scenario(3, 3, 1), default_scenario(3, 4, 2)]
+    scenarios += [s for mode in ("soft", "hard") if (s := with_obstacles(default_scenario(4, 4, 2), mode))]
+    for s in scenarios:
+        for p in (0, 1, 2):
+            assert exact_depth(s, p, options) == compiled_depth(s, p, options), (s.name, p)
+
+
+@st.composite
+def small_scenarios(draw: st.DrawFn) -> Scenario:
+    rows, cols = draw(st.integers(2, 4)), draw(st.integers(2, 4))
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    obstacles = draw(st.lists(st.sampled_from(nodes), max_size=2, unique=True)) if rows * cols > 6 else []
+    free = [n for n in nodes if n not in obstacles]
+    k = draw(st.integers(1, min(3, len(free) // 2)))
+    starts = draw(st.lists(st.sampled_from(free), min_size=k, max_size=k, unique=True))
+    goals = draw(st.lists(st.sampled_from(free), min_size=k, max_size=k, unique=True))
+    mode = draw(st.sampled_from(["soft", "hard"]))
+    return scenario_from_dict(
+        {
+            "grid": {"rows": rows, "cols": cols, "obstacles": [list(o) for o in obstacles]},
+            "robots": [{"start": list(a), "goal": list(b)} for a, b in zip(starts, goals)],
+            "objective": {"obstacles": mode},
+        }
+    )
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(st.data())
+def test_exact_depth_equals_the_compiled_circuit_random_scenarios(data: st.DataObject) -> None:
+    try:
+        s = data.draw(small_scenarios())
+    except ScenarioError:
+        return  # an infeasible random placement: nothing to compile
+    options = data.draw(st.sampled_from(OPTIONS[:3]))
+    p = data.draw(st.integers(1, 2))
+    try:
+        want = compiled_depth(s, p, options)
+    except (ScenarioError, ValueError):
+        return  # the compiler refuses it too (e.g. no feasible path)
+    assert exact_depth(s, p, options) == want
+
+
+@pytest.mark.heavy
+def test_exact_depth_equals_the_compiled_circuit_everywhere() -> None:
+    """Defaults 2x2..6x6 with 1..4 robots at p = 1..3, and every cross-check case (obstacles, hard mode, rules,
+    targets, example files)."""
+    mismatches = [(s.name, p) for s in _defaults(6, 4) for p in (1, 2, 3) if exact_depth(s, p) != compiled_depth(s, p)]
+    mismatches += [
+        c.label
+        for c in crosscheck_cases(full=True)
+        if exact_depth(c.scenario, c.p, c.plan) != compiled_depth(c.scenario, c.p, c.plan)
+    ]
+    assert mismatches == []
+
+
+# --- the premise of the per-kind cache ------------------------------------------------------------------------------
+@pytest.mark.parametrize("options", OPTIONS[:3], ids=repr)
+def test_anchored_profiles_equal_each_gadgets_own(options: PlanOptions) -> None:
+    """Gadgets of one kind have the same lowered gates up to their slot qubits: the cached profile of a kind is
+    every gadget's own profile (on its slots), on every gadget of several scenarios."""
+    scenarios = [default_scenario(r, c, k) for r, c, k in [(3, 3, 2), (4, 5, 3), (5, 4, 6)]]
+    scenarios += [s for mode in ("soft", "hard") if (s := with_obstacles(default_scenario(5, 5, 2), mode))]
+    checked = 0
+    for s in scenarios:
+        plan = options.plan(s, 1)
+        regs = tuple(plan.registers)
+        for _, g in plan.sections():
+            hit = anchored_profile(g, regs)
+            if hit is None:
+                continue
+            qubits, matrix = hit
+            assert np.array_equal(matrix, transfer_profile(lowered_gates(g, regs), qubits))
+            checked += 1
+    assert checked > 50
+
+
+def test_gadget_depth_is_the_gadgets_own_depth() -> None:
+    s = default_scenario(4, 4, 2)
+    plan = DEFAULT_PLAN.plan(s, 1)
+    regs = tuple(plan.registers)
+    n = sum(r.size for r in regs)
+    for _, g in list(plan.sections())[:12]:
+        assert gadget_depth(g, regs) == depths(lowered_gates(g, regs), n)
+
+
+# --- carrying the frontier over p ----------------------------------------------------------------------------------
+def test_frontier_carried_over_p_equals_a_fresh_computation() -> None:
+    s = default_scenario(4, 3, 3)
+    plan = DEFAULT_PLAN.plan(s, 1)
+    regs = tuple(plan.registers)
+    carried = LayeredDepth.from_sections(plan.sections(), regs)
+    in_turn = [carried.depth(p) for p in range(5)]
+    for p in (4, 2, 0, 3):
+        fresh = LayeredDepth.from_sections(plan.sections(), regs).depth(p)
+        assert carried.depth(p) == fresh == in_turn[p] == compiled_depth(s, p)
+    with pytest.raises(ValueError):
+        carried.depth(-1)
+
+
+# --- the bound and the policy ---------------------------------------------------------------------------------------
+@pytest.mark.parametrize("options", OPTIONS, ids=repr)
+def test_bound_is_above_exact_and_exact_at_p0(options: PlanOptions) -> None:
+    scenarios = _defaults(4, 4)[::3] + [
+        s for m in ("soft", "hard") if (s := with_obstacles(default_scenario(4, 4, 2), m))
+    ]
+    for s in scenarios:
+        e0, b0 = exact_depth(s, 0, options), depth_bound(s, 0, options)
+        assert (b0.depth, b0.two_qubit_depth, b0.rotation_depth) == (e0.depth, e0.two_qubit_depth, e0.rotation_depth)
+        for p in (1, 3):
+            e, b = exact_depth(s, p, options), depth_bound(s, p, options)
+            assert b.kind == "bound"
+            assert b.depth >= e.depth and b.two_qubit_depth >= e.two_qubit_depth
+            assert b.rotation_depth >= e.rotation_depth
+
+
+def test_auto_is_exact_up_to_the_budget_on_one_layer_whatever_p() -> None:
+    s = default_scenario(4, 4, 2)
+    size = layer_costs(s, DEFAULT_PLAN).cost(1).total
+    for p in (1, 5, 40):
+        at = estimate_depth(s, p, EstimateOptions(depth_budget=size))
+        below = estimate_depth(s, p, EstimateOptions(depth_budget=size - 1))
+        assert at == exact_depth(s, p) and at.kind == "exact"
+        assert below == depth_bound(s, p) and below.kind == "bound"
+    assert estimate_depth(s, 2, EstimateOptions(depth="none")) is None
+    assert estimate_depth(s, 2, EstimateOptions(depth="exact", depth_budget=0)) == exact_depth(s, 2)
+
+
+def test_depth_of_an_empty_circuit() -> None:
+    assert LayeredDepth(0, [], []).depth(3) == Depth()
