@@ -8,14 +8,17 @@ plan sums them over its call graph. Layers are alike up to their angles, so the 
 :mod:`estimators.crosscheck` (run by the tests and ``benchmarks/estimate_speed.py``) checks that these numbers
 equal the counts of the compiled, lowered circuit (:func:`estimators.counts.count`).
 
-Depth cannot be summed exactly (ASAP layering overlaps consecutive pieces), so it is either
+Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is either
 
-* ``exact``: computed on the compiled circuit (built from the plan's gadgets, lowered and layered), when the
-  circuit has at most ``depth_budget`` gates (``depth="auto"``, the default) or when asked (``depth="exact"``);
-* ``bound``: an upper bound, the sum over the circuit's gadgets of each gadget's own depth (computed once per
-  partial-mixer kind on its lowered gates, a kind being the whole program; each phase gadget's own; a gadget of
-  more than :data:`GADGET_DEPTH_LIMIT` gates counts its gate numbers instead), which ASAP layering can only
-  shorten;
+* ``exact``: composed gadget by gadget from max-plus transfer profiles (:mod:`estimators.depth_compose`, cached
+  per gadget kind; equal to the depths of the compiled, lowered circuit, :func:`compiled_depth`, which the tests
+  compare), with the frontier carried from ``p`` to ``p + 1`` (:func:`layered_depth`, cached per scenario);
+  ``depth="auto"`` (the default) does this when the state preparation plus one layer has at most
+  ``depth_budget`` lowered gates (the cost is building the profiles of one layer; each further layer costs a
+  small fraction of that), ``depth="exact"`` at any size;
+* ``bound``: an upper bound (:func:`depth_bound`): the state preparation's depth plus ``p`` times one layer's
+  bound, the partial mixers' own depths (per signature) plus the phase separator's gate counts, in
+  ``O(robots)`` per scenario;
 * absent (``depth="none"``).
 
 The row says which (``depth_kind``); nothing is silently estimated.

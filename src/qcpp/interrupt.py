@@ -5,15 +5,14 @@ How (installed by :func:`qcpp.cli.main`, i.e. only for the real command line, ne
 1. SIGTERM gets the same treatment as SIGINT: Python raises ``KeyboardInterrupt`` in the main thread. The CLI
    (:class:`qcpp.cli.QcppGroup`) turns it into the line ``interrupted`` on stderr and exit code 130. On the way
    out, ``with`` blocks clean up: :func:`gridcover.atomic.atomic_open` removes its temporary file (the
-   destination keeps its old content), and :func:`estimators.sweep.sweep` cancels queued jobs and terminates its
-   worker processes. Results finished before the signal are already in the estimate cache, written atomically,
-   so a rerun resumes from them.
+   destination keeps its old content); ``qcpp estimate`` ends after the row it is writing (it has no worker
+   processes and no cache: rows are cheap to recompute).
 2. A watchdog thread wakes on the signal itself (:func:`signal.set_wakeup_fd`, written by the C-level handler
    even while the main thread is inside a long native call). If the process is still alive
    :data:`GRACE_SECONDS` later -- the main thread stuck in native code, or a cleanup step hanging -- it removes
    pending temporary files, terminates child processes, prints ``interrupted`` (if nobody did) and ends the
    process with :func:`os._exit` (130).
-3. Forked children (pool workers) ignore SIGINT and get the default SIGTERM: a terminal's Ctrl-C reaches the
+3. Forked children (worker processes) ignore SIGINT and get the default SIGTERM: a terminal's Ctrl-C reaches the
    whole process group, and workers must neither print tracebacks nor keep running after the parent is gone;
    the parent stops them.
 

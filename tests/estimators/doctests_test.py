@@ -14,6 +14,8 @@ MODULES = [
     "estimators.fault_tolerant",
     "estimators.physical",
     "estimators.depth",
+    "estimators.depth_compose",
+    "estimators.mixer_count",
     "estimators.estimate",
     "estimators.crosscheck",
     "estimators.sweep",
