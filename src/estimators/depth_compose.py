@@ -161,12 +161,14 @@ class MatrixStep:
 _ANCHORED: dict[Hashable, tuple[np.ndarray, tuple[int, ...]] | None] = {}
 """key -> (profile on slots + work qubits, work offsets), or ``None`` when the key cannot be anchored."""
 _BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
-_CACHE_LIMIT = 20_000
+_CACHE_LIMIT = 4096
+"""Entries per cache (a matrix is at most ``3 * 24`` squared int64, 41 kB, for runs; a sweep of 2x2..40x40 meets
+a few hundred structures), then the cache starts again: a bound on memory."""
 
 
 def _remember(cache: dict, key: Hashable, value: Any) -> None:
     if len(cache) >= _CACHE_LIMIT:
-        cache.clear()  # a bound on memory; a sweep re-derives what it needs
+        cache.clear()
     cache[key] = value
 
 
