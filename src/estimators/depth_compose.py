@@ -228,10 +228,20 @@ def _runs(gates: Sequence[tuple[Any, ...]], limit: int) -> Iterator[tuple[Hashab
     run: list[tuple] = []
     for g in gates:
         qs = g[1]
-        if run and len(pos) + sum(1 for q in qs if q not in pos) > limit:
+        if len(qs) == 1:
+            i = pos.get(qs[0])
+            if i is None:
+                if len(pos) >= limit:
+                    yield tuple(flat), list(pos), run
+                    pos, flat, run = {}, [], []
+                i = pos[qs[0]] = len(pos)
+            flat += (-1 if g[0] == _ROT else -2, i)  # arity markers (rz apart) are negative, positions not
+            run.append(g)
+            continue
+        if run and len(pos) + sum(q not in pos for q in qs) > limit:
             yield tuple(flat), list(pos), run
             pos, flat, run = {}, [], []
-        flat.append(-1 if len(qs) == 1 and g[0] == _ROT else -len(qs) - 1)  # arity marker, rz marked apart
+        flat.append(-len(qs) - 1)
         for q in qs:
             i = pos.get(q)
             if i is None:
