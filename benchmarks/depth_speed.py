@@ -1,7 +1,8 @@
 """Speed of the depths of ``qcpp estimate``: exact by composition, the bound, and the depth part of the big sweep.
 
-Run: ``python benchmarks/depth_speed.py [--stride N] [--budget GATES] [--sweep-only]`` (one process, so one
-core; ``--budget`` replaces the default ``--depth-budget`` in the sweep). Prints two tables:
+Run: ``python benchmarks/depth_speed.py [--table-only | --sweep-only] [--stride N] [--budget GATES]`` (one
+process, so one core; ``--budget`` replaces the default ``--depth-budget`` in the sweep; the table takes about a
+minute, the sweep three to four). Prints two tables:
 
 1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
    (what ``--depth-budget`` compares), the seconds to build the exact composition (emit and lower the
@@ -104,7 +105,8 @@ def main(argv: list[str]) -> int:
     budget = int(argv[argv.index("--budget") + 1]) if "--budget" in argv else DEFAULT_OPTIONS.depth_budget
     if "--sweep-only" not in argv:
         per_scenario()
-    sweep_depth(stride, budget)
+    if "--table-only" not in argv:
+        sweep_depth(stride, budget)
     return 0
 
 

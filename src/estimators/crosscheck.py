@@ -4,10 +4,11 @@
 (:func:`circuitgen.lowering.lower`, and once more with ``LOGICAL_BASIS``), counts it
 (:func:`estimators.counts.count`) and compares every number :func:`estimators.estimate.estimate_point` reports
 without building anything: qubits and registers, gate counts per name (whole circuit, state preparation, each
-layer's phase separator and mixer), the logical gate counts, and the depths when the estimate computed them
-exactly. :func:`crosscheck_cases` lists the scenarios the tests and ``benchmarks/estimate_speed.py`` check: the
-default scenarios of every grid 2x2..8x8 with 1..6 robots, the same with interior obstacles (soft and hard
-mode), the example files, the ``paper`` rule and the ``ft`` target, for p = 1..3.
+layer's phase separator and mixer), the logical gate counts, and the depths (asked ``exact``: composed from the
+gadgets' transfer profiles, :mod:`estimators.depth_compose`). :func:`crosscheck_cases` lists the scenarios the
+tests and ``benchmarks/estimate_speed.py`` check: the default scenarios of every grid 2x2..8x8 with 1..6 robots,
+the same with interior obstacles (soft and hard mode), the example files, the ``paper`` rule and the ``ft``
+target, for p = 1..3.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -59,7 +60,7 @@ def crosscheck(case: Case) -> list[str]:
         One line per mismatch (empty when everything agrees).
     """
     s, p, plan = case.scenario, case.p, case.plan
-    est = estimate_point(Point.from_scenario(s, p), EstimateOptions(plan=plan, depth="auto"))
+    est = estimate_point(Point.from_scenario(s, p), EstimateOptions(plan=plan, depth="exact"))
     circ = qaoa_circuit(s, p, rule=plan.rule, initial=plan.initial, target=plan.target)  # type: ignore[arg-type]
     low = lower(circ)
     rc = count(low)

@@ -140,17 +140,18 @@ def test_exact_depth_equals_the_compiled_circuit_random_scenarios(data: st.DataO
     assert exact_depth(s, p, options) == want
 
 
+def _everywhere() -> list[tuple[str, Scenario, int, PlanOptions]]:
+    cases = [(f"{s.name} p{p}", s, p, DEFAULT_PLAN) for s in _defaults(6, 4) for p in (1, 2, 3)]
+    return cases + [(c.label, c.scenario, c.p, c.plan) for c in crosscheck_cases(full=True)]
+
+
 @pytest.mark.heavy
-def test_exact_depth_equals_the_compiled_circuit_everywhere() -> None:
+@pytest.mark.parametrize("part", range(6))
+def test_exact_depth_equals_the_compiled_circuit_everywhere(part: int) -> None:
     """Defaults 2x2..6x6 with 1..4 robots at p = 1..3, and every cross-check case (obstacles, hard mode, rules,
     targets, example files)."""
-    mismatches = [(s.name, p) for s in _defaults(6, 4) for p in (1, 2, 3) if exact_depth(s, p) != compiled_depth(s, p)]
-    mismatches += [
-        c.label
-        for c in crosscheck_cases(full=True)
-        if exact_depth(c.scenario, c.p, c.plan) != compiled_depth(c.scenario, c.p, c.plan)
-    ]
-    assert mismatches == []
+    cases = _everywhere()[part::6]
+    assert [label for label, s, p, o in cases if exact_depth(s, p, o) != compiled_depth(s, p, o)] == []
 
 
 # --- the premise of the per-kind cache ------------------------------------------------------------------------------
