@@ -25,12 +25,13 @@ once from its lowered gates and cached:
   and lowered once per scenario: its ``D`` is cached per lowered structure (gates with qubits renamed by first
   appearance); a gadget on more than :data:`MATRIX_QUBITS` qubits is cut into consecutive runs of gates on at most
   that many qubits, one matrix per run (composing runs is exact like composing gadgets; the runs of an
-  arithmetic phase gadget repeat a few dozen structures).
+  arithmetic phase gadget repeat a few structures many times).
 
 :class:`LayeredDepth` holds one scenario's steps (the state preparation, then one layer: layers differ only in
 their angles) and carries the frontier from ``p`` to ``p + 1``, so a sweep over ``p = 1..P`` propagates ``P``
-layers in all. Cost: about 3-4 us per gadget and layer (numpy on a ``3k x 3k`` matrix, ``k`` the gadget's
-qubits), plus the emission and lowering of the non-anchored gadgets once per scenario.
+layers in all. Cost: one small numpy step per gadget (or run) and layer (a ``3k x 3k`` matrix, ``k`` the gadget's
+qubits), plus the emission and lowering of the non-anchored gadgets once per scenario
+(``benchmarks/depth_speed.py``).
 
 Example:
     >>> from gridcover.presets import default_scenario
