@@ -47,6 +47,7 @@ from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 from .depth import Depth, depths
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .mixer_count import mixer_layer
+from .phase_count import phase_layer
 from .physical import (
     DEFAULT_ERROR_BUDGET,
     DEFAULT_QEC_SCHEME,
@@ -278,7 +279,10 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
             logical={k: logical[k] for k in keys if k in logical},
         )
     mixer = mixer_layer(scenario, options.rule, options.target)
-    phase = plan1.phase_plan  # the plan's own phase separator (built apart from its partial mixers)
+    # the phase separator by classes where that is exact, else the plan's own (built apart from its partial mixers)
+    phase = phase_layer(scenario, options.target, options.phase, options.optimize, options.ancilla_budget)
+    if phase is None:
+        phase = plan1.phase_plan
     if options.initial == "initial_path":
         # on a grid without obstacles each robot's initial path is the L-shaped path (feasible), prepared by one
         # X per edge: its length is the Manhattan distance (the tests compare with the plan's StatePrep)
