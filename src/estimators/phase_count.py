@@ -36,7 +36,7 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache, cached_property, lru_cache
 from itertools import repeat
 
@@ -67,12 +67,14 @@ class PhaseLayer:
         rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
         balance: The balance arithmetic, or ``None``.
         num_ancillas: Clean ancillas the largest part needs.
+        num_variables: Data qubits.
     """
 
     parts: tuple[tuple[Gadget, int], ...]
     rotations: int
     balance: _Balance | None
     num_ancillas: int
+    num_variables: int
 
     def cost(self) -> Cost:
         """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
@@ -93,14 +95,21 @@ class PhaseLayer:
         return lowered, logical
 
     def gadgets(self) -> list[tuple[Gadget, int]]:
-        """``(representative gadget, count)`` per distinct part (for per-kind figures such as depth); the data
-        rotations and the balance gadget are built here, on the data qubits ``0 ..``."""
+        """``(representative gadget, count)`` per distinct part, each on data qubits ``0 ..`` and ancillas from
+        :attr:`num_variables` on, ready to emit (for per-kind figures such as depth)."""
+        anc = range(self.num_variables, self.num_variables + self.num_ancillas)
         out: list[tuple[Gadget, int]] = []
         if self.rotations:
             out.append((IsingPhase("gamma", tuple(zip(range(self.rotations), repeat(1.0))), ()), 1))
-        out += self.parts
+        for g, count in self.parts:
+            if isinstance(g, VisitPhase):
+                d = len(g.visitors[0])
+                visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
+                out.append((replace(g, visitors=visitors, ancillas=tuple(anc)), count))
+            elif isinstance(g, SumsPhase):
+                out.append((replace(g, ancillas=tuple(anc)), count))
         if self.balance is not None:
-            out.append((self.balance.gadget(), 1))
+            out.append((replace(self.balance.gadget(), ancillas=tuple(anc)), 1))
         return out
 
 
@@ -300,7 +309,7 @@ def phase_layer(
                 keep &= rounded != rounded[k]
         values = values[keep]
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
-    layer = PhaseLayer(tuple(parts), rotations, balance, ancillas)
+    layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
     if within is not None:
         first = score(layer.cost(), layer.logical_cost(), target)[0]  # type: ignore[arg-type]
         if (ROTATION_T_COST if target == "ft" else 2) * within <= first:

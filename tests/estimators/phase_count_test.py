@@ -8,6 +8,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from circuitgen.circuit import Circuit, Section
+from circuitgen.cost import Cost
+from circuitgen.lowering import lower
 from circuitgen.phase import phase_plan
 from estimators.phase_count import PhaseLayer, phase_layer
 from gridcover.grid import Grid
@@ -31,6 +34,18 @@ def _same_as_plan(s: Scenario, target: str) -> bool:
         kinds[g.kind] += n
     assert kinds == Counter(g.kind for g in plan.gadgets("gamma"))
     return True
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_representatives_emit_their_cost_on_the_layers_qubits(target: str) -> None:
+    s = default_scenario(9, 7, 5)
+    layer = phase_layer(s, target)
+    assert layer is not None
+    width = s.num_variables + layer.num_ancillas
+    for g, _ in layer.gadgets():
+        gates = g.emit()
+        assert max(q for gate in gates for q in gate.qubits) < width
+        assert Cost.count(lower(Circuit([("q", width)], [Section("s", tuple(gates))])).gates) == g.cost()
 
 
 @pytest.mark.parametrize("target", TARGETS)
