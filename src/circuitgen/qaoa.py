@@ -89,6 +89,9 @@ class QaoaPlan:
         phase: ``feasible`` (exact on feasible assignments, default) or ``whole-space`` (the Ising Hamiltonian).
         optimize: ``cx`` or ``depth`` (phase separator: couplings only, shallow).
         ancilla_budget: Most ancillas the phase separator may use (``None``: as many as the cheapest needs).
+        fuse: Cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next compute
+            (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer, each with
+            clean ancillas at both ends (the same high-level gates; a few more lowered ones).
     """
 
     scenario: Scenario
@@ -99,6 +102,7 @@ class QaoaPlan:
     phase: Representation = "feasible"
     optimize: Optimize = "cx"
     ancilla_budget: int | None = None
+    fuse: bool = True
 
     # -- layout
     @cached_property
@@ -114,7 +118,7 @@ class QaoaPlan:
 
     @cached_property
     def _mixer_pieces(self) -> tuple[Gadget, ...]:
-        return tuple(mixer_pieces(self._mixers))
+        return tuple(mixer_pieces(self._mixers)) if self.fuse else self._mixers
 
     @cached_property
     def state_prep(self) -> StatePrep:
@@ -190,7 +194,8 @@ class QaoaPlan:
             for g in self.phase_plan.gadgets(f"gamma_{k}", 0, self.scenario.num_variables):
                 yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
-            for g in mixer_pieces([dataclasses.replace(m, beta=beta) for m in self._mixers]):
+            mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
+            for g in mixer_pieces(mixers) if self.fuse else mixers:
                 yield f"mixer_{k}", g
 
     def kinds(self) -> dict[str, Counter[Hashable]]:
@@ -248,6 +253,7 @@ def qaoa_plan(
     phase: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fuse: bool = True,
 ) -> QaoaPlan:
     """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`."""
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
@@ -258,7 +264,7 @@ def qaoa_plan(
         raise ValueError(f"unknown target {target!r} (expected 'nisq' or 'ft')")
     if ancilla_budget is not None and ancilla_budget < 0:
         raise ValueError(f"ancilla_budget must be >= 0, got {ancilla_budget}")
-    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget)
+    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
 
 
 def qaoa_circuit(
@@ -270,6 +276,7 @@ def qaoa_circuit(
     phase: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fuse: bool = True,
 ) -> Circuit:
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
@@ -283,8 +290,9 @@ def qaoa_circuit(
         phase: ``feasible`` (default) or ``whole-space`` phase separator (see :mod:`circuitgen.phase`).
         optimize: ``cx`` (default) or ``depth`` for the phase separator.
         ancilla_budget: Most ancillas the phase separator may use (default: as many as its cheapest form needs).
+        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`QaoaPlan`).
 
     Returns:
         The circuit (see the module docstring for its layout).
     """
-    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget).circuit()
+    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse).circuit()

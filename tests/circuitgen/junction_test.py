@@ -154,3 +154,15 @@ def test_qiskit_o3_never_beats_our_lowering(label: str, s: Scenario) -> None:
     assert ours == qaoa_plan(s, 1).cost().cx
     theirs, _ = mixer_cost.qiskit_cx(high)
     assert theirs >= ours, (label, theirs, ours)
+
+
+@pytest.mark.parametrize("target", ["nisq", "ft"])
+def test_unfused_plan_reports_its_lowered_count_and_fusion_only_saves(target: str) -> None:
+    s = _small_scenarios()[-1]
+    fused, unfused = qaoa_plan(s, 2, target=target), qaoa_plan(s, 2, target=target, fuse=False)  # type: ignore[arg-type]
+    assert unfused.cost() == Cost.count(lower(unfused.circuit()).gates)
+    assert fused.cost() == Cost.count(lower(fused.circuit()).gates)
+    saved = unfused.cost().to_dict()
+    for name, k in fused.cost().items:
+        assert k <= saved.get(name, 0), name
+    assert fused.cost().total < unfused.cost().total
