@@ -373,7 +373,8 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     the default placement. Gate counts are for the lowered circuit (basis ``cx x h rz t tdg s sdg``, peephole
     on); ``toffoli`` counts Toffolis after multi-controlled-X lowering; ``rotations`` counts arbitrary-angle
     RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate count is written as
-    ``initial state + p * (phase separator + robots * one robot's mixer)``.
+    ``initial state + p * (phase separator + mixer)``, the mixer summed over robots minus the junctions between
+    consecutive partial mixers (:func:`mixer_terms`).
 
     Args:
         structured: keep the abbreviations :data:`V` and :data:`P` (see :data:`V_EXPR`, :data:`P_EXPR`)

@@ -23,7 +23,9 @@ temporary, then ``csbf`` (``XXXX`` rotation controlled by the output; 8 CX), the
 
 The cost of both is computed from the plan (a short list of leaf kinds), never from emitted gates; the plan is
 cached per *kind* (the program with grid edges replaced by local positions), so a circuit's cost is a sum over
-its partial-mixer kinds.
+its partial-mixer kinds. In a circuit, consecutive parity-basis partial mixers are fused at their boundaries
+(:mod:`circuitgen.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`), which subtracts a saving per
+junction kind.
 
 Example:
     >>> from gridcover.presets import default_scenario
