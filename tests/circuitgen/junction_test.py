@@ -166,3 +166,13 @@ def test_unfused_plan_reports_its_lowered_count_and_fusion_only_saves(target: st
     for name, k in fused.cost().items:
         assert k <= saved.get(name, 0), name
     assert fused.cost().total < unfused.cost().total
+
+
+@pytest.mark.parametrize("s", _small_scenarios()[1:], ids=lambda s: f"{s.grid.rows}x{s.grid.cols}/{s.num_robots}")
+def test_fused_circuit_matches_the_subspace_simulator(s: Scenario) -> None:
+    """The whole fused circuit (p = 2, lowered) against :class:`simulate.subspace.SubspaceQAOA`, every feasible
+    assignment, to 1e-8; every ancilla back in |0>."""
+    from simulate.validate import validate
+
+    report = validate(s, p=2, backend="sparse", seed=11)
+    assert report.passed and report.max_amplitude_error < TOL, report
