@@ -40,7 +40,7 @@ from __future__ import annotations
 import heapq
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from gridcover.grid import Plaquette
 from gridcover.sbf import Lit, Rule, SbfLogic, sbf_logic
@@ -439,8 +439,15 @@ class _PartialMixerBase:
     def parts(self) -> tuple[list[Gate], list[Gate], list[Gate]]:
         """The gates as compute leaves, rotation, mirrored leaves (:mod:`.junction` fuses the mirror of one
         partial mixer with the compute of the next)."""
+        compute, rotation, mirror = self._parts
+        return list(compute), list(rotation), list(mirror)
+
+    @cached_property
+    def _parts(self) -> tuple[tuple[Gate, ...], tuple[Gate, ...], tuple[Gate, ...]]:
+        # built once: a fused layer asks each partial mixer for its parts three times (two junctions, a rotation)
         slots = plan_slots(self.plan, len(self.outer_qubits))
-        return emit_plan(self.plan, dict(zip(slots, self.slot_qubits, strict=True)), self.beta)
+        compute, rotation, mirror = emit_plan(self.plan, dict(zip(slots, self.slot_qubits, strict=True)), self.beta)
+        return tuple(compute), tuple(rotation), tuple(mirror)
 
     def emit(self) -> list[Gate]:
         """The gates: compute, rotation, mirror."""
