@@ -436,11 +436,12 @@ def _tensor_checks_with(
         return checks
     if max_amplitudes is None or max_amplitudes >= total:
         pick = np.arange(total)
-        note = f"all {total} feasible assignments"
+        note = f"all {total} feasible assignments; partial mixers unfused"
     else:
         pick = np.sort(np.random.default_rng(seed).choice(total, size=max_amplitudes, replace=False))
         held = float(np.sum(np.abs(ref[pick]) ** 2))
         note = f"seeded sample of {len(pick)} of {total} assignments, holding probability {held:.6f}"
+        note += "; partial mixers unfused"
     try:
         got = tc.amplitudes((int(index[k]) for k in pick), open_qubits=_open_qubits(scenario))
     except ContractionTooWideError as exc:
