@@ -38,6 +38,7 @@ from typing import Any, Literal
 
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.cost import Cost
+from circuitgen.gadgets.junction import MixerJunction, MixerRotation
 from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_plan
@@ -394,11 +395,11 @@ def exact_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
 
 def _gadget_depth(name: str, gadget: Any, registers: tuple[Register, ...], cache: dict[Hashable, Depth]) -> Depth:
     """One gadget's own depths (lowered alone), cached by kind where the kind is the whole construction up to the
-    qubits: partial mixers (their program) and the arithmetic and visit-bit phase gadgets (their weights and
-    products). The Ising phase gadget's kind holds only its term counts (two coupling graphs of one size can layer
-    differently), so its depth is computed each time."""
+    qubits: partial mixers (their program), mixer junctions and rotations, and the arithmetic and visit-bit phase
+    gadgets (their weights and products). The Ising phase gadget's kind holds only its term counts (two coupling
+    graphs of one size can layer differently), so its depth is computed each time."""
     kind = gadget.kind
-    cacheable = isinstance(gadget, ParityPartialMixer | McxPartialMixer) or (
+    cacheable = isinstance(gadget, ParityPartialMixer | McxPartialMixer | MixerJunction | MixerRotation) or (
         isinstance(kind, tuple) and bool(kind) and kind[0] in _STRUCTURAL_PHASE_KINDS
     )
     hit = cache.get(kind) if cacheable else None

@@ -9,8 +9,9 @@ relative-phase lowering is proven exact only where its contract says (clean targ
 Whole 2-robot circuits are proven section by section (:func:`simulate.equivalence.check_sections`): QCEC's
 whole-circuit check of a 27-qubit circuit ends at its timeout with ``probably_equivalent``, while each section
 takes well under a second. Sections compose because the lowering never moves a gate across a section boundary and
-every high-level section returns the ancillas to |0> (``tests/circuitgen/mixer_test.py``,
-``gadgets_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
+every block of sections that check_sections compares returns the ancillas to |0> (one section, or the run of
+fused partial-mixer pieces between two clean points: ``tests/circuitgen/mixer_test.py``, ``gadgets_test.py``,
+``junction_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
 """
 
 from __future__ import annotations

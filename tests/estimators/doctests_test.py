@@ -16,6 +16,7 @@ MODULES = [
     "estimators.depth",
     "estimators.estimate",
     "estimators.crosscheck",
+    "estimators.mixer_count",
     "estimators.sweep",
     "estimators.tables",
     "estimators.plots",
