@@ -117,7 +117,9 @@ def test_a_dirty_ancilla_is_caught() -> None:
 
     high = Circuit([("data", 2), ("logic", 1)], [Section("s", [G.and_(0, 1, 2, "10"), G.cx(2, 0)])])
     assert check_equivalence(high, lower(high), num_plain=2).equivalent
-    assert check_equivalence(high, lower(high), num_plain=3).criterion == "not_equivalent"
+    dirty = check_equivalence(high, lower(high), num_plain=3)
+    # QCEC's simulation checker may finish first under load and report "probably"; either way it is caught
+    assert not dirty.equivalent and dirty.criterion in ("not_equivalent", "probably_not_equivalent")
 
 
 def test_to_qiskit_rejects_unknown_gates_and_unbound_symbols() -> None:
