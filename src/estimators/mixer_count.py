@@ -94,6 +94,7 @@ def _outer(node: Node, rows: int, cols: int) -> int:
     return 2 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
 
 
+@lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
 def _signature(i: int, j: int, rows: int, cols: int, start: Node | None, goal: Node | None) -> Signature:
     corners = _corners(i, j)
     ends = (start, goal)
