@@ -47,9 +47,9 @@ from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.phase import EXACT_EXPANSION_LIMIT, ROTATION_T_COST, score
+from circuitgen.phase import EXACT_EXPANSION_LIMIT, ROTATION_T_COST, coupling_products, score
 from gridcover.cost import balanced_pairs
-from gridcover.feasible_cost import MAX_INTEGER_TOTAL, length_unit, reduce_on_paths
+from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
 from gridcover.scenario import Scenario
 
@@ -274,17 +274,9 @@ def phase_layer(
             weights.append(np.round(form).astype(np.int64))
             consts.append(const / unit)
         scale = a1 * unit * unit
-        m = np.zeros((n_r, n_r))
-        for r, q in pairs:
-            m[r, r] += scale
-            m[q, q] += scale
-            m[r, q] -= scale
-            m[q, r] -= scale
+        m = balance_matrix(n_r, pairs, scale)
         sizes = [int(np.count_nonzero(w)) for w in weights]
-        prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0) + sum(
-            sizes[a] * sizes[b] for a in range(n_r) for b in range(a + 1, n_r) if abs(m[a][b]) > 0
-        )
-        if prods <= EXACT_EXPANSION_LIMIT:
+        if coupling_products(sizes, m) <= EXACT_EXPANSION_LIMIT:
             # the plan also prices the balance as couplings; they interact with the visits, but the pairs within
             # one form meet no other term, so that plan has at least this many couplings (2 CX, 1 rotation each)
             within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0)

@@ -51,7 +51,16 @@ from gridcover.cost import balanced_pairs
 from gridcover.paths import path_bits
 from gridcover.scenario import Scenario
 
-__all__ = ["FeasibleCost", "SumsGroup", "VisitGroup", "feasible_cost", "length_unit", "live_edges", "reduce_on_paths"]
+__all__ = [
+    "FeasibleCost",
+    "SumsGroup",
+    "VisitGroup",
+    "balance_matrix",
+    "feasible_cost",
+    "length_unit",
+    "live_edges",
+    "reduce_on_paths",
+]
 
 #: Largest total integer weight of one form for which a balance group is called integral.
 MAX_INTEGER_TOTAL = 1 << 20
@@ -261,6 +270,21 @@ def reduce_on_paths(
     return const, {k: v for k, v in out.items() if abs(v) > _TOL}
 
 
+def balance_matrix(robots: int, pairs: Sequence[tuple[int, int]], scale: float) -> np.ndarray:
+    """``M`` with ``sum_ab M_ab G_a G_b = scale * sum_{(r, q) in pairs} (G_r - G_q)^2``.
+
+    >>> balance_matrix(3, [(0, 1), (1, 2)], 1.0).tolist()
+    [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+    """
+    m = np.zeros((robots, robots))
+    for r, q in pairs:
+        m[r, r] += scale
+        m[q, q] += scale
+        m[r, q] -= scale
+        m[q, r] -= scale
+    return m
+
+
 def length_unit(lengths: Sequence[float]) -> float | None:
     """The largest ``u`` with every length an integer multiple of it (``None`` if there is none worth using)."""
     fr = []
@@ -353,12 +377,7 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
         else:
             unit = 1.0
             scale = a1
-        m = np.zeros((n_r, n_r))
-        for r, q in pairs:
-            m[r, r] += scale
-            m[q, q] += scale
-            m[r, q] -= scale
-            m[q, r] -= scale
+        m = balance_matrix(n_r, pairs, scale)
         cvec = np.array(forms_c)
         const += float(cvec @ m @ cvec)
         lin_g = 2 * m @ cvec  # coefficient of G_a in the linear part
