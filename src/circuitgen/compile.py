@@ -75,6 +75,7 @@ def compile_scenario(
     phase: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fuse: bool = True,
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
@@ -88,6 +89,7 @@ def compile_scenario(
         target: ``nisq`` (fewest CNOTs) or ``ft`` (fewest T and rotations); see
             :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`.
         phase, optimize, ancilla_budget: The phase separator's options (:func:`circuitgen.phase.phase_plan`).
+        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`circuitgen.qaoa.QaoaPlan`).
 
     Returns:
         The :class:`CompileResult`.
@@ -96,7 +98,7 @@ def compile_scenario(
         ValueError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
-    plan = qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget)
+    plan = qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
     circuit = plan.circuit()
     if bindings:
         unknown = sorted(set(bindings) - set(circuit.symbols))

@@ -19,6 +19,7 @@
 
 from __future__ import annotations
 
+from collections import defaultdict
 from collections.abc import Callable, Iterable, Sequence
 
 from ._perf import gc_paused
@@ -397,8 +398,9 @@ def _cancels(prev: Gate, g: Gate) -> bool:
 
 def _peephole_gates(gates: Sequence[Gate], num_qubits: int) -> list[Gate]:
     out: list[Gate | None] = []
-    # stacks[q]: indices into ``out`` of the live gates on qubit q, latest last
-    stacks: list[list[int]] = [[] for _ in range(num_qubits)]
+    # stacks[q]: indices into ``out`` of the live gates on qubit q, latest last (a dict: a section touches few of
+    # the circuit's qubits, and a circuit has many short sections)
+    stacks: defaultdict[int, list[int]] = defaultdict(list)
     inverse_name = _INVERSE_NAME
     push = out.append
     for g in gates:

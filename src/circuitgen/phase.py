@@ -34,6 +34,7 @@ Example:
 from __future__ import annotations
 
 import copy
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -53,6 +54,7 @@ __all__ = [
     "COEFFICIENT_TOLERANCE",
     "ROTATION_T_COST",
     "PhasePlan",
+    "coupling_products",
     "ft_t_count",
     "phase_plan",
     "phase_separator_gates",
@@ -400,13 +402,22 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budge
     return best
 
 
+def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -> int:
+    """Products of two variables in ``sum_ab M_ab G_a G_b`` over forms of these sizes: the couplings its expansion
+    can have (pairs within a form where ``M_aa != 0``, pairs across forms where ``M_ab != 0``).
+
+    >>> coupling_products([3, 2], [[1.0, -1.0], [-1.0, 1.0]])
+    10
+    """
+    n = len(sizes)
+    within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n) if abs(matrix[a][a]) > 0)
+    return within + sum(sizes[a] * sizes[b] for a in range(n) for b in range(a + 1, n) if abs(matrix[a][b]) > 0)
+
+
 def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None) -> dict:
     """The constructions a sums group may use, with their own costs and ancillas."""
-    sizes = [len(f) for f in grp.forms]
     m = grp.matrix
-    prods = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(len(sizes)) if abs(m[a][a]) > 0) + sum(
-        sizes[a] * sizes[b] for a in range(len(sizes)) for b in range(a + 1, len(sizes)) if abs(m[a][b]) > 0
-    )
+    prods = coupling_products([len(f) for f in grp.forms], m)
     out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": []}
     out["costs"]["couplings"] = (_coupling_cost(prods), _coupling_cost(prods))
     out["ancillas"]["couplings"] = 0

@@ -5,9 +5,11 @@
 * registers ``data`` (qubit ``i`` = decision variable ``i``, see :mod:`gridcover.scenario`) and ``logic``
   (clean ancillas shared by every gadget: each returns them to |0>);
 * sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every gadget is a section
-  of its own (all phase gadgets of layer ``k`` are named ``phase_k``, all partial mixers ``mixer_k``), so lowering
+  of its own (all phase gadgets of layer ``k`` are named ``phase_k``, all mixer pieces ``mixer_k``), so lowering
   passes never act across two gadgets and each gadget's lowered cost is its reported cost
-  (see ``docs/architecture.md``);
+  (see ``docs/architecture.md``). The parity-basis partial mixers of a layer are cut at their rotations: each
+  section between two rotations is a :class:`~circuitgen.gadgets.junction.MixerJunction` (the uncompute of one
+  partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
 * ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
 
 :class:`QaoaPlan` holds the same circuit as gadgets and sums their costs by kind without emitting anything.
@@ -21,8 +23,8 @@ Example:
     >>> from gridcover.scenario import scenario_from_dict
     >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
     >>> c = qaoa_circuit(s, p=1)
-    >>> c.symbols, [sec.name for sec in c.sections]
-    (('gamma_0', 'beta_0'), ['initial_state', 'phase_0', 'mixer_0', 'mixer_0', 'mixer_0', 'mixer_0'])
+    >>> c.symbols, [sec.name for sec in c.sections][:4], len(c.sections)
+    (('gamma_0', 'beta_0'), ['initial_state', 'phase_0', 'mixer_0', 'mixer_0'], 11)
     >>> from circuitgen.lowering import lower
     >>> plan = qaoa_plan(s, p=1)
     >>> plan.cost() == Cost.count(lower(c).gates)
@@ -46,6 +48,7 @@ from .circuit import Circuit, Register, Section
 from .cost import Cost, Target
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
+from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
 from .lowering import WORK_REGISTER
 from .phase import Optimize, PhasePlan, Representation, phase_plan
@@ -86,6 +89,9 @@ class QaoaPlan:
         phase: ``feasible`` (exact on feasible assignments, default) or ``whole-space`` (the Ising Hamiltonian).
         optimize: ``cx`` or ``depth`` (phase separator: couplings only, shallow).
         ancilla_budget: Most ancillas the phase separator may use (``None``: as many as the cheapest needs).
+        fuse: Cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next compute
+            (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer, each with
+            clean ancillas at both ends (the same high-level gates; a few more lowered ones).
     """
 
     scenario: Scenario
@@ -96,6 +102,7 @@ class QaoaPlan:
     phase: Representation = "feasible"
     optimize: Optimize = "cx"
     ancilla_budget: int | None = None
+    fuse: bool = True
 
     # -- layout
     @cached_property
@@ -108,6 +115,10 @@ class QaoaPlan:
                 if m is not None:
                     out.append(m)
         return tuple(out)
+
+    @cached_property
+    def _mixer_pieces(self) -> tuple[Gadget, ...]:
+        return tuple(mixer_pieces(self._mixers)) if self.fuse else self._mixers
 
     @cached_property
     def state_prep(self) -> StatePrep:
@@ -175,22 +186,24 @@ class QaoaPlan:
     # -- the call graph
     def sections(self) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and one section per partial mixer (robot-major, plaquettes row-major)."""
+        separator and the mixer's pieces: the partial mixers (robot-major, plaquettes row-major) as junctions and
+        rotations (:func:`~circuitgen.gadgets.junction.mixer_pieces`), or one per partial mixer for ``paper``."""
         yield "initial_state", self.state_prep
         for k in range(self.p):
             assert self.phase_plan is not None
             for g in self.phase_plan.gadgets(f"gamma_{k}", 0, self.scenario.num_variables):
                 yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
-            for m in self._mixers:
-                yield f"mixer_{k}", dataclasses.replace(m, beta=beta)
+            mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
+            for g in mixer_pieces(mixers) if self.fuse else mixers:
+                yield f"mixer_{k}", g
 
     def kinds(self) -> dict[str, Counter[Hashable]]:
         """Gadget kinds and multiplicities of one layer's parts: ``initial_state``, ``phase``, ``mixer``."""
         out: dict[str, Counter[Hashable]] = {
             "initial_state": Counter([self.state_prep.kind]),
             "phase": Counter(g.kind for g in self._phase_gadgets),
-            "mixer": Counter(m.kind for m in self._mixers),
+            "mixer": Counter(m.kind for m in self._mixer_pieces),
         }
         return out
 
@@ -199,10 +212,10 @@ class QaoaPlan:
             return g.logical_cost() if logical else g.cost()
 
         by_kind: dict[Hashable, Cost] = {}
-        for m in self._mixers:
+        for m in self._mixer_pieces:
             if m.kind not in by_kind:
                 by_kind[m.kind] = of(m)
-        mixer = Cost.sum(by_kind[m.kind] for m in self._mixers)
+        mixer = Cost.sum(by_kind[m.kind] for m in self._mixer_pieces)
         phase = Cost.sum(of(g) for g in self._phase_gadgets)
         return {"initial_state": of(self.state_prep), "phase": phase, "mixer": mixer}
 
@@ -226,7 +239,7 @@ class QaoaPlan:
         regs = [r for r in self.registers if r.name != WORK_REGISTER]
         sections = []
         for name, g in self.sections():
-            blocks = g.emit_blocks() if isinstance(g, McxPartialMixer | ParityPartialMixer) else [g.emit()]
+            blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
             sections.extend(Section(name, tuple(b)) for b in blocks)
         return Circuit(regs, sections)
 
@@ -240,6 +253,7 @@ def qaoa_plan(
     phase: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fuse: bool = True,
 ) -> QaoaPlan:
     """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`."""
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
@@ -250,7 +264,7 @@ def qaoa_plan(
         raise ValueError(f"unknown target {target!r} (expected 'nisq' or 'ft')")
     if ancilla_budget is not None and ancilla_budget < 0:
         raise ValueError(f"ancilla_budget must be >= 0, got {ancilla_budget}")
-    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget)
+    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
 
 
 def qaoa_circuit(
@@ -262,6 +276,7 @@ def qaoa_circuit(
     phase: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fuse: bool = True,
 ) -> Circuit:
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
@@ -275,8 +290,9 @@ def qaoa_circuit(
         phase: ``feasible`` (default) or ``whole-space`` phase separator (see :mod:`circuitgen.phase`).
         optimize: ``cx`` (default) or ``depth`` for the phase separator.
         ancilla_budget: Most ancillas the phase separator may use (default: as many as its cheapest form needs).
+        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`QaoaPlan`).
 
     Returns:
         The circuit (see the module docstring for its layout).
     """
-    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget).circuit()
+    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse).circuit()

@@ -17,10 +17,11 @@ concatenated lowered gates, and the depth is the largest level. Lowering never c
 A gadget's ``D`` (:func:`transfer_profile`, the three depths stacked into one block-diagonal matrix) is computed
 once from its lowered gates and cached:
 
-* *anchored* gadgets (partial mixers, visit-bit phase gadgets; :data:`ANCHORS`) name their qubits in a fixed slot
-  order, and their kind fixes their gates up to those slots, so ``D`` is cached per kind (on slots) across every
-  scenario: a gadget costs one dictionary look-up. ``tests/estimators/depth_compose_test.py`` checks the
-  premise on every gadget of many scenarios (the cached profile equals the gadget's own);
+* *anchored* gadgets (partial mixers, their junctions and rotations, visit-bit phase gadgets; :data:`ANCHORS`)
+  name their qubits in a fixed slot order, and their kind fixes their gates up to those slots, so ``D`` is
+  cached per kind (on slots) across every scenario: a gadget costs one dictionary look-up.
+  ``tests/estimators/depth_compose_test.py`` checks the premise on every gadget of many scenarios (the cached
+  profile equals the gadget's own);
 * any other gadget (state preparation, RZ/RZZ and arithmetic phase gadgets, gadget kinds added later) is emitted
   and lowered once per scenario: its ``D`` is cached per lowered structure (gates with qubits renamed by first
   appearance); a gadget on more than :data:`MATRIX_QUBITS` qubits is cut into consecutive runs of gates on at most
@@ -50,14 +51,16 @@ from typing import Any
 import numpy as np
 
 from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
-from circuitgen.gadgets.phase_visits import VisitPhase
+from circuitgen.gadgets.junction import MixerJunction, MixerRotation
+from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
+from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
 from circuitgen.lowering import WORK_REGISTER, lower
 
 from .depth import Depth
 
 __all__ = [
     "ANCHORS",
+    "ANCHOR_SLOTS",
     "MATRIX_QUBITS",
     "NEG",
     "LayeredDepth",
@@ -65,6 +68,7 @@ __all__ = [
     "anchored_profile",
     "gadget_depth",
     "gadget_steps",
+    "known_depth",
     "lowered_gates",
     "transfer_profile",
 ]
@@ -74,6 +78,9 @@ NEG = -(1 << 40)
 MATRIX_QUBITS = 24
 """Widest transfer matrix of a non-anchored gadget; a wider gadget is cut into consecutive runs of gates on at
 most this many qubits (one matrix each; wider matrices cost more per application than they save)."""
+
+ANCHOR_SLOTS = 64
+"""Most slots an anchored gadget may have (its matrix is ``3 x slots`` square); a wider one goes by runs."""
 
 _ROT = "rz"  # the only gate that adds a rotation level (lowered circuits: an arbitrary rotation is an rz)
 
@@ -132,14 +139,34 @@ def _mixer_anchors(g: ParityPartialMixer | McxPartialMixer) -> tuple[Hashable, t
     return (type(g).__name__, g.kind), (*g.plaquette_qubits, *g.outer_qubits, *temps)
 
 
+def _junction_anchors(g: MixerJunction) -> tuple[Hashable, tuple[int, ...]]:
+    # the kind holds both partial mixers' kinds and which slots they share: the left one's slots, then the right
+    # one's own
+    left = g.left.slot_qubits if g.left is not None else ()
+    right = g.right.slot_qubits if g.right is not None else ()
+    if g.left is not None and g.right is not None:
+        right = tuple(q for q, o in zip(right, g.overlap, strict=True) if o < 0)
+    return ("MixerJunction", g.kind), (*left, *right)
+
+
+def _rotation_anchors(g: MixerRotation) -> tuple[Hashable, tuple[int, ...]]:
+    m = g.mixer
+    qubit = dict(zip(plan_slots(m.plan, len(m.outer_qubits)), m.slot_qubits, strict=True))
+    return ("MixerRotation", g.kind), tuple(qubit[s] for s in m.plan.rotation[1])
+
+
 def _visit_anchors(g: VisitPhase) -> tuple[Hashable, tuple[int, ...]]:
-    # a zero coefficient emits no phase (its cost differs), so it is part of the key
-    return ("VisitPhase", g.kind, g.coefficient != 0), (*(q for v in g.visitors for q in v), *g.ancillas)
+    # a zero coefficient emits no phase (its cost differs), so it is part of the key; the gadget uses the first
+    # ancillas it needs, whatever the pool it is given
+    need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
+    return ("VisitPhase", g.kind, g.coefficient != 0), (*(q for v in g.visitors for q in v), *g.ancillas[:need])
 
 
 ANCHORS: dict[type, Callable[[Any], tuple[Hashable, tuple[int, ...]]]] = {
     ParityPartialMixer: _mixer_anchors,
     McxPartialMixer: _mixer_anchors,
+    MixerJunction: _junction_anchors,
+    MixerRotation: _rotation_anchors,
     VisitPhase: _visit_anchors,
 }
 """Per gadget class: ``gadget -> (key, slot qubits)``. Gadgets with equal keys have equal lowered gates once
@@ -201,8 +228,9 @@ def anchored_profile(gadget: Any, registers: Sequence[Register]) -> tuple[tuple[
     if anchors is None:
         return None
     key, slots = anchors(gadget)
-    if len(set(slots)) != len(slots):
+    if len(slots) > ANCHOR_SLOTS or len(set(slots)) != len(slots):
         return None
+    key = (key, len(slots))
     work0 = _work_start(registers)
     hit = _ANCHORED.get(key, False)
     if hit is False:
@@ -310,12 +338,19 @@ def gadget_depth(gadget: Any, registers: Sequence[Register]) -> Depth:
             levels = np.zeros(3 * n, dtype=np.int64)
             _propagate(levels, steps)
             hit = _depth(levels, n)
-        if key is not None and anchored_profile(gadget, registers) is not None:
+        if key is not None:  # equal kinds, equal gates up to qubit names: equal own depths
             _remember(_OWN_DEPTH, key, hit)
     return hit
 
 
 _OWN_DEPTH: dict[Hashable, Depth] = {}
+
+
+def known_depth(gadget: Any) -> Depth | None:
+    """The gadget's own depths if :func:`gadget_depth` has met its kind (an anchored one) before, else ``None``
+    (looks at the kind only: nothing is emitted)."""
+    anchors = ANCHORS.get(type(gadget))
+    return _OWN_DEPTH.get(anchors(gadget)[0]) if anchors is not None else None
 
 
 def _depth(levels: np.ndarray, n: int) -> Depth:

@@ -49,9 +49,10 @@ from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
 
 from .depth import Depth, depths
-from .depth_compose import LayeredDepth, gadget_depth
+from .depth_compose import LayeredDepth, gadget_depth, known_depth
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .mixer_count import mixer_layer
+from .phase_count import phase_layer as _phase_layer
 from .physical import (
     DEFAULT_ERROR_BUDGET,
     DEFAULT_QEC_SCHEME,
@@ -77,6 +78,10 @@ __all__ = [
     "layer_costs",
     "registers_for",
 ]
+
+phase_layer = lru_cache(maxsize=64)(_phase_layer)
+"""The phase separator by classes (:func:`estimators.phase_count.phase_layer`), cached: the counts and the depth
+bound of a scenario both ask."""
 
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
@@ -283,7 +288,10 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Laye
             logical={k: logical[k] for k in keys if k in logical},
         )
     mixer = mixer_layer(scenario, options.rule, options.target)
-    phase = plan1.phase_plan  # the plan's own phase separator (built apart from its partial mixers)
+    # the phase separator by classes where that is exact, else the plan's own (built apart from its partial mixers)
+    phase = phase_layer(scenario, options.target, options.phase, options.optimize, options.ancilla_budget)
+    if phase is None:
+        phase = plan1.phase_plan
     if options.initial == "initial_path":
         # on a grid without obstacles each robot's initial path is the L-shaped path (feasible), prepared by one
         # X per edge: its length is the Manhattan distance (the tests compare with the plan's StatePrep)
@@ -454,11 +462,38 @@ def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth
         init = Depth(1, 0, 0) if lc.sections["initial_state"].total else Depth()
     else:
         init = gadget_depth(_plan1(scenario, options).state_prep, regs)
-    phase = lc.sections.get("phase", Cost())
-    # the phase separator by its gate counts (depth <= gates): its gadgets are not listed, which would cost
-    # O(variables) per scenario
-    layer = Depth(phase.total, phase.two_qubit, phase.rotations, "bound") + _mixer_depth_sum(scenario, options, regs)
+    layer = _phase_depth_sum(scenario, options, lc, regs) + _mixer_depth_sum(scenario, options, regs)
     return init, layer
+
+
+_OWN_DEPTH_GATES = 5_000
+"""A phase part of more lowered gates than this (the balance arithmetic, over every variable) enters the bound by
+its gate counts: its own depth would need its gates emitted and lowered, ``O(variables)`` per scenario."""
+
+
+def _by_counts(c: Cost) -> Depth:
+    return Depth(c.total, c.two_qubit, c.rotations, "bound")
+
+
+def _phase_depth_sum(scenario: Scenario, options: PlanOptions, lc: LayerCosts, regs: tuple[Register, ...]) -> Depth:
+    """A bound on one phase separator's depths: the sum of its parts' own depths, one per class
+    (:func:`estimators.phase_count.phase_layer`), a large part by its gate counts; where the phase separator is
+    not counted by classes, its gate counts."""
+    phase = phase_layer(scenario, options.target, options.phase, options.optimize, options.ancilla_budget)
+    if phase is None:
+        return _by_counts(lc.sections.get("phase", Cost()))
+    total = Depth(1, 0, 1) if phase.rotations else Depth()  # one rz on each of distinct data qubits
+    rest = _minus(phase.cost(), Cost.of(rz=phase.rotations))
+    ready: list[Any] | None = None
+    for i, (g, n) in enumerate(phase.parts):
+        rest = _minus(rest, n * g.cost())
+        d = known_depth(g)
+        if d is None and g.cost().total <= _OWN_DEPTH_GATES:
+            if ready is None:  # the parts placed on the layer's qubits, ready to emit (builds the balance too)
+                ready = [x for x, _ in phase.gadgets()][(1 if phase.rotations else 0) :]
+            d = gadget_depth(ready[i], regs)
+        total = total + n * (d if d is not None else _by_counts(g.cost()))
+    return total + _by_counts(rest)  # the balance arithmetic
 
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
@@ -466,9 +501,11 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
 
     ``depth(A then B) <= depth(A) + depth(B)`` (ASAP layering can only shorten a concatenation), so the bound is
     the state preparation's depth (exact) plus ``p`` times one layer's bound: the sum of the partial mixers' own
-    depths (one per signature, :mod:`estimators.mixer_count`, times its multiplicity) plus the phase separator's
-    gate counts (a depth is at most the number of gates; likewise two-qubit gates and rotations). With obstacles
-    the layer's bound is the sum of every gadget's own depth (the plan's gadgets are listed).
+    depths (one per signature, :mod:`estimators.mixer_count`, times its multiplicity; fusing neighbours only
+    removes gates, which cannot deepen a circuit) plus the phase separator's parts' own depths (one per class,
+    :mod:`estimators.phase_count`; the balance arithmetic, and a phase separator not counted by classes, by gate
+    counts: a depth is at most the number of gates, likewise two-qubit gates and rotations). With obstacles the
+    layer's bound is the sum of every gadget's own depth (the plan's gadgets are listed).
 
     >>> from gridcover.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)

@@ -27,10 +27,13 @@ How the formulas are derived (see ``docs/resource-estimates.md`` for the full de
   grid corner that is not an endpoint, or boundary node). The class of each corner depends only on whether
   the plaquette's row index is first / middle / last (or the only one, for 2 rows), likewise its column,
   and on the robot's diagonal (top-left/bottom-right for robots 0 and 3, top-right/bottom-left for robots 1
-  and 2). So the mixer is a sum over (row class, column class) of ``count(row class) * count(col class) *
-  cost(type)``, with counts ``1, rows - 3, 1`` (or ``1`` for 2 rows). ``cost(type)`` is the lowered gate
-  count of one representative partial mixer of that type, compiled alone (every partial mixer is its own
-  section, so the peephole pass never works across two of them): :func:`partial_mixer_types`.
+  and 2). Consecutive partial mixers are fused at their boundary (:mod:`circuitgen.gadgets.junction`): each
+  junction saves what cancels between the uncompute of one and the compute of the next, which depends on the
+  two partial mixers and on where the second lies (horizontal neighbour; first plaquette of the next row,
+  which shares edges when ``cols <= 4``; first plaquette of the next robot). So one layer's mixer is
+  ``sum over classes count(class) * cost(class) - sum over junction classes count * saving``, with counts
+  ``1`` and ``rows - 3`` (plaquettes) or ``rows - 4`` (consecutive pairs) for the middle ones: a polynomial in
+  each case of sides 2, 3, 4 or >= 5 nodes (:func:`mixer_terms`, read from ``default_scenario(R, C, 4)``).
 * Ancillas: ``logic`` = the largest network (6 temporaries once some plaquette has four interior corners,
   i.e. rows, cols >= 4), ``work`` = largest multi-controlled X minus 2.
 
@@ -39,7 +42,7 @@ Example:
     >>> f["data_qubits"]
     robots*(2*cols*rows - cols - rows)
     >>> evaluate(3, 3, 1, 1)["cx"]
-    152
+    150
 """
 
 from __future__ import annotations
@@ -51,7 +54,9 @@ from functools import lru_cache
 import sympy as sp
 
 from circuitgen.angles import Angle
-from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
+from circuitgen.cost import Cost
+from circuitgen.gadgets.junction import MixerJunction
+from circuitgen.gadgets.partial_mixer import ParityPartialMixer, mixer_work_need, partial_mixer
 from gridcover.presets import default_scenario
 
 __all__ = [
@@ -62,10 +67,12 @@ __all__ = [
     "V_EXPR",
     "MixerType",
     "P",
+    "Term",
     "V",
     "cols",
     "evaluate",
     "formula_table",
+    "mixer_terms",
     "p",
     "partial_mixer_types",
     "robots",
@@ -107,10 +114,6 @@ QUANTITIES: tuple[str, ...] = (
 _SMALL = (("only", 2, 0),)  # 2 rows: one plaquette row, both of its node rows on the boundary
 _LARGE = (("first", 4, 0), ("middle", 4, 1), ("last", 4, 2))
 _ROBOT_CLASSES = (("main", 0), ("anti", 1))  # robots 0, 3: TL <-> BR; robots 1, 2: TR <-> BL
-
-
-def _class_count(cls: str, n: sp.Expr) -> sp.Expr:
-    return n - 3 if cls == "middle" else sp.Integer(1)
 
 
 @dataclass(frozen=True)
@@ -184,58 +187,148 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
     return MixerType(key, rc, rcls, ccls, {g: ops[g] for g in GATE_NAMES}, toffoli, gadget.num_temps, work)
 
 
-def _mixer_sum(metric: Callable[[MixerType], int], small_rows: bool, small_cols: bool, robot_class: str) -> sp.Expr:
-    """Sum of ``metric`` over the plaquettes of one robot of ``robot_class``, for one grid case."""
-    rcls = {c for c, _, _ in (_SMALL if small_rows else _LARGE)}
-    ccls = {c for c, _, _ in (_SMALL if small_cols else _LARGE)}
-    total = sp.Integer(0)
-    for m in partial_mixer_types():
-        if m.robot_class == robot_class and m.row_class in rcls and m.col_class in ccls:
-            total += _class_count(m.row_class, rows) * _class_count(m.col_class, cols) * metric(m)
-    return sp.expand(total)
+@dataclass(frozen=True)
+class Term:
+    """Gate counts of one piece of the mixer sum: a partial mixer (added) or a junction's saving (subtracted).
+
+    Attributes:
+        ops: lowered gate counts.
+        toffoli: ANDs, their uncomputes and Toffolis (logical basis).
+    """
+
+    ops: Mapping[str, int]
+    toffoli: int
+
+    @classmethod
+    def of(cls, cost: Cost, logical: Cost) -> Term:
+        """From a lowered and a logical cost."""
+        return cls({g: cost[g] for g in GATE_NAMES}, logical["and"] + logical["and_dg"] + logical["ccx"])
 
 
-_GRID_CASES = (
-    (True, True, sp.And(sp.Eq(rows, 2), sp.Eq(cols, 2))),
-    (True, False, sp.Eq(rows, 2)),
-    (False, True, sp.Eq(cols, 2)),
-    (False, False, True),
-)
+Metric = Callable[[Term], int]
+Counted = tuple[tuple[sp.Expr, Term], ...]
+"""``(count, term)`` pairs."""
+_CASES = (2, 3, 4, 5)  # a side of 2, 3, 4 nodes, or 5 standing for >= 5
+_REPRESENTATIVE = {2: 2, 3: 3, 4: 4, 5: 6}  # the grid side each case is read from (6: every class occurs)
 
 
-def _per_robot_mixer(metric: Callable[[MixerType], int], robot_class: str = "main") -> sp.Expr:
-    """One robot's full mixer (one layer): a Piecewise over the grid cases (or one polynomial)."""
-    pieces = [(sp.factor(_mixer_sum(metric, r, c, robot_class)), cond) for r, c, cond in _GRID_CASES]
-    if all(sp.expand(e - pieces[-1][0]) == 0 for e, _ in pieces):
-        return pieces[-1][0]
-    # drop a case when the pieces after it (those kept) already give its value there
-    kept = [pieces[-1]]
-    for e, c in reversed(pieces[:-1]):
-        later = sp.Piecewise(*kept).subs(_case_subs(c))
-        if sp.expand(e - later) != 0:
-            kept.insert(0, (e, c))
-    return sp.Piecewise(*kept) if len(kept) > 1 else kept[0][0]
+def _position(k: int, items: int, n: sp.Expr) -> tuple[str, sp.Expr]:
+    """Class and count of item ``k`` of ``items`` consecutive items along a side (plaquettes: ``items = side - 1``;
+    consecutive plaquette pairs: ``side - 2``), ``n`` the same count for the symbolic side."""
+    if items == 1:
+        return "only", sp.Integer(1)
+    if k in (0, items - 1):
+        return ("first" if k == 0 else "last"), sp.Integer(1)
+    return "middle", n - 2
+
+
+@lru_cache(maxsize=16)
+def mixer_terms(rows_case: int, cols_case: int) -> tuple[tuple[Counted, ...], tuple[Term, ...]]:
+    """The mixer of the default placement of one grid case as counted terms, from ``default_scenario(R, C, 4)``
+    with ``R, C`` the cases' representative sides.
+
+    Per robot ``0..3``: ``(count, term)`` of each class of partial mixers (by row and column class) and
+    ``(-count, saving)`` of each class of junctions inside the robot's sequence (horizontal neighbours by row
+    class and pair class, row wraps by pair class); then the saving of the junction between
+    robots ``k`` and ``k + 1`` (``k = 0, 1, 2``). Members of a class are checked to have equal terms.
+
+    Args:
+        rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
+
+    Returns:
+        ``(per robot terms, robot junction savings)``; a count is a sympy expression in ``rows``, ``cols``.
+    """
+    nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
+    s = default_scenario(nr, nc, 4)
+    beta = Angle.symbol("beta_0")
+    pr, pc = nr - 1, nc - 1
+    plaq = {q.corners[0]: q for q in s.grid.plaquettes}
+    per_robot = []
+    firsts, lasts = [], []
+    for robot in range(4):
+        ms = {(i, j): partial_mixer(s, robot, plaq[i, j], beta, s.num_variables) for i in range(pr) for j in range(pc)}
+        if any(m is None or not isinstance(m, ParityPartialMixer) for m in ms.values()):  # pragma: no cover
+            raise AssertionError("the default placement has a partial mixer on every plaquette")
+        classes: dict[tuple, tuple[sp.Expr, Term]] = {}
+
+        def add(key: tuple, count: sp.Expr, term: Term, classes: dict = classes) -> None:
+            if key in classes and classes[key][1] != term:  # pragma: no cover - the class argument failed
+                raise AssertionError(f"class {key} of a {nr}x{nc} grid has unequal members")
+            classes[key] = (count, term)
+
+        for (i, j), m in ms.items():
+            rcls, rn = _position(i, pr, rows - 1)
+            ccls, cn = _position(j, pc, cols - 1)
+            add(("mixer", rcls, ccls), rn * cn, Term.of(m.cost(), m.logical_cost()))
+            if j + 1 < pc:
+                jcls, jn = _position(j, pc - 1, cols - 2)
+                jn_ = MixerJunction(m, ms[i, j + 1])
+                add(("across", rcls, jcls), -rn * jn, Term.of(jn_.saving(), jn_.logical_saving()))
+            if j == pc - 1 and i + 1 < pr:
+                icls, i_n = _position(i, pr - 1, rows - 2)
+                jn_ = MixerJunction(m, ms[i + 1, 0])
+                add(("wrap", icls), -i_n, Term.of(jn_.saving(), jn_.logical_saving()))
+        per_robot.append(tuple(classes.values()))
+        firsts.append(ms[0, 0])
+        lasts.append(ms[pr - 1, pc - 1])
+    between = []
+    for k in range(3):
+        jn_ = MixerJunction(lasts[k], firsts[k + 1])
+        between.append(Term.of(jn_.saving(), jn_.logical_saving()))
+    return tuple(per_robot), tuple(between)
 
 
 N_ANTI = sp.Min(robots - 1, 2)
 """Robots on the anti-diagonal (robots 1 and 2 of the default placement, 1 <= robots <= 4)."""
 
 
-def _all_robots_mixer(metric: Callable[[MixerType], int]) -> sp.Expr:
-    """Every robot's mixer (one layer): ``(robots - N_ANTI) main + N_ANTI anti`` (``robots * main`` when the
-    mirror-image robots cost the same)."""
-    main, anti = _per_robot_mixer(metric, "main"), _per_robot_mixer(metric, "anti")
-    if sp.simplify(main - anti) == 0:
-        return robots * main
-    return (robots - N_ANTI) * main + N_ANTI * anti
+def _case_mixer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
+    """Every robot's mixer (one layer) in one grid case: ``(robots - N_ANTI) main + N_ANTI anti`` (robots ``0, 3``
+    and ``1, 2`` cost the same; ``robots * main`` when all do) minus the junctions between consecutive robots."""
+    per_robot, between = mixer_terms(rows_case, cols_case)
+    e = [sp.expand(sum((count * metric(t) for count, t in terms), sp.Integer(0))) for terms in per_robot]
+    if e[3] != e[0] or e[2] != e[1]:  # pragma: no cover - the default placement is symmetric
+        raise AssertionError("robots 0 and 3 (or 1 and 2) of the default placement differ")
+    robots_part = robots * e[0] if e[0] == e[1] else (robots - N_ANTI) * e[0] + N_ANTI * e[1]
+    j = [metric(t) for t in between]
+    if j[0] == j[1] == j[2]:
+        junctions = (robots - 1) * j[0]
+    else:
+        at_least = [sp.Min(robots - 1, 1), sp.Max(sp.Min(robots - 2, 1), 0), sp.Max(robots - 3, 0)]
+        junctions = sum((jk * ind for jk, ind in zip(j, at_least, strict=True)), sp.Integer(0))
+    out = robots_part - junctions
+    subs = {}
+    if rows_case < 5:
+        subs[rows] = rows_case
+    if cols_case < 5:
+        subs[cols] = cols_case
+    return sp.factor(out.subs(subs)) if subs else out
 
 
-def _case_subs(cond: sp.Basic) -> dict[sp.Symbol, int]:
-    if cond == sp.Eq(rows, 2):
-        return {rows: 2}
-    if cond == sp.Eq(cols, 2):
-        return {cols: 2}
-    return {rows: 2, cols: 2}
+def _all_robots_mixer(metric: Metric) -> sp.Expr:
+    """Every robot's mixer (one layer) as a Piecewise over the grid cases (sides of 2, 3, 4 or >= 5 nodes),
+    a case kept only where the pieces after it would give another value."""
+    general = _case_mixer(metric, 5, 5)
+    by_rows = {a: _case_mixer(metric, a, 5) for a in _CASES[:-1]}
+    by_cols = {b: _case_mixer(metric, 5, b) for b in _CASES[:-1]}
+    kept_rows = {a: e for a, e in by_rows.items() if sp.expand(e - general.subs(rows, a)) != 0}
+    kept_cols = {b: e for b, e in by_cols.items() if sp.expand(e - general.subs(cols, b)) != 0}
+    pieces = []
+    for a in _CASES[:-1]:
+        for b in _CASES[:-1]:
+            e = _case_mixer(metric, a, b)
+            fallback = (
+                kept_rows[a].subs(cols, b)
+                if a in kept_rows
+                else kept_cols[b].subs(rows, a) if b in kept_cols else general.subs({rows: a, cols: b})
+            )
+            if sp.expand(e - fallback) != 0:
+                pieces.append((e, sp.And(sp.Eq(rows, a), sp.Eq(cols, b))))
+    pieces += [(e, sp.Eq(rows, a)) for a, e in kept_rows.items()]
+    pieces += [(e, sp.Eq(cols, b)) for b, e in kept_cols.items()]
+    if not pieces:
+        return general
+    return sp.Piecewise(*pieces, (general, True))
 
 
 _SIZE_CLASSES = {2: {"only"}, 3: {"first", "last"}, 4: {"first", "middle", "last"}}  # 4 stands for >= 4
@@ -280,7 +373,8 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     the default placement. Gate counts are for the lowered circuit (basis ``cx x h rz t tdg s sdg``, peephole
     on); ``toffoli`` counts Toffolis after multi-controlled-X lowering; ``rotations`` counts arbitrary-angle
     RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate count is written as
-    ``initial state + p * (phase separator + robots * one robot's mixer)``.
+    ``initial state + p * (phase separator + mixer)``, the mixer summed over robots minus the junctions between
+    consecutive partial mixers (:func:`mixer_terms`).
 
     Args:
         structured: keep the abbreviations :data:`V` and :data:`P` (see :data:`V_EXPR`, :data:`P_EXPR`)

@@ -51,7 +51,16 @@ from gridcover.cost import balanced_pairs
 from gridcover.paths import path_bits
 from gridcover.scenario import Scenario
 
-__all__ = ["FeasibleCost", "SumsGroup", "VisitGroup", "feasible_cost", "live_edges"]
+__all__ = [
+    "FeasibleCost",
+    "SumsGroup",
+    "VisitGroup",
+    "balance_matrix",
+    "feasible_cost",
+    "length_unit",
+    "live_edges",
+    "reduce_on_paths",
+]
 
 #: Largest total integer weight of one form for which a balance group is called integral.
 MAX_INTEGER_TOTAL = 1 << 20
@@ -211,13 +220,20 @@ def live_edges(scenario: Scenario, robot: int) -> list[list[int]]:
     return [sorted(a) for a in at]
 
 
-def _reduce(
-    coeffs: dict[int, float], at: list[list[int]], ends: Sequence[int], nodes_of: Sequence[tuple[int, int]]
+def reduce_on_paths(
+    coeffs: dict[int, float], at: Sequence[Sequence[int]], ends: Sequence[int]
 ) -> tuple[float, dict[int, float]]:
     """Apply the endpoint and corridor identities to ``sum coeffs[k] x_k`` (``k`` edge positions of one robot).
 
+    Args:
+        coeffs: ``k -> coefficient`` (only these edges take part).
+        at: Per node (any indexing), the robot's usable edge positions there; only its endpoints and the
+            corridor nodes (two usable edges) matter, so a caller may pass just those nodes.
+        ends: The robot's start and goal, as indices into ``at``.
+
     Returns:
-        ``(constant, coefficients)`` with the same value on every feasible path of the robot.
+        ``(constant, coefficients)`` with the same value on every feasible path of the robot (coefficients
+        below ``1e-12`` dropped).
     """
     c = dict(coeffs)
     const = 0.0
@@ -254,7 +270,22 @@ def _reduce(
     return const, {k: v for k, v in out.items() if abs(v) > _TOL}
 
 
-def _unit(lengths: Sequence[float]) -> float | None:
+def balance_matrix(robots: int, pairs: Sequence[tuple[int, int]], scale: float) -> np.ndarray:
+    """``M`` with ``sum_ab M_ab G_a G_b = scale * sum_{(r, q) in pairs} (G_r - G_q)^2``.
+
+    >>> balance_matrix(3, [(0, 1), (1, 2)], 1.0).tolist()
+    [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+    """
+    m = np.zeros((robots, robots))
+    for r, q in pairs:
+        m[r, r] += scale
+        m[q, q] += scale
+        m[r, q] -= scale
+        m[q, r] -= scale
+    return m
+
+
+def length_unit(lengths: Sequence[float]) -> float | None:
     """The largest ``u`` with every length an integer multiple of it (``None`` if there is none worth using)."""
     fr = []
     for d in lengths:
@@ -286,7 +317,6 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = s.objective.alpha
     ve = s.variable_edges
-    nodes_of = [g.edge_nodes[e] for e in ve]
     w = s.edge_weights[list(ve)] if ve else np.zeros(0)
     d = s.edge_lengths[list(ve)] if ve else np.zeros(0)
     lives = [live_edges(s, r) for r in range(n_r)]
@@ -320,11 +350,11 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
     pairs = balanced_pairs(s) if a1 != 0.0 else []
     if pairs:
         used = sorted({k for r in range(n_r) for k in alive[r]})
-        unit = _unit([float(d[k]) for k in used])
+        unit = length_unit([float(d[k]) for k in used])
         forms_c: list[float] = []
         forms: list[dict[int, float]] = []
         for r in range(n_r):
-            cst, co = _reduce({k: float(d[k]) for k in alive[r]}, lives[r], ends[r], nodes_of)
+            cst, co = reduce_on_paths({k: float(d[k]) for k in alive[r]}, lives[r], ends[r])
             forms_c.append(cst)
             forms.append(co)
         integral = unit is not None
@@ -347,12 +377,7 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
         else:
             unit = 1.0
             scale = a1
-        m = np.zeros((n_r, n_r))
-        for r, q in pairs:
-            m[r, r] += scale
-            m[q, q] += scale
-            m[r, q] -= scale
-            m[q, r] -= scale
+        m = balance_matrix(n_r, pairs, scale)
         cvec = np.array(forms_c)
         const += float(cvec @ m @ cvec)
         lin_g = 2 * m @ cvec  # coefficient of G_a in the linear part
@@ -371,7 +396,7 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
     # the linear part, reduced per robot with the same identities
     linear: list[tuple[int, float]] = []
     for r in range(n_r):
-        cst, co = _reduce(lin[r], lives[r], ends[r], nodes_of)
+        cst, co = reduce_on_paths(lin[r], lives[r], ends[r])
         const += cst
         linear.extend((r * v_per + k, val) for k, val in sorted(co.items()))
     return FeasibleCost(s.num_variables, const, tuple(linear), tuple(visits), tuple(sums), dead, _scenario=s)

@@ -31,7 +31,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from circuitgen.circuit import Circuit, Section
+from circuitgen.circuit import Circuit
 
 __all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "to_qiskit"]
 
@@ -167,7 +167,8 @@ def check_equivalence(
 def check_sections(
     high: Circuit, low: Circuit, num_plain: int, *, global_phase_ok: bool = False, **options: Any
 ) -> EquivalenceResult:
-    """:func:`check_equivalence` of each pair of corresponding sections (same names, same order).
+    """:func:`check_equivalence` of each pair of corresponding sections (same names, same order), a run of sections
+    checked as one where an AND stays computed across their boundaries (the pieces of fused partial mixers).
 
     Returns:
         The first failing section's result, or an equivalent result covering every section.
@@ -180,10 +181,31 @@ def check_sections(
     names_l = [s.name for s in low.sections]
     if names_h != names_l:
         raise ValueError(f"section mismatch: {names_h[:5]}... vs {names_l[:5]}...")
-    for sh, sl in zip(high.sections, low.sections, strict=True):
-        a = Circuit(high.registers, [Section(sh.name, sh.gates)])
-        b = Circuit(low.registers, [Section(sl.name, sl.gates)])
+    for lo, hi in _clean_blocks(high):
+        a = Circuit(high.registers, list(high.sections[lo:hi]))
+        b = Circuit(low.registers, list(low.sections[lo:hi]))
         r = check_equivalence(a, b, num_plain, global_phase_ok=global_phase_ok, **options)
         if not r.equivalent:
             return EquivalenceResult(r.criterion, False, time.perf_counter() - t0, len(high.sections))
     return EquivalenceResult("equivalent", True, time.perf_counter() - t0, len(high.sections))
+
+
+def _clean_blocks(high: Circuit) -> list[tuple[int, int]]:
+    """Runs ``[lo, hi)`` of sections that start and end with every AND undone: a section boundary where some
+    ``and`` is not yet undone by its ``and_dg`` (inside a fused run of partial mixers,
+    :mod:`circuitgen.gadgets.junction`) is no clean point, so the sections on both sides are checked together."""
+    out = []
+    lo = 0
+    open_ands = 0
+    for i, sec in enumerate(high.sections):
+        for g in sec.gates:
+            if g[0] == "and":
+                open_ands += 1
+            elif g[0] == "and_dg":
+                open_ands -= 1
+        if open_ands == 0:
+            out.append((lo, i + 1))
+            lo = i + 1
+    if lo < len(high.sections):
+        out.append((lo, len(high.sections)))
+    return out

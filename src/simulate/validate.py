@@ -27,7 +27,10 @@ Backends:
       qubits alone: each partial mixer (compute, controlled rotation, uncompute on the ancillas) is first
       contracted into one operator on its data qubits, proven unitary, which shows it returns the ancillas to
       |0> (:func:`simulate.tensor.collapse_ancilla_blocks`); the last robot's qubits stay open, so one
-      contraction gives the amplitudes of every assignment that shares the other robots' paths;
+      contraction gives the amplitudes of every assignment that shares the other robots' paths. For that blocking
+      this backend compiles the partial mixers unfused (``fuse=False``: one section per partial mixer, clean
+      ancillas at both ends); the other backends check the default, fused circuit
+      (:mod:`circuitgen.gadgets.junction`);
     * the matrix product state of the whole circuit (:class:`~simulate.tensor.MPSCircuit`, ancillas placed in the
       middle of the chain, singular values cut below 1e-13): the ancilla probability ``<psi|P_0|psi>`` and the
       amplitudes of *every* assignment. With ``mps=False`` the ancilla probability comes from an exact contraction
@@ -285,7 +288,11 @@ def validate(
             ref[k] = psi_sub[sub.index_of(masks)]
     index = np.array([sub.data_index(m) for m in assignments], dtype=object)  # ancillas (above the data) are 0
 
-    circuit = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=bindings).circuit
+    # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
+    # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
+    # differs by cancelled inverse pairs only, tests/circuitgen/junction_test.py)
+    fuse = backend != "tensor"
+    circuit = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=bindings, fuse=fuse).circuit
     n, nq = scenario.num_variables, circuit.num_qubits
     ancillas = list(range(n, nq))
     tol = tolerance
@@ -429,11 +436,12 @@ def _tensor_checks_with(
         return checks
     if max_amplitudes is None or max_amplitudes >= total:
         pick = np.arange(total)
-        note = f"all {total} feasible assignments"
+        note = f"all {total} feasible assignments; partial mixers unfused"
     else:
         pick = np.sort(np.random.default_rng(seed).choice(total, size=max_amplitudes, replace=False))
         held = float(np.sum(np.abs(ref[pick]) ** 2))
         note = f"seeded sample of {len(pick)} of {total} assignments, holding probability {held:.6f}"
+        note += "; partial mixers unfused"
     try:
         got = tc.amplitudes((int(index[k]) for k in pick), open_qubits=_open_qubits(scenario))
     except ContractionTooWideError as exc:

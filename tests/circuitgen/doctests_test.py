@@ -19,6 +19,9 @@ MODULES = [
     "circuitgen.gadgets.phase_ising",
     "circuitgen.gadgets.phase_visits",
     "circuitgen.gadgets.phase_sums",
+    "circuitgen.gadgets.partial_mixer",
+    "circuitgen.gadgets.junction",
+    "circuitgen.qaoa",
     "simulate.statevector",
     "simulate.sparse",
 ]

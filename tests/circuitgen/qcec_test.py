@@ -9,8 +9,9 @@ relative-phase lowering is proven exact only where its contract says (clean targ
 Whole 2-robot circuits are proven section by section (:func:`simulate.equivalence.check_sections`): QCEC's
 whole-circuit check of a 27-qubit circuit ends at its timeout with ``probably_equivalent``, while each section
 takes well under a second. Sections compose because the lowering never moves a gate across a section boundary and
-every high-level section returns the ancillas to |0> (``tests/circuitgen/mixer_test.py``,
-``gadgets_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
+every block of sections that check_sections compares returns the ancillas to |0> (one section, or the run of
+fused partial-mixer pieces between two clean points: ``tests/circuitgen/mixer_test.py``, ``gadgets_test.py``,
+``junction_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
 """
 
 from __future__ import annotations
@@ -116,7 +117,9 @@ def test_a_dirty_ancilla_is_caught() -> None:
 
     high = Circuit([("data", 2), ("logic", 1)], [Section("s", [G.and_(0, 1, 2, "10"), G.cx(2, 0)])])
     assert check_equivalence(high, lower(high), num_plain=2).equivalent
-    assert check_equivalence(high, lower(high), num_plain=3).criterion == "not_equivalent"
+    dirty = check_equivalence(high, lower(high), num_plain=3)
+    # QCEC's simulation checker may finish first under load and report "probably"; either way it is caught
+    assert not dirty.equivalent and dirty.criterion in ("not_equivalent", "probably_not_equivalent")
 
 
 def test_to_qiskit_rejects_unknown_gates_and_unbound_symbols() -> None:

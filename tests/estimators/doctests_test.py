@@ -18,6 +18,7 @@ MODULES = [
     "estimators.mixer_count",
     "estimators.estimate",
     "estimators.crosscheck",
+    "estimators.mixer_count",
     "estimators.sweep",
     "estimators.tables",
     "estimators.plots",

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from circuitgen.qaoa import qaoa_plan
 from estimators.estimate import PlanOptions, layer_costs, registers_for
 from estimators.mixer_count import mixer_layer
 from gridcover.presets import default_scenario, max_default_robots
-from gridcover.scenario import scenario_from_dict, scenario_to_dict
+from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
+from tests.circuitgen.conftest import scenarios
 
 OPTIONS = [("exact", "nisq"), ("exact", "ft"), ("paper", "nisq")]
 
@@ -71,3 +74,13 @@ def test_representatives_initial_state_uses_the_plans_state_preparation(rows: in
     lc = layer_costs(s, PlanOptions(initial="representatives"))
     assert lc.sections == plan.cost_by_section() and lc.logical == plan.cost_by_section(logical=True)
     assert dict(lc.registers) == {r.name: r.size for r in plan.registers}
+
+
+@settings(max_examples=60, deadline=None)
+@given(scenarios(max_side=7, max_robots=4, obstacles=False), st.sampled_from(["nisq", "ft"]))
+def test_signature_counts_with_junctions_equal_the_plan_for_any_endpoints(s: Scenario, target: str) -> None:
+    """Endpoints anywhere (interior, neighbouring, sharing rows): the junction pairs next to them are counted right."""
+    plan = qaoa_plan(s, 0, "exact", "initial_path", target)  # type: ignore[arg-type]
+    ml = mixer_layer(s, "exact", target)
+    assert ml.cost == plan.cost_by_section()["mixer"]
+    assert ml.logical == plan.cost_by_section(logical=True)["mixer"]

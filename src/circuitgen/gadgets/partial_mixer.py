@@ -23,14 +23,16 @@ temporary, then ``csbf`` (``XXXX`` rotation controlled by the output; 8 CX), the
 
 The cost of both is computed from the plan (a short list of leaf kinds), never from emitted gates; the plan is
 cached per *kind* (the program with grid edges replaced by local positions), so a circuit's cost is a sum over
-its partial-mixer kinds.
+its partial-mixer kinds. In a circuit, consecutive parity-basis partial mixers are fused at their boundaries
+(:mod:`circuitgen.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`), which subtracts a saving per
+junction kind.
 
 Example:
     >>> from gridcover.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)
     >>> m = partial_mixer(s, 0, s.grid.plaquettes[0], 0.7, logic_offset=s.num_variables)
     >>> m.cost().cx, [g.name for g in m.emit()][:4]
-    (34, ['cx', 'cx', 'cx', 'x'])
+    (32, ['cx', 'cx', 'cx', 'x'])
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ from __future__ import annotations
 import heapq
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from gridcover.grid import Plaquette
 from gridcover.sbf import Lit, Rule, SbfLogic, sbf_logic
@@ -53,9 +55,11 @@ __all__ = [
     "McxPartialMixer",
     "MixerPlan",
     "ParityPartialMixer",
+    "emit_plan",
     "logic_width",
     "partial_mixer",
     "plan_parity_mixer",
+    "plan_slots",
 ]
 
 # --- abstract programs ------------------------------------------------------------------------
@@ -363,14 +367,20 @@ def plan_mcx_mixer(program: AbstractProgram) -> MixerPlan:
 
 
 # --- gadgets -----------------------------------------------------------------------------------
-def _emit(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> list[list[Gate]]:
-    """The plan's gates, one block per leaf (compute leaves, rotation, mirrored leaves)."""
-    def q(slot: Slot) -> int:
-        return qubit[slot] if slot[0] != "t" else qubit[("t", 0)] + slot[1]
+def plan_slots(plan: MixerPlan, num_outer: int) -> tuple[Slot, ...]:
+    """Every qubit slot of a plan in a fixed order: plaquette edges, outer edges, temporaries."""
+    return (
+        *(("p", i) for i in range(4)),
+        *(("o", j) for j in range(num_outer)),
+        *(("t", k) for k in range(plan.num_temps)),
+    )
 
+
+def emit_plan(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> tuple[list[Gate], list[Gate], list[Gate]]:
+    """The plan's gates on the qubits ``qubit`` gives every slot: compute leaves, rotation, mirrored leaves."""
     compute: list[Gate] = []
     for name, slots in plan.compute:
-        qs = [q(s_) for s_ in slots]
+        qs = [qubit[s_] for s_ in slots]
         if name == "cx":
             compute.append(cx(*qs))
         elif name == "x":
@@ -380,7 +390,7 @@ def _emit(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> list[list[Gat
         else:  # x / cx / ccx / mcx with positive controls
             compute.append(mcx(qs[:-1], qs[-1]))
     name, slots = plan.rotation
-    qs = [q(s_) for s_ in slots]
+    qs = [qubit[s_] for s_ in slots]
     if name == "crx":
         rotation = [crx(beta, *qs)]
     elif name == "ccrx":
@@ -388,7 +398,7 @@ def _emit(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> list[list[Gat
     else:
         rotation = [csbf(beta, *qs)]
     mirror = [and_dg(*g.qubits) if g.name == "and" else g for g in reversed(compute)]
-    return [[g] for g in compute] + [rotation] + [[g] for g in mirror]
+    return compute, rotation, mirror
 
 
 @dataclass(frozen=True)
@@ -420,21 +430,38 @@ class _PartialMixerBase:
         """Logic temporaries used (from ``logic_offset`` on)."""
         return self.plan.num_temps
 
+    @property
+    def slot_qubits(self) -> tuple[int, ...]:
+        """The qubit of every slot, in :func:`plan_slots` order (plaquette edges, outer edges, temporaries)."""
+        temps = range(self.logic_offset, self.logic_offset + self.plan.num_temps)
+        return (*self.plaquette_qubits, *self.outer_qubits, *temps)
+
+    def parts(self) -> tuple[list[Gate], list[Gate], list[Gate]]:
+        """The gates as compute leaves, rotation, mirrored leaves (:mod:`.junction` fuses the mirror of one
+        partial mixer with the compute of the next)."""
+        compute, rotation, mirror = self._parts
+        return list(compute), list(rotation), list(mirror)
+
+    @cached_property
+    def _parts(self) -> tuple[tuple[Gate, ...], tuple[Gate, ...], tuple[Gate, ...]]:
+        # built once: a fused layer asks each partial mixer for its parts three times (two junctions, a rotation)
+        slots = plan_slots(self.plan, len(self.outer_qubits))
+        compute, rotation, mirror = emit_plan(self.plan, dict(zip(slots, self.slot_qubits, strict=True)), self.beta)
+        return tuple(compute), tuple(rotation), tuple(mirror)
+
     def emit(self) -> list[Gate]:
         """The gates: compute, rotation, mirror."""
-        return [g for block in self.emit_blocks() for g in block]
+        compute, rotation, mirror = self.parts()
+        return [*compute, *rotation, *mirror]
 
     def emit_blocks(self) -> list[list[Gate]]:
         """The gates in blocks that the compiler lowers separately (a section each): the whole partial mixer for
         the parity construction; one block per leaf for the controlled-X network, whose consecutive
         clean-AND ladders would otherwise partly cancel and make the cost depend on the neighbours."""
-        qubit: dict[Slot, int] = {("p", i): qb for i, qb in enumerate(self.plaquette_qubits)}
-        qubit.update({("o", j): qb for j, qb in enumerate(self.outer_qubits)})
-        qubit[("t", 0)] = self.logic_offset
-        blocks = _emit(self.plan, qubit, self.beta)
+        compute, rotation, mirror = self.parts()
         if isinstance(self, McxPartialMixer):
-            return blocks
-        return [[g for block in blocks for g in block]]
+            return [[g] for g in compute] + [rotation] + [[g] for g in mirror]
+        return [[*compute, *rotation, *mirror]]
 
 
 @dataclass(frozen=True)

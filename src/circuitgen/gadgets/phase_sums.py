@@ -31,10 +31,10 @@ Example:
 
 from __future__ import annotations
 
-from collections import deque
-from collections.abc import Hashable, Iterator
+from collections import Counter, deque
+from collections.abc import Hashable, Iterator, Mapping
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from circuitgen.cost import Cost
 from circuitgen.gates import Gate, and_, cx, x
@@ -42,22 +42,26 @@ from circuitgen.gates import Gate, and_, cx, x
 from .phase_ising import IsingPhase, ising_form
 from .phase_visits import AND_COST, AND_DG_COST
 
-__all__ = ["SumsPhase", "column_counts"]
+__all__ = ["SumsPhase", "SumsShape", "column_counts"]
 
 
-def column_counts(weights: list[int]) -> tuple[int, int, int, tuple[bool, ...]]:
+def column_counts(weights: list[int] | Mapping[int, int]) -> tuple[int, int, int, tuple[bool, ...]]:
     """Full adders, half adders, copies and which columns keep a bit, for one form's absolute weights.
 
     The same reduction :class:`SumsPhase` emits, counted without building a gate.
+
+    Args:
+        weights: The absolute weights, or a mapping ``weight -> how many terms have it``.
     """
     cols: dict[int, int] = {}
     copies = 0
-    for w in weights:
+    counted = weights if isinstance(weights, Mapping) else Counter(weights)
+    for w, times in counted.items():  # forms repeat few weights (1 and 2 on a grid)
         k, first = 0, True
         while w:
             if w & 1:
-                cols[k] = cols.get(k, 0) + 1
-                copies += 0 if first else 1
+                cols[k] = cols.get(k, 0) + times
+                copies += 0 if first else times
                 first = False
             w >>= 1
             k += 1
@@ -125,6 +129,159 @@ def popcount_layout(form: tuple[tuple[int, int], ...], ancillas: Iterator[int]) 
     return gates, reg
 
 
+@lru_cache(maxsize=1024)
+def _abstract_phase(
+    gamma: str,
+    presents: tuple[tuple[bool, ...], ...],
+    offs: tuple[int, ...],
+    matrix: tuple[tuple[float, ...], ...],
+    linear: tuple[float, ...],
+) -> tuple[float, IsingPhase]:
+    """The phase on abstract register labels ``(form, column)``: it depends on the registers' shape only, which
+    many gadgets share (memoised: a sweep prices thousands)."""
+    registers = [[(a, k) if p else None for k, p in enumerate(pr)] for a, pr in enumerate(presents)]
+    return _register_phase(gamma, registers, list(offs), matrix, linear)  # type: ignore[arg-type]
+
+
+def _register_phase(
+    gamma: str,
+    registers: list[list[int | None]],
+    offs: list[int],
+    matrix: tuple[tuple[float, ...], ...],
+    linear: tuple[float, ...],
+) -> tuple[float, IsingPhase]:
+    """``(c0, the RZ/RZZ gadget)`` of ``g = sum M_ab G_a G_b + sum m_a G_a`` on the register bits, where
+    ``G_a = H_a - offs_a`` and ``H_a = sum_k 2^k register[a][k]``."""
+    n = len(registers)
+    const = 0.0
+    lin_h = [float(linear[a]) for a in range(n)]
+    for a in range(n):
+        const -= linear[a] * offs[a]
+        for b in range(n):
+            mab = matrix[a][b]
+            const += mab * offs[a] * offs[b]
+            lin_h[a] -= 2 * mab * offs[b]
+    lin: dict[object, float] = {}
+    quad: dict[tuple[object, object], float] = {}
+    for a in range(n):
+        bits_a = [(k, q) for k, q in enumerate(registers[a]) if q is not None]
+        if not bits_a:
+            continue
+        for k, q in bits_a:
+            v = lin_h[a] * (1 << k) + matrix[a][a] * (1 << (2 * k))
+            if v:
+                lin[q] = lin.get(q, 0.0) + v
+        if matrix[a][a]:
+            for i, (k, q) in enumerate(bits_a):
+                for l_, p in bits_a[i + 1 :]:
+                    # higher column first: never the same qubit pair, in the same order, as a copy's CX
+                    quad[(p, q)] = 2 * matrix[a][a] * (1 << (k + l_))
+        for b in range(a + 1, n):
+            mab = matrix[a][b] + matrix[b][a]
+            if not mab:
+                continue
+            for k, q in bits_a:
+                for l_, p in enumerate(registers[b]):
+                    if p is not None:
+                        quad[(q, p)] = mab * (1 << (k + l_))
+    c0, h, j = ising_form(lin, quad, constant=const)  # type: ignore[arg-type]
+    return c0, IsingPhase(gamma, tuple(h.items()), tuple((a, b, v) for (a, b), v in j.items()))  # type: ignore[misc]
+
+
+@dataclass(frozen=True)
+class SumsShape:
+    """What a :class:`SumsPhase` costs depends on: per form the multiset of its weights, the matrix and the
+    linear coefficients (not the qubits, nor the order of the terms). Hashable, so costs are memoised per shape.
+
+    Attributes:
+        weights: Per form, ``(absolute weight, how many terms)`` pairs, ascending.
+        negatives: Per form, ``(number of negative weights, minus their sum)``.
+        matrix, linear: As :class:`SumsPhase`.
+
+    Example:
+        >>> SumsShape((((1, 3),),), ((0, 0),), ((1.0,),), (0.0,)).cost().cx
+        18
+    """
+
+    weights: tuple[tuple[tuple[int, int], ...], ...]
+    negatives: tuple[tuple[int, int], ...]
+    matrix: tuple[tuple[float, ...], ...]
+    linear: tuple[float, ...]
+
+    @classmethod
+    def of(
+        cls, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
+        linear: tuple[float, ...],
+    ) -> SumsShape:
+        """The shape of a gadget's forms."""
+        weights, negatives = [], []
+        for f in forms:
+            ws = [w for _, w in f]
+            weights.append(tuple(sorted(Counter(map(abs, ws)).items())))
+            neg = [w for w in ws if w < 0]
+            negatives.append((len(neg), -sum(neg)))
+        return cls(tuple(weights), tuple(negatives), matrix, linear)
+
+    @cached_property
+    def counts(self) -> tuple[tuple[int, int, int, tuple[bool, ...]], ...]:
+        """:func:`column_counts` per form."""
+        return tuple(column_counts(dict(ws)) for ws in self.weights)
+
+    @property
+    def presents(self) -> tuple[tuple[bool, ...], ...]:
+        """Per form, which register columns hold a bit."""
+        return tuple(c[3] for c in self.counts)
+
+    @property
+    def offsets(self) -> tuple[int, ...]:
+        """Per form, ``G_a = H_a - offsets[a]`` (the complemented negative-weight bits)."""
+        return tuple(s for _, s in self.negatives)
+
+    @cached_property
+    def _phase(self) -> IsingPhase:
+        return _abstract_phase("gamma", self.presents, self.offsets, self.matrix, self.linear)[1]
+
+    @cached_property
+    def active(self) -> tuple[bool, ...]:
+        """Forms whose register bits some phase term touches; the others are not computed at all (their bits
+        carry no phase, so computing them would only be undone again)."""
+        ph = self._phase
+        touched = {q for q, _ in ph.linear} | {q for a, b, _ in ph.couplings for q in (a, b)}
+        return tuple(any((a, k) in touched for k in range(len(c[3]))) for a, c in enumerate(self.counts))
+
+    def adders(self) -> tuple[int, int, int]:
+        """``(full adders, half adders, copies)`` over the computed forms."""
+        act = [c for c, on in zip(self.counts, self.active) if on]
+        return (sum(c[0] for c in act), sum(c[1] for c in act), sum(c[2] for c in act))
+
+    @property
+    def num_ancillas(self) -> int:
+        """Clean ancillas needed: one per adder carry and per copy."""
+        return sum(self.adders())
+
+    def _compute_cost(self) -> tuple[int, int, int, int]:
+        fa, ha, cp = self.adders()
+        neg = sum(n for (n, _), on in zip(self.negatives, self.active) if on)
+        return fa, ha, cp, neg
+
+    @cached_property
+    def _costs(self) -> tuple[Cost, Cost]:
+        fa, ha, cp, neg = self._compute_cost()
+        ands = fa + ha
+        arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
+        ph = self._phase.cost()
+        lowered = ands * (AND_COST + AND_DG_COST) + arithmetic + ph
+        return lowered, Cost.of({"and": ands, "and_dg": ands}) + arithmetic + ph
+
+    def cost(self) -> Cost:
+        """Lowered cost."""
+        return self._costs[0]
+
+    def logical_cost(self) -> Cost:
+        """The same with ANDs kept whole."""
+        return self._costs[1]
+
+
 @dataclass(frozen=True)
 class SumsPhase:
     """Compute integer sums into registers, phase a quadratic function of them, uncompute.
@@ -148,93 +305,40 @@ class SumsPhase:
         return ("sums", tuple(tuple(w for _, w in f) for f in self.forms), self.matrix, self.linear)
 
     @cached_property
-    def _counts(self) -> list[tuple[int, int, int, tuple[bool, ...]]]:
-        return [column_counts([abs(w) for _, w in f]) for f in self.forms]
+    def shape(self) -> SumsShape:
+        """What the cost depends on (:class:`SumsShape`)."""
+        return SumsShape.of(self.forms, self.matrix, self.linear)
 
-    @cached_property
+    @property
     def _active(self) -> tuple[bool, ...]:
-        """Forms whose register bits some phase term touches; the others are not computed at all (their bits
-        carry no phase, so computing them would only be undone again)."""
-        _, ph = self.phase()
-        touched = {q for q, _ in ph.linear} | {q for a, b, _ in ph.couplings for q in (a, b)}
-        return tuple(any((a, k) in touched for k in range(len(c[3]))) for a, c in enumerate(self._counts))
+        return self.shape.active
 
     def adders(self) -> tuple[int, int, int]:
         """``(full adders, half adders, copies)`` over the computed forms."""
-        act = [c for c, on in zip(self._counts, self._active) if on]
-        return (sum(c[0] for c in act), sum(c[1] for c in act), sum(c[2] for c in act))
+        return self.shape.adders()
 
     @property
     def num_ancillas(self) -> int:
         """Clean ancillas needed: one per adder carry and per copy."""
-        return sum(self.adders())
+        return self.shape.num_ancillas
 
     def phase(self, registers: list[list[int | None]] | None = None) -> tuple[float, IsingPhase]:
         """``(c0, the RZ/RZZ gadget)`` of ``g`` on the register bits (abstract labels when not given)."""
+        sh = self.shape
         if registers is None:
-            registers = [
-                [(a, k) if p else None for k, p in enumerate(c[3])]  # type: ignore[misc]
-                for a, c in enumerate(self._counts)
-            ]
-        n = len(self.forms)
-        offs = [sum(-w for _, w in f if w < 0) for f in self.forms]  # G_a = H_a - offs_a
-        const = 0.0
-        lin_h = [float(self.linear[a]) for a in range(n)]
-        for a in range(n):
-            const -= self.linear[a] * offs[a]
-            for b in range(n):
-                mab = self.matrix[a][b]
-                const += mab * offs[a] * offs[b]
-                lin_h[a] -= 2 * mab * offs[b]
-        linear: dict[object, float] = {}
-        quad: dict[tuple[object, object], float] = {}
-        for a in range(n):
-            bits_a = [(k, q) for k, q in enumerate(registers[a]) if q is not None]
-            if not bits_a:
-                continue
-            for k, q in bits_a:
-                v = lin_h[a] * (1 << k) + self.matrix[a][a] * (1 << (2 * k))
-                if v:
-                    linear[q] = linear.get(q, 0.0) + v
-            if self.matrix[a][a]:
-                for i, (k, q) in enumerate(bits_a):
-                    for l_, p in bits_a[i + 1 :]:
-                        # higher column first: never the same qubit pair, in the same order, as a copy's CX
-                        quad[(p, q)] = 2 * self.matrix[a][a] * (1 << (k + l_))
-            for b in range(a + 1, n):
-                mab = self.matrix[a][b] + self.matrix[b][a]
-                if not mab:
-                    continue
-                for k, q in bits_a:
-                    for l_, p in enumerate(registers[b]):
-                        if p is not None:
-                            quad[(q, p)] = mab * (1 << (k + l_))
-        c0, h, j = ising_form(linear, quad, constant=const)  # type: ignore[arg-type]
-        return c0, IsingPhase(self.gamma, tuple(h.items()), tuple((a, b, v) for (a, b), v in j.items()))  # type: ignore[misc]
+            return _abstract_phase(self.gamma, sh.presents, sh.offsets, self.matrix, self.linear)
+        return _register_phase(self.gamma, registers, list(sh.offsets), self.matrix, self.linear)
 
     @property
     def constant(self) -> float:
         """``c0``: the gadget applies ``exp(-i gamma (g - c0))``."""
         return self.phase()[0]
 
-    def _compute_cost(self) -> tuple[int, int, int, int]:
-        fa, ha, cp = self.adders()
-        neg = sum(1 for f, on in zip(self.forms, self._active) if on for _, w in f if w < 0)
-        return fa, ha, cp, neg
-
     def cost(self) -> Cost:
-        fa, ha, cp, neg = self._compute_cost()
-        ands = fa + ha
-        return (
-            ands * (AND_COST + AND_DG_COST)
-            + Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
-            + self.phase()[1].cost()
-        )
+        return self.shape.cost()
 
     def logical_cost(self) -> Cost:
-        fa, ha, cp, neg = self._compute_cost()
-        ands = fa + ha
-        return Cost.of({"and": ands, "and_dg": ands}, cx=2 * (5 * fa + ha + cp), x=2 * neg) + self.phase()[1].cost()
+        return self.shape.logical_cost()
 
     def _layout(self) -> tuple[list[Gate], list[list[int | None]]]:
         """The compute gates and each form's register (qubit per column, ``None`` for an empty column)."""

@@ -1,0 +1,59 @@
+"""The phase separator's cost by classes (:mod:`estimators.phase_count`) against planning it term by term.
+
+Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of
+:func:`circuitgen.phase.phase_plan` (plan + cost) and of :func:`estimators.phase_count.phase_layer`, and whether
+both give the same cost; then, over every default scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``,
+how many the classes answer and how long all of them take (the rest is left to the plan).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections import Counter
+
+from circuitgen.phase import phase_plan
+from estimators.phase_count import phase_layer
+from gridcover.presets import default_scenario, max_default_robots
+
+SAMPLE = [(10, 10, 2), (20, 20, 4), (30, 30, 8), (40, 40, 1), (40, 40, 8)]
+
+
+def main(argv: list[str]) -> int:
+    print(f"{'scenario':<12}{'plan ms':>10}{'classes ms':>12}{'speed-up':>10}  same cost")
+    for rows, cols, robots in SAMPLE:
+        s = default_scenario(rows, cols, robots)
+        t0 = time.perf_counter()
+        plan = phase_plan(s)
+        plan_cost = plan.cost(), plan.logical_cost()
+        t1 = time.perf_counter()
+        layer = phase_layer(s)
+        assert layer is not None
+        layer_cost = layer.cost(), layer.logical_cost()
+        t2 = time.perf_counter()
+        same = plan_cost == layer_cost
+        plan_ms, layer_ms = (t1 - t0) * 1e3, (t2 - t1) * 1e3
+        print(f"{f'{rows}x{cols}/{robots}':<12}{plan_ms:>10.1f}{layer_ms:>12.1f}{plan_ms / layer_ms:>9.0f}x  {same}")
+    if "--no-sweep" in argv:
+        return 0
+    answered = left = 0
+    sides: Counter[int] = Counter()
+    t0 = time.perf_counter()
+    for rows in range(2, 41):
+        for cols in range(2, 41):
+            for robots in range(1, min(8, max_default_robots(rows, cols)) + 1):
+                if phase_layer(default_scenario(rows, cols, robots)) is None:
+                    left += 1
+                    sides[max(rows, cols)] += 1
+                else:
+                    answered += 1
+    seconds = time.perf_counter() - t0
+    print(
+        f"2x2..40x40 x 1..8 robots: {answered + left:,} scenarios, classes answer {answered:,} in {seconds:.1f} s; "
+        f"{left} left to the plan (longer side at most {max(sides, default=0)})"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,319 @@
+"""The phase separator's cost without planning it term by term: classes of nodes and edges on an open grid.
+
+:func:`circuitgen.phase.phase_plan` builds the feasible cost (:func:`gridcover.feasible_cost.feasible_cost`)
+variable by variable and prices every node's visit gadget: 0.1-1 s per scenario at 20x20-40x40, too slow for a
+sweep of thousands of scenarios. On a grid without obstacles (and the uniform edge weights and lengths every
+such grid has unless a length is overridden) the plan has few distinct parts:
+
+* **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
+  visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost
+  ``sum over (d, m) classes of count x cost`` and the construction chosen for a class (visit bits or pairs) is
+  the one the plan would choose for each of its nodes;
+* **balance**: one arithmetic gadget (:class:`~circuitgen.gadgets.phase_sums.SumsPhase`) over each robot's
+  reduced path-length form: weight 1 on every edge, 0 on the edges at its own start and goal (collapsed to a
+  constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor);
+* **linear**: one rotation per variable whose reduced coefficient is nonzero: ``alpha0 w`` plus the degree terms
+  of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
+  (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
+
+Coefficients are vectors over one robot's edges (numpy), the endpoint and corner identities are applied by the
+very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
+touch. :func:`phase_layer` answers only where this picture is exact and the plan has no choice that couples
+groups (the balance has too many products for the coupling alternative and every class picks a gadget over
+couplings); elsewhere it returns ``None`` and the caller plans as usual. ``tests/estimators/phase_count_test.py``
+checks it against :func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default
+grids and on random endpoints.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.phase import phase_plan
+    >>> s = default_scenario(12, 11, 3)
+    >>> layer = phase_layer(s)
+    >>> layer.cost() == phase_plan(s).cost(), layer.num_ancillas == phase_plan(s).num_ancillas
+    (True, True)
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, replace
+from functools import cache, cached_property, lru_cache
+from itertools import repeat
+
+import numpy as np
+
+from circuitgen.cost import Cost
+from circuitgen.gadgets import Gadget
+from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
+from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
+from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
+from circuitgen.phase import EXACT_EXPANSION_LIMIT, ROTATION_T_COST, coupling_products, score
+from gridcover.cost import balanced_pairs
+from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
+from gridcover.grid import Grid
+from gridcover.scenario import Scenario
+
+__all__ = ["PhaseLayer", "phase_layer"]
+
+_TOL = 1e-12  # gridcover.feasible_cost's zero
+
+
+@dataclass(frozen=True, eq=False)
+class PhaseLayer:
+    """One layer's phase separator, as the plan would build it, with its parts counted by class.
+
+    Attributes:
+        parts: ``(representative gadget, count)`` per visit class and per Hamming-weight class.
+        rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
+        balance: The balance arithmetic, or ``None``.
+        num_ancillas: Clean ancillas the largest part needs.
+        num_variables: Data qubits.
+    """
+
+    parts: tuple[tuple[Gadget, int], ...]
+    rotations: int
+    balance: _Balance | None
+    num_ancillas: int
+    num_variables: int
+
+    def cost(self) -> Cost:
+        """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
+        return self._costs[0]
+
+    def logical_cost(self) -> Cost:
+        """Logical cost (ANDs whole)."""
+        return self._costs[1]
+
+    @cached_property
+    def _costs(self) -> tuple[Cost, Cost]:
+        rz = Cost.of(rz=self.rotations)
+        lowered = Cost.sum(n * g.cost() for g, n in self.parts) + rz
+        logical = Cost.sum(n * g.logical_cost() for g, n in self.parts) + rz
+        if self.balance is not None:
+            lowered += self.balance.shape.cost()
+            logical += self.balance.shape.logical_cost()
+        return lowered, logical
+
+    def gadgets(self) -> list[tuple[Gadget, int]]:
+        """``(representative gadget, count)`` per distinct part, each on data qubits ``0 ..`` and ancillas from
+        :attr:`num_variables` on, ready to emit (for per-kind figures such as depth)."""
+        anc = range(self.num_variables, self.num_variables + self.num_ancillas)
+        out: list[tuple[Gadget, int]] = []
+        if self.rotations:
+            out.append((IsingPhase("gamma", tuple(zip(range(self.rotations), repeat(1.0))), ()), 1))
+        for g, count in self.parts:
+            if isinstance(g, VisitPhase):
+                d = len(g.visitors[0])
+                visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
+                out.append((replace(g, visitors=visitors, ancillas=tuple(anc)), count))
+            elif isinstance(g, SumsPhase):
+                out.append((replace(g, ancillas=tuple(anc)), count))
+        if self.balance is not None:
+            out.append((replace(self.balance.gadget(), ancillas=tuple(anc)), 1))
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class _Balance:
+    """The balance term's arithmetic: per robot the integer weight of each of its variables (0: not in the form)."""
+
+    weights: tuple[np.ndarray, ...]
+    matrix: tuple[tuple[float, ...], ...]
+
+    @cached_property
+    def shape(self) -> SumsShape:
+        ws, negs = [], []
+        for w in self.weights:
+            vals, counts = np.unique(np.abs(w[w != 0]), return_counts=True)
+            ws.append(tuple(zip(vals.tolist(), counts.tolist())))
+            neg = w[w < 0]
+            negs.append((len(neg), int(-neg.sum())))
+        return SumsShape(tuple(ws), tuple(negs), self.matrix, (0.0,) * len(self.weights))
+
+    def gadget(self) -> SumsPhase:
+        forms = []
+        for r, w in enumerate(self.weights):
+            pos = np.nonzero(w)[0]
+            forms.append(tuple(zip((r * len(w) + pos).tolist(), w[pos].tolist())))
+        return SumsPhase("gamma", tuple(forms), self.matrix, (0.0,) * len(forms))
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """One robot's view of an open grid: per variable position its end nodes; per node its degree."""
+
+    u: np.ndarray
+    v: np.ndarray
+    degree: np.ndarray
+    corners: tuple[int, ...]
+
+
+@lru_cache(maxsize=8)
+def _grid(grid: Grid, edges: tuple[int, ...]) -> _Grid:
+    u = np.array([grid.edge_nodes[e][0] for e in edges], dtype=np.int64)
+    v = np.array([grid.edge_nodes[e][1] for e in edges], dtype=np.int64)
+    degree = np.bincount(u, minlength=grid.num_nodes) + np.bincount(v, minlength=grid.num_nodes)
+    return _Grid(u, v, degree, tuple(int(x) for x in np.nonzero(degree == 2)[0]))
+
+
+def _at(g: _Grid, node: int) -> list[int]:
+    """Edge positions at a node, ascending (as :func:`gridcover.feasible_cost.live_edges` lists them)."""
+    return np.nonzero((g.u == node) | (g.v == node))[0].tolist()
+
+
+def _reduce(values: np.ndarray, g: _Grid, ends: tuple[int, int]) -> tuple[float, np.ndarray]:
+    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied to the edges at
+    the robot's endpoints and at the corners (the only ones its identities touch on an open grid).
+
+    Returns:
+        ``(constant, coefficients)``; a zero marks a dropped term.
+    """
+    nodes = [ends[0], ends[1], *(c for c in g.corners if c not in ends)]
+    at = [_at(g, n) for n in nodes]
+    touched = sorted({k for edges in at for k in edges})
+    const, reduced = reduce_on_paths({k: float(values[k]) for k in touched}, at, (0, 1))
+    out = values.copy()
+    out[touched] = 0.0
+    for k, val in reduced.items():
+        out[k] = val
+    out[np.abs(out) <= _TOL] = 0.0
+    return const, out
+
+
+@cache
+def _visit_choice(degree: int, m: int, coefficient: float, target: str) -> VisitPhase | None:
+    """The plan's construction for a node of this degree passed by ``m`` robots while no coupling exists yet
+    (``None``: the couplings)."""
+    new = m * (m - 1) // 2 * degree * degree
+    coup = Cost.of(cx=2 * new, rz=new)
+    pick: VisitPhase | None = None
+    pick_costs = (coup, coup)
+    for products in (False, True):
+        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(degree)) for _ in range(m)), (), products)
+        costs = (gad.cost(), gad.logical_cost())
+        # as the plan: an option replaces the pick when it scores no worse and costs differ (ties: couplings)
+        if score(*costs, target) <= score(*pick_costs, target) and costs != pick_costs:  # type: ignore[arg-type]
+            pick, pick_costs = gad, costs
+    return pick
+
+
+def phase_layer(
+    scenario: Scenario,
+    target: str = "nisq",
+    representation: str = "feasible",
+    optimize: str = "cx",
+    ancilla_budget: int | None = None,
+) -> PhaseLayer | None:
+    """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
+    knows (obstacles, overridden lengths, the ``whole-space`` representation, the
+    ``depth`` optimisation, an ancilla budget, or a choice the classes cannot make).
+
+    Args:
+        scenario: the scenario.
+        target, representation, optimize, ancilla_budget: as :func:`circuitgen.phase.phase_plan`.
+
+    Returns:
+        The :class:`PhaseLayer`, or ``None``.
+    """
+    s, grid = scenario, scenario.grid
+    ob = s.objective
+    if (
+        representation != "feasible" or optimize != "cx" or ancilla_budget is not None or s.obstacles
+        or ob.edge_lengths
+    ):  # fmt: skip
+        return None
+    ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
+    if any(a == b for a, b in ends):
+        return None
+    g = _grid(grid, tuple(s.variable_edges))
+    n_r, v_per = s.num_robots, s.edges_per_robot
+    a0, a1, a2 = ob.alpha
+    parts: list[tuple[Gadget, int]] = []
+    ancillas = 0
+    # degree terms: a linear part per node, a visit class per (degree, passers)
+    node_term = np.zeros(grid.num_nodes)
+    if a2 != 0.0:
+        t = np.asarray(s.degree_targets, dtype=float)
+        e_v = np.zeros(grid.num_nodes, dtype=np.int64)
+        for a, b in ends:
+            e_v[a] += 1
+            e_v[b] += 1
+        counted = ~np.isnan(t)
+        c = e_v - np.where(counted, t, 0.0)
+        node_term = np.where(counted, a2 * (2 * c + 2), 0.0)
+        passers = n_r - e_v
+        classes = Counter(zip(g.degree[counted].tolist(), passers[counted].tolist()))
+        for (degree, m), count in sorted(classes.items()):
+            if m < 2:
+                continue
+            gad = _visit_choice(degree, m, 8.0 * a2, target)
+            if gad is None:
+                return None  # a coupling would change what the later groups' couplings cost
+            parts.append((gad, count))
+            ancillas = max(ancillas, visit_ancillas(tuple(len(v) for v in gad.visitors), gad.products))
+    lin = []
+    for a, b in ends:
+        own = node_term.copy()
+        own[[a, b]] = 0.0
+        lin.append(a0 * ob.free_weight + own[g.u] + own[g.v])
+    # balance
+    pairs = balanced_pairs(s) if a1 != 0.0 else []
+    balance: _Balance | None = None
+    within: int | None = None  # a lower bound on the couplings alternative's couplings, when it is one
+    if pairs:
+        unit = length_unit([ob.edge_length])
+        if unit is None:
+            return None
+        ones = np.full(v_per, ob.edge_length)
+        weights, consts = [], []
+        for r in range(n_r):
+            const, form = _reduce(ones, g, ends[r])
+            form = form / unit
+            if np.any(np.abs(form - np.round(form)) > 1e-9) or np.abs(form).sum() > MAX_INTEGER_TOTAL:
+                return None
+            weights.append(np.round(form).astype(np.int64))
+            consts.append(const / unit)
+        scale = a1 * unit * unit
+        m = balance_matrix(n_r, pairs, scale)
+        sizes = [int(np.count_nonzero(w)) for w in weights]
+        if coupling_products(sizes, m) <= EXACT_EXPANSION_LIMIT:
+            # the plan also prices the balance as couplings; they interact with the visits, but the pairs within
+            # one form meet no other term, so that plan has at least this many couplings (2 CX, 1 rotation each)
+            within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0)
+        lin_g = 2 * m @ np.array(consts)
+        for r, w in enumerate(weights):
+            lin[r] = lin[r] + float(lin_g[r]) * w
+        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
+        ancillas = max(ancillas, balance.shape.num_ancillas)
+    values = np.concatenate([_reduce(lin[r], g, ends[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
+    values = values[values != 0.0]
+    if target == "ft":
+        keep = np.ones(len(values), dtype=bool)
+        rounded = np.round(values, 12)
+        _, first, counts = np.unique(rounded, return_index=True, return_counts=True)
+        for k, n in zip(first.tolist(), counts.tolist()):
+            if n < 3:
+                continue
+            hw = _hamming(n, float(values[k]))
+            if hw is not None:
+                parts.append((hw, 1))
+                ancillas = max(ancillas, hw.num_ancillas)
+                keep &= rounded != rounded[k]
+        values = values[keep]
+    rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
+    layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
+    if within is not None:
+        first = score(layer.cost(), layer.logical_cost(), target)[0]  # type: ignore[arg-type]
+        if (ROTATION_T_COST if target == "ft" else 2) * within <= first:
+            return None  # the couplings might win: only the plan knows
+    return layer
+
+
+@cache
+def _hamming(n: int, coefficient: float) -> SumsPhase | None:
+    """Hamming-weight phasing of ``n`` equal rotations, when the ``ft`` plan prefers it to the rotations."""
+    hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
+    alt = Cost.of(rz=n)
+    if score(hw.cost(), hw.logical_cost(), "ft") <= score(alt, alt, "ft"):
+        return hw
+    return None

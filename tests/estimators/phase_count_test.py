@@ -1,0 +1,99 @@
+"""Counting the phase separator by classes gives the plan's cost, logical cost, ancillas and gadget kinds."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from circuitgen.circuit import Circuit, Section
+from circuitgen.cost import Cost
+from circuitgen.lowering import lower
+from circuitgen.phase import phase_plan
+from estimators.phase_count import PhaseLayer, phase_layer
+from gridcover.grid import Grid
+from gridcover.presets import default_scenario, max_default_robots
+from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
+
+TARGETS = ("nisq", "ft")
+
+
+def _same_as_plan(s: Scenario, target: str) -> bool:
+    """Whether the layer answered (``False``: it left the scenario to the plan); asserts it equals the plan."""
+    layer = phase_layer(s, target)
+    if layer is None:
+        return False
+    plan = phase_plan(s, target=target)  # type: ignore[arg-type]
+    assert layer.cost() == plan.cost()
+    assert layer.logical_cost() == plan.logical_cost()
+    assert layer.num_ancillas == plan.num_ancillas
+    kinds: Counter = Counter()
+    for g, n in layer.gadgets():
+        kinds[g.kind] += n
+    assert kinds == Counter(g.kind for g in plan.gadgets("gamma"))
+    return True
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_representatives_emit_their_cost_on_the_layers_qubits(target: str) -> None:
+    s = default_scenario(9, 7, 5)
+    layer = phase_layer(s, target)
+    assert layer is not None
+    width = s.num_variables + layer.num_ancillas
+    for g, _ in layer.gadgets():
+        gates = g.emit()
+        assert max(q for gate in gates for q in gate.qubits) < width
+        assert Cost.count(lower(Circuit([("q", width)], [Section("s", tuple(gates))])).gates) == g.cost()
+
+
+@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("rows, cols", [(2, 9), (3, 3), (4, 7), (6, 6), (9, 8), (11, 11)])
+def test_default_scenarios_equal_the_plan(rows: int, cols: int, target: str) -> None:
+    answered = [_same_as_plan(default_scenario(rows, cols, k), target) for k in range(1, 9)
+                if k <= max_default_robots(rows, cols)]  # fmt: skip
+    if rows * cols >= 36:
+        assert all(answered)  # only grids where the couplings alternative may win are left to the plan
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_random_endpoints_and_objectives_equal_the_plan(data: st.DataObject) -> None:
+    rows = data.draw(st.integers(2, 12), label="rows")
+    cols = data.draw(st.integers(6, 12), label="cols")
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    k = data.draw(st.integers(1, 4), label="robots")
+    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
+    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
+    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    objective = Objective(
+        alpha=data.draw(st.sampled_from([(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (1.0, 0.0, 1.0)])),
+        balance=data.draw(st.sampled_from(["chain", "all-pairs"])),
+        degree_target=data.draw(st.sampled_from(["exact", "paper"])),
+        edge_length=data.draw(st.sampled_from([1.0, 2.5])),
+    )
+    if not robots:
+        return
+    s = Scenario(Grid(rows, cols), tuple(robots), objective=objective)
+    for target in TARGETS:
+        _same_as_plan(s, target)
+
+
+def test_left_to_the_plan() -> None:
+    s = default_scenario(10, 10, 3)
+    assert isinstance(phase_layer(s), PhaseLayer)
+    for kwargs in ({"representation": "whole-space"}, {"optimize": "depth"}, {"ancilla_budget": 50}):
+        assert phase_layer(s, **kwargs) is None  # type: ignore[arg-type]
+    obstacles = scenario_from_dict({"grid": {"rows": 6, "cols": 6, "obstacles": [[2, 2]]},
+                                    "robots": [{"start": [0, 0], "goal": [5, 5]}]})  # fmt: skip
+    assert phase_layer(obstacles) is None
+
+
+@pytest.mark.heavy
+def test_every_default_scenario_up_to_16x16_equals_the_plan() -> None:
+    for rows in range(2, 17):
+        for cols in range(rows, 17):
+            for k in range(1, min(8, max_default_robots(rows, cols)) + 1):
+                for target in TARGETS:
+                    _same_as_plan(default_scenario(rows, cols, k), target)
