@@ -17,8 +17,8 @@ Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is eit
   ``depth_budget`` lowered gates (the cost is building the profiles of one layer; each further layer costs a
   small fraction of that), ``depth="exact"`` at any size;
 * ``bound``: an upper bound (:func:`depth_bound`): the state preparation's depth plus ``p`` times one layer's
-  bound, the partial mixers' own depths (per signature) plus the phase separator's gate counts, in
-  ``O(robots)`` per scenario;
+  bound, the partial mixers' own depths (per signature) plus the phase separator's parts' own depths (per class;
+  the balance arithmetic by its gate counts), in ``O(robots)`` per scenario;
 * absent (``depth="none"``).
 
 The row says which (``depth_kind``); nothing is silently estimated.
