@@ -214,6 +214,16 @@ def test_bound_is_above_exact_and_exact_at_p0(options: PlanOptions) -> None:
             assert b.rotation_depth >= e.rotation_depth
 
 
+@pytest.mark.parametrize("rows, cols, robots", [(6, 6, 3), (7, 5, 4), (8, 8, 2), (5, 9, 6), (9, 9, 8)])
+def test_bound_is_above_exact_on_larger_grids(rows: int, cols: int, robots: int) -> None:
+    """Grids whose phase separator is counted by classes (its parts' own depths enter the bound)."""
+    s = default_scenario(rows, cols, robots)
+    for p in (1, 4):
+        e, b = exact_depth(s, p), depth_bound(s, p)
+        assert b.depth >= e.depth and b.two_qubit_depth >= e.two_qubit_depth
+        assert b.rotation_depth >= e.rotation_depth
+
+
 def test_auto_is_exact_up_to_the_budget_on_one_layer_whatever_p() -> None:
     s = default_scenario(4, 4, 2)
     size = layer_costs(s, DEFAULT_PLAN).cost(1).total
