@@ -5,9 +5,10 @@ process, so one core; ``--budget`` replaces the default ``--depth-budget`` in th
 minute, the sweep three to four). Prints two tables:
 
 1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
-   (what ``--depth-budget`` compares), the seconds to build the exact composition (emit and lower the
-   non-anchored gadgets, look up the anchored ones), to propagate p = 1..5 (carried from p to p + 1), to compile
-   the circuit and layer it (the reference, :func:`estimators.estimate.compiled_depth`, only where it is small),
+   (what ``--depth-budget`` compares), the seconds to build the exact composition (plan the phase separator,
+   emit and lower the non-anchored gadgets, look up the anchored ones), to propagate p = 1..5 (carried from p to
+   p + 1), to compile the circuit and layer it (the reference, :func:`estimators.estimate.compiled_depth`, only
+   where it is small),
    the bound's seconds, and exact depth / bound at p = 5;
 2. the depth part of ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5`` (60,840 requested rows) under
    the default policy (``depth="auto"``), in sweep order: for each scenario the counts are computed first and NOT
