@@ -1,8 +1,10 @@
 """Speed of the depths of ``qcpp estimate``: exact by composition, the bound, and the depth part of the big sweep.
 
-Run: ``python benchmarks/depth_speed.py [--table-only | --sweep-only] [--stride N] [--budget GATES]`` (one
-process, so one core; ``--budget`` replaces the default ``--depth-budget`` in the sweep; the table takes about a
-minute, the sweep three to four). Prints two tables:
+Run: ``python benchmarks/depth_speed.py [--table-only | --sweep-only | --cli] [--stride N] [--budget GATES]``
+(one process, so one core; ``--budget`` replaces the default ``--depth-budget`` in the sweep; the table takes
+about a minute, the sweep three to four). Prints two tables (``--cli``: a third, alone: the whole sweep through
+``qcpp estimate`` with the default depth policy and with ``--depth none``, wall clock and peak memory, about two
+minutes):
 
 1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
    (what ``--depth-budget`` compares), the seconds to build the exact composition (plan the phase separator,
@@ -21,8 +23,11 @@ minute, the sweep three to four). Prints two tables:
 from __future__ import annotations
 
 import dataclasses
+import os
+import subprocess
 import sys
 import time
+from pathlib import Path
 
 from estimators.estimate import (
     DEFAULT_OPTIONS,
@@ -101,13 +106,36 @@ def sweep_depth(stride: int, budget: int) -> None:
     print(f"| total, one core | {t_exact + t_sampled * stride:.0f} s |")
 
 
+def cli_sweep() -> None:
+    """The whole sweep through the CLI, with the default depth policy and without depth (wall clock, peak RSS)."""
+    root = Path(__file__).resolve().parents[1]
+    env = {**os.environ, "PYTHONPATH": str(root / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
+    print()
+    print("| `qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv` | wall | peak RSS | rows | exact |")
+    print("|---|---:|---:|---:|---:|")
+    for extra in ([], ["--depth", "none"]):
+        cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args, *extra]
+        t = time.perf_counter()
+        done = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=root, check=True)
+        wall = time.perf_counter() - t
+        rss_gb = int(done.stderr.strip().splitlines()[-1]) * 1024 / 1e9
+        lines = done.stdout.splitlines()
+        col = lines[0].split(",").index("depth_kind")
+        exact = sum(1 for line in lines[1:] if line.split(",")[col] == "exact")
+        print(f"| {' '.join(extra) or '(default: --depth auto)'} | {wall:.0f} s | {rss_gb:.2f} GB | "
+              f"{len(lines) - 1:,} | {exact:,} |")  # fmt: skip
+
+
 def main(argv: list[str]) -> int:
     stride = int(argv[argv.index("--stride") + 1]) if "--stride" in argv else 13
     budget = int(argv[argv.index("--budget") + 1]) if "--budget" in argv else DEFAULT_OPTIONS.depth_budget
     if "--sweep-only" not in argv:
         per_scenario()
-    if "--table-only" not in argv:
+    if "--table-only" not in argv and "--cli" not in argv:
         sweep_depth(stride, budget)
+    if "--cli" in argv:
+        cli_sweep()
     return 0
 
 
