@@ -159,7 +159,7 @@ def _visit_anchors(g: VisitPhase) -> tuple[Hashable, tuple[int, ...]]:
     # a zero coefficient emits no phase (its cost differs), so it is part of the key; the gadget uses the first
     # ancillas it needs, whatever the pool it is given
     need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
-    return ("VisitPhase", g.kind, g.coefficient != 0), (*(q for v in g.visitors for q in v), *g.ancillas[:need])
+    return ("VisitPhase", g.kind), (*(q for v in g.visitors for q in v), *g.ancillas[:need])
 
 
 ANCHORS: dict[type, Callable[[Any], tuple[Hashable, tuple[int, ...]]]] = {

@@ -80,7 +80,8 @@ class VisitPhase:
 
     @property
     def kind(self) -> Hashable:
-        return ("visits", tuple(len(v) for v in self.visitors), self.products)
+        # a zero coefficient emits no rotation: equal kinds must mean equal gates and costs
+        return ("visits", tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)
 
     def _layout(self) -> tuple[list[Gate], list[tuple[int, bool]]]:
         """The compute gates and, per visitor, ``(qubit, holds the complement)``."""
