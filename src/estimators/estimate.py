@@ -85,7 +85,7 @@ bound of a scenario both ask."""
 
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
-DEFAULT_DEPTH_BUDGET = 15_000
+DEFAULT_DEPTH_BUDGET = 20_000
 """``depth="auto"`` computes exact depths when the state preparation and one layer have at most this many lowered
 gates (see the module docstring: the size of one layer, not of ``p`` layers, sets the cost)."""
 

@@ -220,3 +220,13 @@ def test_explain_names_the_chosen_phase_construction_and_its_alternatives(run) -
     assert res.exit_code == 0, res.output
     json.loads(res.stdout)  # stdout stays machine-readable
     assert "balance" in res.stderr and "arithmetic" in res.stderr and "couplings:" in res.stderr
+
+
+def test_cli_defaults_are_the_estimators_defaults() -> None:
+    """The command spells its defaults out (it imports the estimators lazily, for a fast start): keep them equal."""
+    import inspect
+
+    from estimators.estimate import DEFAULT_DEPTH_BUDGET
+    from qcpp.commands.estimate import estimate
+
+    assert inspect.signature(estimate).parameters["depth_budget"].default == DEFAULT_DEPTH_BUDGET

@@ -112,7 +112,7 @@ def estimate(
             "--depth-budget",
             help="auto: exact depths when the state preparation plus one layer has at most this many lowered gates.",
         ),
-    ] = 15_000,
+    ] = 20_000,
     epsilon: Annotated[
         float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
     ] = 1e-3,
