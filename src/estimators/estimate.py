@@ -43,6 +43,7 @@ from circuitgen.angles import Angle
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.cost import Cost
 from circuitgen.gadgets.partial_mixer import partial_mixer
+from circuitgen.gadgets.phase_sums import SumsShape
 from circuitgen.lowering import lower
 from circuitgen.qaoa import qaoa_plan
 from gridcover.presets import default_scenario
@@ -493,7 +494,24 @@ def _phase_depth_sum(scenario: Scenario, options: PlanOptions, lc: LayerCosts, r
                 ready = [x for x, _ in phase.gadgets()][(1 if phase.rotations else 0) :]
             d = gadget_depth(ready[i], regs)
         total = total + n * (d if d is not None else _by_counts(g.cost()))
-    return total + _by_counts(rest)  # the balance arithmetic
+    if phase.balance is not None:
+        shape = phase.balance.shape
+        if rest == shape.cost():
+            return total + _arithmetic_depth_bound(shape)
+    return total + _by_counts(rest)
+
+
+def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
+    """A bound on a balance arithmetic gadget's depths from its shape, nothing emitted: its forms' trees run side by
+    side (disjoint qubits), so the largest compute half, the register phase and the largest uncompute half, each
+    by its gate counts (:meth:`~circuitgen.gadgets.phase_sums.SumsShape.halves`)."""
+    halves = shape.halves()
+
+    def widest(costs: list[Cost]) -> Depth:
+        return Depth(max((c.total for c in costs), default=0), max((c.two_qubit for c in costs), default=0),
+                     max((c.rotations for c in costs), default=0), "bound")  # fmt: skip
+
+    return widest([h[0] for h in halves]) + _by_counts(shape.phase_cost()) + widest([h[1] for h in halves])
 
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:

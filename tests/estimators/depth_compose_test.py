@@ -7,6 +7,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from circuitgen.circuit import Register
+from circuitgen.cost import Cost
+from circuitgen.gadgets.phase_sums import SumsPhase
 from estimators.crosscheck import crosscheck_cases, with_obstacles
 from estimators.depth import Depth, depths
 from estimators.depth_compose import (
@@ -21,12 +24,14 @@ from estimators.estimate import (
     DEFAULT_PLAN,
     EstimateOptions,
     PlanOptions,
+    _arithmetic_depth_bound,
     compiled_depth,
     depth_bound,
     estimate_depth,
     exact_depth,
     layer_costs,
 )
+from estimators.phase_count import phase_layer
 from gridcover.errors import ScenarioError
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Scenario, scenario_from_dict
@@ -212,6 +217,23 @@ def test_bound_is_above_exact_and_exact_at_p0(options: PlanOptions) -> None:
             assert b.kind == "bound"
             assert b.depth >= e.depth and b.two_qubit_depth >= e.two_qubit_depth
             assert b.rotation_depth >= e.rotation_depth
+
+
+@pytest.mark.parametrize("rows, cols, robots", [(5, 5, 2), (7, 6, 4), (9, 9, 8)])
+def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: int, cols: int, robots: int) -> None:
+    """The balance arithmetic's bound (its forms' trees side by side) holds for the gadget itself, and its halves and
+    phase add up to its cost."""
+    s = default_scenario(rows, cols, robots)
+    layer = phase_layer(s)
+    assert layer is not None and layer.balance is not None
+    shape = layer.balance.shape
+    assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
+    gadget = next(g for g, _ in layer.gadgets() if isinstance(g, SumsPhase))
+    regs = (Register("q", s.num_variables + layer.num_ancillas),)
+    own, bound = gadget_depth(gadget, regs), _arithmetic_depth_bound(shape)
+    assert bound.depth >= own.depth and bound.two_qubit_depth >= own.two_qubit_depth
+    assert bound.rotation_depth >= own.rotation_depth
+    assert bound.depth < gadget.cost().total  # tighter than counting every gate
 
 
 @pytest.mark.parametrize("rows, cols, robots", [(6, 6, 3), (7, 5, 4), (8, 8, 2), (5, 9, 6), (9, 9, 8)])

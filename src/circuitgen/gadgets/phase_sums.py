@@ -281,6 +281,23 @@ class SumsShape:
         """The same with ANDs kept whole."""
         return self._costs[1]
 
+    def halves(self) -> tuple[tuple[Cost, Cost], ...]:
+        """Per computed form, the lowered cost of computing its sum and of uncomputing it. The forms' trees act on
+        disjoint qubits (each form its own bits and fresh ancillas), so they run side by side: the gadget's depth
+        is at most the largest compute half's gate count, plus :meth:`phase_cost`'s, plus the largest uncompute
+        half's. ``sum(halves) + phase_cost() == cost()``.
+        """
+        out = []
+        for (fa, ha, cp, _), (neg, _), on in zip(self.counts, self.negatives, self.active):
+            if on:
+                arithmetic = Cost.of(cx=5 * fa + ha + cp, x=neg)
+                out.append(((fa + ha) * AND_COST + arithmetic, (fa + ha) * AND_DG_COST + arithmetic))
+        return tuple(out)
+
+    def phase_cost(self) -> Cost:
+        """Lowered cost of the phase on the registers (between the two halves)."""
+        return self._phase.cost()
+
 
 @dataclass(frozen=True)
 class SumsPhase:
