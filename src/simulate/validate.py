@@ -326,9 +326,14 @@ def validate(
     elif backend == "qcec":
         checks.append(_qcec_check(scenario, p, rule, bindings, circuit))
     else:
-        checks.extend(
-            _tensor_checks(scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, dask)
-        )
+        from simulate.tensor import dask_client
+
+        with dask_client(dask) if dask is not None else contextlib.nullcontext(None) as client:
+            checks.extend(
+                _tensor_checks(
+                    scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
+                )
+            )
 
     return ValidationReport(
         scenario=scenario.name,
@@ -371,29 +376,6 @@ def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, floa
 
 
 def _tensor_checks(
-    scenario: Scenario,
-    circuit: Any,
-    ancillas: list[int],
-    index: np.ndarray,
-    ref: np.ndarray,
-    seed: int | None,
-    tol: float,
-    max_amplitudes: int | None,
-    mps: bool,
-    cache_dir: str | Path | None,
-    dask: str | None = None,
-) -> list[Check]:
-    from contextlib import nullcontext
-
-    from simulate.tensor import dask_client
-
-    with dask_client(dask) if dask is not None else nullcontext(None) as client:
-        return _tensor_checks_with(
-            scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
-        )
-
-
-def _tensor_checks_with(
     scenario: Scenario,
     circuit: Any,
     ancillas: list[int],
