@@ -40,7 +40,7 @@ from circuitgen.cost import Cost
 from circuitgen.gates import Gate, and_, cx, x
 
 from .phase_ising import IsingPhase, ising_form
-from .phase_visits import AND_COST, AND_DG_COST
+from .phase_visits import AND_COST, AND_DG_COST, with_ands
 
 __all__ = ["SumsPhase", "SumsShape", "column_counts"]
 
@@ -270,8 +270,7 @@ class SumsShape:
         ands = fa + ha
         arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
         ph = self._phase.cost()
-        lowered = ands * (AND_COST + AND_DG_COST) + arithmetic + ph
-        return lowered, Cost.of({"and": ands, "and_dg": ands}) + arithmetic + ph
+        return with_ands(ands, arithmetic + ph)
 
     def cost(self) -> Cost:
         """Lowered cost."""
@@ -425,12 +424,10 @@ class SumsRegister:
         return fa + ha, Cost.of(cx=2 * (5 * fa + ha + cp) + sum(present), x=2 * neg)
 
     def cost(self) -> Cost:
-        ands, rest = self._costs()
-        return ands * (AND_COST + AND_DG_COST) + rest
+        return with_ands(*self._costs())[0]
 
     def logical_cost(self) -> Cost:
-        ands, rest = self._costs()
-        return Cost.of({"and": ands, "and_dg": ands}) + rest
+        return with_ands(*self._costs())[1]
 
     def emit(self) -> list[Gate]:
         compute, reg = popcount_layout(self.form, iter(self.ancillas))
@@ -541,12 +538,10 @@ class SumsAccumulate:
         return fa + ha + add_ands, Cost.of(cx=2 * (5 * fa + ha + cp) + add_cx, x=2 * neg)
 
     def cost(self) -> Cost:
-        ands, rest = self._costs()
-        return ands * (AND_COST + AND_DG_COST) + rest
+        return with_ands(*self._costs())[0]
 
     def logical_cost(self) -> Cost:
-        ands, rest = self._costs()
-        return Cost.of({"and": ands, "and_dg": ands}) + rest
+        return with_ands(*self._costs())[1]
 
     def emit(self) -> list[Gate]:
         tree = sum(self._count[:3])

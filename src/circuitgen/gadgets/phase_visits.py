@@ -37,7 +37,7 @@ from circuitgen.gates import Gate, and_, x
 
 from .phase_ising import IsingPhase, ising_form
 
-__all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas"]
+__all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas", "with_ands"]
 
 
 @cache
@@ -47,12 +47,21 @@ def _visit_costs(sizes: tuple[int, ...], products: bool, nonzero: bool) -> tuple
     g = VisitPhase("g", 1.0 if nonzero else 0.0, tuple(tuple(range(k)) for k in sizes), (), products)
     ands, xs = g._counts()
     ph = g.phase()[1].cost()
-    return ands * (AND_COST + AND_DG_COST) + Cost.of(x=xs) + ph, Cost.of({"and": ands, "and_dg": ands}, x=xs) + ph
+    return with_ands(ands, Cost.of(x=xs) + ph)
 
 AND_COST = Cost.of(cx=3, h=2, t=2, tdg=2, sdg=1)
 """Lowered ``and``."""
 AND_DG_COST = Cost.of(cx=3, h=2, t=2, tdg=2, s=1)
 """Lowered ``and_dg``."""
+
+
+def with_ands(ands: int, rest: Cost) -> tuple[Cost, Cost]:
+    """``(lowered, logical)`` cost of ``ands`` ANDs with their ``and_dg`` mirrors, plus ``rest`` (no AND in it).
+
+    >>> with_ands(1, Cost.of(cx=2))[0].cx, with_ands(1, Cost.of(cx=2))[1].to_dict()
+    (8, {'and': 1, 'and_dg': 1, 'cx': 2})
+    """
+    return ands * (AND_COST + AND_DG_COST) + rest, Cost.of({"and": ands, "and_dg": ands}) + rest
 
 
 def visit_ancillas(sizes: tuple[int, ...], products: bool = False) -> int:
