@@ -335,16 +335,22 @@ MAX_BLOCK_DATA_QUBITS = 11
 """Largest block (data qubits) :func:`collapse_ancilla_blocks` turns into one dense operator (2^22 entries)."""
 
 
-def _block_operator(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequence[int]) -> np.ndarray:
-    """``(I ⊗ <0|) B (I ⊗ |0>)`` of a block of gates: the matrix on ``data`` (first qubit most significant)."""
+def _block_network(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequence[int]) -> qtn.TensorNetwork:
+    """A block's unitary as a tensor network on local qubits (``data`` first), its ancillas fixed to |0> on both
+    sides; open indices ``k{i}`` (out) and ``b{i}`` (in) for data qubit ``i``."""
     local = {q: i for i, q in enumerate([*data, *ancillas])}
     qc = qtn.Circuit(len(local), gate_contract=False)
     for g in gates:
         _apply(qc, g._replace(qubits=tuple(local[q] for q in g[1])))
     uni = qc.get_uni()
+    uni.isel_({f"{side}{i}": 0 for i in range(len(data), len(local)) for side in "kb"})
+    return uni
+
+
+def _block_operator(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequence[int]) -> np.ndarray:
+    """``(I ⊗ <0|) B (I ⊗ |0>)`` of a block of gates: the matrix on ``data`` (first qubit most significant)."""
+    uni = _block_network(gates, data, ancillas)
     k = len(data)
-    fix = {f"{side}{i}": 0 for i in range(k, len(local)) for side in "kb"}
-    uni.isel_(fix)
     uni.astype_("complex128")
     outs = [f"k{i}" for i in range(k)]
     ins = [f"b{i}" for i in range(k)]
@@ -367,13 +373,8 @@ def _block_diagonal(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequen
     If every entry has modulus 1 the block maps each ``|x, 0>`` to a phase times itself (``B`` is unitary): it is
     diagonal on the data and returns its ancillas to |0>.
     """
-    local = {q: i for i, q in enumerate([*data, *ancillas])}
-    qc = qtn.Circuit(len(local), gate_contract=False)
-    for g in gates:
-        _apply(qc, g._replace(qubits=tuple(local[q] for q in g[1])))
-    uni = qc.get_uni()
+    uni = _block_network(gates, data, ancillas)
     k = len(data)
-    uni.isel_({f"{side}{i}": 0 for i in range(k, len(local)) for side in "kb"})
     for i in range(k):
         uni |= qtn.COPY_tensor(2, (f"k{i}", f"b{i}", f"x{i}"))
     uni.astype_("complex128")
