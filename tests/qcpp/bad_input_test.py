@@ -25,6 +25,8 @@ from circuitgen.qasm import to_qasm3
 from gridcover.scenario import load_scenario
 from qcpp.cli import app
 
+from .clirun import run
+
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "paper_3x3.toml"
 LINK_TARGET_TEXT = "previous content\n"
@@ -74,10 +76,6 @@ def snapshot(folder: Path) -> dict[str, str]:
         else:
             out[rel] = p.read_bytes().decode("latin-1")
     return out
-
-
-def run(*args: str):  # type: ignore[no-untyped-def]
-    return CliRunner().invoke(app, list(args))
 
 
 EX = "ex.toml"

@@ -20,22 +20,10 @@ from gridcover.solvers import dfs
 from qcpp.cli import QcppTyper, app
 from qcpp.commands.solve import SOLVE_METHODS
 
+from .clirun import assert_one_line_error, run
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 PNG = b"\x89PNG\r\n\x1a\n"
-
-
-def run(*args: str):  # type: ignore[no-untyped-def]
-    return CliRunner().invoke(app, list(args))
-
-
-def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
-    assert res.exit_code == 2, res.output
-    assert res.stdout == ""
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
-    assert "Traceback" not in res.output
-    for f in fragments:
-        assert f in lines[0]
 
 
 @pytest.mark.parametrize(

@@ -6,13 +6,13 @@ import json
 from pathlib import Path
 
 import pytest
-from typer.testing import CliRunner
 
 from gridcover.scenario import load_scenario
-from qcpp.cli import app
 from qcpp.commands.simulate import parse_angles
 from simulate.subspace import SubspaceQAOA
 from simulate.training import initial_angles
+
+from .clirun import assert_one_line_error, run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 PAPER = str(EXAMPLES / "paper_3x3.toml")
@@ -20,23 +20,10 @@ KEYS = {"scenario", "method", "p", "angles", "expectation", "p_optimum", "amplit
         "basis_states", "rule"}
 
 
-def run(*args: str):  # type: ignore[no-untyped-def]
-    return CliRunner().invoke(app, list(args))
-
-
 def run_json(*args: str) -> dict[str, object]:
     res = run(*args, "--json")
     assert res.exit_code == 0, res.output
     return json.loads(res.stdout)
-
-
-def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
-    assert res.exit_code == 2, res.output
-    assert res.stdout == ""
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
-    for f in fragments:
-        assert f in lines[0]
 
 
 def test_subspace_json_against_the_simulator() -> None:

@@ -6,28 +6,15 @@ import json
 from pathlib import Path
 
 import pytest
-from typer.testing import CliRunner
 
 from gridcover.cost import cost_parts
 from gridcover.paths import is_feasible, path_from_nodes
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
-from qcpp.cli import app
+
+from .clirun import assert_one_line_error, run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-
-
-def run(*args: str):  # type: ignore[no-untyped-def]
-    return CliRunner().invoke(app, list(args))
-
-
-def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
-    assert res.exit_code == 2, res.output
-    assert res.stdout == ""
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
-    for f in fragments:
-        assert f in lines[0]
 
 
 @pytest.mark.parametrize("example", ["paper_3x3.toml", "two_robots_4x4.toml", "obstacles_hard_4x4.toml"])

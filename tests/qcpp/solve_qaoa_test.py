@@ -6,33 +6,20 @@ import json
 from pathlib import Path
 
 import pytest
-from typer.testing import CliRunner
 
 from gridcover.paths import path_from_nodes
 from gridcover.render import render_ascii
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
-from qcpp.cli import app
 from qcpp.commands.solve import SOLVE_METHODS, sparkline
 from simulate.qaoa_solver import solve_qaoa
 from simulate.subspace import SubspaceQAOA
 
+from .clirun import assert_one_line_error, run
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 PAPER = str(EXAMPLES / "paper_3x3.toml")
 PNG = b"\x89PNG\r\n\x1a\n"
-
-
-def run(*args: str):  # type: ignore[no-untyped-def]
-    return CliRunner().invoke(app, list(args))
-
-
-def assert_one_line_error(res, *fragments: str) -> None:  # type: ignore[no-untyped-def]
-    assert res.exit_code == 2, res.output
-    assert res.stdout == ""
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
-    for f in fragments:
-        assert f in lines[0]
 
 
 def test_json_has_the_common_keys_and_the_qaoa_ones() -> None:
