@@ -22,6 +22,7 @@ Example:
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -161,3 +162,28 @@ class Grid:
     def edge_nodes(self) -> tuple[tuple[int, int], ...]:
         """For each edge index, the pair of node indices it joins."""
         return tuple((self.node_index(u), self.node_index(v)) for u, v in self.edges)
+
+
+def node_symmetries(rows: int, cols: int) -> list[Callable[[Node], Node]]:
+    """The rotations and reflections that map a ``rows x cols`` grid onto itself, the identity first (4 on a
+    rectangle, 8 on a square), as maps of ``(row, col)`` nodes.
+
+    >>> [f((0, 1)) for f in node_symmetries(2, 3)]
+    [(0, 1), (1, 1), (0, 1), (1, 1)]
+    >>> len(node_symmetries(3, 3))
+    8
+    """
+    maps: list[Callable[[Node], Node]] = [
+        lambda n: n,
+        lambda n: (rows - 1 - n[0], n[1]),
+        lambda n: (n[0], cols - 1 - n[1]),
+        lambda n: (rows - 1 - n[0], cols - 1 - n[1]),
+    ]
+    if rows == cols:
+        maps += [
+            lambda n: (n[1], n[0]),
+            lambda n: (cols - 1 - n[1], rows - 1 - n[0]),
+            lambda n: (n[1], rows - 1 - n[0]),
+            lambda n: (cols - 1 - n[1], n[0]),
+        ]
+    return maps

@@ -17,14 +17,13 @@ from __future__ import annotations
 import functools
 import itertools
 import random
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
 from gridcover.errors import ScenarioError
-from gridcover.grid import Grid, Node
+from gridcover.grid import Grid, Node, node_symmetries
 from gridcover.paths import enumerate_paths, initial_path, is_feasible
 from gridcover.sbf import move_components, reachable_paths, representatives, sbf_logic
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
@@ -85,30 +84,12 @@ def test_reachable_from_any_start() -> None:
 # ---------------------------------------------------------------- hard obstacles
 
 
-def symmetries(rows: int, cols: int) -> list[Callable[[Node], Node]]:
-    """The grid's automorphisms that keep its shape (4 for rectangles, 8 for squares)."""
-    maps: list[Callable[[Node], Node]] = [
-        lambda n: n,
-        lambda n: (rows - 1 - n[0], n[1]),
-        lambda n: (n[0], cols - 1 - n[1]),
-        lambda n: (rows - 1 - n[0], cols - 1 - n[1]),
-    ]
-    if rows == cols:
-        maps += [
-            lambda n: (n[1], n[0]),
-            lambda n: (cols - 1 - n[1], n[0]),
-            lambda n: (n[1], rows - 1 - n[0]),
-            lambda n: (cols - 1 - n[1], rows - 1 - n[0]),
-        ]
-    return maps
-
-
 Key = tuple[tuple[Node, ...], tuple[Node, ...]]
 
 
 def images(rows: int, cols: int, obstacles: tuple[Node, ...], ends: tuple[Node, Node]) -> set[Key]:
     return {
-        (tuple(sorted(map(f, obstacles))), tuple(sorted(map(f, ends)))) for f in symmetries(rows, cols)
+        (tuple(sorted(map(f, obstacles))), tuple(sorted(map(f, ends)))) for f in node_symmetries(rows, cols)
     }
 
 
@@ -195,7 +176,7 @@ def test_component_count_is_symmetric() -> None:
         sample = rng.sample(hard_sweep(rows, cols), 25)
         sample += [r for r in hard_sweep(rows, cols) if len(r.sizes) > 2][:5]
         for r in sample:
-            for f in symmetries(rows, cols)[1:]:
+            for f in node_symmetries(rows, cols)[1:]:
                 obs = tuple(sorted(map(f, r.obstacles)))
                 s = scenario(rows, cols, f(r.start), f(r.goal), obs, "hard")
                 assert sorted(len(c) for c in move_components(s, 0, "exact")) == sorted(r.sizes)

@@ -48,13 +48,13 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
 from ortools.sat.python import cp_model
 
 from gridcover.cost import balanced_pairs, cost_parts
+from gridcover.grid import node_symmetries
 from gridcover.paths import initial_path, is_feasible, path_to_nodes
 from gridcover.scenario import Scenario
 from gridcover.solvers.result import ProgressFn, Solution
@@ -156,23 +156,6 @@ Symmetry = tuple[tuple[int, ...], tuple[int, ...]]
 """``(perm, emap)``: robot ``r``'s edge ``e`` maps to robot ``perm[r]``'s edge ``emap[e]``."""
 
 
-def _grid_maps(rows: int, cols: int) -> list[Callable[[tuple[int, int]], tuple[int, int]]]:
-    """The grid's non-identity rotations and reflections (3 on a rectangle, 7 on a square)."""
-    maps: list[Callable[[tuple[int, int]], tuple[int, int]]] = [
-        lambda n: (rows - 1 - n[0], n[1]),
-        lambda n: (n[0], cols - 1 - n[1]),
-        lambda n: (rows - 1 - n[0], cols - 1 - n[1]),
-    ]
-    if rows == cols:
-        maps += [
-            lambda n: (n[1], n[0]),
-            lambda n: (cols - 1 - n[1], rows - 1 - n[0]),
-            lambda n: (n[1], rows - 1 - n[0]),
-            lambda n: (cols - 1 - n[1], n[0]),
-        ]
-    return maps
-
-
 def scenario_symmetries(s: Scenario) -> list[Symmetry]:
     """The grid symmetries that map the scenario onto itself, with the robot permutation they induce.
 
@@ -190,7 +173,7 @@ def scenario_symmetries(s: Scenario) -> list[Symmetry]:
     ends = [frozenset((rb.start, rb.goal)) for rb in s.robots]
     pairs = {frozenset(p) for p in balanced_pairs(s)}
     lengths = s.edge_lengths
-    for phi in _grid_maps(g.rows, g.cols):
+    for phi in node_symmetries(g.rows, g.cols)[1:]:
         if {phi(o) for o in s.obstacles} != set(s.obstacles):
             continue
         emap = tuple(g.edge_index(phi(u), phi(v)) for u, v in g.edges)
