@@ -161,19 +161,31 @@ def _at(g: _Grid, node: int) -> list[int]:
     return np.nonzero((g.u == node) | (g.v == node))[0].tolist()
 
 
-def _reduce(values: np.ndarray, g: _Grid, ends: tuple[int, int]) -> tuple[float, np.ndarray]:
-    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied to the edges at
-    the robot's endpoints and at the corners (the only ones its identities touch on an open grid).
+@dataclass(frozen=True)
+class _Local:
+    """Where one robot's identities act: the edges at its endpoints (nodes 0 and 1 of ``at``) and at the corners
+    that are not its endpoints (corridors), the only edges they touch on an open grid."""
+
+    at: tuple[list[int], ...]
+    touched: list[int]
+
+    @classmethod
+    def of(cls, g: _Grid, ends: tuple[int, int]) -> _Local:
+        nodes = [ends[0], ends[1], *(c for c in g.corners if c not in ends)]
+        at = tuple(_at(g, n) for n in nodes)
+        return cls(at, sorted({k for edges in at for k in edges}))
+
+
+def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
+    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied where its
+    identities act (``local``).
 
     Returns:
         ``(constant, coefficients)``; a zero marks a dropped term.
     """
-    nodes = [ends[0], ends[1], *(c for c in g.corners if c not in ends)]
-    at = [_at(g, n) for n in nodes]
-    touched = sorted({k for edges in at for k in edges})
-    const, reduced = reduce_on_paths({k: float(values[k]) for k in touched}, at, (0, 1))
+    const, reduced = reduce_on_paths({k: float(values[k]) for k in local.touched}, local.at, (0, 1))
     out = values.copy()
-    out[touched] = 0.0
+    out[local.touched] = 0.0
     for k, val in reduced.items():
         out[k] = val
     out[np.abs(out) <= _TOL] = 0.0
@@ -226,6 +238,7 @@ def phase_layer(
     if any(a == b for a, b in ends):
         return None
     g = _grid(grid, tuple(s.variable_edges))
+    local = [_Local.of(g, e) for e in ends]
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = ob.alpha
     parts: list[tuple[Gadget, int]] = []
@@ -267,7 +280,7 @@ def phase_layer(
         ones = np.full(v_per, ob.edge_length)
         weights, consts = [], []
         for r in range(n_r):
-            const, form = _reduce(ones, g, ends[r])
+            const, form = _reduce(ones, local[r])
             form = form / unit
             if np.any(np.abs(form - np.round(form)) > 1e-9) or np.abs(form).sum() > MAX_INTEGER_TOTAL:
                 return None
@@ -285,7 +298,7 @@ def phase_layer(
             lin[r] = lin[r] + float(lin_g[r]) * w
         balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
         ancillas = max(ancillas, balance.shape.num_ancillas)
-    values = np.concatenate([_reduce(lin[r], g, ends[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
+    values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
     if target == "ft":
         keep = np.ones(len(values), dtype=bool)
