@@ -53,7 +53,7 @@ from .depth import Depth, depths
 from .depth_compose import LayeredDepth, gadget_depth, known_depth
 from .fault_tolerant import DEFAULT_EPSILON, FaultTolerantEstimate, SynthesisModel, fault_tolerant_from_cost
 from .mixer_count import mixer_layer
-from .phase_count import phase_layer as _phase_layer
+from .phase_count import phase_layer
 from .physical import (
     DEFAULT_ERROR_BUDGET,
     DEFAULT_QEC_SCHEME,
@@ -79,10 +79,6 @@ __all__ = [
     "layer_costs",
     "registers_for",
 ]
-
-phase_layer = lru_cache(maxsize=64)(_phase_layer)
-"""The phase separator by classes (:func:`estimators.phase_count.phase_layer`), cached: the counts and the depth
-bound of a scenario both ask."""
 
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")

@@ -209,6 +209,7 @@ def _visit_choice(degree: int, m: int, coefficient: float, target: str) -> Visit
     return pick
 
 
+@lru_cache(maxsize=64)  # the counts and the depth bound of a scenario both ask
 def phase_layer(
     scenario: Scenario,
     target: str = "nisq",
