@@ -143,6 +143,12 @@ def _report_interrupt() -> None:
     report_interrupted()
 
 
+def _stop_requested() -> bool:
+    from qcpp.interrupt import stop_requested
+
+    return stop_requested()
+
+
 def _check_numbers(kwargs: dict[str, Any]) -> None:
     ctx = get_current_context(silent=True)
     for name, low in NUMERIC_OPTIONS.items():
@@ -175,10 +181,14 @@ def handle_errors(fn: F) -> F:
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise
-        except MemoryError:
-            typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
-            raise typer.Exit(code=EXIT_USAGE) from None
-        except LIBRARY_ERRORS as exc:
+        except Exception as exc:
+            if _stop_requested():  # what the signal broke (e.g. an import: ImportError) is an interruption
+                raise KeyboardInterrupt from None
+            if isinstance(exc, MemoryError):
+                typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
+                raise typer.Exit(code=EXIT_USAGE) from None
+            if not isinstance(exc, LIBRARY_ERRORS):
+                raise
             message = error_line(exc)
             if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:
                 # named files fail as gridcover.atomic.OutputError (with the name): this was stdout
@@ -240,6 +250,11 @@ class QcppGroup(_TidyHelp, TyperGroup):
             return super().invoke(ctx)
         except KeyboardInterrupt:
             _report_interrupt()
+            raise typer.Exit(code=EXIT_INTERRUPTED) from None
+        except Exception:
+            if not _stop_requested():
+                raise
+            _report_interrupt()  # an exception the signal caused, not a bug
             raise typer.Exit(code=EXIT_INTERRUPTED) from None
 
     def main(  # type: ignore[override]

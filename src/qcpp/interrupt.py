@@ -15,6 +15,14 @@ How (installed by :func:`qcpp.cli.main`, i.e. only for the real command line, ne
 3. Forked children (worker processes) ignore SIGINT and get the default SIGTERM: a terminal's Ctrl-C reaches the
    whole process group, and workers must neither print tracebacks nor keep running after the parent is gone;
    the parent stops them.
+4. The line ``interrupted`` is written once, under a lock: the watchdog waits for a main thread that is writing
+   it right now instead of ending the process between "reported" and "written" (an exit 130 with an empty
+   stderr, seen once under load). :func:`stop_requested` tells the CLI that a stop signal arrived, so an
+   exception that the signal caused (a ``KeyboardInterrupt`` inside a C extension's import surfaces as
+   ``ImportError``) is reported as ``interrupted``, not as a traceback or an error line.
+5. :func:`announce_ready`: with the environment variable ``QCPP_READY`` set (to anything but empty or ``0``),
+   the CLI prints one line ``ready: <what>`` on stderr once its signal handling is installed and the command's
+   work has started (imports done). Tests that interrupt a real process wait for that line instead of sleeping.
 
 Example:
     >>> report_interrupted.__name__
@@ -34,7 +42,15 @@ from types import FrameType
 
 from gridcover.atomic import discard_pending
 
-__all__ = ["EXIT_CODE", "GRACE_SECONDS", "install", "report_interrupted"]
+__all__ = [
+    "EXIT_CODE",
+    "GRACE_SECONDS",
+    "READY_ENV",
+    "announce_ready",
+    "install",
+    "report_interrupted",
+    "stop_requested",
+]
 
 GRACE_SECONDS = 1.5
 """How long the main thread gets to unwind after a signal before the watchdog ends the process."""
@@ -42,22 +58,58 @@ GRACE_SECONDS = 1.5
 EXIT_CODE = 130
 """Exit code after an interruption (128 + SIGINT, the shell convention)."""
 
-_reported = threading.Event()
+READY_ENV = "QCPP_READY"
+"""Environment variable that turns on the ``ready: <what>`` line of :func:`announce_ready`."""
+
+REPORT_WAIT_SECONDS = 2.0
+"""How long the watchdog waits for a main thread that is writing ``interrupted`` right now."""
+
+_reported = threading.Event()  # set once the line is out
+_report_lock = threading.Lock()
+_requested: list[int] = []  # the stop signals that arrived (a list: a signal handler must not take a lock)
 _installed = False
 _STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
 def report_interrupted() -> None:
-    """Print ``interrupted`` on stderr (once per process)."""
-    if _reported.is_set():
-        return
-    _reported.set()
-    with contextlib.suppress(Exception):
-        sys.stderr.write("interrupted\n")
-        sys.stderr.flush()
+    """Print ``interrupted`` on stderr (once per process; the watchdog never cuts the write short)."""
+    with _report_lock:
+        if _reported.is_set():
+            return
+        try:
+            sys.stderr.write("interrupted\n")
+            sys.stderr.flush()
+        except Exception:  # a closed or replaced sys.stderr: the file descriptor still works
+            with contextlib.suppress(OSError):
+                os.write(2, b"interrupted\n")
+        _reported.set()
+
+
+def stop_requested() -> bool:
+    """True once SIGINT or SIGTERM arrived in this process (through :func:`install`'s handlers)."""
+    return bool(_requested)
+
+
+def announce_ready(what: str) -> None:
+    """Print ``ready: <what>`` on stderr if the environment variable :data:`READY_ENV` is set (else nothing).
+
+    Called when a command's work starts (imports done, signal handling installed): the moment from which an
+    interrupt lands in the work itself. A readiness signal for tests and scripts, off by default.
+
+    Args:
+        what: A few words naming the work.
+
+    Example:
+        >>> announce_ready("nothing")  # QCPP_READY unset: prints nothing
+    """
+    if os.environ.get(READY_ENV, "") not in ("", "0"):
+        with contextlib.suppress(Exception):
+            sys.stderr.write(f"ready: {what}\n")
+            sys.stderr.flush()
 
 
 def _raise_interrupt(signum: int, frame: FrameType | None) -> None:
+    _requested.append(signum)
     raise KeyboardInterrupt
 
 
@@ -69,14 +121,17 @@ def _watchdog(fd: int) -> None:
             return
         if not data:
             return
-        if any(b in _STOP_SIGNALS for b in data):
+        stops = [b for b in data if b in _STOP_SIGNALS]
+        if stops:
+            _requested.extend(stops)  # also before the main thread ran its Python-level handler
             break
     time.sleep(GRACE_SECONDS)
     discard_pending()
     for child in multiprocessing.active_children():
         with contextlib.suppress(Exception):
             child.kill()
-    if not _reported.is_set():
+    # the main thread may be writing the line right now: let it finish rather than end the process mid-report
+    if _report_lock.acquire(timeout=REPORT_WAIT_SECONDS) and not _reported.is_set():
         _reported.set()
         with contextlib.suppress(OSError):
             os.write(2, b"interrupted\n")
@@ -99,7 +154,7 @@ def install() -> None:
     _installed = True
     signal.signal(signal.SIGTERM, _raise_interrupt)
     # also when inherited as ignored (a shell's `cmd &`): an explicit `kill -INT` must stop the command too
-    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGINT, _raise_interrupt)
     if os.name != "posix":  # pragma: no cover - the wakeup pipe and fork hooks are POSIX
         return
     read_fd, write_fd = os.pipe()

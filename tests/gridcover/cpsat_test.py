@@ -125,7 +125,11 @@ def test_symmetries_preserve_the_cost(random_scenarios, data) -> None:  # type: 
 def test_time_limit_returns_feasible_paths_and_a_valid_bound() -> None:
     s = default_scenario(8, 8, 2)
     res = cpsat(s, time_limit=1.0)
-    assert not res.proven_optimal and res.status in ("FEASIBLE", "UNKNOWN")
+    # how far 1 s gets depends on the machine and its load: every outcome must be reported consistently
+    assert res.status in ("OPTIMAL", "FEASIBLE", "UNKNOWN")
+    assert res.proven_optimal == (res.status == "OPTIMAL")
+    if res.proven_optimal:
+        assert res.bound == res.solution.cost.total
     assert res.bound <= res.solution.cost.total and res.gap == res.solution.cost.total - res.bound
     for r, m in enumerate(res.solution.paths):
         assert is_feasible(s, r, m)

@@ -35,14 +35,15 @@ def test_devices_are_written_straight_to() -> None:
     assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
 
 
-def test_fifo_with_a_reader_gets_the_text_and_stays_a_fifo(tmp_path: Path) -> None:
+def test_fifo_with_a_reader_gets_the_text_and_stays_a_fifo(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(gridcover.atomic, "FIFO_WAIT", 600.0)  # however slowly the reader thread starts
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     got: list[str] = []
     reader = threading.Thread(target=lambda: got.append(fifo.read_text()))
     reader.start()
     write_text_atomic(fifo, "through the pipe\n")
-    reader.join(timeout=30)
+    reader.join(timeout=600)  # an upper bound for a failed writer (the reader then never gets EOF)
     assert got == ["through the pipe\n"] and stat.S_ISFIFO(fifo.lstat().st_mode)
 
 

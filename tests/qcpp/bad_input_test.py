@@ -208,14 +208,16 @@ def test_symlink_is_followed_and_stays_a_link(scratch: Path) -> None:
     assert sorted(p.name for p in scratch.iterdir() if p.name.startswith(".")) == []
 
 
-def test_devices_and_fifos_are_written_straight_to(scratch: Path) -> None:
+def test_devices_and_fifos_are_written_straight_to(scratch: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # the reader thread may be slow to open the FIFO on a loaded machine: wait for it as long as it takes
+    monkeypatch.setattr(gridcover.atomic, "FIFO_WAIT", 600.0)
     assert run("compile", EX, "--qasm", "/dev/null").exit_code == 0
     assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
     received: list[bytes] = []
     reader = threading.Thread(target=lambda: received.append(Path("fifo").read_bytes()))
     reader.start()
     res = run("compile", EX, "--qasm", "fifo", "--qasm-version", "3")
-    reader.join(timeout=30)
+    reader.join(timeout=600)  # an upper bound for a failed writer (the reader then never gets EOF)
     assert res.exit_code == 0, res.stderr
     assert received == [to_qasm3(qaoa_circuit(load_scenario(EX), 1)).encode()]
     assert stat.S_ISFIFO(os.lstat("fifo").st_mode)

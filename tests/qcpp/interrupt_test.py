@@ -3,6 +3,11 @@
 ``qcpp estimate`` streams rows as it computes them (no process pool, no cache: estimates come from the gadgets'
 costs): the signal arrives after some rows are out and more are being computed; the process must stop at once,
 leave every printed row whole and say ``interrupted``.
+
+No test here depends on timing: a signal is sent only once the process said it is under way (rows on stdout,
+or the ``ready: ...`` line that ``QCPP_READY=1`` turns on, printed once the signal handling is installed and the
+work has started), never after a sleep. Time limits are generous upper bounds for a hung process, not
+expectations; the outputs are parsed without assuming they hold anything.
 """
 
 from __future__ import annotations
@@ -12,74 +17,116 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
+from qcpp import interrupt
+
 REPO = Path(__file__).resolve().parents[2]
-ARGS = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--depth", "none", "--format", "jsonl"]
+SWEEP = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--depth", "none"]
+HUNG = 120.0
+"""Seconds after which a process that should have stopped counts as hung (an upper bound, never a wait)."""
 
 
-def start(args: list[str], env: dict[str, str]) -> subprocess.Popen[str]:
+def start(args: list[str], env: dict[str, str] | None = None) -> subprocess.Popen[str]:
     return subprocess.Popen(
         [sys.executable, "-m", "qcpp", *args],
         cwd=REPO,
-        env={**os.environ, "PYTHONPATH": str(REPO / "src"), **env},
+        env={**os.environ, "PYTHONPATH": str(REPO / "src"), interrupt.READY_ENV: "1", **(env or {})},
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
     )
 
 
-def stop(proc: subprocess.Popen[str], sig: signal.Signals) -> str:
-    """Send ``sig``; the process must stop within 20 s with exit 130, ``interrupted`` and no traceback.
+def wait_until_ready(proc: subprocess.Popen[str]) -> list[str]:
+    """Read stderr until the CLI's ``ready: ...`` line (its work has started); return the lines read."""
+    assert proc.stderr is not None
+    seen: list[str] = []
+    for line in proc.stderr:
+        seen.append(line)
+        if line.startswith("ready: "):
+            return seen
+    proc.wait()
+    pytest.fail(f"the process ended (exit {proc.returncode}) without saying it was ready: {''.join(seen)!r}")
+
+
+def stop(proc: subprocess.Popen[str], sig: signal.Signals, err_before: str = "") -> str:
+    """Send ``sig``; the process must stop with exit 130, a last stderr line ``interrupted`` and no traceback.
 
     Returns:
         What it printed on stdout after the signal.
     """
     proc.send_signal(sig)
     try:
-        out, err = proc.communicate(timeout=20)
+        out, err = proc.communicate(timeout=HUNG)
     except subprocess.TimeoutExpired:
         proc.kill()
         proc.communicate()
         pytest.fail("the process did not stop after the signal")
+    err = err_before + err
     assert proc.returncode == 130, err
-    assert err.strip().splitlines()[-1] == "interrupted" and "Traceback" not in err
+    lines = err.strip().splitlines()
+    assert lines and lines[-1] == "interrupted", err
+    assert "Traceback" not in err and err.count("interrupted") == 1, err
     return out
 
 
-def wait_until_catching_sigterm(proc: subprocess.Popen[str], limit: float = 60.0) -> None:
-    """Wait until the CLI installed its signal handling: SIGTERM appears in the caught set (Linux /proc)."""
-    deadline = time.monotonic() + limit
-    while time.monotonic() < deadline and proc.poll() is None:
-        status = Path(f"/proc/{proc.pid}/status").read_text()
-        caught = int(next(line.split()[1] for line in status.splitlines() if line.startswith("SigCgt:")), 16)
-        if caught & (1 << (signal.SIGTERM - 1)):
-            return
-        time.sleep(0.02)
-    pytest.fail("the CLI did not start")
-
-
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
-def test_signal_stops_a_streaming_sweep_with_whole_rows(tmp_path: Path, sig: signal.Signals) -> None:
-    proc = start(ARGS, {})
+def test_signal_stops_a_streaming_sweep_with_whole_rows(sig: signal.Signals) -> None:
+    proc = start([*SWEEP, "--format", "jsonl"])
     assert proc.stdout is not None
     first = [proc.stdout.readline() for _ in range(20)]  # rows are out: the sweep is under way
+    assert all(first), f"the sweep ended early: {first}"
     out = stop(proc, sig)
     lines = [line for line in "".join(first).splitlines() + out.splitlines() if line]
     rows = [json.loads(line) for line in lines]  # every printed row is whole
-    assert len(rows) >= 20 and len(rows) < 60_000
+    assert 20 <= len(rows) < 60_000
 
 
-def test_interrupting_a_single_process_command(tmp_path: Path) -> None:
-    """The main thread is interrupted mid-computation (a table waits for every row, so nothing is printed)."""
-    args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--depth", "none"]
-    proc = start(args, {})
-    wait_until_catching_sigterm(proc)
-    # into the computation (the sweep runs for about half a minute). Earlier, under load, the signal can land inside a C
-    # extension's import, which Python reports as "ImportError: initialization failed" (seen once under heavy load;
-    # an open item in the closing note of the session that wrote this test).
-    time.sleep(3.0)
-    stop(proc, signal.SIGINT)
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_interrupting_a_single_process_command(sig: signal.Signals) -> None:
+    """The main thread is interrupted mid-computation (a table waits for every row, so stdout stays empty)."""
+    proc = start(SWEEP)
+    before = "".join(wait_until_ready(proc))
+    out = stop(proc, sig, before)
+    assert out == ""
+
+
+def test_the_ready_line_is_off_by_default() -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "qcpp", "estimate", "--grid", "2x2", "--depth", "none"],
+        cwd=REPO,
+        env={k: v for k, v in {**os.environ, "PYTHONPATH": str(REPO / "src")}.items() if k != interrupt.READY_ENV},
+        capture_output=True,
+        text=True,
+        timeout=HUNG,
+    )
+    assert proc.returncode == 0 and "ready" not in proc.stderr, proc.stderr
+
+
+def test_an_exception_the_signal_caused_is_reported_as_interrupted(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A signal inside a C extension's import surfaces as ``ImportError``: still ``interrupted``, exit 130."""
+    import threading
+
+    from typer.testing import CliRunner
+
+    from qcpp.cli import QcppTyper
+
+    app = QcppTyper()
+
+    @app.command("broken")
+    def broken() -> None:
+        raise ImportError("initialization failed")
+
+    @app.command("other")
+    def other() -> None:
+        """A second command, so that typer keeps the command names."""
+
+    res = CliRunner().invoke(app, ["broken"])
+    assert res.exit_code != 130 and isinstance(res.exception, ImportError)  # no signal: a bug, kept as is
+    monkeypatch.setattr(interrupt, "_requested", [signal.SIGINT])
+    monkeypatch.setattr(interrupt, "_reported", threading.Event())
+    res = CliRunner().invoke(app, ["broken"])
+    assert res.exit_code == 130 and res.stderr == "interrupted\n" and res.stdout == ""

@@ -205,6 +205,9 @@ def estimate(
         qec_scheme=qec_scheme,
         error_budget=error_budget,
     )
+    from qcpp.interrupt import announce_ready
+
+    announce_ready(f"estimate: {len(points.points)} rows")
     pieces = estimate_report(
         points.points,
         fmt=fmt,  # type: ignore[arg-type]
