@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 import sympy as sp
@@ -98,7 +98,7 @@ def points_from_options(
 
 
 def estimate_report(
-    points: Sequence[Point],
+    points: Iterable[Point],
     fmt: Format = "table",
     options: EstimateOptions = DEFAULT_OPTIONS,
     compare_paper: bool = False,
@@ -110,7 +110,7 @@ def estimate_report(
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
     Args:
-        points: from :func:`points_from_options`.
+        points: from :func:`points_from_options` (any iterable: it is consumed lazily, in order).
         fmt: one of :data:`estimators.tables.FORMATS`.
         options: what to estimate.
         compare_paper: add the paper's estimates and ratios.

@@ -37,6 +37,7 @@ __all__ = [
     "check_grid_size",
     "check_layers",
     "large_allowed",
+    "memory_budget",
 ]
 
 MAX_GRID_NODES = 2500
@@ -53,6 +54,25 @@ _ALLOWED: ContextVar[bool] = ContextVar("qcpp_allow_large", default=False)
 
 class SizeError(ScenarioError):
     """A request is larger than a limit of this module (the message names the size and the override)."""
+
+
+def memory_budget(share: float = 0.5) -> int | None:
+    """``share`` of the memory available now (``MemAvailable`` of ``/proc/meminfo``), in bytes; ``None`` where
+    that is unknown (not Linux). What size guards compare a predicted peak with.
+
+    Example:
+        >>> budget = memory_budget()
+        >>> budget is None or budget > 0
+        True
+    """
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(int(line.split()[1]) * 1024 * share)
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
 
 
 def large_allowed() -> bool:

@@ -16,8 +16,9 @@ Example:
 
 from __future__ import annotations
 
+import itertools
 from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -157,6 +158,11 @@ def enumerate_paths(scenario: Scenario, robot: int) -> list[int]:
 
     The order is the DFS order with neighbours tried up, left, right, down; it is deterministic.
     """
+    return list(iter_paths(scenario, robot))
+
+
+def iter_paths(scenario: Scenario, robot: int) -> Iterator[int]:
+    """The paths of :func:`enumerate_paths`, in the same order, one at a time (nothing is kept)."""
     rb = scenario.robots[robot]
     grid = scenario.grid
     n_nodes = grid.num_nodes
@@ -169,7 +175,6 @@ def enumerate_paths(scenario: Scenario, robot: int) -> list[int]:
     for node in grid.nodes:
         adj.append([(grid.node_index(m), grid.edge_index(node, m)) for m in grid.neighbours(node)])
     start, goal = grid.node_index(rb.start), grid.node_index(rb.goal)
-    out: list[int] = []
     visited = [False] * n_nodes
     visited[start] = True
     # iterative DFS: stack of (node, mask, iterator position)
@@ -182,13 +187,31 @@ def enumerate_paths(scenario: Scenario, robot: int) -> list[int]:
             if visited[m] or blocked[m]:
                 continue
             if m == goal:
-                out.append(mask | (1 << e))
+                yield mask | (1 << e)
                 continue
             visited[m] = True
             stack.append((m, mask | (1 << e), 0))
         else:
             visited[node] = False
-    return out
+
+
+def count_paths(scenario: Scenario, robot: int, cap: int | None = None) -> int:
+    """How many paths :func:`enumerate_paths` gives, counting no further than ``cap``.
+
+    Args:
+        scenario: The scenario.
+        robot: The robot.
+        cap: Stop counting here (``None``: count them all). The work is proportional to the count returned.
+
+    Returns:
+        ``min(number of paths, cap)``.
+
+    Example:
+        >>> from gridcover.presets import default_scenario
+        >>> count_paths(default_scenario(4, 4, 1), 0), count_paths(default_scenario(4, 4, 1), 0, cap=100)
+        (184, 100)
+    """
+    return sum(1 for _ in itertools.islice(iter_paths(scenario, robot), cap))
 
 
 def path_bits(scenario: Scenario, mask: int) -> np.ndarray:

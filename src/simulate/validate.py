@@ -43,6 +43,18 @@ Backends:
     circuit equal to the high-level circuit at the same angles on every input with clean ancillas, section by
     section (one ``equivalence`` check; ``skipped`` if QCEC gives no proof in time).
 
+``auto`` (what ``qcpp validate`` uses unless ``--backend`` is given)
+    Picks what fits the machine (:func:`choose_backend`): ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS`
+    qubits (a 16 MB state), else ``sparse`` (its state holds about as many amplitudes as the feasible subspace;
+    at p = 1 far fewer). The tensor contraction's path search alone can take minutes, so it runs only when asked.
+
+Size: every backend compares against the exact feasible-subspace state, whose size is the number of feasible
+assignments (the product of the robots' path counts). :func:`validate_size` predicts it first, counting paths
+no further than needed, and :func:`validate` refuses (:class:`ValidationTooLargeError`, one line naming the
+size and the limit) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted peak over
+the memory budget, instead of trying for minutes and running out of memory (two robots on 5x5 have 73.8 million
+feasible assignments: 9.4 GB).
+
 Every check reports what it compared; :attr:`ValidationReport.passed` is true when no check failed.
 
 Example:
@@ -58,7 +70,7 @@ import contextlib
 import itertools
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -69,12 +81,33 @@ from gridcover.paths import enumerate_paths
 from gridcover.sbf import RULES, Rule
 from gridcover.scenario import Scenario
 
-__all__ = ["BACKENDS", "Backend", "Check", "ValidationReport", "random_angles", "validate"]
+__all__ = [
+    "AUTO_STATEVECTOR_QUBITS",
+    "BACKENDS",
+    "MAX_VALIDATE_ASSIGNMENTS",
+    "Backend",
+    "Check",
+    "ValidationReport",
+    "ValidationSize",
+    "ValidationTooLargeError",
+    "choose_backend",
+    "random_angles",
+    "validate",
+    "validate_size",
+]
 
-Backend = Literal["tensor", "statevector", "sparse", "qcec"]
-BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse", "qcec")
+Backend = Literal["tensor", "statevector", "sparse", "qcec", "auto"]
+BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse", "qcec", "auto")
 DEFAULT_TOLERANCE = 1e-8
 MAX_STATEVECTOR_QUBITS = 26
+AUTO_STATEVECTOR_QUBITS = 20
+"""``auto`` uses the dense statevector up to this many qubits (2^20 amplitudes, 16 MB), else ``sparse``."""
+MAX_VALIDATE_ASSIGNMENTS = 2_000_000
+"""Most feasible assignments :func:`validate` compares against without ``max_assignments=None``
+(``--allow-large``): about 1 GB for the reference state and its index."""
+BYTES_PER_ASSIGNMENT = 500
+"""Peak memory per feasible assignment, roughly: the subspace state and Hamiltonian, the assignment tuples, their
+basis-state indices and reference amplitudes, the sparse state."""
 MPS_BOND_LIMIT = 32
 """The ``tensor`` backend's MPS stops (the contraction check notes it) beyond this bond: 21 at 38 qubits p = 1; at p = 2
 it passes 32 after 37 s and 64 only after several minutes."""
@@ -182,6 +215,90 @@ def _json_float(x: float) -> float | None:
     return None if math.isnan(x) else float(x)
 
 
+@dataclass(frozen=True)
+class ValidationSize:
+    """What a validation will hold, predicted before it starts.
+
+    Attributes:
+        paths_per_robot: Each robot's path count (a lower bound where counting stopped: ``exact`` false).
+        exact: Whether every count is exact.
+        qubits: Qubits of the lowered circuit.
+        gates: Gates of the lowered circuit (exact, from the gadgets' costs).
+    """
+
+    paths_per_robot: tuple[int, ...]
+    exact: bool
+    qubits: int
+    gates: int
+
+    @property
+    def assignments(self) -> int:
+        """Feasible assignments: the size of the reference state (the product of the path counts)."""
+        return math.prod(self.paths_per_robot)
+
+    @property
+    def bytes(self) -> int:
+        """Predicted peak memory of the reference and the comparison (:data:`BYTES_PER_ASSIGNMENT` each)."""
+        return self.assignments * BYTES_PER_ASSIGNMENT
+
+    def describe(self) -> str:
+        """One phrase, e.g. ``8,590 x 8,590 paths = 73,788,100 feasible assignments (about 36.9 GB)``."""
+        paths = " x ".join(f"{n:,}" for n in self.paths_per_robot)
+        gb = self.bytes / 1e9
+        if self.exact:
+            return f"{paths} paths = {self.assignments:,} feasible assignments (about {gb:.1f} GB)"
+        return f"at least {self.assignments:,} feasible assignments (at least {gb:.1f} GB; paths counted: {paths})"
+
+
+class ValidationTooLargeError(ValueError):
+    """A validation over the limits of :func:`validate` (one line naming the size and the limit)."""
+
+
+def validate_size(scenario: Scenario, p: int, *, max_assignments: int | None = None) -> ValidationSize:
+    """Predict a validation's size without building anything.
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
+
+    Returns:
+        The :class:`ValidationSize`.
+
+    Example:
+        >>> from gridcover.presets import default_scenario
+        >>> size = validate_size(default_scenario(4, 4, 2), 1)
+        >>> size.paths_per_robot, size.assignments, size.qubits
+        ((184, 184), 33856, 80)
+    """
+    from estimators.guard import predict_size
+    from gridcover.paths import count_paths
+
+    counts: list[int] = []
+    exact = True
+    for r in range(scenario.num_robots):
+        cap = None if max_assignments is None else max_assignments // max(1, math.prod(counts)) + 1
+        n = count_paths(scenario, r, cap)
+        counts.append(n)
+        if cap is not None and n >= cap:
+            exact = False
+            counts += [1] * (scenario.num_robots - r - 1)  # every other robot has at least one path
+            break
+    size = predict_size(scenario, p)
+    return ValidationSize(tuple(counts), exact, size.qubits, size.gates)
+
+
+def choose_backend(size: ValidationSize) -> Backend:
+    """What ``auto`` runs: ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS` qubits, else ``sparse``.
+
+    Example:
+        >>> small, large = ValidationSize((12,), True, 15, 296), ValidationSize((178, 178), True, 80, 3619)
+        >>> choose_backend(small), choose_backend(large)
+        ('statevector', 'sparse')
+    """
+    return "statevector" if size.qubits <= AUTO_STATEVECTOR_QUBITS else "sparse"
+
+
 def random_angles(p: int, seed: int | None) -> np.ndarray:
     """Seeded random angles ``[gamma_0, beta_0, ...]`` uniform in ``[0.1, pi - 0.1]`` (away from 0 and pi).
 
@@ -232,6 +349,9 @@ def validate(
     mps: bool = True,
     cache_dir: str | Path | None = None,
     dask: str | None = None,
+    max_assignments: int | None = MAX_VALIDATE_ASSIGNMENTS,
+    max_bytes: int | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> ValidationReport:
     """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
 
@@ -254,11 +374,15 @@ def validate(
         dask: ``tensor``: a dask scheduler address, or ``'local'`` for a LocalCluster
             (:func:`simulate.tensor.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
             cotengra and the slices run on the cluster instead of being skipped. ``None``: in-process.
+        max_assignments: Refuse more feasible assignments than this (``None``: no limit).
+        max_bytes: Refuse a predicted peak (:attr:`ValidationSize.bytes`) over this (``None``: no limit).
+        stage: Called with a few words as each stage starts (``compiling the lowered circuit``), for progress.
 
     Returns:
-        The :class:`ValidationReport`.
+        The :class:`ValidationReport` (its ``backend`` is the one that ran: ``auto`` resolved).
 
     Raises:
+        ValidationTooLargeError: over ``max_assignments`` or ``max_bytes``.
         ValueError: bad backend, rule, ``p`` or angles; the statevector backend beyond 26 qubits; a ``paper``-rule
             mixer that is not unitary on the data (:class:`simulate.subspace.NonUnitaryMixerError`).
     """
@@ -279,6 +403,24 @@ def validate(
         raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
     bindings = {f"gamma_{k}": float(x[2 * k]) for k in range(p)} | {f"beta_{k}": float(x[2 * k + 1]) for k in range(p)}
 
+    def at(text: str) -> None:
+        if stage is not None:
+            stage(text)
+
+    at("predicting the size")
+    size = validate_size(scenario, p, max_assignments=max_assignments)
+    if max_assignments is not None and size.assignments > max_assignments:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the limit of {max_assignments:,} feasible assignments"
+        )
+    if max_bytes is not None and size.bytes > max_bytes:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
+        )
+    if backend == "auto":
+        backend = choose_backend(size)
+
+    at("simulating the feasible subspace")
     sub = SubspaceQAOA(scenario, rule)
     psi_sub = sub.state(x)
     assignments = _assignments(scenario, sub.bases)
@@ -292,12 +434,14 @@ def validate(
     # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
     # differs by cancelled inverse pairs only, tests/circuitgen/junction_test.py)
     fuse = backend != "tensor"
+    at("compiling the lowered circuit")
     circuit = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=bindings, fuse=fuse).circuit
     n, nq = scenario.num_variables, circuit.num_qubits
     ancillas = list(range(n, nq))
     tol = tolerance
     checks: list[Check] = []
     all_note = f"all {len(assignments)} feasible assignments"
+    at(f"simulating the circuit ({backend})")
 
     if backend == "statevector":
         if nq > MAX_STATEVECTOR_QUBITS:

@@ -21,6 +21,9 @@ Size guard: before building anything, the lowered circuit's gate count is predic
 costs (:func:`estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
 (default :data:`estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
 refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
+
+Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
+built section by section with progress on stderr (:mod:`qcpp.progress`: gates handed out of the predicted total).
 """
 
 from __future__ import annotations
@@ -28,7 +31,8 @@ from __future__ import annotations
 import json
 import math
 import time
-from collections.abc import Iterator
+from collections import Counter
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -37,15 +41,20 @@ from rich.console import Console
 from rich.table import Table
 
 from circuitgen.angles import symbol_sort_key
-from circuitgen.circuit import Circuit, Section
+from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.estimate import PlanOptions
-from estimators.guard import DEFAULT_MAX_GATES
+from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
 from gridcover.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
+from qcpp.progress import Progress
 
-__all__ = ["compile_command", "register"]
+__all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
+
+STREAM_ABOVE_GATES = 100_000
+"""Circuits predicted to have at least this many lowered gates are built section by section with progress on
+stderr (about 4 s of compiling at 25,000 gates per second), even without ``--qasm``; smaller ones are built whole."""
 
 HELP = (
     "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
@@ -133,11 +142,16 @@ def compile_command(
     options = PlanOptions(
         rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
     )
-    if not force:
-        _guard(s, p, options, max_gates)
-    if qasm is not None:
-        summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version)
-        summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    size = _guard(s, p, options, max_gates, force)
+    if qasm is not None or size.gates >= STREAM_ABOVE_GATES:
+        task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
+        passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
+        # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
+        total = size.gates * passes if lowered else None
+        with Progress(task, total=total, unit="gates") as bar:
+            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
+        if qasm is not None:
+            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
         result = compile_scenario(
             s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
@@ -187,16 +201,16 @@ def explain_table(rows: list[dict]) -> Table:
     return table
 
 
-def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int) -> None:
-    """Refuse (ValueError: one line, exit 2) a circuit predicted to exceed ``max_gates`` lowered gates."""
-    from estimators.guard import predict_size
-
+def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
+    """The predicted size; unless ``force``, refuse (ValueError: one line, exit 2) a circuit predicted to exceed
+    ``max_gates`` lowered gates."""
     size = predict_size(s, p, options)
-    if not size.fits(max_gates):
+    if not force and not size.fits(max_gates):
         raise ValueError(
             f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
             "(raise it with --max-gates N, or pass --force)"
         )
+    return size
 
 
 def _stream(
@@ -205,11 +219,13 @@ def _stream(
     options: PlanOptions,
     lowered: bool,
     bindings: dict[str, float],
-    qasm: str,
+    qasm: str | None,
     version: int,
+    progress: Progress | None = None,
 ) -> tuple[dict[str, Any], list[dict]]:
-    """Build, lower, bind and write the circuit one plan section at a time (peak memory independent of ``p``);
-    return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the phase plan's choices."""
+    """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
+    independent of ``p``); return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the
+    phase plan's choices. ``progress`` counts the gates of every section handed out."""
     from estimators.estimate import plan_sections
 
     start = time.perf_counter()
@@ -222,11 +238,23 @@ def _stream(
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
-    def sections() -> Iterator[Section]:
-        for sec in plan_sections(plan, tuple(plan.registers), lowered):
-            yield Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
+    walks = 0
 
-    ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
+    def sections() -> Iterator[Section]:
+        nonlocal walks
+        walks += 1
+        if progress is not None and qasm is not None:
+            progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
+        for sec in plan_sections(plan, tuple(plan.registers), lowered):
+            out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
+            yield out
+            if progress is not None:
+                progress.advance(len(out.gates))
+
+    if qasm is not None:
+        ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
+    else:
+        ops, symbols = _count_sections(registers, sections())
     n = s.num_variables
     num_qubits = sum(r.size for r in registers)
     edges = s.grid.edges
@@ -245,6 +273,18 @@ def _stream(
         "qubit_map": {"data": data, "ancillas": list(range(n, num_qubits))},
     }
     return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
+
+
+def _count_sections(
+    registers: tuple[Register, ...], sections: Iterable[Section]
+) -> tuple[Counter[str], tuple[str, ...]]:
+    """Gates per name and the unbound symbols (in :attr:`Circuit.symbols` order) of a stream of sections."""
+    ops: Counter[str] = Counter()
+    found: set[str] = set()
+    for sec in sections:
+        ops.update(g[0] for g in sec.gates)
+        found.update(Circuit(registers, [sec]).symbols)
+    return ops, tuple(sorted(found, key=symbol_sort_key))
 
 
 def register(app: typer.Typer) -> None:

@@ -31,6 +31,7 @@ from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
 from gridcover.atomic import check_output
 from gridcover.errors import ScenarioError
+from qcpp.progress import Progress
 
 __all__ = ["estimate", "register"]
 
@@ -205,20 +206,27 @@ def estimate(
         qec_scheme=qec_scheme,
         error_budget=error_budget,
     )
-    from qcpp.interrupt import announce_ready
-
-    announce_ready(f"estimate: {len(points.points)} rows")
-    pieces = estimate_report(
-        points.points,
-        fmt=fmt,  # type: ignore[arg-type]
-        options=options,
-        compare_paper=compare == "paper",
-        plot=plot,
-        doubling=paper_doubling,  # type: ignore[arg-type]
-        columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
-        wide=wide,
-    )
-    for piece in pieces:
+    # progress unless the rows themselves stream to a terminal (a table waits for every row; a pipe shows nothing)
+    show = fmt == "table" or plot is not None or not _is_terminal(sys.stdout)
+    bar = Progress("estimate", total=len(points.points), unit="rows", mode=None if show else "off")
+    held: list[str] = []  # the table: printed once the progress display is gone
+    with bar:
+        pieces = estimate_report(
+            bar.iterate(points.points),
+            fmt=fmt,  # type: ignore[arg-type]
+            options=options,
+            compare_paper=compare == "paper",
+            plot=plot,
+            doubling=paper_doubling,  # type: ignore[arg-type]
+            columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
+            wide=wide,
+        )
+        for piece in pieces:
+            if fmt == "table":
+                held.append(piece)
+            else:
+                _write_whole(piece)
+    for piece in held:
         _write_whole(piece)
     if physical:
         typer.echo(
@@ -257,6 +265,13 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
         table = explain_table(pp.explain())
         table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
         console.print(table)
+
+
+def _is_terminal(stream: Any) -> bool:
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
 
 
 def _write_whole(text: str) -> None:

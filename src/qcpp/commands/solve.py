@@ -19,6 +19,10 @@ solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVER
 
 ``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
+
+``dfs`` predicts its size first (:func:`gridcover.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
+memory, time) and refuses a search over the limits in one line naming that size and ``--allow-large``. Every method
+shows progress on stderr (:mod:`qcpp.progress`).
 """
 
 from __future__ import annotations
@@ -33,7 +37,6 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from gridcover.atomic import check_output
@@ -41,6 +44,7 @@ from gridcover.render import plot_paths, plot_trace, render_ascii
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.progress import Progress
 
 __all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "solve_command", "sparkline"]
 
@@ -110,28 +114,29 @@ HELP = (
 
 
 @contextmanager
-def progress_reporter(description: str) -> Iterator[ProgressFn]:
-    """A :data:`~gridcover.solvers.ProgressFn` drawing a rich progress bar on stderr (only on a terminal).
+def progress_reporter(description: str, unit: str = "steps") -> Iterator[ProgressFn]:
+    """A :data:`~gridcover.solvers.ProgressFn` showing progress on stderr (:class:`qcpp.progress.Progress`: a
+    transient bar on a terminal, a line every few seconds on a pipe); stdout stays clean for ``--json``."""
+    with Progress(description, unit=unit) as bar:
+        yield bar.update
 
-    The bar is transient (erased when done) and never touches stdout, so ``--json`` output stays clean.
-    """
-    console = Console(stderr=True)
-    with Progress(
-        SpinnerColumn(),
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    ) as bar:
-        task = bar.add_task(description, total=None)
 
-        def update(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
+def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
+    """The robots' paths for ``dfs``, after the size prediction (refused over the limits, one line)."""
+    from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from gridcover.solvers.exhaustive import DfsTooLargeError, dfs_paths
 
-        yield update
+    with Progress(description) as bar:
+        bar.stage("counting and enumerating paths")
+        try:
+            if large_allowed():
+                return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
+            return dfs_paths(scenario, max_bytes=memory_budget())
+        except DfsTooLargeError as exc:
+            raise ValueError(
+                f"{exc}; pass {OVERRIDE_FLAG} to run it anyway, or use --method cpsat (exact, with a time limit) "
+                "or anneal"
+            ) from None
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
@@ -197,8 +202,14 @@ def solve_command(
     s = load_scenario(scenario)
     qaoa = None
     exact = None
-    with progress_reporter(f"{method} on {scenario.name}") as progress:
-        if method == "cpsat" and SOLVE_METHODS["cpsat"] is SOLVERS["cpsat"]:
+    description = f"{method} on {scenario.name}"
+    dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
+    with progress_reporter(description, "assignments" if method == "dfs" else "steps") as progress:
+        if dfs_lists is not None:
+            from gridcover.solvers.exhaustive import dfs
+
+            sol = dfs(s, progress=progress, paths=dfs_lists)
+        elif method == "cpsat" and SOLVE_METHODS["cpsat"] is SOLVERS["cpsat"]:
             from gridcover.solvers import cpsat
 
             exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress)

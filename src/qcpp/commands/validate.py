@@ -7,6 +7,12 @@ Examples::
     qcpp validate examples/paper_3x3.toml -p 2 --backend qcec
     qcpp validate examples/two_robots_4x4.toml -p 2 --dask tcp://scheduler:8786
 
+The default backend is ``auto``: the one that fits (:func:`simulate.validate.choose_backend`: the dense statevector
+up to 20 qubits, else the sparse state). The size (feasible assignments, the reference state's size) is predicted
+first and a validation over :data:`simulate.validate.MAX_VALIDATE_ASSIGNMENTS` or half the available memory is
+refused in one line naming the size and ``--allow-large``. The stages show as progress on stderr
+(:mod:`qcpp.progress`).
+
 Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
 run (``INCOMPLETE``, e.g. a tensor contraction too wide: a check that did not run never reports PASSED); bad
 input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict`` (``passed``,
@@ -25,12 +31,14 @@ from rich.table import Table
 
 from gridcover.scenario import load_scenario
 from qcpp.commands.simulate import parse_angles
+from qcpp.progress import Progress
 
 __all__ = ["register", "validate_command"]
 
 HELP = (
-    "Compile the lowered QAOA circuit, run it with a gate-level simulator (tensor = quimb exact contraction + MPS, "
-    "statevector, sparse) at given or seeded random angles, and check that the ancillas end in |0> and every "
+    "Compile the lowered QAOA circuit, run it with a gate-level simulator (auto = statevector up to 20 qubits, "
+    "else sparse; tensor = quimb exact contraction + MPS; statevector; sparse) at given or seeded random angles, "
+    "and check that the ancillas end in |0> and every "
     "feasible assignment's amplitude equals the exact feasible-subspace simulator's; or (qcec) prove the lowered "
     "circuit equal to the high-level one with MQT QCEC. Exit 0 only if every check ran and passed; 1 if one "
     "failed or was skipped (INCOMPLETE)."
@@ -40,7 +48,10 @@ HELP = (
 def validate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
-    backend: Annotated[str, typer.Option("--backend", help="tensor, statevector, sparse or qcec.")] = "tensor",
+    backend: Annotated[
+        str,
+        typer.Option("--backend", help="auto (what fits: statevector or sparse), tensor, statevector, sparse or qcec."),
+    ] = "auto",
     angles: Annotated[
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
     ] = None,
@@ -61,10 +72,11 @@ def validate_command(
     ] = None,
 ) -> None:
     """Validate a compiled circuit (see ``qcpp validate --help``)."""
-    from simulate.validate import validate  # imports quimb: only when the command runs
+    from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from simulate.validate import MAX_VALIDATE_ASSIGNMENTS, ValidationTooLargeError, validate
 
-    if backend not in ("tensor", "statevector", "sparse", "qcec"):
-        raise ValueError(f"--backend: expected tensor, statevector, sparse or qcec, got {backend!r}")
+    if backend not in ("auto", "tensor", "statevector", "sparse", "qcec"):
+        raise ValueError(f"--backend: expected auto, tensor, statevector, sparse or qcec, got {backend!r}")
     if dask is not None and backend != "tensor":
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
     if dask is not None and not dask.strip():
@@ -82,16 +94,28 @@ def validate_command(
             import qiskit  # noqa: F401
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
-    report = validate(
-        load_scenario(scenario),
-        p,
-        backend=backend,  # type: ignore[arg-type]
-        angles=values,
-        seed=seed,
-        rule=rule,  # type: ignore[arg-type]
-        max_amplitudes=max_amplitudes,
-        dask=dask,
-    )
+    s = load_scenario(scenario)
+    large = large_allowed()
+    with Progress(f"validate {scenario.name}") as bar:
+        try:
+            report = validate(
+                s,
+                p,
+                backend=backend,  # type: ignore[arg-type]
+                angles=values,
+                seed=seed,
+                rule=rule,  # type: ignore[arg-type]
+                max_amplitudes=max_amplitudes,
+                dask=dask,
+                max_assignments=None if large else MAX_VALIDATE_ASSIGNMENTS,
+                max_bytes=None if large else memory_budget(),
+                stage=bar.stage,
+            )
+        except ValidationTooLargeError as exc:
+            raise ValueError(f"{scenario}: {exc}; pass {OVERRIDE_FLAG} to try anyway") from None
+    if backend == "auto" and not as_json:
+        typer.echo(f"backend {report.backend} (auto: {report.qubits} qubits)", err=True)
+    backend = report.backend
     skipped = [c.name for c in report.checks if c.status == "skipped"]
     verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
     if as_json:
