@@ -124,6 +124,7 @@ def progress_reporter(description: str, unit: str = "steps") -> Iterator[Progres
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
     """The robots' paths for ``dfs``, after the size prediction (refused over the limits, one line)."""
     from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from gridcover.solvers import exhaustive
     from gridcover.solvers.exhaustive import DfsTooLargeError, dfs_paths
 
     with Progress(description) as bar:
@@ -131,7 +132,12 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
         try:
             if large_allowed():
                 return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
-            return dfs_paths(scenario, max_bytes=memory_budget())
+            return dfs_paths(
+                scenario,
+                max_assignments=exhaustive.MAX_DFS_ASSIGNMENTS,
+                max_paths=exhaustive.MAX_DFS_PATHS,
+                max_bytes=memory_budget(),
+            )
         except DfsTooLargeError as exc:
             raise ValueError(
                 f"{exc}; pass {OVERRIDE_FLAG} to run it anyway, or use --method cpsat (exact, with a time limit) "

@@ -1,0 +1,237 @@
+"""Long commands predict their cost, then refuse in one line or show progress on stderr (``qcpp.progress``).
+
+No test here depends on timing: progress is asked for with ``QCPP_PROGRESS=lines`` and
+``QCPP_PROGRESS_INTERVAL=0`` (a line at every step and stage, from the start, no clock), and the one test of the
+heartbeat thread waits for the line it expects (with a generous upper bound for a hung thread).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import threading
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import qcpp.commands.compile as compile_cmd
+from gridcover.paths import count_paths, enumerate_paths
+from gridcover.presets import default_scenario
+from gridcover.scenario import load_scenario
+from gridcover.solvers import exhaustive
+from gridcover.solvers.exhaustive import DfsTooLargeError, dfs, dfs_paths
+from qcpp.cli import app
+from qcpp.progress import FIRST_LINE_AFTER, Progress, progress_mode
+
+from .clirun import assert_one_line_error
+
+REPO = Path(__file__).resolve().parents[2]
+EXAMPLES = REPO / "examples"
+LINES = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}
+
+
+def invoke(*args: str, env: dict[str, str] | None = None):  # type: ignore[no-untyped-def]
+    return CliRunner().invoke(app, list(args), env=env)
+
+
+def write_scenario(path: Path, rows: int, cols: int, robots: list[tuple[tuple[int, int], tuple[int, int]]]) -> str:
+    text = f"[grid]\nrows = {rows}\ncols = {cols}\n"
+    for start, goal in robots:
+        text += f"[[robots]]\nstart = [{start[0]}, {start[1]}]\ngoal = [{goal[0]}, {goal[1]}]\n"
+    path.write_text(text)
+    return str(path)
+
+
+# ----------------------------------------------------------------------------- the helper
+
+
+def test_lines_count_steps_name_stages_and_end_with_a_summary() -> None:
+    out = io.StringIO()
+    with Progress("job", total=3, unit="rows", stream=out, mode="lines", interval=0) as bar:
+        bar.stage("warming up")
+        for _ in bar.iterate(range(3)):
+            pass
+    lines = out.getvalue().splitlines()
+    assert lines[0].startswith("job: 0 / 3 rows (0.0%)")
+    assert lines[1].startswith("job: 0 / 3 rows (0.0%), warming up, ")
+    assert [line.split(",")[0] for line in lines[2:5]] == [f"job: {k} / 3 rows ({100 * k / 3:.1f}%)" for k in (1, 2, 3)]
+    assert lines[-1].startswith("job: 3 rows done in ")
+    assert all(line.startswith("job: ") for line in lines)
+
+
+def test_off_prints_nothing_and_an_error_skips_the_summary() -> None:
+    out = io.StringIO()
+    with Progress("job", total=2, stream=out, mode="off") as bar:
+        bar.advance()
+    assert out.getvalue() == ""
+    out = io.StringIO()
+    with pytest.raises(RuntimeError), Progress("job", stream=out, mode="lines", interval=0):
+        raise RuntimeError("boom")
+    assert "done" not in out.getvalue()
+
+
+def test_a_long_single_step_still_gets_lines_from_the_heartbeat() -> None:
+    """No advance at all (one long native call): the heartbeat thread writes the stage line by itself."""
+    seen = threading.Event()
+
+    class Stream(io.StringIO):
+        def write(self, text: str) -> int:
+            if "contracting" in text:
+                seen.set()
+            return super().write(text)
+
+    out = Stream()
+    with Progress("validate", stream=out, mode="lines", interval=0.01, first_after=0.0) as bar:
+        bar.stage("contracting")
+        assert seen.wait(120), "no heartbeat line"  # an upper bound for a hung thread, not an expectation
+    assert "validate: contracting, " in out.getvalue()
+
+
+def test_terminal_gets_a_bar_a_pipe_gets_lines_and_the_variable_decides(monkeypatch: pytest.MonkeyPatch) -> None:
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    monkeypatch.setenv("QCPP_PROGRESS", "auto")
+    assert progress_mode(Tty()) == "bar" and progress_mode(io.StringIO()) == "lines"
+    monkeypatch.setenv("QCPP_PROGRESS", "off")
+    assert progress_mode(Tty()) == "off"
+    monkeypatch.setenv("QCPP_PROGRESS", "loud")
+    with pytest.raises(ValueError, match="QCPP_PROGRESS"):
+        progress_mode(Tty())
+    assert FIRST_LINE_AFTER <= 1.0  # the first line on a pipe comes well within the 2 s a user waits
+
+
+def test_the_bar_on_a_terminal_writes_to_its_stream_only() -> None:
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    out = Tty()
+    with Progress("job", total=4, stream=out, mode="bar") as bar:
+        for _ in bar.iterate(range(4)):
+            pass
+    assert out.getvalue()  # something was drawn (and erased: transient)
+
+
+# ----------------------------------------------------------------------------- estimate
+
+
+def test_an_estimate_table_shows_progress_before_the_table() -> None:
+    args = ("estimate", "--grid", "2x2..3x4", "--robots", "1..2", "--depth", "none")
+    quiet = invoke(*args)
+    res = invoke(*args, env=LINES)
+    assert res.exit_code == 0 and quiet.exit_code == 0, res.stderr
+    assert res.stdout == quiet.stdout  # progress never touches stdout
+    lines = res.stderr.splitlines()
+    total = int(lines[0].split(" / ")[1].split()[0])
+    assert lines[0].startswith(f"estimate: 0 / {total} rows") and total == 12  # first: before any row is computed
+    assert any(line.startswith(f"estimate: {total} / {total} rows") for line in lines)
+    assert lines[-1].startswith(f"estimate: {total} rows done in ")
+
+
+def test_streamed_rows_to_a_pipe_get_progress_too() -> None:
+    res = invoke("estimate", "--grid", "2x2..2x3", "--format", "csv", "--depth", "none", env=LINES)
+    assert res.exit_code == 0 and len(res.stdout.splitlines()) == 3
+    assert res.stderr.splitlines()[0].startswith("estimate: 0 / 2 rows")
+
+
+# ----------------------------------------------------------------------------- compile
+
+
+@pytest.mark.parametrize("lowered", [False, True])
+def test_a_big_compile_is_built_in_sections_with_progress_and_the_same_summary(
+    monkeypatch: pytest.MonkeyPatch, lowered: bool
+) -> None:
+    args = ["compile", str(EXAMPLES / "two_robots_4x4.toml"), "--json", "-p", "2", *(["--lowered"] if lowered else [])]
+    whole = json.loads(invoke(*args).stdout)
+    monkeypatch.setattr(compile_cmd, "STREAM_ABOVE_GATES", 0)  # as if it were a 40x40 / 8 robot circuit
+    res = invoke(*args, env=LINES)
+    assert res.exit_code == 0, res.stderr
+    streamed = json.loads(res.stdout)
+    whole.pop("seconds"), streamed.pop("seconds")
+    assert streamed == whole
+    lines = res.stderr.splitlines()
+    assert lines[0].startswith("compile 4x4, 2 robot(s), p=2: 0")
+    assert lines[-1].startswith(f"compile 4x4, 2 robot(s), p=2: {whole['total_gates']:,} gates done")
+    if lowered:  # the prediction is exact for the lowered circuit
+        assert f" / {whole['total_gates']:,} gates" in lines[1]
+
+
+def test_writing_qasm_shows_both_passes(tmp_path: Path) -> None:
+    out = str(tmp_path / "c.qasm")
+    res = invoke("compile", str(EXAMPLES / "paper_3x3.toml"), "--lowered", "--qasm", out, env=LINES)
+    assert res.exit_code == 0, res.stderr
+    assert "collecting symbols" in res.stderr and "writing OpenQASM" in res.stderr
+
+
+# ----------------------------------------------------------------------------- solve -m dfs
+
+
+def test_dfs_paths_equal_the_enumeration_and_give_the_same_optimum() -> None:
+    s = load_scenario(EXAMPLES / "two_robots_4x4.toml")
+    lists = dfs_paths(s)
+    assert lists == [enumerate_paths(s, r) for r in range(s.num_robots)]
+    given, own = dfs(s, paths=lists), dfs(s)
+    assert given.paths == own.paths and given.cost == own.cost and given.evaluated == own.evaluated
+    assert count_paths(s, 0) == len(lists[0]) and count_paths(s, 0, cap=5) == 5
+
+
+@pytest.mark.parametrize(
+    ("rows", "cols", "robots"),
+    [(6, 6, 3), (5, 5, 3), (7, 7, 3), (6, 6, 4)],
+)
+def test_hopeless_dfs_is_refused_at_once_naming_the_size_and_the_override(
+    tmp_path: Path, rows: int, cols: int, robots: int
+) -> None:
+    s = default_scenario(rows, cols, robots)
+    path = write_scenario(tmp_path / "s.toml", rows, cols, [(r.start, r.goal) for r in s.robots])
+    res = invoke("solve", path, "-m", "dfs")
+    assert_one_line_error(res, "paths per robot", "assignments", "GB", "over the limit", "--allow-large")
+
+
+def test_dfs_refuses_too_many_paths_or_too_much_memory_and_allow_large_lifts_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = write_scenario(tmp_path / "s.toml", 4, 4, [((0, 0), (3, 3))])  # 184 paths
+    monkeypatch.setattr(exhaustive, "MAX_DFS_PATHS", 100)
+    assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the limit of 100 paths per robot", "--allow-large")
+    res = invoke("solve", path, "-m", "dfs", "--allow-large", "--json")
+    assert res.exit_code == 0 and json.loads(res.stdout)["evaluated"] == 184
+    monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
+    monkeypatch.setattr(exhaustive, "MAX_DFS_PATHS", 10**6)
+    assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the memory budget", "--allow-large")
+
+
+def test_dfs_size_is_a_lower_bound_until_counted() -> None:
+    with pytest.raises(DfsTooLargeError) as err:
+        dfs_paths(default_scenario(6, 6, 2), max_assignments=10**6)
+    size = err.value.size
+    assert not size.exact and size.assignments > 10**6
+    assert "at least" in str(err.value) and "\n" not in str(err.value)
+
+
+# ----------------------------------------------------------------------------- validate
+
+
+def test_validate_picks_a_backend_that_fits() -> None:
+    small = invoke("validate", str(EXAMPLES / "paper_3x3.toml"), "--json")
+    assert small.exit_code == 0, small.stderr
+    assert json.loads(small.stdout)["backend"] == "statevector"
+    big = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"), env=LINES)
+    assert big.exit_code == 0, big.stderr
+    assert "backend=sparse" in big.stdout and "PASSED" in big.stdout
+    stages = [line for line in big.stderr.splitlines() if line.startswith("validate two_robots_4x4.toml: ")]
+    for stage in ("predicting the size", "simulating the feasible subspace", "compiling the lowered circuit",
+                  "simulating the circuit (sparse)"):  # fmt: skip
+        assert any(stage in line for line in stages), stage
+    assert "backend sparse (auto: 80 qubits)" in big.stderr
+
+
+def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytest.MonkeyPatch) -> None:
+    res = invoke("validate", str(EXAMPLES / "two_robots_5x5.toml"))  # 73.8 M feasible assignments
+    assert_one_line_error(res, "two_robots_5x5.toml", "feasible assignments", "GB", "over the limit", "--allow-large")
+    monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
+    res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"))
+    assert_one_line_error(res, "31,684 feasible assignments", "over the memory budget", "--allow-large")
