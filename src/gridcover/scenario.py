@@ -33,7 +33,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from gridcover.atomic import write_text_atomic
+from fileio.atomic import write_text_atomic
 from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node
 from gridcover.limits import check_grid_size

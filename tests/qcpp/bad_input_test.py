@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import gridcover.atomic
+import fileio.atomic
 from circuitgen.qaoa import qaoa_circuit
 from circuitgen.qasm import to_qasm3
 from gridcover.scenario import load_scenario
@@ -36,7 +36,7 @@ LINK_TARGET_TEXT = "previous content\n"
 def scratch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """A folder of odd files, made the working directory; FIFO writers give up after 0.2 s."""
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(gridcover.atomic, "FIFO_WAIT", 0.2)
+    monkeypatch.setattr(fileio.atomic, "FIFO_WAIT", 0.2)
     monkeypatch.setenv("QCPP_CACHE_DIR", str(tmp_path / "cache"))
     shutil.copy(EXAMPLE, tmp_path / "ex.toml")
     (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + EXAMPLE.read_bytes())

@@ -35,6 +35,7 @@ import time
 import numpy as np
 
 from gridcover.cost import cost_parts, separable_cost
+from gridcover.cost_range import check_cost_range
 from gridcover.paths import enumerate_paths
 from gridcover.scenario import Scenario
 from gridcover.solvers.result import ProgressFn, Solution
@@ -56,6 +57,7 @@ def dfs(scenario: Scenario, *, chunk_elements: int = 1 << 23, progress: Progress
 
     Raises:
         ValueError: if ``chunk_elements`` is not positive.
+        ScenarioError: weights outside :mod:`gridcover.cost_range`'s range.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
@@ -66,6 +68,7 @@ def dfs(scenario: Scenario, *, chunk_elements: int = 1 << 23, progress: Progress
     """
     if chunk_elements < 1:
         raise ValueError(f"chunk_elements must be positive, got {chunk_elements}")
+    check_cost_range(scenario)  # float64 scores: refuse weights whose costs it cannot hold exactly
     t_start = time.perf_counter()
     lists = [enumerate_paths(scenario, r) for r in range(scenario.num_robots)]
     counts = tuple(len(pl) for pl in lists)

@@ -29,7 +29,7 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
-from gridcover.atomic import check_output
+from fileio.atomic import check_output
 from gridcover.errors import ScenarioError
 
 __all__ = ["estimate", "register"]

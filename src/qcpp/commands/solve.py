@@ -36,11 +36,11 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from gridcover.atomic import check_output
-from gridcover.render import plot_paths, plot_trace, render_ascii
+from fileio.atomic import check_output
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.render import plot_paths, plot_trace, render_ascii
 
 __all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "solve_command", "sparkline"]
 
@@ -71,7 +71,7 @@ def plot_qaoa_trace(trace: Sequence[float], file: Path, *, title: str, optimum: 
     """Plot QAOA's training trace (``<C>`` per iteration) to ``file``, whole or not at all."""
     from matplotlib.figure import Figure
 
-    from gridcover.atomic import save_figure_atomic
+    from fileio.atomic import save_figure_atomic
 
     fig = Figure(figsize=(6.0, 3.6))
     ax = fig.add_subplot()

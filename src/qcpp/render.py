@@ -35,7 +35,7 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-from gridcover.atomic import save_figure_atomic
+from fileio.atomic import save_figure_atomic
 from gridcover.paths import edges_of
 from gridcover.scenario import Scenario
 
