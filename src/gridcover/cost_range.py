@@ -210,7 +210,7 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
     )
     worst_max = largest_allowed(scenario, worst.name, limit)
     assert worst is not None
-    where = f" for {solver}" if solver else ""
+    who = solver or "the solvers"
     reach = "overflows a float" if math.isinf(bound) else f"could reach {bound:.3g}"
     if worst_max == 0:
         allowed = "other weights are out of range too: no value of it fits until they are smaller"
@@ -220,7 +220,7 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
         allowed = f"allowed with the other weights as given: {low}{_round_down(worst_max)}"
     raise ScenarioError(
         worst.name,
-        f"{worst.value:g} is too large for the solvers{where} to represent the cost exactly ({allowed}; "
+        f"{worst.value:g} is too large for {who} to represent the cost exactly ({allowed}; "
         f"the cost {reach}, over the exact range |cost| <= {limit:.3g})",
     )
 

@@ -129,7 +129,7 @@ def compile_command(
         raise ValueError("--qasm - and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
-    s = load_scenario(scenario)
+    s = load_scenario(scenario, check_range=True)
     options = PlanOptions(
         rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
     )
