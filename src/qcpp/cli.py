@@ -346,7 +346,9 @@ def _finish_stdout(code: Any) -> Any:
 def main() -> None:
     """Run the app with Ctrl-C/SIGTERM handling (the console script enters through :func:`qcpp.__main__.main`)."""
     from qcpp.interrupt import install
+    from qcpp.streams import guard_closed_streams
 
+    guard_closed_streams()
     install()
     try:
         app(prog_name="qcpp")
