@@ -12,7 +12,7 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
   same one line plus a hint, ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')``,
   exit code 2 (:class:`QcppGroup`), instead of click's framed box.
 * Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
-  ``--maxiter``, ``--max-amplitudes``, ``--jobs`` must be at least 1 (a zero-work request is refused, not
+  ``--maxiter``, ``--max-amplitudes`` must be at least 1 (a zero-work request is refused, not
   silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.interrupt`).
 * ``--allow-large`` (every command) lifts the size guards of :mod:`gridcover.limits`.
@@ -93,7 +93,7 @@ COMMAND_MODULES: tuple[str, ...] = (
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
-NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "jobs": 1, "seed": 0}
+NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "seed": 0}
 """Integer parameters checked in every command, by parameter name: the smallest value allowed."""
 
 F = TypeVar("F", bound=Callable[..., Any])

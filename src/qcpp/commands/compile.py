@@ -44,6 +44,7 @@ from estimators.estimate import PlanOptions
 from estimators.guard import DEFAULT_MAX_GATES
 from fileio.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
+from qcpp.render import print_table
 
 __all__ = ["compile_command", "register"]
 
@@ -157,7 +158,7 @@ def compile_command(
     for name, n in summary["gates"].items():
         table.add_row(name, str(n))
     table.add_row("[bold]total", f"[bold]{summary['total_gates']}")
-    console.print(table)
+    print_table(console, table)
     regs = ", ".join(f"{k} {v}" for k, v in summary["registers"].items())
     console.print(f"qubits: {summary['qubits']} ({regs})")
     if summary["symbols"]:
@@ -167,7 +168,7 @@ def compile_command(
         where = "standard output" if to_stdout else qasm
         console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
     if explain:
-        console.print(explain_table(phase_explain))
+        print_table(console, explain_table(phase_explain))
 
 
 def explain_table(rows: list[dict]) -> Table:

@@ -25,6 +25,7 @@ from rich.table import Table
 
 from gridcover.sbf import RULES
 from gridcover.scenario import load_scenario
+from qcpp.render import print_table
 from simulate.evaluate import METHODS, evaluate
 
 __all__ = ["parse_angles", "register", "simulate_command"]
@@ -94,7 +95,7 @@ def simulate_command(
         table.add_row("qubits simulated", str(res.qubits))
     table.add_row("amplitudes computed", f"{res.basis_states:,}")
     table.add_row("seconds", f"{res.seconds:.3f}")
-    Console().print(table)
+    print_table(Console(), table)
 
 
 def register(app: typer.Typer) -> None:

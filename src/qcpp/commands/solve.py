@@ -40,7 +40,7 @@ from fileio.atomic import check_output
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
-from qcpp.render import plot_paths, plot_trace, render_ascii
+from qcpp.render import plot_paths, plot_trace, print_table, render_ascii
 
 __all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "solve_command", "sparkline"]
 
@@ -240,7 +240,7 @@ def solve_command(
     console = Console()
     console.print(render_ascii(s, sol.paths), markup=False, highlight=False)
     console.print()
-    console.print(_cost_table(s, sol))
+    print_table(console, _cost_table(s, sol))
     details = [f"method {method}", f"{sol.seconds:.3f} s", f"{sol.evaluated:,} assignments scored"]
     if sol.paths_per_robot:
         details.append("paths per robot " + " x ".join(f"{n:,}" for n in sol.paths_per_robot))

@@ -25,6 +25,7 @@ from rich.table import Table
 
 from gridcover.scenario import load_scenario
 from qcpp.commands.simulate import parse_angles
+from qcpp.render import print_table
 
 __all__ = ["register", "validate_command"]
 
@@ -107,7 +108,7 @@ def validate_command(
                 f"[{colour}]{c.status}", f"{c.seconds:.2f}",
             )
         console = Console()
-        console.print(table)
+        print_table(console, table)
         for c in report.checks:
             if c.note:
                 console.print(f"{c.name} ({c.method}): {c.note}")
