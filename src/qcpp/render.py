@@ -282,8 +282,8 @@ def _title_lines(table: Any, width: int) -> list[str]:
     return textwrap.wrap(title, width, break_long_words=False, break_on_hyphens=False) if title else []
 
 
-def _drawn(table: Any) -> str:
-    """The table (without its title) drawn at its natural width, plain text."""
+def _drawn(table: Any, width: int = 100_000) -> str:
+    """The table (without its title) drawn by rich within ``width``, plain text."""
     import io
 
     from rich.console import Console
@@ -291,15 +291,24 @@ def _drawn(table: Any) -> str:
     title, table.title = table.title, None
     try:
         buf = io.StringIO()
-        Console(file=buf, width=100_000, color_system=None, force_terminal=False).print(table)
+        Console(file=buf, width=width, color_system=None, force_terminal=False).print(table)
     finally:
         table.title = title
     return "\n".join(line.rstrip() for line in buf.getvalue().splitlines())
 
 
+_BOX = str.maketrans(dict.fromkeys("│┃║|", " "))
+
+
 def table_fits(table: Any, width: int) -> bool:
-    """Whether ``table`` drawn as a table needs at most ``width`` characters per line."""
-    return max((len(line) for line in _drawn(table).splitlines()), default=0) <= width
+    """Whether rich draws ``table`` within ``width`` without cutting anything: every word of every header and
+    cell must appear whole (rich may still wrap a cell's words onto several lines, which cuts nothing)."""
+    drawn = _drawn(table, width)
+    if "…" in drawn:
+        return False
+    shown = set(drawn.translate(_BOX).split())
+    words = {w for c in table.columns for x in [c.header, *c.cells] for w in _plain(x).split()}
+    return words <= shown
 
 
 def table_text(table: Any, width: int) -> str:
@@ -330,7 +339,7 @@ def table_text(table: Any, width: int) -> str:
     """
     lines = _title_lines(table, width)
     if table_fits(table, width):
-        return "\n".join([*lines, _drawn(table)]) + "\n"
+        return "\n".join([*lines, _drawn(table, width)]) + "\n"
     headers = [_plain(c.header) for c in table.columns]
     rows = list(zip(*([_plain(x) for x in c.cells] for c in table.columns), strict=True))
     pairs = len(headers) == 2  # a two-column table reads as "label value" already

@@ -462,7 +462,9 @@ def cpsat(
     status = solver.solve(m.model, recorder)
     status_name = solver.status_name(status)
     if status in (cp_model.MODEL_INVALID, cp_model.INFEASIBLE):
-        raise RuntimeError(f"CP-SAT: {status_name} ({m.model.validate()}); the model is wrong for this scenario")
+        # validate() can be the whole model (100+ lines): its first line names the problem
+        why = (m.model.validate().strip().splitlines() or [""])[0][:200]
+        raise RuntimeError(f"CP-SAT: {status_name} ({why}); the model is wrong for this scenario")
     notes = [f"CP-SAT {status_name}, {workers} worker(s), objective scaled by {scale}"]
     if status in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         paths = tuple(
