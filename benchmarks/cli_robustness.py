@@ -21,9 +21,7 @@ REPO = Path(__file__).resolve().parents[1]
 ENV = {**os.environ, "PYTHONPATH": str(REPO / "src"), "MPLBACKEND": "Agg"}
 
 CASES = [
-    ("estimate sweep, 2 workers", ["estimate", "--grid", "12x12..14x14", "--robots", "2..4", "-p", "3", "-j", "2"],
-     4.0),
-    ("estimate, in-process (-j 1)", ["estimate", "--grid", "14x14", "--robots", "2", "-p", "3", "-j", "1"], 4.0),
+    ("estimate sweep", ["estimate", "--grid", "12x12..14x14", "--robots", "2..4", "-p", "3"], 4.0),
     ("validate --backend tensor", ["validate", "examples/two_robots_4x4.toml", "--backend", "tensor"], 6.0),
     ("solve -m qaoa", ["solve", "examples/two_robots_4x4.toml", "-m", "qaoa", "--maxiter", "100000"], 4.0),
 ]
@@ -52,18 +50,16 @@ def stop_time(args: list[str], after: float, sig: signal.Signals) -> tuple[float
 
 def table_widths() -> list[tuple[int, int, str]]:
     out = []
-    with tempfile.TemporaryDirectory() as cache:
-        for width in (60, 80, 100, 140, 200):
-            res = subprocess.run(
-                [sys.executable, "-m", "qcpp", "estimate", "--grid", "3x3..6x6", "--robots", "1..3", "--compare",
-                 "paper"],
-                cwd=REPO, env={**ENV, "QCPP_CACHE_DIR": cache, "COLUMNS": str(width)},
-                capture_output=True, text=True, check=True,
-            )
-            longest = max(len(line) for line in (res.stdout + res.stderr).splitlines())
-            header = next(line for line in res.stdout.splitlines() if "rows" in line)
-            shown = [c.strip() for c in header.strip("┃ ").split("┃")]
-            out.append((width, longest, ", ".join(shown)))
+    for width in (60, 80, 100, 140, 200):
+        res = subprocess.run(
+            [sys.executable, "-m", "qcpp", "estimate", "--grid", "3x3..6x6", "--robots", "1..3", "--compare",
+             "paper"],
+            cwd=REPO, env={**ENV, "COLUMNS": str(width)}, capture_output=True, text=True, check=True,
+        )
+        longest = max(len(line) for line in (res.stdout + res.stderr).splitlines())
+        header = next(line for line in res.stdout.splitlines() if "rows" in line)
+        shown = [c.strip() for c in header.strip("┃ ").split("┃")]
+        out.append((width, longest, ", ".join(shown)))
     return out
 
 

@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 from estimators.estimate import EstimateOptions, Point, estimate_point
-from gridcover.atomic import save_figure_atomic
+from fileio.atomic import save_figure_atomic
 from gridcover.presets import max_default_robots
 
 ROOT = Path(__file__).resolve().parents[1]

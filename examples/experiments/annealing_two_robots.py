@@ -27,9 +27,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import numpy as np
 from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, write_results
 
-from gridcover.render import plot_paths, render_ascii
 from gridcover.scenario import load_scenario
 from gridcover.solvers import anneal, dfs
+from qcpp.render import plot_paths, render_ascii
 
 NAME = "annealing_two_robots"
 

@@ -26,9 +26,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, write_results
 
 from gridcover.paths import initial_path, path_to_nodes
-from gridcover.render import plot_paths, render_ascii
 from gridcover.scenario import load_scenario
 from gridcover.solvers import anneal, dfs
+from qcpp.render import plot_paths, render_ascii
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale, most_probable, train
 

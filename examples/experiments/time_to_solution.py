@@ -52,7 +52,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import numpy as np
 from _common import Table, command_line, parse, pyplot, save_figure, write_results
 
-from gridcover.atomic import write_text_atomic
+from fileio.atomic import write_text_atomic
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario
 from gridcover.solvers import anneal, cpsat, dfs, genetic

@@ -119,16 +119,25 @@ def parse_bindings(items: list[str]) -> dict[str, float]:
     """Parse ``["gamma_0=0.3", "beta_0=0.7"]`` (also comma-separated) into a mapping.
 
     Raises:
-        ValueError: naming the malformed item.
+        ValueError: naming the malformed item, or a name given twice (even with the same value: a repeated name
+            is a typo for another angle more often than not).
+
+    Example:
+        >>> parse_bindings(["gamma_0=0.3", "beta_0=0.7,gamma_1=1"])
+        {'gamma_0': 0.3, 'beta_0': 0.7, 'gamma_1': 1.0}
     """
     out: dict[str, float] = {}
     for item in items:
         for part in filter(None, (s.strip() for s in item.split(","))):
             name, sep, value = part.partition("=")
-            if not sep or not name.strip():
+            name = name.strip()
+            if not sep or not name:
                 raise ValueError(f"--bind: expected NAME=VALUE, got {part!r}")
             try:
-                out[name.strip()] = float(value)
+                number = float(value)
             except ValueError:
-                raise ValueError(f"--bind: {name.strip()} needs a number, got {value!r}") from None
+                raise ValueError(f"--bind: {name} needs a number, got {value!r}") from None
+            if name in out:
+                raise ValueError(f"--bind: {name} is given twice ({out[name]:g} and {number:g}); bind each name once")
+            out[name] = number
     return out

@@ -82,7 +82,7 @@ def points_from_options(
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
-        s = load_scenario(scenario)
+        s = load_scenario(scenario, check_range=True)
         return PointSet([Point.from_scenario(s, k) for k in layers], 0)
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
     ks = parse_int_range(robots if robots is not None else "1", "robots", 1)

@@ -39,6 +39,7 @@ import csv
 import io
 import json
 import shutil
+import textwrap
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, Literal
 
@@ -372,6 +373,57 @@ def table_columns(
     return shown, [c for c in defaults if c not in shown]
 
 
+class TooNarrowError(ValueError):
+    """Even the record layout needs more characters per line than the terminal has."""
+
+
+def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: int, *, paper: bool = False) -> str:
+    """Rows as records, one ``name value`` line per field (the ``table`` format below the table's width).
+
+    Numbers are never cut: when even the longest ``name value`` line is wider than ``width`` this raises
+    instead of printing something unreadable.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        cols: the fields of each record, in order.
+        width: characters per line.
+        paper: the title says "vs the paper".
+
+    Returns:
+        The text: a title, then per row ``row i of n`` and its fields, records separated by a blank line.
+
+    Raises:
+        TooNarrowError: ``width`` is below the longest field line (the message says what to do).
+
+    Example:
+        >>> print(render_records([{"rows": 3, "cols": 3, "cx": 106}], ["rows", "cols", "cx"], 20), end="")
+        Exact resource
+        counts (lowered
+        circuit)
+        row 1 of 1
+        rows   3
+        cols   3
+        cx   106
+    """
+    cells = [[_cell(r.get(c)) for c in cols] for r in rows]
+    name_w = max((len(c) for c in cols), default=0)
+    value_w = max((len(v) for row in cells for v in row), default=0)
+    need = name_w + 1 + value_w
+    if need > width:
+        raise TooNarrowError(
+            f"the terminal is {width} columns wide; the resource table needs {need} even one field per line "
+            f"(set COLUMNS={need} or more, or use --format csv, json or md)"
+        )
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    out = textwrap.wrap(title, width) or [""]
+    for i, row in enumerate(cells):
+        if i:
+            out.append("")
+        out.append(f"row {i + 1} of {len(cells)}")
+        out += [f"{c:<{name_w}} {v:>{value_w}}".rstrip() for c, v in zip(cols, row, strict=True)]
+    return "\n".join(out) + "\n"
+
+
 def render(
     rows: Sequence[dict[str, Any]],
     fmt: Format = "table",
@@ -386,7 +438,10 @@ def render(
         rows: rows from :func:`make_rows`.
         fmt: ``table`` (rich), ``md``, ``csv``, ``json`` or ``jsonl``.
         width: ``table`` only: fit this many characters (default :func:`terminal_width`); columns of
-            :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer.
+            :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer, and
+            no number is cut: when even the narrowest table does not fit, the rows are printed as records (one
+            field per line, :func:`render_records`), and below their width a :class:`TooNarrowError` says
+            what to do.
         columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
         wide: ``table`` only: show every default column, whatever the width.
 
@@ -407,8 +462,11 @@ def render(
         limit = terminal_width() if width is None else width
         shown, hidden = table_columns(rows, limit, columns, wide)
         paper = "paper_cx" in _columns(rows[0] if rows else None)
+        natural = _natural_width(rows, shown, paper)
+        if columns is None and not wide and natural > limit:  # a table this narrow would cut numbers
+            return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
         table = _rich_table(rows, shown, paper)
-        text_width = limit if columns is None and not wide else max(limit, _natural_width(rows, shown, paper))
+        text_width = limit if columns is None and not wide else max(limit, natural)
         text = _text(table, text_width)
         if hidden:
             note = (

@@ -23,6 +23,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import sys
 from collections import deque
 from collections.abc import Mapping, Sequence
@@ -33,7 +34,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from gridcover.atomic import write_text_atomic
+from fileio.atomic import write_text_atomic
+from fileio.inputs import InputError, read_bounded
 from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node
 from gridcover.limits import check_grid_size
@@ -495,10 +497,17 @@ def scenario_to_dict(s: Scenario) -> dict[str, Any]:
     return out
 
 
-def load_scenario(path: str | os.PathLike[str]) -> Scenario:
+def load_scenario(path: str | os.PathLike[str], *, check_range: bool = False) -> Scenario:
     """Load a scenario from a ``.toml`` or ``.json`` file.
 
-    The file is UTF-8, with or without a byte order mark.
+    The file is UTF-8, with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most
+    :data:`MAX_NESTING` levels deep, and no object/table may give a key twice (JSON parsers would silently keep
+    the last value). FIFOs, pipes and devices are read with a time limit (:func:`fileio.inputs.read_bounded`).
+
+    Args:
+        path: The file.
+        check_range: Also refuse weights the solvers cannot represent exactly
+            (:func:`gridcover.cost_range.check_cost_range`; the command line does).
 
     Raises:
         ScenarioError: if the file is missing, unreadable, not valid TOML/JSON, or describes a bad scenario
@@ -506,29 +515,111 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario:
             nodes is refused unless :func:`gridcover.limits.allow_large` is in effect).
     """
     p = Path(path)
+    kind = p.suffix.lower()
     try:
-        with open(p, "rb") as f:
-            raw = f.read(MAX_SCENARIO_BYTES + 1)  # bounded: /dev/zero or a huge file must not fill the memory
+        if not p.is_dir() and kind not in (".json", ".toml"):  # before opening: a FIFO is never waited on
+            os.stat(p)  # a missing file is "cannot read", not "unknown type"
+            raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
+        raw = read_bounded(p, MAX_SCENARIO_BYTES)  # bounded: /dev/zero or a huge file must not fill the memory
         if len(raw) > MAX_SCENARIO_BYTES:
             raise ScenarioError(str(p), f"the file is larger than {MAX_SCENARIO_BYTES >> 20} MiB; not a scenario")
         text = raw.decode("utf-8-sig")  # a leading UTF-8 byte order mark is not content
+    except InputError as exc:
+        raise ScenarioError(str(p), f"cannot read the file: {exc.reason}") from None
     except OSError as exc:
         raise ScenarioError(str(p), f"cannot read the file ({exc.strerror or exc})") from None
     except UnicodeDecodeError as exc:
         raise ScenarioError(str(p), f"not valid UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    fmt = kind[1:].upper()
+    depth = nesting_depth(text, fmt)
+    if depth > MAX_NESTING:
+        raise ScenarioError(
+            str(p), f"not a scenario: brackets nested {depth:,} levels deep (at most {MAX_NESTING}; a scenario needs 5)"
+        )
     try:
-        if p.suffix.lower() == ".json":
-            data = json.loads(text)
-        elif p.suffix.lower() == ".toml":
-            data = tomllib.loads(text)
-        else:
-            raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
-    except (json.JSONDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise ScenarioError(str(p), f"not valid {p.suffix[1:].upper()}: {exc}") from None
+        data = json.loads(text, object_pairs_hook=_unique_keys) if fmt == "JSON" else tomllib.loads(text)
+    except _DuplicateKeyError as exc:
+        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
+    except json.JSONDecodeError as exc:
+        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(str(p), f"not valid TOML: {_toml_reason(text, exc)}") from None
     try:
-        return scenario_from_dict(data)
+        s = scenario_from_dict(data)
+        if check_range:
+            from gridcover.cost_range import check_cost_range  # the cost module imports this one
+
+            check_cost_range(s)
+        return s
     except ScenarioError as exc:
         raise ScenarioError(f"{p.name}: {exc.field}", exc.reason) from None
+
+
+MAX_NESTING = 64
+"""Deepest bracket nesting :func:`load_scenario` parses (a scenario needs 5; Python's parsers recurse per level,
+so ``[[[[...]]]]`` 100,000 deep used to end in a ``RecursionError`` traceback)."""
+
+_STRINGS = {
+    "JSON": re.compile(r'"(?:[^"\\]|\\.)*"'),
+    "TOML": re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'),
+}
+
+
+def nesting_depth(text: str, fmt: str) -> int:
+    """The deepest nesting of ``[``/``{`` brackets in JSON or TOML ``text``, outside strings and comments.
+
+    Example:
+        >>> nesting_depth('{"a": [[1, 2], "]]]"]}', "JSON"), nesting_depth("a = [[1]] # [[[", "TOML")
+        (3, 2)
+    """
+    bare = _STRINGS[fmt].sub("", text).encode("utf-8", "surrogatepass")
+    codes = np.frombuffer(bare, dtype=np.uint8)
+    steps = np.isin(codes, (ord("["), ord("{"))).astype(np.int64) - np.isin(codes, (ord("]"), ord("}")))
+    return int(np.cumsum(steps).max(initial=0))
+
+
+class _DuplicateKeyError(ValueError):
+    pass
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """``json.loads``'s object hook: a dict, refusing a key given twice in one object."""
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            keys = ", ".join(json.dumps(k) for k in dict(pairs))
+            raise _DuplicateKeyError(
+                f"the key {json.dumps(key)} appears twice in one object (keys {keys}); give each key once"
+            )
+        out[key] = value
+    return out
+
+
+_TOML_AT = re.compile(r"\(at line (\d+), column \d+\)|\(at end of document\)")
+
+
+def _toml_reason(text: str, exc: Exception) -> str:
+    """tomllib's message, with the key named when it is a key given twice (tomllib only gives a position)."""
+    message = str(exc)
+    declared = re.match(r"Cannot declare \(((?:'[^']*',? ?)+)\) twice \(at line (\d+)", message)
+    if declared:
+        table = ".".join(re.findall(r"'([^']*)'", declared.group(1)))
+        return f"the table [{table}] is declared twice (line {declared.group(2)}); declare each table once"
+    if not message.startswith("Cannot overwrite a value"):
+        return message
+    where = _TOML_AT.search(message)
+    lines = text.splitlines()
+    if where is None or not lines:
+        return message
+    if where.group(1):
+        index = int(where.group(1)) - 1
+    else:  # at the end: the last line with content
+        index = max((i for i, line in enumerate(lines) if line.strip()), default=0)
+    index = min(index, len(lines) - 1)
+    key = lines[index].split("=", 1)[0].strip()
+    table = next((line.strip() for line in reversed(lines[:index]) if line.strip().startswith("[")), "")
+    inside = f" in {table}" if table else ""
+    return f"the key {key}{inside} is given twice (line {index + 1}); give each key once"
 
 
 def _toml_value(v: Any) -> str:

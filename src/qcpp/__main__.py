@@ -12,7 +12,9 @@ import os
 def main() -> None:
     """Install the signal handling, import the CLI and run it."""
     from qcpp.interrupt import EXIT_CODE, install, report_interrupted
+    from qcpp.streams import guard_closed_streams
 
+    guard_closed_streams()  # before any file is opened: none may land on a closed descriptor 0-2
     install()
     try:
         from qcpp.cli import main as cli_main

@@ -12,7 +12,7 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
   same one line plus a hint, ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')``,
   exit code 2 (:class:`QcppGroup`), instead of click's framed box.
 * Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
-  ``--maxiter``, ``--max-amplitudes``, ``--jobs`` must be at least 1 (a zero-work request is refused, not
+  ``--maxiter``, ``--max-amplitudes`` must be at least 1 (a zero-work request is refused, not
   silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.interrupt`).
 * ``--allow-large`` (every command) lifts the size guards of :mod:`gridcover.limits`.
@@ -40,7 +40,8 @@ import importlib
 import inspect
 import os
 import sys
-from collections.abc import Callable, Sequence
+import warnings
+from collections.abc import Callable, Iterator, Sequence
 from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
@@ -60,6 +61,7 @@ except ImportError:  # pragma: no cover - older typer on the real click
     from click.globals import get_current_context  # type: ignore[no-redef]
 
 __all__ = [
+    "CHOICES",
     "COMMAND_MODULES",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
@@ -69,9 +71,11 @@ __all__ = [
     "QcppGroup",
     "QcppTyper",
     "app",
+    "choices_of",
     "error_line",
     "handle_errors",
     "main",
+    "one_line_warnings",
     "usage_error_line",
 ]
 
@@ -93,7 +97,7 @@ COMMAND_MODULES: tuple[str, ...] = (
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
-NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "jobs": 1, "seed": 0}
+NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "seed": 0}
 """Integer parameters checked in every command, by parameter name: the smallest value allowed."""
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -163,6 +167,34 @@ def _check_numbers(kwargs: dict[str, Any]) -> None:
             check_layers(value, flag)
 
 
+@contextlib.contextmanager
+def one_line_warnings() -> Iterator[None]:
+    """Show each distinct Python warning raised inside as one line ``note: <message>`` on stderr, once.
+
+    Python's own format is two lines (``file:line: Category: message`` and the source line) that name our
+    internals; a warning that matters to the user (an unusable cache folder, a numerical overflow) reads as one
+    line instead, like every other message of the CLI.
+
+    Example:
+        >>> import warnings
+        >>> with one_line_warnings():
+        ...     warnings.warn("the cache folder /proc/x cannot be used")  # doctest: +SKIP
+        note: the cache folder /proc/x cannot be used
+    """
+    seen: set[str] = set()
+
+    def show(message: Warning | str, category: type[Warning], *args: Any, **kwargs: Any) -> None:
+        text = error_line(message)
+        if text not in seen:
+            seen.add(text)
+            with contextlib.suppress(OSError, ValueError, AttributeError):
+                typer.echo(f"note: {text}", err=True)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
+
+
 def handle_errors(fn: F) -> F:
     """Wrap a command callback: the exit-code rules of the module docstring, plus ``--allow-large``.
 
@@ -177,7 +209,7 @@ def handle_errors(fn: F) -> F:
         large = kwargs["allow_large"] if own_flag else kwargs.pop("allow_large", False)
         try:
             _check_numbers(kwargs)
-            with allow_large(bool(large)):
+            with allow_large(bool(large)), one_line_warnings():
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise
@@ -191,7 +223,7 @@ def handle_errors(fn: F) -> F:
                 raise
             message = error_line(exc)
             if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:
-                # named files fail as gridcover.atomic.OutputError (with the name): this was stdout
+                # named files fail as fileio.atomic.OutputError (with the name): this was stdout
                 _stdout_failure()
                 message = f"cannot write standard output: {exc.strerror}"
             typer.echo(f"error: {message}", err=True)
@@ -231,6 +263,10 @@ class _TidyHelp:
         super().__init__(*args, **kwargs)
         _tidy_help(self.params)
 
+    def format_help(self, ctx: Context, formatter: Any) -> None:
+        _tidy_help(self.params)  # also the options added after construction (--install-completion, ...)
+        super().format_help(ctx, formatter)  # type: ignore[misc]
+
     def get_help_option(self, ctx: Context) -> Any:
         option = super().get_help_option(ctx)  # type: ignore[misc]
         if option is not None:
@@ -238,8 +274,76 @@ class _TidyHelp:
         return option
 
 
+def _lazy(module: str, name: str) -> Callable[[], Sequence[Any]]:
+    return lambda: tuple(getattr(importlib.import_module(module), name))
+
+
+CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
+    "rule": _lazy("gridcover.sbf", "RULES"),
+    "target": _lazy("circuitgen.cost", "TARGETS"),
+    "phase": lambda: ("feasible", "whole-space"),
+    "optimize": lambda: ("cx", "depth"),
+    "initial": _lazy("simulate.subspace", "INITIAL_STATES"),
+    "qasm_version": lambda: (3, 2),
+    "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
+    "solve.optimizer": _lazy("simulate.training", "OPTIMIZERS"),
+    "simulate.method": _lazy("simulate.evaluate", "METHODS"),
+    "validate.backend": _lazy("simulate.validate", "BACKENDS"),
+    "estimate.fmt": _lazy("estimators.tables", "FORMATS"),
+    "estimate.compare": lambda: ("paper",),
+    "estimate.depth": _lazy("estimators.estimate", "DEPTH_MODES"),
+    "estimate.qubit_model": _lazy("estimators.physical", "QUBIT_MODELS"),
+    "estimate.qec_scheme": _lazy("estimators.physical", "QEC_SCHEMES"),
+    "estimate.paper_doubling": _lazy("estimators.paper", "DOUBLINGS"),
+    "estimate.toffoli_t": _lazy("estimators.fault_tolerant", "TOFFOLI_T_CHOICES"),
+}
+"""Options that take one of a fixed set of values: ``command.param`` (or ``param`` in every command) -> the
+values, read from the constant the command validates against when help is shown (not at start-up: some live
+behind heavy imports). ``--help`` shows them as ``[a|b|c]`` instead of ``<str>``, and shell completion offers
+them."""
+
+
+def choices_of(command: str, param: str) -> tuple[str, ...] | None:
+    """The values of a choice option (:data:`CHOICES`), as text; ``None`` for any other option.
+
+    Example:
+        >>> choices_of("solve", "rule")
+        ('exact', 'paper')
+    """
+    source = CHOICES.get(f"{command}.{param}") or CHOICES.get(param)
+    return tuple(str(v) for v in source()) if source is not None else None
+
+
+def _show_choices(command: Any) -> None:
+    """Set each choice option's metavar to ``[a|b|c]`` (at help time: the values may need heavy imports)."""
+    for param in command.params:
+        values = choices_of(command.name or "", param.name or "") if _is_option(param) else None
+        if values:
+            param.metavar = "[" + "|".join(values) + "]"
+
+
+def _complete_choices(command: Any) -> None:
+    """Make shell completion offer each choice option's values (looked up when completing)."""
+    for param in command.params:
+        key = f"{command.name}.{param.name}"
+        if _is_option(param) and (key in CHOICES or param.name in CHOICES):
+
+            def complete(ctx: Any, p: Any, incomplete: str, name: str = param.name or "") -> list[str]:
+                return [v for v in choices_of(command.name or "", name) or () if v.startswith(incomplete)]
+
+            param._custom_shell_complete = complete
+
+
 class QcppCommand(_TidyHelp, TyperCommand):
-    """A typer command whose help shows flags as flags."""
+    """A typer command whose help shows flags as flags and choice options' values (:data:`CHOICES`)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        _complete_choices(self)
+
+    def format_help(self, ctx: Context, formatter: Any) -> None:
+        _show_choices(self)
+        super().format_help(ctx, formatter)
 
 
 class QcppGroup(_TidyHelp, TyperGroup):
@@ -306,7 +410,7 @@ app = QcppTyper(
     name="qcpp",
     help="QAOA multi-robot coverage path planning: solve scenarios, compile circuits, estimate resources.",
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,
     pretty_exceptions_show_locals=False,
     context_settings={"help_option_names": ["-h", "--help"]},
 )
@@ -361,7 +465,9 @@ def _finish_stdout(code: Any) -> Any:
 def main() -> None:
     """Run the app with Ctrl-C/SIGTERM handling (the console script enters through :func:`qcpp.__main__.main`)."""
     from qcpp.interrupt import install
+    from qcpp.streams import guard_closed_streams
 
+    guard_closed_streams()
     install()
     try:
         app(prog_name="qcpp")

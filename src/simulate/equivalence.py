@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from circuitgen.circuit import Circuit
+from fileio.capture import capture_native_output
 
 __all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "to_qiskit"]
 
@@ -48,12 +49,15 @@ class EquivalenceResult:
         equivalent: The criterion proves equality (a global phase only if it was allowed).
         seconds: Wall time of the check (conversion included).
         sections: Sections checked (1 for a whole-circuit check).
+        messages: What QCEC printed itself (its ``[QCEC] Warning: ...`` lines, prefix removed), captured
+            instead of leaking to the terminal, once each.
     """
 
     criterion: str
     equivalent: bool
     seconds: float
     sections: int = 1
+    messages: tuple[str, ...] = ()
 
 
 def _qiskit() -> Any:
@@ -158,10 +162,12 @@ def check_equivalence(
     b = to_qiskit(low, num_plain, n)
     if timeout is not None:
         options["timeout"] = timeout
-    result = qcec.verify(a, b, **options)
+    with capture_native_output() as printed:  # QCEC writes "[QCEC] Warning: ..." straight to the terminal
+        result = qcec.verify(a, b, **options)
     name = str(result.equivalence).rsplit(".", 1)[-1]
     ok = name == "equivalent" or (global_phase_ok and name in _EQUIVALENT)
-    return EquivalenceResult(name, ok, time.perf_counter() - t0)
+    messages = tuple(dict.fromkeys(line.removeprefix("[QCEC]").strip() for line in printed.lines))
+    return EquivalenceResult(name, ok, time.perf_counter() - t0, messages=messages)
 
 
 def check_sections(
@@ -181,13 +187,15 @@ def check_sections(
     names_l = [s.name for s in low.sections]
     if names_h != names_l:
         raise ValueError(f"section mismatch: {names_h[:5]}... vs {names_l[:5]}...")
+    messages: dict[str, None] = {}
     for lo, hi in _clean_blocks(high):
         a = Circuit(high.registers, list(high.sections[lo:hi]))
         b = Circuit(low.registers, list(low.sections[lo:hi]))
         r = check_equivalence(a, b, num_plain, global_phase_ok=global_phase_ok, **options)
+        messages.update(dict.fromkeys(r.messages))
         if not r.equivalent:
-            return EquivalenceResult(r.criterion, False, time.perf_counter() - t0, len(high.sections))
-    return EquivalenceResult("equivalent", True, time.perf_counter() - t0, len(high.sections))
+            return EquivalenceResult(r.criterion, False, time.perf_counter() - t0, len(high.sections), tuple(messages))
+    return EquivalenceResult("equivalent", True, time.perf_counter() - t0, len(high.sections), tuple(messages))
 
 
 def _clean_blocks(high: Circuit) -> list[tuple[int, int]]:

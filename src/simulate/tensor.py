@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import copy
 import itertools
+import logging
 import math
 import os
 import threading
@@ -86,6 +87,7 @@ __all__ = [
     "DEFAULT_MAX_WIDTH",
     "RAW_MCX_MAX_QUBITS",
     "BasisState",
+    "CacheFolderWarning",
     "ContractionInfo",
     "ContractionTooWideError",
     "MPSCircuit",
@@ -130,6 +132,30 @@ _SIMPLIFY = "ADCRS"
 _ATOL = 1e-12
 _SIMPLIFY_DIAGONAL = "ADR"
 """With a 2^k-entry diagonal block in the network: column reduction and splitting on it take minutes at k = 22."""
+
+
+class CacheFolderWarning(UserWarning):
+    """The contraction-path cache folder cannot be used; paths are then cached in memory only (this process)."""
+
+
+def _usable_cache(path: Path) -> Path | None:
+    """``path`` created if need be and writable, else ``None`` after one :class:`CacheFolderWarning`."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        probe = path / f".probe-{os.getpid()}"
+        probe.write_bytes(b"")
+        probe.unlink()
+        return path
+    except OSError as exc:
+        source = "QCPP_CACHE_DIR" if os.environ.get("QCPP_CACHE_DIR") else "XDG_CACHE_HOME" if os.environ.get(
+            "XDG_CACHE_HOME") else "the home folder"
+        warnings.warn(
+            f"the contraction-path cache folder {path} (from {source}) cannot be used "
+            f"({exc.strerror or exc}); running without the on-disk cache (set QCPP_CACHE_DIR to a writable folder)",
+            CacheFolderWarning,
+            stacklevel=3,
+        )
+        return None
 
 
 class ContractionTooWideError(ValueError):
@@ -197,7 +223,8 @@ def path_optimizer(
         parallel: cotengra's ``parallel`` (default off: no worker processes left behind).
 
     Returns:
-        A ``cotengra.ReusableHyperOptimizer``.
+        A ``cotengra.ReusableHyperOptimizer`` (caching in memory only, after one :class:`CacheFolderWarning`,
+        when the folder cannot be created or written).
 
     Example:
         >>> import tempfile
@@ -206,18 +233,18 @@ def path_optimizer(
         True
     """
     path = Path(directory) if directory is not None else default_cache_dir()
-    key = (str(path.resolve()), max_repeats, max_time, parallel)
+    key = (str(path.absolute()), max_repeats, max_time, parallel)
     with _OPTIMIZERS_LOCK:
         opt = _OPTIMIZERS.get(key)
         if opt is None:
-            path.mkdir(parents=True, exist_ok=True)
+            usable = _usable_cache(path)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
                 opt = ctg.ReusableHyperOptimizer(
                     max_repeats=max_repeats,
                     max_time=max_time,
                     parallel=parallel,
-                    directory=str(path),
+                    directory=str(usable) if usable is not None else None,  # None: in memory only
                     hash_method="b",
                     progbar=False,
                 )
@@ -505,6 +532,7 @@ class TensorCircuit:
         self.optimizer = optimizer if optimizer is not None else path_optimizer(cache_dir)
         self.max_width = max_width
         self.client = client
+        self.dask_contractions = 0  # contractions sliced and run on the dask cluster (the rest ran in-process)
         self.ancillas = tuple(sorted({int(q) for q in ancillas}))
         self._base: Any = None
         self._data_qubits: tuple[int, ...] | None = None  # set when the ancilla blocks were collapsed
@@ -605,6 +633,7 @@ class TensorCircuit:
             return 0j
         tree, info = self._tree(tn)
         if info.width > self.max_width and self.client is not None:
+            self.dask_contractions += 1
             return contract_sliced(tn, tree, target_size=2 ** int(self.max_width), client=self.client)
         if info.width > self.max_width:
             raise ContractionTooWideError(
@@ -867,6 +896,9 @@ def dask_client(address: str) -> Any:
     """
     from dask.distributed import Client, LocalCluster
 
+    # distributed logs through `logging` to stderr (a busy dashboard port, a slow worker): the CLI reports what
+    # matters itself (how many contractions ran on the cluster), so only errors get through
+    logging.getLogger("distributed").setLevel(logging.ERROR)
     if address == "local":
         cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None)
         client = Client(cluster)

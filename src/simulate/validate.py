@@ -513,6 +513,11 @@ def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, floa
     high = compile_scenario(scenario, p, rule=rule, bindings=bindings).circuit
     r = check_sections(high, low, scenario.num_variables)
     note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
+    for message in r.messages:  # QCEC's own warnings, captured instead of leaking, in our words where known
+        if "alternating checker cannot handle" in message:
+            note += "; decided by QCEC's construction checker (its alternating checker does not take ancillas)"
+        else:
+            note += f"; QCEC: {message}"
     if r.equivalent:
         return Check("equivalence", "qcec", 0.0, 0.0, r.sections, "pass", time.perf_counter() - t0, note)
     status: Literal["fail", "skipped"] = "fail" if r.criterion == "not_equivalent" else "skipped"
@@ -577,6 +582,11 @@ def _tensor_checks(
             )
         )
         return checks
+    if client is not None:  # say that Dask ran, and what it did
+        workers = len(client.nthreads())
+        sent = tc.dask_contractions
+        note += (f"; Dask ({workers} worker(s)): {sent} contraction(s) sliced on the cluster" if sent else
+                 f"; Dask ({workers} worker(s)) ready, not needed: every contraction fit in-process")
     checks.append(_amplitude_check("tensor contraction", got, ref[pick], tol, t0, note + mps_note))
 
     if not mps_ok and tc.block_leak is not None:

@@ -14,11 +14,11 @@ from typer.testing import CliRunner
 from gridcover.cost import cost_parts
 from gridcover.errors import ScenarioError
 from gridcover.paths import is_feasible, path_from_nodes
-from gridcover.render import render_ascii
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
 from qcpp.cli import QcppTyper, app
 from qcpp.commands.solve import SOLVE_METHODS
+from qcpp.render import render_ascii
 
 from .clirun import assert_one_line_error, run
 

@@ -7,7 +7,7 @@ import importlib
 
 import pytest
 
-MODULES = ["qcpp.cli", "qcpp.interrupt", "gridcover.atomic", "gridcover.limits"]
+MODULES = ["qcpp.cli", "qcpp.interrupt", "qcpp.render", "fileio.atomic", "gridcover.limits", "gridcover.cost_range"]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -39,9 +39,9 @@ def _app() -> typer.Typer:
 
 
 @pytest.fixture
-def run(tmp_path: Path):  # type: ignore[no-untyped-def]
+def run():  # type: ignore[no-untyped-def]
     runner = CliRunner()
-    env = {"QCPP_CACHE_DIR": str(tmp_path / "cache"), "COLUMNS": "250"}
+    env = {"COLUMNS": "250"}
 
     def invoke(*args: str):  # type: ignore[no-untyped-def]
         return runner.invoke(_app(), ["estimate", *args], env=env)
@@ -113,11 +113,6 @@ def test_paper_doubling_reading(run) -> None:  # type: ignore[no-untyped-def]
     assert literal["paper_cx"] - logic["paper_cx"] == 4 * 8  # four partial mixers, the 8-CNOT rotation once less
 
 
-def test_no_cache_and_jobs_are_accepted_and_write_nothing(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    assert run("--grid", "2x2", "--no-cache", "--jobs", "2", "--json").exit_code == 0
-    assert run("--grid", "2x2", "--json").exit_code == 0
-    assert not (tmp_path / "cache").exists()
-
 
 def test_any_robot_count_and_skipped_grids_reported_once(run) -> None:  # type: ignore[no-untyped-def]
     res = run("--grid", "2x2..2x3", "--robots", "4..6", "--format", "jsonl")
@@ -184,7 +179,6 @@ def test_formula(run) -> None:  # type: ignore[no-untyped-def]
         ("--scenario", "/nonexistent/file.toml"),
         ("--paper-doubling", "rotation"),
         ("--scenario", "examples/paper_3x3.toml", "--grid", "3x3"),
-        ("--jobs", "0"),
         ("--epsilon", "2"),
         ("--depth", "deep"),
         ("--toffoli-t", "5"),

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from gridcover.paths import path_from_nodes
-from gridcover.render import render_ascii
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
 from qcpp.commands.solve import SOLVE_METHODS, sparkline
+from qcpp.render import render_ascii
 from simulate.qaoa_solver import solve_qaoa
 from simulate.subspace import SubspaceQAOA
 

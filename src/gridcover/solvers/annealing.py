@@ -35,6 +35,7 @@ import time
 
 import numpy as np
 
+from gridcover.cost_range import check_cost_range
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
@@ -78,6 +79,7 @@ def anneal(
     Raises:
         ValueError: on a non-positive ``iterations`` or ``t0``, a ``cooling`` outside ``(0, 1]``, ``cycles``
             outside ``1 .. iterations``, or an unknown rule / component mode.
+        ScenarioError: weights outside :mod:`gridcover.cost_range`'s range.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
@@ -95,6 +97,7 @@ def anneal(
         cooling = FINAL_TEMPERATURE_RATIO ** (1.0 / (iterations // cycles))
     if not 0 < cooling <= 1:
         raise ValueError(f"cooling must be in (0, 1], got {cooling}")
+    check_cost_range(scenario)  # float64 costs: refuse weights it cannot hold exactly
     t_start = time.perf_counter()
     rng = np.random.default_rng(seed)
     space = MoveSpace(scenario, rule, components)

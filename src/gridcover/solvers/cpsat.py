@@ -54,6 +54,8 @@ from fractions import Fraction
 from ortools.sat.python import cp_model
 
 from gridcover.cost import balanced_pairs, cost_parts
+from gridcover.cost_range import COST_LIMIT, check_cost_range, weight_fields
+from gridcover.errors import ScenarioError
 from gridcover.grid import node_symmetries
 from gridcover.paths import initial_path, is_feasible, path_to_nodes
 from gridcover.scenario import Scenario
@@ -64,9 +66,6 @@ MAX_DENOMINATOR = 10**6
 
 MAX_SCALE = 10**12
 """Largest common denominator of the objective (beyond it the integer objective would lose CP-SAT's precision)."""
-
-_MAX_OBJECTIVE = 2**53
-"""Bound on the integer objective's magnitude (CP-SAT's objective and bounds are doubles internally)."""
 
 _EPIGRAPH_MAX_STEPS = 400
 """Most integer values of a balance difference for which its square is written as chords (else a product)."""
@@ -421,22 +420,33 @@ def cpsat(
         found none within the limit, which a note then says).
 
     Raises:
-        ValueError: if ``time_limit`` or ``workers`` is not positive, or the weights cannot be scaled exactly to
-            integers (see the module docstring).
+        ValueError: if ``time_limit`` or ``workers`` is not positive.
+        ScenarioError: naming the field, if the weights cannot be scaled exactly to integers within CP-SAT's
+            range (see the module docstring and :mod:`gridcover.cost_range`).
     """
     if time_limit is not None and not time_limit > 0:
         raise ValueError(f"time_limit must be positive, got {time_limit}")
     if workers < 1:
         raise ValueError(f"workers must be positive, got {workers}")
     t_start = time.perf_counter()
+    check_cost_range(scenario)
+    for f in weight_fields(scenario):
+        try:
+            exact_rational(f.value)
+        except ValueError as exc:
+            raise ScenarioError(f.name, f"{exc} (--method cpsat)") from None
     hint = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
     m = _build(scenario, hint, symmetry_breaking)
     coefs = [c for c, _ in m.objective_terms] + [m.constant]
     scale = math.lcm(*(c.denominator for c in coefs))
     if scale > MAX_SCALE:
-        raise ValueError(
-            f"the objective's weights need a common denominator of {scale} (more than {MAX_SCALE}) to be integers"
+        raise ScenarioError(
+            "objective",
+            f"the weights need a common denominator of {scale} (more than {MAX_SCALE}) to be integers for CP-SAT "
+            "(--method cpsat; the other methods take them)",
         )
+    # the integer objective must stay within CP-SAT's exact range: the same bound, in units of 1/scale
+    check_cost_range(scenario, limit=COST_LIMIT / scale, solver=f"cpsat (objective scaled by {scale} to integers)")
     int_terms = [(int(c * scale), v) for c, v in m.objective_terms if c != 0]
     offset = int(m.constant * scale)
     m.model.minimize(sum(c * v for c, v in int_terms) + offset)
@@ -452,7 +462,9 @@ def cpsat(
     status = solver.solve(m.model, recorder)
     status_name = solver.status_name(status)
     if status in (cp_model.MODEL_INVALID, cp_model.INFEASIBLE):
-        raise RuntimeError(f"CP-SAT: {status_name} ({m.model.validate()}); the model is wrong for this scenario")
+        # validate() can be the whole model (100+ lines): its first line names the problem
+        why = (m.model.validate().strip().splitlines() or [""])[0][:200]
+        raise RuntimeError(f"CP-SAT: {status_name} ({why}); the model is wrong for this scenario")
     notes = [f"CP-SAT {status_name}, {workers} worker(s), objective scaled by {scale}"]
     if status in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         paths = tuple(

@@ -45,6 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gridcover.cost import cost_parts, separable_cost
+from gridcover.cost_range import check_cost_range
 from gridcover.paths import count_paths, enumerate_paths, iter_paths
 from gridcover.scenario import Scenario
 from gridcover.solvers.result import ProgressFn, Solution
@@ -239,6 +240,7 @@ def dfs(
 
     Raises:
         ValueError: if ``chunk_elements`` is not positive.
+        ScenarioError: weights outside :mod:`gridcover.cost_range`'s range.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
@@ -249,6 +251,7 @@ def dfs(
     """
     if chunk_elements < 1:
         raise ValueError(f"chunk_elements must be positive, got {chunk_elements}")
+    check_cost_range(scenario)  # float64 scores: refuse weights whose costs it cannot hold exactly
     t_start = time.perf_counter()
     if paths is None:
         lists = [enumerate_paths(scenario, r) for r in range(scenario.num_robots)]

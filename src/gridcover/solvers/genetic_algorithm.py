@@ -40,6 +40,7 @@ from typing import Literal
 
 import numpy as np
 
+from gridcover.cost_range import check_cost_range
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
@@ -89,6 +90,7 @@ def genetic(
 
     Raises:
         ValueError: on non-positive sizes, a negative ``crossover``, or an unknown mode / rule.
+        ScenarioError: weights outside :mod:`gridcover.cost_range`'s range.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
@@ -108,6 +110,7 @@ def genetic(
         raise ValueError(f"unknown mutation mode {mutation!r} (expected 'all' or 'random')")
     if selection not in ("truncation", "tournament"):
         raise ValueError(f"unknown selection {selection!r} (expected 'truncation' or 'tournament')")
+    check_cost_range(scenario)  # float64 costs: refuse weights it cannot hold exactly
     t_start = time.perf_counter()
     rng = np.random.default_rng(seed)
     space = MoveSpace(scenario, rule, components)

@@ -7,7 +7,7 @@ Examples::
     qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
-Output files follow :mod:`gridcover.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+Output files follow :mod:`fileio.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
 written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
@@ -46,9 +46,10 @@ from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.estimate import PlanOptions
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
-from gridcover.atomic import check_output
+from fileio.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
 from qcpp.progress import Progress
+from qcpp.render import print_table
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -138,7 +139,7 @@ def compile_command(
         raise ValueError("--qasm - and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
-    s = load_scenario(scenario)
+    s = load_scenario(scenario, check_range=True)
     options = PlanOptions(
         rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
     )
@@ -171,7 +172,7 @@ def compile_command(
     for name, n in summary["gates"].items():
         table.add_row(name, str(n))
     table.add_row("[bold]total", f"[bold]{summary['total_gates']}")
-    console.print(table)
+    print_table(console, table)
     regs = ", ".join(f"{k} {v}" for k, v in summary["registers"].items())
     console.print(f"qubits: {summary['qubits']} ({regs})")
     if summary["symbols"]:
@@ -181,7 +182,7 @@ def compile_command(
         where = "standard output" if to_stdout else qasm
         console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
     if explain:
-        console.print(explain_table(phase_explain))
+        print_table(console, explain_table(phase_explain))
 
 
 def explain_table(rows: list[dict]) -> Table:

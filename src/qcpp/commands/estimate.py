@@ -29,9 +29,10 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
-from gridcover.atomic import check_output
+from fileio.atomic import check_output
 from gridcover.errors import ScenarioError
 from qcpp.progress import Progress
+from qcpp.render import print_table
 
 __all__ = ["estimate", "register"]
 
@@ -144,8 +145,6 @@ def estimate(
             help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
         ),
     ] = "partial-mixer",
-    no_cache: Annotated[bool, typer.Option("--no-cache", hidden=True, help="No effect (no cache any more).")] = False,
-    jobs: Annotated[int | None, typer.Option("--jobs", "-j", hidden=True, help="No effect (one process).")] = None,
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
@@ -170,7 +169,6 @@ def estimate(
         (phase not in ("feasible", "whole-space"), f"bad --phase {phase!r}: expected feasible or whole-space"),
         (optimize not in ("cx", "depth"), f"bad --optimize {optimize!r}: expected cx or depth"),
         (ancilla_budget is not None and ancilla_budget < 0, f"bad --ancilla-budget {ancilla_budget}: must be >= 0"),
-        (jobs is not None and jobs < 1, f"bad --jobs {jobs}: must be at least 1"),
         (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
         (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
         (depth not in DEPTH_MODES, f"bad --depth {depth!r}: expected one of {', '.join(DEPTH_MODES)}"),
@@ -264,7 +262,7 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
         )
         table = explain_table(pp.explain())
         table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
-        console.print(table)
+        print_table(console, table)
 
 
 def _is_terminal(stream: Any) -> bool:

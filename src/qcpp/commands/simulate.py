@@ -25,6 +25,7 @@ from rich.table import Table
 
 from gridcover.sbf import RULES
 from gridcover.scenario import load_scenario
+from qcpp.render import print_table
 from simulate.evaluate import METHODS, evaluate
 
 __all__ = ["parse_angles", "register", "simulate_command"]
@@ -78,7 +79,7 @@ def simulate_command(
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     values = parse_angles(angles) if angles is not None else None
-    s = load_scenario(scenario)
+    s = load_scenario(scenario, check_range=True)
     res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps({"scenario": str(scenario), **res.as_dict(), "rule": rule}))
@@ -94,7 +95,7 @@ def simulate_command(
         table.add_row("qubits simulated", str(res.qubits))
     table.add_row("amplitudes computed", f"{res.basis_states:,}")
     table.add_row("seconds", f"{res.seconds:.3f}")
-    Console().print(table)
+    print_table(Console(), table)
 
 
 def register(app: typer.Typer) -> None:

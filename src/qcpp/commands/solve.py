@@ -39,14 +39,23 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from gridcover.atomic import check_output
-from gridcover.render import plot_paths, plot_trace, render_ascii
+from fileio.atomic import check_output
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 from qcpp.progress import Progress
+from qcpp.render import plot_paths, plot_trace, print_table, render_ascii
 
-__all__ = ["QAOA_DEFAULTS", "SOLVE_METHODS", "progress_reporter", "register", "solve_command", "sparkline"]
+__all__ = [
+    "METHOD_HELP",
+    "QAOA_DEFAULTS",
+    "SOLVE_METHODS",
+    "progress_reporter",
+    "register",
+    "solve_command",
+    "solve_help",
+    "sparkline",
+]
 
 QAOA_DEFAULTS = {"p": 1, "optimizer": "nesterov", "maxiter": 100}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
@@ -75,7 +84,7 @@ def plot_qaoa_trace(trace: Sequence[float], file: Path, *, title: str, optimum: 
     """Plot QAOA's training trace (``<C>`` per iteration) to ``file``, whole or not at all."""
     from matplotlib.figure import Figure
 
-    from gridcover.atomic import save_figure_atomic
+    from fileio.atomic import save_figure_atomic
 
     fig = Figure(figsize=(6.0, 3.6))
     ax = fig.add_subplot()
@@ -106,11 +115,27 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
     span = hi - lo or 1.0
     return "".join(_SPARK[round((v - lo) / span * (len(_SPARK) - 1))] for v in pts)
 
-HELP = (
-    "Solve a scenario (dfs = exhaustive optimum, anneal = simulated annealing, genetic = the paper's GA with "
-    "SBF mutations, qaoa = QAOA trained on the feasible-subspace simulator, answering with its most probable "
-    "assignment) and print the paths on the grid, the cost and its parts."
-)
+METHOD_HELP = {
+    "dfs": "exhaustive search, the exact optimum",
+    "cpsat": "OR-Tools CP-SAT, the optimum with a proof (or a bound and gap at --time-limit)",
+    "anneal": "simulated annealing with SBF moves (the paper's baseline)",
+    "genetic": "the paper's genetic algorithm with SBF mutations",
+    "qaoa": "QAOA trained on the feasible-subspace simulator, answering with its most probable assignment",
+}
+"""One line per method for ``qcpp solve --help`` (a method registered without one is still listed)."""
+
+
+def solve_help() -> str:
+    """The help text of ``solve``: every method of :data:`SOLVE_METHODS`, described.
+
+    Example:
+        >>> all(name in solve_help() for name in SOLVE_METHODS)
+        True
+    """
+    methods = "; ".join(f"{name} = {METHOD_HELP.get(name, 'see its documentation')}" for name in SOLVE_METHODS)
+    return (
+        f"Solve a scenario with --method ({methods}) and print the paths on the grid, the cost and its parts."
+    )
 
 
 @contextmanager
@@ -163,7 +188,7 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 def solve_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
     method: Annotated[
-        str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic, qaoa or cpsat.")
+        str, typer.Option("--method", "-m", help="Solver (see above).")
     ] = "anneal",
     seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
@@ -205,7 +230,7 @@ def solve_command(
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
-    s = load_scenario(scenario)
+    s = load_scenario(scenario, check_range=True)
     qaoa = None
     exact = None
     description = f"{method} on {scenario.name}"
@@ -257,7 +282,7 @@ def solve_command(
     console = Console()
     console.print(render_ascii(s, sol.paths), markup=False, highlight=False)
     console.print()
-    console.print(_cost_table(s, sol))
+    print_table(console, _cost_table(s, sol))
     details = [f"method {method}", f"{sol.seconds:.3f} s", f"{sol.evaluated:,} assignments scored"]
     if sol.paths_per_robot:
         details.append("paths per robot " + " x ".join(f"{n:,}" for n in sol.paths_per_robot))
@@ -290,4 +315,4 @@ def solve_command(
 
 def register(app: typer.Typer) -> None:
     """Add ``solve`` to ``app``."""
-    app.command("solve", help=HELP)(solve_command)
+    app.command("solve", help=solve_help())(solve_command)

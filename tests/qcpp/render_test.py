@@ -8,10 +8,22 @@ from pathlib import Path
 
 import pytest
 
+from gridcover.grid import Node
 from gridcover.paths import edges_of, enumerate_paths, path_from_nodes
-from gridcover.render import LEGEND, plot_paths, plot_trace, render_ascii
+from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.render import LEGEND, plot_paths, plot_trace, render_ascii
 
 PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def build(
+    rows: int, cols: int, robots: list[tuple[Node, Node]], obstacles: list[Node] = (), mode: str = "soft"  # type: ignore[assignment]
+) -> Scenario:
+    return scenario_from_dict({
+        "grid": {"rows": rows, "cols": cols, "obstacles": [list(o) for o in obstacles]},
+        "robots": [{"start": list(s), "goal": list(g)} for s, g in robots],
+        "objective": {"obstacles": mode},
+    })
 
 
 def _char(lines: list[str], row: int, col: int) -> str:
@@ -19,7 +31,7 @@ def _char(lines: list[str], row: int, col: int) -> str:
     return line[col] if col < len(line) else " "
 
 
-def test_every_edge_and_node_character(build) -> None:
+def test_every_edge_and_node_character() -> None:
     s = build(3, 4, [((0, 0), (2, 3)), ((2, 0), (0, 3))], [(1, 1), (1, 2)], "soft")
     p0 = path_from_nodes(s.grid, [(0, 0), (0, 1), (0, 2), (0, 3), (1, 3), (2, 3)])
     p1 = path_from_nodes(s.grid, [(2, 0), (1, 0), (1, 1), (0, 1), (0, 2), (0, 3)])
@@ -45,13 +57,13 @@ def test_every_edge_and_node_character(build) -> None:
         assert _char(lines, 2 * node[0], 4 * node[1]) == ch, node
 
 
-def test_endpoint_shared_by_two_robots_is_E(build) -> None:
+def test_endpoint_shared_by_two_robots_is_E() -> None:
     s = build(2, 3, [((0, 0), (1, 2)), ((1, 2), (0, 1))])
     lines = render_ascii(s, legend=False).split("\n")
     assert _char(lines, 2, 8) == "E" and _char(lines, 0, 0) == "S" and _char(lines, 0, 4) == "G"
 
 
-def test_legend_and_robot_lines(build) -> None:
+def test_legend_and_robot_lines() -> None:
     s = build(3, 3, [((0, 0), (2, 2))])
     p = enumerate_paths(s, 0)[0]
     text = render_ascii(s, [p])
@@ -60,7 +72,7 @@ def test_legend_and_robot_lines(build) -> None:
     assert max(len(line) for line in text.split("\n")) <= 80
 
 
-def test_wrong_number_of_paths(build) -> None:
+def test_wrong_number_of_paths() -> None:
     s = build(2, 2, [((0, 0), (1, 1))])
     with pytest.raises(ValueError, match="1 paths"):
         render_ascii(s, [])
@@ -68,7 +80,7 @@ def test_wrong_number_of_paths(build) -> None:
         plot_paths(s, [1, 2], "unused.png")
 
 
-def test_plot_paths_writes_png_atomically(build, tmp_path: Path) -> None:
+def test_plot_paths_writes_png_atomically(tmp_path: Path) -> None:
     s = build(4, 4, [((0, 0), (3, 3)), ((3, 0), (0, 3))], [(1, 2)])
     paths = [enumerate_paths(s, r)[5] for r in range(2)]
     target = tmp_path / "paths.png"
@@ -83,7 +95,7 @@ def test_plot_paths_writes_png_atomically(build, tmp_path: Path) -> None:
     assert b"<svg" in svg.read_bytes()[:500]
 
 
-def test_plot_failure_leaves_target_and_no_temp_file(build, tmp_path: Path) -> None:
+def test_plot_failure_leaves_target_and_no_temp_file(tmp_path: Path) -> None:
     s = build(2, 2, [((0, 0), (1, 1))])
     target = tmp_path / "paths.nosuchformat"
     target.write_bytes(b"old")

@@ -1,0 +1,118 @@
+"""Help text, shell completion, third-party noise and the cache folder: choice options list their choices,
+``solve --help`` lists every method, completion is installable, QCEC/Dask/warnings never leak their own lines,
+and an unusable cache folder is named (once) as the cache folder."""
+
+from __future__ import annotations
+
+import json
+import warnings
+from pathlib import Path
+
+import pytest
+import typer.main
+from typer.testing import CliRunner
+
+from qcpp.cli import CHOICES, app, choices_of, one_line_warnings
+from qcpp.commands.solve import SOLVE_METHODS
+
+REPO = Path(__file__).resolve().parents[2]
+EXAMPLE = str(REPO / "examples" / "paper_3x3.toml")
+COMMANDS = ["solve", "simulate", "compile", "estimate", "validate"]
+
+
+def _help(*args: str) -> str:
+    res = CliRunner().invoke(app, [*args, "--help"], env={"COLUMNS": "400"})
+    assert res.exit_code == 0, res.output
+    return res.stdout
+
+
+def _params(command: str) -> dict[str, object]:
+    group = typer.main.get_command(app)
+    return {p.name: p for p in group.commands[command].params}  # type: ignore[attr-defined]
+
+
+def test_every_choice_key_names_a_real_option() -> None:
+    """CHOICES cannot drift from the commands: every ``command.param`` key exists, every bare key somewhere."""
+    for key in CHOICES:
+        if "." in key:
+            command, param = key.split(".")
+            assert param in _params(command), key
+        else:
+            assert any(key in _params(c) for c in COMMANDS), key
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_choice_options_list_their_choices(command: str) -> None:
+    text = _help(command)
+    for name, param in _params(command).items():
+        values = choices_of(command, name)
+        if values is None:
+            continue
+        flag = max(param.opts, key=len)  # type: ignore[attr-defined]
+        line = next(line for line in text.splitlines() if line.lstrip("│ ").startswith(flag + " "))
+        assert "[" + "|".join(values) + "]" in line, line
+        assert "<str>" not in line and "<int>" not in line
+
+
+def test_solve_help_lists_every_method() -> None:
+    top, own = _help(), _help("solve")
+    for method in SOLVE_METHODS:
+        assert f"{method} = " in own
+        assert f"{method} = " in top
+    assert "cpsat" in own
+
+
+def test_shell_completion_is_installable_and_completes_choices() -> None:
+    assert "--install-completion" in _help() and "--show-completion" in _help()
+    runner = CliRunner()
+    env = {"_QCPP_COMPLETE": "complete_bash", "COMP_WORDS": "qcpp solve x.toml --method ", "COMP_CWORD": "4"}
+    res = runner.invoke(app, [], env=env, prog_name="qcpp")
+    assert res.stdout.split() == list(SOLVE_METHODS)
+    env = {"_QCPP_COMPLETE": "complete_bash", "COMP_WORDS": "qcpp est", "COMP_CWORD": "1"}
+    assert runner.invoke(app, [], env=env, prog_name="qcpp").stdout.split() == ["estimate"]
+    docs = (REPO / "docs" / "cli.md").read_text()
+    assert "--install-completion" in docs and "--show-completion" in docs
+
+
+def test_warnings_become_one_note_line_once(capsys: pytest.CaptureFixture[str]) -> None:
+    with one_line_warnings():
+        for _ in range(3):
+            warnings.warn("the cache folder /x cannot be used\nsecond line", UserWarning, stacklevel=1)
+    err = capsys.readouterr().err
+    assert err == "note: the cache folder /x cannot be used second line\n"
+
+
+@pytest.mark.parametrize("env", [{"XDG_CACHE_HOME": "/proc/x"}, {"QCPP_CACHE_DIR": "/dev/null"}])
+def test_an_unusable_cache_folder_is_named_once_and_the_run_proceeds(env: dict[str, str]) -> None:
+    env = {"QCPP_CACHE_DIR": "", **env}
+    res = CliRunner().invoke(app, ["validate", EXAMPLE], env=env)
+    assert res.exit_code == 0, res.output
+    notes = [line for line in res.stderr.splitlines() if "cache folder" in line]
+    assert len(notes) == 1 and notes[0].startswith("note: the contraction-path cache folder ")
+    assert next(iter(env.values())) in notes[0] or "/proc/x" in notes[0]
+    assert "Traceback" not in res.output
+
+
+def test_qcec_prints_nothing_of_its_own_and_claims_no_tolerance(capfd: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("mqt.qcec")
+    res = CliRunner().invoke(app, ["validate", EXAMPLE, "--backend", "qcec"])
+    native = capfd.readouterr()
+    assert res.exit_code == 0, res.output
+    assert "[QCEC]" not in native.out + native.err + res.output
+    words = " ".join(res.stdout.split())
+    assert "tolerance" not in words and "decided exactly by QCEC" in words
+    assert "construction checker" in words  # QCEC's fallback warning, in our words
+    as_json = CliRunner().invoke(app, ["validate", EXAMPLE, "--backend", "qcec", "--json"])
+    out = json.loads(as_json.stdout)
+    assert out["tolerance"] is None and out["passed"] is True
+    assert "[QCEC]" not in capfd.readouterr().err
+
+
+@pytest.mark.heavy
+def test_dask_says_it_ran(capfd: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("dask.distributed")
+    res = CliRunner().invoke(app, ["validate", EXAMPLE, "--dask", "local"])
+    assert res.exit_code == 0, res.output
+    assert "Dask (" in res.stdout
+    native = capfd.readouterr()
+    assert "8787" not in native.err + res.stderr and "distributed." not in native.err + res.stderr
