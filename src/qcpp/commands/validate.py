@@ -78,6 +78,8 @@ def validate_command(
 
     if backend not in ("auto", "tensor", "statevector", "sparse", "qcec"):
         raise ValueError(f"--backend: expected auto, tensor, statevector, sparse or qcec, got {backend!r}")
+    if dask is not None and backend == "auto":
+        backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
     if dask is not None and backend != "tensor":
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
     if dask is not None and not dask.strip():
