@@ -29,9 +29,9 @@ import sys
 import time
 from pathlib import Path
 
+from circuitgen.options import DEFAULT_PLAN
 from estimators.estimate import (
     DEFAULT_OPTIONS,
-    DEFAULT_PLAN,
     compiled_depth,
     depth_bound,
     estimate_depth,

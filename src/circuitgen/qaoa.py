@@ -40,18 +40,18 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
-from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .angles import Angle
 from .circuit import Circuit, Register, Section
-from .cost import Cost, Target
+from .cost import Cost
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
 from .lowering import WORK_REGISTER
-from .phase import Optimize, PhasePlan, Representation, phase_plan
+from .options import DEFAULT_PLAN, PlanOptions
+from .phase import PhasePlan, phase_plan
 
 
 @dataclass(frozen=True)
@@ -83,26 +83,12 @@ class QaoaPlan:
     Attributes:
         scenario: The scenario.
         p: Layers.
-        rule: SBF rule.
-        initial: Initial state.
-        target: ``nisq`` or ``ft`` (which constructions are cheapest).
-        phase: ``feasible`` (exact on feasible assignments, default) or ``whole-space`` (the Ising Hamiltonian).
-        optimize: ``cx`` or ``depth`` (phase separator: couplings only, shallow).
-        ancilla_budget: Most ancillas the phase separator may use (``None``: as many as the cheapest needs).
-        fuse: Cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next compute
-            (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer, each with
-            clean ancillas at both ends (the same high-level gates; a few more lowered ones).
+        options: How it is built (:class:`~circuitgen.options.PlanOptions`).
     """
 
     scenario: Scenario
     p: int
-    rule: Rule = "exact"
-    initial: str = "initial_path"
-    target: Target = "nisq"
-    phase: Representation = "feasible"
-    optimize: Optimize = "cx"
-    ancilla_budget: int | None = None
-    fuse: bool = True
+    options: PlanOptions = DEFAULT_PLAN
 
     # -- layout
     @cached_property
@@ -111,33 +97,35 @@ class QaoaPlan:
         out = []
         for r in range(s.num_robots):
             for q in s.grid.plaquettes:
-                m = partial_mixer(s, r, q, Angle.symbol("beta"), n, self.rule, self.target)
+                m = partial_mixer(s, r, q, Angle.symbol("beta"), n, self.options.rule, self.options.target)
                 if m is not None:
                     out.append(m)
         return tuple(out)
 
     @cached_property
     def _mixer_pieces(self) -> tuple[Gadget, ...]:
-        return tuple(mixer_pieces(self._mixers)) if self.fuse else self._mixers
+        return tuple(mixer_pieces(self._mixers)) if self.options.fuse else self._mixers
 
     @cached_property
     def state_prep(self) -> StatePrep:
         """The initial-state gadget."""
         s = self.scenario
-        ancilla = s.num_variables if self.initial == "representatives" else None
-        return StatePrep.build(s, self.initial, self.rule, ancilla)
+        o = self.options
+        ancilla = s.num_variables if o.initial == "representatives" else None
+        return StatePrep.build(s, o.initial, o.rule, ancilla)
 
     @cached_property
     def phase_plan(self) -> PhasePlan | None:
         """The phase separator's plan (``None`` when ``p = 0``)."""
         if not self.p:
             return None
+        o = self.options
         return phase_plan(
             self.scenario,
-            target=self.target,
-            representation=self.phase,
-            optimize=self.optimize,
-            ancilla_budget=self.ancilla_budget,
+            target=o.target,
+            representation=o.phase,
+            optimize=o.optimize,
+            ancilla_budget=o.ancilla_budget,
         )
 
     @property
@@ -159,7 +147,7 @@ class QaoaPlan:
         width = max((m.num_temps for m in self._mixers), default=0)
         if self.phase_plan is not None:
             width = max(width, self.phase_plan.num_ancillas)
-        return max(width, 1 if self.initial == "representatives" else 0)
+        return max(width, 1 if self.options.initial == "representatives" else 0)
 
     @cached_property
     def work_width(self) -> int:
@@ -195,7 +183,7 @@ class QaoaPlan:
                 yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
             mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
-            for g in mixer_pieces(mixers) if self.fuse else mixers:
+            for g in mixer_pieces(mixers) if self.options.fuse else mixers:
                 yield f"mixer_{k}", g
 
     def kinds(self) -> dict[str, Counter[Hashable]]:
@@ -244,55 +232,29 @@ class QaoaPlan:
         return Circuit(regs, sections)
 
 
-def qaoa_plan(
-    scenario: Scenario,
-    p: int,
-    rule: Rule = "exact",
-    initial: str = "initial_path",
-    target: Target = "nisq",
-    phase: Representation = "feasible",
-    optimize: Optimize = "cx",
-    ancilla_budget: int | None = None,
-    fuse: bool = True,
-) -> QaoaPlan:
-    """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`."""
+def qaoa_plan(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> QaoaPlan:
+    """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`.
+
+    Raises:
+        ValueError: ``p`` is not a non-negative integer.
+    """
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
         raise ValueError(f"p must be a non-negative integer, got {p!r}")
-    if initial not in ("initial_path", "representatives"):
-        raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
-    if target not in ("nisq", "ft"):
-        raise ValueError(f"unknown target {target!r} (expected 'nisq' or 'ft')")
-    if ancilla_budget is not None and ancilla_budget < 0:
-        raise ValueError(f"ancilla_budget must be >= 0, got {ancilla_budget}")
-    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
+    if not isinstance(options, PlanOptions):
+        raise TypeError(f"options must be a PlanOptions, got {type(options).__name__}")
+    return QaoaPlan(scenario, p, options)
 
 
-def qaoa_circuit(
-    scenario: Scenario,
-    p: int,
-    rule: Rule = "exact",
-    initial: str = "initial_path",
-    target: Target = "nisq",
-    phase: Representation = "feasible",
-    optimize: Optimize = "cx",
-    ancilla_budget: int | None = None,
-    fuse: bool = True,
-) -> Circuit:
+def qaoa_circuit(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Circuit:
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
     Args:
         scenario: The scenario.
         p: Number of layers (>= 0).
-        rule: SBF logic rule, ``exact`` (default) or ``paper``.
-        initial: ``initial_path`` (default) or ``representatives`` (see :mod:`circuitgen.initial_state`).
-        target: ``nisq`` (default) or ``ft``: which constructions are cheapest
-            (see :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`).
-        phase: ``feasible`` (default) or ``whole-space`` phase separator (see :mod:`circuitgen.phase`).
-        optimize: ``cx`` (default) or ``depth`` for the phase separator.
-        ancilla_budget: Most ancillas the phase separator may use (default: as many as its cheapest form needs).
-        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`QaoaPlan`).
+        options: How it is built (rule, initial state, target, phase separator, ancilla budget, fusion; see
+            :class:`~circuitgen.options.PlanOptions`).
 
     Returns:
         The circuit (see the module docstring for its layout).
     """
-    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse).circuit()
+    return qaoa_plan(scenario, p, options).circuit()

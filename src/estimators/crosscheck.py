@@ -24,12 +24,13 @@ from pathlib import Path
 
 from circuitgen.cost import Cost
 from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from circuitgen.qaoa import qaoa_circuit
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
 
 from .counts import count
-from .estimate import DEFAULT_PLAN, EstimateOptions, PlanOptions, Point, estimate_point
+from .estimate import EstimateOptions, Point, estimate_point
 
 __all__ = ["Case", "crosscheck", "crosscheck_cases", "with_obstacles"]
 
@@ -61,7 +62,7 @@ def crosscheck(case: Case) -> list[str]:
     """
     s, p, plan = case.scenario, case.p, case.plan
     est = estimate_point(Point.from_scenario(s, p), EstimateOptions(plan=plan, depth="exact"))
-    circ = qaoa_circuit(s, p, rule=plan.rule, initial=plan.initial, target=plan.target)  # type: ignore[arg-type]
+    circ = qaoa_circuit(s, p, plan)
     low = lower(circ)
     rc = count(low)
     out = []

@@ -45,6 +45,7 @@ from circuitgen.cost import Cost
 from circuitgen.gadgets.partial_mixer import partial_mixer
 from circuitgen.gadgets.phase_sums import SumsShape
 from circuitgen.lowering import lower
+from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from circuitgen.qaoa import qaoa_plan
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
@@ -66,13 +67,11 @@ from .physical import (
 __all__ = [
     "DEFAULT_DEPTH_BUDGET",
     "DEFAULT_OPTIONS",
-    "DEFAULT_PLAN",
     "DEPTH_MODES",
     "DepthMode",
     "Estimate",
     "EstimateOptions",
     "LayerCosts",
-    "PlanOptions",
     "Point",
     "estimate_depth",
     "estimate_point",
@@ -85,31 +84,6 @@ DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
 DEFAULT_DEPTH_BUDGET = 20_000
 """``depth="auto"`` computes exact depths when the state preparation and one layer have at most this many lowered
 gates (see the module docstring: the size of one layer, not of ``p`` layers, sets the cost)."""
-
-
-@dataclass(frozen=True)
-class PlanOptions:
-    """How the circuit is built (the keyword options of :func:`circuitgen.qaoa.qaoa_plan`)."""
-
-    rule: str = "exact"
-    initial: str = "initial_path"
-    target: str = "nisq"
-    phase: str = "feasible"
-    optimize: str = "cx"
-    ancilla_budget: int | None = None
-
-    def plan(self, scenario: Scenario, p: int) -> Any:
-        """The plan of ``scenario`` with ``p`` layers."""
-        return qaoa_plan(
-            scenario,
-            p,
-            rule=self.rule,  # type: ignore[arg-type]
-            initial=self.initial,
-            target=self.target,  # type: ignore[arg-type]
-            phase=self.phase,  # type: ignore[arg-type]
-            optimize=self.optimize,  # type: ignore[arg-type]
-            ancilla_budget=self.ancilla_budget,
-        )
 
 
 def gadget_blocks(gadget: Any) -> list[Sequence[Any]]:
@@ -154,7 +128,6 @@ class EstimateOptions:
     error_budget: float = DEFAULT_ERROR_BUDGET
 
 
-DEFAULT_PLAN = PlanOptions()
 DEFAULT_OPTIONS = EstimateOptions()
 
 
@@ -256,7 +229,7 @@ def _layout(plan: Any) -> tuple[tuple[str, int], ...]:
 @lru_cache(maxsize=16)
 def _plan1(scenario: Scenario, options: PlanOptions) -> Any:
     """One layer's plan, shared by the costs and the depth bound (its phase plan is the expensive part)."""
-    return options.plan(scenario, 1)
+    return qaoa_plan(scenario, 1, options)
 
 
 @lru_cache(maxsize=256)
@@ -321,10 +294,10 @@ def _registers(scenario: Scenario, options: PlanOptions, logic: int, work: int) 
 @lru_cache(maxsize=64)
 def _registers0(scenario: Scenario, options: PlanOptions) -> tuple[tuple[str, int], ...]:
     if scenario.obstacles:
-        return _layout(options.plan(scenario, 0))
+        return _layout(qaoa_plan(scenario, 0, options))
     mixer = mixer_layer(scenario, options.rule, options.target)
     # p = 0: no phase separator (its ancillas are not needed), the partial mixers still size the logic register
-    return _registers(scenario, options, mixer.logic_width, _prep_work(options.plan(scenario, 0).state_prep))
+    return _registers(scenario, options, mixer.logic_width, _prep_work(qaoa_plan(scenario, 0, options).state_prep))
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
@@ -387,7 +360,7 @@ class Estimate:
 
 def _compiled(scenario: Scenario, p: int, options: PlanOptions) -> Circuit:
     """The circuit built from the plan's gadgets, lowered."""
-    plan = options.plan(scenario, p)
+    plan = qaoa_plan(scenario, p, options)
     registers = tuple(plan.registers)
     return Circuit(registers, list(plan_sections(plan, registers, lowered=True)))
 

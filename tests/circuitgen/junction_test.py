@@ -26,6 +26,7 @@ from circuitgen.cost import Cost
 from circuitgen.gadgets.junction import MixerJunction, MixerRotation, mixer_pieces
 from circuitgen.gadgets.partial_mixer import ParityPartialMixer, partial_mixer
 from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from gridcover.grid import Grid
 from gridcover.paths import enumerate_paths
@@ -159,7 +160,8 @@ def test_qiskit_o3_never_beats_our_lowering(label: str, s: Scenario) -> None:
 @pytest.mark.parametrize("target", ["nisq", "ft"])
 def test_unfused_plan_reports_its_lowered_count_and_fusion_only_saves(target: str) -> None:
     s = _small_scenarios()[-1]
-    fused, unfused = qaoa_plan(s, 2, target=target), qaoa_plan(s, 2, target=target, fuse=False)  # type: ignore[arg-type]
+    fused = qaoa_plan(s, 2, PlanOptions(target=target))  # type: ignore[arg-type]
+    unfused = qaoa_plan(s, 2, PlanOptions(target=target, fuse=False))  # type: ignore[arg-type]
     assert unfused.cost() == Cost.count(lower(unfused.circuit()).gates)
     assert fused.cost() == Cost.count(lower(fused.circuit()).gates)
     saved = unfused.cost().to_dict()

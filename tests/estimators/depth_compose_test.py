@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_sums import SumsPhase
+from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from estimators.crosscheck import crosscheck_cases, with_obstacles
 from estimators.depth import Depth, depths
 from estimators.depth_compose import (
@@ -21,9 +22,7 @@ from estimators.depth_compose import (
     transfer_profile,
 )
 from estimators.estimate import (
-    DEFAULT_PLAN,
     EstimateOptions,
-    PlanOptions,
     _arithmetic_depth_bound,
     compiled_depth,
     depth_bound,

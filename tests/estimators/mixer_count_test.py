@@ -6,8 +6,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_plan
-from estimators.estimate import PlanOptions, layer_costs, registers_for
+from estimators.estimate import layer_costs, registers_for
 from estimators.mixer_count import mixer_layer
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
@@ -18,7 +19,7 @@ OPTIONS = [("exact", "nisq"), ("exact", "ft"), ("paper", "nisq")]
 
 def _check(rows: int, cols: int, robots: int, rule: str, target: str) -> None:
     s = default_scenario(rows, cols, robots)
-    plan = qaoa_plan(s, 1, rule, "initial_path", target)  # type: ignore[arg-type]
+    plan = qaoa_plan(s, 1, PlanOptions(rule=rule, target=target))  # type: ignore[arg-type]
     ml = mixer_layer(s, rule, target)
     assert ml.cost == plan.cost_by_section()["mixer"]
     assert ml.logical == plan.cost_by_section(logical=True)["mixer"]
@@ -27,7 +28,7 @@ def _check(rows: int, cols: int, robots: int, rule: str, target: str) -> None:
     lc = layer_costs(s, PlanOptions(rule=rule, target=target))
     assert dict(lc.registers) == {r.name: r.size for r in plan.registers}
     assert lc.sections == plan.cost_by_section() and lc.logical == plan.cost_by_section(logical=True)
-    p0 = qaoa_plan(s, 0, rule, "initial_path", target)  # type: ignore[arg-type]
+    p0 = qaoa_plan(s, 0, PlanOptions(rule=rule, target=target))  # type: ignore[arg-type]
     assert dict(registers_for(s, 0, PlanOptions(rule=rule, target=target))) == {r.name: r.size for r in p0.registers}
 
 
@@ -70,7 +71,7 @@ def test_obstacles_are_refused() -> None:
 @pytest.mark.parametrize("rows, cols, robots", [(3, 3, 1), (3, 4, 2)])
 def test_representatives_initial_state_uses_the_plans_state_preparation(rows: int, cols: int, robots: int) -> None:
     s = default_scenario(rows, cols, robots)
-    plan = qaoa_plan(s, 1, initial="representatives")
+    plan = qaoa_plan(s, 1, PlanOptions(initial="representatives"))
     lc = layer_costs(s, PlanOptions(initial="representatives"))
     assert lc.sections == plan.cost_by_section() and lc.logical == plan.cost_by_section(logical=True)
     assert dict(lc.registers) == {r.name: r.size for r in plan.registers}
@@ -80,7 +81,7 @@ def test_representatives_initial_state_uses_the_plans_state_preparation(rows: in
 @given(scenarios(max_side=7, max_robots=4, obstacles=False), st.sampled_from(["nisq", "ft"]))
 def test_signature_counts_with_junctions_equal_the_plan_for_any_endpoints(s: Scenario, target: str) -> None:
     """Endpoints anywhere (interior, neighbouring, sharing rows): the junction pairs next to them are counted right."""
-    plan = qaoa_plan(s, 0, "exact", "initial_path", target)  # type: ignore[arg-type]
+    plan = qaoa_plan(s, 0, PlanOptions(target=target))  # type: ignore[arg-type]
     ml = mixer_layer(s, "exact", target)
     assert ml.cost == plan.cost_by_section()["mixer"]
     assert ml.logical == plan.cost_by_section(logical=True)["mixer"]
