@@ -70,7 +70,7 @@ def mixer_01(s: Scenario) -> int:
 
 def mixer_new(s: Scenario, target: str) -> int:
     """One layer's mixer CX as the plan reports it: the partial mixers fused at their boundaries."""
-    return qaoa_plan(s, 1, PlanOptions(target=target)).cost_by_section()["mixer"].cx  # type: ignore[arg-type]
+    return qaoa_plan(s, 1, PlanOptions(target=target)).cost_by_part()["mixer"].cx  # type: ignore[arg-type]
 
 
 # --- Qiskit side --------------------------------------------------------------------------------------------

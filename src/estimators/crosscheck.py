@@ -11,8 +11,7 @@ the same with interior obstacles (soft and hard mode), the example files, the ``
 target, for p = 1..3.
 
 Example:
-    >>> from gridcover.sbf import RULES
-from gridcover.presets import default_scenario
+    >>> from gridcover.presets import default_scenario
     >>> crosscheck(Case(default_scenario(2, 3, 2), 2))
     []
 """
@@ -81,13 +80,13 @@ def crosscheck(case: Case) -> list[str]:
     if p:
         check(
             "state preparation",
-            est.sections.get("initial_state", Cost()).to_dict(),
+            est.parts["initial_state"].to_dict(),
             dict(rc.sections["initial_state"].ops) if "initial_state" in rc.sections else {},
         )
         for k in range(p):
             for part in ("phase", "mixer"):
                 have = rc.sections.get(f"{part}_{k}")
-                check(f"{part} of layer {k}", est.sections.get(part, Cost()).to_dict(), dict(have.ops) if have else {})
+                check(f"{part} of layer {k}", est.parts[part].to_dict(), dict(have.ops) if have else {})
     if est.depth is not None and est.depth.kind == "exact":
         check("depth", (est.depth.depth, est.depth.two_qubit_depth), (rc.depth, rc.two_qubit_depth))
     return out

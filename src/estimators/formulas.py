@@ -58,6 +58,7 @@ from circuitgen.cost import Cost
 from circuitgen.gadgets.junction import MixerJunction
 from circuitgen.gadgets.partial_mixer import ParityPartialMixer, mixer_work_need, partial_mixer
 from gridcover.presets import default_scenario
+from gridcover.sbf import LocalPicture
 
 __all__ = [
     "FORMULA_DOMAIN",
@@ -173,11 +174,7 @@ def partial_mixer_types() -> tuple[MixerType, ...]:
 
 def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ignore[no-untyped-def]
     rb = s.robots[robot]
-    key = ""
-    for v, corner in enumerate(plaq.corners):
-        key += "E" if corner in (rb.start, rb.goal) else ("B" if len(plaq.outer_edges[v]) == 2 else "N")
-    if {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]}):
-        key += "D"
+    key = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in plaq.outer_edges]).label
     gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
     if gadget is None:  # the flip is never allowed: nothing is emitted
         return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)

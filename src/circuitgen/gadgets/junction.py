@@ -20,8 +20,9 @@ slot of the right one, the slot of the left one on the same qubit). The cost of 
 lowering the kind's own canonical gate list (a few dozen gates on at most 22 qubits) and cached, and reused for
 every junction of that kind (a grid has a handful); ``tests/circuitgen/junction_test.py`` checks it against
 the lowered count of every junction the compiler emits on a sweep of scenarios. :meth:`MixerJunction.saving`
-is what the fusion removes (the leaves' cost minus the junction's), so a layer's mixer costs
-``sum(partial mixers) - sum(junction savings)``, which is how :mod:`estimators.mixer_count` counts it.
+is what the fusion removes (the leaves' cost minus the junction's): a layer's mixer costs
+``sum(partial mixers) - sum(junction savings)`` (the closed forms of :mod:`estimators.formulas` count it so;
+the call graph lists the junctions and rotations themselves, :mod:`circuitgen.mixer_classes`).
 
 The ``paper`` rule's controlled-X network (:class:`~circuitgen.gadgets.partial_mixer.McxPartialMixer`) is not
 fused: it is lowered leaf by leaf on purpose (see its ``emit_blocks``).

@@ -177,7 +177,6 @@ def _stream(
     """Build, lower, bind and write the circuit one plan section at a time (peak memory independent of ``p``);
     return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the phase plan's choices."""
     from circuitgen.qaoa import qaoa_plan
-    from estimators.estimate import plan_sections
 
     start = time.perf_counter()
     known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
@@ -190,7 +189,7 @@ def _stream(
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
     def sections() -> Iterator[Section]:
-        for sec in plan_sections(plan, tuple(plan.registers), lowered):
+        for sec in plan.emit_sections(lowered):
             yield Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
 
     ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]

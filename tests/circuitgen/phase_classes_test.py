@@ -12,7 +12,7 @@ from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.lowering import lower
 from circuitgen.phase import phase_plan
-from estimators.phase_count import PhaseLayer, phase_layer
+from circuitgen.phase_classes import PhaseLayer, phase_layer
 from gridcover.grid import Grid
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
