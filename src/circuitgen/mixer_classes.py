@@ -40,6 +40,7 @@ from collections import Counter
 from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 from gridcover.sbf import LocalPicture
 from gridcover.scenario import Scenario
@@ -54,6 +55,7 @@ __all__ = ["MixerPart", "mixer_part"]
 _BETA = Angle.symbol("beta_0")  # symbolic, as in the circuit: a numeric 0 would let the lowering drop rotations
 Node = tuple[int, int]
 Signature = LocalPicture
+Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
 
 
 @dataclass(frozen=True)
@@ -66,7 +68,7 @@ class MixerPart:
         work_need: ``work`` ancillas its largest multi-controlled X needs.
     """
 
-    kinds: tuple[tuple[GadgetKind, int], ...]
+    kinds: tuple[tuple[GadgetKind, Count], ...]
     logic_width: int
     work_need: int
 
@@ -87,14 +89,15 @@ def _signature(i: int, j: int, rows: int, cols: int, start: Node | None, goal: N
     return LocalPicture.of(corners, start, goal, [_outer(c, rows, cols) for c in corners])
 
 
-def _axis_classes(n: int) -> list[tuple[int, int]]:
+def _axis_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative index, count)`` of plaquette rows (or columns) by which of their two node rows lie
-    on the boundary: both (``n == 2``), the first, the last, neither."""
+    on the boundary: both (``n == 2``), the first, the last, neither; the counts for a side of ``size`` nodes
+    (default ``n``; a symbol for the closed forms of :mod:`estimators.formulas`)."""
     if n == 2:
         return [(0, 1)]
-    out = [(0, 1), (n - 2, 1)]
+    out: list[tuple[int, Count]] = [(0, 1), (n - 2, 1)]
     if n > 3:
-        out.append((1, n - 3))
+        out.append((1, (n if size is None else size) - 3))
     return out
 
 
@@ -119,7 +122,13 @@ def _representative(
 
 
 @lru_cache(maxsize=64)
-def mixer_part(scenario: Scenario, rule: str = "exact", target: str = "nisq", fuse: bool = True) -> MixerPart:
+def mixer_part(
+    scenario: Scenario,
+    rule: str = "exact",
+    target: str = "nisq",
+    fuse: bool = True,
+    sizes: tuple[Count, Count] | None = None,
+) -> MixerPart:
     """One layer's mixer as gadget kinds by signature counting (see the module docstring).
 
     Args:
@@ -128,6 +137,9 @@ def mixer_part(scenario: Scenario, rule: str = "exact", target: str = "nisq", fu
         target: ``nisq`` or ``ft``.
         fuse: cut the parity-basis partial mixers at their rotations (junctions and rotations; the circuit's
             default), or list the partial mixers themselves.
+        sizes: count the classes for a grid of ``sizes = (rows, cols)`` nodes (sympy expressions, for the
+            closed forms of :mod:`estimators.formulas`) rather than the scenario's: the scenario then stands for
+            every grid with the same endpoints near its corners (sides of at least 5 nodes where symbolic).
 
     Returns:
         The :class:`MixerPart`.
@@ -141,8 +153,9 @@ def mixer_part(scenario: Scenario, rule: str = "exact", target: str = "nisq", fu
     rows, cols = g.rows, g.cols
     base: Counter[Signature] = Counter()
     where: dict[Signature, tuple[int, int]] = {}
-    for i, ni in _axis_classes(rows):
-        for j, nj in _axis_classes(cols):
+    size_r, size_c = sizes if sizes is not None else (rows, cols)
+    for i, ni in _axis_classes(rows, size_r):
+        for j, nj in _axis_classes(cols, size_c):
             sig = _signature(i, j, rows, cols, None, None)
             base[sig] += ni * nj
             where.setdefault(sig, (i, j))
@@ -161,10 +174,10 @@ def mixer_part(scenario: Scenario, rule: str = "exact", target: str = "nisq", fu
             if sig not in reps and ij not in touched:
                 reps[sig] = (robot, ij)
     fused = rule == "exact" and fuse  # only the parity-basis partial mixers are fused (circuitgen.gadgets.junction)
-    kinds: list[tuple[GadgetKind, int]] = []
+    kinds: list[tuple[GadgetKind, Count]] = []
     width = work = 0
     for sig, n in counts.items():
-        if n <= 0:
+        if n == 0:  # (never negative: corrections remove members of a class)
             continue
         if sig not in reps:  # every robot touches the class's first plaquette: find another of that class
             reps[sig] = _find(scenario, sig)
@@ -176,7 +189,7 @@ def mixer_part(scenario: Scenario, rule: str = "exact", target: str = "nisq", fu
         width, work = max(width, kind.temporaries), max(work, kind.work)
         kinds.append((GadgetKind.of(MixerRotation(m)) if fused else kind, n))  # type: ignore[arg-type]
     if fused:
-        kinds += _junction_kinds(scenario, rule, target)
+        kinds += _junction_kinds(scenario, rule, target, (size_r, size_c))
     return MixerPart(tuple(kinds), width, work)
 
 
@@ -200,17 +213,18 @@ def _relation(a: tuple[int, int], b: tuple[int, int]) -> Hashable:
     return (di, dj) if abs(di) <= 2 and abs(dj) <= 2 else "far"
 
 
-def _pair_classes(n: int) -> list[tuple[int, int]]:
+def _pair_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative index, count)`` of the ``n - 1`` consecutive index pairs ``(k, k + 1)`` of ``0..n-1``, by
-    whether ``k`` is the first pair and whether it is the last (what the two pictures depend on)."""
+    whether ``k`` is the first pair and whether it is the last (what the two pictures depend on); the counts for
+    ``size`` items (default ``n``)."""
     pairs = n - 1
     if pairs <= 0:
         return []
-    out = [(0, 1)]
+    out: list[tuple[int, Count]] = [(0, 1)]
     if pairs > 1:
         out.append((pairs - 1, 1))
     if pairs > 2:
-        out.append((1, pairs - 2))
+        out.append((1, (n if size is None else size) - 3))
     return out
 
 
@@ -223,7 +237,7 @@ def _plain_pair(a: tuple[int, int], b: tuple[int, int], rows: int, cols: int) ->
 
 
 def _junction_counts(
-    scenario: Scenario, rule: str, target: str
+    scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
 ) -> tuple[Counter[tuple[Pair, tuple]], tuple[int, tuple[int, int]] | None, tuple[int, tuple[int, int]] | None]:
     """How many junctions of each class one layer has, with a realisation of each: ``((class, realisation),
     count)``, a realisation being ``(robot_a, (i, j)_a, robot_b, (i, j)_b)``; and the layer's first and last
@@ -239,12 +253,12 @@ def _junction_counts(
     # one robot's plain pairs: horizontal neighbours and row wraps, by classes
     base: Counter[Pair] = Counter()
     where: dict[Pair, tuple[tuple[int, int], tuple[int, int]]] = {}
-    for i, ni in _axis_classes(rows):
-        for j, nj in _pair_classes(pcol):
+    for i, ni in _axis_classes(rows, sizes[0]):
+        for j, nj in _pair_classes(pcol, sizes[1] - 1):
             key = _plain_pair((i, j), (i, j + 1), rows, cols)
             base[key] += ni * nj
             where.setdefault(key, ((i, j), (i, j + 1)))
-    for i, ni in _pair_classes(prow):
+    for i, ni in _pair_classes(prow, sizes[0] - 1):
         key = _plain_pair((i, pcol - 1), (i + 1, 0), rows, cols)
         base[key] += ni
         where.setdefault(key, ((i, pcol - 1), (i + 1, 0)))
@@ -284,7 +298,7 @@ def _junction_counts(
         last = next((k for k in reversed(range(total)) if k not in touched or present(robot, at(k))), None)
         ends.append(None if first is None else (first, last))  # type: ignore[arg-type]
     for key, n in plain_counts.items():
-        if n > 0:
+        if n != 0:
             counts[(key, used.get(key) or _find_pair(scenario, key))] += n
     # one junction between consecutive robots (skipping robots with no partial mixer)
     prev: tuple[int, int] | None = None
@@ -322,11 +336,13 @@ _JUNCTION: dict[tuple[Pair, str, str], GadgetKind] = {}
 """The kind of each junction class, rule and target (from its first realisation), for every later scenario."""
 
 
-def _junction_kinds(scenario: Scenario, rule: str, target: str) -> list[tuple[GadgetKind, int]]:
+def _junction_kinds(
+    scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
+) -> list[tuple[GadgetKind, Count]]:
     """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers, and the two open
     ends (the first compute, the last uncompute)."""
     g = scenario.grid
-    counts, head, tail = _junction_counts(scenario, rule, target)
+    counts, head, tail = _junction_counts(scenario, rule, target, sizes)
 
     def mixer(robot: int, ij: tuple[int, int]) -> Mixer | None:
         rb = scenario.robots[robot]

@@ -134,24 +134,6 @@ class PhaseLayer:
                 out.append((replace(g, ancillas=anc), count))
         return out
 
-    def gadgets(self) -> list[tuple[Gadget, int]]:
-        """``(representative gadget, count)`` per distinct part, each on data qubits ``0 ..`` and ancillas from
-        :attr:`num_variables` on, ready to emit (for per-kind figures such as depth)."""
-        anc = range(self.num_variables, self.num_variables + self.num_ancillas)
-        out: list[tuple[Gadget, int]] = []
-        if self.rotations:
-            out.append((IsingPhase("gamma", tuple(zip(range(self.rotations), repeat(1.0))), ()), 1))
-        for g, count in self.parts:
-            if isinstance(g, VisitPhase):
-                d = len(g.visitors[0])
-                visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
-                out.append((replace(g, visitors=visitors, ancillas=tuple(anc)), count))
-            elif isinstance(g, SumsPhase):
-                out.append((replace(g, ancillas=tuple(anc)), count))
-        if self.balance is not None:
-            out.append((replace(self.balance.gadget(), ancillas=tuple(anc)), 1))
-        return out
-
 
 @dataclass(frozen=True, eq=False)
 class _Balance:

@@ -9,7 +9,6 @@ from hypothesis import strategies as st
 
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
-from circuitgen.gadgets.phase_sums import SumsPhase
 from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from circuitgen.phase_classes import phase_layer
 from circuitgen.qaoa import qaoa_plan
@@ -228,7 +227,7 @@ def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: in
     assert layer is not None and layer.balance is not None
     shape = layer.balance.shape
     assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
-    gadget = next(g for g, _ in layer.gadgets() if isinstance(g, SumsPhase))
+    gadget = next(k.example.build() for k, _ in layer.kinds() if k.key[0] == "sums")
     regs = (Register("q", s.num_variables + layer.num_ancillas),)
     own, bound = gadget_depth(gadget, regs), _arithmetic_depth_bound(shape)
     assert bound.depth >= own.depth and bound.two_qubit_depth >= own.two_qubit_depth

@@ -40,9 +40,9 @@ def _app() -> typer.Typer:
 
 
 @pytest.fixture
-def run(tmp_path: Path):  # type: ignore[no-untyped-def]
+def run():  # type: ignore[no-untyped-def]
     runner = CliRunner()
-    env = {"QCPP_CACHE_DIR": str(tmp_path / "cache"), "COLUMNS": "250"}
+    env = {"COLUMNS": "250"}  # estimate keeps no cache on disk
 
     def invoke(*args: str):  # type: ignore[no-untyped-def]
         return runner.invoke(_app(), ["estimate", *args], env=env)
