@@ -57,7 +57,8 @@ class CostCache:
         self._limit = limit
 
     def costs(self, key: Hashable, example: Gadget) -> tuple[Cost, Cost]:
-        """``(cost, logical cost)`` of the kind ``key`` (asked of ``example`` the first time)."""
+        """``(cost, logical cost)`` of the kind ``key`` (asked of ``example`` the first time; a
+        :class:`GadgetKind` is a key that hashes in constant time)."""
         hit = self._costs.get(key)
         if hit is None:
             if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
@@ -99,19 +100,22 @@ class GadgetKind:
         temporaries, work = needs(gadget)
         return cls(gadget.kind, gadget, temporaries, work)
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_hash", hash(self.key))  # keys can be long tuples: hash them once
+
     def cost(self) -> Cost:
         """Lowered cost (from :data:`COSTS`)."""
-        return COSTS.costs(self.key, self.example)[0]
+        return COSTS.costs(self, self.example)[0]
 
     def logical_cost(self) -> Cost:
         """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`)."""
-        return COSTS.costs(self.key, self.example)[1]
+        return COSTS.costs(self, self.example)[1]
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, GadgetKind) and self.key == other.key
+        return self is other or (isinstance(other, GadgetKind) and self.key == other.key)
 
     def __hash__(self) -> int:
-        return hash(self.key)
+        return self._hash  # type: ignore[attr-defined,no-any-return]
 
 
 @dataclass(frozen=True, eq=False)

@@ -111,6 +111,21 @@ _REPRESENTATIVE: dict[tuple[Signature, str, str], Mixer | None] = {}
 """A partial mixer per signature, rule and target (``None``: no flip is ever allowed), for every later scenario."""
 
 
+_KINDS: dict[Hashable, tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]] = {}
+
+
+def _kinds_of(m: Mixer) -> tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]:
+    """A representative's kinds: itself, its rotation, the layer's opening junction into it and the closing one
+    out of it (kept per partial-mixer kind: a sweep meets the same few again and again)."""
+    hit = _KINDS.get(m.kind)
+    if hit is None:
+        rotation = MixerRotation(m) if isinstance(m, ParityPartialMixer) else m
+        opening = MixerJunction(None, m) if isinstance(m, ParityPartialMixer) else m
+        closing = MixerJunction(m, None) if isinstance(m, ParityPartialMixer) else m
+        hit = _KINDS[m.kind] = tuple(GadgetKind.of(g) for g in (m, rotation, opening, closing))  # type: ignore[assignment]
+    return hit  # type: ignore[return-value]
+
+
 def _representative(
     sig: Signature, rule: str, target: str, scenario: Scenario, robot: int, ij: tuple[int, int]
 ) -> Mixer | None:
@@ -185,9 +200,9 @@ def mixer_part(
         m = _representative(sig, rule, target, scenario, robot, ij)
         if m is None:
             continue
-        kind = GadgetKind.of(m)
+        kind, rotation, _, _ = _kinds_of(m)
         width, work = max(width, kind.temporaries), max(work, kind.work)
-        kinds.append((GadgetKind.of(MixerRotation(m)) if fused else kind, n))  # type: ignore[arg-type]
+        kinds.append((rotation if fused else kind, n))
     if fused:
         kinds += _junction_kinds(scenario, rule, target, (size_r, size_c))
     return MixerPart(tuple(kinds), width, work)
@@ -359,6 +374,6 @@ def _junction_kinds(
             kind = _JUNCTION[(key, rule, target)] = GadgetKind.of(MixerJunction(placed(ra, a), placed(rb, b)))  # type: ignore[arg-type]
         out.append((kind, n))
     if head is not None and tail is not None:
-        out.append((GadgetKind.of(MixerJunction(None, mixer(*head))), 1))  # type: ignore[arg-type]
-        out.append((GadgetKind.of(MixerJunction(mixer(*tail), None)), 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(*head))[2], 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(*tail))[3], 1))  # type: ignore[arg-type]
     return out

@@ -12,7 +12,8 @@
   partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
 * ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
 
-:class:`QaoaPlan` holds the same circuit as gadgets and sums their costs by kind without emitting anything.
+:class:`QaoaPlan` holds the same circuit as gadgets; :meth:`QaoaPlan.call_graph` lists it as gadget kinds with
+multiplicities per part (:mod:`circuitgen.call_graph`), which every count sums without emitting anything.
 
 The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>`` on the feasible
 assignments it reaches, ``K`` the phase plan's :attr:`QaoaPlan.reference_constant` (the Ising constant ``c0`` for
@@ -41,13 +42,14 @@ from functools import cached_property
 from gridcover.scenario import Scenario
 
 from .angles import Angle
-from .call_graph import CallGraph, GadgetKind
+from .call_graph import CallGraph, Deferred, GadgetKind
 from .circuit import Circuit, Register, Section
 from .cost import Cost
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
+from .initial_state import initial_path_length
 from .lowering import WORK_REGISTER, lower
 from .mixer_classes import mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
@@ -201,7 +203,12 @@ class QaoaPlan:
     def _build_graph(self, by_classes: bool) -> CallGraph:
         s, o = self.scenario, self.options
         classes = by_classes and not s.obstacles
-        prep = GadgetKind.of(self.state_prep)
+        if classes and o.initial == "initial_path":  # X gates on distinct qubits: built only if emitted
+            n = sum(initial_path_length(s, r) for r in range(s.num_robots))
+            xs = Cost.of(x=n)
+            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, lambda: self.state_prep))
+        else:
+            prep = GadgetKind.of(self.state_prep)
         if classes:
             part = mixer_part(s, o.rule, o.target, o.fuse)
             mixer, mixer_temps, mixer_work = list(part.kinds), part.logic_width, part.work_need

@@ -324,6 +324,8 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
     ex = kind.example
     if isinstance(ex, Deferred) and kind.key[0] == "ising":  # type: ignore[index]
         return Depth(1, 0, 1) if kind.cost().total else Depth()  # one rz on each of distinct data qubits
+    if kind.key[0] == "x_layer":  # type: ignore[index]  # X gates on distinct qubits: one layer
+        return Depth(1, 0, 0) if kind.key[1] else Depth()  # type: ignore[index]
     d = known_depth(ex)
     if d is not None:
         return d

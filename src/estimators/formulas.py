@@ -187,7 +187,7 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
 
 @dataclass(frozen=True)
 class Term:
-    """Gate counts of one piece of the mixer sum: a partial mixer (added) or a junction's saving (subtracted).
+    """Gate counts of one gadget kind of the mixer (a rotation, a junction, or a partial mixer).
 
     Attributes:
         ops: lowered gate counts.

@@ -46,6 +46,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Literal as TypingLiteral
+from typing import NamedTuple
 
 from gridcover.grid import Plaquette
 from gridcover.paths import enumerate_paths, initial_path
@@ -187,10 +188,10 @@ def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -
     return _exact_logic(robot, pindex, plaq.edges, outer, endpoints, diagonal)
 
 
-@dataclass(frozen=True)
-class LocalPicture:
+class LocalPicture(NamedTuple):
     """What the SBF rules read of a plaquette for one robot, up to the edges' names: equal pictures give equal
-    logic programs (the one definition; the compiler counts plaquettes by it, the formulas name classes by it).
+    logic programs (the one definition; the compiler counts plaquettes by it, the formulas name classes by it; a
+    named tuple, so that the class counts hash it at C speed).
 
     Attributes:
         endpoints: per corner ``a, b, c, d``, whether it is the robot's start or goal.

@@ -2,8 +2,8 @@
 
 * ``test_every_junction_kind_reports_its_lowered_count``: every junction and rotation kind the compiler emits on
   a sweep of scenarios (grids 2x2..6x6 with 1..4 default robots, obstacles soft and hard, interior endpoints;
-  both targets): reported cost == count of its own lowered gates (default and logical basis), and the saving is
-  the unfused leaves' cost minus it.
+  both targets): reported cost == count of its own lowered gates (default and logical basis), at most the unfused
+  leaves' count gate by gate, and fewer CNOTs somewhere.
 * ``test_fused_layer_emits_the_partial_mixers_gates_in_order``: the pieces of a layer emit exactly the gates of
   its partial mixers, in order (so the high-level unitary is the unfused one).
 * ``test_fused_lowered_mixer_equals_unfused_on_feasible_inputs``: the lowered fused layer and the partial mixers
@@ -63,11 +63,12 @@ def test_every_junction_kind_reports_its_lowered_count() -> None:
             if g.kind not in seen:
                 seen[g.kind] = (g, width)
     junctions = [g for g, _ in seen.values() if isinstance(g, MixerJunction)]
-    assert len(junctions) >= 100 and any(g.saving().cx for g in junctions)
+    assert len(junctions) >= 100
     assert {g.kind for g, _ in seen.values() if isinstance(g, MixerRotation)} == {
         ("mixer_rotation", "ccrx"),
         ("mixer_rotation", "crx"),
     }
+    saved = []
     for g, width in seen.values():
         gates = g.emit()
         assert g.cost() == _lowered(gates, width), g.kind
@@ -78,8 +79,10 @@ def test_every_junction_kind_reports_its_lowered_count() -> None:
                 unfused.append(Section("tail", tuple(g.left.parts()[2])))
             if g.right is not None:
                 unfused.append(Section("head", tuple(g.right.parts()[0])))
-            leaves = Cost.count(lower(Circuit([("q", width)], unfused)).gates)
-            assert g.cost() + g.saving() == leaves, g.kind
+            leaves = Cost.count(lower(Circuit([("q", width)], unfused)).gates).to_dict()
+            assert all(leaves.get(name, 0) >= n for name, n in g.cost().items), g.kind  # fusing only removes
+            saved.append(leaves.get("cx", 0) - g.cost().cx)
+    assert any(saved)  # and somewhere it removes CNOTs
 
 
 def test_fused_layer_emits_the_partial_mixers_gates_in_order() -> None:
