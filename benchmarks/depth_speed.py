@@ -29,16 +29,16 @@ import sys
 import time
 from pathlib import Path
 
+from circuitgen.mixer_classes import mixer_part
+from circuitgen.options import DEFAULT_PLAN
 from estimators.estimate import (
     DEFAULT_OPTIONS,
-    DEFAULT_PLAN,
     compiled_depth,
     depth_bound,
     estimate_depth,
     layer_costs,
     layered_depth,
 )
-from estimators.mixer_count import mixer_layer
 from gridcover.presets import default_scenario, max_default_robots
 
 SCENARIOS = [(4, 4, 2), (6, 6, 2), (8, 8, 4), (12, 12, 8), (20, 20, 4), (30, 30, 8), (40, 40, 8)]
@@ -82,7 +82,7 @@ def sweep_depth(stride: int, budget: int) -> None:
                 continue
             s = default_scenario(r, c, k)
             # one layer has at least the mixer's gates: above the budget, the point is certainly a bound
-            candidate = mixer_layer(s).cost.total <= budget
+            candidate = sum(n * k.cost().total for k, n in mixer_part(s).kinds) <= budget
             if not candidate and index % stride:
                 continue
             lc = layer_costs(s, DEFAULT_PLAN)  # the counts: not timed

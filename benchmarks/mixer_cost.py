@@ -29,6 +29,7 @@ import time
 from circuitgen.circuit import Circuit
 from circuitgen.gadgets.partial_mixer import partial_mixer
 from circuitgen.lowering import lower
+from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from gridcover.grid import Grid
 from gridcover.presets import default_scenario
@@ -69,7 +70,7 @@ def mixer_01(s: Scenario) -> int:
 
 def mixer_new(s: Scenario, target: str) -> int:
     """One layer's mixer CX as the plan reports it: the partial mixers fused at their boundaries."""
-    return qaoa_plan(s, 1, target=target).cost_by_section()["mixer"].cx  # type: ignore[arg-type]
+    return qaoa_plan(s, 1, PlanOptions(target=target)).cost_by_part()["mixer"].cx  # type: ignore[arg-type]
 
 
 # --- Qiskit side --------------------------------------------------------------------------------------------
@@ -131,7 +132,7 @@ def paper_structured(s: Scenario) -> Circuit:
     from circuitgen.circuit import Register, Section
     from circuitgen.gates import csbf, mcx
 
-    ours = qaoa_circuit(s, 1, phase="whole-space")
+    ours = qaoa_circuit(s, 1, PlanOptions(phase="whole-space"))
     n = s.num_variables
     width = 0
     sections = [sec for sec in ours.sections if not sec.name.startswith("mixer")]

@@ -1,7 +1,7 @@
-"""The phase separator's cost by classes (:mod:`estimators.phase_count`) against planning it term by term.
+"""The phase separator's cost by classes (:mod:`circuitgen.phase_classes`) against planning it term by term.
 
 Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of
-:func:`circuitgen.phase.phase_plan` (plan + cost) and of :func:`estimators.phase_count.phase_layer`, and whether
+:func:`circuitgen.phase.phase_plan` (plan + cost) and of :func:`circuitgen.phase_classes.phase_layer`, and whether
 both give the same cost; then, over every default scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``,
 how many the classes answer and how long all of them take (the rest is left to the plan).
 """
@@ -13,7 +13,7 @@ import time
 from collections import Counter
 
 from circuitgen.phase import phase_plan
-from estimators.phase_count import phase_layer
+from circuitgen.phase_classes import phase_layer
 from gridcover.presets import default_scenario, max_default_robots
 
 SAMPLE = [(10, 10, 2), (20, 20, 4), (30, 30, 8), (40, 40, 1), (40, 40, 8)]

@@ -2,7 +2,7 @@
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> result = compile_scenario(default_scenario(3, 3, 1), p=1, lowered=True, bindings={"gamma_0": 0.3})
+    >>> result = compile_scenario(default_scenario(3, 3, 1), 1, lowered=True, bindings={"gamma_0": 0.3})
     >>> result.circuit.symbols, result.summary()["qubits"]
     (('beta_0',), 18)
 """
@@ -14,13 +14,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .circuit import Circuit
-from .cost import Target
 from .lowering import lower
-from .phase import Optimize, Representation
+from .options import DEFAULT_PLAN, PlanOptions
 from .qaoa import QubitMap, qaoa_plan, qubit_map
 
 
@@ -67,29 +65,19 @@ class CompileResult:
 def compile_scenario(
     scenario: Scenario,
     p: int,
-    rule: Rule = "exact",
+    options: PlanOptions = DEFAULT_PLAN,
+    *,
     lowered: bool = False,
     bindings: Mapping[str, float] | None = None,
-    initial: str = "initial_path",
-    target: Target = "nisq",
-    phase: Representation = "feasible",
-    optimize: Optimize = "cx",
-    ancilla_budget: int | None = None,
-    fuse: bool = True,
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
     Args:
         scenario: The scenario.
         p: QAOA layers.
-        rule: SBF logic rule (``exact`` or ``paper``).
+        options: How the circuit is built (:class:`~circuitgen.options.PlanOptions`).
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
-        initial: ``initial_path`` or ``representatives``.
-        target: ``nisq`` (fewest CNOTs) or ``ft`` (fewest T and rotations); see
-            :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`.
-        phase, optimize, ancilla_budget: The phase separator's options (:func:`circuitgen.phase.phase_plan`).
-        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`circuitgen.qaoa.QaoaPlan`).
 
     Returns:
         The :class:`CompileResult`.
@@ -98,7 +86,7 @@ def compile_scenario(
         ValueError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
-    plan = qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
+    plan = qaoa_plan(scenario, p, options)
     circuit = plan.circuit()
     if bindings:
         unknown = sorted(set(bindings) - set(circuit.symbols))
@@ -110,9 +98,7 @@ def compile_scenario(
     if bindings:
         circuit = circuit.bind(bindings)
     explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
-    return CompileResult(
-        scenario, circuit, qubit_map(scenario, circuit), lowered, time.perf_counter() - start, explain
-    )
+    return CompileResult(scenario, circuit, qubit_map(scenario, circuit), lowered, time.perf_counter() - start, explain)
 
 
 def parse_bindings(items: list[str]) -> dict[str, float]:

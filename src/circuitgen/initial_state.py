@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from gridcover.paths import initial_path, path_bits
+from gridcover.paths import edges_of, initial_path, path_bits
 from gridcover.sbf import Rule, representatives
 from gridcover.scenario import Scenario
 
@@ -69,6 +69,9 @@ def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: 
     if len(set(strings)) != len(strings) or not strings:
         raise ValueError("need a non-empty list of distinct bit strings")
     n = len(qubits)
+    if len(strings) == 1:  # one basis state: an X on each set bit, in bit order (what the recursion below gives)
+        bits = bin(strings[0])[:1:-1]
+        return [x(qubits[i]) for i, b in enumerate(bits) if b == "1"]
     out: list[Gate] = []
 
     def prepare(group: list[int], conditions: list[tuple[int, int]], fixed: set[int]) -> None:
@@ -97,6 +100,20 @@ def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: 
     return out
 
 
+_PATH_LENGTH: dict[tuple, int] = {}
+
+
+def initial_path_length(scenario: Scenario, robot: int) -> int:
+    """Edges of the robot's initial path, the X gates ``initial_path`` prepares for it (kept per grid, obstacles
+    and endpoints: a sweep asks the same few again for every robot count)."""
+    rb = scenario.robots[robot]
+    key = (scenario.grid, scenario.obstacles, scenario.objective.obstacles, rb.start, rb.goal)
+    n = _PATH_LENGTH.get(key)
+    if n is None:
+        n = _PATH_LENGTH[key] = initial_path(scenario, robot).bit_count()
+    return n
+
+
 def initial_state_gates(
     scenario: Scenario,
     initial: str = "initial_path",
@@ -118,6 +135,10 @@ def initial_state_gates(
         raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
     v = scenario.edges_per_robot
     out: list[Gate] = []
+    if initial == "initial_path":  # one basis state per robot: an X on each variable of its path, in qubit order
+        for r in range(scenario.num_robots):
+            out += [x(q) for q in sorted(scenario.variable_index(r, e) for e in edges_of(initial_path(scenario, r)))]
+        return out
     for r in range(scenario.num_robots):
         qubits = list(range(r * v, (r + 1) * v))
         masks = [initial_path(scenario, r)] if initial == "initial_path" else list(representatives(scenario, r, rule))

@@ -36,7 +36,6 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
 
 from gridcover.feasible_cost import FeasibleCost, SumsGroup, VisitGroup, feasible_cost
 from gridcover.hamiltonian import IsingHamiltonian, ising_hamiltonian
@@ -49,6 +48,7 @@ from .gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
 from .gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
+from .options import Optimize, Phase
 
 __all__ = [
     "COEFFICIENT_TOLERANCE",
@@ -89,8 +89,7 @@ ROTATION_T_COST = 30
 Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
 the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
 
-Representation = Literal["feasible", "whole-space"]
-Optimize = Literal["cx", "depth"]
+Representation = Phase
 
 
 def ft_t_count(logical: Cost) -> int:

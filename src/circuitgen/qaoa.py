@@ -12,7 +12,8 @@
   partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
 * ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
 
-:class:`QaoaPlan` holds the same circuit as gadgets and sums their costs by kind without emitting anything.
+:class:`QaoaPlan` holds the same circuit as gadgets; :meth:`QaoaPlan.call_graph` lists it as gadget kinds with
+multiplicities per part (:mod:`circuitgen.call_graph`), which every count sums without emitting anything.
 
 The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>`` on the feasible
 assignments it reaches, ``K`` the phase plan's :attr:`QaoaPlan.reference_constant` (the Ising constant ``c0`` for
@@ -34,24 +35,26 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-from collections import Counter
-from collections.abc import Hashable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
 
-from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 
 from .angles import Angle
+from .call_graph import CallGraph, Deferred, GadgetKind
 from .circuit import Circuit, Register, Section
-from .cost import Cost, Target
+from .cost import Cost
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
-from .lowering import WORK_REGISTER
-from .phase import Optimize, PhasePlan, Representation, phase_plan
+from .initial_state import initial_path_length
+from .lowering import WORK_REGISTER, lower
+from .mixer_classes import mixer_part
+from .options import DEFAULT_PLAN, PlanOptions
+from .phase import PhasePlan, phase_plan
+from .phase_classes import phase_layer
 
 
 @dataclass(frozen=True)
@@ -83,26 +86,12 @@ class QaoaPlan:
     Attributes:
         scenario: The scenario.
         p: Layers.
-        rule: SBF rule.
-        initial: Initial state.
-        target: ``nisq`` or ``ft`` (which constructions are cheapest).
-        phase: ``feasible`` (exact on feasible assignments, default) or ``whole-space`` (the Ising Hamiltonian).
-        optimize: ``cx`` or ``depth`` (phase separator: couplings only, shallow).
-        ancilla_budget: Most ancillas the phase separator may use (``None``: as many as the cheapest needs).
-        fuse: Cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next compute
-            (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer, each with
-            clean ancillas at both ends (the same high-level gates; a few more lowered ones).
+        options: How it is built (:class:`~circuitgen.options.PlanOptions`).
     """
 
     scenario: Scenario
     p: int
-    rule: Rule = "exact"
-    initial: str = "initial_path"
-    target: Target = "nisq"
-    phase: Representation = "feasible"
-    optimize: Optimize = "cx"
-    ancilla_budget: int | None = None
-    fuse: bool = True
+    options: PlanOptions = DEFAULT_PLAN
 
     # -- layout
     @cached_property
@@ -111,33 +100,35 @@ class QaoaPlan:
         out = []
         for r in range(s.num_robots):
             for q in s.grid.plaquettes:
-                m = partial_mixer(s, r, q, Angle.symbol("beta"), n, self.rule, self.target)
+                m = partial_mixer(s, r, q, Angle.symbol("beta"), n, self.options.rule, self.options.target)
                 if m is not None:
                     out.append(m)
         return tuple(out)
 
     @cached_property
     def _mixer_pieces(self) -> tuple[Gadget, ...]:
-        return tuple(mixer_pieces(self._mixers)) if self.fuse else self._mixers
+        return tuple(mixer_pieces(self._mixers)) if self.options.fuse else self._mixers
 
     @cached_property
     def state_prep(self) -> StatePrep:
         """The initial-state gadget."""
         s = self.scenario
-        ancilla = s.num_variables if self.initial == "representatives" else None
-        return StatePrep.build(s, self.initial, self.rule, ancilla)
+        o = self.options
+        ancilla = s.num_variables if o.initial == "representatives" else None
+        return StatePrep.build(s, o.initial, o.rule, ancilla)
 
     @cached_property
     def phase_plan(self) -> PhasePlan | None:
         """The phase separator's plan (``None`` when ``p = 0``)."""
         if not self.p:
             return None
+        o = self.options
         return phase_plan(
             self.scenario,
-            target=self.target,
-            representation=self.phase,
-            optimize=self.optimize,
-            ancilla_budget=self.ancilla_budget,
+            target=o.target,
+            representation=o.phase,
+            optimize=o.optimize,
+            ancilla_budget=o.ancilla_budget,
         )
 
     @property
@@ -147,26 +138,15 @@ class QaoaPlan:
         return self.phase_plan.reference_constant if self.phase_plan else 0.0
 
     @cached_property
-    def _phase_gadgets(self) -> tuple[Gadget, ...]:
-        if self.phase_plan is None:
-            return ()
-        return self.phase_plan.gadgets("gamma", 0, self.scenario.num_variables)
-
-    @cached_property
     def logic_width(self) -> int:
         """Shared clean ``logic`` ancillas: the largest partial mixer or phase-separator need (at least 1 for
         ``representatives``)."""
-        width = max((m.num_temps for m in self._mixers), default=0)
-        if self.phase_plan is not None:
-            width = max(width, self.phase_plan.num_ancillas)
-        return max(width, 1 if self.initial == "representatives" else 0)
+        return self.call_graph().logic_width
 
     @cached_property
     def work_width(self) -> int:
         """``work`` ancillas the lowering adds for multi-controlled X with three or more controls."""
-        mixer = mixer_work_need(self._mixers)
-        prep = max((len(g.qubits) - 3 for g in self.state_prep.gates if g.name == "mcx"), default=0)
-        return max(mixer if self.p else 0, prep, 0)
+        return self.call_graph().work_width
 
     @property
     def registers(self) -> tuple[Register, ...]:
@@ -195,104 +175,114 @@ class QaoaPlan:
                 yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
             mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
-            for g in mixer_pieces(mixers) if self.fuse else mixers:
+            for g in mixer_pieces(mixers) if self.options.fuse else mixers:
                 yield f"mixer_{k}", g
 
-    def kinds(self) -> dict[str, Counter[Hashable]]:
-        """Gadget kinds and multiplicities of one layer's parts: ``initial_state``, ``phase``, ``mixer``."""
-        out: dict[str, Counter[Hashable]] = {
-            "initial_state": Counter([self.state_prep.kind]),
-            "phase": Counter(g.kind for g in self._phase_gadgets),
-            "mixer": Counter(m.kind for m in self._mixer_pieces),
-        }
-        return out
+    def call_graph(self, by_classes: bool = True) -> CallGraph:
+        """The circuit as gadget kinds with multiplicities, per part (:mod:`circuitgen.call_graph`; ``phase`` and
+        ``mixer`` are one layer's, empty ``phase`` for ``p = 0``), nothing emitted.
 
-    def _part_costs(self, logical: bool) -> dict[str, Cost]:
-        def of(g: Any) -> Cost:
-            return g.logical_cost() if logical else g.cost()
+        On a grid without obstacles the kinds are listed by counting classes of plaquettes
+        (:mod:`circuitgen.mixer_classes`) and of nodes (:mod:`circuitgen.phase_classes`), ``O(robots)`` per
+        scenario; where the phase separator's term groups interact (a choice the classes cannot make, see
+        :func:`~circuitgen.phase_classes.phase_layer`) and everywhere else, from the planned gadgets themselves.
 
-        by_kind: dict[Hashable, Cost] = {}
-        for m in self._mixer_pieces:
-            if m.kind not in by_kind:
-                by_kind[m.kind] = of(m)
-        mixer = Cost.sum(by_kind[m.kind] for m in self._mixer_pieces)
-        phase = Cost.sum(of(g) for g in self._phase_gadgets)
-        return {"initial_state": of(self.state_prep), "phase": phase, "mixer": mixer}
+        Args:
+            by_classes: count by classes where that is exact (default); ``False`` lists the planned gadgets
+                (the reference the tests compare with).
 
-    def cost_by_section(self, logical: bool = False) -> dict[str, Cost]:
+        Returns:
+            The :class:`~circuitgen.call_graph.CallGraph` (cached for the default).
+        """
+        return self._graph if by_classes else self._build_graph(False)
+
+    @cached_property
+    def _graph(self) -> CallGraph:
+        return self._build_graph(True)
+
+    def _build_graph(self, by_classes: bool) -> CallGraph:
+        s, o = self.scenario, self.options
+        classes = by_classes and not s.obstacles
+        if classes and o.initial == "initial_path":  # X gates on distinct qubits: built only if emitted
+            n = sum(initial_path_length(s, r) for r in range(s.num_robots))
+            xs = Cost.of(x=n)
+            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, lambda: self.state_prep))
+        else:
+            prep = GadgetKind.of(self.state_prep)
+        if classes:
+            part = mixer_part(s, o.rule, o.target, o.fuse)
+            mixer, mixer_temps, mixer_work = list(part.kinds), part.logic_width, part.work_need
+        else:
+            mixer = [(GadgetKind.of(g), 1) for g in self._mixer_pieces]
+            mixer_temps = max((m.num_temps for m in self._mixers), default=0)
+            mixer_work = mixer_work_need(self._mixers)
+        phase: list[tuple[GadgetKind, int]] = []
+        phase_width = 0
+        if self.p:
+            layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if classes else None
+            if layer is not None:
+                phase, phase_width = layer.kinds(), layer.num_ancillas
+            else:  # the plan decides, term group by term group
+                assert self.phase_plan is not None
+                phase = [(GadgetKind.of(g), 1) for g in self.phase_plan.gadgets("gamma")]
+                phase_width = self.phase_plan.num_ancillas
+        logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
+        work = max(mixer_work if self.p else 0, prep.work)
+        parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer}
+        return CallGraph.build(parts, logic, work)
+
+    def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
         """Cost of the state preparation and of ONE layer's phase separator and mixer (keys ``initial_state``,
         ``phase``, ``mixer``); multiply the last two by ``p`` for the circuit."""
-        return self._part_costs(logical)
+        return self.call_graph().cost_by_part(logical)
 
     def cost(self) -> Cost:
         """Lowered cost of the whole circuit: state preparation + ``p`` x (phase separator + mixer)."""
-        parts = self._part_costs(False)
-        return parts["initial_state"] + self.p * (parts["phase"] + parts["mixer"])
+        return self.call_graph().cost(self.p)
 
     def logical_cost(self) -> Cost:
         """Like :meth:`cost` with ANDs and Toffolis kept whole (the fault-tolerant view)."""
-        parts = self._part_costs(True)
-        return parts["initial_state"] + self.p * (parts["phase"] + parts["mixer"])
+        return self.call_graph().cost(self.p, logical=True)
+
+    def emit_sections(self, lowered: bool = False) -> Iterator[Section]:
+        """The circuit's sections in order, one gadget at a time (``emit_blocks()`` where a gadget has several),
+        lowered one by one if asked: equal to lowering the whole circuit, as passes never cross sections and the
+        ``work`` register is already among :attr:`registers` (what streaming OpenQASM writes)."""
+        registers = self.registers
+        for name, g in self.sections():
+            blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
+            secs = [Section(name, tuple(b)) for b in blocks]
+            yield from lower(Circuit(registers, secs)).sections if lowered else secs
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""
         regs = [r for r in self.registers if r.name != WORK_REGISTER]
-        sections = []
-        for name, g in self.sections():
-            blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
-            sections.extend(Section(name, tuple(b)) for b in blocks)
-        return Circuit(regs, sections)
+        return Circuit(regs, list(self.emit_sections()))
 
 
-def qaoa_plan(
-    scenario: Scenario,
-    p: int,
-    rule: Rule = "exact",
-    initial: str = "initial_path",
-    target: Target = "nisq",
-    phase: Representation = "feasible",
-    optimize: Optimize = "cx",
-    ancilla_budget: int | None = None,
-    fuse: bool = True,
-) -> QaoaPlan:
-    """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`."""
+def qaoa_plan(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> QaoaPlan:
+    """The :class:`QaoaPlan` (gadgets and costs) of the QAOA circuit; see :func:`qaoa_circuit`.
+
+    Raises:
+        ValueError: ``p`` is not a non-negative integer.
+    """
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
         raise ValueError(f"p must be a non-negative integer, got {p!r}")
-    if initial not in ("initial_path", "representatives"):
-        raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
-    if target not in ("nisq", "ft"):
-        raise ValueError(f"unknown target {target!r} (expected 'nisq' or 'ft')")
-    if ancilla_budget is not None and ancilla_budget < 0:
-        raise ValueError(f"ancilla_budget must be >= 0, got {ancilla_budget}")
-    return QaoaPlan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse)
+    if not isinstance(options, PlanOptions):
+        raise TypeError(f"options must be a PlanOptions, got {type(options).__name__}")
+    return QaoaPlan(scenario, p, options)
 
 
-def qaoa_circuit(
-    scenario: Scenario,
-    p: int,
-    rule: Rule = "exact",
-    initial: str = "initial_path",
-    target: Target = "nisq",
-    phase: Representation = "feasible",
-    optimize: Optimize = "cx",
-    ancilla_budget: int | None = None,
-    fuse: bool = True,
-) -> Circuit:
+def qaoa_circuit(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Circuit:
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
     Args:
         scenario: The scenario.
         p: Number of layers (>= 0).
-        rule: SBF logic rule, ``exact`` (default) or ``paper``.
-        initial: ``initial_path`` (default) or ``representatives`` (see :mod:`circuitgen.initial_state`).
-        target: ``nisq`` (default) or ``ft``: which constructions are cheapest
-            (see :mod:`circuitgen.gadgets.partial_mixer` and :mod:`circuitgen.phase`).
-        phase: ``feasible`` (default) or ``whole-space`` phase separator (see :mod:`circuitgen.phase`).
-        optimize: ``cx`` (default) or ``depth`` for the phase separator.
-        ancilla_budget: Most ancillas the phase separator may use (default: as many as its cheapest form needs).
-        fuse: Fuse consecutive partial mixers at their boundary (default; see :class:`QaoaPlan`).
+        options: How it is built (rule, initial state, target, phase separator, ancilla budget, fusion; see
+            :class:`~circuitgen.options.PlanOptions`).
 
     Returns:
         The circuit (see the module docstring for its layout).
     """
-    return qaoa_plan(scenario, p, rule, initial, target, phase, optimize, ancilla_budget, fuse).circuit()
+    return qaoa_plan(scenario, p, options).circuit()

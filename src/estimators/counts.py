@@ -50,6 +50,8 @@ from typing import Any
 from circuitgen.circuit import Circuit
 from circuitgen.gates import GATE_SPECS
 
+from .depth import advance
+
 __all__ = ["GateCount", "ResourceCount", "count", "count_gates"]
 
 DATA_REGISTER = "data"
@@ -176,77 +178,6 @@ def _stats(ops: Counter[str], arity: Counter[int], depth: int, depth2: int) -> G
     )
 
 
-_qubits_of = itemgetter(1)
-
-
-def _levels(gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int]) -> None:
-    """Advance the ASAP levels ``lv`` (every gate) and ``l2`` (two-qubit gates only) over ``gates``, in place."""
-    for qs in map(_qubits_of, gates):
-        n = len(qs)
-        if n == 1:
-            lv[qs[0]] += 1
-        elif n == 2:
-            a, b = qs
-            x = lv[a]
-            y = lv[b]
-            m = (x if x > y else y) + 1
-            lv[a] = m
-            lv[b] = m
-            x = l2[a]
-            y = l2[b]
-            m = (x if x > y else y) + 1
-            l2[a] = m
-            l2[b] = m
-        elif n:
-            m = max([lv[q] for q in qs]) + 1
-            m2 = max([l2[q] for q in qs])
-            for q in qs:
-                lv[q] = m
-                l2[q] = m2
-
-
-def _levels_twice(gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int], sv: list[int], s2: list[int]) -> None:
-    """:func:`_levels` on two pairs of level lists at once (the whole circuit's and one section name's)."""
-    for qs in map(_qubits_of, gates):
-        n = len(qs)
-        if n == 1:
-            q = qs[0]
-            lv[q] += 1
-            sv[q] += 1
-        elif n == 2:
-            a, b = qs
-            x = lv[a]
-            y = lv[b]
-            m = (x if x > y else y) + 1
-            lv[a] = m
-            lv[b] = m
-            x = l2[a]
-            y = l2[b]
-            m = (x if x > y else y) + 1
-            l2[a] = m
-            l2[b] = m
-            x = sv[a]
-            y = sv[b]
-            m = (x if x > y else y) + 1
-            sv[a] = m
-            sv[b] = m
-            x = s2[a]
-            y = s2[b]
-            m = (x if x > y else y) + 1
-            s2[a] = m
-            s2[b] = m
-        elif n:
-            m = max([lv[q] for q in qs]) + 1
-            m2 = max([l2[q] for q in qs])
-            ms = max([sv[q] for q in qs]) + 1
-            ms2 = max([s2[q] for q in qs])
-            for q in qs:
-                lv[q] = m
-                l2[q] = m2
-                sv[q] = ms
-                s2[q] = ms2
-
-
 def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
     """:class:`GateCount` of a plain gate sequence.
 
@@ -263,7 +194,7 @@ def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
     gates = list(gates)
     lv = [0] * num_qubits
     l2 = [0] * num_qubits
-    _levels(gates, lv, l2)
+    advance(gates, lv, l2)
     ops = Counter(map(itemgetter(0), gates))
     return _stats(ops, _arity(ops, gates), max(lv, default=0), max(l2, default=0))
 
@@ -299,7 +230,8 @@ def count(circuit: Circuit) -> ResourceCount:
         sec_ops = Counter(map(itemgetter(0), gates))
         acc[0].update(sec_ops)
         acc[1].update(_arity(sec_ops, gates))
-        _levels_twice(gates, lv, l2, acc[2], acc[3])
+        advance(gates, lv, l2)  # the whole circuit's levels, then this section name's own
+        advance(gates, acc[2], acc[3])
     ops: Counter[str] = Counter()
     arity: Counter[int] = Counter()
     sections: dict[str, GateCount] = {}

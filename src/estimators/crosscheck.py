@@ -18,20 +18,24 @@ Example:
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from circuitgen.cost import Cost
+from circuitgen.cost import TARGETS, Cost
 from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.options import DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASES, PlanOptions
 from circuitgen.qaoa import qaoa_circuit
 from gridcover.presets import default_scenario, max_default_robots
+from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
 
 from .counts import count
-from .estimate import DEFAULT_PLAN, EstimateOptions, PlanOptions, Point, estimate_point
+from .estimate import EstimateOptions, Point, estimate_point
 
-__all__ = ["Case", "crosscheck", "crosscheck_cases", "with_obstacles"]
+__all__ = ["Case", "crosscheck", "crosscheck_cases", "every_plan_option", "interior_endpoints", "with_obstacles"]
 
 
 @dataclass(frozen=True)
@@ -46,7 +50,7 @@ class Case:
     def label(self) -> str:
         """Short text for reports."""
         g = self.scenario.grid
-        extra = "" if self.plan == DEFAULT_PLAN else f" {self.plan.rule}/{self.plan.target}"
+        extra = "" if self.plan == DEFAULT_PLAN else " " + "/".join(str(v) for v in dataclasses.astuple(self.plan))
         return f"{self.scenario.name or f'{g.rows}x{g.cols}'} p{self.p}{extra}"
 
 
@@ -61,7 +65,7 @@ def crosscheck(case: Case) -> list[str]:
     """
     s, p, plan = case.scenario, case.p, case.plan
     est = estimate_point(Point.from_scenario(s, p), EstimateOptions(plan=plan, depth="exact"))
-    circ = qaoa_circuit(s, p, rule=plan.rule, initial=plan.initial, target=plan.target)  # type: ignore[arg-type]
+    circ = qaoa_circuit(s, p, plan)
     low = lower(circ)
     rc = count(low)
     out = []
@@ -76,13 +80,13 @@ def crosscheck(case: Case) -> list[str]:
     if p:
         check(
             "state preparation",
-            est.sections.get("initial_state", Cost()).to_dict(),
+            est.parts["initial_state"].to_dict(),
             dict(rc.sections["initial_state"].ops) if "initial_state" in rc.sections else {},
         )
         for k in range(p):
             for part in ("phase", "mixer"):
                 have = rc.sections.get(f"{part}_{k}")
-                check(f"{part} of layer {k}", est.sections.get(part, Cost()).to_dict(), dict(have.ops) if have else {})
+                check(f"{part} of layer {k}", est.parts[part].to_dict(), dict(have.ops) if have else {})
     if est.depth is not None and est.depth.kind == "exact":
         check("depth", (est.depth.depth, est.depth.two_qubit_depth), (rc.depth, rc.two_qubit_depth))
     return out
@@ -99,6 +103,30 @@ def with_obstacles(scenario: Scenario, mode: str) -> Scenario | None:
     d.setdefault("objective", {})["obstacles"] = mode
     d["name"] = f"{scenario.name}, {mode} obstacles"
     return scenario_from_dict(d)
+
+
+def interior_endpoints(rows: int = 3, cols: int = 4, obstacles: str | None = None) -> Scenario:
+    """Two robots, each with an endpoint inside the grid (off its boundary), optionally with an obstacle at
+    ``(rows - 2, 1)`` in ``soft`` or ``hard`` mode (needs ``rows >= 4``: away from the endpoints)."""
+    d = {
+        "name": f"{rows}x{cols} interior endpoints",
+        "grid": {"rows": rows, "cols": cols},
+        "robots": [{"start": [1, 1], "goal": [rows - 1, cols - 1]}, {"start": [0, cols - 1], "goal": [1, cols - 2]}],
+    }
+    if obstacles is not None:
+        d["grid"]["obstacles"] = [[rows - 2, 1]]  # type: ignore[index]
+        d["objective"] = {"obstacles": obstacles}
+        d["name"] += f", {obstacles} obstacle"
+    return scenario_from_dict(d)
+
+
+def every_plan_option(budgets: tuple[int | None, ...] = (None, 0, 3)) -> Iterator[PlanOptions]:
+    """Every combination of the plan flags a user can pass (``--rule``, ``--initial``, ``--target``,
+    ``--phase``, ``--optimize``), each with every ancilla budget of ``budgets``."""
+    for rule, initial, target, phase, optimize, budget in itertools.product(
+        RULES, INITIAL_STATES, TARGETS, PHASES, OPTIMIZE, budgets
+    ):
+        yield PlanOptions(rule, initial, target, phase, optimize, budget)
 
 
 def crosscheck_cases(full: bool = False, examples: Path | None = None) -> Iterator[Case]:

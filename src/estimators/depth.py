@@ -25,7 +25,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-__all__ = ["Depth", "DepthKind", "depths"]
+__all__ = ["Depth", "DepthKind", "advance", "depths"]
 
 DepthKind = Literal["exact", "bound"]
 
@@ -72,6 +72,46 @@ class Depth:
     __rmul__ = __mul__
 
 
+def advance(
+    gates: Iterable[tuple[Any, ...]], lv: list[int], l2: list[int], lr: list[int] | None = None
+) -> None:
+    """The one ASAP loop: advance the per-qubit levels over ``gates``, in place.
+
+    Args:
+        gates: gate tuples ``(name, qubits, ...)``.
+        lv: every gate adds a layer on its qubits.
+        l2: two-qubit gates add a layer; a gate on three or more qubits synchronises its qubits.
+        lr: if given, ``rz`` adds a layer and every multi-qubit gate synchronises (rotation depth).
+    """
+    for g in gates:
+        qs = g[1]
+        n = len(qs)
+        if n == 1:
+            q = qs[0]
+            lv[q] += 1
+            if lr is not None and g[0] == "rz":
+                lr[q] += 1
+        elif n == 2:
+            a, b = qs
+            x, y = lv[a], lv[b]
+            lv[a] = lv[b] = (x if x > y else y) + 1
+            x, y = l2[a], l2[b]
+            l2[a] = l2[b] = (x if x > y else y) + 1
+            if lr is not None:
+                x, y = lr[a], lr[b]
+                lr[a] = lr[b] = x if x > y else y
+        elif n:
+            m = max([lv[q] for q in qs]) + 1
+            m2 = max([l2[q] for q in qs])
+            for q in qs:
+                lv[q] = m
+                l2[q] = m2
+            if lr is not None:
+                mr = max([lr[q] for q in qs])
+                for q in qs:
+                    lr[q] = mr
+
+
 def depths(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> Depth:
     """The three ASAP depths of ``gates`` (see the module docstring).
 
@@ -82,23 +122,6 @@ def depths(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> Depth:
     Returns:
         An ``exact`` :class:`Depth`.
     """
-    lv = [0] * num_qubits
-    l2 = [0] * num_qubits
-    lr = [0] * num_qubits
-    for g in gates:
-        qs = g[1]
-        n = len(qs)
-        if n == 1:
-            q = qs[0]
-            lv[q] += 1
-            if g[0] == "rz":
-                lr[q] += 1
-            continue
-        m = max([lv[q] for q in qs]) + 1
-        m2 = max([l2[q] for q in qs]) + (1 if n == 2 else 0)
-        mr = max([lr[q] for q in qs])
-        for q in qs:
-            lv[q] = m
-            l2[q] = m2
-            lr[q] = mr
+    lv, l2, lr = [0] * num_qubits, [0] * num_qubits, [0] * num_qubits
+    advance(gates, lv, l2, lr)
     return Depth(max(lv, default=0), max(l2, default=0), max(lr, default=0), "exact")

@@ -36,7 +36,8 @@ qubits), plus the emission and lowering of the non-anchored gadgets once per sce
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> from estimators.estimate import DEFAULT_PLAN, compiled_depth, layered_depth
+    >>> from circuitgen.options import DEFAULT_PLAN
+    >>> from estimators.estimate import compiled_depth, layered_depth
     >>> s = default_scenario(3, 3, 2)
     >>> layered_depth(s, DEFAULT_PLAN).depth(2) == compiled_depth(s, 2)
     True

@@ -31,9 +31,10 @@ How the formulas are derived (see ``docs/resource-estimates.md`` for the full de
   junction saves what cancels between the uncompute of one and the compute of the next, which depends on the
   two partial mixers and on where the second lies (horizontal neighbour; first plaquette of the next row,
   which shares edges when ``cols <= 4``; first plaquette of the next robot). So one layer's mixer is
-  ``sum over classes count(class) * cost(class) - sum over junction classes count * saving``, with counts
-  ``1`` and ``rows - 3`` (plaquettes) or ``rows - 4`` (consecutive pairs) for the middle ones: a polynomial in
-  each case of sides 2, 3, 4 or >= 5 nodes (:func:`mixer_terms`, read from ``default_scenario(R, C, 4)``).
+  the call graph's own counting (:func:`circuitgen.mixer_classes.mixer_part`: rotations, junctions and the
+  open ends by class) run with symbolic sides, counts ``1`` and ``rows - 3`` (plaquettes) or ``rows - 4``
+  (consecutive pairs) for the middle ones: a polynomial in each case of sides 2, 3, 4 or >= 5 nodes
+  (:func:`mixer_terms`, from ``default_scenario(R, C, k)``, ``k = 1..4``), not a description of its own.
 * Ancillas: ``logic`` = the largest network (6 temporaries once some plaquette has four interior corners,
   i.e. rows, cols >= 4), ``work`` = largest multi-controlled X minus 2.
 
@@ -55,9 +56,10 @@ import sympy as sp
 
 from circuitgen.angles import Angle
 from circuitgen.cost import Cost
-from circuitgen.gadgets.junction import MixerJunction
-from circuitgen.gadgets.partial_mixer import ParityPartialMixer, mixer_work_need, partial_mixer
+from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
+from circuitgen.mixer_classes import mixer_part
 from gridcover.presets import default_scenario
+from gridcover.sbf import LocalPicture
 
 __all__ = [
     "FORMULA_DOMAIN",
@@ -173,11 +175,7 @@ def partial_mixer_types() -> tuple[MixerType, ...]:
 
 def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ignore[no-untyped-def]
     rb = s.robots[robot]
-    key = ""
-    for v, corner in enumerate(plaq.corners):
-        key += "E" if corner in (rb.start, rb.goal) else ("B" if len(plaq.outer_edges[v]) == 2 else "N")
-    if {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]}):
-        key += "D"
+    key = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in plaq.outer_edges]).label
     gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
     if gadget is None:  # the flip is never allowed: nothing is emitted
         return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)
@@ -189,7 +187,7 @@ def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ign
 
 @dataclass(frozen=True)
 class Term:
-    """Gate counts of one piece of the mixer sum: a partial mixer (added) or a junction's saving (subtracted).
+    """Gate counts of one gadget kind of the mixer (a rotation, a junction, or a partial mixer).
 
     Attributes:
         ops: lowered gate counts.
@@ -212,91 +210,50 @@ _CASES = (2, 3, 4, 5)  # a side of 2, 3, 4 nodes, or 5 standing for >= 5
 _REPRESENTATIVE = {2: 2, 3: 3, 4: 4, 5: 6}  # the grid side each case is read from (6: every class occurs)
 
 
-def _position(k: int, items: int, n: sp.Expr) -> tuple[str, sp.Expr]:
-    """Class and count of item ``k`` of ``items`` consecutive items along a side (plaquettes: ``items = side - 1``;
-    consecutive plaquette pairs: ``side - 2``), ``n`` the same count for the symbolic side."""
-    if items == 1:
-        return "only", sp.Integer(1)
-    if k in (0, items - 1):
-        return ("first" if k == 0 else "last"), sp.Integer(1)
-    return "middle", n - 2
-
-
-@lru_cache(maxsize=16)
-def mixer_terms(rows_case: int, cols_case: int) -> tuple[tuple[Counted, ...], tuple[Term, ...]]:
-    """The mixer of the default placement of one grid case as counted terms, from ``default_scenario(R, C, 4)``
-    with ``R, C`` the cases' representative sides.
-
-    Per robot ``0..3``: ``(count, term)`` of each class of partial mixers (by row and column class) and
-    ``(-count, saving)`` of each class of junctions inside the robot's sequence (horizontal neighbours by row
-    class and pair class, row wraps by pair class); then the saving of the junction between
-    robots ``k`` and ``k + 1`` (``k = 0, 1, 2``). Members of a class are checked to have equal terms.
-
-    Args:
-        rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
-
-    Returns:
-        ``(per robot terms, robot junction savings)``; a count is a sympy expression in ``rows``, ``cols``.
-    """
-    nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
-    s = default_scenario(nr, nc, 4)
-    beta = Angle.symbol("beta_0")
-    pr, pc = nr - 1, nc - 1
-    plaq = {q.corners[0]: q for q in s.grid.plaquettes}
-    per_robot = []
-    firsts, lasts = [], []
-    for robot in range(4):
-        ms = {(i, j): partial_mixer(s, robot, plaq[i, j], beta, s.num_variables) for i in range(pr) for j in range(pc)}
-        if any(m is None or not isinstance(m, ParityPartialMixer) for m in ms.values()):  # pragma: no cover
-            raise AssertionError("the default placement has a partial mixer on every plaquette")
-        classes: dict[tuple, tuple[sp.Expr, Term]] = {}
-
-        def add(key: tuple, count: sp.Expr, term: Term, classes: dict = classes) -> None:
-            if key in classes and classes[key][1] != term:  # pragma: no cover - the class argument failed
-                raise AssertionError(f"class {key} of a {nr}x{nc} grid has unequal members")
-            classes[key] = (count, term)
-
-        for (i, j), m in ms.items():
-            rcls, rn = _position(i, pr, rows - 1)
-            ccls, cn = _position(j, pc, cols - 1)
-            add(("mixer", rcls, ccls), rn * cn, Term.of(m.cost(), m.logical_cost()))
-            if j + 1 < pc:
-                jcls, jn = _position(j, pc - 1, cols - 2)
-                jn_ = MixerJunction(m, ms[i, j + 1])
-                add(("across", rcls, jcls), -rn * jn, Term.of(jn_.saving(), jn_.logical_saving()))
-            if j == pc - 1 and i + 1 < pr:
-                icls, i_n = _position(i, pr - 1, rows - 2)
-                jn_ = MixerJunction(m, ms[i + 1, 0])
-                add(("wrap", icls), -i_n, Term.of(jn_.saving(), jn_.logical_saving()))
-        per_robot.append(tuple(classes.values()))
-        firsts.append(ms[0, 0])
-        lasts.append(ms[pr - 1, pc - 1])
-    between = []
-    for k in range(3):
-        jn_ = MixerJunction(lasts[k], firsts[k + 1])
-        between.append(Term.of(jn_.saving(), jn_.logical_saving()))
-    return tuple(per_robot), tuple(between)
-
-
 N_ANTI = sp.Min(robots - 1, 2)
 """Robots on the anti-diagonal (robots 1 and 2 of the default placement, 1 <= robots <= 4)."""
 
 
+@lru_cache(maxsize=64)
+def mixer_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
+    """One layer's mixer of ``default_scenario(R, C, num_robots)`` as its call graph lists it
+    (:func:`circuitgen.mixer_classes.mixer_part`: rotations, junctions and the two open ends, each kind with its
+    count), the counts symbolic in ``rows``, ``cols`` where a case stands for sides of ``>= 5`` nodes: the same
+    counting the estimates use, run with symbolic sides.
+
+    Args:
+        rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
+        num_robots: ``1`` to ``4`` (default placement).
+
+    Returns:
+        ``(count, term)`` pairs; a count is a sympy expression in ``rows``, ``cols``.
+    """
+    nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
+    sizes = (rows if rows_case == 5 else sp.Integer(nr), cols if cols_case == 5 else sp.Integer(nc))
+    part = mixer_part(default_scenario(nr, nc, num_robots), sizes=sizes)
+    return tuple((sp.sympify(n), Term.of(k.cost(), k.logical_cost())) for k, n in part.kinds)
+
+
 def _case_mixer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
-    """Every robot's mixer (one layer) in one grid case: ``(robots - N_ANTI) main + N_ANTI anti`` (robots ``0, 3``
-    and ``1, 2`` cost the same; ``robots * main`` when all do) minus the junctions between consecutive robots."""
-    per_robot, between = mixer_terms(rows_case, cols_case)
-    e = [sp.expand(sum((count * metric(t) for count, t in terms), sp.Integer(0))) for terms in per_robot]
-    if e[3] != e[0] or e[2] != e[1]:  # pragma: no cover - the default placement is symmetric
-        raise AssertionError("robots 0 and 3 (or 1 and 2) of the default placement differ")
-    robots_part = robots * e[0] if e[0] == e[1] else (robots - N_ANTI) * e[0] + N_ANTI * e[1]
-    j = [metric(t) for t in between]
-    if j[0] == j[1] == j[2]:
-        junctions = (robots - 1) * j[0]
+    """Every robot's mixer (one layer) in one grid case, from the call graphs of 1..4 robots: the first robot's
+    layer plus what each further robot adds (its partial mixers and the junction joining it), written with
+    indicators of ``robots >= k`` (one multiple of ``robots - 1`` when every further robot adds the same)."""
+    f = []
+    for k in (1, 2, 3, 4):
+        by_count: dict[sp.Expr, int] = {}  # few distinct counts: add the numbers first, multiply once
+        for n, t in mixer_terms(rows_case, cols_case, k):
+            by_count[n] = by_count.get(n, 0) + metric(t)
+        f.append(sp.expand(sum((n * v for n, v in by_count.items()), sp.Integer(0))))
+    g = [f[0], f[1] - f[0], f[2] - f[1], f[3] - f[2]]
+    if g[0] == g[1] == g[2] == g[3]:
+        out = robots * g[0]
+    elif g[1] == g[2] == g[3]:
+        out = g[0] + (robots - 1) * g[1]
+    elif g[1] == g[2]:  # robots 2 and 3 of the default placement are the anti-diagonal ones
+        out = g[0] + N_ANTI * g[1] + (robots - 1 - N_ANTI) * g[3]
     else:
         at_least = [sp.Min(robots - 1, 1), sp.Max(sp.Min(robots - 2, 1), 0), sp.Max(robots - 3, 0)]
-        junctions = sum((jk * ind for jk, ind in zip(j, at_least, strict=True)), sp.Integer(0))
-    out = robots_part - junctions
+        out = g[0] + sum((gk * ind for gk, ind in zip(g[1:], at_least, strict=True)), sp.Integer(0))
     subs = {}
     if rows_case < 5:
         subs[rows] = rows_case

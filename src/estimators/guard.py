@@ -24,9 +24,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from gridcover.scenario import Scenario
 
-from .estimate import DEFAULT_PLAN, PlanOptions, layer_costs, registers_for
+from .estimate import layer_costs, registers_for
 
 __all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "predict_size"]
 

@@ -132,7 +132,7 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         "p": pt.p,
         "rule": plan.rule,
         "target": plan.target,
-        "scenario": "default" if pt.scenario is None else "file",
+        "scenario": "default" if pt.scenario_json is None else "file",
         "qubits": est.qubits,
         "data_qubits": est.data_qubits,
         "ancillas": est.qubits - est.data_qubits,
@@ -180,7 +180,7 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
             ratio_cx=_ratio(c.cx, paper.cx),
             ratio_single_qubit=_ratio(c.single_qubit, paper.single_qubit),
         )
-    row["sections"] = {name: _section(est.sections[name]) for name in _SECTION_NAMES if name in est.sections}
+    row["sections"] = {name: _section(est.parts[name]) for name in _SECTION_NAMES if name in est.parts}
     return row
 
 

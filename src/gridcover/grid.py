@@ -116,11 +116,13 @@ class Grid:
         Raises:
             KeyError: if ``u`` and ``v`` are not 4-neighbours on this grid.
         """
-        key = (u, v) if u <= v else (v, u)
-        try:
-            return self._edge_lookup[key]
-        except KeyError:
-            raise KeyError(f"no grid edge between {u} and {v} on a {self.rows}x{self.cols} grid") from None
+        (r, c), (r2, c2) = (u, v) if u <= v else (v, u)
+        right, down = r2 == r and c2 == c + 1, c2 == c and r2 == r + 1
+        if not (right or down) or not (r >= 0 and c >= 0 and r2 < self.rows and c2 < self.cols):
+            raise KeyError(f"no grid edge between {u} and {v} on a {self.rows}x{self.cols} grid")
+        # the stable order: row-major nodes, each with its right edge then its down edge (no table to build)
+        before = r * (2 * self.cols - 1) + c * (2 if r + 1 < self.rows else 1)
+        return before if right else before + (1 if c + 1 < self.cols else 0)
 
     @cached_property
     def incident_edges(self) -> tuple[tuple[int, ...], ...]:

@@ -46,6 +46,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Literal as TypingLiteral
+from typing import NamedTuple
 
 from gridcover.grid import Plaquette
 from gridcover.paths import enumerate_paths, initial_path
@@ -187,20 +188,50 @@ def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -
     return _exact_logic(robot, pindex, plaq.edges, outer, endpoints, diagonal)
 
 
+class LocalPicture(NamedTuple):
+    """What the SBF rules read of a plaquette for one robot, up to the edges' names: equal pictures give equal
+    logic programs (the one definition; the compiler counts plaquettes by it, the formulas name classes by it; a
+    named tuple, so that the class counts hash it at C speed).
+
+    Attributes:
+        endpoints: per corner ``a, b, c, d``, whether it is the robot's start or goal.
+        outer: per corner, how many variable outer edges it has (0 to 2).
+        diagonal: whether start and goal are diagonal corners of the plaquette.
+    """
+
+    endpoints: tuple[bool, bool, bool, bool]
+    outer: tuple[int, int, int, int]
+    diagonal: bool
+
+    @classmethod
+    def of(
+        cls, corners: Sequence[tuple[int, int]], start: object, goal: object, outer: Sequence[int]
+    ) -> LocalPicture:
+        """The picture of a plaquette with ``corners`` (``a, b, c, d``) for a robot from ``start`` to ``goal``
+        (``None`` for a robot that has no endpoint here) with ``outer[v]`` variable outer edges at corner ``v``."""
+        ends = (start, goal)
+        diagonal = {start, goal} in ({corners[0], corners[2]}, {corners[1], corners[3]})
+        return cls(tuple(c in ends for c in corners), tuple(outer), diagonal)  # type: ignore[arg-type]
+
+    @property
+    def label(self) -> str:
+        """Per corner ``E`` (endpoint), ``B`` (two outer edges) or ``N``, then ``D`` if diagonal: ``"EBBN"``."""
+        corners = "".join("E" if e else ("B" if o == 2 else "N") for e, o in zip(self.endpoints, self.outer))
+        return corners + ("D" if self.diagonal else "")
+
+
 def _neighbourhood(
     scenario: Scenario, robot: int, plaq: Plaquette
 ) -> tuple[tuple[bool, ...], tuple[tuple[int, ...], ...], bool] | None:
-    """What a rule reads of the scenario at ``plaq``: which corners are the robot's endpoints, each corner's
-    variable outer edges, whether start and goal are diagonal corners; ``None`` when a plaquette edge is not a
-    variable (no flip can be allowed)."""
+    """What a rule reads of the scenario at ``plaq``: its :class:`LocalPicture` (endpoints and diagonal) and each
+    corner's variable outer edges; ``None`` when a plaquette edge is not a variable (no flip can be allowed)."""
     vmask = scenario.variable_mask
     if any(not (vmask >> e) & 1 for e in plaq.edges):
         return None
     rb = scenario.robots[robot]
-    endpoints = tuple(c in (rb.start, rb.goal) for c in plaq.corners)
     outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
-    diagonal = {rb.start, rb.goal} in ({plaq.corners[0], plaq.corners[2]}, {plaq.corners[1], plaq.corners[3]})
-    return endpoints, outer, diagonal
+    picture = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in outer])
+    return picture.endpoints, outer, picture.diagonal
 
 
 def _exact_logic(

@@ -188,6 +188,7 @@ def _feasible(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
 
 def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) -> Evaluation:
     from circuitgen.compile import compile_scenario
+    from circuitgen.options import PlanOptions
     from simulate.statevector import simulate_statevector
 
     if scenario.num_variables > MAX_STATEVECTOR_QUBITS:  # refuse before compiling
@@ -196,7 +197,7 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
             f"statevector: the circuit has at least {n} qubits (its data register), more than "
             f"{MAX_STATEVECTOR_QUBITS}; use --method subspace or tensor"
         )
-    compiled = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=_bindings(x))
+    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=_bindings(x))
     n = compiled.circuit.num_qubits
     if n > MAX_STATEVECTOR_QUBITS:
         raise ValueError(
@@ -219,12 +220,13 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
 
 def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) -> Evaluation:
     from circuitgen.compile import compile_scenario
+    from circuitgen.options import PlanOptions
 
     try:
         from simulate import tensor
     except ImportError as exc:  # pragma: no cover - the backend module is optional at import time
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
-    compiled = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=_bindings(x))
+    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=_bindings(x))
     feasible, optimal = _feasible(scenario)
     amps = np.asarray(tensor.amplitudes(compiled.circuit, feasible.tolist()), dtype=complex)
     probs = amps.real * amps.real + amps.imag * amps.imag

@@ -5,9 +5,8 @@ Use it to validate circuits that are too wide for the dense simulator (20-40 qub
 * :func:`to_quimb` converts any :class:`~circuitgen.circuit.Circuit` (lowered basis or high-level gates) into a
   ``quimb.tensor.Circuit`` started from a computational basis state.
 * :class:`TensorCircuit` wraps one bound circuit: :meth:`~TensorCircuit.amplitude` ``<y|U|x>``,
-  :meth:`~TensorCircuit.probability` of fixed values on some qubits (e.g. every ancilla in |0>),
-  :meth:`~TensorCircuit.marginal`, :meth:`~TensorCircuit.sample`, and the contraction sizes
-  (:meth:`~TensorCircuit.rehearse_amplitude`, :meth:`~TensorCircuit.rehearse_probability`) without running.
+  :meth:`~TensorCircuit.probability` of fixed values on some qubits (e.g. every ancilla in |0>) and
+  :meth:`~TensorCircuit.sample`.
   :func:`amplitudes` and :func:`probability` are one-call forms.
 
 Conventions:
@@ -60,7 +59,6 @@ Example:
 from __future__ import annotations
 
 import copy
-import itertools
 import logging
 import math
 import os
@@ -728,17 +726,6 @@ class TensorCircuit:
             return value.transpose(*inds).data
         return np.asarray(value).reshape((2,) * len(inds))
 
-    def rehearse_amplitude(self, state: BasisState = 0) -> ContractionInfo:
-        """Simplify and find (and cache) the path of one amplitude without contracting it."""
-        t0 = time.perf_counter()
-        tn = self._amplitude_network(state)
-        if tn is None:
-            return ContractionInfo(0.0, 0.0, 0, time.perf_counter() - t0)
-        _, info = self._tree(tn)
-        return ContractionInfo(info.width, info.log10_flops, info.num_tensors, time.perf_counter() - t0)
-
-    # -- probabilities -------------------------------------------------------------------------------------
-
     def probability(self, fixed: Mapping[int, int]) -> float:
         """Probability that measuring the qubits in ``fixed`` gives those values, ``<psi| P |psi>``.
 
@@ -756,29 +743,6 @@ class TensorCircuit:
     def zero_probability(self, qubits: Iterable[int]) -> float:
         """Probability that all of ``qubits`` are |0> (:meth:`probability` with zeros)."""
         return self.probability({q: 0 for q in qubits})
-
-    def rehearse_probability(self, fixed: Mapping[int, int]) -> ContractionInfo:
-        """Simplify and find (and cache) the path of :meth:`probability` without contracting it."""
-        t0 = time.perf_counter()
-        _, info = self._tree(self._projector_network(fixed))
-        return ContractionInfo(info.width, info.log10_flops, info.num_tensors, time.perf_counter() - t0)
-
-    def marginal(self, qubits: Sequence[int]) -> np.ndarray:
-        """Joint distribution of ``qubits``: one :meth:`probability` per outcome (``2**k`` contractions).
-
-        Args:
-            qubits: Distinct qubits (a handful: the cost doubles with each).
-
-        Returns:
-            float array of shape ``(2,) * k``; entry ``[b_0, ..., b_{k-1}]`` is P(qubits[j] = b_j for all j).
-        """
-        qs = [int(q) for q in qubits]
-        if len(set(qs)) != len(qs):
-            raise ValueError(f"qubits must be distinct, got {qs}")
-        out = np.zeros((2,) * len(qs))
-        for bits in itertools.product((0, 1), repeat=len(qs)):
-            out[bits] = self.probability(dict(zip(qs, bits)))
-        return out
 
     def sample(self, shots: int, seed: int | None = None, group_size: int = 8) -> np.ndarray:
         """Measure every qubit ``shots`` times (quimb's lightcone marginal chain; small circuits).

@@ -387,6 +387,7 @@ def validate(
             mixer that is not unitary on the data (:class:`simulate.subspace.NonUnitaryMixerError`).
     """
     from circuitgen.compile import compile_scenario
+    from circuitgen.options import PlanOptions
     from simulate.subspace import SubspaceQAOA
 
     t_start = time.perf_counter()
@@ -435,7 +436,7 @@ def validate(
     # differs by cancelled inverse pairs only, tests/circuitgen/junction_test.py)
     fuse = backend != "tensor"
     at("compiling the lowered circuit")
-    circuit = compile_scenario(scenario, p, rule=rule, lowered=True, bindings=bindings, fuse=fuse).circuit
+    circuit = compile_scenario(scenario, p, PlanOptions(rule=rule, fuse=fuse), lowered=True, bindings=bindings).circuit
     n, nq = scenario.num_variables, circuit.num_qubits
     ancillas = list(range(n, nq))
     tol = tolerance
@@ -507,10 +508,11 @@ def _open_qubits(scenario: Scenario) -> list[int]:
 
 def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any) -> Check:
     from circuitgen.compile import compile_scenario
+    from circuitgen.options import PlanOptions
     from simulate.equivalence import check_sections
 
     t0 = time.perf_counter()
-    high = compile_scenario(scenario, p, rule=rule, bindings=bindings).circuit
+    high = compile_scenario(scenario, p, PlanOptions(rule=rule), bindings=bindings).circuit
     r = check_sections(high, low, scenario.num_variables)
     note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
     for message in r.messages:  # QCEC's own warnings, captured instead of leaking, in our words where known

@@ -22,6 +22,10 @@ MODULES = [
     "circuitgen.gadgets.partial_mixer",
     "circuitgen.gadgets.junction",
     "circuitgen.qaoa",
+    "circuitgen.options",
+    "circuitgen.call_graph",
+    "circuitgen.mixer_classes",
+    "circuitgen.phase_classes",
     "simulate.statevector",
     "simulate.sparse",
 ]

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.initial_state import initial_state_gates, superposition_gates
 from circuitgen.lowering import lower
+from circuitgen.options import PlanOptions
 from circuitgen.phase import phase_separator_gates
 from circuitgen.qaoa import qaoa_circuit, qubit_map
 from gridcover.cost import cost
@@ -111,7 +112,7 @@ def test_representatives_initial_state_covers_every_component() -> None:
             break
     s = found or Scenario(Grid(3, 3), (Robot((0, 0), (2, 2)),))
     reps = representatives(s, 0)
-    c = qaoa_circuit(s, 0, initial="representatives")
+    c = qaoa_circuit(s, 0, PlanOptions(initial="representatives"))
     out = simulate_sparse(lower(c), 0)
     expected = {basis_from_bits(list(assignment_bits(s, [m]))): 1 / math.sqrt(len(reps)) for m in reps}
     assert out.keys() == expected.keys()

@@ -9,7 +9,9 @@ from hypothesis import strategies as st
 
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
-from circuitgen.gadgets.phase_sums import SumsPhase
+from circuitgen.options import DEFAULT_PLAN, PlanOptions
+from circuitgen.phase_classes import phase_layer
+from circuitgen.qaoa import qaoa_plan
 from estimators.crosscheck import crosscheck_cases, with_obstacles
 from estimators.depth import Depth, depths
 from estimators.depth_compose import (
@@ -21,9 +23,7 @@ from estimators.depth_compose import (
     transfer_profile,
 )
 from estimators.estimate import (
-    DEFAULT_PLAN,
     EstimateOptions,
-    PlanOptions,
     _arithmetic_depth_bound,
     compiled_depth,
     depth_bound,
@@ -31,7 +31,6 @@ from estimators.estimate import (
     exact_depth,
     layer_costs,
 )
-from estimators.phase_count import phase_layer
 from gridcover.errors import ScenarioError
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Scenario, scenario_from_dict
@@ -168,7 +167,7 @@ def test_anchored_profiles_equal_each_gadgets_own(options: PlanOptions) -> None:
     scenarios += [s for mode in ("soft", "hard") if (s := with_obstacles(default_scenario(5, 5, 2), mode))]
     checked = 0
     for s in scenarios:
-        plan = options.plan(s, 1)
+        plan = qaoa_plan(s, 1, options)
         regs = tuple(plan.registers)
         for _, g in plan.sections():
             hit = anchored_profile(g, regs)
@@ -182,7 +181,7 @@ def test_anchored_profiles_equal_each_gadgets_own(options: PlanOptions) -> None:
 
 def test_gadget_depth_is_the_gadgets_own_depth() -> None:
     s = default_scenario(4, 4, 2)
-    plan = DEFAULT_PLAN.plan(s, 1)
+    plan = qaoa_plan(s, 1)
     regs = tuple(plan.registers)
     n = sum(r.size for r in regs)
     for _, g in list(plan.sections())[:12]:
@@ -192,7 +191,7 @@ def test_gadget_depth_is_the_gadgets_own_depth() -> None:
 # --- carrying the frontier over p ----------------------------------------------------------------------------------
 def test_frontier_carried_over_p_equals_a_fresh_computation() -> None:
     s = default_scenario(4, 3, 3)
-    plan = DEFAULT_PLAN.plan(s, 1)
+    plan = qaoa_plan(s, 1)
     regs = tuple(plan.registers)
     carried = LayeredDepth.from_sections(plan.sections(), regs)
     in_turn = [carried.depth(p) for p in range(5)]
@@ -228,7 +227,7 @@ def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: in
     assert layer is not None and layer.balance is not None
     shape = layer.balance.shape
     assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
-    gadget = next(g for g, _ in layer.gadgets() if isinstance(g, SumsPhase))
+    gadget = next(k.example.build() for k, _ in layer.kinds() if k.key[0] == "sums")
     regs = (Register("q", s.num_variables + layer.num_ancillas),)
     own, bound = gadget_depth(gadget, regs), _arithmetic_depth_bound(shape)
     assert bound.depth >= own.depth and bound.two_qubit_depth >= own.two_qubit_depth
@@ -260,3 +259,17 @@ def test_auto_is_exact_up_to_the_budget_on_one_layer_whatever_p() -> None:
 
 def test_depth_of_an_empty_circuit() -> None:
     assert LayeredDepth(0, [], []).depth(3) == Depth()
+
+
+# --- every registered gadget example -------------------------------------------------------------------------------
+def test_own_depth_of_every_registered_gadget_example_is_its_lowered_depth() -> None:
+    from circuitgen.call_graph import Deferred, GadgetKind
+    from circuitgen.gadgets.examples import gadget_examples
+    from circuitgen.lowering import WORK_REGISTER
+
+    for label, g in gadget_examples():
+        gadget = g.build() if isinstance(g, Deferred) else g
+        kind = GadgetKind.of(gadget)
+        top = max((q + 1 for gate in gadget.emit() for q in gate.qubits), default=1)
+        regs = (Register("q", top), Register(WORK_REGISTER, kind.work)) if kind.work else (Register("q", top),)
+        assert gadget_depth(gadget, regs) == depths(lowered_gates(gadget, regs), sum(r.size for r in regs)), label

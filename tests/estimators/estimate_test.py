@@ -6,13 +6,13 @@ import pytest
 
 from circuitgen.cost import Cost
 from circuitgen.lowering import LOGICAL_BASIS, lower
+from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit
 from estimators.counts import count
 from estimators.crosscheck import Case, crosscheck, crosscheck_cases, with_obstacles
 from estimators.depth import Depth, depths
 from estimators.estimate import (
     EstimateOptions,
-    PlanOptions,
     Point,
     depth_bound,
     estimate_point,

@@ -12,8 +12,9 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
+from circuitgen.options import PlanOptions
 from estimators import formulas
-from estimators.estimate import Estimate, EstimateOptions, PlanOptions, estimate_point
+from estimators.estimate import Estimate, EstimateOptions, estimate_point
 from estimators.formulas import GATE_NAMES, QUANTITIES, evaluate, formula_table
 from estimators.sweep import grid_points
 from gridcover.hamiltonian import ising_hamiltonian

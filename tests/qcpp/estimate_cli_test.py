@@ -13,6 +13,7 @@ import typer
 from typer.testing import CliRunner
 
 from circuitgen.lowering import lower
+from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit
 from estimators.counts import count
 from estimators.formulas import QUANTITIES
@@ -41,7 +42,7 @@ def _app() -> typer.Typer:
 @pytest.fixture
 def run():  # type: ignore[no-untyped-def]
     runner = CliRunner()
-    env = {"COLUMNS": "250"}
+    env = {"COLUMNS": "250"}  # estimate keeps no cache on disk
 
     def invoke(*args: str):  # type: ignore[no-untyped-def]
         return runner.invoke(_app(), ["estimate", *args], env=env)
@@ -203,7 +204,7 @@ def test_ancilla_budget_trades_ancillas_for_cnots_and_matches_the_compiled_circu
     tight = json.loads(res.stdout)[0]
     assert tight["ancillas"] <= 40 < free["ancillas"]
     assert tight["cx"] > free["cx"]
-    rc = count(lower(qaoa_circuit(default_scenario(5, 5, 2), 1, ancilla_budget=40)))
+    rc = count(lower(qaoa_circuit(default_scenario(5, 5, 2), 1, PlanOptions(ancilla_budget=40))))
     assert (tight["qubits"], tight["cx"], tight["t"]) == (rc.qubits, rc.cx, rc.t)
     bad = run("--grid", "3x3", "--ancilla-budget", "-1")
     assert bad.exit_code == 2

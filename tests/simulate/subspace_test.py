@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from circuitgen.options import PlanOptions
 from circuitgen.phase import phase_plan
 from gridcover.cost import cost, separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
@@ -459,7 +460,7 @@ def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial
     from simulate.sparse import simulate_sparse
 
     angles = [0.3, 1.1, 0.17, 0.6]
-    circ = qaoa_circuit(s, 2, rule=rule, initial=initial)  # type: ignore[arg-type]
+    circ = qaoa_circuit(s, 2, PlanOptions(rule=rule, initial=initial))  # type: ignore[arg-type]
     bindings = {"gamma_0": angles[0], "beta_0": angles[1], "gamma_1": angles[2], "beta_1": angles[3]}
     gate_level = simulate_sparse(circ, 0, bindings)
     mine = SubspaceQAOA(s, rule=rule, initial=initial).state_dict(angles, key="index")  # type: ignore[arg-type]

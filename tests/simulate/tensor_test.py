@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from circuitgen.options import PlanOptions
 from gridcover.presets import default_scenario
 from gridcover.scenario import load_scenario
 from qcpp.cli import app
@@ -107,7 +108,7 @@ def test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes(tmp_
     s = default_scenario(2, 3, 2)
     angles = {"gamma_0": 0.4, "beta_0": 0.9, "gamma_1": 0.3, "beta_1": 1.2}
     # unfused partial mixers: each is a block with clean ancillas at both ends (what the tensor backend compiles)
-    c = compile_scenario(s, 2, lowered=True, bindings=angles, fuse=False).circuit
+    c = compile_scenario(s, 2, PlanOptions(fuse=False), lowered=True, bindings=angles).circuit
     n = s.num_variables
     ancillas = list(range(n, c.num_qubits))
     ops = collapse_ancilla_blocks(c, ancillas)

@@ -54,7 +54,10 @@ class StatePrep:
 
     @property
     def kind(self) -> Hashable:
-        """The gate list itself (state preparation is one of a kind)."""
+        """``("x_layer", n)`` for ``n`` X gates on distinct qubits (equal up to qubit names), else the gate list
+        itself (a state preparation is one of a kind)."""
+        if all(g.name == "x" for g in self.gates) and len({g.qubits for g in self.gates}) == len(self.gates):
+            return ("x_layer", len(self.gates))
         return ("state_prep", self.gates)
 
     @cached_property

@@ -19,9 +19,8 @@ partial mixers' kinds (their plans) and which qubits they share (:attr:`MixerJun
 slot of the right one, the slot of the left one on the same qubit). The cost of a kind is computed once, by
 lowering the kind's own canonical gate list (a few dozen gates on at most 22 qubits) and cached, and reused for
 every junction of that kind (a grid has a handful); ``tests/circuitgen/junction_test.py`` checks it against
-the lowered count of every junction the compiler emits on a sweep of scenarios. :meth:`MixerJunction.saving`
-is what the fusion removes (the leaves' cost minus the junction's), so a layer's mixer costs
-``sum(partial mixers) - sum(junction savings)``, which is how :mod:`estimators.mixer_count` counts it.
+the lowered count of every junction the compiler emits on a sweep of scenarios. The call graph lists the
+junctions and rotations themselves (:mod:`circuitgen.mixer_classes` counts them by class).
 
 The ``paper`` rule's controlled-X network (:class:`~circuitgen.gadgets.partial_mixer.McxPartialMixer`) is not
 fused: it is lowered leaf by leaf on purpose (see its ``emit_blocks``).
@@ -122,14 +121,6 @@ class MixerJunction:
         """Cost with ANDs and Toffolis kept whole."""
         return _junction_costs(self.kind)[1]  # type: ignore[arg-type]
 
-    def saving(self) -> Cost:
-        """What the fusion removes: the unfused leaves' cost minus :meth:`cost` (every count >= 0)."""
-        return _junction_costs(self.kind)[2]  # type: ignore[arg-type]
-
-    def logical_saving(self) -> Cost:
-        """The same for the logical cost."""
-        return _junction_costs(self.kind)[3]  # type: ignore[arg-type]
-
     def emit(self) -> list[Gate]:
         """The mirrored leaves of ``left``, then the compute leaves of ``right``."""
         tail = self.left.parts()[2] if self.left is not None else []
@@ -143,39 +134,19 @@ def _plan(kind: Hashable) -> MixerPlan:
     return plan_parity_mixer(program, target)
 
 
-def _leaves(plan: MixerPlan, part: str, logical: bool) -> Cost:
-    """The compute leaves (``part="compute"``) or their mirror (``"mirror"``) priced leaf by leaf."""
-    price = leaf_logical_cost if logical else leaf_cost
-    total = Cost()
-    for name, slots in plan.compute:
-        k = len(slots) - 1 if name == "mcx" else 0
-        total += price("and_dg" if part == "mirror" and name == "and" else name, k)
-    return total
-
-
-def _minus(a: Cost, b: Cost) -> Cost:
-    out = a.to_dict()
-    for k, v in b.items:
-        out[k] = out.get(k, 0) - v
-    return Cost.of(out)
-
-
 @lru_cache(maxsize=4096)
-def _junction_costs(kind: tuple) -> tuple[Cost, Cost, Cost, Cost]:
-    """Lowered cost, logical cost and the two savings of a junction kind, from its canonical gate list: the left
-    plan's slots on qubits ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on
-    fresh qubits otherwise."""
+def _junction_costs(kind: tuple) -> tuple[Cost, Cost]:
+    """Lowered and logical cost of a junction kind, from its canonical gate list: the left plan's slots on qubits
+    ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on fresh qubits
+    otherwise."""
     _, left_kind, right_kind, overlap = kind
     gates: list[Gate] = []
     n = 0
-    leaves, logical_leaves = Cost(), Cost()
     if left_kind is not None:
         plan = _plan(left_kind)
         slots = plan_slots(plan, left_kind[1].num_outer)
         gates += emit_plan(plan, {s: i for i, s in enumerate(slots)}, 0.0)[2]
         n = len(slots)
-        leaves += _leaves(plan, "mirror", False)
-        logical_leaves += _leaves(plan, "mirror", True)
     if right_kind is not None:
         plan = _plan(right_kind)
         slots = plan_slots(plan, right_kind[1].num_outer)
@@ -185,12 +156,9 @@ def _junction_costs(kind: tuple) -> tuple[Cost, Cost, Cost, Cost]:
                 shared, n = n, n + 1
             qubit[s] = shared
         gates += emit_plan(plan, qubit, 0.0)[0]
-        leaves += _leaves(plan, "compute", False)
-        logical_leaves += _leaves(plan, "compute", True)
     n = max((q + 1 for g in gates for q in g.qubits), default=1)
     circ = Circuit([("q", n)], [Section("junction", tuple(gates))])
-    cost, logical = Cost.count(lower(circ).gates), Cost.count(lower(circ, LOGICAL_BASIS).gates)
-    return cost, logical, _minus(leaves, cost), _minus(logical_leaves, logical)
+    return Cost.count(lower(circ).gates), Cost.count(lower(circ, LOGICAL_BASIS).gates)
 
 
 def mixer_pieces(

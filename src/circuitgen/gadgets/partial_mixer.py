@@ -24,8 +24,8 @@ temporary, then ``csbf`` (``XXXX`` rotation controlled by the output; 8 CX), the
 The cost of both is computed from the plan (a short list of leaf kinds), never from emitted gates; the plan is
 cached per *kind* (the program with grid edges replaced by local positions), so a circuit's cost is a sum over
 its partial-mixer kinds. In a circuit, consecutive parity-basis partial mixers are fused at their boundaries
-(:mod:`circuitgen.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`), which subtracts a saving per
-junction kind.
+(:mod:`circuitgen.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`): the layer is then listed as
+junction and rotation kinds.
 
 Example:
     >>> from gridcover.presets import default_scenario

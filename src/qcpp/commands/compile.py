@@ -43,13 +43,15 @@ from rich.table import Table
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.compile import compile_scenario, parse_bindings
+from circuitgen.options import PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
-from estimators.estimate import PlanOptions
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
 from fileio.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
 from qcpp.progress import Progress
 from qcpp.render import print_table
+
+from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -69,7 +71,7 @@ def compile_command(
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
-    rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
+    rule: RuleFlag = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
@@ -78,32 +80,11 @@ def compile_command(
         str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
     ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
-    initial: Annotated[
-        str, typer.Option("--initial", help="Initial state: initial_path or representatives.")
-    ] = "initial_path",
-    target: Annotated[
-        str,
-        typer.Option(
-            "--target",
-            help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
-            "or ft (fewest T and rotations).",
-        ),
-    ] = "nisq",
-    phase: Annotated[
-        str,
-        typer.Option(
-            "--phase",
-            help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
-            "(the Ising Hamiltonian, O((re)^2)).",
-        ),
-    ] = "feasible",
-    optimize: Annotated[
-        str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
-    ] = "cx",
-    ancilla_budget: Annotated[
-        int | None,
-        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
-    ] = None,
+    initial: InitialFlag = "initial_path",
+    target: TargetFlag = "nisq",
+    phase: PhaseFlag = "feasible",
+    optimize: OptimizeFlag = "cx",
+    ancilla_budget: AncillaBudgetFlag = None,
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -115,16 +96,7 @@ def compile_command(
     force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    if phase not in ("feasible", "whole-space"):
-        raise ValueError(f"--phase: expected feasible or whole-space, got {phase!r}")
-    if optimize not in ("cx", "depth"):
-        raise ValueError(f"--optimize: expected cx or depth, got {optimize!r}")
-    if ancilla_budget is not None and ancilla_budget < 0:
-        raise ValueError(f"--ancilla-budget: must be at least 0, got {ancilla_budget}")
-    if rule not in ("exact", "paper"):
-        raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
-    if target not in ("nisq", "ft"):
-        raise ValueError(f"--target: expected nisq or ft, got {target!r}")
+    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     extra = list(assignments or [])
@@ -140,9 +112,6 @@ def compile_command(
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario, check_range=True)
-    options = PlanOptions(
-        rule=rule, initial=initial, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget
-    )
     size = _guard(s, p, options, max_gates, force)
     if qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -154,10 +123,7 @@ def compile_command(
         if qasm is not None:
             summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
-        result = compile_scenario(
-            s, p, rule=rule, lowered=lowered, bindings=bindings, initial=initial, target=target,  # type: ignore[arg-type]
-            phase=phase, optimize=optimize, ancilla_budget=ancilla_budget,  # type: ignore[arg-type]
-        )  # fmt: skip
+        result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
         summary, phase_explain = result.summary(), result.phase_explain
     if explain:
         summary["phase_explain"] = phase_explain
@@ -227,7 +193,7 @@ def _stream(
     """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
     independent of ``p``); return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the
     phase plan's choices. ``progress`` counts the gates of every section handed out."""
-    from estimators.estimate import plan_sections
+    from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
     known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
@@ -235,7 +201,7 @@ def _stream(
     if unknown:
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
-    plan = options.plan(s, p)
+    plan = qaoa_plan(s, p, options)
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
@@ -246,7 +212,7 @@ def _stream(
         walks += 1
         if progress is not None and qasm is not None:
             progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
-        for sec in plan_sections(plan, tuple(plan.registers), lowered):
+        for sec in plan.emit_sections(lowered):
             out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
             yield out
             if progress is not None:

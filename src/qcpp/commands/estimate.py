@@ -34,6 +34,8 @@ from gridcover.errors import ScenarioError
 from qcpp.progress import Progress
 from qcpp.render import print_table
 
+from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
+
 __all__ = ["estimate", "register"]
 
 HELP = (
@@ -69,18 +71,12 @@ def estimate(
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
     ] = None,
-    rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
-    target: Annotated[
-        str, typer.Option("--target", help="Constructions chosen for: nisq (fewest CNOTs) or ft (fewest T).")
-    ] = "nisq",
-    phase: Annotated[
-        str, typer.Option("--phase", help="Phase separator: feasible (default) or whole-space (the Ising form).")
-    ] = "feasible",
-    optimize: Annotated[str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth.")] = "cx",
-    ancilla_budget: Annotated[
-        int | None,
-        typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
-    ] = None,
+    rule: RuleFlag = "exact",
+    initial: InitialFlag = "initial_path",
+    target: TargetFlag = "nisq",
+    phase: PhaseFlag = "feasible",
+    optimize: OptimizeFlag = "cx",
+    ancilla_budget: AncillaBudgetFlag = None,
     explain: Annotated[
         bool,
         typer.Option(
@@ -148,7 +144,7 @@ def estimate(
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
-    from estimators.estimate import DEPTH_MODES, EstimateOptions, PlanOptions
+    from estimators.estimate import DEPTH_MODES, EstimateOptions
     from estimators.fault_tolerant import TOFFOLI_T_CHOICES
     from estimators.physical import QEC_SCHEMES, QUBIT_MODELS
     from estimators.report import estimate_report, formula_report, points_from_options
@@ -164,11 +160,6 @@ def estimate(
         (compare not in (None, "paper"), f"bad --compare {compare!r}: the only comparison is 'paper'"),
         (paper_doubling not in DOUBLINGS, f"bad --paper-doubling {paper_doubling!r}: expected one of "
          f"{', '.join(DOUBLINGS)}"),
-        (rule not in ("exact", "paper"), f"bad --rule {rule!r}: expected exact or paper"),
-        (target not in ("nisq", "ft"), f"bad --target {target!r}: expected nisq or ft"),
-        (phase not in ("feasible", "whole-space"), f"bad --phase {phase!r}: expected feasible or whole-space"),
-        (optimize not in ("cx", "depth"), f"bad --optimize {optimize!r}: expected cx or depth"),
-        (ancilla_budget is not None and ancilla_budget < 0, f"bad --ancilla-budget {ancilla_budget}: must be >= 0"),
         (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
         (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
         (depth not in DEPTH_MODES, f"bad --depth {depth!r}: expected one of {', '.join(DEPTH_MODES)}"),
@@ -181,6 +172,10 @@ def estimate(
     for bad, message in checks:
         if bad:
             raise _fail(message)
+    try:
+        plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
+    except ValueError as exc:
+        raise _fail(str(exc)) from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
     try:
@@ -194,7 +189,7 @@ def estimate(
             err=True,
         )
     options = EstimateOptions(
-        plan=PlanOptions(rule=rule, target=target, phase=phase, optimize=optimize, ancilla_budget=ancilla_budget),
+        plan=plan,
         epsilon=epsilon,
         toffoli_t=toffoli_t,
         depth=depth,  # type: ignore[arg-type]

@@ -20,9 +20,10 @@ Coefficients are vectors over one robot's edges (numpy), the endpoint and corner
 very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
 touch. :func:`phase_layer` answers only where this picture is exact and the plan has no choice that couples
 groups (the balance has too many products for the coupling alternative and every class picks a gadget over
-couplings); elsewhere it returns ``None`` and the caller plans as usual. ``tests/estimators/phase_count_test.py``
-checks it against :func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default
-grids and on random endpoints.
+couplings); elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
+decides, lists the planned gadgets instead. ``tests/circuitgen/phase_classes_test.py`` checks it against
+:func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default grids and on random
+endpoints.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -42,6 +43,7 @@ from itertools import repeat
 
 import numpy as np
 
+from circuitgen.call_graph import Deferred, GadgetKind
 from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
@@ -94,22 +96,42 @@ class PhaseLayer:
             logical += self.balance.shape.logical_cost()
         return lowered, logical
 
-    def gadgets(self) -> list[tuple[Gadget, int]]:
-        """``(representative gadget, count)`` per distinct part, each on data qubits ``0 ..`` and ancillas from
-        :attr:`num_variables` on, ready to emit (for per-kind figures such as depth)."""
-        anc = range(self.num_variables, self.num_variables + self.num_ancillas)
-        out: list[tuple[Gadget, int]] = []
+    def kinds(self) -> list[tuple[GadgetKind, int]]:
+        """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
+        rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
+        anc = tuple(range(self.num_variables, self.num_variables + self.num_ancillas))
+        out: list[tuple[GadgetKind, int]] = []
         if self.rotations:
-            out.append((IsingPhase("gamma", tuple(zip(range(self.rotations), repeat(1.0))), ()), 1))
+            n = self.rotations
+            rz = Cost.of(rz=n)
+
+            def rotations() -> Gadget:
+                return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
+
+            out.append((GadgetKind.of(Deferred(("ising", n, 0), rz, rz, rotations)), 1))
+        for g, count in self._placed_parts(anc):
+            out.append((GadgetKind.of(g), count))
+        if self.balance is not None:
+            balance, shape = self.balance, self.balance.shape
+
+            def arithmetic() -> Gadget:
+                return replace(balance.gadget(), ancillas=anc)
+
+            deferred = Deferred(
+                ("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas
+            )
+            out.append((GadgetKind.of(deferred), 1))
+        return out
+
+    def _placed_parts(self, anc: tuple[int, ...]) -> list[tuple[Gadget, int]]:
+        out: list[tuple[Gadget, int]] = []
         for g, count in self.parts:
             if isinstance(g, VisitPhase):
                 d = len(g.visitors[0])
                 visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
-                out.append((replace(g, visitors=visitors, ancillas=tuple(anc)), count))
+                out.append((replace(g, visitors=visitors, ancillas=anc), count))
             elif isinstance(g, SumsPhase):
-                out.append((replace(g, ancillas=tuple(anc)), count))
-        if self.balance is not None:
-            out.append((replace(self.balance.gadget(), ancillas=tuple(anc)), 1))
+                out.append((replace(g, ancillas=anc), count))
         return out
 
 

@@ -1,37 +1,36 @@
-"""The mixer's cost without building its partial mixers: counts of local *signatures*, one gadget per signature.
+"""The mixer's call graph without building its partial mixers: counts of local *signatures* on an open grid.
 
 A partial mixer's logic program (:func:`gridcover.sbf.sbf_logic`) depends only on the plaquette's local
-picture: whether each corner is an endpoint of the robot, how many variable outer edges each corner has, whether
-start and goal are the plaquette's diagonal, and whether every plaquette edge is a variable. Equal pictures give
-equal programs up to the edges' names, hence equal gadget kinds and costs
-(:func:`circuitgen.gadgets.partial_mixer.partial_mixer`). On a grid without obstacles the picture of a plaquette
-that touches neither endpoint of a robot depends only on whether its rows and columns lie on the boundary
-(corner degree 2, 3 or 4: outer edges = degree - 2), so one robot's mixer is
+picture (:class:`gridcover.sbf.LocalPicture`): whether each corner is an endpoint of the robot, how many variable
+outer edges each corner has, and whether start and goal are the plaquette's diagonal. Equal pictures give equal
+programs up to the edges' names, hence equal gadget kinds (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`).
+On a grid without obstacles the picture of a plaquette that touches neither endpoint of a robot depends only on
+whether its rows and columns lie on the boundary (corner degree 2, 3 or 4: outer edges = degree - 2), so one
+robot's partial mixers are
 
     base counts of the grid (at most 9 classes, counted arithmetically)
     - the classes of the <= 8 plaquettes around its start and goal + their own pictures,
 
-and the whole mixer is a sum over robots of ``O(1)`` corrections: ``O(robots)`` work per scenario, whatever the
+and the whole layer is a sum over robots of ``O(1)`` corrections: ``O(robots)`` work per scenario, whatever the
 grid size.
 
-Consecutive partial mixers are fused at their boundary (:mod:`circuitgen.gadgets.junction`), so the layer costs
-the partial mixers minus one *junction saving* per ordered pair of consecutive partial mixers. A pair's saving
-depends on the two pictures and on where the second plaquette lies relative to the first (its offset
-``(di, dj)``; plaquettes more than two rows or columns apart, or of different robots, share only the temporaries:
-``far``), so the pairs are counted the same way: the horizontal neighbours ``(i, j) -> (i, j + 1)`` and the row
-wraps ``(i, cols - 2) -> (i + 1, 0)`` of the plain grid by classes of rows and columns, minus the pairs next to
-a robot's endpoints plus their own, plus one pair between consecutive robots.
+The parity-basis partial mixers of a layer are cut at their rotations (:mod:`circuitgen.gadgets.junction`): the
+layer is one rotation per partial mixer, one junction per ordered pair of consecutive partial mixers, and the
+two open ends. A junction's kind depends on the two pictures and on where the second plaquette lies relative to
+the first (its offset ``(di, dj)``; plaquettes more than two rows or columns apart, or of different robots, share
+only the temporaries: ``far``), so the pairs are counted the same way: the horizontal neighbours
+``(i, j) -> (i, j + 1)`` and the row wraps ``(i, cols - 2) -> (i + 1, 0)`` of the plain grid by classes of rows
+and columns, minus the pairs next to a robot's endpoints plus their own, plus one pair between consecutive robots.
 
-Each distinct picture's cost is asked once (from a real gadget of that picture) and cached for every
-later scenario. ``tests/estimators/mixer_count_test.py`` checks :func:`mixer_layer` against
-:meth:`circuitgen.qaoa.QaoaPlan.cost_by_section` on every grid up to 8x8 with 1..8 robots, both rules and
-targets; scenarios with obstacles use the plan itself (:func:`estimators.estimate.layer_costs`).
+Each signature's partial mixer and each junction class's kind is built once (from a real plaquette) and kept
+for every later scenario. :meth:`circuitgen.qaoa.QaoaPlan.call_graph` uses this on grids without obstacles;
+``tests/circuitgen/call_graph_test.py`` checks it against the call graph of the emitted gadgets.
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> from circuitgen.qaoa import qaoa_plan
     >>> s = default_scenario(6, 5, 3)
-    >>> mixer_layer(s).cost == qaoa_plan(s, 1).cost_by_section()["mixer"]
+    >>> layer = mixer_part(s)
+    >>> sum(n for _, n in layer.kinds) == 3 * 4 * 5 * 2 + 1   # rotations, junctions between them, two ends
     True
 """
 
@@ -41,50 +40,37 @@ from collections import Counter
 from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
-from circuitgen.angles import Angle
-from circuitgen.cost import Cost
-from circuitgen.gadgets.junction import MixerJunction
-from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
+from gridcover.sbf import LocalPicture
 from gridcover.scenario import Scenario
 
-__all__ = ["MixerLayer", "mixer_layer"]
+from .angles import Angle
+from .call_graph import GadgetKind
+from .gadgets.junction import MixerJunction, MixerRotation
+from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
+
+__all__ = ["MixerPart", "mixer_part"]
 
 _BETA = Angle.symbol("beta_0")  # symbolic, as in the circuit: a numeric 0 would let the lowering drop rotations
 Node = tuple[int, int]
-Signature = tuple[Hashable, ...]
+Signature = LocalPicture
+Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
 
 
 @dataclass(frozen=True)
-class MixerLayer:
-    """One layer's mixer.
+class MixerPart:
+    """One layer's mixer as gadget kinds.
 
     Attributes:
-        cost: lowered cost.
-        logical: logical cost (ANDs and Toffolis whole).
+        kinds: ``(kind, multiplicity)`` pairs (a kind may appear more than once: the call graph merges them).
         logic_width: ``logic`` ancillas the largest partial mixer needs.
         work_need: ``work`` ancillas its largest multi-controlled X needs.
-        kinds: ``(robot, (i, j), count)`` per signature: a representative partial mixer (robot and plaquette
-            ``(i, j)``) and how many partial mixers of the layer share its signature.
-        signatures: the signature of each entry of ``kinds`` (a key for per-kind figures such as depth).
     """
 
-    cost: Cost
-    logical: Cost
+    kinds: tuple[tuple[GadgetKind, Count], ...]
     logic_width: int
     work_need: int
-    kinds: tuple[tuple[int, tuple[int, int], int], ...] = ()
-    signatures: tuple[Signature, ...] = ()
-
-    def gadgets(self, scenario: Scenario, rule: str = "exact", target: str = "nisq") -> list[tuple[object, int]]:
-        """``(representative gadget, count)`` per signature (for per-kind figures such as depth)."""
-        out = []
-        for robot, (i, j), n in self.kinds:
-            plaq = scenario.grid.plaquettes[i * (scenario.grid.cols - 1) + j]
-            g = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
-            if g is not None:
-                out.append((g, n))
-        return out
 
 
 def _corners(i: int, j: int) -> tuple[Node, Node, Node, Node]:
@@ -98,24 +84,20 @@ def _outer(node: Node, rows: int, cols: int) -> int:
 
 @lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
 def _signature(i: int, j: int, rows: int, cols: int, start: Node | None, goal: Node | None) -> Signature:
+    """The :class:`~gridcover.sbf.LocalPicture` of plaquette ``(i, j)`` on an open grid."""
     corners = _corners(i, j)
-    ends = (start, goal)
-    diagonal = {start, goal} in ({corners[0], corners[2]}, {corners[1], corners[3]})
-    return (
-        tuple(c in ends for c in corners),
-        tuple(_outer(c, rows, cols) for c in corners),
-        diagonal,
-    )
+    return LocalPicture.of(corners, start, goal, [_outer(c, rows, cols) for c in corners])
 
 
-def _axis_classes(n: int) -> list[tuple[int, int]]:
+def _axis_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative index, count)`` of plaquette rows (or columns) by which of their two node rows lie
-    on the boundary: both (``n == 2``), the first, the last, neither."""
+    on the boundary: both (``n == 2``), the first, the last, neither; the counts for a side of ``size`` nodes
+    (default ``n``; a symbol for the closed forms of :mod:`estimators.formulas`)."""
     if n == 2:
         return [(0, 1)]
-    out = [(0, 1), (n - 2, 1)]
+    out: list[tuple[int, Count]] = [(0, 1), (n - 2, 1)]
     if n > 3:
-        out.append((1, n - 3))
+        out.append((1, (n if size is None else size) - 3))
     return out
 
 
@@ -124,41 +106,58 @@ def _touching(node: Node, rows: int, cols: int) -> list[tuple[int, int]]:
     return [(i, j) for i in (r - 1, r) for j in (c - 1, c) if 0 <= i < rows - 1 and 0 <= j < cols - 1]
 
 
-@lru_cache(maxsize=4096)
-def _kind_cost(sig: Signature, rule: str, target: str, scenario: Scenario, robot: int, pindex: int) -> tuple:
-    """Cost, logical cost, temporaries and work need of the partial mixer of ``sig`` (one representative)."""
-    del sig  # the cache key; the representative realises it
-    plaq = scenario.grid.plaquettes[pindex]
-    g = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
-    if g is None:
-        return Cost(), Cost(), 0, 0
-    return g.cost(), g.logical_cost(), g.num_temps, mixer_work_need([g])
+Mixer = ParityPartialMixer | McxPartialMixer
+_REPRESENTATIVE: dict[tuple[Signature, str, str], Mixer | None] = {}
+"""A partial mixer per signature, rule and target (``None``: no flip is ever allowed), for every later scenario."""
 
 
-_KIND_CACHE: dict[tuple[Signature, str, str], tuple] = {}
+_KINDS: dict[Hashable, tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]] = {}
 
 
-def _kind(sig: Signature, rule: str, target: str, scenario: Scenario, robot: int, ij: tuple[int, int]) -> tuple:
-    key = (sig, rule, target)
-    hit = _KIND_CACHE.get(key)
+def _kinds_of(m: Mixer) -> tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]:
+    """A representative's kinds: itself, its rotation, the layer's opening junction into it and the closing one
+    out of it (kept per partial-mixer kind: a sweep meets the same few again and again)."""
+    hit = _KINDS.get(m.kind)
     if hit is None:
-        pindex = ij[0] * (scenario.grid.cols - 1) + ij[1]
-        hit = _KIND_CACHE[key] = _kind_cost(sig, rule, target, scenario, robot, pindex)
-    return hit
+        rotation = MixerRotation(m) if isinstance(m, ParityPartialMixer) else m
+        opening = MixerJunction(None, m) if isinstance(m, ParityPartialMixer) else m
+        closing = MixerJunction(m, None) if isinstance(m, ParityPartialMixer) else m
+        hit = _KINDS[m.kind] = tuple(GadgetKind.of(g) for g in (m, rotation, opening, closing))  # type: ignore[assignment]
+    return hit  # type: ignore[return-value]
+
+
+def _representative(
+    sig: Signature, rule: str, target: str, scenario: Scenario, robot: int, ij: tuple[int, int]
+) -> Mixer | None:
+    key = (sig, rule, target)
+    if key not in _REPRESENTATIVE:
+        plaq = scenario.grid.plaquettes[ij[0] * (scenario.grid.cols - 1) + ij[1]]
+        _REPRESENTATIVE[key] = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+    return _REPRESENTATIVE[key]
 
 
 @lru_cache(maxsize=64)
-def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -> MixerLayer:
-    """One layer's mixer cost by signature counting (see the module docstring; cached: the counts and the depth
-    bound of a scenario both ask).
+def mixer_part(
+    scenario: Scenario,
+    rule: str = "exact",
+    target: str = "nisq",
+    fuse: bool = True,
+    sizes: tuple[Count, Count] | None = None,
+) -> MixerPart:
+    """One layer's mixer as gadget kinds by signature counting (see the module docstring).
 
     Args:
         scenario: a scenario without obstacles.
         rule: SBF rule.
         target: ``nisq`` or ``ft``.
+        fuse: cut the parity-basis partial mixers at their rotations (junctions and rotations; the circuit's
+            default), or list the partial mixers themselves.
+        sizes: count the classes for a grid of ``sizes = (rows, cols)`` nodes (sympy expressions, for the
+            closed forms of :mod:`estimators.formulas`) rather than the scenario's: the scenario then stands for
+            every grid with the same endpoints near its corners (sides of at least 5 nodes where symbolic).
 
     Returns:
-        The :class:`MixerLayer`.
+        The :class:`MixerPart`.
 
     Raises:
         ValueError: the scenario has obstacles.
@@ -169,8 +168,9 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
     rows, cols = g.rows, g.cols
     base: Counter[Signature] = Counter()
     where: dict[Signature, tuple[int, int]] = {}
-    for i, ni in _axis_classes(rows):
-        for j, nj in _axis_classes(cols):
+    size_r, size_c = sizes if sizes is not None else (rows, cols)
+    for i, ni in _axis_classes(rows, size_r):
+        for j, nj in _axis_classes(cols, size_c):
             sig = _signature(i, j, rows, cols, None, None)
             base[sig] += ni * nj
             where.setdefault(sig, (i, j))
@@ -188,35 +188,24 @@ def mixer_layer(scenario: Scenario, rule: str = "exact", target: str = "nisq") -
         for sig, ij in where.items():  # a plain representative this robot does not touch
             if sig not in reps and ij not in touched:
                 reps[sig] = (robot, ij)
-    cost: Counter[str] = Counter()
-    logical: Counter[str] = Counter()
-    if rule == "exact":  # only the parity-basis partial mixers are fused (see circuitgen.gadgets.junction)
-        for key, n in _junction_counts(scenario, rule, target).items():
-            if n:
-                saving, logical_saving = _saving(key, rule, target, scenario)
-                for name, k in saving.items:
-                    cost[name] -= n * k
-                for name, k in logical_saving.items:
-                    logical[name] -= n * k
+    fused = rule == "exact" and fuse  # only the parity-basis partial mixers are fused (circuitgen.gadgets.junction)
+    kinds: list[tuple[GadgetKind, Count]] = []
     width = work = 0
-    kinds = []
-    sigs = []
     for sig, n in counts.items():
-        if n <= 0:
+        if n == 0:  # (never negative: corrections remove members of a class)
             continue
         if sig not in reps:  # every robot touches the class's first plaquette: find another of that class
             reps[sig] = _find(scenario, sig)
         robot, ij = reps[sig]
-        c, lc, temps, need = _kind(sig, rule, target, scenario, robot, ij)
-        for name, k in c.items:
-            cost[name] += n * k
-        for name, k in lc.items:
-            logical[name] += n * k
-        if c.total:
-            width, work = max(width, temps), max(work, need)
-            kinds.append((robot, ij, n))
-            sigs.append(sig)
-    return MixerLayer(Cost.of(cost), Cost.of(logical), width, work, tuple(kinds), tuple(sigs))
+        m = _representative(sig, rule, target, scenario, robot, ij)
+        if m is None:
+            continue
+        kind, rotation, _, _ = _kinds_of(m)
+        width, work = max(width, kind.temporaries), max(work, kind.work)
+        kinds.append((rotation if fused else kind, n))
+    if fused:
+        kinds += _junction_kinds(scenario, rule, target, (size_r, size_c))
+    return MixerPart(tuple(kinds), width, work)
 
 
 def _find(scenario: Scenario, sig: Signature) -> tuple[int, tuple[int, int]]:
@@ -239,17 +228,18 @@ def _relation(a: tuple[int, int], b: tuple[int, int]) -> Hashable:
     return (di, dj) if abs(di) <= 2 and abs(dj) <= 2 else "far"
 
 
-def _pair_classes(n: int) -> list[tuple[int, int]]:
+def _pair_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative index, count)`` of the ``n - 1`` consecutive index pairs ``(k, k + 1)`` of ``0..n-1``, by
-    whether ``k`` is the first pair and whether it is the last (what the two pictures depend on)."""
+    whether ``k`` is the first pair and whether it is the last (what the two pictures depend on); the counts for
+    ``size`` items (default ``n``)."""
     pairs = n - 1
     if pairs <= 0:
         return []
-    out = [(0, 1)]
+    out: list[tuple[int, Count]] = [(0, 1)]
     if pairs > 1:
         out.append((pairs - 1, 1))
     if pairs > 2:
-        out.append((1, pairs - 2))
+        out.append((1, (n if size is None else size) - 3))
     return out
 
 
@@ -261,9 +251,12 @@ def _plain_pair(a: tuple[int, int], b: tuple[int, int], rows: int, cols: int) ->
     )
 
 
-def _junction_counts(scenario: Scenario, rule: str, target: str) -> Counter[tuple[Pair, tuple]]:
+def _junction_counts(
+    scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
+) -> tuple[Counter[tuple[Pair, tuple]], tuple[int, tuple[int, int]] | None, tuple[int, tuple[int, int]] | None]:
     """How many junctions of each class one layer has, with a realisation of each: ``((class, realisation),
-    count)``, a realisation being ``(robot_a, (i, j)_a, robot_b, (i, j)_b)``."""
+    count)``, a realisation being ``(robot_a, (i, j)_a, robot_b, (i, j)_b)``; and the layer's first and last
+    partial mixer ``(robot, (i, j))`` (``None`` if it has none)."""
     g = scenario.grid
     rows, cols = g.rows, g.cols
     prow, pcol = rows - 1, cols - 1  # plaquettes per column and per row
@@ -275,12 +268,12 @@ def _junction_counts(scenario: Scenario, rule: str, target: str) -> Counter[tupl
     # one robot's plain pairs: horizontal neighbours and row wraps, by classes
     base: Counter[Pair] = Counter()
     where: dict[Pair, tuple[tuple[int, int], tuple[int, int]]] = {}
-    for i, ni in _axis_classes(rows):
-        for j, nj in _pair_classes(pcol):
+    for i, ni in _axis_classes(rows, sizes[0]):
+        for j, nj in _pair_classes(pcol, sizes[1] - 1):
             key = _plain_pair((i, j), (i, j + 1), rows, cols)
             base[key] += ni * nj
             where.setdefault(key, ((i, j), (i, j + 1)))
-    for i, ni in _pair_classes(prow):
+    for i, ni in _pair_classes(prow, sizes[0] - 1):
         key = _plain_pair((i, pcol - 1), (i + 1, 0), rows, cols)
         base[key] += ni
         where.setdefault(key, ((i, pcol - 1), (i + 1, 0)))
@@ -288,13 +281,12 @@ def _junction_counts(scenario: Scenario, rule: str, target: str) -> Counter[tupl
     def present(robot: int, ij: tuple[int, int]) -> bool:
         rb = scenario.robots[robot]
         sig = _signature(*ij, rows, cols, rb.start, rb.goal)
-        return bool(_kind(sig, rule, target, scenario, robot, ij)[0].total)
+        return _representative(sig, rule, target, scenario, robot, ij) is not None
 
     counts: Counter[tuple[Pair, tuple]] = Counter()
     plain_counts: Counter[Pair] = Counter()
     used: dict[Pair, tuple] = {}  # a realisation of each plain class by an untouched pair
     ends: list[tuple[int, int] | None] = []  # per robot: first and last present plaquette index
-    firsts: list[int | None] = []
     for robot, rb in enumerate(scenario.robots):
         plain_counts.update(base)
         touched = {i * pcol + j for node in (rb.start, rb.goal) for i, j in _touching(node, rows, cols)}
@@ -319,13 +311,13 @@ def _junction_counts(scenario: Scenario, rule: str, target: str) -> Counter[tupl
                 used[key] = (robot, pa, robot, pb)
         first = next((k for k in range(total) if k not in touched or present(robot, at(k))), None)
         last = next((k for k in reversed(range(total)) if k not in touched or present(robot, at(k))), None)
-        firsts.append(first)
         ends.append(None if first is None else (first, last))  # type: ignore[arg-type]
     for key, n in plain_counts.items():
-        if n > 0:
+        if n != 0:
             counts[(key, used.get(key) or _find_pair(scenario, key))] += n
     # one junction between consecutive robots (skipping robots with no partial mixer)
     prev: tuple[int, int] | None = None
+    head: tuple[int, tuple[int, int]] | None = None
     for robot, span in enumerate(ends):
         if span is None:
             continue
@@ -335,8 +327,10 @@ def _junction_counts(scenario: Scenario, rule: str, target: str) -> Counter[tupl
             sa = _signature(*at(ka), rows, cols, rba.start, rba.goal)
             sb = _signature(*at(span[0]), rows, cols, rbb.start, rbb.goal)
             counts[((sa, sb, "far"), (ra, at(ka), robot, at(span[0])))] += 1
+        else:
+            head = (robot, at(span[0]))
         prev = (robot, span[1])
-    return counts
+    return counts, head, None if prev is None else (prev[0], at(prev[1]))
 
 
 def _find_pair(scenario: Scenario, key: Pair) -> tuple:
@@ -353,21 +347,33 @@ def _find_pair(scenario: Scenario, key: Pair) -> tuple:
     raise AssertionError(f"no pair realises the junction class {key}")  # pragma: no cover
 
 
-_SAVING_CACHE: dict[tuple, tuple[Cost, Cost]] = {}
+_JUNCTION: dict[tuple[Pair, str, str], GadgetKind] = {}
+"""The kind of each junction class, rule and target (from its first realisation), for every later scenario."""
 
 
-def _saving(item: tuple[Pair, tuple], rule: str, target: str, scenario: Scenario) -> tuple[Cost, Cost]:
-    """Saving and logical saving of a junction class (from its realisation, cached for every later scenario)."""
-    key, (ra, a, rb, b) = item
-    hit = _SAVING_CACHE.get((key, rule, target))
-    if hit is None:
-        g = scenario.grid
-        n = scenario.num_variables
+def _junction_kinds(
+    scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
+) -> list[tuple[GadgetKind, Count]]:
+    """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers, and the two open
+    ends (the first compute, the last uncompute)."""
+    g = scenario.grid
+    counts, head, tail = _junction_counts(scenario, rule, target, sizes)
 
-        def gadget(robot: int, ij: tuple[int, int]):  # type: ignore[no-untyped-def]
-            plaq = g.plaquettes[ij[0] * (g.cols - 1) + ij[1]]
-            return partial_mixer(scenario, robot, plaq, _BETA, n, rule, target)  # type: ignore[arg-type]
+    def mixer(robot: int, ij: tuple[int, int]) -> Mixer | None:
+        rb = scenario.robots[robot]
+        return _representative(_signature(*ij, g.rows, g.cols, rb.start, rb.goal), rule, target, scenario, robot, ij)
 
-        j = MixerJunction(gadget(ra, a), gadget(rb, b))
-        hit = _SAVING_CACHE[(key, rule, target)] = (j.saving(), j.logical_saving())
-    return hit
+    def placed(robot: int, ij: tuple[int, int]) -> Mixer | None:  # on this scenario's qubits: the overlap counts
+        plaq = g.plaquettes[ij[0] * (g.cols - 1) + ij[1]]
+        return partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+
+    out = []
+    for (key, (ra, a, rb, b)), n in counts.items():
+        kind = _JUNCTION.get((key, rule, target))
+        if kind is None:
+            kind = _JUNCTION[(key, rule, target)] = GadgetKind.of(MixerJunction(placed(ra, a), placed(rb, b)))  # type: ignore[arg-type]
+        out.append((kind, n))
+    if head is not None and tail is not None:
+        out.append((_kinds_of(mixer(*head))[2], 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(*tail))[3], 1))  # type: ignore[arg-type]
+    return out

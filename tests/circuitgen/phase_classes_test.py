@@ -8,11 +8,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from circuitgen.call_graph import Deferred
 from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.lowering import lower
 from circuitgen.phase import phase_plan
-from estimators.phase_count import PhaseLayer, phase_layer
+from circuitgen.phase_classes import PhaseLayer, phase_layer
 from gridcover.grid import Grid
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
@@ -30,8 +31,8 @@ def _same_as_plan(s: Scenario, target: str) -> bool:
     assert layer.logical_cost() == plan.logical_cost()
     assert layer.num_ancillas == plan.num_ancillas
     kinds: Counter = Counter()
-    for g, n in layer.gadgets():
-        kinds[g.kind] += n
+    for k, n in layer.kinds():
+        kinds[k.key] += n
     assert kinds == Counter(g.kind for g in plan.gadgets("gamma"))
     return True
 
@@ -42,7 +43,8 @@ def test_representatives_emit_their_cost_on_the_layers_qubits(target: str) -> No
     layer = phase_layer(s, target)
     assert layer is not None
     width = s.num_variables + layer.num_ancillas
-    for g, _ in layer.gadgets():
+    for k, _ in layer.kinds():
+        g = k.example.build() if isinstance(k.example, Deferred) else k.example
         gates = g.emit()
         assert max(q for gate in gates for q in gate.qubits) < width
         assert Cost.count(lower(Circuit([("q", width)], [Section("s", tuple(gates))])).gates) == g.cost()

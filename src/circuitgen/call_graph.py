@@ -1,0 +1,224 @@
+"""The QAOA circuit as a call graph: per part a multiset of gadget kinds (Qualtran's ``build_call_graph``).
+
+A :class:`GadgetKind` is what a gadget costs, not where it sits: its key (:attr:`Gadget.kind
+<circuitgen.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its lowered and logical cost, the
+clean ``logic`` temporaries and the ``work`` ancillas it needs, and an example gadget (placed somewhere) for
+whatever needs gates: its depth profile (:mod:`estimators.depth_compose`) or, later, a device-aware routed cost.
+Kinds compare and hash by key only, so a kind found by counting classes of plaquettes on one scenario equals the
+kind of the gadget the compiler emits on another.
+
+A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds, for the parts ``initial_state``,
+``phase`` (one layer's phase separator) and ``mixer`` (one layer's mixer), each kind with its multiplicity, and
+the widths of the shared ``logic`` and ``work`` registers. Every count the estimators report is a sum over it;
+binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitgen.qaoa.QaoaPlan.circuit`).
+
+Costs are looked up per key in one explicit cache (:data:`COSTS`): a sweep over thousands of scenarios prices
+each kind once.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.qaoa import qaoa_plan
+    >>> graph = qaoa_plan(default_scenario(3, 3, 1), 1).call_graph()
+    >>> sorted(graph.parts), graph.cost_by_part()["initial_state"].to_dict()
+    (['initial_state', 'mixer', 'phase'], {'x': 4})
+    >>> graph.cost(1) == qaoa_plan(default_scenario(3, 3, 1), 1).cost()
+    True
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from .cost import Cost
+from .gadgets import Gadget
+
+__all__ = ["COSTS", "PARTS", "CallGraph", "CostCache", "Deferred", "GadgetKind"]
+
+PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
+"""The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
+
+
+class CostCache:
+    """Lowered and logical cost per kind key, computed once from an example gadget (the one cost cache).
+
+    Example:
+        >>> from circuitgen.gadgets.phase_ising import IsingPhase
+        >>> g = IsingPhase("gamma", ((0, 1.0),), ())
+        >>> cache = CostCache()
+        >>> cache.costs(g.kind, g) == (g.cost(), g.logical_cost()), len(cache)
+        (True, 1)
+    """
+
+    def __init__(self, limit: int = 1 << 16) -> None:
+        self._costs: dict[Hashable, tuple[Cost, Cost]] = {}
+        self._limit = limit
+
+    def costs(self, key: Hashable, example: Gadget) -> tuple[Cost, Cost]:
+        """``(cost, logical cost)`` of the kind ``key`` (asked of ``example`` the first time; a
+        :class:`GadgetKind` is a key that hashes in constant time)."""
+        hit = self._costs.get(key)
+        if hit is None:
+            if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
+                self._costs.clear()
+            hit = self._costs[key] = (example.cost(), example.logical_cost())
+        return hit
+
+    def clear(self) -> None:
+        """Forget every cost (tests that count work)."""
+        self._costs.clear()
+
+    def __len__(self) -> int:
+        return len(self._costs)
+
+
+COSTS = CostCache()
+"""The process-wide cost cache of :class:`GadgetKind`."""
+
+
+@dataclass(frozen=True, eq=False)
+class GadgetKind:
+    """One kind of gadget: its cost and needs, no qubits (see the module docstring).
+
+    Attributes:
+        key: the kind key (:attr:`Gadget.kind <circuitgen.gadgets.Gadget.kind>`).
+        example: a gadget of this kind (for gates: depth profiles, routing).
+        temporaries: clean ``logic`` ancillas it uses.
+        work: ``work`` ancillas the lowering of its multi-controlled X gates adds.
+    """
+
+    key: Hashable
+    example: Gadget = field(repr=False)
+    temporaries: int = 0
+    work: int = 0
+
+    @classmethod
+    def of(cls, gadget: Gadget) -> GadgetKind:
+        """The kind of a gadget (its needs read from the gadget; see :func:`needs`)."""
+        temporaries, work = needs(gadget)
+        return cls(gadget.kind, gadget, temporaries, work)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_hash", hash(self.key))  # keys can be long tuples: hash them once
+
+    def cost(self) -> Cost:
+        """Lowered cost (from :data:`COSTS`)."""
+        return COSTS.costs(self, self.example)[0]
+
+    def logical_cost(self) -> Cost:
+        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`)."""
+        return COSTS.costs(self, self.example)[1]
+
+    def __eq__(self, other: object) -> bool:
+        return self is other or (isinstance(other, GadgetKind) and self.key == other.key)
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined,no-any-return]
+
+
+@dataclass(frozen=True, eq=False)
+class Deferred:
+    """A gadget known by its kind and cost, built only when its gates are asked for (a kind found by counting
+    classes whose example would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
+
+    Attributes:
+        kind: the kind key the built gadget has.
+        lowered, logical: its costs.
+        build: builds the gadget (placed on qubits).
+        shape: what its cost depends on, when that is more than the costs (the balance's
+            :class:`~circuitgen.gadgets.phase_sums.SumsShape`), else ``None``.
+        num_ancillas: clean ancillas it uses.
+    """
+
+    kind: Hashable
+    lowered: Cost
+    logical: Cost
+    build: Callable[[], Gadget]
+    shape: Any = None
+    num_ancillas: int = 0
+
+    def cost(self) -> Cost:
+        """Lowered cost."""
+        return self.lowered
+
+    def logical_cost(self) -> Cost:
+        """Logical cost."""
+        return self.logical
+
+    def emit(self) -> Sequence[Any]:
+        """The built gadget's gates."""
+        return self.build().emit()
+
+
+def needs(gadget: Any) -> tuple[int, int]:
+    """``(logic temporaries, work ancillas)`` of a gadget: partial mixers and their pieces from their plan, phase
+    gadgets from their ``num_ancillas``, the state preparation from its multi-controlled X gates."""
+    from .gadgets.junction import MixerJunction, MixerRotation
+    from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need
+    from .gadgets.phase_visits import VisitPhase, visit_ancillas
+
+    if isinstance(gadget, ParityPartialMixer | McxPartialMixer):
+        return gadget.num_temps, mixer_work_need([gadget])
+    if isinstance(gadget, MixerRotation):
+        return needs(gadget.mixer)
+    if isinstance(gadget, MixerJunction):
+        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]
+        return max((t for t, _ in sides), default=0), max((w for _, w in sides), default=0)
+    if isinstance(gadget, VisitPhase):
+        return visit_ancillas(tuple(len(v) for v in gadget.visitors), gadget.products), 0
+    gates = getattr(gadget, "gates", None)
+    if gates is not None:  # the state preparation: its mcx gates' lowering needs k - 2 work ancillas
+        return 0, max([0, *(len(g.qubits) - 3 for g in gates if g.name == "mcx")])  # k controls: k - 2
+    return int(getattr(gadget, "num_ancillas", 0)), 0
+
+
+@dataclass(frozen=True)
+class CallGraph:
+    """Per part, the gadget kinds of the circuit and how many of each (see the module docstring).
+
+    Attributes:
+        parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer).
+        logic_width: the shared clean ``logic`` register.
+        work_width: the ``work`` register the lowering adds.
+    """
+
+    parts: Mapping[str, Mapping[GadgetKind, int]]
+    logic_width: int
+    work_width: int
+
+    @classmethod
+    def build(
+        cls, parts: Mapping[str, Iterable[tuple[GadgetKind, int]]], logic_width: int, work_width: int
+    ) -> CallGraph:
+        """Merge ``(kind, multiplicity)`` pairs per part (equal kinds add up; zero multiplicities are dropped)."""
+        merged: dict[str, Mapping[GadgetKind, int]] = {}
+        for name in PARTS:
+            counts: Counter[GadgetKind] = Counter()
+            for kind, n in parts.get(name, ()):
+                counts[kind] += n
+            merged[name] = {k: n for k, n in counts.items() if n}
+        return cls(merged, logic_width, work_width)
+
+    def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
+        """Lowered (or logical) cost per part: ``initial_state``, one layer's ``phase`` and ``mixer``."""
+        out = {}
+        for name, kinds in self.parts.items():
+            total: Counter[str] = Counter()
+            for kind, n in kinds.items():
+                for gate, k in (kind.logical_cost() if logical else kind.cost()).items:
+                    total[gate] += n * k
+            out[name] = Cost.of(total)
+        return out
+
+    def cost(self, p: int, logical: bool = False) -> Cost:
+        """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
+        parts = self.cost_by_part(logical)
+        return parts["initial_state"] + p * (parts["phase"] + parts["mixer"])
+
+    def kinds(self) -> Iterable[tuple[str, GadgetKind, int]]:
+        """``(part, kind, multiplicity)`` for every kind."""
+        for name, kinds in self.parts.items():
+            for kind, n in kinds.items():
+                yield name, kind, n

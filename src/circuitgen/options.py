@@ -1,0 +1,79 @@
+"""How the QAOA circuit of a scenario is built: one frozen value, taken by every entry point.
+
+:class:`PlanOptions` is the one description of the construction choices. :func:`circuitgen.qaoa.qaoa_plan`,
+:func:`circuitgen.qaoa.qaoa_circuit`, :func:`circuitgen.compile.compile_scenario`, the estimators, the cross-check
+and both CLIs (``qcpp compile`` and ``qcpp estimate``, which build it once from the same flags) take it, so an
+option cannot be passed to one path and forgotten by another.
+
+Example:
+    >>> opts = PlanOptions(phase="whole-space", ancilla_budget=4)
+    >>> opts.target, opts.phase, opts == PlanOptions(ancilla_budget=4, phase="whole-space")
+    ('nisq', 'whole-space', True)
+    >>> PlanOptions(rule="fast")
+    Traceback (most recent call last):
+    ...
+    ValueError: rule: expected exact or paper, got 'fast'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+from gridcover.sbf import RULES, Rule
+
+from .cost import TARGETS, Target
+
+__all__ = ["DEFAULT_PLAN", "INITIAL_STATES", "OPTIMIZE", "PHASES", "Initial", "PlanOptions"]
+
+Initial = Literal["initial_path", "representatives"]
+INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives")
+Phase = Literal["feasible", "whole-space"]
+PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
+Optimize = Literal["cx", "depth"]
+OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
+
+
+@dataclass(frozen=True)
+class PlanOptions:
+    """The construction choices of one QAOA circuit (every field is checked on construction).
+
+    Attributes:
+        rule: SBF logic rule: ``exact`` (default) or ``paper``.
+        initial: initial state: ``initial_path`` (default) or ``representatives``
+            (:mod:`circuitgen.initial_state`).
+        target: ``nisq`` (fewest CNOTs; default) or ``ft`` (fewest T and rotations): which constructions are
+            cheapest (:mod:`circuitgen.gadgets.partial_mixer`, :mod:`circuitgen.phase`).
+        phase: phase separator: ``feasible`` (exact on feasible assignments; default) or ``whole-space`` (the
+            Ising Hamiltonian).
+        optimize: phase separator: ``cx`` (cheapest; default) or ``depth`` (shallow coupling layers).
+        ancilla_budget: most ancillas the phase separator may use (``None``: as many as the cheapest needs).
+        fuse: cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next
+            compute (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer,
+            clean at both ends (same high-level gates, a few more lowered ones); not a CLI flag.
+    """
+
+    rule: Rule = "exact"
+    initial: Initial = "initial_path"
+    target: Target = "nisq"
+    phase: Phase = "feasible"
+    optimize: Optimize = "cx"
+    ancilla_budget: int | None = None
+    fuse: bool = True
+
+    def __post_init__(self) -> None:
+        for name, allowed in (
+            ("rule", RULES), ("initial", INITIAL_STATES), ("target", TARGETS), ("phase", PHASES),
+            ("optimize", OPTIMIZE),
+        ):  # fmt: skip
+            value = getattr(self, name)
+            if value not in allowed:
+                raise ValueError(f"{name}: expected {' or '.join(allowed)}, got {value!r}")
+        budget = self.ancilla_budget
+        if budget is not None and (not isinstance(budget, int) or isinstance(budget, bool) or budget < 0):
+            raise ValueError(f"ancilla_budget: expected an integer >= 0, got {budget!r}")
+        if not isinstance(self.fuse, bool):
+            raise ValueError(f"fuse: expected True or False, got {self.fuse!r}")
+
+
+DEFAULT_PLAN = PlanOptions()

@@ -1,0 +1,83 @@
+"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`.
+
+Both commands declare their plan flags with these annotated types and turn them into a
+:class:`~circuitgen.options.PlanOptions` with :func:`plan_options`, so the two accept exactly the same flags with
+the same help and the same checks (``tests/qcpp/plan_flags_test.py`` compares the commands' flags).
+
+Example:
+    >>> plan_options("exact", "representatives", "ft", "feasible", "cx", None).initial
+    'representatives'
+    >>> plan_options("exact", "path", "nisq", "feasible", "cx", None)
+    Traceback (most recent call last):
+    ...
+    ValueError: --initial: expected initial_path or representatives, got 'path'
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from circuitgen.options import PlanOptions
+
+__all__ = [
+    "PLAN_FLAGS",
+    "AncillaBudgetFlag",
+    "InitialFlag",
+    "OptimizeFlag",
+    "PhaseFlag",
+    "RuleFlag",
+    "TargetFlag",
+    "plan_options",
+]
+
+RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
+InitialFlag = Annotated[str, typer.Option("--initial", help="Initial state: initial_path or representatives.")]
+TargetFlag = Annotated[
+    str,
+    typer.Option(
+        "--target",
+        help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
+        "or ft (fewest T and rotations).",
+    ),
+]
+PhaseFlag = Annotated[
+    str,
+    typer.Option(
+        "--phase",
+        help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
+        "(the Ising Hamiltonian, O((re)^2)).",
+    ),
+]
+OptimizeFlag = Annotated[
+    str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+]
+AncillaBudgetFlag = Annotated[
+    int | None,
+    typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+]
+
+PLAN_FLAGS: tuple[str, ...] = ("--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget")
+"""The flags above, in :class:`~circuitgen.options.PlanOptions` field order."""
+
+
+def plan_options(
+    rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None
+) -> PlanOptions:
+    """The :class:`~circuitgen.options.PlanOptions` of the plan flags.
+
+    Args:
+        rule, initial, target, phase, optimize, ancilla_budget: the flags' values.
+
+    Returns:
+        The options.
+
+    Raises:
+        ValueError: one line naming the flag (``--initial: expected ..., got ...``).
+    """
+    try:
+        return PlanOptions(rule, initial, target, phase, optimize, ancilla_budget)  # type: ignore[arg-type]
+    except ValueError as exc:
+        field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
+        raise ValueError(f"--{field.replace('_', '-')}: {problem}") from None

@@ -1,0 +1,59 @@
+"""``qcpp compile`` and ``qcpp estimate`` accept exactly the same plan flags and build the same PlanOptions."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import typer
+
+from circuitgen.lowering import lower
+from circuitgen.options import PlanOptions
+from circuitgen.qaoa import qaoa_circuit
+from estimators.counts import count
+from gridcover.scenario import load_scenario
+from qcpp.cli import app
+from qcpp.commands.plan_flags import PLAN_FLAGS
+
+from .clirun import assert_one_line_error, run
+
+EXAMPLE = "examples/paper_3x3.toml"
+
+
+def _flags(command: str) -> dict[str, tuple[str | None, object]]:
+    """Every option of a command: flag -> (help, default)."""
+    click_app = typer.main.get_command(app)
+    cmd = click_app.commands[command]  # type: ignore[attr-defined]
+    return {name: (o.help, o.default) for o in cmd.params for name in o.opts if name.startswith("--")}
+
+
+def test_compile_and_estimate_take_the_same_plan_flags() -> None:
+    compile_flags, estimate_flags = _flags("compile"), _flags("estimate")
+    for flag in PLAN_FLAGS:
+        assert flag in compile_flags and compile_flags[flag] == estimate_flags[flag], flag
+    plan_like = {"--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--fuse"}
+    assert set(compile_flags) & plan_like == set(estimate_flags) & plan_like == set(PLAN_FLAGS)
+
+
+@pytest.mark.parametrize("command", ["compile", "estimate"])
+@pytest.mark.parametrize(
+    ("flag", "value"),
+    [("--rule", "fast"), ("--initial", "path"), ("--target", "qpu"), ("--phase", "ising"), ("--optimize", "t"),
+     ("--ancilla-budget", "-1")],
+)  # fmt: skip
+def test_a_bad_plan_flag_is_one_line_naming_it(command: str, flag: str, value: str) -> None:
+    where = [EXAMPLE] if command == "compile" else ["--scenario", EXAMPLE]
+    assert_one_line_error(run(command, *where, flag, value), flag)
+
+
+def test_estimate_with_representatives_equals_the_compiled_circuit() -> None:
+    res = run("estimate", "--scenario", EXAMPLE, "-p", "2", "--initial", "representatives", "--json")
+    assert res.exit_code == 0, res.output
+    row = json.loads(res.stdout)[0]
+    options = PlanOptions(initial="representatives")
+    rc = count(lower(qaoa_circuit(load_scenario(EXAMPLE), 2, options)))
+    assert (row["qubits"], row["cx"], row["single_qubit"]) == (rc.qubits, rc.cx, rc.single_qubit)
+    assert row["depth"] == rc.depth
+    res = run("compile", EXAMPLE, "-p", "2", "--initial", "representatives", "--lowered", "--json")
+    compiled = json.loads(res.stdout)
+    assert compiled["gates"]["cx"] == row["cx"] and compiled["qubits"] == row["qubits"]
