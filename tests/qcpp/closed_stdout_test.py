@@ -18,11 +18,11 @@ EXAMPLE = str(REPO / "examples" / "paper_3x3.toml")
 
 HEAVY = pytest.mark.heavy  # a fresh interpreter per case (1-3 s each): the full set runs in CI's heavy step
 COMMANDS = [
-    pytest.param(["estimate", "--grid", "3x3"], id="estimate"),
+    pytest.param(["estimate", "--grid", "3x3"], id="estimate", marks=HEAVY),
     pytest.param(["estimate", "--grid", "3x3", "--format", "csv"], id="estimate-csv", marks=HEAVY),
     pytest.param(["solve", EXAMPLE, "-m", "dfs"], id="solve"),
     pytest.param(["solve", EXAMPLE, "-m", "cpsat", "--json"], id="solve-cpsat-json", marks=HEAVY),
-    pytest.param(["compile", EXAMPLE, "--lowered", "--qasm", "-"], id="compile-qasm-stdout"),
+    pytest.param(["compile", EXAMPLE, "--lowered", "--qasm", "-"], id="compile-qasm-stdout", marks=HEAVY),
     pytest.param(["simulate", EXAMPLE], id="simulate", marks=HEAVY),
     pytest.param(["validate", EXAMPLE], id="validate", marks=HEAVY),
     pytest.param(["solve", "--help"], id="help", marks=HEAVY),
