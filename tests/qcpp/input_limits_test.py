@@ -197,3 +197,21 @@ def test_special_files_without_a_scenario_suffix_are_never_opened(tmp_path: Path
     os.mkfifo(fifo)
     assert_one_line_error(run("solve", str(fifo)), "unknown file type")  # a blocking open would hang here
     assert_one_line_error(run("solve", "/dev/zero"), "unknown file type")
+
+
+def test_other_special_files_as_scenarios(tmp_path: Path) -> None:
+    """A socket cannot be opened, a folder is no file, /dev/zero behind a .json name is refused at 16 MiB; each
+    one line naming the file."""
+    import socket
+
+    sock_path = tmp_path / "s.toml"
+    server = socket.socket(socket.AF_UNIX)
+    try:
+        server.bind(str(sock_path))
+        assert_one_line_error(run("solve", str(sock_path)), "s.toml", "socket")
+    finally:
+        server.close()
+    (tmp_path / "zero.json").symlink_to("/dev/zero")
+    assert_one_line_error(run("solve", str(tmp_path / "zero.json")), "zero.json", "16 MiB")
+    (tmp_path / "dir.toml").mkdir()
+    assert_one_line_error(run("estimate", "--scenario", str(tmp_path / "dir.toml")), "dir.toml", "cannot read")
