@@ -14,6 +14,8 @@ format with a finite exact range:
 
 So one range, the same for every solver, is checked before any work (:func:`check_cost_range`):
 
+* each field on its own is within :func:`field_cap`: a weight at most ``2**53``, a length at most ``2**26.5``
+  (about 9.5e7; a balance term squares it), whether or not this scenario's cost uses it;
 * the largest cost any assignment of simple paths can have, :func:`cost_bound`, is at most
   :data:`COST_LIMIT` ``= 2**53`` (``cpsat``: ``2**53 / scale``);
 * every nonzero weight has a magnitude of at least :data:`MIN_WEIGHT` ``= 1e-6`` (the finest weight CP-SAT
@@ -51,8 +53,8 @@ from gridcover.cost import balanced_pairs
 from gridcover.errors import ScenarioError
 from gridcover.scenario import Objective, Scenario
 
-__all__ = ["COST_LIMIT", "MIN_WEIGHT", "WeightField", "check_cost_range", "cost_bound", "largest_allowed",
-           "weight_fields"]
+__all__ = ["COST_LIMIT", "MIN_WEIGHT", "WeightField", "check_cost_range", "cost_bound", "field_cap",
+           "largest_allowed", "weight_fields"]
 
 COST_LIMIT = float(2**53)
 """Largest cost magnitude every solver represents exactly (float64's exact integer range)."""
@@ -178,6 +180,18 @@ def _float(bits: int) -> float:
     return struct.unpack("<d", struct.pack("<q", bits))[0]
 
 
+def field_cap(field: WeightField, limit: float = COST_LIMIT) -> float:
+    """The largest magnitude ``field`` may have on any grid: ``limit`` for a weight (it multiplies a count of at
+    least 1), ``sqrt(limit)`` for a length (a balance term squares it). A field the scenario's cost does not use
+    (``alpha[1]`` with one robot) is held to this too: such a value is a typo more often than not.
+
+    Example:
+        >>> field_cap(WeightField("objective.edge_length", 1.0, positive=True)) == 2 ** 26.5
+        True
+    """
+    return math.sqrt(limit) if field.positive else limit
+
+
 def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: str = "") -> None:
     """Refuse weights whose costs the solvers cannot represent exactly (see the module docstring).
 
@@ -199,6 +213,18 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
             )
     bound = cost_bound(scenario)
     if bound <= limit:
+        for f in weight_fields(scenario):  # on its own, whether or not this scenario's cost uses it
+            cap = field_cap(f, limit)
+            if abs(f.value) > cap:
+                short = f.name.split(".")[-1]
+                allowed = f"{MIN_WEIGHT:g} <= {short} <= " if f.positive else f"|{short}| <= "
+                enters = "a balance term squares it" if f.positive else "it multiplies a count of at least 1"
+                raise ScenarioError(
+                    f.name,
+                    f"{f.value:g} is too large for {solver or 'the solvers'} to represent the cost exactly in any "
+                    f"scenario (allowed: {allowed}{_round_down(cap)}: {enters}, and costs are exact up to "
+                    f"{limit:.3g}; this scenario's cost does not use it yet)",
+                )
         return
     # the field to blame: the one whose reset to its default shrinks the bound the most
     default = Objective()

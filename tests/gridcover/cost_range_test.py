@@ -136,3 +136,17 @@ def test_cpsat_names_a_weight_without_a_short_fraction() -> None:
     with pytest.raises(ScenarioError) as exc:
         SOLVERS["cpsat"](s)
     assert exc.value.field == "objective.free_weight"
+
+
+@pytest.mark.parametrize("objective, field", [
+    ({"alpha": [1.0, 1e300, 1.0]}, "objective.alpha[1]"),  # one robot: no balance term to weigh
+    ({"edge_length": 1e9}, "objective.edge_length"),  # one robot: lengths never enter the cost
+    ({"obstacle_weight": -1e200}, "objective.obstacle_weight"),  # no obstacles
+])
+def test_fields_the_cost_does_not_use_are_still_held_to_their_cap(objective: dict[str, Any], field: str) -> None:
+    s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}],
+                            "objective": objective})
+    for method in SOLVERS:
+        with pytest.raises(ScenarioError) as exc:
+            _solve(method, s)
+        assert exc.value.field == field and "any scenario" in exc.value.reason
