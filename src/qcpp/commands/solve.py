@@ -219,7 +219,7 @@ def solve_command(
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
-    s = load_scenario(scenario, check_range=True)
+    s = load_scenario(scenario, check_range=True, phases=method == "qaoa")
     qaoa = None
     exact = None
     with progress_reporter(f"{method} on {scenario.name}") as progress:

@@ -84,7 +84,7 @@ def validate_command(
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
     report = validate(
-        load_scenario(scenario, check_range=True),
+        load_scenario(scenario, check_range=True, phases=True),
         p,
         backend=backend,  # type: ignore[arg-type]
         angles=values,
