@@ -64,8 +64,8 @@ COST_LIMIT = float(2**53)
 
 PHASE_COST_LIMIT = float(2**26)
 """Largest cost magnitude whose QAOA phases ``exp(-i gamma C)`` stay exact to the simulators' 1e-8: the float
-error of a phase grows like ``|C| * 2**-53``; measured (``validate --backend sparse``, two robots on 3x3): largest
-amplitude error 3.9e-11 at a cost bound of 6.4e7, 7.4e-8 (a failed check) at 6.4e9."""
+error of a phase grows like ``|C| * 2**-53``; ``benchmarks/cost_range.py`` (``validate --backend sparse``, two robots
+on 3x3): largest amplitude error 5.8e-10 at a cost bound of 6.4e7, 4.1e-8 (a failed check) at 6.4e9."""
 
 MIN_WEIGHT = 1e-6
 """Smallest magnitude of a nonzero weight (CP-SAT reads weights as fractions with denominators up to 10**6)."""

@@ -219,8 +219,8 @@ def test_other_special_files_as_scenarios(tmp_path: Path) -> None:
 
 def test_simulating_commands_take_the_narrower_phase_range(tmp_path: Path) -> None:
     """edge_length 1e4 (cost bound 6.4e9): the classical solvers and estimate take it; QAOA, simulate and validate
-    refuse it (their phases would carry 7e-8 of float error, measured: validate fails); at the largest value the
-    refusal allows, validate passes."""
+    refuse it (their phases would carry 4e-8 of float error: benchmarks/cost_range.py, validate fails); at the
+    largest value the refusal allows, validate passes."""
     from gridcover.cost_range import PHASE_COST_LIMIT, largest_allowed
     from gridcover.scenario import load_scenario
 
