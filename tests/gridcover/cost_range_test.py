@@ -8,6 +8,8 @@ import warnings
 from typing import Any
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from gridcover.cost import cost_parts
 from gridcover.cost_range import (
@@ -150,3 +152,16 @@ def test_fields_the_cost_does_not_use_are_still_held_to_their_cap(objective: dic
         with pytest.raises(ScenarioError) as exc:
             _solve(method, s)
         assert exc.value.field == field and "any scenario" in exc.value.reason
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_bound_holds_on_random_scenarios(data: st.DataObject, scenario_dict_strategy: Any) -> None:
+    """Soft and hard obstacles, both balance and degree modes, any signs: no assignment of simple paths costs
+    more (in magnitude) than cost_bound."""
+    import itertools
+
+    s = scenario_from_dict(data.draw(scenario_dict_strategy(max_size=3, max_robots=2)))
+    paths = [enumerate_paths(s, r) for r in range(s.num_robots)]
+    worst = max(abs(cost_parts(s, list(combo)).total) for combo in itertools.product(*paths))
+    assert worst <= cost_bound(s) * (1 + 1e-12)
