@@ -78,3 +78,27 @@ def test_closed_stdout_never_lends_its_descriptor_to_an_output_file(tmp_path: Pa
     if out.exists():  # written before the first stdout write failed: then whole, and only QASM
         text = out.read_text()
         assert text.startswith("OPENQASM") and "{" not in text.split("\n", 1)[0]
+
+
+def _reader_gone_with_stdout(fd: int) -> bool:
+    from qcpp.cli import _reader_gone
+
+    saved = os.dup(1)
+    try:
+        os.dup2(fd, 1)
+        return _reader_gone()
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+def test_small_output_into_a_pipe_whose_reader_left_is_not_success() -> None:
+    """All of a short output fits in the pipe: the writes succeed, but when the reader has gone by the end
+    (``| head -1`` done) the exit code says the output was not read; an open reader is success."""
+    read, write = os.pipe()
+    try:
+        assert not _reader_gone_with_stdout(write)
+        os.close(read)
+        assert _reader_gone_with_stdout(write)
+    finally:
+        os.close(write)
