@@ -33,6 +33,7 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
@@ -289,7 +290,7 @@ def solve_command(
         verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
     for note in sol.notes:
-        console.print(f"[dim]note: {note}[/dim]", highlight=False)
+        console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False, soft_wrap=True)
     for path in (plot, plot_trace_file):
         if path is not None:
             typer.echo(f"wrote {path}", err=True)

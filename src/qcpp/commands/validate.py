@@ -114,7 +114,7 @@ def validate_command(
         print_table(console, table)
         for c in report.checks:
             if c.note:
-                console.print(f"{c.name} ({c.method}): {c.note}")
+                console.print(f"{c.name} ({c.method}): {c.note}", markup=False, soft_wrap=True)
         detail = f" ({len(skipped)} check(s) skipped: {', '.join(skipped)})" if skipped else ""
         if backend == "qcec":  # a decision procedure: no amplitudes compared, so no tolerance to claim
             scope = "lowered == high level on every input with clean ancillas, decided exactly by QCEC"
