@@ -378,10 +378,11 @@ class TooNarrowError(ValueError):
 
 
 def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: int, *, paper: bool = False) -> str:
-    """Rows as records, one ``name value`` line per field (the ``table`` format below the table's width).
+    """Rows as records, one field per line (the ``table`` format below the table's width).
 
-    Numbers are never cut: when even the longest ``name value`` line is wider than ``width`` this raises
-    instead of printing something unreadable.
+    Each field is ``name value`` on one line when the longest of those fits ``width``, else the name on one line
+    and the value indented on the next. Numbers are never cut: when even that does not fit (a name or value
+    longer than the line) this raises instead of printing something unreadable.
 
     Args:
         rows: rows from :func:`make_rows`.
@@ -393,7 +394,7 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
         The text: a title, then per row ``row i of n`` and its fields, records separated by a blank line.
 
     Raises:
-        TooNarrowError: ``width`` is below the longest field line (the message says what to do).
+        TooNarrowError: ``width`` is below the longest name or value (the message says what to do).
 
     Example:
         >>> print(render_records([{"rows": 3, "cols": 3, "cx": 106}], ["rows", "cols", "cx"], 20), end="")
@@ -404,23 +405,36 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
         rows   3
         cols   3
         cx   106
+        >>> print(render_records([{"rows": 3, "paper_cx": 2332}], ["rows", "paper_cx"], 10), end="")
+        Exact
+        resource
+        counts
+        (lowered
+        circuit)
+        row 1 of 1
+        rows
+          3
+        paper_cx
+          2332
     """
     cells = [[_cell(r.get(c)) for c in cols] for r in rows]
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
     name_w = max((len(c) for c in cols), default=0)
     value_w = max((len(v) for row in cells for v in row), default=0)
-    need = name_w + 1 + value_w
+    need = max(name_w, value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *(len(w) for w in title.split()))
     if need > width:
         raise TooNarrowError(
             f"the terminal is {width} columns wide; the resource table needs {need} even one field per line "
             f"(set COLUMNS={need} or more, or use --format csv, json or md)"
         )
-    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    side_by_side = name_w + 1 + value_w <= width
     out = textwrap.wrap(title, width) or [""]
     for i, row in enumerate(cells):
         if i:
             out.append("")
         out.append(f"row {i + 1} of {len(cells)}")
-        out += [f"{c:<{name_w}} {v:>{value_w}}".rstrip() for c, v in zip(cols, row, strict=True)]
+        for c, v in zip(cols, row, strict=True):
+            out += [f"{c:<{name_w}} {v:>{value_w}}".rstrip()] if side_by_side else [c, f"  {v}"]
     return "\n".join(out) + "\n"
 
 

@@ -7,6 +7,9 @@ format with a finite exact range:
   integer up to ``2**53`` is a float, beyond it two costs that differ by 1 can round to the same number, and
   beyond about ``1e308`` they overflow to ``inf``/``nan`` (which used to leak as ``RuntimeWarning`` lines and an
   ``index -1`` error);
+* the QAOA circuit's simulated phases ``exp(-i gamma C)`` (``solve -m qaoa``, ``simulate``, ``validate``): a
+  float error that grows like ``|C| * 2**-53``, exact to the simulators' 1e-8 only up to about ``2**26``
+  (:data:`PHASE_COST_LIMIT`, :func:`check_phase_range`);
 * ``cpsat`` on integers: the objective times the common denominator of its coefficients (``scale``) must stay
   within ``2**53`` (CP-SAT keeps its objective and bounds as doubles; beyond that it answers ``MODEL_INVALID``),
   and every weight must be a fraction with a denominator up to ``10**6``
@@ -14,6 +17,8 @@ format with a finite exact range:
 
 So one range, the same for every solver, is checked before any work (:func:`check_cost_range`):
 
+* each field on its own is within :func:`field_cap`: a weight at most ``2**53``, a length at most ``2**26.5``
+  (about 9.5e7; a balance term squares it), whether or not this scenario's cost uses it;
 * the largest cost any assignment of simple paths can have, :func:`cost_bound`, is at most
   :data:`COST_LIMIT` ``= 2**53`` (``cpsat``: ``2**53 / scale``);
 * every nonzero weight has a magnitude of at least :data:`MIN_WEIGHT` ``= 1e-6`` (the finest weight CP-SAT
@@ -51,11 +56,16 @@ from gridcover.cost import balanced_pairs
 from gridcover.errors import ScenarioError
 from gridcover.scenario import Objective, Scenario
 
-__all__ = ["COST_LIMIT", "MIN_WEIGHT", "WeightField", "check_cost_range", "cost_bound", "largest_allowed",
-           "weight_fields"]
+__all__ = ["COST_LIMIT", "MIN_WEIGHT", "PHASE_COST_LIMIT", "WeightField", "check_cost_range", "check_phase_range",
+           "cost_bound", "field_cap", "largest_allowed", "weight_fields"]
 
 COST_LIMIT = float(2**53)
 """Largest cost magnitude every solver represents exactly (float64's exact integer range)."""
+
+PHASE_COST_LIMIT = float(2**26)
+"""Largest cost magnitude whose QAOA phases ``exp(-i gamma C)`` stay exact to the simulators' 1e-8: the float
+error of a phase grows like ``|C| * 2**-53``; ``benchmarks/cost_range.py`` (``validate --backend sparse``, two robots
+on 3x3): largest amplitude error 5.8e-10 at a cost bound of 6.4e7, 4.1e-8 (a failed check) at 6.4e9."""
 
 MIN_WEIGHT = 1e-6
 """Smallest magnitude of a nonzero weight (CP-SAT reads weights as fractions with denominators up to 10**6)."""
@@ -178,6 +188,18 @@ def _float(bits: int) -> float:
     return struct.unpack("<d", struct.pack("<q", bits))[0]
 
 
+def field_cap(field: WeightField, limit: float = COST_LIMIT) -> float:
+    """The largest magnitude ``field`` may have on any grid: ``limit`` for a weight (it multiplies a count of at
+    least 1), ``sqrt(limit)`` for a length (a balance term squares it). A field the scenario's cost does not use
+    (``alpha[1]`` with one robot) is held to this too: such a value is a typo more often than not.
+
+    Example:
+        >>> field_cap(WeightField("objective.edge_length", 1.0, positive=True)) == 2 ** 26.5
+        True
+    """
+    return math.sqrt(limit) if field.positive else limit
+
+
 def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: str = "") -> None:
     """Refuse weights whose costs the solvers cannot represent exactly (see the module docstring).
 
@@ -199,6 +221,18 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
             )
     bound = cost_bound(scenario)
     if bound <= limit:
+        for f in weight_fields(scenario):  # on its own, whether or not this scenario's cost uses it
+            cap = field_cap(f, limit)
+            if abs(f.value) > cap:
+                short = f.name.split(".")[-1]
+                allowed = f"{MIN_WEIGHT:g} <= {short} <= " if f.positive else f"|{short}| <= "
+                enters = "a balance term squares it" if f.positive else "it multiplies a count of at least 1"
+                raise ScenarioError(
+                    f.name,
+                    f"{f.value:g} is too large for {solver or 'the solvers'} to represent the cost exactly in any "
+                    f"scenario (allowed: {allowed}{_round_down(cap)}: {enters}, and costs are exact up to "
+                    f"{limit:.3g}; this scenario's cost does not use it yet)",
+                )
         return
     # the field to blame: the one whose reset to its default shrinks the bound the most
     default = Objective()
@@ -223,6 +257,17 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
         f"{worst.value:g} is too large for {who} to represent the cost exactly ({allowed}; "
         f"the cost {reach}, over the exact range |cost| <= {limit:.3g})",
     )
+
+
+def check_phase_range(scenario: Scenario) -> None:
+    """:func:`check_cost_range` with :data:`PHASE_COST_LIMIT`: what simulating the QAOA circuit (``solve -m qaoa``,
+    ``simulate``, ``validate``) needs for its phases to be exact to 1e-8 (``compile`` only writes the angles, and
+    takes the general range).
+
+    Raises:
+        ScenarioError: naming the field, its value and the allowed range.
+    """
+    check_cost_range(scenario, limit=PHASE_COST_LIMIT, solver="the QAOA circuit's phases (exact to 1e-8)")
 
 
 def _round_down(x: float) -> str:

@@ -497,7 +497,9 @@ def scenario_to_dict(s: Scenario) -> dict[str, Any]:
     return out
 
 
-def load_scenario(path: str | os.PathLike[str], *, check_range: bool = False) -> Scenario:
+def load_scenario(
+    path: str | os.PathLike[str], *, check_range: bool = False, phases: bool = False
+) -> Scenario:
     """Load a scenario from a ``.toml`` or ``.json`` file.
 
     The file is UTF-8, with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most
@@ -508,6 +510,9 @@ def load_scenario(path: str | os.PathLike[str], *, check_range: bool = False) ->
         path: The file.
         check_range: Also refuse weights the solvers cannot represent exactly
             (:func:`gridcover.cost_range.check_cost_range`; the command line does).
+        phases: With ``check_range``: the narrower range in which the QAOA circuit's phases are exact to the
+            simulators' tolerance (:data:`gridcover.cost_range.PHASE_COST_LIMIT`; ``solve -m qaoa``,
+            ``simulate``, ``validate``).
 
     Raises:
         ScenarioError: if the file is missing, unreadable, not valid TOML/JSON, or describes a bad scenario
@@ -547,9 +552,9 @@ def load_scenario(path: str | os.PathLike[str], *, check_range: bool = False) ->
     try:
         s = scenario_from_dict(data)
         if check_range:
-            from gridcover.cost_range import check_cost_range  # the cost module imports this one
+            from gridcover.cost_range import check_cost_range, check_phase_range  # they import this module
 
-            check_cost_range(s)
+            check_phase_range(s) if phases else check_cost_range(s)
         return s
     except ScenarioError as exc:
         raise ScenarioError(f"{p.name}: {exc.field}", exc.reason) from None

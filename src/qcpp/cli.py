@@ -459,7 +459,24 @@ def _finish_stdout(code: Any) -> Any:
         reason = _stdout_failure()
         typer.echo(f"error: cannot write standard output: {reason}", err=True)
         return EXIT_USAGE
+    if not code and _reader_gone():
+        return 1  # ``| head -1`` took its line and left: the rest was written into the pipe but never read
     return code
+
+
+def _reader_gone() -> bool:
+    """Whether standard output is a pipe whose reading end is closed (``poll`` says ``POLLERR``)."""
+    import select
+    import stat
+
+    try:
+        if not stat.S_ISFIFO(os.fstat(1).st_mode):
+            return False
+        poller = select.poll()
+        poller.register(1, select.POLLOUT)
+        return any(events & select.POLLERR for _, events in poller.poll(0))
+    except (OSError, ValueError, AttributeError):
+        return False
 
 
 def main() -> None:

@@ -8,6 +8,8 @@ import warnings
 from typing import Any
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from gridcover.cost import cost_parts
 from gridcover.cost_range import (
@@ -136,3 +138,30 @@ def test_cpsat_names_a_weight_without_a_short_fraction() -> None:
     with pytest.raises(ScenarioError) as exc:
         SOLVERS["cpsat"](s)
     assert exc.value.field == "objective.free_weight"
+
+
+@pytest.mark.parametrize("objective, field", [
+    ({"alpha": [1.0, 1e300, 1.0]}, "objective.alpha[1]"),  # one robot: no balance term to weigh
+    ({"edge_length": 1e9}, "objective.edge_length"),  # one robot: lengths never enter the cost
+    ({"obstacle_weight": -1e200}, "objective.obstacle_weight"),  # no obstacles
+])
+def test_fields_the_cost_does_not_use_are_still_held_to_their_cap(objective: dict[str, Any], field: str) -> None:
+    s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}],
+                            "objective": objective})
+    for method in SOLVERS:
+        with pytest.raises(ScenarioError) as exc:
+            _solve(method, s)
+        assert exc.value.field == field and "any scenario" in exc.value.reason
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_bound_holds_on_random_scenarios(data: st.DataObject, scenario_dict_strategy: Any) -> None:
+    """Soft and hard obstacles, both balance and degree modes, any signs: no assignment of simple paths costs
+    more (in magnitude) than cost_bound."""
+    import itertools
+
+    s = scenario_from_dict(data.draw(scenario_dict_strategy(max_size=3, max_robots=2)))
+    paths = [enumerate_paths(s, r) for r in range(s.num_robots)]
+    worst = max(abs(cost_parts(s, list(combo)).total) for combo in itertools.product(*paths))
+    assert worst <= cost_bound(s) * (1 + 1e-12)

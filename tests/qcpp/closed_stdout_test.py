@@ -18,11 +18,11 @@ EXAMPLE = str(REPO / "examples" / "paper_3x3.toml")
 
 HEAVY = pytest.mark.heavy  # a fresh interpreter per case (1-3 s each): the full set runs in CI's heavy step
 COMMANDS = [
-    pytest.param(["estimate", "--grid", "3x3"], id="estimate"),
+    pytest.param(["estimate", "--grid", "3x3"], id="estimate", marks=HEAVY),
     pytest.param(["estimate", "--grid", "3x3", "--format", "csv"], id="estimate-csv", marks=HEAVY),
     pytest.param(["solve", EXAMPLE, "-m", "dfs"], id="solve"),
     pytest.param(["solve", EXAMPLE, "-m", "cpsat", "--json"], id="solve-cpsat-json", marks=HEAVY),
-    pytest.param(["compile", EXAMPLE, "--lowered", "--qasm", "-"], id="compile-qasm-stdout"),
+    pytest.param(["compile", EXAMPLE, "--lowered", "--qasm", "-"], id="compile-qasm-stdout", marks=HEAVY),
     pytest.param(["simulate", EXAMPLE], id="simulate", marks=HEAVY),
     pytest.param(["validate", EXAMPLE], id="validate", marks=HEAVY),
     pytest.param(["solve", "--help"], id="help", marks=HEAVY),
@@ -78,3 +78,27 @@ def test_closed_stdout_never_lends_its_descriptor_to_an_output_file(tmp_path: Pa
     if out.exists():  # written before the first stdout write failed: then whole, and only QASM
         text = out.read_text()
         assert text.startswith("OPENQASM") and "{" not in text.split("\n", 1)[0]
+
+
+def _reader_gone_with_stdout(fd: int) -> bool:
+    from qcpp.cli import _reader_gone
+
+    saved = os.dup(1)
+    try:
+        os.dup2(fd, 1)
+        return _reader_gone()
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+def test_small_output_into_a_pipe_whose_reader_left_is_not_success() -> None:
+    """All of a short output fits in the pipe: the writes succeed, but when the reader has gone by the end
+    (``| head -1`` done) the exit code says the output was not read; an open reader is success."""
+    read, write = os.pipe()
+    try:
+        assert not _reader_gone_with_stdout(write)
+        os.close(read)
+        assert _reader_gone_with_stdout(write)
+    finally:
+        os.close(write)

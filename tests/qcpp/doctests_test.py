@@ -7,7 +7,17 @@ import importlib
 
 import pytest
 
-MODULES = ["qcpp.cli", "qcpp.interrupt", "qcpp.render", "fileio.atomic", "gridcover.limits", "gridcover.cost_range"]
+MODULES = [
+    "qcpp.cli",
+    "qcpp.interrupt",
+    "qcpp.render",
+    "qcpp.streams",
+    "fileio.atomic",
+    "fileio.inputs",
+    "fileio.capture",
+    "gridcover.limits",
+    "gridcover.cost_range",
+]
 
 
 @pytest.mark.parametrize("name", MODULES)

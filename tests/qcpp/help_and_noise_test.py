@@ -82,7 +82,10 @@ def test_warnings_become_one_note_line_once(capsys: pytest.CaptureFixture[str]) 
     assert err == "note: the cache folder /x cannot be used second line\n"
 
 
-@pytest.mark.parametrize("env", [{"XDG_CACHE_HOME": "/proc/x"}, {"QCPP_CACHE_DIR": "/dev/null"}])
+@pytest.mark.parametrize("env", [
+    {"XDG_CACHE_HOME": "/proc/x"},
+    pytest.param({"QCPP_CACHE_DIR": "/dev/null"}, marks=pytest.mark.heavy),
+])
 def test_an_unusable_cache_folder_is_named_once_and_the_run_proceeds(env: dict[str, str]) -> None:
     env = {"QCPP_CACHE_DIR": "", **env}
     res = CliRunner().invoke(app, ["validate", EXAMPLE, "--backend", "tensor"], env=env)

@@ -197,3 +197,42 @@ def test_special_files_without_a_scenario_suffix_are_never_opened(tmp_path: Path
     os.mkfifo(fifo)
     assert_one_line_error(run("solve", str(fifo)), "unknown file type")  # a blocking open would hang here
     assert_one_line_error(run("solve", "/dev/zero"), "unknown file type")
+
+
+def test_other_special_files_as_scenarios(tmp_path: Path) -> None:
+    """A socket cannot be opened, a folder is no file, /dev/zero behind a .json name is refused at 16 MiB; each
+    one line naming the file."""
+    import socket
+
+    sock_path = tmp_path / "s.toml"
+    server = socket.socket(socket.AF_UNIX)
+    try:
+        server.bind(str(sock_path))
+        assert_one_line_error(run("solve", str(sock_path)), "s.toml", "socket")
+    finally:
+        server.close()
+    (tmp_path / "zero.json").symlink_to("/dev/zero")
+    assert_one_line_error(run("solve", str(tmp_path / "zero.json")), "zero.json", "16 MiB")
+    (tmp_path / "dir.toml").mkdir()
+    assert_one_line_error(run("estimate", "--scenario", str(tmp_path / "dir.toml")), "dir.toml", "cannot read")
+
+
+def test_simulating_commands_take_the_narrower_phase_range(tmp_path: Path) -> None:
+    """edge_length 1e4 (cost bound 6.4e9): the classical solvers and estimate take it; QAOA, simulate and validate
+    refuse it (their phases would carry 4e-8 of float error: benchmarks/cost_range.py, validate fails); at the
+    largest value the refusal allows, validate passes."""
+    from gridcover.cost_range import PHASE_COST_LIMIT, largest_allowed
+    from gridcover.scenario import load_scenario
+
+    path = tmp_path / "long.toml"
+    path.write_text(TWO_ROBOTS + "edge_length = 1e4\n")
+    assert run("solve", str(path), "-m", "dfs").exit_code == 0
+    assert run("estimate", "--scenario", str(path)).exit_code == 0
+    for args in (["solve", str(path), "-m", "qaoa"], ["simulate", str(path)], ["validate", str(path)]):
+        assert_one_line_error(run(*args), "objective.edge_length", "phases", "1.02e+03")
+    most = largest_allowed(load_scenario(path), "objective.edge_length", PHASE_COST_LIMIT)
+    edge = tmp_path / "edge.toml"
+    edge.write_text(TWO_ROBOTS + f"edge_length = {float(f'{most:.2e}'):.2e}\n")
+    res = run("validate", str(edge), "--backend", "sparse", "--json")
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["passed"] is True

@@ -453,6 +453,9 @@ def cpsat(
     recorder = _Recorder(t_start, progress)
     solver = cp_model.CpSolver()
     solver.parameters.num_workers = workers
+    # OR-Tools' own search log stays off (it would print straight to stdout): our notes say what matters
+    solver.parameters.log_search_progress = False
+    solver.parameters.log_to_stdout = False
     solver.parameters.random_seed = seed
     # level 2 linearises the circuit and product constraints fully: the LP bound for two robots on 6x6 moves
     # from -64 to -34 (optimum -28)

@@ -146,7 +146,7 @@ def compile_command(
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
         where = "standard output" if to_stdout else qasm
-        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False)
+        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False, soft_wrap=True)  # a path stays whole
     if explain:
         print_table(console, explain_table(phase_explain))
 

@@ -79,7 +79,7 @@ def simulate_command(
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     values = parse_angles(angles) if angles is not None else None
-    s = load_scenario(scenario, check_range=True)
+    s = load_scenario(scenario, check_range=True, phases=True)
     res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps({"scenario": str(scenario), **res.as_dict(), "rule": rule}))

@@ -37,6 +37,7 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from fileio.atomic import check_output
@@ -230,7 +231,7 @@ def solve_command(
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
-    s = load_scenario(scenario, check_range=True)
+    s = load_scenario(scenario, check_range=True, phases=method == "qaoa")
     qaoa = None
     exact = None
     description = f"{method} on {scenario.name}"
@@ -306,7 +307,7 @@ def solve_command(
         verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
     for note in sol.notes:
-        console.print(f"[dim]note: {note}[/dim]", highlight=False)
+        console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False, soft_wrap=True)
     for path in (plot, plot_trace_file):
         if path is not None:
             typer.echo(f"wrote {path}", err=True)

@@ -97,7 +97,7 @@ def validate_command(
             import qiskit  # noqa: F401
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
-    s = load_scenario(scenario, check_range=True)
+    s = load_scenario(scenario, check_range=True, phases=True)
     large = large_allowed()
     with Progress(f"validate {scenario.name}") as bar:
         try:
@@ -140,7 +140,7 @@ def validate_command(
         print_table(console, table)
         for c in report.checks:
             if c.note:
-                console.print(f"{c.name} ({c.method}): {c.note}")
+                console.print(f"{c.name} ({c.method}): {c.note}", markup=False, soft_wrap=True)
         detail = f" ({len(skipped)} check(s) skipped: {', '.join(skipped)})" if skipped else ""
         if backend == "qcec":  # a decision procedure: no amplitudes compared, so no tolerance to claim
             scope = "lowered == high level on every input with clean ancillas, decided exactly by QCEC"
