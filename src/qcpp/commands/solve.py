@@ -61,7 +61,14 @@ def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | No
     return solve_qaoa(scenario, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
 
 
-SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa}
+def _qubo(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
+    """The ``qubo`` entry: tabu search on the per-robot QUBO, decoded, cycles dropped, SBF-polished."""
+    from gridcover.qubo_solve import solve_qubo
+
+    return solve_qubo(scenario, seed=seed, rule=rule, progress=progress).solution
+
+
+SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo}
 """``--method`` name -> solver. Register new methods here (the CLI reads the keys at call time)."""
 
 _SPARK = "▁▂▃▄▅▆▇█"
@@ -105,7 +112,7 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
 HELP = (
     "Solve a scenario (dfs = exhaustive optimum, anneal = simulated annealing, genetic = the paper's GA with "
     "SBF mutations, qaoa = QAOA trained on the feasible-subspace simulator, answering with its most probable "
-    "assignment) and print the paths on the grid, the cost and its parts."
+    "assignment, qubo = tabu search on the QUBO (pip install 'qcpp[annealing]')) and print the paths on the grid, the cost and its parts."
 )
 
 
@@ -152,7 +159,7 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 def solve_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
     method: Annotated[
-        str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic, qaoa or cpsat.")
+        str, typer.Option("--method", "-m", help="Solver: dfs, anneal, genetic, qaoa, cpsat or qubo.")
     ] = "anneal",
     seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
     rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
