@@ -112,7 +112,8 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
 HELP = (
     "Solve a scenario (dfs = exhaustive optimum, anneal = simulated annealing, genetic = the paper's GA with "
     "SBF mutations, qaoa = QAOA trained on the feasible-subspace simulator, answering with its most probable "
-    "assignment, qubo = tabu search on the QUBO (pip install 'qcpp[annealing]')) and print the paths on the grid, the cost and its parts."
+    "assignment, qubo = tabu search on the QUBO (pip install 'qcpp[annealing]')) and print the paths on the grid, "
+    "the cost and its parts."
 )
 
 
