@@ -452,9 +452,9 @@ def penalty_rule(scenario: Scenario, upper_bound: float | None = None) -> Penalt
 
     Example:
         >>> from gridcover.presets import default_scenario
-        >>> r = penalty_rule(default_scenario(3, 3, 1))
-        >>> r.penalty == r.upper_bound - r.lower_bound + r.local_gain
-        True
+        >>> r = penalty_rule(default_scenario(3, 3, 2))
+        >>> r.penalty == r.upper_bound - r.lower_bound + r.local_gain + RULE_MARGIN, r.upper_bound, r.lower_bound
+        (True, -4.0, -7.0)
     """
     _, a1, a2 = scenario.objective.alpha
     if a1 < 0 or a2 < 0:

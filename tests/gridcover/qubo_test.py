@@ -283,3 +283,29 @@ def test_the_paper_qubo_ground_state_is_infeasible_on_two_robots_4x4() -> None:
     assert energies.min() <= -10.0 < -2.0 == cpsat(s).solution.cost.total
     masks = decode_edges(s, m, best)
     assert not all(is_feasible(s, r, mask) for r, mask in enumerate(masks))
+
+
+@pytest.mark.parametrize("name", ["gridcover.qubo", "gridcover.qubo_export", "gridcover.qubo_solve"])
+def test_docstring_examples(name: str) -> None:
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(name))
+    assert result.attempted > 0 and result.failed == 0
+
+
+def test_a_path_plus_a_separate_cycle_can_beat_the_optimum(build: Any) -> None:
+    """What degree penalties cannot see: robot 0's path plus a cycle has right degrees everywhere and costs less
+    than the feasible optimum (found by enumerating every bit string of 2x4 grids with two robots). The cycle
+    lengthens robot 0 to balance robot 1 and covers nodes; decoders drop it (gridcover.qubo_solve.drop_cycles)."""
+    from gridcover.qubo_solve import drop_cycles
+
+    s = build(2, 4, [((0, 0), (0, 1)), ((0, 1), (0, 0))])
+    m = per_robot_bqm(s)
+    x = np.array([1, 0, 0, 0, 1, 1, 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 0, 1, 0, 0], dtype=np.uint8)
+    assert reference_penalty(s, x)[0] == 0
+    assert m.energy(best_auxiliaries(m, x)) == -4.0 < 8.0 == dfs(s).cost.total
+    masks = decode_edges(s, m, x)
+    assert not is_feasible(s, 0, masks[0]) and is_feasible(s, 1, masks[1])
+    path = drop_cycles(s, 0, masks[0])
+    assert path is not None and path != masks[0] and is_feasible(s, 0, path)
