@@ -12,9 +12,14 @@ For every scenario (default corner-to-corner robots, no obstacles, 3x3..6x6, 1..
 * qcpp's own SBF simulated annealing (``gridcover.solvers.anneal``, default 20,000 iterations): how many of
   ``--seeds`` seeds reach the optimum, and the mean time.
 
-Prints two markdown tables: every run (docs/qubo.md) and a per-scenario summary (the README).
+A third table varies the sampler's effort (reads, tabu milliseconds per read, SA sweeps per read) on the two-robot
+5x5 and 6x6 scenarios at the rule's P, over ``--seeds`` seeds: how often a read (before polishing) and the
+polished answer reach the optimum, and the time.
 
-Run:  PYTHONPATH=src python benchmarks/qubo_study.py            (about 10 minutes on the 2-core machine)
+Prints three markdown tables: every run and the effort sweep (docs/qubo.md), and a per-scenario summary (the
+README).
+
+Run:  PYTHONPATH=src python benchmarks/qubo_study.py            (about 15 minutes on the 2-core machine)
       PYTHONPATH=src python benchmarks/qubo_study.py --sizes 3,4 --robots 1,2   (a quick look)
 """
 
@@ -69,6 +74,43 @@ def _per_robot_run(s, penalty: float, sampler: str, reads: int, seed: int, opt: 
             "final": final, "lowest_energy": run.lowest_energy, "seconds": secs, "reads": run.reads}
 
 
+EFFORTS = [
+    ("tabu", 10, 20, "20 ms"),
+    ("tabu", 100, 5, "5 ms"),
+    ("tabu", 100, 20, "20 ms"),
+    ("tabu", 100, 100, "100 ms"),
+    ("sa", 100, 100, "100 sweeps"),
+    ("sa", 100, 1000, "1000 sweeps"),
+    ("sa", 100, 10000, "10000 sweeps"),
+    ("sa", 1000, 1000, "1000 sweeps"),
+]
+
+
+def _effort(args: argparse.Namespace, optima: dict[str, float]) -> list[str]:
+    out = []
+    for name in [x for x in args.effort.split(",") if x]:
+        n, k = int(name.split("x")[0]), int(name.split("/")[1])
+        s = default_scenario(n, n, k)
+        opt = optima.get(name)
+        if opt is None:
+            opt = cpsat(s, time_limit=args.cpsat_limit).solution.cost.total
+        p = penalty_rule(s).penalty
+        for sampler, reads, effort, label in EFFORTS:
+            print(f"{name}: effort {sampler} {reads} x {label} ...", file=sys.stderr, flush=True)
+            raw = polished = 0
+            secs = 0.0
+            for seed in range(args.seeds):
+                kw = {"tabu_ms": effort} if sampler == "tabu" else {"sweeps": effort}
+                t0 = time.perf_counter()
+                run = solve_qubo(s, penalty=p, sampler=sampler, reads=reads, seed=seed, **kw)  # type: ignore[arg-type]
+                secs += time.perf_counter() - t0
+                raw += run.best_read_cost is not None and abs(run.best_read_cost - opt) <= TOL
+                polished += abs(run.solution.cost.total - opt) <= TOL
+            out.append(f"| {name} | {sampler} | {reads} | {label} | {raw}/{args.seeds} | {polished}/{args.seeds} | "
+                       f"{secs / args.seeds:.1f} |")
+    return out
+
+
 def _pct(k: int, n: int) -> str:
     return f"{100 * k / n:.0f}"
 
@@ -83,11 +125,13 @@ def main() -> None:
     ap.add_argument("--robots", default="1,2,3", help="robot counts")
     ap.add_argument("--reads", type=int, default=100)
     ap.add_argument("--seeds", type=int, default=3, help="SBF annealing seeds")
-    ap.add_argument("--cpsat-limit", type=float, default=120.0, help="CP-SAT seconds per scenario")
+    ap.add_argument("--cpsat-limit", type=float, default=240.0, help="CP-SAT seconds per scenario")
+    ap.add_argument("--effort", default="5x5/2,6x6/2", help="scenarios of the effort sweep ('' for none)")
     args = ap.parse_args()
     sizes = [int(x) for x in args.sizes.split(",")]
     robots = [int(x) for x in args.robots.split(",")]
     rows, summary = [], []
+    optima: dict[str, float] = {}
     for n in sizes:
         for k in robots:
             s = default_scenario(n, n, k)
@@ -97,6 +141,7 @@ def main() -> None:
             ex = cpsat(s, time_limit=args.cpsat_limit)
             cp_s = time.perf_counter() - t0
             opt = ex.solution.cost.total
+            optima[name] = opt
             opt_txt = f"{opt:g}" + ("" if ex.proven_optimal else "*")
             rule = penalty_rule(s)
             sbf_hits, sbf_t = 0, 0.0
@@ -141,6 +186,13 @@ def main() -> None:
           "optimum | lowest energy | s |")
     print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     print("\n".join(rows))
+    effort_rows = _effort(args, optima)
+    if effort_rows:
+        print(f"\nEffort (per-robot form at the rule's P; {args.seeds} seeds; read = a repaired read at the optimum "
+              "before polishing, polished = the answer at the optimum; time per run)\n")
+        print("| scenario | sampler | reads | effort per read | read at optimum | polished at optimum | s |")
+        print("|---|---|---:|---|---:|---:|---:|")
+        print("\n".join(effort_rows))
     print(f"\nSummary (per-robot form at the rule's P; feasible / repairable / at-optimum % of {args.reads} reads)\n")
     print("| scenario | edge vars | CP-SAT optimum | P (rule) | paper form feasible % | SA per-robot | SA polished | "
           "tabu per-robot | tabu polished | SBF anneal at optimum |")
