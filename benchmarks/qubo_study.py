@@ -5,14 +5,14 @@ For every scenario (default corner-to-corner robots, no obstacles, 3x3..6x6, 1..
 * CP-SAT's optimum (``gridcover.solvers.cpsat``, proven unless ``--cpsat-limit`` stops it: marked ``*``);
 * the ``paper`` QUBO and the ``per-robot`` QUBO at ``P = rule / 4, rule / 2, rule`` (the rule:
   ``gridcover.qubo.penalty_rule``), each sampled by dwave-samplers' simulated annealing (``sa``: ``--reads`` reads,
-  1000 sweeps) and tabu search (``tabu``: ``--reads`` reads, 20 ms each). Per run: % of reads feasible as
+  1000 sweeps) and tabu search (``tabu``: ``--reads`` reads, one tabu run each). Per run: % of reads feasible as
   sampled, % repairable (right degrees: a path plus cycles; the cycles dropped), % of reads at the optimum after
   repair and before any polishing, the best repaired read, the answer after SBF polishing (steepest descent from
   the 10 best distinct repaired reads) and the wall time;
 * qcpp's own SBF simulated annealing (``gridcover.solvers.anneal``, default 20,000 iterations): how many of
   ``--seeds`` seeds reach the optimum, and the mean time.
 
-A third table varies the sampler's effort (reads, tabu milliseconds per read, SA sweeps per read) on the two-robot
+A third table varies the sampler's effort (reads, tabu runs per read, SA sweeps per read) on the two-robot
 5x5 and 6x6 scenarios at the rule's P, over ``--seeds`` seeds: how often a read (before polishing) and the
 polished answer reach the optimum, and the time.
 
@@ -75,10 +75,10 @@ def _per_robot_run(s, penalty: float, sampler: str, reads: int, seed: int, opt: 
 
 
 EFFORTS = [
-    ("tabu", 10, 20, "20 ms"),
-    ("tabu", 100, 5, "5 ms"),
-    ("tabu", 100, 20, "20 ms"),
-    ("tabu", 100, 100, "100 ms"),
+    ("tabu", 10, 0, "1 run"),
+    ("tabu", 100, 0, "1 run"),
+    ("tabu", 10, 5, "6 runs"),
+    ("tabu", 100, 2, "3 runs"),
     ("sa", 100, 100, "100 sweeps"),
     ("sa", 100, 1000, "1000 sweeps"),
     ("sa", 100, 10000, "10000 sweeps"),
@@ -100,7 +100,7 @@ def _effort(args: argparse.Namespace, optima: dict[str, float]) -> list[str]:
             raw = polished = 0
             secs = 0.0
             for seed in range(args.seeds):
-                kw = {"tabu_ms": effort} if sampler == "tabu" else {"sweeps": effort}
+                kw = {"tabu_restarts": effort} if sampler == "tabu" else {"sweeps": effort}
                 t0 = time.perf_counter()
                 run = solve_qubo(s, penalty=p, sampler=sampler, reads=reads, seed=seed, **kw)  # type: ignore[arg-type]
                 secs += time.perf_counter() - t0

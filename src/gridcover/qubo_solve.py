@@ -18,7 +18,7 @@ polishing (``at_best``), the lowest sampled energy, and the time spent sampling.
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> run = solve_qubo(default_scenario(3, 3, 1), reads=20, tabu_ms=5)   # doctest: +SKIP
+    >>> run = solve_qubo(default_scenario(3, 3, 1), reads=20)           # doctest: +SKIP
     >>> run.solution.cost.total                                         # doctest: +SKIP
     -8.0
 """
@@ -58,7 +58,8 @@ INSTALL_HINT = "pip install 'qcpp[annealing]'"
 
 DEFAULT_READS = 100
 DEFAULT_SWEEPS = 1000
-DEFAULT_TABU_MS = 20
+DEFAULT_TABU_RESTARTS = 0
+DEFAULT_TABU_MS = 10_000
 DEFAULT_POLISH = 10
 
 
@@ -153,10 +154,15 @@ def sample_bqm(
     sampler: Sampler = "tabu",
     reads: int = DEFAULT_READS,
     sweeps: int = DEFAULT_SWEEPS,
+    tabu_restarts: int = DEFAULT_TABU_RESTARTS,
     tabu_ms: int = DEFAULT_TABU_MS,
     seed: int = 0,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Sample ``model`` with dwave-samplers: ``(bits (reads, n) in the model's variable order, energies)``.
+
+    Tabu search is bounded by ``tabu_restarts`` restarts per read, not by time, so a seed gives the same samples
+    on any machine; ``tabu_ms`` is only a safety cap per read (10 s by default, never reached on the study's
+    scenarios).
 
     Raises:
         MissingAnnealer: without dimod / dwave-samplers.
@@ -167,15 +173,16 @@ def sample_bqm(
 
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown sampler {sampler!r} (expected one of {', '.join(SAMPLERS)})")
-    for name, value in (("reads", reads), ("sweeps", sweeps), ("tabu_ms", tabu_ms)):
-        if value < 1:
-            raise ValueError(f"{name} must be at least 1, got {value}")
+    for name, value, low in (("reads", reads, 1), ("sweeps", sweeps, 1), ("tabu_ms", tabu_ms, 1),
+                             ("tabu_restarts", tabu_restarts, 0)):
+        if value < low:
+            raise ValueError(f"{name} must be at least {low}, got {value}")
     bqm = to_dimod(model)
     seed32 = int(seed) % (2**32)
     if sampler == "sa":
         ss = SimulatedAnnealingSampler().sample(bqm, num_reads=reads, num_sweeps=sweeps, seed=seed32)
     else:
-        ss = TabuSampler().sample(bqm, num_reads=reads, timeout=tabu_ms, seed=seed32)
+        ss = TabuSampler().sample(bqm, num_reads=reads, timeout=tabu_ms, num_restarts=tabu_restarts, seed=seed32)
     bits = ss.record.sample
     order = [ss.variables.index(lab) for lab in model.labels]
     out = np.repeat(bits[:, order], ss.record.num_occurrences, axis=0).astype(np.uint8)
@@ -219,6 +226,7 @@ def solve_qubo(
     sampler: Sampler = "tabu",
     reads: int = DEFAULT_READS,
     sweeps: int = DEFAULT_SWEEPS,
+    tabu_restarts: int = DEFAULT_TABU_RESTARTS,
     tabu_ms: int = DEFAULT_TABU_MS,
     polish: int = DEFAULT_POLISH,
     seed: int = 0,
@@ -230,10 +238,11 @@ def solve_qubo(
     Args:
         scenario: The scenario.
         penalty: Degree penalty ``P`` (``None``: :func:`gridcover.qubo.penalty_rule`).
-        sampler: ``sa`` (simulated annealing, ``sweeps`` per read) or ``tabu`` (``tabu_ms`` per read).
+        sampler: ``sa`` (simulated annealing, ``sweeps`` per read) or ``tabu`` (``tabu_restarts`` per read).
         reads: Number of reads.
         sweeps: Simulated-annealing sweeps per read.
-        tabu_ms: Tabu search time per read (milliseconds).
+        tabu_restarts: Tabu search restarts per read (0: one tabu run per read).
+        tabu_ms: Safety cap on one tabu read's time (milliseconds; see :func:`sample_bqm`).
         polish: How many distinct repaired assignments (best first) to polish with SBF moves (0: none).
         seed: Sampler seed.
         rule: SBF rule of the polishing moves.
@@ -251,7 +260,8 @@ def solve_qubo(
     if progress is not None:
         progress(1, 3)
     t1 = time.perf_counter()
-    bits, energies = sample_bqm(model, sampler=sampler, reads=reads, sweeps=sweeps, tabu_ms=tabu_ms, seed=seed)
+    bits, energies = sample_bqm(model, sampler=sampler, reads=reads, sweeps=sweeps, tabu_restarts=tabu_restarts,
+                                tabu_ms=tabu_ms, seed=seed)
     sample_seconds = time.perf_counter() - t1
     if progress is not None:
         progress(2, 3)

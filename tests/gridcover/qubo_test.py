@@ -277,7 +277,7 @@ def test_the_paper_qubo_ground_state_is_infeasible_on_two_robots_4x4() -> None:
 
     s = load_scenario(f"{EXAMPLES}/two_robots_4x4.toml")
     m = paper_bqm(s)
-    bits, energies = sample_bqm(m, sampler="tabu", reads=10, tabu_ms=20, seed=0)
+    bits, energies = sample_bqm(m, sampler="tabu", reads=10, seed=0)
     best = bits[int(np.argmin(energies))]
     assert m.energy(best) == pytest.approx(energies.min())
     assert energies.min() <= -10.0 < -2.0 == cpsat(s).solution.cost.total
