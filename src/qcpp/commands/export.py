@@ -25,6 +25,7 @@ from gridcover.qubo import FORMS, bqm_for
 from gridcover.qubo_export import EXPORT_FORMATS, export_text
 from gridcover.qubo_solve import INSTALL_HINT
 from gridcover.scenario import load_scenario
+from qcpp.commands.solve import progress_reporter
 
 __all__ = ["HELP", "export_command", "register"]
 
@@ -67,8 +68,14 @@ def export_command(
             raise ValueError(f"--format bqm needs dimod: {INSTALL_HINT} (ising, qubo, lp, mps need nothing)") from None
     check_output(out)  # a bad destination fails before any work
     s = load_scenario(scenario)
-    model = bqm_for(s, form, penalty)
-    write_text_atomic(out, export_text(model, fmt))
+    with progress_reporter(f"export {fmt} of {scenario.name}") as progress:
+        # the penalty rule's upper bound (a short SBF annealing run) and the MIP exports take seconds on big grids
+        progress(0, 2)
+        model = bqm_for(s, form, penalty)
+        progress(1, 2)
+        text = export_text(model, fmt)
+        progress(2, 2)
+    write_text_atomic(out, text)
     summary = {
         "scenario": str(scenario),
         "out": out,
