@@ -88,3 +88,15 @@ def test_solve_qubo_finds_the_optimum_of_two_robots_4x4() -> None:
     out = json.loads(res.stdout)
     assert out["method"] == "qubo" and out["cost"] == -2.0
     assert any("100 reads" in n for n in out["notes"])
+
+
+def test_help() -> None:
+    from typer.testing import CliRunner
+
+    from qcpp.cli import app
+
+    res = CliRunner().invoke(app, ["export", "--help"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0
+    for flag in ("--format", "--form", "--penalty", "--out", "--json", "--allow-large"):
+        assert flag in res.stdout
+    assert "qubo" in CliRunner().invoke(app, ["solve", "--help"], env={"COLUMNS": "200"}).stdout
