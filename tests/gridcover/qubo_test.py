@@ -309,3 +309,23 @@ def test_a_path_plus_a_separate_cycle_can_beat_the_optimum(build: Any) -> None:
     assert not is_feasible(s, 0, masks[0]) and is_feasible(s, 1, masks[1])
     path = drop_cycles(s, 0, masks[0])
     assert path is not None and path != masks[0] and is_feasible(s, 0, path)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(data=st.data())
+def test_the_rule_holds_on_random_objectives(data: st.DataObject, scenario_dict_strategy: Any) -> None:
+    """The rule's bound over every bit string, for random weights, lengths, obstacles (soft and hard), balance and
+    degree-target modes (non-negative alpha1, alpha2, as the rule requires)."""
+    from gridcover.scenario import scenario_from_dict
+
+    d = data.draw(scenario_dict_strategy(min_size=2, max_size=3, max_robots=2))
+    d["objective"]["alpha"] = [d["objective"]["alpha"][0], *(abs(a) for a in d["objective"]["alpha"][1:])]
+    s = scenario_from_dict(d)
+    if s.num_variables > 14:
+        s = scenario_from_dict({**d, "robots": d["robots"][:1]})
+    rule = penalty_rule(s)
+    m = per_robot_bqm(s)
+    for x in all_bits(s.num_variables):
+        bad = reference_penalty(s, x) > 0
+        if bad.any():
+            assert m.energy(best_auxiliaries(m, x[bad])).min() >= rule.upper_bound + RULE_MARGIN - 1e-9
