@@ -249,7 +249,7 @@ def solve_qubo(
         progress: Called as ``progress(done, 3)`` after building, sampling and polishing.
 
     Returns:
-        A :class:`QuboRun`. When no read is repairable the answer is the initial paths, polished (noted).
+        A :class:`QuboRun`. When no read is repairable the answer starts from the initial paths (noted).
 
     Raises:
         MissingAnnealer: without dimod / dwave-samplers.
@@ -281,7 +281,7 @@ def solve_qubo(
     notes = [f"per-robot QUBO, penalty P = {model.penalty:g}, {model.num_variables} variables, {sampler}"]
     candidates = sorted(set(zip(read_costs, repaired)))[: max(polish, 1)]
     if not candidates:
-        notes.append("no read was repairable: polished the initial paths instead")
+        notes.append("no read was repairable: started from the initial paths instead")
         start = space.starts()[0]
         candidates = [(cost(start), start)]
     best_cost, best = candidates[0]
