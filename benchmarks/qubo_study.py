@@ -8,7 +8,7 @@ For every scenario (default corner-to-corner robots, no obstacles, 3x3..6x6, 1..
   1000 sweeps) and tabu search (``tabu``: ``--reads`` reads, one tabu run each). Per run: % of reads feasible as
   sampled, % repairable (right degrees: a path plus cycles; the cycles dropped), % of reads at the optimum after
   repair and before any polishing, the best repaired read, the answer after SBF polishing (steepest descent from
-  the 10 best distinct repaired reads) and the wall time;
+  up to 100 best distinct repaired reads, i.e. all of them at 100 reads) and the wall time;
 * qcpp's own SBF simulated annealing (``gridcover.solvers.anneal``, default 20,000 iterations): how many of
   ``--seeds`` seeds reach the optimum, and the mean time.
 
