@@ -94,6 +94,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.commands.compile",
     "qcpp.commands.estimate",
     "qcpp.commands.validate",
+    "qcpp.commands.export",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
