@@ -13,11 +13,12 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 OUT = Path(__file__).resolve().parent.parent / "src" / "circuitgen" / "device_data"
 
 
-def convert(backend) -> dict:  # noqa: ANN001 - a qiskit-ibm-runtime FakeBackendV2
+def convert(backend: Any) -> dict:
     import qiskit_ibm_runtime
 
     target = backend.target

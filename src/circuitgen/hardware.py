@@ -9,7 +9,8 @@
    ``local_ancillas=True``; off by default: measured, it does not pay off yet, see ``benchmarks/routing.py``);
 3. place (:func:`circuitgen.layout.place`), then refine the layout SABRE-style: route the two-qubit gates
    forward, then backward from the final layout, and start again from where the backward pass ends
-   (``refine_rounds`` times); the layout whose full routing has the fewest CX wins;
+   (``refine_rounds`` times); Qiskit's own ``SabreLayout`` is one more candidate (``layouts``); the layout whose
+   routing needs the fewest SWAPs wins;
 4. route with Qiskit's SABRE (:func:`circuitgen.routing.route`) and, unless ``lowered``, translate to the
    device's native gates (:func:`circuitgen.routing.to_native`).
 
@@ -102,18 +103,53 @@ def _two_qubit_only(c: Circuit, reverse: bool = False) -> Circuit:
     return Circuit(c.registers, [Section("two_qubit", gates)])
 
 
-def best_layout(circuit: Circuit, device: Device, refine_rounds: int = 3, seed: int = 0) -> tuple[int, ...]:
-    """Our placement, refined by forward-backward SABRE passes; the layout of fewest routed CX."""
-    layout = place(circuit, device)
-    if device.is_all_to_all or refine_rounds == 0:
-        return layout
-    forward, backward = _two_qubit_only(circuit), _two_qubit_only(circuit, reverse=True)
-    best = (route(forward, device, layout, seed=seed).swaps, layout)
-    for _ in range(refine_rounds):
-        ahead = route(forward, device, layout, seed=seed)
-        layout = route(backward, device, ahead.final_layout, seed=seed).final_layout
-        best = min(best, (route(forward, device, layout, seed=seed).swaps, layout))
-    return best[1]
+def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tuple[int, ...]:
+    """Qiskit's ``SabreLayout`` (forward-backward SABRE from random starts) on the two-qubit gates."""
+    from qiskit import QuantumCircuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreLayout
+
+    from .routing import coupling_map
+
+    qc = QuantumCircuit(circuit.num_qubits)
+    for g in circuit.gates:
+        if len(g[1]) == 2:
+            qc.cx(*g[1])
+    pm = PassManager([SabreLayout(coupling_map(device), seed=seed, skip_routing=True)])
+    pm.run(qc)
+    layout = pm.property_set["layout"]
+    return tuple(int(layout[q]) for q in qc.qubits)
+
+
+LAYOUTS = ("ours", "qiskit")
+"""Layout seeds :func:`best_layout` may try: our placement refined, and Qiskit's SabreLayout."""
+
+
+def best_layout(
+    circuit: Circuit,
+    device: Device,
+    refine_rounds: int = 3,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+) -> tuple[int, ...]:
+    """The layout of fewest routed SWAPs among: our placement and its forward-backward SABRE refinements
+    (``"ours"``), and Qiskit's ``SabreLayout`` (``"qiskit"``)."""
+    if device.is_all_to_all:
+        return place(circuit, device)
+    forward = _two_qubit_only(circuit)
+    candidates: list[tuple[int, ...]] = []
+    if "ours" in layouts:
+        layout = place(circuit, device)
+        candidates.append(layout)
+        backward = _two_qubit_only(circuit, reverse=True)
+        for _ in range(refine_rounds):
+            ahead = route(forward, device, layout, seed=seed)
+            layout = route(backward, device, ahead.final_layout, seed=seed).final_layout
+            candidates.append(layout)
+    if "qiskit" in layouts:
+        candidates.append(qiskit_sabre_layout(circuit, device, seed))
+    scored = [(route(forward, device, lay, seed=seed).swaps, i) for i, lay in enumerate(candidates)]
+    return candidates[min(scored)[1]]
 
 
 def compile_for_device(
@@ -124,6 +160,7 @@ def compile_for_device(
     bindings: Mapping[str, float] | None = None,
     local_ancillas: bool = False,
     seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
     **options: Any,
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
@@ -137,6 +174,7 @@ def compile_for_device(
         bindings: Angle values (symbols may stay unbound).
         local_ancillas: Run :func:`circuitgen.layout.localize_ancillas` first.
         seed: SABRE's seed.
+        layouts: Layout seeds to try (:func:`best_layout`).
         options: More :func:`circuitgen.compile.compile_scenario` options (rule, target, phase, ...).
 
     Returns:
@@ -154,7 +192,7 @@ def compile_for_device(
         raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
-    layout = best_layout(circuit, dev, seed=seed)
+    layout = best_layout(circuit, dev, seed=seed, layouts=layouts)
     routed = route(circuit, dev, layout, seed=seed, measured=range(scenario.num_variables))
     if not lowered:
         routed = to_native(routed)

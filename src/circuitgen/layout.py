@@ -26,7 +26,7 @@ Example:
     >>> local = localize_ancillas(c, s, spare=16)
     >>> c.num_qubits, local.num_qubits, [r.name for r in local.registers]
     (15, 31, ['data', 'logic', 'local'])
-    >>> layout = place(local, get_device("grid:5x5"))
+    >>> layout = place(local, get_device("grid:6x6"))
     >>> len(layout) == len(set(layout)) == local.num_qubits
     True
 """
@@ -73,9 +73,7 @@ def _kmeans(points: np.ndarray, k: int, iterations: int = 20) -> np.ndarray:
     return labels
 
 
-def localize_ancillas(
-    circuit: Circuit, scenario: Scenario, spare: int, local_cap: int = DEFAULT_LOCAL_CAP
-) -> Circuit:
+def localize_ancillas(circuit: Circuit, scenario: Scenario, spare: int, local_cap: int = DEFAULT_LOCAL_CAP) -> Circuit:
     """Give small sections region-local ancillas (see the module docs).
 
     Args:
@@ -155,9 +153,7 @@ def place(circuit: Circuit, device: Device) -> tuple[int, ...]:
     dist = distances(device)
     comp = _largest_component(dist)
     if len(comp) < n:
-        raise ValueError(
-            f"the circuit needs {n} qubits; device {device.name} has {len(comp)} connected ones"
-        )
+        raise ValueError(f"the circuit needs {n} qubits; device {device.name} has {len(comp)} connected ones")
     weight: dict[tuple[int, int], int] = {}
     for g in circuit.gates:
         qs = g[1]

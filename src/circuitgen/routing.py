@@ -39,12 +39,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from .circuit import Circuit, Register, Section
 from .devices import Device
 from .gates import Gate, cx, cz, rx, rz, rzz
 
-__all__ = ["RoutedCircuit", "duration_s", "esp", "route", "to_native"]
+__all__ = ["RoutedCircuit", "coupling_map", "duration_s", "esp", "route", "to_native"]
 
 ROUTER = "qiskit SabreSwap (heuristic=decay)"
 """The router :func:`route` uses."""
@@ -71,7 +72,8 @@ class RoutedCircuit:
     measured: tuple[int, ...]
 
 
-def _coupling_map(device: Device):  # noqa: ANN202 - qiskit type, imported lazily
+def coupling_map(device: Device) -> Any:
+    """The device's couplings as a Qiskit ``CouplingMap`` (both directions)."""
     from qiskit.transpiler import CouplingMap
 
     edges = [list(e) for e in device.coupling] + [[b, a] for a, b in device.coupling]
@@ -133,7 +135,7 @@ def route(
     if device.is_all_to_all or qc.size() == 0:
         routed_ops = [("cx", tuple(layout[q] for q in g[1])) for g in gates if len(g[1]) == 2]
     else:
-        sabre = SabreSwap(_coupling_map(device), heuristic="decay", seed=seed, trials=trials)
+        sabre = SabreSwap(coupling_map(device), heuristic="decay", seed=seed, trials=trials)
         out = PassManager([sabre]).run(qc)
         routed_ops = [(inst.operation.name, tuple(out.find_bit(b).index for b in inst.qubits)) for inst in out.data]
     who = [-1] * big  # physical -> logical (-1: a free qubit, |0>)
@@ -180,9 +182,7 @@ def route(
         ptr[b] += 1
     for lq in range(n):
         flush(lq)
-    return RoutedCircuit(
-        _sectioned(emitted, big), device, layout, tuple(where), swaps, tuple(measured)
-    )
+    return RoutedCircuit(_sectioned(emitted, big), device, layout, tuple(where), swaps, tuple(measured))
 
 
 def _sectioned(emitted: list[tuple[str, Gate]], num_qubits: int) -> Circuit:

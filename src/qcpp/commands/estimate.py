@@ -143,6 +143,14 @@ def estimate(
             help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
         ),
     ] = "partial-mixer",
+    device: Annotated[
+        str | None,
+        typer.Option(
+            "--device",
+            help="Add routed figures on a device (routed_twoq, routed_depth, routed_twoq_depth, duration_s, esp, "
+            "fits, routed_kind exact|bound): grid[:RxC], heavy-hex[:D], all-to-all[:N] or a named device.",
+        ),
+    ] = None,
     no_cache: Annotated[bool, typer.Option("--no-cache", hidden=True, help="No effect (no cache any more).")] = False,
     jobs: Annotated[int | None, typer.Option("--jobs", "-j", hidden=True, help="No effect (one process).")] = None,
 ) -> None:
@@ -182,6 +190,13 @@ def estimate(
     for bad, message in checks:
         if bad:
             raise _fail(message)
+    if device is not None:
+        from circuitgen.devices import DeviceError, get_device
+
+        try:
+            get_device(device)
+        except DeviceError as exc:
+            raise _fail(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
     try:
@@ -214,6 +229,7 @@ def estimate(
         doubling=paper_doubling,  # type: ignore[arg-type]
         columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
         wide=wide,
+        device=device,
     )
     for piece in pieces:
         _write_whole(piece)
