@@ -21,8 +21,9 @@ from __future__ import annotations
 import sys
 import time
 
+from circuitgen.circuit import Circuit
 from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device
+from circuitgen.devices import Device, get_device
 from circuitgen.hardware import best_layout, compile_for_device
 from circuitgen.layout import localize_ancillas
 from circuitgen.qasm import to_qasm2
@@ -51,7 +52,7 @@ def scenarios(quick: bool) -> list[tuple[str, Scenario]]:
     return out
 
 
-def qiskit_o3(circuit, device) -> tuple[int, float]:  # noqa: ANN001 - our Circuit, our Device
+def qiskit_o3(circuit: Circuit, device: Device) -> tuple[int, float]:
     """Qiskit O3's routed CX count and seconds."""
     from qiskit import qasm2, transpile
 
@@ -85,7 +86,10 @@ def row(label: str, s: Scenario, family: str) -> str:
 
 def main() -> None:
     quick = "--quick" in sys.argv
-    print("| scenario | qubits | a2a cx | device | qiskit O3 cx | ours layout cx | local anc cx | compile cx | compile / O3 |")
+    print(
+        "| scenario | qubits | a2a cx | device | qiskit O3 cx | ours layout cx | local anc cx | compile cx "
+        "| compile / O3 |"
+    )
     print("|---|---:|---:|---|---:|---:|---:|---:|---:|")
     for label, s in scenarios(quick):
         for family in ("grid", "heavy-hex"):
