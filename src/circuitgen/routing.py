@@ -50,6 +50,9 @@ __all__ = ["RoutedCircuit", "coupling_map", "duration_s", "esp", "route", "to_na
 ROUTER = "qiskit SabreSwap (heuristic=decay)"
 """The router :func:`route` uses."""
 
+DEFAULT_TRIALS = 16
+"""SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count)."""
+
 
 @dataclass(frozen=True)
 class RoutedCircuit:
@@ -86,7 +89,7 @@ def route(
     initial_layout: Sequence[int],
     seed: int = 0,
     measured: Sequence[int] | None = None,
-    trials: int | None = None,
+    trials: int | None = DEFAULT_TRIALS,
 ) -> RoutedCircuit:
     """Route a lowered circuit onto ``device`` from ``initial_layout`` with Qiskit's SABRE.
 
@@ -96,7 +99,7 @@ def route(
         initial_layout: Logical qubit ``i`` -> physical qubit (distinct).
         seed: SABRE's seed.
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
-        trials: SABRE's trials (Qiskit's default if ``None``).
+        trials: SABRE's trials (the best of that many randomised routings; Qiskit's default if ``None``).
 
     Returns:
         The :class:`RoutedCircuit` (lowered gates plus ``cx`` for SWAPs).

@@ -38,7 +38,7 @@ from .counts import count_gates
 
 __all__ = ["EXACT_MAX_GATES", "ROUTED_COLUMNS", "diameter_bound", "routed_fields"]
 
-EXACT_MAX_GATES = 200_000
+EXACT_MAX_GATES = 60_000
 """Lowered circuits up to this many gates are routed exactly by ``estimate --device``."""
 
 ROUTED_COLUMNS: tuple[str, ...] = (
