@@ -62,9 +62,3 @@ def test_qcec_proves_routed_equal_to_unrouted(device: str) -> None:
 @pytest.mark.slow
 def test_qcec_catches_a_wrong_circuit() -> None:
     assert _check((3, 3, 1), "grid:6x6", broken=True) == "not_equivalent"
-
-
-@pytest.mark.heavy
-@pytest.mark.parametrize("device", ["grid", "heavy-hex"])
-def test_qcec_proves_4x4_two_robots_routed(device: str) -> None:
-    assert _check((4, 4, 2), device) == "equivalent"
