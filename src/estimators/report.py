@@ -21,6 +21,7 @@ import json
 import os
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import sympy as sp
 
@@ -29,7 +30,7 @@ from gridcover.limits import check_layers
 from gridcover.presets import max_default_robots
 from gridcover.scenario import load_scenario
 
-from .estimate import DEFAULT_OPTIONS, EstimateOptions, Point
+from .estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point
 from .formulas import FORMULA_DOMAIN, P_EXPR, QUANTITIES, V_EXPR, formula_table
 from .paper import Doubling
 from .plots import plot_rows
@@ -106,6 +107,7 @@ def estimate_report(
     doubling: Doubling = "partial-mixer",
     columns: Sequence[str] | None = None,
     wide: bool = False,
+    device: str | None = None,
 ) -> Iterator[str]:
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
@@ -118,13 +120,14 @@ def estimate_report(
             (a failed plot prints nothing), not streamed.
         doubling: reading of the paper's doubling.
         columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
+        device: add the routed figures on this device (:func:`estimators.routed.routed_fields`).
 
     Yields:
         Text pieces (see :func:`estimators.tables.render_stream`).
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rows = (make_row(est, compare_paper, doubling) for est in sweep(points, options))
+    rows = (_row(est, compare_paper, doubling, device) for est in sweep(points, options))
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -132,6 +135,20 @@ def estimate_report(
     kept = list(rows)
     plot_rows(kept, plot)
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
+
+
+def _row(est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None) -> dict[str, Any]:
+    row = make_row(est, compare_paper, doubling)
+    if device is None:
+        return row
+    from .routed import routed_fields
+
+    c = est.cost
+    extra = routed_fields(
+        est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
+        one_qubit=c.single_qubit, total_gates=c.total,
+    )  # fmt: skip
+    return {**row, **extra}
 
 
 def formula_report(fmt: Format = "table") -> str:

@@ -197,6 +197,10 @@ def _columns(row: dict[str, Any] | None) -> list[str]:
         cols += list(PHYSICAL_COLUMNS)
     if row and "paper_cx" in row:
         cols += list(PAPER_COLUMNS)
+    if row and "routed_kind" in row:
+        from .routed import ROUTED_COLUMNS
+
+        cols += list(ROUTED_COLUMNS)
     return cols
 
 

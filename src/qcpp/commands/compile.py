@@ -94,6 +94,18 @@ def compile_command(
         typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
     ] = DEFAULT_MAX_GATES,
     force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
+    device: Annotated[
+        str | None,
+        typer.Option(
+            "--device",
+            help="Route onto a device: grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) "
+            "or a named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios). Writes q[i] = physical "
+            "qubit i in the device's native gates (--lowered: CX + one-qubit gates).",
+        ),
+    ] = None,
+    local_ancillas: Annotated[
+        bool, typer.Option("--local-ancillas", help="With --device: give gadgets region-local ancillas.")
+    ] = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     options = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
@@ -113,7 +125,11 @@ def compile_command(
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario, check_range=True)
     size = _guard(s, p, options, max_gates, force)
-    if qasm is not None or size.gates >= STREAM_ABOVE_GATES:
+    if device is not None:
+        summary, phase_explain = _routed(s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version)
+        if qasm is not None:
+            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
         passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
         # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
@@ -132,6 +148,8 @@ def compile_command(
         return
     console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
     form = "lowered" if lowered else "high level"
+    if device is not None:
+        form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
     table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
@@ -141,6 +159,13 @@ def compile_command(
     print_table(console, table)
     regs = ", ".join(f"{k} {v}" for k, v in summary["registers"].items())
     console.print(f"qubits: {summary['qubits']} ({regs})")
+    if device is not None:
+        routed = summary["routed"]
+        duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
+        console.print(
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}, "
+            f"duration {duration}; {summary['device_note']}"
+        )
     if summary["symbols"]:
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
@@ -166,6 +191,46 @@ def explain_table(rows: list[dict]) -> Table:
             f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
         )  # fmt: skip
     return table
+
+
+def _routed(
+    s: Scenario,
+    p: int,
+    options: PlanOptions,
+    device: str,
+    lowered: bool,
+    bindings: dict[str, float],
+    local_ancillas: bool,
+    qasm: str | None,
+    version: int,
+) -> tuple[dict[str, Any], list[dict]]:
+    """Compile, route onto ``device`` (:func:`circuitgen.hardware.compile_for_device`) and write OpenQASM; the
+    summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
+    from circuitgen.hardware import compile_for_device
+    from circuitgen.qasm import write_qasm
+
+    result = compile_for_device(
+        s, p, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas
+    )
+    circuit = result.routed.circuit
+    if qasm is not None:
+        write_qasm(circuit, qasm, version)  # type: ignore[arg-type]
+    base = result.compiled.summary()
+    summary = {
+        **base,
+        "qubits": circuit.num_qubits,
+        "gates": dict(sorted(circuit.count_ops().items())),
+        "total_gates": len(circuit),
+        "lowered": lowered,
+        "registers": {r.name: r.size for r in circuit.registers},
+        "seconds": result.seconds,
+        **result.summary(),
+        "device_note": (
+            f"device {result.routed.device.name} ({result.routed.device.num_qubits} qubits; "
+            f"{result.logical_qubits} used); layouts: logical qubit i -> physical qubit"
+        ),
+    }
+    return summary, result.compiled.phase_explain
 
 
 def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:

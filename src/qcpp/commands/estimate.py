@@ -141,6 +141,14 @@ def estimate(
             help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
         ),
     ] = "partial-mixer",
+    device: Annotated[
+        str | None,
+        typer.Option(
+            "--device",
+            help="Add routed figures on a device (routed_twoq, routed_depth, routed_twoq_depth, duration_s, esp, "
+            "fits, routed_kind exact|bound): grid[:RxC], heavy-hex[:D], all-to-all[:N] or a named device.",
+        ),
+    ] = None,
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
@@ -176,6 +184,13 @@ def estimate(
         plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
     except ValueError as exc:
         raise _fail(str(exc)) from None
+    if device is not None:
+        from circuitgen.devices import DeviceError, get_device
+
+        try:
+            get_device(device)
+        except DeviceError as exc:
+            raise _fail(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
     try:
@@ -213,6 +228,7 @@ def estimate(
             doubling=paper_doubling,  # type: ignore[arg-type]
             columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
             wide=wide,
+            device=device,
         )
         for piece in pieces:
             if fmt == "table":

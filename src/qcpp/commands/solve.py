@@ -129,7 +129,8 @@ METHOD_HELP = {
     "anneal": "simulated annealing with SBF moves (the paper's baseline)",
     "genetic": "the paper's genetic algorithm with SBF mutations",
     "qaoa": "QAOA trained on the feasible-subspace simulator, answering with its most probable assignment",
-    "qubo": "tabu search on the QUBO, repaired and polished with SBF moves (needs the annealing extra: dimod, dwave-samplers)",
+    "qubo": "tabu search on the QUBO, repaired and polished with SBF moves "
+    "(needs the annealing extra: dimod, dwave-samplers)",
 }
 """One line per method for ``qcpp solve --help`` (a method registered without one is still listed)."""
 

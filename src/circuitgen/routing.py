@@ -1,0 +1,306 @@
+"""Routing a lowered circuit onto a device with Qiskit's SABRE, seeded with our layout; native gates; ESP, duration.
+
+:func:`route` takes a lowered circuit (``cx`` plus one-qubit gates) and an initial layout (logical qubit ``i``
+-> physical qubit) and returns a :class:`RoutedCircuit` on the device's physical qubits (IR qubit ``i`` is
+physical qubit ``i``, so OpenQASM's ``q[i]`` is physical ``i``). Only the two-qubit gates are handed to Qiskit's
+``SabreSwap`` (a well-kept router: we do not write our own); the routed order of two-qubit gates and the SWAPs
+it inserts are read back, every one-qubit gate of ours is put back on its qubit's current physical position just
+before that qubit's next two-qubit gate, and every SWAP becomes three ``cx``. Our gates keep their angles (also
+symbolic ones) and their section names (a SWAP belongs to the section of the gate before it). Routing never
+reorders the gates of one logical qubit, so the routed circuit equals the original up to the layouts:
+``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>
+(``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
+
+:func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
+``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
+``sx`` is written ``rx(pi/2)`` (the IR has no ``sx``; the device's ``sx`` error and duration are charged for
+it); ``t, tdg, s, sdg`` are ``rz`` of their angle; ``x`` stays ``x`` where native (``rx(pi)`` otherwise).
+
+:func:`esp` is the estimated success probability: the product of ``(1 - error)`` over every gate of the
+native circuit (per qubit / per coupling, from the device data) and of ``(1 - readout error)`` over the
+measured qubits (the data qubits at their final positions). Idle decoherence, crosstalk and leakage are not
+modelled. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
+readout, or ``None`` where the device publishes no durations.
+
+Example:
+    >>> from circuitgen.circuit import Circuit, Section
+    >>> from circuitgen.gates import cx, h
+    >>> from circuitgen.devices import get_device
+    >>> c = Circuit([("data", 3)], [Section("s", [h(0), cx(0, 1), cx(0, 2), cx(1, 2)])])
+    >>> r = route(c, get_device("grid:1x3"), initial_layout=(0, 1, 2))
+    >>> r.circuit.num_qubits, r.swaps, r.initial_layout, r.final_layout
+    (3, 1, (0, 1, 2), (0, 2, 1))
+    >>> all(g[0] != "cx" or tuple(sorted(g[1])) in {(0, 1), (1, 2)} for g in r.circuit.gates)
+    True
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from .circuit import Circuit, Register, Section
+from .devices import Device
+from .gates import Gate, cx, cz, rx, rz, rzz
+
+__all__ = ["RoutedCircuit", "coupling_map", "duration_s", "esp", "route", "to_native"]
+
+ROUTER = "qiskit SabreSwap (heuristic=decay)"
+"""The router :func:`route` uses."""
+
+DEFAULT_TRIALS = 16
+"""SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count)."""
+
+
+@dataclass(frozen=True)
+class RoutedCircuit:
+    """A circuit on a device's physical qubits.
+
+    Attributes:
+        circuit: IR qubit ``i`` = physical qubit ``i`` (one register ``q`` of ``device.num_qubits``).
+        device: The device.
+        initial_layout: Logical qubit ``i`` of the input circuit -> physical qubit at the start.
+        final_layout: Logical qubit ``i`` -> physical qubit at the end.
+        swaps: SWAPs inserted (each three ``cx`` in :attr:`circuit`).
+        measured: Logical qubits measured at the end (the data qubits), for :func:`esp`.
+    """
+
+    circuit: Circuit
+    device: Device
+    initial_layout: tuple[int, ...]
+    final_layout: tuple[int, ...]
+    swaps: int
+    measured: tuple[int, ...]
+
+
+def coupling_map(device: Device) -> Any:
+    """The device's couplings as a Qiskit ``CouplingMap`` (both directions)."""
+    from qiskit.transpiler import CouplingMap
+
+    edges = [list(e) for e in device.coupling] + [[b, a] for a, b in device.coupling]
+    return CouplingMap(edges)
+
+
+def route(
+    circuit: Circuit,
+    device: Device,
+    initial_layout: Sequence[int],
+    seed: int = 0,
+    measured: Sequence[int] | None = None,
+    trials: int | None = DEFAULT_TRIALS,
+) -> RoutedCircuit:
+    """Route a lowered circuit onto ``device`` from ``initial_layout`` with Qiskit's SABRE.
+
+    Args:
+        circuit: One- and two-qubit gates only (e.g. :func:`circuitgen.lowering.lower`'s output).
+        device: The target; it needs at least ``circuit.num_qubits`` qubits.
+        initial_layout: Logical qubit ``i`` -> physical qubit (distinct).
+        seed: SABRE's seed.
+        measured: Logical qubits measured at the end (default: the ``data`` register, else all).
+        trials: SABRE's trials (the best of that many randomised routings; Qiskit's default if ``None``).
+
+    Returns:
+        The :class:`RoutedCircuit` (lowered gates plus ``cx`` for SWAPs).
+
+    Raises:
+        ValueError: the device is too small, the layout is not a placement, or a gate acts on 3+ qubits.
+    """
+    from qiskit import QuantumCircuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreSwap
+
+    n, big = circuit.num_qubits, device.num_qubits
+    layout = tuple(int(p) for p in initial_layout)
+    if n > big:
+        raise ValueError(f"the circuit needs {n} qubits; device {device.name} has {big}")
+    if len(layout) != n or len(set(layout)) != n or any(not 0 <= p < big for p in layout):
+        raise ValueError(f"initial layout must place {n} logical qubits on distinct physical qubits < {big}")
+    gates: list[Gate] = []
+    section_of: list[str] = []
+    for sec in circuit.sections:
+        gates.extend(sec.gates)
+        section_of.extend([sec.name] * len(sec.gates))
+    queues: list[list[int]] = [[] for _ in range(n)]
+    qc = QuantumCircuit(big)
+    for i, g in enumerate(gates):
+        qs = g[1]
+        if len(qs) > 2:
+            raise ValueError(f"route needs a lowered circuit; gate {g[0]} acts on {len(qs)} qubits")
+        for q in qs:
+            queues[q].append(i)
+        if len(qs) == 2:
+            qc.cx(layout[qs[0]], layout[qs[1]])
+    if measured is None:
+        data = next((r for r in circuit.registers if r.name == "data"), None)
+        measured = tuple(range(data.size)) if data is not None and circuit.registers[0] is data else tuple(range(n))
+    if device.is_all_to_all or qc.size() == 0:
+        routed_ops = [("cx", tuple(layout[q] for q in g[1])) for g in gates if len(g[1]) == 2]
+    else:
+        sabre = SabreSwap(coupling_map(device), heuristic="decay", seed=seed, trials=trials)
+        out = PassManager([sabre]).run(qc)
+        routed_ops = [(inst.operation.name, tuple(out.find_bit(b).index for b in inst.qubits)) for inst in out.data]
+    who = [-1] * big  # physical -> logical (-1: a free qubit, |0>)
+    for lq, p in enumerate(layout):
+        who[p] = lq
+    where = list(layout)
+    ptr = [0] * n
+    emitted: list[tuple[str, Gate]] = []
+    last_section = section_of[0] if section_of else "main"
+
+    def flush(lq: int) -> None:
+        nonlocal last_section
+        q = queues[lq]
+        while ptr[lq] < len(q) and len(gates[q[ptr[lq]]][1]) == 1:
+            i = q[ptr[lq]]
+            g = gates[i]
+            emitted.append((section_of[i], Gate(g[0], (where[lq],), g[2], g[3])))
+            last_section = section_of[i]
+            ptr[lq] += 1
+
+    swaps = 0
+    for name, (p1, p2) in routed_ops:
+        if name == "swap":
+            swaps += 1
+            for a, b in ((p1, p2), (p2, p1), (p1, p2)):
+                emitted.append((last_section, cx(a, b)))
+            l1, l2 = who[p1], who[p2]
+            who[p1], who[p2] = l2, l1
+            if l1 >= 0:
+                where[l1] = p2
+            if l2 >= 0:
+                where[l2] = p1
+            continue
+        a, b = who[p1], who[p2]
+        flush(a)
+        flush(b)
+        i = queues[a][ptr[a]]
+        if queues[b][ptr[b]] != i or gates[i][1] != (a, b):
+            raise AssertionError("the router reordered the gates of a qubit")  # pragma: no cover
+        g = gates[i]
+        emitted.append((section_of[i], Gate(g[0], (p1, p2), g[2], g[3])))
+        last_section = section_of[i]
+        ptr[a] += 1
+        ptr[b] += 1
+    for lq in range(n):
+        flush(lq)
+    return RoutedCircuit(_sectioned(emitted, big), device, layout, tuple(where), swaps, tuple(measured))
+
+
+def _sectioned(emitted: list[tuple[str, Gate]], num_qubits: int) -> Circuit:
+    sections: list[Section] = []
+    run: list[Gate] = []
+    name = None
+    for sec, g in emitted:
+        if sec != name and run:
+            sections.append(Section(name, run))  # type: ignore[arg-type]
+            run = []
+        name = sec
+        run.append(g)
+    if run:
+        sections.append(Section(name, run))  # type: ignore[arg-type]
+    return Circuit([Register("q", num_qubits)], sections)
+
+
+# --- native gates ------------------------------------------------------------------------------------------
+_HALF_PI = math.pi / 2
+_RZ_OF = {"t": math.pi / 4, "tdg": -math.pi / 4, "s": _HALF_PI, "sdg": -_HALF_PI}
+
+
+def _native_gates(g: Gate, twoq: str, native_x: bool) -> list[Gate]:
+    name, qs = g[0], g[1]
+    if name == "cx":
+        c, t = qs
+        return [*_native_gates(Gate("h", (t,), (), None), twoq, native_x), *_native_cz(c, t, twoq),
+                *_native_gates(Gate("h", (t,), (), None), twoq, native_x)]  # fmt: skip
+    if name == "cz":
+        return _native_cz(*qs, twoq)
+    if name == "h":
+        (q,) = qs
+        return [rz(_HALF_PI, q), rx(_HALF_PI, q), rz(_HALF_PI, q)]
+    if name in _RZ_OF:
+        return [rz(_RZ_OF[name], qs[0])]
+    if name == "x":
+        return [g] if native_x else [rx(math.pi, qs[0])]
+    if name in ("rz", "rx"):
+        return [g]
+    raise ValueError(f"to_native: no native form for gate {name!r}")
+
+
+def _native_cz(a: int, b: int, twoq: str) -> list[Gate]:
+    if twoq == "cz":
+        return [cz(a, b)]
+    return [rz(_HALF_PI, a), rz(_HALF_PI, b), rzz(-_HALF_PI, a, b)]  # CZ up to a global phase
+
+
+def to_native(routed: RoutedCircuit) -> RoutedCircuit:
+    """The routed circuit in the device's native gates (equal up to a global phase); see the module docs."""
+    twoq = routed.device.two_qubit_gate
+    native_x = "x" in routed.device.native_gates
+    sections = [
+        Section(sec.name, [n for g in sec.gates for n in _native_gates(g, twoq, native_x)])
+        for sec in routed.circuit.sections
+    ]
+    circuit = Circuit(routed.circuit.registers, sections)
+    return RoutedCircuit(circuit, routed.device, routed.initial_layout, routed.final_layout, routed.swaps,
+                         routed.measured)  # fmt: skip
+
+
+# --- figures of merit --------------------------------------------------------------------------------------
+def _one_qubit_name(device: Device, g: Gate) -> str:
+    """The device gate a one-qubit IR gate stands for (``rx(+-pi/2)`` is ``sx`` where the device has ``sx``)."""
+    name = g[0]
+    if name == "rx" and "sx" in device.native_gates:
+        return "sx"
+    return name
+
+
+def esp(routed: RoutedCircuit) -> float:
+    """Estimated success probability of a native routed circuit (model in the module docs).
+
+    Returns:
+        ``prod (1 - e_gate) * prod_{measured} (1 - e_readout)``.
+
+    Raises:
+        ValueError: a gate the device has no error figure for.
+    """
+    device = routed.device
+    e1 = dict(device.error_1q)
+    edge = device.edge_index()
+    log = 0.0
+    for g in routed.circuit.gates:
+        qs = g[1]
+        if len(qs) == 2:
+            if g[0] != device.two_qubit_gate:
+                raise ValueError(f"esp: {g[0]} is not native on {device.name} (use to_native)")
+            e = device.error_2q[edge[qs]]
+        else:
+            name = _one_qubit_name(device, g)
+            if name not in e1:
+                raise ValueError(f"esp: {name} is not native on {device.name} (use to_native)")
+            e = e1[name][qs[0]]
+        log += math.log1p(-e) if e < 1 else -math.inf
+    for lq in routed.measured:
+        log += math.log1p(-device.readout_error[routed.final_layout[lq]])
+    return math.exp(log)
+
+
+def duration_s(routed: RoutedCircuit) -> float | None:
+    """ASAP schedule length of a native routed circuit plus one readout, in seconds (``None``: no durations)."""
+    device = routed.device
+    if device.duration_1q_s is None or device.duration_2q_s is None or device.readout_duration_s is None:
+        return None
+    d1 = dict(device.duration_1q_s)
+    edge = device.edge_index()
+    free = [0.0] * device.num_qubits
+    for g in routed.circuit.gates:
+        qs = g[1]
+        if len(qs) == 2:
+            start = max(free[qs[0]], free[qs[1]])
+            free[qs[0]] = free[qs[1]] = start + device.duration_2q_s[edge[qs]]
+        else:
+            q = qs[0]
+            free[q] += d1[_one_qubit_name(device, g)][q]
+    readout = max((device.readout_duration_s[routed.final_layout[lq]] for lq in routed.measured), default=0.0)
+    return max(free, default=0.0) + readout

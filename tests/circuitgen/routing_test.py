@@ -1,0 +1,241 @@
+"""Devices, layout and routing: every two-qubit gate on a coupling, routed == unrouted up to the layouts, ESP.
+
+Evidence, not assertion: the routed circuit's statevector is compared with the unrouted one's (permuted by the
+reported layouts, free qubits |0>), the native translation is checked the same way (up to a global phase), and
+our ESP is cross-checked against an independent computation from Qiskit's own ``Target`` of the IBM Fez
+snapshot on a circuit Qiskit transpiled itself.
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from qiskit import transpile
+
+from circuitgen.circuit import Circuit, Section
+from circuitgen.compile import compile_scenario
+from circuitgen.devices import DeviceError, device_names, get_device, heavy_hex_qubits, named_device
+from circuitgen.gates import Gate, cx, h, rx, ry
+from circuitgen.hardware import compile_for_device
+from circuitgen.layout import localize_ancillas, place
+from circuitgen.routing import RoutedCircuit, esp, route, to_native
+from gridcover.presets import default_scenario
+from gridcover.scenario import Scenario, scenario_from_dict
+from simulate.equivalence import to_qiskit
+from simulate.statevector import simulate_statevector
+
+BIND = {"gamma_0": 0.37, "beta_0": 0.81}
+
+
+@pytest.mark.parametrize(
+    "module", ["circuitgen.devices", "circuitgen.routing", "circuitgen.layout", "circuitgen.hardware"]
+)
+def test_doctests(module: str) -> None:
+    result = doctest.testmod(importlib.import_module(module))
+    assert result.failed == 0 and result.attempted > 0
+
+
+# --- devices -----------------------------------------------------------------------------------------------
+def test_families_have_the_lattice_sizes() -> None:
+    g = get_device("grid:3x4")
+    assert (g.num_qubits, len(g.coupling)) == (12, 3 * 3 + 2 * 4)
+    for d in (3, 5, 7):
+        hh = get_device(f"heavy-hex:{d}")
+        assert hh.num_qubits == heavy_hex_qubits(d)
+        degrees = np.bincount(np.array(hh.coupling).ravel(), minlength=hh.num_qubits)
+        assert degrees.max() == 3  # heavy-hex: degree at most 3
+    a = get_device("all-to-all:6")
+    assert a.is_all_to_all and len(a.coupling) == 15
+
+
+@pytest.mark.parametrize("need", [1, 2, 15, 16, 17, 80, 144, 333])
+def test_families_without_size_are_the_smallest_that_fit(need: int) -> None:
+    g = get_device("grid", min_qubits=need)
+    k = int(g.name.split(":")[1].split("x")[0])
+    assert k * k >= need and (k - 1) ** 2 < need
+    hh = get_device("heavy-hex", min_qubits=need)
+    d = int(hh.name.split(":")[1])
+    assert hh.num_qubits >= need and (d == 3 or heavy_hex_qubits(d - 2) < need)
+    assert get_device("all-to-all", min_qubits=need).num_qubits == max(need, 2)
+
+
+@pytest.mark.parametrize(
+    "bad", ["grid:3", "grid:0x4", "heavy-hex:4", "heavy-hex:x", "all-to-all:1", "nope", "ibm_fez:3"]
+)
+def test_bad_device_names_are_one_clear_error(bad: str) -> None:
+    with pytest.raises(DeviceError) as exc:
+        get_device(bad)
+    assert bad.split(":")[0] in str(exc.value) and "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("name", device_names())
+def test_named_devices_state_source_date_and_consistent_data(name: str) -> None:
+    d = named_device(name)
+    raw = json.loads((Path(__file__).resolve().parents[2] / "src/circuitgen/device_data" / f"{name}.json").read_text())
+    assert raw["source"] and raw["date"] and d.source == raw["source"]
+    assert d.two_qubit_gate in d.native_gates
+    assert all(0 <= e < 1 for e in d.error_2q) and all(0 <= e < 1 for e in d.readout_error)
+    assert len(d.error_2q) == len(d.coupling) and len(set(d.coupling)) == len(d.coupling)
+
+
+def test_ibm_snapshot_matches_qiskit_ibm_runtime() -> None:
+    fake = pytest.importorskip("qiskit_ibm_runtime.fake_provider")
+    backend = fake.FakeFez()
+    d = named_device("ibm_fez")
+    target = backend.target
+    assert d.num_qubits == backend.num_qubits
+    for (a, b), e in zip(d.coupling, d.error_2q, strict=True):
+        assert target["cz"][(a, b)].error == e
+    dropped = [q for q, p in target["cz"].items() if p.error is not None and p.error >= 1.0]
+    assert dropped and all(tuple(sorted(q)) not in d.edge_index() for q in dropped)
+    assert dict(d.error_1q)["sx"][7] == target["sx"][(7,)].error
+    assert d.readout_error[7] == target["measure"][(7,)].error
+
+
+# --- routing -----------------------------------------------------------------------------------------------
+def _on_coupling(routed: RoutedCircuit) -> bool:
+    edges = routed.device.edge_index()
+    return all(len(g[1]) < 2 or tuple(g[1]) in edges for g in routed.circuit.gates)
+
+
+def _statevector(circuit: Circuit, prefix: list[Gate], num_qubits: int) -> np.ndarray:
+    regs = list(circuit.registers)
+    if num_qubits > circuit.num_qubits:
+        regs.append(("pad", num_qubits - circuit.num_qubits))
+    return simulate_statevector(Circuit(regs, [Section("prep", prefix), *circuit.sections]))
+
+
+def _permuted(state: np.ndarray, n: int, big: int, layout: tuple[int, ...]) -> np.ndarray:
+    """The logical ``n``-qubit state on ``big`` physical qubits, logical qubit i on ``layout[i]``, others |0>."""
+    out = np.zeros(2**big, dtype=complex)
+    idx = np.arange(2**n)
+    phys = np.zeros_like(idx)
+    for i, p in enumerate(layout):
+        phys |= ((idx >> i) & 1) << p
+    out[phys] = state
+    return out
+
+
+def _assert_equal_up_to_layouts(logical: Circuit, routed: RoutedCircuit, seed: int, global_phase: bool) -> None:
+    n, big = logical.num_qubits, routed.device.num_qubits
+    data = logical.registers[0].size
+    rng = np.random.default_rng(seed)
+    prefix = [g for q in range(data) for g in (ry(float(rng.uniform(0, 3)), q), rx(float(rng.uniform(0, 3)), q))]
+    want = _permuted(_statevector(logical, prefix, n), n, big, routed.final_layout)
+    moved = [Gate(g[0], tuple(routed.initial_layout[q] for q in g[1]), g[2], g[3]) for g in prefix]
+    got = _statevector(routed.circuit, moved, big)
+    overlap = abs(np.vdot(want, got))
+    assert overlap == pytest.approx(1.0, abs=1e-9)
+    if not global_phase:
+        assert np.allclose(want, got, atol=1e-9)
+
+
+OBSTACLE = {
+    "grid": {"rows": 3, "cols": 4, "obstacles": [[1, 1]]},
+    "robots": [{"start": [1, 2], "goal": [2, 0]}],
+    "objective": {"obstacles": "hard"},
+}
+SMALL = [
+    ("2x3/1", default_scenario(2, 3, 1), ["grid:3x4", "heavy-hex:3", "all-to-all:12"]),
+    ("3x4 hard obstacle, interior start", scenario_from_dict(OBSTACLE), ["grid:4x4", "all-to-all:14"]),
+    ("3x3/1", default_scenario(3, 3, 1), ["grid:4x4"]),
+]
+CASES = [(label, s, d) for label, s, devices in SMALL for d in devices]
+
+
+@pytest.mark.parametrize(("label", "s", "device"), CASES, ids=[f"{c[0]}-{c[2]}" for c in CASES])
+def test_routed_equals_unrouted_up_to_layouts(label: str, s: Scenario, device: str) -> None:
+    logical = compile_scenario(s, 1, lowered=True, bindings=BIND, fuse=False).circuit
+    dev = get_device(device)
+    routed = route(logical, dev, place(logical, dev))
+    assert _on_coupling(routed)
+    _assert_equal_up_to_layouts(logical, routed, seed=1, global_phase=False)
+    native = to_native(routed)
+    assert set(native.circuit.count_ops()) <= {*dev.native_gates, "rx", "rz"}
+    assert _on_coupling(native)
+    _assert_equal_up_to_layouts(logical, native, seed=2, global_phase=True)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.data())
+def test_random_circuits_route_onto_any_device(data: st.DataObject) -> None:
+    n = data.draw(st.integers(2, 7))
+    pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(lambda p: p[0] != p[1])
+    gates: list[Gate] = []
+    for a, b in data.draw(st.lists(pairs, min_size=1, max_size=25)):
+        gates += [h(a), cx(a, b), rx(0.3 + a, b)]
+    logical = Circuit([("data", n)], [Section("s", gates)])
+    dev = get_device(data.draw(st.sampled_from(["grid:2x4", "grid:3x3", "heavy-hex:3"])))
+    layout = data.draw(st.permutations(range(dev.num_qubits)))[:n]
+    routed = route(logical, dev, layout, seed=data.draw(st.integers(0, 3)))
+    assert _on_coupling(routed)
+    assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 * routed.swaps
+    _assert_equal_up_to_layouts(logical, routed, seed=0, global_phase=False)
+
+
+def test_local_ancillas_keep_the_circuit_up_to_ancilla_renaming() -> None:
+    s = default_scenario(3, 3, 1)
+    logical = compile_scenario(s, 1, lowered=True, bindings=BIND, fuse=False).circuit
+    local = localize_ancillas(logical, s, spare=6, local_cap=3)
+    assert local.num_qubits > logical.num_qubits
+    assert local.count_ops() == logical.count_ops()
+    n = local.num_qubits
+    rng = np.random.default_rng(3)
+    data = logical.registers[0].size
+    prefix = [ry(float(rng.uniform(0, 3)), q) for q in range(data)]
+    want = _permuted(
+        _statevector(logical, prefix, logical.num_qubits), logical.num_qubits, n, tuple(range(logical.num_qubits))
+    )
+    assert np.allclose(_statevector(local, prefix, n), want, atol=1e-9)
+
+
+def test_compile_for_device_reports_layouts_and_fits_the_device() -> None:
+    r = compile_for_device(default_scenario(3, 3, 1), 1, "heavy-hex", bindings=BIND, lowered=True)
+    assert r.routed.device.name == "heavy-hex:3"
+    assert _on_coupling(r.routed)
+    summary = r.summary()
+    assert summary["device"]["qubits"] == 19 and len(summary["initial_layout"]) == r.logical_qubits
+    assert 0 < summary["routed"]["esp"] < 1 and summary["routed"]["duration_s"] > 0
+    with pytest.raises(ValueError, match="needs 15 qubits"):
+        compile_for_device(default_scenario(3, 3, 1), 1, "grid:3x3")
+
+
+# --- ESP against Qiskit's own transpiled circuit -----------------------------------------------------------
+def test_esp_matches_an_independent_computation_on_qiskits_transpiled_circuit() -> None:
+    fake = pytest.importorskip("qiskit_ibm_runtime.fake_provider")
+    backend = fake.FakeFez()
+    device = named_device("ibm_fez")
+    s = default_scenario(3, 3, 1)
+    logical = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit
+    qc = to_qiskit(logical)
+    from qiskit.transpiler import CouplingMap
+
+    cmap = CouplingMap([list(e) for e in device.coupling] + [[b, a] for a, b in device.coupling])
+    tqc = transpile(qc, coupling_map=cmap, basis_gates=["cz", "rz", "sx", "x"], optimization_level=1, seed_transpiler=0)
+    final = tqc.layout.final_index_layout()
+    data = range(s.num_variables)
+    target = backend.target
+    independent = 1.0
+    ours: list[Gate] = []
+    for inst in tqc.data:
+        qs = tuple(tqc.find_bit(b).index for b in inst.qubits)
+        name = inst.operation.name
+        independent *= 1 - (target[name][qs].error or 0.0)
+        if name == "sx":
+            ours.append(rx(math.pi / 2, qs[0]))
+        else:
+            ours.append(Gate(name, qs, tuple(float(x) for x in inst.operation.params), None))
+    for q in data:
+        independent *= 1 - target["measure"][(final[q],)].error
+    circuit = Circuit([("q", device.num_qubits)], [Section("s", ours)])
+    routed = RoutedCircuit(circuit, device, tuple(range(len(final))), tuple(final), 0, tuple(data))
+    assert esp(routed) == pytest.approx(independent, rel=1e-9)
+    assert 0 < independent < 1

@@ -1,0 +1,69 @@
+"""``qcpp compile --device`` and ``qcpp estimate --device``: the routed file, its JSON, bad names."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from qiskit import qasm2
+
+from circuitgen.devices import get_device
+
+from .clirun import assert_one_line_error, run
+
+PAPER = str(Path(__file__).resolve().parents[2] / "examples" / "paper_3x3.toml")
+BIND = ["--bind", "gamma_0=0.3", "beta_0=0.7"]
+
+
+@pytest.mark.parametrize(("device", "lowered"), [("grid", True), ("heavy-hex:5", False), ("ibm_torino", False)])
+def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, device: str, lowered: bool) -> None:
+    out = tmp_path / "routed.qasm"
+    args = ["compile", PAPER, "--device", device, "--qasm", str(out), "--qasm-version", "2", "--json", *BIND]
+    res = run(*args, *(["--lowered"] if lowered else []))
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)
+    dev = summary["device"]
+    assert dev["name"] == get_device(device, min_qubits=15).name
+    edges = {tuple(e) for e in dev["coupling"]}
+    qc = qasm2.loads(out.read_text())
+    assert qc.num_qubits == dev["qubits"] == summary["qubits"]
+    two = [tuple(sorted(qc.find_bit(b).index for b in inst.qubits)) for inst in qc.data if len(inst.qubits) == 2]
+    assert two and all(pair in edges for pair in two)
+    names = set(qc.count_ops())
+    assert names <= ({"cx", "h", "rz", "t", "tdg", "s", "sdg", "x"} if lowered else {"cz", "rz", "rx", "x"})
+    assert len(summary["initial_layout"]) == len(summary["final_layout"]) == 15
+    assert len(set(summary["initial_layout"])) == 15 and max(summary["final_layout"]) < dev["qubits"]
+    assert 0 < summary["routed"]["esp"] < 1 and summary["routed"]["two_qubit"] == len(two)
+
+
+@pytest.mark.parametrize(
+    ("device", "fragment"),
+    [("nope", "unknown device 'nope'"), ("grid:3x3", "device grid:3x3 has 9"), ("heavy-hex:2", "odd")],
+)
+def test_compile_bad_device_is_one_line(device: str, fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, "--device", device), fragment)
+
+
+def test_estimate_device_adds_routed_fields_equal_to_compile() -> None:
+    res = run("estimate", "--scenario", PAPER, "--device", "heavy-hex", "--json")
+    assert res.exit_code == 0, res.output
+    (row,) = json.loads(res.stdout)
+    assert row["device"] == "heavy-hex:3" and row["fits"] is True and row["routed_kind"] == "exact"
+    compiled = json.loads(run("compile", PAPER, "--device", "heavy-hex", "--json").stdout)
+    assert row["routed_twoq"] == compiled["routed"]["two_qubit"]
+    assert row["esp"] == pytest.approx(compiled["routed"]["esp"])
+    assert row["routed_twoq_depth"] <= row["routed_depth"]
+
+
+def test_estimate_device_too_small_and_bound() -> None:
+    res = run("estimate", "--grid", "5x5", "--robots", "2", "--device", "quantinuum_helios", "--json")
+    (row,) = json.loads(res.stdout)
+    assert row["fits"] is False and row["routed_twoq"] is None
+    res = run("estimate", "--grid", "12x12", "--robots", "3", "--device", "grid", "--json")
+    (row,) = json.loads(res.stdout)
+    assert row["routed_kind"] == "bound" and row["routed_twoq"] >= row["cx"] and 0 <= row["esp"] < 1
+
+
+def test_estimate_bad_device_is_one_line() -> None:
+    assert_one_line_error(run("estimate", "--device", "grid:x"), "--device", "grid:x")
