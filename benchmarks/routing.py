@@ -26,6 +26,7 @@ from circuitgen.compile import compile_scenario
 from circuitgen.devices import Device, get_device
 from circuitgen.hardware import best_layout, compile_for_device
 from circuitgen.layout import localize_ancillas
+from circuitgen.options import PlanOptions
 from circuitgen.qasm import to_qasm2
 from circuitgen.routing import coupling_map, route
 from gridcover.presets import default_scenario
@@ -66,7 +67,7 @@ def qiskit_o3(circuit: Circuit, device: Device) -> tuple[int, float]:
 def row(label: str, s: Scenario, family: str) -> str:
     """One table row."""
     fused = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit
-    unfused = compile_scenario(s, 1, lowered=True, bindings=BIND, fuse=False).circuit
+    unfused = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
     device = get_device(family, min_qubits=fused.num_qubits)
     o3, o3_s = qiskit_o3(fused, device)
     ours = route(unfused, device, best_layout(unfused, device, layouts=("ours",))).circuit.count_ops()["cx"]

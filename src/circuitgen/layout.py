@@ -20,9 +20,10 @@ Two passes on an emitted, lowered circuit (plain functions, ``circuit -> circuit
 Example:
     >>> from gridcover.presets import default_scenario
     >>> from circuitgen.compile import compile_scenario
+    >>> from circuitgen.options import PlanOptions
     >>> from circuitgen.devices import get_device
     >>> s = default_scenario(3, 3, 1)
-    >>> c = compile_scenario(s, p=1, lowered=True, fuse=False).circuit
+    >>> c = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True).circuit
     >>> local = localize_ancillas(c, s, spare=16)
     >>> c.num_qubits, local.num_qubits, [r.name for r in local.registers]
     (15, 31, ['data', 'logic', 'local'])

@@ -26,6 +26,7 @@ from circuitgen.devices import DeviceError, device_names, get_device, heavy_hex_
 from circuitgen.gates import Gate, cx, h, rx, ry
 from circuitgen.hardware import compile_for_device
 from circuitgen.layout import localize_ancillas, place
+from circuitgen.options import PlanOptions
 from circuitgen.routing import RoutedCircuit, esp, route, to_native
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict
@@ -153,7 +154,7 @@ CASES = [(label, s, d) for label, s, devices in SMALL for d in devices]
 
 @pytest.mark.parametrize(("label", "s", "device"), CASES, ids=[f"{c[0]}-{c[2]}" for c in CASES])
 def test_routed_equals_unrouted_up_to_layouts(label: str, s: Scenario, device: str) -> None:
-    logical = compile_scenario(s, 1, lowered=True, bindings=BIND, fuse=False).circuit
+    logical = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
     dev = get_device(device)
     routed = route(logical, dev, place(logical, dev))
     assert _on_coupling(routed)
@@ -183,7 +184,7 @@ def test_random_circuits_route_onto_any_device(data: st.DataObject) -> None:
 
 def test_local_ancillas_keep_the_circuit_up_to_ancilla_renaming() -> None:
     s = default_scenario(3, 3, 1)
-    logical = compile_scenario(s, 1, lowered=True, bindings=BIND, fuse=False).circuit
+    logical = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
     local = localize_ancillas(logical, s, spare=6, local_cap=3)
     assert local.num_qubits > logical.num_qubits
     assert local.count_ops() == logical.count_ops()
