@@ -128,6 +128,7 @@ def test_an_estimate_table_shows_progress_before_the_table() -> None:
     total = int(lines[0].split(" / ")[1].split()[0])
     assert lines[0].startswith(f"estimate: 0 / {total} rows") and total == 12  # first: before any row is computed
     assert any(line.startswith(f"estimate: {total} / {total} rows") for line in lines)
+    assert any(line.startswith(f"estimate: {total} / {total} rows (100.0%), rendering the table") for line in lines)
     assert lines[-1].startswith(f"estimate: {total} rows done in ")
 
 

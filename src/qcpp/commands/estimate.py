@@ -212,7 +212,7 @@ def estimate(
     held: list[str] = []  # the table: printed once the progress display is gone
     with bar:
         pieces = estimate_report(
-            bar.iterate(points.points),
+            bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
             fmt=fmt,  # type: ignore[arg-type]
             options=options,
             compare_paper=compare == "paper",
