@@ -257,3 +257,9 @@ def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytes
     monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
     res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"))
     assert_one_line_error(res, "31,684 feasible assignments", "over the memory budget", "--allow-large")
+
+
+def test_simulate_refuses_a_subspace_that_does_not_fit() -> None:
+    res = invoke("simulate", str(EXAMPLES / "two_robots_5x5.toml"))
+    assert_one_line_error(res, "two_robots_5x5.toml", "simulating at least", "feasible assignments", "--allow-large")
+    assert invoke("simulate", str(EXAMPLES / "two_robots_4x4.toml"), "--json").exit_code == 0
