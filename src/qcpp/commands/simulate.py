@@ -68,7 +68,7 @@ def _guard(s: Scenario, p: int, path: Path) -> None:
 
     if large_allowed():
         return
-    size = validate_size(s, p, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
+    size = validate_size(s, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
     budget = memory_budget()
     if size.assignments > MAX_VALIDATE_ASSIGNMENTS or (budget is not None and size.bytes > budget):
         limit = (
