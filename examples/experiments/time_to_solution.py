@@ -221,14 +221,18 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         res["dfs"] = run_dfs(inst, cfg)
         res["cpsat"] = run_cpsat(inst, cfg)
         if res["dfs"]["attempted"]:
-            assert abs(res["dfs"]["cost"] - res["cpsat"]["cost"]) < 1e-9 and res["cpsat"]["proven"], inst.label
+            # the exhaustive optimum: CP-SAT never beats it, and equals it when it proved its answer (whether it
+            # proves it within its wall-clock limit depends on the machine's load, so that is not assumed)
+            assert res["cpsat"]["cost"] >= res["dfs"]["cost"] - 1e-9, inst.label
+            assert not res["cpsat"]["proven"] or abs(res["dfs"]["cost"] - res["cpsat"]["cost"]) < 1e-9, inst.label
         res["anneal"] = run_local(inst, cfg, "anneal")
         res["genetic"] = run_local(inst, cfg, "genetic")
         proven = res["dfs"]["attempted"] or res["cpsat"]["proven"]
+        exact = res["dfs"]["cost"] if res["dfs"]["attempted"] else res["cpsat"]["cost"]
         best = min([res["cpsat"]["cost"]] + [r["cost"] for m in ("anneal", "genetic") for r in res[m]])
         if proven:
-            assert best >= res["cpsat"]["cost"] - TOL, (inst.label, best)  # nothing beats a proven optimum
-        res["optimum"] = {"value": res["cpsat"]["cost"] if proven else best, "proven": proven}
+            assert best >= exact - TOL, (inst.label, best)  # nothing beats a proven optimum
+        res["optimum"] = {"value": exact if proven else best, "proven": proven}
         res["qaoa"] = run_qaoa(inst, cfg, res["optimum"]["value"], opts.seed) if proven else None
         print(f"{inst.label:16} optimum {res['optimum']['value']:g} ({'proven' if proven else 'best known'}) "
               f"in {time.perf_counter() - t0:.1f} s", flush=True)

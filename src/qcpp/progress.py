@@ -213,11 +213,18 @@ class Progress:
         self.stage_text = text
         self._after_change(force=True)
 
-    def iterate(self, items: Iterable[T]) -> Iterator[T]:
-        """Yield ``items``, counting one step as each is handed out (done = items handed out before it)."""
+    def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
+        """Yield ``items``, counting one step as each is handed out (done = items handed out before it).
+
+        Args:
+            items: The steps.
+            then: Stage to show once every item is done (what the consumer does next, e.g. ``rendering the table``).
+        """
         for item in items:
             yield item
             self.advance()
+        if then is not None:
+            self.stage(then)
 
     def status(self) -> str:
         """The current line (without a newline)."""

@@ -50,7 +50,8 @@ Backends:
 
 Size: every backend compares against the exact feasible-subspace state, whose size is the number of feasible
 assignments (the product of the robots' path counts). :func:`validate_size` predicts it first, counting paths
-no further than needed, and :func:`validate` refuses (:class:`ValidationTooLargeError`, one line naming the
+no further than needed (no circuit is planned for that: ``auto`` picks its backend from the compiled circuit's
+width), and :func:`validate` refuses (:class:`ValidationTooLargeError`, one line naming the
 size and the limit) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted peak over
 the memory budget, instead of trying for minutes and running out of memory (two robots on 5x5 have 73.8 million
 feasible assignments: 9.4 GB).
@@ -217,19 +218,15 @@ def _json_float(x: float) -> float | None:
 
 @dataclass(frozen=True)
 class ValidationSize:
-    """What a validation will hold, predicted before it starts.
+    """What a validation will hold, predicted before it starts: the feasible subspace it compares against.
 
     Attributes:
         paths_per_robot: Each robot's path count (a lower bound where counting stopped: ``exact`` false).
         exact: Whether every count is exact.
-        qubits: Qubits of the lowered circuit.
-        gates: Gates of the lowered circuit (exact, from the gadgets' costs).
     """
 
     paths_per_robot: tuple[int, ...]
     exact: bool
-    qubits: int
-    gates: int
 
     @property
     def assignments(self) -> int:
@@ -254,12 +251,11 @@ class ValidationTooLargeError(ValueError):
     """A validation over the limits of :func:`validate` (one line naming the size and the limit)."""
 
 
-def validate_size(scenario: Scenario, p: int, *, max_assignments: int | None = None) -> ValidationSize:
-    """Predict a validation's size without building anything.
+def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> ValidationSize:
+    """Predict a validation's size without building anything (counting paths no further than needed).
 
     Args:
         scenario: The scenario.
-        p: QAOA layers.
         max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
 
     Returns:
@@ -267,36 +263,34 @@ def validate_size(scenario: Scenario, p: int, *, max_assignments: int | None = N
 
     Example:
         >>> from gridcover.presets import default_scenario
-        >>> size = validate_size(default_scenario(4, 4, 2), 1)
-        >>> size.paths_per_robot, size.assignments, size.qubits
-        ((184, 184), 33856, 80)
+        >>> size = validate_size(default_scenario(4, 4, 2))
+        >>> size.paths_per_robot, size.assignments, size.exact
+        ((184, 184), 33856, True)
+        >>> validate_size(default_scenario(4, 4, 2), max_assignments=1000).exact
+        False
     """
-    from estimators.guard import predict_size
     from gridcover.paths import count_paths
 
     counts: list[int] = []
-    exact = True
     for r in range(scenario.num_robots):
         cap = None if max_assignments is None else max_assignments // max(1, math.prod(counts)) + 1
         n = count_paths(scenario, r, cap)
         counts.append(n)
         if cap is not None and n >= cap:
-            exact = False
             counts += [1] * (scenario.num_robots - r - 1)  # every other robot has at least one path
-            break
-    size = predict_size(scenario, p)
-    return ValidationSize(tuple(counts), exact, size.qubits, size.gates)
+            return ValidationSize(tuple(counts), False)
+    return ValidationSize(tuple(counts), True)
 
 
-def choose_backend(size: ValidationSize) -> Backend:
-    """What ``auto`` runs: ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS` qubits, else ``sparse``.
+def choose_backend(qubits: int) -> Backend:
+    """What ``auto`` runs on a lowered circuit of ``qubits`` qubits: ``statevector`` up to
+    :data:`AUTO_STATEVECTOR_QUBITS`, else ``sparse``.
 
     Example:
-        >>> small, large = ValidationSize((12,), True, 15, 296), ValidationSize((178, 178), True, 80, 3619)
-        >>> choose_backend(small), choose_backend(large)
+        >>> choose_backend(15), choose_backend(80)
         ('statevector', 'sparse')
     """
-    return "statevector" if size.qubits <= AUTO_STATEVECTOR_QUBITS else "sparse"
+    return "statevector" if qubits <= AUTO_STATEVECTOR_QUBITS else "sparse"
 
 
 def random_angles(p: int, seed: int | None) -> np.ndarray:
@@ -409,7 +403,7 @@ def validate(
             stage(text)
 
     at("predicting the size")
-    size = validate_size(scenario, p, max_assignments=max_assignments)
+    size = validate_size(scenario, max_assignments=max_assignments)
     if max_assignments is not None and size.assignments > max_assignments:
         raise ValidationTooLargeError(
             f"validating {size.describe()}: over the limit of {max_assignments:,} feasible assignments"
@@ -418,8 +412,6 @@ def validate(
         raise ValidationTooLargeError(
             f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
         )
-    if backend == "auto":
-        backend = choose_backend(size)
 
     at("simulating the feasible subspace")
     sub = SubspaceQAOA(scenario, rule)
@@ -438,6 +430,8 @@ def validate(
     at("compiling the lowered circuit")
     circuit = compile_scenario(scenario, p, PlanOptions(rule=rule, fuse=fuse), lowered=True, bindings=bindings).circuit
     n, nq = scenario.num_variables, circuit.num_qubits
+    if backend == "auto":  # compiled fused, as every backend but tensor (which auto never picks)
+        backend = choose_backend(nq)
     ancillas = list(range(n, nq))
     tol = tolerance
     checks: list[Check] = []

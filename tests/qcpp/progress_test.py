@@ -128,7 +128,28 @@ def test_an_estimate_table_shows_progress_before_the_table() -> None:
     total = int(lines[0].split(" / ")[1].split()[0])
     assert lines[0].startswith(f"estimate: 0 / {total} rows") and total == 12  # first: before any row is computed
     assert any(line.startswith(f"estimate: {total} / {total} rows") for line in lines)
+    assert any(line.startswith(f"estimate: {total} / {total} rows (100.0%), rendering the table") for line in lines)
     assert lines[-1].startswith(f"estimate: {total} rows done in ")
+
+
+def test_a_long_sweep_prints_its_first_line_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """No clock: the first line of a long sweep is written when the work starts (before any row), not after 1 s."""
+    import qcpp.commands.estimate as estimate_cmd
+
+    written: list[str] = []
+    real = Progress.__enter__
+
+    def enter(self: Progress) -> Progress:
+        out = real(self)
+        written.append(f"first_after={self._first_after}")
+        return out
+
+    monkeypatch.setattr(Progress, "__enter__", enter)
+    monkeypatch.setattr(estimate_cmd, "LONG_SWEEP_ROWS", 2)
+    assert invoke("estimate", "--grid", "2x2..2x3", "--depth", "none").exit_code == 0
+    monkeypatch.setattr(estimate_cmd, "LONG_SWEEP_ROWS", 3)
+    assert invoke("estimate", "--grid", "2x2..2x3", "--depth", "none").exit_code == 0
+    assert written == ["first_after=0.0", f"first_after={FIRST_LINE_AFTER}"]
 
 
 def test_streamed_rows_to_a_pipe_get_progress_too() -> None:
@@ -153,7 +174,8 @@ def test_a_big_compile_is_built_in_sections_with_progress_and_the_same_summary(
     whole.pop("seconds"), streamed.pop("seconds")
     assert streamed == whole
     lines = res.stderr.splitlines()
-    assert lines[0].startswith("compile 4x4, 2 robot(s), p=2: 0")
+    assert lines[0].startswith("compile 4x4, 2 robot(s), p=2: 0")  # at once: a circuit this big is known to be long
+    assert any("planning the circuit" in line for line in lines)
     assert lines[-1].startswith(f"compile 4x4, 2 robot(s), p=2: {whole['total_gates']:,} gates done")
     if lowered:  # the prediction is exact for the lowered circuit
         assert f" / {whole['total_gates']:,} gates" in lines[1]
@@ -235,3 +257,9 @@ def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytes
     monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
     res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"))
     assert_one_line_error(res, "31,684 feasible assignments", "over the memory budget", "--allow-large")
+
+
+def test_simulate_refuses_a_subspace_that_does_not_fit() -> None:
+    res = invoke("simulate", str(EXAMPLES / "two_robots_5x5.toml"))
+    assert_one_line_error(res, "two_robots_5x5.toml", "simulating at least", "feasible assignments", "--allow-large")
+    assert invoke("simulate", str(EXAMPLES / "two_robots_4x4.toml"), "--json").exit_code == 0

@@ -6,7 +6,8 @@ independent tensor methods (an MPS of the whole circuit, and exact contraction w
 that the ancillas end in |0> (probability 1 to 1e-8) and that feasible assignments' amplitudes equal the exact
 feasible-subspace simulator's (1e-8).
 
-The 18-40 qubit checks are ``heavy`` (CI runs them in a second step); the CLI check stays in the default run.
+The 18-40 qubit checks and the dask LocalCluster check are ``heavy`` (CI runs them in a second step); the CLI
+check stays in the default run.
 """
 
 from __future__ import annotations
@@ -66,6 +67,7 @@ def test_validate_cli_json_and_exit_codes() -> None:
 
 
 # --- slicing and dask ------------------------------------------------------------------------------------------
+@pytest.mark.heavy  # a dask LocalCluster and sliced path searches: 307 s of the default run beside other jobs
 def test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one(tmp_path: Path) -> None:
     import numpy as np
     from dask.distributed import Client, LocalCluster

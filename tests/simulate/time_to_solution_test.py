@@ -62,8 +62,11 @@ def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def
     assert len(data["instances"]) == len(out["instances"]) == 8
     for inst in out["instances"]:
         r = inst.results
-        # quick mode: every instance is small enough for exhaustive search, and CP-SAT proves the same optimum
-        assert r["dfs"]["attempted"] and r["cpsat"]["proven"] and r["dfs"]["cost"] == r["cpsat"]["cost"]
+        # quick mode: every instance is small enough for exhaustive search; CP-SAT never beats it and, when it
+        # proves its answer within its 2 s wall-clock limit (not on a loaded machine, so not assumed), equals it
+        assert r["dfs"]["attempted"] and r["cpsat"]["cost"] >= r["dfs"]["cost"]
+        assert not r["cpsat"]["proven"] or r["dfs"]["cost"] == r["cpsat"]["cost"]
+        assert r["optimum"] == {"value": r["dfs"]["cost"], "proven": True}
         assert all(run["cost"] >= r["dfs"]["cost"] for m in ("anneal", "genetic") for run in r[m])
     methods = {row["method"] for row in rows}
     assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}

@@ -134,7 +134,8 @@ def compile_command(
         passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
         # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
         total = size.gates * passes if lowered else None
-        with Progress(task, total=total, unit="gates") as bar:
+        big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
+        with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
             summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
         if qasm is not None:
             summary["qasm"] = {"path": str(qasm), "version": qasm_version}
@@ -266,7 +267,11 @@ def _stream(
     if unknown:
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+    if progress is not None:
+        progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
+    if progress is not None:
+        progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 

@@ -36,7 +36,10 @@ from qcpp.render import print_table
 
 from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
 
-__all__ = ["estimate", "register"]
+__all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
+
+LONG_SWEEP_ROWS = 200
+"""Sweeps of at least this many rows print their first progress line at once (on a pipe), not after a second."""
 
 HELP = (
     "Resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), summed from the costs of its "
@@ -216,11 +219,13 @@ def estimate(
     )
     # progress unless the rows themselves stream to a terminal (a table waits for every row; a pipe shows nothing)
     show = fmt == "table" or plot is not None or not _is_terminal(sys.stdout)
-    bar = Progress("estimate", total=len(points.points), unit="rows", mode=None if show else "off")
+    # a sweep of many rows is known to be long: its first line comes at once, not after a second
+    first = 0.0 if len(points.points) >= LONG_SWEEP_ROWS else None
+    bar = Progress("estimate", total=len(points.points), unit="rows", mode=None if show else "off", first_after=first)
     held: list[str] = []  # the table: printed once the progress display is gone
     with bar:
         pieces = estimate_report(
-            bar.iterate(points.points),
+            bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
             fmt=fmt,  # type: ignore[arg-type]
             options=options,
             compare_paper=compare == "paper",

@@ -24,7 +24,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from gridcover.sbf import RULES
-from gridcover.scenario import load_scenario
+from gridcover.scenario import Scenario, load_scenario
+from qcpp.progress import Progress
 from qcpp.render import print_table
 from simulate.evaluate import METHODS, evaluate
 
@@ -60,6 +61,25 @@ def parse_angles(text: str) -> list[float]:
     return out
 
 
+def _guard(s: Scenario, p: int, path: Path) -> None:
+    """Refuse (one line, exit 2) a feasible subspace over the validation limit
+    (:data:`simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory); ``--allow-large`` lifts it."""
+    from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from simulate.validate import MAX_VALIDATE_ASSIGNMENTS, validate_size
+
+    if large_allowed():
+        return
+    size = validate_size(s, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
+    budget = memory_budget()
+    if size.assignments > MAX_VALIDATE_ASSIGNMENTS or (budget is not None and size.bytes > budget):
+        limit = (
+            f"the limit of {MAX_VALIDATE_ASSIGNMENTS:,} feasible assignments"
+            if size.assignments > MAX_VALIDATE_ASSIGNMENTS
+            else f"the memory budget of {budget / 1e9:.1f} GB"  # type: ignore[operator]
+        )
+        raise ValueError(f"{path}: simulating {size.describe()}: over {limit}; pass {OVERRIDE_FLAG} to try anyway")
+
+
 def simulate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
@@ -80,7 +100,11 @@ def simulate_command(
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     values = parse_angles(angles) if angles is not None else None
     s = load_scenario(scenario, check_range=True, phases=True)
-    res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
+    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
+        _guard(s, p, scenario)
+    with Progress(f"simulate {scenario.name}") as bar:
+        bar.stage(f"simulating ({method})")
+        res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps({"scenario": str(scenario), **res.as_dict(), "rule": rule}))
         return
