@@ -78,6 +78,21 @@ COSTS = CostCache()
 """The process-wide cost cache of :class:`GadgetKind`."""
 
 
+class _HashedKey:
+    """A kind key with its hash computed once (the cache's key: it holds no example, so no gadget stays alive)."""
+
+    __slots__ = ("hash", "key")
+
+    def __init__(self, key: Hashable) -> None:
+        self.key, self.hash = key, hash(key)
+
+    def __hash__(self) -> int:
+        return self.hash
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _HashedKey) and self.hash == other.hash and self.key == other.key
+
+
 @dataclass(frozen=True, eq=False)
 class GadgetKind:
     """One kind of gadget: its cost and needs, no qubits (see the module docstring).
@@ -101,21 +116,21 @@ class GadgetKind:
         return cls(gadget.kind, gadget, temporaries, work)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "_hash", hash(self.key))  # keys can be long tuples: hash them once
+        object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
     def cost(self) -> Cost:
         """Lowered cost (from :data:`COSTS`)."""
-        return COSTS.costs(self, self.example)[0]
+        return COSTS.costs(self._hashed, self.example)[0]  # type: ignore[attr-defined]
 
     def logical_cost(self) -> Cost:
         """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`)."""
-        return COSTS.costs(self, self.example)[1]
+        return COSTS.costs(self._hashed, self.example)[1]  # type: ignore[attr-defined]
 
     def __eq__(self, other: object) -> bool:
         return self is other or (isinstance(other, GadgetKind) and self.key == other.key)
 
     def __hash__(self) -> int:
-        return self._hash  # type: ignore[attr-defined,no-any-return]
+        return self._hashed.hash  # type: ignore[attr-defined,no-any-return]
 
 
 @dataclass(frozen=True, eq=False)

@@ -107,7 +107,8 @@ def initial_path_length(scenario: Scenario, robot: int) -> int:
     """Edges of the robot's initial path, the X gates ``initial_path`` prepares for it (kept per grid, obstacles
     and endpoints: a sweep asks the same few again for every robot count)."""
     rb = scenario.robots[robot]
-    key = (scenario.grid, scenario.obstacles, scenario.objective.obstacles, rb.start, rb.goal)
+    g = scenario.grid  # by value: keeping grids (and their cached tables) alive would cost memory
+    key = (g.rows, g.cols, scenario.obstacles, scenario.objective.obstacles, rb.start, rb.goal)
     n = _PATH_LENGTH.get(key)
     if n is None:
         n = _PATH_LENGTH[key] = initial_path(scenario, robot).bit_count()
