@@ -16,6 +16,7 @@ from typing import Any
 
 from gridcover.scenario import Scenario
 
+from .angles import symbol_sort_key
 from .circuit import Circuit
 from .lowering import lower
 from .options import DEFAULT_PLAN, PlanOptions
@@ -89,9 +90,12 @@ def compile_scenario(
     plan = qaoa_plan(scenario, p, options)
     circuit = plan.circuit()
     if bindings:
-        unknown = sorted(set(bindings) - set(circuit.symbols))
+        # a layer's angles are names of the operator even where no gate uses them (a cost constant on the
+        # feasible set leaves the phase separator empty, and gamma_k with it)
+        known = set(circuit.symbols) | {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+        unknown = sorted(set(bindings) - known)
         if unknown:
-            have = ", ".join(circuit.symbols) or "none"
+            have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
             raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
     if lowered:
         circuit = lower(circuit)

@@ -88,3 +88,18 @@ def test_parse_angles() -> None:
     assert parse_angles("1, -2.5,3e-1") == [1.0, -2.5, 0.3]
     with pytest.raises(ValueError, match="'x'"):
         parse_angles("1,x")
+
+
+def test_a_layer_whose_phase_separator_is_empty_still_takes_its_gamma(tmp_path: Path) -> None:
+    # one robot corner to corner on 2x2: both paths cost the same, so the phase separator emits no gate and
+    # gamma_0 appears in no gate; binding it must still work in every command that binds angles
+    scenario = tmp_path / "flat.toml"
+    scenario.write_text("[grid]\nrows = 2\ncols = 2\n\n[[robots]]\nstart = [0, 0]\ngoal = [1, 1]\n")
+    for args in (
+        ("validate", str(scenario), "--backend", "statevector"),
+        ("simulate", str(scenario), "--method", "statevector", "--angles", "0.3,0.7"),
+        ("compile", str(scenario), "--lowered", "--bind", "gamma_0=0.3", "beta_0=0.7", "--json"),
+    ):
+        res = run(*args)
+        assert res.exit_code == 0, (args, res.output)
+    assert "unknown symbol" in run("compile", str(scenario), "--bind", "gamma_1=0.3").stderr
