@@ -4,7 +4,7 @@ Example:
     >>> from gridcover.presets import default_scenario
     >>> result = compile_scenario(default_scenario(3, 3, 1), 1, lowered=True, bindings={"gamma_0": 0.3})
     >>> result.circuit.symbols, result.summary()["qubits"]
-    (('beta_0',), 18)
+    (('beta_0',), 15)
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ With ``K = 1`` this is just the X gates of the single path.
 
 Example:
     >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
-    ['ry', 'x', 'cx', 'x', 'cx']
+    ['ry', 'mcx']
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
     >>> gates = partial_mixer_gates(s, 0, s.grid.plaquettes[0], Angle.symbol("beta_0"), logic_offset=4)
     >>> sorted({g.name for g in gates})
-    ['cx', 'h', 'rz', 'x']
+    ['cx', 'h', 'rz']
 """
 
 from __future__ import annotations

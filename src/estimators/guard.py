@@ -15,7 +15,7 @@ Example:
     >>> from gridcover.presets import default_scenario
     >>> size = predict_size(default_scenario(3, 3, 1), 1)
     >>> size.qubits, size.fits(DEFAULT_MAX_GATES), size.fits(100)
-    (18, True, False)
+    (15, True, False)
     >>> predict_size(default_scenario(3, 3, 1), 4).gates > 3 * size.gates
     True
 """

@@ -32,7 +32,7 @@ Example:
     >>> a = evaluate(s, 1, "subspace", angles=[0.4, 1.1])
     >>> b = evaluate(s, 1, "statevector", angles=[0.4, 1.1])
     >>> abs(a.expectation - b.expectation) < 1e-9, round(b.amplitudes_held, 9), a.method, b.qubits
-    (True, 1.0, 'subspace', 12)
+    (True, 1.0, 'subspace', 8)
 """
 
 from __future__ import annotations

@@ -117,7 +117,8 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
     """
     if not values:
         return ""
-    idx = [round(i * (len(values) - 1) / max(1, width - 1)) for i in range(min(width, len(values)))]
+    bars = min(width, len(values))
+    idx = [round(i * (len(values) - 1) / max(1, bars - 1)) for i in range(bars)]
     pts = [values[i] for i in idx]
     lo, hi = min(pts), max(pts)
     span = hi - lo or 1.0
