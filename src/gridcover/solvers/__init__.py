@@ -21,18 +21,22 @@ Example:
 
 from __future__ import annotations
 
+import importlib
+import sys
 from collections.abc import Mapping
-from types import MappingProxyType
-from typing import Protocol
+from types import MappingProxyType, ModuleType
+from typing import TYPE_CHECKING, Any, Protocol
 
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers.annealing import anneal
-from gridcover.solvers.cpsat import CpSatResult, cpsat
 from gridcover.solvers.exhaustive import dfs
 from gridcover.solvers.genetic_algorithm import genetic
 from gridcover.solvers.moves import AUTO_COMPONENT_NODES, CostCache, MoveSpace
 from gridcover.solvers.result import ProgressFn, Solution, solution_to_dict
+
+if TYPE_CHECKING:
+    from gridcover.solvers.cpsat import CpSatResult, cpsat
 
 __all__ = [
     "AUTO_COMPONENT_NODES",
@@ -75,7 +79,30 @@ def _genetic(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn 
 
 def _cpsat(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
     # an exact model of the cost: no moves, so no rule; runs until the optimum is proven
-    return cpsat(scenario, seed=seed, progress=progress).solution
+    from gridcover.solvers.cpsat import cpsat as run_cpsat
+
+    return run_cpsat(scenario, seed=seed, progress=progress).solution
+
+
+def __getattr__(name: str) -> Any:
+    # OR-Tools takes ~0.3 s to import: cpsat and CpSatResult load on first use, not with the package
+    if name not in ("cpsat", "CpSatResult"):
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    module = importlib.import_module("gridcover.solvers.cpsat")
+    globals().update(cpsat=module.cpsat, CpSatResult=module.CpSatResult)
+    return globals()[name]
+
+
+class _Package(ModuleType):
+    """This package's module type: importing the submodule ``cpsat`` does not replace the function ``cpsat``."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name == "cpsat" and isinstance(value, ModuleType):
+            value = value.cpsat
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
 
 
 SOLVERS: Mapping[str, SolveMethod] = MappingProxyType(

@@ -27,7 +27,6 @@ from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from qcpp.progress import Progress
 from qcpp.render import print_table
-from simulate.evaluate import METHODS, evaluate
 
 __all__ = ["parse_angles", "register", "simulate_command"]
 
@@ -94,6 +93,8 @@ def simulate_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Evaluate QAOA angles (see ``qcpp simulate --help``)."""
+    from simulate.evaluate import METHODS, evaluate  # scipy: imported when the command runs, not at start-up
+
     if method not in METHODS:
         raise ValueError(f"--method: expected one of {', '.join(METHODS)}, got {method!r}")
     if rule not in RULES:
