@@ -23,15 +23,12 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import sympy as sp
-
 from gridcover.errors import ScenarioError
 from gridcover.limits import check_layers
 from gridcover.presets import max_default_robots
 from gridcover.scenario import load_scenario
 
 from .estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point
-from .formulas import FORMULA_DOMAIN, P_EXPR, QUANTITIES, V_EXPR, formula_table
 from .paper import Doubling
 from .plots import plot_rows
 from .sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
@@ -166,6 +163,10 @@ def formula_report(fmt: Format = "table") -> str:
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
     """
+    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+
+    from .formulas import FORMULA_DOMAIN, P_EXPR, QUANTITIES, V_EXPR, formula_table
+
     explicit, structured = formula_table(), formula_table(structured=True)
     abbrev = {"V": sp.sstr(V_EXPR), "P": sp.sstr(P_EXPR)}
     if fmt in ("json", "jsonl"):
