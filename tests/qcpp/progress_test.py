@@ -248,7 +248,7 @@ def test_validate_picks_a_backend_that_fits() -> None:
     for stage in ("predicting the size", "simulating the feasible subspace", "compiling the lowered circuit",
                   "simulating the circuit (sparse)"):  # fmt: skip
         assert any(stage in line for line in stages), stage
-    assert "backend sparse (auto: 80 qubits)" in big.stderr
+    assert "backend=sparse (auto), 80 qubits" in " ".join(big.stdout.split())  # the choice is in the title
 
 
 def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytest.MonkeyPatch) -> None:

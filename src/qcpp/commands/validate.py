@@ -116,8 +116,7 @@ def validate_command(
             )
         except ValidationTooLargeError as exc:
             raise ValueError(f"{scenario}: {exc}; pass {OVERRIDE_FLAG} to try anyway") from None
-    if backend == "auto" and not as_json:
-        typer.echo(f"backend {report.backend} (auto: {report.qubits} qubits)", err=True)
+    chosen = f"{report.backend} (auto)" if backend == "auto" else report.backend  # said in the table's title
     backend = report.backend
     skipped = [c.name for c in report.checks if c.status == "skipped"]
     verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
@@ -127,7 +126,7 @@ def validate_command(
             out["tolerance"] = None  # QCEC decides equality exactly; it compares no amplitudes
         typer.echo(json.dumps(out))
     else:
-        table = Table(title=f"{scenario.name}: p={p}, backend={backend}, {report.qubits} qubits, {report.gates} gates")
+        table = Table(title=f"{scenario.name}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
             table.add_column(col, justify="left" if col in ("check", "method", "status") else "right")
         for c in report.checks:
