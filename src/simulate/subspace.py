@@ -367,6 +367,7 @@ class SubspaceQAOA:
         self._values: np.ndarray | None = None
         self._diag: np.ndarray | None = None  # float64 diagonal when there are too many distinct values
         self._optimum: tuple[float, np.ndarray] | None = None
+        self._unique: tuple[np.ndarray, np.ndarray] | None = None  # cost table when there are no levels
 
     # ------------------------------------------------------------------ basis
 
@@ -671,7 +672,6 @@ class SubspaceQAOA:
         sweep un-applies the operators to both vectors. Memory: two state arrays plus the cost diagonal.
         """
         gammas, betas = split_angles(angles)
-        p = len(gammas)
         self._build_cost()
         psi = self.state(angles)
         lam = np.empty_like(psi)
@@ -680,12 +680,75 @@ class SubspaceQAOA:
         for sl in _chunks(pflat.size):
             np.multiply(pflat[sl], self._cost_chunk(sl), out=lflat[sl])
             energy += float(np.vdot(pflat[sl], lflat[sl]).real)
+        return energy, self._backward(psi, lam, gammas, betas)
+
+    def cost_distribution_index(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(values, index)``: the sorted distinct costs (or, for integer costs, every integer between the
+        extremes) and, per amplitude (shape :attr:`dims`), the position of its cost in ``values``.
+
+        This is :meth:`cost_levels` when it exists; otherwise the table is built once with ``np.unique``.
+        """
+        compact = self.cost_levels()
+        if compact is not None:
+            return compact
+        if self._unique is None:
+            assert self._diag is not None
+            values, index = np.unique(self._diag.reshape(-1), return_inverse=True)
+            self._unique = (values, index.reshape(self.dims))
+        return self._unique
+
+    def level_probabilities(self, psi: np.ndarray) -> np.ndarray:
+        """The probability of each cost in :meth:`cost_distribution_index`'s table for the state ``psi``."""
+        values, index = self.cost_distribution_index()
+        flat, lev = psi.reshape(-1), index.reshape(-1)
+        weight = np.zeros(values.size)
+        for sl in _chunks(flat.size):
+            weight += np.bincount(lev[sl], weights=_abs2(flat[sl]), minlength=values.size)
+        return weight
+
+    def objective_and_gradient(
+        self,
+        angles: Sequence[float] | np.ndarray,
+        objective: Callable[[np.ndarray, np.ndarray], tuple[float, np.ndarray]],
+    ) -> tuple[float, np.ndarray]:
+        """``(F, dF/dangles)`` for any differentiable function ``F`` of the measured cost's distribution.
+
+        ``objective(values, probabilities)`` gets the cost table of :meth:`cost_distribution_index` and the
+        probability of each entry, and returns ``F`` and ``dF/dprobabilities``. Since ``F`` depends on the
+        angles only through the probabilities, ``dF/dtheta = d<psi|O|psi>/dtheta`` for the fixed diagonal
+        observable ``O = dF/dprobabilities[cost(x)]``, which the adjoint sweep of :meth:`value_and_gradient`
+        gives with ``lambda = O psi`` (one forward and one backward sweep, two state arrays).
+
+        Example:
+            >>> from gridcover.scenario import scenario_from_dict
+            >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+            >>> q = SubspaceQAOA(s)
+            >>> mean = lambda v, w: (float(np.dot(v, w)), v)
+            >>> f, g = q.objective_and_gradient([0.2, 0.9], mean)
+            >>> bool(np.allclose(g, q.gradient([0.2, 0.9]))), round(f - q.expectation([0.2, 0.9]), 9)
+            (True, 0.0)
+        """
+        gammas, betas = split_angles(angles)
+        self._build_cost()
+        psi = self.state(angles)
+        values, index = self.cost_distribution_index()
+        value, weights = objective(values, self.level_probabilities(psi))
+        weights = np.asarray(weights, dtype=np.float64)
+        lam = np.empty_like(psi)
+        pflat, lflat, lev = psi.reshape(-1), lam.reshape(-1), index.reshape(-1)
+        for sl in _chunks(pflat.size):
+            np.multiply(pflat[sl], weights[lev[sl]], out=lflat[sl])
+        return float(value), self._backward(psi, lam, gammas, betas)
+
+    def _backward(self, psi: np.ndarray, lam: np.ndarray, gammas: np.ndarray, betas: np.ndarray) -> np.ndarray:
+        """The adjoint sweep: ``2 Im <lambda_k|G_k|phi_k>`` per angle (destroys ``psi`` and ``lam``)."""
+        p = len(gammas)
         grad = np.zeros(2 * p)
         for k in range(p - 1, -1, -1):
             for r in range(len(self.robot_bases) - 1, -1, -1):
                 grad[2 * k + 1] += self._mixer_adjoint(psi, lam, r, betas[k])
             grad[2 * k] = self._phase_adjoint(psi, lam, gammas[k])
-        return energy, grad
+        return grad
 
     # ------------------------------------------------------------------ kernels
 
