@@ -73,6 +73,7 @@ from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import initial_path, is_feasible, path_bits
 from gridcover.sbf import RULES, Rule, SbfLogic, representatives, sbf_logic
 from gridcover.scenario import Scenario
+from simulate import subspace_kernels
 
 __all__ = [
     "INITIAL_STATES",
@@ -86,6 +87,7 @@ __all__ = [
 ]
 
 InitialState = Literal["initial_path", "representatives"]
+Kernels = Literal["auto", "numba", "blas"]
 INITIAL_STATES: tuple[InitialState, ...] = ("initial_path", "representatives")
 
 _CHUNK = 1 << 18  # elements per chunk of the element-wise loops
@@ -326,7 +328,9 @@ class SubspaceQAOA:
             :func:`circuitgen.phase.phase_plan`, or ``"whole-space"`` for the Ising constant ``c0``. Use the
             constant of the representation the compared circuit was compiled with.
         buffer: Amplitudes in the scratch buffer used for axes with short contiguous runs (memory
-            ``16 * buffer`` bytes, twice during a gradient).
+            ``16 * buffer`` bytes, twice during a gradient; BLAS kernels only).
+        kernels: How the partial mixers run: ``numba`` (tiled, parallel, :mod:`simulate.subspace_kernels`),
+            ``blas`` (one ``zrot`` call per pair and run) or ``auto`` (default: numba when importable).
 
     Raises:
         ValueError: for an unknown rule or initial state.
@@ -352,8 +356,15 @@ class SubspaceQAOA:
         initial: InitialState = "initial_path",
         phase_offset: float | Literal["feasible", "whole-space"] | None = None,
         buffer: int = _DEFAULT_BUFFER,
+        kernels: Kernels = "auto",
     ) -> None:
-        _check_lapack_in_place()
+        if kernels not in ("auto", "numba", "blas"):
+            raise ValueError(f"unknown kernels {kernels!r} (expected auto, numba or blas)")
+        if kernels == "numba" and not subspace_kernels.AVAILABLE:
+            raise ValueError("kernels='numba' needs numba, which is not importable here")
+        self.kernels: Kernels = "numba" if kernels == "auto" and subspace_kernels.AVAILABLE else kernels
+        if self.kernels == "blas":
+            _check_lapack_in_place()
         self.scenario = scenario
         self.rule: Rule = rule
         self.initial: InitialState = initial
@@ -363,6 +374,11 @@ class SubspaceQAOA:
         self.phase_offset = _phase_offset(scenario, phase_offset)
         self.buffer = max(1, int(buffer))
         self._pair_lists = tuple(tuple((i.tolist(), j.tolist()) for _, i, j in b.pairs) for b in self.robot_bases)
+        self._pair_arrays = tuple(
+            (np.concatenate([i for _, i, _ in b.pairs]).astype(np.intp),
+             np.concatenate([j for _, _, j in b.pairs]).astype(np.intp)) if b.pairs else None
+            for b in self.robot_bases
+        )
         self._levels: np.ndarray | None = None  # compact diagonal: values[levels]
         self._values: np.ndarray | None = None
         self._diag: np.ndarray | None = None  # float64 diagonal when there are too many distinct values
@@ -759,6 +775,9 @@ class SubspaceQAOA:
         if self._levels is not None:
             assert self._values is not None
             table = np.exp(-1j * gamma * (self._values - self.phase_offset))
+            if self.kernels == "numba":
+                subspace_kernels.phase(psi, self._levels, table)
+                return
             lev = self._levels.reshape(-1)
             for sl in _chunks(flat.size):
                 flat[sl] *= table[lev[sl]]
@@ -773,6 +792,11 @@ class SubspaceQAOA:
             assert self._values is not None
             shifted = self._values - self.phase_offset
             table = np.exp(1j * gamma * shifted)
+            if self.kernels == "numba":
+                weight = subspace_kernels.phase_weights(psi, lam, self._levels, shifted.size)
+                subspace_kernels.phase(psi, self._levels, table)
+                subspace_kernels.phase(lam, self._levels, table)
+                return 2.0 * float(np.dot(weight, shifted))
             lev = self._levels.reshape(-1)
             weight = np.zeros(shifted.size)
             for sl in _chunks(pf.size):
@@ -829,6 +853,10 @@ class SubspaceQAOA:
         if not plist:
             return
         c, s = float(np.cos(beta / 2)), complex(-1j * np.sin(beta / 2))
+        pairs = self._pair_arrays[r]
+        if self.kernels == "numba" and pairs is not None:
+            subspace_kernels.mixer(psi.reshape(self._layout(r)), pairs[0], pairs[1], c, s)
+            return
 
         def rotate(flats: list[np.ndarray], base: int, w: int) -> None:
             (x,) = flats
@@ -846,6 +874,10 @@ class SubspaceQAOA:
         if not plist:
             return 0.0
         c, s = float(np.cos(beta / 2)), complex(1j * np.sin(beta / 2))
+        pairs = self._pair_arrays[r]
+        if self.kernels == "numba" and pairs is not None:
+            shape = self._layout(r)
+            return subspace_kernels.mixer_adjoint(psi.reshape(shape), lam.reshape(shape), pairs[0], pairs[1], c, s)
         acc = [0j]
 
         def rotate_back(flats: list[np.ndarray], base: int, w: int) -> None:
