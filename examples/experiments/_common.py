@@ -1,7 +1,7 @@
 """Shared plumbing of the experiment scripts: options, output paths, tables (terminal + Markdown), atomic PNGs.
 
-Presentation only; every computation the scripts report lives in the library (``simulate.experiments``,
-``simulate.training``, ``gridcover.solvers``).
+Presentation only; every computation the scripts report lives in the library (``simulate.success``,
+``simulate.state_measures``, ``simulate.layerwise``, ``simulate.training``, ``gridcover.solvers``).
 """
 
 from __future__ import annotations
