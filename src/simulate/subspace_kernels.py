@@ -172,10 +172,20 @@ if AVAILABLE:
     _gather = _inline(_gather)
     _scatter = _inline(_scatter)
     _jit = numba.njit(parallel=True, cache=True, nogil=True)
-    _mixer = _jit(_mixer_impl)
-    _mixer_adjoint = _jit(_mixer_adjoint_impl)
-    _phase = _jit(_phase_impl)
-    _phase_weights = _jit(_phase_weights_impl)
+    _serial = numba.njit(cache=True, nogil=True)  # prange runs as range: no thread start-up and barrier
+    _kernels = {
+        name: (_serial(fn), _jit(fn))
+        for name, fn in (("mixer", _mixer_impl), ("mixer_adjoint", _mixer_adjoint_impl), ("phase", _phase_impl),
+                         ("phase_weights", _phase_weights_impl))
+    }
+
+PARALLEL_MIN = 1 << 16
+"""Arrays smaller than this many amplitudes run single-threaded: on a busy machine a parallel region's barrier
+can wait a whole scheduler time slice for its second thread, which costs more than the work."""
+
+
+def _pick(name: str, size: int):  # type: ignore[no-untyped-def]
+    return _kernels[name][size >= PARALLEL_MIN]
 
 
 def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None) -> None:
@@ -188,7 +198,8 @@ def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, t
         s: ``-1j * sin(beta / 2)`` (forward) or its conjugate (undo): a purely imaginary number.
         tile: Trailing columns per tile (default :data:`TILE`).
     """
-    _mixer(_real_view(x), ii, jj, float(c), float(-complex(s).imag), TILE if tile is None else int(tile))
+    width = TILE if tile is None else int(tile)
+    _pick("mixer", x.size)(_real_view(x), ii, jj, float(c), float(-complex(s).imag), width)
 
 
 def mixer_adjoint(
@@ -204,19 +215,21 @@ def mixer_adjoint(
         s: ``+1j * sin(beta / 2)`` (the inverse rotation).
     """
     width = TILE if tile is None else int(tile)
-    return float(_mixer_adjoint(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag), width))
+    kernel = _pick("mixer_adjoint", x.size)
+    return float(kernel(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag), width))
 
 
 def phase(x: np.ndarray, levels: np.ndarray, table: np.ndarray) -> None:
     """``x *= table[levels]`` in place (``x`` complex128 and ``levels`` uint8/uint16, both C-contiguous, same
     number of elements)."""
-    _phase(_real_view(x).reshape(-1), levels.reshape(-1), np.ascontiguousarray(table.real),
+    _pick("phase", x.size)(_real_view(x).reshape(-1), levels.reshape(-1), np.ascontiguousarray(table.real),
            np.ascontiguousarray(table.imag))
 
 
 def phase_weights(x: np.ndarray, y: np.ndarray, levels: np.ndarray, num_levels: int) -> np.ndarray:
     """Per level ``l``: ``sum_{k: levels[k] = l} Im(conj(y_k) x_k)`` (float64, length ``num_levels``)."""
-    return _phase_weights(_real_view(x).reshape(-1), _real_view(y).reshape(-1), levels.reshape(-1), int(num_levels))
+    kernel = _pick("phase_weights", x.size)
+    return kernel(_real_view(x).reshape(-1), _real_view(y).reshape(-1), levels.reshape(-1), int(num_levels))
 
 
 def _real_view(x: np.ndarray) -> np.ndarray:
