@@ -24,8 +24,10 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
   ``|x> -> cos(beta_k/2)|x> - i sin(beta_k/2)|x'>``; otherwise ``x`` is untouched.
 
 Each partial mixer is thus a set of disjoint 2x2 rotations on pairs of one robot's basis, applied along that
-robot's axis as in-place BLAS/LAPACK calls (``zrot`` on the two contiguous runs of amplitudes that share the
-other robots' paths; axes whose runs are short go through a transposed scratch buffer). The cost diagonal is
+robot's axis. By default (``kernels="auto"``) compiled numba kernels (:mod:`simulate.subspace_kernels`) apply
+a whole layer's rotations tile by tile in one pass over the state, in parallel for large states; the BLAS path
+(``kernels="blas"``) calls ``zrot`` on the two contiguous runs of amplitudes that share the other robots' paths
+(axes whose runs are short go through a transposed scratch buffer). The tests compare the two. The cost diagonal is
 built once from :func:`gridcover.cost.separable_cost` (unary vectors plus pairwise matrices) and kept as a
 ``uint8``/``uint16`` level per amplitude plus a table of the few hundred distinct cost values, so a phase
 separator is a table look-up. Gradients are exact (adjoint differentiation: one forward and one backward
