@@ -91,3 +91,13 @@ def test_doctests() -> None:
     import simulate.layerwise
 
     assert doctest.testmod(simulate.layerwise).failed == 0
+
+
+@pytest.mark.heavy  # about 20 s on 2 cores
+def test_issue_19_goal_on_two_robots_4x4() -> None:
+    """Default training puts at least 0.2 on the optimum of two_robots_4x4 at some p <= 8 (here p = 5), where
+    training on <C> never leaves the initial paths."""
+    q = SubspaceQAOA(load_scenario(EXAMPLES / "two_robots_4x4.toml"))
+    res = train_layerwise(q, 5)
+    assert res.p_optimum >= 0.2
+    assert train_layerwise(q, 2, "expectation").p_optimum < 1e-10
