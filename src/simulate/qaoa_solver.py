@@ -36,7 +36,13 @@ from gridcover.cost import cost_parts
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers import ProgressFn, Solution, SolveMethod, solution_to_dict
-from simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, LayerwiseResult, train_layerwise
+from simulate.layerwise import (
+    DEFAULT_MAXITER,
+    DEFAULT_RANDOM_STARTS,
+    SHOTS_PER_ESTIMATE,
+    LayerwiseResult,
+    train_layerwise,
+)
 from simulate.objectives import OBJECTIVES, ObjectiveName
 from simulate.subspace import SubspaceQAOA
 from simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
@@ -158,6 +164,8 @@ def solve_qaoa(
     masks, prob = most_probable(q, result.angles)
     best, _ = q.optimum()
     evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
+    estimates = (schedule.circuit_estimates if schedule is not None
+                 else result.num_evaluations + 4 * p * result.num_gradients)
     solution = Solution(
         method="qaoa",
         paths=masks,
@@ -169,7 +177,8 @@ def solve_qaoa(
         rule=rule,
         notes=(
             f"p={p}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
-            "amplitudes",
+            f"amplitudes; on a device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots "
+            f"at {SHOTS_PER_ESTIMATE:,} per estimate",
             f"<C> {result.initial_expectation:.6g} -> {result.expectation:.6g}; the trained state reads an "
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
@@ -180,7 +189,8 @@ def solve_qaoa(
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     """JSON-ready dict: :func:`~gridcover.solvers.solution_to_dict` (without its trace) plus ``probability``,
     ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``objective``, ``expectation``, ``trace`` (the objective),
-    ``evaluations``, ``circuit_estimates`` and, for ``layerwise``, ``levels`` (per depth: ``p``, objective
+    ``evaluations``, ``circuit_estimates``, ``training_shots`` (estimates x ``shots_per_estimate``, an assumed
+    :data:`simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for ``layerwise``, ``levels`` (per depth: ``p``, objective
     ``value``, ``expectation``, ``p_optimum``, ``iterations``)."""
     out = solution_to_dict(scenario, res.solution, include_trace=False)
     out.update(
@@ -194,6 +204,8 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
         trace=list(res.trace),
         evaluations=res.num_evaluations,
         circuit_estimates=res.circuit_estimates,
+        training_shots=res.circuit_estimates * SHOTS_PER_ESTIMATE,
+        shots_per_estimate=SHOTS_PER_ESTIMATE,
     )
     if res.schedule is not None:
         out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,

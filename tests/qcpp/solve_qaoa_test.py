@@ -75,6 +75,7 @@ def test_default_training_is_layerwise_and_objective_is_selectable() -> None:
     assert out["optimizer"] == "layerwise" and out["objective"] == "cvar"
     assert [lv["p"] for lv in out["levels"]] == [1, 2] and out["angles"] == list(direct.angles)
     assert out["trace"] == list(direct.trace) and out["circuit_estimates"] == direct.circuit_estimates
+    assert out["training_shots"] == out["circuit_estimates"] * out["shots_per_estimate"]
     assert out["p_optimum"] == pytest.approx(out["levels"][-1]["p_optimum"])
 
 
