@@ -19,9 +19,9 @@ Budgets (every fit keeps the best of its starts):
   phase separator is a global phase); p = 2 by COBYLA with 12 evaluations per objective, from the best p = 1
   angles followed by the linear ramp's second-layer gamma and half that beta; p = 3, CVaR only, the same way
   from the p = 2 CVaR angles. No optimal assignment can carry amplitude below p = 3 here, whatever the angles
-  (``simulate.experiments.layers_to_reach``), so p = 3 is the first depth at which p_opt can be non-zero.
+  (``simulate.state_measures.layers_to_reach``), so p = 3 is the first depth at which p_opt can be non-zero.
 
-Success at equal cost evaluations (see ``simulate.experiments``): QAOA sampled ``S`` times from its trained
+Success at equal cost evaluations (see ``simulate.success``): QAOA sampled ``S`` times from its trained
 state succeeds with ``1 - (1 - p_opt)^S`` (training not counted); simulated annealing with an iteration
 budget succeeds with its empirical rate over 50 seeds, plotted at its mean number of cost evaluations;
 uniform sampling of feasible assignments succeeds with ``1 - (1 - n_opt/N)^S``.
@@ -45,19 +45,11 @@ from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, w
 
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
-from simulate.experiments import (
-    OBJECTIVES,
-    AngleFit,
-    AnnealSuccess,
-    anneal_success,
-    fit_angles,
-    layers_to_reach,
-    shots_for,
-    state_metrics,
-    success_probability,
-    uniform_hit_probability,
-)
+from simulate.angle_fit import OBJECTIVES, AngleFit, fit_angles
+from simulate.annealing_runs import AnnealSuccess, anneal_success
+from simulate.state_measures import layers_to_reach, state_metrics, uniform_hit_probability
 from simulate.subspace import SubspaceQAOA
+from simulate.success import shots_for, success_probability
 from simulate.training import initial_angles, interp_angles, train
 
 NAME = "qaoa_two_robots"

@@ -7,8 +7,12 @@ training) plus the QAOA-specific numbers (that assignment's probability, ``p``, 
 result). :func:`qaoa_method` adapts it to the uniform :class:`gridcover.solvers.SolveMethod` signature so
 front ends can list it beside ``dfs``/``anneal``/``genetic``; gridcover itself never imports this module.
 
-Initial angles: seeded random (``init="random"``, :func:`simulate.training.initial_angles`) by default, so
-``seed`` means what it means for the other stochastic solvers; ``linear-ramp`` and ``interp`` are available.
+Training (``optimizer=``): ``layerwise`` (default) is :func:`simulate.layerwise.train_layerwise`, L-BFGS-B
+on the exact gradient layer by layer ``p = 1 .. p`` with INTERP / zero-layer warm starts and
+``random_starts`` seeded random starts at ``p = 1`` (``seed`` seeds them). ``nesterov``, ``cobyla`` and
+``lbfgsb`` are one run of :func:`simulate.training.train` at depth ``p`` from ``init`` (``random`` from
+``seed`` by default). Every optimiser minimises ``objective`` (:mod:`simulate.objectives`; default
+``gibbs``), and ``trace`` holds its values.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -32,10 +36,20 @@ from gridcover.cost import cost_parts
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers import ProgressFn, Solution, SolveMethod, solution_to_dict
+from simulate.layerwise import (
+    DEFAULT_MAXITER,
+    DEFAULT_RANDOM_STARTS,
+    SHOTS_PER_ESTIMATE,
+    LayerwiseResult,
+    train_layerwise,
+)
+from simulate.objectives import OBJECTIVES, ObjectiveName
 from simulate.subspace import SubspaceQAOA
-from simulate.training import INITS, OPTIMIZERS, Init, Optimizer, TrainingResult, most_probable, train
+from simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
 
-__all__ = ["QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
+__all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
+
+QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", *OPTIMIZERS)
 
 
 @dataclass(frozen=True)
@@ -47,7 +61,9 @@ class QaoaSolution:
         probability: Probability of ``solution.paths`` in the trained state.
         p_optimum: Probability of the optimal assignments in the trained state.
         optimum: The optimal cost over the simulator's basis.
-        training: The full :class:`~simulate.training.TrainingResult`.
+        training: The :class:`~simulate.training.TrainingResult` of the answer's angles (layerwise: the run
+            kept at the final depth).
+        schedule: The :class:`~simulate.layerwise.LayerwiseResult` (``None`` for a single run).
     """
 
     solution: Solution
@@ -55,6 +71,11 @@ class QaoaSolution:
     p_optimum: float
     optimum: float
     training: TrainingResult
+    schedule: LayerwiseResult | None = None
+
+    @property
+    def optimizer(self) -> str:
+        return "layerwise" if self.schedule is not None else self.training.optimizer
 
     @property
     def p(self) -> int:
@@ -66,18 +87,33 @@ class QaoaSolution:
 
     @property
     def trace(self) -> tuple[float, ...]:
-        return self.training.trace
+        """The objective per iteration (layerwise: the kept run of every level, concatenated)."""
+        return self.schedule.trace if self.schedule is not None else self.training.trace
+
+    @property
+    def num_evaluations(self) -> int:
+        return self.schedule.num_evaluations if self.schedule is not None else self.training.num_evaluations
+
+    @property
+    def circuit_estimates(self) -> int:
+        """Objective estimates a device would need (see :class:`~simulate.layerwise.LayerwiseResult`)."""
+        if self.schedule is not None:
+            return self.schedule.circuit_estimates
+        t = self.training
+        return t.num_evaluations + 4 * t.p * t.num_gradients
 
 
 def solve_qaoa(
     scenario: Scenario,
     *,
     p: int = 1,
-    optimizer: Optimizer = "nesterov",
+    optimizer: str = "layerwise",
+    objective: ObjectiveName = "gibbs",
     init: Init = "random",
     seed: int = 0,
     rule: Rule = "exact",
-    maxiter: int = 100,
+    maxiter: int = DEFAULT_MAXITER,
+    random_starts: int = DEFAULT_RANDOM_STARTS,
     progress: ProgressFn | None = None,
 ) -> QaoaSolution:
     """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
@@ -85,69 +121,101 @@ def solve_qaoa(
     Args:
         scenario: The scenario.
         p: Layers (>= 1).
-        optimizer: ``nesterov`` (the paper's, step 0.1 on the normalised objective), ``cobyla`` or ``lbfgsb``.
-        init: Initial angles: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
+        optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
+        objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
+        init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
-        maxiter: Optimiser budget (see :func:`simulate.training.train`).
-        progress: Called as ``progress(0, 1)`` before and ``progress(1, 1)`` after training.
+        maxiter: Optimiser budget per run (see :func:`simulate.training.train`).
+        random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
+        progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
+            (``progress(1, 1)`` for a single run).
 
     Returns:
         The :class:`QaoaSolution`.
 
     Raises:
-        ValueError: unknown optimiser / initialisation, ``p < 1``, negative ``maxiter``, or a mixer the subspace
-            simulator cannot represent (``NonUnitaryMixerError``).
+        ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``, or a mixer
+            the subspace simulator cannot represent (``NonUnitaryMixerError``).
     """
-    if optimizer not in OPTIMIZERS:
-        raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(OPTIMIZERS)})")
+    if optimizer not in QAOA_OPTIMIZERS:
+        raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(QAOA_OPTIMIZERS)})")
+    if objective not in OBJECTIVES:
+        raise ValueError(f"unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if init not in INITS:
         raise ValueError(f"unknown init {init!r} (expected one of {', '.join(INITS)})")
     t0 = time.perf_counter()
-    if progress is not None:
-        progress(0, 1)
     q = SubspaceQAOA(scenario, rule=rule)
-    result = train(q, p, optimizer, init=init, seed=seed, maxiter=maxiter)
+    schedule = None
+    if optimizer == "layerwise":
+        if progress is not None:
+            progress(0, p)
+        schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
+                                   progress=progress)
+        result = schedule.best
+        how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
+    else:
+        if progress is not None:
+            progress(0, 1)
+        result = train(q, p, optimizer, init=init, seed=seed, maxiter=maxiter, objective=objective)  # type: ignore[arg-type]
+        if progress is not None:
+            progress(1, 1)
+        how = f"{optimizer} from {init} angles, {len(result.trace) - 1} iteration(s)"
     masks, prob = most_probable(q, result.angles)
-    if progress is not None:
-        progress(1, 1)
     best, _ = q.optimum()
+    evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
+    estimates = (schedule.circuit_estimates if schedule is not None
+                 else result.num_evaluations + 4 * p * result.num_gradients)
     solution = Solution(
         method="qaoa",
         paths=masks,
         cost=cost_parts(scenario, masks),
         seconds=time.perf_counter() - t0,
-        evaluated=result.num_evaluations,
-        trace=result.trace,
+        evaluated=evaluations,
+        trace=schedule.trace if schedule is not None else result.trace,
         seed=seed,
         rule=rule,
         notes=(
-            f"p={p}, {optimizer} from {init} angles, {len(result.trace) - 1} iteration(s), "
-            f"{result.num_evaluations} simulation(s) of {q.dimension:,} amplitudes",
+            f"p={p}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
+            f"amplitudes; on a device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots "
+            f"at {SHOTS_PER_ESTIMATE:,} per estimate",
             f"<C> {result.initial_expectation:.6g} -> {result.expectation:.6g}; the trained state reads an "
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
     )
-    return QaoaSolution(solution, prob, result.p_optimum, best, result)
+    return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule)
 
 
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     """JSON-ready dict: :func:`~gridcover.solvers.solution_to_dict` (without its trace) plus ``probability``,
-    ``p_optimum``, ``p``, ``angles``, ``optimizer`` and ``trace``."""
+    ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``objective``, ``expectation``, ``trace`` (the objective),
+    ``evaluations``, ``circuit_estimates``, ``training_shots`` (estimates x ``shots_per_estimate``, an assumed
+    :data:`simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for ``layerwise``, ``levels`` (per depth: ``p``, objective
+    ``value``, ``expectation``, ``p_optimum``, ``iterations``)."""
     out = solution_to_dict(scenario, res.solution, include_trace=False)
     out.update(
         probability=res.probability,
         p_optimum=res.p_optimum,
         p=res.p,
         angles=list(res.angles),
-        optimizer=res.training.optimizer,
+        optimizer=res.optimizer,
+        objective=res.training.objective,
+        expectation=res.training.expectation,
         trace=list(res.trace),
+        evaluations=res.num_evaluations,
+        circuit_estimates=res.circuit_estimates,
+        training_shots=res.circuit_estimates * SHOTS_PER_ESTIMATE,
+        shots_per_estimate=SHOTS_PER_ESTIMATE,
     )
+    if res.schedule is not None:
+        out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,
+                          "iterations": len(lv.trace) - 1} for lv in res.schedule.levels]
     return out
 
 
 def qaoa_method(
-    p: int = 1, optimizer: Optimizer = "nesterov", init: Init = "random", maxiter: int = 100
+    p: int = 1, optimizer: str = "layerwise", init: Init = "random", maxiter: int = DEFAULT_MAXITER,
+    objective: ObjectiveName = "gibbs",
 ) -> SolveMethod:
     """:func:`solve_qaoa` with fixed settings, as a :class:`gridcover.solvers.SolveMethod` (returns the
     ``Solution`` only).
@@ -161,7 +229,8 @@ def qaoa_method(
 
     def method(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
         return solve_qaoa(
-            scenario, p=p, optimizer=optimizer, init=init, seed=seed, rule=rule, maxiter=maxiter, progress=progress
+            scenario, p=p, optimizer=optimizer, init=init, seed=seed, rule=rule, maxiter=maxiter,
+            objective=objective, progress=progress,
         ).solution
 
     return method

@@ -24,8 +24,10 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
   ``|x> -> cos(beta_k/2)|x> - i sin(beta_k/2)|x'>``; otherwise ``x`` is untouched.
 
 Each partial mixer is thus a set of disjoint 2x2 rotations on pairs of one robot's basis, applied along that
-robot's axis as in-place BLAS/LAPACK calls (``zrot`` on the two contiguous runs of amplitudes that share the
-other robots' paths; axes whose runs are short go through a transposed scratch buffer). The cost diagonal is
+robot's axis. By default (``kernels="auto"``) compiled numba kernels (:mod:`simulate.subspace_kernels`) apply
+a whole layer's rotations tile by tile in one pass over the state, in parallel for large states; the BLAS path
+(``kernels="blas"``) calls ``zrot`` on the two contiguous runs of amplitudes that share the other robots' paths
+(axes whose runs are short go through a transposed scratch buffer). The tests compare the two. The cost diagonal is
 built once from :func:`gridcover.cost.separable_cost` (unary vectors plus pairwise matrices) and kept as a
 ``uint8``/``uint16`` level per amplitude plus a table of the few hundred distinct cost values, so a phase
 separator is a table look-up. Gradients are exact (adjoint differentiation: one forward and one backward
@@ -73,6 +75,7 @@ from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import initial_path, is_feasible, path_bits
 from gridcover.sbf import RULES, Rule, SbfLogic, representatives, sbf_logic
 from gridcover.scenario import Scenario
+from simulate import subspace_kernels
 
 __all__ = [
     "INITIAL_STATES",
@@ -86,6 +89,7 @@ __all__ = [
 ]
 
 InitialState = Literal["initial_path", "representatives"]
+Kernels = Literal["auto", "numba", "blas"]
 INITIAL_STATES: tuple[InitialState, ...] = ("initial_path", "representatives")
 
 _CHUNK = 1 << 18  # elements per chunk of the element-wise loops
@@ -326,7 +330,9 @@ class SubspaceQAOA:
             :func:`circuitgen.phase.phase_plan`, or ``"whole-space"`` for the Ising constant ``c0``. Use the
             constant of the representation the compared circuit was compiled with.
         buffer: Amplitudes in the scratch buffer used for axes with short contiguous runs (memory
-            ``16 * buffer`` bytes, twice during a gradient).
+            ``16 * buffer`` bytes, twice during a gradient; BLAS kernels only).
+        kernels: How the partial mixers run: ``numba`` (tiled, parallel, :mod:`simulate.subspace_kernels`),
+            ``blas`` (one ``zrot`` call per pair and run) or ``auto`` (default: numba when importable).
 
     Raises:
         ValueError: for an unknown rule or initial state.
@@ -352,8 +358,15 @@ class SubspaceQAOA:
         initial: InitialState = "initial_path",
         phase_offset: float | Literal["feasible", "whole-space"] | None = None,
         buffer: int = _DEFAULT_BUFFER,
+        kernels: Kernels = "auto",
     ) -> None:
-        _check_lapack_in_place()
+        if kernels not in ("auto", "numba", "blas"):
+            raise ValueError(f"unknown kernels {kernels!r} (expected auto, numba or blas)")
+        if kernels == "numba" and not subspace_kernels.AVAILABLE:
+            raise ValueError("kernels='numba' needs numba, which is not importable here")
+        self.kernels: Kernels = "numba" if kernels == "auto" and subspace_kernels.AVAILABLE else kernels
+        if self.kernels == "blas":
+            _check_lapack_in_place()
         self.scenario = scenario
         self.rule: Rule = rule
         self.initial: InitialState = initial
@@ -363,10 +376,16 @@ class SubspaceQAOA:
         self.phase_offset = _phase_offset(scenario, phase_offset)
         self.buffer = max(1, int(buffer))
         self._pair_lists = tuple(tuple((i.tolist(), j.tolist()) for _, i, j in b.pairs) for b in self.robot_bases)
+        self._pair_arrays = tuple(
+            (np.concatenate([i for _, i, _ in b.pairs]).astype(np.intp),
+             np.concatenate([j for _, _, j in b.pairs]).astype(np.intp)) if b.pairs else None
+            for b in self.robot_bases
+        )
         self._levels: np.ndarray | None = None  # compact diagonal: values[levels]
         self._values: np.ndarray | None = None
         self._diag: np.ndarray | None = None  # float64 diagonal when there are too many distinct values
         self._optimum: tuple[float, np.ndarray] | None = None
+        self._unique: tuple[np.ndarray, np.ndarray] | None = None  # cost table when there are no levels
 
     # ------------------------------------------------------------------ basis
 
@@ -671,7 +690,6 @@ class SubspaceQAOA:
         sweep un-applies the operators to both vectors. Memory: two state arrays plus the cost diagonal.
         """
         gammas, betas = split_angles(angles)
-        p = len(gammas)
         self._build_cost()
         psi = self.state(angles)
         lam = np.empty_like(psi)
@@ -680,12 +698,75 @@ class SubspaceQAOA:
         for sl in _chunks(pflat.size):
             np.multiply(pflat[sl], self._cost_chunk(sl), out=lflat[sl])
             energy += float(np.vdot(pflat[sl], lflat[sl]).real)
+        return energy, self._backward(psi, lam, gammas, betas)
+
+    def cost_distribution_index(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(values, index)``: the sorted distinct costs (or, for integer costs, every integer between the
+        extremes) and, per amplitude (shape :attr:`dims`), the position of its cost in ``values``.
+
+        This is :meth:`cost_levels` when it exists; otherwise the table is built once with ``np.unique``.
+        """
+        compact = self.cost_levels()
+        if compact is not None:
+            return compact
+        if self._unique is None:
+            assert self._diag is not None
+            values, index = np.unique(self._diag.reshape(-1), return_inverse=True)
+            self._unique = (values, index.reshape(self.dims))
+        return self._unique
+
+    def level_probabilities(self, psi: np.ndarray) -> np.ndarray:
+        """The probability of each cost in :meth:`cost_distribution_index`'s table for the state ``psi``."""
+        values, index = self.cost_distribution_index()
+        flat, lev = psi.reshape(-1), index.reshape(-1)
+        weight = np.zeros(values.size)
+        for sl in _chunks(flat.size):
+            weight += np.bincount(lev[sl], weights=_abs2(flat[sl]), minlength=values.size)
+        return weight
+
+    def objective_and_gradient(
+        self,
+        angles: Sequence[float] | np.ndarray,
+        objective: Callable[[np.ndarray, np.ndarray], tuple[float, np.ndarray]],
+    ) -> tuple[float, np.ndarray]:
+        """``(F, dF/dangles)`` for any differentiable function ``F`` of the measured cost's distribution.
+
+        ``objective(values, probabilities)`` gets the cost table of :meth:`cost_distribution_index` and the
+        probability of each entry, and returns ``F`` and ``dF/dprobabilities``. Since ``F`` depends on the
+        angles only through the probabilities, ``dF/dtheta = d<psi|O|psi>/dtheta`` for the fixed diagonal
+        observable ``O = dF/dprobabilities[cost(x)]``, which the adjoint sweep of :meth:`value_and_gradient`
+        gives with ``lambda = O psi`` (one forward and one backward sweep, two state arrays).
+
+        Example:
+            >>> from gridcover.scenario import scenario_from_dict
+            >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+            >>> q = SubspaceQAOA(s)
+            >>> mean = lambda v, w: (float(np.dot(v, w)), v)
+            >>> f, g = q.objective_and_gradient([0.2, 0.9], mean)
+            >>> bool(np.allclose(g, q.gradient([0.2, 0.9]))), round(f - q.expectation([0.2, 0.9]), 9)
+            (True, 0.0)
+        """
+        gammas, betas = split_angles(angles)
+        self._build_cost()
+        psi = self.state(angles)
+        values, index = self.cost_distribution_index()
+        value, weights = objective(values, self.level_probabilities(psi))
+        weights = np.asarray(weights, dtype=np.float64)
+        lam = np.empty_like(psi)
+        pflat, lflat, lev = psi.reshape(-1), lam.reshape(-1), index.reshape(-1)
+        for sl in _chunks(pflat.size):
+            np.multiply(pflat[sl], weights[lev[sl]], out=lflat[sl])
+        return float(value), self._backward(psi, lam, gammas, betas)
+
+    def _backward(self, psi: np.ndarray, lam: np.ndarray, gammas: np.ndarray, betas: np.ndarray) -> np.ndarray:
+        """The adjoint sweep: ``2 Im <lambda_k|G_k|phi_k>`` per angle (destroys ``psi`` and ``lam``)."""
+        p = len(gammas)
         grad = np.zeros(2 * p)
         for k in range(p - 1, -1, -1):
             for r in range(len(self.robot_bases) - 1, -1, -1):
                 grad[2 * k + 1] += self._mixer_adjoint(psi, lam, r, betas[k])
             grad[2 * k] = self._phase_adjoint(psi, lam, gammas[k])
-        return energy, grad
+        return grad
 
     # ------------------------------------------------------------------ kernels
 
@@ -696,6 +777,9 @@ class SubspaceQAOA:
         if self._levels is not None:
             assert self._values is not None
             table = np.exp(-1j * gamma * (self._values - self.phase_offset))
+            if self.kernels == "numba":
+                subspace_kernels.phase(psi, self._levels, table)
+                return
             lev = self._levels.reshape(-1)
             for sl in _chunks(flat.size):
                 flat[sl] *= table[lev[sl]]
@@ -710,6 +794,11 @@ class SubspaceQAOA:
             assert self._values is not None
             shifted = self._values - self.phase_offset
             table = np.exp(1j * gamma * shifted)
+            if self.kernels == "numba":
+                weight = subspace_kernels.phase_weights(psi, lam, self._levels, shifted.size)
+                subspace_kernels.phase(psi, self._levels, table)
+                subspace_kernels.phase(lam, self._levels, table)
+                return 2.0 * float(np.dot(weight, shifted))
             lev = self._levels.reshape(-1)
             weight = np.zeros(shifted.size)
             for sl in _chunks(pf.size):
@@ -766,6 +855,10 @@ class SubspaceQAOA:
         if not plist:
             return
         c, s = float(np.cos(beta / 2)), complex(-1j * np.sin(beta / 2))
+        pairs = self._pair_arrays[r]
+        if self.kernels == "numba" and pairs is not None:
+            subspace_kernels.mixer(psi.reshape(self._layout(r)), pairs[0], pairs[1], c, s)
+            return
 
         def rotate(flats: list[np.ndarray], base: int, w: int) -> None:
             (x,) = flats
@@ -783,6 +876,10 @@ class SubspaceQAOA:
         if not plist:
             return 0.0
         c, s = float(np.cos(beta / 2)), complex(1j * np.sin(beta / 2))
+        pairs = self._pair_arrays[r]
+        if self.kernels == "numba" and pairs is not None:
+            shape = self._layout(r)
+            return subspace_kernels.mixer_adjoint(psi.reshape(shape), lam.reshape(shape), pairs[0], pairs[1], c, s)
         acc = [0j]
 
         def rotate_back(flats: list[np.ndarray], base: int, w: int) -> None:

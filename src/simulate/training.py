@@ -62,6 +62,7 @@ from typing import Any, Literal
 import numpy as np
 from scipy.optimize import minimize
 
+from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA, split_angles
 
 __all__ = [
@@ -104,6 +105,9 @@ class TrainingResult:
         num_gradients: Of those, the ones that also computed the gradient.
         seconds: Wall-clock time (INTERP: all levels).
         stages: For ``interp``: the results at ``p' = 1 .. p-1`` (each with its own ``stages`` empty).
+        objective: The minimised objective's name (:mod:`simulate.objectives`); ``trace`` holds its values.
+        initial_value: The objective at the start.
+        value: The objective at the final angles.
     """
 
     p: int
@@ -121,6 +125,9 @@ class TrainingResult:
     num_gradients: int
     seconds: float
     stages: tuple[TrainingResult, ...] = field(default=())
+    objective: str = "expectation"
+    initial_value: float = float("nan")
+    value: float = float("nan")
 
     def as_dict(self) -> dict[str, Any]:
         """A JSON-ready dict (tuples become lists, stages nested)."""
@@ -218,6 +225,7 @@ def train(
     step: float = 0.1,
     momentum: float = 0.9,
     normalize: bool = True,
+    objective: ObjectiveName | ObjectiveFn = "expectation",
 ) -> TrainingResult:
     """Optimise the ``2p`` angles to minimise the expectation value.
 
@@ -235,6 +243,8 @@ def train(
             means the same on every cost scale; with ``False`` (the paper's raw ``E``) a step of 0.1 overshoots
             on costs whose gradients are in the tens (e.g. ``examples/paper_3x3.toml``). The trace and results
             are in units of ``E`` either way.
+        objective: What to minimise: ``expectation`` (default), ``cvar``, ``gibbs`` (with their defaults, see
+            :func:`simulate.objectives.make_objective`) or an objective object; the trace holds its values.
 
     Returns:
         The :class:`TrainingResult`.
@@ -257,7 +267,7 @@ def train(
             if p == 1:
                 x0 = initial_angles(qaoa, 1, "linear-ramp")
             else:
-                prev = train(qaoa, p - 1, optimizer, "interp", seed, maxiter, step, momentum, normalize)
+                prev = train(qaoa, p - 1, optimizer, "interp", seed, maxiter, step, momentum, normalize, objective)
                 stages = (*prev.stages, _replace_stages(prev))
                 x0 = interp_angles(prev.angles)
         else:
@@ -268,16 +278,17 @@ def train(
         if x0.size != 2 * p:
             raise ValueError(f"explicit init has {x0.size} angles, expected {2 * p}")
         split_angles(x0)
-    counter = _Counter(qaoa)
-    init_e, init_popt = counter.evaluate_with_popt(x0)
+    obj = make_objective(objective, cost_scale(qaoa)) if isinstance(objective, str) else objective
+    counter = _Counter(qaoa, obj)
+    init_e, init_popt, init_f = counter.evaluate_with_popt(x0)
     if optimizer == "nesterov":
         scale = cost_scale(qaoa) if normalize else 1.0
-        x, trace = _nesterov(counter, x0, init_e, maxiter, step / scale, momentum)
+        x, trace = _nesterov(counter, x0, init_f, maxiter, step / scale, momentum)
     elif optimizer == "cobyla":
-        x, trace = _cobyla(counter, x0, init_e, maxiter)
+        x, trace = _cobyla(counter, x0, init_f, maxiter)
     else:
-        x, trace = _lbfgsb(counter, x0, init_e, maxiter)
-    final_e, final_popt = counter.evaluate_with_popt(x)
+        x, trace = _lbfgsb(counter, x0, init_f, maxiter)
+    final_e, final_popt, final_f = counter.evaluate_with_popt(x)
     prior_evals = sum(s.num_evaluations for s in stages)
     prior_grads = sum(s.num_gradients for s in stages)
     return TrainingResult(
@@ -296,6 +307,9 @@ def train(
         num_gradients=counter.gradients + prior_grads,
         seconds=time.perf_counter() - t0,  # includes the lower INTERP levels
         stages=stages,
+        objective=str(getattr(obj, "name", "custom")),
+        initial_value=init_f,
+        value=final_f,
     )
 
 
@@ -323,8 +337,10 @@ def _replace_stages(r: TrainingResult) -> TrainingResult:
 class _Counter:
     """Counts simulations and memoises the last few values (scipy re-evaluates points)."""
 
-    def __init__(self, qaoa: SubspaceQAOA) -> None:
+    def __init__(self, qaoa: SubspaceQAOA, objective: ObjectiveFn) -> None:
         self.qaoa = qaoa
+        self.objective = objective
+        self.plain = getattr(objective, "name", None) == "expectation"  # <C> has its own faster kernels
         self.evaluations = 0
         self.gradients = 0
         self.memo: dict[bytes, float] = {}
@@ -333,20 +349,33 @@ class _Counter:
         key = np.asarray(x, dtype=float).tobytes()
         if key not in self.memo:
             self.evaluations += 1
-            self._remember(key, self.qaoa.expectation(x))
+            if self.plain:
+                self._remember(key, self.qaoa.expectation(x))
+            else:
+                psi = self.qaoa.state(x)
+                self._remember(key, self._value_of(psi))
         return self.memo[key]
+
+    def _value_of(self, psi: np.ndarray) -> float:
+        values, _ = self.qaoa.cost_distribution_index()
+        return float(self.objective(values, self.qaoa.level_probabilities(psi))[0])
 
     def value_and_gradient(self, x: np.ndarray) -> tuple[float, np.ndarray]:
         self.evaluations += 1
         self.gradients += 1
-        e, g = self.qaoa.value_and_gradient(x)
+        if self.plain:
+            e, g = self.qaoa.value_and_gradient(x)
+        else:
+            e, g = self.qaoa.objective_and_gradient(x, self.objective)
         self._remember(np.asarray(x, dtype=float).tobytes(), e)
         return e, g
 
-    def evaluate_with_popt(self, x: np.ndarray) -> tuple[float, float]:
+    def evaluate_with_popt(self, x: np.ndarray) -> tuple[float, float, float]:
+        """``(<C>, P(optimum), objective)`` from one simulation."""
         self.evaluations += 1
         psi = self.qaoa.state(x)
-        return self.qaoa.expectation_from_state(psi), self.qaoa.p_optimum_from_state(psi)
+        e = self.qaoa.expectation_from_state(psi)
+        return e, self.qaoa.p_optimum_from_state(psi), e if self.plain else self._value_of(psi)
 
     def _remember(self, key: bytes, e: float) -> None:
         if len(self.memo) > 64:

@@ -35,7 +35,8 @@ def test_json_has_the_common_keys_and_the_qaoa_ones() -> None:
     assert out["cost"] == dfs(s).cost.total  # the paper scenario: the most probable path is the optimum
     q = SubspaceQAOA(s)
     assert out["probability"] == pytest.approx(float(q.probabilities(out["angles"])[q.index_of([mask])]))
-    assert out["trace"][-1] == pytest.approx(q.expectation(out["angles"]))
+    assert out["expectation"] == pytest.approx(q.expectation(out["angles"]))
+    assert out["objective"] == "gibbs" and out["evaluations"] >= out["trace_length"]
     direct = solve_qaoa(s, p=2, optimizer="lbfgsb", seed=3)
     assert out["angles"] == list(direct.angles)  # the CLI is the library call
 
@@ -65,6 +66,19 @@ def test_a_failed_plot_leaves_nothing(tmp_path: Path) -> None:
     assert not target.parent.exists()
 
 
+def test_default_training_is_layerwise_and_objective_is_selectable() -> None:
+    s = load_scenario(PAPER)
+    res = run("solve", PAPER, "--method", "qaoa", "-p", "2", "--objective", "cvar", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    direct = solve_qaoa(s, p=2, objective="cvar")
+    assert out["optimizer"] == "layerwise" and out["objective"] == "cvar"
+    assert [lv["p"] for lv in out["levels"]] == [1, 2] and out["angles"] == list(direct.angles)
+    assert out["trace"] == list(direct.trace) and out["circuit_estimates"] == direct.circuit_estimates
+    assert out["training_shots"] == out["circuit_estimates"] * out["shots_per_estimate"]
+    assert out["p_optimum"] == pytest.approx(out["levels"][-1]["p_optimum"])
+
+
 @pytest.mark.parametrize(
     ("args", "fragments"),
     [
@@ -72,6 +86,8 @@ def test_a_failed_plot_leaves_nothing(tmp_path: Path) -> None:
         (["--method", "qaoa", "-p", "0"], ["-p/--layers", "must be at least 1"]),
         (["--method", "dfs", "-p", "2"], ["-p", "qaoa only"]),
         (["--method", "anneal", "--optimizer", "cobyla"], ["--optimizer", "qaoa only"]),
+        (["--method", "qaoa", "--objective", "median"], ["unknown objective", "median"]),
+        (["--method", "dfs", "--objective", "cvar"], ["--objective", "qaoa only"]),
     ],
 )
 def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str]) -> None:

@@ -104,8 +104,13 @@ def test_solve_qaoa_finds_the_optimum_of_the_paper_scenario() -> None:
     best = dfs(s)
     assert res.solution.paths == best.paths and res.solution.cost == best.cost
     assert res.probability > 0.9 and res.p_optimum == pytest.approx(res.probability)
-    assert res.solution.trace == res.trace and len(res.trace) == 101  # nesterov: start + 100 steps
-    assert res.solution.evaluated == res.training.num_evaluations
+    assert res.optimizer == "layerwise" and res.schedule is not None
+    assert res.solution.trace == res.trace == res.schedule.trace and res.training is res.schedule.best
+    assert res.solution.evaluated == res.num_evaluations == res.schedule.num_evaluations
+    single = solve_qaoa(s, p=1, optimizer="nesterov", objective="expectation", maxiter=100, seed=0)
+    assert len(single.trace) == 101 and single.schedule is None  # nesterov: start + 100 steps
+    assert single.solution.evaluated == single.training.num_evaluations
+    assert single.circuit_estimates == single.training.num_evaluations + 4 * single.training.num_gradients
     q = SubspaceQAOA(s)
     assert q.probabilities(res.angles)[q.index_of(res.solution.paths)] == pytest.approx(res.probability)
     again = solve_qaoa(s, p=1, seed=0)
@@ -127,12 +132,17 @@ def test_qaoa_method_has_the_uniform_signature() -> None:
     sol = qaoa_method(p=1, optimizer="cobyla", maxiter=30)(s, seed=3, rule="exact", progress=None)
     assert sol.method == "qaoa" and sol.seed == 3 and sol.rule == "exact"
     calls: list[tuple[int, int]] = []
-    solve_qaoa(s, p=1, maxiter=2, progress=lambda d, t: calls.append((d, t)))
+    solve_qaoa(s, p=1, optimizer="lbfgsb", maxiter=2, progress=lambda d, t: calls.append((d, t)))
     assert calls == [(0, 1), (1, 1)]
+    calls.clear()
+    solve_qaoa(s, p=2, maxiter=2, progress=lambda d, t: calls.append((d, t)))
+    assert calls == [(0, 2), (1, 2), (2, 2)]
     with pytest.raises(ValueError, match="unknown optimizer"):
         solve_qaoa(s, optimizer="adam")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="unknown init"):
         solve_qaoa(s, init="zeros")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="unknown objective"):
+        solve_qaoa(s, objective="median")  # type: ignore[arg-type]
 
 
 @pytest.mark.slow

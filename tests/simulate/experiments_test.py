@@ -1,4 +1,4 @@
-"""simulate.experiments (success measures, CVaR, angle fits, annealing at a budget) and the experiment scripts."""
+"""Success measures, state measures (CVaR, reach), angle fits, annealing at a budget, and the experiment scripts."""
 
 from __future__ import annotations
 
@@ -14,20 +14,11 @@ from gridcover.cost import cost
 from gridcover.paths import enumerate_paths
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
 from gridcover.solvers import anneal, dfs
-from simulate.experiments import (
-    AngleFit,
-    anneal_success,
-    cost_distribution,
-    cvar,
-    fit_angles,
-    layers_to_reach,
-    shots_for,
-    state_metrics,
-    success_probability,
-    uniform_hit_probability,
-    wilson_interval,
-)
+from simulate.angle_fit import AngleFit, fit_angles
+from simulate.annealing_runs import anneal_success
+from simulate.state_measures import cost_distribution, cvar, layers_to_reach, state_metrics, uniform_hit_probability
 from simulate.subspace import SubspaceQAOA
+from simulate.success import shots_for, success_probability, tries_for, wilson_interval
 from simulate.training import train
 
 REPO = Path(__file__).resolve().parents[2]
@@ -87,6 +78,10 @@ def test_shots_for_is_the_fewest(p: float, target: float) -> None:
     assert 1 - (1 - p) ** n >= target - 1e-12
     if n > 1:
         assert 1 - (1 - p) ** (n - 1) < target + 1e-12
+
+
+def test_tries_for_is_shots_for() -> None:
+    assert [tries_for(p) for p in (0.01, 0.3, 0.9, 1.0)] == [shots_for(p) for p in (0.01, 0.3, 0.9, 1.0)]
 
 
 def test_shots_for_edges() -> None:
@@ -295,3 +290,11 @@ def test_script_quick_mode(name: str, figures: list[str], tmp_path: Path) -> Non
         assert out["optima"]["two_robots_4x4"] == dfs(s).cost.total
         fits = out["fits"]["two_robots_4x4"]
         assert fits[(2, "p_optimum")].value >= fits[(2, "expectation")].metrics.p_optimum
+
+
+@pytest.mark.parametrize("module", ["success", "state_measures", "angle_fit", "annealing_runs"])
+def test_doctests(module: str) -> None:
+    import doctest
+    import importlib
+
+    assert doctest.testmod(importlib.import_module(f"simulate.{module}")).failed == 0

@@ -484,3 +484,42 @@ def test_phase_offset_names_the_compiled_representation() -> None:
     assert SubspaceQAOA(s).phase_offset == phase_plan(s).reference_constant
     with pytest.raises(ValueError, match="phase_offset"):
         SubspaceQAOA(s, phase_offset="half")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+@pytest.mark.parametrize("s", [SINGLE_3x3, TWO_2x3, THREE_2x2, make(3, 3, [((0, 0), (2, 2)), ((0, 2), (2, 0))])])
+def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The tiled numba kernels (every axis position: first, middle, last; tiles narrower than the trailing
+    axis, with a remainder; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
+    from simulate import subspace_kernels
+
+    if not subspace_kernels.AVAILABLE:
+        pytest.skip("numba is not importable")
+    monkeypatch.setattr(subspace_kernels, "TILE", 3)
+    monkeypatch.setattr(subspace_kernels, "PARALLEL_MIN", 1 if parallel else 1 << 40)
+    fast, ref = SubspaceQAOA(s, kernels="numba"), SubspaceQAOA(s, kernels="blas")
+    assert fast.kernels == "numba" and ref.kernels == "blas"
+    angles = np.array([0.3, 1.1, 0.7, 0.4, 0.2, 2.0])
+    assert np.allclose(fast.state(angles), ref.state(angles), atol=1e-13)
+    e1, g1 = fast.value_and_gradient(angles)
+    e2, g2 = ref.value_and_gradient(angles)
+    assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-10, atol=1e-12)
+    with pytest.raises(ValueError, match="kernels"):
+        SubspaceQAOA(s, kernels="gpu")  # type: ignore[arg-type]
+
+
+@pytest.mark.slow
+def test_parallel_kernels_on_a_state_of_many_blocks() -> None:
+    """171,396 amplitudes: above the parallel threshold and several phase blocks; numba and BLAS agree."""
+    from gridcover.presets import default_scenario
+    from simulate import subspace_kernels
+
+    if not subspace_kernels.AVAILABLE:
+        pytest.skip("numba is not importable")
+    s = default_scenario(3, 6, 2)
+    fast, ref = SubspaceQAOA(s, kernels="numba"), SubspaceQAOA(s, kernels="blas")
+    assert fast.dimension > 2 * subspace_kernels.PARALLEL_MIN
+    angles = np.array([0.03, 1.1, 0.05, 0.4])
+    e1, g1 = fast.value_and_gradient(angles)
+    e2, g2 = ref.value_and_gradient(angles)
+    assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-9, atol=1e-12)

@@ -1,10 +1,11 @@
-"""examples/experiments/time_to_solution.py: its quick mode (smoke test), its path-count table, its helpers."""
+"""simulate.time_to_solution (the 99% criterion) and examples/experiments/time_to_solution.py: quick mode, helpers."""
 
 from __future__ import annotations
 
 import csv
 import importlib.util
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -12,6 +13,8 @@ import pytest
 
 from gridcover.paths import enumerate_paths
 from gridcover.presets import default_scenario
+from simulate.success import success_probability
+from simulate.time_to_solution import qaoa_on_device, repeated_runs, shot_seconds
 
 SCRIPT = Path(__file__).resolve().parents[2] / "examples" / "experiments" / "time_to_solution.py"
 
@@ -27,6 +30,37 @@ def tts():  # type: ignore[no-untyped-def]
         yield mod
     finally:
         sys.modules.pop(spec.name, None)
+
+
+def test_repeated_runs_reach_the_target() -> None:
+    r = repeated_runs(run_seconds=2.0, successes=1, runs=4)
+    assert float(success_probability(0.25, r.tries)) >= 0.99 > float(success_probability(0.25, r.tries - 1))
+    assert r.seconds == 2.0 * r.tries
+    best, worst = r.seconds_range
+    assert best <= r.seconds <= worst
+    never = repeated_runs(1.0, 0, 5)
+    assert never.tries == never.seconds == float("inf") and math.isfinite(never.seconds_range[0])
+    assert repeated_runs(3.0, 5, 5).seconds == 3.0  # every run succeeds: one run is enough
+
+
+def test_qaoa_on_device_counts_training_and_sampling() -> None:
+    shot = shot_seconds(depth=1000, two_qubit_depth=400)
+    assert shot == pytest.approx((400 * 300 + 600 * 50 + 1000) * 1e-9)
+    t = qaoa_on_device(0.2, estimates=50, shots_per_estimate=1000, shot_time=shot)
+    assert t.training_shots == 50_000 and t.shots == 21  # 1 - 0.8^21 >= 0.99 > 1 - 0.8^20
+    assert t.seconds == pytest.approx((50_000 + 21) * shot)
+    assert qaoa_on_device(0.0, 1, 1, shot).seconds == float("inf")
+    assert qaoa_on_device(1.0 + 2e-16, 1, 1, shot).shots == 1  # a norm rounded past 1
+    with pytest.raises(ValueError):
+        shot_seconds(10, 11)
+
+
+def test_doctests() -> None:
+    import doctest
+
+    import simulate.time_to_solution
+
+    assert doctest.testmod(simulate.time_to_solution).failed == 0
 
 
 @pytest.mark.parametrize("n", [3, 4, 5])
@@ -59,7 +93,7 @@ def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def
     assert "examples/experiments/time_to_solution.py --quick" in md and "|---|" in md
     rows = list(csv.DictReader((tmp_path / "results" / "time_to_solution.csv").open()))
     data = json.loads((tmp_path / "results" / "time_to_solution.json").read_text())
-    assert len(data["instances"]) == len(out["instances"]) == 8
+    assert len(out["instances"]) == 8 and len(data["rows"]) == len(rows) == len(out["rows"])
     for inst in out["instances"]:
         r = inst.results
         # quick mode: every instance is small enough for exhaustive search; CP-SAT never beats it and, when it
@@ -68,7 +102,8 @@ def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def
         assert not r["cpsat"]["proven"] or r["dfs"]["cost"] == r["cpsat"]["cost"]
         assert r["optimum"] == {"value": r["dfs"]["cost"], "proven": True}
         assert all(run["cost"] >= r["dfs"]["cost"] for m in ("anneal", "genetic") for run in r[m])
-    methods = {row["method"] for row in rows}
-    assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}
-    assert all("PROJECTION" in row["note"] for row in rows if row["method"] == "qaoa")
+    assert {row["method"] for row in rows} == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}
+    assert all("IDEAL ALL-TO-ALL" in row["note"] for row in rows if row["method"] == "qaoa")
+    assert all(json.loads(row["scenario"])["grid"] and row["qcpp_version"] for row in rows)
+    assert "IDEAL ALL-TO-ALL DEVICE PROJECTION" in md
     assert not list((tmp_path / "figures").glob(".*")) and not list((tmp_path / "results").glob(".*"))

@@ -5,7 +5,8 @@ Examples::
     qcpp solve examples/paper_3x3.toml --method dfs
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
     qcpp solve examples/two_robots_5x5.toml --method genetic --rule paper --json
-    qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --plot-trace trace.png
+    qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
+    qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --objective cvar
     qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
 
 Methods come from :data:`SOLVE_METHODS` (name -> :class:`gridcover.solvers.SolveMethod`); ``--method``
@@ -14,8 +15,10 @@ accepts exactly its keys. Adding a method is one entry: a function
 
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
-``-p``, ``--optimizer`` and ``--maxiter``, and adds ``probability``, ``p_optimum``, ``p``, ``angles``,
-``optimizer`` and ``trace`` (``<C>`` per training iteration) to the JSON and a trace sparkline to the text.
+``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts), ``--objective``
+(default ``gibbs``) and ``--maxiter``, and adds ``probability``, ``p_optimum``, ``p``, ``angles``,
+``optimizer``, ``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
+``circuit_estimates`` (:func:`simulate.qaoa_solver.qaoa_to_dict`) to the JSON and a trace sparkline to the text.
 
 ``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
@@ -58,7 +61,7 @@ __all__ = [
     "sparkline",
 ]
 
-QAOA_DEFAULTS = {"p": 1, "optimizer": "nesterov", "maxiter": 100}
+QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
@@ -88,15 +91,18 @@ SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo
 _SPARK = "▁▂▃▄▅▆▇█"
 
 
-def plot_qaoa_trace(trace: Sequence[float], file: Path, *, title: str, optimum: float | None = None) -> Path:
-    """Plot QAOA's training trace (``<C>`` per iteration) to ``file``, whole or not at all."""
+def plot_qaoa_trace(
+    trace: Sequence[float], file: Path, *, title: str, optimum: float | None = None, label: str = "objective"
+) -> Path:
+    """Plot QAOA's training trace (the objective per iteration, in units of cost) to ``file``, whole or not at
+    all."""
     from matplotlib.figure import Figure
 
     from fileio.atomic import save_figure_atomic
 
     fig = Figure(figsize=(6.0, 3.6))
     ax = fig.add_subplot()
-    ax.plot(range(len(trace)), list(trace), color="#1f77b4", lw=1.8, label="expectation <C>")
+    ax.plot(range(len(trace)), list(trace), color="#1f77b4", lw=1.8, label=label)
     if optimum is not None:
         ax.axhline(optimum, color="#d62728", ls="--", lw=1.2, label=f"optimum {optimum:g}")
     ax.set_xlabel("training iteration")
@@ -209,14 +215,18 @@ def solve_command(
     ] = None,
     plot_trace_file: Annotated[
         Path | None,
-        typer.Option("--plot-trace", help="Also plot the cost trace (anneal, genetic: best so far; qaoa: <C>)."),
+        typer.Option("--plot-trace", help="Also plot the cost trace (anneal, genetic: best so far; qaoa: objective)."),
     ] = None,
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (qaoa).")] = QAOA_DEFAULTS["p"],
     optimizer: Annotated[
-        str, typer.Option("--optimizer", help="QAOA optimiser (qaoa): nesterov, cobyla or lbfgsb.")
+        str, typer.Option("--optimizer", help="QAOA training (qaoa): layerwise (L-BFGS-B for p = 1, 2, ... in "
+                          "turn, warm-started), or one nesterov, cobyla or lbfgsb run at depth p.")
     ] = QAOA_DEFAULTS["optimizer"],
+    objective: Annotated[
+        str, typer.Option("--objective", help="QAOA training objective (qaoa): gibbs, cvar or expectation.")
+    ] = QAOA_DEFAULTS["objective"],
     maxiter: Annotated[
-        int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations (qaoa).")
+        int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations per run (qaoa).")
     ] = QAOA_DEFAULTS["maxiter"],
     time_limit: Annotated[
         float | None,
@@ -229,7 +239,7 @@ def solve_command(
         raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
-    qaoa_options = {"p": p, "optimizer": optimizer, "maxiter": maxiter}
+    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter}
     if method != "qaoa":
         for name, value in qaoa_options.items():
             if value != QAOA_DEFAULTS[name]:
@@ -269,8 +279,8 @@ def solve_command(
         if not sol.trace:
             raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
         if qaoa is not None:
-            plot_qaoa_trace(qaoa.trace, plot_trace_file, title=f"qaoa p={p} ({optimizer}) on {s.name or scenario.name}",
-                            optimum=qaoa.optimum)
+            plot_qaoa_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
+                            title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or scenario.name}")
         else:
             unit = "generation" if method == "genetic" else "iteration"
             plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
@@ -310,7 +320,8 @@ def solve_command(
             soft_wrap=True,
         )
         tr = qaoa.trace
-        console.print(f"<C> per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}", highlight=False, soft_wrap=True)
+        console.print(f"{objective} objective per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}",
+                      highlight=False, soft_wrap=True)
         console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
                       highlight=False, soft_wrap=True)
     if exact is not None:
