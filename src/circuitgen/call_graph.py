@@ -12,8 +12,23 @@ A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds, for th
 the widths of the shared ``logic`` and ``work`` registers. Every count the estimators report is a sum over it;
 binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitgen.qaoa.QaoaPlan.circuit`).
 
-Costs are looked up per key in one explicit cache (:data:`COSTS`): a sweep over thousands of scenarios prices
-each kind once.
+Everything known per kind is looked up by the kind's key in one explicit cache (:data:`COSTS`): a sweep over
+thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
+:class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
+gadgets) and, as named tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored
+profile"``, ``"own depth"``); :meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
+different concept, not a kind's cost or depth:
+
+* per scenario (the plan and what is summed over it): ``estimators.estimate`` (``_plan``, ``layer_costs``,
+  ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers), ``mixer_classes.mixer_part`` and
+  ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid`` (edge arrays of a grid);
+* geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
+* the plan's choices per class, before any kind exists: ``phase_classes._visit_choice`` and ``_hamming``;
+* constructions keyed by their inputs, not by a kind: the partial mixers' searched plans
+  (``plan_parity_mixer``, ``plan_mcx_mixer``), ``phase_sums._abstract_phase`` (gates on abstract registers),
+  ``gates._permutation_matrix``, and ``depth_compose``'s transfer matrices per lowered gate structure;
+* leaf gates' costs (``gadgets.leaves``: the lowering table, below any kind), named devices, the registered
+  gadget examples, and the symbolic tables of ``estimators.formulas``.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -35,14 +50,15 @@ from typing import Any
 from .cost import Cost
 from .gadgets import Gadget
 
-__all__ = ["COSTS", "PARTS", "CallGraph", "CostCache", "Deferred", "GadgetKind"]
+__all__ = ["COSTS", "PARTS", "CallGraph", "CostCache", "Deferred", "GadgetKind", "PricedByKind"]
 
 PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
 """The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
 
 
 class CostCache:
-    """Lowered and logical cost per kind key, computed once from an example gadget (the one cost cache).
+    """What is known per kind key, computed once: lowered and logical cost, and named tables of other per-kind
+    facts (the estimators' depth profiles); the one cache of gadget kinds (see the module docstring).
 
     Example:
         >>> from circuitgen.gadgets.phase_ising import IsingPhase
@@ -50,32 +66,82 @@ class CostCache:
         >>> cache = CostCache()
         >>> cache.costs(g.kind, g) == (g.cost(), g.logical_cost()), len(cache)
         (True, 1)
+        >>> cache.remember("own depth", g.kind, 1); cache.table("own depth")[g.kind], len(cache)
+        (1, 2)
     """
 
     def __init__(self, limit: int = 1 << 16) -> None:
         self._costs: dict[Hashable, tuple[Cost, Cost]] = {}
         self._limit = limit
+        self._tables: dict[str, dict[Hashable, Any]] = {}
+        self._limits: dict[str, int] = {}
 
     def costs(self, key: Hashable, example: Gadget) -> tuple[Cost, Cost]:
         """``(cost, logical cost)`` of the kind ``key`` (asked of ``example`` the first time; a
         :class:`GadgetKind` is a key that hashes in constant time)."""
         hit = self._costs.get(key)
         if hit is None:
-            if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
-                self._costs.clear()
-            hit = self._costs[key] = (example.cost(), example.logical_cost())
+            hit = self._store(key, (example.cost(), example.logical_cost()))
         return hit
 
+    def costs_of(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
+        """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (for a gadget class
+        whose own :meth:`~circuitgen.gadgets.Gadget.cost` is priced per kind)."""
+        hit = self._costs.get(key)
+        if hit is None:
+            hit = self._store(key, compute())
+        return hit
+
+    def _store(self, key: Hashable, value: tuple[Cost, Cost]) -> tuple[Cost, Cost]:
+        if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
+            self._costs.clear()
+        self._costs[key] = value
+        return value
+
+    def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
+        """The table ``name`` (per kind key; created empty with at most ``limit`` entries on first use). Read it
+        directly (one dictionary look-up on a hot path); write with :meth:`remember`."""
+        if name not in self._tables:
+            self._tables[name], self._limits[name] = {}, limit
+        return self._tables[name]
+
+    def remember(self, name: str, key: Hashable, value: Any) -> None:
+        """Store ``value`` for ``key`` in the table ``name`` (which starts again when full: a bound on memory)."""
+        table = self.table(name)
+        if len(table) >= self._limits[name]:
+            table.clear()
+        table[key] = value
+
     def clear(self) -> None:
-        """Forget every cost (tests that count work)."""
+        """Forget everything (tests that count work); the tables stay the same objects."""
         self._costs.clear()
+        for table in self._tables.values():
+            table.clear()
 
     def __len__(self) -> int:
-        return len(self._costs)
+        return len(self._costs) + sum(len(t) for t in self._tables.values())
 
 
 COSTS = CostCache()
 """The process-wide cost cache of :class:`GadgetKind`."""
+
+
+class PricedByKind:
+    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself once per kind in
+    :data:`COSTS` (the class gives ``_kind_costs() -> (cost, logical cost)``)."""
+
+    kind: Hashable
+
+    def _kind_costs(self) -> tuple[Cost, Cost]:
+        raise NotImplementedError
+
+    def cost(self) -> Cost:
+        """Lowered cost (computed once per kind)."""
+        return COSTS.costs_of(self.kind, self._kind_costs)[0]
+
+    def logical_cost(self) -> Cost:
+        """Cost with ANDs and Toffolis kept whole (computed once per kind)."""
+        return COSTS.costs_of(self.kind, self._kind_costs)[1]
 
 
 class _HashedKey:
@@ -89,8 +155,10 @@ class _HashedKey:
     def __hash__(self) -> int:
         return self.hash
 
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, _HashedKey) and self.hash == other.hash and self.key == other.key
+    def __eq__(self, other: object) -> bool:  # equal to its plain key too: a gadget prices itself by plain key
+        if isinstance(other, _HashedKey):
+            return self.hash == other.hash and self.key == other.key
+        return self.key == other
 
 
 @dataclass(frozen=True, eq=False)

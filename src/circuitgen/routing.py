@@ -47,9 +47,6 @@ from .gates import Gate, cx, cz, rx, rz, rzz
 
 __all__ = ["RoutedCircuit", "coupling_map", "duration_s", "esp", "route", "to_native"]
 
-ROUTER = "qiskit SabreSwap (heuristic=decay)"
-"""The router :func:`route` uses."""
-
 DEFAULT_TRIALS = 16
 """SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count)."""
 

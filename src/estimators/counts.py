@@ -86,17 +86,7 @@ class GateCount:
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict (``ops`` as a plain dict)."""
-        return {
-            "ops": dict(self.ops),
-            "size": self.size,
-            "single_qubit": self.single_qubit,
-            "two_qubit": self.two_qubit,
-            "multi_qubit": self.multi_qubit,
-            "cx": self.cx,
-            "t": self.t,
-            "depth": self.depth,
-            "two_qubit_depth": self.two_qubit_depth,
-        }
+        return {k: dict(self.ops) if k == "ops" else getattr(self, k) for k in GateCount.__dataclass_fields__}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> GateCount:

@@ -51,6 +51,7 @@ from typing import Any
 
 import numpy as np
 
+from circuitgen.call_graph import COSTS
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.gadgets.junction import MixerJunction, MixerRotation
 from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
@@ -187,12 +188,17 @@ class MatrixStep:
     matrix: np.ndarray
 
 
-_ANCHORED: dict[Hashable, tuple[np.ndarray, tuple[int, ...]] | None] = {}
-"""key -> (profile on slots + work qubits, work offsets), or ``None`` when the key cannot be anchored."""
-_BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
 _CACHE_LIMIT = 4096
 """Entries per cache (a matrix is at most ``3 * 24`` squared int64, 41 kB, for runs; a sweep of 2x2..40x40 meets
 a few hundred structures), then the cache starts again: a bound on memory."""
+_ANCHORED = COSTS.table("anchored profile", _CACHE_LIMIT)
+"""Per kind, in the kinds' one cache: ``(anchor key, slots) -> (profile on slots + work qubits, work offsets)``,
+or ``None`` when the kind cannot be anchored."""
+_OWN_DEPTH = COSTS.table("own depth", _CACHE_LIMIT)
+"""Per kind, in the kinds' one cache: anchor key -> the gadget's own :class:`~estimators.depth.Depth`."""
+_BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
+"""Lowered gate structure (qubits renamed by first appearance) -> transfer matrix: keyed by gates, not by kind (a
+run of an arithmetic gadget, or a state preparation), so not in the kinds' cache."""
 
 
 def _remember(cache: dict, key: Hashable, value: Any) -> None:
@@ -242,7 +248,7 @@ def anchored_profile(gadget: Any, registers: Sequence[Register]) -> tuple[tuple[
             hit = None  # touches a qubit outside its slots and the work register: not anchorable
         else:
             hit = (transfer_profile(gates, (*slots, *extra)), tuple(q - work0 for q in extra))
-        _remember(_ANCHORED, key, hit)
+        COSTS.remember("anchored profile", key, hit)
     if hit is None:
         return None
     matrix, work = hit
@@ -340,11 +346,8 @@ def gadget_depth(gadget: Any, registers: Sequence[Register]) -> Depth:
             _propagate(levels, steps)
             hit = _depth(levels, n)
         if key is not None:  # equal kinds, equal gates up to qubit names: equal own depths
-            _remember(_OWN_DEPTH, key, hit)
+            COSTS.remember("own depth", key, hit)
     return hit
-
-
-_OWN_DEPTH: dict[Hashable, Depth] = {}
 
 
 def known_depth(gadget: Any) -> Depth | None:

@@ -106,10 +106,6 @@ class Grid:
                     out.append(((r, c), (r + 1, c)))
         return tuple(out)
 
-    @cached_property
-    def _edge_lookup(self) -> dict[Edge, int]:
-        return {e: i for i, e in enumerate(self.edges)}
-
     def edge_index(self, u: Node, v: Node) -> int:
         """Index of the edge between neighbouring nodes ``u`` and ``v`` (in either order).
 

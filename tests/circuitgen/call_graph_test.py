@@ -109,3 +109,29 @@ def test_kinds_compare_by_key_and_costs_come_from_the_cache() -> None:
     COSTS.clear()
     assert len(COSTS) == 0
     assert twin.cost() == a.example.cost() and len(COSTS) == 1
+
+
+def test_gadgets_priced_per_kind_and_depth_facts_share_the_one_cache() -> None:
+    from circuitgen.gadgets.junction import MixerJunction
+    from circuitgen.gadgets.phase_visits import VisitPhase
+    from estimators.depth_compose import gadget_depth, known_depth
+
+    plan = qaoa_plan(default_scenario(4, 4, 2), 1)
+    found = {}
+    for _, g in plan.sections():
+        if isinstance(g, MixerJunction | VisitPhase):
+            found.setdefault(type(g), g)
+    assert set(found) == {MixerJunction, VisitPhase}
+
+    def never() -> tuple[Cost, Cost]:
+        raise AssertionError("priced twice")
+
+    COSTS.clear()
+    for g in found.values():
+        assert (g.cost(), g.logical_cost()) == COSTS.costs_of(g.kind, never)  # priced once, under its kind key
+        assert known_depth(g) is None
+        d = gadget_depth(g, tuple(plan.registers))
+        assert known_depth(g) == d  # the own depth is remembered per kind in the same cache
+    assert len(COSTS.table("own depth")) == 2
+    COSTS.clear()
+    assert len(COSTS) == 0 and all(known_depth(g) is None for g in found.values())

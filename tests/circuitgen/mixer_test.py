@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 
 from circuitgen.angles import Angle
 from circuitgen.circuit import Circuit, Register, Section
+from circuitgen.gadgets.partial_mixer import logic_width, partial_mixer
 from circuitgen.lowering import lower
-from circuitgen.mixer import full_mixer_gates, logic_width, partial_mixer_gates
 from gridcover.grid import Grid
 from gridcover.paths import assignment_bits, enumerate_paths, is_feasible, mask_from_bits
 from gridcover.sbf import sbf_logic
@@ -28,6 +28,22 @@ from simulate.statevector import simulate_statevector
 from .conftest import scenarios
 
 TOL = 1e-9
+
+
+def partial_mixer_gates(s: Scenario, robot: int, q, beta, logic_offset: int, rule: str = "exact") -> list:
+    """Gates of one partial mixer (empty when the flip is never allowed)."""
+    m = partial_mixer(s, robot, q, beta, logic_offset, rule)  # type: ignore[arg-type]
+    return [] if m is None else m.emit()
+
+
+def full_mixer_gates(s: Scenario, beta, logic_offset: int, rule: str = "exact") -> list:
+    """All partial mixers, robot-major, plaquettes row-major (the plan's mixer order)."""
+    return [
+        g
+        for r in range(s.num_robots)
+        for q in s.grid.plaquettes
+        for g in partial_mixer_gates(s, r, q, beta, logic_offset, rule)
+    ]
 
 
 def mixer_circuit(s: Scenario, gates: list, width: int) -> Circuit:
@@ -83,9 +99,7 @@ def test_lowered_partial_mixer_is_one_sbf_rotation_or_identity(s: Scenario, seed
     seed=st.integers(0, 2**32 - 1),
     beta=st.floats(0.05, 6.2),
 )
-def test_full_mixer_keeps_amplitude_on_feasible_states_with_clean_ancillas(
-    s: Scenario, seed: int, beta: float
-) -> None:
+def test_full_mixer_keeps_amplitude_on_feasible_states_with_clean_ancillas(s: Scenario, seed: int, beta: float) -> None:
     x = random_assignment(s, random.Random(seed))
     width = logic_width(s)
     circuit = mixer_circuit(s, list(full_mixer_gates(s, beta, s.num_variables)), width)

@@ -41,8 +41,9 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
+from ..call_graph import PricedByKind
 from ..circuit import Circuit, Section
 from ..cost import Cost
 from ..gates import Gate
@@ -82,7 +83,7 @@ class MixerRotation:
 
 
 @dataclass(frozen=True)
-class MixerJunction:
+class MixerJunction(PricedByKind):
     """The mirrored leaves of ``left`` then the compute leaves of ``right`` (either may be absent: the open ends
     of a layer), lowered as one section (see the module docstring).
 
@@ -113,13 +114,8 @@ class MixerJunction:
             self.overlap,
         )
 
-    def cost(self) -> Cost:
-        """Lowered cost (computed once per kind, see the module docstring)."""
-        return _junction_costs(self.kind)[0]  # type: ignore[arg-type]
-
-    def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole."""
-        return _junction_costs(self.kind)[1]  # type: ignore[arg-type]
+    def _kind_costs(self) -> tuple[Cost, Cost]:
+        return _junction_costs(self.kind)  # type: ignore[arg-type]
 
     def emit(self) -> list[Gate]:
         """The mirrored leaves of ``left``, then the compute leaves of ``right``."""
@@ -134,7 +130,6 @@ def _plan(kind: Hashable) -> MixerPlan:
     return plan_parity_mixer(program, target)
 
 
-@lru_cache(maxsize=4096)
 def _junction_costs(kind: tuple) -> tuple[Cost, Cost]:
     """Lowered and logical cost of a junction kind, from its canonical gate list: the left plan's slots on qubits
     ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on fresh qubits

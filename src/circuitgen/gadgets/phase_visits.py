@@ -30,8 +30,8 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import dataclass
-from functools import cache
 
+from circuitgen.call_graph import PricedByKind
 from circuitgen.cost import Cost
 from circuitgen.gates import Gate, and_, x
 
@@ -40,10 +40,9 @@ from .phase_ising import IsingPhase, ising_form
 __all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas", "with_ands"]
 
 
-@cache
 def _visit_costs(sizes: tuple[int, ...], products: bool, nonzero: bool) -> tuple[Cost, Cost]:
-    """``(cost, logical cost)`` of a :class:`VisitPhase`: they depend on its kind only (memoised; a 30x30 plan
-    prices thousands of nodes)."""
+    """``(cost, logical cost)`` of a :class:`VisitPhase`: they depend on its kind only (so :meth:`VisitPhase.cost`
+    looks them up per kind in :data:`~circuitgen.call_graph.COSTS`; a 30x30 plan prices thousands of nodes)."""
     g = VisitPhase("g", 1.0 if nonzero else 0.0, tuple(tuple(range(k)) for k in sizes), (), products)
     ands, xs = g._counts()
     ph = g.phase()[1].cost()
@@ -71,7 +70,7 @@ def visit_ancillas(sizes: tuple[int, ...], products: bool = False) -> int:
 
 
 @dataclass(frozen=True)
-class VisitPhase:
+class VisitPhase(PricedByKind):
     """Compute visit bits, phase their pairwise products, uncompute (see the module docstring).
 
     Attributes:
@@ -156,11 +155,8 @@ class VisitPhase:
             xs += 2 * (m3 + m4)
         return ands, xs
 
-    def cost(self) -> Cost:
-        return _visit_costs(tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)[0]
-
-    def logical_cost(self) -> Cost:
-        return _visit_costs(tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)[1]
+    def _kind_costs(self) -> tuple[Cost, Cost]:
+        return _visit_costs(tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)
 
     def emit(self) -> list[Gate]:
         if self.products:
