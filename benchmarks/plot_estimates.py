@@ -15,8 +15,8 @@ import time
 from pathlib import Path
 
 from estimators.estimate import EstimateOptions, Point, estimate_point
-from fileio.atomic import save_figure_atomic
 from gridcover.presets import max_default_robots
+from qcppio.atomic import save_figure_atomic
 
 ROOT = Path(__file__).resolve().parents[1]
 PANELS = (

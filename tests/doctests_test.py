@@ -9,7 +9,7 @@ import pkgutil
 
 import pytest
 
-PACKAGES = ("fileio", "gridcover", "circuitgen", "estimators", "simulate", "qcpp")
+PACKAGES = ("qcppio", "gridcover", "circuitgen", "estimators", "simulate", "qcpp")
 
 
 def _modules() -> list[str]:

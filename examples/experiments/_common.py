@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from fileio.atomic import save_figure_atomic, write_text_atomic
+from qcppio.atomic import save_figure_atomic, write_text_atomic
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
@@ -119,7 +119,7 @@ def write_results(
 
 
 def save_figure(fig: Any, path: Path, dpi: int = 130) -> Path:
-    """Save a matplotlib figure as PNG, whole or not at all (:func:`fileio.atomic.save_figure_atomic`)."""
+    """Save a matplotlib figure as PNG, whole or not at all (:func:`qcppio.atomic.save_figure_atomic`)."""
     save_figure_atomic(fig, path, dpi=dpi, bbox_inches="tight")
     print(f"wrote {path}")
     return path

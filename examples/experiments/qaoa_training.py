@@ -34,9 +34,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import EXAMPLES, REPO, Table, command_line, parse, pyplot, save_figure, write_results
 
 import qcpp
-from fileio.atomic import write_text_atomic
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario, scenario_to_dict
+from qcppio.atomic import write_text_atomic
 from simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, train_layerwise
 from simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, OBJECTIVES
 from simulate.subspace import SubspaceQAOA

@@ -54,10 +54,10 @@ import numpy as np
 from _common import Table, command_line, parse, pyplot, save_figure, write_results
 
 import qcpp
-from fileio.atomic import write_text_atomic
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_to_dict
 from gridcover.solvers import anneal, cpsat, dfs, genetic
+from qcppio.atomic import write_text_atomic
 
 NAME = "time_to_solution"
 CORNER_PATHS = {3: 12, 4: 184, 5: 8512, 6: 1262816, 7: 575780564, 8: 789360053252}

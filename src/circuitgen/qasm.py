@@ -78,7 +78,7 @@ from collections.abc import Callable, Iterator, Mapping
 from types import MappingProxyType
 from typing import Literal
 
-from fileio.atomic import atomic_open
+from qcppio.atomic import atomic_open
 
 from ._perf import gc_paused
 from .angles import Param, UnboundParameterError, format_angle, format_float

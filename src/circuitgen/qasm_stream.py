@@ -25,7 +25,7 @@ import os
 from collections import Counter
 from collections.abc import Callable, Iterable, Sequence
 
-from fileio.atomic import atomic_open
+from qcppio.atomic import atomic_open
 
 from .angles import Angle, UnboundParameterError, symbol_sort_key
 from .circuit import Circuit, Register, Section

@@ -23,7 +23,7 @@ from collections import defaultdict
 from collections.abc import Sequence
 from typing import Any
 
-from fileio.atomic import save_figure_atomic
+from qcppio.atomic import save_figure_atomic
 
 from .paper import paper_estimate
 
@@ -84,7 +84,7 @@ def plot_rows(rows: Sequence[dict[str, Any]], path: str | os.PathLike[str]) -> s
     fig.suptitle(f"QAOA coverage path planning, p = {p_min}, rule = {rule}")
     fig.tight_layout()
     target = os.fspath(path)
-    try:  # the folder must exist (fileio.atomic: one rule for every output option)
+    try:  # the folder must exist (qcppio.atomic: one rule for every output option)
         save_figure_atomic(fig, target, dpi=120)
     finally:
         plt.close(fig)

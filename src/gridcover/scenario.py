@@ -34,11 +34,11 @@ from typing import Any, Literal
 
 import numpy as np
 
-from fileio.atomic import write_text_atomic
-from fileio.inputs import InputError, read_bounded
 from gridcover.errors import ScenarioError
 from gridcover.grid import Grid, Node
 from gridcover.limits import check_grid_size
+from qcppio.atomic import write_text_atomic
+from qcppio.inputs import InputError, read_bounded
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -504,7 +504,7 @@ def load_scenario(
 
     The file is UTF-8, with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most
     :data:`MAX_NESTING` levels deep, and no object/table may give a key twice (JSON parsers would silently keep
-    the last value). FIFOs, pipes and devices are read with a time limit (:func:`fileio.inputs.read_bounded`).
+    the last value). FIFOs, pipes and devices are read with a time limit (:func:`qcppio.inputs.read_bounded`).
 
     Args:
         path: The file.

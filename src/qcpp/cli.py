@@ -224,7 +224,7 @@ def handle_errors(fn: F) -> F:
                 raise
             message = error_line(exc)
             if isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRNOS:
-                # named files fail as fileio.atomic.OutputError (with the name): this was stdout
+                # named files fail as qcppio.atomic.OutputError (with the name): this was stdout
                 _stdout_failure()
                 message = f"cannot write standard output: {exc.strerror}"
             typer.echo(f"error: {message}", err=True)

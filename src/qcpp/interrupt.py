@@ -4,7 +4,7 @@ How (installed by :func:`qcpp.cli.main`, i.e. only for the real command line, ne
 
 1. SIGTERM gets the same treatment as SIGINT: Python raises ``KeyboardInterrupt`` in the main thread. The CLI
    (:class:`qcpp.cli.QcppGroup`) turns it into the line ``interrupted`` on stderr and exit code 130. On the way
-   out, ``with`` blocks clean up: :func:`fileio.atomic.atomic_open` removes its temporary file (the
+   out, ``with`` blocks clean up: :func:`qcppio.atomic.atomic_open` removes its temporary file (the
    destination keeps its old content); ``qcpp estimate`` ends after the row it is writing (it has no worker
    processes and no cache: rows are cheap to recompute).
 2. A watchdog thread wakes on the signal itself (:func:`signal.set_wakeup_fd`, written by the C-level handler
@@ -40,7 +40,7 @@ import threading
 import time
 from types import FrameType
 
-from fileio.atomic import discard_pending
+from qcppio.atomic import discard_pending
 
 __all__ = [
     "EXIT_CODE",

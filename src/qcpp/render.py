@@ -37,9 +37,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from fileio.atomic import save_figure_atomic
 from gridcover.paths import edges_of
 from gridcover.scenario import Scenario
+from qcppio.atomic import save_figure_atomic
 
 LEGEND = (
     "S start, G goal, E endpoint of several robots, -k- / k edge of robot k,\n"

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from circuitgen.circuit import Circuit
-from fileio.capture import capture_native_output
+from qcppio.capture import capture_native_output
 
 __all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "to_qiskit"]
 

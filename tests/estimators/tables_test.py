@@ -99,7 +99,7 @@ def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
 
 def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     path = tmp_path / "sub" / "plot.png"
-    path.parent.mkdir()  # output folders are never created (fileio.atomic)
+    path.parent.mkdir()  # output folders are never created (qcppio.atomic)
     assert plot_rows(make_rows(results), path) == str(path)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert [p.name for p in path.parent.iterdir()] == ["plot.png"]  # no temporary file left behind

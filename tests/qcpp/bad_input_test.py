@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import fileio.atomic
+import qcppio.atomic
 from circuitgen.qaoa import qaoa_circuit
 from circuitgen.qasm import to_qasm3
 from gridcover.scenario import load_scenario
@@ -36,7 +36,7 @@ LINK_TARGET_TEXT = "previous content\n"
 def scratch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """A folder of odd files, made the working directory; FIFO writers give up after 0.2 s."""
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(fileio.atomic, "FIFO_WAIT", 0.2)
+    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 0.2)
     monkeypatch.setenv("QCPP_CACHE_DIR", str(tmp_path / "cache"))
     shutil.copy(EXAMPLE, tmp_path / "ex.toml")
     (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + EXAMPLE.read_bytes())
@@ -208,7 +208,7 @@ def test_symlink_is_followed_and_stays_a_link(scratch: Path) -> None:
 
 def test_devices_and_fifos_are_written_straight_to(scratch: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     # the reader thread may be slow to open the FIFO on a loaded machine: wait for it as long as it takes
-    monkeypatch.setattr(fileio.atomic, "FIFO_WAIT", 600.0)
+    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 600.0)
     assert run("compile", EX, "--qasm", "/dev/null").exit_code == 0
     assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
     received: list[bytes] = []

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-import fileio.inputs
+import qcppio.inputs
 from gridcover.scenario import MAX_NESTING
 
 from .clirun import assert_one_line_error, run
@@ -145,7 +145,7 @@ def test_duplicate_bindings_are_refused_by_name(binds: list[str]) -> None:
 
 @pytest.fixture
 def quick_input_wait(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(fileio.inputs, "INPUT_WAIT", 0.2)
+    monkeypatch.setattr(qcppio.inputs, "INPUT_WAIT", 0.2)
 
 
 @pytest.mark.parametrize("command", [["solve"], ["compile"], ["estimate", "--scenario"], ["simulate"]])

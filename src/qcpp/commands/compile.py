@@ -7,7 +7,7 @@ Examples::
     qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
-Output files follow :mod:`fileio.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+Output files follow :mod:`qcppio.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
 written straight to, a missing folder is an error (checked before compiling).
 
 Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
@@ -46,10 +46,10 @@ from circuitgen.compile import compile_scenario, parse_bindings
 from circuitgen.options import PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
-from fileio.atomic import check_output
 from gridcover.scenario import Scenario, load_scenario
 from qcpp.progress import Progress
 from qcpp.render import print_table
+from qcppio.atomic import check_output
 
 from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
 

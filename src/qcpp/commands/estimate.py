@@ -29,10 +29,10 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
-from fileio.atomic import check_output
 from gridcover.errors import ScenarioError
 from qcpp.progress import Progress
 from qcpp.render import print_table
+from qcppio.atomic import check_output
 
 from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
 

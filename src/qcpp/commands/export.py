@@ -20,12 +20,12 @@ from typing import Annotated
 
 import typer
 
-from fileio.atomic import check_output, write_text_atomic
 from gridcover.qubo import FORMS, bqm_for
 from gridcover.qubo_export import EXPORT_FORMATS, export_text
 from gridcover.qubo_solve import INSTALL_HINT
 from gridcover.scenario import load_scenario
 from qcpp.commands.solve import progress_reporter
+from qcppio.atomic import check_output, write_text_atomic
 
 __all__ = ["HELP", "export_command", "register"]
 

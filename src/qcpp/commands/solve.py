@@ -43,12 +43,12 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from fileio.atomic import check_output
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 from qcpp.progress import Progress
 from qcpp.render import plot_paths, plot_trace, print_table, render_ascii
+from qcppio.atomic import check_output
 
 __all__ = [
     "METHOD_HELP",
@@ -98,7 +98,7 @@ def plot_qaoa_trace(
     all."""
     from matplotlib.figure import Figure
 
-    from fileio.atomic import save_figure_atomic
+    from qcppio.atomic import save_figure_atomic
 
     fig = Figure(figsize=(6.0, 3.6))
     ax = fig.add_subplot()
