@@ -224,6 +224,8 @@ def plot_trace(
     title: str = "best cost so far",
     optimum: float | None = None,
     xlabel: str = "iteration",
+    label: str = "best so far",
+    steps: bool = True,
 ) -> Path:
     """Plot a best-so-far cost trace (e.g. :attr:`gridcover.solvers.Solution.trace`) to ``file``.
 
@@ -233,6 +235,9 @@ def plot_trace(
         title: Figure title.
         optimum: If given, drawn as a dashed horizontal line (e.g. the exhaustive optimum).
         xlabel: Label of the horizontal axis.
+        label: Legend label of the trace.
+        steps: Draw the trace as steps (a best-so-far value holds until the next improvement) or as a line
+            (an objective that moves every iteration, such as QAOA's training).
 
     Returns:
         The written path.
@@ -254,7 +259,10 @@ def plot_trace(
     fig = Figure(figsize=(6.0, 3.6))
     ax = fig.add_subplot()
     xs = range(1, len(trace) + 1)
-    ax.step(xs, list(trace), where="post", color=COLOURS[0], lw=1.8, label="best so far")
+    if steps:
+        ax.step(xs, list(trace), where="post", color=COLOURS[0], lw=1.8, label=label)
+    else:
+        ax.plot(xs, list(trace), color=COLOURS[0], lw=1.8, label=label)
     if optimum is not None:
         ax.axhline(optimum, color=COLOURS[3], ls="--", lw=1.2, label=f"optimum {optimum:g}")
     if len(trace) > 200:

@@ -95,23 +95,8 @@ def plot_qaoa_trace(
     trace: Sequence[float], file: Path, *, title: str, optimum: float | None = None, label: str = "objective"
 ) -> Path:
     """Plot QAOA's training trace (the objective per iteration, in units of cost) to ``file``, whole or not at
-    all."""
-    from matplotlib.figure import Figure
-
-    from qcppio.atomic import save_figure_atomic
-
-    fig = Figure(figsize=(6.0, 3.6))
-    ax = fig.add_subplot()
-    ax.plot(range(len(trace)), list(trace), color="#1f77b4", lw=1.8, label=label)
-    if optimum is not None:
-        ax.axhline(optimum, color="#d62728", ls="--", lw=1.2, label=f"optimum {optimum:g}")
-    ax.set_xlabel("training iteration")
-    ax.set_ylabel("cost")
-    ax.set_title(title, fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(frameon=False)
-    fig.tight_layout()
-    return save_figure_atomic(fig, file)
+    all: :func:`qcpp.render.plot_trace` drawn as a line."""
+    return plot_trace(trace, file, title=title, optimum=optimum, xlabel="training iteration", label=label, steps=False)
 
 
 def sparkline(values: Sequence[float], width: int = 60) -> str:
