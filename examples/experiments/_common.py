@@ -1,4 +1,5 @@
-"""Shared plumbing of the experiment scripts: options, output paths, tables (terminal + Markdown), atomic PNGs.
+"""Shared plumbing of the experiment scripts: options, output paths, tables (terminal + Markdown), atomic PNGs,
+and the per-row records (``results/<name>.json``) that ``tests/simulate/results_freshness_test.py`` recomputes.
 
 Presentation only; every computation the scripts report lives in the library (``simulate.success``,
 ``simulate.state_measures``, ``simulate.layerwise``, ``simulate.training``, ``gridcover.solvers``).
@@ -128,6 +129,48 @@ def save_figure(fig: Any, path: Path, dpi: int = 130) -> Path:
 def command_line(script: str, opts: Options) -> str:
     extra = " --quick" if opts.quick else ""
     return f"python examples/experiments/{script}{extra}"
+
+
+def record(scenario: Any, options: dict[str, Any], **fields: Any) -> dict[str, Any]:
+    """One result row: its scenario (``gridcover.scenario.scenario_to_dict``), its options, the qcpp version and
+    ``fields`` (the results)."""
+    import qcpp
+    from gridcover.scenario import scenario_to_dict
+
+    return {"scenario": scenario_to_dict(scenario), "options": options, "qcpp_version": qcpp.__version__, **fields}
+
+
+def write_records(opts: Options, name: str, command: str, rows: Sequence[dict[str, Any]], **extra: Any) -> Path:
+    """``results/<name>.json``: ``{qcpp_version, command, **extra, rows}``, whole or not at all."""
+    import json
+
+    import numpy as np
+
+    import qcpp
+
+    def default(x: Any) -> Any:
+        if isinstance(x, (np.floating, np.integer, np.bool_)):
+            return x.item()
+        if isinstance(x, np.ndarray):
+            return x.tolist()
+        raise TypeError(type(x))
+
+    dump = {"qcpp_version": qcpp.__version__, "command": command, **extra, "rows": list(rows)}
+    path = opts.results / f"{name}.json"
+    write_text_atomic(path, json.dumps(dump, indent=1, default=default) + "\n")
+    print(f"wrote {path}")
+    return path
+
+
+def circuit_columns(scenario: Any, p: int) -> dict[str, int]:
+    """The compiled depth-``p`` circuit's qubits, exact depth, two-qubit depth and gate count (the cheap,
+    recomputable part of a QAOA row; :func:`estimators.estimate.estimate_point`)."""
+    from estimators.estimate import EstimateOptions, Point, estimate_point
+
+    est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="exact"))
+    assert est.depth is not None
+    return {"qubits": est.qubits, "depth": est.depth.depth, "two_qubit_depth": est.depth.two_qubit_depth,
+            "gates": est.cost.total}
 
 
 def pyplot() -> Any:

@@ -10,7 +10,9 @@ paths form a single move-graph component, so this only skips the component analy
 the headline run's trace is identical either way).
 
 Outputs: ``figures/annealing_<scenario>_paths.png`` (both robots' paths), ``figures/annealing_cost.png``
-(SA cost curves), ``results/annealing_two_robots.md``.
+(SA cost curves), ``results/annealing_two_robots.md`` and ``results/annealing_two_robots.json`` (every row with
+its scenario, options and the qcpp version; ``tests/simulate/results_freshness_test.py`` recomputes the 4x4 DFS
+and the seeded SA run).
 
 Run: ``python examples/experiments/annealing_two_robots.py [--quick]``
 """
@@ -25,7 +27,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numpy as np
-from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, write_results
+from _common import EXAMPLES, Table, command_line, parse, pyplot, record, save_figure, write_records, write_results
 
 from gridcover.scenario import load_scenario
 from gridcover.solvers import anneal, dfs
@@ -46,7 +48,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
          f"SA cost (seed {opts.seed})", "SA = DFS assignment", "SA s", "SA evaluations", "SA distinct scored",
          f"SA optimal in {len(seeds)} seeds", "SA s (mean over seeds)"],
     )
-    curves, art, out = {}, [], {}
+    curves, art, out, rows = {}, [], {}, []
     for name in files:
         s = load_scenario(EXAMPLES / f"{name}.toml")
         exact = dfs(s)
@@ -67,6 +69,19 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         title = f"{s.name}: SA result, cost {sa.cost.total:g} (= DFS optimum)"
         print(f"wrote {plot_paths(s, sa.paths, opts.figures / f'annealing_{name}_paths.png', title=title)}")
         out[name] = {"dfs": exact, "anneal": sa, "runs": runs, "optimal_assignments": n_opt}
+        rows += [
+            record(s, {}, method="dfs", scenario_file=f"examples/{name}.toml", cost=exact.cost.total,
+                   evaluated=exact.evaluated, paths_per_robot=list(exact.paths_per_robot),
+                   optimal_assignments=_int(n_opt),
+                   paths=list(exact.paths), seconds=exact.seconds),
+            record(s, {"seed": opts.seed, "iterations": iterations}, method="anneal",
+                   scenario_file=f"examples/{name}.toml", cost=sa.cost.total, evaluated=sa.evaluated,
+                   distinct_scored=_int(distinct), paths=list(sa.paths), same_as_dfs=sa.paths == exact.paths,
+                   seconds=sa.seconds),
+            record(s, {"seeds": seeds, "iterations": iterations, "components": "initial"}, method="anneal_seeds",
+                   scenario_file=f"examples/{name}.toml", costs=[r.cost.total for r in runs], successes=wins,
+                   mean_seconds=float(np.mean([r.seconds for r in runs]))),
+        ]
     print("\n".join(art))
     notes = [
         "DFS scores every combination of the robots' feasible paths with numpy (gridcover.solvers.dfs); "
@@ -76,7 +91,9 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         "Where several assignments share the optimal cost (mirror images), SA may return another one than DFS; "
         "'SA = DFS assignment' says whether it is the very same.",
     ]
-    write_results(opts, NAME, command_line(Path(__file__).name, opts), [timing], notes, "\n".join(art))
+    command = command_line(Path(__file__).name, opts)
+    write_records(opts, NAME, command, rows)
+    write_results(opts, NAME, command, [timing], notes, "\n".join(art))
     _figure(opts, curves)
     return out
 
@@ -88,6 +105,10 @@ def _note_number(notes: Sequence[str], pattern: str) -> str:
         if m:
             return m.group(1)
     return "?"
+
+
+def _int(text: str) -> int | None:
+    return int(text) if text.isdigit() else None
 
 
 def _figure(opts, curves) -> None:  # type: ignore[no-untyped-def]

@@ -10,7 +10,9 @@ Trains the constrained-mixer QAOA on the exact feasible-subspace simulator with 
 At every p the most probable path must be the exhaustive-search (DFS) optimum and the simulated-annealing
 result; the script asserts this. Outputs: ``figures/qaoa_3x3_cost.png`` (training traces),
 ``figures/qaoa_3x3_initial.png`` and ``figures/qaoa_3x3_optimum.png`` (the paper's "initial state and optimal
-path"), ``results/qaoa_3x3.md``.
+path"), ``results/qaoa_3x3.md`` and ``results/qaoa_3x3.json`` (every row with its scenario, options and the qcpp
+version; ``tests/simulate/results_freshness_test.py`` recomputes the circuit columns, DFS, the seeded SA run
+and P(optimum) at the recorded angles).
 
 Run: ``python examples/experiments/qaoa_3x3.py [--quick]``
 """
@@ -23,7 +25,18 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, write_results
+from _common import (
+    EXAMPLES,
+    Table,
+    circuit_columns,
+    command_line,
+    parse,
+    pyplot,
+    record,
+    save_figure,
+    write_records,
+    write_results,
+)
 
 from gridcover.paths import initial_path, path_to_nodes
 from gridcover.scenario import load_scenario
@@ -44,7 +57,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
     start = s.robots[0].start
 
     exact = dfs(s)
-    sa = anneal(s, seed=opts.seed, iterations=2000 if opts.quick else 20000)
+    sa_iterations = 2000 if opts.quick else 20000
+    sa = anneal(s, seed=opts.seed, iterations=sa_iterations)
     assert sa.cost.total == exact.cost.total and sa.paths == exact.paths, "annealing missed the DFS optimum"
     q = SubspaceQAOA(s)
     sigma = cost_scale(q)
@@ -91,7 +105,24 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         f"Raw E (normalize=False): the gradients are in the tens (cost spread sigma = {sigma:.3g}), so step 0.1 "
         "overshoots and the trace oscillates (the figure's dashed lines); E/sigma makes the step scale-free.",
     ]
-    write_results(opts, NAME, command_line(Path(__file__).name, opts), [table, summary], notes, "\n".join(art))
+    command = command_line(Path(__file__).name, opts)
+    rows = []
+    for p in layers:
+        circuit = circuit_columns(s, p)
+        for normalize, runs in ((True, results), (False, raw)):
+            r = runs[p]
+            options = {"optimizer": "nesterov", "step": STEP, "init": "linear-ramp", "maxiter": maxiter,
+                       "normalize": normalize}
+            rows.append(record(s, options, method="qaoa", p=p, e_start=r.initial_expectation, e_final=r.expectation,
+                               p_opt=r.p_optimum, angles=list(r.angles), **circuit,
+                               most_probable=list(found[p]) if normalize else None))
+    rows.append(record(s, {}, method="dfs", cost=exact.cost.total, evaluated=exact.evaluated,
+                       paths=list(exact.paths), seconds=exact.seconds))
+    rows.append(record(s, {"seed": opts.seed, "iterations": sa_iterations},
+                       method="anneal", cost=sa.cost.total, evaluated=sa.evaluated, paths=list(sa.paths),
+                       seconds=sa.seconds))
+    write_records(opts, NAME, command, rows)
+    write_results(opts, NAME, command, [table, summary], notes, "\n".join(art))
     _figures(opts, s, results, raw, exact.cost.total, init, exact.paths)
     for p in layers:
         assert found[p] == exact.paths, f"p={p}: the most probable path is not the DFS optimum"

@@ -26,7 +26,9 @@ state succeeds with ``1 - (1 - p_opt)^S`` (training not counted); simulated anne
 budget succeeds with its empirical rate over 50 seeds, plotted at its mean number of cost evaluations;
 uniform sampling of feasible assignments succeeds with ``1 - (1 - n_opt/N)^S``.
 
-Outputs: ``figures/qaoa_two_robots.png``, ``results/qaoa_two_robots.md``.
+Outputs: ``figures/qaoa_two_robots.png``, ``results/qaoa_two_robots.md`` and ``results/qaoa_two_robots.json``
+(every row with its scenario, options and the qcpp version; ``tests/simulate/results_freshness_test.py``
+recomputes the circuit columns and, on 4x4, the state's ``<C>`` and P(optimum) at the recorded angles).
 Run: ``python examples/experiments/qaoa_two_robots.py [--quick]`` (full run: about 13 minutes on 2 cores).
 """
 
@@ -41,7 +43,18 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numpy as np
-from _common import EXAMPLES, Table, command_line, parse, pyplot, save_figure, write_results
+from _common import (
+    EXAMPLES,
+    Table,
+    circuit_columns,
+    command_line,
+    parse,
+    pyplot,
+    record,
+    save_figure,
+    write_records,
+    write_results,
+)
 
 from gridcover.scenario import load_scenario
 from gridcover.solvers import dfs
@@ -132,9 +145,34 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         *(f"{n}: {info[n]['n_opt']:g} optimal assignment(s); uniform hit probability {info[n]['uniform']:.3g}; "
           f"subspace simulator built in {info[n]['build']:.1f} s." for n in scenarios),
     ]
-    write_results(opts, NAME, command_line(Path(__file__).name, opts), tables, notes)
+    command = command_line(Path(__file__).name, opts)
+    write_records(opts, NAME, command, _rows(scenarios, plan, fits, sa, quick, seeds))
+    write_results(opts, NAME, command, tables, notes)
     _figure(opts, fits, sa, info, len(seeds))
     return {"fits": fits, "anneal": sa, "info": info, "optima": optima}
+
+
+def _rows(scenarios, plan, fits, sa, quick: bool, seeds: list[int]) -> list[dict[str, object]]:  # type: ignore[no-untyped-def]
+    """One record per fit (scenario, depth, objective) and per SA budget."""
+    rows = []
+    for name, s in scenarios.items():
+        if plan[name] == "full":
+            budget = {"schedule": "full", "starts": "linear ramp + " + ("1" if quick else "5") + " seeded random",
+                      "maxiter": 30 if quick else 200, "<C>": "lbfgsb", "cvar, p_optimum": "cobyla"}
+        else:
+            budget = {"schedule": "budget", "p1": "beta scan, 10 values", "cobyla_evaluations": LARGE_EVALS}
+        circuits = {p: circuit_columns(s, p) for p in sorted({p for p, _ in fits[name]})}
+        for (p, obj), f in sorted(fits[name].items(), key=lambda kv: (kv[0][0], OBJECTIVES.index(kv[0][1]))):
+            m = f.metrics
+            rows.append(record(s, {**budget, "objective": obj, "alpha": ALPHA}, method="qaoa",
+                               scenario_file=f"examples/{name}.toml", p=p, objective=obj, expectation=m.expectation,
+                               cvar=m.cvar, p_opt=m.p_optimum, evaluations=f.evaluations, seconds=f.seconds,
+                               angles=list(f.angles), **circuits[p]))
+        for r in sa[name]:
+            rows.append(record(s, {"iterations": r.iterations, "seeds": seeds, "components": "initial"},
+                               method="anneal", scenario_file=f"examples/{name}.toml", runs=r.runs,
+                               successes=r.successes, evaluations=r.evaluations, seconds=r.seconds))
+    return rows
 
 
 def _shots(p: float, target: float) -> float:
