@@ -8,9 +8,16 @@ One criterion for every method:
   with probability ``target``, so ``TTS = mean run time x runs`` (:func:`repeated_runs`); the Wilson interval of
   ``k / R`` gives the range;
 * **QAOA** on a device: training costs ``estimates x shots per estimate`` circuit runs, then
-  ``shots_for(P(optimum))`` shots of the trained circuit reach the optimum with probability ``target``; every
-  shot takes the circuit's time plus readout (:func:`shot_seconds`), so ``TTS = (training shots + shots) x shot
-  time`` (:func:`qaoa_on_device`).
+  ``shots_for(P(optimum) x ESP)`` shots of the trained circuit reach the optimum with probability ``target``;
+  every shot takes the circuit's time plus readout (:func:`shot_seconds` on an ideal device, the routed
+  circuit's schedule on a real one), so ``TTS = (training shots + shots) x shot time`` (:func:`qaoa_on_device`).
+
+The noise model of a device is the estimated success probability ``ESP`` (:func:`circuitgen.routing.esp`: the
+product of ``1 - error`` over every gate and readout of the routed circuit): **a shot succeeds with probability
+``P(optimum) x ESP``**, i.e. an error anywhere ruins the shot and an error-free shot samples the ideal state.
+This is optimistic (no idle decoherence, crosstalk or leakage; a faulty shot never lands on the optimum by
+chance; training is counted at its noiseless number of estimates) and simple enough to state in one line.
+An ideal device has ``ESP = 1``.
 
 Example:
     >>> r = repeated_runs(run_seconds=0.5, successes=3, runs=10)
@@ -81,12 +88,14 @@ class QaoaTime:
 
     Attributes:
         shot_seconds: Time of one shot.
+        p_shot: Probability that one shot returns an optimum: ``P(optimum) x ESP``.
         training_shots: ``estimates * shots_per_estimate``.
-        shots: Shots of the trained circuit for ``target`` (``inf`` if ``P(optimum) = 0``).
+        shots: Shots of the trained circuit for ``target`` (``inf`` if ``p_shot = 0``).
         training_seconds, sampling_seconds: The two parts; ``seconds`` their sum.
     """
 
     shot_seconds: float
+    p_shot: float
     training_shots: int
     shots: float
     training_seconds: float
@@ -98,17 +107,39 @@ class QaoaTime:
 
 
 def qaoa_on_device(
-    p_optimum: float, estimates: int, shots_per_estimate: int, shot_time: float, target: float = 0.99
+    p_optimum: float,
+    estimates: int,
+    shots_per_estimate: int,
+    shot_time: float,
+    target: float = 0.99,
+    esp: float = 1.0,
 ) -> QaoaTime:
     """:class:`QaoaTime` from the trained state's ``P(optimum)``, the training's objective estimates, the shots
-    per estimate and the time per shot (training shots counted at that shot time).
+    per estimate, the time per shot (training shots counted at that shot time) and the device's estimated
+    success probability (a shot succeeds with ``P(optimum) x esp``; model in the module docs).
+
+    Args:
+        p_optimum: Probability of an optimal assignment in the noiseless trained state.
+        estimates: Objective estimates of the training.
+        shots_per_estimate: Shots per estimate.
+        shot_time: Seconds per shot.
+        target: Success probability to reach.
+        esp: Estimated success probability of one shot on the device (1: ideal).
+
+    Returns:
+        The :class:`QaoaTime`.
 
     Example:
         >>> t = qaoa_on_device(0.5, estimates=10, shots_per_estimate=100, shot_time=1e-6)
         >>> t.shots, t.training_shots, round(t.seconds, 9)
         (7, 1000, 0.001007)
+        >>> qaoa_on_device(0.5, 10, 100, 1e-6, esp=0.5).shots  # P(opt) x ESP = 0.25 per shot
+        17
     """
-    shots = tries_for(min(1.0, max(0.0, p_optimum)), target)  # a norm rounded past 1 is 1
+    if not 0 <= esp <= 1:
+        raise ValueError(f"esp must be in [0, 1], got {esp}")
+    p_shot = min(1.0, max(0.0, p_optimum)) * esp  # a norm rounded past 1 is 1
+    shots = tries_for(p_shot, target)
     training = estimates * shots_per_estimate
     sampling = shots * shot_time if math.isfinite(shots) else math.inf
-    return QaoaTime(shot_time, training, shots, training * shot_time, sampling)
+    return QaoaTime(shot_time, p_shot, training, shots, training * shot_time, sampling)

@@ -43,6 +43,23 @@ def test_repeated_runs_reach_the_target() -> None:
     assert repeated_runs(3.0, 5, 5).seconds == 3.0  # every run succeeds: one run is enough
 
 
+@pytest.mark.parametrize("esp", [1.0, 0.5, 0.03, 1e-12])
+def test_a_shot_succeeds_with_p_optimum_times_esp(esp: float) -> None:
+    t = qaoa_on_device(0.4, estimates=7, shots_per_estimate=10, shot_time=1e-5, esp=esp)
+    assert t.p_shot == pytest.approx(0.4 * esp)
+    # the fewest shots that reach 99% at that per-shot rate, training unchanged by the noise
+    assert float(success_probability(0.4 * esp, t.shots)) >= 0.99 > float(success_probability(0.4 * esp, t.shots - 1))
+    assert t.training_shots == 70 and t.seconds == pytest.approx((70 + t.shots) * 1e-5)
+    assert t.shots >= qaoa_on_device(0.4, 7, 10, 1e-5).shots
+
+
+def test_esp_must_be_a_probability() -> None:
+    for bad in (-0.1, 1.5):
+        with pytest.raises(ValueError, match="esp"):
+            qaoa_on_device(0.5, 1, 1, 1e-6, esp=bad)
+    assert qaoa_on_device(0.5, 1, 1, 1e-6, esp=0.0).seconds == float("inf")
+
+
 def test_qaoa_on_device_counts_training_and_sampling() -> None:
     shot = shot_seconds(depth=1000, two_qubit_depth=400)
     assert shot == pytest.approx((400 * 300 + 600 * 50 + 1000) * 1e-9)
@@ -102,8 +119,20 @@ def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def
         assert not r["cpsat"]["proven"] or r["dfs"]["cost"] == r["cpsat"]["cost"]
         assert r["optimum"] == {"value": r["dfs"]["cost"], "proven": True}
         assert all(run["cost"] >= r["dfs"]["cost"] for m in ("anneal", "genetic") for run in r[m])
-    assert {row["method"] for row in rows} == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}
+    assert {row["method"] for row in rows} == {"dfs", "cpsat", "anneal", "genetic", "qaoa", "qaoa_device"}
     assert all("IDEAL ALL-TO-ALL" in row["note"] for row in rows if row["method"] == "qaoa")
+    ideal = [row for row in data["rows"] if row["method"] == "qaoa"]
+    on_device = [row for row in data["rows"] if row["method"] == "qaoa_device"]
+    assert ideal and len(on_device) == len(ideal) * len(tts.QUICK.devices)
+    for row in on_device:
+        assert row["device"] in tts.QUICK.devices and row["fits"] and row["routed_kind"] == "exact"
+        assert 0 < row["esp"] < 1 and row["p_shot"] == pytest.approx(row["p_opt"] * row["esp"])
+        assert row["duration_model"] == ("device" if row["device"].startswith("ibm_") else "assumed")
+        assert "P(opt) x ESP" in row["note"]
+    twoq = {(row["instance"], row["device"]): row["routed_twoq"] for row in on_device}
+    for inst in {row["instance"] for row in on_device}:  # SWAPs on heavy-hex; none on the all-to-all ion trap
+        assert twoq[(inst, "ibm_fez")] > twoq[(inst, "quantinuum_helios")]
+    assert "SUCCESS PER SHOT = P(opt) x ESP" in md
     assert all(json.loads(row["scenario"])["grid"] and row["qcpp_version"] for row in rows)
     assert "IDEAL ALL-TO-ALL DEVICE PROJECTION" in md
     assert not list((tmp_path / "figures").glob(".*")) and not list((tmp_path / "results").glob(".*"))
