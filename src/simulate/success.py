@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-__all__ = ["shots_for", "success_probability", "tries_for", "wilson_interval"]
+__all__ = ["EXACT_COUNTS", "shots_for", "success_probability", "tries_for", "wilson_interval"]
 
 
 def success_probability(p_hit: float | np.ndarray, shots: int | np.ndarray) -> np.ndarray:
@@ -50,12 +50,21 @@ def success_probability(p_hit: float | np.ndarray, shots: int | np.ndarray) -> n
     return np.where(p >= 1, np.where(s > 0, 1.0, 0.0), out)
 
 
+EXACT_COUNTS = 2**53
+"""Counts from here on are not exact in floating point: :func:`shots_for` returns them as floats, unrefined."""
+
+
 def shots_for(p_hit: float, target: float = 0.99) -> float:
     """Fewest draws that reach success probability ``target`` (``inf`` if ``p_hit == 0``).
+
+    An ``int`` below :data:`EXACT_COUNTS`; beyond it (``p_hit`` below about ``5e-16`` at 99%) the float
+    ``ceil(log(1 - target) / log(1 - p_hit))``, since one draw more or less is below float resolution there.
 
     Example:
         >>> shots_for(0.1, 0.5), shots_for(1.0), shots_for(0.0)
         (7, 1, inf)
+        >>> f"{shots_for(1e-100):.4g}"
+        '4.605e+100'
     """
     if not 0 <= p_hit <= 1:
         raise ValueError(f"p_hit must be in [0, 1], got {p_hit}")
@@ -65,7 +74,12 @@ def shots_for(p_hit: float, target: float = 0.99) -> float:
         return math.inf
     if p_hit == 1:
         return 1
-    n = math.ceil(math.log1p(-target) / math.log1p(-p_hit))
+    ratio = math.log1p(-target) / math.log1p(-p_hit)
+    if not math.isfinite(ratio):  # beyond the largest float (p_hit near 1e-308)
+        return math.inf
+    n = math.ceil(ratio)
+    if n >= EXACT_COUNTS:  # n and n - 1 are the same float: the rounding guard below could never move n
+        return float(n)
     # guard against rounding in the logarithms: the smallest n with 1 - (1-p)^n >= target
     while n > 1 and float(success_probability(p_hit, n - 1)) >= target:
         n -= 1

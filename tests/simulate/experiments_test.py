@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib.util
 import itertools
+import json
 import math
 from pathlib import Path
 
@@ -279,6 +280,13 @@ def test_script_quick_mode(name: str, figures: list[str], tmp_path: Path) -> Non
     md = (tmp_path / "results" / f"{name}.md").read_text()
     assert f"examples/experiments/{name}.py --quick" in md and "| --- |" not in md and "|---|" in md
     assert not list((tmp_path / "figures").glob(".*"))  # no temporary files left behind
+    records = json.loads((tmp_path / "results" / f"{name}.json").read_text())
+    assert records["command"] == f"python examples/experiments/{name}.py --quick" and records["rows"]
+    for row in records["rows"]:  # every row says what produced it (the freshness test relies on this)
+        assert scenario_from_dict(row["scenario"]) and isinstance(row["options"], dict) and row["qcpp_version"]
+        if row.get("method") == "qaoa":
+            assert row["qubits"] > 0 and row["depth"] >= row["two_qubit_depth"] > 0
+            assert len(row["angles"]) == 2 * row["p"]
     if name == "qaoa_3x3":
         best = out["dfs"].paths
         assert all(m == best for m in out["most_probable"].values())

@@ -1,11 +1,22 @@
 """The committed results in docs/results cannot go stale unnoticed.
 
-Every row of ``time_to_solution.json`` and ``qaoa_training.json`` records its scenario, its options and the
-qcpp version. This test recomputes the cheap columns from those records with today's code and fails when they
-disagree: the compiled circuit's qubits, depth and two-qubit depth (and gate count) at the row's ``p``, the path
-counts, and every column derived by formula (shots and runs for 99%, time per shot, the 99% times). The CSV must
-hold the JSON's rows, and the Markdown the same version. After a compiler change, regenerate with
-``python examples/experiments/time_to_solution.py`` and ``python examples/experiments/qaoa_training.py``.
+Every row of every ``docs/results/*.json`` records its scenario, its options and the qcpp version. This test
+recomputes the cheap columns from those records with today's code and fails when they disagree:
+
+* the compiled circuit's qubits, depth, two-qubit depth and gate count at the row's ``p`` (every file with
+  QAOA rows);
+* the routed circuit on the row's device (routed two-qubit count, depth, two-qubit depth, ESP) for the
+  time-to-solution study's device rows;
+* ``P(optimum)`` (and ``<C>`` where recorded) of the state at the row's recorded angles, on the exact
+  feasible-subspace simulator;
+* exhaustive search (cost, assignments scored) and the seeded simulated-annealing runs (cost, evaluations,
+  paths), which are deterministic;
+* every column derived by formula (shots and runs for 99%, time per shot, P(opt) x ESP, the 99% times).
+
+The default run recomputes what is cheap (circuits of at most :data:`CHEAP_QUBITS` qubits, states of at most
+:data:`CHEAP_DIMENSION` assignments, the 3x3 device rows); ``-m heavy`` recomputes every row.
+After a compiler change, regenerate with the commands in docs/experiments.md (``python examples/experiments/
+<name>.py``; the file's ``command`` field names it).
 """
 
 from __future__ import annotations
@@ -23,10 +34,17 @@ import qcpp
 from gridcover.paths import enumerate_paths
 from gridcover.scenario import Scenario, scenario_from_dict
 from simulate.success import shots_for, tries_for
-from simulate.time_to_solution import shot_seconds
+from simulate.time_to_solution import GATE_MODEL, shot_seconds
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
-FILES = ("time_to_solution", "qaoa_training")
+FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots")
+CIRCUIT_FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "qaoa_two_robots")
+CHEAP_QUBITS = 40
+"""Circuits up to this many qubits are recomputed in the default run (compiling is ~0.1-2 s per circuit)."""
+CHEAP_DIMENSION = 2_000
+"""States of up to this many assignments are recomputed in the default run."""
+CHEAP_DEVICE_INSTANCES = ("3x3/1",)
+"""Time-to-solution instances whose routed device rows the default run recomputes (~1 s per device)."""
 
 
 def _load(name: str) -> dict[str, Any]:
@@ -48,39 +66,157 @@ def _circuit(text: str, p: int) -> dict[str, int]:
             "gates": est.cost.total}
 
 
+@cache
+def _routed(text: str, p: int, device: str) -> dict[str, Any]:
+    from estimators.estimate import EstimateOptions, Point, estimate_point
+    from estimators.routed import routed_fields
+
+    s = _scenario(text)
+    est = estimate_point(Point.from_scenario(s, p), EstimateOptions(depth="none"))
+    c = est.cost
+    return routed_fields(s, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
+                         one_qubit=c.single_qubit, total_gates=c.total)
+
+
+@cache
+def _qaoa(text: str) -> Any:
+    from simulate.subspace import SubspaceQAOA
+
+    return SubspaceQAOA(_scenario(text))
+
+
 def _key(row: dict[str, Any]) -> str:
     return json.dumps(row["scenario"], sort_keys=True)
+
+
+def _label(name: str, row: dict[str, Any]) -> tuple[Any, ...]:
+    return (name, row.get("instance", row.get("scenario_file")), row.get("method"), row.get("p"), row.get("device"))
+
+
+def _rows(name: str, heavy: bool, cheap: Any) -> list[dict[str, Any]]:
+    """The file's rows: all of them (heavy) or those ``cheap(row)`` accepts."""
+    return [r for r in _load(name)["rows"] if heavy or cheap(r)]
 
 
 @pytest.mark.parametrize("name", FILES)
 def test_every_row_records_scenario_options_and_version(name: str) -> None:
     data = _load(name)
     assert data["qcpp_version"] == qcpp.__version__, f"regenerate docs/results/{name}.* for qcpp {qcpp.__version__}"
+    assert data["command"].startswith(f"python examples/experiments/{name}.py"), data["command"]
+    assert "--quick" not in data["command"], f"docs/results/{name}.json is a quick run"
     assert data["rows"]
     for row in data["rows"]:
         assert row["qcpp_version"] == qcpp.__version__
-        assert isinstance(row["options"], dict) and row["options"]
+        assert isinstance(row["options"], dict)
         _scenario(_key(row))  # a valid scenario
-    assert f"qcpp {qcpp.__version__}" in (RESULTS / f"{name}.md").read_text()
+    md = (RESULTS / f"{name}.md").read_text()
+    assert f"qcpp {qcpp.__version__}" in md and "quick mode" not in md
 
 
-@pytest.mark.parametrize("name", FILES)
-def test_circuit_columns_match_the_compiler(name: str) -> None:
+def _check_circuits(name: str, heavy: bool) -> int:
     checked = 0
-    for row in _load(name)["rows"]:
-        if "qubits" not in row:
+    for row in _rows(name, heavy, lambda r: r.get("qubits", 0) <= CHEAP_QUBITS):
+        if "qubits" not in row or row.get("method") == "qaoa_device":
             continue
         want = _circuit(_key(row), int(row["p"]))
         got = {k: row[k] for k in want if k in row}
-        assert got == {k: want[k] for k in got}, (name, row.get("instance", row.get("scenario_file")), row["p"])
+        assert got == {k: want[k] for k in got}, _label(name, row)
         checked += 1
-    assert checked > 0
+    return checked
+
+
+@pytest.mark.parametrize("name", CIRCUIT_FILES)
+def test_circuit_columns_match_the_compiler(name: str) -> None:
+    assert _check_circuits(name, heavy=False) > 0
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("name", CIRCUIT_FILES)
+def test_circuit_columns_match_the_compiler_every_row(name: str) -> None:
+    assert _check_circuits(name, heavy=True) > 0
+
+
+def _check_device_rows(heavy: bool) -> int:
+    checked = 0
+    for r in _rows("time_to_solution", heavy, lambda r: r.get("instance") in CHEAP_DEVICE_INSTANCES):
+        if r["method"] != "qaoa_device":
+            continue
+        want = _routed(_key(r), int(r["p"]), r["device"])
+        assert r["device"] == want["device"] and r["fits"] == want["fits"], _label("time_to_solution", r)
+        for k in ("routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth"):
+            assert r[k] == want[k], (_label("time_to_solution", r), k)
+        assert r["esp"] == pytest.approx(want["esp"], rel=1e-9), _label("time_to_solution", r)
+        if want["duration_s"] is not None:
+            assert r["duration_model"] == "device"
+            assert r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
+        checked += 1
+    return checked
+
+
+def test_device_rows_match_the_router() -> None:
+    assert _check_device_rows(heavy=False) > 0
+
+
+@pytest.mark.heavy
+def test_device_rows_match_the_router_every_row() -> None:
+    assert _check_device_rows(heavy=True) > 0
+
+
+def _check_states(heavy: bool) -> int:
+    checked = 0
+    for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots"):
+        for r in _load(name)["rows"]:
+            if r.get("method") != "qaoa" or "angles" not in r:
+                continue
+            q = _qaoa(_key(r)) if heavy or _scenario(_key(r)).num_robots == 1 else None
+            if q is None or (not heavy and q.dimension > CHEAP_DIMENSION):
+                continue
+            assert len(r["angles"]) == 2 * r["p"], _label(name, r)
+            assert q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label(name, r)
+            e = r.get("expectation", r.get("e_final"))
+            if e is not None:
+                assert q.expectation(r["angles"]) == pytest.approx(e, rel=1e-6, abs=1e-9), _label(name, r)
+            checked += 1
+    return checked
+
+
+def test_recorded_angles_give_the_recorded_state() -> None:
+    assert _check_states(heavy=False) > 0
+
+
+@pytest.mark.heavy
+def test_recorded_angles_give_the_recorded_state_every_row() -> None:
+    assert _check_states(heavy=True) > 0
+
+
+def test_exhaustive_search_and_seeded_annealing_rows() -> None:
+    from gridcover.solvers import anneal, dfs
+
+    checked = 0
+    for name in ("qaoa_3x3", "annealing_two_robots"):
+        for r in _load(name)["rows"]:
+            s = _scenario(_key(r))
+            if r["method"] == "dfs" and math.prod(r.get("paths_per_robot", [1])) <= 40_000:
+                sol = dfs(s)
+                assert (sol.cost.total, sol.evaluated) == (r["cost"], r["evaluated"]), _label(name, r)
+                checked += 1
+            elif r["method"] == "anneal" and r.get("evaluated", 0) and s.grid.rows <= 4:
+                o = r["options"]
+                sol = anneal(s, seed=o["seed"], iterations=o["iterations"])
+                got = (sol.cost.total, sol.evaluated, list(sol.paths))
+                assert got == (r["cost"], r["evaluated"], r["paths"]), _label(name, r)
+                checked += 1
+            elif r["method"] == "anneal_seeds":  # successes = runs that reached the exhaustive optimum
+                best = next(d["cost"] for d in _load(name)["rows"] if d["method"] == "dfs" and _key(d) == _key(r))
+                assert r["successes"] == sum(c <= best + 1e-9 for c in r["costs"]), _label(name, r)
+    assert checked >= 4
 
 
 def test_time_to_solution_derived_columns() -> None:
     rows = _load("time_to_solution")["rows"]
     methods = {r["method"] for r in rows}
-    assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}
+    assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa", "qaoa_device"}
+    ideal = {(r["instance"], r["p"]): r for r in rows if r["method"] == "qaoa"}
     for r in rows:
         if r["method"] == "dfs":
             s = _scenario(_key(r))
@@ -100,6 +236,18 @@ def test_time_to_solution_derived_columns() -> None:
             assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
             assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
             assert r["p"] == o["p"] and r["p_opt"] == pytest.approx(r["p_opt_by_level"][-1])
+        elif r["method"] == "qaoa_device":
+            twin = ideal[(r["instance"], r["p"])]  # the same trained state and training
+            assert (r["p_opt"], r["training_shots"]) == (twin["p_opt"], twin["training_shots"])
+            assert r["options"]["device"] == r["device"]
+            if not r["fits"]:
+                continue
+            if r["duration_model"] == "assumed":
+                shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
+                assert r["shot_us"] == pytest.approx(shot_us)
+            assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
+            assert r["shots_99"] == shots_for(r["p_shot"])
+            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * r["shot_us"] * 1e-6)
 
 
 def test_time_to_solution_csv_holds_the_json_rows() -> None:

@@ -53,6 +53,16 @@ def test_a_shot_succeeds_with_p_optimum_times_esp(esp: float) -> None:
     assert t.shots >= qaoa_on_device(0.4, 7, 10, 1e-5).shots
 
 
+@pytest.mark.parametrize("p", [1e-9, 3e-15, 1e-16, 8e-178, 1e-300])
+def test_tiny_success_rates_give_finite_counts_at_once(p: float) -> None:
+    # a routed circuit's ESP can be 1e-177: the count must come back (it once looped on n - 1 == n in floats)
+    n = qaoa_on_device(1.0, 1, 1, 1e-6, esp=p).shots
+    assert math.isfinite(n) and n == pytest.approx(math.log(0.01) / math.log1p(-p), rel=1e-9)
+    if n < 2**53:
+        assert float(success_probability(p, n)) >= 0.99 > float(success_probability(p, n - 1))
+    assert qaoa_on_device(1.0, 1, 1, 1e-6, esp=5e-324).shots == float("inf")  # past the largest float
+
+
 def test_esp_must_be_a_probability() -> None:
     for bad in (-0.1, 1.5):
         with pytest.raises(ValueError, match="esp"):
