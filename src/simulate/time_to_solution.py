@@ -15,8 +15,9 @@ One criterion for every method:
 The noise model of a device is the estimated success probability ``ESP`` (:func:`circuitgen.routing.esp`: the
 product of ``1 - error`` over every gate and readout of the routed circuit): **a shot succeeds with probability
 ``P(optimum) x ESP``**, i.e. an error anywhere ruins the shot and an error-free shot samples the ideal state.
-This is optimistic (no idle decoherence, crosstalk or leakage; a faulty shot never lands on the optimum by
-chance; training is counted at its noiseless number of estimates) and simple enough to state in one line.
+This is optimistic (no idle decoherence, crosstalk or leakage; training is counted at its noiseless number of
+estimates) and simple enough to state in one line; its one pessimistic part is that a faulty shot counts as a
+miss (under global depolarisation it would still hit an optimum with probability ``optima / 2^n``).
 An ideal device has ``ESP = 1``.
 
 Example:
