@@ -24,7 +24,9 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     assert res.exit_code == 0, res.output
     summary = json.loads(res.stdout)
     dev = summary["device"]
-    assert dev["name"] == get_device(device, min_qubits=15).name
+    # the unsized square grid is sized for the medial layout (5x5 for 3x3); other devices: the smallest that fits
+    assert dev["name"] == ("grid:5x5" if device == "grid" else get_device(device, min_qubits=15).name)
+    assert summary["routed"]["layout"] == ("medial" if device == "grid" else "greedy")
     edges = {tuple(e) for e in dev["coupling"]}
     qc = qasm2.loads(out.read_text())
     assert qc.num_qubits == dev["qubits"] == summary["qubits"]
@@ -32,8 +34,10 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     assert two and all(pair in edges for pair in two)
     names = set(qc.count_ops())
     assert names <= ({"cx", "h", "rz", "t", "tdg", "s", "sdg", "x"} if lowered else {"cz", "rz", "rx", "x"})
-    assert len(summary["initial_layout"]) == len(summary["final_layout"]) == 15
-    assert len(set(summary["initial_layout"])) == 15 and max(summary["final_layout"]) < dev["qubits"]
+    # logical qubits: the 12 data qubits, then the ancillas (medial: the device qubits its sections use)
+    logical = len(summary["initial_layout"])
+    assert logical == len(summary["final_layout"]) and logical >= 15
+    assert len(set(summary["initial_layout"])) == logical and max(summary["final_layout"]) < dev["qubits"]
     assert 0 < summary["routed"]["esp"] < 1 and summary["routed"]["two_qubit"] == len(two)
 
 
