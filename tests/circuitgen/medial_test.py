@@ -198,3 +198,54 @@ def test_qcec_proves_medial_routing_equal_to_the_compiled_circuit(s: Scenario) -
     b = aligned(r.routed, n)
     a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(r.logical.gates))])
     assert check_equivalence(a, b, num_plain=s.num_variables).criterion == "equivalent"
+
+
+# --- the routed cost per kind ------------------------------------------------------------------------------
+def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
+    """Windows return home, so a section's routed cost depends only on its gates and its neighbourhood: every
+    interior partial mixer of one kind (plaquettes two or more rows and columns from the border) routes to the
+    same count, and the routed circuit's count is the sum of its windows' counts."""
+    from circuitgen.layout import distances
+    from circuitgen.qaoa import qaoa_plan
+    from circuitgen.routing import _Positions, route_window
+
+    s = default_scenario(8, 8, 1)
+    dev = get_device("grid:15x15")
+    homes = medial_placement(s, dev)
+    assert homes is not None
+    local, layout = allocate_ancillas(_unfused(s), homes, dev)
+    dist = distances(dev)
+    pos = _Positions(layout, dev.num_qubits)
+    mixers = iter(qaoa_plan(s, 1, PlanOptions(fuse=False))._mixers)
+    by_kind: dict[object, set[int]] = {}
+    seen: dict[object, list[tuple[int, int]]] = {}
+    total = 0
+    for sec in local.sections:
+        pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
+        ops = route_window(pairs, pos, dev, dist)  # type: ignore[arg-type]
+        assert pos.where == list(layout)
+        cost = sum(1 if name == "cx" else 3 for name, _ in ops)
+        total += cost
+        if sec.name.startswith("mixer"):
+            m = next(mixers)
+            edges = tuple(s.variable_of(q)[1] for q in m.plaquette_qubits)
+            (r0, c0) = next(pl.corners[0] for pl in s.grid.plaquettes if pl.edges == edges)
+            if 2 <= r0 <= s.grid.rows - 4 and 2 <= c0 <= s.grid.cols - 4:
+                by_kind.setdefault(m.kind, set()).add(cost)
+                seen.setdefault(m.kind, []).append((r0, c0))
+    assert sum(len(v) for v in seen.values()) >= 9 and max(len(v) for v in seen.values()) >= 4
+    assert all(len(costs) == 1 for costs in by_kind.values())
+    routed = route_windows(local, dev, layout)
+    assert routed.circuit.count_ops()["cx"] == total
+
+
+def test_estimate_device_grid_equals_compile() -> None:
+    from estimators.estimate import DEFAULT_PLAN
+    from estimators.routed import routed_fields
+
+    for s in (default_scenario(3, 3, 1), scenario_from_dict(OBSTACLE_INTERIOR)):
+        fused = compile_scenario(s, 1, lowered=True).circuit
+        f = routed_fields(s, 1, DEFAULT_PLAN, "grid", fused.num_qubits, fused.count_ops()["cx"], 0)
+        r = compile_for_device(s, 1, "grid")
+        assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
+        assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]
