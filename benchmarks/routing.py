@@ -1,6 +1,8 @@
 """Routed two-qubit gates: ours vs Qiskit O3/SABRE on the same coupling map, in the same run.
 
-Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only).
+Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only);
+``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
+side by side on the multi-robot defaults, routed CX per part (phase separator, mixer).
 
 Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
 ``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`), ``heavy-hex`` is the
@@ -26,6 +28,7 @@ from circuitgen.circuit import Circuit
 from circuitgen.compile import compile_scenario
 from circuitgen.devices import Device, get_device
 from circuitgen.hardware import compile_for_device, medial_device
+from circuitgen.medial import ARRANGEMENTS
 from circuitgen.qasm import to_qasm2
 from circuitgen.routing import coupling_map
 from gridcover.presets import default_scenario
@@ -82,7 +85,28 @@ def row(label: str, s: Scenario, family: str) -> str:
     )
 
 
+def arrangements() -> None:
+    """Tile vs interleave: routed CX of the medial layout, per part, on the unsized ``grid``."""
+    print("| scenario | arrangement | device | routed cx | phase | mixer |")
+    print("|---|---|---|---:|---:|---:|")
+    for label, s in (("4x4/2", default_scenario(4, 4, 2)), ("5x5/2", default_scenario(5, 5, 2)),
+                     ("6x6/3", default_scenario(6, 6, 3))):  # fmt: skip
+        for arrangement in ARRANGEMENTS:
+            r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, arrangement=arrangement)
+            part = {"phase": 0, "mixer": 0}
+            for sec in r.routed.circuit.sections:
+                key = sec.name.split("_")[0]
+                if key in part:
+                    part[key] += sum(len(g[1]) == 2 for g in sec.gates)
+            total = r.routed.circuit.count_ops()["cx"]
+            print(f"| {label} | {arrangement} | {r.routed.device.name} | {total:,} | {part['phase']:,} "
+                  f"| {part['mixer']:,} |", flush=True)  # fmt: skip
+
+
 def main() -> None:
+    if "--arrangements" in sys.argv:
+        arrangements()
+        return
     quick = "--quick" in sys.argv
     print(
         "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "

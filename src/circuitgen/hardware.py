@@ -180,6 +180,7 @@ def compile_for_device(
     seed: int = 0,
     layouts: tuple[str, ...] = LAYOUTS,
     layout_method: str = "auto",
+    arrangement: str = "tile",
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -196,6 +197,7 @@ def compile_for_device(
         seed: SABRE's seed.
         layouts: Layout seeds to try (:func:`best_layout`, greedy method only).
         layout_method: ``auto``, ``medial`` or ``greedy`` (:data:`LAYOUT_METHODS`).
+        arrangement: The medial layout's robot arrangement, ``tile`` or ``interleave``.
 
     Returns:
         The :class:`DeviceCompileResult`.
@@ -211,7 +213,7 @@ def compile_for_device(
     if layout_method not in LAYOUT_METHODS:
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
-        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured)
+        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement)
         if geometric is not None:
             logical, routed = geometric
             if not lowered:
@@ -243,34 +245,40 @@ LAYOUT_METHODS = ("auto", "medial", "greedy")
 circuit; ``auto``: medial where the device is a square grid that holds it, else greedy."""
 
 
-def medial_device(scenario: Scenario, spec: str | Device) -> Device | None:
+def medial_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:
     """The device the medial layout uses: ``spec`` itself if it is a square grid that holds the layout; for the
     unsized family ``grid``, the smallest square grid that holds it; otherwise ``None``."""
     if isinstance(spec, Device):
-        return spec if medial_placement(scenario, spec) is not None else None
+        return spec if medial_placement(scenario, spec, arrangement) is not None else None
     if spec == "grid":
-        rows, cols = medial_shape(scenario)
+        rows, cols = medial_shape(scenario, arrangement)
         side = max(rows, cols)
         return get_device(f"grid:{side}x{side}")
     if not spec.startswith("grid:") and get_device(spec).family != "grid":
         return None
     dev = get_device(spec)
-    return dev if medial_placement(scenario, dev) is not None else None
+    return dev if medial_placement(scenario, dev, arrangement) is not None else None
 
 
 def medial_compile(
-    scenario: Scenario, circuit: Circuit, spec: str | Device, seed: int = 0, measured: range | None = None
+    scenario: Scenario,
+    circuit: Circuit,
+    spec: str | Device,
+    seed: int = 0,
+    measured: range | None = None,
+    arrangement: str = "tile",
 ) -> tuple[Circuit, RoutedCircuit] | None:
     """The medial layout, local ancillas and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on
     ``spec``, or ``None`` where the device is not a square grid that holds it. The unsized family ``grid`` grows
-    by one row and column while a section needs more ancillas than the free qubits.
+    by one row and column while a section needs more ancillas than the free qubits. ``arrangement``: how the
+    robots' copies share the device (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
-    dev = medial_device(scenario, spec)
+    dev = medial_device(scenario, spec, arrangement)
     while dev is not None:
-        homes = medial_placement(scenario, dev)
+        homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
         try:
             logical, layout = allocate_ancillas(circuit, homes, dev)

@@ -75,38 +75,64 @@ def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
     return best[1]
 
 
-def medial_shape(scenario: Scenario) -> tuple[int, int]:
-    """Rows and columns of device the tiled medial layout of ``scenario`` spans."""
+ARRANGEMENTS = ("tile", "interleave")
+"""How the robots' copies share the device: side by side, or interleaved site by site (see the module docs)."""
+
+
+def _arrangement(scenario: Scenario, arrangement: str) -> tuple[int, int]:
     patch = (2 * scenario.grid.rows - 1, 2 * scenario.grid.cols - 1)
-    down, across = tiling(scenario.num_robots, patch)
-    return down * patch[0], across * patch[1]
+    if arrangement not in ARRANGEMENTS:
+        raise ValueError(f"arrangement must be one of {', '.join(ARRANGEMENTS)}, not {arrangement!r}")
+    return tiling(scenario.num_robots, patch if arrangement == "tile" else (1, 1))
 
 
-def medial_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
+def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, int]:
+    """Rows and columns of device the medial layout of ``scenario`` spans."""
+    down, across = _arrangement(scenario, arrangement)
+    return down * (2 * scenario.grid.rows - 1), across * (2 * scenario.grid.cols - 1)
+
+
+def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
-    device is not a square grid or no arrangement of the robots' patches fits (:func:`tiling`'s first)."""
+    device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
+    patches than :func:`tiling`'s).
+
+    Args:
+        scenario: The scenario.
+        device: The device.
+        arrangement: ``tile`` (robot ``r``'s patch is patch ``divmod(r, across)`` of a ``down x across``
+            arrangement) or ``interleave`` (robot ``r = (dr, dc)`` of a ``down x across`` block takes medial site
+            ``(a, b)`` to device site ``(down a + dr, across b + dc)``: the copies of one grid edge sit side by
+            side, a plaquette is stretched by ``down`` and ``across``).
+    """
     shape = grid_shape(device)
     if shape is None:
         return None
     g = scenario.grid
     patch = (2 * g.rows - 1, 2 * g.cols - 1)
     k = scenario.num_robots
-    preferred = tiling(k, patch)
-    fitting = [
-        (down, across)
-        for across in range(1, k + 1)
-        if (down := -(-k // across)) * patch[0] <= shape[0] and across * patch[1] <= shape[1]
-    ]
+    preferred = _arrangement(scenario, arrangement)
+    if arrangement == "tile":
+        fitting = [
+            (down, across)
+            for across in range(1, k + 1)
+            if (down := -(-k // across)) * patch[0] <= shape[0] and across * patch[1] <= shape[1]
+        ]
+    else:
+        fitting = [preferred] if preferred[0] * patch[0] <= shape[0] and preferred[1] * patch[1] <= shape[1] else []
     if not fitting:
         return None
-    _, across = preferred if preferred in fitting else fitting[0]
+    down, across = preferred if preferred in fitting else fitting[0]
     cols = shape[1]
     homes = []
     for v in range(scenario.num_variables):
         robot, e = scenario.variable_of(v)
         (r1, c1), (r2, c2) = g.edges[e]
         dr, dc = divmod(robot, across)
-        row, col = dr * patch[0] + r1 + r2, dc * patch[1] + c1 + c2
+        if arrangement == "tile":
+            row, col = dr * patch[0] + r1 + r2, dc * patch[1] + c1 + c2
+        else:
+            row, col = down * (r1 + r2) + dr, across * (c1 + c2) + dc
         homes.append(row * cols + col)
     return tuple(homes)
 

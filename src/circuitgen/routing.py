@@ -131,10 +131,12 @@ def _assemble(
     routed_ops: Sequence[tuple[str, tuple[int, int]]],
     device: Device,
     measured: tuple[int, ...],
+    op_sections: Sequence[str] | None = None,
 ) -> RoutedCircuit:
     """Our gates in the routed order: ``routed_ops`` lists ``("swap", (p, q))`` and ``("cx", (p, q))`` on physical
     qubits (each ``cx`` is the next two-qubit gate of the logical qubits on ``p`` and ``q``); every one-qubit gate
-    goes on its qubit's current position just before that qubit's next two-qubit gate."""
+    goes on its qubit's current position just before that qubit's next two-qubit gate. A SWAP belongs to
+    ``op_sections[i]`` if given, else to the section of the gate before it."""
     n = len(layout)
     queues: list[list[int]] = [[] for _ in range(n)]
     for i, g in enumerate(gates):
@@ -159,11 +161,12 @@ def _assemble(
             ptr[lq] += 1
 
     swaps = 0
-    for name, (p1, p2) in routed_ops:
+    for k, (name, (p1, p2)) in enumerate(routed_ops):
         if name == "swap":
             swaps += 1
+            owner = op_sections[k] if op_sections is not None else last_section
             for a, b in ((p1, p2), (p2, p1), (p1, p2)):
-                emitted.append((last_section, cx(a, b)))
+                emitted.append((owner, cx(a, b)))
             l1, l2 = who[p1], who[p2]
             who[p1], who[p2] = l2, l1
             if l1 >= 0:
@@ -376,10 +379,13 @@ def route_windows(
     dist = distances(device)
     pos = _Positions(home, device.num_qubits)
     ops: list[tuple[str, tuple[int, int]]] = []
+    owners: list[str] = []
     for sec in circuit.sections:
         pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
-        ops += route_window(pairs, pos, device, dist, seed, trials)  # type: ignore[arg-type]
-    return _assemble(gates, section_of, home, device.num_qubits, ops, device, measured_)
+        window = route_window(pairs, pos, device, dist, seed, trials)  # type: ignore[arg-type]
+        ops += window
+        owners += [sec.name] * len(window)
+    return _assemble(gates, section_of, home, device.num_qubits, ops, device, measured_, owners)
 
 
 def _flatten(

@@ -249,3 +249,21 @@ def test_estimate_device_grid_equals_compile() -> None:
         r = compile_for_device(s, 1, "grid")
         assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
         assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]
+
+
+@pytest.mark.parametrize("k", [2, 3, 4])
+def test_interleave_puts_an_edges_copies_side_by_side(k: int) -> None:
+    s = default_scenario(3, 4, k)
+    rows, cols = medial_shape(s, "interleave")
+    dev = get_device(f"grid:{rows}x{cols}")
+    homes = medial_placement(s, dev, "interleave")
+    assert homes is not None and len(set(homes)) == len(homes)
+    down, across = tiling(k, (1, 1))
+    for e in s.variable_edges:
+        rc = [divmod(homes[s.variable_index(r, e)], cols) for r in range(k)]
+        assert max(r for r, _ in rc) - min(r for r, _ in rc) < down
+        assert max(c for _, c in rc) - min(c for _, c in rc) < across
+    s2 = default_scenario(2, 2, 2)
+    r = compile_for_device(s2, 1, "grid:6x3", bindings=BIND, lowered=True, arrangement="interleave")
+    assert r.layout_method == "medial" and _on_coupling(r.routed)
+    _assert_equal_up_to_layouts(r.logical, r.routed, seed=6, global_phase=False)
