@@ -195,8 +195,10 @@ WINDOW_RADIUS = 2
 """A window is routed on the device qubits within this distance of its qubits' positions (more if that patch is
 not connected): the routed cost of a window then depends only on its neighbourhood."""
 
-WINDOW_SEEDS = 4
-"""SABRE seeds tried per window (the fewest SWAPs wins; cached per window shape, so this costs little)."""
+WINDOW_SEEDS = 1
+"""SABRE seeds tried per window (the fewest SWAPs wins). Measured on the medial layout: 4 seeds give the same
+counts on 3x3/1, 5x5/1 and 6x6/3 and 0.4% fewer CX on 4x4/2 (4,222 vs 4,240) for four times the routing time
+(SABRE's own 16 trials per seed already pick the best), so one."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
