@@ -42,7 +42,7 @@ from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
 from .layout import localize_ancillas, place
-from .medial import allocate_ancillas, medial_placement, medial_shape
+from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, PlanOptions
 from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
@@ -221,8 +221,12 @@ def compile_for_device(
             seconds = time.perf_counter() - start
             return DeviceCompileResult(compiled, logical, routed, lowered, seconds, "medial")
         if layout_method == "medial":
-            raise ValueError(f"the medial layout of {scenario.grid.rows}x{scenario.grid.cols} with "
-                             f"{scenario.num_robots} robot(s) does not fit device {_name(device)}")  # fmt: skip
+            rows, cols = medial_shape(scenario, arrangement)
+            dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
+            if grid_shape(dev) is None:
+                raise ValueError(f"--layout medial needs a square-grid device; {dev.name} is not one")
+            raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with {scenario.num_robots} "
+                             f"robot(s) needs a {rows}x{cols} grid; device {dev.name} is smaller")  # fmt: skip
     dev = device if isinstance(device, Device) else device_for(device, circuit.num_qubits)
     if circuit.num_qubits > dev.num_qubits:
         raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
@@ -233,10 +237,6 @@ def compile_for_device(
     if not lowered:
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
-
-
-def _name(device: str | Device) -> str:
-    return device.name if isinstance(device, Device) else device
 
 
 LAYOUT_METHODS = ("auto", "medial", "greedy")

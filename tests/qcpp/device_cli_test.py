@@ -71,3 +71,24 @@ def test_estimate_device_too_small_and_bound() -> None:
 
 def test_estimate_bad_device_is_one_line() -> None:
     assert_one_line_error(run("estimate", "--device", "grid:x"), "--device", "grid:x")
+
+
+@pytest.mark.parametrize(
+    ("device", "layout", "fragment"),
+    [
+        ("grid", "nope", "--layout"),
+        ("heavy-hex", "medial", "square-grid device"),
+        ("grid:4x6", "medial", "needs a 5x5 grid"),
+    ],
+)
+def test_compile_bad_layout_is_one_line(device: str, layout: str, fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, "--device", device, "--layout", layout), fragment)
+
+
+def test_compile_layout_choice_is_reported() -> None:
+    for layout in ("medial", "greedy"):
+        res = run("compile", PAPER, "--device", "grid:5x5", "--layout", layout, "--lowered", "--json", *BIND)
+        assert res.exit_code == 0, res.output
+        summary = json.loads(res.stdout)
+        assert summary["routed"]["layout"] == layout
+        assert (summary["initial_layout"] == summary["final_layout"]) == (layout == "medial")
