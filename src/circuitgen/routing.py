@@ -196,9 +196,9 @@ WINDOW_RADIUS = 2
 not connected): the routed cost of a window then depends only on its neighbourhood."""
 
 WINDOW_SEEDS = 1
-"""SABRE seeds tried per window (the fewest SWAPs wins). Measured on the medial layout: 4 seeds give the same
-counts on 3x3/1, 5x5/1 and 6x6/3 and 0.4% fewer CX on 4x4/2 (4,222 vs 4,240) for four times the routing time
-(SABRE's own 16 trials per seed already pick the best), so one."""
+"""SABRE seeds tried per window (the fewest SWAPs wins). Measured on the medial layout (p = 1): 4 seeds give the
+same counts on 3x3/1 and 6x6/3, 0.4% fewer CX on 4x4/2 (4,222 vs 4,240) and 2.1% fewer on 5x5/2 (9,212 vs
+9,410), all of it on the phase separator's one large window, for four times the routing time; so one."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
