@@ -11,6 +11,13 @@ reorders the gates of one logical qubit, so the routed circuit equals the origin
 ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>
 (``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
 
+:func:`route_windows` routes section by section instead, each section (a gadget: compute, rotate, uncompute)
+from the same home layout back to it: SABRE routes the compute on the device qubits around the section, then
+the middle, whose SWAPs are then undone, and the uncompute replays the compute's routed ops backwards
+(:func:`route_window`). Its result has ``initial_layout == final_layout``, and each section's routed cost
+depends only on its gates and its neighbourhood on the device (the routed cost of a gadget kind is fixed where
+the layout is translation-invariant: ``tests/circuitgen/medial_test.py``).
+
 :func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
 ``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
 ``sx`` is written ``rx(pi/2)`` (the IR has no ``sx``; the device's ``sx`` error and duration are charged for
@@ -45,7 +52,18 @@ from .circuit import Circuit, Register, Section
 from .devices import Device
 from .gates import Gate, cx, cz, rx, rz, rzz
 
-__all__ = ["RoutedCircuit", "coupling_map", "duration_s", "esp", "mirror_length", "route", "route_windows", "to_native"]
+__all__ = [
+    "Positions",
+    "RoutedCircuit",
+    "coupling_map",
+    "duration_s",
+    "esp",
+    "mirror_length",
+    "route",
+    "route_window",
+    "route_windows",
+    "to_native",
+]
 
 DEFAULT_TRIALS = 16
 """SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count)."""
@@ -198,7 +216,8 @@ not connected): the routed cost of a window then depends only on its neighbourho
 WINDOW_SEEDS = 1
 """SABRE seeds tried per window (the fewest SWAPs wins). Measured on the medial layout (p = 1): 4 seeds give the
 same counts on 3x3/1 and 6x6/3, 0.4% fewer CX on 4x4/2 (4,222 vs 4,240) and 2.1% fewer on 5x5/2 (9,212 vs
-9,410), all of it on the phase separator's one large window, for four times the routing time; so one."""
+9,410), all of it on the phase separator's one large window, at four SABRE runs per window instead of one; so
+one."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
@@ -278,8 +297,9 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     return result
 
 
-class _Positions:
-    """Where every logical qubit is (and who is on every physical qubit) while windows are routed."""
+class Positions:
+    """Where every logical qubit is (``where``: logical -> physical) and who is on every physical qubit (``who``:
+    physical -> logical, -1 for a free qubit) while windows are routed; ``swap`` moves both."""
 
     def __init__(self, layout: tuple[int, ...], size: int) -> None:
         self.where = list(layout)
@@ -297,7 +317,7 @@ class _Positions:
 
 
 def _route_part(
-    pairs: list[tuple[int, int]], pos: _Positions, device: Device, dist: Any, seed: int, trials: int | None
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None
 ) -> list[tuple]:
     """Route logical ``pairs`` from the current positions (``pos`` is not changed): ``("gate", k)`` and physical
     ``("swap", (p, q))`` in order."""
@@ -317,7 +337,7 @@ def _route_part(
 
 
 def _play(
-    events: Sequence[tuple], pairs: Sequence[tuple[int, int]], pos: _Positions
+    events: Sequence[tuple], pairs: Sequence[tuple[int, int]], pos: Positions
 ) -> list[tuple[str, tuple[int, int]]]:
     """Apply ``events`` to ``pos``: SWAPs move qubits, ``("gate", k)`` becomes ``("cx", pairs[k] at their
     positions)``."""
@@ -333,7 +353,7 @@ def _play(
 
 
 def route_window(
-    pairs: list[tuple[int, int]], pos: _Positions, device: Device, dist: Any, seed: int = 0,
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
     trials: int | None = DEFAULT_TRIALS,
 ) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
     """One window's routed ops (``("cx", (p, q))``, ``("swap", (p, q))``), leaving every qubit where it was: the
@@ -379,7 +399,7 @@ def route_windows(
 
     gates, section_of, home, measured_ = _flatten(circuit, device, layout, measured)
     dist = distances(device)
-    pos = _Positions(home, device.num_qubits)
+    pos = Positions(home, device.num_qubits)
     ops: list[tuple[str, tuple[int, int]]] = []
     owners: list[str] = []
     for sec in circuit.sections:

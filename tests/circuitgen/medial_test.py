@@ -207,7 +207,7 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     same count, and the routed circuit's count is the sum of its windows' counts."""
     from circuitgen.layout import distances
     from circuitgen.qaoa import qaoa_plan
-    from circuitgen.routing import _Positions, route_window
+    from circuitgen.routing import Positions, route_window
 
     s = default_scenario(8, 8, 1)
     dev = get_device("grid:15x15")
@@ -215,7 +215,7 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     assert homes is not None
     local, layout = allocate_ancillas(_unfused(s), homes, dev)
     dist = distances(dev)
-    pos = _Positions(layout, dev.num_qubits)
+    pos = Positions(layout, dev.num_qubits)
     mixers = iter(qaoa_plan(s, 1, PlanOptions(fuse=False))._mixers)
     by_kind: dict[object, set[int]] = {}
     seen: dict[object, list[tuple[int, int]]] = {}
