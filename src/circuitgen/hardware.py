@@ -10,7 +10,8 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   qubits nearest its data as ancillas, and :func:`circuitgen.routing.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
   ``initial_layout == final_layout``);
-* **greedy** (any device; the fallback): optionally region-local ancillas
+* **greedy** (any device; the fallback, and on grids for small circuits where it routes to fewer two-qubit gates,
+  :data:`AUTO_COMPARE_MAX_TWOQ`): optionally region-local ancillas
   (:func:`circuitgen.layout.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
   placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
   SABRE routing of the whole circuit (:func:`circuitgen.routing.route`).
@@ -216,10 +217,16 @@ def compile_for_device(
         geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement)
         if geometric is not None:
             logical, routed = geometric
+            method = "medial"
+            if layout_method == "auto" and _two_qubit(circuit) <= AUTO_COMPARE_MAX_TWOQ:
+                greedy = route(circuit, routed.device, best_layout(circuit, routed.device, seed=seed, layouts=layouts),
+                               seed=seed, measured=measured)  # fmt: skip
+                if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
+                    logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
                 routed = to_native(routed)
             seconds = time.perf_counter() - start
-            return DeviceCompileResult(compiled, logical, routed, lowered, seconds, "medial")
+            return DeviceCompileResult(compiled, logical, routed, lowered, seconds, method)
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -242,7 +249,17 @@ def compile_for_device(
 LAYOUT_METHODS = ("auto", "medial", "greedy")
 """``medial``: the geometric layout of :mod:`circuitgen.medial` with windows routed home
 (:func:`circuitgen.routing.route_windows`); ``greedy``: :func:`best_layout` and one SABRE routing of the whole
-circuit; ``auto``: medial where the device is a square grid that holds it, else greedy."""
+circuit; ``auto``: medial where the device is a square grid that holds it, else greedy; on such a grid a circuit
+of at most :data:`AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit gates win."""
+
+AUTO_COMPARE_MAX_TWOQ = 2_000
+"""Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
+on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
+home)."""
+
+
+def _two_qubit(c: Circuit) -> int:
+    return sum(1 for g in c.gates if len(g[1]) == 2)
 
 
 def medial_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:

@@ -5,9 +5,11 @@
 ``(i, j)-(i+1, j)`` on ``(2i+1, 2j)`` (edge midpoints), node sites ``(2i, 2j)`` and plaquette centres
 ``(2i+1, 2j+1)`` stay free for ancillas. A plaquette's four edges are then device neighbours of its centre, an
 outer edge and the plaquette edge it meets at a corner are both neighbours of that corner's node site. The ``k``
-robots' patches are *tiled* (side by side, ``a x b`` patches with ``a b >= k``): every partial mixer acts on one
-robot, so tiling keeps each partial mixer inside its own patch (interleaving the copies would put the ``k`` edge
-qubits of one grid edge next to each other, which only the phase separator's per-node terms would use).
+robots' patches are *tiled* by default (side by side, ``down x across`` patches with ``down across >= k``):
+every partial mixer acts on one robot, so tiling keeps each partial mixer inside its own patch. The other
+arrangement, ``interleave``, puts the ``k`` copies of every site side by side (a ``down x across`` block per
+medial site), which brings the phase separator's per-node cross-robot terms together but stretches every
+plaquette; measured, it routes to more CX in both parts (``python benchmarks/routing.py --arrangements``).
 
 **Allocation** (:func:`allocate_ancillas`). Every section of a circuit compiled with ``fuse=False`` returns its
 ancillas to |0> at both ends (``docs/architecture.md``, "Sections"), so each section may use *any* free device

@@ -148,7 +148,7 @@ def test_mirror_length_examples(pairs: list[tuple[int, int]]) -> None:
     ids=["2x3/1", "2x2/2"],
 )
 def test_windows_return_home_and_equal_the_unrouted_circuit(s: Scenario, device: str) -> None:
-    r = compile_for_device(s, 1, device, bindings=BIND, lowered=True)
+    r = compile_for_device(s, 1, device, bindings=BIND, lowered=True, layout_method="medial")
     assert r.layout_method == "medial"
     routed = r.routed
     assert routed.initial_layout == routed.final_layout
@@ -192,8 +192,7 @@ def test_qcec_proves_medial_routing_equal_to_the_compiled_circuit(s: Scenario) -
 
     from .routing_qcec_test import aligned
 
-    r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND)
-    assert r.layout_method == "medial"
+    r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, layout_method="medial")
     n = r.logical.num_qubits
     b = aligned(r.routed, n)
     a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(r.logical.gates))])
@@ -264,6 +263,17 @@ def test_interleave_puts_an_edges_copies_side_by_side(k: int) -> None:
         assert max(r for r, _ in rc) - min(r for r, _ in rc) < down
         assert max(c for _, c in rc) - min(c for _, c in rc) < across
     s2 = default_scenario(2, 2, 2)
-    r = compile_for_device(s2, 1, "grid:6x3", bindings=BIND, lowered=True, arrangement="interleave")
+    r = compile_for_device(s2, 1, "grid:6x3", bindings=BIND, lowered=True, arrangement="interleave",
+                           layout_method="medial")  # fmt: skip
     assert r.layout_method == "medial" and _on_coupling(r.routed)
     _assert_equal_up_to_layouts(r.logical, r.routed, seed=6, global_phase=False)
+
+
+@pytest.mark.parametrize("shape", [(2, 2, 1), (2, 3, 1), (3, 3, 1)])
+def test_auto_keeps_the_fewer_two_qubit_gates_on_small_circuits(shape: tuple[int, int, int]) -> None:
+    s = default_scenario(*shape)
+    counts = {}
+    for method in ("medial", "greedy", "auto"):
+        r = compile_for_device(s, 1, "google_willow", bindings=BIND, lowered=True, layout_method=method)
+        counts[method] = r.routed.circuit.count_ops()["cx"]
+    assert counts["auto"] == min(counts["medial"], counts["greedy"])

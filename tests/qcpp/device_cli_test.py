@@ -26,7 +26,8 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     dev = summary["device"]
     # the unsized square grid is sized for the medial layout (5x5 for 3x3); other devices: the smallest that fits
     assert dev["name"] == ("grid:5x5" if device == "grid" else get_device(device, min_qubits=15).name)
-    assert summary["routed"]["layout"] == ("medial" if device == "grid" else "greedy")
+    # auto on a grid that holds the medial layout: small circuits are routed both ways, the fewer gates win
+    assert summary["routed"]["layout"] in (("medial", "greedy") if device == "grid" else ("greedy",))
     edges = {tuple(e) for e in dev["coupling"]}
     qc = qasm2.loads(out.read_text())
     assert qc.num_qubits == dev["qubits"] == summary["qubits"]
