@@ -1,19 +1,25 @@
 """Routed two-qubit gates: ours vs Qiskit O3/SABRE on the same coupling map, in the same run.
 
-Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only).
+Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only);
+``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
+side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
+unrouted CX.
 
-Per scenario (p = 1, angles bound) and device family (the smallest square grid and the smallest heavy-hex that
-hold the circuit), columns:
+Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
+``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`), ``heavy-hex`` is the
+smallest that holds the circuit. Columns:
 
 * ``a2a cx``: the lowered circuit's CX (all-to-all, fused mixer; what ``qcpp compile --lowered`` writes);
 * ``qiskit O3``: ``qiskit.transpile(optimization_level=3, seed_transpiler=0)`` of that circuit (read from our
   OpenQASM 2) onto the device's coupling map, basis ``cx`` + our one-qubit gates: its CX count and seconds;
-* ``ours layout``: our placement refined forward-backward (:func:`circuitgen.hardware.best_layout` with
-  ``layouts=("ours",)``), routed by SABRE: CX (SWAPs as 3 CX) of the unfused lowered circuit;
-* ``local anc``: the same with region-local ancillas (:func:`circuitgen.layout.localize_ancillas`);
-* ``compile``: what ``qcpp compile --device ... --lowered`` writes (the better of our layout and Qiskit's
-  SabreLayout, then SABRE): CX and seconds;
-* ``compile / O3``: the goal is <= 0.5 on a grid and <= 0.6 on heavy-hex.
+* ``greedy``: :func:`circuitgen.hardware.compile_for_device` with ``layout_method="greedy"`` (our greedy
+  placement or Qiskit's SabreLayout, then one SABRE routing of the whole circuit): CX;
+* ``compile``: what ``qcpp compile --device ... --lowered`` writes (``layout_method="auto"``: medial on square
+  grids, greedy elsewhere): CX, seconds and the layout used;
+* ``compile / O3`` (goal: <= 0.5 on a grid, <= 0.6 on heavy-hex) and ``compile / a2a`` (goal: <= 2 on a grid,
+  <= 3 on heavy-hex);
+* ``2q depth``: the routed circuit's two-qubit depth (ASAP), greedy and compile: windows that return home on
+  disjoint qubits run side by side.
 """
 
 from __future__ import annotations
@@ -24,11 +30,11 @@ import time
 from circuitgen.circuit import Circuit
 from circuitgen.compile import compile_scenario
 from circuitgen.devices import Device, get_device
-from circuitgen.hardware import best_layout, compile_for_device
-from circuitgen.layout import localize_ancillas
-from circuitgen.options import PlanOptions
+from circuitgen.hardware import compile_for_device, medial_device
+from circuitgen.medial import ARRANGEMENTS
 from circuitgen.qasm import to_qasm2
-from circuitgen.routing import coupling_map, route
+from circuitgen.routing import coupling_map
+from estimators.counts import count_gates
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
 
@@ -67,31 +73,58 @@ def qiskit_o3(circuit: Circuit, device: Device) -> tuple[int, float]:
 def row(label: str, s: Scenario, family: str) -> str:
     """One table row."""
     fused = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit
-    unfused = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
-    device = get_device(family, min_qubits=fused.num_qubits)
+    device = medial_device(s, family) if family == "grid" else None
+    device = device or get_device(family, min_qubits=fused.num_qubits)
     o3, o3_s = qiskit_o3(fused, device)
-    ours = route(unfused, device, best_layout(unfused, device, layouts=("ours",))).circuit.count_ops()["cx"]
-    local = localize_ancillas(unfused, s, device.num_qubits - unfused.num_qubits)
-    local_cx = "-"
-    if local.num_qubits > unfused.num_qubits:
-        local_cx = str(route(local, device, best_layout(local, device, layouts=("ours",))).circuit.count_ops()["cx"])
+    greedy = compile_for_device(s, 1, device, lowered=True, bindings=BIND, layout_method="greedy")
+    greedy_cx = greedy.routed.circuit.count_ops()["cx"]
     start = time.perf_counter()
     compiled = compile_for_device(s, 1, device, lowered=True, bindings=BIND)
     seconds = time.perf_counter() - start
     cx = compiled.routed.circuit.count_ops()["cx"]
+    a2a = fused.count_ops()["cx"]
+    depth = [count_gates(r.routed.circuit.gates, device.num_qubits).two_qubit_depth for r in (greedy, compiled)]
     return (
-        f"| {label} | {fused.num_qubits} | {fused.count_ops()['cx']:,} | {device.name} | {o3:,} ({o3_s:.1f} s) "
-        f"| {ours:,} | {local_cx} | {cx:,} ({seconds:.1f} s) | {cx / o3:.2f} |"
+        f"| {label} | {fused.num_qubits} | {a2a:,} | {device.name} | {o3:,} ({o3_s:.1f} s) | {greedy_cx:,} "
+        f"| {cx:,} ({seconds:.1f} s, {compiled.layout_method}) | {cx / o3:.2f} | {cx / a2a:.2f} "
+        f"| {depth[0]:,} / {depth[1]:,} |"
     )
+
+
+def _by_part(c: Circuit) -> dict[str, int]:
+    part = {"phase": 0, "mixer": 0}
+    for sec in c.sections:
+        key = sec.name.split("_")[0]
+        if key in part:
+            part[key] += sum(len(g[1]) == 2 for g in sec.gates)
+    return part
+
+
+def arrangements() -> None:
+    """Tile vs interleave: routed CX of the medial layout per part (phase separator, mixer) on the unsized
+    ``grid``, next to the unrouted (all-to-all, unfused) CX of that part."""
+    print("| scenario | arrangement | device | routed cx | phase: routed / a2a | mixer: routed / a2a |")
+    print("|---|---|---|---:|---:|---:|")
+    for label, s in (("4x4/2", default_scenario(4, 4, 2)), ("5x5/2", default_scenario(5, 5, 2)),
+                     ("6x6/3", default_scenario(6, 6, 3))):  # fmt: skip
+        for arrangement in ARRANGEMENTS:
+            r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, arrangement=arrangement)
+            routed, a2a = _by_part(r.routed.circuit), _by_part(r.logical)
+            cells = " | ".join(f"{routed[k]:,} / {a2a[k]:,} = {routed[k] / a2a[k]:.2f}" for k in ("phase", "mixer"))
+            total = r.routed.circuit.count_ops()["cx"]
+            print(f"| {label} | {arrangement} | {r.routed.device.name} | {total:,} | {cells} |", flush=True)
 
 
 def main() -> None:
+    if "--arrangements" in sys.argv:
+        arrangements()
+        return
     quick = "--quick" in sys.argv
     print(
-        "| scenario | qubits | a2a cx | device | qiskit O3 cx | ours layout cx | local anc cx | compile cx "
-        "| compile / O3 |"
+        "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "
+        "| compile / a2a | 2q depth: greedy / compile |"
     )
-    print("|---|---:|---:|---|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|")
     for label, s in scenarios(quick):
         for family in ("grid", "heavy-hex"):
             print(row(label, s, family), flush=True)

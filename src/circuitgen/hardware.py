@@ -1,26 +1,33 @@
 """From a scenario to a routed circuit on a device: compile, allocate, place, route, translate to native gates.
 
-:func:`compile_for_device` is what ``qcpp compile --device NAME`` runs:
+:func:`compile_for_device` is what ``qcpp compile --device NAME`` runs. It compiles and lowers with
+``fuse=False`` (every gadget a section of its own, clean at both ends; the lowered count is 2-12 CX above the
+fused one on the default grids), then takes one of two paths (``layout_method``, default ``auto``):
 
-1. compile and lower with ``fuse=False`` (every partial mixer its own section, clean at both ends: needed by
-   the local-ancilla pass, and the routed circuit's sections stay clean; the lowered count is 2-12 CX above
-   the fused one on the default grids);
-2. optionally give gadgets region-local ancillas (:func:`circuitgen.layout.localize_ancillas`,
-   ``local_ancillas=True``; off by default: measured, it does not pay off yet, see ``benchmarks/routing.py``);
-3. place (:func:`circuitgen.layout.place`), then refine the layout SABRE-style: route the two-qubit gates
-   forward, then backward from the final layout, and start again from where the backward pass ends
-   (``refine_rounds`` times); Qiskit's own ``SabreLayout`` is one more candidate (``layouts``); the layout whose
-   routing needs the fewest SWAPs wins;
-4. route with Qiskit's SABRE (:func:`circuitgen.routing.route`) and, unless ``lowered``, translate to the
-   device's native gates (:func:`circuitgen.routing.to_native`).
+* **medial** (square-grid devices that hold it; the unsized family ``grid`` is sized for it):
+  :func:`circuitgen.medial.medial_placement` puts every edge qubit on its edge's midpoint of a ``(2R-1) x
+  (2C-1)`` patch per robot, :func:`circuitgen.medial.allocate_ancillas` gives every section the free device
+  qubits nearest its data as ancillas, and :func:`circuitgen.routing.route_windows` routes every section with
+  Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
+  ``initial_layout == final_layout``);
+* **greedy** (any device; the fallback, and on grids for small circuits where it routes to fewer two-qubit gates,
+  :data:`AUTO_COMPARE_MAX_TWOQ`): optionally region-local ancillas
+  (:func:`circuitgen.layout.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
+  placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
+  SABRE routing of the whole circuit (:func:`circuitgen.routing.route`).
+
+Unless ``lowered``, the routed circuit is translated to the device's native gates
+(:func:`circuitgen.routing.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken.
 
 Example:
     >>> from gridcover.presets import default_scenario
     >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="grid", bindings={"gamma_0": 0.3})
-    >>> r.routed.device.name, r.routed.circuit.num_qubits, r.logical_qubits
-    ('grid:4x4', 16, 15)
+    >>> r.routed.device.name, r.layout_method, r.routed.initial_layout == r.routed.final_layout
+    ('grid:5x5', 'medial', True)
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
+    >>> compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex").layout_method
+    'greedy'
 """
 
 from __future__ import annotations
@@ -36,8 +43,9 @@ from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
 from .layout import localize_ancillas, place
+from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, PlanOptions
-from .routing import RoutedCircuit, duration_s, esp, route, to_native
+from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
 __all__ = ["DeviceCompileResult", "compile_for_device", "device_for"]
 
@@ -52,6 +60,7 @@ class DeviceCompileResult:
         routed: The routed circuit (native gates unless compiled ``lowered``).
         lowered: Whether the routed circuit keeps CX + one-qubit gates.
         seconds: Wall time of everything.
+        layout_method: ``medial`` (geometric layout, windows routed home) or ``greedy`` (:func:`best_layout`).
     """
 
     compiled: CompileResult
@@ -59,6 +68,7 @@ class DeviceCompileResult:
     routed: RoutedCircuit
     lowered: bool
     seconds: float
+    layout_method: str = "greedy"
 
     @property
     def logical_qubits(self) -> int:
@@ -76,7 +86,8 @@ class DeviceCompileResult:
             "initial_layout": list(r.initial_layout),
             "final_layout": list(r.final_layout),
             "routed": {
-                "router": "qiskit SabreSwap, our layout",
+                "router": ROUTERS[self.layout_method],
+                "layout": self.layout_method,
                 "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
                 "swaps": r.swaps,
                 "esp": esp(native),
@@ -85,6 +96,11 @@ class DeviceCompileResult:
             },
         }
 
+
+ROUTERS = {
+    "medial": "medial layout with local ancillas; qiskit SabreSwap per section, each section returning home",
+    "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout",
+}
 
 ESP_MODEL = (
     "product of (1 - gate error) over every native gate and (1 - readout error) over the measured data qubits; "
@@ -164,6 +180,8 @@ def compile_for_device(
     local_ancillas: bool = False,
     seed: int = 0,
     layouts: tuple[str, ...] = LAYOUTS,
+    layout_method: str = "auto",
+    arrangement: str = "tile",
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -178,7 +196,9 @@ def compile_for_device(
         bindings: Angle values (symbols may stay unbound).
         local_ancillas: Run :func:`circuitgen.layout.localize_ancillas` first.
         seed: SABRE's seed.
-        layouts: Layout seeds to try (:func:`best_layout`).
+        layouts: Layout seeds to try (:func:`best_layout`, greedy method only).
+        layout_method: ``auto``, ``medial`` or ``greedy`` (:data:`LAYOUT_METHODS`).
+        arrangement: The medial layout's robot arrangement, ``tile`` or ``interleave``.
 
     Returns:
         The :class:`DeviceCompileResult`.
@@ -190,13 +210,100 @@ def compile_for_device(
     start = time.perf_counter()
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
+    measured = range(scenario.num_variables)
+    if layout_method not in LAYOUT_METHODS:
+        raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
+    if layout_method != "greedy" and not local_ancillas:
+        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement)
+        if geometric is not None:
+            logical, routed = geometric
+            method = "medial"
+            if layout_method == "auto" and _two_qubit(circuit) <= AUTO_COMPARE_MAX_TWOQ:
+                greedy = route(circuit, routed.device, best_layout(circuit, routed.device, seed=seed, layouts=layouts),
+                               seed=seed, measured=measured)  # fmt: skip
+                if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
+                    logical, routed, method = circuit, greedy, "greedy"
+            if not lowered:
+                routed = to_native(routed)
+            seconds = time.perf_counter() - start
+            return DeviceCompileResult(compiled, logical, routed, lowered, seconds, method)
+        if layout_method == "medial":
+            rows, cols = medial_shape(scenario, arrangement)
+            dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
+            if grid_shape(dev) is None:
+                raise ValueError(f"--layout medial needs a square-grid device; {dev.name} is not one")
+            raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with {scenario.num_robots} "
+                             f"robot(s) needs a {rows}x{cols} grid; device {dev.name} is smaller")  # fmt: skip
     dev = device if isinstance(device, Device) else device_for(device, circuit.num_qubits)
     if circuit.num_qubits > dev.num_qubits:
         raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
     layout = best_layout(circuit, dev, seed=seed, layouts=layouts)
-    routed = route(circuit, dev, layout, seed=seed, measured=range(scenario.num_variables))
+    routed = route(circuit, dev, layout, seed=seed, measured=measured)
     if not lowered:
         routed = to_native(routed)
-    return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start)
+    return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
+
+
+LAYOUT_METHODS = ("auto", "medial", "greedy")
+"""``medial``: the geometric layout of :mod:`circuitgen.medial` with windows routed home
+(:func:`circuitgen.routing.route_windows`); ``greedy``: :func:`best_layout` and one SABRE routing of the whole
+circuit; ``auto``: medial where the device is a square grid that holds it, else greedy; on such a grid a circuit
+of at most :data:`AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit gates win."""
+
+AUTO_COMPARE_MAX_TWOQ = 2_000
+"""Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
+on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
+home)."""
+
+
+def _two_qubit(c: Circuit) -> int:
+    return sum(1 for g in c.gates if len(g[1]) == 2)
+
+
+def medial_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:
+    """The device the medial layout uses: ``spec`` itself if it is a square grid that holds the layout; for the
+    unsized family ``grid``, the smallest square grid that holds it; otherwise ``None``."""
+    if isinstance(spec, Device):
+        return spec if medial_placement(scenario, spec, arrangement) is not None else None
+    if spec == "grid":
+        rows, cols = medial_shape(scenario, arrangement)
+        side = max(rows, cols)
+        return get_device(f"grid:{side}x{side}")
+    if not spec.startswith("grid:") and get_device(spec).family != "grid":
+        return None
+    dev = get_device(spec)
+    return dev if medial_placement(scenario, dev, arrangement) is not None else None
+
+
+def medial_compile(
+    scenario: Scenario,
+    circuit: Circuit,
+    spec: str | Device,
+    seed: int = 0,
+    measured: range | None = None,
+    arrangement: str = "tile",
+) -> tuple[Circuit, RoutedCircuit] | None:
+    """The medial layout, local ancillas and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on
+    ``spec``, or ``None`` where the device is not a square grid that holds it. The unsized family ``grid`` grows
+    by one row and column while a section needs more ancillas than the free qubits. ``arrangement``: how the
+    robots' copies share the device (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
+
+    Returns:
+        ``(logical circuit with local ancillas, routed circuit)``.
+    """
+    dev = medial_device(scenario, spec, arrangement)
+    while dev is not None:
+        homes = medial_placement(scenario, dev, arrangement)
+        assert homes is not None
+        try:
+            logical, layout = allocate_ancillas(circuit, homes, dev)
+        except ValueError:
+            if spec != "grid":
+                raise
+            side = int(dev.name.split("x")[-1]) + 1
+            dev = get_device(f"grid:{side}x{side}")
+            continue
+        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured)
+    return None

@@ -2,7 +2,9 @@
 
 :func:`routed_fields` adds to an estimate row:
 
-* ``device`` (its name; a family without a size is its smallest member with the row's qubits), ``fits``
+* ``device`` (its name; a family without a size is the member ``qcpp compile --device`` picks: for ``grid`` the
+  smallest square grid that holds the medial layout, :func:`circuitgen.hardware.medial_device`, otherwise the
+  smallest member with the row's qubits), ``fits``
   (the device's largest connected component has the row's qubits);
 * ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``;
 * ``routed_kind``: ``exact`` (the circuit is compiled and routed exactly as ``qcpp compile --device`` does, and
@@ -21,7 +23,7 @@ Example:
     >>> from estimators.estimate import DEFAULT_PLAN
     >>> f = routed_fields(default_scenario(3, 3, 1), 1, DEFAULT_PLAN, "grid", qubits=15, cx=106, one_qubit=180)
     >>> f["device"], f["fits"], f["routed_kind"], f["routed_twoq"] > 106
-    ('grid:4x4', True, 'exact', True)
+    ('grid:5x5', True, 'exact', True)
 """
 
 from __future__ import annotations
@@ -138,10 +140,11 @@ def routed_fields(
     Returns:
         The fields to add to the row.
     """
-    from circuitgen.hardware import ESP_MODEL, compile_for_device
+    from circuitgen.hardware import ESP_MODEL, compile_for_device, medial_device
     from circuitgen.routing import duration_s, esp
 
-    dev = get_device(device, min_qubits=qubits)
+    medial = medial_device(scenario, device) if device == "grid" else None
+    dev = medial if medial is not None else get_device(device, min_qubits=qubits)
     fits = _largest_component(dev) >= qubits
     out: dict[str, Any] = {"device": dev.name, "fits": fits}
     if not fits:
@@ -149,8 +152,10 @@ def routed_fields(
         return {**out, **dict.fromkeys(none)}
     if (total_gates if total_gates is not None else cx + one_qubit) > EXACT_MAX_GATES:
         return {**out, **_bound(dev, cx, one_qubit, scenario.num_variables)}
-    result = compile_for_device(scenario, p, dev, plan)
+    # the unsized grid goes by name: compile may grow it while a section needs more free qubits
+    result = compile_for_device(scenario, p, device if medial is not None else dev, plan)
     routed = result.routed
+    out["device"] = routed.device.name
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
     return {
         **out,

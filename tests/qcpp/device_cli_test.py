@@ -24,7 +24,10 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     assert res.exit_code == 0, res.output
     summary = json.loads(res.stdout)
     dev = summary["device"]
-    assert dev["name"] == get_device(device, min_qubits=15).name
+    # the unsized square grid is sized for the medial layout (5x5 for 3x3); other devices: the smallest that fits
+    assert dev["name"] == ("grid:5x5" if device == "grid" else get_device(device, min_qubits=15).name)
+    # auto on a grid that holds the medial layout: small circuits are routed both ways, the fewer gates win
+    assert summary["routed"]["layout"] in (("medial", "greedy") if device == "grid" else ("greedy",))
     edges = {tuple(e) for e in dev["coupling"]}
     qc = qasm2.loads(out.read_text())
     assert qc.num_qubits == dev["qubits"] == summary["qubits"]
@@ -32,8 +35,10 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     assert two and all(pair in edges for pair in two)
     names = set(qc.count_ops())
     assert names <= ({"cx", "h", "rz", "t", "tdg", "s", "sdg", "x"} if lowered else {"cz", "rz", "rx", "x"})
-    assert len(summary["initial_layout"]) == len(summary["final_layout"]) == 15
-    assert len(set(summary["initial_layout"])) == 15 and max(summary["final_layout"]) < dev["qubits"]
+    # logical qubits: the 12 data qubits, then the ancillas (medial: the device qubits its sections use)
+    logical = len(summary["initial_layout"])
+    assert logical == len(summary["final_layout"]) and logical >= 15
+    assert len(set(summary["initial_layout"])) == logical and max(summary["final_layout"]) < dev["qubits"]
     assert 0 < summary["routed"]["esp"] < 1 and summary["routed"]["two_qubit"] == len(two)
 
 
@@ -67,3 +72,24 @@ def test_estimate_device_too_small_and_bound() -> None:
 
 def test_estimate_bad_device_is_one_line() -> None:
     assert_one_line_error(run("estimate", "--device", "grid:x"), "--device", "grid:x")
+
+
+@pytest.mark.parametrize(
+    ("device", "layout", "fragment"),
+    [
+        ("grid", "nope", "--layout"),
+        ("heavy-hex", "medial", "square-grid device"),
+        ("grid:4x6", "medial", "needs a 5x5 grid"),
+    ],
+)
+def test_compile_bad_layout_is_one_line(device: str, layout: str, fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, "--device", device, "--layout", layout), fragment)
+
+
+def test_compile_layout_choice_is_reported() -> None:
+    for layout in ("medial", "greedy"):
+        res = run("compile", PAPER, "--device", "grid:5x5", "--layout", layout, "--lowered", "--json", *BIND)
+        assert res.exit_code == 0, res.output
+        summary = json.loads(res.stdout)
+        assert summary["routed"]["layout"] == layout
+        assert (summary["initial_layout"] == summary["final_layout"]) == (layout == "medial")

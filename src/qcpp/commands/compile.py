@@ -104,13 +104,23 @@ def compile_command(
         ),
     ] = None,
     local_ancillas: Annotated[
-        bool, typer.Option("--local-ancillas", help="With --device: give gadgets region-local ancillas.")
+        bool, typer.Option("--local-ancillas", help="With --device: give gadgets region-local ancillas (greedy).")
     ] = False,
+    layout: Annotated[
+        str,
+        typer.Option(
+            "--layout",
+            help="With --device: auto (medial on square grids that hold it, else greedy), medial (geometric "
+            "layout, local ancillas, every gadget routed home) or greedy (one SABRE routing of the whole circuit).",
+        ),
+    ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     options = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
+    if layout not in ("auto", "medial", "greedy"):  # circuitgen.hardware.LAYOUT_METHODS (not imported: startup)
+        raise ValueError(f"--layout: expected auto, medial or greedy, got {layout!r}")
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
@@ -126,7 +136,9 @@ def compile_command(
     s = load_scenario(scenario, check_range=True)
     size = _guard(s, p, options, max_gates, force)
     if device is not None:
-        summary, phase_explain = _routed(s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version)
+        summary, phase_explain = _routed(
+            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
+        )
         if qasm is not None:
             summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
@@ -204,6 +216,7 @@ def _routed(
     local_ancillas: bool,
     qasm: str | None,
     version: int,
+    layout: str = "auto",
 ) -> tuple[dict[str, Any], list[dict]]:
     """Compile, route onto ``device`` (:func:`circuitgen.hardware.compile_for_device`) and write OpenQASM; the
     summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
@@ -211,7 +224,7 @@ def _routed(
     from circuitgen.qasm import write_qasm
 
     result = compile_for_device(
-        s, p, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas
+        s, p, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas, layout_method=layout
     )
     circuit = result.routed.circuit
     if qasm is not None:

@@ -1,0 +1,223 @@
+"""A geometry-preserving placement on square-grid devices (the medial lattice) and local ancilla allocation.
+
+**Placement** (:func:`medial_placement`). For an ``R x C`` problem grid, robot ``r``'s copy of the grid takes a
+``(2R - 1) x (2C - 1)`` patch of the device: edge ``(i, j)-(i, j+1)`` sits on device site ``(2i, 2j+1)`` and
+``(i, j)-(i+1, j)`` on ``(2i+1, 2j)`` (edge midpoints), node sites ``(2i, 2j)`` and plaquette centres
+``(2i+1, 2j+1)`` stay free for ancillas. A plaquette's four edges are then device neighbours of its centre, an
+outer edge and the plaquette edge it meets at a corner are both neighbours of that corner's node site. The ``k``
+robots' patches are *tiled* by default (side by side, ``down x across`` patches with ``down across >= k``):
+every partial mixer acts on one robot, so tiling keeps each partial mixer inside its own patch. The other
+arrangement, ``interleave``, puts the ``k`` copies of every site side by side (a ``down x across`` block per
+medial site), which brings the phase separator's per-node cross-robot terms together but stretches every
+plaquette; measured, it routes to more CX in both parts (``python benchmarks/routing.py --arrangements``).
+
+**Allocation** (:func:`allocate_ancillas`). Every section of a circuit compiled with ``fuse=False`` returns its
+ancillas to |0> at both ends (``docs/architecture.md``, "Sections"), so each section may use *any* free device
+qubits as its ancillas. Per section, in order of first use, each ancilla gets the free physical qubit (not a data
+qubit's home, not taken by another ancilla of the same section) that minimises the interaction-weighted
+shortest-path distance to the qubits it meets in that section (data qubits at their homes, ancillas already
+allocated), ties broken by the distance to the section's data centroid, then by index. So a partial mixer's
+ANDs land on the plaquette centre and the corner node sites, a phase gadget's registers next to its data. The gate
+order is unchanged (the operator is unchanged); the circuit's ancillas are renamed to one register ``site`` of the
+physical qubits used, and the returned layout sends each logical qubit to its home.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.devices import get_device
+    >>> s = default_scenario(3, 3, 1)
+    >>> medial_shape(s)
+    (5, 5)
+    >>> homes = medial_placement(s, get_device("grid:5x5"))
+    >>> [divmod(homes[v], 5) for v in range(3)]  # edges (0,0)-(0,1), (0,0)-(1,0), (0,1)-(0,2)
+    [(0, 1), (1, 0), (0, 3)]
+    >>> medial_placement(s, get_device("grid:4x4")) is None  # too small: the caller falls back
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from gridcover.scenario import Scenario
+
+from .circuit import Circuit, Register, Section
+from .devices import Device, grid_coupling
+from .gates import Gate
+
+__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
+
+
+def grid_shape(device: Device) -> tuple[int, int] | None:
+    """``(rows, cols)`` if the device's coupling is the square lattice of :func:`circuitgen.devices.grid_coupling`
+    (qubit ``r * cols + c``), else ``None``."""
+    if device.is_all_to_all or device.family != "grid":
+        return None
+    n = device.num_qubits
+    for rows in range(1, n + 1):
+        cols = n // rows
+        edges = rows * (cols - 1) + cols * (rows - 1)
+        if n % rows == 0 and len(device.coupling) == edges and device.coupling == grid_coupling(rows, cols):
+            return rows, cols
+    return None
+
+
+def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
+    """Patches per device row and column for ``k`` patches of shape ``patch``: the near-square arrangement
+    ``(down, across)`` of smallest bounding square, then smallest area."""
+    best: tuple[tuple[int, int], tuple[int, int]] | None = None
+    for across in range(1, k + 1):
+        down = -(-k // across)
+        h, w = down * patch[0], across * patch[1]
+        key = (max(h, w), h * w)
+        if best is None or key < best[0]:
+            best = (key, (down, across))
+    assert best is not None
+    return best[1]
+
+
+ARRANGEMENTS = ("tile", "interleave")
+"""How the robots' copies share the device: side by side, or interleaved site by site (see the module docs)."""
+
+
+def _arrangement(scenario: Scenario, arrangement: str) -> tuple[int, int]:
+    patch = (2 * scenario.grid.rows - 1, 2 * scenario.grid.cols - 1)
+    if arrangement not in ARRANGEMENTS:
+        raise ValueError(f"arrangement must be one of {', '.join(ARRANGEMENTS)}, not {arrangement!r}")
+    return tiling(scenario.num_robots, patch if arrangement == "tile" else (1, 1))
+
+
+def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, int]:
+    """Rows and columns of device the medial layout of ``scenario`` spans."""
+    down, across = _arrangement(scenario, arrangement)
+    return down * (2 * scenario.grid.rows - 1), across * (2 * scenario.grid.cols - 1)
+
+
+def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
+    """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
+    device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
+    patches than :func:`tiling`'s).
+
+    Args:
+        scenario: The scenario.
+        device: The device.
+        arrangement: ``tile`` (robot ``r``'s patch is patch ``divmod(r, across)`` of a ``down x across``
+            arrangement) or ``interleave`` (robot ``r = (dr, dc)`` of a ``down x across`` block takes medial site
+            ``(a, b)`` to device site ``(down a + dr, across b + dc)``: the copies of one grid edge sit side by
+            side, a plaquette is stretched by ``down`` and ``across``).
+    """
+    shape = grid_shape(device)
+    if shape is None:
+        return None
+    g = scenario.grid
+    patch = (2 * g.rows - 1, 2 * g.cols - 1)
+    k = scenario.num_robots
+    preferred = _arrangement(scenario, arrangement)
+    if arrangement == "tile":
+        fitting = [
+            (down, across)
+            for across in range(1, k + 1)
+            if (down := -(-k // across)) * patch[0] <= shape[0] and across * patch[1] <= shape[1]
+        ]
+    else:
+        fitting = [preferred] if preferred[0] * patch[0] <= shape[0] and preferred[1] * patch[1] <= shape[1] else []
+    if not fitting:
+        return None
+    down, across = preferred if preferred in fitting else fitting[0]
+    cols = shape[1]
+    homes = []
+    for v in range(scenario.num_variables):
+        robot, e = scenario.variable_of(v)
+        (r1, c1), (r2, c2) = g.edges[e]
+        dr, dc = divmod(robot, across)
+        if arrangement == "tile":
+            row, col = dr * patch[0] + r1 + r2, dc * patch[1] + c1 + c2
+        else:
+            row, col = down * (r1 + r2) + dr, across * (c1 + c2) + dc
+        homes.append(row * cols + col)
+    return tuple(homes)
+
+
+def _distances(device: Device) -> np.ndarray:
+    from .layout import distances
+
+    return distances(device)
+
+
+def allocate_ancillas(
+    circuit: Circuit, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None
+) -> tuple[Circuit, tuple[int, ...]]:
+    """Give every section's ancillas the nearest free device qubits (see the module docs).
+
+    Args:
+        circuit: Lowered, compiled with ``fuse=False`` (every section clean at both ends); its first
+            ``len(data_homes)`` qubits are the data qubits.
+        data_homes: Physical qubit of every data qubit.
+        device: The device.
+        dist: Its all-pairs distances (:func:`circuitgen.layout.distances`), if already known.
+
+    Returns:
+        ``(circuit, layout)``: the circuit with registers ``data`` and ``site`` (the physical qubits used as
+        ancillas, ascending), and logical qubit -> physical qubit.
+
+    Raises:
+        ValueError: a section needs more ancillas than the device has free qubits (in the data's component).
+    """
+    d = _distances(device) if dist is None else dist
+    n_data = len(data_homes)
+    taken = np.zeros(device.num_qubits, dtype=bool)
+    taken[list(data_homes)] = True
+    reach = np.isfinite(d[data_homes[0]]) if n_data else np.ones(device.num_qubits, dtype=bool)
+    free = np.flatnonzero(~taken & reach)
+    sub = d[np.ix_(free, np.arange(device.num_qubits))]
+    renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
+    used: set[int] = set()
+    for sec in circuit.sections:
+        partners: dict[int, dict[int, int]] = {}
+        order: list[int] = []
+        data_in: set[int] = set()
+        for g in sec.gates:
+            qs = g[1]
+            for q in qs:
+                if q >= n_data and q not in partners:
+                    partners[q] = {}
+                    order.append(q)
+                elif q < n_data:
+                    data_in.add(q)
+            if len(qs) == 2:
+                a, b = qs
+                if a >= n_data:
+                    partners[a][b] = partners[a].get(b, 0) + 1
+                if b >= n_data:
+                    partners[b][a] = partners[b].get(a, 0) + 1
+        if len(order) > len(free):
+            raise ValueError(
+                f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
+            )
+        centre = sub[:, [data_homes[q] for q in sorted(data_in)]].sum(axis=1) if data_in else np.zeros(len(free))
+        home: dict[int, int] = {}
+        busy = np.zeros(len(free), dtype=bool)
+        for q in order:
+            cost = np.zeros(len(free))
+            for partner, w in partners[q].items():
+                at = data_homes[partner] if partner < n_data else home.get(partner)
+                if at is not None:
+                    cost += w * sub[:, at]
+            key = cost * 1e6 + centre
+            key[busy] = np.inf
+            j = int(np.argmin(key))
+            busy[j] = True
+            home[q] = int(free[j])
+        used.update(home.values())
+        renamed.append((sec.name, home))
+    sites = sorted(used)
+    index = {p: n_data + i for i, p in enumerate(sites)}
+    sections = []
+    for sec, (_, home) in zip(circuit.sections, renamed, strict=True):
+        rename = {q: index[p] for q, p in home.items()}
+        sections.append(Section(sec.name, [Gate(g[0], tuple(rename.get(q, q) for q in g[1]), g[2], g[3])
+                                           for g in sec.gates]))  # fmt: skip
+    registers = [Register("data", n_data)] + ([Register("site", len(sites))] if sites else [])
+    layout = (*(int(p) for p in data_homes), *sites)
+    return Circuit(registers, sections), tuple(layout)
