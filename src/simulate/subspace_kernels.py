@@ -9,7 +9,11 @@ few hundred KiB that stay in cache), apply every plaquette's rotations to each r
 robot's axis is the last one, rows are used in place); tiles are independent, so they run in parallel
 (numba's threading layer, ``prange``). The backward
 kernel un-applies the rotations to two arrays at once and accumulates ``sum Im <y|G|x>`` on the way. The
-phase separator multiplies each amplitude by its cost level's entry of a table, in parallel blocks.
+phase separator multiplies each amplitude by its cost level's entry of a table, in parallel blocks, or inside a
+mixer pass (``levels=``, ``table=``): the forward layer then applies the phase to each gathered tile before its
+rotations, and the backward sweep takes the phase separator's per-level gradient weights and undoes it after
+robot 0's un-rotations, so a layer costs one pass over memory less each way. Parallel work is cut into
+``CHUNKS_PER_THREAD`` items per thread, each allocating its tile buffers once.
 
 Rotation of a pair ``(i, j)``: ``x_i <- c x_i + s x_j``, ``x_j <- s x_i + c x_j`` with ``c`` real and ``s``
 imaginary (``s = -i sin(beta / 2)`` forward, ``+i sin(beta / 2)`` backward), as ``zrot(c, s)``; the kernels
@@ -90,54 +94,128 @@ def _scatter(buf: np.ndarray, xr: np.ndarray, a: int, c0: int, c1: int) -> None:
             xr[a, r, 2 * col + 1] = buf[col - c0, 2 * r + 1]
 
 
-def _mixer_impl(xr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int) -> None:
-    """``xr``: the float64 view ``(pre, n, 2 post)``; rotation ``c`` and ``s = -1j * sg``."""
+def _gather_levels(lev: np.ndarray, a: int, c0: int, c1: int, out: np.ndarray) -> None:
+    """``out[col - c0, r]`` = ``lev[a, r, col]``: the cost levels of the gathered rows."""
+    for r in range(lev.shape[1]):
+        for col in range(c0, c1):
+            out[col - c0, r] = lev[a, r, col]
+
+
+def _phase_row(row: np.ndarray, lev: np.ndarray, tr: np.ndarray, ti: np.ndarray) -> None:
+    """``row[k] *= t[lev[k]]`` on a float64 row ``[re_0, im_0, ...]`` (``t = tr + 1j ti``)."""
+    for k in range(lev.shape[0]):
+        a, d = tr[lev[k]], ti[lev[k]]
+        u, v = row[2 * k], row[2 * k + 1]
+        row[2 * k] = a * u - d * v
+        row[2 * k + 1] = a * v + d * u
+
+
+def _unphase_rows(
+    xrow: np.ndarray, yrow: np.ndarray, lev: np.ndarray, tr: np.ndarray, ti: np.ndarray, weights: np.ndarray
+) -> None:
+    """Add ``Im(conj(y_k) x_k)`` to ``weights[lev[k]]``, then ``x_k, y_k *= t[lev[k]]`` (the adjoint phase step)."""
+    for k in range(lev.shape[0]):
+        lv = lev[k]
+        u, v = xrow[2 * k], xrow[2 * k + 1]
+        p, q = yrow[2 * k], yrow[2 * k + 1]
+        weights[lv] += p * v - q * u
+        a, d = tr[lv], ti[lv]
+        xrow[2 * k] = a * u - d * v
+        xrow[2 * k + 1] = a * v + d * u
+        yrow[2 * k] = a * p - d * q
+        yrow[2 * k + 1] = a * q + d * p
+
+
+def _chunk_bounds(total: int, chunks: int, k: int) -> tuple[int, int]:
+    return k * total // chunks, (k + 1) * total // chunks
+
+
+def _mixer_impl(
+    xr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int, chunks: int,
+    lev: np.ndarray, tr: np.ndarray, ti: np.ndarray,
+) -> None:
+    """``xr``: the float64 view ``(pre, n, 2 post)``; rotation ``c`` and ``s = -1j * sg``. With a non-empty
+    ``lev`` (same ``(pre, n, post)`` shape as the state) every amplitude is first multiplied by
+    ``(tr + 1j ti)[lev]``: the phase separator, fused into the pass. ``chunks`` parallel work items each
+    allocate their buffers once."""
     pre, n, post2 = xr.shape
     post = post2 // 2
+    fuse = lev.size > 0
     if post == 1:  # the robot's axis is contiguous already
-        for a in numba.prange(pre):
-            _rotate_row(xr[a].reshape(2 * n), ii, jj, c, sg)
+        for ch in numba.prange(chunks):
+            a0, a1 = _chunk_bounds(pre, chunks, ch)
+            for a in range(a0, a1):
+                row = xr[a].reshape(2 * n)
+                if fuse:
+                    _phase_row(row, lev[a].reshape(n), tr, ti)
+                _rotate_row(row, ii, jj, c, sg)
         return
     ntiles = (post + tile - 1) // tile
-    for t in numba.prange(pre * ntiles):
-        a = t // ntiles
-        c0 = (t % ntiles) * tile
-        c1 = min(c0 + tile, post)
-        buf = np.empty((c1 - c0, 2 * n))
-        _gather(xr, a, c0, c1, buf)
-        for col in range(c1 - c0):
-            _rotate_row(buf[col], ii, jj, c, sg)
-        _scatter(buf, xr, a, c0, c1)
+    for ch in numba.prange(chunks):
+        t0, t1 = _chunk_bounds(pre * ntiles, chunks, ch)
+        buf = np.empty((tile, 2 * n))
+        lbuf = np.empty((tile if fuse else 0, n), dtype=lev.dtype)
+        for t in range(t0, t1):
+            a = t // ntiles
+            c0 = (t % ntiles) * tile
+            c1 = min(c0 + tile, post)
+            _gather(xr, a, c0, c1, buf)
+            if fuse:
+                _gather_levels(lev, a, c0, c1, lbuf)
+            for col in range(c1 - c0):
+                if fuse:
+                    _phase_row(buf[col], lbuf[col], tr, ti)
+                _rotate_row(buf[col], ii, jj, c, sg)
+            _scatter(buf, xr, a, c0, c1)
 
 
 def _mixer_adjoint_impl(
-    xr: np.ndarray, yr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int
-) -> float:
-    """Float64 views as in :func:`_mixer_impl`; ``s = -1j * sg`` is the inverse rotation here."""
+    xr: np.ndarray, yr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int, chunks: int,
+    lev: np.ndarray, tr: np.ndarray, ti: np.ndarray, nlev: int,
+) -> tuple[float, np.ndarray]:
+    """Float64 views as in :func:`_mixer_impl`; ``s = -1j * sg`` is the inverse rotation here. With a non-empty
+    ``lev``, after the rotations each amplitude pair's ``Im(conj(y) x)`` is added to its level's weight and
+    both are multiplied by ``(tr + 1j ti)[lev]`` (the phase separator's adjoint step, fused). Returns the
+    rotations' ``sum Im <y|G|x>`` and the ``nlev`` level weights (zeros without ``lev``)."""
     pre, n, post2 = xr.shape
     post = post2 // 2
+    fuse = lev.size > 0
+    acc = np.zeros(chunks)
+    part = np.zeros((chunks, nlev))
     if post == 1:
-        acc1 = np.zeros(pre)
-        for a in numba.prange(pre):
-            acc1[a] = _unrotate_rows(xr[a].reshape(2 * n), yr[a].reshape(2 * n), ii, jj, c, sg)
-        return acc1.sum()
+        for ch in numba.prange(chunks):
+            a0, a1 = _chunk_bounds(pre, chunks, ch)
+            z = 0.0
+            for a in range(a0, a1):
+                xrow, yrow = xr[a].reshape(2 * n), yr[a].reshape(2 * n)
+                z += _unrotate_rows(xrow, yrow, ii, jj, c, sg)
+                if fuse:
+                    _unphase_rows(xrow, yrow, lev[a].reshape(n), tr, ti, part[ch])
+            acc[ch] = z
+        return acc.sum(), part.sum(axis=0)
     ntiles = (post + tile - 1) // tile
-    acc = np.zeros(pre * ntiles)
-    for t in numba.prange(pre * ntiles):
-        a = t // ntiles
-        c0 = (t % ntiles) * tile
-        c1 = min(c0 + tile, post)
-        bx = np.empty((c1 - c0, 2 * n))
-        by = np.empty((c1 - c0, 2 * n))
-        _gather(xr, a, c0, c1, bx)
-        _gather(yr, a, c0, c1, by)
+    for ch in numba.prange(chunks):
+        t0, t1 = _chunk_bounds(pre * ntiles, chunks, ch)
+        bx = np.empty((tile, 2 * n))
+        by = np.empty((tile, 2 * n))
+        lbuf = np.empty((tile if fuse else 0, n), dtype=lev.dtype)
         z = 0.0
-        for col in range(c1 - c0):
-            z += _unrotate_rows(bx[col], by[col], ii, jj, c, sg)
-        _scatter(bx, xr, a, c0, c1)
-        _scatter(by, yr, a, c0, c1)
-        acc[t] = z
-    return acc.sum()
+        for t in range(t0, t1):
+            a = t // ntiles
+            c0 = (t % ntiles) * tile
+            c1 = min(c0 + tile, post)
+            _gather(xr, a, c0, c1, bx)
+            _gather(yr, a, c0, c1, by)
+            if fuse:
+                _gather_levels(lev, a, c0, c1, lbuf)
+            for col in range(c1 - c0):
+                z += _unrotate_rows(bx[col], by[col], ii, jj, c, sg)
+                if fuse:
+                    _unphase_rows(bx[col], by[col], lbuf[col], tr, ti, part[ch])
+            _scatter(bx, xr, a, c0, c1)
+            _scatter(by, yr, a, c0, c1)
+        acc[ch] = z
+    return acc.sum(), part.sum(axis=0)
 
 
 _BLOCK = 1 << 16  # amplitudes per parallel block of the phase kernels
@@ -171,6 +249,10 @@ if AVAILABLE:
     _unrotate_rows = _inline(_unrotate_rows)
     _gather = _inline(_gather)
     _scatter = _inline(_scatter)
+    _gather_levels = _inline(_gather_levels)
+    _phase_row = _inline(_phase_row)
+    _unphase_rows = _inline(_unphase_rows)
+    _chunk_bounds = _inline(_chunk_bounds)
     _jit = numba.njit(parallel=True, cache=True, nogil=True)
     _serial = numba.njit(cache=True, nogil=True)  # prange runs as range: no thread start-up and barrier
     _kernels = {
@@ -183,12 +265,37 @@ PARALLEL_MIN = 1 << 16
 """Arrays smaller than this many amplitudes run single-threaded: on a busy machine a parallel region's barrier
 can wait a whole scheduler time slice for its second thread, which costs more than the work."""
 
+CHUNKS_PER_THREAD = 4
+"""Parallel work items per thread in the mixer kernels (each allocates its tile buffers once); more than one
+per thread so that a thread slowed by other load on the machine does not hold up the rest."""
+
+_NO_LEVELS = np.zeros((0, 0, 0), dtype=np.uint8)
+_NO_TABLE = np.zeros(0)
+
 
 def _pick(name: str, size: int):  # type: ignore[no-untyped-def]
     return _kernels[name][size >= PARALLEL_MIN]
 
 
-def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None) -> None:
+def _chunks_for(size: int) -> int:
+    return CHUNKS_PER_THREAD * numba.get_num_threads() if size >= PARALLEL_MIN else 1
+
+
+def _fused(
+    x: np.ndarray, levels: np.ndarray | None, table: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Levels reshaped like ``x`` and the table's real and imaginary parts (empty when nothing is fused)."""
+    if levels is None or table is None:
+        return _NO_LEVELS, _NO_TABLE, _NO_TABLE
+    if levels.size != x.size or not levels.flags.c_contiguous:
+        raise ValueError("the fused levels must be C-contiguous with one level per amplitude")
+    return levels.reshape(x.shape), np.ascontiguousarray(table.real), np.ascontiguousarray(table.imag)
+
+
+def mixer(
+    x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None,
+    levels: np.ndarray | None = None, table: np.ndarray | None = None,
+) -> None:
     """Apply the rotations ``(ii[k], jj[k])`` in order along axis 1 of ``x`` (shape ``(pre, n, post)``), in place.
 
     Args:
@@ -197,26 +304,41 @@ def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, t
         c: ``cos(beta / 2)``.
         s: ``-1j * sin(beta / 2)`` (forward) or its conjugate (undo): a purely imaginary number.
         tile: Trailing columns per tile (default :data:`TILE`).
+        levels, table: Optional phase separator fused into the same pass: before its rotations every
+            amplitude is multiplied by ``table[levels]`` (``levels`` uint8/uint16, one per amplitude).
     """
     width = TILE if tile is None else int(tile)
-    _pick("mixer", x.size)(_real_view(x), ii, jj, float(c), float(-complex(s).imag), width)
+    lev, tr, ti = _fused(x, levels, table)
+    _pick("mixer", x.size)(_real_view(x), ii, jj, float(c), float(-complex(s).imag), width, _chunks_for(x.size),
+                           lev, tr, ti)
 
 
 def mixer_adjoint(
-    x: np.ndarray, y: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None
-) -> float:
-    """Undo the rotations on ``x`` and ``y`` in reverse order; return ``sum_k Im <y|G_k|x>`` taken before each
-    pair is undone (``G_k`` the pair's ``X``).
+    x: np.ndarray, y: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None,
+    levels: np.ndarray | None = None, table: np.ndarray | None = None, num_levels: int = 0,
+) -> tuple[float, np.ndarray]:
+    """Undo the rotations on ``x`` and ``y`` in reverse order, accumulating ``sum_k Im <y|G_k|x>`` taken before
+    each pair is undone (``G_k`` the pair's ``X``); optionally then the adjoint phase step, fused.
 
     Args:
         x, y: complex128 C-contiguous arrays of the same shape ``(pre, n, post)``.
         ii, jj, tile: As in :func:`mixer`.
         c: ``cos(beta / 2)``.
         s: ``+1j * sin(beta / 2)`` (the inverse rotation).
+        levels, table, num_levels: Optional fused phase step: after the rotations, every amplitude's
+            ``Im(conj(y) x)`` is added to its level's weight, then ``x`` and ``y`` are multiplied by
+            ``table[levels]`` (the inverse phase separator).
+
+    Returns:
+        ``(sum_k Im <y|G_k|x>, weights)``; ``weights`` has ``num_levels`` entries (all zero when nothing is
+        fused), as :func:`phase_weights` of the arrays between the rotations and the phase step.
     """
     width = TILE if tile is None else int(tile)
+    lev, tr, ti = _fused(x, levels, table)
     kernel = _pick("mixer_adjoint", x.size)
-    return float(kernel(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag), width))
+    z, weights = kernel(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag), width,
+                        _chunks_for(x.size), lev, tr, ti, int(num_levels) if lev.size else 0)
+    return float(z), weights
 
 
 def phase(x: np.ndarray, levels: np.ndarray, table: np.ndarray) -> None:

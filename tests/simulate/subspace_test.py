@@ -523,3 +523,48 @@ def test_parallel_kernels_on_a_state_of_many_blocks() -> None:
     e1, g1 = fast.value_and_gradient(angles)
     e2, g2 = ref.value_and_gradient(angles)
     assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+@pytest.mark.parametrize("shape", [(1, 7, 5), (4, 7, 1), (3, 7, 4), (2, 7, 9)])
+@pytest.mark.parametrize("level_dtype", [np.uint8, np.uint16])
+def test_fused_phase_kernels_equal_phase_then_mixer(
+    shape: tuple[int, int, int], parallel: bool, level_dtype: type, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The phase separator fused into a mixer pass (forward: phase then rotations; adjoint: un-rotations, the
+    per-level weights, then the inverse phase) equals the separate kernels, on random states, for the robot's
+    axis first, middle and last, tiles with a remainder, both level widths, single-threaded and parallel."""
+    from simulate import subspace_kernels as kern
+
+    if not kern.AVAILABLE:
+        pytest.skip("numba is not importable")
+    monkeypatch.setattr(kern, "TILE", 3)
+    monkeypatch.setattr(kern, "PARALLEL_MIN", 1 if parallel else 1 << 40)
+    rng = np.random.default_rng(sum(shape) + parallel)
+    ii, jj = np.array([0, 2, 1, 0, 5], dtype=np.intp), np.array([1, 3, 4, 6, 6], dtype=np.intp)  # disjoint per step
+    levels = rng.integers(0, 6, size=shape).astype(level_dtype)
+    table = np.exp(1j * rng.uniform(-3, 3, 6))
+    c, s = np.cos(0.35), -1j * np.sin(0.35)
+
+    def rand() -> np.ndarray:
+        return rng.normal(size=shape) + 1j * rng.normal(size=shape)
+
+    x = rand()
+    ref = x.copy()
+    kern.phase(ref, levels, table)
+    kern.mixer(ref, ii, jj, c, s)
+    kern.mixer(x, ii, jj, c, s, levels=levels, table=table)
+    assert np.allclose(x, ref, rtol=0, atol=1e-13)
+
+    x, y = rand(), rand()
+    rx, ry = x.copy(), y.copy()
+    z_ref, _ = kern.mixer_adjoint(rx, ry, ii, jj, c, -s)
+    w_ref = kern.phase_weights(rx, ry, levels, 6)
+    kern.phase(rx, levels, np.conj(table))
+    kern.phase(ry, levels, np.conj(table))
+    z, w = kern.mixer_adjoint(x, y, ii, jj, c, -s, levels=levels, table=np.conj(table), num_levels=6)
+    assert z == pytest.approx(z_ref, rel=1e-12, abs=1e-12)
+    assert np.allclose(w, w_ref, rtol=1e-12, atol=1e-12) and np.abs(w).sum() > 0
+    assert np.allclose(x, rx, rtol=0, atol=1e-13) and np.allclose(y, ry, rtol=0, atol=1e-13)
+    with pytest.raises(ValueError, match="levels"):
+        kern.mixer(x, ii, jj, c, s, levels=levels.reshape(-1)[:-1], table=table)
