@@ -25,7 +25,8 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
 
 Each partial mixer is thus a set of disjoint 2x2 rotations on pairs of one robot's basis, applied along that
 robot's axis. By default (``kernels="auto"``) compiled numba kernels (:mod:`simulate.subspace_kernels`) apply
-a whole layer's rotations tile by tile in one pass over the state, in parallel for large states; the BLAS path
+a whole layer's rotations block by block (four lines at a time, vectorised) in one pass over the state, in
+parallel for large states; the BLAS path
 (``kernels="blas"``) calls ``zrot`` on the two contiguous runs of amplitudes that share the other robots' paths
 (axes whose runs are short go through a transposed scratch buffer). The tests compare the two. The cost diagonal is
 built once from :func:`gridcover.cost.separable_cost` (unary vectors plus pairwise matrices) and kept as a
@@ -331,7 +332,8 @@ class SubspaceQAOA:
             constant of the representation the compared circuit was compiled with.
         buffer: Amplitudes in the scratch buffer used for axes with short contiguous runs (memory
             ``16 * buffer`` bytes, twice during a gradient; BLAS kernels only).
-        kernels: How the partial mixers run: ``numba`` (tiled, parallel, :mod:`simulate.subspace_kernels`),
+        kernels: How the partial mixers run: ``numba`` (lane-blocked, vectorised, parallel;
+            :mod:`simulate.subspace_kernels`),
             ``blas`` (one ``zrot`` call per pair and run) or ``auto`` (default: numba when importable).
 
     Raises:
@@ -550,19 +552,10 @@ class SubspaceQAOA:
         gammas, betas = split_angles(angles)
         psi = self.initial_state()
         for g, b in zip(gammas, betas):
-            if self._fusable():
-                self._mixer(psi, 0, b, gamma=g)  # the phase separator in the same pass as robot 0's mixer
-            else:
-                self._phase(psi, g)
-                self._mixer(psi, 0, b)
-            for r in range(1, len(self.robot_bases)):
+            self._phase(psi, g)
+            for r in range(len(self.robot_bases)):
                 self._mixer(psi, r, b)
         return psi
-
-    def _fusable(self) -> bool:
-        """Whether the numba kernels apply the phase separator inside robot 0's mixer pass (compact costs)."""
-        self._build_cost()
-        return self.kernels == "numba" and self._levels is not None and self._pair_arrays[0] is not None
 
     def expectation(self, angles: Sequence[float] | np.ndarray) -> float:
         """``<psi(angles)| C |psi(angles)>`` (the cost itself, not ``C - offset``)."""
@@ -771,16 +764,10 @@ class SubspaceQAOA:
         """The adjoint sweep: ``2 Im <lambda_k|G_k|phi_k>`` per angle (destroys ``psi`` and ``lam``)."""
         p = len(gammas)
         grad = np.zeros(2 * p)
-        fused = self._fusable()
         for k in range(p - 1, -1, -1):
-            for r in range(len(self.robot_bases) - 1, 0, -1):
+            for r in range(len(self.robot_bases) - 1, -1, -1):
                 grad[2 * k + 1] += self._mixer_adjoint(psi, lam, r, betas[k])
-            if fused:
-                share, grad[2 * k] = self._mixer_phase_adjoint(psi, lam, betas[k], gammas[k])
-                grad[2 * k + 1] += share
-            else:
-                grad[2 * k + 1] += self._mixer_adjoint(psi, lam, 0, betas[k])
-                grad[2 * k] = self._phase_adjoint(psi, lam, gammas[k])
+            grad[2 * k] = self._phase_adjoint(psi, lam, gammas[k])
         return grad
 
     # ------------------------------------------------------------------ kernels
@@ -833,21 +820,6 @@ class SubspaceQAOA:
             lf[sl] *= ph
         return 2.0 * total
 
-    def _mixer_phase_adjoint(self, psi: np.ndarray, lam: np.ndarray, beta: float, gamma: float) -> tuple[float, float]:
-        """:meth:`_mixer_adjoint` of robot 0 followed by :meth:`_phase_adjoint`, in one pass over both arrays
-        (numba kernels, compact costs): returns robot 0's share of ``dE/dbeta`` and ``dE/dgamma``."""
-        assert self._values is not None and self._levels is not None
-        pairs = self._pair_arrays[0]
-        assert pairs is not None
-        shifted = self._values - self.phase_offset
-        shape = self._layout(0)
-        share, weight = subspace_kernels.mixer_adjoint(
-            psi.reshape(shape), lam.reshape(shape), pairs[0], pairs[1], float(np.cos(beta / 2)),
-            complex(1j * np.sin(beta / 2)), levels=self._levels, table=np.exp(1j * gamma * shifted),
-            num_levels=shifted.size,
-        )
-        return share, 2.0 * float(np.dot(weight, shifted))
-
     def _layout(self, r: int) -> tuple[int, int, int]:
         dims = self.dims
         return int(np.prod(dims[:r], dtype=np.int64)), dims[r], int(np.prod(dims[r + 1 :], dtype=np.int64))
@@ -879,21 +851,15 @@ class SubspaceQAOA:
             for v, blk in zip(views, blocks):
                 v[a0:a1] = blk.transpose(1, 0, 2)
 
-    def _mixer(self, psi: np.ndarray, r: int, beta: float, gamma: float | None = None) -> None:
-        """Apply robot ``r``'s partial mixers (plaquettes ascending) in place; with ``gamma`` (numba kernels,
-        compact costs, see :meth:`_fusable`) the phase separator ``exp(-i gamma (C - offset))`` first, in the
-        same pass over the state."""
+    def _mixer(self, psi: np.ndarray, r: int, beta: float) -> None:
+        """Apply robot ``r``'s partial mixers (plaquettes ascending) in place."""
         plist = self._pair_lists[r]
         if not plist:
             return
         c, s = float(np.cos(beta / 2)), complex(-1j * np.sin(beta / 2))
         pairs = self._pair_arrays[r]
         if self.kernels == "numba" and pairs is not None:
-            levels = table = None
-            if gamma is not None:
-                assert self._values is not None and self._levels is not None
-                levels, table = self._levels, np.exp(-1j * gamma * (self._values - self.phase_offset))
-            subspace_kernels.mixer(psi.reshape(self._layout(r)), pairs[0], pairs[1], c, s, levels=levels, table=table)
+            subspace_kernels.mixer(psi.reshape(self._layout(r)), pairs[0], pairs[1], c, s)
             return
 
         def rotate(flats: list[np.ndarray], base: int, w: int) -> None:
@@ -915,7 +881,7 @@ class SubspaceQAOA:
         pairs = self._pair_arrays[r]
         if self.kernels == "numba" and pairs is not None:
             shape = self._layout(r)
-            return subspace_kernels.mixer_adjoint(psi.reshape(shape), lam.reshape(shape), pairs[0], pairs[1], c, s)[0]
+            return subspace_kernels.mixer_adjoint(psi.reshape(shape), lam.reshape(shape), pairs[0], pairs[1], c, s)
         acc = [0j]
 
         def rotate_back(flats: list[np.ndarray], base: int, w: int) -> None:

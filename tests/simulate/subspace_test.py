@@ -489,13 +489,12 @@ def test_phase_offset_names_the_compiled_representation() -> None:
 @pytest.mark.parametrize("parallel", [False, True])
 @pytest.mark.parametrize("s", [SINGLE_3x3, TWO_2x3, THREE_2x2, make(3, 3, [((0, 0), (2, 2)), ((0, 2), (2, 0))])])
 def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: pytest.MonkeyPatch) -> None:
-    """The tiled numba kernels (every axis position: first, middle, last; tiles narrower than the trailing
-    axis, with a remainder; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
+    """The lane-blocked numba kernels (every axis position: first, middle, last; line counts that leave a partial
+    last block of lanes; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
     from simulate import subspace_kernels
 
     if not subspace_kernels.AVAILABLE:
         pytest.skip("numba is not importable")
-    monkeypatch.setattr(subspace_kernels, "TILE", 3)
     monkeypatch.setattr(subspace_kernels, "PARALLEL_MIN", 1 if parallel else 1 << 40)
     fast, ref = SubspaceQAOA(s, kernels="numba"), SubspaceQAOA(s, kernels="blas")
     assert fast.kernels == "numba" and ref.kernels == "blas"
@@ -525,46 +524,39 @@ def test_parallel_kernels_on_a_state_of_many_blocks() -> None:
     assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-9, atol=1e-12)
 
 
+
 @pytest.mark.parametrize("parallel", [False, True])
-@pytest.mark.parametrize("shape", [(1, 7, 5), (4, 7, 1), (3, 7, 4), (2, 7, 9)])
-@pytest.mark.parametrize("level_dtype", [np.uint8, np.uint16])
-def test_fused_phase_kernels_equal_phase_then_mixer(
-    shape: tuple[int, int, int], parallel: bool, level_dtype: type, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize("shape", [(1, 7, 5), (4, 7, 1), (3, 7, 4), (2, 7, 9), (5, 7, 3), (1, 7, 1)])
+def test_lane_kernels_against_numpy_rotations(
+    shape: tuple[int, int, int], parallel: bool, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The phase separator fused into a mixer pass (forward: phase then rotations; adjoint: un-rotations, the
-    per-level weights, then the inverse phase) equals the separate kernels, on random states, for the robot's
-    axis first, middle and last, tiles with a remainder, both level widths, single-threaded and parallel."""
+    """The lane-blocked kernels equal pair-by-pair numpy rotations along axis 1 on random states, for line counts
+    ``pre * post`` that fill whole blocks of four lanes, leave a partial last block, or are smaller than one;
+    the adjoint kernel undoes the forward one and returns ``sum_k Im <y|G_k|x>`` taken before each pair."""
     from simulate import subspace_kernels as kern
 
     if not kern.AVAILABLE:
         pytest.skip("numba is not importable")
-    monkeypatch.setattr(kern, "TILE", 3)
     monkeypatch.setattr(kern, "PARALLEL_MIN", 1 if parallel else 1 << 40)
     rng = np.random.default_rng(sum(shape) + parallel)
-    ii, jj = np.array([0, 2, 1, 0, 5], dtype=np.intp), np.array([1, 3, 4, 6, 6], dtype=np.intp)  # disjoint per step
-    levels = rng.integers(0, 6, size=shape).astype(level_dtype)
-    table = np.exp(1j * rng.uniform(-3, 3, 6))
-    c, s = np.cos(0.35), -1j * np.sin(0.35)
-
-    def rand() -> np.ndarray:
-        return rng.normal(size=shape) + 1j * rng.normal(size=shape)
-
-    x = rand()
+    ii, jj = np.array([0, 2, 1, 0, 5], dtype=np.intp), np.array([1, 3, 4, 6, 6], dtype=np.intp)
+    c, s = float(np.cos(0.35)), complex(-1j * np.sin(0.35))
+    x = rng.normal(size=shape) + 1j * rng.normal(size=shape)
     ref = x.copy()
-    kern.phase(ref, levels, table)
-    kern.mixer(ref, ii, jj, c, s)
-    kern.mixer(x, ii, jj, c, s, levels=levels, table=table)
-    assert np.allclose(x, ref, rtol=0, atol=1e-13)
+    for i, j in zip(ii, jj):
+        u, v = ref[:, i, :].copy(), ref[:, j, :].copy()
+        ref[:, i, :], ref[:, j, :] = c * u + s * v, s * u + c * v
+    out = x.copy()
+    kern.mixer(out, ii, jj, c, s)
+    assert np.allclose(out, ref, rtol=0, atol=1e-13)
 
-    x, y = rand(), rand()
-    rx, ry = x.copy(), y.copy()
-    z_ref, _ = kern.mixer_adjoint(rx, ry, ii, jj, c, -s)
-    w_ref = kern.phase_weights(rx, ry, levels, 6)
-    kern.phase(rx, levels, np.conj(table))
-    kern.phase(ry, levels, np.conj(table))
-    z, w = kern.mixer_adjoint(x, y, ii, jj, c, -s, levels=levels, table=np.conj(table), num_levels=6)
+    y = rng.normal(size=shape) + 1j * rng.normal(size=shape)
+    ox, oy, z_ref = out.copy(), y.copy(), 0.0
+    for i, j in zip(ii[::-1], jj[::-1]):
+        z_ref += float(np.vdot(oy[:, i, :], ox[:, j, :]).imag + np.vdot(oy[:, j, :], ox[:, i, :]).imag)
+        for a in (ox, oy):
+            u, v = a[:, i, :].copy(), a[:, j, :].copy()
+            a[:, i, :], a[:, j, :] = c * u - s * v, -s * u + c * v
+    z = kern.mixer_adjoint(out, y, ii, jj, c, -s)
     assert z == pytest.approx(z_ref, rel=1e-12, abs=1e-12)
-    assert np.allclose(w, w_ref, rtol=1e-12, atol=1e-12) and np.abs(w).sum() > 0
-    assert np.allclose(x, rx, rtol=0, atol=1e-13) and np.allclose(y, ry, rtol=0, atol=1e-13)
-    with pytest.raises(ValueError, match="levels"):
-        kern.mixer(x, ii, jj, c, s, levels=levels.reshape(-1)[:-1], table=table)
+    assert np.allclose(out, x, rtol=0, atol=1e-13) and np.allclose(out, ox, atol=1e-13) and np.allclose(y, oy)
