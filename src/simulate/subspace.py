@@ -720,6 +720,9 @@ class SubspaceQAOA:
     def level_probabilities(self, psi: np.ndarray) -> np.ndarray:
         """The probability of each cost in :meth:`cost_distribution_index`'s table for the state ``psi``."""
         values, index = self.cost_distribution_index()
+        if (self.kernels == "numba" and index.dtype in (np.uint8, np.uint16) and psi.dtype == np.complex128
+                and psi.flags.c_contiguous):
+            return subspace_kernels.level_weights(psi, index, values.size)
         flat, lev = psi.reshape(-1), index.reshape(-1)
         weight = np.zeros(values.size)
         for sl in _chunks(flat.size):
@@ -754,6 +757,10 @@ class SubspaceQAOA:
         values, index = self.cost_distribution_index()
         value, weights = objective(values, self.level_probabilities(psi))
         weights = np.asarray(weights, dtype=np.float64)
+        if self.kernels == "numba" and index.dtype in (np.uint8, np.uint16):
+            lam = psi.copy()
+            subspace_kernels.phase(lam, index, weights.astype(np.complex128))  # lam = weights[cost(x)] psi
+            return float(value), self._backward(psi, lam, gammas, betas)
         lam = np.empty_like(psi)
         pflat, lflat, lev = psi.reshape(-1), lam.reshape(-1), index.reshape(-1)
         for sl in _chunks(pflat.size):

@@ -42,7 +42,7 @@ try:
 except ImportError:  # pragma: no cover - numba comes with quimb, a core dependency
     numba = None
 
-__all__ = ["AVAILABLE", "LANES", "mixer", "mixer_adjoint", "phase", "phase_weights"]
+__all__ = ["AVAILABLE", "LANES", "level_weights", "mixer", "mixer_adjoint", "phase", "phase_weights"]
 
 AVAILABLE = numba is not None
 LANES = 4
@@ -225,6 +225,17 @@ def _phase_weights_impl(xr: np.ndarray, yr: np.ndarray, lev: np.ndarray, nlev: i
     return part.sum(axis=0)
 
 
+def _level_weights_impl(xr: np.ndarray, lev: np.ndarray, nlev: int) -> np.ndarray:
+    """``sum over amplitudes of level l of |x|^2`` for every level ``l``."""
+    n = lev.shape[0]
+    nb = (n + _BLOCK - 1) // _BLOCK
+    part = np.zeros((nb, nlev))
+    for b in numba.prange(nb):
+        for k in range(b * _BLOCK, min(n, (b + 1) * _BLOCK)):
+            part[b, lev[k]] += xr[2 * k] * xr[2 * k] + xr[2 * k + 1] * xr[2 * k + 1]
+    return part.sum(axis=0)
+
+
 if AVAILABLE:
     _inline = numba.njit(cache=True, nogil=True)
     _rotate_lanes = _inline(_rotate_lanes)
@@ -238,7 +249,8 @@ if AVAILABLE:
     _kernels = {
         name: (_serial(fn), _jit(fn))
         for name, fn in (("mixer", _mixer_impl), ("mixer_adjoint", _mixer_adjoint_impl), ("phase", _phase_impl),
-                         ("phase_weights", _phase_weights_impl))
+                         ("phase_weights", _phase_weights_impl),
+                         ("level_weights", _level_weights_impl))
     }
 
 
@@ -313,6 +325,18 @@ def phase_weights(x: np.ndarray, y: np.ndarray, levels: np.ndarray, num_levels: 
     """Per level ``l``: ``sum_{k: levels[k] = l} Im(conj(y_k) x_k)`` (float64, length ``num_levels``)."""
     kernel = _pick("phase_weights", x.size)
     return kernel(_real_view(x).reshape(-1), _real_view(y).reshape(-1), levels.reshape(-1), int(num_levels))
+
+
+def level_weights(x: np.ndarray, levels: np.ndarray, num_levels: int) -> np.ndarray:
+    """Per level ``l``: ``sum_{k: levels[k] = l} |x_k|^2`` (float64, length ``num_levels``): the measured cost's
+    distribution of the state ``x`` over a cost table.
+
+    Example:
+        >>> import numpy as np
+        >>> level_weights(np.array([0.6, 0.8j, 0.0]), np.array([1, 0, 1], dtype=np.uint8), 2).round(12).tolist()
+        [0.64, 0.36]
+    """
+    return _pick("level_weights", x.size)(_real_view(x).reshape(-1), levels.reshape(-1), int(num_levels))
 
 
 def _real_view(x: np.ndarray) -> np.ndarray:

@@ -18,6 +18,7 @@ from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
 from gridcover.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
 from gridcover.scenario import Scenario, scenario_from_dict
+from simulate.objectives import make_objective
 from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
 from simulate.training import cost_scale
 
@@ -503,6 +504,12 @@ def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: 
     e1, g1 = fast.value_and_gradient(angles)
     e2, g2 = ref.value_and_gradient(angles)
     assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-10, atol=1e-12)
+    psi = ref.state(angles)
+    assert np.allclose(fast.level_probabilities(psi), ref.level_probabilities(psi), rtol=1e-12, atol=1e-15)
+    gibbs = make_objective("gibbs", cost_scale(ref))
+    f1, h1 = fast.objective_and_gradient(angles, gibbs)
+    f2, h2 = ref.objective_and_gradient(angles, gibbs)
+    assert f1 == pytest.approx(f2, rel=1e-12) and np.allclose(h1, h2, rtol=1e-10, atol=1e-12)
     with pytest.raises(ValueError, match="kernels"):
         SubspaceQAOA(s, kernels="gpu")  # type: ignore[arg-type]
 
