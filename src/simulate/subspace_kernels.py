@@ -257,7 +257,7 @@ if AVAILABLE:
 @contextmanager
 def _slp_vectorize() -> Iterator[None]:
     """Compile with LLVM's SLP vectoriser on (numba leaves it off by default): it packs the four written-out
-    lanes of :func:`_rotate_lanes` into vector instructions, about 2.5 times faster per rotation. Scoped to our
+    lanes of :func:`_rotate_lanes` into vector instructions (without it they stay scalar). Scoped to our
     kernels' calls (where numba compiles them on first use) so that other numba code keeps numba's default."""
     before = numba.config.SLP_VECTORIZE
     numba.config.SLP_VECTORIZE = 1
@@ -274,7 +274,6 @@ can wait a whole scheduler time slice for its second thread, which costs more th
 CHUNKS_PER_THREAD = 4
 """Parallel work items per thread in the mixer kernels (each allocates its lane blocks once); more than one
 per thread so that a thread slowed by other load on the machine does not hold up the rest."""
-
 
 
 def _pick(name: str, size: int):  # type: ignore[no-untyped-def]
