@@ -25,7 +25,8 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
 
 Each partial mixer is thus a set of disjoint 2x2 rotations on pairs of one robot's basis, applied along that
 robot's axis. By default (``kernels="auto"``) compiled numba kernels (:mod:`simulate.subspace_kernels`) apply
-a whole layer's rotations tile by tile in one pass over the state, in parallel for large states; the BLAS path
+a whole layer's rotations block by block (four lines at a time, vectorised) in one pass over the state, in
+parallel for large states; the BLAS path
 (``kernels="blas"``) calls ``zrot`` on the two contiguous runs of amplitudes that share the other robots' paths
 (axes whose runs are short go through a transposed scratch buffer). The tests compare the two. The cost diagonal is
 built once from :func:`gridcover.cost.separable_cost` (unary vectors plus pairwise matrices) and kept as a
@@ -331,7 +332,8 @@ class SubspaceQAOA:
             constant of the representation the compared circuit was compiled with.
         buffer: Amplitudes in the scratch buffer used for axes with short contiguous runs (memory
             ``16 * buffer`` bytes, twice during a gradient; BLAS kernels only).
-        kernels: How the partial mixers run: ``numba`` (tiled, parallel, :mod:`simulate.subspace_kernels`),
+        kernels: How the partial mixers run: ``numba`` (lane-blocked, vectorised, parallel;
+            :mod:`simulate.subspace_kernels`),
             ``blas`` (one ``zrot`` call per pair and run) or ``auto`` (default: numba when importable).
 
     Raises:
@@ -718,6 +720,9 @@ class SubspaceQAOA:
     def level_probabilities(self, psi: np.ndarray) -> np.ndarray:
         """The probability of each cost in :meth:`cost_distribution_index`'s table for the state ``psi``."""
         values, index = self.cost_distribution_index()
+        if (self.kernels == "numba" and index.dtype in (np.uint8, np.uint16) and psi.dtype == np.complex128
+                and psi.flags.c_contiguous):
+            return subspace_kernels.level_weights(psi, index, values.size)
         flat, lev = psi.reshape(-1), index.reshape(-1)
         weight = np.zeros(values.size)
         for sl in _chunks(flat.size):
@@ -752,6 +757,10 @@ class SubspaceQAOA:
         values, index = self.cost_distribution_index()
         value, weights = objective(values, self.level_probabilities(psi))
         weights = np.asarray(weights, dtype=np.float64)
+        if self.kernels == "numba" and index.dtype in (np.uint8, np.uint16):
+            lam = psi.copy()
+            subspace_kernels.phase(lam, index, weights.astype(np.complex128))  # lam = weights[cost(x)] psi
+            return float(value), self._backward(psi, lam, gammas, betas)
         lam = np.empty_like(psi)
         pflat, lflat, lev = psi.reshape(-1), lam.reshape(-1), index.reshape(-1)
         for sl in _chunks(pflat.size):

@@ -1,31 +1,39 @@
 """Compiled (numba) kernels of the feasible-subspace simulator: partial mixers and the tabulated phase.
 
 A robot's mixer in one QAOA layer is an ordered list of disjoint 2x2 rotations per plaquette, applied along the
-robot's axis of the state array viewed as ``(pre, n, post)``. The BLAS path of :mod:`simulate.subspace` calls
-``zrot`` once per pair, which streams the whole array through memory once per plaquette. These kernels walk
-the array once per layer instead: they cut it into tiles ``x[a, :, c0:c1]`` (every basis path of the robot,
-``TILE`` trailing columns), copy a tile into a buffer with the robot's axis contiguous (a row per column, a
-few hundred KiB that stay in cache), apply every plaquette's rotations to each row, and copy back (when the
-robot's axis is the last one, rows are used in place); tiles are independent, so they run in parallel
-(numba's threading layer, ``prange``). The backward
-kernel un-applies the rotations to two arrays at once and accumulates ``sum Im <y|G|x>`` on the way. The
-phase separator multiplies each amplitude by its cost level's entry of a table, in parallel blocks.
+robot's axis of the state array viewed as ``(pre, n, post)``: the ``pre * post`` *lines* ``x[a, :, col]``
+(every basis path of the robot, the other robots' paths fixed) each get the same rotations. The BLAS path of
+:mod:`simulate.subspace` calls ``zrot`` once per pair, which streams the whole array through memory once per
+plaquette. These kernels walk the array once per layer instead: they take :data:`LANES` (4) lines at a time,
+copy them into a block with one 64-byte row per basis path (``[re_0..re_3, im_0..im_3]``, a few hundred KiB
+that stay in cache), apply every plaquette's rotations to the block, and copy back. The four lanes of a
+rotation are written out one by one so that LLVM's SLP vectoriser (switched on for these kernels only) makes
+each a single vector operation; blocks are independent and run in parallel (numba's threading layer,
+``prange``, ``CHUNKS_PER_THREAD`` work items per thread, each allocating its blocks once). The backward kernel
+un-applies the rotations to two arrays at once and accumulates ``sum Im <y|G|x>`` on the way.
+
+The phase separator multiplies each amplitude by its cost level's entry of a table, in parallel blocks. (Fusing
+it into a mixer pass was tried and measured slower: the level look-ups in the gather cost more than the pass
+they save.)
 
 Rotation of a pair ``(i, j)``: ``x_i <- c x_i + s x_j``, ``x_j <- s x_i + c x_j`` with ``c`` real and ``s``
-imaginary (``s = -i sin(beta / 2)`` forward, ``+i sin(beta / 2)`` backward), as ``zrot(c, s)``; the kernels
-work on the arrays' float64 views with the real and imaginary parts spelled out (numba then vectorises).
+imaginary (``s = -i sin(beta / 2)`` forward, ``+i sin(beta / 2)`` backward), as ``zrot(c, s)``, with the real
+and imaginary parts spelled out.
 
 ``AVAILABLE`` is False when numba cannot be imported; :mod:`simulate.subspace` then uses its BLAS path.
 
 Example:
     >>> import numpy as np
     >>> x = np.array([1.0 + 0j, 0.0, 0.0, 0.0]).reshape(1, 2, 2)   # pre 1, n 2, post 2
-    >>> mixer(x, np.array([0]), np.array([1]), 0.0, -1j, 8) if AVAILABLE else None
+    >>> mixer(x, np.array([0]), np.array([1]), 0.0, -1j) if AVAILABLE else None
     >>> np.round(x.reshape(-1), 12).tolist() if AVAILABLE else [0j, 0j, -1j, 0j]
     [0j, 0j, -1j, 0j]
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import numpy as np
 
@@ -34,109 +42,161 @@ try:
 except ImportError:  # pragma: no cover - numba comes with quimb, a core dependency
     numba = None
 
-__all__ = ["AVAILABLE", "TILE", "mixer", "mixer_adjoint", "phase", "phase_weights"]
+__all__ = ["AVAILABLE", "LANES", "level_weights", "mixer", "mixer_adjoint", "phase", "phase_weights"]
 
 AVAILABLE = numba is not None
-TILE = 8
-"""Trailing columns per tile, gathered into a buffer of ``TILE`` contiguous rows (one per column) so that each
-pair touches two nearby amplitudes: 8 columns of a 10,000-path robot are 1.3 MiB."""
+LANES = 4
+"""Lines (robot-axis rows ``x[a, :, col]``) rotated together: a block of ``n`` basis paths by 4 lines is one
+64-byte row ``[re_0..re_3, im_0..im_3]`` per path (550 KiB for the 8,590 paths of a 5x5 robot, within a core's
+L2 cache), and every rotation is 4-wide arithmetic."""
 
 
-def _rotate_row(row: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> None:
-    """Every pair in order on one contiguous float64 row ``[re_0, im_0, re_1, ...]`` (``s = -1j * sg``)."""
+def _rotate_lanes(b: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> None:
+    """Every pair in order on a lane block ``b`` of shape ``(n, 8)``: row ``r`` holds basis path ``r`` of four
+    lines as ``[re_0..re_3, im_0..im_3]`` (``s = -1j * sg``). Written out lane by lane, loads before stores,
+    so that LLVM's SLP vectoriser turns each line into one 4-wide operation."""
     for k in range(ii.shape[0]):
-        i = 2 * ii[k]
-        j = 2 * jj[k]
-        ur, ui, vr, vi = row[i], row[i + 1], row[j], row[j + 1]
-        row[i] = c * ur + sg * vi
-        row[i + 1] = c * ui - sg * vr
-        row[j] = c * vr + sg * ui
-        row[j + 1] = c * vi - sg * ur
+        i = ii[k]
+        j = jj[k]
+        ur0, ur1, ur2, ur3 = b[i, 0], b[i, 1], b[i, 2], b[i, 3]
+        ui0, ui1, ui2, ui3 = b[i, 4], b[i, 5], b[i, 6], b[i, 7]
+        vr0, vr1, vr2, vr3 = b[j, 0], b[j, 1], b[j, 2], b[j, 3]
+        vi0, vi1, vi2, vi3 = b[j, 4], b[j, 5], b[j, 6], b[j, 7]
+        b[i, 0], b[i, 1], b[i, 2], b[i, 3] = (
+            c * ur0 + sg * vi0, c * ur1 + sg * vi1, c * ur2 + sg * vi2, c * ur3 + sg * vi3
+        )
+        b[i, 4], b[i, 5], b[i, 6], b[i, 7] = (
+            c * ui0 - sg * vr0, c * ui1 - sg * vr1, c * ui2 - sg * vr2, c * ui3 - sg * vr3
+        )
+        b[j, 0], b[j, 1], b[j, 2], b[j, 3] = (
+            c * vr0 + sg * ui0, c * vr1 + sg * ui1, c * vr2 + sg * ui2, c * vr3 + sg * ui3
+        )
+        b[j, 4], b[j, 5], b[j, 6], b[j, 7] = (
+            c * vi0 - sg * ur0, c * vi1 - sg * ur1, c * vi2 - sg * ur2, c * vi3 - sg * ur3
+        )
 
 
-def _unrotate_rows(xrow: np.ndarray, yrow: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> float:
-    """The pairs in reverse order on two rows; returns ``sum Im(conj(y_i) x_j + conj(y_j) x_i)`` taken before
-    each pair is undone."""
-    z = 0.0
+def _unrotate_lanes(bx: np.ndarray, by: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> float:
+    """The pairs in reverse order on two lane blocks (layout of :func:`_rotate_lanes`); returns the sum over
+    lanes and pairs of ``Im(conj(y_i) x_j + conj(y_j) x_i)`` taken before each pair is undone."""
+    z0 = z1 = z2 = z3 = 0.0
     for k in range(ii.shape[0] - 1, -1, -1):
-        i = 2 * ii[k]
-        j = 2 * jj[k]
-        ur, ui, vr, vi = xrow[i], xrow[i + 1], xrow[j], xrow[j + 1]
-        pr, pi, qr, qi = yrow[i], yrow[i + 1], yrow[j], yrow[j + 1]
-        z += pr * vi - pi * vr + qr * ui - qi * ur
-        xrow[i] = c * ur + sg * vi
-        xrow[i + 1] = c * ui - sg * vr
-        xrow[j] = c * vr + sg * ui
-        xrow[j + 1] = c * vi - sg * ur
-        yrow[i] = c * pr + sg * qi
-        yrow[i + 1] = c * pi - sg * qr
-        yrow[j] = c * qr + sg * pi
-        yrow[j + 1] = c * qi - sg * pr
-    return z
+        i = ii[k]
+        j = jj[k]
+        ur0, ur1, ur2, ur3 = bx[i, 0], bx[i, 1], bx[i, 2], bx[i, 3]
+        ui0, ui1, ui2, ui3 = bx[i, 4], bx[i, 5], bx[i, 6], bx[i, 7]
+        vr0, vr1, vr2, vr3 = bx[j, 0], bx[j, 1], bx[j, 2], bx[j, 3]
+        vi0, vi1, vi2, vi3 = bx[j, 4], bx[j, 5], bx[j, 6], bx[j, 7]
+        pr0, pr1, pr2, pr3 = by[i, 0], by[i, 1], by[i, 2], by[i, 3]
+        pi0, pi1, pi2, pi3 = by[i, 4], by[i, 5], by[i, 6], by[i, 7]
+        qr0, qr1, qr2, qr3 = by[j, 0], by[j, 1], by[j, 2], by[j, 3]
+        qi0, qi1, qi2, qi3 = by[j, 4], by[j, 5], by[j, 6], by[j, 7]
+        z0 += pr0 * vi0 - pi0 * vr0 + qr0 * ui0 - qi0 * ur0
+        z1 += pr1 * vi1 - pi1 * vr1 + qr1 * ui1 - qi1 * ur1
+        z2 += pr2 * vi2 - pi2 * vr2 + qr2 * ui2 - qi2 * ur2
+        z3 += pr3 * vi3 - pi3 * vr3 + qr3 * ui3 - qi3 * ur3
+        bx[i, 0], bx[i, 1], bx[i, 2], bx[i, 3] = (
+            c * ur0 + sg * vi0, c * ur1 + sg * vi1, c * ur2 + sg * vi2, c * ur3 + sg * vi3
+        )
+        bx[i, 4], bx[i, 5], bx[i, 6], bx[i, 7] = (
+            c * ui0 - sg * vr0, c * ui1 - sg * vr1, c * ui2 - sg * vr2, c * ui3 - sg * vr3
+        )
+        bx[j, 0], bx[j, 1], bx[j, 2], bx[j, 3] = (
+            c * vr0 + sg * ui0, c * vr1 + sg * ui1, c * vr2 + sg * ui2, c * vr3 + sg * ui3
+        )
+        bx[j, 4], bx[j, 5], bx[j, 6], bx[j, 7] = (
+            c * vi0 - sg * ur0, c * vi1 - sg * ur1, c * vi2 - sg * ur2, c * vi3 - sg * ur3
+        )
+        by[i, 0], by[i, 1], by[i, 2], by[i, 3] = (
+            c * pr0 + sg * qi0, c * pr1 + sg * qi1, c * pr2 + sg * qi2, c * pr3 + sg * qi3
+        )
+        by[i, 4], by[i, 5], by[i, 6], by[i, 7] = (
+            c * pi0 - sg * qr0, c * pi1 - sg * qr1, c * pi2 - sg * qr2, c * pi3 - sg * qr3
+        )
+        by[j, 0], by[j, 1], by[j, 2], by[j, 3] = (
+            c * qr0 + sg * pi0, c * qr1 + sg * pi1, c * qr2 + sg * pi2, c * qr3 + sg * pi3
+        )
+        by[j, 4], by[j, 5], by[j, 6], by[j, 7] = (
+            c * qi0 - sg * pr0, c * qi1 - sg * pr1, c * qi2 - sg * pr2, c * qi3 - sg * pr3
+        )
+    return (z0 + z1) + (z2 + z3)
 
 
-def _gather(xr: np.ndarray, a: int, c0: int, c1: int, buf: np.ndarray) -> None:
-    """``buf[col - c0]`` = the robot-axis row ``x[a, :, col]`` as ``[re, im, ...]``, for ``col`` in ``[c0, c1)``."""
+def _lane_lines(l0: int, nl: int, post: int, aa: np.ndarray, cc: np.ndarray) -> None:
+    """Lines ``l0 .. l0 + nl - 1`` (line ``L`` = the robot-axis row ``x[L // post, :, L % post]``) as ``(a, col)``."""
+    for t in range(nl):
+        aa[t] = (l0 + t) // post
+        cc[t] = (l0 + t) % post
+
+
+def _gather_lanes(xr: np.ndarray, aa: np.ndarray, cc: np.ndarray, nl: int, b: np.ndarray) -> None:
+    """Copy ``nl`` lines into the lane block ``b`` (unused lanes zero)."""
     for r in range(xr.shape[1]):
-        for col in range(c0, c1):
-            buf[col - c0, 2 * r] = xr[a, r, 2 * col]
-            buf[col - c0, 2 * r + 1] = xr[a, r, 2 * col + 1]
+        for t in range(nl):
+            b[r, t] = xr[aa[t], r, 2 * cc[t]]
+            b[r, LANES + t] = xr[aa[t], r, 2 * cc[t] + 1]
+        for t in range(nl, LANES):
+            b[r, t] = 0.0
+            b[r, LANES + t] = 0.0
 
 
-def _scatter(buf: np.ndarray, xr: np.ndarray, a: int, c0: int, c1: int) -> None:
+def _scatter_lanes(b: np.ndarray, xr: np.ndarray, aa: np.ndarray, cc: np.ndarray, nl: int) -> None:
     for r in range(xr.shape[1]):
-        for col in range(c0, c1):
-            xr[a, r, 2 * col] = buf[col - c0, 2 * r]
-            xr[a, r, 2 * col + 1] = buf[col - c0, 2 * r + 1]
+        for t in range(nl):
+            xr[aa[t], r, 2 * cc[t]] = b[r, t]
+            xr[aa[t], r, 2 * cc[t] + 1] = b[r, LANES + t]
 
 
-def _mixer_impl(xr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int) -> None:
-    """``xr``: the float64 view ``(pre, n, 2 post)``; rotation ``c`` and ``s = -1j * sg``."""
+def _chunk_bounds(total: int, chunks: int, k: int) -> tuple[int, int]:
+    return k * total // chunks, (k + 1) * total // chunks
+
+
+def _mixer_impl(xr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, chunks: int) -> None:
+    """``xr``: the float64 view ``(pre, n, 2 post)``; rotation ``c`` and ``s = -1j * sg``. The ``pre * post``
+    lines are cut into blocks of :data:`LANES`, and the blocks into ``chunks`` parallel work items."""
     pre, n, post2 = xr.shape
     post = post2 // 2
-    if post == 1:  # the robot's axis is contiguous already
-        for a in numba.prange(pre):
-            _rotate_row(xr[a].reshape(2 * n), ii, jj, c, sg)
-        return
-    ntiles = (post + tile - 1) // tile
-    for t in numba.prange(pre * ntiles):
-        a = t // ntiles
-        c0 = (t % ntiles) * tile
-        c1 = min(c0 + tile, post)
-        buf = np.empty((c1 - c0, 2 * n))
-        _gather(xr, a, c0, c1, buf)
-        for col in range(c1 - c0):
-            _rotate_row(buf[col], ii, jj, c, sg)
-        _scatter(buf, xr, a, c0, c1)
+    nblocks = (pre * post + LANES - 1) // LANES
+    for ch in numba.prange(chunks):
+        k0, k1 = _chunk_bounds(nblocks, chunks, ch)
+        b = np.empty((n, 2 * LANES))
+        aa = np.empty(LANES, dtype=np.int64)
+        cc = np.empty(LANES, dtype=np.int64)
+        for blk in range(k0, k1):
+            l0 = blk * LANES
+            nl = min(LANES, pre * post - l0)
+            _lane_lines(l0, nl, post, aa, cc)
+            _gather_lanes(xr, aa, cc, nl, b)
+            _rotate_lanes(b, ii, jj, c, sg)
+            _scatter_lanes(b, xr, aa, cc, nl)
 
 
 def _mixer_adjoint_impl(
-    xr: np.ndarray, yr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, tile: int
+    xr: np.ndarray, yr: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float, chunks: int
 ) -> float:
-    """Float64 views as in :func:`_mixer_impl`; ``s = -1j * sg`` is the inverse rotation here."""
+    """Float64 views as in :func:`_mixer_impl`; ``s = -1j * sg`` is the inverse rotation here. Returns the
+    rotations' ``sum Im <y|G|x>``."""
     pre, n, post2 = xr.shape
     post = post2 // 2
-    if post == 1:
-        acc1 = np.zeros(pre)
-        for a in numba.prange(pre):
-            acc1[a] = _unrotate_rows(xr[a].reshape(2 * n), yr[a].reshape(2 * n), ii, jj, c, sg)
-        return acc1.sum()
-    ntiles = (post + tile - 1) // tile
-    acc = np.zeros(pre * ntiles)
-    for t in numba.prange(pre * ntiles):
-        a = t // ntiles
-        c0 = (t % ntiles) * tile
-        c1 = min(c0 + tile, post)
-        bx = np.empty((c1 - c0, 2 * n))
-        by = np.empty((c1 - c0, 2 * n))
-        _gather(xr, a, c0, c1, bx)
-        _gather(yr, a, c0, c1, by)
+    nblocks = (pre * post + LANES - 1) // LANES
+    acc = np.zeros(chunks)
+    for ch in numba.prange(chunks):
+        k0, k1 = _chunk_bounds(nblocks, chunks, ch)
+        bx = np.empty((n, 2 * LANES))
+        by = np.empty((n, 2 * LANES))
+        aa = np.empty(LANES, dtype=np.int64)
+        cc = np.empty(LANES, dtype=np.int64)
         z = 0.0
-        for col in range(c1 - c0):
-            z += _unrotate_rows(bx[col], by[col], ii, jj, c, sg)
-        _scatter(bx, xr, a, c0, c1)
-        _scatter(by, yr, a, c0, c1)
-        acc[t] = z
+        for blk in range(k0, k1):
+            l0 = blk * LANES
+            nl = min(LANES, pre * post - l0)
+            _lane_lines(l0, nl, post, aa, cc)
+            _gather_lanes(xr, aa, cc, nl, bx)
+            _gather_lanes(yr, aa, cc, nl, by)
+            z += _unrotate_lanes(bx, by, ii, jj, c, sg)
+            _scatter_lanes(bx, xr, aa, cc, nl)
+            _scatter_lanes(by, yr, aa, cc, nl)
+        acc[ch] = z
     return acc.sum()
 
 
@@ -165,30 +225,66 @@ def _phase_weights_impl(xr: np.ndarray, yr: np.ndarray, lev: np.ndarray, nlev: i
     return part.sum(axis=0)
 
 
+def _level_weights_impl(xr: np.ndarray, lev: np.ndarray, nlev: int) -> np.ndarray:
+    """``sum over amplitudes of level l of |x|^2`` for every level ``l``."""
+    n = lev.shape[0]
+    nb = (n + _BLOCK - 1) // _BLOCK
+    part = np.zeros((nb, nlev))
+    for b in numba.prange(nb):
+        for k in range(b * _BLOCK, min(n, (b + 1) * _BLOCK)):
+            part[b, lev[k]] += xr[2 * k] * xr[2 * k] + xr[2 * k + 1] * xr[2 * k + 1]
+    return part.sum(axis=0)
+
+
 if AVAILABLE:
     _inline = numba.njit(cache=True, nogil=True)
-    _rotate_row = _inline(_rotate_row)
-    _unrotate_rows = _inline(_unrotate_rows)
-    _gather = _inline(_gather)
-    _scatter = _inline(_scatter)
+    _rotate_lanes = _inline(_rotate_lanes)
+    _unrotate_lanes = _inline(_unrotate_lanes)
+    _lane_lines = _inline(_lane_lines)
+    _gather_lanes = _inline(_gather_lanes)
+    _scatter_lanes = _inline(_scatter_lanes)
+    _chunk_bounds = _inline(_chunk_bounds)
     _jit = numba.njit(parallel=True, cache=True, nogil=True)
     _serial = numba.njit(cache=True, nogil=True)  # prange runs as range: no thread start-up and barrier
     _kernels = {
         name: (_serial(fn), _jit(fn))
         for name, fn in (("mixer", _mixer_impl), ("mixer_adjoint", _mixer_adjoint_impl), ("phase", _phase_impl),
-                         ("phase_weights", _phase_weights_impl))
+                         ("phase_weights", _phase_weights_impl),
+                         ("level_weights", _level_weights_impl))
     }
+
+
+@contextmanager
+def _slp_vectorize() -> Iterator[None]:
+    """Compile with LLVM's SLP vectoriser on (numba leaves it off by default): it packs the four written-out
+    lanes of :func:`_rotate_lanes` into vector instructions (without it they stay scalar). Scoped to our
+    kernels' calls (where numba compiles them on first use) so that other numba code keeps numba's default."""
+    before = numba.config.SLP_VECTORIZE
+    numba.config.SLP_VECTORIZE = 1
+    try:
+        yield
+    finally:
+        numba.config.SLP_VECTORIZE = before
+
 
 PARALLEL_MIN = 1 << 16
 """Arrays smaller than this many amplitudes run single-threaded: on a busy machine a parallel region's barrier
 can wait a whole scheduler time slice for its second thread, which costs more than the work."""
+
+CHUNKS_PER_THREAD = 4
+"""Parallel work items per thread in the mixer kernels (each allocates its lane blocks once); more than one
+per thread so that a thread slowed by other load on the machine does not hold up the rest."""
 
 
 def _pick(name: str, size: int):  # type: ignore[no-untyped-def]
     return _kernels[name][size >= PARALLEL_MIN]
 
 
-def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None) -> None:
+def _chunks_for(size: int) -> int:
+    return CHUNKS_PER_THREAD * numba.get_num_threads() if size >= PARALLEL_MIN else 1
+
+
+def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex) -> None:
     """Apply the rotations ``(ii[k], jj[k])`` in order along axis 1 of ``x`` (shape ``(pre, n, post)``), in place.
 
     Args:
@@ -196,27 +292,25 @@ def mixer(x: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, t
         ii, jj: The pairs, every plaquette's in turn (``intp``).
         c: ``cos(beta / 2)``.
         s: ``-1j * sin(beta / 2)`` (forward) or its conjugate (undo): a purely imaginary number.
-        tile: Trailing columns per tile (default :data:`TILE`).
     """
-    width = TILE if tile is None else int(tile)
-    _pick("mixer", x.size)(_real_view(x), ii, jj, float(c), float(-complex(s).imag), width)
+    with _slp_vectorize():
+        _pick("mixer", x.size)(_real_view(x), ii, jj, float(c), float(-complex(s).imag), _chunks_for(x.size))
 
 
-def mixer_adjoint(
-    x: np.ndarray, y: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex, tile: int | None = None
-) -> float:
+def mixer_adjoint(x: np.ndarray, y: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, s: complex) -> float:
     """Undo the rotations on ``x`` and ``y`` in reverse order; return ``sum_k Im <y|G_k|x>`` taken before each
     pair is undone (``G_k`` the pair's ``X``).
 
     Args:
         x, y: complex128 C-contiguous arrays of the same shape ``(pre, n, post)``.
-        ii, jj, tile: As in :func:`mixer`.
+        ii, jj: As in :func:`mixer`.
         c: ``cos(beta / 2)``.
         s: ``+1j * sin(beta / 2)`` (the inverse rotation).
     """
-    width = TILE if tile is None else int(tile)
     kernel = _pick("mixer_adjoint", x.size)
-    return float(kernel(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag), width))
+    with _slp_vectorize():
+        return float(kernel(_real_view(x), _real_view(y), ii, jj, float(c), float(-complex(s).imag),
+                            _chunks_for(x.size)))
 
 
 def phase(x: np.ndarray, levels: np.ndarray, table: np.ndarray) -> None:
@@ -230,6 +324,18 @@ def phase_weights(x: np.ndarray, y: np.ndarray, levels: np.ndarray, num_levels: 
     """Per level ``l``: ``sum_{k: levels[k] = l} Im(conj(y_k) x_k)`` (float64, length ``num_levels``)."""
     kernel = _pick("phase_weights", x.size)
     return kernel(_real_view(x).reshape(-1), _real_view(y).reshape(-1), levels.reshape(-1), int(num_levels))
+
+
+def level_weights(x: np.ndarray, levels: np.ndarray, num_levels: int) -> np.ndarray:
+    """Per level ``l``: ``sum_{k: levels[k] = l} |x_k|^2`` (float64, length ``num_levels``): the measured cost's
+    distribution of the state ``x`` over a cost table.
+
+    Example:
+        >>> import numpy as np
+        >>> level_weights(np.array([0.6, 0.8j, 0.0]), np.array([1, 0, 1], dtype=np.uint8), 2).round(12).tolist()
+        [0.64, 0.36]
+    """
+    return _pick("level_weights", x.size)(_real_view(x).reshape(-1), levels.reshape(-1), int(num_levels))
 
 
 def _real_view(x: np.ndarray) -> np.ndarray:

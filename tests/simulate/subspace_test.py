@@ -18,6 +18,7 @@ from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
 from gridcover.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
 from gridcover.scenario import Scenario, scenario_from_dict
+from simulate.objectives import make_objective
 from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
 from simulate.training import cost_scale
 
@@ -489,13 +490,12 @@ def test_phase_offset_names_the_compiled_representation() -> None:
 @pytest.mark.parametrize("parallel", [False, True])
 @pytest.mark.parametrize("s", [SINGLE_3x3, TWO_2x3, THREE_2x2, make(3, 3, [((0, 0), (2, 2)), ((0, 2), (2, 0))])])
 def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: pytest.MonkeyPatch) -> None:
-    """The tiled numba kernels (every axis position: first, middle, last; tiles narrower than the trailing
-    axis, with a remainder; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
+    """The lane-blocked numba kernels (every axis position: first, middle, last; line counts that leave a partial
+    last block of lanes; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
     from simulate import subspace_kernels
 
     if not subspace_kernels.AVAILABLE:
         pytest.skip("numba is not importable")
-    monkeypatch.setattr(subspace_kernels, "TILE", 3)
     monkeypatch.setattr(subspace_kernels, "PARALLEL_MIN", 1 if parallel else 1 << 40)
     fast, ref = SubspaceQAOA(s, kernels="numba"), SubspaceQAOA(s, kernels="blas")
     assert fast.kernels == "numba" and ref.kernels == "blas"
@@ -504,6 +504,12 @@ def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: 
     e1, g1 = fast.value_and_gradient(angles)
     e2, g2 = ref.value_and_gradient(angles)
     assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-10, atol=1e-12)
+    psi = ref.state(angles)
+    assert np.allclose(fast.level_probabilities(psi), ref.level_probabilities(psi), rtol=1e-12, atol=1e-15)
+    gibbs = make_objective("gibbs", cost_scale(ref))
+    f1, h1 = fast.objective_and_gradient(angles, gibbs)
+    f2, h2 = ref.objective_and_gradient(angles, gibbs)
+    assert f1 == pytest.approx(f2, rel=1e-12) and np.allclose(h1, h2, rtol=1e-10, atol=1e-12)
     with pytest.raises(ValueError, match="kernels"):
         SubspaceQAOA(s, kernels="gpu")  # type: ignore[arg-type]
 
@@ -523,3 +529,41 @@ def test_parallel_kernels_on_a_state_of_many_blocks() -> None:
     e1, g1 = fast.value_and_gradient(angles)
     e2, g2 = ref.value_and_gradient(angles)
     assert e1 == pytest.approx(e2, rel=1e-12) and np.allclose(g1, g2, rtol=1e-9, atol=1e-12)
+
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+@pytest.mark.parametrize("shape", [(1, 7, 5), (4, 7, 1), (3, 7, 4), (2, 7, 9), (5, 7, 3), (1, 7, 1)])
+def test_lane_kernels_against_numpy_rotations(
+    shape: tuple[int, int, int], parallel: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The lane-blocked kernels equal pair-by-pair numpy rotations along axis 1 on random states, for line counts
+    ``pre * post`` that fill whole blocks of four lanes, leave a partial last block, or are smaller than one;
+    the adjoint kernel undoes the forward one and returns ``sum_k Im <y|G_k|x>`` taken before each pair."""
+    from simulate import subspace_kernels as kern
+
+    if not kern.AVAILABLE:
+        pytest.skip("numba is not importable")
+    monkeypatch.setattr(kern, "PARALLEL_MIN", 1 if parallel else 1 << 40)
+    rng = np.random.default_rng(sum(shape) + parallel)
+    ii, jj = np.array([0, 2, 1, 0, 5], dtype=np.intp), np.array([1, 3, 4, 6, 6], dtype=np.intp)
+    c, s = float(np.cos(0.35)), complex(-1j * np.sin(0.35))
+    x = rng.normal(size=shape) + 1j * rng.normal(size=shape)
+    ref = x.copy()
+    for i, j in zip(ii, jj):
+        u, v = ref[:, i, :].copy(), ref[:, j, :].copy()
+        ref[:, i, :], ref[:, j, :] = c * u + s * v, s * u + c * v
+    out = x.copy()
+    kern.mixer(out, ii, jj, c, s)
+    assert np.allclose(out, ref, rtol=0, atol=1e-13)
+
+    y = rng.normal(size=shape) + 1j * rng.normal(size=shape)
+    ox, oy, z_ref = out.copy(), y.copy(), 0.0
+    for i, j in zip(ii[::-1], jj[::-1]):
+        z_ref += float(np.vdot(oy[:, i, :], ox[:, j, :]).imag + np.vdot(oy[:, j, :], ox[:, i, :]).imag)
+        for a in (ox, oy):
+            u, v = a[:, i, :].copy(), a[:, j, :].copy()
+            a[:, i, :], a[:, j, :] = c * u - s * v, -s * u + c * v
+    z = kern.mixer_adjoint(out, y, ii, jj, c, -s)
+    assert z == pytest.approx(z_ref, rel=1e-12, abs=1e-12)
+    assert np.allclose(out, x, rtol=0, atol=1e-13) and np.allclose(out, ox, atol=1e-13) and np.allclose(y, oy)
