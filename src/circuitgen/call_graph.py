@@ -23,7 +23,8 @@ different concept, not a kind's cost or depth:
   ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers), ``mixer_classes.mixer_part`` and
   ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid`` (edge arrays of a grid);
 * geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
-* the plan's choices per class, before any kind exists: ``phase_classes._visit_choice`` and ``_hamming``;
+* the phase separator's decisions per term-group shape, before any kind exists: ``phase_choice.visit_choice``
+  and ``phase_choice.hamming_choice`` (asked by the plan and by the classes alike);
 * constructions keyed by their inputs, not by a kind: the partial mixers' searched plans
   (``plan_parity_mixer``, ``plan_mcx_mixer``), ``phase_sums._abstract_phase`` (gates on abstract registers),
   ``gates._permutation_matrix``, and ``depth_compose``'s transfer matrices per lowered gate structure;

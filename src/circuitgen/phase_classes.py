@@ -7,8 +7,8 @@ such grid has unless a length is overridden) the plan has few distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
   visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost
-  ``sum over (d, m) classes of count x cost`` and the construction chosen for a class (visit bits or pairs) is
-  the one the plan would choose for each of its nodes;
+  ``sum over (d, m) classes of count x cost``, and a class's construction (visit bits or pairs) is the answer of
+  :func:`circuitgen.phase_choice.visit_choice`, the very function the plan asks for each of its nodes;
 * **balance**: one arithmetic gadget (:class:`~circuitgen.gadgets.phase_sums.SumsPhase`) over each robot's
   reduced path-length form: weight 1 on every edge, 0 on the edges at its own start and goal (collapsed to a
   constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor);
@@ -18,9 +18,10 @@ such grid has unless a length is overridden) the plan has few distinct parts:
 
 Coefficients are vectors over one robot's edges (numpy), the endpoint and corner identities are applied by the
 very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
-touch. :func:`phase_layer` answers only where this picture is exact and the plan has no choice that couples
-groups (the balance has too many products for the coupling alternative and every class picks a gadget over
-couplings); elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
+touch. Every construction is decided by :mod:`circuitgen.phase_choice` (the plan's own decisions), and
+:func:`phase_layer` answers only where this picture is exact and no choice couples groups (every class picks a
+gadget over couplings, and the balance's arithmetic is its first candidate and provably beats its couplings);
+elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
 decides, lists the planned gadgets instead. ``tests/circuitgen/phase_classes_test.py`` checks it against
 :func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default grids and on random
 endpoints.
@@ -38,7 +39,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass, replace
-from functools import cache, cached_property, lru_cache
+from functools import cached_property, lru_cache
 from itertools import repeat
 
 import numpy as np
@@ -48,8 +49,9 @@ from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.phase import EXACT_EXPANSION_LIMIT, ROTATION_T_COST, coupling_products, score
+from circuitgen.gadgets.phase_visits import VisitPhase
+from circuitgen.phase import coupling_products
+from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -214,23 +216,6 @@ def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
     return const, out
 
 
-@cache
-def _visit_choice(degree: int, m: int, coefficient: float, target: str) -> VisitPhase | None:
-    """The plan's construction for a node of this degree passed by ``m`` robots while no coupling exists yet
-    (``None``: the couplings)."""
-    new = m * (m - 1) // 2 * degree * degree
-    coup = Cost.of(cx=2 * new, rz=new)
-    pick: VisitPhase | None = None
-    pick_costs = (coup, coup)
-    for products in (False, True):
-        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(degree)) for _ in range(m)), (), products)
-        costs = (gad.cost(), gad.logical_cost())
-        # as the plan: an option replaces the pick when it scores no worse and costs differ (ties: couplings)
-        if score(*costs, target) <= score(*pick_costs, target) and costs != pick_costs:  # type: ignore[arg-type]
-            pick, pick_costs = gad, costs
-    return pick
-
-
 @lru_cache(maxsize=64)  # the counts and the depth bound of a scenario both ask
 def phase_layer(
     scenario: Scenario,
@@ -240,8 +225,9 @@ def phase_layer(
     ancilla_budget: int | None = None,
 ) -> PhaseLayer | None:
     """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
-    knows (obstacles, overridden lengths, the ``whole-space`` representation, the
-    ``depth`` optimisation, an ancilla budget, or a choice the classes cannot make).
+    knows (obstacles, overridden lengths, the ``whole-space`` representation, or a choice the classes cannot make:
+    a node or the balance whose construction is couplings, or the balance's arithmetic out of the budget). Each
+    class's construction is the plan's own decision (:mod:`circuitgen.phase_choice`), asked once per class.
 
     Args:
         scenario: the scenario.
@@ -253,8 +239,7 @@ def phase_layer(
     s, grid = scenario, scenario.grid
     ob = s.objective
     if (
-        representation != "feasible" or optimize != "cx" or ancilla_budget is not None or s.obstacles
-        or ob.edge_lengths
+        representation != "feasible" or s.obstacles or ob.edge_lengths
     ):  # fmt: skip
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
@@ -282,11 +267,13 @@ def phase_layer(
         for (degree, m), count in sorted(classes.items()):
             if m < 2:
                 continue
-            gad = _visit_choice(degree, m, 8.0 * a2, target)
-            if gad is None:
+            # no coupling exists yet when the visits are chosen (the balance is arithmetic, checked below)
+            choice = visit_choice((degree,) * m, 8.0 * a2, m * (m - 1) // 2 * degree * degree, target, optimize,
+                                  ancilla_budget)  # fmt: skip
+            if choice.gadget is None:
                 return None  # a coupling would change what the later groups' couplings cost
-            parts.append((gad, count))
-            ancillas = max(ancillas, visit_ancillas(tuple(len(v) for v in gad.visitors), gad.products))
+            parts.append((choice.gadget, count))
+            ancillas = max(ancillas, choice.ancillas)
     lin = []
     for a, b in ends:
         own = node_term.copy()
@@ -312,15 +299,23 @@ def phase_layer(
         scale = a1 * unit * unit
         m = balance_matrix(n_r, pairs, scale)
         sizes = [int(np.count_nonzero(w)) for w in weights]
-        if coupling_products(sizes, m) <= EXACT_EXPANSION_LIMIT:
+        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
+        shape = balance.shape
+        # only the arithmetic is counted by classes: any other first variant is left to the plan
+        candidates = sums_constructions(
+            True, coupling_products(sizes, m), optimize, ancilla_budget,
+            lambda variant: shape.num_ancillas if variant == "arithmetic" else 0,
+        )  # fmt: skip
+        if candidates[0] != "arithmetic":
+            return None
+        if "couplings" in candidates:
             # the plan also prices the balance as couplings; they interact with the visits, but the pairs within
             # one form meet no other term, so that plan has at least this many couplings (2 CX, 1 rotation each)
             within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0)
         lin_g = 2 * m @ np.array(consts)
         for r, w in enumerate(weights):
             lin[r] = lin[r] + float(lin_g[r]) * w
-        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
-        ancillas = max(ancillas, balance.shape.num_ancillas)
+        ancillas = max(ancillas, shape.num_ancillas)
     values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
     if target == "ft":
@@ -328,9 +323,7 @@ def phase_layer(
         rounded = np.round(values, 12)
         _, first, counts = np.unique(rounded, return_index=True, return_counts=True)
         for k, n in zip(first.tolist(), counts.tolist()):
-            if n < 3:
-                continue
-            hw = _hamming(n, float(values[k]))
+            hw = hamming_choice(n, float(values[k]), target, optimize, ancilla_budget)
             if hw is not None:
                 parts.append((hw, 1))
                 ancillas = max(ancillas, hw.num_ancillas)
@@ -344,12 +337,3 @@ def phase_layer(
             return None  # the couplings might win: only the plan knows
     return layer
 
-
-@cache
-def _hamming(n: int, coefficient: float) -> SumsPhase | None:
-    """Hamming-weight phasing of ``n`` equal rotations, when the ``ft`` plan prefers it to the rotations."""
-    hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
-    alt = Cost.of(rz=n)
-    if score(hw.cost(), hw.logical_cost(), "ft") <= score(alt, alt, "ft"):
-        return hw
-    return None

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from circuitgen.call_graph import Deferred
@@ -21,12 +21,12 @@ from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
 TARGETS = ("nisq", "ft")
 
 
-def _same_as_plan(s: Scenario, target: str) -> bool:
+def _same_as_plan(s: Scenario, target: str, optimize: str = "cx", budget: int | None = None) -> bool:
     """Whether the layer answered (``False``: it left the scenario to the plan); asserts it equals the plan."""
-    layer = phase_layer(s, target)
+    layer = phase_layer(s, target, optimize=optimize, ancilla_budget=budget)
     if layer is None:
         return False
-    plan = phase_plan(s, target=target)  # type: ignore[arg-type]
+    plan = phase_plan(s, target=target, optimize=optimize, ancilla_budget=budget)  # type: ignore[arg-type]
     assert layer.cost() == plan.cost()
     assert layer.logical_cost() == plan.logical_cost()
     assert layer.num_ancillas == plan.num_ancillas
@@ -80,6 +80,44 @@ def test_random_endpoints_and_objectives_equal_the_plan(data: st.DataObject) -> 
     s = Scenario(Grid(rows, cols), tuple(robots), objective=objective)
     for target in TARGETS:
         _same_as_plan(s, target)
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_random_scenarios_and_plan_options_equal_the_plan(data: st.DataObject) -> None:
+    """The classes and the plan ask the same per-group decision (circuitgen.phase_choice) under every option a
+    user can pass: a divergence in the choice of any class (visits, Hamming-weight merging, balance variant,
+    ancilla budget) shows as a different cost, ancilla count or kind multiset."""
+    rows = data.draw(st.integers(3, 9), label="rows")
+    cols = data.draw(st.integers(3, 9), label="cols")
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    k = data.draw(st.integers(1, 4), label="robots")
+    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
+    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
+    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    if not robots:
+        return
+    objective = Objective(
+        alpha=data.draw(st.sampled_from([(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (1.0, 0.0, 1.0)])),
+        balance=data.draw(st.sampled_from(["chain", "all-pairs"])),
+    )
+    s = Scenario(Grid(rows, cols), tuple(robots), objective=objective)
+    target = data.draw(st.sampled_from(TARGETS), label="target")
+    optimize = data.draw(st.sampled_from(["cx", "depth"]), label="optimize")
+    budget = data.draw(st.sampled_from([None, 0, 1, 2, 4, 8, 20, 60, 400]), label="budget")
+    event(f"classes answered: {_same_as_plan(s, target, optimize, budget)}")
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_budgets_and_depth_are_counted_where_the_choice_is_forced(target: str) -> None:
+    big = default_scenario(10, 10, 3)
+    need = phase_plan(big, target=target).num_ancillas  # type: ignore[arg-type]
+    assert _same_as_plan(big, target, budget=need)  # the budget admits the cheapest plan: the classes answer
+    assert _same_as_plan(big, target, budget=10 * need)
+    assert not _same_as_plan(big, target, budget=50)  # the balance gets a smaller variant: the plan decides
+    one = default_scenario(7, 6, 1)  # no visit group, no balance: the depth plan is the rotations
+    assert _same_as_plan(one, target, optimize="depth")
+    assert _same_as_plan(one, target, budget=0)
 
 
 def test_left_to_the_plan() -> None:
