@@ -38,26 +38,27 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 from itertools import repeat
+from typing import Any
 
 import numpy as np
 
 from circuitgen.call_graph import Deferred, GadgetKind
 from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
-from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
+from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.phase import coupling_products
+from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
 from gridcover.scenario import Scenario
 
-__all__ = ["PhaseLayer", "phase_layer"]
+__all__ = ["IsingCount", "PhaseLayer", "ising_count", "phase_layer"]
 
 _TOL = 1e-12  # gridcover.feasible_cost's zero
 
@@ -69,6 +70,8 @@ class PhaseLayer:
     Attributes:
         parts: ``(representative gadget, count)`` per visit class and per Hamming-weight class.
         rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
+        couplings: Its couplings (only the ``whole-space`` representation has any: :func:`ising_count`).
+        whole_space: The scenario whose Ising Hamiltonian the couplings are (built only if emitted).
         balance: The balance arithmetic, or ``None``.
         num_ancillas: Clean ancillas the largest part needs.
         num_variables: Data qubits.
@@ -79,6 +82,8 @@ class PhaseLayer:
     balance: _Balance | None
     num_ancillas: int
     num_variables: int
+    couplings: int = 0
+    whole_space: Scenario | None = field(default=None, repr=False)
 
     def cost(self) -> Cost:
         """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
@@ -90,7 +95,7 @@ class PhaseLayer:
 
     @cached_property
     def _costs(self) -> tuple[Cost, Cost]:
-        rz = Cost.of(rz=self.rotations)
+        rz = ising_cost(self.rotations, self.couplings)
         lowered = Cost.sum(n * g.cost() for g, n in self.parts) + rz
         logical = Cost.sum(n * g.logical_cost() for g, n in self.parts) + rz
         if self.balance is not None:
@@ -103,14 +108,16 @@ class PhaseLayer:
         rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
         anc = tuple(range(self.num_variables, self.num_variables + self.num_ancillas))
         out: list[tuple[GadgetKind, int]] = []
-        if self.rotations:
-            n = self.rotations
-            rz = Cost.of(rz=n)
+        if self.rotations or self.couplings:
+            n, q, source = self.rotations, self.couplings, self.whole_space
+            rz = ising_cost(n, q)
 
             def rotations() -> Gadget:
+                if source is not None:  # the couplings' placement is the Hamiltonian's: the plan builds it
+                    return phase_plan(source, representation="whole-space").gadgets("gamma")[0]
                 return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
-            out.append((GadgetKind.of(Deferred(("ising", n, 0), rz, rz, rotations)), 1))
+            out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
         for g, count in self._placed_parts(anc):
             out.append((GadgetKind.of(g), count))
         if self.balance is not None:
@@ -225,7 +232,7 @@ def phase_layer(
     ancilla_budget: int | None = None,
 ) -> PhaseLayer | None:
     """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
-    knows (obstacles, overridden lengths, the ``whole-space`` representation, or a choice the classes cannot make:
+    knows (obstacles, overridden lengths, or a choice the classes cannot make:
     a node or the balance whose construction is couplings, or the balance's arithmetic out of the budget). Each
     class's construction is the plan's own decision (:mod:`circuitgen.phase_choice`), asked once per class.
 
@@ -238,9 +245,12 @@ def phase_layer(
     """
     s, grid = scenario, scenario.grid
     ob = s.objective
-    if (
-        representation != "feasible" or s.obstacles or ob.edge_lengths
-    ):  # fmt: skip
+    if representation == "whole-space":  # one IsingPhase, whatever the other options
+        count = ising_count(s)
+        if count is None:
+            return None
+        return PhaseLayer((), count.linear, None, 0, s.num_variables, count.couplings, s)
+    if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
     if any(a == b for a, b in ends):
@@ -337,3 +347,150 @@ def phase_layer(
             return None  # the couplings might win: only the plan knows
     return layer
 
+
+
+# ----------------------------------------------------------------------------- whole-space (Ising) phase separator
+
+
+Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
+
+
+@dataclass(frozen=True)
+class IsingCount:
+    """The whole-space phase separator's terms (:class:`~circuitgen.gadgets.phase_ising.IsingPhase`), counted.
+
+    Attributes:
+        linear: nonzero ``h_i`` (one RZ each).
+        couplings: nonzero ``J_ij`` (one RZZ each).
+    """
+
+    linear: Count
+    couplings: Count
+
+
+_NodeClass = tuple[int, bool, float]  # (variable edges at the node, counted by the degree term, its target)
+
+
+def _node_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
+    """``(representative index, count)`` of the node indices ``0..n-1`` of one axis by whether they lie on the
+    boundary (first, last, between); the counts for a side of ``size`` nodes (default ``n``)."""
+    out: list[tuple[int, Count]] = [(0, 1), (n - 1, 1)]
+    if n > 2:
+        out.append((1, (n if size is None else size) - 2))
+    return out
+
+
+def _edge_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
+    """``(representative k, count)`` of the consecutive pairs ``(k, k + 1)`` of one axis: the first, the last and
+    those between (what the end nodes' degrees depend on)."""
+    out: list[tuple[int, Count]] = [(0, 1)]
+    if n > 2:
+        out.append((n - 2, 1))
+    if n > 3:
+        out.append((1, (n if size is None else size) - 3))
+    return out
+
+
+def _pairs(n: Count) -> Count:
+    """``C(n, 2)`` of a count (exact division for a symbolic one)."""
+    return n * (n - 1) // 2 if isinstance(n, int) else n * (n - 1) / 2
+
+
+def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) -> IsingCount | None:
+    """The whole-space phase separator's terms on an open grid, counted by classes of nodes and edges.
+
+    With uniform edge weights and lengths (an open grid unless overridden) the Ising coefficients of the cost
+    (:func:`gridcover.hamiltonian.ising_hamiltonian`) depend only on classes: ``h`` of robot ``r``'s edge ``e`` is
+    ``-alpha0 w / 2 + alpha2 sum_{i in e, counted} (t_i - robots deg_i / 2)`` (the balance's linear part cancels:
+    each balanced pair adds ``+1`` and ``-1`` to a robot's row), and ``J`` of ``(r, e), (s, f)`` is
+    ``(alpha1 d^2 B_rs + alpha2 shared(e, f)) / 2`` with ``B`` the balance's robot matrix and ``shared`` the
+    counted nodes ``e`` and ``f`` have in common (0, 1, or 2 when ``e = f``). So the counts are sums over node
+    classes (degree, counted, target) and edge classes (the classes of its two ends) of ``count x [coefficient !=
+    0]``: the plain grid's classes (counted arithmetically, ``sizes`` may be symbolic) with the edges at the
+    robots' endpoints moved to their own classes.
+
+    Args:
+        scenario: the scenario (for symbolic ``sizes``, a representative grid whose boundary and endpoint classes
+            are those of every grid of the case).
+        sizes: count for a grid of ``(rows, cols)`` nodes (sympy expressions, for :mod:`estimators.formulas`)
+            instead of the scenario's own.
+
+    Returns:
+        The :class:`IsingCount`, or ``None`` (obstacles, overridden lengths, a robot whose start is its goal).
+
+    >>> from gridcover.presets import default_scenario
+    >>> from gridcover.hamiltonian import ising_hamiltonian
+    >>> s = default_scenario(5, 4, 3)
+    >>> n, h = ising_count(s), ising_hamiltonian(s)
+    >>> (n.linear, n.couplings) == (len(list(h.linear_terms(1e-12))), h.num_quadratic_terms(1e-12))
+    True
+    """
+    s, grid = scenario, scenario.grid
+    ob = s.objective
+    if s.obstacles or ob.edge_lengths or any(rb.start == rb.goal for rb in s.robots):
+        return None
+    rows, cols = grid.rows, grid.cols
+    size_r, size_c = sizes if sizes is not None else (None, None)
+    n_r = s.num_robots
+    a0, a1, a2 = ob.alpha
+    targets = s.degree_targets
+    ends = {grid.node_index(rb.start) for rb in s.robots} | {grid.node_index(rb.goal) for rb in s.robots}
+
+    def degree(node: tuple[int, int]) -> int:
+        r, c = node
+        return 4 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
+
+    def plain(node: tuple[int, int]) -> _NodeClass:
+        return degree(node), True, 2.0  # every node but an endpoint has target 2 (exact and paper)
+
+    def real(node: tuple[int, int]) -> _NodeClass:
+        t = float(targets[grid.node_index(node)])
+        return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
+
+    nodes: Counter[_NodeClass] = Counter()
+    for i, ni in _node_axis(rows, size_r):
+        for j, nj in _node_axis(cols, size_c):
+            nodes[plain((i, j))] += ni * nj
+    edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
+    for i, ni in _node_axis(rows, size_r):
+        for k, nk in _edge_axis(cols, size_c):
+            edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
+    for j, nj in _node_axis(cols, size_c):
+        for k, nk in _edge_axis(rows, size_r):
+            edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
+    for node in ends:  # endpoints and the edges at them move to their own classes
+        xy = grid.nodes[node]
+        nodes[plain(xy)] -= 1
+        nodes[real(xy)] += 1
+    for e in range(grid.num_edges):
+        u, v = (grid.nodes[k] for k in grid.edge_nodes[e])
+        if grid.edge_nodes[e][0] in ends or grid.edge_nodes[e][1] in ends:
+            edges[tuple(sorted((plain(u), plain(v))))] -= 1  # type: ignore[index]
+            edges[tuple(sorted((real(u), real(v))))] += 1  # type: ignore[index]
+
+    def nonzero(value: float) -> int:
+        return int(abs(value / 2) > COEFFICIENT_TOLERANCE)
+
+    def pull(c: _NodeClass) -> float:  # a counted node's share of h
+        deg, counted, t = c
+        return t - n_r * deg / 2 if counted else 0.0
+
+    weight = ob.free_weight
+    linear = n_r * sum(
+        (n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0
+    )
+    total = sum(edges.values(), 0)  # edges per robot
+    pairs = sum((n * (c[0] * (c[0] - 1) // 2) for c, n in nodes.items() if c[1]), 0)  # sharing a counted node
+    both = sum((n for (u, v), n in edges.items() if u[1] and v[1]), 0)
+    one = sum((n for (u, v), n in edges.items() if u[1] != v[1]), 0)
+    m = balance_matrix(n_r, balanced_pairs(s) if a1 != 0.0 else [], a1 * ob.edge_length**2)
+    couplings: Count = 0
+    for r in range(n_r):
+        b = float(m[r][r])
+        couplings += (_pairs(total) - pairs) * nonzero(b) + pairs * nonzero(b + a2)
+        for q in range(r + 1, n_r):
+            b = float(m[r][q])
+            across = (one + 2 * pairs, both)
+            couplings += (total * total - across[0] - across[1]) * nonzero(b) + across[0] * nonzero(b + a2)
+            couplings += across[1] * nonzero(b + 2 * a2)
+    return IsingCount(linear, couplings)

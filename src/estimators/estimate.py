@@ -322,7 +322,7 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
     example; data-qubit rotations are one layer; a kind of more than :data:`_OWN_DEPTH_GATES` gates by its shape
     (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates)."""
     ex = kind.example
-    if isinstance(ex, Deferred) and kind.key[0] == "ising":  # type: ignore[index]
+    if isinstance(ex, Deferred) and kind.key[0] == "ising" and not kind.key[2]:  # type: ignore[index]
         return Depth(1, 0, 1) if kind.cost().total else Depth()  # one rz on each of distinct data qubits
     if kind.key[0] == "x_layer":  # type: ignore[index]  # X gates on distinct qubits: one layer
         return Depth(1, 0, 0) if kind.key[1] else Depth()  # type: ignore[index]
