@@ -113,9 +113,16 @@ def compare(rev: str, repeats: int, sweep_limit: float) -> int:
     print()
     for cmd in commands:
         ratio = medians[cmd, this] / medians[cmd, label]
-        same = {out for (c, _), runs in results.items() if c == cmd for _, _, _, out in runs}
-        print(f"{cmd}: {this} / {label} = {ratio:.2f} (median wall); stdout "
-              f"{'identical in every run' if len(same) == 1 else 'DIFFERS between runs or trees'}")  # fmt: skip
+        outs = {name: {out for _, _, _, out in results[cmd, name]} for name in trees}
+        if any(len(o) > 1 for o in outs.values()):
+            same = "DIFFERS between runs of one tree"
+        elif outs[this] == outs[label]:
+            same = "identical in every run of both trees"
+        else:
+            a, b = (next(iter(outs[n])).splitlines() for n in (this, label))
+            changed = sum(x != y for x, y in zip(a, b)) + abs(len(a) - len(b))
+            same = f"identical within each tree; the trees differ in {changed} of {max(len(a), len(b))} lines"
+        print(f"{cmd}: {this} / {label} = {ratio:.2f} (median wall); stdout {same}")
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (1 min) at the end")
     return 0
 

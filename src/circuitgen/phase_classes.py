@@ -51,6 +51,7 @@ from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase
+from circuitgen.mixer_classes import pair_classes
 from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
@@ -380,17 +381,6 @@ def _node_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
     return out
 
 
-def _edge_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
-    """``(representative k, count)`` of the consecutive pairs ``(k, k + 1)`` of one axis: the first, the last and
-    those between (what the end nodes' degrees depend on)."""
-    out: list[tuple[int, Count]] = [(0, 1)]
-    if n > 2:
-        out.append((n - 2, 1))
-    if n > 3:
-        out.append((1, (n if size is None else size) - 3))
-    return out
-
-
 def _pairs(n: Count) -> Count:
     """``C(n, 2)`` of a count (exact division for a symbolic one)."""
     return n * (n - 1) // 2 if isinstance(n, int) else n * (n - 1) / 2
@@ -453,10 +443,10 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
             nodes[plain((i, j))] += ni * nj
     edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
     for i, ni in _node_axis(rows, size_r):
-        for k, nk in _edge_axis(cols, size_c):
+        for k, nk in pair_classes(cols, size_c):
             edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
     for j, nj in _node_axis(cols, size_c):
-        for k, nk in _edge_axis(rows, size_r):
+        for k, nk in pair_classes(rows, size_r):
             edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]

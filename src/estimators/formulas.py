@@ -47,21 +47,17 @@ from functools import lru_cache
 
 import sympy as sp
 
-from circuitgen.angles import Angle
 from circuitgen.cost import Cost
-from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
 from circuitgen.gadgets.phase_ising import ising_cost
-from circuitgen.mixer_classes import mixer_part
+from circuitgen.mixer_classes import MixerPart, mixer_part
 from circuitgen.phase_classes import ising_count
 from gridcover.presets import default_scenario
-from gridcover.sbf import LocalPicture
 
 __all__ = [
     "FORMULA_DOMAIN",
     "GATE_NAMES",
     "QUANTITIES",
     "V_EXPR",
-    "MixerType",
     "Term",
     "V",
     "cols",
@@ -69,7 +65,6 @@ __all__ = [
     "formula_table",
     "mixer_terms",
     "p",
-    "partial_mixer_types",
     "phase_terms",
     "robots",
     "rows",
@@ -105,79 +100,6 @@ QUANTITIES: tuple[str, ...] = (
     *(f"gate_{g}" for g in GATE_NAMES),
 )
 """Every published quantity (keys of :func:`formula_table`)."""
-
-# Row (or column) classes of a plaquette's first index: the representative grid size and index, and the count.
-_SMALL = (("only", 2, 0),)  # 2 rows: one plaquette row, both of its node rows on the boundary
-_LARGE = (("first", 4, 0), ("middle", 4, 1), ("last", 4, 2))
-_ROBOT_CLASSES = (("main", 0), ("anti", 1))  # robots 0, 3: TL <-> BR; robots 1, 2: TR <-> BL
-
-
-@dataclass(frozen=True)
-class MixerType:
-    """One partial-mixer type and its lowered cost.
-
-    Attributes:
-        key: corner classes of ``a, b, c, d`` (``E`` endpoint, ``B`` interior, ``N`` neither), plus ``D`` when
-            the robot's start and goal are diagonal corners of the plaquette.
-        robot_class: ``main`` (start/goal top-left/bottom-right) or ``anti`` (top-right/bottom-left).
-        row_class, col_class: ``only``, ``first``, ``middle`` or ``last``.
-        ops: lowered gate counts of one partial mixer of this type, compiled alone.
-        toffoli: Toffolis after multi-controlled-X lowering (before the Clifford+T step).
-        logic_qubits: temporaries of its logic network.
-        work_qubits: work ancillas its largest multi-controlled X needs.
-    """
-
-    key: str
-    robot_class: str
-    row_class: str
-    col_class: str
-    ops: Mapping[str, int]
-    toffoli: int
-    logic_qubits: int
-    work_qubits: int
-
-
-@lru_cache(maxsize=1)
-def partial_mixer_types() -> tuple[MixerType, ...]:
-    """Cost of every (robot class, row class, column class) partial mixer, from one representative each.
-
-    The representative is plaquette ``(i, j)`` of ``default_scenario(R, C, 2)`` with ``R = 2, i = 0`` for the
-    ``only`` class and ``R = 4, i = 0, 1, 2`` for ``first, middle, last`` (same for columns): its corners have
-    exactly the classes of every plaquette of that class in every grid. Its cost is the partial-mixer gadget's
-    own (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`, default ``exact`` rule and ``nisq`` target),
-    computed from its kind without emitting a gate.
-
-    Returns:
-        All types (2 robot classes x 16 row/column class pairs).
-
-    >>> t = {(m.robot_class, m.row_class, m.col_class): m for m in partial_mixer_types()}
-    >>> t["main", "middle", "middle"].key, t["main", "middle", "middle"].toffoli
-    ('BBBB', 16)
-    """
-    out = []
-    beta = Angle.symbol("beta_0")
-    for rc, robot in _ROBOT_CLASSES:
-        for row_classes in (_SMALL, _LARGE):
-            for col_classes in (_SMALL, _LARGE):
-                for rcls, nr, i in row_classes:
-                    for ccls, nc, j in col_classes:
-                        s = default_scenario(nr, nc, 2)
-                        plaq = next(q for q in s.grid.plaquettes if q.corners[0] == (i, j))
-                        out.append(_mixer_type(s, robot, plaq, rc, rcls, ccls, beta))
-    return tuple(out)
-
-
-def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ignore[no-untyped-def]
-    rb = s.robots[robot]
-    key = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in plaq.outer_edges]).label
-    gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
-    if gadget is None:  # the flip is never allowed: nothing is emitted
-        return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)
-    ops, logical = gadget.cost(), gadget.logical_cost()
-    toffoli = logical["and"] + logical["and_dg"] + logical["ccx"]
-    work = mixer_work_need([gadget])
-    return MixerType(key, rc, rcls, ccls, {g: ops[g] for g in GATE_NAMES}, toffoli, gadget.num_temps, work)
-
 
 @dataclass(frozen=True)
 class Term:
@@ -310,18 +232,12 @@ def _layer(metric: Metric) -> sp.Expr:
     return sp.Piecewise(*pieces, (general, True))
 
 
-_SIZE_CLASSES = {2: {"only"}, 3: {"first", "last"}, 4: {"first", "middle", "last"}}  # 4 stands for >= 4
-
-
-def _widest(*metrics: Callable[[MixerType], int]) -> sp.Expr:
-    """Largest value over the partial mixers present (both robot classes), as a Piecewise in the smaller and the
-    larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``, ``3`` or ``>= 4`` (the sum of the
-    maxima when several metrics are given). The value is checked to be symmetric in rows and cols."""
-    values: dict[tuple[int, int], int] = {}
-    for nr, rset in _SIZE_CLASSES.items():
-        for nc, cset in _SIZE_CLASSES.items():
-            present = [m for m in partial_mixer_types() if m.row_class in rset and m.col_class in cset]
-            values[nr, nc] = sum(max((f(m) for m in present), default=0) for f in metrics)
+def _widest(width: Callable[[MixerPart], int]) -> sp.Expr:
+    """A register width of the call graph (the largest need over the mixer's kinds, :func:`mixer_part`) as a
+    Piecewise in the smaller and the larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``,
+    ``3`` or ``>= 4`` (read from a side of 4, where every class of plaquette occurs; both diagonals' robots). The
+    value is checked to be symmetric in rows and cols."""
+    values = {(a, b): width(mixer_part(default_scenario(a, b, 2))) for a in (2, 3, 4) for b in (2, 3, 4)}
     if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
         raise AssertionError("ancilla widths are not symmetric in rows and cols")
     lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
@@ -365,9 +281,9 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         return _layer(lambda t: sum(t.ops[g] for g in gate_names))
 
     gate = {g: (init_x if g == "x" else 0) + p * layer((g,)) for g in GATE_NAMES}
-    logic = _widest(lambda m: m.logic_qubits)
-    work = _widest(lambda m: m.work_qubits)
-    ancillas = _widest(lambda m: m.logic_qubits, lambda m: m.work_qubits)
+    logic = _widest(lambda m: m.logic_width)
+    work = _widest(lambda m: m.work_need)
+    ancillas = _widest(lambda m: m.logic_width + m.work_need)
     singles = tuple(g for g in GATE_NAMES if g != "cx")
     data = robots * V if structured else robots * V_EXPR
     table: dict[str, sp.Expr] = {
