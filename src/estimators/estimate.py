@@ -167,11 +167,10 @@ def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan
     return qaoa_plan(scenario, layers, options)
 
 
-@lru_cache(maxsize=256)
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> CallGraph:
     """The call graph of a scenario's plan with one layer (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`), whose
-    sums give every ``p`` (``cost(p)``, ``cost(p, logical=True)``, ``cost_by_part()``; cached: a sweep over ``p``
-    asks once).
+    sums give every ``p`` (``cost(p)``, ``cost(p, logical=True)``, ``cost_by_part()``; cached with the plan, so a
+    sweep over ``p`` asks once; not cached apart from it: its kinds' examples keep their plan alive).
 
     Args:
         scenario: the scenario.
