@@ -1,7 +1,13 @@
 """Speed and memory of ``qcpp estimate`` / the compile guard, and the gadget-vs-compiled cross-check.
 
 Run: ``python benchmarks/estimate_speed.py [--quick] [--sweep-seconds S]`` (the sweep is interrupted after
-``S`` seconds, default 150, and the rows it printed by then are reported). Each command runs in its own process
+``S`` seconds, default 150, and the rows it printed by then are reported), or
+``python benchmarks/estimate_speed.py --against REV [--repeats N]`` to compare this tree with revision ``REV`` in
+the same run: ``REV``'s ``src/`` is exported (``git archive``) into a temporary directory, and the estimate and the
+sweep run ``N`` times (default 2) with each tree's ``src`` first on ``PYTHONPATH``, alternating the trees (this
+tree first in odd rounds, ``REV`` first in even ones) so that both share whatever else loads the machine; the
+table gives each command's median wall time and peak memory per tree and whether both printed the same bytes.
+Each command runs in its own process
 (``python -m qcpp``,
 measured from outside: wall clock, and peak resident memory from ``getrusage`` of that child), so start-up is
 included. Prints one table with the goals of issue 10:
@@ -18,6 +24,7 @@ from __future__ import annotations
 
 import os
 import signal
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -32,10 +39,12 @@ from gridcover.scenario import save_scenario
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _run(args: list[str], limit: float | None = None) -> tuple[float, float, float | None, int, str, str]:
+def _run(
+    args: list[str], limit: float | None = None, src: Path = ROOT / "src"
+) -> tuple[float, float, float | None, int, str, str]:
     """Wall seconds, peak RSS in GB, seconds to the first stdout line, exit code, stdout, stderr (the command is
-    killed once ``limit`` seconds have passed; its exit code is then negative)."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    killed once ``limit`` seconds have passed; its exit code is then negative), with ``src`` first on the path."""
+    env = {**os.environ, "PYTHONPATH": str(src) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     # GNU time reports this child's own peak RSS (getrusage of the waited process), in KiB
     cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args]
     start = time.perf_counter()
@@ -61,15 +70,75 @@ def _run(args: list[str], limit: float | None = None) -> tuple[float, float, flo
     return wall, rss_gb, first, code, "".join(chunks), "\n".join(err_lines)
 
 
+ESTIMATE = ["estimate", "--grid", "30x30", "--robots", "8", "-p", "3", "--json"]
+SWEEP = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
+
+
+def _export(rev: str, into: Path) -> Path:
+    """``rev``'s ``src/`` tree, written into ``into`` (nothing in the repository changes). Returns its path."""
+    archive = subprocess.run(["git", "archive", "--format=tar", rev, "src"], cwd=ROOT, capture_output=True, check=True)
+    subprocess.run(["tar", "-x", "-C", str(into)], input=archive.stdout, check=True)
+    return into / "src"
+
+
+def compare(rev: str, repeats: int, sweep_limit: float) -> int:
+    """Time :data:`ESTIMATE` and :data:`SWEEP` on this tree and on ``rev``, alternating (see the module docstring)."""
+    label = subprocess.run(["git", "rev-parse", "--short", rev], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.strip()  # fmt: skip
+    here = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True,
+                          check=True).stdout.strip()  # fmt: skip
+    dirty = subprocess.run(["git", "status", "--porcelain", "src"], cwd=ROOT, capture_output=True, text=True).stdout
+    this = f"{here}{'+changes' if dirty.strip() else ''} (this tree)"
+    commands = {"estimate 30x30 / 8 robots / p=3 --json": (ESTIMATE, None),
+                "estimate 2x2..40x40 / 1..8 / p=1..5 csv": (SWEEP, sweep_limit)}  # fmt: skip
+    with tempfile.TemporaryDirectory() as tmp:
+        trees = {this: ROOT / "src", label: _export(rev, Path(tmp))}
+        results: dict[tuple[str, str], list[tuple[float, float, int, str]]] = {}
+        for i in range(repeats):
+            order = list(trees.items()) if i % 2 == 0 else list(reversed(trees.items()))
+            for name, src in order:
+                for cmd, (args, limit) in commands.items():
+                    wall, rss, _, code, out, _ = _run(args, limit=limit, src=src)
+                    results.setdefault((cmd, name), []).append((wall, rss, code, out))
+                    print(f"round {i + 1}/{repeats}: {name}: {cmd}: {wall:.2f} s (exit {code})", file=sys.stderr)
+    print(f"| command | tree | wall (median of {repeats}) | all runs | peak RSS | exit |")
+    print("|---|---|---:|---|---:|---|")
+    medians: dict[tuple[str, str], float] = {}
+    for (cmd, name), runs in results.items():
+        walls = sorted(w for w, _, _, _ in runs)
+        medians[cmd, name] = statistics.median(walls)
+        codes = ",".join(sorted({str(c) for _, _, c, _ in runs}))
+        print(f"| {cmd} | {name} | {medians[cmd, name]:.2f} s | {' '.join(f'{w:.2f}' for w in walls)} | "
+              f"{max(r for _, r, _, _ in runs):.2f} GB | {codes} |")  # fmt: skip
+    print()
+    for cmd in commands:
+        ratio = medians[cmd, this] / medians[cmd, label]
+        outs = {name: {out for _, _, _, out in results[cmd, name]} for name in trees}
+        if any(len(o) > 1 for o in outs.values()):
+            same = "DIFFERS between runs of one tree"
+        elif outs[this] == outs[label]:
+            same = "identical in every run of both trees"
+        else:
+            a, b = (next(iter(outs[n])).splitlines() for n in (this, label))
+            changed = sum(x != y for x, y in zip(a, b)) + abs(len(a) - len(b))
+            same = f"identical within each tree; the trees differ in {changed} of {max(len(a), len(b))} lines"
+        print(f"{cmd}: {this} / {label} = {ratio:.2f} (median wall); stdout {same}")
+    print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (1 min) at the end")
+    return 0
+
+
 def main(argv: list[str]) -> int:
+    if "--against" in argv:
+        repeats = int(argv[argv.index("--repeats") + 1]) if "--repeats" in argv else 2
+        limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 900.0
+        return compare(argv[argv.index("--against") + 1], repeats, limit)
     quick = "--quick" in argv
     sweep_limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 150.0
     rows = []
-    wall, rss, _, code, out, _ = _run(["estimate", "--grid", "30x30", "--robots", "8", "-p", "3", "--json"])
+    wall, rss, _, code, out, _ = _run(ESTIMATE)
     ok = code == 0 and wall < 5 and rss < 1
     rows.append(("estimate 30x30 / 8 robots / p=3 --json", f"{wall:.2f} s", f"{rss:.2f} GB", "< 5 s, < 1 GB", ok))
-    args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
-    wall, rss, first, code, out, err = _run(args, limit=sweep_limit)
+    wall, rss, first, code, out, err = _run(SWEEP, limit=sweep_limit)
     n = max(0, len(out.splitlines()) - 1)
     ok = code == 0 and wall < 120
     done = "done" if code == 0 else f"STOPPED after {sweep_limit:.0f} s"

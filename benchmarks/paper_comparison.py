@@ -11,15 +11,33 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 
+from circuitgen.angles import Angle
 from circuitgen.cost import Cost
+from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
 from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.qaoa import qaoa_circuit
 from estimators.counts import ResourceCount, count
 from estimators.fault_tolerant import FaultTolerantEstimate, fault_tolerant_from_cost
-from estimators.formulas import partial_mixer_types
 from estimators.paper import paper_estimate, paper_partial_mixer, toffoli_decomposition
 from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.presets import default_scenario
+from gridcover.sbf import LocalPicture
+
+
+def _partial_mixer_types() -> list[tuple[str, McxPartialMixer | ParityPartialMixer | None]]:
+    """One partial mixer of robot 0 (top-left to bottom-right) per corner-class pattern (endpoints, interior
+    corners, diagonal), with its local picture's label, from grids of sides 2 and 4 (every boundary class)."""
+    seen: dict[tuple[int, int, bool], tuple[str, McxPartialMixer | ParityPartialMixer | None]] = {}
+    for nr, nc in ((2, 2), (2, 4), (4, 2), (4, 4)):
+        s = default_scenario(nr, nc, 2)
+        rb = s.robots[0]
+        for plaq in s.grid.plaquettes:
+            label = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in plaq.outer_edges]).label
+            pattern = (label.count("E"), label.count("B"), label.endswith("D"))
+            if pattern not in seen:
+                seen[pattern] = (label, partial_mixer(s, 0, plaq, Angle.symbol("beta_0"), s.num_variables))
+    return list(seen.values())
+
 
 POINTS = [(3, 3, 1), (3, 3, 2), (4, 4, 2), (6, 6, 3), (8, 8, 4), (10, 10, 4)]
 
@@ -90,16 +108,13 @@ def main(argv: list[str]) -> int:
     print(f"paper: {2 * pm.toffolis} Toffolis (44 computed twice), {pm.cx} CNOT, {pm.single_qubit} single-qubit")
     print("| type | Toffolis | cx | x | h | t+tdg | rz | logic temps | work |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    seen = set()
-    for m in partial_mixer_types():
-        key = (m.key.count("E"), m.key.count("B"), m.key.endswith("D"))
-        if m.robot_class != "main" or key in seen:
-            continue
-        seen.add(key)
-        o = m.ops
+    for key, m in _partial_mixer_types():
+        o, logical = (m.cost(), m.logical_cost()) if m is not None else (Cost(), Cost())
+        toffoli = logical["and"] + logical["and_dg"] + logical["ccx"]
+        temps, work = (m.num_temps, mixer_work_need([m])) if m is not None else (0, 0)
         print(
-            f"| {m.key} | {m.toffoli} | {o['cx']} | {o['x']} | {o['h']} | {o['t'] + o['tdg']} | {o['rz']} | "
-            f"{m.logic_qubits} | {m.work_qubits} |"
+            f"| {key} | {toffoli} | {o['cx']} | {o['x']} | {o['h']} | {o['t'] + o['tdg']} | {o['rz']} | "
+            f"{temps} | {work} |"
         )
     print()
     print("## Depth (ours; the paper gives none) and the fault-tolerant view (epsilon = 1e-3)")

@@ -2,8 +2,9 @@
 
 Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of
 :func:`circuitgen.phase.phase_plan` (plan + cost) and of :func:`circuitgen.phase_classes.phase_layer`, and whether
-both give the same cost; then, over every default scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``,
-how many the classes answer and how long all of them take (the rest is left to the plan).
+both give the same cost (the default phase separator, then ``--phase whole-space``); then, over every default
+scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``, how many the classes answer and how long all of
+them take (the rest is left to the plan).
 """
 
 from __future__ import annotations
@@ -17,25 +18,38 @@ from circuitgen.phase_classes import phase_layer
 from gridcover.presets import default_scenario, max_default_robots
 
 SAMPLE = [(10, 10, 2), (20, 20, 4), (30, 30, 8), (40, 40, 1), (40, 40, 8)]
+WHOLE_SPACE_SAMPLE = [(10, 10, 2), (16, 16, 3), (20, 20, 4)]
+"""``--phase whole-space``: the plan builds the Ising Hamiltonian (a dense ``n x n`` matrix), so smaller grids."""
 
 
 def main(argv: list[str]) -> int:
     print(f"{'scenario':<12}{'plan ms':>10}{'classes ms':>12}{'speed-up':>10}  same cost")
-    for rows, cols, robots in SAMPLE:
+    for representation, sample in (("feasible", SAMPLE), ("whole-space", WHOLE_SPACE_SAMPLE)):
+        if representation != "feasible":
+            print(f"--phase {representation}:")
+        _compare(representation, sample)
+    if "--no-sweep" in argv:
+        return 0
+    return _sweep()
+
+
+def _compare(representation: str, sample: list[tuple[int, int, int]]) -> None:
+    for rows, cols, robots in sample:
         s = default_scenario(rows, cols, robots)
         t0 = time.perf_counter()
-        plan = phase_plan(s)
+        plan = phase_plan(s, representation=representation)  # type: ignore[arg-type]
         plan_cost = plan.cost(), plan.logical_cost()
         t1 = time.perf_counter()
-        layer = phase_layer(s)
+        layer = phase_layer(s, representation=representation)
         assert layer is not None
         layer_cost = layer.cost(), layer.logical_cost()
         t2 = time.perf_counter()
         same = plan_cost == layer_cost
         plan_ms, layer_ms = (t1 - t0) * 1e3, (t2 - t1) * 1e3
         print(f"{f'{rows}x{cols}/{robots}':<12}{plan_ms:>10.1f}{layer_ms:>12.1f}{plan_ms / layer_ms:>9.0f}x  {same}")
-    if "--no-sweep" in argv:
-        return 0
+
+
+def _sweep() -> int:
     answered = left = 0
     sides: Counter[int] = Counter()
     t0 = time.perf_counter()

@@ -23,7 +23,8 @@ different concept, not a kind's cost or depth:
   ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers), ``mixer_classes.mixer_part`` and
   ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid`` (edge arrays of a grid);
 * geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
-* the plan's choices per class, before any kind exists: ``phase_classes._visit_choice`` and ``_hamming``;
+* the phase separator's decisions per term-group shape, before any kind exists: ``phase_choice.visit_choice``
+  and ``phase_choice.hamming_choice`` (asked by the plan and by the classes alike);
 * constructions keyed by their inputs, not by a kind: the partial mixers' searched plans
   (``plan_parity_mixer``, ``plan_mcx_mixer``), ``phase_sums._abstract_phase`` (gates on abstract registers),
   ``gates._permutation_matrix``, and ``depth_compose``'s transfer matrices per lowered gate structure;
@@ -45,6 +46,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 from .cost import Cost
@@ -286,19 +288,27 @@ class CallGraph:
 
     def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
         """Lowered (or logical) cost per part: ``initial_state``, one layer's ``phase`` and ``mixer``."""
-        out = {}
-        for name, kinds in self.parts.items():
-            total: Counter[str] = Counter()
-            for kind, n in kinds.items():
-                for gate, k in (kind.logical_cost() if logical else kind.cost()).items:
-                    total[gate] += n * k
-            out[name] = Cost.of(total)
-        return out
+        return dict(self._sums[logical][0])
 
     def cost(self, p: int, logical: bool = False) -> Cost:
         """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
-        parts = self.cost_by_part(logical)
-        return parts["initial_state"] + p * (parts["phase"] + parts["mixer"])
+        parts, layer = self._sums[logical]
+        return parts["initial_state"] + p * layer
+
+    @cached_property
+    def _sums(self) -> tuple[tuple[dict[str, Cost], Cost], ...]:
+        """``(per part, one layer)`` lowered, then logical (summed once: a sweep asks for every ``p``)."""
+        out = []
+        for logical in (False, True):
+            parts = {}
+            for name, kinds in self.parts.items():
+                total: Counter[str] = Counter()
+                for kind, n in kinds.items():
+                    for gate, k in (kind.logical_cost() if logical else kind.cost()).items:
+                        total[gate] += n * k
+                parts[name] = Cost.of(total)
+            out.append((parts, parts["phase"] + parts["mixer"]))
+        return tuple(out)
 
     def kinds(self) -> Iterable[tuple[str, GadgetKind, int]]:
         """``(part, kind, multiplicity)`` for every kind."""

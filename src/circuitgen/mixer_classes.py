@@ -228,7 +228,7 @@ def _relation(a: tuple[int, int], b: tuple[int, int]) -> Hashable:
     return (di, dj) if abs(di) <= 2 and abs(dj) <= 2 else "far"
 
 
-def _pair_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
+def pair_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative index, count)`` of the ``n - 1`` consecutive index pairs ``(k, k + 1)`` of ``0..n-1``, by
     whether ``k`` is the first pair and whether it is the last (what the two pictures depend on); the counts for
     ``size`` items (default ``n``)."""
@@ -269,11 +269,11 @@ def _junction_counts(
     base: Counter[Pair] = Counter()
     where: dict[Pair, tuple[tuple[int, int], tuple[int, int]]] = {}
     for i, ni in _axis_classes(rows, sizes[0]):
-        for j, nj in _pair_classes(pcol, sizes[1] - 1):
+        for j, nj in pair_classes(pcol, sizes[1] - 1):
             key = _plain_pair((i, j), (i, j + 1), rows, cols)
             base[key] += ni * nj
             where.setdefault(key, ((i, j), (i, j + 1)))
-    for i, ni in _pair_classes(prow, sizes[0] - 1):
+    for i, ni in pair_classes(prow, sizes[0] - 1):
         key = _plain_pair((i, pcol - 1), (i + 1, 0), rows, cols)
         base[key] += ni
         where.setdefault(key, ((i, pcol - 1), (i + 1, 0)))

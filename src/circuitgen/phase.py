@@ -49,9 +49,20 @@ from .gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .gates import Gate, rz, rzz
 from .options import Optimize, Phase
+from .phase_choice import (
+    EXACT_EXPANSION_LIMIT,
+    ROTATION_T_COST,
+    coupling_cost,
+    ft_t_count,
+    hamming_choice,
+    score,
+    sums_constructions,
+    visit_choice,
+)
 
 __all__ = [
     "COEFFICIENT_TOLERANCE",
+    "EXACT_EXPANSION_LIMIT",
     "ROTATION_T_COST",
     "PhasePlan",
     "coupling_products",
@@ -84,25 +95,7 @@ def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset
 
 # ----------------------------------------------------------------------------- plans
 
-ROTATION_T_COST = 30
-"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
-Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
-the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
-
 Representation = Phase
-
-
-def ft_t_count(logical: Cost) -> int:
-    """T count of a logical cost in the ``ft`` model: AND 4, its uncompute 0, Toffoli 7, T 1, rotation
-    :data:`ROTATION_T_COST`."""
-    return 4 * logical["and"] + 7 * logical["ccx"] + logical.t + ROTATION_T_COST * logical.rotations
-
-
-def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
-    """Sort key of a construction under the target's cost model (smaller is cheaper)."""
-    if target == "ft":
-        return (ft_t_count(logical), cost.cx, cost.total)
-    return (cost.cx, cost.rotations, cost.total)
 
 
 def _summary(cost: Cost, logical: Cost, ancillas: int | None = None) -> dict[str, int]:
@@ -110,17 +103,6 @@ def _summary(cost: Cost, logical: Cost, ancillas: int | None = None) -> dict[str
     if ancillas is not None:
         out["ancillas"] = ancillas
     return out
-
-
-def _coupling_cost(products: int) -> Cost:
-    """Estimated price of ``products`` extra couplings: one RZZ each (their linear parts land on qubits that
-    carry an RZ anyway)."""
-    return Cost.of(cx=2 * products, rz=products)
-
-
-EXACT_EXPANSION_LIMIT = 30_000
-"""A balance group with at most this many products is expanded to price its couplings exactly (products that
-merge with others' or cancel cost nothing); larger ones are priced at one coupling per product."""
 
 
 def _visit_products(grp: VisitGroup) -> dict[tuple[int, int], float]:
@@ -418,7 +400,7 @@ def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None
     m = grp.matrix
     prods = coupling_products([len(f) for f in grp.forms], m)
     out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": []}
-    out["costs"]["couplings"] = (_coupling_cost(prods), _coupling_cost(prods))
+    out["costs"]["couplings"] = (coupling_cost(prods), coupling_cost(prods))
     out["ancillas"]["couplings"] = 0
     if grp.integral and optimize == "cx":
         forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
@@ -437,12 +419,7 @@ def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None
         )
         out["ancillas"]["accumulator"] = acc_anc
         out["constants"] = {"arithmetic": gad.constant, "registers": gad.constant, "accumulator": acc_c0}
-        for k in ("arithmetic", "registers", "accumulator"):
-            if budget is None or out["ancillas"][k] <= budget:
-                out["options"].append(k)
-                break  # each variant only pays off when the ones before it (fewer CX) do not fit
-    if prods <= EXACT_EXPANSION_LIMIT or not out["options"]:
-        out["options"].append("couplings")
+    out["options"] = list(sums_constructions(grp.integral, prods, optimize, budget, out["ancillas"].__getitem__))
     return out
 
 
@@ -461,12 +438,6 @@ def _assemble(
     ancillas = 0
     const = fc.constant
 
-    def better(a: tuple[Cost, Cost], b: tuple[Cost, Cost]) -> bool:
-        return score(a[0], a[1], target) <= score(b[0], b[1], target)
-
-    def fits(k: int) -> bool:
-        return budget is None or k <= budget
-
     # squared sums (balance) first: their couplings, when chosen, make most visit couplings free
     chosen_sums: list[tuple[SumsGroup, str]] = []
     for grp, opts, pick in zip(fc.sums, balance, choice):
@@ -474,7 +445,7 @@ def _assemble(
         if pick == "couplings":
             el, eq = grp.expanded()
             new = _new_couplings(quad, eq)
-            costs["couplings"] = (_coupling_cost(new), _coupling_cost(new))
+            costs["couplings"] = (coupling_cost(new), coupling_cost(new))
             for i, v in el.items():
                 lin[i] = lin.get(i, 0.0) + v
             for k, v in eq.items():
@@ -501,29 +472,17 @@ def _assemble(
             new = _new_couplings(quad, products)
         else:  # within one node every product pairs two different robots' edges: all distinct
             new = sum(a * b for i, a in enumerate(sizes) for b in sizes[i + 1 :])
-        coup = (_coupling_cost(new), _coupling_cost(new))
-        opts: list[tuple[str, tuple[Cost, Cost], VisitPhase | None]] = []
-        for name, prod in (("visit bits", False), ("visit pairs", True)):
-            gad = VisitPhase("gamma", grp.coefficient, grp.visitors, tuple(range(n, n + 16)), prod)
-            c = (gad.cost(), gad.logical_cost())
-            alt_tot[name][0] += c[0]
-            alt_tot[name][1] += c[1]
-            if optimize == "cx" and fits(visit_ancillas(sizes, prod)):
-                opts.append((name, c, gad))
-        alt_tot["couplings"][0] += coup[0]
-        alt_tot["couplings"][1] += coup[1]
-        pick = ("couplings", coup, None)
-        for o in opts:  # ties go to the couplings (no ancilla)
-            if better(o[1], pick[1]) and o[1] != pick[1]:
-                pick = o
-        name, c, gad = pick
-        v_rows[name] += 1
-        chosen_tot[0] += c[0]
-        chosen_tot[1] += c[1]
-        if gad is not None:
-            chosen_visits.append((grp, gad.products))
-            const += gad.constant
-            ancillas = max(ancillas, visit_ancillas(sizes, gad.products))
+        choice = visit_choice(sizes, grp.coefficient, new, target, optimize, budget)
+        for name, (c, log) in choice.costs.items():
+            alt_tot[name][0] += c
+            alt_tot[name][1] += log
+        v_rows[choice.construction] += 1
+        chosen_tot[0] += choice.costs[choice.construction][0]
+        chosen_tot[1] += choice.costs[choice.construction][1]
+        if choice.gadget is not None:
+            chosen_visits.append((grp, choice.gadget.products))
+            const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), choice.gadget.products).constant
+            ancillas = max(ancillas, choice.ancillas)
         else:
             for key, v in (products if products is not None else _visit_products(grp)).items():
                 quad[key] = quad.get(key, 0.0) + v
@@ -544,20 +503,18 @@ def _assemble(
                 classes.setdefault(round(v, 12), []).append(q)
         hw_cost, hw_log, plain = Cost(), Cost(), 0
         for qs in classes.values():
-            if len(qs) < 3:
-                continue
             coeff = lin[qs[0]]
-            hw = SumsPhase("gamma", (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,))
-            alt = Cost.of(rz=len(qs))
-            if fits(hw.num_ancillas) and better((hw.cost(), hw.logical_cost()), (alt, alt)):
-                hamming.append((coeff, tuple(qs)))
-                const += hw.constant
-                for q in qs:
-                    del lin[q]
-                ancillas = max(ancillas, hw.num_ancillas)
-                hw_cost += hw.cost()
-                hw_log += hw.logical_cost()
-                plain += len(qs)
+            hw = hamming_choice(len(qs), coeff, target, optimize, budget)
+            if hw is None:
+                continue
+            hamming.append((coeff, tuple(qs)))
+            const += hw.constant
+            for q in qs:
+                del lin[q]
+            ancillas = max(ancillas, hw.num_ancillas)
+            hw_cost += hw.cost()
+            hw_log += hw.logical_cost()
+            plain += len(qs)
         if hamming:
             rows.append({"group": "equal-angle rotations", "count": len(hamming),
                          "construction": "hamming-weight phasing", "cost": _summary(hw_cost, hw_log),

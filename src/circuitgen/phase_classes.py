@@ -7,8 +7,8 @@ such grid has unless a length is overridden) the plan has few distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
   visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost
-  ``sum over (d, m) classes of count x cost`` and the construction chosen for a class (visit bits or pairs) is
-  the one the plan would choose for each of its nodes;
+  ``sum over (d, m) classes of count x cost``, and a class's construction (visit bits or pairs) is the answer of
+  :func:`circuitgen.phase_choice.visit_choice`, the very function the plan asks for each of its nodes;
 * **balance**: one arithmetic gadget (:class:`~circuitgen.gadgets.phase_sums.SumsPhase`) over each robot's
   reduced path-length form: weight 1 on every edge, 0 on the edges at its own start and goal (collapsed to a
   constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor);
@@ -18,9 +18,10 @@ such grid has unless a length is overridden) the plan has few distinct parts:
 
 Coefficients are vectors over one robot's edges (numpy), the endpoint and corner identities are applied by the
 very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
-touch. :func:`phase_layer` answers only where this picture is exact and the plan has no choice that couples
-groups (the balance has too many products for the coupling alternative and every class picks a gadget over
-couplings); elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
+touch. Every construction is decided by :mod:`circuitgen.phase_choice` (the plan's own decisions), and
+:func:`phase_layer` answers only where this picture is exact and no choice couples groups (every class picks a
+gadget over couplings, and the balance's arithmetic is its first candidate and provably beats its couplings);
+elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
 decides, lists the planned gadgets instead. ``tests/circuitgen/phase_classes_test.py`` checks it against
 :func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default grids and on random
 endpoints.
@@ -37,25 +38,28 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, replace
-from functools import cache, cached_property, lru_cache
+from dataclasses import dataclass, field, replace
+from functools import cached_property, lru_cache
 from itertools import repeat
+from typing import Any
 
 import numpy as np
 
 from circuitgen.call_graph import Deferred, GadgetKind
 from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
-from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase
+from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.phase import EXACT_EXPANSION_LIMIT, ROTATION_T_COST, coupling_products, score
+from circuitgen.gadgets.phase_visits import VisitPhase
+from circuitgen.mixer_classes import pair_classes
+from circuitgen.phase import coupling_products, phase_plan
+from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
 from gridcover.scenario import Scenario
 
-__all__ = ["PhaseLayer", "phase_layer"]
+__all__ = ["IsingCount", "PhaseLayer", "ising_count", "phase_layer"]
 
 _TOL = 1e-12  # gridcover.feasible_cost's zero
 
@@ -67,6 +71,8 @@ class PhaseLayer:
     Attributes:
         parts: ``(representative gadget, count)`` per visit class and per Hamming-weight class.
         rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
+        couplings: Its couplings (only the ``whole-space`` representation has any: :func:`ising_count`).
+        whole_space: The scenario whose Ising Hamiltonian the couplings are (built only if emitted).
         balance: The balance arithmetic, or ``None``.
         num_ancillas: Clean ancillas the largest part needs.
         num_variables: Data qubits.
@@ -77,6 +83,8 @@ class PhaseLayer:
     balance: _Balance | None
     num_ancillas: int
     num_variables: int
+    couplings: int = 0
+    whole_space: Scenario | None = field(default=None, repr=False)
 
     def cost(self) -> Cost:
         """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
@@ -88,7 +96,7 @@ class PhaseLayer:
 
     @cached_property
     def _costs(self) -> tuple[Cost, Cost]:
-        rz = Cost.of(rz=self.rotations)
+        rz = ising_cost(self.rotations, self.couplings)
         lowered = Cost.sum(n * g.cost() for g, n in self.parts) + rz
         logical = Cost.sum(n * g.logical_cost() for g, n in self.parts) + rz
         if self.balance is not None:
@@ -101,14 +109,16 @@ class PhaseLayer:
         rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
         anc = tuple(range(self.num_variables, self.num_variables + self.num_ancillas))
         out: list[tuple[GadgetKind, int]] = []
-        if self.rotations:
-            n = self.rotations
-            rz = Cost.of(rz=n)
+        if self.rotations or self.couplings:
+            n, q, source = self.rotations, self.couplings, self.whole_space
+            rz = ising_cost(n, q)
 
             def rotations() -> Gadget:
+                if source is not None:  # the couplings' placement is the Hamiltonian's: the plan builds it
+                    return phase_plan(source, representation="whole-space").gadgets("gamma")[0]
                 return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
-            out.append((GadgetKind.of(Deferred(("ising", n, 0), rz, rz, rotations)), 1))
+            out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
         for g, count in self._placed_parts(anc):
             out.append((GadgetKind.of(g), count))
         if self.balance is not None:
@@ -214,23 +224,6 @@ def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
     return const, out
 
 
-@cache
-def _visit_choice(degree: int, m: int, coefficient: float, target: str) -> VisitPhase | None:
-    """The plan's construction for a node of this degree passed by ``m`` robots while no coupling exists yet
-    (``None``: the couplings)."""
-    new = m * (m - 1) // 2 * degree * degree
-    coup = Cost.of(cx=2 * new, rz=new)
-    pick: VisitPhase | None = None
-    pick_costs = (coup, coup)
-    for products in (False, True):
-        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(degree)) for _ in range(m)), (), products)
-        costs = (gad.cost(), gad.logical_cost())
-        # as the plan: an option replaces the pick when it scores no worse and costs differ (ties: couplings)
-        if score(*costs, target) <= score(*pick_costs, target) and costs != pick_costs:  # type: ignore[arg-type]
-            pick, pick_costs = gad, costs
-    return pick
-
-
 @lru_cache(maxsize=64)  # the counts and the depth bound of a scenario both ask
 def phase_layer(
     scenario: Scenario,
@@ -240,8 +233,9 @@ def phase_layer(
     ancilla_budget: int | None = None,
 ) -> PhaseLayer | None:
     """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
-    knows (obstacles, overridden lengths, the ``whole-space`` representation, the
-    ``depth`` optimisation, an ancilla budget, or a choice the classes cannot make).
+    knows (obstacles, overridden lengths, or a choice the classes cannot make:
+    a node or the balance whose construction is couplings, or the balance's arithmetic out of the budget). Each
+    class's construction is the plan's own decision (:mod:`circuitgen.phase_choice`), asked once per class.
 
     Args:
         scenario: the scenario.
@@ -252,10 +246,12 @@ def phase_layer(
     """
     s, grid = scenario, scenario.grid
     ob = s.objective
-    if (
-        representation != "feasible" or optimize != "cx" or ancilla_budget is not None or s.obstacles
-        or ob.edge_lengths
-    ):  # fmt: skip
+    if representation == "whole-space":  # one IsingPhase, whatever the other options
+        count = ising_count(s)
+        if count is None:
+            return None
+        return PhaseLayer((), count.linear, None, 0, s.num_variables, count.couplings, s)
+    if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
     if any(a == b for a, b in ends):
@@ -282,11 +278,13 @@ def phase_layer(
         for (degree, m), count in sorted(classes.items()):
             if m < 2:
                 continue
-            gad = _visit_choice(degree, m, 8.0 * a2, target)
-            if gad is None:
+            # no coupling exists yet when the visits are chosen (the balance is arithmetic, checked below)
+            choice = visit_choice((degree,) * m, 8.0 * a2, m * (m - 1) // 2 * degree * degree, target, optimize,
+                                  ancilla_budget)  # fmt: skip
+            if choice.gadget is None:
                 return None  # a coupling would change what the later groups' couplings cost
-            parts.append((gad, count))
-            ancillas = max(ancillas, visit_ancillas(tuple(len(v) for v in gad.visitors), gad.products))
+            parts.append((choice.gadget, count))
+            ancillas = max(ancillas, choice.ancillas)
     lin = []
     for a, b in ends:
         own = node_term.copy()
@@ -312,15 +310,23 @@ def phase_layer(
         scale = a1 * unit * unit
         m = balance_matrix(n_r, pairs, scale)
         sizes = [int(np.count_nonzero(w)) for w in weights]
-        if coupling_products(sizes, m) <= EXACT_EXPANSION_LIMIT:
+        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
+        shape = balance.shape
+        # only the arithmetic is counted by classes: any other first variant is left to the plan
+        candidates = sums_constructions(
+            True, coupling_products(sizes, m), optimize, ancilla_budget,
+            lambda variant: shape.num_ancillas if variant == "arithmetic" else 0,
+        )  # fmt: skip
+        if candidates[0] != "arithmetic":
+            return None
+        if "couplings" in candidates:
             # the plan also prices the balance as couplings; they interact with the visits, but the pairs within
             # one form meet no other term, so that plan has at least this many couplings (2 CX, 1 rotation each)
             within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0)
         lin_g = 2 * m @ np.array(consts)
         for r, w in enumerate(weights):
             lin[r] = lin[r] + float(lin_g[r]) * w
-        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
-        ancillas = max(ancillas, balance.shape.num_ancillas)
+        ancillas = max(ancillas, shape.num_ancillas)
     values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
     if target == "ft":
@@ -328,9 +334,7 @@ def phase_layer(
         rounded = np.round(values, 12)
         _, first, counts = np.unique(rounded, return_index=True, return_counts=True)
         for k, n in zip(first.tolist(), counts.tolist()):
-            if n < 3:
-                continue
-            hw = _hamming(n, float(values[k]))
+            hw = hamming_choice(n, float(values[k]), target, optimize, ancilla_budget)
             if hw is not None:
                 parts.append((hw, 1))
                 ancillas = max(ancillas, hw.num_ancillas)
@@ -345,11 +349,138 @@ def phase_layer(
     return layer
 
 
-@cache
-def _hamming(n: int, coefficient: float) -> SumsPhase | None:
-    """Hamming-weight phasing of ``n`` equal rotations, when the ``ft`` plan prefers it to the rotations."""
-    hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
-    alt = Cost.of(rz=n)
-    if score(hw.cost(), hw.logical_cost(), "ft") <= score(alt, alt, "ft"):
-        return hw
-    return None
+
+# ----------------------------------------------------------------------------- whole-space (Ising) phase separator
+
+
+Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
+
+
+@dataclass(frozen=True)
+class IsingCount:
+    """The whole-space phase separator's terms (:class:`~circuitgen.gadgets.phase_ising.IsingPhase`), counted.
+
+    Attributes:
+        linear: nonzero ``h_i`` (one RZ each).
+        couplings: nonzero ``J_ij`` (one RZZ each).
+    """
+
+    linear: Count
+    couplings: Count
+
+
+_NodeClass = tuple[int, bool, float]  # (variable edges at the node, counted by the degree term, its target)
+
+
+def _node_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
+    """``(representative index, count)`` of the node indices ``0..n-1`` of one axis by whether they lie on the
+    boundary (first, last, between); the counts for a side of ``size`` nodes (default ``n``)."""
+    out: list[tuple[int, Count]] = [(0, 1), (n - 1, 1)]
+    if n > 2:
+        out.append((1, (n if size is None else size) - 2))
+    return out
+
+
+def _pairs(n: Count) -> Count:
+    """``C(n, 2)`` of a count (exact division for a symbolic one)."""
+    return n * (n - 1) // 2 if isinstance(n, int) else n * (n - 1) / 2
+
+
+def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) -> IsingCount | None:
+    """The whole-space phase separator's terms on an open grid, counted by classes of nodes and edges.
+
+    With uniform edge weights and lengths (an open grid unless overridden) the Ising coefficients of the cost
+    (:func:`gridcover.hamiltonian.ising_hamiltonian`) depend only on classes: ``h`` of robot ``r``'s edge ``e`` is
+    ``-alpha0 w / 2 + alpha2 sum_{i in e, counted} (t_i - robots deg_i / 2)`` (the balance's linear part cancels:
+    each balanced pair adds ``+1`` and ``-1`` to a robot's row), and ``J`` of ``(r, e), (s, f)`` is
+    ``(alpha1 d^2 B_rs + alpha2 shared(e, f)) / 2`` with ``B`` the balance's robot matrix and ``shared`` the
+    counted nodes ``e`` and ``f`` have in common (0, 1, or 2 when ``e = f``). So the counts are sums over node
+    classes (degree, counted, target) and edge classes (the classes of its two ends) of ``count x [coefficient !=
+    0]``: the plain grid's classes (counted arithmetically, ``sizes`` may be symbolic) with the edges at the
+    robots' endpoints moved to their own classes.
+
+    Args:
+        scenario: the scenario (for symbolic ``sizes``, a representative grid whose boundary and endpoint classes
+            are those of every grid of the case).
+        sizes: count for a grid of ``(rows, cols)`` nodes (sympy expressions, for :mod:`estimators.formulas`)
+            instead of the scenario's own.
+
+    Returns:
+        The :class:`IsingCount`, or ``None`` (obstacles, overridden lengths, a robot whose start is its goal).
+
+    >>> from gridcover.presets import default_scenario
+    >>> from gridcover.hamiltonian import ising_hamiltonian
+    >>> s = default_scenario(5, 4, 3)
+    >>> n, h = ising_count(s), ising_hamiltonian(s)
+    >>> (n.linear, n.couplings) == (len(list(h.linear_terms(1e-12))), h.num_quadratic_terms(1e-12))
+    True
+    """
+    s, grid = scenario, scenario.grid
+    ob = s.objective
+    if s.obstacles or ob.edge_lengths or any(rb.start == rb.goal for rb in s.robots):
+        return None
+    rows, cols = grid.rows, grid.cols
+    size_r, size_c = sizes if sizes is not None else (None, None)
+    n_r = s.num_robots
+    a0, a1, a2 = ob.alpha
+    targets = s.degree_targets
+    ends = {grid.node_index(rb.start) for rb in s.robots} | {grid.node_index(rb.goal) for rb in s.robots}
+
+    def degree(node: tuple[int, int]) -> int:
+        r, c = node
+        return 4 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
+
+    def plain(node: tuple[int, int]) -> _NodeClass:
+        return degree(node), True, 2.0  # every node but an endpoint has target 2 (exact and paper)
+
+    def real(node: tuple[int, int]) -> _NodeClass:
+        t = float(targets[grid.node_index(node)])
+        return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
+
+    nodes: Counter[_NodeClass] = Counter()
+    for i, ni in _node_axis(rows, size_r):
+        for j, nj in _node_axis(cols, size_c):
+            nodes[plain((i, j))] += ni * nj
+    edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
+    for i, ni in _node_axis(rows, size_r):
+        for k, nk in pair_classes(cols, size_c):
+            edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
+    for j, nj in _node_axis(cols, size_c):
+        for k, nk in pair_classes(rows, size_r):
+            edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
+    for node in ends:  # endpoints and the edges at them move to their own classes
+        xy = grid.nodes[node]
+        nodes[plain(xy)] -= 1
+        nodes[real(xy)] += 1
+    for e in range(grid.num_edges):
+        u, v = (grid.nodes[k] for k in grid.edge_nodes[e])
+        if grid.edge_nodes[e][0] in ends or grid.edge_nodes[e][1] in ends:
+            edges[tuple(sorted((plain(u), plain(v))))] -= 1  # type: ignore[index]
+            edges[tuple(sorted((real(u), real(v))))] += 1  # type: ignore[index]
+
+    def nonzero(value: float) -> int:
+        return int(abs(value / 2) > COEFFICIENT_TOLERANCE)
+
+    def pull(c: _NodeClass) -> float:  # a counted node's share of h
+        deg, counted, t = c
+        return t - n_r * deg / 2 if counted else 0.0
+
+    weight = ob.free_weight
+    linear = n_r * sum(
+        (n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0
+    )
+    total = sum(edges.values(), 0)  # edges per robot
+    pairs = sum((n * (c[0] * (c[0] - 1) // 2) for c, n in nodes.items() if c[1]), 0)  # sharing a counted node
+    both = sum((n for (u, v), n in edges.items() if u[1] and v[1]), 0)
+    one = sum((n for (u, v), n in edges.items() if u[1] != v[1]), 0)
+    m = balance_matrix(n_r, balanced_pairs(s) if a1 != 0.0 else [], a1 * ob.edge_length**2)
+    couplings: Count = 0
+    for r in range(n_r):
+        b = float(m[r][r])
+        couplings += (_pairs(total) - pairs) * nonzero(b) + pairs * nonzero(b + a2)
+        for q in range(r + 1, n_r):
+            b = float(m[r][q])
+            across = (one + 2 * pairs, both)
+            couplings += (total * total - across[0] - across[1]) * nonzero(b) + across[0] * nonzero(b + a2)
+            couplings += across[1] * nonzero(b + 2 * a2)
+    return IsingCount(linear, couplings)

@@ -3,8 +3,8 @@
 :func:`estimate_point` sums the circuit's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`: per part the
 gadget kinds and their multiplicities; every kind reports its lowered and its logical cost, ANDs and Toffolis
 kept whole, without emitting a gate). Layers are alike up to their angles, so the cost of ``p`` layers is
-``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` serves every ``p``, and
-:class:`LayerCosts` is cached per scenario and options.
+``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` serves every ``p``, and its call
+graph (:func:`layer_costs`) is cached per scenario and options.
 :mod:`estimators.crosscheck` (run by the tests and ``benchmarks/estimate_speed.py``) checks that these numbers
 equal the counts of the compiled, lowered circuit (:func:`estimators.counts.count`).
 
@@ -35,10 +35,10 @@ import json
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache
+from functools import lru_cache
 from typing import Literal
 
-from circuitgen.call_graph import Deferred, GadgetKind
+from circuitgen.call_graph import CallGraph, Deferred, GadgetKind
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_sums import SumsShape
@@ -67,7 +67,6 @@ __all__ = [
     "DepthMode",
     "Estimate",
     "EstimateOptions",
-    "LayerCosts",
     "Point",
     "estimate_depth",
     "estimate_point",
@@ -157,38 +156,6 @@ def _scenario_from_json(text: str) -> Scenario:
     return scenario_from_dict(json.loads(text))
 
 
-@dataclass(frozen=True)
-class LayerCosts:
-    """What one scenario costs, independent of ``p`` (summed over the call graph of one plan with ``p = 1``).
-
-    Attributes:
-        registers: ``(name, size)`` of the registers for ``p >= 1`` (``work`` included; with ``p = 0`` there is
-            no phase separator and no mixer: :func:`registers_for` asks a ``p = 0`` plan).
-        parts: lowered costs of ``initial_state`` and of one layer's ``phase`` and ``mixer``.
-        logical: the same with ANDs and Toffolis kept whole.
-    """
-
-    registers: tuple[tuple[str, int], ...]
-    parts: Mapping[str, Cost]
-    logical: Mapping[str, Cost]
-
-    def cost(self, p: int) -> Cost:
-        """Lowered cost of ``p`` layers."""
-        return self.parts["initial_state"] + p * self._layer
-
-    def logical_cost(self, p: int) -> Cost:
-        """Logical cost of ``p`` layers."""
-        return self.logical["initial_state"] + p * self._logical_layer
-
-    @cached_property
-    def _layer(self) -> Cost:
-        return self.parts["phase"] + self.parts["mixer"]
-
-    @cached_property
-    def _logical_layer(self) -> Cost:
-        return self.logical["phase"] + self.logical["mixer"]
-
-
 def _layout(plan: QaoaPlan) -> tuple[tuple[str, int], ...]:
     return tuple((r.name, r.size) for r in plan.registers)
 
@@ -200,26 +167,25 @@ def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan
     return qaoa_plan(scenario, layers, options)
 
 
-@lru_cache(maxsize=256)
-def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayerCosts:
-    """The :class:`LayerCosts` of a scenario: sums over its plan's call graph
-    (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`; cached: a sweep over ``p`` asks once).
+def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> CallGraph:
+    """The call graph of a scenario's plan with one layer (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`), whose
+    sums give every ``p`` (``cost(p)``, ``cost(p, logical=True)``, ``cost_by_part()``; cached with the plan, so a
+    sweep over ``p`` asks once; not cached apart from it: its kinds' examples keep their plan alive).
 
     Args:
         scenario: the scenario.
         options: circuit construction options.
 
     Returns:
-        The layer costs.
+        The call graph.
     """
-    plan = _plan(scenario, options)
-    graph = plan.call_graph()
-    return LayerCosts(_layout(plan), graph.cost_by_part(), graph.cost_by_part(logical=True))
+    return _plan(scenario, options).call_graph()
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
-    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built)."""
-    return layer_costs(scenario, options).registers if p else _layout(_plan(scenario, options, 0))
+    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built; with ``p = 0``
+    there is no phase separator and no mixer: a ``p = 0`` plan answers)."""
+    return _layout(_plan(scenario, options) if p else _plan(scenario, options, 0))  # the cache keys by the args given
 
 
 @dataclass(frozen=True)
@@ -322,7 +288,7 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
     example; data-qubit rotations are one layer; a kind of more than :data:`_OWN_DEPTH_GATES` gates by its shape
     (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates)."""
     ex = kind.example
-    if isinstance(ex, Deferred) and kind.key[0] == "ising":  # type: ignore[index]
+    if isinstance(ex, Deferred) and kind.key[0] == "ising" and not kind.key[2]:  # type: ignore[index]
         return Depth(1, 0, 1) if kind.cost().total else Depth()  # one rz on each of distinct data qubits
     if kind.key[0] == "x_layer":  # type: ignore[index]  # X gates on distinct qubits: one layer
         return Depth(1, 0, 0) if kind.key[1] else Depth()  # type: ignore[index]
@@ -381,7 +347,7 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
 
 
 def estimate_depth(
-    scenario: Scenario, p: int, options: EstimateOptions = DEFAULT_OPTIONS, costs: LayerCosts | None = None
+    scenario: Scenario, p: int, options: EstimateOptions = DEFAULT_OPTIONS, graph: CallGraph | None = None
 ) -> Depth | None:
     """The depths :func:`estimate_point` reports: ``exact``, a ``bound`` or ``None`` as ``options.depth`` says
     (``auto``: exact when the state preparation and one layer have at most ``options.depth_budget`` lowered
@@ -391,7 +357,7 @@ def estimate_depth(
         scenario: the scenario.
         p: layers.
         options: the options.
-        costs: the scenario's :func:`layer_costs` (looked up if not given).
+        graph: the scenario's :func:`layer_costs` (looked up if not given).
 
     Returns:
         The depths, or ``None`` for ``depth="none"``.
@@ -402,7 +368,7 @@ def estimate_depth(
     """
     mode = options.depth
     if mode == "auto":
-        lc = costs if costs is not None else layer_costs(scenario, options.plan)
+        lc = graph if graph is not None else layer_costs(scenario, options.plan)
         mode = "exact" if lc.cost(1).total <= options.depth_budget else "bound"
     if mode == "exact":
         return exact_depth(scenario, p, options.plan)
@@ -427,17 +393,16 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     """
     start = time.perf_counter()
     scenario = point.build_scenario()
-    lc = layer_costs(scenario, options.plan)
+    graph = layer_costs(scenario, options.plan)
     p = point.p
-    cost = lc.cost(p)
-    logical = lc.logical_cost(p)
-    depth = estimate_depth(scenario, p, options, lc)
+    cost, logical, parts = graph.cost(p), graph.cost(p, logical=True), graph.cost_by_part()
+    depth = estimate_depth(scenario, p, options, graph)
     ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
     registers = registers_for(scenario, p, options.plan)
-    est = Estimate(point, options, registers, cost, logical, lc.parts, depth, ft, None, 0.0)
+    est = Estimate(point, options, registers, cost, logical, parts, depth, ft, None, 0.0)
     phys = None
     if options.physical:
         phys = physical_estimate(est.logical_counts, options.qubit_model, options.qec_scheme, options.error_budget)
     return Estimate(
-        point, options, est.registers, cost, logical, lc.parts, depth, ft, phys, time.perf_counter() - start
+        point, options, est.registers, cost, logical, parts, depth, ft, phys, time.perf_counter() - start
     )

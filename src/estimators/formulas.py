@@ -2,39 +2,32 @@
 
 Symbols: ``rows``, ``cols`` (>= 2), ``robots`` (1..4, :func:`gridcover.presets.default_scenario`) and ``p`` (>= 1).
 Every expression equals the exact count of
-``lower(qaoa_circuit(default_scenario(rows, cols, robots), p, phase="whole-space"))``: the mixer part is a sum over
-partial-mixer gadget kinds, the phase part counts the Ising Hamiltonian's terms. The default phase separator
-(``feasible``: arithmetic on path lengths, visit bits, chosen per term group) has no closed form here, so the
-formulas are restricted to the whole-space form; ``qcpp estimate`` always sums the gadgets actually compiled
-(``tests/estimators/formulas_test.py`` checks every quantity on every grid from 2x2 to 8x8, 1-4 robots, p = 1,
-and p = 2, 3 on a subset). Depth and two-qubit depth have no closed form here: ASAP layering of the phase
-separator and of the chain of partial mixers (which share the ``logic``/``work`` ancillas) does not decompose
-into per-part sums, so only the exact counter (:mod:`estimators.counts`) gives them.
+``lower(qaoa_circuit(default_scenario(rows, cols, robots), p, phase="whole-space"))``, and is the call graph's own
+counting (the one every estimate sums, :meth:`circuitgen.qaoa.QaoaPlan.call_graph`) run with symbolic sides, as
+Qualtran's ``build_call_graph`` returns ``{And(): n - 1}``: nothing here describes the circuit a second time.
+The default phase separator (``feasible``: arithmetic on path lengths, visit bits, chosen per term group) costs
+bit lengths of path-length sums, which have no polynomial form, so the formulas are restricted to the whole-space
+form; ``qcpp estimate`` always sums the gadgets actually compiled (``tests/estimators/formulas_test.py`` checks
+every quantity on every grid from 2x2 to 8x8, 1-4 robots, p = 1, and p = 2, 3 on a subset). Depth and
+two-qubit depth have no closed form here: ASAP layering of the phase separator and of the chain of partial
+mixers (which share the ``logic``/``work`` ancillas) does not decompose into per-part sums, so only the exact
+counter (:mod:`estimators.counts`) gives them.
 
-How the formulas are derived (see ``docs/resource-estimates.md`` for the full derivation):
+How the counting runs symbolically (see ``docs/resource-estimates.md``):
 
-* ``V = rows (cols-1) + cols (rows-1)`` edges per robot; data qubits ``robots V``.
+* A side of 2, 3 or 4 nodes is its own case; a side of ``>= 5`` nodes is read from a representative side of 6
+  whose classes (first, last, between) are those of every longer side, the count of the "between" class being
+  ``rows - 2`` (nodes), ``rows - 3`` (consecutive pairs) and so on instead of a number.
+* Phase separator (:func:`phase_terms`): :func:`circuitgen.phase_classes.ising_count` counts the nonzero Ising
+  coefficients by classes of nodes (degree, degree target) and edges (the classes of their ends), the edges at
+  the robots' endpoints moved to their own classes; one RZ per nonzero ``h``, one RZZ per nonzero ``J``
+  (:func:`circuitgen.gadgets.phase_ising.ising_cost`).
+* Mixer (:func:`mixer_terms`): :func:`circuitgen.mixer_classes.mixer_part` lists the partial mixers' rotations,
+  the junctions between consecutive partial mixers (:mod:`circuitgen.gadgets.junction`) and the open ends by
+  classes of plaquettes (their corners' local pictures, :class:`gridcover.sbf.LocalPicture`).
+* Robots: the layer of ``default_scenario(R, C, k)`` for ``k = 1..4``, written with indicators of
+  ``robots >= k`` (:func:`_case_layer`); the cases joined in one Piecewise (:func:`_layer`).
 * Initial state: one X per edge of each robot's initial path, ``robots (rows + cols - 2)``.
-* Phase separator: one RZ per qubit (no linear coefficient vanishes with the default objective) and one RZZ
-  (lowered: ``cx, rz, cx``) per nonzero ZZ coefficient. With ``P`` = number of pairs of edges sharing a node,
-  the ZZ coefficient of ``x_{r,e} x_{s,f}`` is ``alpha1 * c2 part + alpha2 * c3 part``: within one robot it is
-  nonzero for every pair when ``robots >= 2`` (c2 couples all edges of a robot) and only for the ``P`` pairs
-  sharing a node when ``robots = 1`` (c2 vanishes); between consecutive robots c2 gives ``-2 d d`` and c3
-  gives ``+2`` for edges sharing a node and ``+4`` for the same edge, so ``V^2 - 2P`` pairs remain (the ``2P``
-  ordered pairs sharing a node cancel exactly); between non-consecutive robots only c3 acts: ``V + 2P``.
-* Mixer: each (robot, plaquette) partial mixer's logic network is fixed by its corners' classes: an endpoint
-  of that robot (E, always a grid corner), an interior node (B: may be busy, two outer edges) or neither (N:
-  grid corner that is not an endpoint, or boundary node). The class of each corner depends only on whether
-  the plaquette's row index is first / middle / last (or the only one, for 2 rows), likewise its column,
-  and on the robot's diagonal (top-left/bottom-right for robots 0 and 3, top-right/bottom-left for robots 1
-  and 2). Consecutive partial mixers are fused at their boundary (:mod:`circuitgen.gadgets.junction`): each
-  junction saves what cancels between the uncompute of one and the compute of the next, which depends on the
-  two partial mixers and on where the second lies (horizontal neighbour; first plaquette of the next row,
-  which shares edges when ``cols <= 4``; first plaquette of the next robot). So one layer's mixer is
-  the call graph's own counting (:func:`circuitgen.mixer_classes.mixer_part`: rotations, junctions and the
-  open ends by class) run with symbolic sides, counts ``1`` and ``rows - 3`` (plaquettes) or ``rows - 4``
-  (consecutive pairs) for the middle ones: a polynomial in each case of sides 2, 3, 4 or >= 5 nodes
-  (:func:`mixer_terms`, from ``default_scenario(R, C, k)``, ``k = 1..4``), not a description of its own.
 * Ancillas: ``logic`` = the largest network (6 temporaries once some plaquette has four interior corners,
   i.e. rows, cols >= 4), ``work`` = largest multi-controlled X minus 2.
 
@@ -54,21 +47,17 @@ from functools import lru_cache
 
 import sympy as sp
 
-from circuitgen.angles import Angle
 from circuitgen.cost import Cost
-from circuitgen.gadgets.partial_mixer import mixer_work_need, partial_mixer
-from circuitgen.mixer_classes import mixer_part
+from circuitgen.gadgets.phase_ising import ising_cost
+from circuitgen.mixer_classes import MixerPart, mixer_part
+from circuitgen.phase_classes import ising_count
 from gridcover.presets import default_scenario
-from gridcover.sbf import LocalPicture
 
 __all__ = [
     "FORMULA_DOMAIN",
     "GATE_NAMES",
-    "P_EXPR",
     "QUANTITIES",
     "V_EXPR",
-    "MixerType",
-    "P",
     "Term",
     "V",
     "cols",
@@ -76,7 +65,7 @@ __all__ = [
     "formula_table",
     "mixer_terms",
     "p",
-    "partial_mixer_types",
+    "phase_terms",
     "robots",
     "rows",
 ]
@@ -112,79 +101,6 @@ QUANTITIES: tuple[str, ...] = (
 )
 """Every published quantity (keys of :func:`formula_table`)."""
 
-# Row (or column) classes of a plaquette's first index: the representative grid size and index, and the count.
-_SMALL = (("only", 2, 0),)  # 2 rows: one plaquette row, both of its node rows on the boundary
-_LARGE = (("first", 4, 0), ("middle", 4, 1), ("last", 4, 2))
-_ROBOT_CLASSES = (("main", 0), ("anti", 1))  # robots 0, 3: TL <-> BR; robots 1, 2: TR <-> BL
-
-
-@dataclass(frozen=True)
-class MixerType:
-    """One partial-mixer type and its lowered cost.
-
-    Attributes:
-        key: corner classes of ``a, b, c, d`` (``E`` endpoint, ``B`` interior, ``N`` neither), plus ``D`` when
-            the robot's start and goal are diagonal corners of the plaquette.
-        robot_class: ``main`` (start/goal top-left/bottom-right) or ``anti`` (top-right/bottom-left).
-        row_class, col_class: ``only``, ``first``, ``middle`` or ``last``.
-        ops: lowered gate counts of one partial mixer of this type, compiled alone.
-        toffoli: Toffolis after multi-controlled-X lowering (before the Clifford+T step).
-        logic_qubits: temporaries of its logic network.
-        work_qubits: work ancillas its largest multi-controlled X needs.
-    """
-
-    key: str
-    robot_class: str
-    row_class: str
-    col_class: str
-    ops: Mapping[str, int]
-    toffoli: int
-    logic_qubits: int
-    work_qubits: int
-
-
-@lru_cache(maxsize=1)
-def partial_mixer_types() -> tuple[MixerType, ...]:
-    """Cost of every (robot class, row class, column class) partial mixer, from one representative each.
-
-    The representative is plaquette ``(i, j)`` of ``default_scenario(R, C, 2)`` with ``R = 2, i = 0`` for the
-    ``only`` class and ``R = 4, i = 0, 1, 2`` for ``first, middle, last`` (same for columns): its corners have
-    exactly the classes of every plaquette of that class in every grid. Its cost is the partial-mixer gadget's
-    own (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`, default ``exact`` rule and ``nisq`` target),
-    computed from its kind without emitting a gate.
-
-    Returns:
-        All types (2 robot classes x 16 row/column class pairs).
-
-    >>> t = {(m.robot_class, m.row_class, m.col_class): m for m in partial_mixer_types()}
-    >>> t["main", "middle", "middle"].key, t["main", "middle", "middle"].toffoli
-    ('BBBB', 16)
-    """
-    out = []
-    beta = Angle.symbol("beta_0")
-    for rc, robot in _ROBOT_CLASSES:
-        for row_classes in (_SMALL, _LARGE):
-            for col_classes in (_SMALL, _LARGE):
-                for rcls, nr, i in row_classes:
-                    for ccls, nc, j in col_classes:
-                        s = default_scenario(nr, nc, 2)
-                        plaq = next(q for q in s.grid.plaquettes if q.corners[0] == (i, j))
-                        out.append(_mixer_type(s, robot, plaq, rc, rcls, ccls, beta))
-    return tuple(out)
-
-
-def _mixer_type(s, robot, plaq, rc, rcls, ccls, beta) -> MixerType:  # type: ignore[no-untyped-def]
-    rb = s.robots[robot]
-    key = LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in plaq.outer_edges]).label
-    gadget = partial_mixer(s, robot, plaq, beta, s.num_variables)
-    if gadget is None:  # the flip is never allowed: nothing is emitted
-        return MixerType(key, rc, rcls, ccls, dict.fromkeys(GATE_NAMES, 0), 0, 0, 0)
-    ops, logical = gadget.cost(), gadget.logical_cost()
-    toffoli = logical["and"] + logical["and_dg"] + logical["ccx"]
-    work = mixer_work_need([gadget])
-    return MixerType(key, rc, rcls, ccls, {g: ops[g] for g in GATE_NAMES}, toffoli, gadget.num_temps, work)
-
-
 @dataclass(frozen=True)
 class Term:
     """Gate counts of one gadget kind of the mixer (a rotation, a junction, or a partial mixer).
@@ -192,15 +108,17 @@ class Term:
     Attributes:
         ops: lowered gate counts.
         toffoli: ANDs, their uncomputes and Toffolis (logical basis).
+        zz: Ising couplings (``RZZ``) it holds.
     """
 
     ops: Mapping[str, int]
     toffoli: int
+    zz: int = 0
 
     @classmethod
-    def of(cls, cost: Cost, logical: Cost) -> Term:
+    def of(cls, cost: Cost, logical: Cost, zz: int = 0) -> Term:
         """From a lowered and a logical cost."""
-        return cls({g: cost[g] for g in GATE_NAMES}, logical["and"] + logical["and_dg"] + logical["ccx"])
+        return cls({g: cost[g] for g in GATE_NAMES}, logical["and"] + logical["and_dg"] + logical["ccx"], zz)
 
 
 Metric = Callable[[Term], int]
@@ -234,14 +152,40 @@ def mixer_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
     return tuple((sp.sympify(n), Term.of(k.cost(), k.logical_cost())) for k, n in part.kinds)
 
 
-def _case_mixer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
-    """Every robot's mixer (one layer) in one grid case, from the call graphs of 1..4 robots: the first robot's
-    layer plus what each further robot adds (its partial mixers and the junction joining it), written with
-    indicators of ``robots >= k`` (one multiple of ``robots - 1`` when every further robot adds the same)."""
+@lru_cache(maxsize=64)
+def phase_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
+    """One layer's whole-space phase separator of ``default_scenario(R, C, num_robots)`` as the call graph counts
+    it (:func:`circuitgen.phase_classes.ising_count`: nonzero Ising terms by classes of nodes and edges), the
+    counts symbolic in ``rows``, ``cols`` where a case stands for sides of ``>= 5`` nodes; the terms priced by
+    :func:`circuitgen.gadgets.phase_ising.ising_cost` (one rotation, one coupling).
+
+    Args:
+        rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
+        num_robots: ``1`` to ``4`` (default placement).
+
+    Returns:
+        ``(count, term)`` pairs: the rotations and the couplings.
+    """
+    nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
+    sizes = (rows if rows_case == 5 else sp.Integer(nr), cols if cols_case == 5 else sp.Integer(nc))
+    count = ising_count(default_scenario(nr, nc, num_robots), sizes=sizes)
+    assert count is not None  # an open grid, uniform lengths, distinct endpoints
+    rotation, coupling = ising_cost(1, 0), ising_cost(0, 1)
+    return (
+        (sp.sympify(count.linear), Term.of(rotation, rotation)),
+        (sp.sympify(count.couplings), Term.of(coupling, coupling, zz=1)),
+    )
+
+
+def _case_layer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
+    """One layer (phase separator and mixer, every robot) in one grid case, from the call graphs of 1..4 robots:
+    the first robot's layer plus what each further robot adds (its partial mixers and the junction joining it,
+    its rotations and couplings), written with indicators of ``robots >= k`` (one multiple of ``robots - 1``
+    when every further robot adds the same)."""
     f = []
     for k in (1, 2, 3, 4):
         by_count: dict[sp.Expr, int] = {}  # few distinct counts: add the numbers first, multiply once
-        for n, t in mixer_terms(rows_case, cols_case, k):
+        for n, t in (*mixer_terms(rows_case, cols_case, k), *phase_terms(rows_case, cols_case, k)):
             by_count[n] = by_count.get(n, 0) + metric(t)
         f.append(sp.expand(sum((n * v for n, v in by_count.items()), sp.Integer(0))))
     g = [f[0], f[1] - f[0], f[2] - f[1], f[3] - f[2]]
@@ -262,18 +206,18 @@ def _case_mixer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
     return sp.factor(out.subs(subs)) if subs else out
 
 
-def _all_robots_mixer(metric: Metric) -> sp.Expr:
-    """Every robot's mixer (one layer) as a Piecewise over the grid cases (sides of 2, 3, 4 or >= 5 nodes),
-    a case kept only where the pieces after it would give another value."""
-    general = _case_mixer(metric, 5, 5)
-    by_rows = {a: _case_mixer(metric, a, 5) for a in _CASES[:-1]}
-    by_cols = {b: _case_mixer(metric, 5, b) for b in _CASES[:-1]}
+def _layer(metric: Metric) -> sp.Expr:
+    """One layer (phase separator and mixer, every robot) as a Piecewise over the grid cases (sides of 2, 3, 4 or
+    >= 5 nodes), a case kept only where the pieces after it would give another value."""
+    general = _case_layer(metric, 5, 5)
+    by_rows = {a: _case_layer(metric, a, 5) for a in _CASES[:-1]}
+    by_cols = {b: _case_layer(metric, 5, b) for b in _CASES[:-1]}
     kept_rows = {a: e for a, e in by_rows.items() if sp.expand(e - general.subs(rows, a)) != 0}
     kept_cols = {b: e for b, e in by_cols.items() if sp.expand(e - general.subs(cols, b)) != 0}
     pieces = []
     for a in _CASES[:-1]:
         for b in _CASES[:-1]:
-            e = _case_mixer(metric, a, b)
+            e = _case_layer(metric, a, b)
             fallback = (
                 kept_rows[a].subs(cols, b)
                 if a in kept_rows
@@ -288,18 +232,12 @@ def _all_robots_mixer(metric: Metric) -> sp.Expr:
     return sp.Piecewise(*pieces, (general, True))
 
 
-_SIZE_CLASSES = {2: {"only"}, 3: {"first", "last"}, 4: {"first", "middle", "last"}}  # 4 stands for >= 4
-
-
-def _widest(*metrics: Callable[[MixerType], int]) -> sp.Expr:
-    """Largest value over the partial mixers present (both robot classes), as a Piecewise in the smaller and the
-    larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``, ``3`` or ``>= 4`` (the sum of the
-    maxima when several metrics are given). The value is checked to be symmetric in rows and cols."""
-    values: dict[tuple[int, int], int] = {}
-    for nr, rset in _SIZE_CLASSES.items():
-        for nc, cset in _SIZE_CLASSES.items():
-            present = [m for m in partial_mixer_types() if m.row_class in rset and m.col_class in cset]
-            values[nr, nc] = sum(max((f(m) for m in present), default=0) for f in metrics)
+def _widest(width: Callable[[MixerPart], int]) -> sp.Expr:
+    """A register width of the call graph (the largest need over the mixer's kinds, :func:`mixer_part`) as a
+    Piecewise in the smaller and the larger side ``lo = Min(rows, cols)``, ``hi = Max(rows, cols)`` each ``2``,
+    ``3`` or ``>= 4`` (read from a side of 4, where every class of plaquette occurs; both diagonals' robots). The
+    value is checked to be symmetric in rows and cols."""
+    values = {(a, b): width(mixer_part(default_scenario(a, b, 2))) for a in (2, 3, 4) for b in (2, 3, 4)}
     if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
         raise AssertionError("ancilla widths are not symmetric in rows and cols")
     lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
@@ -313,12 +251,10 @@ def _widest(*metrics: Callable[[MixerType], int]) -> sp.Expr:
     return sp.Piecewise(*pieces, (last, True), evaluate=False)
 
 
-V, P = sp.symbols("V P", integer=True, positive=True)
-"""Abbreviations of the structured formulas: edges per robot, and pairs of edges sharing a node."""
+V = sp.Symbol("V", integer=True, positive=True)
+"""Abbreviation of the structured formulas: edges per robot."""
 V_EXPR = 2 * rows * cols - rows - cols
 """``V = rows (cols - 1) + cols (rows - 1)``."""
-P_EXPR = 6 * rows * cols - 6 * rows - 6 * cols + 4
-"""``P = sum over nodes of C(deg, 2) = 4*1 + 3*2((rows-2) + (cols-2)) + 6 (rows-2)(cols-2)``."""
 
 
 @lru_cache(maxsize=2)
@@ -326,69 +262,47 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     """Every quantity of :data:`QUANTITIES` as a sympy expression in ``rows, cols, robots, p``.
 
     Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, the whole-space phase
-    separator, default objective and
-    the default placement. Gate counts are for the lowered circuit (basis ``cx x h rz t tdg s sdg``, peephole
-    on); ``toffoli`` counts Toffolis after multi-controlled-X lowering; ``rotations`` counts arbitrary-angle
-    RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate count is written as
-    ``initial state + p * (phase separator + mixer)``, the mixer summed over robots minus the junctions between
-    consecutive partial mixers (:func:`mixer_terms`).
+    separator, default objective and the default placement. Gate counts are for the lowered circuit (basis
+    ``cx x h rz t tdg s sdg``, peephole on); ``toffoli`` counts Toffolis after multi-controlled-X lowering;
+    ``rotations`` counts arbitrary-angle RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate
+    count is ``initial state + p * layer``, the layer the call graph's own counting run with symbolic sides: the
+    phase separator's rotations and couplings by classes of nodes and edges (:func:`phase_terms`), the mixer's
+    rotations and junctions by classes of plaquettes (:func:`mixer_terms`).
 
     Args:
-        structured: keep the abbreviations :data:`V` and :data:`P` (see :data:`V_EXPR`, :data:`P_EXPR`)
-            instead of substituting them.
+        structured: write the data qubits with the abbreviation :data:`V` (see :data:`V_EXPR`).
 
     Returns:
         name -> expression.
     """
-    zz = sp.Piecewise(
-        (P, sp.Eq(robots, 1)),
-        (
-            robots * V * (V - 1) / 2  # within each robot: every pair (c2 couples all its edges)
-            + (robots - 1) * (V**2 - 2 * P)  # consecutive robots: edges sharing a node cancel
-            + (robots - 1) * (robots - 2) * (V + 2 * P) / 2,  # other pairs of robots: c3 only
-            True,
-        ),
-    )
-    init_x = robots * (rows + cols - 2)
-    mixer = {g: _all_robots_mixer(lambda m, g=g: m.ops[g]) for g in GATE_NAMES}
+    init_x = robots * (rows + cols - 2)  # the call graph's initial state: one X per edge of each initial path
 
-    def mixer_of(gate_names: tuple[str, ...]) -> sp.Expr:
-        return _all_robots_mixer(lambda m: sum(m.ops[g] for g in gate_names))
+    def layer(gate_names: tuple[str, ...]) -> sp.Expr:
+        return _layer(lambda t: sum(t.ops[g] for g in gate_names))
 
-    gate: dict[str, sp.Expr] = {}
-    for g in GATE_NAMES:
-        if g == "cx":
-            gate[g] = p * (2 * zz + mixer[g])
-        elif g == "rz":
-            gate[g] = p * (robots * V + zz + mixer[g])
-        elif g == "x":
-            gate[g] = init_x + p * mixer[g]
-        else:
-            gate[g] = p * mixer[g]
-
-    logic = _widest(lambda m: m.logic_qubits)
-    work = _widest(lambda m: m.work_qubits)
-    ancillas = _widest(lambda m: m.logic_qubits, lambda m: m.work_qubits)
+    gate = {g: (init_x if g == "x" else 0) + p * layer((g,)) for g in GATE_NAMES}
+    logic = _widest(lambda m: m.logic_width)
+    work = _widest(lambda m: m.work_need)
+    ancillas = _widest(lambda m: m.logic_width + m.work_need)
     singles = tuple(g for g in GATE_NAMES if g != "cx")
+    data = robots * V if structured else robots * V_EXPR
     table: dict[str, sp.Expr] = {
-        "data_qubits": robots * V,
+        "data_qubits": data,
         "logic_qubits": logic,
         "work_qubits": work,
         "ancillas": ancillas,
-        "qubits": robots * V + ancillas,
-        "gates": init_x + p * (robots * V + 3 * zz + mixer_of(GATE_NAMES)),
+        "qubits": data + ancillas,
+        "gates": init_x + p * layer(GATE_NAMES),
         "cx": gate["cx"],
         "two_qubit": gate["cx"],
-        "single_qubit": init_x + p * (robots * V + zz + mixer_of(singles)),
-        "t_count": p * mixer_of(("t", "tdg")),
-        "toffoli": p * _all_robots_mixer(lambda m: m.toffoli),
+        "single_qubit": init_x + p * layer(singles),
+        "t_count": p * layer(("t", "tdg")),
+        "toffoli": p * _layer(lambda t: t.toffoli),
         "rotations": gate["rz"],
-        "nonzero_zz": zz,
+        "nonzero_zz": _layer(lambda t: t.zz),
         "partial_mixers": p * robots * (rows - 1) * (cols - 1),
     }
     table.update({f"gate_{g}": gate[g] for g in GATE_NAMES})
-    if not structured:
-        table = {k: sp.sympify(e).subs({V: V_EXPR, P: P_EXPR}) for k, e in table.items()}
     return {name: table[name] for name in QUANTITIES}
 
 

@@ -151,7 +151,7 @@ def _row(est: Estimate, compare_paper: bool, doubling: Doubling, device: str | N
 def formula_report(fmt: Format = "table") -> str:
     """The formulas of :mod:`estimators.formulas` as text.
 
-    ``table``: pretty-printed structured forms (with ``V`` and ``P``); ``md``: LaTeX in Markdown; ``csv``:
+    ``table``: pretty-printed structured forms (data qubits with ``V``); ``md``: LaTeX in Markdown; ``csv``:
     ``name,expression`` (explicit forms); ``json``: ``{"domain", "abbreviations", "formulas", "structured"}``.
 
     Args:
@@ -165,10 +165,10 @@ def formula_report(fmt: Format = "table") -> str:
     """
     import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
 
-    from .formulas import FORMULA_DOMAIN, P_EXPR, QUANTITIES, V_EXPR, formula_table
+    from .formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
 
     explicit, structured = formula_table(), formula_table(structured=True)
-    abbrev = {"V": sp.sstr(V_EXPR), "P": sp.sstr(P_EXPR)}
+    abbrev = {"V": sp.sstr(V_EXPR)}
     if fmt in ("json", "jsonl"):
         data = {
             "domain": FORMULA_DOMAIN,
@@ -181,12 +181,11 @@ def formula_report(fmt: Format = "table") -> str:
         lines = ["name,expression"] + [f'{k},"{sp.sstr(explicit[k])}"' for k in QUANTITIES]
         return "\n".join(lines) + "\n"
     if fmt == "md":
-        out = [f"Domain: {FORMULA_DOMAIN}.", "", f"$V = {sp.latex(V_EXPR)}$, $P = {sp.latex(P_EXPR)}$", ""]
+        out = [f"Domain: {FORMULA_DOMAIN}.", "", f"$V = {sp.latex(V_EXPR)}$", ""]
         out += [f"* `{k}`: ${sp.latex(structured[k])}$" for k in QUANTITIES]
         return "\n".join(out) + "\n"
     if fmt == "table":
         out = [f"Domain: {FORMULA_DOMAIN}.", f"where V = {abbrev['V']} (edges per robot)"]
-        out.append(f"      P = {abbrev['P']} (pairs of edges sharing a node)")
         for k in QUANTITIES:
             out += ["", f"{k} ="]
             out += ["    " + line for line in sp.pretty(structured[k], use_unicode=True, wrap_line=False).splitlines()]

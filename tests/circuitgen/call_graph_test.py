@@ -22,6 +22,7 @@ OPTIONS = [
     PlanOptions(target="ft"),
     PlanOptions(rule="paper"),
     PlanOptions(fuse=False),
+    PlanOptions(phase="whole-space"),
 ]
 
 
@@ -79,6 +80,7 @@ def test_interior_endpoints_and_p0() -> None:
 def test_classes_list_the_planned_kinds_for_any_endpoints(s: Scenario, target: str) -> None:
     """Endpoints anywhere (interior, neighbouring, sharing rows): the junction pairs next to them are counted right."""
     _check(s, PlanOptions(target=target))  # type: ignore[arg-type]
+    _check(s, PlanOptions(target=target, phase="whole-space"))  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("options", [PlanOptions(), PlanOptions(phase="whole-space"), PlanOptions(rule="paper")])

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from circuitgen.call_graph import Deferred
@@ -13,20 +13,22 @@ from circuitgen.circuit import Circuit, Section
 from circuitgen.cost import Cost
 from circuitgen.lowering import lower
 from circuitgen.phase import phase_plan
-from circuitgen.phase_classes import PhaseLayer, phase_layer
+from circuitgen.phase_classes import PhaseLayer, ising_count, phase_layer
 from gridcover.grid import Grid
+from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.presets import default_scenario, max_default_robots
 from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
 
 TARGETS = ("nisq", "ft")
+ALPHAS = [(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (0.0, 1.0, 1.0), (1.0, 1.0, 0.25)]
 
 
-def _same_as_plan(s: Scenario, target: str) -> bool:
+def _same_as_plan(s: Scenario, target: str, optimize: str = "cx", budget: int | None = None) -> bool:
     """Whether the layer answered (``False``: it left the scenario to the plan); asserts it equals the plan."""
-    layer = phase_layer(s, target)
+    layer = phase_layer(s, target, optimize=optimize, ancilla_budget=budget)
     if layer is None:
         return False
-    plan = phase_plan(s, target=target)  # type: ignore[arg-type]
+    plan = phase_plan(s, target=target, optimize=optimize, ancilla_budget=budget)  # type: ignore[arg-type]
     assert layer.cost() == plan.cost()
     assert layer.logical_cost() == plan.logical_cost()
     assert layer.num_ancillas == plan.num_ancillas
@@ -82,14 +84,85 @@ def test_random_endpoints_and_objectives_equal_the_plan(data: st.DataObject) -> 
         _same_as_plan(s, target)
 
 
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_random_scenarios_and_plan_options_equal_the_plan(data: st.DataObject) -> None:
+    """The classes and the plan ask the same per-group decision (circuitgen.phase_choice) under every option a
+    user can pass: a divergence in the choice of any class (visits, Hamming-weight merging, balance variant,
+    ancilla budget) shows as a different cost, ancilla count or kind multiset."""
+    rows = data.draw(st.integers(3, 9), label="rows")
+    cols = data.draw(st.integers(3, 9), label="cols")
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    k = data.draw(st.integers(1, 4), label="robots")
+    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
+    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
+    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    if not robots:
+        return
+    objective = Objective(
+        alpha=data.draw(st.sampled_from([(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (1.0, 0.0, 1.0)])),
+        balance=data.draw(st.sampled_from(["chain", "all-pairs"])),
+    )
+    s = Scenario(Grid(rows, cols), tuple(robots), objective=objective)
+    target = data.draw(st.sampled_from(TARGETS), label="target")
+    optimize = data.draw(st.sampled_from(["cx", "depth"]), label="optimize")
+    budget = data.draw(st.sampled_from([None, 0, 1, 2, 4, 8, 20, 60, 400]), label="budget")
+    event(f"classes answered: {_same_as_plan(s, target, optimize, budget)}")
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_budgets_and_depth_are_counted_where_the_choice_is_forced(target: str) -> None:
+    big = default_scenario(10, 10, 3)
+    need = phase_plan(big, target=target).num_ancillas  # type: ignore[arg-type]
+    assert _same_as_plan(big, target, budget=need)  # the budget admits the cheapest plan: the classes answer
+    assert _same_as_plan(big, target, budget=10 * need)
+    assert not _same_as_plan(big, target, budget=50)  # the balance gets a smaller variant: the plan decides
+    one = default_scenario(7, 6, 1)  # no visit group, no balance: the depth plan is the rotations
+    assert _same_as_plan(one, target, optimize="depth")
+    assert _same_as_plan(one, target, budget=0)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_ising_terms_by_classes_equal_the_hamiltonians(data: st.DataObject) -> None:
+    """The whole-space phase separator counted by classes of nodes and edges (what the closed forms run with
+    symbolic sides) has exactly the nonzero terms of the Ising Hamiltonian, for any endpoints and objective."""
+    rows = data.draw(st.integers(2, 7), label="rows")
+    cols = data.draw(st.integers(2, 7), label="cols")
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    k = data.draw(st.integers(1, min(4, len(nodes) // 2)), label="robots")
+    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
+    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
+    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    if not robots:
+        return
+    objective = Objective(
+        alpha=data.draw(st.sampled_from(ALPHAS), label="alpha"),
+        balance=data.draw(st.sampled_from(["chain", "all-pairs"])),
+        degree_target=data.draw(st.sampled_from(["exact", "paper"])),
+        edge_length=data.draw(st.sampled_from([1.0, 2.5])),
+        free_weight=data.draw(st.sampled_from([-1.0, 0.0, 3.0])),
+    )
+    s = Scenario(Grid(rows, cols), tuple(robots), objective=objective)
+    count, h = ising_count(s), ising_hamiltonian(s)
+    assert count is not None
+    assert (count.linear, count.couplings) == (len(list(h.linear_terms(1e-12))), h.num_quadratic_terms(1e-12))
+    layer = phase_layer(s, representation="whole-space")
+    plan = phase_plan(s, representation="whole-space")
+    assert layer is not None and layer.cost() == plan.cost()
+    assert [k.key for k, _ in layer.kinds()] == [g.kind for g in plan.gadgets("gamma")]
+
+
 def test_left_to_the_plan() -> None:
     s = default_scenario(10, 10, 3)
     assert isinstance(phase_layer(s), PhaseLayer)
-    for kwargs in ({"representation": "whole-space"}, {"optimize": "depth"}, {"ancilla_budget": 50}):
+    assert isinstance(phase_layer(s, representation="whole-space"), PhaseLayer)
+    for kwargs in ({"optimize": "depth"}, {"ancilla_budget": 50}):
         assert phase_layer(s, **kwargs) is None  # type: ignore[arg-type]
     obstacles = scenario_from_dict({"grid": {"rows": 6, "cols": 6, "obstacles": [[2, 2]]},
                                     "robots": [{"start": [0, 0], "goal": [5, 5]}]})  # fmt: skip
     assert phase_layer(obstacles) is None
+    assert phase_layer(obstacles, representation="whole-space") is None
 
 
 @pytest.mark.heavy

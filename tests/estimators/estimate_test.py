@@ -46,7 +46,7 @@ def test_p_layers_cost_state_preparation_plus_p_times_a_layer() -> None:
     for p in (0, 1, 3):
         circ = qaoa_circuit(s, p)
         assert lc.cost(p) == Cost.count(lower(circ).gates)
-        assert lc.logical_cost(p) == Cost.count(lower(circ, LOGICAL_BASIS).gates)
+        assert lc.cost(p, logical=True) == Cost.count(lower(circ, LOGICAL_BASIS).gates)
         assert dict(registers_for(s, p)) == {r.name: r.size for r in lower(circ).registers}
 
 

@@ -1,10 +1,12 @@
 """Closed-form formulas equal the exact counts, for every published quantity.
 
 The formulas describe the circuit with the whole-space (Ising) phase separator (``--phase whole-space``); the
-default feasible-subspace phase separator has no closed form here. Every grid from 2x2 to 8x8 (rectangles
-included) with 1 to 4 robots at p = 1, and p = 2, 3 on a subset. The exact numbers are the gadget-summed counts
-of :func:`estimators.estimate.estimate_point` (themselves equal to the counts of the compiled, lowered circuit:
-``tests/estimators/estimate_test.py``), the Hamiltonian and the registers, never the formulas.
+default feasible-subspace phase separator has no closed form here. They are the call graph's counting run with
+symbolic sides; the phase separator's symbolic term counts are also checked against the Hamiltonian directly.
+Every grid from 2x2 to 8x8 (rectangles included) with 1 to 4 robots at p = 1, and p = 2, 3 on a subset. The
+exact numbers are the gadget-summed counts of :func:`estimators.estimate.estimate_point` (themselves equal to
+the counts of the compiled, lowered circuit: ``tests/estimators/estimate_test.py``), the Hamiltonian and the
+registers, never the formulas.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from estimators.estimate import Estimate, EstimateOptions, estimate_point
 from estimators.formulas import GATE_NAMES, QUANTITIES, evaluate, formula_table
 from estimators.sweep import grid_points
 from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.presets import default_scenario
+from gridcover.presets import default_scenario, max_default_robots
 
 GRIDS = [(r, c) for r in range(2, 9) for c in range(2, 9)]
 SUBSET = [(2, 2), (2, 5), (3, 3), (4, 6), (5, 4), (6, 2)]
@@ -81,7 +83,7 @@ def test_formulas_equal_exact_counts(results: list[Estimate]) -> None:
 
 def test_structured_and_explicit_forms_agree() -> None:
     explicit, structured = formula_table(), formula_table(structured=True)
-    subs = {formulas.V: formulas.V_EXPR, formulas.P: formulas.P_EXPR}
+    subs = {formulas.V: formulas.V_EXPR}
     for name in QUANTITIES:
         for point in [(2, 2, 1, 1), (3, 5, 2, 2), (6, 4, 4, 3), (9, 11, 3, 1)]:
             vals = dict(zip((formulas.rows, formulas.cols, formulas.robots, formulas.p), point))
@@ -94,14 +96,24 @@ def test_abbreviations_count_what_they_say() -> None:
     for r in range(2, 7):
         for c in range(2, 7):
             g = default_scenario(r, c, 1).grid
-            degrees = [0] * g.num_nodes
-            for u, v in g.edge_nodes:
-                degrees[u] += 1
-                degrees[v] += 1
-            pairs = sum(d * (d - 1) // 2 for d in degrees)
-            vals = {formulas.rows: r, formulas.cols: c}
-            assert formulas.V_EXPR.subs(vals) == g.num_edges
-            assert formulas.P_EXPR.subs(vals) == pairs
+            assert formulas.V_EXPR.subs({formulas.rows: r, formulas.cols: c}) == g.num_edges
+
+
+@pytest.mark.parametrize("rows_case, cols_case", [(2, 2), (2, 5), (3, 4), (5, 3), (4, 4), (5, 5)])
+def test_phase_terms_are_the_call_graphs_counting_run_symbolically(rows_case: int, cols_case: int) -> None:
+    """The symbolic counts of the phase separator's terms, evaluated, are the Hamiltonian's nonzero terms on
+    every grid of the case (sides of >= 5 nodes up to 9)."""
+    sides = {2: [2], 3: [3], 4: [4], 5: [5, 6, 7, 9]}
+    for k in (1, 2, 3, 4):
+        (lin, _), (zz, _) = formulas.phase_terms(rows_case, cols_case, k)
+        for r in sides[rows_case]:
+            for c in sides[cols_case]:
+                if k > max_default_robots(r, c):
+                    continue
+                h = ising_hamiltonian(default_scenario(r, c, k))
+                vals = {formulas.rows: r, formulas.cols: c}
+                assert lin.subs(vals) == len(list(h.linear_terms(1e-12))), (r, c, k)
+                assert zz.subs(vals) == h.num_quadratic_terms(1e-12), (r, c, k)
 
 
 def test_evaluate_rejects_points_outside_the_domain() -> None:

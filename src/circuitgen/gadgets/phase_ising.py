@@ -32,7 +32,7 @@ from circuitgen.angles import Angle
 from circuitgen.cost import Cost
 from circuitgen.gates import Gate, rz, rzz
 
-__all__ = ["COEFFICIENT_TOLERANCE", "IsingPhase", "ising_form"]
+__all__ = ["COEFFICIENT_TOLERANCE", "IsingPhase", "ising_cost", "ising_form"]
 
 #: Coefficients smaller than this (absolute) are zero: they only arise from float round-off.
 COEFFICIENT_TOLERANCE = 1e-12
@@ -75,6 +75,15 @@ def ising_form(
     return c0, h, J
 
 
+def ising_cost(linear: int, couplings: int) -> Cost:
+    """Lowered (and logical) cost of an :class:`IsingPhase` with these numbers of terms, by its kind.
+
+    >>> ising_cost(3, 1).to_dict()
+    {'cx': 2, 'rz': 4}
+    """
+    return Cost.of(cx=2 * couplings, rz=linear + couplings)
+
+
 @dataclass(frozen=True)
 class IsingPhase:
     """``exp(-i gamma (sum h_q Z_q + sum J_qp Z_q Z_p))`` as RZ then RZZ gates.
@@ -94,8 +103,8 @@ class IsingPhase:
         return ("ising", len(self.linear), len(self.couplings))
 
     def cost(self) -> Cost:
-        """2 CX and one rotation per coupling, one rotation per linear term."""
-        return Cost.of(cx=2 * len(self.couplings), rz=len(self.linear) + len(self.couplings))
+        """2 CX and one rotation per coupling, one rotation per linear term (:func:`ising_cost`)."""
+        return ising_cost(len(self.linear), len(self.couplings))
 
     def logical_cost(self) -> Cost:
         """The same (no AND in this construction)."""

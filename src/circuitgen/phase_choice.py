@@ -1,0 +1,214 @@
+"""Which construction each term group of the phase separator gets: one decision per group shape and options.
+
+The phase separator (:mod:`circuitgen.phase`) implements every term group of the feasible cost with the cheapest
+exact construction under the target's cost model (:func:`score`). The decision for a group depends only on its
+*shape* (a node's visitor sizes, how many couplings expanding it would add; how many equal rotations; a balance
+group's integrality, products and ancillas) and on the plan options, so it is made here, once, and asked by both
+places that need it:
+
+* :func:`circuitgen.phase.phase_plan`, which builds the gadgets term group by term group;
+* :func:`circuitgen.phase_classes.phase_layer`, which counts the same groups by classes of nodes without planning
+  them one by one (and asks the same question once per class).
+
+The choices:
+
+* :func:`visit_choice` -- a node that several robots can pass: visit bits, visit pairs (ANDs of visit bits, for
+  ``ft``), or couplings (its products of edge bits added to the couplings; ties go to the couplings: no ancilla);
+* :func:`hamming_choice` -- on the ``ft`` target, ``n >= 3`` equal-angle rotations of uncoupled qubits merged by
+  Hamming-weight phasing, or left as rotations;
+* :func:`sums_constructions` -- a balance (squared sums) group: which constructions the plan compares as whole
+  plans (its couplings interact with the visits' couplings, so this one is decided by building the plan for each
+  candidate; the classes answer only when arithmetic is the only candidate or provably wins).
+
+Example:
+    >>> c = visit_choice((4, 4, 4), 8.0, new_couplings=48, target="nisq", optimize="cx", budget=None)
+    >>> c.construction, c.costs["couplings"][0].cx, c.costs["visit bits"][0].cx
+    ('visit bits', 96, 42)
+    >>> visit_choice((2, 2), 8.0, 4, "nisq", "cx", None).construction   # one RZZ on the visit bits: 2 CX, not 8
+    'visit bits'
+    >>> visit_choice((2, 2), 8.0, 0, "nisq", "cx", None).construction   # its products merge with couplings
+    'couplings'
+    >>> hamming_choice(12, 0.5, "ft", "cx", None) is not None, hamming_choice(12, 0.5, "nisq", "cx", None)
+    (True, None)
+    >>> sums_constructions(True, 40_000, "cx", 3, {"arithmetic": 9, "registers": 5, "accumulator": 3}.__getitem__)
+    ('accumulator',)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Literal
+
+from .cost import Cost, Target
+from .gadgets.phase_sums import SumsPhase
+from .gadgets.phase_visits import VisitPhase, visit_ancillas
+from .options import Optimize
+
+__all__ = [
+    "EXACT_EXPANSION_LIMIT",
+    "ROTATION_T_COST",
+    "SUMS_VARIANTS",
+    "VisitChoice",
+    "coupling_cost",
+    "ft_t_count",
+    "hamming_choice",
+    "score",
+    "sums_constructions",
+    "visit_choice",
+]
+
+ROTATION_T_COST = 30
+"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
+Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
+the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
+
+EXACT_EXPANSION_LIMIT = 30_000
+"""A balance group with at most this many products is expanded to price its couplings exactly (products that
+merge with others' or cancel cost nothing); larger ones are priced at one coupling per product."""
+
+SUMS_VARIANTS: tuple[str, ...] = ("arithmetic", "registers", "accumulator")
+"""A balance group's arithmetic constructions, fewest CX first (each needs fewer ancillas than the one before)."""
+
+VisitName = Literal["visit bits", "visit pairs", "couplings"]
+
+
+def ft_t_count(logical: Cost) -> int:
+    """T count of a logical cost in the ``ft`` model: AND 4, its uncompute 0, Toffoli 7, T 1, rotation
+    :data:`ROTATION_T_COST`.
+
+    >>> ft_t_count(Cost.of({"and": 2, "and_dg": 2, "rz": 1}))
+    38
+    """
+    return 4 * logical["and"] + 7 * logical["ccx"] + logical.t + ROTATION_T_COST * logical.rotations
+
+
+def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
+    """Sort key of a construction under the target's cost model (smaller is cheaper).
+
+    >>> score(Cost.of(cx=2, rz=1), Cost.of(cx=2, rz=1), "ft")
+    (30, 2, 3)
+    """
+    if target == "ft":
+        return (ft_t_count(logical), cost.cx, cost.total)
+    return (cost.cx, cost.rotations, cost.total)
+
+
+def coupling_cost(products: int) -> Cost:
+    """Estimated price of ``products`` extra couplings: one RZZ each (their linear parts land on qubits that
+    carry an RZ anyway).
+
+    >>> coupling_cost(3).to_dict()
+    {'cx': 6, 'rz': 3}
+    """
+    return Cost.of(cx=2 * products, rz=products)
+
+
+@dataclass(frozen=True)
+class VisitChoice:
+    """The construction of one node's visit term.
+
+    Attributes:
+        construction: ``visit bits``, ``visit pairs`` or ``couplings``.
+        gadget: the chosen :class:`~circuitgen.gadgets.phase_visits.VisitPhase` on abstract qubits (visitor
+            ``a``'s edges ``0 .. sizes[a] - 1``, no ancillas; place it with :func:`dataclasses.replace`), or
+            ``None`` for the couplings.
+        costs: ``(cost, logical cost)`` of every construction, chosen or not (what ``--explain`` lists).
+        ancillas: clean ancillas the chosen construction needs.
+    """
+
+    construction: VisitName
+    gadget: VisitPhase | None
+    costs: Mapping[str, tuple[Cost, Cost]]
+    ancillas: int
+
+
+@lru_cache(maxsize=4096)
+def visit_choice(
+    sizes: tuple[int, ...],
+    coefficient: float,
+    new_couplings: int,
+    target: Target,
+    optimize: Optimize,
+    budget: int | None,
+) -> VisitChoice:
+    """The plan's construction for the visit term of a node (see the module docstring).
+
+    Args:
+        sizes: per visitor, its usable edges at the node (2 to 4).
+        coefficient: the factor of ``sum_{a<b} y_a y_b``.
+        new_couplings: couplings that expanding the term into products of edge bits would add to the couplings
+            already chosen (net of those it cancels).
+        target, optimize, budget: the plan's options (``budget``: most clean ancillas, ``None``: no limit).
+
+    Returns:
+        The :class:`VisitChoice`. A visit gadget is a candidate only for ``optimize="cx"`` and within the budget;
+        it replaces the pick so far when it scores no worse and costs differ, in the order couplings, visit bits,
+        visit pairs (ties go to the couplings: no ancilla).
+    """
+    coup = coupling_cost(new_couplings)
+    costs: dict[str, tuple[Cost, Cost]] = {}
+    pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
+    for name, products in (("visit bits", False), ("visit pairs", True)):
+        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(k)) for k in sizes), (), products)
+        c = (gad.cost(), gad.logical_cost())
+        costs[name] = c
+        if optimize != "cx" or (budget is not None and visit_ancillas(sizes, products) > budget):
+            continue
+        if score(*c, target) <= score(*pick[1], target) and c != pick[1]:
+            pick = (name, c, gad)  # type: ignore[assignment]
+    costs["couplings"] = (coup, coup)
+    name, _, gadget = pick
+    ancillas = 0 if gadget is None else visit_ancillas(sizes, gadget.products)
+    return VisitChoice(name, gadget, costs, ancillas)
+
+
+@lru_cache(maxsize=1024)
+def hamming_choice(
+    n: int, coefficient: float, target: Target, optimize: Optimize, budget: int | None
+) -> SumsPhase | None:
+    """Hamming-weight phasing of ``n`` equal rotations ``RZ(2 gamma coefficient)`` of uncoupled qubits, when the
+    plan prefers it to the rotations: ``ft`` target, ``optimize="cx"``, ``n >= 3``, within the budget and scoring
+    no worse than the rotations.
+
+    Returns:
+        The gadget on qubits ``0 .. n - 1`` (no ancillas; place it with :func:`dataclasses.replace`), or ``None``.
+    """
+    if target != "ft" or optimize != "cx" or n < 3:
+        return None
+    hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
+    alt = Cost.of(rz=n)
+    if budget is not None and hw.num_ancillas > budget:
+        return None
+    if score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target):
+        return hw
+    return None
+
+
+def sums_constructions(
+    integral: bool, products: int, optimize: Optimize, budget: int | None, ancillas: Callable[[str], int]
+) -> tuple[str, ...]:
+    """The constructions the plan compares for a balance group: the first arithmetic variant of
+    :data:`SUMS_VARIANTS` that fits the budget (each only pays off when the ones before it, with fewer CX, do
+    not fit; only for integer weights and ``optimize="cx"``), and ``couplings`` when its products can be
+    expanded (at most :data:`EXACT_EXPANSION_LIMIT`) or nothing else is possible.
+
+    Args:
+        integral: the group's weights are integers.
+        products: products of two variables its expansion has (:func:`circuitgen.phase.coupling_products`).
+        optimize, budget: the plan's options.
+        ancillas: clean ancillas of an arithmetic variant (asked only when there is a budget).
+
+    Returns:
+        The candidates, in the plan's order.
+    """
+    out: list[str] = []
+    if integral and optimize == "cx":
+        for variant in SUMS_VARIANTS:
+            if budget is None or ancillas(variant) <= budget:
+                out.append(variant)
+                break
+    if products <= EXACT_EXPANSION_LIMIT or not out:
+        out.append("couplings")
+    return tuple(out)
