@@ -117,9 +117,11 @@ def test_a_dirty_ancilla_is_caught() -> None:
 
     high = Circuit([("data", 2), ("logic", 1)], [Section("s", [G.and_(0, 1, 2, "10"), G.cx(2, 0)])])
     assert check_equivalence(high, lower(high), num_plain=2).equivalent
-    dirty = check_equivalence(high, lower(high), num_plain=3)
-    # QCEC's simulation checker may finish first under load and report "probably"; either way it is caught
-    assert not dirty.equivalent and dirty.criterion in ("not_equivalent", "probably_not_equivalent")
+    # Only the alternating (decision-diagram) checker: run in parallel, QCEC's random-stimuli simulation checker can
+    # miss the two inputs that differ and turn the verdict into "no_information", which depends on who finishes first.
+    only_alternating = {"run_simulation_checker": False, "run_construction_checker": False, "run_zx_checker": False}
+    dirty = check_equivalence(high, lower(high), num_plain=3, **only_alternating)
+    assert dirty.criterion == "not_equivalent", dirty
 
 
 def test_to_qiskit_rejects_unknown_gates_and_unbound_symbols() -> None:
