@@ -42,7 +42,7 @@ from circuitgen.gates import Gate, and_, cx, x
 from .phase_ising import IsingPhase, ising_form
 from .phase_visits import AND_COST, AND_DG_COST, with_ands
 
-__all__ = ["SumsPhase", "SumsShape", "column_counts"]
+__all__ = ["Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "spatial_popcount_layout"]
 
 
 def column_counts(weights: list[int] | Mapping[int, int]) -> tuple[int, int, int, tuple[bool, ...]]:
@@ -127,6 +127,114 @@ def popcount_layout(form: tuple[tuple[int, int], ...], ancillas: Iterator[int]) 
         reg.append(col[0] if col else None)
         k += 1
     return gates, reg
+
+
+def hilbert_key(y: int, x: int, order: int = 1 << 16) -> int:
+    """Position of the lattice point ``(y, x)`` along a Hilbert curve over ``order x order`` points (a power of
+    two): points close on the curve are close in the plane, so consecutive runs of a sorted list are compact
+    regions of the grid at every scale.
+
+    >>> [hilbert_key(y, x, 2) for y, x in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    [0, 1, 2, 3]
+    """
+    d = 0
+    s = order >> 1
+    while s:
+        rx = 1 if x & s else 0
+        ry = 1 if y & s else 0
+        d += s * s * ((3 * rx) ^ ry)
+        if ry == 0:  # rotate the quadrant so the curve stays continuous
+            if rx == 1:
+                x, y = s - 1 - (x & (s - 1)), s - 1 - (y & (s - 1))
+            x, y = y, x
+        s >>= 1
+    return d
+
+
+Site = tuple[int, int]
+"""A point of the problem grid's doubled lattice: node ``(r, c)`` at ``(2r, 2c)``, an edge at its midpoint."""
+
+
+def spatial_popcount_layout(
+    form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site]
+) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
+    """:func:`popcount_layout` with the adders chosen by place: the same adders, copies and register, so the same
+    gate counts, but every full adder takes three bits that are neighbours along a Hilbert curve over the grid.
+
+    Each column is sorted by the Hilbert key of its bits' sites and reduced in passes: consecutive triples go
+    through a full adder whose sum stays on the middle bit and whose carry (a fresh ancilla, sited with that
+    bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in the plane
+    (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to regions.
+    Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two bits,
+    a half adder ends a column with two), whatever the order.
+
+    Args:
+        form: ``(qubit, integer weight)`` pairs.
+        ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
+        sites: Lattice site of every qubit of the form.
+
+    Returns:
+        ``(gates, register, ancilla sites)``: as :func:`popcount_layout`, plus the site given to each ancilla.
+
+    Example:
+        >>> form = tuple((q, 1) for q in range(6))
+        >>> gates, reg, home = spatial_popcount_layout(form, iter(range(6, 10)), {q: (0, 2 * q) for q in range(6)})
+        >>> reg, home  # 6 = 110b: columns 0, 1, 2 end on qubits 4, 7, 9
+        ([4, 7, 9], {6: (0, 2), 7: (0, 8), 8: (0, 8), 9: (0, 8)})
+        >>> sum(1 for g in gates if g.name == "and"), column_counts([1] * 6)[:3]
+        (4, (3, 1, 0))
+    """
+    order = 1
+    while order <= max((max(sites[q]) for q, _ in form), default=0):
+        order <<= 1
+
+    def key(item: tuple[int, Site]) -> tuple[int, int]:
+        return hilbert_key(item[1][0], item[1][1], order), item[0]
+
+    home: dict[int, Site] = {}
+    gates: list[Gate] = [x(q) for q, w in form if w < 0]
+    cols: dict[int, list[tuple[int, Site]]] = {}
+    for q, w in form:
+        w, k, first = abs(w), 0, True
+        while w:
+            if w & 1:
+                if first:
+                    cols.setdefault(k, []).append((q, sites[q]))
+                    first = False
+                else:
+                    a = next(ancillas)
+                    home[a] = sites[q]
+                    gates.append(cx(q, a))
+                    cols.setdefault(k, []).append((a, sites[q]))
+            w >>= 1
+            k += 1
+    reg: list[int | None] = []
+    k = 0
+    while cols and k <= max(cols):
+        col = sorted(cols.get(k, []), key=key)
+        while len(col) >= 3:
+            nxt: list[tuple[int, Site]] = []
+            full = len(col) // 3
+            for i in range(full):
+                (a, _), mid, (c, _) = col[3 * i : 3 * i + 3]
+                b = mid[0]
+                t = next(ancillas)
+                home[t] = mid[1]
+                # the sum lands on the last operand: let it be the middle bit, whose site is the triple's
+                gates += [cx(a, c), cx(a, b), and_(c, b, t), cx(a, t), cx(c, b), cx(a, b)]
+                nxt.append(mid)
+                cols.setdefault(k + 1, []).append((t, mid[1]))
+            col = sorted(nxt + col[3 * full :], key=key)
+        if len(col) == 2:
+            (a, _), (b, site) = col
+            t = next(ancillas)
+            home[t] = site
+            gates += [and_(a, b, t), cx(a, b)]
+            col = [(b, site)]
+            cols.setdefault(k + 1, []).append((t, site))
+        reg.append(col[0][0] if col else None)
+        k += 1
+    return gates, reg, home
 
 
 @lru_cache(maxsize=1024)
@@ -308,6 +416,9 @@ class SumsPhase:
         matrix: ``M`` (rows; symmetric).
         linear: ``m`` (one per form).
         ancillas: Clean ancillas, at least :attr:`num_ancillas` of them.
+        sites: ``(qubit, y, x)``: where each form qubit sits on the problem grid's doubled lattice. Given, the
+            adder trees pair bits by place (:func:`spatial_popcount_layout`: same gate counts, same kind); empty
+            (default), in the forms' order (:func:`popcount_layout`).
     """
 
     gamma: str
@@ -315,6 +426,7 @@ class SumsPhase:
     matrix: tuple[tuple[float, ...], ...]
     linear: tuple[float, ...]
     ancillas: tuple[int, ...] = ()
+    sites: tuple[tuple[int, int, int], ...] = ()
 
     @property
     def kind(self) -> Hashable:
@@ -358,7 +470,18 @@ class SumsPhase:
 
     def _layout(self) -> tuple[list[Gate], list[list[int | None]]]:
         """The compute gates and each form's register (qubit per column, ``None`` for an empty column)."""
+        gates, registers, _ = self._placed_layout()
+        return gates, registers
+
+    def ancilla_sites(self) -> dict[int, Site]:
+        """Where each ancilla the adder trees use sits (the site of the bits it adds up); empty without
+        :attr:`sites`."""
+        return self._placed_layout()[2] if self.sites else {}
+
+    def _placed_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
         anc = iter(self.ancillas)
+        where = {q: (y, x_) for q, y, x_ in self.sites}
+        home: dict[int, Site] = {}
         gates: list[Gate] = []
         registers: list[list[int | None]] = []
         seen: set[int] = set()
@@ -370,10 +493,14 @@ class SumsPhase:
             if not on:
                 registers.append([])
                 continue
-            g, reg = popcount_layout(form, anc)
+            if where:
+                g, reg, placed = spatial_popcount_layout(form, anc, where)
+                home.update(placed)
+            else:
+                g, reg = popcount_layout(form, anc)
             gates += g
             registers.append(reg)
-        return gates, registers
+        return gates, registers, home
 
     def emit(self) -> list[Gate]:
         compute, registers = self._layout()
