@@ -8,17 +8,22 @@ gadgets the pool's ancillas round robin, so one ancilla serves nodes at both end
 moves qubits across the device for every such gate.
 
 :func:`spatial_phase` is a pass over the planned gadgets (``phase_layout="spatial"`` in
-:class:`~circuitgen.options.PlanOptions`) that changes only *which* qubits play which role, never how many gates
-there are (so every count, kind and estimate stays as it is):
+:class:`~circuitgen.options.PlanOptions`) that changes which qubits play which role and the shape of the adders:
 
 * every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` gets the site of each data qubit (the midpoint of its
   edge on the doubled lattice: node ``(r, c)`` at ``(2r, 2c)``) and reduces each column of its popcount along a
   Hilbert curve (:func:`~circuitgen.gadgets.phase_sums.spatial_popcount_layout`): full adders take three
   neighbouring bits, pass ``k`` sums regions of about ``3^k`` bits, so partial sums merge up a quad-tree-like
-  hierarchy and each carry ancilla belongs to the region it sums;
+  hierarchy and each carry ancilla belongs to the region it sums. Each adder is a star around its carry
+  ancilla (:func:`~circuitgen.gadgets.phase_sums.star_full_adder`): no gate joins two data qubits, which a
+  layout that keeps the grid's geometry (edge qubits at edge midpoints) never puts side by side. That costs one
+  CX more per adder each way (``2 (F + A)`` per balance gadget, a kind of its own, counted by the estimators);
 * every :class:`~circuitgen.gadgets.phase_visits.VisitPhase` borrows the pool ancillas whose home (the region
   of the adder that uses them, or the node that first borrowed them) is nearest its node, preferring ancillas no
-  other node borrowed.
+  other node borrowed (same gates).
+
+The plan itself (which construction each term group gets, how many ancillas) is unchanged: it is chosen on the
+all-to-all count. ``benchmarks/routing_phase.py`` measures what the pass buys on devices.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -30,8 +35,8 @@ Example:
     >>> local = spatial_phase(pooled, s, range(n, n + plan.num_ancillas))
     >>> [type(g).__name__ for g in local] == [type(g).__name__ for g in pooled]
     True
-    >>> sum(len(g.emit()) for g in local) == sum(len(g.emit()) for g in pooled)
-    True
+    >>> sum(g.cost().cx for g in pooled), sum(g.cost().cx for g in local)  # 2 CX more per adder
+    (770, 834)
 """
 
 from __future__ import annotations
@@ -85,8 +90,8 @@ def spatial_phase(
         data_offset: Qubit of variable 0.
 
     Returns:
-        The gadgets in the same order, each of the same class and kind with the same gate counts: only the
-        adder trees' pairing and the visit gadgets' ancillas differ.
+        The gadgets in the same order and of the same classes: the balance gadgets with placed star-shaped
+        adder trees, the visit gadgets with nearby ancillas (same kinds), the rest as given.
     """
     sites = variable_sites(scenario, data_offset)
     pool = tuple(pool)

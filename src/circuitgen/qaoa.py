@@ -229,12 +229,14 @@ class QaoaPlan:
         phase: list[tuple[GadgetKind, int]] = []
         phase_width = 0
         if self.p:
-            layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if classes else None
+            # the classes price the pooled layout; the spatial one's adders are kinds of their own
+            by_phase_classes = classes and o.phase_layout == "pooled"
+            layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if by_phase_classes else None
             if layer is not None:
                 phase, phase_width = layer.kinds(), layer.num_ancillas
             else:  # the plan decides, term group by term group
                 assert self.phase_plan is not None
-                phase = [(GadgetKind.of(g), 1) for g in self.phase_plan.gadgets("gamma")]
+                phase = [(GadgetKind.of(g), 1) for g in self._phase_gadgets("gamma")]
                 phase_width = self.phase_plan.num_ancillas
         logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
         work = max(mixer_work if self.p else 0, prep.work)

@@ -155,18 +155,49 @@ Site = tuple[int, int]
 """A point of the problem grid's doubled lattice: node ``(r, c)`` at ``(2r, 2c)``, an edge at its midpoint."""
 
 
+def star_full_adder(a: int, b: int, c: int, t: int) -> list[Gate]:
+    """A full adder whose every gate touches the clean ancilla ``t``: the sum lands on ``b``, the carry on ``t``.
+
+    ``cx c t; cx a t`` (``t = a^c``), ``cx t b`` (``b = a^b^c``, the sum), ``cx b t`` (``t = b``), ``cx t a;
+    cx t c`` (``a^b``, ``b^c``), ``and a c t`` (``t = b ^ (a^b)(b^c)``, the majority): 6 CX and one AND, one
+    CX more than the gadget's in-line adder, found by a shortest-path search over circuits whose gates all act
+    on ``t``. On a device the adder is a star around ``t`` (no gate between two data bits, which a geometric
+    layout never puts side by side). The AND's target is not clean here: its lowering is then a Toffoli up to
+    a diagonal phase, which the gadget's exact mirror undoes (compute, diagonal phase, inverse: the phases
+    cancel), so the gadget stays exact.
+
+    >>> [(g.name, g.qubits) for g in star_full_adder(0, 1, 2, 3)][-2:]
+    [('cx', (3, 2)), ('and', (0, 2, 3))]
+    """
+    return [cx(c, t), cx(a, t), cx(t, b), cx(b, t), cx(t, a), cx(t, c), and_(a, c, t)]
+
+
+def star_half_adder(a: int, b: int, t: int) -> list[Gate]:
+    """A half adder around the clean ancilla ``t``: ``cx b t; cx t a`` (``a = a^b``, the sum), then ``and a b t``
+    (``t = b ^ (a^b) b = ab``, the carry; the target is not clean, see :func:`star_full_adder`). 2 CX and one AND
+    (one CX more than the in-line half adder), every gate on ``t``.
+
+    >>> [(g.name, g.qubits) for g in star_half_adder(0, 1, 2)]
+    [('cx', (1, 2)), ('cx', (2, 0)), ('and', (0, 1, 2))]
+    """
+    return [cx(b, t), cx(t, a), and_(a, b, t)]
+
+
 def spatial_popcount_layout(
     form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site]
 ) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
-    """:func:`popcount_layout` with the adders chosen by place: the same adders, copies and register, so the same
-    gate counts, but every full adder takes three bits that are neighbours along a Hilbert curve over the grid.
+    """:func:`popcount_layout` with the adders chosen by place and shaped for a device: the same numbers of full
+    adders, half adders and copies, the same register columns, but every full adder takes three bits that are
+    neighbours along a Hilbert curve over the grid, and is a star around its carry ancilla.
 
     Each column is sorted by the Hilbert key of its bits' sites and reduced in passes: consecutive triples go
-    through a full adder whose sum stays on the middle bit and whose carry (a fresh ancilla, sited with that
-    bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in the plane
-    (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to regions.
-    Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two bits,
-    a half adder ends a column with two), whatever the order.
+    through :func:`star_full_adder`, whose sum stays on the middle bit and whose carry (a fresh ancilla, sited
+    with that bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in
+    the plane (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to
+    regions. Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two
+    bits, a half adder, :func:`star_half_adder`, ends a column with two), whatever the order. Each adder costs
+    one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
+    that keeps the grid's geometry never puts side by side.
 
     Args:
         form: ``(qubit, integer weight)`` pairs.
@@ -179,8 +210,8 @@ def spatial_popcount_layout(
     Example:
         >>> form = tuple((q, 1) for q in range(6))
         >>> gates, reg, home = spatial_popcount_layout(form, iter(range(6, 10)), {q: (0, 2 * q) for q in range(6)})
-        >>> reg, home  # 6 = 110b: columns 0, 1, 2 end on qubits 4, 7, 9
-        ([4, 7, 9], {6: (0, 2), 7: (0, 8), 8: (0, 8), 9: (0, 8)})
+        >>> reg, home  # 6 = 110b: columns 0, 1, 2 end on qubits 1, 8, 9
+        ([1, 8, 9], {6: (0, 2), 7: (0, 8), 8: (0, 2), 9: (0, 2)})
         >>> sum(1 for g in gates if g.name == "and"), column_counts([1] * 6)[:3]
         (4, (3, 1, 0))
     """
@@ -220,17 +251,16 @@ def spatial_popcount_layout(
                 b = mid[0]
                 t = next(ancillas)
                 home[t] = mid[1]
-                # the sum lands on the last operand: let it be the middle bit, whose site is the triple's
-                gates += [cx(a, c), cx(a, b), and_(c, b, t), cx(a, t), cx(c, b), cx(a, b)]
+                gates += star_full_adder(a, b, c, t)
                 nxt.append(mid)
                 cols.setdefault(k + 1, []).append((t, mid[1]))
             col = sorted(nxt + col[3 * full :], key=key)
         if len(col) == 2:
-            (a, _), (b, site) = col
+            (a, site), (b, _) = col
             t = next(ancillas)
             home[t] = site
-            gates += [and_(a, b, t), cx(a, b)]
-            col = [(b, site)]
+            gates += star_half_adder(a, b, t)
+            col = [(a, site)]
             cols.setdefault(k + 1, []).append((t, site))
         reg.append(col[0][0] if col else None)
         k += 1
@@ -315,20 +345,22 @@ class SumsShape:
     negatives: tuple[tuple[int, int], ...]
     matrix: tuple[tuple[float, ...], ...]
     linear: tuple[float, ...]
+    star: bool = False
 
     @classmethod
     def of(
         cls, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
-        linear: tuple[float, ...],
+        linear: tuple[float, ...], star: bool = False,
     ) -> SumsShape:
-        """The shape of a gadget's forms."""
+        """The shape of a gadget's forms (``star``: the adders are :func:`star_full_adder` and
+        :func:`star_half_adder`, one CX more each way)."""
         weights, negatives = [], []
         for f in forms:
             ws = [w for _, w in f]
             weights.append(tuple(sorted(Counter(map(abs, ws)).items())))
             neg = [w for w in ws if w < 0]
             negatives.append((len(neg), -sum(neg)))
-        return cls(tuple(weights), tuple(negatives), matrix, linear)
+        return cls(tuple(weights), tuple(negatives), matrix, linear, star)
 
     @cached_property
     def counts(self) -> tuple[tuple[int, int, int, tuple[bool, ...]], ...]:
@@ -376,7 +408,7 @@ class SumsShape:
     def _costs(self) -> tuple[Cost, Cost]:
         fa, ha, cp, neg = self._compute_cost()
         ands = fa + ha
-        arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
+        arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp + (fa + ha if self.star else 0)), x=2 * neg)
         ph = self._phase.cost()
         return with_ands(ands, arithmetic + ph)
 
@@ -397,7 +429,7 @@ class SumsShape:
         out = []
         for (fa, ha, cp, _), (neg, _), on in zip(self.counts, self.negatives, self.active):
             if on:
-                arithmetic = Cost.of(cx=5 * fa + ha + cp, x=neg)
+                arithmetic = Cost.of(cx=5 * fa + ha + cp + (fa + ha if self.star else 0), x=neg)
                 out.append(((fa + ha) * AND_COST + arithmetic, (fa + ha) * AND_DG_COST + arithmetic))
         return tuple(out)
 
@@ -417,8 +449,8 @@ class SumsPhase:
         linear: ``m`` (one per form).
         ancillas: Clean ancillas, at least :attr:`num_ancillas` of them.
         sites: ``(qubit, y, x)``: where each form qubit sits on the problem grid's doubled lattice. Given, the
-            adder trees pair bits by place (:func:`spatial_popcount_layout`: same gate counts, same kind); empty
-            (default), in the forms' order (:func:`popcount_layout`).
+            adder trees pair bits by place with star-shaped adders (:func:`spatial_popcount_layout`: one CX more
+            per adder each way, a kind of its own); empty (default), in the forms' order (:func:`popcount_layout`).
     """
 
     gamma: str
@@ -435,7 +467,7 @@ class SumsPhase:
     @cached_property
     def shape(self) -> SumsShape:
         """What the cost depends on (:class:`SumsShape`)."""
-        return SumsShape.of(self.forms, self.matrix, self.linear)
+        return SumsShape.of(self.forms, self.matrix, self.linear, star=bool(self.sites))
 
     @property
     def _active(self) -> tuple[bool, ...]:
