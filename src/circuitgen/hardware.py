@@ -37,6 +37,7 @@ from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
 from .layout import localize_ancillas, place
 from .options import DEFAULT_PLAN, PlanOptions
+from .phase_locality import for_device
 from .routing import RoutedCircuit, duration_s, esp, route, to_native
 
 __all__ = ["DeviceCompileResult", "compile_for_device", "device_for"]
@@ -188,6 +189,7 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
+    options = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
     dev = device if isinstance(device, Device) else device_for(device, circuit.num_qubits)

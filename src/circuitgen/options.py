@@ -34,8 +34,8 @@ Phase = Literal["feasible", "whole-space"]
 PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
 Optimize = Literal["cx", "depth"]
 OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
-PhaseLayout = Literal["pooled", "spatial"]
-PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("pooled", "spatial")
+PhaseLayout = Literal["auto", "pooled", "spatial"]
+PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial")
 
 
 @dataclass(frozen=True)
@@ -55,10 +55,12 @@ class PlanOptions:
         fuse: cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next
             compute (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer,
             clean at both ends (same high-level gates, a few more lowered ones); not a CLI flag.
-        phase_layout: which qubits the phase separator's gadgets pair: ``pooled`` (default: adders in variable
-            order, node gadgets take the ancilla pool round robin) or ``spatial`` (adders over neighbouring edges,
-            node gadgets with nearby ancillas: :mod:`circuitgen.phase_locality`). Same gates and counts; what
-            differs is locality on a nearest-neighbour device.
+        phase_layout: how the phase separator's gadgets sit on the grid: ``pooled`` (adders in variable order,
+            node gadgets take the ancilla pool round robin; fewest CX all-to-all), ``spatial`` (star-shaped adders
+            over neighbouring edges, node gadgets with nearby ancillas, 2 CX more per adder:
+            :mod:`circuitgen.phase_locality`; fewer routed CX on grids and heavy-hex) or ``auto`` (default:
+            ``spatial`` when :func:`circuitgen.hardware.compile_for_device` routes onto a device that is not
+            all-to-all, ``pooled`` everywhere else).
     """
 
     rule: Rule = "exact"
@@ -68,7 +70,7 @@ class PlanOptions:
     optimize: Optimize = "cx"
     ancilla_budget: int | None = None
     fuse: bool = True
-    phase_layout: PhaseLayout = "pooled"
+    phase_layout: PhaseLayout = "auto"
 
     def __post_init__(self) -> None:
         for name, allowed in (

@@ -46,11 +46,13 @@ from collections.abc import Iterable, Sequence
 
 from gridcover.scenario import Scenario
 
+from .devices import Device, get_device
 from .gadgets import Gadget
 from .gadgets.phase_sums import Site, SumsPhase
 from .gadgets.phase_visits import VisitPhase
+from .options import PlanOptions
 
-__all__ = ["spatial_phase", "variable_sites"]
+__all__ = ["for_device", "spatial_phase", "variable_sites"]
 
 NEW_HOME_PENALTY = 4
 """Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
@@ -71,6 +73,22 @@ def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
         (r0, c0), (r1, c1) = edges[scenario.variable_of(i)[1]]
         out[data_offset + i] = (r0 + r1, c0 + c1)
     return out
+
+
+def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
+    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``spatial`` unless
+    the device couples every pair of its qubits (then ``pooled``, the fewest CX); an explicit choice stays.
+
+    >>> [for_device(PlanOptions(), d).phase_layout for d in ("grid", "heavy-hex:5", "all-to-all", "ibm_fez")]
+    ['spatial', 'spatial', 'pooled', 'spatial']
+    >>> for_device(PlanOptions(phase_layout="pooled"), "grid").phase_layout
+    'pooled'
+    """
+    if options.phase_layout != "auto":
+        return options
+    # a family without a size: its 4-qubit member tells its shape (every family member has the same kind)
+    dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
+    return dataclasses.replace(options, phase_layout="pooled" if dev.is_all_to_all else "spatial")
 
 
 def _distance(a: Site, b: tuple[float, float]) -> float:

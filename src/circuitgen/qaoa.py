@@ -230,7 +230,7 @@ class QaoaPlan:
         phase_width = 0
         if self.p:
             # the classes price the pooled layout; the spatial one's adders are kinds of their own
-            by_phase_classes = classes and o.phase_layout == "pooled"
+            by_phase_classes = classes and o.phase_layout != "spatial"
             layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if by_phase_classes else None
             if layer is not None:
                 phase, phase_width = layer.kinds(), layer.num_ancillas

@@ -94,7 +94,7 @@ def compile_command(
     phase: PhaseFlag = "feasible",
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "pooled",
+    phase_layout: PhaseLayoutFlag = "auto",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,

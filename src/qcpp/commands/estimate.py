@@ -89,7 +89,7 @@ def estimate(
     phase: PhaseFlag = "feasible",
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "pooled",
+    phase_layout: PhaseLayoutFlag = "auto",
     explain: Annotated[
         bool,
         typer.Option(

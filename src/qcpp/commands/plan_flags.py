@@ -63,8 +63,9 @@ PhaseLayoutFlag = Annotated[
     str,
     typer.Option(
         "--phase-layout",
-        help="Which qubits the phase separator's gadgets pair: pooled (adders in variable order, one ancilla pool) "
-        "or spatial (adders over neighbouring edges, node gadgets with nearby ancillas; same gate counts).",
+        help="How the phase separator sits on the grid: pooled (fewest CX all-to-all), spatial (star-shaped "
+        "adders over neighbouring edges, node gadgets with nearby ancillas: fewer routed CX on grids and "
+        "heavy-hex) or auto (spatial when routed with --device onto a device that is not all-to-all, else pooled).",
     ),
 ]
 
@@ -76,7 +77,7 @@ PLAN_FLAGS: tuple[str, ...] = (
 
 def plan_options(
     rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None,
-    phase_layout: str = "pooled",
+    phase_layout: str = "auto",
 ) -> PlanOptions:
     """The :class:`~circuitgen.options.PlanOptions` of the plan flags.
 
