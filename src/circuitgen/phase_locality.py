@@ -52,7 +52,7 @@ from .gadgets.phase_sums import Site, SumsPhase
 from .gadgets.phase_visits import VisitPhase
 from .options import PlanOptions
 
-__all__ = ["for_device", "spatial_phase", "variable_sites"]
+__all__ = ["for_device", "placed_sums", "spatial_phase", "variable_sites"]
 
 NEW_HOME_PENALTY = 4
 """Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
@@ -95,6 +95,19 @@ def _distance(a: Site, b: tuple[float, float]) -> float:
     return abs(a[0] - b[0]) + abs(a[1] - b[1])
 
 
+def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0) -> tuple[Gadget, ...]:
+    """The gadgets with every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` given its data qubits' sites (star
+    adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
+    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
+    sites = variable_sites(scenario, data_offset)
+    return tuple(
+        dataclasses.replace(g, sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f))
+        if isinstance(g, SumsPhase)
+        else g
+        for g in gadgets
+    )
+
+
 def spatial_phase(
     gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0
 ) -> tuple[Gadget, ...]:
@@ -113,15 +126,11 @@ def spatial_phase(
     """
     sites = variable_sites(scenario, data_offset)
     pool = tuple(pool)
-    out: list[Gadget] = []
+    out = list(placed_sums(gadgets, scenario, data_offset))
     home: dict[int, Site] = {}
-    for g in gadgets:
+    for g in out:
         if isinstance(g, SumsPhase):
-            placed = dataclasses.replace(g, sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f))
-            home.update(placed.ancilla_sites())
-            out.append(placed)
-        else:
-            out.append(g)
+            home.update(g.ancilla_sites())
     borrowed: dict[int, int] = dict.fromkeys(pool, 0)
     for i, g in enumerate(out):
         if not isinstance(g, VisitPhase) or not g.ancillas:

@@ -55,7 +55,7 @@ from .mixer_classes import mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
 from .phase import PhasePlan, phase_plan
 from .phase_classes import phase_layer
-from .phase_locality import spatial_phase
+from .phase_locality import placed_sums, spatial_phase
 
 
 @dataclass(frozen=True)
@@ -236,7 +236,10 @@ class QaoaPlan:
                 phase, phase_width = layer.kinds(), layer.num_ancillas
             else:  # the plan decides, term group by term group
                 assert self.phase_plan is not None
-                phase = [(GadgetKind.of(g), 1) for g in self._phase_gadgets("gamma")]
+                gadgets = self.phase_plan.gadgets("gamma")
+                if o.phase_layout == "spatial":  # the kinds only: no ancilla needs choosing
+                    gadgets = placed_sums(gadgets, s)
+                phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas
         logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
         work = max(mixer_work if self.p else 0, prep.work)
