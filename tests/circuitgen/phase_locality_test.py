@@ -257,21 +257,6 @@ def test_cli_phase_layout_flag_changes_no_count() -> None:
     assert rows[0] == rows[2] and rows[1] == rows[3]
 
 
-@pytest.mark.heavy
-def test_qcec_proves_the_spatial_circuit_equal_to_the_pooled_one() -> None:
-    """Both layouts apply the same diagonal on every data input with clean ancillas (the balance gadget is exact
-    on every bit string; a visit gadget computes the same function whatever ancillas it borrows), so the whole
-    QAOA circuits are equal: an independent tool (MQT QCEC) proves it (``routing_qcec_test.py`` shows it catches
-    a changed circuit)."""
-    from simulate.equivalence import check_equivalence
-
-    s = interior_endpoints(4, 4, "hard")  # arithmetic balance: the two circuits differ in every adder
-    bind = {"gamma_0": 0.3, "beta_0": 0.7}
-    pooled = lower(qaoa_circuit(s, 1, PlanOptions(phase_layout="pooled"))).bind(bind)
-    spatial = lower(qaoa_circuit(s, 1, SPATIAL)).bind(bind)
-    assert check_equivalence(pooled, spatial, num_plain=s.num_variables).criterion == "equivalent"
-
-
 def test_device_compiles_default_to_the_spatial_layout() -> None:
     from circuitgen.hardware import compile_for_device
     from circuitgen.phase_locality import for_device
