@@ -45,6 +45,7 @@ from .devices import Device, get_device
 from .layout import localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, PlanOptions
+from .phase_locality import for_device
 from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
 __all__ = ["DeviceCompileResult", "compile_for_device", "device_for"]
@@ -208,6 +209,7 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
+    options = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
     measured = range(scenario.num_variables)

@@ -24,7 +24,9 @@ from gridcover.sbf import RULES, Rule
 
 from .cost import TARGETS, Target
 
-__all__ = ["DEFAULT_PLAN", "INITIAL_STATES", "OPTIMIZE", "PHASES", "Initial", "PlanOptions"]
+__all__ = [
+    "DEFAULT_PLAN", "INITIAL_STATES", "OPTIMIZE", "PHASES", "PHASE_LAYOUTS", "Initial", "PhaseLayout", "PlanOptions",
+]
 
 Initial = Literal["initial_path", "representatives"]
 INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives")
@@ -32,6 +34,8 @@ Phase = Literal["feasible", "whole-space"]
 PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
 Optimize = Literal["cx", "depth"]
 OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
+PhaseLayout = Literal["auto", "pooled", "spatial"]
+PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial")
 
 
 @dataclass(frozen=True)
@@ -51,6 +55,12 @@ class PlanOptions:
         fuse: cut the parity-basis partial mixers at their rotations and fuse each uncompute with the next
             compute (:mod:`circuitgen.gadgets.junction`; default). ``False`` keeps one section per partial mixer,
             clean at both ends (same high-level gates, a few more lowered ones); not a CLI flag.
+        phase_layout: how the phase separator's gadgets sit on the grid: ``pooled`` (adders in variable order,
+            node gadgets take the ancilla pool round robin; fewest CX all-to-all), ``spatial`` (star-shaped adders
+            over neighbouring edges, node gadgets with nearby ancillas, 2 CX more per adder:
+            :mod:`circuitgen.phase_locality`; fewer routed CX on grids and heavy-hex) or ``auto`` (default:
+            ``spatial`` when :func:`circuitgen.hardware.compile_for_device` routes onto a device that is not
+            all-to-all, ``pooled`` everywhere else).
     """
 
     rule: Rule = "exact"
@@ -60,11 +70,12 @@ class PlanOptions:
     optimize: Optimize = "cx"
     ancilla_budget: int | None = None
     fuse: bool = True
+    phase_layout: PhaseLayout = "auto"
 
     def __post_init__(self) -> None:
         for name, allowed in (
             ("rule", RULES), ("initial", INITIAL_STATES), ("target", TARGETS), ("phase", PHASES),
-            ("optimize", OPTIMIZE),
+            ("optimize", OPTIMIZE), ("phase_layout", PHASE_LAYOUTS),
         ):  # fmt: skip
             value = getattr(self, name)
             if value not in allowed:

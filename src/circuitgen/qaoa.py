@@ -55,6 +55,7 @@ from .mixer_classes import mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
 from .phase import PhasePlan, phase_plan
 from .phase_classes import phase_layer
+from .phase_locality import placed_sums, spatial_phase
 
 
 @dataclass(frozen=True)
@@ -171,12 +172,21 @@ class QaoaPlan:
         yield "initial_state", self.state_prep
         for k in range(self.p):
             assert self.phase_plan is not None
-            for g in self.phase_plan.gadgets(f"gamma_{k}", 0, self.scenario.num_variables):
+            for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
             beta = Angle.symbol(f"beta_{k}")
             mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
             for g in mixer_pieces(mixers) if self.options.fuse else mixers:
                 yield f"mixer_{k}", g
+
+    def _phase_gadgets(self, gamma: str) -> tuple[Gadget, ...]:
+        """One layer's phase separator gadgets, laid out as :attr:`PlanOptions.phase_layout` asks."""
+        assert self.phase_plan is not None
+        n = self.scenario.num_variables
+        gadgets = self.phase_plan.gadgets(gamma, 0, n)
+        if self.options.phase_layout == "spatial":
+            gadgets = spatial_phase(gadgets, self.scenario, range(n, n + self.phase_plan.num_ancillas))
+        return gadgets
 
     def call_graph(self, by_classes: bool = True) -> CallGraph:
         """The circuit as gadget kinds with multiplicities, per part (:mod:`circuitgen.call_graph`; ``phase`` and
@@ -219,12 +229,17 @@ class QaoaPlan:
         phase: list[tuple[GadgetKind, int]] = []
         phase_width = 0
         if self.p:
-            layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if classes else None
+            # the classes price the pooled layout; the spatial one's adders are kinds of their own
+            by_phase_classes = classes and o.phase_layout != "spatial"
+            layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if by_phase_classes else None
             if layer is not None:
                 phase, phase_width = layer.kinds(), layer.num_ancillas
             else:  # the plan decides, term group by term group
                 assert self.phase_plan is not None
-                phase = [(GadgetKind.of(g), 1) for g in self.phase_plan.gadgets("gamma")]
+                gadgets = self.phase_plan.gadgets("gamma")
+                if o.phase_layout == "spatial":  # the kinds only: no ancilla needs choosing
+                    gadgets = placed_sums(gadgets, s)
+                phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas
         logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
         work = max(mixer_work if self.p else 0, prep.work)

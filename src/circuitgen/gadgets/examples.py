@@ -144,8 +144,9 @@ def _register_all() -> None:
     example(MixerRotation)(lambda: _of("MixerRotation", PlanOptions(), ft))
     example(StatePrep)(lambda: _of("StatePrep", PlanOptions(), PlanOptions(initial="representatives")))
     example(IsingPhase)(lambda: _of("IsingPhase", PlanOptions(), whole, PlanOptions(optimize="depth")))
-    example(VisitPhase)(lambda: _of("VisitPhase", PlanOptions(), ft))
-    example(SumsPhase)(lambda: _of("SumsPhase", PlanOptions(), ft))
+    spatial = PlanOptions(phase_layout="spatial")  # same kinds, adders paired by place: examples of their own
+    example(VisitPhase)(lambda: _of("VisitPhase", PlanOptions(), ft) + _of("VisitPhase", spatial, limit=2))
+    example(SumsPhase)(lambda: _of("SumsPhase", PlanOptions(), ft) + _of("SumsPhase", spatial, limit=2))
     example(SumsRegister)(lambda: _of("SumsRegister", PlanOptions(ancilla_budget=70), arithmetic=True))
     example(SumsAccumulate)(lambda: _of("SumsAccumulate", PlanOptions(ancilla_budget=40), arithmetic=True))
 

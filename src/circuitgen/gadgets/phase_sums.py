@@ -42,7 +42,7 @@ from circuitgen.gates import Gate, and_, cx, x
 from .phase_ising import IsingPhase, ising_form
 from .phase_visits import AND_COST, AND_DG_COST, with_ands
 
-__all__ = ["SumsPhase", "SumsShape", "column_counts"]
+__all__ = ["Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "spatial_popcount_layout"]
 
 
 def column_counts(weights: list[int] | Mapping[int, int]) -> tuple[int, int, int, tuple[bool, ...]]:
@@ -129,6 +129,144 @@ def popcount_layout(form: tuple[tuple[int, int], ...], ancillas: Iterator[int]) 
     return gates, reg
 
 
+def hilbert_key(y: int, x: int, order: int = 1 << 16) -> int:
+    """Position of the lattice point ``(y, x)`` along a Hilbert curve over ``order x order`` points (a power of
+    two): points close on the curve are close in the plane, so consecutive runs of a sorted list are compact
+    regions of the grid at every scale.
+
+    >>> [hilbert_key(y, x, 2) for y, x in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    [0, 1, 2, 3]
+    """
+    d = 0
+    s = order >> 1
+    while s:
+        rx = 1 if x & s else 0
+        ry = 1 if y & s else 0
+        d += s * s * ((3 * rx) ^ ry)
+        if ry == 0:  # rotate the quadrant so the curve stays continuous
+            if rx == 1:
+                x, y = s - 1 - (x & (s - 1)), s - 1 - (y & (s - 1))
+            x, y = y, x
+        s >>= 1
+    return d
+
+
+Site = tuple[int, int]
+"""A point of the problem grid's doubled lattice: node ``(r, c)`` at ``(2r, 2c)``, an edge at its midpoint."""
+
+
+def star_full_adder(a: int, b: int, c: int, t: int) -> list[Gate]:
+    """A full adder whose every gate touches the clean ancilla ``t``: the sum lands on ``b``, the carry on ``t``.
+
+    ``cx c t; cx a t`` (``t = a^c``), ``cx t b`` (``b = a^b^c``, the sum), ``cx b t`` (``t = b``), ``cx t a;
+    cx t c`` (``a^b``, ``b^c``), ``and a c t`` (``t = b ^ (a^b)(b^c)``, the majority): 6 CX and one AND, one
+    CX more than the gadget's in-line adder, found by a shortest-path search over circuits whose gates all act
+    on ``t``. On a device the adder is a star around ``t`` (no gate between two data bits, which a geometric
+    layout never puts side by side). The AND's target is not clean here: its lowering is then a Toffoli up to
+    a diagonal phase, which the gadget's exact mirror undoes (compute, diagonal phase, inverse: the phases
+    cancel), so the gadget stays exact.
+
+    >>> [(g.name, g.qubits) for g in star_full_adder(0, 1, 2, 3)][-2:]
+    [('cx', (3, 2)), ('and', (0, 2, 3))]
+    """
+    return [cx(c, t), cx(a, t), cx(t, b), cx(b, t), cx(t, a), cx(t, c), and_(a, c, t)]
+
+
+def star_half_adder(a: int, b: int, t: int) -> list[Gate]:
+    """A half adder around the clean ancilla ``t``: ``cx b t; cx t a`` (``a = a^b``, the sum), then ``and a b t``
+    (``t = b ^ (a^b) b = ab``, the carry; the target is not clean, see :func:`star_full_adder`). 2 CX and one AND
+    (one CX more than the in-line half adder), every gate on ``t``.
+
+    >>> [(g.name, g.qubits) for g in star_half_adder(0, 1, 2)]
+    [('cx', (1, 2)), ('cx', (2, 0)), ('and', (0, 1, 2))]
+    """
+    return [cx(b, t), cx(t, a), and_(a, b, t)]
+
+
+def spatial_popcount_layout(
+    form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site]
+) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
+    """:func:`popcount_layout` with the adders chosen by place and shaped for a device: the same numbers of full
+    adders, half adders and copies, the same register columns, but every full adder takes three bits that are
+    neighbours along a Hilbert curve over the grid, and is a star around its carry ancilla.
+
+    Each column is sorted by the Hilbert key of its bits' sites and reduced in passes: consecutive triples go
+    through :func:`star_full_adder`, whose sum stays on the middle bit and whose carry (a fresh ancilla, sited
+    with that bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in
+    the plane (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to
+    regions. Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two
+    bits, a half adder, :func:`star_half_adder`, ends a column with two), whatever the order. Each adder costs
+    one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
+    that keeps the grid's geometry never puts side by side.
+
+    Args:
+        form: ``(qubit, integer weight)`` pairs.
+        ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
+        sites: Lattice site of every qubit of the form.
+
+    Returns:
+        ``(gates, register, ancilla sites)``: as :func:`popcount_layout`, plus the site given to each ancilla.
+
+    Example:
+        >>> form = tuple((q, 1) for q in range(6))
+        >>> gates, reg, home = spatial_popcount_layout(form, iter(range(6, 10)), {q: (0, 2 * q) for q in range(6)})
+        >>> reg, home  # 6 = 110b: columns 0, 1, 2 end on qubits 1, 8, 9
+        ([1, 8, 9], {6: (0, 2), 7: (0, 8), 8: (0, 2), 9: (0, 2)})
+        >>> sum(1 for g in gates if g.name == "and"), column_counts([1] * 6)[:3]
+        (4, (3, 1, 0))
+    """
+    order = 1
+    while order <= max((max(sites[q]) for q, _ in form), default=0):
+        order <<= 1
+
+    def key(item: tuple[int, Site]) -> tuple[int, int]:
+        return hilbert_key(item[1][0], item[1][1], order), item[0]
+
+    home: dict[int, Site] = {}
+    gates: list[Gate] = [x(q) for q, w in form if w < 0]
+    cols: dict[int, list[tuple[int, Site]]] = {}
+    for q, w in form:
+        w, k, first = abs(w), 0, True
+        while w:
+            if w & 1:
+                if first:
+                    cols.setdefault(k, []).append((q, sites[q]))
+                    first = False
+                else:
+                    a = next(ancillas)
+                    home[a] = sites[q]
+                    gates.append(cx(q, a))
+                    cols.setdefault(k, []).append((a, sites[q]))
+            w >>= 1
+            k += 1
+    reg: list[int | None] = []
+    k = 0
+    while cols and k <= max(cols):
+        col = sorted(cols.get(k, []), key=key)
+        while len(col) >= 3:
+            nxt: list[tuple[int, Site]] = []
+            full = len(col) // 3
+            for i in range(full):
+                (a, _), mid, (c, _) = col[3 * i : 3 * i + 3]
+                b = mid[0]
+                t = next(ancillas)
+                home[t] = mid[1]
+                gates += star_full_adder(a, b, c, t)
+                nxt.append(mid)
+                cols.setdefault(k + 1, []).append((t, mid[1]))
+            col = sorted(nxt + col[3 * full :], key=key)
+        if len(col) == 2:
+            (a, site), (b, _) = col
+            t = next(ancillas)
+            home[t] = site
+            gates += star_half_adder(a, b, t)
+            col = [(a, site)]
+            cols.setdefault(k + 1, []).append((t, site))
+        reg.append(col[0][0] if col else None)
+        k += 1
+    return gates, reg, home
+
+
 @lru_cache(maxsize=1024)
 def _abstract_phase(
     gamma: str,
@@ -207,20 +345,22 @@ class SumsShape:
     negatives: tuple[tuple[int, int], ...]
     matrix: tuple[tuple[float, ...], ...]
     linear: tuple[float, ...]
+    star: bool = False
 
     @classmethod
     def of(
         cls, forms: tuple[tuple[tuple[int, int], ...], ...], matrix: tuple[tuple[float, ...], ...],
-        linear: tuple[float, ...],
+        linear: tuple[float, ...], star: bool = False,
     ) -> SumsShape:
-        """The shape of a gadget's forms."""
+        """The shape of a gadget's forms (``star``: the adders are :func:`star_full_adder` and
+        :func:`star_half_adder`, one CX more each way)."""
         weights, negatives = [], []
         for f in forms:
             ws = [w for _, w in f]
             weights.append(tuple(sorted(Counter(map(abs, ws)).items())))
             neg = [w for w in ws if w < 0]
             negatives.append((len(neg), -sum(neg)))
-        return cls(tuple(weights), tuple(negatives), matrix, linear)
+        return cls(tuple(weights), tuple(negatives), matrix, linear, star)
 
     @cached_property
     def counts(self) -> tuple[tuple[int, int, int, tuple[bool, ...]], ...]:
@@ -268,7 +408,7 @@ class SumsShape:
     def _costs(self) -> tuple[Cost, Cost]:
         fa, ha, cp, neg = self._compute_cost()
         ands = fa + ha
-        arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp), x=2 * neg)
+        arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp + (fa + ha if self.star else 0)), x=2 * neg)
         ph = self._phase.cost()
         return with_ands(ands, arithmetic + ph)
 
@@ -289,7 +429,7 @@ class SumsShape:
         out = []
         for (fa, ha, cp, _), (neg, _), on in zip(self.counts, self.negatives, self.active):
             if on:
-                arithmetic = Cost.of(cx=5 * fa + ha + cp, x=neg)
+                arithmetic = Cost.of(cx=5 * fa + ha + cp + (fa + ha if self.star else 0), x=neg)
                 out.append(((fa + ha) * AND_COST + arithmetic, (fa + ha) * AND_DG_COST + arithmetic))
         return tuple(out)
 
@@ -308,6 +448,9 @@ class SumsPhase:
         matrix: ``M`` (rows; symmetric).
         linear: ``m`` (one per form).
         ancillas: Clean ancillas, at least :attr:`num_ancillas` of them.
+        sites: ``(qubit, y, x)``: where each form qubit sits on the problem grid's doubled lattice. Given, the
+            adder trees pair bits by place with star-shaped adders (:func:`spatial_popcount_layout`: one CX more
+            per adder each way, a kind of its own); empty (default), in the forms' order (:func:`popcount_layout`).
     """
 
     gamma: str
@@ -315,6 +458,7 @@ class SumsPhase:
     matrix: tuple[tuple[float, ...], ...]
     linear: tuple[float, ...]
     ancillas: tuple[int, ...] = ()
+    sites: tuple[tuple[int, int, int], ...] = ()
 
     @property
     def kind(self) -> Hashable:
@@ -323,7 +467,7 @@ class SumsPhase:
     @cached_property
     def shape(self) -> SumsShape:
         """What the cost depends on (:class:`SumsShape`)."""
-        return SumsShape.of(self.forms, self.matrix, self.linear)
+        return SumsShape.of(self.forms, self.matrix, self.linear, star=bool(self.sites))
 
     @property
     def _active(self) -> tuple[bool, ...]:
@@ -358,7 +502,18 @@ class SumsPhase:
 
     def _layout(self) -> tuple[list[Gate], list[list[int | None]]]:
         """The compute gates and each form's register (qubit per column, ``None`` for an empty column)."""
+        gates, registers, _ = self._placed_layout()
+        return gates, registers
+
+    def ancilla_sites(self) -> dict[int, Site]:
+        """Where each ancilla the adder trees use sits (the site of the bits it adds up); empty without
+        :attr:`sites`."""
+        return self._placed_layout()[2] if self.sites else {}
+
+    def _placed_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
         anc = iter(self.ancillas)
+        where = {q: (y, x_) for q, y, x_ in self.sites}
+        home: dict[int, Site] = {}
         gates: list[Gate] = []
         registers: list[list[int | None]] = []
         seen: set[int] = set()
@@ -370,10 +525,14 @@ class SumsPhase:
             if not on:
                 registers.append([])
                 continue
-            g, reg = popcount_layout(form, anc)
+            if where:
+                g, reg, placed = spatial_popcount_layout(form, anc, where)
+                home.update(placed)
+            else:
+                g, reg = popcount_layout(form, anc)
             gates += g
             registers.append(reg)
-        return gates, registers
+        return gates, registers, home
 
     def emit(self) -> list[Gate]:
         compute, registers = self._layout()

@@ -51,7 +51,16 @@ from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
+from .plan_flags import (
+    AncillaBudgetFlag,
+    InitialFlag,
+    OptimizeFlag,
+    PhaseFlag,
+    PhaseLayoutFlag,
+    RuleFlag,
+    TargetFlag,
+    plan_options,
+)
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -85,6 +94,7 @@ def compile_command(
     phase: PhaseFlag = "feasible",
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
+    phase_layout: PhaseLayoutFlag = "auto",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -116,7 +126,7 @@ def compile_command(
     ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
+    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     if layout not in ("auto", "medial", "greedy"):  # circuitgen.hardware.LAYOUT_METHODS (not imported: startup)

@@ -34,7 +34,16 @@ from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import AncillaBudgetFlag, InitialFlag, OptimizeFlag, PhaseFlag, RuleFlag, TargetFlag, plan_options
+from .plan_flags import (
+    AncillaBudgetFlag,
+    InitialFlag,
+    OptimizeFlag,
+    PhaseFlag,
+    PhaseLayoutFlag,
+    RuleFlag,
+    TargetFlag,
+    plan_options,
+)
 
 __all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
 
@@ -80,6 +89,7 @@ def estimate(
     phase: PhaseFlag = "feasible",
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
+    phase_layout: PhaseLayoutFlag = "auto",
     explain: Annotated[
         bool,
         typer.Option(
@@ -184,7 +194,7 @@ def estimate(
         if bad:
             raise _fail(message)
     try:
-        plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget)
+        plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
     except ValueError as exc:
         raise _fail(str(exc)) from None
     if device is not None:

@@ -27,6 +27,7 @@ __all__ = [
     "InitialFlag",
     "OptimizeFlag",
     "PhaseFlag",
+    "PhaseLayoutFlag",
     "RuleFlag",
     "TargetFlag",
     "plan_options",
@@ -58,17 +59,30 @@ AncillaBudgetFlag = Annotated[
     typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
 ]
 
-PLAN_FLAGS: tuple[str, ...] = ("--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget")
+PhaseLayoutFlag = Annotated[
+    str,
+    typer.Option(
+        "--phase-layout",
+        help="How the phase separator sits on the grid: pooled (fewest CX all-to-all), spatial (star-shaped "
+        "adders over neighbouring edges, node gadgets with nearby ancillas: fewer routed CX on grids and "
+        "heavy-hex) or auto (spatial when routed with --device onto a device that is not all-to-all, else pooled).",
+    ),
+]
+
+PLAN_FLAGS: tuple[str, ...] = (
+    "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout",
+)
 """The flags above, in :class:`~circuitgen.options.PlanOptions` field order."""
 
 
 def plan_options(
-    rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None
+    rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None,
+    phase_layout: str = "auto",
 ) -> PlanOptions:
     """The :class:`~circuitgen.options.PlanOptions` of the plan flags.
 
     Args:
-        rule, initial, target, phase, optimize, ancilla_budget: the flags' values.
+        rule, initial, target, phase, optimize, ancilla_budget, phase_layout: the flags' values.
 
     Returns:
         The options.
@@ -77,7 +91,9 @@ def plan_options(
         ValueError: one line naming the flag (``--initial: expected ..., got ...``).
     """
     try:
-        return PlanOptions(rule, initial, target, phase, optimize, ancilla_budget)  # type: ignore[arg-type]
+        return PlanOptions(
+            rule, initial, target, phase, optimize, ancilla_budget, phase_layout=phase_layout,  # type: ignore[arg-type]
+        )
     except ValueError as exc:
         field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
         raise ValueError(f"--{field.replace('_', '-')}: {problem}") from None

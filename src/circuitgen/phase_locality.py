@@ -1,0 +1,151 @@
+"""The phase separator laid out by place: adder trees over neighbouring edges, node gadgets with nearby ancillas.
+
+On an all-to-all machine it does not matter which bits an adder takes or which clean ancilla a node's visit
+gadget borrows. On a nearest-neighbour device it does: the ``pooled`` layout (:meth:`PhasePlan.gadgets
+<circuitgen.phase.PhasePlan.gadgets>` as planned) adds each robot's edges in the order of their variable
+indices, so the adders of the balance term's popcount join bits from far apart rows, and hands the visit
+gadgets the pool's ancillas round robin, so one ancilla serves nodes at both ends of the grid. A router then
+moves qubits across the device for every such gate.
+
+:func:`spatial_phase` is a pass over the planned gadgets (``phase_layout="spatial"`` in
+:class:`~circuitgen.options.PlanOptions`) that changes which qubits play which role and the shape of the adders:
+
+* every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` gets the site of each data qubit (the midpoint of its
+  edge on the doubled lattice: node ``(r, c)`` at ``(2r, 2c)``) and reduces each column of its popcount along a
+  Hilbert curve (:func:`~circuitgen.gadgets.phase_sums.spatial_popcount_layout`): full adders take three
+  neighbouring bits, pass ``k`` sums regions of about ``3^k`` bits, so partial sums merge up a quad-tree-like
+  hierarchy and each carry ancilla belongs to the region it sums. Each adder is a star around its carry
+  ancilla (:func:`~circuitgen.gadgets.phase_sums.star_full_adder`): no gate joins two data qubits, which a
+  layout that keeps the grid's geometry (edge qubits at edge midpoints) never puts side by side. That costs one
+  CX more per adder each way (``2 (F + A)`` per balance gadget, a kind of its own, counted by the estimators);
+* every :class:`~circuitgen.gadgets.phase_visits.VisitPhase` borrows the pool ancillas whose home (the region
+  of the adder that uses them, or the node that first borrowed them) is nearest its node, preferring ancillas no
+  other node borrowed (same gates).
+
+The plan itself (which construction each term group gets, how many ancillas) is unchanged: it is chosen on the
+all-to-all count. ``benchmarks/routing_phase.py`` measures what the pass buys on devices.
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.phase import phase_plan
+    >>> s = default_scenario(4, 4, 2)
+    >>> plan = phase_plan(s)
+    >>> n = s.num_variables
+    >>> pooled = plan.gadgets("gamma_0", 0, n)
+    >>> local = spatial_phase(pooled, s, range(n, n + plan.num_ancillas))
+    >>> [type(g).__name__ for g in local] == [type(g).__name__ for g in pooled]
+    True
+    >>> sum(g.cost().cx for g in pooled), sum(g.cost().cx for g in local)  # 2 CX more per adder
+    (770, 834)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Iterable, Sequence
+
+from gridcover.scenario import Scenario
+
+from .devices import Device, get_device
+from .gadgets import Gadget
+from .gadgets.phase_sums import Site, SumsPhase
+from .gadgets.phase_visits import VisitPhase
+from .options import PlanOptions
+
+__all__ = ["for_device", "placed_sums", "spatial_phase", "variable_sites"]
+
+NEW_HOME_PENALTY = 4
+"""Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
+takes a fresh ancilla up to two grid steps farther rather than share one with a distant node."""
+
+
+def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
+    """Qubit -> site of every data qubit: the midpoint of its edge on the doubled lattice (both robots' copies of
+    an edge share the site).
+
+    >>> from gridcover.presets import default_scenario
+    >>> sorted(variable_sites(default_scenario(2, 2, 1)).items())
+    [(0, (0, 1)), (1, (1, 0)), (2, (1, 2)), (3, (2, 1))]
+    """
+    edges = scenario.grid.edges
+    out: dict[int, Site] = {}
+    for i in range(scenario.num_variables):
+        (r0, c0), (r1, c1) = edges[scenario.variable_of(i)[1]]
+        out[data_offset + i] = (r0 + r1, c0 + c1)
+    return out
+
+
+def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
+    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``spatial`` unless
+    the device couples every pair of its qubits (then ``pooled``, the fewest CX); an explicit choice stays.
+
+    >>> [for_device(PlanOptions(), d).phase_layout for d in ("grid", "heavy-hex:5", "all-to-all", "ibm_fez")]
+    ['spatial', 'spatial', 'pooled', 'spatial']
+    >>> for_device(PlanOptions(phase_layout="pooled"), "grid").phase_layout
+    'pooled'
+    """
+    if options.phase_layout != "auto":
+        return options
+    # a family without a size: its 4-qubit member tells its shape (every family member has the same kind)
+    dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
+    return dataclasses.replace(options, phase_layout="pooled" if dev.is_all_to_all else "spatial")
+
+
+def _distance(a: Site, b: tuple[float, float]) -> float:
+    return abs(a[0] - b[0]) + abs(a[1] - b[1])
+
+
+def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0) -> tuple[Gadget, ...]:
+    """The gadgets with every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` given its data qubits' sites (star
+    adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
+    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
+    sites = variable_sites(scenario, data_offset)
+    return tuple(
+        dataclasses.replace(g, sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f))
+        if isinstance(g, SumsPhase)
+        else g
+        for g in gadgets
+    )
+
+
+def spatial_phase(
+    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0
+) -> tuple[Gadget, ...]:
+    """The same gadgets with place-aware adder trees and node-local ancillas (see the module docs).
+
+    Args:
+        gadgets: The phase plan's gadgets (:meth:`circuitgen.phase.PhasePlan.gadgets`), data on
+            ``data_offset + variable``.
+        scenario: Their scenario (where each variable's edge lies).
+        pool: The plan's clean ancillas (its ``num_ancillas`` qubits).
+        data_offset: Qubit of variable 0.
+
+    Returns:
+        The gadgets in the same order and of the same classes: the balance gadgets with placed star-shaped
+        adder trees, the visit gadgets with nearby ancillas (same kinds), the rest as given.
+    """
+    sites = variable_sites(scenario, data_offset)
+    pool = tuple(pool)
+    out = list(placed_sums(gadgets, scenario, data_offset))
+    home: dict[int, Site] = {}
+    for g in out:
+        if isinstance(g, SumsPhase):
+            home.update(g.ancilla_sites())
+    borrowed: dict[int, int] = dict.fromkeys(pool, 0)
+    for i, g in enumerate(out):
+        if not isinstance(g, VisitPhase) or not g.ancillas:
+            continue
+        edge_sites = [sites[q] for v in g.visitors for q in v]
+        at = (sum(s[0] for s in edge_sites) / len(edge_sites), sum(s[1] for s in edge_sites) / len(edge_sites))
+        usable = [a for a in pool if a in borrowed]
+
+        def rank(a: int, at: tuple[float, float] = at) -> tuple[float, int]:
+            far = _distance(home[a], at) if a in home else float("inf")
+            return far + NEW_HOME_PENALTY * borrowed[a], a
+
+        chosen = tuple(sorted(usable, key=rank)[: len(g.ancillas)])
+        for a in chosen:
+            borrowed[a] += 1
+            home.setdefault(a, (round(at[0]), round(at[1])))
+        out[i] = dataclasses.replace(g, ancillas=chosen)
+    return tuple(out)
