@@ -44,7 +44,7 @@ from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
 from .layout import localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
-from .options import DEFAULT_PLAN, PlanOptions
+from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
 from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
@@ -246,13 +246,6 @@ def compile_for_device(
     if not lowered:
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
-
-
-LAYOUT_METHODS = ("auto", "medial", "greedy")
-"""``medial``: the geometric layout of :mod:`circuitgen.medial` with windows routed home
-(:func:`circuitgen.routing.route_windows`); ``greedy``: :func:`best_layout` and one SABRE routing of the whole
-circuit; ``auto``: medial where the device is a square grid that holds it, else greedy; on such a grid a circuit
-of at most :data:`AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit gates win."""
 
 AUTO_COMPARE_MAX_TWOQ = 2_000
 """Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and

@@ -25,7 +25,8 @@ from gridcover.sbf import RULES, Rule
 from .cost import TARGETS, Target
 
 __all__ = [
-    "DEFAULT_PLAN", "INITIAL_STATES", "OPTIMIZE", "PHASES", "PHASE_LAYOUTS", "Initial", "PhaseLayout", "PlanOptions",
+    "DEFAULT_PLAN", "INITIAL_STATES", "LAYOUT_METHODS", "OPTIMIZE", "PHASES", "PHASE_LAYOUTS", "Initial", "PhaseLayout",
+    "PlanOptions",
 ]
 
 Initial = Literal["initial_path", "representatives"]
@@ -36,6 +37,14 @@ Optimize = Literal["cx", "depth"]
 OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
 PhaseLayout = Literal["auto", "pooled", "spatial"]
 PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial")
+LAYOUT_METHODS = ("auto", "medial", "greedy")
+"""How :func:`circuitgen.hardware.compile_for_device` lays a circuit onto a device (here, not in hardware, so that
+the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
+:mod:`circuitgen.medial` with windows routed home (:func:`circuitgen.routing.route_windows`); ``greedy``:
+:func:`circuitgen.hardware.best_layout` and one SABRE routing of the whole circuit; ``auto``: medial where the
+device is a square grid that holds it, else greedy; on such a grid a circuit of at most
+:data:`circuitgen.hardware.AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit
+gates win."""
 
 
 @dataclass(frozen=True)

@@ -43,7 +43,7 @@ from rich.table import Table
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.compile import compile_scenario, parse_bindings
-from circuitgen.options import PlanOptions
+from circuitgen.options import LAYOUT_METHODS, PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
 from gridcover.scenario import Scenario, load_scenario
@@ -129,8 +129,8 @@ def compile_command(
     options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
-    if layout not in ("auto", "medial", "greedy"):  # circuitgen.hardware.LAYOUT_METHODS (not imported: startup)
-        raise ValueError(f"--layout: expected auto, medial or greedy, got {layout!r}")
+    if layout not in LAYOUT_METHODS:
+        raise ValueError(f"--layout: expected {', '.join(LAYOUT_METHODS[:-1])} or {LAYOUT_METHODS[-1]}, got {layout!r}")
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
