@@ -60,17 +60,21 @@ def test_default_scenarios_equal_the_plan(rows: int, cols: int, target: str) -> 
     if rows * cols >= 36:
         assert all(answered)  # only grids where the couplings alternative may win are left to the plan
 
+def _random_robots(data: st.DataObject, rows: int, cols: int) -> list[Robot]:
+    """1-4 robots with distinct random starts and distinct random goals (robots whose start is their goal dropped)."""
+    nodes = [(r, c) for r in range(rows) for c in range(cols)]
+    k = data.draw(st.integers(1, 4), label="robots")
+    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
+    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
+    return [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_random_endpoints_and_objectives_equal_the_plan(data: st.DataObject) -> None:
     rows = data.draw(st.integers(2, 12), label="rows")
     cols = data.draw(st.integers(6, 12), label="cols")
-    nodes = [(r, c) for r in range(rows) for c in range(cols)]
-    k = data.draw(st.integers(1, 4), label="robots")
-    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
-    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
-    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    robots = _random_robots(data, rows, cols)
     objective = Objective(
         alpha=data.draw(st.sampled_from([(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (1.0, 0.0, 1.0)])),
         balance=data.draw(st.sampled_from(["chain", "all-pairs"])),
@@ -92,11 +96,7 @@ def test_random_scenarios_and_plan_options_equal_the_plan(data: st.DataObject) -
     ancilla budget) shows as a different cost, ancilla count or kind multiset."""
     rows = data.draw(st.integers(3, 9), label="rows")
     cols = data.draw(st.integers(3, 9), label="cols")
-    nodes = [(r, c) for r in range(rows) for c in range(cols)]
-    k = data.draw(st.integers(1, 4), label="robots")
-    starts = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="starts")
-    goals = data.draw(st.lists(st.sampled_from(nodes), min_size=k, max_size=k, unique=True), label="goals")
-    robots = [Robot(a, b) for a, b in zip(starts, goals) if a != b]
+    robots = _random_robots(data, rows, cols)
     if not robots:
         return
     objective = Objective(

@@ -45,7 +45,7 @@ from gridcover.scenario import Scenario, scenario_from_dict
 from simulate.sparse import simulate_sparse
 
 from ..qcpp.clirun import run
-from .phase_test import GAMMA, TOL, check_states, sample_combos
+from .phase_test import GAMMA, TOL, check_states, sample_combos, sums_gadgets
 
 SPATIAL = PlanOptions(phase_layout="spatial")
 OBSTACLE_INTERIOR = {
@@ -121,22 +121,8 @@ def test_estimate_equals_compiled_with_the_spatial_layout(which: str, options: P
 
 
 # --- the popcount by place --------------------------------------------------------------------------------------
-@st.composite
-def placed_sums(draw: st.DrawFn) -> SumsPhase:
-    n_forms = draw(st.integers(1, 3))
-    qubits = iter(range(64))
-    forms = tuple(
-        tuple((next(qubits), w) for w in draw(st.lists(st.integers(-5, 6).filter(bool), min_size=0, max_size=8)))
-        for _ in range(n_forms)
-    )
-    coef = st.sampled_from([0.0, 1.0, -0.5, 2.25, 0.3])
-    m = [[draw(coef) for _ in range(n_forms)] for _ in range(n_forms)]
-    sym = tuple(tuple((m[a][b] + m[b][a]) / 2 for b in range(n_forms)) for a in range(n_forms))
-    lin = tuple(draw(coef) for _ in range(n_forms))
-    used = sum(len(f) for f in forms)
-    site = st.tuples(st.integers(0, 9), st.integers(0, 9))
-    sites = tuple((q, *draw(site)) for f in forms for q, _ in f)
-    return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + 80)), sites)
+def placed_sums() -> st.SearchStrategy[SumsPhase]:
+    return sums_gadgets(max_terms=8, ancillas=80, placed=True)
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -215,11 +215,15 @@ def test_visit_gadget_is_exact_with_clean_ancillas(products: bool) -> None:
 
 
 @st.composite
-def sums_gadgets(draw: st.DrawFn) -> SumsPhase:
+def sums_gadgets(draw: st.DrawFn, max_terms: int = 5, ancillas: int = 60, placed: bool = False) -> SumsPhase:
+    """A balance gadget of 1-3 random integer forms; ``placed``: each data qubit also gets a random grid site."""
     n_forms = draw(st.integers(1, 3))
     qubits = iter(range(64))
     forms = tuple(
-        tuple((next(qubits), w) for w in draw(st.lists(st.integers(-5, 6).filter(bool), min_size=0, max_size=5)))
+        tuple(
+            (next(qubits), w)
+            for w in draw(st.lists(st.integers(-5, 6).filter(bool), min_size=0, max_size=max_terms))
+        )
         for _ in range(n_forms)
     )
     coef = st.sampled_from([0.0, 1.0, -0.5, 2.25, 0.3])
@@ -227,7 +231,11 @@ def sums_gadgets(draw: st.DrawFn) -> SumsPhase:
     sym = tuple(tuple((m[a][b] + m[b][a]) / 2 for b in range(n_forms)) for a in range(n_forms))
     lin = tuple(draw(coef) for _ in range(n_forms))
     used = sum(len(f) for f in forms)
-    return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + 60)))
+    if not placed:
+        return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + ancillas)))
+    site = st.tuples(st.integers(0, 9), st.integers(0, 9))
+    sites = tuple((q, *draw(site)) for f in forms for q, _ in f)
+    return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + ancillas)), sites)
 
 
 @settings(max_examples=60, deadline=None)
