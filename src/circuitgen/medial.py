@@ -129,12 +129,12 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
     homes = []
     for v in range(scenario.num_variables):
         robot, e = scenario.variable_of(v)
-        (r1, c1), (r2, c2) = g.edges[e]
+        a, b = g.edge_sites[e]
         dr, dc = divmod(robot, across)
         if arrangement == "tile":
-            row, col = dr * patch[0] + r1 + r2, dc * patch[1] + c1 + c2
+            row, col = dr * patch[0] + a, dc * patch[1] + b
         else:
-            row, col = down * (r1 + r2) + dr, across * (c1 + c2) + dc
+            row, col = down * a + dr, across * b + dc
         homes.append(row * cols + col)
     return tuple(homes)
 

@@ -67,12 +67,8 @@ def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
     >>> sorted(variable_sites(default_scenario(2, 2, 1)).items())
     [(0, (0, 1)), (1, (1, 0)), (2, (1, 2)), (3, (2, 1))]
     """
-    edges = scenario.grid.edges
-    out: dict[int, Site] = {}
-    for i in range(scenario.num_variables):
-        (r0, c0), (r1, c1) = edges[scenario.variable_of(i)[1]]
-        out[data_offset + i] = (r0 + r1, c0 + c1)
-    return out
+    sites = scenario.grid.edge_sites
+    return {data_offset + i: sites[scenario.variable_of(i)[1]] for i in range(scenario.num_variables)}
 
 
 def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:

@@ -157,6 +157,16 @@ class Grid:
         return tuple(out)
 
     @cached_property
+    def edge_sites(self) -> tuple[tuple[int, int], ...]:
+        """For each edge index, its midpoint on the doubled lattice (node ``(r, c)`` at ``(2r, 2c)``): where a
+        layout that keeps the grid's geometry puts the edge.
+
+        >>> Grid(2, 2).edge_sites
+        ((0, 1), (1, 0), (1, 2), (2, 1))
+        """
+        return tuple((r0 + r1, c0 + c1) for (r0, c0), (r1, c1) in self.edges)
+
+    @cached_property
     def edge_nodes(self) -> tuple[tuple[int, int], ...]:
         """For each edge index, the pair of node indices it joins."""
         return tuple((self.node_index(u), self.node_index(v)) for u, v in self.edges)
