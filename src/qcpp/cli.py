@@ -284,7 +284,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "target": _lazy("circuitgen.cost", "TARGETS"),
     "phase": lambda: ("feasible", "whole-space"),
     "optimize": lambda: ("cx", "depth"),
-    "initial": _lazy("simulate.subspace", "INITIAL_STATES"),
+    "initial": _lazy("circuitgen.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
     "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
     "solve.optimizer": _lazy("simulate.training", "OPTIMIZERS"),

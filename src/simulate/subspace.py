@@ -70,6 +70,7 @@ import numpy as np
 from scipy.linalg.blas import zdotc
 from scipy.linalg.lapack import zrot
 
+from circuitgen.options import INITIAL_STATES, Initial
 from circuitgen.phase import phase_plan
 from gridcover.cost import separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
@@ -89,9 +90,8 @@ __all__ = [
     "split_angles",
 ]
 
-InitialState = Literal["initial_path", "representatives"]
+InitialState = Initial  # the compiler's initial states: the simulator prepares exactly what compile emits
 Kernels = Literal["auto", "numba", "blas"]
-INITIAL_STATES: tuple[InitialState, ...] = ("initial_path", "representatives")
 
 _CHUNK = 1 << 18  # elements per chunk of the element-wise loops
 _DEFAULT_BUFFER = 1 << 22  # complex amplitudes (64 MiB) in the transposed buffer of a short-stride axis
