@@ -379,6 +379,7 @@ def route_windows(
     seed: int = 0,
     measured: Sequence[int] | None = None,
     trials: int | None = DEFAULT_TRIALS,
+    dist: Any = None,
 ) -> RoutedCircuit:
     """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
     circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
@@ -391,6 +392,7 @@ def route_windows(
         seed: SABRE's seed.
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
         trials: SABRE's trials per window.
+        dist: The device's all-pairs distances (:func:`circuitgen.layout.distances`), if already known.
 
     Returns:
         The :class:`RoutedCircuit` (``initial_layout == final_layout == layout``).
@@ -398,7 +400,8 @@ def route_windows(
     from .layout import distances
 
     gates, section_of, home, measured_ = _flatten(circuit, device, layout, measured)
-    dist = distances(device)
+    if dist is None:
+        dist = distances(device)
     pos = Positions(home, device.num_qubits)
     ops: list[tuple[str, tuple[int, int]]] = []
     owners: list[str] = []
