@@ -37,7 +37,7 @@ Example:
     >>> from gridcover.presets import default_scenario
     >>> s = routed_sum(default_scenario(3, 3, 1), 1, device="grid")
     >>> s.device.name, s.windows, s.bounded_windows, s.two_qubit > 106
-    ('grid:5x5', 14, 0, True)
+    ('grid:5x5', 6, 0, True)
 """
 
 from __future__ import annotations
@@ -349,15 +349,18 @@ def routed_sum(
     plan = qaoa_plan(scenario, 1 if p else 0, opts)
     n_data = scenario.num_variables
     registers = plan.registers
-    templates: dict[Hashable, _Template] = {}
+    templates: dict[Hashable, _Template] = {}  # per pattern of high-level gates (angles included)
+    shared: dict[Hashable, _Template] = {}  # per lowered gates without angles: what routing sees
     blocks = []
     for layered, block, _ in _windows(plan, n_data):
         key, order = _pattern(block, n_data)
         template = templates.get(key)
         if template is None:
             template = templates[key] = _lower_template(block, order, registers, n_data)
-        blocks.append((layered, key, [order[t] for t, is_data in enumerate(template.is_data[: len(order)]) if is_data]))
-    need = max((sum(not x for x in templates[k].is_data) for _, k, _ in blocks), default=0)
+        template = shared.setdefault((template.gates, template.is_data), template)  # angles do not route
+        data = [q for q, is_data in zip(order, template.is_data, strict=False) if is_data]
+        blocks.append((layered, template, data))
+    need = max((sum(not x for x in t.is_data) for _, t, _ in blocks), default=0)
     while dev.num_qubits - n_data < need:  # compile grows the unsized grid while a section lacks free qubits
         if device != "grid":
             raise ValueError(f"a section needs {need} ancillas; device {dev.name} has {dev.num_qubits - n_data} "
@@ -373,7 +376,7 @@ def routed_sum(
     occupied[rows_of, cols_of] = True
 
     classes: dict[Hashable, list[Any]] = {}
-    for layered, key, data in blocks:
+    for layered, template, data in blocks:
         weight = p if layered else 1
         if not weight:
             continue
@@ -383,14 +386,14 @@ def routed_sum(
             crop = _crop(box, MARGIN, shape)
             env = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
             rel = tuple(zip((rs - box[0]).tolist(), (cs - box[2]).tolist(), strict=True))
-            sig = (key, rel, crop.rows, crop.cols, box[0] - crop.top, box[2] - crop.left, crop.open_sides,
+            sig = (id(template), rel, crop.rows, crop.cols, box[0] - crop.top, box[2] - crop.left, crop.open_sides,
                    env.tobytes())  # fmt: skip
         else:  # no data qubit: allocation looks at the whole device
             box = (0, shape[0] - 1, 0, shape[1] - 1)
-            sig = (key, (), "whole")
+            sig = (id(template), (), "whole")
         entry = classes.get(sig)
         if entry is None:
-            classes[sig] = [weight, key, list(zip(rs.tolist(), cs.tolist(), strict=True)), box]
+            classes[sig] = [weight, template, list(zip(rs.tolist(), cs.tolist(), strict=True)), box]
         else:
             entry[0] += weight
 
@@ -400,8 +403,7 @@ def routed_sum(
     native: Counter[str] = Counter()
     swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
     duration: float | None = 0.0
-    for weight, key, sites, box in classes.values():
-        template = templates[key]
+    for weight, template, sites, box in classes.values():
         windows += weight
         ops = Counter(dict(template.ops))
         lowered.update({k: v * weight for k, v in ops.items()})
@@ -428,7 +430,7 @@ def routed_sum(
         counts = _native_counts(ops, routed.swaps, dev)
         win_depth, win_depth2, win_duration = _native_schedule(routed, dev)
         swaps += weight * routed.swaps
-        native.update({k: v * weight for k, v in counts.items()})
+        native.update({k: v * weight for k, v in counts.items() if v})
         depth += weight * win_depth
         depth2 += weight * win_depth2
         if duration is not None and win_duration is not None:
@@ -451,14 +453,18 @@ def routed_sum(
                      depth, depth2, duration)  # fmt: skip
 
 
-@lru_cache(maxsize=64)
 def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[int, ...]], ...]:
     """The native gates (device gate name, roles ``0``/``1`` of the lowered gate's qubits) one lowered gate
     becomes (:func:`circuitgen.routing.to_native`)."""
+    return _expansion_of(name, arity, device.two_qubit_gate, tuple(device.native_gates))
+
+
+@lru_cache(maxsize=256)
+def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> tuple[tuple[str, tuple[int, ...]], ...]:
     params = (math.pi / 2,) if name in ("rz", "rx") else ()
-    gates = _native_gates(Gate(name, tuple(range(arity)), params, None), device.two_qubit_gate,
-                          "x" in device.native_gates)  # fmt: skip
-    return tuple((_one_qubit_name(device, g) if len(g[1]) == 1 else g[0], tuple(g[1])) for g in gates)
+    gates = _native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
+    sx = "sx" in native
+    return tuple(("sx" if sx and g[0] == "rx" else g[0], tuple(g[1])) for g in gates)
 
 
 def _native_schedule(routed: RoutedCircuit, device: Device) -> tuple[int, int, float | None]:
@@ -471,9 +477,14 @@ def _native_schedule(routed: RoutedCircuit, device: Device) -> tuple[int, int, f
         timed = False
     d1 = {name: per[0] for name, per in device.duration_1q_s} if timed else {}
     d2 = device.duration_2q_s[0] if timed and device.duration_2q_s else 0.0
+    expansions: dict[tuple[str, int], tuple[tuple[str, tuple[int, ...]], ...]] = {}
     for g in routed.circuit.gates:
         qs = g[1]
-        for name, roles in _expansion(g[0], len(qs), device):
+        shape = (g[0], len(qs))
+        expansion = expansions.get(shape)
+        if expansion is None:
+            expansion = expansions[shape] = _expansion(g[0], len(qs), device)
+        for name, roles in expansion:
             if len(roles) == 2:
                 a, b = qs[roles[0]], qs[roles[1]]
                 top = max(level[a], level[b]) + 1
