@@ -221,6 +221,11 @@ one."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
+WHOLE_COMPONENT_PATCHES = 0
+"""How many window parts were routed on their whole connected component because the qubits around them did not
+connect them (a window spanning far-apart qubits): such a routing depends on the whole device, not on the
+neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
+
 
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     """The largest ``m <= len(pairs) / 2`` such that the last ``m`` pairs are the first ``m`` reversed (as
@@ -252,6 +257,8 @@ def _patch(positions: set[int], device: Device, dist: Any) -> tuple[int, ...]:
         _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(len(near),) * 2), directed=False)
         if len({int(labels[index[p]]) for p in positions}) == 1:
             return tuple(int(p) for p in near)
+    global WHOLE_COMPONENT_PATCHES
+    WHOLE_COMPONENT_PATCHES += 1
     return tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0])))
 
 

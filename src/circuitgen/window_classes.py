@@ -54,6 +54,7 @@ import numpy as np
 
 from gridcover.scenario import Scenario
 
+from . import routing
 from .circuit import Circuit, Register, Section
 from .devices import Device, get_device
 from .gadgets.partial_mixer import McxPartialMixer
@@ -62,7 +63,7 @@ from .lowering import lower
 from .medial import allocate_ancillas, grid_shape, medial_placement
 from .options import DEFAULT_PLAN, PlanOptions
 from .phase_locality import for_device
-from .routing import DEFAULT_TRIALS, RoutedCircuit, _native_gates, _one_qubit_name, route_windows
+from .routing import DEFAULT_TRIALS, _native_gates, _one_qubit_name, route_windows
 
 __all__ = ["GUARD", "MARGIN", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
 
@@ -244,38 +245,54 @@ def _inside(crop: _Crop, sites: np.ndarray) -> bool:
 
 
 def _route_on(
-    template: _Template, data_sites: Sequence[tuple[int, int]], crop: _Crop, occupied: np.ndarray, seed: int,
+    windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     trials: int | None,
-) -> RoutedCircuit | None:  # fmt: skip
-    """Allocate and route one window on ``crop`` as compile does on the device; ``None`` if the crop does not
-    answer for the device (see the module docs)."""
+) -> list[tuple[int, list[Gate]]] | None:  # fmt: skip
+    """Allocate and route windows on ``crop`` as compile does on the device, one section each (windows are
+    independent: each starts and ends with every qubit home): per window its SWAPs and routed gates (on the
+    crop's qubits); ``None`` if the crop does not answer for the device (see the module docs)."""
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
     homes = np.flatnonzero(sub.ravel())
     index = {int(h): i for i, h in enumerate(homes)}
     n_data = len(homes)
-    slot: dict[int, int] = {}
-    d = 0
-    a = 0
-    for t, is_data in enumerate(template.is_data):
-        if is_data:
-            r, c = data_sites[d]
-            slot[t] = index[(r - crop.top) * crop.cols + (c - crop.left)]
-            d += 1
-        else:
-            slot[t] = n_data + a
-            a += 1
-    gates = [Gate(name, tuple(slot[t] for t in qs), (), None) for name, qs in template.gates]
-    registers = [Register("data", n_data)] + ([Register("anc", a)] if a else [])
-    circuit = Circuit(registers, [Section("w", gates)])
+    sections = []
+    width = 0
+    for w, (template, data_sites) in enumerate(windows):
+        slot: dict[int, int] = {}
+        d = a = 0
+        for t, is_data in enumerate(template.is_data):
+            if is_data:
+                r, c = data_sites[d]
+                slot[t] = index[(r - crop.top) * crop.cols + (c - crop.left)]
+                d += 1
+            else:
+                slot[t] = n_data + a
+                a += 1
+        width = max(width, a)
+        sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
+                                          for name, qs in template.gates]))  # fmt: skip
+    registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
     try:
-        logical, layout = allocate_ancillas(circuit, [int(h) for h in homes], dev, dist)
+        logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist)
     except ValueError:  # more ancillas than free qubits in the crop
         return None
+    before = routing.WHOLE_COMPONENT_PATCHES
     routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
-    touched = np.array(sorted({q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])),
-                       dtype=int)  # fmt: skip
-    return routed if _inside(crop, touched) else None
+    if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
+        return None  # routed on the whole crop: the device beyond it would change the routing
+    touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
+    if not _inside(crop, np.array(sorted(touched), dtype=int)):
+        return None
+    by_name: dict[str, list[Gate]] = {}
+    for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
+        by_name.setdefault(sec.name, []).extend(sec.gates)
+    out = []
+    for w, (template, _) in enumerate(windows):
+        gates = by_name.get(f"w{w}", [])
+        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in template.gates if len(qs) == 2)
+        out.append((cx // 3, gates))
+    return out
 
 
 def _bound_per_gate(shape: tuple[int, int]) -> int:
@@ -403,22 +420,34 @@ def routed_sum(
     native: Counter[str] = Counter()
     swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
     duration: float | None = 0.0
-    for weight, template, sites, box in classes.values():
+    results: dict[int, tuple[int, list[Gate]] | None] = {}
+    whole_batch: list[int] = []
+    entries = list(classes.values())
+    for i, (_, template, sites, box) in enumerate(entries):
+        margin = MARGIN
+        while True:
+            crop = _crop(box, margin, shape)
+            if not any(crop.open_sides):  # routed with the other whole-device windows below
+                if dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:
+                    whole_batch.append(i)
+                results[i] = None
+                break
+            routed = _route_on([(template, sites)], crop, occupied, seed, trials)
+            if routed is not None:
+                results[i] = routed[0]
+                break
+            margin *= 2
+    if whole_batch:
+        crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
+        batch = _route_on([(entries[i][1], entries[i][2]) for i in whole_batch], crop, occupied, seed, trials)
+        assert batch is not None, "the whole device answers for itself"
+        results.update(zip(whole_batch, batch, strict=True))
+    for i, (weight, template, _, _) in enumerate(entries):
         windows += weight
         ops = Counter(dict(template.ops))
         lowered.update({k: v * weight for k, v in ops.items()})
-        routed = None
-        margin = MARGIN
-        while routed is None:
-            crop = _crop(box, margin, shape)
-            whole = not any(crop.open_sides)
-            if whole and dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
-                break
-            routed = _route_on(template, sites, crop, occupied, seed, trials)
-            if routed is None and whole:
-                raise AssertionError("a window routed on the whole device must answer")  # pragma: no cover
-            margin *= 2
-        if routed is None:
+        result = results[i]
+        if result is None:
             cx = ops.get("cx", 0)
             charged = cx * _bound_per_gate(shape)
             bounded += weight
@@ -427,9 +456,10 @@ def routed_sum(
             out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
             duration = None
             continue
-        counts = _native_counts(ops, routed.swaps, dev)
-        win_depth, win_depth2, win_duration = _native_schedule(routed, dev)
-        swaps += weight * routed.swaps
+        win_swaps, gates = result
+        counts = _native_counts(ops, win_swaps, dev)
+        win_depth, win_depth2, win_duration = _native_schedule(gates, dev)
+        swaps += weight * win_swaps
         native.update({k: v * weight for k, v in counts.items() if v})
         depth += weight * win_depth
         depth2 += weight * win_depth2
@@ -437,7 +467,7 @@ def routed_sum(
             duration += weight * win_duration
         else:
             duration = None
-        out.append(WindowClass(weight, template.ops, routed.swaps, None, tuple(sorted(counts.items())), win_depth,
+        out.append(WindowClass(weight, template.ops, win_swaps, None, tuple(sorted(counts.items())), win_depth,
                                win_depth2, win_duration))  # fmt: skip
     twoq_name = dev.two_qubit_gate
     two = native.get(twoq_name, 0) + two_bound
@@ -467,10 +497,10 @@ def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> 
     return tuple(("sx" if sx and g[0] == "rx" else g[0], tuple(g[1])) for g in gates)
 
 
-def _native_schedule(routed: RoutedCircuit, device: Device) -> tuple[int, int, float | None]:
+def _native_schedule(gates: Sequence[Gate], device: Device) -> tuple[int, int, float | None]:
     """ASAP depth, two-qubit depth and length in seconds (``None`` unless the device's durations are uniform,
     so that the crop stands for any part of it) of one routed window in native gates, without building them."""
-    n = routed.circuit.num_qubits
+    n = 1 + max((q for g in gates for q in g[1]), default=-1)
     level, level2, clock = [0] * n, [0] * n, [0.0] * n
     timed = device.duration_1q_s is not None and device.duration_2q_s is not None
     if timed and (len(set(device.duration_2q_s)) > 1 or any(len(set(per)) > 1 for _, per in device.duration_1q_s)):
@@ -478,7 +508,7 @@ def _native_schedule(routed: RoutedCircuit, device: Device) -> tuple[int, int, f
     d1 = {name: per[0] for name, per in device.duration_1q_s} if timed else {}
     d2 = device.duration_2q_s[0] if timed and device.duration_2q_s else 0.0
     expansions: dict[tuple[str, int], tuple[tuple[str, tuple[int, ...]], ...]] = {}
-    for g in routed.circuit.gates:
+    for g in gates:
         qs = g[1]
         shape = (g[0], len(qs))
         expansion = expansions.get(shape)
