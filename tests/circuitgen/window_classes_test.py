@@ -33,7 +33,10 @@ def test_doctests() -> None:
     assert result.attempted and not result.failed
 
 
-def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = PlanOptions(), device: str = "grid") -> None:
+DEFAULT = PlanOptions()
+
+
+def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = DEFAULT, device: str = "grid") -> None:
     summed = routed_sum(s, p, options, device)
     assert summed is not None
     routing._WINDOW_CACHE.clear()  # the compile routes every window afresh: determinism, not a shared memo
