@@ -18,13 +18,18 @@ functions compile runs, and its routed counts are multiplied by the class's mult
 windows of layer ``k`` are those of layer 0 with other angles). A crop answers for the whole device when nothing
 the representative touches comes within :data:`GUARD` sites of a side of the crop that is not a device edge
 (ancilla homes and every routed gate, SWAPs included: routing patches reach :data:`WINDOW_RADIUS
-<circuitgen.routing.WINDOW_RADIUS>` = 2 sites around the qubits they route, so they stay inside); otherwise the
-window is routed again on a crop twice the margin, up to the whole device. Windows whose crop is the whole device
-(the phase separator's balance and coupling gadgets span every robot) are routed on the whole device while it
-has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (its distance matrix is dense); above that they are
-*bounded*: every two-qubit gate of theirs is charged a SWAP chain to its partner and back along a shortest path
-(``1 + 6 (D - 1)`` CX for a device of diameter ``D``), which is a routing of that window that returns home, not
-SABRE's.
+<circuitgen.routing.WINDOW_RADIUS>` = 2 sites around the qubits they route, so they stay inside) and no part of
+it was routed on its whole connected component (the router's fallback where the qubits' neighbourhoods do not
+connect them, :data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device); otherwise
+the window is routed again on a crop twice the margin, up to the whole device. Windows that need the whole
+device -- the phase separator's balance and coupling gadgets, and with several robots every node's visit gadget
+(the tiled layout puts a node's copies in every robot's patch, far apart) -- are routed together on the whole
+device, one SABRE run each as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing
+needs its dense distance matrix); above that they are *bounded*: every two-qubit gate of theirs is charged a SWAP
+chain to its partner and back along a shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a
+routing of that window that returns home, not SABRE's. So the sum is fast where windows are local (one robot:
+30x30 at ``p = 3`` in seconds); with several robots it routes every visit gadget on the whole device, as compile
+does, and is no faster than compile.
 
 What is exact when no window is bounded (``tests/circuitgen/window_classes_test.py`` checks each against
 ``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered and native gate counts
