@@ -79,6 +79,15 @@ GUARD = 3
 """A crop answers if the representative's ancilla homes and routed gates keep this many sites from every side of
 the crop that is not a device edge (one more than the routing patch's radius)."""
 
+ROUTED_CLASSES: dict[Hashable, tuple[int, int, int, float | None]] = {}
+"""What one routed window of a class costs (SWAPs, native depth, two-qubit depth, duration), per signature and
+device gate set (native gates, durations, SABRE's seed and trials): a sweep routes each class once. The
+cache of routed windows, next to :data:`circuitgen.call_graph.COSTS` (the kinds' costs), not in it: its key is a
+window with its neighbourhood on one device, not a gadget kind."""
+
+ROUTED_CLASSES_LIMIT = 1 << 14
+"""Entries :data:`ROUTED_CLASSES` holds before it starts over."""
+
 WHOLE_DEVICE_MAX_QUBITS = 4_096
 """Largest device a window spanning it is routed on (routing needs the device's dense distance matrix); windows
 on larger devices whose crop is the whole device are bounded (see the module docs)."""
@@ -300,6 +309,12 @@ def _route_on(
     return out
 
 
+def _summary(routed: tuple[int, list[Gate]], device: Device) -> tuple[int, int, int, float | None]:
+    """SWAPs, native depth, native two-qubit depth and duration of one routed window."""
+    swaps, gates = routed
+    return (swaps, *_native_schedule(gates, device))
+
+
 def _bound_per_gate(shape: tuple[int, int]) -> int:
     return 1 + 6 * (shape[0] + shape[1] - 2 - 1)
 
@@ -397,27 +412,67 @@ def routed_sum(
     rows_of, cols_of = np.divmod(np.array(homes, dtype=int), shape[1])
     occupied[rows_of, cols_of] = True
 
-    classes: dict[Hashable, list[Any]] = {}
+    # a window: (weight, template, its data qubits' sites, their bounding box)
+    members: list[tuple[int, _Template, list[tuple[int, int]], tuple[int, int, int, int]]] = []
     for layered, template, data in blocks:
         weight = p if layered else 1
-        if not weight:
-            continue
-        rs, cs = rows_of[data], cols_of[data]
-        if len(data):
-            box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max()))
-            crop = _crop(box, MARGIN, shape)
-            env = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
-            rel = tuple(zip((rs - box[0]).tolist(), (cs - box[2]).tolist(), strict=True))
-            sig = (id(template), rel, crop.rows, crop.cols, box[0] - crop.top, box[2] - crop.left, crop.open_sides,
-                   env.tobytes())  # fmt: skip
-        else:  # no data qubit: allocation looks at the whole device
+        if weight:
+            rs, cs = rows_of[data], cols_of[data]
+            box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max())) if len(data) else None
+            members.append((weight, template, list(zip(rs.tolist(), cs.tolist(), strict=True)), box))  # type: ignore[arg-type]
+
+    def signature(member: tuple[Any, ...], margin: int) -> tuple[Hashable, _Crop]:
+        """The window's class at ``margin``: its gates, data sites relative to their box, and the crop around."""
+        _, template, sites, box = member
+        if box is None:  # no data qubit: allocation looks at the whole device
             box = (0, shape[0] - 1, 0, shape[1] - 1)
-            sig = (id(template), (), "whole")
-        entry = classes.get(sig)
-        if entry is None:
-            classes[sig] = [weight, template, list(zip(rs.tolist(), cs.tolist(), strict=True)), box]
-        else:
-            entry[0] += weight
+        crop = _crop(box, margin, shape)
+        env = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
+        rel = tuple((r - box[0], c - box[2]) for r, c in sites)
+        return (template.gates, template.is_data, rel, margin, crop.rows, crop.cols, box[0] - crop.top,
+                box[2] - crop.left, crop.open_sides, env.tobytes()), crop  # fmt: skip
+
+    def grouped(group: list[Any], margin: int) -> dict[Hashable, list[Any]]:
+        out: dict[Hashable, list[Any]] = {}
+        for m in group:
+            out.setdefault(signature(m, margin)[0], []).append(m)
+        return out
+
+    # classes are resolved at the smallest margin whose crop answers for the device; a class whose representative
+    # needs a larger crop is split by its members' signatures at the larger margin
+    timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
+        dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
+    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials)
+    entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
+    results: list[tuple[int, int, int, float | None] | None] = []
+    whole_batch: list[int] = []
+    pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
+    while pending:
+        margin, sig, group = pending.pop()
+        hit = ROUTED_CLASSES.get((sig, device_key))
+        _, template, sites, _ = group[0]
+        crop = signature(group[0], margin)[1]
+        if hit is None and any(crop.open_sides):
+            routed = _route_on([(template, sites)], crop, occupied, seed, trials)
+            if routed is None:
+                pending.extend((2 * margin, s2, g2) for s2, g2 in grouped(group, 2 * margin).items())
+                continue
+            hit = _summary(routed[0], dev)
+        elif hit is None and dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:  # routed with the others below
+            whole_batch.append(len(entries))
+        entries.append((sig, group))
+        results.append(hit)
+    if whole_batch:
+        crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
+        batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, trials)
+        assert batch is not None, "the whole device answers for itself"
+        for i, r in zip(whole_batch, batch, strict=True):
+            results[i] = _summary(r, dev)
+    if len(ROUTED_CLASSES) > ROUTED_CLASSES_LIMIT:
+        ROUTED_CLASSES.clear()
+    for (sig, _), result in zip(entries, results, strict=True):
+        if result is not None:
+            ROUTED_CLASSES[(sig, device_key)] = result
 
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []
@@ -425,29 +480,9 @@ def routed_sum(
     native: Counter[str] = Counter()
     swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
     duration: float | None = 0.0
-    results: dict[int, tuple[int, list[Gate]] | None] = {}
-    whole_batch: list[int] = []
-    entries = list(classes.values())
-    for i, (_, template, sites, box) in enumerate(entries):
-        margin = MARGIN
-        while True:
-            crop = _crop(box, margin, shape)
-            if not any(crop.open_sides):  # routed with the other whole-device windows below
-                if dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:
-                    whole_batch.append(i)
-                results[i] = None
-                break
-            routed = _route_on([(template, sites)], crop, occupied, seed, trials)
-            if routed is not None:
-                results[i] = routed[0]
-                break
-            margin *= 2
-    if whole_batch:
-        crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
-        batch = _route_on([(entries[i][1], entries[i][2]) for i in whole_batch], crop, occupied, seed, trials)
-        assert batch is not None, "the whole device answers for itself"
-        results.update(zip(whole_batch, batch, strict=True))
-    for i, (weight, template, _, _) in enumerate(entries):
+    for i, (_, group) in enumerate(entries):
+        weight = sum(m[0] for m in group)
+        template = group[0][1]
         windows += weight
         ops = Counter(dict(template.ops))
         lowered.update({k: v * weight for k, v in ops.items()})
@@ -461,9 +496,8 @@ def routed_sum(
             out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
             duration = None
             continue
-        win_swaps, gates = result
+        win_swaps, win_depth, win_depth2, win_duration = result
         counts = _native_counts(ops, win_swaps, dev)
-        win_depth, win_depth2, win_duration = _native_schedule(gates, dev)
         swaps += weight * win_swaps
         native.update({k: v * weight for k, v in counts.items() if v})
         depth += weight * win_depth
