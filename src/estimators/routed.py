@@ -178,7 +178,7 @@ def routed_fields(
         summed = _window_sum(scenario, p, plan, device)
         if summed is not None:
             out["device"] = summed.device.name
-            return {**out, **summed_fields(summed, ESP_MODEL)}
+            return {**out, **_summed_fields(summed, ESP_MODEL)}
         return {**out, **_bound_of_compiled(scenario, p, plan, dev)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan)
@@ -201,7 +201,7 @@ def routed_fields(
 
 def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
-    :data:`~circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits), else ``None``."""
+    :data:`~circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
     from circuitgen.hardware import AUTO_COMPARE_MAX_TWOQ, medial_device
     from circuitgen.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
 
@@ -209,12 +209,14 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
         return None
     summed = routed_sum(scenario, p, plan, device)
-    if summed is None or not summed.exact or summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+    if summed is None or not summed.exact or summed.log_esp is None:
+        return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
+    if summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
         return None  # compile would also try the greedy layout on so few two-qubit gates
     return summed
 
 
-def summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
+def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
     """Row fields of a :class:`circuitgen.window_classes.RoutedSum` with no bounded window."""
     return {
         "routed_kind": "exact",
