@@ -91,6 +91,16 @@ def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
     _assert_sum_equals_compile(s, 1)
 
 
+def test_windows_sharing_a_class_route_as_compile_routes_each() -> None:
+    from circuitgen.window_classes import ROUTED_CLASSES
+
+    ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
+    s = default_scenario(10, 10, 1)
+    summed = routed_sum(s, 1)
+    assert summed is not None and len(summed.classes) < summed.windows  # translated windows share a class
+    _assert_sum_equals_compile(s, 1)
+
+
 def test_a_larger_device_than_needed_gives_the_same_sum_as_compile() -> None:
     _assert_sum_equals_compile(default_scenario(3, 3, 1), 1, device="grid:9x11")
 
@@ -108,6 +118,6 @@ def test_not_a_square_grid_gives_none() -> None:
 
 
 @pytest.mark.heavy
-@pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1)])
+@pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2)])
 def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: int, robots: int, p: int) -> None:
     _assert_sum_equals_compile(default_scenario(rows, cols, robots), p)
