@@ -21,7 +21,9 @@ the representative touches comes within :data:`GUARD` sites of a side of the cro
 <circuitgen.routing.WINDOW_RADIUS>` = 2 sites around the qubits they route, so they stay inside) and no part of
 it was routed on its whole connected component (the router's fallback where the qubits' neighbourhoods do not
 connect them, :data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device); otherwise
-the window is routed again on a crop twice the margin, up to the whole device. Windows that need the whole
+the class is split by its members' signatures at twice the margin (their larger crops may differ) and each part
+is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
+and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
 device -- the phase separator's balance and coupling gadgets, and with several robots every node's visit gadget
 (the tiled layout puts a node's copies in every robot's patch, far apart) -- are routed together on the whole
 device, one SABRE run each as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing
@@ -70,7 +72,7 @@ from .options import DEFAULT_PLAN, PlanOptions
 from .phase_locality import for_device
 from .routing import DEFAULT_TRIALS, _native_gates, _one_qubit_name, route_windows
 
-__all__ = ["GUARD", "MARGIN", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
+__all__ = ["GUARD", "MARGIN", "ROUTED_CLASSES", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
 
 MARGIN = 5
 """Sites around a window's data qubits that its first crop keeps (doubled while the crop does not answer)."""
