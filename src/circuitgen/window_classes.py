@@ -23,8 +23,8 @@ it was routed on its whole connected component (the router's fallback where the 
 connect them, :data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the
 allocation, an argmin over every free device qubit, that is an argument rather than a proof (a free site outside
 the crop is farther from every qubit inside than its projection on the crop's side); the tests are the evidence.
-Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and each part
-is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
+Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and
+each part is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
 and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
 device -- the phase separator's balance and coupling gadgets, and with several robots every node's visit gadget
 (the tiled layout puts a node's copies in every robot's patch, far apart) -- are routed together on the whole
