@@ -40,7 +40,9 @@ What is exact when no window is bounded (``tests/circuitgen/window_classes_test.
 by name, hence the two-qubit and one-qubit counts, and the estimated success probability on devices with
 uniform error rates (a product over gates, so its logarithm is a sum over classes). Depth and duration are not
 sums: windows on disjoint qubits overlap in the ASAP schedule. The sum of the windows' own depths (durations) is
-an upper bound: the windows run one after another in the worst case.
+an upper bound (the windows run one after another in the worst case) once each one-qubit gate that follows its
+qubit's last two-qubit gate in a window adds one level: the router defers such a gate to just before the qubit's
+next two-qubit gate, in a later window, and one inserted one-qubit gate deepens a circuit by at most one.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -139,8 +141,9 @@ class RoutedSum:
         one_qubit: Native one-qubit gates of the routed windows (bounded windows: 6 per two-qubit gate plus 3 per
             lowered one-qubit gate, an upper bound).
         log_esp: Natural log of the estimated success probability (``None``: the device's errors are not uniform).
-        depth_bound, two_qubit_depth_bound: Sums of the windows' own depths.
-        duration_bound_s: Sum of the windows' durations plus one readout (``None``: no durations published).
+        depth_bound, two_qubit_depth_bound: Sums of the windows' own depths (the depth also counts each one-qubit
+            gate the router defers into a later window once).
+        duration_bound_s: Likewise for durations, plus one readout (``None``: no durations published).
     """
 
     device: Device
@@ -265,10 +268,11 @@ def _inside(crop: _Crop, sites: np.ndarray) -> bool:
 def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     trials: int | None,
-) -> list[tuple[int, list[Gate]]] | None:  # fmt: skip
+) -> list[tuple[int, list[Gate]]] | str | None:  # fmt: skip
     """Allocate and route windows on ``crop`` as compile does on the device, one section each (windows are
     independent: each starts and ends with every qubit home): per window its SWAPs and routed gates (on the
-    crop's qubits); ``None`` if the crop does not answer for the device (see the module docs)."""
+    crop's qubits); ``None`` if the crop does not answer for the device (see the module docs), ``"whole"`` if
+    the window needs the whole device (a part routed on its whole component: no crop answers)."""
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
     homes = np.flatnonzero(sub.ravel())
@@ -298,7 +302,7 @@ def _route_on(
     before = routing.WHOLE_COMPONENT_PATCHES
     routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
     if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
-        return None  # routed on the whole crop: the device beyond it would change the routing
+        return "whole"  # routed on the whole crop: the device beyond it would change the routing
     touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
     if not _inside(crop, np.array(sorted(touched), dtype=int)):
         return None
@@ -317,6 +321,21 @@ def _summary(routed: tuple[int, list[Gate]], device: Device) -> tuple[int, int, 
     """SWAPs, native depth, native two-qubit depth and duration of one routed window."""
     swaps, gates = routed
     return (swaps, *_native_schedule(gates, device))
+
+
+def _trailing(template: _Template, device: Device) -> tuple[int, float | None]:
+    """Native one-qubit gates of a window that follow their qubit's last two-qubit gate in it (all of a qubit's
+    if it has none), and their total duration at the device's longest one-qubit gate time (``None``: none)."""
+    seen: set[int] = set()
+    count = 0
+    for name, qs in reversed(template.gates):
+        if len(qs) == 2:
+            seen.update(qs)
+        elif qs[0] not in seen:
+            count += len(_expansion(name, 1, device))
+    if device.duration_1q_s is None:
+        return count, None
+    return count, count * max((d for _, per in device.duration_1q_s for d in per), default=0.0)
 
 
 def _bound_per_gate(shape: tuple[int, int]) -> int:
@@ -361,6 +380,7 @@ def routed_sum(
     seed: int = 0,
     trials: int | None = DEFAULT_TRIALS,
     arrangement: str = "tile",
+    whole_device_work: int | None = None,
 ) -> RoutedSum | None:
     """The routed figures of ``compile_for_device(scenario, p, device, options, layout_method="medial")`` as a sum
     over window classes (see the module docs), or ``None`` where the medial layout does not apply (not a square
@@ -373,6 +393,8 @@ def routed_sum(
         device: A device name or :class:`Device` (the unsized ``grid`` is sized as compile sizes it).
         seed, trials: SABRE's seed and trials per window (compile's defaults).
         arrangement: The medial layout's robot arrangement.
+        whole_device_work: At most this many (windows routed on the whole device x device qubits): above it, such
+            windows are bounded instead (:attr:`RoutedSum.exact` is then ``False``); ``None``: no limit.
 
     Returns:
         The :class:`RoutedSum`, or ``None``.
@@ -450,6 +472,7 @@ def routed_sum(
     entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
     results: list[tuple[int, int, int, float | None] | None] = []
     whole_batch: list[int] = []
+    whole = max(shape)  # a margin whose crop is the whole device
     pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
     while pending:
         margin, sig, group = pending.pop()
@@ -458,14 +481,17 @@ def routed_sum(
         crop = signature(group[0], margin)[1]
         if hit is None and any(crop.open_sides):
             routed = _route_on([(template, sites)], crop, occupied, seed, trials)
-            if routed is None:
-                pending.extend((2 * margin, s2, g2) for s2, g2 in grouped(group, 2 * margin).items())
+            if routed is None or routed == "whole":
+                wider = whole if routed == "whole" else 2 * margin  # no crop short of the device answers
+                pending.extend((wider, s2, g2) for s2, g2 in grouped(group, wider).items())
                 continue
-            hit = _summary(routed[0], dev)
+            hit = _summary(routed[0], dev)  # type: ignore[index]
         elif hit is None and dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:  # routed with the others below
             whole_batch.append(len(entries))
         entries.append((sig, group))
         results.append(hit)
+    if whole_device_work is not None and len(whole_batch) * dev.num_qubits > whole_device_work:
+        whole_batch = []  # over budget: those windows are bounded, not routed
     if whole_batch:
         crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
         batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, trials)
@@ -504,10 +530,13 @@ def routed_sum(
         counts = _native_counts(ops, win_swaps, dev)
         swaps += weight * win_swaps
         native.update({k: v * weight for k, v in counts.items() if v})
-        depth += weight * win_depth
+        # a window's one-qubit gates after a qubit's last two-qubit gate in it wait for that qubit's next
+        # two-qubit gate (router's rule), in a later window: each such native gate adds at most one level there
+        late, late_s = _trailing(template, dev)
+        depth += weight * (win_depth + late)
         depth2 += weight * win_depth2
-        if duration is not None and win_duration is not None:
-            duration += weight * win_duration
+        if duration is not None and win_duration is not None and late_s is not None:
+            duration += weight * (win_duration + late_s)
         else:
             duration = None
         out.append(WindowClass(weight, template.ops, win_swaps, None, tuple(sorted(counts.items())), win_depth,

@@ -15,7 +15,9 @@
      exactly as ``qcpp compile --device`` does; every figure is exact.
   2. ``window sum``: a square-grid device that holds the medial layout (the layout compile takes on grids
      above :data:`circuitgen.hardware.AUTO_COMPARE_MAX_TWOQ` two-qubit gates) with at most
-     :data:`circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits. The routed circuit's windows are summed
+     :data:`circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, and windows needing the whole device
+     within :data:`WINDOW_SUM_WORK` (with several robots every visit gadget does: then the sum is no faster than
+     compile, and only small devices get it). The routed circuit's windows are summed
      by classes (:func:`circuitgen.window_classes.routed_sum`): the two-qubit count, the one-qubit count and the
      ESP are exact (``routed_kind`` ``exact``); depth, two-qubit depth and duration are the sums of the
      windows' own, an upper bound (``routed_depth_kind`` ``bound``).
@@ -51,10 +53,23 @@ from gridcover.scenario import Scenario
 
 from .counts import count_gates
 
-__all__ = ["BOUND_MODEL", "EXACT_MAX_GATES", "ROUTED_COLUMNS", "SUM_MODEL", "diameter_bound", "routed_fields"]
+__all__ = [
+    "BOUND_MODEL",
+    "EXACT_MAX_GATES",
+    "ROUTED_COLUMNS",
+    "SUM_MODEL",
+    "WINDOW_SUM_WORK",
+    "diameter_bound",
+    "routed_fields",
+]
 
 EXACT_MAX_GATES = 60_000
 """Lowered circuits up to this many gates are routed exactly by ``estimate --device``."""
+
+WINDOW_SUM_WORK = 100_000
+"""The window sum answers only when its windows that need the whole device (with several robots: every node's
+visit gadget) times the device's qubits stay within this (each is one SABRE run on the whole device, as in
+compile); above it the row gets the bound. 8x8 with 3 robots on its 900-qubit grid is about 60,000."""
 
 ROUTED_COLUMNS: tuple[str, ...] = (
     "device",
@@ -208,7 +223,7 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     dev = medial_device(scenario, device)
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
         return None
-    summed = routed_sum(scenario, p, plan, device)
+    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
     if summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:

@@ -121,3 +121,16 @@ def test_not_a_square_grid_gives_none() -> None:
 @pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2)])
 def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: int, robots: int, p: int) -> None:
     _assert_sum_equals_compile(default_scenario(rows, cols, robots), p)
+
+
+def test_windows_over_the_whole_device_budget_are_bounded() -> None:
+    from circuitgen.window_classes import ROUTED_CLASSES
+
+    s = default_scenario(3, 3, 2)
+    exact = routed_sum(s, 1)
+    ROUTED_CLASSES.clear()  # else the whole-device windows are known already and cost no work
+    bounded = routed_sum(s, 1, whole_device_work=0)
+    assert exact is not None and bounded is not None
+    assert exact.exact and not bounded.exact and bounded.bounded_windows > 0
+    assert bounded.log_esp is None and bounded.two_qubit > exact.two_qubit
+    assert bounded.lowered_ops == exact.lowered_ops
