@@ -226,12 +226,19 @@ def _windows(plan: Any, n_data: int) -> list[tuple[int, Sequence[Gate], str]]:
 
 
 # --- routing one representative ----------------------------------------------------------------------------
-@lru_cache(maxsize=64)
 def _grid(rows: int, cols: int) -> tuple[Device, np.ndarray]:
-    """The crop's device and its distances (Manhattan: a rectangle of the square lattice)."""
+    """The crop's device and its distances (Manhattan: a rectangle of the square lattice); small crops are
+    remembered (a whole device's dense matrix is not: up to 134 MB)."""
+    return _small_grid(rows, cols) if rows * cols <= 1_024 else _grid_of(rows, cols)
+
+
+def _grid_of(rows: int, cols: int) -> tuple[Device, np.ndarray]:
     r, c = np.divmod(np.arange(rows * cols), cols)
     dist = (np.abs(r[:, None] - r[None, :]) + np.abs(c[:, None] - c[None, :])).astype(float)
     return get_device(f"grid:{rows}x{cols}"), dist
+
+
+_small_grid = lru_cache(maxsize=128)(_grid_of)
 
 
 @dataclass(frozen=True)
