@@ -221,6 +221,11 @@ one."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
+WHOLE_COMPONENT_PATCHES = 0
+"""How many window parts were routed on their whole connected component because the qubits around them did not
+connect them (a window spanning far-apart qubits): such a routing depends on the whole device, not on the
+neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
+
 
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     """The largest ``m <= len(pairs) / 2`` such that the last ``m`` pairs are the first ``m`` reversed (as
@@ -252,6 +257,8 @@ def _patch(positions: set[int], device: Device, dist: Any) -> tuple[int, ...]:
         _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(len(near),) * 2), directed=False)
         if len({int(labels[index[p]]) for p in positions}) == 1:
             return tuple(int(p) for p in near)
+    global WHOLE_COMPONENT_PATCHES
+    WHOLE_COMPONENT_PATCHES += 1
     return tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0])))
 
 
@@ -379,6 +386,7 @@ def route_windows(
     seed: int = 0,
     measured: Sequence[int] | None = None,
     trials: int | None = DEFAULT_TRIALS,
+    dist: Any = None,
 ) -> RoutedCircuit:
     """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
     circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
@@ -391,6 +399,7 @@ def route_windows(
         seed: SABRE's seed.
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
         trials: SABRE's trials per window.
+        dist: The device's all-pairs distances (:func:`circuitgen.layout.distances`), if already known.
 
     Returns:
         The :class:`RoutedCircuit` (``initial_layout == final_layout == layout``).
@@ -398,7 +407,8 @@ def route_windows(
     from .layout import distances
 
     gates, section_of, home, measured_ = _flatten(circuit, device, layout, measured)
-    dist = distances(device)
+    if dist is None:
+        dist = distances(device)
     pos = Positions(home, device.num_qubits)
     ops: list[tuple[str, tuple[int, int]]] = []
     owners: list[str] = []

@@ -1,4 +1,4 @@
-"""Routed figures for ``qcpp estimate --device NAME``: exact where routing is affordable, otherwise a labelled bound.
+"""Routed figures for ``qcpp estimate --device NAME``: exact where affordable, otherwise a labelled bound.
 
 :func:`routed_fields` adds to an estimate row:
 
@@ -7,14 +7,29 @@
   smallest member with the row's qubits), ``fits``
   (the device's largest connected component has the row's qubits);
 * ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``;
-* ``routed_kind``: ``exact`` (the circuit is compiled and routed exactly as ``qcpp compile --device`` does, and
-  the numbers are those of the circuit it writes; when the lowered circuit has at most :data:`EXACT_MAX_GATES`
-  gates) or ``bound`` (larger circuits; no circuit is built): every two-qubit gate of the lowered count is
-  charged a SWAP chain to its partner and back along a shortest path, at most ``1 + 6 (D - 1)`` two-qubit
-  gates for a device of diameter at most ``D``, each native two-qubit gate costs six native one-qubit gates,
-  and the gates run one after another. So ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth`` and
-  ``duration_s`` are upper bounds and ``esp`` (worst gate and readout errors of the device) a lower bound of
-  what that routing gives. They are loose; they answer "is it hopeless", not "what will it cost".
+* ``routed_kind`` (the two-qubit count and the ESP) and ``routed_depth_kind`` (the depths and the duration), each
+  ``exact`` (equal to what ``qcpp compile --device`` writes) or ``bound``; ``routed_model`` says how they were
+  obtained. Three ways, the first that applies:
+
+  1. ``compile``: the lowered circuit has at most :data:`EXACT_MAX_GATES` gates. It is compiled and routed
+     exactly as ``qcpp compile --device`` does; every figure is exact.
+  2. ``window sum``: a square-grid device that holds the medial layout (the layout compile takes on grids
+     above :data:`circuitgen.hardware.AUTO_COMPARE_MAX_TWOQ` two-qubit gates) with at most
+     :data:`circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, and windows needing the whole device
+     within :data:`WINDOW_SUM_WORK` (with several robots every visit gadget does: then the sum is no faster than
+     compile, and only small devices get it). The routed circuit's windows are summed
+     by classes (:func:`circuitgen.window_classes.routed_sum`): the two-qubit count, the one-qubit count and the
+     ESP are exact (``routed_kind`` ``exact``); depth, two-qubit depth and duration are the sums of the
+     windows' own, an upper bound (``routed_depth_kind`` ``bound``).
+  3. ``bound`` (no circuit is built): the circuit compile would route (its phase separator laid out as the
+     device compile lays it out, :func:`circuitgen.phase_locality.for_device`: ``spatial`` on sparse devices;
+     unfused, every gadget a section),
+     every two-qubit gate routed by a SWAP chain to its partner and back along a shortest path, at most
+     ``1 + 6 (D - 1)`` two-qubit gates for a device of diameter at most ``D``; each native two-qubit gate costs
+     six native one-qubit gates, and the gates run one after another. ``routed_twoq``, ``routed_depth``,
+     ``routed_twoq_depth`` and ``duration_s`` bound *that* routing from above and ``esp`` (worst gate and
+     readout errors) from below. It is a routing compile could write, not the one it writes (SABRE's): an
+     upper bound of the best routing, loose; it answers "is it hopeless", not "what will it cost".
 
 Rows that do not fit get ``None`` for every routed figure.
 
@@ -22,8 +37,8 @@ Example:
     >>> from gridcover.presets import default_scenario
     >>> from estimators.estimate import DEFAULT_PLAN
     >>> f = routed_fields(default_scenario(3, 3, 1), 1, DEFAULT_PLAN, "grid", qubits=15, cx=106, one_qubit=180)
-    >>> f["device"], f["fits"], f["routed_kind"], f["routed_twoq"] > 106
-    ('grid:5x5', True, 'exact', True)
+    >>> f["device"], f["fits"], f["routed_kind"], f["routed_depth_kind"], f["routed_twoq"] > 106
+    ('grid:5x5', True, 'exact', 'exact', True)
 """
 
 from __future__ import annotations
@@ -38,10 +53,23 @@ from gridcover.scenario import Scenario
 
 from .counts import count_gates
 
-__all__ = ["EXACT_MAX_GATES", "ROUTED_COLUMNS", "diameter_bound", "routed_fields"]
+__all__ = [
+    "BOUND_MODEL",
+    "EXACT_MAX_GATES",
+    "ROUTED_COLUMNS",
+    "SUM_MODEL",
+    "WINDOW_SUM_WORK",
+    "diameter_bound",
+    "routed_fields",
+]
 
 EXACT_MAX_GATES = 60_000
 """Lowered circuits up to this many gates are routed exactly by ``estimate --device``."""
+
+WINDOW_SUM_WORK = 100_000
+"""The window sum answers only when its windows that need the whole device (with several robots: every node's
+visit gadget) times the device's qubits stay within this (each is one SABRE run on the whole device, as in
+compile); above it the row gets the bound. 8x8 with 3 robots on its 900-qubit grid is about 60,000."""
 
 ROUTED_COLUMNS: tuple[str, ...] = (
     "device",
@@ -55,9 +83,16 @@ ROUTED_COLUMNS: tuple[str, ...] = (
 """Columns the ``table`` format adds with ``--device``."""
 
 BOUND_MODEL = (
-    "bound: each two-qubit gate routed by a SWAP chain along a shortest path and back (<= 1 + 6 (D - 1) "
-    "two-qubit gates, D = a bound on the device's diameter), 6 native one-qubit gates per two-qubit gate, "
-    "gates in sequence, worst gate and readout errors"
+    "bound: the circuit compile --device routes (phase layout as the device compile sets it), each two-qubit "
+    "gate routed by a SWAP chain along a shortest path and back (<= 1 + 6 (D - 1) two-qubit gates, D = a bound "
+    "on the device's diameter), 6 native one-qubit gates per two-qubit gate, gates in sequence, worst gate and "
+    "readout errors: bounds that routing, not SABRE's"
+)
+COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
+SUM_MODEL = (
+    "window sum: the medial layout's windows (one gadget each, routed home) summed by classes of equal gates and "
+    "neighbourhood, one representative each routed as compile routes it; counts and ESP exact, depth and "
+    "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 
 
@@ -108,6 +143,8 @@ def _bound(device: Device, cx: int, one_qubit: int, data_qubits: int) -> dict[st
         duration = twoq * _worst(device.duration_2q_s) + ones * d1 + _worst(device.readout_duration_s)
     return {
         "routed_kind": "bound",
+        "routed_depth_kind": "bound",
+        "routed_model": BOUND_MODEL,
         "routed_twoq": twoq,
         "routed_depth": twoq + ones,
         "routed_twoq_depth": twoq,
@@ -134,7 +171,8 @@ def routed_fields(
         p: QAOA layers.
         plan: The row's :class:`estimators.estimate.PlanOptions`.
         device: A device name (:func:`circuitgen.devices.get_device`).
-        qubits, cx, one_qubit: The row's lowered counts.
+        qubits, cx, one_qubit: The row's lowered counts (``cx + one_qubit`` picks the way unless ``total_gates``
+            is given; the bound recounts the circuit compile routes, whose phase layout may differ from the row's).
         total_gates: The row's lowered gate count (default ``cx + one_qubit``), for the exact/bound choice.
 
     Returns:
@@ -148,10 +186,15 @@ def routed_fields(
     fits = _largest_component(dev) >= qubits
     out: dict[str, Any] = {"device": dev.name, "fits": fits}
     if not fits:
-        none = ("routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth", "duration_s", "esp", "esp_model")
+        none = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
+                "duration_s", "esp", "esp_model")  # fmt: skip
         return {**out, **dict.fromkeys(none)}
     if (total_gates if total_gates is not None else cx + one_qubit) > EXACT_MAX_GATES:
-        return {**out, **_bound(dev, cx, one_qubit, scenario.num_variables)}
+        summed = _window_sum(scenario, p, plan, device)
+        if summed is not None:
+            out["device"] = summed.device.name
+            return {**out, **_summed_fields(summed, ESP_MODEL)}
+        return {**out, **_bound_of_compiled(scenario, p, plan, dev)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan)
     routed = result.routed
@@ -160,6 +203,8 @@ def routed_fields(
     return {
         **out,
         "routed_kind": "exact",
+        "routed_depth_kind": "exact",
+        "routed_model": COMPILE_MODEL,
         "routed_twoq": gc.two_qubit,
         "routed_depth": gc.depth,
         "routed_twoq_depth": gc.two_qubit_depth,
@@ -167,3 +212,48 @@ def routed_fields(
         "esp": esp(routed),
         "esp_model": ESP_MODEL,
     }
+
+
+def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
+    """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
+    :data:`~circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
+    from circuitgen.hardware import AUTO_COMPARE_MAX_TWOQ, medial_device
+    from circuitgen.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
+
+    dev = medial_device(scenario, device)
+    if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
+        return None
+    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK)
+    if summed is None or not summed.exact or summed.log_esp is None:
+        return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
+    if summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+        return None  # compile would also try the greedy layout on so few two-qubit gates
+    return summed
+
+
+def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
+    """Row fields of a :class:`circuitgen.window_classes.RoutedSum` with no bounded window."""
+    return {
+        "routed_kind": "exact",
+        "routed_depth_kind": "bound",
+        "routed_model": SUM_MODEL,
+        "routed_twoq": summed.two_qubit,
+        "routed_depth": summed.depth_bound,
+        "routed_twoq_depth": summed.two_qubit_depth_bound,
+        "duration_s": summed.duration_bound_s,
+        "esp": summed.esp,
+        "esp_model": esp_model,
+    }
+
+
+def _bound_of_compiled(scenario: Scenario, p: int, plan: Any, device: Device) -> dict[str, Any]:
+    """:func:`_bound` of the lowered counts of the circuit compile routes on ``device`` (unfused, its phase
+    layout)."""
+    import dataclasses
+
+    from circuitgen.phase_locality import for_device
+    from circuitgen.qaoa import qaoa_plan
+
+    # compile --device routes the unfused circuit (every gadget a section) with the device's phase layout
+    cost = qaoa_plan(scenario, p, dataclasses.replace(for_device(plan, device), fuse=False)).cost()
+    return _bound(device, cost.two_qubit, cost.single_qubit, scenario.num_variables)

@@ -65,9 +65,11 @@ def test_estimate_device_too_small_and_bound() -> None:
     res = run("estimate", "--grid", "5x5", "--robots", "2", "--device", "quantinuum_helios", "--json")
     (row,) = json.loads(res.stdout)
     assert row["fits"] is False and row["routed_twoq"] is None
-    res = run("estimate", "--grid", "12x12", "--robots", "3", "--device", "grid", "--json")
+    # 24x24 with 3 robots needs a 94x94 grid: too large for the window sum's whole-device windows
+    res = run("estimate", "--grid", "24x24", "--robots", "3", "--device", "grid", "--json")
     (row,) = json.loads(res.stdout)
     assert row["routed_kind"] == "bound" and row["routed_twoq"] >= row["cx"] and 0 <= row["esp"] < 1
+    assert row["routed_depth_kind"] == "bound" and row["routed_model"].startswith("bound:")
 
 
 def test_estimate_bad_device_is_one_line() -> None:

@@ -1,0 +1,136 @@
+"""The routed sum over window classes equals what ``compile --device grid`` writes (medial layout).
+
+Each case computes :func:`circuitgen.window_classes.routed_sum`, forgets every routing the process remembers
+(SABRE's window cache), then compiles the circuit routed on the same device and compares the two-qubit count, the
+one-qubit count, the native gate counts by name and the ESP; the sum's depth and duration must bound the
+circuit's.
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import math
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+
+from circuitgen import routing
+from circuitgen.hardware import compile_for_device
+from circuitgen.options import PlanOptions
+from circuitgen.routing import duration_s, esp
+from circuitgen.window_classes import routed_sum
+from estimators.counts import count_gates
+from estimators.crosscheck import interior_endpoints
+from gridcover.presets import default_scenario
+from gridcover.scenario import Scenario
+
+from .conftest import scenarios
+
+
+def test_doctests() -> None:
+    result = doctest.testmod(importlib.import_module("circuitgen.window_classes"))
+    assert result.attempted and not result.failed
+
+
+DEFAULT = PlanOptions()
+
+
+def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = DEFAULT, device: str = "grid") -> None:
+    summed = routed_sum(s, p, options, device)
+    assert summed is not None
+    routing._WINDOW_CACHE.clear()  # the compile routes every window afresh: determinism, not a shared memo
+    r = compile_for_device(s, p, device, options, bindings=None, layout_method="medial")
+    routed = r.routed
+    assert routed.device.name == summed.device.name
+    ops = routed.circuit.count_ops()
+    two = routed.device.two_qubit_gate
+    assert summed.exact
+    assert summed.native_ops == {k: v for k, v in ops.items() if v}
+    assert summed.two_qubit == ops.get(two, 0)
+    assert summed.one_qubit == sum(v for k, v in ops.items() if k != two)
+    assert summed.swaps == routed.swaps
+    assert summed.log_esp is not None
+    assert math.isclose(summed.log_esp, math.log(esp(routed)), rel_tol=1e-9, abs_tol=1e-9)
+    gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
+    assert gc.depth <= summed.depth_bound
+    assert gc.two_qubit_depth <= summed.two_qubit_depth_bound
+    actual = duration_s(routed)
+    if actual is not None:
+        assert summed.duration_bound_s is not None and actual <= summed.duration_bound_s * (1 + 1e-12)
+    lowered = r.logical.count_ops()
+    assert {k: v * 1 for k, v in summed.lowered_ops.items()} == {k: v for k, v in lowered.items() if v}
+
+
+CASES = {
+    "3x3/1 p1": (lambda: default_scenario(3, 3, 1), 1, PlanOptions()),
+    "3x3/1 p2 ft": (lambda: default_scenario(3, 3, 1), 2, PlanOptions(target="ft")),
+    "3x3/2 p1": (lambda: default_scenario(3, 3, 2), 1, PlanOptions()),
+    "4x4/2 p2": (lambda: default_scenario(4, 4, 2), 2, PlanOptions()),
+    "3x4 interior p1": (lambda: interior_endpoints(3, 4), 1, PlanOptions()),
+    "4x4 hard interior p1": (lambda: interior_endpoints(4, 4, "hard"), 1, PlanOptions()),
+    "4x4 soft interior p2 depth": (lambda: interior_endpoints(4, 4, "soft"), 2, PlanOptions(optimize="depth")),
+    "3x3/3 p1": (lambda: default_scenario(3, 3, 3), 1, PlanOptions()),
+    "3x3/1 paper rule": (lambda: default_scenario(3, 3, 1), 1, PlanOptions(rule="paper")),
+    "3x3/1 representatives": (lambda: default_scenario(3, 3, 1), 1, PlanOptions(initial="representatives")),
+    "4x4/2 budget 0": (lambda: default_scenario(4, 4, 2), 1, PlanOptions(ancilla_budget=0)),
+    "3x4/2 pooled": (lambda: default_scenario(3, 4, 2), 1, PlanOptions(phase_layout="pooled")),
+    "3x3/1 p0": (lambda: default_scenario(3, 3, 1), 0, PlanOptions()),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_routed_sum_equals_compile(case: str) -> None:
+    build, p, options = CASES[case]
+    _assert_sum_equals_compile(build(), p, options)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(s=scenarios(max_side=4, max_robots=3))
+def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
+    _assert_sum_equals_compile(s, 1)
+
+
+def test_windows_sharing_a_class_route_as_compile_routes_each() -> None:
+    from circuitgen.window_classes import ROUTED_CLASSES
+
+    ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
+    s = default_scenario(10, 10, 1)
+    summed = routed_sum(s, 1)
+    assert summed is not None and len(summed.classes) < summed.windows  # translated windows share a class
+    _assert_sum_equals_compile(s, 1)
+
+
+def test_a_larger_device_than_needed_gives_the_same_sum_as_compile() -> None:
+    _assert_sum_equals_compile(default_scenario(3, 3, 1), 1, device="grid:9x11")
+
+
+def test_windows_of_one_class_share_one_routing() -> None:
+    s = routed_sum(default_scenario(16, 16, 1), 1)
+    assert s is not None and s.exact
+    assert len(s.classes) < s.windows / 2  # interior partial mixers and visit gadgets repeat
+    assert sum(c.multiplicity for c in s.classes) == s.windows
+
+
+def test_not_a_square_grid_gives_none() -> None:
+    assert routed_sum(default_scenario(3, 3, 1), 1, device="heavy-hex") is None
+    assert routed_sum(default_scenario(3, 3, 1), 1, device="grid:4x4") is None  # too small for the layout
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2)])
+def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: int, robots: int, p: int) -> None:
+    _assert_sum_equals_compile(default_scenario(rows, cols, robots), p)
+
+
+def test_windows_over_the_whole_device_budget_are_bounded() -> None:
+    from circuitgen.window_classes import ROUTED_CLASSES
+
+    s = default_scenario(3, 3, 2)
+    exact = routed_sum(s, 1)
+    ROUTED_CLASSES.clear()  # else the whole-device windows are known already and cost no work
+    bounded = routed_sum(s, 1, whole_device_work=0)
+    assert exact is not None and bounded is not None
+    assert exact.exact and not bounded.exact and bounded.bounded_windows > 0
+    assert bounded.log_esp is None and bounded.two_qubit > exact.two_qubit
+    assert bounded.lowered_ops == exact.lowered_ops

@@ -1,0 +1,58 @@
+"""``estimate --device``: which way the routed figures are obtained, and that each is what it says."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import pytest
+
+from circuitgen.devices import get_device
+from circuitgen.hardware import compile_for_device
+from circuitgen.options import PlanOptions
+from circuitgen.phase_locality import for_device
+from circuitgen.qaoa import qaoa_plan
+from circuitgen.routing import esp
+from estimators import routed
+from estimators.routed import diameter_bound, routed_fields
+from gridcover.presets import default_scenario
+
+
+def _fields(s, p, device, **kw):  # type: ignore[no-untyped-def]
+    cost = qaoa_plan(s, p, PlanOptions()).cost()
+    return routed_fields(s, p, PlanOptions(), device, qubits=qaoa_plan(s, p).num_qubits, cx=cost.two_qubit,
+                         one_qubit=cost.single_qubit, total_gates=cost.total, **kw)  # fmt: skip
+
+
+def test_the_window_sum_gives_compiles_counts_and_esp(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)  # take the window sum at a size compile answers quickly
+    s = default_scenario(5, 5, 2)
+    f = _fields(s, 1, "grid")
+    assert f["routed_kind"] == "exact" and f["routed_depth_kind"] == "bound"
+    assert f["routed_model"] == routed.SUM_MODEL
+    r = compile_for_device(s, 1, "grid")
+    assert r.layout_method == "medial" and f["device"] == r.routed.device.name
+    summary = r.summary()["routed"]
+    assert f["routed_twoq"] == summary["two_qubit"]
+    assert math.isclose(f["esp"], esp(r.routed), rel_tol=1e-9)
+
+
+def test_the_bound_counts_the_circuit_the_device_compile_routes(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)
+    s = default_scenario(4, 4, 2)
+    f = _fields(s, 1, "heavy-hex")
+    assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
+    dev = get_device(f["device"])
+    per = 1 + 6 * (diameter_bound(dev) - 1)
+    spatial = qaoa_plan(s, 1, replace(for_device(PlanOptions(), "heavy-hex"), fuse=False)).cost().two_qubit
+    pooled = qaoa_plan(s, 1, PlanOptions(phase_layout="pooled", fuse=False)).cost().two_qubit
+    assert spatial > pooled  # star adders: the row's own (pooled) count would not bound the device circuit
+    assert f["routed_twoq"] == spatial * per
+    r = compile_for_device(s, 1, "heavy-hex")
+    assert r.summary()["routed"]["two_qubit"] <= f["routed_twoq"]
+    assert r.compiled.circuit.count_ops()["cx"] == spatial  # the compile routes the spatial circuit
+
+
+def test_small_rows_are_compiled_and_exact_everywhere() -> None:
+    f = _fields(default_scenario(3, 3, 1), 1, "grid")
+    assert (f["routed_kind"], f["routed_depth_kind"], f["routed_model"]) == ("exact", "exact", routed.COMPILE_MODEL)
