@@ -39,6 +39,7 @@ from typing import Any
 
 from gridcover.scenario import Scenario
 
+from .bridge import bridge_far_phases
 from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
@@ -300,5 +301,6 @@ def medial_compile(
             side = int(dev.name.split("x")[-1]) + 1
             dev = get_device(f"grid:{side}x{side}")
             continue
+        logical, layout = bridge_far_phases(logical, layout, dev)
         return logical, route_windows(logical, dev, layout, seed=seed, measured=measured)
     return None
