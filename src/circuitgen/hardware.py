@@ -248,6 +248,7 @@ def compile_for_device(
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
 
+SEARCH = True
 AUTO_COMPARE_MAX_TWOQ = 2_000
 """Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
 on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
@@ -294,7 +295,7 @@ def medial_compile(
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
         try:
-            logical, layout = allocate_ancillas(circuit, homes, dev)
+            logical, layout = allocate_ancillas(circuit, homes, dev, search=SEARCH)
         except ValueError:
             if spec != "grid":
                 raise
