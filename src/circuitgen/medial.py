@@ -195,7 +195,7 @@ def _place_ancillas(
     return home
 
 
-SEARCH_RANKS = 2
+SEARCH_RANKS = 4
 """With ``search``, each ancilla of a small section is also tried on its 2nd .. (1 + this)-th best free qubit."""
 
 SEARCH_TRIALS = DEFAULT_TRIALS
