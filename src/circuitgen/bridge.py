@@ -9,14 +9,19 @@ clean qubits, apply ``cx h b; rz b; cx h b``, and undo the chain (its CX in reve
 a clean neighbour is one CX (``cx u v``: ``v = u``); a step into a clean qubit two steps away goes through any
 qubit ``m`` between them, whatever it holds, with four (``cx u m; cx m v; cx u m; cx m v``: ``v ^= u``, ``m``
 unchanged). On the medial layout clean qubits are every other site (node sites and plaquette centres), so the
-chain costs about ``2 d`` CX each way and the phase about ``4 d`` instead of ``6 d``. Copying ``b`` next to
-``a`` instead (``cx a h; rz h; cx a h``, ``h`` holding ``b``) phases the same parity; the cheaper side wins.
+chain costs about ``2 d`` CX each way and the phase about ``4 d`` instead of ``6 d``. Where ``b`` has no clean
+neighbour (a plaquette centre's neighbours are all edges), the chain ends two steps from ``b`` and each
+``cx h b`` is the 4-CX step above. Copying ``b`` next to ``a`` instead (``cx a h; rz h; cx a h``, ``h`` holding
+``b``) phases the same parity; the cheaper side wins. In a run of ``rzz`` and ``rz`` (no qubit's value changes
+inside it) copies stay until the run's end and serve its later terms, and they travel towards the run's hub (the
+member of least total distance to the others), so a node visited by three robots copies two visit bits once.
 
 :func:`bridge_far_phases` rewrites a circuit section by section (every section is clean at both ends, so any
 device qubit that is neither a data qubit's home nor used by the section is |0> inside it) and keeps a
 rewritten section only where its window routes to fewer two-qubit gates than the original one (both routed
 from home with :func:`circuitgen.routing.route_window`, as :func:`~circuitgen.routing.route_windows` will):
-never worse, window by window. The gates of the section other than the far phases, and their order, are
+never worse, window by window. Sections of more than :data:`MAX_PAIRS` two-qubit gates are left alone. The gates
+of the section other than the far phases, and their order, are
 unchanged; on every input whose non-data device qubits start in |0> the rewritten circuit equals the original
 one (``tests/circuitgen/bridge_test.py``: basis-state and statevector checks, QCEC on routed circuits).
 
