@@ -185,8 +185,8 @@ def _hubs(block: Sequence[Gate], dist: Any) -> dict[int, int]:
 MAX_PAIRS = 500
 """Sections with more two-qubit gates than this are left as they are: in the balance arithmetic's one large
 window the register phase runs after a compute that SABRE routes with drift, so distances at home say little
-there (relayed, 4x4/2's window routed to 1,690 CX against 1,554; 6x6/3's to 10,322 against 9,360), and
-routing it twice costs seconds."""
+there (relayed, that window routed to more CX on 4x4/2 and on 6x6/3 when tried), and routing it twice costs
+seconds."""
 
 SWAP_CX = 3
 """CX of a SWAP: a router brings a far qubit next to its partner and back for about ``2 x 3 (d - 1)`` CX."""
