@@ -28,11 +28,14 @@ endpoints.
 
 Example:
     >>> from gridcover.presets import default_scenario
+    >>> from collections import Counter
     >>> from circuitgen.phase import phase_plan
     >>> s = default_scenario(12, 11, 3)
-    >>> layer = phase_layer(s)
-    >>> layer.cost() == phase_plan(s).cost(), layer.num_ancillas == phase_plan(s).num_ancillas
-    (True, True)
+    >>> layer, plan = phase_layer(s), phase_plan(s)
+    >>> Counter({k.key: n for k, n in layer.kinds()}) == Counter(g.kind for g in plan.gadgets("gamma"))
+    True
+    >>> layer.num_ancillas == plan.num_ancillas
+    True
 """
 
 from __future__ import annotations
@@ -46,14 +49,13 @@ from typing import Any
 import numpy as np
 
 from circuitgen.call_graph import Deferred, GadgetKind
-from circuitgen.cost import Cost
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase
 from circuitgen.mixer_classes import pair_classes
 from circuitgen.phase import coupling_products, phase_plan
-from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
+from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -85,24 +87,6 @@ class PhaseLayer:
     num_variables: int
     couplings: int = 0
     whole_space: Scenario | None = field(default=None, repr=False)
-
-    def cost(self) -> Cost:
-        """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
-        return self._costs[0]
-
-    def logical_cost(self) -> Cost:
-        """Logical cost (ANDs whole)."""
-        return self._costs[1]
-
-    @cached_property
-    def _costs(self) -> tuple[Cost, Cost]:
-        rz = ising_cost(self.rotations, self.couplings)
-        lowered = Cost.sum(n * g.cost() for g, n in self.parts) + rz
-        logical = Cost.sum(n * g.logical_cost() for g, n in self.parts) + rz
-        if self.balance is not None:
-            lowered += self.balance.shape.cost()
-            logical += self.balance.shape.logical_cost()
-        return lowered, logical
 
     def kinds(self) -> list[tuple[GadgetKind, int]]:
         """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
@@ -343,7 +327,7 @@ def phase_layer(
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
     layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
     if within is not None:
-        first = score(layer.cost(), layer.logical_cost(), target)[0]  # type: ignore[arg-type]
+        first = plan_score(layer.kinds(), target)[0]  # type: ignore[arg-type]
         if (ROTATION_T_COST if target == "ft" else 2) * within <= first:
             return None  # the couplings might win: only the plan knows
     return layer

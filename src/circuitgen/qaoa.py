@@ -49,7 +49,7 @@ from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
-from .initial_state import initial_path_length
+from .initial_state import initial_path_count
 from .lowering import WORK_REGISTER, lower
 from .mixer_classes import mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
@@ -214,7 +214,7 @@ class QaoaPlan:
         s, o = self.scenario, self.options
         classes = by_classes and not s.obstacles
         if classes and o.initial == "initial_path":  # X gates on distinct qubits: built only if emitted
-            n = sum(initial_path_length(s, r) for r in range(s.num_robots))
+            n = initial_path_count(s)
             xs = Cost.of(x=n)
             prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, lambda: self.state_prep))
         else:
