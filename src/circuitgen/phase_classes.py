@@ -48,12 +48,12 @@ from typing import Any
 
 import numpy as np
 
-from circuitgen.call_graph import Deferred, GadgetKind
+from circuitgen.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.mixer_classes import pair_classes
+from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
+from circuitgen.mixer_classes import index_classes
 from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
@@ -91,7 +91,9 @@ class PhaseLayer:
     def kinds(self) -> list[tuple[GadgetKind, int]]:
         """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
         rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
-        anc = tuple(range(self.num_variables, self.num_variables + self.num_ancillas))
+        # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
+        # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+        pool = range(self.num_variables, self.num_variables + self.num_ancillas)
         out: list[tuple[GadgetKind, int]] = []
         if self.rotations or self.couplings:
             n, q, source = self.rotations, self.couplings, self.whole_space
@@ -103,29 +105,24 @@ class PhaseLayer:
                 return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
             out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
-        for g, count in self._placed_parts(anc):
-            out.append((GadgetKind.of(g), count))
+        for g, count in self.parts:
+            if isinstance(g, VisitPhase):
+                d = len(g.visitors[0])
+                g = replace(g, visitors=tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors))))
+                need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
+            else:  # Hamming-weight phasing
+                need = g.num_ancillas  # type: ignore[attr-defined]
+            out.append((GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count))  # type: ignore[type-var]
         if self.balance is not None:
             balance, shape = self.balance, self.balance.shape
 
             def arithmetic() -> Gadget:
-                return replace(balance.gadget(), ancillas=anc)
+                return replace(balance.gadget(), ancillas=tuple(pool))
 
             deferred = Deferred(
                 ("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas
             )
             out.append((GadgetKind.of(deferred), 1))
-        return out
-
-    def _placed_parts(self, anc: tuple[int, ...]) -> list[tuple[Gadget, int]]:
-        out: list[tuple[Gadget, int]] = []
-        for g, count in self.parts:
-            if isinstance(g, VisitPhase):
-                d = len(g.visitors[0])
-                visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
-                out.append((replace(g, visitors=visitors, ancillas=anc), count))
-            elif isinstance(g, SumsPhase):
-                out.append((replace(g, ancillas=anc), count))
         return out
 
 
@@ -208,7 +205,7 @@ def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
     return const, out
 
 
-@lru_cache(maxsize=64)  # the counts and the depth bound of a scenario both ask
+@lru_cache(maxsize=SCENARIOS_KEPT)  # the counts and the depth bound of a scenario both ask
 def phase_layer(
     scenario: Scenario,
     target: str = "nisq",
@@ -356,15 +353,6 @@ class IsingCount:
 _NodeClass = tuple[int, bool, float]  # (variable edges at the node, counted by the degree term, its target)
 
 
-def _node_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
-    """``(representative index, count)`` of the node indices ``0..n-1`` of one axis by whether they lie on the
-    boundary (first, last, between); the counts for a side of ``size`` nodes (default ``n``)."""
-    out: list[tuple[int, Count]] = [(0, 1), (n - 1, 1)]
-    if n > 2:
-        out.append((1, (n if size is None else size) - 2))
-    return out
-
-
 def _pairs(n: Count) -> Count:
     """``C(n, 2)`` of a count (exact division for a symbolic one)."""
     return n * (n - 1) // 2 if isinstance(n, int) else n * (n - 1) / 2
@@ -404,7 +392,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     if s.obstacles or ob.edge_lengths or any(rb.start == rb.goal for rb in s.robots):
         return None
     rows, cols = grid.rows, grid.cols
-    size_r, size_c = sizes if sizes is not None else (None, None)
+    size_r, size_c = sizes if sizes is not None else (rows, cols)
     n_r = s.num_robots
     a0, a1, a2 = ob.alpha
     targets = s.degree_targets
@@ -422,15 +410,15 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
 
     nodes: Counter[_NodeClass] = Counter()
-    for i, ni in _node_axis(rows, size_r):
-        for j, nj in _node_axis(cols, size_c):
+    for i, ni in index_classes(rows, size_r):
+        for j, nj in index_classes(cols, size_c):
             nodes[plain((i, j))] += ni * nj
     edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
-    for i, ni in _node_axis(rows, size_r):
-        for k, nk in pair_classes(cols, size_c):
+    for i, ni in index_classes(rows, size_r):
+        for k, nk in index_classes(cols - 1, size_c - 1):  # consecutive pairs along a row
             edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
-    for j, nj in _node_axis(cols, size_c):
-        for k, nk in pair_classes(rows, size_r):
+    for j, nj in index_classes(cols, size_c):
+        for k, nk in index_classes(rows - 1, size_r - 1):
             edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]
