@@ -187,11 +187,15 @@ class GadgetKind:
         object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
     def cost(self) -> Cost:
-        """Lowered cost (from :data:`COSTS`)."""
+        """Lowered cost (from :data:`COSTS`; a :class:`Deferred` example's own)."""
+        if isinstance(self.example, Deferred):  # priced when counted, and its key is one scenario's: no entry
+            return self.example.lowered
         return COSTS.costs(self._hashed, self._priced)[0]  # type: ignore[attr-defined]
 
     def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`)."""
+        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`; a :class:`Deferred` example's own)."""
+        if isinstance(self.example, Deferred):
+            return self.example.logical
         return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
 
     def _priced(self) -> tuple[Cost, Cost]:
@@ -293,8 +297,15 @@ class CallGraph:
 
     def cost(self, p: int, logical: bool = False) -> Cost:
         """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
-        parts, layer = self._sums[logical]
-        return parts["initial_state"] + p * layer
+        hit = self._totals.get((p, logical))
+        if hit is None:  # an estimate asks each p more than once
+            parts, layer = self._sums[logical]
+            hit = self._totals[p, logical] = parts["initial_state"] + p * layer
+        return hit
+
+    @cached_property
+    def _totals(self) -> dict[tuple[int, bool], Cost]:
+        return {}
 
     @cached_property
     def _sums(self) -> tuple[tuple[dict[str, Cost], Cost], ...]:
