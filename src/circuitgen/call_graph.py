@@ -15,8 +15,9 @@ binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitge
 Everything known per kind is looked up by the kind's key in one explicit cache (:data:`COSTS`): a sweep over
 thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
 :class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
-gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored
-profile"``, ``"own depth"``); :meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
+gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named
+tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``);
+:meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
 different concept, not a kind's cost or depth:
 
 * per scenario (the plan and what is summed over it), at most :data:`SCENARIOS_KEPT` scenarios each:
