@@ -6,7 +6,9 @@ Run: ``python benchmarks/estimate_speed.py [--quick] [--sweep-seconds S]`` (the 
 the same run: ``REV``'s ``src/`` is exported (``git archive``) into a temporary directory, and the estimate and the
 sweep run ``N`` times (default 2) with each tree's ``src`` first on ``PYTHONPATH``, alternating the trees (this
 tree first in odd rounds, ``REV`` first in even ones) so that both share whatever else loads the machine; the
-table gives each command's median wall time and peak memory per tree and whether both printed the same bytes.
+table gives per command and tree the fastest run's wall time and the least CPU time (user + system of the
+child: less sensitive to a shared machine than wall time), every run's wall time, the peak memory (the largest of
+the runs) and whether both trees printed the same bytes; the load average is printed before and after.
 Each command runs in its own process
 (``python -m qcpp``,
 measured from outside: wall clock, and peak resident memory from ``getrusage`` of that child), so start-up is
@@ -24,7 +26,6 @@ from __future__ import annotations
 
 import os
 import signal
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -32,7 +33,8 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from estimators.crosscheck import crosscheck, crosscheck_cases
+from circuitgen.testing import crosscheck_cases
+from estimators.crosscheck import crosscheck
 from gridcover.presets import default_scenario
 from gridcover.scenario import save_scenario
 
@@ -40,13 +42,14 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _run(
-    args: list[str], limit: float | None = None, src: Path = ROOT / "src"
+    args: list[str], limit: float | None = None, src: Path = ROOT / "src", cpu: list[float] | None = None
 ) -> tuple[float, float, float | None, int, str, str]:
     """Wall seconds, peak RSS in GB, seconds to the first stdout line, exit code, stdout, stderr (the command is
-    killed once ``limit`` seconds have passed; its exit code is then negative), with ``src`` first on the path."""
+    killed once ``limit`` seconds have passed; its exit code is then negative), with ``src`` first on the path;
+    the child's CPU seconds (user + system) are appended to ``cpu`` if given."""
     env = {**os.environ, "PYTHONPATH": str(src) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    # GNU time reports this child's own peak RSS (getrusage of the waited process), in KiB
-    cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args]
+    # GNU time reports this child's own peak RSS (getrusage of the waited process, KiB) and its CPU seconds
+    cmd = ["/usr/bin/time", "-f", "%M %U %S", sys.executable, "-m", "qcpp", *args]
     start = time.perf_counter()
     proc = subprocess.Popen(
         cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT, start_new_session=True
@@ -64,9 +67,12 @@ def _run(
     err = proc.stderr.read()
     code = proc.wait()
     wall = time.perf_counter() - start
-    *err_lines, rss = err.rstrip("\n").split("\n") if err.strip() else ["", "0"]
+    *err_lines, last = err.rstrip("\n").split("\n") if err.strip() else ["", "0 0 0"]
     err_lines = [line for line in err_lines if not line.startswith("Command ")]  # GNU time's own notes
+    rss, user, system = [*last.split(), "0", "0", "0"][:3]
     rss_gb = int(rss) / 1e6 * 1.024 if rss.strip().isdigit() else float("nan")
+    if cpu is not None:
+        cpu.append(float(user) + float(system))
     return wall, rss_gb, first, code, "".join(chunks), "\n".join(err_lines)
 
 
@@ -91,29 +97,32 @@ def compare(rev: str, repeats: int, sweep_limit: float) -> int:
     this = f"{here}{'+changes' if dirty.strip() else ''} (this tree)"
     commands = {"estimate 30x30 / 8 robots / p=3 --json": (ESTIMATE, None),
                 "estimate 2x2..40x40 / 1..8 / p=1..5 csv": (SWEEP, sweep_limit)}  # fmt: skip
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
         trees = {this: ROOT / "src", label: _export(rev, Path(tmp))}
-        results: dict[tuple[str, str], list[tuple[float, float, int, str]]] = {}
+        results: dict[tuple[str, str], list[tuple[float, float, int, str, float]]] = {}
         for i in range(repeats):
             order = list(trees.items()) if i % 2 == 0 else list(reversed(trees.items()))
             for name, src in order:
                 for cmd, (args, limit) in commands.items():
-                    wall, rss, _, code, out, _ = _run(args, limit=limit, src=src)
-                    results.setdefault((cmd, name), []).append((wall, rss, code, out))
-                    print(f"round {i + 1}/{repeats}: {name}: {cmd}: {wall:.2f} s (exit {code})", file=sys.stderr)
-    print(f"| command | tree | wall (median of {repeats}) | all runs | peak RSS | exit |")
-    print("|---|---|---:|---|---:|---|")
-    medians: dict[tuple[str, str], float] = {}
+                    cpu: list[float] = []
+                    wall, rss, _, code, out, _ = _run(args, limit=limit, src=src, cpu=cpu)
+                    results.setdefault((cmd, name), []).append((wall, rss, code, out, cpu[0]))
+                    print(f"round {i + 1}/{repeats}: {name}: {cmd}: {wall:.2f} s wall, {cpu[0]:.2f} s CPU, "
+                          f"{rss:.2f} GB (exit {code})", file=sys.stderr)  # fmt: skip
+    print(f"| command | tree | wall (min of {repeats}) | CPU (min) | all runs (wall) | peak RSS | exit |")
+    print("|---|---|---:|---:|---|---:|---|")
+    best: dict[tuple[str, str], tuple[float, float]] = {}
     for (cmd, name), runs in results.items():
-        walls = sorted(w for w, _, _, _ in runs)
-        medians[cmd, name] = statistics.median(walls)
-        codes = ",".join(sorted({str(c) for _, _, c, _ in runs}))
-        print(f"| {cmd} | {name} | {medians[cmd, name]:.2f} s | {' '.join(f'{w:.2f}' for w in walls)} | "
-              f"{max(r for _, r, _, _ in runs):.2f} GB | {codes} |")  # fmt: skip
+        walls = sorted(r[0] for r in runs)
+        best[cmd, name] = (walls[0], min(r[4] for r in runs))
+        codes = ",".join(sorted({str(r[2]) for r in runs}))
+        print(f"| {cmd} | {name} | {walls[0]:.2f} s | {best[cmd, name][1]:.2f} s | "
+              f"{' '.join(f'{w:.2f}' for w in walls)} | {max(r[1] for r in runs):.2f} GB | {codes} |")  # fmt: skip
     print()
     for cmd in commands:
-        ratio = medians[cmd, this] / medians[cmd, label]
-        outs = {name: {out for _, _, _, out in results[cmd, name]} for name in trees}
+        ratio, cpu_ratio = (best[cmd, this][k] / best[cmd, label][k] for k in (0, 1))
+        outs = {name: {r[3] for r in results[cmd, name]} for name in trees}
         if any(len(o) > 1 for o in outs.values()):
             same = "DIFFERS between runs of one tree"
         elif outs[this] == outs[label]:
@@ -122,8 +131,9 @@ def compare(rev: str, repeats: int, sweep_limit: float) -> int:
             a, b = (next(iter(outs[n])).splitlines() for n in (this, label))
             changed = sum(x != y for x, y in zip(a, b)) + abs(len(a) - len(b))
             same = f"identical within each tree; the trees differ in {changed} of {max(len(a), len(b))} lines"
-        print(f"{cmd}: {this} / {label} = {ratio:.2f} (median wall); stdout {same}")
-    print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (1 min) at the end")
+        print(f"{cmd}: {this} / {label} = {ratio:.2f} (min wall), {cpu_ratio:.2f} (min CPU); stdout {same}")
+    load = " / ".join(f"{a:.1f}" for a in load_before), " / ".join(f"{a:.1f}" for a in os.getloadavg())
+    print(f"machine: {os.cpu_count()} cores, load average (1 / 5 / 15 min) {load[0]} before, {load[1]} after")
     return 0
 
 

@@ -1,8 +1,9 @@
 """The phase separator's cost by classes (:mod:`circuitgen.phase_classes`) against planning it term by term.
 
-Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of
-:func:`circuitgen.phase.phase_plan` (plan + cost) and of :func:`circuitgen.phase_classes.phase_layer`, and whether
-both give the same cost (the default phase separator, then ``--phase whole-space``); then, over every default
+Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of the
+call graph's phase part listed from the planned gadgets (:func:`circuitgen.phase.phase_plan`, then summed) and by
+classes (:func:`circuitgen.phase_classes.phase_layer`, then summed), and whether both give the same cost (the
+default phase separator, then ``--phase whole-space``); then, over every default
 scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``, how many the classes answer and how long all of
 them take (the rest is left to the plan).
 """
@@ -12,7 +13,9 @@ from __future__ import annotations
 import sys
 import time
 from collections import Counter
+from typing import Any
 
+from circuitgen.cost import Cost
 from circuitgen.phase import phase_plan
 from circuitgen.phase_classes import phase_layer
 from gridcover.presets import default_scenario, max_default_robots
@@ -38,15 +41,20 @@ def _compare(representation: str, sample: list[tuple[int, int, int]]) -> None:
         s = default_scenario(rows, cols, robots)
         t0 = time.perf_counter()
         plan = phase_plan(s, representation=representation)  # type: ignore[arg-type]
-        plan_cost = plan.cost(), plan.logical_cost()
+        plan_cost = _summed([(g, 1) for g in plan.gadgets("gamma")])
         t1 = time.perf_counter()
         layer = phase_layer(s, representation=representation)
         assert layer is not None
-        layer_cost = layer.cost(), layer.logical_cost()
+        layer_cost = _summed([(k.example, n) for k, n in layer.kinds()])
         t2 = time.perf_counter()
         same = plan_cost == layer_cost
         plan_ms, layer_ms = (t1 - t0) * 1e3, (t2 - t1) * 1e3
         print(f"{f'{rows}x{cols}/{robots}':<12}{plan_ms:>10.1f}{layer_ms:>12.1f}{plan_ms / layer_ms:>9.0f}x  {same}")
+
+
+def _summed(parts: list[tuple[Any, int]]) -> tuple[Cost, Cost]:
+    """Lowered and logical cost of ``(gadget, multiplicity)`` pairs (each gadget's own, not a kind's cache)."""
+    return Cost.sum(n * g.cost() for g, n in parts), Cost.sum(n * g.logical_cost() for g, n in parts)
 
 
 def _sweep() -> int:

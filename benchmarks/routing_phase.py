@@ -26,7 +26,7 @@ from circuitgen.circuit import Circuit
 from circuitgen.compile import compile_scenario
 from circuitgen.hardware import compile_for_device
 from circuitgen.options import PlanOptions
-from estimators.crosscheck import interior_endpoints
+from circuitgen.testing import interior_endpoints
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict
 

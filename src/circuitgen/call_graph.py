@@ -15,13 +15,15 @@ binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitge
 Everything known per kind is looked up by the kind's key in one explicit cache (:data:`COSTS`): a sweep over
 thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
 :class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
-gadgets) and, as named tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored
-profile"``, ``"own depth"``); :meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
+gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named
+tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``);
+:meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
 different concept, not a kind's cost or depth:
 
-* per scenario (the plan and what is summed over it): ``estimators.estimate`` (``_plan``, ``layer_costs``,
-  ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers), ``mixer_classes.mixer_part`` and
-  ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid`` (edge arrays of a grid);
+* per scenario (the plan and what is summed over it), at most :data:`SCENARIOS_KEPT` scenarios each:
+  ``estimators.estimate`` (``_plan``, ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers),
+  ``mixer_classes.mixer_part`` and ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid``
+  (edge arrays of a grid);
 * geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
 * the phase separator's decisions per term-group shape, before any kind exists: ``phase_choice.visit_choice``
   and ``phase_choice.hamming_choice`` (asked by the plan and by the classes alike);
@@ -52,7 +54,7 @@ from typing import Any
 from .cost import Cost
 from .gadgets import Gadget
 
-__all__ = ["COSTS", "PARTS", "CallGraph", "CostCache", "Deferred", "GadgetKind", "PricedByKind"]
+__all__ = ["COSTS", "PARTS", "SCENARIOS_KEPT", "CallGraph", "CostCache", "Deferred", "GadgetKind", "PricedByKind"]
 
 PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
 """The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
@@ -66,7 +68,7 @@ class CostCache:
         >>> from circuitgen.gadgets.phase_ising import IsingPhase
         >>> g = IsingPhase("gamma", ((0, 1.0),), ())
         >>> cache = CostCache()
-        >>> cache.costs(g.kind, g) == (g.cost(), g.logical_cost()), len(cache)
+        >>> cache.costs(g.kind, lambda: (g.cost(), g.logical_cost())) == (g.cost(), g.logical_cost()), len(cache)
         (True, 1)
         >>> cache.remember("own depth", g.kind, 1); cache.table("own depth")[g.kind], len(cache)
         (1, 2)
@@ -78,17 +80,9 @@ class CostCache:
         self._tables: dict[str, dict[Hashable, Any]] = {}
         self._limits: dict[str, int] = {}
 
-    def costs(self, key: Hashable, example: Gadget) -> tuple[Cost, Cost]:
-        """``(cost, logical cost)`` of the kind ``key`` (asked of ``example`` the first time; a
-        :class:`GadgetKind` is a key that hashes in constant time)."""
-        hit = self._costs.get(key)
-        if hit is None:
-            hit = self._store(key, (example.cost(), example.logical_cost()))
-        return hit
-
-    def costs_of(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
-        """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (for a gadget class
-        whose own :meth:`~circuitgen.gadgets.Gadget.cost` is priced per kind)."""
+    def costs(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
+        """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (a :class:`GadgetKind`
+        asks its example; a gadget class that prices itself per kind, itself)."""
         hit = self._costs.get(key)
         if hit is None:
             hit = self._store(key, compute())
@@ -127,6 +121,11 @@ class CostCache:
 COSTS = CostCache()
 """The process-wide cost cache of :class:`GadgetKind`."""
 
+SCENARIOS_KEPT = 8
+"""How many scenarios each per-scenario memo keeps (the plan, the call graph's parts, the depth bound): a sweep asks
+``p = 1..P`` of one scenario in a row, and a kept scenario keeps its plan and its grid's tables alive (megabytes
+each at 40x40)."""
+
 
 class PricedByKind:
     """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself once per kind in
@@ -139,11 +138,11 @@ class PricedByKind:
 
     def cost(self) -> Cost:
         """Lowered cost (computed once per kind)."""
-        return COSTS.costs_of(self.kind, self._kind_costs)[0]
+        return COSTS.costs(self.kind, self._kind_costs)[0]
 
     def logical_cost(self) -> Cost:
         """Cost with ANDs and Toffolis kept whole (computed once per kind)."""
-        return COSTS.costs_of(self.kind, self._kind_costs)[1]
+        return COSTS.costs(self.kind, self._kind_costs)[1]
 
 
 class _HashedKey:
@@ -189,12 +188,19 @@ class GadgetKind:
         object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
     def cost(self) -> Cost:
-        """Lowered cost (from :data:`COSTS`)."""
-        return COSTS.costs(self._hashed, self.example)[0]  # type: ignore[attr-defined]
+        """Lowered cost (from :data:`COSTS`; a :class:`Deferred` example's own)."""
+        if isinstance(self.example, Deferred):  # priced when counted, and its key is one scenario's: no entry
+            return self.example.lowered
+        return COSTS.costs(self._hashed, self._priced)[0]  # type: ignore[attr-defined]
 
     def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`)."""
-        return COSTS.costs(self._hashed, self.example)[1]  # type: ignore[attr-defined]
+        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`; a :class:`Deferred` example's own)."""
+        if isinstance(self.example, Deferred):
+            return self.example.logical
+        return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
+
+    def _priced(self) -> tuple[Cost, Cost]:
+        return self.example.cost(), self.example.logical_cost()
 
     def __eq__(self, other: object) -> bool:
         return self is other or (isinstance(other, GadgetKind) and self.key == other.key)
@@ -292,8 +298,15 @@ class CallGraph:
 
     def cost(self, p: int, logical: bool = False) -> Cost:
         """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
-        parts, layer = self._sums[logical]
-        return parts["initial_state"] + p * layer
+        hit = self._totals.get((p, logical))
+        if hit is None:  # an estimate asks each p more than once
+            parts, layer = self._sums[logical]
+            hit = self._totals[p, logical] = parts["initial_state"] + p * layer
+        return hit
+
+    @cached_property
+    def _totals(self) -> dict[tuple[int, bool], Cost]:
+        return {}
 
     @cached_property
     def _sums(self) -> tuple[tuple[dict[str, Cost], Cost], ...]:

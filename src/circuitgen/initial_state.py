@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 from gridcover.paths import edges_of, initial_path, path_bits
 from gridcover.sbf import Rule, representatives
@@ -100,19 +101,47 @@ def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: 
     return out
 
 
-_PATH_LENGTH: dict[tuple, int] = {}
+Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
 
 
-def initial_path_length(scenario: Scenario, robot: int) -> int:
-    """Edges of the robot's initial path, the X gates ``initial_path`` prepares for it (kept per grid, obstacles
-    and endpoints: a sweep asks the same few again for every robot count)."""
-    rb = scenario.robots[robot]
-    g = scenario.grid  # by value: keeping grids (and their cached tables) alive would cost memory
-    key = (g.rows, g.cols, scenario.obstacles, scenario.objective.obstacles, rb.start, rb.goal)
-    n = _PATH_LENGTH.get(key)
-    if n is None:
-        n = _PATH_LENGTH[key] = initial_path(scenario, robot).bit_count()
-    return n
+def initial_path_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) -> Count:
+    """X gates of the ``initial_path`` state on a grid without obstacles: per robot the edges of its L-shaped
+    :func:`~gridcover.paths.initial_path`, ``|row step| + |column step|`` (every edge of an open grid is a
+    variable, so the L is always the path). What :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists as the state
+    preparation, and, with symbolic ``sizes``, the closed forms' (:mod:`estimators.formulas`).
+
+    Args:
+        scenario: a scenario without obstacles.
+        sizes: count for a grid of ``(rows, cols)`` nodes (sympy expressions) instead of the scenario's own: a
+            coordinate in the far half of a side of ``n`` nodes is read as the same distance from the end of a
+            side of ``size`` nodes (the scenario stands for every grid with its endpoints near the same corners).
+
+    Returns:
+        The number of X gates.
+
+    Raises:
+        ValueError: the scenario has obstacles.
+
+    >>> import sympy as sp
+    >>> from gridcover.presets import default_scenario
+    >>> s = default_scenario(6, 6, 2)
+    >>> initial_path_count(s), initial_path_count(s, sp.symbols("rows cols"))
+    (20, 2*cols + 2*rows - 4)
+    """
+    if scenario.obstacles:
+        raise ValueError("the initial path is an L only on a grid without obstacles")
+    sides = (scenario.grid.rows, scenario.grid.cols)
+
+    def at(k: int, axis: int) -> Count:  # a coordinate on the grid of ``sizes``
+        n = sides[axis]
+        return k if sizes is None or 2 * k < n else sizes[axis] - (n - k)
+
+    total: Count = 0
+    for rb in scenario.robots:
+        for axis in (0, 1):
+            a, b = sorted((rb.start[axis], rb.goal[axis]))
+            total += at(b, axis) - at(a, axis)
+    return total
 
 
 def initial_state_gates(

@@ -46,11 +46,11 @@ from gridcover.sbf import LocalPicture
 from gridcover.scenario import Scenario
 
 from .angles import Angle
-from .call_graph import GadgetKind
+from .call_graph import SCENARIOS_KEPT, GadgetKind
 from .gadgets.junction import MixerJunction, MixerRotation
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
 
-__all__ = ["MixerPart", "mixer_part"]
+__all__ = ["MixerPart", "index_classes", "mixer_part"]
 
 _BETA = Angle.symbol("beta_0")  # symbolic, as in the circuit: a numeric 0 would let the lowering drop rotations
 Node = tuple[int, int]
@@ -89,15 +89,20 @@ def _signature(i: int, j: int, rows: int, cols: int, start: Node | None, goal: N
     return LocalPicture.of(corners, start, goal, [_outer(c, rows, cols) for c in corners])
 
 
-def _axis_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
-    """``(representative index, count)`` of plaquette rows (or columns) by which of their two node rows lie
-    on the boundary: both (``n == 2``), the first, the last, neither; the counts for a side of ``size`` nodes
-    (default ``n``; a symbol for the closed forms of :mod:`estimators.formulas`)."""
-    if n == 2:
-        return [(0, 1)]
-    out: list[tuple[int, Count]] = [(0, 1), (n - 2, 1)]
-    if n > 3:
-        out.append((1, (n if size is None else size) - 3))
+def index_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
+    """``(representative, count)`` of the indices ``0 .. n-1`` by whether each is the first, the last or neither
+    (all a local picture on an open grid reads of a position along a side: plaquette rows, nodes, consecutive
+    pairs); the counts for ``size`` indices (default ``n``; a sympy expression in the closed forms of
+    :mod:`estimators.formulas`).
+
+    >>> index_classes(5), index_classes(2), index_classes(1)
+    ([(0, 1), (4, 1), (1, 3)], [(0, 1), (1, 1)], [(0, 1)])
+    """
+    out: list[tuple[int, Count]] = [(0, 1)] if n > 0 else []
+    if n > 1:
+        out.append((n - 1, 1))
+    if n > 2:
+        out.append((1, (n if size is None else size) - 2))
     return out
 
 
@@ -136,7 +141,7 @@ def _representative(
     return _REPRESENTATIVE[key]
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=SCENARIOS_KEPT)
 def mixer_part(
     scenario: Scenario,
     rule: str = "exact",
@@ -169,8 +174,8 @@ def mixer_part(
     base: Counter[Signature] = Counter()
     where: dict[Signature, tuple[int, int]] = {}
     size_r, size_c = sizes if sizes is not None else (rows, cols)
-    for i, ni in _axis_classes(rows, size_r):
-        for j, nj in _axis_classes(cols, size_c):
+    for i, ni in index_classes(rows - 1, size_r - 1):  # plaquette rows and columns
+        for j, nj in index_classes(cols - 1, size_c - 1):
             sig = _signature(i, j, rows, cols, None, None)
             base[sig] += ni * nj
             where.setdefault(sig, (i, j))
@@ -228,21 +233,6 @@ def _relation(a: tuple[int, int], b: tuple[int, int]) -> Hashable:
     return (di, dj) if abs(di) <= 2 and abs(dj) <= 2 else "far"
 
 
-def pair_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
-    """``(representative index, count)`` of the ``n - 1`` consecutive index pairs ``(k, k + 1)`` of ``0..n-1``, by
-    whether ``k`` is the first pair and whether it is the last (what the two pictures depend on); the counts for
-    ``size`` items (default ``n``)."""
-    pairs = n - 1
-    if pairs <= 0:
-        return []
-    out: list[tuple[int, Count]] = [(0, 1)]
-    if pairs > 1:
-        out.append((pairs - 1, 1))
-    if pairs > 2:
-        out.append((1, (n if size is None else size) - 3))
-    return out
-
-
 def _plain_pair(a: tuple[int, int], b: tuple[int, int], rows: int, cols: int) -> Pair:
     return (
         _signature(*a, rows, cols, None, None),
@@ -268,12 +258,12 @@ def _junction_counts(
     # one robot's plain pairs: horizontal neighbours and row wraps, by classes
     base: Counter[Pair] = Counter()
     where: dict[Pair, tuple[tuple[int, int], tuple[int, int]]] = {}
-    for i, ni in _axis_classes(rows, sizes[0]):
-        for j, nj in pair_classes(pcol, sizes[1] - 1):
+    for i, ni in index_classes(prow, sizes[0] - 1):
+        for j, nj in index_classes(pcol - 1, sizes[1] - 2):
             key = _plain_pair((i, j), (i, j + 1), rows, cols)
             base[key] += ni * nj
             where.setdefault(key, ((i, j), (i, j + 1)))
-    for i, ni in pair_classes(prow, sizes[0] - 1):
+    for i, ni in index_classes(prow - 1, sizes[0] - 2):
         key = _plain_pair((i, pcol - 1), (i + 1, 0), rows, cols)
         base[key] += ni
         where.setdefault(key, ((i, pcol - 1), (i + 1, 0)))

@@ -18,7 +18,8 @@ The choices:
   Hamming-weight phasing, or left as rotations;
 * :func:`sums_constructions` -- a balance (squared sums) group: which constructions the plan compares as whole
   plans (its couplings interact with the visits' couplings, so this one is decided by building the plan for each
-  candidate; the classes answer only when arithmetic is the only candidate or provably wins).
+  candidate and comparing their :func:`plan_score`; the classes answer only when arithmetic is the only candidate
+  or provably wins).
 
 Example:
     >>> c = visit_choice((4, 4, 4), 8.0, new_couplings=48, target="nisq", optimize="cx", budget=None)
@@ -36,10 +37,10 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Literal
+from typing import Any, Literal
 
 from .cost import Cost, Target
 from .gadgets.phase_sums import SumsPhase
@@ -54,6 +55,7 @@ __all__ = [
     "coupling_cost",
     "ft_t_count",
     "hamming_choice",
+    "plan_score",
     "score",
     "sums_constructions",
     "visit_choice",
@@ -93,6 +95,21 @@ def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
     if target == "ft":
         return (ft_t_count(logical), cost.cx, cost.total)
     return (cost.cx, cost.rotations, cost.total)
+
+
+def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, ...]:
+    """:func:`score` of gadgets (or gadget kinds) with multiplicities, their costs summed: how candidate plans of
+    the phase separator are compared. Only a sort key for choosing: every count qcpp reports is the call graph's
+    sum (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`).
+
+    >>> from circuitgen.gadgets.phase_ising import IsingPhase
+    >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
+    (4, 4, 8)
+    """
+    cost, logical = Cost(), Cost()
+    for g, n in parts:
+        cost, logical = cost + n * g.cost(), logical + n * g.logical_cost()
+    return score(cost, logical, target)
 
 
 def coupling_cost(products: int) -> Cost:

@@ -28,11 +28,14 @@ endpoints.
 
 Example:
     >>> from gridcover.presets import default_scenario
+    >>> from collections import Counter
     >>> from circuitgen.phase import phase_plan
     >>> s = default_scenario(12, 11, 3)
-    >>> layer = phase_layer(s)
-    >>> layer.cost() == phase_plan(s).cost(), layer.num_ancillas == phase_plan(s).num_ancillas
-    (True, True)
+    >>> layer, plan = phase_layer(s), phase_plan(s)
+    >>> Counter({k.key: n for k, n in layer.kinds()}) == Counter(g.kind for g in plan.gadgets("gamma"))
+    True
+    >>> layer.num_ancillas == plan.num_ancillas
+    True
 """
 
 from __future__ import annotations
@@ -45,15 +48,14 @@ from typing import Any
 
 import numpy as np
 
-from circuitgen.call_graph import Deferred, GadgetKind
-from circuitgen.cost import Cost
+from circuitgen.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.mixer_classes import pair_classes
+from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
+from circuitgen.mixer_classes import index_classes
 from circuitgen.phase import coupling_products, phase_plan
-from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, score, sums_constructions, visit_choice
+from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -86,28 +88,12 @@ class PhaseLayer:
     couplings: int = 0
     whole_space: Scenario | None = field(default=None, repr=False)
 
-    def cost(self) -> Cost:
-        """Lowered cost (the same as :meth:`circuitgen.phase.PhasePlan.cost`)."""
-        return self._costs[0]
-
-    def logical_cost(self) -> Cost:
-        """Logical cost (ANDs whole)."""
-        return self._costs[1]
-
-    @cached_property
-    def _costs(self) -> tuple[Cost, Cost]:
-        rz = ising_cost(self.rotations, self.couplings)
-        lowered = Cost.sum(n * g.cost() for g, n in self.parts) + rz
-        logical = Cost.sum(n * g.logical_cost() for g, n in self.parts) + rz
-        if self.balance is not None:
-            lowered += self.balance.shape.cost()
-            logical += self.balance.shape.logical_cost()
-        return lowered, logical
-
     def kinds(self) -> list[tuple[GadgetKind, int]]:
         """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
         rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
-        anc = tuple(range(self.num_variables, self.num_variables + self.num_ancillas))
+        # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
+        # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+        pool = range(self.num_variables, self.num_variables + self.num_ancillas)
         out: list[tuple[GadgetKind, int]] = []
         if self.rotations or self.couplings:
             n, q, source = self.rotations, self.couplings, self.whole_space
@@ -119,29 +105,24 @@ class PhaseLayer:
                 return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
             out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
-        for g, count in self._placed_parts(anc):
-            out.append((GadgetKind.of(g), count))
+        for g, count in self.parts:
+            if isinstance(g, VisitPhase):
+                d = len(g.visitors[0])
+                g = replace(g, visitors=tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors))))
+                need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
+            else:  # Hamming-weight phasing
+                need = g.num_ancillas  # type: ignore[attr-defined]
+            out.append((GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count))  # type: ignore[type-var]
         if self.balance is not None:
             balance, shape = self.balance, self.balance.shape
 
             def arithmetic() -> Gadget:
-                return replace(balance.gadget(), ancillas=anc)
+                return replace(balance.gadget(), ancillas=tuple(pool))
 
             deferred = Deferred(
                 ("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas
             )
             out.append((GadgetKind.of(deferred), 1))
-        return out
-
-    def _placed_parts(self, anc: tuple[int, ...]) -> list[tuple[Gadget, int]]:
-        out: list[tuple[Gadget, int]] = []
-        for g, count in self.parts:
-            if isinstance(g, VisitPhase):
-                d = len(g.visitors[0])
-                visitors = tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors)))
-                out.append((replace(g, visitors=visitors, ancillas=anc), count))
-            elif isinstance(g, SumsPhase):
-                out.append((replace(g, ancillas=anc), count))
         return out
 
 
@@ -224,7 +205,7 @@ def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
     return const, out
 
 
-@lru_cache(maxsize=64)  # the counts and the depth bound of a scenario both ask
+@lru_cache(maxsize=SCENARIOS_KEPT)  # the counts and the depth bound of a scenario both ask
 def phase_layer(
     scenario: Scenario,
     target: str = "nisq",
@@ -343,7 +324,7 @@ def phase_layer(
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
     layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
     if within is not None:
-        first = score(layer.cost(), layer.logical_cost(), target)[0]  # type: ignore[arg-type]
+        first = plan_score(layer.kinds(), target)[0]  # type: ignore[arg-type]
         if (ROTATION_T_COST if target == "ft" else 2) * within <= first:
             return None  # the couplings might win: only the plan knows
     return layer
@@ -370,15 +351,6 @@ class IsingCount:
 
 
 _NodeClass = tuple[int, bool, float]  # (variable edges at the node, counted by the degree term, its target)
-
-
-def _node_axis(n: int, size: Count | None) -> list[tuple[int, Count]]:
-    """``(representative index, count)`` of the node indices ``0..n-1`` of one axis by whether they lie on the
-    boundary (first, last, between); the counts for a side of ``size`` nodes (default ``n``)."""
-    out: list[tuple[int, Count]] = [(0, 1), (n - 1, 1)]
-    if n > 2:
-        out.append((1, (n if size is None else size) - 2))
-    return out
 
 
 def _pairs(n: Count) -> Count:
@@ -420,7 +392,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     if s.obstacles or ob.edge_lengths or any(rb.start == rb.goal for rb in s.robots):
         return None
     rows, cols = grid.rows, grid.cols
-    size_r, size_c = sizes if sizes is not None else (None, None)
+    size_r, size_c = sizes if sizes is not None else (rows, cols)
     n_r = s.num_robots
     a0, a1, a2 = ob.alpha
     targets = s.degree_targets
@@ -438,15 +410,15 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
 
     nodes: Counter[_NodeClass] = Counter()
-    for i, ni in _node_axis(rows, size_r):
-        for j, nj in _node_axis(cols, size_c):
+    for i, ni in index_classes(rows, size_r):
+        for j, nj in index_classes(cols, size_c):
             nodes[plain((i, j))] += ni * nj
     edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
-    for i, ni in _node_axis(rows, size_r):
-        for k, nk in pair_classes(cols, size_c):
+    for i, ni in index_classes(rows, size_r):
+        for k, nk in index_classes(cols - 1, size_c - 1):  # consecutive pairs along a row
             edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
-    for j, nj in _node_axis(cols, size_c):
-        for k, nk in pair_classes(rows, size_r):
+    for j, nj in index_classes(cols, size_c):
+        for k, nk in index_classes(rows - 1, size_r - 1):
             edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]

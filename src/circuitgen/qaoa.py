@@ -37,7 +37,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, partial
 
 from gridcover.scenario import Scenario
 
@@ -49,7 +49,7 @@ from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
-from .initial_state import initial_path_length
+from .initial_state import initial_path_count
 from .lowering import WORK_REGISTER, lower
 from .mixer_classes import mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
@@ -214,9 +214,12 @@ class QaoaPlan:
         s, o = self.scenario, self.options
         classes = by_classes and not s.obstacles
         if classes and o.initial == "initial_path":  # X gates on distinct qubits: built only if emitted
-            n = sum(initial_path_length(s, r) for r in range(s.num_robots))
+            n = initial_path_count(s)
             xs = Cost.of(x=n)
-            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, lambda: self.state_prep))
+            # built from the scenario, not from this plan: a closure over the plan, which holds the call graph,
+            # would be a reference cycle, freed only by full collections (2x the sweep's GC time and memory)
+            build = partial(StatePrep.build, s, o.initial, o.rule, None)
+            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, build))
         else:
             prep = GadgetKind.of(self.state_prep)
         if classes:

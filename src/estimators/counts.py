@@ -88,11 +88,6 @@ class GateCount:
         """A JSON-ready dict (``ops`` as a plain dict)."""
         return {k: dict(self.ops) if k == "ops" else getattr(self, k) for k in GateCount.__dataclass_fields__}
 
-    @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> GateCount:
-        """Inverse of :meth:`to_dict`."""
-        return cls(**{**d, "ops": {str(k): int(v) for k, v in d["ops"].items()}})
-
 
 @dataclass(frozen=True)
 class ResourceCount(GateCount):
@@ -124,19 +119,6 @@ class ResourceCount(GateCount):
             sections={name: s.to_dict() for name, s in self.sections.items()},
         )
         return d
-
-    @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> ResourceCount:
-        """Inverse of :meth:`to_dict`."""
-        base = GateCount.from_dict({k: d[k] for k in GateCount.__dataclass_fields__})
-        return cls(
-            **{k: getattr(base, k) for k in GateCount.__dataclass_fields__},
-            qubits=int(d["qubits"]),
-            data_qubits=int(d["data_qubits"]),
-            ancillas=int(d["ancillas"]),
-            registers=tuple((str(n), int(s)) for n, s in d["registers"]),
-            sections={name: GateCount.from_dict(s) for name, s in d["sections"].items()},
-        )
 
 
 def _arity(ops: Counter[str], gates: Iterable[tuple[Any, ...]]) -> Counter[int]:

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Literal
 
-from circuitgen.call_graph import CallGraph, Deferred, GadgetKind
+from circuitgen.call_graph import SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_sums import SumsShape
@@ -146,12 +146,12 @@ class Point:
         return f"{self.rows}x{self.cols} r{self.robots} p{self.p}" + ("" if self.scenario_json is None else " (file)")
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=SCENARIOS_KEPT)
 def _default(rows: int, cols: int, robots: int) -> Scenario:
     return default_scenario(rows, cols, robots)
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=SCENARIOS_KEPT)
 def _scenario_from_json(text: str) -> Scenario:
     return scenario_from_dict(json.loads(text))
 
@@ -160,7 +160,7 @@ def _layout(plan: QaoaPlan) -> tuple[tuple[str, int], ...]:
     return tuple((r.name, r.size) for r in plan.registers)
 
 
-@lru_cache(maxsize=32)
+@lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
 def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan:
     """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths (its call
     graph is cached on it)."""
@@ -247,7 +247,7 @@ def compiled_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PL
     return depths(circ.gates, circ.num_qubits)
 
 
-@lru_cache(maxsize=8)
+@lru_cache(maxsize=SCENARIOS_KEPT)
 def layered_depth(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayeredDepth:
     """The scenario's :class:`~estimators.depth_compose.LayeredDepth` (cached: consecutive points of a sweep,
     ``p = 1, 2, ...`` of one scenario, carry one frontier)."""
@@ -302,7 +302,7 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
     return _arithmetic_depth_bound(shape) if isinstance(shape, SumsShape) else _by_counts(cost)
 
 
-@lru_cache(maxsize=256)
+@lru_cache(maxsize=SCENARIOS_KEPT)
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
     """The state preparation's depth bound and one layer's (see :func:`depth_bound`)."""
     graph = _plan(scenario, options).call_graph()

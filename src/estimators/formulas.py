@@ -18,16 +18,17 @@ How the counting runs symbolically (see ``docs/resource-estimates.md``):
 * A side of 2, 3 or 4 nodes is its own case; a side of ``>= 5`` nodes is read from a representative side of 6
   whose classes (first, last, between) are those of every longer side, the count of the "between" class being
   ``rows - 2`` (nodes), ``rows - 3`` (consecutive pairs) and so on instead of a number.
-* Phase separator (:func:`phase_terms`): :func:`circuitgen.phase_classes.ising_count` counts the nonzero Ising
+* Phase separator (:func:`part_terms`): :func:`circuitgen.phase_classes.ising_count` counts the nonzero Ising
   coefficients by classes of nodes (degree, degree target) and edges (the classes of their ends), the edges at
   the robots' endpoints moved to their own classes; one RZ per nonzero ``h``, one RZZ per nonzero ``J``
   (:func:`circuitgen.gadgets.phase_ising.ising_cost`).
-* Mixer (:func:`mixer_terms`): :func:`circuitgen.mixer_classes.mixer_part` lists the partial mixers' rotations,
+* Mixer (:func:`part_terms`): :func:`circuitgen.mixer_classes.mixer_part` lists the partial mixers' rotations,
   the junctions between consecutive partial mixers (:mod:`circuitgen.gadgets.junction`) and the open ends by
   classes of plaquettes (their corners' local pictures, :class:`gridcover.sbf.LocalPicture`).
-* Robots: the layer of ``default_scenario(R, C, k)`` for ``k = 1..4``, written with indicators of
+* Initial state (:func:`part_terms`): :func:`circuitgen.initial_state.initial_path_count` counts the X gates,
+  one per edge of each robot's L-shaped initial path, a coordinate in the far half of a side read from its end.
+* Robots: each part of ``default_scenario(R, C, k)`` for ``k = 1..4``, written with indicators of
   ``robots >= k`` (:func:`_case_layer`); the cases joined in one Piecewise (:func:`_layer`).
-* Initial state: one X per edge of each robot's initial path, ``robots (rows + cols - 2)``.
 * Ancillas: ``logic`` = the largest network (6 temporaries once some plaquette has four interior corners,
   i.e. rows, cols >= 4), ``work`` = largest multi-controlled X minus 2.
 
@@ -49,6 +50,7 @@ import sympy as sp
 
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_ising import ising_cost
+from circuitgen.initial_state import initial_path_count
 from circuitgen.mixer_classes import MixerPart, mixer_part
 from circuitgen.phase_classes import ising_count
 from gridcover.presets import default_scenario
@@ -63,9 +65,8 @@ __all__ = [
     "cols",
     "evaluate",
     "formula_table",
-    "mixer_terms",
     "p",
-    "phase_terms",
+    "part_terms",
     "robots",
     "rows",
 ]
@@ -128,18 +129,29 @@ _CASES = (2, 3, 4, 5)  # a side of 2, 3, 4 nodes, or 5 standing for >= 5
 _REPRESENTATIVE = {2: 2, 3: 3, 4: 4, 5: 6}  # the grid side each case is read from (6: every class occurs)
 
 
+LAYER = ("phase", "mixer")
+"""The parts of one layer (:func:`part_terms`); the state preparation is ``("initial_state",)``."""
+
 N_ANTI = sp.Min(robots - 1, 2)
 """Robots on the anti-diagonal (robots 1 and 2 of the default placement, 1 <= robots <= 4)."""
 
 
-@lru_cache(maxsize=64)
-def mixer_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
-    """One layer's mixer of ``default_scenario(R, C, num_robots)`` as its call graph lists it
-    (:func:`circuitgen.mixer_classes.mixer_part`: rotations, junctions and the two open ends, each kind with its
-    count), the counts symbolic in ``rows``, ``cols`` where a case stands for sides of ``>= 5`` nodes: the same
-    counting the estimates use, run with symbolic sides.
+@lru_cache(maxsize=256)
+def part_terms(part: str, rows_case: int, cols_case: int, num_robots: int) -> Counted:
+    """One part of ``default_scenario(R, C, num_robots)``'s call graph as its counting lists it, the counts
+    symbolic in ``rows``, ``cols`` where a case stands for sides of ``>= 5`` nodes: the same counting the
+    estimates use (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`), run with symbolic sides.
+
+    * ``initial_state``: one X per edge of each robot's initial path
+      (:func:`circuitgen.initial_state.initial_path_count`);
+    * ``phase`` (one layer, whole-space): the nonzero Ising terms by classes of nodes and edges
+      (:func:`circuitgen.phase_classes.ising_count`), priced by :func:`circuitgen.gadgets.phase_ising.ising_cost`
+      (one rotation, one coupling);
+    * ``mixer`` (one layer): rotations, junctions and the two open ends by classes of plaquettes
+      (:func:`circuitgen.mixer_classes.mixer_part`).
 
     Args:
+        part: ``initial_state``, ``phase`` or ``mixer``.
         rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
         num_robots: ``1`` to ``4`` (default placement).
 
@@ -148,27 +160,13 @@ def mixer_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
     """
     nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
     sizes = (rows if rows_case == 5 else sp.Integer(nr), cols if cols_case == 5 else sp.Integer(nc))
-    part = mixer_part(default_scenario(nr, nc, num_robots), sizes=sizes)
-    return tuple((sp.sympify(n), Term.of(k.cost(), k.logical_cost())) for k, n in part.kinds)
-
-
-@lru_cache(maxsize=64)
-def phase_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
-    """One layer's whole-space phase separator of ``default_scenario(R, C, num_robots)`` as the call graph counts
-    it (:func:`circuitgen.phase_classes.ising_count`: nonzero Ising terms by classes of nodes and edges), the
-    counts symbolic in ``rows``, ``cols`` where a case stands for sides of ``>= 5`` nodes; the terms priced by
-    :func:`circuitgen.gadgets.phase_ising.ising_cost` (one rotation, one coupling).
-
-    Args:
-        rows_case, cols_case: ``2``, ``3``, ``4`` or ``5`` (``>= 5``).
-        num_robots: ``1`` to ``4`` (default placement).
-
-    Returns:
-        ``(count, term)`` pairs: the rotations and the couplings.
-    """
-    nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
-    sizes = (rows if rows_case == 5 else sp.Integer(nr), cols if cols_case == 5 else sp.Integer(nc))
-    count = ising_count(default_scenario(nr, nc, num_robots), sizes=sizes)
+    s = default_scenario(nr, nc, num_robots)
+    if part == "initial_state":
+        x = Cost.of(x=1)
+        return ((sp.sympify(initial_path_count(s, sizes)), Term.of(x, x)),)
+    if part == "mixer":
+        return tuple((sp.sympify(n), Term.of(k.cost(), k.logical_cost())) for k, n in mixer_part(s, sizes=sizes).kinds)
+    count = ising_count(s, sizes=sizes)
     assert count is not None  # an open grid, uniform lengths, distinct endpoints
     rotation, coupling = ising_cost(1, 0), ising_cost(0, 1)
     return (
@@ -177,15 +175,15 @@ def phase_terms(rows_case: int, cols_case: int, num_robots: int) -> Counted:
     )
 
 
-def _case_layer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
-    """One layer (phase separator and mixer, every robot) in one grid case, from the call graphs of 1..4 robots:
-    the first robot's layer plus what each further robot adds (its partial mixers and the junction joining it,
-    its rotations and couplings), written with indicators of ``robots >= k`` (one multiple of ``robots - 1``
-    when every further robot adds the same)."""
+def _case_layer(metric: Metric, parts: tuple[str, ...], rows_case: int, cols_case: int) -> sp.Expr:
+    """The ``parts`` (every robot) in one grid case, from the call graphs of 1..4 robots: the first robot's plus
+    what each further robot adds (its partial mixers and the junction joining it, its rotations and couplings,
+    its initial path), written with indicators of ``robots >= k`` (one multiple of ``robots - 1`` when every
+    further robot adds the same)."""
     f = []
     for k in (1, 2, 3, 4):
         by_count: dict[sp.Expr, int] = {}  # few distinct counts: add the numbers first, multiply once
-        for n, t in (*mixer_terms(rows_case, cols_case, k), *phase_terms(rows_case, cols_case, k)):
+        for n, t in (term for part in parts for term in part_terms(part, rows_case, cols_case, k)):
             by_count[n] = by_count.get(n, 0) + metric(t)
         f.append(sp.expand(sum((n * v for n, v in by_count.items()), sp.Integer(0))))
     g = [f[0], f[1] - f[0], f[2] - f[1], f[3] - f[2]]
@@ -206,18 +204,18 @@ def _case_layer(metric: Metric, rows_case: int, cols_case: int) -> sp.Expr:
     return sp.factor(out.subs(subs)) if subs else out
 
 
-def _layer(metric: Metric) -> sp.Expr:
-    """One layer (phase separator and mixer, every robot) as a Piecewise over the grid cases (sides of 2, 3, 4 or
-    >= 5 nodes), a case kept only where the pieces after it would give another value."""
-    general = _case_layer(metric, 5, 5)
-    by_rows = {a: _case_layer(metric, a, 5) for a in _CASES[:-1]}
-    by_cols = {b: _case_layer(metric, 5, b) for b in _CASES[:-1]}
+def _layer(metric: Metric, parts: tuple[str, ...] = LAYER) -> sp.Expr:
+    """The ``parts`` (default: one layer, phase separator and mixer; every robot) as a Piecewise over the grid
+    cases (sides of 2, 3, 4 or >= 5 nodes), a case kept only where the pieces after it would give another value."""
+    general = _case_layer(metric, parts, 5, 5)
+    by_rows = {a: _case_layer(metric, parts, a, 5) for a in _CASES[:-1]}
+    by_cols = {b: _case_layer(metric, parts, 5, b) for b in _CASES[:-1]}
     kept_rows = {a: e for a, e in by_rows.items() if sp.expand(e - general.subs(rows, a)) != 0}
     kept_cols = {b: e for b, e in by_cols.items() if sp.expand(e - general.subs(cols, b)) != 0}
     pieces = []
     for a in _CASES[:-1]:
         for b in _CASES[:-1]:
-            e = _case_layer(metric, a, b)
+            e = _case_layer(metric, parts, a, b)
             fallback = (
                 kept_rows[a].subs(cols, b)
                 if a in kept_rows
@@ -265,9 +263,9 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     separator, default objective and the default placement. Gate counts are for the lowered circuit (basis
     ``cx x h rz t tdg s sdg``, peephole on); ``toffoli`` counts Toffolis after multi-controlled-X lowering;
     ``rotations`` counts arbitrary-angle RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate
-    count is ``initial state + p * layer``, the layer the call graph's own counting run with symbolic sides: the
-    phase separator's rotations and couplings by classes of nodes and edges (:func:`phase_terms`), the mixer's
-    rotations and junctions by classes of plaquettes (:func:`mixer_terms`).
+    count is ``initial state + p * layer``, each the call graph's own counting run with symbolic sides
+    (:func:`part_terms`): the initial paths' X gates, the phase separator's rotations and couplings by classes of
+    nodes and edges, the mixer's rotations and junctions by classes of plaquettes.
 
     Args:
         structured: write the data qubits with the abbreviation :data:`V` (see :data:`V_EXPR`).
@@ -275,12 +273,14 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     Returns:
         name -> expression.
     """
-    init_x = robots * (rows + cols - 2)  # the call graph's initial state: one X per edge of each initial path
 
-    def layer(gate_names: tuple[str, ...]) -> sp.Expr:
-        return _layer(lambda t: sum(t.ops[g] for g in gate_names))
+    def circuit(metric: Metric) -> sp.Expr:  # the state preparation once, then p layers
+        return _layer(metric, ("initial_state",)) + p * _layer(metric)
 
-    gate = {g: (init_x if g == "x" else 0) + p * layer((g,)) for g in GATE_NAMES}
+    def gates(names: tuple[str, ...]) -> sp.Expr:
+        return circuit(lambda t: sum(t.ops[g] for g in names))
+
+    gate = {g: gates((g,)) for g in GATE_NAMES}
     logic = _widest(lambda m: m.logic_width)
     work = _widest(lambda m: m.work_need)
     ancillas = _widest(lambda m: m.logic_width + m.work_need)
@@ -292,12 +292,12 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
         "work_qubits": work,
         "ancillas": ancillas,
         "qubits": data + ancillas,
-        "gates": init_x + p * layer(GATE_NAMES),
+        "gates": gates(GATE_NAMES),
         "cx": gate["cx"],
         "two_qubit": gate["cx"],
-        "single_qubit": init_x + p * layer(singles),
-        "t_count": p * layer(("t", "tdg")),
-        "toffoli": p * _layer(lambda t: t.toffoli),
+        "single_qubit": gates(singles),
+        "t_count": gates(("t", "tdg")),
+        "toffoli": circuit(lambda t: t.toffoli),
         "rotations": gate["rz"],
         "nonzero_zz": _layer(lambda t: t.zz),
         "partial_mixers": p * robots * (rows - 1) * (cols - 1),

@@ -130,7 +130,7 @@ def test_gadgets_priced_per_kind_and_depth_facts_share_the_one_cache() -> None:
 
     COSTS.clear()
     for g in found.values():
-        assert (g.cost(), g.logical_cost()) == COSTS.costs_of(g.kind, never)  # priced once, under its kind key
+        assert (g.cost(), g.logical_cost()) == COSTS.costs(g.kind, never)  # priced once, under its kind key
         assert known_depth(g) is None
         d = gadget_depth(g, tuple(plan.registers))
         assert known_depth(g) == d  # the own depth is remembered per kind in the same cache

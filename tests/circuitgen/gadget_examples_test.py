@@ -10,7 +10,7 @@ from circuitgen.cost import Cost
 from circuitgen.gadgets.examples import REGISTRY, check_gadget, gadget_examples
 from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_plan
-from estimators.crosscheck import every_plan_option, interior_endpoints
+from circuitgen.testing import every_plan_option, interior_endpoints
 from gridcover.presets import default_scenario
 
 EXAMPLES = list(gadget_examples())

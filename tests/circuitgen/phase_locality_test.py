@@ -38,7 +38,8 @@ from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
 from circuitgen.phase_locality import spatial_phase, variable_sites
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
-from estimators.crosscheck import Case, crosscheck, interior_endpoints
+from circuitgen.testing import Case, interior_endpoints
+from estimators.crosscheck import crosscheck
 from gridcover.paths import enumerate_paths
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict

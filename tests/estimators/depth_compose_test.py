@@ -12,7 +12,7 @@ from circuitgen.cost import Cost
 from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from circuitgen.phase_classes import phase_layer
 from circuitgen.qaoa import qaoa_plan
-from estimators.crosscheck import crosscheck_cases, with_obstacles
+from circuitgen.testing import crosscheck_cases, with_obstacles
 from estimators.depth import Depth, depths
 from estimators.depth_compose import (
     LayeredDepth,

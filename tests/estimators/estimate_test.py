@@ -8,8 +8,9 @@ from circuitgen.cost import Cost
 from circuitgen.lowering import LOGICAL_BASIS, lower
 from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit
+from circuitgen.testing import Case, crosscheck_cases, with_obstacles
 from estimators.counts import count
-from estimators.crosscheck import Case, crosscheck, crosscheck_cases, with_obstacles
+from estimators.crosscheck import crosscheck
 from estimators.depth import Depth, depths
 from estimators.estimate import (
     EstimateOptions,

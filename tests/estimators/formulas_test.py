@@ -15,11 +15,13 @@ import pytest
 import sympy as sp
 
 from circuitgen.options import PlanOptions
+from circuitgen.qaoa import qaoa_circuit
 from estimators import formulas
 from estimators.estimate import Estimate, EstimateOptions, estimate_point
 from estimators.formulas import GATE_NAMES, QUANTITIES, evaluate, formula_table
 from estimators.sweep import grid_points
 from gridcover.hamiltonian import ising_hamiltonian
+from gridcover.paths import initial_path
 from gridcover.presets import default_scenario, max_default_robots
 
 GRIDS = [(r, c) for r in range(2, 9) for c in range(2, 9)]
@@ -105,7 +107,7 @@ def test_phase_terms_are_the_call_graphs_counting_run_symbolically(rows_case: in
     every grid of the case (sides of >= 5 nodes up to 9)."""
     sides = {2: [2], 3: [3], 4: [4], 5: [5, 6, 7, 9]}
     for k in (1, 2, 3, 4):
-        (lin, _), (zz, _) = formulas.phase_terms(rows_case, cols_case, k)
+        (lin, _), (zz, _) = formulas.part_terms("phase", rows_case, cols_case, k)
         for r in sides[rows_case]:
             for c in sides[cols_case]:
                 if k > max_default_robots(r, c):
@@ -114,6 +116,25 @@ def test_phase_terms_are_the_call_graphs_counting_run_symbolically(rows_case: in
                 vals = {formulas.rows: r, formulas.cols: c}
                 assert lin.subs(vals) == len(list(h.linear_terms(1e-12))), (r, c, k)
                 assert zz.subs(vals) == h.num_quadratic_terms(1e-12), (r, c, k)
+
+
+@pytest.mark.parametrize("rows_case, cols_case", [(2, 2), (2, 5), (3, 4), (5, 3), (4, 4), (5, 5)])
+def test_initial_state_terms_are_the_call_graphs_counting_run_symbolically(rows_case: int, cols_case: int) -> None:
+    """The symbolic X count of the state preparation, evaluated, is the number of X gates of the compiled initial
+    state on every grid of the case (sides of >= 5 nodes up to 11), and the initial paths' edges."""
+    sides = {2: [2], 3: [3], 4: [4], 5: [5, 6, 7, 8, 11]}
+    for k in (1, 2, 3, 4):
+        ((n, term),) = formulas.part_terms("initial_state", rows_case, cols_case, k)
+        assert term.ops["x"] == 1 and sum(term.ops.values()) == 1
+        for r in sides[rows_case]:
+            for c in sides[cols_case]:
+                if k > max_default_robots(r, c):
+                    continue
+                s = default_scenario(r, c, k)
+                prep = [g for sec in qaoa_circuit(s, 0).sections if sec.name == "initial_state" for g in sec.gates]
+                assert {g.name for g in prep} == {"x"}
+                want = sum(initial_path(s, robot).bit_count() for robot in range(k))
+                assert n.subs({formulas.rows: r, formulas.cols: c}) == len(prep) == want, (r, c, k)
 
 
 def test_evaluate_rejects_points_outside_the_domain() -> None:

@@ -14,8 +14,9 @@ import pytest
 from circuitgen.lowering import lower
 from circuitgen.options import DEFAULT_PLAN, PlanOptions
 from circuitgen.qaoa import qaoa_circuit
+from circuitgen.testing import Case, every_plan_option, interior_endpoints
 from estimators.counts import count
-from estimators.crosscheck import Case, crosscheck, every_plan_option, interior_endpoints
+from estimators.crosscheck import crosscheck
 from estimators.estimate import EstimateOptions, Point, estimate_point
 from gridcover.presets import default_scenario
 

@@ -267,7 +267,7 @@ def spatial_popcount_layout(
     return gates, reg, home
 
 
-@lru_cache(maxsize=1024)
+@lru_cache(maxsize=64)  # an entry holds every register coupling (up to ~1 MB at 40x40/8): a sweep reuses few
 def _abstract_phase(
     gamma: str,
     presents: tuple[tuple[bool, ...], ...],
@@ -377,9 +377,13 @@ class SumsShape:
         """Per form, ``G_a = H_a - offsets[a]`` (the complemented negative-weight bits)."""
         return tuple(s for _, s in self.negatives)
 
-    @cached_property
-    def _phase(self) -> IsingPhase:
+    @property
+    def _phase(self) -> IsingPhase:  # not kept on the shape: shapes are kind keys, kept by the cost cache
         return _abstract_phase("gamma", self.presents, self.offsets, self.matrix, self.linear)[1]
+
+    @cached_property
+    def _phase_cost(self) -> Cost:
+        return self._phase.cost()
 
     @cached_property
     def active(self) -> tuple[bool, ...]:
@@ -409,8 +413,7 @@ class SumsShape:
         fa, ha, cp, neg = self._compute_cost()
         ands = fa + ha
         arithmetic = Cost.of(cx=2 * (5 * fa + ha + cp + (fa + ha if self.star else 0)), x=2 * neg)
-        ph = self._phase.cost()
-        return with_ands(ands, arithmetic + ph)
+        return with_ands(ands, arithmetic + self._phase_cost)
 
     def cost(self) -> Cost:
         """Lowered cost."""
@@ -435,7 +438,7 @@ class SumsShape:
 
     def phase_cost(self) -> Cost:
         """Lowered cost of the phase on the registers (between the two halves)."""
-        return self._phase.cost()
+        return self._phase_cost
 
 
 @dataclass(frozen=True)
