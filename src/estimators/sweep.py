@@ -22,6 +22,7 @@ Example:
 
 from __future__ import annotations
 
+import gc
 import re
 from collections.abc import Iterable, Iterator
 
@@ -129,6 +130,10 @@ def skipped_points(grids: Iterable[tuple[int, int]], robots: Iterable[int], ps: 
     return sum(n_p for r, c in grids for k in robots if k > max_default_robots(r, c))
 
 
+SWEEP_GC_THRESHOLD = (50_000, 50, 100)
+"""The cyclic garbage collector's thresholds while :func:`sweep` runs (CPython's default is ``(700, 10, 10)``)."""
+
+
 def sweep(points: Iterable[Point], options: EstimateOptions = DEFAULT_OPTIONS) -> Iterator[Estimate]:
     """Estimate ``points`` in order, lazily (each estimate is yielded as soon as it is ready).
 
@@ -139,5 +144,13 @@ def sweep(points: Iterable[Point], options: EstimateOptions = DEFAULT_OPTIONS) -
     Yields:
         One :class:`~estimators.estimate.Estimate` per point.
     """
-    for pt in points:
-        yield estimate_point(pt, options)
+    # A row allocates tens of thousands of short-lived, acyclic objects next to long-lived cost caches; at
+    # CPython's default threshold the cyclic collector runs every 700 allocations and finds nothing (20% of a
+    # 6,000-row sweep's CPU time), so it runs less often while sweeping (reference counting frees the rows).
+    threshold = gc.get_threshold()
+    gc.set_threshold(*SWEEP_GC_THRESHOLD)
+    try:
+        for pt in points:
+            yield estimate_point(pt, options)
+    finally:
+        gc.set_threshold(*threshold)

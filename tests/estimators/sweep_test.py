@@ -66,3 +66,18 @@ def test_sweep_equals_single_points() -> None:
             alone.registers,
             alone.depth,
         )
+
+
+def test_the_sweep_restores_the_collectors_thresholds_when_done_or_closed() -> None:
+    import gc
+
+    from estimators.sweep import SWEEP_GC_THRESHOLD
+
+    before = gc.get_threshold()
+    rows = sweep(grid_points([(2, 2), (3, 3)], [1], [1]))
+    next(rows)
+    assert gc.get_threshold() == SWEEP_GC_THRESHOLD  # while sweeping
+    rows.close()  # a consumer that stops early (Ctrl-C, --limit)
+    assert gc.get_threshold() == before
+    assert len(list(sweep(grid_points([(2, 2)], [1], [1])))) == 1
+    assert gc.get_threshold() == before
