@@ -36,7 +36,9 @@ __all__ = [
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
 InitialFlag = Annotated[
     str,
-    typer.Option("--initial", help="Initial state: initial_path, representatives or local_search (a classical warm start)."),
+    typer.Option(
+        "--initial", help="Initial state: initial_path, representatives or local_search (a classical warm start)."
+    ),
 ]
 TargetFlag = Annotated[
     str,
