@@ -21,7 +21,7 @@ Example:
     >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
     >>> res = local_search(s)
     >>> res.initial_cost, res.cost, res.steps, res.cost == cost(s, res.paths)
-    (6.0, -2.0, 1, True)
+    (12.0, -8.0, 2, True)
 """
 
 from __future__ import annotations
