@@ -18,6 +18,10 @@ circuit is a binary decision tree over the qubits (the sparse form of Grover-Rud
 
 With ``K = 1`` this is just the X gates of the single path.
 
+``local_search``: a classical warm start. Every robot on its path of the local minimum that steepest descent
+over allowed SBF flips reaches from the initial paths (:func:`gridcover.solvers.descent.local_search`; a few
+milliseconds on 5x5): one basis state, prepared like ``initial_path`` by X gates.
+
 Example:
     >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
     ['ry', 'mcx']
@@ -154,24 +158,33 @@ def initial_state_gates(
 
     Args:
         scenario: The scenario.
-        initial: ``initial_path`` or ``representatives`` (see the module docstring).
-        rule: SBF rule deciding the move-graph components (``representatives`` only).
+        initial: ``initial_path``, ``representatives`` or ``local_search`` (see the module docstring).
+        rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
+            descent (``local_search``).
         ancilla: Clean qubit for multiply-controlled rotations (``representatives`` only).
 
     Returns:
         The gate list.
     """
-    if initial not in ("initial_path", "representatives"):
-        raise ValueError(f"unknown initial state {initial!r} (expected 'initial_path' or 'representatives')")
+    if initial not in ("initial_path", "representatives", "local_search"):
+        raise ValueError(
+            f"unknown initial state {initial!r} (expected 'initial_path', 'representatives' or 'local_search')"
+        )
     v = scenario.edges_per_robot
     out: list[Gate] = []
-    if initial == "initial_path":  # one basis state per robot: an X on each variable of its path, in qubit order
-        for r in range(scenario.num_robots):
-            out += [x(q) for q in sorted(scenario.variable_index(r, e) for e in edges_of(initial_path(scenario, r)))]
+    if initial != "representatives":  # one basis state per robot: an X on each variable of its path, in qubit order
+        if initial == "local_search":
+            from gridcover.solvers.descent import local_search  # the solvers package is heavier than this module
+
+            paths = local_search(scenario, rule).paths
+        else:
+            paths = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
+        for r, mask in enumerate(paths):
+            out += [x(q) for q in sorted(scenario.variable_index(r, e) for e in edges_of(mask))]
         return out
     for r in range(scenario.num_robots):
         qubits = list(range(r * v, (r + 1) * v))
-        masks = [initial_path(scenario, r)] if initial == "initial_path" else list(representatives(scenario, r, rule))
+        masks = list(representatives(scenario, r, rule))
         strings = [int("".join(map(str, path_bits(scenario, m)[::-1])), 2) for m in masks]
         out.extend(superposition_gates(strings, qubits, ancilla))
     return out

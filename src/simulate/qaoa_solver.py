@@ -44,7 +44,7 @@ from simulate.layerwise import (
     train_layerwise,
 )
 from simulate.objectives import OBJECTIVES, ObjectiveName
-from simulate.subspace import SubspaceQAOA
+from simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
 from simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
 
 __all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
@@ -64,6 +64,7 @@ class QaoaSolution:
         training: The :class:`~simulate.training.TrainingResult` of the answer's angles (layerwise: the run
             kept at the final depth).
         schedule: The :class:`~simulate.layerwise.LayerwiseResult` (``None`` for a single run).
+        initial: The initial state trained from.
     """
 
     solution: Solution
@@ -72,6 +73,7 @@ class QaoaSolution:
     optimum: float
     training: TrainingResult
     schedule: LayerwiseResult | None = None
+    initial: str = "initial_path"
 
     @property
     def optimizer(self) -> str:
@@ -110,6 +112,7 @@ def solve_qaoa(
     optimizer: str = "layerwise",
     objective: ObjectiveName = "gibbs",
     init: Init = "random",
+    initial: InitialState = "initial_path",
     seed: int = 0,
     rule: Rule = "exact",
     maxiter: int = DEFAULT_MAXITER,
@@ -124,6 +127,7 @@ def solve_qaoa(
         optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
+        initial: Initial state: ``initial_path`` (default), ``representatives`` or ``local_search``.
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`simulate.training.train`).
@@ -144,8 +148,10 @@ def solve_qaoa(
         raise ValueError(f"unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if init not in INITS:
         raise ValueError(f"unknown init {init!r} (expected one of {', '.join(INITS)})")
+    if initial not in INITIAL_STATES:
+        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     t0 = time.perf_counter()
-    q = SubspaceQAOA(scenario, rule=rule)
+    q = SubspaceQAOA(scenario, rule=rule, initial=initial)
     schedule = None
     if optimizer == "layerwise":
         if progress is not None:
@@ -163,6 +169,13 @@ def solve_qaoa(
         how = f"{optimizer} from {init} angles, {len(result.trace) - 1} iteration(s)"
     masks, prob = most_probable(q, result.angles)
     best, _ = q.optimum()
+    start = f"initial state {initial}"
+    if initial == "local_search":
+        from gridcover.solvers.descent import local_search
+
+        warm = local_search(scenario, rule)
+        start += (f" (steepest descent over SBF moves: cost {warm.initial_cost:g} -> {warm.cost:g} in {warm.steps} "
+                  f"step(s), {warm.seconds * 1e3:.1f} ms)")
     evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
     estimates = (schedule.circuit_estimates if schedule is not None
                  else result.num_evaluations + 4 * p * result.num_gradients)
@@ -176,22 +189,23 @@ def solve_qaoa(
         seed=seed,
         rule=rule,
         notes=(
-            f"p={p}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
+            f"p={p}, {start}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
             f"amplitudes; on a device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots "
             f"at {SHOTS_PER_ESTIMATE:,} per estimate",
             f"<C> {result.initial_expectation:.6g} -> {result.expectation:.6g}; the trained state reads an "
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
     )
-    return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule)
+    return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule, initial)
 
 
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     """JSON-ready dict: :func:`~gridcover.solvers.solution_to_dict` (without its trace) plus ``probability``,
-    ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``objective``, ``expectation``, ``trace`` (the objective),
-    ``evaluations``, ``circuit_estimates``, ``training_shots`` (estimates x ``shots_per_estimate``, an assumed
-    :data:`simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for ``layerwise``, ``levels`` (per depth: ``p``, objective
-    ``value``, ``expectation``, ``p_optimum``, ``iterations``)."""
+    ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial`` (the initial state), ``objective``,
+    ``expectation``, ``trace`` (the objective), ``evaluations``, ``circuit_estimates``, ``training_shots``
+    (estimates x ``shots_per_estimate``, an assumed :data:`simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for
+    ``layerwise``, ``levels`` (per depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``,
+    ``iterations``)."""
     out = solution_to_dict(scenario, res.solution, include_trace=False)
     out.update(
         probability=res.probability,
@@ -199,6 +213,7 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
         p=res.p,
         angles=list(res.angles),
         optimizer=res.optimizer,
+        initial=res.initial,
         objective=res.training.objective,
         expectation=res.training.expectation,
         trace=list(res.trace),

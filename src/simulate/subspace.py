@@ -11,7 +11,9 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
   :func:`~gridcover.paths.initial_path`. ``initial="representatives"``: every robot in the uniform real
   superposition of :func:`~gridcover.sbf.representatives` (one path per move-graph component), the product
   over robots; this differs from the default only when the move graph splits (e.g. hard obstacles), and then
-  the bases hold every component.
+  the bases hold every component. ``initial="local_search"``: every robot on its path of the classical warm
+  start :func:`gridcover.solvers.descent.local_search` (the local minimum of steepest descent over SBF moves
+  from the initial paths), the same component as the initial path, so the same basis in another order.
 * **Layer k** (angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``): the phase separator multiplies the
   amplitude of ``x`` by ``exp(-i gamma_k (C(x) - phase_offset))``, with ``C`` the cost (equal to
   :func:`~gridcover.hamiltonian.ising_hamiltonian` on basis states) and ``phase_offset`` the constant the
@@ -77,6 +79,7 @@ from gridcover.hamiltonian import ising_hamiltonian
 from gridcover.paths import initial_path, is_feasible, path_bits
 from gridcover.sbf import RULES, Rule, SbfLogic, representatives, sbf_logic
 from gridcover.scenario import Scenario
+from gridcover.solvers.descent import local_search
 from simulate import subspace_kernels
 
 __all__ = [
@@ -202,7 +205,7 @@ def robot_basis(
         scenario: The scenario.
         robot: Robot index.
         rule: SBF rule, ``exact`` or ``paper``.
-        initial: ``initial_path`` or ``representatives`` (see the module docstring).
+        initial: ``initial_path``, ``representatives`` or ``local_search`` (see the module docstring).
 
     Returns:
         The :class:`RobotBasis`.
@@ -223,7 +226,12 @@ def robot_basis(
     if initial not in INITIAL_STATES:
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     grid = scenario.grid
-    starts = (initial_path(scenario, robot),) if initial == "initial_path" else representatives(scenario, robot, rule)
+    if initial == "initial_path":
+        starts: tuple[int, ...] = (initial_path(scenario, robot),)
+    elif initial == "local_search":
+        starts = (local_search(scenario, rule).paths[robot],)
+    else:
+        starts = representatives(scenario, robot, rule)
     moves = [
         (q.index, q.edge_mask, lg) for q in grid.plaquettes if not (lg := sbf_logic(scenario, robot, q, rule)).never
     ]
@@ -325,7 +333,7 @@ class SubspaceQAOA:
     Args:
         scenario: The scenario.
         rule: SBF rule of the mixer, ``exact`` (default) or ``paper`` (see the module docstring).
-        initial: ``initial_path`` (default) or ``representatives``.
+        initial: ``initial_path`` (default), ``representatives`` or ``local_search``.
         phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``: a number, ``"feasible"``
             (default; ``None`` means the same) for the reference constant of the default
             :func:`circuitgen.phase.phase_plan`, or ``"whole-space"`` for the Ising constant ``c0``. Use the

@@ -12,7 +12,7 @@ import dataclasses
 import pytest
 
 from circuitgen.lowering import lower
-from circuitgen.options import DEFAULT_PLAN, PlanOptions
+from circuitgen.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
 from circuitgen.qaoa import qaoa_circuit
 from circuitgen.testing import Case, every_plan_option, interior_endpoints
 from estimators.counts import count
@@ -24,7 +24,7 @@ ALL = list(every_plan_option())
 
 
 def test_every_plan_option_lists_each_combination_once() -> None:
-    assert len(ALL) == len(set(ALL)) == 2 * 2 * 2 * 2 * 2 * 3
+    assert len(ALL) == len(set(ALL)) == 2 * len(INITIAL_STATES) * 2 * 2 * 2 * 3
 
 
 @pytest.mark.parametrize("part", range(4))
@@ -38,6 +38,7 @@ ONE_AT_A_TIME = [
     DEFAULT_PLAN,
     PlanOptions(rule="paper"),
     PlanOptions(initial="representatives"),
+    PlanOptions(initial="local_search"),
     PlanOptions(target="ft"),
     PlanOptions(phase="whole-space"),
     PlanOptions(optimize="depth"),

@@ -88,10 +88,26 @@ def test_default_training_is_layerwise_and_objective_is_selectable() -> None:
         (["--method", "anneal", "--optimizer", "cobyla"], ["--optimizer", "qaoa only"]),
         (["--method", "qaoa", "--objective", "median"], ["unknown objective", "median"]),
         (["--method", "dfs", "--objective", "cvar"], ["--objective", "qaoa only"]),
+        (["--method", "qaoa", "--initial", "warm"], ["unknown initial state", "warm"]),
+        (["--method", "anneal", "--initial", "local_search"], ["--initial", "qaoa only"]),
     ],
 )
 def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str]) -> None:
     assert_one_line_error(run("solve", PAPER, *args), *fragments)
+
+
+def test_local_search_initial_state_is_reported() -> None:
+    """``--initial local_search``: the JSON names it, the notes give the descent, the answer is the trained one."""
+    from gridcover.solvers.descent import local_search
+
+    res = run("solve", PAPER, "--method", "qaoa", "-p", "1", "--initial", "local_search", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    warm = local_search(load_scenario(PAPER))
+    assert out["initial"] == "local_search"
+    assert any(f"cost {warm.initial_cost:g} -> {warm.cost:g}" in n for n in out["notes"])
+    direct = solve_qaoa(load_scenario(PAPER), p=1, initial="local_search")
+    assert out["angles"] == list(direct.angles) and out["p_optimum"] == pytest.approx(direct.p_optimum)
 
 
 def test_qaoa_is_registered_beside_the_classical_methods() -> None:

@@ -58,10 +58,12 @@ def _scenario(text: str) -> Scenario:
 
 
 @cache
-def _circuit(text: str, p: int) -> dict[str, int]:
+def _circuit(text: str, p: int, initial: str = "initial_path") -> dict[str, int]:
+    from circuitgen.options import PlanOptions
     from estimators.estimate import EstimateOptions, Point, estimate_point
 
-    est = estimate_point(Point.from_scenario(_scenario(text), p), EstimateOptions(depth="exact"))
+    plan = PlanOptions(initial=initial)  # type: ignore[arg-type]
+    est = estimate_point(Point.from_scenario(_scenario(text), p), EstimateOptions(plan=plan, depth="exact"))
     assert est.depth is not None
     return {"qubits": est.qubits, "depth": est.depth.depth, "two_qubit_depth": est.depth.two_qubit_depth,
             "gates": est.cost.total}
@@ -80,10 +82,10 @@ def _routed(text: str, p: int, device: str) -> dict[str, Any]:
 
 
 @cache
-def _qaoa(text: str) -> Any:
+def _qaoa(text: str, initial: str = "initial_path") -> Any:
     from simulate.subspace import SubspaceQAOA
 
-    return SubspaceQAOA(_scenario(text))
+    return SubspaceQAOA(_scenario(text), initial=initial)  # type: ignore[arg-type]
 
 
 @cache
@@ -127,7 +129,7 @@ def test_circuit_columns_match_the_compiler(name: str) -> None:
     for row in _load(name)["rows"]:
         if "qubits" not in row or row.get("method") == "qaoa_device":
             continue
-        want = _circuit(_key(row), int(row["p"]))
+        want = _circuit(_key(row), int(row["p"]), row["options"].get("initial", "initial_path"))
         got = {k: row[k] for k in want if k in row}
         assert got == {k: want[k] for k in got}, _label(name, row)
         checked += 1
@@ -162,13 +164,13 @@ def test_device_rows_match_the_router_every_row() -> None:
 
 def _check_states(heavy: bool) -> int:
     checked = 0
-    for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots"):
+    for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots", "qaoa_training"):
         for r in _load(name)["rows"]:
             if r.get("method") != "qaoa" or "angles" not in r:
                 continue
             if _dimension(_key(r)) > (HEAVY_DIMENSION if heavy else CHEAP_DIMENSION):
                 continue
-            q = _qaoa(_key(r))
+            q = _qaoa(_key(r), r["options"].get("initial", "initial_path"))
             assert len(r["angles"]) == 2 * r["p"], _label(name, r)
             assert q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label(name, r)
             e = r.get("expectation", r.get("e_final"))

@@ -40,6 +40,9 @@ TWO_2x3 = make(2, 3, [((0, 0), (1, 2)), ((1, 0), (0, 2))])
 THREE_2x2 = make(2, 2, [((0, 0), (1, 1)), ((0, 1), (1, 0)), ((1, 1), (0, 1))])  # 12 qubits, 2 paths each
 # hard obstacle that splits the move graph of the exact rule into several components
 HARD_3x4 = make(3, 4, [((0, 0), (2, 3))], obstacles=[[1, 1]], objective={"obstacles": "hard"})
+# the local_search warm start moves away from the initial paths here (2 steps each)
+SINGLE_3x3_CORNERS = make(3, 3, [((0, 0), (2, 2))])
+TWO_2x4 = make(2, 4, [((0, 0), (1, 0)), ((0, 3), (1, 3))])
 
 
 # ---------------------------------------------------------------- the dense reference
@@ -208,6 +211,20 @@ def test_cost_diagonal_matches_ising_and_cost() -> None:
         masks = q.assignment(idx)
         assert np.isclose(diag[idx], cost(TWO_2x3, masks))
         assert np.isclose(diag[idx], ham.evaluate(assignment_bits(TWO_2x3, masks)))
+
+
+def test_local_search_starts_on_the_descent_paths() -> None:
+    from gridcover.solvers.descent import local_search
+
+    for s in (SINGLE_3x3_CORNERS, TWO_2x4):
+        warm = local_search(s)
+        assert warm.steps > 0  # really a different start from the initial paths
+        q = SubspaceQAOA(s, initial="local_search")
+        q0 = SubspaceQAOA(s)
+        assert [sorted(b) for b in q.bases] == [sorted(b) for b in q0.bases]  # same component, another order
+        psi0 = q.initial_state()
+        assert psi0[q.index_of(warm.paths)] == 1.0 and np.abs(psi0).sum() == 1.0
+        assert q.expectation([]) == pytest.approx(warm.cost)
 
 
 def test_zero_layers_is_the_initial_state() -> None:
@@ -452,8 +469,9 @@ def test_buffer_size_does_not_change_results() -> None:
 
 @pytest.mark.parametrize(
     ("s", "rule", "initial"),
-    [(TWO_2x3, "exact", "initial_path"), (HARD_3x4, "exact", "representatives"), (SINGLE_2x3, "paper", "initial_path")],
-    ids=["two-robots", "representatives", "paper-rule"],
+    [(TWO_2x3, "exact", "initial_path"), (HARD_3x4, "exact", "representatives"), (SINGLE_2x3, "paper", "initial_path"),
+     (SINGLE_3x3_CORNERS, "exact", "local_search"), (TWO_2x4, "exact", "local_search")],
+    ids=["two-robots", "representatives", "paper-rule", "local-search", "local-search-two-robots"],
 )
 def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial: str) -> None:
     """The data-register amplitudes of the compiled circuit (ancillas back in |0>, above the data qubits)."""

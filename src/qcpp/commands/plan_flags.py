@@ -10,7 +10,7 @@ Example:
     >>> plan_options("exact", "path", "nisq", "feasible", "cx", None)
     Traceback (most recent call last):
     ...
-    ValueError: --initial: expected initial_path or representatives, got 'path'
+    ValueError: --initial: expected initial_path or representatives or local_search, got 'path'
 """
 
 from __future__ import annotations
@@ -34,7 +34,12 @@ __all__ = [
 ]
 
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
-InitialFlag = Annotated[str, typer.Option("--initial", help="Initial state: initial_path or representatives.")]
+InitialFlag = Annotated[
+    str,
+    typer.Option(
+        "--initial", help="Initial state: initial_path, representatives or local_search (a classical warm start)."
+    ),
+]
 TargetFlag = Annotated[
     str,
     typer.Option(

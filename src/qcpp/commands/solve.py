@@ -16,8 +16,9 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
 ``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts), ``--objective``
-(default ``gibbs``) and ``--maxiter``, and adds ``probability``, ``p_optimum``, ``p``, ``angles``,
-``optimizer``, ``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
+(default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
+classical warm start), and adds ``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
+``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
 ``circuit_estimates`` (:func:`simulate.qaoa_solver.qaoa_to_dict`) to the JSON and a trace sparkline to the text.
 
 ``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
@@ -61,7 +62,7 @@ __all__ = [
     "sparkline",
 ]
 
-QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200}
+QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path"}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
@@ -213,6 +214,10 @@ def solve_command(
     maxiter: Annotated[
         int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations per run (qaoa).")
     ] = QAOA_DEFAULTS["maxiter"],
+    initial: Annotated[
+        str, typer.Option("--initial", help="QAOA initial state (qaoa): initial_path, representatives or local_search "
+                          "(a classical warm start: steepest descent over SBF moves).")
+    ] = QAOA_DEFAULTS["initial"],
     time_limit: Annotated[
         float | None,
         typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
@@ -224,7 +229,7 @@ def solve_command(
         raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
-    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter}
+    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial}
     if method != "qaoa":
         for name, value in qaoa_options.items():
             if value != QAOA_DEFAULTS[name]:
