@@ -145,8 +145,8 @@ def sweep(points: Iterable[Point], options: EstimateOptions = DEFAULT_OPTIONS) -
         One :class:`~estimators.estimate.Estimate` per point.
     """
     # A row allocates tens of thousands of short-lived, acyclic objects next to long-lived cost caches; at
-    # CPython's default threshold the cyclic collector runs every 700 allocations and finds nothing (20% of a
-    # 6,000-row sweep's CPU time), so it runs less often while sweeping (reference counting frees the rows).
+    # CPython's default threshold the cyclic collector runs every 700 allocations, scans them and the caches and
+    # finds nothing, so it runs less often while sweeping (reference counting frees the rows).
     threshold = gc.get_threshold()
     gc.set_threshold(*SWEEP_GC_THRESHOLD)
     try:
