@@ -19,9 +19,9 @@ from circuitgen import routing
 from circuitgen.hardware import compile_for_device
 from circuitgen.options import PlanOptions
 from circuitgen.routing import duration_s, esp
+from circuitgen.testing import interior_endpoints
 from circuitgen.window_classes import routed_sum
 from estimators.counts import count_gates
-from estimators.crosscheck import interior_endpoints
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario
 
