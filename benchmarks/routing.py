@@ -3,7 +3,7 @@
 Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
-unrouted CX.
+unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases).
 
 Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
 ``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`), ``heavy-hex`` is the
@@ -102,14 +102,14 @@ def _by_part(c: Circuit) -> dict[str, int]:
 
 def arrangements() -> None:
     """Tile vs interleave: routed CX of the medial layout per part (phase separator, mixer) on the unsized
-    ``grid``, next to the unrouted (all-to-all, unfused) CX of that part."""
+    ``grid``, next to the unrouted (all-to-all, unfused) CX of that part, as compiled (before relays)."""
     print("| scenario | arrangement | device | routed cx | phase: routed / a2a | mixer: routed / a2a |")
     print("|---|---|---|---:|---:|---:|")
     for label, s in (("4x4/2", default_scenario(4, 4, 2)), ("5x5/2", default_scenario(5, 5, 2)),
                      ("6x6/3", default_scenario(6, 6, 3))):  # fmt: skip
         for arrangement in ARRANGEMENTS:
             r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, arrangement=arrangement)
-            routed, a2a = _by_part(r.routed.circuit), _by_part(r.logical)
+            routed, a2a = _by_part(r.routed.circuit), _by_part(r.compiled.circuit)
             cells = " | ".join(f"{routed[k]:,} / {a2a[k]:,} = {routed[k] / a2a[k]:.2f}" for k in ("phase", "mixer"))
             total = r.routed.circuit.count_ops()["cx"]
             print(f"| {label} | {arrangement} | {r.routed.device.name} | {total:,} | {cells} |", flush=True)

@@ -7,7 +7,10 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
 * **medial** (square-grid devices that hold it; the unsized family ``grid`` is sized for it):
   :func:`circuitgen.medial.medial_placement` puts every edge qubit on its edge's midpoint of a ``(2R-1) x
   (2C-1)`` patch per robot, :func:`circuitgen.medial.allocate_ancillas` gives every section the free device
-  qubits nearest its data as ancillas, and :func:`circuitgen.routing.route_windows` routes every section with
+  qubits nearest its data as ancillas (for the partial mixers, the sites whose window routes to the fewest
+  gates among the nearest few), :func:`circuitgen.bridge.bridge_far_phases` relays far ``rzz`` phases (a node's
+  visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
+  :func:`circuitgen.routing.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
   ``initial_layout == final_layout``);
 * **greedy** (any device; the fallback, and on grids for small circuits where it routes to fewer two-qubit gates,
@@ -39,6 +42,7 @@ from typing import Any
 
 from gridcover.scenario import Scenario
 
+from .bridge import bridge_far_phases
 from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
@@ -99,7 +103,8 @@ class DeviceCompileResult:
 
 
 ROUTERS = {
-    "medial": "medial layout with local ancillas; qiskit SabreSwap per section, each section returning home",
+    "medial": "medial layout with local ancillas, far phases relayed through clean qubits; qiskit SabreSwap per "
+    "section, each section returning home",
     "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout",
 }
 
@@ -247,6 +252,9 @@ def compile_for_device(
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
 
+SEARCH = True
+"""Medial allocation searches the partial mixers' ancilla sites (:func:`circuitgen.medial.allocate_ancillas`)."""
+
 AUTO_COMPARE_MAX_TWOQ = 2_000
 """Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
 on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
@@ -293,12 +301,13 @@ def medial_compile(
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
         try:
-            logical, layout = allocate_ancillas(circuit, homes, dev)
+            logical, layout = allocate_ancillas(circuit, homes, dev, search=SEARCH)
         except ValueError:
             if spec != "grid":
                 raise
             side = int(dev.name.split("x")[-1]) + 1
             dev = get_device(f"grid:{side}x{side}")
             continue
+        logical, layout = bridge_far_phases(logical, layout, dev)
         return logical, route_windows(logical, dev, layout, seed=seed, measured=measured)
     return None

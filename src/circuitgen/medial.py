@@ -17,9 +17,12 @@ qubits as its ancillas. Per section, in order of first use, each ancilla gets th
 qubit's home, not taken by another ancilla of the same section) that minimises the interaction-weighted
 shortest-path distance to the qubits it meets in that section (data qubits at their homes, ancillas already
 allocated), ties broken by the distance to the section's data centroid, then by index. So a partial mixer's
-ANDs land on the plaquette centre and the corner node sites, a phase gadget's registers next to its data. The gate
-order is unchanged (the operator is unchanged); the circuit's ancillas are renamed to one register ``site`` of the
-physical qubits used, and the returned layout sends each logical qubit to its home.
+ANDs land on the plaquette centre and the corner node sites, a phase gadget's registers next to its data. With
+``search`` (what :func:`circuitgen.hardware.compile_for_device` uses), each partial mixer's ancillas are also
+tried on their next few best free qubits and the allocation whose window routes to the fewest two-qubit gates is
+kept (3x3/1: 228 to 210 routed CX). The gate order is unchanged (the operator is unchanged); the circuit's
+ancillas are renamed to one register ``site`` of the physical qubits used, and the returned layout sends each
+logical qubit to its home.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -42,9 +45,11 @@ import numpy as np
 
 from gridcover.scenario import Scenario
 
+from .bridge import has_rzz
 from .circuit import Circuit, Register, Section
 from .devices import Device, grid_coupling
 from .gates import Gate
+from .routing import DEFAULT_TRIALS
 
 __all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
 
@@ -145,9 +150,123 @@ def _distances(device: Device) -> np.ndarray:
     return distances(device)
 
 
+def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], dict[int, dict[int, int]], set[int]]:
+    """A section's ancillas in order of first use, their two-qubit partners (with gate counts) and its data."""
+    partners: dict[int, dict[int, int]] = {}
+    order: list[int] = []
+    data_in: set[int] = set()
+    for g in gates:
+        qs = g[1]
+        for q in qs:
+            if q >= n_data and q not in partners:
+                partners[q] = {}
+                order.append(q)
+            elif q < n_data:
+                data_in.add(q)
+        if len(qs) == 2:
+            a, b = qs
+            if a >= n_data:
+                partners[a][b] = partners[a].get(b, 0) + 1
+            if b >= n_data:
+                partners[b][a] = partners[b].get(a, 0) + 1
+    return order, partners, data_in
+
+
+def _place_ancillas(
+    order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, sub: np.ndarray,
+    free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
+) -> dict[int, int]:  # fmt: skip
+    """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
+    meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
+    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`)."""
+    home: dict[int, int] = {}
+    busy = np.zeros(len(free), dtype=bool)
+    for i, q in enumerate(order):
+        cost = np.zeros(len(free))
+        for partner, w in partners[q].items():
+            at = data_homes[partner] if partner < n_data else home.get(partner)
+            if at is not None:
+                cost += w * sub[:, at]
+        key = cost * 1e6 + centre
+        key[busy] = np.inf
+        rank = ranks[i] if i < len(ranks) else 0
+        j = int(np.argsort(key, kind="stable")[rank]) if rank else int(np.argmin(key))
+        if not np.isfinite(key[j]):
+            j = int(np.argmin(key))
+        busy[j] = True
+        home[q] = int(free[j])
+    return home
+
+
+SEARCH_RANKS = 4
+"""With ``search``, each ancilla of a small section is also tried on its 2nd .. (1 + this)-th best free qubit."""
+
+SEARCH_TRIALS = DEFAULT_TRIALS
+"""SABRE trials per window the search routes: those of the final routing, so the window it keeps routes as measured."""
+
+SEARCH_ROUNDS = 2
+"""Rounds of the search: each round tries every ancilla on each of its ranks with the others as found so far."""
+
+SEARCH_MAX_PAIRS = 200
+"""Sections with more two-qubit gates than this keep the greedy allocation (the balance arithmetic's one window)."""
+
+
+_SEARCH_CACHE: dict[tuple, tuple[int, ...]] = {}
+
+SEARCH_MARGIN = 2
+"""Device rows and columns around a section's data that its search result depends on (ancillas land within
+two steps of their partners, windows are routed on the qubits within two steps of theirs)."""
+
+
+def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, taken: np.ndarray, device: Device,
+                order: list[int]) -> tuple | None:  # fmt: skip
+    """What the search's answer for a section depends on, up to translation on a square grid: its gates (data
+    qubits as positions relative to the section's data, ancillas by order of first use), the occupied sites and
+    the device's border within :data:`SEARCH_MARGIN` of that data (``None``: not a square grid)."""
+    shape = grid_shape(device)
+    if shape is None:
+        return None
+    rows, cols = shape
+    data = sorted({q for g in gates for q in g[1] if q < n_data})
+    if not data:
+        return None
+    rc = [divmod(int(data_homes[q]), cols) for q in data]
+    r0, c0 = min(r for r, _ in rc), min(c for _, c in rc)
+    r1, c1 = max(r for r, _ in rc), max(c for _, c in rc)
+    slot = {q: i for i, q in enumerate(order)}
+
+    def rel(q: int) -> tuple:
+        if q < n_data:
+            r, c = divmod(int(data_homes[q]), cols)
+            return ("d", r - r0, c - c0)
+        return ("a", slot[q])
+
+    body = tuple((g[0], tuple(rel(q) for q in g[1])) for g in gates if len(g[1]) == 2)
+    lo_r, hi_r = max(0, r0 - SEARCH_MARGIN), min(rows - 1, r1 + SEARCH_MARGIN)
+    lo_c, hi_c = max(0, c0 - SEARCH_MARGIN), min(cols - 1, c1 + SEARCH_MARGIN)
+    box = taken.reshape(rows, cols)[lo_r : hi_r + 1, lo_c : hi_c + 1]
+    shift = np.array([lo_r - r0, lo_c - c0])
+    occupied = tuple(tuple(int(v) for v in rc_) for rc_ in np.argwhere(box) + shift)
+    border = (lo_r - r0, hi_r - r0, lo_c - c0, hi_c - c0)
+    return body, occupied, border, len(order)
+
+
+def _routed_cost(gates: Sequence[Gate], home: dict[int, int], data_homes: Sequence[int], n_data: int,
+                 device: Device, dist: np.ndarray) -> int:  # fmt: skip
+    """Two-qubit gates of the section's window routed from home (as :func:`circuitgen.routing.route_windows`)."""
+    from .routing import Positions, route_window
+
+    where = {**{q: int(data_homes[q]) for q in range(n_data)}, **home}
+    pairs = [(where[g[1][0]], where[g[1][1]]) for g in gates if len(g[1]) == 2]
+    ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist,
+                       trials=SEARCH_TRIALS)
+    return sum(3 if name == "swap" else 1 for name, _ in ops)
+
+
 def allocate_ancillas(
-    circuit: Circuit, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None
-) -> tuple[Circuit, tuple[int, ...]]:
+    circuit: Circuit, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None,
+    search: bool = False,
+) -> tuple[Circuit, tuple[int, ...]]:  # fmt: skip
     """Give every section's ancillas the nearest free device qubits (see the module docs).
 
     Args:
@@ -156,6 +275,12 @@ def allocate_ancillas(
         data_homes: Physical qubit of every data qubit.
         device: The device.
         dist: Its all-pairs distances (:func:`circuitgen.layout.distances`), if already known.
+        search: For every section of at most :data:`SEARCH_MAX_PAIRS` two-qubit gates and no ``rzz`` (phase
+            sections are left to :func:`circuitgen.bridge.bridge_far_phases`; in practice: the partial mixers),
+            also try each ancilla on its 2nd .. (1 + :data:`SEARCH_RANKS`)-th best free qubit (the later ones
+            placed greedily after it), :data:`SEARCH_ROUNDS` rounds, and keep the allocation whose window routes
+            to the fewest two-qubit gates (the greedy one on ties). The answer is cached per section up to
+            translation on a square grid (:func:`_search_key`).
 
     Returns:
         ``(circuit, layout)``: the circuit with registers ``data`` and ``site`` (the physical qubits used as
@@ -174,41 +299,38 @@ def allocate_ancillas(
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:
-        partners: dict[int, dict[int, int]] = {}
-        order: list[int] = []
-        data_in: set[int] = set()
-        for g in sec.gates:
-            qs = g[1]
-            for q in qs:
-                if q >= n_data and q not in partners:
-                    partners[q] = {}
-                    order.append(q)
-                elif q < n_data:
-                    data_in.add(q)
-            if len(qs) == 2:
-                a, b = qs
-                if a >= n_data:
-                    partners[a][b] = partners[a].get(b, 0) + 1
-                if b >= n_data:
-                    partners[b][a] = partners[b].get(a, 0) + 1
+        order, partners, data_in = _section_ancillas(sec.gates, n_data)
         if len(order) > len(free):
             raise ValueError(
                 f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
             )
         centre = sub[:, [data_homes[q] for q in sorted(data_in)]].sum(axis=1) if data_in else np.zeros(len(free))
-        home: dict[int, int] = {}
-        busy = np.zeros(len(free), dtype=bool)
-        for q in order:
-            cost = np.zeros(len(free))
-            for partner, w in partners[q].items():
-                at = data_homes[partner] if partner < n_data else home.get(partner)
-                if at is not None:
-                    cost += w * sub[:, at]
-            key = cost * 1e6 + centre
-            key[busy] = np.inf
-            j = int(np.argmin(key))
-            busy[j] = True
-            home[q] = int(free[j])
+        home = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data)
+        twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
+        if search and order and twoq <= SEARCH_MAX_PAIRS and not device.is_all_to_all and not has_rzz(sec.gates):
+            key = _search_key(sec.gates, data_homes, n_data, taken, device, order)
+            ranks = _SEARCH_CACHE.get(key) if key is not None else None
+            if ranks is None:
+                ranks = [0] * len(order)
+                best = _routed_cost(sec.gates, home, data_homes, n_data, device, d)
+                for _ in range(SEARCH_ROUNDS):
+                    improved = False
+                    for i in range(len(order)):
+                        for r in range(1 + min(SEARCH_RANKS, len(free) - 1)):
+                            if r == ranks[i]:
+                                continue
+                            trial = [*ranks[:i], r, *ranks[i + 1 :]]
+                            other = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data, trial)
+                            cost = _routed_cost(sec.gates, other, data_homes, n_data, device, d)
+                            if cost < best:
+                                best, ranks, improved = cost, trial, True
+                    if not improved:
+                        break
+                ranks = tuple(ranks)
+                if key is not None:
+                    _SEARCH_CACHE[key] = ranks
+            if any(ranks):
+                home = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data, ranks)
         used.update(home.values())
         renamed.append((sec.name, home))
     sites = sorted(used)
