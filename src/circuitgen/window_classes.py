@@ -66,6 +66,7 @@ import numpy as np
 from gridcover.scenario import Scenario
 
 from . import routing
+from .bridge import bridge_far_phases
 from .circuit import Circuit, Register, Section
 from .devices import Device, get_device
 from .gadgets.partial_mixer import McxPartialMixer
@@ -85,9 +86,9 @@ GUARD = 3
 """A crop answers if the representative's ancilla homes and routed gates keep this many sites from every side of
 the crop that is not a device edge (one more than the routing patch's radius)."""
 
-ROUTED_CLASSES: dict[Hashable, tuple[int, int, int, float | None]] = {}
-"""What one routed window of a class costs (SWAPs, native depth, two-qubit depth, duration), per signature and
-device gate set (native gates, durations, SABRE's seed and trials): a sweep routes each class once. The
+ROUTED_CLASSES: dict[Hashable, _Cost] = {}
+"""What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
+durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
 cache of routed windows, next to :data:`circuitgen.call_graph.COSTS` (the kinds' costs), not in it: its key is a
 window with its neighbourhood on one device, not a gadget kind."""
 
@@ -105,7 +106,7 @@ class WindowClass:
 
     Attributes:
         multiplicity: Windows in the class (each layer's counted once per layer).
-        lowered_ops: Lowered gate counts by name of one window.
+        lowered_ops: Lowered gate counts by name of one window (after the relays if routed, before if bounded).
         swaps: SWAPs its routing inserts (``None``: bounded, not routed).
         two_qubit_bound: Routed two-qubit gates charged to one bounded window (``None`` if routed).
         native_ops: Native gate counts by device gate name of one routed window (``None`` if bounded).
@@ -133,7 +134,10 @@ class RoutedSum:
         windows: Windows of the whole circuit (state preparation + ``p`` layers).
         classes: The :class:`WindowClass` es.
         bounded_windows: Windows that were bounded, not routed (0: every count is exact).
-        lowered_ops: Lowered gate counts by name (before routing).
+        lowered_ops: Lowered gate counts by name (before routing, after compile's relays of far phases; a bounded
+            window counts its gates before relays, which add CX only: the relays are decided by routing).
+        compiled_ops: Lowered gate counts by name of the compiled circuit, before allocation and relays (what
+            compile's ``auto`` layout compares with :data:`circuitgen.hardware.AUTO_COMPARE_MAX_TWOQ`).
         swaps: SWAPs of the routed windows.
         native_ops: Native gate counts by name of the routed windows (bounded windows not included).
         two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP), bounded windows
@@ -152,6 +156,7 @@ class RoutedSum:
     classes: tuple[WindowClass, ...]
     bounded_windows: int
     lowered_ops: dict[str, int]
+    compiled_ops: dict[str, int]
     swaps: int
     native_ops: dict[str, int]
     two_qubit: int
@@ -275,11 +280,17 @@ def _inside(crop: _Crop, sites: np.ndarray) -> bool:
 def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     trials: int | None,
-) -> list[tuple[int, list[Gate]]] | str | None:  # fmt: skip
-    """Allocate and route windows on ``crop`` as compile does on the device, one section each (windows are
-    independent: each starts and ends with every qubit home): per window its SWAPs and routed gates (on the
-    crop's qubits); ``None`` if the crop does not answer for the device (see the module docs), ``"whole"`` if
-    the window needs the whole device (a part routed on its whole component: no crop answers)."""
+) -> list[_Routed] | str | None:  # fmt: skip
+    """Allocate, relay and route windows on ``crop`` as compile does on the device
+    (:func:`circuitgen.hardware.medial_compile`: :func:`~circuitgen.medial.allocate_ancillas` with its search,
+    :func:`~circuitgen.bridge.bridge_far_phases`, :func:`~circuitgen.routing.route_windows`), one section each
+    (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
+    section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
+    if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
+    device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
+    answers)."""
+    from .hardware import SEARCH
+
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
     homes = np.flatnonzero(sub.ravel())
@@ -302,11 +313,13 @@ def _route_on(
         sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
                                           for name, qs in template.gates]))  # fmt: skip
     registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
+    before = routing.WHOLE_COMPONENT_PATCHES
     try:
-        logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist)
+        logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
+                                            search=SEARCH)  # fmt: skip
     except ValueError:  # more ancillas than free qubits in the crop
         return None
-    before = routing.WHOLE_COMPONENT_PATCHES
+    logical, layout = bridge_far_phases(logical, layout, dev, dist)
     routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
     if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
         return "whole"  # routed on the whole crop: the device beyond it would change the routing
@@ -317,25 +330,51 @@ def _route_on(
     for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
         by_name.setdefault(sec.name, []).extend(sec.gates)
     out = []
-    for w, (template, _) in enumerate(windows):
+    for w, sec in enumerate(logical.sections):
+        lowered = tuple((g[0], tuple(g[1])) for g in sec.gates)
         gates = by_name.get(f"w{w}", [])
-        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in template.gates if len(qs) == 2)
-        out.append((cx // 3, gates))
+        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in lowered if len(qs) == 2)
+        out.append(_Routed(cx // 3, lowered, gates))
     return out
 
 
-def _summary(routed: tuple[int, list[Gate]], device: Device) -> tuple[int, int, int, float | None]:
-    """SWAPs, native depth, native two-qubit depth and duration of one routed window."""
-    swaps, gates = routed
-    return (swaps, *_native_schedule(gates, device))
+@dataclass(frozen=True)
+class _Routed:
+    """One window as compile writes it: SWAPs, lowered gates after the relays (names and qubits), routed gates."""
+
+    swaps: int
+    lowered: tuple[tuple[str, tuple[int, ...]], ...]
+    gates: Sequence[Gate]
 
 
-def _trailing(template: _Template, device: Device) -> tuple[int, float | None]:
-    """Native one-qubit gates of a window that follow their qubit's last two-qubit gate in it (all of a qubit's
-    if it has none), and their total duration at the device's longest one-qubit gate time (``None``: none)."""
+@dataclass(frozen=True)
+class _Cost:
+    """What one routed window of a class costs: its lowered gate counts after the relays, SWAPs, native depth and
+    two-qubit depth, duration, and the native one-qubit gates (and their seconds) that trail its last two-qubit
+    gates (see :func:`_trailing`)."""
+
+    lowered_ops: tuple[tuple[str, int], ...]
+    swaps: int
+    depth: int
+    two_qubit_depth: int
+    duration_s: float | None
+    late: int
+    late_s: float | None
+
+
+def _summary(routed: _Routed, device: Device) -> _Cost:
+    """The :class:`_Cost` of one routed window."""
+    ops = tuple(sorted(Counter(name for name, _ in routed.lowered).items()))
+    return _Cost(ops, routed.swaps, *_native_schedule(routed.gates, device), *_trailing(routed.lowered, device))
+
+
+def _trailing(lowered: Sequence[tuple[str, tuple[int, ...]]], device: Device) -> tuple[int, float | None]:
+    """Native one-qubit gates of a window (lowered gates) that follow their qubit's last two-qubit gate in it (all
+    of a qubit's if it has none), and their total duration at the device's longest one-qubit gate time
+    (``None``: none)."""
     seen: set[int] = set()
     count = 0
-    for name, qs in reversed(template.gates):
+    for name, qs in reversed(lowered):
         if len(qs) == 2:
             seen.update(qs)
         elif qs[0] not in seen:
@@ -409,7 +448,7 @@ def routed_sum(
     Raises:
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
-    from .hardware import medial_device
+    from .hardware import SEARCH, medial_device
     from .qaoa import qaoa_plan
 
     dev = medial_device(scenario, device, arrangement)
@@ -475,9 +514,9 @@ def routed_sum(
     # needs a larger crop is split by its members' signatures at the larger margin
     timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
         dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
-    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials)
+    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials, SEARCH)
     entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
-    results: list[tuple[int, int, int, float | None] | None] = []
+    results: list[_Cost | None] = []
     whole_batch: list[int] = []
     whole = max(shape)  # a margin whose crop is the whole device
     pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
@@ -514,6 +553,7 @@ def routed_sum(
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []
     lowered: Counter[str] = Counter()
+    compiled: Counter[str] = Counter()
     native: Counter[str] = Counter()
     swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
     duration: float | None = 0.0
@@ -521,10 +561,11 @@ def routed_sum(
         weight = sum(m[0] for m in group)
         template = group[0][1]
         windows += weight
-        ops = Counter(dict(template.ops))
-        lowered.update({k: v * weight for k, v in ops.items()})
+        compiled.update({k: v * weight for k, v in template.ops})
         result = results[i]
         if result is None:
+            ops = Counter(dict(template.ops))  # the window before relays: the bound does not relay
+            lowered.update({k: v * weight for k, v in ops.items()})
             cx = ops.get("cx", 0)
             charged = cx * _bound_per_gate(shape)
             bounded += weight
@@ -533,21 +574,21 @@ def routed_sum(
             out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
             duration = None
             continue
-        win_swaps, win_depth, win_depth2, win_duration = result
-        counts = _native_counts(ops, win_swaps, dev)
-        swaps += weight * win_swaps
+        ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
+        lowered.update({k: v * weight for k, v in ops.items()})
+        counts = _native_counts(ops, result.swaps, dev)
+        swaps += weight * result.swaps
         native.update({k: v * weight for k, v in counts.items() if v})
         # a window's one-qubit gates after a qubit's last two-qubit gate in it wait for that qubit's next
         # two-qubit gate (router's rule), in a later window: each such native gate adds at most one level there
-        late, late_s = _trailing(template, dev)
-        depth += weight * (win_depth + late)
-        depth2 += weight * win_depth2
-        if duration is not None and win_duration is not None and late_s is not None:
-            duration += weight * (win_duration + late_s)
+        depth += weight * (result.depth + result.late)
+        depth2 += weight * result.two_qubit_depth
+        if duration is not None and result.duration_s is not None and result.late_s is not None:
+            duration += weight * (result.duration_s + result.late_s)
         else:
             duration = None
-        out.append(WindowClass(weight, template.ops, win_swaps, None, tuple(sorted(counts.items())), win_depth,
-                               win_depth2, win_duration))  # fmt: skip
+        out.append(WindowClass(weight, result.lowered_ops, result.swaps, None, tuple(sorted(counts.items())),
+                               result.depth, result.two_qubit_depth, result.duration_s))  # fmt: skip
     twoq_name = dev.two_qubit_gate
     two = native.get(twoq_name, 0) + two_bound
     one = sum(v for k, v in native.items() if k != twoq_name) + one_bound
@@ -558,8 +599,8 @@ def routed_sum(
         duration += max(dev.readout_duration_s)
     elif duration is not None:
         duration = None
-    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), swaps, dict(native), two, one, log_esp,
-                     depth, depth2, duration)  # fmt: skip
+    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), dict(compiled), swaps, dict(native), two,
+                     one, log_esp, depth, depth2, duration)  # fmt: skip
 
 
 def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[int, ...]], ...]:

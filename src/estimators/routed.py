@@ -226,7 +226,7 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
-    if summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+    if summed.compiled_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
         return None  # compile would also try the greedy layout on so few two-qubit gates
     return summed
 
