@@ -140,5 +140,5 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
     assert {k: v for k, v in bounded.lowered_ops.items() if k != "cx"} == {
         k: v for k, v in exact.lowered_ops.items() if k != "cx"
     }
-    assert bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
-    assert bounded.compiled_ops == exact.compiled_ops == bounded.lowered_ops
+    assert bounded.compiled_ops == exact.compiled_ops
+    assert bounded.compiled_ops["cx"] <= bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
