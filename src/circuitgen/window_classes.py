@@ -263,17 +263,17 @@ def _crop(box: tuple[int, int, int, int], margin: int, shape: tuple[int, int]) -
     return _Crop(top, left, bottom - top + 1, right - left + 1, sides)
 
 
-def _inside(crop: _Crop, sites: np.ndarray) -> bool:
-    """Every site (local row-major index) keeps :data:`GUARD` sites from the crop's open sides."""
+def _inside(crop: _Crop, sites: np.ndarray, guard: int = GUARD) -> bool:
+    """Every site (local row-major index) keeps ``guard`` sites from the crop's open sides."""
     if not sites.size:
         return True
     r, c = np.divmod(sites, crop.cols)
     top, bottom, left, right = crop.open_sides
     return not (
-        (top and r.min() < GUARD)
-        or (bottom and r.max() > crop.rows - 1 - GUARD)
-        or (left and c.min() < GUARD)
-        or (right and c.max() > crop.cols - 1 - GUARD)
+        (top and r.min() < guard)
+        or (bottom and r.max() > crop.rows - 1 - guard)
+        or (left and c.min() < guard)
+        or (right and c.max() > crop.cols - 1 - guard)
     )
 
 
@@ -314,18 +314,24 @@ def _route_on(
                                           for name, qs in template.gates]))  # fmt: skip
     registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
     before = routing.WHOLE_COMPONENT_PATCHES
+    patches: set[int] = set()  # every patch routed here, the search's and the relays' candidates included
+    routing.PATCH_WATCH.append(patches)
     try:
         logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
                                             search=SEARCH)  # fmt: skip
+        logical, layout = bridge_far_phases(logical, layout, dev, dist)
+        routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
     except ValueError:  # more ancillas than free qubits in the crop
         return None
-    logical, layout = bridge_far_phases(logical, layout, dev, dist)
-    routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
+    finally:
+        routing.PATCH_WATCH.remove(patches)
     if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
         return "whole"  # routed on the whole crop: the device beyond it would change the routing
     touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
     if not _inside(crop, np.array(sorted(touched), dtype=int)):
         return None
+    if not _inside(crop, np.array(sorted(patches), dtype=int), guard=1):
+        return None  # a patch reached a side the crop cut: on the device it would be larger
     by_name: dict[str, list[Gate]] = {}
     for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
         by_name.setdefault(sec.name, []).extend(sec.gates)
