@@ -2,27 +2,35 @@
 
 On a square-grid device with the medial layout (:func:`circuitgen.hardware.medial_compile`) every section of the
 lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`circuitgen.medial.allocate_ancillas` gives its
-ancillas the free device qubits nearest its data, and :func:`circuitgen.routing.route_windows` routes it with
-SABRE on the device qubits around it and brings every qubit home at its end. So a window's routed gates depend
-only on its own gates and on the device around it, and the routed circuit's gate counts are the sum of its
-windows' counts. :func:`routed_sum` groups the windows into classes of equal *signature*:
+ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few
+whose window routes to the fewest gates), :func:`circuitgen.bridge.bridge_far_phases` relays its far ``rzz``
+phases through clean device qubits where that routes cheaper, and :func:`circuitgen.routing.route_windows` routes
+it with SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides
+per section, from the section's gates, the data homes and the clean qubits around it (a section's ancillas and
+relay holders are |0> at both ends). So a window's routed gates depend only on its own gates and on the device
+around it, and the routed circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the
+windows into classes of equal *signature*:
 
 * the window's lowered gates, its qubits named by first use (data or ancilla: which ancilla does not matter, the
   allocation re-homes every ancilla per section) -- lowered once per pattern of high-level gates;
 * the homes of its data qubits relative to an anchor (the top-left corner of their bounding box);
 * the device around them: a crop of the device, the data qubits' bounding box grown by :data:`MARGIN` sites
-  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take).
+  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take; every
+  other site is clean, a candidate ancilla or relay holder).
 
-One representative per class is allocated and routed *on its crop* (a grid device of the crop's shape) by the same
-functions compile runs, and its routed counts are multiplied by the class's multiplicity (layers repeat: the
-windows of layer ``k`` are those of layer 0 with other angles). A crop answers for the whole device when nothing
-the representative touches comes within :data:`GUARD` sites of a side of the crop that is not a device edge
-(ancilla homes and every routed gate, SWAPs included: routing patches reach :data:`WINDOW_RADIUS
-<circuitgen.routing.WINDOW_RADIUS>` = 2 sites around the qubits they route, so they stay inside) and no part of
-it was routed on its whole connected component (the router's fallback where the qubits' neighbourhoods do not
-connect them, :data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the
-allocation, an argmin over every free device qubit, that is an argument rather than a proof (a free site outside
-the crop is farther from every qubit inside than its projection on the crop's side); the tests are the evidence.
+One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device
+of the crop's shape) by the very functions compile runs (:func:`circuitgen.hardware.medial_compile`), and its
+routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of
+layer 0 with other angles). A crop answers for the whole device when nothing the representative touches comes
+within :data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every
+routed gate, SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations
+and the relay's with-and-without comparison included (:data:`circuitgen.routing.PATCH_WATCH`) -- reaches such a
+side (else the crop clipped a patch the device would not clip), and no part of it was routed on its whole
+connected component (the router's fallback where the qubits' neighbourhoods do not connect them,
+:data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the allocation's
+argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument
+rather than a proof (a site outside the crop is farther from every qubit inside than its projection on the
+crop's side; ties go by row-major index, whose order the crop keeps); the tests are the evidence.
 Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and
 each part is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
 and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
@@ -36,9 +44,10 @@ routing of that window that returns home, not SABRE's. So the sum is fast where 
 does, and is no faster than compile.
 
 What is exact when no window is bounded (``tests/circuitgen/window_classes_test.py`` checks each against
-``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered and native gate counts
-by name, hence the two-qubit and one-qubit counts, and the estimated success probability on devices with
-uniform error rates (a product over gates, so its logarithm is a sum over classes). Depth and duration are not
+``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
+relays (and before them, :attr:`RoutedSum.compiled_ops`) and native gate counts by name, hence the two-qubit and
+one-qubit counts, and the estimated success probability on devices with uniform error rates (a product over
+gates, so its logarithm is a sum over classes). Depth and duration are not
 sums: windows on disjoint qubits overlap in the ASAP schedule. The sum of the windows' own depths (durations) is
 an upper bound (the windows run one after another in the worst case) once each one-qubit gate that follows its
 qubit's last two-qubit gate in a window adds one level: the router defers such a gate to just before the qubit's
