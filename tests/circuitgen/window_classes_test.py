@@ -142,3 +142,27 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
     }
     assert bounded.compiled_ops == exact.compiled_ops
     assert bounded.compiled_ops["cx"] <= bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
+
+
+def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Compile and the sum share the allocation search's cache (per section up to translation): both are exact
+    only if every section with one key searches to the same answer, on the device and on any crop of it."""
+
+    answers: dict = {}  # type: ignore[type-arg]
+    conflicts = []
+
+    class Fresh(dict):  # type: ignore[type-arg]
+        """Never answers from memory; remembers every answer and notes keys answered two ways."""
+
+        def get(self, key, default=None):  # type: ignore[no-untyped-def]
+            return None
+
+        def __setitem__(self, key, value) -> None:  # type: ignore[no-untyped-def]
+            if answers.setdefault(key, value) != value:
+                conflicts.append((key, answers[key], value))
+
+    monkeypatch.setattr(medial, "_SEARCH_CACHE", Fresh())
+    for s in (default_scenario(5, 5, 1), interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)):
+        routed_sum(s, 1)
+        compile_for_device(s, 1, "grid", layout_method="medial")
+    assert len(answers) > 10 and not conflicts
