@@ -326,12 +326,13 @@ def _route_on(
     patches: set[int] = set()  # every patch routed here, the search's and the relays' candidates included
     routing.PATCH_WATCH.append(patches)
     try:
-        logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
-                                            search=SEARCH)  # fmt: skip
+        try:
+            logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
+                                                search=SEARCH)  # fmt: skip
+        except ValueError:  # more ancillas than free qubits in the crop
+            return None
         logical, layout = bridge_far_phases(logical, layout, dev, dist)
         routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
-    except ValueError:  # more ancillas than free qubits in the crop
-        return None
     finally:
         routing.PATCH_WATCH.remove(patches)
     if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):

@@ -91,7 +91,8 @@ BOUND_MODEL = (
 COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
 SUM_MODEL = (
     "window sum: the medial layout's windows (one gadget each, routed home) summed by classes of equal gates and "
-    "neighbourhood, one representative each routed as compile routes it; counts and ESP exact, depth and "
+    "neighbourhood, one representative each allocated, relayed and routed as compile does it; counts and ESP "
+    "exact, depth and "
     "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 
