@@ -121,7 +121,10 @@ def test_not_a_square_grid_gives_none() -> None:
 
 
 @pytest.mark.heavy
-@pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2), (30, 30, 1, 1), (12, 12, 2, 1)])
+@pytest.mark.parametrize(
+    ("rows", "cols", "robots", "p"),
+    [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2), (30, 30, 1, 1), (12, 12, 2, 1)],
+)
 def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: int, robots: int, p: int) -> None:
     _assert_sum_equals_compile(default_scenario(rows, cols, robots), p)
 
