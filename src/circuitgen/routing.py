@@ -227,6 +227,12 @@ connect them (a window spanning far-apart qubits): such a routing depends on the
 neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
 
 
+PATCH_WATCH: list[set[int]] = []
+"""Sets that collect the device qubits of every patch routed while they are listed: :mod:`circuitgen.window_classes`
+lists one while it allocates, relays and routes a window on a crop of the device (allocation search and relays
+route candidates too), and the crop answers for the device only if no patch reached a side the crop cut."""
+
+
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     """The largest ``m <= len(pairs) / 2`` such that the last ``m`` pairs are the first ``m`` reversed (as
     unordered pairs): a gadget's uncompute mirrors its compute.
@@ -256,10 +262,16 @@ def _patch(positions: set[int], device: Device, dist: Any) -> tuple[int, ...]:
         a, b = np.array(edges).T
         _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(len(near),) * 2), directed=False)
         if len({int(labels[index[p]]) for p in positions}) == 1:
-            return tuple(int(p) for p in near)
+            return _watched(tuple(int(p) for p in near))
     global WHOLE_COMPONENT_PATCHES
     WHOLE_COMPONENT_PATCHES += 1
-    return tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0])))
+    return _watched(tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0]))))
+
+
+def _watched(patch: tuple[int, ...]) -> tuple[int, ...]:
+    for seen in PATCH_WATCH:
+        seen.update(patch)
+    return patch
 
 
 def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[tuple[int, int], ...], seed: int,

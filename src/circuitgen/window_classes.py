@@ -2,27 +2,35 @@
 
 On a square-grid device with the medial layout (:func:`circuitgen.hardware.medial_compile`) every section of the
 lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`circuitgen.medial.allocate_ancillas` gives its
-ancillas the free device qubits nearest its data, and :func:`circuitgen.routing.route_windows` routes it with
-SABRE on the device qubits around it and brings every qubit home at its end. So a window's routed gates depend
-only on its own gates and on the device around it, and the routed circuit's gate counts are the sum of its
-windows' counts. :func:`routed_sum` groups the windows into classes of equal *signature*:
+ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few
+whose window routes to the fewest gates), :func:`circuitgen.bridge.bridge_far_phases` relays its far ``rzz``
+phases through clean device qubits where that routes cheaper, and :func:`circuitgen.routing.route_windows` routes
+it with SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides
+per section, from the section's gates, the data homes and the clean qubits around it (a section's ancillas and
+relay holders are |0> at both ends). So a window's routed gates depend only on its own gates and on the device
+around it, and the routed circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the
+windows into classes of equal *signature*:
 
 * the window's lowered gates, its qubits named by first use (data or ancilla: which ancilla does not matter, the
   allocation re-homes every ancilla per section) -- lowered once per pattern of high-level gates;
 * the homes of its data qubits relative to an anchor (the top-left corner of their bounding box);
 * the device around them: a crop of the device, the data qubits' bounding box grown by :data:`MARGIN` sites
-  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take).
+  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take; every
+  other site is clean, a candidate ancilla or relay holder).
 
-One representative per class is allocated and routed *on its crop* (a grid device of the crop's shape) by the same
-functions compile runs, and its routed counts are multiplied by the class's multiplicity (layers repeat: the
-windows of layer ``k`` are those of layer 0 with other angles). A crop answers for the whole device when nothing
-the representative touches comes within :data:`GUARD` sites of a side of the crop that is not a device edge
-(ancilla homes and every routed gate, SWAPs included: routing patches reach :data:`WINDOW_RADIUS
-<circuitgen.routing.WINDOW_RADIUS>` = 2 sites around the qubits they route, so they stay inside) and no part of
-it was routed on its whole connected component (the router's fallback where the qubits' neighbourhoods do not
-connect them, :data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the
-allocation, an argmin over every free device qubit, that is an argument rather than a proof (a free site outside
-the crop is farther from every qubit inside than its projection on the crop's side); the tests are the evidence.
+One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device
+of the crop's shape) by the very functions compile runs (:func:`circuitgen.hardware.medial_compile`), and its
+routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of
+layer 0 with other angles). A crop answers for the whole device when nothing the representative touches comes
+within :data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every
+routed gate, SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations
+and the relay's with-and-without comparison included (:data:`circuitgen.routing.PATCH_WATCH`) -- reaches such a
+side (else the crop clipped a patch the device would not clip), and no part of it was routed on its whole
+connected component (the router's fallback where the qubits' neighbourhoods do not connect them,
+:data:`circuitgen.routing.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the allocation's
+argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument
+rather than a proof (a site outside the crop is farther from every qubit inside than its projection on the
+crop's side; ties go by row-major index, whose order the crop keeps); the tests are the evidence.
 Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and
 each part is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
 and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
@@ -36,9 +44,10 @@ routing of that window that returns home, not SABRE's. So the sum is fast where 
 does, and is no faster than compile.
 
 What is exact when no window is bounded (``tests/circuitgen/window_classes_test.py`` checks each against
-``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered and native gate counts
-by name, hence the two-qubit and one-qubit counts, and the estimated success probability on devices with
-uniform error rates (a product over gates, so its logarithm is a sum over classes). Depth and duration are not
+``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
+relays (and before them, :attr:`RoutedSum.compiled_ops`) and native gate counts by name, hence the two-qubit and
+one-qubit counts, and the estimated success probability on devices with uniform error rates (a product over
+gates, so its logarithm is a sum over classes). Depth and duration are not
 sums: windows on disjoint qubits overlap in the ASAP schedule. The sum of the windows' own depths (durations) is
 an upper bound (the windows run one after another in the worst case) once each one-qubit gate that follows its
 qubit's last two-qubit gate in a window adds one level: the router defers such a gate to just before the qubit's
@@ -66,6 +75,7 @@ import numpy as np
 from gridcover.scenario import Scenario
 
 from . import routing
+from .bridge import bridge_far_phases
 from .circuit import Circuit, Register, Section
 from .devices import Device, get_device
 from .gadgets.partial_mixer import McxPartialMixer
@@ -85,9 +95,9 @@ GUARD = 3
 """A crop answers if the representative's ancilla homes and routed gates keep this many sites from every side of
 the crop that is not a device edge (one more than the routing patch's radius)."""
 
-ROUTED_CLASSES: dict[Hashable, tuple[int, int, int, float | None]] = {}
-"""What one routed window of a class costs (SWAPs, native depth, two-qubit depth, duration), per signature and
-device gate set (native gates, durations, SABRE's seed and trials): a sweep routes each class once. The
+ROUTED_CLASSES: dict[Hashable, _Cost] = {}
+"""What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
+durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
 cache of routed windows, next to :data:`circuitgen.call_graph.COSTS` (the kinds' costs), not in it: its key is a
 window with its neighbourhood on one device, not a gadget kind."""
 
@@ -105,7 +115,7 @@ class WindowClass:
 
     Attributes:
         multiplicity: Windows in the class (each layer's counted once per layer).
-        lowered_ops: Lowered gate counts by name of one window.
+        lowered_ops: Lowered gate counts by name of one window (after the relays if routed, before if bounded).
         swaps: SWAPs its routing inserts (``None``: bounded, not routed).
         two_qubit_bound: Routed two-qubit gates charged to one bounded window (``None`` if routed).
         native_ops: Native gate counts by device gate name of one routed window (``None`` if bounded).
@@ -133,7 +143,10 @@ class RoutedSum:
         windows: Windows of the whole circuit (state preparation + ``p`` layers).
         classes: The :class:`WindowClass` es.
         bounded_windows: Windows that were bounded, not routed (0: every count is exact).
-        lowered_ops: Lowered gate counts by name (before routing).
+        lowered_ops: Lowered gate counts by name (before routing, after compile's relays of far phases; a bounded
+            window counts its gates before relays, which add CX only: the relays are decided by routing).
+        compiled_ops: Lowered gate counts by name of the compiled circuit, before allocation and relays (what
+            compile's ``auto`` layout compares with :data:`circuitgen.hardware.AUTO_COMPARE_MAX_TWOQ`).
         swaps: SWAPs of the routed windows.
         native_ops: Native gate counts by name of the routed windows (bounded windows not included).
         two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP), bounded windows
@@ -152,6 +165,7 @@ class RoutedSum:
     classes: tuple[WindowClass, ...]
     bounded_windows: int
     lowered_ops: dict[str, int]
+    compiled_ops: dict[str, int]
     swaps: int
     native_ops: dict[str, int]
     two_qubit: int
@@ -258,28 +272,34 @@ def _crop(box: tuple[int, int, int, int], margin: int, shape: tuple[int, int]) -
     return _Crop(top, left, bottom - top + 1, right - left + 1, sides)
 
 
-def _inside(crop: _Crop, sites: np.ndarray) -> bool:
-    """Every site (local row-major index) keeps :data:`GUARD` sites from the crop's open sides."""
+def _inside(crop: _Crop, sites: np.ndarray, guard: int = GUARD) -> bool:
+    """Every site (local row-major index) keeps ``guard`` sites from the crop's open sides."""
     if not sites.size:
         return True
     r, c = np.divmod(sites, crop.cols)
     top, bottom, left, right = crop.open_sides
     return not (
-        (top and r.min() < GUARD)
-        or (bottom and r.max() > crop.rows - 1 - GUARD)
-        or (left and c.min() < GUARD)
-        or (right and c.max() > crop.cols - 1 - GUARD)
+        (top and r.min() < guard)
+        or (bottom and r.max() > crop.rows - 1 - guard)
+        or (left and c.min() < guard)
+        or (right and c.max() > crop.cols - 1 - guard)
     )
 
 
 def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     trials: int | None,
-) -> list[tuple[int, list[Gate]]] | str | None:  # fmt: skip
-    """Allocate and route windows on ``crop`` as compile does on the device, one section each (windows are
-    independent: each starts and ends with every qubit home): per window its SWAPs and routed gates (on the
-    crop's qubits); ``None`` if the crop does not answer for the device (see the module docs), ``"whole"`` if
-    the window needs the whole device (a part routed on its whole component: no crop answers)."""
+) -> list[_Routed] | str | None:  # fmt: skip
+    """Allocate, relay and route windows on ``crop`` as compile does on the device
+    (:func:`circuitgen.hardware.medial_compile`: :func:`~circuitgen.medial.allocate_ancillas` with its search,
+    :func:`~circuitgen.bridge.bridge_far_phases`, :func:`~circuitgen.routing.route_windows`), one section each
+    (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
+    section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
+    if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
+    device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
+    answers)."""
+    from .hardware import SEARCH
+
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
     homes = np.flatnonzero(sub.ravel())
@@ -302,40 +322,75 @@ def _route_on(
         sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
                                           for name, qs in template.gates]))  # fmt: skip
     registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
-    try:
-        logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist)
-    except ValueError:  # more ancillas than free qubits in the crop
-        return None
     before = routing.WHOLE_COMPONENT_PATCHES
-    routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
+    patches: set[int] = set()  # every patch routed here, the search's and the relays' candidates included
+    routing.PATCH_WATCH.append(patches)
+    try:
+        try:
+            logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
+                                                search=SEARCH)  # fmt: skip
+        except ValueError:  # more ancillas than free qubits in the crop
+            return None
+        logical, layout = bridge_far_phases(logical, layout, dev, dist)
+        routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
+    finally:
+        routing.PATCH_WATCH.remove(patches)
     if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
         return "whole"  # routed on the whole crop: the device beyond it would change the routing
     touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
     if not _inside(crop, np.array(sorted(touched), dtype=int)):
         return None
+    if not _inside(crop, np.array(sorted(patches), dtype=int), guard=1):
+        return None  # a patch reached a side the crop cut: on the device it would be larger
     by_name: dict[str, list[Gate]] = {}
     for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
         by_name.setdefault(sec.name, []).extend(sec.gates)
     out = []
-    for w, (template, _) in enumerate(windows):
+    for w, sec in enumerate(logical.sections):
+        lowered = tuple((g[0], tuple(g[1])) for g in sec.gates)
         gates = by_name.get(f"w{w}", [])
-        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in template.gates if len(qs) == 2)
-        out.append((cx // 3, gates))
+        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in lowered if len(qs) == 2)
+        out.append(_Routed(cx // 3, lowered, gates))
     return out
 
 
-def _summary(routed: tuple[int, list[Gate]], device: Device) -> tuple[int, int, int, float | None]:
-    """SWAPs, native depth, native two-qubit depth and duration of one routed window."""
-    swaps, gates = routed
-    return (swaps, *_native_schedule(gates, device))
+@dataclass(frozen=True)
+class _Routed:
+    """One window as compile writes it: SWAPs, lowered gates after the relays (names and qubits), routed gates."""
+
+    swaps: int
+    lowered: tuple[tuple[str, tuple[int, ...]], ...]
+    gates: Sequence[Gate]
 
 
-def _trailing(template: _Template, device: Device) -> tuple[int, float | None]:
-    """Native one-qubit gates of a window that follow their qubit's last two-qubit gate in it (all of a qubit's
-    if it has none), and their total duration at the device's longest one-qubit gate time (``None``: none)."""
+@dataclass(frozen=True)
+class _Cost:
+    """What one routed window of a class costs: its lowered gate counts after the relays, SWAPs, native depth and
+    two-qubit depth, duration, and the native one-qubit gates (and their seconds) that trail its last two-qubit
+    gates (see :func:`_trailing`)."""
+
+    lowered_ops: tuple[tuple[str, int], ...]
+    swaps: int
+    depth: int
+    two_qubit_depth: int
+    duration_s: float | None
+    late: int
+    late_s: float | None
+
+
+def _summary(routed: _Routed, device: Device) -> _Cost:
+    """The :class:`_Cost` of one routed window."""
+    ops = tuple(sorted(Counter(name for name, _ in routed.lowered).items()))
+    return _Cost(ops, routed.swaps, *_native_schedule(routed.gates, device), *_trailing(routed.lowered, device))
+
+
+def _trailing(lowered: Sequence[tuple[str, tuple[int, ...]]], device: Device) -> tuple[int, float | None]:
+    """Native one-qubit gates of a window (lowered gates) that follow their qubit's last two-qubit gate in it (all
+    of a qubit's if it has none), and their total duration at the device's longest one-qubit gate time
+    (``None``: none)."""
     seen: set[int] = set()
     count = 0
-    for name, qs in reversed(template.gates):
+    for name, qs in reversed(lowered):
         if len(qs) == 2:
             seen.update(qs)
         elif qs[0] not in seen:
@@ -409,7 +464,7 @@ def routed_sum(
     Raises:
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
-    from .hardware import medial_device
+    from .hardware import SEARCH, medial_device
     from .qaoa import qaoa_plan
 
     dev = medial_device(scenario, device, arrangement)
@@ -475,9 +530,9 @@ def routed_sum(
     # needs a larger crop is split by its members' signatures at the larger margin
     timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
         dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
-    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials)
+    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials, SEARCH)
     entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
-    results: list[tuple[int, int, int, float | None] | None] = []
+    results: list[_Cost | None] = []
     whole_batch: list[int] = []
     whole = max(shape)  # a margin whose crop is the whole device
     pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
@@ -514,6 +569,7 @@ def routed_sum(
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []
     lowered: Counter[str] = Counter()
+    compiled: Counter[str] = Counter()
     native: Counter[str] = Counter()
     swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
     duration: float | None = 0.0
@@ -521,10 +577,11 @@ def routed_sum(
         weight = sum(m[0] for m in group)
         template = group[0][1]
         windows += weight
-        ops = Counter(dict(template.ops))
-        lowered.update({k: v * weight for k, v in ops.items()})
+        compiled.update({k: v * weight for k, v in template.ops})
         result = results[i]
         if result is None:
+            ops = Counter(dict(template.ops))  # the window before relays: the bound does not relay
+            lowered.update({k: v * weight for k, v in ops.items()})
             cx = ops.get("cx", 0)
             charged = cx * _bound_per_gate(shape)
             bounded += weight
@@ -533,21 +590,21 @@ def routed_sum(
             out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
             duration = None
             continue
-        win_swaps, win_depth, win_depth2, win_duration = result
-        counts = _native_counts(ops, win_swaps, dev)
-        swaps += weight * win_swaps
+        ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
+        lowered.update({k: v * weight for k, v in ops.items()})
+        counts = _native_counts(ops, result.swaps, dev)
+        swaps += weight * result.swaps
         native.update({k: v * weight for k, v in counts.items() if v})
         # a window's one-qubit gates after a qubit's last two-qubit gate in it wait for that qubit's next
         # two-qubit gate (router's rule), in a later window: each such native gate adds at most one level there
-        late, late_s = _trailing(template, dev)
-        depth += weight * (win_depth + late)
-        depth2 += weight * win_depth2
-        if duration is not None and win_duration is not None and late_s is not None:
-            duration += weight * (win_duration + late_s)
+        depth += weight * (result.depth + result.late)
+        depth2 += weight * result.two_qubit_depth
+        if duration is not None and result.duration_s is not None and result.late_s is not None:
+            duration += weight * (result.duration_s + result.late_s)
         else:
             duration = None
-        out.append(WindowClass(weight, template.ops, win_swaps, None, tuple(sorted(counts.items())), win_depth,
-                               win_depth2, win_duration))  # fmt: skip
+        out.append(WindowClass(weight, result.lowered_ops, result.swaps, None, tuple(sorted(counts.items())),
+                               result.depth, result.two_qubit_depth, result.duration_s))  # fmt: skip
     twoq_name = dev.two_qubit_gate
     two = native.get(twoq_name, 0) + two_bound
     one = sum(v for k, v in native.items() if k != twoq_name) + one_bound
@@ -558,8 +615,8 @@ def routed_sum(
         duration += max(dev.readout_duration_s)
     elif duration is not None:
         duration = None
-    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), swaps, dict(native), two, one, log_esp,
-                     depth, depth2, duration)  # fmt: skip
+    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), dict(compiled), swaps, dict(native), two,
+                     one, log_esp, depth, depth2, duration)  # fmt: skip
 
 
 def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[int, ...]], ...]:

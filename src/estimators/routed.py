@@ -91,7 +91,8 @@ BOUND_MODEL = (
 COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
 SUM_MODEL = (
     "window sum: the medial layout's windows (one gadget each, routed home) summed by classes of equal gates and "
-    "neighbourhood, one representative each routed as compile routes it; counts and ESP exact, depth and "
+    "neighbourhood, one representative each allocated, relayed and routed as compile does it; counts and ESP "
+    "exact, depth and "
     "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 
@@ -226,7 +227,7 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
-    if summed.lowered_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+    if summed.compiled_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
         return None  # compile would also try the greedy layout on so few two-qubit gates
     return summed
 

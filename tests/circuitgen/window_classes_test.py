@@ -15,7 +15,7 @@ import math
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from circuitgen import routing
+from circuitgen import medial, routing
 from circuitgen.hardware import compile_for_device
 from circuitgen.options import PlanOptions
 from circuitgen.routing import duration_s, esp
@@ -40,6 +40,7 @@ def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = DEFAU
     summed = routed_sum(s, p, options, device)
     assert summed is not None
     routing._WINDOW_CACHE.clear()  # the compile routes every window afresh: determinism, not a shared memo
+    medial._SEARCH_CACHE.clear()  # and searches every allocation afresh: the sum's searches do not seed compile's
     r = compile_for_device(s, p, device, options, bindings=None, layout_method="medial")
     routed = r.routed
     assert routed.device.name == summed.device.name
@@ -60,6 +61,8 @@ def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = DEFAU
         assert summed.duration_bound_s is not None and actual <= summed.duration_bound_s * (1 + 1e-12)
     lowered = r.logical.count_ops()
     assert {k: v * 1 for k, v in summed.lowered_ops.items()} == {k: v for k, v in lowered.items() if v}
+    compiled = r.compiled.circuit.count_ops()  # before allocation and relays
+    assert summed.compiled_ops == {k: v for k, v in compiled.items() if v}
 
 
 CASES = {
@@ -118,7 +121,10 @@ def test_not_a_square_grid_gives_none() -> None:
 
 
 @pytest.mark.heavy
-@pytest.mark.parametrize(("rows", "cols", "robots", "p"), [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2)])
+@pytest.mark.parametrize(
+    ("rows", "cols", "robots", "p"),
+    [(6, 6, 3, 1), (5, 5, 2, 2), (8, 8, 2, 1), (14, 14, 1, 2), (30, 30, 1, 1), (12, 12, 2, 1)],
+)
 def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: int, robots: int, p: int) -> None:
     _assert_sum_equals_compile(default_scenario(rows, cols, robots), p)
 
@@ -133,4 +139,33 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
     assert exact is not None and bounded is not None
     assert exact.exact and not bounded.exact and bounded.bounded_windows > 0
     assert bounded.log_esp is None and bounded.two_qubit > exact.two_qubit
-    assert bounded.lowered_ops == exact.lowered_ops
+    # a bounded window is counted before compile's relays (decided by routing), which add CX and nothing else
+    assert {k: v for k, v in bounded.lowered_ops.items() if k != "cx"} == {
+        k: v for k, v in exact.lowered_ops.items() if k != "cx"
+    }
+    assert bounded.compiled_ops == exact.compiled_ops
+    assert bounded.compiled_ops["cx"] <= bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
+
+
+def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Compile and the sum share the allocation search's cache (per section up to translation): both are exact
+    only if every section with one key searches to the same answer, on the device and on any crop of it."""
+
+    answers: dict = {}  # type: ignore[type-arg]
+    conflicts = []
+
+    class Fresh(dict):  # type: ignore[type-arg]
+        """Never answers from memory; remembers every answer and notes keys answered two ways."""
+
+        def get(self, key, default=None):  # type: ignore[no-untyped-def]
+            return None
+
+        def __setitem__(self, key, value) -> None:  # type: ignore[no-untyped-def]
+            if answers.setdefault(key, value) != value:
+                conflicts.append((key, answers[key], value))
+
+    monkeypatch.setattr(medial, "_SEARCH_CACHE", Fresh())
+    for s in (default_scenario(5, 5, 1), interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)):
+        routed_sum(s, 1)
+        compile_for_device(s, 1, "grid", layout_method="medial")
+    assert len(answers) > 10 and not conflicts

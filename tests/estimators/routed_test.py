@@ -7,6 +7,7 @@ from dataclasses import replace
 
 import pytest
 
+from circuitgen import medial, routing
 from circuitgen.devices import get_device
 from circuitgen.hardware import compile_for_device
 from circuitgen.options import PlanOptions
@@ -30,6 +31,8 @@ def test_the_window_sum_gives_compiles_counts_and_esp(monkeypatch: pytest.Monkey
     f = _fields(s, 1, "grid")
     assert f["routed_kind"] == "exact" and f["routed_depth_kind"] == "bound"
     assert f["routed_model"] == routed.SUM_MODEL
+    medial._SEARCH_CACHE.clear()  # compile searches and routes afresh: the sum's answers do not seed compile's
+    routing._WINDOW_CACHE.clear()
     r = compile_for_device(s, 1, "grid")
     assert r.layout_method == "medial" and f["device"] == r.routed.device.name
     summary = r.summary()["routed"]
