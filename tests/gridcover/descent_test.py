@@ -22,13 +22,14 @@ def reference_descent(s: Scenario) -> tuple[tuple[int, ...], float]:
     space = MoveSpace(s, "exact", "initial")
     paths = tuple(initial_path(s, r) for r in range(s.num_robots))
     current = cost(s, paths)
+    tol = 1e-9 * max(1.0, abs(current))  # local_search's: costs equal within it are ties, the first one wins
     while True:
         best = None
         for r in range(s.num_robots):
             for nb in space.neighbours(r, paths[r]):
                 cand = (*paths[:r], nb, *paths[r + 1:])
                 c = cost(s, cand)
-                if c < current - 1e-9 and (best is None or c < best[0] - 1e-9):
+                if c < current - tol and (best is None or c < best[0] - tol):
                     best = (c, cand)
         if best is None:
             return paths, current

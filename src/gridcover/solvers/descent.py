@@ -127,7 +127,9 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
                 continue
             totals, c1, length, degree = terms.candidates(r, nbs)
             evaluated += len(nbs)
-            k = int(np.argmin(totals))  # first of the cheapest: lowest plaquette
+            # first of the cheapest, lowest plaquette; ties within tol count as ties: the matrix products round
+            # differently per candidate, and an argmin of exact ties would pick by rounding noise
+            k = int(np.flatnonzero(totals <= totals.min() + tol)[0])
             if totals[k] < current - tol and (best is None or totals[k] < best[0] - tol):
                 best = (float(totals[k]), r, nbs[k], (float(c1[k]), float(length[k]), degree[k]))
         if best is None:
