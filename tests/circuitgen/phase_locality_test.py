@@ -14,7 +14,6 @@
 
 from __future__ import annotations
 
-import cmath
 import itertools
 import json
 import random
@@ -43,10 +42,9 @@ from estimators.crosscheck import crosscheck
 from gridcover.paths import enumerate_paths
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict
-from simulate.sparse import simulate_sparse
 
 from ..qcpp.clirun import run
-from .phase_test import GAMMA, TOL, check_states, sample_combos, sums_gadgets
+from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets
 
 SPATIAL = PlanOptions(phase_layout="spatial")
 OBSTACLE_INTERIOR = {
@@ -135,18 +133,7 @@ def test_placed_sums_gadget_cost_and_exactness(g: SumsPhase) -> None:
     c = lower(Circuit([("q", n_data + g.num_ancillas)], [Section("phase_0", tuple(g.emit()))]))
     assert Cost.count(c.gates) == g.cost()
     assert max(q for gate in c.gates for q in gate.qubits) < n_data + g.num_ancillas
-    c = c.bind({"gamma_0": GAMMA})
-    rng = random.Random(n_data)
-    for _ in range(10):
-        bits = [rng.randint(0, 1) for _ in range(n_data)]
-        idx = sum(b << i for i, b in enumerate(bits))
-        out = simulate_sparse(c, idx)
-        assert {k for k, a in out.items() if abs(a) > TOL} == {idx}
-        gs = [sum(w * bits[q] for q, w in f) for f in g.forms]
-        n = len(gs)
-        val = sum(g.matrix[a][b] * gs[a] * gs[b] for a in range(n) for b in range(n))
-        val += sum(g.linear[a] * gs[a] for a in range(n))
-        assert abs(out[idx] - cmath.exp(-1j * GAMMA * (val - g.constant))) < TOL
+    check_sums_phase_on_random_inputs(g, samples=10)
 
 
 @settings(max_examples=80, deadline=None)

@@ -250,10 +250,16 @@ def test_sums_gadget_cost_and_exactness(g: SumsPhase) -> None:
     if n_data == 0 or not list(g.emit()):
         return
     assert _counts(g) == (g.cost(), g.logical_cost())
+    check_sums_phase_on_random_inputs(g, samples=12)
+
+
+def check_sums_phase_on_random_inputs(g: SumsPhase, samples: int) -> None:
+    """The lowered gadget keeps every sampled basis input and multiplies it by ``exp(-i gamma (form - constant))``."""
+    n_data = sum(len(f) for f in g.forms)
     c = lower(Circuit([("q", n_data + g.num_ancillas)], [Section("phase_0", tuple(g.emit()))]))
     c = c.bind({"gamma_0": GAMMA})
     rng = random.Random(n_data)
-    for _ in range(12):
+    for _ in range(samples):
         bits = [rng.randint(0, 1) for _ in range(n_data)]
         idx = sum(b << i for i, b in enumerate(bits))
         out = simulate_sparse(c, idx)
