@@ -55,7 +55,7 @@ def balanced_pairs(scenario: Scenario) -> list[tuple[int, int]]:
     return [(r, s) for r in range(n) for s in range(r + 1, n)]
 
 
-def incidence_matrix(scenario: Scenario) -> np.ndarray:
+def _incidence(scenario: Scenario) -> np.ndarray:
     """``(edges_per_robot, nodes)`` 0/1 matrix: variable edge k touches node i."""
     g = scenario.grid
     inc = np.zeros((scenario.edges_per_robot, g.num_nodes))
@@ -65,7 +65,7 @@ def incidence_matrix(scenario: Scenario) -> np.ndarray:
     return inc
 
 
-def robot_edge_vectors(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
+def _robot_vectors(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
     """Per-variable-edge weights and lengths (length ``edges_per_robot``)."""
     ve = np.array(scenario.variable_edges, dtype=np.int64)
     return scenario.edge_weights[ve], scenario.edge_lengths[ve]
@@ -86,13 +86,13 @@ def cost_parts_bits(scenario: Scenario, bits: np.ndarray) -> np.ndarray:
     x = np.atleast_2d(x)
     n_r, v = scenario.num_robots, scenario.edges_per_robot
     xr = x.reshape(len(x), n_r, v)
-    w, d = robot_edge_vectors(scenario)
+    w, d = _robot_vectors(scenario)
     c1 = (xr @ w).sum(axis=1)
     lengths = xr @ d
     c2 = np.zeros(len(x))
     for r, s in balanced_pairs(scenario):
         c2 += (lengths[:, r] - lengths[:, s]) ** 2
-    deg = (xr @ incidence_matrix(scenario)).sum(axis=1)
+    deg = (xr @ _incidence(scenario)).sum(axis=1)
     t = scenario.degree_targets
     keep = ~np.isnan(t)
     c3 = ((deg[:, keep] - t[keep]) ** 2).sum(axis=1)
@@ -145,7 +145,7 @@ def quadratic_cost(scenario: Scenario) -> QuadraticCost:
     n_r, v = scenario.num_robots, scenario.edges_per_robot
     n = n_r * v
     a0, a1, a2 = scenario.objective.alpha
-    w, d = robot_edge_vectors(scenario)
+    w, d = _robot_vectors(scenario)
     rows: list[np.ndarray] = []
     targets: list[float] = []
     scales: list[float] = []
@@ -156,7 +156,7 @@ def quadratic_cost(scenario: Scenario) -> QuadraticCost:
         rows.append(a)
         targets.append(0.0)
         scales.append(a1)
-    inc = incidence_matrix(scenario)
+    inc = _incidence(scenario)
     t = scenario.degree_targets
     for i in range(scenario.grid.num_nodes):
         if np.isnan(t[i]):
@@ -227,8 +227,8 @@ def separable_cost(scenario: Scenario, path_lists: Sequence[Sequence[int]]) -> S
     if len(path_lists) != scenario.num_robots:
         raise ValueError(f"expected {scenario.num_robots} path lists, got {len(path_lists)}")
     a0, a1, a2 = scenario.objective.alpha
-    w, d = robot_edge_vectors(scenario)
-    inc = incidence_matrix(scenario)
+    w, d = _robot_vectors(scenario)
+    inc = _incidence(scenario)
     t = scenario.degree_targets
     keep = ~np.isnan(t)
     tk = t[keep]
