@@ -38,6 +38,7 @@ from gridcover.sbf import Rule, representatives
 from gridcover.scenario import Scenario
 
 from .gates import Gate, cry, mcx, ry, x
+from .options import INITIAL_STATES
 
 
 def _conditioned(
@@ -166,10 +167,8 @@ def initial_state_gates(
     Returns:
         The gate list.
     """
-    if initial not in ("initial_path", "representatives", "local_search"):
-        raise ValueError(
-            f"unknown initial state {initial!r} (expected 'initial_path', 'representatives' or 'local_search')"
-        )
+    if initial not in INITIAL_STATES:
+        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     v = scenario.edges_per_robot
     out: list[Gate] = []
     if initial != "representatives":  # one basis state per robot: an X on each variable of its path, in qubit order
