@@ -252,6 +252,7 @@ def compile_for_device(
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
 
+
 SEARCH = True
 """Medial allocation searches the partial mixers' ancilla sites (:func:`circuitgen.medial.allocate_ancillas`)."""
 
