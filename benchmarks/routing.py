@@ -1,6 +1,7 @@
 """Routed two-qubit gates: ours vs Qiskit O3/SABRE on the same coupling map, in the same run.
 
-Run: ``python benchmarks/routing.py [--quick]`` (``--quick``: 3x3/1, 4x4/2 and the obstacle scenarios only);
+Run: ``python benchmarks/routing.py [--quick] [--family grid|heavy-hex]`` (``--quick``: 3x3/1, 4x4/2 and the
+obstacle scenarios only; ``--family``: that device family's rows only);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
 unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases).
@@ -120,13 +121,16 @@ def main() -> None:
         arrangements()
         return
     quick = "--quick" in sys.argv
+    families = ("grid", "heavy-hex")
+    if "--family" in sys.argv:
+        families = (sys.argv[sys.argv.index("--family") + 1],)
     print(
         "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "
         "| compile / a2a | 2q depth: greedy / compile |"
     )
     print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|")
     for label, s in scenarios(quick):
-        for family in ("grid", "heavy-hex"):
+        for family in families:
             print(row(label, s, family), flush=True)
 
 
