@@ -39,7 +39,9 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
-__all__ = ["FAMILIES", "Device", "DeviceError", "device_names", "get_device", "named_device"]
+__all__ = [
+    "FAMILIES", "Device", "DeviceError", "device_names", "get_device", "heavy_hex_coordinates", "named_device",
+]
 
 FAMILIES = ("grid", "heavy-hex", "all-to-all")
 """Device families of any size (``NAME[:SIZE]``)."""
@@ -152,6 +154,30 @@ def heavy_hex_qubits(distance: int) -> int:
     [19, 57, 115]
     """
     return (5 * distance * distance - 2 * distance - 1) // 2
+
+
+def heavy_hex_coordinates(distance: int) -> tuple[tuple[int, int], ...]:
+    """``(y, x)`` of every qubit of :func:`heavy_hex_coupling`'s lattice (index order of Qiskit's
+    ``CouplingMap.from_heavy_hex``, i.e. rustworkx's ``heavy_hex_graph``).
+
+    The lattice has ``distance`` horizontal *row lines* ``y = 0, 2, .., 2 (distance - 1)`` of ``2 distance - 1``
+    qubits each (``x = 0 .. 2 distance - 2``, neighbours along the line), and *bridge* qubits at odd ``y`` joining
+    the qubits ``(y - 1, x)`` and ``(y + 1, x)``: below row line ``2 g`` with ``g`` even at ``x = 0, 3, 7, 11, ..``,
+    with ``g`` odd at ``x = 1, 5, 9, .., 2 distance - 2``. So the interior cells are hexagons of 12 qubits spanning
+    ``x .. x + 4`` between two row lines, their bridges four columns apart and shifted by two from gap to gap.
+
+    >>> heavy_hex_coordinates(3)[:5], heavy_hex_coordinates(3)[9:13]
+    (((0, 0), (0, 2), (0, 4), (2, 0), (2, 2)), ((1, 0), (1, 3), (3, 1), (3, 4)))
+    """
+    d = distance
+    coords: list[tuple[int, int]] = [(2 * i, 2 * j) for i in range(d) for j in range(d)]  # data qubits
+    for g in range(d - 1):  # syndrome (bridge) qubits, (d + 1) / 2 per gap
+        if g % 2 == 0:
+            coords += [(2 * g + 1, 0)] + [(2 * g + 1, 4 * j - 1) for j in range(1, (d + 1) // 2)]
+        else:
+            coords += [(2 * g + 1, 4 * j + 1) for j in range((d - 1) // 2)] + [(2 * g + 1, 2 * d - 2)]
+    coords += [(2 * i, 2 * j + 1) for i in range(d) for j in range(d - 1)]  # flag qubits
+    return tuple(coords)
 
 
 def _uniform(template: Device, name: str, n: int, coupling: tuple[tuple[int, int], ...], family: str) -> Device:

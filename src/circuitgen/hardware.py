@@ -46,13 +46,14 @@ from .bridge import bridge_far_phases
 from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
+from .hexlayout import heavy_hex_distance, hex_distance, hex_placement
 from .layout import localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
 from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
-__all__ = ["DeviceCompileResult", "compile_for_device", "device_for"]
+__all__ = ["DeviceCompileResult", "compile_for_device", "device_for", "hex_device", "layout_device", "medial_device"]
 
 
 @dataclass(frozen=True)
@@ -226,8 +227,11 @@ def compile_for_device(
             logical, routed = geometric
             method = "medial"
             if layout_method == "auto" and _two_qubit(circuit) <= AUTO_COMPARE_MAX_TWOQ:
-                greedy = route(circuit, routed.device, best_layout(circuit, routed.device, seed=seed, layouts=layouts),
-                               seed=seed, measured=measured)  # fmt: skip
+                other = routed.device
+                if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
+                    other = device_for(device, circuit.num_qubits)
+                greedy = route(circuit, other, best_layout(circuit, other, seed=seed, layouts=layouts), seed=seed,
+                               measured=measured)  # fmt: skip
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
@@ -237,8 +241,13 @@ def compile_for_device(
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
+            if dev.family == "heavy-hex" and heavy_hex_distance(dev) is not None:
+                raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with "
+                                 f"{scenario.num_robots} robot(s) needs heavy-hex:{hex_distance(scenario)}; device "
+                                 f"{dev.name} is smaller")  # fmt: skip
             if grid_shape(dev) is None:
-                raise ValueError(f"--layout medial needs a square-grid device; {dev.name} is not one")
+                raise ValueError(f"--layout medial needs a square-grid or heavy-hex lattice device; {dev.name} is "
+                                 "neither")  # fmt: skip
             raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with {scenario.num_robots} "
                              f"robot(s) needs a {rows}x{cols} grid; device {dev.name} is smaller")  # fmt: skip
     dev = device if isinstance(device, Device) else device_for(device, circuit.num_qubits)
@@ -281,6 +290,43 @@ def medial_device(scenario: Scenario, spec: str | Device, arrangement: str = "ti
     return dev if medial_placement(scenario, dev, arrangement) is not None else None
 
 
+def hex_device(scenario: Scenario, spec: str | Device) -> Device | None:
+    """The device the heavy-hex cell layout (:mod:`circuitgen.hexlayout`) uses: ``spec`` itself if it is a
+    heavy-hex lattice that holds the layout; for the unsized family ``heavy-hex``, the smallest that holds it
+    (:func:`circuitgen.hexlayout.hex_distance`); otherwise ``None`` (also for named heavy-hex devices, whose qubit
+    numbering is another)."""
+    if isinstance(spec, Device):
+        dev = spec
+    elif spec == "heavy-hex":
+        return get_device(f"heavy-hex:{hex_distance(scenario)}")
+    elif spec.startswith("heavy-hex:"):
+        dev = get_device(spec)
+    else:
+        return None
+    return dev if dev.family == "heavy-hex" and hex_placement(scenario, dev) is not None else None
+
+
+def layout_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:
+    """The device of the geometric layout: :func:`medial_device` on square grids, :func:`hex_device` on heavy-hex
+    lattices, ``None`` elsewhere."""
+    if isinstance(spec, Device):
+        family = spec.family
+    else:
+        name = spec.partition(":")[0]
+        family = name if name in ("grid", "heavy-hex") else get_device(spec).family
+    if family == "heavy-hex":
+        return hex_device(scenario, spec)
+    return medial_device(scenario, spec, arrangement)
+
+
+def _grown(dev: Device) -> Device:
+    """The next bigger member of an unsized family (a section needs more free qubits)."""
+    if dev.family == "heavy-hex":
+        return get_device(f"heavy-hex:{int(dev.name.split(':')[1]) + 2}")
+    side = int(dev.name.split("x")[-1]) + 1
+    return get_device(f"grid:{side}x{side}")
+
+
 def medial_compile(
     scenario: Scenario,
     circuit: Circuit,
@@ -289,25 +335,25 @@ def medial_compile(
     measured: range | None = None,
     arrangement: str = "tile",
 ) -> tuple[Circuit, RoutedCircuit] | None:
-    """The medial layout, local ancillas and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on
-    ``spec``, or ``None`` where the device is not a square grid that holds it. The unsized family ``grid`` grows
-    by one row and column while a section needs more ancillas than the free qubits. ``arrangement``: how the
-    robots' copies share the device (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
+    """The geometric layout (medial on square grids, one cell per plaquette on heavy-hex lattices), local ancillas
+    and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
+    is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
+    column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
+    the robots' copies share a square grid (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
-    dev = medial_device(scenario, spec, arrangement)
+    dev = layout_device(scenario, spec, arrangement)
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
         try:
             logical, layout = allocate_ancillas(circuit, homes, dev, search=SEARCH)
         except ValueError:
-            if spec != "grid":
+            if spec not in ("grid", "heavy-hex"):
                 raise
-            side = int(dev.name.split("x")[-1]) + 1
-            dev = get_device(f"grid:{side}x{side}")
+            dev = _grown(dev)
             continue
         logical, layout = bridge_far_phases(logical, layout, dev)
         return logical, route_windows(logical, dev, layout, seed=seed, measured=measured)

@@ -49,6 +49,7 @@ from .bridge import has_rzz
 from .circuit import Circuit, Register, Section
 from .devices import Device, grid_coupling
 from .gates import Gate
+from .hexlayout import hex_placement
 from .routing import DEFAULT_TRIALS
 
 __all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
@@ -102,7 +103,8 @@ def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, in
 def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
     device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
-    patches than :func:`tiling`'s).
+    patches than :func:`tiling`'s). On a heavy-hex lattice device: :func:`circuitgen.hexlayout.hex_placement`
+    (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
 
     Args:
         scenario: The scenario.
@@ -112,6 +114,8 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
             ``(a, b)`` to device site ``(down a + dr, across b + dc)``: the copies of one grid edge sit side by
             side, a plaquette is stretched by ``down`` and ``across``).
     """
+    if device.family == "heavy-hex":
+        return hex_placement(scenario, device)
     shape = grid_shape(device)
     if shape is None:
         return None

@@ -80,7 +80,8 @@ def test_estimate_bad_device_is_one_line() -> None:
     ("device", "layout", "fragment"),
     [
         ("grid", "nope", "--layout"),
-        ("heavy-hex", "medial", "square-grid device"),
+        ("ibm_torino", "medial", "square-grid or heavy-hex lattice device"),
+        ("heavy-hex:5", "medial", "needs heavy-hex:7"),
         ("grid:4x6", "medial", "needs a 5x5 grid"),
     ],
 )

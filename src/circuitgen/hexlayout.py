@@ -1,0 +1,154 @@
+"""A geometry-preserving placement on heavy-hex devices: one heavy-hex cell per plaquette.
+
+The heavy-hex lattice (:func:`circuitgen.devices.heavy_hex_coordinates`) is a honeycomb with a qubit on every
+vertex (degree 3) and on every side's midpoint (degree 2): row lines of qubits, joined by *bridge* qubits every
+four columns, shifted by two columns from one gap between row lines to the next. Its cells are 12-qubit
+hexagons; two cells side by side share a bridge, a cell shares a row-line side with each of the two cells above
+and below it.
+
+**Placement** (:func:`hex_placement`). Plaquette ``(i, j)`` of robot ``r``'s copy of the problem grid takes the
+cell of gap ``Y + i`` whose left bridge is at column ``X + L + 4 j`` (``L = 3`` in even gaps and ``1`` in odd
+ones, where the device's bridges are; ``(Y, X)`` the robot's offset). So grid node row ``i`` is row line
+``Y + i``, and
+
+* the vertical edge ``(i, j)-(i+1, j)`` is the bridge shared by the cells of plaquettes ``(i, j-1)`` and
+  ``(i, j)``: qubit ``(2 (Y + i) + 1, X + L + 4 j)``;
+* the horizontal edge ``(i, j)-(i, j+1)`` is the midpoint of the row-line side shared by the cells of plaquettes
+  ``(i-1, j)`` and ``(i, j)``: qubit ``(2 (Y + i), X + 4 (j + 1))`` (in both gap parities);
+* the row-line qubits between, ``X + 4 j + 1 .. X + 4 j + 3`` on row line ``Y + i`` (two cell vertices and one
+  unused midpoint), stay free: node ``(i, j)``'s sites, which its four edges and its four plaquettes' cells
+  touch. A plaquette's four edges are then four of its cell's six midpoints, its cell's six vertices and two
+  other midpoints are free for its partial mixer's ancillas.
+
+Each robot's patch spans ``R`` row lines and ``4 C`` columns; the ``k`` patches are stacked ``down x across``
+(offsets ``Y = R * row``, ``X = 4 C * column``), with one free bridge gap or free row-line column between
+neighbours. The rest of the pipeline is the square grid's (:func:`circuitgen.hardware.medial_compile`): local
+ancillas with search (:func:`circuitgen.medial.allocate_ancillas`), relays (:mod:`circuitgen.bridge`) and windows
+routed home (:func:`circuitgen.routing.route_windows`).
+
+Example:
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.devices import get_device, heavy_hex_coordinates
+    >>> s = default_scenario(3, 3, 1)
+    >>> hex_distance(s)
+    7
+    >>> homes = hex_placement(s, get_device("heavy-hex:7"))
+    >>> xy = heavy_hex_coordinates(7)
+    >>> [xy[homes[v]] for v in range(3)]  # edges (0,0)-(0,1), (0,0)-(1,0), (0,1)-(0,2)
+    [(0, 4), (1, 3), (0, 8)]
+    >>> hex_placement(s, get_device("heavy-hex:5")) is None  # too small: the caller falls back
+    True
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+from gridcover.scenario import Scenario
+
+from .devices import Device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_qubits
+
+__all__ = ["heavy_hex_distance", "hex_distance", "hex_placement", "hex_sites"]
+
+
+def heavy_hex_distance(device: Device) -> int | None:
+    """``d`` if the device's coupling is :func:`circuitgen.devices.heavy_hex_coupling` ``(d)`` (the unsized family's
+    lattice, qubit indices as there), else ``None`` (named Heron devices have another layout)."""
+    if device.is_all_to_all or device.family != "heavy-hex":
+        return None
+    d = 3
+    while heavy_hex_qubits(d) < device.num_qubits:
+        d += 2
+    if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
+        return None
+    return d
+
+
+def _gap_offset(gap: int) -> int:
+    """Column of the first interior bridge of ``gap`` (bridges every four columns from there)."""
+    return 3 if gap % 2 == 0 else 1
+
+
+def hex_sites(rows: int, cols: int, edge_sites: tuple[tuple[int, int], ...], y0: int, x0: int) -> list[tuple[int, int]]:
+    """Device ``(y, x)`` of every grid edge (in :attr:`gridcover.grid.Grid.edge_sites` order) of a patch at row line
+    ``y0``, column ``x0`` (a multiple of 4): see the module docs.
+
+    >>> hex_sites(2, 2, ((0, 1), (1, 0), (1, 2), (2, 1)), 0, 0)
+    [(0, 4), (1, 3), (1, 7), (2, 4)]
+    """
+    out = []
+    for a, b in edge_sites:
+        i, j = a // 2, b // 2
+        if a % 2 == 0:  # (i, j)-(i, j+1): a row-line midpoint
+            out.append((2 * (y0 + i), x0 + 4 * (j + 1)))
+        else:  # (i, j)-(i+1, j): the bridge of gap y0 + i
+            out.append((2 * (y0 + i) + 1, x0 + _gap_offset(y0 + i) + 4 * j))
+    return out
+
+
+def _needed(scenario: Scenario, down: int, across: int) -> int:
+    """The smallest odd distance with ``down x across`` patches' row lines and columns (bridges may still miss)."""
+    g = scenario.grid
+    d = max(3, down * g.rows, -(-(across * 4 * g.cols + 1) // 2))
+    return d + 1 - d % 2
+
+
+def _arrangements(scenario: Scenario) -> list[tuple[int, int]]:
+    """The ``down x across`` stackings of the robots' patches, smallest lattice first (then fewest across)."""
+    k = scenario.num_robots
+    shapes = [(-(-k // across), across) for across in range(1, k + 1)]
+    return sorted(shapes, key=lambda a: (_needed(scenario, *a), a[1]))
+
+
+def _fits(scenario: Scenario, d: int, down: int, across: int) -> bool:
+    return _needed(scenario, down, across) <= d
+
+
+def hex_distance(scenario: Scenario) -> int:
+    """The smallest odd distance whose heavy-hex lattice holds the layout of ``scenario``."""
+    d = min(_needed(scenario, *a) for a in _arrangements(scenario))
+    while not any(_fits(scenario, d, *a) and _placed(scenario, d, a) is not None for a in _arrangements(scenario)):
+        d += 2
+    return d
+
+
+@cache
+def _index(d: int) -> dict[tuple[int, int], int]:
+    return {xy: q for q, xy in enumerate(heavy_hex_coordinates(d))}
+
+
+def _placed(scenario: Scenario, d: int, arrangement: tuple[int, int]) -> tuple[int, ...] | None:
+    g = scenario.grid
+    across = arrangement[1]
+    index = _index(d)
+    homes = []
+    sites = {r: hex_sites(g.rows, g.cols, g.edge_sites, g.rows * (r // across), 4 * g.cols * (r % across))
+             for r in range(scenario.num_robots)}  # fmt: skip
+    for v in range(scenario.num_variables):
+        robot, e = scenario.variable_of(v)
+        q = index.get(sites[robot][e])
+        if q is None:
+            return None
+        homes.append(q)
+    return tuple(homes)
+
+
+def hex_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
+    """Home of every data qubit (variable index -> physical qubit) on a heavy-hex lattice device, or ``None`` if
+    the device is not one (:func:`heavy_hex_distance`) or the layout does not fit. Of the ``down x across``
+    stackings of the robots' patches that fit, the one that needs the smallest lattice (the lattice is about twice
+    as tall as wide in cells, so robots are stacked down first).
+
+    Args:
+        scenario: The scenario.
+        device: The device.
+    """
+    d = heavy_hex_distance(device)
+    if d is None:
+        return None
+    for arrangement in _arrangements(scenario):
+        if _fits(scenario, d, *arrangement):
+            homes = _placed(scenario, d, arrangement)
+            if homes is not None:
+                return homes
+    return None
