@@ -136,6 +136,7 @@ def grid_coupling(rows: int, cols: int) -> tuple[tuple[int, int], ...]:
     return tuple(sorted(edges))
 
 
+@cache
 def heavy_hex_coupling(distance: int) -> tuple[int, tuple[tuple[int, int], ...]]:
     """IBM's heavy-hex lattice of code distance ``distance`` (odd): ``(5 d^2 - 2 d - 1) / 2`` qubits.
 
@@ -156,6 +157,7 @@ def heavy_hex_qubits(distance: int) -> int:
     return (5 * distance * distance - 2 * distance - 1) // 2
 
 
+@cache
 def heavy_hex_coordinates(distance: int) -> tuple[tuple[int, int], ...]:
     """``(y, x)`` of every qubit of :func:`heavy_hex_coupling`'s lattice (index order of Qiskit's
     ``CouplingMap.from_heavy_hex``, i.e. rustworkx's ``heavy_hex_graph``).

@@ -81,8 +81,8 @@ def hex_sites(rows: int, cols: int, edge_sites: tuple[tuple[int, int], ...], y0:
         i, j = a // 2, b // 2
         if a % 2 == 0:  # (i, j)-(i, j+1): a row-line midpoint
             out.append((2 * (y0 + i), x0 + 4 * (j + 1)))
-        else:  # (i, j)-(i+1, j): the bridge of gap y0 + i
-            out.append((2 * (y0 + i) + 1, x0 + _gap_offset(y0 + i) + 4 * j))
+        else:  # (i, j)-(i+1, j): the lower end of the bridge of gap y0 + i
+            out.append((2 * (y0 + i) + 2, x0 + _gap_offset(y0 + i) + 4 * j))
     return out
 
 

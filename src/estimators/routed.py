@@ -3,8 +3,10 @@
 :func:`routed_fields` adds to an estimate row:
 
 * ``device`` (its name; a family without a size is the member ``qcpp compile --device`` picks: for ``grid`` the
-  smallest square grid that holds the medial layout, :func:`circuitgen.hardware.medial_device`, otherwise the
-  smallest member with the row's qubits), ``fits``
+  smallest square grid that holds the medial layout, :func:`circuitgen.hardware.medial_device`, for
+  ``heavy-hex`` the smallest lattice that holds the cell layout, :func:`circuitgen.hardware.hex_device` (or, where
+  compile finds the greedy routing cheaper on a small circuit, the smallest with the row's qubits), otherwise
+  the smallest member with the row's qubits), ``fits``
   (the device's largest connected component has the row's qubits);
 * ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``;
 * ``routed_kind`` (the two-qubit count and the ESP) and ``routed_depth_kind`` (the depths and the duration), each
@@ -179,10 +181,11 @@ def routed_fields(
     Returns:
         The fields to add to the row.
     """
-    from circuitgen.hardware import ESP_MODEL, compile_for_device, medial_device
+    from circuitgen.hardware import ESP_MODEL, compile_for_device, layout_device
     from circuitgen.routing import duration_s, esp
 
-    medial = medial_device(scenario, device) if device == "grid" else None
+    # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
+    medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
     dev = medial if medial is not None else get_device(device, min_qubits=qubits)
     fits = _largest_component(dev) >= qubits
     out: dict[str, Any] = {"device": dev.name, "fits": fits}
