@@ -4,17 +4,21 @@
 ``fuse=False`` (every gadget a section of its own, clean at both ends; the lowered count is 2-12 CX above the
 fused one on the default grids), then takes one of two paths (``layout_method``, default ``auto``):
 
-* **medial** (square-grid devices that hold it; the unsized family ``grid`` is sized for it):
-  :func:`circuitgen.medial.medial_placement` puts every edge qubit on its edge's midpoint of a ``(2R-1) x
-  (2C-1)`` patch per robot, :func:`circuitgen.medial.allocate_ancillas` gives every section the free device
+* **medial** (square-grid devices and heavy-hex lattices that hold it; the unsized families ``grid`` and
+  ``heavy-hex`` are sized for it, :func:`layout_device`): :func:`circuitgen.medial.medial_placement` puts every
+  edge qubit on its edge's midpoint of a ``(2R-1) x (2C-1)`` patch per robot on a square grid, and on a
+  heavy-hex lattice one heavy-hex cell per plaquette (:mod:`circuitgen.hexlayout`);
+  :func:`circuitgen.medial.allocate_ancillas` gives every section the free device
   qubits nearest its data as ancillas (for the partial mixers, the sites whose window routes to the fewest
   gates among the nearest few), :func:`circuitgen.bridge.bridge_far_phases` relays far ``rzz`` phases (a node's
   visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
   :func:`circuitgen.routing.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
   ``initial_layout == final_layout``);
-* **greedy** (any device; the fallback, and on grids for small circuits where it routes to fewer two-qubit gates,
-  :data:`AUTO_COMPARE_MAX_TWOQ`): optionally region-local ancillas
+* **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
+  :data:`AUTO_COMPARE_MAX_TWOQ`; on the unsized ``heavy-hex`` it is then routed on the smallest lattice that holds
+  the circuit, where it needs no room for the cells: measured, it wins on every default up to 3x3 with three
+  robots, the cells from 4x4 with two robots on): optionally region-local ancillas
   (:func:`circuitgen.layout.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
   placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
   SABRE routing of the whole circuit (:func:`circuitgen.routing.route`).
@@ -29,8 +33,12 @@ Example:
     ('grid:5x5', 'medial', True)
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
-    >>> compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex").layout_method
-    'greedy'
+    >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
+    >>> r.layout_method, r.routed.device.name  # cheaper than the cell layout on heavy-hex:7 (354 vs 456 CX)
+    ('greedy', 'heavy-hex:3')
+    >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
+    >>> cells.routed.device.name
+    'heavy-hex:7'
 """
 
 from __future__ import annotations
@@ -66,7 +74,8 @@ class DeviceCompileResult:
         routed: The routed circuit (native gates unless compiled ``lowered``).
         lowered: Whether the routed circuit keeps CX + one-qubit gates.
         seconds: Wall time of everything.
-        layout_method: ``medial`` (geometric layout, windows routed home) or ``greedy`` (:func:`best_layout`).
+        layout_method: ``medial`` (geometric layout: medial on square grids, cells on heavy-hex lattices;
+            windows routed home) or ``greedy`` (:func:`best_layout`).
     """
 
     compiled: CompileResult
@@ -104,8 +113,8 @@ class DeviceCompileResult:
 
 
 ROUTERS = {
-    "medial": "medial layout with local ancillas, far phases relayed through clean qubits; qiskit SabreSwap per "
-    "section, each section returning home",
+    "medial": "geometric layout (medial on a square grid, one cell per plaquette on heavy-hex) with local ancillas, "
+    "far phases relayed through clean qubits; qiskit SabreSwap per section, each section returning home",
     "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout",
 }
 
