@@ -4,7 +4,9 @@ Run: ``python benchmarks/routing.py [--quick] [--family grid|heavy-hex]`` (``--q
 obstacle scenarios only; ``--family``: that device family's rows only);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
-unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases).
+unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases);
+``python benchmarks/routing.py --cells [--quick]``: the heavy-hex cell layout (:mod:`circuitgen.hexlayout`) on
+every scenario, routed CX per part the same way, next to the greedy routing ``auto`` compares it with.
 
 Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
 ``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`); ``heavy-hex`` is the
@@ -124,9 +126,30 @@ def arrangements() -> None:
             print(f"| {label} | {arrangement} | {r.routed.device.name} | {total:,} | {cells} |", flush=True)
 
 
+def cells(quick: bool) -> None:
+    """The heavy-hex cell layout (``layout_method="medial"`` on the unsized ``heavy-hex``) on every scenario: routed
+    CX per part against the part's unrouted CX, next to the greedy routing on the smallest lattice that holds the
+    circuit (what ``auto`` compares on circuits of at most ``AUTO_COMPARE_MAX_TWOQ`` two-qubit gates)."""
+    print("| scenario | cells: device | cells cx | phase: routed / a2a | mixer: routed / a2a | greedy: device "
+          "| greedy cx |")  # fmt: skip
+    print("|---|---|---:|---:|---:|---|---:|")
+    for label, s in scenarios(quick):
+        r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="medial")
+        routed, a2a = _by_part(r.routed.circuit), _by_part(r.compiled.circuit)
+        parts = " | ".join(
+            f"{routed[k]:,} / {a2a[k]:,} = {routed[k] / a2a[k]:.2f}" if a2a[k] else "-" for k in ("phase", "mixer")
+        )
+        g = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="greedy")
+        print(f"| {label} | {r.routed.device.name} | {r.routed.circuit.count_ops()['cx']:,} | {parts} "
+              f"| {g.routed.device.name} | {g.routed.circuit.count_ops()['cx']:,} |", flush=True)  # fmt: skip
+
+
 def main() -> None:
     if "--arrangements" in sys.argv:
         arrangements()
+        return
+    if "--cells" in sys.argv:
+        cells("--quick" in sys.argv)
         return
     quick = "--quick" in sys.argv
     families = ("grid", "heavy-hex")

@@ -19,9 +19,9 @@ grid node row ``i`` is row line ``Y + i``, and every edge qubit sits on a row li
 A plaquette's four edges are then four of its cell's twelve qubits (top and bottom midpoints, bottom corners);
 one top corner holds a vertical edge of the row above, the other seven, among them both bridges (every bridge
 stays free), are free for its partial mixer's ancillas.
-Of twelve placements of the two edge kinds on a cell's row-line qubits and bridges, this one routed the
-partial mixers of 5x5/1 to the fewest CX (2,614; edges on bridges and midpoints: 2,914; measured with the
-pipeline below).
+Of twelve placements of the two edge kinds on a cell's row-line qubits and bridges (an experiment not kept in
+the repository), this one routed the partial mixers of 5x5/1 to the fewest CX, also fewer than vertical edges on
+their bridges.
 
 Each robot's patch spans ``R`` row lines and ``4 C`` columns; the ``k`` patches are stacked ``down x across``
 (offsets ``Y = R * row``, ``X = 4 C * column``), choosing the stacking that needs the smallest lattice. The rest
