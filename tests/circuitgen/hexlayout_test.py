@@ -4,7 +4,7 @@ Evidence: the coordinates rebuild Qiskit's heavy-hex coupling map exactly; every
 one 12-qubit heavy-hex cell with at least seven free qubits (random scenarios); the lattice picked is the
 smallest that holds the layout; compiles with the layout put every two-qubit gate on a coupling, return every
 qubit home and equal the unrouted circuit (statevector on the used qubits: 2x3/1, and 2x2/2 in the heavy run;
-QCEC on 3x3/1, 2x3/2 and a 3x4 obstacle scenario in the heavy run); ``auto`` keeps the cheaper of this layout
+QCEC on 2x3/2, and on 3x3/1 and a 3x4 obstacle scenario in the heavy run); ``auto`` keeps the cheaper of this layout
 and the greedy routing; ``estimate --device heavy-hex`` reports what compile writes.
 """
 
@@ -129,10 +129,13 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     _assert_equal_up_to_layouts(r.logical, _compact(routed), seed=5, global_phase=False)
 
 
-@pytest.mark.heavy
 @pytest.mark.parametrize(
     "s",
-    [default_scenario(3, 3, 1), default_scenario(2, 3, 2), scenario_from_dict(OBSTACLE_INTERIOR)],
+    [
+        pytest.param(default_scenario(3, 3, 1), marks=pytest.mark.heavy),
+        default_scenario(2, 3, 2),  # two robots: visit terms relayed between the stacked patches, balance adders
+        pytest.param(scenario_from_dict(OBSTACLE_INTERIOR), marks=pytest.mark.heavy),
+    ],
     ids=["3x3/1", "2x3/2", "3x4 obstacle interior"],
 )
 def test_qcec_proves_cell_layout_routing_equal_to_the_compiled_circuit(s: Scenario) -> None:
