@@ -120,8 +120,10 @@ def compile_command(
         str,
         typer.Option(
             "--layout",
-            help="With --device: auto (medial on square grids that hold it, else greedy), medial (geometric "
-            "layout, local ancillas, every gadget routed home) or greedy (one SABRE routing of the whole circuit).",
+            help="With --device: auto (the geometric layout on square grids and heavy-hex lattices that hold it, "
+            "greedy where that routes cheaper on a small circuit or elsewhere), medial (geometric layout: medial on "
+            "grids, one cell per plaquette on heavy-hex; local ancillas, every gadget routed home) or greedy (one "
+            "SABRE routing of the whole circuit).",
         ),
     ] = "auto",
 ) -> None:
