@@ -175,7 +175,7 @@ def solve_qaoa(
         from gridcover.solvers.descent import local_search
 
         warm = local_search(scenario, rule)
-        mixed = " in superposition with the initial paths" if initial == "local_search_mix" else ""
+        mixed = "; in superposition with the initial paths" if initial == "local_search_mix" else ""
         start += (f" (steepest descent over SBF moves: cost {warm.initial_cost:g} -> {warm.cost:g} in {warm.steps} "
                   f"step(s), {warm.seconds * 1e3:.1f} ms{mixed})")
     evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
