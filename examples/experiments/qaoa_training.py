@@ -13,13 +13,16 @@ Tables:
    3x3 corner to corner (one robot), examples/paper_3x3.toml and two_robots_4x4, at p = 3 and p = 6.
 3. Initial states compared with the same default training to p = 5: the paper's ``initial_path`` against the
    classical warm start ``local_search`` (:func:`gridcover.solvers.descent.local_search`, steepest descent over
-   SBF moves), on the scenarios of this script where the descent does not already end on the optimum (the open
-   4x4 with two robots; on two_robots_4x4 it does, which the notes say).
-4. ``examples/two_robots_5x5.toml`` (73.8 million assignments) at p = 1..5 without training (one default
-   schedule there is hours per p on this machine): the angles of table 1 at the same p, gammas scaled by
-   ``sigma_4x4 / sigma_5x5`` (parameter transfer), from both initial states; the notes give the warm start's
-   cost, time and distance to the optimum in SBF moves and in mixer layers
-   (:func:`simulate.state_measures.layers_to_reach`).
+   SBF moves) and ``local_search_mix`` (per robot the initial and the descent path in equal superposition), on
+   the scenarios of this script where the descent does not already end on the optimum (the open 4x4 with two
+   robots; on two_robots_4x4 it does, which the notes say).
+4. ``examples/two_robots_5x5.toml`` (73.8 million assignments) at p = 1..5 without training: the angles of
+   table 1 at the same p, gammas scaled by ``sigma_4x4 / sigma_5x5`` (parameter transfer), from the
+   ``initial_path`` and ``local_search`` states, and table 3's ``local_search_mix`` angles of the open 4x4 (gammas
+   scaled the same way) from ``local_search_mix``; the notes give the warm start's cost, time and distance to
+   the optimum in SBF moves and in mixer layers (:func:`simulate.state_measures.layers_to_reach`).
+5. ``examples/two_robots_5x5.toml``, the default training to p = 5 from ``local_search_mix`` (issue #19's 5x5
+   goal: P(optimum) >= 0.05 at some p <= 5), the kept run at each depth with its iterations and time.
 
 Every row records its scenario (file), its options and the qcpp version (``results/qaoa_training.json``); the
 circuit columns (qubits, depth, two-qubit depth of the compiled circuit at that p) are recomputed by
@@ -164,9 +167,11 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     # 3. initial states compared: the warm start where the descent does not already end on the optimum
     p_warm = 2 if opts.quick else 5
     warm_options = {**options, "objective": "gibbs"}
+    warm_inits = ("initial_path", "local_search", "local_search_mix")
     warm_table = Table(f"Initial states compared (default training to p = {p_warm}): P(optimum) of the kept run",
-                       ["scenario", "assignments", "descent cost", "optimum", "p", "initial_path", "local_search"])
+                       ["scenario", "assignments", "descent cost", "optimum", "p", *warm_inits])
     warm_notes = []
+    mix_source: tuple[SubspaceQAOA, Any] | None = None  # the open 4x4's local_search_mix training, for table 4
     for path, s in ((four, s4), ("default_scenario(4, 4, 2)", default_scenario(4, 4, 2))):
         warm = local_search(s)
         q = q4 if s is s4 else SubspaceQAOA(s)
@@ -174,13 +179,15 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         if warm.cost <= best + 1e-9:
             warm_notes.append(f"{_source(path)}: the local_search warm start (steepest descent over SBF moves, cost "
                               f"{warm.initial_cost:g} -> {warm.cost:g} in {warm.steps} steps, "
-                              f"{warm.seconds * 1e3:.1f} ms) already ends on the optimum: P(optimum) = 1 at p = 0, "
-                              "so this scenario says nothing about QAOA from it.")
+                              f"{warm.seconds * 1e3:.1f} ms) already ends on the optimum: P(optimum) = 1 at p = 0 "
+                              f"(local_search_mix: {SubspaceQAOA(s, initial='local_search_mix').p_optimum([]):.4g} at "
+                              "p = 0), so this scenario says nothing about QAOA from them.")
             continue
         by_init = {}
-        for initial in ("initial_path", "local_search"):
-            qi = q if initial == "initial_path" else SubspaceQAOA(s, initial=initial)
+        for initial in warm_inits:
+            qi = q if initial == "initial_path" else SubspaceQAOA(s, initial=initial)  # type: ignore[arg-type]
             by_init[initial] = (qi, train_layerwise(qi, p_warm, "gibbs"))
+        mix_source = by_init["local_search_mix"]
         for p in range(1, p_warm + 1):
             cells = []
             for initial, (qi, r) in by_init.items():
@@ -193,47 +200,81 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             warm_table.add(_source(path), q.dimension, warm.cost, best, p, *cells)
         print(f"{_source(path)}: descent {warm.initial_cost:g} -> {warm.cost:g}, optimum {best:g}", file=sys.stderr)
 
-    # 4. two_robots_5x5: angles transferred from table 1 (no training there), from both initial states
+    # 4. two_robots_5x5: angles transferred from table 1 (and table 3's mix), no training there
     tables = [depth_table, compare, warm_table]
     five_notes = []
     if not opts.quick:
+        assert mix_source is not None
         five = EXAMPLES / "two_robots_5x5.toml"
         s5 = load_scenario(five)
         warm5 = local_search(s5)
-        q5 = {"initial_path": SubspaceQAOA(s5)}
-        q5["local_search"] = SubspaceQAOA(s5, initial="local_search")
+        q5 = {initial: SubspaceQAOA(s5, initial=initial) for initial in warm_inits}  # type: ignore[arg-type]
         best5 = q5["initial_path"].optimum()[0]
-        scale = cost_scale(q4) / cost_scale(q5["initial_path"])
+        sigma5 = cost_scale(q5["initial_path"])
+        scale = cost_scale(q4) / sigma5
+        mix_scale = cost_scale(mix_source[0]) / sigma5
         five_table = Table(f"two_robots_5x5.toml ({q5['initial_path'].dimension:,} assignments, optimum {best5:g}): "
-                           f"table 1's angles at the same p, gammas x {scale:.4g} (sigma_4x4 / sigma_5x5), no "
-                           "training", ["p", "P(optimum) initial_path", "<C> initial_path", "P(optimum) local_search",
-                                        "<C> local_search", "qubits", "depth (initial_path)", "2q depth"])
+                           f"table 1's angles at the same p, gammas x {scale:.4g} (sigma_4x4 / sigma_5x5), and for "
+                           f"local_search_mix table 3's open-4x4 local_search_mix angles, gammas x {mix_scale:.4g}; no "
+                           "training", ["p", *(f"{k} {i}" for i in warm_inits for k in ("P(optimum)", "<C>")),
+                                        "qubits", "depth (initial_path)", "2q depth"])
         for lv in res.levels[:5]:
-            x = np.array(lv.angles)
-            x[0::2] *= scale
             circ = circuit_columns(s5, lv.p)
             cells = []
             for initial, q in q5.items():
+                source = mix_source[1].levels[lv.p - 1] if initial == "local_search_mix" else lv
+                x = np.array(source.angles)
+                x[0::2] *= mix_scale if initial == "local_search_mix" else scale
+                where = ("default_scenario(4, 4, 2) initial_states local_search_mix" if initial == "local_search_mix"
+                         else "two_robots_4x4 by_depth")
                 circ_i = circuit_columns(s5, lv.p, initial)
                 t0 = time.perf_counter()
                 st = _state_row(q, x)
                 print(f"two_robots_5x5 p = {lv.p} {initial}: P(optimum) {st['p_opt']:.4g} "
                       f"({time.perf_counter() - t0:.0f} s)", file=sys.stderr, flush=True)
                 cells += [st["p_opt"], st["expectation"]]
+                ratio = mix_scale if initial == "local_search_mix" else scale
                 rows.append({"table": "five_by_five_transfer", "scenario_file": _source(five),
                              "scenario": scenario_to_dict(s5), "objective": "gibbs",
-                             "options": {**options, "initial": initial, "angles": "two_robots_4x4 by_depth, gamma x "
-                                         f"sigma ratio {scale!r}"}, "qcpp_version": qcpp.__version__, "p": lv.p,
+                             "options": {**options, "initial": initial, "angles": f"{where}, gamma x "
+                                         f"sigma ratio {ratio!r}"}, "qcpp_version": qcpp.__version__, "p": lv.p,
                              **st, **circ_i})
             five_table.add(lv.p, *cells, circ["qubits"], circ["depth"], circ["two_qubit_depth"])
         tables.append(five_table)
+
+        # 5. two_robots_5x5: the default training from local_search_mix, p = 1..5
+        qm = q5["local_search_mix"]
+        t0 = time.perf_counter()
+        res5 = train_layerwise(qm, 5, "gibbs", progress=lambda k, p: print(
+            f"two_robots_5x5 local_search_mix: p = {k} done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr,
+            flush=True))
+        trained_table = Table(f"two_robots_5x5.toml: default training to p = 5 from local_search_mix (P(optimum) = "
+                              f"{qm.p_optimum([]):.4g} at p = 0, <C> = {qm.expectation([]):.4g}), the kept run at each "
+                              "depth", ["p", "Gibbs objective", "<C>", "P(optimum)", "beta", "iterations",
+                                        "simulations", "qubits", "depth", "2q depth"])
+        for lv in res5.levels:
+            circ = circuit_columns(s5, lv.p, "local_search_mix")
+            rows.append({"table": "five_by_five_trained", "scenario_file": _source(five),
+                         "scenario": scenario_to_dict(s5), "objective": "gibbs",
+                         "options": {**options, "initial": "local_search_mix"}, "qcpp_version": qcpp.__version__,
+                         "p": lv.p, "value": lv.value, "method": "qaoa", "angles": [float(a) for a in lv.angles],
+                         "p_opt": lv.p_optimum, "expectation": lv.expectation, "iterations": len(lv.trace) - 1,
+                         "simulations": lv.num_evaluations, **circ})
+            trained_table.add(lv.p, lv.value, lv.expectation, lv.p_optimum,
+                              " ".join(f"{b:.3g}" for b in lv.angles[1::2]), len(lv.trace) - 1, lv.num_evaluations,
+                              circ["qubits"], circ["depth"], circ["two_qubit_depth"])
+        tables.append(trained_table)
+        five_notes.append(f"two_robots_5x5 default training from local_search_mix to p = 5: {res5.runs} L-BFGS-B runs, "
+                          f"{res5.num_evaluations} simulations ({res5.num_gradients} with gradient), "
+                          f"{res5.seconds:.0f} s wall; best P(optimum) {max(lv.p_optimum for lv in res5.levels):.4g}.")
+        print(five_notes[-1])
         start_paths = tuple(q5["initial_path"].bases[r][0] for r in range(s5.num_robots))
         m0, m1 = (moves_to_optimum(q5["initial_path"], a) for a in (start_paths, warm5.paths))
-        l0, l1 = (min(layers_to_reach(q, a) or 10**9 for a in q.optimal_assignments()) for q in q5.values())
+        l0, l1, l2 = (min(layers_to_reach(q, a) or 10**9 for a in q.optimal_assignments()) for q in q5.values())
         five_notes.append(f"two_robots_5x5 warm start (local_search): cost {warm5.initial_cost:g} -> {warm5.cost:g} in "
                           f"{warm5.steps} steps ({warm5.evaluated} assignments scored, {warm5.seconds * 1e3:.1f} ms); "
                           f"the nearest optimum (cost {best5:g}) is {m1} SBF moves and {l1} mixer layers away "
-                          f"(from the initial paths: {m0} moves, {l0} layers).")
+                          f"(from the initial paths: {m0} moves, {l0} layers; from local_search_mix: {l2} layers).")
         print(five_notes[-1])
 
     seconds = time.perf_counter() - t_all

@@ -1,4 +1,4 @@
-"""Initial states: each robot on its initial path, or on a uniform superposition of representative paths.
+"""Initial states: each robot on its initial path, a classical warm start, or a uniform superposition of paths.
 
 ``initial_path`` (default, the paper's): an X gate on every data qubit whose edge lies on the robot's
 :func:`~gridcover.paths.initial_path`.
@@ -21,6 +21,13 @@ With ``K = 1`` this is just the X gates of the single path.
 ``local_search``: a classical warm start. Every robot on its path of the local minimum that steepest descent
 over allowed SBF flips reaches from the initial paths (:func:`gridcover.solvers.descent.local_search`; a few
 milliseconds on 5x5): one basis state, prepared like ``initial_path`` by X gates.
+
+``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (the descent of ``local_search``;
+one path where the descent leaves the robot on its initial path), the product over robots. It keeps the initial
+paths' weight, which the mixer can still move, beside the descent's low cost. Prepared by the decision tree
+above with two strings: X on the bits both paths set, RY(pi/2) on the lowest bit where they differ, and a
+CNOT from it (0- or 1-controlled) onto every other differing bit; no ancilla. Every basis state with weight is
+a feasible assignment (each robot on one of two feasible paths).
 
 Example:
     >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
@@ -159,9 +166,10 @@ def initial_state_gates(
 
     Args:
         scenario: The scenario.
-        initial: ``initial_path``, ``representatives`` or ``local_search`` (see the module docstring).
+        initial: ``initial_path``, ``representatives``, ``local_search`` or ``local_search_mix`` (see the
+            module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
-            descent (``local_search``).
+            descent (``local_search``, ``local_search_mix``).
         ancilla: Clean qubit for multiply-controlled rotations (``representatives`` only).
 
     Returns:
@@ -171,6 +179,15 @@ def initial_state_gates(
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     v = scenario.edges_per_robot
     out: list[Gate] = []
+    if initial == "local_search_mix":
+        from gridcover.solvers.descent import local_search
+
+        descent = local_search(scenario, rule).paths
+        for r in range(scenario.num_robots):
+            masks = list(dict.fromkeys((initial_path(scenario, r), descent[r])))
+            strings = [int("".join(map(str, path_bits(scenario, m)[::-1])), 2) for m in masks]
+            out.extend(superposition_gates(strings, list(range(r * v, (r + 1) * v))))
+        return out
     if initial != "representatives":  # one basis state per robot: an X on each variable of its path, in qubit order
         if initial == "local_search":
             from gridcover.solvers.descent import local_search  # the solvers package is heavier than this module

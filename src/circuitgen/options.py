@@ -29,8 +29,8 @@ __all__ = [
     "PlanOptions",
 ]
 
-Initial = Literal["initial_path", "representatives", "local_search"]
-INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives", "local_search")
+Initial = Literal["initial_path", "representatives", "local_search", "local_search_mix"]
+INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives", "local_search", "local_search_mix")
 Phase = Literal["feasible", "whole-space"]
 PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
 Optimize = Literal["cx", "depth"]
@@ -55,7 +55,8 @@ class PlanOptions:
         rule: SBF logic rule: ``exact`` (default) or ``paper``.
         initial: initial state: ``initial_path`` (default), ``representatives`` or ``local_search`` (the
             paths of a steepest descent over SBF moves, :mod:`gridcover.solvers.descent`; a classical warm
-            start) (:mod:`circuitgen.initial_state`).
+            start) or ``local_search_mix`` (per robot the initial and the descent path in equal superposition)
+            (:mod:`circuitgen.initial_state`).
         target: ``nisq`` (fewest CNOTs; default) or ``ft`` (fewest T and rotations): which constructions are
             cheapest (:mod:`circuitgen.gadgets.partial_mixer`, :mod:`circuitgen.phase`).
         phase: phase separator: ``feasible`` (exact on feasible assignments; default) or ``whole-space`` (the

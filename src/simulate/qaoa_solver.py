@@ -127,7 +127,8 @@ def solve_qaoa(
         optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
-        initial: Initial state: ``initial_path`` (default), ``representatives`` or ``local_search``.
+        initial: Initial state: ``initial_path`` (default), ``representatives``, ``local_search`` or
+            ``local_search_mix`` (:data:`circuitgen.options.INITIAL_STATES`).
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`simulate.training.train`).
@@ -170,12 +171,13 @@ def solve_qaoa(
     masks, prob = most_probable(q, result.angles)
     best, _ = q.optimum()
     start = f"initial state {initial}"
-    if initial == "local_search":
+    if initial in ("local_search", "local_search_mix"):
         from gridcover.solvers.descent import local_search
 
         warm = local_search(scenario, rule)
+        mixed = "; in superposition with the initial paths" if initial == "local_search_mix" else ""
         start += (f" (steepest descent over SBF moves: cost {warm.initial_cost:g} -> {warm.cost:g} in {warm.steps} "
-                  f"step(s), {warm.seconds * 1e3:.1f} ms)")
+                  f"step(s), {warm.seconds * 1e3:.1f} ms{mixed})")
     evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
     estimates = (schedule.circuit_estimates if schedule is not None
                  else result.num_evaluations + 4 * p * result.num_gradients)

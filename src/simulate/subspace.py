@@ -14,6 +14,8 @@ The simulated operator is the compiled circuit's (:mod:`circuitgen.qaoa`) on its
   the bases hold every component. ``initial="local_search"``: every robot on its path of the classical warm
   start :func:`gridcover.solvers.descent.local_search` (the local minimum of steepest descent over SBF moves
   from the initial paths), the same component as the initial path, so the same basis in another order.
+  ``initial="local_search_mix"``: every robot in ``(|initial path> + |descent path>) / sqrt 2`` (one path where
+  the descent does not move it), the product over robots; same basis.
 * **Layer k** (angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``): the phase separator multiplies the
   amplitude of ``x`` by ``exp(-i gamma_k (C(x) - phase_offset))``, with ``C`` the cost (equal to
   :func:`~gridcover.hamiltonian.ising_hamiltonian` on basis states) and ``phase_offset`` the constant the
@@ -205,7 +207,7 @@ def robot_basis(
         scenario: The scenario.
         robot: Robot index.
         rule: SBF rule, ``exact`` or ``paper``.
-        initial: ``initial_path``, ``representatives`` or ``local_search`` (see the module docstring).
+        initial: One of :data:`~circuitgen.options.INITIAL_STATES` (see the module docstring).
 
     Returns:
         The :class:`RobotBasis`.
@@ -230,6 +232,8 @@ def robot_basis(
         starts: tuple[int, ...] = (initial_path(scenario, robot),)
     elif initial == "local_search":
         starts = (local_search(scenario, rule).paths[robot],)
+    elif initial == "local_search_mix":
+        starts = tuple(dict.fromkeys((initial_path(scenario, robot), local_search(scenario, rule).paths[robot])))
     else:
         starts = representatives(scenario, robot, rule)
     moves = [
@@ -333,7 +337,7 @@ class SubspaceQAOA:
     Args:
         scenario: The scenario.
         rule: SBF rule of the mixer, ``exact`` (default) or ``paper`` (see the module docstring).
-        initial: ``initial_path`` (default), ``representatives`` or ``local_search``.
+        initial: ``initial_path`` (default), ``representatives``, ``local_search`` or ``local_search_mix``.
         phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``: a number, ``"feasible"``
             (default; ``None`` means the same) for the reference constant of the default
             :func:`circuitgen.phase.phase_plan`, or ``"whole-space"`` for the Ising constant ``c0``. Use the

@@ -39,6 +39,7 @@ ONE_AT_A_TIME = [
     PlanOptions(rule="paper"),
     PlanOptions(initial="representatives"),
     PlanOptions(initial="local_search"),
+    PlanOptions(initial="local_search_mix"),
     PlanOptions(target="ft"),
     PlanOptions(phase="whole-space"),
     PlanOptions(optimize="depth"),

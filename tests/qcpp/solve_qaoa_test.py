@@ -96,17 +96,20 @@ def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str])
     assert_one_line_error(run("solve", PAPER, *args), *fragments)
 
 
-def test_local_search_initial_state_is_reported() -> None:
-    """``--initial local_search``: the JSON names it, the notes give the descent, the answer is the trained one."""
+@pytest.mark.parametrize("initial", ["local_search", "local_search_mix"])
+def test_local_search_initial_state_is_reported(initial: str) -> None:
+    """``--initial local_search[_mix]``: the JSON names it, the notes give the descent, the answer is the trained
+    one."""
     from gridcover.solvers.descent import local_search
 
-    res = run("solve", PAPER, "--method", "qaoa", "-p", "1", "--initial", "local_search", "--json")
+    res = run("solve", PAPER, "--method", "qaoa", "-p", "1", "--initial", initial, "--json")
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     warm = local_search(load_scenario(PAPER))
-    assert out["initial"] == "local_search"
+    assert out["initial"] == initial
     assert any(f"cost {warm.initial_cost:g} -> {warm.cost:g}" in n for n in out["notes"])
-    direct = solve_qaoa(load_scenario(PAPER), p=1, initial="local_search")
+    assert any("in superposition with the initial paths" in n for n in out["notes"]) == (initial != "local_search")
+    direct = solve_qaoa(load_scenario(PAPER), p=1, initial=initial)  # type: ignore[arg-type]
     assert out["angles"] == list(direct.angles) and out["p_optimum"] == pytest.approx(direct.p_optimum)
 
 

@@ -8,6 +8,8 @@ with ``allowed`` from ``sbf_logic(...).evaluate`` on the masks decoded by ``mask
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -225,6 +227,24 @@ def test_local_search_starts_on_the_descent_paths() -> None:
         psi0 = q.initial_state()
         assert psi0[q.index_of(warm.paths)] == 1.0 and np.abs(psi0).sum() == 1.0
         assert q.expectation([]) == pytest.approx(warm.cost)
+
+
+def test_local_search_mix_starts_on_the_initial_and_descent_paths_in_equal_superposition() -> None:
+    """Per robot ``(|initial path> + |descent path>) / sqrt 2`` (one path where the descent leaves the robot
+    where it was), the product over robots; every basis state with weight is a feasible assignment."""
+    from gridcover.solvers.descent import local_search
+
+    for s in (SINGLE_3x3_CORNERS, TWO_2x4, TWO_2x3):
+        warm = local_search(s)
+        q = SubspaceQAOA(s, initial="local_search_mix")
+        psi0 = q.initial_state()
+        support = [np.unravel_index(k, q.dims) for k in np.flatnonzero(psi0)]
+        per_robot = [sorted({initial_path(s, r), warm.paths[r]}) for r in range(s.num_robots)]
+        assert sorted(q.assignment(i) for i in support) == sorted(itertools.product(*per_robot))
+        assert np.allclose(np.abs(psi0[tuple(np.array(support).T)]), 1 / np.sqrt(len(support)))
+        assert all(is_feasible(s, r, m) for i in support for r, m in enumerate(q.assignment(i)))
+        assert [sorted(b) for b in q.bases] == [sorted(b) for b in SubspaceQAOA(s).bases]
+    assert len(set(local_search(TWO_2x4).paths) - {initial_path(TWO_2x4, r) for r in range(2)}) == 2
 
 
 def test_zero_layers_is_the_initial_state() -> None:
@@ -470,8 +490,10 @@ def test_buffer_size_does_not_change_results() -> None:
 @pytest.mark.parametrize(
     ("s", "rule", "initial"),
     [(TWO_2x3, "exact", "initial_path"), (HARD_3x4, "exact", "representatives"), (SINGLE_2x3, "paper", "initial_path"),
-     (SINGLE_3x3_CORNERS, "exact", "local_search"), (TWO_2x4, "exact", "local_search")],
-    ids=["two-robots", "representatives", "paper-rule", "local-search", "local-search-two-robots"],
+     (SINGLE_3x3_CORNERS, "exact", "local_search"), (TWO_2x4, "exact", "local_search"),
+     (SINGLE_3x3_CORNERS, "exact", "local_search_mix"), (TWO_2x4, "exact", "local_search_mix")],
+    ids=["two-robots", "representatives", "paper-rule", "local-search", "local-search-two-robots", "mix",
+         "mix-two-robots"],
 )
 def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial: str) -> None:
     """The data-register amplitudes of the compiled circuit (ancillas back in |0>, above the data qubits)."""

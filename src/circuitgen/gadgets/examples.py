@@ -142,7 +142,8 @@ def _register_all() -> None:
     example(McxPartialMixer)(lambda: _of("McxPartialMixer", paper))
     example(MixerJunction)(lambda: _of("MixerJunction", PlanOptions(), ft))
     example(MixerRotation)(lambda: _of("MixerRotation", PlanOptions(), ft))
-    example(StatePrep)(lambda: _of("StatePrep", PlanOptions(), PlanOptions(initial="representatives")))
+    example(StatePrep)(lambda: _of("StatePrep", PlanOptions(), PlanOptions(initial="representatives"),
+                                   PlanOptions(initial="local_search_mix")))
     example(IsingPhase)(lambda: _of("IsingPhase", PlanOptions(), whole, PlanOptions(optimize="depth")))
     spatial = PlanOptions(phase_layout="spatial")  # same kinds, adders paired by place: examples of their own
     example(VisitPhase)(lambda: _of("VisitPhase", PlanOptions(), ft) + _of("VisitPhase", spatial, limit=2))

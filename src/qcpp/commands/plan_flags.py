@@ -10,7 +10,7 @@ Example:
     >>> plan_options("exact", "path", "nisq", "feasible", "cx", None)
     Traceback (most recent call last):
     ...
-    ValueError: --initial: expected initial_path or representatives or local_search, got 'path'
+    ValueError: --initial: expected initial_path or representatives or local_search or local_search_mix, got 'path'
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from typing import Annotated
 
 import typer
 
-from circuitgen.options import PlanOptions
+from circuitgen.options import INITIAL_STATES, PlanOptions
 
 __all__ = [
     "PLAN_FLAGS",
@@ -37,7 +37,10 @@ RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or 
 InitialFlag = Annotated[
     str,
     typer.Option(
-        "--initial", help="Initial state: initial_path, representatives or local_search (a classical warm start)."
+        "--initial",
+        help=f"Initial state: {', '.join(INITIAL_STATES)} (local_search: the paths of a steepest descent over SBF "
+        "moves, a classical warm start; local_search_mix: per robot the initial and the descent path in equal "
+        "superposition).",
     ),
 ]
 TargetFlag = Annotated[

@@ -17,7 +17,8 @@ accepts exactly its keys. Adding a method is one entry: a function
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
 ``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts), ``--objective``
 (default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
-classical warm start), and adds ``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
+classical warm start, ``local_search_mix`` from its superposition with the initial paths), and adds
+``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
 ``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
 ``circuit_estimates`` (:func:`simulate.qaoa_solver.qaoa_to_dict`) to the JSON and a trace sparkline to the text.
 
@@ -44,6 +45,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from circuitgen.options import INITIAL_STATES
 from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
@@ -215,8 +217,9 @@ def solve_command(
         int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations per run (qaoa).")
     ] = QAOA_DEFAULTS["maxiter"],
     initial: Annotated[
-        str, typer.Option("--initial", help="QAOA initial state (qaoa): initial_path, representatives or local_search "
-                          "(a classical warm start: steepest descent over SBF moves).")
+        str, typer.Option("--initial", help=f"QAOA initial state (qaoa): {', '.join(INITIAL_STATES)} (local_search: "
+                          "the paths of a steepest descent over SBF moves; local_search_mix: per robot the initial "
+                          "and the descent path in equal superposition).")
     ] = QAOA_DEFAULTS["initial"],
     time_limit: Annotated[
         float | None,
