@@ -461,8 +461,8 @@ def _assemble(
     chosen_visits: list[tuple[VisitGroup, bool]] = []
     names = ("visit bits", "visit pairs", "couplings")
     v_rows = dict.fromkeys(names, 0)
-    alt_tot = {k: [Cost(), Cost()] for k in names}
-    chosen_tot = [Cost(), Cost()]
+    alt_costs: dict[str, tuple[list[Cost], list[Cost]]] = {k: ([], []) for k in names}  # summed once, below
+    chosen_costs: tuple[list[Cost], list[Cost]] = ([], [])
     for grp in fc.visits:
         sizes = tuple(len(v) for v in grp.visitors)
         products: dict[tuple[int, int], float] | None = None
@@ -473,11 +473,11 @@ def _assemble(
             new = sum(a * b for i, a in enumerate(sizes) for b in sizes[i + 1 :])
         choice = visit_choice(sizes, grp.coefficient, new, target, optimize, budget)
         for name, (c, log) in choice.costs.items():
-            alt_tot[name][0] += c
-            alt_tot[name][1] += log
+            alt_costs[name][0].append(c)
+            alt_costs[name][1].append(log)
         v_rows[choice.construction] += 1
-        chosen_tot[0] += choice.costs[choice.construction][0]
-        chosen_tot[1] += choice.costs[choice.construction][1]
+        chosen_costs[0].append(choice.costs[choice.construction][0])
+        chosen_costs[1].append(choice.costs[choice.construction][1])
         if choice.gadget is not None:
             chosen_visits.append((grp, choice.gadget.products))
             const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), choice.gadget.products).constant
@@ -488,9 +488,9 @@ def _assemble(
     if fc.visits:
         used = [k for k, r in v_rows.items() if r]
         rows.append({
-            "group": "node visits", "count": len(fc.visits), "cost": _summary(*chosen_tot),
+            "group": "node visits", "count": len(fc.visits), "cost": _summary(*map(Cost.sum, chosen_costs)),
             "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
-            "alternatives": {f"each by {k}": _summary(*alt_tot[k]) for k in alt_tot},
+            "alternatives": {f"each by {k}": _summary(*map(Cost.sum, alt_costs[k])) for k in alt_costs},
         })  # fmt: skip
     # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
     hamming: list[tuple[float, tuple[int, ...]]] = []

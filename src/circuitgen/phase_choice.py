@@ -106,10 +106,11 @@ def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, .
     >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
     (4, 4, 8)
     """
-    cost, logical = Cost(), Cost()
+    costs, logicals = [], []
     for g, n in parts:
-        cost, logical = cost + n * g.cost(), logical + n * g.logical_cost()
-    return score(cost, logical, target)
+        costs.append(n * g.cost())
+        logicals.append(n * g.logical_cost())
+    return score(Cost.sum(costs), Cost.sum(logicals), target)
 
 
 def coupling_cost(products: int) -> Cost:
