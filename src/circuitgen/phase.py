@@ -53,6 +53,7 @@ from .phase_choice import (
     EXACT_EXPANSION_LIMIT,
     ROTATION_T_COST,
     coupling_cost,
+    couplings_floor,
     ft_t_count,
     hamming_choice,
     plan_score,
@@ -374,12 +375,30 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budge
     best: PhasePlan | None = None
     best_key: tuple[int, ...] | None = None
     for choice in choices:
+        if best_key is not None and _couplings_floor(fc, choice, target) > best_key[0]:
+            continue  # it cannot win (its floor is above a score already met): not worth assembling
         plan = _assemble(fc, target, optimize, budget, balance, choice)
         key = plan.score()
         if best_key is None or key < best_key:
             best, best_key = plan, key
     assert best is not None
     return best
+
+
+def _couplings_floor(fc: FeasibleCost, choice: tuple[str, ...], target: Target) -> int:
+    """A lower bound on the first entry of the score of the plan that makes ``choice`` (one construction per
+    balance group): :func:`~circuitgen.phase_choice.couplings_floor` of each group expanded into couplings whose
+    own products stay above the coefficient tolerance, else 0."""
+    floor = 0
+    for grp, pick in zip(fc.sums, choice, strict=True):
+        if pick != "couplings":
+            continue
+        diagonal = [grp.matrix[a][a] for a in range(len(grp.forms))]
+        # a form's own product (i, j) becomes the coupling M_aa w_i w_j / 2 (the term is met twice in the square)
+        if all(abs(m) * min((w * w for _, w in f), default=1.0) / 2 > 1e3 * COEFFICIENT_TOLERANCE
+               for f, m in zip(grp.forms, diagonal, strict=True) if abs(m) > 0):  # fmt: skip
+            floor = max(floor, couplings_floor([len(f) for f in grp.forms], diagonal, target))
+    return floor
 
 
 def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -> int:
