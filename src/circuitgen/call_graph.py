@@ -191,13 +191,13 @@ class GadgetKind:
         """Lowered cost (from :data:`COSTS`; a :class:`Deferred` example's own)."""
         if isinstance(self.example, Deferred):  # priced when counted, and its key is one scenario's: no entry
             return self.example.lowered
-        return COSTS.costs(self.cache_key, self._priced)[0]  # type: ignore[attr-defined]
+        return COSTS.costs(self._hashed, self._priced)[0]  # type: ignore[attr-defined]
 
     def logical_cost(self) -> Cost:
         """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`; a :class:`Deferred` example's own)."""
         if isinstance(self.example, Deferred):
             return self.example.logical
-        return COSTS.costs(self.cache_key, self._priced)[1]  # type: ignore[attr-defined]
+        return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
 
     @property
     def cache_key(self) -> Hashable:
