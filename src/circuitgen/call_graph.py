@@ -16,7 +16,8 @@ Everything known per kind is looked up by the kind's key in one explicit cache (
 thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
 :class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
 gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named
-tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``);
+tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``) and
+:mod:`estimators.estimate` (``"depth bound"``);
 :meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
 different concept, not a kind's cost or depth:
 
@@ -198,6 +199,12 @@ class GadgetKind:
         if isinstance(self.example, Deferred):
             return self.example.logical
         return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
+
+    @property
+    def cache_key(self) -> Hashable:
+        """The key (hashed once) by which :data:`COSTS` and its tables know this kind (it holds no example, so
+        no gadget stays alive in a cache)."""
+        return self._hashed  # type: ignore[attr-defined,no-any-return]
 
     def _priced(self) -> tuple[Cost, Cost]:
         return self.example.cost(), self.example.logical_cost()

@@ -31,7 +31,7 @@ from __future__ import annotations
 import itertools
 import re
 from collections import Counter
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 from typing import overload
@@ -199,19 +199,6 @@ class Circuit:
             offset += r.size
         raise KeyError(f"no register named {register!r}")
 
-    def add_register(self, register: Register | tuple[str, int]) -> Circuit:
-        """A copy with ``register`` appended to the layout (after all existing qubits).
-
-        >>> Circuit([("data", 2)]).add_register(("anc", 1)).qubits_of("anc")
-        range(2, 3)
-        """
-        regs = _as_registers((*self._registers, register))
-        return Circuit._trusted(regs, self._sections, self._symbols)
-
-    def with_registers(self, registers: Iterable[Register | tuple[str, int]]) -> Circuit:
-        """A copy with a different layout (gates are range-checked against it)."""
-        return Circuit(registers, self._sections)
-
     # --- gates ------------------------------------------------------------------------------
     @property
     def sections(self) -> tuple[Section, ...]:
@@ -256,34 +243,7 @@ class Circuit:
         """
         return dict(Counter(map(itemgetter(0), self.gates)).most_common())
 
-    def count_ops_by_section(self) -> dict[str, dict[str, int]]:
-        """Gate counts per section name (sections sharing a name are added up)."""
-        out: dict[str, Counter[str]] = {}
-        for sec in self._sections:
-            out.setdefault(sec.name, Counter()).update(map(itemgetter(0), sec.gates))
-        return {name: dict(c.most_common()) for name, c in out.items()}
-
     # --- transformations --------------------------------------------------------------------
-    def map_sections(self, fn: Callable[[Section], Section | Iterable[Gate]]) -> Circuit:
-        """Apply ``fn`` to every section; a returned gate iterable keeps the section's name.
-
-        Args:
-            fn: section -> new section (or its new gates).
-
-        Returns:
-            The new circuit, same layout.
-
-        >>> from circuitgen.gates import h
-        >>> c = Circuit([("data", 1)], [Section("s", [h(0)])])
-        >>> len(c.map_sections(lambda s: s.gates * 2))
-        2
-        """
-        out = []
-        for sec in self._sections:
-            res = fn(sec)
-            out.append(res if isinstance(res, Section) else Section(sec.name, tuple(res)))
-        return Circuit(self._registers, out)
-
     def inverse(self) -> Circuit:
         """The inverse circuit: sections in reverse order, each reversed and gate-inverted.
 
@@ -349,13 +309,6 @@ class Circuit:
         if self._symbols is not None:
             remaining = tuple(s for s in self._symbols if s not in mapping)
         return Circuit._trusted(self._registers, tuple(secs), remaining)
-
-    def to_builder(self) -> CircuitBuilder:
-        """A builder holding a copy of this circuit, to append more gates."""
-        b = CircuitBuilder(self._registers)
-        for sec in self._sections:
-            b._sections.append((sec.name, list(sec.gates)))
-        return b
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Circuit):

@@ -55,12 +55,17 @@ class Cost:
         Returns:
             The cost.
         """
-        total: Counter[str] = Counter()
+        total: dict[str, int] = {}
         for src in (counts or {}), named:
             for k, v in src.items():
                 if v < 0:
                     raise ValueError(f"negative count {v} for {k!r}")
-                total[k] += int(v)
+                total[k] = total.get(k, 0) + int(v)
+        return cls._of_valid(total)
+
+    @classmethod
+    def _of_valid(cls, total: Mapping[str, int]) -> Cost:
+        """From counts known to be non-negative integers (sums of costs): sorted, zeros dropped."""
         return cls(tuple(sorted((k, v) for k, v in total.items() if v)))
 
     @classmethod
@@ -76,15 +81,20 @@ class Cost:
     @classmethod
     def sum(cls, costs: Iterable[Cost]) -> Cost:
         """Add up many costs."""
-        total: Counter[str] = Counter()
+        total: dict[str, int] = {}
+        get = total.get
         for c in costs:
             for k, v in c.items:
-                total[k] += v
-        return cls.of(total)
+                total[k] = get(k, 0) + v
+        return cls._of_valid(total)
 
     def __add__(self, other: Cost) -> Cost:
         if not isinstance(other, Cost):
             return NotImplemented
+        if not other.items:  # sums over a call graph add many empty parts
+            return self
+        if not self.items:
+            return other
         return Cost.sum((self, other))
 
     def __mul__(self, k: int) -> Cost:

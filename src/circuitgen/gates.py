@@ -176,11 +176,6 @@ class Gate(NamedTuple):
         """Number of qubits the gate acts on."""
         return len(self.qubits)
 
-    @property
-    def is_parametrized(self) -> bool:
-        """True if some parameter is a symbolic (unbound) :class:`Angle`."""
-        return any(isinstance(p, Angle) and not p.is_bound for p in self.params)
-
     def inverse(self) -> Gate:
         """The inverse gate (from the ``inverse`` rule of the spec table).
 

@@ -53,6 +53,7 @@ from .phase_choice import (
     EXACT_EXPANSION_LIMIT,
     ROTATION_T_COST,
     coupling_cost,
+    couplings_floor,
     ft_t_count,
     hamming_choice,
     plan_score,
@@ -374,12 +375,30 @@ def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budge
     best: PhasePlan | None = None
     best_key: tuple[int, ...] | None = None
     for choice in choices:
+        if best_key is not None and _couplings_floor(fc, choice, target) > best_key[0]:
+            continue  # it cannot win (its floor is above a score already met): not worth assembling
         plan = _assemble(fc, target, optimize, budget, balance, choice)
         key = plan.score()
         if best_key is None or key < best_key:
             best, best_key = plan, key
     assert best is not None
     return best
+
+
+def _couplings_floor(fc: FeasibleCost, choice: tuple[str, ...], target: Target) -> int:
+    """A lower bound on the first entry of the score of the plan that makes ``choice`` (one construction per
+    balance group): :func:`~circuitgen.phase_choice.couplings_floor` of each group expanded into couplings whose
+    own products stay above the coefficient tolerance, else 0."""
+    floor = 0
+    for grp, pick in zip(fc.sums, choice, strict=True):
+        if pick != "couplings":
+            continue
+        diagonal = [grp.matrix[a][a] for a in range(len(grp.forms))]
+        # a form's own product (i, j) becomes the coupling M_aa w_i w_j / 2 (the term is met twice in the square)
+        if all(abs(m) * min((w * w for _, w in f), default=1.0) / 2 > 1e3 * COEFFICIENT_TOLERANCE
+               for f, m in zip(grp.forms, diagonal, strict=True) if abs(m) > 0):  # fmt: skip
+            floor = max(floor, couplings_floor([len(f) for f in grp.forms], diagonal, target))
+    return floor
 
 
 def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -> int:
@@ -461,8 +480,8 @@ def _assemble(
     chosen_visits: list[tuple[VisitGroup, bool]] = []
     names = ("visit bits", "visit pairs", "couplings")
     v_rows = dict.fromkeys(names, 0)
-    alt_tot = {k: [Cost(), Cost()] for k in names}
-    chosen_tot = [Cost(), Cost()]
+    alt_costs: dict[str, tuple[list[Cost], list[Cost]]] = {k: ([], []) for k in names}  # summed once, below
+    chosen_costs: tuple[list[Cost], list[Cost]] = ([], [])
     for grp in fc.visits:
         sizes = tuple(len(v) for v in grp.visitors)
         products: dict[tuple[int, int], float] | None = None
@@ -473,11 +492,11 @@ def _assemble(
             new = sum(a * b for i, a in enumerate(sizes) for b in sizes[i + 1 :])
         choice = visit_choice(sizes, grp.coefficient, new, target, optimize, budget)
         for name, (c, log) in choice.costs.items():
-            alt_tot[name][0] += c
-            alt_tot[name][1] += log
+            alt_costs[name][0].append(c)
+            alt_costs[name][1].append(log)
         v_rows[choice.construction] += 1
-        chosen_tot[0] += choice.costs[choice.construction][0]
-        chosen_tot[1] += choice.costs[choice.construction][1]
+        chosen_costs[0].append(choice.costs[choice.construction][0])
+        chosen_costs[1].append(choice.costs[choice.construction][1])
         if choice.gadget is not None:
             chosen_visits.append((grp, choice.gadget.products))
             const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), choice.gadget.products).constant
@@ -488,9 +507,9 @@ def _assemble(
     if fc.visits:
         used = [k for k, r in v_rows.items() if r]
         rows.append({
-            "group": "node visits", "count": len(fc.visits), "cost": _summary(*chosen_tot),
+            "group": "node visits", "count": len(fc.visits), "cost": _summary(*map(Cost.sum, chosen_costs)),
             "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
-            "alternatives": {f"each by {k}": _summary(*alt_tot[k]) for k in alt_tot},
+            "alternatives": {f"each by {k}": _summary(*map(Cost.sum, alt_costs[k])) for k in alt_costs},
         })  # fmt: skip
     # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
     hamming: list[tuple[float, tuple[int, ...]]] = []

@@ -37,7 +37,7 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Literal
@@ -53,6 +53,7 @@ __all__ = [
     "SUMS_VARIANTS",
     "VisitChoice",
     "coupling_cost",
+    "couplings_floor",
     "ft_t_count",
     "hamming_choice",
     "plan_score",
@@ -106,10 +107,11 @@ def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, .
     >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
     (4, 4, 8)
     """
-    cost, logical = Cost(), Cost()
+    costs, logicals = [], []
     for g, n in parts:
-        cost, logical = cost + n * g.cost(), logical + n * g.logical_cost()
-    return score(cost, logical, target)
+        costs.append(n * g.cost())
+        logicals.append(n * g.logical_cost())
+    return score(Cost.sum(costs), Cost.sum(logicals), target)
 
 
 def coupling_cost(products: int) -> Cost:
@@ -120,6 +122,26 @@ def coupling_cost(products: int) -> Cost:
     {'cx': 6, 'rz': 3}
     """
     return Cost.of(cx=2 * products, rz=products)
+
+
+def couplings_floor(sizes: Sequence[int], diagonal: Sequence[float], target: Target) -> int:
+    """A lower bound on the first entry of :func:`plan_score` of any plan that expands a balance group into
+    couplings: the products within one form (one robot's edges) meet no other term (node visits pair different
+    robots' edges), so each stays a coupling of its own (one RZZ: 2 CX, one rotation).
+
+    Args:
+        sizes: the group's forms' numbers of terms.
+        diagonal: the group's matrix diagonal ``M_aa`` (a form's own products exist where it is not zero).
+        target: the plan's target.
+
+    Returns:
+        The bound (CX for ``nisq``, T for ``ft``).
+
+    >>> couplings_floor([3, 2], [1.0, 0.0], "nisq")
+    6
+    """
+    within = sum(n * (n - 1) // 2 for n, m in zip(sizes, diagonal, strict=True) if abs(m) > 0)
+    return (ROTATION_T_COST if target == "ft" else 2) * within
 
 
 @dataclass(frozen=True)

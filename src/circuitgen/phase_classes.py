@@ -55,7 +55,7 @@ from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
 from circuitgen.mixer_classes import index_classes
 from circuitgen.phase import coupling_products, phase_plan
-from circuitgen.phase_choice import ROTATION_T_COST, hamming_choice, plan_score, sums_constructions, visit_choice
+from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -274,7 +274,7 @@ def phase_layer(
     # balance
     pairs = balanced_pairs(s) if a1 != 0.0 else []
     balance: _Balance | None = None
-    within: int | None = None  # a lower bound on the couplings alternative's couplings, when it is one
+    floor: int | None = None  # a lower bound on the couplings alternative's score, when it is one
     if pairs:
         unit = length_unit([ob.edge_length])
         if unit is None:
@@ -301,9 +301,8 @@ def phase_layer(
         if candidates[0] != "arithmetic":
             return None
         if "couplings" in candidates:
-            # the plan also prices the balance as couplings; they interact with the visits, but the pairs within
-            # one form meet no other term, so that plan has at least this many couplings (2 CX, 1 rotation each)
-            within = sum(sizes[a] * (sizes[a] - 1) // 2 for a in range(n_r) if abs(m[a][a]) > 0)
+            # the plan also prices the balance as couplings; they interact with the visits, but not below this
+            floor = couplings_floor(sizes, [m[a][a] for a in range(n_r)], target)  # type: ignore[arg-type]
         lin_g = 2 * m @ np.array(consts)
         for r, w in enumerate(weights):
             lin[r] = lin[r] + float(lin_g[r]) * w
@@ -323,10 +322,8 @@ def phase_layer(
         values = values[keep]
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
     layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
-    if within is not None:
-        first = plan_score(layer.kinds(), target)[0]  # type: ignore[arg-type]
-        if (ROTATION_T_COST if target == "ft" else 2) * within <= first:
-            return None  # the couplings might win: only the plan knows
+    if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]
+        return None  # the couplings might win: only the plan knows
     return layer
 
 

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Literal
 
-from circuitgen.call_graph import SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
+from circuitgen.call_graph import COSTS, SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
 from circuitgen.circuit import Register
 from circuitgen.cost import Cost
 from circuitgen.gadgets.phase_sums import SumsShape
@@ -282,11 +282,27 @@ def _example_registers(kind: GadgetKind) -> tuple[Register, ...]:
     return (Register("q", top), Register(WORK_REGISTER, kind.work)) if kind.work else (Register("q", top),)
 
 
+_DEPTH_BOUNDS = COSTS.table("depth bound")
+"""Per kind, in the kinds' one cache: :func:`kind_depth_bound` of a kind that is not :class:`Deferred` (whose
+key is one scenario's)."""
+
+
 def kind_depth_bound(kind: GadgetKind) -> Depth:
     """A bound on the depths of any gadget of ``kind`` (exact where the kind fixes the gates up to qubit names):
     its own depths, known per anchored kind (:func:`~estimators.depth_compose.known_depth`) or lowered from its
     example; data-qubit rotations are one layer; a kind of more than :data:`_OWN_DEPTH_GATES` gates by its shape
-    (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates)."""
+    (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates). Cached per
+    kind (equal keys, equal gates up to qubit names)."""
+    if isinstance(kind.example, Deferred):
+        return _kind_depth_bound(kind)
+    hit = _DEPTH_BOUNDS.get(kind.cache_key)
+    if hit is None:
+        hit = _kind_depth_bound(kind)
+        COSTS.remember("depth bound", kind.cache_key, hit)
+    return hit
+
+
+def _kind_depth_bound(kind: GadgetKind) -> Depth:
     ex = kind.example
     if isinstance(ex, Deferred) and kind.key[0] == "ising" and not kind.key[2]:  # type: ignore[index]
         return Depth(1, 0, 1) if kind.cost().total else Depth()  # one rz on each of distinct data qubits
@@ -306,13 +322,13 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
     """The state preparation's depth bound and one layer's (see :func:`depth_bound`)."""
     graph = _plan(scenario, options).call_graph()
-    init, layer = Depth(), Depth()
+    sums = {"initial_state": [0, 0, 0], "layer": [0, 0, 0]}  # plain integers: a sum over thousands of kinds
     for part, kind, n in graph.kinds():
-        d = n * kind_depth_bound(kind)
-        if part == "initial_state":
-            init = init + d
-        else:
-            layer = layer + d
+        d, total = kind_depth_bound(kind), sums["initial_state" if part == "initial_state" else "layer"]
+        total[0] += n * d.depth
+        total[1] += n * d.two_qubit_depth
+        total[2] += n * d.rotation_depth
+    init, layer = (Depth(*sums[k], "bound") for k in ("initial_state", "layer"))  # type: ignore[arg-type]
     return init, layer
 
 

@@ -26,14 +26,16 @@ number of variables (30x30 with 8 robots in well under a second).
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> from gridcover.paths import enumerate_paths
+    >>> import numpy as np
+    >>> from gridcover.paths import enumerate_paths, path_bits
     >>> from gridcover.cost import cost
     >>> s = default_scenario(3, 3, 2)
     >>> f = feasible_cost(s)
     >>> [len(g.forms) for g in f.sums], f.sums[0].integral
     ([2], True)
     >>> p0, p1 = enumerate_paths(s, 0)[3], enumerate_paths(s, 1)[5]
-    >>> abs(f.evaluate_masks([p0, p1]) - cost(s, [p0, p1])) < 1e-9
+    >>> bits = np.concatenate([path_bits(s, p0), path_bits(s, p1)])
+    >>> abs(f.evaluate(bits) - cost(s, [p0, p1])) < 1e-9
     True
 """
 
@@ -48,7 +50,6 @@ from fractions import Fraction
 import numpy as np
 
 from gridcover.cost import balanced_pairs
-from gridcover.paths import path_bits
 from gridcover.scenario import Scenario
 
 __all__ = [
@@ -186,11 +187,6 @@ class FeasibleCost:
             out += s.evaluate(x)
         return float(out[0]) if single else out
 
-    def evaluate_masks(self, masks: Sequence[int], scenario: Scenario | None = None) -> float:
-        """Value of one assignment given as one edge mask per robot (``scenario`` defaults to the one built for)."""
-        s = scenario if scenario is not None else self._scenario
-        bits = np.concatenate([path_bits(s, m) for m in masks])
-        return float(self.evaluate(bits))
 
 
 def live_edges(scenario: Scenario, robot: int) -> list[list[int]]:

@@ -76,10 +76,6 @@ class Grid:
     def num_edges(self) -> int:
         return self.rows * (self.cols - 1) + self.cols * (self.rows - 1)
 
-    @property
-    def num_plaquettes(self) -> int:
-        return (self.rows - 1) * (self.cols - 1)
-
     def contains(self, node: Node) -> bool:
         """Whether ``node`` lies on the grid."""
         r, c = node

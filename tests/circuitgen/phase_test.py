@@ -340,3 +340,53 @@ def test_sums_accumulate_gadget(weights: list[int], extra: int, subtract: bool, 
         assert abs(amp - 1) < TOL and key & ((1 << n) - 1) == idx & ((1 << n) - 1)
         assert key >> (n + width) == 0  # tree ancillas and carries clean
         assert (key >> n) & ((1 << width) - 1) == (a0 - val if subtract else a0 + val)
+
+
+def _every_candidate(s: Scenario, target: str, budget: int | None) -> list[tuple[tuple[str, ...], PhasePlan]]:
+    """Every balance choice of ``s``'s feasible plan, assembled (what the plan compares, with no pruning)."""
+    from circuitgen.phase import _assemble, _sums_options
+    from gridcover.feasible_cost import feasible_cost
+
+    fc = feasible_cost(s)
+    balance = [_sums_options(g, fc.num_variables, "cx", budget) for g in fc.sums]
+    choices: list[tuple[str, ...]] = [()]
+    for opts in balance:
+        choices = [(*c, k) for c in choices for k in opts["options"]]
+    return [(c, _assemble(fc, target, "cx", budget, balance, c)) for c in choices]  # type: ignore[arg-type]
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    d=scenario_dicts(max_size=5, max_robots=3),
+    target=st.sampled_from(["nisq", "ft"]),
+    budget=st.sampled_from([None, None, 0, 24]),
+)
+def test_couplings_floor_bounds_the_couplings_plan(d, target, budget) -> None:  # type: ignore[no-untyped-def]
+    """The plan skips a candidate whose couplings floor is above a score already met: the floor is below the
+    candidate's own score, and the plan picks what comparing every candidate picks."""
+    from circuitgen.phase import _couplings_floor
+    from gridcover.feasible_cost import feasible_cost
+    from gridcover.scenario import scenario_from_dict
+
+    s = scenario_from_dict(d)
+    if any(not enumerate_paths(s, r) for r in range(s.num_robots)):
+        return
+    fc = feasible_cost(s)
+    candidates = _every_candidate(s, target, budget)
+    for choice, plan in candidates:
+        assert _couplings_floor(fc, choice, target) <= plan.score()[0]  # type: ignore[arg-type]
+    best = min(range(len(candidates)), key=lambda i: (candidates[i][1].score(), i))
+    assert phase_plan(s, target=target, ancilla_budget=budget).explain() == candidates[best][1].explain()
+
+
+def test_couplings_floor_skips_the_couplings_candidate_on_a_default_scenario() -> None:
+    """On the default 5x5 / 2 robots the balance's couplings cannot beat its arithmetic: the floor says so."""
+    from circuitgen.phase import _couplings_floor
+    from gridcover.feasible_cost import feasible_cost
+
+    s = default_scenario(5, 5, 2)
+    (arith, a_plan), (coup, c_plan) = _every_candidate(s, "nisq", None)
+    assert (arith, coup) == (("arithmetic",), ("couplings",))
+    floor = _couplings_floor(feasible_cost(s), coup, "nisq")
+    assert a_plan.score()[0] < floor <= c_plan.score()[0]
+    assert phase_plan(s).explain() == a_plan.explain()

@@ -61,17 +61,21 @@ def ising_form(
     neg = set(negated)
     c0 = constant
     h: dict[K, float] = {}
+    get = h.get
     for q, lq in linear.items():
         c0 += lq / 2
-        h[q] = h.get(q, 0.0) - lq / 2
+        h[q] = get(q, 0.0) - lq / 2
     J: dict[tuple[K, K], float] = {}
-    for (q, p), v in quadratic.items():
-        c0 += v / 4
-        h[q] = h.get(q, 0.0) - v / 4
-        h[p] = h.get(p, 0.0) - v / 4
-        J[(q, p)] = J.get((q, p), 0.0) + (v / 4 if (q in neg) == (p in neg) else -v / 4)
-    h = {q: (-v if q in neg else v) for q, v in h.items() if abs(v) > COEFFICIENT_TOLERANCE}
-    J = {k: v for k, v in J.items() if abs(v) > COEFFICIENT_TOLERANCE}
+    for key, v in quadratic.items():  # keys are distinct: each is a new J entry
+        q, p = key
+        w = v / 4
+        c0 += w
+        h[q] = get(q, 0.0) - w
+        h[p] = get(p, 0.0) - w
+        J[key] = w if not neg or (q in neg) == (p in neg) else -w
+    tol = COEFFICIENT_TOLERANCE
+    h = {q: (-v if q in neg else v) for q, v in h.items() if abs(v) > tol}
+    J = {k: v for k, v in J.items() if abs(v) > tol}
     return c0, h, J
 
 
