@@ -47,12 +47,13 @@ from collections.abc import Iterable, Sequence
 from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
+from .medial import tiling
 from .gadgets import Gadget
-from .gadgets.phase_sums import Site, SumsPhase
+from .gadgets.phase_sums import Sink, Site, SumsPhase
 from .gadgets.phase_visits import VisitPhase
 from .options import PlanOptions
 
-__all__ = ["for_device", "placed_sums", "spatial_phase", "variable_sites"]
+__all__ = ["balance_sinks", "for_device", "placed_sums", "spatial_phase", "variable_sites"]
 
 NEW_HOME_PENALTY = 4
 """Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
@@ -97,11 +98,51 @@ def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int 
     output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
     sites = variable_sites(scenario, data_offset)
     return tuple(
-        dataclasses.replace(g, sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f))
+        dataclasses.replace(
+            g,
+            sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f),
+            sinks=balance_sinks(scenario, [scenario.variable_of(f[0][0] - data_offset)[0] if f else -1
+                                           for f in g.forms], g.matrix),
+        )  # fmt: skip
         if isinstance(g, SumsPhase)
         else g
         for g in gadgets
     )
+
+
+def balance_sinks(
+    scenario: Scenario, robots: Sequence[int], matrix: Sequence[Sequence[float]]
+) -> tuple[Sink | None, ...]:
+    """Per form of a balance gadget (``robots[a]``: the robot whose edges form ``a`` sums, ``-1`` for none), the
+    point of that robot's copy of the grid (doubled lattice) its popcount's sums should drift to: where its
+    patch of the medial layout's tiling (:func:`circuitgen.medial.tiling`) is nearest the centre of the patches
+    of itself and the robots whose sums ``matrix`` couples with it. On two robots that is the middle of the side
+    their patches share, so their registers, which the register phase couples bit by bit, end next to each
+    other. ``None`` for a form coupled with no other robot (one robot: no sink).
+
+    >>> from gridcover.presets import default_scenario
+    >>> balance_sinks(default_scenario(4, 4, 2), [0, 1], ((1.0, -1.0), (-1.0, 1.0)))  # patches one above the other
+    ((6.0, 3.0), (0.0, 3.0))
+    """
+    g = scenario.grid
+    patch = (2 * g.rows - 1, 2 * g.cols - 1)
+    _, across = tiling(scenario.num_robots, patch)
+
+    def corner(r: int) -> tuple[int, int]:
+        dr, dc = divmod(r, across)
+        return dr * patch[0], dc * patch[1]
+
+    out: list[Sink | None] = []
+    for a, r in enumerate(robots):
+        group = [robots[b] for b in range(len(robots)) if robots[b] >= 0 and (b == a or matrix[a][b] or matrix[b][a])]
+        if r < 0 or len(group) < 2:
+            out.append(None)
+            continue
+        cy = sum(corner(x)[0] for x in group) / len(group) + (patch[0] - 1) / 2
+        cx_ = sum(corner(x)[1] for x in group) / len(group) + (patch[1] - 1) / 2
+        oy, ox = corner(r)
+        out.append((min(max(cy - oy, 0.0), patch[0] - 1.0), min(max(cx_ - ox, 0.0), patch[1] - 1.0)))
+    return tuple(out)
 
 
 def spatial_phase(

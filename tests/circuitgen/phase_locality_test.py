@@ -35,7 +35,7 @@ from circuitgen.gadgets.phase_visits import VisitPhase
 from circuitgen.gates import Gate
 from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import spatial_phase, variable_sites
+from circuitgen.phase_locality import balance_sinks, spatial_phase, variable_sites
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from circuitgen.testing import Case, interior_endpoints
 from estimators.crosscheck import crosscheck
@@ -140,13 +140,14 @@ def test_placed_sums_gadget_cost_and_exactness(g: SumsPhase) -> None:
 @given(
     weights=st.lists(st.integers(-9, 9).filter(bool), min_size=1, max_size=30),
     seed=st.integers(0, 1000),
+    sink=st.one_of(st.none(), st.tuples(st.floats(0, 12), st.floats(0, 12))),
 )
-def test_the_placed_popcount_has_the_counted_adders(weights: list[int], seed: int) -> None:
+def test_the_placed_popcount_has_the_counted_adders(weights: list[int], seed: int, sink: tuple | None) -> None:
     rng = random.Random(seed)
     form = tuple(enumerate(weights))
     sites = {q: (rng.randint(0, 12), rng.randint(0, 12)) for q, _ in form}
     top = len(form) + 200
-    gates, reg, home = spatial_popcount_layout(form, iter(range(len(form), top)), sites)
+    gates, reg, home = spatial_popcount_layout(form, iter(range(len(form), top)), sites, sink)
     plain, plain_reg = popcount_layout(form, iter(range(len(form), top)))
     fa, ha, cp, present = column_counts([abs(w) for w in weights])
     assert Cost.count(gates) == Cost.count(plain) + Cost.of(cx=fa + ha)
@@ -245,3 +246,21 @@ def test_device_compiles_default_to_the_spatial_layout() -> None:
     assert Cost.count(explicit.compiled.circuit.gates) == pooled
     assert for_device(PlanOptions(), "quantinuum_helios").phase_layout == "pooled"
     assert qaoa_plan(s, 1).cost() == qaoa_plan(s, 1, PlanOptions(phase_layout="pooled")).cost()  # auto unrouted
+
+
+def test_a_sink_pulls_the_register_bits_towards_it() -> None:
+    """With the sinks :func:`balance_sinks` gives two robots (the middle of the side their patches share), every
+    form's register bits end nearer that side than without a sink, at the same gate counts."""
+    s = default_scenario(5, 5, 2)
+    g = next(g for n, g in qaoa_plan(s, 1, SPATIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))
+    assert g.sinks == balance_sinks(s, [0, 1], g.matrix) == ((8.0, 4.0), (0.0, 4.0))
+    sites = variable_sites(s)
+    for form, sink in zip(g.forms, g.sinks, strict=True):
+        spread = []
+        for target in (None, sink):
+            gates, reg, home = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, target)
+            where = {**sites, **home}
+            spread.append(sum(abs(where[q][0] - sink[0]) + abs(where[q][1] - sink[1]) for q in reg if q is not None))
+            assert Cost.count(gates) == Cost.count(spatial_popcount_layout(form, iter(range(1000, 1200)), sites)[0])
+        assert spread[1] < spread[0]
+    assert balance_sinks(default_scenario(4, 4, 1), [0], ((1.0,),)) == (None,)
