@@ -47,10 +47,10 @@ from collections.abc import Iterable, Sequence
 from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
-from .medial import tiling
 from .gadgets import Gadget
 from .gadgets.phase_sums import Sink, Site, SumsPhase
 from .gadgets.phase_visits import VisitPhase
+from .medial import tiling
 from .options import PlanOptions
 
 __all__ = ["balance_sinks", "for_device", "placed_sums", "spatial_phase", "variable_sites"]
@@ -97,17 +97,16 @@ def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int 
     adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
     output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
     sites = variable_sites(scenario, data_offset)
-    return tuple(
-        dataclasses.replace(
+
+    def placed(g: SumsPhase) -> SumsPhase:
+        robots = [scenario.variable_of(f[0][0] - data_offset)[0] if f else -1 for f in g.forms]
+        return dataclasses.replace(
             g,
             sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f),
-            sinks=balance_sinks(scenario, [scenario.variable_of(f[0][0] - data_offset)[0] if f else -1
-                                           for f in g.forms], g.matrix),
-        )  # fmt: skip
-        if isinstance(g, SumsPhase)
-        else g
-        for g in gadgets
-    )
+            sinks=balance_sinks(scenario, robots, g.matrix),
+        )
+
+    return tuple(placed(g) if isinstance(g, SumsPhase) else g for g in gadgets)
 
 
 def balance_sinks(
