@@ -8,7 +8,7 @@ it inserts are read back, every one-qubit gate of ours is put back on its qubit'
 before that qubit's next two-qubit gate, and every SWAP becomes three ``cx``. Our gates keep their angles (also
 symbolic ones) and their section names (a SWAP belongs to the section of the gate before it). A SWAP next to a
 ``cx`` on the same two qubits (nothing between them on either) is fused with it into two ``cx`` instead of four
-(:func:`_assemble`; :attr:`RoutedCircuit.fused` counts them). Routing never
+in :func:`route_windows` (:func:`_assemble`; :attr:`RoutedCircuit.fused` counts them). Routing never
 reorders the gates of one logical qubit, so the routed circuit equals the original up to the layouts:
 ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>
 (``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
@@ -168,13 +168,13 @@ def _assemble(
     qubits (each ``cx`` is the next two-qubit gate of the logical qubits on ``p`` and ``q``); every one-qubit gate
     goes on its qubit's current position just before that qubit's next two-qubit gate. A SWAP belongs to
     ``op_sections[i]`` if given, else to the section of the gate before it. ``windows``: the window (index) of
-    every gate and of every routed op, if the ops were routed window by window (:func:`route_windows`).
+    every gate and of every routed op, if the ops were routed window by window (:func:`route_windows`); only
+    then are SWAPs fused (below), so :func:`route` writes every SWAP as three ``cx``.
 
     A SWAP next to a ``cx`` on the same two qubits, with nothing between them on either qubit, is *fused* with it
     (``cx a b`` then ``SWAP = cx a b; cx b a; cx a b``: the two ``cx a b`` cancel, two ``cx`` remain; the same
     the other way round), where both belong to the same section (so a window's routed gates depend on that
-    window alone; a window is a section of its own in ``windows``, else the run of one section name). Before a
-    SWAP whose next operation on both qubits is a ``cx`` between them, the one-qubit
+    window alone). Before a SWAP whose next operation on both qubits is a ``cx`` between them, the one-qubit
     gates pending on them (the gates before that ``cx``) are put at their positions before the SWAP, where they
     all belong to the SWAP's section, so the SWAP and the ``cx`` meet."""
     n = len(layout)
@@ -203,6 +203,7 @@ def _assemble(
     last_on: dict[int, int] = {}  # physical qubit -> index in ``emitted`` of the last gate on it
     fused: dict[str, int] = {}
     skip: set[int] = set()  # ops whose ``cx`` a SWAP before them already emitted (fused)
+    fuse = windows is not None
     window_of_gate: Sequence[Any] = windows[0] if windows is not None else section_of
     window_of_op: Sequence[Any] | None = windows[1] if windows is not None else None
     emitted_window: list[Any] = []
@@ -232,7 +233,7 @@ def _assemble(
             window = window_of_op[k] if window_of_op is not None else owner
             j = last_on.get(p1)
             before = emitted[j] if j is not None and j == last_on.get(p2) else None
-            if (before is not None and emitted_window[j] == window and before[1][0] == "cx"
+            if (fuse and before is not None and emitted_window[j] == window and before[1][0] == "cx"
                     and set(before[1][1]) == {p1, p2}):  # fmt: skip
                 a, b = before[1][1]  # cx a b; SWAP (cx a b; cx b a; cx a b) = cx b a; cx a b
                 emitted[j] = (before[0], cx(b, a))
@@ -242,7 +243,8 @@ def _assemble(
                 nxt = following[k]
                 after = routed_ops[nxt] if nxt is not None else None
                 l1_, l2_ = who[p1], who[p2]
-                if (after is not None and after[0] == "cx" and set(after[1]) == {p1, p2} and l1_ >= 0 and l2_ >= 0
+                if (fuse and after is not None and after[0] == "cx" and set(after[1]) == {p1, p2} and l1_ >= 0
+                        and l2_ >= 0
                         and window_of_gate[queues[l1_][_next_twoq(queues[l1_], ptr[l1_], gates)]] == window
                         and pending_in(l1_, window) and pending_in(l2_, window)):  # fmt: skip
                     flush(l1_)

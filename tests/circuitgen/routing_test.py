@@ -257,7 +257,10 @@ def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) 
     from circuitgen.routing import _assemble
 
     logical = Circuit([("data", 3)], [Section("s", gates)])
-    routed = _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, get_device("grid:1x3"), (0, 1, 2))
+    windows = ([0] * len(gates), [0] * len(ops))  # one window, as route_windows hands it over
+    dev = get_device("grid:1x3")
+    assert _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2)).fused == ()  # route()
+    routed = _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2), None, windows)
     assert routed.fused == (("s", 1),) and routed.swaps == 1
     assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 - 2
     assert _on_coupling(routed)
