@@ -73,11 +73,14 @@ def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
 
 
 def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
-    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``spatial`` unless
-    the device couples every pair of its qubits (then ``pooled``, the fewest CX); an explicit choice stays.
+    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``medial`` on a
+    square-grid device (where :mod:`circuitgen.medial` tiles the robots' patches, so the balance sums have
+    somewhere to drift to), ``spatial`` on any other device that does not couple every pair of its qubits, else
+    ``pooled`` (the fewest CX); an explicit choice stays. (The balance sinks assume the medial tiling: on
+    heavy-hex's greedy layout they routed 4x4/2 and 5x5/2 to more CX.)
 
     >>> [for_device(PlanOptions(), d).phase_layout for d in ("grid", "heavy-hex:5", "all-to-all", "ibm_fez")]
-    ['spatial', 'spatial', 'pooled', 'spatial']
+    ['medial', 'spatial', 'pooled', 'spatial']
     >>> for_device(PlanOptions(phase_layout="pooled"), "grid").phase_layout
     'pooled'
     """
@@ -85,17 +88,21 @@ def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
         return options
     # a family without a size: its 4-qubit member tells its shape (every family member has the same kind)
     dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
-    return dataclasses.replace(options, phase_layout="pooled" if dev.is_all_to_all else "spatial")
+    layout = "pooled" if dev.is_all_to_all else "medial" if dev.family == "grid" else "spatial"
+    return dataclasses.replace(options, phase_layout=layout)
 
 
 def _distance(a: Site, b: tuple[float, float]) -> float:
     return abs(a[0] - b[0]) + abs(a[1] - b[1])
 
 
-def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0) -> tuple[Gadget, ...]:
+def placed_sums(
+    gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0, sinks: bool = False
+) -> tuple[Gadget, ...]:
     """The gadgets with every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` given its data qubits' sites (star
     adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
-    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
+    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built). ``sinks``:
+    also give each form its sink (:func:`balance_sinks`; the ``medial`` layout; same kinds and costs)."""
     sites = variable_sites(scenario, data_offset)
 
     def placed(g: SumsPhase) -> SumsPhase:
@@ -103,7 +110,7 @@ def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int 
         return dataclasses.replace(
             g,
             sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f),
-            sinks=balance_sinks(scenario, robots, g.matrix),
+            sinks=balance_sinks(scenario, robots, g.matrix) if sinks else (),
         )
 
     return tuple(placed(g) if isinstance(g, SumsPhase) else g for g in gadgets)
@@ -145,7 +152,7 @@ def balance_sinks(
 
 
 def spatial_phase(
-    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0
+    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0, sinks: bool = False
 ) -> tuple[Gadget, ...]:
     """The same gadgets with place-aware adder trees and node-local ancillas (see the module docs).
 
@@ -155,6 +162,7 @@ def spatial_phase(
         scenario: Their scenario (where each variable's edge lies).
         pool: The plan's clean ancillas (its ``num_ancillas`` qubits).
         data_offset: Qubit of variable 0.
+        sinks: Give each balance form its sink (:func:`balance_sinks`): ``phase_layout="medial"``.
 
     Returns:
         The gadgets in the same order and of the same classes: the balance gadgets with placed star-shaped
@@ -162,7 +170,7 @@ def spatial_phase(
     """
     sites = variable_sites(scenario, data_offset)
     pool = tuple(pool)
-    out = list(placed_sums(gadgets, scenario, data_offset))
+    out = list(placed_sums(gadgets, scenario, data_offset, sinks))
     home: dict[int, Site] = {}
     for g in out:
         if isinstance(g, SumsPhase):
