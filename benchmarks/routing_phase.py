@@ -9,8 +9,9 @@ today's default, or ``spatial``, :mod:`circuitgen.phase_locality`), columns:
 
 * ``a2a phase`` / ``a2a all``: CX of the lowered, unrouted circuit that ``compile_for_device`` routes (unfused
   mixer), phase separator sections and whole circuit;
-* ``routed phase`` / ``routed all``: CX of what ``compile_for_device(..., lowered=True)`` writes (SWAPs as 3 CX;
-  a SWAP counts to the section of the gate before it), phase separator sections and whole circuit;
+* ``routed phase`` / ``routed all``: CX of what ``compile_for_device(..., lowered=True)`` writes (SWAPs as 3 CX,
+  1 where fused with a CX on their pair; a SWAP counts to the section of the gate before it), phase separator
+  sections and whole circuit;
 * ``ratio``: routed / a2a of the same circuit; ``vs pooled a2a``: routed over the *pooled* circuit's a2a count
   (the spatial adders cost 2 CX more per adder all-to-all, so this is the fair figure for issue #21's goal of
   routed / all-to-all <= 2 on a grid and <= 3 on heavy-hex);

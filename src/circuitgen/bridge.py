@@ -271,11 +271,11 @@ def _rewrite(gates: list[Gate], clean: set[int], dist: Any) -> list[Gate] | None
 
 
 def _routed_twoq(gates: Sequence[Gate], device: Device, dist: Any) -> int:
-    from .routing import Positions, route_window
+    from .routing import Positions, route_window, window_cx
 
     pairs = [g[1] for g in gates if len(g[1]) == 2]
     ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist)  # type: ignore[arg-type]
-    return sum(3 if name == "swap" else 1 for name, _ in ops)
+    return window_cx(ops)
 
 
 def bridge_far_phases(

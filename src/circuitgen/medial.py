@@ -258,13 +258,13 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
 def _routed_cost(gates: Sequence[Gate], home: dict[int, int], data_homes: Sequence[int], n_data: int,
                  device: Device, dist: np.ndarray) -> int:  # fmt: skip
     """Two-qubit gates of the section's window routed from home (as :func:`circuitgen.routing.route_windows`)."""
-    from .routing import Positions, route_window
+    from .routing import Positions, route_window, window_cx
 
     where = {**{q: int(data_homes[q]) for q in range(n_data)}, **home}
     pairs = [(where[g[1][0]], where[g[1][1]]) for g in gates if len(g[1]) == 2]
     ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist,
                        trials=SEARCH_TRIALS)
-    return sum(3 if name == "swap" else 1 for name, _ in ops)
+    return window_cx(ops)
 
 
 def allocate_ancillas(

@@ -35,8 +35,8 @@ Phase = Literal["feasible", "whole-space"]
 PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
 Optimize = Literal["cx", "depth"]
 OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
-PhaseLayout = Literal["auto", "pooled", "spatial"]
-PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial")
+PhaseLayout = Literal["auto", "pooled", "spatial", "medial"]
+PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial", "medial")
 LAYOUT_METHODS = ("auto", "medial", "greedy")
 """How :func:`circuitgen.hardware.compile_for_device` lays a circuit onto a device (here, not in hardware, so that
 the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
@@ -69,9 +69,11 @@ class PlanOptions:
         phase_layout: how the phase separator's gadgets sit on the grid: ``pooled`` (adders in variable order,
             node gadgets take the ancilla pool round robin; fewest CX all-to-all), ``spatial`` (star-shaped adders
             over neighbouring edges, node gadgets with nearby ancillas, 2 CX more per adder:
-            :mod:`circuitgen.phase_locality`; fewer routed CX on grids and heavy-hex) or ``auto`` (default:
-            ``spatial`` when :func:`circuitgen.hardware.compile_for_device` routes onto a device that is not
-            all-to-all, ``pooled`` everywhere else).
+            :mod:`circuitgen.phase_locality`; fewer routed CX on grids and heavy-hex), ``medial`` (``spatial``
+            with each robot's balance sums drifting to where the medial layout's robot patches meet:
+            :func:`circuitgen.phase_locality.balance_sinks`; same gates and counts) or ``auto`` (default: when
+            :func:`circuitgen.hardware.compile_for_device` routes onto a device that is not all-to-all,
+            ``medial`` on a square grid and ``spatial`` elsewhere; ``pooled`` everywhere else).
     """
 
     rule: Rule = "exact"

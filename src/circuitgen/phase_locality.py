@@ -48,11 +48,12 @@ from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
 from .gadgets import Gadget
-from .gadgets.phase_sums import Site, SumsPhase
+from .gadgets.phase_sums import Sink, Site, SumsPhase
 from .gadgets.phase_visits import VisitPhase
+from .medial import tiling
 from .options import PlanOptions
 
-__all__ = ["for_device", "placed_sums", "spatial_phase", "variable_sites"]
+__all__ = ["balance_sinks", "for_device", "placed_sums", "spatial_phase", "variable_sites"]
 
 NEW_HOME_PENALTY = 4
 """Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
@@ -72,11 +73,14 @@ def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
 
 
 def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
-    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``spatial`` unless
-    the device couples every pair of its qubits (then ``pooled``, the fewest CX); an explicit choice stays.
+    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``medial`` on a
+    square-grid device (where :mod:`circuitgen.medial` tiles the robots' patches, so the balance sums have
+    somewhere to drift to), ``spatial`` on any other device that does not couple every pair of its qubits, else
+    ``pooled`` (the fewest CX); an explicit choice stays. (The balance sinks assume the medial tiling: on
+    heavy-hex's greedy layout they routed 4x4/2 and 5x5/2 to more CX.)
 
     >>> [for_device(PlanOptions(), d).phase_layout for d in ("grid", "heavy-hex:5", "all-to-all", "ibm_fez")]
-    ['spatial', 'spatial', 'pooled', 'spatial']
+    ['medial', 'spatial', 'pooled', 'spatial']
     >>> for_device(PlanOptions(phase_layout="pooled"), "grid").phase_layout
     'pooled'
     """
@@ -84,28 +88,71 @@ def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
         return options
     # a family without a size: its 4-qubit member tells its shape (every family member has the same kind)
     dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
-    return dataclasses.replace(options, phase_layout="pooled" if dev.is_all_to_all else "spatial")
+    layout = "pooled" if dev.is_all_to_all else "medial" if dev.family == "grid" else "spatial"
+    return dataclasses.replace(options, phase_layout=layout)
 
 
 def _distance(a: Site, b: tuple[float, float]) -> float:
     return abs(a[0] - b[0]) + abs(a[1] - b[1])
 
 
-def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0) -> tuple[Gadget, ...]:
+def placed_sums(
+    gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0, sinks: bool = False
+) -> tuple[Gadget, ...]:
     """The gadgets with every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` given its data qubits' sites (star
     adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
-    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built)."""
+    output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built). ``sinks``:
+    also give each form its sink (:func:`balance_sinks`; the ``medial`` layout; same kinds and costs)."""
     sites = variable_sites(scenario, data_offset)
-    return tuple(
-        dataclasses.replace(g, sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f))
-        if isinstance(g, SumsPhase)
-        else g
-        for g in gadgets
-    )
+
+    def placed(g: SumsPhase) -> SumsPhase:
+        robots = [scenario.variable_of(f[0][0] - data_offset)[0] if f else -1 for f in g.forms]
+        return dataclasses.replace(
+            g,
+            sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f),
+            sinks=balance_sinks(scenario, robots, g.matrix) if sinks else (),
+        )
+
+    return tuple(placed(g) if isinstance(g, SumsPhase) else g for g in gadgets)
+
+
+def balance_sinks(
+    scenario: Scenario, robots: Sequence[int], matrix: Sequence[Sequence[float]]
+) -> tuple[Sink | None, ...]:
+    """Per form of a balance gadget (``robots[a]``: the robot whose edges form ``a`` sums, ``-1`` for none), the
+    point of that robot's copy of the grid (doubled lattice) its popcount's sums should drift to: where its
+    patch of the medial layout's tiling (:func:`circuitgen.medial.tiling`) is nearest the centre of the patches
+    of itself and the robots whose sums ``matrix`` couples with it. On two robots that is the middle of the side
+    their patches share, so their registers, which the register phase couples bit by bit, end next to each
+    other. ``None`` for a form coupled with no other robot (one robot: no sink).
+
+    >>> from gridcover.presets import default_scenario
+    >>> balance_sinks(default_scenario(4, 4, 2), [0, 1], ((1.0, -1.0), (-1.0, 1.0)))  # patches one above the other
+    ((6.0, 3.0), (0.0, 3.0))
+    """
+    g = scenario.grid
+    patch = (2 * g.rows - 1, 2 * g.cols - 1)
+    _, across = tiling(scenario.num_robots, patch)
+
+    def corner(r: int) -> tuple[int, int]:
+        dr, dc = divmod(r, across)
+        return dr * patch[0], dc * patch[1]
+
+    out: list[Sink | None] = []
+    for a, r in enumerate(robots):
+        group = [robots[b] for b in range(len(robots)) if robots[b] >= 0 and (b == a or matrix[a][b] or matrix[b][a])]
+        if r < 0 or len(group) < 2:
+            out.append(None)
+            continue
+        cy = sum(corner(x)[0] for x in group) / len(group) + (patch[0] - 1) / 2
+        cx_ = sum(corner(x)[1] for x in group) / len(group) + (patch[1] - 1) / 2
+        oy, ox = corner(r)
+        out.append((min(max(cy - oy, 0.0), patch[0] - 1.0), min(max(cx_ - ox, 0.0), patch[1] - 1.0)))
+    return tuple(out)
 
 
 def spatial_phase(
-    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0
+    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0, sinks: bool = False
 ) -> tuple[Gadget, ...]:
     """The same gadgets with place-aware adder trees and node-local ancillas (see the module docs).
 
@@ -115,6 +162,7 @@ def spatial_phase(
         scenario: Their scenario (where each variable's edge lies).
         pool: The plan's clean ancillas (its ``num_ancillas`` qubits).
         data_offset: Qubit of variable 0.
+        sinks: Give each balance form its sink (:func:`balance_sinks`): ``phase_layout="medial"``.
 
     Returns:
         The gadgets in the same order and of the same classes: the balance gadgets with placed star-shaped
@@ -122,7 +170,7 @@ def spatial_phase(
     """
     sites = variable_sites(scenario, data_offset)
     pool = tuple(pool)
-    out = list(placed_sums(gadgets, scenario, data_offset))
+    out = list(placed_sums(gadgets, scenario, data_offset, sinks))
     home: dict[int, Site] = {}
     for g in out:
         if isinstance(g, SumsPhase):

@@ -184,8 +184,9 @@ class QaoaPlan:
         assert self.phase_plan is not None
         n = self.scenario.num_variables
         gadgets = self.phase_plan.gadgets(gamma, 0, n)
-        if self.options.phase_layout == "spatial":
-            gadgets = spatial_phase(gadgets, self.scenario, range(n, n + self.phase_plan.num_ancillas))
+        if self.options.phase_layout in ("spatial", "medial"):
+            gadgets = spatial_phase(gadgets, self.scenario, range(n, n + self.phase_plan.num_ancillas),
+                                    sinks=self.options.phase_layout == "medial")  # fmt: skip
         return gadgets
 
     def call_graph(self, by_classes: bool = True) -> CallGraph:
@@ -233,14 +234,14 @@ class QaoaPlan:
         phase_width = 0
         if self.p:
             # the classes price the pooled layout; the spatial one's adders are kinds of their own
-            by_phase_classes = classes and o.phase_layout != "spatial"
+            by_phase_classes = classes and o.phase_layout not in ("spatial", "medial")
             layer = phase_layer(s, o.target, o.phase, o.optimize, o.ancilla_budget) if by_phase_classes else None
             if layer is not None:
                 phase, phase_width = layer.kinds(), layer.num_ancillas
             else:  # the plan decides, term group by term group
                 assert self.phase_plan is not None
                 gadgets = self.phase_plan.gadgets("gamma")
-                if o.phase_layout == "spatial":  # the kinds only: no ancilla needs choosing
+                if o.phase_layout in ("spatial", "medial"):  # the kinds only: no ancilla needs choosing
                     gadgets = placed_sums(gadgets, s)
                 phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas

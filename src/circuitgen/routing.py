@@ -6,7 +6,9 @@ physical qubit ``i``, so OpenQASM's ``q[i]`` is physical ``i``). Only the two-qu
 ``SabreSwap`` (a well-kept router: we do not write our own); the routed order of two-qubit gates and the SWAPs
 it inserts are read back, every one-qubit gate of ours is put back on its qubit's current physical position just
 before that qubit's next two-qubit gate, and every SWAP becomes three ``cx``. Our gates keep their angles (also
-symbolic ones) and their section names (a SWAP belongs to the section of the gate before it). Routing never
+symbolic ones) and their section names (a SWAP belongs to the section of the gate before it). A SWAP next to a
+``cx`` on the same two qubits (nothing between them on either) is fused with it into two ``cx`` instead of four
+in :func:`route_windows` (:func:`_assemble`; :attr:`RoutedCircuit.fused` counts them). Routing never
 reorders the gates of one logical qubit, so the routed circuit equals the original up to the layouts:
 ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>
 (``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
@@ -63,6 +65,7 @@ __all__ = [
     "route_window",
     "route_windows",
     "to_native",
+    "window_cx",
 ]
 
 DEFAULT_TRIALS = 16
@@ -78,8 +81,11 @@ class RoutedCircuit:
         device: The device.
         initial_layout: Logical qubit ``i`` of the input circuit -> physical qubit at the start.
         final_layout: Logical qubit ``i`` -> physical qubit at the end.
-        swaps: SWAPs inserted (each three ``cx`` in :attr:`circuit`).
+        swaps: SWAPs inserted (each three ``cx`` in :attr:`circuit`, or two with the ``cx`` it is fused with).
         measured: Logical qubits measured at the end (the data qubits), for :func:`esp`.
+        fused: Per section name, how many of its SWAPs are fused with a ``cx`` of that section on the same pair
+            of qubits (:func:`_assemble`: ``cx`` + SWAP is two ``cx``, not four): :attr:`circuit` has
+            ``3 swaps - 2 fused`` more ``cx`` than the logical circuit.
     """
 
     circuit: Circuit
@@ -88,6 +94,12 @@ class RoutedCircuit:
     final_layout: tuple[int, ...]
     swaps: int
     measured: tuple[int, ...]
+    fused: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def num_fused(self) -> int:
+        """SWAPs fused with a ``cx`` (each saves two ``cx``)."""
+        return sum(k for _, k in self.fused)
 
 
 def coupling_map(device: Device) -> Any:
@@ -150,11 +162,21 @@ def _assemble(
     device: Device,
     measured: tuple[int, ...],
     op_sections: Sequence[str] | None = None,
+    windows: tuple[Sequence[int], Sequence[int]] | None = None,
 ) -> RoutedCircuit:
     """Our gates in the routed order: ``routed_ops`` lists ``("swap", (p, q))`` and ``("cx", (p, q))`` on physical
     qubits (each ``cx`` is the next two-qubit gate of the logical qubits on ``p`` and ``q``); every one-qubit gate
     goes on its qubit's current position just before that qubit's next two-qubit gate. A SWAP belongs to
-    ``op_sections[i]`` if given, else to the section of the gate before it."""
+    ``op_sections[i]`` if given, else to the section of the gate before it. ``windows``: the window (index) of
+    every gate and of every routed op, if the ops were routed window by window (:func:`route_windows`); only
+    then are SWAPs fused (below), so :func:`route` writes every SWAP as three ``cx``.
+
+    A SWAP next to a ``cx`` on the same two qubits, with nothing between them on either qubit, is *fused* with it
+    (``cx a b`` then ``SWAP = cx a b; cx b a; cx a b``: the two ``cx a b`` cancel, two ``cx`` remain; the same
+    the other way round), where both belong to the same section (so a window's routed gates depend on that
+    window alone). Before a SWAP whose next operation on both qubits is a ``cx`` between them, the one-qubit
+    gates pending on them (the gates before that ``cx``) are put at their positions before the SWAP, where they
+    all belong to the SWAP's section, so the SWAP and the ``cx`` meet."""
     n = len(layout)
     queues: list[list[int]] = [[] for _ in range(n)]
     for i, g in enumerate(gates):
@@ -174,17 +196,67 @@ def _assemble(
         while ptr[lq] < len(q) and len(gates[q[ptr[lq]]][1]) == 1:
             i = q[ptr[lq]]
             g = gates[i]
-            emitted.append((section_of[i], Gate(g[0], (where[lq],), g[2], g[3])))
+            emit(section_of[i], Gate(g[0], (where[lq],), g[2], g[3]), window_of_gate[i])
             last_section = section_of[i]
             ptr[lq] += 1
+
+    last_on: dict[int, int] = {}  # physical qubit -> index in ``emitted`` of the last gate on it
+    fused: dict[str, int] = {}
+    skip: set[int] = set()  # ops whose ``cx`` a SWAP before them already emitted (fused)
+    fuse = windows is not None
+    window_of_gate: Sequence[Any] = windows[0] if windows is not None else section_of
+    window_of_op: Sequence[Any] | None = windows[1] if windows is not None else None
+    emitted_window: list[Any] = []
+
+    def emit(section: str, g: Gate, window: Any) -> None:
+        for q in g[1]:
+            last_on[q] = len(emitted)
+        emitted.append((section, g))
+        emitted_window.append(window)
+
+    def pending_in(lq: int, window: Any) -> bool:
+        """Whether every one-qubit gate pending on ``lq`` belongs to ``window``."""
+        q, i = queues[lq], ptr[lq]
+        while i < len(q) and len(gates[q[i]][1]) == 1:
+            if window_of_gate[q[i]] != window:
+                return False
+            i += 1
+        return True
+
+    following = _next_ops(routed_ops)
 
     swaps = 0
     for k, (name, (p1, p2)) in enumerate(routed_ops):
         if name == "swap":
             swaps += 1
             owner = op_sections[k] if op_sections is not None else last_section
-            for a, b in ((p1, p2), (p2, p1), (p1, p2)):
-                emitted.append((owner, cx(a, b)))
+            window = window_of_op[k] if window_of_op is not None else owner
+            j = last_on.get(p1)
+            before = emitted[j] if j is not None and j == last_on.get(p2) else None
+            if (fuse and before is not None and emitted_window[j] == window and before[1][0] == "cx"
+                    and set(before[1][1]) == {p1, p2}):  # fmt: skip
+                a, b = before[1][1]  # cx a b; SWAP (cx a b; cx b a; cx a b) = cx b a; cx a b
+                emitted[j] = (before[0], cx(b, a))
+                emit(owner, cx(a, b), window)
+                fused[owner] = fused.get(owner, 0) + 1
+            else:
+                nxt = following[k]
+                after = routed_ops[nxt] if nxt is not None else None
+                l1_, l2_ = who[p1], who[p2]
+                if (fuse and after is not None and after[0] == "cx" and set(after[1]) == {p1, p2} and l1_ >= 0
+                        and l2_ >= 0
+                        and window_of_gate[queues[l1_][_next_twoq(queues[l1_], ptr[l1_], gates)]] == window
+                        and pending_in(l1_, window) and pending_in(l2_, window)):  # fmt: skip
+                    flush(l1_)
+                    flush(l2_)
+                    x_, y_ = after[1]  # SWAP (cx x y; cx y x; cx x y); cx x y = cx x y; cx y x
+                    emit(owner, cx(x_, y_), window)
+                    emit(owner, cx(y_, x_), window)
+                    skip.add(nxt)  # type: ignore[arg-type]
+                    fused[owner] = fused.get(owner, 0) + 1
+                else:
+                    for a, b in ((p1, p2), (p2, p1), (p1, p2)):
+                        emit(owner, cx(a, b), window)
             l1, l2 = who[p1], who[p2]
             who[p1], who[p2] = l2, l1
             if l1 >= 0:
@@ -199,13 +271,23 @@ def _assemble(
         if queues[b][ptr[b]] != i or gates[i][1] != (a, b):
             raise AssertionError("the router reordered the gates of a qubit")  # pragma: no cover
         g = gates[i]
-        emitted.append((section_of[i], Gate(g[0], (p1, p2), g[2], g[3])))
+        if k not in skip:
+            emit(section_of[i], Gate(g[0], (p1, p2), g[2], g[3]), window_of_gate[i])
         last_section = section_of[i]
         ptr[a] += 1
         ptr[b] += 1
     for lq in range(n):
         flush(lq)
-    return RoutedCircuit(_sectioned(emitted, big), device, layout, tuple(where), swaps, measured)
+    return RoutedCircuit(_sectioned(emitted, big), device, layout, tuple(where), swaps, measured,
+                         tuple(sorted(fused.items())))  # fmt: skip
+
+
+def _next_twoq(queue: Sequence[int], start: int, gates: Sequence[Gate]) -> int:
+    """Position in ``queue`` (a qubit's gate indices) of its next two-qubit gate from ``start``."""
+    i = start
+    while len(gates[queue[i]][1]) == 1:
+        i += 1
+    return i
 
 
 # --- routing per window, returning home ------------------------------------------------------------------
@@ -218,6 +300,17 @@ WINDOW_SEEDS = 1
 same counts on 3x3/1 and 6x6/3, 0.4% fewer CX on 4x4/2 (4,222 vs 4,240) and 2.1% fewer on 5x5/2 (9,212 vs
 9,410), all of it on the phase separator's one large window, at four SABRE runs per window instead of one; so
 one."""
+
+LARGE_WINDOW_PAIRS = 200
+"""Windows whose compute has at least this many two-qubit gates (on the defaults: the balance arithmetic's one
+window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds and the seed whose whole window (compute, register
+phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
+compute leaves the register bits decides what the phase between them costs."""
+
+LARGE_WINDOW_SEEDS = 8
+"""Seeds tried per large window (:data:`LARGE_WINDOW_PAIRS`). Measured with the balance sinks
+(:func:`circuitgen.phase_locality.balance_sinks`), p = 1, routed CX of the whole circuit, 1 seed -> 8 -> 16:
+4x4/2 3,312 -> 3,246 -> 3,246; 5x5/2 7,114 both; 6x6/3 20,340 -> 19,932 (16 seeds: not measured)."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
@@ -379,8 +472,58 @@ def route_window(
     compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute)."""
-    n = len(pairs)
     m = mirror_length(pairs)
+    tries = LARGE_WINDOW_SEEDS if m >= LARGE_WINDOW_PAIRS else 1
+    best: list[tuple[str, tuple[int, int]]] | None = None
+    for s in range(seed, seed + tries):  # each try returns every qubit home, so ``pos`` is unchanged between tries
+        ops = _window_ops(pairs, m, pos, device, dist, s, trials)
+        if best is None or window_cx(ops) < window_cx(best):
+            best = ops
+    assert best is not None
+    return best
+
+
+def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
+    """CX of a window's routed ops (:func:`route_window`) as :func:`route_windows` writes them: 1 per ``cx``, 3 per
+    SWAP, 2 fewer per SWAP that :func:`_assemble` fuses with a ``cx`` on its pair (the ops alone decide, except
+    that one-qubit gates pending from an earlier window keep a SWAP and the ``cx`` after it apart: then this is 2
+    below what is written).
+
+    >>> window_cx([("cx", (0, 1)), ("swap", (0, 1)), ("cx", (1, 2))])  # the SWAP fuses with the cx before it
+    3
+    """
+    following = _next_ops(ops)
+    last: dict[int, int] = {}
+    total = 0
+    for k, (name, (p, q)) in enumerate(ops):
+        total += 1
+        if name == "swap":
+            j = last.get(p)
+            nxt = following[k]
+            after = nxt is not None and ops[nxt][0] == "cx" and set(ops[nxt][1]) == {p, q}
+            total += 0 if (j is not None and j == last.get(q)) or after else 2
+        last[p] = last[q] = k
+    return total
+
+
+def _next_ops(ops: Sequence[tuple[str, tuple[int, ...]]]) -> list[int | None]:
+    """Per op, the index of the next op that touches one of its qubits (``None``: none)."""
+    seen: dict[int, int] = {}
+    out: list[int | None] = [None] * len(ops)
+    for k in range(len(ops) - 1, -1, -1):
+        qs = ops[k][1]
+        nxt = [seen[q] for q in qs if q in seen]
+        out[k] = min(nxt) if nxt else None
+        for q in qs:
+            seen[q] = k
+    return out
+
+
+def _window_ops(
+    pairs: list[tuple[int, int]], m: int, pos: Positions, device: Device, dist: Any, seed: int, trials: int | None
+) -> list[tuple[str, tuple[int, int]]]:
+    """:func:`route_window` with one seed (``m``: the compute's length)."""
+    n = len(pairs)
     compute = _route_part(pairs[:m], pos, device, dist, seed, trials)
     ops = _play(compute, pairs, pos)
     middle = _route_part(pairs[m : n - m], pos, device, dist, seed, trials)
@@ -424,12 +567,17 @@ def route_windows(
     pos = Positions(home, device.num_qubits)
     ops: list[tuple[str, tuple[int, int]]] = []
     owners: list[str] = []
-    for sec in circuit.sections:
+    op_window: list[int] = []
+    gate_window: list[int] = []
+    for w, sec in enumerate(circuit.sections):
         pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
         window = route_window(pairs, pos, device, dist, seed, trials)  # type: ignore[arg-type]
         ops += window
         owners += [sec.name] * len(window)
-    return _assemble(gates, section_of, home, device.num_qubits, ops, device, measured_, owners)
+        op_window += [w] * len(window)
+        gate_window += [w] * len(sec.gates)
+    return _assemble(gates, section_of, home, device.num_qubits, ops, device, measured_, owners,
+                     (gate_window, op_window))  # fmt: skip
 
 
 def _flatten(

@@ -342,6 +342,7 @@ def _route_on(
         return None
     if not _inside(crop, np.array(sorted(patches), dtype=int), guard=1):
         return None  # a patch reached a side the crop cut: on the device it would be larger
+    fused = dict(routed.fused)
     by_name: dict[str, list[Gate]] = {}
     for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
         by_name.setdefault(sec.name, []).extend(sec.gates)
@@ -350,7 +351,8 @@ def _route_on(
         lowered = tuple((g[0], tuple(g[1])) for g in sec.gates)
         gates = by_name.get(f"w{w}", [])
         cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in lowered if len(qs) == 2)
-        out.append(_Routed(cx // 3, lowered, gates))
+        merged = fused.get(f"w{w}", 0)  # each SWAP adds 3 CX, 2 fewer where fused with a CX (routing._assemble)
+        out.append(_Routed((cx + 2 * merged) // 3, lowered, gates, merged))
     return out
 
 
@@ -361,13 +363,14 @@ class _Routed:
     swaps: int
     lowered: tuple[tuple[str, tuple[int, ...]], ...]
     gates: Sequence[Gate]
+    fused: int = 0
 
 
 @dataclass(frozen=True)
 class _Cost:
     """What one routed window of a class costs: its lowered gate counts after the relays, SWAPs, native depth and
-    two-qubit depth, duration, and the native one-qubit gates (and their seconds) that trail its last two-qubit
-    gates (see :func:`_trailing`)."""
+    two-qubit depth, duration, the native one-qubit gates (and their seconds) that trail its last two-qubit
+    gates (see :func:`_trailing`), and its SWAPs fused with a CX (two CX fewer each)."""
 
     lowered_ops: tuple[tuple[str, int], ...]
     swaps: int
@@ -376,12 +379,14 @@ class _Cost:
     duration_s: float | None
     late: int
     late_s: float | None
+    fused: int = 0
 
 
 def _summary(routed: _Routed, device: Device) -> _Cost:
     """The :class:`_Cost` of one routed window."""
     ops = tuple(sorted(Counter(name for name, _ in routed.lowered).items()))
-    return _Cost(ops, routed.swaps, *_native_schedule(routed.gates, device), *_trailing(routed.lowered, device))
+    return _Cost(ops, routed.swaps, *_native_schedule(routed.gates, device), *_trailing(routed.lowered, device),
+                 routed.fused)  # fmt: skip
 
 
 def _trailing(lowered: Sequence[tuple[str, tuple[int, ...]]], device: Device) -> tuple[int, float | None]:
@@ -404,13 +409,14 @@ def _bound_per_gate(shape: tuple[int, int]) -> int:
     return 1 + 6 * (shape[0] + shape[1] - 2 - 1)
 
 
-def _native_counts(lowered: Counter[str], swaps: int, device: Device) -> Counter[str]:
-    """Native gates (by the device's gate name, ``sx`` for ``rx(pi/2)``) of lowered gates plus SWAPs."""
+def _native_counts(lowered: Counter[str], swaps: int, device: Device, fused: int = 0) -> Counter[str]:
+    """Native gates (by the device's gate name, ``sx`` for ``rx(pi/2)``) of lowered gates plus SWAPs (3 CX each, 2
+    fewer for each of the ``fused`` ones)."""
     out: Counter[str] = Counter()
     twoq = device.two_qubit_gate
     native_x = "x" in device.native_gates
     counts = Counter(lowered)
-    counts["cx"] += 3 * swaps
+    counts["cx"] += 3 * swaps - 2 * fused
     for name, k in counts.items():
         qs = (0, 1) if name == "cx" or name == "cz" else (0,)
         params = (math.pi / 2,) if name in ("rz", "rx") else ()
@@ -592,7 +598,7 @@ def routed_sum(
             continue
         ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
         lowered.update({k: v * weight for k, v in ops.items()})
-        counts = _native_counts(ops, result.swaps, dev)
+        counts = _native_counts(ops, result.swaps, dev, result.fused)
         swaps += weight * result.swaps
         native.update({k: v * weight for k, v in counts.items() if v})
         # a window's one-qubit gates after a qubit's last two-qubit gate in it wait for that qubit's next

@@ -35,7 +35,7 @@ from circuitgen.gadgets.phase_visits import VisitPhase
 from circuitgen.gates import Gate
 from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import spatial_phase, variable_sites
+from circuitgen.phase_locality import balance_sinks, spatial_phase, variable_sites
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from circuitgen.testing import Case, interior_endpoints
 from estimators.crosscheck import crosscheck
@@ -47,6 +47,7 @@ from ..qcpp.clirun import run
 from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets
 
 SPATIAL = PlanOptions(phase_layout="spatial")
+MEDIAL = PlanOptions(phase_layout="medial")
 OBSTACLE_INTERIOR = {
     "grid": {"rows": 3, "cols": 4, "obstacles": [[0, 3]]},
     "robots": [{"start": [1, 1], "goal": [2, 3]}, {"start": [0, 0], "goal": [2, 0]}],
@@ -77,7 +78,7 @@ def test_spatial_phase_separator_is_exact_on_feasible_states(which: str) -> None
         "4x4/3 sample": lambda: default_scenario(4, 4, 3),
         "5x5/2 sample": lambda: default_scenario(5, 5, 2),
     }[which]()
-    circuit, plan = _phase_circuit(s, SPATIAL)
+    circuit, plan = _phase_circuit(s, SPATIAL if "every" in which else MEDIAL)  # medial: spatial with balance sinks
     combos = _every(s) if "every" in which else sample_combos(s, 25, seed=3)
     rng = random.Random(1)
     others = [tuple(rng.randint(0, 1) for _ in range(s.num_variables)) for _ in range(5)]
@@ -140,13 +141,14 @@ def test_placed_sums_gadget_cost_and_exactness(g: SumsPhase) -> None:
 @given(
     weights=st.lists(st.integers(-9, 9).filter(bool), min_size=1, max_size=30),
     seed=st.integers(0, 1000),
+    sink=st.one_of(st.none(), st.tuples(st.floats(0, 12), st.floats(0, 12))),
 )
-def test_the_placed_popcount_has_the_counted_adders(weights: list[int], seed: int) -> None:
+def test_the_placed_popcount_has_the_counted_adders(weights: list[int], seed: int, sink: tuple | None) -> None:
     rng = random.Random(seed)
     form = tuple(enumerate(weights))
     sites = {q: (rng.randint(0, 12), rng.randint(0, 12)) for q, _ in form}
     top = len(form) + 200
-    gates, reg, home = spatial_popcount_layout(form, iter(range(len(form), top)), sites)
+    gates, reg, home = spatial_popcount_layout(form, iter(range(len(form), top)), sites, sink)
     plain, plain_reg = popcount_layout(form, iter(range(len(form), top)))
     fa, ha, cp, present = column_counts([abs(w) for w in weights])
     assert Cost.count(gates) == Cost.count(plain) + Cost.of(cx=fa + ha)
@@ -244,4 +246,26 @@ def test_device_compiles_default_to_the_spatial_layout() -> None:
     explicit = compile_for_device(s, 1, "grid", PlanOptions(phase_layout="pooled"), lowered=True)
     assert Cost.count(explicit.compiled.circuit.gates) == pooled
     assert for_device(PlanOptions(), "quantinuum_helios").phase_layout == "pooled"
+    devices = ("grid", "google_willow", "heavy-hex", "ibm_fez")
+    assert [for_device(PlanOptions(), d).phase_layout for d in devices] == ["medial", "medial", "spatial", "spatial"]
     assert qaoa_plan(s, 1).cost() == qaoa_plan(s, 1, PlanOptions(phase_layout="pooled")).cost()  # auto unrouted
+
+
+def test_a_sink_pulls_the_register_bits_towards_it() -> None:
+    """With the sinks :func:`balance_sinks` gives two robots (the middle of the side their patches share), every
+    form's register bits end nearer that side than without a sink, at the same gate counts."""
+    s = default_scenario(5, 5, 2)
+    g = next(g for n, g in qaoa_plan(s, 1, MEDIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))
+    assert g.sinks == balance_sinks(s, [0, 1], g.matrix) == ((8.0, 4.0), (0.0, 4.0))
+    spatial = next(g for n, g in qaoa_plan(s, 1, SPATIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))
+    assert spatial.sinks == () and spatial.kind == g.kind and spatial.cost() == g.cost()
+    sites = variable_sites(s)
+    for form, sink in zip(g.forms, g.sinks, strict=True):
+        spread = []
+        for target in (None, sink):
+            gates, reg, home = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, target)
+            where = {**sites, **home}
+            spread.append(sum(abs(where[q][0] - sink[0]) + abs(where[q][1] - sink[1]) for q in reg if q is not None))
+            assert Cost.count(gates) == Cost.count(spatial_popcount_layout(form, iter(range(1000, 1200)), sites)[0])
+        assert spread[1] < spread[0]
+    assert balance_sinks(default_scenario(4, 4, 1), [0], ((1.0,),)) == (None,)

@@ -221,7 +221,8 @@ def test_visit_gadget_is_exact_with_clean_ancillas(products: bool) -> None:
 
 @st.composite
 def sums_gadgets(draw: st.DrawFn, max_terms: int = 5, ancillas: int = 60, placed: bool = False) -> SumsPhase:
-    """A balance gadget of 1-3 random integer forms; ``placed``: each data qubit also gets a random grid site."""
+    """A balance gadget of 1-3 random integer forms; ``placed``: each data qubit also gets a random grid site,
+    and each form a random sink or none (:func:`circuitgen.phase_locality.balance_sinks`)."""
     n_forms = draw(st.integers(1, 3))
     qubits = iter(range(64))
     forms = tuple(
@@ -240,7 +241,9 @@ def sums_gadgets(draw: st.DrawFn, max_terms: int = 5, ancillas: int = 60, placed
         return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + ancillas)))
     site = st.tuples(st.integers(0, 9), st.integers(0, 9))
     sites = tuple((q, *draw(site)) for f in forms for q, _ in f)
-    return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + ancillas)), sites)
+    sink = st.one_of(st.none(), st.tuples(st.floats(0, 9), st.floats(0, 9)))
+    sinks = tuple(draw(sink) for _ in forms)
+    return SumsPhase("gamma_0", forms, sym, lin, tuple(range(used, used + ancillas)), sites, sinks)
 
 
 @settings(max_examples=60, deadline=None)

@@ -178,7 +178,7 @@ def test_random_circuits_route_onto_any_device(data: st.DataObject) -> None:
     layout = data.draw(st.permutations(range(dev.num_qubits)))[:n]
     routed = route(logical, dev, layout, seed=data.draw(st.integers(0, 3)))
     assert _on_coupling(routed)
-    assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 * routed.swaps
+    assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 * routed.swaps - 2 * routed.num_fused
     _assert_equal_up_to_layouts(logical, routed, seed=0, global_phase=False)
 
 
@@ -240,3 +240,28 @@ def test_esp_matches_an_independent_computation_on_qiskits_transpiled_circuit() 
     routed = RoutedCircuit(circuit, device, tuple(range(len(final))), tuple(final), 0, tuple(data))
     assert esp(routed) == pytest.approx(independent, rel=1e-9)
     assert 0 < independent < 1
+
+
+@pytest.mark.parametrize(
+    ("gates", "ops"),
+    [
+        # a SWAP after a cx on the same pair (cx a b; SWAP = cx b a; cx a b)
+        ([cx(0, 1), rx(0.4, 0), cx(0, 2)], [("cx", (0, 1)), ("swap", (0, 1)), ("cx", (1, 2))]),
+        # a SWAP before a cx on the same pair; the pending h moves before the SWAP
+        ([h(0), ry(0.3, 1), cx(0, 1), rx(0.5, 1)], [("swap", (0, 1)), ("cx", (1, 0))]),
+    ],
+    ids=["cx then swap", "swap then cx"],
+)
+def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) -> None:
+    """Two CX for a SWAP and the CX beside it instead of four, and the circuit is unchanged up to the layouts."""
+    from circuitgen.routing import _assemble
+
+    logical = Circuit([("data", 3)], [Section("s", gates)])
+    windows = ([0] * len(gates), [0] * len(ops))  # one window, as route_windows hands it over
+    dev = get_device("grid:1x3")
+    assert _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2)).fused == ()  # route()
+    routed = _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2), None, windows)
+    assert routed.fused == (("s", 1),) and routed.swaps == 1
+    assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 - 2
+    assert _on_coupling(routed)
+    _assert_equal_up_to_layouts(logical, routed, seed=3, global_phase=False)

@@ -42,7 +42,7 @@ from circuitgen.gates import Gate, and_, cx, x
 from .phase_ising import IsingPhase, ising_form
 from .phase_visits import AND_COST, AND_DG_COST, with_ands
 
-__all__ = ["Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "spatial_popcount_layout"]
+__all__ = ["Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "spatial_popcount_layout"]
 
 
 def column_counts(weights: list[int] | Mapping[int, int]) -> tuple[int, int, int, tuple[bool, ...]]:
@@ -183,8 +183,16 @@ def star_half_adder(a: int, b: int, t: int) -> list[Gate]:
     return [cx(b, t), cx(t, a), and_(a, b, t)]
 
 
+Sink = tuple[float, float]
+"""A point of the doubled lattice (fractional allowed) that a popcount's partial sums drift towards."""
+
+
+def _to(sink: Sink, site: Site) -> float:
+    return abs(site[0] - sink[0]) + abs(site[1] - sink[1])
+
+
 def spatial_popcount_layout(
-    form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site]
+    form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site], sink: Sink | None = None
 ) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
     """:func:`popcount_layout` with the adders chosen by place and shaped for a device: the same numbers of full
     adders, half adders and copies, the same register columns, but every full adder takes three bits that are
@@ -199,10 +207,18 @@ def spatial_popcount_layout(
     one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
     that keeps the grid's geometry never puts side by side.
 
+    A full adder is symmetric in its three inputs, so any of them may keep the sum. Without a ``sink`` the middle
+    one (along the curve) does; with one, the input nearest the sink does (the middle on ties), and a half adder
+    keeps its sum on the nearer of its two bits. Pass by pass the partial sums, and the register bits they end
+    in, then drift towards the sink: :func:`circuitgen.phase_locality.balance_sinks` puts it where a robot's
+    patch meets the patches of the robots its register is phased with, so the register phase (every register bit
+    with every other) joins bits that sit close together. Same gates per adder, same counts.
+
     Args:
         form: ``(qubit, integer weight)`` pairs.
         ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
         sites: Lattice site of every qubit of the form.
+        sink: Where the sums should end (``None``: the middle bit of every triple keeps its sum).
 
     Returns:
         ``(gates, register, ancilla sites)``: as :func:`popcount_layout`, plus the site given to each ancilla.
@@ -247,7 +263,10 @@ def spatial_popcount_layout(
             nxt: list[tuple[int, Site]] = []
             full = len(col) // 3
             for i in range(full):
-                (a, _), mid, (c, _) = col[3 * i : 3 * i + 3]
+                triple = col[3 * i : 3 * i + 3]
+                j = 1 if sink is None else min(range(3), key=lambda j_: (_to(sink, triple[j_][1]), j_ != 1, j_))
+                mid = triple[j]
+                (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
                 b = mid[0]
                 t = next(ancillas)
                 home[t] = mid[1]
@@ -256,6 +275,8 @@ def spatial_popcount_layout(
                 cols.setdefault(k + 1, []).append((t, mid[1]))
             col = sorted(nxt + col[3 * full :], key=key)
         if len(col) == 2:
+            if sink is not None and _to(sink, col[1][1]) < _to(sink, col[0][1]):
+                col.reverse()  # the sum stays on the bit nearer the sink
             (a, site), (b, _) = col
             t = next(ancillas)
             home[t] = site
@@ -454,6 +475,8 @@ class SumsPhase:
         sites: ``(qubit, y, x)``: where each form qubit sits on the problem grid's doubled lattice. Given, the
             adder trees pair bits by place with star-shaped adders (:func:`spatial_popcount_layout`: one CX more
             per adder each way, a kind of its own); empty (default), in the forms' order (:func:`popcount_layout`).
+        sinks: With :attr:`sites`, per form the point its partial sums drift towards (``None`` or empty: none;
+            :func:`spatial_popcount_layout`). Which qubit keeps which sum only: the cost and the kind are the same.
     """
 
     gamma: str
@@ -462,6 +485,7 @@ class SumsPhase:
     linear: tuple[float, ...]
     ancillas: tuple[int, ...] = ()
     sites: tuple[tuple[int, int, int], ...] = ()
+    sinks: tuple[Sink | None, ...] = ()
 
     @property
     def kind(self) -> Hashable:
@@ -520,7 +544,8 @@ class SumsPhase:
         gates: list[Gate] = []
         registers: list[list[int | None]] = []
         seen: set[int] = set()
-        for form, on in zip(self.forms, self._active):
+        sinks = self.sinks or (None,) * len(self.forms)
+        for form, on, sink in zip(self.forms, self._active, sinks, strict=True):
             for q, _ in form:
                 if q in seen:
                     raise ValueError(f"qubit {q} appears in two terms")
@@ -529,7 +554,7 @@ class SumsPhase:
                 registers.append([])
                 continue
             if where:
-                g, reg, placed = spatial_popcount_layout(form, anc, where)
+                g, reg, placed = spatial_popcount_layout(form, anc, where, sink)
                 home.update(placed)
             else:
                 g, reg = popcount_layout(form, anc)

@@ -73,7 +73,9 @@ PhaseLayoutFlag = Annotated[
         "--phase-layout",
         help="How the phase separator sits on the grid: pooled (fewest CX all-to-all), spatial (star-shaped "
         "adders over neighbouring edges, node gadgets with nearby ancillas: fewer routed CX on grids and "
-        "heavy-hex) or auto (spatial when routed with --device onto a device that is not all-to-all, else pooled).",
+        "heavy-hex), medial (spatial, each robot's balance sums drifting to where the robots' patches meet) or "
+        "auto (with --device onto a device that is not all-to-all: medial on a square grid, else spatial; "
+        "else pooled).",
     ),
 ]
 
