@@ -125,7 +125,7 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     routed = r.routed
     assert routed.initial_layout == routed.final_layout
     assert _on_coupling(routed)
-    assert routed.circuit.count_ops()["cx"] == r.logical.count_ops()["cx"] + 3 * routed.swaps
+    assert routed.circuit.count_ops()["cx"] == r.logical.count_ops()["cx"] + 3 * routed.swaps - 2 * routed.num_fused
     _assert_equal_up_to_layouts(r.logical, _compact(routed), seed=5, global_phase=False)
 
 
