@@ -27,14 +27,8 @@ from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, scenario_from_dict
 
 from .conftest import scenarios
+from .medial_test import BIND, OBSTACLE_INTERIOR
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling
-
-BIND = {"gamma_0": 0.37, "beta_0": 0.81}
-OBSTACLE_INTERIOR = {
-    "grid": {"rows": 3, "cols": 4, "obstacles": [[0, 3]]},
-    "robots": [{"start": [1, 1], "goal": [2, 3]}],
-    "objective": {"obstacles": "hard"},
-}
 
 
 def test_doctests() -> None:
