@@ -156,6 +156,37 @@ def initial_path_count(scenario: Scenario, sizes: tuple[Count, Count] | None = N
     return total
 
 
+def start_paths(scenario: Scenario, robot: int, initial: str, rule: Rule = "exact") -> tuple[int, ...]:
+    """The paths (edge masks) whose uniform superposition is ``robot``'s part of the initial state ``initial``:
+    what :func:`initial_state_gates` prepares and the subspace simulator (:func:`simulate.subspace.robot_basis`)
+    starts from.
+
+    Args:
+        scenario: The scenario.
+        robot: Robot index.
+        initial: One of :data:`circuitgen.options.INITIAL_STATES` (see the module docstring).
+        rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
+            descent (``local_search``, ``local_search_mix``).
+
+    Returns:
+        The distinct paths, in the order the preparation reads them.
+
+    >>> from gridcover.presets import default_scenario
+    >>> start_paths(default_scenario(3, 3, 1), 0, "initial_path") == (initial_path(default_scenario(3, 3, 1), 0),)
+    True
+    """
+    if initial not in INITIAL_STATES:
+        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
+    if initial == "representatives":
+        return tuple(representatives(scenario, robot, rule))
+    if initial == "initial_path":
+        return (initial_path(scenario, robot),)
+    from gridcover.solvers.descent import local_search  # the solvers package is heavier than this module
+
+    descent = local_search(scenario, rule).paths[robot]
+    return (descent,) if initial == "local_search" else tuple(dict.fromkeys((initial_path(scenario, robot), descent)))
+
+
 def initial_state_gates(
     scenario: Scenario,
     initial: str = "initial_path",
@@ -175,32 +206,13 @@ def initial_state_gates(
     Returns:
         The gate list.
     """
-    if initial not in INITIAL_STATES:
-        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     v = scenario.edges_per_robot
     out: list[Gate] = []
-    if initial == "local_search_mix":
-        from gridcover.solvers.descent import local_search
-
-        descent = local_search(scenario, rule).paths
-        for r in range(scenario.num_robots):
-            masks = list(dict.fromkeys((initial_path(scenario, r), descent[r])))
-            strings = [int("".join(map(str, path_bits(scenario, m)[::-1])), 2) for m in masks]
-            out.extend(superposition_gates(strings, list(range(r * v, (r + 1) * v))))
-        return out
-    if initial != "representatives":  # one basis state per robot: an X on each variable of its path, in qubit order
-        if initial == "local_search":
-            from gridcover.solvers.descent import local_search  # the solvers package is heavier than this module
-
-            paths = local_search(scenario, rule).paths
-        else:
-            paths = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
-        for r, mask in enumerate(paths):
-            out += [x(q) for q in sorted(scenario.variable_index(r, e) for e in edges_of(mask))]
-        return out
     for r in range(scenario.num_robots):
-        qubits = list(range(r * v, (r + 1) * v))
-        masks = list(representatives(scenario, r, rule))
+        masks = start_paths(scenario, r, initial, rule)
+        if initial in ("initial_path", "local_search"):  # one basis state: an X on each variable of its path
+            out += [x(q) for q in sorted(scenario.variable_index(r, e) for e in edges_of(masks[0]))]
+            continue
         strings = [int("".join(map(str, path_bits(scenario, m)[::-1])), 2) for m in masks]
-        out.extend(superposition_gates(strings, qubits, ancilla))
+        out.extend(superposition_gates(strings, list(range(r * v, (r + 1) * v)), ancilla))
     return out

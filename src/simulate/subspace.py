@@ -74,14 +74,14 @@ import numpy as np
 from scipy.linalg.blas import zdotc
 from scipy.linalg.lapack import zrot
 
+from circuitgen.initial_state import start_paths
 from circuitgen.options import INITIAL_STATES, Initial
 from circuitgen.phase import phase_plan
 from gridcover.cost import separable_cost
 from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import initial_path, is_feasible, path_bits
-from gridcover.sbf import RULES, Rule, SbfLogic, representatives, sbf_logic
+from gridcover.paths import is_feasible, path_bits
+from gridcover.sbf import RULES, Rule, SbfLogic, sbf_logic
 from gridcover.scenario import Scenario
-from gridcover.solvers.descent import local_search
 from simulate import subspace_kernels
 
 __all__ = [
@@ -228,14 +228,7 @@ def robot_basis(
     if initial not in INITIAL_STATES:
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     grid = scenario.grid
-    if initial == "initial_path":
-        starts: tuple[int, ...] = (initial_path(scenario, robot),)
-    elif initial == "local_search":
-        starts = (local_search(scenario, rule).paths[robot],)
-    elif initial == "local_search_mix":
-        starts = tuple(dict.fromkeys((initial_path(scenario, robot), local_search(scenario, rule).paths[robot])))
-    else:
-        starts = representatives(scenario, robot, rule)
+    starts = start_paths(scenario, robot, initial, rule)
     moves = [
         (q.index, q.edge_mask, lg) for q in grid.plaquettes if not (lg := sbf_logic(scenario, robot, q, rule)).never
     ]

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -63,6 +64,7 @@ class LocalSearch:
     trace: tuple[float, ...]
 
 
+@lru_cache(maxsize=16)  # deterministic; the simulator's bases ask once per robot and the QAOA solver's notes again
 def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
     """Steepest descent over allowed SBF flips from the initial paths (see the module docstring).
 
