@@ -1,7 +1,8 @@
 """Routed two-qubit gates: ours vs Qiskit O3/SABRE on the same coupling map, in the same run.
 
 Run: ``python benchmarks/routing.py [--quick] [--family grid|heavy-hex]`` (``--quick``: 3x3/1, 4x4/2 and the
-obstacle scenarios only; ``--family``: that device family's rows only);
+obstacle scenarios only; ``--family``: that device family's rows only; ``--scenario LABEL``: the rows whose
+scenario label starts with LABEL, e.g. ``--scenario 4x4/2``);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
 unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases);
@@ -155,12 +156,15 @@ def main() -> None:
     families = ("grid", "heavy-hex")
     if "--family" in sys.argv:
         families = (sys.argv[sys.argv.index("--family") + 1],)
+    prefix = sys.argv[sys.argv.index("--scenario") + 1] if "--scenario" in sys.argv else ""
     print(
         "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "
         "| compile / a2a | 2q depth: greedy / compile |"
     )
     print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|")
     for label, s in scenarios(quick):
+        if not label.startswith(prefix):
+            continue
         for family in families:
             print(row(label, s, family), flush=True)
 
