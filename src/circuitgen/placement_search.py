@@ -1,0 +1,148 @@
+"""Placement search for small circuits: many initial layouts, each routed whole by SABRE with several seeds.
+
+One SABRE routing of a circuit with a few hundred two-qubit gates (one robot at p = 1: 3x3/1, the obstacle and
+interior-start scenarios, 100-130 CX) takes milliseconds, so compile can afford to try many and keep the
+cheapest. Where a routing starts decides most of its SWAPs, and no single layout heuristic wins everywhere (our
+greedy placement, Qiskit's ``SabreLayout`` from one random start or another: measured, 290-400 routed CX for
+3x3/1 on heavy-hex:3 depending on the start). :func:`search_route` routes:
+
+* the layouts it is given (compile passes :func:`circuitgen.hardware.best_layout`'s choice, so the search never
+  does worse than the single greedy routing), then
+* ``layouts`` runs of Qiskit's ``SabreLayout``, each from one random start (seeds ``seed, seed + 1, ...``),
+
+each with ``seeds`` SABRE routing seeds, whole-circuit, with SWAPs fused into an adjacent ``cx`` on their pair
+(:func:`circuitgen.routing.route` ``fuse=True``: ``cx a b`` then ``SWAP a b`` is two ``cx``), and keeps the
+routed circuit with the fewest two-qubit gates (the first in that order on ties). Every seed is fixed and every
+Qiskit pass gets an explicit trial count (Qiskit's default is the machine's CPU count), so the result is the
+same on every machine and ``qcpp estimate --device`` (which compiles small rows) reports exactly what
+``qcpp compile --device`` writes. The routed circuit is an ordinary SABRE routing of the unchanged gates: the
+checks of :mod:`circuitgen.routing` (coupling edges, statevector and QCEC equivalence up to the layouts) apply.
+
+Compile searches only on circuits of at most :data:`SEARCH_MAX_TWOQ` two-qubit gates (its cost grows with the
+gate count times ``layouts x seeds``; larger circuits keep one routing from the best layout).
+
+Example:
+    >>> from dataclasses import replace
+    >>> from gridcover.presets import default_scenario
+    >>> from circuitgen.compile import compile_scenario
+    >>> from circuitgen.devices import get_device
+    >>> from circuitgen.options import PlanOptions
+    >>> c = compile_scenario(default_scenario(2, 3, 1), 1, PlanOptions(fuse=False), lowered=True).circuit
+    >>> dev = get_device("heavy-hex:3")
+    >>> best = search_route(c, dev, layouts=4, seeds=2)
+    >>> one = route(c, dev, qiskit_sabre_layout(c, dev, seed=0))
+    >>> two_qubit_count(best.circuit) <= two_qubit_count(one.circuit)
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .circuit import Circuit
+from .devices import Device
+from .routing import RoutedCircuit, coupling_map, route
+
+__all__ = [
+    "SEARCH_LAYOUTS",
+    "SEARCH_MAX_TWOQ",
+    "SEARCH_SEEDS",
+    "qiskit_sabre_layout",
+    "search_route",
+    "two_qubit_count",
+]
+
+SEARCH_MAX_TWOQ = 400
+"""Compile searches placements on circuits of at most this many two-qubit gates (one robot up to p = 3 on 3x3;
+the time-to-solution study's p = 5 circuits, 540+ CX, keep one routing)."""
+
+SEARCH_LAYOUTS = 32
+"""``SabreLayout`` starts per search. Measured on heavy-hex (``benchmarks/routing.py --search``): more starts
+find a few CX more on 3x3/1 at proportionally more time."""
+
+SEARCH_SEEDS = 4
+"""SABRE routing seeds per layout."""
+
+SABRE_LAYOUT_TRIALS = 1
+"""Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the machine's CPU count, which would make
+the layout depend on the machine)."""
+
+
+def two_qubit_count(circuit: Circuit) -> int:
+    """Two-qubit gates of ``circuit``."""
+    return sum(1 for g in circuit.gates if len(g[1]) == 2)
+
+
+def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tuple[int, ...]:
+    """Qiskit's ``SabreLayout`` (forward-backward SABRE from :data:`SABRE_LAYOUT_TRIALS` random starts) on the
+    two-qubit gates of ``circuit``.
+
+    Args:
+        circuit: A lowered circuit.
+        device: The target (at least ``circuit.num_qubits`` qubits).
+        seed: ``SabreLayout``'s seed.
+
+    Returns:
+        Logical qubit ``i`` -> physical qubit.
+    """
+    from qiskit import QuantumCircuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreLayout
+
+    qc = QuantumCircuit(circuit.num_qubits)
+    for g in circuit.gates:
+        if len(g[1]) == 2:
+            qc.cx(*g[1])
+    sabre = SabreLayout(coupling_map(device), seed=seed, skip_routing=True, layout_trials=SABRE_LAYOUT_TRIALS,
+                        swap_trials=SABRE_LAYOUT_TRIALS)  # fmt: skip
+    pm = PassManager([sabre])
+    pm.run(qc)
+    layout = pm.property_set["layout"]
+    return tuple(int(layout[q]) for q in qc.qubits)
+
+
+def search_route(
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]] = (),
+    seed: int = 0,
+    measured: Sequence[int] | None = None,
+    layouts: int = SEARCH_LAYOUTS,
+    seeds: int = SEARCH_SEEDS,
+) -> RoutedCircuit:
+    """The cheapest whole-circuit SABRE routing over ``starts`` and ``layouts`` ``SabreLayout`` runs, each
+    routed with ``seeds`` seeds, SWAPs fused (module docs).
+
+    Args:
+        circuit: A lowered circuit (one- and two-qubit gates).
+        device: The target (not all-to-all: nothing to search there).
+        starts: Layouts to try first (logical qubit ``i`` -> physical qubit).
+        seed: First seed of ``SabreLayout`` and of the routings.
+        measured: Logical qubits measured at the end (:func:`circuitgen.routing.route`).
+        layouts: ``SabreLayout`` runs (seeds ``seed .. seed + layouts - 1``).
+        seeds: Routing seeds per layout (``seed .. seed + seeds - 1``).
+
+    Returns:
+        The routed circuit with the fewest two-qubit gates (the first tried on ties).
+
+    Raises:
+        ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
+    """
+    candidates = [tuple(s) for s in starts]
+    candidates += [qiskit_sabre_layout(circuit, device, seed + i) for i in range(layouts)]
+    if not candidates or seeds < 1:
+        raise ValueError("search_route needs at least one layout and one seed")
+    best: RoutedCircuit | None = None
+    best_cost = 0
+    tried: set[tuple[int, ...]] = set()
+    for layout in candidates:
+        if layout in tried:  # SabreLayout often converges to the same layout from different starts
+            continue
+        tried.add(layout)
+        for s in range(seed, seed + seeds):
+            routed = route(circuit, device, layout, seed=s, measured=measured, fuse=True)
+            cost = two_qubit_count(routed.circuit)
+            if best is None or cost < best_cost:
+                best, best_cost = routed, cost
+    assert best is not None
+    return best
