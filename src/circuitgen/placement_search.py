@@ -38,14 +38,16 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 from .circuit import Circuit
 from .devices import Device
-from .routing import RoutedCircuit, coupling_map, route
+from .routing import DEFAULT_TRIALS, RoutedCircuit, coupling_map, route, window_cx
 
 __all__ = [
     "SEARCH_LAYOUTS",
     "SEARCH_MAX_TWOQ",
+    "SEARCH_REFINE",
     "SEARCH_SEEDS",
     "qiskit_sabre_layout",
     "search_route",
@@ -56,12 +58,15 @@ SEARCH_MAX_TWOQ = 400
 """Compile searches placements on circuits of at most this many two-qubit gates (one robot up to p = 3 on 3x3;
 the time-to-solution study's p = 5 circuits, 540+ CX, keep one routing)."""
 
-SEARCH_LAYOUTS = 32
-"""``SabreLayout`` starts per search. Measured on heavy-hex (``benchmarks/routing.py --search``): more starts
-find a few CX more on 3x3/1 at proportionally more time."""
+SEARCH_LAYOUTS = 24
+"""``SabreLayout`` starts per search (measured: ``benchmarks/routing.py --search``)."""
 
 SEARCH_SEEDS = 4
-"""SABRE routing seeds per layout."""
+"""SABRE routing seeds per layout: every layout is routed with the first, the :data:`SEARCH_REFINE` cheapest
+with all."""
+
+SEARCH_REFINE = 6
+"""Layouts routed with every seed: the cheapest after the first seed."""
 
 SABRE_LAYOUT_TRIALS = 1
 """Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the machine's CPU count, which would make
@@ -128,21 +133,64 @@ def search_route(
     Raises:
         ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
     """
-    candidates = [tuple(s) for s in starts]
-    candidates += [qiskit_sabre_layout(circuit, device, seed + i) for i in range(layouts)]
-    if not candidates or seeds < 1:
+    if (not starts and layouts < 1) or seeds < 1:
         raise ValueError("search_route needs at least one layout and one seed")
-    best: RoutedCircuit | None = None
-    best_cost = 0
-    tried: set[tuple[int, ...]] = set()
+    pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
+    key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
+           seeds)  # fmt: skip
+    choice = _SEARCH_CACHE.get(key)
+    if choice is None:
+        choice = _search(pairs, circuit, device, starts, seed, layouts, seeds)
+        _SEARCH_CACHE[key] = choice
+    layout, routing_seed = choice
+    return route(circuit, device, layout, seed=routing_seed, measured=measured, fuse=True)
+
+
+_SEARCH_CACHE: dict[tuple, tuple[tuple[int, ...], int]] = {}
+"""The winning ``(layout, routing seed)`` per search (two-qubit gates, device, starts, seeds): compiling the same
+circuit again routes only the winner."""
+
+
+def _search(
+    pairs: tuple[tuple[int, ...], ...],
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]],
+    seed: int,
+    layouts: int,
+    seeds: int,
+) -> tuple[tuple[int, ...], int]:
+    """The ``(layout, routing seed)`` of :func:`search_route`'s cheapest routing: every layout routed with ``seed``,
+    then the :data:`SEARCH_REFINE` cheapest of them with the other seeds. A candidate is scored by
+    :func:`circuitgen.routing.window_cx` of SABRE's ops (in one window that is the two-qubit count
+    :func:`circuitgen.routing.route` writes with ``fuse=True``), without assembling the circuit."""
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag
+
+    cmap = coupling_map(device)
+    candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
+    for i in range(layouts):
+        layout = qiskit_sabre_layout(circuit, device, seed + i)
+        if layout not in candidates:  # SabreLayout may converge to a layout already found
+            candidates.append(layout)
+    dags = []
     for layout in candidates:
-        if layout in tried:  # SabreLayout often converges to the same layout from different starts
-            continue
-        tried.add(layout)
-        for s in range(seed, seed + seeds):
-            routed = route(circuit, device, layout, seed=s, measured=measured, fuse=True)
-            cost = two_qubit_count(routed.circuit)
-            if best is None or cost < best_cost:
-                best, best_cost = routed, cost
-    assert best is not None
-    return best
+        qc = QuantumCircuit(device.num_qubits)
+        for a, b in pairs:
+            qc.cx(layout[a], layout[b])
+        dags.append(circuit_to_dag(qc))
+    first = sorted((_routed_cx(dag, cmap, seed), i) for i, dag in enumerate(dags))
+    best = (first[0][0], first[0][1], seed)
+    for _, i in first[:SEARCH_REFINE]:
+        for s in range(seed + 1, seed + seeds):
+            best = min(best, (_routed_cx(dags[i], cmap, s), i, s))
+    return candidates[best[1]], best[2]
+
+
+def _routed_cx(dag: Any, cmap: Any, seed: int) -> int:
+    """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses them."""
+    from qiskit.transpiler.passes import SabreSwap
+
+    out = SabreSwap(cmap, heuristic="decay", seed=seed, trials=DEFAULT_TRIALS).run(dag)
+    index = {q: i for i, q in enumerate(out.qubits)}
+    return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])
