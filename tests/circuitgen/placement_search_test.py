@@ -164,12 +164,11 @@ def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypat
     assert r.routed.circuit.count_ops()["cx"] <= 3 * a2a
     monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
     f = routed_fields(s, 1, DEFAULT_PLAN, "heavy-hex", r.logical_qubits, a2a, 0)
-    native = compile_for_device(s, 1, "heavy-hex")
-    assert f["routed_kind"] == "exact" and f["device"] == native.routed.device.name
-    assert f["routed_twoq"] == native.summary()["routed"]["two_qubit"] == r.summary()["routed"]["two_qubit"]
+    assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
+    assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]  # native: one cz per cx
 
 
-@pytest.mark.slow
+@pytest.mark.heavy  # the default run proves searched routings by QCEC in routing_qcec_test (heavy-hex:5, ibm_torino)
 def test_qcec_proves_the_searched_routing_equal_to_the_compiled_circuit() -> None:
     from simulate.equivalence import check_equivalence
 
