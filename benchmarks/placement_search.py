@@ -13,7 +13,10 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
 * ``search L``: :func:`circuitgen.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
   starts (``SEARCH_SEEDS`` routing seeds for the ``SEARCH_REFINE`` best): routed CX, CX / a2a, and the CPU
   seconds of the search (the process's CPU time: SABRE's trials run on threads), its cache cleared first.
-  The default budget is ``SEARCH_LAYOUTS``.
+  The default budget is ``SEARCH_LAYOUTS``;
+* ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
+  (:func:`circuitgen.hardware.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
+  path with the default search), the search's cache cleared first.
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ from routing import BIND, scenarios  # the routing benchmark's (this script's di
 from circuitgen import placement_search
 from circuitgen.compile import compile_scenario
 from circuitgen.devices import get_device
-from circuitgen.hardware import best_layout
+from circuitgen.hardware import best_layout, compile_for_device
 from circuitgen.options import DEFAULT_PLAN
 from circuitgen.phase_locality import for_device
 from circuitgen.routing import route
@@ -44,8 +47,8 @@ def one_robot() -> list[tuple[str, Scenario]]:
 def main() -> None:
     family = sys.argv[sys.argv.index("--family") + 1] if "--family" in sys.argv else "heavy-hex"
     head = " | ".join(f"search {b}: cx, / a2a, s" for b in BUDGETS)
-    print(f"| scenario | device | a2a cx | one routing | fused | {head} |")
-    print("|---|---|---:|---:|---:|" + "---:|" * len(BUDGETS))
+    print(f"| scenario | device | a2a cx | one routing | fused | {head} | compile s |")
+    print("|---|---|---:|---:|---:|" + "---:|" * (len(BUDGETS) + 1))
     for label, s in one_robot():
         a2a = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit.count_ops()["cx"]
         options = replace(for_device(DEFAULT_PLAN, family), fuse=False)
@@ -62,8 +65,12 @@ def main() -> None:
             seconds = time.process_time() - t
             n = cx.count_ops()["cx"]
             cells.append(f"{n:,}, {n / a2a:.2f}, {seconds:.2f}")
+        placement_search._SEARCH_CACHE.clear()
+        t = time.process_time()
+        compile_for_device(s, 1, family, lowered=True, bindings=BIND)
+        compile_s = time.process_time() - t
         print(f"| {label} | {device.name} | {a2a:,} | {one:,} ({one / a2a:.2f}) | {fused:,} ({fused / a2a:.2f}) | "
-              + " | ".join(cells) + " |", flush=True)  # fmt: skip
+              + " | ".join(cells) + f" | {compile_s:.2f} |", flush=True)  # fmt: skip
 
 
 if __name__ == "__main__":
