@@ -3,16 +3,18 @@
 One SABRE routing of a circuit with a few hundred two-qubit gates (one robot at p = 1: 3x3/1, the obstacle and
 interior-start scenarios, 100-130 CX) takes milliseconds, so compile can afford to try many and keep the
 cheapest. Where a routing starts decides most of its SWAPs, and no single layout heuristic wins everywhere (our
-greedy placement, Qiskit's ``SabreLayout`` from one random start or another: measured, 290-400 routed CX for
-3x3/1 on heavy-hex:3 depending on the start). :func:`search_route` routes:
+greedy placement, Qiskit's ``SabreLayout`` from one random start or another; ``benchmarks/placement_search.py``:
+3x3/1 on heavy-hex:3 routes to 354 CX from the best of our layouts, to 287 from the best of the search's).
+:func:`search_route` routes:
 
 * the layouts it is given (compile passes :func:`circuitgen.hardware.best_layout`'s choice, so the search never
   does worse than the single greedy routing), then
 * ``layouts`` runs of Qiskit's ``SabreLayout``, each from one random start (seeds ``seed, seed + 1, ...``),
 
-each with ``seeds`` SABRE routing seeds, whole-circuit, with SWAPs fused into an adjacent ``cx`` on their pair
-(:func:`circuitgen.routing.route` ``fuse=True``: ``cx a b`` then ``SWAP a b`` is two ``cx``), and keeps the
-routed circuit with the fewest two-qubit gates (the first in that order on ties). Every seed is fixed and every
+each with SABRE routing seed ``seed`` and the :data:`SEARCH_REFINE` cheapest also with ``seeds - 1`` more,
+whole-circuit, with SWAPs fused into an adjacent ``cx`` on their pair (:func:`circuitgen.routing.route`
+``fuse=True``: ``cx a b`` then ``SWAP a b`` is two ``cx``), and keeps the routed circuit with the fewest
+two-qubit gates (ties: the first layout in that order, then the lowest seed). Every seed is fixed and every
 Qiskit pass gets an explicit trial count (Qiskit's default is the machine's CPU count), so the result is the
 same on every machine and ``qcpp estimate --device`` (which compiles small rows) reports exactly what
 ``qcpp compile --device`` writes. The routed circuit is an ordinary SABRE routing of the unchanged gates: the
@@ -115,8 +117,8 @@ def search_route(
     layouts: int = SEARCH_LAYOUTS,
     seeds: int = SEARCH_SEEDS,
 ) -> RoutedCircuit:
-    """The cheapest whole-circuit SABRE routing over ``starts`` and ``layouts`` ``SabreLayout`` runs, each
-    routed with ``seeds`` seeds, SWAPs fused (module docs).
+    """The cheapest whole-circuit SABRE routing over ``starts`` and ``layouts`` ``SabreLayout`` runs, SWAPs fused
+    (module docs).
 
     Args:
         circuit: A lowered circuit (one- and two-qubit gates).
@@ -125,10 +127,12 @@ def search_route(
         seed: First seed of ``SabreLayout`` and of the routings.
         measured: Logical qubits measured at the end (:func:`circuitgen.routing.route`).
         layouts: ``SabreLayout`` runs (seeds ``seed .. seed + layouts - 1``).
-        seeds: Routing seeds per layout (``seed .. seed + seeds - 1``).
+        seeds: Routing seeds (``seed .. seed + seeds - 1``): every layout is routed with the first, the
+            :data:`SEARCH_REFINE` cheapest with all.
 
     Returns:
-        The routed circuit with the fewest two-qubit gates (the first tried on ties).
+        The routed circuit with the fewest two-qubit gates (ties: the first layout in the order above, then the
+        lowest seed).
 
     Raises:
         ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
