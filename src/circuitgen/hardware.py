@@ -21,7 +21,10 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   robots, the cells from 4x4 with two robots on): optionally region-local ancillas
   (:func:`circuitgen.layout.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
   placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
-  SABRE routing of the whole circuit (:func:`circuitgen.routing.route`).
+  SABRE routing of the whole circuit (:func:`circuitgen.routing.route`); on circuits of at most
+  :data:`circuitgen.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, a placement search from that layout
+  instead (:func:`greedy_route`: many ``SabreLayout`` starts and SABRE seeds, SWAPs fused with an adjacent
+  ``cx``, the fewest CX kept; deterministic).
 
 Unless ``lowered``, the routed circuit is translated to the device's native gates
 (:func:`circuitgen.routing.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken.
@@ -34,7 +37,7 @@ Example:
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
     >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
-    >>> r.layout_method, r.routed.device.name  # cheaper than the cell layout on heavy-hex:7 (354 vs 432 CX)
+    >>> r.layout_method, r.routed.device.name  # cheaper than the cell layout on heavy-hex:7 (287 vs 432 CX)
     ('greedy', 'heavy-hex:3')
     >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
     >>> cells.routed.device.name
@@ -59,9 +62,18 @@ from .layout import localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
+from .placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
 from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
 
-__all__ = ["DeviceCompileResult", "compile_for_device", "device_for", "hex_device", "layout_device", "medial_device"]
+__all__ = [
+    "DeviceCompileResult",
+    "compile_for_device",
+    "device_for",
+    "greedy_route",
+    "hex_device",
+    "layout_device",
+    "medial_device",
+]
 
 
 @dataclass(frozen=True)
@@ -115,7 +127,9 @@ class DeviceCompileResult:
 ROUTERS = {
     "medial": "geometric layout (medial on a square grid, one cell per plaquette on heavy-hex) with local ancillas, "
     "far phases relayed through clean qubits; qiskit SabreSwap per section, each section returning home",
-    "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout",
+    "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout; "
+    f"on circuits of at most {SEARCH_MAX_TWOQ} two-qubit gates the fewest CX over that layout and {SEARCH_LAYOUTS} "
+    "SabreLayout starts, SWAPs fused with an adjacent cx",
 }
 
 ESP_MODEL = (
@@ -134,24 +148,6 @@ def _two_qubit_only(c: Circuit, reverse: bool = False) -> Circuit:
     if reverse:
         gates.reverse()
     return Circuit(c.registers, [Section("two_qubit", gates)])
-
-
-def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tuple[int, ...]:
-    """Qiskit's ``SabreLayout`` (forward-backward SABRE from random starts) on the two-qubit gates."""
-    from qiskit import QuantumCircuit
-    from qiskit.transpiler import PassManager
-    from qiskit.transpiler.passes import SabreLayout
-
-    from .routing import coupling_map
-
-    qc = QuantumCircuit(circuit.num_qubits)
-    for g in circuit.gates:
-        if len(g[1]) == 2:
-            qc.cx(*g[1])
-    pm = PassManager([SabreLayout(coupling_map(device), seed=seed, skip_routing=True)])
-    pm.run(qc)
-    layout = pm.property_set["layout"]
-    return tuple(int(layout[q]) for q in qc.qubits)
 
 
 LAYOUTS = ("ours", "qiskit")
@@ -239,8 +235,7 @@ def compile_for_device(
                 other = routed.device
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
-                greedy = route(circuit, other, best_layout(circuit, other, seed=seed, layouts=layouts), seed=seed,
-                               measured=measured)  # fmt: skip
+                greedy = greedy_route(circuit, other, seed=seed, layouts=layouts, measured=measured)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
@@ -264,11 +259,27 @@ def compile_for_device(
         raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
-    layout = best_layout(circuit, dev, seed=seed, layouts=layouts)
-    routed = route(circuit, dev, layout, seed=seed, measured=measured)
+    routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured)
     if not lowered:
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
+
+
+def greedy_route(
+    circuit: Circuit,
+    device: Device,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+    measured: range | None = None,
+) -> RoutedCircuit:
+    """The ``greedy`` path's routing of the whole circuit: from :func:`best_layout`, one SABRE routing; on circuits
+    of at most :data:`circuitgen.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, the cheapest of a placement
+    search that starts with that layout (:func:`circuitgen.placement_search.search_route`: many layouts and
+    seeds, SWAPs fused with an adjacent ``cx``)."""
+    layout = best_layout(circuit, device, seed=seed, layouts=layouts)
+    if device.is_all_to_all or _two_qubit(circuit) > SEARCH_MAX_TWOQ:
+        return route(circuit, device, layout, seed=seed, measured=measured)
+    return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured)
 
 
 SEARCH = True

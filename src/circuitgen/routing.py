@@ -8,7 +8,8 @@ it inserts are read back, every one-qubit gate of ours is put back on its qubit'
 before that qubit's next two-qubit gate, and every SWAP becomes three ``cx``. Our gates keep their angles (also
 symbolic ones) and their section names (a SWAP belongs to the section of the gate before it). A SWAP next to a
 ``cx`` on the same two qubits (nothing between them on either) is fused with it into two ``cx`` instead of four
-in :func:`route_windows` (:func:`_assemble`; :attr:`RoutedCircuit.fused` counts them). Routing never
+in :func:`route_windows` and in :func:`route` with ``fuse=True`` (:func:`_assemble`; :attr:`RoutedCircuit.fused`
+counts them). Routing never
 reorders the gates of one logical qubit, so the routed circuit equals the original up to the layouts:
 ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>
 (``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
@@ -117,6 +118,7 @@ def route(
     seed: int = 0,
     measured: Sequence[int] | None = None,
     trials: int | None = DEFAULT_TRIALS,
+    fuse: bool = False,
 ) -> RoutedCircuit:
     """Route a lowered circuit onto ``device`` from ``initial_layout`` with Qiskit's SABRE.
 
@@ -127,6 +129,8 @@ def route(
         seed: SABRE's seed.
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
         trials: SABRE's trials (the best of that many randomised routings; Qiskit's default if ``None``).
+        fuse: Write a SWAP next to a ``cx`` on the same two qubits as two ``cx`` (:func:`_assemble`, anywhere in
+            the circuit); by default every SWAP is three ``cx``.
 
     Returns:
         The :class:`RoutedCircuit` (lowered gates plus ``cx`` for SWAPs).
@@ -150,7 +154,9 @@ def route(
         sabre = SabreSwap(coupling_map(device), heuristic="decay", seed=seed, trials=trials)
         out = PassManager([sabre]).run(qc)
         routed_ops = [(inst.operation.name, tuple(out.find_bit(b).index for b in inst.qubits)) for inst in out.data]
-    return _assemble(gates, section_of, layout, big, routed_ops, device, measured_)  # type: ignore[arg-type]
+    # one window for everything: a whole-circuit routing has no per-window sums to keep apart
+    windows = ([0] * len(gates), [0] * len(routed_ops)) if fuse else None
+    return _assemble(gates, section_of, layout, big, routed_ops, device, measured_, None, windows)  # type: ignore[arg-type]
 
 
 def _assemble(
@@ -168,8 +174,9 @@ def _assemble(
     qubits (each ``cx`` is the next two-qubit gate of the logical qubits on ``p`` and ``q``); every one-qubit gate
     goes on its qubit's current position just before that qubit's next two-qubit gate. A SWAP belongs to
     ``op_sections[i]`` if given, else to the section of the gate before it. ``windows``: the window (index) of
-    every gate and of every routed op, if the ops were routed window by window (:func:`route_windows`); only
-    then are SWAPs fused (below), so :func:`route` writes every SWAP as three ``cx``.
+    every gate and of every routed op, if the ops were routed window by window (:func:`route_windows`, or all in
+    one window: :func:`route` with ``fuse=True``); only then are SWAPs fused (below), otherwise every SWAP is three
+    ``cx``.
 
     A SWAP next to a ``cx`` on the same two qubits, with nothing between them on either qubit, is *fused* with it
     (``cx a b`` then ``SWAP = cx a b; cx b a; cx a b``: the two ``cx a b`` cancel, two ``cx`` remain; the same

@@ -1,0 +1,152 @@
+"""The placement search for small circuits (:mod:`circuitgen.placement_search`) and whole-circuit SWAP fusion.
+
+What it must keep: every two-qubit gate on a coupling edge, the routed circuit equal to the unrouted one up to the
+reported layouts (statevector on random circuits; QCEC on 3x3/1 routed onto heavy-hex), the score it ranks by
+equal to the count it writes, the result independent of its cache (so ``estimate --device`` reports exactly what
+``compile --device`` writes), and never worse than the single routing it starts from.
+"""
+
+from __future__ import annotations
+
+import doctest
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from circuitgen import placement_search
+from circuitgen.circuit import Circuit, Section
+from circuitgen.compile import compile_scenario
+from circuitgen.devices import get_device
+from circuitgen.gates import Gate, cx, h, rz
+from circuitgen.hardware import best_layout, compile_for_device
+from circuitgen.options import PlanOptions
+from circuitgen.placement_search import search_route, two_qubit_count
+from circuitgen.routing import RoutedCircuit, coupling_map, route
+from gridcover.presets import default_scenario
+
+from .routing_qcec_test import aligned
+from .routing_test import _assert_equal_up_to_layouts, _on_coupling
+
+BIND = {"gamma_0": 0.3, "beta_0": 0.7}
+
+
+def test_doctests() -> None:
+    result = doctest.testmod(placement_search)
+    assert result.failed == 0 and result.attempted > 0
+
+
+@st.composite
+def _circuits(draw: st.DrawFn) -> Circuit:
+    """Random lowered circuits with one-qubit gates between the CX (they must move with their qubit, also across
+    a fused SWAP), including CX pairs that repeat (where SWAPs fuse)."""
+    n = draw(st.integers(2, 7))
+    pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(lambda p: p[0] != p[1])
+    gates: list[Gate] = []
+    for a, b in draw(st.lists(pairs, min_size=1, max_size=30)):
+        gates += [h(a), cx(a, b), rz(0.3 + a, b)]
+        if draw(st.booleans()):
+            gates.append(cx(b, a))
+    return Circuit([("data", n)], [Section("s", gates)])
+
+
+@settings(max_examples=30, deadline=None)
+@given(_circuits(), st.sampled_from(["grid:2x4", "grid:3x3", "grid:1x8"]), st.integers(0, 3), st.data())
+def test_fused_whole_circuit_routing_is_exact_and_scored_as_written(
+    logical: Circuit, device: str, seed: int, data: st.DataObject
+) -> None:
+    dev = get_device(device)
+    layout = tuple(data.draw(st.permutations(range(dev.num_qubits)))[: logical.num_qubits])
+    fused = route(logical, dev, layout, seed=seed, fuse=True)
+    plain = route(logical, dev, layout, seed=seed)
+    assert _on_coupling(fused)
+    assert fused.swaps == plain.swaps and plain.num_fused == 0
+    cx_count = logical.count_ops()["cx"]
+    assert two_qubit_count(fused.circuit) == cx_count + 3 * fused.swaps - 2 * fused.num_fused
+    _assert_equal_up_to_layouts(logical, fused, seed=5, global_phase=False)
+    # the search ranks candidates by this score without assembling them: it must be what route writes
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag
+
+    qc = QuantumCircuit(dev.num_qubits)
+    for g in logical.gates:
+        if len(g[1]) == 2:
+            qc.cx(layout[g[1][0]], layout[g[1][1]])
+    score = placement_search._routed_cx(circuit_to_dag(qc), coupling_map(dev), seed)
+    assert score == two_qubit_count(fused.circuit)
+
+
+def _mixer_circuit(shape: tuple[int, int, int]) -> Circuit:
+    return compile_scenario(default_scenario(*shape), 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
+
+
+def test_search_is_no_worse_than_its_start_and_independent_of_its_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+    c = _mixer_circuit((2, 3, 1))
+    dev = get_device("heavy-hex:3")
+    start = best_layout(c, dev)
+    one = route(c, dev, start, fuse=True)
+    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
+    found = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
+    assert _on_coupling(found)
+    assert two_qubit_count(found.circuit) <= two_qubit_count(one.circuit)
+    assert len(placement_search._SEARCH_CACHE) == 1
+    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})  # afresh: the same choice, gate for gate
+    again = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
+    assert list(again.circuit.gates) == list(found.circuit.gates) and again.initial_layout == found.initial_layout
+    cached = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
+    assert list(cached.circuit.gates) == list(found.circuit.gates)
+    with pytest.raises(ValueError, match="at least one layout"):
+        search_route(c, dev, layouts=0)
+
+
+def test_compile_searches_small_circuits_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[int] = []
+    real = placement_search.search_route
+
+    def spy(circuit: Circuit, *args: object, **kwargs: object) -> RoutedCircuit:
+        calls.append(two_qubit_count(circuit))
+        return real(circuit, *args, **kwargs)  # type: ignore[arg-type]
+
+    import circuitgen.hardware as hardware
+
+    monkeypatch.setattr(hardware, "search_route", spy)
+    s = default_scenario(2, 3, 1)
+    compile_for_device(s, 1, "heavy-hex:3", lowered=True, bindings=BIND, layout_method="greedy")
+    assert len(calls) == 1 and calls[0] <= placement_search.SEARCH_MAX_TWOQ
+    monkeypatch.setattr(hardware, "SEARCH_MAX_TWOQ", calls[0] - 1)
+    r = compile_for_device(s, 1, "heavy-hex:3", lowered=True, bindings=BIND, layout_method="greedy")
+    assert len(calls) == 1 and r.routed.num_fused == 0  # above the limit: one routing, no fused SWAPs
+    compile_for_device(s, 1, "all-to-all:12", lowered=True, bindings=BIND)
+    assert len(calls) == 1  # nothing to search on all-to-all
+
+
+def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypatch: pytest.MonkeyPatch) -> None:
+    """3x3/1 on the unsized heavy-hex: the search's routing is within 3x the all-to-all CX (#21's goal; one
+    SABRE routing from the best layout wrote 354 = 3.34x), and estimate --device reports it exactly, with the
+    search redone from scratch (no cached choice)."""
+    from estimators.estimate import DEFAULT_PLAN
+    from estimators.routed import routed_fields
+
+    s = default_scenario(3, 3, 1)
+    a2a = compile_scenario(s, 1, lowered=True).circuit.count_ops()["cx"]
+    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
+    r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND)
+    assert r.layout_method == "greedy" and _on_coupling(r.routed)
+    assert r.routed.circuit.count_ops()["cx"] <= 3 * a2a
+    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
+    f = routed_fields(s, 1, DEFAULT_PLAN, "heavy-hex", r.logical_qubits, a2a, 0)
+    assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
+    assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]  # native: one cz per cx
+
+
+@pytest.mark.heavy  # the default run proves searched routings by QCEC in routing_qcec_test (heavy-hex:5, ibm_torino)
+def test_qcec_proves_the_searched_routing_equal_to_the_compiled_circuit() -> None:
+    from simulate.equivalence import check_equivalence
+
+    s = default_scenario(3, 3, 1)
+    r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND)
+    assert r.layout_method == "greedy" and r.routed.num_fused > 0  # the search's routing, SWAPs fused
+    n = r.logical.num_qubits
+    b = aligned(r.routed, n)
+    a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(r.logical.gates))])
+    assert check_equivalence(a, b, num_plain=s.num_variables).criterion == "equivalent"
