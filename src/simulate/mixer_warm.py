@@ -52,7 +52,9 @@ from simulate.training import cost_scale
 __all__ = [
     "MIXER_MAXITER",
     "MIXER_STARTS",
+    "MixerCeiling",
     "MixerWarmStart",
+    "mixer_only_ceiling",
     "product_objective",
     "robot_states",
     "robot_states_gradient",
@@ -62,7 +64,9 @@ __all__ = [
 MIXER_MAXITER = 100
 """L-BFGS-B iterations per mixer-only run."""
 MIXER_STARTS = (0.5, 1.5, 2.5)
-"""Constant betas the mixer-only training starts from at ``p = 1`` (beside nothing else; deterministic)."""
+"""Constant betas the mixer-only training starts from at ``p = 1`` (deterministic)."""
+CEILING_STARTS = 60
+"""Seeded random starts of :func:`mixer_only_ceiling` per depth."""
 
 _ROWS = 1 << 10  # rows of the first robot's axis per chunk of the product pass
 
@@ -291,4 +295,97 @@ def train_mixer_only(
         first, value, mean, x = best
         out.append(MixerWarmStart(level, tuple(float(b) for b in x), first, value, mean, evaluations,
                                   time.perf_counter() - t0))
+    return out
+
+
+@dataclass(frozen=True)
+class MixerCeiling:
+    """The best ``P(optimum)`` found over mixer-only angles at one depth (:func:`mixer_only_ceiling`).
+
+    Attributes:
+        p: Number of layers.
+        betas: The betas that reach it (gammas 0).
+        p_optimum: ``P(optimum)`` of the product state at ``betas``.
+        starts: Random starts tried.
+        seconds: Wall time for this depth.
+    """
+
+    p: int
+    betas: tuple[float, ...]
+    p_optimum: float
+    starts: int
+    seconds: float
+
+    @property
+    def angles(self) -> tuple[float, ...]:
+        """``[0, beta_0, 0, beta_1, ...]``."""
+        return tuple(v for b in self.betas for v in (0.0, b))
+
+
+def _p_optimum_and_grads(
+    probs: Sequence[np.ndarray], optima: Sequence[Sequence[int]]
+) -> tuple[float, list[np.ndarray]]:
+    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives."""
+    total = 0.0
+    grads = [np.zeros(len(p)) for p in probs]
+    for o in optima:
+        parts = [float(p[i]) for p, i in zip(probs, o)]
+        total += float(np.prod(parts))
+        for r, i in enumerate(o):
+            grads[r][i] += float(np.prod(parts[:r] + parts[r + 1 :]))
+    return total, grads
+
+
+def mixer_only_ceiling(
+    qaoa: SubspaceQAOA, p: int, starts: int = CEILING_STARTS, seed: int = 0
+) -> list[MixerCeiling]:
+    """The largest ``P(optimum)`` found over mixer-only angles (gammas 0) at depths ``1 .. p``: a diagnostic.
+
+    Unlike :func:`train_mixer_only` this *uses the optimum* (:meth:`~simulate.subspace.SubspaceQAOA.optimum`):
+    it maximises the probability of the optimal assignments directly, by L-BFGS-B on the exact gradient, at
+    each depth from ``starts`` seeded uniform random betas in ``[0, 2 pi)`` and from the best betas of the depth
+    before with a zero layer appended (so the result never decreases with depth). It is not a solver; it says
+    what a warm start with gammas 0 can give at best (the best found, a lower bound on the true maximum), so
+    that the phase separators' share of a trained ``P(optimum)`` can be read off.
+
+    Args:
+        qaoa: The simulator.
+        p: The largest depth (>= 1).
+        starts: Random starts per depth (>= 1).
+        seed: Seed of ``numpy.random.default_rng``.
+
+    Returns:
+        One :class:`MixerCeiling` per depth ``1 .. p``.
+
+    Example:
+        >>> from gridcover.scenario import scenario_from_dict
+        >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+        >>> c = mixer_only_ceiling(SubspaceQAOA(s), 2, starts=5)
+        >>> c[0].p_optimum <= c[1].p_optimum <= 1.0, len(c[1].angles)
+        (True, 4)
+    """
+    if p < 1:
+        raise ValueError(f"p must be >= 1, got {p}")
+    if starts < 1:
+        raise ValueError(f"starts must be >= 1, got {starts}")
+    optima = [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
+
+    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
+        states = robot_states(qaoa, x)
+        value, grads = _p_optimum_and_grads([v.real * v.real + v.imag * v.imag for v in states], optima)
+        return -value, -robot_states_gradient(qaoa, x, grads)
+
+    rng = np.random.default_rng(seed)
+    out: list[MixerCeiling] = []
+    for level in range(1, p + 1):
+        t0 = time.perf_counter()
+        x0s = [rng.uniform(0.0, 2 * np.pi, level) for _ in range(starts)]
+        if out:
+            x0s.insert(0, np.append(out[-1].betas, 0.0))
+        best_x, best = x0s[0], -fg(x0s[0])[0]
+        for x0 in x0s:
+            res = minimize(fg, x0, jac=True, method="L-BFGS-B")
+            if -float(res.fun) > best:
+                best, best_x = -float(res.fun), np.asarray(res.x, dtype=float)
+        out.append(MixerCeiling(level, tuple(float(b) for b in best_x), best, starts, time.perf_counter() - t0))
     return out
