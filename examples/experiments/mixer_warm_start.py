@@ -91,7 +91,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                   ("examples/two_robots_5x5.toml", load_scenario(EXAMPLES / "two_robots_5x5.toml"))]
     table = Table(f"Mixer-only warm start (gammas 0) and the mixer-only ceiling, p = 1..{p_max}: P(optimum)",
                   ["scenario", "assignments", "p", "mixer-only (Gibbs)", "<C> mixer-only", "then full training",
-                   "max |gamma| after", "default training", "default, mixer_warm=True",
+                   "max abs(gamma) after", "default training", "default, mixer_warm=True",
                    "mixer-only ceiling (uses the optimum)",
                    "default / ceiling"])
     rows: list[dict[str, Any]] = []
