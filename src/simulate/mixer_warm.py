@@ -7,15 +7,18 @@ distribution of that product state is still the full one: ``w_v = sum_{x: C(x) =
 one pass over the cost levels without any complex state (:func:`product_objective`). The derivative in
 ``|psi_r|^2`` contracts the same pass with the other robots' probabilities, and one adjoint sweep per robot over
 its own small vector turns it into the derivative in the betas. So a mixer-only objective and its gradient cost
-one pass over a ``uint8`` array of the assignments instead of a simulation and an adjoint sweep over a complex
-state of 16 bytes each: on ``two_robots_5x5`` about 40x fewer bytes touched.
+one pass over the ``uint8`` cost levels instead of a simulation and an adjoint sweep of the complex state.
 
-Why it is needed: from a basis state (the initial paths) the gradient of every objective at ``beta = 0`` is zero
-(the state after a zero-beta mixer is an eigenstate of the phase separator, so the gammas do nothing and the
-beta derivatives cancel), and the layer-by-layer default training keeps ``beta = 0`` on large scenarios
-(two_robots_5x5: ``P(optimum)`` <= 5.4e-111 at every p). :func:`train_mixer_only` finds betas that spread each
-robot over its paths towards cheap assignments; the full training then starts from them with the gammas
-at 0, where its gradient is not zero (:func:`simulate.layerwise.train_layerwise` with ``warm="mixer"``).
+Why it was tried: every objective of the measured cost is even in the gammas and in the betas
+(``F(gamma, beta) = F(-gamma, beta) = F(gamma, -beta)``: complex conjugation maps the angles to their negatives,
+and the move graph is bipartite, a move toggling one plaquette, so a diagonal parity sign flips the betas; neither
+changes a probability). Its gradient in the betas is therefore 0 at ``beta = 0`` and the layer-by-layer default
+training can stay there (two_robots_5x5 from ``local_search_mix``: ``P(optimum)`` <= 5.4e-111 at every p).
+:func:`train_mixer_only` finds betas that spread each robot over its paths towards cheap assignments. The same
+symmetry makes the gradient in the gammas 0 at gammas 0, so the full training must start the gammas elsewhere
+(:func:`simulate.layerwise.train_layerwise` with ``mixer_warm=True`` uses the linear ramp's).
+:func:`mixer_only_ceiling` is a diagnostic: the best ``P(optimum)`` over mixer-only angles, found by maximising
+it directly (it uses the optimum).
 
 The objective is the same function of the cost distribution as the full training's (default ``gibbs``), so the
 warm start knows nothing a device running the mixer-only circuit (no phase separator) could not estimate from
@@ -50,6 +53,7 @@ from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale
 
 __all__ = [
+    "CEILING_STARTS",
     "MIXER_MAXITER",
     "MIXER_STARTS",
     "MixerCeiling",

@@ -80,7 +80,14 @@ def test_gammas_zero_is_stationary_in_the_gammas(name: str) -> None:
     x = rng.uniform(-1.5, 1.5, 6)
     flipped = x.copy()
     flipped[0::2] *= -1
-    assert q.objective_and_gradient(flipped, obj)[0] == pytest.approx(q.objective_and_gradient(x, obj)[0], rel=1e-10)
+    value = q.objective_and_gradient(x, obj)[0]
+    assert q.objective_and_gradient(flipped, obj)[0] == pytest.approx(value, rel=1e-10)
+    flipped = x.copy()
+    flipped[1::2] *= -1
+    assert q.objective_and_gradient(flipped, obj)[0] == pytest.approx(value, rel=1e-10)
+    zero_betas = x.copy()
+    zero_betas[1::2] = 0.0
+    assert np.allclose(q.objective_and_gradient(zero_betas, obj)[1][1::2], 0.0, atol=1e-10)
     x[0::2] = 0.0
     assert np.allclose(q.objective_and_gradient(x, obj)[1][0::2], 0.0, atol=1e-10)
 
