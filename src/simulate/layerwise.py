@@ -10,6 +10,11 @@
   2020; :func:`simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
+With ``mixer_warm=True`` (an option, not the default) every level also starts from the mixer-only warm start
+(:func:`simulate.mixer_warm.train_mixer_only`: betas trained with every gamma 0, where the state is a product
+over robots and the objective costs one pass over the cost levels) with the linear ramp's gammas; the gammas
+must not start at 0, where every objective is stationary in them (``tests/simulate/mixer_warm_test.py``).
+
 At every level the best run (lowest objective) is kept and warm-starts the next. Every simulation is counted;
 :meth:`LayerwiseResult.circuit_estimates` converts them to what a device would have to estimate (a gradient
 by central finite differences costs ``2 * 2p`` objective estimates beside the value: the parameter-shift rule
@@ -38,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from simulate.mixer_warm import train_mixer_only
 from simulate.objectives import CVAR_ALPHA, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import TrainingResult, cost_scale, initial_angles, interp_angles, train
@@ -82,6 +88,9 @@ class LayerwiseResult:
         circuit_estimates: Objective estimates a device would need for the same optimiser path: one per
             value, ``1 + 4p`` per gradient (central differences over the ``2p`` angles, ``p`` the run's depth).
         seconds: Wall-clock time of the whole schedule.
+        mixer_evaluations: Product-state objective evaluations (each with its gradient) of the mixer-only warm
+            start (``mixer_warm=True``; 0 otherwise); each is counted in :attr:`circuit_estimates` as
+            ``1 + 2p`` estimates of the mixer-only circuit (central differences over its ``p`` betas).
     """
 
     objective: str
@@ -91,6 +100,7 @@ class LayerwiseResult:
     num_gradients: int
     circuit_estimates: int
     seconds: float
+    mixer_evaluations: int = 0
 
     @property
     def best(self) -> TrainingResult:
@@ -128,6 +138,7 @@ class LayerwiseResult:
             "num_gradients": self.num_gradients,
             "circuit_estimates": self.circuit_estimates,
             "seconds": self.seconds,
+            "mixer_evaluations": self.mixer_evaluations,
             "levels": [
                 {k: v for k, v in asdict(lv).items() if k not in ("stages", "trace", "initial_angles")}
                 | {"iterations": len(lv.trace) - 1}
@@ -146,6 +157,7 @@ def train_layerwise(
     maxiter: int = DEFAULT_MAXITER,
     alpha: float = CVAR_ALPHA,
     eta: float | None = None,
+    mixer_warm: bool = False,
     progress: Callable[[int, int], None] | None = None,
 ) -> LayerwiseResult:
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
@@ -159,6 +171,7 @@ def train_layerwise(
         maxiter: L-BFGS-B iterations per run.
         alpha: CVaR tail mass (``cvar``).
         eta: Gibbs inverse temperature (``gibbs``); default ``5 / sigma``.
+        mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
 
     Returns:
@@ -176,7 +189,8 @@ def train_layerwise(
     t0 = time.perf_counter()
     obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta)
     levels: list[TrainingResult] = []
-    runs = evaluations = gradients = estimates = 0
+    runs = evaluations = gradients = estimates = mixer_evaluations = 0
+    warm = train_mixer_only(qaoa, p, obj) if mixer_warm else []
     for level in range(1, p + 1):
         if level == 1:
             starts = [initial_angles(qaoa, 1, "linear-ramp")]
@@ -184,6 +198,13 @@ def train_layerwise(
         else:
             prev = np.array(levels[-1].angles)
             starts = [interp_angles(prev), extend_angles(prev)]
+        if warm:
+            x0 = initial_angles(qaoa, level, "linear-ramp")
+            x0[1::2] = warm[level - 1].betas
+            starts.append(x0)
+            count = warm[level - 1].evaluations - (warm[level - 2].evaluations if level > 1 else 0)
+            mixer_evaluations += count
+            estimates += count * (1 + 2 * level)
         best: TrainingResult | None = None
         for x0 in starts:
             run = train(qaoa, level, "lbfgsb", init=x0, maxiter=maxiter, objective=obj)
@@ -197,4 +218,5 @@ def train_layerwise(
         levels.append(best)
         if progress is not None:
             progress(level, p)
-    return LayerwiseResult(obj.name, tuple(levels), runs, evaluations, gradients, estimates, time.perf_counter() - t0)
+    return LayerwiseResult(obj.name, tuple(levels), runs, evaluations, gradients, estimates, time.perf_counter() - t0,
+                           mixer_evaluations)

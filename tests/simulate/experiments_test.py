@@ -273,6 +273,20 @@ def _load(name: str):  # type: ignore[no-untyped-def]
     ],
 )
 def test_script_quick_mode(name: str, figures: list[str], tmp_path: Path) -> None:
+    _check_quick_mode(name, figures, tmp_path)
+
+
+@pytest.mark.heavy
+def test_mixer_warm_start_quick_mode(tmp_path: Path) -> None:
+    out = _check_quick_mode("mixer_warm_start", [], tmp_path)
+    ceiling = out["examples/two_robots_4x4.toml"]["ceiling"]
+    warm = out["examples/two_robots_4x4.toml"]["warm"]
+    assert [c.p for c in ceiling] == [w.p for w in warm] == [1, 2]
+    assert all(c.p_optimum >= w_row["p_opt"] - 1e-12 for c, w_row in
+               zip(ceiling, (r for r in out["rows"] if r["table"] == "mixer_only")))
+
+
+def _check_quick_mode(name: str, figures: list[str], tmp_path: Path):  # type: ignore[no-untyped-def]
     out = _load(name).main(["--quick", "--out", str(tmp_path)])
     for f in figures:
         data = (tmp_path / "figures" / f).read_bytes()
@@ -293,11 +307,12 @@ def test_script_quick_mode(name: str, figures: list[str], tmp_path: Path) -> Non
     elif name == "annealing_two_robots":
         r = out["two_robots_4x4"]
         assert r["anneal"].cost.total == r["dfs"].cost.total
-    else:
+    elif name == "qaoa_two_robots":
         s = load_scenario(REPO / "examples" / "two_robots_4x4.toml")
         assert out["optima"]["two_robots_4x4"] == dfs(s).cost.total
         fits = out["fits"]["two_robots_4x4"]
         assert fits[(2, "p_optimum")].value >= fits[(2, "expectation")].metrics.p_optimum
+    return out
 
 
 @pytest.mark.parametrize("module", ["success", "state_measures", "angle_fit", "annealing_runs"])

@@ -101,3 +101,13 @@ def test_issue_19_goal_on_two_robots_4x4() -> None:
     res = train_layerwise(q, 5)
     assert res.p_optimum >= 0.2
     assert train_layerwise(q, 2, "expectation").p_optimum < 1e-10
+
+
+def test_mixer_warm_option_adds_one_start_per_level_and_counts_it(two: SubspaceQAOA) -> None:
+    plain = train_layerwise(two, 2, maxiter=20)
+    warm = train_layerwise(two, 2, maxiter=20, mixer_warm=True)
+    assert warm.runs == plain.runs + 2 and plain.mixer_evaluations == 0 < warm.mixer_evaluations
+    assert warm.levels[0].value <= plain.levels[0].value + 1e-12  # level 1's starts are a superset
+    values = [lv.value for lv in warm.levels]
+    assert all(b <= a + 1e-9 * max(1.0, abs(a)) for a, b in zip(values, values[1:]))
+    assert warm.as_dict()["mixer_evaluations"] == warm.mixer_evaluations

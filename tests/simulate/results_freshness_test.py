@@ -38,8 +38,8 @@ from simulate.success import shots_for, tries_for
 from simulate.time_to_solution import GATE_MODEL, shot_seconds
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
-FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots")
-CIRCUIT_FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "qaoa_two_robots")
+FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots", "mixer_warm_start")
+CIRCUIT_FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "qaoa_two_robots", "mixer_warm_start")
 CHEAP_DIMENSION = 2_000
 """States of up to this many assignments are recomputed in the default run."""
 HEAVY_DIMENSION = 100_000
@@ -164,7 +164,7 @@ def test_device_rows_match_the_router_every_row() -> None:
 
 def _check_states(heavy: bool) -> int:
     checked = 0
-    for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots", "qaoa_training"):
+    for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots", "qaoa_training", "mixer_warm_start"):
         for r in _load(name)["rows"]:
             if r.get("method") != "qaoa" or "angles" not in r:
                 continue

@@ -1,0 +1,395 @@
+"""Mixer-only warm start: train the betas with every gamma at 0, where the QAOA state is a product over robots.
+
+With ``gamma_k = 0`` the phase separators are the identity and each robot's partial mixers act on that robot's
+axis only, so the state stays the product ``psi_0(betas) (x) psi_1(betas) (x) ...`` of per-robot vectors of the
+robot's basis size (a few thousand paths on 5x5, against tens of millions of assignments). The measured cost's
+distribution of that product state is still the full one: ``w_v = sum_{x: C(x) = v} prod_r |psi_r(x_r)|^2``,
+one pass over the cost levels without any complex state (:func:`product_objective`). The derivative in
+``|psi_r|^2`` contracts the same pass with the other robots' probabilities, and one adjoint sweep per robot over
+its own small vector turns it into the derivative in the betas. So a mixer-only objective and its gradient cost
+one pass over the ``uint8`` cost levels instead of a simulation and an adjoint sweep of the complex state.
+
+Why it was tried: every objective of the measured cost is even in the gammas and in the betas
+(``F(gamma, beta) = F(-gamma, beta) = F(gamma, -beta)``: complex conjugation maps the angles to their negatives,
+and the move graph is bipartite, a move toggling one plaquette, so a diagonal parity sign flips the betas; neither
+changes a probability). Its gradient in the betas is therefore 0 at ``beta = 0`` and the layer-by-layer default
+training can stay there (two_robots_5x5 from ``local_search_mix``: ``P(optimum)`` <= 5.4e-111 at every p).
+:func:`train_mixer_only` finds betas that spread each robot over its paths towards cheap assignments. The same
+symmetry makes the gradient in the gammas 0 at gammas 0, so the full training must start the gammas elsewhere
+(:func:`simulate.layerwise.train_layerwise` with ``mixer_warm=True`` uses the linear ramp's).
+:func:`mixer_only_ceiling` is a diagnostic: the best ``P(optimum)`` over mixer-only angles, found by maximising
+it directly (it uses the optimum).
+
+The objective is the same function of the cost distribution as the full training's (default ``gibbs``), so the
+warm start knows nothing a device running the mixer-only circuit (no phase separator) could not estimate from
+shots; it never looks up the optimum.
+
+Example:
+    >>> from gridcover.scenario import scenario_from_dict
+    >>> from simulate.subspace import SubspaceQAOA
+    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3},
+    ...                         "robots": [{"start": [0, 0], "goal": [2, 2]}, {"start": [0, 2], "goal": [2, 0]}]})
+    >>> q = SubspaceQAOA(s)
+    >>> w = train_mixer_only(q, 2)[-1]   # one result per depth 1..2
+    >>> len(w.betas), w.value < w.initial_value
+    (2, True)
+    >>> import numpy as np   # the product state is the simulator's state at gammas 0
+    >>> full = q.probabilities([0.0, w.betas[0], 0.0, w.betas[1]])
+    >>> bool(np.allclose(full, np.multiply.outer(*(abs(v) ** 2 for v in robot_states(q, w.betas)))))
+    True
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize
+
+from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
+from simulate.subspace import SubspaceQAOA
+from simulate.training import cost_scale
+
+__all__ = [
+    "CEILING_STARTS",
+    "MIXER_MAXITER",
+    "MIXER_STARTS",
+    "MixerCeiling",
+    "MixerWarmStart",
+    "mixer_only_ceiling",
+    "product_objective",
+    "robot_states",
+    "robot_states_gradient",
+    "train_mixer_only",
+]
+
+MIXER_MAXITER = 100
+"""L-BFGS-B iterations per mixer-only run."""
+MIXER_STARTS = (0.5, 1.5, 2.5)
+"""Constant betas the mixer-only training starts from at ``p = 1`` (deterministic)."""
+CEILING_STARTS = 60
+"""Seeded random starts of :func:`mixer_only_ceiling` per depth."""
+
+_ROWS = 1 << 10  # rows of the first robot's axis per chunk of the product pass
+
+
+@dataclass(frozen=True)
+class MixerWarmStart:
+    """The outcome of :func:`train_mixer_only` at one depth.
+
+    Attributes:
+        p: Number of layers.
+        betas: The trained betas (the gammas are all 0).
+        initial_value: The objective at the start of the kept run.
+        value: The objective of the product state at ``betas``.
+        expectation: ``<C>`` of that state.
+        evaluations: Objective evaluations (each with its gradient) over every run up to this depth.
+        seconds: Wall time over every run up to this depth.
+    """
+
+    p: int
+    betas: tuple[float, ...]
+    initial_value: float
+    value: float
+    expectation: float
+    evaluations: int
+    seconds: float
+
+    @property
+    def angles(self) -> tuple[float, ...]:
+        """``[0, beta_0, 0, beta_1, ...]``: the QAOA angles of this product state."""
+        return tuple(v for b in self.betas for v in (0.0, b))
+
+
+def _rotations(qaoa: SubspaceQAOA, r: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Robot ``r``'s rotation pairs per plaquette, in the mixer's order (pairs within a plaquette are disjoint)."""
+    return [(i, j) for _, i, j in qaoa.robot_bases[r].pairs]
+
+
+def _rotate(x: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]], c: float, s: complex) -> None:
+    for i, j in pairs:
+        xi, xj = x[i], x[j]
+        x[i], x[j] = c * xi + s * xj, s * xi + c * xj
+
+
+def robot_states(qaoa: SubspaceQAOA, betas: Sequence[float]) -> list[np.ndarray]:
+    """Per robot, its state after the mixer layers with every gamma 0: ``prod_k U_r(beta_k) psi_r(0)``.
+
+    Args:
+        qaoa: The simulator (its bases, initial amplitudes and rotation pairs are used).
+        betas: One beta per layer.
+
+    Returns:
+        One complex vector per robot (length the robot's basis size); their outer product is
+        ``qaoa.state([0, beta_0, 0, beta_1, ...])``.
+    """
+    out = []
+    for r, b in enumerate(qaoa.robot_bases):
+        x = b.initial.astype(np.complex128)
+        pairs = _rotations(qaoa, r)
+        for beta in betas:
+            _rotate(x, pairs, float(np.cos(beta / 2)), complex(-1j * np.sin(beta / 2)))
+        out.append(x)
+    return out
+
+
+def robot_states_gradient(
+    qaoa: SubspaceQAOA, betas: Sequence[float], weights: Sequence[np.ndarray]
+) -> np.ndarray:
+    """``d/dbeta_k sum_r <psi_r| diag(weights[r]) |psi_r>`` for the mixer-only states (adjoint sweep per robot).
+
+    Args:
+        qaoa: The simulator.
+        betas: One beta per layer.
+        weights: Per robot, a real weight per basis path (``dF/d|psi_r|^2`` of an objective ``F``).
+
+    Returns:
+        ``(p,)`` derivatives in the betas.
+    """
+    grad = np.zeros(len(betas))
+    for r, psi in enumerate(robot_states(qaoa, betas)):
+        pairs = _rotations(qaoa, r)
+        lam = np.asarray(weights[r], dtype=float) * psi
+        for k in range(len(betas) - 1, -1, -1):
+            c, s = float(np.cos(betas[k] / 2)), complex(1j * np.sin(betas[k] / 2))
+            for i, j in reversed(pairs):
+                # the generator of exp(-i beta X / 2) on the pair is X / 2: dE/dbeta = Im <lam|X|psi>
+                grad[k] += float(np.sum(np.conj(lam[i]) * psi[j] + np.conj(lam[j]) * psi[i]).imag)
+                for v in (psi, lam):
+                    vi, vj = v[i], v[j]
+                    v[i], v[j] = c * vi + s * vj, s * vi + c * vj
+    return grad
+
+
+def product_objective(
+    qaoa: SubspaceQAOA, probs: Sequence[np.ndarray], objective: ObjectiveFn
+) -> tuple[float, float, list[np.ndarray]]:
+    """An objective of the measured cost for the product distribution ``prod_r probs[r]``, and its derivatives.
+
+    Args:
+        qaoa: The simulator (its cost levels: :meth:`~simulate.subspace.SubspaceQAOA.cost_distribution_index`).
+        probs: Per robot, a probability per basis path.
+        objective: ``objective(values, level_probabilities) -> (F, dF/dlevel_probabilities)``.
+
+    Returns:
+        ``(F, <C>, grads)`` with ``grads[r] = dF/dprobs[r]`` (same length as ``probs[r]``).
+
+    Example:
+        >>> from gridcover.scenario import scenario_from_dict
+        >>> from simulate.objectives import Expectation
+        >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 3},
+        ...                         "robots": [{"start": [0, 0], "goal": [1, 2]}, {"start": [1, 0], "goal": [0, 2]}]})
+        >>> q = SubspaceQAOA(s)
+        >>> pr = [np.full(n, 1.0 / n) for n in q.dims]
+        >>> f, mean, g = product_objective(q, pr, Expectation())
+        >>> bool(np.isclose(f, q.cost_diagonal().mean())), bool(np.isclose(f, mean))
+        (True, True)
+    """
+    values, index = qaoa.cost_distribution_index()
+    n0 = index.shape[0]
+    rest = np.ones(())
+    for p in probs[1:]:
+        rest = np.multiply.outer(rest, np.asarray(p, dtype=float))
+    rest = rest.reshape(-1)
+    levels = index.reshape(n0, -1)
+    p0 = np.asarray(probs[0], dtype=float)
+    weight = np.zeros(values.size)
+    for a in range(0, n0, _ROWS):
+        blk = levels[a : a + _ROWS]
+        w = np.multiply.outer(p0[a : a + _ROWS], rest)
+        weight += np.bincount(blk.reshape(-1), weights=w.reshape(-1), minlength=values.size)
+    value, dw = objective(values, weight)
+    dw = np.asarray(dw, dtype=float)
+    g0 = np.empty(n0)
+    grest = np.zeros(rest.size)
+    for a in range(0, n0, _ROWS):
+        table = dw[levels[a : a + _ROWS]]
+        g0[a : a + _ROWS] = table @ rest
+        grest += p0[a : a + _ROWS] @ table
+    grads = [g0]
+    dims = [len(p) for p in probs[1:]]
+    if dims:
+        gr = grest.reshape(dims)
+        for r in range(len(dims)):
+            other = gr
+            for s in range(len(dims) - 1, -1, -1):  # contract the other robots' axes with their probabilities
+                if s != r:
+                    other = np.tensordot(other, np.asarray(probs[s + 1], dtype=float), axes=([s], [0]))
+            grads.append(np.asarray(other, dtype=float).reshape(-1))
+    return float(value), float(np.dot(weight, values)), grads
+
+
+def _value_and_grad(qaoa: SubspaceQAOA, betas: np.ndarray, objective: ObjectiveFn) -> tuple[float, float, np.ndarray]:
+    states = robot_states(qaoa, betas)
+    probs = [x.real * x.real + x.imag * x.imag for x in states]
+    value, mean, grads = product_objective(qaoa, probs, objective)
+    return value, mean, robot_states_gradient(qaoa, betas, grads)
+
+
+def _run(
+    qaoa: SubspaceQAOA, x0: np.ndarray, obj: ObjectiveFn, maxiter: int
+) -> tuple[float, float, float, np.ndarray, int]:
+    """One L-BFGS-B run from ``x0``: ``(start value, value, <C>, betas, evaluations)``."""
+    seen: dict[bytes, tuple[float, float]] = {}
+    calls = [0]
+
+    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
+        calls[0] += 1
+        f, mean, g = _value_and_grad(qaoa, x, obj)
+        seen[np.asarray(x, dtype=float).tobytes()] = (f, mean)
+        return f, g
+
+    f0 = fg(x0)[0]
+    res = minimize(fg, x0, jac=True, method="L-BFGS-B", options={"maxiter": maxiter})
+    x = np.asarray(res.x, dtype=float)
+    if x.tobytes() not in seen:
+        fg(x)
+    f, mean = seen[x.tobytes()]
+    return f0, f, mean, x, calls[0]
+
+
+def train_mixer_only(
+    qaoa: SubspaceQAOA,
+    p: int,
+    objective: ObjectiveName | ObjectiveFn = "gibbs",
+    maxiter: int = MIXER_MAXITER,
+) -> list[MixerWarmStart]:
+    """Train the betas of ``p = 1 .. p`` mixer-only layers (gammas 0), layer by layer, with L-BFGS-B.
+
+    ``p = 1`` starts from each of :data:`MIXER_STARTS`; every later depth from the best betas of the depth
+    before with one more layer, as a copy of the last beta and as 0 (the same state, so never worse), and keeps
+    the better run. Deterministic.
+
+    Args:
+        qaoa: The simulator.
+        p: The largest depth (>= 1).
+        objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with :func:`simulate.objectives.make_objective`
+            defaults for this scenario) or an objective object.
+        maxiter: L-BFGS-B iterations per run.
+
+    Returns:
+        One :class:`MixerWarmStart` per depth ``1 .. p``.
+
+    Raises:
+        ValueError: ``p < 1`` or a negative ``maxiter``.
+    """
+    if p < 1:
+        raise ValueError(f"p must be >= 1, got {p}")
+    if maxiter < 0:
+        raise ValueError(f"maxiter must be >= 0, got {maxiter}")
+    obj = make_objective(objective, cost_scale(qaoa)) if isinstance(objective, str) else objective
+    t0 = time.perf_counter()
+    evaluations = 0
+    out: list[MixerWarmStart] = []
+    for level in range(1, p + 1):
+        if level == 1:
+            starts = [np.array([b]) for b in MIXER_STARTS]
+        else:
+            prev = np.array(out[-1].betas)
+            starts = [np.append(prev, prev[-1]), np.append(prev, 0.0)]
+        best: tuple[float, float, float, np.ndarray] | None = None
+        for x0 in starts:
+            run = _run(qaoa, np.asarray(x0, dtype=float), obj, maxiter)
+            evaluations += run[4]
+            if best is None or run[1] < best[1]:
+                best = run[:4]
+        assert best is not None
+        first, value, mean, x = best
+        out.append(MixerWarmStart(level, tuple(float(b) for b in x), first, value, mean, evaluations,
+                                  time.perf_counter() - t0))
+    return out
+
+
+@dataclass(frozen=True)
+class MixerCeiling:
+    """The best ``P(optimum)`` found over mixer-only angles at one depth (:func:`mixer_only_ceiling`).
+
+    Attributes:
+        p: Number of layers.
+        betas: The betas that reach it (gammas 0).
+        p_optimum: ``P(optimum)`` of the product state at ``betas``.
+        starts: Random starts tried.
+        seconds: Wall time for this depth.
+    """
+
+    p: int
+    betas: tuple[float, ...]
+    p_optimum: float
+    starts: int
+    seconds: float
+
+    @property
+    def angles(self) -> tuple[float, ...]:
+        """``[0, beta_0, 0, beta_1, ...]``."""
+        return tuple(v for b in self.betas for v in (0.0, b))
+
+
+def _p_optimum_and_grads(
+    probs: Sequence[np.ndarray], optima: Sequence[Sequence[int]]
+) -> tuple[float, list[np.ndarray]]:
+    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives."""
+    total = 0.0
+    grads = [np.zeros(len(p)) for p in probs]
+    for o in optima:
+        parts = [float(p[i]) for p, i in zip(probs, o)]
+        total += float(np.prod(parts))
+        for r, i in enumerate(o):
+            grads[r][i] += float(np.prod(parts[:r] + parts[r + 1 :]))
+    return total, grads
+
+
+def mixer_only_ceiling(
+    qaoa: SubspaceQAOA, p: int, starts: int = CEILING_STARTS, seed: int = 0
+) -> list[MixerCeiling]:
+    """The largest ``P(optimum)`` found over mixer-only angles (gammas 0) at depths ``1 .. p``: a diagnostic.
+
+    Unlike :func:`train_mixer_only` this *uses the optimum* (:meth:`~simulate.subspace.SubspaceQAOA.optimum`):
+    it maximises the probability of the optimal assignments directly, by L-BFGS-B on the exact gradient, at
+    each depth from ``starts`` seeded uniform random betas in ``[0, 2 pi)`` and from the best betas of the depth
+    before with a zero layer appended (so the result never decreases with depth). It is not a solver; it says
+    what a warm start with gammas 0 can give at best (the best found, a lower bound on the true maximum), so
+    that the phase separators' share of a trained ``P(optimum)`` can be read off.
+
+    Args:
+        qaoa: The simulator.
+        p: The largest depth (>= 1).
+        starts: Random starts per depth (>= 1).
+        seed: Seed of ``numpy.random.default_rng``.
+
+    Returns:
+        One :class:`MixerCeiling` per depth ``1 .. p``.
+
+    Example:
+        >>> from gridcover.scenario import scenario_from_dict
+        >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+        >>> c = mixer_only_ceiling(SubspaceQAOA(s), 2, starts=5)
+        >>> c[0].p_optimum <= c[1].p_optimum <= 1.0, len(c[1].angles)
+        (True, 4)
+    """
+    if p < 1:
+        raise ValueError(f"p must be >= 1, got {p}")
+    if starts < 1:
+        raise ValueError(f"starts must be >= 1, got {starts}")
+    optima = [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
+
+    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
+        states = robot_states(qaoa, x)
+        value, grads = _p_optimum_and_grads([v.real * v.real + v.imag * v.imag for v in states], optima)
+        return -value, -robot_states_gradient(qaoa, x, grads)
+
+    rng = np.random.default_rng(seed)
+    out: list[MixerCeiling] = []
+    for level in range(1, p + 1):
+        t0 = time.perf_counter()
+        x0s = [rng.uniform(0.0, 2 * np.pi, level) for _ in range(starts)]
+        if out:
+            x0s.insert(0, np.append(out[-1].betas, 0.0))
+        best_x, best = x0s[0], -fg(x0s[0])[0]
+        for x0 in x0s:
+            res = minimize(fg, x0, jac=True, method="L-BFGS-B")
+            if -float(res.fun) > best:
+                best, best_x = -float(res.fun), np.asarray(res.x, dtype=float)
+        out.append(MixerCeiling(level, tuple(float(b) for b in best_x), best, starts, time.perf_counter() - t0))
+    return out
