@@ -40,9 +40,12 @@ def test_the_window_sum_gives_compiles_counts_and_esp(monkeypatch: pytest.Monkey
     assert math.isclose(f["esp"], esp(r.routed), rel_tol=1e-9)
 
 
-def test_the_bound_counts_the_circuit_the_device_compile_routes(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("shape", [(3, 4, 2), pytest.param((4, 4, 2), marks=pytest.mark.heavy)], ids=["3x4/2", "4x4/2"])
+def test_the_bound_counts_the_circuit_the_device_compile_routes(
+    monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int, int]
+) -> None:
     monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)
-    s = default_scenario(4, 4, 2)
+    s = default_scenario(*shape)
     f = _fields(s, 1, "heavy-hex")
     assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
     dev = get_device(f["device"])
