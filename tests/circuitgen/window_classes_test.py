@@ -88,7 +88,7 @@ def test_routed_sum_equals_compile(case: str) -> None:
     _assert_sum_equals_compile(build(), p, options)
 
 
-@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(s=scenarios(max_side=4, max_robots=3))
 def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
     _assert_sum_equals_compile(s, 1)
@@ -98,7 +98,7 @@ def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
 @settings(max_examples=24, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(s=scenarios(max_side=4, max_robots=3))
 def test_routed_sum_equals_compile_on_more_random_scenarios(s: Scenario) -> None:
-    """The default run's property on four times as many scenarios."""
+    """The default run's property on eight times as many scenarios."""
     _assert_sum_equals_compile(s, 1)
 
 
