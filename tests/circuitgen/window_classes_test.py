@@ -102,11 +102,14 @@ def test_routed_sum_equals_compile_on_more_random_scenarios(s: Scenario) -> None
     _assert_sum_equals_compile(s, 1)
 
 
-def test_windows_sharing_a_class_route_as_compile_routes_each() -> None:
+@pytest.mark.parametrize(
+    "shape", [(3, 10, 1), pytest.param((10, 10, 1), marks=pytest.mark.heavy)], ids=["3x10/1", "10x10/1"]
+)
+def test_windows_sharing_a_class_route_as_compile_routes_each(shape: tuple[int, int, int]) -> None:
     from circuitgen.window_classes import ROUTED_CLASSES
 
     ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
-    s = default_scenario(10, 10, 1)
+    s = default_scenario(*shape)
     summed = routed_sum(s, 1)
     assert summed is not None and len(summed.classes) < summed.windows  # translated windows share a class
     _assert_sum_equals_compile(s, 1)
