@@ -158,7 +158,10 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
     assert bounded.compiled_ops["cx"] <= bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
 
 
-def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize(
+    "with_5x5", [False, pytest.param(True, marks=pytest.mark.heavy)], ids=["4x4 interior, 3x4/2", "and 5x5/1"]
+)
+def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch, with_5x5: bool) -> None:
     """Compile and the sum share the allocation search's cache (per section up to translation): both are exact
     only if every section with one key searches to the same answer, on the device and on any crop of it."""
 
@@ -176,7 +179,8 @@ def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.Monk
                 conflicts.append((key, answers[key], value))
 
     monkeypatch.setattr(medial, "_SEARCH_CACHE", Fresh())
-    for s in (default_scenario(5, 5, 1), interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)):
+    small = [interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)]
+    for s in [default_scenario(5, 5, 1), *small] if with_5x5 else small:
         routed_sum(s, 1)
         compile_for_device(s, 1, "grid", layout_method="medial")
     assert len(answers) > 10 and not conflicts
