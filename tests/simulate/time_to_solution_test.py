@@ -113,8 +113,9 @@ def test_time_to_reach_and_cpsat_best_by(tts) -> None:  # type: ignore[no-untype
 
 
 def test_quick_mode_on_the_3x3_instances(tts, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:  # type: ignore[no-untyped-def]
-    """The quick run's checks on its four 3x3 instances (1 and 2 robots, with and without an obstacle)."""
-    monkeypatch.setattr(tts, "QUICK", dataclasses.replace(tts.QUICK, sizes=(3,)))
+    """The quick run's checks on its four 3x3 instances (1 and 2 robots, with and without an obstacle), one run of
+    each heuristic."""
+    monkeypatch.setattr(tts, "QUICK", dataclasses.replace(tts.QUICK, sizes=(3,), runs=1))
     _assert_quick_run(tts, tmp_path)
 
 
