@@ -128,7 +128,7 @@ def _permuted(state: np.ndarray, n: int, big: int, layout: tuple[int, ...]) -> n
 def _assert_equal_up_to_layouts(logical: Circuit, routed: RoutedCircuit, seed: int, global_phase: bool) -> None:
     """The routed circuit's state equals the logical one's moved by the layouts, on the physical qubits that a gate
     or a layout touches (each of the others is |0> before and after in both, so leaving it out changes nothing but
-    the statevector's size: 2^19 amplitudes on heavy-hex:3 against 2^14 on the qubits a 2x3/1 circuit uses)."""
+    the statevector's size: 2^19 amplitudes on heavy-hex:3 against 2^8 on the qubits a 2x3/1 circuit uses)."""
     n = logical.num_qubits
     used = sorted({q for g in routed.circuit.gates for q in g[1]} | {*routed.initial_layout, *routed.final_layout})
     index = {p: i for i, p in enumerate(used)}
