@@ -2,9 +2,9 @@
 
 Run: ``python benchmarks/depth_speed.py [--table-only | --sweep-only | --cli] [--stride N] [--budget GATES]``
 (one process, so one core; ``--budget`` replaces the default ``--depth-budget`` in the sweep; the table takes
-about a minute, the sweep three to four). Prints two tables (``--cli``: a third, alone: the whole sweep through
-``qcpp estimate`` with the default depth policy and with ``--depth none``, wall clock and peak memory, about two
-minutes):
+about a minute, the sweep three to four). Prints two tables (``--cli``: a third instead of the second: the whole
+sweep through ``qcpp estimate`` with the default depth policy and with ``--depth none``, wall clock, CPU seconds
+and peak memory, about two minutes; ``--cli --sweep-only``: that table alone):
 
 1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
    (what ``--depth-budget`` compares), the seconds to build the exact composition (plan the phase separator,
@@ -112,19 +112,24 @@ def cli_sweep() -> None:
     env = {**os.environ, "PYTHONPATH": str(root / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
     args = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--format", "csv"]
     print()
-    print("| `qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv` | wall | peak RSS | rows | exact |")
-    print("|---|---:|---:|---:|---:|")
+    print(f"load average before (1, 5, 15 min): {', '.join(f'{x:.1f}' for x in os.getloadavg())}")
+    print("| `qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv` | wall | CPU | peak RSS | rows | "
+          "exact |")  # fmt: skip
+    print("|---|---:|---:|---:|---:|---:|")
     for extra in ([], ["--depth", "none"]):
-        cmd = ["/usr/bin/time", "-f", "%M", sys.executable, "-m", "qcpp", *args, *extra]
+        cmd = ["/usr/bin/time", "-f", "%U %S %M", sys.executable, "-m", "qcpp", *args, *extra]
         t = time.perf_counter()
         done = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=root, check=True)
         wall = time.perf_counter() - t
-        rss_gb = int(done.stderr.strip().splitlines()[-1]) * 1024 / 1e9
+        user, system, rss_kb = done.stderr.strip().splitlines()[-1].split()
+        cpu = float(user) + float(system)  # the machine is shared: CPU seconds are the figure that load moves least
+        rss_gb = int(rss_kb) * 1024 / 1e9
         lines = done.stdout.splitlines()
         col = lines[0].split(",").index("depth_kind")
         exact = sum(1 for line in lines[1:] if line.split(",")[col] == "exact")
-        print(f"| {' '.join(extra) or '(default: --depth auto)'} | {wall:.0f} s | {rss_gb:.2f} GB | "
+        print(f"| {' '.join(extra) or '(default: --depth auto)'} | {wall:.0f} s | {cpu:.0f} s | {rss_gb:.2f} GB | "
               f"{len(lines) - 1:,} | {exact:,} |")  # fmt: skip
+    print(f"load average after (1, 5, 15 min): {', '.join(f'{x:.1f}' for x in os.getloadavg())}")
 
 
 def main(argv: list[str]) -> int:

@@ -249,6 +249,10 @@ def compile_for_device(
                 raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with "
                                  f"{scenario.num_robots} robot(s) needs heavy-hex:{hex_distance(scenario)}; device "
                                  f"{dev.name} is smaller")  # fmt: skip
+            if dev.family == "heavy-hex":  # a named IBM device: heavy-hex, but not one of the lattices the cells map
+                raise ValueError(f"--layout medial: {dev.name} is heavy-hex, but in IBM's qubit numbering and shape, "
+                                 "not a heavy-hex:D lattice as Qiskit's CouplingMap.from_heavy_hex builds it (the "
+                                 "one the cell layout maps); use --device heavy-hex or --layout greedy")  # fmt: skip
             if grid_shape(dev) is None:
                 raise ValueError(f"--layout medial needs a square-grid or heavy-hex lattice device; {dev.name} is "
                                  "neither")  # fmt: skip

@@ -48,7 +48,7 @@ from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
 from .gadgets import Gadget
-from .gadgets.phase_sums import Sink, Site, SumsPhase
+from .gadgets.phase_sums import Sink, Site, SumsPhase, _to
 from .gadgets.phase_visits import VisitPhase
 from .medial import tiling
 from .options import PlanOptions
@@ -90,10 +90,6 @@ def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
     dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
     layout = "pooled" if dev.is_all_to_all else "medial" if dev.family == "grid" else "spatial"
     return dataclasses.replace(options, phase_layout=layout)
-
-
-def _distance(a: Site, b: tuple[float, float]) -> float:
-    return abs(a[0] - b[0]) + abs(a[1] - b[1])
 
 
 def placed_sums(
@@ -184,7 +180,7 @@ def spatial_phase(
         usable = [a for a in pool if a in borrowed]
 
         def rank(a: int, at: tuple[float, float] = at) -> tuple[float, int]:
-            far = _distance(home[a], at) if a in home else float("inf")
+            far = _to(at, home[a]) if a in home else float("inf")
             return far + NEW_HOME_PENALTY * borrowed[a], a
 
         chosen = tuple(sorted(usable, key=rank)[: len(g.ancillas)])

@@ -88,7 +88,7 @@ def test_routed_sum_equals_compile(case: str) -> None:
     _assert_sum_equals_compile(build(), p, options)
 
 
-@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(s=scenarios(max_side=4, max_robots=3))
 def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
     _assert_sum_equals_compile(s, 1)
@@ -98,15 +98,18 @@ def test_routed_sum_equals_compile_on_random_scenarios(s: Scenario) -> None:
 @settings(max_examples=24, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(s=scenarios(max_side=4, max_robots=3))
 def test_routed_sum_equals_compile_on_more_random_scenarios(s: Scenario) -> None:
-    """The default run's property on four times as many scenarios."""
+    """The default run's property on eight times as many scenarios."""
     _assert_sum_equals_compile(s, 1)
 
 
-def test_windows_sharing_a_class_route_as_compile_routes_each() -> None:
+@pytest.mark.parametrize(
+    "shape", [(3, 10, 1), pytest.param((10, 10, 1), marks=pytest.mark.heavy)], ids=["3x10/1", "10x10/1"]
+)
+def test_windows_sharing_a_class_route_as_compile_routes_each(shape: tuple[int, int, int]) -> None:
     from circuitgen.window_classes import ROUTED_CLASSES
 
     ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
-    s = default_scenario(10, 10, 1)
+    s = default_scenario(*shape)
     summed = routed_sum(s, 1)
     assert summed is not None and len(summed.classes) < summed.windows  # translated windows share a class
     _assert_sum_equals_compile(s, 1)
@@ -155,7 +158,10 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
     assert bounded.compiled_ops["cx"] <= bounded.lowered_ops["cx"] <= exact.lowered_ops["cx"]
 
 
-def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize(
+    "with_5x5", [False, pytest.param(True, marks=pytest.mark.heavy)], ids=["4x4 interior, 3x4/2", "and 5x5/1"]
+)
+def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch, with_5x5: bool) -> None:
     """Compile and the sum share the allocation search's cache (per section up to translation): both are exact
     only if every section with one key searches to the same answer, on the device and on any crop of it."""
 
@@ -173,7 +179,8 @@ def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.Monk
                 conflicts.append((key, answers[key], value))
 
     monkeypatch.setattr(medial, "_SEARCH_CACHE", Fresh())
-    for s in (default_scenario(5, 5, 1), interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)):
+    small = [interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)]
+    for s in [default_scenario(5, 5, 1), *small] if with_5x5 else small:
         routed_sum(s, 1)
         compile_for_device(s, 1, "grid", layout_method="medial")
     assert len(answers) > 10 and not conflicts

@@ -28,9 +28,13 @@ def test_every_plan_option_lists_each_combination_once() -> None:
 
 
 @pytest.mark.parametrize("part", range(4))
-def test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints(part: int) -> None:
-    s = interior_endpoints(4, 4, "hard")
-    assert s.obstacles and any(0 < rb.start[0] < 3 and 0 < rb.start[1] < 3 for rb in s.robots)
+@pytest.mark.parametrize("shape", [(4, 3), pytest.param((4, 4), marks=pytest.mark.heavy)], ids=["4x3", "4x4"])
+def test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints(
+    shape: tuple[int, int], part: int
+) -> None:
+    rows, cols = shape
+    s = interior_endpoints(rows, cols, "hard")
+    assert s.obstacles and any(0 < rb.start[0] < rows - 1 and 0 < rb.start[1] < cols - 1 for rb in s.robots)
     assert [m for o in ALL[part::4] for m in crosscheck(Case(s, 1, o))] == []
 
 

@@ -25,9 +25,14 @@ def _fields(s, p, device, **kw):  # type: ignore[no-untyped-def]
                          one_qubit=cost.single_qubit, total_gates=cost.total, **kw)  # fmt: skip
 
 
-def test_the_window_sum_gives_compiles_counts_and_esp(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize(  # the window sum is exact on 4x5/2 (on 3x3/2, 3x4/2 and 4x4/2 it is a bound)
+    "shape", [(4, 5, 2), pytest.param((5, 5, 2), marks=pytest.mark.heavy)], ids=["4x5/2", "5x5/2"]
+)
+def test_the_window_sum_gives_compiles_counts_and_esp(
+    monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int, int]
+) -> None:
     monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)  # take the window sum at a size compile answers quickly
-    s = default_scenario(5, 5, 2)
+    s = default_scenario(*shape)
     f = _fields(s, 1, "grid")
     assert f["routed_kind"] == "exact" and f["routed_depth_kind"] == "bound"
     assert f["routed_model"] == routed.SUM_MODEL
@@ -40,9 +45,12 @@ def test_the_window_sum_gives_compiles_counts_and_esp(monkeypatch: pytest.Monkey
     assert math.isclose(f["esp"], esp(r.routed), rel_tol=1e-9)
 
 
-def test_the_bound_counts_the_circuit_the_device_compile_routes(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("shape", [(3, 4, 2), pytest.param((4, 4, 2), marks=pytest.mark.heavy)], ids=["3x4/2", "4x4/2"])
+def test_the_bound_counts_the_circuit_the_device_compile_routes(
+    monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int, int]
+) -> None:
     monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)
-    s = default_scenario(4, 4, 2)
+    s = default_scenario(*shape)
     f = _fields(s, 1, "heavy-hex")
     assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
     dev = get_device(f["device"])

@@ -51,8 +51,12 @@ def free_pairs(rows: int, cols: int) -> list[tuple[Node, Node]]:
 # ---------------------------------------------------------------- free grids
 
 
+FREE_SIZES = [(3, 3), (3, 4), (4, 4), pytest.param(5, 5, marks=pytest.mark.heavy)]
+"""Free grids swept over every start and goal; 5x5 (300 pairs) in the heavy run."""
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize(("rows", "cols"), [(3, 3), (3, 4), (4, 4), (5, 5)])
+@pytest.mark.parametrize(("rows", "cols"), FREE_SIZES)
 def test_exact_rule_reaches_every_path_from_the_initial_path(rows: int, cols: int) -> None:
     for start, goal in free_pairs(rows, cols):
         s = scenario(rows, cols, start, goal)
@@ -64,7 +68,7 @@ def test_exact_rule_reaches_every_path_from_the_initial_path(rows: int, cols: in
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("rows", "cols"), [(3, 3), (3, 4), (4, 4), (5, 5)])
+@pytest.mark.parametrize(("rows", "cols"), FREE_SIZES)
 def test_paper_rule_restricted_to_feasible_moves_is_connected_too(rows: int, cols: int) -> None:
     for start, goal in free_pairs(rows, cols):
         comps = move_components(scenario(rows, cols, start, goal), 0, "paper")

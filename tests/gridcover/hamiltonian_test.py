@@ -128,9 +128,21 @@ def test_paper_mapping_x_equals_1_minus_z_evaluates_the_cost_at_2x(build: Any) -
     assert differs > 0
 
 
-@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_energy_equals_cost(data: st.DataObject, random_scenarios: Any) -> None:
+    _assert_energy_equals_cost(data, random_scenarios)
+
+
+@pytest.mark.heavy
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_energy_equals_cost_on_more_scenarios(data: st.DataObject, random_scenarios: Any) -> None:
+    """The default run's property on 100 scenarios."""
+    _assert_energy_equals_cost(data, random_scenarios)
+
+
+def _assert_energy_equals_cost(data: st.DataObject, random_scenarios: Any) -> None:
     s = data.draw(random_scenarios(max_size=6, max_robots=4))
     rng = np.random.default_rng(data.draw(st.integers(0, 2**32 - 1), label="seed"))
     bits = (rng.random((8, s.num_variables)) < 0.4).astype(np.uint8)

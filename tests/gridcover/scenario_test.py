@@ -95,9 +95,25 @@ def test_file_suffix_is_case_insensitive(tmp_path: Path) -> None:
     _check_toml_scenario(load_scenario(p))
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_round_trip(data: st.DataObject, scenario_dict_strategy: Any, tmp_path_factory: pytest.TempPathFactory) -> None:
+    _assert_round_trip(data, scenario_dict_strategy, tmp_path_factory)
+
+
+@pytest.mark.heavy
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_round_trip_on_more_scenarios(
+    data: st.DataObject, scenario_dict_strategy: Any, tmp_path_factory: pytest.TempPathFactory
+) -> None:
+    """The default run's property on 150 scenarios (it writes two files each)."""
+    _assert_round_trip(data, scenario_dict_strategy, tmp_path_factory)
+
+
+def _assert_round_trip(
+    data: st.DataObject, scenario_dict_strategy: Any, tmp_path_factory: pytest.TempPathFactory
+) -> None:
     d = data.draw(scenario_dict_strategy(tame_numbers=False, names=True))
     s = scenario_from_dict(d)
     assert scenario_from_dict(scenario_to_dict(s)) == s

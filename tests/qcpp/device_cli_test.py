@@ -80,7 +80,8 @@ def test_estimate_bad_device_is_one_line() -> None:
     ("device", "layout", "fragment"),
     [
         ("grid", "nope", "--layout"),
-        ("ibm_torino", "medial", "square-grid or heavy-hex lattice device"),
+        ("ibm_torino", "medial", "ibm_torino is heavy-hex, but in IBM's qubit numbering"),
+        ("quantinuum_helios", "medial", "square-grid or heavy-hex lattice device; quantinuum_helios is neither"),
         ("heavy-hex:5", "medial", "needs heavy-hex:7"),
         ("grid:4x6", "medial", "needs a 5x5 grid"),
     ],

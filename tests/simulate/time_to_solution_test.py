@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import importlib.util
 import json
 import math
@@ -111,8 +112,20 @@ def test_time_to_reach_and_cpsat_best_by(tts) -> None:  # type: ignore[no-untype
     assert tts.cpsat_best_by(res, 0.05) is None and tts.cpsat_best_by(res, 1.0) == 4.0
 
 
-@pytest.mark.slow
+def test_quick_mode_on_the_3x3_instances(tts, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:  # type: ignore[no-untyped-def]
+    """The quick run's checks on its four 3x3 instances (1 and 2 robots, with and without an obstacle), one run of
+    each heuristic."""
+    monkeypatch.setattr(tts, "QUICK", dataclasses.replace(tts.QUICK, sizes=(3,), runs=1))
+    _assert_quick_run(tts, tmp_path)
+
+
+@pytest.mark.heavy
 def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    """The whole ``--quick`` run (3x3 and 4x4: eight instances)."""
+    _assert_quick_run(tts, tmp_path)
+
+
+def _assert_quick_run(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     out = tts.main(["--quick", "--out", str(tmp_path)])
     png = (tmp_path / "figures" / "time_to_solution.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
@@ -120,7 +133,9 @@ def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def
     assert "examples/experiments/time_to_solution.py --quick" in md and "|---|" in md
     rows = list(csv.DictReader((tmp_path / "results" / "time_to_solution.csv").open()))
     data = json.loads((tmp_path / "results" / "time_to_solution.json").read_text())
-    assert len(out["instances"]) == 8 and len(data["rows"]) == len(rows) == len(out["rows"])
+    cfg = tts.QUICK
+    assert len(out["instances"]) == 2 * len(cfg.sizes) * len(cfg.robots)  # each with and without an obstacle
+    assert len(data["rows"]) == len(rows) == len(out["rows"])
     for inst in out["instances"]:
         r = inst.results
         # quick mode: every instance is small enough for exhaustive search; CP-SAT never beats it and, when it
