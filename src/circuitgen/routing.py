@@ -307,10 +307,17 @@ window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds and the seed whose whol
 phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
 compute leaves the register bits decides what the phase between them costs."""
 
-LARGE_WINDOW_SEEDS = 8
+LARGE_WINDOW_SEEDS = 16
 """Seeds tried per large window (:data:`LARGE_WINDOW_PAIRS`). Measured with the balance sinks
 (:func:`circuitgen.phase_locality.balance_sinks`), p = 1, routed CX of the whole circuit, 1 seed -> 8 -> 16:
-4x4/2 3,312 -> 3,246 -> 3,246; 5x5/2 7,114 both; 6x6/3 20,340 -> 19,932 (16 seeds: not measured)."""
+4x4/2 3,312 -> 3,246 -> 3,246; 5x5/2 7,114 both; 6x6/3 20,340 -> 19,932 (16 seeds: not measured). With the
+local-first adders (:func:`circuitgen.gadgets.phase_sums.spatial_popcount_layout`) and
+:data:`LARGE_WINDOW_TRIALS` more trials, 16 seeds pay again: ``python benchmarks/balance_window.py``."""
+
+LARGE_WINDOW_TRIALS = 128
+"""SABRE trials per routing of a large window (at least the caller's): SABRE keeps the trial of fewest SWAPs
+for the compute, and more trials find compute routings that also leave the register bits closer
+(``python benchmarks/balance_window.py``)."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
@@ -473,7 +480,10 @@ def route_window(
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute)."""
     m = mirror_length(pairs)
-    tries = LARGE_WINDOW_SEEDS if m >= LARGE_WINDOW_PAIRS else 1
+    large = m >= LARGE_WINDOW_PAIRS
+    tries = LARGE_WINDOW_SEEDS if large else 1
+    if large and trials is not None:
+        trials = max(trials, LARGE_WINDOW_TRIALS)
     best: list[tuple[str, tuple[int, int]]] | None = None
     for s in range(seed, seed + tries):  # each try returns every qubit home, so ``pos`` is unchanged between tries
         ops = _window_ops(pairs, m, pos, device, dist, s, trials)
