@@ -303,8 +303,9 @@ one."""
 
 LARGE_WINDOW_PAIRS = 200
 """Windows whose compute has at least this many two-qubit gates (on the defaults: the balance arithmetic's one
-window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds and the seed whose whole window (compute, register
-phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
+window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds of :data:`LARGE_WINDOW_TRIALS` trials (up to
+:data:`LARGE_WINDOW_MAX_PAIRS`; larger ones :data:`HUGE_WINDOW_SEEDS` of the caller's trials) and the seed whose
+whole window (compute, register phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
 compute leaves the register bits decides what the phase between them costs."""
 
 LARGE_WINDOW_SEEDS = 16
@@ -318,6 +319,16 @@ LARGE_WINDOW_TRIALS = 128
 """SABRE trials per routing of a large window (at least the caller's): SABRE keeps the trial of fewest SWAPs
 for the compute, and more trials find compute routings that also leave the register bits closer
 (``python benchmarks/balance_window.py``)."""
+
+LARGE_WINDOW_MAX_PAIRS = 1_000
+"""Windows whose compute has more two-qubit gates than this (the balance window from 6x6/3 on: 1,341 there,
+4,552 on 12x12/2; 264 on 4x4/2, 544 on 5x5/2) are tried with :data:`HUGE_WINDOW_SEEDS` seeds of the caller's
+trials instead: their routing time grows with their size, and on 6x6/3 the wider search routed the whole circuit
+to 18,072 CX instead of 18,112 (``python benchmarks/routing.py --family grid``) for about four times the CPU of
+that window."""
+
+HUGE_WINDOW_SEEDS = 8
+"""Seeds tried per window above :data:`LARGE_WINDOW_MAX_PAIRS`."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
@@ -480,8 +491,8 @@ def route_window(
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute)."""
     m = mirror_length(pairs)
-    large = m >= LARGE_WINDOW_PAIRS
-    tries = LARGE_WINDOW_SEEDS if large else 1
+    large = LARGE_WINDOW_PAIRS <= m <= LARGE_WINDOW_MAX_PAIRS
+    tries = LARGE_WINDOW_SEEDS if large else HUGE_WINDOW_SEEDS if m > LARGE_WINDOW_MAX_PAIRS else 1
     if large and trials is not None:
         trials = max(trials, LARGE_WINDOW_TRIALS)
     best: list[tuple[str, tuple[int, int]]] | None = None
