@@ -305,8 +305,8 @@ LARGE_WINDOW_PAIRS = 200
 """Windows whose compute has at least this many two-qubit gates (on the defaults: the balance arithmetic's one
 window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds of :data:`LARGE_WINDOW_TRIALS` trials (up to
 :data:`LARGE_WINDOW_MAX_PAIRS`; larger ones :data:`HUGE_WINDOW_SEEDS` of the caller's trials) and the seed whose
-whole window (compute, register phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
-compute leaves the register bits decides what the phase between them costs."""
+whole window (compute, register phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for
+the compute alone, but where the compute leaves the register bits decides what the phase between them costs."""
 
 LARGE_WINDOW_SEEDS = 16
 """Seeds tried per large window (:data:`LARGE_WINDOW_PAIRS`). Measured with the balance sinks
