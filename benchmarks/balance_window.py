@@ -3,9 +3,10 @@
 Run: ``python benchmarks/balance_window.py [--quick]`` (``--quick``: 4x4/2 only).
 
 Per two-robot default scenario (p = 1, angles bound, ``qcpp compile --device grid``'s path: the medial layout,
-``phase_layout="medial"``), and per setting of :data:`circuitgen.routing.LARGE_WINDOW_SEEDS` (seeds tried per
-large window, the cheapest whole window wins) and :data:`circuitgen.routing.LARGE_WINDOW_TRIALS` (SABRE trials
-per routing of a large window), columns:
+``phase_layout="medial"``), and per setting of the wider search on the large window
+(:data:`circuitgen.routing.WIDE_WINDOW_SEEDS` seeds of :data:`circuitgen.routing.WIDE_WINDOW_TRIALS` SABRE
+trials, tried after the :data:`circuitgen.routing.LARGE_WINDOW_SEEDS` = 8 seeds of 16 trials; 0 seeds: none;
+the cheapest whole window wins), columns:
 
 * ``balance cx``: the routed CX of the largest window (the balance gadget: compute, register phase, uncompute),
   routed from home as :func:`circuitgen.routing.route_windows` routes it;
@@ -24,18 +25,18 @@ from circuitgen.layout import distances
 from gridcover.presets import default_scenario
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
-SETTINGS = ((8, 16), (16, 16), (8, 128), (16, 128))
+SETTINGS = ((0, 128), (8, 128), (16, 16), (16, 128))
 
 
 def main(argv: list[str]) -> None:
     shapes = [(4, 4, 2)] if "--quick" in argv else [(4, 4, 2), (5, 5, 2)]
-    kept = routing.LARGE_WINDOW_SEEDS, routing.LARGE_WINDOW_TRIALS
-    print("| scenario | seeds | trials | balance cx | compile cx | s |")
+    kept = routing.WIDE_WINDOW_SEEDS, routing.WIDE_WINDOW_TRIALS
+    print("| scenario | wide seeds | wide trials | balance cx | compile cx | s |")
     print("|---|---:|---:|---:|---:|---:|")
     try:
         for rows, cols, robots in shapes:
             for seeds, trials in SETTINGS:
-                routing.LARGE_WINDOW_SEEDS, routing.LARGE_WINDOW_TRIALS = seeds, trials
+                routing.WIDE_WINDOW_SEEDS, routing.WIDE_WINDOW_TRIALS = seeds, trials
                 start = time.perf_counter()
                 r = compile_for_device(default_scenario(rows, cols, robots), p=1, device="grid", lowered=True,
                                        bindings=BIND)  # fmt: skip
@@ -49,7 +50,7 @@ def main(argv: list[str]) -> None:
                 print(f"| {rows}x{cols}/{robots} | {seeds} | {trials} | {routing.window_cx(ops):,} | {total:,} | "
                       f"{seconds:.1f} |", flush=True)  # fmt: skip
     finally:
-        routing.LARGE_WINDOW_SEEDS, routing.LARGE_WINDOW_TRIALS = kept
+        routing.WIDE_WINDOW_SEEDS, routing.WIDE_WINDOW_TRIALS = kept
 
 
 if __name__ == "__main__":
