@@ -310,14 +310,30 @@ one."""
 
 LARGE_WINDOW_PAIRS = 200
 """Windows whose compute has at least this many two-qubit gates (on the defaults: the balance arithmetic's one
-window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds and the seed whose whole window (compute, register
-phase, uncompute) routes to the fewest CX wins: SABRE picks the fewest SWAPs for the compute alone, but where the
-compute leaves the register bits decides what the phase between them costs."""
+window) are routed with :data:`LARGE_WINDOW_SEEDS` seeds (and, up to :data:`LARGE_WINDOW_MAX_PAIRS`, also
+:data:`WIDE_WINDOW_SEEDS` seeds of :data:`WIDE_WINDOW_TRIALS` trials) and the try whose whole window (compute,
+register phase, uncompute) routes to the fewest CX wins, the first on ties: SABRE picks the fewest SWAPs for the
+compute alone, but where the compute leaves the register bits decides what the phase between them costs."""
 
 LARGE_WINDOW_SEEDS = 8
-"""Seeds tried per large window (:data:`LARGE_WINDOW_PAIRS`). Measured with the balance sinks
-(:func:`circuitgen.phase_locality.balance_sinks`), p = 1, routed CX of the whole circuit, 1 seed -> 8 -> 16:
+"""Seeds tried per large window (:data:`LARGE_WINDOW_PAIRS`), with the caller's trials. Measured with the balance
+sinks (:func:`circuitgen.phase_locality.balance_sinks`), p = 1, routed CX of the whole circuit, 1 seed -> 8 -> 16:
 4x4/2 3,312 -> 3,246 -> 3,246; 5x5/2 7,114 both; 6x6/3 20,340 -> 19,932 (16 seeds: not measured)."""
+
+WIDE_WINDOW_SEEDS = 16
+"""Seeds of the wider search, tried after the :data:`LARGE_WINDOW_SEEDS` ones on large windows of at most
+:data:`LARGE_WINDOW_MAX_PAIRS`: the tries include the narrower search's, so a window never routes to more CX than
+without the wider search (``python benchmarks/balance_window.py``)."""
+
+WIDE_WINDOW_TRIALS = 128
+"""SABRE trials per routing of the wider search (at least the caller's): SABRE keeps the trial of fewest SWAPs
+for the compute, and more trials find compute routings that also leave the register bits closer."""
+
+LARGE_WINDOW_MAX_PAIRS = 1_000
+"""Windows whose compute has more two-qubit gates than this (the balance window from 6x6/3 on: 1,341 there,
+4,552 on 12x12/2; 264 on 4x4/2, 544 on 5x5/2) get no wider search: their routing time grows with their size
+(12x12/2's estimate == compile test took 464 s under load with it), and on 6x6/3 it routed the whole circuit to
+18,072 CX instead of 18,112 (``python benchmarks/routing.py --family grid``)."""
 
 _WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
 
@@ -480,10 +496,12 @@ def route_window(
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute)."""
     m = mirror_length(pairs)
-    tries = LARGE_WINDOW_SEEDS if m >= LARGE_WINDOW_PAIRS else 1
+    tries = [(s, trials) for s in range(seed, seed + (LARGE_WINDOW_SEEDS if m >= LARGE_WINDOW_PAIRS else 1))]
+    if LARGE_WINDOW_PAIRS <= m <= LARGE_WINDOW_MAX_PAIRS and trials is not None:  # and a wider search
+        tries += [(s, max(trials, WIDE_WINDOW_TRIALS)) for s in range(seed, seed + WIDE_WINDOW_SEEDS)]
     best: list[tuple[str, tuple[int, int]]] | None = None
-    for s in range(seed, seed + tries):  # each try returns every qubit home, so ``pos`` is unchanged between tries
-        ops = _window_ops(pairs, m, pos, device, dist, s, trials)
+    for s, t in tries:  # each try returns every qubit home, so ``pos`` is unchanged between tries
+        ops = _window_ops(pairs, m, pos, device, dist, s, t)
         if best is None or window_cx(ops) < window_cx(best):
             best = ops
     assert best is not None

@@ -269,3 +269,98 @@ def test_a_sink_pulls_the_register_bits_towards_it() -> None:
             assert Cost.count(gates) == Cost.count(spatial_popcount_layout(form, iter(range(1000, 1200)), sites)[0])
         assert spread[1] < spread[0]
     assert balance_sinks(default_scenario(4, 4, 1), [0], ((1.0,),)) == (None,)
+
+
+def _local_first_reference(
+    form: tuple[tuple[int, int], ...], first: int, sites: dict[int, tuple[int, int]], sink: tuple[float, float]
+) -> list[Gate]:
+    """The local-first popcount written plainly (no copies: unit weights): every step searches every bit of every
+    column for its tightest triple, as the docs of :func:`spatial_popcount_layout` describe it."""
+    from circuitgen.gadgets.phase_sums import star_full_adder, star_half_adder
+
+    order = 1
+    while order <= max(max(sites[q]) for q, _ in form):
+        order <<= 1
+
+    def key(it: tuple[int, tuple[int, int]]) -> tuple[int, int]:
+        return hilbert_key(it[1][0], it[1][1], order), it[0]
+
+    def apart(a: tuple[float, float], b: tuple[float, float]) -> float:
+        return abs(a[0] - b[0]) + abs(a[1] - b[1])
+
+    cols: dict[int, list[tuple[int, tuple[int, int]]]] = {0: [(q, sites[q]) for q, _ in form]}
+    fresh = itertools.count(first)
+    gates: list[Gate] = []
+
+    def tightest(k: int) -> tuple | None:
+        col = cols.get(k, [])
+        found = []
+        for it in col:
+            near = sorted((o for o in col if o is not it), key=lambda o: (apart(o[1], it[1]), key(o)))[:2]
+            if len(near) == 2:
+                trio = [it, *near]
+                diameter = max(apart(a[1], b[1]) for a, b in itertools.combinations(trio, 2))
+                found.append(((diameter, -apart(it[1], sink), key(it)), k, trio))
+        return min(found, key=lambda f: (f[0], f[1])) if found else None
+
+    def full_adder(k: int, trio: list) -> None:
+        mid = min(trio, key=lambda it: (apart(it[1], sink), key(it)))
+        a, c = (it[0] for it in trio if it is not mid)
+        t = next(fresh)
+        gates.extend(star_full_adder(a, mid[0], c, t))
+        cols[k] = [it for it in cols[k] if it[0] not in (a, c)]
+        cols.setdefault(k + 1, []).append((t, mid[1]))
+
+    while (best := min(filter(None, (tightest(k) for k in list(cols))), default=None, key=lambda f: (f[0], f[1]))):
+        full_adder(best[1], best[2])
+    k = 0
+    while k <= max(cols):
+        while (best := tightest(k)) is not None:
+            full_adder(k, best[2])
+        col = sorted(cols.get(k, []), key=key)
+        if len(col) == 2:
+            if apart(sink, col[1][1]) < apart(sink, col[0][1]):
+                col.reverse()
+            t = next(fresh)
+            gates.extend(star_half_adder(col[0][0], col[1][0], t))
+            cols[k] = col[:1]
+            cols.setdefault(k + 1, []).append((t, col[0][1]))
+        k += 1
+    return gates
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    n=st.integers(1, 40),
+    seed=st.integers(0, 1000),
+    sink=st.tuples(st.floats(0, 12), st.floats(0, 12)),
+)
+def test_local_first_adders_are_the_plain_searchs(n: int, seed: int, sink: tuple[float, float]) -> None:
+    """With a sink, :func:`spatial_popcount_layout` keeps every bit's tightest triple and refreshes only what an
+    adder changed: it picks exactly the adders the plain search over every bit of every column picks."""
+    rng = random.Random(seed)
+    form = tuple((q, 1) for q in range(n))
+    sites = {q: (rng.randint(0, 12), rng.randint(0, 12)) for q in range(n)}
+    gates, _, _ = spatial_popcount_layout(form, iter(range(n, n + 200)), sites, sink)
+    assert gates == _local_first_reference(form, n, sites, sink)
+
+
+def test_local_first_joins_nearer_bits_than_the_passes() -> None:
+    """On the medial layout's balance forms (4x4/2, 5x5/2) the local-first adders' wire length (lattice distance
+    between the operands of every two-qubit gate, ancillas at their sites) is below the passes' with the same sink."""
+    from circuitgen.gadgets import phase_sums
+
+    for s in (default_scenario(4, 4, 2), default_scenario(5, 5, 2)):
+        g = next(g for n, g in qaoa_plan(s, 1, MEDIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))
+        sites = variable_sites(s)
+        for form, sink in zip(g.forms, g.sinks, strict=True):
+            local, _, home = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, sink)
+            passes = []
+            original = phase_sums._LocalFirst.next_triple
+            try:  # without local first: the passes along the curve, sums kept nearest the sink
+                phase_sums._LocalFirst.next_triple = lambda self, column=None: None  # type: ignore[method-assign]
+                passes, _, home_passes = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, sink)
+            finally:
+                phase_sums._LocalFirst.next_triple = original  # type: ignore[method-assign]
+            assert Cost.count(local) == Cost.count(passes)
+            assert wire_length(local, {**sites, **home}) < wire_length(passes, {**sites, **home_passes})

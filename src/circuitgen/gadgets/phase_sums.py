@@ -31,8 +31,9 @@ Example:
 
 from __future__ import annotations
 
+import heapq
 from collections import Counter, deque
-from collections.abc import Hashable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
@@ -191,6 +192,82 @@ def _to(sink: Sink, site: Site) -> float:
     return abs(site[0] - sink[0]) + abs(site[1] - sink[1])
 
 
+def _apart(a: Site, b: Site) -> int:
+    return abs(a[0] - b[0]) + abs(a[1] - b[1])
+
+
+_Bit = tuple[int, Site]
+
+
+class _LocalFirst:
+    """The columns of a popcount reduced local first (see :func:`spatial_popcount_layout`): every bit keeps its
+    tightest triple (itself and its two nearest bits of its column, by distance then curve position) with that
+    triple's score (diameter, then farther from the sink, then curve position), refreshed only where a full
+    adder removed one of its bits or put a carry nearer than its second-nearest bit, so choosing the next adder
+    is a minimum over the bits, not a search over every triple."""
+
+    def __init__(self, cols: dict[int, list[_Bit]], sink: Sink, key: Callable[[_Bit], tuple[int, int]]) -> None:
+        self.cols, self.sink, self.key = cols, sink, key
+        self.best: dict[int, tuple[tuple, int, list[_Bit]]] = {}  # qubit -> (score, column, triple)
+        for k, col in cols.items():
+            for it in col:
+                self._refresh(it, k)
+
+    def _refresh(self, it: _Bit, k: int) -> None:
+        col = self.cols[k]
+        if len(col) < 3:
+            self.best.pop(it[0], None)
+            return
+        near = heapq.nsmallest(2, (o for o in col if o[0] != it[0]), key=lambda o: (_apart(o[1], it[1]), self.key(o)))
+        span = max(_apart(it[1], near[0][1]), _apart(it[1], near[1][1]), _apart(near[0][1], near[1][1]))
+        self.best[it[0]] = ((span, -_to(self.sink, it[1]), self.key(it)), k, [it, *near])
+
+    def next_triple(self, column: int | None = None) -> tuple[int, list[_Bit]] | None:
+        """``(column, triple)`` of the best full adder (in ``column`` only, if given), ``None`` if there is none."""
+        found = [v for v in self.best.values() if column is None or v[1] == column]
+        if not found:
+            return None
+        _, k, triple = min(found, key=lambda v: (v[0], v[1]))
+        return k, triple
+
+    def update(self, k: int, removed: set[int], carry: _Bit) -> None:
+        """Bits ``removed`` left column ``k``; ``carry`` joined column ``k + 1``."""
+        for q in removed:
+            self.best.pop(q, None)
+        col = self.cols[k]
+        for it in col:
+            v = self.best.get(it[0])
+            if len(col) < 3 or v is None or any(o[0] in removed for o in v[2]):
+                self._refresh(it, k)
+        col = self.cols[k + 1]
+        for it in col:
+            v = self.best.get(it[0])
+            if it is carry or v is None:
+                self._refresh(it, k + 1)
+                continue
+            second = v[2][2]
+            if (_apart(carry[1], it[1]), self.key(carry)) < (_apart(second[1], it[1]), self.key(second)):
+                self._refresh(it, k + 1)
+
+
+def _sink_adder(cols: dict[int, list[_Bit]], k: int, triple: list[_Bit], sink: Sink,
+                key: Callable[[_Bit], tuple[int, int]], ancillas: Iterator[int], gates: list[Gate],
+                home: dict[int, Site]) -> tuple[set[int], _Bit]:  # fmt: skip
+    """One :func:`star_full_adder` on ``triple`` of column ``k``: the sum stays on the bit nearest the sink, the
+    carry (a fresh ancilla sited with it) joins column ``k + 1``. Returns the bits that left column ``k`` and the
+    carry."""
+    j = min(range(3), key=lambda j_: (_to(sink, triple[j_][1]), key(triple[j_])))
+    mid = triple[j]
+    (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
+    t = next(ancillas)
+    home[t] = mid[1]
+    gates += star_full_adder(a, mid[0], c, t)
+    cols[k] = [it for it in cols[k] if it[0] not in (a, c)]
+    carry = (t, mid[1])
+    cols.setdefault(k + 1, []).append(carry)
+    return {a, c}, carry
+
+
 def spatial_popcount_layout(
     form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site], sink: Sink | None = None
 ) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
@@ -208,17 +285,27 @@ def spatial_popcount_layout(
     that keeps the grid's geometry never puts side by side.
 
     A full adder is symmetric in its three inputs, so any of them may keep the sum. Without a ``sink`` the middle
-    one (along the curve) does; with one, the input nearest the sink does (the middle on ties), and a half adder
-    keeps its sum on the nearer of its two bits. Pass by pass the partial sums, and the register bits they end
-    in, then drift towards the sink: :func:`circuitgen.phase_locality.balance_sinks` puts it where a robot's
-    patch meets the patches of the robots its register is phased with, so the register phase (every register bit
-    with every other) joins bits that sit close together. Same gates per adder, same counts.
+    one (along the curve) does. With a ``sink`` (the ``medial`` layout) the adders are chosen *local first*
+    instead of in passes: the next full adder is always the tightest triple (a bit and its two nearest bits of the
+    same column, of least diameter: the largest distance between two of the three; on ties the one whose bit lies
+    farther from the sink) of any column that holds three bits, the input nearest the sink keeps the
+    sum and the carry joins the next column where it was made; when no column holds three bits, the columns are
+    finished in order (a half adder's carry may give the next column a third bit), a half adder keeping its sum
+    on the bit nearer the sink. Small neighbourhoods are added up first, in every column at once (so a carry
+    meets the next column's bits of its own neighbourhood), then ever larger ones, and the partial sums, and
+    the register bits they end in, drift towards the sink: :func:`circuitgen.phase_locality.balance_sinks` puts
+    it where a robot's patch meets the patches of the robots its register is phased with, so the register phase
+    (every register bit with every other) joins bits that sit close together. Every full adder still removes two
+    bits of its column and every column still ends with one bit (after a half adder where two are left), so the
+    counts per column are :func:`column_counts`' whatever the order. On the medial layout local first routes the
+    balance window to fewer CX than the passes did (README, "Ours vs Qiskit O3/SABRE").
 
     Args:
         form: ``(qubit, integer weight)`` pairs.
         ancillas: Clean ancillas, drawn as needed (copies, then one carry per adder).
         sites: Lattice site of every qubit of the form.
-        sink: Where the sums should end (``None``: the middle bit of every triple keeps its sum).
+        sink: Where the sums should end (``None``: passes along the curve, the middle bit of every triple keeps
+            its sum).
 
     Returns:
         ``(gates, register, ancilla sites)``: as :func:`popcount_layout`, plus the site given to each ancilla.
@@ -255,10 +342,19 @@ def spatial_popcount_layout(
                     cols.setdefault(k, []).append((a, sites[q]))
             w >>= 1
             k += 1
+    local = None
+    if sink is not None:  # local first: the tightest triple of any column, until no column has three bits
+        local = _LocalFirst(cols, sink, key)
+        while (found := local.next_triple()) is not None:
+            k, triple = found
+            local.update(k, *_sink_adder(cols, k, triple, sink, key, ancillas, gates, home))
     reg: list[int | None] = []
     k = 0
     while cols and k <= max(cols):
         col = sorted(cols.get(k, []), key=key)
+        while local is not None and (found := local.next_triple(k)) is not None:
+            local.update(k, *_sink_adder(cols, k, found[1], sink, key, ancillas, gates, home))
+            col = sorted(cols[k], key=key)
         while len(col) >= 3:
             nxt: list[tuple[int, Site]] = []
             full = len(col) // 3
@@ -283,6 +379,9 @@ def spatial_popcount_layout(
             gates += star_half_adder(a, b, t)
             col = [(a, site)]
             cols.setdefault(k + 1, []).append((t, site))
+            if local is not None:  # the carry may give the next column a third bit
+                cols[k] = col
+                local.update(k, {b}, (t, site))
         reg.append(col[0][0] if col else None)
         k += 1
     return gates, reg, home
