@@ -92,8 +92,12 @@ def test_every_plaquette_lies_on_one_cell_with_room_for_its_ancillas(s: Scenario
                 continue
             cell = _cell_of(sites, at)
             assert cell is not None, (robot, plaquette.corners)
+            # data only on the cell's six vertices (row-line qubits in its bridges' columns and midway): both
+            # bridges and the four row-line midpoints stay free for the partial mixer's ancillas
+            x0 = min(x for _, x in cell)
+            assert all(y % 2 == 0 and (x - x0) % 2 == 0 for y, x in set(cell) & taken)
             if len(sites) == 4:
-                assert len(set(cell) - taken) >= 7  # its own 4 edges and at most one vertical edge above
+                assert len(set(cell) - taken) >= 6
 
 
 # --- routed circuits ---------------------------------------------------------------------------------------
