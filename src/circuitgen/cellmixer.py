@@ -190,8 +190,9 @@ def cell_mixers(
         if len(plans) < 2:
             continue
 
-        def variant(k: int, gadget: ParityPartialMixer = gadget, name: str = name,
-                    plans: tuple[MixerPlan, ...] = plans) -> Section:
+        def variant(
+            k: int, gadget: ParityPartialMixer = gadget, name: str = name, plans: tuple[MixerPlan, ...] = plans
+        ) -> Section:
             g = dataclasses.replace(gadget, plan=plans[k], beta=Angle.symbol(name.replace("mixer", "beta")))
             lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
