@@ -55,7 +55,15 @@ from .cellmixer import cell_mixers
 from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
-from .hexlayout import heavy_hex_distance, hex_distance, hex_placement
+from .hexlayout import (
+    CELL_LARGE_WINDOW_SEEDS,
+    CELL_LARGE_WINDOW_TRIALS,
+    CELL_PHASE_LAYOUT,
+    heavy_hex_distance,
+    hex_distance,
+    hex_placement,
+    is_hex_lattice,
+)
 from .layout import distances, localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
@@ -225,7 +233,10 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
-    options = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+    settled = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
+        settled = replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
+    options = settled
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
     measured = range(scenario.num_variables)
@@ -375,5 +386,8 @@ def medial_compile(
             dev = _grown(dev)
             continue
         logical, layout = bridge_far_phases(logical, layout, dev, dist)
-        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist)
+        cells = dev.family == "heavy-hex"
+        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
+                                      large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
+                                      large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip
     return None

@@ -61,7 +61,26 @@ from gridcover.scenario import Scenario
 
 from .devices import Device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_qubits
 
-__all__ = ["heavy_hex_distance", "hex_distance", "hex_placement", "hex_sites"]
+__all__ = [
+    "CELL_LARGE_WINDOW_SEEDS", "CELL_LARGE_WINDOW_TRIALS", "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
+    "hex_placement", "hex_sites", "is_hex_lattice",
+]  # fmt: skip
+
+CELL_PHASE_LAYOUT = "medial"
+"""The phase separator's layout that ``phase_layout="auto"`` settles on for a heavy-hex lattice (the cell layout):
+the balance sums drift to sinks where the robots' patches meet (:func:`circuitgen.phase_locality.balance_sinks`),
+as on square grids; same gates and counts as ``spatial``. Measured with the cells' planned mixers and
+:data:`CELL_LARGE_WINDOW_SEEDS`, p = 1, routed CX of the phase separator, ``spatial`` -> ``medial``: see
+docs/resource-estimates.md ("Heavy-hex: one cell per plaquette")."""
+
+CELL_LARGE_WINDOW_SEEDS = 32
+"""SABRE seeds the balance arithmetic's one large window tries on the cells (:func:`circuitgen.routing.route_window`;
+8 elsewhere), with :data:`CELL_LARGE_WINDOW_TRIALS` trials each. Measured on 4x4/2 (p = 1, ``medial`` phase layout),
+that window's routed CX by (seeds, trials): (8, 16) 2,488; (32, 16) 2,434; (8, 64) 2,460; (16, 64) 2,444;
+(32, 64) 2,388; (64, 64) 2,386; (128, 64) 2,372 at five times (32, 64)'s time."""
+
+CELL_LARGE_WINDOW_TRIALS = 64
+"""SABRE's trials per seed on the cells' large window (16 elsewhere, :data:`circuitgen.routing.DEFAULT_TRIALS`)."""
 
 
 def heavy_hex_distance(device: Device) -> int | None:
@@ -75,6 +94,18 @@ def heavy_hex_distance(device: Device) -> int | None:
     if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
         return None
     return d
+
+
+def is_hex_lattice(spec: str | Device) -> bool:
+    """Whether ``spec`` is a heavy-hex lattice the cell layout may use: the unsized ``heavy-hex``, ``heavy-hex:D``,
+    or such a :class:`Device` (not a named IBM device, whose qubit numbering is another).
+
+    >>> [is_hex_lattice(s) for s in ("heavy-hex", "heavy-hex:5", "ibm_fez", "grid")]
+    [True, True, False, False]
+    """
+    if isinstance(spec, Device):
+        return heavy_hex_distance(spec) is not None
+    return spec == "heavy-hex" or spec.startswith("heavy-hex:")
 
 
 def _gap_offset(gap: int) -> int:
