@@ -4,7 +4,8 @@
 network, but many networks are equally cheap (which qubit carries the flip, which pairs the CNOTs join) and the
 A* returns the first it meets. On an all-to-all machine they cost the same; on a heavy-hex cell
 (:mod:`circuitgen.hexlayout`) they do not: a cell is a 12-cycle with three of a plaquette's four edges on one row
-line and the fourth four steps away, so a network whose CNOTs join the near edges routes to fewer SWAPs.
+line and the fourth on the row line above, 2 to 6 steps apart, so a network whose CNOTs join near edges routes to
+fewer SWAPs.
 
 **Variants** (:func:`relabelled_plans`). The A* is run on the program with the plaquette's four positions relabelled
 (all 24 relabellings) and each plan is mapped back: a relabelling is an isomorphism of the search, so every
@@ -15,13 +16,15 @@ all-to-all counts are unchanged.
 
 **Choice** (:func:`cell_mixers`). On a heavy-hex lattice device with the cell layout, each partial mixer's
 section is replaced by the variant whose window routes to the fewest two-qubit gates from home, allocated and routed
-exactly as :func:`circuitgen.hardware.medial_compile` then does it (:func:`circuitgen.medial.allocate_ancillas`,
-:func:`circuitgen.routing.route_window`): every variant is scored with the greedy allocation, and the default plan
-and the :data:`VARIANTS_ROUTED` best-scored ones are scored again with compile's allocation search; the cheapest
-wins, the default plan on ties. The choice is cached per *cell class* (the gadget's kind, its data qubits'
-coordinates relative to an anchor on the lattice's translation grid, and the occupied and existing qubits within
-:data:`MARGIN` of them), so the interior plaquettes of a large grid are scored once. A cached choice is only a
-choice: the chosen section is routed afresh by compile, so the written circuit and its counts stay exact.
+exactly as :func:`circuitgen.hardware.medial_compile` then does it (:func:`circuitgen.medial.allocate_ancillas` with
+compile's search, :func:`circuitgen.routing.route_window`), the default plan on ties. Then the operands of one AND
+at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
+fewer, until none does: the same logic, but a lowered AND uses its first operand twice
+(:func:`circuitgen.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE
+brings together. The choice is cached per *cell class* (the gadget's kind, its data qubits' coordinates relative to
+an anchor on the lattice's translation grid, and the occupied and existing qubits within :data:`MARGIN` of them), so
+the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
+routed afresh by compile, so the written circuit and its counts stay exact.
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".
@@ -59,18 +62,13 @@ from .lowering import lower
 from .options import PlanOptions
 from .qaoa import qaoa_plan
 
-__all__ = ["MARGIN", "VARIANTS_ROUTED", "cell_mixers", "relabelled_plans"]
-
-VARIANTS_ROUTED = 3
-"""Variants (besides the default plan) scored with compile's allocation search, the best by the greedy allocation.
-Measured on 4x4/2 (p = 1, heavy-hex:9): all 16 on average with the search, 2,348 -> 2,064 mixer CX; the best 3
-screened, 2,348 -> 2,092 at a fifth of the time."""
+__all__ = ["MARGIN", "cell_mixers", "relabelled_plans"]
 
 MARGIN = 6
 """Lattice coordinates around a partial mixer's data whose qubits (present, occupied) key its cell class: the
 allocation puts its ancillas within two steps of their partners and a window routes within two steps of them."""
 
-_CHOICE_CACHE: dict[Hashable, int] = {}
+_CHOICE_CACHE: dict[Hashable, MixerPlan] = {}
 
 
 def _relabel_program(program: AbstractProgram, sigma: Sequence[int]) -> AbstractProgram:
@@ -116,6 +114,21 @@ def relabelled_plans(program: AbstractProgram, target: str = "nisq") -> tuple[Mi
         if plan not in out:
             out.append(plan)
     return tuple(out)
+
+
+def _operand_swaps(plan: MixerPlan) -> list[MixerPlan]:
+    """The plan with the two operands of one AND (and of its mirror) or the rotation's two controls exchanged, one
+    plan per such gate: the same logic, but the lowered AND uses its first operand twice and the rotation
+    alternates its controls, so which qubit comes first changes what routes."""
+    out = []
+    for k, (name, slots) in enumerate(plan.compute):
+        if name == "and":
+            compute = (*plan.compute[:k], (name, (slots[1], slots[0], slots[2])), *plan.compute[k + 1 :])
+            out.append(dataclasses.replace(plan, compute=compute))
+    name, slots = plan.rotation
+    if name == "ccrx":
+        out.append(dataclasses.replace(plan, rotation=(name, (slots[1], slots[0], slots[2]))))
+    return out
 
 
 def _class_key(gadget: ParityPartialMixer, homes: Sequence[int], coords: Sequence[tuple[int, int]],
@@ -190,22 +203,28 @@ def cell_mixers(
         if len(plans) < 2:
             continue
 
-        def variant(
-            k: int, gadget: ParityPartialMixer = gadget, name: str = name, plans: tuple[MixerPlan, ...] = plans
-        ) -> Section:
-            g = dataclasses.replace(gadget, plan=plans[k], beta=Angle.symbol(name.replace("mixer", "beta")))
+        def variant(plan: MixerPlan, gadget: ParityPartialMixer = gadget, name: str = name) -> Section:
+            g = dataclasses.replace(gadget, plan=plan, beta=Angle.symbol(name.replace("mixer", "beta")))
             lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
 
+        def cost(plan: MixerPlan, gadget: ParityPartialMixer = gadget, i: int = i) -> int:
+            section = sections[i] if plan == gadget.plan else variant(plan)
+            return _window_cx(section, circuit, homes, device, dist, SEARCH)
+
         key = (_class_key(gadget, homes, coords, occupied), SEARCH)
-        k = _CHOICE_CACHE.get(key)
-        if k is None:
-            rough = sorted(range(1, len(plans)), key=lambda j: (_window_cx(variant(j), circuit, homes, device, dist,
-                                                                           False), j))  # fmt: skip
-            finalists = [0, *rough[:VARIANTS_ROUTED]]
-            scores = [(_window_cx(sections[i] if j == 0 else variant(j), circuit, homes, device, dist, SEARCH), j)
-                      for j in finalists]  # fmt: skip
-            k = _CHOICE_CACHE[key] = min(scores)[1]
-        if k:
-            sections[i] = variant(k)
+        chosen = _CHOICE_CACHE.get(key)
+        if chosen is None:
+            best, k = min((cost(plan), j) for j, plan in enumerate(plans))
+            chosen = plans[k]
+            improved = True
+            while improved:  # operands exchanged one gate at a time, each kept if it routes to fewer
+                improved = False
+                for swapped in _operand_swaps(chosen):
+                    c = cost(swapped)
+                    if c < best:
+                        best, chosen, improved = c, swapped, True
+            _CHOICE_CACHE[key] = chosen
+        if chosen != gadget.plan:
+            sections[i] = variant(chosen)
     return Circuit(circuit.registers, sections)
