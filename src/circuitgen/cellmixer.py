@@ -33,13 +33,13 @@ Example:
     >>> from gridcover.presets import default_scenario
     >>> from gridcover.sbf import sbf_logic
     >>> from circuitgen.gadgets.partial_mixer import abstract_program, plan_parity_mixer
-    >>> s = default_scenario(3, 3, 1)
+    >>> s = default_scenario(2, 3, 1)
     >>> program, _ = abstract_program(sbf_logic(s, 0, s.grid.plaquettes[0], "exact"), s.grid.plaquettes[0])
     >>> plans = relabelled_plans(program, "nisq")
-    >>> plans[0] == plan_parity_mixer(program, "nisq"), len(plans) > 1
-    (True, True)
+    >>> plans[0] == plan_parity_mixer(program, "nisq"), len(plans)
+    (True, 6)
     >>> {p.cost().cx for p in plans}
-    {32}
+    {16}
 """
 
 from __future__ import annotations
