@@ -1,9 +1,10 @@
 """The heavy-hex cell layout: coordinates, placement geometry, and routed circuits equal to the compiled ones.
 
 Evidence: the coordinates rebuild Qiskit's heavy-hex coupling map exactly; every plaquette's four edges lie on
-one 12-qubit heavy-hex cell with at least seven free qubits (random scenarios); the lattice picked is the
+one 12-qubit heavy-hex cell, data only on its vertices, at least six qubits free (random scenarios); the lattice picked is the
 smallest that holds the layout; compiles with the layout put every two-qubit gate on a coupling, return every
-qubit home and equal the unrouted circuit (statevector on the used qubits: 2x3/1, and 2x2/2 in the heavy run;
+qubit home and equal the unrouted circuit, the logical one and the compiled one whose partial mixers use the default
+plans (statevector on the used qubits: 2x3/1, and 2x2/2 in the heavy run;
 QCEC on 2x3/2, and on 3x3/1 and a 3x4 obstacle scenario in the heavy run); ``auto`` keeps the cheaper of this layout
 and the greedy routing; ``estimate --device heavy-hex`` reports what compile writes.
 """
@@ -125,6 +126,10 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     assert _on_coupling(routed)
     assert routed.circuit.count_ops()["cx"] == r.logical.count_ops()["cx"] + 3 * routed.swaps - 2 * routed.num_fused
     _assert_equal_up_to_layouts(r.logical, _compact(routed), seed=5, global_phase=False)
+    # the compiled circuit too, whose partial mixers use the default plans (the cells' differ, circuitgen.cellmixer):
+    # its ancillas are other qubits than the logical circuit's, but |0> at both ends, like every unused qubit
+    assert r.compiled.circuit.num_qubits <= r.logical.num_qubits and r.compiled.circuit != r.logical
+    _assert_equal_up_to_layouts(r.compiled.circuit, _compact(routed), seed=6, global_phase=False)
 
 
 @pytest.mark.parametrize(
