@@ -24,7 +24,9 @@ fewer, until none does: the same logic, but a lowered AND uses its first operand
 brings together. The choice is cached per *cell class* (the gadget's kind, its data qubits' coordinates relative to
 an anchor on the lattice's translation grid, and the occupied and existing qubits within :data:`MARGIN` of them), so
 the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
-routed afresh by compile, so the written circuit and its counts stay exact.
+routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
+default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
+(a 6x6/3 compile on heavy-hex took minutes instead of seconds, docs/resource-estimates.md).
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".
@@ -200,7 +202,7 @@ def cell_mixers(
             continue
         program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
         plans = relabelled_plans(program, target)
-        if len(plans) < 2:
+        if len(plans) < 2:  # one network only: kept as compiled, operands included
             continue
 
         def variant(plan: MixerPlan, gadget: ParityPartialMixer = gadget, name: str = name) -> Section:
