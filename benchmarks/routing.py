@@ -6,8 +6,9 @@ scenario label starts with LABEL, e.g. ``--scenario 4x4/2``);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
 unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases);
-``python benchmarks/routing.py --cells [--quick]``: the heavy-hex cell layout (:mod:`circuitgen.hexlayout`) on
-every scenario, routed CX per part the same way, next to the greedy routing ``auto`` compares it with.
+``python benchmarks/routing.py --cells [--quick] [--scenario LABEL]``: the heavy-hex cell layout
+(:mod:`circuitgen.hexlayout`) on every scenario (or those whose label starts with LABEL), routed CX per part the
+same way, next to the greedy routing ``auto`` compares it with.
 
 Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
 ``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`); ``heavy-hex`` is the
@@ -127,7 +128,7 @@ def arrangements() -> None:
             print(f"| {label} | {arrangement} | {r.routed.device.name} | {total:,} | {cells} |", flush=True)
 
 
-def cells(quick: bool) -> None:
+def cells(quick: bool, prefix: str = "") -> None:
     """The heavy-hex cell layout (``layout_method="medial"`` on the unsized ``heavy-hex``) on every scenario: routed
     CX per part against the part's unrouted CX, next to the greedy routing on the smallest lattice that holds the
     circuit (what ``auto`` compares on circuits of at most ``AUTO_COMPARE_MAX_TWOQ`` two-qubit gates)."""
@@ -135,6 +136,8 @@ def cells(quick: bool) -> None:
           "| greedy cx |")  # fmt: skip
     print("|---|---|---:|---:|---:|---|---:|")
     for label, s in scenarios(quick):
+        if not label.startswith(prefix):
+            continue
         r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="medial")
         routed, a2a = _by_part(r.routed.circuit), _by_part(r.compiled.circuit)
         parts = " | ".join(
@@ -149,14 +152,14 @@ def main() -> None:
     if "--arrangements" in sys.argv:
         arrangements()
         return
+    prefix = sys.argv[sys.argv.index("--scenario") + 1] if "--scenario" in sys.argv else ""
     if "--cells" in sys.argv:
-        cells("--quick" in sys.argv)
+        cells("--quick" in sys.argv, prefix)
         return
     quick = "--quick" in sys.argv
     families = ("grid", "heavy-hex")
     if "--family" in sys.argv:
         families = (sys.argv[sys.argv.index("--family") + 1],)
-    prefix = sys.argv[sys.argv.index("--scenario") + 1] if "--scenario" in sys.argv else ""
     print(
         "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "
         "| compile / a2a | 2q depth: greedy / compile |"

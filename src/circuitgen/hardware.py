@@ -37,7 +37,7 @@ Example:
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
     >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
-    >>> r.layout_method, r.routed.device.name  # cheaper than the cell layout on heavy-hex:7 (287 vs 432 CX)
+    >>> r.layout_method, r.routed.device.name  # cheaper than the cells on heavy-hex:7 (287 vs 344 CX)
     ('greedy', 'heavy-hex:3')
     >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
     >>> cells.routed.device.name
@@ -54,11 +54,20 @@ from typing import Any
 from gridcover.scenario import Scenario
 
 from .bridge import bridge_far_phases
+from .cellmixer import cell_mixers
 from .circuit import Circuit, Section
 from .compile import CompileResult, compile_scenario
 from .devices import Device, get_device
-from .hexlayout import heavy_hex_distance, hex_distance, hex_placement
-from .layout import localize_ancillas, place
+from .hexlayout import (
+    CELL_LARGE_WINDOW_SEEDS,
+    CELL_LARGE_WINDOW_TRIALS,
+    CELL_PHASE_LAYOUT,
+    heavy_hex_distance,
+    hex_distance,
+    hex_placement,
+    is_hex_lattice,
+)
+from .layout import distances, localize_ancillas, place
 from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
@@ -220,14 +229,18 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
-    options = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+    settled = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
+        settled = replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
+    options = settled
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
     measured = range(scenario.num_variables)
     if layout_method not in LAYOUT_METHODS:
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
-        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement)
+        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
+                                   options=replace(options, fuse=False), bindings=bindings)
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
@@ -358,12 +371,16 @@ def medial_compile(
     seed: int = 0,
     measured: range | None = None,
     arrangement: str = "tile",
+    options: PlanOptions | None = None,
+    bindings: Mapping[str, float] | None = None,
 ) -> tuple[Circuit, RoutedCircuit] | None:
     """The geometric layout (medial on square grids, one cell per plaquette on heavy-hex lattices), local ancillas
     and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
     is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
     column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
     the robots' copies share a square grid (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
+    With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
+    partial mixer takes its cheapest equally short plan on its cell (:func:`circuitgen.cellmixer.cell_mixers`).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
@@ -372,13 +389,20 @@ def medial_compile(
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
+        dist = distances(dev)
+        planned = circuit
+        if options is not None and dev.family == "heavy-hex":
+            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings)
         try:
-            logical, layout = allocate_ancillas(circuit, homes, dev, search=SEARCH)
+            logical, layout = allocate_ancillas(planned, homes, dev, dist, search=SEARCH)
         except ValueError:
             if spec not in ("grid", "heavy-hex"):
                 raise
             dev = _grown(dev)
             continue
-        logical, layout = bridge_far_phases(logical, layout, dev)
-        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured)
+        logical, layout = bridge_far_phases(logical, layout, dev, dist)
+        cells = dev.family == "heavy-hex"
+        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
+                                      large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
+                                      large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip
     return None

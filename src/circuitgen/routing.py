@@ -489,14 +489,17 @@ def _play(
 
 def route_window(
     pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
-    trials: int | None = DEFAULT_TRIALS,
+    trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
 ) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
     """One window's routed ops (``("cx", (p, q))``, ``("swap", (p, q))``), leaving every qubit where it was: the
     compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
-    ``n - 1 - k`` of the uncompute)."""
+    ``n - 1 - k`` of the uncompute). ``large_seeds``, ``large_trials``: seeds a large window tries (default
+    :data:`LARGE_WINDOW_SEEDS`) and SABRE's trials per seed there (default ``trials``)."""
     m = mirror_length(pairs)
-    tries = [(s, trials) for s in range(seed, seed + (LARGE_WINDOW_SEEDS if m >= LARGE_WINDOW_PAIRS else 1))]
+    large = m >= LARGE_WINDOW_PAIRS
+    base_trials = large_trials if large and large_trials else trials
+    tries = [(s, base_trials) for s in range(seed, seed + ((large_seeds or LARGE_WINDOW_SEEDS) if large else 1))]
     if LARGE_WINDOW_PAIRS <= m <= LARGE_WINDOW_MAX_PAIRS and trials is not None:  # and a wider search
         tries += [(s, max(trials, WIDE_WINDOW_TRIALS)) for s in range(seed, seed + WIDE_WINDOW_SEEDS)]
     best: list[tuple[str, tuple[int, int]]] | None = None
@@ -567,6 +570,8 @@ def route_windows(
     measured: Sequence[int] | None = None,
     trials: int | None = DEFAULT_TRIALS,
     dist: Any = None,
+    large_seeds: int | None = None,
+    large_trials: int | None = None,
 ) -> RoutedCircuit:
     """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
     circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
@@ -580,6 +585,8 @@ def route_windows(
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
         trials: SABRE's trials per window.
         dist: The device's all-pairs distances (:func:`circuitgen.layout.distances`), if already known.
+        large_seeds, large_trials: SABRE seeds a large window tries (default :data:`LARGE_WINDOW_SEEDS`) and
+            SABRE's trials per seed there (default ``trials``).
 
     Returns:
         The :class:`RoutedCircuit` (``initial_layout == final_layout == layout``).
@@ -596,7 +603,7 @@ def route_windows(
     gate_window: list[int] = []
     for w, sec in enumerate(circuit.sections):
         pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
-        window = route_window(pairs, pos, device, dist, seed, trials)  # type: ignore[arg-type]
+        window = route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)  # type: ignore[arg-type]
         ops += window
         owners += [sec.name] * len(window)
         op_window += [w] * len(window)

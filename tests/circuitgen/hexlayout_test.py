@@ -1,9 +1,10 @@
 """The heavy-hex cell layout: coordinates, placement geometry, and routed circuits equal to the compiled ones.
 
 Evidence: the coordinates rebuild Qiskit's heavy-hex coupling map exactly; every plaquette's four edges lie on
-one 12-qubit heavy-hex cell with at least seven free qubits (random scenarios); the lattice picked is the
-smallest that holds the layout; compiles with the layout put every two-qubit gate on a coupling, return every
-qubit home and equal the unrouted circuit (statevector on the used qubits: 2x3/1, and 2x2/2 in the heavy run;
+one 12-qubit heavy-hex cell, data only on its vertices, at least six qubits free (random scenarios); the lattice
+picked is the smallest that holds the layout; compiles with the layout put every two-qubit gate on a coupling,
+return every qubit home and equal the unrouted circuit, the logical one and the compiled one whose partial mixers
+use the default plans (statevector on the used qubits: 2x3/1, and 2x2/2 in the heavy run;
 QCEC on 2x3/2, and on 3x3/1 and a 3x4 obstacle scenario in the heavy run); ``auto`` keeps the cheaper of this layout
 and the greedy routing; ``estimate --device heavy-hex`` reports what compile writes.
 """
@@ -92,8 +93,12 @@ def test_every_plaquette_lies_on_one_cell_with_room_for_its_ancillas(s: Scenario
                 continue
             cell = _cell_of(sites, at)
             assert cell is not None, (robot, plaquette.corners)
+            # data only on the cell's six vertices (row-line qubits in its bridges' columns and midway): both
+            # bridges and the four row-line midpoints stay free for the partial mixer's ancillas
+            x0 = min(x for _, x in cell)
+            assert all(y % 2 == 0 and (x - x0) % 2 == 0 for y, x in set(cell) & taken)
             if len(sites) == 4:
-                assert len(set(cell) - taken) >= 7  # its own 4 edges and at most one vertical edge above
+                assert len(set(cell) - taken) >= 6
 
 
 # --- routed circuits ---------------------------------------------------------------------------------------
@@ -121,6 +126,10 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     assert _on_coupling(routed)
     assert routed.circuit.count_ops()["cx"] == r.logical.count_ops()["cx"] + 3 * routed.swaps - 2 * routed.num_fused
     _assert_equal_up_to_layouts(r.logical, _compact(routed), seed=5, global_phase=False)
+    # the compiled circuit too, whose partial mixers use the default plans (the cells' differ, circuitgen.cellmixer):
+    # its ancillas are other qubits than the logical circuit's, but |0> at both ends, like every unused qubit
+    assert r.compiled.circuit.num_qubits <= r.logical.num_qubits and r.compiled.circuit != r.logical
+    _assert_equal_up_to_layouts(r.compiled.circuit, _compact(routed), seed=6, global_phase=False)
 
 
 @pytest.mark.parametrize(
@@ -174,7 +183,8 @@ def test_estimate_device_heavy_hex_equals_compile(shape: tuple[int, int, int]) -
     r = compile_for_device(s, 1, "heavy-hex")
     assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
     assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]
-    if shape == (4, 4, 2):  # auto keeps the cell layout (routed home) on the lattice sized for it
-        assert r.layout_method == "medial" and f["device"] == layout_device(s, "heavy-hex").name
-    else:  # smaller circuits: the greedy routing on the smallest lattice is cheaper (auto compares)
+    if r.layout_method == "medial":  # the cell layout (routed home) on the lattice sized for it
+        assert f["device"] == layout_device(s, "heavy-hex").name
+    else:  # smaller circuits, where the greedy routing on the smallest lattice is cheaper (auto compares)
         assert r.layout_method == "greedy" and f["device"] == get_device("heavy-hex", min_qubits=r.logical_qubits).name
+    assert shape != (4, 4, 2) or r.layout_method == "medial"

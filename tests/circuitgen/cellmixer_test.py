@@ -1,0 +1,95 @@
+"""Partial mixers planned for the heavy-hex cells (:mod:`circuitgen.cellmixer`).
+
+Evidence: every relabelled plan, and every plan with one AND's operands or the rotation's controls exchanged, has
+the default plan's two-qubit count and acts exactly as the default plan on random data states with clean
+ancillas (statevector: both partial mixers of 2x3/1 in the default run, every one of 3x3/1 in the heavy run); on a
+heavy-hex lattice :func:`~circuitgen.cellmixer.cell_mixers` changes only partial-mixer sections, keeps their
+two-qubit counts, changes at least one (2x3/1; 2x3/2 in the heavy run), and every changed window routes to no more
+two-qubit gates than the default one; elsewhere it changes nothing. The routed circuits that use it are checked
+against the compiled circuit in ``tests/circuitgen/hexlayout_test.py`` (statevector and QCEC).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import doctest
+import importlib
+
+import numpy as np
+import pytest
+
+from circuitgen.angles import Angle
+from circuitgen.cellmixer import _CHOICE_CACHE, _operand_swaps, _window_cx, cell_mixers, relabelled_plans
+from circuitgen.circuit import Circuit, Section
+from circuitgen.compile import compile_scenario
+from circuitgen.devices import get_device
+from circuitgen.gadgets.partial_mixer import ParityPartialMixer
+from circuitgen.gates import rx, ry
+from circuitgen.hardware import hex_device
+from circuitgen.hexlayout import hex_placement
+from circuitgen.layout import distances
+from circuitgen.lowering import lower
+from circuitgen.options import PlanOptions
+from circuitgen.qaoa import qaoa_plan
+from gridcover.presets import default_scenario
+from simulate.statevector import simulate_statevector
+
+BIND = {"gamma_0": 0.3, "beta_0": 0.7}
+OPTIONS = PlanOptions(fuse=False, phase_layout="medial")
+
+
+def test_doctests() -> None:
+    result = doctest.testmod(importlib.import_module("circuitgen.cellmixer"))
+    assert result.failed == 0 and result.attempted > 0
+
+
+def _state(gadget: ParityPartialMixer, registers: tuple, n_data: int, seed: int) -> np.ndarray:
+    """The gadget's lowered gates on a random product state of the data qubits, ancillas |0>."""
+    rng = np.random.default_rng(seed)
+    prep = [g for q in range(n_data) for g in (ry(float(rng.uniform(0, 3)), q), rx(float(rng.uniform(0, 3)), q))]
+    body = lower(Circuit(registers, [Section("mixer_0", tuple(gadget.emit()))])).bind({"beta_0": 0.7})
+    return simulate_statevector(Circuit(registers, [Section("prep", prep), *body.sections]))
+
+
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((3, 3, 1), marks=pytest.mark.heavy)], ids=["2x3/1", "3x3/1"])
+def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) -> None:
+    s = default_scenario(*shape)
+    plan = qaoa_plan(s, 1, OPTIONS)
+    mixers = [g for name, g in plan.sections() if isinstance(g, ParityPartialMixer)]
+    registers = tuple(plan.circuit().registers)
+    for k, m in enumerate(mixers):
+        m = dataclasses.replace(m, beta=Angle.symbol("beta_0"))
+        plans = relabelled_plans(m.kind[1], m.kind[2])  # type: ignore[index]
+        assert plans[0] == m.plan and len(plans) > 1
+        swapped = [v for p in plans[:4] for v in _operand_swaps(p)]
+        assert swapped
+        want = _state(m, registers, s.num_variables, seed=k)
+        for variant in (*plans, *swapped):
+            assert variant.cost().cx == m.plan.cost().cx
+            got = _state(dataclasses.replace(m, plan=variant), registers, s.num_variables, seed=k)
+            assert np.allclose(got, want, atol=1e-9)
+
+
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((2, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "2x3/2"])
+def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape: tuple[int, int, int]) -> None:
+    s = default_scenario(*shape)
+    circuit = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND).circuit
+    dev = hex_device(s, "heavy-hex")
+    assert dev is not None
+    homes = hex_placement(s, dev)
+    assert homes is not None
+    dist = distances(dev)
+    _CHOICE_CACHE.clear()  # every choice made here, on this circuit
+    planned = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND)
+    assert [sec.name for sec in planned.sections] == [sec.name for sec in circuit.sections]
+    changed = 0
+    for old, new in zip(circuit.sections, planned.sections, strict=True):
+        if not old.name.startswith("mixer") or old == new:
+            assert old == new
+            continue
+        changed += 1
+        assert sum(len(g[1]) == 2 for g in new.gates) == sum(len(g[1]) == 2 for g in old.gates)
+        assert _window_cx(new, circuit, homes, dev, dist, True) <= _window_cx(old, circuit, homes, dev, dist, True)
+    assert changed > 0
+    grid = get_device("grid:9x9")
+    assert cell_mixers(s, OPTIONS, circuit, grid, homes, distances(grid), BIND) is circuit
