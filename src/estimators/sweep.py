@@ -106,8 +106,8 @@ def parse_int_range(text: str, name: str = "value", low: int = 0, high: int | No
     if b < a:
         raise ValueError(f"bad {name} range {text!r}: empty")
     if a < low or (high is not None and b > high):
-        bound = f"{low}..{high}" if high is not None else f">= {low}"
-        raise ValueError(f"bad {name} {text!r}: must be in {bound}")
+        bound = f"in {low}..{high}" if high is not None else f">= {low}"
+        raise ValueError(f"bad {name} {text!r}: must be {bound}")
     return list(range(a, b + 1))
 
 
