@@ -65,7 +65,7 @@ def docstring_lines(tree: ast.Module) -> set[int]:
     for node in ast.walk(tree):
         if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef) and node.body:
             first = node.body[0]
-            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str):
+            if isinstance(first, ast.Expr) and isinstance(getattr(first.value, "value", None), str):
                 lines.update(range(first.lineno, (first.end_lineno or first.lineno) + 1))
     return lines
 
@@ -136,6 +136,10 @@ def totals(per_file: dict[str, tuple[int, int]], keys: Iterable[str]) -> tuple[i
     return sum(f[0] for f in found), sum(f[1] for f in found)
 
 
+def _ratio(a: int, b: int) -> str:
+    return f"{a / b:.3f}" if b else "-"
+
+
 def table(rows: list[tuple[str, tuple[int, int], tuple[int, int] | None]], against: str | None) -> str:
     """One text table: name, lines, code lines (and the other tree's, with ratios, if given)."""
     head = f"{'':32} {'lines':>7} {'code':>7}"
@@ -145,8 +149,7 @@ def table(rows: list[tuple[str, tuple[int, int], tuple[int, int] | None]], again
     for name, (lines, code), other in rows:
         line = f"{name:32} {lines:7,} {code:7,}"
         if other is not None:
-            ratio = (lambda a, b: f"{a / b:.3f}" if b else "-")
-            line += f" {other[0]:16,} {other[1]:15,} {ratio(lines, other[0]):>8} {ratio(code, other[1]):>7}"
+            line += f" {other[0]:16,} {other[1]:15,} {_ratio(lines, other[0]):>8} {_ratio(code, other[1]):>7}"
         out.append(line)
     return "\n".join(out)
 
