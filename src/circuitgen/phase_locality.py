@@ -48,7 +48,7 @@ from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
 from .gadgets import Gadget
-from .gadgets.phase_sums import Sink, Site, SumsPhase, _to
+from .gadgets.phase_sums import Sink, Site, SumsPhase, manhattan
 from .gadgets.phase_visits import VisitPhase
 from .medial import tiling
 from .options import PlanOptions
@@ -180,7 +180,7 @@ def spatial_phase(
         usable = [a for a in pool if a in borrowed]
 
         def rank(a: int, at: tuple[float, float] = at) -> tuple[float, int]:
-            far = _to(at, home[a]) if a in home else float("inf")
+            far = manhattan(at, home[a]) if a in home else float("inf")
             return far + NEW_HOME_PENALTY * borrowed[a], a
 
         chosen = tuple(sorted(usable, key=rank)[: len(g.ancillas)])

@@ -156,7 +156,6 @@ class Progress:
         self._interval = _interval_from_env() if interval is None else interval
         self._first_after = (0.0 if self._interval == 0 else FIRST_LINE_AFTER) if first_after is None else first_after
         self._start = 0.0
-        self._last_line = -1.0  # monotonic time of the last line (-1: none yet)
         self._lines = 0
         self._lock = threading.Lock()
         self._stop = threading.Event()
@@ -270,7 +269,6 @@ class Progress:
                 self._mode = "off"
                 return
             self._lines += 1
-            self._last_line = time.monotonic()
 
     def _heartbeat(self) -> None:
         if self._stop.wait(self._first_after):
