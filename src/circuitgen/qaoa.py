@@ -183,7 +183,7 @@ class QaoaPlan:
         """One layer's phase separator gadgets, laid out as :attr:`PlanOptions.phase_layout` asks."""
         assert self.phase_plan is not None
         n = self.scenario.num_variables
-        gadgets = self.phase_plan.gadgets(gamma, 0, n)
+        gadgets = self.phase_plan.gadgets(gamma)
         if self.options.phase_layout in ("spatial", "medial"):
             gadgets = spatial_phase(gadgets, self.scenario, range(n, n + self.phase_plan.num_ancillas),
                                     sinks=self.options.phase_layout == "medial")  # fmt: skip
