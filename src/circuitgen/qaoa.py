@@ -71,13 +71,11 @@ class QubitMap:
     ancillas: tuple[int, ...]
 
 
-def qubit_map(scenario: Scenario, circuit: Circuit) -> QubitMap:
-    """The :class:`QubitMap` of a circuit built by :func:`qaoa_circuit` (lowered or not)."""
+def qubit_map(scenario: Scenario, num_qubits: int) -> QubitMap:
+    """The :class:`QubitMap` of a circuit of ``num_qubits`` qubits built by :func:`qaoa_circuit` (lowered or
+    not): data first, ancillas after."""
     n = scenario.num_variables
-    return QubitMap(
-        tuple(scenario.variable_of(i) for i in range(n)),
-        tuple(range(n, circuit.num_qubits)),
-    )
+    return QubitMap(tuple(scenario.variable_of(i) for i in range(n)), tuple(range(n, num_qubits)))
 
 
 @dataclass(frozen=True)

@@ -42,7 +42,7 @@ from rich.table import Table
 
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.compile import compile_scenario, parse_bindings
+from circuitgen.compile import check_bindings, compile_scenario, compile_summary, parse_bindings
 from circuitgen.options import LAYOUT_METHODS, PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
@@ -287,11 +287,7 @@ def _stream(
     from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
-    known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
-    unknown = sorted(set(bindings) - known)
-    if unknown:
-        have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-        raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+    check_bindings(bindings, p)
     if progress is not None:
         progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
@@ -317,23 +313,7 @@ def _stream(
         ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
     else:
         ops, symbols = _count_sections(registers, sections())
-    n = s.num_variables
-    num_qubits = sum(r.size for r in registers)
-    edges = s.grid.edges
-    data = []
-    for q in range(n):
-        robot, e = s.variable_of(q)
-        data.append({"qubit": q, "robot": robot, "edge": [list(edges[e][0]), list(edges[e][1])]})
-    summary = {
-        "qubits": num_qubits,
-        "gates": dict(sorted(ops.items())),
-        "total_gates": sum(ops.values()),
-        "lowered": lowered,
-        "symbols": list(symbols),
-        "registers": {r.name: r.size for r in registers},
-        "seconds": time.perf_counter() - start,
-        "qubit_map": {"data": data, "ancillas": list(range(n, num_qubits))},
-    }
+    summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)
     return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
 
 
