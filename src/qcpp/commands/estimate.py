@@ -268,7 +268,7 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
     """The phase plan's choices per distinct scenario, as tables on standard error."""
     from rich.console import Console
 
-    from circuitgen.phase import phase_plan
+    from circuitgen.qaoa import qaoa_plan
 
     from .compile import explain_table
 
@@ -279,14 +279,7 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
         if s in seen:
             continue
         seen.add(s)
-        pp = phase_plan(
-            s,
-            target=plan.target,  # type: ignore[arg-type]
-            representation=plan.phase,  # type: ignore[arg-type]
-            optimize=plan.optimize,  # type: ignore[arg-type]
-            ancilla_budget=plan.ancilla_budget,
-        )
-        table = explain_table(pp.explain())
+        table = explain_table(qaoa_plan(s, 1, plan).phase_plan.explain())  # the phase plan compile would build
         table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
         print_table(console, table)
 
