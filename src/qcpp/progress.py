@@ -210,7 +210,7 @@ class Progress:
     def stage(self, text: str) -> None:
         """Name the stage the work is in now (``compiling the circuit``); shown next to the counts."""
         self.stage_text = text
-        self._after_change(force=True)
+        self._after_change()
 
     def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
         """Yield ``items``, counting one step as each is handed out (done = items handed out before it).
@@ -246,7 +246,7 @@ class Progress:
     def _elapsed(self) -> float:
         return time.monotonic() - self._start if self._start else 0.0
 
-    def _after_change(self, force: bool = False) -> None:
+    def _after_change(self) -> None:
         if self._mode == "bar" and self._bar is not None:
             with contextlib.suppress(Exception):
                 self._bar.update(self._bar_task, completed=self.done, total=self.total, description=self._label())
