@@ -10,7 +10,7 @@ Example:
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -91,33 +91,6 @@ def compile_summary(
     }
 
 
-def check_bindings(bindings: Mapping[str, float], p: int, symbols: Iterable[str] = ()) -> None:
-    """Refuse a binding of a symbol the circuit does not have.
-
-    A layer's angles ``gamma_k``, ``beta_k`` (``k < p``) are names of the operator even where no gate uses them
-    (a cost constant on the feasible set leaves the phase separator empty, and ``gamma_k`` with it).
-
-    Args:
-        bindings: The values to bind, by symbol name.
-        p: QAOA layers.
-        symbols: The circuit's other symbols, if any.
-
-    Raises:
-        ValueError: naming the unknown symbols and the circuit's.
-
-    Example:
-        >>> check_bindings({"gamma_1": 0.3}, 1)
-        Traceback (most recent call last):
-        ...
-        ValueError: unknown symbol(s) gamma_1 (this circuit has: gamma_0, beta_0)
-    """
-    known = set(symbols) | {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
-    unknown = sorted(set(bindings) - known)
-    if unknown:
-        have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-        raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
-
-
 def compile_scenario(
     scenario: Scenario,
     p: int,
@@ -145,7 +118,13 @@ def compile_scenario(
     plan = qaoa_plan(scenario, p, options)
     circuit = plan.circuit()
     if bindings:
-        check_bindings(bindings, p, circuit.symbols)
+        # a layer's angles are names of the operator even where no gate uses them (a cost constant on the
+        # feasible set leaves the phase separator empty, and gamma_k with it)
+        known = set(circuit.symbols) | {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+        unknown = sorted(set(bindings) - known)
+        if unknown:
+            have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
+            raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
     if lowered:
         circuit = lower(circuit)
     if bindings:

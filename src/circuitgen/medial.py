@@ -50,7 +50,6 @@ from .circuit import Circuit, Register, Section
 from .devices import Device, grid_coupling
 from .gates import Gate
 from .hexlayout import hex_placement
-from .layout import distances
 from .routing import DEFAULT_TRIALS
 
 __all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
@@ -147,6 +146,12 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
             row, col = down * a + dr, across * b + dc
         homes.append(row * cols + col)
     return tuple(homes)
+
+
+def _distances(device: Device) -> np.ndarray:
+    from .layout import distances
+
+    return distances(device)
 
 
 def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], dict[int, dict[int, int]], set[int]]:
@@ -288,7 +293,7 @@ def allocate_ancillas(
     Raises:
         ValueError: a section needs more ancillas than the device has free qubits (in the data's component).
     """
-    d = distances(device) if dist is None else dist
+    d = _distances(device) if dist is None else dist
     n_data = len(data_homes)
     taken = np.zeros(device.num_qubits, dtype=bool)
     taken[list(data_homes)] = True

@@ -42,7 +42,7 @@ from rich.table import Table
 
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.compile import check_bindings, compile_scenario, compile_summary, parse_bindings
+from circuitgen.compile import compile_scenario, compile_summary, parse_bindings
 from circuitgen.options import LAYOUT_METHODS, PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
@@ -287,7 +287,11 @@ def _stream(
     from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
-    check_bindings(bindings, p)
+    known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+    unknown = sorted(set(bindings) - known)
+    if unknown:
+        have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
+        raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
     if progress is not None:
         progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
