@@ -151,8 +151,6 @@ def compile_command(
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
         )
-        if qasm is not None:
-            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
         passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
@@ -161,11 +159,11 @@ def compile_command(
         big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
             summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
-        if qasm is not None:
-            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
         result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
         summary, phase_explain = result.summary(), result.phase_explain
+    if qasm is not None:  # written by _routed or _stream
+        summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     if explain:
         summary["phase_explain"] = phase_explain
     if as_json:
