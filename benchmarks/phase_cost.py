@@ -65,7 +65,7 @@ def phase_cost(s: Scenario, logical: bool = False, **options: object) -> Cost:
 def phase_circuit(s: Scenario, plan: PhasePlan) -> Circuit:
     """One layer's phase separator as a circuit: each gadget its own section, ancillas after the data."""
     n = s.num_variables
-    secs = [Section("phase_0", tuple(g.emit())) for g in plan.gadgets("gamma_0", 0, n)]
+    secs = [Section("phase_0", tuple(g.emit())) for g in plan.gadgets("gamma_0")]
     return Circuit([("data", n), ("logic", max(1, plan.num_ancillas))], secs)
 
 

@@ -10,14 +10,14 @@ Example:
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from gridcover.scenario import Scenario
 
 from .angles import symbol_sort_key
-from .circuit import Circuit
+from .circuit import Circuit, Register
 from .lowering import lower
 from .options import DEFAULT_PLAN, PlanOptions
 from .qaoa import QubitMap, qaoa_plan, qubit_map
@@ -44,23 +44,51 @@ class CompileResult:
     phase_explain: list[dict] = field(default_factory=list)
 
     def summary(self) -> dict[str, Any]:
-        """JSON-ready summary: ``qubits``, ``gates`` (count per name), ``seconds``, ``symbols``, ``registers``
-        and ``qubit_map`` (``data``: list of ``{qubit, robot, edge: [[r, c], [r, c]]}``; ``ancillas``)."""
-        edges = self.scenario.grid.edges
-        data = [
-            {"qubit": q, "robot": r, "edge": [list(edges[e][0]), list(edges[e][1])]}
-            for q, (r, e) in enumerate(self.qubit_map.data)
-        ]
-        return {
-            "qubits": self.circuit.num_qubits,
-            "gates": dict(sorted(self.circuit.count_ops().items())),
-            "total_gates": len(self.circuit),
-            "lowered": self.lowered,
-            "symbols": list(self.circuit.symbols),
-            "registers": {r.name: r.size for r in self.circuit.registers},
-            "seconds": self.seconds,
-            "qubit_map": {"data": data, "ancillas": list(self.qubit_map.ancillas)},
-        }
+        """JSON-ready summary (:func:`compile_summary`)."""
+        c = self.circuit
+        return compile_summary(self.scenario, c.registers, c.count_ops(), c.symbols, self.lowered, self.seconds)
+
+
+def compile_summary(
+    scenario: Scenario,
+    registers: Sequence[Register],
+    ops: Mapping[str, int],
+    symbols: Sequence[str],
+    lowered: bool,
+    seconds: float,
+) -> dict[str, Any]:
+    """What ``qcpp compile`` prints of a circuit of :func:`~circuitgen.qaoa.qaoa_circuit` (whole, or streamed
+    section by section).
+
+    Args:
+        scenario: The scenario compiled.
+        registers: The circuit's registers.
+        ops: Its gate count per name.
+        symbols: Its unbound symbols.
+        lowered: Whether it was lowered.
+        seconds: Wall time of building it.
+
+    Returns:
+        JSON-ready: ``qubits``, ``gates`` (count per name), ``total_gates``, ``lowered``, ``symbols``,
+        ``registers``, ``seconds`` and ``qubit_map`` (``data``: list of ``{qubit, robot, edge: [[r, c], [r, c]]}``;
+        ``ancillas``).
+    """
+    edges = scenario.grid.edges
+    num_qubits = sum(r.size for r in registers)
+    qmap = qubit_map(scenario, num_qubits)
+    data = [
+        {"qubit": q, "robot": r, "edge": [list(edges[e][0]), list(edges[e][1])]} for q, (r, e) in enumerate(qmap.data)
+    ]
+    return {
+        "qubits": num_qubits,
+        "gates": dict(sorted(ops.items())),
+        "total_gates": sum(ops.values()),
+        "lowered": lowered,
+        "symbols": list(symbols),
+        "registers": {r.name: r.size for r in registers},
+        "seconds": seconds,
+        "qubit_map": {"data": data, "ancillas": list(qmap.ancillas)},
+    }
 
 
 def compile_scenario(
@@ -102,7 +130,8 @@ def compile_scenario(
     if bindings:
         circuit = circuit.bind(bindings)
     explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
-    return CompileResult(scenario, circuit, qubit_map(scenario, circuit), lowered, time.perf_counter() - start, explain)
+    qmap = qubit_map(scenario, circuit.num_qubits)
+    return CompileResult(scenario, circuit, qmap, lowered, time.perf_counter() - start, explain)
 
 
 def parse_bindings(items: list[str]) -> dict[str, float]:

@@ -38,6 +38,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
+from typing import Any
 
 __all__ = [
     "FAMILIES", "Device", "DeviceError", "device_names", "get_device", "heavy_hex_coordinates", "named_device",
@@ -104,6 +105,18 @@ class Device:
     def edge_index(self) -> dict[tuple[int, int], int]:
         """``(a, b)`` (either order) -> index into :attr:`coupling`."""
         return _edge_index(self)
+
+    def graph(self) -> Any:
+        """The coupling graph as a ``scipy.sparse.csr_matrix``: one unit entry per coupler (read it as undirected).
+
+        >>> get_device("grid:2x2").graph().nnz
+        4
+        """
+        import numpy as np
+        from scipy.sparse import csr_matrix
+
+        a, b = np.array(self.coupling, dtype=int).reshape(-1, 2).T
+        return csr_matrix((np.ones(len(a)), (a, b)), shape=(self.num_qubits, self.num_qubits))
 
     def summary(self) -> dict:
         """JSON-ready ``{name, qubits, coupling: [[a, b], ...]}`` (what ``qcpp compile --json`` prints)."""

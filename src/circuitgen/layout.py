@@ -122,17 +122,9 @@ def localize_ancillas(circuit: Circuit, scenario: Scenario, spare: int, local_ca
 
 def distances(device: Device) -> np.ndarray:
     """All-pairs shortest-path lengths of the coupling graph (``inf`` between components)."""
-    from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import shortest_path
 
-    n = device.num_qubits
-    if not device.coupling:
-        d = np.full((n, n), np.inf)
-        np.fill_diagonal(d, 0)
-        return d
-    a, b = np.array(device.coupling).T
-    graph = csr_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
-    return shortest_path(graph, directed=False, unweighted=True)
+    return shortest_path(device.graph(), directed=False, unweighted=True)
 
 
 def _largest_component(dist: np.ndarray) -> np.ndarray:

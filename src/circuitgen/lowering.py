@@ -396,7 +396,7 @@ def _cancels(prev: Gate, g: Gate) -> bool:
     return True
 
 
-def _peephole_gates(gates: Sequence[Gate], num_qubits: int) -> list[Gate]:
+def _peephole_gates(gates: Sequence[Gate]) -> list[Gate]:
     out: list[Gate | None] = []
     # stacks[q]: indices into ``out`` of the live gates on qubit q, latest last (a dict: a section touches few of
     # the circuit's qubits, and a circuit has many short sections)
@@ -460,8 +460,7 @@ def peephole(circuit: Circuit) -> Circuit:
     >>> [str(g) for g in peephole(c).gates]
     ['rz(0.30000000000000004) 0']
     """
-    n = circuit.num_qubits
-    secs = tuple(Section(sec.name, tuple(_peephole_gates(sec.gates, n))) for sec in circuit.sections)
+    secs = tuple(Section(sec.name, tuple(_peephole_gates(sec.gates))) for sec in circuit.sections)
     return Circuit._trusted(circuit.registers, secs)
 
 

@@ -75,24 +75,19 @@ __all__ = [
 ]
 
 
-def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str, data_offset: int = 0) -> list[Gate]:
+def phase_separator_gates(hamiltonian: IsingHamiltonian, gamma: str) -> list[Gate]:
     """RZ and RZZ gates implementing ``exp(-i gamma (C - c0))``.
 
     Args:
-        hamiltonian: The Ising Hamiltonian (variable ``i`` on qubit ``data_offset + i``).
+        hamiltonian: The Ising Hamiltonian (variable ``i`` on qubit ``i``).
         gamma: Name of the layer's symbol, e.g. ``"gamma_0"``.
-        data_offset: Qubit index of variable 0.
 
     Returns:
         The gate list (linear terms first).
     """
     tol = COEFFICIENT_TOLERANCE
-    out = [rz(Angle.symbol(gamma, 2.0 * hi), data_offset + i) for i, hi in hamiltonian.linear_terms(tol)]
-    out += [
-        rzz(Angle.symbol(gamma, 2.0 * jij), data_offset + i, data_offset + j)
-        for i, j, jij in hamiltonian.quadratic_terms(tol)
-    ]
-    return out
+    out = [rz(Angle.symbol(gamma, 2.0 * hi), i) for i, hi in hamiltonian.linear_terms(tol)]
+    return out + [rzz(Angle.symbol(gamma, 2.0 * jij), i, j) for i, j, jij in hamiltonian.quadratic_terms(tol)]
 
 
 # ----------------------------------------------------------------------------- plans
@@ -157,13 +152,11 @@ class PhasePlan:
     _sums: tuple[tuple[SumsGroup, str], ...]
     _explain: tuple[dict, ...]
 
-    def gadgets(self, gamma: str, data_offset: int = 0, ancilla_offset: int | None = None) -> tuple[Gadget, ...]:
+    def gadgets(self, gamma: str) -> tuple[Gadget, ...]:
         """The gadgets, each meant for its own section.
 
         Args:
             gamma: The layer's symbol name (e.g. ``"gamma_0"``).
-            data_offset: Qubit of variable 0.
-            ancilla_offset: First of :attr:`num_ancillas` clean ancillas (default: right after the data).
 
         Returns:
             The gadgets in application order; run them consecutively, each in its own section. Every gadget but
@@ -172,20 +165,19 @@ class PhasePlan:
             SumsRegister...`` or ``SumsAccumulate..., phase, SumsAccumulate(subtract)...``) whose register
             ancillas hold the path lengths between their own gadgets and are |0> again after the run.
         """
-        d = data_offset
-        a0 = d + self.num_variables if ancilla_offset is None else ancilla_offset
-        anc = tuple(range(a0, a0 + self.num_ancillas))
+        n = self.num_variables
+        anc = tuple(range(n, n + self.num_ancillas))  # variable i on qubit i, the clean ancillas right after
         out: list[Gadget] = []
         if self._data_linear or self._data_couplings:
             out.append(
                 IsingPhase(
                     gamma,
-                    tuple((d + i, v) for i, v in self._data_linear),
-                    tuple((d + i, d + j, v) for i, j, v in self._data_couplings),
+                    self._data_linear,
+                    self._data_couplings,
                 )
             )
         for coeff, qs in self._hamming:
-            out.append(SumsPhase(gamma, (tuple((d + q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
+            out.append(SumsPhase(gamma, (tuple((q, 1) for q in qs),), ((0.0,),), (coeff,), anc))
         # each node's visit bits go to the next ancillas of the pool (round robin): gadgets of different nodes
         # then share no qubit and can run side by side when the pool is larger than one gadget's need
         start = 0
@@ -195,10 +187,9 @@ class PhasePlan:
                 start = 0
             window = anc[start : start + need]
             start += need
-            visitors = tuple(tuple(d + q for q in v) for v in grp.visitors)
-            out.append(VisitPhase(gamma, grp.coefficient, visitors, window, products))
+            out.append(VisitPhase(gamma, grp.coefficient, grp.visitors, window, products))
         for grp, variant in self._sums:
-            forms = tuple(tuple((d + q, int(w)) for q, w in f) for f in grp.forms)
+            forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
             if variant == "registers":
                 out.extend(_register_gadgets(gamma, forms, grp.matrix, anc))
             elif variant == "accumulator":

@@ -31,7 +31,7 @@ Example:
     >>> s = default_scenario(4, 4, 2)
     >>> plan = phase_plan(s)
     >>> n = s.num_variables
-    >>> pooled = plan.gadgets("gamma_0", 0, n)
+    >>> pooled = plan.gadgets("gamma_0")
     >>> local = spatial_phase(pooled, s, range(n, n + plan.num_ancillas))
     >>> [type(g).__name__ for g in local] == [type(g).__name__ for g in pooled]
     True
@@ -48,7 +48,7 @@ from gridcover.scenario import Scenario
 
 from .devices import Device, get_device
 from .gadgets import Gadget
-from .gadgets.phase_sums import Sink, Site, SumsPhase, _to
+from .gadgets.phase_sums import Sink, Site, SumsPhase, manhattan
 from .gadgets.phase_visits import VisitPhase
 from .medial import tiling
 from .options import PlanOptions
@@ -60,7 +60,7 @@ NEW_HOME_PENALTY = 4
 takes a fresh ancilla up to two grid steps farther rather than share one with a distant node."""
 
 
-def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
+def variable_sites(scenario: Scenario) -> dict[int, Site]:
     """Qubit -> site of every data qubit: the midpoint of its edge on the doubled lattice (both robots' copies of
     an edge share the site).
 
@@ -69,7 +69,7 @@ def variable_sites(scenario: Scenario, data_offset: int = 0) -> dict[int, Site]:
     [(0, (0, 1)), (1, (1, 0)), (2, (1, 2)), (3, (2, 1))]
     """
     sites = scenario.grid.edge_sites
-    return {data_offset + i: sites[scenario.variable_of(i)[1]] for i in range(scenario.num_variables)}
+    return {i: sites[scenario.variable_of(i)[1]] for i in range(scenario.num_variables)}
 
 
 def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
@@ -92,17 +92,15 @@ def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
     return dataclasses.replace(options, phase_layout=layout)
 
 
-def placed_sums(
-    gadgets: Sequence[Gadget], scenario: Scenario, data_offset: int = 0, sinks: bool = False
-) -> tuple[Gadget, ...]:
+def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, sinks: bool = False) -> tuple[Gadget, ...]:
     """The gadgets with every :class:`~circuitgen.gadgets.phase_sums.SumsPhase` given its data qubits' sites (star
     adders placed along the Hilbert curve), the rest as given: the kinds and costs of :func:`spatial_phase`'s
     output without choosing the visit gadgets' ancillas (what the estimators need; no gate is built). ``sinks``:
     also give each form its sink (:func:`balance_sinks`; the ``medial`` layout; same kinds and costs)."""
-    sites = variable_sites(scenario, data_offset)
+    sites = variable_sites(scenario)
 
     def placed(g: SumsPhase) -> SumsPhase:
-        robots = [scenario.variable_of(f[0][0] - data_offset)[0] if f else -1 for f in g.forms]
+        robots = [scenario.variable_of(f[0][0])[0] if f else -1 for f in g.forms]
         return dataclasses.replace(
             g,
             sites=tuple((q, *sites[q]) for f in g.forms for q, _ in f),
@@ -148,25 +146,24 @@ def balance_sinks(
 
 
 def spatial_phase(
-    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], data_offset: int = 0, sinks: bool = False
+    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], sinks: bool = False
 ) -> tuple[Gadget, ...]:
     """The same gadgets with place-aware adder trees and node-local ancillas (see the module docs).
 
     Args:
-        gadgets: The phase plan's gadgets (:meth:`circuitgen.phase.PhasePlan.gadgets`), data on
-            ``data_offset + variable``.
+        gadgets: The phase plan's gadgets (:meth:`circuitgen.phase.PhasePlan.gadgets`), variable ``i`` on
+            qubit ``i``.
         scenario: Their scenario (where each variable's edge lies).
         pool: The plan's clean ancillas (its ``num_ancillas`` qubits).
-        data_offset: Qubit of variable 0.
         sinks: Give each balance form its sink (:func:`balance_sinks`): ``phase_layout="medial"``.
 
     Returns:
         The gadgets in the same order and of the same classes: the balance gadgets with placed star-shaped
         adder trees, the visit gadgets with nearby ancillas (same kinds), the rest as given.
     """
-    sites = variable_sites(scenario, data_offset)
+    sites = variable_sites(scenario)
     pool = tuple(pool)
-    out = list(placed_sums(gadgets, scenario, data_offset, sinks))
+    out = list(placed_sums(gadgets, scenario, sinks))
     home: dict[int, Site] = {}
     for g in out:
         if isinstance(g, SumsPhase):
@@ -180,7 +177,7 @@ def spatial_phase(
         usable = [a for a in pool if a in borrowed]
 
         def rank(a: int, at: tuple[float, float] = at) -> tuple[float, int]:
-            far = _to(at, home[a]) if a in home else float("inf")
+            far = manhattan(at, home[a]) if a in home else float("inf")
             return far + NEW_HOME_PENALTY * borrowed[a], a
 
         chosen = tuple(sorted(usable, key=rank)[: len(g.ancillas)])

@@ -71,13 +71,11 @@ class QubitMap:
     ancillas: tuple[int, ...]
 
 
-def qubit_map(scenario: Scenario, circuit: Circuit) -> QubitMap:
-    """The :class:`QubitMap` of a circuit built by :func:`qaoa_circuit` (lowered or not)."""
+def qubit_map(scenario: Scenario, num_qubits: int) -> QubitMap:
+    """The :class:`QubitMap` of a circuit of ``num_qubits`` qubits built by :func:`qaoa_circuit` (lowered or
+    not): data first, ancillas after."""
     n = scenario.num_variables
-    return QubitMap(
-        tuple(scenario.variable_of(i) for i in range(n)),
-        tuple(range(n, circuit.num_qubits)),
-    )
+    return QubitMap(tuple(scenario.variable_of(i) for i in range(n)), tuple(range(n, num_qubits)))
 
 
 @dataclass(frozen=True)
@@ -183,7 +181,7 @@ class QaoaPlan:
         """One layer's phase separator gadgets, laid out as :attr:`PlanOptions.phase_layout` asks."""
         assert self.phase_plan is not None
         n = self.scenario.num_variables
-        gadgets = self.phase_plan.gadgets(gamma, 0, n)
+        gadgets = self.phase_plan.gadgets(gamma)
         if self.options.phase_layout in ("spatial", "medial"):
             gadgets = spatial_phase(gadgets, self.scenario, range(n, n + self.phase_plan.num_ancillas),
                                     sinks=self.options.phase_layout == "medial")  # fmt: skip

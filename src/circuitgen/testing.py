@@ -137,7 +137,6 @@ def circuits(
     names: Collection[str] = ALL_GATE_NAMES,
     max_controls: int = 4,
     symbolic: bool = False,
-    max_sections: int = 3,
 ) -> Circuit:
     """A random circuit: a ``data`` register, sometimes an ``anc`` register, 1-3 sections.
 
@@ -149,7 +148,6 @@ def circuits(
         names: gate names to use.
         max_controls: most controls of an ``mcx``.
         symbolic: allow symbolic angles (over :data:`SYMBOLS`).
-        max_sections: most sections.
 
     Returns:
         The circuit.
@@ -157,9 +155,8 @@ def circuits(
     n = draw(st.integers(min_qubits, max_qubits))
     n_anc = draw(st.integers(0, min(2, n - 1)))
     regs = [Register("data", n - n_anc)] + ([Register("anc", n_anc)] if n_anc else [])
-    n_sections = draw(st.integers(1, max_sections))
     sections = []
-    for i in range(n_sections):
+    for i in range(draw(st.integers(1, 3))):
         body = draw(st.lists(gates(n, names, max_controls=max_controls, symbolic=symbolic), max_size=max_gates))
         sections.append(Section(draw(st.sampled_from([f"phase_{i}", f"mixer_{i}", "initial_state"])), body))
     return Circuit(regs, sections)
@@ -221,14 +218,14 @@ def every_plan_option(budgets: tuple[int | None, ...] = (None, 0, 3)) -> Iterato
         yield PlanOptions(rule, initial, target, phase, optimize, budget)
 
 
-def crosscheck_cases(full: bool = False, examples: Path | None = None) -> Iterator[Case]:
+def crosscheck_cases(full: bool = False) -> Iterator[Case]:
     """The scenarios to cross-check (a sample, or all of them with ``full``).
 
     Args:
         full: every default grid 2x2..8x8 with 1..6 robots at p = 1, and p = 2, 3 on grids of up to 16 nodes,
-            plus obstacles (soft and hard), the example files and the ``paper`` rule and ``ft`` target (about 400
-            cases, minutes); otherwise a sample of each kind (seconds).
-        examples: folder of example scenario files (default: ``examples/`` of the source tree, if present).
+            plus obstacles (soft and hard), the example files (``examples/`` of the source tree, if present) and
+            the ``paper`` rule and ``ft`` target (about 400 cases, minutes); otherwise a sample of each kind
+            (seconds).
 
     Yields:
         The cases.
@@ -253,7 +250,7 @@ def crosscheck_cases(full: bool = False, examples: Path | None = None) -> Iterat
     for s, p in [(default_scenario(3, 3, 1), 2), (default_scenario(3, 4, 2), 1)]:
         yield Case(s, p, PlanOptions(rule="paper"))
         yield Case(s, p, PlanOptions(target="ft"))
-    folder = examples if examples is not None else Path(__file__).resolve().parents[2] / "examples"
+    folder = Path(__file__).resolve().parents[2] / "examples"
     if full and folder.is_dir():
         for path in sorted(folder.glob("*.toml")):
             yield Case(load_scenario(path), 1)

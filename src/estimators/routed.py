@@ -103,28 +103,21 @@ def diameter_bound(device: Device) -> int:
     """An upper bound on the coupling graph's diameter: twice the eccentricity of qubit 0 (1 if all-to-all)."""
     if device.is_all_to_all:
         return 1
-    from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import breadth_first_order
 
-    n = device.num_qubits
-    a, b = np.array(device.coupling).T
-    graph = csr_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
-    order, pred = breadth_first_order(graph, 0, directed=False, return_predecessors=True)
-    depth = np.zeros(n, dtype=int)
+    order, pred = breadth_first_order(device.graph(), 0, directed=False, return_predecessors=True)
+    depth = np.zeros(device.num_qubits, dtype=int)
     for v in order[1:]:
         depth[v] = depth[pred[v]] + 1
     return 2 * int(depth.max())
 
 
 def _largest_component(device: Device) -> int:
-    from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import connected_components
 
-    n = device.num_qubits
     if device.is_all_to_all or not device.coupling:
-        return n if device.coupling else 1
-    a, b = np.array(device.coupling).T
-    _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(n, n)), directed=False)
+        return device.num_qubits if device.coupling else 1
+    _, labels = connected_components(device.graph(), directed=False)
     return int(np.bincount(labels).max())
 
 

@@ -475,22 +475,20 @@ def render(
         '┃ rows ┃ cols ┃  cx ┃'
     """
     if fmt != "table":
-        return "".join(render_stream(rows, fmt))
-    if fmt == "table":
-        limit = terminal_width() if width is None else width
-        shown, hidden = table_columns(rows, limit, columns, wide)
-        paper = "paper_cx" in _columns(rows[0] if rows else None)
-        natural = _natural_width(rows, shown, paper)
-        if columns is None and not wide and natural > limit:  # a table this narrow would cut numbers
-            return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
-        table = _rich_table(rows, shown, paper)
-        text_width = limit if columns is None and not wide else max(limit, natural)
-        text = _text(table, text_width)
-        if hidden:
-            note = (
-                f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
-                "--format csv/json/md keep every column)"
-            )
-            text += _text(note, limit)
-        return text
-    raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")
+        return "".join(render_stream(rows, fmt))  # raises on an unknown format
+    limit = terminal_width() if width is None else width
+    shown, hidden = table_columns(rows, limit, columns, wide)
+    paper = "paper_cx" in _columns(rows[0] if rows else None)
+    natural = _natural_width(rows, shown, paper)
+    if columns is None and not wide and natural > limit:  # a table this narrow would cut numbers
+        return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
+    table = _rich_table(rows, shown, paper)
+    text_width = limit if columns is None and not wide else max(limit, natural)
+    text = _text(table, text_width)
+    if hidden:
+        note = (
+            f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
+            "--format csv/json/md keep every column)"
+        )
+        text += _text(note, limit)
+    return text

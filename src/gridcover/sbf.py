@@ -120,11 +120,6 @@ class SbfLogic:
         """True when the move is never allowed (the partial mixer is folded away)."""
         return not any(s.target == self.output for s in self.steps)
 
-    @property
-    def inputs(self) -> tuple[int, ...]:
-        """Grid edges the function reads (ascending)."""
-        return tuple(sorted({e for s in self.steps for lit in s.literals for e in lit.edges}))
-
     def evaluate(self, mask: int) -> bool:
         """Run the program on the robot's path ``mask``."""
         temps = [False] * self.num_temps

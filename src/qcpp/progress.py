@@ -156,7 +156,6 @@ class Progress:
         self._interval = _interval_from_env() if interval is None else interval
         self._first_after = (0.0 if self._interval == 0 else FIRST_LINE_AFTER) if first_after is None else first_after
         self._start = 0.0
-        self._last_line = -1.0  # monotonic time of the last line (-1: none yet)
         self._lines = 0
         self._lock = threading.Lock()
         self._stop = threading.Event()
@@ -211,7 +210,7 @@ class Progress:
     def stage(self, text: str) -> None:
         """Name the stage the work is in now (``compiling the circuit``); shown next to the counts."""
         self.stage_text = text
-        self._after_change(force=True)
+        self._after_change()
 
     def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
         """Yield ``items``, counting one step as each is handed out (done = items handed out before it).
@@ -247,7 +246,7 @@ class Progress:
     def _elapsed(self) -> float:
         return time.monotonic() - self._start if self._start else 0.0
 
-    def _after_change(self, force: bool = False) -> None:
+    def _after_change(self) -> None:
         if self._mode == "bar" and self._bar is not None:
             with contextlib.suppress(Exception):
                 self._bar.update(self._bar_task, completed=self.done, total=self.total, description=self._label())
@@ -270,7 +269,6 @@ class Progress:
                 self._mode = "off"
                 return
             self._lines += 1
-            self._last_line = time.monotonic()
 
     def _heartbeat(self) -> None:
         if self._stop.wait(self._first_after):

@@ -125,11 +125,6 @@ def render_ascii(scenario: Scenario, paths: Sequence[int] | None = None, *, lege
     return "\n".join(lines)
 
 
-def _save_atomic(fig: object, file: str | os.PathLike[str], **savefig: object) -> Path:
-    """``fig.savefig(**savefig)`` into ``file``, whole or not at all."""
-    return save_figure_atomic(fig, file, **savefig)
-
-
 def plot_paths(
     scenario: Scenario,
     paths: Sequence[int] | None,
@@ -214,7 +209,7 @@ def plot_paths(
         ax.spines[side].set_visible(False)
     ax.set_title(title if title is not None else (scenario.name or f"{g.rows}x{g.cols} grid"), fontsize=10)
     fig.tight_layout()
-    return _save_atomic(fig, file, bbox_inches="tight", dpi=110)
+    return save_figure_atomic(fig, file, bbox_inches="tight", dpi=110)
 
 
 def plot_trace(
@@ -273,7 +268,7 @@ def plot_trace(
     ax.grid(alpha=0.3)
     ax.legend(frameon=False)
     fig.tight_layout()
-    return _save_atomic(fig, file)
+    return save_figure_atomic(fig, file)
 
 
 def _plain(cell: Any) -> str:

@@ -40,11 +40,9 @@ def _flush() -> None:
 
 
 @contextlib.contextmanager
-def capture_native_output(fds: tuple[int, ...] = (1, 2)) -> Iterator[Captured]:
-    """Redirect ``fds`` to a temporary file inside the block; the lines written there end up in ``.lines``.
-
-    Args:
-        fds: The descriptors to capture (standard output and error).
+def capture_native_output() -> Iterator[Captured]:
+    """Redirect standard output and error (file descriptors 1 and 2) to a temporary file inside the block; the
+    lines written there end up in ``.lines``.
 
     Yields:
         A :class:`Captured` whose ``lines`` (without trailing whitespace, empty lines dropped) are set on exit.
@@ -54,7 +52,7 @@ def capture_native_output(fds: tuple[int, ...] = (1, 2)) -> Iterator[Captured]:
     saved: dict[int, int] = {}
     with tempfile.TemporaryFile() as sink:
         try:
-            for fd in fds:
+            for fd in (1, 2):
                 try:
                     saved[fd] = os.dup(fd)
                 except OSError:  # a closed descriptor: nothing to capture there

@@ -81,7 +81,7 @@ def test_reported_cost_equals_lowered_count_for_every_kind(kinds: dict) -> None:
         assert m.logical_cost() == lowered_cost(m, n, LOGICAL_BASIS), m.kind
     for s in sweep_scenarios()[::7]:
         plans = [phase_plan(s, target=t, representation=r) for t in ("nisq", "ft") for r in ("feasible", "whole-space")]
-        gadgets = [StatePrep.build(s), *(g for pl in plans for g in pl.gadgets("gamma_0", 0, s.num_variables))]
+        gadgets = [StatePrep.build(s), *(g for pl in plans for g in pl.gadgets("gamma_0"))]
         width = s.num_variables + max(pl.num_ancillas for pl in plans)
         for gadget in gadgets:
             assert gadget.cost() == lowered_cost(gadget, width), gadget.kind

@@ -216,7 +216,7 @@ def test_spatial_adders_are_shorter_wired_and_visit_ancillas_nearer(rows: int, r
 def test_spatial_phase_keeps_gadgets_without_sums_or_pool() -> None:
     s = default_scenario(3, 3, 1)  # no balance, no visits: nothing to move
     n = s.num_variables
-    gs = qaoa_plan(s, 1).phase_plan.gadgets("gamma_0", 0, n)
+    gs = qaoa_plan(s, 1).phase_plan.gadgets("gamma_0")
     assert spatial_phase(gs, s, range(n, n)) == gs
 
 

@@ -50,7 +50,7 @@ TOL = 1e-8
 
 def lowered(plan: PhasePlan, n: int) -> Circuit:
     """The plan's gadgets, one section each, lowered and bound (data 0..n-1, ancillas after)."""
-    secs = [Section("phase_0", tuple(g.emit())) for g in plan.gadgets("gamma_0", 0, n)]
+    secs = [Section("phase_0", tuple(g.emit())) for g in plan.gadgets("gamma_0")]
     c = Circuit([("data", n), ("logic", max(1, plan.num_ancillas))], secs)
     return lower(c)
 

@@ -128,7 +128,7 @@ def test_qaoa_circuit_layout_and_symbols() -> None:
     assert [n for n in dict.fromkeys(names)] == [
         "initial_state", "phase_0", "mixer_0", "phase_1", "mixer_1", "phase_2", "mixer_2",
     ]
-    qm = qubit_map(s, lower(c))
+    qm = qubit_map(s, lower(c).num_qubits)
     assert len(qm.data) == s.num_variables == 12
     assert qm.data[0] == (0, 0)
     assert list(qm.ancillas) == list(range(12, lower(c).num_qubits))

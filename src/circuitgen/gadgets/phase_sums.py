@@ -43,7 +43,9 @@ from circuitgen.gates import Gate, and_, cx, x
 from .phase_ising import IsingPhase, ising_form
 from .phase_visits import AND_COST, AND_DG_COST, with_ands
 
-__all__ = ["Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "spatial_popcount_layout"]
+__all__ = [
+    "Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "manhattan", "spatial_popcount_layout"
+]
 
 
 def column_counts(weights: list[int] | Mapping[int, int]) -> tuple[int, int, int, tuple[bool, ...]]:
@@ -188,11 +190,12 @@ Sink = tuple[float, float]
 """A point of the doubled lattice (fractional allowed) that a popcount's partial sums drift towards."""
 
 
-def _to(sink: Sink, site: Site) -> float:
-    return abs(site[0] - sink[0]) + abs(site[1] - sink[1])
+def manhattan(a: Site | Sink, b: Site | Sink) -> float:
+    """Manhattan distance on the doubled lattice (between two sites, or a site and a sink).
 
-
-def _apart(a: Site, b: Site) -> int:
+    >>> manhattan((0, 0), (2, 1)), manhattan((1.5, 0.0), (0, 0))
+    (3, 1.5)
+    """
     return abs(a[0] - b[0]) + abs(a[1] - b[1])
 
 
@@ -218,9 +221,10 @@ class _LocalFirst:
         if len(col) < 3:
             self.best.pop(it[0], None)
             return
-        near = heapq.nsmallest(2, (o for o in col if o[0] != it[0]), key=lambda o: (_apart(o[1], it[1]), self.key(o)))
-        span = max(_apart(it[1], near[0][1]), _apart(it[1], near[1][1]), _apart(near[0][1], near[1][1]))
-        self.best[it[0]] = ((span, -_to(self.sink, it[1]), self.key(it)), k, [it, *near])
+        others = (o for o in col if o[0] != it[0])
+        near = heapq.nsmallest(2, others, key=lambda o: (manhattan(o[1], it[1]), self.key(o)))
+        span = max(manhattan(it[1], near[0][1]), manhattan(it[1], near[1][1]), manhattan(near[0][1], near[1][1]))
+        self.best[it[0]] = ((span, -manhattan(self.sink, it[1]), self.key(it)), k, [it, *near])
 
     def next_triple(self, column: int | None = None) -> tuple[int, list[_Bit]] | None:
         """``(column, triple)`` of the best full adder (in ``column`` only, if given), ``None`` if there is none."""
@@ -246,7 +250,7 @@ class _LocalFirst:
                 self._refresh(it, k + 1)
                 continue
             second = v[2][2]
-            if (_apart(carry[1], it[1]), self.key(carry)) < (_apart(second[1], it[1]), self.key(second)):
+            if (manhattan(carry[1], it[1]), self.key(carry)) < (manhattan(second[1], it[1]), self.key(second)):
                 self._refresh(it, k + 1)
 
 
@@ -256,7 +260,7 @@ def _sink_adder(cols: dict[int, list[_Bit]], k: int, triple: list[_Bit], sink: S
     """One :func:`star_full_adder` on ``triple`` of column ``k``: the sum stays on the bit nearest the sink, the
     carry (a fresh ancilla sited with it) joins column ``k + 1``. Returns the bits that left column ``k`` and the
     carry."""
-    j = min(range(3), key=lambda j_: (_to(sink, triple[j_][1]), key(triple[j_])))
+    j = min(range(3), key=lambda j_: (manhattan(sink, triple[j_][1]), key(triple[j_])))
     mid = triple[j]
     (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
     t = next(ancillas)
@@ -360,7 +364,7 @@ def spatial_popcount_layout(
             full = len(col) // 3
             for i in range(full):
                 triple = col[3 * i : 3 * i + 3]
-                j = 1 if sink is None else min(range(3), key=lambda j_: (_to(sink, triple[j_][1]), j_ != 1, j_))
+                j = 1 if sink is None else min(range(3), key=lambda j_: (manhattan(sink, triple[j_][1]), j_ != 1, j_))
                 mid = triple[j]
                 (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
                 b = mid[0]
@@ -371,7 +375,7 @@ def spatial_popcount_layout(
                 cols.setdefault(k + 1, []).append((t, mid[1]))
             col = sorted(nxt + col[3 * full :], key=key)
         if len(col) == 2:
-            if sink is not None and _to(sink, col[1][1]) < _to(sink, col[0][1]):
+            if sink is not None and manhattan(sink, col[1][1]) < manhattan(sink, col[0][1]):
                 col.reverse()  # the sum stays on the bit nearer the sink
             (a, site), (b, _) = col
             t = next(ancillas)

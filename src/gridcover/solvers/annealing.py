@@ -106,7 +106,6 @@ def anneal(
     if t0 is None:
         t0 = _calibrate(space, cost, starts[0], rng)
 
-    visited = [set() for _ in range(scenario.num_robots)]
     best: tuple[int, ...] = starts[0]
     best_cost = cost(best)
     trace: list[float] = []
@@ -116,7 +115,7 @@ def anneal(
     for start in starts:
         cur, cur_cost = start, cost(start)
         run_best, run_best_cost = cur, cur_cost
-        _visit(space, visited, cur)
+        space.visit(cur)
         for n_it in cycle_len:
             # each cycle reheats to t0 and continues from this run's best state
             cur, cur_cost, temp = run_best, run_best_cost, t0
@@ -127,7 +126,7 @@ def anneal(
                     delta = c - cur_cost
                     if delta <= 0 or rng.random() < math.exp(-delta / temp):
                         cur, cur_cost = cand, c
-                        _visit(space, visited, cur)
+                        space.visit(cur)
                         if cur_cost < run_best_cost:
                             run_best, run_best_cost = cur, cur_cost
                 if run_best_cost < best_cost:
@@ -139,12 +138,7 @@ def anneal(
 
     notes = [f"{len(starts)} restart(s) (one per combination of component representatives)", *space.notes()]
     notes.append(f"t0={t0:.6g}, cooling={cooling:.6g}, {len(cost)} distinct assignments scored")
-    return search_solution("anneal", scenario, best, t_start, cost, trace, space, visited, seed, rule, notes)
-
-
-def _visit(space: MoveSpace, visited: list[set[int]], masks: tuple[int, ...]) -> None:
-    for r, m in enumerate(masks):
-        visited[r].add(space.component(r, m))
+    return search_solution("anneal", best, t_start, cost, trace, space, seed, notes)
 
 
 def _calibrate(space: MoveSpace, cost: CostCache, start: tuple[int, ...], rng: np.random.Generator) -> float:

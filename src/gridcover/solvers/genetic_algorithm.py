@@ -115,11 +115,9 @@ def genetic(
     rng = np.random.default_rng(seed)
     space = MoveSpace(scenario, rule, components)
     cost = CostCache(scenario)
-    visited = [set() for _ in range(scenario.num_robots)]
 
     def score(ind: Assignment) -> float:
-        for r, m in enumerate(ind):
-            visited[r].add(space.component(r, m))
+        space.visit(ind)
         return cost(ind)
 
     pop = _initial_population(space, population, rng)
@@ -163,7 +161,7 @@ def genetic(
         *space.notes(),
         f"{len(cost)} distinct assignments scored",
     ]
-    return search_solution("genetic", scenario, best, t_start, cost, trace, space, visited, seed, rule, notes)
+    return search_solution("genetic", best, t_start, cost, trace, space, seed, notes)
 
 
 def _initial_population(space: MoveSpace, size: int, rng: np.random.Generator) -> list[Assignment]:

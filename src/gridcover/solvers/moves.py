@@ -70,6 +70,8 @@ class MoveSpace:
         self._cache: list[dict[int, tuple[int, ...]]] = [{} for _ in range(scenario.num_robots)]
         self.infeasible_skipped = 0
         """Allowed flips (counted once per path and plaquette) whose result was not a feasible path."""
+        self.visited: list[set[int]] = [set() for _ in range(scenario.num_robots)]
+        """Per robot, the components its paths were in (:meth:`visit`)."""
         if components == "auto":
             components = "all" if scenario.grid.num_nodes <= AUTO_COMPONENT_NODES else "initial"
         self.analysed = components == "all"
@@ -97,6 +99,11 @@ class MoveSpace:
     def component(self, robot: int, mask: int) -> int:
         """Index of the component holding ``mask`` (``0`` when components were not analysed)."""
         return self._component_of[robot][mask] if self.analysed else 0
+
+    def visit(self, masks: Sequence[int]) -> None:
+        """Record the components of an assignment (one path per robot) in :attr:`visited`."""
+        for r, m in enumerate(masks):
+            self.visited[r].add(self.component(r, m))
 
     def neighbours(self, robot: int, mask: int) -> tuple[int, ...]:
         """Feasible paths one allowed SBF flip away from ``mask`` (plaquette order)."""
@@ -173,30 +180,24 @@ class CostCache:
 
 def search_solution(
     method: str,
-    scenario: Scenario,
     best: tuple[int, ...],
     started: float,
     cost: CostCache,
     trace: Sequence[float],
     space: MoveSpace,
-    visited: Sequence[set[int]],
     seed: int,
-    rule: Rule,
     notes: Sequence[str],
 ) -> Solution:
     """The :class:`~gridcover.solvers.result.Solution` of a local search over SBF moves (anneal, genetic).
 
     Args:
         method: Solver name.
-        scenario: The scenario.
         best: Best assignment found.
         started: ``time.perf_counter()`` at the start of the search.
         cost: The cost cache (its ``calls`` is the number of evaluations).
         trace: Best-so-far cost per iteration.
-        space: The move space (components).
-        visited: Per robot, the components its state was in.
+        space: The move space searched (scenario, rule, components, those visited).
         seed: The seed used.
-        rule: The SBF rule used.
         notes: Free-text notes.
 
     Returns:
@@ -205,13 +206,13 @@ def search_solution(
     return Solution(
         method=method,
         paths=best,
-        cost=cost_parts(scenario, best),
+        cost=cost_parts(space.scenario, best),
         seconds=time.perf_counter() - started,
         evaluated=cost.calls,
         trace=tuple(trace),
         num_components=space.num_components,
-        components_visited=tuple(tuple(sorted(v)) for v in visited),
+        components_visited=tuple(tuple(sorted(v)) for v in space.visited),
         seed=seed,
-        rule=rule,
+        rule=space.rule,
         notes=tuple(notes),
     )

@@ -42,7 +42,7 @@ from rich.table import Table
 
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.compile import compile_scenario, parse_bindings
+from circuitgen.compile import compile_scenario, compile_summary, parse_bindings
 from circuitgen.options import LAYOUT_METHODS, PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
@@ -151,8 +151,6 @@ def compile_command(
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
         )
-        if qasm is not None:
-            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
         passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
@@ -161,11 +159,11 @@ def compile_command(
         big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
             summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
-        if qasm is not None:
-            summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     else:
         result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
         summary, phase_explain = result.summary(), result.phase_explain
+    if qasm is not None:  # written by _routed or _stream
+        summary["qasm"] = {"path": str(qasm), "version": qasm_version}
     if explain:
         summary["phase_explain"] = phase_explain
     if as_json:
@@ -317,23 +315,7 @@ def _stream(
         ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
     else:
         ops, symbols = _count_sections(registers, sections())
-    n = s.num_variables
-    num_qubits = sum(r.size for r in registers)
-    edges = s.grid.edges
-    data = []
-    for q in range(n):
-        robot, e = s.variable_of(q)
-        data.append({"qubit": q, "robot": robot, "edge": [list(edges[e][0]), list(edges[e][1])]})
-    summary = {
-        "qubits": num_qubits,
-        "gates": dict(sorted(ops.items())),
-        "total_gates": sum(ops.values()),
-        "lowered": lowered,
-        "symbols": list(symbols),
-        "registers": {r.name: r.size for r in registers},
-        "seconds": time.perf_counter() - start,
-        "qubit_map": {"data": data, "ancillas": list(range(n, num_qubits))},
-    }
+    summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)
     return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
 
 

@@ -29,7 +29,6 @@ import typer
 
 from estimators.paper import DOUBLINGS
 from estimators.tables import FORMATS
-from gridcover.errors import ScenarioError
 from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
@@ -56,11 +55,6 @@ HELP = (
     "resource estimator). Ranges: --grid AxB..CxD means every rows in A..C and every cols in B..D; --robots and "
     "-p take N or A..B; grids too small for a robot count are skipped (counted once on stderr)."
 )
-
-
-def _fail(message: str) -> typer.Exit:
-    typer.echo(f"error: {message}", err=True)
-    return typer.Exit(code=2)
 
 
 def estimate(
@@ -173,7 +167,7 @@ def estimate(
     if as_json:
         fmt = "json"
     if fmt not in FORMATS:
-        raise _fail(f"bad --format {fmt!r}: expected one of {', '.join(FORMATS)}")
+        raise ValueError(f"bad --format {fmt!r}: expected one of {', '.join(FORMATS)}")
     if formula:
         typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
         return
@@ -192,24 +186,18 @@ def estimate(
     ]  # fmt: skip
     for bad, message in checks:
         if bad:
-            raise _fail(message)
-    try:
-        plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
-    except ValueError as exc:
-        raise _fail(str(exc)) from None
+            raise ValueError(message)
+    plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
     if device is not None:
         from circuitgen.devices import DeviceError, get_device
 
         try:
             get_device(device)
         except DeviceError as exc:
-            raise _fail(f"--device: {exc}") from None
+            raise ValueError(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
-    try:
-        points = points_from_options(grid, robots, p, scenario)
-    except (ScenarioError, ValueError) as exc:
-        raise _fail(str(exc)) from None
+    points = points_from_options(grid, robots, p, scenario)  # a bad range or file: one line, exit 2 (qcpp.cli)
     if points.skipped:
         typer.echo(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "
@@ -268,7 +256,7 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
     """The phase plan's choices per distinct scenario, as tables on standard error."""
     from rich.console import Console
 
-    from circuitgen.phase import phase_plan
+    from circuitgen.qaoa import qaoa_plan
 
     from .compile import explain_table
 
@@ -279,14 +267,7 @@ def _explain(points: Sequence[Any], plan: Any) -> None:
         if s in seen:
             continue
         seen.add(s)
-        pp = phase_plan(
-            s,
-            target=plan.target,  # type: ignore[arg-type]
-            representation=plan.phase,  # type: ignore[arg-type]
-            optimize=plan.optimize,  # type: ignore[arg-type]
-            ancilla_budget=plan.ancilla_budget,
-        )
-        table = explain_table(pp.explain())
+        table = explain_table(qaoa_plan(s, 1, plan).phase_plan.explain())  # the phase plan compile would build
         table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
         print_table(console, table)
 

@@ -60,7 +60,7 @@ def parse_angles(text: str) -> list[float]:
     return out
 
 
-def _guard(s: Scenario, p: int, path: Path) -> None:
+def _guard(s: Scenario, path: Path) -> None:
     """Refuse (one line, exit 2) a feasible subspace over the validation limit
     (:data:`simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory); ``--allow-large`` lifts it."""
     from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
@@ -102,7 +102,7 @@ def simulate_command(
     values = parse_angles(angles) if angles is not None else None
     s = load_scenario(scenario, check_range=True, phases=True)
     if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
-        _guard(s, p, scenario)
+        _guard(s, scenario)
     with Progress(f"simulate {scenario.name}") as bar:
         bar.stage(f"simulating ({method})")
         res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

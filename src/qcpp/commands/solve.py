@@ -94,14 +94,6 @@ SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo
 _SPARK = "▁▂▃▄▅▆▇█"
 
 
-def plot_qaoa_trace(
-    trace: Sequence[float], file: Path, *, title: str, optimum: float | None = None, label: str = "objective"
-) -> Path:
-    """Plot QAOA's training trace (the objective per iteration, in units of cost) to ``file``, whole or not at
-    all: :func:`qcpp.render.plot_trace` drawn as a line."""
-    return plot_trace(trace, file, title=title, optimum=optimum, xlabel="training iteration", label=label, steps=False)
-
-
 def sparkline(values: Sequence[float], width: int = 60) -> str:
     """A one-line bar chart of ``values`` (resampled to at most ``width`` bars; low = short).
 
@@ -272,8 +264,10 @@ def solve_command(
         if not sol.trace:
             raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
         if qaoa is not None:
-            plot_qaoa_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
-                            title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or scenario.name}")
+            # the training objective per iteration (in units of cost), drawn as a line
+            plot_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
+                       title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or scenario.name}",
+                       xlabel="training iteration", steps=False)
         else:
             unit = "generation" if method == "genetic" else "iteration"
             plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
