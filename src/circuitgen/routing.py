@@ -335,7 +335,11 @@ LARGE_WINDOW_MAX_PAIRS = 1_000
 (12x12/2's estimate == compile test took 464 s under load with it), and on 6x6/3 it routed the whole circuit to
 18,072 CX instead of 18,112 (``python benchmarks/routing.py --family grid``)."""
 
-_WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
+_WINDOW_CACHE: dict[tuple, Any] = {}
+"""SABRE runs on patches (:func:`_sabre_local`) and routed windows (:func:`route_window`), memoised."""
+
+WINDOW_CACHE_LIMIT = 1 << 18
+"""Entries :data:`_WINDOW_CACHE` holds before a routed window's entry starts it over."""
 
 WHOLE_COMPONENT_PATCHES = 0
 """How many window parts were routed on their whole connected component because the qubits around them did not
@@ -363,25 +367,73 @@ def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     return m
 
 
+class _PatchIndex:
+    """Per device (and its distances): the device's neighbour lists, and every patch computed so far (keyed by
+    the positions it was grown around) with whether it is a whole component and its couplings in local indices
+    (:func:`_patch`, :func:`_route_part` ask for the same patches thousands of times during a search)."""
+
+    def __init__(self, device: Device, dist: Any) -> None:
+        self.device = device
+        self.dist = dist
+        self.neighbours: list[list[int]] = [[] for _ in range(device.num_qubits)]
+        for a, b in device.coupling:
+            self.neighbours[a].append(b)
+            self.neighbours[b].append(a)
+        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+
+
+_PATCH_INDEX: list[_PatchIndex] = []
+"""The last few devices' :class:`_PatchIndex` (identity-checked: a device and its distance matrix)."""
+
+
+def _patch_index(device: Device, dist: Any) -> _PatchIndex:
+    for index in _PATCH_INDEX:
+        if index.device is device and index.dist is dist:
+            return index
+    index = _PatchIndex(device, dist)
+    _PATCH_INDEX.insert(0, index)
+    del _PATCH_INDEX[8:]
+    return index
+
+
 def _patch(positions: set[int], device: Device, dist: Any) -> tuple[int, ...]:
     """Device qubits within :data:`WINDOW_RADIUS` of ``positions`` (ascending), grown to the whole connected
     component when that neighbourhood does not connect them."""
-    import numpy as np
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import connected_components
+    return _local_patch(positions, device, dist)[0]
 
-    rows = dist[sorted(positions)]
-    near = np.flatnonzero((rows <= WINDOW_RADIUS).any(axis=0))
-    index = {int(p): i for i, p in enumerate(near)}
-    edges = [(index[a], index[b]) for a, b in device.coupling if a in index and b in index]
-    if edges:
-        a, b = np.array(edges).T
-        _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(len(near),) * 2), directed=False)
-        if len({int(labels[index[p]]) for p in positions}) == 1:
-            return _watched(tuple(int(p) for p in near))
-    global WHOLE_COMPONENT_PATCHES
-    WHOLE_COMPONENT_PATCHES += 1
-    return _watched(tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0]))))
+
+def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[int, ...], tuple[tuple[int, int], ...]]:
+    """:func:`_patch` and its couplings (in :attr:`Device.coupling`'s order) as pairs of indices into it; memoised
+    per device, the side effects (:data:`PATCH_WATCH`, :data:`WHOLE_COMPONENT_PATCHES`) on every call."""
+    index = _patch_index(device, dist)
+    key = tuple(sorted(positions))
+    hit = index.patches.get(key)
+    if hit is None:
+        import numpy as np
+
+        rows = dist[list(key)]
+        near = np.flatnonzero((rows <= WINDOW_RADIUS).any(axis=0))
+        inside = {int(p) for p in near}
+        seen = {key[0]}
+        todo = [key[0]]
+        while todo:  # the component of the first position in the neighbourhood
+            p = todo.pop()
+            for q in index.neighbours[p]:
+                if q in inside and q not in seen:
+                    seen.add(q)
+                    todo.append(q)
+        linked = any(q in inside for p in inside for q in index.neighbours[p])  # as before: no edge, no patch
+        whole = not linked or not seen.issuperset(key)
+        patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
+        local = {p: i for i, p in enumerate(patch)}
+        coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
+        hit = (patch, whole, coupling)
+        index.patches[key] = hit
+    patch, whole, coupling = hit
+    if whole:
+        global WHOLE_COMPONENT_PATCHES
+        WHOLE_COMPONENT_PATCHES += 1
+    return _watched(patch), coupling
 
 
 def _watched(patch: tuple[int, ...]) -> tuple[int, ...]:
@@ -399,14 +451,15 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     if hit is not None:
         return hit
     from qiskit import QuantumCircuit
-    from qiskit.transpiler import CouplingMap, PassManager
-    from qiskit.transpiler.passes import SabreSwap
+    from qiskit.converters import circuit_to_dag, dag_to_circuit
 
     qc = QuantumCircuit(size)
     for a, b in pairs:
         qc.cx(a, b)
-    cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-    out = PassManager([SabreSwap(cmap, heuristic="decay", seed=seed, trials=trials)]).run(qc)
+    sabre, default_trials = _sabre_pass(coupling, size)
+    sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
+    sabre.property_set["final_layout"] = None
+    out = dag_to_circuit(sabre.run(circuit_to_dag(qc)))  # what a PassManager of this one pass runs
     queues: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(pairs):
         queues.setdefault(a, []).append(k)
@@ -430,6 +483,26 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     result = tuple(events)
     _WINDOW_CACHE[key] = result
     return result
+
+
+_SABRE_PASSES: dict[tuple, tuple[Any, int]] = {}
+
+
+def _sabre_pass(coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
+    """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
+    routing tables, which took longer than the routing of a window, so a pass is reused per patch (its seed and
+    trials set per run)."""
+    hit = _SABRE_PASSES.get((coupling, size))
+    if hit is None:
+        from qiskit.transpiler import CouplingMap
+        from qiskit.transpiler.passes import SabreSwap
+
+        if len(_SABRE_PASSES) >= 4096:
+            _SABRE_PASSES.clear()
+        cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
+        sabre = SabreSwap(cmap, heuristic="decay", trials=None)
+        hit = _SABRE_PASSES[(coupling, size)] = (sabre, sabre.trials)
+    return hit
 
 
 class Positions:
@@ -460,9 +533,8 @@ def _route_part(
         return []
     if device.is_all_to_all:
         return [("gate", k) for k in range(len(pairs))]
-    patch = _patch({pos.where[q] for pr in pairs for q in pr}, device, dist)
+    patch, coupling = _local_patch({pos.where[q] for pr in pairs for q in pr}, device, dist)
     local = {p: i for i, p in enumerate(patch)}
-    coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
     lpairs = tuple((local[pos.where[a]], local[pos.where[b]]) for a, b in pairs)
     best = min(
         (_sabre_local(coupling, len(patch), lpairs, seed + i, trials) for i in range(WINDOW_SEEDS)),
@@ -495,7 +567,45 @@ def route_window(
     compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute). ``large_seeds``, ``large_trials``: seeds a large window tries (default
-    :data:`LARGE_WINDOW_SEEDS`) and SABRE's trials per seed there (default ``trials``)."""
+    :data:`LARGE_WINDOW_SEEDS`) and SABRE's trials per seed there (default ``trials``).
+
+    The ops depend only on where the pairs' qubits are (the physical pairs), the device and the search's
+    settings, so they are memoised on those (in :data:`_WINDOW_CACHE`, with the patches the routing saw, replayed
+    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit): the allocation search and the cells'
+    plan choice route the same window many times."""
+    global WHOLE_COMPONENT_PATCHES
+    if device.is_all_to_all:
+        return _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+    where = pos.where
+    key = ("window", _patch_index(device, dist), tuple((where[a], where[b]) for a, b in pairs), seed, trials,
+           large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
+           WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
+    hit = _WINDOW_CACHE.get(key)
+    if hit is None:
+        seen: set[int] = set()
+        before = WHOLE_COMPONENT_PATCHES
+        PATCH_WATCH.append(seen)
+        try:
+            ops = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        finally:  # by identity: an empty set equals every other empty set
+            del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
+        hit = (tuple(ops), frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
+        if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
+            _WINDOW_CACHE.clear()
+        _WINDOW_CACHE[key] = hit
+        return ops
+    ops_, patches, whole = hit
+    for watch in PATCH_WATCH:
+        watch.update(patches)
+    WHOLE_COMPONENT_PATCHES += whole
+    return list(ops_)
+
+
+def _route_window(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    large_seeds: int | None, large_trials: int | None,
+) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
+    """:func:`route_window` without its memo."""
     m = mirror_length(pairs)
     large = m >= LARGE_WINDOW_PAIRS
     base_trials = large_trials if large and large_trials else trials
@@ -503,10 +613,12 @@ def route_window(
     if LARGE_WINDOW_PAIRS <= m <= LARGE_WINDOW_MAX_PAIRS and trials is not None:  # and a wider search
         tries += [(s, max(trials, WIDE_WINDOW_TRIALS)) for s in range(seed, seed + WIDE_WINDOW_SEEDS)]
     best: list[tuple[str, tuple[int, int]]] | None = None
+    best_cx = 0
     for s, t in tries:  # each try returns every qubit home, so ``pos`` is unchanged between tries
         ops = _window_ops(pairs, m, pos, device, dist, s, t)
-        if best is None or window_cx(ops) < window_cx(best):
-            best = ops
+        cx_ = window_cx(ops)
+        if best is None or cx_ < best_cx:
+            best, best_cx = ops, cx_
     assert best is not None
     return best
 

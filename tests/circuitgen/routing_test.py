@@ -280,3 +280,41 @@ def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) 
     assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 - 2
     assert _on_coupling(routed)
     _assert_equal_up_to_layouts(logical, routed, seed=3, global_phase=False)
+
+
+# --- memoised windows ----------------------------------------------------------------------------------------
+@settings(max_examples=15, deadline=None)
+@given(st.data())
+def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> None:
+    """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
+    again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
+    routing, and replays the patches the routing saw into PATCH_WATCH."""
+    from circuitgen import routing
+    from circuitgen.layout import distances
+    from circuitgen.routing import PATCH_WATCH, Positions, route_window
+
+    dev = get_device(data.draw(st.sampled_from(["grid:4x4", "heavy-hex:3"])))
+    dist = distances(dev)
+    n = data.draw(st.integers(3, 8))
+    homes = data.draw(st.permutations(range(dev.num_qubits)))[:n]
+    k = data.draw(st.integers(1, 12))
+    pairs = [tuple(data.draw(st.lists(st.integers(0, n - 1), min_size=2, max_size=2, unique=True))) for _ in range(k)]
+    pairs += pairs[::-1]  # a compute and its mirror
+
+    def routed() -> tuple[list, set[int], int]:
+        seen: set[int] = set()
+        before = routing.WHOLE_COMPONENT_PATCHES
+        PATCH_WATCH.append(seen)
+        try:
+            ops = route_window(pairs, Positions(tuple(homes), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
+        finally:
+            PATCH_WATCH.remove(seen)
+        return ops, seen, routing.WHOLE_COMPONENT_PATCHES - before
+
+    routing._WINDOW_CACHE.clear()
+    cold = routed()
+    assert cold[1]  # the routing saw a patch
+    assert routed() == cold  # warm: the memo's answer
+    renamed = [(n - 1 - a, n - 1 - b) for a, b in pairs]  # the same physical pairs, the qubits named backwards
+    ops = route_window(renamed, Positions(tuple(homes[::-1]), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
+    assert ops == cold[0]
