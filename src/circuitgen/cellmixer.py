@@ -153,11 +153,11 @@ def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device:
                search: bool) -> int:  # fmt: skip
     """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it."""
     from .medial import allocate_ancillas
-    from .routing import Positions, route_window, window_cx
+    from .routing import Positions, route_window_cx
 
     logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist, search=search)
     pairs = [g[1] for g in logical.sections[0].gates if len(g[1]) == 2]
-    return window_cx(route_window(pairs, Positions(tuple(layout), device.num_qubits), device, dist))  # type: ignore[arg-type]
+    return route_window_cx(pairs, Positions(tuple(layout), device.num_qubits), device, dist)  # type: ignore[arg-type]
 
 
 def cell_mixers(

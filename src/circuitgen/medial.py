@@ -258,13 +258,30 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
 def _routed_cost(gates: Sequence[Gate], home: dict[int, int], data_homes: Sequence[int], n_data: int,
                  device: Device, dist: np.ndarray) -> int:  # fmt: skip
     """Two-qubit gates of the section's window routed from home (as :func:`circuitgen.routing.route_windows`)."""
-    from .routing import Positions, route_window, window_cx
+    from .routing import Positions, route_window_cx
 
-    where = {**{q: int(data_homes[q]) for q in range(n_data)}, **home}
-    pairs = [(where[g[1][0]], where[g[1][1]]) for g in gates if len(g[1]) == 2]
-    ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist,
-                       trials=SEARCH_TRIALS)
-    return window_cx(ops)
+    pairs = [tuple(int(data_homes[q]) if q < n_data else home[q] for q in g[1]) for g in gates if len(g[1]) == 2]
+    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)  # type: ignore[arg-type]
+
+
+_FREE_SITES: list[tuple] = []
+
+
+def _free_sites(device: Device, d: np.ndarray, data_homes: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """The occupied mask, the free qubits in the data's component and their distances to every qubit; the last
+    answer is kept (the cells' plan choice allocates one section at a time on the same homes)."""
+    for dev, dist, homes, answer in _FREE_SITES:
+        if dev is device and dist is d and homes == data_homes:
+            return answer
+    taken = np.zeros(device.num_qubits, dtype=bool)
+    taken[list(data_homes)] = True
+    reach = np.isfinite(d[data_homes[0]]) if data_homes else np.ones(device.num_qubits, dtype=bool)
+    free = np.flatnonzero(~taken & reach)
+    sub = d[np.ix_(free, np.arange(device.num_qubits))]
+    for a in (taken, free, sub):
+        a.flags.writeable = False  # shared between calls
+    _FREE_SITES[:] = [(device, d, data_homes, (taken, free, sub))]
+    return taken, free, sub
 
 
 def allocate_ancillas(
@@ -295,11 +312,7 @@ def allocate_ancillas(
     """
     d = _distances(device) if dist is None else dist
     n_data = len(data_homes)
-    taken = np.zeros(device.num_qubits, dtype=bool)
-    taken[list(data_homes)] = True
-    reach = np.isfinite(d[data_homes[0]]) if n_data else np.ones(device.num_qubits, dtype=bool)
-    free = np.flatnonzero(~taken & reach)
-    sub = d[np.ix_(free, np.arange(device.num_qubits))]
+    taken, free, sub = _free_sites(device, d, tuple(int(h) for h in data_homes))
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:

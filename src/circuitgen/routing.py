@@ -451,11 +451,14 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     if hit is not None:
         return hit
     from qiskit import QuantumCircuit
+    from qiskit.circuit import CircuitInstruction
+    from qiskit.circuit.library import CXGate
     from qiskit.converters import circuit_to_dag, dag_to_circuit
 
     qc = QuantumCircuit(size)
-    for a, b in pairs:
-        qc.cx(a, b)
+    bits, gate = qc.qubits, CXGate()
+    for a, b in pairs:  # qc.cx without its argument checks
+        qc._append(CircuitInstruction(gate, (bits[a], bits[b])))
     sabre, default_trials = _sabre_pass(coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
     sabre.property_set["final_layout"] = None
@@ -467,8 +470,9 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     who = list(range(size))  # position -> the qubit that started there
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
+    index = {q: i for i, q in enumerate(out.qubits)}
     for inst in out.data:
-        x, y = (out.find_bit(q).index for q in inst.qubits)
+        x, y = (index[q] for q in inst.qubits)
         if inst.operation.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
@@ -514,6 +518,14 @@ class Positions:
         self.who = [-1] * size
         for lq, p in enumerate(layout):
             self.who[p] = lq
+
+    @classmethod
+    def identity(cls, size: int) -> Positions:
+        """Every physical qubit holding the logical qubit of its own number."""
+        pos = cls.__new__(cls)
+        pos.where = list(range(size))
+        pos.who = list(range(size))
+        return pos
 
     def swap(self, p: int, q: int) -> None:
         a, b = self.who[p], self.who[q]
@@ -573,9 +585,27 @@ def route_window(
     settings, so they are memoised on those (in :data:`_WINDOW_CACHE`, with the patches the routing saw, replayed
     into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit): the allocation search and the cells'
     plan choice route the same window many times."""
+    ops, _ = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+    return list(ops)
+
+
+def route_window_cx(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
+    trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
+) -> int:  # fmt: skip
+    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only)."""
+    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[1]
+
+
+def _memo_window(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    large_seeds: int | None, large_trials: int | None,
+) -> tuple[tuple[tuple[str, tuple[int, int]], ...], int]:  # fmt: skip
+    """:func:`route_window`'s ops and their :func:`window_cx`, memoised (see there)."""
     global WHOLE_COMPONENT_PATCHES
     if device.is_all_to_all:
-        return _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        ops = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        return tuple(ops), window_cx(ops)
     where = pos.where
     key = ("window", _patch_index(device, dist), tuple((where[a], where[b]) for a, b in pairs), seed, trials,
            large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
@@ -589,16 +619,15 @@ def route_window(
             ops = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
         finally:  # by identity: an empty set equals every other empty set
             del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
-        hit = (tuple(ops), frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
+        hit = (tuple(ops), window_cx(ops), frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
         _WINDOW_CACHE[key] = hit
-        return ops
-    ops_, patches, whole = hit
+        return hit[:2]
     for watch in PATCH_WATCH:
-        watch.update(patches)
-    WHOLE_COMPONENT_PATCHES += whole
-    return list(ops_)
+        watch.update(hit[2])
+    WHOLE_COMPONENT_PATCHES += hit[3]
+    return hit[:2]
 
 
 def _route_window(
@@ -632,16 +661,22 @@ def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
     >>> window_cx([("cx", (0, 1)), ("swap", (0, 1)), ("cx", (1, 2))])  # the SWAP fuses with the cx before it
     3
     """
-    following = _next_ops(ops)
-    last: dict[int, int] = {}
-    total = 0
-    for k, (name, (p, q)) in enumerate(ops):
-        total += 1
+    after = set()  # SWAPs whose next op on both of their qubits is one cx on their pair
+    upcoming: dict[int, int] = {}
+    for k in range(len(ops) - 1, -1, -1):
+        name, (p, q) = ops[k]
         if name == "swap":
+            j = upcoming.get(p)
+            if j is not None and j == upcoming.get(q) and ops[j][0] == "cx":
+                after.add(k)
+        upcoming[p] = upcoming[q] = k
+    last: dict[int, int] = {}
+    total = len(ops)
+    for k, (name, (p, q)) in enumerate(ops):
+        if name == "swap" and k not in after:
             j = last.get(p)
-            nxt = following[k]
-            after = nxt is not None and ops[nxt][0] == "cx" and set(ops[nxt][1]) == {p, q}
-            total += 0 if (j is not None and j == last.get(q)) or after else 2
+            if j is None or j != last.get(q):
+                total += 2
         last[p] = last[q] = k
     return total
 

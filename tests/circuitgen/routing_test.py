@@ -318,3 +318,33 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     renamed = [(n - 1 - a, n - 1 - b) for a, b in pairs]  # the same physical pairs, the qubits named backwards
     ops = route_window(renamed, Positions(tuple(homes[::-1]), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
     assert ops == cold[0]
+
+
+def _window_cx_reference(ops: list) -> int:
+    """window_cx as first written: per SWAP, the op before it on both qubits or the next op on either."""
+    nxt: list = [None] * len(ops)
+    seen: dict[int, int] = {}
+    for k in range(len(ops) - 1, -1, -1):
+        found = [seen[q] for q in ops[k][1] if q in seen]
+        nxt[k] = min(found) if found else None
+        for q in ops[k][1]:
+            seen[q] = k
+    last: dict[int, int] = {}
+    total = 0
+    for k, (name, (p, q)) in enumerate(ops):
+        total += 1
+        if name == "swap":
+            j = last.get(p)
+            after = nxt[k] is not None and ops[nxt[k]][0] == "cx" and set(ops[nxt[k]][1]) == {p, q}
+            total += 0 if (j is not None and j == last.get(q)) or after else 2
+        last[p] = last[q] = k
+    return total
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["cx", "swap"]), st.permutations(range(4)).map(lambda p: tuple(p[:2]))),
+                max_size=14))  # fmt: skip
+def test_window_cx_equals_its_reference(ops: list) -> None:
+    from circuitgen.routing import window_cx
+
+    assert window_cx(ops) == _window_cx_reference(ops)
