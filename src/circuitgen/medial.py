@@ -255,13 +255,15 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
     return body, occupied, border, len(order)
 
 
-def _routed_cost(gates: Sequence[Gate], home: dict[int, int], data_homes: Sequence[int], n_data: int,
-                 device: Device, dist: np.ndarray) -> int:  # fmt: skip
-    """Two-qubit gates of the section's window routed from home (as :func:`circuitgen.routing.route_windows`)."""
+def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_where: dict[int, int], device: Device,
+                 dist: np.ndarray) -> int:  # fmt: skip
+    """Two-qubit gates of a section's window routed from home (as :func:`circuitgen.routing.route_windows`):
+    ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
     from .routing import Positions, route_window_cx
 
-    pairs = [tuple(int(data_homes[q]) if q < n_data else home[q] for q in g[1]) for g in gates if len(g[1]) == 2]
-    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)  # type: ignore[arg-type]
+    where = {**data_where, **home}
+    pairs = [(where[a], where[b]) for a, b in twoq]
+    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)
 
 
 _FREE_SITES: list[tuple] = []
@@ -328,8 +330,10 @@ def allocate_ancillas(
             key = _search_key(sec.gates, data_homes, n_data, taken, device, order)
             ranks = _SEARCH_CACHE.get(key) if key is not None else None
             if ranks is None:
+                twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
+                data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
                 ranks = [0] * len(order)
-                best = _routed_cost(sec.gates, home, data_homes, n_data, device, d)
+                best = _routed_cost(twoq, home, data_where, device, d)  # type: ignore[arg-type]
                 for _ in range(SEARCH_ROUNDS):
                     improved = False
                     for i in range(len(order)):
@@ -338,7 +342,7 @@ def allocate_ancillas(
                                 continue
                             trial = [*ranks[:i], r, *ranks[i + 1 :]]
                             other = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data, trial)
-                            cost = _routed_cost(sec.gates, other, data_homes, n_data, device, d)
+                            cost = _routed_cost(twoq, other, data_where, device, d)  # type: ignore[arg-type]
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
                     if not improved:

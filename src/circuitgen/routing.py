@@ -450,19 +450,20 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     hit = _WINDOW_CACHE.get(key)
     if hit is not None:
         return hit
-    from qiskit import QuantumCircuit
-    from qiskit.circuit import CircuitInstruction
+    from qiskit import QuantumRegister
     from qiskit.circuit.library import CXGate
-    from qiskit.converters import circuit_to_dag, dag_to_circuit
+    from qiskit.converters import dag_to_circuit
+    from qiskit.dagcircuit import DAGCircuit
 
-    qc = QuantumCircuit(size)
-    bits, gate = qc.qubits, CXGate()
-    for a, b in pairs:  # qc.cx without its argument checks
-        qc._append(CircuitInstruction(gate, (bits[a], bits[b])))
+    dag = DAGCircuit()
+    reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
+    dag.add_qreg(reg)
+    gate = CXGate()
+    for a, b in pairs:
+        dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
     sabre, default_trials = _sabre_pass(coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
-    sabre.property_set["final_layout"] = None
-    out = dag_to_circuit(sabre.run(circuit_to_dag(qc)))  # what a PassManager of this one pass runs
+    out = dag_to_circuit(_run_sabre(sabre, dag, size), copy_operations=False)
     queues: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(pairs):
         queues.setdefault(a, []).append(k)
@@ -490,6 +491,32 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
 
 
 _SABRE_PASSES: dict[tuple, tuple[Any, int]] = {}
+
+
+def _run_sabre(sabre: Any, dag: Any, size: int) -> Any:
+    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
+    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
+    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
+    do, :func:`_local_patch`) and rebuilds the coupling graph to do so, which took longer than the routing of a
+    window. ``tests/circuitgen/routing_test.py`` checks both give the same routing."""
+    try:
+        from qiskit._accelerate.nlayout import NLayout
+        from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
+    except ImportError:  # pragma: no cover - another Qiskit
+        sabre.property_set["final_layout"] = None
+        return sabre.run(dag)
+    if sabre._routing_target is None:
+        sabre._routing_target = RoutingTarget.from_target(sabre.target)
+    heuristic = (
+        Heuristic(attempt_limit=10 * size)
+        .with_basic(1.0, SetScaling.Constant)
+        .with_lookahead([0.5 / size], SetScaling.Constant)
+        .with_decay(0.001, 5)
+    )  # SabreSwap.run's "decay"
+    out, _ = sabre_routing(
+        dag, sabre._routing_target, heuristic, NLayout.generate_trivial_layout(size), sabre.trials, sabre.seed
+    )
+    return out
 
 
 def _sabre_pass(coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
@@ -604,8 +631,8 @@ def _memo_window(
     """:func:`route_window`'s ops and their :func:`window_cx`, memoised (see there)."""
     global WHOLE_COMPONENT_PATCHES
     if device.is_all_to_all:
-        ops = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        return tuple(ops), window_cx(ops)
+        ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        return tuple(ops), cx_
     where = pos.where
     key = ("window", _patch_index(device, dist), tuple((where[a], where[b]) for a, b in pairs), seed, trials,
            large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
@@ -616,10 +643,10 @@ def _memo_window(
         before = WHOLE_COMPONENT_PATCHES
         PATCH_WATCH.append(seen)
         try:
-            ops = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+            ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
         finally:  # by identity: an empty set equals every other empty set
             del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
-        hit = (tuple(ops), window_cx(ops), frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
+        hit = (tuple(ops), cx_, frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
         _WINDOW_CACHE[key] = hit
@@ -633,8 +660,8 @@ def _memo_window(
 def _route_window(
     pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
     large_seeds: int | None, large_trials: int | None,
-) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
-    """:func:`route_window` without its memo."""
+) -> tuple[list[tuple[str, tuple[int, int]]], int]:  # fmt: skip
+    """:func:`route_window` without its memo, and the ops' :func:`window_cx`."""
     m = mirror_length(pairs)
     large = m >= LARGE_WINDOW_PAIRS
     base_trials = large_trials if large and large_trials else trials
@@ -649,7 +676,7 @@ def _route_window(
         if best is None or cx_ < best_cx:
             best, best_cx = ops, cx_
     assert best is not None
-    return best
+    return best, best_cx
 
 
 def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:

@@ -348,3 +348,30 @@ def test_window_cx_equals_its_reference(ops: list) -> None:
     from circuitgen.routing import window_cx
 
     assert window_cx(ops) == _window_cx_reference(ops)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.data())
+def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject) -> None:
+    """_run_sabre (Qiskit's routing call with the arguments SabreSwap builds) gives the pass's own routing."""
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag, dag_to_circuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreSwap
+
+    from circuitgen.routing import _run_sabre, _sabre_pass, coupling_map
+
+    dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
+    size = dev.num_qubits
+    qc = QuantumCircuit(size)
+    for _ in range(data.draw(st.integers(1, 25))):
+        a, b = data.draw(st.permutations(range(size)))[:2]
+        qc.cx(a, b)
+    seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
+    ours, _ = _sabre_pass(tuple(dev.coupling), size)
+    ours.seed, ours.trials = seed, trials
+    fast = dag_to_circuit(_run_sabre(ours, circuit_to_dag(qc), size))
+    reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
+    assert [(i.operation.name, [fast.find_bit(q).index for q in i.qubits]) for i in fast.data] == [
+        (i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data
+    ]
