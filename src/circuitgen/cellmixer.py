@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from collections.abc import Hashable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from functools import lru_cache
 
 import numpy as np
@@ -168,6 +168,7 @@ def cell_mixers(
     homes: Sequence[int],
     dist: np.ndarray,
     bindings: Mapping[str, float] | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> Circuit:
     """``circuit`` with every parity-basis partial mixer's section replaced by its cheapest variant on ``device``
     (see the module docs); unchanged where ``device`` is not a heavy-hex lattice or the circuit is not the plan's.
@@ -180,6 +181,7 @@ def cell_mixers(
         homes: Physical qubit of every data qubit (the cell layout).
         dist: The device's all-pairs distances.
         bindings: The angle values the circuit was bound with.
+        stage: Called before each partial mixer's choice with ``choosing partial-mixer plans on the cells (i / n)``.
 
     Returns:
         The circuit, with the same sections in the same order.
@@ -197,9 +199,14 @@ def cell_mixers(
     coords = heavy_hex_coordinates(d)
     occupied = {coords[h] for h in homes}
     sections = list(circuit.sections)
+    mixers = sum(isinstance(gadget, ParityPartialMixer) for _, gadget in named)
+    seen = 0
     for i, (name, gadget) in enumerate(named):
         if not isinstance(gadget, ParityPartialMixer):
             continue
+        if stage is not None:
+            stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
+        seen += 1
         program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
         plans = relabelled_plans(program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included
