@@ -245,7 +245,7 @@ def compile_for_device(
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
         geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
-                                   options=replace(options, fuse=False), bindings=bindings, stage=stage)
+                                   options=replace(options, fuse=False), bindings=bindings, stage=stage)  # fmt: skip
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
