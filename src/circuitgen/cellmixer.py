@@ -26,7 +26,9 @@ an anchor on the lattice's translation grid, and the occupied and existing qubit
 the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
 routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
 default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
-(a 6x6/3 compile on heavy-hex took minutes instead of seconds, docs/resource-estimates.md).
+(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates,
+:func:`circuitgen.routing.route_window`, so the final allocation and routing of the chosen variants are
+mostly look-ups; docs/resource-estimates.md quotes the times).
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".

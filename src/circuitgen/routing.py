@@ -19,7 +19,11 @@ from the same home layout back to it: SABRE routes the compute on the device qub
 the middle, whose SWAPs are then undone, and the uncompute replays the compute's routed ops backwards
 (:func:`route_window`). Its result has ``initial_layout == final_layout``, and each section's routed cost
 depends only on its gates and its neighbourhood on the device (the routed cost of a gadget kind is fixed where
-the layout is translation-invariant: ``tests/circuitgen/medial_test.py``).
+the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Searches route the same windows many
+times (the ancilla allocation's candidates, the heavy-hex cells' plan variants), so a routed window is memoised
+on its physical pairs and settings, SABRE's routing of a patch on the patch's shape and the pairs, and the
+patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without the
+pass's per-run checks (:func:`_run_sabre`).
 
 :func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
 ``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
@@ -749,7 +753,8 @@ def route_windows(
 ) -> RoutedCircuit:
     """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
     circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
-    device around its qubits (windows are routed on a patch, cached by its shape).
+    device around its qubits (windows are routed on a patch, SABRE's answer cached by the patch's shape and the
+    window memoised on its physical pairs, :func:`route_window`).
 
     Args:
         circuit: Lowered, one section per gadget.

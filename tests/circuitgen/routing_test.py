@@ -283,7 +283,7 @@ def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) 
 
 
 # --- memoised windows ----------------------------------------------------------------------------------------
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=8, deadline=None)
 @given(st.data())
 def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> None:
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
