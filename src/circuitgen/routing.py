@@ -384,6 +384,7 @@ class _PatchIndex:
             self.neighbours[a].append(b)
             self.neighbours[b].append(a)
         self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+        self.token = object()  # names the device in memo keys without keeping its distances alive
 
 
 _PATCH_INDEX: list[_PatchIndex] = []
@@ -638,7 +639,7 @@ def _memo_window(
         ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
         return tuple(ops), cx_
     where = pos.where
-    key = ("window", _patch_index(device, dist), tuple((where[a], where[b]) for a, b in pairs), seed, trials,
+    key = ("window", _patch_index(device, dist).token, tuple((where[a], where[b]) for a, b in pairs), seed, trials,
            large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
            WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
     hit = _WINDOW_CACHE.get(key)
