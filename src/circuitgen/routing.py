@@ -507,20 +507,20 @@ def _run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     try:
         from qiskit._accelerate.nlayout import NLayout
         from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
-    except ImportError:  # pragma: no cover - another Qiskit
+
+        if sabre._routing_target is None:
+            sabre._routing_target = RoutingTarget.from_target(sabre.target)
+        heuristic = (
+            Heuristic(attempt_limit=10 * size)
+            .with_basic(1.0, SetScaling.Constant)
+            .with_lookahead([0.5 / size], SetScaling.Constant)
+            .with_decay(0.001, 5)
+        )  # SabreSwap.run's "decay"
+        layout = NLayout.generate_trivial_layout(size)
+    except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
         sabre.property_set["final_layout"] = None
         return sabre.run(dag)
-    if sabre._routing_target is None:
-        sabre._routing_target = RoutingTarget.from_target(sabre.target)
-    heuristic = (
-        Heuristic(attempt_limit=10 * size)
-        .with_basic(1.0, SetScaling.Constant)
-        .with_lookahead([0.5 / size], SetScaling.Constant)
-        .with_decay(0.001, 5)
-    )  # SabreSwap.run's "decay"
-    out, _ = sabre_routing(
-        dag, sabre._routing_target, heuristic, NLayout.generate_trivial_layout(size), sabre.trials, sabre.seed
-    )
+    out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
     return out
 
 
