@@ -8,7 +8,8 @@ and how they were obtained (``routed_kind``: ``exact`` = what ``qcpp compile --d
 * ``qcpp estimate --grid 30x30 --robots 8 -p 3 --device grid --json`` (goal: under 10 s);
 * ``qcpp estimate --grid 30x30 --robots 1 -p 3 --device grid --json`` (no goal: the window sum exact at a real
   size, where every window is local);
-* ``qcpp compile <6x6, 3 robots> --device grid --bind ... --qasm FILE --json`` (goal: under 30 s), with the
+* ``qcpp compile <6x6, 3 robots> --device grid --bind ... --qasm FILE --json`` (goal: under 30 s), and the same
+  on ``heavy-hex`` for 4x4 with 2 robots (goal: under 10 s) and 6x6 with 3 (goal: under 30 s), each with the
   routed two-qubit count, the device and the layout it reports.
 """
 
@@ -44,6 +45,13 @@ ESTIMATES = (
     ("30x30", "1", "3", "grid", "-"),
 )
 
+COMPILES = (
+    ((6, 6, 3), "grid", "30 s"),
+    ((4, 4, 2), "heavy-hex", "10 s"),
+    ((6, 6, 3), "heavy-hex", "30 s"),
+)
+"""``qcpp compile`` rows: (rows, cols, robots) of the default scenario, device family, goal."""
+
 
 def main() -> None:
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
@@ -60,19 +68,22 @@ def main() -> None:
             f"(all-to-all {row['cx']:,}), esp {row['esp']:.3g} |",
             flush=True,
         )
-    with tempfile.TemporaryDirectory() as tmp:
-        scen = Path(tmp) / "default_6x6_3.json"
-        scen.write_text(json.dumps(scenario_to_dict(default_scenario(6, 6, 3))))
-        qasm = Path(tmp) / "routed.qasm"
-        args = ["compile", str(scen), "--device", "grid", "--bind", "gamma_0=0.3", "beta_0=0.7", "--qasm", str(qasm)]
-        seconds, out = timed([*args, "--json"])
-    summary = json.loads(out)
-    routed = summary["routed"]
-    print(
-        f"| `qcpp compile <default 6x6/3> --device grid --qasm FILE --json` | 30 s | {seconds} | exact | exact "
-        f"| {summary['device']['name']}, layout {routed['layout']}, {routed['two_qubit']:,} two-qubit gates |",
-        flush=True,
-    )
+    for (rows, cols, robots), device, goal in COMPILES:
+        with tempfile.TemporaryDirectory() as tmp:
+            scen = Path(tmp) / f"default_{rows}x{cols}_{robots}.json"
+            scen.write_text(json.dumps(scenario_to_dict(default_scenario(rows, cols, robots))))
+            qasm = Path(tmp) / "routed.qasm"
+            args = ["compile", str(scen), "--device", device, "--bind", "gamma_0=0.3", "beta_0=0.7", "--qasm",
+                    str(qasm)]  # fmt: skip
+            seconds, out = timed([*args, "--json"])
+        summary = json.loads(out)
+        routed = summary["routed"]
+        print(
+            f"| `qcpp compile <default {rows}x{cols}/{robots}> --device {device} --qasm FILE --json` | {goal} | "
+            f"{seconds} | exact | exact | {summary['device']['name']}, layout {routed['layout']}, "
+            f"{routed['two_qubit']:,} two-qubit gates |",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -274,7 +274,7 @@ def _routed_twoq(gates: Sequence[Gate], device: Device, dist: Any) -> int:
     from .routing import Positions, route_window, window_cx
 
     pairs = [g[1] for g in gates if len(g[1]) == 2]
-    ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist)  # type: ignore[arg-type]
+    ops = route_window(pairs, Positions.identity(device.num_qubits), device, dist)  # type: ignore[arg-type]
     return window_cx(ops)
 
 

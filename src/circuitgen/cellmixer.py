@@ -26,7 +26,9 @@ an anchor on the lattice's translation grid, and the occupied and existing qubit
 the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
 routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
 default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
-(a 6x6/3 compile on heavy-hex took minutes instead of seconds, docs/resource-estimates.md).
+(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates,
+:func:`circuitgen.routing.route_window`, so the final allocation and routing of the chosen variants are
+mostly look-ups; docs/resource-estimates.md quotes the times).
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".
@@ -48,7 +50,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from collections.abc import Hashable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from functools import lru_cache
 
 import numpy as np
@@ -153,11 +155,11 @@ def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device:
                search: bool) -> int:  # fmt: skip
     """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it."""
     from .medial import allocate_ancillas
-    from .routing import Positions, route_window, window_cx
+    from .routing import Positions, route_window_cx
 
     logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist, search=search)
     pairs = [g[1] for g in logical.sections[0].gates if len(g[1]) == 2]
-    return window_cx(route_window(pairs, Positions(tuple(layout), device.num_qubits), device, dist))  # type: ignore[arg-type]
+    return route_window_cx(pairs, Positions(tuple(layout), device.num_qubits), device, dist)  # type: ignore[arg-type]
 
 
 def cell_mixers(
@@ -168,6 +170,7 @@ def cell_mixers(
     homes: Sequence[int],
     dist: np.ndarray,
     bindings: Mapping[str, float] | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> Circuit:
     """``circuit`` with every parity-basis partial mixer's section replaced by its cheapest variant on ``device``
     (see the module docs); unchanged where ``device`` is not a heavy-hex lattice or the circuit is not the plan's.
@@ -180,6 +183,7 @@ def cell_mixers(
         homes: Physical qubit of every data qubit (the cell layout).
         dist: The device's all-pairs distances.
         bindings: The angle values the circuit was bound with.
+        stage: Called before each partial mixer's choice with ``choosing partial-mixer plans on the cells (i / n)``.
 
     Returns:
         The circuit, with the same sections in the same order.
@@ -197,9 +201,14 @@ def cell_mixers(
     coords = heavy_hex_coordinates(d)
     occupied = {coords[h] for h in homes}
     sections = list(circuit.sections)
+    mixers = sum(isinstance(gadget, ParityPartialMixer) for _, gadget in named)
+    seen = 0
     for i, (name, gadget) in enumerate(named):
         if not isinstance(gadget, ParityPartialMixer):
             continue
+        if stage is not None:
+            stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
+        seen += 1
         program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
         plans = relabelled_plans(program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included

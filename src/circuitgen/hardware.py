@@ -47,7 +47,7 @@ Example:
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -203,6 +203,7 @@ def compile_for_device(
     layouts: tuple[str, ...] = LAYOUTS,
     layout_method: str = "auto",
     arrangement: str = "tile",
+    stage: Callable[[str], None] | None = None,
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -220,6 +221,8 @@ def compile_for_device(
         layouts: Layout seeds to try (:func:`best_layout`, greedy method only).
         layout_method: ``auto``, ``medial`` or ``greedy`` (:data:`LAYOUT_METHODS`).
         arrangement: The medial layout's robot arrangement, ``tile`` or ``interleave``.
+        stage: Called with the name of each stage as it starts (``choosing partial-mixer plans on the cells
+            (3 / 18)``), for progress on a long compile.
 
     Returns:
         The :class:`DeviceCompileResult`.
@@ -233,6 +236,8 @@ def compile_for_device(
     if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
         settled = replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
     options = settled
+    say = stage or (lambda _text: None)
+    say("compiling the circuit")
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
     circuit = compiled.circuit
     measured = range(scenario.num_variables)
@@ -240,7 +245,7 @@ def compile_for_device(
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
         geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
-                                   options=replace(options, fuse=False), bindings=bindings)
+                                   options=replace(options, fuse=False), bindings=bindings, stage=stage)  # fmt: skip
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
@@ -248,6 +253,7 @@ def compile_for_device(
                 other = routed.device
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
+                say(f"routing the whole circuit on {other.name} to compare")
                 greedy = greedy_route(circuit, other, seed=seed, layouts=layouts, measured=measured)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
@@ -276,6 +282,7 @@ def compile_for_device(
         raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
+    say(f"routing the whole circuit on {dev.name}")
     routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured)
     if not lowered:
         routed = to_native(routed)
@@ -373,6 +380,7 @@ def medial_compile(
     arrangement: str = "tile",
     options: PlanOptions | None = None,
     bindings: Mapping[str, float] | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> tuple[Circuit, RoutedCircuit] | None:
     """The geometric layout (medial on square grids, one cell per plaquette on heavy-hex lattices), local ancillas
     and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
@@ -381,10 +389,12 @@ def medial_compile(
     the robots' copies share a square grid (:data:`circuitgen.medial.ARRANGEMENTS`; ``tile`` measured better).
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`circuitgen.cellmixer.cell_mixers`).
+    ``stage`` is called with the name of each stage as it starts.
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
+    say = stage or (lambda _text: None)
     dev = layout_device(scenario, spec, arrangement)
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
@@ -392,7 +402,8 @@ def medial_compile(
         dist = distances(dev)
         planned = circuit
         if options is not None and dev.family == "heavy-hex":
-            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings)
+            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say)
+        say(f"allocating ancillas on {dev.name}")
         try:
             logical, layout = allocate_ancillas(planned, homes, dev, dist, search=SEARCH)
         except ValueError:
@@ -400,7 +411,9 @@ def medial_compile(
                 raise
             dev = _grown(dev)
             continue
+        say("relaying far phases")
         logical, layout = bridge_far_phases(logical, layout, dev, dist)
+        say(f"routing {len(logical.sections):,} windows")
         cells = dev.family == "heavy-hex"
         return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
                                       large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,

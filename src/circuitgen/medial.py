@@ -177,12 +177,13 @@ def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], di
 
 
 def _place_ancillas(
-    order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, sub: np.ndarray,
+    order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
     free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
     meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
-    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`)."""
+    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
+    device qubit ``p`` to the free qubits."""
     home: dict[int, int] = {}
     busy = np.zeros(len(free), dtype=bool)
     for i, q in enumerate(order):
@@ -190,7 +191,7 @@ def _place_ancillas(
         for partner, w in partners[q].items():
             at = data_homes[partner] if partner < n_data else home.get(partner)
             if at is not None:
-                cost += w * sub[:, at]
+                cost += w * to_free[at]
         key = cost * 1e6 + centre
         key[busy] = np.inf
         rank = ranks[i] if i < len(ranks) else 0
@@ -255,16 +256,35 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
     return body, occupied, border, len(order)
 
 
-def _routed_cost(gates: Sequence[Gate], home: dict[int, int], data_homes: Sequence[int], n_data: int,
-                 device: Device, dist: np.ndarray) -> int:  # fmt: skip
-    """Two-qubit gates of the section's window routed from home (as :func:`circuitgen.routing.route_windows`)."""
-    from .routing import Positions, route_window, window_cx
+def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_where: dict[int, int], device: Device,
+                 dist: np.ndarray) -> int:  # fmt: skip
+    """Two-qubit gates of a section's window routed from home (as :func:`circuitgen.routing.route_windows`):
+    ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
+    from .routing import Positions, route_window_cx
 
-    where = {**{q: int(data_homes[q]) for q in range(n_data)}, **home}
-    pairs = [(where[g[1][0]], where[g[1][1]]) for g in gates if len(g[1]) == 2]
-    ops = route_window(pairs, Positions(tuple(range(device.num_qubits)), device.num_qubits), device, dist,
-                       trials=SEARCH_TRIALS)
-    return window_cx(ops)
+    where = {**data_where, **home}
+    pairs = [(where[a], where[b]) for a, b in twoq]
+    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)
+
+
+_FREE_SITES: list[tuple] = []
+
+
+def _free_sites(device: Device, d: np.ndarray, data_homes: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """The occupied mask, the free qubits in the data's component and every qubit's distances to them; the last
+    answer is kept (the cells' plan choice allocates one section at a time on the same homes)."""
+    for dev, dist, homes, answer in _FREE_SITES:
+        if dev is device and dist is d and homes == data_homes:
+            return answer
+    taken = np.zeros(device.num_qubits, dtype=bool)
+    taken[list(data_homes)] = True
+    reach = np.isfinite(d[data_homes[0]]) if data_homes else np.ones(device.num_qubits, dtype=bool)
+    free = np.flatnonzero(~taken & reach)
+    to_free = np.ascontiguousarray(d[:, free])  # row p: distances from p to the free qubits
+    for a in (taken, free, to_free):
+        a.flags.writeable = False  # shared between calls
+    _FREE_SITES[:] = [(device, d, data_homes, (taken, free, to_free))]
+    return taken, free, to_free
 
 
 def allocate_ancillas(
@@ -295,11 +315,7 @@ def allocate_ancillas(
     """
     d = _distances(device) if dist is None else dist
     n_data = len(data_homes)
-    taken = np.zeros(device.num_qubits, dtype=bool)
-    taken[list(data_homes)] = True
-    reach = np.isfinite(d[data_homes[0]]) if n_data else np.ones(device.num_qubits, dtype=bool)
-    free = np.flatnonzero(~taken & reach)
-    sub = d[np.ix_(free, np.arange(device.num_qubits))]
+    taken, free, to_free = _free_sites(device, d, tuple(int(h) for h in data_homes))
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:
@@ -308,15 +324,18 @@ def allocate_ancillas(
             raise ValueError(
                 f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
             )
-        centre = sub[:, [data_homes[q] for q in sorted(data_in)]].sum(axis=1) if data_in else np.zeros(len(free))
-        home = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data)
+        centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
+        home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data)
         twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
         if search and order and twoq <= SEARCH_MAX_PAIRS and not device.is_all_to_all and not has_rzz(sec.gates):
             key = _search_key(sec.gates, data_homes, n_data, taken, device, order)
             ranks = _SEARCH_CACHE.get(key) if key is not None else None
             if ranks is None:
+                twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
+                data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
                 ranks = [0] * len(order)
-                best = _routed_cost(sec.gates, home, data_homes, n_data, device, d)
+                best = _routed_cost(twoq, home, data_where, device, d)  # type: ignore[arg-type]
+                tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
                 for _ in range(SEARCH_ROUNDS):
                     improved = False
                     for i in range(len(order)):
@@ -324,8 +343,15 @@ def allocate_ancillas(
                             if r == ranks[i]:
                                 continue
                             trial = [*ranks[:i], r, *ranks[i + 1 :]]
-                            other = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data, trial)
-                            cost = _routed_cost(sec.gates, other, data_homes, n_data, device, d)
+                            cost = tried.get(tuple(trial))
+                            if cost is None:
+                                other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
+                                                        trial)  # fmt: skip
+                                placed = tuple(other.items())
+                                cost = tried.get(placed)
+                                if cost is None:
+                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d)  # type: ignore[arg-type]
+                                tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
                     if not improved:
@@ -334,7 +360,7 @@ def allocate_ancillas(
                 if key is not None:
                     _SEARCH_CACHE[key] = ranks
             if any(ranks):
-                home = _place_ancillas(order, partners, centre, sub, free, data_homes, n_data, ranks)
+                home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data, ranks)
         used.update(home.values())
         renamed.append((sec.name, home))
     sites = sorted(used)

@@ -19,7 +19,11 @@ from the same home layout back to it: SABRE routes the compute on the device qub
 the middle, whose SWAPs are then undone, and the uncompute replays the compute's routed ops backwards
 (:func:`route_window`). Its result has ``initial_layout == final_layout``, and each section's routed cost
 depends only on its gates and its neighbourhood on the device (the routed cost of a gadget kind is fixed where
-the layout is translation-invariant: ``tests/circuitgen/medial_test.py``).
+the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Searches route the same windows many
+times (the ancilla allocation's candidates, the heavy-hex cells' plan variants), so a routed window is memoised
+on its physical pairs and settings, SABRE's routing of a patch on the patch's shape and the pairs, and the
+patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without the
+pass's per-run checks (:func:`_run_sabre`).
 
 :func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
 ``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
@@ -335,7 +339,11 @@ LARGE_WINDOW_MAX_PAIRS = 1_000
 (12x12/2's estimate == compile test took 464 s under load with it), and on 6x6/3 it routed the whole circuit to
 18,072 CX instead of 18,112 (``python benchmarks/routing.py --family grid``)."""
 
-_WINDOW_CACHE: dict[tuple, tuple[tuple, ...]] = {}
+_WINDOW_CACHE: dict[tuple, Any] = {}
+"""SABRE runs on patches (:func:`_sabre_local`) and routed windows (:func:`route_window`), memoised."""
+
+WINDOW_CACHE_LIMIT = 1 << 18
+"""Entries :data:`_WINDOW_CACHE` holds before a routed window's entry starts it over."""
 
 WHOLE_COMPONENT_PATCHES = 0
 """How many window parts were routed on their whole connected component because the qubits around them did not
@@ -363,25 +371,74 @@ def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     return m
 
 
+class _PatchIndex:
+    """Per device (and its distances): the device's neighbour lists, and every patch computed so far (keyed by
+    the positions it was grown around) with whether it is a whole component and its couplings in local indices
+    (:func:`_patch`, :func:`_route_part` ask for the same patches thousands of times during a search)."""
+
+    def __init__(self, device: Device, dist: Any) -> None:
+        self.device = device
+        self.dist = dist
+        self.neighbours: list[list[int]] = [[] for _ in range(device.num_qubits)]
+        for a, b in device.coupling:
+            self.neighbours[a].append(b)
+            self.neighbours[b].append(a)
+        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+        self.token = object()  # names the device in memo keys without keeping its distances alive
+
+
+_PATCH_INDEX: list[_PatchIndex] = []
+"""The last few devices' :class:`_PatchIndex` (identity-checked: a device and its distance matrix)."""
+
+
+def _patch_index(device: Device, dist: Any) -> _PatchIndex:
+    for index in _PATCH_INDEX:
+        if index.device is device and index.dist is dist:
+            return index
+    index = _PatchIndex(device, dist)
+    _PATCH_INDEX.insert(0, index)
+    del _PATCH_INDEX[8:]
+    return index
+
+
 def _patch(positions: set[int], device: Device, dist: Any) -> tuple[int, ...]:
     """Device qubits within :data:`WINDOW_RADIUS` of ``positions`` (ascending), grown to the whole connected
     component when that neighbourhood does not connect them."""
-    import numpy as np
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import connected_components
+    return _local_patch(positions, device, dist)[0]
 
-    rows = dist[sorted(positions)]
-    near = np.flatnonzero((rows <= WINDOW_RADIUS).any(axis=0))
-    index = {int(p): i for i, p in enumerate(near)}
-    edges = [(index[a], index[b]) for a, b in device.coupling if a in index and b in index]
-    if edges:
-        a, b = np.array(edges).T
-        _, labels = connected_components(csr_matrix((np.ones(len(a)), (a, b)), shape=(len(near),) * 2), directed=False)
-        if len({int(labels[index[p]]) for p in positions}) == 1:
-            return _watched(tuple(int(p) for p in near))
-    global WHOLE_COMPONENT_PATCHES
-    WHOLE_COMPONENT_PATCHES += 1
-    return _watched(tuple(int(p) for p in np.flatnonzero(np.isfinite(rows[0]))))
+
+def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[int, ...], tuple[tuple[int, int], ...]]:
+    """:func:`_patch` and its couplings (in :attr:`Device.coupling`'s order) as pairs of indices into it; memoised
+    per device, the side effects (:data:`PATCH_WATCH`, :data:`WHOLE_COMPONENT_PATCHES`) on every call."""
+    index = _patch_index(device, dist)
+    key = tuple(sorted(positions))
+    hit = index.patches.get(key)
+    if hit is None:
+        import numpy as np
+
+        rows = dist[list(key)]
+        near = np.flatnonzero((rows <= WINDOW_RADIUS).any(axis=0))
+        inside = {int(p) for p in near}
+        seen = {key[0]}
+        todo = [key[0]]
+        while todo:  # the component of the first position in the neighbourhood
+            p = todo.pop()
+            for q in index.neighbours[p]:
+                if q in inside and q not in seen:
+                    seen.add(q)
+                    todo.append(q)
+        linked = any(q in inside for p in inside for q in index.neighbours[p])  # as before: no edge, no patch
+        whole = not linked or not seen.issuperset(key)
+        patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
+        local = {p: i for i, p in enumerate(patch)}
+        coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
+        hit = (patch, whole, coupling)
+        index.patches[key] = hit
+    patch, whole, coupling = hit
+    if whole:
+        global WHOLE_COMPONENT_PATCHES
+        WHOLE_COMPONENT_PATCHES += 1
+    return _watched(patch), coupling
 
 
 def _watched(patch: tuple[int, ...]) -> tuple[int, ...]:
@@ -398,15 +455,20 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     hit = _WINDOW_CACHE.get(key)
     if hit is not None:
         return hit
-    from qiskit import QuantumCircuit
-    from qiskit.transpiler import CouplingMap, PassManager
-    from qiskit.transpiler.passes import SabreSwap
+    from qiskit import QuantumRegister
+    from qiskit.circuit.library import CXGate
+    from qiskit.converters import dag_to_circuit
+    from qiskit.dagcircuit import DAGCircuit
 
-    qc = QuantumCircuit(size)
+    dag = DAGCircuit()
+    reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
+    dag.add_qreg(reg)
+    gate = CXGate()
     for a, b in pairs:
-        qc.cx(a, b)
-    cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-    out = PassManager([SabreSwap(cmap, heuristic="decay", seed=seed, trials=trials)]).run(qc)
+        dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
+    sabre, default_trials = _sabre_pass(coupling, size)
+    sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
+    out = dag_to_circuit(_run_sabre(sabre, dag, size), copy_operations=False)
     queues: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(pairs):
         queues.setdefault(a, []).append(k)
@@ -414,8 +476,9 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     who = list(range(size))  # position -> the qubit that started there
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
+    index = {q: i for i, q in enumerate(out.qubits)}
     for inst in out.data:
-        x, y = (out.find_bit(q).index for q in inst.qubits)
+        x, y = (index[q] for q in inst.qubits)
         if inst.operation.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
@@ -432,6 +495,52 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     return result
 
 
+_SABRE_PASSES: dict[tuple, tuple[Any, int]] = {}
+
+
+def _run_sabre(sabre: Any, dag: Any, size: int) -> Any:
+    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
+    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
+    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
+    do, :func:`_local_patch`) and rebuilds the coupling graph to do so, which took longer than the routing of a
+    window. ``tests/circuitgen/routing_test.py`` checks both give the same routing."""
+    try:
+        from qiskit._accelerate.nlayout import NLayout
+        from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
+
+        if sabre._routing_target is None:
+            sabre._routing_target = RoutingTarget.from_target(sabre.target)
+        heuristic = (
+            Heuristic(attempt_limit=10 * size)
+            .with_basic(1.0, SetScaling.Constant)
+            .with_lookahead([0.5 / size], SetScaling.Constant)
+            .with_decay(0.001, 5)
+        )  # SabreSwap.run's "decay"
+        layout = NLayout.generate_trivial_layout(size)
+    except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
+        sabre.property_set["final_layout"] = None
+        return sabre.run(dag)
+    out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
+    return out
+
+
+def _sabre_pass(coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
+    """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
+    routing tables, which took longer than the routing of a window, so a pass is reused per patch (its seed and
+    trials set per run)."""
+    hit = _SABRE_PASSES.get((coupling, size))
+    if hit is None:
+        from qiskit.transpiler import CouplingMap
+        from qiskit.transpiler.passes import SabreSwap
+
+        if len(_SABRE_PASSES) >= 4096:
+            _SABRE_PASSES.clear()
+        cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
+        sabre = SabreSwap(cmap, heuristic="decay", trials=None)
+        hit = _SABRE_PASSES[(coupling, size)] = (sabre, sabre.trials)
+    return hit
+
+
 class Positions:
     """Where every logical qubit is (``where``: logical -> physical) and who is on every physical qubit (``who``:
     physical -> logical, -1 for a free qubit) while windows are routed; ``swap`` moves both."""
@@ -441,6 +550,14 @@ class Positions:
         self.who = [-1] * size
         for lq, p in enumerate(layout):
             self.who[p] = lq
+
+    @classmethod
+    def identity(cls, size: int) -> Positions:
+        """Every physical qubit holding the logical qubit of its own number."""
+        pos = cls.__new__(cls)
+        pos.where = list(range(size))
+        pos.who = list(range(size))
+        return pos
 
     def swap(self, p: int, q: int) -> None:
         a, b = self.who[p], self.who[q]
@@ -460,9 +577,8 @@ def _route_part(
         return []
     if device.is_all_to_all:
         return [("gate", k) for k in range(len(pairs))]
-    patch = _patch({pos.where[q] for pr in pairs for q in pr}, device, dist)
+    patch, coupling = _local_patch({pos.where[q] for pr in pairs for q in pr}, device, dist)
     local = {p: i for i, p in enumerate(patch)}
-    coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
     lpairs = tuple((local[pos.where[a]], local[pos.where[b]]) for a, b in pairs)
     best = min(
         (_sabre_local(coupling, len(patch), lpairs, seed + i, trials) for i in range(WINDOW_SEEDS)),
@@ -495,7 +611,62 @@ def route_window(
     compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
     in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
     ``n - 1 - k`` of the uncompute). ``large_seeds``, ``large_trials``: seeds a large window tries (default
-    :data:`LARGE_WINDOW_SEEDS`) and SABRE's trials per seed there (default ``trials``)."""
+    :data:`LARGE_WINDOW_SEEDS`) and SABRE's trials per seed there (default ``trials``).
+
+    The ops depend only on where the pairs' qubits are (the physical pairs), the device and the search's
+    settings, so they are memoised on those (in :data:`_WINDOW_CACHE`, with the patches the routing saw, replayed
+    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit): the allocation search and the cells'
+    plan choice route the same window many times."""
+    ops, _ = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+    return list(ops)
+
+
+def route_window_cx(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
+    trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
+) -> int:  # fmt: skip
+    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only)."""
+    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[1]
+
+
+def _memo_window(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    large_seeds: int | None, large_trials: int | None,
+) -> tuple[tuple[tuple[str, tuple[int, int]], ...], int]:  # fmt: skip
+    """:func:`route_window`'s ops and their :func:`window_cx`, memoised (see there)."""
+    global WHOLE_COMPONENT_PATCHES
+    if device.is_all_to_all:
+        ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        return tuple(ops), cx_
+    where = pos.where
+    key = ("window", _patch_index(device, dist).token, tuple((where[a], where[b]) for a, b in pairs), seed, trials,
+           large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
+           WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
+    hit = _WINDOW_CACHE.get(key)
+    if hit is None:
+        seen: set[int] = set()
+        before = WHOLE_COMPONENT_PATCHES
+        PATCH_WATCH.append(seen)
+        try:
+            ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        finally:  # by identity: an empty set equals every other empty set
+            del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
+        hit = (tuple(ops), cx_, frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
+        if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
+            _WINDOW_CACHE.clear()
+        _WINDOW_CACHE[key] = hit
+        return hit[:2]
+    for watch in PATCH_WATCH:
+        watch.update(hit[2])
+    WHOLE_COMPONENT_PATCHES += hit[3]
+    return hit[:2]
+
+
+def _route_window(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    large_seeds: int | None, large_trials: int | None,
+) -> tuple[list[tuple[str, tuple[int, int]]], int]:  # fmt: skip
+    """:func:`route_window` without its memo, and the ops' :func:`window_cx`."""
     m = mirror_length(pairs)
     large = m >= LARGE_WINDOW_PAIRS
     base_trials = large_trials if large and large_trials else trials
@@ -503,12 +674,14 @@ def route_window(
     if LARGE_WINDOW_PAIRS <= m <= LARGE_WINDOW_MAX_PAIRS and trials is not None:  # and a wider search
         tries += [(s, max(trials, WIDE_WINDOW_TRIALS)) for s in range(seed, seed + WIDE_WINDOW_SEEDS)]
     best: list[tuple[str, tuple[int, int]]] | None = None
+    best_cx = 0
     for s, t in tries:  # each try returns every qubit home, so ``pos`` is unchanged between tries
         ops = _window_ops(pairs, m, pos, device, dist, s, t)
-        if best is None or window_cx(ops) < window_cx(best):
-            best = ops
+        cx_ = window_cx(ops)
+        if best is None or cx_ < best_cx:
+            best, best_cx = ops, cx_
     assert best is not None
-    return best
+    return best, best_cx
 
 
 def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
@@ -520,16 +693,22 @@ def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
     >>> window_cx([("cx", (0, 1)), ("swap", (0, 1)), ("cx", (1, 2))])  # the SWAP fuses with the cx before it
     3
     """
-    following = _next_ops(ops)
-    last: dict[int, int] = {}
-    total = 0
-    for k, (name, (p, q)) in enumerate(ops):
-        total += 1
+    after = set()  # SWAPs whose next op on both of their qubits is one cx on their pair
+    upcoming: dict[int, int] = {}
+    for k in range(len(ops) - 1, -1, -1):
+        name, (p, q) = ops[k]
         if name == "swap":
+            j = upcoming.get(p)
+            if j is not None and j == upcoming.get(q) and ops[j][0] == "cx":
+                after.add(k)
+        upcoming[p] = upcoming[q] = k
+    last: dict[int, int] = {}
+    total = len(ops)
+    for k, (name, (p, q)) in enumerate(ops):
+        if name == "swap" and k not in after:
             j = last.get(p)
-            nxt = following[k]
-            after = nxt is not None and ops[nxt][0] == "cx" and set(ops[nxt][1]) == {p, q}
-            total += 0 if (j is not None and j == last.get(q)) or after else 2
+            if j is None or j != last.get(q):
+                total += 2
         last[p] = last[q] = k
     return total
 
@@ -575,7 +754,8 @@ def route_windows(
 ) -> RoutedCircuit:
     """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
     circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
-    device around its qubits (windows are routed on a patch, cached by its shape).
+    device around its qubits (windows are routed on a patch, SABRE's answer cached by the patch's shape and the
+    window memoised on its physical pairs, :func:`route_window`).
 
     Args:
         circuit: Lowered, one section per gadget.

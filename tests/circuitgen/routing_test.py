@@ -280,3 +280,98 @@ def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) 
     assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 - 2
     assert _on_coupling(routed)
     _assert_equal_up_to_layouts(logical, routed, seed=3, global_phase=False)
+
+
+# --- memoised windows ----------------------------------------------------------------------------------------
+@settings(max_examples=8, deadline=None)
+@given(st.data())
+def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> None:
+    """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
+    again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
+    routing, and replays the patches the routing saw into PATCH_WATCH."""
+    from circuitgen import routing
+    from circuitgen.layout import distances
+    from circuitgen.routing import PATCH_WATCH, Positions, route_window
+
+    dev = get_device(data.draw(st.sampled_from(["grid:4x4", "heavy-hex:3"])))
+    dist = distances(dev)
+    n = data.draw(st.integers(3, 8))
+    homes = data.draw(st.permutations(range(dev.num_qubits)))[:n]
+    k = data.draw(st.integers(1, 12))
+    pairs = [tuple(data.draw(st.lists(st.integers(0, n - 1), min_size=2, max_size=2, unique=True))) for _ in range(k)]
+    pairs += pairs[::-1]  # a compute and its mirror
+
+    def routed() -> tuple[list, set[int], int]:
+        seen: set[int] = set()
+        before = routing.WHOLE_COMPONENT_PATCHES
+        PATCH_WATCH.append(seen)
+        try:
+            ops = route_window(pairs, Positions(tuple(homes), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
+        finally:
+            PATCH_WATCH.remove(seen)
+        return ops, seen, routing.WHOLE_COMPONENT_PATCHES - before
+
+    routing._WINDOW_CACHE.clear()
+    cold = routed()
+    assert cold[1]  # the routing saw a patch
+    assert routed() == cold  # warm: the memo's answer
+    renamed = [(n - 1 - a, n - 1 - b) for a, b in pairs]  # the same physical pairs, the qubits named backwards
+    ops = route_window(renamed, Positions(tuple(homes[::-1]), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
+    assert ops == cold[0]
+
+
+def _window_cx_reference(ops: list) -> int:
+    """window_cx as first written: per SWAP, the op before it on both qubits or the next op on either."""
+    nxt: list = [None] * len(ops)
+    seen: dict[int, int] = {}
+    for k in range(len(ops) - 1, -1, -1):
+        found = [seen[q] for q in ops[k][1] if q in seen]
+        nxt[k] = min(found) if found else None
+        for q in ops[k][1]:
+            seen[q] = k
+    last: dict[int, int] = {}
+    total = 0
+    for k, (name, (p, q)) in enumerate(ops):
+        total += 1
+        if name == "swap":
+            j = last.get(p)
+            after = nxt[k] is not None and ops[nxt[k]][0] == "cx" and set(ops[nxt[k]][1]) == {p, q}
+            total += 0 if (j is not None and j == last.get(q)) or after else 2
+        last[p] = last[q] = k
+    return total
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["cx", "swap"]), st.permutations(range(4)).map(lambda p: tuple(p[:2]))),
+                max_size=14))  # fmt: skip
+def test_window_cx_equals_its_reference(ops: list) -> None:
+    from circuitgen.routing import window_cx
+
+    assert window_cx(ops) == _window_cx_reference(ops)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.data())
+def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject) -> None:
+    """_run_sabre (Qiskit's routing call with the arguments SabreSwap builds) gives the pass's own routing."""
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag, dag_to_circuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreSwap
+
+    from circuitgen.routing import _run_sabre, _sabre_pass, coupling_map
+
+    dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
+    size = dev.num_qubits
+    qc = QuantumCircuit(size)
+    for _ in range(data.draw(st.integers(1, 25))):
+        a, b = data.draw(st.permutations(range(size)))[:2]
+        qc.cx(a, b)
+    seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
+    ours, _ = _sabre_pass(tuple(dev.coupling), size)
+    ours.seed, ours.trials = seed, trials
+    fast = dag_to_circuit(_run_sabre(ours, circuit_to_dag(qc), size))
+    reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
+    assert [(i.operation.name, [fast.find_bit(q).index for q in i.qubits]) for i in fast.data] == [
+        (i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data
+    ]

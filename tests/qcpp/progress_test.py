@@ -188,6 +188,27 @@ def test_writing_qasm_shows_both_passes(tmp_path: Path) -> None:
     assert "collecting symbols" in res.stderr and "writing OpenQASM" in res.stderr
 
 
+def test_a_device_compile_names_its_stages(tmp_path: Path) -> None:
+    """``compile --device heavy-hex`` (the cells' plan choice can take a while): stages on stderr, stdout unchanged."""
+    scen = write_scenario(tmp_path / "s.toml", 2, 3, [((0, 0), (1, 2))])
+    args = ["compile", scen, "--device", "heavy-hex", "--layout", "medial", "--lowered", "--json"]
+    res = invoke(*args, env=LINES)
+    assert res.exit_code == 0, res.stderr
+    quiet = invoke(*args, env={"QCPP_PROGRESS": "off"})
+    assert res.stderr and not quiet.stderr
+    first, second = json.loads(res.stdout), json.loads(quiet.stdout)
+    first.pop("seconds"), second.pop("seconds")
+    assert first == second
+    lines = res.stderr.splitlines()
+    assert all(line.startswith("compile 2x3, 1 robot(s), p=1, --device heavy-hex: ") for line in lines)
+    stages = ["compiling the circuit", "choosing partial-mixer plans on the cells (0 / 2)",
+              "choosing partial-mixer plans on the cells (1 / 2)", "allocating ancillas on heavy-hex:7",
+              "relaying far phases", "routing "]  # fmt: skip
+    found = [next(i for i, line in enumerate(lines) if stage in line) for stage in stages]
+    assert found == sorted(found)
+    assert lines[-1].startswith("compile 2x3, 1 robot(s), p=1, --device heavy-hex: done in ")
+
+
 # ----------------------------------------------------------------------------- solve -m dfs
 
 

@@ -233,9 +233,10 @@ def _routed(
     from circuitgen.hardware import compile_for_device
     from circuitgen.qasm import write_qasm
 
-    result = compile_for_device(
-        s, p, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas, layout_method=layout
-    )
+    task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
+    with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
+        result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
+                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
     circuit = result.routed.circuit
     if qasm is not None:
         write_qasm(circuit, qasm, version)  # type: ignore[arg-type]
