@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
+from simulate import subspace_kernels
 from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale
@@ -188,6 +189,12 @@ def product_objective(
         (True, True)
     """
     values, index = qaoa.cost_distribution_index()
+    if len(probs) == 2 and subspace_kernels.AVAILABLE and index.dtype in (np.uint8, np.uint16):
+        p0, p1 = (np.asarray(p, dtype=float) for p in probs)
+        weight = subspace_kernels.pair_level_weights(index, p0, p1, values.size)
+        value, dw = objective(values, weight)
+        g0, g1 = subspace_kernels.pair_weight_gradients(index, np.asarray(dw, dtype=float), p0, p1)
+        return float(value), float(np.dot(weight, values)), [g0, g1]
     n0 = index.shape[0]
     rest = np.ones(())
     for p in probs[1:]:
