@@ -285,6 +285,20 @@ class QaoaPlan:
             secs = [Section(name, tuple(b)) for b in blocks]
             yield from lower(Circuit(registers, secs)).sections if lowered else secs
 
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """The operator's angles in circuit order: per layer ``gamma_k``, then ``beta_k`` or (``angles="multi"``)
+        one :func:`~circuitgen.angles.mixer_symbol` per partial mixer. A name may have no gate (a phase separator
+        left empty by a constant cost) and is still a valid binding."""
+        out: list[str] = []
+        for k in range(self.p):
+            out.append(f"gamma_{k}")
+            if self.options.angles == "multi":
+                out += [mixer_symbol(k, r, q) for (r, q), _ in self._planned_mixers]
+            else:
+                out.append(f"beta_{k}")
+        return tuple(out)
+
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""
         regs = [r for r in self.registers if r.name != WORK_REGISTER]

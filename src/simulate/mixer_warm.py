@@ -60,6 +60,7 @@ __all__ = [
     "MixerCeiling",
     "MixerWarmStart",
     "mixer_only_ceiling",
+    "p_optimum_and_gradients",
     "product_objective",
     "robot_states",
     "robot_states_gradient",
@@ -333,10 +334,18 @@ class MixerCeiling:
         return tuple(v for b in self.betas for v in (0.0, b))
 
 
-def _p_optimum_and_grads(
+def p_optimum_and_gradients(
     probs: Sequence[np.ndarray], optima: Sequence[Sequence[int]]
 ) -> tuple[float, list[np.ndarray]]:
-    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives."""
+    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives.
+
+    Args:
+        probs: Per robot, a probability per basis path.
+        optima: The optimal assignments as per-robot indices.
+
+    Returns:
+        ``(P(optimum), grads)`` with ``grads[r] = dP/dprobs[r]``.
+    """
     total = 0.0
     grads = [np.zeros(len(p)) for p in probs]
     for o in optima:
@@ -383,7 +392,7 @@ def mixer_only_ceiling(
 
     def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
         states = robot_states(qaoa, x)
-        value, grads = _p_optimum_and_grads([v.real * v.real + v.imag * v.imag for v in states], optima)
+        value, grads = p_optimum_and_gradients([v.real * v.real + v.imag * v.imag for v in states], optima)
         return -value, -robot_states_gradient(qaoa, x, grads)
 
     rng = np.random.default_rng(seed)

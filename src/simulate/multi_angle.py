@@ -36,14 +36,16 @@ Example:
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize
 
 from circuitgen.angles import mixer_symbol
-from simulate.mixer_warm import MIXER_MAXITER, MIXER_STARTS, product_objective
+from circuitgen.options import PlanOptions
+from circuitgen.qaoa import qaoa_plan
+from simulate.mixer_warm import MIXER_MAXITER, MIXER_STARTS, p_optimum_and_gradients, product_objective
 from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale
@@ -53,9 +55,12 @@ __all__ = [
     "MultiAngleResult",
     "bindings",
     "mixer_sites",
+    "most_probable_multi",
     "multi_robot_states",
     "multi_robot_states_gradient",
+    "p_optimum_multi",
     "train_multi_angle",
+    "train_multi_angle_layers",
 ]
 
 MULTI_RANDOM_STARTS = 8
@@ -152,8 +157,9 @@ def multi_robot_states_gradient(
 def bindings(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> dict[str, float]:
     """The symbol values of the compiled multi-angle circuit (``PlanOptions(angles="multi")``) for ``betas``.
 
-    Every gamma is 0, the sites' betas are ``betas``, and every other partial mixer of the grid (the identity on
-    the reachable states) gets 0.
+    Every gamma is 0, the sites' betas are ``betas``, and the compiled circuit's other partial mixers (the
+    identity on the reachable states) get 0. The keys are exactly the circuit's
+    :attr:`~circuitgen.qaoa.QaoaPlan.parameter_names`.
 
     Example:
         >>> from gridcover.scenario import scenario_from_dict
@@ -162,16 +168,11 @@ def bindings(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) ->
         {'gamma_0': 0.0, 'beta_r0_q0_0': 0.5}
     """
     x = _check(qaoa, betas, p)
-    sites = mixer_sites(qaoa)
-    plaquettes = [q.index for q in qaoa.scenario.grid.plaquettes]
-    out: dict[str, float] = {}
-    for k in range(p):
-        out[f"gamma_{k}"] = 0.0
-        given = {site: float(v) for site, v in zip(sites, x[k * len(sites) : (k + 1) * len(sites)])}
-        for r in range(qaoa.scenario.num_robots):
-            for q in plaquettes:
-                out[mixer_symbol(k, r, q)] = given.get((r, q), 0.0)
-    return out
+    n = len(mixer_sites(qaoa))
+    given = {mixer_symbol(k, r, q): float(x[k * n + m])
+             for k in range(p) for m, (r, q) in enumerate(mixer_sites(qaoa))}  # fmt: skip
+    plan = qaoa_plan(qaoa.scenario, p, PlanOptions(rule=qaoa.rule, initial=qaoa.initial, angles="multi"))
+    return {name: given.get(name, 0.0) for name in plan.parameter_names}
 
 
 @dataclass(frozen=True)
@@ -268,3 +269,55 @@ def train_multi_angle(
     f, x = best
     return MultiAngleResult(p, tuple(float(v) for v in x), f, seen[x.tobytes()][1], tuple(values), calls[0],
                             time.perf_counter() - t0)
+
+
+def train_multi_angle_layers(
+    qaoa: SubspaceQAOA,
+    p: int,
+    objective: ObjectiveName | ObjectiveFn = "gibbs",
+    random_starts: int = MULTI_RANDOM_STARTS,
+    seed: int = 0,
+    maxiter: int = MIXER_MAXITER,
+    progress: Callable[[int, int], None] | None = None,
+) -> list[MultiAngleResult]:
+    """:func:`train_multi_angle` at ``p = 1 .. p`` in turn, each depth also started from the one before.
+
+    Depth ``k`` draws its random starts with seed ``seed + k``. Deterministic.
+
+    Args:
+        qaoa, objective, random_starts, maxiter: As in :func:`train_multi_angle`.
+        p: The largest depth (>= 1).
+        seed: Base seed.
+        progress: Called as ``progress(k, p)`` after depth ``k``.
+
+    Returns:
+        One :class:`MultiAngleResult` per depth ``1 .. p``.
+    """
+    if p < 1:
+        raise ValueError(f"p must be >= 1, got {p}")
+    out: list[MultiAngleResult] = []
+    for k in range(1, p + 1):
+        out.append(train_multi_angle(qaoa, k, objective, random_starts, seed + k, maxiter,
+                                     previous=out[-1].betas if out else None))
+        if progress is not None:
+            progress(k, p)
+    return out
+
+
+def most_probable_multi(
+    qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int
+) -> tuple[tuple[int, ...], float]:
+    """The most probable assignment (edge masks) of the multi-angle mixer-only state and its probability.
+
+    The state is a product, so it is every robot's most probable path.
+    """
+    probs = [v.real * v.real + v.imag * v.imag for v in multi_robot_states(qaoa, betas, p)]
+    idx = tuple(int(np.argmax(pr)) for pr in probs)
+    return qaoa.assignment(idx), float(np.prod([pr[i] for pr, i in zip(probs, idx)]))
+
+
+def p_optimum_multi(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> float:
+    """``P(optimum)`` of the multi-angle mixer-only state (uses :meth:`SubspaceQAOA.optimum`)."""
+    probs = [v.real * v.real + v.imag * v.imag for v in multi_robot_states(qaoa, betas, p)]
+    optima = [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
+    return p_optimum_and_gradients(probs, optima)[0]

@@ -123,3 +123,24 @@ def test_bad_arguments() -> None:
         train_multi_angle(q, 0)
     with pytest.raises(ValueError, match="angles: expected"):
         PlanOptions(angles="many")  # type: ignore[arg-type]
+
+
+def test_the_solver_answers_with_the_product_state_and_bindings_of_the_compiled_circuit() -> None:
+    """``solve_qaoa(optimizer="multi-angle")``: probability and P(optimum) of the product state; its bindings
+    bind every symbol of the compiled multi-angle circuit and nothing else."""
+    from circuitgen.compile import compile_scenario
+    from simulate.qaoa_solver import qaoa_to_dict, solve_qaoa
+
+    res = solve_qaoa(TWO_2x4, p=2, optimizer="multi-angle")
+    q = SubspaceQAOA(TWO_2x4)
+    v0, v1 = multi_robot_states(q, res.angles, 2)
+    assert res.probability == pytest.approx(float(np.max(np.abs(np.multiply.outer(v0, v1)) ** 2)))
+    best = q.optimum()[1]
+    assert res.p_optimum == pytest.approx(float(np.sum(np.abs(np.multiply.outer(v0, v1)).reshape(-1)[best] ** 2)))
+    circuit = compile_scenario(TWO_2x4, 2, PlanOptions(angles="multi"), bindings=res.bindings).circuit
+    assert circuit.symbols == () and set(res.bindings) >= set(
+        compile_scenario(TWO_2x4, 2, PlanOptions(angles="multi")).circuit.symbols)
+    out = qaoa_to_dict(TWO_2x4, res)
+    assert out["optimizer"] == "multi-angle" and out["bindings"] == res.bindings
+    # a gradient by the parameter-shift rule: 1 + 2 x parameters estimates, at least 13 per evaluation here
+    assert out["circuit_estimates"] == res.estimates >= 13 * out["evaluations"]
