@@ -15,6 +15,9 @@ For each scenario and p = 1..5 the table gives:
   many of the starts ended within 0.01 of the kept objective value, the parameters, the objective
   evaluations (each with its gradient, every start included), the device objective estimates they would take
   (a gradient by the parameter-shift rule = 1 + 2 x parameters estimates) and the wall time;
+* **on the way**: following the trained circuit one partial mixer at a time, the most paths one robot's state
+  spreads over (probability above 1e-6) and the smallest probability of its most probable path (1 path and 1:
+  a classical sequence of flips; more: superpositions that the later mixers interfere back);
 * **multi-angle ceiling**: the largest P(optimum) found over multi-angle mixer-only betas when maximising
   P(optimum) itself, from the trained betas, the previous depth's ceiling with a zero layer and 4 seeded random
   starts. This diagnostic *uses the optimum*; it is not a method.
@@ -79,6 +82,26 @@ def _row(q: SubspaceQAOA, betas: Sequence[float], p: int) -> dict[str, Any]:
             "p_most_probable": float(np.prod([pr.max() for pr in probs]))}
 
 
+def _walk(q: SubspaceQAOA, betas: Sequence[float], p: int) -> tuple[int, float]:
+    """Along the circuit, one partial mixer at a time: the most paths one robot's state spreads over (probability
+    above 1e-6) and the smallest probability of its most probable path. ``(1, 1.0)``: every step is a basis state
+    (the circuit is a classical sequence of flips); larger: a superposition on the way."""
+    x = np.asarray(betas, dtype=float)
+    n = len(mixer_sites(q))
+    widest, lowest, first = 1, 1.0, 0
+    for b in q.robot_bases:
+        v = b.initial.astype(np.complex128)
+        for k in range(p):
+            for m, (_, i, j) in enumerate(b.pairs):
+                c, s = np.cos(x[k * n + first + m] / 2), -1j * np.sin(x[k * n + first + m] / 2)
+                vi, vj = v[i], v[j]
+                v[i], v[j] = c * vi + s * vj, s * vi + c * vj
+                pr = v.real * v.real + v.imag * v.imag
+                widest, lowest = max(widest, int(np.count_nonzero(pr > 1e-6))), min(lowest, float(pr.max()))
+        first += len(b.pairs)
+    return widest, lowest
+
+
 def _ceiling(q: SubspaceQAOA, p: int, x0s: list[np.ndarray]) -> tuple[np.ndarray, float]:
     """The best P(optimum) L-BFGS-B finds over multi-angle mixer-only betas from ``x0s`` (uses the optimum)."""
     optima = _optima(q)
@@ -111,7 +134,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     table = Table(f"Multi-angle mixer-only QAOA (one beta per partial mixer and layer, gammas 0), p = 1..{p_max}",
                   ["scenario", "assignments", "p", "parameters", "P(optimum), trained (Gibbs)", "<C>",
                    "P(most probable assignment)", "starts ending there (within 0.01)", "evaluations",
-                   "device estimates", "seconds", "multi-angle ceiling (uses the optimum)"])
+                   "device estimates", "seconds", "on the way: most paths per robot",
+                   "on the way: least P(most probable path)", "multi-angle ceiling (uses the optimum)"])
     rows: list[dict[str, Any]] = []
     notes: list[str] = []
     out: dict[str, Any] = {}
@@ -134,6 +158,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             trained.append(res)
             ceilings.append(ceiling)
             there = sum(abs(v - res.value) <= 0.01 for v in res.start_values)
+            widest, lowest = _walk(q, res.betas, p)
+            trow.update(walk_most_paths=widest, walk_least_max_probability=lowest)
             estimates = res.evaluations * (1 + 2 * res.num_parameters)
             base = {"scenario_file": source, "p": p, **circuit_columns(s, p)}
             rows.append(record(s, options, table="trained", **base, **trow, value=res.value,
@@ -143,7 +169,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                                **_row(q, prev_ceiling, p)))
             table.add(source, q.dimension, p, res.num_parameters, trow["p_opt"], trow["expectation"],
                       trow["p_most_probable"], f"{there} of {len(res.start_values)}", res.evaluations, estimates,
-                      round(res.seconds, 1),
+                      round(res.seconds, 1), widest, lowest,
                       ceiling)
             print(f"{source} p = {p}: P(optimum) {trow['p_opt']:.4g}, ceiling {ceiling:.4g}, "
                   f"{res.evaluations} evaluations, {res.seconds:.1f} s", file=sys.stderr, flush=True)
