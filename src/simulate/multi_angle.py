@@ -16,11 +16,11 @@ The angle vector is layer-major, then robot, then plaquette ascending, over the 
 :func:`mixer_sites`: the partial mixers whose flip is allowed on some path the mixer reaches (the compiled
 circuit's other partial mixers act as the identity on every reachable state; :func:`bindings` sets them to 0).
 
-What it finds (``docs/results/multi_angle.md``): with betas near 0 or pi a partial mixer is the identity or a
-deterministic SBF flip, so a trained multi-angle mixer-only circuit can be a classical sequence of flips that
-prepares one assignment. That is what the training converges to on two_robots_4x4 and two_robots_5x5: the
-state ends on a single assignment (a local minimum of the objective, where the gradient vanishes), the optimum
-from some starts and a worse assignment from others; the random starts are what makes it find the optimum.
+What it finds (``docs/results/multi_angle.md``): with a beta at pi a partial mixer is a deterministic SBF flip,
+at 0 the identity, so a multi-angle layer can apply any subset of the flips in plaquette order. On
+two_robots_4x4 the trained circuit is such a sequence of flips onto the optimum; on two_robots_5x5 (p >= 4) a
+robot's state spreads over several paths on the way and is interfered back onto the optimal one. Many starts
+end on a worse local minimum, where the gradient vanishes; the random starts are what finds the optimum.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
