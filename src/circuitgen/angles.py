@@ -31,6 +31,7 @@ __all__ = [
     "UnboundParameterError",
     "format_angle",
     "format_float",
+    "mixer_symbol",
     "symbol_sort_key",
 ]
 
@@ -75,7 +76,33 @@ def symbol_sort_key(name: str) -> tuple[int, int, int, str]:
     m = _LAYER_RE.match(name)
     if m is None:
         return (1, 0, 0, name)
-    return (0, int(m.group(2)), _KIND_ORDER.get(m.group(1), 2), name)
+    kind = m.group(1)
+    if kind.startswith("beta_r"):  # a multi-angle partial-mixer beta (mixer_symbol)
+        kind = "beta"
+    return (0, int(m.group(2)), _KIND_ORDER.get(kind, 2), name)
+
+
+def mixer_symbol(layer: int, robot: int, plaquette: int) -> str:
+    """The symbol of one partial mixer's beta in layer ``layer`` of a multi-angle circuit.
+
+    ``PlanOptions(angles="multi")`` gives every partial mixer (robot, plaquette) its own beta per layer
+    (multi-angle QAOA, Herrman et al. 2022) instead of the layer's ``beta_k``. The layer stays the trailing
+    number, so :func:`symbol_sort_key` orders the symbols by layer, gamma first, then the betas.
+
+    Args:
+        layer: QAOA layer ``k``.
+        robot: Robot index.
+        plaquette: Plaquette index (row-major, :attr:`gridcover.grid.Plaquette.index`).
+
+    Returns:
+        ``beta_r{robot}_q{plaquette}_{layer}``.
+
+    >>> mixer_symbol(2, 0, 5)
+    'beta_r0_q5_2'
+    >>> sorted(["beta_r1_q0_0", "gamma_1", "beta_r0_q3_0", "gamma_0"], key=symbol_sort_key)
+    ['gamma_0', 'beta_r0_q3_0', 'beta_r1_q0_0', 'gamma_1']
+    """
+    return f"beta_r{robot}_q{plaquette}_{layer}"
 
 
 def _check_number(x: object) -> float:

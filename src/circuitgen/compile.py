@@ -120,7 +120,7 @@ def compile_scenario(
     if bindings:
         # a layer's angles are names of the operator even where no gate uses them (a cost constant on the
         # feasible set leaves the phase separator empty, and gamma_k with it)
-        known = set(circuit.symbols) | {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+        known = set(circuit.symbols) | set(plan.parameter_names)
         unknown = sorted(set(bindings) - known)
         if unknown:
             have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"

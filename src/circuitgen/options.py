@@ -25,12 +25,14 @@ from gridcover.sbf import RULES, Rule
 from .cost import TARGETS, Target
 
 __all__ = [
-    "DEFAULT_PLAN", "INITIAL_STATES", "LAYOUT_METHODS", "OPTIMIZE", "PHASES", "PHASE_LAYOUTS", "Initial", "PhaseLayout",
-    "PlanOptions",
+    "ANGLES", "DEFAULT_PLAN", "INITIAL_STATES", "LAYOUT_METHODS", "OPTIMIZE", "PHASES", "PHASE_LAYOUTS", "Angles",
+    "Initial", "PhaseLayout", "PlanOptions",
 ]
 
 Initial = Literal["initial_path", "representatives", "local_search", "local_search_mix"]
 INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives", "local_search", "local_search_mix")
+Angles = Literal["layer", "multi"]
+ANGLES: tuple[Angles, ...] = ("layer", "multi")
 Phase = Literal["feasible", "whole-space"]
 PHASES: tuple[Phase, ...] = ("feasible", "whole-space")
 Optimize = Literal["cx", "depth"]
@@ -74,6 +76,9 @@ class PlanOptions:
             :func:`circuitgen.phase_locality.balance_sinks`; same gates and counts) or ``auto`` (default: when
             :func:`circuitgen.hardware.compile_for_device` routes onto a device that is not all-to-all,
             ``medial`` on a square grid and ``spatial`` elsewhere; ``pooled`` everywhere else).
+        angles: the mixer's parameters: ``layer`` (default; one ``beta_k`` per layer) or ``multi`` (multi-angle
+            QAOA: one beta per partial mixer and layer, :func:`circuitgen.angles.mixer_symbol`). Same gates and
+            counts, only the symbols differ; not a CLI flag of compile/estimate.
     """
 
     rule: Rule = "exact"
@@ -84,11 +89,12 @@ class PlanOptions:
     ancilla_budget: int | None = None
     fuse: bool = True
     phase_layout: PhaseLayout = "auto"
+    angles: Angles = "layer"
 
     def __post_init__(self) -> None:
         for name, allowed in (
             ("rule", RULES), ("initial", INITIAL_STATES), ("target", TARGETS), ("phase", PHASES),
-            ("optimize", OPTIMIZE), ("phase_layout", PHASE_LAYOUTS),
+            ("optimize", OPTIMIZE), ("phase_layout", PHASE_LAYOUTS), ("angles", ANGLES),
         ):  # fmt: skip
             value = getattr(self, name)
             if value not in allowed:

@@ -10,7 +10,10 @@
   (see ``docs/architecture.md``). The parity-basis partial mixers of a layer are cut at their rotations: each
   section between two rotations is a :class:`~circuitgen.gadgets.junction.MixerJunction` (the uncompute of one
   partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
-* ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``.
+* ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``; with
+  ``PlanOptions(angles="multi")`` (multi-angle QAOA) one beta per partial mixer and layer instead of ``beta_k``,
+  named by :func:`~circuitgen.angles.mixer_symbol` (``beta_r0_q5_0``: robot 0, plaquette 5, layer 0). The gates
+  are the same; only the symbols differ.
 
 :class:`QaoaPlan` holds the same circuit as gadgets; :meth:`QaoaPlan.call_graph` lists it as gadget kinds with
 multiplicities per part (:mod:`circuitgen.call_graph`), which every count sums without emitting anything.
@@ -41,7 +44,7 @@ from functools import cached_property, partial
 
 from gridcover.scenario import Scenario
 
-from .angles import Angle
+from .angles import Angle, mixer_symbol
 from .call_graph import CallGraph, Deferred, GadgetKind
 from .circuit import Circuit, Register, Section
 from .cost import Cost
@@ -95,13 +98,18 @@ class QaoaPlan:
     # -- layout
     @cached_property
     def _mixers(self) -> tuple[ParityPartialMixer | McxPartialMixer, ...]:
+        return tuple(m for _, m in self._planned_mixers)
+
+    @cached_property
+    def _planned_mixers(self) -> tuple[tuple[tuple[int, int], ParityPartialMixer | McxPartialMixer], ...]:
+        """Every partial mixer (robot-major, plaquettes row-major) with its ``(robot, plaquette index)``."""
         s, n = self.scenario, self.scenario.num_variables
         out = []
         for r in range(s.num_robots):
             for q in s.grid.plaquettes:
                 m = partial_mixer(s, r, q, Angle.symbol("beta"), n, self.options.rule, self.options.target)
                 if m is not None:
-                    out.append(m)
+                    out.append(((r, q.index), m))
         return tuple(out)
 
     @cached_property
@@ -172,8 +180,12 @@ class QaoaPlan:
             assert self.phase_plan is not None
             for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
-            beta = Angle.symbol(f"beta_{k}")
-            mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
+            if self.options.angles == "multi":
+                mixers = [dataclasses.replace(m, beta=Angle.symbol(mixer_symbol(k, r, q)))
+                          for (r, q), m in self._planned_mixers]  # fmt: skip
+            else:
+                beta = Angle.symbol(f"beta_{k}")
+                mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
             for g in mixer_pieces(mixers) if self.options.fuse else mixers:
                 yield f"mixer_{k}", g
 
@@ -270,6 +282,20 @@ class QaoaPlan:
             blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
             secs = [Section(name, tuple(b)) for b in blocks]
             yield from lower(Circuit(registers, secs)).sections if lowered else secs
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """The operator's angles in circuit order: per layer ``gamma_k``, then ``beta_k`` or (``angles="multi"``)
+        one :func:`~circuitgen.angles.mixer_symbol` per partial mixer. A name may have no gate (a phase separator
+        left empty by a constant cost) and is still a valid binding."""
+        out: list[str] = []
+        for k in range(self.p):
+            out.append(f"gamma_{k}")
+            if self.options.angles == "multi":
+                out += [mixer_symbol(k, r, q) for (r, q), _ in self._planned_mixers]
+            else:
+                out.append(f"beta_{k}")
+        return tuple(out)
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""

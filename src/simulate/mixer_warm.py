@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
+from simulate import subspace_kernels
 from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale
@@ -59,6 +60,7 @@ __all__ = [
     "MixerCeiling",
     "MixerWarmStart",
     "mixer_only_ceiling",
+    "p_optimum_and_gradients",
     "product_objective",
     "robot_states",
     "robot_states_gradient",
@@ -188,6 +190,12 @@ def product_objective(
         (True, True)
     """
     values, index = qaoa.cost_distribution_index()
+    if len(probs) == 2 and subspace_kernels.AVAILABLE and index.dtype in (np.uint8, np.uint16):
+        p0, p1 = (np.asarray(p, dtype=float) for p in probs)
+        weight = subspace_kernels.pair_level_weights(index, p0, p1, values.size)
+        value, dw = objective(values, weight)
+        g0, g1 = subspace_kernels.pair_weight_gradients(index, np.asarray(dw, dtype=float), p0, p1)
+        return float(value), float(np.dot(weight, values)), [g0, g1]
     n0 = index.shape[0]
     rest = np.ones(())
     for p in probs[1:]:
@@ -326,10 +334,18 @@ class MixerCeiling:
         return tuple(v for b in self.betas for v in (0.0, b))
 
 
-def _p_optimum_and_grads(
+def p_optimum_and_gradients(
     probs: Sequence[np.ndarray], optima: Sequence[Sequence[int]]
 ) -> tuple[float, list[np.ndarray]]:
-    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives."""
+    """``sum_o prod_r probs[r][o_r]`` over the optimal assignments ``o`` (array indices) and its derivatives.
+
+    Args:
+        probs: Per robot, a probability per basis path.
+        optima: The optimal assignments as per-robot indices.
+
+    Returns:
+        ``(P(optimum), grads)`` with ``grads[r] = dP/dprobs[r]``.
+    """
     total = 0.0
     grads = [np.zeros(len(p)) for p in probs]
     for o in optima:
@@ -376,7 +392,7 @@ def mixer_only_ceiling(
 
     def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
         states = robot_states(qaoa, x)
-        value, grads = _p_optimum_and_grads([v.real * v.real + v.imag * v.imag for v in states], optima)
+        value, grads = p_optimum_and_gradients([v.real * v.real + v.imag * v.imag for v in states], optima)
         return -value, -robot_states_gradient(qaoa, x, grads)
 
     rng = np.random.default_rng(seed)

@@ -11,8 +11,13 @@ Training (``optimizer=``): ``layerwise`` (default) is :func:`simulate.layerwise.
 on the exact gradient layer by layer ``p = 1 .. p`` with INTERP / zero-layer warm starts and
 ``random_starts`` seeded random starts at ``p = 1`` (``seed`` seeds them). ``nesterov``, ``cobyla`` and
 ``lbfgsb`` are one run of :func:`simulate.training.train` at depth ``p`` from ``init`` (``random`` from
-``seed`` by default). Every optimiser minimises ``objective`` (:mod:`simulate.objectives`; default
-``gibbs``), and ``trace`` holds its values.
+``seed`` by default). ``multi-angle`` trains the multi-angle mixer-only circuit (one beta per partial mixer and
+layer, every gamma 0: ``PlanOptions(angles="multi")``) layer by layer with
+:func:`simulate.multi_angle.train_multi_angle_layers` (constant, previous-depth and
+:data:`~simulate.multi_angle.MULTI_RANDOM_STARTS` seeded random starts per depth); ``angles`` are then its
+``p x partial mixers`` betas and ``bindings`` the compiled circuit's symbol values. Every optimiser minimises
+``objective`` (:mod:`simulate.objectives`; default ``gibbs``), and ``trace`` holds its values (``multi-angle``:
+the value each start ended on, depth by depth).
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -29,7 +34,7 @@ Example:
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from gridcover.cost import cost_parts
@@ -43,13 +48,21 @@ from simulate.layerwise import (
     LayerwiseResult,
     train_layerwise,
 )
-from simulate.objectives import OBJECTIVES, ObjectiveName
+from simulate.mixer_warm import product_objective
+from simulate.multi_angle import (
+    bindings,
+    most_probable_multi,
+    multi_robot_states,
+    p_optimum_multi,
+    train_multi_angle_layers,
+)
+from simulate.objectives import OBJECTIVES, Expectation, ObjectiveName
 from simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
 from simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
 
 __all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
 
-QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", *OPTIMIZERS)
+QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", "multi-angle", *OPTIMIZERS)
 
 
 @dataclass(frozen=True)
@@ -65,6 +78,9 @@ class QaoaSolution:
             kept at the final depth).
         schedule: The :class:`~simulate.layerwise.LayerwiseResult` (``None`` for a single run).
         initial: The initial state trained from.
+        bindings: ``multi-angle``: the compiled multi-angle circuit's symbol values (else empty).
+        estimates: ``multi-angle``: the device objective estimates of its training (a gradient by the
+            parameter-shift rule = 1 + 2 x parameters estimates).
     """
 
     solution: Solution
@@ -74,6 +90,8 @@ class QaoaSolution:
     training: TrainingResult
     schedule: LayerwiseResult | None = None
     initial: str = "initial_path"
+    bindings: dict[str, float] = field(default_factory=dict)
+    estimates: int | None = None
 
     @property
     def optimizer(self) -> str:
@@ -99,6 +117,8 @@ class QaoaSolution:
     @property
     def circuit_estimates(self) -> int:
         """Objective estimates a device would need (see :class:`~simulate.layerwise.LayerwiseResult`)."""
+        if self.estimates is not None:
+            return self.estimates
         if self.schedule is not None:
             return self.schedule.circuit_estimates
         t = self.training
@@ -153,6 +173,8 @@ def solve_qaoa(
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
+    if optimizer == "multi-angle":
+        return _solve_multi_angle(q, p, objective, initial, seed, maxiter, progress, t0)
     schedule = None
     if optimizer == "layerwise":
         if progress is not None:
@@ -201,6 +223,55 @@ def solve_qaoa(
     return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule, initial)
 
 
+def _solve_multi_angle(
+    q: SubspaceQAOA, p: int, objective: ObjectiveName, initial: str, seed: int, maxiter: int,
+    progress: ProgressFn | None, t0: float,
+) -> QaoaSolution:
+    """``optimizer="multi-angle"`` of :func:`solve_qaoa`."""
+    if progress is not None:
+        progress(0, p)
+    levels = train_multi_angle_layers(q, p, objective, seed=seed, maxiter=maxiter, progress=progress)
+    best = levels[-1]
+    masks, prob = most_probable_multi(q, best.betas, p)
+    optimum, _ = q.optimum()
+    p_opt = p_optimum_multi(q, best.betas, p)
+    start = p_optimum_multi(q, [0.0] * best.num_parameters, p)
+    zero = [v.real * v.real + v.imag * v.imag for v in multi_robot_states(q, [0.0] * best.num_parameters, p)]
+    start_mean = product_objective(q, zero, Expectation())[1]
+    evaluations = sum(lv.evaluations for lv in levels)
+    estimates = sum(lv.evaluations * (1 + 2 * lv.num_parameters) for lv in levels)
+    trace = tuple(v for lv in levels for v in lv.start_values)
+    seconds = time.perf_counter() - t0
+    training = TrainingResult(
+        p=p, optimizer="multi-angle", init="constant and random", seed=seed, initial_angles=(),
+        angles=best.betas, initial_expectation=start_mean,
+        expectation=best.expectation, initial_p_optimum=start, p_optimum=p_opt, trace=trace,
+        num_evaluations=evaluations, num_gradients=evaluations, seconds=seconds, objective=str(objective),
+        value=best.value,
+    )
+    solution = Solution(
+        method="qaoa",
+        paths=masks,
+        cost=cost_parts(q.scenario, masks),
+        seconds=seconds,
+        evaluated=evaluations,
+        trace=trace,
+        seed=seed,
+        rule=q.rule,
+        notes=(
+            f"p={p}, initial state {initial}, multi-angle mixer-only (every gamma 0, {best.num_parameters} betas: one "
+            f"per partial mixer and layer), objective {objective}, L-BFGS-B layer by layer p = 1..{p} from "
+            f"{len(best.start_values)} starts per depth, {evaluations} product-state evaluations with gradient; on a "
+            f"device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots at "
+            f"{SHOTS_PER_ESTIMATE:,} per estimate",
+            f"<C> {start_mean:.6g} -> {best.expectation:.6g}; the trained state reads an optimal assignment (cost "
+            f"{optimum:g}) with probability {p_opt:.4g}",
+        ),
+    )
+    return QaoaSolution(solution, prob, p_opt, optimum, training, None, initial, bindings(q, best.betas, p),
+                        estimates)
+
+
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     """JSON-ready dict: :func:`~gridcover.solvers.solution_to_dict` (without its trace) plus ``probability``,
     ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial`` (the initial state), ``objective``,
@@ -224,6 +295,8 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
         training_shots=res.circuit_estimates * SHOTS_PER_ESTIMATE,
         shots_per_estimate=SHOTS_PER_ESTIMATE,
     )
+    if res.bindings:
+        out["bindings"] = dict(res.bindings)
     if res.schedule is not None:
         out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,
                           "iterations": len(lv.trace) - 1} for lv in res.schedule.levels]

@@ -42,7 +42,10 @@ try:
 except ImportError:  # pragma: no cover - numba comes with quimb, a core dependency
     numba = None
 
-__all__ = ["AVAILABLE", "LANES", "level_weights", "mixer", "mixer_adjoint", "phase", "phase_weights"]
+__all__ = [
+    "AVAILABLE", "LANES", "level_weights", "mixer", "mixer_adjoint", "pair_level_weights", "pair_weight_gradients",
+    "phase", "phase_weights",
+]
 
 AVAILABLE = numba is not None
 LANES = 4
@@ -236,6 +239,39 @@ def _level_weights_impl(xr: np.ndarray, lev: np.ndarray, nlev: int) -> np.ndarra
     return part.sum(axis=0)
 
 
+def _pair_level_weights_impl(lev: np.ndarray, p0: np.ndarray, p1: np.ndarray, nlev: int) -> np.ndarray:
+    """``sum_{a, b: lev[a, b] = l} p0[a] p1[b]`` for every level ``l``."""
+    n0 = lev.shape[0]
+    nb = (n0 + 63) // 64
+    part = np.zeros((nb, nlev))
+    for blk in numba.prange(nb):
+        for a in range(blk * 64, min(n0, (blk + 1) * 64)):
+            pa = p0[a]
+            for b in range(lev.shape[1]):
+                part[blk, lev[a, b]] += pa * p1[b]
+    return part.sum(axis=0)
+
+
+def _pair_weight_gradients_impl(
+    lev: np.ndarray, dw: np.ndarray, p0: np.ndarray, p1: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """``g0[a] = sum_b dw[lev[a, b]] p1[b]`` and ``g1[b] = sum_a p0[a] dw[lev[a, b]]``."""
+    n0, n1 = lev.shape
+    nb = (n0 + 63) // 64
+    g0 = np.zeros(n0)
+    part = np.zeros((nb, n1))
+    for blk in numba.prange(nb):
+        for a in range(blk * 64, min(n0, (blk + 1) * 64)):
+            pa = p0[a]
+            acc = 0.0
+            for b in range(n1):
+                d = dw[lev[a, b]]
+                acc += d * p1[b]
+                part[blk, b] += pa * d
+            g0[a] = acc
+    return g0, part.sum(axis=0)
+
+
 if AVAILABLE:
     _inline = numba.njit(cache=True, nogil=True)
     _rotate_lanes = _inline(_rotate_lanes)
@@ -250,7 +286,9 @@ if AVAILABLE:
         name: (_serial(fn), _jit(fn))
         for name, fn in (("mixer", _mixer_impl), ("mixer_adjoint", _mixer_adjoint_impl), ("phase", _phase_impl),
                          ("phase_weights", _phase_weights_impl),
-                         ("level_weights", _level_weights_impl))
+                         ("level_weights", _level_weights_impl),
+                         ("pair_level_weights", _pair_level_weights_impl),
+                         ("pair_weight_gradients", _pair_weight_gradients_impl))
     }
 
 
@@ -336,6 +374,30 @@ def level_weights(x: np.ndarray, levels: np.ndarray, num_levels: int) -> np.ndar
         [0.64, 0.36]
     """
     return _pick("level_weights", x.size)(_real_view(x).reshape(-1), levels.reshape(-1), int(num_levels))
+
+
+def pair_level_weights(levels: np.ndarray, p0: np.ndarray, p1: np.ndarray, num_levels: int) -> np.ndarray:
+    """The measured cost's distribution of a two-robot product state: per level ``l``,
+    ``sum_{a, b: levels[a, b] = l} p0[a] p1[b]`` (one pass over the ``(n0, n1)`` uint8/uint16 levels, no state).
+
+    Example:
+        >>> import numpy as np
+        >>> lev = np.array([[0, 1], [1, 1]], dtype=np.uint8)
+        >>> pair_level_weights(lev, np.array([0.5, 0.5]), np.array([0.25, 0.75]), 2).tolist()
+        [0.125, 0.875]
+    """
+    return _pick("pair_level_weights", levels.size)(levels, np.ascontiguousarray(p0, dtype=np.float64),
+                                                    np.ascontiguousarray(p1, dtype=np.float64), int(num_levels))
+
+
+def pair_weight_gradients(
+    levels: np.ndarray, dw: np.ndarray, p0: np.ndarray, p1: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The derivatives of ``F(pair_level_weights(levels, p0, p1))`` in ``p0`` and ``p1`` given ``dw = dF/dweights``:
+    ``(sum_b dw[levels[a, b]] p1[b], sum_a p0[a] dw[levels[a, b]])``."""
+    return _pick("pair_weight_gradients", levels.size)(levels, np.ascontiguousarray(dw, dtype=np.float64),
+                                                       np.ascontiguousarray(p0, dtype=np.float64),
+                                                       np.ascontiguousarray(p1, dtype=np.float64))
 
 
 def _real_view(x: np.ndarray) -> np.ndarray:

@@ -125,3 +125,57 @@ def test_sparkline() -> None:
     assert sparkline([1.0, 1.0]) == "▁▁"
     line = sparkline(list(range(500)), width=40)
     assert len(line) == 40 and line[0] == "▁" and line[-1] == "█"
+
+
+TWO_3x3_TOML = """[grid]
+rows = 3
+cols = 3
+
+[[robots]]
+start = [0, 0]
+goal = [2, 2]
+
+[[robots]]
+start = [0, 2]
+goal = [2, 0]
+"""
+
+
+def _multi_angle_round_trip(scenario: str, tmp_path: Path, unbound: bool = False) -> dict:
+    """``--optimizer multi-angle`` at p = 1, then ``qcpp compile --angles multi`` bound with its ``bindings``."""
+    res = run("solve", scenario, "--method", "qaoa", "-p", "1", "--optimizer", "multi-angle", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    q = SubspaceQAOA(load_scenario(scenario))
+    assert out["optimizer"] == "multi-angle" and len(out["angles"]) == sum(len(b.pairs) for b in q.robot_bases)
+    assert out["circuit_estimates"] == out["evaluations"] * (1 + 2 * len(out["angles"]))
+    qasm = tmp_path / "bound.qasm"
+    binds = [f"{k}={v}" for k, v in out["bindings"].items()]
+    res = run("compile", scenario, "-p", "1", "--angles", "multi", "--qasm", str(qasm), "--bind", *binds)
+    assert res.exit_code == 0, res.output
+    text = qasm.read_text()
+    assert "input float" not in text and "beta_r" not in text
+    if unbound:
+        res = run("compile", scenario, "-p", "1", "--angles", "multi", "--qasm", "-")
+        assert res.exit_code == 0 and "input float[64] beta_r1_q0_0;" in res.stdout
+    return out
+
+
+@pytest.mark.heavy
+def test_multi_angle_training_binds_the_compiled_multi_angle_circuit(tmp_path: Path) -> None:
+    path = tmp_path / "two_3x3.toml"
+    path.write_text(TWO_3x3_TOML)
+    out = _multi_angle_round_trip(str(path), tmp_path)
+    assert out["p_optimum"] > 0.1
+
+
+@pytest.mark.heavy
+def test_multi_angle_reaches_the_optimum_of_two_robots_4x4_and_binds(tmp_path: Path) -> None:
+    four = str(EXAMPLES / "two_robots_4x4.toml")
+    out = _multi_angle_round_trip(four, tmp_path, unbound=True)
+    q = SubspaceQAOA(load_scenario(four))
+    assert out["cost"] == q.optimum()[0] and out["p_optimum"] > 0.99
+
+
+def test_bad_angles_flag_is_one_line() -> None:
+    assert_one_line_error(run("compile", PAPER, "--angles", "many"), "--angles", "layer or multi", "many")

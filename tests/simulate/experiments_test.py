@@ -286,6 +286,17 @@ def test_mixer_warm_start_quick_mode(tmp_path: Path) -> None:
                zip(ceiling, (r for r in out["rows"] if r["table"] == "mixer_only")))
 
 
+@pytest.mark.heavy
+def test_multi_angle_quick_mode(tmp_path: Path) -> None:
+    out = _check_quick_mode("multi_angle", [], tmp_path)
+    rows = [r for r in out["rows"] if r["table"] == "trained"]
+    ceilings = [r for r in out["rows"] if r["table"] == "ceiling"]
+    assert [r["p"] for r in rows] == [r["p"] for r in ceilings] == [1, 2]
+    assert all(c["p_opt"] >= r["p_opt"] - 1e-12 for r, c in zip(rows, ceilings))
+    sizes = [len(r["betas"]) for r in rows]
+    assert sizes == [r["parameters"] for r in rows] == [sizes[0], 2 * sizes[0]]
+
+
 def _check_quick_mode(name: str, figures: list[str], tmp_path: Path):  # type: ignore[no-untyped-def]
     out = _load(name).main(["--quick", "--out", str(tmp_path)])
     for f in figures:

@@ -38,8 +38,9 @@ from simulate.success import shots_for, tries_for
 from simulate.time_to_solution import GATE_MODEL, shot_seconds
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
-FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots", "mixer_warm_start")
-CIRCUIT_FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "qaoa_two_robots", "mixer_warm_start")
+FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots", "mixer_warm_start",
+         "multi_angle")
+CIRCUIT_FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "qaoa_two_robots", "mixer_warm_start", "multi_angle")
 CHEAP_DIMENSION = 2_000
 """States of up to this many assignments are recomputed in the default run."""
 HEAVY_DIMENSION = 100_000
@@ -187,6 +188,37 @@ def test_recorded_angles_give_the_recorded_state() -> None:
 @pytest.mark.heavy
 def test_recorded_angles_give_the_recorded_state_every_row() -> None:
     assert _check_states(heavy=True) > 0
+
+
+def _check_multi_angle_states(heavy: bool) -> int:
+    """Multi-angle rows (gammas 0, a product state: cheap even at 4x4): P(optimum) and ``<C>`` from the betas."""
+    import numpy as np
+
+    from simulate.mixer_warm import p_optimum_and_gradients, product_objective
+    from simulate.multi_angle import multi_robot_states
+    from simulate.objectives import Expectation
+
+    checked = 0
+    for r in _load("multi_angle")["rows"]:
+        cheap = r["scenario_file"] == "examples/two_robots_4x4.toml"
+        if _dimension(_key(r)) > HEAVY_DIMENSION or not (heavy or cheap):
+            continue
+        q = _qaoa(_key(r))
+        probs = [abs(v) ** 2 for v in multi_robot_states(q, r["betas"], r["p"])]
+        optima = [tuple(int(i) for i in np.unravel_index(k, q.dims)) for k in q.optimum()[1]]
+        assert p_optimum_and_gradients(probs, optima)[0] == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), r["p"]
+        assert product_objective(q, probs, Expectation())[1] == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9)
+        checked += 1
+    return checked
+
+
+def test_recorded_multi_angle_betas_give_the_recorded_state() -> None:
+    assert _check_multi_angle_states(heavy=False) > 0
+
+
+@pytest.mark.heavy
+def test_recorded_multi_angle_betas_give_the_recorded_state_every_row() -> None:
+    assert _check_multi_angle_states(heavy=True) > 0
 
 
 def test_exhaustive_search_and_seeded_annealing_rows() -> None:

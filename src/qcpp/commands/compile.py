@@ -95,6 +95,11 @@ def compile_command(
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
     phase_layout: PhaseLayoutFlag = "auto",
+    angles: Annotated[
+        str,
+        typer.Option("--angles", help="Mixer parameters: layer (one beta_k per layer) or multi (multi-angle QAOA: "
+                     "one beta_r<robot>_q<plaquette>_<k> per partial mixer and layer; same gates)."),
+    ] = "layer",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -128,7 +133,7 @@ def compile_command(
     ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
+    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
     if qasm_version not in (2, 3):
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     if layout not in LAYOUT_METHODS:
@@ -286,14 +291,14 @@ def _stream(
     from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
-    known = {f"{name}_{k}" for k in range(p) for name in ("gamma", "beta")}
+    if progress is not None:
+        progress.stage("planning the circuit")
+    plan = qaoa_plan(s, p, options)
+    known = set(plan.parameter_names)
     unknown = sorted(set(bindings) - known)
     if unknown:
         have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
         raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
-    if progress is not None:
-        progress.stage("planning the circuit")
-    plan = qaoa_plan(s, p, options)
     if progress is not None:
         progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register

@@ -87,12 +87,13 @@ PLAN_FLAGS: tuple[str, ...] = (
 
 def plan_options(
     rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None,
-    phase_layout: str = "auto",
+    phase_layout: str = "auto", angles: str = "layer",
 ) -> PlanOptions:
     """The :class:`~circuitgen.options.PlanOptions` of the plan flags.
 
     Args:
-        rule, initial, target, phase, optimize, ancilla_budget, phase_layout: the flags' values.
+        rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles: the flags' values
+            (``--angles``: ``qcpp compile`` only; the counts do not depend on it).
 
     Returns:
         The options.
@@ -103,6 +104,7 @@ def plan_options(
     try:
         return PlanOptions(
             rule, initial, target, phase, optimize, ancilla_budget, phase_layout=phase_layout,  # type: ignore[arg-type]
+            angles=angles,  # type: ignore[arg-type]
         )
     except ValueError as exc:
         field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first

@@ -15,7 +15,9 @@ accepts exactly its keys. Adding a method is one entry: a function
 
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
-``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts), ``--objective``
+``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts; ``multi-angle``: one
+beta per partial mixer and layer, gammas 0, and ``bindings`` for ``qcpp compile --angles multi --bind``),
+``--objective``
 (default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
 classical warm start, ``local_search_mix`` from its superposition with the initial paths), and adds
 ``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
@@ -200,7 +202,9 @@ def solve_command(
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (qaoa).")] = QAOA_DEFAULTS["p"],
     optimizer: Annotated[
         str, typer.Option("--optimizer", help="QAOA training (qaoa): layerwise (L-BFGS-B for p = 1, 2, ... in "
-                          "turn, warm-started), or one nesterov, cobyla or lbfgsb run at depth p.")
+                          "turn, warm-started), multi-angle (one beta per partial mixer and layer, every gamma 0, "
+                          "layer by layer from seeded random starts; the JSON adds the circuit's bindings), or one "
+                          "nesterov, cobyla or lbfgsb run at depth p.")
     ] = QAOA_DEFAULTS["optimizer"],
     objective: Annotated[
         str, typer.Option("--objective", help="QAOA training objective (qaoa): gibbs, cvar or expectation.")
