@@ -16,7 +16,6 @@ from typing import Any
 
 from gridcover.scenario import Scenario
 
-from .angles import symbol_sort_key
 from .circuit import Circuit, Register
 from .lowering import lower
 from .options import DEFAULT_PLAN, PlanOptions
@@ -118,13 +117,7 @@ def compile_scenario(
     plan = qaoa_plan(scenario, p, options)
     circuit = plan.circuit()
     if bindings:
-        # a layer's angles are names of the operator even where no gate uses them (a cost constant on the
-        # feasible set leaves the phase separator empty, and gamma_k with it)
-        known = set(circuit.symbols) | set(plan.parameter_names)
-        unknown = sorted(set(bindings) - known)
-        if unknown:
-            have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-            raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+        plan.check_bindings(bindings)
     if lowered:
         circuit = lower(circuit)
     if bindings:

@@ -38,13 +38,13 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from functools import cached_property, partial
 
 from gridcover.scenario import Scenario
 
-from .angles import Angle, mixer_symbol
+from .angles import Angle, mixer_symbol, symbol_sort_key
 from .call_graph import CallGraph, Deferred, GadgetKind
 from .circuit import Circuit, Register, Section
 from .cost import Cost
@@ -296,6 +296,21 @@ class QaoaPlan:
             else:
                 out.append(f"beta_{k}")
         return tuple(out)
+
+    def check_bindings(self, names: Iterable[str]) -> None:
+        """Refuse angle names the operator does not have (see :attr:`parameter_names`).
+
+        Args:
+            names: The names a user binds.
+
+        Raises:
+            ValueError: naming the unknown names and listing the known ones.
+        """
+        known = set(self.parameter_names)
+        unknown = sorted(set(names) - known)
+        if unknown:
+            have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
+            raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""

@@ -16,7 +16,7 @@ from circuitgen.initial_state import initial_state_gates, superposition_gates
 from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
 from circuitgen.phase import phase_separator_gates
-from circuitgen.qaoa import qaoa_circuit, qubit_map
+from circuitgen.qaoa import qaoa_circuit, qaoa_plan, qubit_map
 from gridcover.cost import cost
 from gridcover.grid import Grid
 from gridcover.hamiltonian import ising_hamiltonian
@@ -134,6 +134,18 @@ def test_qaoa_circuit_layout_and_symbols() -> None:
     assert list(qm.ancillas) == list(range(12, lower(c).num_qubits))
     with pytest.raises(ValueError, match="non-negative"):
         qaoa_circuit(s, -1)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(s=scenarios(max_side=3, max_robots=2), p=st.integers(1, 2), angles=st.sampled_from(["layer", "multi"]))
+def test_every_symbol_of_the_circuit_is_a_parameter_name(s: Scenario, p: int, angles: str) -> None:
+    # compile --bind checks names against parameter_names alone, so no gate may carry an angle it does not list
+    plan = qaoa_plan(s, p, PlanOptions(angles=angles))
+    assert set(plan.circuit().symbols) <= set(plan.parameter_names)
+    assert len(set(plan.parameter_names)) == len(plan.parameter_names)
+    plan.check_bindings(plan.parameter_names)
+    with pytest.raises(ValueError, match="unknown symbol"):
+        plan.check_bindings(["gamma_99"])
 
 
 def test_whole_lowered_circuit_stays_feasible_with_clean_ancillas() -> None:

@@ -294,11 +294,7 @@ def _stream(
     if progress is not None:
         progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
-    known = set(plan.parameter_names)
-    unknown = sorted(set(bindings) - known)
-    if unknown:
-        have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-        raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+    plan.check_bindings(bindings)
     if progress is not None:
         progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
