@@ -9,8 +9,8 @@ and how they were obtained (``routed_kind``: ``exact`` = what ``qcpp compile --d
 * ``qcpp estimate --grid 30x30 --robots 1 -p 3 --device grid --json`` (no goal: the window sum exact at a real
   size, where every window is local);
 * ``qcpp compile <6x6, 3 robots> --device grid --bind ... --qasm FILE --json`` (goal: under 30 s), and the same
-  on ``heavy-hex`` for 4x4 with 2 robots (goal: under 10 s) and 6x6 with 3 (goal: under 30 s), each with the
-  routed two-qubit count, the device and the layout it reports.
+  on ``heavy-hex`` for 4x4 with 2 robots and 6x6 with 3 (no issue goal: timed because the cells' plan choice
+  makes them the slowest compiles), each with the routed two-qubit count, the device and the layout it reports.
 """
 
 from __future__ import annotations
@@ -47,8 +47,8 @@ ESTIMATES = (
 
 COMPILES = (
     ((6, 6, 3), "grid", "30 s"),
-    ((4, 4, 2), "heavy-hex", "10 s"),
-    ((6, 6, 3), "heavy-hex", "30 s"),
+    ((4, 4, 2), "heavy-hex", "-"),
+    ((6, 6, 3), "heavy-hex", "-"),
 )
 """``qcpp compile`` rows: (rows, cols, robots) of the default scenario, device family, goal."""
 
