@@ -32,7 +32,7 @@ def test_compile_and_estimate_take_the_same_plan_flags() -> None:
     for flag in PLAN_FLAGS:
         assert flag in compile_flags and compile_flags[flag] == estimate_flags[flag], flag
     plan_like = {"--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--fuse",
-                 "--phase-layout"}
+                 "--phase-layout", "--mixer-angles"}
     assert set(compile_flags) & plan_like == set(estimate_flags) & plan_like == set(PLAN_FLAGS)
 
 
@@ -40,7 +40,7 @@ def test_compile_and_estimate_take_the_same_plan_flags() -> None:
 @pytest.mark.parametrize(
     ("flag", "value"),
     [("--rule", "fast"), ("--initial", "path"), ("--target", "qpu"), ("--phase", "ising"), ("--optimize", "t"),
-     ("--ancilla-budget", "-1"), ("--phase-layout", "ring")],
+     ("--ancilla-budget", "-1"), ("--phase-layout", "ring"), ("--mixer-angles", "many")],
 )  # fmt: skip
 def test_a_bad_plan_flag_is_one_line_naming_it(command: str, flag: str, value: str) -> None:
     where = [EXAMPLE] if command == "compile" else ["--scenario", EXAMPLE]

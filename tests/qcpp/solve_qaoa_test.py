@@ -142,7 +142,7 @@ goal = [2, 0]
 
 
 def _multi_angle_round_trip(scenario: str, tmp_path: Path, unbound: bool = False) -> dict:
-    """``--optimizer multi-angle`` at p = 1, then ``qcpp compile --angles multi`` bound with its ``bindings``."""
+    """``--optimizer multi-angle`` at p = 1, then ``qcpp compile --mixer-angles multi`` bound with its ``bindings``."""
     res = run("solve", scenario, "--method", "qaoa", "-p", "1", "--optimizer", "multi-angle", "--json")
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
@@ -151,12 +151,12 @@ def _multi_angle_round_trip(scenario: str, tmp_path: Path, unbound: bool = False
     assert out["circuit_estimates"] == out["evaluations"] * (1 + 2 * len(out["angles"]))
     qasm = tmp_path / "bound.qasm"
     binds = [f"{k}={v}" for k, v in out["bindings"].items()]
-    res = run("compile", scenario, "-p", "1", "--angles", "multi", "--qasm", str(qasm), "--bind", *binds)
+    res = run("compile", scenario, "-p", "1", "--mixer-angles", "multi", "--qasm", str(qasm), "--bind", *binds)
     assert res.exit_code == 0, res.output
     text = qasm.read_text()
     assert "input float" not in text and "beta_r" not in text
     if unbound:
-        res = run("compile", scenario, "-p", "1", "--angles", "multi", "--qasm", "-")
+        res = run("compile", scenario, "-p", "1", "--mixer-angles", "multi", "--qasm", "-")
         assert res.exit_code == 0 and "input float[64] beta_r1_q0_0;" in res.stdout
     return out
 
@@ -178,4 +178,4 @@ def test_multi_angle_reaches_the_optimum_of_two_robots_4x4_and_binds(tmp_path: P
 
 
 def test_bad_angles_flag_is_one_line() -> None:
-    assert_one_line_error(run("compile", PAPER, "--angles", "many"), "--angles", "layer or multi", "many")
+    assert_one_line_error(run("compile", PAPER, "--mixer-angles", "many"), "--mixer-angles", "layer or multi", "many")

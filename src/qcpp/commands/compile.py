@@ -53,6 +53,7 @@ from qcppio.atomic import check_output
 
 from .plan_flags import (
     AncillaBudgetFlag,
+    AnglesFlag,
     InitialFlag,
     OptimizeFlag,
     PhaseFlag,
@@ -95,11 +96,7 @@ def compile_command(
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
     phase_layout: PhaseLayoutFlag = "auto",
-    angles: Annotated[
-        str,
-        typer.Option("--angles", help="Mixer parameters: layer (one beta_k per layer) or multi (multi-angle QAOA: "
-                     "one beta_r<robot>_q<plaquette>_<k> per partial mixer and layer; same gates)."),
-    ] = "layer",
+    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,

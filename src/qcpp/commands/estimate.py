@@ -35,6 +35,7 @@ from qcppio.atomic import check_output
 
 from .plan_flags import (
     AncillaBudgetFlag,
+    AnglesFlag,
     InitialFlag,
     OptimizeFlag,
     PhaseFlag,
@@ -84,6 +85,7 @@ def estimate(
     optimize: OptimizeFlag = "cx",
     ancilla_budget: AncillaBudgetFlag = None,
     phase_layout: PhaseLayoutFlag = "auto",
+    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool,
         typer.Option(
@@ -187,7 +189,7 @@ def estimate(
     for bad, message in checks:
         if bad:
             raise ValueError(message)
-    plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout)
+    plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
     if device is not None:
         from circuitgen.devices import DeviceError, get_device
 

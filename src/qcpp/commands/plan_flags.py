@@ -24,6 +24,7 @@ from circuitgen.options import INITIAL_STATES, PlanOptions
 __all__ = [
     "PLAN_FLAGS",
     "AncillaBudgetFlag",
+    "AnglesFlag",
     "InitialFlag",
     "OptimizeFlag",
     "PhaseFlag",
@@ -79,8 +80,17 @@ PhaseLayoutFlag = Annotated[
     ),
 ]
 
+AnglesFlag = Annotated[
+    str,
+    typer.Option(
+        "--mixer-angles",
+        help="Mixer parameters: layer (one beta_k per layer) or multi (multi-angle QAOA: one "
+        "beta_r<robot>_q<plaquette>_<k> per partial mixer and layer; same gates, so the same counts).",
+    ),
+]
+
 PLAN_FLAGS: tuple[str, ...] = (
-    "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout",
+    "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout", "--mixer-angles",
 )
 """The flags above, in :class:`~circuitgen.options.PlanOptions` field order."""
 
@@ -93,7 +103,7 @@ def plan_options(
 
     Args:
         rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles: the flags' values
-            (``--angles``: ``qcpp compile`` only; the counts do not depend on it).
+            (``angles`` is ``--mixer-angles``).
 
     Returns:
         The options.
@@ -108,4 +118,5 @@ def plan_options(
         )
     except ValueError as exc:
         field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
-        raise ValueError(f"--{field.replace('_', '-')}: {problem}") from None
+        flag = "--mixer-angles" if field == "angles" else f"--{field.replace('_', '-')}"
+        raise ValueError(f"{flag}: {problem}") from None

@@ -16,7 +16,7 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
 ``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts; ``multi-angle``: one
-beta per partial mixer and layer, gammas 0, and ``bindings`` for ``qcpp compile --angles multi --bind``),
+beta per partial mixer and layer, gammas 0, and ``bindings`` for ``qcpp compile --mixer-angles multi --bind``),
 ``--objective``
 (default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
 classical warm start, ``local_search_mix`` from its superposition with the initial paths), and adds
