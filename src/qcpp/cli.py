@@ -287,7 +287,10 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "initial": _lazy("circuitgen.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
     "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
-    "solve.optimizer": _lazy("simulate.training", "OPTIMIZERS"),
+    "solve.optimizer": _lazy("simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
+    "phase_layout": _lazy("circuitgen.options", "PHASE_LAYOUTS"),
+    "compile.angles": _lazy("circuitgen.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
+    "estimate.angles": _lazy("circuitgen.options", "ANGLES"),
     "simulate.method": _lazy("simulate.evaluate", "METHODS"),
     "validate.backend": _lazy("simulate.validate", "BACKENDS"),
     "estimate.fmt": _lazy("estimators.tables", "FORMATS"),
