@@ -137,6 +137,7 @@ def solve_qaoa(
     rule: Rule = "exact",
     maxiter: int = DEFAULT_MAXITER,
     random_starts: int = DEFAULT_RANDOM_STARTS,
+    mixer_warm: bool = False,
     progress: ProgressFn | None = None,
 ) -> QaoaSolution:
     """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
@@ -153,6 +154,8 @@ def solve_qaoa(
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`simulate.training.train`).
         random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
+        mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
+            (:mod:`simulate.mixer_warm`; an option, not the default).
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
 
@@ -160,11 +163,14 @@ def solve_qaoa(
         The :class:`QaoaSolution`.
 
     Raises:
-        ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``, or a mixer
-            the subspace simulator cannot represent (``NonUnitaryMixerError``).
+        ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,
+            ``mixer_warm`` with another optimiser than ``layerwise``, or a mixer the subspace simulator cannot
+            represent (``NonUnitaryMixerError``).
     """
     if optimizer not in QAOA_OPTIMIZERS:
         raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(QAOA_OPTIMIZERS)})")
+    if mixer_warm and optimizer != "layerwise":
+        raise ValueError(f"mixer_warm applies to the layerwise optimizer only (got {optimizer!r})")
     if objective not in OBJECTIVES:
         raise ValueError(f"unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if init not in INITS:
@@ -180,9 +186,12 @@ def solve_qaoa(
         if progress is not None:
             progress(0, p)
         schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
-                                   progress=progress)
+                                   mixer_warm=mixer_warm, progress=progress)
         result = schedule.best
         how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
+        if mixer_warm:
+            how += (f", every level also from the mixer-only warm start ({schedule.mixer_evaluations} product-state "
+                    "evaluations)")
     else:
         if progress is not None:
             progress(0, 1)
@@ -278,7 +287,8 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     ``expectation``, ``trace`` (the objective), ``evaluations``, ``circuit_estimates``, ``training_shots``
     (estimates x ``shots_per_estimate``, an assumed :data:`simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for
     ``layerwise``, ``levels`` (per depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``,
-    ``iterations``)."""
+    ``iterations``) and ``mixer_evaluations`` (the mixer-only warm start's product-state evaluations, 0 without
+    it)."""
     out = solution_to_dict(scenario, res.solution, include_trace=False)
     out.update(
         probability=res.probability,
@@ -298,6 +308,7 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     if res.bindings:
         out["bindings"] = dict(res.bindings)
     if res.schedule is not None:
+        out["mixer_evaluations"] = res.schedule.mixer_evaluations
         out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,
                           "iterations": len(lv.trace) - 1} for lv in res.schedule.levels]
     return out

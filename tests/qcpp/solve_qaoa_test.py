@@ -90,10 +90,29 @@ def test_default_training_is_layerwise_and_objective_is_selectable() -> None:
         (["--method", "dfs", "--objective", "cvar"], ["--objective", "qaoa only"]),
         (["--method", "qaoa", "--initial", "warm"], ["unknown initial state", "warm"]),
         (["--method", "anneal", "--initial", "local_search"], ["--initial", "qaoa only"]),
+        (["--method", "anneal", "--mixer-warm"], ["--mixer-warm", "qaoa only"]),
+        (["--method", "qaoa", "--optimizer", "cobyla", "--mixer-warm"], ["--mixer-warm", "layerwise only"]),
     ],
 )
 def test_bad_options_exit_2_with_one_line(args: list[str], fragments: list[str]) -> None:
     assert_one_line_error(run("solve", PAPER, *args), *fragments)
+
+
+def test_mixer_warm_start_is_the_trainers_and_is_reported() -> None:
+    """``--mixer-warm``: the answer is ``train_layerwise(mixer_warm=True)``'s, the JSON counts the product-state
+    evaluations, and the default run has none."""
+    s = load_scenario(PAPER)
+    res = run("solve", PAPER, "--method", "qaoa", "-p", "2", "--mixer-warm", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    direct = solve_qaoa(s, p=2, mixer_warm=True)
+    assert direct.schedule is not None and direct.schedule.mixer_evaluations > 0
+    assert out["mixer_evaluations"] == direct.schedule.mixer_evaluations
+    assert out["angles"] == list(direct.angles) and out["p_optimum"] == pytest.approx(direct.p_optimum)
+    assert any("mixer-only warm start" in n for n in out["notes"])
+    assert solve_qaoa(s, p=2).schedule.mixer_evaluations == 0  # type: ignore[union-attr]
+    with pytest.raises(ValueError, match="layerwise"):
+        solve_qaoa(s, p=1, optimizer="lbfgsb", mixer_warm=True)
 
 
 @pytest.mark.parametrize("initial", ["local_search", "local_search_mix"])

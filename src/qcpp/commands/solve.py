@@ -66,7 +66,8 @@ __all__ = [
     "sparkline",
 ]
 
-QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path"}
+QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
+                 "mixer_warm": False}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
@@ -217,6 +218,11 @@ def solve_command(
                           "the paths of a steepest descent over SBF moves; local_search_mix: per robot the initial "
                           "and the descent path in equal superposition).")
     ] = QAOA_DEFAULTS["initial"],
+    mixer_warm: Annotated[
+        bool, typer.Option("--mixer-warm", help="QAOA layerwise training (qaoa): also start every level from the "
+                           "mixer-only warm start (betas trained with every gamma 0, where the state is a product "
+                           "over robots).")
+    ] = QAOA_DEFAULTS["mixer_warm"],
     time_limit: Annotated[
         float | None,
         typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
@@ -228,12 +234,15 @@ def solve_command(
         raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
-    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial}
+    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
+                    "mixer_warm": mixer_warm}
     if method != "qaoa":
         for name, value in qaoa_options.items():
             if value != QAOA_DEFAULTS[name]:
-                flag = "-p" if name == "p" else f"--{name}"
+                flag = "-p" if name == "p" else f"--{name.replace('_', '-')}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    if mixer_warm and optimizer != "layerwise":
+        raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
     if time_limit is not None and method != "cpsat":
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
     _cpsat_time_limit(time_limit)
