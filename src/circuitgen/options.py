@@ -78,7 +78,7 @@ class PlanOptions:
             ``medial`` on a square grid and ``spatial`` elsewhere; ``pooled`` everywhere else).
         angles: the mixer's parameters: ``layer`` (default; one ``beta_k`` per layer) or ``multi`` (multi-angle
             QAOA: one beta per partial mixer and layer, :func:`circuitgen.angles.mixer_symbol`). Same gates and
-            counts, only the symbols differ; not a CLI flag of compile/estimate.
+            counts, only the symbols differ (``--mixer-angles`` of compile and estimate).
     """
 
     rule: Rule = "exact"
