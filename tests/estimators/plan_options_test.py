@@ -49,6 +49,7 @@ ONE_AT_A_TIME = [
     PlanOptions(optimize="depth"),
     PlanOptions(ancilla_budget=0),
     PlanOptions(ancilla_budget=5),
+    PlanOptions(angles="multi"),
     PlanOptions(phase="whole-space", target="ft", optimize="depth", ancilla_budget=0),
 ]
 
