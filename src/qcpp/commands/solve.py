@@ -241,6 +241,11 @@ def solve_command(
             if value != QAOA_DEFAULTS[name]:
                 flag = "-p" if name == "p" else f"--{name.replace('_', '-')}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    if method == "qaoa":
+        from simulate.objectives import OBJECTIVES
+
+        if objective not in OBJECTIVES:  # before the scenario is loaded, and naming the flag
+            raise ValueError(f"--objective: expected one of {', '.join(OBJECTIVES)}, got {objective!r}")
     if mixer_warm and optimizer != "layerwise":
         raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
     if time_limit is not None and method != "cpsat":
