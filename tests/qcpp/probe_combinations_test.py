@@ -20,10 +20,13 @@ REFUSED = [
     (("compile", PAPER, "--local-ancillas"), ("--local-ancillas", "--device")),
     (("solve", PAPER, "-m", "qaoa", "--objective", "cvar:2"), ("--objective", "cvar:2", "gibbs")),
     (("solve", PAPER, "-m", "qaoa", "--optimizer", "multi-angle", "--objective", "bogus"), ("--objective", "bogus")),
+    (("simulate", PAPER, "--angles", "0.1,0.2,0.3"), ("--angles", "needs 2 angles", "got 3")),
+    (("validate", PAPER, "--dask", "bogus"), ("--dask", "missing port number", "tcp://host:8786")),
+    (("validate", PAPER, "--dask", "tcp://h"), ("--dask", "missing port number")),
 ]
 
 
-@pytest.mark.parametrize(("args", "fragments"), REFUSED, ids=[" ".join(a[1:]) for a, _ in REFUSED])
+@pytest.mark.parametrize(("args", "fragments"), REFUSED, ids=[" ".join((a[0], *a[2:])) for a, _ in REFUSED])
 def test_combination_is_one_line_naming_the_flag(args: tuple[str, ...], fragments: tuple[str, ...]) -> None:
     assert_one_line_error(run(*args), *fragments)
 
