@@ -34,3 +34,16 @@ def test_combination_is_one_line_naming_the_flag(args: tuple[str, ...], fragment
 def test_layout_auto_without_device_is_the_default_and_accepted() -> None:
     res = run("compile", PAPER, "--layout", "auto", "--json")
     assert res.exit_code == 0, res.output
+
+
+def test_qaoa_training_too_big_for_memory_is_refused_before_enumerating(tmp_path: Path) -> None:
+    """3 robots on 5x5: over 10^10 feasible assignments, so one state alone is hundreds of GB (it used to run out
+    of memory after enumerating the paths); the size counted so far is named, and the override."""
+    path = tmp_path / "three_5x5.toml"
+    robots = "".join(f"[[robots]]\nstart = {a}\ngoal = {b}\n" for a, b in (([0, 0], [4, 4]), ([0, 4], [4, 0]),
+                                                                         ([4, 0], [0, 4])))
+    path.write_text(f"[grid]\nrows = 5\ncols = 5\n{robots}")
+    for optimizer in ("layerwise", "multi-angle"):
+        res = run("solve", str(path), "-m", "qaoa", "--optimizer", optimizer)
+        assert_one_line_error(res, "three_5x5.toml: training QAOA on at least", "feasible assignments",
+                              "over the memory budget", "--allow-large")
