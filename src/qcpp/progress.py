@@ -209,8 +209,13 @@ class Progress:
 
     def stage(self, text: str) -> None:
         """Name the stage the work is in now (``compiling the circuit``); shown next to the counts."""
+        changed = text != self.stage_text
         self.stage_text = text
         self._after_change()
+        if changed and self._mode == "lines" and self._interval > 0 and self._elapsed() >= self._first_after:
+            # say so now: the next stage may be one native call that holds the GIL (QCEC, a contraction), and
+            # then the heartbeat thread cannot write until it returns
+            self._line()
 
     def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
         """Yield ``items``, counting one step as each is handed out (done = items handed out before it).

@@ -284,3 +284,18 @@ def test_simulate_refuses_a_subspace_that_does_not_fit() -> None:
     res = invoke("simulate", str(EXAMPLES / "two_robots_5x5.toml"))
     assert_one_line_error(res, "two_robots_5x5.toml", "simulating at least", "feasible assignments", "--allow-large")
     assert invoke("simulate", str(EXAMPLES / "two_robots_4x4.toml"), "--json").exit_code == 0
+
+
+def test_a_new_stage_is_written_at_once_on_a_pipe_past_the_first_line_delay(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A native call that holds the GIL (QCEC) starves the heartbeat thread: its stage is announced on entry."""
+    monkeypatch.setattr(Progress, "_heartbeat", lambda self: None)  # only the stage's own line, no race with it
+    out = io.StringIO()
+    with Progress("validate x", stream=out, mode="lines", interval=600.0, first_after=0.0) as bar:
+        bar.stage("proving equivalence")
+        bar.stage("proving equivalence")  # the same stage again: no second line
+        written = out.getvalue()
+        quiet = io.StringIO()
+        with Progress("quick", stream=quiet, mode="lines", interval=600.0, first_after=600.0) as fast:
+            fast.stage("compiling")  # before the first-line delay: quick commands stay silent
+        assert quiet.getvalue() == ""
+    assert written.count("\n") == 1 and written.startswith("validate x: proving equivalence, ")

@@ -135,6 +135,11 @@ def compile_command(
         raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
     if layout not in LAYOUT_METHODS:
         raise ValueError(f"--layout: expected {', '.join(LAYOUT_METHODS[:-1])} or {LAYOUT_METHODS[-1]}, got {layout!r}")
+    if device is None:  # routing flags without a device used to be ignored without a word
+        if layout != "auto":
+            raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
+        if local_ancillas:
+            raise ValueError("--local-ancillas: applies with --device only (no device given)")
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")

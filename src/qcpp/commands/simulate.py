@@ -100,6 +100,8 @@ def simulate_command(
     if rule not in RULES:
         raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     values = parse_angles(angles) if angles is not None else None
+    if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
+        raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
     s = load_scenario(scenario, check_range=True, phases=True)
     if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
         _guard(s, scenario)

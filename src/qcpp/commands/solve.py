@@ -170,6 +170,33 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
             ) from None
 
 
+STATE_BYTES_PER_ASSIGNMENT = 16
+"""One complex128 amplitude per feasible assignment: the least one QAOA state of the subspace simulator holds."""
+
+
+def _qaoa_guard(scenario: Scenario, path: Path, description: str) -> None:
+    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold even one state in the memory
+    budget (half the available memory); ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory
+    after the path enumeration and 3 robots on 6x6 enumerated paths for minutes first."""
+    from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from simulate.validate import validate_size
+
+    budget = memory_budget()
+    if large_allowed() or budget is None:
+        return
+    with Progress(description) as bar:
+        bar.stage("counting feasible assignments")
+        size = validate_size(scenario, max_assignments=budget // STATE_BYTES_PER_ASSIGNMENT)
+    need = size.assignments * STATE_BYTES_PER_ASSIGNMENT
+    if need > budget:
+        counted = " x ".join(f"{n:,}" for n in size.paths_per_robot)
+        raise ValueError(
+            f"{path}: training QAOA on {'at least ' if not size.exact else ''}{size.assignments:,} feasible "
+            f"assignments (paths counted: {counted}): one state needs at least {need / 1e9:.1f} GB, over the memory "
+            f"budget of {budget / 1e9:.1f} GB; pass {OVERRIDE_FLAG} to try anyway, or use --method cpsat or anneal"
+        )
+
+
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
     a0, a1, a2 = scenario.objective.alpha
     table = Table(title="cost", title_justify="left")
@@ -241,6 +268,11 @@ def solve_command(
             if value != QAOA_DEFAULTS[name]:
                 flag = "-p" if name == "p" else f"--{name.replace('_', '-')}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    if method == "qaoa":
+        from simulate.objectives import OBJECTIVES
+
+        if objective not in OBJECTIVES:  # before the scenario is loaded, and naming the flag
+            raise ValueError(f"--objective: unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if mixer_warm and optimizer != "layerwise":
         raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
     if time_limit is not None and method != "cpsat":
@@ -253,6 +285,8 @@ def solve_command(
     qaoa = None
     exact = None
     description = f"{method} on {scenario.name}"
+    if method == "qaoa":
+        _qaoa_guard(s, scenario, description)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
     with progress_reporter(description, "assignments" if method == "dfs" else "steps") as progress:
         if dfs_lists is not None:

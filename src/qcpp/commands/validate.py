@@ -46,6 +46,28 @@ HELP = (
 )
 
 
+def _check_dask_address(text: str) -> None:
+    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (it used to
+    fail after the simulation with dask's own message, which named no flag).
+
+    Example:
+        >>> _check_dask_address("tcp://127.0.0.1:8786")
+    """
+    if text.strip() == "local":
+        return
+    try:
+        from distributed.comm import parse_address
+        from distributed.comm.addressing import parse_host_port
+    except ImportError:
+        return  # the tensor backend says that dask is missing
+    try:
+        scheme, location = parse_address(text.strip())
+        if scheme in ("tcp", "tls"):
+            parse_host_port(location)
+    except ValueError as exc:
+        raise ValueError(f"--dask: {exc} (expected a scheduler address such as tcp://host:8786, or 'local')") from None
+
+
 def validate_command(
     scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
     p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
@@ -84,6 +106,8 @@ def validate_command(
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
     if dask is not None and not dask.strip():
         raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
+    if dask is not None:
+        _check_dask_address(dask)
     if rule not in ("exact", "paper"):
         raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     values = None
