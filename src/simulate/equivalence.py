@@ -34,7 +34,7 @@ from typing import Any
 from circuitgen.circuit import Circuit
 from qcppio.capture import capture_native_output
 
-__all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "to_qiskit"]
+__all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "check_sections_interruptibly", "to_qiskit"]
 
 _EQUIVALENT = frozenset({"equivalent", "equivalent_up_to_global_phase"})
 
@@ -217,3 +217,59 @@ def _clean_blocks(high: Circuit) -> list[tuple[int, int]]:
     if lo < len(high.sections):
         out.append((lo, len(high.sections)))
     return out
+
+
+def check_sections_interruptibly(
+    high: Circuit, low: Circuit, num_plain: int, *, global_phase_ok: bool = False, **options: Any
+) -> EquivalenceResult:
+    """:func:`check_sections` in a child process, so that Ctrl-C and SIGTERM stop it at once.
+
+    QCEC's native check holds the interpreter lock for as long as it runs (minutes on a large section), so a
+    signal handler in the same process runs only when it returns. Here the parent waits on a pipe in short
+    polls, where its handlers run; when a signal's exception (or any other) leaves the wait, the child is
+    terminated. The child starts by ``spawn`` (no copy of the parent's threads or locks), which costs its imports
+    (about a second).
+
+    Args:
+        high, low, num_plain, global_phase_ok, options: as for :func:`check_sections`.
+
+    Returns:
+        The :class:`EquivalenceResult` of :func:`check_sections`.
+
+    Raises:
+        Whatever :func:`check_sections` raised in the child; ``RuntimeError`` if the child died without an answer.
+    """
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("spawn")
+    receiver, sender = ctx.Pipe(duplex=False)
+    kwargs = {"global_phase_ok": global_phase_ok, **options}
+    child = ctx.Process(target=_sections_in_child, args=(sender, high, low, num_plain, kwargs), daemon=True)
+    child.start()
+    sender.close()
+    try:
+        while not receiver.poll(0.1):
+            if not child.is_alive() and not receiver.poll(0):
+                raise RuntimeError(f"the QCEC process ended without an answer (exit code {child.exitcode})")
+        ok, value = receiver.recv()
+    finally:
+        if child.is_alive():
+            child.terminate()
+        child.join(5)
+        if child.is_alive():  # pragma: no cover - a child that ignores SIGTERM
+            child.kill()
+            child.join()
+        receiver.close()
+    if not ok:
+        raise value
+    return value
+
+
+def _sections_in_child(sender: Any, high: Circuit, low: Circuit, num_plain: int, kwargs: dict[str, Any]) -> None:
+    """The child of :func:`check_sections_interruptibly`: send ``(True, result)`` or ``(False, exception)``."""
+    try:
+        sender.send((True, check_sections(high, low, num_plain, **kwargs)))
+    except Exception as exc:  # handed to the parent, which raises it
+        sender.send((False, exc))
+    finally:
+        sender.close()

@@ -503,11 +503,11 @@ def _open_qubits(scenario: Scenario) -> list[int]:
 def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any) -> Check:
     from circuitgen.compile import compile_scenario
     from circuitgen.options import PlanOptions
-    from simulate.equivalence import check_sections
+    from simulate.equivalence import check_sections_interruptibly
 
     t0 = time.perf_counter()
     high = compile_scenario(scenario, p, PlanOptions(rule=rule), bindings=bindings).circuit
-    r = check_sections(high, low, scenario.num_variables)
+    r = check_sections_interruptibly(high, low, scenario.num_variables)  # QCEC holds the GIL: Ctrl-C needs a child
     note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
     for message in r.messages:  # QCEC's own warnings, captured instead of leaking, in our words where known
         if "alternating checker cannot handle" in message:

@@ -130,3 +130,40 @@ def test_an_exception_the_signal_caused_is_reported_as_interrupted(monkeypatch: 
     monkeypatch.setattr(interrupt, "_reported", threading.Event())
     res = CliRunner().invoke(app, ["broken"])
     assert res.exit_code == 130 and res.stderr == "interrupted\n" and res.stdout == ""
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:
+    """QCEC's native check holds the interpreter lock for minutes on two_robots_4x4; it runs in a child process,
+    so the signal is handled at once. The signal goes after the QCEC stage's first heartbeat line (the stage is
+    under way; without the child, QCEC in the same process printed none for 11 minutes and ignored SIGTERM)."""
+    pytest.importorskip("mqt.qcec")
+    import queue
+    import threading
+
+    proc = start(["validate", "examples/two_robots_4x4.toml", "--backend", "qcec"], {"QCPP_PROGRESS": "lines"})
+    assert proc.stderr is not None
+    lines: queue.Queue[str] = queue.Queue()
+    reader = threading.Thread(target=lambda: [lines.put(line) for line in iter(proc.stderr.readline, "")],
+                              daemon=True)  # fmt: skip
+    reader.start()
+    seen: list[str] = []
+    while sum("(qcec)" in line for line in seen) < 2:  # the stage's line, then a heartbeat
+        try:
+            seen.append(lines.get(timeout=HUNG))
+        except queue.Empty:
+            proc.kill()
+            pytest.fail(f"no heartbeat of the QCEC stage within {HUNG:g} s: {''.join(seen)!r}")
+    proc.send_signal(sig)
+    try:
+        proc.wait(timeout=HUNG)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the process did not stop after the signal")
+    reader.join(HUNG)
+    while not lines.empty():
+        seen.append(lines.get())
+    err = "".join(seen)
+    assert proc.returncode == 130, err
+    assert err.strip().splitlines()[-1] == "interrupted" and "Traceback" not in err, err
