@@ -26,6 +26,7 @@ Example:
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -244,7 +245,8 @@ def check_sections_interruptibly(
     ctx = multiprocessing.get_context("spawn")
     receiver, sender = ctx.Pipe(duplex=False)
     kwargs = {"global_phase_ok": global_phase_ok, **options}
-    child = ctx.Process(target=_sections_in_child, args=(sender, high, low, num_plain, kwargs), daemon=True)
+    args = (sender, os.getpid(), high, low, num_plain, kwargs)
+    child = ctx.Process(target=_sections_in_child, args=args, daemon=True)
     child.start()
     sender.close()
     try:
@@ -265,11 +267,31 @@ def check_sections_interruptibly(
     return value
 
 
-def _sections_in_child(sender: Any, high: Circuit, low: Circuit, num_plain: int, kwargs: dict[str, Any]) -> None:
-    """The child of :func:`check_sections_interruptibly`: send ``(True, result)`` or ``(False, exception)``."""
+def _sections_in_child(
+    sender: Any, parent: int, high: Circuit, low: Circuit, num_plain: int, kwargs: dict[str, Any]
+) -> None:
+    """The child of :func:`check_sections_interruptibly`: send ``(True, result)`` or ``(False, exception)``.
+
+    It dies with its parent: a parent killed outright (``kill -9``) cannot terminate it, and QCEC would otherwise
+    run on alone for minutes (Linux ``PR_SET_PDEATHSIG``; elsewhere the parent's ``terminate`` only)."""
+    _die_with_parent(parent)
     try:
         sender.send((True, check_sections(high, low, num_plain, **kwargs)))
     except Exception as exc:  # handed to the parent, which raises it
         sender.send((False, exc))
     finally:
         sender.close()
+
+
+def _die_with_parent(parent: int) -> None:
+    """Ask the kernel to SIGKILL this process when its parent dies (Linux); exit now if it already has."""
+    import ctypes
+    import signal
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, int(signal.SIGKILL))  # 1 = PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        return
+    if os.getppid() != parent:  # the parent died before the request
+        os._exit(1)
