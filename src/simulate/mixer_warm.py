@@ -42,8 +42,10 @@ Example:
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
+from operator import itemgetter
 
 import numpy as np
 from scipy.optimize import minimize
@@ -59,8 +61,12 @@ __all__ = [
     "MIXER_STARTS",
     "MixerCeiling",
     "MixerWarmStart",
+    "best_p_optimum",
+    "descend",
     "mixer_only_ceiling",
+    "optimal_indices",
     "p_optimum_and_gradients",
+    "product_descent",
     "product_objective",
     "robot_states",
     "robot_states_gradient",
@@ -105,64 +111,74 @@ class MixerWarmStart:
         return tuple(v for b in self.betas for v in (0.0, b))
 
 
-def _rotations(qaoa: SubspaceQAOA, r: int) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Robot ``r``'s rotation pairs per plaquette, in the mixer's order (pairs within a plaquette are disjoint)."""
-    return [(i, j) for _, i, j in qaoa.robot_bases[r].pairs]
+def _site_betas(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray) -> np.ndarray:
+    """``betas`` as a ``(p, sites)`` array: a 2-D array as it is, one beta per layer tied over every site."""
+    x = np.asarray(betas, dtype=float)
+    return x if x.ndim == 2 else np.repeat(x[:, None], sum(len(b.pairs) for b in qaoa.robot_bases), axis=1)
 
 
-def _rotate(x: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]], c: float, s: complex) -> None:
-    for i, j in pairs:
-        xi, xj = x[i], x[j]
-        x[i], x[j] = c * xi + s * xj, s * xi + c * xj
+def _rotate(v: np.ndarray, i: np.ndarray, j: np.ndarray, beta: float, sign: float) -> None:
+    c, s = np.cos(beta / 2), sign * 1j * np.sin(beta / 2)
+    vi, vj = v[i], v[j]
+    v[i], v[j] = c * vi + s * vj, s * vi + c * vj
 
 
-def robot_states(qaoa: SubspaceQAOA, betas: Sequence[float]) -> list[np.ndarray]:
+def robot_states(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray) -> list[np.ndarray]:
     """Per robot, its state after the mixer layers with every gamma 0: ``prod_k U_r(beta_k) psi_r(0)``.
 
     Args:
         qaoa: The simulator (its bases, initial amplitudes and rotation pairs are used).
-        betas: One beta per layer.
+        betas: One beta per layer, or a ``(p, sites)`` array with one beta per partial mixer of
+            :func:`simulate.multi_angle.mixer_sites` and layer (multi-angle; one per layer is that with tied betas).
 
     Returns:
         One complex vector per robot (length the robot's basis size); their outer product is
         ``qaoa.state([0, beta_0, 0, beta_1, ...])``.
     """
-    out = []
-    for r, b in enumerate(qaoa.robot_bases):
-        x = b.initial.astype(np.complex128)
-        pairs = _rotations(qaoa, r)
-        for beta in betas:
-            _rotate(x, pairs, float(np.cos(beta / 2)), complex(-1j * np.sin(beta / 2)))
-        out.append(x)
+    x, out, at = _site_betas(qaoa, betas), [], 0
+    for b in qaoa.robot_bases:
+        v = b.initial.astype(np.complex128)
+        for row in x:
+            for m, (_, i, j) in enumerate(b.pairs):
+                _rotate(v, i, j, float(row[at + m]), -1.0)
+        out.append(v)
+        at += len(b.pairs)
     return out
 
 
 def robot_states_gradient(
-    qaoa: SubspaceQAOA, betas: Sequence[float], weights: Sequence[np.ndarray]
+    qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, weights: Sequence[np.ndarray]
 ) -> np.ndarray:
-    """``d/dbeta_k sum_r <psi_r| diag(weights[r]) |psi_r>`` for the mixer-only states (adjoint sweep per robot).
+    """``d/dbetas sum_r <psi_r| diag(weights[r]) |psi_r>`` for :func:`robot_states` (adjoint sweep per robot).
 
     Args:
         qaoa: The simulator.
-        betas: One beta per layer.
+        betas: As in :func:`robot_states`.
         weights: Per robot, a real weight per basis path (``dF/d|psi_r|^2`` of an objective ``F``).
 
     Returns:
-        ``(p,)`` derivatives in the betas.
+        One derivative per beta, shaped as ``betas``; a tied beta's is the sum over its sites.
     """
-    grad = np.zeros(len(betas))
-    for r, psi in enumerate(robot_states(qaoa, betas)):
-        pairs = _rotations(qaoa, r)
+    x = _site_betas(qaoa, betas)
+    grad, at = np.zeros(x.shape), 0
+    for r, (b, psi) in enumerate(zip(qaoa.robot_bases, robot_states(qaoa, x))):
         lam = np.asarray(weights[r], dtype=float) * psi
-        for k in range(len(betas) - 1, -1, -1):
-            c, s = float(np.cos(betas[k] / 2)), complex(1j * np.sin(betas[k] / 2))
-            for i, j in reversed(pairs):
+        for k in range(len(x) - 1, -1, -1):
+            for m in range(len(b.pairs) - 1, -1, -1):
+                _, i, j = b.pairs[m]
                 # the generator of exp(-i beta X / 2) on the pair is X / 2: dE/dbeta = Im <lam|X|psi>
-                grad[k] += float(np.sum(np.conj(lam[i]) * psi[j] + np.conj(lam[j]) * psi[i]).imag)
-                for v in (psi, lam):
-                    vi, vj = v[i], v[j]
-                    v[i], v[j] = c * vi + s * vj, s * vi + c * vj
-    return grad
+                grad[k, at + m] = float(np.sum(np.conj(lam[i]) * psi[j] + np.conj(lam[j]) * psi[i]).imag)
+                _rotate(psi, i, j, float(x[k, at + m]), 1.0)
+                _rotate(lam, i, j, float(x[k, at + m]), 1.0)
+        at += len(b.pairs)
+    if np.ndim(betas) == 2:
+        return grad
+    tied, at = np.zeros(len(x)), 0
+    for b in qaoa.robot_bases:  # the order of the sweeps above, which fixes the rounding
+        for m in range(at + len(b.pairs) - 1, at - 1, -1):
+            tied += grad[:, m]
+        at += len(b.pairs)
+    return tied
 
 
 def product_objective(
@@ -229,33 +245,46 @@ def product_objective(
     return float(value), float(np.dot(weight, values)), grads
 
 
-def _value_and_grad(qaoa: SubspaceQAOA, betas: np.ndarray, objective: ObjectiveFn) -> tuple[float, float, np.ndarray]:
-    states = robot_states(qaoa, betas)
-    probs = [x.real * x.real + x.imag * x.imag for x in states]
-    value, mean, grads = product_objective(qaoa, probs, objective)
-    return value, mean, robot_states_gradient(qaoa, betas, grads)
+Measure = Callable[[list[np.ndarray]], tuple[float, float, list[np.ndarray]]]
+"""``measure(probs) -> (F, <C> or another number to report, dF/dprobs)`` of the robots' path probabilities."""
+Descent = Callable[[np.ndarray], tuple[float, float, np.ndarray]]
+"""``fg(x) -> (F, <C>, dF/dx)`` over a flat angle vector, for :func:`descend`."""
 
 
-def _run(
-    qaoa: SubspaceQAOA, x0: np.ndarray, obj: ObjectiveFn, maxiter: int
-) -> tuple[float, float, float, np.ndarray, int]:
-    """One L-BFGS-B run from ``x0``: ``(start value, value, <C>, betas, evaluations)``."""
+def product_descent(qaoa: SubspaceQAOA, measure: Measure, shape: tuple[int, ...]) -> Descent:
+    """``measure`` of the product state at betas ``x.reshape(shape)`` (:func:`robot_states`) and its gradient;
+    ``shape`` is ``(p,)`` for one beta per layer, ``(p, sites)`` for multi-angle."""
+
+    def fg(x: np.ndarray) -> tuple[float, float, np.ndarray]:
+        betas = np.asarray(x, dtype=float).reshape(shape)
+        value, mean, grads = measure([v.real * v.real + v.imag * v.imag for v in robot_states(qaoa, betas)])
+        return value, mean, robot_states_gradient(qaoa, betas, grads).reshape(-1)
+
+    return fg
+
+
+def descend(
+    fg: Descent, starts: Sequence[np.ndarray], maxiter: int | None = None
+) -> tuple[list[tuple[float, float, np.ndarray]], int]:
+    """L-BFGS-B on ``fg`` from each of ``starts``: where each run ends, ``(F, <C>, x)``, and the evaluations."""
     seen: dict[bytes, tuple[float, float]] = {}
-    calls = [0]
+    calls = 0
 
-    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
-        calls[0] += 1
-        f, mean, g = _value_and_grad(qaoa, x, obj)
+    def f_and_g(x: np.ndarray) -> tuple[float, np.ndarray]:
+        nonlocal calls
+        calls += 1
+        f, mean, g = fg(x)
         seen[np.asarray(x, dtype=float).tobytes()] = (f, mean)
         return f, g
 
-    f0 = fg(x0)[0]
-    res = minimize(fg, x0, jac=True, method="L-BFGS-B", options={"maxiter": maxiter})
-    x = np.asarray(res.x, dtype=float)
-    if x.tobytes() not in seen:
-        fg(x)
-    f, mean = seen[x.tobytes()]
-    return f0, f, mean, x, calls[0]
+    ends = []
+    for x0 in starts:
+        opts = {} if maxiter is None else {"maxiter": maxiter}
+        x = np.asarray(minimize(f_and_g, x0, jac=True, method="L-BFGS-B", options=opts).x, dtype=float)
+        if x.tobytes() not in seen:
+            f_and_g(x)
+        ends.append((*seen[x.tobytes()], x))
+    return ends, calls
 
 
 def train_mixer_only(
@@ -297,14 +326,12 @@ def train_mixer_only(
         else:
             prev = np.array(out[-1].betas)
             starts = [np.append(prev, prev[-1]), np.append(prev, 0.0)]
-        best: tuple[float, float, float, np.ndarray] | None = None
-        for x0 in starts:
-            run = _run(qaoa, np.asarray(x0, dtype=float), obj, maxiter)
-            evaluations += run[4]
-            if best is None or run[1] < best[1]:
-                best = run[:4]
-        assert best is not None
-        first, value, mean, x = best
+        fg = product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (level,))
+        firsts = [fg(x0)[0] for x0 in starts]
+        ends, calls = descend(fg, starts, maxiter)
+        evaluations += len(starts) + calls
+        value, mean, x = min(ends, key=itemgetter(0))
+        first = firsts[[e[0] for e in ends].index(value)]
         out.append(MixerWarmStart(level, tuple(float(b) for b in x), first, value, mean, evaluations,
                                   time.perf_counter() - t0))
     return out
@@ -356,6 +383,29 @@ def p_optimum_and_gradients(
     return total, grads
 
 
+def optimal_indices(qaoa: SubspaceQAOA) -> list[tuple[int, ...]]:
+    """The optimal assignments (:meth:`~simulate.subspace.SubspaceQAOA.optimum`) as per-robot basis indices."""
+    return [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
+
+
+def best_p_optimum(
+    qaoa: SubspaceQAOA, shape: tuple[int, ...], x0s: Sequence[np.ndarray], maxiter: int | None = None
+) -> tuple[np.ndarray, float]:
+    """The largest ``P(optimum)`` of the product state that L-BFGS-B finds from ``x0s`` (betas of ``shape``, see
+    :func:`product_descent`), by its exact gradient: ``(betas, P(optimum))``, the first start if none improves it.
+    Uses the optimum."""
+    optima = optimal_indices(qaoa)
+
+    def minus_p_optimum(probs: list[np.ndarray]) -> tuple[float, float, list[np.ndarray]]:
+        value, grads = p_optimum_and_gradients(probs, optima)
+        return -value, value, [-g for g in grads]
+
+    fg = product_descent(qaoa, minus_p_optimum, shape)
+    first = -fg(x0s[0])[0]
+    value, _, x = min(descend(fg, x0s, maxiter)[0], key=itemgetter(0))
+    return (x, -value) if -value > first else (np.asarray(x0s[0], dtype=float), first)
+
+
 def mixer_only_ceiling(
     qaoa: SubspaceQAOA, p: int, starts: int = CEILING_STARTS, seed: int = 0
 ) -> list[MixerCeiling]:
@@ -388,13 +438,6 @@ def mixer_only_ceiling(
         raise ValueError(f"p must be >= 1, got {p}")
     if starts < 1:
         raise ValueError(f"starts must be >= 1, got {starts}")
-    optima = [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
-
-    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
-        states = robot_states(qaoa, x)
-        value, grads = p_optimum_and_gradients([v.real * v.real + v.imag * v.imag for v in states], optima)
-        return -value, -robot_states_gradient(qaoa, x, grads)
-
     rng = np.random.default_rng(seed)
     out: list[MixerCeiling] = []
     for level in range(1, p + 1):
@@ -402,10 +445,6 @@ def mixer_only_ceiling(
         x0s = [rng.uniform(0.0, 2 * np.pi, level) for _ in range(starts)]
         if out:
             x0s.insert(0, np.append(out[-1].betas, 0.0))
-        best_x, best = x0s[0], -fg(x0s[0])[0]
-        for x0 in x0s:
-            res = minimize(fg, x0, jac=True, method="L-BFGS-B")
-            if -float(res.fun) > best:
-                best, best_x = -float(res.fun), np.asarray(res.x, dtype=float)
+        best_x, best = best_p_optimum(qaoa, (level,), x0s)
         out.append(MixerCeiling(level, tuple(float(b) for b in best_x), best, starts, time.perf_counter() - t0))
     return out

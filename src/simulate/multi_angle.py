@@ -38,14 +38,25 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
+from operator import itemgetter
 
 import numpy as np
-from scipy.optimize import minimize
 
 from circuitgen.angles import mixer_symbol
 from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_plan
-from simulate.mixer_warm import MIXER_MAXITER, MIXER_STARTS, p_optimum_and_gradients, product_objective
+from simulate.mixer_warm import (
+    MIXER_MAXITER,
+    MIXER_STARTS,
+    descend,
+    optimal_indices,
+    p_optimum_and_gradients,
+    product_descent,
+    product_objective,
+    robot_states,
+    robot_states_gradient,
+)
 from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale
@@ -83,23 +94,9 @@ def _check(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> n
     return x
 
 
-def _robot_slices(qaoa: SubspaceQAOA) -> list[tuple[int, int]]:
-    """Per robot, ``(start, stop)`` of its betas within one layer."""
-    out, at = [], 0
-    for b in qaoa.robot_bases:
-        out.append((at, at + len(b.pairs)))
-        at += len(b.pairs)
-    return out
-
-
-def _rotate(v: np.ndarray, i: np.ndarray, j: np.ndarray, beta: float, sign: float) -> None:
-    c, s = np.cos(beta / 2), sign * 1j * np.sin(beta / 2)
-    vi, vj = v[i], v[j]
-    v[i], v[j] = c * vi + s * vj, s * vi + c * vj
-
-
 def multi_robot_states(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> list[np.ndarray]:
-    """Per robot, its state after ``p`` multi-angle mixer layers with every gamma 0.
+    """Per robot, its state after ``p`` multi-angle mixer layers with every gamma 0
+    (:func:`simulate.mixer_warm.robot_states` of the betas as a ``(p, sites)`` array).
 
     Args:
         qaoa: The simulator.
@@ -112,46 +109,15 @@ def multi_robot_states(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, 
     Raises:
         ValueError: for a wrong number of betas or a value that is not finite.
     """
-    x = _check(qaoa, betas, p)
-    n = len(mixer_sites(qaoa))
-    out = []
-    for (a, _), b in zip(_robot_slices(qaoa), qaoa.robot_bases):
-        v = b.initial.astype(np.complex128)
-        for k in range(p):
-            for m, (_, i, j) in enumerate(b.pairs):
-                _rotate(v, i, j, float(x[k * n + a + m]), -1.0)
-        out.append(v)
-    return out
+    return robot_states(qaoa, _check(qaoa, betas, p).reshape(p, -1))
 
 
 def multi_robot_states_gradient(
     qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int, weights: Sequence[np.ndarray]
 ) -> np.ndarray:
-    """``d/dbetas sum_r <psi_r| diag(weights[r]) |psi_r>`` for :func:`multi_robot_states` (adjoint sweep per robot).
-
-    Args:
-        qaoa: The simulator.
-        betas: As in :func:`multi_robot_states`.
-        p: Number of layers.
-        weights: Per robot, a real weight per basis path (``dF/d|psi_r|^2`` of an objective ``F``).
-
-    Returns:
-        One derivative per beta, same layout.
-    """
-    x = _check(qaoa, betas, p)
-    n = len(mixer_sites(qaoa))
-    grad = np.zeros(x.size)
-    for r, ((a, _), b, psi) in enumerate(zip(_robot_slices(qaoa), qaoa.robot_bases, multi_robot_states(qaoa, x, p))):
-        lam = np.asarray(weights[r], dtype=float) * psi
-        for k in range(p - 1, -1, -1):
-            for m in range(len(b.pairs) - 1, -1, -1):
-                _, i, j = b.pairs[m]
-                # generator X / 2 of exp(-i beta X / 2) on the pairs: dE/dbeta = Im <lam|X|psi>
-                grad[k * n + a + m] = float(np.sum(np.conj(lam[i]) * psi[j] + np.conj(lam[j]) * psi[i]).imag)
-                beta = float(x[k * n + a + m])
-                _rotate(psi, i, j, beta, 1.0)
-                _rotate(lam, i, j, beta, 1.0)
-    return grad
+    """``d/dbetas sum_r <psi_r| diag(weights[r]) |psi_r>`` for :func:`multi_robot_states`, same layout as ``betas``
+    (:func:`simulate.mixer_warm.robot_states_gradient`)."""
+    return robot_states_gradient(qaoa, _check(qaoa, betas, p).reshape(p, -1), weights).reshape(-1)
 
 
 def bindings(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> dict[str, float]:
@@ -244,30 +210,10 @@ def train_multi_angle(
         starts.append(np.append(_check(qaoa, previous, p - 1), np.zeros(n)))
     rng = np.random.default_rng(seed)
     starts += [rng.uniform(0.0, 2 * np.pi, p * n) for _ in range(random_starts)]
-    calls = [0]
-    seen: dict[bytes, tuple[float, float]] = {}
-
-    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
-        calls[0] += 1
-        states = multi_robot_states(qaoa, x, p)
-        f, mean, grads = product_objective(qaoa, [v.real * v.real + v.imag * v.imag for v in states], obj)
-        seen[np.asarray(x, dtype=float).tobytes()] = (f, mean)
-        return f, multi_robot_states_gradient(qaoa, x, p, grads)
-
-    best: tuple[float, np.ndarray] | None = None
-    values = []
-    for x0 in starts:
-        res = minimize(fg, x0, jac=True, method="L-BFGS-B", options={"maxiter": maxiter})
-        x = np.asarray(res.x, dtype=float)
-        if x.tobytes() not in seen:
-            fg(x)
-        f = seen[x.tobytes()][0]
-        values.append(f)
-        if best is None or f < best[0]:
-            best = (f, x)
-    assert best is not None
-    f, x = best
-    return MultiAngleResult(p, tuple(float(v) for v in x), f, seen[x.tobytes()][1], tuple(values), calls[0],
+    fg = product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (p, n))
+    ends, evaluations = descend(fg, starts, maxiter)
+    f, mean, x = min(ends, key=itemgetter(0))
+    return MultiAngleResult(p, tuple(float(v) for v in x), f, mean, tuple(e[0] for e in ends), evaluations,
                             time.perf_counter() - t0)
 
 
@@ -319,5 +265,4 @@ def most_probable_multi(
 def p_optimum_multi(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, p: int) -> float:
     """``P(optimum)`` of the multi-angle mixer-only state (uses :meth:`SubspaceQAOA.optimum`)."""
     probs = [v.real * v.real + v.imag * v.imag for v in multi_robot_states(qaoa, betas, p)]
-    optima = [tuple(int(i) for i in np.unravel_index(k, qaoa.dims)) for k in qaoa.optimum()[1]]
-    return p_optimum_and_gradients(probs, optima)[0]
+    return p_optimum_and_gradients(probs, optimal_indices(qaoa))[0]
