@@ -72,9 +72,9 @@ from typing import Any
 
 import numpy as np
 
-from circuitgen.angles import UnboundParameterError
 from circuitgen.circuit import Circuit
 from circuitgen.gates import Gate, controlled_x_pattern, unitary
+from simulate.statevector import bound_circuit
 
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
@@ -283,14 +283,6 @@ def state_bits(state: BasisState, num_qubits: int) -> tuple[int, ...]:
     return bits
 
 
-def _bound(circuit: Circuit, bindings: Mapping[str, float] | None) -> Circuit:
-    if bindings:
-        circuit = circuit.bind(bindings)
-    if circuit.symbols:
-        raise UnboundParameterError(circuit.symbols, "tensor-network simulation")
-    return circuit
-
-
 def _apply(qc: Any, gate: Gate, split: str | None = "auto-split-gate") -> None:
     """Append ``gate`` to a quimb circuit; ``split`` is the contraction mode of controlled gates (``None``: the
     circuit's own, as for ``CircuitMPS``)."""
@@ -342,7 +334,7 @@ def to_quimb(
         >>> round(float(abs(qc.amplitude("1011"))), 12)
         1.0
     """
-    circuit = _bound(circuit, bindings)
+    circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
     n = circuit.num_qubits
     if n < 1:
         raise ValueError("the circuit has no qubits")
@@ -523,7 +515,7 @@ class TensorCircuit:
         client: Any = None,
         ancillas: Sequence[int] = (),
     ) -> None:
-        self.circuit = _bound(circuit, bindings)
+        self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
         self.num_qubits = self.circuit.num_qubits
         self.psi0_bits = state_bits(psi0_bits if psi0_bits is not None else 0, self.num_qubits)
         self.quimb = to_quimb(self.circuit, psi0_bits=self.psi0_bits)
@@ -939,7 +931,7 @@ class MPSCircuit:
         bond_limit: int | None = None,
     ) -> None:
         t0 = time.perf_counter()
-        self.circuit = _bound(circuit, bindings)
+        self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
         n = self.num_qubits = self.circuit.num_qubits
         order = list(range(n)) if layout is None else [int(q) for q in layout]
         if sorted(order) != list(range(n)):
