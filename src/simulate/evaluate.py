@@ -228,7 +228,7 @@ def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) ->
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
     compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=_bindings(x))
     feasible, optimal = _feasible(scenario)
-    amps = np.asarray(tensor.amplitudes(compiled.circuit, feasible.tolist()), dtype=complex)
+    amps = np.asarray(tensor.TensorCircuit(compiled.circuit).amplitudes(feasible.tolist()), dtype=complex)
     probs = amps.real * amps.real + amps.imag * amps.imag
     nd = scenario.num_variables
     bits = (feasible[:, None] >> np.arange(nd)) & 1

@@ -7,7 +7,6 @@ Use it to validate circuits that are too wide for the dense simulator (20-40 qub
 * :class:`TensorCircuit` wraps one bound circuit: :meth:`~TensorCircuit.amplitude` ``<y|U|x>``,
   :meth:`~TensorCircuit.probability` of fixed values on some qubits (e.g. every ancilla in |0>) and
   :meth:`~TensorCircuit.sample`.
-  :func:`amplitudes` and :func:`probability` are one-call forms.
 
 Conventions:
 
@@ -90,12 +89,10 @@ __all__ = [
     "ContractionTooWideError",
     "MPSCircuit",
     "TensorCircuit",
-    "amplitudes",
     "contract_sliced",
     "dask_client",
     "default_cache_dir",
     "path_optimizer",
-    "probability",
     "state_bits",
     "to_quimb",
 ]
@@ -988,48 +985,3 @@ class MPSCircuit:
         """Probability that all of ``qubits`` are |0>."""
         return self.probability({q: 0 for q in qubits})
 
-
-def amplitudes(
-    circuit: Circuit,
-    states: Iterable[BasisState],
-    bindings: Mapping[str, float] | None = None,
-    psi0_bits: BasisState | None = None,
-    **options: Any,
-) -> np.ndarray:
-    """``<state| U |psi0>`` for each state (one-call form of :meth:`TensorCircuit.amplitudes`).
-
-    Args:
-        circuit: Any circuit.
-        states: Basis states (ints with bit i = qubit i, bit strings, or 0/1 sequences).
-        bindings: Symbol values.
-        psi0_bits: Initial basis state; default all zeros.
-        **options: ``optimizer``, ``cache_dir``, ``max_width`` of :class:`TensorCircuit`.
-
-    Returns:
-        complex128 array.
-
-    Example:
-        >>> from circuitgen.circuit import Circuit, Section
-        >>> from circuitgen.gates import x
-        >>> amplitudes(Circuit([("q", 2)], [Section("s", [x(1)])]), [0b10, 0b01]).real.tolist()
-        [1.0, 0.0]
-    """
-    return TensorCircuit(circuit, bindings, psi0_bits, **options).amplitudes(states)
-
-
-def probability(
-    circuit: Circuit,
-    fixed: Mapping[int, int],
-    bindings: Mapping[str, float] | None = None,
-    psi0_bits: BasisState | None = None,
-    **options: Any,
-) -> float:
-    """Probability of the values in ``fixed`` (one-call form of :meth:`TensorCircuit.probability`).
-
-    Example:
-        >>> from circuitgen.circuit import Circuit, Section
-        >>> from circuitgen.gates import ry
-        >>> round(probability(Circuit([("q", 1)], [Section("s", [ry(math.pi / 3, 0)])]), {0: 1}), 12)
-        0.25
-    """
-    return TensorCircuit(circuit, bindings, psi0_bits, **options).probability(fixed)
