@@ -56,7 +56,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -326,12 +326,9 @@ def _replace_stages(r: TrainingResult) -> TrainingResult:
     """``r`` without its own stages and with its counts/seconds for its level only."""
     if not r.stages:
         return r
-    d = {k: getattr(r, k) for k in r.__dataclass_fields__}
-    d["num_evaluations"] -= sum(s.num_evaluations for s in r.stages)
-    d["num_gradients"] -= sum(s.num_gradients for s in r.stages)
-    d["seconds"] -= sum(s.seconds for s in r.stages)
-    d["stages"] = ()
-    return TrainingResult(**d)
+    return replace(r, num_evaluations=r.num_evaluations - sum(s.num_evaluations for s in r.stages),
+                   num_gradients=r.num_gradients - sum(s.num_gradients for s in r.stages),
+                   seconds=r.seconds - sum(s.seconds for s in r.stages), stages=())
 
 
 class _Counter:
