@@ -7,7 +7,7 @@ its own beta in every layer, the circuit ``PlanOptions(angles="multi")`` (the sa
 
 For each scenario and p = 1..5 the table gives:
 
-* **trained (Gibbs)**: :func:`simulate.multi_angle.train_multi_angle` with every gamma 0 (the state is then a
+* **trained (Gibbs)**: :func:`simulate.mixer_only.train_multi_angle` with every gamma 0 (the state is then a
   product over robots): L-BFGS-B on the exact gradient of the default Gibbs objective of the measured cost
   from the 3 constant starts, the previous depth's best with a zero layer appended, and 8 seeded random
   starts; the run with the lowest objective is kept (the training never looks up the optimum). Its
@@ -48,18 +48,16 @@ from _common import EXAMPLES, REPO, Table, circuit_columns, command_line, parse,
 import qcpp
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario
-from simulate.mixer_warm import (
+from simulate.mixer_only import (
     MIXER_MAXITER,
     MIXER_STARTS,
+    MULTI_RANDOM_STARTS,
     best_p_optimum,
+    mixer_sites,
+    multi_robot_states,
     optimal_indices,
     p_optimum_and_gradients,
     product_objective,
-)
-from simulate.multi_angle import (
-    MULTI_RANDOM_STARTS,
-    mixer_sites,
-    multi_robot_states,
     train_multi_angle,
 )
 from simulate.objectives import GIBBS_SCALE, make_objective

@@ -11,7 +11,7 @@
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
 With ``mixer_warm=True`` (an option, not the default) every level also starts from the mixer-only warm start
-(:func:`simulate.mixer_warm.train_mixer_only`: betas trained with every gamma 0, where the state is a product
+(:func:`simulate.mixer_only.train_mixer_only`: betas trained with every gamma 0, where the state is a product
 over robots and the objective costs one pass over the cost levels) with the linear ramp's gammas; the gammas
 must not start at 0, where every objective is stationary in them (``tests/simulate/mixer_warm_test.py``).
 
@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from simulate.mixer_warm import train_mixer_only
+from simulate.mixer_only import train_mixer_only
 from simulate.objectives import CVAR_ALPHA, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import TrainingResult, cost_scale, initial_angles, interp_angles, train

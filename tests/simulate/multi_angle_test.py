@@ -12,12 +12,13 @@ from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
-from simulate.mixer_warm import product_objective, robot_states
-from simulate.multi_angle import (
+from simulate.mixer_only import (
     bindings,
     mixer_sites,
     multi_robot_states,
     multi_robot_states_gradient,
+    product_objective,
+    robot_states,
     train_multi_angle,
 )
 from simulate.objectives import make_objective
