@@ -51,7 +51,7 @@ from gridcover.paths import assignment_bits, enumerate_paths
 from gridcover.sbf import RULES, Rule
 from gridcover.scenario import Scenario
 from simulate.subspace import SubspaceQAOA, split_angles
-from simulate.training import initial_angles
+from simulate.training import check_at_least, initial_angles
 
 __all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "resolve_angles"]
 
@@ -111,8 +111,7 @@ def resolve_angles(
         >>> resolve_angles(s, 1, [0.1, 0.2]).tolist(), len(resolve_angles(s, 2, seed=3))
         ([0.1, 0.2], 4)
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
+    check_at_least(p=(p, 1))
     if angles is None:
         return initial_angles(SubspaceQAOA(scenario), p, "random", seed)
     a = np.asarray(angles, dtype=float).reshape(-1)

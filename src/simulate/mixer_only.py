@@ -70,7 +70,7 @@ from circuitgen.qaoa import qaoa_plan
 from simulate import subspace_kernels
 from simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale
+from simulate.training import check_at_least, cost_scale
 
 __all__ = [
     "CEILING_STARTS",
@@ -341,10 +341,7 @@ def train_mixer_only(
     Raises:
         ValueError: ``p < 1`` or a negative ``maxiter``.
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
-    if maxiter < 0:
-        raise ValueError(f"maxiter must be >= 0, got {maxiter}")
+    check_at_least(p=(p, 1), maxiter=(maxiter, 0))
     obj = make_objective(objective, cost_scale(qaoa)) if isinstance(objective, str) else objective
     t0 = time.perf_counter()
     evaluations = 0
@@ -463,10 +460,7 @@ def mixer_only_ceiling(
         >>> c[0].p_optimum <= c[1].p_optimum <= 1.0, len(c[1].angles)
         (True, 4)
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
-    if starts < 1:
-        raise ValueError(f"starts must be >= 1, got {starts}")
+    check_at_least(p=(p, 1), starts=(starts, 1))
     rng = np.random.default_rng(seed)
     out: list[MixerCeiling] = []
     for level in range(1, p + 1):
@@ -599,10 +593,7 @@ def train_multi_angle(
     Raises:
         ValueError: ``p < 1``, negative ``random_starts`` or ``maxiter``, or ``previous`` of the wrong length.
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
-    if random_starts < 0 or maxiter < 0:
-        raise ValueError(f"random_starts and maxiter must be >= 0, got {random_starts} and {maxiter}")
+    check_at_least(p=(p, 1), random_starts=(random_starts, 0), maxiter=(maxiter, 0))
     obj = make_objective(objective, cost_scale(qaoa)) if isinstance(objective, str) else objective
     n = len(mixer_sites(qaoa))
     t0 = time.perf_counter()
@@ -640,8 +631,7 @@ def train_multi_angle_layers(
     Returns:
         One :class:`MultiAngleResult` per depth ``1 .. p``.
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
+    check_at_least(p=(p, 1))
     out: list[MultiAngleResult] = []
     for k in range(1, p + 1):
         out.append(train_multi_angle(qaoa, k, objective, random_starts, seed + k, maxiter,
