@@ -382,7 +382,7 @@ def validate(
     """
     from circuitgen.compile import compile_scenario
     from circuitgen.options import PlanOptions
-    from simulate.subspace import SubspaceQAOA
+    from simulate.subspace import SubspaceQAOA, angle_bindings
 
     t_start = time.perf_counter()
     if backend not in BACKENDS:
@@ -396,7 +396,7 @@ def validate(
     x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
     if x.size != 2 * p or not np.all(np.isfinite(x)):
         raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
-    bindings = {f"gamma_{k}": float(x[2 * k]) for k in range(p)} | {f"beta_{k}": float(x[2 * k + 1]) for k in range(p)}
+    bindings = angle_bindings(x)
 
     def at(text: str) -> None:
         if stage is not None:
