@@ -82,7 +82,6 @@ __all__ = [
     "MultiAngleResult",
     "best_p_optimum",
     "bindings",
-    "descend",
     "mixer_only_ceiling",
     "mixer_sites",
     "most_probable_multi",
@@ -91,7 +90,6 @@ __all__ = [
     "optimal_indices",
     "p_optimum_and_gradients",
     "p_optimum_multi",
-    "product_descent",
     "product_objective",
     "robot_states",
     "robot_states_gradient",
@@ -274,13 +272,13 @@ def product_objective(
     return float(value), float(np.dot(weight, values)), grads
 
 
-Measure = Callable[[list[np.ndarray]], tuple[float, float, list[np.ndarray]]]
+_Measure = Callable[[list[np.ndarray]], tuple[float, float, list[np.ndarray]]]
 """``measure(probs) -> (F, <C> or another number to report, dF/dprobs)`` of the robots' path probabilities."""
-Descent = Callable[[np.ndarray], tuple[float, float, np.ndarray]]
-"""``fg(x) -> (F, <C>, dF/dx)`` over a flat angle vector, for :func:`descend`."""
+_Descent = Callable[[np.ndarray], tuple[float, float, np.ndarray]]
+"""``fg(x) -> (F, <C>, dF/dx)`` over a flat angle vector, for :func:`_descend`."""
 
 
-def product_descent(qaoa: SubspaceQAOA, measure: Measure, shape: tuple[int, ...]) -> Descent:
+def _product_descent(qaoa: SubspaceQAOA, measure: _Measure, shape: tuple[int, ...]) -> _Descent:
     """``measure`` of the product state at betas ``x.reshape(shape)`` (:func:`robot_states`) and its gradient;
     ``shape`` is ``(p,)`` for one beta per layer, ``(p, sites)`` for multi-angle."""
 
@@ -292,8 +290,8 @@ def product_descent(qaoa: SubspaceQAOA, measure: Measure, shape: tuple[int, ...]
     return fg
 
 
-def descend(
-    fg: Descent, starts: Sequence[np.ndarray], maxiter: int | None = None
+def _descend(
+    fg: _Descent, starts: Sequence[np.ndarray], maxiter: int | None = None
 ) -> tuple[list[tuple[float, float, np.ndarray]], int]:
     """L-BFGS-B on ``fg`` from each of ``starts``: where each run ends, ``(F, <C>, x)``, and the evaluations."""
     seen: dict[bytes, tuple[float, float]] = {}
@@ -352,9 +350,9 @@ def train_mixer_only(
         else:
             prev = np.array(out[-1].betas)
             starts = [np.append(prev, prev[-1]), np.append(prev, 0.0)]
-        fg = product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (level,))
+        fg = _product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (level,))
         firsts = [fg(x0)[0] for x0 in starts]
-        ends, calls = descend(fg, starts, maxiter)
+        ends, calls = _descend(fg, starts, maxiter)
         evaluations += len(starts) + calls
         value, mean, x = min(ends, key=itemgetter(0))
         first = firsts[[e[0] for e in ends].index(value)]
@@ -417,18 +415,34 @@ def optimal_indices(qaoa: SubspaceQAOA) -> list[tuple[int, ...]]:
 def best_p_optimum(
     qaoa: SubspaceQAOA, shape: tuple[int, ...], x0s: Sequence[np.ndarray], maxiter: int | None = None
 ) -> tuple[np.ndarray, float]:
-    """The largest ``P(optimum)`` of the product state that L-BFGS-B finds from ``x0s`` (betas of ``shape``, see
-    :func:`product_descent`), by its exact gradient: ``(betas, P(optimum))``, the first start if none improves it.
-    Uses the optimum."""
+    """The largest ``P(optimum)`` of the product state that L-BFGS-B finds on its exact gradient (uses the optimum).
+
+    Args:
+        qaoa: The simulator.
+        shape: Of the betas: ``(p,)`` for one beta per layer, ``(p, sites)`` for multi-angle (:func:`robot_states`).
+        x0s: Flat start vectors.
+        maxiter: L-BFGS-B iterations per start (``None``: scipy's default).
+
+    Returns:
+        ``(betas, P(optimum))`` (flat betas), the first start if no run improves on it.
+
+    Example:
+        >>> from gridcover.scenario import scenario_from_dict
+        >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+        >>> q = SubspaceQAOA(s)
+        >>> x, best = best_p_optimum(q, (1, len(mixer_sites(q))), [np.full(len(mixer_sites(q)), 0.3)])
+        >>> best > p_optimum_multi(q, np.full(len(mixer_sites(q)), 0.3), 1)
+        True
+    """
     optima = optimal_indices(qaoa)
 
     def minus_p_optimum(probs: list[np.ndarray]) -> tuple[float, float, list[np.ndarray]]:
         value, grads = p_optimum_and_gradients(probs, optima)
         return -value, value, [-g for g in grads]
 
-    fg = product_descent(qaoa, minus_p_optimum, shape)
+    fg = _product_descent(qaoa, minus_p_optimum, shape)
     first = -fg(x0s[0])[0]
-    value, _, x = min(descend(fg, x0s, maxiter)[0], key=itemgetter(0))
+    value, _, x = min(_descend(fg, x0s, maxiter)[0], key=itemgetter(0))
     return (x, -value) if -value > first else (np.asarray(x0s[0], dtype=float), first)
 
 
@@ -602,8 +616,8 @@ def train_multi_angle(
         starts.append(np.append(_check(qaoa, previous, p - 1), np.zeros(n)))
     rng = np.random.default_rng(seed)
     starts += [rng.uniform(0.0, 2 * np.pi, p * n) for _ in range(random_starts)]
-    fg = product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (p, n))
-    ends, evaluations = descend(fg, starts, maxiter)
+    fg = _product_descent(qaoa, partial(product_objective, qaoa, objective=obj), (p, n))
+    ends, evaluations = _descend(fg, starts, maxiter)
     f, mean, x = min(ends, key=itemgetter(0))
     return MultiAngleResult(p, tuple(float(v) for v in x), f, mean, tuple(e[0] for e in ends), evaluations,
                             time.perf_counter() - t0)
