@@ -3,7 +3,7 @@
 Issue #19 asks for P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5; the default training
 stays at beta = 0 there (``docs/results/qaoa_training.md``, table 5). The lever tried here: with every gamma 0
 the state is a product over robots, so the betas can be trained cheaply per robot
-(:func:`simulate.mixer_warm.train_mixer_only`, the default Gibbs objective of the full cost on the product
+(:func:`simulate.mixer_only.train_mixer_only`, the default Gibbs objective of the full cost on the product
 state; it never looks at the optimum), and the full training can start from them.
 
 For each scenario and p = 1..5 the table gives:
@@ -17,7 +17,7 @@ For each scenario and p = 1..5 the table gives:
   option ``mixer_warm=True`` (every level also starts from the mixer-only betas with the ramp's gammas; 4x4
   scenarios);
 * **mixer-only ceiling**: the largest P(optimum) found over mixer-only angles when maximising P(optimum)
-  itself (:func:`simulate.mixer_warm.mixer_only_ceiling`, 60 seeded random starts per depth plus the previous
+  itself (:func:`simulate.mixer_only.mixer_only_ceiling`, 60 seeded random starts per depth plus the previous
   depth's best). This diagnostic *uses the optimum*; it is not a method, it measures what any warm start with
   gammas 0 can give, so ``default / ceiling`` is the factor the phase separators add.
 
@@ -48,7 +48,7 @@ import qcpp
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario
 from simulate.layerwise import DEFAULT_MAXITER, train_layerwise
-from simulate.mixer_warm import CEILING_STARTS, mixer_only_ceiling, product_objective, robot_states, train_mixer_only
+from simulate.mixer_only import CEILING_STARTS, mixer_only_ceiling, product_objective, robot_states, train_mixer_only
 from simulate.objectives import GIBBS_SCALE, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale, initial_angles, train

@@ -7,7 +7,7 @@ its own beta in every layer, the circuit ``PlanOptions(angles="multi")`` (the sa
 
 For each scenario and p = 1..5 the table gives:
 
-* **trained (Gibbs)**: :func:`simulate.multi_angle.train_multi_angle` with every gamma 0 (the state is then a
+* **trained (Gibbs)**: :func:`simulate.mixer_only.train_multi_angle` with every gamma 0 (the state is then a
   product over robots): L-BFGS-B on the exact gradient of the default Gibbs objective of the measured cost
   from the 3 constant starts, the previous depth's best with a zero layer appended, and 8 seeded random
   starts; the run with the lowest objective is kept (the training never looks up the optimum). Its
@@ -40,7 +40,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.optimize import minimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -49,12 +48,16 @@ from _common import EXAMPLES, REPO, Table, circuit_columns, command_line, parse,
 import qcpp
 from gridcover.presets import default_scenario
 from gridcover.scenario import Scenario, load_scenario
-from simulate.mixer_warm import MIXER_MAXITER, MIXER_STARTS, p_optimum_and_gradients, product_objective
-from simulate.multi_angle import (
+from simulate.mixer_only import (
+    MIXER_MAXITER,
+    MIXER_STARTS,
     MULTI_RANDOM_STARTS,
+    best_p_optimum,
     mixer_sites,
     multi_robot_states,
-    multi_robot_states_gradient,
+    optimal_indices,
+    p_optimum_and_gradients,
+    product_objective,
     train_multi_angle,
 )
 from simulate.objectives import GIBBS_SCALE, make_objective
@@ -69,16 +72,12 @@ def _probs(states: Sequence[np.ndarray]) -> list[np.ndarray]:
     return [v.real * v.real + v.imag * v.imag for v in states]
 
 
-def _optima(q: SubspaceQAOA) -> list[tuple[int, ...]]:
-    return [tuple(int(i) for i in np.unravel_index(k, q.dims)) for k in q.optimum()[1]]
-
-
 def _row(q: SubspaceQAOA, betas: Sequence[float], p: int) -> dict[str, Any]:
     """P(optimum) and ``<C>`` of the product state at ``betas`` (no full state)."""
     probs = _probs(multi_robot_states(q, betas, p))
     _, mean, _ = product_objective(q, probs, make_objective("expectation"))
     return {"method": "qaoa_multi_angle", "betas": [float(b) for b in betas],
-            "p_opt": p_optimum_and_gradients(probs, _optima(q))[0], "expectation": mean,
+            "p_opt": p_optimum_and_gradients(probs, optimal_indices(q))[0], "expectation": mean,
             "p_most_probable": float(np.prod([pr.max() for pr in probs]))}
 
 
@@ -100,22 +99,6 @@ def _walk(q: SubspaceQAOA, betas: Sequence[float], p: int) -> tuple[int, float]:
                 widest, lowest = max(widest, int(np.count_nonzero(pr > 1e-6))), min(lowest, float(pr.max()))
         first += len(b.pairs)
     return widest, lowest
-
-
-def _ceiling(q: SubspaceQAOA, p: int, x0s: list[np.ndarray]) -> tuple[np.ndarray, float]:
-    """The best P(optimum) L-BFGS-B finds over multi-angle mixer-only betas from ``x0s`` (uses the optimum)."""
-    optima = _optima(q)
-
-    def fg(x: np.ndarray) -> tuple[float, np.ndarray]:
-        value, grads = p_optimum_and_gradients(_probs(multi_robot_states(q, x, p)), optima)
-        return -value, -multi_robot_states_gradient(q, x, p, grads)
-
-    best_x, best = x0s[0], -fg(x0s[0])[0]
-    for x0 in x0s:
-        res = minimize(fg, x0, jac=True, method="L-BFGS-B", options={"maxiter": 500})
-        if -float(res.fun) > best:
-            best, best_x = -float(res.fun), np.asarray(res.x, dtype=float)
-    return best_x, best
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
@@ -154,7 +137,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             x0s = [np.asarray(res.betas)] + [rng.uniform(0.0, 2 * np.pi, p * sites) for _ in range(CEILING_RANDOM)]
             if prev_ceiling is not None:
                 x0s.insert(1, np.append(prev_ceiling, np.zeros(sites)))
-            prev_ceiling, ceiling = _ceiling(q, p, x0s)
+            prev_ceiling, ceiling = best_p_optimum(q, (p, sites), x0s, maxiter=500)
             trained.append(res)
             ceilings.append(ceiling)
             there = sum(abs(v - res.value) <= 0.01 for v in res.start_values)

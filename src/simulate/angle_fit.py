@@ -4,14 +4,7 @@
 is no algorithm, ``P(optimum)`` itself (the most any angles at that depth put on the optimum, as far as the
 local optimiser finds). :meth:`AngleFit.from_training` reads gradient-based runs
 (:func:`simulate.training.train`) as a fit. The default training is :func:`simulate.layerwise.train_layerwise`.
-
-Example:
-    >>> from gridcover.scenario import scenario_from_dict
-    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
-    >>> q = SubspaceQAOA(s)
-    >>> fit = fit_angles(q, [[0.1, 0.3]], "p_optimum", maxiter=60)
-    >>> fit.value > q.p_optimum([0.1, 0.3])
-    True
+Example: at :func:`fit_angles`.
 """
 
 from __future__ import annotations

@@ -2,14 +2,8 @@
 
 A run succeeds if its best assignment is optimal. The evaluations of a run are the annealer's own
 ``Solution.evaluated`` (every cost look-up, its temperature calibration included); the success probability
-is the empirical rate with a Wilson score interval (:func:`simulate.success.wilson_interval`).
-
-Example:
-    >>> from gridcover.scenario import scenario_from_dict
-    >>> from gridcover.solvers import dfs
-    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
-    >>> [r.rate for r in anneal_success(s, [200], range(3), dfs(s).cost.total)]
-    [1.0]
+is the empirical rate with a Wilson score interval (:func:`simulate.success.wilson_interval`). Example: at
+:func:`anneal_success`.
 """
 
 from __future__ import annotations

@@ -50,8 +50,8 @@ from gridcover.cost import cost_parts_bits
 from gridcover.paths import assignment_bits, enumerate_paths
 from gridcover.sbf import RULES, Rule
 from gridcover.scenario import Scenario
-from simulate.subspace import SubspaceQAOA, split_angles
-from simulate.training import initial_angles
+from simulate.subspace import SubspaceQAOA, angle_bindings, split_angles
+from simulate.training import check_at_least, initial_angles
 
 __all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "resolve_angles"]
 
@@ -111,8 +111,7 @@ def resolve_angles(
         >>> resolve_angles(s, 1, [0.1, 0.2]).tolist(), len(resolve_angles(s, 2, seed=3))
         ([0.1, 0.2], 4)
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
+    check_at_least(p=(p, 1))
     if angles is None:
         return initial_angles(SubspaceQAOA(scenario), p, "random", seed)
     a = np.asarray(angles, dtype=float).reshape(-1)
@@ -168,13 +167,6 @@ def _tup(x: np.ndarray) -> tuple[float, ...]:
     return tuple(float(v) for v in x)
 
 
-def _bindings(x: np.ndarray) -> dict[str, float]:
-    gammas, betas = split_angles(x)
-    out = {f"gamma_{k}": float(g) for k, g in enumerate(gammas)}
-    out.update({f"beta_{k}": float(b) for k, b in enumerate(betas)})
-    return out
-
-
 def _feasible(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
     """Data-register indices of every feasible assignment and a mask of the optimal ones."""
     lists = [enumerate_paths(scenario, r) for r in range(scenario.num_robots)]
@@ -197,7 +189,7 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
             f"statevector: the circuit has at least {n} qubits (its data register), more than "
             f"{MAX_STATEVECTOR_QUBITS}; use --method subspace or tensor"
         )
-    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=_bindings(x))
+    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
     n = compiled.circuit.num_qubits
     if n > MAX_STATEVECTOR_QUBITS:
         raise ValueError(
@@ -226,9 +218,9 @@ def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) ->
         from simulate import tensor
     except ImportError as exc:  # pragma: no cover - the backend module is optional at import time
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
-    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=_bindings(x))
+    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
     feasible, optimal = _feasible(scenario)
-    amps = np.asarray(tensor.amplitudes(compiled.circuit, feasible.tolist()), dtype=complex)
+    amps = np.asarray(tensor.TensorCircuit(compiled.circuit).amplitudes(feasible.tolist()), dtype=complex)
     probs = amps.real * amps.real + amps.imag * amps.imag
     nd = scenario.num_variables
     bits = (feasible[:, None] >> np.arange(nd)) & 1

@@ -11,7 +11,7 @@
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
 With ``mixer_warm=True`` (an option, not the default) every level also starts from the mixer-only warm start
-(:func:`simulate.mixer_warm.train_mixer_only`: betas trained with every gamma 0, where the state is a product
+(:func:`simulate.mixer_only.train_mixer_only`: betas trained with every gamma 0, where the state is a product
 over robots and the objective costs one pass over the cost levels) with the linear ramp's gammas; the gammas
 must not start at 0, where every objective is stationary in them (``tests/simulate/mixer_warm_test.py``).
 
@@ -43,10 +43,10 @@ from typing import Any
 
 import numpy as np
 
-from simulate.mixer_warm import train_mixer_only
+from simulate.mixer_only import train_mixer_only
 from simulate.objectives import CVAR_ALPHA, ObjectiveName, make_objective
 from simulate.subspace import SubspaceQAOA
-from simulate.training import TrainingResult, cost_scale, initial_angles, interp_angles, train
+from simulate.training import TrainingResult, check_at_least, cost_scale, initial_angles, interp_angles, train
 
 __all__ = [
     "DEFAULT_MAXITER",
@@ -180,12 +180,7 @@ def train_layerwise(
     Raises:
         ValueError: ``p < 1``, ``random_starts < 0``, a negative ``maxiter``, or a bad objective parameter.
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
-    if random_starts < 0:
-        raise ValueError(f"random_starts must be >= 0, got {random_starts}")
-    if maxiter < 0:
-        raise ValueError(f"maxiter must be >= 0, got {maxiter}")
+    check_at_least(p=(p, 1), random_starts=(random_starts, 0), maxiter=(maxiter, 0))
     t0 = time.perf_counter()
     obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta)
     levels: list[TrainingResult] = []

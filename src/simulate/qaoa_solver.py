@@ -13,8 +13,8 @@ on the exact gradient layer by layer ``p = 1 .. p`` with INTERP / zero-layer war
 ``lbfgsb`` are one run of :func:`simulate.training.train` at depth ``p`` from ``init`` (``random`` from
 ``seed`` by default). ``multi-angle`` trains the multi-angle mixer-only circuit (one beta per partial mixer and
 layer, every gamma 0: ``PlanOptions(angles="multi")``) layer by layer with
-:func:`simulate.multi_angle.train_multi_angle_layers` (constant, previous-depth and
-:data:`~simulate.multi_angle.MULTI_RANDOM_STARTS` seeded random starts per depth); ``angles`` are then its
+:func:`simulate.mixer_only.train_multi_angle_layers` (constant, previous-depth and
+:data:`~simulate.mixer_only.MULTI_RANDOM_STARTS` seeded random starts per depth); ``angles`` are then its
 ``p x partial mixers`` betas and ``bindings`` the compiled circuit's symbol values. Every optimiser minimises
 ``objective`` (:mod:`simulate.objectives`; default ``gibbs``), and ``trace`` holds its values (``multi-angle``:
 the value each start ended on, depth by depth).
@@ -48,12 +48,12 @@ from simulate.layerwise import (
     LayerwiseResult,
     train_layerwise,
 )
-from simulate.mixer_warm import product_objective
-from simulate.multi_angle import (
+from simulate.mixer_only import (
     bindings,
     most_probable_multi,
     multi_robot_states,
     p_optimum_multi,
+    product_objective,
     train_multi_angle_layers,
 )
 from simulate.objectives import OBJECTIVES, Expectation, ObjectiveName
@@ -155,7 +155,7 @@ def solve_qaoa(
         maxiter: Optimiser budget per run (see :func:`simulate.training.train`).
         random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
         mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
-            (:mod:`simulate.mixer_warm`; an option, not the default).
+            (:mod:`simulate.mixer_only`; an option, not the default).
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
 

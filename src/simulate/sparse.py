@@ -21,9 +21,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 
-from circuitgen.angles import UnboundParameterError
 from circuitgen.circuit import Circuit
 from circuitgen.gates import GATE_SPECS, Gate, controlled_x_pattern, diagonal, unitary
+from simulate.statevector import bound_circuit
 
 __all__ = ["PRUNE_TOLERANCE", "basis_from_bits", "bits_of", "simulate_sparse"]
 
@@ -132,10 +132,7 @@ def simulate_sparse(
     >>> {k: round(abs(a) ** 2, 12) for k, a in simulate_sparse(Circuit([("d", 1)], [Section("s", [h(0)])])).items()}
     {0: 0.5, 1: 0.5}
     """
-    if bindings:
-        circuit = circuit.bind(bindings)
-    if circuit.symbols:
-        raise UnboundParameterError(circuit.symbols, "simulation")
+    circuit = bound_circuit(circuit, bindings)
     n = circuit.num_qubits
     if isinstance(initial, int):
         state: dict[int, complex] = {initial: 1.0 + 0j}

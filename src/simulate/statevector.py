@@ -36,11 +36,12 @@ MAX_UNITARY_QUBITS = 14
 """Refuse :func:`circuit_unitary` beyond this many qubits (4**14 amplitudes = 4 GiB)."""
 
 
-def _bound(circuit: Circuit, bindings: Mapping[str, float] | None) -> Circuit:
+def bound_circuit(circuit: Circuit, bindings: Mapping[str, float] | None, context: str = "simulation") -> Circuit:
+    """``circuit`` with ``bindings`` applied; raises :class:`UnboundParameterError` if a symbol is left."""
     if bindings:
         circuit = circuit.bind(bindings)
     if circuit.symbols:
-        raise UnboundParameterError(circuit.symbols, "simulation")
+        raise UnboundParameterError(circuit.symbols, context)
     return circuit
 
 
@@ -191,7 +192,7 @@ def simulate_statevector(
     >>> simulate_statevector(Circuit([("data", 2)], [Section("s", [x(1)])])).argmax()
     np.int64(2)
     """
-    circuit = _bound(circuit, bindings)
+    circuit = bound_circuit(circuit, bindings)
     n = circuit.num_qubits
     dim = 1 << n
     if isinstance(initial, (int, np.integer)):
@@ -223,7 +224,7 @@ def circuit_unitary(circuit: Circuit, bindings: Mapping[str, float] | None = Non
     >>> np.round(u.real, 12).astype(int).tolist()  # = cx(0, 1)
     [[1, 0, 0, 0], [0, 0, 0, 1], [0, 0, 1, 0], [0, 1, 0, 0]]
     """
-    circuit = _bound(circuit, bindings)
+    circuit = bound_circuit(circuit, bindings)
     n = circuit.num_qubits
     if n > MAX_UNITARY_QUBITS:
         raise ValueError(f"{n} qubits is too many for a dense unitary")

@@ -90,6 +90,7 @@ __all__ = [
     "NonUnitaryMixerError",
     "RobotBasis",
     "SubspaceQAOA",
+    "angle_bindings",
     "evaluate_logic",
     "robot_basis",
     "split_angles",
@@ -301,6 +302,17 @@ def split_angles(angles: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.n
     if not np.all(np.isfinite(a)):
         raise ValueError("angles must be finite")
     return a[0::2].copy(), a[1::2].copy()
+
+
+def angle_bindings(angles: Sequence[float] | np.ndarray) -> dict[str, float]:
+    """The compiled circuit's symbol values ``gamma_k``, ``beta_k`` for ``[gamma_0, beta_0, ...]``.
+
+    Example:
+        >>> angle_bindings([0.1, 0.2])
+        {'gamma_0': 0.1, 'beta_0': 0.2}
+    """
+    gammas, betas = split_angles(angles)
+    return {f"gamma_{k}": float(g) for k, g in enumerate(gammas)} | {f"beta_{k}": float(b) for k, b in enumerate(betas)}
 
 
 @cache

@@ -54,74 +54,39 @@ LANES = 4
 L2 cache), and every rotation is 4-wide arithmetic."""
 
 
+def _rotate_pair(b: np.ndarray, i: int, j: int, c: float, sg: float) -> None:
+    """The rotation of pair ``(i, j)`` on a lane block ``b`` of shape ``(n, 8)``: row ``r`` holds basis path ``r``
+    of four lines as ``[re_0..re_3, im_0..im_3]`` (``s = -1j * sg``). Written out lane by lane, loads before
+    stores, so that LLVM's SLP vectoriser turns each line into one 4-wide operation."""
+    ur0, ur1, ur2, ur3 = b[i, 0], b[i, 1], b[i, 2], b[i, 3]
+    ui0, ui1, ui2, ui3 = b[i, 4], b[i, 5], b[i, 6], b[i, 7]
+    vr0, vr1, vr2, vr3 = b[j, 0], b[j, 1], b[j, 2], b[j, 3]
+    vi0, vi1, vi2, vi3 = b[j, 4], b[j, 5], b[j, 6], b[j, 7]
+    b[i, 0], b[i, 1], b[i, 2], b[i, 3] = c * ur0 + sg * vi0, c * ur1 + sg * vi1, c * ur2 + sg * vi2, c * ur3 + sg * vi3
+    b[i, 4], b[i, 5], b[i, 6], b[i, 7] = c * ui0 - sg * vr0, c * ui1 - sg * vr1, c * ui2 - sg * vr2, c * ui3 - sg * vr3
+    b[j, 0], b[j, 1], b[j, 2], b[j, 3] = c * vr0 + sg * ui0, c * vr1 + sg * ui1, c * vr2 + sg * ui2, c * vr3 + sg * ui3
+    b[j, 4], b[j, 5], b[j, 6], b[j, 7] = c * vi0 - sg * ur0, c * vi1 - sg * ur1, c * vi2 - sg * ur2, c * vi3 - sg * ur3
+
+
 def _rotate_lanes(b: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> None:
-    """Every pair in order on a lane block ``b`` of shape ``(n, 8)``: row ``r`` holds basis path ``r`` of four
-    lines as ``[re_0..re_3, im_0..im_3]`` (``s = -1j * sg``). Written out lane by lane, loads before stores,
-    so that LLVM's SLP vectoriser turns each line into one 4-wide operation."""
+    """Every pair in order on a lane block (:func:`_rotate_pair`)."""
     for k in range(ii.shape[0]):
-        i = ii[k]
-        j = jj[k]
-        ur0, ur1, ur2, ur3 = b[i, 0], b[i, 1], b[i, 2], b[i, 3]
-        ui0, ui1, ui2, ui3 = b[i, 4], b[i, 5], b[i, 6], b[i, 7]
-        vr0, vr1, vr2, vr3 = b[j, 0], b[j, 1], b[j, 2], b[j, 3]
-        vi0, vi1, vi2, vi3 = b[j, 4], b[j, 5], b[j, 6], b[j, 7]
-        b[i, 0], b[i, 1], b[i, 2], b[i, 3] = (
-            c * ur0 + sg * vi0, c * ur1 + sg * vi1, c * ur2 + sg * vi2, c * ur3 + sg * vi3
-        )
-        b[i, 4], b[i, 5], b[i, 6], b[i, 7] = (
-            c * ui0 - sg * vr0, c * ui1 - sg * vr1, c * ui2 - sg * vr2, c * ui3 - sg * vr3
-        )
-        b[j, 0], b[j, 1], b[j, 2], b[j, 3] = (
-            c * vr0 + sg * ui0, c * vr1 + sg * ui1, c * vr2 + sg * ui2, c * vr3 + sg * ui3
-        )
-        b[j, 4], b[j, 5], b[j, 6], b[j, 7] = (
-            c * vi0 - sg * ur0, c * vi1 - sg * ur1, c * vi2 - sg * ur2, c * vi3 - sg * ur3
-        )
+        _rotate_pair(b, ii[k], jj[k], c, sg)
 
 
 def _unrotate_lanes(bx: np.ndarray, by: np.ndarray, ii: np.ndarray, jj: np.ndarray, c: float, sg: float) -> float:
-    """The pairs in reverse order on two lane blocks (layout of :func:`_rotate_lanes`); returns the sum over
-    lanes and pairs of ``Im(conj(y_i) x_j + conj(y_j) x_i)`` taken before each pair is undone."""
+    """The pairs in reverse order on two lane blocks (:func:`_rotate_pair`); returns the sum over lanes and pairs
+    of ``Im(conj(y_i) x_j + conj(y_j) x_i)`` taken before each pair is undone."""
     z0 = z1 = z2 = z3 = 0.0
     for k in range(ii.shape[0] - 1, -1, -1):
         i = ii[k]
         j = jj[k]
-        ur0, ur1, ur2, ur3 = bx[i, 0], bx[i, 1], bx[i, 2], bx[i, 3]
-        ui0, ui1, ui2, ui3 = bx[i, 4], bx[i, 5], bx[i, 6], bx[i, 7]
-        vr0, vr1, vr2, vr3 = bx[j, 0], bx[j, 1], bx[j, 2], bx[j, 3]
-        vi0, vi1, vi2, vi3 = bx[j, 4], bx[j, 5], bx[j, 6], bx[j, 7]
-        pr0, pr1, pr2, pr3 = by[i, 0], by[i, 1], by[i, 2], by[i, 3]
-        pi0, pi1, pi2, pi3 = by[i, 4], by[i, 5], by[i, 6], by[i, 7]
-        qr0, qr1, qr2, qr3 = by[j, 0], by[j, 1], by[j, 2], by[j, 3]
-        qi0, qi1, qi2, qi3 = by[j, 4], by[j, 5], by[j, 6], by[j, 7]
-        z0 += pr0 * vi0 - pi0 * vr0 + qr0 * ui0 - qi0 * ur0
-        z1 += pr1 * vi1 - pi1 * vr1 + qr1 * ui1 - qi1 * ur1
-        z2 += pr2 * vi2 - pi2 * vr2 + qr2 * ui2 - qi2 * ur2
-        z3 += pr3 * vi3 - pi3 * vr3 + qr3 * ui3 - qi3 * ur3
-        bx[i, 0], bx[i, 1], bx[i, 2], bx[i, 3] = (
-            c * ur0 + sg * vi0, c * ur1 + sg * vi1, c * ur2 + sg * vi2, c * ur3 + sg * vi3
-        )
-        bx[i, 4], bx[i, 5], bx[i, 6], bx[i, 7] = (
-            c * ui0 - sg * vr0, c * ui1 - sg * vr1, c * ui2 - sg * vr2, c * ui3 - sg * vr3
-        )
-        bx[j, 0], bx[j, 1], bx[j, 2], bx[j, 3] = (
-            c * vr0 + sg * ui0, c * vr1 + sg * ui1, c * vr2 + sg * ui2, c * vr3 + sg * ui3
-        )
-        bx[j, 4], bx[j, 5], bx[j, 6], bx[j, 7] = (
-            c * vi0 - sg * ur0, c * vi1 - sg * ur1, c * vi2 - sg * ur2, c * vi3 - sg * ur3
-        )
-        by[i, 0], by[i, 1], by[i, 2], by[i, 3] = (
-            c * pr0 + sg * qi0, c * pr1 + sg * qi1, c * pr2 + sg * qi2, c * pr3 + sg * qi3
-        )
-        by[i, 4], by[i, 5], by[i, 6], by[i, 7] = (
-            c * pi0 - sg * qr0, c * pi1 - sg * qr1, c * pi2 - sg * qr2, c * pi3 - sg * qr3
-        )
-        by[j, 0], by[j, 1], by[j, 2], by[j, 3] = (
-            c * qr0 + sg * pi0, c * qr1 + sg * pi1, c * qr2 + sg * pi2, c * qr3 + sg * pi3
-        )
-        by[j, 4], by[j, 5], by[j, 6], by[j, 7] = (
-            c * qi0 - sg * pr0, c * qi1 - sg * pr1, c * qi2 - sg * pr2, c * qi3 - sg * pr3
-        )
+        z0 += by[i, 0] * bx[j, 4] - by[i, 4] * bx[j, 0] + by[j, 0] * bx[i, 4] - by[j, 4] * bx[i, 0]
+        z1 += by[i, 1] * bx[j, 5] - by[i, 5] * bx[j, 1] + by[j, 1] * bx[i, 5] - by[j, 5] * bx[i, 1]
+        z2 += by[i, 2] * bx[j, 6] - by[i, 6] * bx[j, 2] + by[j, 2] * bx[i, 6] - by[j, 6] * bx[i, 2]
+        z3 += by[i, 3] * bx[j, 7] - by[i, 7] * bx[j, 3] + by[j, 3] * bx[i, 7] - by[j, 7] * bx[i, 3]
+        _rotate_pair(bx, i, j, c, sg)
+        _rotate_pair(by, i, j, c, sg)
     return (z0 + z1) + (z2 + z3)
 
 
@@ -274,6 +239,7 @@ def _pair_weight_gradients_impl(
 
 if AVAILABLE:
     _inline = numba.njit(cache=True, nogil=True)
+    _rotate_pair = _inline(_rotate_pair)
     _rotate_lanes = _inline(_rotate_lanes)
     _unrotate_lanes = _inline(_unrotate_lanes)
     _lane_lines = _inline(_lane_lines)

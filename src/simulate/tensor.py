@@ -7,7 +7,6 @@ Use it to validate circuits that are too wide for the dense simulator (20-40 qub
 * :class:`TensorCircuit` wraps one bound circuit: :meth:`~TensorCircuit.amplitude` ``<y|U|x>``,
   :meth:`~TensorCircuit.probability` of fixed values on some qubits (e.g. every ancilla in |0>) and
   :meth:`~TensorCircuit.sample`.
-  :func:`amplitudes` and :func:`probability` are one-call forms.
 
 Conventions:
 
@@ -72,9 +71,9 @@ from typing import Any
 
 import numpy as np
 
-from circuitgen.angles import UnboundParameterError
 from circuitgen.circuit import Circuit
 from circuitgen.gates import Gate, controlled_x_pattern, unitary
+from simulate.statevector import bound_circuit
 
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
@@ -90,12 +89,10 @@ __all__ = [
     "ContractionTooWideError",
     "MPSCircuit",
     "TensorCircuit",
-    "amplitudes",
     "contract_sliced",
     "dask_client",
     "default_cache_dir",
     "path_optimizer",
-    "probability",
     "state_bits",
     "to_quimb",
 ]
@@ -283,14 +280,6 @@ def state_bits(state: BasisState, num_qubits: int) -> tuple[int, ...]:
     return bits
 
 
-def _bound(circuit: Circuit, bindings: Mapping[str, float] | None) -> Circuit:
-    if bindings:
-        circuit = circuit.bind(bindings)
-    if circuit.symbols:
-        raise UnboundParameterError(circuit.symbols, "tensor-network simulation")
-    return circuit
-
-
 def _apply(qc: Any, gate: Gate, split: str | None = "auto-split-gate") -> None:
     """Append ``gate`` to a quimb circuit; ``split`` is the contraction mode of controlled gates (``None``: the
     circuit's own, as for ``CircuitMPS``)."""
@@ -342,7 +331,7 @@ def to_quimb(
         >>> round(float(abs(qc.amplitude("1011"))), 12)
         1.0
     """
-    circuit = _bound(circuit, bindings)
+    circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
     n = circuit.num_qubits
     if n < 1:
         raise ValueError("the circuit has no qubits")
@@ -523,7 +512,7 @@ class TensorCircuit:
         client: Any = None,
         ancillas: Sequence[int] = (),
     ) -> None:
-        self.circuit = _bound(circuit, bindings)
+        self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
         self.num_qubits = self.circuit.num_qubits
         self.psi0_bits = state_bits(psi0_bits if psi0_bits is not None else 0, self.num_qubits)
         self.quimb = to_quimb(self.circuit, psi0_bits=self.psi0_bits)
@@ -939,7 +928,7 @@ class MPSCircuit:
         bond_limit: int | None = None,
     ) -> None:
         t0 = time.perf_counter()
-        self.circuit = _bound(circuit, bindings)
+        self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
         n = self.num_qubits = self.circuit.num_qubits
         order = list(range(n)) if layout is None else [int(q) for q in layout]
         if sorted(order) != list(range(n)):
@@ -996,48 +985,3 @@ class MPSCircuit:
         """Probability that all of ``qubits`` are |0>."""
         return self.probability({q: 0 for q in qubits})
 
-
-def amplitudes(
-    circuit: Circuit,
-    states: Iterable[BasisState],
-    bindings: Mapping[str, float] | None = None,
-    psi0_bits: BasisState | None = None,
-    **options: Any,
-) -> np.ndarray:
-    """``<state| U |psi0>`` for each state (one-call form of :meth:`TensorCircuit.amplitudes`).
-
-    Args:
-        circuit: Any circuit.
-        states: Basis states (ints with bit i = qubit i, bit strings, or 0/1 sequences).
-        bindings: Symbol values.
-        psi0_bits: Initial basis state; default all zeros.
-        **options: ``optimizer``, ``cache_dir``, ``max_width`` of :class:`TensorCircuit`.
-
-    Returns:
-        complex128 array.
-
-    Example:
-        >>> from circuitgen.circuit import Circuit, Section
-        >>> from circuitgen.gates import x
-        >>> amplitudes(Circuit([("q", 2)], [Section("s", [x(1)])]), [0b10, 0b01]).real.tolist()
-        [1.0, 0.0]
-    """
-    return TensorCircuit(circuit, bindings, psi0_bits, **options).amplitudes(states)
-
-
-def probability(
-    circuit: Circuit,
-    fixed: Mapping[int, int],
-    bindings: Mapping[str, float] | None = None,
-    psi0_bits: BasisState | None = None,
-    **options: Any,
-) -> float:
-    """Probability of the values in ``fixed`` (one-call form of :meth:`TensorCircuit.probability`).
-
-    Example:
-        >>> from circuitgen.circuit import Circuit, Section
-        >>> from circuitgen.gates import ry
-        >>> round(probability(Circuit([("q", 1)], [Section("s", [ry(math.pi / 3, 0)])]), {0: 1}), 12)
-        0.25
-    """
-    return TensorCircuit(circuit, bindings, psi0_bits, **options).probability(fixed)

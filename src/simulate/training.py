@@ -56,7 +56,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -69,6 +69,7 @@ __all__ = [
     "INITS",
     "OPTIMIZERS",
     "TrainingResult",
+    "check_at_least",
     "cost_scale",
     "initial_angles",
     "interp_angles",
@@ -156,6 +157,19 @@ def cost_scale(qaoa: SubspaceQAOA) -> float:
     return sd if sd > 1e-12 * max(1.0, abs(mean)) else 1.0
 
 
+def check_at_least(**bounds: tuple[int, int]) -> None:
+    """Raise ``ValueError("NAME must be >= LOW, got VALUE")`` for the first ``NAME=(VALUE, LOW)`` below its bound.
+
+    Example:
+        >>> check_at_least(p=(2, 1), maxiter=(-1, 0))
+        Traceback (most recent call last):
+        ValueError: maxiter must be >= 0, got -1
+    """
+    for name, (value, low) in bounds.items():
+        if value < low:
+            raise ValueError(f"{name} must be >= {low}, got {value}")
+
+
 def initial_angles(qaoa: SubspaceQAOA, p: int, init: Init = "linear-ramp", seed: int | None = None) -> np.ndarray:
     """Starting angles for ``random`` or ``linear-ramp`` (see the module docstring).
 
@@ -167,8 +181,7 @@ def initial_angles(qaoa: SubspaceQAOA, p: int, init: Init = "linear-ramp", seed:
         >>> initial_angles(SubspaceQAOA(s), 2).round(4).tolist()
         [0.1875, 1.125, 0.5625, 0.375]
     """
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
+    check_at_least(p=(p, 1))
     sigma = cost_scale(qaoa)
     if init == "random":
         rng = np.random.default_rng(seed)
@@ -255,10 +268,7 @@ def train(
     """
     if optimizer not in OPTIMIZERS:
         raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(OPTIMIZERS)})")
-    if p < 1:
-        raise ValueError(f"p must be >= 1, got {p}")
-    if maxiter < 0:
-        raise ValueError(f"maxiter must be >= 0, got {maxiter}")
+    check_at_least(p=(p, 1), maxiter=(maxiter, 0))
     t0 = time.perf_counter()
     stages: tuple[TrainingResult, ...] = ()
     if isinstance(init, str):
@@ -326,12 +336,9 @@ def _replace_stages(r: TrainingResult) -> TrainingResult:
     """``r`` without its own stages and with its counts/seconds for its level only."""
     if not r.stages:
         return r
-    d = {k: getattr(r, k) for k in r.__dataclass_fields__}
-    d["num_evaluations"] -= sum(s.num_evaluations for s in r.stages)
-    d["num_gradients"] -= sum(s.num_gradients for s in r.stages)
-    d["seconds"] -= sum(s.seconds for s in r.stages)
-    d["stages"] = ()
-    return TrainingResult(**d)
+    return replace(r, num_evaluations=r.num_evaluations - sum(s.num_evaluations for s in r.stages),
+                   num_gradients=r.num_gradients - sum(s.num_gradients for s in r.stages),
+                   seconds=r.seconds - sum(s.seconds for s in r.stages), stages=())
 
 
 class _Counter:

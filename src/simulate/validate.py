@@ -323,6 +323,12 @@ def _probability_check(method: str, prob: float, tol: float, t0: float, note: st
     return Check("ancilla_probability", method, prob, err, 1, status, time.perf_counter() - t0, note)
 
 
+def _skipped(name: str, t0: float | None, note: str) -> Check:
+    """A ``tensor contraction`` check that could not run (``t0``: when it started; ``None``: it never did)."""
+    return Check(name, "tensor contraction", math.nan, math.nan, 0, "skipped",
+                 0.0 if t0 is None else time.perf_counter() - t0, note)
+
+
 def _mps_layout(scenario: Scenario, num_qubits: int) -> list[int]:
     """Site order with the ancillas between the first half of the robots and the rest (or mid-data for one)."""
     n = scenario.num_variables
@@ -382,7 +388,7 @@ def validate(
     """
     from circuitgen.compile import compile_scenario
     from circuitgen.options import PlanOptions
-    from simulate.subspace import SubspaceQAOA
+    from simulate.subspace import SubspaceQAOA, angle_bindings
 
     t_start = time.perf_counter()
     if backend not in BACKENDS:
@@ -396,7 +402,7 @@ def validate(
     x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
     if x.size != 2 * p or not np.all(np.isfinite(x)):
         raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
-    bindings = {f"gamma_{k}": float(x[2 * k]) for k in range(p)} | {f"beta_{k}": float(x[2 * k + 1]) for k in range(p)}
+    bindings = angle_bindings(x)
 
     def at(text: str) -> None:
         if stage is not None:
@@ -557,9 +563,7 @@ def _tensor_checks(
     t0 = time.perf_counter()
     tc = TensorCircuit(circuit, cache_dir=cache_dir, client=client, ancillas=ancillas)
     if max_amplitudes == 0:
-        checks.append(
-            Check("amplitudes", "tensor contraction", math.nan, math.nan, 0, "skipped", 0.0, "max_amplitudes=0")
-        )
+        checks.append(_skipped("amplitudes", None, "max_amplitudes=0"))
         return checks
     if max_amplitudes is None or max_amplitudes >= total:
         pick = np.arange(total)
@@ -572,11 +576,7 @@ def _tensor_checks(
     try:
         got = tc.amplitudes((int(index[k]) for k in pick), open_qubits=_open_qubits(scenario))
     except ContractionTooWideError as exc:
-        checks.append(
-            Check(
-                "amplitudes", "tensor contraction", math.nan, math.nan, 0, "skipped", time.perf_counter() - t0, str(exc)
-            )
-        )
+        checks.append(_skipped("amplitudes", t0, str(exc)))
         return checks
     if client is not None:  # say that Dask ran, and what it did
         workers = len(client.nthreads())
@@ -599,16 +599,5 @@ def _tensor_checks(
                 note = f"lower bound sum |amplitude|^2 over every feasible assignment ({exc})"
                 checks.append(_probability_check("tensor contraction", bound, tol, t0, note))
             else:
-                checks.append(
-                    Check(
-                        "ancilla_probability",
-                        "tensor contraction",
-                        math.nan,
-                        math.nan,
-                        0,
-                        "skipped",
-                        time.perf_counter() - t0,
-                        str(exc),
-                    )
-                )
+                checks.append(_skipped("ancilla_probability", t0, str(exc)))
     return checks

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from gridcover.scenario import scenario_from_dict
-from simulate.mixer_warm import product_objective, robot_states, robot_states_gradient, train_mixer_only
+from simulate.mixer_only import product_objective, robot_states, robot_states_gradient, train_mixer_only
 from simulate.objectives import OBJECTIVES, make_objective
 from simulate.subspace import SubspaceQAOA
 from simulate.training import cost_scale

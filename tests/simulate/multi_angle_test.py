@@ -12,12 +12,14 @@ from circuitgen.lowering import lower
 from circuitgen.options import PlanOptions
 from circuitgen.qaoa import qaoa_circuit, qaoa_plan
 from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
-from simulate.mixer_warm import product_objective, robot_states
-from simulate.multi_angle import (
+from simulate.mixer_only import (
     bindings,
     mixer_sites,
     multi_robot_states,
     multi_robot_states_gradient,
+    product_objective,
+    robot_states,
+    robot_states_gradient,
     train_multi_angle,
 )
 from simulate.objectives import make_objective
@@ -72,6 +74,17 @@ def test_equal_betas_are_the_one_angle_mixer() -> None:
     multi = multi_robot_states(q, np.repeat(layer_betas, len(mixer_sites(q))), p)
     for a, b in zip(multi, robot_states(q, layer_betas)):
         assert np.allclose(a, b, atol=1e-12)
+
+
+def test_a_tied_betas_gradient_is_the_sum_over_its_sites() -> None:
+    """One beta per layer is the multi-angle mixer with each layer's betas tied (one kernel serves both), so its
+    derivative is the sum of that layer's per-site derivatives."""
+    q, layer_betas = SubspaceQAOA(TWO_3x3), np.array([0.4, 1.9, -0.7])
+    weights = [np.random.default_rng(r).normal(size=d) for r, d in enumerate(q.dims)]
+    sites = robot_states_gradient(q, np.repeat(layer_betas[:, None], len(mixer_sites(q)), axis=1), weights)
+    tied = robot_states_gradient(q, layer_betas, weights)
+    assert sites.shape == (3, len(mixer_sites(q))) and np.allclose(tied, sites.sum(axis=1), atol=1e-12)
+    assert np.abs(tied).max() > 1e-3
 
 
 @pytest.mark.parametrize("name", ["gibbs", "expectation"])

@@ -194,8 +194,7 @@ def _check_multi_angle_states(heavy: bool) -> int:
     """Multi-angle rows (gammas 0, a product state: cheap even at 4x4): P(optimum) and ``<C>`` from the betas."""
     import numpy as np
 
-    from simulate.mixer_warm import p_optimum_and_gradients, product_objective
-    from simulate.multi_angle import multi_robot_states
+    from simulate.mixer_only import multi_robot_states, p_optimum_and_gradients, product_objective
     from simulate.objectives import Expectation
 
     checked = 0
