@@ -321,7 +321,8 @@ def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool
     return table
 
 
-def _text(renderable: Any, width: int) -> str:
+def draw(renderable: Any, width: int) -> str:
+    """``renderable`` (a rich table, text, ...) as rich prints it on a ``width``-character plain console."""
     from rich.console import Console
 
     buf = io.StringIO()
@@ -330,7 +331,7 @@ def _text(renderable: Any, width: int) -> str:
 
 
 def _natural_width(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> int:
-    text = _text(_rich_table(rows, cols, paper), 100_000)
+    text = draw(_rich_table(rows, cols, paper), 100_000)
     return max((len(line.rstrip()) for line in text.splitlines()), default=0)
 
 
@@ -382,11 +383,10 @@ class TooNarrowError(ValueError):
 
 
 def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: int, *, paper: bool = False) -> str:
-    """Rows as records, one field per line (the ``table`` format below the table's width).
+    """Rows as records, one field per line (the ``table`` format below the table's width; :func:`records`).
 
-    Each field is ``name value`` on one line when the longest of those fits ``width``, else the name on one line
-    and the value indented on the next. Numbers are never cut: when even that does not fit (a name or value
-    longer than the line) this raises instead of printing something unreadable.
+    Numbers are never cut: below the width of the longest name or value this raises instead of printing
+    something unreadable.
 
     Args:
         rows: rows from :func:`make_rows`.
@@ -423,23 +423,57 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
     """
     cells = [[_cell(r.get(c)) for c in cols] for r in rows]
     title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
-    name_w = max((len(c) for c in cols), default=0)
     value_w = max((len(v) for row in cells for v in row), default=0)
-    need = max(name_w, value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *(len(w) for w in title.split()))
+    need = max(0, *map(len, cols), value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *map(len, title.split()))
     if need > width:
         raise TooNarrowError(
             f"the terminal is {width} columns wide; the resource table needs {need} even one field per line "
             f"(set COLUMNS={need} or more, or use --format csv, json or md)"
         )
-    side_by_side = name_w + 1 + value_w <= width
-    out = textwrap.wrap(title, width) or [""]
-    for i, row in enumerate(cells):
-        if i:
-            out.append("")
-        out.append(f"row {i + 1} of {len(cells)}")
-        for c, v in zip(cols, row, strict=True):
-            out += [f"{c:<{name_w}} {v:>{value_w}}".rstrip()] if side_by_side else [c, f"  {v}"]
+    return records(title, [list(zip(cols, row, strict=True)) for row in cells], width, numbered=True)
+
+
+def records(
+    title: str, blocks: Sequence[Sequence[tuple[str, str]]], width: int, *, sep: str = " ", numbered: bool = False,
+    per_field: bool = False,
+) -> str:
+    """``(name, value)`` fields within ``width`` characters: the layout of every table too wide for the terminal.
+
+    A field is ``name<sep>value`` (names padded, values right-aligned) when every field fits so (``per_field``:
+    when it does), else its name with the value indented below; a value of several lines continues indented.
+
+    Args:
+        title: wrapped at spaces only (:func:`title_lines`).
+        blocks: the records, each a sequence of fields, a blank line between two; ``numbered``: each opened by
+            ``row i of n``.
+
+    Example:
+        >>> print(records("t", [[("qubits", "26"), ("cx", "320")]], 12, sep="  "), end="")
+        t
+        qubits   26
+        cx      320
+    """
+    fields = [field for block in blocks for field in block]
+    name_w = max((len(name) for name, _ in fields), default=0)
+    value_w = max((len(part) for _, value in fields for part in value.split("\n")), default=0)
+    all_fit = name_w + len(sep) + value_w <= width
+    value_w = min(value_w, width - name_w - len(sep))
+    out = title_lines(title, width)
+    for i, block in enumerate(blocks):
+        out += ([""] if i else []) + ([f"row {i + 1} of {len(blocks)}"] if numbered else [])
+        for name, value in block:
+            first, *rest = value.split("\n")
+            if all_fit or (per_field and max(map(len, [first, *rest])) <= value_w):
+                out.append(f"{name:<{name_w}}{sep}{first:>{value_w}}".rstrip())
+                out += [" " * (name_w + len(sep)) + part for part in rest]
+            else:
+                out += [name, *("  " + part for part in value.split("\n"))]
     return "\n".join(out) + "\n"
+
+
+def title_lines(title: str, width: int) -> list[str]:
+    """``title`` wrapped to ``width`` at spaces only: a file name is never broken (a longer one stands alone)."""
+    return textwrap.wrap(title, width, break_long_words=False, break_on_hyphens=False)
 
 
 def render(
@@ -484,11 +518,11 @@ def render(
         return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
     table = _rich_table(rows, shown, paper)
     text_width = limit if columns is None and not wide else max(limit, natural)
-    text = _text(table, text_width)
+    text = draw(table, text_width)
     if hidden:
         note = (
             f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
             "--format csv/json/md keep every column)"
         )
-        text += _text(note, limit)
+        text += draw(note, limit)
     return text
