@@ -13,7 +13,8 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
   exit code 2 (:class:`QcppGroup`), instead of click's framed box.
 * Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
   ``--maxiter``, ``--max-amplitudes`` must be at least 1 (a zero-work request is refused, not
-  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`.
+  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`. So are
+  choice options (:data:`CHOICES`): ``error: --rule: expected exact or paper, got 'fast' (see ...)``.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.interrupt`).
 * ``--allow-large`` (every command) lifts the size guards of :mod:`gridcover.limits`.
 
@@ -65,6 +66,7 @@ __all__ = [
     "COMMAND_MODULES",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
+    "LIBRARY_CHECKED",
     "LIBRARY_ERRORS",
     "NUMERIC_OPTIONS",
     "QcppCommand",
@@ -154,7 +156,7 @@ def _stop_requested() -> bool:
     return stop_requested()
 
 
-def _check_numbers(kwargs: dict[str, Any]) -> None:
+def _check_options(kwargs: dict[str, Any]) -> None:
     ctx = get_current_context(silent=True)
     for name, low in NUMERIC_OPTIONS.items():
         value = kwargs.get(name)
@@ -166,6 +168,11 @@ def _check_numbers(kwargs: dict[str, Any]) -> None:
             raise _click_exc.BadParameter(f"must be at least {low}, got {value}", ctx=ctx, param=param)
         if name == "p":
             check_layers(value, flag)
+    for param in ctx.command.params if ctx else ():  # choice options: one check, one message, every command
+        value, key = kwargs.get(param.name or ""), f"{ctx.command.name}.{param.name}"  # type: ignore[union-attr]
+        values = None if value in (None, param.default) or key in LIBRARY_CHECKED else choices_of(*key.split("."))
+        if values is not None and str(value) not in values:
+            raise _click_exc.BadParameter(f"expected {' or '.join(values)}, got {value!r}", ctx=ctx, param=param)
 
 
 @contextlib.contextmanager
@@ -209,7 +216,7 @@ def handle_errors(fn: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         large = kwargs["allow_large"] if own_flag else kwargs.pop("allow_large", False)
         try:
-            _check_numbers(kwargs)
+            _check_options(kwargs)
             with allow_large(bool(large)), one_line_warnings():
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
@@ -289,6 +296,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
     "solve.optimizer": _lazy("simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
     "phase_layout": _lazy("circuitgen.options", "PHASE_LAYOUTS"),
+    "compile.layout": _lazy("circuitgen.options", "LAYOUT_METHODS"),
     "compile.angles": _lazy("circuitgen.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("circuitgen.options", "ANGLES"),
     "simulate.method": _lazy("simulate.evaluate", "METHODS"),
@@ -300,11 +308,17 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "estimate.qec_scheme": _lazy("estimators.physical", "QEC_SCHEMES"),
     "estimate.paper_doubling": _lazy("estimators.paper", "DOUBLINGS"),
     "estimate.toffoli_t": _lazy("estimators.fault_tolerant", "TOFFOLI_T_CHOICES"),
+    "export.fmt": _lazy("gridcover.qubo_export", "EXPORT_FORMATS"),
+    "export.form": _lazy("gridcover.qubo", "FORMS"),
 }
 """Options that take one of a fixed set of values: ``command.param`` (or ``param`` in every command) -> the
 values, read from the constant the command validates against when help is shown (not at start-up: some live
 behind heavy imports). ``--help`` shows them as ``[a|b|c]`` instead of ``<str>``, and shell completion offers
-them."""
+them. A value outside them is refused before the command runs (``--rule: expected exact or paper, got 'fast'``),
+except for the options of :data:`LIBRARY_CHECKED`."""
+
+LIBRARY_CHECKED = frozenset({"solve.optimizer", "solve.initial"})
+"""Choice options whose values the library checks itself, with its own message (``unknown optimizer 'adam'``)."""
 
 
 def choices_of(command: str, param: str) -> tuple[str, ...] | None:

@@ -33,7 +33,6 @@ import math
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
-from pathlib import Path
 from typing import Annotated, Any
 
 import typer
@@ -43,7 +42,7 @@ from rich.table import Table
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.compile import compile_scenario, compile_summary, parse_bindings
-from circuitgen.options import LAYOUT_METHODS, PlanOptions
+from circuitgen.options import PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
 from gridcover.scenario import Scenario, load_scenario
@@ -55,10 +54,12 @@ from .plan_flags import (
     AncillaBudgetFlag,
     AnglesFlag,
     InitialFlag,
+    LayersFlag,
     OptimizeFlag,
     PhaseFlag,
     PhaseLayoutFlag,
     RuleFlag,
+    ScenarioArg,
     TargetFlag,
     plan_options,
 )
@@ -76,11 +77,11 @@ HELP = (
 
 
 def compile_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
+    scenario: ScenarioArg,
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
+    p: LayersFlag = 1,
     rule: RuleFlag = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
@@ -131,10 +132,6 @@ def compile_command(
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
     options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
-    if qasm_version not in (2, 3):
-        raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
-    if layout not in LAYOUT_METHODS:
-        raise ValueError(f"--layout: expected {', '.join(LAYOUT_METHODS[:-1])} or {LAYOUT_METHODS[-1]}, got {layout!r}")
     if device is None:  # routing flags without a device used to be ignored without a word
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -24,6 +23,7 @@ from gridcover.qubo import FORMS, bqm_for
 from gridcover.qubo_export import EXPORT_FORMATS, export_text
 from gridcover.qubo_solve import INSTALL_HINT
 from gridcover.scenario import load_scenario
+from qcpp.commands.plan_flags import ScenarioArg
 from qcpp.commands.solve import progress_reporter
 from qcppio.atomic import check_output, write_text_atomic
 
@@ -37,7 +37,7 @@ HELP = (
 
 
 def export_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
+    scenario: ScenarioArg,
     fmt: Annotated[
         str, typer.Option("--format", "-f", help=f"Output format: {', '.join(EXPORT_FORMATS)}.", show_default=False)
     ],
@@ -50,10 +50,6 @@ def export_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")] = False,
 ) -> None:
     """Export a scenario's QUBO (see ``qcpp export --help``)."""
-    if fmt not in EXPORT_FORMATS:
-        raise ValueError(f"--format: expected one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
-    if form not in FORMS:
-        raise ValueError(f"--form: expected one of {', '.join(FORMS)}, got {form!r}")
     if penalty is not None:
         if form != "per-robot":
             raise ValueError(f"--penalty: applies to --form per-robot only (got --form {form})")

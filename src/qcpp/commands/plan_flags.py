@@ -1,4 +1,5 @@
-"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`.
+"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`;
+and the flags every scenario command declares alike (:data:`ScenarioArg`, :data:`LayersFlag`, ``--rule``).
 
 Both commands declare their plan flags with these annotated types and turn them into a
 :class:`~circuitgen.options.PlanOptions` with :func:`plan_options`, so the two accept exactly the same flags with
@@ -15,6 +16,7 @@ Example:
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -26,14 +28,18 @@ __all__ = [
     "AncillaBudgetFlag",
     "AnglesFlag",
     "InitialFlag",
+    "LayersFlag",
     "OptimizeFlag",
     "PhaseFlag",
     "PhaseLayoutFlag",
     "RuleFlag",
+    "ScenarioArg",
     "TargetFlag",
     "plan_options",
 ]
 
+ScenarioArg = Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)]
+LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
 InitialFlag = Annotated[
     str,

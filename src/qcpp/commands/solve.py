@@ -48,9 +48,9 @@ from rich.markup import escape
 from rich.table import Table
 
 from circuitgen.options import INITIAL_STATES
-from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.commands.plan_flags import RuleFlag, ScenarioArg
 from qcpp.progress import Progress
 from qcpp.render import plot_paths, plot_trace, print_table, render_ascii
 from qcppio.atomic import check_output
@@ -213,12 +213,12 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 
 
 def solve_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
+    scenario: ScenarioArg,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Solver (see above).")
     ] = "anneal",
     seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
-    rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
+    rule: RuleFlag = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object instead of the drawing.")] = False,
     plot: Annotated[
         Path | None, typer.Option("--plot", help="Also draw the paths to this image (PNG, SVG, ...).")
@@ -257,10 +257,6 @@ def solve_command(
     ] = None,
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
-    if method not in SOLVE_METHODS:
-        raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
-    if rule not in RULES:
-        raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
                     "mixer_warm": mixer_warm}
     if method != "qaoa":
