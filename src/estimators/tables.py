@@ -86,21 +86,6 @@ MAIN_COLUMNS: tuple[str, ...] = (
 PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
 PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
 
-_SCALARS: tuple[str, ...] = (
-    "rows", "cols", "robots", "p", "rule", "target", "scenario",
-    "qubits", "data_qubits", "ancillas", "gates", "cx", "single_qubit", "two_qubit", "t", "rotations",
-    "depth", "two_qubit_depth", "rotation_depth", "depth_kind",
-    "toffoli", "ft_and", "ft_toffoli_full", "ft_measurements", "ft_rotations", "ft_t_per_rotation", "ft_epsilon",
-    "ft_toffoli_t", "ft_t_logic", "ft_total_t",
-)  # fmt: skip
-_PHYSICAL: tuple[str, ...] = (
-    "physical_qubits", "physical_runtime_s", "physical_algorithm_qubits", "physical_t_factory_qubits",
-    "physical_t_factories", "physical_t_states", "physical_code_distance", "physical_model",
-)  # fmt: skip
-_PAPER: tuple[str, ...] = (
-    "paper_qubits", "paper_data_qubits", "paper_cx", "paper_single_qubit", "ratio_qubits", "ratio_cx",
-    "ratio_single_qubit",
-)  # fmt: skip
 _SECTION_NAMES = ("initial_state", "phase", "mixer")
 _SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
 
@@ -212,16 +197,6 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
-def _csv_fields(row: dict[str, Any]) -> list[str]:
-    fields = list(_SCALARS)
-    if "physical_qubits" in row:
-        fields += _PHYSICAL
-    if "paper_cx" in row:
-        fields += _PAPER
-    fields += [f"section.{n}.{f}" for n in _SECTION_NAMES if n in row["sections"] for f in _SECTION_FIELDS]
-    return fields
-
-
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
     out = {k: v for k, v in row.items() if k != "sections"}
     for name, sec in row.get("sections", {}).items():
@@ -270,7 +245,7 @@ def render_stream(
             yield ("[\n" if first else ",\n") + body
         elif fmt == "csv":
             if first:
-                fields = _csv_fields(row)
+                fields = list(_flat(row))  # every scalar of the row, in order, then the sections' fields
                 yield _csv_line(fields)
             flat = _flat(row)
             yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
