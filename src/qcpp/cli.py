@@ -51,6 +51,7 @@ from typer.core import TyperCommand, TyperGroup
 from gridcover.errors import ScenarioError
 from gridcover.limits import OVERRIDE_FLAG, allow_large, check_layers
 from qcpp import __version__
+from qcpp.interrupt import report_interrupted, stop_requested
 
 try:  # typer >= 0.25 ships its own copy of click
     from typer._click import exceptions as _click_exc
@@ -144,18 +145,6 @@ def usage_error_line(exc: Exception) -> str:
     return f"error: {text}"
 
 
-def _report_interrupt() -> None:
-    from qcpp.interrupt import report_interrupted
-
-    report_interrupted()
-
-
-def _stop_requested() -> bool:
-    from qcpp.interrupt import stop_requested
-
-    return stop_requested()
-
-
 def _check_options(kwargs: dict[str, Any]) -> None:
     ctx = get_current_context(silent=True)
     for name, low in NUMERIC_OPTIONS.items():
@@ -222,7 +211,7 @@ def handle_errors(fn: F) -> F:
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise
         except Exception as exc:
-            if _stop_requested():  # what the signal broke (e.g. an import: ImportError) is an interruption
+            if stop_requested():  # what the signal broke (e.g. an import: ImportError) is an interruption
                 raise KeyboardInterrupt from None
             if isinstance(exc, MemoryError):
                 typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
@@ -371,12 +360,12 @@ class QcppGroup(_TidyHelp, TyperGroup):
         try:
             return super().invoke(ctx)
         except KeyboardInterrupt:
-            _report_interrupt()
+            report_interrupted()
             raise typer.Exit(code=EXIT_INTERRUPTED) from None
         except Exception:
-            if not _stop_requested():
+            if not stop_requested():
                 raise
-            _report_interrupt()  # an exception the signal caused, not a bug
+            report_interrupted()  # an exception the signal caused, not a bug
             raise typer.Exit(code=EXIT_INTERRUPTED) from None
 
     def main(  # type: ignore[override]
@@ -398,10 +387,10 @@ class QcppGroup(_TidyHelp, TyperGroup):
             typer.echo(usage_error_line(exc), err=True)
             sys.exit(EXIT_USAGE)
         except typer.Abort:
-            _report_interrupt()
+            report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
         except KeyboardInterrupt:
-            _report_interrupt()
+            report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
         sys.exit(rv if isinstance(rv, int) and not isinstance(rv, bool) else 0)
 
