@@ -95,7 +95,7 @@ def _ratio(ours: int, paper: int) -> float | None:
 
 
 def _section(c: Cost) -> dict[str, int]:
-    return {"gates": c.total, "cx": c.cx, "single_qubit": c.single_qubit, "t": c.t, "rotations": c.rotations}
+    return {"gates": c.total, **{k: getattr(c, k) for k in _SECTION_FIELDS[1:]}}
 
 
 def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "partial-mixer") -> dict[str, Any]:
@@ -122,49 +122,24 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         "data_qubits": est.data_qubits,
         "ancillas": est.qubits - est.data_qubits,
         "gates": c.total,
-        "cx": c.cx,
-        "single_qubit": c.single_qubit,
-        "two_qubit": c.two_qubit,
-        "t": c.t,
-        "rotations": c.rotations,
-        "depth": d.depth if d else None,
-        "two_qubit_depth": d.two_qubit_depth if d else None,
-        "rotation_depth": d.rotation_depth if d else None,
+        **{k: getattr(c, k) for k in ("cx", "single_qubit", "two_qubit", "t", "rotations")},
+        **{k: getattr(d, k) if d else None for k in ("depth", "two_qubit_depth", "rotation_depth")},
         "depth_kind": d.kind if d else None,
         "toffoli": ft.toffoli,
         "ft_and": ft.and_compute,
-        "ft_toffoli_full": ft.toffoli_full,
-        "ft_measurements": ft.measurements,
-        "ft_rotations": ft.rotations,
-        "ft_t_per_rotation": ft.t_per_rotation,
-        "ft_epsilon": ft.epsilon,
-        "ft_toffoli_t": ft.toffoli_t,
-        "ft_t_logic": ft.t_logic,
-        "ft_total_t": ft.total_t,
-    }
+        **{f"ft_{k}": getattr(ft, k) for k in ("toffoli_full", "measurements", "rotations", "t_per_rotation",
+                                                "epsilon", "toffoli_t", "t_logic", "total_t")},
+    }  # fmt: skip
     ph = est.physical
     if ph is not None:
-        row.update(
-            physical_qubits=ph.physical_qubits,
-            physical_runtime_s=ph.runtime_s,
-            physical_algorithm_qubits=ph.algorithm_qubits,
-            physical_t_factory_qubits=ph.t_factory_qubits,
-            physical_t_factories=ph.t_factories,
-            physical_t_states=ph.t_states,
-            physical_code_distance=ph.code_distance,
-            physical_model=f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}",
-        )
+        row["physical_qubits"] = ph.physical_qubits
+        for k in ("runtime_s", "algorithm_qubits", "t_factory_qubits", "t_factories", "t_states", "code_distance"):
+            row[f"physical_{k}"] = getattr(ph, k)
+        row["physical_model"] = f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}"
     if compare_paper:
         paper = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
-        row.update(
-            paper_qubits=paper.qubits,
-            paper_data_qubits=paper.data_qubits,
-            paper_cx=paper.cx,
-            paper_single_qubit=paper.single_qubit,
-            ratio_qubits=_ratio(est.qubits, paper.qubits),
-            ratio_cx=_ratio(c.cx, paper.cx),
-            ratio_single_qubit=_ratio(c.single_qubit, paper.single_qubit),
-        )
+        row.update({f"paper_{k}": getattr(paper, k) for k in ("qubits", "data_qubits", "cx", "single_qubit")})
+        row.update({f"ratio_{k}": _ratio(row[k], row[f"paper_{k}"]) for k in ("qubits", "cx", "single_qubit")})
     row["sections"] = {name: _section(est.parts[name]) for name in _SECTION_NAMES if name in est.parts}
     return row
 
