@@ -71,12 +71,6 @@ QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxite
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
-def _cpsat_time_limit(value: float | None) -> float | None:
-    if value is not None and not (value > 0 and value != float("inf")):
-        raise ValueError(f"--time-limit: expected a positive number of seconds, got {value:g}")
-    return value
-
-
 def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
     """The ``qaoa`` entry with default settings (``solve_command`` passes its QAOA options itself)."""
     from simulate.qaoa_solver import solve_qaoa
@@ -273,7 +267,8 @@ def solve_command(
         raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
     if time_limit is not None and method != "cpsat":
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
-    _cpsat_time_limit(time_limit)
+    if time_limit is not None and not 0 < time_limit < math.inf:
+        raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after

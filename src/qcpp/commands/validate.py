@@ -53,6 +53,8 @@ def _check_dask_address(text: str) -> None:
     Example:
         >>> _check_dask_address("tcp://127.0.0.1:8786")
     """
+    if not text.strip():
+        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
     if text.strip() == "local":
         return
     try:
@@ -102,8 +104,6 @@ def validate_command(
         backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
     if dask is not None and backend != "tensor":
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
-    if dask is not None and not dask.strip():
-        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
     if dask is not None:
         _check_dask_address(dask)
     values = None
