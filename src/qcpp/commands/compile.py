@@ -50,19 +50,7 @@ from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import (
-    AncillaBudgetFlag,
-    AnglesFlag,
-    InitialFlag,
-    LayersFlag,
-    OptimizeFlag,
-    PhaseFlag,
-    PhaseLayoutFlag,
-    RuleFlag,
-    ScenarioArg,
-    TargetFlag,
-    plan_options,
-)
+from .plan_flags import LayersFlag, ScenarioArg, with_plan_flags
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -76,13 +64,14 @@ HELP = (
 )
 
 
+@with_plan_flags
 def compile_command(
+    options: PlanOptions,
     scenario: ScenarioArg,
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
     p: LayersFlag = 1,
-    rule: RuleFlag = "exact",
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
@@ -91,13 +80,6 @@ def compile_command(
         str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
     ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
-    initial: InitialFlag = "initial_path",
-    target: TargetFlag = "nisq",
-    phase: PhaseFlag = "feasible",
-    optimize: OptimizeFlag = "cx",
-    ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "auto",
-    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -131,7 +113,6 @@ def compile_command(
     ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
     if device is None:  # routing flags without a device used to be ignored without a word
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
@@ -177,7 +158,7 @@ def compile_command(
     form = "lowered" if lowered else "high level"
     if device is not None:
         form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
-    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
+    table = Table(title=f"{scenario.name}: p={p}, rule={options.rule}, target={options.target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():

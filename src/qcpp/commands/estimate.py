@@ -27,21 +27,12 @@ from typing import Annotated, Any
 
 import typer
 
+from circuitgen.options import PlanOptions
 from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import (
-    AncillaBudgetFlag,
-    AnglesFlag,
-    InitialFlag,
-    OptimizeFlag,
-    PhaseFlag,
-    PhaseLayoutFlag,
-    RuleFlag,
-    TargetFlag,
-    plan_options,
-)
+from .plan_flags import with_plan_flags
 
 __all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
 
@@ -56,7 +47,9 @@ HELP = (
 )
 
 
+@with_plan_flags
 def estimate(
+    options: PlanOptions,
     grid: Annotated[
         str | None,
         typer.Option(
@@ -76,14 +69,6 @@ def estimate(
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
     ] = None,
-    rule: RuleFlag = "exact",
-    initial: InitialFlag = "initial_path",
-    target: TargetFlag = "nisq",
-    phase: PhaseFlag = "feasible",
-    optimize: OptimizeFlag = "cx",
-    ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "auto",
-    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool,
         typer.Option(
@@ -175,7 +160,6 @@ def estimate(
     for bad, message in checks:
         if bad:
             raise ValueError(message)
-    plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
     if device is not None:
         from circuitgen.devices import DeviceError, get_device
 
@@ -192,8 +176,8 @@ def estimate(
             "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
             err=True,
         )
-    options = EstimateOptions(
-        plan=plan,
+    settings = EstimateOptions(
+        plan=options,
         epsilon=epsilon,
         toffoli_t=toffoli_t,
         depth=depth,  # type: ignore[arg-type]
@@ -213,7 +197,7 @@ def estimate(
         pieces = estimate_report(
             bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
             fmt=fmt,  # type: ignore[arg-type]
-            options=options,
+            options=settings,
             compare_paper=compare == "paper",
             plot=plot,
             doubling=paper_doubling,  # type: ignore[arg-type]
@@ -237,7 +221,7 @@ def estimate(
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
     if explain:
-        _explain(points.points, options.plan)
+        _explain(points.points, options)
 
 
 def _explain(points: Sequence[Any], plan: Any) -> None:
