@@ -26,13 +26,14 @@ Example:
 from __future__ import annotations
 
 import time
+from collections import Counter
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from gridcover.cost import cost_parts
-from gridcover.paths import is_feasible
+from gridcover.paths import edges_of, is_feasible
 from gridcover.qubo import Bqm, decode_edges, per_robot_bqm, to_dimod
 from gridcover.scenario import Scenario
 from gridcover.solvers.descent import steepest_descent
@@ -98,14 +99,7 @@ def drop_cycles(scenario: Scenario, robot: int, mask: int) -> int | None:
     rb = scenario.robots[robot]
     inc = g.incident_edges
     ends = (g.node_index(rb.start), g.node_index(rb.goal))
-    deg: dict[int, int] = {}
-    e = mask
-    while e:
-        low = e & -e
-        a, b = g.edge_nodes[low.bit_length() - 1]
-        deg[a] = deg.get(a, 0) + 1
-        deg[b] = deg.get(b, 0) + 1
-        e ^= low
+    deg = Counter(n for e in edges_of(mask) for n in g.edge_nodes[e])
     for n in ends:
         if deg.get(n, 0) != 1:
             return None
