@@ -14,15 +14,9 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``f(scenario, *, seed, rule, progress) -> gridcover.solvers.Solution`` stored under its name.
 
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
-solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
-``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts; ``multi-angle``: one
-beta per partial mixer and layer, gammas 0, and ``bindings`` for ``qcpp compile --mixer-angles multi --bind``),
-``--objective``
-(default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
-classical warm start, ``local_search_mix`` from its superposition with the initial paths), and adds
-``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
-``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
-``circuit_estimates`` (:func:`simulate.qaoa_solver.qaoa_to_dict`) to the JSON and a trace sparkline to the text.
+solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes the options of
+:data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
+:func:`simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
 
 ``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
