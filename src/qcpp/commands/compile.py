@@ -263,7 +263,7 @@ def _stream(
     bindings: dict[str, float],
     qasm: str | None,
     version: int,
-    progress: Progress | None = None,
+    progress: Progress,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
     independent of ``p``); return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the
@@ -271,12 +271,10 @@ def _stream(
     from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
-    if progress is not None:
-        progress.stage("planning the circuit")
+    progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
     plan.check_bindings(bindings)
-    if progress is not None:
-        progress.stage("building the sections")
+    progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
@@ -285,13 +283,12 @@ def _stream(
     def sections() -> Iterator[Section]:
         nonlocal walks
         walks += 1
-        if progress is not None and qasm is not None:
+        if qasm is not None:
             progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
         for sec in plan.emit_sections(lowered):
             out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
             yield out
-            if progress is not None:
-                progress.advance(len(out.gates))
+            progress.advance(len(out.gates))
 
     if qasm is not None:
         ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
