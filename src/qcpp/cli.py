@@ -278,8 +278,8 @@ def _lazy(module: str, name: str) -> Callable[[], Sequence[Any]]:
 CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "rule": _lazy("gridcover.sbf", "RULES"),
     "target": _lazy("circuitgen.cost", "TARGETS"),
-    "phase": lambda: ("feasible", "whole-space"),
-    "optimize": lambda: ("cx", "depth"),
+    "phase": _lazy("circuitgen.options", "PHASES"),
+    "optimize": _lazy("circuitgen.options", "OPTIMIZE"),
     "initial": _lazy("circuitgen.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
     "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
