@@ -24,7 +24,7 @@ from gridcover.qubo_export import EXPORT_FORMATS, export_text
 from gridcover.qubo_solve import INSTALL_HINT
 from gridcover.scenario import load_scenario
 from qcpp.commands.plan_flags import ScenarioArg
-from qcpp.commands.solve import progress_reporter
+from qcpp.progress import Progress
 from qcppio.atomic import check_output, write_text_atomic
 
 __all__ = ["HELP", "export_command", "register"]
@@ -64,13 +64,12 @@ def export_command(
             raise ValueError(f"--format bqm needs dimod: {INSTALL_HINT} (ising, qubo, lp, mps need nothing)") from None
     check_output(out)  # a bad destination fails before any work
     s = load_scenario(scenario)
-    with progress_reporter(f"export {fmt} of {scenario.name}") as progress:
+    with Progress(f"export {fmt} of {scenario.name}", total=2) as bar:
         # the penalty rule's upper bound (a short SBF annealing run) and the MIP exports take seconds on big grids
-        progress(0, 2)
         model = bqm_for(s, form, penalty)
-        progress(1, 2)
+        bar.advance()
         text = export_text(model, fmt)
-        progress(2, 2)
+        bar.advance()
     write_text_atomic(out, text)
     summary = {
         "scenario": str(scenario),

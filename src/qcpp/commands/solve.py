@@ -31,8 +31,7 @@ from __future__ import annotations
 import json
 import math
 import sys
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated
 
@@ -53,7 +52,6 @@ __all__ = [
     "METHOD_HELP",
     "QAOA_DEFAULTS",
     "SOLVE_METHODS",
-    "progress_reporter",
     "register",
     "solve_command",
     "solve_help",
@@ -124,14 +122,6 @@ def solve_help() -> str:
     return (
         f"Solve a scenario with --method ({methods}) and print the paths on the grid, the cost and its parts."
     )
-
-
-@contextmanager
-def progress_reporter(description: str, unit: str = "steps") -> Iterator[ProgressFn]:
-    """A :data:`~gridcover.solvers.ProgressFn` showing progress on stderr (:class:`qcpp.progress.Progress`: a
-    transient bar on a terminal, a line every few seconds on a pipe); stdout stays clean for ``--json``."""
-    with Progress(description, unit=unit) as bar:
-        yield bar.update
 
 
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
@@ -273,7 +263,8 @@ def solve_command(
     if method == "qaoa":
         _qaoa_guard(s, scenario, description)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
-    with progress_reporter(description, "assignments" if method == "dfs" else "steps") as progress:
+    with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
+        progress = bar.update  # a gridcover.solvers.ProgressFn; stdout stays clean for --json
         if dfs_lists is not None:
             from gridcover.solvers.exhaustive import dfs
 
