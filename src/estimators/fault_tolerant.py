@@ -34,8 +34,8 @@ Example:
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
-from typing import Any, Literal
+from dataclasses import dataclass
+from typing import Literal
 
 from circuitgen.cost import Cost
 
@@ -118,10 +118,6 @@ class FaultTolerantEstimate:
     def toffoli(self) -> int:
         """ANDs and full Toffolis (every three-qubit gate of the logical circuit)."""
         return self.and_compute + self.and_uncompute + self.toffoli_full
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of every field."""
-        return asdict(self)
 
 
 def fault_tolerant_from_cost(

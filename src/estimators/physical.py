@@ -26,8 +26,8 @@ Example:
 
 from __future__ import annotations
 
+import re
 from dataclasses import asdict, dataclass
-from typing import Any
 
 __all__ = [
     "DEFAULT_ERROR_BUDGET",
@@ -76,16 +76,8 @@ class LogicalCounts:
     measurement_count: int = 0
 
     def to_qdk(self) -> dict[str, int]:
-        """The ``qdk.estimator.LogicalCounts`` dict (camelCase keys)."""
-        return {
-            "numQubits": self.num_qubits,
-            "tCount": self.t_count,
-            "rotationCount": self.rotation_count,
-            "rotationDepth": self.rotation_depth,
-            "cczCount": self.ccz_count,
-            "ccixCount": self.ccix_count,
-            "measurementCount": self.measurement_count,
-        }
+        """The ``qdk.estimator.LogicalCounts`` dict: the fields, named in camelCase (``numQubits``, ...)."""
+        return {re.sub(r"_(\w)", lambda m: m[1].upper(), k): v for k, v in asdict(self).items()}
 
 
 @dataclass(frozen=True)
@@ -115,10 +107,6 @@ class PhysicalEstimate:
     qubit_model: str
     qec_scheme: str
     error_budget: float
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of every field."""
-        return asdict(self)
 
 
 def physical_estimate(

@@ -86,21 +86,6 @@ MAIN_COLUMNS: tuple[str, ...] = (
 PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
 PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
 
-_SCALARS: tuple[str, ...] = (
-    "rows", "cols", "robots", "p", "rule", "target", "scenario",
-    "qubits", "data_qubits", "ancillas", "gates", "cx", "single_qubit", "two_qubit", "t", "rotations",
-    "depth", "two_qubit_depth", "rotation_depth", "depth_kind",
-    "toffoli", "ft_and", "ft_toffoli_full", "ft_measurements", "ft_rotations", "ft_t_per_rotation", "ft_epsilon",
-    "ft_toffoli_t", "ft_t_logic", "ft_total_t",
-)  # fmt: skip
-_PHYSICAL: tuple[str, ...] = (
-    "physical_qubits", "physical_runtime_s", "physical_algorithm_qubits", "physical_t_factory_qubits",
-    "physical_t_factories", "physical_t_states", "physical_code_distance", "physical_model",
-)  # fmt: skip
-_PAPER: tuple[str, ...] = (
-    "paper_qubits", "paper_data_qubits", "paper_cx", "paper_single_qubit", "ratio_qubits", "ratio_cx",
-    "ratio_single_qubit",
-)  # fmt: skip
 _SECTION_NAMES = ("initial_state", "phase", "mixer")
 _SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
 
@@ -110,7 +95,7 @@ def _ratio(ours: int, paper: int) -> float | None:
 
 
 def _section(c: Cost) -> dict[str, int]:
-    return {"gates": c.total, "cx": c.cx, "single_qubit": c.single_qubit, "t": c.t, "rotations": c.rotations}
+    return {"gates": c.total, **{k: getattr(c, k) for k in _SECTION_FIELDS[1:]}}
 
 
 def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "partial-mixer") -> dict[str, Any]:
@@ -137,49 +122,24 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         "data_qubits": est.data_qubits,
         "ancillas": est.qubits - est.data_qubits,
         "gates": c.total,
-        "cx": c.cx,
-        "single_qubit": c.single_qubit,
-        "two_qubit": c.two_qubit,
-        "t": c.t,
-        "rotations": c.rotations,
-        "depth": d.depth if d else None,
-        "two_qubit_depth": d.two_qubit_depth if d else None,
-        "rotation_depth": d.rotation_depth if d else None,
+        **{k: getattr(c, k) for k in ("cx", "single_qubit", "two_qubit", "t", "rotations")},
+        **{k: getattr(d, k) if d else None for k in ("depth", "two_qubit_depth", "rotation_depth")},
         "depth_kind": d.kind if d else None,
         "toffoli": ft.toffoli,
         "ft_and": ft.and_compute,
-        "ft_toffoli_full": ft.toffoli_full,
-        "ft_measurements": ft.measurements,
-        "ft_rotations": ft.rotations,
-        "ft_t_per_rotation": ft.t_per_rotation,
-        "ft_epsilon": ft.epsilon,
-        "ft_toffoli_t": ft.toffoli_t,
-        "ft_t_logic": ft.t_logic,
-        "ft_total_t": ft.total_t,
-    }
+        **{f"ft_{k}": getattr(ft, k) for k in ("toffoli_full", "measurements", "rotations", "t_per_rotation",
+                                                "epsilon", "toffoli_t", "t_logic", "total_t")},
+    }  # fmt: skip
     ph = est.physical
     if ph is not None:
-        row.update(
-            physical_qubits=ph.physical_qubits,
-            physical_runtime_s=ph.runtime_s,
-            physical_algorithm_qubits=ph.algorithm_qubits,
-            physical_t_factory_qubits=ph.t_factory_qubits,
-            physical_t_factories=ph.t_factories,
-            physical_t_states=ph.t_states,
-            physical_code_distance=ph.code_distance,
-            physical_model=f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}",
-        )
+        row["physical_qubits"] = ph.physical_qubits
+        for k in ("runtime_s", "algorithm_qubits", "t_factory_qubits", "t_factories", "t_states", "code_distance"):
+            row[f"physical_{k}"] = getattr(ph, k)
+        row["physical_model"] = f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}"
     if compare_paper:
         paper = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
-        row.update(
-            paper_qubits=paper.qubits,
-            paper_data_qubits=paper.data_qubits,
-            paper_cx=paper.cx,
-            paper_single_qubit=paper.single_qubit,
-            ratio_qubits=_ratio(est.qubits, paper.qubits),
-            ratio_cx=_ratio(c.cx, paper.cx),
-            ratio_single_qubit=_ratio(c.single_qubit, paper.single_qubit),
-        )
+        row.update({f"paper_{k}": getattr(paper, k) for k in ("qubits", "data_qubits", "cx", "single_qubit")})
+        row.update({f"ratio_{k}": _ratio(row[k], row[f"paper_{k}"]) for k in ("qubits", "cx", "single_qubit")})
     row["sections"] = {name: _section(est.parts[name]) for name in _SECTION_NAMES if name in est.parts}
     return row
 
@@ -210,16 +170,6 @@ def _cell(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.4g}"
     return str(v)
-
-
-def _csv_fields(row: dict[str, Any]) -> list[str]:
-    fields = list(_SCALARS)
-    if "physical_qubits" in row:
-        fields += _PHYSICAL
-    if "paper_cx" in row:
-        fields += _PAPER
-    fields += [f"section.{n}.{f}" for n in _SECTION_NAMES if n in row["sections"] for f in _SECTION_FIELDS]
-    return fields
 
 
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
@@ -270,7 +220,7 @@ def render_stream(
             yield ("[\n" if first else ",\n") + body
         elif fmt == "csv":
             if first:
-                fields = _csv_fields(row)
+                fields = list(_flat(row))  # every scalar of the row, in order, then the sections' fields
                 yield _csv_line(fields)
             flat = _flat(row)
             yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
@@ -321,7 +271,8 @@ def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool
     return table
 
 
-def _text(renderable: Any, width: int) -> str:
+def draw(renderable: Any, width: int) -> str:
+    """``renderable`` (a rich table, text, ...) as rich prints it on a ``width``-character plain console."""
     from rich.console import Console
 
     buf = io.StringIO()
@@ -330,7 +281,7 @@ def _text(renderable: Any, width: int) -> str:
 
 
 def _natural_width(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> int:
-    text = _text(_rich_table(rows, cols, paper), 100_000)
+    text = draw(_rich_table(rows, cols, paper), 100_000)
     return max((len(line.rstrip()) for line in text.splitlines()), default=0)
 
 
@@ -382,11 +333,10 @@ class TooNarrowError(ValueError):
 
 
 def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: int, *, paper: bool = False) -> str:
-    """Rows as records, one field per line (the ``table`` format below the table's width).
+    """Rows as records, one field per line (the ``table`` format below the table's width; :func:`records`).
 
-    Each field is ``name value`` on one line when the longest of those fits ``width``, else the name on one line
-    and the value indented on the next. Numbers are never cut: when even that does not fit (a name or value
-    longer than the line) this raises instead of printing something unreadable.
+    Numbers are never cut: below the width of the longest name or value this raises instead of printing
+    something unreadable.
 
     Args:
         rows: rows from :func:`make_rows`.
@@ -423,23 +373,57 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
     """
     cells = [[_cell(r.get(c)) for c in cols] for r in rows]
     title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
-    name_w = max((len(c) for c in cols), default=0)
     value_w = max((len(v) for row in cells for v in row), default=0)
-    need = max(name_w, value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *(len(w) for w in title.split()))
+    need = max(0, *map(len, cols), value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *map(len, title.split()))
     if need > width:
         raise TooNarrowError(
             f"the terminal is {width} columns wide; the resource table needs {need} even one field per line "
             f"(set COLUMNS={need} or more, or use --format csv, json or md)"
         )
-    side_by_side = name_w + 1 + value_w <= width
-    out = textwrap.wrap(title, width) or [""]
-    for i, row in enumerate(cells):
-        if i:
-            out.append("")
-        out.append(f"row {i + 1} of {len(cells)}")
-        for c, v in zip(cols, row, strict=True):
-            out += [f"{c:<{name_w}} {v:>{value_w}}".rstrip()] if side_by_side else [c, f"  {v}"]
+    return records(title, [list(zip(cols, row, strict=True)) for row in cells], width, numbered=True)
+
+
+def records(
+    title: str, blocks: Sequence[Sequence[tuple[str, str]]], width: int, *, sep: str = " ", numbered: bool = False,
+    per_field: bool = False,
+) -> str:
+    """``(name, value)`` fields within ``width`` characters: the layout of every table too wide for the terminal.
+
+    A field is ``name<sep>value`` (names padded, values right-aligned) when every field fits so (``per_field``:
+    when it does), else its name with the value indented below; a value of several lines continues indented.
+
+    Args:
+        title: wrapped at spaces only (:func:`title_lines`).
+        blocks: the records, each a sequence of fields, a blank line between two; ``numbered``: each opened by
+            ``row i of n``.
+
+    Example:
+        >>> print(records("t", [[("qubits", "26"), ("cx", "320")]], 12, sep="  "), end="")
+        t
+        qubits   26
+        cx      320
+    """
+    fields = [field for block in blocks for field in block]
+    name_w = max((len(name) for name, _ in fields), default=0)
+    value_w = max((len(part) for _, value in fields for part in value.split("\n")), default=0)
+    all_fit = name_w + len(sep) + value_w <= width
+    value_w = min(value_w, width - name_w - len(sep))
+    out = title_lines(title, width)
+    for i, block in enumerate(blocks):
+        out += ([""] if i else []) + ([f"row {i + 1} of {len(blocks)}"] if numbered else [])
+        for name, value in block:
+            first, *rest = value.split("\n")
+            if all_fit or (per_field and max(map(len, [first, *rest])) <= value_w):
+                out.append(f"{name:<{name_w}}{sep}{first:>{value_w}}".rstrip())
+                out += [" " * (name_w + len(sep)) + part for part in rest]
+            else:
+                out += [name, *("  " + part for part in value.split("\n"))]
     return "\n".join(out) + "\n"
+
+
+def title_lines(title: str, width: int) -> list[str]:
+    """``title`` wrapped to ``width`` at spaces only: a file name is never broken (a longer one stands alone)."""
+    return textwrap.wrap(title, width, break_long_words=False, break_on_hyphens=False)
 
 
 def render(
@@ -484,11 +468,11 @@ def render(
         return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
     table = _rich_table(rows, shown, paper)
     text_width = limit if columns is None and not wide else max(limit, natural)
-    text = _text(table, text_width)
+    text = draw(table, text_width)
     if hidden:
         note = (
             f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
             "--format csv/json/md keep every column)"
         )
-        text += _text(note, limit)
+        text += draw(note, limit)
     return text

@@ -125,9 +125,10 @@ def _top_sum(values: list[float], k: int) -> float:
     return sum(sorted(values, reverse=True)[:k])  # not fsum: it raises on overflow, sum gives inf
 
 
-def _bound(scenario: Scenario, ob: Objective) -> float:
-    """:func:`cost_bound` of ``scenario`` with the objective ``ob`` (``inf`` on overflow)."""
-    s, g = scenario, scenario.grid
+def cost_bound(scenario: Scenario, ob: Objective | None = None) -> float:
+    """An upper bound on ``|cost|`` over every assignment of simple paths (see the module docstring), with the
+    objective ``ob`` (default: the scenario's); ``inf`` when the bound itself overflows a float."""
+    s, g, ob = scenario, scenario.grid, scenario.objective if ob is None else ob
     k = g.num_nodes - 1  # edges of a simple path, at most
     obstacle_edges = s.obstacle_edges
     lengths = dict.fromkeys(range(g.num_edges), abs(ob.edge_length))
@@ -147,14 +148,6 @@ def _bound(scenario: Scenario, ob: Objective) -> float:
     return math.inf if math.isnan(total) else total
 
 
-def cost_bound(scenario: Scenario) -> float:
-    """An upper bound on ``|cost|`` over every assignment of simple paths (see the module docstring).
-
-    Returns ``inf`` when the bound itself overflows a float.
-    """
-    return _bound(scenario, scenario.objective)
-
-
 def largest_allowed(scenario: Scenario, name: str, limit: float = COST_LIMIT) -> float:
     """The largest magnitude the field ``name`` may have, the other fields as given, for the bound to stay
     within ``limit`` (``inf``: the field does not matter for this scenario; ``0.0``: the others alone exceed it).
@@ -166,14 +159,14 @@ def largest_allowed(scenario: Scenario, name: str, limit: float = COST_LIMIT) ->
         inf
     """
     ob = scenario.objective
-    if _bound(scenario, _with_value(ob, name, 0.0)) > limit:
+    if cost_bound(scenario, _with_value(ob, name, 0.0)) > limit:
         return 0.0
-    if _bound(scenario, _with_value(ob, name, 1e308)) <= limit:
+    if cost_bound(scenario, _with_value(ob, name, 1e308)) <= limit:
         return math.inf
     lo_bits, hi_bits = 0, _bits(1e308)  # bisection on the float's bits (ordered like the floats >= 0)
     while hi_bits - lo_bits > 1:
         mid = (lo_bits + hi_bits) // 2
-        if _bound(scenario, _with_value(ob, name, _float(mid))) <= limit:
+        if cost_bound(scenario, _with_value(ob, name, _float(mid))) <= limit:
             lo_bits = mid
         else:
             hi_bits = mid
@@ -240,7 +233,7 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
     fields = weight_fields(scenario)
     worst = min(
         fields,
-        key=lambda f: _bound(scenario, _with_value(scenario.objective, f.name, defaults.get(f.name, 1.0))),
+        key=lambda f: cost_bound(scenario, _with_value(scenario.objective, f.name, defaults.get(f.name, 1.0))),
     )
     worst_max = largest_allowed(scenario, worst.name, limit)
     assert worst is not None

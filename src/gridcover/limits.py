@@ -36,6 +36,7 @@ __all__ = [
     "allow_large",
     "check_grid_size",
     "check_layers",
+    "format_duration",
     "large_allowed",
     "memory_budget",
 ]
@@ -122,3 +123,19 @@ def check_layers(p: int, flag: str = "-p") -> None:
         raise SizeError(
             flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; pass {OVERRIDE_FLAG} to run it anyway"
         )
+
+
+def format_duration(seconds: float) -> str:
+    """A duration as people read it (in refusals and progress lines): ``12 s``, ``4 min``, ``2.5 h``, ``9 days``.
+
+    Example:
+        >>> format_duration(12.4), format_duration(250), format_duration(9000), format_duration(8e5)
+        ('12 s', '4 min', '2.5 h', '9 days')
+    """
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 2 * 86400:
+        return f"{seconds / 3600:.1f} h"
+    return f"{seconds / 86400:,.0f} days"

@@ -55,7 +55,7 @@ import numpy as np
 
 from gridcover.cost import cost, quadratic_cost
 from gridcover.grid import Node
-from gridcover.paths import initial_path
+from gridcover.paths import assignment_from_bits, initial_path
 from gridcover.scenario import Scenario
 
 __all__ = [
@@ -343,23 +343,14 @@ def decode_edges(scenario: Scenario, model: Bqm, bits: np.ndarray) -> tuple[int,
 
     Example:
         >>> from gridcover.presets import default_scenario
-        >>> from gridcover.paths import initial_path
+        >>> from gridcover.paths import assignment_from_bits, initial_path
         >>> s = default_scenario(2, 3, 1)
         >>> m = per_robot_bqm(s, penalty=1.0)
         >>> bits = best_auxiliaries(m, [1, 0, 1, 0, 0, 0, 1])
         >>> decode_edges(s, m, bits) == (0b1000101,)
         True
     """
-    v = scenario.edges_per_robot
-    b = np.asarray(bits)[: model.num_edge_variables]
-    out = []
-    for r in range(scenario.num_robots):
-        mask = 0
-        for k, e in enumerate(scenario.variable_edges):
-            if b[r * v + k]:
-                mask |= 1 << e
-        out.append(mask)
-    return tuple(out)
+    return assignment_from_bits(scenario, np.asarray(bits)[: model.num_edge_variables])
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ The pipeline (``qcpp solve --method qubo``):
    elsewhere: a path plus separate cycles, which degree penalties cannot tell from a path) -- dropping the
    cycles (:func:`drop_cycles`) then leaves a feasible path. Feasible reads are repairable too.
 4. The distinct repaired assignments, best first (at most ``polish`` of them), are polished by steepest descent
-   with SBF moves (:func:`sbf_descent`); the best result is the answer.
+   with SBF moves (:func:`gridcover.solvers.descent.steepest_descent`); the best result is the answer.
 
 Reported (:class:`QuboRun`): reads, feasible, repairable, how many reads were at the answer's cost before any
 polishing (``at_best``), the lowest sampled energy, and the time spent sampling.
@@ -26,15 +26,17 @@ Example:
 from __future__ import annotations
 
 import time
+from collections import Counter
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from gridcover.cost import cost_parts
-from gridcover.paths import is_feasible
+from gridcover.paths import edges_of, is_feasible
 from gridcover.qubo import Bqm, decode_edges, per_robot_bqm, to_dimod
 from gridcover.scenario import Scenario
+from gridcover.solvers.descent import steepest_descent
 from gridcover.solvers.moves import CostCache, MoveSpace
 from gridcover.solvers.result import ProgressFn, Solution
 
@@ -46,7 +48,6 @@ __all__ = [
     "drop_cycles",
     "require_annealer",
     "sample_bqm",
-    "sbf_descent",
     "solve_qubo",
 ]
 
@@ -98,14 +99,7 @@ def drop_cycles(scenario: Scenario, robot: int, mask: int) -> int | None:
     rb = scenario.robots[robot]
     inc = g.incident_edges
     ends = (g.node_index(rb.start), g.node_index(rb.goal))
-    deg: dict[int, int] = {}
-    e = mask
-    while e:
-        low = e & -e
-        a, b = g.edge_nodes[low.bit_length() - 1]
-        deg[a] = deg.get(a, 0) + 1
-        deg[b] = deg.get(b, 0) + 1
-        e ^= low
+    deg = Counter(n for e in edges_of(mask) for n in g.edge_nodes[e])
     for n in ends:
         if deg.get(n, 0) != 1:
             return None
@@ -118,34 +112,6 @@ def drop_cycles(scenario: Scenario, robot: int, mask: int) -> int | None:
         path |= 1 << nxt
         cur, prev = (b if a == cur else a), nxt
     return path if is_feasible(scenario, robot, path) else None
-
-
-def sbf_descent(
-    scenario: Scenario, masks: tuple[int, ...], space: MoveSpace, cost: CostCache
-) -> tuple[tuple[int, ...], float]:
-    """Steepest descent with SBF moves: take the best improving single-robot flip until none improves.
-
-    Args:
-        scenario: The scenario.
-        masks: A feasible assignment (one path per robot).
-        space: The SBF move space (its rule decides the allowed flips).
-        cost: The cost cache.
-
-    Returns:
-        The local optimum reached and its cost.
-    """
-    cur, cur_cost = masks, cost(masks)
-    while True:
-        best, best_cost = cur, cur_cost
-        for r in range(scenario.num_robots):
-            for new in space.neighbours(r, cur[r]):
-                cand = (*cur[:r], new, *cur[r + 1 :])
-                c = cost(cand)
-                if c < best_cost - 1e-12:
-                    best, best_cost = cand, c
-        if best is cur:
-            return cur, cur_cost
-        cur, cur_cost = best, best_cost
 
 
 def sample_bqm(
@@ -285,9 +251,12 @@ def solve_qubo(
         start = space.starts()[0]
         candidates = [(cost(start), start)]
     best_cost, best = candidates[0]
+    scored = 0  # by the polish, besides the cost cache's lookups
     if polish:
         for _, start in candidates:
-            cand, c = sbf_descent(scenario, start, space, cost)
+            cand, _, n = steepest_descent(scenario, start, space)
+            scored += n
+            c = cost(cand)
             if c < best_cost - 1e-12:
                 best, best_cost = cand, c
     at_best = sum(1 for c in read_costs if abs(c - best_cost) <= 1e-9)
@@ -298,7 +267,7 @@ def solve_qubo(
         paths=best,
         cost=cost_parts(scenario, best),
         seconds=time.perf_counter() - t0,
-        evaluated=cost.calls,
+        evaluated=cost.calls + scored,
         seed=seed,
         rule=rule if polish else None,
         notes=(

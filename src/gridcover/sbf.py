@@ -275,53 +275,6 @@ def _exact_logic(
     return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
 
 
-def _direct_exact_logic(
-    robot: int,
-    pindex: int,
-    pedges: tuple[int, int, int, int],
-    outer: tuple[tuple[int, ...], ...],
-    endpoints: tuple[bool, ...],
-    diagonal: bool,
-) -> SbfLogic:
-    """The exact rule as qcpp 0.1's three-level network on plain edges (see :func:`direct_exact_logic`).
-
-    * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
-      the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
-      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so its first
-      outer edge alone tells whether it is busy; corners with fewer outer edges are never busy.
-    * ``pattern = NOT (0000 OR 1010 OR 0101)`` on ``ab, bc, cd, da``; the 0000 term is dropped when an
-      endpoint corner already blocks it, the opposite terms when start and goal are diagonal.
-    * ``out = pattern AND NOT blocked[v] for all v``.
-    """
-    ab, bc, cd, da = pedges
-    steps: list[XorStep] = []
-    blocked: list[int] = []
-    for v, (i, j) in enumerate(_CORNER_EDGES):
-        if endpoints[v]:
-            lits: tuple[Lit, ...] = (Lit(pedges[i], False), Lit(pedges[j], False))
-        elif len(outer[v]) == 2:
-            lits = (Lit(pedges[i], False), Lit(pedges[j], False), Lit(outer[v][0], True))
-        else:
-            continue
-        blocked.append(len(blocked))
-        steps.append(XorStep(blocked[-1], lits))
-    excluded = []
-    if not any(endpoints):
-        excluded.append((False, False, False, False))
-    if not diagonal:
-        excluded += [(True, False, True, False), (False, True, False, True)]
-    final = [Lit(~t, False) for t in blocked]
-    if excluded:
-        g = len(blocked)
-        steps.append(XorStep(g, ()))
-        for pat in excluded:
-            steps.append(XorStep(g, tuple(Lit(e, val) for e, val in zip((ab, bc, cd, da), pat))))
-        final.insert(0, Lit(~g, True))
-    out = len(blocked) + (1 if excluded else 0)
-    steps.append(XorStep(out, tuple(final)))
-    return SbfLogic("exact", robot, pindex, out + 1, out, tuple(steps))
-
-
 def _paper_logic(
     robot: int, pindex: int, pedges: tuple[int, int, int, int], outer: tuple[tuple[int, ...], ...]
 ) -> SbfLogic:
@@ -353,7 +306,15 @@ def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> 
     test) instead of corner parities, which is what a circuit without the parity basis (the paper's structure:
     multi-controlled X gates into ancillas, then the controlled XXXX rotation) computes. On every feasible path
     it equals :func:`sbf_logic` with ``rule="exact"`` (``tests/gridcover/sbf_test.py``); the benchmarks build
-    the paper-structured comparison circuit from it.
+    the paper-structured comparison circuit from it. The three levels:
+
+    * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
+      the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a
+      feasible path a non-endpoint corner without plaquette edges has 0 or 2 outer edges set, so its first
+      outer edge alone tells whether it is busy; corners with fewer outer edges are never busy.
+    * ``pattern = NOT (0000 OR 1010 OR 0101)`` on ``ab, bc, cd, da``; the 0000 term is dropped when an
+      endpoint corner already blocks it, the opposite terms when start and goal are diagonal.
+    * ``out = pattern AND NOT blocked[v] for all v``.
 
     Returns:
         The program (``.never`` when a plaquette edge is not a variable).
@@ -362,7 +323,34 @@ def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> 
     if local is None:
         return SbfLogic("exact", robot, plaquette.index, 1, 0, ())
     endpoints, outer, diagonal = local
-    return _direct_exact_logic(robot, plaquette.index, plaquette.edges, outer, endpoints, diagonal)
+    pedges = plaquette.edges
+    ab, bc, cd, da = pedges
+    steps: list[XorStep] = []
+    blocked: list[int] = []
+    for v, (i, j) in enumerate(_CORNER_EDGES):
+        if endpoints[v]:
+            lits: tuple[Lit, ...] = (Lit(pedges[i], False), Lit(pedges[j], False))
+        elif len(outer[v]) == 2:
+            lits = (Lit(pedges[i], False), Lit(pedges[j], False), Lit(outer[v][0], True))
+        else:
+            continue
+        blocked.append(len(blocked))
+        steps.append(XorStep(blocked[-1], lits))
+    excluded = []
+    if not any(endpoints):
+        excluded.append((False, False, False, False))
+    if not diagonal:
+        excluded += [(True, False, True, False), (False, True, False, True)]
+    final = [Lit(~t, False) for t in blocked]
+    if excluded:
+        g = len(blocked)
+        steps.append(XorStep(g, ()))
+        for pat in excluded:
+            steps.append(XorStep(g, tuple(Lit(e, val) for e, val in zip((ab, bc, cd, da), pat))))
+        final.insert(0, Lit(~g, True))
+    out = len(blocked) + (1 if excluded else 0)
+    steps.append(XorStep(out, tuple(final)))
+    return SbfLogic("exact", robot, plaquette.index, out + 1, out, tuple(steps))
 
 
 def exact_rule_value(

@@ -13,7 +13,8 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
   exit code 2 (:class:`QcppGroup`), instead of click's framed box.
 * Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
   ``--maxiter``, ``--max-amplitudes`` must be at least 1 (a zero-work request is refused, not
-  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`.
+  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`gridcover.limits.MAX_LAYERS`. So are
+  choice options (:data:`CHOICES`): ``error: --rule: expected exact or paper, got 'fast' (see ...)``.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.interrupt`).
 * ``--allow-large`` (every command) lifts the size guards of :mod:`gridcover.limits`.
 
@@ -50,6 +51,7 @@ from typer.core import TyperCommand, TyperGroup
 from gridcover.errors import ScenarioError
 from gridcover.limits import OVERRIDE_FLAG, allow_large, check_layers
 from qcpp import __version__
+from qcpp.interrupt import report_interrupted, stop_requested
 
 try:  # typer >= 0.25 ships its own copy of click
     from typer._click import exceptions as _click_exc
@@ -65,6 +67,7 @@ __all__ = [
     "COMMAND_MODULES",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
+    "LIBRARY_CHECKED",
     "LIBRARY_ERRORS",
     "NUMERIC_OPTIONS",
     "QcppCommand",
@@ -142,19 +145,7 @@ def usage_error_line(exc: Exception) -> str:
     return f"error: {text}"
 
 
-def _report_interrupt() -> None:
-    from qcpp.interrupt import report_interrupted
-
-    report_interrupted()
-
-
-def _stop_requested() -> bool:
-    from qcpp.interrupt import stop_requested
-
-    return stop_requested()
-
-
-def _check_numbers(kwargs: dict[str, Any]) -> None:
+def _check_options(kwargs: dict[str, Any]) -> None:
     ctx = get_current_context(silent=True)
     for name, low in NUMERIC_OPTIONS.items():
         value = kwargs.get(name)
@@ -166,6 +157,11 @@ def _check_numbers(kwargs: dict[str, Any]) -> None:
             raise _click_exc.BadParameter(f"must be at least {low}, got {value}", ctx=ctx, param=param)
         if name == "p":
             check_layers(value, flag)
+    for param in ctx.command.params if ctx else ():  # choice options: one check, one message, every command
+        value, key = kwargs.get(param.name or ""), f"{ctx.command.name}.{param.name}"  # type: ignore[union-attr]
+        values = None if value in (None, param.default) or key in LIBRARY_CHECKED else choices_of(*key.split("."))
+        if values is not None and str(value) not in values:
+            raise _click_exc.BadParameter(f"expected {' or '.join(values)}, got {value!r}", ctx=ctx, param=param)
 
 
 @contextlib.contextmanager
@@ -209,13 +205,13 @@ def handle_errors(fn: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         large = kwargs["allow_large"] if own_flag else kwargs.pop("allow_large", False)
         try:
-            _check_numbers(kwargs)
+            _check_options(kwargs)
             with allow_large(bool(large)), one_line_warnings():
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise
         except Exception as exc:
-            if _stop_requested():  # what the signal broke (e.g. an import: ImportError) is an interruption
+            if stop_requested():  # what the signal broke (e.g. an import: ImportError) is an interruption
                 raise KeyboardInterrupt from None
             if isinstance(exc, MemoryError):
                 typer.echo("error: out of memory (ask for less: a smaller grid, fewer robots or layers)", err=True)
@@ -282,13 +278,14 @@ def _lazy(module: str, name: str) -> Callable[[], Sequence[Any]]:
 CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "rule": _lazy("gridcover.sbf", "RULES"),
     "target": _lazy("circuitgen.cost", "TARGETS"),
-    "phase": lambda: ("feasible", "whole-space"),
-    "optimize": lambda: ("cx", "depth"),
+    "phase": _lazy("circuitgen.options", "PHASES"),
+    "optimize": _lazy("circuitgen.options", "OPTIMIZE"),
     "initial": _lazy("circuitgen.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
     "solve.method": _lazy("qcpp.commands.solve", "SOLVE_METHODS"),
     "solve.optimizer": _lazy("simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
     "phase_layout": _lazy("circuitgen.options", "PHASE_LAYOUTS"),
+    "compile.layout": _lazy("circuitgen.options", "LAYOUT_METHODS"),
     "compile.angles": _lazy("circuitgen.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("circuitgen.options", "ANGLES"),
     "simulate.method": _lazy("simulate.evaluate", "METHODS"),
@@ -300,11 +297,17 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "estimate.qec_scheme": _lazy("estimators.physical", "QEC_SCHEMES"),
     "estimate.paper_doubling": _lazy("estimators.paper", "DOUBLINGS"),
     "estimate.toffoli_t": _lazy("estimators.fault_tolerant", "TOFFOLI_T_CHOICES"),
+    "export.fmt": _lazy("gridcover.qubo_export", "EXPORT_FORMATS"),
+    "export.form": _lazy("gridcover.qubo", "FORMS"),
 }
 """Options that take one of a fixed set of values: ``command.param`` (or ``param`` in every command) -> the
 values, read from the constant the command validates against when help is shown (not at start-up: some live
 behind heavy imports). ``--help`` shows them as ``[a|b|c]`` instead of ``<str>``, and shell completion offers
-them."""
+them. A value outside them is refused before the command runs (``--rule: expected exact or paper, got 'fast'``),
+except for the options of :data:`LIBRARY_CHECKED`."""
+
+LIBRARY_CHECKED = frozenset({"solve.optimizer", "solve.initial"})
+"""Choice options whose values the library checks itself, with its own message (``unknown optimizer 'adam'``)."""
 
 
 def choices_of(command: str, param: str) -> tuple[str, ...] | None:
@@ -357,12 +360,12 @@ class QcppGroup(_TidyHelp, TyperGroup):
         try:
             return super().invoke(ctx)
         except KeyboardInterrupt:
-            _report_interrupt()
+            report_interrupted()
             raise typer.Exit(code=EXIT_INTERRUPTED) from None
         except Exception:
-            if not _stop_requested():
+            if not stop_requested():
                 raise
-            _report_interrupt()  # an exception the signal caused, not a bug
+            report_interrupted()  # an exception the signal caused, not a bug
             raise typer.Exit(code=EXIT_INTERRUPTED) from None
 
     def main(  # type: ignore[override]
@@ -384,10 +387,10 @@ class QcppGroup(_TidyHelp, TyperGroup):
             typer.echo(usage_error_line(exc), err=True)
             sys.exit(EXIT_USAGE)
         except typer.Abort:
-            _report_interrupt()
+            report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
         except KeyboardInterrupt:
-            _report_interrupt()
+            report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
         sys.exit(rv if isinstance(rv, int) and not isinstance(rv, bool) else 0)
 

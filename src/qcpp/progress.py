@@ -45,6 +45,8 @@ from collections.abc import Iterable, Iterator
 from types import TracebackType
 from typing import Any, Literal, TextIO, TypeVar
 
+from gridcover.limits import format_duration
+
 __all__ = [
     "DEFAULT_INTERVAL",
     "FIRST_LINE_AFTER",
@@ -72,20 +74,6 @@ FIRST_LINE_AFTER = 1.0
 """Seconds of work before the first progress line on a pipe (quicker commands print none)."""
 
 T = TypeVar("T")
-
-
-def format_duration(seconds: float) -> str:
-    """A duration as people read it: ``12 s``, ``4 min``, ``2.5 h``.
-
-    Example:
-        >>> format_duration(12.4), format_duration(250), format_duration(9000)
-        ('12 s', '4 min', '2.5 h')
-    """
-    if seconds < 120:
-        return f"{seconds:.0f} s"
-    if seconds < 7200:
-        return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h"
 
 
 def progress_mode(stream: TextIO | None = None) -> Mode:

@@ -32,11 +32,11 @@ Example:
 from __future__ import annotations
 
 import os
-import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from estimators.tables import draw, records, title_lines
 from gridcover.paths import edges_of
 from gridcover.scenario import Scenario
 from qcppio.atomic import save_figure_atomic
@@ -279,25 +279,17 @@ def _plain(cell: Any) -> str:
     return Text.from_markup(str(cell)).plain
 
 
-def _title_lines(table: Any, width: int) -> list[str]:
-    """The table's title wrapped at spaces only: a file name is never broken (a longer one stands alone)."""
-    title = _plain(table.title) if table.title else ""
-    return textwrap.wrap(title, width, break_long_words=False, break_on_hyphens=False) if title else []
+def _title(table: Any) -> str:
+    return _plain(table.title) if table.title else ""
 
 
 def _drawn(table: Any, width: int = 100_000) -> str:
     """The table (without its title) drawn by rich within ``width``, plain text."""
-    import io
-
-    from rich.console import Console
-
     title, table.title = table.title, None
     try:
-        buf = io.StringIO()
-        Console(file=buf, width=width, color_system=None, force_terminal=False).print(table)
+        return "\n".join(line.rstrip() for line in draw(table, width).splitlines())
     finally:
         table.title = title
-    return "\n".join(line.rstrip() for line in buf.getvalue().splitlines())
 
 
 _BOX = str.maketrans(dict.fromkeys("│┃║|", " "))
@@ -318,10 +310,10 @@ def table_text(table: Any, width: int) -> str:
     """A rich ``Table`` as text of at most ``width`` characters per line, never cutting a number or a name.
 
     The title is wrapped at spaces only (a file name longer than the line stands whole on its own line). The
-    table is drawn as is when it fits; otherwise each row becomes a record, one ``header  value`` line per
-    column (a value of several lines continues indented; a two-column table gives one ``label  value`` line
-    per row); when even that is too wide the value goes on the line below its header, indented. Only a single
-    header or value longer than ``width`` can make a line longer.
+    table is drawn as is when it fits; otherwise each row becomes a record (:func:`estimators.tables.records`),
+    one ``header  value`` line per column (a two-column table gives one ``label  value`` line per row), or,
+    where that is too wide, the value on the line below its header, indented. Only a single header or value
+    longer than ``width`` can make a line longer.
 
     Args:
         table: The ``rich.table.Table``.
@@ -340,27 +332,12 @@ def table_text(table: Any, width: int) -> str:
         examples/two_robots_5x5.toml
         c1 obstacles/coverage  -23456
     """
-    lines = _title_lines(table, width)
     if table_fits(table, width):
-        return "\n".join([*lines, _drawn(table, width)]) + "\n"
+        return "\n".join([*title_lines(_title(table), width), _drawn(table, width)]) + "\n"
     headers = [_plain(c.header) for c in table.columns]
     rows = list(zip(*([_plain(x) for x in c.cells] for c in table.columns), strict=True))
-    pairs = len(headers) == 2  # a two-column table reads as "label value" already
-    names = [row[0] for row in rows] if pairs else headers
-    name_w = max(map(len, names), default=0)
-    value_w = min(max((len(p) for row in rows for v in row for p in v.split("\n")), default=0), width - name_w - 2)
-    for i, row in enumerate(rows):
-        if i and not pairs:
-            lines.append("")
-        for name, value in ([row] if pairs else zip(headers, row, strict=True)):
-            parts = value.split("\n")
-            if name_w + 2 + max(map(len, parts)) <= width:  # name and value side by side
-                lines.append(f"{name:<{name_w}}  {parts[0]:>{value_w}}".rstrip())
-                lines += [" " * (name_w + 2) + part for part in parts[1:]]
-            else:  # the value below its name
-                lines.append(name)
-                lines += ["  " + part for part in parts]
-    return "\n".join(lines) + "\n"
+    blocks = [rows] if len(headers) == 2 else [list(zip(headers, row, strict=True)) for row in rows]
+    return records(_title(table), blocks, width, sep="  ", per_field=True)
 
 
 def print_table(console: Any, table: Any) -> None:
@@ -369,7 +346,7 @@ def print_table(console: Any, table: Any) -> None:
     if not table_fits(table, console.width):
         console.print(table_text(table, console.width), markup=False, highlight=False, soft_wrap=True, end="")
         return
-    for line in _title_lines(table, console.width):
+    for line in title_lines(_title(table), console.width):
         console.print(line, markup=False, highlight=False, soft_wrap=True)
     title, table.title = table.title, None
     try:

@@ -66,6 +66,14 @@ def test_csv_has_every_scalar_and_section_column(results) -> None:  # type: igno
     assert parsed[1]["depth_kind"] == "exact"
 
 
+def test_csv_keeps_columns_added_to_the_rows(results) -> None:  # type: ignore[no-untyped-def]
+    """``estimate --device`` adds the routed figures to each row: CSV keeps them, as JSON does."""
+    rows = [{**row, "device": "grid:3x3", "routed_twoq": 7 + i} for i, row in enumerate(make_rows(results))]
+    parsed = list(csv.DictReader(io.StringIO(render(rows, "csv"))))
+    assert [int(r["routed_twoq"]) for r in parsed] == [7, 8, 9] and parsed[0]["device"] == "grid:3x3"
+    assert list(parsed[0])[-1].startswith("section.")
+
+
 def test_streaming_yields_each_row_before_the_next_is_made(results) -> None:  # type: ignore[no-untyped-def]
     made: list[int] = []
 

@@ -69,14 +69,6 @@ def _dfs(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | No
     return dfs(scenario, progress=progress)
 
 
-def _anneal(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
-    return anneal(scenario, seed=seed, rule=rule, progress=progress)
-
-
-def _genetic(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
-    return genetic(scenario, seed=seed, rule=rule, progress=progress)
-
-
 def _cpsat(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
     # an exact model of the cost: no moves, so no rule; runs until the optimum is proven
     from gridcover.solvers.cpsat import cpsat as run_cpsat
@@ -106,7 +98,7 @@ sys.modules[__name__].__class__ = _Package
 
 
 SOLVERS: Mapping[str, SolveMethod] = MappingProxyType(
-    {"dfs": _dfs, "anneal": _anneal, "genetic": _genetic, "cpsat": _cpsat}
+    {"dfs": _dfs, "anneal": anneal, "genetic": genetic, "cpsat": _cpsat}
 )
 """Method name -> :class:`SolveMethod` with default settings (read-only)."""
 

@@ -31,14 +31,12 @@ Example:
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
-from gridcover.cost_range import check_cost_range
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
-from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
+from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution, search_start
 from gridcover.solvers.result import ProgressFn, Solution
 
 CALIBRATION_MOVES = 50
@@ -97,11 +95,7 @@ def anneal(
         cooling = FINAL_TEMPERATURE_RATIO ** (1.0 / (iterations // cycles))
     if not 0 < cooling <= 1:
         raise ValueError(f"cooling must be in (0, 1], got {cooling}")
-    check_cost_range(scenario)  # float64 costs: refuse weights it cannot hold exactly
-    t_start = time.perf_counter()
-    rng = np.random.default_rng(seed)
-    space = MoveSpace(scenario, rule, components)
-    cost = CostCache(scenario)
+    t_start, rng, space, cost = search_start(scenario, seed, rule, components)
     starts = space.starts()
     if t0 is None:
         t0 = _calibrate(space, cost, starts[0], rng)

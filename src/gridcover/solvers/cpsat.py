@@ -58,6 +58,7 @@ from gridcover.cost_range import COST_LIMIT, check_cost_range, weight_fields
 from gridcover.errors import ScenarioError
 from gridcover.grid import node_symmetries
 from gridcover.paths import initial_path, is_feasible, path_to_nodes
+from gridcover.presets import boundary_nodes
 from gridcover.scenario import Scenario
 from gridcover.solvers.result import ProgressFn, Solution
 
@@ -209,20 +210,6 @@ def _break_symmetry(
                 return
 
 
-def _boundary_position(rows: int, cols: int, node: tuple[int, int]) -> int | None:
-    """Position of ``node`` on the grid's outer cycle (clockwise from (0, 0)), ``None`` inside."""
-    r, c = node
-    if r == 0:
-        return c
-    if c == cols - 1:
-        return cols - 1 + r
-    if r == rows - 1:
-        return cols - 1 + rows - 1 + (cols - 1 - c)
-    if c == 0:
-        return 2 * (cols - 1) + rows - 1 + (rows - 1 - r)
-    return None
-
-
 def _crossing_cuts(model: cp_model.CpModel, s: Scenario, visit: list[list[cp_model.IntVar | None]]) -> None:
     """Two robots whose four endpoints lie on the outer boundary in interleaved order must share a node.
 
@@ -232,9 +219,10 @@ def _crossing_cuts(model: cp_model.CpModel, s: Scenario, visit: list[list[cp_mod
     g = s.grid
     if g.rows < 2 or g.cols < 2:
         return
+    position = {node: i for i, node in enumerate(boundary_nodes(g.rows, g.cols))}  # on the outer cycle, clockwise
     for r, q in ((a, b) for a in range(s.num_robots) for b in range(a + 1, s.num_robots)):
         ends = [s.robots[r].start, s.robots[r].goal, s.robots[q].start, s.robots[q].goal]
-        pos = [_boundary_position(g.rows, g.cols, n) for n in ends]
+        pos = [position.get(n) for n in ends]
         if None in pos or len(set(ends)) < 4:
             continue
         lo, hi = sorted(pos[:2])

@@ -38,7 +38,7 @@ from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
 from gridcover.solvers.moves import MoveSpace
 
-__all__ = ["LocalSearch", "local_search"]
+__all__ = ["LocalSearch", "local_search", "steepest_descent"]
 
 
 @dataclass(frozen=True)
@@ -76,8 +76,20 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
         The :class:`LocalSearch`.
     """
     t0 = time.perf_counter()
-    space = MoveSpace(scenario, rule, "initial")
-    paths = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
+    start = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
+    paths, trace, evaluated = steepest_descent(scenario, start, MoveSpace(scenario, rule, "initial"))
+    return LocalSearch(paths, trace[-1], trace[0], len(trace) - 1, evaluated, time.perf_counter() - t0, trace)
+
+
+def steepest_descent(
+    scenario: Scenario, paths: tuple[int, ...], space: MoveSpace
+) -> tuple[tuple[int, ...], tuple[float, ...], int]:
+    """Steepest descent over ``space``'s allowed flips from ``paths`` (the rule of the module docstring); also
+    the polish of :func:`gridcover.qubo_solve.solve_qubo`.
+
+    Returns:
+        The local minimum, the total cost after each step (the start's first) and the assignments scored.
+    """
     current = cost(scenario, paths)
     trace = [current]
     evaluated = 1
@@ -97,8 +109,7 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
             if totals[k] < current - tol and (best is None or totals[k] < best[0] - tol):
                 best = (float(totals[k]), r, nbs[k])
         if best is None:
-            break
+            return paths, tuple(trace), evaluated
         current, r, mask = best
         paths = (*paths[:r], mask, *paths[r + 1:])
         trace.append(current)
-    return LocalSearch(paths, current, trace[0], len(trace) - 1, evaluated, time.perf_counter() - t0, tuple(trace))

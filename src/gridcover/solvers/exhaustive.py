@@ -46,6 +46,7 @@ import numpy as np
 
 from gridcover.cost import cost_parts, separable_cost
 from gridcover.cost_range import check_cost_range
+from gridcover.limits import format_duration
 from gridcover.paths import count_paths, enumerate_paths, iter_paths
 from gridcover.scenario import Scenario
 from gridcover.solvers.result import ProgressFn, Solution
@@ -129,7 +130,7 @@ class DfsSize:
         paths = " x ".join(f"{'' if ok else 'at least '}{n:,}" for n, ok in zip(self.paths_per_robot, self.complete))
         return (
             f"paths per robot {paths} = {at_least}{self.assignments:,} assignments "
-            f"({at_least}{self.bytes / 1e9:.1f} GB, {_duration(self.seconds)})"
+            f"({at_least}{self.bytes / 1e9:.1f} GB, {format_duration(self.seconds)})"
         )
 
 
@@ -139,16 +140,6 @@ class DfsTooLargeError(ValueError):
     def __init__(self, size: DfsSize, reason: str) -> None:
         super().__init__(f"exhaustive search of {size.describe()}: {reason}")
         self.size = size
-
-
-def _duration(seconds: float) -> str:
-    if seconds < 120:
-        return f"{seconds:.0f} s"
-    if seconds < 7200:
-        return f"{seconds / 60:.0f} min"
-    if seconds < 2 * 86400:
-        return f"{seconds / 3600:.1f} h"
-    return f"{seconds / 86400:,.0f} days"
 
 
 def _check(size: DfsSize, max_assignments: int | None, max_paths: int | None, max_bytes: int | None) -> None:

@@ -35,15 +35,13 @@ Example:
 
 from __future__ import annotations
 
-import time
 from typing import Literal
 
 import numpy as np
 
-from gridcover.cost_range import check_cost_range
 from gridcover.sbf import Rule
 from gridcover.scenario import Scenario
-from gridcover.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution
+from gridcover.solvers.moves import ComponentMode, MoveSpace, search_solution, search_start
 from gridcover.solvers.result import ProgressFn, Solution
 
 MutationMode = Literal["all", "random"]
@@ -110,11 +108,7 @@ def genetic(
         raise ValueError(f"unknown mutation mode {mutation!r} (expected 'all' or 'random')")
     if selection not in ("truncation", "tournament"):
         raise ValueError(f"unknown selection {selection!r} (expected 'truncation' or 'tournament')")
-    check_cost_range(scenario)  # float64 costs: refuse weights it cannot hold exactly
-    t_start = time.perf_counter()
-    rng = np.random.default_rng(seed)
-    space = MoveSpace(scenario, rule, components)
-    cost = CostCache(scenario)
+    t_start, rng, space, cost = search_start(scenario, seed, rule, components)
 
     def score(ind: Assignment) -> float:
         space.visit(ind)

@@ -33,6 +33,7 @@ from typing import Literal
 import numpy as np
 
 from gridcover.cost import cost_parts, quadratic_cost
+from gridcover.cost_range import check_cost_range
 from gridcover.paths import initial_path, is_feasible, path_bits
 from gridcover.sbf import RULES, Rule, move_components, sbf_logic
 from gridcover.scenario import Scenario
@@ -176,6 +177,16 @@ class CostCache:
             x = np.concatenate(parts)
             val = self._values[masks] = float(self._const + x @ self._linear + 0.5 * (x @ self._quad @ x))
         return val
+
+
+def search_start(
+    scenario: Scenario, seed: int, rule: Rule, components: ComponentMode
+) -> tuple[float, np.random.Generator, MoveSpace, CostCache]:
+    """What a local search over SBF moves starts with (anneal, genetic): the scenario's weights checked
+    (:func:`~gridcover.cost_range.check_cost_range`: float64 costs), the start time, the seeded generator, the
+    move space and an empty cost cache."""
+    check_cost_range(scenario)
+    return time.perf_counter(), np.random.default_rng(seed), MoveSpace(scenario, rule, components), CostCache(scenario)
 
 
 def search_solution(

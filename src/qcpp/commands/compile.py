@@ -33,7 +33,6 @@ import math
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
-from pathlib import Path
 from typing import Annotated, Any
 
 import typer
@@ -43,7 +42,7 @@ from rich.table import Table
 from circuitgen.angles import symbol_sort_key
 from circuitgen.circuit import Circuit, Register, Section
 from circuitgen.compile import compile_scenario, compile_summary, parse_bindings
-from circuitgen.options import LAYOUT_METHODS, PlanOptions
+from circuitgen.options import PlanOptions
 from circuitgen.qasm_stream import write_qasm_sections
 from estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
 from gridcover.scenario import Scenario, load_scenario
@@ -51,17 +50,7 @@ from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import (
-    AncillaBudgetFlag,
-    AnglesFlag,
-    InitialFlag,
-    OptimizeFlag,
-    PhaseFlag,
-    PhaseLayoutFlag,
-    RuleFlag,
-    TargetFlag,
-    plan_options,
-)
+from .plan_flags import LayersFlag, ScenarioArg, with_plan_flags
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -75,13 +64,14 @@ HELP = (
 )
 
 
+@with_plan_flags
 def compile_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
+    options: PlanOptions,
+    scenario: ScenarioArg,
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
-    rule: RuleFlag = "exact",
+    p: LayersFlag = 1,
     lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
     bind: Annotated[
         list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
@@ -90,13 +80,6 @@ def compile_command(
         str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
     ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
-    initial: InitialFlag = "initial_path",
-    target: TargetFlag = "nisq",
-    phase: PhaseFlag = "feasible",
-    optimize: OptimizeFlag = "cx",
-    ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "auto",
-    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -130,11 +113,6 @@ def compile_command(
     ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    options = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
-    if qasm_version not in (2, 3):
-        raise ValueError(f"--qasm-version: expected 2 or 3, got {qasm_version}")
-    if layout not in LAYOUT_METHODS:
-        raise ValueError(f"--layout: expected {', '.join(LAYOUT_METHODS[:-1])} or {LAYOUT_METHODS[-1]}, got {layout!r}")
     if device is None:  # routing flags without a device used to be ignored without a word
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
@@ -180,7 +158,7 @@ def compile_command(
     form = "lowered" if lowered else "high level"
     if device is not None:
         form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
-    table = Table(title=f"{scenario.name}: p={p}, rule={rule}, target={target}, {form}")
+    table = Table(title=f"{scenario.name}: p={p}, rule={options.rule}, target={options.target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():
@@ -285,7 +263,7 @@ def _stream(
     bindings: dict[str, float],
     qasm: str | None,
     version: int,
-    progress: Progress | None = None,
+    progress: Progress,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
     independent of ``p``); return the summary :meth:`circuitgen.compile.CompileResult.summary` would give and the
@@ -293,12 +271,10 @@ def _stream(
     from circuitgen.qaoa import qaoa_plan
 
     start = time.perf_counter()
-    if progress is not None:
-        progress.stage("planning the circuit")
+    progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
     plan.check_bindings(bindings)
-    if progress is not None:
-        progress.stage("building the sections")
+    progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
 
@@ -307,13 +283,12 @@ def _stream(
     def sections() -> Iterator[Section]:
         nonlocal walks
         walks += 1
-        if progress is not None and qasm is not None:
+        if qasm is not None:
             progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
         for sec in plan.emit_sections(lowered):
             out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
             yield out
-            if progress is not None:
-                progress.advance(len(out.gates))
+            progress.advance(len(out.gates))
 
     if qasm is not None:
         ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]

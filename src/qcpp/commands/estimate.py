@@ -27,23 +27,12 @@ from typing import Annotated, Any
 
 import typer
 
-from estimators.paper import DOUBLINGS
-from estimators.tables import FORMATS
+from circuitgen.options import PlanOptions
 from qcpp.progress import Progress
 from qcpp.render import print_table
 from qcppio.atomic import check_output
 
-from .plan_flags import (
-    AncillaBudgetFlag,
-    AnglesFlag,
-    InitialFlag,
-    OptimizeFlag,
-    PhaseFlag,
-    PhaseLayoutFlag,
-    RuleFlag,
-    TargetFlag,
-    plan_options,
-)
+from .plan_flags import with_plan_flags
 
 __all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
 
@@ -58,7 +47,9 @@ HELP = (
 )
 
 
+@with_plan_flags
 def estimate(
+    options: PlanOptions,
     grid: Annotated[
         str | None,
         typer.Option(
@@ -78,14 +69,6 @@ def estimate(
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
     ] = None,
-    rule: RuleFlag = "exact",
-    initial: InitialFlag = "initial_path",
-    target: TargetFlag = "nisq",
-    phase: PhaseFlag = "feasible",
-    optimize: OptimizeFlag = "cx",
-    ancilla_budget: AncillaBudgetFlag = None,
-    phase_layout: PhaseLayoutFlag = "auto",
-    angles: AnglesFlag = "layer",
     explain: Annotated[
         bool,
         typer.Option(
@@ -161,35 +144,22 @@ def estimate(
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: estimators.report pulls in sympy, which would slow every other command's start-up
-    from estimators.estimate import DEPTH_MODES, EstimateOptions
-    from estimators.fault_tolerant import TOFFOLI_T_CHOICES
-    from estimators.physical import QEC_SCHEMES, QUBIT_MODELS
+    from estimators.estimate import EstimateOptions
     from estimators.report import estimate_report, formula_report, points_from_options
 
     if as_json:
         fmt = "json"
-    if fmt not in FORMATS:
-        raise ValueError(f"bad --format {fmt!r}: expected one of {', '.join(FORMATS)}")
     if formula:
         typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
         return
     checks = [
-        (compare not in (None, "paper"), f"bad --compare {compare!r}: the only comparison is 'paper'"),
-        (paper_doubling not in DOUBLINGS, f"bad --paper-doubling {paper_doubling!r}: expected one of "
-         f"{', '.join(DOUBLINGS)}"),
         (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
-        (toffoli_t not in TOFFOLI_T_CHOICES, f"bad --toffoli-t {toffoli_t}: expected 7 or 4"),
-        (depth not in DEPTH_MODES, f"bad --depth {depth!r}: expected one of {', '.join(DEPTH_MODES)}"),
         (depth_budget < 0, f"bad --depth-budget {depth_budget}: must be >= 0"),
-        (qubit_model not in QUBIT_MODELS, f"bad --qubit-model {qubit_model!r}: expected one of "
-         f"{', '.join(QUBIT_MODELS)}"),
-        (qec_scheme not in QEC_SCHEMES, f"bad --qec-scheme {qec_scheme!r}: expected one of {', '.join(QEC_SCHEMES)}"),
         (not 0.0 < error_budget < 1.0, f"bad --error-budget {error_budget}: must be in (0, 1)"),
     ]  # fmt: skip
     for bad, message in checks:
         if bad:
             raise ValueError(message)
-    plan = plan_options(rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles)
     if device is not None:
         from circuitgen.devices import DeviceError, get_device
 
@@ -206,8 +176,8 @@ def estimate(
             "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
             err=True,
         )
-    options = EstimateOptions(
-        plan=plan,
+    settings = EstimateOptions(
+        plan=options,
         epsilon=epsilon,
         toffoli_t=toffoli_t,
         depth=depth,  # type: ignore[arg-type]
@@ -227,7 +197,7 @@ def estimate(
         pieces = estimate_report(
             bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
             fmt=fmt,  # type: ignore[arg-type]
-            options=options,
+            options=settings,
             compare_paper=compare == "paper",
             plot=plot,
             doubling=paper_doubling,  # type: ignore[arg-type]
@@ -251,7 +221,7 @@ def estimate(
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
     if explain:
-        _explain(points.points, options.plan)
+        _explain(points.points, options)
 
 
 def _explain(points: Sequence[Any], plan: Any) -> None:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -24,7 +23,8 @@ from gridcover.qubo import FORMS, bqm_for
 from gridcover.qubo_export import EXPORT_FORMATS, export_text
 from gridcover.qubo_solve import INSTALL_HINT
 from gridcover.scenario import load_scenario
-from qcpp.commands.solve import progress_reporter
+from qcpp.commands.plan_flags import ScenarioArg
+from qcpp.progress import Progress
 from qcppio.atomic import check_output, write_text_atomic
 
 __all__ = ["HELP", "export_command", "register"]
@@ -37,7 +37,7 @@ HELP = (
 
 
 def export_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
+    scenario: ScenarioArg,
     fmt: Annotated[
         str, typer.Option("--format", "-f", help=f"Output format: {', '.join(EXPORT_FORMATS)}.", show_default=False)
     ],
@@ -50,10 +50,6 @@ def export_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")] = False,
 ) -> None:
     """Export a scenario's QUBO (see ``qcpp export --help``)."""
-    if fmt not in EXPORT_FORMATS:
-        raise ValueError(f"--format: expected one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
-    if form not in FORMS:
-        raise ValueError(f"--form: expected one of {', '.join(FORMS)}, got {form!r}")
     if penalty is not None:
         if form != "per-robot":
             raise ValueError(f"--penalty: applies to --form per-robot only (got --form {form})")
@@ -68,13 +64,12 @@ def export_command(
             raise ValueError(f"--format bqm needs dimod: {INSTALL_HINT} (ising, qubo, lp, mps need nothing)") from None
     check_output(out)  # a bad destination fails before any work
     s = load_scenario(scenario)
-    with progress_reporter(f"export {fmt} of {scenario.name}") as progress:
+    with Progress(f"export {fmt} of {scenario.name}", total=2) as bar:
         # the penalty rule's upper bound (a short SBF annealing run) and the MIP exports take seconds on big grids
-        progress(0, 2)
         model = bqm_for(s, form, penalty)
-        progress(1, 2)
+        bar.advance()
         text = export_text(model, fmt)
-        progress(2, 2)
+        bar.advance()
     write_text_atomic(out, text)
     summary = {
         "scenario": str(scenario),

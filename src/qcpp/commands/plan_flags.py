@@ -1,8 +1,9 @@
-"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`.
+"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`;
+and the flags every scenario command declares alike (:data:`ScenarioArg`, :data:`LayersFlag`, ``--rule``).
 
-Both commands declare their plan flags with these annotated types and turn them into a
-:class:`~circuitgen.options.PlanOptions` with :func:`plan_options`, so the two accept exactly the same flags with
-the same help and the same checks (``tests/qcpp/plan_flags_test.py`` compares the commands' flags).
+Both commands take an ``options: PlanOptions`` parameter and are decorated with :func:`with_plan_flags`, which
+puts the plan flags in its place and builds the options with :func:`plan_options`, so the two accept exactly the
+same flags with the same help, defaults and checks (``tests/qcpp/plan_flags_test.py`` compares them).
 
 Example:
     >>> plan_options("exact", "representatives", "ft", "feasible", "cx", None).initial
@@ -15,7 +16,11 @@ Example:
 
 from __future__ import annotations
 
-from typing import Annotated
+import functools
+import inspect
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
 
@@ -26,14 +31,19 @@ __all__ = [
     "AncillaBudgetFlag",
     "AnglesFlag",
     "InitialFlag",
+    "LayersFlag",
     "OptimizeFlag",
     "PhaseFlag",
     "PhaseLayoutFlag",
     "RuleFlag",
+    "ScenarioArg",
     "TargetFlag",
     "plan_options",
+    "with_plan_flags",
 ]
 
+ScenarioArg = Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)]
+LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
 InitialFlag = Annotated[
     str,
@@ -93,6 +103,34 @@ PLAN_FLAGS: tuple[str, ...] = (
     "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout", "--mixer-angles",
 )
 """The flags above, in :class:`~circuitgen.options.PlanOptions` field order."""
+
+_PARAMETERS: tuple[tuple[str, Any], ...] = (
+    ("rule", RuleFlag), ("initial", InitialFlag), ("target", TargetFlag), ("phase", PhaseFlag),
+    ("optimize", OptimizeFlag), ("ancilla_budget", AncillaBudgetFlag), ("phase_layout", PhaseLayoutFlag),
+    ("angles", AnglesFlag),
+)  # fmt: skip
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def with_plan_flags(command: F) -> F:
+    """``command`` with the plan flags in place of its ``options`` parameter (after its own parameters; defaults
+    those of :class:`~circuitgen.options.PlanOptions`), called with the options they build (:func:`plan_options`).
+    """
+    defaults, keyword = PlanOptions(), inspect.Parameter.KEYWORD_ONLY
+    flags = [inspect.Parameter(name, keyword, default=getattr(defaults, name), annotation=a) for name, a in _PARAMETERS]
+    sig = inspect.signature(command, eval_str=True)
+    hints = get_type_hints(command, include_extras=True)
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        options = plan_options(*(kwargs.pop(name) for name, _ in _PARAMETERS))
+        return command(*args, options=options, **kwargs)
+
+    own = [q for q in sig.parameters.values() if q.name != "options"]
+    wrapper.__signature__ = sig.replace(parameters=[*own, *flags])  # type: ignore[attr-defined]
+    wrapper.__annotations__ = {**{q.name: hints[q.name] for q in own}, **{q.name: q.annotation for q in flags}}
+    return wrapper  # type: ignore[return-value]
 
 
 def plan_options(

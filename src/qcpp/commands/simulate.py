@@ -23,8 +23,8 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
+from qcpp.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.progress import Progress
 from qcpp.render import print_table
 
@@ -80,8 +80,8 @@ def _guard(s: Scenario, path: Path) -> None:
 
 
 def simulate_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
+    scenario: ScenarioArg,
+    p: LayersFlag = 1,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Simulator: subspace, statevector or tensor.")
     ] = "subspace",
@@ -89,16 +89,12 @@ def simulate_command(
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (2p values); default: random from --seed.")
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles (at least 0).")] = 0,
-    rule: Annotated[str, typer.Option("--rule", help="SBF mixer rule: exact or paper.")] = "exact",
+    rule: RuleFlag = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Evaluate QAOA angles (see ``qcpp simulate --help``)."""
-    from simulate.evaluate import METHODS, evaluate  # scipy: imported when the command runs, not at start-up
+    from simulate.evaluate import evaluate  # scipy: imported when the command runs, not at start-up
 
-    if method not in METHODS:
-        raise ValueError(f"--method: expected one of {', '.join(METHODS)}, got {method!r}")
-    if rule not in RULES:
-        raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     values = parse_angles(angles) if angles is not None else None
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
         raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")

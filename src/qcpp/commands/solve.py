@@ -14,15 +14,9 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``f(scenario, *, seed, rule, progress) -> gridcover.solvers.Solution`` stored under its name.
 
 ``qaoa`` (:mod:`simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
-solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes
-``-p``, ``--optimizer`` (default ``layerwise``: L-BFGS-B layer by layer with warm starts; ``multi-angle``: one
-beta per partial mixer and layer, gammas 0, and ``bindings`` for ``qcpp compile --mixer-angles multi --bind``),
-``--objective``
-(default ``gibbs``), ``--maxiter`` and ``--initial`` (default ``initial_path``; ``local_search`` starts from a
-classical warm start, ``local_search_mix`` from its superposition with the initial paths), and adds
-``probability``, ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial``,
-``objective``, ``trace`` (the objective per training iteration), ``evaluations`` and
-``circuit_estimates`` (:func:`simulate.qaoa_solver.qaoa_to_dict`) to the JSON and a trace sparkline to the text.
+solvers, so it is registered here rather than in :data:`gridcover.solvers.SOLVERS`. It alone takes the options of
+:data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
+:func:`simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
 
 ``cpsat`` (:func:`gridcover.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
@@ -37,8 +31,7 @@ from __future__ import annotations
 import json
 import math
 import sys
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated
 
@@ -48,9 +41,9 @@ from rich.markup import escape
 from rich.table import Table
 
 from circuitgen.options import INITIAL_STATES
-from gridcover.sbf import RULES
 from gridcover.scenario import Scenario, load_scenario
 from gridcover.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.commands.plan_flags import RuleFlag, ScenarioArg
 from qcpp.progress import Progress
 from qcpp.render import plot_paths, plot_trace, print_table, render_ascii
 from qcppio.atomic import check_output
@@ -59,7 +52,6 @@ __all__ = [
     "METHOD_HELP",
     "QAOA_DEFAULTS",
     "SOLVE_METHODS",
-    "progress_reporter",
     "register",
     "solve_command",
     "solve_help",
@@ -69,12 +61,6 @@ __all__ = [
 QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
                  "mixer_warm": False}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
-
-
-def _cpsat_time_limit(value: float | None) -> float | None:
-    if value is not None and not (value > 0 and value != float("inf")):
-        raise ValueError(f"--time-limit: expected a positive number of seconds, got {value:g}")
-    return value
 
 
 def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
@@ -136,14 +122,6 @@ def solve_help() -> str:
     return (
         f"Solve a scenario with --method ({methods}) and print the paths on the grid, the cost and its parts."
     )
-
-
-@contextmanager
-def progress_reporter(description: str, unit: str = "steps") -> Iterator[ProgressFn]:
-    """A :data:`~gridcover.solvers.ProgressFn` showing progress on stderr (:class:`qcpp.progress.Progress`: a
-    transient bar on a terminal, a line every few seconds on a pipe); stdout stays clean for ``--json``."""
-    with Progress(description, unit=unit) as bar:
-        yield bar.update
 
 
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
@@ -213,12 +191,12 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 
 
 def solve_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)],
+    scenario: ScenarioArg,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Solver (see above).")
     ] = "anneal",
     seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
-    rule: Annotated[str, typer.Option("--rule", help="SBF move rule: exact or paper.")] = "exact",
+    rule: RuleFlag = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object instead of the drawing.")] = False,
     plot: Annotated[
         Path | None, typer.Option("--plot", help="Also draw the paths to this image (PNG, SVG, ...).")
@@ -257,10 +235,6 @@ def solve_command(
     ] = None,
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
-    if method not in SOLVE_METHODS:
-        raise ValueError(f"--method: unknown method {method!r} (expected one of {', '.join(SOLVE_METHODS)})")
-    if rule not in RULES:
-        raise ValueError(f"--rule: expected one of {', '.join(RULES)}, got {rule!r}")
     qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
                     "mixer_warm": mixer_warm}
     if method != "qaoa":
@@ -277,7 +251,8 @@ def solve_command(
         raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
     if time_limit is not None and method != "cpsat":
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
-    _cpsat_time_limit(time_limit)
+    if time_limit is not None and not 0 < time_limit < math.inf:
+        raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
@@ -288,7 +263,8 @@ def solve_command(
     if method == "qaoa":
         _qaoa_guard(s, scenario, description)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
-    with progress_reporter(description, "assignments" if method == "dfs" else "steps") as progress:
+    with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
+        progress = bar.update  # a gridcover.solvers.ProgressFn; stdout stays clean for --json
         if dfs_lists is not None:
             from gridcover.solvers.exhaustive import dfs
 

@@ -22,7 +22,6 @@ input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json
 from __future__ import annotations
 
 import json
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -30,6 +29,7 @@ from rich.console import Console
 from rich.table import Table
 
 from gridcover.scenario import load_scenario
+from qcpp.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.commands.simulate import parse_angles
 from qcpp.progress import Progress
 from qcpp.render import print_table
@@ -53,6 +53,8 @@ def _check_dask_address(text: str) -> None:
     Example:
         >>> _check_dask_address("tcp://127.0.0.1:8786")
     """
+    if not text.strip():
+        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
     if text.strip() == "local":
         return
     try:
@@ -69,8 +71,8 @@ def _check_dask_address(text: str) -> None:
 
 
 def validate_command(
-    scenario: Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).")],
-    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")] = 1,
+    scenario: ScenarioArg,
+    p: LayersFlag = 1,
     backend: Annotated[
         str,
         typer.Option("--backend", help="auto (what fits: statevector or sparse), tensor, statevector, sparse or qcec."),
@@ -79,7 +81,7 @@ def validate_command(
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles and the amplitude sample.")] = 0,
-    rule: Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")] = "exact",
+    rule: RuleFlag = "exact",
     max_amplitudes: Annotated[
         int,
         typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly (at least 1)."),
@@ -98,18 +100,12 @@ def validate_command(
     from gridcover.limits import OVERRIDE_FLAG, large_allowed, memory_budget
     from simulate.validate import MAX_VALIDATE_ASSIGNMENTS, ValidationTooLargeError, validate
 
-    if backend not in ("auto", "tensor", "statevector", "sparse", "qcec"):
-        raise ValueError(f"--backend: expected auto, tensor, statevector, sparse or qcec, got {backend!r}")
     if dask is not None and backend == "auto":
         backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
     if dask is not None and backend != "tensor":
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
-    if dask is not None and not dask.strip():
-        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
     if dask is not None:
         _check_dask_address(dask)
-    if rule not in ("exact", "paper"):
-        raise ValueError(f"--rule: expected exact or paper, got {rule!r}")
     values = None
     if angles is not None:
         values = parse_angles(angles)
