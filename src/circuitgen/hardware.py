@@ -46,6 +46,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
@@ -72,7 +73,7 @@ from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shap
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
 from .placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
-from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
+from .routing import RoutedCircuit, duration_s, embed_routed, esp, route, route_windows, to_native
 
 __all__ = [
     "DeviceCompileResult",
@@ -254,7 +255,7 @@ def compile_for_device(
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
                 say(f"routing the whole circuit on {other.name} to compare")
-                greedy = greedy_route(circuit, other, seed=seed, layouts=layouts, measured=measured)
+                greedy = _greedy_compare(circuit, other, seed=seed, layouts=layouts, measured=measured)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
@@ -304,6 +305,30 @@ def greedy_route(
     if device.is_all_to_all or _two_qubit(circuit) > SEARCH_MAX_TWOQ:
         return route(circuit, device, layout, seed=seed, measured=measured)
     return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured)
+
+
+GREEDY_COMPARE_MAX_QUBITS = 1_024
+"""``auto`` routes its greedy comparison on the medial grid itself up to this many qubits; on a larger one (a long
+strip's square medial grid: 2x50 with one robot needs 99x99) on its top-left sub-grid with the circuit's qubits
+(:func:`_greedy_compare`): a routing of the whole circuit costs SABRE and the placement a dense distance matrix
+of every device qubit (on 99x99, over a minute, for a 149-qubit circuit)."""
+
+
+def _greedy_compare(
+    circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range | None
+) -> RoutedCircuit:
+    """:func:`greedy_route` of ``circuit`` on ``device``, or, on a square grid of more than
+    :data:`GREEDY_COMPARE_MAX_QUBITS` qubits, on its top-left sub-grid of about ``sqrt(n) x sqrt(n)`` sites for
+    ``n`` circuit qubits, written on ``device`` (a sub-grid is an induced subgraph: every routed gate is on a
+    coupling of ``device``)."""
+    shape = grid_shape(device)
+    if shape is None or device.num_qubits <= GREEDY_COMPARE_MAX_QUBITS:
+        return greedy_route(circuit, device, seed=seed, layouts=layouts, measured=measured)
+    n = circuit.num_qubits
+    rows = min(shape[0], math.isqrt(n - 1) + 1)
+    cols = min(shape[1], -(-n // rows))
+    small = greedy_route(circuit, get_device(f"grid:{rows}x{cols}"), seed=seed, layouts=layouts, measured=measured)
+    return embed_routed(small, device, [r * shape[1] + c for r in range(rows) for c in range(cols)])
 
 
 SEARCH = True
@@ -399,6 +424,16 @@ def medial_compile(
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
+        cropped = _cropped(dev, homes)
+        if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
+            sub, sites = cropped
+            where = {q: i for i, q in enumerate(sites)}
+            try:
+                logical, routed = _medial_route(circuit, sub, tuple(where[h] for h in homes), seed, measured, say)
+            except ValueError:
+                pass  # a section wants more free qubits than the crop has: the whole device below
+            else:
+                return logical, embed_routed(routed, dev, sites)
         dist = distances(dev)
         planned = circuit
         if options is not None and dev.family == "heavy-hex":
@@ -411,11 +446,58 @@ def medial_compile(
                 raise
             dev = _grown(dev)
             continue
-        say("relaying far phases")
-        logical, layout = bridge_far_phases(logical, layout, dev, dist)
-        say(f"routing {len(logical.sections):,} windows")
-        cells = dev.family == "heavy-hex"
-        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
-                                      large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
-                                      large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip
+        return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
     return None
+
+
+CROP_MIN_QUBITS = 1_024
+"""Square grids of more qubits whose medial layout leaves rows or columns far from every home are routed on the
+part around the layout (:func:`_cropped`)."""
+
+CROP_PAD = 6
+"""Free rows and columns a crop keeps beyond the homes' bounding box: more than an allocated ancilla, a relay
+holder (two sites from its qubit) or a routing patch (two sites around a window's qubits) reaches."""
+
+
+def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | None:
+    """The top-left sub-grid of a ``grid:RxC`` device of more than :data:`CROP_MIN_QUBITS` qubits that holds the
+    homes with :data:`CROP_PAD` rows and columns to spare, and its sites on ``dev`` (row-major, so indices keep
+    their order), if it has at most half the device's qubits; else ``None``.
+
+    The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
+    relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
+    as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
+    strip: 768 MB, tens of seconds). ``tests/circuitgen/hardware_crop_test.py`` compares both."""
+    shape = grid_shape(dev)
+    if shape is None or dev.num_qubits <= CROP_MIN_QUBITS or not dev.name.startswith("grid:"):
+        return None
+    rows_of, cols_of = zip(*(divmod(h, shape[1]) for h in homes), strict=True)
+    rows, cols = min(shape[0], max(rows_of) + 1 + CROP_PAD), min(shape[1], max(cols_of) + 1 + CROP_PAD)
+    if 2 * rows * cols > dev.num_qubits:
+        return None
+    return get_device(f"grid:{rows}x{cols}"), [r * shape[1] + c for r in range(rows) for c in range(cols)]
+
+
+def _medial_route(
+    circuit: Circuit, dev: Device, homes: tuple[int, ...], seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Allocation, relays and windows of the medial path on a square grid ``dev`` with data ``homes``."""
+    dist = distances(dev)
+    say(f"allocating ancillas on {dev.name}")
+    logical, layout = allocate_ancillas(circuit, homes, dev, dist, search=SEARCH)
+    return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+
+
+def _relay_and_route(
+    logical: Circuit, layout: tuple[int, ...], dev: Device, dist: Any, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Relays of far phases (:func:`circuitgen.bridge.bridge_far_phases`) and the windows routed home."""
+    say("relaying far phases")
+    logical, layout = bridge_far_phases(logical, layout, dev, dist)
+    say(f"routing {len(logical.sections):,} windows")
+    cells = dev.family == "heavy-hex"
+    return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
+                                  large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
+                                  large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip

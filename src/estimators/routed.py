@@ -46,6 +46,7 @@ Example:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -159,6 +160,7 @@ def routed_fields(
     cx: int,
     one_qubit: int,
     total_gates: int | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> dict[str, Any]:
     """The routed figures of one estimate row (see the module docs).
 
@@ -170,10 +172,23 @@ def routed_fields(
         qubits, cx, one_qubit: The row's lowered counts (``cx + one_qubit`` picks the way unless ``total_gates``
             is given; the bound recounts the circuit compile routes, whose phase layout may differ from the row's).
         total_gates: The row's lowered gate count (default ``cx + one_qubit``), for the exact/bound choice.
+        stage: Called with each stage of the routing as it starts (``3x3 r1 p1 on grid:5x5: routing 6 windows``),
+            and with ``""`` when the row is done: progress inside a row that takes long.
 
     Returns:
         The fields to add to the row.
     """
+    try:
+        return _routed_fields(scenario, p, plan, device, qubits, cx, one_qubit, total_gates, stage)
+    finally:
+        if stage is not None:
+            stage("")
+
+
+def _routed_fields(
+    scenario: Scenario, p: int, plan: Any, device: str, qubits: int, cx: int, one_qubit: int,
+    total_gates: int | None, stage: Callable[[str], None] | None,
+) -> dict[str, Any]:  # fmt: skip
     from circuitgen.hardware import ESP_MODEL, compile_for_device, layout_device
     from circuitgen.routing import duration_s, esp
 
@@ -181,19 +196,22 @@ def routed_fields(
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
     dev = medial if medial is not None else get_device(device, min_qubits=qubits)
     fits = _largest_component(dev) >= qubits
+    g = scenario.grid
+    label = f"{g.rows}x{g.cols} r{scenario.num_robots} p{p} on {dev.name}"
+    say = (lambda text: stage(f"{label}: {text}")) if stage is not None else None
     out: dict[str, Any] = {"device": dev.name, "fits": fits}
     if not fits:
         none = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
                 "duration_s", "esp", "esp_model")  # fmt: skip
         return {**out, **dict.fromkeys(none)}
     if (total_gates if total_gates is not None else cx + one_qubit) > EXACT_MAX_GATES:
-        summed = _window_sum(scenario, p, plan, device)
+        summed = _window_sum(scenario, p, plan, device, say)
         if summed is not None:
             out["device"] = summed.device.name
             return {**out, **_summed_fields(summed, ESP_MODEL)}
         return {**out, **_bound_of_compiled(scenario, p, plan, dev)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
-    result = compile_for_device(scenario, p, device if medial is not None else dev, plan)
+    result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say)
     routed = result.routed
     out["device"] = routed.device.name
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
@@ -211,7 +229,7 @@ def routed_fields(
     }
 
 
-def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
+def _window_sum(scenario: Scenario, p: int, plan: Any, device: str, stage: Callable[[str], None] | None) -> Any:
     """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
     :data:`~circuitgen.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
     from circuitgen.hardware import AUTO_COMPARE_MAX_TWOQ, medial_device
@@ -220,7 +238,7 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str) -> Any:
     dev = medial_device(scenario, device)
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
         return None
-    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK)
+    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
     if summed.compiled_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
