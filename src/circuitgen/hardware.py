@@ -427,13 +427,9 @@ def medial_compile(
         cropped = _cropped(dev, homes)
         if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
             sub, sites = cropped
-            where = {q: i for i, q in enumerate(sites)}
-            try:
-                logical, routed = _medial_route(circuit, sub, tuple(where[h] for h in homes), seed, measured, say)
-            except ValueError:
-                pass  # a section wants more free qubits than the crop has: the whole device below
-            else:
-                return logical, embed_routed(routed, dev, sites)
+            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say)
+            if on_crop is not None:
+                return on_crop[0], embed_routed(on_crop[1], dev, sites)
         dist = distances(dev)
         planned = circuit
         if options is not None and dev.family == "heavy-hex":
@@ -476,6 +472,35 @@ def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | 
     if 2 * rows * cols > dev.num_qubits:
         return None
     return get_device(f"grid:{rows}x{cols}"), [r * shape[1] + c for r in range(rows) for c in range(cols)]
+
+
+def _route_on_crop(
+    circuit: Circuit, sub: Device, homes: list[int], dev: Device, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
+    """:func:`_medial_route` on the crop ``sub`` of ``dev``, or ``None`` where the device beyond the crop could
+    have changed it: a section wants more free qubits than the crop has, a routing patch (the allocation search's
+    and the relays' candidates included) reaches the crop's last row or column short of the device's edge, or a
+    window was routed on its whole connected component (the crop's, not the device's): the checks
+    :mod:`circuitgen.window_classes` makes of its crops."""
+    from . import routing
+
+    shape, full = grid_shape(sub), grid_shape(dev)
+    assert shape is not None and full is not None
+    before = routing.WHOLE_COMPONENT_PATCHES
+    patches: set[int] = set()
+    routing.PATCH_WATCH.append(patches)
+    try:
+        logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
+    except ValueError:
+        return None
+    finally:
+        routing.PATCH_WATCH.remove(patches)
+    last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in patches)
+    last_col = shape[1] < full[1] and any(q % shape[1] == shape[1] - 1 for q in patches)
+    if before != routing.WHOLE_COMPONENT_PATCHES or last_row or last_col:
+        return None
+    return logical, routed
 
 
 def _medial_route(
