@@ -14,7 +14,8 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
   :func:`circuitgen.routing.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
-  ``initial_layout == final_layout``);
+  ``initial_layout == final_layout``); on a large square grid the layout leaves mostly empty (a long strip's),
+  all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
 * **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
   :data:`AUTO_COMPARE_MAX_TWOQ`; on the unsized ``heavy-hex`` it is then routed on the smallest lattice that holds
   the circuit, where it needs no room for the cells: measured, it wins on every default up to 3x3 with three
