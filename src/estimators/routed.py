@@ -27,7 +27,9 @@
      device compile lays it out, :func:`circuitgen.phase_locality.for_device`: ``spatial`` on sparse devices;
      unfused, every gadget a section),
      every two-qubit gate routed by a SWAP chain to its partner and back along a shortest path, at most
-     ``1 + 6 (D - 1)`` two-qubit gates for a device of diameter at most ``D``; each native two-qubit gate costs
+     ``1 + 6 (d - 1)`` two-qubit gates for qubits ``d`` apart: ``d`` at most :data:`MIXER_SPAN` for a partial
+     mixer's gates where the device holds the geometric layout, else at most the diameter bound
+     :func:`diameter_bound`; each native two-qubit gate costs
      six native one-qubit gates, and the gates run one after another. ``routed_twoq``, ``routed_depth``,
      ``routed_twoq_depth`` and ``duration_s`` bound *that* routing from above and ``esp`` (worst gate and
      readout errors) from below. It is a routing compile could write, not the one it writes (SABRE's): an
