@@ -14,7 +14,8 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
   :func:`circuitgen.routing.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
-  ``initial_layout == final_layout``);
+  ``initial_layout == final_layout``); on a large square grid the layout leaves mostly empty (a long strip's),
+  all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
 * **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
   :data:`AUTO_COMPARE_MAX_TWOQ`; on the unsized ``heavy-hex`` it is then routed on the smallest lattice that holds
   the circuit, where it needs no room for the cells: measured, it wins on every default up to 3x3 with three
@@ -46,6 +47,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
@@ -72,7 +74,7 @@ from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shap
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
 from .placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
-from .routing import RoutedCircuit, duration_s, esp, route, route_windows, to_native
+from .routing import RoutedCircuit, duration_s, embed_routed, esp, route, route_windows, to_native
 
 __all__ = [
     "DeviceCompileResult",
@@ -254,7 +256,7 @@ def compile_for_device(
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
                 say(f"routing the whole circuit on {other.name} to compare")
-                greedy = greedy_route(circuit, other, seed=seed, layouts=layouts, measured=measured)
+                greedy = _greedy_compare(circuit, other, seed=seed, layouts=layouts, measured=measured)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
@@ -304,6 +306,30 @@ def greedy_route(
     if device.is_all_to_all or _two_qubit(circuit) > SEARCH_MAX_TWOQ:
         return route(circuit, device, layout, seed=seed, measured=measured)
     return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured)
+
+
+GREEDY_COMPARE_MAX_QUBITS = 1_024
+"""``auto`` routes its greedy comparison on the medial grid itself up to this many qubits; on a larger one (a long
+strip's square medial grid: 2x50 with one robot needs 99x99) on its top-left sub-grid with the circuit's qubits
+(:func:`_greedy_compare`): a routing of the whole circuit costs SABRE and the placement a dense distance matrix
+of every device qubit (on 99x99, over a minute, for a 149-qubit circuit)."""
+
+
+def _greedy_compare(
+    circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range | None
+) -> RoutedCircuit:
+    """:func:`greedy_route` of ``circuit`` on ``device``, or, on a square grid of more than
+    :data:`GREEDY_COMPARE_MAX_QUBITS` qubits, on its top-left sub-grid of about ``sqrt(n) x sqrt(n)`` sites for
+    ``n`` circuit qubits, written on ``device`` (a sub-grid is an induced subgraph: every routed gate is on a
+    coupling of ``device``)."""
+    shape = grid_shape(device)
+    if shape is None or device.num_qubits <= GREEDY_COMPARE_MAX_QUBITS:
+        return greedy_route(circuit, device, seed=seed, layouts=layouts, measured=measured)
+    n = circuit.num_qubits
+    rows = min(shape[0], math.isqrt(n - 1) + 1)
+    cols = min(shape[1], -(-n // rows))
+    small = greedy_route(circuit, get_device(f"grid:{rows}x{cols}"), seed=seed, layouts=layouts, measured=measured)
+    return embed_routed(small, device, [r * shape[1] + c for r in range(rows) for c in range(cols)])
 
 
 SEARCH = True
@@ -399,6 +425,12 @@ def medial_compile(
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
+        cropped = _cropped(dev, homes)
+        if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
+            sub, sites = cropped
+            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say)
+            if on_crop is not None:
+                return on_crop[0], embed_routed(on_crop[1], dev, sites)
         dist = distances(dev)
         planned = circuit
         if options is not None and dev.family == "heavy-hex":
@@ -411,11 +443,87 @@ def medial_compile(
                 raise
             dev = _grown(dev)
             continue
-        say("relaying far phases")
-        logical, layout = bridge_far_phases(logical, layout, dev, dist)
-        say(f"routing {len(logical.sections):,} windows")
-        cells = dev.family == "heavy-hex"
-        return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
-                                      large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
-                                      large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip
+        return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
     return None
+
+
+CROP_MIN_QUBITS = 1_024
+"""Square grids of more qubits whose medial layout leaves rows or columns far from every home are routed on the
+part around the layout (:func:`_cropped`)."""
+
+CROP_PAD = 6
+"""Free rows and columns a crop keeps beyond the homes' bounding box: more than an allocated ancilla, a relay
+holder (two sites from its qubit) or a routing patch (two sites around a window's qubits) reaches."""
+
+
+def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | None:
+    """The top-left sub-grid of a ``grid:RxC`` device of more than :data:`CROP_MIN_QUBITS` qubits that holds the
+    homes with :data:`CROP_PAD` rows and columns to spare, and its sites on ``dev`` (row-major, so indices keep
+    their order), if it has at most half the device's qubits; else ``None``.
+
+    The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
+    relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
+    as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
+    strip: 768 MB, tens of seconds). ``tests/circuitgen/hardware_crop_test.py`` compares both."""
+    shape = grid_shape(dev)
+    if shape is None or dev.num_qubits <= CROP_MIN_QUBITS or not dev.name.startswith("grid:"):
+        return None
+    rows_of, cols_of = zip(*(divmod(h, shape[1]) for h in homes), strict=True)
+    rows, cols = min(shape[0], max(rows_of) + 1 + CROP_PAD), min(shape[1], max(cols_of) + 1 + CROP_PAD)
+    if 2 * rows * cols > dev.num_qubits:
+        return None
+    return get_device(f"grid:{rows}x{cols}"), [r * shape[1] + c for r in range(rows) for c in range(cols)]
+
+
+def _route_on_crop(
+    circuit: Circuit, sub: Device, homes: list[int], dev: Device, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
+    """:func:`_medial_route` on the crop ``sub`` of ``dev``, or ``None`` where the device beyond the crop could
+    have changed it: a section wants more free qubits than the crop has, a routing patch (the allocation search's
+    and the relays' candidates included) reaches the crop's last row or column short of the device's edge, or a
+    window was routed on its whole connected component (the crop's, not the device's): the checks
+    :mod:`circuitgen.window_classes` makes of its crops."""
+    from . import routing
+
+    shape, full = grid_shape(sub), grid_shape(dev)
+    assert shape is not None and full is not None
+    before = routing.WHOLE_COMPONENT_PATCHES
+    patches: set[int] = set()
+    routing.PATCH_WATCH.append(patches)
+    try:
+        logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
+    except ValueError:
+        return None
+    finally:
+        routing.PATCH_WATCH.remove(patches)
+    last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in patches)
+    last_col = shape[1] < full[1] and any(q % shape[1] == shape[1] - 1 for q in patches)
+    if before != routing.WHOLE_COMPONENT_PATCHES or last_row or last_col:
+        return None
+    return logical, routed
+
+
+def _medial_route(
+    circuit: Circuit, dev: Device, homes: tuple[int, ...], seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Allocation, relays and windows of the medial path on a square grid ``dev`` with data ``homes``."""
+    dist = distances(dev)
+    say(f"allocating ancillas on {dev.name}")
+    logical, layout = allocate_ancillas(circuit, homes, dev, dist, search=SEARCH)
+    return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+
+
+def _relay_and_route(
+    logical: Circuit, layout: tuple[int, ...], dev: Device, dist: Any, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Relays of far phases (:func:`circuitgen.bridge.bridge_far_phases`) and the windows routed home."""
+    say("relaying far phases")
+    logical, layout = bridge_far_phases(logical, layout, dev, dist)
+    say(f"routing {len(logical.sections):,} windows")
+    cells = dev.family == "heavy-hex"
+    return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
+                                  large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
+                                  large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip

@@ -64,6 +64,7 @@ __all__ = [
     "RoutedCircuit",
     "coupling_map",
     "duration_s",
+    "embed_routed",
     "esp",
     "mirror_length",
     "route",
@@ -105,6 +106,25 @@ class RoutedCircuit:
     def num_fused(self) -> int:
         """SWAPs fused with a ``cx`` (each saves two ``cx``)."""
         return sum(k for _, k in self.fused)
+
+
+def embed_routed(routed: RoutedCircuit, device: Device, sites: Sequence[int]) -> RoutedCircuit:
+    """``routed`` (on a device whose coupling graph is the subgraph of ``device`` induced by ``sites``, its
+    qubit ``i`` on ``sites[i]``) written on ``device``'s qubits: the same gates, SWAPs and layouts, relabelled.
+
+    Example:
+        >>> from circuitgen.devices import get_device
+        >>> small = route(Circuit([("data", 2)], [Section("s", [cx(0, 1)])]), get_device("grid:1x2"), (0, 1))
+        >>> big = embed_routed(small, get_device("grid:3x3"), [4, 5])
+        >>> [g[1] for g in big.circuit.gates], big.initial_layout
+        ([(4, 5)], (4, 5))
+    """
+    to = tuple(sites)
+    sections = [Section(sec.name, [Gate(g[0], tuple(to[q] for q in g[1]), g[2], g[3]) for g in sec.gates])
+                for sec in routed.circuit.sections]  # fmt: skip
+    return RoutedCircuit(Circuit([Register("q", device.num_qubits)], sections), device,
+                         tuple(to[p] for p in routed.initial_layout), tuple(to[p] for p in routed.final_layout),
+                         routed.swaps, routed.measured, routed.fused)  # fmt: skip
 
 
 def coupling_map(device: Device) -> Any:

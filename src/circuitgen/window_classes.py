@@ -65,7 +65,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections import Counter
-from collections.abc import Hashable, Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -449,6 +449,7 @@ def routed_sum(
     trials: int | None = DEFAULT_TRIALS,
     arrangement: str = "tile",
     whole_device_work: int | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> RoutedSum | None:
     """The routed figures of ``compile_for_device(scenario, p, device, options, layout_method="medial")`` as a sum
     over window classes (see the module docs), or ``None`` where the medial layout does not apply (not a square
@@ -463,6 +464,7 @@ def routed_sum(
         arrangement: The medial layout's robot arrangement.
         whole_device_work: At most this many (windows routed on the whole device x device qubits): above it, such
             windows are bounded instead (:attr:`RoutedSum.exact` is then ``False``); ``None``: no limit.
+        stage: Called with the stage as it starts (``routing window classes (12 done, 30 to go)``).
 
     Returns:
         The :class:`RoutedSum`, or ``None``.
@@ -542,7 +544,10 @@ def routed_sum(
     whole_batch: list[int] = []
     whole = max(shape)  # a margin whose crop is the whole device
     pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
+    say = stage or (lambda _text: None)
     while pending:
+        if len(entries) % 25 == 0:  # a line now and then, not one per class
+            say(f"routing window classes ({len(entries):,} done, {len(pending):,} to go)")
         margin, sig, group = pending.pop()
         hit = ROUTED_CLASSES.get((sig, device_key))
         _, template, sites, _ = group[0]
@@ -561,6 +566,7 @@ def routed_sum(
     if whole_device_work is not None and len(whole_batch) * dev.num_qubits > whole_device_work:
         whole_batch = []  # over budget: those windows are bounded, not routed
     if whole_batch:
+        say(f"routing {len(whole_batch):,} window classes on the whole device")
         crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
         batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, trials)
         assert batch is not None, "the whole device answers for itself"

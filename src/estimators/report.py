@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -105,6 +105,7 @@ def estimate_report(
     columns: Sequence[str] | None = None,
     wide: bool = False,
     device: str | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> Iterator[str]:
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
@@ -118,13 +119,15 @@ def estimate_report(
         doubling: reading of the paper's doubling.
         columns, wide: the ``table`` format's columns (:func:`estimators.tables.render`).
         device: add the routed figures on this device (:func:`estimators.routed.routed_fields`).
+        stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
+            row is done).
 
     Yields:
         Text pieces (see :func:`estimators.tables.render_stream`).
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rows = (_row(est, compare_paper, doubling, device) for est in sweep(points, options))
+    rows = (_row(est, compare_paper, doubling, device, stage) for est in sweep(points, options))
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -134,7 +137,10 @@ def estimate_report(
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
 
 
-def _row(est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None) -> dict[str, Any]:
+def _row(
+    est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
+    stage: Callable[[str], None] | None = None,
+) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)
     if device is None:
         return row
@@ -143,7 +149,7 @@ def _row(est: Estimate, compare_paper: bool, doubling: Doubling, device: str | N
     c = est.cost
     extra = routed_fields(
         est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-        one_qubit=c.single_qubit, total_gates=c.total,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage,
     )  # fmt: skip
     return {**row, **extra}
 

@@ -5,11 +5,13 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from circuitgen import medial, routing
 from circuitgen.devices import get_device
 from circuitgen.hardware import compile_for_device
+from circuitgen.layout import distances
 from circuitgen.options import PlanOptions
 from circuitgen.phase_locality import for_device
 from circuitgen.qaoa import qaoa_plan
@@ -55,10 +57,12 @@ def test_the_bound_counts_the_circuit_the_device_compile_routes(
     assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
     dev = get_device(f["device"])
     per = 1 + 6 * (diameter_bound(dev) - 1)
-    spatial = qaoa_plan(s, 1, replace(for_device(PlanOptions(), "heavy-hex"), fuse=False)).cost().two_qubit
+    laid = qaoa_plan(s, 1, replace(for_device(PlanOptions(), "heavy-hex"), fuse=False))
+    spatial = laid.cost().two_qubit
     pooled = qaoa_plan(s, 1, PlanOptions(phase_layout="pooled", fuse=False)).cost().two_qubit
     assert spatial > pooled  # star adders: the row's own (pooled) count would not bound the device circuit
-    assert f["routed_twoq"] == spatial * per
+    mixer = laid.cost_by_part()["mixer"].two_qubit  # within MIXER_SPAN of each other on the cells
+    assert f["routed_twoq"] == mixer * (1 + 6 * (routed.MIXER_SPAN["heavy-hex"] - 1)) + (spatial - mixer) * per
     # greedy: the cells (auto's choice here) plan every partial mixer's network on its cell, minutes on a loaded
     # machine; both route a circuit with the spatial phase separator's counts (the cells' sinks move no gate)
     r = compile_for_device(s, 1, "heavy-hex", layout_method="greedy")
@@ -69,3 +73,53 @@ def test_the_bound_counts_the_circuit_the_device_compile_routes(
 def test_small_rows_are_compiled_and_exact_everywhere() -> None:
     f = _fields(default_scenario(3, 3, 1), 1, "grid")
     assert (f["routed_kind"], f["routed_depth_kind"], f["routed_model"]) == ("exact", "exact", routed.COMPILE_MODEL)
+
+
+@pytest.mark.parametrize(
+    ("shape", "device"),
+    [
+        ((4, 4, 1), "grid"),  # an interior plaquette: span 7
+        ((3, 4, 2), "grid"),
+        ((2, 3, 1), "heavy-hex"),
+        pytest.param((3, 3, 1), "heavy-hex", marks=pytest.mark.heavy),  # span 8
+        pytest.param((4, 5, 3), "grid", marks=pytest.mark.heavy),
+        pytest.param((4, 4, 2), "heavy-hex", marks=pytest.mark.heavy),  # span 10
+    ],
+    ids=["4x4/1-grid", "3x4/2-grid", "2x3/1-heavy-hex", "3x3/1-heavy-hex", "4x5/3-grid", "4x4/2-heavy-hex"],
+)
+def test_the_bound_is_at_least_what_compile_routes(shape: tuple[int, int, int], device: str) -> None:
+    s = default_scenario(*shape)
+    r = compile_for_device(s, 1, device, layout_method="medial", lowered=True)
+    dev = r.routed.device
+    span = routed.MIXER_SPAN[dev.family]
+    # the span the bound assumes holds: every partial mixer's qubits (data homes, ancillas) within it
+    dist = distances(dev)
+    for sec in r.logical.sections:
+        if sec.name.startswith("mixer"):
+            sites = [r.routed.initial_layout[q] for q in {q for g in sec.gates for q in g[1]}]
+            assert max(dist[a, b] for a in sites for b in sites) <= span, sec.name
+    f = routed._bound_of_compiled(s, 1, PlanOptions(), dev)
+
+    def routed_twoq(part: str) -> int:
+        return sum(len(g[1]) == 2 for sec in r.routed.circuit.sections if sec.name.startswith(part) for g in sec.gates)
+
+    mixer_cx = qaoa_plan(s, 1, replace(PlanOptions(), fuse=False)).cost_by_part()["mixer"].two_qubit
+    assert routed_twoq("mixer") <= mixer_cx * (1 + 6 * (span - 1))  # the mixer's share of the bound
+    assert routed_twoq("") <= f["routed_twoq"]
+    assert f["esp"] <= esp(compile_for_device(s, 1, dev, layout_method="medial").routed)
+
+
+@pytest.mark.parametrize("name", ["grid:5x7", "grid:1x6", "heavy-hex:5", "ibm_torino", "google_willow"])
+def test_the_diameter_bound_bounds_the_diameter_and_is_near_it(name: str) -> None:
+    dev = get_device(name)
+    dist = distances(dev)
+    diameter = int(dist[np.isfinite(dist)].max())
+    assert diameter <= diameter_bound(dev) <= 2 * diameter
+
+
+def test_a_long_row_names_its_routing_stages() -> None:
+    seen: list[str] = []
+    f = _fields(default_scenario(2, 3, 1), 1, "grid", stage=seen.append)
+    assert f["routed_kind"] == "exact"
+    assert seen[0] == "2x3 r1 p1 on grid:5x5: compiling the circuit"
+    assert any(text.endswith("windows") for text in seen) and seen[-1] == ""  # cleared when the row is done

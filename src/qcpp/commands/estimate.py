@@ -204,6 +204,7 @@ def estimate(
             columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
             wide=wide,
             device=device,
+            stage=bar.stage,
         )
         for piece in pieces:
             if fmt == "table":
