@@ -73,6 +73,9 @@ DEFAULT_INTERVAL = 5.0
 FIRST_LINE_AFTER = 1.0
 """Seconds of work before the first progress line on a pipe (quicker commands print none)."""
 
+HEARTBEAT_JOIN_SECONDS = 1.0
+"""How long leaving a :class:`Progress` waits for its heartbeat thread (a loaded machine may not run it sooner)."""
+
 T = TypeVar("T")
 
 
@@ -173,7 +176,9 @@ class Progress:
     ) -> None:
         self._stop.set()
         if self._thread is not None:
-            self._thread.join(timeout=1.0)
+            self._thread.join(timeout=HEARTBEAT_JOIN_SECONDS)
+        with self._lock:  # a heartbeat line being written now ends before the caller's last line (``interrupted``)
+            pass
         if self._bar is not None:
             with contextlib.suppress(Exception):
                 self._bar.stop()
@@ -249,12 +254,14 @@ class Progress:
     def _label(self) -> str:
         return f"{self.task}: {self.stage_text}" if self.stage_text else self.task
 
-    def _line(self) -> None:
-        self._write(self.status())
+    def _line(self, unless_stopped: bool = False) -> None:
+        self._write(self.status(), unless_stopped)
 
-    def _write(self, text: str) -> None:
+    def _write(self, text: str, unless_stopped: bool = False) -> None:
         out = self._stream if self._stream is not None else sys.stderr
         with self._lock:
+            if unless_stopped and self._stop.is_set():  # the heartbeat woke after the work ended: no stale line
+                return
             try:
                 out.write(text + "\n")
                 out.flush()
@@ -267,7 +274,7 @@ class Progress:
         if self._stop.wait(self._first_after):
             return
         while not self._stop.is_set():
-            self._line()
+            self._line(unless_stopped=True)
             if self._stop.wait(self._interval):
                 return
 

@@ -299,3 +299,30 @@ def test_a_new_stage_is_written_at_once_on_a_pipe_past_the_first_line_delay(monk
             fast.stage("compiling")  # before the first-line delay: quick commands stay silent
         assert quiet.getvalue() == ""
     assert written.count("\n") == 1 and written.startswith("validate x: proving equivalence, ")
+
+
+def test_a_late_heartbeat_writes_nothing_after_the_work_ended(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The heartbeat passed its check, then the machine did not run it before ``__exit__`` gave up waiting
+    (seen once under load: a progress line after ``interrupted``): its line is dropped, not printed last."""
+    from qcpp import progress as progress_module
+
+    monkeypatch.setattr(progress_module, "HEARTBEAT_JOIN_SECONDS", 0.01)
+    stream = io.StringIO()
+    bar = progress_module.Progress("work", mode="lines", interval=0.01, first_after=0.0, stream=stream)
+    entered, release = threading.Event(), threading.Event()
+    status = bar.status
+
+    def held_status() -> str:
+        entered.set()
+        release.wait(30)
+        return status()
+
+    monkeypatch.setattr(bar, "status", held_status)
+    bar.__enter__()
+    assert entered.wait(30)
+    bar.__exit__(KeyboardInterrupt, KeyboardInterrupt(), None)
+    stream.write("interrupted\n")
+    release.set()
+    assert bar._thread is not None
+    bar._thread.join(30)
+    assert stream.getvalue().splitlines()[-1] == "interrupted", stream.getvalue()
