@@ -11,7 +11,9 @@ How (installed by :func:`qcpp.cli.main`, i.e. only for the real command line, ne
    even while the main thread is inside a long native call). If the process is still alive
    :data:`GRACE_SECONDS` later -- the main thread stuck in native code, or a cleanup step hanging -- it removes
    pending temporary files, terminates child processes, prints ``interrupted`` (if nobody did) and ends the
-   process with :func:`os._exit` (130).
+   process with :func:`os._exit` (130). A ``KeyboardInterrupt`` that the signal raised inside a finaliser
+   (``__del__``, where Python prints "Exception ignored ... Traceback" and goes on) is not printed; the watchdog
+   ends that process.
 3. Forked children (worker processes) ignore SIGINT and get the default SIGTERM: a terminal's Ctrl-C reaches the
    whole process group, and workers must neither print tracebacks nor keep running after the parent is gone;
    the parent stops them.
@@ -113,6 +115,14 @@ def _raise_interrupt(signum: int, frame: FrameType | None) -> None:
     raise KeyboardInterrupt
 
 
+def _unraisable(info: sys.UnraisableHookArgs) -> None:
+    """A stop signal whose ``KeyboardInterrupt`` landed in a finaliser (``__del__``, a weakref callback) is not
+    printed as "Exception ignored ... Traceback": the watchdog, woken by the same signal, ends the process."""
+    if isinstance(info.exc_value, KeyboardInterrupt) and _requested:
+        return
+    sys.__unraisablehook__(info)
+
+
 def _watchdog(fd: int) -> None:
     while True:
         try:
@@ -155,6 +165,7 @@ def install() -> None:
     signal.signal(signal.SIGTERM, _raise_interrupt)
     # also when inherited as ignored (a shell's `cmd &`): an explicit `kill -INT` must stop the command too
     signal.signal(signal.SIGINT, _raise_interrupt)
+    sys.unraisablehook = _unraisable
     if os.name != "posix":  # pragma: no cover - the wakeup pipe and fork hooks are POSIX
         return
     read_fd, write_fd = os.pipe()

@@ -167,3 +167,37 @@ def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:
     err = "".join(seen)
     assert proc.returncode == 130, err
     assert err.strip().splitlines()[-1] == "interrupted" and "Traceback" not in err, err
+
+
+def test_a_signal_that_lands_in_a_finaliser_still_stops_without_a_traceback() -> None:
+    """Python prints a ``KeyboardInterrupt`` raised inside ``__del__`` as "Exception ignored ... Traceback" and goes
+    on; the process must still end with ``interrupted`` and exit 130 (the signal is sent from inside ``__del__``,
+    so where it lands is certain, not timing)."""
+    script = (
+        "import os, signal, time\n"
+        "from qcpp import interrupt\n"
+        "interrupt.install()\n"
+        "class Finalised:\n"
+        "    def __del__(self):\n"
+        "        os.kill(os.getpid(), signal.SIGTERM)\n"
+        "        sum(range(100_000))\n"
+        "try:\n"
+        "    Finalised()\n"
+        "    end = time.monotonic() + 60\n"
+        "    while time.monotonic() < end:\n"
+        "        time.sleep(0.001)\n"
+        "    print('not stopped')\n"
+        "except KeyboardInterrupt:\n"
+        "    interrupt.report_interrupted()\n"
+        "    os._exit(interrupt.EXIT_CODE)\n"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script],
+        cwd=REPO,
+        env={**os.environ, "PYTHONPATH": str(REPO / "src")},
+        capture_output=True,
+        text=True,
+        timeout=HUNG,
+    )
+    assert proc.returncode == 130 and proc.stdout == "", proc
+    assert proc.stderr == "interrupted\n", proc.stderr
