@@ -53,7 +53,7 @@ from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.mixer_classes import index_classes
+from circuitgen.mixer_classes import boundary, class_counts
 from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
@@ -327,7 +327,6 @@ def phase_layer(
     return layer
 
 
-
 # ----------------------------------------------------------------------------- whole-space (Ising) phase separator
 
 
@@ -396,8 +395,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     ends = {grid.node_index(rb.start) for rb in s.robots} | {grid.node_index(rb.goal) for rb in s.robots}
 
     def degree(node: tuple[int, int]) -> int:
-        r, c = node
-        return 4 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
+        return 4 - boundary(*node, rows, cols)
 
     def plain(node: tuple[int, int]) -> _NodeClass:
         return degree(node), True, 2.0  # every node but an endpoint has target 2 (exact and paper)
@@ -406,17 +404,13 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         t = float(targets[grid.node_index(node)])
         return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
 
-    nodes: Counter[_NodeClass] = Counter()
-    for i, ni in index_classes(rows, size_r):
-        for j, nj in index_classes(cols, size_c):
-            nodes[plain((i, j))] += ni * nj
-    edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
-    for i, ni in index_classes(rows, size_r):
-        for k, nk in index_classes(cols - 1, size_c - 1):  # consecutive pairs along a row
-            edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
-    for j, nj in index_classes(cols, size_c):
-        for k, nk in index_classes(rows - 1, size_r - 1):
-            edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
+    def edge(a: _NodeClass, b: _NodeClass) -> tuple[_NodeClass, _NodeClass]:
+        return (a, b) if a <= b else (b, a)
+
+    nodes, _ = class_counts((rows, cols), (size_r, size_c), lambda i, j: plain((i, j)))
+    edges, _ = class_counts((rows, cols - 1), (size_r, size_c - 1), lambda i, k: edge(plain((i, k)), plain((i, k + 1))))
+    down, _ = class_counts((rows - 1, cols), (size_r - 1, size_c), lambda k, j: edge(plain((k, j)), plain((k + 1, j))))
+    edges.update(down)
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]
         nodes[plain(xy)] -= 1
@@ -424,8 +418,8 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     for e in range(grid.num_edges):
         u, v = (grid.nodes[k] for k in grid.edge_nodes[e])
         if grid.edge_nodes[e][0] in ends or grid.edge_nodes[e][1] in ends:
-            edges[tuple(sorted((plain(u), plain(v))))] -= 1  # type: ignore[index]
-            edges[tuple(sorted((real(u), real(v))))] += 1  # type: ignore[index]
+            edges[edge(plain(u), plain(v))] -= 1
+            edges[edge(real(u), real(v))] += 1
 
     def nonzero(value: float) -> int:
         return int(abs(value / 2) > COEFFICIENT_TOLERANCE)
@@ -435,9 +429,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         return t - n_r * deg / 2 if counted else 0.0
 
     weight = ob.free_weight
-    linear = n_r * sum(
-        (n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0
-    )
+    linear = n_r * sum((n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0)
     total = sum(edges.values(), 0)  # edges per robot
     pairs = sum((n * (c[0] * (c[0] - 1) // 2) for c, n in nodes.items() if c[1]), 0)  # sharing a counted node
     both = sum((n for (u, v), n in edges.items() if u[1] and v[1]), 0)
