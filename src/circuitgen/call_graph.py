@@ -12,27 +12,12 @@ A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds, for th
 the widths of the shared ``logic`` and ``work`` registers. Every count the estimators report is a sum over it;
 binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitgen.qaoa.QaoaPlan.circuit`).
 
-Everything known per kind is looked up by the kind's key in one explicit cache (:data:`COSTS`): a sweep over
-thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
-:class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
-gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named
-tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``) and
-:mod:`estimators.estimate` (``"depth bound"``);
-:meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
-different concept, not a kind's cost or depth:
-
-* per scenario (the plan and what is summed over it), at most :data:`SCENARIOS_KEPT` scenarios each:
-  ``estimators.estimate`` (``_plan``, ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers),
-  ``mixer_classes.mixer_part`` and ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid``
-  (edge arrays of a grid);
-* geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
-* the phase separator's decisions per term-group shape, before any kind exists: ``phase_choice.visit_choice``
-  and ``phase_choice.hamming_choice`` (asked by the plan and by the classes alike);
-* constructions keyed by their inputs, not by a kind: the partial mixers' searched plans
-  (``plan_parity_mixer``, ``plan_mcx_mixer``), ``phase_sums._abstract_phase`` (gates on abstract registers),
-  ``gates._permutation_matrix``, and ``depth_compose``'s transfer matrices per lowered gate structure;
-* leaf gates' costs (``gadgets.leaves``: the lowering table, below any kind), named devices, the registered
-  gadget examples, and the symbolic tables of ``estimators.formulas``.
+Everything known per kind (its costs; the estimators' per-kind depth facts as named tables) is looked up by the
+kind's key in one explicit cache, :data:`COSTS`: a sweep over thousands of scenarios prices each kind once. The
+other memos hold other concepts: per-scenario results (the plan, the call graph's parts; at most
+:data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
+:mod:`circuitgen.phase_choice`, constructions keyed by their inputs (the partial mixers' searched plans,
+``depth_compose``'s transfer matrices per gate structure), leaf gate costs and the symbolic formula tables.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -86,14 +71,10 @@ class CostCache:
         asks its example; a gadget class that prices itself per kind, itself)."""
         hit = self._costs.get(key)
         if hit is None:
-            hit = self._store(key, compute())
+            if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
+                self._costs.clear()
+            hit = self._costs[key] = compute()
         return hit
-
-    def _store(self, key: Hashable, value: tuple[Cost, Cost]) -> tuple[Cost, Cost]:
-        if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
-            self._costs.clear()
-        self._costs[key] = value
-        return value
 
     def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
         """The table ``name`` (per kind key; created empty with at most ``limit`` entries on first use). Read it
@@ -188,17 +169,20 @@ class GadgetKind:
     def __post_init__(self) -> None:
         object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
+    def costs(self) -> tuple[Cost, Cost]:
+        """``(lowered cost, logical cost)``: from :data:`COSTS`, or a :class:`Deferred` example's own (its key is
+        one scenario's: no entry)."""
+        if isinstance(self.example, Deferred):
+            return self.example.lowered, self.example.logical
+        return COSTS.costs(self._hashed, self._priced)  # type: ignore[attr-defined]
+
     def cost(self) -> Cost:
-        """Lowered cost (from :data:`COSTS`; a :class:`Deferred` example's own)."""
-        if isinstance(self.example, Deferred):  # priced when counted, and its key is one scenario's: no entry
-            return self.example.lowered
-        return COSTS.costs(self._hashed, self._priced)[0]  # type: ignore[attr-defined]
+        """Lowered cost."""
+        return self.costs()[0]
 
     def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`; a :class:`Deferred` example's own)."""
-        if isinstance(self.example, Deferred):
-            return self.example.logical
-        return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
+        """Cost with ANDs and Toffolis kept whole."""
+        return self.costs()[1]
 
     @property
     def cache_key(self) -> Hashable:
