@@ -1,25 +1,12 @@
 """Which construction each term group of the phase separator gets: one decision per group shape and options.
 
-The phase separator (:mod:`circuitgen.phase`) implements every term group of the feasible cost with the cheapest
-exact construction under the target's cost model (:func:`score`). The decision for a group depends only on its
-*shape* (a node's visitor sizes, how many couplings expanding it would add; how many equal rotations; a balance
-group's integrality, products and ancillas) and on the plan options, so it is made here, once, and asked by both
-places that need it:
-
-* :func:`circuitgen.phase.phase_plan`, which builds the gadgets term group by term group;
-* :func:`circuitgen.phase_classes.phase_layer`, which counts the same groups by classes of nodes without planning
-  them one by one (and asks the same question once per class).
-
-The choices:
-
-* :func:`visit_choice` -- a node that several robots can pass: visit bits, visit pairs (ANDs of visit bits, for
-  ``ft``), or couplings (its products of edge bits added to the couplings; ties go to the couplings: no ancilla);
-* :func:`hamming_choice` -- on the ``ft`` target, ``n >= 3`` equal-angle rotations of uncoupled qubits merged by
-  Hamming-weight phasing, or left as rotations;
-* :func:`sums_constructions` -- a balance (squared sums) group: which constructions the plan compares as whole
-  plans (its couplings interact with the visits' couplings, so this one is decided by building the plan for each
-  candidate and comparing their :func:`plan_score`; the classes answer only when arithmetic is the only candidate
-  or provably wins).
+The phase separator implements every term group of the feasible cost with the cheapest exact construction under
+the target's cost model (:func:`score`). The decision depends only on the group's *shape* and the plan options,
+so it is made here, once, and asked both by :func:`circuitgen.phase.phase_plan` (group by group) and by
+:func:`circuitgen.phase_classes.phase_layer` (once per class of nodes): :func:`visit_choice` for a node several
+robots can pass, :func:`hamming_choice` for equal rotations on the ``ft`` target, :func:`sums_constructions` for
+a balance group (whose couplings interact with the visits', so the plan compares its candidates as whole plans
+by :func:`plan_score`).
 
 Example:
     >>> c = visit_choice((4, 4, 4), 8.0, new_couplings=48, target="nisq", optimize="cx", budget=None)

@@ -1,26 +1,13 @@
 """Resource estimates of one QAOA circuit from its gadgets' costs, without building a gate list.
 
-:func:`estimate_point` sums the circuit's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`: per part the
-gadget kinds and their multiplicities; every kind reports its lowered and its logical cost, ANDs and Toffolis
-kept whole, without emitting a gate). Layers are alike up to their angles, so the cost of ``p`` layers is
-``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` serves every ``p``, and its call
-graph (:func:`layer_costs`) is cached per scenario and options.
-:mod:`estimators.crosscheck` (run by the tests and ``benchmarks/estimate_speed.py``) checks that these numbers
-equal the counts of the compiled, lowered circuit (:func:`estimators.counts.count`).
-
-Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is either
-
-* ``exact``: composed gadget by gadget from max-plus transfer profiles (:mod:`estimators.depth_compose`, cached
-  per gadget kind; equal to the depths of the compiled, lowered circuit, :func:`compiled_depth`, which the tests
-  compare), with the frontier carried from ``p`` to ``p + 1`` (:func:`layered_depth`, cached per scenario);
-  ``depth="auto"`` (the default) does this when the state preparation plus one layer has at most
-  ``depth_budget`` lowered gates (the cost is building the profiles of one layer; each further layer costs a
-  small fraction of that), ``depth="exact"`` at any size;
-* ``bound``: an upper bound (:func:`depth_bound`): the sum over the call graph of each kind's own depths times
-  its multiplicity (the balance arithmetic by its shape), in ``O(robots)`` per scenario;
-* absent (``depth="none"``).
-
-The row says which (``depth_kind``); nothing is silently estimated.
+:func:`estimate_point` sums the circuit's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`): layers are
+alike up to their angles, so ``p`` layers cost ``initial state + p * (phase separator + mixer)`` and one plan with
+``p = 1`` serves every ``p`` (:func:`layer_costs`). :mod:`estimators.crosscheck` checks these numbers against
+the compiled, lowered circuit. Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is
+``exact`` (composed from per-kind transfer profiles, :mod:`estimators.depth_compose`, the frontier carried from
+``p`` to ``p + 1``: :func:`layered_depth`; ``depth="auto"`` when the state preparation plus one layer has at most
+``depth_budget`` lowered gates), a ``bound`` (:func:`depth_bound`, ``O(robots)`` per scenario) or absent
+(``depth="none"``); the row says which (``depth_kind``).
 
 Example:
     >>> from estimators.estimate import EstimateOptions, Point, estimate_point
@@ -34,7 +21,7 @@ from __future__ import annotations
 import json
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Literal
 
@@ -156,21 +143,15 @@ def _scenario_from_json(text: str) -> Scenario:
     return scenario_from_dict(json.loads(text))
 
 
-def _layout(plan: QaoaPlan) -> tuple[tuple[str, int], ...]:
-    return tuple((r.name, r.size) for r in plan.registers)
-
-
 @lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
 def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan:
-    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths (its call
-    graph is cached on it)."""
+    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths."""
     return qaoa_plan(scenario, layers, options)
 
 
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> CallGraph:
-    """The call graph of a scenario's plan with one layer (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`), whose
-    sums give every ``p`` (``cost(p)``, ``cost(p, logical=True)``, ``cost_by_part()``; cached with the plan, so a
-    sweep over ``p`` asks once; not cached apart from it: its kinds' examples keep their plan alive).
+    """The call graph of a scenario's plan with one layer, whose sums give every ``p`` (cached with the plan: its
+    kinds' examples keep their plan alive).
 
     Args:
         scenario: the scenario.
@@ -185,7 +166,8 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
     """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built; with ``p = 0``
     there is no phase separator and no mixer: a ``p = 0`` plan answers)."""
-    return _layout(_plan(scenario, options) if p else _plan(scenario, options, 0))  # the cache keys by the args given
+    plan = _plan(scenario, options) if p else _plan(scenario, options, 0)  # the cache keys by the args given
+    return tuple((r.name, r.size) for r in plan.registers)
 
 
 @dataclass(frozen=True)
@@ -414,11 +396,8 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     cost, logical, parts = graph.cost(p), graph.cost(p, logical=True), graph.cost_by_part()
     depth = estimate_depth(scenario, p, options, graph)
     ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
-    registers = registers_for(scenario, p, options.plan)
-    est = Estimate(point, options, registers, cost, logical, parts, depth, ft, None, 0.0)
-    phys = None
+    est = Estimate(point, options, registers_for(scenario, p, options.plan), cost, logical, parts, depth, ft, None, 0)
     if options.physical:
         phys = physical_estimate(est.logical_counts, options.qubit_model, options.qec_scheme, options.error_budget)
-    return Estimate(
-        point, options, est.registers, cost, logical, parts, depth, ft, phys, time.perf_counter() - start
-    )
+        est = replace(est, physical=phys)
+    return replace(est, seconds=time.perf_counter() - start)
