@@ -1,27 +1,17 @@
 """The whole constrained-mixer QAOA circuit.
 
-``qaoa_circuit(scenario, p)`` returns a :class:`~circuitgen.circuit.Circuit` with
+``qaoa_circuit(scenario, p)`` returns a :class:`~circuitgen.circuit.Circuit` with registers ``data`` (qubit ``i``
+= decision variable ``i``) and ``logic`` (clean ancillas shared by every gadget); sections ``initial_state``, then
+``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``, every gadget a section of its own (so lowering passes never act
+across two gadgets and each gadget's lowered cost is its reported cost; the parity-basis partial mixers are cut at
+their rotations into :class:`~circuitgen.gadgets.junction.MixerJunction` sections); and the symbols ``gamma_k``,
+``beta_k`` (with ``PlanOptions(angles="multi")`` one beta per partial mixer and layer instead,
+:func:`~circuitgen.angles.mixer_symbol`), bound later with ``Circuit.bind``. :class:`QaoaPlan` holds the same
+circuit as gadgets, and :meth:`QaoaPlan.call_graph` lists it as gadget kinds, which every count sums.
 
-* registers ``data`` (qubit ``i`` = decision variable ``i``, see :mod:`gridcover.scenario`) and ``logic``
-  (clean ancillas shared by every gadget: each returns them to |0>);
-* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every gadget is a section
-  of its own (all phase gadgets of layer ``k`` are named ``phase_k``, all mixer pieces ``mixer_k``), so lowering
-  passes never act across two gadgets and each gadget's lowered cost is its reported cost
-  (see ``docs/architecture.md``). The parity-basis partial mixers of a layer are cut at their rotations: each
-  section between two rotations is a :class:`~circuitgen.gadgets.junction.MixerJunction` (the uncompute of one
-  partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
-* ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``; with
-  ``PlanOptions(angles="multi")`` (multi-angle QAOA) one beta per partial mixer and layer instead of ``beta_k``,
-  named by :func:`~circuitgen.angles.mixer_symbol` (``beta_r0_q5_0``: robot 0, plaquette 5, layer 0). The gates
-  are the same; only the symbols differ.
-
-:class:`QaoaPlan` holds the same circuit as gadgets; :meth:`QaoaPlan.call_graph` lists it as gadget kinds with
-multiplicities per part (:mod:`circuitgen.call_graph`), which every count sums without emitting anything.
-
-The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>`` on the feasible
-assignments it reaches, ``K`` the phase plan's :attr:`QaoaPlan.reference_constant` (the Ising constant ``c0`` for
-``phase="whole-space"``); the feasible-subspace simulator (:mod:`simulate.subspace`) implements the very same
-operator.
+On the feasible assignments it reaches, the circuit applied to |0...0> gives
+``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>``, ``K`` = :attr:`QaoaPlan.reference_constant`: the operator
+the feasible-subspace simulator (:mod:`simulate.subspace`) implements.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -97,10 +87,6 @@ class QaoaPlan:
 
     # -- layout
     @cached_property
-    def _mixers(self) -> tuple[ParityPartialMixer | McxPartialMixer, ...]:
-        return tuple(m for _, m in self._planned_mixers)
-
-    @cached_property
     def _planned_mixers(self) -> tuple[tuple[tuple[int, int], ParityPartialMixer | McxPartialMixer], ...]:
         """Every partial mixer (robot-major, plaquettes row-major) with its ``(robot, plaquette index)``."""
         s, n = self.scenario, self.scenario.num_variables
@@ -112,9 +98,16 @@ class QaoaPlan:
                     out.append(((r, q.index), m))
         return tuple(out)
 
-    @cached_property
-    def _mixer_pieces(self) -> tuple[Gadget, ...]:
-        return tuple(mixer_pieces(self._mixers)) if self.options.fuse else self._mixers
+    def _mixer_layer(self, k: int | None) -> list[Gadget]:
+        """Layer ``k``'s mixer pieces: junctions and rotations (:func:`~circuitgen.gadgets.junction.mixer_pieces`)
+        or, unfused, the partial mixers (``k = None``: with the placeholder angle ``beta``)."""
+        def beta(r: int, q: int) -> str:
+            if k is None:
+                return "beta"
+            return mixer_symbol(k, r, q) if self.options.angles == "multi" else f"beta_{k}"
+
+        mixers = [dataclasses.replace(m, beta=Angle.symbol(beta(*rq))) for rq, m in self._planned_mixers]
+        return list(mixer_pieces(mixers)) if self.options.fuse else mixers  # type: ignore[arg-type]
 
     @cached_property
     def state_prep(self) -> StatePrep:
@@ -180,13 +173,7 @@ class QaoaPlan:
             assert self.phase_plan is not None
             for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
-            if self.options.angles == "multi":
-                mixers = [dataclasses.replace(m, beta=Angle.symbol(mixer_symbol(k, r, q)))
-                          for (r, q), m in self._planned_mixers]  # fmt: skip
-            else:
-                beta = Angle.symbol(f"beta_{k}")
-                mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
-            for g in mixer_pieces(mixers) if self.options.fuse else mixers:
+            for g in self._mixer_layer(k):
                 yield f"mixer_{k}", g
 
     def _phase_gadgets(self, gamma: str) -> tuple[Gadget, ...]:
@@ -237,9 +224,9 @@ class QaoaPlan:
             part = mixer_part(s, o.rule, o.target, o.fuse)
             mixer, mixer_temps, mixer_work = list(part.kinds), part.logic_width, part.work_need
         else:
-            mixer = [(GadgetKind.of(g), 1) for g in self._mixer_pieces]
-            mixer_temps = max((m.num_temps for m in self._mixers), default=0)
-            mixer_work = mixer_work_need(self._mixers)
+            mixers = [m for _, m in self._planned_mixers]
+            mixer = [(GadgetKind.of(g), 1) for g in self._mixer_layer(None)]
+            mixer_temps, mixer_work = max((m.num_temps for m in mixers), default=0), mixer_work_need(mixers)
         phase: list[tuple[GadgetKind, int]] = []
         phase_width = 0
         if self.p:
