@@ -61,19 +61,17 @@ class CostCache:
     """
 
     def __init__(self, limit: int = 1 << 16) -> None:
-        self._costs: dict[Hashable, tuple[Cost, Cost]] = {}
-        self._limit = limit
         self._tables: dict[str, dict[Hashable, Any]] = {}
         self._limits: dict[str, int] = {}
+        self._costs = self.table("costs", limit)  # a long sweep meets few kinds; a bound keeps memory flat anyway
 
     def costs(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
         """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (a :class:`GadgetKind`
         asks its example; a gadget class that prices itself per kind, itself)."""
         hit = self._costs.get(key)
         if hit is None:
-            if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
-                self._costs.clear()
-            hit = self._costs[key] = compute()
+            hit = compute()
+            self.remember("costs", key, hit)
         return hit
 
     def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
@@ -92,12 +90,11 @@ class CostCache:
 
     def clear(self) -> None:
         """Forget everything (tests that count work); the tables stay the same objects."""
-        self._costs.clear()
         for table in self._tables.values():
             table.clear()
 
     def __len__(self) -> int:
-        return len(self._costs) + sum(len(t) for t in self._tables.values())
+        return sum(len(t) for t in self._tables.values())
 
 
 COSTS = CostCache()
