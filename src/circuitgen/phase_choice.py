@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from itertools import accumulate
 from typing import Any, Literal
 
 from .cost import Cost, Target
@@ -137,9 +138,9 @@ class VisitChoice:
 
     Attributes:
         construction: ``visit bits``, ``visit pairs`` or ``couplings``.
-        gadget: the chosen :class:`~circuitgen.gadgets.phase_visits.VisitPhase` on abstract qubits (visitor
-            ``a``'s edges ``0 .. sizes[a] - 1``, no ancillas; place it with :func:`dataclasses.replace`), or
-            ``None`` for the couplings.
+        gadget: the chosen :class:`~circuitgen.gadgets.phase_visits.VisitPhase` on abstract qubits (the visitors'
+            edges numbered from 0 on, no ancillas; place it with :func:`dataclasses.replace`), or ``None`` for the
+            couplings.
         costs: ``(cost, logical cost)`` of every construction, chosen or not (what ``--explain`` lists).
         ancillas: clean ancillas the chosen construction needs.
     """
@@ -177,7 +178,8 @@ def visit_choice(
     costs: dict[str, tuple[Cost, Cost]] = {}
     pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
     for name, products in (("visit bits", False), ("visit pairs", True)):
-        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(k)) for k in sizes), (), products)
+        edges = tuple(tuple(range(end - n, end)) for n, end in zip(sizes, accumulate(sizes), strict=True))
+        gad = VisitPhase("gamma", coefficient, edges, (), products)
         c = (gad.cost(), gad.logical_cost())
         costs[name] = c
         if optimize != "cx" or (budget is not None and visit_ancillas(sizes, products) > budget):

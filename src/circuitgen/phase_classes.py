@@ -41,7 +41,7 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 from itertools import repeat
 from typing import Any
@@ -52,7 +52,6 @@ from circuitgen.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
 from circuitgen.mixer_classes import boundary, class_counts
 from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
@@ -68,62 +67,51 @@ _TOL = 1e-12  # gridcover.feasible_cost's zero
 
 @dataclass(frozen=True, eq=False)
 class PhaseLayer:
-    """One layer's phase separator, as the plan would build it, with its parts counted by class.
+    """One layer's phase separator, as the plan would build it, counted by classes.
 
     Attributes:
-        parts: ``(representative gadget, count)`` per visit class and per Hamming-weight class.
-        rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
-        couplings: Its couplings (only the ``whole-space`` representation has any: :func:`ising_count`).
-        whole_space: The scenario whose Ising Hamiltonian the couplings are (built only if emitted).
-        balance: The balance arithmetic, or ``None``.
-        num_ancillas: Clean ancillas the largest part needs.
-        num_variables: Data qubits.
+        parts: ``(kind, multiplicity)``: the data-qubit rotations (and couplings) and the balance arithmetic as
+            :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted), a placed representative per
+            visit class and per Hamming-weight class.
+        num_ancillas: clean ancillas the largest part needs.
     """
 
-    parts: tuple[tuple[Gadget, int], ...]
-    rotations: int
-    balance: _Balance | None
+    parts: tuple[tuple[GadgetKind, int], ...]
     num_ancillas: int
-    num_variables: int
-    couplings: int = 0
-    whole_space: Scenario | None = field(default=None, repr=False)
 
     def kinds(self) -> list[tuple[GadgetKind, int]]:
-        """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
-        rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
-        # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
-        # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
-        pool = range(self.num_variables, self.num_variables + self.num_ancillas)
-        out: list[tuple[GadgetKind, int]] = []
-        if self.rotations or self.couplings:
-            n, q, source = self.rotations, self.couplings, self.whole_space
-            rz = ising_cost(n, q)
+        """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists)."""
+        return list(self.parts)
 
-            def rotations() -> Gadget:
-                if source is not None:  # the couplings' placement is the Hamiltonian's: the plan builds it
-                    return phase_plan(source, representation="whole-space").gadgets("gamma")[0]
-                return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
-            out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
-        for g, count in self.parts:
-            if isinstance(g, VisitPhase):
-                d = len(g.visitors[0])
-                g = replace(g, visitors=tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors))))
-                need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
-            else:  # Hamming-weight phasing
-                need = g.num_ancillas  # type: ignore[attr-defined]
-            out.append((GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count))  # type: ignore[type-var]
-        if self.balance is not None:
-            balance, shape = self.balance, self.balance.shape
+def _layer(
+    s: Scenario, rotations: int, couplings: int, parts: list[tuple[Gadget, int, int]], balance: _Balance | None,
+    num_ancillas: int, whole_space: bool = False,
+) -> PhaseLayer:
+    """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
+    ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
+    # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
+    # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+    pool = range(s.num_variables, s.num_variables + num_ancillas)
+    out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]
+    if rotations or couplings:
+        rz = ising_cost(rotations, couplings)
 
-            def arithmetic() -> Gadget:
-                return replace(balance.gadget(), ancillas=tuple(pool))
+        def ising() -> Gadget:
+            if whole_space:  # the couplings' placement is the Hamiltonian's: the plan builds it
+                return phase_plan(s, representation="whole-space").gadgets("gamma")[0]
+            return IsingPhase("gamma", tuple(zip(range(rotations), repeat(1.0))), ())
 
-            deferred = Deferred(
-                ("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas
-            )
-            out.append((GadgetKind.of(deferred), 1))
-        return out
+        out.insert(0, (GadgetKind.of(Deferred(("ising", rotations, couplings), rz, rz, ising)), 1))
+    if balance is not None:
+        shape = balance.shape
+
+        def arithmetic() -> Gadget:
+            return replace(balance.gadget(), ancillas=tuple(pool))
+
+        deferred = Deferred(("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
+        out.append((GadgetKind.of(deferred), 1))
+    return PhaseLayer(tuple(out), num_ancillas)
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,7 +219,7 @@ def phase_layer(
         count = ising_count(s)
         if count is None:
             return None
-        return PhaseLayer((), count.linear, None, 0, s.num_variables, count.couplings, s)
+        return _layer(s, count.linear, count.couplings, [], None, 0, whole_space=True)
     if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
@@ -241,7 +229,7 @@ def phase_layer(
     local = [_Local.of(g, e) for e in ends]
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = ob.alpha
-    parts: list[tuple[Gadget, int]] = []
+    parts: list[tuple[Gadget, int, int]] = []
     ancillas = 0
     # degree terms: a linear part per node, a visit class per (degree, passers)
     node_term = np.zeros(grid.num_nodes)
@@ -264,7 +252,7 @@ def phase_layer(
                                   ancilla_budget)  # fmt: skip
             if choice.gadget is None:
                 return None  # a coupling would change what the later groups' couplings cost
-            parts.append((choice.gadget, count))
+            parts.append((choice.gadget, count, choice.ancillas))
             ancillas = max(ancillas, choice.ancillas)
     lin = []
     for a, b in ends:
@@ -316,12 +304,12 @@ def phase_layer(
         for k, n in zip(first.tolist(), counts.tolist()):
             hw = hamming_choice(n, float(values[k]), target, optimize, ancilla_budget)
             if hw is not None:
-                parts.append((hw, 1))
+                parts.append((hw, 1, hw.num_ancillas))
                 ancillas = max(ancillas, hw.num_ancillas)
                 keep &= rounded != rounded[k]
         values = values[keep]
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
-    layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
+    layer = _layer(s, rotations, 0, parts, balance, ancillas)
     if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]
         return None  # the couplings might win: only the plan knows
     return layer
