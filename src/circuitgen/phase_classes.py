@@ -16,15 +16,12 @@ such grid has unless a length is overridden) the plan has few distinct parts:
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
 
-Coefficients are vectors over one robot's edges (numpy), the endpoint and corner identities are applied by the
+Coefficients are vectors over one robot's edges (numpy); the endpoint and corner identities are applied by the
 very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
-touch. Every construction is decided by :mod:`circuitgen.phase_choice` (the plan's own decisions), and
-:func:`phase_layer` answers only where this picture is exact and no choice couples groups (every class picks a
-gadget over couplings, and the balance's arithmetic is its first candidate and provably beats its couplings);
-elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
-decides, lists the planned gadgets instead. ``tests/circuitgen/phase_classes_test.py`` checks it against
-:func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default grids and on random
-endpoints.
+touch. Every construction is the plan's own decision (:mod:`circuitgen.phase_choice`), and :func:`phase_layer`
+answers only where no choice couples groups (every class picks a gadget over couplings, and the balance's
+arithmetic is its first candidate and provably beats its couplings); elsewhere it returns ``None`` and
+:meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -157,36 +154,29 @@ def _grid(grid: Grid, edges: tuple[int, ...]) -> _Grid:
     return _Grid(u, v, degree, tuple(int(x) for x in np.nonzero(degree == 2)[0]))
 
 
-def _at(g: _Grid, node: int) -> list[int]:
-    """Edge positions at a node, ascending (as :func:`gridcover.feasible_cost.live_edges` lists them)."""
-    return np.nonzero((g.u == node) | (g.v == node))[0].tolist()
+Local = tuple[tuple[list[int], ...], list[int]]
 
 
-@dataclass(frozen=True)
-class _Local:
-    """Where one robot's identities act: the edges at its endpoints (nodes 0 and 1 of ``at``) and at the corners
-    that are not its endpoints (corridors), the only edges they touch on an open grid."""
-
-    at: tuple[list[int], ...]
-    touched: list[int]
-
-    @classmethod
-    def of(cls, g: _Grid, ends: tuple[int, int]) -> _Local:
-        nodes = [ends[0], ends[1], *(c for c in g.corners if c not in ends)]
-        at = tuple(_at(g, n) for n in nodes)
-        return cls(at, sorted({k for edges in at for k in edges}))
+def _local(g: _Grid, ends: tuple[int, int]) -> Local:
+    """Where one robot's identities act: the edge positions (ascending, as
+    :func:`gridcover.feasible_cost.live_edges` lists them) at its endpoints (nodes 0 and 1) and at the corners that
+    are not its endpoints (corridors), the only edges they touch on an open grid; and all of those edges."""
+    nodes = [*ends, *(c for c in g.corners if c not in ends)]
+    at = tuple(np.nonzero((g.u == n) | (g.v == n))[0].tolist() for n in nodes)
+    return at, sorted({k for edges in at for k in edges})
 
 
-def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
+def _reduce(values: np.ndarray, local: Local) -> tuple[float, np.ndarray]:
     """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied where its
-    identities act (``local``).
+    identities act.
 
     Returns:
         ``(constant, coefficients)``; a zero marks a dropped term.
     """
-    const, reduced = reduce_on_paths({k: float(values[k]) for k in local.touched}, local.at, (0, 1))
+    at, touched = local
+    const, reduced = reduce_on_paths({k: float(values[k]) for k in touched}, at, (0, 1))
     out = values.copy()
-    out[local.touched] = 0.0
+    out[touched] = 0.0
     for k, val in reduced.items():
         out[k] = val
     out[np.abs(out) <= _TOL] = 0.0
@@ -226,7 +216,7 @@ def phase_layer(
     if any(a == b for a, b in ends):
         return None
     g = _grid(grid, tuple(s.variable_edges))
-    local = [_Local.of(g, e) for e in ends]
+    local = [_local(g, e) for e in ends]
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = ob.alpha
     parts: list[tuple[Gadget, int, int]] = []
@@ -235,10 +225,7 @@ def phase_layer(
     node_term = np.zeros(grid.num_nodes)
     if a2 != 0.0:
         t = np.asarray(s.degree_targets, dtype=float)
-        e_v = np.zeros(grid.num_nodes, dtype=np.int64)
-        for a, b in ends:
-            e_v[a] += 1
-            e_v[b] += 1
+        e_v = np.bincount(np.ravel(np.array(ends, dtype=np.int64)), minlength=grid.num_nodes)  # endpoints per node
         counted = ~np.isnan(t)
         c = e_v - np.where(counted, t, 0.0)
         node_term = np.where(counted, a2 * (2 * c + 2), 0.0)
