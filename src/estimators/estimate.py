@@ -116,9 +116,7 @@ class Point:
 
     def build_scenario(self) -> Scenario:
         """The scenario of this point."""
-        if self.scenario_json is not None:
-            return _scenario_from_json(self.scenario_json)
-        return _default(self.rows, self.cols, self.robots)
+        return _scenario(self.rows, self.cols, self.robots, self.scenario_json)
 
     @classmethod
     def from_scenario(cls, scenario: Scenario, p: int) -> Point:
@@ -134,13 +132,8 @@ class Point:
 
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
-def _default(rows: int, cols: int, robots: int) -> Scenario:
-    return default_scenario(rows, cols, robots)
-
-
-@lru_cache(maxsize=SCENARIOS_KEPT)
-def _scenario_from_json(text: str) -> Scenario:
-    return scenario_from_dict(json.loads(text))
+def _scenario(rows: int, cols: int, robots: int, text: str | None) -> Scenario:
+    return default_scenario(rows, cols, robots) if text is None else scenario_from_dict(json.loads(text))
 
 
 @lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
