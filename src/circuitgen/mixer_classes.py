@@ -25,6 +25,7 @@ from collections import Counter
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 from functools import lru_cache
+from itertools import groupby, pairwise
 from typing import Any
 
 from gridcover.sbf import LocalPicture
@@ -257,17 +258,12 @@ def _junction_kinds(
         affected = sorted({a for k in touched for a in (k - 1, k) if 0 <= a < total - 1})
         for a in affected:
             plain_counts[plain(a)] -= 1
-        run: list[int] = []  # the actual pairs over each run of affected pairs (absent partial mixers skipped)
-        for a in [*affected, None]:
-            if a is not None and (not run or a == run[-1] + 1):
-                run.append(a)
-                continue
-            if run:
-                nodes = [k for k in range(run[0], run[-1] + 2) if k not in touched or present(robot, k)]
-                for u, v in zip(nodes, nodes[1:], strict=False):
-                    pair = (_signature(u, rows, cols, rb), _signature(v, rows, cols, rb), _relation(u, v, cols))
-                    counts[(pair, (robot, u, robot, v))] += 1
-            run = [a] if a is not None else []
+        for _, group in groupby(enumerate(affected), lambda t: t[1] - t[0]):  # runs of consecutive affected pairs
+            run = [a for _, a in group]  # their actual pairs, absent partial mixers skipped:
+            nodes = [k for k in range(run[0], run[-1] + 2) if k not in touched or present(robot, k)]
+            for u, v in pairwise(nodes):
+                pair = (_signature(u, rows, cols, rb), _signature(v, rows, cols, rb), _relation(u, v, cols))
+                counts[(pair, (robot, u, robot, v))] += 1
         for key, k in where.items():
             if key not in used and k not in touched and k + 1 not in touched:
                 used[key] = (robot, k, robot, k + 1)
@@ -281,7 +277,7 @@ def _junction_kinds(
                 robot, k = _realise(scenario, key, plain, 2)
                 used[key] = (robot, k, robot, k + 1)
             counts[(key, used[key])] += n
-    for (ra, _, ka), (rb, kb, _) in zip(ends, ends[1:], strict=False):  # one junction between consecutive robots
+    for (ra, _, ka), (rb, kb, _) in pairwise(ends):  # one junction between consecutive robots
         pair = (_signature(ka, rows, cols, scenario.robots[ra]), _signature(kb, rows, cols, scenario.robots[rb]))
         counts[((*pair, "far"), (ra, ka, rb, kb))] += 1
     out = []
