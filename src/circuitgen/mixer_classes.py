@@ -49,13 +49,19 @@ class MixerPart:
 
     Attributes:
         kinds: ``(kind, multiplicity)`` pairs (a kind may appear more than once: the call graph merges them).
-        logic_width: ``logic`` ancillas the largest partial mixer needs.
-        work_need: ``work`` ancillas its largest multi-controlled X needs.
     """
 
     kinds: tuple[tuple[GadgetKind, Count], ...]
-    logic_width: int
-    work_need: int
+
+    @property
+    def logic_width(self) -> int:
+        """``logic`` ancillas the largest partial mixer needs."""
+        return max((k.temporaries for k, _ in self.kinds), default=0)
+
+    @property
+    def work_need(self) -> int:
+        """``work`` ancillas its largest multi-controlled X needs."""
+        return max((k.work for k, _ in self.kinds), default=0)
 
 
 def index_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
@@ -207,7 +213,6 @@ def mixer_part(
                 reps[sig] = (robot, i * (cols - 1) + j)
     fused = rule == "exact" and fuse  # only the parity-basis partial mixers are fused (circuitgen.gadgets.junction)
     kinds: list[tuple[GadgetKind, Count]] = []
-    width = work = 0
     for sig, n in counts.items():
         if n == 0:  # (never negative: corrections remove members of a class)
             continue
@@ -215,11 +220,10 @@ def mixer_part(
         if m is None:
             continue
         kind, rotation, _, _ = _kinds_of(m)
-        width, work = max(width, kind.temporaries), max(work, kind.work)
         kinds.append((rotation if fused else kind, n))
     if fused:
         kinds += _junction_kinds(scenario, rule, target, sizes)
-    return MixerPart(tuple(kinds), width, work)
+    return MixerPart(tuple(kinds))
 
 
 def _relation(a: int, b: int, cols: int) -> Hashable:

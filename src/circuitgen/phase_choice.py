@@ -95,11 +95,8 @@ def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, .
     >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
     (4, 4, 8)
     """
-    costs, logicals = [], []
-    for g, n in parts:
-        costs.append(n * g.cost())
-        logicals.append(n * g.logical_cost())
-    return score(Cost.sum(costs), Cost.sum(logicals), target)
+    parts = list(parts)
+    return score(Cost.sum(n * g.cost() for g, n in parts), Cost.sum(n * g.logical_cost() for g, n in parts), target)
 
 
 def coupling_cost(products: int) -> Cost:

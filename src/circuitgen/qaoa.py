@@ -41,10 +41,10 @@ from .cost import Cost
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
-from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
+from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
 from .initial_state import initial_path_count
 from .lowering import WORK_REGISTER, lower
-from .mixer_classes import mixer_part
+from .mixer_classes import MixerPart, mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
 from .phase import PhasePlan, phase_plan
 from .phase_classes import phase_layer
@@ -221,12 +221,9 @@ class QaoaPlan:
         else:
             prep = GadgetKind.of(self.state_prep)
         if classes:
-            part = mixer_part(s, o.rule, o.target, o.fuse)
-            mixer, mixer_temps, mixer_work = list(part.kinds), part.logic_width, part.work_need
+            mixer = mixer_part(s, o.rule, o.target, o.fuse)
         else:
-            mixers = [m for _, m in self._planned_mixers]
-            mixer = [(GadgetKind.of(g), 1) for g in self._mixer_layer(None)]
-            mixer_temps, mixer_work = max((m.num_temps for m in mixers), default=0), mixer_work_need(mixers)
+            mixer = MixerPart(tuple((GadgetKind.of(g), 1) for g in self._mixer_layer(None)))
         phase: list[tuple[GadgetKind, int]] = []
         phase_width = 0
         if self.p:
@@ -242,9 +239,9 @@ class QaoaPlan:
                     gadgets = placed_sums(gadgets, s)
                 phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas
-        logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
-        work = max(mixer_work if self.p else 0, prep.work)
-        parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer}
+        logic = max(mixer.logic_width, phase_width, 1 if o.initial == "representatives" else 0)
+        work = max(mixer.work_need if self.p else 0, prep.work)
+        parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer.kinds}
         return CallGraph.build(parts, logic, work)
 
     def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
