@@ -1,21 +1,15 @@
 """The QAOA circuit as a call graph: per part a multiset of gadget kinds (Qualtran's ``build_call_graph``).
 
 A :class:`GadgetKind` is what a gadget costs, not where it sits: its key (:attr:`Gadget.kind
-<circuitgen.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its lowered and logical cost, the
-clean ``logic`` temporaries and the ``work`` ancillas it needs, and an example gadget (placed somewhere) for
-whatever needs gates: its depth profile (:mod:`estimators.depth_compose`) or, later, a device-aware routed cost.
-Kinds compare and hash by key only, so a kind found by counting classes of plaquettes on one scenario equals the
-kind of the gadget the compiler emits on another.
-
-A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds, for the parts ``initial_state``,
-``phase`` (one layer's phase separator) and ``mixer`` (one layer's mixer), each kind with its multiplicity, and
-the widths of the shared ``logic`` and ``work`` registers. Every count the estimators report is a sum over it;
-binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitgen.qaoa.QaoaPlan.circuit`).
+<circuitgen.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its costs, the ``logic``
+temporaries and ``work`` ancillas it needs, and an example gadget for whatever needs gates (depth profiles).
+Kinds compare and hash by key only, so a kind counted by classes on one scenario equals the kind the compiler
+emits on another. A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds each part's kinds with
+their multiplicities and the shared registers' widths; every count the estimators report is a sum over it.
 
 Everything known per kind (its costs; the estimators' per-kind depth facts as named tables) is looked up by the
-kind's key in one explicit cache, :data:`COSTS`: a sweep over thousands of scenarios prices each kind once. The
-other memos hold other concepts: per-scenario results (the plan, the call graph's parts; at most
-:data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
+kind's key in one explicit cache, :data:`COSTS`. The other memos hold other concepts: per-scenario results (at
+most :data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
 :mod:`circuitgen.phase_choice`, constructions keyed by their inputs (the partial mixers' searched plans,
 ``depth_compose``'s transfer matrices per gate structure), leaf gate costs and the symbolic formula tables.
 
@@ -47,8 +41,7 @@ PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
 
 
 class CostCache:
-    """What is known per kind key, computed once: lowered and logical cost, and named tables of other per-kind
-    facts (the estimators' depth profiles); the one cache of gadget kinds (see the module docstring).
+    """What is known per kind key, computed once: named tables, the costs one of them (see the module docstring).
 
     Example:
         >>> from circuitgen.gadgets.phase_ising import IsingPhase
@@ -199,16 +192,14 @@ class GadgetKind:
 
 @dataclass(frozen=True, eq=False)
 class Deferred:
-    """A gadget known by its kind and cost, built only when its gates are asked for (a kind found by counting
-    classes whose example would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
+    """A gadget known by its kind and cost, built only when its gates are asked for (a counted kind whose example
+    would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
 
     Attributes:
-        kind: the kind key the built gadget has.
-        lowered, logical: its costs.
+        kind, lowered, logical, num_ancillas: the built gadget's kind key, costs and clean ancillas.
         build: builds the gadget (placed on qubits).
-        shape: what its cost depends on, when that is more than the costs (the balance's
-            :class:`~circuitgen.gadgets.phase_sums.SumsShape`), else ``None``.
-        num_ancillas: clean ancillas it uses.
+        shape: the balance's :class:`~circuitgen.gadgets.phase_sums.SumsShape` (what its cost depends on), else
+            ``None``.
     """
 
     kind: Hashable

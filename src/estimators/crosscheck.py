@@ -1,11 +1,9 @@
-"""Cross-check: the counts summed from the gadgets equal the counts of the compiled, lowered circuit.
+"""Cross-check: the counts summed from the call graph equal the counts of the compiled, lowered circuit.
 
-:func:`crosscheck` builds the circuit (:func:`circuitgen.qaoa.qaoa_circuit`), lowers it
-(:func:`circuitgen.lowering.lower`, and once more with ``LOGICAL_BASIS``), counts it
-(:func:`estimators.counts.count`) and compares every number :func:`estimators.estimate.estimate_point` reports
-without building anything: qubits and registers, gate counts per name (whole circuit, state preparation, each
-layer's phase separator and mixer), the logical gate counts, and the depths (asked ``exact``: composed from the
-gadgets' transfer profiles, :mod:`estimators.depth_compose`). The scenarios the tests and
+:func:`crosscheck` compares every number :func:`estimators.estimate.estimate_point` reports without building
+anything (registers, gate counts of the whole circuit and of each part and layer, logical gate counts, and the
+``exact`` depths composed by :mod:`estimators.depth_compose`) with :func:`estimators.counts.count` of the compiled
+circuit, lowered to the basis and to ``LOGICAL_BASIS``. The scenarios the tests and
 ``benchmarks/estimate_speed.py`` check are :func:`circuitgen.testing.crosscheck_cases`.
 
 Example:
