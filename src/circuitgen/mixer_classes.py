@@ -82,22 +82,19 @@ def index_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
 
 def class_counts(
     dims: tuple[int, int], sizes: tuple[Count, Count], key: Callable[[int, int], Hashable]
-) -> tuple[Counter[Hashable], dict[Hashable, tuple[int, int]]]:
+) -> Counter[Hashable]:
     """The one class-signature mechanism: how many positions ``(i, j)`` of a ``dims`` array have each class
     ``key(i, j)`` (a key that reads only whether ``i`` and ``j`` are first, last or neither), counted for an array
-    of ``sizes``, and each class's first position.
+    of ``sizes``.
 
-    >>> counts, first = class_counts((3, 4), (3, 4), lambda i, j: (i == 0, j == 0))
-    >>> counts[(False, False)], first[(False, False)]
-    (6, (2, 3))
+    >>> class_counts((3, 4), (3, 4), lambda i, j: (i == 0, j == 0))[(False, False)]
+    6
     """
     counts: Counter[Hashable] = Counter()
-    first: dict[Hashable, tuple[int, int]] = {}
     for i, ni in index_classes(dims[0], sizes[0]):
         for j, nj in index_classes(dims[1], sizes[1]):
             counts[key(i, j)] += ni * nj
-            first.setdefault(key(i, j), (i, j))
-    return counts, first
+    return counts
 
 
 def boundary(r: int, c: int, rows: int, cols: int) -> int:
@@ -142,18 +139,22 @@ def _placed(scenario: Scenario, robot: int, k: int, rule: str, target: str) -> M
     return partial_mixer(scenario, robot, scenario.grid.plaquettes[k], _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
 
 
-def _representative(scenario: Scenario, robot: int, k: int, rule: str, target: str) -> Mixer | None:
-    g = scenario.grid
-    key = (_signature(k, g.rows, g.cols, scenario.robots[robot]), rule, target)
-    if key not in _REPRESENTATIVE:
-        _REPRESENTATIVE[key] = _placed(scenario, robot, k, rule, target)
-    return _REPRESENTATIVE[key]
+def _mixer(
+    scenario: Scenario, sig: Hashable, rule: str, target: str, where: tuple[int, int] | None,
+    plain: Callable[[int], Hashable] | None = None,
+) -> Mixer | None:
+    """The partial mixer of the picture ``sig`` (``None``: no flip is ever allowed), built the first time on
+    ``where = (robot, plaquette)`` of this scenario (``None``: a plaquette whose plain picture it is) and kept for
+    every later scenario."""
+    if (sig, rule, target) not in _REPRESENTATIVE:
+        robot, k = where or _realise(scenario, sig, plain, 1)  # type: ignore[arg-type]
+        _REPRESENTATIVE[sig, rule, target] = _placed(scenario, robot, k, rule, target)
+    return _REPRESENTATIVE[sig, rule, target]
 
 
 def _realise(scenario: Scenario, key: Hashable, plain: Callable[[int], Hashable], span: int) -> tuple[int, int]:
     """A robot and a plaquette index ``k`` whose plain class ``plain(k)`` is ``key`` and whose ``span`` plaquettes
-    from ``k`` on (1: a plaquette, 2: a junction's pair) touch none of the robot's endpoints (for a class every
-    robot touches at its first member)."""
+    from ``k`` on (1: a plaquette, 2: a junction's pair) touch none of the robot's endpoints."""
     g = scenario.grid
     for robot, rb in enumerate(scenario.robots):
         touched = _touched(rb, g.rows, g.cols)
@@ -196,31 +197,23 @@ def mixer_part(
     def plain(k: int) -> LocalPicture:
         return _signature(k, rows, cols, None)
 
-    base, first = class_counts((rows - 1, cols - 1), (sizes[0] - 1, sizes[1] - 1),
-                               lambda i, j: plain(i * (cols - 1) + j))  # fmt: skip
+    base = class_counts((rows - 1, cols - 1), (sizes[0] - 1, sizes[1] - 1), lambda i, j: plain(i * (cols - 1) + j))
     counts: Counter[Hashable] = Counter()
-    reps: dict[Hashable, tuple[int, int]] = {}
+    at: dict[Hashable, tuple[int, int]] = {}  # where a touched plaquette's own picture is
     for robot, rb in enumerate(scenario.robots):
         counts.update(base)
-        touched = _touched(rb, rows, cols)
-        for k in touched:
+        for k in _touched(rb, rows, cols):
             own = _signature(k, rows, cols, rb)
             counts[plain(k)] -= 1
             counts[own] += 1
-            reps.setdefault(own, (robot, k))
-        for sig, (i, j) in first.items():  # a plain representative this robot does not touch
-            if sig not in reps and i * (cols - 1) + j not in touched:
-                reps[sig] = (robot, i * (cols - 1) + j)
+            at.setdefault(own, (robot, k))
     fused = rule == "exact" and fuse  # only the parity-basis partial mixers are fused (circuitgen.gadgets.junction)
     kinds: list[tuple[GadgetKind, Count]] = []
-    for sig, n in counts.items():
-        if n == 0:  # (never negative: corrections remove members of a class)
-            continue
-        m = _representative(scenario, *(reps.get(sig) or _realise(scenario, sig, plain, 1)), rule, target)
-        if m is None:
-            continue
-        kind, rotation, _, _ = _kinds_of(m)
-        kinds.append((rotation if fused else kind, n))
+    for sig, n in counts.items():  # (never negative: corrections remove members of a class)
+        m = _mixer(scenario, sig, rule, target, at.get(sig), plain) if n != 0 else None
+        if m is not None:
+            kind, rotation, _, _ = _kinds_of(m)
+            kinds.append((rotation if fused else kind, n))
     if fused:
         kinds += _junction_kinds(scenario, rule, target, sizes)
     return MixerPart(tuple(kinds))
@@ -243,54 +236,49 @@ def _junction_kinds(
     def plain(k: int) -> Hashable:  # the plain class of the pair (k, k + 1)
         return _signature(k, rows, cols, None), _signature(k + 1, rows, cols, None), _relation(k, k + 1, cols)
 
+    def mixer(robot: int, k: int) -> Mixer | None:
+        return _mixer(scenario, _signature(k, rows, cols, scenario.robots[robot]), rule, target, (robot, k))
+
     def present(robot: int, k: int) -> bool:
-        return _representative(scenario, robot, k, rule, target) is not None
+        return mixer(robot, k) is not None
 
     # one robot's plain pairs: horizontal neighbours and row wraps
-    base, first = class_counts((rows - 1, pcol - 1), (sizes[0] - 1, sizes[1] - 2), lambda i, j: plain(i * pcol + j))
-    wraps, wrap_first = class_counts((rows - 2, 1), (sizes[0] - 2, 1), lambda i, _: plain(i * pcol + pcol - 1))
-    base.update(wraps)
-    where = {key: i * pcol + j for key, (i, j) in first.items()}
-    where.update({key: i * pcol + pcol - 1 for key, (i, _) in wrap_first.items()})
-    counts: Counter[tuple[Hashable, tuple[int, int, int, int]]] = Counter()
-    plain_counts: Counter[Hashable] = Counter()
-    used: dict[Hashable, tuple[int, int, int, int]] = {}  # a realisation of each plain class by an untouched pair
+    base = class_counts((rows - 1, pcol - 1), (sizes[0] - 1, sizes[1] - 2), lambda i, j: plain(i * pcol + j))
+    base.update(class_counts((rows - 2, 1), (sizes[0] - 2, 1), lambda i, _: plain(i * pcol + pcol - 1)))
+    counts: Counter[tuple[Hashable, tuple[int, int, int, int] | None]] = Counter()  # (class, realisation or None)
     ends: list[tuple[int, int, int]] = []  # per robot with partial mixers: (robot, first, last) present plaquette
     for robot, rb in enumerate(scenario.robots):
-        plain_counts.update(base)
+        counts.update({(key, None): n for key, n in base.items()})
         touched = _touched(rb, rows, cols)
         affected = sorted({a for k in touched for a in (k - 1, k) if 0 <= a < total - 1})
         for a in affected:
-            plain_counts[plain(a)] -= 1
+            counts[(plain(a), None)] -= 1
         for _, group in groupby(enumerate(affected), lambda t: t[1] - t[0]):  # runs of consecutive affected pairs
             run = [a for _, a in group]  # their actual pairs, absent partial mixers skipped:
             nodes = [k for k in range(run[0], run[-1] + 2) if k not in touched or present(robot, k)]
             for u, v in pairwise(nodes):
                 pair = (_signature(u, rows, cols, rb), _signature(v, rows, cols, rb), _relation(u, v, cols))
                 counts[(pair, (robot, u, robot, v))] += 1
-        for key, k in where.items():
-            if key not in used and k not in touched and k + 1 not in touched:
-                used[key] = (robot, k, robot, k + 1)
         first_k = next((k for k in range(total) if k not in touched or present(robot, k)), None)
         if first_k is not None:
             last_k = next(k for k in reversed(range(total)) if k not in touched or present(robot, k))
             ends.append((robot, first_k, last_k))
-    for key, n in plain_counts.items():
-        if n != 0:
-            if key not in used:
-                robot, k = _realise(scenario, key, plain, 2)
-                used[key] = (robot, k, robot, k + 1)
-            counts[(key, used[key])] += n
     for (ra, _, ka), (rb, kb, _) in pairwise(ends):  # one junction between consecutive robots
         pair = (_signature(ka, rows, cols, scenario.robots[ra]), _signature(kb, rows, cols, scenario.robots[rb]))
         counts[((*pair, "far"), (ra, ka, rb, kb))] += 1
     out = []
-    for (key, (ra, a, rb, b)), n in counts.items():
+    for (key, at), n in counts.items():
+        if n == 0:
+            continue
         if (key, rule, target) not in _JUNCTION:
+            if at is None:  # a plain class, realised by a pair no robot's endpoint touches
+                robot, k = _realise(scenario, key, plain, 2)
+                at = (robot, k, robot, k + 1)
+            ra, a, rb, b = at
             junction = MixerJunction(_placed(scenario, ra, a, rule, target), _placed(scenario, rb, b, rule, target))
             _JUNCTION[(key, rule, target)] = GadgetKind.of(junction)
         out.append((_JUNCTION[(key, rule, target)], n))
     if ends:
-        out.append((_kinds_of(_representative(scenario, ends[0][0], ends[0][1], rule, target))[2], 1))  # type: ignore[arg-type]
-        out.append((_kinds_of(_representative(scenario, ends[-1][0], ends[-1][2], rule, target))[3], 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(*ends[0][:2]))[2], 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(ends[-1][0], ends[-1][2]))[3], 1))  # type: ignore[arg-type]
     return out

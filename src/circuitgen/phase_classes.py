@@ -41,7 +41,6 @@ from collections import Counter
 from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 from itertools import repeat
-from typing import Any
 
 import numpy as np
 
@@ -49,7 +48,7 @@ from circuitgen.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.mixer_classes import boundary, class_counts
+from circuitgen.mixer_classes import Count, boundary, class_counts
 from circuitgen.phase import coupling_products, phase_plan
 from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
@@ -60,7 +59,6 @@ from gridcover.scenario import Scenario
 __all__ = ["IsingCount", "PhaseLayer", "ising_count", "phase_layer"]
 
 _TOL = 1e-12  # gridcover.feasible_cost's zero
-
 
 @dataclass(frozen=True, eq=False)
 class PhaseLayer:
@@ -305,9 +303,6 @@ def phase_layer(
 # ----------------------------------------------------------------------------- whole-space (Ising) phase separator
 
 
-Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
-
-
 @dataclass(frozen=True)
 class IsingCount:
     """The whole-space phase separator's terms (:class:`~circuitgen.gadgets.phase_ising.IsingPhase`), counted.
@@ -382,9 +377,9 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     def edge(a: _NodeClass, b: _NodeClass) -> tuple[_NodeClass, _NodeClass]:
         return (a, b) if a <= b else (b, a)
 
-    nodes, _ = class_counts((rows, cols), (size_r, size_c), lambda i, j: plain((i, j)))
-    edges, _ = class_counts((rows, cols - 1), (size_r, size_c - 1), lambda i, k: edge(plain((i, k)), plain((i, k + 1))))
-    down, _ = class_counts((rows - 1, cols), (size_r - 1, size_c), lambda k, j: edge(plain((k, j)), plain((k + 1, j))))
+    nodes = class_counts((rows, cols), (size_r, size_c), lambda i, j: plain((i, j)))
+    edges = class_counts((rows, cols - 1), (size_r, size_c - 1), lambda i, k: edge(plain((i, k)), plain((i, k + 1))))
+    down = class_counts((rows - 1, cols), (size_r - 1, size_c), lambda k, j: edge(plain((k, j)), plain((k + 1, j))))
     edges.update(down)
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]
