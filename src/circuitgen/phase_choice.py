@@ -31,6 +31,7 @@ from itertools import accumulate
 from typing import Any, Literal
 
 from .cost import Cost, Target
+from .gadgets.phase_ising import COEFFICIENT_TOLERANCE
 from .gadgets.phase_sums import SumsPhase
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .options import Optimize
@@ -44,6 +45,7 @@ __all__ = [
     "couplings_floor",
     "ft_t_count",
     "hamming_choice",
+    "hamming_groups",
     "plan_score",
     "score",
     "sums_constructions",
@@ -209,6 +211,24 @@ def hamming_choice(
     if score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target):
         return hw
     return None
+
+
+def hamming_groups(
+    coefficients: Iterable[tuple[int, float]], target: Target, optimize: Optimize, budget: int | None
+) -> list[tuple[SumsPhase, list[int]]]:
+    """The equal-angle rotations of uncoupled qubits ``(qubit, coefficient)`` the plan merges: per class of equal
+    nonzero coefficients (to 12 decimals, in order of first appearance) that :func:`hamming_choice` takes, its
+    gadget and the class's qubits.
+
+    >>> [(qs, hw.num_ancillas) for hw, qs in hamming_groups([(0, 0.5), (1, 0.2), (4, 0.5), (7, 0.5)], "ft", "cx", 9)]
+    [([0, 4, 7], 1)]
+    """
+    classes: dict[float, tuple[float, list[int]]] = {}
+    for q, v in coefficients:
+        if abs(v) > COEFFICIENT_TOLERANCE:
+            classes.setdefault(round(v, 12), (v, []))[1].append(q)
+    groups = [(hamming_choice(len(qs), v, target, optimize, budget), qs) for v, qs in classes.values()]
+    return [(hw, qs) for hw, qs in groups if hw is not None]
 
 
 def sums_constructions(

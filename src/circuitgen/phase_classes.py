@@ -50,7 +50,7 @@ from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, is
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
 from circuitgen.mixer_classes import Count, boundary, class_counts
 from circuitgen.phase import coupling_products, phase_plan
-from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
+from circuitgen.phase_choice import couplings_floor, hamming_groups, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -282,17 +282,11 @@ def phase_layer(
         ancillas = max(ancillas, shape.num_ancillas)
     values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
-    if target == "ft":
-        keep = np.ones(len(values), dtype=bool)
-        rounded = np.round(values, 12)
-        _, first, counts = np.unique(rounded, return_index=True, return_counts=True)
-        for k, n in zip(first.tolist(), counts.tolist()):
-            hw = hamming_choice(n, float(values[k]), target, optimize, ancilla_budget)
-            if hw is not None:
-                parts.append((hw, 1, hw.num_ancillas))
-                ancillas = max(ancillas, hw.num_ancillas)
-                keep &= rounded != rounded[k]
-        values = values[keep]
+    if target == "ft":  # no coupling exists: every rotation may be merged
+        groups = hamming_groups(enumerate(values.tolist()), target, optimize, ancilla_budget)
+        parts += [(hw, 1, hw.num_ancillas) for hw, _ in groups]
+        ancillas = max([ancillas, *(hw.num_ancillas for hw, _ in groups)])
+        values = np.delete(values, [q for _, qs in groups for q in qs])
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
     layer = _layer(s, rotations, 0, parts, balance, ancillas)
     if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]
