@@ -31,14 +31,7 @@ DepthKind = Literal["exact", "bound"]
 
 @dataclass(frozen=True)
 class Depth:
-    """Three depths and whether they are exact or an upper bound.
-
-    Attributes:
-        depth: all gates.
-        two_qubit_depth: two-qubit gates.
-        rotation_depth: ``rz`` gates.
-        kind: ``exact`` or ``bound``.
-    """
+    """The three depths of the module docstring, and whether they are ``exact`` or a ``bound``."""
 
     depth: int = 0
     two_qubit_depth: int = 0

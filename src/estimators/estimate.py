@@ -64,8 +64,7 @@ __all__ = [
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
 DEFAULT_DEPTH_BUDGET = 20_000
-"""``depth="auto"`` computes exact depths when the state preparation and one layer have at most this many lowered
-gates (see the module docstring: the size of one layer, not of ``p`` layers, sets the cost)."""
+"""``depth="auto"``'s default ``depth_budget`` (the size of one layer, not of ``p`` layers, sets the cost)."""
 
 
 @dataclass(frozen=True)
@@ -75,9 +74,7 @@ class EstimateOptions:
     Attributes:
         plan: circuit construction options.
         epsilon, synthesis, toffoli_t: the fault-tolerant model (:mod:`estimators.fault_tolerant`).
-        depth: ``auto``, ``exact``, ``bound`` or ``none`` (see the module docstring).
-        depth_budget: ``auto`` computes exact depths when the state preparation and one layer have at most this
-            many lowered gates (``bound`` otherwise).
+        depth, depth_budget: which depths (see the module docstring).
         physical: run the QDK resource estimator (:mod:`estimators.physical`).
         qubit_model, qec_scheme, error_budget: its model.
     """
@@ -263,11 +260,9 @@ key is one scenario's)."""
 
 
 def kind_depth_bound(kind: GadgetKind) -> Depth:
-    """A bound on the depths of any gadget of ``kind`` (exact where the kind fixes the gates up to qubit names):
-    its own depths, known per anchored kind (:func:`~estimators.depth_compose.known_depth`) or lowered from its
-    example; data-qubit rotations are one layer; a kind of more than :data:`_OWN_DEPTH_GATES` gates by its shape
-    (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates). Cached per
-    kind (equal keys, equal gates up to qubit names)."""
+    """A bound on the depths of any gadget of ``kind``, cached per kind: its own depths (from its example, or
+    known per anchored kind), one layer for gates on distinct data qubits, and for a kind of more than
+    :data:`_OWN_DEPTH_GATES` gates its shape's bound (:func:`_arithmetic_depth_bound`) or its gate counts."""
     if isinstance(kind.example, Deferred):
         return _kind_depth_bound(kind)
     hit = _DEPTH_BOUNDS.get(kind.cache_key)
@@ -321,11 +316,8 @@ def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
 
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
-    """An upper bound on the depths of ``p`` layers, in ``O(robots)`` per scenario once the counts are known.
-
-    ``depth(A then B) <= depth(A) + depth(B)`` (ASAP layering can only shorten a concatenation), so the bound is
-    the sum over the plan's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) of each kind's depth bound
-    times its multiplicity (:func:`kind_depth_bound`): the state preparation once, one layer ``p`` times.
+    """An upper bound on the depths of ``p`` layers: ASAP layering can only shorten a concatenation, so the sum
+    over the call graph of each kind's :func:`kind_depth_bound` times its multiplicity, one layer ``p`` times.
 
     >>> from gridcover.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)
@@ -340,9 +332,7 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
 def estimate_depth(
     scenario: Scenario, p: int, options: EstimateOptions = DEFAULT_OPTIONS, graph: CallGraph | None = None
 ) -> Depth | None:
-    """The depths :func:`estimate_point` reports: ``exact``, a ``bound`` or ``None`` as ``options.depth`` says
-    (``auto``: exact when the state preparation and one layer have at most ``options.depth_budget`` lowered
-    gates, a bound otherwise; see the module docstring).
+    """The depths :func:`estimate_point` reports, as ``options.depth`` says (see the module docstring).
 
     Args:
         scenario: the scenario.
