@@ -1,9 +1,8 @@
-"""The phase separator's cost without planning it term by term: classes of nodes and edges on an open grid.
+"""The phase separator's call graph without planning it term by term: classes of nodes and edges on an open grid.
 
-:func:`circuitgen.phase.phase_plan` builds the feasible cost (:func:`gridcover.feasible_cost.feasible_cost`)
-variable by variable and prices every node's visit gadget: 0.1-1 s per scenario at 20x20-40x40, too slow for a
-sweep of thousands of scenarios. On a grid without obstacles (and the uniform edge weights and lengths every
-such grid has unless a length is overridden) the plan has few distinct parts:
+:func:`circuitgen.phase.phase_plan` prices every term group variable by variable (0.1-1 s per scenario at
+20x20-40x40, too slow for a sweep). On a grid without obstacles and with uniform edge lengths the plan has few
+distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
   visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost

@@ -99,8 +99,9 @@ class QaoaPlan:
         return tuple(out)
 
     def _mixer_layer(self, k: int | None) -> list[Gadget]:
-        """Layer ``k``'s mixer pieces: junctions and rotations (:func:`~circuitgen.gadgets.junction.mixer_pieces`)
-        or, unfused, the partial mixers (``k = None``: with the placeholder angle ``beta``)."""
+        """Layer ``k``'s mixer pieces (``None``: with the placeholder angle ``beta``): the partial mixers
+        (robot-major, plaquettes row-major) as junctions and rotations
+        (:func:`~circuitgen.gadgets.junction.mixer_pieces`), or themselves unfused."""
         def beta(r: int, q: int) -> str:
             if k is None:
                 return "beta"
@@ -166,8 +167,7 @@ class QaoaPlan:
     # -- the call graph
     def sections(self) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and the mixer's pieces: the partial mixers (robot-major, plaquettes row-major) as junctions and
-        rotations (:func:`~circuitgen.gadgets.junction.mixer_pieces`), or one per partial mixer for ``paper``."""
+        separator and the mixer's pieces (:meth:`_mixer_layer`)."""
         yield "initial_state", self.state_prep
         for k in range(self.p):
             assert self.phase_plan is not None
@@ -187,13 +187,11 @@ class QaoaPlan:
         return gadgets
 
     def call_graph(self, by_classes: bool = True) -> CallGraph:
-        """The circuit as gadget kinds with multiplicities, per part (:mod:`circuitgen.call_graph`; ``phase`` and
-        ``mixer`` are one layer's, empty ``phase`` for ``p = 0``), nothing emitted.
-
-        On a grid without obstacles the kinds are listed by counting classes of plaquettes
-        (:mod:`circuitgen.mixer_classes`) and of nodes (:mod:`circuitgen.phase_classes`), ``O(robots)`` per
-        scenario; where the phase separator's term groups interact (a choice the classes cannot make, see
-        :func:`~circuitgen.phase_classes.phase_layer`) and everywhere else, from the planned gadgets themselves.
+        """The circuit as gadget kinds with multiplicities, per part (``phase`` and ``mixer``: one layer's, empty
+        ``phase`` for ``p = 0``), nothing emitted: counted by classes of plaquettes (:mod:`circuitgen.mixer_classes`)
+        and of nodes (:mod:`circuitgen.phase_classes`) on a grid without obstacles, ``O(robots)`` per scenario,
+        else (or where :func:`~circuitgen.phase_classes.phase_layer` leaves a choice to the plan) listed from the
+        planned gadgets.
 
         Args:
             by_classes: count by classes where that is exact (default); ``False`` lists the planned gadgets
