@@ -94,14 +94,13 @@ COSTS = CostCache()
 """The process-wide cost cache of :class:`GadgetKind`."""
 
 SCENARIOS_KEPT = 8
-"""How many scenarios each per-scenario memo keeps (the plan, the call graph's parts, the depth bound): a sweep asks
-``p = 1..P`` of one scenario in a row, and a kept scenario keeps its plan and its grid's tables alive (megabytes
-each at 40x40)."""
+"""How many scenarios each per-scenario memo keeps: a sweep asks ``p = 1..P`` of one scenario in a row, and a kept
+scenario keeps its plan and its grid's tables alive (megabytes each at 40x40)."""
 
 
 class PricedByKind:
-    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself once per kind in
-    :data:`COSTS` (the class gives ``_kind_costs() -> (cost, logical cost)``)."""
+    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself (``_kind_costs() ->
+    (cost, logical cost)``) once per kind in :data:`COSTS`."""
 
     kind: Hashable
 
@@ -176,8 +175,7 @@ class GadgetKind:
 
     @property
     def cache_key(self) -> Hashable:
-        """The key (hashed once) by which :data:`COSTS` and its tables know this kind (it holds no example, so
-        no gadget stays alive in a cache)."""
+        """The key (hashed once, holding no example) by which :data:`COSTS` and its tables know this kind."""
         return self._hashed  # type: ignore[attr-defined,no-any-return]
 
     def _priced(self) -> tuple[Cost, Cost]:
@@ -250,8 +248,7 @@ class CallGraph:
 
     Attributes:
         parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer).
-        logic_width: the shared clean ``logic`` register.
-        work_width: the ``work`` register the lowering adds.
+        logic_width, work_width: the shared clean ``logic`` register and the ``work`` register the lowering adds.
     """
 
     parts: Mapping[str, Mapping[GadgetKind, int]]

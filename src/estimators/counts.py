@@ -66,8 +66,8 @@ class GateCount:
     two_qubit_depth: int = 0
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict (``ops`` as a plain dict)."""
-        return {k: dict(self.ops) if k == "ops" else getattr(self, k) for k in GateCount.__dataclass_fields__}
+        """A JSON-ready dict of every field (mappings as dicts, tuples as lists, sections nested)."""
+        return {k: _plain(getattr(self, k)) for k in self.__dataclass_fields__}
 
 
 @dataclass(frozen=True)
@@ -86,17 +86,13 @@ class ResourceCount(GateCount):
     registers: tuple[tuple[str, int], ...] = ()
     sections: Mapping[str, GateCount] = field(default_factory=dict)
 
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict (sections as nested dicts)."""
-        d = super().to_dict()
-        d.update(
-            qubits=self.qubits,
-            data_qubits=self.data_qubits,
-            ancillas=self.ancillas,
-            registers=[list(r) for r in self.registers],
-            sections={name: s.to_dict() for name, s in self.sections.items()},
-        )
-        return d
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, GateCount):
+        return value.to_dict()
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    return [_plain(v) for v in value] if isinstance(value, tuple) else value
 
 
 def _arity(ops: Counter[str], gates: Iterable[tuple[Any, ...]]) -> Counter[int]:
