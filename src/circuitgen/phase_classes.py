@@ -80,12 +80,13 @@ class PhaseLayer:
 
 def _layer(
     s: Scenario, rotations: int, couplings: int, parts: list[tuple[Gadget, int, int]], balance: _Balance | None,
-    num_ancillas: int, whole_space: bool = False,
+    whole_space: bool = False,
 ) -> PhaseLayer:
     """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
     ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
     # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
     # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+    num_ancillas = max([0, *(need for _, _, need in parts), balance.shape.num_ancillas if balance else 0])
     pool = range(s.num_variables, s.num_variables + num_ancillas)
     out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]
     if rotations or couplings:
@@ -206,7 +207,7 @@ def phase_layer(
         count = ising_count(s)
         if count is None:
             return None
-        return _layer(s, count.linear, count.couplings, [], None, 0, whole_space=True)
+        return _layer(s, count.linear, count.couplings, [], None, whole_space=True)
     if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
@@ -217,7 +218,6 @@ def phase_layer(
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = ob.alpha
     parts: list[tuple[Gadget, int, int]] = []
-    ancillas = 0
     # degree terms: a linear part per node, a visit class per (degree, passers)
     node_term = np.zeros(grid.num_nodes)
     if a2 != 0.0:
@@ -237,7 +237,6 @@ def phase_layer(
             if choice.gadget is None:
                 return None  # a coupling would change what the later groups' couplings cost
             parts.append((choice.gadget, count, choice.ancillas))
-            ancillas = max(ancillas, choice.ancillas)
     lin = []
     for a, b in ends:
         own = node_term.copy()
@@ -278,16 +277,14 @@ def phase_layer(
         lin_g = 2 * m @ np.array(consts)
         for r, w in enumerate(weights):
             lin[r] = lin[r] + float(lin_g[r]) * w
-        ancillas = max(ancillas, shape.num_ancillas)
     values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
     if target == "ft":  # no coupling exists: every rotation may be merged
         groups = hamming_groups(enumerate(values.tolist()), target, optimize, ancilla_budget)
         parts += [(hw, 1, hw.num_ancillas) for hw, _ in groups]
-        ancillas = max([ancillas, *(hw.num_ancillas for hw, _ in groups)])
         values = np.delete(values, [q for _, qs in groups for q in qs])
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
-    layer = _layer(s, rotations, 0, parts, balance, ancillas)
+    layer = _layer(s, rotations, 0, parts, balance)
     if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]
         return None  # the couplings might win: only the plan knows
     return layer
