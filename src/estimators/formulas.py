@@ -88,13 +88,8 @@ QUANTITIES: tuple[str, ...] = (
 
 @dataclass(frozen=True)
 class Term:
-    """Gate counts of one gadget kind of the mixer (a rotation, a junction, or a partial mixer).
-
-    Attributes:
-        ops: lowered gate counts.
-        toffoli: ANDs, their uncomputes and Toffolis (logical basis).
-        zz: Ising couplings (``RZZ``) it holds.
-    """
+    """Gate counts of one gadget kind: lowered ``ops``, ``toffoli`` (ANDs, their uncomputes and Toffolis of the
+    logical basis) and ``zz`` (Ising couplings it holds)."""
 
     ops: Mapping[str, int]
     toffoli: int
