@@ -53,9 +53,8 @@ __all__ = [
 ]
 
 ROTATION_T_COST = 30
-"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
-Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
-the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
+"""T gates per arbitrary rotation in the ``ft`` cost model, for choosing only: ``ceil(3 log2(1/eps))`` at ``eps =
+1e-3``, :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults (a test keeps the two equal)."""
 
 EXACT_EXPANSION_LIMIT = 30_000
 """A balance group with at most this many products is expanded to price its couplings exactly (products that
@@ -90,8 +89,7 @@ def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
 
 def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, ...]:
     """:func:`score` of gadgets (or gadget kinds) with multiplicities, their costs summed: how candidate plans of
-    the phase separator are compared. Only a sort key for choosing: every count qcpp reports is the call graph's
-    sum (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`).
+    the phase separator are compared (a sort key, never a reported count).
 
     >>> from circuitgen.gadgets.phase_ising import IsingPhase
     >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
@@ -113,8 +111,7 @@ def coupling_cost(products: int) -> Cost:
 
 def couplings_floor(sizes: Sequence[int], diagonal: Sequence[float], target: Target) -> int:
     """A lower bound on the first entry of :func:`plan_score` of any plan that expands a balance group into
-    couplings: the products within one form (one robot's edges) meet no other term (node visits pair different
-    robots' edges), so each stays a coupling of its own (one RZZ: 2 CX, one rotation).
+    couplings: the products within one form (one robot's edges) meet no other term, so each stays an RZZ.
 
     Args:
         sizes: the group's forms' numbers of terms.
@@ -169,15 +166,14 @@ def visit_choice(
         target, optimize, budget: the plan's options (``budget``: most clean ancillas, ``None``: no limit).
 
     Returns:
-        The :class:`VisitChoice`. A visit gadget is a candidate only for ``optimize="cx"`` and within the budget;
-        it replaces the pick so far when it scores no worse and costs differ, in the order couplings, visit bits,
-        visit pairs (ties go to the couplings: no ancilla).
+        The :class:`VisitChoice`: in the order couplings, visit bits, visit pairs, a visit gadget (only for
+        ``optimize="cx"`` and within the budget) replaces the pick so far when it scores no worse and costs differ.
     """
     coup = coupling_cost(new_couplings)
     costs: dict[str, tuple[Cost, Cost]] = {}
     pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
+    edges = tuple(tuple(range(end - n, end)) for n, end in zip(sizes, accumulate(sizes), strict=True))
     for name, products in (("visit bits", False), ("visit pairs", True)):
-        edges = tuple(tuple(range(end - n, end)) for n, end in zip(sizes, accumulate(sizes), strict=True))
         gad = VisitPhase("gamma", coefficient, edges, (), products)
         c = (gad.cost(), gad.logical_cost())
         costs[name] = c
@@ -235,9 +231,8 @@ def sums_constructions(
     integral: bool, products: int, optimize: Optimize, budget: int | None, ancillas: Callable[[str], int]
 ) -> tuple[str, ...]:
     """The constructions the plan compares for a balance group: the first arithmetic variant of
-    :data:`SUMS_VARIANTS` that fits the budget (each only pays off when the ones before it, with fewer CX, do
-    not fit; only for integer weights and ``optimize="cx"``), and ``couplings`` when its products can be
-    expanded (at most :data:`EXACT_EXPANSION_LIMIT`) or nothing else is possible.
+    :data:`SUMS_VARIANTS` that fits the budget (integer weights and ``optimize="cx"`` only), and ``couplings``
+    when its products can be expanded (at most :data:`EXACT_EXPANSION_LIMIT`) or nothing else is possible.
 
     Args:
         integral: the group's weights are integers.
