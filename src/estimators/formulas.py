@@ -175,11 +175,7 @@ def _case_layer(metric: Metric, parts: tuple[str, ...], rows_case: int, cols_cas
     else:
         at_least = [sp.Min(robots - 1, 1), sp.Max(sp.Min(robots - 2, 1), 0), sp.Max(robots - 3, 0)]
         out = g[0] + sum((gk * ind for gk, ind in zip(g[1:], at_least, strict=True)), sp.Integer(0))
-    subs = {}
-    if rows_case < 5:
-        subs[rows] = rows_case
-    if cols_case < 5:
-        subs[cols] = cols_case
+    subs = {side: case for side, case in ((rows, rows_case), (cols, cols_case)) if case < 5}
     return sp.factor(out.subs(subs)) if subs else out
 
 
