@@ -3,14 +3,11 @@
 A partial mixer's kind depends only on its plaquette's local picture (:class:`gridcover.sbf.LocalPicture`). On a
 grid without obstacles the picture of a plaquette that touches no endpoint of its robot depends only on whether its
 row and column are the first, the last or neither, so one robot's partial mixers are the plain grid's classes
-(:func:`class_counts`, counted arithmetically) with the <= 8 plaquettes around its start and goal moved to their
-own pictures: ``O(robots)`` work per scenario, whatever the grid size. The parity-basis partial mixers of a layer
-are cut at their rotations (:mod:`circuitgen.gadgets.junction`): one rotation per partial mixer, one junction per
-ordered pair of consecutive partial mixers and the two open ends; a junction's kind depends on the two pictures
-and on the second plaquette's offset (``far`` beyond two rows or columns, or across robots), so the pairs are
-counted by the same classes: the horizontal neighbours and the row wraps of the plain grid, the pairs next to a
-robot's endpoints replaced by its own, plus one pair between consecutive robots. Each picture's partial mixer and
-each junction class's kind is built once, from a real plaquette, for every later scenario.
+(:func:`class_counts`) with the <= 8 plaquettes around its start and goal moved to their own pictures:
+``O(robots)`` work per scenario, whatever the grid size. The junctions between consecutive partial mixers
+(:mod:`circuitgen.gadgets.junction`) are counted the same way: a junction's kind depends on the two pictures and
+on the second plaquette's offset (``far`` beyond two rows or columns, or across robots). Each picture's partial
+mixer and each junction class's kind is built once, on a real plaquette, for every later scenario.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -227,9 +224,9 @@ def _relation(a: int, b: int, cols: int) -> Hashable:
 def _junction_kinds(
     scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
 ) -> list[tuple[GadgetKind, Count]]:
-    """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers, and the two open
-    ends (the first compute, the last uncompute). A junction class is ``(picture, picture, relation)``, realised by
-    ``(robot_a, k_a, robot_b, k_b)``."""
+    """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers (the plain grid's
+    horizontal neighbours and row wraps, those next to a robot's endpoints replaced by its own, one between
+    consecutive robots), and the two open ends (the first compute, the last uncompute)."""
     rows, cols = scenario.grid.rows, scenario.grid.cols
     pcol, total = cols - 1, (rows - 1) * (cols - 1)
 
