@@ -165,12 +165,8 @@ def _local(g: _Grid, ends: tuple[int, int]) -> Local:
 
 
 def _reduce(values: np.ndarray, local: Local) -> tuple[float, np.ndarray]:
-    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied where its
-    identities act.
-
-    Returns:
-        ``(constant, coefficients)``; a zero marks a dropped term.
-    """
+    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector where its identities act:
+    ``(constant, coefficients)``, a zero marking a dropped term."""
     at, touched = local
     const, reduced = reduce_on_paths({k: float(values[k]) for k in touched}, at, (0, 1))
     out = values.copy()
@@ -190,9 +186,8 @@ def phase_layer(
     ancilla_budget: int | None = None,
 ) -> PhaseLayer | None:
     """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
-    knows (obstacles, overridden lengths, or a choice the classes cannot make:
-    a node or the balance whose construction is couplings, or the balance's arithmetic out of the budget). Each
-    class's construction is the plan's own decision (:mod:`circuitgen.phase_choice`), asked once per class.
+    knows (obstacles, overridden lengths, a node or balance whose construction is couplings, or the balance's
+    arithmetic out of the budget).
 
     Args:
         scenario: the scenario.
