@@ -152,12 +152,8 @@ class QaoaPlan:
     @property
     def registers(self) -> tuple[Register, ...]:
         """``data``, ``logic`` (if any), and the ``work`` register the lowering adds (if any)."""
-        regs = [Register("data", self.scenario.num_variables)]
-        if self.logic_width:
-            regs.append(Register("logic", self.logic_width))
-        if self.work_width:
-            regs.append(Register(WORK_REGISTER, self.work_width))
-        return tuple(regs)
+        sizes = (("data", self.scenario.num_variables), ("logic", self.logic_width), (WORK_REGISTER, self.work_width))
+        return tuple(Register(name, size) for name, size in sizes if size or name == "data")
 
     @property
     def num_qubits(self) -> int:
