@@ -49,16 +49,11 @@ def crosscheck(case: Case) -> list[str]:
     check("registers", est.registers, rc.registers)
     check("gates", est.cost.to_dict(), dict(rc.ops))
     check("logical gates", est.logical, Cost.count(lower(circ, LOGICAL_BASIS).gates))
-    if p:
-        check(
-            "state preparation",
-            est.parts["initial_state"].to_dict(),
-            dict(rc.sections["initial_state"].ops) if "initial_state" in rc.sections else {},
-        )
-        for k in range(p):
-            for part in ("phase", "mixer"):
-                have = rc.sections.get(f"{part}_{k}")
-                check(f"{part} of layer {k}", est.parts[part].to_dict(), dict(have.ops) if have else {})
+    sections = [("state preparation", "initial_state", "initial_state")] if p else []
+    sections += [(f"{part} of layer {k}", part, f"{part}_{k}") for k in range(p) for part in ("phase", "mixer")]
+    for what, part, name in sections:
+        have = rc.sections.get(name)
+        check(what, est.parts[part].to_dict(), dict(have.ops) if have else {})
     if est.depth is not None and est.depth.kind == "exact":
         check("depth", (est.depth.depth, est.depth.two_qubit_depth), (rc.depth, rc.two_qubit_depth))
     return out
