@@ -232,8 +232,8 @@ def needs(gadget: Any) -> tuple[int, int]:
     if isinstance(gadget, MixerRotation):
         return needs(gadget.mixer)
     if isinstance(gadget, MixerJunction):
-        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]
-        return max((t for t, _ in sides), default=0), max((w for _, w in sides), default=0)
+        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]  # one side at least
+        return max(t for t, _ in sides), max(w for _, w in sides)
     if isinstance(gadget, VisitPhase):
         return visit_ancillas(tuple(len(v) for v in gadget.visitors), gadget.products), 0
     gates = getattr(gadget, "gates", None)

@@ -298,8 +298,7 @@ def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth
         total[0] += n * d.depth
         total[1] += n * d.two_qubit_depth
         total[2] += n * d.rotation_depth
-    init, layer = (Depth(*sums[k], "bound") for k in ("initial_state", "layer"))  # type: ignore[arg-type]
-    return init, layer
+    return Depth(*sums["initial_state"], "bound"), Depth(*sums["layer"], "bound")  # type: ignore[arg-type]
 
 
 def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
@@ -325,8 +324,7 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
     True
     """
     init, layer = _layer_depth_bounds(scenario, options)
-    d = init + p * layer
-    return Depth(d.depth, d.two_qubit_depth, d.rotation_depth, "bound")
+    return replace(init + p * layer, kind="bound")
 
 
 def estimate_depth(

@@ -214,10 +214,8 @@ def _widest(width: Callable[[MixerPart], int]) -> sp.Expr:
     if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
         raise AssertionError("ancilla widths are not symmetric in rows and cols")
     lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
-    pieces = []
-    for a, b in [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]:
-        cond = sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)
-        pieces.append((values[a, b], cond))
+    cases = [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]
+    pieces = [(values[a, b], sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)) for a, b in cases]
     last = values[4, 4]
     if all(v == last for v, _ in pieces):
         return sp.Integer(last)
