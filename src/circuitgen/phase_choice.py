@@ -202,11 +202,8 @@ def hamming_choice(
         return None
     hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
     alt = Cost.of(rz=n)
-    if budget is not None and hw.num_ancillas > budget:
-        return None
-    if score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target):
-        return hw
-    return None
+    fits = budget is None or hw.num_ancillas <= budget
+    return hw if fits and score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target) else None
 
 
 def hamming_groups(

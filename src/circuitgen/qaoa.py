@@ -113,8 +113,7 @@ class QaoaPlan:
     @cached_property
     def state_prep(self) -> StatePrep:
         """The initial-state gadget."""
-        s = self.scenario
-        o = self.options
+        s, o = self.scenario, self.options
         ancilla = s.num_variables if o.initial == "representatives" else None
         return StatePrep.build(s, o.initial, o.rule, ancilla)
 

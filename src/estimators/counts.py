@@ -138,8 +138,7 @@ def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
     2
     """
     gates = list(gates)
-    lv = [0] * num_qubits
-    l2 = [0] * num_qubits
+    lv, l2 = [0] * num_qubits, [0] * num_qubits
     advance(gates, lv, l2)
     ops = Counter(map(itemgetter(0), gates))
     return _stats(ops, _arity(ops, gates), max(lv, default=0), max(l2, default=0))
@@ -165,8 +164,7 @@ def count(circuit: Circuit) -> ResourceCount:
     (4, {'cx': 2, 'x': 1}, 3)
     """
     n = circuit.num_qubits
-    lv = [0] * n
-    l2 = [0] * n
+    lv, l2 = [0] * n, [0] * n
     per_name: dict[str, tuple[Counter[str], Counter[int], list[int], list[int]]] = {}
     for sec in circuit.sections:
         gates = sec.gates
