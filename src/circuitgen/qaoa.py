@@ -139,13 +139,12 @@ class QaoaPlan:
 
     @cached_property
     def logic_width(self) -> int:
-        """Shared clean ``logic`` ancillas: the largest partial mixer or phase-separator need (at least 1 for
-        ``representatives``)."""
+        """Shared clean ``logic`` ancillas (the call graph's)."""
         return self.call_graph().logic_width
 
     @cached_property
     def work_width(self) -> int:
-        """``work`` ancillas the lowering adds for multi-controlled X with three or more controls."""
+        """``work`` ancillas the lowering adds (the call graph's)."""
         return self.call_graph().work_width
 
     @property

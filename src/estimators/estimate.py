@@ -154,8 +154,7 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
-    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built; with ``p = 0``
-    there is no phase separator and no mixer: a ``p = 0`` plan answers)."""
+    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built)."""
     plan = _plan(scenario, options) if p else _plan(scenario, options, 0)  # the cache keys by the args given
     return tuple((r.name, r.size) for r in plan.registers)
 
