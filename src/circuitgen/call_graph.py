@@ -1,38 +1,17 @@
 """The QAOA circuit as a call graph: per part a multiset of gadget kinds (Qualtran's ``build_call_graph``).
 
 A :class:`GadgetKind` is what a gadget costs, not where it sits: its key (:attr:`Gadget.kind
-<circuitgen.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its lowered and logical cost, the
-clean ``logic`` temporaries and the ``work`` ancillas it needs, and an example gadget (placed somewhere) for
-whatever needs gates: its depth profile (:mod:`estimators.depth_compose`) or, later, a device-aware routed cost.
-Kinds compare and hash by key only, so a kind found by counting classes of plaquettes on one scenario equals the
-kind of the gadget the compiler emits on another.
+<circuitgen.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its costs, the ``logic``
+temporaries and ``work`` ancillas it needs, and an example gadget for whatever needs gates (depth profiles).
+Kinds compare and hash by key only, so a kind counted by classes on one scenario equals the kind the compiler
+emits on another. A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds each part's kinds with
+their multiplicities and the shared registers' widths; every count the estimators report is a sum over it.
 
-A :class:`CallGraph` (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) holds, for the parts ``initial_state``,
-``phase`` (one layer's phase separator) and ``mixer`` (one layer's mixer), each kind with its multiplicity, and
-the widths of the shared ``logic`` and ``work`` registers. Every count the estimators report is a sum over it;
-binding kinds to qubits happens only when a circuit is emitted (:meth:`circuitgen.qaoa.QaoaPlan.circuit`).
-
-Everything known per kind is looked up by the kind's key in one explicit cache (:data:`COSTS`): a sweep over
-thousands of scenarios prices each kind once. It holds the lowered and logical cost of every kind (asked of
-:class:`GadgetKind`, and of the gadget classes that price themselves per kind: mixer junctions and visit-bit phase
-gadgets; a :class:`Deferred` kind, one scenario's own, carries its costs and takes no entry) and, as named
-tables, the per-kind depth facts of :mod:`estimators.depth_compose` (``"anchored profile"``, ``"own depth"``) and
-:mod:`estimators.estimate` (``"depth bound"``);
-:meth:`CostCache.clear` forgets all of it. The memos that remain elsewhere hold a
-different concept, not a kind's cost or depth:
-
-* per scenario (the plan and what is summed over it), at most :data:`SCENARIOS_KEPT` scenarios each:
-  ``estimators.estimate`` (``_plan``, ``layered_depth``, ``_layer_depth_bounds``, the scenario parsers),
-  ``mixer_classes.mixer_part`` and ``phase_classes.phase_layer`` (the call graph's parts), ``phase_classes._grid``
-  (edge arrays of a grid);
-* geometry: ``mixer_classes._signature`` (a plaquette's local picture), ``gridcover.sbf``;
-* the phase separator's decisions per term-group shape, before any kind exists: ``phase_choice.visit_choice``
-  and ``phase_choice.hamming_choice`` (asked by the plan and by the classes alike);
-* constructions keyed by their inputs, not by a kind: the partial mixers' searched plans
-  (``plan_parity_mixer``, ``plan_mcx_mixer``), ``phase_sums._abstract_phase`` (gates on abstract registers),
-  ``gates._permutation_matrix``, and ``depth_compose``'s transfer matrices per lowered gate structure;
-* leaf gates' costs (``gadgets.leaves``: the lowering table, below any kind), named devices, the registered
-  gadget examples, and the symbolic tables of ``estimators.formulas``.
+Everything known per kind (its costs; the estimators' per-kind depth facts as named tables) is looked up by the
+kind's key in one explicit cache, :data:`COSTS`. The other memos hold other concepts: per-scenario results (at
+most :data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
+:mod:`circuitgen.phase_choice`, constructions keyed by their inputs (the partial mixers' searched plans,
+``depth_compose``'s transfer matrices per gate structure), leaf gate costs and the symbolic formula tables.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -62,8 +41,7 @@ PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
 
 
 class CostCache:
-    """What is known per kind key, computed once: lowered and logical cost, and named tables of other per-kind
-    facts (the estimators' depth profiles); the one cache of gadget kinds (see the module docstring).
+    """What is known per kind key, computed once: named tables, the costs one of them (see the module docstring).
 
     Example:
         >>> from circuitgen.gadgets.phase_ising import IsingPhase
@@ -76,24 +54,18 @@ class CostCache:
     """
 
     def __init__(self, limit: int = 1 << 16) -> None:
-        self._costs: dict[Hashable, tuple[Cost, Cost]] = {}
-        self._limit = limit
         self._tables: dict[str, dict[Hashable, Any]] = {}
         self._limits: dict[str, int] = {}
+        self._costs = self.table("costs", limit)  # a long sweep meets few kinds; a bound keeps memory flat anyway
 
     def costs(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
         """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (a :class:`GadgetKind`
         asks its example; a gadget class that prices itself per kind, itself)."""
         hit = self._costs.get(key)
         if hit is None:
-            hit = self._store(key, compute())
+            hit = compute()
+            self.remember("costs", key, hit)
         return hit
-
-    def _store(self, key: Hashable, value: tuple[Cost, Cost]) -> tuple[Cost, Cost]:
-        if len(self._costs) >= self._limit:  # a long sweep meets few kinds; a bound keeps memory flat anyway
-            self._costs.clear()
-        self._costs[key] = value
-        return value
 
     def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
         """The table ``name`` (per kind key; created empty with at most ``limit`` entries on first use). Read it
@@ -111,26 +83,24 @@ class CostCache:
 
     def clear(self) -> None:
         """Forget everything (tests that count work); the tables stay the same objects."""
-        self._costs.clear()
         for table in self._tables.values():
             table.clear()
 
     def __len__(self) -> int:
-        return len(self._costs) + sum(len(t) for t in self._tables.values())
+        return sum(len(t) for t in self._tables.values())
 
 
 COSTS = CostCache()
 """The process-wide cost cache of :class:`GadgetKind`."""
 
 SCENARIOS_KEPT = 8
-"""How many scenarios each per-scenario memo keeps (the plan, the call graph's parts, the depth bound): a sweep asks
-``p = 1..P`` of one scenario in a row, and a kept scenario keeps its plan and its grid's tables alive (megabytes
-each at 40x40)."""
+"""How many scenarios each per-scenario memo keeps: a sweep asks ``p = 1..P`` of one scenario in a row, and a kept
+scenario keeps its plan and its grid's tables alive (megabytes each at 40x40)."""
 
 
 class PricedByKind:
-    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself once per kind in
-    :data:`COSTS` (the class gives ``_kind_costs() -> (cost, logical cost)``)."""
+    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself (``_kind_costs() ->
+    (cost, logical cost)``) once per kind in :data:`COSTS`."""
 
     kind: Hashable
 
@@ -188,22 +158,24 @@ class GadgetKind:
     def __post_init__(self) -> None:
         object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
+    def costs(self) -> tuple[Cost, Cost]:
+        """``(lowered cost, logical cost)``: from :data:`COSTS`, or a :class:`Deferred` example's own (its key is
+        one scenario's: no entry)."""
+        if isinstance(self.example, Deferred):
+            return self.example.lowered, self.example.logical
+        return COSTS.costs(self._hashed, self._priced)  # type: ignore[attr-defined]
+
     def cost(self) -> Cost:
-        """Lowered cost (from :data:`COSTS`; a :class:`Deferred` example's own)."""
-        if isinstance(self.example, Deferred):  # priced when counted, and its key is one scenario's: no entry
-            return self.example.lowered
-        return COSTS.costs(self._hashed, self._priced)[0]  # type: ignore[attr-defined]
+        """Lowered cost."""
+        return self.costs()[0]
 
     def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole (from :data:`COSTS`; a :class:`Deferred` example's own)."""
-        if isinstance(self.example, Deferred):
-            return self.example.logical
-        return COSTS.costs(self._hashed, self._priced)[1]  # type: ignore[attr-defined]
+        """Cost with ANDs and Toffolis kept whole."""
+        return self.costs()[1]
 
     @property
     def cache_key(self) -> Hashable:
-        """The key (hashed once) by which :data:`COSTS` and its tables know this kind (it holds no example, so
-        no gadget stays alive in a cache)."""
+        """The key (hashed once, holding no example) by which :data:`COSTS` and its tables know this kind."""
         return self._hashed  # type: ignore[attr-defined,no-any-return]
 
     def _priced(self) -> tuple[Cost, Cost]:
@@ -218,16 +190,14 @@ class GadgetKind:
 
 @dataclass(frozen=True, eq=False)
 class Deferred:
-    """A gadget known by its kind and cost, built only when its gates are asked for (a kind found by counting
-    classes whose example would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
+    """A gadget known by its kind and cost, built only when its gates are asked for (a counted kind whose example
+    would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
 
     Attributes:
-        kind: the kind key the built gadget has.
-        lowered, logical: its costs.
+        kind, lowered, logical, num_ancillas: the built gadget's kind key, costs and clean ancillas.
         build: builds the gadget (placed on qubits).
-        shape: what its cost depends on, when that is more than the costs (the balance's
-            :class:`~circuitgen.gadgets.phase_sums.SumsShape`), else ``None``.
-        num_ancillas: clean ancillas it uses.
+        shape: the balance's :class:`~circuitgen.gadgets.phase_sums.SumsShape` (what its cost depends on), else
+            ``None``.
     """
 
     kind: Hashable
@@ -262,8 +232,8 @@ def needs(gadget: Any) -> tuple[int, int]:
     if isinstance(gadget, MixerRotation):
         return needs(gadget.mixer)
     if isinstance(gadget, MixerJunction):
-        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]
-        return max((t for t, _ in sides), default=0), max((w for _, w in sides), default=0)
+        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]  # one side at least
+        return max(t for t, _ in sides), max(w for _, w in sides)
     if isinstance(gadget, VisitPhase):
         return visit_ancillas(tuple(len(v) for v in gadget.visitors), gadget.products), 0
     gates = getattr(gadget, "gates", None)
@@ -278,8 +248,7 @@ class CallGraph:
 
     Attributes:
         parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer).
-        logic_width: the shared clean ``logic`` register.
-        work_width: the ``work`` register the lowering adds.
+        logic_width, work_width: the shared clean ``logic`` register and the ``work`` register the lowering adds.
     """
 
     parts: Mapping[str, Mapping[GadgetKind, int]]

@@ -1,35 +1,17 @@
-"""The mixer's call graph without building its partial mixers: counts of local *signatures* on an open grid.
+"""The mixer's call graph without building its partial mixers: counts of local pictures on an open grid.
 
-A partial mixer's logic program (:func:`gridcover.sbf.sbf_logic`) depends only on the plaquette's local
-picture (:class:`gridcover.sbf.LocalPicture`): whether each corner is an endpoint of the robot, how many variable
-outer edges each corner has, and whether start and goal are the plaquette's diagonal. Equal pictures give equal
-programs up to the edges' names, hence equal gadget kinds (:func:`circuitgen.gadgets.partial_mixer.partial_mixer`).
-On a grid without obstacles the picture of a plaquette that touches neither endpoint of a robot depends only on
-whether its rows and columns lie on the boundary (corner degree 2, 3 or 4: outer edges = degree - 2), so one
-robot's partial mixers are
-
-    base counts of the grid (at most 9 classes, counted arithmetically)
-    - the classes of the <= 8 plaquettes around its start and goal + their own pictures,
-
-and the whole layer is a sum over robots of ``O(1)`` corrections: ``O(robots)`` work per scenario, whatever the
-grid size.
-
-The parity-basis partial mixers of a layer are cut at their rotations (:mod:`circuitgen.gadgets.junction`): the
-layer is one rotation per partial mixer, one junction per ordered pair of consecutive partial mixers, and the
-two open ends. A junction's kind depends on the two pictures and on where the second plaquette lies relative to
-the first (its offset ``(di, dj)``; plaquettes more than two rows or columns apart, or of different robots, share
-only the temporaries: ``far``), so the pairs are counted the same way: the horizontal neighbours
-``(i, j) -> (i, j + 1)`` and the row wraps ``(i, cols - 2) -> (i + 1, 0)`` of the plain grid by classes of rows
-and columns, minus the pairs next to a robot's endpoints plus their own, plus one pair between consecutive robots.
-
-Each signature's partial mixer and each junction class's kind is built once (from a real plaquette) and kept
-for every later scenario. :meth:`circuitgen.qaoa.QaoaPlan.call_graph` uses this on grids without obstacles;
-``tests/circuitgen/call_graph_test.py`` checks it against the call graph of the emitted gadgets.
+A partial mixer's kind depends only on its plaquette's local picture (:class:`gridcover.sbf.LocalPicture`). On a
+grid without obstacles the picture of a plaquette that touches no endpoint of its robot depends only on whether its
+row and column are the first, the last or neither, so one robot's partial mixers are the plain grid's classes
+(:func:`class_counts`) with the <= 8 plaquettes around its start and goal moved to their own pictures:
+``O(robots)`` work per scenario, whatever the grid size. The junctions between consecutive partial mixers
+(:mod:`circuitgen.gadgets.junction`) are counted the same way: a junction's kind depends on the two pictures and
+on the second plaquette's offset (``far`` beyond two rows or columns, or across robots). Each picture's partial
+mixer and each junction class's kind is built once, on a real plaquette, for every later scenario.
 
 Example:
     >>> from gridcover.presets import default_scenario
-    >>> s = default_scenario(6, 5, 3)
-    >>> layer = mixer_part(s)
+    >>> layer = mixer_part(default_scenario(6, 5, 3))
     >>> sum(n for _, n in layer.kinds) == 3 * 4 * 5 * 2 + 1   # rotations, junctions between them, two ends
     True
 """
@@ -37,25 +19,25 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 from functools import lru_cache
+from itertools import groupby, pairwise
 from typing import Any
 
 from gridcover.sbf import LocalPicture
-from gridcover.scenario import Scenario
+from gridcover.scenario import Robot, Scenario
 
 from .angles import Angle
 from .call_graph import SCENARIOS_KEPT, GadgetKind
 from .gadgets.junction import MixerJunction, MixerRotation
 from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
 
-__all__ = ["MixerPart", "index_classes", "mixer_part"]
+__all__ = ["MixerPart", "boundary", "class_counts", "index_classes", "mixer_part"]
 
 _BETA = Angle.symbol("beta_0")  # symbolic, as in the circuit: a numeric 0 would let the lowering drop rotations
-Node = tuple[int, int]
-Signature = LocalPicture
 Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
+Mixer = ParityPartialMixer | McxPartialMixer
 
 
 @dataclass(frozen=True)
@@ -64,36 +46,25 @@ class MixerPart:
 
     Attributes:
         kinds: ``(kind, multiplicity)`` pairs (a kind may appear more than once: the call graph merges them).
-        logic_width: ``logic`` ancillas the largest partial mixer needs.
-        work_need: ``work`` ancillas its largest multi-controlled X needs.
     """
 
     kinds: tuple[tuple[GadgetKind, Count], ...]
-    logic_width: int
-    work_need: int
 
+    @property
+    def logic_width(self) -> int:
+        """``logic`` ancillas the largest partial mixer needs."""
+        return max((k.temporaries for k, _ in self.kinds), default=0)
 
-def _corners(i: int, j: int) -> tuple[Node, Node, Node, Node]:
-    return (i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j)
-
-
-def _outer(node: Node, rows: int, cols: int) -> int:
-    r, c = node
-    return 2 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
-
-
-@lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
-def _signature(i: int, j: int, rows: int, cols: int, start: Node | None, goal: Node | None) -> Signature:
-    """The :class:`~gridcover.sbf.LocalPicture` of plaquette ``(i, j)`` on an open grid."""
-    corners = _corners(i, j)
-    return LocalPicture.of(corners, start, goal, [_outer(c, rows, cols) for c in corners])
+    @property
+    def work_need(self) -> int:
+        """``work`` ancillas its largest multi-controlled X needs."""
+        return max((k.work for k, _ in self.kinds), default=0)
 
 
 def index_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     """``(representative, count)`` of the indices ``0 .. n-1`` by whether each is the first, the last or neither
-    (all a local picture on an open grid reads of a position along a side: plaquette rows, nodes, consecutive
-    pairs); the counts for ``size`` indices (default ``n``; a sympy expression in the closed forms of
-    :mod:`estimators.formulas`).
+    (all a local picture on an open grid reads of a position along a side), counted for ``size`` indices
+    (default ``n``; a sympy expression in the closed forms of :mod:`estimators.formulas`).
 
     >>> index_classes(5), index_classes(2), index_classes(1)
     ([(0, 1), (4, 1), (1, 3)], [(0, 1), (1, 1)], [(0, 1)])
@@ -106,39 +77,88 @@ def index_classes(n: int, size: Count | None = None) -> list[tuple[int, Count]]:
     return out
 
 
-def _touching(node: Node, rows: int, cols: int) -> list[tuple[int, int]]:
-    r, c = node
-    return [(i, j) for i in (r - 1, r) for j in (c - 1, c) if 0 <= i < rows - 1 and 0 <= j < cols - 1]
+def class_counts(
+    dims: tuple[int, int], sizes: tuple[Count, Count], key: Callable[[int, int], Hashable]
+) -> Counter[Hashable]:
+    """The one class-signature mechanism: how many positions ``(i, j)`` of a ``dims`` array have each class
+    ``key(i, j)`` (a key that reads only whether ``i`` and ``j`` are first, last or neither), counted for an array
+    of ``sizes``.
+
+    >>> class_counts((3, 4), (3, 4), lambda i, j: (i == 0, j == 0))[(False, False)]
+    6
+    """
+    counts: Counter[Hashable] = Counter()
+    for i, ni in index_classes(dims[0], sizes[0]):
+        for j, nj in index_classes(dims[1], sizes[1]):
+            counts[key(i, j)] += ni * nj
+    return counts
 
 
-Mixer = ParityPartialMixer | McxPartialMixer
-_REPRESENTATIVE: dict[tuple[Signature, str, str], Mixer | None] = {}
-"""A partial mixer per signature, rule and target (``None``: no flip is ever allowed), for every later scenario."""
+def boundary(r: int, c: int, rows: int, cols: int) -> int:
+    """How many sides of the grid node ``(r, c)`` lies on: its degree on an open grid is ``4 - boundary``."""
+    return (r == 0) + (r == rows - 1) + (c == 0) + (c == cols - 1)
 
 
+@lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
+def _signature(k: int, rows: int, cols: int, robot: Robot | None) -> LocalPicture:
+    """The local picture of plaquette ``k`` (row-major) on an open grid (``robot``: whose endpoints it shows)."""
+    i, j = divmod(k, cols - 1)
+    corners = (i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j)
+    ends = (None, None) if robot is None else (robot.start, robot.goal)
+    return LocalPicture.of(corners, *ends, [2 - boundary(*c, rows, cols) for c in corners])
+
+
+def _touched(robot: Robot, rows: int, cols: int) -> set[int]:
+    """The plaquettes (row-major) with a corner at the robot's start or goal."""
+    return {i * (cols - 1) + j for r, c in (robot.start, robot.goal) for i in (r - 1, r) for j in (c - 1, c)
+            if 0 <= i < rows - 1 and 0 <= j < cols - 1}  # fmt: skip
+
+
+_REPRESENTATIVE: dict[tuple[LocalPicture, str, str], Mixer | None] = {}
+"""A partial mixer per picture, rule and target (``None``: no flip is ever allowed), for every later scenario."""
 _KINDS: dict[Hashable, tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]] = {}
+_JUNCTION: dict[tuple[Hashable, str, str], GadgetKind] = {}
+"""The kind of each junction class, rule and target (from its first realisation), for every later scenario."""
 
 
 def _kinds_of(m: Mixer) -> tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]:
     """A representative's kinds: itself, its rotation, the layer's opening junction into it and the closing one
-    out of it (kept per partial-mixer kind: a sweep meets the same few again and again)."""
-    hit = _KINDS.get(m.kind)
-    if hit is None:
-        rotation = MixerRotation(m) if isinstance(m, ParityPartialMixer) else m
-        opening = MixerJunction(None, m) if isinstance(m, ParityPartialMixer) else m
-        closing = MixerJunction(m, None) if isinstance(m, ParityPartialMixer) else m
-        hit = _KINDS[m.kind] = tuple(GadgetKind.of(g) for g in (m, rotation, opening, closing))  # type: ignore[assignment]
-    return hit  # type: ignore[return-value]
+    out of it (kept per partial-mixer kind)."""
+    if m.kind not in _KINDS:
+        parity = isinstance(m, ParityPartialMixer)
+        pieces = (m, MixerRotation(m), MixerJunction(None, m), MixerJunction(m, None)) if parity else (m,) * 4
+        _KINDS[m.kind] = tuple(GadgetKind.of(g) for g in pieces)  # type: ignore[assignment]
+    return _KINDS[m.kind]
 
 
-def _representative(
-    sig: Signature, rule: str, target: str, scenario: Scenario, robot: int, ij: tuple[int, int]
+def _placed(scenario: Scenario, robot: int, k: int, rule: str, target: str) -> Mixer | None:
+    """The partial mixer of ``robot`` on plaquette ``k`` of this scenario (on its qubits)."""
+    return partial_mixer(scenario, robot, scenario.grid.plaquettes[k], _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+
+
+def _mixer(
+    scenario: Scenario, sig: Hashable, rule: str, target: str, where: tuple[int, int] | None,
+    plain: Callable[[int], Hashable] | None = None,
 ) -> Mixer | None:
-    key = (sig, rule, target)
-    if key not in _REPRESENTATIVE:
-        plaq = scenario.grid.plaquettes[ij[0] * (scenario.grid.cols - 1) + ij[1]]
-        _REPRESENTATIVE[key] = partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
-    return _REPRESENTATIVE[key]
+    """The partial mixer of the picture ``sig`` (``None``: no flip is ever allowed), built the first time on
+    ``where = (robot, plaquette)`` of this scenario (``None``: a plaquette whose plain picture it is) and kept for
+    every later scenario."""
+    if (sig, rule, target) not in _REPRESENTATIVE:
+        robot, k = where or _realise(scenario, sig, plain, 1)  # type: ignore[arg-type]
+        _REPRESENTATIVE[sig, rule, target] = _placed(scenario, robot, k, rule, target)
+    return _REPRESENTATIVE[sig, rule, target]
+
+
+def _realise(scenario: Scenario, key: Hashable, plain: Callable[[int], Hashable], span: int) -> tuple[int, int]:
+    """A robot and a plaquette index ``k`` whose plain class ``plain(k)`` is ``key`` and whose ``span`` plaquettes
+    from ``k`` on (1: a plaquette, 2: a junction's pair) touch none of the robot's endpoints."""
+    g = scenario.grid
+    for robot, rb in enumerate(scenario.robots):
+        touched = _touched(rb, g.rows, g.cols)
+        for k in range((g.rows - 1) * (g.cols - 1) - span + 1):
+            if touched.isdisjoint(range(k, k + span)) and plain(k) == key:
+                return robot, k
+    raise AssertionError(f"no plaquette realises the class {key}")  # pragma: no cover - counts come from these
 
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
@@ -149,17 +169,16 @@ def mixer_part(
     fuse: bool = True,
     sizes: tuple[Count, Count] | None = None,
 ) -> MixerPart:
-    """One layer's mixer as gadget kinds by signature counting (see the module docstring).
+    """One layer's mixer as gadget kinds by counting local pictures (see the module docstring).
 
     Args:
         scenario: a scenario without obstacles.
         rule: SBF rule.
         target: ``nisq`` or ``ft``.
-        fuse: cut the parity-basis partial mixers at their rotations (junctions and rotations; the circuit's
-            default), or list the partial mixers themselves.
+        fuse: list rotations and junctions (the circuit's default), or the partial mixers themselves.
         sizes: count the classes for a grid of ``sizes = (rows, cols)`` nodes (sympy expressions, for the
-            closed forms of :mod:`estimators.formulas`) rather than the scenario's: the scenario then stands for
-            every grid with the same endpoints near its corners (sides of at least 5 nodes where symbolic).
+            closed forms of :mod:`estimators.formulas`): the scenario then stands for every grid with the same
+            endpoints near its corners (sides of at least 5 nodes where symbolic).
 
     Returns:
         The :class:`MixerPart`.
@@ -169,201 +188,94 @@ def mixer_part(
     """
     if scenario.obstacles:
         raise ValueError("signature counting needs a grid without obstacles")
-    g = scenario.grid
-    rows, cols = g.rows, g.cols
-    base: Counter[Signature] = Counter()
-    where: dict[Signature, tuple[int, int]] = {}
-    size_r, size_c = sizes if sizes is not None else (rows, cols)
-    for i, ni in index_classes(rows - 1, size_r - 1):  # plaquette rows and columns
-        for j, nj in index_classes(cols - 1, size_c - 1):
-            sig = _signature(i, j, rows, cols, None, None)
-            base[sig] += ni * nj
-            where.setdefault(sig, (i, j))
-    counts: Counter[Signature] = Counter()
-    reps: dict[Signature, tuple[int, tuple[int, int]]] = {}
+    rows, cols = scenario.grid.rows, scenario.grid.cols
+    sizes = sizes if sizes is not None else (rows, cols)
+
+    def plain(k: int) -> LocalPicture:
+        return _signature(k, rows, cols, None)
+
+    base = class_counts((rows - 1, cols - 1), (sizes[0] - 1, sizes[1] - 1), lambda i, j: plain(i * (cols - 1) + j))
+    counts: Counter[Hashable] = Counter()
+    at: dict[Hashable, tuple[int, int]] = {}  # where a touched plaquette's own picture is
     for robot, rb in enumerate(scenario.robots):
         counts.update(base)
-        touched = set(_touching(rb.start, rows, cols)) | set(_touching(rb.goal, rows, cols))
-        for i, j in touched:
-            plain = _signature(i, j, rows, cols, None, None)
-            own = _signature(i, j, rows, cols, rb.start, rb.goal)
-            counts[plain] -= 1
+        for k in _touched(rb, rows, cols):
+            own = _signature(k, rows, cols, rb)
+            counts[plain(k)] -= 1
             counts[own] += 1
-            reps.setdefault(own, (robot, (i, j)))
-        for sig, ij in where.items():  # a plain representative this robot does not touch
-            if sig not in reps and ij not in touched:
-                reps[sig] = (robot, ij)
+            at.setdefault(own, (robot, k))
     fused = rule == "exact" and fuse  # only the parity-basis partial mixers are fused (circuitgen.gadgets.junction)
     kinds: list[tuple[GadgetKind, Count]] = []
-    width = work = 0
-    for sig, n in counts.items():
-        if n == 0:  # (never negative: corrections remove members of a class)
-            continue
-        if sig not in reps:  # every robot touches the class's first plaquette: find another of that class
-            reps[sig] = _find(scenario, sig)
-        robot, ij = reps[sig]
-        m = _representative(sig, rule, target, scenario, robot, ij)
-        if m is None:
-            continue
-        kind, rotation, _, _ = _kinds_of(m)
-        width, work = max(width, kind.temporaries), max(work, kind.work)
-        kinds.append((rotation if fused else kind, n))
+    for sig, n in counts.items():  # (never negative: corrections remove members of a class)
+        m = _mixer(scenario, sig, rule, target, at.get(sig), plain) if n != 0 else None
+        if m is not None:
+            kind, rotation, _, _ = _kinds_of(m)
+            kinds.append((rotation if fused else kind, n))
     if fused:
-        kinds += _junction_kinds(scenario, rule, target, (size_r, size_c))
-    return MixerPart(tuple(kinds), width, work)
+        kinds += _junction_kinds(scenario, rule, target, sizes)
+    return MixerPart(tuple(kinds))
 
 
-def _find(scenario: Scenario, sig: Signature) -> tuple[int, tuple[int, int]]:
-    g = scenario.grid
-    for robot, rb in enumerate(scenario.robots):
-        for i in range(g.rows - 1):
-            for j in range(g.cols - 1):
-                if _signature(i, j, g.rows, g.cols, rb.start, rb.goal) == sig:
-                    return robot, (i, j)
-    raise AssertionError(f"no plaquette has the signature {sig}")  # pragma: no cover - counts come from these
-
-
-# --- junctions between consecutive partial mixers ---------------------------------------------------------------
-Pair = tuple[Signature, Signature, Hashable]
-"""A junction class: the two pictures and the offset of the second plaquette (or ``far``)."""
-
-
-def _relation(a: tuple[int, int], b: tuple[int, int]) -> Hashable:
-    di, dj = b[0] - a[0], b[1] - a[1]
-    return (di, dj) if abs(di) <= 2 and abs(dj) <= 2 else "far"
-
-
-def _plain_pair(a: tuple[int, int], b: tuple[int, int], rows: int, cols: int) -> Pair:
-    return (
-        _signature(*a, rows, cols, None, None),
-        _signature(*b, rows, cols, None, None),
-        _relation(a, b),
-    )
-
-
-def _junction_counts(
-    scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
-) -> tuple[Counter[tuple[Pair, tuple]], tuple[int, tuple[int, int]] | None, tuple[int, tuple[int, int]] | None]:
-    """How many junctions of each class one layer has, with a realisation of each: ``((class, realisation),
-    count)``, a realisation being ``(robot_a, (i, j)_a, robot_b, (i, j)_b)``; and the layer's first and last
-    partial mixer ``(robot, (i, j))`` (``None`` if it has none)."""
-    g = scenario.grid
-    rows, cols = g.rows, g.cols
-    prow, pcol = rows - 1, cols - 1  # plaquettes per column and per row
-    total = prow * pcol
-
-    def at(k: int) -> tuple[int, int]:
-        return divmod(k, pcol)
-
-    # one robot's plain pairs: horizontal neighbours and row wraps, by classes
-    base: Counter[Pair] = Counter()
-    where: dict[Pair, tuple[tuple[int, int], tuple[int, int]]] = {}
-    for i, ni in index_classes(prow, sizes[0] - 1):
-        for j, nj in index_classes(pcol - 1, sizes[1] - 2):
-            key = _plain_pair((i, j), (i, j + 1), rows, cols)
-            base[key] += ni * nj
-            where.setdefault(key, ((i, j), (i, j + 1)))
-    for i, ni in index_classes(prow - 1, sizes[0] - 2):
-        key = _plain_pair((i, pcol - 1), (i + 1, 0), rows, cols)
-        base[key] += ni
-        where.setdefault(key, ((i, pcol - 1), (i + 1, 0)))
-
-    def present(robot: int, ij: tuple[int, int]) -> bool:
-        rb = scenario.robots[robot]
-        sig = _signature(*ij, rows, cols, rb.start, rb.goal)
-        return _representative(sig, rule, target, scenario, robot, ij) is not None
-
-    counts: Counter[tuple[Pair, tuple]] = Counter()
-    plain_counts: Counter[Pair] = Counter()
-    used: dict[Pair, tuple] = {}  # a realisation of each plain class by an untouched pair
-    ends: list[tuple[int, int] | None] = []  # per robot: first and last present plaquette index
-    for robot, rb in enumerate(scenario.robots):
-        plain_counts.update(base)
-        touched = {i * pcol + j for node in (rb.start, rb.goal) for i, j in _touching(node, rows, cols)}
-        affected = sorted({a for k in touched for a in (k - 1, k) if 0 <= a < total - 1})
-        for a in affected:
-            plain_counts[_plain_pair(at(a), at(a + 1), rows, cols)] -= 1
-        # the actual pairs over each run of affected pairs (absent partial mixers skipped)
-        run: list[int] = []
-        for a in [*affected, None]:
-            if a is not None and (not run or a == run[-1] + 1):
-                run.append(a)
-                continue
-            if run:
-                nodes = [k for k in range(run[0], run[-1] + 2) if k not in touched or present(robot, at(k))]
-                for u, v in zip(nodes, nodes[1:], strict=False):
-                    sa = _signature(*at(u), rows, cols, rb.start, rb.goal)
-                    sb = _signature(*at(v), rows, cols, rb.start, rb.goal)
-                    counts[((sa, sb, _relation(at(u), at(v))), (robot, at(u), robot, at(v)))] += 1
-            run = [a] if a is not None else []
-        for key, (pa, pb) in where.items():
-            if key not in used and not {pa[0] * pcol + pa[1], pb[0] * pcol + pb[1]} & touched:
-                used[key] = (robot, pa, robot, pb)
-        first = next((k for k in range(total) if k not in touched or present(robot, at(k))), None)
-        last = next((k for k in reversed(range(total)) if k not in touched or present(robot, at(k))), None)
-        ends.append(None if first is None else (first, last))  # type: ignore[arg-type]
-    for key, n in plain_counts.items():
-        if n != 0:
-            counts[(key, used.get(key) or _find_pair(scenario, key))] += n
-    # one junction between consecutive robots (skipping robots with no partial mixer)
-    prev: tuple[int, int] | None = None
-    head: tuple[int, tuple[int, int]] | None = None
-    for robot, span in enumerate(ends):
-        if span is None:
-            continue
-        if prev is not None:
-            ra, ka = prev
-            rba, rbb = scenario.robots[ra], scenario.robots[robot]
-            sa = _signature(*at(ka), rows, cols, rba.start, rba.goal)
-            sb = _signature(*at(span[0]), rows, cols, rbb.start, rbb.goal)
-            counts[((sa, sb, "far"), (ra, at(ka), robot, at(span[0])))] += 1
-        else:
-            head = (robot, at(span[0]))
-        prev = (robot, span[1])
-    return counts, head, None if prev is None else (prev[0], at(prev[1]))
-
-
-def _find_pair(scenario: Scenario, key: Pair) -> tuple:
-    """A realisation of a plain junction class by a pair neither of whose plaquettes touches its robot's
-    endpoints (every robot touched the class's first pair)."""
-    g = scenario.grid
-    rows, cols, pcol = g.rows, g.cols, g.cols - 1
-    for robot, rb in enumerate(scenario.robots):
-        touched = {(i, j) for node in (rb.start, rb.goal) for i, j in _touching(node, rows, cols)}
-        for k in range((rows - 1) * pcol - 1):
-            a, b = divmod(k, pcol), divmod(k + 1, pcol)
-            if a not in touched and b not in touched and _plain_pair(a, b, rows, cols) == key:
-                return (robot, a, robot, b)
-    raise AssertionError(f"no pair realises the junction class {key}")  # pragma: no cover
-
-
-_JUNCTION: dict[tuple[Pair, str, str], GadgetKind] = {}
-"""The kind of each junction class, rule and target (from its first realisation), for every later scenario."""
+def _relation(a: int, b: int, cols: int) -> Hashable:
+    (ia, ja), (ib, jb) = divmod(a, cols - 1), divmod(b, cols - 1)
+    return (ib - ia, jb - ja) if abs(ib - ia) <= 2 and abs(jb - ja) <= 2 else "far"
 
 
 def _junction_kinds(
     scenario: Scenario, rule: str, target: str, sizes: tuple[Count, Count]
 ) -> list[tuple[GadgetKind, Count]]:
-    """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers, and the two open
-    ends (the first compute, the last uncompute)."""
-    g = scenario.grid
-    counts, head, tail = _junction_counts(scenario, rule, target, sizes)
+    """The junctions of one layer as kinds: one per ordered pair of consecutive partial mixers (the plain grid's
+    horizontal neighbours and row wraps, those next to a robot's endpoints replaced by its own, one between
+    consecutive robots), and the two open ends (the first compute, the last uncompute)."""
+    rows, cols = scenario.grid.rows, scenario.grid.cols
+    pcol, total = cols - 1, (rows - 1) * (cols - 1)
 
-    def mixer(robot: int, ij: tuple[int, int]) -> Mixer | None:
-        rb = scenario.robots[robot]
-        return _representative(_signature(*ij, g.rows, g.cols, rb.start, rb.goal), rule, target, scenario, robot, ij)
+    def plain(k: int) -> Hashable:  # the plain class of the pair (k, k + 1)
+        return _signature(k, rows, cols, None), _signature(k + 1, rows, cols, None), _relation(k, k + 1, cols)
 
-    def placed(robot: int, ij: tuple[int, int]) -> Mixer | None:  # on this scenario's qubits: the overlap counts
-        plaq = g.plaquettes[ij[0] * (g.cols - 1) + ij[1]]
-        return partial_mixer(scenario, robot, plaq, _BETA, scenario.num_variables, rule, target)  # type: ignore[arg-type]
+    def mixer(robot: int, k: int) -> Mixer | None:
+        return _mixer(scenario, _signature(k, rows, cols, scenario.robots[robot]), rule, target, (robot, k))
 
+    def present(robot: int, k: int) -> bool:
+        return mixer(robot, k) is not None
+
+    # one robot's plain pairs: horizontal neighbours and row wraps
+    base = class_counts((rows - 1, pcol - 1), (sizes[0] - 1, sizes[1] - 2), lambda i, j: plain(i * pcol + j))
+    base.update(class_counts((rows - 2, 1), (sizes[0] - 2, 1), lambda i, _: plain(i * pcol + pcol - 1)))
+    counts: Counter[tuple[Hashable, tuple[int, int, int, int] | None]] = Counter()  # (class, realisation or None)
+    ends: list[tuple[int, int, int]] = []  # per robot with partial mixers: (robot, first, last) present plaquette
+    for robot, rb in enumerate(scenario.robots):
+        counts.update({(key, None): n for key, n in base.items()})
+        touched = _touched(rb, rows, cols)
+        affected = sorted({a for k in touched for a in (k - 1, k) if 0 <= a < total - 1})
+        for a in affected:
+            counts[(plain(a), None)] -= 1
+        for _, group in groupby(enumerate(affected), lambda t: t[1] - t[0]):  # runs of consecutive affected pairs
+            run = [a for _, a in group]  # their actual pairs, absent partial mixers skipped:
+            nodes = [k for k in range(run[0], run[-1] + 2) if k not in touched or present(robot, k)]
+            for u, v in pairwise(nodes):
+                pair = (_signature(u, rows, cols, rb), _signature(v, rows, cols, rb), _relation(u, v, cols))
+                counts[(pair, (robot, u, robot, v))] += 1
+        first_k = next((k for k in range(total) if k not in touched or present(robot, k)), None)
+        if first_k is not None:
+            last_k = next(k for k in reversed(range(total)) if k not in touched or present(robot, k))
+            ends.append((robot, first_k, last_k))
+    for (ra, _, ka), (rb, kb, _) in pairwise(ends):  # one junction between consecutive robots
+        pair = (_signature(ka, rows, cols, scenario.robots[ra]), _signature(kb, rows, cols, scenario.robots[rb]))
+        counts[((*pair, "far"), (ra, ka, rb, kb))] += 1
     out = []
-    for (key, (ra, a, rb, b)), n in counts.items():
-        kind = _JUNCTION.get((key, rule, target))
-        if kind is None:
-            kind = _JUNCTION[(key, rule, target)] = GadgetKind.of(MixerJunction(placed(ra, a), placed(rb, b)))  # type: ignore[arg-type]
-        out.append((kind, n))
-    if head is not None and tail is not None:
-        out.append((_kinds_of(mixer(*head))[2], 1))  # type: ignore[arg-type]
-        out.append((_kinds_of(mixer(*tail))[3], 1))  # type: ignore[arg-type]
+    for (key, at), n in counts.items():
+        if n == 0:
+            continue
+        if (key, rule, target) not in _JUNCTION:
+            if at is None:  # a plain class, realised by a pair no robot's endpoint touches
+                robot, k = _realise(scenario, key, plain, 2)
+                at = (robot, k, robot, k + 1)
+            ra, a, rb, b = at
+            junction = MixerJunction(_placed(scenario, ra, a, rule, target), _placed(scenario, rb, b, rule, target))
+            _JUNCTION[(key, rule, target)] = GadgetKind.of(junction)
+        out.append((_JUNCTION[(key, rule, target)], n))
+    if ends:
+        out.append((_kinds_of(mixer(*ends[0][:2]))[2], 1))  # type: ignore[arg-type]
+        out.append((_kinds_of(mixer(ends[-1][0], ends[-1][2]))[3], 1))  # type: ignore[arg-type]
     return out

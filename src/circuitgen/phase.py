@@ -55,7 +55,7 @@ from .phase_choice import (
     coupling_cost,
     couplings_floor,
     ft_t_count,
-    hamming_choice,
+    hamming_groups,
     plan_score,
     score,
     sums_constructions,
@@ -506,17 +506,10 @@ def _assemble(
     hamming: list[tuple[float, tuple[int, ...]]] = []
     if target == "ft" and optimize == "cx":
         coupled = {q for k in quad for q in k}
-        classes: dict[float, list[int]] = {}
-        for q, v in sorted(lin.items()):
-            if q not in coupled and abs(v) > COEFFICIENT_TOLERANCE:
-                classes.setdefault(round(v, 12), []).append(q)
+        uncoupled = [(q, v) for q, v in sorted(lin.items()) if q not in coupled]
         hw_cost, hw_log, plain = Cost(), Cost(), 0
-        for qs in classes.values():
-            coeff = lin[qs[0]]
-            hw = hamming_choice(len(qs), coeff, target, optimize, budget)
-            if hw is None:
-                continue
-            hamming.append((coeff, tuple(qs)))
+        for hw, qs in hamming_groups(uncoupled, target, optimize, budget):
+            hamming.append((lin[qs[0]], tuple(qs)))
             const += hw.constant
             for q in qs:
                 del lin[q]

@@ -1,25 +1,12 @@
 """Which construction each term group of the phase separator gets: one decision per group shape and options.
 
-The phase separator (:mod:`circuitgen.phase`) implements every term group of the feasible cost with the cheapest
-exact construction under the target's cost model (:func:`score`). The decision for a group depends only on its
-*shape* (a node's visitor sizes, how many couplings expanding it would add; how many equal rotations; a balance
-group's integrality, products and ancillas) and on the plan options, so it is made here, once, and asked by both
-places that need it:
-
-* :func:`circuitgen.phase.phase_plan`, which builds the gadgets term group by term group;
-* :func:`circuitgen.phase_classes.phase_layer`, which counts the same groups by classes of nodes without planning
-  them one by one (and asks the same question once per class).
-
-The choices:
-
-* :func:`visit_choice` -- a node that several robots can pass: visit bits, visit pairs (ANDs of visit bits, for
-  ``ft``), or couplings (its products of edge bits added to the couplings; ties go to the couplings: no ancilla);
-* :func:`hamming_choice` -- on the ``ft`` target, ``n >= 3`` equal-angle rotations of uncoupled qubits merged by
-  Hamming-weight phasing, or left as rotations;
-* :func:`sums_constructions` -- a balance (squared sums) group: which constructions the plan compares as whole
-  plans (its couplings interact with the visits' couplings, so this one is decided by building the plan for each
-  candidate and comparing their :func:`plan_score`; the classes answer only when arithmetic is the only candidate
-  or provably wins).
+The phase separator implements every term group of the feasible cost with the cheapest exact construction under
+the target's cost model (:func:`score`). The decision depends only on the group's *shape* and the plan options,
+so it is made here, once, and asked both by :func:`circuitgen.phase.phase_plan` (group by group) and by
+:func:`circuitgen.phase_classes.phase_layer` (once per class of nodes): :func:`visit_choice` for a node several
+robots can pass, :func:`hamming_choice` for equal rotations on the ``ft`` target, :func:`sums_constructions` for
+a balance group (whose couplings interact with the visits', so the plan compares its candidates as whole plans
+by :func:`plan_score`).
 
 Example:
     >>> c = visit_choice((4, 4, 4), 8.0, new_couplings=48, target="nisq", optimize="cx", budget=None)
@@ -40,9 +27,11 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from itertools import accumulate
 from typing import Any, Literal
 
 from .cost import Cost, Target
+from .gadgets.phase_ising import COEFFICIENT_TOLERANCE
 from .gadgets.phase_sums import SumsPhase
 from .gadgets.phase_visits import VisitPhase, visit_ancillas
 from .options import Optimize
@@ -56,6 +45,7 @@ __all__ = [
     "couplings_floor",
     "ft_t_count",
     "hamming_choice",
+    "hamming_groups",
     "plan_score",
     "score",
     "sums_constructions",
@@ -63,9 +53,8 @@ __all__ = [
 ]
 
 ROTATION_T_COST = 30
-"""T gates per arbitrary rotation in the ``ft`` cost model: ``ceil(3 log2(1/eps))`` at ``eps = 1e-3`` (Ross and
-Selinger's leading term, as :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults; a test keeps
-the two equal). Only used to *choose* constructions; the estimators price the circuit themselves."""
+"""T gates per arbitrary rotation in the ``ft`` cost model, for choosing only: ``ceil(3 log2(1/eps))`` at ``eps =
+1e-3``, :func:`estimators.fault_tolerant.rotation_t_cost` with its defaults (a test keeps the two equal)."""
 
 EXACT_EXPANSION_LIMIT = 30_000
 """A balance group with at most this many products is expanded to price its couplings exactly (products that
@@ -100,18 +89,14 @@ def score(cost: Cost, logical: Cost, target: Target) -> tuple[int, ...]:
 
 def plan_score(parts: Iterable[tuple[Any, int]], target: Target) -> tuple[int, ...]:
     """:func:`score` of gadgets (or gadget kinds) with multiplicities, their costs summed: how candidate plans of
-    the phase separator are compared. Only a sort key for choosing: every count qcpp reports is the call graph's
-    sum (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`).
+    the phase separator are compared (a sort key, never a reported count).
 
     >>> from circuitgen.gadgets.phase_ising import IsingPhase
     >>> plan_score([(IsingPhase("gamma", ((0, 1.0),), ((0, 1, 1.0),)), 2)], "nisq")
     (4, 4, 8)
     """
-    costs, logicals = [], []
-    for g, n in parts:
-        costs.append(n * g.cost())
-        logicals.append(n * g.logical_cost())
-    return score(Cost.sum(costs), Cost.sum(logicals), target)
+    parts = list(parts)
+    return score(Cost.sum(n * g.cost() for g, n in parts), Cost.sum(n * g.logical_cost() for g, n in parts), target)
 
 
 def coupling_cost(products: int) -> Cost:
@@ -126,8 +111,7 @@ def coupling_cost(products: int) -> Cost:
 
 def couplings_floor(sizes: Sequence[int], diagonal: Sequence[float], target: Target) -> int:
     """A lower bound on the first entry of :func:`plan_score` of any plan that expands a balance group into
-    couplings: the products within one form (one robot's edges) meet no other term (node visits pair different
-    robots' edges), so each stays a coupling of its own (one RZZ: 2 CX, one rotation).
+    couplings: the products within one form (one robot's edges) meet no other term, so each stays an RZZ.
 
     Args:
         sizes: the group's forms' numbers of terms.
@@ -150,9 +134,9 @@ class VisitChoice:
 
     Attributes:
         construction: ``visit bits``, ``visit pairs`` or ``couplings``.
-        gadget: the chosen :class:`~circuitgen.gadgets.phase_visits.VisitPhase` on abstract qubits (visitor
-            ``a``'s edges ``0 .. sizes[a] - 1``, no ancillas; place it with :func:`dataclasses.replace`), or
-            ``None`` for the couplings.
+        gadget: the chosen :class:`~circuitgen.gadgets.phase_visits.VisitPhase` on abstract qubits (the visitors'
+            edges numbered from 0 on, no ancillas; place it with :func:`dataclasses.replace`), or ``None`` for the
+            couplings.
         costs: ``(cost, logical cost)`` of every construction, chosen or not (what ``--explain`` lists).
         ancillas: clean ancillas the chosen construction needs.
     """
@@ -182,15 +166,15 @@ def visit_choice(
         target, optimize, budget: the plan's options (``budget``: most clean ancillas, ``None``: no limit).
 
     Returns:
-        The :class:`VisitChoice`. A visit gadget is a candidate only for ``optimize="cx"`` and within the budget;
-        it replaces the pick so far when it scores no worse and costs differ, in the order couplings, visit bits,
-        visit pairs (ties go to the couplings: no ancilla).
+        The :class:`VisitChoice`: in the order couplings, visit bits, visit pairs, a visit gadget (only for
+        ``optimize="cx"`` and within the budget) replaces the pick so far when it scores no worse and costs differ.
     """
     coup = coupling_cost(new_couplings)
     costs: dict[str, tuple[Cost, Cost]] = {}
     pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
+    edges = tuple(tuple(range(end - n, end)) for n, end in zip(sizes, accumulate(sizes), strict=True))
     for name, products in (("visit bits", False), ("visit pairs", True)):
-        gad = VisitPhase("gamma", coefficient, tuple(tuple(range(k)) for k in sizes), (), products)
+        gad = VisitPhase("gamma", coefficient, edges, (), products)
         c = (gad.cost(), gad.logical_cost())
         costs[name] = c
         if optimize != "cx" or (budget is not None and visit_ancillas(sizes, products) > budget):
@@ -218,20 +202,34 @@ def hamming_choice(
         return None
     hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))
     alt = Cost.of(rz=n)
-    if budget is not None and hw.num_ancillas > budget:
-        return None
-    if score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target):
-        return hw
-    return None
+    fits = budget is None or hw.num_ancillas <= budget
+    return hw if fits and score(hw.cost(), hw.logical_cost(), target) <= score(alt, alt, target) else None
+
+
+def hamming_groups(
+    coefficients: Iterable[tuple[int, float]], target: Target, optimize: Optimize, budget: int | None
+) -> list[tuple[SumsPhase, list[int]]]:
+    """The equal-angle rotations of uncoupled qubits ``(qubit, coefficient)`` the plan merges: per class of equal
+    nonzero coefficients (to 12 decimals, in order of first appearance) that :func:`hamming_choice` takes, its
+    gadget and the class's qubits.
+
+    >>> [(qs, hw.num_ancillas) for hw, qs in hamming_groups([(0, 0.5), (1, 0.2), (4, 0.5), (7, 0.5)], "ft", "cx", 9)]
+    [([0, 4, 7], 1)]
+    """
+    classes: dict[float, tuple[float, list[int]]] = {}
+    for q, v in coefficients:
+        if abs(v) > COEFFICIENT_TOLERANCE:
+            classes.setdefault(round(v, 12), (v, []))[1].append(q)
+    groups = [(hamming_choice(len(qs), v, target, optimize, budget), qs) for v, qs in classes.values()]
+    return [(hw, qs) for hw, qs in groups if hw is not None]
 
 
 def sums_constructions(
     integral: bool, products: int, optimize: Optimize, budget: int | None, ancillas: Callable[[str], int]
 ) -> tuple[str, ...]:
     """The constructions the plan compares for a balance group: the first arithmetic variant of
-    :data:`SUMS_VARIANTS` that fits the budget (each only pays off when the ones before it, with fewer CX, do
-    not fit; only for integer weights and ``optimize="cx"``), and ``couplings`` when its products can be
-    expanded (at most :data:`EXACT_EXPANSION_LIMIT`) or nothing else is possible.
+    :data:`SUMS_VARIANTS` that fits the budget (integer weights and ``optimize="cx"`` only), and ``couplings``
+    when its products can be expanded (at most :data:`EXACT_EXPANSION_LIMIT`) or nothing else is possible.
 
     Args:
         integral: the group's weights are integers.

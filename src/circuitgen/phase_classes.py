@@ -1,9 +1,8 @@
-"""The phase separator's cost without planning it term by term: classes of nodes and edges on an open grid.
+"""The phase separator's call graph without planning it term by term: classes of nodes and edges on an open grid.
 
-:func:`circuitgen.phase.phase_plan` builds the feasible cost (:func:`gridcover.feasible_cost.feasible_cost`)
-variable by variable and prices every node's visit gadget: 0.1-1 s per scenario at 20x20-40x40, too slow for a
-sweep of thousands of scenarios. On a grid without obstacles (and the uniform edge weights and lengths every
-such grid has unless a length is overridden) the plan has few distinct parts:
+:func:`circuitgen.phase.phase_plan` prices every term group variable by variable (0.1-1 s per scenario at
+20x20-40x40, too slow for a sweep). On a grid without obstacles and with uniform edge lengths the plan has few
+distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
   visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost
@@ -16,15 +15,12 @@ such grid has unless a length is overridden) the plan has few distinct parts:
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
 
-Coefficients are vectors over one robot's edges (numpy), the endpoint and corner identities are applied by the
+Coefficients are vectors over one robot's edges (numpy); the endpoint and corner identities are applied by the
 very function the feasible cost uses (:func:`gridcover.feasible_cost.reduce_on_paths`) on the few edges they
-touch. Every construction is decided by :mod:`circuitgen.phase_choice` (the plan's own decisions), and
-:func:`phase_layer` answers only where this picture is exact and no choice couples groups (every class picks a
-gadget over couplings, and the balance's arithmetic is its first candidate and provably beats its couplings);
-elsewhere it returns ``None`` and :meth:`circuitgen.qaoa.QaoaPlan.call_graph`, the one place that
-decides, lists the planned gadgets instead. ``tests/circuitgen/phase_classes_test.py`` checks it against
-:func:`~circuitgen.phase.phase_plan` (cost, logical cost, ancillas, gadget kinds) on default grids and on random
-endpoints.
+touch. Every construction is the plan's own decision (:mod:`circuitgen.phase_choice`), and :func:`phase_layer`
+answers only where no choice couples groups (every class picks a gadget over couplings, and the balance's
+arithmetic is its first candidate and provably beats its couplings); elsewhere it returns ``None`` and
+:meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
 
 Example:
     >>> from gridcover.presets import default_scenario
@@ -41,10 +37,9 @@ Example:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 from itertools import repeat
-from typing import Any
 
 import numpy as np
 
@@ -52,10 +47,9 @@ from circuitgen.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from circuitgen.gadgets import Gadget
 from circuitgen.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
 from circuitgen.gadgets.phase_sums import SumsPhase, SumsShape
-from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.mixer_classes import index_classes
+from circuitgen.mixer_classes import Count, boundary, class_counts
 from circuitgen.phase import coupling_products, phase_plan
-from circuitgen.phase_choice import couplings_floor, hamming_choice, plan_score, sums_constructions, visit_choice
+from circuitgen.phase_choice import couplings_floor, hamming_groups, plan_score, sums_constructions, visit_choice
 from gridcover.cost import balanced_pairs
 from gridcover.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
 from gridcover.grid import Grid
@@ -65,65 +59,54 @@ __all__ = ["IsingCount", "PhaseLayer", "ising_count", "phase_layer"]
 
 _TOL = 1e-12  # gridcover.feasible_cost's zero
 
-
 @dataclass(frozen=True, eq=False)
 class PhaseLayer:
-    """One layer's phase separator, as the plan would build it, with its parts counted by class.
+    """One layer's phase separator, as the plan would build it, counted by classes.
 
     Attributes:
-        parts: ``(representative gadget, count)`` per visit class and per Hamming-weight class.
-        rotations: Data-qubit rotations (the plan's :class:`~circuitgen.gadgets.phase_ising.IsingPhase`).
-        couplings: Its couplings (only the ``whole-space`` representation has any: :func:`ising_count`).
-        whole_space: The scenario whose Ising Hamiltonian the couplings are (built only if emitted).
-        balance: The balance arithmetic, or ``None``.
-        num_ancillas: Clean ancillas the largest part needs.
-        num_variables: Data qubits.
+        parts: ``(kind, multiplicity)``: the data-qubit rotations (and couplings) and the balance arithmetic as
+            :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted), a placed representative per
+            visit class and per Hamming-weight class.
+        num_ancillas: clean ancillas the largest part needs.
     """
 
-    parts: tuple[tuple[Gadget, int], ...]
-    rotations: int
-    balance: _Balance | None
+    parts: tuple[tuple[GadgetKind, int], ...]
     num_ancillas: int
-    num_variables: int
-    couplings: int = 0
-    whole_space: Scenario | None = field(default=None, repr=False)
 
     def kinds(self) -> list[tuple[GadgetKind, int]]:
-        """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists); the
-        rotations and the balance as :class:`~circuitgen.call_graph.Deferred` gadgets (built only if emitted)."""
-        # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
-        # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
-        pool = range(self.num_variables, self.num_variables + self.num_ancillas)
-        out: list[tuple[GadgetKind, int]] = []
-        if self.rotations or self.couplings:
-            n, q, source = self.rotations, self.couplings, self.whole_space
-            rz = ising_cost(n, q)
+        """``(kind, multiplicity)`` of every part (what :meth:`circuitgen.qaoa.QaoaPlan.call_graph` lists)."""
+        return list(self.parts)
 
-            def rotations() -> Gadget:
-                if source is not None:  # the couplings' placement is the Hamiltonian's: the plan builds it
-                    return phase_plan(source, representation="whole-space").gadgets("gamma")[0]
-                return IsingPhase("gamma", tuple(zip(range(n), repeat(1.0))), ())
 
-            out.append((GadgetKind.of(Deferred(("ising", n, q), rz, rz, rotations)), 1))
-        for g, count in self.parts:
-            if isinstance(g, VisitPhase):
-                d = len(g.visitors[0])
-                g = replace(g, visitors=tuple(tuple(range(i * d, i * d + d)) for i in range(len(g.visitors))))
-                need = visit_ancillas(tuple(len(v) for v in g.visitors), g.products)
-            else:  # Hamming-weight phasing
-                need = g.num_ancillas  # type: ignore[attr-defined]
-            out.append((GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count))  # type: ignore[type-var]
-        if self.balance is not None:
-            balance, shape = self.balance, self.balance.shape
+def _layer(
+    s: Scenario, rotations: int, couplings: int, parts: list[tuple[Gadget, int, int]], balance: _Balance | None,
+    whole_space: bool = False,
+) -> PhaseLayer:
+    """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
+    ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
+    # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
+    # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+    num_ancillas = max([0, *(need for _, _, need in parts), balance.shape.num_ancillas if balance else 0])
+    pool = range(s.num_variables, s.num_variables + num_ancillas)
+    out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]
+    if rotations or couplings:
+        rz = ising_cost(rotations, couplings)
 
-            def arithmetic() -> Gadget:
-                return replace(balance.gadget(), ancillas=tuple(pool))
+        def ising() -> Gadget:
+            if whole_space:  # the couplings' placement is the Hamiltonian's: the plan builds it
+                return phase_plan(s, representation="whole-space").gadgets("gamma")[0]
+            return IsingPhase("gamma", tuple(zip(range(rotations), repeat(1.0))), ())
 
-            deferred = Deferred(
-                ("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas
-            )
-            out.append((GadgetKind.of(deferred), 1))
-        return out
+        out.insert(0, (GadgetKind.of(Deferred(("ising", rotations, couplings), rz, rz, ising)), 1))
+    if balance is not None:
+        shape = balance.shape
+
+        def arithmetic() -> Gadget:
+            return replace(balance.gadget(), ancillas=tuple(pool))
+
+        deferred = Deferred(("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
+        out.append((GadgetKind.of(deferred), 1))
+    return PhaseLayer(tuple(out), num_ancillas)
 
 
 @dataclass(frozen=True, eq=False)
@@ -169,36 +152,25 @@ def _grid(grid: Grid, edges: tuple[int, ...]) -> _Grid:
     return _Grid(u, v, degree, tuple(int(x) for x in np.nonzero(degree == 2)[0]))
 
 
-def _at(g: _Grid, node: int) -> list[int]:
-    """Edge positions at a node, ascending (as :func:`gridcover.feasible_cost.live_edges` lists them)."""
-    return np.nonzero((g.u == node) | (g.v == node))[0].tolist()
+Local = tuple[tuple[list[int], ...], list[int]]
 
 
-@dataclass(frozen=True)
-class _Local:
-    """Where one robot's identities act: the edges at its endpoints (nodes 0 and 1 of ``at``) and at the corners
-    that are not its endpoints (corridors), the only edges they touch on an open grid."""
-
-    at: tuple[list[int], ...]
-    touched: list[int]
-
-    @classmethod
-    def of(cls, g: _Grid, ends: tuple[int, int]) -> _Local:
-        nodes = [ends[0], ends[1], *(c for c in g.corners if c not in ends)]
-        at = tuple(_at(g, n) for n in nodes)
-        return cls(at, sorted({k for edges in at for k in edges}))
+def _local(g: _Grid, ends: tuple[int, int]) -> Local:
+    """Where one robot's identities act: the edge positions (ascending, as
+    :func:`gridcover.feasible_cost.live_edges` lists them) at its endpoints (nodes 0 and 1) and at the corners that
+    are not its endpoints (corridors), the only edges they touch on an open grid; and all of those edges."""
+    nodes = [*ends, *(c for c in g.corners if c not in ends)]
+    at = tuple(np.nonzero((g.u == n) | (g.v == n))[0].tolist() for n in nodes)
+    return at, sorted({k for edges in at for k in edges})
 
 
-def _reduce(values: np.ndarray, local: _Local) -> tuple[float, np.ndarray]:
-    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector, applied where its
-    identities act (``local``).
-
-    Returns:
-        ``(constant, coefficients)``; a zero marks a dropped term.
-    """
-    const, reduced = reduce_on_paths({k: float(values[k]) for k in local.touched}, local.at, (0, 1))
+def _reduce(values: np.ndarray, local: Local) -> tuple[float, np.ndarray]:
+    """:func:`~gridcover.feasible_cost.reduce_on_paths` of one robot's coefficient vector where its identities act:
+    ``(constant, coefficients)``, a zero marking a dropped term."""
+    at, touched = local
+    const, reduced = reduce_on_paths({k: float(values[k]) for k in touched}, at, (0, 1))
     out = values.copy()
-    out[local.touched] = 0.0
+    out[touched] = 0.0
     for k, val in reduced.items():
         out[k] = val
     out[np.abs(out) <= _TOL] = 0.0
@@ -214,9 +186,8 @@ def phase_layer(
     ancilla_budget: int | None = None,
 ) -> PhaseLayer | None:
     """The phase separator of one layer by classes (see the module docstring), or ``None`` where only the plan
-    knows (obstacles, overridden lengths, or a choice the classes cannot make:
-    a node or the balance whose construction is couplings, or the balance's arithmetic out of the budget). Each
-    class's construction is the plan's own decision (:mod:`circuitgen.phase_choice`), asked once per class.
+    knows (obstacles, overridden lengths, a node or balance whose construction is couplings, or the balance's
+    arithmetic out of the budget).
 
     Args:
         scenario: the scenario.
@@ -231,26 +202,22 @@ def phase_layer(
         count = ising_count(s)
         if count is None:
             return None
-        return PhaseLayer((), count.linear, None, 0, s.num_variables, count.couplings, s)
+        return _layer(s, count.linear, count.couplings, [], None, whole_space=True)
     if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
     if any(a == b for a, b in ends):
         return None
     g = _grid(grid, tuple(s.variable_edges))
-    local = [_Local.of(g, e) for e in ends]
+    local = [_local(g, e) for e in ends]
     n_r, v_per = s.num_robots, s.edges_per_robot
     a0, a1, a2 = ob.alpha
-    parts: list[tuple[Gadget, int]] = []
-    ancillas = 0
+    parts: list[tuple[Gadget, int, int]] = []
     # degree terms: a linear part per node, a visit class per (degree, passers)
     node_term = np.zeros(grid.num_nodes)
     if a2 != 0.0:
         t = np.asarray(s.degree_targets, dtype=float)
-        e_v = np.zeros(grid.num_nodes, dtype=np.int64)
-        for a, b in ends:
-            e_v[a] += 1
-            e_v[b] += 1
+        e_v = np.bincount(np.ravel(np.array(ends, dtype=np.int64)), minlength=grid.num_nodes)  # endpoints per node
         counted = ~np.isnan(t)
         c = e_v - np.where(counted, t, 0.0)
         node_term = np.where(counted, a2 * (2 * c + 2), 0.0)
@@ -264,8 +231,7 @@ def phase_layer(
                                   ancilla_budget)  # fmt: skip
             if choice.gadget is None:
                 return None  # a coupling would change what the later groups' couplings cost
-            parts.append((choice.gadget, count))
-            ancillas = max(ancillas, choice.ancillas)
+            parts.append((choice.gadget, count, choice.ancillas))
     lin = []
     for a, b in ends:
         own = node_term.copy()
@@ -306,32 +272,20 @@ def phase_layer(
         lin_g = 2 * m @ np.array(consts)
         for r, w in enumerate(weights):
             lin[r] = lin[r] + float(lin_g[r]) * w
-        ancillas = max(ancillas, shape.num_ancillas)
     values = np.concatenate([_reduce(lin[r], local[r])[1] for r in range(n_r)]) if n_r else np.zeros(0)
     values = values[values != 0.0]
-    if target == "ft":
-        keep = np.ones(len(values), dtype=bool)
-        rounded = np.round(values, 12)
-        _, first, counts = np.unique(rounded, return_index=True, return_counts=True)
-        for k, n in zip(first.tolist(), counts.tolist()):
-            hw = hamming_choice(n, float(values[k]), target, optimize, ancilla_budget)
-            if hw is not None:
-                parts.append((hw, 1))
-                ancillas = max(ancillas, hw.num_ancillas)
-                keep &= rounded != rounded[k]
-        values = values[keep]
+    if target == "ft":  # no coupling exists: every rotation may be merged
+        groups = hamming_groups(enumerate(values.tolist()), target, optimize, ancilla_budget)
+        parts += [(hw, 1, hw.num_ancillas) for hw, _ in groups]
+        values = np.delete(values, [q for _, qs in groups for q in qs])
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
-    layer = PhaseLayer(tuple(parts), rotations, balance, ancillas, s.num_variables)
+    layer = _layer(s, rotations, 0, parts, balance)
     if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]
         return None  # the couplings might win: only the plan knows
     return layer
 
 
-
 # ----------------------------------------------------------------------------- whole-space (Ising) phase separator
-
-
-Count = Any  # an int, or a sympy expression in the closed forms (estimators.formulas)
 
 
 @dataclass(frozen=True)
@@ -396,8 +350,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     ends = {grid.node_index(rb.start) for rb in s.robots} | {grid.node_index(rb.goal) for rb in s.robots}
 
     def degree(node: tuple[int, int]) -> int:
-        r, c = node
-        return 4 - (r == 0) - (r == rows - 1) - (c == 0) - (c == cols - 1)
+        return 4 - boundary(*node, rows, cols)
 
     def plain(node: tuple[int, int]) -> _NodeClass:
         return degree(node), True, 2.0  # every node but an endpoint has target 2 (exact and paper)
@@ -406,17 +359,13 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         t = float(targets[grid.node_index(node)])
         return degree(node), not np.isnan(t), 0.0 if np.isnan(t) else t
 
-    nodes: Counter[_NodeClass] = Counter()
-    for i, ni in index_classes(rows, size_r):
-        for j, nj in index_classes(cols, size_c):
-            nodes[plain((i, j))] += ni * nj
-    edges: Counter[tuple[_NodeClass, _NodeClass]] = Counter()
-    for i, ni in index_classes(rows, size_r):
-        for k, nk in index_classes(cols - 1, size_c - 1):  # consecutive pairs along a row
-            edges[tuple(sorted((plain((i, k)), plain((i, k + 1)))))] += ni * nk  # type: ignore[index]
-    for j, nj in index_classes(cols, size_c):
-        for k, nk in index_classes(rows - 1, size_r - 1):
-            edges[tuple(sorted((plain((k, j)), plain((k + 1, j)))))] += nj * nk  # type: ignore[index]
+    def edge(a: _NodeClass, b: _NodeClass) -> tuple[_NodeClass, _NodeClass]:
+        return (a, b) if a <= b else (b, a)
+
+    nodes = class_counts((rows, cols), (size_r, size_c), lambda i, j: plain((i, j)))
+    edges = class_counts((rows, cols - 1), (size_r, size_c - 1), lambda i, k: edge(plain((i, k)), plain((i, k + 1))))
+    down = class_counts((rows - 1, cols), (size_r - 1, size_c), lambda k, j: edge(plain((k, j)), plain((k + 1, j))))
+    edges.update(down)
     for node in ends:  # endpoints and the edges at them move to their own classes
         xy = grid.nodes[node]
         nodes[plain(xy)] -= 1
@@ -424,8 +373,8 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
     for e in range(grid.num_edges):
         u, v = (grid.nodes[k] for k in grid.edge_nodes[e])
         if grid.edge_nodes[e][0] in ends or grid.edge_nodes[e][1] in ends:
-            edges[tuple(sorted((plain(u), plain(v))))] -= 1  # type: ignore[index]
-            edges[tuple(sorted((real(u), real(v))))] += 1  # type: ignore[index]
+            edges[edge(plain(u), plain(v))] -= 1
+            edges[edge(real(u), real(v))] += 1
 
     def nonzero(value: float) -> int:
         return int(abs(value / 2) > COEFFICIENT_TOLERANCE)
@@ -435,9 +384,7 @@ def ising_count(scenario: Scenario, sizes: tuple[Count, Count] | None = None) ->
         return t - n_r * deg / 2 if counted else 0.0
 
     weight = ob.free_weight
-    linear = n_r * sum(
-        (n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0
-    )
+    linear = n_r * sum((n * nonzero(-a0 * weight + 2 * a2 * (pull(u) + pull(v))) for (u, v), n in edges.items()), 0)
     total = sum(edges.values(), 0)  # edges per robot
     pairs = sum((n * (c[0] * (c[0] - 1) // 2) for c, n in nodes.items() if c[1]), 0)  # sharing a counted node
     both = sum((n for (u, v), n in edges.items() if u[1] and v[1]), 0)

@@ -1,27 +1,17 @@
 """The whole constrained-mixer QAOA circuit.
 
-``qaoa_circuit(scenario, p)`` returns a :class:`~circuitgen.circuit.Circuit` with
+``qaoa_circuit(scenario, p)`` returns a :class:`~circuitgen.circuit.Circuit` with registers ``data`` (qubit ``i``
+= decision variable ``i``) and ``logic`` (clean ancillas shared by every gadget); sections ``initial_state``, then
+``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``, every gadget a section of its own (so lowering passes never act
+across two gadgets and each gadget's lowered cost is its reported cost; the parity-basis partial mixers are cut at
+their rotations into :class:`~circuitgen.gadgets.junction.MixerJunction` sections); and the symbols ``gamma_k``,
+``beta_k`` (with ``PlanOptions(angles="multi")`` one beta per partial mixer and layer instead,
+:func:`~circuitgen.angles.mixer_symbol`), bound later with ``Circuit.bind``. :class:`QaoaPlan` holds the same
+circuit as gadgets, and :meth:`QaoaPlan.call_graph` lists it as gadget kinds, which every count sums.
 
-* registers ``data`` (qubit ``i`` = decision variable ``i``, see :mod:`gridcover.scenario`) and ``logic``
-  (clean ancillas shared by every gadget: each returns them to |0>);
-* sections ``initial_state``, then ``phase_k`` and ``mixer_k`` for ``k = 0 .. p-1``; every gadget is a section
-  of its own (all phase gadgets of layer ``k`` are named ``phase_k``, all mixer pieces ``mixer_k``), so lowering
-  passes never act across two gadgets and each gadget's lowered cost is its reported cost
-  (see ``docs/architecture.md``). The parity-basis partial mixers of a layer are cut at their rotations: each
-  section between two rotations is a :class:`~circuitgen.gadgets.junction.MixerJunction` (the uncompute of one
-  partial mixer fused with the compute of the next, so that what cancels across them is cancelled);
-* ``2p`` symbols ``gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}``, bound later with ``Circuit.bind``; with
-  ``PlanOptions(angles="multi")`` (multi-angle QAOA) one beta per partial mixer and layer instead of ``beta_k``,
-  named by :func:`~circuitgen.angles.mixer_symbol` (``beta_r0_q5_0``: robot 0, plaquette 5, layer 0). The gates
-  are the same; only the symbols differ.
-
-:class:`QaoaPlan` holds the same circuit as gadgets; :meth:`QaoaPlan.call_graph` lists it as gadget kinds with
-multiplicities per part (:mod:`circuitgen.call_graph`), which every count sums without emitting anything.
-
-The circuit applied to |0...0> gives ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>`` on the feasible
-assignments it reaches, ``K`` the phase plan's :attr:`QaoaPlan.reference_constant` (the Ising constant ``c0`` for
-``phase="whole-space"``); the feasible-subspace simulator (:mod:`simulate.subspace`) implements the very same
-operator.
+On the feasible assignments it reaches, the circuit applied to |0...0> gives
+``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>``, ``K`` = :attr:`QaoaPlan.reference_constant`: the operator
+the feasible-subspace simulator (:mod:`simulate.subspace`) implements.
 
 Example:
     >>> from gridcover.scenario import scenario_from_dict
@@ -51,10 +41,10 @@ from .cost import Cost
 from .gadgets import Gadget
 from .gadgets.blocks import StatePrep
 from .gadgets.junction import mixer_pieces
-from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
+from .gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
 from .initial_state import initial_path_count
 from .lowering import WORK_REGISTER, lower
-from .mixer_classes import mixer_part
+from .mixer_classes import MixerPart, mixer_part
 from .options import DEFAULT_PLAN, PlanOptions
 from .phase import PhasePlan, phase_plan
 from .phase_classes import phase_layer
@@ -97,10 +87,6 @@ class QaoaPlan:
 
     # -- layout
     @cached_property
-    def _mixers(self) -> tuple[ParityPartialMixer | McxPartialMixer, ...]:
-        return tuple(m for _, m in self._planned_mixers)
-
-    @cached_property
     def _planned_mixers(self) -> tuple[tuple[tuple[int, int], ParityPartialMixer | McxPartialMixer], ...]:
         """Every partial mixer (robot-major, plaquettes row-major) with its ``(robot, plaquette index)``."""
         s, n = self.scenario, self.scenario.num_variables
@@ -112,15 +98,22 @@ class QaoaPlan:
                     out.append(((r, q.index), m))
         return tuple(out)
 
-    @cached_property
-    def _mixer_pieces(self) -> tuple[Gadget, ...]:
-        return tuple(mixer_pieces(self._mixers)) if self.options.fuse else self._mixers
+    def _mixer_layer(self, k: int | None) -> list[Gadget]:
+        """Layer ``k``'s mixer pieces (``None``: with the placeholder angle ``beta``): the partial mixers
+        (robot-major, plaquettes row-major) as junctions and rotations
+        (:func:`~circuitgen.gadgets.junction.mixer_pieces`), or themselves unfused."""
+        def beta(r: int, q: int) -> str:
+            if k is None:
+                return "beta"
+            return mixer_symbol(k, r, q) if self.options.angles == "multi" else f"beta_{k}"
+
+        mixers = [dataclasses.replace(m, beta=Angle.symbol(beta(*rq))) for rq, m in self._planned_mixers]
+        return list(mixer_pieces(mixers)) if self.options.fuse else mixers  # type: ignore[arg-type]
 
     @cached_property
     def state_prep(self) -> StatePrep:
         """The initial-state gadget."""
-        s = self.scenario
-        o = self.options
+        s, o = self.scenario, self.options
         ancilla = s.num_variables if o.initial == "representatives" else None
         return StatePrep.build(s, o.initial, o.rule, ancilla)
 
@@ -146,24 +139,19 @@ class QaoaPlan:
 
     @cached_property
     def logic_width(self) -> int:
-        """Shared clean ``logic`` ancillas: the largest partial mixer or phase-separator need (at least 1 for
-        ``representatives``)."""
+        """Shared clean ``logic`` ancillas (the call graph's)."""
         return self.call_graph().logic_width
 
     @cached_property
     def work_width(self) -> int:
-        """``work`` ancillas the lowering adds for multi-controlled X with three or more controls."""
+        """``work`` ancillas the lowering adds (the call graph's)."""
         return self.call_graph().work_width
 
     @property
     def registers(self) -> tuple[Register, ...]:
         """``data``, ``logic`` (if any), and the ``work`` register the lowering adds (if any)."""
-        regs = [Register("data", self.scenario.num_variables)]
-        if self.logic_width:
-            regs.append(Register("logic", self.logic_width))
-        if self.work_width:
-            regs.append(Register(WORK_REGISTER, self.work_width))
-        return tuple(regs)
+        sizes = (("data", self.scenario.num_variables), ("logic", self.logic_width), (WORK_REGISTER, self.work_width))
+        return tuple(Register(name, size) for name, size in sizes if size or name == "data")
 
     @property
     def num_qubits(self) -> int:
@@ -173,20 +161,13 @@ class QaoaPlan:
     # -- the call graph
     def sections(self) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and the mixer's pieces: the partial mixers (robot-major, plaquettes row-major) as junctions and
-        rotations (:func:`~circuitgen.gadgets.junction.mixer_pieces`), or one per partial mixer for ``paper``."""
+        separator and the mixer's pieces (:meth:`_mixer_layer`)."""
         yield "initial_state", self.state_prep
         for k in range(self.p):
             assert self.phase_plan is not None
             for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
-            if self.options.angles == "multi":
-                mixers = [dataclasses.replace(m, beta=Angle.symbol(mixer_symbol(k, r, q)))
-                          for (r, q), m in self._planned_mixers]  # fmt: skip
-            else:
-                beta = Angle.symbol(f"beta_{k}")
-                mixers = [dataclasses.replace(m, beta=beta) for m in self._mixers]
-            for g in mixer_pieces(mixers) if self.options.fuse else mixers:
+            for g in self._mixer_layer(k):
                 yield f"mixer_{k}", g
 
     def _phase_gadgets(self, gamma: str) -> tuple[Gadget, ...]:
@@ -200,13 +181,11 @@ class QaoaPlan:
         return gadgets
 
     def call_graph(self, by_classes: bool = True) -> CallGraph:
-        """The circuit as gadget kinds with multiplicities, per part (:mod:`circuitgen.call_graph`; ``phase`` and
-        ``mixer`` are one layer's, empty ``phase`` for ``p = 0``), nothing emitted.
-
-        On a grid without obstacles the kinds are listed by counting classes of plaquettes
-        (:mod:`circuitgen.mixer_classes`) and of nodes (:mod:`circuitgen.phase_classes`), ``O(robots)`` per
-        scenario; where the phase separator's term groups interact (a choice the classes cannot make, see
-        :func:`~circuitgen.phase_classes.phase_layer`) and everywhere else, from the planned gadgets themselves.
+        """The circuit as gadget kinds with multiplicities, per part (``phase`` and ``mixer``: one layer's, empty
+        ``phase`` for ``p = 0``), nothing emitted: counted by classes of plaquettes (:mod:`circuitgen.mixer_classes`)
+        and of nodes (:mod:`circuitgen.phase_classes`) on a grid without obstacles, ``O(robots)`` per scenario,
+        else (or where :func:`~circuitgen.phase_classes.phase_layer` leaves a choice to the plan) listed from the
+        planned gadgets.
 
         Args:
             by_classes: count by classes where that is exact (default); ``False`` lists the planned gadgets
@@ -234,12 +213,9 @@ class QaoaPlan:
         else:
             prep = GadgetKind.of(self.state_prep)
         if classes:
-            part = mixer_part(s, o.rule, o.target, o.fuse)
-            mixer, mixer_temps, mixer_work = list(part.kinds), part.logic_width, part.work_need
+            mixer = mixer_part(s, o.rule, o.target, o.fuse)
         else:
-            mixer = [(GadgetKind.of(g), 1) for g in self._mixer_pieces]
-            mixer_temps = max((m.num_temps for m in self._mixers), default=0)
-            mixer_work = mixer_work_need(self._mixers)
+            mixer = MixerPart(tuple((GadgetKind.of(g), 1) for g in self._mixer_layer(None)))
         phase: list[tuple[GadgetKind, int]] = []
         phase_width = 0
         if self.p:
@@ -255,9 +231,9 @@ class QaoaPlan:
                     gadgets = placed_sums(gadgets, s)
                 phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas
-        logic = max(mixer_temps, phase_width, 1 if o.initial == "representatives" else 0)
-        work = max(mixer_work if self.p else 0, prep.work)
-        parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer}
+        logic = max(mixer.logic_width, phase_width, 1 if o.initial == "representatives" else 0)
+        work = max(mixer.work_need if self.p else 0, prep.work)
+        parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer.kinds}
         return CallGraph.build(parts, logic, work)
 
     def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:

@@ -1,31 +1,15 @@
 """Exact resource counts of a circuit: qubits, gates per name, T count, depth and two-qubit depth.
 
-:func:`count` works on any :class:`~circuitgen.circuit.Circuit`, high level (``mcx``, ``csbf``, ``rzz``, ...) or
-lowered (``{cx, x, h, rz, t, tdg, s, sdg}``). It reads the circuit's own gate tuples, i.e. the very gate list
-that :mod:`circuitgen.qasm` writes (one OpenQASM statement per IR gate), so the numbers equal what a reader of
-the emitted file counts.
+:func:`count` reads any :class:`~circuitgen.circuit.Circuit`'s own gate tuples, high level or lowered: the very
+gate list :mod:`circuitgen.qasm` writes, so the numbers equal what a reader of the emitted file counts. The
+definitions are Qiskit's (``tests/estimators/counts_test.py`` checks them against
+``qiskit.qasm2.loads(to_qasm2(c))``): ``qubits`` is ``num_qubits`` (``data_qubits`` the ``data`` register,
+``ancillas`` the rest), ``ops`` is ``count_ops()``, ``depth`` is ``depth()`` and ``two_qubit_depth`` is
+``depth(filter_function=lambda i: i.operation.num_qubits == 2)`` (:func:`estimators.depth.advance`).
 
-Definitions (the same as Qiskit's, checked in ``tests/estimators/counts_test.py`` against
-``qiskit.qasm2.loads(to_qasm2(c))``):
-
-* qubits: ``data_qubits`` = size of the ``data`` register (0 if there is none), ``ancillas`` = every other qubit
-  (``logic``, ``work``, ...), ``qubits`` = their sum (Qiskit's ``num_qubits``);
-* ``ops``: gates per name (Qiskit's ``count_ops()``); ``cx``: the ``cx`` count; ``single_qubit`` /
-  ``two_qubit`` / ``multi_qubit``: gates on 1 / 2 / 3 or more qubits; ``t``: ``t`` + ``tdg``;
-* ``depth``: ASAP layering in which every gate counts one layer on all of its qubits (Qiskit's
-  ``QuantumCircuit.depth()``);
-* ``two_qubit_depth``: Qiskit's ``depth(filter_function=lambda i: i.operation.num_qubits == 2)``: a two-qubit
-  gate adds one layer, a single-qubit gate adds nothing, and a gate on three or more qubits adds nothing but
-  synchronises its qubits to their latest level (that is what Qiskit's filtered depth does).
-
-Breakdown by section name (``initial_state``, ``phase_k``, ``mixer_k``, ...): sections sharing a name are added
-up (gate counts), and their depth is the ASAP depth of all gates of sections of that name, in circuit order,
-taken alone (so when every partial mixer of layer ``k`` is its own ``mixer_k`` section, ``sections["mixer_k"]``
-is the whole mixer layer ``k``, and its depth is that layer's depth). Section depths do not add up to the
-circuit's depth in general: ASAP layering lets gates of a later section start before an earlier section ends.
-
-Speed: one tight loop over the gate tuples with per-qubit level lists (no per-gate object creation); about 0.3 s of
-CPU for the 777,340 gates of the lowered 10x10, 4-robot, p=1 circuit.
+Sections sharing a name (``initial_state``, ``phase_k``, ``mixer_k``, ...) are added up, and their depth is the
+ASAP depth of all their gates, in circuit order, taken alone (``sections["mixer_k"]`` is the whole mixer layer
+``k``). Section depths do not add up to the circuit's: ASAP layering lets a later section start early.
 
 Example:
     >>> from circuitgen.circuit import CircuitBuilder
@@ -64,14 +48,11 @@ class GateCount:
 
     Attributes:
         ops: gates per name, sorted by name.
-        size: total number of gates.
-        single_qubit: gates acting on one qubit.
-        two_qubit: gates acting on two qubits.
-        multi_qubit: gates acting on three or more qubits.
-        cx: number of ``cx`` gates.
-        t: number of ``t`` plus ``tdg`` gates.
-        depth: ASAP depth, every gate counts (Qiskit's ``depth()``).
-        two_qubit_depth: ASAP depth counting only two-qubit gates (see the module docstring).
+        size: all gates.
+        single_qubit, two_qubit, multi_qubit: gates on one, two, three or more qubits.
+        cx: ``cx`` gates.
+        t: ``t`` plus ``tdg`` gates.
+        depth, two_qubit_depth: see the module docstring.
     """
 
     ops: Mapping[str, int] = field(default_factory=dict)
@@ -85,8 +66,8 @@ class GateCount:
     two_qubit_depth: int = 0
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict (``ops`` as a plain dict)."""
-        return {k: dict(self.ops) if k == "ops" else getattr(self, k) for k in GateCount.__dataclass_fields__}
+        """A JSON-ready dict of every field (mappings as dicts, tuples as lists, sections nested)."""
+        return {k: _plain(getattr(self, k)) for k in self.__dataclass_fields__}
 
 
 @dataclass(frozen=True)
@@ -94,12 +75,9 @@ class ResourceCount(GateCount):
     """Exact resources of one circuit: qubits, the :class:`GateCount` fields, and a per-section breakdown.
 
     Attributes:
-        qubits: total number of qubits.
-        data_qubits: size of the ``data`` register.
-        ancillas: all other qubits (``logic``, ``work``, ...).
+        qubits, data_qubits, ancillas: see the module docstring.
         registers: ``(name, size)`` of every register, in layout order.
-        sections: section name -> :class:`GateCount`, in order of first appearance (sections sharing a name
-            are merged, see the module docstring).
+        sections: section name -> :class:`GateCount`, in order of first appearance.
     """
 
     qubits: int = 0
@@ -108,17 +86,13 @@ class ResourceCount(GateCount):
     registers: tuple[tuple[str, int], ...] = ()
     sections: Mapping[str, GateCount] = field(default_factory=dict)
 
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict (sections as nested dicts)."""
-        d = super().to_dict()
-        d.update(
-            qubits=self.qubits,
-            data_qubits=self.data_qubits,
-            ancillas=self.ancillas,
-            registers=[list(r) for r in self.registers],
-            sections={name: s.to_dict() for name, s in self.sections.items()},
-        )
-        return d
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, GateCount):
+        return value.to_dict()
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    return [_plain(v) for v in value] if isinstance(value, tuple) else value
 
 
 def _arity(ops: Counter[str], gates: Iterable[tuple[Any, ...]]) -> Counter[int]:
@@ -164,18 +138,17 @@ def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
     2
     """
     gates = list(gates)
-    lv = [0] * num_qubits
-    l2 = [0] * num_qubits
+    lv, l2 = [0] * num_qubits, [0] * num_qubits
     advance(gates, lv, l2)
     ops = Counter(map(itemgetter(0), gates))
     return _stats(ops, _arity(ops, gates), max(lv, default=0), max(l2, default=0))
 
 
 def count(circuit: Circuit) -> ResourceCount:
-    """Count the resources of ``circuit`` (see the module docstring for every definition).
+    """Count the resources of ``circuit`` (see the module docstring).
 
     Args:
-        circuit: any circuit, high level or lowered; symbolic angles are fine.
+        circuit: any circuit; symbolic angles are fine.
 
     Returns:
         The :class:`ResourceCount`.
@@ -191,8 +164,7 @@ def count(circuit: Circuit) -> ResourceCount:
     (4, {'cx': 2, 'x': 1}, 3)
     """
     n = circuit.num_qubits
-    lv = [0] * n
-    l2 = [0] * n
+    lv, l2 = [0] * n, [0] * n
     per_name: dict[str, tuple[Counter[str], Counter[int], list[int], list[int]]] = {}
     for sec in circuit.sections:
         gates = sec.gates

@@ -1,11 +1,9 @@
-"""Cross-check: the counts summed from the gadgets equal the counts of the compiled, lowered circuit.
+"""Cross-check: the counts summed from the call graph equal the counts of the compiled, lowered circuit.
 
-:func:`crosscheck` builds the circuit (:func:`circuitgen.qaoa.qaoa_circuit`), lowers it
-(:func:`circuitgen.lowering.lower`, and once more with ``LOGICAL_BASIS``), counts it
-(:func:`estimators.counts.count`) and compares every number :func:`estimators.estimate.estimate_point` reports
-without building anything: qubits and registers, gate counts per name (whole circuit, state preparation, each
-layer's phase separator and mixer), the logical gate counts, and the depths (asked ``exact``: composed from the
-gadgets' transfer profiles, :mod:`estimators.depth_compose`). The scenarios the tests and
+:func:`crosscheck` compares every number :func:`estimators.estimate.estimate_point` reports without building
+anything (registers, gate counts of the whole circuit and of each part and layer, logical gate counts, and the
+``exact`` depths composed by :mod:`estimators.depth_compose`) with :func:`estimators.counts.count` of the compiled
+circuit, lowered to the basis and to ``LOGICAL_BASIS``. The scenarios the tests and
 ``benchmarks/estimate_speed.py`` check are :func:`circuitgen.testing.crosscheck_cases`.
 
 Example:
@@ -51,16 +49,11 @@ def crosscheck(case: Case) -> list[str]:
     check("registers", est.registers, rc.registers)
     check("gates", est.cost.to_dict(), dict(rc.ops))
     check("logical gates", est.logical, Cost.count(lower(circ, LOGICAL_BASIS).gates))
-    if p:
-        check(
-            "state preparation",
-            est.parts["initial_state"].to_dict(),
-            dict(rc.sections["initial_state"].ops) if "initial_state" in rc.sections else {},
-        )
-        for k in range(p):
-            for part in ("phase", "mixer"):
-                have = rc.sections.get(f"{part}_{k}")
-                check(f"{part} of layer {k}", est.parts[part].to_dict(), dict(have.ops) if have else {})
+    sections = [("state preparation", "initial_state", "initial_state")] if p else []
+    sections += [(f"{part} of layer {k}", part, f"{part}_{k}") for k in range(p) for part in ("phase", "mixer")]
+    for what, part, name in sections:
+        have = rc.sections.get(name)
+        check(what, est.parts[part].to_dict(), dict(have.ops) if have else {})
     if est.depth is not None and est.depth.kind == "exact":
         check("depth", (est.depth.depth, est.depth.two_qubit_depth), (rc.depth, rc.two_qubit_depth))
     return out

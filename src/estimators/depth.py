@@ -7,9 +7,8 @@
   adds a layer and every multi-qubit gate synchronising: the number of rotation layers, the
   ``rotationDepth`` input of the physical estimator (:mod:`estimators.physical`).
 
-A :class:`Depth` is either ``exact`` (computed on the gates) or a ``bound`` (an upper bound: the sum of the
-depths of consecutive pieces, which ASAP layering can only shorten). :func:`add` adds them (sequential
-composition; the result is a bound unless one side is empty).
+A :class:`Depth` is ``exact`` (computed on the gates) or a ``bound``: ``+`` (sequential composition) gives a
+bound unless one side is empty, ASAP layering only shortening a concatenation.
 
 Example:
     >>> d = depths([("h", (0,)), ("cx", (0, 1)), ("rz", (1,), (0.1,)), ("rz", (0,), (0.2,)), ("cx", (0, 1))], 2)
@@ -32,14 +31,7 @@ DepthKind = Literal["exact", "bound"]
 
 @dataclass(frozen=True)
 class Depth:
-    """Three depths and whether they are exact or an upper bound.
-
-    Attributes:
-        depth: all gates.
-        two_qubit_depth: two-qubit gates.
-        rotation_depth: ``rz`` gates.
-        kind: ``exact`` or ``bound``.
-    """
+    """The three depths of the module docstring, and whether they are ``exact`` or a ``bound``."""
 
     depth: int = 0
     two_qubit_depth: int = 0
@@ -79,9 +71,7 @@ def advance(
 
     Args:
         gates: gate tuples ``(name, qubits, ...)``.
-        lv: every gate adds a layer on its qubits.
-        l2: two-qubit gates add a layer; a gate on three or more qubits synchronises its qubits.
-        lr: if given, ``rz`` adds a layer and every multi-qubit gate synchronises (rotation depth).
+        lv, l2, lr: levels of ``depth``, ``two_qubit_depth`` and (if given) ``rotation_depth``.
     """
     for g in gates:
         qs = g[1]

@@ -1,26 +1,13 @@
 """Resource estimates of one QAOA circuit from its gadgets' costs, without building a gate list.
 
-:func:`estimate_point` sums the circuit's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`: per part the
-gadget kinds and their multiplicities; every kind reports its lowered and its logical cost, ANDs and Toffolis
-kept whole, without emitting a gate). Layers are alike up to their angles, so the cost of ``p`` layers is
-``initial state + p * (phase separator + mixer)``: one plan with ``p = 1`` serves every ``p``, and its call
-graph (:func:`layer_costs`) is cached per scenario and options.
-:mod:`estimators.crosscheck` (run by the tests and ``benchmarks/estimate_speed.py``) checks that these numbers
-equal the counts of the compiled, lowered circuit (:func:`estimators.counts.count`).
-
-Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is either
-
-* ``exact``: composed gadget by gadget from max-plus transfer profiles (:mod:`estimators.depth_compose`, cached
-  per gadget kind; equal to the depths of the compiled, lowered circuit, :func:`compiled_depth`, which the tests
-  compare), with the frontier carried from ``p`` to ``p + 1`` (:func:`layered_depth`, cached per scenario);
-  ``depth="auto"`` (the default) does this when the state preparation plus one layer has at most
-  ``depth_budget`` lowered gates (the cost is building the profiles of one layer; each further layer costs a
-  small fraction of that), ``depth="exact"`` at any size;
-* ``bound``: an upper bound (:func:`depth_bound`): the sum over the call graph of each kind's own depths times
-  its multiplicity (the balance arithmetic by its shape), in ``O(robots)`` per scenario;
-* absent (``depth="none"``).
-
-The row says which (``depth_kind``); nothing is silently estimated.
+:func:`estimate_point` sums the circuit's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`): layers are
+alike up to their angles, so ``p`` layers cost ``initial state + p * (phase separator + mixer)`` and one plan with
+``p = 1`` serves every ``p`` (:func:`layer_costs`). :mod:`estimators.crosscheck` checks these numbers against
+the compiled, lowered circuit. Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is
+``exact`` (composed from per-kind transfer profiles, :mod:`estimators.depth_compose`, the frontier carried from
+``p`` to ``p + 1``: :func:`layered_depth`; ``depth="auto"`` when the state preparation plus one layer has at most
+``depth_budget`` lowered gates), a ``bound`` (:func:`depth_bound`, ``O(robots)`` per scenario) or absent
+(``depth="none"``); the row says which (``depth_kind``).
 
 Example:
     >>> from estimators.estimate import EstimateOptions, Point, estimate_point
@@ -34,7 +21,7 @@ from __future__ import annotations
 import json
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Literal
 
@@ -77,8 +64,7 @@ __all__ = [
 DepthMode = Literal["auto", "exact", "bound", "none"]
 DEPTH_MODES: tuple[DepthMode, ...] = ("auto", "exact", "bound", "none")
 DEFAULT_DEPTH_BUDGET = 20_000
-"""``depth="auto"`` computes exact depths when the state preparation and one layer have at most this many lowered
-gates (see the module docstring: the size of one layer, not of ``p`` layers, sets the cost)."""
+"""``depth="auto"``'s default ``depth_budget`` (the size of one layer, not of ``p`` layers, sets the cost)."""
 
 
 @dataclass(frozen=True)
@@ -88,9 +74,7 @@ class EstimateOptions:
     Attributes:
         plan: circuit construction options.
         epsilon, synthesis, toffoli_t: the fault-tolerant model (:mod:`estimators.fault_tolerant`).
-        depth: ``auto``, ``exact``, ``bound`` or ``none`` (see the module docstring).
-        depth_budget: ``auto`` computes exact depths when the state preparation and one layer have at most this
-            many lowered gates (``bound`` otherwise).
+        depth, depth_budget: which depths (see the module docstring).
         physical: run the QDK resource estimator (:mod:`estimators.physical`).
         qubit_model, qec_scheme, error_budget: its model.
     """
@@ -129,9 +113,7 @@ class Point:
 
     def build_scenario(self) -> Scenario:
         """The scenario of this point."""
-        if self.scenario_json is not None:
-            return _scenario_from_json(self.scenario_json)
-        return _default(self.rows, self.cols, self.robots)
+        return _scenario(self.rows, self.cols, self.robots, self.scenario_json)
 
     @classmethod
     def from_scenario(cls, scenario: Scenario, p: int) -> Point:
@@ -147,30 +129,19 @@ class Point:
 
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
-def _default(rows: int, cols: int, robots: int) -> Scenario:
-    return default_scenario(rows, cols, robots)
-
-
-@lru_cache(maxsize=SCENARIOS_KEPT)
-def _scenario_from_json(text: str) -> Scenario:
-    return scenario_from_dict(json.loads(text))
-
-
-def _layout(plan: QaoaPlan) -> tuple[tuple[str, int], ...]:
-    return tuple((r.name, r.size) for r in plan.registers)
+def _scenario(rows: int, cols: int, robots: int, text: str | None) -> Scenario:
+    return default_scenario(rows, cols, robots) if text is None else scenario_from_dict(json.loads(text))
 
 
 @lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
 def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan:
-    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths (its call
-    graph is cached on it)."""
+    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths."""
     return qaoa_plan(scenario, layers, options)
 
 
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> CallGraph:
-    """The call graph of a scenario's plan with one layer (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`), whose
-    sums give every ``p`` (``cost(p)``, ``cost(p, logical=True)``, ``cost_by_part()``; cached with the plan, so a
-    sweep over ``p`` asks once; not cached apart from it: its kinds' examples keep their plan alive).
+    """The call graph of a scenario's plan with one layer, whose sums give every ``p`` (cached with the plan: its
+    kinds' examples keep their plan alive).
 
     Args:
         scenario: the scenario.
@@ -183,9 +154,9 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
 
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
-    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built; with ``p = 0``
-    there is no phase separator and no mixer: a ``p = 0`` plan answers)."""
-    return _layout(_plan(scenario, options) if p else _plan(scenario, options, 0))  # the cache keys by the args given
+    """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built)."""
+    plan = _plan(scenario, options) if p else _plan(scenario, options, 0)  # the cache keys by the args given
+    return tuple((r.name, r.size) for r in plan.registers)
 
 
 @dataclass(frozen=True)
@@ -288,11 +259,9 @@ key is one scenario's)."""
 
 
 def kind_depth_bound(kind: GadgetKind) -> Depth:
-    """A bound on the depths of any gadget of ``kind`` (exact where the kind fixes the gates up to qubit names):
-    its own depths, known per anchored kind (:func:`~estimators.depth_compose.known_depth`) or lowered from its
-    example; data-qubit rotations are one layer; a kind of more than :data:`_OWN_DEPTH_GATES` gates by its shape
-    (:func:`_arithmetic_depth_bound`) or its gate counts (a depth is at most the number of gates). Cached per
-    kind (equal keys, equal gates up to qubit names)."""
+    """A bound on the depths of any gadget of ``kind``, cached per kind: its own depths (from its example, or
+    known per anchored kind), one layer for gates on distinct data qubits, and for a kind of more than
+    :data:`_OWN_DEPTH_GATES` gates its shape's bound (:func:`_arithmetic_depth_bound`) or its gate counts."""
     if isinstance(kind.example, Deferred):
         return _kind_depth_bound(kind)
     hit = _DEPTH_BOUNDS.get(kind.cache_key)
@@ -328,8 +297,7 @@ def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth
         total[0] += n * d.depth
         total[1] += n * d.two_qubit_depth
         total[2] += n * d.rotation_depth
-    init, layer = (Depth(*sums[k], "bound") for k in ("initial_state", "layer"))  # type: ignore[arg-type]
-    return init, layer
+    return Depth(*sums["initial_state"], "bound"), Depth(*sums["layer"], "bound")  # type: ignore[arg-type]
 
 
 def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
@@ -346,11 +314,8 @@ def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
 
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
-    """An upper bound on the depths of ``p`` layers, in ``O(robots)`` per scenario once the counts are known.
-
-    ``depth(A then B) <= depth(A) + depth(B)`` (ASAP layering can only shorten a concatenation), so the bound is
-    the sum over the plan's call graph (:meth:`circuitgen.qaoa.QaoaPlan.call_graph`) of each kind's depth bound
-    times its multiplicity (:func:`kind_depth_bound`): the state preparation once, one layer ``p`` times.
+    """An upper bound on the depths of ``p`` layers: ASAP layering can only shorten a concatenation, so the sum
+    over the call graph of each kind's :func:`kind_depth_bound` times its multiplicity, one layer ``p`` times.
 
     >>> from gridcover.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)
@@ -358,16 +323,13 @@ def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN)
     True
     """
     init, layer = _layer_depth_bounds(scenario, options)
-    d = init + p * layer
-    return Depth(d.depth, d.two_qubit_depth, d.rotation_depth, "bound")
+    return replace(init + p * layer, kind="bound")
 
 
 def estimate_depth(
     scenario: Scenario, p: int, options: EstimateOptions = DEFAULT_OPTIONS, graph: CallGraph | None = None
 ) -> Depth | None:
-    """The depths :func:`estimate_point` reports: ``exact``, a ``bound`` or ``None`` as ``options.depth`` says
-    (``auto``: exact when the state preparation and one layer have at most ``options.depth_budget`` lowered
-    gates, a bound otherwise; see the module docstring).
+    """The depths :func:`estimate_point` reports, as ``options.depth`` says (see the module docstring).
 
     Args:
         scenario: the scenario.
@@ -414,11 +376,8 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     cost, logical, parts = graph.cost(p), graph.cost(p, logical=True), graph.cost_by_part()
     depth = estimate_depth(scenario, p, options, graph)
     ft = fault_tolerant_from_cost(logical, options.epsilon, options.synthesis, options.toffoli_t)
-    registers = registers_for(scenario, p, options.plan)
-    est = Estimate(point, options, registers, cost, logical, parts, depth, ft, None, 0.0)
-    phys = None
+    est = Estimate(point, options, registers_for(scenario, p, options.plan), cost, logical, parts, depth, ft, None, 0)
     if options.physical:
         phys = physical_estimate(est.logical_counts, options.qubit_model, options.qec_scheme, options.error_budget)
-    return Estimate(
-        point, options, est.registers, cost, logical, parts, depth, ft, phys, time.perf_counter() - start
-    )
+        est = replace(est, physical=phys)
+    return replace(est, seconds=time.perf_counter() - start)

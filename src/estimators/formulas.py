@@ -3,34 +3,18 @@
 Symbols: ``rows``, ``cols`` (>= 2), ``robots`` (1..4, :func:`gridcover.presets.default_scenario`) and ``p`` (>= 1).
 Every expression equals the exact count of
 ``lower(qaoa_circuit(default_scenario(rows, cols, robots), p, phase="whole-space"))``, and is the call graph's own
-counting (the one every estimate sums, :meth:`circuitgen.qaoa.QaoaPlan.call_graph`) run with symbolic sides, as
-Qualtran's ``build_call_graph`` returns ``{And(): n - 1}``: nothing here describes the circuit a second time.
-The default phase separator (``feasible``: arithmetic on path lengths, visit bits, chosen per term group) costs
-bit lengths of path-length sums, which have no polynomial form, so the formulas are restricted to the whole-space
-form; ``qcpp estimate`` always sums the gadgets actually compiled (``tests/estimators/formulas_test.py`` checks
-every quantity on every grid from 2x2 to 8x8, 1-4 robots, p = 1, and p = 2, 3 on a subset). Depth and
-two-qubit depth have no closed form here: ASAP layering of the phase separator and of the chain of partial
-mixers (which share the ``logic``/``work`` ancillas) does not decompose into per-part sums, so only the exact
-counter (:mod:`estimators.counts`) gives them.
-
-How the counting runs symbolically (see ``docs/resource-estimates.md``):
+counting (:func:`part_terms`) run with symbolic sides, as Qualtran's ``build_call_graph`` returns
+``{And(): n - 1}``: nothing here describes the circuit a second time. The default (``feasible``) phase separator
+costs bit lengths of path-length sums, which have no polynomial form, and ASAP depth does not decompose into
+per-part sums, so neither has a formula; ``tests/estimators/formulas_test.py`` checks every quantity on every grid
+from 2x2 to 8x8, 1-4 robots, p = 1, and p = 2, 3 on a subset.
 
 * A side of 2, 3 or 4 nodes is its own case; a side of ``>= 5`` nodes is read from a representative side of 6
-  whose classes (first, last, between) are those of every longer side, the count of the "between" class being
-  ``rows - 2`` (nodes), ``rows - 3`` (consecutive pairs) and so on instead of a number.
-* Phase separator (:func:`part_terms`): :func:`circuitgen.phase_classes.ising_count` counts the nonzero Ising
-  coefficients by classes of nodes (degree, degree target) and edges (the classes of their ends), the edges at
-  the robots' endpoints moved to their own classes; one RZ per nonzero ``h``, one RZZ per nonzero ``J``
-  (:func:`circuitgen.gadgets.phase_ising.ising_cost`).
-* Mixer (:func:`part_terms`): :func:`circuitgen.mixer_classes.mixer_part` lists the partial mixers' rotations,
-  the junctions between consecutive partial mixers (:mod:`circuitgen.gadgets.junction`) and the open ends by
-  classes of plaquettes (their corners' local pictures, :class:`gridcover.sbf.LocalPicture`).
-* Initial state (:func:`part_terms`): :func:`circuitgen.initial_state.initial_path_count` counts the X gates,
-  one per edge of each robot's L-shaped initial path, a coordinate in the far half of a side read from its end.
+  whose classes (first, last, between: :func:`circuitgen.mixer_classes.index_classes`) are those of every longer
+  side, the "between" class counted as ``rows - 2`` (nodes), ``rows - 3`` (consecutive pairs) and so on.
 * Robots: each part of ``default_scenario(R, C, k)`` for ``k = 1..4``, written with indicators of
   ``robots >= k`` (:func:`_case_layer`); the cases joined in one Piecewise (:func:`_layer`).
-* Ancillas: ``logic`` = the largest network (6 temporaries once some plaquette has four interior corners,
-  i.e. rows, cols >= 4), ``work`` = largest multi-controlled X minus 2.
+* Ancillas: the largest need over the mixer's kinds (:func:`_widest`).
 
 Example:
     >>> f = formula_table()
@@ -104,13 +88,8 @@ QUANTITIES: tuple[str, ...] = (
 
 @dataclass(frozen=True)
 class Term:
-    """Gate counts of one gadget kind of the mixer (a rotation, a junction, or a partial mixer).
-
-    Attributes:
-        ops: lowered gate counts.
-        toffoli: ANDs, their uncomputes and Toffolis (logical basis).
-        zz: Ising couplings (``RZZ``) it holds.
-    """
+    """Gate counts of one gadget kind: lowered ``ops``, ``toffoli`` (ANDs, their uncomputes and Toffolis of the
+    logical basis) and ``zz`` (Ising couplings it holds)."""
 
     ops: Mapping[str, int]
     toffoli: int
@@ -196,11 +175,7 @@ def _case_layer(metric: Metric, parts: tuple[str, ...], rows_case: int, cols_cas
     else:
         at_least = [sp.Min(robots - 1, 1), sp.Max(sp.Min(robots - 2, 1), 0), sp.Max(robots - 3, 0)]
         out = g[0] + sum((gk * ind for gk, ind in zip(g[1:], at_least, strict=True)), sp.Integer(0))
-    subs = {}
-    if rows_case < 5:
-        subs[rows] = rows_case
-    if cols_case < 5:
-        subs[cols] = cols_case
+    subs = {side: case for side, case in ((rows, rows_case), (cols, cols_case)) if case < 5}
     return sp.factor(out.subs(subs)) if subs else out
 
 
@@ -239,10 +214,8 @@ def _widest(width: Callable[[MixerPart], int]) -> sp.Expr:
     if any(values[a, b] != values[b, a] for a, b in values):  # pragma: no cover - the default placement is symmetric
         raise AssertionError("ancilla widths are not symmetric in rows and cols")
     lo, hi = sp.Min(rows, cols), sp.Max(rows, cols)
-    pieces = []
-    for a, b in [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]:
-        cond = sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)
-        pieces.append((values[a, b], cond))
+    cases = [(2, 2), (2, 3), (2, 4), (3, 3), (3, 4)]
+    pieces = [(values[a, b], sp.And(sp.Eq(lo, a), sp.Eq(hi, b) if b < 4 else hi >= 4)) for a, b in cases]
     last = values[4, 4]
     if all(v == last for v, _ in pieces):
         return sp.Integer(last)
@@ -259,13 +232,9 @@ V_EXPR = 2 * rows * cols - rows - cols
 def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
     """Every quantity of :data:`QUANTITIES` as a sympy expression in ``rows, cols, robots, p``.
 
-    Valid for ``rows, cols >= 2``, ``1 <= robots <= 4``, ``p >= 1``, the ``exact`` rule, the whole-space phase
-    separator, default objective and the default placement. Gate counts are for the lowered circuit (basis
-    ``cx x h rz t tdg s sdg``, peephole on); ``toffoli`` counts Toffolis after multi-controlled-X lowering;
-    ``rotations`` counts arbitrary-angle RZ (all of them are symbolic); ``t_count`` is ``t + tdg``. Each gate
-    count is ``initial state + p * layer``, each the call graph's own counting run with symbolic sides
-    (:func:`part_terms`): the initial paths' X gates, the phase separator's rotations and couplings by classes of
-    nodes and edges, the mixer's rotations and junctions by classes of plaquettes.
+    Valid on :data:`FORMULA_DOMAIN`. ``toffoli`` counts Toffolis after multi-controlled-X lowering;
+    ``rotations`` counts arbitrary-angle RZ (all of them symbolic); ``t_count`` is ``t + tdg``. Each gate count is
+    ``initial state + p * layer`` (:func:`part_terms`).
 
     Args:
         structured: write the data qubits with the abbreviation :data:`V` (see :data:`V_EXPR`).

@@ -239,7 +239,7 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     local, layout = allocate_ancillas(_unfused(s), homes, dev)
     dist = distances(dev)
     pos = Positions(layout, dev.num_qubits)
-    mixers = iter(qaoa_plan(s, 1, PlanOptions(fuse=False))._mixers)
+    mixers = (g for name, g in qaoa_plan(s, 1, PlanOptions(fuse=False)).sections() if name == "mixer_0")
     by_kind: dict[object, set[int]] = {}
     seen: dict[object, list[tuple[int, int]]] = {}
     total = 0

@@ -224,10 +224,11 @@ def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: in
     phase add up to its cost."""
     s = default_scenario(rows, cols, robots)
     layer = phase_layer(s)
-    assert layer is not None and layer.balance is not None
-    shape = layer.balance.shape
+    assert layer is not None
+    balance = next(k.example for k, _ in layer.kinds() if k.key[0] == "sums")
+    shape = balance.shape
     assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
-    gadget = next(k.example.build() for k, _ in layer.kinds() if k.key[0] == "sums")
+    gadget = balance.build()
     regs = (Register("q", s.num_variables + layer.num_ancillas),)
     own, bound = gadget_depth(gadget, regs), _arithmetic_depth_bound(shape)
     assert bound.depth >= own.depth and bound.two_qubit_depth >= own.two_qubit_depth
