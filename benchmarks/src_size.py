@@ -1,6 +1,6 @@
 """Size of ``src/``: lines and code lines per package, of this tree and optionally of a revision.
 
-Run: ``python benchmarks/src_size.py [--against REV] [--counting]``.
+Run: ``python benchmarks/src_size.py [--against REV] [--counting] [--merges M ...]``.
 
 * lines: every line of every ``.py`` file under ``src/``;
 * code lines: lines that hold code, i.e. not blank, not only a comment and not part of a docstring (the string
@@ -9,11 +9,13 @@ Run: ``python benchmarks/src_size.py [--against REV] [--counting]``.
 With ``--against REV`` a second column pair gives the same counts of ``REV``'s ``src/`` (read with ``git show``,
 nothing checked out) and the ratio. ``--counting`` adds a table of the counting code only: the modules along the
 seven count paths issue #17 names (at ``d41c381``) and their successors (:data:`COUNTING`), the set whose code
-lines issue #17's "src/ shrinks" was judged on.
+lines issue #17's "src/ shrinks" was judged on. ``--merges M ...`` prints what each merge commit's branch did to
+``src/`` on its own: lines and code lines at the branch's fork point (``git merge-base M^1 M^2``) and at its tip
+(``M^2``), and the sums (:data:`ISSUE_17_MERGES` lists issue #17's branches, ``--merges 17`` names them).
 
 Example::
 
-    python benchmarks/src_size.py --against d41c381 --counting
+    python benchmarks/src_size.py --against d41c381 --counting --merges 17
 """
 
 from __future__ import annotations
@@ -46,6 +48,10 @@ COUNTING = (
     "estimators/mixer_count.py",
     "estimators/phase_count.py",
 )
+
+#: The merges of issue #17's branches into main, oldest first: plan (PlanOptions, the call graph), its follow-ups,
+#: plan2, shrink, shrink9, then simshrink, clishrink and count17.
+ISSUE_17_MERGES = ("e2f2116", "c429989", "a237704", "cc01521", "ead7f70", "4746b0d", "cf51b55", "df9392a", "e3e8b11")
 
 
 def docstring_lines(tree: ast.Module) -> set[int]:
@@ -154,10 +160,40 @@ def table(rows: list[tuple[str, tuple[int, int], tuple[int, int] | None]], again
     return "\n".join(out)
 
 
+def _git(*args: str) -> str:
+    return subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout.strip()
+
+
+def merge_table(merges: list[str]) -> str:
+    """What each merge's branch did to ``src/``: (lines, code lines) at its fork point and its tip, and the sums.
+
+    Args:
+        merges: merge commits (their second parent is the branch's tip).
+
+    Returns:
+        A text table, one row per merge and a total row.
+    """
+    head = f"{'merge':10} {'branch':42} {'lines':>15} {'code':>15} {'d lines':>8} {'d code':>7}"
+    out, total = [head], [0, 0]
+    for merge in merges:
+        tip = _git("rev-parse", f"{merge}^2")
+        base = _git("merge-base", f"{merge}^1", tip)
+        before = totals(sizes(base), sizes(base))
+        after = totals(sizes(tip), sizes(tip))
+        delta = (after[0] - before[0], after[1] - before[1])
+        total = [total[0] + delta[0], total[1] + delta[1]]
+        subject = _git("log", "-1", "--format=%s", merge).removeprefix("Merge ")[:42]
+        lines, code = f"{before[0]:,}->{after[0]:,}", f"{before[1]:,}->{after[1]:,}"
+        out.append(f"{merge[:10]:10} {subject:42} {lines:>15} {code:>15} {delta[0]:+8,} {delta[1]:+7,}")
+    out.append(f"{'all':10} {'':42} {'':>15} {'':>15} {total[0]:+8,} {total[1]:+7,}")
+    return "\n".join(out)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--against", metavar="REV", help="also count REV's src/ (git show) and print ratios")
     parser.add_argument("--counting", action="store_true", help="also the counting modules of issue #17")
+    parser.add_argument("--merges", nargs="+", metavar="M", help="each merge branch's own effect (17: issue #17's)")
     args = parser.parse_args(argv)
     here = sizes(None)
     there = sizes(args.against) if args.against else None
@@ -174,6 +210,9 @@ def main(argv: list[str] | None = None) -> int:
         rows = [row(path, lambda f, p=path: [p]) for path in COUNTING]
         rows.append(row("counting modules (all)", lambda f: COUNTING))
         print(table(rows, args.against))
+    if args.merges:
+        print()
+        print(merge_table(list(ISSUE_17_MERGES) if args.merges == ["17"] else args.merges))
     return 0
 
 
