@@ -19,5 +19,5 @@ for i in $(seq 1 "$runs"); do
   echo "run $i: exit $rc, $(( $(date +%s) - start )) s, commit $(git -C "$work/run$i" log --oneline -1 | cut -c1-7)," \
        "load $(cut -d' ' -f1-3 /proc/loadavg)"
   grep -E "^=+ .*(passed|failed).* in " "$work/run$i.log" | sed 's/^/    /'
-  [ "$rc" -ne 0 ] && exit "$rc"
+  if [ "$rc" -ne 0 ]; then exit "$rc"; fi
 done
