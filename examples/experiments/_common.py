@@ -20,6 +20,19 @@ REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
 
 
+def two_robot_cases(quick: bool) -> list[tuple[str, Any]]:
+    """The two-robot scenarios of the mixer-only studies, each with the source its rows record: two_robots_4x4,
+    and unless ``quick`` also the open 4x4 and two_robots_5x5."""
+    from gridcover.presets import default_scenario
+    from gridcover.scenario import load_scenario
+
+    cases: list[tuple[str, Any]] = [("examples/two_robots_4x4.toml", load_scenario(EXAMPLES / "two_robots_4x4.toml"))]
+    if not quick:
+        cases += [("default_scenario(4, 4, 2)", default_scenario(4, 4, 2)),
+                  ("examples/two_robots_5x5.toml", load_scenario(EXAMPLES / "two_robots_5x5.toml"))]  # fmt: skip
+    return cases
+
+
 @dataclass(frozen=True)
 class Options:
     quick: bool

@@ -42,11 +42,19 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import EXAMPLES, REPO, Table, circuit_columns, command_line, parse, record, write_records, write_results
+from _common import (
+    REPO,
+    Table,
+    circuit_columns,
+    command_line,
+    parse,
+    record,
+    two_robot_cases,
+    write_records,
+    write_results,
+)
 
 import qcpp
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario
 from simulate.layerwise import DEFAULT_MAXITER, train_layerwise
 from simulate.mixer_only import CEILING_STARTS, mixer_only_ceiling, product_objective, robot_states, train_mixer_only
 from simulate.objectives import GIBBS_SCALE, make_objective
@@ -84,11 +92,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     starts = 4 if opts.quick else CEILING_STARTS
     options = {"initial": "initial_path", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
                "optimizer": "L-BFGS-B", "maxiter": DEFAULT_MAXITER, "ceiling_starts": starts, "seed": opts.seed}
-    four = "examples/two_robots_4x4.toml"
-    cases: list[tuple[str, Scenario]] = [(four, load_scenario(EXAMPLES / "two_robots_4x4.toml"))]
-    if not opts.quick:
-        cases += [("default_scenario(4, 4, 2)", default_scenario(4, 4, 2)),
-                  ("examples/two_robots_5x5.toml", load_scenario(EXAMPLES / "two_robots_5x5.toml"))]
+    cases = two_robot_cases(opts.quick)
     table = Table(f"Mixer-only warm start (gammas 0) and the mixer-only ceiling, p = 1..{p_max}: P(optimum)",
                   ["scenario", "assignments", "p", "mixer-only (Gibbs)", "<C> mixer-only", "then full training",
                    "max abs(gamma) after", "default training", "default, mixer_warm=True",

@@ -43,11 +43,19 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import EXAMPLES, REPO, Table, circuit_columns, command_line, parse, record, write_records, write_results
+from _common import (
+    REPO,
+    Table,
+    circuit_columns,
+    command_line,
+    parse,
+    record,
+    two_robot_cases,
+    write_records,
+    write_results,
+)
 
 import qcpp
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario
 from simulate.mixer_only import (
     MIXER_MAXITER,
     MIXER_STARTS,
@@ -109,11 +117,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     options = {"initial": "initial_path", "angles": "multi", "gammas": 0, "objective": "gibbs",
                "gibbs_eta_sigma": GIBBS_SCALE, "optimizer": "L-BFGS-B", "maxiter": MIXER_MAXITER,
                "constant_starts": list(MIXER_STARTS), "random_starts": random_starts, "seed": opts.seed}
-    four = "examples/two_robots_4x4.toml"
-    cases: list[tuple[str, Scenario]] = [(four, load_scenario(EXAMPLES / "two_robots_4x4.toml"))]
-    if not opts.quick:
-        cases += [("default_scenario(4, 4, 2)", default_scenario(4, 4, 2)),
-                  ("examples/two_robots_5x5.toml", load_scenario(EXAMPLES / "two_robots_5x5.toml"))]
+    cases = two_robot_cases(opts.quick)
     table = Table(f"Multi-angle mixer-only QAOA (one beta per partial mixer and layer, gammas 0), p = 1..{p_max}",
                   ["scenario", "assignments", "p", "parameters", "P(optimum), trained (Gibbs)", "<C>",
                    "P(most probable assignment)", "starts ending there (within 0.01)", "evaluations",
