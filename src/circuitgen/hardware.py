@@ -74,7 +74,7 @@ from .medial import allocate_ancillas, grid_shape, medial_placement, medial_shap
 from .options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from .phase_locality import for_device
 from .placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
-from .routing import RoutedCircuit, duration_s, embed_routed, esp, route, route_windows, to_native
+from .routing import RoutedCircuit, duration_s, embed_routed, esp, route, route_windows, to_native, watching_patches
 
 __all__ = [
     "DeviceCompileResult",
@@ -484,22 +484,16 @@ def _route_on_crop(
     and the relays' candidates included) reaches the crop's last row or column short of the device's edge, or a
     window was routed on its whole connected component (the crop's, not the device's): the checks
     :mod:`circuitgen.window_classes` makes of its crops."""
-    from . import routing
-
     shape, full = grid_shape(sub), grid_shape(dev)
     assert shape is not None and full is not None
-    before = routing.WHOLE_COMPONENT_PATCHES
-    patches: set[int] = set()
-    routing.PATCH_WATCH.append(patches)
-    try:
-        logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
-    except ValueError:
-        return None
-    finally:
-        routing.PATCH_WATCH.remove(patches)
-    last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in patches)
-    last_col = shape[1] < full[1] and any(q % shape[1] == shape[1] - 1 for q in patches)
-    if before != routing.WHOLE_COMPONENT_PATCHES or last_row or last_col:
+    with watching_patches() as watch:
+        try:
+            logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
+        except ValueError:
+            return None
+    last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in watch.qubits)
+    last_col = shape[1] < full[1] and any(q % shape[1] == shape[1] - 1 for q in watch.qubits)
+    if watch.whole_component or last_row or last_col:
         return None
     return logical, routed
 

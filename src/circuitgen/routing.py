@@ -50,9 +50,10 @@ Example:
 
 from __future__ import annotations
 
+import contextlib
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 from .circuit import Circuit, Register, Section
@@ -60,6 +61,7 @@ from .devices import Device
 from .gates import Gate, cx, cz, rx, rz, rzz
 
 __all__ = [
+    "PatchWatch",
     "Positions",
     "RoutedCircuit",
     "coupling_map",
@@ -71,6 +73,7 @@ __all__ = [
     "route_window",
     "route_windows",
     "to_native",
+    "watching_patches",
     "window_cx",
 ]
 
@@ -374,7 +377,44 @@ neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
 PATCH_WATCH: list[set[int]] = []
 """Sets that collect the device qubits of every patch routed while they are listed: :mod:`circuitgen.window_classes`
 lists one while it allocates, relays and routes a window on a crop of the device (allocation search and relays
-route candidates too), and the crop answers for the device only if no patch reached a side the crop cut."""
+route candidates too), and the crop answers for the device only if no patch reached a side the crop cut.
+Listed and unlisted by :func:`watching_patches`."""
+
+
+@dataclass
+class PatchWatch:
+    """What the routings inside one :func:`watching_patches` block did.
+
+    Attributes:
+        qubits: The device qubits of every patch routed (memoised windows included).
+        whole_component: Window parts routed on their whole connected component (set when the block ends).
+    """
+
+    qubits: set[int] = field(default_factory=set)
+    whole_component: int = 0
+
+
+@contextlib.contextmanager
+def watching_patches() -> Iterator[PatchWatch]:
+    """Collect the patches routed inside the block (:data:`PATCH_WATCH`, :data:`WHOLE_COMPONENT_PATCHES`).
+
+    Returns:
+        A context manager giving the :class:`PatchWatch` it fills; blocks nest.
+
+    Example:
+        >>> with watching_patches() as watch:
+        ...     pass
+        >>> watch.qubits, watch.whole_component
+        (set(), 0)
+    """
+    watch = PatchWatch()
+    before = WHOLE_COMPONENT_PATCHES
+    PATCH_WATCH.append(watch.qubits)
+    try:
+        yield watch
+    finally:  # by identity: an empty set equals every other empty set
+        del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is watch.qubits)]
+        watch.whole_component = WHOLE_COMPONENT_PATCHES - before
 
 
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
@@ -664,14 +704,9 @@ def _memo_window(
            WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
     hit = _WINDOW_CACHE.get(key)
     if hit is None:
-        seen: set[int] = set()
-        before = WHOLE_COMPONENT_PATCHES
-        PATCH_WATCH.append(seen)
-        try:
+        with watching_patches() as watch:
             ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        finally:  # by identity: an empty set equals every other empty set
-            del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
-        hit = (tuple(ops), cx_, frozenset(seen), WHOLE_COMPONENT_PATCHES - before)
+        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component)
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
         _WINDOW_CACHE[key] = hit

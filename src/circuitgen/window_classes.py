@@ -322,10 +322,7 @@ def _route_on(
         sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
                                           for name, qs in template.gates]))  # fmt: skip
     registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
-    before = routing.WHOLE_COMPONENT_PATCHES
-    patches: set[int] = set()  # every patch routed here, the search's and the relays' candidates included
-    routing.PATCH_WATCH.append(patches)
-    try:
+    with routing.watching_patches() as watch:  # the search's and the relays' candidate patches included
         try:
             logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
                                                 search=SEARCH)  # fmt: skip
@@ -333,14 +330,12 @@ def _route_on(
             return None
         logical, layout = bridge_far_phases(logical, layout, dev, dist)
         routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
-    finally:
-        routing.PATCH_WATCH.remove(patches)
-    if before != routing.WHOLE_COMPONENT_PATCHES and any(crop.open_sides):
+    if watch.whole_component and any(crop.open_sides):
         return "whole"  # routed on the whole crop: the device beyond it would change the routing
     touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
     if not _inside(crop, np.array(sorted(touched), dtype=int)):
         return None
-    if not _inside(crop, np.array(sorted(patches), dtype=int), guard=1):
+    if not _inside(crop, np.array(sorted(watch.qubits), dtype=int), guard=1):
         return None  # a patch reached a side the crop cut: on the device it would be larger
     fused = dict(routed.fused)
     by_name: dict[str, list[Gate]] = {}
