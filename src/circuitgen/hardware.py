@@ -328,8 +328,8 @@ def _greedy_compare(
     n = circuit.num_qubits
     rows = min(shape[0], math.isqrt(n - 1) + 1)
     cols = min(shape[1], -(-n // rows))
-    small = greedy_route(circuit, get_device(f"grid:{rows}x{cols}"), seed=seed, layouts=layouts, measured=measured)
-    return embed_routed(small, device, [r * shape[1] + c for r in range(rows) for c in range(cols)])
+    sub, sites = _top_left(device, rows, cols)
+    return embed_routed(greedy_route(circuit, sub, seed=seed, layouts=layouts, measured=measured), device, sites)
 
 
 SEARCH = True
@@ -472,6 +472,14 @@ def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | 
     rows, cols = min(shape[0], max(rows_of) + 1 + CROP_PAD), min(shape[1], max(cols_of) + 1 + CROP_PAD)
     if 2 * rows * cols > dev.num_qubits:
         return None
+    return _top_left(dev, rows, cols)
+
+
+def _top_left(dev: Device, rows: int, cols: int) -> tuple[Device, list[int]]:
+    """The ``grid:{rows}x{cols}`` device and its sites on the square grid ``dev`` (its top-left corner, row-major:
+    an induced subgraph, so a gate on a coupling of the sub-grid is on one of ``dev``)."""
+    shape = grid_shape(dev)
+    assert shape is not None
     return get_device(f"grid:{rows}x{cols}"), [r * shape[1] + c for r in range(rows) for c in range(cols)]
 
 
