@@ -116,13 +116,28 @@ def diameter_bound(device: Device) -> int:
     """An upper bound on the coupling graph's diameter (1 if all-to-all): twice the eccentricity of a central
     qubit (``d(x, y) <= d(x, m) + d(m, y)``), the better of the middle qubit by number (a square grid's centre) and
     the middle of a shortest path between a qubit farthest from qubit 0 and one farthest from it. On a grid that is
-    about the diameter itself, where qubit 0, a corner, would give twice it."""
+    about the diameter itself, where qubit 0, a corner, would give twice it. On a device in pieces (a calibration
+    snapshot with dead couplers) the largest of the pieces' bounds, each from a qubit of its own.
+
+    Example:
+        >>> from circuitgen.devices import get_device
+        >>> diameter_bound(get_device("grid:3x3"))  # the 3x3 grid's diameter is 4
+        4
+    """
     if device.is_all_to_all:
         return 1
+    from scipy.sparse.csgraph import connected_components
+
     graph = device.graph()
-    far, _ = _farthest(graph, 0)
-    _, longest = _farthest(graph, far)
-    return 2 * min(len(_farthest(graph, m)[1]) - 1 for m in (device.num_qubits // 2, longest[len(longest) // 2]))
+    pieces, labels = connected_components(graph, directed=False)
+    bound = 0
+    for piece in range(pieces):
+        members = np.flatnonzero(labels == piece)
+        far, _ = _farthest(graph, int(members[0]))
+        _, longest = _farthest(graph, far)
+        centres = [longest[len(longest) // 2]] + ([device.num_qubits // 2] if pieces == 1 else [])
+        bound = max(bound, 2 * min(len(_farthest(graph, int(m))[1]) - 1 for m in centres))
+    return bound
 
 
 def _farthest(graph: Any, source: int) -> tuple[int, list[int]]:

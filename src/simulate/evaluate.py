@@ -50,6 +50,7 @@ from gridcover.cost import cost_parts_bits
 from gridcover.paths import assignment_bits, enumerate_paths
 from gridcover.sbf import RULES, Rule
 from gridcover.scenario import Scenario
+from simulate.statevector import MAX_STATEVECTOR_QUBITS
 from simulate.subspace import SubspaceQAOA, angle_bindings, split_angles
 from simulate.training import check_at_least, initial_angles
 
@@ -57,8 +58,6 @@ __all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "resol
 
 Method = Literal["subspace", "statevector", "tensor"]
 METHODS: tuple[Method, ...] = ("subspace", "statevector", "tensor")
-MAX_STATEVECTOR_QUBITS = 26
-"""The dense simulator holds ``2**n`` complex amplitudes: 26 qubits are 1 GiB."""
 
 _OPT_TOL = 1e-9
 

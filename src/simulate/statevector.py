@@ -30,8 +30,10 @@ from circuitgen.angles import UnboundParameterError
 from circuitgen.circuit import Circuit
 from circuitgen.gates import GATE_SPECS, Gate, controlled_x_pattern, diagonal, unitary
 
-__all__ = ["MAX_UNITARY_QUBITS", "circuit_unitary", "simulate_statevector"]
+__all__ = ["MAX_STATEVECTOR_QUBITS", "MAX_UNITARY_QUBITS", "circuit_unitary", "simulate_statevector"]
 
+MAX_STATEVECTOR_QUBITS = 26
+"""The dense simulator holds ``2**n`` complex amplitudes: 26 qubits are 1 GiB (callers refuse beyond it)."""
 MAX_UNITARY_QUBITS = 14
 """Refuse :func:`circuit_unitary` beyond this many qubits (4**14 amplitudes = 4 GiB)."""
 

@@ -81,6 +81,7 @@ import numpy as np
 from gridcover.paths import enumerate_paths
 from gridcover.sbf import RULES, Rule
 from gridcover.scenario import Scenario
+from simulate.statevector import MAX_STATEVECTOR_QUBITS
 
 __all__ = [
     "AUTO_STATEVECTOR_QUBITS",
@@ -100,7 +101,6 @@ __all__ = [
 Backend = Literal["tensor", "statevector", "sparse", "qcec", "auto"]
 BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse", "qcec", "auto")
 DEFAULT_TOLERANCE = 1e-8
-MAX_STATEVECTOR_QUBITS = 26
 AUTO_STATEVECTOR_QUBITS = 20
 """``auto`` uses the dense statevector up to this many qubits (2^20 amplitudes, 16 MB), else ``sparse``."""
 MAX_VALIDATE_ASSIGNMENTS = 2_000_000

@@ -117,6 +117,18 @@ def test_the_diameter_bound_bounds_the_diameter_and_is_near_it(name: str) -> Non
     assert diameter <= diameter_bound(dev) <= 2 * diameter
 
 
+def test_the_diameter_bound_covers_every_piece_of_a_device_in_pieces() -> None:
+    # a 2-qubit piece holding qubit 0 and the middle qubit, beside a 7-qubit line (diameter 6) that neither reaches
+    line = tuple((q, q + 1) for q in range(4, 10))
+    whole = get_device("grid:1x11")
+    kept = len(line) + 1  # per-coupling data for the couplings kept
+    durations = None if whole.duration_2q_s is None else whole.duration_2q_s[:kept]
+    dev = replace(whole, coupling=((0, 1), *line), error_2q=whole.error_2q[:kept], duration_2q_s=durations)
+    dist = distances(dev)
+    assert int(dist[np.isfinite(dist)].max()) == 6
+    assert 6 <= diameter_bound(dev) <= 12
+
+
 def test_a_long_row_names_its_routing_stages() -> None:
     seen: list[str] = []
     f = _fields(default_scenario(2, 3, 1), 1, "grid", stage=seen.append)
