@@ -195,12 +195,23 @@ def _place_ancillas(
         key = cost * 1e6 + centre
         key[busy] = np.inf
         rank = ranks[i] if i < len(ranks) else 0
-        j = int(np.argsort(key, kind="stable")[rank]) if rank else int(np.argmin(key))
+        j = _ranked(key, rank) if rank else int(np.argmin(key))
         if not np.isfinite(key[j]):
             j = int(np.argmin(key))
         busy[j] = True
         home[q] = int(free[j])
     return home
+
+
+def _ranked(key: np.ndarray, rank: int) -> int:
+    """``np.argsort(key, kind="stable")[rank]`` (ties by index) without sorting: the ``rank``-th smallest value,
+    and among the indices holding it the one that many places after those holding less.
+
+    >>> _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 2), _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 3)
+    (2, 4)
+    """
+    value = np.partition(key, rank)[rank]
+    return int(np.flatnonzero(key == value)[rank - np.count_nonzero(key < value)])
 
 
 SEARCH_RANKS = 4

@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -445,6 +445,74 @@ class _PatchIndex:
             self.neighbours[b].append(a)
         self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
         self.token = object()  # names the device in memo keys without keeping its distances alive
+        self.lattice = _Lattice.of(device)
+
+
+Coord = tuple[int, int]
+
+
+class _Lattice:
+    """A heavy-hex lattice device's qubits on their ``(y, x)`` coordinates
+    (:func:`circuitgen.devices.heavy_hex_coordinates`), for the translation-invariant window memo
+    (:func:`_memo_window`).
+
+    A translation by multiples of :attr:`PERIOD` in both coordinates maps the infinite lattice onto itself, and
+    (checked when built, :meth:`of`) the device's couplings are exactly its qubits one step apart and its index
+    order is ``(kind, y, x)`` with the kind (data, bridge, flag) given by the coordinates' parities. So two windows
+    whose qubits are such a translation of each other, with the same qubits present within ``2 WINDOW_RADIUS``
+    steps of them (:meth:`canonical`), get the same patches (the compute's within ``WINDOW_RADIUS`` of its qubits,
+    the middle's within ``WINDOW_RADIUS`` of where the compute left them), with the same local indices and
+    couplings, so SABRE routes them alike: one routing answers both, translated. A window routed on its whole
+    component depends on the whole device: it is memoised on its physical pairs instead."""
+
+    PERIOD = 4
+
+    def __init__(self, coords: Sequence[Coord]) -> None:
+        import numpy as np
+
+        self.y = [c[0] for c in coords]
+        self.x = [c[1] for c in coords]
+        self.at = {c: i for i, c in enumerate(coords)}
+        pad = 2 * WINDOW_RADIUS  # so that a box around any qubits never leaves the array
+        self.present = np.zeros((max(self.y) + 1 + 2 * pad, max(self.x) + 1 + 2 * pad), dtype=np.uint8)
+        self.present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+
+    @classmethod
+    def of(cls, device: Device) -> _Lattice | None:
+        """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
+        from .devices import heavy_hex_coordinates
+        from .hexlayout import heavy_hex_distance
+
+        d = heavy_hex_distance(device)
+        if d is None:
+            return None
+        coords = heavy_hex_coordinates(d)
+        at = {c: i for i, c in enumerate(coords)}
+        steps = {tuple(sorted((i, at[n]))) for i, (y, x) in enumerate(coords) for n in ((y + 1, x), (y, x + 1))
+                 if n in at}  # fmt: skip
+        kind = [1 if y % 2 else 2 * (x % 2) for y, x in coords]  # data 0, bridge 1, flag 2
+        order = sorted(range(len(coords)), key=lambda i: (kind[i], coords[i]))
+        if steps != {tuple(sorted(e)) for e in device.coupling} or order != list(range(len(coords))):
+            return None  # pragma: no cover - another numbering: the physical memo only
+        return cls(coords)
+
+    def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
+        """A key equal for two windows' physical ``pairs`` iff one is the other translated (by a multiple of
+        :attr:`PERIOD`) with the same qubits present around them, and the translation ``(ay, ax)`` that takes the
+        key's relative coordinates to these pairs'."""
+        ys, xs = self.y, self.x
+        qs = {q for pr in pairs for q in pr}
+        y0, y1 = min(ys[q] for q in qs), max(ys[q] for q in qs)
+        x0, x1 = min(xs[q] for q in qs), max(xs[q] for q in qs)
+        ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
+        rel = tuple((ys[a] - ay, xs[a] - ax, ys[b] - ay, xs[b] - ax) for a, b in pairs)
+        reach = 2 * WINDOW_RADIUS
+        box = self.present[y0 : y1 + 2 * reach + 1, x0 : x1 + 2 * reach + 1]  # padded: y0 - reach is row y0
+        return (rel, box.shape, box.tobytes()), (ay, ax)
+
+    def moved(self, q: int, by: Coord) -> int:
+        """The qubit at qubit ``q``'s coordinates plus ``by``."""
+        return self.at[(self.y[q] + by[0], self.x[q] + by[1])]
 
 
 _PATCH_INDEX: list[_PatchIndex] = []
@@ -517,7 +585,6 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
         return hit
     from qiskit import QuantumRegister
     from qiskit.circuit.library import CXGate
-    from qiskit.converters import dag_to_circuit
     from qiskit.dagcircuit import DAGCircuit
 
     dag = DAGCircuit()
@@ -528,7 +595,7 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
         dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
     sabre, default_trials = _sabre_pass(coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
-    out = dag_to_circuit(_run_sabre(sabre, dag, size), copy_operations=False)
+    out = _run_sabre(sabre, dag, size)
     queues: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(pairs):
         queues.setdefault(a, []).append(k)
@@ -537,9 +604,9 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
     index = {q: i for i, q in enumerate(out.qubits)}
-    for inst in out.data:
-        x, y = (index[q] for q in inst.qubits)
-        if inst.operation.name == "swap":
+    for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
+        x, y = (index[q] for q in node.qargs)
+        if node.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
             continue
@@ -675,10 +742,14 @@ def route_window(
 
     The ops depend only on where the pairs' qubits are (the physical pairs), the device and the search's
     settings, so they are memoised on those (in :data:`_WINDOW_CACHE`, with the patches the routing saw, replayed
-    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit): the allocation search and the cells'
-    plan choice route the same window many times."""
-    ops, _ = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-    return list(ops)
+    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit; on a heavy-hex lattice up to the
+    lattice's translations, :class:`_Lattice`): the allocation search and the cells' plan choice route the same
+    window many times."""
+    entry, by = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+    if by is None:
+        return list(entry[0])
+    moved = _patch_index(device, dist).lattice.moved  # type: ignore[union-attr]
+    return [(name, (moved(a, by), moved(b, by))) for name, (a, b) in entry[0]]
 
 
 def route_window_cx(
@@ -686,35 +757,49 @@ def route_window_cx(
     trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
 ) -> int:  # fmt: skip
     """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only)."""
-    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[1]
+    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[0][1]
 
 
 def _memo_window(
     pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
     large_seeds: int | None, large_trials: int | None,
-) -> tuple[tuple[tuple[str, tuple[int, int]], ...], int]:  # fmt: skip
-    """:func:`route_window`'s ops and their :func:`window_cx`, memoised (see there)."""
+) -> tuple[tuple[Any, ...], Coord | None]:  # fmt: skip
+    """:func:`route_window`'s memo entry ``(ops, window_cx, patch qubits, whole-component parts, ...)`` and the
+    lattice translation that takes its qubits to this window's (``None``: none needed; :class:`_Lattice`)."""
     global WHOLE_COMPONENT_PATCHES
     if device.is_all_to_all:
         ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        return tuple(ops), cx_
+        return (tuple(ops), cx_, frozenset(), 0), None
+    index = _patch_index(device, dist)
     where = pos.where
-    key = ("window", _patch_index(device, dist).token, tuple((where[a], where[b]) for a, b in pairs), seed, trials,
-           large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
-           WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
+    physical = tuple((where[a], where[b]) for a, b in pairs)
+    settings = (seed, trials, large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS,
+                WIDE_WINDOW_SEEDS, WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
+    lattice = index.lattice
+    key: tuple = ("window", index.token, physical, settings)
+    shift = None
+    if lattice is not None and physical:
+        shape, shift = lattice.canonical(physical)
+        key = ("window", index.token, "translated", shape, settings)
     hit = _WINDOW_CACHE.get(key)
+    if hit is None and shift is not None:  # routed on its whole component: memoised on its physical pairs
+        hit = _WINDOW_CACHE.get(("window", index.token, physical, settings))
     if hit is None:
         with watching_patches() as watch:
             ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component)
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
-        _WINDOW_CACHE[key] = hit
-        return hit[:2]
-    for watch in PATCH_WATCH:
-        watch.update(hit[2])
+        if watch.whole_component:
+            key, shift = ("window", index.token, physical, settings), None
+        hit = _WINDOW_CACHE[key] = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
+        return hit, None
+    by = None if hit[4] is None or hit[4] == shift else (shift[0] - hit[4][0], shift[1] - hit[4][1])  # type: ignore[index]
+    if PATCH_WATCH:
+        seen = hit[2] if by is None else {lattice.moved(q, by) for q in hit[2]}  # type: ignore[union-attr]
+        for watch_ in PATCH_WATCH:
+            watch_.update(seen)
     WHOLE_COMPONENT_PATCHES += hit[3]
-    return hit[:2]
+    return hit, by
 
 
 def _route_window(
