@@ -26,9 +26,10 @@ an anchor on the lattice's translation grid, and the occupied and existing qubit
 the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
 routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
 default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
-(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates,
-:func:`circuitgen.routing.route_window`, so the final allocation and routing of the chosen variants are
-mostly look-ups; docs/resource-estimates.md quotes the times).
+(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
+translations, :func:`circuitgen.routing.route_window`, so equal windows of other plaquettes and the final
+allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
+scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".

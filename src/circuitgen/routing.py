@@ -21,9 +21,10 @@ the middle, whose SWAPs are then undone, and the uncompute replays the compute's
 depends only on its gates and its neighbourhood on the device (the routed cost of a gadget kind is fixed where
 the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Searches route the same windows many
 times (the ancilla allocation's candidates, the heavy-hex cells' plan variants), so a routed window is memoised
-on its physical pairs and settings, SABRE's routing of a patch on the patch's shape and the pairs, and the
-patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without the
-pass's per-run checks (:func:`_run_sabre`).
+on its physical pairs and settings (on a heavy-hex lattice up to the lattice's translations, where the qubits
+around the window are the same: :class:`_Lattice`), SABRE's routing of a patch on the patch's shape and the pairs,
+and the patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without
+the pass's per-run checks (:func:`_run_sabre`), and its routed DAG is read directly.
 
 :func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
 ``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
