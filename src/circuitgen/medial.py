@@ -185,33 +185,35 @@ def _place_ancillas(
     ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
     device qubit ``p`` to the free qubits."""
     home: dict[int, int] = {}
-    busy = np.zeros(len(free), dtype=bool)
+    busy: list[int] = []
     for i, q in enumerate(order):
-        cost = np.zeros(len(free))
+        key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
         for partner, w in partners[q].items():
             at = data_homes[partner] if partner < n_data else home.get(partner)
             if at is not None:
-                cost += w * to_free[at]
-        key = cost * 1e6 + centre
+                key += (w * 1e6) * to_free[at]
         key[busy] = np.inf
         rank = ranks[i] if i < len(ranks) else 0
         j = _ranked(key, rank) if rank else int(np.argmin(key))
         if not np.isfinite(key[j]):
             j = int(np.argmin(key))
-        busy[j] = True
+        busy.append(j)
         home[q] = int(free[j])
     return home
 
 
 def _ranked(key: np.ndarray, rank: int) -> int:
-    """``np.argsort(key, kind="stable")[rank]`` (ties by index) without sorting: the ``rank``-th smallest value,
-    and among the indices holding it the one that many places after those holding less.
+    """``np.argsort(key, kind="stable")[rank]`` (ties by index) where that is finite, else ``argmin(key)``: the
+    first minimum, ``rank`` times set aside (a few passes instead of a sort).
 
     >>> _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 2), _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 3)
     (2, 4)
     """
-    value = np.partition(key, rank)[rank]
-    return int(np.flatnonzero(key == value)[rank - np.count_nonzero(key < value)])
+    rest = key.copy()
+    for _ in range(rank):
+        rest[int(np.argmin(rest))] = np.inf
+    j = int(np.argmin(rest))
+    return j if np.isfinite(rest[j]) else int(np.argmin(key))
 
 
 SEARCH_RANKS = 4
@@ -271,11 +273,11 @@ def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_whe
                  dist: np.ndarray) -> int:  # fmt: skip
     """Two-qubit gates of a section's window routed from home (as :func:`circuitgen.routing.route_windows`):
     ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
-    from .routing import Positions, route_window_cx
+    from .routing import route_window_cx
 
     where = {**data_where, **home}
     pairs = [(where[a], where[b]) for a, b in twoq]
-    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)
+    return route_window_cx(pairs, None, device, dist, trials=SEARCH_TRIALS)
 
 
 _FREE_SITES: list[tuple] = []

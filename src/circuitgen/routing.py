@@ -754,26 +754,31 @@ def route_window(
 
 
 def route_window_cx(
-    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
+    pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int = 0,
     trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
 ) -> int:  # fmt: skip
-    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only)."""
+    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only); ``pos``
+    ``None``: every qubit on the physical qubit of its number (``pairs`` are physical)."""
     return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[0][1]
 
 
 def _memo_window(
-    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int, trials: int | None,
     large_seeds: int | None, large_trials: int | None,
 ) -> tuple[tuple[Any, ...], Coord | None]:  # fmt: skip
     """:func:`route_window`'s memo entry ``(ops, window_cx, patch qubits, whole-component parts, ...)`` and the
     lattice translation that takes its qubits to this window's (``None``: none needed; :class:`_Lattice`)."""
     global WHOLE_COMPONENT_PATCHES
     if device.is_all_to_all:
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
         ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
         return (tuple(ops), cx_, frozenset(), 0), None
     index = _patch_index(device, dist)
-    where = pos.where
-    physical = tuple((where[a], where[b]) for a, b in pairs)
+    if pos is None:
+        physical = tuple((a, b) for a, b in pairs)
+    else:
+        where = pos.where
+        physical = tuple((where[a], where[b]) for a, b in pairs)
     settings = (seed, trials, large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS,
                 WIDE_WINDOW_SEEDS, WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
     lattice = index.lattice
@@ -786,6 +791,7 @@ def _memo_window(
     if hit is None and shift is not None:  # routed on its whole component: memoised on its physical pairs
         hit = _WINDOW_CACHE.get(("window", index.token, physical, settings))
     if hit is None:
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
         with watching_patches() as watch:
             ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
