@@ -179,14 +179,17 @@ def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], di
 def _place_ancillas(
     order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
     free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
+    start: dict[int, int] | None = None,
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
     meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
     ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
-    device qubit ``p`` to the free qubits."""
-    home: dict[int, int] = {}
-    busy: list[int] = []
-    for i, q in enumerate(order):
+    device qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the
+    search varies one ancilla at a time and places those before it once)."""
+    home = dict(start) if start else {}
+    busy = np.searchsorted(free, list(home.values())).tolist() if home else []
+    for i in range(len(home), len(order)):
+        q = order[i]
         key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
         for partner, w in partners[q].items():
             at = data_homes[partner] if partner < n_data else home.get(partner)
@@ -351,6 +354,7 @@ def allocate_ancillas(
                 tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
                 for _ in range(SEARCH_ROUNDS):
                     improved = False
+                    prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
                     for i in range(len(order)):
                         for r in range(1 + min(SEARCH_RANKS, len(free) - 1)):
                             if r == ranks[i]:
@@ -359,7 +363,7 @@ def allocate_ancillas(
                             cost = tried.get(tuple(trial))
                             if cost is None:
                                 other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
-                                                        trial)  # fmt: skip
+                                                        trial, prefix)  # fmt: skip
                                 placed = tuple(other.items())
                                 cost = tried.get(placed)
                                 if cost is None:
@@ -367,6 +371,8 @@ def allocate_ancillas(
                                 tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
+                        prefix = _place_ancillas(order[: i + 1], partners, centre, to_free, free, data_homes, n_data,
+                                                 ranks, prefix)  # fmt: skip
                     if not improved:
                         break
                 ranks = tuple(ranks)
