@@ -375,6 +375,10 @@ connect them (a window spanning far-apart qubits): such a routing depends on the
 neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
 
 
+_PATCH_CENTRES: list[set[int]] = []
+"""Sets that collect the qubits every patch routed while they are listed was grown around (:func:`_memo_window`
+keys a translated window on the lattice around them)."""
+
 PATCH_WATCH: list[set[int]] = []
 """Sets that collect the device qubits of every patch routed while they are listed: :mod:`circuitgen.window_classes`
 lists one while it allocates, relays and routes a window on a crop of the device (allocation search and relays
@@ -498,18 +502,32 @@ class _Lattice:
         return cls(coords)
 
     def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
-        """A key equal for two windows' physical ``pairs`` iff one is the other translated (by a multiple of
-        :attr:`PERIOD`) with the same qubits present around them, and the translation ``(ay, ax)`` that takes the
-        key's relative coordinates to these pairs'."""
+        """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
+        :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
+        pairs'."""
         ys, xs = self.y, self.x
-        qs = {q for pr in pairs for q in pr}
-        y0, y1 = min(ys[q] for q in qs), max(ys[q] for q in qs)
-        x0, x1 = min(xs[q] for q in qs), max(xs[q] for q in qs)
+        y0 = min(min(ys[a], ys[b]) for a, b in pairs)
+        x0 = min(min(xs[a], xs[b]) for a, b in pairs)
         ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
-        rel = tuple((ys[a] - ay, xs[a] - ax, ys[b] - ay, xs[b] - ax) for a, b in pairs)
-        reach = 2 * WINDOW_RADIUS
-        box = self.present[y0 : y1 + 2 * reach + 1, x0 : x1 + 2 * reach + 1]  # padded: y0 - reach is row y0
-        return (rel, box.shape, box.tobytes()), (ay, ax)
+        return tuple((ys[a] - ay, xs[a] - ax, ys[b] - ay, xs[b] - ax) for a, b in pairs), (ay, ax)
+
+    def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
+        """The coordinates within :data:`WINDOW_RADIUS` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
+        ``shift``, and which of them hold a qubit: every patch grown around the centres (the qubits within
+        :data:`WINDOW_RADIUS` couplings, their couplings, whether they connect the centres) is decided there."""
+        import numpy as np
+
+        r = WINDOW_RADIUS
+        steps = np.array([(dy, dx) for dy in range(-r, r + 1) for dx in range(-r, r + 1) if abs(dy) + abs(dx) <= r])
+        at = np.array([(self.y[q], self.x[q]) for q in centres])
+        coords = np.unique((at[:, None, :] + steps[None, :, :]).reshape(-1, 2), axis=0) - np.array(shift)
+        ys, xs = coords[:, 0].copy(), coords[:, 1].copy()
+        return ys, xs, self.holds(ys, xs, shift)
+
+    def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
+        """Which of the coordinates ``(ys, xs)`` plus ``shift`` hold a qubit."""
+        pad = 2 * WINDOW_RADIUS
+        return self.present[ys + (shift[0] + pad), xs + (shift[1] + pad)].tobytes()
 
     def moved(self, q: int, by: Coord) -> int:
         """The qubit at qubit ``q``'s coordinates plus ``by``."""
@@ -540,6 +558,8 @@ def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[
     """:func:`_patch` and its couplings (in :attr:`Device.coupling`'s order) as pairs of indices into it; memoised
     per device, the side effects (:data:`PATCH_WATCH`, :data:`WHOLE_COMPONENT_PATCHES`) on every call."""
     index = _patch_index(device, dist)
+    for centres in _PATCH_CENTRES:
+        centres.update(positions)
     key = tuple(sorted(positions))
     hit = index.patches.get(key)
     if hit is None:
@@ -784,21 +804,34 @@ def _memo_window(
     lattice = index.lattice
     key: tuple = ("window", index.token, physical, settings)
     shift = None
+    translated: list = []
     if lattice is not None and physical:
-        shape, shift = lattice.canonical(physical)
-        key = ("window", index.token, "translated", shape, settings)
-    hit = _WINDOW_CACHE.get(key)
-    if hit is None and shift is not None:  # routed on its whole component: memoised on its physical pairs
-        hit = _WINDOW_CACHE.get(("window", index.token, physical, settings))
+        rel, shift = lattice.canonical(physical)
+        translated = _WINDOW_CACHE.setdefault(("window", index.token, "translated", rel, settings), [])
+    hit = None
+    for ys, xs, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
+        if lattice.holds(ys, xs, shift) == holds:  # type: ignore[union-attr, arg-type]
+            hit = entry
+            break
+    else:  # routed on its whole component, or no lattice: memoised on its physical pairs
+        hit = _WINDOW_CACHE.get(key)
     if hit is None:
         pos = Positions.identity(device.num_qubits) if pos is None else pos
-        with watching_patches() as watch:
-            ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        centres: set[int] = set()
+        _PATCH_CENTRES.append(centres)
+        try:
+            with watching_patches() as watch:
+                ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        finally:
+            del _PATCH_CENTRES[next(i for i, c in enumerate(_PATCH_CENTRES) if c is centres)]
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
-        if watch.whole_component:
-            key, shift = ("window", index.token, physical, settings), None
-        hit = _WINDOW_CACHE[key] = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
+        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
+        if lattice is not None and shift is not None and not watch.whole_component:
+            translated.append((*lattice.around(centres, shift), hit))
+            _WINDOW_CACHE[("window", index.token, "translated", rel, settings)] = translated
+        else:
+            hit = _WINDOW_CACHE[key] = (*hit[:4], None)
         return hit, None
     by = None if hit[4] is None or hit[4] == shift else (shift[0] - hit[4][0], shift[1] - hit[4][1])  # type: ignore[index]
     if PATCH_WATCH:
