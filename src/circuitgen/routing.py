@@ -445,9 +445,12 @@ class _PatchIndex:
         self.device = device
         self.dist = dist
         self.neighbours: list[list[int]] = [[] for _ in range(device.num_qubits)]
-        for a, b in device.coupling:
+        self.edges_of: list[list[int]] = [[] for _ in range(device.num_qubits)]  # indices into device.coupling
+        for e, (a, b) in enumerate(device.coupling):
             self.neighbours[a].append(b)
             self.neighbours[b].append(a)
+            self.edges_of[a].append(e)
+            self.edges_of[b].append(e)
         self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
         self.token = object()  # names the device in memo keys without keeping its distances alive
         self.lattice = _Lattice.of(device)
@@ -505,11 +508,12 @@ class _Lattice:
         """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
         :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
         pairs'."""
-        ys, xs = self.y, self.x
-        y0 = min(min(ys[a], ys[b]) for a, b in pairs)
-        x0 = min(min(xs[a], xs[b]) for a, b in pairs)
+        flat = [q for pair in pairs for q in pair]
+        ys = [self.y[q] for q in flat]
+        xs = [self.x[q] for q in flat]
+        y0, x0 = min(ys), min(xs)
         ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
-        return tuple((ys[a] - ay, xs[a] - ax, ys[b] - ay, xs[b] - ax) for a, b in pairs), (ay, ax)
+        return (tuple(y - ay for y in ys), tuple(x - ax for x in xs)), (ay, ax)
 
     def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
         """The coordinates within :data:`WINDOW_RADIUS` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
@@ -580,7 +584,9 @@ def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[
         whole = not linked or not seen.issuperset(key)
         patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
         local = {p: i for i, p in enumerate(patch)}
-        coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
+        edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
+        coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
+                         if a in local and b in local)  # fmt: skip
         hit = (patch, whole, coupling)
         index.patches[key] = hit
     patch, whole, coupling = hit
@@ -795,7 +801,7 @@ def _memo_window(
         return (tuple(ops), cx_, frozenset(), 0), None
     index = _patch_index(device, dist)
     if pos is None:
-        physical = tuple((a, b) for a, b in pairs)
+        physical = tuple(pairs)
     else:
         where = pos.where
         physical = tuple((where[a], where[b]) for a, b in pairs)
