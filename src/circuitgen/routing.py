@@ -466,11 +466,13 @@ class _Lattice:
 
     A translation by multiples of :attr:`PERIOD` in both coordinates maps the infinite lattice onto itself, and
     (checked when built, :meth:`of`) the device's couplings are exactly its qubits one step apart and its index
-    order is ``(kind, y, x)`` with the kind (data, bridge, flag) given by the coordinates' parities. So two windows
-    whose qubits are such a translation of each other, with the same qubits present within ``2 WINDOW_RADIUS``
-    steps of them (:meth:`canonical`), get the same patches (the compute's within ``WINDOW_RADIUS`` of its qubits,
-    the middle's within ``WINDOW_RADIUS`` of where the compute left them), with the same local indices and
-    couplings, so SABRE routes them alike: one routing answers both, translated. A window routed on its whole
+    order is ``(kind, y, x)`` with the kind (data, bridge, flag) given by the coordinates' parities. A patch
+    (the qubits within ``WINDOW_RADIUS`` couplings of the qubits it is grown around, :func:`_local_patch`) is then
+    decided by which coordinates within ``WINDOW_RADIUS`` steps of those qubits hold a qubit (:meth:`around`): a
+    path of that many couplings stays there. So a window whose qubits are such a translation of a routed window's
+    (:meth:`canonical`), with the same coordinates held around the qubits that routing grew its patches from (the
+    compute's qubits, then where the compute left the middle's), gets the same patches, local indices and
+    couplings, and SABRE routes it alike: one routing answers both, translated. A window routed on its whole
     component depends on the whole device: it is memoised on its physical pairs instead."""
 
     PERIOD = 4
