@@ -6,7 +6,7 @@ Evidence: a window routed after its translation was memoised gives the ops, patc
 the same window routed from a cold memo, on random windows and translations of a heavy-hex lattice (interior and
 boundary), and the translated entry is used where the lattice around both is the same; a heavy-hex compile with
 every memo of this speed-up gives the circuit, routing and plan choices of the compile without them (2x3/1 on the
-cells in the default run; 4x4/2 and 5x5/3 on heavy-hex and 4x4/2 on a grid in the heavy run).
+cells in the default run; 4x4/2 and 5x5/3 on heavy-hex and on a grid in the heavy run).
 """
 
 from __future__ import annotations
@@ -113,8 +113,9 @@ def _compiled(shape: tuple[int, int, int], device: str, memos: bool, monkeypatch
         pytest.param((4, 4, 2), "heavy-hex", marks=pytest.mark.heavy),
         pytest.param((5, 5, 3), "heavy-hex", marks=pytest.mark.heavy),
         pytest.param((4, 4, 2), "grid", marks=pytest.mark.heavy),
+        pytest.param((5, 5, 3), "grid", marks=pytest.mark.heavy),
     ],
-    ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "5x5/3-heavy-hex", "4x4/2-grid"],
+    ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "5x5/3-heavy-hex", "4x4/2-grid", "5x5/3-grid"],
 )
 def test_the_memos_change_no_choice(shape: tuple[int, int, int], device: str, monkeypatch: pytest.MonkeyPatch) -> None:
     """The allocation search, the cells' plan choice and the routing pick what they pick without the memos."""
