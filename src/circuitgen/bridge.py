@@ -64,6 +64,25 @@ def _bridged_cx(c: int, t: int, dist: Any) -> list[tuple[int, int]]:
     return [(c, m), (m, t), (c, m), (m, t)]
 
 
+_WITHIN_TWO: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
+
+
+def _within_two(dist: Any) -> dict[int, list[tuple[int, int]]]:
+    """Per qubit asked about so far, the other qubits one or two steps away with their distance, ascending (kept
+    for the last distance matrix: a relay pass asks for chains on one device)."""
+    if not _WITHIN_TWO or _WITHIN_TWO[0][0] is not dist:
+        _WITHIN_TWO[:] = [(dist, {})]
+    return _WITHIN_TWO[0][1]
+
+
+def _near(u: int, dist: Any, within: dict[int, list[tuple[int, int]]]) -> list[tuple[int, int]]:
+    hit = within.get(u)
+    if hit is None:
+        near = np.flatnonzero((dist[u] <= 2) & (dist[u] > 0))
+        hit = within[u] = list(zip(near.tolist(), dist[u, near].astype(int).tolist(), strict=True))
+    return hit
+
+
 def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[list[tuple[int, int]], int] | None:
     """The cheapest chain copying ``source`` into a clean qubit (the *holder*) within two steps of ``target``.
 
@@ -83,12 +102,12 @@ def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[li
     """
     if dist[source, target] <= 2:
         return None
-    cand = np.array(sorted(clean), dtype=int)
+    within = _within_two(dist)
     best: dict[int, int] = {source: 0}
     back: dict[int, tuple[int, int]] = {}
     heap = [(0, source)]
     goal: tuple[int, int] | None = None  # (total CX, holder)
-    while heap and len(cand):
+    while heap and clean:
         cost, u = heapq.heappop(heap)
         if cost > best.get(u, 1 << 30) or (goal is not None and 2 * cost >= goal[0]):
             continue
@@ -96,10 +115,8 @@ def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[li
             total = 2 * cost + 2 * (1 if dist[u, target] == 1 else BRIDGE_STEP_CX)
             if goal is None or total < goal[0]:
                 goal = (total, u)
-        du = dist[u, cand]
-        near = du <= 2
-        for v, step in zip(cand[near].tolist(), du[near].tolist(), strict=True):
-            if v == u:
+        for v, step in _near(u, dist, within):  # ascending, as when the clean qubits were sorted per call
+            if v not in clean:
                 continue
             new = cost + (1 if step == 1 else BRIDGE_STEP_CX)
             if new < best.get(v, 1 << 30):

@@ -26,9 +26,10 @@ an anchor on the lattice's translation grid, and the occupied and existing qubit
 the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
 routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
 default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
-(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates,
-:func:`circuitgen.routing.route_window`, so the final allocation and routing of the chosen variants are
-mostly look-ups; docs/resource-estimates.md quotes the times).
+(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
+translations, :func:`circuitgen.routing.route_window`, so equal windows of other plaquettes and the final
+allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
+scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
 
 Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
 plaquette".
@@ -100,6 +101,13 @@ def _relabel_plan(plan: MixerPlan, sigma: Sequence[int]) -> MixerPlan:
     return MixerPlan(compute, rotation, plan.num_temps)
 
 
+@lru_cache(maxsize=4096)
+def _planned(program: AbstractProgram, target: str) -> MixerPlan:
+    """:func:`plan_parity_mixer`, memoised: the relabellings of one plaquette's program are often relabellings of
+    another's (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings), and each is one A*."""
+    return plan_parity_mixer(program, target)  # type: ignore[arg-type]
+
+
 @lru_cache(maxsize=1024)
 def relabelled_plans(program: AbstractProgram, target: str = "nisq") -> tuple[MixerPlan, ...]:
     """The distinct parity-basis plans of ``program`` found under the 24 relabellings of the plaquette's positions
@@ -114,7 +122,7 @@ def relabelled_plans(program: AbstractProgram, target: str = "nisq") -> tuple[Mi
     """
     out: list[MixerPlan] = []
     for sigma in itertools.permutations(range(4)):
-        plan = _relabel_plan(plan_parity_mixer(_relabel_program(program, sigma), target), sigma)  # type: ignore[arg-type]
+        plan = _relabel_plan(_planned(_relabel_program(program, sigma), target), sigma)
         if plan not in out:
             out.append(plan)
     return tuple(out)
@@ -219,9 +227,14 @@ def cell_mixers(
             lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
 
-        def cost(plan: MixerPlan, gadget: ParityPartialMixer = gadget, i: int = i) -> int:
-            section = sections[i] if plan == gadget.plan else variant(plan)
-            return _window_cx(section, circuit, homes, device, dist, SEARCH)
+        costs: dict[MixerPlan, int] = {}  # the operand exchanges come back to plans already scored
+
+        def cost(plan: MixerPlan, gadget: ParityPartialMixer = gadget, i: int = i,
+                 costs: dict[MixerPlan, int] = costs) -> int:  # fmt: skip
+            if plan not in costs:
+                section = sections[i] if plan == gadget.plan else variant(plan)
+                costs[plan] = _window_cx(section, circuit, homes, device, dist, SEARCH)
+            return costs[plan]
 
         key = (_class_key(gadget, homes, coords, occupied), SEARCH)
         chosen = _CHOICE_CACHE.get(key)

@@ -179,28 +179,44 @@ def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], di
 def _place_ancillas(
     order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
     free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
+    start: dict[int, int] | None = None,
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
     meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
     ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
-    device qubit ``p`` to the free qubits."""
-    home: dict[int, int] = {}
-    busy = np.zeros(len(free), dtype=bool)
-    for i, q in enumerate(order):
-        cost = np.zeros(len(free))
+    device qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the
+    search varies one ancilla at a time and places those before it once)."""
+    home = dict(start) if start else {}
+    busy = np.searchsorted(free, list(home.values())).tolist() if home else []
+    for i in range(len(home), len(order)):
+        q = order[i]
+        key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
         for partner, w in partners[q].items():
             at = data_homes[partner] if partner < n_data else home.get(partner)
             if at is not None:
-                cost += w * to_free[at]
-        key = cost * 1e6 + centre
+                key += (w * 1e6) * to_free[at]
         key[busy] = np.inf
         rank = ranks[i] if i < len(ranks) else 0
-        j = int(np.argsort(key, kind="stable")[rank]) if rank else int(np.argmin(key))
+        j = _ranked(key, rank) if rank else int(np.argmin(key))
         if not np.isfinite(key[j]):
             j = int(np.argmin(key))
-        busy[j] = True
+        busy.append(j)
         home[q] = int(free[j])
     return home
+
+
+def _ranked(key: np.ndarray, rank: int) -> int:
+    """``np.argsort(key, kind="stable")[rank]`` (ties by index) where that is finite, else ``argmin(key)``: the
+    first minimum, ``rank`` times set aside (a few passes instead of a sort).
+
+    >>> _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 2), _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 3)
+    (2, 4)
+    """
+    rest = key.copy()
+    for _ in range(rank):
+        rest[int(np.argmin(rest))] = np.inf
+    j = int(np.argmin(rest))
+    return j if np.isfinite(rest[j]) else int(np.argmin(key))
 
 
 SEARCH_RANKS = 4
@@ -260,11 +276,11 @@ def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_whe
                  dist: np.ndarray) -> int:  # fmt: skip
     """Two-qubit gates of a section's window routed from home (as :func:`circuitgen.routing.route_windows`):
     ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
-    from .routing import Positions, route_window_cx
+    from .routing import route_window_cx
 
     where = {**data_where, **home}
     pairs = [(where[a], where[b]) for a, b in twoq]
-    return route_window_cx(pairs, Positions.identity(device.num_qubits), device, dist, trials=SEARCH_TRIALS)
+    return route_window_cx(pairs, None, device, dist, trials=SEARCH_TRIALS)
 
 
 _FREE_SITES: list[tuple] = []
@@ -338,6 +354,7 @@ def allocate_ancillas(
                 tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
                 for _ in range(SEARCH_ROUNDS):
                     improved = False
+                    prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
                     for i in range(len(order)):
                         for r in range(1 + min(SEARCH_RANKS, len(free) - 1)):
                             if r == ranks[i]:
@@ -346,7 +363,7 @@ def allocate_ancillas(
                             cost = tried.get(tuple(trial))
                             if cost is None:
                                 other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
-                                                        trial)  # fmt: skip
+                                                        trial, prefix)  # fmt: skip
                                 placed = tuple(other.items())
                                 cost = tried.get(placed)
                                 if cost is None:
@@ -354,6 +371,8 @@ def allocate_ancillas(
                                 tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
+                        prefix = _place_ancillas(order[: i + 1], partners, centre, to_free, free, data_homes, n_data,
+                                                 ranks, prefix)  # fmt: skip
                     if not improved:
                         break
                 ranks = tuple(ranks)

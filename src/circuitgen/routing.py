@@ -21,9 +21,10 @@ the middle, whose SWAPs are then undone, and the uncompute replays the compute's
 depends only on its gates and its neighbourhood on the device (the routed cost of a gadget kind is fixed where
 the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Searches route the same windows many
 times (the ancilla allocation's candidates, the heavy-hex cells' plan variants), so a routed window is memoised
-on its physical pairs and settings, SABRE's routing of a patch on the patch's shape and the pairs, and the
-patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without the
-pass's per-run checks (:func:`_run_sabre`).
+on its physical pairs and settings (on a heavy-hex lattice up to the lattice's translations, where the qubits
+around the window are the same: :class:`_Lattice`), SABRE's routing of a patch on the patch's shape and the pairs,
+and the patches themselves per device (:data:`_WINDOW_CACHE`); SABRE is called as ``SabreSwap`` calls it, without
+the pass's per-run checks (:func:`_run_sabre`), and its routed DAG is read directly.
 
 :func:`to_native` rewrites a routed circuit into the device's native gates (exact up to a global phase):
 ``cx = h cz h`` and ``cz = rz(pi/2) rz(pi/2) rzz(-pi/2)`` (trapped ions); ``h = rz(pi/2) sx rz(pi/2)`` where
@@ -52,7 +53,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -374,6 +375,10 @@ connect them (a window spanning far-apart qubits): such a routing depends on the
 neighbourhood (:mod:`circuitgen.window_classes` counts on it)."""
 
 
+_PATCH_CENTRES: list[set[int]] = []
+"""Sets that collect the qubits every patch routed while they are listed was grown around (:func:`_memo_window`
+keys a translated window on the lattice around them)."""
+
 PATCH_WATCH: list[set[int]] = []
 """Sets that collect the device qubits of every patch routed while they are listed: :mod:`circuitgen.window_classes`
 lists one while it allocates, relays and routes a window on a crop of the device (allocation search and relays
@@ -440,11 +445,99 @@ class _PatchIndex:
         self.device = device
         self.dist = dist
         self.neighbours: list[list[int]] = [[] for _ in range(device.num_qubits)]
-        for a, b in device.coupling:
+        self.edges_of: list[list[int]] = [[] for _ in range(device.num_qubits)]  # indices into device.coupling
+        for e, (a, b) in enumerate(device.coupling):
             self.neighbours[a].append(b)
             self.neighbours[b].append(a)
+            self.edges_of[a].append(e)
+            self.edges_of[b].append(e)
         self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
         self.token = object()  # names the device in memo keys without keeping its distances alive
+        self.lattice = _Lattice.of(device)
+
+
+Coord = tuple[int, int]
+
+
+class _Lattice:
+    """A heavy-hex lattice device's qubits on their ``(y, x)`` coordinates
+    (:func:`circuitgen.devices.heavy_hex_coordinates`), for the translation-invariant window memo
+    (:func:`_memo_window`).
+
+    A translation by multiples of :attr:`PERIOD` in both coordinates maps the infinite lattice onto itself, and
+    (checked when built, :meth:`of`) the device's couplings are exactly its qubits one step apart and its index
+    order is ``(kind, y, x)`` with the kind (data, bridge, flag) given by the coordinates' parities. A patch
+    (the qubits within ``WINDOW_RADIUS`` couplings of the qubits it is grown around, :func:`_local_patch`) is then
+    decided by which coordinates within ``WINDOW_RADIUS`` steps of those qubits hold a qubit (:meth:`around`): a
+    path of that many couplings stays there. So a window whose qubits are such a translation of a routed window's
+    (:meth:`canonical`), with the same coordinates held around the qubits that routing grew its patches from (the
+    compute's qubits, then where the compute left the middle's), gets the same patches, local indices and
+    couplings, and SABRE routes it alike: one routing answers both, translated. A window routed on its whole
+    component depends on the whole device: it is memoised on its physical pairs instead."""
+
+    PERIOD = 4
+
+    def __init__(self, coords: Sequence[Coord]) -> None:
+        import numpy as np
+
+        self.y = [c[0] for c in coords]
+        self.x = [c[1] for c in coords]
+        self.at = {c: i for i, c in enumerate(coords)}
+        pad = 2 * WINDOW_RADIUS  # so that a box around any qubits never leaves the array
+        self.present = np.zeros((max(self.y) + 1 + 2 * pad, max(self.x) + 1 + 2 * pad), dtype=np.uint8)
+        self.present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+
+    @classmethod
+    def of(cls, device: Device) -> _Lattice | None:
+        """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
+        from .devices import heavy_hex_coordinates
+        from .hexlayout import heavy_hex_distance
+
+        d = heavy_hex_distance(device)
+        if d is None:
+            return None
+        coords = heavy_hex_coordinates(d)
+        at = {c: i for i, c in enumerate(coords)}
+        steps = {tuple(sorted((i, at[n]))) for i, (y, x) in enumerate(coords) for n in ((y + 1, x), (y, x + 1))
+                 if n in at}  # fmt: skip
+        kind = [1 if y % 2 else 2 * (x % 2) for y, x in coords]  # data 0, bridge 1, flag 2
+        order = sorted(range(len(coords)), key=lambda i: (kind[i], coords[i]))
+        if steps != {tuple(sorted(e)) for e in device.coupling} or order != list(range(len(coords))):
+            return None  # pragma: no cover - another numbering: the physical memo only
+        return cls(coords)
+
+    def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
+        """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
+        :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
+        pairs'."""
+        flat = [q for pair in pairs for q in pair]
+        ys = [self.y[q] for q in flat]
+        xs = [self.x[q] for q in flat]
+        y0, x0 = min(ys), min(xs)
+        ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
+        return (tuple(y - ay for y in ys), tuple(x - ax for x in xs)), (ay, ax)
+
+    def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
+        """The coordinates within :data:`WINDOW_RADIUS` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
+        ``shift``, and which of them hold a qubit: every patch grown around the centres (the qubits within
+        :data:`WINDOW_RADIUS` couplings, their couplings, whether they connect the centres) is decided there."""
+        import numpy as np
+
+        r = WINDOW_RADIUS
+        steps = np.array([(dy, dx) for dy in range(-r, r + 1) for dx in range(-r, r + 1) if abs(dy) + abs(dx) <= r])
+        at = np.array([(self.y[q], self.x[q]) for q in centres])
+        coords = np.unique((at[:, None, :] + steps[None, :, :]).reshape(-1, 2), axis=0) - np.array(shift)
+        ys, xs = coords[:, 0].copy(), coords[:, 1].copy()
+        return ys, xs, self.holds(ys, xs, shift)
+
+    def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
+        """Which of the coordinates ``(ys, xs)`` plus ``shift`` hold a qubit."""
+        pad = 2 * WINDOW_RADIUS
+        return self.present[ys + (shift[0] + pad), xs + (shift[1] + pad)].tobytes()
+
+    def moved(self, q: int, by: Coord) -> int:
+        """The qubit at qubit ``q``'s coordinates plus ``by``."""
+        return self.at[(self.y[q] + by[0], self.x[q] + by[1])]
 
 
 _PATCH_INDEX: list[_PatchIndex] = []
@@ -471,6 +564,8 @@ def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[
     """:func:`_patch` and its couplings (in :attr:`Device.coupling`'s order) as pairs of indices into it; memoised
     per device, the side effects (:data:`PATCH_WATCH`, :data:`WHOLE_COMPONENT_PATCHES`) on every call."""
     index = _patch_index(device, dist)
+    for centres in _PATCH_CENTRES:
+        centres.update(positions)
     key = tuple(sorted(positions))
     hit = index.patches.get(key)
     if hit is None:
@@ -491,7 +586,9 @@ def _local_patch(positions: set[int], device: Device, dist: Any) -> tuple[tuple[
         whole = not linked or not seen.issuperset(key)
         patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
         local = {p: i for i, p in enumerate(patch)}
-        coupling = tuple((local[a], local[b]) for a, b in device.coupling if a in local and b in local)
+        edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
+        coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
+                         if a in local and b in local)  # fmt: skip
         hit = (patch, whole, coupling)
         index.patches[key] = hit
     patch, whole, coupling = hit
@@ -517,7 +614,6 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
         return hit
     from qiskit import QuantumRegister
     from qiskit.circuit.library import CXGate
-    from qiskit.converters import dag_to_circuit
     from qiskit.dagcircuit import DAGCircuit
 
     dag = DAGCircuit()
@@ -528,7 +624,7 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
         dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
     sabre, default_trials = _sabre_pass(coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
-    out = dag_to_circuit(_run_sabre(sabre, dag, size), copy_operations=False)
+    out = _run_sabre(sabre, dag, size)
     queues: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(pairs):
         queues.setdefault(a, []).append(k)
@@ -537,9 +633,9 @@ def _sabre_local(coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
     index = {q: i for i, q in enumerate(out.qubits)}
-    for inst in out.data:
-        x, y = (index[q] for q in inst.qubits)
-        if inst.operation.name == "swap":
+    for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
+        x, y = (index[q] for q in node.qargs)
+        if node.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
             continue
@@ -675,46 +771,83 @@ def route_window(
 
     The ops depend only on where the pairs' qubits are (the physical pairs), the device and the search's
     settings, so they are memoised on those (in :data:`_WINDOW_CACHE`, with the patches the routing saw, replayed
-    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit): the allocation search and the cells'
-    plan choice route the same window many times."""
-    ops, _ = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-    return list(ops)
+    into :data:`PATCH_WATCH` and :data:`WHOLE_COMPONENT_PATCHES` on a hit; on a heavy-hex lattice up to the
+    lattice's translations, :class:`_Lattice`): the allocation search and the cells' plan choice route the same
+    window many times."""
+    entry, by = _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+    if by is None:
+        return list(entry[0])
+    moved = _patch_index(device, dist).lattice.moved  # type: ignore[union-attr]
+    return [(name, (moved(a, by), moved(b, by))) for name, (a, b) in entry[0]]
 
 
 def route_window_cx(
-    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
+    pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int = 0,
     trials: int | None = DEFAULT_TRIALS, large_seeds: int | None = None, large_trials: int | None = None,
 ) -> int:  # fmt: skip
-    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only)."""
-    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[1]
+    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only); ``pos``
+    ``None``: every qubit on the physical qubit of its number (``pairs`` are physical)."""
+    return _memo_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)[0][1]
 
 
 def _memo_window(
-    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int, trials: int | None,
+    pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int, trials: int | None,
     large_seeds: int | None, large_trials: int | None,
-) -> tuple[tuple[tuple[str, tuple[int, int]], ...], int]:  # fmt: skip
-    """:func:`route_window`'s ops and their :func:`window_cx`, memoised (see there)."""
+) -> tuple[tuple[Any, ...], Coord | None]:  # fmt: skip
+    """:func:`route_window`'s memo entry ``(ops, window_cx, patch qubits, whole-component parts, ...)`` and the
+    lattice translation that takes its qubits to this window's (``None``: none needed; :class:`_Lattice`)."""
     global WHOLE_COMPONENT_PATCHES
     if device.is_all_to_all:
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
         ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        return tuple(ops), cx_
-    where = pos.where
-    key = ("window", _patch_index(device, dist).token, tuple((where[a], where[b]) for a, b in pairs), seed, trials,
-           large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS, WIDE_WINDOW_SEEDS,
-           WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
-    hit = _WINDOW_CACHE.get(key)
+        return (tuple(ops), cx_, frozenset(), 0), None
+    index = _patch_index(device, dist)
+    if pos is None:
+        physical = tuple(pairs)
+    else:
+        where = pos.where
+        physical = tuple((where[a], where[b]) for a, b in pairs)
+    settings = (seed, trials, large_seeds, large_trials, WINDOW_RADIUS, LARGE_WINDOW_PAIRS, LARGE_WINDOW_SEEDS,
+                WIDE_WINDOW_SEEDS, WIDE_WINDOW_TRIALS, LARGE_WINDOW_MAX_PAIRS)  # fmt: skip
+    lattice = index.lattice
+    key: tuple = ("window", index.token, physical, settings)
+    shift = None
+    translated: list = []
+    if lattice is not None and physical:
+        rel, shift = lattice.canonical(physical)
+        translated = _WINDOW_CACHE.setdefault(("window", index.token, "translated", rel, settings), [])
+    hit = None
+    for ys, xs, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
+        if lattice.holds(ys, xs, shift) == holds:  # type: ignore[union-attr, arg-type]
+            hit = entry
+            break
+    else:  # routed on its whole component, or no lattice: memoised on its physical pairs
+        hit = _WINDOW_CACHE.get(key)
     if hit is None:
-        with watching_patches() as watch:
-            ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
-        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component)
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
+        centres: set[int] = set()
+        _PATCH_CENTRES.append(centres)
+        try:
+            with watching_patches() as watch:
+                ops, cx_ = _route_window(pairs, pos, device, dist, seed, trials, large_seeds, large_trials)
+        finally:
+            del _PATCH_CENTRES[next(i for i, c in enumerate(_PATCH_CENTRES) if c is centres)]
         if len(_WINDOW_CACHE) >= WINDOW_CACHE_LIMIT:
             _WINDOW_CACHE.clear()
-        _WINDOW_CACHE[key] = hit
-        return hit[:2]
-    for watch in PATCH_WATCH:
-        watch.update(hit[2])
+        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
+        if lattice is not None and shift is not None and not watch.whole_component:
+            translated.append((*lattice.around(centres, shift), hit))
+            _WINDOW_CACHE[("window", index.token, "translated", rel, settings)] = translated
+        else:
+            hit = _WINDOW_CACHE[key] = (*hit[:4], None)
+        return hit, None
+    by = None if hit[4] is None or hit[4] == shift else (shift[0] - hit[4][0], shift[1] - hit[4][1])  # type: ignore[index]
+    if PATCH_WATCH:
+        seen = hit[2] if by is None else {lattice.moved(q, by) for q in hit[2]}  # type: ignore[union-attr]
+        for watch_ in PATCH_WATCH:
+            watch_.update(seen)
     WHOLE_COMPONENT_PATCHES += hit[3]
-    return hit[:2]
+    return hit, by
 
 
 def _route_window(

@@ -1,0 +1,156 @@
+"""The routed-window memo up to the heavy-hex lattice's translations, and the cells' plan-choice memos, change no
+answer (:class:`circuitgen.routing._Lattice`, :func:`circuitgen.routing.route_window`,
+:func:`circuitgen.cellmixer.cell_mixers`).
+
+Evidence: a window routed after its translation was memoised gives the ops, patches and whole-component count of
+the same window routed from a cold memo, on random windows and translations of a heavy-hex lattice (interior and
+boundary), and the translated entry is used where the lattice around both is the same; a heavy-hex compile with
+every memo of this speed-up gives the circuit, routing and plan choices of the compile without them (2x3/1 on the
+cells in the default run; 4x4/2 and 5x5/3 on heavy-hex and on a grid in the heavy run).
+"""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from circuitgen import cellmixer, medial, routing
+from circuitgen.devices import get_device, heavy_hex_coordinates
+from circuitgen.gadgets.partial_mixer import plan_parity_mixer
+from circuitgen.hardware import compile_for_device
+from circuitgen.layout import distances
+from circuitgen.routing import PATCH_WATCH, Positions, route_window
+from gridcover.presets import default_scenario
+
+DEVICE = get_device("heavy-hex:13")
+DIST = distances(DEVICE)
+COORDS = heavy_hex_coordinates(13)
+AT = {c: i for i, c in enumerate(COORDS)}
+
+
+def _routed(pairs: list[tuple[int, int]]) -> tuple[list, set[int], int]:
+    """The window of physical ``pairs`` routed from home: its ops, the patches it saw, its whole-component parts."""
+    seen: set[int] = set()
+    before = routing.WHOLE_COMPONENT_PATCHES
+    PATCH_WATCH.append(seen)
+    try:
+        ops = route_window(pairs, Positions.identity(DEVICE.num_qubits), DEVICE, DIST)
+    finally:
+        del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
+    return ops, seen, routing.WHOLE_COMPONENT_PATCHES - before
+
+
+@st.composite
+def translated_windows(draw: st.DrawFn) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
+    """A window (a compute and its mirror, qubits near one another) and the same window moved by a multiple of
+    four in both coordinates."""
+    centre = draw(st.integers(0, DEVICE.num_qubits - 1))
+    near = [q for q in range(DEVICE.num_qubits) if DIST[centre, q] <= draw(st.integers(1, 4))]
+    n = min(len(near), draw(st.integers(2, 6)))
+    qubits = draw(st.permutations(near))[:n]
+    k = draw(st.integers(1, 10))
+    pairs = [tuple(draw(st.permutations(qubits))[:2]) for _ in range(k)]
+    pairs += pairs[::-1]
+    dy, dx = draw(st.sampled_from([(dy, dx) for dy in (-8, -4, 0, 4, 8) for dx in (-8, -4, 0, 4, 8) if dy or dx]))
+    moved = {q: AT.get((COORDS[q][0] + dy, COORDS[q][1] + dx)) for q in qubits}
+    if any(m is None for m in moved.values()):
+        dy = dx = 0  # off the lattice: the window itself
+        moved = {q: q for q in qubits}
+    return pairs, [(moved[a], moved[b]) for a, b in pairs]  # type: ignore[misc]
+
+
+@settings(max_examples=25, deadline=None)
+@given(translated_windows())
+def test_a_window_routed_after_its_translation_routes_as_from_a_cold_memo(
+    windows: tuple[list[tuple[int, int]], list[tuple[int, int]]],
+) -> None:
+    pairs, moved = windows
+    routing._WINDOW_CACHE.clear()
+    cold = _routed(moved)
+    routing._WINDOW_CACHE.clear()
+    _routed(pairs)
+    assert _routed(moved) == cold
+
+
+def test_an_interior_window_is_answered_by_its_translation() -> None:
+    """The translated entry is used: the second window costs no routing (the memo does not grow)."""
+    base = AT[(10, 8)]
+    pairs = [(base, AT[(10, 12)]), (AT[(10, 12)], AT[(12, 10)]), (AT[(10, 12)], base)]
+    moved = [tuple(AT[(COORDS[q][0] + 4, COORDS[q][1] + 4)] for q in pr) for pr in pairs]
+    routing._WINDOW_CACHE.clear()
+    first = _routed(pairs)  # type: ignore[arg-type]
+    size = len(routing._WINDOW_CACHE)
+    second = _routed(moved)  # type: ignore[arg-type]
+    assert len(routing._WINDOW_CACHE) == size
+    shift = {q: AT[(COORDS[q][0] + 4, COORDS[q][1] + 4)] for q in first[1]}
+    assert second[0] == [(name, (shift[a], shift[b])) for name, (a, b) in first[0]]
+    assert second[1] == set(shift.values()) and second[2] == first[2] == 0
+
+
+def _compiled(shape: tuple[int, int, int], device: str, memos: bool, monkeypatch: pytest.MonkeyPatch) -> tuple:
+    """The routed circuit, layouts and partial-mixer sections of a compile, with or without the memos."""
+    with monkeypatch.context() as m:
+        if not memos:
+            m.setattr(routing._Lattice, "of", classmethod(lambda cls, device: None))
+            m.setattr(cellmixer, "_planned", plan_parity_mixer)
+        routing._WINDOW_CACHE.clear()
+        routing._PATCH_INDEX.clear()
+        cellmixer._CHOICE_CACHE.clear()
+        cellmixer.relabelled_plans.cache_clear()
+        medial._SEARCH_CACHE.clear()
+        result = compile_for_device(default_scenario(*shape), 1, device, lowered=True, layout_method="medial")
+        routing._PATCH_INDEX.clear()
+    routed = result.routed
+    return ([(g[0], g[1]) for g in routed.circuit.gates], routed.initial_layout, routed.swaps, routed.fused,
+            [(s.name, [(g[0], g[1]) for g in s.gates]) for s in result.logical.sections])  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("shape", "device"),
+    [
+        ((2, 3, 1), "heavy-hex"),
+        pytest.param((4, 4, 2), "heavy-hex", marks=pytest.mark.heavy),
+        pytest.param((5, 5, 3), "heavy-hex", marks=pytest.mark.heavy),
+        pytest.param((4, 4, 2), "grid", marks=pytest.mark.heavy),
+        pytest.param((5, 5, 3), "grid", marks=pytest.mark.heavy),
+    ],
+    ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "5x5/3-heavy-hex", "4x4/2-grid", "5x5/3-grid"],
+)
+def test_the_memos_change_no_choice(shape: tuple[int, int, int], device: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The allocation search, the cells' plan choice and the routing pick what they pick without the memos."""
+    assert _compiled(shape, device, True, monkeypatch) == _compiled(shape, device, False, monkeypatch)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.data())
+def test_a_patch_routing_reads_sabre_as_the_pass_writes_it(data: st.DataObject) -> None:
+    """_sabre_local's events (read off SABRE's routed DAG) are the SWAPs and gates of the SabreSwap pass's circuit,
+    in its order."""
+    from qiskit import QuantumCircuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreSwap
+
+    from circuitgen.routing import _sabre_local, coupling_map
+
+    dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
+    size = dev.num_qubits
+    pairs = tuple(tuple(data.draw(st.permutations(range(size)))[:2]) for _ in range(data.draw(st.integers(1, 25))))
+    seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
+    qc = QuantumCircuit(size)
+    for a, b in pairs:
+        qc.cx(a, b)
+    reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
+    routing._WINDOW_CACHE.clear()
+    events = _sabre_local(tuple(dev.coupling), size, pairs, seed, trials)  # type: ignore[arg-type]
+    where = list(range(size))  # position -> the qubit that started there
+    replayed = []
+    for kind, what in events:
+        if kind == "swap":
+            x, y = what
+            where[x], where[y] = where[y], where[x]
+            replayed.append(("swap", [x, y]))
+        else:
+            a, b = pairs[what]
+            replayed.append(("cx", [where.index(a), where.index(b)]))
+    assert replayed == [(i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data]
