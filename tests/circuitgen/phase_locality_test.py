@@ -348,7 +348,7 @@ def test_local_first_adders_are_the_plain_searchs(n: int, seed: int, sink: tuple
 def test_local_first_joins_nearer_bits_than_the_passes() -> None:
     """On the medial layout's balance forms (4x4/2, 5x5/2) the local-first adders' wire length (lattice distance
     between the operands of every two-qubit gate, ancillas at their sites) is below the passes' with the same sink."""
-    from .local_first_reference import _LocalFirst, reference_popcount_layout
+    from .layout_reference import _LocalFirst, reference_popcount_layout
 
     for s in (default_scenario(4, 4, 2), default_scenario(5, 5, 2)):
         g = next(g for n, g in qaoa_plan(s, 1, MEDIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))

@@ -1,14 +1,16 @@
-"""The near-linear local-first popcount picks exactly the old one's adders.
+"""The near-linear place-aware layouts pick exactly the old ones' adders and ancillas.
 
 :func:`circuitgen.gadgets.phase_sums.spatial_popcount_layout` keeps, for the local-first choice (with a sink), a
 bucket index of every column, the bits whose triple holds each bit, an index by second-nearest distance and one
-heap per column, where the code it replaced rescanned whole columns (``local_first_reference.py``, that code
+heap per column, where the code it replaced rescanned whole columns (``layout_reference.py``, that code
 verbatim). Both must emit the same gates in the same order, the same register and the same ancilla sites:
 
 * hypothesis: random forms (weights of either sign up to 7, so copies and complemented bits), random sites on a
   lattice from 1x1 (every bit on one site: ties everywhere) to 40x40 (sparse), with and without a sink;
 * the balance forms of the medial layout (every robot's edges, dense) with their sinks, and the edges or the
-  points of a 14x14 square thinned at random, so the columns are large enough for the buckets to matter.
+  points of a 14x14 square thinned at random, so the columns are large enough for the buckets to matter;
+* the visit gadgets' ancillas (:func:`circuitgen.phase_locality.spatial_phase`): random scenarios (hypothesis)
+  with and without sinks, and 9x9/3's pool of hundreds.
 """
 
 from __future__ import annotations
@@ -20,13 +22,17 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from circuitgen.gadgets.phase_sums import SumsPhase, spatial_popcount_layout
+from circuitgen.gadgets.phase_visits import VisitPhase
 from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import variable_sites
+from circuitgen.phase import phase_plan
+from circuitgen.phase_locality import spatial_phase, variable_sites
 from circuitgen.qaoa import qaoa_plan
 from gridcover.grid import Grid
 from gridcover.presets import default_scenario
+from gridcover.scenario import Scenario
 
-from .local_first_reference import reference_popcount_layout
+from .conftest import scenarios
+from .layout_reference import reference_popcount_layout, reference_spatial_phase
 
 
 def _both(form: tuple[tuple[int, int], ...], sites: dict, sink: tuple[float, float] | None) -> tuple:
@@ -78,3 +84,28 @@ def test_medial_balance_forms_get_the_old_adders() -> None:
     for form, sink in zip(g.forms, g.sinks, strict=True):
         new, old = _both(form, sites, sink)
         assert new == old
+
+
+def _spatial_both(s: Scenario, sinks: bool) -> tuple[tuple, tuple]:
+    plan = phase_plan(s)
+    n = s.num_variables
+    gadgets = plan.gadgets("gamma_0")
+    pool = range(n, n + plan.num_ancillas)
+    return spatial_phase(gadgets, s, pool, sinks), reference_spatial_phase(gadgets, s, pool, sinks)
+
+
+@settings(max_examples=25, deadline=None)
+@given(s=scenarios(max_side=5, max_robots=3), sinks=st.booleans())
+def test_visit_gadgets_borrow_the_old_ancillas(s: Scenario, sinks: bool) -> None:
+    """:func:`circuitgen.phase_locality.spatial_phase` (ancilla homes in buckets, searched ring by ring) gives
+    every visit gadget the ancillas the old sort of the whole pool per node gave, in the same order."""
+    new, old = _spatial_both(s, sinks)
+    assert new == old
+
+
+def test_visit_gadgets_borrow_the_old_ancillas_on_a_big_pool() -> None:
+    """9x9/3: pools of hundreds of ancillas, where the rings (not the whole-pool fallback) decide."""
+    s = default_scenario(9, 9, 3)
+    new, old = _spatial_both(s, True)
+    assert sum(len(g.ancillas) for g in new if isinstance(g, VisitPhase)) > 100
+    assert new == old

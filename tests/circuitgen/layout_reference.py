@@ -1,16 +1,32 @@
-"""The local-first popcount as it was before it was made near-linear (commit c6ba873), kept verbatim as the
-reference the fast one must match gate for gate (``phase_sums_selection_test.py``): every bit keeps its tightest
-triple, refreshed by rescanning its whole column, and the next adder is a minimum over every bit's entry. With
-``next_triple`` switched off it also gives the passes along the curve with a sink (what local first replaced).
+"""The place-aware layout code as it was before it was made near-linear (commit c6ba873), kept verbatim as the
+reference the fast code must match gate for gate (``phase_sums_selection_test.py``):
+
+* the local-first popcount: every bit keeps its tightest triple, refreshed by rescanning its whole column, and
+  the next adder is a minimum over every bit's entry. With ``next_triple`` switched off it also gives the passes
+  along the curve with a sink (what local first replaced);
+* :func:`reference_spatial_phase`: the visit gadgets' ancillas chosen by sorting the whole pool for every node.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 
-from circuitgen.gadgets.phase_sums import Sink, Site, hilbert_key, manhattan, star_full_adder, star_half_adder
+from circuitgen.gadgets import Gadget
+from circuitgen.gadgets.phase_sums import (
+    Sink,
+    Site,
+    SumsPhase,
+    hilbert_key,
+    manhattan,
+    star_full_adder,
+    star_half_adder,
+)
+from circuitgen.gadgets.phase_visits import VisitPhase
 from circuitgen.gates import Gate, cx, x
+from circuitgen.phase_locality import NEW_HOME_PENALTY, placed_sums, variable_sites
+from gridcover.scenario import Scenario
 
 _Bit = tuple[int, Site]
 
@@ -156,3 +172,34 @@ def reference_popcount_layout(
         reg.append(col[0][0] if col else None)
         k += 1
     return gates, reg, home
+
+
+def reference_spatial_phase(
+    gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], sinks: bool = False
+) -> tuple[Gadget, ...]:
+    """The old :func:`circuitgen.phase_locality.spatial_phase`, verbatim."""
+    sites = variable_sites(scenario)
+    pool = tuple(pool)
+    out = list(placed_sums(gadgets, scenario, sinks))
+    home: dict[int, Site] = {}
+    for g in out:
+        if isinstance(g, SumsPhase):
+            home.update(g.ancilla_sites())
+    borrowed: dict[int, int] = dict.fromkeys(pool, 0)
+    for i, g in enumerate(out):
+        if not isinstance(g, VisitPhase) or not g.ancillas:
+            continue
+        edge_sites = [sites[q] for v in g.visitors for q in v]
+        at = (sum(s[0] for s in edge_sites) / len(edge_sites), sum(s[1] for s in edge_sites) / len(edge_sites))
+        usable = [a for a in pool if a in borrowed]
+
+        def rank(a: int, at: tuple[float, float] = at) -> tuple[float, int]:
+            far = manhattan(at, home[a]) if a in home else float("inf")
+            return far + NEW_HOME_PENALTY * borrowed[a], a
+
+        chosen = tuple(sorted(usable, key=rank)[: len(g.ancillas)])
+        for a in chosen:
+            borrowed[a] += 1
+            home.setdefault(a, (round(at[0]), round(at[1])))
+        out[i] = dataclasses.replace(g, ancillas=chosen)
+    return tuple(out)
