@@ -758,9 +758,19 @@ class SumsPhase:
     def ancilla_sites(self) -> dict[int, Site]:
         """Where each ancilla the adder trees use sits (the site of the bits it adds up); empty without
         :attr:`sites`."""
-        return self._placed_layout()[2] if self.sites else {}
+        return dict(self._placed_layout()[2]) if self.sites else {}
 
     def _placed_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
+        """The layout; with :attr:`sites` built once (:func:`~circuitgen.phase_locality.spatial_phase` asks for
+        the ancilla sites, then the circuit for the gates: the place-aware adders are the plan's costliest part
+        to lay out). Callers only read it."""
+        return self._kept_layout if self.sites else self._build_layout()
+
+    @cached_property
+    def _kept_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
+        return self._build_layout()
+
+    def _build_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
         anc = iter(self.ancillas)
         where = {q: (y, x_) for q, y, x_ in self.sites}
         home: dict[int, Site] = {}
