@@ -109,3 +109,18 @@ def test_visit_gadgets_borrow_the_old_ancillas_on_a_big_pool() -> None:
     new, old = _spatial_both(s, True)
     assert sum(len(g.ancillas) for g in new if isinstance(g, VisitPhase)) > 100
     assert new == old
+
+
+@pytest.mark.heavy
+def test_a_16x16_8_medial_phase_layer_is_the_old_one() -> None:
+    """16x16/8 (eight balance forms of 480 edges, a pool of thousands): the whole medial phase layer, adders
+    and visit ancillas, equals the old code's (which takes seconds here)."""
+    s = default_scenario(16, 16, 8)
+    new, old = _spatial_both(s, True)
+    assert new == old
+    sites = variable_sites(s)
+    for g in new:
+        if isinstance(g, SumsPhase):
+            for form, sink in zip(g.forms, g.sinks, strict=True):
+                fast, slow = _both(form, sites, sink)
+                assert fast == slow
