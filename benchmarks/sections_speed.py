@@ -16,18 +16,28 @@ With ``--against REV`` the same rows run on ``REV``'s ``src/`` (``git archive`` 
 same run, alternating which tree goes first, and ``same`` says whether both trees emitted the same gates in the
 same order (equal hashes). A build past ``--limit`` seconds (default 600) is stopped and shown as ``>limit``.
 The load average is printed before and after (the machine has 2 cores shared with other jobs).
+
+``--compile SPEC:VARIANT,...`` (with ``--against``) instead runs ``qcpp compile SCENARIO --lowered --qasm -`` on
+both trees and compares the OpenQASM bytes (a hash of standard output) and the wall seconds; ``VARIANT`` is
+``grid`` or ``heavy-hex`` (``--device``), or ``medial`` / ``spatial`` (``--phase-layout`` on the all-to-all
+compile, two layers), on ``default_scenario`` of ``SPEC`` (e.g. ``8x8/3:grid``).
 """
 
 from __future__ import annotations
 
 import argparse
+import hashlib
 import os
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 from estimate_speed import _export
+
+from gridcover.presets import default_scenario
+from gridcover.scenario import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = "10x10/4,16x16/8,20x20/8,30x30/8"
@@ -76,6 +86,45 @@ def _build(src: Path, spec: str, device: str, limit: float) -> tuple[float, floa
     return float(wall), float(cpu), float(emit), int(gates), digest
 
 
+def _compile(src: Path, spec: str, variant: str, limit: float, tmp: Path) -> tuple[float, str] | None:
+    """``(wall s, hash of the OpenQASM)`` of ``qcpp compile`` on ``default_scenario`` of ``spec`` with ``src``
+    first on the path, ``None`` past ``limit`` seconds or on failure."""
+    grid, robots = spec.split("/")
+    rows, cols = grid.split("x")
+    path = tmp / f"{rows}x{cols}_{robots}.json"
+    save_scenario(default_scenario(int(rows), int(cols), int(robots)), path)
+    flags = ["--device", variant] if variant in DEVICES else ["--phase-layout", variant, "-p", "2"]
+    env = {**os.environ, "PYTHONPATH": str(src) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    start = time.perf_counter()
+    try:
+        out = subprocess.run(
+            [sys.executable, "-m", "qcpp", "compile", str(path), "--lowered", "--qasm", "-", *flags],
+            env=env, capture_output=True, timeout=limit, cwd=ROOT,
+        )  # fmt: skip
+    except subprocess.TimeoutExpired:
+        return None
+    if out.returncode != 0 or not out.stdout:
+        return None
+    return time.perf_counter() - start, hashlib.sha256(out.stdout).hexdigest()[:16]
+
+
+def compare_compiles(rev: str, cases: list[str], limit: float) -> None:
+    """Print, per ``SPEC:VARIANT``, both trees' ``qcpp compile`` seconds and whether their OpenQASM is equal."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trees = {"this tree": ROOT / "src", rev: _export(rev, Path(tmp))}
+        print(" | ".join(["scenario", "variant", "this tree s", f"{rev} s", "qasm hash", "same"]))
+        for i, case in enumerate(cases):
+            spec, variant = case.split(":")
+            order = list(trees.items()) if i % 2 == 0 else list(reversed(trees.items()))
+            got = {name: _compile(src, spec, variant, limit, Path(tmp)) for name, src in order}
+            ours, theirs = got["this tree"], got[rev]
+            same = "?" if ours is None or theirs is None else "yes" if ours[1] == theirs[1] else "no"
+            print(" | ".join([
+                spec, variant, f"{ours[0]:.1f}" if ours else f">{limit:.0f}", f"{theirs[0]:.1f}" if theirs else
+                f">{limit:.0f}", ours[1] if ours else "", same,
+            ]), flush=True)  # fmt: skip
+
+
 def _cell(r: tuple[float, float, float, int, str] | None, limit: float) -> list[str]:
     if r is None:
         return [f">{limit:.0f}", "", "", "", ""]
@@ -87,9 +136,17 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--sizes", default=SIZES, help="comma-separated ROWSxCOLS/ROBOTS")
     ap.add_argument("--against", metavar="REV", help="also run REV's src/ and compare")
     ap.add_argument("--limit", type=float, default=600.0, help="seconds before a build is stopped")
+    ap.add_argument("--compile", metavar="SPEC:VARIANT,...", help="compare qcpp compile output instead")
     args = ap.parse_args(argv)
     load = os.getloadavg()
     print(f"machine: {os.cpu_count()} cores, load average {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f}")
+    if args.compile:
+        if not args.against:
+            ap.error("--compile needs --against REV")
+        compare_compiles(args.against, args.compile.split(","), args.limit)
+        load = os.getloadavg()
+        print(f"load average after: {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f}")
+        return 0
     head = ["size", "device", "build s", "cpu s", "emit s", "gates", "hash"]
     with tempfile.TemporaryDirectory() as tmp:
         trees = {"this tree": ROOT / "src"}
