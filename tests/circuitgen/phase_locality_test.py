@@ -348,7 +348,7 @@ def test_local_first_adders_are_the_plain_searchs(n: int, seed: int, sink: tuple
 def test_local_first_joins_nearer_bits_than_the_passes() -> None:
     """On the medial layout's balance forms (4x4/2, 5x5/2) the local-first adders' wire length (lattice distance
     between the operands of every two-qubit gate, ancillas at their sites) is below the passes' with the same sink."""
-    from circuitgen.gadgets import phase_sums
+    from .layout_reference import _LocalFirst, reference_popcount_layout
 
     for s in (default_scenario(4, 4, 2), default_scenario(5, 5, 2)):
         g = next(g for n, g in qaoa_plan(s, 1, MEDIAL).sections() if n == "phase_0" and isinstance(g, SumsPhase))
@@ -356,11 +356,11 @@ def test_local_first_joins_nearer_bits_than_the_passes() -> None:
         for form, sink in zip(g.forms, g.sinks, strict=True):
             local, _, home = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, sink)
             passes = []
-            original = phase_sums._LocalFirst.next_triple
-            try:  # without local first: the passes along the curve, sums kept nearest the sink
-                phase_sums._LocalFirst.next_triple = lambda self, column=None: None  # type: ignore[method-assign]
-                passes, _, home_passes = spatial_popcount_layout(form, iter(range(1000, 1200)), sites, sink)
+            original = _LocalFirst.next_triple
+            try:  # without local first (the old code's passes along the curve, sums kept nearest the sink)
+                _LocalFirst.next_triple = lambda self, column=None: None  # type: ignore[method-assign]
+                passes, _, home_passes = reference_popcount_layout(form, iter(range(1000, 1200)), sites, sink)
             finally:
-                phase_sums._LocalFirst.next_triple = original  # type: ignore[method-assign]
+                _LocalFirst.next_triple = original  # type: ignore[method-assign]
             assert Cost.count(local) == Cost.count(passes)
             assert wire_length(local, {**sites, **home}) < wire_length(passes, {**sites, **home_passes})

@@ -37,6 +37,7 @@ from collections.abc import Callable, Hashable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
+from circuitgen.buckets import bucket, ring
 from circuitgen.cost import Cost
 from circuitgen.gates import Gate, and_, cx, x
 
@@ -202,74 +203,191 @@ def manhattan(a: Site | Sink, b: Site | Sink) -> float:
 _Bit = tuple[int, Site]
 
 
+_CELL = 2
+"""Side of the buckets (lattice units) the local-first index files each column's bits in: about two bits of a
+robot's edge column per bucket (edge midpoints fill half the doubled lattice), so a bit's two nearest bits are
+usually found in the 3 x 3 buckets around it."""
+
+
 class _LocalFirst:
-    """The columns of a popcount reduced local first (see :func:`spatial_popcount_layout`): every bit keeps its
-    tightest triple (itself and its two nearest bits of its column, by distance then curve position) with that
-    triple's score (diameter, then farther from the sink, then curve position), refreshed only where a full
-    adder removed one of its bits or put a carry nearer than its second-nearest bit, so choosing the next adder
-    is a minimum over the bits, not a search over every triple."""
+    """The columns of a popcount reduced local first (see :func:`spatial_popcount_layout`), with what choosing the
+    next full adder needs kept up to date in time that does not grow with the columns.
 
-    def __init__(self, cols: dict[int, list[_Bit]], sink: Sink, key: Callable[[_Bit], tuple[int, int]]) -> None:
-        self.cols, self.sink, self.key = cols, sink, key
-        self.best: dict[int, tuple[tuple, int, list[_Bit]]] = {}  # qubit -> (score, column, triple)
+    Every bit of a column of at least three bits keeps its tightest triple (itself and its two nearest bits of the
+    column, by distance then curve key) and that triple's score (diameter, then farther from the sink, then curve
+    key); the next adder is the least score of a column (or of any column: then the least ``(score, column)``).
+    What keeps it fast, with the same choice as rescanning every bit:
+
+    * each column's bits are filed in buckets of :data:`_CELL` lattice units, and a bit's two nearest bits are
+      searched ring by ring of buckets until no farther ring can hold a nearer bit (a column smaller than the
+      rings is scanned whole);
+    * an adder removes two bits of column ``k``: only the bits whose triple held one of them change (each bit
+      lists the bits whose triple holds it); it adds a carry to column ``k + 1``: only the bits whose second
+      nearest bit lies farther than the carry change, found through a second index that files every bit by the
+      distance to its second nearest bit (class ``j``: below ``2^j``) in buckets of ``2^j``, so only the 3 x 3
+      buckets around the carry of every class are looked at;
+    * the scores sit in one heap per column; an entry whose bit was refreshed or removed since is dropped when it
+      comes to the top.
+
+    Args:
+        cols: Column -> qubit -> site, changed in place by :meth:`remove` and :meth:`add`.
+        sink: Where the sums drift (the score's second key).
+        keys: Qubit -> curve key ``(Hilbert position, qubit)``; the caller adds every new qubit's.
+    """
+
+    def __init__(self, cols: dict[int, dict[int, Site]], sink: Sink, keys: dict[int, tuple[int, int]]) -> None:
+        self.cols, self.sink, self.keys = cols, sink, keys
+        self.cells: dict[int, dict[tuple[int, int], set[int]]] = {}  # column -> bucket -> qubits
+        self.best: dict[int, tuple[tuple, int, int]] = {}  # qubit -> (score, nearest, second nearest)
+        self.heaps: dict[int, list[tuple[tuple, int]]] = {}  # column -> (score, qubit), stale entries included
+        self.holders: dict[int, set[int]] = {}  # qubit -> the bits whose triple holds it
+        self.reach: dict[int, dict[int, dict[tuple[int, int], set[int]]]] = {}  # column -> class -> bucket -> bits
+        self.filed: dict[int, tuple[int, int, tuple[int, int]]] = {}  # qubit -> (column, class, bucket) in reach
         for k, col in cols.items():
-            for it in col:
-                self._refresh(it, k)
+            for q, (y, x_) in col.items():
+                self.cells.setdefault(k, {}).setdefault(bucket(y, x_, _CELL), set()).add(q)
+        for k, col in cols.items():
+            if len(col) >= 3:
+                for q in col:
+                    self._refresh(k, q)
 
-    def _refresh(self, it: _Bit, k: int) -> None:
-        col = self.cols[k]
-        if len(col) < 3:
-            self.best.pop(it[0], None)
+    def _nearest_two(self, k: int, q: int) -> tuple[int, int]:
+        """The two bits of column ``k`` nearest bit ``q`` (distance, then curve key), ``q`` excluded."""
+        col, keys, cells = self.cols[k], self.keys, self.cells[k]
+        y, x_ = col[q]
+        cy, cx = bucket(y, x_, _CELL)
+        found: list[tuple[float, tuple[int, int]]] = []
+        rho = 0
+        while True:
+            if (2 * rho + 1) ** 2 > len(col):  # more buckets than bits: scan the column
+                found = [(abs(s[0] - y) + abs(s[1] - x_), keys[o]) for o, s in col.items() if o != q]
+                break
+            for cell in ring(cy, cx, rho):
+                for o in cells.get(cell, ()):
+                    if o != q:
+                        s = col[o]
+                        found.append((abs(s[0] - y) + abs(s[1] - x_), keys[o]))
+            # a bucket of ring rho + 1 or beyond lies more than rho * _CELL away
+            if len(found) >= 2 and heapq.nsmallest(2, found)[1][0] <= rho * _CELL:
+                break
+            rho += 1
+        a, b = heapq.nsmallest(2, found)
+        return a[1][1], b[1][1]
+
+    def _drop(self, q: int) -> None:
+        """Forget bit ``q``'s triple (removed, or its column fell below three bits, or about to be refreshed)."""
+        v = self.best.pop(q, None)
+        if v is None:
             return
-        others = (o for o in col if o[0] != it[0])
-        near = heapq.nsmallest(2, others, key=lambda o: (manhattan(o[1], it[1]), self.key(o)))
-        span = max(manhattan(it[1], near[0][1]), manhattan(it[1], near[1][1]), manhattan(near[0][1], near[1][1]))
-        self.best[it[0]] = ((span, -manhattan(self.sink, it[1]), self.key(it)), k, [it, *near])
+        for o in v[1:]:
+            held = self.holders.get(o)
+            if held is not None:
+                held.discard(q)
+        k, j, cell = self.filed.pop(q)
+        filed = self.reach[k][j]
+        filed[cell].discard(q)
+        if not filed[cell]:
+            del filed[cell]
+
+    def _refresh(self, k: int, q: int) -> None:
+        col = self.cols[k]
+        n0, n1 = self._nearest_two(k, q)
+        s, s0, s1 = col[q], col[n0], col[n1]
+        span = max(manhattan(s, s0), manhattan(s, s1), manhattan(s0, s1))
+        score = (span, -manhattan(self.sink, s), self.keys[q])
+        self._drop(q)
+        self.best[q] = (score, n0, n1)
+        self.holders.setdefault(n0, set()).add(q)
+        self.holders.setdefault(n1, set()).add(q)
+        j = int(manhattan(s, s1)).bit_length()  # the second nearest bit lies below 2^j away
+        cell = bucket(*s, 1 << j)
+        self.reach.setdefault(k, {}).setdefault(j, {}).setdefault(cell, set()).add(q)
+        self.filed[q] = (k, j, cell)
+        heapq.heappush(self.heaps.setdefault(k, []), (score, q))
 
     def next_triple(self, column: int | None = None) -> tuple[int, list[_Bit]] | None:
         """``(column, triple)`` of the best full adder (in ``column`` only, if given), ``None`` if there is none."""
-        found = [v for v in self.best.values() if column is None or v[1] == column]
-        if not found:
+        top: tuple[tuple, int, int] | None = None
+        for k in (column,) if column is not None else tuple(self.heaps):
+            heap = self.heaps.get(k)
+            while heap:
+                v = self.best.get(heap[0][1])
+                if v is not None and v[0] == heap[0][0]:
+                    break
+                heapq.heappop(heap)
+            if heap and (top is None or (heap[0][0], k) < top[:2]):
+                top = (heap[0][0], k, heap[0][1])
+        if top is None:
             return None
-        _, k, triple = min(found, key=lambda v: (v[0], v[1]))
-        return k, triple
-
-    def update(self, k: int, removed: set[int], carry: _Bit) -> None:
-        """Bits ``removed`` left column ``k``; ``carry`` joined column ``k + 1``."""
-        for q in removed:
-            self.best.pop(q, None)
+        _, k, q = top
+        _, n0, n1 = self.best[q]
         col = self.cols[k]
-        for it in col:
-            v = self.best.get(it[0])
-            if len(col) < 3 or v is None or any(o[0] in removed for o in v[2]):
-                self._refresh(it, k)
-        col = self.cols[k + 1]
-        for it in col:
-            v = self.best.get(it[0])
-            if it is carry or v is None:
-                self._refresh(it, k + 1)
-                continue
-            second = v[2][2]
-            if (manhattan(carry[1], it[1]), self.key(carry)) < (manhattan(second[1], it[1]), self.key(second)):
-                self._refresh(it, k + 1)
+        return k, [(q, col[q]), (n0, col[n0]), (n1, col[n1])]
+
+    def remove(self, k: int, gone: tuple[int, ...]) -> None:
+        """Bits ``gone`` leave column ``k``."""
+        col, cells = self.cols[k], self.cells[k]
+        stale: set[int] = set()
+        for q in gone:
+            stale |= self.holders.pop(q, set())
+            self._drop(q)
+            cell = bucket(*col.pop(q), _CELL)
+            cells[cell].discard(q)
+            if not cells[cell]:
+                del cells[cell]
+        if len(col) < 3:
+            for q in col:
+                self._drop(q)
+            return
+        for q in stale:
+            if q in col:
+                self._refresh(k, q)
+
+    def add(self, k: int, q: int, site: Site) -> None:
+        """Bit ``q`` (its key already in :attr:`keys`) joins column ``k`` at ``site``."""
+        col = self.cols.setdefault(k, {})
+        col[q] = site
+        self.cells.setdefault(k, {}).setdefault(bucket(*site, _CELL), set()).add(q)
+        if len(col) == 3:
+            for o in col:
+                self._refresh(k, o)
+        elif len(col) > 3:
+            for o in self._nearer_than_second(k, q):
+                self._refresh(k, o)
+            self._refresh(k, q)
+
+    def _nearer_than_second(self, k: int, q: int) -> list[int]:
+        """The bits of column ``k`` to which the new bit ``q`` is nearer (distance, then curve key) than their
+        second nearest bit: the bits whose triple it changes."""
+        col, keys, best = self.cols[k], self.keys, self.best
+        y, x_ = col[q]
+        out = []
+        for j, grid in self.reach.get(k, {}).items():
+            cy, cx = bucket(y, x_, 1 << j)
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    for o in grid.get((cy + dy, cx + dx), ()):
+                        s, second = col[o], best[o][2]
+                        s2 = col[second]
+                        if (abs(s[0] - y) + abs(s[1] - x_), keys[q]) < (manhattan(s2, s), keys[second]):
+                            out.append(o)
+        return out
 
 
-def _sink_adder(cols: dict[int, list[_Bit]], k: int, triple: list[_Bit], sink: Sink,
-                key: Callable[[_Bit], tuple[int, int]], ancillas: Iterator[int], gates: list[Gate],
-                home: dict[int, Site]) -> tuple[set[int], _Bit]:  # fmt: skip
+def _sink_adder(local: _LocalFirst, k: int, triple: list[_Bit], ancillas: Iterator[int], gates: list[Gate],
+                home: dict[int, Site], key_of: Callable[[int, Site], tuple[int, int]]) -> None:  # fmt: skip
     """One :func:`star_full_adder` on ``triple`` of column ``k``: the sum stays on the bit nearest the sink, the
-    carry (a fresh ancilla sited with it) joins column ``k + 1``. Returns the bits that left column ``k`` and the
-    carry."""
-    j = min(range(3), key=lambda j_: (manhattan(sink, triple[j_][1]), key(triple[j_])))
+    carry (a fresh ancilla sited with it) joins column ``k + 1``."""
+    keys, sink = local.keys, local.sink
+    j = min(range(3), key=lambda j_: (manhattan(sink, triple[j_][1]), keys[triple[j_][0]]))
     mid = triple[j]
     (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
     t = next(ancillas)
     home[t] = mid[1]
     gates += star_full_adder(a, mid[0], c, t)
-    cols[k] = [it for it in cols[k] if it[0] not in (a, c)]
-    carry = (t, mid[1])
-    cols.setdefault(k + 1, []).append(carry)
-    return {a, c}, carry
+    keys[t] = key_of(t, mid[1])
+    local.remove(k, (a, c))
+    local.add(k + 1, t, mid[1])
 
 
 def spatial_popcount_layout(
@@ -325,55 +443,55 @@ def spatial_popcount_layout(
     order = 1
     while order <= max((max(sites[q]) for q, _ in form), default=0):
         order <<= 1
+    keys: dict[int, tuple[int, int]] = {}
 
-    def key(item: tuple[int, Site]) -> tuple[int, int]:
-        return hilbert_key(item[1][0], item[1][1], order), item[0]
+    def key_of(q: int, site: Site) -> tuple[int, int]:
+        return hilbert_key(site[0], site[1], order), q
+
+    def carry(k: int, t: int, site: Site) -> None:
+        keys[t] = key_of(t, site)
+        cols.setdefault(k, {})[t] = site
 
     home: dict[int, Site] = {}
     gates: list[Gate] = [x(q) for q, w in form if w < 0]
-    cols: dict[int, list[tuple[int, Site]]] = {}
+    cols: dict[int, dict[int, Site]] = {}  # column -> qubit -> site
     for q, w in form:
         w, k, first = abs(w), 0, True
         while w:
             if w & 1:
                 if first:
-                    cols.setdefault(k, []).append((q, sites[q]))
+                    cols.setdefault(k, {})[q] = sites[q]
+                    keys[q] = key_of(q, sites[q])
                     first = False
                 else:
                     a = next(ancillas)
                     home[a] = sites[q]
                     gates.append(cx(q, a))
-                    cols.setdefault(k, []).append((a, sites[q]))
+                    carry(k, a, sites[q])
             w >>= 1
             k += 1
     local = None
     if sink is not None:  # local first: the tightest triple of any column, until no column has three bits
-        local = _LocalFirst(cols, sink, key)
+        local = _LocalFirst(cols, sink, keys)
         while (found := local.next_triple()) is not None:
-            k, triple = found
-            local.update(k, *_sink_adder(cols, k, triple, sink, key, ancillas, gates, home))
+            _sink_adder(local, *found, ancillas, gates, home, key_of)
     reg: list[int | None] = []
     k = 0
     while cols and k <= max(cols):
-        col = sorted(cols.get(k, []), key=key)
         while local is not None and (found := local.next_triple(k)) is not None:
-            local.update(k, *_sink_adder(cols, k, found[1], sink, key, ancillas, gates, home))
-            col = sorted(cols[k], key=key)
-        while len(col) >= 3:
-            nxt: list[tuple[int, Site]] = []
+            _sink_adder(local, *found, ancillas, gates, home, key_of)
+        col = sorted(cols.get(k, {}).items(), key=lambda it: keys[it[0]])
+        while len(col) >= 3:  # the passes along the curve (without a sink): the middle bit keeps the sum
+            nxt: list[_Bit] = []
             full = len(col) // 3
             for i in range(full):
-                triple = col[3 * i : 3 * i + 3]
-                j = 1 if sink is None else min(range(3), key=lambda j_: (manhattan(sink, triple[j_][1]), j_ != 1, j_))
-                mid = triple[j]
-                (a, _), (c, _) = (triple[j_] for j_ in range(3) if j_ != j)
-                b = mid[0]
+                (a, _), mid, (c, _) = col[3 * i : 3 * i + 3]
                 t = next(ancillas)
                 home[t] = mid[1]
-                gates += star_full_adder(a, b, c, t)
+                gates += star_full_adder(a, mid[0], c, t)
                 nxt.append(mid)
-                cols.setdefault(k + 1, []).append((t, mid[1]))
-            col = sorted(nxt + col[3 * full :], key=key)
+                carry(k + 1, t, mid[1])
+            col = sorted(nxt + col[3 * full :], key=lambda it: keys[it[0]])
         if len(col) == 2:
             if sink is not None and manhattan(sink, col[1][1]) < manhattan(sink, col[0][1]):
                 col.reverse()  # the sum stays on the bit nearer the sink
@@ -382,10 +500,12 @@ def spatial_popcount_layout(
             home[t] = site
             gates += star_half_adder(a, b, t)
             col = [(a, site)]
-            cols.setdefault(k + 1, []).append((t, site))
-            if local is not None:  # the carry may give the next column a third bit
-                cols[k] = col
-                local.update(k, {b}, (t, site))
+            if local is None:
+                carry(k + 1, t, site)
+            else:  # the carry may give the next column a third bit
+                keys[t] = key_of(t, site)
+                local.remove(k, (b,))
+                local.add(k + 1, t, site)
         reg.append(col[0][0] if col else None)
         k += 1
     return gates, reg, home
@@ -638,9 +758,19 @@ class SumsPhase:
     def ancilla_sites(self) -> dict[int, Site]:
         """Where each ancilla the adder trees use sits (the site of the bits it adds up); empty without
         :attr:`sites`."""
-        return self._placed_layout()[2] if self.sites else {}
+        return dict(self._placed_layout()[2]) if self.sites else {}
 
     def _placed_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
+        """The layout; with :attr:`sites` built once (:func:`~circuitgen.phase_locality.spatial_phase` asks for
+        the ancilla sites, then the circuit for the gates: the place-aware adders are the plan's costliest part
+        to lay out). Callers only read it."""
+        return self._kept_layout if self.sites else self._build_layout()
+
+    @cached_property
+    def _kept_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
+        return self._build_layout()
+
+    def _build_layout(self) -> tuple[list[Gate], list[list[int | None]], dict[int, Site]]:
         anc = iter(self.ancillas)
         where = {q: (y, x_) for q, y, x_ in self.sites}
         home: dict[int, Site] = {}
