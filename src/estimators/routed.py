@@ -23,11 +23,15 @@
      by classes (:func:`circuitgen.window_classes.routed_sum`): the two-qubit count, the one-qubit count and the
      ESP are exact (``routed_kind`` ``exact``); depth, two-qubit depth and duration are the sums of the
      windows' own, an upper bound (``routed_depth_kind`` ``bound``).
-  3. ``bound`` (no circuit is built): the circuit compile would route (its phase separator laid out as the
+  3. ``bound`` (no routing is run): the circuit compile would route (its phase separator laid out as the
      device compile lays it out, :func:`circuitgen.phase_locality.for_device`: ``spatial`` on sparse devices;
      unfused, every gadget a section),
      every two-qubit gate routed by a SWAP chain to its partner and back along a shortest path, at most
-     ``1 + 6 (d - 1)`` two-qubit gates for qubits ``d`` apart: ``d`` at most :data:`MIXER_SPAN` for a partial
+     ``1 + 6 (d - 1)`` two-qubit gates for qubits ``d`` apart. Where the device holds the geometric layout,
+     ``d`` is each gate's own distance in one placement of the circuit's qubits (data at their homes, each
+     section's ancillas on the nearest free qubits: :mod:`estimators.layout_bound`, ``routed_model``
+     :data:`LAYOUT_BOUND_MODEL`; the first layer's circuit is built, lowered and placed, seconds at 30x30 with
+     8 robots); elsewhere ``d`` is at most :data:`MIXER_SPAN` for a partial
      mixer's gates where the device holds the geometric layout, else at most the diameter bound
      :func:`diameter_bound`; each native two-qubit gate costs
      six native one-qubit gates, and the gates run one after another. ``routed_twoq``, ``routed_depth``,
@@ -61,6 +65,7 @@ from .counts import count_gates
 __all__ = [
     "BOUND_MODEL",
     "EXACT_MAX_GATES",
+    "LAYOUT_BOUND_MODEL",
     "MIXER_SPAN",
     "ROUTED_COLUMNS",
     "SUM_MODEL",
@@ -94,6 +99,14 @@ BOUND_MODEL = (
     "of a partial mixer's qubits in the geometric layout for the mixer's gates, else a bound on the device's "
     "diameter), 6 native one-qubit gates per two-qubit gate, gates in sequence, worst gate and readout errors: "
     "bounds that routing, not SABRE's"
+)
+
+LAYOUT_BOUND_MODEL = (
+    "bound: the circuit compile --device routes (phase layout as the device compile sets it), data qubits at their "
+    "homes in the geometric layout, each section's ancillas on the free qubits nearest their partners, each "
+    "two-qubit gate routed by a SWAP chain along a shortest path and back (1 + 6 (d - 1) two-qubit gates at its "
+    "distance d in that placement; on heavy-hex the length of a path), 6 native one-qubit gates per two-qubit "
+    "gate, gates in sequence, worst gate and readout errors: bounds that routing, not SABRE's"
 )
 
 MIXER_SPAN = {"grid": 8, "heavy-hex": 12}
@@ -166,12 +179,17 @@ def _worst(values: Any) -> float:
 
 
 def _bound(
-    device: Device, cx: int, one_qubit: int, data_qubits: int, local_cx: int = 0, span: int | None = None
-) -> dict[str, Any]:
-    """The bound's fields: ``cx`` two-qubit gates, of which ``local_cx`` between qubits at most ``span`` apart."""
-    diameter = diameter_bound(device)
-    near = min(span, diameter) if span is not None else diameter
-    twoq = local_cx * (1 + 6 * (near - 1)) + (cx - local_cx) * (1 + 6 * (diameter - 1))
+    device: Device, cx: int, one_qubit: int, data_qubits: int, local_cx: int = 0, span: int | None = None,
+    routed_twoq: int | None = None, model: str = BOUND_MODEL,
+) -> dict[str, Any]:  # fmt: skip
+    """The bound's fields: ``cx`` two-qubit gates, of which ``local_cx`` between qubits at most ``span`` apart,
+    routed to at most ``routed_twoq`` two-qubit gates if given (else the diameter and span bound)."""
+    if routed_twoq is not None:
+        twoq = routed_twoq
+    else:
+        diameter = diameter_bound(device)
+        near = min(span, diameter) if span is not None else diameter
+        twoq = local_cx * (1 + 6 * (near - 1)) + (cx - local_cx) * (1 + 6 * (diameter - 1))
     ones = 3 * one_qubit + 6 * twoq
     e2 = _worst(device.error_2q)
     e1 = _worst(e for _, per_q in device.error_1q for e in per_q)
@@ -184,13 +202,13 @@ def _bound(
     return {
         "routed_kind": "bound",
         "routed_depth_kind": "bound",
-        "routed_model": BOUND_MODEL,
+        "routed_model": model,
         "routed_twoq": twoq,
         "routed_depth": twoq + ones,
         "routed_twoq_depth": twoq,
         "duration_s": duration,
         "esp": math.exp(log_esp),
-        "esp_model": BOUND_MODEL,
+        "esp_model": model,
     }
 
 
@@ -252,7 +270,7 @@ def _routed_fields(
         if summed is not None:
             out["device"] = summed.device.name
             return {**out, **_summed_fields(summed, ESP_MODEL)}
-        return {**out, **_bound_of_compiled(scenario, p, plan, dev)}
+        return {**out, **_bound_of_compiled(scenario, p, plan, dev, say)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say)
     routed = result.routed
@@ -304,18 +322,29 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
     }
 
 
-def _bound_of_compiled(scenario: Scenario, p: int, plan: Any, device: Device) -> dict[str, Any]:
+def _bound_of_compiled(
+    scenario: Scenario, p: int, plan: Any, device: Device, stage: Callable[[str], None] | None = None
+) -> dict[str, Any]:
     """:func:`_bound` of the lowered counts of the circuit compile routes on ``device`` (unfused, its phase
-    layout), the partial mixers' gates at :data:`MIXER_SPAN` where ``device`` holds the geometric layout."""
+    layout): where ``device`` holds the geometric layout, every two-qubit gate at its own distance in it
+    (:func:`estimators.layout_bound.layout_twoq_bound`); else the partial mixers' gates at :data:`MIXER_SPAN`
+    where ``device`` holds the geometric layout (a section wants more free qubits than it has), the rest at
+    :func:`diameter_bound`. ``stage``: called with each stage's name as it starts."""
     import dataclasses
 
     from circuitgen.hardware import layout_device
     from circuitgen.phase_locality import for_device
     from circuitgen.qaoa import qaoa_plan
 
+    from .layout_bound import layout_twoq_bound
+
     # compile --device routes the unfused circuit (every gadget a section) with the device's phase layout
     laid = qaoa_plan(scenario, p, dataclasses.replace(for_device(plan, device), fuse=False))
     cost = laid.cost()
+    placed = layout_twoq_bound(scenario, p, plan, device, stage=stage)
+    if placed is not None:
+        return _bound(device, cost.two_qubit, cost.single_qubit, scenario.num_variables, routed_twoq=placed,
+                      model=LAYOUT_BOUND_MODEL)  # fmt: skip
     span = MIXER_SPAN.get(device.family) if layout_device(scenario, device) is not None else None
     mixer = p * laid.cost_by_part()["mixer"].two_qubit if span is not None else 0
     return _bound(device, cost.two_qubit, cost.single_qubit, scenario.num_variables, mixer, span)

@@ -10,13 +10,14 @@ import pytest
 
 from circuitgen import medial, routing
 from circuitgen.devices import get_device
-from circuitgen.hardware import compile_for_device
+from circuitgen.hardware import compile_for_device, layout_device
 from circuitgen.layout import distances
 from circuitgen.options import PlanOptions
 from circuitgen.phase_locality import for_device
 from circuitgen.qaoa import qaoa_plan
 from circuitgen.routing import esp
-from estimators import routed
+from estimators import layout_bound, routed
+from estimators.layout_bound import layout_twoq_bound
 from estimators.routed import diameter_bound, routed_fields
 from gridcover.presets import default_scenario
 
@@ -54,8 +55,13 @@ def test_the_bound_counts_the_circuit_the_device_compile_routes(
     monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)
     s = default_scenario(*shape)
     f = _fields(s, 1, "heavy-hex")
-    assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
+    assert f["routed_kind"] == "bound" and f["routed_model"] == routed.LAYOUT_BOUND_MODEL
     dev = get_device(f["device"])
+    assert f["routed_twoq"] == layout_twoq_bound(s, 1, PlanOptions(), dev)
+    # where no placement exists (a section wants more free qubits than there are): the span and diameter bound
+    monkeypatch.setattr(layout_bound, "layout_twoq_bound", lambda *_args, **_kw: None)
+    f = _fields(s, 1, "heavy-hex")
+    assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
     per = 1 + 6 * (diameter_bound(dev) - 1)
     laid = qaoa_plan(s, 1, replace(for_device(PlanOptions(), "heavy-hex"), fuse=False))
     spatial = laid.cost().two_qubit
@@ -104,9 +110,56 @@ def test_the_bound_is_at_least_what_compile_routes(shape: tuple[int, int, int], 
         return sum(len(g[1]) == 2 for sec in r.routed.circuit.sections if sec.name.startswith(part) for g in sec.gates)
 
     mixer_cx = qaoa_plan(s, 1, replace(PlanOptions(), fuse=False)).cost_by_part()["mixer"].two_qubit
-    assert routed_twoq("mixer") <= mixer_cx * (1 + 6 * (span - 1))  # the mixer's share of the bound
+    assert routed_twoq("mixer") <= mixer_cx * (1 + 6 * (span - 1))  # the fallback's mixer share
+    assert f["routed_model"] == routed.LAYOUT_BOUND_MODEL
     assert routed_twoq("") <= f["routed_twoq"]
     assert f["esp"] <= esp(compile_for_device(s, 1, dev, layout_method="medial").routed)
+
+
+SMALL_ROUTED = [
+    ((2, 3, 1), "grid"),
+    ((3, 3, 1), "grid"),
+    ((2, 3, 1), "heavy-hex"),
+    pytest.param((3, 3, 2), "grid", marks=pytest.mark.heavy),
+    pytest.param((3, 3, 3), "grid", marks=pytest.mark.heavy),
+    pytest.param((4, 4, 2), "grid", marks=pytest.mark.heavy),
+    pytest.param((3, 3, 1), "heavy-hex", marks=pytest.mark.heavy),
+    pytest.param((3, 3, 2), "heavy-hex", marks=pytest.mark.heavy),
+    pytest.param((3, 3, 3), "heavy-hex", marks=pytest.mark.heavy),
+]
+
+
+def _small_id(v: object) -> str:
+    return v if isinstance(v, str) else "x".join(map(str, v))  # type: ignore[call-overload]
+
+
+@pytest.mark.parametrize(("shape", "device"), SMALL_ROUTED, ids=_small_id)
+@pytest.mark.parametrize("p", [1, 2])
+def test_the_layout_bound_is_at_least_what_compile_device_routes(
+    shape: tuple[int, int, int], device: str, p: int
+) -> None:
+    """The estimate's bound (on the device it sizes for the row, as routed_fields does) against the two-qubit
+    count of ``qcpp compile --device`` (its own choice of layout and device size), 1-3 robots."""
+    s = default_scenario(*shape)
+    r = compile_for_device(s, p, device, lowered=True)
+    compiled = sum(len(g[1]) == 2 for sec in r.routed.circuit.sections for g in sec.gates)
+    dev = layout_device(s, device)
+    f = routed._bound_of_compiled(s, p, PlanOptions(), dev)
+    assert f["routed_model"] == routed.LAYOUT_BOUND_MODEL
+    assert compiled <= f["routed_twoq"]
+
+
+def test_charging_one_step_less_per_gate_falls_below_compile(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The check above can fail: gates charged one step shorter than their distance (``d - 1``) bound less
+    than compile routes."""
+    s = default_scenario(3, 3, 1)
+    r = compile_for_device(s, 1, "grid", lowered=True)
+    compiled = sum(len(g[1]) == 2 for sec in r.routed.circuit.sections for g in sec.gates)
+    dev = layout_device(s, "grid")
+    assert compiled <= layout_twoq_bound(s, 1, PlanOptions(), dev)
+    real = layout_bound.gate_distances
+    monkeypatch.setattr(layout_bound, "gate_distances", lambda *args: real(*args) - 1)
+    assert layout_twoq_bound(s, 1, PlanOptions(), dev) < compiled
 
 
 @pytest.mark.parametrize("name", ["grid:5x7", "grid:1x6", "heavy-hex:5", "ibm_torino", "google_willow"])
