@@ -3,7 +3,7 @@
 Run: ``python benchmarks/routed_bound.py [--sizes 10x10/4,16x16/8,20x20/8,30x30/8] [--compare 3x3/2,4x4/2]``.
 
 Per size and device family (``grid``, ``heavy-hex``), on the device the estimate sizes for the row
-(:func:`circuitgen.hardware.layout_device`) and ``p`` = 3: the all-to-all two-qubit count (``cx``), the previous
+(:func:`circuitgen.hardware.layout_device`) and ``p`` = 3: the two-qubit count of the circuit the bound routes (``circuit cx``: unfused, the device's phase layout), the previous
 bound (every two-qubit gate at the device's diameter bound, the partial mixers' at
 :data:`estimators.routed.MIXER_SPAN`; still the fallback where no layout exists), the layout bound (every gate at its
 own distance in the geometric layout, :mod:`estimators.layout_bound`) with its wall seconds, and the ratios. The
@@ -71,8 +71,8 @@ def main() -> None:
     args = ap.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print()
-    print("| size | device | p | all-to-all cx | previous bound | layout bound | layout bound time | previous / "
-          "layout | layout / all-to-all | compile --device routes | layout / compile |")  # fmt: skip
+    print("| size | device | p | circuit cx | previous bound | layout bound | layout bound time | previous / "
+          "layout | layout / circuit cx | compile --device routes | layout / compile |")  # fmt: skip
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for shape in _sizes(args.compare) if args.compare else []:
         for device in DEVICES:
