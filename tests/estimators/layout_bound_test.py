@@ -117,3 +117,58 @@ def test_every_section_gets_distinct_free_qubits_for_its_ancillas(monkeypatch: p
                 assert at not in homes
         assert len(set(where.values())) == len(where)
     assert start == len(a)
+
+
+def _swap_chain_routing(device_coupling: tuple[tuple[int, int], ...], n: int, pairs: np.ndarray) -> int:
+    """Route every gate of ``pairs`` (physical qubits, in order) as the bound says: SWAP the first qubit's state
+    along a shortest path (networkx) until it is next to the second's, apply the gate, SWAP back. Checks every
+    SWAP and gate is on a coupling and the layout is back after each gate; returns the CX count (3 per SWAP)."""
+    import networkx as nx
+
+    graph = nx.Graph(device_coupling)
+    edges = {frozenset(e) for e in device_coupling}
+    state = list(range(n))  # physical qubit -> whose state it holds
+    cx = 0
+    for x, y in pairs.tolist():
+        path = nx.shortest_path(graph, x, y)
+        swaps = list(zip(path[:-2], path[1:-1], strict=True))  # x's state walks to the qubit next to y
+        for u, v in swaps:
+            assert frozenset((u, v)) in edges
+            state[u], state[v] = state[v], state[u]
+        at = path[-2]  # the qubit next to y, now holding x's state
+        assert state[at] == x and frozenset((at, y)) in edges
+        for u, v in reversed(swaps):
+            state[u], state[v] = state[v], state[u]
+        cx += 1 + 2 * 3 * len(swaps)
+        assert state == list(range(n))  # the layout is back: the next gate starts from the placement
+    return cx
+
+
+@pytest.mark.parametrize(("shape", "device"), [((2, 3, 1), "grid"), ((2, 3, 1), "heavy-hex")])
+def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
+    monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int, int], device: str
+) -> None:
+    """Built gate by gate from the placement (an independent shortest-path routine), the routing the bound
+    describes is valid and costs exactly the bound on a grid, at most it on heavy-hex (path lengths)."""
+    from circuitgen.hexlayout import CELL_PHASE_LAYOUT
+    from circuitgen.medial import medial_placement
+    from estimators import layout_bound
+
+    s = default_scenario(*shape)
+    dev = layout_device(s, device)
+    assert dev is not None
+    homes = medial_placement(s, dev)
+    assert homes is not None
+    plan = for_device(PlanOptions(), dev)
+    if device == "heavy-hex":
+        plan = replace(plan, phase_layout=CELL_PHASE_LAYOUT)
+    circuit = lower(qaoa_plan(s, 1, replace(plan, fuse=False)).circuit())
+    seen: list[tuple[np.ndarray, np.ndarray]] = []
+    real = layout_bound.gate_distances
+    monkeypatch.setattr(layout_bound, "gate_distances", lambda d, a, b: seen.append((a, b)) or real(d, a, b))
+    charges = section_charges(circuit.sections, homes, dev)
+    assert charges is not None
+    bound = sum(c for _, c in charges)
+    assert bound == layout_twoq_bound(s, 1, PlanOptions(), dev)
+    routed = _swap_chain_routing(dev.coupling, dev.num_qubits, np.stack(seen[0], axis=1))
+    assert routed == bound if device == "grid" else routed <= bound
