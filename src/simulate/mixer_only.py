@@ -82,6 +82,7 @@ __all__ = [
     "MultiAngleResult",
     "best_p_optimum",
     "bindings",
+    "gammas_zero_angles",
     "mixer_only_ceiling",
     "mixer_sites",
     "most_probable_multi",
@@ -110,6 +111,22 @@ MULTI_RANDOM_STARTS = 8
 _ROWS = 1 << 10  # rows of the first robot's axis per chunk of the product pass
 
 
+def gammas_zero_angles(betas: Sequence[float]) -> tuple[float, ...]:
+    """The QAOA angles ``[0, beta_0, 0, beta_1, ...]`` of one beta per layer with every gamma 0.
+
+    Args:
+        betas: One beta per layer.
+
+    Returns:
+        The interleaved angles, ``2 len(betas)`` values.
+
+    Example:
+        >>> gammas_zero_angles([0.5, 1.5])
+        (0.0, 0.5, 0.0, 1.5)
+    """
+    return tuple(v for b in betas for v in (0.0, float(b)))
+
+
 @dataclass(frozen=True)
 class MixerWarmStart:
     """The outcome of :func:`train_mixer_only` at one depth.
@@ -135,7 +152,7 @@ class MixerWarmStart:
     @property
     def angles(self) -> tuple[float, ...]:
         """``[0, beta_0, 0, beta_1, ...]``: the QAOA angles of this product state."""
-        return tuple(v for b in self.betas for v in (0.0, b))
+        return gammas_zero_angles(self.betas)
 
 
 def _site_betas(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -382,7 +399,7 @@ class MixerCeiling:
     @property
     def angles(self) -> tuple[float, ...]:
         """``[0, beta_0, 0, beta_1, ...]``."""
-        return tuple(v for b in self.betas for v in (0.0, b))
+        return gammas_zero_angles(self.betas)
 
 
 def p_optimum_and_gradients(
