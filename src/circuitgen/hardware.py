@@ -80,6 +80,7 @@ __all__ = [
     "DeviceCompileResult",
     "compile_for_device",
     "device_for",
+    "device_plan_options",
     "greedy_route",
     "hex_device",
     "layout_device",
@@ -192,6 +193,28 @@ def best_layout(
     return candidates[min(scored)[1]]
 
 
+def device_plan_options(options: PlanOptions, device: str | Device, layout_method: str = "medial") -> PlanOptions:
+    """The plan options :func:`compile_for_device` compiles with: ``phase_layout`` ``auto`` settled for the device
+    (:func:`circuitgen.phase_locality.for_device`: spatial on a sparse coupling map), and on a heavy-hex lattice
+    with a geometric layout the cells' balance sinks (:data:`circuitgen.hexlayout.CELL_PHASE_LAYOUT`).
+
+    Args:
+        options: The requested plan options.
+        device: The device (a spec or a :class:`Device`).
+        layout_method: :data:`LAYOUT_METHODS`; ``greedy`` keeps :func:`for_device`'s choice.
+
+    Returns:
+        The settled options.
+
+    Example:
+        >>> device_plan_options(DEFAULT_PLAN, "heavy-hex:5").phase_layout
+        'medial'
+    """
+    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
+        return replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
+    return for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+
+
 def compile_for_device(
     scenario: Scenario,
     p: int,
@@ -234,10 +257,7 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
-    settled = for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
-    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
-        settled = replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
-    options = settled
+    options = device_plan_options(options, device, layout_method)
     say = stage or (lambda _text: None)
     say("compiling the circuit")
     compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)

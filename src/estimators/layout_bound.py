@@ -64,19 +64,16 @@ def layout_twoq_bound(
         The bound, or ``None`` where the device holds no geometric layout or a section needs more free qubits
         than it has.
     """
-    from circuitgen.hexlayout import CELL_PHASE_LAYOUT, is_hex_lattice
+    from circuitgen.hardware import device_plan_options
     from circuitgen.lowering import lower
     from circuitgen.medial import medial_placement
-    from circuitgen.phase_locality import for_device
     from circuitgen.qaoa import qaoa_plan
 
     homes = medial_placement(scenario, device)
     if homes is None:
         return None
     say = stage or (lambda _text: None)
-    settled = for_device(plan, device)  # as compile_for_device settles the phase layout
-    if plan.phase_layout == "auto" and is_hex_lattice(device):
-        settled = dataclasses.replace(settled, phase_layout=CELL_PHASE_LAYOUT)
+    settled = device_plan_options(plan, device)
     say("building one layer for the layout bound")
     circuit = lower(qaoa_plan(scenario, 1, dataclasses.replace(settled, fuse=False)).circuit())
     say(f"placing {len(circuit.sections):,} sections' ancillas for the layout bound")
