@@ -4,12 +4,12 @@ Run: ``python benchmarks/balance_window.py [--quick]`` (``--quick``: 4x4/2 only)
 
 Per two-robot default scenario (p = 1, angles bound, ``qcpp compile --device grid``'s path: the medial layout,
 ``phase_layout="medial"``), and per setting of the wider search on the large window
-(:data:`circuitgen.routing.WIDE_WINDOW_SEEDS` seeds of :data:`circuitgen.routing.WIDE_WINDOW_TRIALS` SABRE
-trials, tried after the :data:`circuitgen.routing.LARGE_WINDOW_SEEDS` = 8 seeds of 16 trials; 0 seeds: none;
+(:data:`qcpp.routing.sabre.WIDE_WINDOW_SEEDS` seeds of :data:`qcpp.routing.sabre.WIDE_WINDOW_TRIALS` SABRE
+trials, tried after the :data:`qcpp.routing.sabre.LARGE_WINDOW_SEEDS` = 8 seeds of 16 trials; 0 seeds: none;
 the cheapest whole window wins), columns:
 
 * ``balance cx``: the routed CX of the largest window (the balance gadget: compute, register phase, uncompute),
-  routed from home as :func:`circuitgen.routing.route_windows` routes it;
+  routed from home as :func:`qcpp.routing.sabre.route_windows` routes it;
 * ``compile cx``: the routed CX of the whole circuit (what ``qcpp compile SCEN --device grid --lowered`` writes);
 * ``s``: seconds of the compile (wall time on a shared machine: indicative only).
 """
@@ -19,10 +19,10 @@ from __future__ import annotations
 import sys
 import time
 
-from circuitgen import routing
-from circuitgen.hardware import compile_for_device
-from circuitgen.layout import distances
-from gridcover.presets import default_scenario
+from qcpp.layout.placement import distances
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.problem.presets import default_scenario
+from qcpp.routing import sabre as routing
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 SETTINGS = ((0, 128), (8, 128), (16, 16), (16, 128))

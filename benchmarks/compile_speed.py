@@ -13,10 +13,10 @@ import time
 from collections.abc import Callable
 from typing import TypeVar
 
-from circuitgen.lowering import lower
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.qasm import write_qasm
-from gridcover.presets import default_scenario
+from qcpp.lowering.passes import lower
+from qcpp.lowering.qasm import write_qasm
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
 
 T = TypeVar("T")
 CASES = ((3, 3, 1), (5, 5, 2), (8, 8, 3), (10, 10, 4))

@@ -1,7 +1,7 @@
 """Where float costs stop being exact: the cost bound and the simulated phases' amplitude error per edge length.
 
 Two robots on 3x3 (one obstacle), growing ``edge_length``: the scenario's cost bound
-(:func:`gridcover.cost_range.cost_bound`), whether the general range (2^53) and the phase range (2^26) take it,
+(:func:`qcpp.problem.cost_range.cost_bound`), whether the general range (2^53) and the phase range (2^26) take it,
 and the largest amplitude error of ``validate --backend sparse`` (the compiled circuit against the
 feasible-subspace simulator, seed 0) run through the library, past the CLI's refusal. The phase range is chosen
 from this table: below it the error stays far under the 1e-8 tolerance.
@@ -11,9 +11,9 @@ Run:  PYTHONPATH=src python benchmarks/cost_range.py
 
 from __future__ import annotations
 
-from gridcover.cost_range import COST_LIMIT, PHASE_COST_LIMIT, cost_bound
-from gridcover.scenario import scenario_from_dict
-from simulate.validate import validate
+from qcpp.problem.cost_range import COST_LIMIT, PHASE_COST_LIMIT, cost_bound
+from qcpp.problem.scenario import scenario_from_dict
+from qcpp.simulate.validate import validate
 
 BASE = {
     "grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},

@@ -9,12 +9,12 @@ and peak memory, about two minutes; ``--cli --sweep-only``: that table alone):
 1. per scenario (default scenarios, default options): lowered gates of the state preparation plus one layer
    (what ``--depth-budget`` compares), the seconds to build the exact composition (plan the phase separator,
    emit and lower the non-anchored gadgets, look up the anchored ones), to propagate p = 1..5 (carried from p to
-   p + 1), to compile the circuit and layer it (the reference, :func:`estimators.estimate.compiled_depth`, only
+   p + 1), to compile the circuit and layer it (the reference, :func:`qcpp.estimators.estimate.compiled_depth`, only
    where it is small),
    the bound's seconds, and exact depth / bound at p = 5;
 2. the depth part of ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5`` (60,840 requested rows) under
    the default policy (``depth="auto"``), in sweep order: for each scenario the counts are computed first and NOT
-   timed (they are cached per scenario, as in the sweep), then :func:`estimators.estimate.estimate_depth` is timed
+   timed (they are cached per scenario, as in the sweep), then :func:`qcpp.estimators.estimate.estimate_depth` is timed
    for its five points. Every scenario that may be exact (its mixer alone within the budget) is timed; of the
    others (certainly bounds, about 0.3 ms each) every ``N``-th grid (row-major, default ``N`` = 13), scaled by
    ``N``.
@@ -29,9 +29,7 @@ import sys
 import time
 from pathlib import Path
 
-from circuitgen.mixer_classes import mixer_part
-from circuitgen.options import DEFAULT_PLAN
-from estimators.estimate import (
+from qcpp.estimators.estimate import (
     DEFAULT_OPTIONS,
     compiled_depth,
     depth_bound,
@@ -39,7 +37,9 @@ from estimators.estimate import (
     layer_costs,
     layered_depth,
 )
-from gridcover.presets import default_scenario, max_default_robots
+from qcpp.plan.mixer_classes import mixer_part
+from qcpp.plan.options import DEFAULT_PLAN
+from qcpp.problem.presets import default_scenario, max_default_robots
 
 SCENARIOS = [(4, 4, 2), (6, 6, 2), (8, 8, 4), (12, 12, 8), (20, 20, 4), (30, 30, 8), (40, 40, 8)]
 COMPILE_LIMIT = 400_000  # compile the reference only up to this many lowered gates at p = 5

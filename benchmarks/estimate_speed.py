@@ -18,7 +18,7 @@ included. Prints one table with the goals of issue 10:
 * ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv`` (60,840 requested rows; grids too
   small for the robots are skipped): < 120 s, with the time to the first row (rows stream out as computed);
 * ``qcpp compile`` of a 40x40 / 8 robots / p = 5 scenario: refused within 10 s, one line, exit 2;
-* counts from gadgets == counts of the compiled circuit (:mod:`estimators.crosscheck`): 0 mismatches, on every
+* counts from gadgets == counts of the compiled circuit (:mod:`qcpp.estimators.crosscheck`): 0 mismatches, on every
   cross-check case (``--quick``: the sample the default test run uses), on all cores (minutes).
 """
 
@@ -33,10 +33,10 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from circuitgen.testing import crosscheck_cases
-from estimators.crosscheck import crosscheck
-from gridcover.presets import default_scenario
-from gridcover.scenario import save_scenario
+from qcpp.estimators.crosscheck import crosscheck
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import save_scenario
+from qcpp.testing import crosscheck_cases
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -15,9 +15,9 @@ import qiskit.qasm2 as qasm2
 import qiskit.qasm3 as qasm3
 from qiskit import transpile
 
-from circuitgen.compile import compile_scenario
-from circuitgen.qasm import to_qasm2, to_qasm3
-from gridcover.presets import default_scenario
+from qcpp.lowering.qasm import to_qasm2, to_qasm3
+from qcpp.plan.compile import compile_scenario
+from qcpp.problem.presets import default_scenario
 
 CASES = ((3, 3, 1), (5, 5, 2))
 BASIS = ["cx", "rz", "sx", "x"]

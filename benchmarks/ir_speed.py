@@ -16,11 +16,11 @@ from typing import TypeVar
 
 import numpy as np
 
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, CircuitBuilder, Register
-from circuitgen.gates import csbf, h, mcx, rz, rzz
-from circuitgen.lowering import lower
-from circuitgen.qasm import to_qasm2, to_qasm3
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Register
+from qcpp.ir.gates import csbf, h, mcx, rz, rzz
+from qcpp.lowering.passes import lower
+from qcpp.lowering.qasm import to_qasm2, to_qasm3
 
 N_DATA = 720
 N_LOGIC = 64

@@ -5,11 +5,11 @@ Run: ``python benchmarks/mixer_cost.py [--quick] [--no-qiskit]``.
 Columns (all CX per layer, p = 1, default scenarios and a few with obstacles / interior endpoints):
 
 * ``0.1 mixer``: qcpp 0.1's mixer, recomputed from its construction: the exact rule as the plain-edge network
-  (:func:`gridcover.sbf.direct_exact_logic`), each step a multi-controlled X lowered as 0.1 did (a v-chain of
+  (:func:`qcpp.problem.sbf.direct_exact_logic`), each step a multi-controlled X lowered as 0.1 did (a v-chain of
   ``2k - 3`` full 6-CX Toffolis for ``k >= 3`` controls, 6 CX for two, 1 for one), mirrored, plus the controlled
   XXXX rotation (8 CX);
 * ``mixer nisq`` / ``mixer ft``: this version's mixer layer as its plan reports it (partial mixers fused at their
-  boundaries, :mod:`circuitgen.gadgets.junction`; a test proves every piece's cost equal to its lowered gate
+  boundaries, :mod:`qcpp.gadgets.junction`; a test proves every piece's cost equal to its lowered gate
   count), and their ratio to 0.1;
 * ``qiskit O3 paper-structured``: Qiskit's transpiler at optimization level 3 on the paper-structured logical
   circuit of the same scenario: initial state, the paper's phase separator (RZ/RZZ of the Ising Hamiltonian),
@@ -18,7 +18,7 @@ Columns (all CX per layer, p = 1, default scenarios and a few with obstacles / i
   ancillas;
 * ``ours``: our lowered circuit's CX (read off the emitted circuit), and ``ours / qiskit``;
 * ``qiskit O3 on ours``: Qiskit O3 applied to our own high-level circuit (ANDs given to Qiskit as its ``RCCXGate``
-  plus ``sdg``, the exact gadget we use): it never beats our lowering (``tests/circuitgen/junction_test.py``).
+  plus ``sdg``, the exact gadget we use): it never beats our lowering (``tests/qcpp/junction_test.py``).
 """
 
 from __future__ import annotations
@@ -26,15 +26,15 @@ from __future__ import annotations
 import sys
 import time
 
-from circuitgen.circuit import Circuit
-from circuitgen.gadgets.partial_mixer import partial_mixer
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit, qaoa_plan
-from gridcover.grid import Grid
-from gridcover.presets import default_scenario
-from gridcover.sbf import direct_exact_logic
-from gridcover.scenario import Objective, Robot, Scenario
+from qcpp.gadgets.partial_mixer import partial_mixer
+from qcpp.ir.circuit import Circuit
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
+from qcpp.problem.grid import Grid
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.sbf import direct_exact_logic
+from qcpp.problem.scenario import Objective, Robot, Scenario
 
 DEFAULT = ((3, 3, 1), (4, 4, 2), (5, 5, 2), (6, 6, 3), (8, 8, 3))
 
@@ -128,9 +128,9 @@ def to_qiskit(circuit: Circuit, bindings: dict[str, float]):  # type: ignore[no-
 def paper_structured(s: Scenario) -> Circuit:
     """The paper's structure with our exact rule: initial state, the RZ/RZZ phase separator of the Ising
     Hamiltonian, and the mixer as MCX steps of the plain-edge exact rule; as many ancillas as our circuit has."""
-    from circuitgen.angles import Angle
-    from circuitgen.circuit import Register, Section
-    from circuitgen.gates import csbf, mcx
+    from qcpp.ir.angles import Angle
+    from qcpp.ir.circuit import Register, Section
+    from qcpp.ir.gates import csbf, mcx
 
     ours = qaoa_circuit(s, 1, PlanOptions(phase="whole-space"))
     n = s.num_variables

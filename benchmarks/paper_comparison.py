@@ -11,17 +11,17 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 
-from circuitgen.angles import Angle
-from circuitgen.cost import Cost
-from circuitgen.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.qaoa import qaoa_circuit
-from estimators.counts import ResourceCount, count
-from estimators.fault_tolerant import FaultTolerantEstimate, fault_tolerant_from_cost
-from estimators.paper import paper_estimate, paper_partial_mixer, toffoli_decomposition
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.presets import default_scenario
-from gridcover.sbf import LocalPicture
+from qcpp.estimators.counts import ResourceCount, count
+from qcpp.estimators.fault_tolerant import FaultTolerantEstimate, fault_tolerant_from_cost
+from qcpp.estimators.paper import paper_estimate, paper_partial_mixer, toffoli_decomposition
+from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need, partial_mixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.sbf import LocalPicture
 
 
 def _partial_mixer_types() -> list[tuple[str, McxPartialMixer | ParityPartialMixer | None]]:

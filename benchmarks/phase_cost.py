@@ -1,21 +1,21 @@
 """Phase-separator cost per QAOA layer: today's whole-space RZ/RZZ circuit against the feasible-subspace plan.
 
 Run: ``PYTHONPATH=src python benchmarks/phase_cost.py`` (about a minute; ``--quick`` stops at 10x10). Prints one
-table (markdown) for the default scenarios (:func:`gridcover.presets.default_scenario`; 6 and 8 robots, which
+table (markdown) for the default scenarios (:func:`qcpp.problem.presets.default_scenario`; 6 and 8 robots, which
 it does not place, go on the boundary, see :func:`boundary_scenario`):
 
 * ``paper re(re+1)``: the paper's phase-separator CNOT estimate (``re`` = decision variables);
-* ``today CX`` = 2 per nonzero coupling of :func:`gridcover.hamiltonian.ising_hamiltonian` (the whole-space
-  plan, exactly what ``circuitgen.phase.phase_separator_gates`` emits); ``ours CX`` = the phase part of the call graph,
+* ``today CX`` = 2 per nonzero coupling of :func:`qcpp.problem.hamiltonian.ising_hamiltonian` (the whole-space
+  plan, exactly what ``qcpp.plan.phase.phase_separator_gates`` emits); ``ours CX`` = the phase part of the call graph,
   :func:`phase_cost` (target ``nisq``); rotations likewise;
 * ``T (ft)``: T count of the layer's phase separator in the fault-tolerant model of
-  :func:`circuitgen.phase.ft_t_count` (AND 4 T, uncompute 0, rotation 30 T at eps = 1e-3), today's against the
+  :func:`qcpp.plan.phase.ft_t_count` (AND 4 T, uncompute 0, rotation 30 T at eps = 1e-3), today's against the
   ``ft`` plan;
 * ``ancillas``: clean ancillas the plan needs; ``plan s``: wall time of planning the phase separator and
   summing its part of the call graph (:func:`phase_cost`, listed from the planned gadgets).
 
 Every figure is an exact count of lowered gates: the call graph's sums, as every estimate reports them
-(``tests/circuitgen/phase_test.py`` checks the gadgets' costs against the emitted, lowered gates).
+(``tests/qcpp/phase_test.py`` checks the gadgets' costs against the emitted, lowered gates).
 """
 
 from __future__ import annotations
@@ -23,16 +23,16 @@ from __future__ import annotations
 import sys
 import time
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.phase import PhasePlan, ft_t_count, phase_plan
-from circuitgen.qaoa import qaoa_plan
-from estimators.counts import count
-from gridcover.grid import Grid
-from gridcover.presets import MAX_DEFAULT_ROBOTS, default_scenario
-from gridcover.scenario import Robot, Scenario
+from qcpp.estimators.counts import count
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase import PhasePlan, ft_t_count, phase_plan
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.grid import Grid
+from qcpp.problem.presets import MAX_DEFAULT_ROBOTS, default_scenario
+from qcpp.problem.scenario import Robot, Scenario
 
 POINTS = [(3, 3, 1), (4, 4, 2), (5, 5, 2), (6, 6, 3), (8, 8, 3), (10, 10, 4), (12, 12, 4), (16, 16, 6)]
 LARGE = (30, 30, 8)
@@ -57,7 +57,7 @@ def scenario(rows: int, cols: int, robots: int) -> Scenario:
 
 def phase_cost(s: Scenario, logical: bool = False, **options: object) -> Cost:
     """One layer's phase separator as the call graph sums it (listed from the planned gadgets), with
-    :class:`~circuitgen.options.PlanOptions` ``options``."""
+    :class:`~qcpp.plan.options.PlanOptions` ``options``."""
     graph = qaoa_plan(s, 1, PlanOptions(**options)).call_graph(by_classes=False)  # type: ignore[arg-type]
     return graph.cost_by_part(logical)["phase"]
 
@@ -110,7 +110,7 @@ def main(argv: list[str]) -> int:
             cells.append(f"{few.num_ancillas} | {few_cx:,} | {few_cx / today:.3f}")
         print(f"| {rows}x{cols} | {robots} | {plan.num_ancillas} | {phase_cost(s).cx:,} | " + " | ".join(cells) + " |")
     print()
-    print("Depth of the lowered phase separator (ASAP layers, as ``estimators.counts``; two-qubit depth in brackets):")
+    print("Depth of the lowered phase separator (ASAP layers, as ``qcpp.estimators.counts``; two-qubit depth in brackets):")
     print()
     print("| grid | robots | today | ours (``optimize=cx``) | ours (``optimize=depth``) |")
     print("|---|---:|---:|---:|---:|")

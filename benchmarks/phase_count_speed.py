@@ -1,8 +1,8 @@
-"""The phase separator's cost by classes (:mod:`circuitgen.phase_classes`) against planning it term by term.
+"""The phase separator's cost by classes (:mod:`qcpp.plan.phase_classes`) against planning it term by term.
 
 Run: ``python benchmarks/phase_count_speed.py [--no-sweep]``. Prints, for a few default scenarios, the time of the
-call graph's phase part listed from the planned gadgets (:func:`circuitgen.phase.phase_plan`, then summed) and by
-classes (:func:`circuitgen.phase_classes.phase_layer`, then summed), and whether both give the same cost (the
+call graph's phase part listed from the planned gadgets (:func:`qcpp.plan.phase.phase_plan`, then summed) and by
+classes (:func:`qcpp.plan.phase_classes.phase_layer`, then summed), and whether both give the same cost (the
 default phase separator, then ``--phase whole-space``); then, over every default
 scenario of ``qcpp estimate --grid 2x2..40x40 --robots 1..8``, how many the classes answer and how long all of
 them take (the rest is left to the plan).
@@ -15,10 +15,10 @@ import time
 from collections import Counter
 from typing import Any
 
-from circuitgen.cost import Cost
-from circuitgen.phase import phase_plan
-from circuitgen.phase_classes import phase_layer
-from gridcover.presets import default_scenario, max_default_robots
+from qcpp.ir.cost import Cost
+from qcpp.plan.phase import phase_plan
+from qcpp.plan.phase_classes import phase_layer
+from qcpp.problem.presets import default_scenario, max_default_robots
 
 SAMPLE = [(10, 10, 2), (20, 20, 4), (30, 30, 8), (40, 40, 1), (40, 40, 8)]
 WHOLE_SPACE_SAMPLE = [(10, 10, 2), (16, 16, 3), (20, 20, 4)]

@@ -1,4 +1,4 @@
-"""The placement search for small circuits (:mod:`circuitgen.placement_search`): routed CX against its budget.
+"""The placement search for small circuits (:mod:`qcpp.layout.placement_search`): routed CX against its budget.
 
 Run: ``python benchmarks/placement_search.py [--family heavy-hex|grid]`` (default ``heavy-hex``).
 
@@ -7,15 +7,15 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
 ``compile --device heavy-hex`` routes it), columns:
 
 * ``a2a cx``: the lowered, fused circuit's CX (what ``qcpp compile --lowered`` writes; the ratio goal's base);
-* ``one routing``: :func:`circuitgen.hardware.best_layout` and one SABRE routing, every SWAP three CX (the greedy
+* ``one routing``: :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing, every SWAP three CX (the greedy
   path before the search);
 * ``fused``: the same routing with SWAPs fused into an adjacent ``cx`` on their pair (``route(fuse=True)``);
-* ``search L``: :func:`circuitgen.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
+* ``search L``: :func:`qcpp.layout.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
   starts (``SEARCH_SEEDS`` routing seeds for the ``SEARCH_REFINE`` best): routed CX, CX / a2a, and the CPU
   seconds of the search (the process's CPU time: SABRE's trials run on threads), its cache cleared first.
   The default budget is ``SEARCH_LAYOUTS``;
 * ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
-  (:func:`circuitgen.hardware.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
+  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
   path with the default search), the search's cache cleared first.
 """
 
@@ -27,14 +27,14 @@ from dataclasses import replace
 
 from routing import BIND, scenarios  # the routing benchmark's (this script's directory is on the path)
 
-from circuitgen import placement_search
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device
-from circuitgen.hardware import best_layout, compile_for_device
-from circuitgen.options import DEFAULT_PLAN
-from circuitgen.phase_locality import for_device
-from circuitgen.routing import route
-from gridcover.scenario import Scenario
+from qcpp.devices.device import get_device
+from qcpp.layout import placement_search
+from qcpp.pipeline.device_compile import best_layout, compile_for_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.plan.options import DEFAULT_PLAN
+from qcpp.plan.phase_layout import for_device
+from qcpp.problem.scenario import Scenario
+from qcpp.routing.sabre import route
 
 BUDGETS = (8, 16, 24, 32, 48)
 

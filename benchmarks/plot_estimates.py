@@ -3,7 +3,7 @@
 Run: ``python benchmarks/plot_estimates.py [MAX_SIDE] [OUT]`` (defaults ``40`` and
 ``docs/figures/estimates_scaling.png``). Square grids ``n x n`` for ``n = 2 .. MAX_SIDE`` (every second size above
 10), default placement with 1..8 robots (where the grid hosts them), ``p = 1``, default options, from
-:func:`estimators.estimate.estimate_point` with ``--physical`` defaults (QDK estimator, ``qubit_gate_ns_e3``,
+:func:`qcpp.estimators.estimate.estimate_point` with ``--physical`` defaults (QDK estimator, ``qubit_gate_ns_e3``,
 surface code, error budget 1e-3); T is the logical-AND model's total (epsilon 1e-3). Prints the plotted numbers
 as a Markdown table (every fourth size) and the time taken.
 """
@@ -14,9 +14,9 @@ import sys
 import time
 from pathlib import Path
 
-from estimators.estimate import EstimateOptions, Point, estimate_point
-from gridcover.presets import max_default_robots
-from qcppio.atomic import save_figure_atomic
+from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.io.atomic import save_figure_atomic
+from qcpp.problem.presets import max_default_robots
 
 ROOT = Path(__file__).resolve().parents[1]
 PANELS = (

@@ -1,7 +1,7 @@
 """Time and memory of one exact QAOA training gradient, per scenario and depth p (issue #19, part A).
 
-What the default training (:func:`simulate.layerwise.train_layerwise`) computes at every L-BFGS-B step is
-:meth:`simulate.subspace.SubspaceQAOA.objective_and_gradient` of the Gibbs objective: one forward sweep, the
+What the default training (:func:`qcpp.simulate.layerwise.train_layerwise`) computes at every L-BFGS-B step is
+:meth:`qcpp.simulate.subspace.SubspaceQAOA.objective_and_gradient` of the Gibbs objective: one forward sweep, the
 objective's weights, one adjoint backward sweep. This script times exactly that call, per scenario and p,
 each scenario in a fresh child process (so its peak memory is its own), after one warm-up call that loads the
 numba kernels.
@@ -15,7 +15,7 @@ Columns:
 * ``traced MB``: the call's own peak of Python-visible allocations (``tracemalloc``, which numpy reports to):
   the state arrays and temporaries of the gradient alone;
 * ``peak RSS MB``: the child's peak resident set so far (``ru_maxrss``, which only grows): for the 5x5 scenario
-  this is set by the build (``gridcover.cost.separable_cost``'s full-size pairwise temporaries).
+  this is set by the build (``qcpp.problem.cost.separable_cost``'s full-size pairwise temporaries).
 
 Usage::
 
@@ -55,10 +55,10 @@ def run_child(name: str, depths: list[int], repeat: int) -> dict[str, Any]:
     """Measure one scenario in this process (called in a child)."""
     import numpy as np
 
-    from gridcover.scenario import load_scenario
-    from simulate.objectives import make_objective
-    from simulate.subspace import SubspaceQAOA
-    from simulate.training import cost_scale, initial_angles
+    from qcpp.problem.scenario import load_scenario
+    from qcpp.simulate.objectives import make_objective
+    from qcpp.simulate.subspace import SubspaceQAOA
+    from qcpp.simulate.training import cost_scale, initial_angles
 
     path, _ = SCENARIOS[name]
     s = load_scenario(path)

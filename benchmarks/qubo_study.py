@@ -2,14 +2,14 @@
 
 For every scenario (default corner-to-corner robots, no obstacles, 3x3..6x6, 1..3 robots):
 
-* CP-SAT's optimum (``gridcover.solvers.cpsat``, proven unless ``--cpsat-limit`` stops it: marked ``*``);
+* CP-SAT's optimum (``qcpp.problem.solvers.cpsat``, proven unless ``--cpsat-limit`` stops it: marked ``*``);
 * the ``paper`` QUBO and the ``per-robot`` QUBO at ``P = rule / 4, rule / 2, rule`` (the rule:
-  ``gridcover.qubo.penalty_rule``), each sampled by dwave-samplers' simulated annealing (``sa``: ``--reads`` reads,
+  ``qcpp.qubo.model.penalty_rule``), each sampled by dwave-samplers' simulated annealing (``sa``: ``--reads`` reads,
   1000 sweeps) and tabu search (``tabu``: ``--reads`` reads, one tabu run each). Per run: % of reads feasible as
   sampled, % repairable (right degrees: a path plus cycles; the cycles dropped), % of reads at the optimum after
   repair and before any polishing, the best repaired read, the answer after SBF polishing (steepest descent from
   up to 100 best distinct repaired reads, i.e. all of them at 100 reads) and the wall time;
-* qcpp's own SBF simulated annealing (``gridcover.solvers.anneal``, default 20,000 iterations): how many of
+* qcpp's own SBF simulated annealing (``qcpp.problem.solvers.anneal``, default 20,000 iterations): how many of
   ``--seeds`` seeds reach the optimum, and the mean time.
 
 A third table varies the sampler's effort (reads, tabu runs per read, SA sweeps per read) on the two-robot
@@ -29,19 +29,19 @@ import argparse
 import sys
 import time
 
-from gridcover.presets import default_scenario
-from gridcover.qubo import paper_bqm, penalty_rule
-from gridcover.qubo_solve import drop_cycles, sample_bqm, solve_qubo
-from gridcover.solvers import anneal, cpsat
-from gridcover.solvers.moves import CostCache
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.solvers import anneal, cpsat
+from qcpp.problem.solvers.moves import CostCache
+from qcpp.qubo.model import paper_bqm, penalty_rule
+from qcpp.qubo.solve import drop_cycles, sample_bqm, solve_qubo
 
 TOL = 1e-9
 
 
 def _paper_run(s, sampler: str, reads: int, seed: int, opt: float) -> dict:  # type: ignore[no-untyped-def]
     """The paper form: sample, decode, repair (no polishing needed to show the point)."""
-    from gridcover.paths import is_feasible
-    from gridcover.qubo import decode_edges
+    from qcpp.problem.paths import is_feasible
+    from qcpp.qubo.model import decode_edges
 
     m = paper_bqm(s)
     t0 = time.perf_counter()

@@ -3,10 +3,10 @@
 Run: ``python benchmarks/routed_bound.py [--sizes 10x10/4,16x16/8,20x20/8,30x30/8] [--compare 3x3/2,4x4/2]``.
 
 Per size and device family (``grid``, ``heavy-hex``), on the device the estimate sizes for the row
-(:func:`circuitgen.hardware.layout_device`) and ``p`` = 3: the two-qubit count of the circuit the bound routes
+(:func:`qcpp.pipeline.device_compile.layout_device`) and ``p`` = 3: the two-qubit count of the circuit the bound routes
 (``circuit cx``: unfused, the device's phase layout), the previous bound (every two-qubit gate at the device's
-diameter bound, the partial mixers' at :data:`estimators.routed.MIXER_SPAN`; still the fallback where no layout
-exists), the layout bound (every gate at its own distance in the geometric layout, :mod:`estimators.layout_bound`)
+diameter bound, the partial mixers' at :data:`qcpp.estimators.routed.MIXER_SPAN`; still the fallback where no layout
+exists), the layout bound (every gate at its own distance in the geometric layout, :mod:`qcpp.estimators.layout_bound`)
 with its wall seconds, and the ratios. The ``--compare`` sizes (``p`` = 1) add what ``qcpp compile --device``
 routes exactly (its two-qubit count), which both bounds must exceed. The load average is printed (2 shared cores:
 the seconds vary with it).
@@ -19,12 +19,12 @@ import os
 import time
 from dataclasses import replace
 
-from circuitgen.hardware import compile_for_device, layout_device
-from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import for_device
-from circuitgen.qaoa import qaoa_plan
-from estimators import layout_bound, routed
-from gridcover.presets import default_scenario
+from qcpp.estimators import layout_bound, routed
+from qcpp.pipeline.device_compile import compile_for_device, layout_device
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario
 
 DEVICES = ("grid", "heavy-hex")
 

@@ -5,20 +5,20 @@ obstacle scenarios only; ``--family``: that device family's rows only; ``--scena
 scenario label starts with LABEL, e.g. ``--scenario 4x4/2``);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
-unrouted CX (the compiled circuit's, before :mod:`circuitgen.bridge` relays far phases);
+unrouted CX (the compiled circuit's, before :mod:`qcpp.routing.bridge` relays far phases);
 ``python benchmarks/routing.py --cells [--quick] [--scenario LABEL]``: the heavy-hex cell layout
-(:mod:`circuitgen.hexlayout`) on every scenario (or those whose label starts with LABEL), routed CX per part the
+(:mod:`qcpp.layout.heavy_hex`) on every scenario (or those whose label starts with LABEL), routed CX per part the
 same way, next to the greedy routing ``auto`` compares it with.
 
 Per scenario (p = 1, angles bound) and device family, the device is what ``qcpp compile --device FAMILY`` picks:
-``grid`` is sized for the medial layout (:func:`circuitgen.hardware.medial_device`); ``heavy-hex`` is the
-smallest lattice that holds the cell layout (:func:`circuitgen.hardware.hex_device`) where compile keeps that
+``grid`` is sized for the medial layout (:func:`qcpp.pipeline.device_compile.medial_device`); ``heavy-hex`` is the
+smallest lattice that holds the cell layout (:func:`qcpp.pipeline.device_compile.hex_device`) where compile keeps that
 layout, else the smallest that holds the circuit (where ``auto`` found the greedy routing there cheaper). Columns:
 
 * ``a2a cx``: the lowered circuit's CX (all-to-all, fused mixer; what ``qcpp compile --lowered`` writes);
 * ``qiskit O3``: ``qiskit.transpile(optimization_level=3, seed_transpiler=0)`` of that circuit (read from our
   OpenQASM 2) onto the device's coupling map, basis ``cx`` + our one-qubit gates: its CX count and seconds;
-* ``greedy``: :func:`circuitgen.hardware.compile_for_device` with ``layout_method="greedy"`` (our greedy
+* ``greedy``: :func:`qcpp.pipeline.device_compile.compile_for_device` with ``layout_method="greedy"`` (our greedy
   placement or Qiskit's SabreLayout, then one SABRE routing of the whole circuit): CX;
 * ``compile``: what ``qcpp compile --device ... --lowered`` writes (``layout_method="auto"``: the geometric
   layout, ``medial``, on square grids and heavy-hex lattices, greedy elsewhere or where it routes cheaper on a
@@ -34,16 +34,16 @@ from __future__ import annotations
 import sys
 import time
 
-from circuitgen.circuit import Circuit
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import Device, get_device
-from circuitgen.hardware import compile_for_device, medial_device
-from circuitgen.medial import ARRANGEMENTS
-from circuitgen.qasm import to_qasm2
-from circuitgen.routing import coupling_map
-from estimators.counts import count_gates
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.devices.device import Device, get_device
+from qcpp.estimators.counts import count_gates
+from qcpp.ir.circuit import Circuit
+from qcpp.layout.medial import ARRANGEMENTS
+from qcpp.lowering.qasm import to_qasm2
+from qcpp.pipeline.device_compile import compile_for_device, medial_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.routing.sabre import coupling_map
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OBSTACLE = {

@@ -28,8 +28,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from gridcover.presets import default_scenario
-from gridcover.scenario import scenario_to_dict
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import scenario_to_dict
 
 
 def timed(args: list[str]) -> tuple[str, str]:

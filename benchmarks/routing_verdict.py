@@ -6,7 +6,7 @@ Table 1, per named device and p = 1..3: among the default scenarios (grids R x C
 1..4, every ``--ancilla-budget`` in :data:`BUDGETS`), the one with the most decision variables (data qubits)
 whose qubit count fits the device's largest connected component; among its fitting budgets the one of fewest
 lowered CX (so the walk trades qubits for two-qubit gates only where qubits are short). That scenario is then
-compiled and routed exactly as ``qcpp compile --device NAME`` does (:func:`circuitgen.hardware.compile_for_device`),
+compiled and routed exactly as ``qcpp compile --device NAME`` does (:func:`qcpp.pipeline.device_compile.compile_for_device`),
 and the table shows its routed native two-qubit gates, duration (``-``: the device's source publishes no gate
 times) and ESP (product of (1 - error) over native gates and of (1 - readout error) over the data qubits).
 
@@ -19,13 +19,13 @@ import sys
 import time
 from dataclasses import dataclass
 
-from circuitgen.devices import device_names, named_device
-from circuitgen.hardware import compile_for_device
-from circuitgen.options import PlanOptions
-from circuitgen.routing import duration_s, esp
-from estimators.estimate import EstimateOptions, Point, estimate_point
-from estimators.routed import _largest_component
-from gridcover.presets import default_scenario, max_default_robots
+from qcpp.devices.device import device_names, named_device
+from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.estimators.routed import _largest_component
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario, max_default_robots
+from qcpp.routing.sabre import duration_s, esp
 
 BUDGETS = (None, 64, 48, 32, 16, 0)
 """Ancilla budgets walked (``None``: the phase separator's default, fewest CX)."""

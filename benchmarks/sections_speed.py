@@ -6,7 +6,7 @@ Run: ``python benchmarks/sections_speed.py [--sizes 10x10/4,16x16/8,20x20/8,30x3
 Each row builds exactly the sections ``qcpp compile --device`` and the routed estimate build before routing:
 ``qaoa_plan(default_scenario(rows, cols, robots), 1, for_device(PlanOptions(), device)).sections()``, on
 ``grid`` (the ``medial`` phase layout: local-first adders drifting to the balance sinks,
-:func:`circuitgen.gadgets.phase_sums.spatial_popcount_layout`) and ``heavy-hex`` (the ``spatial`` layout:
+:func:`qcpp.gadgets.phase_sums.spatial_popcount_layout`) and ``heavy-hex`` (the ``spatial`` layout:
 passes along the Hilbert curve), in a fresh process with the tree's ``src`` first on the path. Printed per row:
 the build's wall and CPU seconds (the sections listed, nothing emitted), the seconds to emit every section's gates
 afterwards, the number of gates and a hash of every section's name and gates and every balance gadget's ancilla
@@ -36,8 +36,8 @@ from pathlib import Path
 
 from estimate_speed import _export
 
-from gridcover.presets import default_scenario
-from gridcover.scenario import save_scenario
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = "10x10/4,16x16/8,20x20/8,30x30/8"
@@ -45,11 +45,11 @@ DEVICES = ("grid", "heavy-hex")
 
 CHILD = """
 import hashlib, sys, time
-from circuitgen.gadgets.phase_sums import SumsPhase
-from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import for_device
-from circuitgen.qaoa import qaoa_plan
-from gridcover.presets import default_scenario
+from qcpp.gadgets.phase_sums import SumsPhase
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario
 rows, cols, robots, device = int(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
 plan = qaoa_plan(default_scenario(rows, cols, robots), 1, for_device(PlanOptions(), device))
 wall, cpu = time.perf_counter(), time.process_time()

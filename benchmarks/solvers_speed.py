@@ -1,11 +1,11 @@
-"""Speed of the classical solvers (:mod:`gridcover.solvers`) and how often the local searches find the optimum.
+"""Speed of the classical solvers (:mod:`qcpp.problem.solvers`) and how often the local searches find the optimum.
 
 Two tables:
 
 * ``dfs`` and ``cpsat`` side by side: exhaustive search -- paths per robot, assignments scored, wall-clock
   seconds, and the process's peak resident memory after the run (``ru_maxrss`` only grows; for two robots on
-  5x5 it is dominated by :func:`gridcover.cost.separable_cost`'s full pairwise matrix and its temporaries) --
-  and CP-SAT (:func:`gridcover.solvers.cpsat`, one worker): seconds to the proven optimum, when it first found
+  5x5 it is dominated by :func:`qcpp.problem.cost.separable_cost`'s full pairwise matrix and its temporaries) --
+  and CP-SAT (:func:`qcpp.problem.solvers.cpsat`, one worker): seconds to the proven optimum, when it first found
   it, and its cost (checked equal to DFS's);
 * ``anneal`` / ``genetic`` with default settings over several seeds: mean seconds, the cost of seed 0, and in
   how many seeds the exhaustive optimum was found.
@@ -25,9 +25,9 @@ import resource
 import time
 from pathlib import Path
 
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers import anneal, cpsat, dfs, genetic
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers import anneal, cpsat, dfs, genetic
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

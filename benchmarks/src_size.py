@@ -35,16 +35,16 @@ ROOT = Path(__file__).resolve().parents[1]
 #: mixer / phase class counters, the estimate's shortcuts, the formulas, the plan-section rebuild and the cross-check)
 #: as they were at d41c381, and the modules that replaced them since. A module missing from a tree counts zero.
 COUNTING = (
-    "circuitgen/qaoa.py",
-    "circuitgen/call_graph.py",
-    "circuitgen/mixer_classes.py",
-    "circuitgen/phase_classes.py",
-    "circuitgen/phase_choice.py",
-    "estimators/counts.py",
-    "estimators/crosscheck.py",
-    "estimators/depth.py",
-    "estimators/estimate.py",
-    "estimators/formulas.py",
+    "qcpp/plan/qaoa.py",
+    "qcpp/plan/call_graph.py",
+    "qcpp/plan/mixer_classes.py",
+    "qcpp/plan/phase_classes.py",
+    "qcpp/plan/phase_choice.py",
+    "qcpp/estimators/counts.py",
+    "qcpp/estimators/crosscheck.py",
+    "qcpp/estimators/depth.py",
+    "qcpp/estimators/estimate.py",
+    "qcpp/estimators/formulas.py",
     "estimators/mixer_count.py",
     "estimators/phase_count.py",
 )

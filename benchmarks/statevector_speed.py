@@ -10,12 +10,12 @@ import time
 
 import numpy as np
 
-from circuitgen.compile import compile_scenario
-from gridcover.paths import assignment_bits, enumerate_paths
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario
-from simulate.sparse import basis_from_bits
-from simulate.statevector import simulate_statevector
+from qcpp.plan.compile import compile_scenario
+from qcpp.problem.paths import assignment_bits, enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.simulate.sparse import basis_from_bits
+from qcpp.simulate.statevector import simulate_statevector
 
 
 def held_on_feasible(s: Scenario, psi: np.ndarray) -> float:

@@ -1,4 +1,4 @@
-"""Speed and memory of the feasible-subspace QAOA simulator (:mod:`simulate.subspace`).
+"""Speed and memory of the feasible-subspace QAOA simulator (:mod:`qcpp.simulate.subspace`).
 
 Every scenario runs in a fresh child process so its peak resident memory (``ru_maxrss``) is its own. For each
 one the table gives the state dimension, then wall-clock seconds (and CPU seconds of the process in
@@ -9,7 +9,7 @@ parentheses, which are less disturbed by other load on the machine) for
 * ``grad``: one expectation value with its exact gradient (adjoint method),
 
 and the process's peak resident memory (``ru_maxrss``, which only grows) after the build, after the expectation
-and after the gradient. For two robots the build's peak comes from :func:`gridcover.cost.separable_cost`'s
+and after the gradient. For two robots the build's peak comes from :func:`qcpp.problem.cost.separable_cost`'s
 full-size pairwise temporaries; an expectation then holds the state (16 bytes per amplitude) plus one byte
 of cost level per amplitude, a gradient two states.
 
@@ -72,8 +72,8 @@ def _timed(fn: Any) -> tuple[Any, float, float]:
 
 def run_one(name: str, p: int, kernels: str) -> dict[str, Any]:
     """Measure one scenario in this process (called in a child)."""
-    from gridcover.scenario import load_scenario, scenario_from_dict
-    from simulate.subspace import SubspaceQAOA
+    from qcpp.problem.scenario import load_scenario, scenario_from_dict
+    from qcpp.simulate.subspace import SubspaceQAOA
 
     spec = SCENARIOS[name]
     s = load_scenario(REPO / spec) if isinstance(spec, str) else scenario_from_dict(spec)

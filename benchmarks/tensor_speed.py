@@ -14,8 +14,8 @@ from __future__ import annotations
 import tempfile
 import time
 
-from gridcover.presets import default_scenario
-from simulate.validate import validate
+from qcpp.problem.presets import default_scenario
+from qcpp.simulate.validate import validate
 
 CASES = ((3, 3, 1, 1, ""), (3, 3, 2, 1, ""), (3, 4, 2, 1, ""), (3, 4, 2, 1, "cached"), (3, 4, 2, 2, ""))
 

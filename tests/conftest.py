@@ -3,7 +3,7 @@
 * Hypothesis's default per-example deadline (200 ms) and its "too slow" health check measure wall time, so they
   fail on a loaded machine (CI runs two workers on two cores, often beside other jobs): both are off for every
   ``@given`` test (the ``timeless`` profile, loaded here).
-* Progress lines (:mod:`qcpp.progress`) appear after a second of work on a pipe, so whether a command printed one
+* Progress lines (:mod:`qcpp.cli.progress`) appear after a second of work on a pipe, so whether a command printed one
   depends on the machine's load: they are off (``QCPP_PROGRESS=off``, inherited by subprocesses); the tests of
   progress itself turn them on with ``QCPP_PROGRESS_INTERVAL=0`` (a line at every step, no clock involved).
 * At the session's end pytest collects garbage five times over (to report exceptions raised in finalizers); with

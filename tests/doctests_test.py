@@ -9,7 +9,7 @@ import pkgutil
 
 import pytest
 
-PACKAGES = ("qcppio", "gridcover", "circuitgen", "estimators", "simulate", "qcpp")
+PACKAGES = ("qcpp",)
 
 
 def _modules() -> list[str]:
@@ -25,7 +25,8 @@ MODULES = _modules()
 
 
 def test_the_module_list_is_complete() -> None:
-    assert {"circuitgen.qaoa", "gridcover.sbf", "estimators.estimate", "simulate.subspace", "qcpp.cli"} <= set(MODULES)
+    expected = {"qcpp.plan.qaoa", "qcpp.problem.sbf", "qcpp.estimators.estimate", "qcpp.simulate.subspace", "qcpp.cli.app"}
+    assert expected <= set(MODULES)
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -1,8 +1,8 @@
 """Shared plumbing of the experiment scripts: options, output paths, tables (terminal + Markdown), atomic PNGs,
 and the per-row records (``results/<name>.json``) that ``tests/simulate/results_freshness_test.py`` recomputes.
 
-Presentation only; every computation the scripts report lives in the library (``simulate.success``,
-``simulate.state_measures``, ``simulate.layerwise``, ``simulate.training``, ``gridcover.solvers``).
+Presentation only; every computation the scripts report lives in the library (``qcpp.simulate.success``,
+``qcpp.simulate.state_measures``, ``qcpp.simulate.layerwise``, ``qcpp.simulate.training``, ``qcpp.problem.solvers``).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from qcppio.atomic import save_figure_atomic, write_text_atomic
+from qcpp.io.atomic import save_figure_atomic, write_text_atomic
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
@@ -23,8 +23,8 @@ EXAMPLES = REPO / "examples"
 def two_robot_cases(quick: bool) -> list[tuple[str, Any]]:
     """The two-robot scenarios of the mixer-only studies, each with the source its rows record: two_robots_4x4,
     and unless ``quick`` also the open 4x4 and two_robots_5x5."""
-    from gridcover.presets import default_scenario
-    from gridcover.scenario import load_scenario
+    from qcpp.problem.presets import default_scenario
+    from qcpp.problem.scenario import load_scenario
 
     cases: list[tuple[str, Any]] = [("examples/two_robots_4x4.toml", load_scenario(EXAMPLES / "two_robots_4x4.toml"))]
     if not quick:
@@ -133,7 +133,7 @@ def write_results(
 
 
 def save_figure(fig: Any, path: Path, dpi: int = 130) -> Path:
-    """Save a matplotlib figure as PNG, whole or not at all (:func:`qcppio.atomic.save_figure_atomic`)."""
+    """Save a matplotlib figure as PNG, whole or not at all (:func:`qcpp.io.atomic.save_figure_atomic`)."""
     save_figure_atomic(fig, path, dpi=dpi, bbox_inches="tight")
     print(f"wrote {path}")
     return path
@@ -145,10 +145,10 @@ def command_line(script: str, opts: Options) -> str:
 
 
 def record(scenario: Any, options: dict[str, Any], **fields: Any) -> dict[str, Any]:
-    """One result row: its scenario (``gridcover.scenario.scenario_to_dict``), its options, the qcpp version and
+    """One result row: its scenario (``qcpp.problem.scenario.scenario_to_dict``), its options, the qcpp version and
     ``fields`` (the results)."""
     import qcpp
-    from gridcover.scenario import scenario_to_dict
+    from qcpp.problem.scenario import scenario_to_dict
 
     return {"scenario": scenario_to_dict(scenario), "options": options, "qcpp_version": qcpp.__version__, **fields}
 
@@ -177,8 +177,8 @@ def write_records(opts: Options, name: str, command: str, rows: Sequence[dict[st
 
 def circuit_columns(scenario: Any, p: int) -> dict[str, int]:
     """The compiled depth-``p`` circuit's qubits, exact depth, two-qubit depth and gate count (the cheap,
-    recomputable part of a QAOA row; :func:`estimators.estimate.estimate_point`)."""
-    from estimators.estimate import EstimateOptions, Point, estimate_point
+    recomputable part of a QAOA row; :func:`qcpp.estimators.estimate.estimate_point`)."""
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
 
     est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="exact"))
     assert est.depth is not None

@@ -29,9 +29,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import numpy as np
 from _common import EXAMPLES, Table, command_line, parse, pyplot, record, save_figure, write_records, write_results
 
-from gridcover.scenario import load_scenario
-from gridcover.solvers import anneal, dfs
-from qcpp.render import plot_paths, render_ascii
+from qcpp.cli.render import plot_paths, render_ascii
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import anneal, dfs
 
 NAME = "annealing_two_robots"
 
@@ -84,7 +84,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         ]
     print("\n".join(art))
     notes = [
-        "DFS scores every combination of the robots' feasible paths with numpy (gridcover.solvers.dfs); "
+        "DFS scores every combination of the robots' feasible paths with numpy (qcpp.problem.solvers.dfs); "
         "its time includes enumerating the paths.",
         "SA evaluations = cost look-ups (Solution.evaluated: 20,000 iterations + 50 calibration moves + 3); "
         "distinct scored = different assignments among them.",

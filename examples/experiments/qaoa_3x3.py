@@ -38,12 +38,12 @@ from _common import (
     write_results,
 )
 
-from gridcover.paths import initial_path, path_to_nodes
-from gridcover.scenario import load_scenario
-from gridcover.solvers import anneal, dfs
-from qcpp.render import plot_paths, render_ascii
-from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale, most_probable, train
+from qcpp.cli.render import plot_paths, render_ascii
+from qcpp.problem.paths import initial_path, path_to_nodes
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import anneal, dfs
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import cost_scale, most_probable, train
 
 NAME = "qaoa_3x3"
 STEP = 0.1  # the paper's Nesterov step

@@ -1,6 +1,6 @@
 """QAOA's default training by depth: P(optimum) at p = 1..8 on two_robots_4x4, objectives, warm starts, 5x5.
 
-Default training (:func:`simulate.layerwise.train_layerwise`): L-BFGS-B on the exact adjoint gradient, layer by
+Default training (:func:`qcpp.simulate.layerwise.train_layerwise`): L-BFGS-B on the exact adjoint gradient, layer by
 layer from p = 1 with INTERP and zero-layer warm starts, the linear ramp plus two seeded random starts at
 p = 1, the Gibbs objective with ``eta = 5 / sigma``. Nothing is tuned per scenario.
 
@@ -12,7 +12,7 @@ Tables:
 2. The three objectives (``gibbs``, ``cvar`` with alpha 0.2, ``expectation``) with the same schedule on
    3x3 corner to corner (one robot), examples/paper_3x3.toml and two_robots_4x4, at p = 3 and p = 6.
 3. Initial states compared with the same default training to p = 5: the paper's ``initial_path`` against the
-   classical warm start ``local_search`` (:func:`gridcover.solvers.descent.local_search`, steepest descent over
+   classical warm start ``local_search`` (:func:`qcpp.problem.solvers.descent.local_search`, steepest descent over
    SBF moves) and ``local_search_mix`` (per robot the initial and the descent path in equal superposition), on
    the scenarios of this script where the descent does not already end on the optimum (the open 4x4 with two
    robots; on two_robots_4x4 it does, which the notes say).
@@ -20,7 +20,7 @@ Tables:
    table 1 at the same p, gammas scaled by ``sigma_4x4 / sigma_5x5`` (parameter transfer), from the
    ``initial_path`` and ``local_search`` states, and table 3's ``local_search_mix`` angles of the open 4x4 (gammas
    scaled the same way) from ``local_search_mix``; the notes give the warm start's cost, time and distance to
-   the optimum in SBF moves and in mixer layers (:func:`simulate.state_measures.layers_to_reach`).
+   the optimum in SBF moves and in mixer layers (:func:`qcpp.simulate.state_measures.layers_to_reach`).
 5. ``examples/two_robots_5x5.toml``, the default training to p = 5 from ``local_search_mix`` (issue #19's 5x5
    goal: P(optimum) >= 0.05 at some p <= 5), the kept run at each depth with its iterations and time.
 
@@ -48,23 +48,23 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import EXAMPLES, REPO, Table, command_line, parse, pyplot, save_figure, write_results
 
 import qcpp
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario, scenario_to_dict
-from gridcover.solvers.descent import local_search
-from qcppio.atomic import write_text_atomic
-from simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, train_layerwise
-from simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, OBJECTIVES
-from simulate.state_measures import layers_to_reach
-from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale
+from qcpp.io.atomic import write_text_atomic
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_to_dict
+from qcpp.problem.solvers.descent import local_search
+from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, train_layerwise
+from qcpp.simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, OBJECTIVES
+from qcpp.simulate.state_measures import layers_to_reach
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import cost_scale
 
 NAME = "qaoa_training"
 
 
 def circuit_columns(scenario: Scenario, p: int, initial: str = "initial_path") -> dict[str, int]:
     """Qubits, depth and two-qubit depth of the compiled circuit at depth ``p`` (the compiler's exact depth)."""
-    from circuitgen.options import PlanOptions
-    from estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.plan.options import PlanOptions
 
     plan = PlanOptions(initial=initial)  # type: ignore[arg-type]
     est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(plan=plan, depth="exact"))

@@ -19,9 +19,9 @@ Budgets (every fit keeps the best of its starts):
   phase separator is a global phase); p = 2 by COBYLA with 12 evaluations per objective, from the best p = 1
   angles followed by the linear ramp's second-layer gamma and half that beta; p = 3, CVaR only, the same way
   from the p = 2 CVaR angles. No optimal assignment can carry amplitude below p = 3 here, whatever the angles
-  (``simulate.state_measures.layers_to_reach``), so p = 3 is the first depth at which p_opt can be non-zero.
+  (``qcpp.simulate.state_measures.layers_to_reach``), so p = 3 is the first depth at which p_opt can be non-zero.
 
-Success at equal cost evaluations (see ``simulate.success``): QAOA sampled ``S`` times from its trained
+Success at equal cost evaluations (see ``qcpp.simulate.success``): QAOA sampled ``S`` times from its trained
 state succeeds with ``1 - (1 - p_opt)^S`` (training not counted); simulated annealing with an iteration
 budget succeeds with its empirical rate over 50 seeds, plotted at its mean number of cost evaluations;
 uniform sampling of feasible assignments succeeds with ``1 - (1 - n_opt/N)^S``.
@@ -56,14 +56,14 @@ from _common import (
     write_results,
 )
 
-from gridcover.scenario import load_scenario
-from gridcover.solvers import dfs
-from simulate.angle_fit import OBJECTIVES, AngleFit, fit_angles
-from simulate.annealing_runs import AnnealSuccess, anneal_success
-from simulate.state_measures import layers_to_reach, state_metrics, uniform_hit_probability
-from simulate.subspace import SubspaceQAOA
-from simulate.success import shots_for, success_probability
-from simulate.training import initial_angles, interp_angles, train
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import dfs
+from qcpp.simulate.angle_fit import OBJECTIVES, AngleFit, fit_angles
+from qcpp.simulate.annealing_runs import AnnealSuccess, anneal_success
+from qcpp.simulate.state_measures import layers_to_reach, state_metrics, uniform_hit_probability
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.success import shots_for, success_probability
+from qcpp.simulate.training import initial_angles, interp_angles, train
 
 NAME = "qaoa_two_robots"
 ALPHA = 0.2
@@ -140,7 +140,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, object]:
         "measurements of that state that see an optimum with probability X (inf: never).",
         "QAOA columns count only the S shots from the trained state; training is not counted (on hardware every "
         "expectation value in it costs many shots), so they are QAOA's most favourable reading.",
-        "SA: gridcover.solvers.anneal with the given iteration budget (schedule fitted to it), components='initial' "
+        "SA: qcpp.problem.solvers.anneal with the given iteration budget (schedule fitted to it), components='initial' "
         "(one move-graph component here); S = its Solution.evaluated (50 calibration moves included).",
         *(f"{n}: {info[n]['n_opt']:g} optimal assignment(s); uniform hit probability {info[n]['uniform']:.3g}; "
           f"subspace simulator built in {info[n]['build']:.1f} s." for n in scenarios),

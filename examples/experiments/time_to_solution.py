@@ -1,35 +1,35 @@
 """Time to the optimum with 99% probability: DFS, CP-SAT, annealing, the GA and QAOA, by grid size, one rule for all.
 
 Instances: ``n x n`` grids, ``n = 3 .. 6``, with 1, 2 and 3 robots in the default corner-to-corner placement
-(:func:`gridcover.presets.default_scenario`), each once without and once with soft obstacles (``n^2 // 12``
+(:func:`qcpp.problem.presets.default_scenario`), each once without and once with soft obstacles (``n^2 // 12``
 interior nodes, at least one, drawn with a seeded generator away from the robots' endpoints). Every objective
 setting is the default. Every row of the results records its scenario, its method's options and the qcpp
 version; ``tests/simulate/results_freshness_test.py`` recomputes the circuit columns from them.
 
-The criterion (:mod:`simulate.time_to_solution`): the time to reach an optimal assignment with probability 99%.
+The criterion (:mod:`qcpp.simulate.time_to_solution`): the time to reach an optimal assignment with probability 99%.
 
-* **DFS** (:func:`gridcover.solvers.dfs`): exhaustive, deterministic; its run time. Attempted up to ``dfs_max``
+* **DFS** (:func:`qcpp.problem.solvers.dfs`): exhaustive, deterministic; its run time. Attempted up to ``dfs_max``
   combinations, ``(corner-to-corner paths)^robots`` (OEIS A007764; soft obstacles do not change the path set).
-* **CP-SAT** (:func:`gridcover.solvers.cpsat`, 1 worker, deterministic): the time at which it first found an
+* **CP-SAT** (:func:`qcpp.problem.solvers.cpsat`, 1 worker, deterministic): the time at which it first found an
   optimal assignment (and, separately, the time of its proof). Limit ``cpsat_limit`` per instance,
   ``cpsat_named_limit`` on 6x6 with 2 and 3 robots without obstacles.
-* **SA** (:func:`gridcover.solvers.anneal`) and **GA** (:func:`gridcover.solvers.genetic`), with
+* **SA** (:func:`qcpp.problem.solvers.anneal`) and **GA** (:func:`qcpp.problem.solvers.genetic`), with
   ``components="initial"`` (on these grids every robot's paths form one move-graph component): ``runs``
   independent runs (seeds 0..runs-1) at a fixed budget; a run succeeds if its best is optimal; time = mean run
   time x the runs needed for 99% at the observed rate (range: the rate's 95% Wilson interval).
 * **QAOA** where the feasible-subspace simulator holds the state (at most ``qaoa_max_dim`` assignments): the
-  default training (:func:`simulate.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer) to
+  default training (:func:`qcpp.simulate.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer) to
   the depth fixed before the run, ``qaoa_p`` for every instance; ``P(optimum)`` of the trained state; the shots
   for 99%; and a **projected ideal-device time**: every shot (training shots included: objective estimates x
   ``SHOTS_PER_ESTIMATE``) at the circuit's time from the compiler's exact depth
-  (:func:`estimators.estimate.estimate_point`) under :data:`simulate.time_to_solution.GATE_MODEL`, an ideal
+  (:func:`qcpp.estimators.estimate.estimate_point`) under :data:`qcpp.simulate.time_to_solution.GATE_MODEL`, an ideal
   all-to-all device (no routing, no noise, no error correction). Training shots are all counted at the final
   depth's shot time (an upper bound: lower levels run shorter circuits). The classical simulation's own time is
   listed but is not part of the device time.
 * **QAOA on today's devices** (``devices``: the IBM Heron snapshots ``ibm_fez`` and ``ibm_torino``, the square
   grid ``google_willow`` and the trapped-ion ``quantinuum_helios``): the same trained state and training, the
   depth-``p`` circuit compiled and routed onto the device by the estimator
-  (:func:`estimators.routed.routed_fields`, i.e. :func:`circuitgen.hardware.compile_for_device`: exact routed
+  (:func:`qcpp.estimators.routed.routed_fields`, i.e. :func:`qcpp.pipeline.device_compile.compile_for_device`: exact routed
   counts), and the device's noise and time. **Model: a shot succeeds with probability P(optimum) x ESP**, ESP =
   the product of ``1 - error`` over every native gate and readout of the routed circuit (an error anywhere ruins
   the shot; optimistic: no idle decoherence, crosstalk or leakage, training counted at its noiseless number of
@@ -66,10 +66,10 @@ import numpy as np
 from _common import Table, command_line, parse, pyplot, save_figure, write_results
 
 import qcpp
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, scenario_to_dict
-from gridcover.solvers import anneal, cpsat, dfs, genetic
-from qcppio.atomic import write_text_atomic
+from qcpp.io.atomic import write_text_atomic
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, scenario_to_dict
+from qcpp.problem.solvers import anneal, cpsat, dfs, genetic
 
 NAME = "time_to_solution"
 CORNER_PATHS = {3: 12, 4: 184, 5: 8512, 6: 1262816, 7: 575780564, 8: 789360053252}
@@ -98,7 +98,7 @@ class Config:
 
 
 DEVICES = ("ibm_fez", "ibm_torino", "google_willow", "quantinuum_helios")
-"""Named devices (``circuitgen/device_data``) the QAOA rows are compiled for."""
+"""Named devices (``qcpp/devices/data``) the QAOA rows are compiled for."""
 FULL = Config((3, 4, 5, 6), (1, 2, 3), 1e6, 10.0, 30.0, 8, 2000, 10, 40_000, 5, DEVICES)
 QUICK = Config((3, 4), (1, 2), 1e6, 2.0, 2.0, 3, 500, 3, 200, 2, ("ibm_fez", "quantinuum_helios"))
 
@@ -171,7 +171,7 @@ def run_local(inst: Instance, cfg: Config, method: str) -> list[dict[str, Any]]:
 
 def local_summary(runs: list[dict[str, Any]], optimum: float) -> dict[str, Any]:
     """Successes, mean run time and the 99% time of repeated runs."""
-    from simulate.time_to_solution import repeated_runs
+    from qcpp.simulate.time_to_solution import repeated_runs
 
     ok = sum(r["cost"] <= optimum + TOL for r in runs)
     rr = repeated_runs(statistics.fmean(r["seconds"] for r in runs), ok, len(runs), TARGET)
@@ -203,9 +203,9 @@ def qaoa_circuit_columns(scenario: Scenario, p: int) -> dict[str, Any]:
 def device_columns(scenario: Scenario, p: int, device: str) -> dict[str, Any]:
     """The depth-``p`` circuit routed onto ``device`` by the estimator: routed counts, ESP and the time of one
     shot (device durations where published, else the ideal gate model on the routed depths, ``assumed``)."""
-    from estimators.estimate import EstimateOptions, Point, estimate_point
-    from estimators.routed import routed_fields
-    from simulate.time_to_solution import GATE_MODEL, shot_seconds
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.estimators.routed import routed_fields
+    from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
 
     est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="none"))
     c = est.cost
@@ -223,9 +223,9 @@ def device_columns(scenario: Scenario, p: int, device: str) -> dict[str, Any]:
 
 def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | None:
     """Default training to the fixed depth, then the projected 99% time on an ideal device and on each device."""
-    from simulate.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
-    from simulate.subspace import SubspaceQAOA
-    from simulate.time_to_solution import GATE_MODEL, qaoa_on_device, shot_seconds
+    from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
+    from qcpp.simulate.subspace import SubspaceQAOA
+    from qcpp.simulate.time_to_solution import GATE_MODEL, qaoa_on_device, shot_seconds
 
     if CORNER_PATHS[inst.n] ** inst.robots > cfg.qaoa_max_dim:
         return None
@@ -257,10 +257,10 @@ def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | No
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
-    from circuitgen.hardware import ESP_MODEL
-    from simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
-    from simulate.objectives import GIBBS_SCALE
-    from simulate.time_to_solution import GATE_MODEL
+    from qcpp.pipeline.device_compile import ESP_MODEL
+    from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
+    from qcpp.simulate.objectives import GIBBS_SCALE
+    from qcpp.simulate.time_to_solution import GATE_MODEL
 
     opts = parse(__doc__.splitlines()[0], argv)
     cfg = QUICK if opts.quick else FULL
@@ -299,7 +299,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "qaoa": {"p": cfg.qaoa_p, "training": "layerwise", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
                  "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS,
                  "shots_per_estimate": SHOTS_PER_ESTIMATE, "gate_model": GATE_MODEL, "device": "ideal all-to-all"},
-        "qaoa_device": {"compile": "estimators.routed.routed_fields (circuitgen.hardware.compile_for_device)",
+        "qaoa_device": {"compile": "qcpp.estimators.routed.routed_fields (qcpp.pipeline.device_compile.compile_for_device)",
                         "plan": "default", "success_model": "P(opt) x ESP", "esp_model": ESP_MODEL,
                         "duration_model": "device durations where published, else gate_model on the routed depths "
                                           "(assumed)"},
@@ -339,7 +339,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "compiler's exact depth; training = objective estimates (a gradient = 1 + 4p estimates) x "
         f"{SHOTS_PER_ESTIMATE} shots, all at the final depth's shot time.",
         f"QAOA on devices ({', '.join(cfg.devices)}): the same trained state and training; the depth-{cfg.qaoa_p} "
-        "circuit compiled and routed onto the device (estimators.routed.routed_fields = circuitgen.hardware."
+        "circuit compiled and routed onto the device (qcpp.estimators.routed.routed_fields = qcpp.pipeline.device_compile."
         "compile_for_device, default plan). SUCCESS PER SHOT = P(opt) x ESP: an error anywhere ruins the shot "
         f"(ESP: {ESP_MODEL}); optimistic: no idle decoherence, training at its noiseless number of estimates. "
         "Shot time: the routed schedule with the device's gate and readout durations ('device': the IBM "

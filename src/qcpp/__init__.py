@@ -1,8 +1,8 @@
 """qcpp: circuit compiler and resource estimator for QAOA multi-robot coverage path planning.
 
-The importable libraries are ``gridcover`` (problem model and classical solvers), ``circuitgen`` (QAOA
+The importable libraries are ``qcpp.problem`` (problem model and classical solvers), ``qcpp`` (QAOA
 circuits), ``simulate`` and ``estimators``; this package is the command line on top of them
-(:mod:`qcpp.cli`, commands in :mod:`qcpp.commands`). Run ``qcpp --help`` or ``python -m qcpp --help``.
+(:mod:`qcpp.cli.app`, commands in :mod:`qcpp.cli.commands`). Run ``qcpp --help`` or ``python -m qcpp --help``.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """``python -m qcpp`` and the ``qcpp`` console script: signal handling first, then the CLI.
 
-Ctrl-C/SIGTERM handling (:mod:`qcpp.interrupt`) is installed before the heavy imports (numpy, sympy, typer, ...),
+Ctrl-C/SIGTERM handling (:mod:`qcpp.cli.interrupt`) is installed before the heavy imports (numpy, sympy, typer, ...),
 so even an interrupt during start-up is one line ``interrupted`` and exit code 130, never a traceback.
 """
 
@@ -11,13 +11,13 @@ import os
 
 def main() -> None:
     """Install the signal handling, import the CLI and run it."""
-    from qcpp.interrupt import EXIT_CODE, install, report_interrupted
-    from qcpp.streams import guard_closed_streams
+    from qcpp.cli.interrupt import EXIT_CODE, install, report_interrupted
+    from qcpp.cli.streams import guard_closed_streams
 
     guard_closed_streams()  # before any file is opened: none may land on a closed descriptor 0-2
     install()
     try:
-        from qcpp.cli import main as cli_main
+        from qcpp.cli.app import main as cli_main
     except KeyboardInterrupt:
         report_interrupted()
         os._exit(EXIT_CODE)

@@ -1,4 +1,4 @@
-"""Tests for circuitgen.angles."""
+"""Tests for qcpp.ir.angles."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from circuitgen.angles import Angle, UnboundParameterError, format_angle, format_float, symbol_sort_key
+from qcpp.ir.angles import Angle, UnboundParameterError, format_angle, format_float, symbol_sort_key
 
 finite = st.floats(allow_nan=False, allow_infinity=False, width=64)
 small = st.floats(-1e6, 1e6, allow_nan=False)

@@ -1,4 +1,4 @@
-"""Far phases relayed through clean device qubits (:mod:`circuitgen.bridge`).
+"""Far phases relayed through clean device qubits (:mod:`qcpp.routing.bridge`).
 
 Evidence: a copy chain's CX network, as a map on basis states, writes the source's value into its holder and
 changes nothing else (every holder was |0>); relayed circuits equal the original ones on every input whose
@@ -16,17 +16,17 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen.bridge import bridge_far_phases, copy_chain
-from circuitgen.circuit import Circuit, Section
-from circuitgen.devices import get_device
-from circuitgen.gates import Gate, cx, h, rz
-from circuitgen.layout import distances
+from qcpp.devices.device import get_device
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate, cx, h, rz
+from qcpp.layout.placement import distances
+from qcpp.routing.bridge import bridge_far_phases, copy_chain
 
 from .routing_test import _permuted, _statevector
 
 
 def test_doctests() -> None:
-    result = doctest.testmod(importlib.import_module("circuitgen.bridge"))
+    result = doctest.testmod(importlib.import_module("qcpp.routing.bridge"))
     assert result.failed == 0 and result.attempted > 0
 
 
@@ -110,9 +110,9 @@ def test_a_far_phase_on_a_line_is_relayed_and_cheaper() -> None:
 
 @pytest.mark.slow
 def test_qcec_proves_a_relayed_two_robot_compile_equal_to_the_compiled_circuit() -> None:
-    from circuitgen.hardware import compile_for_device
-    from gridcover.presets import default_scenario
-    from simulate.equivalence import check_equivalence
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.presets import default_scenario
+    from qcpp.simulate.equivalence import check_equivalence
 
     from .routing_qcec_test import aligned
 

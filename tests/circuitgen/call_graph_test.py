@@ -7,14 +7,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen.call_graph import COSTS, CallGraph, GadgetKind
-from circuitgen.cost import Cost
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.mixer_classes import mixer_part
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_plan
-from gridcover.presets import default_scenario, max_default_robots
-from gridcover.scenario import Scenario, scenario_from_dict, scenario_to_dict
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.call_graph import COSTS, CallGraph, GadgetKind
+from qcpp.plan.mixer_classes import mixer_part
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario, max_default_robots
+from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
 from tests.circuitgen.conftest import scenarios
 
 OPTIONS = [
@@ -114,9 +114,9 @@ def test_kinds_compare_by_key_and_costs_come_from_the_cache() -> None:
 
 
 def test_gadgets_priced_per_kind_and_depth_facts_share_the_one_cache() -> None:
-    from circuitgen.gadgets.junction import MixerJunction
-    from circuitgen.gadgets.phase_visits import VisitPhase
-    from estimators.depth_compose import gadget_depth, known_depth
+    from qcpp.estimators.depth_compose import gadget_depth, known_depth
+    from qcpp.gadgets.junction import MixerJunction
+    from qcpp.gadgets.phase_visits import VisitPhase
 
     plan = qaoa_plan(default_scenario(4, 4, 2), 1)
     found = {}

@@ -1,12 +1,12 @@
-"""Partial mixers planned for the heavy-hex cells (:mod:`circuitgen.cellmixer`).
+"""Partial mixers planned for the heavy-hex cells (:mod:`qcpp.pipeline.cellmixer`).
 
 Evidence: every relabelled plan, and every plan with one AND's operands or the rotation's controls exchanged, has
 the default plan's two-qubit count and acts exactly as the default plan on random data states with clean
 ancillas (statevector: both partial mixers of 2x3/1 in the default run, every one of 3x3/1 in the heavy run); on a
-heavy-hex lattice :func:`~circuitgen.cellmixer.cell_mixers` changes only partial-mixer sections, keeps their
+heavy-hex lattice :func:`~qcpp.pipeline.cellmixer.cell_mixers` changes only partial-mixer sections, keeps their
 two-qubit counts, changes at least one (2x3/1; 2x3/2 in the heavy run), and every changed window routes to no more
 two-qubit gates than the default one; elsewhere it changes nothing. The routed circuits that use it are checked
-against the compiled circuit in ``tests/circuitgen/hexlayout_test.py`` (statevector and QCEC).
+against the compiled circuit in ``tests/qcpp/hexlayout_test.py`` (statevector and QCEC).
 """
 
 from __future__ import annotations
@@ -18,28 +18,28 @@ import importlib
 import numpy as np
 import pytest
 
-from circuitgen.angles import Angle
-from circuitgen.cellmixer import _CHOICE_CACHE, _operand_swaps, _window_cx, cell_mixers, relabelled_plans
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device
-from circuitgen.gadgets.partial_mixer import ParityPartialMixer
-from circuitgen.gates import rx, ry
-from circuitgen.hardware import hex_device
-from circuitgen.hexlayout import hex_placement
-from circuitgen.layout import distances
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_plan
-from gridcover.presets import default_scenario
-from simulate.statevector import simulate_statevector
+from qcpp.devices.device import get_device
+from qcpp.gadgets.partial_mixer import ParityPartialMixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import rx, ry
+from qcpp.layout.heavy_hex import hex_placement
+from qcpp.layout.placement import distances
+from qcpp.lowering.passes import lower
+from qcpp.pipeline.cellmixer import _CHOICE_CACHE, _operand_swaps, _window_cx, cell_mixers, relabelled_plans
+from qcpp.pipeline.device_compile import hex_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario
+from qcpp.simulate.statevector import simulate_statevector
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OPTIONS = PlanOptions(fuse=False, phase_layout="medial")
 
 
 def test_doctests() -> None:
-    result = doctest.testmod(importlib.import_module("circuitgen.cellmixer"))
+    result = doctest.testmod(importlib.import_module("qcpp.pipeline.cellmixer"))
     assert result.failed == 0 and result.attempted > 0
 
 

@@ -1,4 +1,4 @@
-"""Tests for circuitgen.circuit: layout, sections, builder, transformations."""
+"""Tests for qcpp.ir.circuit: layout, sections, builder, transformations."""
 
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, CircuitBuilder, Register, Section
-from circuitgen.gates import Gate, ccx, cx, h, mcx, rx, rz, rzz, t, x
-from circuitgen.testing import circuits
-from simulate.statevector import circuit_unitary
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Register, Section
+from qcpp.ir.gates import Gate, ccx, cx, h, mcx, rx, rz, rzz, t, x
+from qcpp.simulate.statevector import circuit_unitary
+from qcpp.testing import circuits
 
 G0, B0, G1, B1 = (Angle.symbol(n) for n in ("gamma_0", "beta_0", "gamma_1", "beta_1"))
 

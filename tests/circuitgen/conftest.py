@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from gridcover.errors import ScenarioError
-from gridcover.grid import Grid
-from gridcover.scenario import Objective, Robot, Scenario
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid
+from qcpp.problem.scenario import Objective, Robot, Scenario
 
 
 @st.composite

@@ -4,7 +4,7 @@ emitted, lowered gates; and every partial-mixer kind is exact on every feasible 
 * ``test_reported_cost_equals_lowered_count_for_every_kind``: all partial-mixer kinds (both rules, both
   targets) that occur on a sweep of scenarios (every grid 2x2..6x6 with 1..4 default robots, obstacles soft and
   hard, interior and boundary endpoints), plus the state preparation and the phase-separator gadgets of both
-  representations and targets (per phase gadget kind: ``tests/circuitgen/phase_test.py``), and every leaf.
+  representations and targets (per phase gadget kind: ``tests/qcpp/phase_test.py``), and every leaf.
 * ``test_every_partial_mixer_kind_is_exact_on_every_feasible_local_input``: for every start/goal pair on
   2x2..4x4 (and obstacle variants), every feasible path and every plaquette, the local input of the partial
   mixer (its plaquette edges and the outer edges it reads) is collected per kind; each distinct (kind, local
@@ -19,20 +19,20 @@ import math
 
 import pytest
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.gadgets import Gadget
-from circuitgen.gadgets.blocks import StatePrep
-from circuitgen.gadgets.leaves import LEAF_NAMES, ccrx_gates, leaf_cost, leaf_logical_cost
-from circuitgen.gadgets.partial_mixer import partial_mixer
-from circuitgen.gates import and_, and_dg, crx, csbf, cx, mcx, x
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.phase import phase_plan
-from gridcover.grid import Grid
-from gridcover.paths import enumerate_paths
-from gridcover.presets import default_scenario
-from gridcover.scenario import Objective, Robot, Scenario
-from simulate.sparse import simulate_sparse
+from qcpp.gadgets import Gadget
+from qcpp.gadgets.blocks import StatePrep
+from qcpp.gadgets.leaves import LEAF_NAMES, ccrx_gates, leaf_cost, leaf_logical_cost
+from qcpp.gadgets.partial_mixer import partial_mixer
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.ir.gates import and_, and_dg, crx, csbf, cx, mcx, x
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.phase import phase_plan
+from qcpp.problem.grid import Grid
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Objective, Robot, Scenario
+from qcpp.simulate.sparse import simulate_sparse
 
 TOL = 1e-9
 
@@ -158,7 +158,7 @@ def local_cases() -> dict:
 
 
 def test_every_partial_mixer_kind_is_exact_on_every_feasible_local_input() -> None:
-    from gridcover.sbf import sbf_logic
+    from qcpp.problem.sbf import sbf_logic
 
     cases = local_cases()
     assert len({k for k, _ in cases}) >= 20

@@ -1,4 +1,4 @@
-"""Tests for circuitgen.gates: constructors, spec table, inverse, matrices (against Qiskit)."""
+"""Tests for qcpp.ir.gates: constructors, spec table, inverse, matrices (against Qiskit)."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ from qiskit import QuantumCircuit
 from qiskit.circuit.library import UnitaryGate
 from qiskit.quantum_info import Operator, Pauli
 
-from circuitgen import gates as G
-from circuitgen.angles import Angle, UnboundParameterError
-from circuitgen.gates import GATE_SPECS, Gate, controlled_x_pattern, diagonal, unitary
-from circuitgen.testing import gates as random_gates
+from qcpp.ir import gates as G
+from qcpp.ir.angles import Angle, UnboundParameterError
+from qcpp.ir.gates import GATE_SPECS, Gate, controlled_x_pattern, diagonal, unitary
+from qcpp.testing import gates as random_gates
 
 
 def qiskit_matrix(gate: Gate) -> np.ndarray:

@@ -1,13 +1,13 @@
 """Long strips on their square medial grid: routed on the part around the layout, and the same result as on the
-whole device (:func:`circuitgen.hardware._cropped`, :func:`circuitgen.hardware._greedy_compare`)."""
+whole device (:func:`qcpp.pipeline.device_compile._cropped`, :func:`qcpp.pipeline.device_compile._greedy_compare`)."""
 
 from __future__ import annotations
 
 import pytest
 
-from circuitgen import hardware
-from circuitgen.hardware import compile_for_device
-from gridcover.presets import default_scenario
+from qcpp.pipeline import device_compile as hardware
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.problem.presets import default_scenario
 
 
 @pytest.mark.parametrize(

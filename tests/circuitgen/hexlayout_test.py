@@ -17,15 +17,15 @@ import importlib
 import pytest
 from hypothesis import given, settings
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device, heavy_hex_coordinates, heavy_hex_coupling
-from circuitgen.gates import Gate
-from circuitgen.hardware import compile_for_device, hex_device, layout_device
-from circuitgen.hexlayout import heavy_hex_distance, hex_distance, hex_placement
-from circuitgen.routing import RoutedCircuit
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate
+from qcpp.layout.heavy_hex import heavy_hex_distance, hex_distance, hex_placement
+from qcpp.pipeline.device_compile import compile_for_device, hex_device, layout_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.routing.sabre import RoutedCircuit
 
 from .conftest import scenarios
 from .medial_test import BIND, OBSTACLE_INTERIOR
@@ -33,7 +33,7 @@ from .routing_test import _assert_equal_up_to_layouts, _on_coupling
 
 
 def test_doctests() -> None:
-    for name in ("circuitgen.hexlayout", "circuitgen.devices"):
+    for name in ("qcpp.layout.heavy_hex", "qcpp.devices.device"):
         result = doctest.testmod(importlib.import_module(name))
         assert result.failed == 0 and result.attempted > 0
 
@@ -126,7 +126,7 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     assert _on_coupling(routed)
     assert routed.circuit.count_ops()["cx"] == r.logical.count_ops()["cx"] + 3 * routed.swaps - 2 * routed.num_fused
     _assert_equal_up_to_layouts(r.logical, _compact(routed), seed=5, global_phase=False)
-    # the compiled circuit too, whose partial mixers use the default plans (the cells' differ, circuitgen.cellmixer):
+    # the compiled circuit too, whose partial mixers use the default plans (the cells' differ, qcpp.pipeline.cellmixer):
     # its ancillas are other qubits than the logical circuit's, but |0> at both ends, like every unused qubit
     assert r.compiled.circuit.num_qubits <= r.logical.num_qubits and r.compiled.circuit != r.logical
     _assert_equal_up_to_layouts(r.compiled.circuit, _compact(routed), seed=6, global_phase=False)
@@ -142,7 +142,7 @@ def test_cell_layout_routes_home_and_equals_the_unrouted_circuit(s: Scenario) ->
     ids=["3x3/1", "2x3/2", "3x4 obstacle interior"],
 )
 def test_qcec_proves_cell_layout_routing_equal_to_the_compiled_circuit(s: Scenario) -> None:
-    from simulate.equivalence import check_equivalence
+    from qcpp.simulate.equivalence import check_equivalence
 
     from .routing_qcec_test import aligned
 
@@ -174,8 +174,8 @@ def test_auto_keeps_the_cheaper_of_cells_and_greedy(shape: tuple[int, int, int])
 @pytest.mark.heavy  # the default run has tests/qcpp/device_cli_test.py's estimate == compile on heavy-hex (3x3/1)
 @pytest.mark.parametrize("shape", [(3, 3, 1), (3, 3, 2), (4, 4, 2)])
 def test_estimate_device_heavy_hex_equals_compile(shape: tuple[int, int, int]) -> None:
-    from estimators.estimate import DEFAULT_PLAN
-    from estimators.routed import routed_fields
+    from qcpp.estimators.estimate import DEFAULT_PLAN
+    from qcpp.estimators.routed import routed_fields
 
     s = default_scenario(*shape)
     fused = compile_scenario(s, 1, lowered=True).circuit

@@ -1,4 +1,4 @@
-"""Fused partial mixers (:mod:`circuitgen.gadgets.junction`): exact costs, the same unitary, nothing left to Qiskit.
+"""Fused partial mixers (:mod:`qcpp.gadgets.junction`): exact costs, the same unitary, nothing left to Qiskit.
 
 * ``test_every_junction_kind_reports_its_lowered_count``: every junction and rotation kind the compiler emits on
   a sweep of scenarios (grids 2x2..6x6 with 1..4 default robots, obstacles soft and hard, interior endpoints;
@@ -20,19 +20,19 @@ from pathlib import Path
 
 import pytest
 
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.gadgets.junction import MixerJunction, MixerRotation, mixer_pieces
-from circuitgen.gadgets.partial_mixer import ParityPartialMixer, partial_mixer
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit, qaoa_plan
-from gridcover.grid import Grid
-from gridcover.paths import enumerate_paths
-from gridcover.presets import default_scenario
-from gridcover.scenario import Objective, Robot, Scenario
-from simulate.sparse import simulate_sparse
+from qcpp.gadgets.junction import MixerJunction, MixerRotation, mixer_pieces
+from qcpp.gadgets.partial_mixer import ParityPartialMixer, partial_mixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
+from qcpp.problem.grid import Grid
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Objective, Robot, Scenario
+from qcpp.simulate.sparse import simulate_sparse
 
 from .gadgets_test import sweep_scenarios
 
@@ -175,9 +175,9 @@ def test_unfused_plan_reports_its_lowered_count_and_fusion_only_saves(target: st
 
 @pytest.mark.parametrize("s", _small_scenarios()[1:], ids=lambda s: f"{s.grid.rows}x{s.grid.cols}/{s.num_robots}")
 def test_fused_circuit_matches_the_subspace_simulator(s: Scenario) -> None:
-    """The whole fused circuit (p = 2, lowered) against :class:`simulate.subspace.SubspaceQAOA`, every feasible
+    """The whole fused circuit (p = 2, lowered) against :class:`qcpp.simulate.subspace.SubspaceQAOA`, every feasible
     assignment, to 1e-8; every ancilla back in |0>."""
-    from simulate.validate import validate
+    from qcpp.simulate.validate import validate
 
     report = validate(s, p=2, backend="sparse", seed=11)
     assert report.passed and report.max_amplitude_error < TOL, report

@@ -13,8 +13,8 @@ import dataclasses
 import heapq
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 
-from circuitgen.gadgets import Gadget
-from circuitgen.gadgets.phase_sums import (
+from qcpp.gadgets import Gadget
+from qcpp.gadgets.phase_sums import (
     Sink,
     Site,
     SumsPhase,
@@ -23,10 +23,10 @@ from circuitgen.gadgets.phase_sums import (
     star_full_adder,
     star_half_adder,
 )
-from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.gates import Gate, cx, x
-from circuitgen.phase_locality import NEW_HOME_PENALTY, placed_sums, variable_sites
-from gridcover.scenario import Scenario
+from qcpp.gadgets.phase_visits import VisitPhase
+from qcpp.ir.gates import Gate, cx, x
+from qcpp.plan.phase_layout import NEW_HOME_PENALTY, placed_sums, variable_sites
+from qcpp.problem.scenario import Scenario
 
 _Bit = tuple[int, Site]
 
@@ -104,7 +104,7 @@ def _sink_adder(cols: dict[int, list[_Bit]], k: int, triple: list[_Bit], sink: S
 def reference_popcount_layout(
     form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site], sink: Sink | None = None
 ) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
-    """The old :func:`circuitgen.gadgets.phase_sums.spatial_popcount_layout`, verbatim."""
+    """The old :func:`qcpp.gadgets.phase_sums.spatial_popcount_layout`, verbatim."""
     order = 1
     while order <= max((max(sites[q]) for q, _ in form), default=0):
         order <<= 1
@@ -177,7 +177,7 @@ def reference_popcount_layout(
 def reference_spatial_phase(
     gadgets: Sequence[Gadget], scenario: Scenario, pool: Iterable[int], sinks: bool = False
 ) -> tuple[Gadget, ...]:
-    """The old :func:`circuitgen.phase_locality.spatial_phase`, verbatim."""
+    """The old :func:`qcpp.plan.phase_layout.spatial_phase`, verbatim."""
     sites = variable_sites(scenario)
     pool = tuple(pool)
     out = list(placed_sums(gadgets, scenario, sinks))

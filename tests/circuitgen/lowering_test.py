@@ -1,4 +1,4 @@
-"""Tests for circuitgen.lowering: mcx v-chains, basis rules, peephole, and lower()."""
+"""Tests for qcpp.lowering.passes: mcx v-chains, basis rules, peephole, and lower()."""
 
 from __future__ import annotations
 
@@ -10,11 +10,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen import gates as G
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, CircuitBuilder, Register, Section
-from circuitgen.gates import Gate
-from circuitgen.lowering import (
+from qcpp.ir import gates as G
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Register, Section
+from qcpp.ir.gates import Gate
+from qcpp.lowering.passes import (
     DEFAULT_BASIS,
     decompose_gate,
     lower,
@@ -23,9 +23,9 @@ from circuitgen.lowering import (
     mcx_work_need,
     peephole,
 )
-from circuitgen.testing import circuits
-from simulate.sparse import simulate_sparse
-from simulate.statevector import circuit_unitary
+from qcpp.simulate.sparse import simulate_sparse
+from qcpp.simulate.statevector import circuit_unitary
+from qcpp.testing import circuits
 
 VALUES = {"gamma_0": 0.37, "beta_0": -1.3, "gamma_1": 2.1}
 

@@ -16,16 +16,16 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device
-from circuitgen.gates import Gate, cx, h, rx, ry
-from circuitgen.hardware import compile_for_device
-from circuitgen.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape, tiling
-from circuitgen.options import PlanOptions
-from circuitgen.routing import mirror_length, route_windows
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.devices.device import get_device
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate, cx, h, rx, ry
+from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape, tiling
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.routing.sabre import mirror_length, route_windows
 
 from .conftest import scenarios
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling, _permuted, _statevector
@@ -39,7 +39,7 @@ OBSTACLE_INTERIOR = {
 
 
 def test_doctests() -> None:
-    result = doctest.testmod(importlib.import_module("circuitgen.medial"))
+    result = doctest.testmod(importlib.import_module("qcpp.layout.medial"))
     assert result.failed == 0 and result.attempted > 0
 
 
@@ -120,8 +120,8 @@ def test_allocation_renames_ancillas_only_and_keeps_the_state(search: bool) -> N
 def test_the_allocation_search_never_routes_a_window_to_more_gates() -> None:
     """The search keeps a section's greedy allocation unless its window routes to fewer two-qubit gates; on
     3x3/1 it finds fewer for some partial mixers."""
-    from circuitgen.layout import distances
-    from circuitgen.routing import Positions, route_window, window_cx
+    from qcpp.layout.placement import distances
+    from qcpp.routing.sabre import Positions, route_window, window_cx
 
     s = default_scenario(3, 3, 1)
     dev = get_device("grid:5x5")
@@ -212,7 +212,7 @@ def test_random_mirrored_windows_route_home(data: st.DataObject) -> None:
     "s", [default_scenario(3, 3, 1), scenario_from_dict(OBSTACLE_INTERIOR)], ids=["3x3/1", "3x4 obstacle interior"]
 )
 def test_qcec_proves_medial_routing_equal_to_the_compiled_circuit(s: Scenario) -> None:
-    from simulate.equivalence import check_equivalence
+    from qcpp.simulate.equivalence import check_equivalence
 
     from .routing_qcec_test import aligned
 
@@ -228,9 +228,9 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     """Windows return home, so a section's routed cost depends only on its gates and its neighbourhood: every
     interior partial mixer of one kind (plaquettes two or more rows and columns from the border) routes to the
     same count, and the routed circuit's count is the sum of its windows' counts."""
-    from circuitgen.layout import distances
-    from circuitgen.qaoa import qaoa_plan
-    from circuitgen.routing import Positions, route_window
+    from qcpp.layout.placement import distances
+    from qcpp.plan.qaoa import qaoa_plan
+    from qcpp.routing.sabre import Positions, route_window
 
     s = default_scenario(8, 8, 1)
     dev = get_device("grid:15x15")
@@ -263,8 +263,8 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
 
 
 def test_estimate_device_grid_equals_compile() -> None:
-    from estimators.estimate import DEFAULT_PLAN
-    from estimators.routed import routed_fields
+    from qcpp.estimators.estimate import DEFAULT_PLAN
+    from qcpp.estimators.routed import routed_fields
 
     for s in (default_scenario(3, 3, 1), scenario_from_dict(OBSTACLE_INTERIOR)):
         fused = compile_scenario(s, 1, lowered=True).circuit

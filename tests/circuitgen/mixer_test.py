@@ -1,7 +1,7 @@
 """The constrained mixer never leaves the feasible space, and each partial mixer does exactly one SBF rotation.
 
 Evidence by simulation of the compiled gates (high level and lowered), against the classical model in
-:mod:`gridcover.sbf`.
+:mod:`qcpp.problem.sbf`.
 """
 
 from __future__ import annotations
@@ -14,16 +14,16 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.angles import Angle
-from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.gadgets.partial_mixer import logic_width, partial_mixer
-from circuitgen.lowering import lower
-from gridcover.grid import Grid
-from gridcover.paths import assignment_bits, enumerate_paths, is_feasible, mask_from_bits
-from gridcover.sbf import sbf_logic
-from gridcover.scenario import Robot, Scenario
-from simulate.sparse import basis_from_bits, simulate_sparse
-from simulate.statevector import simulate_statevector
+from qcpp.gadgets.partial_mixer import logic_width, partial_mixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.lowering.passes import lower
+from qcpp.problem.grid import Grid
+from qcpp.problem.paths import assignment_bits, enumerate_paths, is_feasible, mask_from_bits
+from qcpp.problem.sbf import sbf_logic
+from qcpp.problem.scenario import Robot, Scenario
+from qcpp.simulate.sparse import basis_from_bits, simulate_sparse
+from qcpp.simulate.statevector import simulate_statevector
 
 from .conftest import scenarios
 

@@ -9,17 +9,17 @@ import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.call_graph import Deferred
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.lowering import lower
-from circuitgen.phase import phase_plan
-from circuitgen.phase_choice import plan_score
-from circuitgen.phase_classes import PhaseLayer, ising_count, phase_layer
-from gridcover.grid import Grid
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.presets import default_scenario, max_default_robots
-from gridcover.scenario import Objective, Robot, Scenario, scenario_from_dict
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import lower
+from qcpp.plan.call_graph import Deferred
+from qcpp.plan.phase import phase_plan
+from qcpp.plan.phase_choice import plan_score
+from qcpp.plan.phase_classes import PhaseLayer, ising_count, phase_layer
+from qcpp.problem.grid import Grid
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.presets import default_scenario, max_default_robots
+from qcpp.problem.scenario import Objective, Robot, Scenario, scenario_from_dict
 
 TARGETS = ("nisq", "ft")
 ALPHAS = [(1.0, 1.0, 1.0), (1.0, 0.5, 2.0), (2.0, 1.0, 0.0), (0.0, 1.0, 1.0), (1.0, 1.0, 0.25)]
@@ -100,7 +100,7 @@ def test_random_endpoints_and_objectives_equal_the_plan(data: st.DataObject) -> 
 @settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_random_scenarios_and_plan_options_equal_the_plan(data: st.DataObject) -> None:
-    """The classes and the plan ask the same per-group decision (circuitgen.phase_choice) under every option a
+    """The classes and the plan ask the same per-group decision (qcpp.plan.phase_choice) under every option a
     user can pass: a divergence in the choice of any class (visits, Hamming-weight merging, balance variant,
     ancilla budget) shows as a different cost, ancilla count or kind multiset."""
     rows = data.draw(st.integers(3, 9), label="rows")

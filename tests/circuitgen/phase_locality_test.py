@@ -6,7 +6,7 @@
 * Hypothesis: a :class:`SumsPhase` with random forms and random sites costs what its lowered gates count, and
   applies the exact phase of its quadratic form on random inputs with clean ancillas.
 * The pass adds exactly one CX per adder each way (star-shaped adders) and changes nothing else; no adder gate
-  joins two data bits; estimate == compiled circuit (:func:`estimators.crosscheck.crosscheck`) with the option,
+  joins two data bits; estimate == compiled circuit (:func:`qcpp.estimators.crosscheck.crosscheck`) with the option,
   over two layers, on obstacles and interior ends.
 * Locality, measured on the problem grid: the adders' total wire length (lattice distance between the operands
   of every two-qubit gate) is smaller than ``pooled``'s, and each visit gadget's ancillas are nearer its node.
@@ -22,26 +22,26 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.gadgets.phase_sums import (
+from qcpp.estimators.crosscheck import crosscheck
+from qcpp.gadgets.phase_sums import (
     SumsPhase,
     column_counts,
     hilbert_key,
     popcount_layout,
     spatial_popcount_layout,
 )
-from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.gates import Gate
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import balance_sinks, spatial_phase, variable_sites
-from circuitgen.qaoa import qaoa_circuit, qaoa_plan
-from circuitgen.testing import Case, interior_endpoints
-from estimators.crosscheck import crosscheck
-from gridcover.paths import enumerate_paths
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.gadgets.phase_visits import VisitPhase
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.ir.gates import Gate
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import balance_sinks, spatial_phase, variable_sites
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.testing import Case, interior_endpoints
 
 from ..qcpp.clirun import run
 from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets
@@ -234,8 +234,8 @@ def test_cli_phase_layout_flag_changes_no_count() -> None:
 
 
 def test_device_compiles_default_to_the_spatial_layout() -> None:
-    from circuitgen.hardware import compile_for_device
-    from circuitgen.phase_locality import for_device
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.plan.phase_layout import for_device
 
     s = interior_endpoints(4, 4, "hard")
     spatial = Cost.count(lower(qaoa_circuit(s, 1, PlanOptions(fuse=False, phase_layout="spatial"))).gates)
@@ -276,7 +276,7 @@ def _local_first_reference(
 ) -> list[Gate]:
     """The local-first popcount written plainly (no copies: unit weights): every step searches every bit of every
     column for its tightest triple, as the docs of :func:`spatial_popcount_layout` describe it."""
-    from circuitgen.gadgets.phase_sums import star_full_adder, star_half_adder
+    from qcpp.gadgets.phase_sums import star_full_adder, star_half_adder
 
     order = 1
     while order <= max(max(sites[q]) for q, _ in form):

@@ -1,6 +1,6 @@
 """The near-linear place-aware layouts pick exactly the old ones' adders and ancillas.
 
-:func:`circuitgen.gadgets.phase_sums.spatial_popcount_layout` keeps, for the local-first choice (with a sink), a
+:func:`qcpp.gadgets.phase_sums.spatial_popcount_layout` keeps, for the local-first choice (with a sink), a
 bucket index of every column, the bits whose triple holds each bit, an index by second-nearest distance and one
 heap per column, where the code it replaced rescanned whole columns (``layout_reference.py``, that code
 verbatim). Both must emit the same gates in the same order, the same register and the same ancilla sites:
@@ -9,7 +9,7 @@ verbatim). Both must emit the same gates in the same order, the same register an
   lattice from 1x1 (every bit on one site: ties everywhere) to 40x40 (sparse), with and without a sink;
 * the balance forms of the medial layout (every robot's edges, dense) with their sinks, and the edges or the
   points of a 14x14 square thinned at random, so the columns are large enough for the buckets to matter;
-* the visit gadgets' ancillas (:func:`circuitgen.phase_locality.spatial_phase`): random scenarios (hypothesis)
+* the visit gadgets' ancillas (:func:`qcpp.plan.phase_layout.spatial_phase`): random scenarios (hypothesis)
   with and without sinks, and 9x9/3's pool of hundreds.
 """
 
@@ -21,15 +21,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen.gadgets.phase_sums import SumsPhase, spatial_popcount_layout
-from circuitgen.gadgets.phase_visits import VisitPhase
-from circuitgen.options import PlanOptions
-from circuitgen.phase import phase_plan
-from circuitgen.phase_locality import spatial_phase, variable_sites
-from circuitgen.qaoa import qaoa_plan
-from gridcover.grid import Grid
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario
+from qcpp.gadgets.phase_sums import SumsPhase, spatial_popcount_layout
+from qcpp.gadgets.phase_visits import VisitPhase
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase import phase_plan
+from qcpp.plan.phase_layout import spatial_phase, variable_sites
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.grid import Grid
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
 
 from .conftest import scenarios
 from .layout_reference import reference_popcount_layout, reference_spatial_phase
@@ -97,7 +97,7 @@ def _spatial_both(s: Scenario, sinks: bool) -> tuple[tuple, tuple]:
 @settings(max_examples=25, deadline=None)
 @given(s=scenarios(max_side=5, max_robots=3), sinks=st.booleans())
 def test_visit_gadgets_borrow_the_old_ancillas(s: Scenario, sinks: bool) -> None:
-    """:func:`circuitgen.phase_locality.spatial_phase` (ancilla homes in buckets, searched ring by ring) gives
+    """:func:`qcpp.plan.phase_layout.spatial_phase` (ancilla homes in buckets, searched ring by ring) gives
     every visit gadget the ancillas the old sort of the whole pool per node gave, in the same order."""
     new, old = _spatial_both(s, sinks)
     assert new == old

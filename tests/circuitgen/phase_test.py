@@ -1,6 +1,6 @@
 """The compiled phase separator: exact on feasible states, ancillas clean on every input, costs as reported.
 
-* For every scenario of the sweep (``tests/gridcover/feasible_cost_test.py``: grids up to 4x4, 1-3 robots,
+* For every scenario of the sweep (``tests/qcpp/problem/feasible_cost_test.py``: grids up to 4x4, 1-3 robots,
   obstacles, both balance and degree modes, non-default weights) and both targets: on feasible assignments
   (a sample here, all of them in the ``heavy`` test) the lowered circuit of ``phase_plan(s).gadgets(...)``
   maps the basis state to itself, ancillas back at 0, with phase ``exp(-i gamma (C(x) - reference_constant))``
@@ -21,20 +21,20 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.cost import Cost
-from circuitgen.gadgets.phase_ising import IsingPhase
-from circuitgen.gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
-from circuitgen.gadgets.phase_visits import VisitPhase, visit_ancillas
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.phase import ROTATION_T_COST, PhasePlan, phase_plan, phase_separator_gates
-from estimators.fault_tolerant import rotation_t_cost
-from gridcover.cost import cost
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import enumerate_paths, path_bits
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario
-from simulate.sparse import simulate_sparse
+from qcpp.estimators.fault_tolerant import rotation_t_cost
+from qcpp.gadgets.phase_ising import IsingPhase
+from qcpp.gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
+from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.phase import ROTATION_T_COST, PhasePlan, phase_plan, phase_separator_gates
+from qcpp.problem.cost import cost
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import enumerate_paths, path_bits
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.simulate.sparse import simulate_sparse
 
 from ..gridcover.conftest import scenario_dicts
 from ..gridcover.feasible_cost_test import sweep
@@ -171,7 +171,7 @@ def test_bad_options() -> None:
     seed=st.integers(0, 99),
 )
 def test_random_scenarios(d, target, budget, seed) -> None:  # type: ignore[no-untyped-def]
-    from gridcover.scenario import scenario_from_dict
+    from qcpp.problem.scenario import scenario_from_dict
 
     s = scenario_from_dict(d)
     if any(not enumerate_paths(s, r) for r in range(s.num_robots)):
@@ -222,7 +222,7 @@ def test_visit_gadget_is_exact_with_clean_ancillas(products: bool) -> None:
 @st.composite
 def sums_gadgets(draw: st.DrawFn, max_terms: int = 5, ancillas: int = 60, placed: bool = False) -> SumsPhase:
     """A balance gadget of 1-3 random integer forms; ``placed``: each data qubit also gets a random grid site,
-    and each form a random sink or none (:func:`circuitgen.phase_locality.balance_sinks`)."""
+    and each form a random sink or none (:func:`qcpp.plan.phase_layout.balance_sinks`)."""
     n_forms = draw(st.integers(1, 3))
     qubits = iter(range(64))
     forms = tuple(
@@ -347,8 +347,8 @@ def test_sums_accumulate_gadget(weights: list[int], extra: int, subtract: bool, 
 
 def _every_candidate(s: Scenario, target: str, budget: int | None) -> list[tuple[tuple[str, ...], PhasePlan]]:
     """Every balance choice of ``s``'s feasible plan, assembled (what the plan compares, with no pruning)."""
-    from circuitgen.phase import _assemble, _sums_options
-    from gridcover.feasible_cost import feasible_cost
+    from qcpp.plan.phase import _assemble, _sums_options
+    from qcpp.problem.feasible_cost import feasible_cost
 
     fc = feasible_cost(s)
     balance = [_sums_options(g, fc.num_variables, "cx", budget) for g in fc.sums]
@@ -367,9 +367,9 @@ def _every_candidate(s: Scenario, target: str, budget: int | None) -> list[tuple
 def test_couplings_floor_bounds_the_couplings_plan(d, target, budget) -> None:  # type: ignore[no-untyped-def]
     """The plan skips a candidate whose couplings floor is above a score already met: the floor is below the
     candidate's own score, and the plan picks what comparing every candidate picks."""
-    from circuitgen.phase import _couplings_floor
-    from gridcover.feasible_cost import feasible_cost
-    from gridcover.scenario import scenario_from_dict
+    from qcpp.plan.phase import _couplings_floor
+    from qcpp.problem.feasible_cost import feasible_cost
+    from qcpp.problem.scenario import scenario_from_dict
 
     s = scenario_from_dict(d)
     if any(not enumerate_paths(s, r) for r in range(s.num_robots)):
@@ -384,8 +384,8 @@ def test_couplings_floor_bounds_the_couplings_plan(d, target, budget) -> None:  
 
 def test_couplings_floor_skips_the_couplings_candidate_on_a_default_scenario() -> None:
     """On the default 5x5 / 2 robots the balance's couplings cannot beat its arithmetic: the floor says so."""
-    from circuitgen.phase import _couplings_floor
-    from gridcover.feasible_cost import feasible_cost
+    from qcpp.plan.phase import _couplings_floor
+    from qcpp.problem.feasible_cost import feasible_cost
 
     s = default_scenario(5, 5, 2)
     (arith, a_plan), (coup, c_plan) = _every_candidate(s, "nisq", None)

@@ -1,4 +1,4 @@
-"""The placement search for small circuits (:mod:`circuitgen.placement_search`) and whole-circuit SWAP fusion.
+"""The placement search for small circuits (:mod:`qcpp.layout.placement_search`) and whole-circuit SWAP fusion.
 
 What it must keep: every two-qubit gate on a coupling edge, the routed circuit equal to the unrouted one up to the
 reported layouts (statevector on random circuits; QCEC on 3x3/1 routed onto heavy-hex), the score it ranks by
@@ -14,16 +14,16 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen import placement_search
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import get_device
-from circuitgen.gates import Gate, cx, h, rz
-from circuitgen.hardware import best_layout, compile_for_device
-from circuitgen.options import PlanOptions
-from circuitgen.placement_search import search_route, two_qubit_count
-from circuitgen.routing import RoutedCircuit, coupling_map, route
-from gridcover.presets import default_scenario
+from qcpp.devices.device import get_device
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate, cx, h, rz
+from qcpp.layout import placement_search
+from qcpp.layout.placement_search import search_route, two_qubit_count
+from qcpp.pipeline.device_compile import best_layout, compile_for_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario
+from qcpp.routing.sabre import RoutedCircuit, coupling_map, route
 
 from .routing_qcec_test import aligned
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling
@@ -107,7 +107,7 @@ def test_compile_searches_small_circuits_only(monkeypatch: pytest.MonkeyPatch) -
         calls.append(two_qubit_count(circuit))
         return real(circuit, *args, **kwargs)  # type: ignore[arg-type]
 
-    import circuitgen.hardware as hardware
+    import qcpp.pipeline.device_compile as hardware
 
     monkeypatch.setattr(hardware, "search_route", spy)
     s = default_scenario(2, 3, 1)
@@ -124,8 +124,8 @@ def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypat
     """3x3/1 on the unsized heavy-hex: the search's routing is within 3x the all-to-all CX (#21's goal; one
     SABRE routing from the best layout wrote 354 = 3.34x), and estimate --device reports it exactly, with the
     search redone from scratch (no cached choice)."""
-    from estimators.estimate import DEFAULT_PLAN
-    from estimators.routed import routed_fields
+    from qcpp.estimators.estimate import DEFAULT_PLAN
+    from qcpp.estimators.routed import routed_fields
 
     s = default_scenario(3, 3, 1)
     a2a = compile_scenario(s, 1, lowered=True).circuit.count_ops()["cx"]
@@ -141,7 +141,7 @@ def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypat
 
 @pytest.mark.heavy  # the default run proves searched routings by QCEC in routing_qcec_test (heavy-hex:5, ibm_torino)
 def test_qcec_proves_the_searched_routing_equal_to_the_compiled_circuit() -> None:
-    from simulate.equivalence import check_equivalence
+    from qcpp.simulate.equivalence import check_equivalence
 
     s = default_scenario(3, 3, 1)
     r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND)

@@ -11,20 +11,20 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.circuit import Circuit, Register, Section
-from circuitgen.initial_state import initial_state_gates, superposition_gates
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.phase import phase_separator_gates
-from circuitgen.qaoa import qaoa_circuit, qaoa_plan, qubit_map
-from gridcover.cost import cost
-from gridcover.grid import Grid
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import assignment_bits, enumerate_paths, initial_path, mask_from_bits
-from gridcover.sbf import representatives
-from gridcover.scenario import Objective, Robot, Scenario
-from simulate.sparse import basis_from_bits, simulate_sparse
-from simulate.statevector import simulate_statevector
+from qcpp.gadgets.initial_state import initial_state_gates, superposition_gates
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase import phase_separator_gates
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan, qubit_map
+from qcpp.problem.cost import cost
+from qcpp.problem.grid import Grid
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import assignment_bits, enumerate_paths, initial_path, mask_from_bits
+from qcpp.problem.sbf import representatives
+from qcpp.problem.scenario import Objective, Robot, Scenario
+from qcpp.simulate.sparse import basis_from_bits, simulate_sparse
+from qcpp.simulate.statevector import simulate_statevector
 
 from .conftest import scenarios
 

@@ -1,4 +1,4 @@
-"""Tests for circuitgen.qasm: Qiskit and pytket cross-checks, naming, parameters, atomic writes."""
+"""Tests for qcpp.lowering.qasm: Qiskit and pytket cross-checks, naming, parameters, atomic writes."""
 
 from __future__ import annotations
 
@@ -14,12 +14,12 @@ from hypothesis import given, settings
 from qiskit import QuantumCircuit, transpile
 from qiskit.quantum_info import Operator, Statevector
 
-from circuitgen import gates as G
-from circuitgen.angles import Angle, UnboundParameterError
-from circuitgen.circuit import Circuit, CircuitBuilder, Section
-from circuitgen.gates import Gate, unitary
-from circuitgen.lowering import lower
-from circuitgen.qasm import (
+from qcpp.ir import gates as G
+from qcpp.ir.angles import Angle, UnboundParameterError
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Section
+from qcpp.ir.gates import Gate, unitary
+from qcpp.lowering.passes import lower
+from qcpp.lowering.qasm import (
     CUSTOM_PREFIX,
     QASM_FORMS,
     ir_gate_name,
@@ -29,8 +29,8 @@ from circuitgen.qasm import (
     to_qasm3,
     write_qasm,
 )
-from circuitgen.testing import circuits
-from simulate.statevector import simulate_statevector
+from qcpp.simulate.statevector import simulate_statevector
+from qcpp.testing import circuits
 
 VALUES = {"gamma_0": 0.37, "beta_0": -1.3, "gamma_1": 2.1}
 
@@ -305,8 +305,8 @@ def test_qasm3_mcx_loads_as_one_qiskit_mcx_gate() -> None:
 
 
 def scenario_circuits(rows: int, cols: int, robots: int) -> tuple[Circuit, Circuit]:
-    from circuitgen.compile import compile_scenario
-    from gridcover.presets import default_scenario
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.problem.presets import default_scenario
 
     s = default_scenario(rows, cols, robots)
     values = {"gamma_0": 0.37, "beta_0": -1.3}

@@ -6,11 +6,11 @@ by running states. Ancillas (``logic``, ``work``) are QCEC *ancillary* qubits: t
 state is compared too. ``and`` gates are given QCEC with their IR meaning (the controlled-X permutation), so the
 relative-phase lowering is proven exact only where its contract says (clean target).
 
-Whole 2-robot circuits are proven section by section (:func:`simulate.equivalence.check_sections`): QCEC's
+Whole 2-robot circuits are proven section by section (:func:`qcpp.simulate.equivalence.check_sections`): QCEC's
 whole-circuit check of a 27-qubit circuit ends at its timeout with ``probably_equivalent``, while each section
 takes well under a second. Sections compose because the lowering never moves a gate across a section boundary and
 every block of sections that check_sections compares returns the ancillas to |0> (one section, or the run of
-fused partial-mixer pieces between two clean points: ``tests/circuitgen/mixer_test.py``, ``gadgets_test.py``,
+fused partial-mixer pieces between two clean points: ``tests/qcpp/mixer_test.py``, ``gadgets_test.py``,
 ``junction_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
 """
 
@@ -18,12 +18,12 @@ from __future__ import annotations
 
 import pytest
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.gates import Gate
-from circuitgen.lowering import lower
-from gridcover.presets import default_scenario
-from simulate.equivalence import check_equivalence, check_sections, to_qiskit
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate
+from qcpp.lowering.passes import lower
+from qcpp.plan.compile import compile_scenario
+from qcpp.problem.presets import default_scenario
+from qcpp.simulate.equivalence import check_equivalence, check_sections, to_qiskit
 
 pytest.importorskip("mqt.qcec")
 
@@ -113,7 +113,7 @@ def test_a_changed_angle_is_reported_not_equivalent() -> None:
 
 def test_a_dirty_ancilla_is_caught() -> None:
     """The relative-phase AND is exact only on a clean target: with the target declared a data qubit it is not."""
-    from circuitgen import gates as G
+    from qcpp.ir import gates as G
 
     high = Circuit([("data", 2), ("logic", 1)], [Section("s", [G.and_(0, 1, 2, "10"), G.cx(2, 0)])])
     assert check_equivalence(high, lower(high), num_plain=2).equivalent
@@ -125,8 +125,8 @@ def test_a_dirty_ancilla_is_caught() -> None:
 
 
 def test_to_qiskit_rejects_unknown_gates_and_unbound_symbols() -> None:
-    from circuitgen.angles import Angle
-    from circuitgen.gates import rz
+    from qcpp.ir.angles import Angle
+    from qcpp.ir.gates import rz
 
     with pytest.raises(ValueError, match="future"):
         to_qiskit(Circuit([("q", 1)], [Section("s", [Gate("future", (0,))])]))
@@ -140,7 +140,7 @@ def test_validate_cli_qcec_backend() -> None:
 
     from typer.testing import CliRunner
 
-    from qcpp.cli import app
+    from qcpp.cli.app import app
 
     example = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
     res = CliRunner().invoke(app, ["validate", str(example), "-p", "2", "--backend", "qcec", "--json"])

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import pytest
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.gates import Gate, cx, rz
-from circuitgen.hardware import compile_for_device
-from circuitgen.routing import RoutedCircuit
-from gridcover.presets import default_scenario
-from simulate.equivalence import check_equivalence
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate, cx, rz
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.problem.presets import default_scenario
+from qcpp.routing.sabre import RoutedCircuit
+from qcpp.simulate.equivalence import check_equivalence
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 

@@ -20,24 +20,24 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from qiskit import transpile
 
-from circuitgen.circuit import Circuit, Section
-from circuitgen.compile import compile_scenario
-from circuitgen.devices import DeviceError, device_names, get_device, heavy_hex_qubits, named_device
-from circuitgen.gates import Gate, cx, h, rx, ry
-from circuitgen.hardware import compile_for_device
-from circuitgen.layout import localize_ancillas, place
-from circuitgen.options import PlanOptions
-from circuitgen.routing import RoutedCircuit, esp, route, to_native
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, scenario_from_dict
-from simulate.equivalence import to_qiskit
-from simulate.statevector import simulate_statevector
+from qcpp.devices.device import DeviceError, device_names, get_device, heavy_hex_qubits, named_device
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate, cx, h, rx, ry
+from qcpp.layout.placement import localize_ancillas, place
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.plan.compile import compile_scenario
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.routing.sabre import RoutedCircuit, esp, route, to_native
+from qcpp.simulate.equivalence import to_qiskit
+from qcpp.simulate.statevector import simulate_statevector
 
 BIND = {"gamma_0": 0.37, "beta_0": 0.81}
 
 
 @pytest.mark.parametrize(
-    "module", ["circuitgen.devices", "circuitgen.routing", "circuitgen.layout", "circuitgen.hardware"]
+    "module", ["qcpp.devices.device", "qcpp.routing.sabre", "qcpp.layout.placement", "qcpp.pipeline.device_compile"]
 )
 def test_doctests(module: str) -> None:
     result = doctest.testmod(importlib.import_module(module))
@@ -80,7 +80,7 @@ def test_bad_device_names_are_one_clear_error(bad: str) -> None:
 @pytest.mark.parametrize("name", device_names())
 def test_named_devices_state_source_date_and_consistent_data(name: str) -> None:
     d = named_device(name)
-    raw = json.loads((Path(__file__).resolve().parents[2] / "src/circuitgen/device_data" / f"{name}.json").read_text())
+    raw = json.loads((Path(__file__).resolve().parents[2] / "src/qcpp/devices/data" / f"{name}.json").read_text())
     assert raw["source"] and raw["date"] and d.source == raw["source"]
     assert d.two_qubit_gate in d.native_gates
     assert all(0 <= e < 1 for e in d.error_2q) and all(0 <= e < 1 for e in d.readout_error)
@@ -269,7 +269,7 @@ def test_esp_matches_an_independent_computation_on_qiskits_transpiled_circuit() 
 )
 def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) -> None:
     """Two CX for a SWAP and the CX beside it instead of four, and the circuit is unchanged up to the layouts."""
-    from circuitgen.routing import _assemble
+    from qcpp.routing.sabre import _assemble
 
     logical = Circuit([("data", 3)], [Section("s", gates)])
     windows = ([0] * len(gates), [0] * len(ops))  # one window, as route_windows hands it over
@@ -289,9 +289,9 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
     again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
     routing, and replays the patches the routing saw into PATCH_WATCH."""
-    from circuitgen import routing
-    from circuitgen.layout import distances
-    from circuitgen.routing import PATCH_WATCH, Positions, route_window
+    from qcpp.layout.placement import distances
+    from qcpp.routing import sabre as routing
+    from qcpp.routing.sabre import PATCH_WATCH, Positions, route_window
 
     dev = get_device(data.draw(st.sampled_from(["grid:4x4", "heavy-hex:3"])))
     dist = distances(dev)
@@ -345,7 +345,7 @@ def _window_cx_reference(ops: list) -> int:
 @given(st.lists(st.tuples(st.sampled_from(["cx", "swap"]), st.permutations(range(4)).map(lambda p: tuple(p[:2]))),
                 max_size=14))  # fmt: skip
 def test_window_cx_equals_its_reference(ops: list) -> None:
-    from circuitgen.routing import window_cx
+    from qcpp.routing.sabre import window_cx
 
     assert window_cx(ops) == _window_cx_reference(ops)
 
@@ -359,7 +359,7 @@ def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject)
     from qiskit.transpiler import PassManager
     from qiskit.transpiler.passes import SabreSwap
 
-    from circuitgen.routing import _run_sabre, _sabre_pass, coupling_map
+    from qcpp.routing.sabre import _run_sabre, _sabre_pass, coupling_map
 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
     size = dev.num_qubits

@@ -1,6 +1,6 @@
 """The routed sum over window classes equals what ``compile --device grid`` writes (medial layout).
 
-Each case computes :func:`circuitgen.window_classes.routed_sum`, forgets every routing the process remembers
+Each case computes :func:`qcpp.estimators.window_classes.routed_sum`, forgets every routing the process remembers
 (SABRE's window cache), then compiles the circuit routed on the same device and compares the two-qubit count, the
 one-qubit count, the native gate counts by name and the ESP; the sum's depth and duration must bound the
 circuit's.
@@ -15,21 +15,22 @@ import math
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from circuitgen import medial, routing
-from circuitgen.hardware import compile_for_device
-from circuitgen.options import PlanOptions
-from circuitgen.routing import duration_s, esp
-from circuitgen.testing import interior_endpoints
-from circuitgen.window_classes import routed_sum
-from estimators.counts import count_gates
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario
+from qcpp.estimators.counts import count_gates
+from qcpp.estimators.window_classes import routed_sum
+from qcpp.layout import medial
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.routing import sabre as routing
+from qcpp.routing.sabre import duration_s, esp
+from qcpp.testing import interior_endpoints
 
 from .conftest import scenarios
 
 
 def test_doctests() -> None:
-    result = doctest.testmod(importlib.import_module("circuitgen.window_classes"))
+    result = doctest.testmod(importlib.import_module("qcpp.estimators.window_classes"))
     assert result.attempted and not result.failed
 
 
@@ -106,7 +107,7 @@ def test_routed_sum_equals_compile_on_more_random_scenarios(s: Scenario) -> None
     "shape", [(3, 10, 1), pytest.param((10, 10, 1), marks=pytest.mark.heavy)], ids=["3x10/1", "10x10/1"]
 )
 def test_windows_sharing_a_class_route_as_compile_routes_each(shape: tuple[int, int, int]) -> None:
-    from circuitgen.window_classes import ROUTED_CLASSES
+    from qcpp.estimators.window_classes import ROUTED_CLASSES
 
     ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
     s = default_scenario(*shape)
@@ -141,7 +142,7 @@ def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: 
 
 
 def test_windows_over_the_whole_device_budget_are_bounded() -> None:
-    from circuitgen.window_classes import ROUTED_CLASSES
+    from qcpp.estimators.window_classes import ROUTED_CLASSES
 
     s = default_scenario(3, 3, 2)
     exact = routed_sum(s, 1)

@@ -1,6 +1,6 @@
 """The routed-window memo up to the heavy-hex lattice's translations, and the cells' plan-choice memos, change no
-answer (:class:`circuitgen.routing._Lattice`, :func:`circuitgen.routing.route_window`,
-:func:`circuitgen.cellmixer.cell_mixers`).
+answer (:class:`qcpp.routing.sabre._Lattice`, :func:`qcpp.routing.sabre.route_window`,
+:func:`qcpp.pipeline.cellmixer.cell_mixers`).
 
 Evidence: a window routed after its translation was memoised gives the ops, patches and whole-component count of
 the same window routed from a cold memo, on random windows and translations of a heavy-hex lattice (interior and
@@ -15,13 +15,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen import cellmixer, medial, routing
-from circuitgen.devices import get_device, heavy_hex_coordinates
-from circuitgen.gadgets.partial_mixer import plan_parity_mixer
-from circuitgen.hardware import compile_for_device
-from circuitgen.layout import distances
-from circuitgen.routing import PATCH_WATCH, Positions, route_window
-from gridcover.presets import default_scenario
+from qcpp.devices.device import get_device, heavy_hex_coordinates
+from qcpp.gadgets.partial_mixer import plan_parity_mixer
+from qcpp.layout import medial
+from qcpp.layout.placement import distances
+from qcpp.pipeline import cellmixer
+from qcpp.pipeline.device_compile import compile_for_device
+from qcpp.problem.presets import default_scenario
+from qcpp.routing import sabre as routing
+from qcpp.routing.sabre import PATCH_WATCH, Positions, route_window
 
 DEVICE = get_device("heavy-hex:13")
 DIST = distances(DEVICE)
@@ -131,7 +133,7 @@ def test_a_patch_routing_reads_sabre_as_the_pass_writes_it(data: st.DataObject) 
     from qiskit.transpiler import PassManager
     from qiskit.transpiler.passes import SabreSwap
 
-    from circuitgen.routing import _sabre_local, coupling_map
+    from qcpp.routing.sabre import _sabre_local, coupling_map
 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
     size = dev.num_qubits

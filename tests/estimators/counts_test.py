@@ -11,13 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from qiskit import QuantumCircuit
 
-from circuitgen.circuit import Circuit, CircuitBuilder, Register, Section
-from circuitgen.gates import ccx, cx, h, rz, t, tdg, x
-from circuitgen.lowering import lower
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.qasm import ir_gate_name, to_qasm2
-from estimators.counts import count, count_gates
-from gridcover.presets import default_scenario
+from qcpp.estimators.counts import count, count_gates
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Register, Section
+from qcpp.ir.gates import ccx, cx, h, rz, t, tdg, x
+from qcpp.lowering.passes import lower
+from qcpp.lowering.qasm import ir_gate_name, to_qasm2
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
 
 
 def two_qubit_depth(qc: QuantumCircuit) -> int:

@@ -7,14 +7,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from circuitgen.circuit import Register
-from circuitgen.cost import Cost
-from circuitgen.options import DEFAULT_PLAN, PlanOptions
-from circuitgen.phase_classes import phase_layer
-from circuitgen.qaoa import qaoa_plan
-from circuitgen.testing import crosscheck_cases, with_obstacles
-from estimators.depth import Depth, depths
-from estimators.depth_compose import (
+from qcpp.estimators.depth import Depth, depths
+from qcpp.estimators.depth_compose import (
     LayeredDepth,
     MatrixStep,
     anchored_profile,
@@ -22,7 +16,7 @@ from estimators.depth_compose import (
     lowered_gates,
     transfer_profile,
 )
-from estimators.estimate import (
+from qcpp.estimators.estimate import (
     EstimateOptions,
     _arithmetic_depth_bound,
     compiled_depth,
@@ -31,9 +25,15 @@ from estimators.estimate import (
     exact_depth,
     layer_costs,
 )
-from gridcover.errors import ScenarioError
-from gridcover.presets import default_scenario, max_default_robots
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.ir.circuit import Register
+from qcpp.ir.cost import Cost
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
+from qcpp.plan.phase_classes import phase_layer
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.presets import default_scenario, max_default_robots
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.testing import crosscheck_cases, with_obstacles
 
 OPTIONS = [
     PlanOptions(),
@@ -264,9 +264,9 @@ def test_depth_of_an_empty_circuit() -> None:
 
 # --- every registered gadget example -------------------------------------------------------------------------------
 def test_own_depth_of_every_registered_gadget_example_is_its_lowered_depth() -> None:
-    from circuitgen.call_graph import Deferred, GadgetKind
-    from circuitgen.gadgets.examples import gadget_examples
-    from circuitgen.lowering import WORK_REGISTER
+    from qcpp.lowering.passes import WORK_REGISTER
+    from qcpp.plan.call_graph import Deferred, GadgetKind
+    from qcpp.plan.gadget_examples import gadget_examples
 
     for label, g in gadget_examples():
         gadget = g.build() if isinstance(g, Deferred) else g

@@ -4,15 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from circuitgen.cost import Cost
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.testing import Case, crosscheck_cases, with_obstacles
-from estimators.counts import count
-from estimators.crosscheck import crosscheck
-from estimators.depth import Depth, depths
-from estimators.estimate import (
+from qcpp.estimators.counts import count
+from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.depth import Depth, depths
+from qcpp.estimators.estimate import (
     EstimateOptions,
     Point,
     depth_bound,
@@ -21,8 +16,13 @@ from estimators.estimate import (
     layer_costs,
     registers_for,
 )
-from gridcover.errors import ScenarioError
-from gridcover.presets import default_scenario
+from qcpp.ir.cost import Cost
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.presets import default_scenario
+from qcpp.testing import Case, crosscheck_cases, with_obstacles
 
 
 @pytest.mark.parametrize("case", list(crosscheck_cases()), ids=lambda c: c.label)

@@ -8,13 +8,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from circuitgen.circuit import CircuitBuilder
-from circuitgen.cost import Cost
-from circuitgen.gates import mcx
-from circuitgen.lowering import LOGICAL_BASIS, lower
-from circuitgen.qaoa import qaoa_circuit
-from estimators.fault_tolerant import fault_tolerant_from_cost, rotation_t_cost
-from gridcover.presets import default_scenario
+from qcpp.estimators.fault_tolerant import fault_tolerant_from_cost, rotation_t_cost
+from qcpp.ir.circuit import CircuitBuilder
+from qcpp.ir.cost import Cost
+from qcpp.ir.gates import mcx
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
 
 
 def test_mcx_into_a_clean_bit_costs_ands_and_one_toffoli() -> None:

@@ -4,7 +4,7 @@ The formulas describe the circuit with the whole-space (Ising) phase separator (
 default feasible-subspace phase separator has no closed form here. They are the call graph's counting run with
 symbolic sides; the phase separator's symbolic term counts are also checked against the Hamiltonian directly.
 Every grid from 2x2 to 8x8 (rectangles included) with 1 to 4 robots at p = 1, and p = 2, 3 on a subset. The
-exact numbers are the gadget-summed counts of :func:`estimators.estimate.estimate_point` (themselves equal to
+exact numbers are the gadget-summed counts of :func:`qcpp.estimators.estimate.estimate_point` (themselves equal to
 the counts of the compiled, lowered circuit: ``tests/estimators/estimate_test.py``), the Hamiltonian and the
 registers, never the formulas.
 """
@@ -14,15 +14,15 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit
-from estimators import formulas
-from estimators.estimate import Estimate, EstimateOptions, estimate_point
-from estimators.formulas import GATE_NAMES, QUANTITIES, evaluate, formula_table
-from estimators.sweep import grid_points
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import initial_path
-from gridcover.presets import default_scenario, max_default_robots
+from qcpp.estimators import formulas
+from qcpp.estimators.estimate import Estimate, EstimateOptions, estimate_point
+from qcpp.estimators.formulas import GATE_NAMES, QUANTITIES, evaluate, formula_table
+from qcpp.estimators.sweep import grid_points
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import initial_path
+from qcpp.problem.presets import default_scenario, max_default_robots
 
 GRIDS = [(r, c) for r in range(2, 9) for c in range(2, 9)]
 SUBSET = [(2, 2), (2, 5), (3, 3), (4, 6), (5, 4), (6, 2)]

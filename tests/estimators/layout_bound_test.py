@@ -7,15 +7,15 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from circuitgen.devices import get_device
-from circuitgen.hardware import layout_device
-from circuitgen.layout import distances
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import for_device
-from circuitgen.qaoa import qaoa_plan
-from estimators.layout_bound import gate_distances, hex_path_lengths, layout_twoq_bound, section_charges
-from gridcover.presets import default_scenario
+from qcpp.devices.device import get_device
+from qcpp.estimators.layout_bound import gate_distances, hex_path_lengths, layout_twoq_bound, section_charges
+from qcpp.layout.placement import distances
+from qcpp.lowering.passes import lower
+from qcpp.pipeline.device_compile import layout_device
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario
 
 
 def _all_pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -60,8 +60,8 @@ def test_later_layers_cost_what_the_first_costs(shape: tuple[int, int, int], dev
     s = default_scenario(*shape)
     dev = layout_device(s, device)
     assert dev is not None
-    from circuitgen.hexlayout import CELL_PHASE_LAYOUT
-    from circuitgen.medial import medial_placement
+    from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT
+    from qcpp.layout.medial import medial_placement
 
     plan = for_device(PlanOptions(), dev)
     if device == "heavy-hex":
@@ -77,12 +77,12 @@ def test_later_layers_cost_what_the_first_costs(shape: tuple[int, int, int], dev
 def test_every_section_gets_distinct_free_qubits_for_its_ancillas(monkeypatch: pytest.MonkeyPatch) -> None:
     """The placement the charges use: data at their homes, ancillas on qubits no data qubit and no other ancilla
     of the section holds, each gate charged 1 + 6 (d - 1) at its distance there."""
-    from estimators import layout_bound
+    from qcpp.estimators import layout_bound
 
     s = default_scenario(3, 3, 2)
     dev = layout_device(s, "grid")
     assert dev is not None
-    from circuitgen.medial import medial_placement
+    from qcpp.layout.medial import medial_placement
 
     homes = medial_placement(s, dev)
     assert homes is not None
@@ -150,9 +150,9 @@ def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
 ) -> None:
     """Built gate by gate from the placement (an independent shortest-path routine), the routing the bound
     describes is valid and costs exactly the bound on a grid, at most it on heavy-hex (path lengths)."""
-    from circuitgen.hexlayout import CELL_PHASE_LAYOUT
-    from circuitgen.medial import medial_placement
-    from estimators import layout_bound
+    from qcpp.estimators import layout_bound
+    from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT
+    from qcpp.layout.medial import medial_placement
 
     s = default_scenario(*shape)
     dev = layout_device(s, device)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from estimators.paper import paper_estimate, paper_partial_mixer, toffoli_decomposition
+from qcpp.estimators.paper import paper_estimate, paper_partial_mixer, toffoli_decomposition
 
 
 def test_toffoli_decomposition_follows_barenco_4_l_minus_2() -> None:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from estimators.estimate import EstimateOptions, Point, estimate_point
-from estimators.physical import (
+from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.estimators.physical import (
     QEC_SCHEMES,
     QUBIT_MODELS,
     LogicalCounts,

@@ -1,7 +1,7 @@
 """Estimate == compiled circuit for every plan option a user can pass, on obstacles and interior endpoints.
 
-The estimate (:func:`estimators.estimate.estimate_point`) and the compiled circuit take the same
-:class:`~circuitgen.options.PlanOptions`; :func:`estimators.crosscheck.crosscheck` compares qubits, registers,
+The estimate (:func:`qcpp.estimators.estimate.estimate_point`) and the compiled circuit take the same
+:class:`~qcpp.plan.options.PlanOptions`; :func:`qcpp.estimators.crosscheck.crosscheck` compares qubits, registers,
 gate counts (whole circuit, per part, logical) and exact depths.
 """
 
@@ -11,14 +11,14 @@ import dataclasses
 
 import pytest
 
-from circuitgen.lowering import lower
-from circuitgen.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.testing import Case, every_plan_option, interior_endpoints
-from estimators.counts import count
-from estimators.crosscheck import crosscheck
-from estimators.estimate import EstimateOptions, Point, estimate_point
-from gridcover.presets import default_scenario
+from qcpp.estimators.counts import count
+from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
+from qcpp.testing import Case, every_plan_option, interior_endpoints
 
 ALL = list(every_plan_option())
 

@@ -8,18 +8,19 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from circuitgen import medial, routing
-from circuitgen.devices import get_device
-from circuitgen.hardware import compile_for_device, layout_device
-from circuitgen.layout import distances
-from circuitgen.options import PlanOptions
-from circuitgen.phase_locality import for_device
-from circuitgen.qaoa import qaoa_plan
-from circuitgen.routing import esp
-from estimators import layout_bound, routed
-from estimators.layout_bound import layout_twoq_bound
-from estimators.routed import diameter_bound, routed_fields
-from gridcover.presets import default_scenario
+from qcpp.devices.device import get_device
+from qcpp.estimators import layout_bound, routed
+from qcpp.estimators.layout_bound import layout_twoq_bound
+from qcpp.estimators.routed import diameter_bound, routed_fields
+from qcpp.layout import medial
+from qcpp.layout.placement import distances
+from qcpp.pipeline.device_compile import compile_for_device, layout_device
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.presets import default_scenario
+from qcpp.routing import sabre as routing
+from qcpp.routing.sabre import esp
 
 
 def _fields(s, p, device, **kw):  # type: ignore[no-untyped-def]

@@ -6,9 +6,9 @@ import itertools
 
 import pytest
 
-from estimators import estimate as estimate_mod
-from estimators.estimate import Point, estimate_point
-from estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
+from qcpp.estimators import estimate as estimate_mod
+from qcpp.estimators.estimate import Point, estimate_point
+from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
 
 
 def test_parse_grid_range() -> None:
@@ -47,7 +47,7 @@ def test_sweep_is_lazy_and_in_order(monkeypatch: pytest.MonkeyPatch) -> None:
         seen.append(pt)
         return real(pt, options)
 
-    monkeypatch.setattr("estimators.sweep.estimate_point", spy)
+    monkeypatch.setattr("qcpp.estimators.sweep.estimate_point", spy)
     pts = grid_points([(2, 3), (3, 3)], [1, 2], [1, 2])
     stream = sweep(pts)
     first = list(itertools.islice(stream, 2))
@@ -71,7 +71,7 @@ def test_sweep_equals_single_points() -> None:
 def test_the_sweep_restores_the_collectors_thresholds_when_done_or_closed() -> None:
     import gc
 
-    from estimators.sweep import SWEEP_GC_THRESHOLD
+    from qcpp.estimators.sweep import SWEEP_GC_THRESHOLD
 
     before = gc.get_threshold()
     rows = sweep(grid_points([(2, 2), (3, 3)], [1], [1]))

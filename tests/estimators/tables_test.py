@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from estimators.estimate import EstimateOptions, Point, estimate_point
-from estimators.paper import paper_estimate
-from estimators.plots import plot_rows
-from estimators.tables import FORMATS, MAIN_COLUMNS, make_row, make_rows, render, render_stream
+from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.estimators.paper import paper_estimate
+from qcpp.estimators.plots import plot_rows
+from qcpp.estimators.tables import FORMATS, MAIN_COLUMNS, make_row, make_rows, render, render_stream
 
 REQUIRED = {
     "rows", "cols", "robots", "p", "rule", "target", "qubits", "data_qubits", "ancillas", "gates", "cx",
@@ -107,7 +107,7 @@ def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
 
 def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     path = tmp_path / "sub" / "plot.png"
-    path.parent.mkdir()  # output folders are never created (qcppio.atomic)
+    path.parent.mkdir()  # output folders are never created (qcpp.io.atomic)
     assert plot_rows(make_rows(results), path) == str(path)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert [p.name for p in path.parent.iterdir()] == ["plot.png"]  # no temporary file left behind

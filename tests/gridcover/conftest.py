@@ -1,4 +1,4 @@
-"""Shared fixtures of the gridcover tests: a scenario factory and a hypothesis strategy of valid scenarios.
+"""Shared fixtures of the qcpp.problem tests: a scenario factory and a hypothesis strategy of valid scenarios.
 
 Helpers are handed out as session-scoped fixtures (not imported from this file), so they work with
 ``@given`` tests (hypothesis only objects to function-scoped fixtures) and never clash with other packages'
@@ -14,8 +14,8 @@ from typing import Any
 import pytest
 from hypothesis import strategies as st
 
-from gridcover.grid import Grid, Node
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.problem.grid import Grid, Node
+from qcpp.problem.scenario import Scenario, scenario_from_dict
 
 
 def make_scenario(
@@ -38,7 +38,7 @@ def make_scenario(
 
 
 def _free_components(rows: int, cols: int, blocked: set[Node]) -> list[list[Node]]:
-    """Connected components of the obstacle-free nodes (4-neighbour BFS written here, not gridcover's)."""
+    """Connected components of the obstacle-free nodes (4-neighbour BFS written here, not qcpp.problem's)."""
     seen: set[Node] = set()
     comps = []
     for r in range(rows):

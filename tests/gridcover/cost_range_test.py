@@ -1,4 +1,4 @@
-"""gridcover.cost_range: every numeric field, every solver: one ScenarioError naming the field outside the range,
+"""qcpp.problem.cost_range: every numeric field, every solver: one ScenarioError naming the field outside the range,
 a clean run (no warnings, no MODEL_INVALID) at the edge of it."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import cost_parts
-from gridcover.cost_range import (
+from qcpp.problem.cost import cost_parts
+from qcpp.problem.cost_range import (
     COST_LIMIT,
     MIN_WEIGHT,
     check_cost_range,
@@ -20,10 +20,10 @@ from gridcover.cost_range import (
     largest_allowed,
     weight_fields,
 )
-from gridcover.errors import ScenarioError
-from gridcover.paths import enumerate_paths
-from gridcover.scenario import Scenario, scenario_from_dict
-from gridcover.solvers import anneal, cpsat, dfs, genetic
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.solvers import anneal, cpsat, dfs, genetic
 
 BASE: dict[str, Any] = {
     "grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},

@@ -13,7 +13,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import (
+from qcpp.problem.cost import (
     CostParts,
     balanced_pairs,
     cost,
@@ -22,9 +22,9 @@ from gridcover.cost import (
     quadratic_cost,
     separable_cost,
 )
-from gridcover.grid import Node
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import (
+from qcpp.problem.grid import Node
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import (
     assignment_bits,
     assignment_from_bits,
     edges_of,
@@ -36,8 +36,8 @@ from gridcover.paths import (
     paths_matrix,
     shortest_path,
 )
-from gridcover.sbf import allowed_moves
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.sbf import allowed_moves
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

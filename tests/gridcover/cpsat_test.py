@@ -12,12 +12,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import cost_parts
-from gridcover.paths import enumerate_paths, is_feasible
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers import SOLVERS, CpSatResult, cpsat, dfs, solve
-from gridcover.solvers.cpsat import exact_rational, scenario_symmetries
+from qcpp.problem.cost import cost_parts
+from qcpp.problem.paths import enumerate_paths, is_feasible
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers import SOLVERS, CpSatResult, cpsat, dfs, solve
+from qcpp.problem.solvers.cpsat import exact_rational, scenario_symmetries
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

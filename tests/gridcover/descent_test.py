@@ -1,4 +1,4 @@
-"""Steepest descent over SBF moves (gridcover.solvers.descent): checked against the cost's own evaluator."""
+"""Steepest descent over SBF moves (qcpp.problem.solvers.descent): checked against the cost's own evaluator."""
 
 from __future__ import annotations
 
@@ -8,17 +8,17 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import cost
-from gridcover.paths import initial_path, is_feasible
-from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers.descent import local_search
-from gridcover.solvers.moves import MoveSpace
+from qcpp.problem.cost import cost
+from qcpp.problem.paths import initial_path, is_feasible
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers.descent import local_search
+from qcpp.problem.solvers.moves import MoveSpace
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def reference_descent(s: Scenario) -> tuple[tuple[int, ...], float]:
-    """The same descent written plainly: every neighbour scored by ``gridcover.cost.cost``."""
+    """The same descent written plainly: every neighbour scored by ``qcpp.problem.cost.cost``."""
     space = MoveSpace(s, "exact", "initial")
     paths = tuple(initial_path(s, r) for r in range(s.num_robots))
     current = cost(s, paths)

@@ -22,11 +22,11 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.errors import ScenarioError
-from gridcover.grid import Grid, Node, node_symmetries
-from gridcover.paths import enumerate_paths, initial_path, is_feasible
-from gridcover.sbf import move_components, reachable_paths, representatives, sbf_logic
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid, Node, node_symmetries
+from qcpp.problem.paths import enumerate_paths, initial_path, is_feasible
+from qcpp.problem.sbf import move_components, reachable_paths, representatives, sbf_logic
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 NOTES = ROOT / "docs" / "paper-notes.md"

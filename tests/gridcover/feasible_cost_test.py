@@ -15,11 +15,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import cost_parts_bits
-from gridcover.feasible_cost import feasible_cost, live_edges
-from gridcover.paths import enumerate_paths, path_bits
-from gridcover.presets import default_scenario
-from gridcover.scenario import Scenario
+from qcpp.problem.cost import cost_parts_bits
+from qcpp.problem.feasible_cost import feasible_cost, live_edges
+from qcpp.problem.paths import enumerate_paths, path_bits
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
 
 from .conftest import make_scenario
 
@@ -27,7 +27,7 @@ TOL = 1e-8
 
 
 def sweep() -> list[Scenario]:
-    """The sweep shared with ``tests/circuitgen/phase_test.py``: grids up to 4x4, 1-3 robots, both obstacle
+    """The sweep shared with ``tests/qcpp/phase_test.py``: grids up to 4x4, 1-3 robots, both obstacle
     modes, both balance modes, both degree-target modes, non-default weights and lengths."""
     out = [default_scenario(r, c, k) for r, c, k in [(2, 2, 1), (3, 3, 1), (3, 3, 2), (3, 4, 2), (4, 4, 2), (4, 4, 3)]]
     robots3 = [((0, 0), (3, 3)), ((0, 3), (3, 0)), ((1, 2), (3, 3))]
@@ -75,7 +75,7 @@ def test_dead_variables_are_never_used(s: Scenario) -> None:
 def test_docstring_examples() -> None:
     import doctest
 
-    import gridcover.feasible_cost as mod
+    import qcpp.problem.feasible_cost as mod
 
     result = doctest.testmod(mod)
     assert result.attempted > 0 and result.failed == 0

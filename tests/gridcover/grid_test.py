@@ -8,7 +8,7 @@ import itertools
 import networkx as nx
 import pytest
 
-from gridcover.grid import Grid
+from qcpp.problem.grid import Grid
 
 SIZES = [(r, c) for r in range(1, 7) for c in range(1, 7)]
 

@@ -12,9 +12,9 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import QuadraticCost, cost_parts_bits
-from gridcover.hamiltonian import IsingHamiltonian, ising_from_quadratic, ising_hamiltonian
-from gridcover.scenario import Scenario
+from qcpp.problem.cost import QuadraticCost, cost_parts_bits
+from qcpp.problem.hamiltonian import IsingHamiltonian, ising_from_quadratic, ising_hamiltonian
+from qcpp.problem.scenario import Scenario
 
 
 def symbolic_cost(s: Scenario, xs: list[sp.Symbol]) -> sp.Expr:

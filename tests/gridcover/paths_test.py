@@ -11,8 +11,8 @@ import networkx as nx
 import numpy as np
 import pytest
 
-from gridcover.grid import Grid, Node
-from gridcover.paths import (
+from qcpp.problem.grid import Grid, Node
+from qcpp.problem.paths import (
     assignment_bits,
     assignment_from_bits,
     edges_of,

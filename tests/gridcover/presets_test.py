@@ -6,9 +6,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from gridcover.errors import ScenarioError
-from gridcover.paths import initial_path, is_feasible
-from gridcover.presets import boundary_nodes, default_scenario, max_default_robots
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.paths import initial_path, is_feasible
+from qcpp.problem.presets import boundary_nodes, default_scenario, max_default_robots
 
 
 def test_one_to_four_robots_keep_the_corner_placement() -> None:

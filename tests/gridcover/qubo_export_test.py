@@ -1,4 +1,4 @@
-"""Exports of the QUBO (gridcover.qubo_export): every format read back gives the model's energies."""
+"""Exports of the QUBO (qcpp.qubo.export): every format read back gives the model's energies."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ import json
 import numpy as np
 import pytest
 
-from gridcover.presets import default_scenario
-from gridcover.qubo import best_auxiliaries, paper_bqm, per_robot_bqm
-from gridcover.qubo_export import EXPORT_FORMATS, export_text, mip_name
-from gridcover.solvers import dfs
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.solvers import dfs
+from qcpp.qubo.export import EXPORT_FORMATS, export_text, mip_name
+from qcpp.qubo.model import best_auxiliaries, paper_bqm, per_robot_bqm
 
 
 def _random_rows(n: int, seed: int = 0) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The QUBO solver pipeline (gridcover.qubo_solve): cycle dropping, the annealers, the missing-package message."""
+"""The QUBO solver pipeline (qcpp.qubo.solve): cycle dropping, the annealers, the missing-package message."""
 
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ import sys
 
 import pytest
 
-from gridcover.paths import initial_path, path_from_nodes
-from gridcover.presets import default_scenario
-from gridcover.qubo_solve import INSTALL_HINT, MissingAnnealer, drop_cycles, require_annealer, solve_qubo
-from gridcover.scenario import load_scenario
-from gridcover.solvers import cpsat
+from qcpp.problem.paths import initial_path, path_from_nodes
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import cpsat
+from qcpp.qubo.solve import INSTALL_HINT, MissingAnnealer, drop_cycles, require_annealer, solve_qubo
 
 
 def test_drop_cycles_keeps_the_path_and_refuses_wrong_degrees() -> None:

@@ -1,4 +1,4 @@
-"""The QUBO forms (gridcover.qubo): energies against the cost, the penalty rule, the paper form's defect.
+"""The QUBO forms (qcpp.qubo.model): energies against the cost, the penalty rule, the paper form's defect.
 
 Exhaustive where the grids are small enough (every bit string, every feasible assignment), hypothesis on random
 scenarios and bit strings otherwise; CP-SAT's proven optimum where the grids are bigger.
@@ -14,11 +14,13 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.cost import cost, cost_parts_bits
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import assignment_bits, enumerate_paths, is_feasible
-from gridcover.presets import default_scenario
-from gridcover.qubo import (
+from qcpp.problem.cost import cost, cost_parts_bits
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import assignment_bits, enumerate_paths, is_feasible
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers import cpsat, dfs
+from qcpp.qubo.model import (
     RULE_MARGIN,
     best_auxiliaries,
     bqm_for,
@@ -31,8 +33,6 @@ from gridcover.qubo import (
     to_ising,
     visit_label,
 )
-from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers import cpsat, dfs
 
 EXAMPLES = "examples"
 
@@ -45,7 +45,7 @@ def all_bits(n: int, chunk: int = 1 << 14) -> Any:
 
 
 def reference_penalty(s: Scenario, x: np.ndarray) -> np.ndarray:
-    """Sum over robots and nodes of the smallest degree penalty, from the definition (not gridcover.qubo)."""
+    """Sum over robots and nodes of the smallest degree penalty, from the definition (not qcpp.qubo.model)."""
     g = s.grid
     v = s.edges_per_robot
     x = np.atleast_2d(x)
@@ -273,7 +273,7 @@ def test_the_paper_qubo_defect_smallest_counterexample(build: Any) -> None:
 def test_the_paper_qubo_ground_state_is_infeasible_on_two_robots_4x4() -> None:
     """The issue's measurement: tabu search on the paper QUBO finds energy -10, below the optimum -2, infeasible."""
     pytest.importorskip("dwave.samplers")
-    from gridcover.qubo_solve import sample_bqm
+    from qcpp.qubo.solve import sample_bqm
 
     s = load_scenario(f"{EXAMPLES}/two_robots_4x4.toml")
     m = paper_bqm(s)
@@ -285,7 +285,7 @@ def test_the_paper_qubo_ground_state_is_infeasible_on_two_robots_4x4() -> None:
     assert not all(is_feasible(s, r, mask) for r, mask in enumerate(masks))
 
 
-@pytest.mark.parametrize("name", ["gridcover.qubo", "gridcover.qubo_export", "gridcover.qubo_solve"])
+@pytest.mark.parametrize("name", ["qcpp.qubo.model", "qcpp.qubo.export", "qcpp.qubo.solve"])
 def test_docstring_examples(name: str) -> None:
     import doctest
     import importlib
@@ -297,8 +297,8 @@ def test_docstring_examples(name: str) -> None:
 def test_a_path_plus_a_separate_cycle_can_beat_the_optimum(build: Any) -> None:
     """What degree penalties cannot see: robot 0's path plus a cycle has right degrees everywhere and costs less
     than the feasible optimum (found by enumerating every bit string of 2x4 grids with two robots). The cycle
-    lengthens robot 0 to balance robot 1 and covers nodes; decoders drop it (gridcover.qubo_solve.drop_cycles)."""
-    from gridcover.qubo_solve import drop_cycles
+    lengthens robot 0 to balance robot 1 and covers nodes; decoders drop it (qcpp.qubo.solve.drop_cycles)."""
+    from qcpp.qubo.solve import drop_cycles
 
     s = build(2, 4, [((0, 0), (0, 1)), ((0, 1), (0, 0))])
     m = per_robot_bqm(s)
@@ -316,7 +316,7 @@ def test_a_path_plus_a_separate_cycle_can_beat_the_optimum(build: Any) -> None:
 def test_the_rule_holds_on_random_objectives(data: st.DataObject, scenario_dict_strategy: Any) -> None:
     """The rule's bound over every bit string, for random weights, lengths, obstacles (soft and hard), balance and
     degree-target modes (non-negative alpha1, alpha2, as the rule requires)."""
-    from gridcover.scenario import scenario_from_dict
+    from qcpp.problem.scenario import scenario_from_dict
 
     d = data.draw(scenario_dict_strategy(min_size=2, max_size=3, max_robots=2))
     d["objective"]["alpha"] = [d["objective"]["alpha"][0], *(abs(a) for a in d["objective"]["alpha"][1:])]

@@ -6,7 +6,7 @@ images). Unordered pairs suffice: a path is an undirected edge set, so (s, g) an
 feasible paths, and both rules read the endpoints only as a set -- ``test_rules_ignore_the_direction``
 checks this for every pair instead of assuming it.
 
-For speed each compiled :class:`~gridcover.sbf.SbfLogic` program is run once per plaquette on a numpy bit
+For speed each compiled :class:`~qcpp.problem.sbf.SbfLogic` program is run once per plaquette on a numpy bit
 matrix of all paths (``run_program``; checked against ``SbfLogic.evaluate``). Whether a flip is feasible is
 looked up in the set of enumerated paths (``enumerate_paths`` equals networkx's simple paths, see
 paths_test).
@@ -15,7 +15,7 @@ Claims checked here and quoted in docs/paper-notes.md:
 
 * ``exact`` is sound (never allows a flip that leaves the feasible set) and complete except for the
   two-opposite-edges pattern; the feasible flips it misses are all of that pattern;
-* ``exact``'s compiled network equals its specification :func:`~gridcover.sbf.exact_rule_value`;
+* ``exact``'s compiled network equals its specification :func:`~qcpp.problem.sbf.exact_rule_value`;
 * ``paper`` is unsound exactly when one of the robot's endpoints is a corner without plaquette edges (the
   flip gives it two more edges); it misses every feasible opposite-edges flip;
 * no local rule can be exact on the opposite-edges pattern: two paths with identical neighbourhoods, one
@@ -38,10 +38,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gridcover.errors import ScenarioError
-from gridcover.grid import Grid, Node, Plaquette
-from gridcover.paths import enumerate_paths, is_feasible
-from gridcover.sbf import (
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid, Node, Plaquette
+from qcpp.problem.paths import enumerate_paths, is_feasible
+from qcpp.problem.sbf import (
     RULES,
     SbfLogic,
     allowed_moves,
@@ -51,7 +51,7 @@ from gridcover.sbf import (
     reachable_paths,
     sbf_logic,
 )
-from gridcover.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
 
 NOTES = Path(__file__).resolve().parents[2] / "docs" / "paper-notes.md"
 

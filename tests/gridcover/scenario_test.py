@@ -13,9 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gridcover.errors import ScenarioError
-from gridcover.grid import Grid
-from gridcover.scenario import (
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid
+from qcpp.problem.scenario import (
     Objective,
     Robot,
     Scenario,

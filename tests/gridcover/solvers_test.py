@@ -11,11 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gridcover.cost import cost, cost_parts
-from gridcover.paths import enumerate_paths, initial_path, is_feasible, path_to_nodes
-from gridcover.sbf import move_components
-from gridcover.scenario import Scenario, load_scenario
-from gridcover.solvers import SOLVERS, anneal, dfs, genetic, solution_to_dict, solve
+from qcpp.problem.cost import cost, cost_parts
+from qcpp.problem.paths import enumerate_paths, initial_path, is_feasible, path_to_nodes
+from qcpp.problem.sbf import move_components
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers import SOLVERS, anneal, dfs, genetic, solution_to_dict, solve
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

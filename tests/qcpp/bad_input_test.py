@@ -19,11 +19,11 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import qcppio.atomic
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.qasm import to_qasm3
-from gridcover.scenario import load_scenario
-from qcpp.cli import app
+import qcpp.io.atomic
+from qcpp.cli.app import app
+from qcpp.lowering.qasm import to_qasm3
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.scenario import load_scenario
 
 from .clirun import run
 
@@ -36,7 +36,7 @@ LINK_TARGET_TEXT = "previous content\n"
 def scratch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """A folder of odd files, made the working directory; FIFO writers give up after 0.2 s."""
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 0.2)
+    monkeypatch.setattr(qcpp.io.atomic, "FIFO_WAIT", 0.2)
     monkeypatch.setenv("QCPP_CACHE_DIR", str(tmp_path / "cache"))
     shutil.copy(EXAMPLE, tmp_path / "ex.toml")
     (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + EXAMPLE.read_bytes())
@@ -208,7 +208,7 @@ def test_symlink_is_followed_and_stays_a_link(scratch: Path) -> None:
 
 def test_devices_and_fifos_are_written_straight_to(scratch: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     # the reader thread may be slow to open the FIFO on a loaded machine: wait for it as long as it takes
-    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 600.0)
+    monkeypatch.setattr(qcpp.io.atomic, "FIFO_WAIT", 600.0)
     assert run("compile", EX, "--qasm", "/dev/null").exit_code == 0
     assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
     received: list[bytes] = []
@@ -250,7 +250,7 @@ def test_standard_output_on_a_full_disk_is_one_line(tmp_path: Path) -> None:
 
 
 def test_a_check_that_did_not_run_never_reports_passed(scratch: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import simulate.validate as sv
+    import qcpp.simulate.validate as sv
 
     real = sv.validate
 

@@ -1,4 +1,4 @@
-"""Every choice option of every command (``qcpp.cli.CHOICES``) refuses a value outside its choices before the
+"""Every choice option of every command (``qcpp.cli.app.CHOICES``) refuses a value outside its choices before the
 command runs, in one line naming the flag, the choices and the value (exit 2)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 import typer
 
-from qcpp.cli import CHOICES, LIBRARY_CHECKED, app, choices_of
+from qcpp.cli.app import CHOICES, LIBRARY_CHECKED, app, choices_of
 
 from .clirun import assert_one_line_error, run
 

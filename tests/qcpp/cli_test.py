@@ -11,14 +11,14 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from gridcover.cost import cost_parts
-from gridcover.errors import ScenarioError
-from gridcover.paths import is_feasible, path_from_nodes
-from gridcover.scenario import load_scenario
-from gridcover.solvers import dfs
-from qcpp.cli import QcppTyper, app
-from qcpp.commands.solve import SOLVE_METHODS
-from qcpp.render import render_ascii
+from qcpp.cli.app import QcppTyper, app
+from qcpp.cli.commands.solve import SOLVE_METHODS
+from qcpp.cli.render import render_ascii
+from qcpp.problem.cost import cost_parts
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.paths import is_feasible, path_from_nodes
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import dfs
 
 from .clirun import assert_one_line_error, run
 

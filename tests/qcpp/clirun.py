@@ -5,7 +5,7 @@ from __future__ import annotations
 from click.testing import Result
 from typer.testing import CliRunner
 
-from qcpp.cli import app
+from qcpp.cli.app import app
 
 
 def run(*args: str) -> Result:

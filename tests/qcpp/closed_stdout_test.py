@@ -81,7 +81,7 @@ def test_closed_stdout_never_lends_its_descriptor_to_an_output_file(tmp_path: Pa
 
 
 def _reader_gone_with_stdout(fd: int) -> bool:
-    from qcpp.cli import _reader_gone
+    from qcpp.cli.app import _reader_gone
 
     saved = os.dup(1)
     try:

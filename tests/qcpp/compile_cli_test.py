@@ -11,10 +11,10 @@ from qiskit import qasm2, qasm3
 from qiskit.quantum_info import Statevector
 from typer.testing import CliRunner
 
-from circuitgen.qaoa import qaoa_circuit
-from gridcover.scenario import load_scenario
-from qcpp.cli import app
-from simulate.statevector import simulate_statevector
+from qcpp.cli.app import app
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.scenario import load_scenario
+from qcpp.simulate.statevector import simulate_statevector
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
 ANGLES = {"gamma_0": 0.3, "beta_0": 0.7}

@@ -9,14 +9,14 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from circuitgen.compile import compile_scenario, parse_bindings
-from circuitgen.lowering import lower
-from circuitgen.qaoa import qaoa_circuit
-from circuitgen.qasm import to_qasm2, to_qasm3
-from estimators.guard import BYTES_PER_GATE, predict_size
-from gridcover.presets import default_scenario
-from gridcover.scenario import load_scenario, save_scenario
-from qcpp.cli import app
+from qcpp.cli.app import app
+from qcpp.estimators.guard import BYTES_PER_GATE, predict_size
+from qcpp.lowering.passes import lower
+from qcpp.lowering.qasm import to_qasm2, to_qasm3
+from qcpp.plan.compile import compile_scenario, parse_bindings
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import load_scenario, save_scenario
 
 EXAMPLE = "examples/paper_3x3.toml"
 
@@ -55,7 +55,7 @@ def test_the_guard_runs_before_building(tmp_path: Path, monkeypatch) -> None:  #
     def boom(*args, **kwargs):  # type: ignore[no-untyped-def]
         raise AssertionError("the circuit was built")
 
-    monkeypatch.setattr("qcpp.commands.compile.compile_scenario", boom)
+    monkeypatch.setattr("qcpp.cli.commands.compile.compile_scenario", boom)
     res = CliRunner().invoke(app, ["compile", str(path), "-p", "5", "--max-gates", "1000"])
     assert res.exit_code == 2 and "refusing to build" in res.stderr
 

@@ -12,21 +12,21 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit
-from estimators.counts import count
-from estimators.formulas import QUANTITIES
-from gridcover.presets import default_scenario
-from gridcover.scenario import save_scenario
-from qcpp.commands.estimate import register
+from qcpp.cli.commands.estimate import register
+from qcpp.estimators.counts import count
+from qcpp.estimators.formulas import QUANTITIES
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import save_scenario
 
 
 def _app() -> typer.Typer:
-    if importlib.util.find_spec("qcpp.cli") is not None:  # the real CLI, once it registers the command
-        from qcpp import cli
+    if importlib.util.find_spec("qcpp.cli.app") is not None:  # the real CLI, once it registers the command
+        from qcpp.cli import app as cli_app
 
-        app = getattr(cli, "app", None)
+        app = getattr(cli_app, "app", None)
         if isinstance(app, typer.Typer) and any(c.name == "estimate" for c in app.registered_commands):
             return app
     app = typer.Typer()
@@ -221,7 +221,7 @@ def test_cli_defaults_are_the_estimators_defaults() -> None:
     """The command spells its defaults out (it imports the estimators lazily, for a fast start): keep them equal."""
     import inspect
 
-    from estimators.estimate import DEFAULT_DEPTH_BUDGET
-    from qcpp.commands.estimate import estimate
+    from qcpp.cli.commands.estimate import estimate
+    from qcpp.estimators.estimate import DEFAULT_DEPTH_BUDGET
 
     assert inspect.signature(estimate).parameters["depth_budget"].default == DEFAULT_DEPTH_BUDGET

@@ -93,7 +93,7 @@ def test_solve_qubo_finds_the_optimum_of_two_robots_4x4() -> None:
 def test_help() -> None:
     from typer.testing import CliRunner
 
-    from qcpp.cli import app
+    from qcpp.cli.app import app
 
     res = CliRunner().invoke(app, ["export", "--help"], env={"COLUMNS": "200"})
     assert res.exit_code == 0

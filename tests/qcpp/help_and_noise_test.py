@@ -12,8 +12,8 @@ import pytest
 import typer.main
 from typer.testing import CliRunner
 
-from qcpp.cli import CHOICES, app, choices_of, one_line_warnings
-from qcpp.commands.solve import SOLVE_METHODS
+from qcpp.cli.app import CHOICES, app, choices_of, one_line_warnings
+from qcpp.cli.commands.solve import SOLVE_METHODS
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = str(REPO / "examples" / "paper_3x3.toml")

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-import qcppio.inputs
-from gridcover.scenario import MAX_NESTING
+import qcpp.io.inputs
+from qcpp.problem.scenario import MAX_NESTING
 
 from .clirun import assert_one_line_error, run
 
@@ -145,7 +145,7 @@ def test_duplicate_bindings_are_refused_by_name(binds: list[str]) -> None:
 
 @pytest.fixture
 def quick_input_wait(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(qcppio.inputs, "INPUT_WAIT", 0.2)
+    monkeypatch.setattr(qcpp.io.inputs, "INPUT_WAIT", 0.2)
 
 
 @pytest.mark.parametrize("command", [["solve"], ["compile"], ["estimate", "--scenario"], ["simulate"]])
@@ -221,8 +221,8 @@ def test_simulating_commands_take_the_narrower_phase_range(tmp_path: Path) -> No
     """edge_length 1e4 (cost bound 6.4e9): the classical solvers and estimate take it; QAOA, simulate and validate
     refuse it (their phases would carry 4e-8 of float error: benchmarks/cost_range.py, validate fails); at the
     largest value the refusal allows, validate passes."""
-    from gridcover.cost_range import PHASE_COST_LIMIT, largest_allowed
-    from gridcover.scenario import load_scenario
+    from qcpp.problem.cost_range import PHASE_COST_LIMIT, largest_allowed
+    from qcpp.problem.scenario import load_scenario
 
     path = tmp_path / "long.toml"
     path.write_text(TWO_ROBOTS + "edge_length = 1e4\n")

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from qcpp import interrupt
+from qcpp.cli import interrupt
 
 REPO = Path(__file__).resolve().parents[2]
 SWEEP = ["estimate", "--grid", "2x2..40x40", "--robots", "1..8", "-p", "1..5", "--depth", "none"]
@@ -112,7 +112,7 @@ def test_an_exception_the_signal_caused_is_reported_as_interrupted(monkeypatch: 
 
     from typer.testing import CliRunner
 
-    from qcpp.cli import QcppTyper
+    from qcpp.cli.app import QcppTyper
 
     app = QcppTyper()
 
@@ -175,7 +175,7 @@ def test_a_signal_that_lands_in_a_finaliser_still_stops_without_a_traceback() ->
     so where it lands is certain, not timing)."""
     script = (
         "import os, signal, time\n"
-        "from qcpp import interrupt\n"
+        "from qcpp.cli import interrupt\n"
         "interrupt.install()\n"
         "class Finalised:\n"
         "    def __del__(self):\n"

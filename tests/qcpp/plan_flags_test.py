@@ -7,13 +7,13 @@ import json
 import pytest
 import typer
 
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit
-from estimators.counts import count
-from gridcover.scenario import load_scenario
-from qcpp.cli import app
-from qcpp.commands.plan_flags import PLAN_FLAGS
+from qcpp.cli.app import app
+from qcpp.cli.commands.plan_flags import PLAN_FLAGS
+from qcpp.estimators.counts import count
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.scenario import load_scenario
 
 from .clirun import assert_one_line_error, run
 

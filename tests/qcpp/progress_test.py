@@ -1,4 +1,4 @@
-"""Long commands predict their cost, then refuse in one line or show progress on stderr (``qcpp.progress``).
+"""Long commands predict their cost, then refuse in one line or show progress on stderr (``qcpp.cli.progress``).
 
 No test here depends on timing: progress is asked for with ``QCPP_PROGRESS=lines`` and
 ``QCPP_PROGRESS_INTERVAL=0`` (a line at every step and stage, from the start, no clock), and the one test of the
@@ -15,14 +15,14 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import qcpp.commands.compile as compile_cmd
-from gridcover.paths import count_paths, enumerate_paths
-from gridcover.presets import default_scenario
-from gridcover.scenario import load_scenario
-from gridcover.solvers import exhaustive
-from gridcover.solvers.exhaustive import DfsTooLargeError, dfs, dfs_paths
-from qcpp.cli import app
-from qcpp.progress import FIRST_LINE_AFTER, Progress, progress_mode
+import qcpp.cli.commands.compile as compile_cmd
+from qcpp.cli.app import app
+from qcpp.cli.progress import FIRST_LINE_AFTER, Progress, progress_mode
+from qcpp.problem.paths import count_paths, enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import exhaustive
+from qcpp.problem.solvers.exhaustive import DfsTooLargeError, dfs, dfs_paths
 
 from .clirun import assert_one_line_error
 
@@ -134,7 +134,7 @@ def test_an_estimate_table_shows_progress_before_the_table() -> None:
 
 def test_a_long_sweep_prints_its_first_line_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
     """No clock: the first line of a long sweep is written when the work starts (before any row), not after 1 s."""
-    import qcpp.commands.estimate as estimate_cmd
+    import qcpp.cli.commands.estimate as estimate_cmd
 
     written: list[str] = []
     real = Progress.__enter__
@@ -242,7 +242,7 @@ def test_dfs_refuses_too_many_paths_or_too_much_memory_and_allow_large_lifts_it(
     assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the limit of 100 paths per robot", "--allow-large")
     res = invoke("solve", path, "-m", "dfs", "--allow-large", "--json")
     assert res.exit_code == 0 and json.loads(res.stdout)["evaluated"] == 184
-    monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
+    monkeypatch.setattr("qcpp.problem.limits.memory_budget", lambda share=0.5: 1000)
     monkeypatch.setattr(exhaustive, "MAX_DFS_PATHS", 10**6)
     assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the memory budget", "--allow-large")
 
@@ -275,7 +275,7 @@ def test_validate_picks_a_backend_that_fits() -> None:
 def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytest.MonkeyPatch) -> None:
     res = invoke("validate", str(EXAMPLES / "two_robots_5x5.toml"))  # 73.8 M feasible assignments
     assert_one_line_error(res, "two_robots_5x5.toml", "feasible assignments", "GB", "over the limit", "--allow-large")
-    monkeypatch.setattr("gridcover.limits.memory_budget", lambda share=0.5: 1000)
+    monkeypatch.setattr("qcpp.problem.limits.memory_budget", lambda share=0.5: 1000)
     res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"))
     assert_one_line_error(res, "31,684 feasible assignments", "over the memory budget", "--allow-large")
 
@@ -304,7 +304,7 @@ def test_a_new_stage_is_written_at_once_on_a_pipe_past_the_first_line_delay(monk
 def test_a_late_heartbeat_writes_nothing_after_the_work_ended(monkeypatch: pytest.MonkeyPatch) -> None:
     """The heartbeat passed its check, then the machine did not run it before ``__exit__`` gave up waiting
     (seen once under load: a progress line after ``interrupted``): its line is dropped, not printed last."""
-    from qcpp import progress as progress_module
+    from qcpp.cli import progress as progress_module
 
     monkeypatch.setattr(progress_module, "HEARTBEAT_JOIN_SECONDS", 0.01)
     stream = io.StringIO()

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.grid import Node
-from gridcover.paths import edges_of, enumerate_paths, path_from_nodes
-from gridcover.scenario import Scenario, scenario_from_dict
-from qcpp.render import LEGEND, plot_paths, plot_trace, render_ascii
+from qcpp.cli.render import LEGEND, plot_paths, plot_trace, render_ascii
+from qcpp.problem.grid import Node
+from qcpp.problem.paths import edges_of, enumerate_paths, path_from_nodes
+from qcpp.problem.scenario import Scenario, scenario_from_dict
 
 PNG = b"\x89PNG\r\n\x1a\n"
 

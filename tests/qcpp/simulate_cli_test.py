@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.scenario import load_scenario
-from qcpp.commands.simulate import parse_angles
-from simulate.subspace import SubspaceQAOA
-from simulate.training import initial_angles
+from qcpp.cli.commands.simulate import parse_angles
+from qcpp.problem.scenario import load_scenario
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import initial_angles
 
 from .clirun import assert_one_line_error, run
 

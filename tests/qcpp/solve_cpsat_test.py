@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.cost import cost_parts
-from gridcover.paths import is_feasible, path_from_nodes
-from gridcover.scenario import load_scenario
-from gridcover.solvers import dfs
+from qcpp.problem.cost import cost_parts
+from qcpp.problem.paths import is_feasible, path_from_nodes
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import dfs
 
 from .clirun import assert_one_line_error, run
 

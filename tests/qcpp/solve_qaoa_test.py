@@ -7,13 +7,13 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.paths import path_from_nodes
-from gridcover.scenario import load_scenario
-from gridcover.solvers import dfs
-from qcpp.commands.solve import SOLVE_METHODS, sparkline
-from qcpp.render import render_ascii
-from simulate.qaoa_solver import solve_qaoa
-from simulate.subspace import SubspaceQAOA
+from qcpp.cli.commands.solve import SOLVE_METHODS, sparkline
+from qcpp.cli.render import render_ascii
+from qcpp.problem.paths import path_from_nodes
+from qcpp.problem.scenario import load_scenario
+from qcpp.problem.solvers import dfs
+from qcpp.simulate.qaoa_solver import solve_qaoa
+from qcpp.simulate.subspace import SubspaceQAOA
 
 from .clirun import assert_one_line_error, run
 
@@ -119,7 +119,7 @@ def test_mixer_warm_start_is_the_trainers_and_is_reported() -> None:
 def test_local_search_initial_state_is_reported(initial: str) -> None:
     """``--initial local_search[_mix]``: the JSON names it, the notes give the descent, the answer is the trained
     one."""
-    from gridcover.solvers.descent import local_search
+    from qcpp.problem.solvers.descent import local_search
 
     res = run("solve", PAPER, "--method", "qaoa", "-p", "1", "--initial", initial, "--json")
     assert res.exit_code == 0, res.output

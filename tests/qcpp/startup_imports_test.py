@@ -24,7 +24,7 @@ _PROBE = """
 import json, sys
 argv = sys.argv[1:]
 if argv == ["import"]:
-    import qcpp.cli
+    import qcpp.cli.app
 else:
     from qcpp.__main__ import main
     sys.argv = ["qcpp", *argv]
@@ -69,8 +69,8 @@ def test_the_probe_sees_a_heavy_import() -> None:
 
 def test_cpsat_loads_ortools_only_when_used() -> None:
     code = (
-        "import sys; import gridcover.solvers as g; a = 'ortools' in sys.modules; "
-        "from gridcover.solvers import cpsat, CpSatResult; import gridcover.solvers.cpsat; "
+        "import sys; import qcpp.problem.solvers as g; a = 'ortools' in sys.modules; "
+        "from qcpp.problem.solvers import cpsat, CpSatResult; import qcpp.problem.solvers.cpsat; "
         "print(a, 'ortools' in sys.modules, g.cpsat is cpsat, callable(cpsat), CpSatResult.__name__)"
     )
     res = subprocess.run(

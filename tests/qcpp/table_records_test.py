@@ -10,9 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from rich.table import Table
 
-from estimators.estimate import Point, estimate_point
-from estimators.tables import TooNarrowError, make_rows, render, render_records
-from qcpp.render import table_text
+from qcpp.cli.render import table_text
+from qcpp.estimators.estimate import Point, estimate_point
+from qcpp.estimators.tables import TooNarrowError, make_rows, render, render_records
 
 from .clirun import assert_one_line_error, run
 
@@ -28,7 +28,7 @@ def rows() -> list[dict]:
 
 def _values(rows: list[dict]) -> set[str]:
     """The text of every default column's value (what the table or the records must show)."""
-    from estimators.tables import _cell, _columns
+    from qcpp.estimators.tables import _cell, _columns
 
     return {_cell(r.get(k)) for r in rows for k in _columns(r) if _cell(r.get(k))}
 
@@ -51,7 +51,7 @@ def test_estimate_table_never_cuts_a_number(rows: list[dict], width: int) -> Non
 
 
 def test_records_keep_every_column(rows: list[dict]) -> None:
-    from estimators.tables import _columns
+    from qcpp.estimators.tables import _columns
 
     text = render_records(rows, _columns(rows[0]), 60)
     for key in ("two_qubit_depth", "paper_single_qubit", "ratio_cx", "paper_cx"):
@@ -73,7 +73,7 @@ def test_the_issue_command_at_narrow_widths(width: str, records: bool) -> None:
 def run_env(args: list[str], width: str):  # type: ignore[no-untyped-def]
     from typer.testing import CliRunner
 
-    from qcpp.cli import app
+    from qcpp.cli.app import app
 
     return CliRunner().invoke(app, args, env={"COLUMNS": width})
 

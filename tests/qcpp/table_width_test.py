@@ -12,9 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from estimators.estimate import Point, estimate_point
-from estimators.tables import MAIN_COLUMNS, PAPER_COLUMNS, make_rows, render, table_columns
-from qcpp.cli import app
+from qcpp.cli.app import app
+from qcpp.estimators.estimate import Point, estimate_point
+from qcpp.estimators.tables import MAIN_COLUMNS, PAPER_COLUMNS, make_rows, render, table_columns
 
 GOAL = ["estimate", "--grid", "3x3..6x6", "--robots", "1..3", "--compare", "paper"]
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from qcppio.atomic import atomic_open, write_text_atomic
+from qcpp.io.atomic import atomic_open, write_text_atomic
 
 
 def test_new_file_gets_umask_permissions_not_0600(tmp_path: Path) -> None:

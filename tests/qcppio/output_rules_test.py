@@ -1,5 +1,5 @@
-"""qcppio.atomic's rules for every output path: symlinks, devices, FIFOs, stdout, missing folders, interrupts;
-and gridcover.limits' size guards."""
+"""qcpp.io.atomic's rules for every output path: symlinks, devices, FIFOs, stdout, missing folders, interrupts;
+and qcpp.problem.limits' size guards."""
 
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-import qcppio.atomic
-from gridcover.limits import MAX_GRID_NODES, MAX_LAYERS, SizeError, allow_large, check_grid_size, check_layers
-from gridcover.scenario import scenario_from_dict
-from qcppio.atomic import OutputError, atomic_open, check_output, discard_pending, write_text_atomic
+import qcpp.io.atomic
+from qcpp.io.atomic import OutputError, atomic_open, check_output, discard_pending, write_text_atomic
+from qcpp.problem.limits import MAX_GRID_NODES, MAX_LAYERS, SizeError, allow_large, check_grid_size, check_layers
+from qcpp.problem.scenario import scenario_from_dict
 
 
 def test_symlink_target_is_replaced_and_the_link_kept(tmp_path: Path) -> None:
@@ -36,7 +36,7 @@ def test_devices_are_written_straight_to() -> None:
 
 
 def test_fifo_with_a_reader_gets_the_text_and_stays_a_fifo(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 600.0)  # however slowly the reader thread starts
+    monkeypatch.setattr(qcpp.io.atomic, "FIFO_WAIT", 600.0)  # however slowly the reader thread starts
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     got: list[str] = []
@@ -48,7 +48,7 @@ def test_fifo_with_a_reader_gets_the_text_and_stays_a_fifo(tmp_path: Path, monke
 
 
 def test_fifo_without_a_reader_is_an_error_not_a_hang(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(qcppio.atomic, "FIFO_WAIT", 0.1)
+    monkeypatch.setattr(qcpp.io.atomic, "FIFO_WAIT", 0.1)
     os.mkfifo(tmp_path / "pipe")
     with pytest.raises(OutputError, match="no process opened the FIFO"):
         write_text_atomic(tmp_path / "pipe", "x")

@@ -1,18 +1,18 @@
-"""simulate.evaluate (method dispatch) and simulate.qaoa_solver (QAOA read as a solver)."""
+"""qcpp.simulate.evaluate (method dispatch) and qcpp.simulate.qaoa_solver (QAOA read as a solver)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from gridcover.cost import cost
-from gridcover.paths import enumerate_paths
-from gridcover.scenario import Scenario, scenario_from_dict
-from gridcover.solvers import dfs, solution_to_dict
-from simulate.evaluate import MAX_STATEVECTOR_QUBITS, evaluate, resolve_angles
-from simulate.qaoa_solver import qaoa_method, qaoa_to_dict, solve_qaoa
-from simulate.subspace import SubspaceQAOA
-from simulate.training import initial_angles
+from qcpp.problem.cost import cost
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.solvers import dfs, solution_to_dict
+from qcpp.simulate.evaluate import MAX_STATEVECTOR_QUBITS, evaluate, resolve_angles
+from qcpp.simulate.qaoa_solver import qaoa_method, qaoa_to_dict, solve_qaoa
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import initial_angles
 
 
 def small() -> Scenario:
@@ -54,7 +54,7 @@ def test_subspace_numbers_from_their_definitions() -> None:
 
 
 def test_statevector_measures_what_leaves_the_feasible_set() -> None:
-    # start and goal adjacent on 2x3: the paper rule's flips are not reversible there (see simulate.subspace)
+    # start and goal adjacent on 2x3: the paper rule's flips are not reversible there (see qcpp.simulate.subspace)
     s = scenario_from_dict({"grid": {"rows": 2, "cols": 3}, "robots": [{"start": [0, 0], "goal": [0, 1]}]})
     with pytest.raises(ValueError):
         SubspaceQAOA(s, rule="paper")  # not unitary on the data register: no subspace state exists
@@ -147,7 +147,7 @@ def test_qaoa_method_has_the_uniform_signature() -> None:
 
 @pytest.mark.slow
 def test_tensor_amplitudes_agree_with_subspace() -> None:
-    pytest.importorskip("simulate.tensor")
+    pytest.importorskip("qcpp.simulate.tensor")
     s = small()
     angles = [0.37, 1.3]
     a = evaluate(s, 1, "subspace", angles=angles)

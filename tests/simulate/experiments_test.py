@@ -11,16 +11,22 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gridcover.cost import cost
-from gridcover.paths import enumerate_paths
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
-from gridcover.solvers import anneal, dfs
-from simulate.angle_fit import AngleFit, fit_angles
-from simulate.annealing_runs import anneal_success
-from simulate.state_measures import cost_distribution, cvar, layers_to_reach, state_metrics, uniform_hit_probability
-from simulate.subspace import SubspaceQAOA
-from simulate.success import shots_for, success_probability, tries_for, wilson_interval
-from simulate.training import train
+from qcpp.problem.cost import cost
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.solvers import anneal, dfs
+from qcpp.simulate.angle_fit import AngleFit, fit_angles
+from qcpp.simulate.annealing_runs import anneal_success
+from qcpp.simulate.state_measures import (
+    cost_distribution,
+    cvar,
+    layers_to_reach,
+    state_metrics,
+    uniform_hit_probability,
+)
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.success import shots_for, success_probability, tries_for, wilson_interval
+from qcpp.simulate.training import train
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPTS = REPO / "examples" / "experiments"
@@ -331,4 +337,4 @@ def test_doctests(module: str) -> None:
     import doctest
     import importlib
 
-    assert doctest.testmod(importlib.import_module(f"simulate.{module}")).failed == 0
+    assert doctest.testmod(importlib.import_module(f"qcpp.simulate.{module}")).failed == 0

@@ -8,11 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gridcover.scenario import load_scenario, scenario_from_dict
-from simulate.layerwise import SHOTS_PER_ESTIMATE, extend_angles, train_layerwise
-from simulate.objectives import make_objective
-from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale, initial_angles, interp_angles, train
+from qcpp.problem.scenario import load_scenario, scenario_from_dict
+from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, extend_angles, train_layerwise
+from qcpp.simulate.objectives import make_objective
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import cost_scale, initial_angles, interp_angles, train
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TWO_3x3 = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
@@ -88,9 +88,9 @@ def test_bad_arguments(two: SubspaceQAOA) -> None:
 def test_doctests() -> None:
     import doctest
 
-    import simulate.layerwise
+    import qcpp.simulate.layerwise
 
-    assert doctest.testmod(simulate.layerwise).failed == 0
+    assert doctest.testmod(qcpp.simulate.layerwise).failed == 0
 
 
 @pytest.mark.heavy  # about 20 s on 2 cores

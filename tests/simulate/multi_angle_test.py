@@ -7,12 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from circuitgen.angles import mixer_symbol
-from circuitgen.lowering import lower
-from circuitgen.options import PlanOptions
-from circuitgen.qaoa import qaoa_circuit, qaoa_plan
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
-from simulate.mixer_only import (
+from qcpp.ir.angles import mixer_symbol
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.simulate.mixer_only import (
     bindings,
     mixer_sites,
     multi_robot_states,
@@ -22,9 +22,9 @@ from simulate.mixer_only import (
     robot_states_gradient,
     train_multi_angle,
 )
-from simulate.objectives import make_objective
-from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale
+from qcpp.simulate.objectives import make_objective
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import cost_scale
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -45,7 +45,7 @@ def _probs(states: list[np.ndarray]) -> list[np.ndarray]:
 def test_the_compiled_multi_angle_circuit_prepares_the_product_state() -> None:
     """Gate-level state of ``PlanOptions(angles="multi")`` bound by :func:`bindings` == the outer product of the
     robots' vectors (distinct betas per partial mixer, so a mix-up of sites or layers shows)."""
-    from simulate.sparse import simulate_sparse
+    from qcpp.simulate.sparse import simulate_sparse
 
     q, p = SubspaceQAOA(TWO_2x4), 2
     betas = np.random.default_rng(3).uniform(0, 2 * np.pi, p * len(mixer_sites(q)))
@@ -141,8 +141,8 @@ def test_bad_arguments() -> None:
 def test_the_solver_answers_with_the_product_state_and_bindings_of_the_compiled_circuit() -> None:
     """``solve_qaoa(optimizer="multi-angle")``: probability and P(optimum) of the product state; its bindings
     bind every symbol of the compiled multi-angle circuit and nothing else."""
-    from circuitgen.compile import compile_scenario
-    from simulate.qaoa_solver import qaoa_to_dict, solve_qaoa
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.simulate.qaoa_solver import qaoa_to_dict, solve_qaoa
 
     res = solve_qaoa(TWO_2x4, p=2, optimizer="multi-angle")
     q = SubspaceQAOA(TWO_2x4)

@@ -8,10 +8,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gridcover.scenario import Scenario, scenario_from_dict
-from simulate.objectives import OBJECTIVES, CVaR, Expectation, Gibbs, make_objective
-from simulate.subspace import SubspaceQAOA
-from simulate.training import cost_scale
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.simulate.objectives import OBJECTIVES, CVaR, Expectation, Gibbs, make_objective
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import cost_scale
 
 ONE_3x3 = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
                               "robots": [{"start": [0, 0], "goal": [2, 2]}]})
@@ -83,7 +83,7 @@ def test_angle_gradient_matches_finite_differences(s: Scenario, name: str) -> No
 
 def test_without_a_level_table(monkeypatch: pytest.MonkeyPatch) -> None:
     """The float-diagonal fallback builds its own cost table and gives the same objective and gradient."""
-    import simulate.subspace as sub
+    import qcpp.simulate.subspace as sub
 
     ref = SubspaceQAOA(TWO_3x3)
     assert ref.cost_levels() is not None  # built now, before the limit drops
@@ -108,6 +108,6 @@ def test_bad_parameters() -> None:
 def test_doctests() -> None:
     import doctest
 
-    import simulate.objectives
+    import qcpp.simulate.objectives
 
-    assert doctest.testmod(simulate.objectives).failed == 0
+    assert doctest.testmod(qcpp.simulate.objectives).failed == 0

@@ -32,10 +32,10 @@ from typing import Any
 import pytest
 
 import qcpp
-from gridcover.paths import enumerate_paths
-from gridcover.scenario import Scenario, scenario_from_dict
-from simulate.success import shots_for, tries_for
-from simulate.time_to_solution import GATE_MODEL, shot_seconds
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.simulate.success import shots_for, tries_for
+from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
 FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots", "mixer_warm_start",
@@ -60,8 +60,8 @@ def _scenario(text: str) -> Scenario:
 
 @cache
 def _circuit(text: str, p: int, initial: str = "initial_path") -> dict[str, int]:
-    from circuitgen.options import PlanOptions
-    from estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.plan.options import PlanOptions
 
     plan = PlanOptions(initial=initial)  # type: ignore[arg-type]
     est = estimate_point(Point.from_scenario(_scenario(text), p), EstimateOptions(plan=plan, depth="exact"))
@@ -72,8 +72,8 @@ def _circuit(text: str, p: int, initial: str = "initial_path") -> dict[str, int]
 
 @cache
 def _routed(text: str, p: int, device: str) -> dict[str, Any]:
-    from estimators.estimate import EstimateOptions, Point, estimate_point
-    from estimators.routed import routed_fields
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.estimators.routed import routed_fields
 
     s = _scenario(text)
     est = estimate_point(Point.from_scenario(s, p), EstimateOptions(depth="none"))
@@ -84,7 +84,7 @@ def _routed(text: str, p: int, device: str) -> dict[str, Any]:
 
 @cache
 def _qaoa(text: str, initial: str = "initial_path") -> Any:
-    from simulate.subspace import SubspaceQAOA
+    from qcpp.simulate.subspace import SubspaceQAOA
 
     return SubspaceQAOA(_scenario(text), initial=initial)  # type: ignore[arg-type]
 
@@ -194,8 +194,8 @@ def _check_multi_angle_states(heavy: bool) -> int:
     """Multi-angle rows (gammas 0, a product state: cheap even at 4x4): P(optimum) and ``<C>`` from the betas."""
     import numpy as np
 
-    from simulate.mixer_only import multi_robot_states, p_optimum_and_gradients, product_objective
-    from simulate.objectives import Expectation
+    from qcpp.simulate.mixer_only import multi_robot_states, p_optimum_and_gradients, product_objective
+    from qcpp.simulate.objectives import Expectation
 
     checked = 0
     for r in _load("multi_angle")["rows"]:
@@ -221,7 +221,7 @@ def test_recorded_multi_angle_betas_give_the_recorded_state_every_row() -> None:
 
 
 def test_exhaustive_search_and_seeded_annealing_rows() -> None:
-    from gridcover.solvers import anneal, dfs
+    from qcpp.problem.solvers import anneal, dfs
 
     checked = 0
     for name in ("qaoa_3x3", "annealing_two_robots"):

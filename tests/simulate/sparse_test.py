@@ -1,4 +1,4 @@
-"""Tests for simulate.sparse: agreement with the dense simulator, big sparse circuits."""
+"""Tests for qcpp.simulate.sparse: agreement with the dense simulator, big sparse circuits."""
 
 from __future__ import annotations
 
@@ -7,13 +7,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from circuitgen import gates as G
-from circuitgen.angles import Angle, UnboundParameterError
-from circuitgen.circuit import Circuit, CircuitBuilder, Section
-from circuitgen.lowering import lower
-from circuitgen.testing import circuits
-from simulate.sparse import PRUNE_TOLERANCE, basis_from_bits, bits_of, simulate_sparse
-from simulate.statevector import simulate_statevector
+from qcpp.ir import gates as G
+from qcpp.ir.angles import Angle, UnboundParameterError
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Section
+from qcpp.lowering.passes import lower
+from qcpp.simulate.sparse import PRUNE_TOLERANCE, basis_from_bits, bits_of, simulate_sparse
+from qcpp.simulate.statevector import simulate_statevector
+from qcpp.testing import circuits
 
 VALUES = {"gamma_0": 0.37, "beta_0": -1.3, "gamma_1": 2.1}
 

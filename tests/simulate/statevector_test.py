@@ -1,4 +1,4 @@
-"""Tests for simulate.statevector against an independent dense reference."""
+"""Tests for qcpp.simulate.statevector against an independent dense reference."""
 
 from __future__ import annotations
 
@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from circuitgen import gates as G
-from circuitgen.angles import Angle, UnboundParameterError
-from circuitgen.circuit import Circuit, CircuitBuilder, Section
-from circuitgen.gates import Gate, unitary
-from circuitgen.lowering import lower
-from circuitgen.testing import circuits
-from simulate.statevector import circuit_unitary, simulate_statevector
+from qcpp.ir import gates as G
+from qcpp.ir.angles import Angle, UnboundParameterError
+from qcpp.ir.circuit import Circuit, CircuitBuilder, Section
+from qcpp.ir.gates import Gate, unitary
+from qcpp.lowering.passes import lower
+from qcpp.simulate.statevector import circuit_unitary, simulate_statevector
+from qcpp.testing import circuits
 
 VALUES = {"gamma_0": 0.37, "beta_0": -1.3, "gamma_1": 2.1}
 

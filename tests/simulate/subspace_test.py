@@ -13,16 +13,16 @@ import itertools
 import numpy as np
 import pytest
 
-from circuitgen.options import PlanOptions
-from circuitgen.phase import phase_plan
-from gridcover.cost import cost, separable_cost
-from gridcover.hamiltonian import ising_hamiltonian
-from gridcover.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
-from gridcover.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
-from gridcover.scenario import Scenario, scenario_from_dict
-from simulate.objectives import make_objective
-from simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
-from simulate.training import cost_scale
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase import phase_plan
+from qcpp.problem.cost import cost, separable_cost
+from qcpp.problem.hamiltonian import ising_hamiltonian
+from qcpp.problem.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
+from qcpp.problem.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.simulate.objectives import make_objective
+from qcpp.simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
+from qcpp.simulate.training import cost_scale
 
 
 def make(rows: int, cols: int, robots: list[tuple[tuple[int, int], tuple[int, int]]], **extra: object) -> Scenario:
@@ -106,7 +106,7 @@ def dense_reference(
 
 
 def subspace_as_dense(q: SubspaceQAOA, angles: list[float]) -> np.ndarray:
-    """Map the subspace state to 2^n using gridcover's own assignment_bits (independent of dense_state)."""
+    """Map the subspace state to 2^n using qcpp.problem's own assignment_bits (independent of dense_state)."""
     n = q.scenario.num_variables
     out = np.zeros(1 << n, dtype=complex)
     psi = q.state(angles)
@@ -216,7 +216,7 @@ def test_cost_diagonal_matches_ising_and_cost() -> None:
 
 
 def test_local_search_starts_on_the_descent_paths() -> None:
-    from gridcover.solvers.descent import local_search
+    from qcpp.problem.solvers.descent import local_search
 
     for s in (SINGLE_3x3_CORNERS, TWO_2x4):
         warm = local_search(s)
@@ -232,7 +232,7 @@ def test_local_search_starts_on_the_descent_paths() -> None:
 def test_local_search_mix_starts_on_the_initial_and_descent_paths_in_equal_superposition() -> None:
     """Per robot ``(|initial path> + |descent path>) / sqrt 2`` (one path where the descent leaves the robot
     where it was), the product over robots; every basis state with weight is a feasible assignment."""
-    from gridcover.solvers.descent import local_search
+    from qcpp.problem.solvers.descent import local_search
 
     for s in (SINGLE_3x3_CORNERS, TWO_2x4, TWO_2x3):
         warm = local_search(s)
@@ -277,7 +277,7 @@ def test_non_integer_costs_use_the_distinct_value_table() -> None:
 
 def test_float_diagonal_fallback(monkeypatch: pytest.MonkeyPatch) -> None:
     """Too many distinct costs for a level table: the float64 diagonal is used, with the same results."""
-    import simulate.subspace as sub
+    import qcpp.simulate.subspace as sub
 
     monkeypatch.setattr(sub, "_MAX_LEVELS", 2)
     assert sub._compress(np.array([0.5, 1.5, 2.25, 0.5])) is None
@@ -378,7 +378,7 @@ def test_infeasible_basis_states_are_ordinary_basis_states(monkeypatch: pytest.M
     """A symmetric rule that leaves the feasible set (here: every flip always allowed, patched into both the
     simulator and the reference) is simulated exactly, the infeasible edge sets flagged and kept out of the
     optimum."""
-    import simulate.subspace as sub
+    import qcpp.simulate.subspace as sub
 
     def always(scenario: Scenario, robot: int, plaquette: object, rule: str = "exact") -> SbfLogic:
         return SbfLogic(rule, robot, plaquette.index, 1, 0, (XorStep(0, ()),))  # type: ignore[arg-type, attr-defined]
@@ -497,8 +497,8 @@ def test_buffer_size_does_not_change_results() -> None:
 )
 def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial: str) -> None:
     """The data-register amplitudes of the compiled circuit (ancillas back in |0>, above the data qubits)."""
-    from circuitgen.qaoa import qaoa_circuit
-    from simulate.sparse import simulate_sparse
+    from qcpp.plan.qaoa import qaoa_circuit
+    from qcpp.simulate.sparse import simulate_sparse
 
     angles = [0.3, 1.1, 0.17, 0.6]
     circ = qaoa_circuit(s, 2, PlanOptions(rule=rule, initial=initial))  # type: ignore[arg-type]
@@ -512,9 +512,9 @@ def test_state_dict_matches_the_compiled_circuit(s: Scenario, rule: str, initial
 def test_doctests() -> None:
     import doctest
 
-    import simulate.subspace
+    import qcpp.simulate.subspace
 
-    result = doctest.testmod(simulate.subspace)
+    result = doctest.testmod(qcpp.simulate.subspace)
     assert result.attempted > 0 and result.failed == 0
 
 
@@ -532,7 +532,7 @@ def test_phase_offset_names_the_compiled_representation() -> None:
 def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     """The lane-blocked numba kernels (every axis position: first, middle, last; line counts that leave a partial
     last block of lanes; single-threaded and parallel) give the BLAS path's state, expectation and gradient."""
-    from simulate import subspace_kernels
+    from qcpp.simulate import subspace_kernels
 
     if not subspace_kernels.AVAILABLE:
         pytest.skip("numba is not importable")
@@ -557,8 +557,8 @@ def test_numba_and_blas_kernels_agree(s: Scenario, parallel: bool, monkeypatch: 
 @pytest.mark.slow
 def test_parallel_kernels_on_a_state_of_many_blocks() -> None:
     """171,396 amplitudes: above the parallel threshold and several phase blocks; numba and BLAS agree."""
-    from gridcover.presets import default_scenario
-    from simulate import subspace_kernels
+    from qcpp.problem.presets import default_scenario
+    from qcpp.simulate import subspace_kernels
 
     if not subspace_kernels.AVAILABLE:
         pytest.skip("numba is not importable")
@@ -580,7 +580,7 @@ def test_lane_kernels_against_numpy_rotations(
     """The lane-blocked kernels equal pair-by-pair numpy rotations along axis 1 on random states, for line counts
     ``pre * post`` that fill whole blocks of four lanes, leave a partial last block, or are smaller than one;
     the adjoint kernel undoes the forward one and returns ``sum_k Im <y|G_k|x>`` taken before each pair."""
-    from simulate import subspace_kernels as kern
+    from qcpp.simulate import subspace_kernels as kern
 
     if not kern.AVAILABLE:
         pytest.skip("numba is not importable")

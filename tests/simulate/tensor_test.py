@@ -18,11 +18,11 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from circuitgen.options import PlanOptions
-from gridcover.presets import default_scenario
-from gridcover.scenario import load_scenario
-from qcpp.cli import app
-from simulate.validate import validate
+from qcpp.cli.app import app
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import load_scenario
+from qcpp.simulate.validate import validate
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
 
@@ -72,9 +72,9 @@ def test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one(tmp_
     import numpy as np
     from dask.distributed import Client, LocalCluster
 
-    from circuitgen.compile import compile_scenario
-    from simulate.statevector import simulate_statevector
-    from simulate.tensor import TensorCircuit, contract_sliced
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.simulate.statevector import simulate_statevector
+    from qcpp.simulate.tensor import TensorCircuit, contract_sliced
 
     angles = {"gamma_0": 0.4, "beta_0": 0.9, "gamma_1": 0.3, "beta_1": 1.2}
     c = compile_scenario(default_scenario(3, 3, 1), 2, lowered=True, bindings=angles).circuit
@@ -103,9 +103,9 @@ def test_validate_cli_rejects_dask_without_the_tensor_backend() -> None:
 def test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes(tmp_path: Path) -> None:
     import numpy as np
 
-    from circuitgen.compile import compile_scenario
-    from simulate.statevector import simulate_statevector
-    from simulate.tensor import TensorCircuit, collapse_ancilla_blocks
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.simulate.statevector import simulate_statevector
+    from qcpp.simulate.tensor import TensorCircuit, collapse_ancilla_blocks
 
     s = default_scenario(2, 3, 2)
     angles = {"gamma_0": 0.4, "beta_0": 0.9, "gamma_1": 0.3, "beta_1": 1.2}
@@ -128,10 +128,10 @@ def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_n
 ) -> None:
     import numpy as np
 
-    import simulate.tensor as tensor
-    from circuitgen.circuit import Circuit, Section
-    from circuitgen.gates import ccx, cx, h, rz
-    from simulate.statevector import simulate_statevector
+    import qcpp.simulate.tensor as tensor
+    from qcpp.ir.circuit import Circuit, Section
+    from qcpp.ir.gates import ccx, cx, h, rz
+    from qcpp.simulate.statevector import simulate_statevector
 
     monkeypatch.setattr(tensor, "MAX_BLOCK_DATA_QUBITS", 1)  # every ancilla block here is "too wide" for a matrix
     regs = [("d", 3), ("a", 1)]
@@ -155,9 +155,9 @@ def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_n
 
 
 def test_a_block_that_leaves_an_ancilla_dirty_is_not_collapsed() -> None:
-    from circuitgen.circuit import Circuit, Section
-    from circuitgen.gates import ccx, h
-    from simulate.tensor import collapse_ancilla_blocks
+    from qcpp.ir.circuit import Circuit, Section
+    from qcpp.ir.gates import ccx, h
+    from qcpp.simulate.tensor import collapse_ancilla_blocks
 
     leaky = Circuit([("d", 2), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 2)])])  # no uncompute
     assert collapse_ancilla_blocks(leaky, [2]) is None

@@ -1,4 +1,4 @@
-"""simulate.time_to_solution (the 99% criterion) and examples/experiments/time_to_solution.py: quick mode, helpers."""
+"""qcpp.simulate.time_to_solution (the 99% criterion) and examples/experiments/time_to_solution.py: quick mode, helpers."""
 
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from gridcover.paths import enumerate_paths
-from gridcover.presets import default_scenario
-from simulate.success import success_probability
-from simulate.time_to_solution import qaoa_on_device, repeated_runs, shot_seconds
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.presets import default_scenario
+from qcpp.simulate.success import success_probability
+from qcpp.simulate.time_to_solution import qaoa_on_device, repeated_runs, shot_seconds
 
 SCRIPT = Path(__file__).resolve().parents[2] / "examples" / "experiments" / "time_to_solution.py"
 
@@ -86,9 +86,9 @@ def test_qaoa_on_device_counts_training_and_sampling() -> None:
 def test_doctests() -> None:
     import doctest
 
-    import simulate.time_to_solution
+    import qcpp.simulate.time_to_solution
 
-    assert doctest.testmod(simulate.time_to_solution).failed == 0
+    assert doctest.testmod(qcpp.simulate.time_to_solution).failed == 0
 
 
 @pytest.mark.parametrize("n", [3, 4, 5])

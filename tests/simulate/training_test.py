@@ -8,11 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gridcover.cost import cost
-from gridcover.paths import enumerate_paths, initial_path
-from gridcover.scenario import Scenario, load_scenario, scenario_from_dict
-from simulate.subspace import SubspaceQAOA
-from simulate.training import (
+from qcpp.problem.cost import cost
+from qcpp.problem.paths import enumerate_paths, initial_path
+from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.simulate.training import (
     TrainingResult,
     cost_scale,
     initial_angles,
@@ -177,7 +177,7 @@ def test_two_robots_train() -> None:
 def test_doctests() -> None:
     import doctest
 
-    import simulate.training
+    import qcpp.simulate.training
 
-    result = doctest.testmod(simulate.training)
+    result = doctest.testmod(qcpp.simulate.training)
     assert result.attempted > 0 and result.failed == 0

@@ -1,0 +1,314 @@
+"""``qcpp compile``: build the QAOA circuit of a scenario and write it as OpenQASM 2 or 3.
+
+Examples::
+
+    qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
+    qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
+    qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
+    qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
+
+Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+written straight to, a missing folder is an error (checked before compiling).
+
+Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
+handler as one line on stderr and exit code 2.
+
+Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one section of its plan at a time
+(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is the
+same, byte for byte, as writing the whole circuit.
+
+Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
+costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
+(default :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
+refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
+
+Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
+built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections import Counter
+from collections.abc import Iterable, Iterator
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from qcpp.cli.commands.plan_flags import LayersFlag, ScenarioArg, with_plan_flags
+from qcpp.cli.progress import Progress
+from qcpp.cli.render import print_table
+from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
+from qcpp.io.atomic import check_output
+from qcpp.ir.angles import symbol_sort_key
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.lowering.qasm_stream import write_qasm_sections
+from qcpp.plan.compile import compile_scenario, compile_summary, parse_bindings
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.scenario import Scenario, load_scenario
+
+__all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
+
+STREAM_ABOVE_GATES = 100_000
+"""Circuits predicted to have at least this many lowered gates are built section by section with progress on
+stderr (about 4 s of compiling at 25,000 gates per second), even without ``--qasm``; smaller ones are built whole."""
+
+HELP = (
+    "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
+    "angles (--bind gamma_0=0.3 beta_0=0.7 ...) and write OpenQASM (written whole or not at all)."
+)
+
+
+@with_plan_flags
+def compile_command(
+    options: PlanOptions,
+    scenario: ScenarioArg,
+    assignments: Annotated[
+        list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
+    ] = None,
+    p: LayersFlag = 1,
+    lowered: Annotated[bool, typer.Option("--lowered", help="Lower to {cx, x, h, rz, t, tdg, s, sdg}.")] = False,
+    bind: Annotated[
+        list[str] | None, typer.Option("--bind", help="NAME=VALUE (repeat, or list several after one --bind).")
+    ] = None,
+    qasm: Annotated[
+        str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
+    ] = None,
+    qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
+    explain: Annotated[
+        bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
+    ] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
+    max_gates: Annotated[
+        int,
+        typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
+    ] = DEFAULT_MAX_GATES,
+    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
+    device: Annotated[
+        str | None,
+        typer.Option(
+            "--device",
+            help="Route onto a device: grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) "
+            "or a named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios). Writes q[i] = physical "
+            "qubit i in the device's native gates (--lowered: CX + one-qubit gates).",
+        ),
+    ] = None,
+    local_ancillas: Annotated[
+        bool, typer.Option("--local-ancillas", help="With --device: give gadgets region-local ancillas (greedy).")
+    ] = False,
+    layout: Annotated[
+        str,
+        typer.Option(
+            "--layout",
+            help="With --device: auto (the geometric layout on square grids and heavy-hex lattices that hold it, "
+            "greedy where that routes cheaper on a small circuit or elsewhere), medial (geometric layout: medial on "
+            "grids, one cell per plaquette on heavy-hex; local ancillas, every gadget routed home) or greedy (one "
+            "SABRE routing of the whole circuit).",
+        ),
+    ] = "auto",
+) -> None:
+    """Compile a scenario (see ``qcpp compile --help``)."""
+    if device is None:  # routing flags without a device used to be ignored without a word
+        if layout != "auto":
+            raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
+        if local_ancillas:
+            raise ValueError("--local-ancillas: applies with --device only (no device given)")
+    extra = list(assignments or [])
+    if extra and not bind:
+        raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
+    bindings = parse_bindings([*(bind or []), *extra])
+    for name, value in bindings.items():
+        if not math.isfinite(value):
+            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    to_stdout = qasm == "-"
+    if to_stdout and as_json:
+        raise ValueError("--qasm - and --json both write to standard output; choose one")
+    if qasm is not None:
+        check_output(qasm)  # a bad destination fails before the compile, not after
+    s = load_scenario(scenario, check_range=True)
+    size = _guard(s, p, options, max_gates, force)
+    if device is not None:
+        summary, phase_explain = _routed(
+            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
+        )
+    elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
+        task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
+        passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
+        # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
+        total = size.gates * passes if lowered else None
+        big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
+        with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
+            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
+    else:
+        result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
+        summary, phase_explain = result.summary(), result.phase_explain
+    if qasm is not None:  # written by _routed or _stream
+        summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+    if explain:
+        summary["phase_explain"] = phase_explain
+    if as_json:
+        typer.echo(json.dumps(summary))
+        return
+    console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
+    form = "lowered" if lowered else "high level"
+    if device is not None:
+        form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
+    table = Table(title=f"{scenario.name}: p={p}, rule={options.rule}, target={options.target}, {form}")
+    table.add_column("gate")
+    table.add_column("count", justify="right")
+    for name, n in summary["gates"].items():
+        table.add_row(name, str(n))
+    table.add_row("[bold]total", f"[bold]{summary['total_gates']}")
+    print_table(console, table)
+    regs = ", ".join(f"{k} {v}" for k, v in summary["registers"].items())
+    console.print(f"qubits: {summary['qubits']} ({regs})")
+    if device is not None:
+        routed = summary["routed"]
+        duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
+        console.print(
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}, "
+            f"duration {duration}; {summary['device_note']}"
+        )
+    if summary["symbols"]:
+        console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
+    console.print(f"time: {summary['seconds']:.3f} s")
+    if qasm is not None:
+        where = "standard output" if to_stdout else qasm
+        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False, soft_wrap=True)  # a path stays whole
+    if explain:
+        print_table(console, explain_table(phase_explain))
+
+
+def explain_table(rows: list[dict]) -> Table:
+    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs."""
+    table = Table(title="phase separator: construction per term group (cost of one layer)")
+    for col in ("group", "count", "chosen", "cx", "rotations", "T (ft)", "alternatives (cx / rotations / T)"):
+        table.add_column(col, justify="right" if col in ("count", "cx", "rotations", "T (ft)") else "left")
+    for row in rows:
+        c = row["cost"]
+        alts = "\n".join(
+            f"{name}: {a['cx']:,} / {a['rotations']:,} / {a['t_ft']:,}" for name, a in row["alternatives"].items()
+        )
+        table.add_row(
+            str(row["group"]), str(row.get("count", 1)), str(row["construction"]),
+            f"{c['cx']:,}", f"{c['rotations']:,}", f"{c['t_ft']:,}", alts or "-",
+        )  # fmt: skip
+    return table
+
+
+def _routed(
+    s: Scenario,
+    p: int,
+    options: PlanOptions,
+    device: str,
+    lowered: bool,
+    bindings: dict[str, float],
+    local_ancillas: bool,
+    qasm: str | None,
+    version: int,
+    layout: str = "auto",
+) -> tuple[dict[str, Any], list[dict]]:
+    """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM; the
+    summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
+    from qcpp.lowering.qasm import write_qasm
+    from qcpp.pipeline.device_compile import compile_for_device
+
+    task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
+    with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
+        result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
+                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
+    circuit = result.routed.circuit
+    if qasm is not None:
+        write_qasm(circuit, qasm, version)  # type: ignore[arg-type]
+    base = result.compiled.summary()
+    summary = {
+        **base,
+        "qubits": circuit.num_qubits,
+        "gates": dict(sorted(circuit.count_ops().items())),
+        "total_gates": len(circuit),
+        "lowered": lowered,
+        "registers": {r.name: r.size for r in circuit.registers},
+        "seconds": result.seconds,
+        **result.summary(),
+        "device_note": (
+            f"device {result.routed.device.name} ({result.routed.device.num_qubits} qubits; "
+            f"{result.logical_qubits} used); layouts: logical qubit i -> physical qubit"
+        ),
+    }
+    return summary, result.compiled.phase_explain
+
+
+def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
+    """The predicted size; unless ``force``, refuse (ValueError: one line, exit 2) a circuit predicted to exceed
+    ``max_gates`` lowered gates."""
+    size = predict_size(s, p, options)
+    if not force and not size.fits(max_gates):
+        raise ValueError(
+            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
+            "(raise it with --max-gates N, or pass --force)"
+        )
+    return size
+
+
+def _stream(
+    s: Scenario,
+    p: int,
+    options: PlanOptions,
+    lowered: bool,
+    bindings: dict[str, float],
+    qasm: str | None,
+    version: int,
+    progress: Progress,
+) -> tuple[dict[str, Any], list[dict]]:
+    """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
+    independent of ``p``); return the summary :meth:`qcpp.plan.compile.CompileResult.summary` would give and the
+    phase plan's choices. ``progress`` counts the gates of every section handed out."""
+    from qcpp.plan.qaoa import qaoa_plan
+
+    start = time.perf_counter()
+    progress.stage("planning the circuit")
+    plan = qaoa_plan(s, p, options)
+    plan.check_bindings(bindings)
+    progress.stage("building the sections")
+    # the lowered circuit has the plan's registers (work included); the high-level one has no work register
+    registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
+
+    walks = 0
+
+    def sections() -> Iterator[Section]:
+        nonlocal walks
+        walks += 1
+        if qasm is not None:
+            progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
+        for sec in plan.emit_sections(lowered):
+            out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
+            yield out
+            progress.advance(len(out.gates))
+
+    if qasm is not None:
+        ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
+    else:
+        ops, symbols = _count_sections(registers, sections())
+    summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)
+    return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
+
+
+def _count_sections(
+    registers: tuple[Register, ...], sections: Iterable[Section]
+) -> tuple[Counter[str], tuple[str, ...]]:
+    """Gates per name and the unbound symbols (in :attr:`Circuit.symbols` order) of a stream of sections."""
+    ops: Counter[str] = Counter()
+    found: set[str] = set()
+    for sec in sections:
+        ops.update(g[0] for g in sec.gates)
+        found.update(Circuit(registers, [sec]).symbols)
+    return ops, tuple(sorted(found, key=symbol_sort_key))
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``compile`` to ``app``."""
+    app.command("compile", help=HELP)(compile_command)

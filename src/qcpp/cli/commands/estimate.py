@@ -1,0 +1,277 @@
+"""``qcpp estimate``: resource counts from the gadgets' costs, fault-tolerant and physical estimates, formulas.
+
+A thin layer over :mod:`qcpp.estimators.report`: it parses options and prints, row by row as rows are computed (for
+every format but ``table``). Bad input gives exit code 2 and one line ``error: <message>`` on stderr, the format
+of the CLI's shared handler (:mod:`qcpp.cli.app`), which also catches anything the command itself does not (e.g. an
+unwritable ``--plot`` path). ``register(app)`` adds the command.
+
+Examples::
+
+    qcpp estimate --grid 3x3 --robots 1
+    qcpp estimate --grid 30x30 --robots 8 -p 3 --json
+    qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format jsonl > sweep.jsonl
+    qcpp estimate --grid 10x10 --robots 4 --physical --qubit-model qubit_maj_ns_e6 --qec-scheme floquet_code
+    qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
+    qcpp estimate --scenario examples/two_robots.toml -p 2 --json
+    qcpp estimate --formula
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from qcpp.cli.commands.plan_flags import with_plan_flags
+from qcpp.cli.progress import Progress
+from qcpp.cli.render import print_table
+from qcpp.io.atomic import check_output
+from qcpp.plan.options import PlanOptions
+
+__all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
+
+LONG_SWEEP_ROWS = 200
+"""Sweeps of at least this many rows print their first progress line at once (on a pipe), not after a second."""
+
+HELP = (
+    "Resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), summed from the costs of its "
+    "gadgets without building it; labelled fault-tolerant estimates; physical estimates with --physical (QDK "
+    "resource estimator). Ranges: --grid AxB..CxD means every rows in A..C and every cols in B..D; --robots and "
+    "-p take N or A..B; grids too small for a robot count are skipped (counted once on stderr)."
+)
+
+
+@with_plan_flags
+def estimate(
+    options: PlanOptions,
+    grid: Annotated[
+        str | None,
+        typer.Option(
+            "--grid",
+            help="ROWSxCOLS, AxB..CxD (every rows in A..C, cols in B..D) or a comma list of these; default 3x3.",
+        ),
+    ] = None,
+    robots: Annotated[
+        str | None,
+        typer.Option(
+            "--robots",
+            help="Robots: N or A..B (default 1). Default placement: corners, then the other boundary nodes "
+            "(up to 2(rows+cols)-4 robots); --scenario for anything else.",
+        ),
+    ] = None,
+    p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
+    scenario: Annotated[
+        Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
+    ] = None,
+    explain: Annotated[
+        bool,
+        typer.Option(
+            "--explain", help="Also show, per scenario, which phase construction each term group got and why (stderr)."
+        ),
+    ] = False,
+    compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
+    fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
+    as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
+    plot: Annotated[
+        str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
+    ] = None,
+    columns: Annotated[
+        str | None,
+        typer.Option("--columns", help="Table columns, comma-separated (any CSV column; default: what fits)."),
+    ] = None,
+    wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
+    formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
+    depth: Annotated[
+        str,
+        typer.Option(
+            "--depth",
+            help="Depth: exact (composed from per-gadget transfer profiles, equal to the compiled circuit's), bound "
+            "(an upper bound from per-gadget depths and gate counts), none, or auto (exact when one layer has at "
+            "most --depth-budget gates, else bound). The depth_kind column says which.",
+        ),
+    ] = "auto",
+    depth_budget: Annotated[
+        int,
+        typer.Option(
+            "--depth-budget",
+            help="auto: exact depths when the state preparation plus one layer has at most this many lowered gates.",
+        ),
+    ] = 20_000,
+    epsilon: Annotated[
+        float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
+    ] = 1e-3,
+    toffoli_t: Annotated[
+        int, typer.Option("--toffoli-t", help="T per full Toffoli: 7 (ancilla-free) or 4 (Jones 2013).")
+    ] = 7,
+    physical: Annotated[
+        bool, typer.Option("--physical", help="Add physical estimates from the QDK resource estimator.")
+    ] = False,
+    qubit_model: Annotated[
+        str,
+        typer.Option(
+            "--qubit-model",
+            help="QDK qubit preset: qubit_gate_ns_e3, qubit_gate_ns_e4, qubit_gate_us_e3, qubit_gate_us_e4, "
+            "qubit_maj_ns_e4, qubit_maj_ns_e6.",
+        ),
+    ] = "qubit_gate_ns_e3",
+    qec_scheme: Annotated[
+        str, typer.Option("--qec-scheme", help="QDK QEC scheme: surface_code or floquet_code (Majorana only).")
+    ] = "surface_code",
+    error_budget: Annotated[
+        float, typer.Option("--error-budget", help="Total error budget of the physical estimate.")
+    ] = 1e-3,
+    paper_doubling: Annotated[
+        str,
+        typer.Option(
+            "--paper-doubling",
+            help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
+        ),
+    ] = "partial-mixer",
+    device: Annotated[
+        str | None,
+        typer.Option(
+            "--device",
+            help="Add routed figures on a device (routed_twoq, routed_depth, routed_twoq_depth, duration_s, esp, "
+            "fits, routed_kind exact|bound): grid[:RxC], heavy-hex[:D], all-to-all[:N] or a named device.",
+        ),
+    ] = None,
+) -> None:
+    """Resource estimates (see ``qcpp estimate --help``)."""
+    # imported here: qcpp.estimators.report pulls in sympy, which would slow every other command's start-up
+    from qcpp.estimators.estimate import EstimateOptions
+    from qcpp.estimators.report import estimate_report, formula_report, points_from_options
+
+    if as_json:
+        fmt = "json"
+    if formula:
+        typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
+        return
+    checks = [
+        (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
+        (depth_budget < 0, f"bad --depth-budget {depth_budget}: must be >= 0"),
+        (not 0.0 < error_budget < 1.0, f"bad --error-budget {error_budget}: must be in (0, 1)"),
+    ]  # fmt: skip
+    for bad, message in checks:
+        if bad:
+            raise ValueError(message)
+    if device is not None:
+        from qcpp.devices.device import DeviceError, get_device
+
+        try:
+            get_device(device)
+        except DeviceError as exc:
+            raise ValueError(f"--device: {exc}") from None
+    if plot is not None:
+        check_output(plot)  # a bad destination fails before the sweep, not after
+    points = points_from_options(grid, robots, p, scenario)  # a bad range or file: one line, exit 2 (qcpp.cli.app)
+    if points.skipped:
+        typer.echo(
+            f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "
+            "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
+            err=True,
+        )
+    settings = EstimateOptions(
+        plan=options,
+        epsilon=epsilon,
+        toffoli_t=toffoli_t,
+        depth=depth,  # type: ignore[arg-type]
+        depth_budget=depth_budget,
+        physical=physical,
+        qubit_model=qubit_model,
+        qec_scheme=qec_scheme,
+        error_budget=error_budget,
+    )
+    # progress unless the rows themselves stream to a terminal (a table waits for every row; a pipe shows nothing)
+    show = fmt == "table" or plot is not None or not _is_terminal(sys.stdout)
+    # a sweep of many rows is known to be long: its first line comes at once, not after a second
+    first = 0.0 if len(points.points) >= LONG_SWEEP_ROWS else None
+    bar = Progress("estimate", total=len(points.points), unit="rows", mode=None if show else "off", first_after=first)
+    held: list[str] = []  # the table: printed once the progress display is gone
+    with bar:
+        pieces = estimate_report(
+            bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
+            fmt=fmt,  # type: ignore[arg-type]
+            options=settings,
+            compare_paper=compare == "paper",
+            plot=plot,
+            doubling=paper_doubling,  # type: ignore[arg-type]
+            columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
+            wide=wide,
+            device=device,
+            stage=bar.stage,
+        )
+        for piece in pieces:
+            if fmt == "table":
+                held.append(piece)
+            else:
+                _write_whole(piece)
+    for piece in held:
+        _write_whole(piece)
+    if physical:
+        typer.echo(
+            f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
+            f"{error_budget:g}), from the logical counts",
+            err=True,
+        )
+    if plot is not None:
+        typer.echo(f"wrote {plot}", err=True)
+    if explain:
+        _explain(points.points, options)
+
+
+def _explain(points: Sequence[Any], plan: Any) -> None:
+    """The phase plan's choices per distinct scenario, as tables on standard error."""
+    from rich.console import Console
+
+    from qcpp.cli.commands.compile import explain_table
+    from qcpp.plan.qaoa import qaoa_plan
+
+    console = Console(stderr=True)
+    seen: set[object] = set()
+    for point in points:
+        s = point.build_scenario()
+        if s in seen:
+            continue
+        seen.add(s)
+        table = explain_table(qaoa_plan(s, 1, plan).phase_plan.explain())  # the phase plan compile would build
+        table.title = f"{s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s): {table.title}"
+        print_table(console, table)
+
+
+def _is_terminal(stream: Any) -> bool:
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+def _write_whole(text: str) -> None:
+    """Write ``text`` to standard output now, whole even if Ctrl-C or SIGTERM arrives meanwhile: the signals are
+    only recorded during the write and raised as ``KeyboardInterrupt`` once the piece is out, so that an
+    interrupted stream ends with a complete row. (The CLI's watchdog still ends a write stuck for too long.)"""
+    out = sys.stdout
+    if threading.current_thread() is not threading.main_thread():  # signal handlers belong to the main thread
+        out.write(text)
+        out.flush()
+        return
+    caught: list[int] = []
+    stops = (signal.SIGINT, signal.SIGTERM)
+    previous = {sig: signal.signal(sig, lambda signum, frame: caught.append(signum)) for sig in stops}
+    try:
+        out.write(text)
+        out.flush()
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    if caught:
+        raise KeyboardInterrupt
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``estimate`` to ``app``."""
+    app.command("estimate", help=HELP)(estimate)

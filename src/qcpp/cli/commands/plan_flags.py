@@ -1,0 +1,160 @@
+"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`;
+and the flags every scenario command declares alike (:data:`ScenarioArg`, :data:`LayersFlag`, ``--rule``).
+
+Both commands take an ``options: PlanOptions`` parameter and are decorated with :func:`with_plan_flags`, which
+puts the plan flags in its place and builds the options with :func:`plan_options`, so the two accept exactly the
+same flags with the same help, defaults and checks (``tests/qcpp/plan_flags_test.py`` compares them).
+
+Example:
+    >>> plan_options("exact", "representatives", "ft", "feasible", "cx", None).initial
+    'representatives'
+    >>> plan_options("exact", "path", "nisq", "feasible", "cx", None)
+    Traceback (most recent call last):
+    ...
+    ValueError: --initial: expected initial_path or representatives or local_search or local_search_mix, got 'path'
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated, Any, TypeVar, get_type_hints
+
+import typer
+
+from qcpp.plan.options import INITIAL_STATES, PlanOptions
+
+__all__ = [
+    "PLAN_FLAGS",
+    "AncillaBudgetFlag",
+    "AnglesFlag",
+    "InitialFlag",
+    "LayersFlag",
+    "OptimizeFlag",
+    "PhaseFlag",
+    "PhaseLayoutFlag",
+    "RuleFlag",
+    "ScenarioArg",
+    "TargetFlag",
+    "plan_options",
+    "with_plan_flags",
+]
+
+ScenarioArg = Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)]
+LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
+RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
+InitialFlag = Annotated[
+    str,
+    typer.Option(
+        "--initial",
+        help=f"Initial state: {', '.join(INITIAL_STATES)} (local_search: the paths of a steepest descent over SBF "
+        "moves, a classical warm start; local_search_mix: per robot the initial and the descent path in equal "
+        "superposition).",
+    ),
+]
+TargetFlag = Annotated[
+    str,
+    typer.Option(
+        "--target",
+        help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
+        "or ft (fewest T and rotations).",
+    ),
+]
+PhaseFlag = Annotated[
+    str,
+    typer.Option(
+        "--phase",
+        help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
+        "(the Ising Hamiltonian, O((re)^2)).",
+    ),
+]
+OptimizeFlag = Annotated[
+    str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+]
+AncillaBudgetFlag = Annotated[
+    int | None,
+    typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+]
+
+PhaseLayoutFlag = Annotated[
+    str,
+    typer.Option(
+        "--phase-layout",
+        help="How the phase separator sits on the grid: pooled (fewest CX all-to-all), spatial (star-shaped "
+        "adders over neighbouring edges, node gadgets with nearby ancillas: fewer routed CX on grids and "
+        "heavy-hex), medial (spatial, each robot's balance sums drifting to where the robots' patches meet) or "
+        "auto (with --device onto a device that is not all-to-all: medial on a square grid, else spatial; "
+        "else pooled).",
+    ),
+]
+
+AnglesFlag = Annotated[
+    str,
+    typer.Option(
+        "--mixer-angles",
+        help="Mixer parameters: layer (one beta_k per layer) or multi (multi-angle QAOA: one "
+        "beta_r<robot>_q<plaquette>_<k> per partial mixer and layer; same gates, so the same counts).",
+    ),
+]
+
+PLAN_FLAGS: tuple[str, ...] = (
+    "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout", "--mixer-angles",
+)
+"""The flags above, in :class:`~qcpp.plan.options.PlanOptions` field order."""
+
+_PARAMETERS: tuple[tuple[str, Any], ...] = (
+    ("rule", RuleFlag), ("initial", InitialFlag), ("target", TargetFlag), ("phase", PhaseFlag),
+    ("optimize", OptimizeFlag), ("ancilla_budget", AncillaBudgetFlag), ("phase_layout", PhaseLayoutFlag),
+    ("angles", AnglesFlag),
+)  # fmt: skip
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def with_plan_flags(command: F) -> F:
+    """``command`` with the plan flags in place of its ``options`` parameter (after its own parameters; defaults
+    those of :class:`~qcpp.plan.options.PlanOptions`), called with the options they build (:func:`plan_options`).
+    """
+    defaults, keyword = PlanOptions(), inspect.Parameter.KEYWORD_ONLY
+    flags = [inspect.Parameter(name, keyword, default=getattr(defaults, name), annotation=a) for name, a in _PARAMETERS]
+    sig = inspect.signature(command, eval_str=True)
+    hints = get_type_hints(command, include_extras=True)
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        options = plan_options(*(kwargs.pop(name) for name, _ in _PARAMETERS))
+        return command(*args, options=options, **kwargs)
+
+    own = [q for q in sig.parameters.values() if q.name != "options"]
+    wrapper.__signature__ = sig.replace(parameters=[*own, *flags])  # type: ignore[attr-defined]
+    wrapper.__annotations__ = {**{q.name: hints[q.name] for q in own}, **{q.name: q.annotation for q in flags}}
+    return wrapper  # type: ignore[return-value]
+
+
+def plan_options(
+    rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None,
+    phase_layout: str = "auto", angles: str = "layer",
+) -> PlanOptions:
+    """The :class:`~qcpp.plan.options.PlanOptions` of the plan flags.
+
+    Args:
+        rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles: the flags' values
+            (``angles`` is ``--mixer-angles``).
+
+    Returns:
+        The options.
+
+    Raises:
+        ValueError: one line naming the flag (``--initial: expected ..., got ...``).
+    """
+    try:
+        return PlanOptions(
+            rule, initial, target, phase, optimize, ancilla_budget, phase_layout=phase_layout,  # type: ignore[arg-type]
+            angles=angles,  # type: ignore[arg-type]
+        )
+    except ValueError as exc:
+        field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
+        flag = "--mixer-angles" if field == "angles" else f"--{field.replace('_', '-')}"
+        raise ValueError(f"{flag}: {problem}") from None

@@ -1,0 +1,126 @@
+"""``qcpp simulate``: evaluate QAOA angles on a scenario with one of the simulators.
+
+A thin layer over :func:`qcpp.simulate.evaluate.evaluate`: parses the options, prints a short report (or one JSON
+object with ``--json``). Bad input raises ``ValueError``/``ScenarioError``, which the CLI's shared handler
+turns into one line on stderr and exit code 2.
+
+Examples::
+
+    qcpp simulate examples/paper_3x3.toml -p 1 --angles 0.3,1.2
+    qcpp simulate examples/paper_3x3.toml -p 2 --method statevector --seed 4 --json
+    qcpp simulate examples/two_robots_4x4.toml -p 3 --method subspace --rule exact
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
+from qcpp.cli.progress import Progress
+from qcpp.cli.render import print_table
+from qcpp.problem.scenario import Scenario, load_scenario
+
+__all__ = ["parse_angles", "register", "simulate_command"]
+
+HELP = (
+    "Evaluate QAOA angles (given with --angles, or seeded random) with the feasible-subspace simulator, the "
+    "dense statevector of the compiled circuit, or the tensor-network backend: expectation <C>, probability "
+    "of the optimum, and the probability held on feasible assignments with clean ancillas."
+)
+
+
+def parse_angles(text: str) -> list[float]:
+    """``"g0,b0,g1,b1"`` -> floats.
+
+    Raises:
+        ValueError: naming the item that is not a finite number.
+
+    Example:
+        >>> parse_angles("0.3, 1.2")
+        [0.3, 1.2]
+    """
+    out = []
+    for part in text.split(","):
+        item = part.strip()
+        try:
+            value = float(item)
+        except ValueError:
+            raise ValueError(f"--angles: {item!r} is not a number (expected g0,b0,g1,b1,...)") from None
+        if not math.isfinite(value):
+            raise ValueError(f"--angles: {item!r} is not a finite number")
+        out.append(value)
+    return out
+
+
+def _guard(s: Scenario, path: Path) -> None:
+    """Refuse (one line, exit 2) a feasible subspace over the validation limit
+    (:data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory); ``--allow-large`` lifts it."""
+    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, validate_size
+
+    if large_allowed():
+        return
+    size = validate_size(s, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
+    budget = memory_budget()
+    if size.assignments > MAX_VALIDATE_ASSIGNMENTS or (budget is not None and size.bytes > budget):
+        limit = (
+            f"the limit of {MAX_VALIDATE_ASSIGNMENTS:,} feasible assignments"
+            if size.assignments > MAX_VALIDATE_ASSIGNMENTS
+            else f"the memory budget of {budget / 1e9:.1f} GB"  # type: ignore[operator]
+        )
+        raise ValueError(f"{path}: simulating {size.describe()}: over {limit}; pass {OVERRIDE_FLAG} to try anyway")
+
+
+def simulate_command(
+    scenario: ScenarioArg,
+    p: LayersFlag = 1,
+    method: Annotated[
+        str, typer.Option("--method", "-m", help="Simulator: subspace, statevector or tensor.")
+    ] = "subspace",
+    angles: Annotated[
+        str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (2p values); default: random from --seed.")
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles (at least 0).")] = 0,
+    rule: RuleFlag = "exact",
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+) -> None:
+    """Evaluate QAOA angles (see ``qcpp simulate --help``)."""
+    from qcpp.simulate.evaluate import evaluate  # scipy: imported when the command runs, not at start-up
+
+    values = parse_angles(angles) if angles is not None else None
+    if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
+        raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
+    s = load_scenario(scenario, check_range=True, phases=True)
+    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
+        _guard(s, scenario)
+    with Progress(f"simulate {scenario.name}") as bar:
+        bar.stage(f"simulating ({method})")
+        res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
+    if as_json:
+        typer.echo(json.dumps({"scenario": str(scenario), **res.as_dict(), "rule": rule}))
+        return
+    table = Table(title=f"{s.name or scenario.name}: p={p}, {method}", title_justify="left")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_row(escape("angles [g0, b0, ...]"), ", ".join(f"{a:.6g}" for a in res.angles))
+    table.add_row("expectation <C>", f"{res.expectation:.10g}")
+    table.add_row("probability of the optimum", f"{res.p_optimum:.6g}")
+    table.add_row("held on feasible, clean ancillas", f"{res.amplitudes_held:.12g}")
+    if res.qubits is not None:
+        table.add_row("qubits simulated", str(res.qubits))
+    table.add_row("amplitudes computed", f"{res.basis_states:,}")
+    table.add_row("seconds", f"{res.seconds:.3f}")
+    print_table(Console(), table)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``simulate`` to ``app``."""
+    app.command("simulate", help=HELP)(simulate_command)

@@ -1,0 +1,350 @@
+"""``qcpp solve``: solve a scenario with one of the registered methods and show the paths.
+
+Examples::
+
+    qcpp solve examples/paper_3x3.toml --method dfs
+    qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
+    qcpp solve examples/two_robots_5x5.toml --method genetic --rule paper --json
+    qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
+    qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --objective cvar
+    qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
+
+Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); ``--method``
+accepts exactly its keys. Adding a method is one entry: a function
+``f(scenario, *, seed, rule, progress) -> qcpp.problem.solvers.Solution`` stored under its name.
+
+``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
+solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
+:data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
+:func:`qcpp.simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
+
+``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
+proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
+
+``dfs`` predicts its size first (:func:`qcpp.problem.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
+memory, time) and refuses a search over the limits in one line naming that size and ``--allow-large``. Every method
+shows progress on stderr (:mod:`qcpp.cli.progress`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from qcpp.cli.commands.plan_flags import RuleFlag, ScenarioArg
+from qcpp.cli.progress import Progress
+from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
+from qcpp.io.atomic import check_output
+from qcpp.plan.options import INITIAL_STATES
+from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+
+__all__ = [
+    "METHOD_HELP",
+    "QAOA_DEFAULTS",
+    "SOLVE_METHODS",
+    "register",
+    "solve_command",
+    "solve_help",
+    "sparkline",
+]
+
+QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
+                 "mixer_warm": False}
+"""Defaults of the QAOA-only options (any other value with another method is an error)."""
+
+
+def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
+    """The ``qaoa`` entry with default settings (``solve_command`` passes its QAOA options itself)."""
+    from qcpp.simulate.qaoa_solver import solve_qaoa
+
+    return solve_qaoa(scenario, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
+
+
+def _qubo(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
+    """The ``qubo`` entry: tabu search on the per-robot QUBO, decoded, cycles dropped, SBF-polished."""
+    from qcpp.qubo.solve import solve_qubo
+
+    return solve_qubo(scenario, seed=seed, rule=rule, progress=progress).solution
+
+
+SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo}
+"""``--method`` name -> solver. Register new methods here (the CLI reads the keys at call time)."""
+
+_SPARK = "▁▂▃▄▅▆▇█"
+
+
+def sparkline(values: Sequence[float], width: int = 60) -> str:
+    """A one-line bar chart of ``values`` (resampled to at most ``width`` bars; low = short).
+
+    Example:
+        >>> sparkline([3.0, 2.0, 1.0, 0.0])
+        '█▆▃▁'
+    """
+    if not values:
+        return ""
+    bars = min(width, len(values))
+    idx = [round(i * (len(values) - 1) / max(1, bars - 1)) for i in range(bars)]
+    pts = [values[i] for i in idx]
+    lo, hi = min(pts), max(pts)
+    span = hi - lo or 1.0
+    return "".join(_SPARK[round((v - lo) / span * (len(_SPARK) - 1))] for v in pts)
+
+METHOD_HELP = {
+    "dfs": "exhaustive search, the exact optimum",
+    "cpsat": "OR-Tools CP-SAT, the optimum with a proof (or a bound and gap at --time-limit)",
+    "anneal": "simulated annealing with SBF moves (the paper's baseline)",
+    "genetic": "the paper's genetic algorithm with SBF mutations",
+    "qaoa": "QAOA trained on the feasible-subspace simulator, answering with its most probable assignment",
+    "qubo": "tabu search on the QUBO, repaired and polished with SBF moves "
+    "(needs the annealing extra: dimod, dwave-samplers)",
+}
+"""One line per method for ``qcpp solve --help`` (a method registered without one is still listed)."""
+
+
+def solve_help() -> str:
+    """The help text of ``solve``: every method of :data:`SOLVE_METHODS`, described.
+
+    Example:
+        >>> all(name in solve_help() for name in SOLVE_METHODS)
+        True
+    """
+    methods = "; ".join(f"{name} = {METHOD_HELP.get(name, 'see its documentation')}" for name in SOLVE_METHODS)
+    return (
+        f"Solve a scenario with --method ({methods}) and print the paths on the grid, the cost and its parts."
+    )
+
+
+def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
+    """The robots' paths for ``dfs``, after the size prediction (refused over the limits, one line)."""
+    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from qcpp.problem.solvers import exhaustive
+    from qcpp.problem.solvers.exhaustive import DfsTooLargeError, dfs_paths
+
+    with Progress(description) as bar:
+        bar.stage("counting and enumerating paths")
+        try:
+            if large_allowed():
+                return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
+            return dfs_paths(
+                scenario,
+                max_assignments=exhaustive.MAX_DFS_ASSIGNMENTS,
+                max_paths=exhaustive.MAX_DFS_PATHS,
+                max_bytes=memory_budget(),
+            )
+        except DfsTooLargeError as exc:
+            raise ValueError(
+                f"{exc}; pass {OVERRIDE_FLAG} to run it anyway, or use --method cpsat (exact, with a time limit) "
+                "or anneal"
+            ) from None
+
+
+STATE_BYTES_PER_ASSIGNMENT = 16
+"""One complex128 amplitude per feasible assignment: the least one QAOA state of the subspace simulator holds."""
+
+
+def _qaoa_guard(scenario: Scenario, path: Path, description: str) -> None:
+    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold even one state in the memory
+    budget (half the available memory); ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory
+    after the path enumeration and 3 robots on 6x6 enumerated paths for minutes first."""
+    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from qcpp.simulate.validate import validate_size
+
+    budget = memory_budget()
+    if large_allowed() or budget is None:
+        return
+    with Progress(description) as bar:
+        bar.stage("counting feasible assignments")
+        size = validate_size(scenario, max_assignments=budget // STATE_BYTES_PER_ASSIGNMENT)
+    need = size.assignments * STATE_BYTES_PER_ASSIGNMENT
+    if need > budget:
+        counted = " x ".join(f"{n:,}" for n in size.paths_per_robot)
+        raise ValueError(
+            f"{path}: training QAOA on {'at least ' if not size.exact else ''}{size.assignments:,} feasible "
+            f"assignments (paths counted: {counted}): one state needs at least {need / 1e9:.1f} GB, over the memory "
+            f"budget of {budget / 1e9:.1f} GB; pass {OVERRIDE_FLAG} to try anyway, or use --method cpsat or anneal"
+        )
+
+
+def _cost_table(scenario: Scenario, sol: Solution) -> Table:
+    a0, a1, a2 = scenario.objective.alpha
+    table = Table(title="cost", title_justify="left")
+    for col in ("term", "value", "weight", "weighted"):
+        table.add_column(col, justify="left" if col == "term" else "right")
+    for term, value, weight in (
+        ("c1 obstacles/coverage", sol.cost.c1, a0),
+        ("c2 length balance", sol.cost.c2, a1),
+        ("c3 node degrees", sol.cost.c3, a2),
+    ):
+        table.add_row(term, f"{value:g}", f"{weight:g}", f"{weight * value:g}")
+    table.add_row("[bold]total", "", "", f"[bold]{sol.cost.total:g}")
+    return table
+
+
+def solve_command(
+    scenario: ScenarioArg,
+    method: Annotated[
+        str, typer.Option("--method", "-m", help="Solver (see above).")
+    ] = "anneal",
+    seed: Annotated[int, typer.Option("--seed", help="Random seed (anneal, genetic, qaoa's initial angles).")] = 0,
+    rule: RuleFlag = "exact",
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object instead of the drawing.")] = False,
+    plot: Annotated[
+        Path | None, typer.Option("--plot", help="Also draw the paths to this image (PNG, SVG, ...).")
+    ] = None,
+    plot_trace_file: Annotated[
+        Path | None,
+        typer.Option("--plot-trace", help="Also plot the cost trace (anneal, genetic: best so far; qaoa: objective)."),
+    ] = None,
+    p: Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (qaoa).")] = QAOA_DEFAULTS["p"],
+    optimizer: Annotated[
+        str, typer.Option("--optimizer", help="QAOA training (qaoa): layerwise (L-BFGS-B for p = 1, 2, ... in "
+                          "turn, warm-started), multi-angle (one beta per partial mixer and layer, every gamma 0, "
+                          "layer by layer from seeded random starts; the JSON adds the circuit's bindings), or one "
+                          "nesterov, cobyla or lbfgsb run at depth p.")
+    ] = QAOA_DEFAULTS["optimizer"],
+    objective: Annotated[
+        str, typer.Option("--objective", help="QAOA training objective (qaoa): gibbs, cvar or expectation.")
+    ] = QAOA_DEFAULTS["objective"],
+    maxiter: Annotated[
+        int, typer.Option("--maxiter", help="QAOA optimiser steps / evaluations / iterations per run (qaoa).")
+    ] = QAOA_DEFAULTS["maxiter"],
+    initial: Annotated[
+        str, typer.Option("--initial", help=f"QAOA initial state (qaoa): {', '.join(INITIAL_STATES)} (local_search: "
+                          "the paths of a steepest descent over SBF moves; local_search_mix: per robot the initial "
+                          "and the descent path in equal superposition).")
+    ] = QAOA_DEFAULTS["initial"],
+    mixer_warm: Annotated[
+        bool, typer.Option("--mixer-warm", help="QAOA layerwise training (qaoa): also start every level from the "
+                           "mixer-only warm start (betas trained with every gamma 0, where the state is a product "
+                           "over robots).")
+    ] = QAOA_DEFAULTS["mixer_warm"],
+    time_limit: Annotated[
+        float | None,
+        typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
+                     show_default="until proven"),
+    ] = None,
+) -> None:
+    """Solve a scenario (see ``qcpp solve --help``)."""
+    qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
+                    "mixer_warm": mixer_warm}
+    if method != "qaoa":
+        for name, value in qaoa_options.items():
+            if value != QAOA_DEFAULTS[name]:
+                flag = "-p" if name == "p" else f"--{name.replace('_', '-')}"
+                raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
+    if method == "qaoa":
+        from qcpp.simulate.objectives import OBJECTIVES
+
+        if objective not in OBJECTIVES:  # before the scenario is loaded, and naming the flag
+            raise ValueError(f"--objective: unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
+    if mixer_warm and optimizer != "layerwise":
+        raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
+    if time_limit is not None and method != "cpsat":
+        raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
+    if time_limit is not None and not 0 < time_limit < math.inf:
+        raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
+    for out in (plot, plot_trace_file):
+        if out is not None:
+            check_output(out)  # a bad destination fails before solving, not after
+    s = load_scenario(scenario, check_range=True, phases=method == "qaoa")
+    qaoa = None
+    exact = None
+    description = f"{method} on {scenario.name}"
+    if method == "qaoa":
+        _qaoa_guard(s, scenario, description)
+    dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
+    with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
+        progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
+        if dfs_lists is not None:
+            from qcpp.problem.solvers.exhaustive import dfs
+
+            sol = dfs(s, progress=progress, paths=dfs_lists)
+        elif method == "cpsat" and SOLVE_METHODS["cpsat"] is SOLVERS["cpsat"]:
+            from qcpp.problem.solvers import cpsat
+
+            exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress)
+            sol = exact.solution
+        elif method == "qaoa":
+            from qcpp.simulate.qaoa_solver import solve_qaoa
+
+            qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
+            sol = qaoa.solution
+        else:
+            sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
+    if plot is not None:
+        plot_paths(s, sol.paths, plot, title=f"{s.name or scenario.name}: {method}, cost {sol.cost.total:g}")
+    if plot_trace_file is not None:
+        if not sol.trace:
+            raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
+        if qaoa is not None:
+            # the training objective per iteration (in units of cost), drawn as a line
+            plot_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
+                       title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or scenario.name}",
+                       xlabel="training iteration", steps=False)
+        else:
+            unit = "generation" if method == "genetic" else "iteration"
+            plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
+
+    if as_json:
+        if qaoa is not None:
+            from qcpp.simulate.qaoa_solver import qaoa_to_dict
+
+            out = {"scenario": str(scenario), **qaoa_to_dict(s, qaoa)}
+        else:
+            out = {"scenario": str(scenario), **solution_to_dict(s, sol, include_trace=False)}
+        if exact is not None:
+            known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
+            out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,
+                       gap=exact.gap if known else None, status=exact.status)
+        if sol.trace:
+            out["trace_length"] = len(sol.trace)
+        typer.echo(json.dumps(out))
+        return
+    console = Console()
+    console.print(render_ascii(s, sol.paths), markup=False, highlight=False)
+    console.print()
+    print_table(console, _cost_table(s, sol))
+    details = [f"method {method}", f"{sol.seconds:.3f} s", f"{sol.evaluated:,} assignments scored"]
+    if sol.paths_per_robot:
+        details.append("paths per robot " + " x ".join(f"{n:,}" for n in sol.paths_per_robot))
+    if sol.seed is not None:
+        details.append(f"seed {sol.seed}")
+    if sol.rule is not None:
+        details.append(f"rule {sol.rule}")
+    console.print(", ".join(details), highlight=False)
+    if qaoa is not None:
+        console.print(
+            f"most probable assignment (drawn above): probability {qaoa.probability:.4g}; "
+            f"probability of an optimal assignment {qaoa.p_optimum:.4g}",
+            highlight=False,
+            soft_wrap=True,
+        )
+        tr = qaoa.trace
+        console.print(f"{objective} objective per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}",
+                      highlight=False, soft_wrap=True)
+        console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
+                      highlight=False, soft_wrap=True)
+    if exact is not None:
+        verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
+        console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
+    for note in sol.notes:
+        console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False, soft_wrap=True)
+    for path in (plot, plot_trace_file):
+        if path is not None:
+            typer.echo(f"wrote {path}", err=True)
+    sys.stdout.flush()
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``solve`` to ``app``."""
+    app.command("solve", help=solve_help())(solve_command)

@@ -1,0 +1,175 @@
+"""``qcpp validate``: check a compiled, lowered QAOA circuit against the exact feasible-subspace simulator.
+
+Examples::
+
+    qcpp validate examples/paper_3x3.toml -p 2 --backend tensor
+    qcpp validate examples/two_robots_4x4.toml -p 1 --backend sparse --json
+    qcpp validate examples/paper_3x3.toml -p 2 --backend qcec
+    qcpp validate examples/two_robots_4x4.toml -p 2 --dask tcp://scheduler:8786
+
+The default backend is ``auto``: the one that fits (:func:`qcpp.simulate.validate.choose_backend`: the dense statevector
+up to 20 qubits, else the sparse state). The size (feasible assignments, the reference state's size) is predicted
+first and a validation over :data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS` or half the available memory is
+refused in one line naming the size and ``--allow-large``. The stages show as progress on stderr
+(:mod:`qcpp.cli.progress`).
+
+Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
+run (``INCOMPLETE``, e.g. a tensor contraction too wide: a check that did not run never reports PASSED); bad
+input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict`` (``passed``,
+``failed`` or ``incomplete``), and its ``passed`` is true only for ``passed``.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
+from qcpp.cli.commands.simulate import parse_angles
+from qcpp.cli.progress import Progress
+from qcpp.cli.render import print_table
+from qcpp.problem.scenario import load_scenario
+
+__all__ = ["register", "validate_command"]
+
+HELP = (
+    "Compile the lowered QAOA circuit, run it with a gate-level simulator (auto = statevector up to 20 qubits, "
+    "else sparse; tensor = quimb exact contraction + MPS; statevector; sparse) at given or seeded random angles, "
+    "and check that the ancillas end in |0> and every "
+    "feasible assignment's amplitude equals the exact feasible-subspace simulator's; or (qcec) prove the lowered "
+    "circuit equal to the high-level one with MQT QCEC. Exit 0 only if every check ran and passed; 1 if one "
+    "failed or was skipped (INCOMPLETE)."
+)
+
+
+def _check_dask_address(text: str) -> None:
+    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (it used to
+    fail after the simulation with dask's own message, which named no flag).
+
+    Example:
+        >>> _check_dask_address("tcp://127.0.0.1:8786")
+    """
+    if not text.strip():
+        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
+    if text.strip() == "local":
+        return
+    try:
+        from distributed.comm import parse_address
+        from distributed.comm.addressing import parse_host_port
+    except ImportError:
+        return  # the tensor backend says that dask is missing
+    try:
+        scheme, location = parse_address(text.strip())
+        if scheme in ("tcp", "tls"):
+            parse_host_port(location)
+    except ValueError as exc:
+        raise ValueError(f"--dask: {exc} (expected a scheduler address such as tcp://host:8786, or 'local')") from None
+
+
+def validate_command(
+    scenario: ScenarioArg,
+    p: LayersFlag = 1,
+    backend: Annotated[
+        str,
+        typer.Option("--backend", help="auto (what fits: statevector or sparse), tensor, statevector, sparse or qcec."),
+    ] = "auto",
+    angles: Annotated[
+        str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles and the amplitude sample.")] = 0,
+    rule: RuleFlag = "exact",
+    max_amplitudes: Annotated[
+        int,
+        typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly (at least 1)."),
+    ] = 256,
+    as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
+    dask: Annotated[
+        str | None,
+        typer.Option(
+            "--dask",
+            help="tensor: run sliced wide contractions on a dask cluster: a scheduler address "
+            "(tcp://host:8786) or 'local' for a LocalCluster on this machine. Default: in-process.",
+        ),
+    ] = None,
+) -> None:
+    """Validate a compiled circuit (see ``qcpp validate --help``)."""
+    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
+    from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, ValidationTooLargeError, validate
+
+    if dask is not None and backend == "auto":
+        backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
+    if dask is not None and backend != "tensor":
+        raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
+    if dask is not None:
+        _check_dask_address(dask)
+    values = None
+    if angles is not None:
+        values = parse_angles(angles)
+        if len(values) != 2 * p:
+            raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
+    if backend == "qcec":
+        try:
+            import mqt.qcec  # noqa: F401
+            import qiskit  # noqa: F401
+        except ImportError as exc:
+            raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
+    s = load_scenario(scenario, check_range=True, phases=True)
+    large = large_allowed()
+    with Progress(f"validate {scenario.name}") as bar:
+        try:
+            report = validate(
+                s,
+                p,
+                backend=backend,  # type: ignore[arg-type]
+                angles=values,
+                seed=seed,
+                rule=rule,  # type: ignore[arg-type]
+                max_amplitudes=max_amplitudes,
+                dask=dask,
+                max_assignments=None if large else MAX_VALIDATE_ASSIGNMENTS,
+                max_bytes=None if large else memory_budget(),
+                stage=bar.stage,
+            )
+        except ValidationTooLargeError as exc:
+            raise ValueError(f"{scenario}: {exc}; pass {OVERRIDE_FLAG} to try anyway") from None
+    chosen = f"{report.backend} (auto)" if backend == "auto" else report.backend  # said in the table's title
+    backend = report.backend
+    skipped = [c.name for c in report.checks if c.status == "skipped"]
+    verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
+    if as_json:
+        out = {**report.to_dict(), "passed": verdict == "passed", "verdict": verdict}
+        if backend == "qcec":
+            out["tolerance"] = None  # QCEC decides equality exactly; it compares no amplitudes
+        typer.echo(json.dumps(out))
+    else:
+        table = Table(title=f"{scenario.name}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
+        for col in ("check", "method", "value", "error", "count", "status", "seconds"):
+            table.add_column(col, justify="left" if col in ("check", "method", "status") else "right")
+        for c in report.checks:
+            colour = {"pass": "green", "fail": "red"}.get(c.status, "yellow")
+            table.add_row(
+                c.name, c.method, f"{c.value:.3g}", f"{c.error:.2g}", str(c.count),
+                f"[{colour}]{c.status}", f"{c.seconds:.2f}",
+            )
+        console = Console()
+        print_table(console, table)
+        for c in report.checks:
+            if c.note:
+                console.print(f"{c.name} ({c.method}): {c.note}", markup=False, soft_wrap=True)
+        detail = f" ({len(skipped)} check(s) skipped: {', '.join(skipped)})" if skipped else ""
+        if backend == "qcec":  # a decision procedure: no amplitudes compared, so no tolerance to claim
+            scope = "lowered == high level on every input with clean ancillas, decided exactly by QCEC"
+        else:
+            scope = f"{report.feasible_assignments} feasible assignments, tolerance {report.tolerance:g}"
+        console.print(f"{verdict.upper()}{detail}: {scope}, {report.seconds:.1f} s", markup=False)
+    if verdict != "passed":
+        raise typer.Exit(code=1)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``validate`` to ``app``."""
+    app.command("validate", help=HELP)(validate_command)

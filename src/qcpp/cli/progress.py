@@ -1,0 +1,307 @@
+"""Progress of long commands on stderr: a bar on a terminal, a line every few seconds on a pipe or file.
+
+One helper for every command that can run long (``estimate`` tables, ``compile``, ``solve -m dfs``,
+``validate``): :class:`Progress`, a context manager that knows the task, its size (when known), how far the work
+got and which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM on stdout stay clean.
+
+* **Terminal** (stderr is a TTY): a transient rich bar (description, bar, done/total, elapsed, time left),
+  redrawn by rich's own thread, erased when the work ends.
+* **Pipe or file**: nothing for the first :data:`FIRST_LINE_AFTER` seconds (quick commands stay silent), then one
+  line every :data:`DEFAULT_INTERVAL` seconds, written by a heartbeat thread, so a stage that is one long native
+  call (a tensor contraction, a path search) still shows that it is alive::
+
+      estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left
+      validate: simulating the feasible subspace, 12 s elapsed
+
+  and, if any line was printed, a last one when the work ends (``estimate: 60,807 rows done in 75 s``).
+* The environment variable ``QCPP_PROGRESS`` picks the form: ``auto`` (default, as above), ``bar``, ``lines`` or
+  ``off``; ``QCPP_PROGRESS_INTERVAL`` sets the seconds between lines (``0``: a line at every step and stage,
+  synchronously, from the first one: what the tests use, so they never depend on timing).
+* Entering a :class:`Progress` also calls :func:`qcpp.cli.interrupt.announce_ready` (the ``ready: <task>`` line that
+  ``QCPP_READY=1`` turns on): the work has started.
+
+Library code never imports this module: it takes plain callbacks (``progress(done, total)``,
+:data:`qcpp.problem.solvers.ProgressFn`; ``stage(text)``), and the command passes :meth:`Progress.update` and
+:meth:`Progress.stage`.
+
+Example:
+    >>> import io
+    >>> out = io.StringIO()
+    >>> with Progress("demo", total=2, unit="steps", stream=out, mode="lines", interval=0) as bar:
+    ...     for _ in bar.iterate(["a", "b"]):
+    ...         pass
+    >>> [line.split(", ")[0] for line in out.getvalue().splitlines()]  # then elapsed time (and time left)
+    ['demo: 0 / 2 steps (0.0%)', 'demo: 1 / 2 steps (50.0%)', 'demo: 2 / 2 steps (100.0%)', 'demo: 2 steps done in 0 s']
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import threading
+import time
+from collections.abc import Iterable, Iterator
+from types import TracebackType
+from typing import Any, Literal, TextIO, TypeVar
+
+from qcpp.problem.limits import format_duration
+
+__all__ = [
+    "DEFAULT_INTERVAL",
+    "FIRST_LINE_AFTER",
+    "INTERVAL_ENV",
+    "MODE_ENV",
+    "Mode",
+    "Progress",
+    "format_duration",
+    "progress_mode",
+]
+
+Mode = Literal["auto", "bar", "lines", "off"]
+MODES: tuple[Mode, ...] = ("auto", "bar", "lines", "off")
+
+MODE_ENV = "QCPP_PROGRESS"
+"""Environment variable choosing the form of progress: ``auto`` (default), ``bar``, ``lines`` or ``off``."""
+
+INTERVAL_ENV = "QCPP_PROGRESS_INTERVAL"
+"""Environment variable: seconds between progress lines on a pipe (``0``: a line at every step)."""
+
+DEFAULT_INTERVAL = 5.0
+"""Seconds between two progress lines on a pipe or file."""
+
+FIRST_LINE_AFTER = 1.0
+"""Seconds of work before the first progress line on a pipe (quicker commands print none)."""
+
+HEARTBEAT_JOIN_SECONDS = 1.0
+"""How long leaving a :class:`Progress` waits for its heartbeat thread (a loaded machine may not run it sooner)."""
+
+T = TypeVar("T")
+
+
+def progress_mode(stream: TextIO | None = None) -> Mode:
+    """The form progress takes on ``stream`` (default stderr): ``bar``, ``lines`` or ``off``.
+
+    ``QCPP_PROGRESS`` decides when set to ``bar``, ``lines`` or ``off``; else a terminal gets ``bar`` and
+    anything else ``lines``.
+
+    Raises:
+        ValueError: ``QCPP_PROGRESS`` holds something else.
+    """
+    chosen = os.environ.get(MODE_ENV, "auto").strip().lower() or "auto"
+    if chosen not in MODES:
+        raise ValueError(f"{MODE_ENV}={chosen!r}: expected one of {', '.join(MODES)}")
+    if chosen != "auto":
+        return chosen  # type: ignore[return-value]
+    out = stream if stream is not None else sys.stderr
+    try:
+        return "bar" if out.isatty() else "lines"
+    except (AttributeError, ValueError):  # a closed or odd stream
+        return "lines"
+
+
+def _interval_from_env() -> float:
+    text = os.environ.get(INTERVAL_ENV, "").strip()
+    if not text:
+        return DEFAULT_INTERVAL
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"{INTERVAL_ENV}={text!r}: expected a number of seconds") from None
+    if not value >= 0 or value == float("inf"):
+        raise ValueError(f"{INTERVAL_ENV}={text!r}: expected a finite number of seconds, at least 0")
+    return value
+
+
+class Progress:
+    """Progress of one task on stderr (see the module docstring for the forms it takes).
+
+    Args:
+        task: What runs, a few words (``estimate``, ``compile 40x40, 8 robots``); starts every line.
+        total: Steps in all, if known (a bar then shows the fraction and the time left).
+        unit: What a step is, plural (``rows``, ``sections``, ``assignments``).
+        stream: Where to write (default ``sys.stderr``).
+        mode: ``auto``/``bar``/``lines``/``off``; default from ``QCPP_PROGRESS`` (see :func:`progress_mode`).
+        interval: Seconds between lines (default ``QCPP_PROGRESS_INTERVAL`` or :data:`DEFAULT_INTERVAL`).
+        first_after: Seconds before the first line (default :data:`FIRST_LINE_AFTER`; 0 with ``interval`` 0).
+    """
+
+    def __init__(
+        self,
+        task: str,
+        total: int | None = None,
+        unit: str = "steps",
+        *,
+        stream: TextIO | None = None,
+        mode: Mode | None = None,
+        interval: float | None = None,
+        first_after: float | None = None,
+    ) -> None:
+        self.task = task
+        self.total = total
+        self.unit = unit
+        self.done = 0
+        self.stage_text = ""
+        self._stream = stream
+        self._mode: Mode = progress_mode(stream) if mode in (None, "auto") else mode  # type: ignore[assignment]
+        self._interval = _interval_from_env() if interval is None else interval
+        self._first_after = (0.0 if self._interval == 0 else FIRST_LINE_AFTER) if first_after is None else first_after
+        self._start = 0.0
+        self._lines = 0
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._bar: Any = None
+        self._bar_task: Any = None
+
+    # ------------------------------------------------------------------ context
+
+    def __enter__(self) -> Progress:
+        from qcpp.cli.interrupt import announce_ready
+
+        self._start = time.monotonic()
+        announce_ready(self.task)
+        if self._mode == "bar":
+            self._start_bar()
+        elif self._mode == "lines":
+            if self._interval == 0:
+                self._line()
+            else:
+                self._thread = threading.Thread(target=self._heartbeat, name="qcpp-progress", daemon=True)
+                self._thread.start()
+        return self
+
+    def __exit__(
+        self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None
+    ) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=HEARTBEAT_JOIN_SECONDS)
+        with self._lock:  # a heartbeat line being written now ends before the caller's last line (``interrupted``)
+            pass
+        if self._bar is not None:
+            with contextlib.suppress(Exception):
+                self._bar.stop()
+        if exc_type is None and self._mode == "lines" and self._lines:
+            size = f"{self.done:,} {self.unit} " if self.total is not None or self.done else ""
+            self._write(f"{self.task}: {size}done in {format_duration(self._elapsed())}")
+
+    # ------------------------------------------------------------------ reporting
+
+    def update(self, done: int, total: int | None = None) -> None:
+        """Set how many steps are done (and the total, if it changed): a :data:`~qcpp.problem.solvers.ProgressFn`."""
+        self.done = done
+        if total is not None:
+            self.total = total
+        self._after_change()
+
+    def advance(self, steps: int = 1) -> None:
+        """``steps`` more steps are done."""
+        self.done += steps
+        self._after_change()
+
+    def stage(self, text: str) -> None:
+        """Name the stage the work is in now (``compiling the circuit``); shown next to the counts."""
+        changed = text != self.stage_text
+        self.stage_text = text
+        self._after_change()
+        if changed and self._mode == "lines" and self._interval > 0 and self._elapsed() >= self._first_after:
+            # say so now: the next stage may be one native call that holds the GIL (QCEC, a contraction), and
+            # then the heartbeat thread cannot write until it returns
+            self._line()
+
+    def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
+        """Yield ``items``, counting one step as each is handed out (done = items handed out before it).
+
+        Args:
+            items: The steps.
+            then: Stage to show once every item is done (what the consumer does next, e.g. ``rendering the table``).
+        """
+        for item in items:
+            yield item
+            self.advance()
+        if then is not None:
+            self.stage(then)
+
+    def status(self) -> str:
+        """The current line (without a newline)."""
+        parts = []
+        if self.total is not None:
+            share = f" ({100.0 * self.done / self.total:.1f}%)" if self.total else ""
+            parts.append(f"{self.done:,} / {self.total:,} {self.unit}{share}")
+        elif self.done:
+            parts.append(f"{self.done:,} {self.unit}")
+        if self.stage_text:
+            parts.append(self.stage_text)
+        elapsed = self._elapsed()
+        parts.append(f"{format_duration(elapsed)} elapsed")
+        if self.total and 0 < self.done < self.total and elapsed >= 1.0:
+            parts[-1] += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
+        return f"{self.task}: {', '.join(parts)}"
+
+    # ------------------------------------------------------------------ internals
+
+    def _elapsed(self) -> float:
+        return time.monotonic() - self._start if self._start else 0.0
+
+    def _after_change(self) -> None:
+        if self._mode == "bar" and self._bar is not None:
+            with contextlib.suppress(Exception):
+                self._bar.update(self._bar_task, completed=self.done, total=self.total, description=self._label())
+        elif self._mode == "lines" and self._interval == 0:
+            self._line()
+
+    def _label(self) -> str:
+        return f"{self.task}: {self.stage_text}" if self.stage_text else self.task
+
+    def _line(self, unless_stopped: bool = False) -> None:
+        self._write(self.status(), unless_stopped)
+
+    def _write(self, text: str, unless_stopped: bool = False) -> None:
+        out = self._stream if self._stream is not None else sys.stderr
+        with self._lock:
+            if unless_stopped and self._stop.is_set():  # the heartbeat woke after the work ended: no stale line
+                return
+            try:
+                out.write(text + "\n")
+                out.flush()
+            except (OSError, ValueError):  # stderr gone: progress is not worth failing the work for
+                self._mode = "off"
+                return
+            self._lines += 1
+
+    def _heartbeat(self) -> None:
+        if self._stop.wait(self._first_after):
+            return
+        while not self._stop.is_set():
+            self._line(unless_stopped=True)
+            if self._stop.wait(self._interval):
+                return
+
+    def _start_bar(self) -> None:
+        from rich.console import Console
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            SpinnerColumn,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
+        from rich.progress import (
+            Progress as RichProgress,
+        )
+
+        console = Console(file=self._stream if self._stream is not None else sys.stderr)
+        self._bar = RichProgress(
+            SpinnerColumn(),
+            TextColumn("{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            TimeRemainingColumn(),
+            console=console,
+            transient=True,
+        )
+        self._bar_task = self._bar.add_task(self._label(), total=self.total)
+        self._bar.start()

@@ -1,0 +1,354 @@
+"""Device models: a compile target's coupling graph, native gates, error rates, durations and readout error.
+
+A :class:`Device` is a frozen value. Two kinds exist:
+
+* **families** of any size, named ``grid[:RxC]``, ``heavy-hex[:D]`` (IBM's lattice, distance ``D`` odd) and
+  ``all-to-all[:N]``. Without a size, :func:`get_device` picks the smallest member that has ``min_qubits``
+  qubits: the smallest square ``k x k`` grid, the smallest odd distance ``D``, ``N = min_qubits``. A family's
+  error rates and durations are those of a named device of the same architecture (grid: Google Willow's
+  published means; heavy-hex: the medians of the IBM Fez snapshot; all-to-all: Quantinuum Helios's published
+  means), so a family member is "that device, grown or shrunk to size";
+* **named devices** read from ``qcpp/devices/data/<name>.json``, each file naming its source and date:
+  ``ibm_fez`` and ``ibm_torino`` (IBM Heron calibration snapshots, converted once from qiskit-ibm-runtime's fake
+  backends by ``scripts/convert_ibm_backends.py``; couplers the snapshot marks faulty, error 1, are dropped),
+  ``google_willow`` (square grid, published spec-sheet means) and ``quantinuum_helios`` (all-to-all trapped
+  ions, published means).
+
+Couplings are undirected (every device here has a symmetric two-qubit gate). Per-qubit and per-coupling values
+are tuples aligned with ``range(num_qubits)`` and :attr:`Device.coupling`; a duration is ``None`` where the
+source publishes none (then :func:`qcpp.routing.sabre.duration_s` is ``None`` too).
+
+Example:
+    >>> d = get_device("grid:2x3")
+    >>> d.name, d.num_qubits, d.coupling[:3], d.two_qubit_gate
+    ('grid:2x3', 6, ((0, 1), (0, 3), (1, 2)), 'cz')
+    >>> get_device("heavy-hex", min_qubits=20).name
+    'heavy-hex:5'
+    >>> get_device("ibm_fez").num_qubits
+    156
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import statistics
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+from typing import Any
+
+__all__ = [
+    "FAMILIES", "Device", "DeviceError", "device_names", "get_device", "heavy_hex_coordinates", "named_device",
+]
+
+FAMILIES = ("grid", "heavy-hex", "all-to-all")
+"""Device families of any size (``NAME[:SIZE]``)."""
+
+_DATA_PACKAGE = "qcpp.devices.data"
+
+
+class DeviceError(ValueError):
+    """A device name or size that does not exist or cannot hold the circuit (one line, for the CLI)."""
+
+
+@dataclass(frozen=True)
+class Device:
+    """A device: coupling graph, native gates, error rates, durations, readout.
+
+    Attributes:
+        name: ``grid:3x4``, ``heavy-hex:5``, ``all-to-all:20``, or a named device (``ibm_fez``).
+        num_qubits: Physical qubits ``0 .. num_qubits-1``.
+        coupling: Undirected couplings ``(a, b)``, ``a < b``, sorted.
+        native_gates: The device's gate names in the IR (``cz``, ``rz``, ``sx``, ``x``; ``rzz``, ``rx``).
+        two_qubit_gate: The native entangling gate (``cz`` or ``rzz``).
+        error_1q: Error per gate name, per qubit (``rz`` is virtual on superconducting devices: 0).
+        error_2q: Error of the native two-qubit gate per coupling.
+        readout_error: Per qubit.
+        duration_1q_s: Seconds per gate name, per qubit; ``None``: not published.
+        duration_2q_s: Seconds per coupling; ``None``: not published.
+        readout_duration_s: Seconds per qubit; ``None``: not published.
+        source: Where the figures come from.
+        date: Date of the figures (calibration snapshot or publication).
+        family: ``grid``, ``heavy-hex``, ``all-to-all`` (the architecture, also for named devices).
+    """
+
+    name: str
+    num_qubits: int
+    coupling: tuple[tuple[int, int], ...]
+    native_gates: tuple[str, ...]
+    two_qubit_gate: str
+    error_1q: tuple[tuple[str, tuple[float, ...]], ...]
+    error_2q: tuple[float, ...]
+    readout_error: tuple[float, ...]
+    duration_1q_s: tuple[tuple[str, tuple[float, ...]], ...] | None
+    duration_2q_s: tuple[float, ...] | None
+    readout_duration_s: tuple[float, ...] | None
+    source: str
+    date: str
+    family: str
+
+    def __post_init__(self) -> None:
+        n = self.num_qubits
+        if any(not (0 <= a < b < n) for a, b in self.coupling):
+            raise ValueError(f"{self.name}: a coupling is not (a, b) with 0 <= a < b < {n}")
+        if len(self.error_2q) != len(self.coupling) or len(self.readout_error) != n:
+            raise ValueError(f"{self.name}: per-coupling or per-qubit data of the wrong length")
+
+    @property
+    def is_all_to_all(self) -> bool:
+        """Every pair of qubits is coupled."""
+        return len(self.coupling) == self.num_qubits * (self.num_qubits - 1) // 2
+
+    def edge_index(self) -> dict[tuple[int, int], int]:
+        """``(a, b)`` (either order) -> index into :attr:`coupling`."""
+        return _edge_index(self)
+
+    def graph(self) -> Any:
+        """The coupling graph as a ``scipy.sparse.csr_matrix``: one unit entry per coupler (read it as undirected).
+
+        >>> get_device("grid:2x2").graph().nnz
+        4
+        """
+        import numpy as np
+        from scipy.sparse import csr_matrix
+
+        a, b = np.array(self.coupling, dtype=int).reshape(-1, 2).T
+        return csr_matrix((np.ones(len(a)), (a, b)), shape=(self.num_qubits, self.num_qubits))
+
+    def summary(self) -> dict:
+        """JSON-ready ``{name, qubits, coupling: [[a, b], ...]}`` (what ``qcpp compile --json`` prints)."""
+        return {"name": self.name, "qubits": self.num_qubits, "coupling": [list(e) for e in self.coupling]}
+
+
+@cache
+def _edge_index(device: Device) -> dict[tuple[int, int], int]:
+    out: dict[tuple[int, int], int] = {}
+    for i, (a, b) in enumerate(device.coupling):
+        out[(a, b)] = out[(b, a)] = i
+    return out
+
+
+# --- families ----------------------------------------------------------------------------------------------
+def grid_coupling(rows: int, cols: int) -> tuple[tuple[int, int], ...]:
+    """Square-lattice couplings, qubit ``r * cols + c``.
+
+    >>> grid_coupling(2, 2)
+    ((0, 1), (0, 2), (1, 3), (2, 3))
+    """
+    edges = []
+    for r in range(rows):
+        for c in range(cols):
+            q = r * cols + c
+            if c + 1 < cols:
+                edges.append((q, q + 1))
+            if r + 1 < rows:
+                edges.append((q, q + cols))
+    return tuple(sorted(edges))
+
+
+@cache
+def heavy_hex_coupling(distance: int) -> tuple[int, tuple[tuple[int, int], ...]]:
+    """IBM's heavy-hex lattice of code distance ``distance`` (odd): ``(5 d^2 - 2 d - 1) / 2`` qubits.
+
+    Built by Qiskit's ``CouplingMap.from_heavy_hex`` (the lattice of IBM's devices).
+    """
+    from qiskit.transpiler import CouplingMap
+
+    cm = CouplingMap.from_heavy_hex(distance, bidirectional=False)
+    return cm.size(), tuple(sorted({(min(a, b), max(a, b)) for a, b in cm.get_edges()}))
+
+
+def heavy_hex_qubits(distance: int) -> int:
+    """Qubits of the distance-``distance`` heavy-hex lattice.
+
+    >>> [heavy_hex_qubits(d) for d in (3, 5, 7)]
+    [19, 57, 115]
+    """
+    return (5 * distance * distance - 2 * distance - 1) // 2
+
+
+@cache
+def heavy_hex_coordinates(distance: int) -> tuple[tuple[int, int], ...]:
+    """``(y, x)`` of every qubit of :func:`heavy_hex_coupling`'s lattice (index order of Qiskit's
+    ``CouplingMap.from_heavy_hex``, i.e. rustworkx's ``heavy_hex_graph``).
+
+    The lattice has ``distance`` horizontal *row lines* ``y = 0, 2, .., 2 (distance - 1)`` of ``2 distance - 1``
+    qubits each (``x = 0 .. 2 distance - 2``, neighbours along the line), and *bridge* qubits at odd ``y`` joining
+    the qubits ``(y - 1, x)`` and ``(y + 1, x)``: below row line ``2 g`` with ``g`` even at ``x = 0, 3, 7, 11, ..``,
+    with ``g`` odd at ``x = 1, 5, 9, .., 2 distance - 2``. So the interior cells are hexagons of 12 qubits spanning
+    ``x .. x + 4`` between two row lines, their bridges four columns apart and shifted by two from gap to gap.
+
+    >>> heavy_hex_coordinates(3)[:5], heavy_hex_coordinates(3)[9:13]
+    (((0, 0), (0, 2), (0, 4), (2, 0), (2, 2)), ((1, 0), (1, 3), (3, 1), (3, 4)))
+    """
+    d = distance
+    coords: list[tuple[int, int]] = [(2 * i, 2 * j) for i in range(d) for j in range(d)]  # data qubits
+    for g in range(d - 1):  # syndrome (bridge) qubits, (d + 1) / 2 per gap
+        if g % 2 == 0:
+            coords += [(2 * g + 1, 0)] + [(2 * g + 1, 4 * j - 1) for j in range(1, (d + 1) // 2)]
+        else:
+            coords += [(2 * g + 1, 4 * j + 1) for j in range((d - 1) // 2)] + [(2 * g + 1, 2 * d - 2)]
+    coords += [(2 * i, 2 * j + 1) for i in range(d) for j in range(d - 1)]  # flag qubits
+    return tuple(coords)
+
+
+def _uniform(template: Device, name: str, n: int, coupling: tuple[tuple[int, int], ...], family: str) -> Device:
+    """A family member with the template's (median) figures on every qubit and coupling."""
+
+    def med(values: Sequence[float]) -> float:
+        return statistics.median(values) if values else 0.0
+
+    e1 = tuple((g, (med(v),) * n) for g, v in template.error_1q)
+    d1 = None if template.duration_1q_s is None else tuple((g, (med(v),) * n) for g, v in template.duration_1q_s)
+    d2 = None if template.duration_2q_s is None else (med(template.duration_2q_s),) * len(coupling)
+    ro = None if template.readout_duration_s is None else (med(template.readout_duration_s),) * n
+    return Device(
+        name=name,
+        num_qubits=n,
+        coupling=coupling,
+        native_gates=template.native_gates,
+        two_qubit_gate=template.two_qubit_gate,
+        error_1q=e1,
+        error_2q=(med(template.error_2q),) * len(coupling),
+        readout_error=(med(template.readout_error),) * n,
+        duration_1q_s=d1,
+        duration_2q_s=d2,
+        readout_duration_s=ro,
+        source=f"{family} lattice; figures: medians of {template.name} ({template.source})",
+        date=template.date,
+        family=family,
+    )
+
+
+_FAMILY_TEMPLATE = {"grid": "google_willow", "heavy-hex": "ibm_fez", "all-to-all": "quantinuum_helios"}
+_SIZE_RE = {
+    "grid": re.compile(r"^(\d+)x(\d+)$"),
+    "heavy-hex": re.compile(r"^(\d+)$"),
+    "all-to-all": re.compile(r"^(\d+)$"),
+}
+
+
+def _family_device(family: str, size: str | None, min_qubits: int) -> Device:
+    template = named_device(_FAMILY_TEMPLATE[family])
+    if size is not None:
+        m = _SIZE_RE[family].match(size)
+        if m is None:
+            form = {"grid": "RxC", "heavy-hex": "D (odd)", "all-to-all": "N"}[family]
+            raise DeviceError(f"device {family}:{size}: expected {family}:{form}")
+    if family == "grid":
+        if size is None:
+            k = max(1, math.isqrt(max(min_qubits, 1) - 1) + 1) if min_qubits > 1 else 1
+            rows = cols = k
+        else:
+            rows, cols = int(m.group(1)), int(m.group(2))  # type: ignore[union-attr]
+        if rows < 1 or cols < 1:
+            raise DeviceError(f"device grid:{size}: rows and columns must be at least 1")
+        return _uniform(template, f"grid:{rows}x{cols}", rows * cols, grid_coupling(rows, cols), family)
+    if family == "heavy-hex":
+        if size is None:
+            d = 3
+            while heavy_hex_qubits(d) < min_qubits:
+                d += 2
+        else:
+            d = int(m.group(1))  # type: ignore[union-attr]
+        if d < 3 or d % 2 == 0:
+            raise DeviceError(f"device heavy-hex:{d}: the distance must be odd and at least 3")
+        n, coupling = heavy_hex_coupling(d)
+        return _uniform(template, f"heavy-hex:{d}", n, coupling, family)
+    n = max(min_qubits, 2) if size is None else int(m.group(1))  # type: ignore[union-attr]
+    if n < 2:
+        raise DeviceError(f"device all-to-all:{n}: needs at least 2 qubits")
+    coupling = tuple((a, b) for a in range(n) for b in range(a + 1, n))
+    return _uniform(template, f"all-to-all:{n}", n, coupling, family)
+
+
+# --- named devices -----------------------------------------------------------------------------------------
+def device_names() -> tuple[str, ...]:
+    """Names of the devices shipped as data files.
+
+    >>> device_names()
+    ('google_willow', 'ibm_fez', 'ibm_torino', 'quantinuum_helios')
+    """
+    files = resources.files(_DATA_PACKAGE).iterdir()
+    return tuple(sorted(f.name[: -len(".json")] for f in files if f.name.endswith(".json")))
+
+
+def _per(value: float | list[float] | None, n: int) -> tuple[float, ...] | None:
+    if value is None:
+        return None
+    if isinstance(value, (int, float)):
+        return (float(value),) * n
+    if len(value) != n:
+        raise ValueError(f"expected {n} values, got {len(value)}")
+    return tuple(float(v) for v in value)
+
+
+@cache
+def named_device(name: str) -> Device:
+    """The device of ``data/<name>.json``.
+
+    Raises:
+        DeviceError: no such file.
+    """
+    if name not in device_names():
+        raise DeviceError(f"unknown device {name!r} (known: {', '.join(device_names())}; families: {_family_list()})")
+    raw = json.loads(resources.files(_DATA_PACKAGE).joinpath(f"{name}.json").read_text())
+    n = int(raw["num_qubits"])
+    if raw["coupling"] == "all":
+        coupling = tuple((a, b) for a in range(n) for b in range(a + 1, n))
+    else:
+        coupling = tuple(sorted((min(a, b), max(a, b)) for a, b in raw["coupling"]))
+    m = len(coupling)
+    errors, durations = raw["gate_error"], raw.get("gate_duration_s") or {}
+    twoq = raw["two_qubit_gate"]
+    one = tuple(g for g in raw["native_gates"] if g != twoq)
+    d1 = tuple((g, _per(durations[g], n)) for g in one) if all(durations.get(g) is not None for g in one) else None
+    return Device(
+        name=name,
+        num_qubits=n,
+        coupling=coupling,
+        native_gates=tuple(raw["native_gates"]),
+        two_qubit_gate=twoq,
+        error_1q=tuple((g, _per(errors[g], n)) for g in one),  # type: ignore[misc]
+        error_2q=_per(errors[twoq], m),  # type: ignore[arg-type]
+        readout_error=_per(raw["readout_error"], n),  # type: ignore[arg-type]
+        duration_1q_s=d1,  # type: ignore[arg-type]
+        duration_2q_s=_per(durations.get(twoq), m),
+        readout_duration_s=_per(raw.get("readout_duration_s"), n),
+        source=raw["source"],
+        date=raw["date"],
+        family=raw["family"],
+    )
+
+
+def _family_list() -> str:
+    return "grid[:RxC], heavy-hex[:D], all-to-all[:N]"
+
+
+def get_device(spec: str, min_qubits: int = 1) -> Device:
+    """A device by name: a family member ``grid[:RxC]``, ``heavy-hex[:D]``, ``all-to-all[:N]`` or a named device.
+
+    Args:
+        spec: The name.
+        min_qubits: For a family without a size: the smallest member with at least this many qubits.
+
+    Returns:
+        The :class:`Device`.
+
+    Raises:
+        DeviceError: an unknown name or a malformed size (one line naming both).
+
+    >>> get_device("grid", min_qubits=10).name
+    'grid:4x4'
+    >>> get_device("all-to-all", min_qubits=7).num_qubits
+    7
+    """
+    family, sep, size = spec.strip().partition(":")
+    if family in FAMILIES:
+        return _family_device(family, size if sep else None, min_qubits)
+    if sep:
+        raise DeviceError(f"unknown device {spec!r} (families: {_family_list()}; named: {', '.join(device_names())})")
+    return named_device(family)

@@ -1,0 +1,198 @@
+"""What ``qcpp estimate`` does, as plain functions (the CLI only parses options and prints).
+
+* :func:`points_from_options`: the ``--grid / --robots / -p / --scenario`` texts to points (and how many grid and
+  robot-count pairs were skipped because the grid cannot host the robots);
+* :func:`estimate_report`: estimates, rows, optional paper comparison and plot, rendered in one format, as a
+  stream of text pieces (rows appear as soon as they are computed, except in the ``table`` format);
+* :func:`formula_report`: the closed-form formulas (:mod:`qcpp.estimators.formulas`) as text.
+
+Example:
+    >>> pts = points_from_options("2x2..2x3", "1", "1")
+    >>> [p.label for p in pts.points], pts.skipped
+    (['2x2 r1 p1', '2x3 r1 p1'], 0)
+    >>> text = "".join(estimate_report(points_from_options("2x2", "1", "1").points, fmt="csv"))
+    >>> text.splitlines()[1].split(",")[:7]
+    ['2', '2', '1', '1', 'exact', 'nisq', 'default']
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from qcpp.estimators.estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point
+from qcpp.estimators.paper import Doubling
+from qcpp.estimators.plots import plot_rows
+from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
+from qcpp.estimators.tables import FORMATS, Format, make_row, render_stream
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.limits import check_layers
+from qcpp.problem.presets import max_default_robots
+from qcpp.problem.scenario import load_scenario
+
+__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "formula_report", "points_from_options"]
+
+DEFAULT_GRID = "3x3"
+
+
+@dataclass(frozen=True)
+class PointSet:
+    """Points to estimate and the number of (grid, robots, p) combinations left out.
+
+    Attributes:
+        points: the points, grid-major.
+        skipped: combinations whose grid cannot host the robot count (default placement).
+    """
+
+    points: list[Point]
+    skipped: int
+
+
+def points_from_options(
+    grid: str | None,
+    robots: str | None,
+    p: str,
+    scenario: str | os.PathLike[str] | None = None,
+) -> PointSet:
+    """Points from the CLI's option texts.
+
+    Args:
+        grid: ``3x4``, ``AxB..CxD`` (every rows in A..C and cols in B..D) or a comma list; ``None`` means
+            ``3x3``. Must be ``None`` with ``scenario``.
+        robots: ``N`` or ``A..B``; ``None`` means ``1``. Must be ``None`` with ``scenario``.
+        p: ``N`` or ``A..B`` layers.
+        scenario: a scenario file to estimate instead of the default scenarios.
+
+    Returns:
+        The :class:`PointSet`.
+
+    Raises:
+        ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
+            range can host the robots).
+    """
+    layers = parse_int_range(p, "p", 1)
+    for k in layers:
+        check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
+    if scenario is not None:
+        if grid is not None or robots is not None:
+            raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
+        s = load_scenario(scenario, check_range=True)
+        return PointSet([Point.from_scenario(s, k) for k in layers], 0)
+    grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
+    ks = parse_int_range(robots if robots is not None else "1", "robots", 1)
+    points = grid_points(grids, ks, layers)
+    if not points:
+        most = max(max_default_robots(r, c) for r, c in grids)
+        raise ScenarioError(
+            "robots",
+            f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
+            f"at most {most} there: one per boundary node); use --scenario for other placements",
+        )
+    return PointSet(points, skipped_points(grids, ks, layers))
+
+
+def estimate_report(
+    points: Iterable[Point],
+    fmt: Format = "table",
+    options: EstimateOptions = DEFAULT_OPTIONS,
+    compare_paper: bool = False,
+    plot: str | os.PathLike[str] | None = None,
+    doubling: Doubling = "partial-mixer",
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+    device: str | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> Iterator[str]:
+    """Estimate ``points`` and render the rows, as a stream of text pieces.
+
+    Args:
+        points: from :func:`points_from_options` (any iterable: it is consumed lazily, in order).
+        fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
+        options: what to estimate.
+        compare_paper: add the paper's estimates and ratios.
+        plot: also write the comparison plot (PNG) here; then the rows are printed after the plot is written
+            (a failed plot prints nothing), not streamed.
+        doubling: reading of the paper's doubling.
+        columns, wide: the ``table`` format's columns (:func:`qcpp.estimators.tables.render`).
+        device: add the routed figures on this device (:func:`qcpp.estimators.routed.routed_fields`).
+        stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
+            row is done).
+
+    Yields:
+        Text pieces (see :func:`qcpp.estimators.tables.render_stream`).
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
+    rows = (_row(est, compare_paper, doubling, device, stage) for est in sweep(points, options))
+    if plot is None:
+        yield from render_stream(rows, fmt, columns=columns, wide=wide)
+        return
+    # a plot needs every row: draw it first, so that a failed plot prints nothing
+    kept = list(rows)
+    plot_rows(kept, plot)
+    yield from render_stream(kept, fmt, columns=columns, wide=wide)
+
+
+def _row(
+    est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
+    stage: Callable[[str], None] | None = None,
+) -> dict[str, Any]:  # fmt: skip
+    row = make_row(est, compare_paper, doubling)
+    if device is None:
+        return row
+    from qcpp.estimators.routed import routed_fields
+
+    c = est.cost
+    extra = routed_fields(
+        est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage,
+    )  # fmt: skip
+    return {**row, **extra}
+
+
+def formula_report(fmt: Format = "table") -> str:
+    """The formulas of :mod:`qcpp.estimators.formulas` as text.
+
+    ``table``: pretty-printed structured forms (data qubits with ``V``); ``md``: LaTeX in Markdown; ``csv``:
+    ``name,expression`` (explicit forms); ``json``: ``{"domain", "abbreviations", "formulas", "structured"}``.
+
+    Args:
+        fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
+
+    Returns:
+        The text.
+
+    >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
+    'p*robots*(cols - 1)*(rows - 1)'
+    """
+    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+
+    from qcpp.estimators.formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
+
+    explicit, structured = formula_table(), formula_table(structured=True)
+    abbrev = {"V": sp.sstr(V_EXPR)}
+    if fmt in ("json", "jsonl"):
+        data = {
+            "domain": FORMULA_DOMAIN,
+            "abbreviations": abbrev,
+            "formulas": {k: sp.sstr(explicit[k]) for k in QUANTITIES},
+            "structured": {k: sp.sstr(structured[k]) for k in QUANTITIES},
+        }
+        return json.dumps(data, indent=2 if fmt == "json" else None) + "\n"
+    if fmt == "csv":
+        lines = ["name,expression"] + [f'{k},"{sp.sstr(explicit[k])}"' for k in QUANTITIES]
+        return "\n".join(lines) + "\n"
+    if fmt == "md":
+        out = [f"Domain: {FORMULA_DOMAIN}.", "", f"$V = {sp.latex(V_EXPR)}$", ""]
+        out += [f"* `{k}`: ${sp.latex(structured[k])}$" for k in QUANTITIES]
+        return "\n".join(out) + "\n"
+    if fmt == "table":
+        out = [f"Domain: {FORMULA_DOMAIN}.", f"where V = {abbrev['V']} (edges per robot)"]
+        for k in QUANTITIES:
+            out += ["", f"{k} ="]
+            out += ["    " + line for line in sp.pretty(structured[k], use_unicode=True, wrap_line=False).splitlines()]
+        return "\n".join(out) + "\n"
+    raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")

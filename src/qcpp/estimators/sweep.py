@@ -1,0 +1,155 @@
+"""Estimates over ranges of (rows, cols, robots, p): range parsing, the points, and a streaming sweep.
+
+Each point costs one lookup in the plan's layer costs (:func:`qcpp.estimators.estimate.layer_costs`, cached per
+scenario, so the ``p`` values of one grid and robot count share one plan), so a sweep runs in this process, in
+order, yielding each estimate as soon as it is ready: no process pool and no on-disk cache (earlier releases
+needed both because they built and lowered every circuit).
+
+Grids too small for a robot count (the default placement hosts ``2 (rows + cols) - 4`` robots, see
+:mod:`qcpp.problem.presets`) are left out of :func:`grid_points`; :func:`skipped_points` counts them so that the
+caller can say so once.
+
+Range syntax (:func:`parse_grid_range`, :func:`parse_int_range`): ``3x4`` is one grid; ``AxB..CxD`` is every
+``rows`` in ``A..C`` and every ``cols`` in ``B..D`` (rectangles included: ``2x2..4x4`` is 9 grids);
+``1..4`` is 1, 2, 3, 4.
+
+Example:
+    >>> [e.cost.cx for e in sweep(grid_points([(2, 2)], [1, 5], [1]))]
+    [10]
+    >>> skipped_points([(2, 2)], [1, 5], [1])
+    1
+"""
+
+from __future__ import annotations
+
+import gc
+import re
+from collections.abc import Iterable, Iterator
+
+from qcpp.estimators.estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point, estimate_point
+from qcpp.problem.limits import check_grid_size
+from qcpp.problem.presets import max_default_robots
+
+__all__ = ["grid_points", "parse_grid_range", "parse_int_range", "skipped_points", "sweep"]
+
+
+# --- range parsing ---------------------------------------------------------------------------------------------
+_GRID_RE = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
+
+
+def _grid(text: str) -> tuple[int, int]:
+    m = _GRID_RE.match(text)
+    if not m:
+        raise ValueError(f"bad grid {text!r}: expected ROWSxCOLS such as 3x4")
+    r, c = int(m.group(1)), int(m.group(2))
+    if r < 2 or c < 2:
+        raise ValueError(f"bad grid {text!r}: rows and cols must be at least 2")
+    return r, c
+
+
+def parse_grid_range(text: str) -> list[tuple[int, int]]:
+    """Grids of ``3x4``, ``AxB..CxD`` (every rows in A..C, every cols in B..D, rows-major order), or a
+    comma-separated list of either (``3x3,4x4,5x5``; duplicates dropped, first occurrence kept).
+
+    Args:
+        text: the range text.
+
+    Returns:
+        ``(rows, cols)`` pairs.
+
+    Raises:
+        ValueError: malformed text, a size below 2, or an empty range.
+
+    >>> parse_grid_range("2x3..3x4")
+    [(2, 3), (2, 4), (3, 3), (3, 4)]
+    >>> parse_grid_range("3x3,5x5,3x3")
+    [(3, 3), (5, 5)]
+    """
+    if "," in text:
+        grids = [g for item in text.split(",") for g in parse_grid_range(item.strip())]
+        return list(dict.fromkeys(grids))
+    parts = text.split("..")
+    if len(parts) == 1:
+        return [_grid(parts[0])]
+    if len(parts) != 2:
+        raise ValueError(f"bad grid range {text!r}: expected AxB or AxB..CxD")
+    (r0, c0), (r1, c1) = _grid(parts[0]), _grid(parts[1])
+    if r1 < r0 or c1 < c0:
+        raise ValueError(f"bad grid range {text!r}: empty (the second grid must not be smaller)")
+    return [(r, c) for r in range(r0, r1 + 1) for c in range(c0, c1 + 1)]
+
+
+def parse_int_range(text: str, name: str = "value", low: int = 0, high: int | None = None) -> list[int]:
+    """Integers of ``N`` or ``A..B`` (inclusive).
+
+    Args:
+        text: the range text.
+        name: what the numbers are (for error messages).
+        low: smallest allowed value.
+        high: largest allowed value, if any.
+
+    Returns:
+        The integers, ascending.
+
+    Raises:
+        ValueError: malformed text, out of bounds, or an empty range.
+
+    >>> parse_int_range("1..3", "robots", 1, 4)
+    [1, 2, 3]
+    """
+    m = re.match(r"^\s*(\d+)\s*(?:\.\.\s*(\d+)\s*)?$", text)
+    if not m:
+        raise ValueError(f"bad {name} {text!r}: expected N or A..B")
+    a = int(m.group(1))
+    b = int(m.group(2)) if m.group(2) is not None else a
+    if b < a:
+        raise ValueError(f"bad {name} range {text!r}: empty")
+    if a < low or (high is not None and b > high):
+        bound = f"in {low}..{high}" if high is not None else f">= {low}"
+        raise ValueError(f"bad {name} {text!r}: must be {bound}")
+    return list(range(a, b + 1))
+
+
+def grid_points(grids: Iterable[tuple[int, int]], robots: Iterable[int], ps: Iterable[int]) -> list[Point]:
+    """The cross product as default-scenario points (grid-major, then robots, then p), leaving out the robot
+    counts a grid cannot host (:func:`skipped_points` counts them).
+
+    >>> [p.label for p in grid_points([(2, 2)], [1, 2], [1])]
+    ['2x2 r1 p1', '2x2 r2 p1']
+    """
+    grids, robots, ps = list(grids), list(robots), list(ps)
+    for r, c in grids:
+        check_grid_size(r, c)  # before any scenario of a huge grid is built
+    return [Point(r, c, k, p) for r, c in grids for k in robots if k <= max_default_robots(r, c) for p in ps]
+
+
+def skipped_points(grids: Iterable[tuple[int, int]], robots: Iterable[int], ps: Iterable[int]) -> int:
+    """How many points of the cross product :func:`grid_points` leaves out (grid too small for the robots)."""
+    robots, n_p = list(robots), len(list(ps))
+    return sum(n_p for r, c in grids for k in robots if k > max_default_robots(r, c))
+
+
+SWEEP_GC_THRESHOLD = (50_000, 50, 100)
+"""The cyclic garbage collector's thresholds while :func:`sweep` runs (CPython's default is ``(700, 10, 10)``)."""
+
+
+def sweep(points: Iterable[Point], options: EstimateOptions = DEFAULT_OPTIONS) -> Iterator[Estimate]:
+    """Estimate ``points`` in order, lazily (each estimate is yielded as soon as it is ready).
+
+    Args:
+        points: the points.
+        options: what to estimate.
+
+    Yields:
+        One :class:`~qcpp.estimators.estimate.Estimate` per point.
+    """
+    # A row allocates tens of thousands of short-lived, acyclic objects next to long-lived cost caches; at
+    # CPython's default threshold the cyclic collector runs every 700 allocations, scans them and the caches and
+    # finds nothing, so it runs less often while sweeping (reference counting frees the rows).
+    threshold = gc.get_threshold()
+    gc.set_threshold(*SWEEP_GC_THRESHOLD)
+    try:
+        for pt in points:
+            yield estimate_point(pt, options)
+    finally:
+        gc.set_threshold(*threshold)

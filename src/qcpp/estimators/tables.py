@@ -1,0 +1,477 @@
+"""Result rows and their text formats: rich table, Markdown, CSV, JSON and JSON lines, streamed where possible.
+
+A row is a plain dict (:func:`make_row`) with
+
+* the point and options: ``rows, cols, robots, p, rule, target, scenario``;
+* exact counts of the lowered circuit, from the gadgets' costs: ``qubits, data_qubits, ancillas, gates, cx,
+  single_qubit, two_qubit, t, rotations``; ``depth, two_qubit_depth, rotation_depth`` with ``depth_kind``
+  (``exact``: computed on the compiled circuit; ``bound``: an upper bound, see :mod:`qcpp.estimators.estimate`;
+  empty: not computed);
+* the labelled fault-tolerant estimates (logical-AND model, :mod:`qcpp.estimators.fault_tolerant`): ``toffoli``
+  (ANDs, their uncomputes and full Toffolis), ``ft_and``, ``ft_toffoli_full``, ``ft_measurements``,
+  ``ft_rotations``, ``ft_t_per_rotation``, ``ft_epsilon``, ``ft_toffoli_t``, ``ft_t_logic``, ``ft_total_t``;
+* with ``--physical``, the QDK resource estimator's figures (:mod:`qcpp.estimators.physical`): ``physical_qubits,
+  physical_runtime_s, physical_algorithm_qubits, physical_t_factory_qubits, physical_t_factories,
+  physical_t_states, physical_code_distance, physical_model`` (``qubit model / QEC scheme / error budget``);
+* with ``compare_paper=True``, the paper's estimate (:mod:`qcpp.estimators.paper`): ``paper_qubits``,
+  ``paper_data_qubits``, ``paper_cx``, ``paper_single_qubit`` and the ratios ``ratio_qubits``, ``ratio_cx``,
+  ``ratio_single_qubit``;
+* ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
+
+Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
+columns as a Markdown table), ``csv`` (every
+scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
+``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
+``table``.
+
+Example:
+    >>> from qcpp.estimators.estimate import Point, estimate_point
+    >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1))], compare_paper=True)
+    >>> rows[0]["cx"], rows[0]["paper_cx"], rows[0]["ratio_cx"], rows[0]["depth_kind"]
+    (10, 564, 0.0177, 'exact')
+    >>> render(rows, "csv").splitlines()[0].split(",")[:7]
+    ['rows', 'cols', 'robots', 'p', 'rule', 'target', 'scenario']
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import shutil
+import textwrap
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Any, Literal
+
+from qcpp.estimators.estimate import Estimate
+from qcpp.estimators.paper import Doubling, paper_estimate
+from qcpp.ir.cost import Cost
+
+__all__ = [
+    "DROP_ORDER",
+    "FORMATS",
+    "MAIN_COLUMNS",
+    "PAPER_COLUMNS",
+    "PHYSICAL_COLUMNS",
+    "Format",
+    "make_row",
+    "make_rows",
+    "render",
+    "render_stream",
+    "table_columns",
+    "terminal_width",
+]
+
+Format = Literal["table", "md", "csv", "json", "jsonl"]
+FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json", "jsonl")
+
+MAIN_COLUMNS: tuple[str, ...] = (
+    "rows",
+    "cols",
+    "robots",
+    "p",
+    "qubits",
+    "data_qubits",
+    "ancillas",
+    "cx",
+    "single_qubit",
+    "t",
+    "depth",
+    "two_qubit_depth",
+    "depth_kind",
+)
+"""Columns of the ``table`` and ``md`` formats (plus :data:`PHYSICAL_COLUMNS` and :data:`PAPER_COLUMNS`)."""
+
+PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
+PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
+
+_SECTION_NAMES = ("initial_state", "phase", "mixer")
+_SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
+
+
+def _ratio(ours: int, paper: int) -> float | None:
+    return round(ours / paper, 4) if paper else None
+
+
+def _section(c: Cost) -> dict[str, int]:
+    return {"gates": c.total, **{k: getattr(c, k) for k in _SECTION_FIELDS[1:]}}
+
+
+def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "partial-mixer") -> dict[str, Any]:
+    """One estimate as a row dict (see the module docstring for the keys).
+
+    Args:
+        est: an estimate.
+        compare_paper: add the paper's estimate and the ratios.
+        doubling: the reading of the paper's doubling (:func:`qcpp.estimators.paper.paper_partial_mixer`).
+
+    Returns:
+        The row.
+    """
+    pt, c, ft, d, plan = est.point, est.cost, est.fault_tolerant, est.depth, est.options.plan
+    row: dict[str, Any] = {
+        "rows": pt.rows,
+        "cols": pt.cols,
+        "robots": pt.robots,
+        "p": pt.p,
+        "rule": plan.rule,
+        "target": plan.target,
+        "scenario": "default" if pt.scenario_json is None else "file",
+        "qubits": est.qubits,
+        "data_qubits": est.data_qubits,
+        "ancillas": est.qubits - est.data_qubits,
+        "gates": c.total,
+        **{k: getattr(c, k) for k in ("cx", "single_qubit", "two_qubit", "t", "rotations")},
+        **{k: getattr(d, k) if d else None for k in ("depth", "two_qubit_depth", "rotation_depth")},
+        "depth_kind": d.kind if d else None,
+        "toffoli": ft.toffoli,
+        "ft_and": ft.and_compute,
+        **{f"ft_{k}": getattr(ft, k) for k in ("toffoli_full", "measurements", "rotations", "t_per_rotation",
+                                                "epsilon", "toffoli_t", "t_logic", "total_t")},
+    }  # fmt: skip
+    ph = est.physical
+    if ph is not None:
+        row["physical_qubits"] = ph.physical_qubits
+        for k in ("runtime_s", "algorithm_qubits", "t_factory_qubits", "t_factories", "t_states", "code_distance"):
+            row[f"physical_{k}"] = getattr(ph, k)
+        row["physical_model"] = f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}"
+    if compare_paper:
+        paper = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
+        row.update({f"paper_{k}": getattr(paper, k) for k in ("qubits", "data_qubits", "cx", "single_qubit")})
+        row.update({f"ratio_{k}": _ratio(row[k], row[f"paper_{k}"]) for k in ("qubits", "cx", "single_qubit")})
+    row["sections"] = {name: _section(est.parts[name]) for name in _SECTION_NAMES if name in est.parts}
+    return row
+
+
+def make_rows(
+    estimates: Iterable[Estimate], compare_paper: bool = False, doubling: Doubling = "partial-mixer"
+) -> list[dict[str, Any]]:
+    """:func:`make_row` of every estimate, in order."""
+    return [make_row(e, compare_paper, doubling) for e in estimates]
+
+
+def _columns(row: dict[str, Any] | None) -> list[str]:
+    cols = list(MAIN_COLUMNS)
+    if row and "physical_qubits" in row:
+        cols += list(PHYSICAL_COLUMNS)
+    if row and "paper_cx" in row:
+        cols += list(PAPER_COLUMNS)
+    if row and "routed_kind" in row:
+        from qcpp.estimators.routed import ROUTED_COLUMNS
+
+        cols += list(ROUTED_COLUMNS)
+    return cols
+
+
+def _cell(v: Any) -> str:
+    if v is None:
+        return ""
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _flat(row: dict[str, Any]) -> dict[str, Any]:
+    out = {k: v for k, v in row.items() if k != "sections"}
+    for name, sec in row.get("sections", {}).items():
+        for f in _SECTION_FIELDS:
+            out[f"section.{name}.{f}"] = sec[f]
+    return out
+
+
+def _csv_line(values: Iterable[Any]) -> str:
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(list(values))
+    return buf.getvalue()
+
+
+def render_stream(
+    rows: Iterable[dict[str, Any]],
+    fmt: Format = "csv",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> Iterator[str]:
+    """Rows as text pieces, each yielded as soon as its row arrives (``table`` waits for every row).
+
+    Args:
+        rows: rows (any iterable, e.g. a generator over a sweep).
+        fmt: one of :data:`FORMATS`.
+        width, columns, wide: the ``table`` format's options (:func:`render`).
+
+    Yields:
+        Text pieces whose concatenation is :func:`render` of the same rows.
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (expected one of {', '.join(FORMATS)})")
+    if fmt == "table":
+        yield render(list(rows), "table", width=width, columns=columns, wide=wide)
+        return
+    first = True
+    fields: list[str] = []
+    cols: list[str] = []
+    for row in rows:
+        if fmt == "jsonl":
+            yield json.dumps(row) + "\n"
+        elif fmt == "json":
+            body = "\n".join("  " + line for line in json.dumps(row, indent=2).splitlines())
+            yield ("[\n" if first else ",\n") + body
+        elif fmt == "csv":
+            if first:
+                fields = list(_flat(row))  # every scalar of the row, in order, then the sections' fields
+                yield _csv_line(fields)
+            flat = _flat(row)
+            yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
+        else:  # md
+            if first:
+                cols = _columns(row)
+                yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+            yield "| " + " | ".join(_cell(row.get(c)) for c in cols) + " |\n"
+        first = False
+    if fmt == "json":
+        yield "[]\n" if first else "\n]\n"
+    elif fmt == "md" and first:
+        cols = _columns(None)
+        yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+
+
+DROP_ORDER: tuple[str, ...] = (
+    "physical_t_factories",
+    "ft_total_t",
+    "two_qubit_depth",
+    "data_qubits",
+    "ancillas",
+    "paper_single_qubit",
+    "paper_qubits",
+    "depth_kind",
+    "depth",
+    "single_qubit",
+    "t",
+    "ratio_cx",
+)
+"""Columns the ``table`` format hides first, in order, when the terminal is too narrow for all of them."""
+
+
+def terminal_width() -> int:
+    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
+    return shutil.get_terminal_size((80, 24)).columns
+
+
+def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
+    from rich.table import Table
+
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    table = Table(title=title)
+    for c in cols:
+        table.add_column(c, justify="right")
+    for r in rows:
+        table.add_row(*(_cell(r.get(c)) for c in cols))
+    return table
+
+
+def draw(renderable: Any, width: int) -> str:
+    """``renderable`` (a rich table, text, ...) as rich prints it on a ``width``-character plain console."""
+    from rich.console import Console
+
+    buf = io.StringIO()
+    Console(file=buf, width=width, force_terminal=False, color_system=None).print(renderable)
+    return buf.getvalue()
+
+
+def _natural_width(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> int:
+    text = draw(_rich_table(rows, cols, paper), 100_000)
+    return max((len(line.rstrip()) for line in text.splitlines()), default=0)
+
+
+def table_columns(
+    rows: Sequence[dict[str, Any]],
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> tuple[list[str], list[str]]:
+    """The columns of the ``table`` format and the default columns it hides.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        width: characters available (default :func:`terminal_width`).
+        columns: exactly these columns (any row key except ``sections``); overrides ``wide`` and ``width``.
+        wide: every default column, however wide the table gets.
+
+    Returns:
+        ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`PAPER_COLUMNS` when
+        comparing) minus those of :data:`DROP_ORDER` that do not fit, and the hidden ones.
+
+    Raises:
+        ValueError: an unknown column name.
+    """
+    defaults = _columns(rows[0] if rows else None)
+    if columns is not None:
+        if not columns:
+            raise ValueError("--columns: name at least one column")
+        known = [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]
+        for c in columns:
+            if c not in known:
+                raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
+        return list(dict.fromkeys(columns)), []
+    if wide:
+        return defaults, []
+    limit = terminal_width() if width is None else width
+    paper = "paper_cx" in defaults
+    shown = list(defaults)
+    for c in DROP_ORDER:
+        if _natural_width(rows, shown, paper) <= limit:
+            break
+        if c in shown:
+            shown.remove(c)
+    return shown, [c for c in defaults if c not in shown]
+
+
+class TooNarrowError(ValueError):
+    """Even the record layout needs more characters per line than the terminal has."""
+
+
+def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: int, *, paper: bool = False) -> str:
+    """Rows as records, one field per line (the ``table`` format below the table's width; :func:`records`).
+
+    Numbers are never cut: below the width of the longest name or value this raises instead of printing
+    something unreadable.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        cols: the fields of each record, in order.
+        width: characters per line.
+        paper: the title says "vs the paper".
+
+    Returns:
+        The text: a title, then per row ``row i of n`` and its fields, records separated by a blank line.
+
+    Raises:
+        TooNarrowError: ``width`` is below the longest name or value (the message says what to do).
+
+    Example:
+        >>> print(render_records([{"rows": 3, "cols": 3, "cx": 106}], ["rows", "cols", "cx"], 20), end="")
+        Exact resource
+        counts (lowered
+        circuit)
+        row 1 of 1
+        rows   3
+        cols   3
+        cx   106
+        >>> print(render_records([{"rows": 3, "paper_cx": 2332}], ["rows", "paper_cx"], 10), end="")
+        Exact
+        resource
+        counts
+        (lowered
+        circuit)
+        row 1 of 1
+        rows
+          3
+        paper_cx
+          2332
+    """
+    cells = [[_cell(r.get(c)) for c in cols] for r in rows]
+    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    value_w = max((len(v) for row in cells for v in row), default=0)
+    need = max(0, *map(len, cols), value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *map(len, title.split()))
+    if need > width:
+        raise TooNarrowError(
+            f"the terminal is {width} columns wide; the resource table needs {need} even one field per line "
+            f"(set COLUMNS={need} or more, or use --format csv, json or md)"
+        )
+    return records(title, [list(zip(cols, row, strict=True)) for row in cells], width, numbered=True)
+
+
+def records(
+    title: str, blocks: Sequence[Sequence[tuple[str, str]]], width: int, *, sep: str = " ", numbered: bool = False,
+    per_field: bool = False,
+) -> str:
+    """``(name, value)`` fields within ``width`` characters: the layout of every table too wide for the terminal.
+
+    A field is ``name<sep>value`` (names padded, values right-aligned) when every field fits so (``per_field``:
+    when it does), else its name with the value indented below; a value of several lines continues indented.
+
+    Args:
+        title: wrapped at spaces only (:func:`title_lines`).
+        blocks: the records, each a sequence of fields, a blank line between two; ``numbered``: each opened by
+            ``row i of n``.
+
+    Example:
+        >>> print(records("t", [[("qubits", "26"), ("cx", "320")]], 12, sep="  "), end="")
+        t
+        qubits   26
+        cx      320
+    """
+    fields = [field for block in blocks for field in block]
+    name_w = max((len(name) for name, _ in fields), default=0)
+    value_w = max((len(part) for _, value in fields for part in value.split("\n")), default=0)
+    all_fit = name_w + len(sep) + value_w <= width
+    value_w = min(value_w, width - name_w - len(sep))
+    out = title_lines(title, width)
+    for i, block in enumerate(blocks):
+        out += ([""] if i else []) + ([f"row {i + 1} of {len(blocks)}"] if numbered else [])
+        for name, value in block:
+            first, *rest = value.split("\n")
+            if all_fit or (per_field and max(map(len, [first, *rest])) <= value_w):
+                out.append(f"{name:<{name_w}}{sep}{first:>{value_w}}".rstrip())
+                out += [" " * (name_w + len(sep)) + part for part in rest]
+            else:
+                out += [name, *("  " + part for part in value.split("\n"))]
+    return "\n".join(out) + "\n"
+
+
+def title_lines(title: str, width: int) -> list[str]:
+    """``title`` wrapped to ``width`` at spaces only: a file name is never broken (a longer one stands alone)."""
+    return textwrap.wrap(title, width, break_long_words=False, break_on_hyphens=False)
+
+
+def render(
+    rows: Sequence[dict[str, Any]],
+    fmt: Format = "table",
+    *,
+    width: int | None = None,
+    columns: Sequence[str] | None = None,
+    wide: bool = False,
+) -> str:
+    """Rows as text in one of :data:`FORMATS`.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        fmt: ``table`` (rich), ``md``, ``csv``, ``json`` or ``jsonl``.
+        width: ``table`` only: fit this many characters (default :func:`terminal_width`); columns of
+            :data:`DROP_ORDER` are hidden until the table fits, and a note names them. No line is longer, and
+            no number is cut: when even the narrowest table does not fit, the rows are printed as records (one
+            field per line, :func:`render_records`), and below their width a :class:`TooNarrowError` says
+            what to do.
+        columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
+        wide: ``table`` only: show every default column, whatever the width.
+
+    ``md``, ``csv``, ``json`` and ``jsonl`` always keep all their columns (and stream: :func:`render_stream`).
+
+    Returns:
+        The text (ending with a newline).
+
+    Example:
+        >>> rows = [{"rows": 3, "cols": 3, "robots": 1, "p": 1, "qubits": 26, "cx": 320}]
+        >>> text = render(rows, "table", columns=["rows", "cols", "cx"])
+        >>> [line.strip() for line in text.splitlines()][3]
+        '┃ rows ┃ cols ┃  cx ┃'
+    """
+    if fmt != "table":
+        return "".join(render_stream(rows, fmt))  # raises on an unknown format
+    limit = terminal_width() if width is None else width
+    shown, hidden = table_columns(rows, limit, columns, wide)
+    paper = "paper_cx" in _columns(rows[0] if rows else None)
+    natural = _natural_width(rows, shown, paper)
+    if columns is None and not wide and natural > limit:  # a table this narrow would cut numbers
+        return render_records(rows, _columns(rows[0] if rows else None), limit, paper=paper)
+    table = _rich_table(rows, shown, paper)
+    text_width = limit if columns is None and not wide else max(limit, natural)
+    text = draw(table, text_width)
+    if hidden:
+        note = (
+            f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
+            "--format csv/json/md keep every column)"
+        )
+        text += draw(note, limit)
+    return text

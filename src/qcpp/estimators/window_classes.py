@@ -1,0 +1,673 @@
+"""Routed counts of ``compile --device grid`` as a sum over classes of windows, without routing the circuit.
+
+On a square-grid device with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of the
+lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`qcpp.layout.medial.allocate_ancillas` gives its
+ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few
+whose window routes to the fewest gates), :func:`qcpp.routing.bridge.bridge_far_phases` relays its far ``rzz``
+phases through clean device qubits where that routes cheaper, and :func:`qcpp.routing.sabre.route_windows` routes
+it with SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides
+per section, from the section's gates, the data homes and the clean qubits around it (a section's ancillas and
+relay holders are |0> at both ends). So a window's routed gates depend only on its own gates and on the device
+around it, and the routed circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the
+windows into classes of equal *signature*:
+
+* the window's lowered gates, its qubits named by first use (data or ancilla: which ancilla does not matter, the
+  allocation re-homes every ancilla per section) -- lowered once per pattern of high-level gates;
+* the homes of its data qubits relative to an anchor (the top-left corner of their bounding box);
+* the device around them: a crop of the device, the data qubits' bounding box grown by :data:`MARGIN` sites
+  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take; every
+  other site is clean, a candidate ancilla or relay holder).
+
+One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device
+of the crop's shape) by the very functions compile runs (:func:`qcpp.pipeline.device_compile.medial_compile`), and its
+routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of
+layer 0 with other angles). A crop answers for the whole device when nothing the representative touches comes
+within :data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every
+routed gate, SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations
+and the relay's with-and-without comparison included (:data:`qcpp.routing.sabre.PATCH_WATCH`) -- reaches such a
+side (else the crop clipped a patch the device would not clip), and no part of it was routed on its whole
+connected component (the router's fallback where the qubits' neighbourhoods do not connect them,
+:data:`qcpp.routing.sabre.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the allocation's
+argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument
+rather than a proof (a site outside the crop is farther from every qubit inside than its projection on the
+crop's side; ties go by row-major index, whose order the crop keeps); the tests are the evidence.
+Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and
+each part is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
+and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
+device -- the phase separator's balance and coupling gadgets, and with several robots every node's visit gadget
+(the tiled layout puts a node's copies in every robot's patch, far apart) -- are routed together on the whole
+device, one SABRE run each as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing
+needs its dense distance matrix); above that they are *bounded*: every two-qubit gate of theirs is charged a SWAP
+chain to its partner and back along a shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a
+routing of that window that returns home, not SABRE's. So the sum is fast where windows are local (one robot:
+30x30 at ``p = 3`` in seconds); with several robots it routes every visit gadget on the whole device, as compile
+does, and is no faster than compile.
+
+What is exact when no window is bounded (``tests/qcpp/window_classes_test.py`` checks each against
+``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
+relays (and before them, :attr:`RoutedSum.compiled_ops`) and native gate counts by name, hence the two-qubit and
+one-qubit counts, and the estimated success probability on devices with uniform error rates (a product over
+gates, so its logarithm is a sum over classes). Depth and duration are not
+sums: windows on disjoint qubits overlap in the ASAP schedule. The sum of the windows' own depths (durations) is
+an upper bound (the windows run one after another in the worst case) once each one-qubit gate that follows its
+qubit's last two-qubit gate in a window adds one level: the router defers such a gate to just before the qubit's
+next two-qubit gate, in a later window, and one inserted one-qubit gate deepens a circuit by at most one.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> s = routed_sum(default_scenario(3, 3, 1), 1, device="grid")
+    >>> s.device.name, s.windows, s.bounded_windows, s.two_qubit > 106
+    ('grid:5x5', 6, 0, True)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections import Counter
+from collections.abc import Callable, Hashable, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from qcpp.devices.device import Device, get_device
+from qcpp.gadgets.partial_mixer import McxPartialMixer
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.ir.gates import Gate
+from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.problem.scenario import Scenario
+from qcpp.routing import sabre as routing
+from qcpp.routing.bridge import bridge_far_phases
+from qcpp.routing.sabre import DEFAULT_TRIALS, _native_gates, _one_qubit_name, route_windows
+
+__all__ = ["GUARD", "MARGIN", "ROUTED_CLASSES", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
+
+MARGIN = 5
+"""Sites around a window's data qubits that its first crop keeps (doubled while the crop does not answer)."""
+
+GUARD = 3
+"""A crop answers if the representative's ancilla homes and routed gates keep this many sites from every side of
+the crop that is not a device edge (one more than the routing patch's radius)."""
+
+ROUTED_CLASSES: dict[Hashable, _Cost] = {}
+"""What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
+durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
+cache of routed windows, next to :data:`qcpp.plan.call_graph.COSTS` (the kinds' costs), not in it: its key is a
+window with its neighbourhood on one device, not a gadget kind."""
+
+ROUTED_CLASSES_LIMIT = 1 << 14
+"""Entries :data:`ROUTED_CLASSES` holds before it starts over."""
+
+WHOLE_DEVICE_MAX_QUBITS = 4_096
+"""Largest device a window spanning it is routed on (routing needs the device's dense distance matrix); windows
+on larger devices whose crop is the whole device are bounded (see the module docs)."""
+
+
+@dataclass(frozen=True)
+class WindowClass:
+    """Windows with one signature and what one of them costs routed.
+
+    Attributes:
+        multiplicity: Windows in the class (each layer's counted once per layer).
+        lowered_ops: Lowered gate counts by name of one window (after the relays if routed, before if bounded).
+        swaps: SWAPs its routing inserts (``None``: bounded, not routed).
+        two_qubit_bound: Routed two-qubit gates charged to one bounded window (``None`` if routed).
+        native_ops: Native gate counts by device gate name of one routed window (``None`` if bounded).
+        depth, two_qubit_depth: ASAP depth of one routed native window (``None`` if bounded).
+        duration_s: ASAP length of one routed native window in seconds (``None``: bounded or no durations).
+    """
+
+    multiplicity: int
+    lowered_ops: tuple[tuple[str, int], ...]
+    swaps: int | None
+    two_qubit_bound: int | None
+    native_ops: tuple[tuple[str, int], ...] | None
+    depth: int | None
+    two_qubit_depth: int | None
+    duration_s: float | None
+
+
+@dataclass(frozen=True)
+class RoutedSum:
+    """The routed circuit's figures summed over window classes.
+
+    Attributes:
+        device: The device (the one ``compile --device`` routes on).
+        p: QAOA layers.
+        windows: Windows of the whole circuit (state preparation + ``p`` layers).
+        classes: The :class:`WindowClass` es.
+        bounded_windows: Windows that were bounded, not routed (0: every count is exact).
+        lowered_ops: Lowered gate counts by name (before routing, after compile's relays of far phases; a bounded
+            window counts its gates before relays, which add CX only: the relays are decided by routing).
+        compiled_ops: Lowered gate counts by name of the compiled circuit, before allocation and relays (what
+            compile's ``auto`` layout compares with :data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ`).
+        swaps: SWAPs of the routed windows.
+        native_ops: Native gate counts by name of the routed windows (bounded windows not included).
+        two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP), bounded windows
+            included at their bound.
+        one_qubit: Native one-qubit gates of the routed windows (bounded windows: 6 per two-qubit gate plus 3 per
+            lowered one-qubit gate, an upper bound).
+        log_esp: Natural log of the estimated success probability (``None``: the device's errors are not uniform).
+        depth_bound, two_qubit_depth_bound: Sums of the windows' own depths (the depth also counts each one-qubit
+            gate the router defers into a later window once).
+        duration_bound_s: Likewise for durations, plus one readout (``None``: no durations published).
+    """
+
+    device: Device
+    p: int
+    windows: int
+    classes: tuple[WindowClass, ...]
+    bounded_windows: int
+    lowered_ops: dict[str, int]
+    compiled_ops: dict[str, int]
+    swaps: int
+    native_ops: dict[str, int]
+    two_qubit: int
+    one_qubit: int
+    log_esp: float | None
+    depth_bound: int
+    two_qubit_depth_bound: int
+    duration_bound_s: float | None
+
+    @property
+    def exact(self) -> bool:
+        """Every window routed (the counts and the ESP are those of the circuit compile writes)."""
+        return self.bounded_windows == 0
+
+    @property
+    def esp(self) -> float | None:
+        """Estimated success probability (``exp(log_esp)``)."""
+        return None if self.log_esp is None else math.exp(self.log_esp)
+
+
+# --- windows and their signatures --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Template:
+    """One pattern of high-level gates lowered: gates on tokens (qubits by first use), which tokens are data."""
+
+    gates: tuple[tuple[str, tuple[int, ...]], ...]
+    is_data: tuple[bool, ...]
+    ops: tuple[tuple[str, int], ...]
+
+
+def _pattern(block: Sequence[Gate], n_data: int) -> tuple[Hashable, list[int]]:
+    """A block's gates with qubits named by first use (and which are data), and its qubits in that order."""
+    token: dict[int, int] = {}
+    body = []
+    for g in block:
+        qs = []
+        for q in g[1]:
+            t = token.get(q)
+            if t is None:
+                t = token[q] = len(token)
+            qs.append(t)
+        body.append((g[0], tuple(qs), tuple(map(str, g[2])), g[3]))
+    order = list(token)
+    return (tuple(body), tuple(q < n_data for q in order)), order
+
+
+def _lower_template(block: Sequence[Gate], order: list[int], registers: Sequence[Register], n_data: int) -> _Template:
+    low = lower(Circuit(registers, [Section("w", tuple(block))]))
+    token = {q: i for i, q in enumerate(order)}
+    gates = []
+    for g in low.gates:
+        qs = []
+        for q in g[1]:
+            t = token.get(q)
+            if t is None:  # a qubit the lowering adds (the ``work`` register)
+                t = token[q] = len(token)
+            qs.append(t)
+        gates.append((g[0], tuple(qs)))
+    is_data = tuple(q < n_data for q in token)
+    return _Template(tuple(gates), is_data, tuple(sorted(Counter(g[0] for g in low.gates).items())))
+
+
+def _windows(plan: Any, n_data: int) -> list[tuple[int, Sequence[Gate], str]]:
+    """``(layer multiplicity flag, block, section name)``: the state preparation's blocks (flag 0) and layer 0's
+    (flag 1)."""
+    out = []
+    for name, g in plan.sections():
+        blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
+        for b in blocks:
+            out.append((0 if name == "initial_state" else 1, b, name))
+    return out
+
+
+# --- routing one representative ----------------------------------------------------------------------------
+def _grid(rows: int, cols: int) -> tuple[Device, np.ndarray]:
+    """The crop's device and its distances (Manhattan: a rectangle of the square lattice); small crops are
+    remembered (a whole device's dense matrix is not: up to 134 MB)."""
+    return _small_grid(rows, cols) if rows * cols <= 1_024 else _grid_of(rows, cols)
+
+
+def _grid_of(rows: int, cols: int) -> tuple[Device, np.ndarray]:
+    r, c = np.divmod(np.arange(rows * cols), cols)
+    dist = (np.abs(r[:, None] - r[None, :]) + np.abs(c[:, None] - c[None, :])).astype(float)
+    return get_device(f"grid:{rows}x{cols}"), dist
+
+
+_small_grid = lru_cache(maxsize=128)(_grid_of)
+
+
+@dataclass(frozen=True)
+class _Crop:
+    top: int
+    left: int
+    rows: int
+    cols: int
+    open_sides: tuple[bool, bool, bool, bool]  # top, bottom, left, right: a side that is not a device edge
+
+
+def _crop(box: tuple[int, int, int, int], margin: int, shape: tuple[int, int]) -> _Crop:
+    r0, r1, c0, c1 = box
+    top, bottom = max(0, r0 - margin), min(shape[0] - 1, r1 + margin)
+    left, right = max(0, c0 - margin), min(shape[1] - 1, c1 + margin)
+    sides = (top > 0, bottom < shape[0] - 1, left > 0, right < shape[1] - 1)
+    return _Crop(top, left, bottom - top + 1, right - left + 1, sides)
+
+
+def _inside(crop: _Crop, sites: np.ndarray, guard: int = GUARD) -> bool:
+    """Every site (local row-major index) keeps ``guard`` sites from the crop's open sides."""
+    if not sites.size:
+        return True
+    r, c = np.divmod(sites, crop.cols)
+    top, bottom, left, right = crop.open_sides
+    return not (
+        (top and r.min() < guard)
+        or (bottom and r.max() > crop.rows - 1 - guard)
+        or (left and c.min() < guard)
+        or (right and c.max() > crop.cols - 1 - guard)
+    )
+
+
+def _route_on(
+    windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
+    trials: int | None,
+) -> list[_Routed] | str | None:  # fmt: skip
+    """Allocate, relay and route windows on ``crop`` as compile does on the device
+    (:func:`qcpp.pipeline.device_compile.medial_compile`: :func:`~qcpp.layout.medial.allocate_ancillas` with its search,
+    :func:`~qcpp.routing.bridge.bridge_far_phases`, :func:`~qcpp.routing.sabre.route_windows`), one section each
+    (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
+    section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
+    if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
+    device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
+    answers)."""
+    from qcpp.pipeline.device_compile import SEARCH
+
+    dev, dist = _grid(crop.rows, crop.cols)
+    sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
+    homes = np.flatnonzero(sub.ravel())
+    index = {int(h): i for i, h in enumerate(homes)}
+    n_data = len(homes)
+    sections = []
+    width = 0
+    for w, (template, data_sites) in enumerate(windows):
+        slot: dict[int, int] = {}
+        d = a = 0
+        for t, is_data in enumerate(template.is_data):
+            if is_data:
+                r, c = data_sites[d]
+                slot[t] = index[(r - crop.top) * crop.cols + (c - crop.left)]
+                d += 1
+            else:
+                slot[t] = n_data + a
+                a += 1
+        width = max(width, a)
+        sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
+                                          for name, qs in template.gates]))  # fmt: skip
+    registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
+    with routing.watching_patches() as watch:  # the search's and the relays' candidate patches included
+        try:
+            logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
+                                                search=SEARCH)  # fmt: skip
+        except ValueError:  # more ancillas than free qubits in the crop
+            return None
+        logical, layout = bridge_far_phases(logical, layout, dev, dist)
+        routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
+    if watch.whole_component and any(crop.open_sides):
+        return "whole"  # routed on the whole crop: the device beyond it would change the routing
+    touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
+    if not _inside(crop, np.array(sorted(touched), dtype=int)):
+        return None
+    if not _inside(crop, np.array(sorted(watch.qubits), dtype=int), guard=1):
+        return None  # a patch reached a side the crop cut: on the device it would be larger
+    fused = dict(routed.fused)
+    by_name: dict[str, list[Gate]] = {}
+    for sec in routed.circuit.sections:  # a window's one-qubit gates may trail into the next window's gates
+        by_name.setdefault(sec.name, []).extend(sec.gates)
+    out = []
+    for w, sec in enumerate(logical.sections):
+        lowered = tuple((g[0], tuple(g[1])) for g in sec.gates)
+        gates = by_name.get(f"w{w}", [])
+        cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in lowered if len(qs) == 2)
+        merged = fused.get(f"w{w}", 0)  # each SWAP adds 3 CX, 2 fewer where fused with a CX (routing._assemble)
+        out.append(_Routed((cx + 2 * merged) // 3, lowered, gates, merged))
+    return out
+
+
+@dataclass(frozen=True)
+class _Routed:
+    """One window as compile writes it: SWAPs, lowered gates after the relays (names and qubits), routed gates."""
+
+    swaps: int
+    lowered: tuple[tuple[str, tuple[int, ...]], ...]
+    gates: Sequence[Gate]
+    fused: int = 0
+
+
+@dataclass(frozen=True)
+class _Cost:
+    """What one routed window of a class costs: its lowered gate counts after the relays, SWAPs, native depth and
+    two-qubit depth, duration, the native one-qubit gates (and their seconds) that trail its last two-qubit
+    gates (see :func:`_trailing`), and its SWAPs fused with a CX (two CX fewer each)."""
+
+    lowered_ops: tuple[tuple[str, int], ...]
+    swaps: int
+    depth: int
+    two_qubit_depth: int
+    duration_s: float | None
+    late: int
+    late_s: float | None
+    fused: int = 0
+
+
+def _summary(routed: _Routed, device: Device) -> _Cost:
+    """The :class:`_Cost` of one routed window."""
+    ops = tuple(sorted(Counter(name for name, _ in routed.lowered).items()))
+    return _Cost(ops, routed.swaps, *_native_schedule(routed.gates, device), *_trailing(routed.lowered, device),
+                 routed.fused)  # fmt: skip
+
+
+def _trailing(lowered: Sequence[tuple[str, tuple[int, ...]]], device: Device) -> tuple[int, float | None]:
+    """Native one-qubit gates of a window (lowered gates) that follow their qubit's last two-qubit gate in it (all
+    of a qubit's if it has none), and their total duration at the device's longest one-qubit gate time
+    (``None``: none)."""
+    seen: set[int] = set()
+    count = 0
+    for name, qs in reversed(lowered):
+        if len(qs) == 2:
+            seen.update(qs)
+        elif qs[0] not in seen:
+            count += len(_expansion(name, 1, device))
+    if device.duration_1q_s is None:
+        return count, None
+    return count, count * max((d for _, per in device.duration_1q_s for d in per), default=0.0)
+
+
+def _bound_per_gate(shape: tuple[int, int]) -> int:
+    return 1 + 6 * (shape[0] + shape[1] - 2 - 1)
+
+
+def _native_counts(lowered: Counter[str], swaps: int, device: Device, fused: int = 0) -> Counter[str]:
+    """Native gates (by the device's gate name, ``sx`` for ``rx(pi/2)``) of lowered gates plus SWAPs (3 CX each, 2
+    fewer for each of the ``fused`` ones)."""
+    out: Counter[str] = Counter()
+    twoq = device.two_qubit_gate
+    native_x = "x" in device.native_gates
+    counts = Counter(lowered)
+    counts["cx"] += 3 * swaps - 2 * fused
+    for name, k in counts.items():
+        qs = (0, 1) if name == "cx" or name == "cz" else (0,)
+        params = (math.pi / 2,) if name in ("rz", "rx") else ()
+        for g in _native_gates(Gate(name, qs, params, None), twoq, native_x):
+            out[_one_qubit_name(device, g) if len(g[1]) == 1 else g[0]] += k
+    return out
+
+
+def _uniform_log_errors(device: Device) -> dict[str, float] | None:
+    """``log(1 - error)`` per native gate name and ``"readout"``, if the device's errors are uniform."""
+    out = {}
+    for name, per in device.error_1q:
+        if len(set(per)) > 1:
+            return None
+        out[name] = math.log1p(-per[0]) if per else 0.0
+    if len(set(device.error_2q)) > 1 or len(set(device.readout_error)) > 1:
+        return None
+    out[device.two_qubit_gate] = math.log1p(-device.error_2q[0])
+    out["readout"] = math.log1p(-device.readout_error[0])
+    return out
+
+
+def routed_sum(
+    scenario: Scenario,
+    p: int,
+    options: PlanOptions = DEFAULT_PLAN,
+    device: str | Device = "grid",
+    *,
+    seed: int = 0,
+    trials: int | None = DEFAULT_TRIALS,
+    arrangement: str = "tile",
+    whole_device_work: int | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> RoutedSum | None:
+    """The routed figures of ``compile_for_device(scenario, p, device, options, layout_method="medial")`` as a sum
+    over window classes (see the module docs), or ``None`` where the medial layout does not apply (not a square
+    grid, or too small for it).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        options: The plan options, as given to compile (``phase_layout="auto"`` is settled for the device).
+        device: A device name or :class:`Device` (the unsized ``grid`` is sized as compile sizes it).
+        seed, trials: SABRE's seed and trials per window (compile's defaults).
+        arrangement: The medial layout's robot arrangement.
+        whole_device_work: At most this many (windows routed on the whole device x device qubits): above it, such
+            windows are bounded instead (:attr:`RoutedSum.exact` is then ``False``); ``None``: no limit.
+        stage: Called with the stage as it starts (``routing window classes (12 done, 30 to go)``).
+
+    Returns:
+        The :class:`RoutedSum`, or ``None``.
+
+    Raises:
+        ValueError: a window needs more ancillas than the (sized) device has free qubits.
+    """
+    from qcpp.pipeline.device_compile import SEARCH, medial_device
+    from qcpp.plan.qaoa import qaoa_plan
+
+    dev = medial_device(scenario, device, arrangement)
+    if dev is None:
+        return None
+    opts = dataclasses.replace(for_device(options, device), fuse=False)
+    plan = qaoa_plan(scenario, 1 if p else 0, opts)
+    n_data = scenario.num_variables
+    registers = plan.registers
+    templates: dict[Hashable, _Template] = {}  # per pattern of high-level gates (angles included)
+    shared: dict[Hashable, _Template] = {}  # per lowered gates without angles: what routing sees
+    blocks = []
+    for layered, block, _ in _windows(plan, n_data):
+        key, order = _pattern(block, n_data)
+        template = templates.get(key)
+        if template is None:
+            template = templates[key] = _lower_template(block, order, registers, n_data)
+        template = shared.setdefault((template.gates, template.is_data), template)  # angles do not route
+        data = [q for q, is_data in zip(order, template.is_data, strict=False) if is_data]
+        blocks.append((layered, template, data))
+    need = max((sum(not x for x in t.is_data) for _, t, _ in blocks), default=0)
+    while dev.num_qubits - n_data < need:  # compile grows the unsized grid while a section lacks free qubits
+        if device != "grid":
+            raise ValueError(f"a section needs {need} ancillas; device {dev.name} has {dev.num_qubits - n_data} "
+                             "free qubits")  # fmt: skip
+        side = int(dev.name.split("x")[-1]) + 1
+        dev = get_device(f"grid:{side}x{side}")
+    shape = grid_shape(dev)
+    assert shape is not None
+    homes = medial_placement(scenario, dev, arrangement)
+    assert homes is not None
+    occupied = np.zeros(shape, dtype=bool)
+    rows_of, cols_of = np.divmod(np.array(homes, dtype=int), shape[1])
+    occupied[rows_of, cols_of] = True
+
+    # a window: (weight, template, its data qubits' sites, their bounding box)
+    members: list[tuple[int, _Template, list[tuple[int, int]], tuple[int, int, int, int]]] = []
+    for layered, template, data in blocks:
+        weight = p if layered else 1
+        if weight:
+            rs, cs = rows_of[data], cols_of[data]
+            box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max())) if len(data) else None
+            members.append((weight, template, list(zip(rs.tolist(), cs.tolist(), strict=True)), box))  # type: ignore[arg-type]
+
+    def signature(member: tuple[Any, ...], margin: int) -> tuple[Hashable, _Crop]:
+        """The window's class at ``margin``: its gates, data sites relative to their box, and the crop around."""
+        _, template, sites, box = member
+        if box is None:  # no data qubit: allocation looks at the whole device
+            box = (0, shape[0] - 1, 0, shape[1] - 1)
+        crop = _crop(box, margin, shape)
+        env = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
+        rel = tuple((r - box[0], c - box[2]) for r, c in sites)
+        return (template.gates, template.is_data, rel, margin, crop.rows, crop.cols, box[0] - crop.top,
+                box[2] - crop.left, crop.open_sides, env.tobytes()), crop  # fmt: skip
+
+    def grouped(group: list[Any], margin: int) -> dict[Hashable, list[Any]]:
+        out: dict[Hashable, list[Any]] = {}
+        for m in group:
+            out.setdefault(signature(m, margin)[0], []).append(m)
+        return out
+
+    # classes are resolved at the smallest margin whose crop answers for the device; a class whose representative
+    # needs a larger crop is split by its members' signatures at the larger margin
+    timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
+        dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
+    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials, SEARCH)
+    entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
+    results: list[_Cost | None] = []
+    whole_batch: list[int] = []
+    whole = max(shape)  # a margin whose crop is the whole device
+    pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
+    say = stage or (lambda _text: None)
+    while pending:
+        if len(entries) % 25 == 0:  # a line now and then, not one per class
+            say(f"routing window classes ({len(entries):,} done, {len(pending):,} to go)")
+        margin, sig, group = pending.pop()
+        hit = ROUTED_CLASSES.get((sig, device_key))
+        _, template, sites, _ = group[0]
+        crop = signature(group[0], margin)[1]
+        if hit is None and any(crop.open_sides):
+            routed = _route_on([(template, sites)], crop, occupied, seed, trials)
+            if routed is None or routed == "whole":
+                wider = whole if routed == "whole" else 2 * margin  # no crop short of the device answers
+                pending.extend((wider, s2, g2) for s2, g2 in grouped(group, wider).items())
+                continue
+            hit = _summary(routed[0], dev)  # type: ignore[index]
+        elif hit is None and dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:  # routed with the others below
+            whole_batch.append(len(entries))
+        entries.append((sig, group))
+        results.append(hit)
+    if whole_device_work is not None and len(whole_batch) * dev.num_qubits > whole_device_work:
+        whole_batch = []  # over budget: those windows are bounded, not routed
+    if whole_batch:
+        say(f"routing {len(whole_batch):,} window classes on the whole device")
+        crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
+        batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, trials)
+        assert batch is not None, "the whole device answers for itself"
+        for i, r in zip(whole_batch, batch, strict=True):
+            results[i] = _summary(r, dev)
+    if len(ROUTED_CLASSES) > ROUTED_CLASSES_LIMIT:
+        ROUTED_CLASSES.clear()
+    for (sig, _), result in zip(entries, results, strict=True):
+        if result is not None:
+            ROUTED_CLASSES[(sig, device_key)] = result
+
+    log_errors = _uniform_log_errors(dev)
+    out: list[WindowClass] = []
+    lowered: Counter[str] = Counter()
+    compiled: Counter[str] = Counter()
+    native: Counter[str] = Counter()
+    swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
+    duration: float | None = 0.0
+    for i, (_, group) in enumerate(entries):
+        weight = sum(m[0] for m in group)
+        template = group[0][1]
+        windows += weight
+        compiled.update({k: v * weight for k, v in template.ops})
+        result = results[i]
+        if result is None:
+            ops = Counter(dict(template.ops))  # the window before relays: the bound does not relay
+            lowered.update({k: v * weight for k, v in ops.items()})
+            cx = ops.get("cx", 0)
+            charged = cx * _bound_per_gate(shape)
+            bounded += weight
+            two_bound += weight * charged
+            one_bound += weight * (6 * charged + 3 * (sum(ops.values()) - cx))
+            out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
+            duration = None
+            continue
+        ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
+        lowered.update({k: v * weight for k, v in ops.items()})
+        counts = _native_counts(ops, result.swaps, dev, result.fused)
+        swaps += weight * result.swaps
+        native.update({k: v * weight for k, v in counts.items() if v})
+        # a window's one-qubit gates after a qubit's last two-qubit gate in it wait for that qubit's next
+        # two-qubit gate (router's rule), in a later window: each such native gate adds at most one level there
+        depth += weight * (result.depth + result.late)
+        depth2 += weight * result.two_qubit_depth
+        if duration is not None and result.duration_s is not None and result.late_s is not None:
+            duration += weight * (result.duration_s + result.late_s)
+        else:
+            duration = None
+        out.append(WindowClass(weight, result.lowered_ops, result.swaps, None, tuple(sorted(counts.items())),
+                               result.depth, result.two_qubit_depth, result.duration_s))  # fmt: skip
+    twoq_name = dev.two_qubit_gate
+    two = native.get(twoq_name, 0) + two_bound
+    one = sum(v for k, v in native.items() if k != twoq_name) + one_bound
+    log_esp = None
+    if log_errors is not None and not bounded:
+        log_esp = sum(v * log_errors.get(k, 0.0) for k, v in native.items()) + n_data * log_errors["readout"]
+    if duration is not None and dev.readout_duration_s:
+        duration += max(dev.readout_duration_s)
+    elif duration is not None:
+        duration = None
+    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), dict(compiled), swaps, dict(native), two,
+                     one, log_esp, depth, depth2, duration)  # fmt: skip
+
+
+def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[int, ...]], ...]:
+    """The native gates (device gate name, roles ``0``/``1`` of the lowered gate's qubits) one lowered gate
+    becomes (:func:`qcpp.routing.sabre.to_native`)."""
+    return _expansion_of(name, arity, device.two_qubit_gate, tuple(device.native_gates))
+
+
+@lru_cache(maxsize=256)
+def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> tuple[tuple[str, tuple[int, ...]], ...]:
+    params = (math.pi / 2,) if name in ("rz", "rx") else ()
+    gates = _native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
+    sx = "sx" in native
+    return tuple(("sx" if sx and g[0] == "rx" else g[0], tuple(g[1])) for g in gates)
+
+
+def _native_schedule(gates: Sequence[Gate], device: Device) -> tuple[int, int, float | None]:
+    """ASAP depth, two-qubit depth and length in seconds (``None`` unless the device's durations are uniform,
+    so that the crop stands for any part of it) of one routed window in native gates, without building them."""
+    n = 1 + max((q for g in gates for q in g[1]), default=-1)
+    level, level2, clock = [0] * n, [0] * n, [0.0] * n
+    timed = device.duration_1q_s is not None and device.duration_2q_s is not None
+    if timed and (len(set(device.duration_2q_s)) > 1 or any(len(set(per)) > 1 for _, per in device.duration_1q_s)):
+        timed = False
+    d1 = {name: per[0] for name, per in device.duration_1q_s} if timed else {}
+    d2 = device.duration_2q_s[0] if timed and device.duration_2q_s else 0.0
+    expansions: dict[tuple[str, int], tuple[tuple[str, tuple[int, ...]], ...]] = {}
+    for g in gates:
+        qs = g[1]
+        shape = (g[0], len(qs))
+        expansion = expansions.get(shape)
+        if expansion is None:
+            expansion = expansions[shape] = _expansion(g[0], len(qs), device)
+        for name, roles in expansion:
+            if len(roles) == 2:
+                a, b = qs[roles[0]], qs[roles[1]]
+                top = max(level[a], level[b]) + 1
+                top2 = max(level2[a], level2[b]) + 1
+                start = max(clock[a], clock[b]) + d2
+                level[a] = level[b] = top
+                level2[a] = level2[b] = top2
+                clock[a] = clock[b] = start
+            else:
+                q = qs[roles[0]]
+                level[q] += 1
+                if timed:
+                    clock[q] += d1[name]
+    return max(level, default=0), max(level2, default=0), max(clock, default=0.0) if timed else None

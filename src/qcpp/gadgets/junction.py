@@ -1,0 +1,187 @@
+"""Junctions: the uncompute of one partial mixer fused with the compute of the next, as a gadget of its own.
+
+Consecutive partial mixers share qubits: every one uses the same clean ``logic`` temporaries, and neighbouring
+plaquettes share an edge and outer edges. Lowered one by one, the end of one and the start of the next can
+cancel: ``and_dg(a, b, t)`` followed by ``and(a', b, t)`` on the same temporary and second control loses
+``h h``, ``tdg t``, ``cx(b, t) cx(b, t)`` and ``t tdg`` (2 CX, 4 one-qubit gates); on a temporary alone the
+``h h`` and ``tdg t`` still go. A per-gadget lowering leaves all of that to a later optimiser. So a layer of
+parity-basis partial mixers ``m_0, ..., m_{n-1}`` is cut at its rotations instead:
+
+    Junction(-, m_0)  Rotation(m_0)  Junction(m_0, m_1)  Rotation(m_1)  ...  Rotation(m_{n-1})  Junction(m_{n-1}, -)
+
+where ``Junction(l, r)`` emits the mirrored leaves of ``l`` then the compute leaves of ``r`` (one section, so
+the peephole pass cancels across the old boundary) and ``Rotation(m)`` the controlled rotation of ``m``. Every
+piece is exact on its own terms: the gates are those of the unfused partial mixers, in the same order, so the
+unitary is the same and every ancilla is clean after each rotation's mirror as before.
+
+**Cost without emitting.** A junction's lowered gates are fixed by its :attr:`MixerJunction.kind`: the two
+partial mixers' kinds (their plans) and which qubits they share (:attr:`MixerJunction.overlap`: for each qubit
+slot of the right one, the slot of the left one on the same qubit). The cost of a kind is computed once, by
+lowering the kind's own canonical gate list (a few dozen gates on at most 22 qubits) and cached, and reused for
+every junction of that kind (a grid has a handful); ``tests/qcpp/junction_test.py`` checks it against
+the lowered count of every junction the compiler emits on a sweep of scenarios. The call graph lists the
+junctions and rotations themselves (:mod:`qcpp.plan.mixer_classes` counts them by class).
+
+The ``paper`` rule's controlled-X network (:class:`~qcpp.gadgets.partial_mixer.McxPartialMixer`) is not
+fused: it is lowered leaf by leaf on purpose (see its ``emit_blocks``).
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.gadgets.partial_mixer import partial_mixer
+    >>> s = default_scenario(3, 3, 1)
+    >>> ms = [partial_mixer(s, 0, q, 0.7, s.num_variables) for q in s.grid.plaquettes]
+    >>> pieces = mixer_pieces(ms)
+    >>> [type(g).__name__ for g in pieces[:3]], len(pieces)
+    (['MixerJunction', 'MixerRotation', 'MixerJunction'], 9)
+    >>> sum(m.cost().cx for m in ms), sum(g.cost().cx for g in pieces)
+    (108, 106)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+from qcpp.gadgets.leaves import leaf_cost, leaf_logical_cost
+from qcpp.gadgets.partial_mixer import (
+    McxPartialMixer,
+    MixerPlan,
+    ParityPartialMixer,
+    emit_plan,
+    plan_parity_mixer,
+    plan_slots,
+)
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.cost import Cost
+from qcpp.ir.gates import Gate
+from qcpp.lowering.passes import LOGICAL_BASIS, lower
+from qcpp.plan.call_graph import PricedByKind
+
+__all__ = ["MixerJunction", "MixerRotation", "mixer_pieces"]
+
+
+@dataclass(frozen=True)
+class MixerRotation:
+    """The controlled rotation of a parity-basis partial mixer (``crx`` or ``ccrx``), between two junctions.
+
+    Attributes:
+        mixer: the partial mixer.
+    """
+
+    mixer: ParityPartialMixer
+
+    @property
+    def kind(self) -> Hashable:
+        """The rotation leaf's name."""
+        return ("mixer_rotation", self.mixer.plan.rotation[0])
+
+    def cost(self) -> Cost:
+        """Lowered cost (the leaf's closed form)."""
+        return leaf_cost(self.mixer.plan.rotation[0])
+
+    def logical_cost(self) -> Cost:
+        """The same (a rotation has no AND)."""
+        return leaf_logical_cost(self.mixer.plan.rotation[0])
+
+    def emit(self) -> list[Gate]:
+        """The rotation's gates."""
+        return self.mixer.parts()[1]
+
+
+@dataclass(frozen=True)
+class MixerJunction(PricedByKind):
+    """The mirrored leaves of ``left`` then the compute leaves of ``right`` (either may be absent: the open ends
+    of a layer), lowered as one section (see the module docstring).
+
+    Attributes:
+        left: the partial mixer that ends here, or ``None``.
+        right: the partial mixer that starts here, or ``None``.
+    """
+
+    left: ParityPartialMixer | None
+    right: ParityPartialMixer | None
+
+    @cached_property
+    def overlap(self) -> tuple[int, ...]:
+        """For each qubit slot of ``right`` (:func:`~qcpp.gadgets.partial_mixer.plan_slots` order), the
+        index of the slot of ``left`` on the same qubit, or ``-1``."""
+        if self.left is None or self.right is None:
+            return ()
+        where = {qb: i for i, qb in enumerate(self.left.slot_qubits)}
+        return tuple(where.get(qb, -1) for qb in self.right.slot_qubits)
+
+    @cached_property
+    def kind(self) -> Hashable:
+        """The two partial mixers' kinds and :attr:`overlap`: equal kinds, equal gates up to qubit names."""
+        return (
+            "mixer_junction",
+            None if self.left is None else self.left.kind,
+            None if self.right is None else self.right.kind,
+            self.overlap,
+        )
+
+    def _kind_costs(self) -> tuple[Cost, Cost]:
+        return _junction_costs(self.kind)  # type: ignore[arg-type]
+
+    def emit(self) -> list[Gate]:
+        """The mirrored leaves of ``left``, then the compute leaves of ``right``."""
+        tail = self.left.parts()[2] if self.left is not None else []
+        head = self.right.parts()[0] if self.right is not None else []
+        return [*tail, *head]
+
+
+def _plan(kind: Hashable) -> MixerPlan:
+    tag, program, target = kind  # type: ignore[misc]
+    assert tag == "parity", kind
+    return plan_parity_mixer(program, target)
+
+
+def _junction_costs(kind: tuple) -> tuple[Cost, Cost]:
+    """Lowered and logical cost of a junction kind, from its canonical gate list: the left plan's slots on qubits
+    ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on fresh qubits
+    otherwise."""
+    _, left_kind, right_kind, overlap = kind
+    gates: list[Gate] = []
+    n = 0
+    if left_kind is not None:
+        plan = _plan(left_kind)
+        slots = plan_slots(plan, left_kind[1].num_outer)
+        gates += emit_plan(plan, {s: i for i, s in enumerate(slots)}, 0.0)[2]
+        n = len(slots)
+    if right_kind is not None:
+        plan = _plan(right_kind)
+        slots = plan_slots(plan, right_kind[1].num_outer)
+        qubit = {}
+        for s, shared in zip(slots, overlap or (-1,) * len(slots), strict=True):
+            if shared < 0:
+                shared, n = n, n + 1
+            qubit[s] = shared
+        gates += emit_plan(plan, qubit, 0.0)[0]
+    n = max((q + 1 for g in gates for q in g.qubits), default=1)
+    circ = Circuit([("q", n)], [Section("junction", tuple(gates))])
+    return Cost.count(lower(circ).gates), Cost.count(lower(circ, LOGICAL_BASIS).gates)
+
+
+def mixer_pieces(
+    mixers: Sequence[ParityPartialMixer | McxPartialMixer],
+) -> list[ParityPartialMixer | McxPartialMixer | MixerJunction | MixerRotation]:
+    """One layer's partial mixers as the gadgets the circuit emits (each a section of its own).
+
+    Args:
+        mixers: the layer's partial mixers in circuit order (all parity-basis, or all controlled-X network).
+
+    Returns:
+        For parity-basis partial mixers: junctions and rotations (see the module docstring); otherwise the
+        partial mixers themselves.
+    """
+    if not mixers or not isinstance(mixers[0], ParityPartialMixer):
+        return list(mixers)
+    out: list[ParityPartialMixer | McxPartialMixer | MixerJunction | MixerRotation] = []
+    prev: ParityPartialMixer | None = None
+    for m in mixers:
+        assert isinstance(m, ParityPartialMixer)
+        out += [MixerJunction(prev, m), MixerRotation(m)]
+        prev = m
+    out.append(MixerJunction(prev, None))
+    return out

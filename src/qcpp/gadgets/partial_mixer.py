@@ -1,0 +1,525 @@
+"""Partial mixers as gadgets: one robot, one plaquette, ``exp(-i beta/2 XXXX)`` where the SBF rule allows it.
+
+Two constructions, both compiled from the rule's own :class:`~qcpp.problem.sbf.SbfLogic` program (the classical
+move test, the solvers and the subspace simulator run the very same program; the compiler never re-derives the
+rule):
+
+**Parity basis** (:class:`ParityPartialMixer`, the ``exact`` rule). A CNOT network ``L`` on the four plaquette
+qubits maps ``XXXX`` to ``X`` on one *carrier* qubit: after ``L`` the carrier holds an odd combination of the
+four edges and the other three hold even ones (corner parities ``s_v = e1 XOR e2`` or the opposite-edge parities
+``ab XOR cd``, ``bc XOR da``), which the flip leaves unchanged. The exact rule's program reads only such parities,
+outer edges and temporaries, so the move condition ``f`` is computed once with clean relative-phase ANDs
+(3 CX each, :func:`qcpp.ir.gates.and_`), ``RX(beta)`` is applied to the carrier controlled by ``f`` (``crx``,
+or for ``target="nisq"`` the last AND merged into a two-control phase polynomial ``ccrx``: 4 CX instead of
+3 + 3 + 2), and everything is mirrored. The CNOTs of ``L`` are not fixed: :func:`plan_parity_mixer` searches
+(A* over the GF(2) states of the four qubits) for the fewest CNOTs that bring every parity the program
+reads onto some qubit at the moment it is read and leave the state rotation-ready at the end; extra CNOTs between
+ANDs are allowed. A polarity tracker puts an X on a qubit only right before a read that needs the other value,
+so no two gates of the result cancel and the cost is a plain sum of leaf costs.
+
+**Controlled-X network** (:class:`McxPartialMixer`, the ``paper`` rule, kept for the comparison with the
+paper). Each program step is a multi-controlled X (``x``/``cx``/``ccx``/clean-AND ladder) into a ``logic``
+temporary, then ``csbf`` (``XXXX`` rotation controlled by the output; 8 CX), then the mirror.
+
+The cost of both is computed from the plan (a short list of leaf kinds), never from emitted gates; the plan is
+cached per *kind* (the program with grid edges replaced by local positions), so a circuit's cost is a sum over
+its partial-mixer kinds. In a circuit, consecutive parity-basis partial mixers are fused at their boundaries
+(:mod:`qcpp.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`): the layer is then listed as
+junction and rotation kinds.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> s = default_scenario(3, 3, 1)
+    >>> m = partial_mixer(s, 0, s.grid.plaquettes[0], 0.7, logic_offset=s.num_variables)
+    >>> m.cost().cx, [g.name for g in m.emit()][:4]
+    (32, ['cx', 'cx', 'cx', 'x'])
+"""
+
+from __future__ import annotations
+
+import heapq
+from collections.abc import Callable, Hashable, Sequence
+from dataclasses import dataclass
+from functools import cached_property, lru_cache
+
+from qcpp.gadgets.leaves import ccrx_gates, leaf_cost, leaf_logical_cost
+from qcpp.ir.angles import Param
+from qcpp.ir.cost import Cost, Target
+from qcpp.ir.gates import Gate, and_, and_dg, crx, csbf, cx, mcx, x
+from qcpp.problem.grid import Plaquette
+from qcpp.problem.sbf import Lit, Rule, SbfLogic, sbf_logic
+from qcpp.problem.scenario import Scenario
+
+__all__ = [
+    "McxPartialMixer",
+    "MixerPlan",
+    "ParityPartialMixer",
+    "emit_plan",
+    "logic_width",
+    "partial_mixer",
+    "plan_parity_mixer",
+    "plan_slots",
+]
+
+# --- abstract programs ------------------------------------------------------------------------
+# A slot names a qubit of the gadget: ("p", i) plaquette edge i of (ab, bc, cd, da); ("o", j) the j-th outer edge
+# the program reads; ("t", k) logic temporary k.
+Slot = tuple[str, int]
+# An abstract literal: ("form", mask, value) a parity of plaquette edges (mask over positions 0..3);
+# ("slot", slot, value) a fixed qubit (outer edge) ; ("temp", step, value) the output of an earlier step.
+ALit = tuple[str, int | Slot, bool]
+
+
+@dataclass(frozen=True)
+class AbstractProgram:
+    """An SBF program with grid edges replaced by local positions (what the cost depends on).
+
+    Attributes:
+        rule: ``exact`` or ``paper``.
+        targets: per step, the temporary it XORs into; the last step writes the output.
+        steps: per step, its abstract literals (``("temp", k, value)`` reads temporary ``k``).
+        num_outer: outer edges read.
+    """
+
+    rule: Rule
+    targets: tuple[int, ...]
+    steps: tuple[tuple[ALit, ...], ...]
+    num_outer: int
+
+
+def abstract_program(logic: SbfLogic, plaquette: Plaquette) -> tuple[AbstractProgram, tuple[int, ...]]:
+    """The program's kind and the grid edges of its outer slots (in slot order)."""
+    pos = {e: i for i, e in enumerate(plaquette.edges)}
+    outer: list[int] = []
+    steps = tuple(tuple(_abstract_lit(lit, pos, outer) for lit in st.literals) for st in logic.steps)
+    if logic.steps[-1].target != logic.output:
+        raise ValueError("the last step of an SBF program must write its output")
+    targets = tuple(st.target for st in logic.steps)
+    return AbstractProgram(logic.rule, targets, steps, len(outer)), tuple(outer)
+
+
+def _abstract_lit(lit: Lit, pos: dict[int, int], outer: list[int]) -> ALit:
+    if lit.is_temp:
+        return ("temp", lit.temp, lit.value)
+    if all(e in pos for e in lit.edges):
+        mask = 0
+        for e in lit.edges:
+            mask ^= 1 << pos[e]
+        return ("form", mask, lit.value)  # a plaquette edge or the parity of two
+    if lit.xor is not None:
+        raise ValueError(f"parity literal {lit} mixes plaquette and outer edges")
+    if lit.signal not in outer:
+        outer.append(lit.signal)
+    return ("slot", ("o", outer.index(lit.signal)), lit.value)
+
+
+# --- the parity-basis plan ---------------------------------------------------------------------
+@dataclass(frozen=True)
+class MixerPlan:
+    """A partial mixer as abstract leaves on slots (see the module docstring).
+
+    Attributes:
+        compute: ``(leaf, slots)`` in time order: ``("cx", (c, t))``, ``("x", (q,))``, ``("and", (a, b, t))``,
+            ``("mcx", controls + (t,))``.
+        rotation: ``("crx", (control, carrier))``, ``("ccrx", (a, b, carrier))`` or ``("csbf", (control, p0..p3))``.
+        num_temps: logic temporaries used.
+    """
+
+    compute: tuple[tuple[str, tuple[Slot, ...]], ...]
+    rotation: tuple[str, tuple[Slot, ...]]
+    num_temps: int
+
+    def _sum(self, leaf: Callable[[str, int], Cost]) -> Cost:
+        """Compute leaves, their mirrors (an AND is undone by ``and_dg``, everything else by itself) and the
+        rotation, priced by ``leaf`` (:func:`leaf_cost` or :func:`leaf_logical_cost`)."""
+        total = leaf(self.rotation[0], 0)
+        for name, slots in self.compute:
+            k = len(slots) - 1 if name == "mcx" else 0
+            total += leaf(name, k) + leaf("and_dg" if name == "and" else name, k)
+        return total
+
+    def cost(self) -> Cost:
+        """Lowered cost: the compute leaves, their mirrors and the rotation."""
+        return self._sum(leaf_cost)
+
+    def logical_cost(self) -> Cost:
+        """The same with ANDs and Toffolis kept whole."""
+        return self._sum(leaf_logical_cost)
+
+
+
+def _carrier(forms: tuple[int, ...]) -> int | None:
+    """The one qubit holding an odd form when the other three hold even ones (then XXXX = X on it)."""
+    odd = [i for i, f in enumerate(forms) if bin(f).count("1") % 2]
+    return odd[0] if len(odd) == 1 else None
+
+
+@lru_cache(maxsize=1024)
+def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> MixerPlan:
+    """Cheapest parity-basis partial mixer for an abstract ``exact`` program (see the module docstring).
+
+    The search is an A* over the GF(2) states of the four plaquette qubits (one CNOT per edge of the
+    search graph). ANDs are placed greedily (an AND costs 3 CNOTs whenever it is done, and its temporary stays
+    available), so only the CNOTs of the linear network are searched: every inner step is done as soon as its
+    parities are on some qubit, and every literal of the output AND is folded into the AND chain as soon as it
+    is available. For ``nisq`` one temporary literal is held back and becomes the second control of the
+    rotation (``ccrx``); with no temporary literal and at most two corner literals, both control it directly.
+
+    Args:
+        program: every step but the last has two literals and writes a fresh temporary; literals read even
+            parities of the plaquette edges, outer slots or temporaries.
+        target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
+
+    Returns:
+        The plan.
+    """
+    inner, final = program.steps[:-1], program.steps[-1]
+    if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
+        raise ValueError("parity-basis mixers need two-literal inner steps, each into a fresh temporary")
+    if any(kind == "form" and bin(ref).count("1") % 2 for lits in program.steps for kind, ref, _ in lits):  # type: ignore[arg-type]
+        raise ValueError("parity-basis mixers read only even parities (the flip must not change them)")
+    n_inner, n_final = len(inner), len(final)
+    temp_lits = [j for j, lit in enumerate(final) if lit[0] != "form"]
+    if target == "nisq" and temp_lits:
+        reserved = {temp_lits[-1]}
+    elif target == "nisq" and n_final <= 2:
+        reserved = set(range(n_final))  # corner literals only: they control the rotation directly
+    else:
+        reserved = set()
+    all_inner = (1 << n_inner) - 1
+
+    def present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
+        kind, ref, _ = lit
+        if kind == "form":
+            return ref in forms
+        if kind == "temp":
+            return bool(done >> ref & 1)  # type: ignore[operator]
+        return True
+
+    def closure(forms: tuple[int, ...], done: int, absorbed: int) -> tuple[int, int, tuple]:
+        """Greedy ANDs: inner steps whose literals are present, then output literals into the chain."""
+        events: list[tuple[str, tuple[int, ...]]] = []
+        while True:
+            progressed = False
+            for i, lits in enumerate(inner):
+                if not done >> i & 1 and all(present(lit, forms, done) for lit in lits):
+                    done |= 1 << i
+                    events.append(("inner", (i,)))
+                    progressed = True
+            ready = [
+                j
+                for j in range(n_final)
+                if j not in reserved and not absorbed >> j & 1 and present(final[j], forms, done)
+            ]
+            if ready and (absorbed or len(ready) >= 2):
+                if not absorbed:
+                    events.append(("absorb", (ready[0], ready[1])))
+                    absorbed |= 1 << ready[0] | 1 << ready[1]
+                    ready = ready[2:]
+                for j in ready:
+                    events.append(("absorb", (j,)))
+                    absorbed |= 1 << j
+                progressed = True
+            if not progressed:
+                break
+        return done, absorbed, tuple(events)
+
+    def missing(forms: tuple[int, ...], done: int, absorbed: int) -> int:
+        """Admissible A* bound: each CNOT changes one qubit, so it brings at most one absent parity."""
+        need = {ref for i, lits in enumerate(inner) if not done >> i & 1 for kind, ref, _ in lits if kind == "form"}
+        need.update(ref for j, (kind, ref, _) in enumerate(final) if kind == "form" and not absorbed >> j & 1)
+        return len(need.difference(forms))
+
+    start = (1, 2, 4, 8)
+    d0, a0, e0 = closure(start, 0, 0)
+    init = (start, d0, a0)
+    dist = {init: 0}
+    parent: dict[tuple, tuple] = {init: (None, ("start", None, e0))}
+    heap = [(missing(*init), 0, 0, init)]
+    counter = 0
+    goal = None
+    while heap:
+        _, g, _, state = heapq.heappop(heap)
+        if g > dist[state]:
+            continue
+        forms, done, absorbed = state
+        if done == all_inner and _carrier(forms) is not None:
+            remaining = [j for j in range(n_final) if not absorbed >> j & 1]
+            controls = len(remaining) + (1 if absorbed else 0)
+            if controls <= (2 if target == "nisq" else 1) and all(present(final[j], forms, done) for j in remaining):
+                goal = state
+                break
+        for c in range(4):
+            for t in range(4):
+                if c == t:
+                    continue
+                nf = list(forms)
+                nf[t] ^= forms[c]
+                nforms = tuple(nf)
+                nd, na, events = closure(nforms, done, absorbed)
+                nstate = (nforms, nd, na)
+                if g + 1 < dist.get(nstate, 1 << 30):
+                    dist[nstate] = g + 1
+                    parent[nstate] = (state, ("cx", (c, t), events))
+                    counter += 1
+                    heapq.heappush(heap, (g + 1 + missing(*nstate), g + 1, counter, nstate))
+    if goal is None:
+        raise ValueError("no parity-basis plan found")
+    return _build_plan(program, goal, parent, target)
+
+
+def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Target) -> MixerPlan:
+    actions = []
+    state = goal
+    while state is not None:
+        prev, action = parent[state]
+        actions.append(action)
+        state = prev
+    actions.reverse()
+    inner, final = program.steps[:-1], program.steps[-1]
+    forms = [1, 2, 4, 8]
+    temps_of_step: dict[int, int] = {}
+    num_temps = 0
+    ops: list[tuple[str, tuple[Slot, ...]]] = []
+    polarity: dict[Slot, bool] = {}  # True: the qubit currently holds its value negated
+
+    def read(lit: ALit) -> Slot:
+        """The qubit of ``lit``, made to read 1 when the literal holds (an X only when its polarity must change)."""
+        kind, ref, value = lit
+        if kind == "form":
+            slot: Slot = ("p", forms.index(ref))  # type: ignore[arg-type]
+        elif kind == "temp":
+            slot = ("t", temps_of_step[ref])  # type: ignore[index]
+        else:
+            slot = ref  # type: ignore[assignment]
+        if polarity.get(slot, False) != (not value):
+            ops.append(("x", (slot,)))
+            polarity[slot] = not value
+        return slot
+
+    def and_into_fresh(a: Slot, b: Slot) -> Slot:
+        nonlocal num_temps
+        t: Slot = ("t", num_temps)
+        num_temps += 1
+        ops.append(("and", (a, b, t)))
+        return t
+
+    acc: Slot | None = None
+    absorbed: set[int] = set()
+    for kind, arg, events in actions:
+        if kind == "cx":
+            c, t = arg
+            ops.append(("cx", (("p", c), ("p", t))))
+            forms[t] ^= forms[c]
+            # t XOR (NOT c) = NOT (t XOR c): a negated control negates the target
+            polarity[("p", t)] = polarity.get(("p", t), False) ^ polarity.get(("p", c), False)
+        for ev, idx in events:
+            if ev == "inner":
+                a, b = (read(lit) for lit in inner[idx[0]])
+                temps_of_step[idx[0]] = and_into_fresh(a, b)[1]
+            elif acc is None:
+                a, b = (read(final[j]) for j in idx)
+                acc = and_into_fresh(a, b)
+            else:
+                acc = and_into_fresh(acc, read(final[idx[0]]))
+            if ev == "absorb":
+                absorbed.update(idx)
+    controls = [read(final[j]) for j in range(len(final)) if j not in absorbed]
+    if acc is not None:
+        controls.append(acc)
+    # RX commutes with X, so the carrier's polarity does not matter
+    carrier: Slot = ("p", _carrier(tuple(forms)))  # type: ignore[arg-type]
+    assert 1 <= len(controls) <= (2 if target == "nisq" else 1), controls
+    rotation = ("crx", (controls[0], carrier)) if len(controls) == 1 else ("ccrx", (*controls, carrier))
+    return MixerPlan(tuple(ops), rotation, num_temps)  # type: ignore[arg-type]
+
+
+@lru_cache(maxsize=1024)
+def plan_mcx_mixer(program: AbstractProgram) -> MixerPlan:
+    """The controlled-X network plan (any rule; used for ``paper``): one multi-controlled X per step."""
+    ops: list[tuple[str, tuple[Slot, ...]]] = []
+    polarity: dict[Slot, bool] = {}
+    for target_temp, lits in zip(program.targets, program.steps):
+        slots = []
+        for kind, ref, value in lits:
+            if kind == "form":
+                if bin(ref).count("1") != 1:  # type: ignore[arg-type]
+                    raise ValueError("controlled-X mixers read single plaquette edges")
+                slot: Slot = ("p", int(ref).bit_length() - 1)  # type: ignore[arg-type]
+            elif kind == "temp":
+                slot = ("t", ref)  # type: ignore[assignment]
+            else:
+                slot = ref  # type: ignore[assignment]
+            if polarity.get(slot, False) != (not value):
+                ops.append(("x", (slot,)))
+                polarity[slot] = not value
+            slots.append(slot)
+        target: Slot = ("t", target_temp)
+        if polarity.get(target, False):
+            ops.append(("x", (target,)))
+            polarity[target] = False
+        name = {0: "x", 1: "cx", 2: "ccx"}.get(len(slots), "mcx")
+        ops.append((name, (*slots, target)))
+    out: Slot = ("t", program.targets[-1])
+    rotation = ("csbf", (out, ("p", 0), ("p", 1), ("p", 2), ("p", 3)))
+    return MixerPlan(tuple(ops), rotation, max(program.targets) + 1)  # type: ignore[arg-type]
+
+
+# --- gadgets -----------------------------------------------------------------------------------
+def plan_slots(plan: MixerPlan, num_outer: int) -> tuple[Slot, ...]:
+    """Every qubit slot of a plan in a fixed order: plaquette edges, outer edges, temporaries."""
+    return (
+        *(("p", i) for i in range(4)),
+        *(("o", j) for j in range(num_outer)),
+        *(("t", k) for k in range(plan.num_temps)),
+    )
+
+
+def emit_plan(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> tuple[list[Gate], list[Gate], list[Gate]]:
+    """The plan's gates on the qubits ``qubit`` gives every slot: compute leaves, rotation, mirrored leaves."""
+    compute: list[Gate] = []
+    for name, slots in plan.compute:
+        qs = [qubit[s_] for s_ in slots]
+        if name == "cx":
+            compute.append(cx(*qs))
+        elif name == "x":
+            compute.append(x(*qs))
+        elif name == "and":
+            compute.append(and_(*qs))
+        else:  # x / cx / ccx / mcx with positive controls
+            compute.append(mcx(qs[:-1], qs[-1]))
+    name, slots = plan.rotation
+    qs = [qubit[s_] for s_ in slots]
+    if name == "crx":
+        rotation = [crx(beta, *qs)]
+    elif name == "ccrx":
+        rotation = ccrx_gates(beta, *qs)
+    else:
+        rotation = [csbf(beta, *qs)]
+    mirror = [and_dg(*g.qubits) if g.name == "and" else g for g in reversed(compute)]
+    return compute, rotation, mirror
+
+
+@dataclass(frozen=True)
+class _PartialMixerBase:
+    """Shared fields: the plan (cost) and where its slots live (emission)."""
+
+    plan: MixerPlan
+    kind_key: Hashable
+    plaquette_qubits: tuple[int, int, int, int]
+    outer_qubits: tuple[int, ...]
+    logic_offset: int
+    beta: Param
+
+    @property
+    def kind(self) -> Hashable:
+        """The abstract program and target: equal kinds have equal plans and costs."""
+        return self.kind_key
+
+    def cost(self) -> Cost:
+        """Lowered cost (from the plan's leaves; nothing is emitted)."""
+        return self.plan.cost()
+
+    def logical_cost(self) -> Cost:
+        """Cost with ANDs and Toffolis kept whole."""
+        return self.plan.logical_cost()
+
+    @property
+    def num_temps(self) -> int:
+        """Logic temporaries used (from ``logic_offset`` on)."""
+        return self.plan.num_temps
+
+    @property
+    def slot_qubits(self) -> tuple[int, ...]:
+        """The qubit of every slot, in :func:`plan_slots` order (plaquette edges, outer edges, temporaries)."""
+        temps = range(self.logic_offset, self.logic_offset + self.plan.num_temps)
+        return (*self.plaquette_qubits, *self.outer_qubits, *temps)
+
+    def parts(self) -> tuple[list[Gate], list[Gate], list[Gate]]:
+        """The gates as compute leaves, rotation, mirrored leaves (:mod:`.junction` fuses the mirror of one
+        partial mixer with the compute of the next)."""
+        compute, rotation, mirror = self._parts
+        return list(compute), list(rotation), list(mirror)
+
+    @cached_property
+    def _parts(self) -> tuple[tuple[Gate, ...], tuple[Gate, ...], tuple[Gate, ...]]:
+        # built once: a fused layer asks each partial mixer for its parts three times (two junctions, a rotation)
+        slots = plan_slots(self.plan, len(self.outer_qubits))
+        compute, rotation, mirror = emit_plan(self.plan, dict(zip(slots, self.slot_qubits, strict=True)), self.beta)
+        return tuple(compute), tuple(rotation), tuple(mirror)
+
+    def emit(self) -> list[Gate]:
+        """The gates: compute, rotation, mirror."""
+        compute, rotation, mirror = self.parts()
+        return [*compute, *rotation, *mirror]
+
+    def emit_blocks(self) -> list[list[Gate]]:
+        """The gates in blocks that the compiler lowers separately (a section each): the whole partial mixer for
+        the parity construction; one block per leaf for the controlled-X network, whose consecutive
+        clean-AND ladders would otherwise partly cancel and make the cost depend on the neighbours."""
+        compute, rotation, mirror = self.parts()
+        if isinstance(self, McxPartialMixer):
+            return [[g] for g in compute] + [rotation] + [[g] for g in mirror]
+        return [[*compute, *rotation, *mirror]]
+
+
+@dataclass(frozen=True)
+class ParityPartialMixer(_PartialMixerBase):
+    """Parity-basis partial mixer (the ``exact`` rule); see the module docstring."""
+
+
+@dataclass(frozen=True)
+class McxPartialMixer(_PartialMixerBase):
+    """Controlled-X network partial mixer (the ``paper`` rule); see the module docstring."""
+
+
+def partial_mixer(
+    scenario: Scenario,
+    robot: int,
+    plaquette: Plaquette,
+    beta: Param,
+    logic_offset: int,
+    rule: Rule = "exact",
+    target: Target = "nisq",
+) -> ParityPartialMixer | McxPartialMixer | None:
+    """The partial-mixer gadget of ``robot`` on ``plaquette`` (``None`` when the flip is never allowed).
+
+    Args:
+        scenario: The scenario.
+        robot: Robot index.
+        plaquette: The plaquette.
+        beta: The mixing angle (e.g. ``Angle.symbol("beta_0")``).
+        logic_offset: Qubit index of the first ``logic`` ancilla.
+        rule: ``exact`` (parity basis) or ``paper`` (controlled-X network).
+        target: ``nisq`` or ``ft`` (see :func:`plan_parity_mixer`).
+
+    Returns:
+        The gadget.
+    """
+    logic = sbf_logic(scenario, robot, plaquette, rule)
+    if logic.never:
+        return None
+    program, outer = abstract_program(logic, plaquette)
+    data = tuple(scenario.variable_index(robot, e) for e in plaquette.edges)
+    outer_q = tuple(scenario.variable_index(robot, e) for e in outer)
+    if rule == "exact":
+        plan = plan_parity_mixer(program, target)
+        return ParityPartialMixer(plan, ("parity", program, target), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+    plan = plan_mcx_mixer(program)
+    return McxPartialMixer(plan, ("mcx", program), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+
+
+def logic_width(scenario: Scenario, rule: Rule = "exact", target: Target = "nisq") -> int:
+    """``logic`` ancillas the full mixer needs (the largest partial mixer; they are shared)."""
+    widths = [
+        m.num_temps
+        for r in range(scenario.num_robots)
+        for q in scenario.grid.plaquettes
+        if (m := partial_mixer(scenario, r, q, 0.0, 0, rule, target)) is not None
+    ]
+    return max(widths, default=0)
+
+
+def mixer_work_need(gadgets: Sequence[McxPartialMixer | ParityPartialMixer]) -> int:
+    """Work ancillas the mcx leaves need (``k - 2`` for the largest)."""
+    return max((len(s) - 3 for g in gadgets for name, s in g.plan.compute if name == "mcx"), default=0)

@@ -1,0 +1,393 @@
+"""A geometry-preserving placement on square-grid devices (the medial lattice) and local ancilla allocation.
+
+**Placement** (:func:`medial_placement`). For an ``R x C`` problem grid, robot ``r``'s copy of the grid takes a
+``(2R - 1) x (2C - 1)`` patch of the device: edge ``(i, j)-(i, j+1)`` sits on device site ``(2i, 2j+1)`` and
+``(i, j)-(i+1, j)`` on ``(2i+1, 2j)`` (edge midpoints), node sites ``(2i, 2j)`` and plaquette centres
+``(2i+1, 2j+1)`` stay free for ancillas. A plaquette's four edges are then device neighbours of its centre, an
+outer edge and the plaquette edge it meets at a corner are both neighbours of that corner's node site. The ``k``
+robots' patches are *tiled* by default (side by side, ``down x across`` patches with ``down across >= k``):
+every partial mixer acts on one robot, so tiling keeps each partial mixer inside its own patch. The other
+arrangement, ``interleave``, puts the ``k`` copies of every site side by side (a ``down x across`` block per
+medial site), which brings the phase separator's per-node cross-robot terms together but stretches every
+plaquette; measured, it routes to more CX in both parts (``python benchmarks/routing.py --arrangements``).
+
+**Allocation** (:func:`allocate_ancillas`). Every section of a circuit compiled with ``fuse=False`` returns its
+ancillas to |0> at both ends (``docs/architecture.md``, "Sections"), so each section may use *any* free device
+qubits as its ancillas. Per section, in order of first use, each ancilla gets the free physical qubit (not a data
+qubit's home, not taken by another ancilla of the same section) that minimises the interaction-weighted
+shortest-path distance to the qubits it meets in that section (data qubits at their homes, ancillas already
+allocated), ties broken by the distance to the section's data centroid, then by index. So a partial mixer's
+ANDs land on the plaquette centre and the corner node sites, a phase gadget's registers next to its data. With
+``search`` (what :func:`qcpp.pipeline.device_compile.compile_for_device` uses), each partial mixer's ancillas are also
+tried on their next few best free qubits and the allocation whose window routes to the fewest two-qubit gates is
+kept (3x3/1: 228 to 210 routed CX). The gate order is unchanged (the operator is unchanged); the circuit's
+ancillas are renamed to one register ``site`` of the physical qubits used, and the returned layout sends each
+logical qubit to its home.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.devices.device import get_device
+    >>> s = default_scenario(3, 3, 1)
+    >>> medial_shape(s)
+    (5, 5)
+    >>> homes = medial_placement(s, get_device("grid:5x5"))
+    >>> [divmod(homes[v], 5) for v in range(3)]  # edges (0,0)-(0,1), (0,0)-(1,0), (0,1)-(0,2)
+    [(0, 1), (1, 0), (0, 3)]
+    >>> medial_placement(s, get_device("grid:4x4")) is None  # too small: the caller falls back
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from qcpp.devices.device import Device, grid_coupling
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.ir.gates import Gate
+from qcpp.layout.heavy_hex import hex_placement
+from qcpp.problem.scenario import Scenario
+from qcpp.routing.bridge import has_rzz
+from qcpp.routing.sabre import DEFAULT_TRIALS
+
+__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
+
+
+def grid_shape(device: Device) -> tuple[int, int] | None:
+    """``(rows, cols)`` if the device's coupling is the square lattice of :func:`qcpp.devices.device.grid_coupling`
+    (qubit ``r * cols + c``), else ``None``."""
+    if device.is_all_to_all or device.family != "grid":
+        return None
+    n = device.num_qubits
+    for rows in range(1, n + 1):
+        cols = n // rows
+        edges = rows * (cols - 1) + cols * (rows - 1)
+        if n % rows == 0 and len(device.coupling) == edges and device.coupling == grid_coupling(rows, cols):
+            return rows, cols
+    return None
+
+
+def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
+    """Patches per device row and column for ``k`` patches of shape ``patch``: the near-square arrangement
+    ``(down, across)`` of smallest bounding square, then smallest area."""
+    best: tuple[tuple[int, int], tuple[int, int]] | None = None
+    for across in range(1, k + 1):
+        down = -(-k // across)
+        h, w = down * patch[0], across * patch[1]
+        key = (max(h, w), h * w)
+        if best is None or key < best[0]:
+            best = (key, (down, across))
+    assert best is not None
+    return best[1]
+
+
+ARRANGEMENTS = ("tile", "interleave")
+"""How the robots' copies share the device: side by side, or interleaved site by site (see the module docs)."""
+
+
+def _arrangement(scenario: Scenario, arrangement: str) -> tuple[int, int]:
+    patch = (2 * scenario.grid.rows - 1, 2 * scenario.grid.cols - 1)
+    if arrangement not in ARRANGEMENTS:
+        raise ValueError(f"arrangement must be one of {', '.join(ARRANGEMENTS)}, not {arrangement!r}")
+    return tiling(scenario.num_robots, patch if arrangement == "tile" else (1, 1))
+
+
+def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, int]:
+    """Rows and columns of device the medial layout of ``scenario`` spans."""
+    down, across = _arrangement(scenario, arrangement)
+    return down * (2 * scenario.grid.rows - 1), across * (2 * scenario.grid.cols - 1)
+
+
+def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
+    """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
+    device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
+    patches than :func:`tiling`'s). On a heavy-hex lattice device: :func:`qcpp.layout.heavy_hex.hex_placement`
+    (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
+
+    Args:
+        scenario: The scenario.
+        device: The device.
+        arrangement: ``tile`` (robot ``r``'s patch is patch ``divmod(r, across)`` of a ``down x across``
+            arrangement) or ``interleave`` (robot ``r = (dr, dc)`` of a ``down x across`` block takes medial site
+            ``(a, b)`` to device site ``(down a + dr, across b + dc)``: the copies of one grid edge sit side by
+            side, a plaquette is stretched by ``down`` and ``across``).
+    """
+    if device.family == "heavy-hex":
+        return hex_placement(scenario, device)
+    shape = grid_shape(device)
+    if shape is None:
+        return None
+    g = scenario.grid
+    patch = (2 * g.rows - 1, 2 * g.cols - 1)
+    k = scenario.num_robots
+    preferred = _arrangement(scenario, arrangement)
+    if arrangement == "tile":
+        fitting = [
+            (down, across)
+            for across in range(1, k + 1)
+            if (down := -(-k // across)) * patch[0] <= shape[0] and across * patch[1] <= shape[1]
+        ]
+    else:
+        fitting = [preferred] if preferred[0] * patch[0] <= shape[0] and preferred[1] * patch[1] <= shape[1] else []
+    if not fitting:
+        return None
+    down, across = preferred if preferred in fitting else fitting[0]
+    cols = shape[1]
+    homes = []
+    for v in range(scenario.num_variables):
+        robot, e = scenario.variable_of(v)
+        a, b = g.edge_sites[e]
+        dr, dc = divmod(robot, across)
+        if arrangement == "tile":
+            row, col = dr * patch[0] + a, dc * patch[1] + b
+        else:
+            row, col = down * a + dr, across * b + dc
+        homes.append(row * cols + col)
+    return tuple(homes)
+
+
+def _distances(device: Device) -> np.ndarray:
+    from qcpp.layout.placement import distances
+
+    return distances(device)
+
+
+def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], dict[int, dict[int, int]], set[int]]:
+    """A section's ancillas in order of first use, their two-qubit partners (with gate counts) and its data."""
+    partners: dict[int, dict[int, int]] = {}
+    order: list[int] = []
+    data_in: set[int] = set()
+    for g in gates:
+        qs = g[1]
+        for q in qs:
+            if q >= n_data and q not in partners:
+                partners[q] = {}
+                order.append(q)
+            elif q < n_data:
+                data_in.add(q)
+        if len(qs) == 2:
+            a, b = qs
+            if a >= n_data:
+                partners[a][b] = partners[a].get(b, 0) + 1
+            if b >= n_data:
+                partners[b][a] = partners[b].get(a, 0) + 1
+    return order, partners, data_in
+
+
+def _place_ancillas(
+    order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
+    free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
+    start: dict[int, int] | None = None,
+) -> dict[int, int]:  # fmt: skip
+    """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
+    meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
+    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
+    device qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the
+    search varies one ancilla at a time and places those before it once)."""
+    home = dict(start) if start else {}
+    busy = np.searchsorted(free, list(home.values())).tolist() if home else []
+    for i in range(len(home), len(order)):
+        q = order[i]
+        key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
+        for partner, w in partners[q].items():
+            at = data_homes[partner] if partner < n_data else home.get(partner)
+            if at is not None:
+                key += (w * 1e6) * to_free[at]
+        key[busy] = np.inf
+        rank = ranks[i] if i < len(ranks) else 0
+        j = _ranked(key, rank) if rank else int(np.argmin(key))
+        if not np.isfinite(key[j]):
+            j = int(np.argmin(key))
+        busy.append(j)
+        home[q] = int(free[j])
+    return home
+
+
+def _ranked(key: np.ndarray, rank: int) -> int:
+    """``np.argsort(key, kind="stable")[rank]`` (ties by index) where that is finite, else ``argmin(key)``: the
+    first minimum, ``rank`` times set aside (a few passes instead of a sort).
+
+    >>> _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 2), _ranked(np.array([3.0, 1.0, 2.0, 1.0, 2.0]), 3)
+    (2, 4)
+    """
+    rest = key.copy()
+    for _ in range(rank):
+        rest[int(np.argmin(rest))] = np.inf
+    j = int(np.argmin(rest))
+    return j if np.isfinite(rest[j]) else int(np.argmin(key))
+
+
+SEARCH_RANKS = 4
+"""With ``search``, each ancilla of a small section is also tried on its 2nd .. (1 + this)-th best free qubit."""
+
+SEARCH_TRIALS = DEFAULT_TRIALS
+"""SABRE trials per window the search routes: those of the final routing, so the window it keeps routes as measured."""
+
+SEARCH_ROUNDS = 2
+"""Rounds of the search: each round tries every ancilla on each of its ranks with the others as found so far."""
+
+SEARCH_MAX_PAIRS = 200
+"""Sections with more two-qubit gates than this keep the greedy allocation (the balance arithmetic's one window)."""
+
+
+_SEARCH_CACHE: dict[tuple, tuple[int, ...]] = {}
+
+SEARCH_MARGIN = 2
+"""Device rows and columns around a section's data that its search result depends on (ancillas land within
+two steps of their partners, windows are routed on the qubits within two steps of theirs)."""
+
+
+def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, taken: np.ndarray, device: Device,
+                order: list[int]) -> tuple | None:  # fmt: skip
+    """What the search's answer for a section depends on, up to translation on a square grid: its gates (data
+    qubits as positions relative to the section's data, ancillas by order of first use), the occupied sites and
+    the device's border within :data:`SEARCH_MARGIN` of that data (``None``: not a square grid)."""
+    shape = grid_shape(device)
+    if shape is None:
+        return None
+    rows, cols = shape
+    data = sorted({q for g in gates for q in g[1] if q < n_data})
+    if not data:
+        return None
+    rc = [divmod(int(data_homes[q]), cols) for q in data]
+    r0, c0 = min(r for r, _ in rc), min(c for _, c in rc)
+    r1, c1 = max(r for r, _ in rc), max(c for _, c in rc)
+    slot = {q: i for i, q in enumerate(order)}
+
+    def rel(q: int) -> tuple:
+        if q < n_data:
+            r, c = divmod(int(data_homes[q]), cols)
+            return ("d", r - r0, c - c0)
+        return ("a", slot[q])
+
+    body = tuple((g[0], tuple(rel(q) for q in g[1])) for g in gates if len(g[1]) == 2)
+    lo_r, hi_r = max(0, r0 - SEARCH_MARGIN), min(rows - 1, r1 + SEARCH_MARGIN)
+    lo_c, hi_c = max(0, c0 - SEARCH_MARGIN), min(cols - 1, c1 + SEARCH_MARGIN)
+    box = taken.reshape(rows, cols)[lo_r : hi_r + 1, lo_c : hi_c + 1]
+    shift = np.array([lo_r - r0, lo_c - c0])
+    occupied = tuple(tuple(int(v) for v in rc_) for rc_ in np.argwhere(box) + shift)
+    border = (lo_r - r0, hi_r - r0, lo_c - c0, hi_c - c0)
+    return body, occupied, border, len(order)
+
+
+def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_where: dict[int, int], device: Device,
+                 dist: np.ndarray) -> int:  # fmt: skip
+    """Two-qubit gates of a section's window routed from home (as :func:`qcpp.routing.sabre.route_windows`):
+    ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
+    from qcpp.routing.sabre import route_window_cx
+
+    where = {**data_where, **home}
+    pairs = [(where[a], where[b]) for a, b in twoq]
+    return route_window_cx(pairs, None, device, dist, trials=SEARCH_TRIALS)
+
+
+_FREE_SITES: list[tuple] = []
+
+
+def _free_sites(device: Device, d: np.ndarray, data_homes: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """The occupied mask, the free qubits in the data's component and every qubit's distances to them; the last
+    answer is kept (the cells' plan choice allocates one section at a time on the same homes)."""
+    for dev, dist, homes, answer in _FREE_SITES:
+        if dev is device and dist is d and homes == data_homes:
+            return answer
+    taken = np.zeros(device.num_qubits, dtype=bool)
+    taken[list(data_homes)] = True
+    reach = np.isfinite(d[data_homes[0]]) if data_homes else np.ones(device.num_qubits, dtype=bool)
+    free = np.flatnonzero(~taken & reach)
+    to_free = np.ascontiguousarray(d[:, free])  # row p: distances from p to the free qubits
+    for a in (taken, free, to_free):
+        a.flags.writeable = False  # shared between calls
+    _FREE_SITES[:] = [(device, d, data_homes, (taken, free, to_free))]
+    return taken, free, to_free
+
+
+def allocate_ancillas(
+    circuit: Circuit, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None,
+    search: bool = False,
+) -> tuple[Circuit, tuple[int, ...]]:  # fmt: skip
+    """Give every section's ancillas the nearest free device qubits (see the module docs).
+
+    Args:
+        circuit: Lowered, compiled with ``fuse=False`` (every section clean at both ends); its first
+            ``len(data_homes)`` qubits are the data qubits.
+        data_homes: Physical qubit of every data qubit.
+        device: The device.
+        dist: Its all-pairs distances (:func:`qcpp.layout.placement.distances`), if already known.
+        search: For every section of at most :data:`SEARCH_MAX_PAIRS` two-qubit gates and no ``rzz`` (phase
+            sections are left to :func:`qcpp.routing.bridge.bridge_far_phases`; in practice: the partial mixers),
+            also try each ancilla on its 2nd .. (1 + :data:`SEARCH_RANKS`)-th best free qubit (the later ones
+            placed greedily after it), :data:`SEARCH_ROUNDS` rounds, and keep the allocation whose window routes
+            to the fewest two-qubit gates (the greedy one on ties). The answer is cached per section up to
+            translation on a square grid (:func:`_search_key`).
+
+    Returns:
+        ``(circuit, layout)``: the circuit with registers ``data`` and ``site`` (the physical qubits used as
+        ancillas, ascending), and logical qubit -> physical qubit.
+
+    Raises:
+        ValueError: a section needs more ancillas than the device has free qubits (in the data's component).
+    """
+    d = _distances(device) if dist is None else dist
+    n_data = len(data_homes)
+    taken, free, to_free = _free_sites(device, d, tuple(int(h) for h in data_homes))
+    renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
+    used: set[int] = set()
+    for sec in circuit.sections:
+        order, partners, data_in = _section_ancillas(sec.gates, n_data)
+        if len(order) > len(free):
+            raise ValueError(
+                f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
+            )
+        centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
+        home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data)
+        twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
+        if search and order and twoq <= SEARCH_MAX_PAIRS and not device.is_all_to_all and not has_rzz(sec.gates):
+            key = _search_key(sec.gates, data_homes, n_data, taken, device, order)
+            ranks = _SEARCH_CACHE.get(key) if key is not None else None
+            if ranks is None:
+                twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
+                data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
+                ranks = [0] * len(order)
+                best = _routed_cost(twoq, home, data_where, device, d)  # type: ignore[arg-type]
+                tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
+                for _ in range(SEARCH_ROUNDS):
+                    improved = False
+                    prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
+                    for i in range(len(order)):
+                        for r in range(1 + min(SEARCH_RANKS, len(free) - 1)):
+                            if r == ranks[i]:
+                                continue
+                            trial = [*ranks[:i], r, *ranks[i + 1 :]]
+                            cost = tried.get(tuple(trial))
+                            if cost is None:
+                                other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
+                                                        trial, prefix)  # fmt: skip
+                                placed = tuple(other.items())
+                                cost = tried.get(placed)
+                                if cost is None:
+                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d)  # type: ignore[arg-type]
+                                tried[tuple(trial)] = cost
+                            if cost < best:
+                                best, ranks, improved = cost, trial, True
+                        prefix = _place_ancillas(order[: i + 1], partners, centre, to_free, free, data_homes, n_data,
+                                                 ranks, prefix)  # fmt: skip
+                    if not improved:
+                        break
+                ranks = tuple(ranks)
+                if key is not None:
+                    _SEARCH_CACHE[key] = ranks
+            if any(ranks):
+                home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data, ranks)
+        used.update(home.values())
+        renamed.append((sec.name, home))
+    sites = sorted(used)
+    index = {p: n_data + i for i, p in enumerate(sites)}
+    sections = []
+    for sec, (_, home) in zip(circuit.sections, renamed, strict=True):
+        rename = {q: index[p] for q, p in home.items()}
+        sections.append(Section(sec.name, [Gate(g[0], tuple(rename.get(q, q) for q in g[1]), g[2], g[3])
+                                           for g in sec.gates]))  # fmt: skip
+    registers = [Register("data", n_data)] + ([Register("site", len(sites))] if sites else [])
+    layout = (*(int(p) for p in data_homes), *sites)
+    return Circuit(registers, sections), tuple(layout)

@@ -1,0 +1,200 @@
+"""Placement search for small circuits: many initial layouts, each routed whole by SABRE with several seeds.
+
+One SABRE routing of a circuit with a few hundred two-qubit gates (one robot at p = 1: 3x3/1, the obstacle and
+interior-start scenarios, 100-130 CX) takes milliseconds, so compile can afford to try many and keep the
+cheapest. Where a routing starts decides most of its SWAPs, and no single layout heuristic wins everywhere (our
+greedy placement, Qiskit's ``SabreLayout`` from one random start or another; ``benchmarks/placement_search.py``:
+3x3/1 on heavy-hex:3 routes to 354 CX from the best of our layouts, to 287 from the best of the search's).
+:func:`search_route` routes:
+
+* the layouts it is given (compile passes :func:`qcpp.pipeline.device_compile.best_layout`'s choice, so the search never
+  does worse than the single greedy routing), then
+* ``layouts`` runs of Qiskit's ``SabreLayout``, each from one random start (seeds ``seed, seed + 1, ...``),
+
+each with SABRE routing seed ``seed`` and the :data:`SEARCH_REFINE` cheapest also with ``seeds - 1`` more,
+whole-circuit, with SWAPs fused into an adjacent ``cx`` on their pair (:func:`qcpp.routing.sabre.route`
+``fuse=True``: ``cx a b`` then ``SWAP a b`` is two ``cx``), and keeps the routed circuit with the fewest
+two-qubit gates (ties: the first layout in that order, then the lowest seed). Every seed is fixed and every
+Qiskit pass gets an explicit trial count (Qiskit's default is the machine's CPU count), so the result is the
+same on every machine and ``qcpp estimate --device`` (which compiles small rows) reports exactly what
+``qcpp compile --device`` writes. The routed circuit is an ordinary SABRE routing of the unchanged gates: the
+checks of :mod:`qcpp.routing.sabre` (coupling edges, statevector and QCEC equivalence up to the layouts) apply.
+
+Compile searches only on circuits of at most :data:`SEARCH_MAX_TWOQ` two-qubit gates (its cost grows with the
+gate count times ``layouts x seeds``; larger circuits keep one routing from the best layout).
+
+Example:
+    >>> from dataclasses import replace
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.plan.compile import compile_scenario
+    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.plan.options import PlanOptions
+    >>> c = compile_scenario(default_scenario(2, 3, 1), 1, PlanOptions(fuse=False), lowered=True).circuit
+    >>> dev = get_device("heavy-hex:3")
+    >>> best = search_route(c, dev, layouts=4, seeds=2)
+    >>> one = route(c, dev, qiskit_sabre_layout(c, dev, seed=0))
+    >>> two_qubit_count(best.circuit) <= two_qubit_count(one.circuit)
+    True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from qcpp.devices.device import Device
+from qcpp.ir.circuit import Circuit
+from qcpp.routing.sabre import DEFAULT_TRIALS, RoutedCircuit, coupling_map, route, window_cx
+
+__all__ = [
+    "SEARCH_LAYOUTS",
+    "SEARCH_MAX_TWOQ",
+    "SEARCH_REFINE",
+    "SEARCH_SEEDS",
+    "qiskit_sabre_layout",
+    "search_route",
+    "two_qubit_count",
+]
+
+SEARCH_MAX_TWOQ = 400
+"""Compile searches placements on circuits of at most this many two-qubit gates (one robot up to p = 3 on 3x3;
+the time-to-solution study's p = 5 circuits, 540+ CX, keep one routing)."""
+
+SEARCH_LAYOUTS = 24
+"""``SabreLayout`` starts per search (measured: ``benchmarks/routing.py --search``)."""
+
+SEARCH_SEEDS = 4
+"""SABRE routing seeds per layout: every layout is routed with the first, the :data:`SEARCH_REFINE` cheapest
+with all."""
+
+SEARCH_REFINE = 6
+"""Layouts routed with every seed: the cheapest after the first seed."""
+
+SABRE_LAYOUT_TRIALS = 1
+"""Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the machine's CPU count, which would make
+the layout depend on the machine)."""
+
+
+def two_qubit_count(circuit: Circuit) -> int:
+    """Two-qubit gates of ``circuit``."""
+    return sum(1 for g in circuit.gates if len(g[1]) == 2)
+
+
+def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tuple[int, ...]:
+    """Qiskit's ``SabreLayout`` (forward-backward SABRE from :data:`SABRE_LAYOUT_TRIALS` random starts) on the
+    two-qubit gates of ``circuit``.
+
+    Args:
+        circuit: A lowered circuit.
+        device: The target (at least ``circuit.num_qubits`` qubits).
+        seed: ``SabreLayout``'s seed.
+
+    Returns:
+        Logical qubit ``i`` -> physical qubit.
+    """
+    from qiskit import QuantumCircuit
+    from qiskit.transpiler import PassManager
+    from qiskit.transpiler.passes import SabreLayout
+
+    qc = QuantumCircuit(circuit.num_qubits)
+    for g in circuit.gates:
+        if len(g[1]) == 2:
+            qc.cx(*g[1])
+    sabre = SabreLayout(coupling_map(device), seed=seed, skip_routing=True, layout_trials=SABRE_LAYOUT_TRIALS,
+                        swap_trials=SABRE_LAYOUT_TRIALS)  # fmt: skip
+    pm = PassManager([sabre])
+    pm.run(qc)
+    layout = pm.property_set["layout"]
+    return tuple(int(layout[q]) for q in qc.qubits)
+
+
+def search_route(
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]] = (),
+    seed: int = 0,
+    measured: Sequence[int] | None = None,
+    layouts: int = SEARCH_LAYOUTS,
+    seeds: int = SEARCH_SEEDS,
+) -> RoutedCircuit:
+    """The cheapest whole-circuit SABRE routing over ``starts`` and ``layouts`` ``SabreLayout`` runs, SWAPs fused
+    (module docs).
+
+    Args:
+        circuit: A lowered circuit (one- and two-qubit gates).
+        device: The target (not all-to-all: nothing to search there).
+        starts: Layouts to try first (logical qubit ``i`` -> physical qubit).
+        seed: First seed of ``SabreLayout`` and of the routings.
+        measured: Logical qubits measured at the end (:func:`qcpp.routing.sabre.route`).
+        layouts: ``SabreLayout`` runs (seeds ``seed .. seed + layouts - 1``).
+        seeds: Routing seeds (``seed .. seed + seeds - 1``): every layout is routed with the first, the
+            :data:`SEARCH_REFINE` cheapest with all.
+
+    Returns:
+        The routed circuit with the fewest two-qubit gates (ties: the first layout in the order above, then the
+        lowest seed).
+
+    Raises:
+        ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
+    """
+    if (not starts and layouts < 1) or seeds < 1:
+        raise ValueError("search_route needs at least one layout and one seed")
+    pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
+    key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
+           seeds)  # fmt: skip
+    choice = _SEARCH_CACHE.get(key)
+    if choice is None:
+        choice = _search(pairs, circuit, device, starts, seed, layouts, seeds)
+        _SEARCH_CACHE[key] = choice
+    layout, routing_seed = choice
+    return route(circuit, device, layout, seed=routing_seed, measured=measured, fuse=True)
+
+
+_SEARCH_CACHE: dict[tuple, tuple[tuple[int, ...], int]] = {}
+"""The winning ``(layout, routing seed)`` per search (two-qubit gates, device, starts, seeds): compiling the same
+circuit again routes only the winner."""
+
+
+def _search(
+    pairs: tuple[tuple[int, ...], ...],
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]],
+    seed: int,
+    layouts: int,
+    seeds: int,
+) -> tuple[tuple[int, ...], int]:
+    """The ``(layout, routing seed)`` of :func:`search_route`'s cheapest routing: every layout routed with ``seed``,
+    then the :data:`SEARCH_REFINE` cheapest of them with the other seeds. A candidate is scored by
+    :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
+    :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit."""
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag
+
+    cmap = coupling_map(device)
+    candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
+    for i in range(layouts):
+        layout = qiskit_sabre_layout(circuit, device, seed + i)
+        if layout not in candidates:  # SabreLayout may converge to a layout already found
+            candidates.append(layout)
+    dags = []
+    for layout in candidates:
+        qc = QuantumCircuit(device.num_qubits)
+        for a, b in pairs:
+            qc.cx(layout[a], layout[b])
+        dags.append(circuit_to_dag(qc))
+    first = sorted((_routed_cx(dag, cmap, seed), i) for i, dag in enumerate(dags))
+    best = (first[0][0], first[0][1], seed)
+    for _, i in first[:SEARCH_REFINE]:
+        for s in range(seed + 1, seed + seeds):
+            best = min(best, (_routed_cx(dags[i], cmap, s), i, s))
+    return candidates[best[1]], best[2]
+
+
+def _routed_cx(dag: Any, cmap: Any, seed: int) -> int:
+    """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses them."""
+    from qiskit.transpiler.passes import SabreSwap
+
+    out = SabreSwap(cmap, heuristic="decay", seed=seed, trials=DEFAULT_TRIALS).run(dag)
+    index = {q: i for i, q in enumerate(out.qubits)}
+    return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])

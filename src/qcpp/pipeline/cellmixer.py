@@ -1,0 +1,253 @@
+"""Partial mixers planned for the heavy-hex cells: of equally cheap parity-basis plans, the one that routes cheapest.
+
+:func:`~qcpp.gadgets.partial_mixer.plan_parity_mixer` finds the fewest CNOTs for a partial mixer's parity
+network, but many networks are equally cheap (which qubit carries the flip, which pairs the CNOTs join) and the
+A* returns the first it meets. On an all-to-all machine they cost the same; on a heavy-hex cell
+(:mod:`qcpp.layout.heavy_hex`) they do not: a cell is a 12-cycle with three of a plaquette's four edges on one row
+line and the fourth on the row line above, 2 to 6 steps apart, so a network whose CNOTs join near edges routes to
+fewer SWAPs.
+
+**Variants** (:func:`relabelled_plans`). The A* is run on the program with the plaquette's four positions relabelled
+(all 24 relabellings) and each plan is mapped back: a relabelling is an isomorphism of the search, so every
+variant has the optimum's CNOTs and the same ANDs and rotation (the same two-qubit count, equal to the default
+plan's; only the one-qubit X gates of the polarity tracking may differ) and implements the same partial mixer
+``exp(-i beta/2 XXXX)`` on the move condition. The QAOA operator, the order of the partial mixers and the
+all-to-all counts are unchanged.
+
+**Choice** (:func:`cell_mixers`). On a heavy-hex lattice device with the cell layout, each partial mixer's
+section is replaced by the variant whose window routes to the fewest two-qubit gates from home, allocated and routed
+exactly as :func:`qcpp.pipeline.device_compile.medial_compile` then does it (:func:`qcpp.layout.medial.allocate_ancillas` with
+compile's search, :func:`qcpp.routing.sabre.route_window`), the default plan on ties. Then the operands of one AND
+at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
+fewer, until none does: the same logic, but a lowered AND uses its first operand twice
+(:func:`qcpp.ir.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE
+brings together. The choice is cached per *cell class* (the gadget's kind, its data qubits' coordinates relative to
+an anchor on the lattice's translation grid, and the occupied and existing qubits within :data:`MARGIN` of them), so
+the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
+routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
+default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
+(most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
+translations, :func:`qcpp.routing.sabre.route_window`, so equal windows of other plaquettes and the final
+allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
+scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
+
+Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
+plaquette".
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.problem.sbf import sbf_logic
+    >>> from qcpp.gadgets.partial_mixer import abstract_program, plan_parity_mixer
+    >>> s = default_scenario(2, 3, 1)
+    >>> program, _ = abstract_program(sbf_logic(s, 0, s.grid.plaquettes[0], "exact"), s.grid.plaquettes[0])
+    >>> plans = relabelled_plans(program, "nisq")
+    >>> plans[0] == plan_parity_mixer(program, "nisq"), len(plans)
+    (True, 6)
+    >>> {p.cost().cx for p in plans}
+    {16}
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Hashable, Mapping, Sequence
+from functools import lru_cache
+
+import numpy as np
+
+from qcpp.devices.device import Device, heavy_hex_coordinates
+from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartialMixer, Slot, plan_parity_mixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.layout.heavy_hex import heavy_hex_distance
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.scenario import Scenario
+
+__all__ = ["MARGIN", "cell_mixers", "relabelled_plans"]
+
+MARGIN = 6
+"""Lattice coordinates around a partial mixer's data whose qubits (present, occupied) key its cell class: the
+allocation puts its ancillas within two steps of their partners and a window routes within two steps of them."""
+
+_CHOICE_CACHE: dict[Hashable, MixerPlan] = {}
+
+
+def _relabel_program(program: AbstractProgram, sigma: Sequence[int]) -> AbstractProgram:
+    """The program with plaquette position ``k`` renamed ``sigma[k]``."""
+
+    def mask(m: int) -> int:
+        return sum(1 << sigma[k] for k in range(4) if m >> k & 1)
+
+    steps = tuple(
+        tuple(("form", mask(ref), v) if kind == "form" else (kind, ref, v) for kind, ref, v in lits)  # type: ignore[arg-type]
+        for lits in program.steps
+    )
+    return dataclasses.replace(program, steps=steps)
+
+
+def _relabel_plan(plan: MixerPlan, sigma: Sequence[int]) -> MixerPlan:
+    """A plan of the relabelled program as a plan of the original (slot ``("p", sigma[k])`` is position ``k``)."""
+    back = {sigma[k]: k for k in range(4)}
+
+    def slot(s: Slot) -> Slot:
+        return ("p", back[s[1]]) if s[0] == "p" else s
+
+    compute = tuple((name, tuple(slot(s) for s in slots)) for name, slots in plan.compute)
+    rotation = (plan.rotation[0], tuple(slot(s) for s in plan.rotation[1]))
+    return MixerPlan(compute, rotation, plan.num_temps)
+
+
+@lru_cache(maxsize=4096)
+def _planned(program: AbstractProgram, target: str) -> MixerPlan:
+    """:func:`plan_parity_mixer`, memoised: the relabellings of one plaquette's program are often relabellings of
+    another's (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings), and each is one A*."""
+    return plan_parity_mixer(program, target)  # type: ignore[arg-type]
+
+
+@lru_cache(maxsize=1024)
+def relabelled_plans(program: AbstractProgram, target: str = "nisq") -> tuple[MixerPlan, ...]:
+    """The distinct parity-basis plans of ``program`` found under the 24 relabellings of the plaquette's positions
+    (see the module docs), the default plan (:func:`plan_parity_mixer`) first.
+
+    Args:
+        program: An ``exact`` rule's abstract program.
+        target: ``nisq`` or ``ft``.
+
+    Returns:
+        The plans, each with the default plan's two-qubit gates count.
+    """
+    out: list[MixerPlan] = []
+    for sigma in itertools.permutations(range(4)):
+        plan = _relabel_plan(_planned(_relabel_program(program, sigma), target), sigma)
+        if plan not in out:
+            out.append(plan)
+    return tuple(out)
+
+
+def _operand_swaps(plan: MixerPlan) -> list[MixerPlan]:
+    """The plan with the two operands of one AND (and of its mirror) or the rotation's two controls exchanged, one
+    plan per such gate: the same logic, but the lowered AND uses its first operand twice and the rotation
+    alternates its controls, so which qubit comes first changes what routes."""
+    out = []
+    for k, (name, slots) in enumerate(plan.compute):
+        if name == "and":
+            compute = (*plan.compute[:k], (name, (slots[1], slots[0], slots[2])), *plan.compute[k + 1 :])
+            out.append(dataclasses.replace(plan, compute=compute))
+    name, slots = plan.rotation
+    if name == "ccrx":
+        out.append(dataclasses.replace(plan, rotation=(name, (slots[1], slots[0], slots[2]))))
+    return out
+
+
+def _class_key(gadget: ParityPartialMixer, homes: Sequence[int], coords: Sequence[tuple[int, int]],
+               occupied: set[tuple[int, int]]) -> Hashable:  # fmt: skip
+    """The gadget's cell class (see the module docs): kind, data coordinates relative to an anchor that keeps the
+    lattice's translation class (multiples of 4 in both coordinates), and the neighbourhood's qubits."""
+    data = [coords[homes[q]] for q in (*gadget.plaquette_qubits, *gadget.outer_qubits)]
+    y0, x0 = min(y for y, _ in data), min(x for _, x in data)
+    y1, x1 = max(y for y, _ in data), max(x for _, x in data)
+    ay, ax = y0 - y0 % 4, x0 - x0 % 4
+    around = tuple(sorted(
+        (y - ay, x - ax, (y, x) in occupied)
+        for y, x in coords
+        if y0 - MARGIN <= y <= y1 + MARGIN and x0 - MARGIN <= x <= x1 + MARGIN
+    ))  # fmt: skip
+    return gadget.kind, tuple((y - ay, x - ax) for y, x in data), around
+
+
+def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device: Device, dist: np.ndarray,
+               search: bool) -> int:  # fmt: skip
+    """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it."""
+    from qcpp.layout.medial import allocate_ancillas
+    from qcpp.routing.sabre import Positions, route_window_cx
+
+    logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist, search=search)
+    pairs = [g[1] for g in logical.sections[0].gates if len(g[1]) == 2]
+    return route_window_cx(pairs, Positions(tuple(layout), device.num_qubits), device, dist)  # type: ignore[arg-type]
+
+
+def cell_mixers(
+    scenario: Scenario,
+    options: PlanOptions,
+    circuit: Circuit,
+    device: Device,
+    homes: Sequence[int],
+    dist: np.ndarray,
+    bindings: Mapping[str, float] | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> Circuit:
+    """``circuit`` with every parity-basis partial mixer's section replaced by its cheapest variant on ``device``
+    (see the module docs); unchanged where ``device`` is not a heavy-hex lattice or the circuit is not the plan's.
+
+    Args:
+        scenario: The scenario.
+        options: The plan options the circuit was compiled with (``fuse=False``).
+        circuit: The lowered circuit (one section per gadget; angles bound by ``bindings``).
+        device: The device (a heavy-hex lattice, :func:`qcpp.layout.heavy_hex.heavy_hex_distance`).
+        homes: Physical qubit of every data qubit (the cell layout).
+        dist: The device's all-pairs distances.
+        bindings: The angle values the circuit was bound with.
+        stage: Called before each partial mixer's choice with ``choosing partial-mixer plans on the cells (i / n)``.
+
+    Returns:
+        The circuit, with the same sections in the same order.
+    """
+    from qcpp.pipeline.device_compile import SEARCH
+
+    d = heavy_hex_distance(device)
+    if d is None or options.rule != "exact" or options.fuse:
+        return circuit
+    layers = sorted({s.name for s in circuit.sections if s.name.startswith("mixer_")})
+    plan = qaoa_plan(scenario, len(layers), options)
+    named = list(plan.sections())
+    if [n for n, _ in named] != [s.name for s in circuit.sections]:
+        return circuit  # not the plan's circuit (e.g. p = 0 or another construction)
+    coords = heavy_hex_coordinates(d)
+    occupied = {coords[h] for h in homes}
+    sections = list(circuit.sections)
+    mixers = sum(isinstance(gadget, ParityPartialMixer) for _, gadget in named)
+    seen = 0
+    for i, (name, gadget) in enumerate(named):
+        if not isinstance(gadget, ParityPartialMixer):
+            continue
+        if stage is not None:
+            stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
+        seen += 1
+        program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
+        plans = relabelled_plans(program, target)
+        if len(plans) < 2:  # one network only: kept as compiled, operands included
+            continue
+
+        def variant(plan: MixerPlan, gadget: ParityPartialMixer = gadget, name: str = name) -> Section:
+            g = dataclasses.replace(gadget, plan=plan, beta=Angle.symbol(name.replace("mixer", "beta")))
+            lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
+            return (lowered.bind(bindings) if bindings else lowered).sections[0]
+
+        costs: dict[MixerPlan, int] = {}  # the operand exchanges come back to plans already scored
+
+        def cost(plan: MixerPlan, gadget: ParityPartialMixer = gadget, i: int = i,
+                 costs: dict[MixerPlan, int] = costs) -> int:  # fmt: skip
+            if plan not in costs:
+                section = sections[i] if plan == gadget.plan else variant(plan)
+                costs[plan] = _window_cx(section, circuit, homes, device, dist, SEARCH)
+            return costs[plan]
+
+        key = (_class_key(gadget, homes, coords, occupied), SEARCH)
+        chosen = _CHOICE_CACHE.get(key)
+        if chosen is None:
+            best, k = min((cost(plan), j) for j, plan in enumerate(plans))
+            chosen = plans[k]
+            improved = True
+            while improved:  # operands exchanged one gate at a time, each kept if it routes to fewer
+                improved = False
+                for swapped in _operand_swaps(chosen):
+                    c = cost(swapped)
+                    if c < best:
+                        best, chosen, improved = c, swapped, True
+            _CHOICE_CACHE[key] = chosen
+        if chosen != gadget.plan:
+            sections[i] = variant(chosen)
+    return Circuit(circuit.registers, sections)

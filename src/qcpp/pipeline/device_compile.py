@@ -1,0 +1,559 @@
+"""From a scenario to a routed circuit on a device: compile, allocate, place, route, translate to native gates.
+
+:func:`compile_for_device` is what ``qcpp compile --device NAME`` runs. It compiles and lowers with
+``fuse=False`` (every gadget a section of its own, clean at both ends; the lowered count is 2-12 CX above the
+fused one on the default grids), then takes one of two paths (``layout_method``, default ``auto``):
+
+* **medial** (square-grid devices and heavy-hex lattices that hold it; the unsized families ``grid`` and
+  ``heavy-hex`` are sized for it, :func:`layout_device`): :func:`qcpp.layout.medial.medial_placement` puts every
+  edge qubit on its edge's midpoint of a ``(2R-1) x (2C-1)`` patch per robot on a square grid, and on a
+  heavy-hex lattice one heavy-hex cell per plaquette (:mod:`qcpp.layout.heavy_hex`);
+  :func:`qcpp.layout.medial.allocate_ancillas` gives every section the free device
+  qubits nearest its data as ancillas (for the partial mixers, the sites whose window routes to the fewest
+  gates among the nearest few), :func:`qcpp.routing.bridge.bridge_far_phases` relays far ``rzz`` phases (a node's
+  visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
+  :func:`qcpp.routing.sabre.route_windows` routes every section with
+  Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
+  ``initial_layout == final_layout``); on a large square grid the layout leaves mostly empty (a long strip's),
+  all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
+* **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
+  :data:`AUTO_COMPARE_MAX_TWOQ`; on the unsized ``heavy-hex`` it is then routed on the smallest lattice that holds
+  the circuit, where it needs no room for the cells: measured, it wins on every default up to 3x3 with three
+  robots, the cells from 4x4 with two robots on): optionally region-local ancillas
+  (:func:`qcpp.layout.placement.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
+  placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
+  SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
+  :data:`qcpp.layout.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, a placement search from that layout
+  instead (:func:`greedy_route`: many ``SabreLayout`` starts and SABRE seeds, SWAPs fused with an adjacent
+  ``cx``, the fewest CX kept; deterministic).
+
+Unless ``lowered``, the routed circuit is translated to the device's native gates
+(:func:`qcpp.routing.sabre.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="grid", bindings={"gamma_0": 0.3})
+    >>> r.routed.device.name, r.layout_method, r.routed.initial_layout == r.routed.final_layout
+    ('grid:5x5', 'medial', True)
+    >>> sorted(r.routed.circuit.count_ops())
+    ['cz', 'rx', 'rz']
+    >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
+    >>> r.layout_method, r.routed.device.name  # cheaper than the cells on heavy-hex:7 (287 vs 344 CX)
+    ('greedy', 'heavy-hex:3')
+    >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
+    >>> cells.routed.device.name
+    'heavy-hex:7'
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+
+from qcpp.devices.device import Device, get_device
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.layout.heavy_hex import (
+    CELL_LARGE_WINDOW_SEEDS,
+    CELL_LARGE_WINDOW_TRIALS,
+    CELL_PHASE_LAYOUT,
+    heavy_hex_distance,
+    hex_distance,
+    hex_placement,
+    is_hex_lattice,
+)
+from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
+from qcpp.layout.placement import distances, localize_ancillas, place
+from qcpp.layout.placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
+from qcpp.pipeline.cellmixer import cell_mixers
+from qcpp.plan.compile import CompileResult, compile_scenario
+from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
+from qcpp.plan.phase_layout import for_device
+from qcpp.problem.scenario import Scenario
+from qcpp.routing.bridge import bridge_far_phases
+from qcpp.routing.sabre import (
+    RoutedCircuit,
+    duration_s,
+    embed_routed,
+    esp,
+    route,
+    route_windows,
+    to_native,
+    watching_patches,
+)
+
+__all__ = [
+    "DeviceCompileResult",
+    "compile_for_device",
+    "device_for",
+    "device_plan_options",
+    "greedy_route",
+    "hex_device",
+    "layout_device",
+    "medial_device",
+]
+
+
+@dataclass(frozen=True)
+class DeviceCompileResult:
+    """A routed circuit and where it came from.
+
+    Attributes:
+        compiled: The unrouted lowered circuit (logical qubits).
+        logical: The circuit routed (after the optional local-ancilla pass; logical qubits).
+        routed: The routed circuit (native gates unless compiled ``lowered``).
+        lowered: Whether the routed circuit keeps CX + one-qubit gates.
+        seconds: Wall time of everything.
+        layout_method: ``medial`` (geometric layout: medial on square grids, cells on heavy-hex lattices;
+            windows routed home) or ``greedy`` (:func:`best_layout`).
+    """
+
+    compiled: CompileResult
+    logical: Circuit
+    routed: RoutedCircuit
+    lowered: bool
+    seconds: float
+    layout_method: str = "greedy"
+
+    @property
+    def logical_qubits(self) -> int:
+        """Qubits of the logical circuit that was routed."""
+        return self.logical.num_qubits
+
+    def summary(self) -> dict[str, Any]:
+        """JSON-ready: ``device``, ``initial_layout``, ``final_layout``, ``routed`` (gates, two-qubit count, swaps,
+        ESP with its model, duration in seconds)."""
+        r = self.routed
+        native = r if not self.lowered else to_native(r)
+        ops = r.circuit.count_ops()
+        return {
+            "device": r.device.summary(),
+            "initial_layout": list(r.initial_layout),
+            "final_layout": list(r.final_layout),
+            "routed": {
+                "router": ROUTERS[self.layout_method],
+                "layout": self.layout_method,
+                "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
+                "swaps": r.swaps,
+                "esp": esp(native),
+                "esp_model": ESP_MODEL,
+                "duration_s": duration_s(native),
+            },
+        }
+
+
+ROUTERS = {
+    "medial": "geometric layout (medial on a square grid, one cell per plaquette on heavy-hex) with local ancillas, "
+    "far phases relayed through clean qubits; qiskit SabreSwap per section, each section returning home",
+    "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout; "
+    f"on circuits of at most {SEARCH_MAX_TWOQ} two-qubit gates the fewest CX over that layout and {SEARCH_LAYOUTS} "
+    "SabreLayout starts, SWAPs fused with an adjacent cx",
+}
+
+ESP_MODEL = (
+    "product of (1 - gate error) over every native gate and (1 - readout error) over the measured data qubits; "
+    "device data, no idle decoherence or crosstalk"
+)
+
+
+def device_for(spec: str, qubits: int) -> Device:
+    """The device named ``spec``; a family without a size gets its smallest member with ``qubits`` qubits."""
+    return get_device(spec, min_qubits=qubits)
+
+
+def _two_qubit_only(c: Circuit, reverse: bool = False) -> Circuit:
+    gates = [g for g in c.gates if len(g[1]) == 2]
+    if reverse:
+        gates.reverse()
+    return Circuit(c.registers, [Section("two_qubit", gates)])
+
+
+LAYOUTS = ("ours", "qiskit")
+"""Layout seeds :func:`best_layout` may try: our placement refined, and Qiskit's SabreLayout."""
+
+
+def best_layout(
+    circuit: Circuit,
+    device: Device,
+    refine_rounds: int = 3,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+) -> tuple[int, ...]:
+    """The layout of fewest routed SWAPs among: our placement and its forward-backward SABRE refinements
+    (``"ours"``), and Qiskit's ``SabreLayout`` (``"qiskit"``)."""
+    if device.is_all_to_all:
+        return place(circuit, device)
+    forward = _two_qubit_only(circuit)
+    candidates: list[tuple[int, ...]] = []
+    if "ours" in layouts:
+        layout = place(circuit, device)
+        candidates.append(layout)
+        backward = _two_qubit_only(circuit, reverse=True)
+        for _ in range(refine_rounds):
+            ahead = route(forward, device, layout, seed=seed)
+            layout = route(backward, device, ahead.final_layout, seed=seed).final_layout
+            candidates.append(layout)
+    if "qiskit" in layouts:
+        candidates.append(qiskit_sabre_layout(circuit, device, seed))
+    scored = [(route(forward, device, lay, seed=seed).swaps, i) for i, lay in enumerate(candidates)]
+    return candidates[min(scored)[1]]
+
+
+def device_plan_options(options: PlanOptions, device: str | Device, layout_method: str = "medial") -> PlanOptions:
+    """The plan options :func:`compile_for_device` compiles with: ``phase_layout`` ``auto`` settled for the device
+    (:func:`qcpp.plan.phase_layout.for_device`: spatial on a sparse coupling map), and on a heavy-hex lattice
+    with a geometric layout the cells' balance sinks (:data:`qcpp.layout.heavy_hex.CELL_PHASE_LAYOUT`).
+
+    Args:
+        options: The requested plan options.
+        device: The device (a spec or a :class:`Device`).
+        layout_method: :data:`LAYOUT_METHODS`; ``greedy`` keeps :func:`for_device`'s choice.
+
+    Returns:
+        The settled options.
+
+    Example:
+        >>> device_plan_options(DEFAULT_PLAN, "heavy-hex:5").phase_layout
+        'medial'
+    """
+    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
+        return replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
+    return for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
+
+
+def compile_for_device(
+    scenario: Scenario,
+    p: int,
+    device: str | Device,
+    options: PlanOptions = DEFAULT_PLAN,
+    *,
+    lowered: bool = False,
+    bindings: Mapping[str, float] | None = None,
+    local_ancillas: bool = False,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+    layout_method: str = "auto",
+    arrangement: str = "tile",
+    stage: Callable[[str], None] | None = None,
+) -> DeviceCompileResult:
+    """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        device: A :class:`Device` or a name for :func:`qcpp.devices.device.get_device` (a family without a size
+            gets its smallest member that holds the circuit).
+        options: How the circuit is built; routing always compiles it unfused (``fuse=False``: every partial
+            mixer clean at both ends, so its ancillas can be placed and checked section by section).
+        lowered: Keep CX + one-qubit gates (default: the device's native gates).
+        bindings: Angle values (symbols may stay unbound).
+        local_ancillas: Run :func:`qcpp.layout.placement.localize_ancillas` first.
+        seed: SABRE's seed.
+        layouts: Layout seeds to try (:func:`best_layout`, greedy method only).
+        layout_method: ``auto``, ``medial`` or ``greedy`` (:data:`LAYOUT_METHODS`).
+        arrangement: The medial layout's robot arrangement, ``tile`` or ``interleave``.
+        stage: Called with the name of each stage as it starts (``choosing partial-mixer plans on the cells
+            (3 / 18)``), for progress on a long compile.
+
+    Returns:
+        The :class:`DeviceCompileResult`.
+
+    Raises:
+        qcpp.devices.device.DeviceError: an unknown device.
+        ValueError: the device is too small.
+    """
+    start = time.perf_counter()
+    options = device_plan_options(options, device, layout_method)
+    say = stage or (lambda _text: None)
+    say("compiling the circuit")
+    compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
+    circuit = compiled.circuit
+    measured = range(scenario.num_variables)
+    if layout_method not in LAYOUT_METHODS:
+        raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
+    if layout_method != "greedy" and not local_ancillas:
+        geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
+                                   options=replace(options, fuse=False), bindings=bindings, stage=stage)  # fmt: skip
+        if geometric is not None:
+            logical, routed = geometric
+            method = "medial"
+            if layout_method == "auto" and _two_qubit(circuit) <= AUTO_COMPARE_MAX_TWOQ:
+                other = routed.device
+                if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
+                    other = device_for(device, circuit.num_qubits)
+                say(f"routing the whole circuit on {other.name} to compare")
+                greedy = _greedy_compare(circuit, other, seed=seed, layouts=layouts, measured=measured)
+                if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
+                    logical, routed, method = circuit, greedy, "greedy"
+            if not lowered:
+                routed = to_native(routed)
+            seconds = time.perf_counter() - start
+            return DeviceCompileResult(compiled, logical, routed, lowered, seconds, method)
+        if layout_method == "medial":
+            rows, cols = medial_shape(scenario, arrangement)
+            dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
+            if dev.family == "heavy-hex" and heavy_hex_distance(dev) is not None:
+                raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with "
+                                 f"{scenario.num_robots} robot(s) needs heavy-hex:{hex_distance(scenario)}; device "
+                                 f"{dev.name} is smaller")  # fmt: skip
+            if dev.family == "heavy-hex":  # a named IBM device: heavy-hex, but not one of the lattices the cells map
+                raise ValueError(f"--layout medial: {dev.name} is heavy-hex, but in IBM's qubit numbering and shape, "
+                                 "not a heavy-hex:D lattice as Qiskit's CouplingMap.from_heavy_hex builds it (the "
+                                 "one the cell layout maps); use --device heavy-hex or --layout greedy")  # fmt: skip
+            if grid_shape(dev) is None:
+                raise ValueError(f"--layout medial needs a square-grid or heavy-hex lattice device; {dev.name} is "
+                                 "neither")  # fmt: skip
+            raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with {scenario.num_robots} "
+                             f"robot(s) needs a {rows}x{cols} grid; device {dev.name} is smaller")  # fmt: skip
+    dev = device if isinstance(device, Device) else device_for(device, circuit.num_qubits)
+    if circuit.num_qubits > dev.num_qubits:
+        raise ValueError(f"the circuit needs {circuit.num_qubits} qubits; device {dev.name} has {dev.num_qubits}")
+    if local_ancillas:
+        circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
+    say(f"routing the whole circuit on {dev.name}")
+    routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured)
+    if not lowered:
+        routed = to_native(routed)
+    return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
+
+
+def greedy_route(
+    circuit: Circuit,
+    device: Device,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+    measured: range | None = None,
+) -> RoutedCircuit:
+    """The ``greedy`` path's routing of the whole circuit: from :func:`best_layout`, one SABRE routing; on circuits
+    of at most :data:`qcpp.layout.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, the cheapest of a placement
+    search that starts with that layout (:func:`qcpp.layout.placement_search.search_route`: many layouts and
+    seeds, SWAPs fused with an adjacent ``cx``)."""
+    layout = best_layout(circuit, device, seed=seed, layouts=layouts)
+    if device.is_all_to_all or _two_qubit(circuit) > SEARCH_MAX_TWOQ:
+        return route(circuit, device, layout, seed=seed, measured=measured)
+    return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured)
+
+
+GREEDY_COMPARE_MAX_QUBITS = 1_024
+"""``auto`` routes its greedy comparison on the medial grid itself up to this many qubits; on a larger one (a long
+strip's square medial grid: 2x50 with one robot needs 99x99) on its top-left sub-grid with the circuit's qubits
+(:func:`_greedy_compare`): a routing of the whole circuit costs SABRE and the placement a dense distance matrix
+of every device qubit (on 99x99, over a minute, for a 149-qubit circuit)."""
+
+
+def _greedy_compare(
+    circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range | None
+) -> RoutedCircuit:
+    """:func:`greedy_route` of ``circuit`` on ``device``, or, on a square grid of more than
+    :data:`GREEDY_COMPARE_MAX_QUBITS` qubits, on its top-left sub-grid of about ``sqrt(n) x sqrt(n)`` sites for
+    ``n`` circuit qubits, written on ``device`` (a sub-grid is an induced subgraph: every routed gate is on a
+    coupling of ``device``)."""
+    shape = grid_shape(device)
+    if shape is None or device.num_qubits <= GREEDY_COMPARE_MAX_QUBITS:
+        return greedy_route(circuit, device, seed=seed, layouts=layouts, measured=measured)
+    n = circuit.num_qubits
+    rows = min(shape[0], math.isqrt(n - 1) + 1)
+    cols = min(shape[1], -(-n // rows))
+    sub, sites = _top_left(device, rows, cols)
+    return embed_routed(greedy_route(circuit, sub, seed=seed, layouts=layouts, measured=measured), device, sites)
+
+
+SEARCH = True
+"""Medial allocation searches the partial mixers' ancilla sites (:func:`qcpp.layout.medial.allocate_ancillas`)."""
+
+AUTO_COMPARE_MAX_TWOQ = 2_000
+"""Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
+on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
+home)."""
+
+
+def _two_qubit(c: Circuit) -> int:
+    return sum(1 for g in c.gates if len(g[1]) == 2)
+
+
+def medial_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:
+    """The device the medial layout uses: ``spec`` itself if it is a square grid that holds the layout; for the
+    unsized family ``grid``, the smallest square grid that holds it; otherwise ``None``."""
+    if isinstance(spec, Device):
+        return spec if medial_placement(scenario, spec, arrangement) is not None else None
+    if spec == "grid":
+        rows, cols = medial_shape(scenario, arrangement)
+        side = max(rows, cols)
+        return get_device(f"grid:{side}x{side}")
+    if not spec.startswith("grid:") and get_device(spec).family != "grid":
+        return None
+    dev = get_device(spec)
+    return dev if medial_placement(scenario, dev, arrangement) is not None else None
+
+
+def hex_device(scenario: Scenario, spec: str | Device) -> Device | None:
+    """The device the heavy-hex cell layout (:mod:`qcpp.layout.heavy_hex`) uses: ``spec`` itself if it is a
+    heavy-hex lattice that holds the layout; for the unsized family ``heavy-hex``, the smallest that holds it
+    (:func:`qcpp.layout.heavy_hex.hex_distance`); otherwise ``None`` (also for named heavy-hex devices, whose qubit
+    numbering is another)."""
+    if isinstance(spec, Device):
+        dev = spec
+    elif spec == "heavy-hex":
+        return get_device(f"heavy-hex:{hex_distance(scenario)}")
+    elif spec.startswith("heavy-hex:"):
+        dev = get_device(spec)
+    else:
+        return None
+    return dev if dev.family == "heavy-hex" and hex_placement(scenario, dev) is not None else None
+
+
+def layout_device(scenario: Scenario, spec: str | Device, arrangement: str = "tile") -> Device | None:
+    """The device of the geometric layout: :func:`medial_device` on square grids, :func:`hex_device` on heavy-hex
+    lattices, ``None`` elsewhere."""
+    if isinstance(spec, Device):
+        family = spec.family
+    else:
+        name = spec.partition(":")[0]
+        family = name if name in ("grid", "heavy-hex") else get_device(spec).family
+    if family == "heavy-hex":
+        return hex_device(scenario, spec)
+    return medial_device(scenario, spec, arrangement)
+
+
+def _grown(dev: Device) -> Device:
+    """The next bigger member of an unsized family (a section needs more free qubits)."""
+    if dev.family == "heavy-hex":
+        return get_device(f"heavy-hex:{int(dev.name.split(':')[1]) + 2}")
+    side = int(dev.name.split("x")[-1]) + 1
+    return get_device(f"grid:{side}x{side}")
+
+
+def medial_compile(
+    scenario: Scenario,
+    circuit: Circuit,
+    spec: str | Device,
+    seed: int = 0,
+    measured: range | None = None,
+    arrangement: str = "tile",
+    options: PlanOptions | None = None,
+    bindings: Mapping[str, float] | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> tuple[Circuit, RoutedCircuit] | None:
+    """The geometric layout (medial on square grids, one cell per plaquette on heavy-hex lattices), local ancillas
+    and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
+    is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
+    column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
+    the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`; ``tile`` measured better).
+    With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
+    partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
+    ``stage`` is called with the name of each stage as it starts.
+
+    Returns:
+        ``(logical circuit with local ancillas, routed circuit)``.
+    """
+    say = stage or (lambda _text: None)
+    dev = layout_device(scenario, spec, arrangement)
+    while dev is not None:
+        homes = medial_placement(scenario, dev, arrangement)
+        assert homes is not None
+        cropped = _cropped(dev, homes)
+        if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
+            sub, sites = cropped
+            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say)
+            if on_crop is not None:
+                return on_crop[0], embed_routed(on_crop[1], dev, sites)
+        dist = distances(dev)
+        planned = circuit
+        if options is not None and dev.family == "heavy-hex":
+            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say)
+        say(f"allocating ancillas on {dev.name}")
+        try:
+            logical, layout = allocate_ancillas(planned, homes, dev, dist, search=SEARCH)
+        except ValueError:
+            if spec not in ("grid", "heavy-hex"):
+                raise
+            dev = _grown(dev)
+            continue
+        return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+    return None
+
+
+CROP_MIN_QUBITS = 1_024
+"""Square grids of more qubits whose medial layout leaves rows or columns far from every home are routed on the
+part around the layout (:func:`_cropped`)."""
+
+CROP_PAD = 6
+"""Free rows and columns a crop keeps beyond the homes' bounding box: more than an allocated ancilla, a relay
+holder (two sites from its qubit) or a routing patch (two sites around a window's qubits) reaches."""
+
+
+def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | None:
+    """The top-left sub-grid of a ``grid:RxC`` device of more than :data:`CROP_MIN_QUBITS` qubits that holds the
+    homes with :data:`CROP_PAD` rows and columns to spare, and its sites on ``dev`` (row-major, so indices keep
+    their order), if it has at most half the device's qubits; else ``None``.
+
+    The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
+    relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
+    as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
+    strip: 768 MB, tens of seconds). ``tests/qcpp/hardware_crop_test.py`` compares both."""
+    shape = grid_shape(dev)
+    if shape is None or dev.num_qubits <= CROP_MIN_QUBITS or not dev.name.startswith("grid:"):
+        return None
+    rows_of, cols_of = zip(*(divmod(h, shape[1]) for h in homes), strict=True)
+    rows, cols = min(shape[0], max(rows_of) + 1 + CROP_PAD), min(shape[1], max(cols_of) + 1 + CROP_PAD)
+    if 2 * rows * cols > dev.num_qubits:
+        return None
+    return _top_left(dev, rows, cols)
+
+
+def _top_left(dev: Device, rows: int, cols: int) -> tuple[Device, list[int]]:
+    """The ``grid:{rows}x{cols}`` device and its sites on the square grid ``dev`` (its top-left corner, row-major:
+    an induced subgraph, so a gate on a coupling of the sub-grid is on one of ``dev``)."""
+    shape = grid_shape(dev)
+    assert shape is not None
+    return get_device(f"grid:{rows}x{cols}"), [r * shape[1] + c for r in range(rows) for c in range(cols)]
+
+
+def _route_on_crop(
+    circuit: Circuit, sub: Device, homes: list[int], dev: Device, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
+    """:func:`_medial_route` on the crop ``sub`` of ``dev``, or ``None`` where the device beyond the crop could
+    have changed it: a section wants more free qubits than the crop has, a routing patch (the allocation search's
+    and the relays' candidates included) reaches the crop's last row or column short of the device's edge, or a
+    window was routed on its whole connected component (the crop's, not the device's): the checks
+    :mod:`qcpp.estimators.window_classes` makes of its crops."""
+    shape, full = grid_shape(sub), grid_shape(dev)
+    assert shape is not None and full is not None
+    with watching_patches() as watch:
+        try:
+            logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
+        except ValueError:
+            return None
+    last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in watch.qubits)
+    last_col = shape[1] < full[1] and any(q % shape[1] == shape[1] - 1 for q in watch.qubits)
+    if watch.whole_component or last_row or last_col:
+        return None
+    return logical, routed
+
+
+def _medial_route(
+    circuit: Circuit, dev: Device, homes: tuple[int, ...], seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Allocation, relays and windows of the medial path on a square grid ``dev`` with data ``homes``."""
+    dist = distances(dev)
+    say(f"allocating ancillas on {dev.name}")
+    logical, layout = allocate_ancillas(circuit, homes, dev, dist, search=SEARCH)
+    return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+
+
+def _relay_and_route(
+    logical: Circuit, layout: tuple[int, ...], dev: Device, dist: Any, seed: int, measured: range | None,
+    say: Callable[[str], None],
+) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
+    """Relays of far phases (:func:`qcpp.routing.bridge.bridge_far_phases`) and the windows routed home."""
+    say("relaying far phases")
+    logical, layout = bridge_far_phases(logical, layout, dev, dist)
+    say(f"routing {len(logical.sections):,} windows")
+    cells = dev.family == "heavy-hex"
+    return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
+                                  large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
+                                  large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip

@@ -1,0 +1,306 @@
+"""The QAOA circuit as a call graph: per part a multiset of gadget kinds (Qualtran's ``build_call_graph``).
+
+A :class:`GadgetKind` is what a gadget costs, not where it sits: its key (:attr:`Gadget.kind
+<qcpp.gadgets.Gadget.kind>`: equal keys, equal gates up to qubit names), its costs, the ``logic``
+temporaries and ``work`` ancillas it needs, and an example gadget for whatever needs gates (depth profiles).
+Kinds compare and hash by key only, so a kind counted by classes on one scenario equals the kind the compiler
+emits on another. A :class:`CallGraph` (:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph`) holds each part's kinds with
+their multiplicities and the shared registers' widths; every count the estimators report is a sum over it.
+
+Everything known per kind (its costs; the estimators' per-kind depth facts as named tables) is looked up by the
+kind's key in one explicit cache, :data:`COSTS`. The other memos hold other concepts: per-scenario results (at
+most :data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
+:mod:`qcpp.plan.phase_choice`, constructions keyed by their inputs (the partial mixers' searched plans,
+``depth_compose``'s transfer matrices per gate structure), leaf gate costs and the symbolic formula tables.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.plan.qaoa import qaoa_plan
+    >>> graph = qaoa_plan(default_scenario(3, 3, 1), 1).call_graph()
+    >>> sorted(graph.parts), graph.cost_by_part()["initial_state"].to_dict()
+    (['initial_state', 'mixer', 'phase'], {'x': 4})
+    >>> graph.cost(1) == qaoa_plan(default_scenario(3, 3, 1), 1).cost()
+    True
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+from qcpp.gadgets import Gadget
+from qcpp.ir.cost import Cost
+
+__all__ = ["COSTS", "PARTS", "SCENARIOS_KEPT", "CallGraph", "CostCache", "Deferred", "GadgetKind", "PricedByKind"]
+
+PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
+"""The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
+
+
+class CostCache:
+    """What is known per kind key, computed once: named tables, the costs one of them (see the module docstring).
+
+    Example:
+        >>> from qcpp.gadgets.phase_ising import IsingPhase
+        >>> g = IsingPhase("gamma", ((0, 1.0),), ())
+        >>> cache = CostCache()
+        >>> cache.costs(g.kind, lambda: (g.cost(), g.logical_cost())) == (g.cost(), g.logical_cost()), len(cache)
+        (True, 1)
+        >>> cache.remember("own depth", g.kind, 1); cache.table("own depth")[g.kind], len(cache)
+        (1, 2)
+    """
+
+    def __init__(self, limit: int = 1 << 16) -> None:
+        self._tables: dict[str, dict[Hashable, Any]] = {}
+        self._limits: dict[str, int] = {}
+        self._costs = self.table("costs", limit)  # a long sweep meets few kinds; a bound keeps memory flat anyway
+
+    def costs(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
+        """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (a :class:`GadgetKind`
+        asks its example; a gadget class that prices itself per kind, itself)."""
+        hit = self._costs.get(key)
+        if hit is None:
+            hit = compute()
+            self.remember("costs", key, hit)
+        return hit
+
+    def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
+        """The table ``name`` (per kind key; created empty with at most ``limit`` entries on first use). Read it
+        directly (one dictionary look-up on a hot path); write with :meth:`remember`."""
+        if name not in self._tables:
+            self._tables[name], self._limits[name] = {}, limit
+        return self._tables[name]
+
+    def remember(self, name: str, key: Hashable, value: Any) -> None:
+        """Store ``value`` for ``key`` in the table ``name`` (which starts again when full: a bound on memory)."""
+        table = self.table(name)
+        if len(table) >= self._limits[name]:
+            table.clear()
+        table[key] = value
+
+    def clear(self) -> None:
+        """Forget everything (tests that count work); the tables stay the same objects."""
+        for table in self._tables.values():
+            table.clear()
+
+    def __len__(self) -> int:
+        return sum(len(t) for t in self._tables.values())
+
+
+COSTS = CostCache()
+"""The process-wide cost cache of :class:`GadgetKind`."""
+
+SCENARIOS_KEPT = 8
+"""How many scenarios each per-scenario memo keeps: a sweep asks ``p = 1..P`` of one scenario in a row, and a kept
+scenario keeps its plan and its grid's tables alive (megabytes each at 40x40)."""
+
+
+class PricedByKind:
+    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself (``_kind_costs() ->
+    (cost, logical cost)``) once per kind in :data:`COSTS`."""
+
+    kind: Hashable
+
+    def _kind_costs(self) -> tuple[Cost, Cost]:
+        raise NotImplementedError
+
+    def cost(self) -> Cost:
+        """Lowered cost (computed once per kind)."""
+        return COSTS.costs(self.kind, self._kind_costs)[0]
+
+    def logical_cost(self) -> Cost:
+        """Cost with ANDs and Toffolis kept whole (computed once per kind)."""
+        return COSTS.costs(self.kind, self._kind_costs)[1]
+
+
+class _HashedKey:
+    """A kind key with its hash computed once (the cache's key: it holds no example, so no gadget stays alive)."""
+
+    __slots__ = ("hash", "key")
+
+    def __init__(self, key: Hashable) -> None:
+        self.key, self.hash = key, hash(key)
+
+    def __hash__(self) -> int:
+        return self.hash
+
+    def __eq__(self, other: object) -> bool:  # equal to its plain key too: a gadget prices itself by plain key
+        if isinstance(other, _HashedKey):
+            return self.hash == other.hash and self.key == other.key
+        return self.key == other
+
+
+@dataclass(frozen=True, eq=False)
+class GadgetKind:
+    """One kind of gadget: its cost and needs, no qubits (see the module docstring).
+
+    Attributes:
+        key: the kind key (:attr:`Gadget.kind <qcpp.gadgets.Gadget.kind>`).
+        example: a gadget of this kind (for gates: depth profiles, routing).
+        temporaries: clean ``logic`` ancillas it uses.
+        work: ``work`` ancillas the lowering of its multi-controlled X gates adds.
+    """
+
+    key: Hashable
+    example: Gadget = field(repr=False)
+    temporaries: int = 0
+    work: int = 0
+
+    @classmethod
+    def of(cls, gadget: Gadget) -> GadgetKind:
+        """The kind of a gadget (its needs read from the gadget; see :func:`needs`)."""
+        temporaries, work = needs(gadget)
+        return cls(gadget.kind, gadget, temporaries, work)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
+
+    def costs(self) -> tuple[Cost, Cost]:
+        """``(lowered cost, logical cost)``: from :data:`COSTS`, or a :class:`Deferred` example's own (its key is
+        one scenario's: no entry)."""
+        if isinstance(self.example, Deferred):
+            return self.example.lowered, self.example.logical
+        return COSTS.costs(self._hashed, self._priced)  # type: ignore[attr-defined]
+
+    def cost(self) -> Cost:
+        """Lowered cost."""
+        return self.costs()[0]
+
+    def logical_cost(self) -> Cost:
+        """Cost with ANDs and Toffolis kept whole."""
+        return self.costs()[1]
+
+    @property
+    def cache_key(self) -> Hashable:
+        """The key (hashed once, holding no example) by which :data:`COSTS` and its tables know this kind."""
+        return self._hashed  # type: ignore[attr-defined,no-any-return]
+
+    def _priced(self) -> tuple[Cost, Cost]:
+        return self.example.cost(), self.example.logical_cost()
+
+    def __eq__(self, other: object) -> bool:
+        return self is other or (isinstance(other, GadgetKind) and self.key == other.key)
+
+    def __hash__(self) -> int:
+        return self._hashed.hash  # type: ignore[attr-defined,no-any-return]
+
+
+@dataclass(frozen=True, eq=False)
+class Deferred:
+    """A gadget known by its kind and cost, built only when its gates are asked for (a counted kind whose example
+    would take ``O(variables)`` to build: the data-qubit rotations, the balance arithmetic).
+
+    Attributes:
+        kind, lowered, logical, num_ancillas: the built gadget's kind key, costs and clean ancillas.
+        build: builds the gadget (placed on qubits).
+        shape: the balance's :class:`~qcpp.gadgets.phase_sums.SumsShape` (what its cost depends on), else
+            ``None``.
+    """
+
+    kind: Hashable
+    lowered: Cost
+    logical: Cost
+    build: Callable[[], Gadget]
+    shape: Any = None
+    num_ancillas: int = 0
+
+    def cost(self) -> Cost:
+        """Lowered cost."""
+        return self.lowered
+
+    def logical_cost(self) -> Cost:
+        """Logical cost."""
+        return self.logical
+
+    def emit(self) -> Sequence[Any]:
+        """The built gadget's gates."""
+        return self.build().emit()
+
+
+def needs(gadget: Any) -> tuple[int, int]:
+    """``(logic temporaries, work ancillas)`` of a gadget: partial mixers and their pieces from their plan, phase
+    gadgets from their ``num_ancillas``, the state preparation from its multi-controlled X gates."""
+    from qcpp.gadgets.junction import MixerJunction, MixerRotation
+    from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need
+    from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+
+    if isinstance(gadget, ParityPartialMixer | McxPartialMixer):
+        return gadget.num_temps, mixer_work_need([gadget])
+    if isinstance(gadget, MixerRotation):
+        return needs(gadget.mixer)
+    if isinstance(gadget, MixerJunction):
+        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]  # one side at least
+        return max(t for t, _ in sides), max(w for _, w in sides)
+    if isinstance(gadget, VisitPhase):
+        return visit_ancillas(tuple(len(v) for v in gadget.visitors), gadget.products), 0
+    gates = getattr(gadget, "gates", None)
+    if gates is not None:  # the state preparation: its mcx gates' lowering needs k - 2 work ancillas
+        return 0, max([0, *(len(g.qubits) - 3 for g in gates if g.name == "mcx")])  # k controls: k - 2
+    return int(getattr(gadget, "num_ancillas", 0)), 0
+
+
+@dataclass(frozen=True)
+class CallGraph:
+    """Per part, the gadget kinds of the circuit and how many of each (see the module docstring).
+
+    Attributes:
+        parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer).
+        logic_width, work_width: the shared clean ``logic`` register and the ``work`` register the lowering adds.
+    """
+
+    parts: Mapping[str, Mapping[GadgetKind, int]]
+    logic_width: int
+    work_width: int
+
+    @classmethod
+    def build(
+        cls, parts: Mapping[str, Iterable[tuple[GadgetKind, int]]], logic_width: int, work_width: int
+    ) -> CallGraph:
+        """Merge ``(kind, multiplicity)`` pairs per part (equal kinds add up; zero multiplicities are dropped)."""
+        merged: dict[str, Mapping[GadgetKind, int]] = {}
+        for name in PARTS:
+            counts: Counter[GadgetKind] = Counter()
+            for kind, n in parts.get(name, ()):
+                counts[kind] += n
+            merged[name] = {k: n for k, n in counts.items() if n}
+        return cls(merged, logic_width, work_width)
+
+    def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
+        """Lowered (or logical) cost per part: ``initial_state``, one layer's ``phase`` and ``mixer``."""
+        return dict(self._sums[logical][0])
+
+    def cost(self, p: int, logical: bool = False) -> Cost:
+        """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
+        hit = self._totals.get((p, logical))
+        if hit is None:  # an estimate asks each p more than once
+            parts, layer = self._sums[logical]
+            hit = self._totals[p, logical] = parts["initial_state"] + p * layer
+        return hit
+
+    @cached_property
+    def _totals(self) -> dict[tuple[int, bool], Cost]:
+        return {}
+
+    @cached_property
+    def _sums(self) -> tuple[tuple[dict[str, Cost], Cost], ...]:
+        """``(per part, one layer)`` lowered, then logical (summed once: a sweep asks for every ``p``)."""
+        out = []
+        for logical in (False, True):
+            parts = {}
+            for name, kinds in self.parts.items():
+                total: Counter[str] = Counter()
+                for kind, n in kinds.items():
+                    for gate, k in (kind.logical_cost() if logical else kind.cost()).items:
+                        total[gate] += n * k
+                parts[name] = Cost.of(total)
+            out.append((parts, parts["phase"] + parts["mixer"]))
+        return tuple(out)
+
+    def kinds(self) -> Iterable[tuple[str, GadgetKind, int]]:
+        """``(part, kind, multiplicity)`` for every kind."""
+        for name, kinds in self.parts.items():
+            for kind, n in kinds.items():
+                yield name, kind, n

@@ -1,0 +1,154 @@
+"""One call from a scenario to a finished circuit and its summary (what ``qcpp compile`` prints).
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> result = compile_scenario(default_scenario(3, 3, 1), 1, lowered=True, bindings={"gamma_0": 0.3})
+    >>> result.circuit.symbols, result.summary()["qubits"]
+    (('beta_0',), 15)
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from qcpp.ir.circuit import Circuit, Register
+from qcpp.lowering.passes import lower
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
+from qcpp.plan.qaoa import QubitMap, qaoa_plan, qubit_map
+from qcpp.problem.scenario import Scenario
+
+
+@dataclass(frozen=True)
+class CompileResult:
+    """A compiled QAOA circuit with where its qubits come from.
+
+    Attributes:
+        scenario: The scenario compiled.
+        circuit: The circuit (high level, or lowered to {cx, x, h, rz, t, tdg, s, sdg}).
+        qubit_map: Data qubit -> (robot, edge); ancilla qubits.
+        lowered: Whether :func:`qcpp.lowering.passes.lower` was applied.
+        seconds: Wall time of building, lowering and binding.
+        phase_explain: The phase plan's choice per term group (:meth:`qcpp.plan.phase.PhasePlan.explain`).
+    """
+
+    scenario: Scenario
+    circuit: Circuit
+    qubit_map: QubitMap
+    lowered: bool
+    seconds: float
+    phase_explain: list[dict] = field(default_factory=list)
+
+    def summary(self) -> dict[str, Any]:
+        """JSON-ready summary (:func:`compile_summary`)."""
+        c = self.circuit
+        return compile_summary(self.scenario, c.registers, c.count_ops(), c.symbols, self.lowered, self.seconds)
+
+
+def compile_summary(
+    scenario: Scenario,
+    registers: Sequence[Register],
+    ops: Mapping[str, int],
+    symbols: Sequence[str],
+    lowered: bool,
+    seconds: float,
+) -> dict[str, Any]:
+    """What ``qcpp compile`` prints of a circuit of :func:`~qcpp.plan.qaoa.qaoa_circuit` (whole, or streamed
+    section by section).
+
+    Args:
+        scenario: The scenario compiled.
+        registers: The circuit's registers.
+        ops: Its gate count per name.
+        symbols: Its unbound symbols.
+        lowered: Whether it was lowered.
+        seconds: Wall time of building it.
+
+    Returns:
+        JSON-ready: ``qubits``, ``gates`` (count per name), ``total_gates``, ``lowered``, ``symbols``,
+        ``registers``, ``seconds`` and ``qubit_map`` (``data``: list of ``{qubit, robot, edge: [[r, c], [r, c]]}``;
+        ``ancillas``).
+    """
+    edges = scenario.grid.edges
+    num_qubits = sum(r.size for r in registers)
+    qmap = qubit_map(scenario, num_qubits)
+    data = [
+        {"qubit": q, "robot": r, "edge": [list(edges[e][0]), list(edges[e][1])]} for q, (r, e) in enumerate(qmap.data)
+    ]
+    return {
+        "qubits": num_qubits,
+        "gates": dict(sorted(ops.items())),
+        "total_gates": sum(ops.values()),
+        "lowered": lowered,
+        "symbols": list(symbols),
+        "registers": {r.name: r.size for r in registers},
+        "seconds": seconds,
+        "qubit_map": {"data": data, "ancillas": list(qmap.ancillas)},
+    }
+
+
+def compile_scenario(
+    scenario: Scenario,
+    p: int,
+    options: PlanOptions = DEFAULT_PLAN,
+    *,
+    lowered: bool = False,
+    bindings: Mapping[str, float] | None = None,
+) -> CompileResult:
+    """Build (and optionally lower and bind) the QAOA circuit of a scenario.
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`).
+        lowered: Lower to the CNOT + single-qubit basis.
+        bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
+
+    Returns:
+        The :class:`CompileResult`.
+
+    Raises:
+        ValueError: if ``bindings`` names a symbol the circuit does not have.
+    """
+    start = time.perf_counter()
+    plan = qaoa_plan(scenario, p, options)
+    circuit = plan.circuit()
+    if bindings:
+        plan.check_bindings(bindings)
+    if lowered:
+        circuit = lower(circuit)
+    if bindings:
+        circuit = circuit.bind(bindings)
+    explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
+    qmap = qubit_map(scenario, circuit.num_qubits)
+    return CompileResult(scenario, circuit, qmap, lowered, time.perf_counter() - start, explain)
+
+
+def parse_bindings(items: list[str]) -> dict[str, float]:
+    """Parse ``["gamma_0=0.3", "beta_0=0.7"]`` (also comma-separated) into a mapping.
+
+    Raises:
+        ValueError: naming the malformed item, or a name given twice (even with the same value: a repeated name
+            is a typo for another angle more often than not).
+
+    Example:
+        >>> parse_bindings(["gamma_0=0.3", "beta_0=0.7,gamma_1=1"])
+        {'gamma_0': 0.3, 'beta_0': 0.7, 'gamma_1': 1.0}
+    """
+    out: dict[str, float] = {}
+    for item in items:
+        for part in filter(None, (s.strip() for s in item.split(","))):
+            name, sep, value = part.partition("=")
+            name = name.strip()
+            if not sep or not name:
+                raise ValueError(f"--bind: expected NAME=VALUE, got {part!r}")
+            try:
+                number = float(value)
+            except ValueError:
+                raise ValueError(f"--bind: {name} needs a number, got {value!r}") from None
+            if name in out:
+                raise ValueError(f"--bind: {name} is given twice ({out[name]:g} and {number:g}); bind each name once")
+            out[name] = number
+    return out

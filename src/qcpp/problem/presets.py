@@ -1,0 +1,94 @@
+"""Default scenarios for resource estimates: a grid size and a robot count, nothing else.
+
+Placement rule (documented, stable). Every robot starts on a boundary node and travels to the node opposite
+it through the grid's centre (the point reflection ``(r, c) -> (rows-1-r, cols-1-c)``, which maps the boundary
+onto itself). Robots 0-3 start in the corners, in the order
+
+====== ================= =================
+robot  start             goal
+====== ================= =================
+0      top-left          bottom-right
+1      top-right         bottom-left
+2      bottom-left       top-right
+3      bottom-right      top-left
+====== ================= =================
+
+(the placement of every release so far, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
+start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from the top-left corner,
+the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots - 4`` extra robots
+take nodes ``floor((i + 1/2) M / k)``, ``i = 0..k-1``. Starts are therefore distinct (goals too, the reflection
+being one-to-one), and a grid hosts up to :func:`max_default_robots` ``= 2(rows + cols) - 4`` robots, one per
+boundary node. No obstacles; every objective setting is the default (:class:`qcpp.problem.scenario.Objective`).
+Anything else: write a scenario file.
+
+Example:
+    >>> s = default_scenario(3, 4, 2)
+    >>> [(r.start, r.goal) for r in s.robots]
+    [((0, 0), (2, 3)), ((0, 3), (2, 0))]
+    >>> [(r.start, r.goal) for r in default_scenario(3, 3, 6).robots][4:]
+    [((1, 2), (1, 0)), ((1, 0), (1, 2))]
+    >>> max_default_robots(3, 3), max_default_robots(40, 40)
+    (8, 156)
+"""
+
+from __future__ import annotations
+
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid
+from qcpp.problem.scenario import Robot, Scenario
+
+__all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "max_default_robots"]
+
+MAX_DEFAULT_ROBOTS = 4
+"""Robots placed in the corners; more go to the other boundary nodes (kept for callers of earlier releases)."""
+
+Node = tuple[int, int]
+
+
+def boundary_nodes(rows: int, cols: int) -> list[Node]:
+    """Boundary nodes clockwise from the top-left corner (each once).
+
+    >>> boundary_nodes(2, 3)
+    [(0, 0), (0, 1), (0, 2), (1, 2), (1, 1), (1, 0)]
+    """
+    top = [(0, c) for c in range(cols)]
+    right = [(r, cols - 1) for r in range(1, rows)]
+    bottom = [(rows - 1, c) for c in range(cols - 2, -1, -1)]
+    left = [(r, 0) for r in range(rows - 2, 0, -1)]
+    return top + right + bottom + left
+
+
+def max_default_robots(rows: int, cols: int) -> int:
+    """How many robots the default placement can host on a ``rows x cols`` grid: one per boundary node."""
+    return 2 * (rows + cols) - 4
+
+
+def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
+    """The default scenario for a ``rows x cols`` grid and ``robots`` robots (see the module docstring).
+
+    Args:
+        rows, cols: grid size (at least 2 each).
+        robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
+
+    Returns:
+        The scenario.
+
+    Raises:
+        ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, or a grid smaller than 2x2.
+    """
+    if not isinstance(rows, int) or not isinstance(cols, int) or rows < 2 or cols < 2:
+        raise ScenarioError("grid", f"the grid must be at least 2x2, got {rows}x{cols}")
+    limit = max_default_robots(rows, cols)
+    if not isinstance(robots, int) or isinstance(robots, bool) or not 1 <= robots <= limit:
+        raise ScenarioError(
+            "robots", f"the default placement fits 1 to {limit} robots on a {rows}x{cols} grid, got {robots}"
+        )
+    corners = [(0, 0), (0, cols - 1), (rows - 1, 0), (rows - 1, cols - 1)]
+    starts = corners[: min(robots, MAX_DEFAULT_ROBOTS)]
+    extra = robots - len(starts)
+    if extra:
+        others = [n for n in boundary_nodes(rows, cols) if n not in corners]
+        m = len(others)
+        starts += [others[(2 * i + 1) * m // (2 * extra)] for i in range(extra)]
+    placed = tuple(Robot(s, (rows - 1 - s[0], cols - 1 - s[1])) for s in starts)
+    return Scenario(Grid(rows, cols), placed, name=f"default {rows}x{cols}, {robots} robot(s)")

@@ -1,0 +1,106 @@
+"""The result every solver returns, and its JSON form.
+
+A :class:`Solution` is a frozen value: the chosen path of every robot (edge masks, robot order), the cost
+parts recomputed with :func:`qcpp.problem.cost.cost_parts` (never the solver's internal running value), the
+wall-clock time, how many assignments were scored, and method-specific diagnostics (the best-so-far cost
+trace of the local searches, path counts of exhaustive search, which move-graph components were visited).
+
+Example:
+    >>> from qcpp.problem.scenario import scenario_from_dict
+    >>> from qcpp.problem.paths import initial_path
+    >>> from qcpp.problem.cost import cost_parts
+    >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
+    >>> p = (initial_path(s, 0),)
+    >>> sol = Solution("manual", p, cost_parts(s, p), seconds=0.0, evaluated=1)
+    >>> solution_to_dict(s, sol)["paths"]
+    [[[0, 0], [0, 1], [1, 1]]]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from qcpp.problem.cost import CostParts
+from qcpp.problem.paths import path_to_nodes
+from qcpp.problem.scenario import Scenario
+
+ProgressFn = Callable[[int, int], None]
+"""Progress callback ``progress(done, total)`` that solvers call now and then (units are solver-specific)."""
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One solver run's answer.
+
+    Attributes:
+        method: Solver name (``dfs``, ``anneal``, ``genetic``, ...).
+        paths: One edge mask per robot (robot order); every one a feasible path.
+        cost: The cost parts of ``paths`` (recomputed with :func:`qcpp.problem.cost.cost_parts`).
+        seconds: Wall-clock time of the run (including path enumeration / component analysis).
+        evaluated: Number of assignments whose cost was looked up (exhaustive search: all of them; local
+            searches: every scored candidate, repeats included).
+        trace: Best-so-far total cost after each iteration (anneal) or generation (genetic); empty for dfs.
+        paths_per_robot: Number of feasible paths of each robot (dfs; empty otherwise).
+        num_components: Per robot, the number of move-graph components of its feasible paths under the
+            solver's SBF rule (empty when the solver did not analyse them).
+        components_visited: Per robot, the indices (into :func:`qcpp.problem.sbf.move_components`) of the
+            components the search visited.
+        seed: The random seed (stochastic solvers), else ``None``.
+        rule: The SBF rule used for moves (local searches), else ``None``.
+        notes: Free-text remarks (tie-breaking, skipped moves, ...).
+    """
+
+    method: str
+    paths: tuple[int, ...]
+    cost: CostParts
+    seconds: float
+    evaluated: int
+    trace: tuple[float, ...] = ()
+    paths_per_robot: tuple[int, ...] = ()
+    num_components: tuple[int, ...] = ()
+    components_visited: tuple[tuple[int, ...], ...] = ()
+    seed: int | None = None
+    rule: str | None = None
+    notes: tuple[str, ...] = ()
+
+
+def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool = True) -> dict[str, Any]:
+    """JSON-ready dict of ``sol``: paths as ``[row, col]`` node lists from start to goal.
+
+    Args:
+        scenario: The scenario the solution belongs to (needed to walk the paths).
+        sol: The solution.
+        include_trace: Whether to include the (possibly long) ``trace`` list.
+
+    Returns:
+        A dict with ``method``, ``paths``, ``cost``, ``cost_parts`` (``c1``, ``c2``, ``c3``), ``seconds``,
+        ``evaluated`` and every non-empty optional field of :class:`Solution`.
+    """
+    out: dict[str, Any] = {
+        "method": sol.method,
+        "paths": [
+            [list(n) for n in path_to_nodes(scenario.grid, m, rb.start)]
+            for m, rb in zip(sol.paths, scenario.robots, strict=True)
+        ],
+        "cost": sol.cost.total,
+        "cost_parts": {"c1": sol.cost.c1, "c2": sol.cost.c2, "c3": sol.cost.c3},
+        "seconds": sol.seconds,
+        "evaluated": sol.evaluated,
+    }
+    if sol.paths_per_robot:
+        out["paths_per_robot"] = list(sol.paths_per_robot)
+    if sol.num_components:
+        out["num_components"] = list(sol.num_components)
+    if sol.components_visited:
+        out["components_visited"] = [list(c) for c in sol.components_visited]
+    if sol.seed is not None:
+        out["seed"] = sol.seed
+    if sol.rule is not None:
+        out["rule"] = sol.rule
+    if include_trace and sol.trace:
+        out["trace"] = list(sol.trace)
+    if sol.notes:
+        out["notes"] = list(sol.notes)
+    return out

@@ -1,0 +1,337 @@
+"""QAOA as a solver: train on the subspace simulator, answer with the most probable assignment.
+
+:func:`solve_qaoa` trains the angles (:func:`qcpp.simulate.training.train`) and returns a :class:`QaoaSolution`:
+a regular :class:`qcpp.problem.solvers.Solution` (method ``qaoa``; paths = the most probable assignment of the
+trained state; ``trace`` = the training's ``<C>`` per iteration; ``evaluated`` = simulations made in
+training) plus the QAOA-specific numbers (that assignment's probability, ``p``, the angles, the training
+result). :func:`qaoa_method` adapts it to the uniform :class:`qcpp.problem.solvers.SolveMethod` signature so
+front ends can list it beside ``dfs``/``anneal``/``genetic``; qcpp.problem itself never imports this module.
+
+Training (``optimizer=``): ``layerwise`` (default) is :func:`qcpp.simulate.layerwise.train_layerwise`, L-BFGS-B
+on the exact gradient layer by layer ``p = 1 .. p`` with INTERP / zero-layer warm starts and
+``random_starts`` seeded random starts at ``p = 1`` (``seed`` seeds them). ``nesterov``, ``cobyla`` and
+``lbfgsb`` are one run of :func:`qcpp.simulate.training.train` at depth ``p`` from ``init`` (``random`` from
+``seed`` by default). ``multi-angle`` trains the multi-angle mixer-only circuit (one beta per partial mixer and
+layer, every gamma 0: ``PlanOptions(angles="multi")``) layer by layer with
+:func:`qcpp.simulate.mixer_only.train_multi_angle_layers` (constant, previous-depth and
+:data:`~qcpp.simulate.mixer_only.MULTI_RANDOM_STARTS` seeded random starts per depth); ``angles`` are then its
+``p x partial mixers`` betas and ``bindings`` the compiled circuit's symbol values. Every optimiser minimises
+``objective`` (:mod:`qcpp.simulate.objectives`; default ``gibbs``), and ``trace`` holds its values (``multi-angle``:
+the value each start ended on, depth by depth).
+
+Example:
+    >>> from qcpp.problem.scenario import scenario_from_dict
+    >>> from qcpp.problem.solvers import dfs
+    >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[0, 1], [1, 1]]},
+    ...                         "robots": [{"start": [0, 0], "goal": [0, 2]}]})   # examples/paper_3x3.toml
+    >>> res = solve_qaoa(s, p=1, seed=0)
+    >>> res.solution.method, res.solution.cost.total == dfs(s).cost.total, res.probability > 0.9
+    ('qaoa', True, True)
+    >>> {"probability", "p", "angles", "trace"} <= set(qaoa_to_dict(s, res))
+    True
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from qcpp.problem.cost import cost_parts
+from qcpp.problem.sbf import Rule
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.solvers import ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.simulate.layerwise import (
+    DEFAULT_MAXITER,
+    DEFAULT_RANDOM_STARTS,
+    SHOTS_PER_ESTIMATE,
+    LayerwiseResult,
+    train_layerwise,
+)
+from qcpp.simulate.mixer_only import (
+    bindings,
+    most_probable_multi,
+    multi_robot_states,
+    p_optimum_multi,
+    product_objective,
+    train_multi_angle_layers,
+)
+from qcpp.simulate.objectives import OBJECTIVES, Expectation, ObjectiveName
+from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
+from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
+
+__all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
+
+QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", "multi-angle", *OPTIMIZERS)
+
+
+@dataclass(frozen=True)
+class QaoaSolution:
+    """A trained QAOA run read as a solver answer.
+
+    Attributes:
+        solution: The :class:`~qcpp.problem.solvers.Solution` (method ``qaoa``).
+        probability: Probability of ``solution.paths`` in the trained state.
+        p_optimum: Probability of the optimal assignments in the trained state.
+        optimum: The optimal cost over the simulator's basis.
+        training: The :class:`~qcpp.simulate.training.TrainingResult` of the answer's angles (layerwise: the run
+            kept at the final depth).
+        schedule: The :class:`~qcpp.simulate.layerwise.LayerwiseResult` (``None`` for a single run).
+        initial: The initial state trained from.
+        bindings: ``multi-angle``: the compiled multi-angle circuit's symbol values (else empty).
+        estimates: ``multi-angle``: the device objective estimates of its training (a gradient by the
+            parameter-shift rule = 1 + 2 x parameters estimates).
+    """
+
+    solution: Solution
+    probability: float
+    p_optimum: float
+    optimum: float
+    training: TrainingResult
+    schedule: LayerwiseResult | None = None
+    initial: str = "initial_path"
+    bindings: dict[str, float] = field(default_factory=dict)
+    estimates: int | None = None
+
+    @property
+    def optimizer(self) -> str:
+        return "layerwise" if self.schedule is not None else self.training.optimizer
+
+    @property
+    def p(self) -> int:
+        return self.training.p
+
+    @property
+    def angles(self) -> tuple[float, ...]:
+        return self.training.angles
+
+    @property
+    def trace(self) -> tuple[float, ...]:
+        """The objective per iteration (layerwise: the kept run of every level, concatenated)."""
+        return self.schedule.trace if self.schedule is not None else self.training.trace
+
+    @property
+    def num_evaluations(self) -> int:
+        return self.schedule.num_evaluations if self.schedule is not None else self.training.num_evaluations
+
+    @property
+    def circuit_estimates(self) -> int:
+        """Objective estimates a device would need (see :class:`~qcpp.simulate.layerwise.LayerwiseResult`)."""
+        if self.estimates is not None:
+            return self.estimates
+        if self.schedule is not None:
+            return self.schedule.circuit_estimates
+        t = self.training
+        return t.num_evaluations + 4 * t.p * t.num_gradients
+
+
+def solve_qaoa(
+    scenario: Scenario,
+    *,
+    p: int = 1,
+    optimizer: str = "layerwise",
+    objective: ObjectiveName = "gibbs",
+    init: Init = "random",
+    initial: InitialState = "initial_path",
+    seed: int = 0,
+    rule: Rule = "exact",
+    maxiter: int = DEFAULT_MAXITER,
+    random_starts: int = DEFAULT_RANDOM_STARTS,
+    mixer_warm: bool = False,
+    progress: ProgressFn | None = None,
+) -> QaoaSolution:
+    """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
+
+    Args:
+        scenario: The scenario.
+        p: Layers (>= 1).
+        optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
+        objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
+        init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
+        initial: Initial state: ``initial_path`` (default), ``representatives``, ``local_search`` or
+            ``local_search_mix`` (:data:`qcpp.plan.options.INITIAL_STATES`).
+        seed: Seed of the random initial angles.
+        rule: SBF rule of the mixer.
+        maxiter: Optimiser budget per run (see :func:`qcpp.simulate.training.train`).
+        random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
+        mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
+            (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
+        progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
+            (``progress(1, 1)`` for a single run).
+
+    Returns:
+        The :class:`QaoaSolution`.
+
+    Raises:
+        ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,
+            ``mixer_warm`` with another optimiser than ``layerwise``, or a mixer the subspace simulator cannot
+            represent (``NonUnitaryMixerError``).
+    """
+    if optimizer not in QAOA_OPTIMIZERS:
+        raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(QAOA_OPTIMIZERS)})")
+    if mixer_warm and optimizer != "layerwise":
+        raise ValueError(f"mixer_warm applies to the layerwise optimizer only (got {optimizer!r})")
+    if objective not in OBJECTIVES:
+        raise ValueError(f"unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
+    if init not in INITS:
+        raise ValueError(f"unknown init {init!r} (expected one of {', '.join(INITS)})")
+    if initial not in INITIAL_STATES:
+        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
+    t0 = time.perf_counter()
+    q = SubspaceQAOA(scenario, rule=rule, initial=initial)
+    if optimizer == "multi-angle":
+        return _solve_multi_angle(q, p, objective, initial, seed, maxiter, progress, t0)
+    schedule = None
+    if optimizer == "layerwise":
+        if progress is not None:
+            progress(0, p)
+        schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
+                                   mixer_warm=mixer_warm, progress=progress)
+        result = schedule.best
+        how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
+        if mixer_warm:
+            how += (f", every level also from the mixer-only warm start ({schedule.mixer_evaluations} product-state "
+                    "evaluations)")
+    else:
+        if progress is not None:
+            progress(0, 1)
+        result = train(q, p, optimizer, init=init, seed=seed, maxiter=maxiter, objective=objective)  # type: ignore[arg-type]
+        if progress is not None:
+            progress(1, 1)
+        how = f"{optimizer} from {init} angles, {len(result.trace) - 1} iteration(s)"
+    masks, prob = most_probable(q, result.angles)
+    best, _ = q.optimum()
+    start = f"initial state {initial}"
+    if initial in ("local_search", "local_search_mix"):
+        from qcpp.problem.solvers.descent import local_search
+
+        warm = local_search(scenario, rule)
+        mixed = "; in superposition with the initial paths" if initial == "local_search_mix" else ""
+        start += (f" (steepest descent over SBF moves: cost {warm.initial_cost:g} -> {warm.cost:g} in {warm.steps} "
+                  f"step(s), {warm.seconds * 1e3:.1f} ms{mixed})")
+    evaluations = schedule.num_evaluations if schedule is not None else result.num_evaluations
+    estimates = (schedule.circuit_estimates if schedule is not None
+                 else result.num_evaluations + 4 * p * result.num_gradients)
+    solution = Solution(
+        method="qaoa",
+        paths=masks,
+        cost=cost_parts(scenario, masks),
+        seconds=time.perf_counter() - t0,
+        evaluated=evaluations,
+        trace=schedule.trace if schedule is not None else result.trace,
+        seed=seed,
+        rule=rule,
+        notes=(
+            f"p={p}, {start}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
+            f"amplitudes; on a device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots "
+            f"at {SHOTS_PER_ESTIMATE:,} per estimate",
+            f"<C> {result.initial_expectation:.6g} -> {result.expectation:.6g}; the trained state reads an "
+            f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
+        ),
+    )
+    return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule, initial)
+
+
+def _solve_multi_angle(
+    q: SubspaceQAOA, p: int, objective: ObjectiveName, initial: str, seed: int, maxiter: int,
+    progress: ProgressFn | None, t0: float,
+) -> QaoaSolution:
+    """``optimizer="multi-angle"`` of :func:`solve_qaoa`."""
+    if progress is not None:
+        progress(0, p)
+    levels = train_multi_angle_layers(q, p, objective, seed=seed, maxiter=maxiter, progress=progress)
+    best = levels[-1]
+    masks, prob = most_probable_multi(q, best.betas, p)
+    optimum, _ = q.optimum()
+    p_opt = p_optimum_multi(q, best.betas, p)
+    start = p_optimum_multi(q, [0.0] * best.num_parameters, p)
+    zero = [v.real * v.real + v.imag * v.imag for v in multi_robot_states(q, [0.0] * best.num_parameters, p)]
+    start_mean = product_objective(q, zero, Expectation())[1]
+    evaluations = sum(lv.evaluations for lv in levels)
+    estimates = sum(lv.evaluations * (1 + 2 * lv.num_parameters) for lv in levels)
+    trace = tuple(v for lv in levels for v in lv.start_values)
+    seconds = time.perf_counter() - t0
+    training = TrainingResult(
+        p=p, optimizer="multi-angle", init="constant and random", seed=seed, initial_angles=(),
+        angles=best.betas, initial_expectation=start_mean,
+        expectation=best.expectation, initial_p_optimum=start, p_optimum=p_opt, trace=trace,
+        num_evaluations=evaluations, num_gradients=evaluations, seconds=seconds, objective=str(objective),
+        value=best.value,
+    )
+    solution = Solution(
+        method="qaoa",
+        paths=masks,
+        cost=cost_parts(q.scenario, masks),
+        seconds=seconds,
+        evaluated=evaluations,
+        trace=trace,
+        seed=seed,
+        rule=q.rule,
+        notes=(
+            f"p={p}, initial state {initial}, multi-angle mixer-only (every gamma 0, {best.num_parameters} betas: one "
+            f"per partial mixer and layer), objective {objective}, L-BFGS-B layer by layer p = 1..{p} from "
+            f"{len(best.start_values)} starts per depth, {evaluations} product-state evaluations with gradient; on a "
+            f"device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots at "
+            f"{SHOTS_PER_ESTIMATE:,} per estimate",
+            f"<C> {start_mean:.6g} -> {best.expectation:.6g}; the trained state reads an optimal assignment (cost "
+            f"{optimum:g}) with probability {p_opt:.4g}",
+        ),
+    )
+    return QaoaSolution(solution, prob, p_opt, optimum, training, None, initial, bindings(q, best.betas, p),
+                        estimates)
+
+
+def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
+    """JSON-ready dict: :func:`~qcpp.problem.solvers.solution_to_dict` (without its trace) plus ``probability``,
+    ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial`` (the initial state), ``objective``,
+    ``expectation``, ``trace`` (the objective), ``evaluations``, ``circuit_estimates``, ``training_shots``
+    (estimates x ``shots_per_estimate``, an assumed :data:`qcpp.simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for
+    ``layerwise``, ``levels`` (per depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``,
+    ``iterations``) and ``mixer_evaluations`` (the mixer-only warm start's product-state evaluations, 0 without
+    it)."""
+    out = solution_to_dict(scenario, res.solution, include_trace=False)
+    out.update(
+        probability=res.probability,
+        p_optimum=res.p_optimum,
+        p=res.p,
+        angles=list(res.angles),
+        optimizer=res.optimizer,
+        initial=res.initial,
+        objective=res.training.objective,
+        expectation=res.training.expectation,
+        trace=list(res.trace),
+        evaluations=res.num_evaluations,
+        circuit_estimates=res.circuit_estimates,
+        training_shots=res.circuit_estimates * SHOTS_PER_ESTIMATE,
+        shots_per_estimate=SHOTS_PER_ESTIMATE,
+    )
+    if res.bindings:
+        out["bindings"] = dict(res.bindings)
+    if res.schedule is not None:
+        out["mixer_evaluations"] = res.schedule.mixer_evaluations
+        out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,
+                          "iterations": len(lv.trace) - 1} for lv in res.schedule.levels]
+    return out
+
+
+def qaoa_method(
+    p: int = 1, optimizer: str = "layerwise", init: Init = "random", maxiter: int = DEFAULT_MAXITER,
+    objective: ObjectiveName = "gibbs",
+) -> SolveMethod:
+    """:func:`solve_qaoa` with fixed settings, as a :class:`qcpp.problem.solvers.SolveMethod` (returns the
+    ``Solution`` only).
+
+    Example:
+        >>> from qcpp.problem.scenario import scenario_from_dict
+        >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]})
+        >>> qaoa_method(p=1, maxiter=5)(s, seed=0, rule="exact", progress=None).method
+        'qaoa'
+    """
+
+    def method(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | None) -> Solution:
+        return solve_qaoa(
+            scenario, p=p, optimizer=optimizer, init=init, seed=seed, rule=rule, maxiter=maxiter,
+            objective=objective, progress=progress,
+        ).solution
+
+    return method

@@ -1,0 +1,603 @@
+"""Validate a compiled QAOA circuit against the exact feasible-subspace simulator (behind ``qcpp validate``).
+
+:func:`validate` compiles the **lowered** circuit of a scenario (:func:`qcpp.plan.compile.compile_scenario`), binds
+angles (given, or seeded random in ``[0.1, pi - 0.1]``; ``[gamma_0, beta_0, gamma_1, ...]``), runs it from
+``|0...0>`` (its ``initial_state`` section prepares the initial paths) with one gate-level simulator and checks:
+
+1. **ancilla probability**: the probability that every ancilla (the ``logic`` and ``work`` registers, all qubits
+   after the data) is measured in |0> is 1 to ``tolerance``;
+2. **amplitudes**: for every feasible assignment (per robot :func:`qcpp.problem.paths.enumerate_paths`, together with
+   the subspace simulator's basis, which under the ``paper`` rule may hold infeasible edge sets; product over
+   robots) the amplitude of the basis state "data qubits = the assignment's bits
+   (:func:`qcpp.problem.paths.assignment_bits`), ancillas 0" equals the amplitude of
+   :class:`qcpp.simulate.subspace.SubspaceQAOA` (0 for an assignment outside its basis) to ``tolerance``.
+
+Backends:
+
+``statevector``
+    The dense state (:func:`qcpp.simulate.statevector.simulate_statevector`, up to 26 qubits): both checks exactly, every
+    assignment.
+``sparse``
+    The sparse state (:func:`qcpp.simulate.sparse.simulate_sparse`): the same, at any width while the support stays small.
+``tensor``
+    Two independent tensor-network methods (:mod:`qcpp.simulate.tensor`):
+
+    * exact contraction (:class:`~qcpp.simulate.tensor.TensorCircuit`) of ``<y|U|0>`` for every assignment, or for a
+      seeded random sample of ``max_amplitudes`` of them when there are more. The contraction runs on the data
+      qubits alone: each partial mixer (compute, controlled rotation, uncompute on the ancillas) is first
+      contracted into one operator on its data qubits, proven unitary, which shows it returns the ancillas to
+      |0> (:func:`qcpp.simulate.tensor.collapse_ancilla_blocks`); the last robot's qubits stay open, so one
+      contraction gives the amplitudes of every assignment that shares the other robots' paths. For that blocking
+      this backend compiles the partial mixers unfused (``fuse=False``: one section per partial mixer, clean
+      ancillas at both ends); the other backends check the default, fused circuit
+      (:mod:`qcpp.gadgets.junction`);
+    * the matrix product state of the whole circuit (:class:`~qcpp.simulate.tensor.MPSCircuit`, ancillas placed in the
+      middle of the chain, singular values cut below 1e-13): the ancilla probability ``<psi|P_0|psi>`` and the
+      amplitudes of *every* assignment. With ``mps=False`` the ancilla probability comes from an exact contraction
+      of ``<psi|P_0|psi>`` instead (refused beyond :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH`; then the check is
+      reported as skipped), or, when every assignment was contracted, from the lower bound
+      ``sum |amplitude|^2 <= P(ancillas 0) <= 1``.
+
+``qcec``
+    Not a simulation: MQT QCEC (:mod:`qcpp.simulate.equivalence`, needs ``mqt.qcec`` and ``qiskit``) proves the lowered
+    circuit equal to the high-level circuit at the same angles on every input with clean ancillas, section by
+    section (one ``equivalence`` check; ``skipped`` if QCEC gives no proof in time).
+
+``auto`` (what ``qcpp validate`` uses unless ``--backend`` is given)
+    Picks what fits the machine (:func:`choose_backend`): ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS`
+    qubits (a 16 MB state), else ``sparse`` (its state holds about as many amplitudes as the feasible subspace;
+    at p = 1 far fewer). The tensor contraction's path search alone can take minutes, so it runs only when asked.
+
+Size: every backend compares against the exact feasible-subspace state, whose size is the number of feasible
+assignments (the product of the robots' path counts). :func:`validate_size` predicts it first, counting paths
+no further than needed (no circuit is planned for that: ``auto`` picks its backend from the compiled circuit's
+width), and :func:`validate` refuses (:class:`ValidationTooLargeError`, one line naming the
+size and the limit) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted peak over
+the memory budget, instead of trying for minutes and running out of memory (two robots on 5x5 have 73.8 million
+feasible assignments: 9.4 GB).
+
+Every check reports what it compared; :attr:`ValidationReport.passed` is true when no check failed.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> r = validate(default_scenario(2, 2, 1), p=1, backend="statevector", seed=3)
+    >>> r.passed, r.amplitudes_checked, r.max_amplitude_error < 1e-10
+    (True, 2, True)
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from qcpp.problem.paths import enumerate_paths
+from qcpp.problem.sbf import RULES, Rule
+from qcpp.problem.scenario import Scenario
+from qcpp.simulate.statevector import MAX_STATEVECTOR_QUBITS
+
+__all__ = [
+    "AUTO_STATEVECTOR_QUBITS",
+    "BACKENDS",
+    "MAX_VALIDATE_ASSIGNMENTS",
+    "Backend",
+    "Check",
+    "ValidationReport",
+    "ValidationSize",
+    "ValidationTooLargeError",
+    "choose_backend",
+    "random_angles",
+    "validate",
+    "validate_size",
+]
+
+Backend = Literal["tensor", "statevector", "sparse", "qcec", "auto"]
+BACKENDS: tuple[Backend, ...] = ("tensor", "statevector", "sparse", "qcec", "auto")
+DEFAULT_TOLERANCE = 1e-8
+AUTO_STATEVECTOR_QUBITS = 20
+"""``auto`` uses the dense statevector up to this many qubits (2^20 amplitudes, 16 MB), else ``sparse``."""
+MAX_VALIDATE_ASSIGNMENTS = 2_000_000
+"""Most feasible assignments :func:`validate` compares against without ``max_assignments=None``
+(``--allow-large``): about 1 GB for the reference state and its index."""
+BYTES_PER_ASSIGNMENT = 500
+"""Peak memory per feasible assignment, roughly: the subspace state and Hamiltonian, the assignment tuples, their
+basis-state indices and reference amplitudes, the sparse state."""
+MPS_BOND_LIMIT = 32
+"""The ``tensor`` backend's MPS stops (the contraction check notes it) beyond this bond: 21 at 38 qubits p = 1; at p = 2
+it passes 32 after 37 s and 64 only after several minutes."""
+
+
+@dataclass(frozen=True)
+class Check:
+    """One check of a validation.
+
+    Attributes:
+        name: ``ancilla_probability`` or ``amplitudes``.
+        method: How it was computed (e.g. ``statevector``, ``tensor contraction``, ``tensor MPS``).
+        value: The ancilla probability, or the largest ``|amplitude - subspace amplitude|``.
+        error: ``|1 - value|`` for the probability, ``value`` for amplitudes.
+        count: Amplitudes compared (1 for the probability).
+        status: ``pass``, ``fail`` or ``skipped``.
+        seconds: Wall time of this check (simulation included).
+        note: What was compared, or why it was skipped.
+    """
+
+    name: str
+    method: str
+    value: float
+    error: float
+    count: int
+    status: Literal["pass", "fail", "skipped"]
+    seconds: float
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class ValidationReport:
+    """Result of :func:`validate`.
+
+    Attributes:
+        scenario: Scenario name.
+        backend: Simulator used.
+        p: QAOA layers.
+        rule: SBF rule.
+        seed: Seed of the random angles and of the amplitude sample (``None``: angles given, no sample).
+        angles: ``[gamma_0, beta_0, ...]``.
+        qubits: Qubits of the lowered circuit.
+        gates: Gates of the lowered circuit.
+        feasible_assignments: Number of assignments whose amplitudes the checks are about.
+        tolerance: Allowed deviation.
+        checks: The checks, in order.
+        seconds: Total wall time.
+    """
+
+    scenario: str
+    backend: str
+    p: int
+    rule: str
+    seed: int | None
+    angles: tuple[float, ...]
+    qubits: int
+    gates: int
+    feasible_assignments: int
+    tolerance: float
+    checks: tuple[Check, ...] = field(default_factory=tuple)
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        """True when no check failed (skipped checks do not fail)."""
+        return all(c.status != "fail" for c in self.checks)
+
+    @property
+    def ancilla_probability(self) -> float:
+        """The first computed ancilla probability (NaN if skipped)."""
+        for c in self.checks:
+            if c.name == "ancilla_probability" and c.status != "skipped":
+                return c.value
+        return math.nan
+
+    @property
+    def max_amplitude_error(self) -> float:
+        """Largest amplitude error over the amplitude checks (NaN if none ran)."""
+        errs = [c.value for c in self.checks if c.name == "amplitudes" and c.status != "skipped"]
+        return max(errs) if errs else math.nan
+
+    @property
+    def amplitudes_checked(self) -> int:
+        """Distinct assignments compared by at least one amplitude check (the largest count)."""
+        counts = [c.count for c in self.checks if c.name == "amplitudes" and c.status != "skipped"]
+        return max(counts) if counts else 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: every field, the summary properties and ``passed``."""
+        d = asdict(self)
+        d["angles"] = list(self.angles)
+        d["checks"] = [asdict(c) for c in self.checks]
+        d.update(
+            passed=self.passed,
+            ancilla_probability=_json_float(self.ancilla_probability),
+            max_amplitude_error=_json_float(self.max_amplitude_error),
+            amplitudes_checked=self.amplitudes_checked,
+        )
+        for c in d["checks"]:
+            c["value"], c["error"] = _json_float(c["value"]), _json_float(c["error"])
+        return d
+
+
+def _json_float(x: float) -> float | None:
+    return None if math.isnan(x) else float(x)
+
+
+@dataclass(frozen=True)
+class ValidationSize:
+    """What a validation will hold, predicted before it starts: the feasible subspace it compares against.
+
+    Attributes:
+        paths_per_robot: Each robot's path count (a lower bound where counting stopped: ``exact`` false).
+        exact: Whether every count is exact.
+    """
+
+    paths_per_robot: tuple[int, ...]
+    exact: bool
+
+    @property
+    def assignments(self) -> int:
+        """Feasible assignments: the size of the reference state (the product of the path counts)."""
+        return math.prod(self.paths_per_robot)
+
+    @property
+    def bytes(self) -> int:
+        """Predicted peak memory of the reference and the comparison (:data:`BYTES_PER_ASSIGNMENT` each)."""
+        return self.assignments * BYTES_PER_ASSIGNMENT
+
+    def describe(self) -> str:
+        """One phrase, e.g. ``8,590 x 8,590 paths = 73,788,100 feasible assignments (about 36.9 GB)``."""
+        paths = " x ".join(f"{n:,}" for n in self.paths_per_robot)
+        gb = self.bytes / 1e9
+        if self.exact:
+            return f"{paths} paths = {self.assignments:,} feasible assignments (about {gb:.1f} GB)"
+        return f"at least {self.assignments:,} feasible assignments (at least {gb:.1f} GB; paths counted: {paths})"
+
+
+class ValidationTooLargeError(ValueError):
+    """A validation over the limits of :func:`validate` (one line naming the size and the limit)."""
+
+
+def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> ValidationSize:
+    """Predict a validation's size without building anything (counting paths no further than needed).
+
+    Args:
+        scenario: The scenario.
+        max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
+
+    Returns:
+        The :class:`ValidationSize`.
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> size = validate_size(default_scenario(4, 4, 2))
+        >>> size.paths_per_robot, size.assignments, size.exact
+        ((184, 184), 33856, True)
+        >>> validate_size(default_scenario(4, 4, 2), max_assignments=1000).exact
+        False
+    """
+    from qcpp.problem.paths import count_paths
+
+    counts: list[int] = []
+    for r in range(scenario.num_robots):
+        cap = None if max_assignments is None else max_assignments // max(1, math.prod(counts)) + 1
+        n = count_paths(scenario, r, cap)
+        counts.append(n)
+        if cap is not None and n >= cap:
+            counts += [1] * (scenario.num_robots - r - 1)  # every other robot has at least one path
+            return ValidationSize(tuple(counts), False)
+    return ValidationSize(tuple(counts), True)
+
+
+def choose_backend(qubits: int) -> Backend:
+    """What ``auto`` runs on a lowered circuit of ``qubits`` qubits: ``statevector`` up to
+    :data:`AUTO_STATEVECTOR_QUBITS`, else ``sparse``.
+
+    Example:
+        >>> choose_backend(15), choose_backend(80)
+        ('statevector', 'sparse')
+    """
+    return "statevector" if qubits <= AUTO_STATEVECTOR_QUBITS else "sparse"
+
+
+def random_angles(p: int, seed: int | None) -> np.ndarray:
+    """Seeded random angles ``[gamma_0, beta_0, ...]`` uniform in ``[0.1, pi - 0.1]`` (away from 0 and pi).
+
+    Example:
+        >>> a = random_angles(2, seed=1)
+        >>> a.shape, bool(np.all((a > 0.1) & (a < math.pi - 0.1)))
+        ((4,), True)
+    """
+    return np.random.default_rng(seed).uniform(0.1, math.pi - 0.1, 2 * p)
+
+
+def _assignments(scenario: Scenario, bases: Sequence[Sequence[int]]) -> list[tuple[int, ...]]:
+    per_robot = []
+    for r in range(scenario.num_robots):
+        per_robot.append(list(dict.fromkeys([*enumerate_paths(scenario, r), *bases[r]])))
+    return list(itertools.product(*per_robot))
+
+
+def _amplitude_check(method: str, got: np.ndarray, ref: np.ndarray, tol: float, t0: float, note: str) -> Check:
+    err = float(np.max(np.abs(got - ref))) if len(ref) else 0.0
+    status: Literal["pass", "fail"] = "pass" if err <= tol else "fail"
+    return Check("amplitudes", method, err, err, len(ref), status, time.perf_counter() - t0, note)
+
+
+def _probability_check(method: str, prob: float, tol: float, t0: float, note: str) -> Check:
+    err = abs(1.0 - prob)
+    status: Literal["pass", "fail"] = "pass" if err <= tol else "fail"
+    return Check("ancilla_probability", method, prob, err, 1, status, time.perf_counter() - t0, note)
+
+
+def _skipped(name: str, t0: float | None, note: str) -> Check:
+    """A ``tensor contraction`` check that could not run (``t0``: when it started; ``None``: it never did)."""
+    return Check(name, "tensor contraction", math.nan, math.nan, 0, "skipped",
+                 0.0 if t0 is None else time.perf_counter() - t0, note)
+
+
+def _mps_layout(scenario: Scenario, num_qubits: int) -> list[int]:
+    """Site order with the ancillas between the first half of the robots and the rest (or mid-data for one)."""
+    n = scenario.num_variables
+    cut = (scenario.num_robots // 2) * scenario.edges_per_robot if scenario.num_robots > 1 else n // 2
+    return [*range(cut), *range(n, num_qubits), *range(cut, n)]
+
+
+def validate(
+    scenario: Scenario,
+    p: int,
+    backend: Backend = "tensor",
+    angles: Sequence[float] | None = None,
+    seed: int | None = 0,
+    rule: Rule = "exact",
+    *,
+    tolerance: float = DEFAULT_TOLERANCE,
+    max_amplitudes: int | None = 256,
+    mps: bool = True,
+    cache_dir: str | Path | None = None,
+    dask: str | None = None,
+    max_assignments: int | None = MAX_VALIDATE_ASSIGNMENTS,
+    max_bytes: int | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> ValidationReport:
+    """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers (>= 1).
+        backend: ``tensor``, ``statevector`` or ``sparse`` (see the module docstring).
+        angles: ``[gamma_0, beta_0, ...]`` (``2p`` values); default :func:`random_angles` of ``seed``.
+        seed: Seed of the random angles and of the ``tensor`` backend's amplitude sample.
+        rule: SBF rule, ``exact`` or ``paper``.
+        tolerance: Allowed deviation of each check.
+        max_amplitudes: ``tensor``: contract at most this many assignments exactly (a seeded random sample when
+            there are more; ``None``: all; 0: none). A contraction wider than
+            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` is reported as skipped (seen at p = 2 on 30 qubits: width
+            21-27 without the optional ``kahypar``; the MPS checks still run).
+        mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude); it is dropped
+            (with a note on the contraction check) once its bond exceeds :data:`MPS_BOND_LIMIT`, and the ancilla
+            probability then comes from the contracted, verified-unitary ancilla blocks.
+        cache_dir: ``tensor``: contraction-path cache (default :func:`qcpp.simulate.tensor.default_cache_dir`).
+        dask: ``tensor``: a dask scheduler address, or ``'local'`` for a LocalCluster
+            (:func:`qcpp.simulate.tensor.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
+            cotengra and the slices run on the cluster instead of being skipped. ``None``: in-process.
+        max_assignments: Refuse more feasible assignments than this (``None``: no limit).
+        max_bytes: Refuse a predicted peak (:attr:`ValidationSize.bytes`) over this (``None``: no limit).
+        stage: Called with a few words as each stage starts (``compiling the lowered circuit``), for progress.
+
+    Returns:
+        The :class:`ValidationReport` (its ``backend`` is the one that ran: ``auto`` resolved).
+
+    Raises:
+        ValidationTooLargeError: over ``max_assignments`` or ``max_bytes``.
+        ValueError: bad backend, rule, ``p`` or angles; the statevector backend beyond 26 qubits; a ``paper``-rule
+            mixer that is not unitary on the data (:class:`qcpp.simulate.subspace.NonUnitaryMixerError`).
+    """
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import PlanOptions
+    from qcpp.simulate.subspace import SubspaceQAOA, angle_bindings
+
+    t_start = time.perf_counter()
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend {backend!r} (expected one of {', '.join(BACKENDS)})")
+    if rule not in RULES:
+        raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    if not isinstance(p, int) or p < 1:
+        raise ValueError(f"p must be a positive integer, got {p!r}")
+    if not tolerance > 0:
+        raise ValueError(f"tolerance must be positive, got {tolerance}")
+    x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
+    if x.size != 2 * p or not np.all(np.isfinite(x)):
+        raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
+    bindings = angle_bindings(x)
+
+    def at(text: str) -> None:
+        if stage is not None:
+            stage(text)
+
+    at("predicting the size")
+    size = validate_size(scenario, max_assignments=max_assignments)
+    if max_assignments is not None and size.assignments > max_assignments:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the limit of {max_assignments:,} feasible assignments"
+        )
+    if max_bytes is not None and size.bytes > max_bytes:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
+        )
+
+    at("simulating the feasible subspace")
+    sub = SubspaceQAOA(scenario, rule)
+    psi_sub = sub.state(x)
+    assignments = _assignments(scenario, sub.bases)
+    ref = np.zeros(len(assignments), dtype=np.complex128)
+    for k, masks in enumerate(assignments):
+        with contextlib.suppress(KeyError):  # outside the subspace basis: amplitude 0
+            ref[k] = psi_sub[sub.index_of(masks)]
+    index = np.array([sub.data_index(m) for m in assignments], dtype=object)  # ancillas (above the data) are 0
+
+    # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
+    # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
+    # differs by cancelled inverse pairs only, tests/qcpp/junction_test.py)
+    fuse = backend != "tensor"
+    at("compiling the lowered circuit")
+    circuit = compile_scenario(scenario, p, PlanOptions(rule=rule, fuse=fuse), lowered=True, bindings=bindings).circuit
+    n, nq = scenario.num_variables, circuit.num_qubits
+    if backend == "auto":  # compiled fused, as every backend but tensor (which auto never picks)
+        backend = choose_backend(nq)
+    ancillas = list(range(n, nq))
+    tol = tolerance
+    checks: list[Check] = []
+    all_note = f"all {len(assignments)} feasible assignments"
+    at(f"simulating the circuit ({backend})")
+
+    if backend == "statevector":
+        if nq > MAX_STATEVECTOR_QUBITS:
+            raise ValueError(
+                f"statevector: {nq} qubits exceed {MAX_STATEVECTOR_QUBITS} (2^{nq} amplitudes); use --backend tensor"
+            )
+        from qcpp.simulate.statevector import simulate_statevector
+
+        t0 = time.perf_counter()
+        sv = simulate_statevector(circuit)
+        clean = sv[: 1 << n]  # ancilla bits (above the data bits) all 0
+        checks.append(_probability_check("statevector", float(np.vdot(clean, clean).real), tol, t0, "sum over 2^n"))
+        t0 = time.perf_counter()
+        got = sv[np.array(index, dtype=np.int64)]
+        checks.append(_amplitude_check("statevector", got, ref, tol, t0, all_note))
+    elif backend == "sparse":
+        from qcpp.simulate.sparse import simulate_sparse
+
+        t0 = time.perf_counter()
+        state = simulate_sparse(circuit)
+        prob = float(sum(abs(a) ** 2 for k, a in state.items() if k >> n == 0))
+        checks.append(_probability_check("sparse", prob, tol, t0, f"{len(state)} stored amplitudes"))
+        t0 = time.perf_counter()
+        got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
+        checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
+    elif backend == "qcec":
+        checks.append(_qcec_check(scenario, p, rule, bindings, circuit))
+    else:
+        from qcpp.simulate.tensor import dask_client
+
+        with dask_client(dask) if dask is not None else contextlib.nullcontext(None) as client:
+            checks.extend(
+                _tensor_checks(
+                    scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
+                )
+            )
+
+    return ValidationReport(
+        scenario=scenario.name,
+        backend=backend,
+        p=p,
+        rule=rule,
+        seed=seed if angles is None or backend == "tensor" else None,
+        angles=tuple(float(v) for v in x),
+        qubits=nq,
+        gates=len(circuit),
+        feasible_assignments=len(assignments),
+        tolerance=tolerance,
+        checks=tuple(checks),
+        seconds=time.perf_counter() - t_start,
+    )
+
+
+def _open_qubits(scenario: Scenario) -> list[int]:
+    """Data qubits left open in each exact contraction: the last robot's (one contraction per assignment of the
+    other robots: 0.01 s each at 38 qubits p = 1, 3-6 s at p = 2), or every data qubit of a small single-robot
+    scenario."""
+    n, per = scenario.num_variables, scenario.edges_per_robot
+    if scenario.num_robots > 1:
+        return list(range(n - per, n))
+    return list(range(n)) if n <= 20 else []
+
+
+def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any) -> Check:
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import PlanOptions
+    from qcpp.simulate.equivalence import check_sections_interruptibly
+
+    t0 = time.perf_counter()
+    high = compile_scenario(scenario, p, PlanOptions(rule=rule), bindings=bindings).circuit
+    r = check_sections_interruptibly(high, low, scenario.num_variables)  # QCEC holds the GIL: Ctrl-C needs a child
+    note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
+    for message in r.messages:  # QCEC's own warnings, captured instead of leaking, in our words where known
+        if "alternating checker cannot handle" in message:
+            note += "; decided by QCEC's construction checker (its alternating checker does not take ancillas)"
+        else:
+            note += f"; QCEC: {message}"
+    if r.equivalent:
+        return Check("equivalence", "qcec", 0.0, 0.0, r.sections, "pass", time.perf_counter() - t0, note)
+    status: Literal["fail", "skipped"] = "fail" if r.criterion == "not_equivalent" else "skipped"
+    return Check("equivalence", "qcec", 1.0, 1.0, r.sections, status, time.perf_counter() - t0, note)
+
+
+def _tensor_checks(
+    scenario: Scenario,
+    circuit: Any,
+    ancillas: list[int],
+    index: np.ndarray,
+    ref: np.ndarray,
+    seed: int | None,
+    tol: float,
+    max_amplitudes: int | None,
+    mps: bool,
+    cache_dir: str | Path | None,
+    client: Any = None,
+) -> list[Check]:
+    from qcpp.simulate.tensor import ContractionTooWideError, MPSCircuit, TensorCircuit
+
+    checks: list[Check] = []
+    total = len(index)
+    mps_ok = False
+    mps_note = ""
+    if mps:
+        t0 = time.perf_counter()
+        try:
+            m = MPSCircuit(circuit, layout=_mps_layout(scenario, circuit.num_qubits), bond_limit=MPS_BOND_LIMIT)
+        except ContractionTooWideError as exc:
+            # the MPS is the optional second method: not a check that failed to run, a note on the ones that did
+            mps_note = f"; MPS not used: {exc}"
+        else:
+            mps_ok = True
+            note = f"max bond {m.max_bond}, simulated in {m.seconds:.1f} s"
+            checks.append(_probability_check("tensor MPS", m.zero_probability(ancillas), tol, t0, note))
+            t0 = time.perf_counter()
+            got = m.amplitudes(int(k) for k in index)
+            checks.append(_amplitude_check("tensor MPS", got, ref, tol, t0, f"all {total} feasible assignments"))
+
+    t0 = time.perf_counter()
+    tc = TensorCircuit(circuit, cache_dir=cache_dir, client=client, ancillas=ancillas)
+    if max_amplitudes == 0:
+        checks.append(_skipped("amplitudes", None, "max_amplitudes=0"))
+        return checks
+    if max_amplitudes is None or max_amplitudes >= total:
+        pick = np.arange(total)
+        note = f"all {total} feasible assignments; partial mixers unfused"
+    else:
+        pick = np.sort(np.random.default_rng(seed).choice(total, size=max_amplitudes, replace=False))
+        held = float(np.sum(np.abs(ref[pick]) ** 2))
+        note = f"seeded sample of {len(pick)} of {total} assignments, holding probability {held:.6f}"
+        note += "; partial mixers unfused"
+    try:
+        got = tc.amplitudes((int(index[k]) for k in pick), open_qubits=_open_qubits(scenario))
+    except ContractionTooWideError as exc:
+        checks.append(_skipped("amplitudes", t0, str(exc)))
+        return checks
+    if client is not None:  # say that Dask ran, and what it did
+        workers = len(client.nthreads())
+        sent = tc.dask_contractions
+        note += (f"; Dask ({workers} worker(s)): {sent} contraction(s) sliced on the cluster" if sent else
+                 f"; Dask ({workers} worker(s)) ready, not needed: every contraction fit in-process")
+    checks.append(_amplitude_check("tensor contraction", got, ref[pick], tol, t0, note + mps_note))
+
+    if not mps_ok and tc.block_leak is not None:
+        note = "every ancilla block contracted to a unitary on the data: 1 - (sum of ||T^dagger T - I||) bounds it"
+        checks.append(_probability_check("tensor blocks", 1.0 - tc.block_leak, tol, t0, note))
+    elif not mps_ok:
+        t0 = time.perf_counter()
+        try:
+            prob = tc.zero_probability(ancillas)
+            checks.append(_probability_check("tensor contraction", prob, tol, t0, "<psi|P_0|psi> contracted"))
+        except ContractionTooWideError as exc:
+            if len(pick) == total:
+                bound = float(np.sum(np.abs(got) ** 2))
+                note = f"lower bound sum |amplitude|^2 over every feasible assignment ({exc})"
+                checks.append(_probability_check("tensor contraction", bound, tol, t0, note))
+            else:
+                checks.append(_skipped("ancilla_probability", t0, str(exc)))
+    return checks
