@@ -7,7 +7,7 @@ Run it before and after a refactoring that must not change behaviour and diff th
     python scripts/behaviour_fingerprint.py > after.txt && diff before.txt after.txt
 
 Every case drives the ``qcpp`` command line (the interface users have), so the script runs unchanged across changes
-of the import paths. Timing fields are dropped from JSON before hashing. ``--quick`` keeps the cases that finish in
+of the import paths. Timing fields and output paths are dropped from JSON before hashing. ``--quick`` keeps the cases that finish in
 a few seconds each.
 """
 
@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-TIMING = {"seconds", "wall_s", "cpu_s", "elapsed_s", "time_s", "build_s", "peak_rss_mb"}
+TIMING = {"path", "seconds", "wall_s", "cpu_s", "elapsed_s", "time_s", "build_s", "peak_rss_mb"}
 
 ESTIMATES = [
     "--grid 3x3,4x4,5x5,6x6 --robots 1..3 --compare paper",
