@@ -4,8 +4,8 @@ Run: ``python benchmarks/routing_phase.py [--quick]`` (``--quick``: 3x3/1, 4x4/2
 and a hard obstacle).
 
 Per scenario (p = 1, angles bound), device family (the smallest square grid and the smallest heavy-hex that
-:func:`qcpp.pipeline.device_compile.compile_for_device` picks) and phase layout (``PlanOptions.phase_layout``: ``pooled``,
-today's default, or ``spatial``, :mod:`qcpp.plan.phase_layout`), columns:
+:func:`qcpp.pipeline.device_compile.compile_for_device` picks) and phase layout (``PlanOptions.phase_layout``:
+``pooled``, today's default, or ``spatial``, :mod:`qcpp.plan.phase_layout`), columns:
 
 * ``a2a phase`` / ``a2a all``: CX of the lowered, unrouted circuit that ``compile_for_device`` routes (unfused
   mixer), phase separator sections and whole circuit;

@@ -2,8 +2,8 @@
 
 :func:`crosscheck` compares every number :func:`qcpp.estimators.estimate.estimate_point` reports without building
 anything (registers, gate counts of the whole circuit and of each part and layer, logical gate counts, and the
-``exact`` depths composed by :mod:`qcpp.estimators.depth_compose`) with :func:`qcpp.estimators.counts.count` of the compiled
-circuit, lowered to the basis and to ``LOGICAL_BASIS``. The scenarios the tests and
+``exact`` depths composed by :mod:`qcpp.estimators.depth_compose`) with :func:`qcpp.estimators.counts.count` of the
+compiled circuit, lowered to the basis and to ``LOGICAL_BASIS``. The scenarios the tests and
 ``benchmarks/estimate_speed.py`` check are :func:`qcpp.testing.crosscheck_cases`.
 
 Example:

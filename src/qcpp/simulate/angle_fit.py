@@ -3,8 +3,8 @@
 :func:`fit_angles` fits QAOA angles to ``<C>``, ``CVaR_alpha`` or, as a reference that needs the optimum and so
 is no algorithm, ``P(optimum)`` itself (the most any angles at that depth put on the optimum, as far as the
 local optimiser finds). :meth:`AngleFit.from_training` reads gradient-based runs
-(:func:`qcpp.simulate.training.train`) as a fit. The default training is :func:`qcpp.simulate.layerwise.train_layerwise`.
-Example: at :func:`fit_angles`.
+(:func:`qcpp.simulate.training.train`) as a fit. The default training is
+:func:`qcpp.simulate.layerwise.train_layerwise`. Example: at :func:`fit_angles`.
 """
 
 from __future__ import annotations
