@@ -19,8 +19,8 @@ circuit is a binary decision tree over the qubits (the sparse form of Grover-Rud
 With ``K = 1`` this is just the X gates of the single path.
 
 ``local_search``: a classical warm start. Every robot on its path of the local minimum that steepest descent
-over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`; a few
-milliseconds on 5x5): one basis state, prepared like ``initial_path`` by X gates.
+over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`): one
+basis state, prepared like ``initial_path`` by X gates.
 
 ``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (the descent of ``local_search``;
 one path where the descent leaves the robot on its initial path), the product over robots. It keeps the initial
