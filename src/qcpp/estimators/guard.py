@@ -60,7 +60,6 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
 
     Args:
         scenario: the scenario.
-        p: QAOA layers.
         options: circuit construction options.
 
     Returns:

@@ -161,8 +161,6 @@ def start_paths(scenario: Scenario, robot: int, initial: str, rule: Rule = "exac
     starts from.
 
     Args:
-        scenario: The scenario.
-        robot: Robot index.
         initial: One of :data:`qcpp.plan.options.INITIAL_STATES` (see the module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
             descent (``local_search``, ``local_search_mix``).
@@ -195,7 +193,6 @@ def initial_state_gates(
     """The initial-state preparation on the data qubits (variable ``i`` on qubit ``i``).
 
     Args:
-        scenario: The scenario.
         initial: ``initial_path``, ``representatives``, ``local_search`` or ``local_search_mix`` (see the
             module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the

@@ -221,7 +221,6 @@ def phase_plan(
     """Choose the phase separator's constructions for a scenario.
 
     Args:
-        scenario: The scenario.
         target: ``nisq`` (minimise CX) or ``ft`` (minimise T, rotations priced at :data:`ROTATION_T_COST`).
         representation: ``feasible`` (exact on feasible assignments, cheap) or ``whole-space`` (the exact Ising
             Hamiltonian's RZ/RZZ circuit).

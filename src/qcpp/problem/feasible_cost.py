@@ -303,9 +303,6 @@ def length_unit(lengths: Sequence[float]) -> float | None:
 def feasible_cost(scenario: Scenario) -> FeasibleCost:
     """Build the feasible-subspace representation of the scenario's cost (see the module docstring).
 
-    Args:
-        scenario: The scenario.
-
     Returns:
         A :class:`FeasibleCost` equal to :func:`qcpp.problem.cost.cost` on every feasible assignment.
     """

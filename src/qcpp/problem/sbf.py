@@ -101,7 +101,6 @@ class SbfLogic:
 
     Attributes:
         rule: ``exact`` or ``paper``.
-        robot: Robot index.
         plaquette: Plaquette index.
         num_temps: Temporary bits used (ancillas in the circuit); all start at 0.
         output: The temporary holding the result.
@@ -158,8 +157,6 @@ def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule =
 
     Args:
         scenario: The scenario (obstacle mode and endpoints are folded in).
-        robot: Robot index.
-        plaquette: The plaquette.
         rule: ``exact`` (default) or ``paper``.
 
     Returns:

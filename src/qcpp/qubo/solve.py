@@ -201,7 +201,6 @@ def solve_qubo(
     """Sample the ``per-robot`` QUBO, decode, drop cycles, polish (see the module docstring).
 
     Args:
-        scenario: The scenario.
         penalty: Degree penalty ``P`` (``None``: :func:`qcpp.qubo.model.penalty_rule`).
         sampler: ``sa`` (simulated annealing, ``sweeps`` per read) or ``tabu`` (``tabu_restarts`` per read).
         reads: Number of reads.

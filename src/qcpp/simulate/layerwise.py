@@ -161,7 +161,6 @@ def train_layerwise(
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
 
     Args:
-        qaoa: The simulator.
         p: The final number of layers (>= 1).
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         random_starts: Seeded random starts at ``p = 1`` beside the linear ramp (>= 0).

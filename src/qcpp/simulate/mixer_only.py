@@ -121,7 +121,6 @@ class MixerWarmStart:
     """The outcome of :func:`train_mixer_only` at one depth.
 
     Attributes:
-        p: Number of layers.
         betas: The trained betas (the gammas are all 0).
         initial_value: The objective at the start of the kept run.
         value: The objective of the product state at ``betas``.
@@ -185,7 +184,6 @@ def robot_states_gradient(
     """``d/dbetas sum_r <psi_r| diag(weights[r]) |psi_r>`` for :func:`robot_states` (adjoint sweep per robot).
 
     Args:
-        qaoa: The simulator.
         betas: As in :func:`robot_states`.
         weights: Per robot, a real weight per basis path (``dF/d|psi_r|^2`` of an objective ``F``).
 
@@ -333,7 +331,6 @@ def train_mixer_only(
     the better run. Deterministic.
 
     Args:
-        qaoa: The simulator.
         p: The largest depth (>= 1).
         objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with :func:`qcpp.simulate.objectives.make_objective`
             defaults for this scenario) or an objective object.
@@ -372,7 +369,6 @@ class MixerCeiling:
     """The best ``P(optimum)`` found over mixer-only angles at one depth (:func:`mixer_only_ceiling`).
 
     Attributes:
-        p: Number of layers.
         betas: The betas that reach it (gammas 0).
         p_optimum: ``P(optimum)`` of the product state at ``betas``.
         starts: Random starts tried.
@@ -424,7 +420,6 @@ def best_p_optimum(
     """The largest ``P(optimum)`` of the product state that L-BFGS-B finds on its exact gradient (uses the optimum).
 
     Args:
-        qaoa: The simulator.
         shape: Of the betas: ``(p,)`` for one beta per layer, ``(p, sites)`` for multi-angle (:func:`robot_states`).
         x0s: Flat start vectors.
         maxiter: L-BFGS-B iterations per start (``None``: scipy's default).
@@ -465,7 +460,6 @@ def mixer_only_ceiling(
     that the phase separators' share of a trained ``P(optimum)`` can be read off.
 
     Args:
-        qaoa: The simulator.
         p: The largest depth (>= 1).
         starts: Random starts per depth (>= 1).
         seed: Seed of ``numpy.random.default_rng``.
@@ -514,9 +508,7 @@ def multi_robot_states(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, 
     (:func:`robot_states` of the betas as a ``(p, sites)`` array).
 
     Args:
-        qaoa: The simulator.
         betas: ``p * len(mixer_sites(qaoa))`` betas, layer-major (see the module docstring).
-        p: Number of layers.
 
     Returns:
         One complex vector per robot; their outer product is the circuit's state on the reachable basis.
@@ -561,7 +553,6 @@ class MultiAngleResult:
     """The outcome of :func:`train_multi_angle` at one depth.
 
     Attributes:
-        p: Number of layers.
         betas: The trained betas (layer-major; ``p * len(mixer_sites)``), every gamma 0.
         value: The objective at ``betas``.
         expectation: ``<C>`` there.
@@ -597,7 +588,6 @@ def train_multi_angle(
     """Train the multi-angle mixer-only betas of depth ``p`` (gammas 0) with L-BFGS-B from several starts.
 
     Args:
-        qaoa: The simulator.
         p: Number of layers (>= 1).
         objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with
             :func:`qcpp.simulate.objectives.make_objective`'s defaults for this scenario) or an objective object.

@@ -138,7 +138,6 @@ def solve_qaoa(
     """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
 
     Args:
-        scenario: The scenario.
         p: Layers (>= 1).
         optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.

@@ -98,7 +98,6 @@ class RobotBasis:
     """One robot's reachable paths and the rotations of each partial mixer on them.
 
     Attributes:
-        robot: Robot index.
         paths: The basis: edge masks in BFS order (the initial support first; with one initial path exactly
             :func:`qcpp.problem.sbf.reachable_paths`).
         feasible: ``(n,)`` bool, whether each path is a feasible start-goal path.
@@ -185,8 +184,6 @@ def robot_basis(
     evaluated on whole BFS levels at once with :func:`evaluate_logic`.
 
     Args:
-        scenario: The scenario.
-        robot: Robot index.
         rule: SBF rule, ``exact`` or ``paper``.
         initial: One of :data:`~qcpp.plan.options.INITIAL_STATES` (see the module docstring).
 
@@ -320,7 +317,6 @@ class SubspaceQAOA:
     """The constrained-mixer QAOA on the product of the robots' reachable path sets.
 
     Args:
-        scenario: The scenario.
         rule: SBF rule of the mixer, ``exact`` (default) or ``paper`` (see the module docstring).
         initial: ``initial_path`` (default), ``representatives``, ``local_search`` or ``local_search_mix``.
         phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``: a number, ``"feasible"``
@@ -603,7 +599,6 @@ class SubspaceQAOA:
         """Measure the state ``shots`` times in the computational basis.
 
         Args:
-            angles: QAOA angles.
             shots: Number of samples (>= 0).
             seed: Seed of ``numpy.random.default_rng``; the same seed gives the same list.
 
@@ -631,7 +626,6 @@ class SubspaceQAOA:
         """The state as ``{basis state: amplitude}`` for comparison with a gate-level simulator.
 
         Args:
-            angles: QAOA angles.
             key: ``index`` = data-register basis index ``sum_i x_i 2^i`` (qubit ``i`` least significant, as
                 qiskit's ``Statevector`` of the data register; with ancillas above the data qubits and back in
                 |0> the index is the same); ``bits`` = a string whose character ``i`` is variable ``i``;

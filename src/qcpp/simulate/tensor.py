@@ -459,7 +459,6 @@ class TensorCircuit:
     """One bound circuit as a tensor network, with cached simplification and shared contraction paths.
 
     Args:
-        circuit: Any circuit.
         bindings: Symbol values (the circuit must end up fully bound).
         psi0_bits: Initial basis state; default all zeros.
         optimizer: A cotengra path optimizer; default :func:`path_optimizer` of ``cache_dir``.
@@ -633,7 +632,6 @@ class TensorCircuit:
         """:meth:`amplitude` of each state (the contraction path is found once and reused).
 
         Args:
-            states: Basis states.
             open_qubits: Contract with these qubits' output indices left open: one contraction then gives the
                 ``2**len(open_qubits)`` amplitudes of all states that agree on the other qubits (e.g. the last
                 robot's data qubits: one contraction per assignment of the other robots). A group whose open
@@ -874,7 +872,6 @@ class MPSCircuit:
     an independent check of the exact contractions of :class:`TensorCircuit`, not a replacement.
 
     Args:
-        circuit: Any circuit.
         bindings: Symbol values.
         psi0_bits: Initial basis state; default all zeros.
         layout: Site order, ``layout[site] = qubit`` (a permutation); default the identity. Putting qubits that

@@ -232,7 +232,6 @@ def train(
     """Optimise the ``2p`` angles to minimise the expectation value.
 
     Args:
-        qaoa: The simulator.
         p: Number of layers (>= 1).
         optimizer: ``nesterov`` (default), ``cobyla`` or ``lbfgsb``.
         init: ``linear-ramp`` (default), ``random``, ``interp``, or an explicit vector of ``2p`` angles.

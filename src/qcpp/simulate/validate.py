@@ -123,8 +123,6 @@ class ValidationReport:
     Attributes:
         scenario: Scenario name.
         backend: Simulator used.
-        p: QAOA layers.
-        rule: SBF rule.
         seed: Seed of the random angles and of the amplitude sample (``None``: angles given, no sample).
         angles: ``[gamma_0, beta_0, ...]``.
         qubits: Qubits of the lowered circuit.
@@ -232,7 +230,6 @@ def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> 
     """Predict a validation's size without building anything (counting paths no further than needed).
 
     Args:
-        scenario: The scenario.
         max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
 
     Returns:
@@ -333,7 +330,6 @@ def validate(
     """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (>= 1).
         backend: ``tensor``, ``statevector`` or ``sparse`` (see the module docstring).
         angles: ``[gamma_0, beta_0, ...]`` (``2p`` values); default :func:`random_angles` of ``seed``.

@@ -58,7 +58,6 @@ def anneal(
     """Simulated annealing over feasible paths with SBF moves (see the module docstring).
 
     Args:
-        scenario: The scenario.
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         iterations: Iterations per restart (one proposal each).
         t0: Initial temperature (``None``: calibrated from random moves).

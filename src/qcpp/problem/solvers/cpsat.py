@@ -391,7 +391,6 @@ def cpsat(
     """Minimise the cost with CP-SAT (see the module docstring for the model).
 
     Args:
-        scenario: The scenario.
         time_limit: Wall-clock limit in seconds (``None``: run until the optimum is proven).
         workers: CP-SAT search workers (threads).
         seed: CP-SAT's random seed.

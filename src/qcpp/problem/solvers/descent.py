@@ -50,7 +50,6 @@ class LocalSearch:
         initial_cost: The initial paths' total cost.
         steps: Flips taken (each one robot, one plaquette).
         evaluated: Assignments scored (every allowed flip at every step, plus the start).
-        seconds: Wall-clock time.
         trace: The cost after each step, the start first.
     """
 
@@ -68,7 +67,6 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
     """Steepest descent over allowed SBF flips from the initial paths (see the module docstring).
 
     Args:
-        scenario: The scenario.
         rule: SBF rule deciding which flips are allowed (flips to infeasible paths are skipped).
 
     Returns:

@@ -163,7 +163,6 @@ def dfs_paths(
     enumeration :func:`dfs` needs anyway: at most ``robots * PRECHECK_PATHS`` paths counted.
 
     Args:
-        scenario: The scenario.
         max_assignments: Most combinations allowed (``None``: no limit).
         max_paths: Most paths of one robot allowed (``None``: no limit).
         max_bytes: Memory budget of :attr:`DfsSize.bytes` (``None``: no limit).
@@ -216,7 +215,6 @@ def dfs(
     """The optimal assignment by exhaustive search (see the module docstring for the method and ties).
 
     Args:
-        scenario: The scenario.
         chunk_elements: Upper bound on the float64 elements of one scored block and of one robot-0 slice's
             pairwise matrices (default 8M = 64 MB).
         progress: Called as ``progress(done, total)`` in combinations after every block.

@@ -67,7 +67,6 @@ def genetic(
     """Evolve assignments with SBF mutations and path-swapping crossover (see the module docstring).
 
     Args:
-        scenario: The scenario.
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         population: Individuals kept after each selection.
         generations: Number of generations.
