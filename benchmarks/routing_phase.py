@@ -23,13 +23,13 @@ from __future__ import annotations
 import sys
 import time
 
+from qcpp.estimators.crosscheck import interior_endpoints
 from qcpp.ir.circuit import Circuit
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import interior_endpoints
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OBSTACLES_HARD = {

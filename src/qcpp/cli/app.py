@@ -470,7 +470,7 @@ def _finish_stdout(code: Any) -> Any:
         typer.echo(f"error: cannot write standard output: {reason}", err=True)
         return EXIT_USAGE
     if not code and _reader_gone():
-        return 1  # ``| head -1`` took its line and left: the rest was written into the pipe but never read
+        return 1  # the reader (``| head -1``) left: the rest was written into the pipe but never read
     return code
 
 

@@ -163,7 +163,6 @@ class Point:
 
     Attributes:
         rows, cols, robots: the grid and robot count.
-        p: QAOA layers.
         scenario_json: canonical JSON text of a given scenario, or ``None`` for
             :func:`qcpp.problem.presets.default_scenario`.
     """

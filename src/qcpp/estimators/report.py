@@ -189,7 +189,7 @@ def formula_report(fmt: Format = "table") -> str:
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
     """
-    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+    import sympy as sp  # slow to import: only the formulas need it, not the estimates
 
     from qcpp.estimators.formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
 

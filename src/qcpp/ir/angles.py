@@ -93,7 +93,6 @@ def mixer_symbol(layer: int, robot: int, plaquette: int) -> str:
 
     Args:
         layer: QAOA layer ``k``.
-        robot: Robot index.
         plaquette: Plaquette index (row-major, :attr:`qcpp.problem.grid.Plaquette.index`).
 
     Returns:

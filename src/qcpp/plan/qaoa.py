@@ -76,8 +76,6 @@ class QaoaPlan:
     """The QAOA circuit as gadgets: what :func:`qaoa_circuit` emits, and its cost without emitting it.
 
     Attributes:
-        scenario: The scenario.
-        p: Layers.
         options: How it is built (:class:`~qcpp.plan.options.PlanOptions`).
     """
 
@@ -311,7 +309,6 @@ def qaoa_circuit(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
     Args:
-        scenario: The scenario.
         p: Number of layers (>= 0).
         options: How it is built (rule, initial state, target, phase separator, ancilla budget, fusion; see
             :class:`~qcpp.plan.options.PlanOptions`).

@@ -13,7 +13,7 @@ robot  start             goal
 3      bottom-right      top-left
 ====== ================= =================
 
-(the placement of every release so far, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
+(stable, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
 start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from the top-left corner,
 the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots - 4`` extra robots
 take nodes ``floor((i + 1/2) M / k)``, ``i = 0..k-1``. Starts are therefore distinct (goals too, the reflection
@@ -43,7 +43,7 @@ from qcpp.problem.scenario import Robot, Scenario, scenario_from_dict
 __all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "grid_scenario", "max_default_robots"]
 
 MAX_DEFAULT_ROBOTS = 4
-"""Robots placed in the corners; more go to the other boundary nodes (kept for callers of earlier releases)."""
+"""Robots placed in the corners; more go to the other boundary nodes."""
 
 Node = tuple[int, int]
 
