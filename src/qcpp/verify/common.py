@@ -11,6 +11,7 @@ import numpy as np
 
 from qcpp.problem.grid import Plaquette
 from qcpp.problem.paths import edges_of, is_feasible
+from qcpp.problem.sbf import LocalPicture
 from qcpp.problem.scenario import Scenario
 
 ProgressFn = Callable[[int, int], None]
@@ -100,6 +101,36 @@ class FeasibleTest:
         return tuple(out)
 
 
-def first_key(d: dict[Hashable, Any]) -> Any:
-    """The first key of a mapping (reports pick one witness)."""
-    return next(iter(d))
+def gadget_label(gadget: Any, picture_of: Callable[[Hashable], str | None]) -> str:
+    """A short name of a gadget for reports: partial mixers and junctions by the local pictures
+    (:attr:`qcpp.problem.sbf.LocalPicture.label`) of their partial mixers' kinds (``picture_of(kind)``), others
+    by class and kind key (:func:`kind_text`)."""
+    from qcpp.gadgets.junction import MixerJunction, MixerRotation
+    from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer
+
+    def pic(m: Any) -> str:
+        return "-" if m is None else picture_of(m.kind) or "?"
+
+    if isinstance(gadget, ParityPartialMixer | McxPartialMixer):
+        return f"{type(gadget).__name__} {pic(gadget)}"
+    if isinstance(gadget, MixerRotation):
+        return f"MixerRotation {gadget.kind[1]} of {pic(gadget.mixer)}"  # type: ignore[index]
+    if isinstance(gadget, MixerJunction):
+        overlap = f" overlap {list(gadget.overlap)}" if gadget.left is not None and gadget.right is not None else ""
+        return f"MixerJunction {pic(gadget.left)} -> {pic(gadget.right)}{overlap}"
+    return kind_text(gadget)
+
+
+def picture_label(scenario: Scenario, robot: int, plaq: Plaquette) -> str:
+    """The label of the plaquette's local picture for ``robot`` (``EBBN``: endpoint, busy-able, plain corners)."""
+    return plaquette_picture(scenario, robot, plaq)[0].label
+
+
+def plaquette_picture(
+    scenario: Scenario, robot: int, plaq: Plaquette
+) -> tuple[LocalPicture, tuple[tuple[int, ...], ...]]:
+    """The plaquette's :class:`~qcpp.problem.sbf.LocalPicture` for ``robot`` and each corner's variable outer edges."""
+    vmask = scenario.variable_mask
+    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
+    rb = scenario.robots[robot]
+    return LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in outer]), outer

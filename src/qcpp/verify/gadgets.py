@@ -66,7 +66,16 @@ from qcpp.problem.paths import is_feasible
 from qcpp.problem.sbf import LocalPicture, Rule, SbfLogic, exact_rule_value, sbf_logic
 from qcpp.problem.scenario import Scenario
 from qcpp.verify.batch import MAX_QUBITS, Batch
-from qcpp.verify.common import TOLERANCE, FeasibleTest, ProgressFn, edge_names, kind_text, random_angle
+from qcpp.verify.common import (
+    TOLERANCE,
+    FeasibleTest,
+    ProgressFn,
+    edge_names,
+    gadget_label,
+    kind_text,
+    plaquette_picture,
+    random_angle,
+)
 from qcpp.verify.report import Check, Counterexample, VerifyReport
 from qcpp.verify.state import _scenario_name
 
@@ -82,20 +91,12 @@ _CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))  # corner a, b, c, d -> its pla
 class _Failure(Exception):
     """A check found a counterexample."""
 
-    def __init__(self, counterexample: Counterexample) -> None:
+    def __init__(self, counterexample: Counterexample, part: str = "mixer") -> None:
         super().__init__(counterexample.reason)
-        self.counterexample = counterexample
+        self.counterexample, self.part = counterexample, part
 
 
 # --------------------------------------------------------------------------------------------- the rule, per picture
-def _picture(scenario: Scenario, robot: int, plaq: Plaquette) -> tuple[LocalPicture, tuple[tuple[int, ...], ...]]:
-    """The plaquette's picture for ``robot`` and each corner's variable outer edges."""
-    vmask = scenario.variable_mask
-    outer = tuple(tuple(e for e in oe if (vmask >> e) & 1) for oe in plaq.outer_edges)
-    rb = scenario.robots[robot]
-    return LocalPicture.of(plaq.corners, rb.start, rb.goal, [len(o) for o in outer]), outer
-
-
 def _degrees(pbits: Sequence[int], obits: Sequence[Sequence[int]]) -> list[int]:
     return [pbits[i] + pbits[j] + sum(o) for (i, j), o in zip(_CORNER_EDGES, obits, strict=True)]
 
@@ -139,10 +140,11 @@ def _check_rule(
         )  # fmt: skip
         raise _Failure(
             Counterexample(
-                "gadgets", f"rule {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
+                "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
                 tuple(plaq.corners), (edge_names(scenario, mask),), (edge_names(scenario, mask ^ plaq.edge_mask),),
                 (), 1.0, reason,
-            )  # fmt: skip
+            ),
+            "rule",
         )
     return count
 
@@ -219,8 +221,22 @@ def _program_value(program: Any, pbits: Sequence[int], obits: Sequence[int]) -> 
 class _MixerChecker:
     """Checks partial-mixer kinds and junction kinds on their gates (see the module docstring)."""
 
-    def __init__(self, scenario: Scenario, fused: bool, beta: float, where: dict[Any, tuple[int, Plaquette]]) -> None:
+    def __init__(
+        self, scenario: Scenario, fused: bool, beta: float, where: dict[Any, tuple[int, Plaquette]],
+        pictures: dict[Any, str],
+    ) -> None:  # fmt: skip
         self.scenario, self.fused, self.beta, self.where = scenario, fused, beta, where
+        self.pictures = dict(pictures)
+
+    def picture_of(self, kind: Any) -> str:
+        """The local picture of a partial-mixer kind on this scenario (a number for a kind it does not have)."""
+        if kind not in self.pictures:
+            self.pictures[kind] = f"kind {len(self.pictures) + 1}"
+        return self.pictures[kind]
+
+    def label(self, gadget: Any) -> str:
+        """A short name for reports (:func:`~qcpp.verify.common.gadget_label`)."""
+        return gadget_label(gadget, self.picture_of)
 
     @staticmethod
     def data(m: Mixer) -> tuple[int, ...]:
@@ -235,7 +251,6 @@ class _MixerChecker:
         robot, plaq = self.where.get(m.kind, (None, None)) if m is not None else (None, None)
         ins = outs = ((),)
         if plaq is not None and m is not None:  # local bits -> the scenario's edges (slot order: plaquette, outer)
-            _, outer = _picture(self.scenario, robot, plaq)  # type: ignore[arg-type]
             logic_outer = _outer_slots(self.scenario, robot, plaq, m)  # type: ignore[arg-type]
             edges = list(plaq.edges) + logic_outer
             ins = (edge_names(self.scenario, sum(1 << e for i, e in enumerate(edges) if (key_in >> i) & 1)),)
@@ -272,14 +287,14 @@ class _MixerChecker:
                 amps.append(1.0)
         want = Batch(np.array(owners, dtype=np.int64), np.array(keys, dtype=np.int64), np.array(amps, dtype=complex))
         bad = _first_difference(got, want)
-        subject = f"partial mixer {kind_text(m)}"
+        subject = self.label(m)
         if bad is not None:
             out = got.of_input(bad)
             allowed = _program_value(program, [(bad >> i) & 1 for i in range(4)], [(bad >> i) & 1 for i in range(4, k)])
             key_out = max((key for key in out if key != bad), key=lambda key: abs(out[key]), default=bad)
             reason = (f"the gadget does not do what its program says (the program {'allows' if allowed else 'forbids'}"
                       " the flip on this input)")  # fmt: skip
-            raise self.fail(subject, m, kind_text(m), bad, key_out, data, abs(out.get(key_out, 0)), reason)
+            raise self.fail(subject, m, self.label(m), bad, key_out, data, abs(out.get(key_out, 0)), reason)
         if self.fused:  # the closing junction alone cleans what the opening one made
             opened = inputs.run(g for g in lowered[0])
             closed = opened.run(lowered[2])
@@ -287,7 +302,7 @@ class _MixerChecker:
             if bad is not None:
                 out = closed.of_input(bad)
                 key_out = max(out, key=lambda key: abs(out[key]))
-                raise self.fail(subject, m, kind_text(MixerJunction(m, None)), bad, key_out, data, abs(out[key_out]),
+                raise self.fail(subject, m, self.label(MixerJunction(m, None)), bad, key_out, data, abs(out[key_out]),
                                 "the closing junction does not undo the opening one")  # fmt: skip
         return 1 << k
 
@@ -306,7 +321,7 @@ class _MixerChecker:
         if bad is not None:
             out = got.of_input(bad)
             key_out = max(out, key=lambda key: abs(out[key]))
-            raise self.fail(f"junction {kind_text(j)}", left, kind_text(j), bad, key_out, data, abs(out[key_out]),
+            raise self.fail(self.label(j), left, self.label(j), bad, key_out, data, abs(out[key_out]),
                             "the junction does not turn one partial mixer's computed state into the next one's")
         return 1 << len(data)
 
@@ -333,7 +348,9 @@ def _cancelling_skeleton(gates: Sequence[Gate]) -> str | None:
             stack.pop()
         else:
             stack.append(g)
-    return None if not stack else f"{len(stack)} permutation gates do not cancel (first: {stack[0].name} {stack[0].qubits})"
+    if not stack:
+        return None
+    return f"{len(stack)} permutation gates do not cancel (first: {stack[0].name} on {stack[0].qubits})"
 
 
 def _check_phase(kind: GadgetKind, beta: float) -> tuple[str, int, str]:
@@ -343,7 +360,7 @@ def _check_phase(kind: GadgetKind, beta: float) -> tuple[str, int, str]:
     why = _cancelling_skeleton(gates)
     if why is not None:
         raise _Failure(Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),), (),
-                                      0.0, f"not shown diagonal: {why}"))  # fmt: skip
+                                      0.0, f"not shown diagonal: {why}"), "phase")  # fmt: skip
     ancillas = {q for gt in gates if gt.name in ("and", "and_dg") for q in gt.qubits[-1:]}
     data = sorted({q for gt in gates for q in gt.qubits} - ancillas)
     if len(data) > EXHAUSTIVE_PHASE_QUBITS:
@@ -355,9 +372,11 @@ def _check_phase(kind: GadgetKind, beta: float) -> tuple[str, int, str]:
     moved = keep & (got.keys != got.owners)
     if moved.any():
         i = int(np.flatnonzero(moved)[0])
-        raise _Failure(Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),),
-                                      tuple(q for q in range(len(data), 64) if (int(got.keys[i]) >> q) & 1),
-                                      float(abs(got.amps[i])), "the lowered phase gadget moves a basis state"))  # fmt: skip
+        dirty = tuple(q for q in range(len(data), 64) if (int(got.keys[i]) >> q) & 1)
+        reason = "the lowered phase gadget moves a basis state"
+        cx = Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),), dirty,
+                            float(abs(got.amps[i])), reason)  # fmt: skip
+        raise _Failure(cx, "phase")
     return "exhaustive", 1 << len(data), "also structural: diagonal and permutation gates that cancel in pairs"
 
 
@@ -388,11 +407,20 @@ def _check_initial(scenario: Scenario, kind: GadgetKind, num_qubits: int, regist
                 "gadgets", "initial_state", kind_text(g), bad[0] if bad else None, None, ((),),
                 tuple(edge_names(scenario, m) for m in masks), test.dirty(key), 1.0,
                 f"robot {bad[0]} does not start on a feasible path" if bad else "an ancilla is left in |1>",
-            ))  # fmt: skip
+            ), "initial_state")  # fmt: skip
     return 1
 
 
 # ------------------------------------------------------------------------------------------------------------ verify
+def _mixers_in(g: Any) -> list[Any]:
+    """The partial mixers a mixer-part gadget is made of (a junction's sides, a rotation's mixer, or itself)."""
+    if isinstance(g, MixerJunction):
+        return [m for m in (g.left, g.right) if m is not None]
+    if isinstance(g, MixerRotation):
+        return [g.mixer]
+    return [g]
+
+
 def verify_gadgets(
     scenario: Scenario,
     p: int,
@@ -435,7 +463,7 @@ def verify_gadgets(
             logic = sbf_logic(scenario, r, q, rule)
             if logic.never:
                 continue
-            picture, outer = _picture(scenario, r, q)
+            picture, outer = plaquette_picture(scenario, r, q)
             picture_count[picture] = picture_count.get(picture, 0) + 1
             if picture not in pictures:
                 pictures[picture] = (r, q, logic, outer)
@@ -443,14 +471,14 @@ def verify_gadgets(
                 if m is not None:
                     scenario_kinds.setdefault(m.kind, (r, q))
     where.update(scenario_kinds)
+    kind_pictures = {kd: plaquette_picture(scenario, r, q)[0].label for kd, (r, q) in scenario_kinds.items()}
 
     mixer_kinds = graph.parts["mixer"]
     fused = any(isinstance(k.example, MixerJunction | MixerRotation) for k in mixer_kinds)
     mixers: dict[Any, tuple[Mixer, int]] = {}
     for kind in mixer_kinds:
         g = kind.example
-        found = [g.left, g.right] if isinstance(g, MixerJunction) else [g.mixer] if isinstance(g, MixerRotation) else [g]
-        for m in found:
+        for m in _mixers_in(g):
             if m is not None and m.kind not in mixers:
                 mixers[m.kind] = (m, GadgetKind.of(m).work)
     work_items = len(pictures) + len(mixers) + len(mixer_kinds) + len(graph.parts["phase"]) + 1
@@ -462,16 +490,16 @@ def verify_gadgets(
         if progress is not None:
             progress(done, work_items)
 
-    checker = _MixerChecker(scenario, fused, beta, where)
+    checker = _MixerChecker(scenario, fused, beta, where, kind_pictures)
     try:
         for picture, (r, q, logic, outer) in pictures.items():
             n = _check_rule(scenario, r, q, logic, picture, outer)
             checks.append(Check(f"rule {rule} {picture.label}", "rule", "exhaustive", n, True, picture_count[picture],
                                 "locally feasible inputs"))  # fmt: skip
             tick()
-        for key, (m, work) in mixers.items():
+        for m, work in mixers.values():
             n = checker.partial_mixer(m, work)
-            checks.append(Check(f"partial mixer {kind_text(m)}", "mixer", "exhaustive", n, True, 1,
+            checks.append(Check(checker.label(m), "mixer", "exhaustive", n, True, 1,
                                 "opening junction, rotation, closing junction" if fused else "all blocks"))  # fmt: skip
             tick()
         missing = [kd for kd in scenario_kinds if kd not in mixers]
@@ -483,11 +511,11 @@ def verify_gadgets(
             g = kind.example
             if isinstance(g, MixerJunction) and g.left is not None and g.right is not None:
                 n = checker.junction(g, max(kind.work, mixers[g.left.kind][1], mixers[g.right.kind][1]))
-                checks.append(Check(kind_text(g), "mixer", "exhaustive", n, True, mult))
+                checks.append(Check(checker.label(g), "mixer", "exhaustive", n, True, mult))
             else:
-                inner = g.mixer if isinstance(g, MixerRotation) else (g.left or g.right) if isinstance(g, MixerJunction) else g
-                checks.append(Check(kind_text(g), "mixer", "covered", 0, True, mult,
-                                    f"within partial mixer {kind_text(inner)[:60]}"))  # fmt: skip
+                inner = _mixers_in(g)[0]
+                checks.append(Check(checker.label(g), "mixer", "covered", 0, True, mult,
+                                    f"within {checker.label(inner)}"))  # fmt: skip
             tick()
         for kind, mult in graph.parts["phase"].items():
             how, n, detail = _check_phase(kind, beta)
@@ -500,9 +528,7 @@ def verify_gadgets(
         tick()
     except _Failure as failure:
         counterexample = failure.counterexample
-        part = counterexample.check.split(" ")[0]
-        checks.append(Check(counterexample.check, part if part in ("rule", "phase") else
-                            "mixer" if part in ("partial", "junction") else part, "exhaustive", 0, False))  # fmt: skip
+        checks.append(Check(counterexample.check, failure.part, "exhaustive", 0, False))
     return VerifyReport(
         _scenario_name(scenario), p, rule, "gadgets", counterexample is None, tuple(checks), counterexample,
         time.perf_counter() - start, seed,

@@ -55,7 +55,8 @@ from qcpp.verify.common import (
     FeasibleTest,
     ProgressFn,
     edge_names,
-    kind_text,
+    gadget_label,
+    picture_label,
     plaquette_of_qubits,
     random_angle,
 )
@@ -165,8 +166,9 @@ def _closing(piece: _Piece, registers: tuple, bindings: dict[str, float]) -> tup
 
 def _blame(
     scenario: Scenario, pieces: list[_Piece], key: int, registers: tuple, bindings: dict[str, float]
-) -> tuple[object | None, str]:
-    """The gadget after which input ``key`` first leaves the feasible span at a clean point, and why."""
+) -> tuple[object | None, int | None, float]:
+    """The gadget after which input ``key`` first leaves the feasible span at a clean point, with the offending
+    output there and its amplitude's modulus (``None, None, 0`` if no single gadget shows it)."""
     test = FeasibleTest(scenario)
     state = Batch.of_inputs([key])
     for piece in pieces:
@@ -175,9 +177,41 @@ def _blame(
         if closing is None:
             continue
         probe = state.run(closing) if closing else state
-        if _first_bad(probe, test) is not None:
-            return piece.gadget, piece.section
-    return None, ""
+        if _first_bad(probe, test) is not None:  # the offending output nearest to the input
+            big = np.flatnonzero(np.abs(probe.amps) > TOLERANCE)
+            bad = big[test.bad(probe.keys[big])]
+            near = min(bad, key=lambda i: ((int(probe.keys[i]) ^ key).bit_count(), -abs(probe.amps[i])))
+            return piece.gadget, int(probe.keys[near]), float(abs(probe.amps[near]))
+    return None, None, 0.0
+
+
+def _label(scenario: Scenario, gadget: object) -> str:
+    """The gadget's name for reports, its partial mixers by their own plaquettes' local pictures."""
+    pictures: dict[object, str] = {}
+    for m in (gadget.left, gadget.right) if isinstance(gadget, MixerJunction) else (getattr(gadget, "mixer", gadget),):
+        if isinstance(m, ParityPartialMixer | McxPartialMixer):
+            found = plaquette_of_qubits(scenario, m.plaquette_qubits)
+            if found is not None:
+                pictures.setdefault(m.kind, picture_label(scenario, *found))
+    return gadget_label(gadget, pictures.get)
+
+
+def _counterexample(
+    scenario: Scenario, name: str, gadget: object | None, key_in: int, key_out: int, amp: float,
+    test: FeasibleTest,
+) -> Counterexample:  # fmt: skip
+    robot, plaquette = _where(scenario, gadget)
+    ins, outs = test.masks(key_in), test.masks(key_out)
+    full = (1 << test.v) - 1
+    broken = [r for r in range(len(outs)) if not test.path_ok(r, (key_out >> (r * test.v)) & full)]
+    reason = f"robot {broken[0]}'s path leaves the feasible set" if broken else "an ancilla is left in |1>"
+    if robot is None and broken:
+        robot = broken[0]
+    return Counterexample(
+        "state", name, None if gadget is None else _label(scenario, gadget), robot, plaquette,
+        tuple(edge_names(scenario, m) for m in ins), tuple(edge_names(scenario, m) for m in outs),
+        test.dirty(key_out), amp, reason,
+    )  # fmt: skip
 
 
 def _where(scenario: Scenario, gadget: object | None) -> tuple[int | None, tuple[tuple[int, int], ...] | None]:
@@ -256,20 +290,11 @@ def verify_state(
             if bad is not None:
                 held = False
                 key_in, key_out = int(chunk[int(out.owners[bad])]), int(out.keys[bad])
-                gadget, _ = _blame(scenario, unit, key_in, registers, bindings)
-                robot, plaquette = _where(scenario, gadget)
-                ins, outs = test.masks(key_in), test.masks(key_out)
-                dirty = test.dirty(key_out)
-                broken = [r for r, m in enumerate(outs) if not test.path_ok(r, (key_out >> (r * test.v)) & ((1 << test.v) - 1))]
-                reason = (
-                    f"robot {broken[0]}'s path leaves the feasible set" if broken else "an ancilla is left in |1>"
-                )
-                counterexample = Counterexample(
-                    "state", name, None if gadget is None else kind_text(gadget), robot if robot is not None else
-                    (broken[0] if broken else None), plaquette,
-                    tuple(edge_names(scenario, m) for m in ins), tuple(edge_names(scenario, m) for m in outs),
-                    dirty, float(abs(out.amps[bad])), reason,
-                )  # fmt: skip
+                gadget, key_at, amp_at = _blame(scenario, unit, key_in, registers, bindings)
+                amp = float(abs(out.amps[bad]))
+                if key_at is not None:  # the output right after the gadget at fault
+                    key_out, amp = key_at, amp_at
+                counterexample = _counterexample(scenario, name, gadget, key_in, key_out, amp, test)
                 break
         detail = "" if how == "exhaustive" or len(inputs) == 1 else f"of {total} feasible assignments"
         checks.append(Check(name, "state", how, len(inputs), held, 1, detail))
