@@ -203,7 +203,7 @@ def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypat
         return gates[:last] + gates[last + 1 :]
 
     monkeypatch.setattr(VisitPhase, "emit", no_uncompute)
-    report = verify_gadgets(default_scenario(6, 6, 2), p=1)
+    report = verify_gadgets(default_scenario(3, 3, 2), p=1)
     assert not report.holds
     cx = report.counterexample
     assert cx is not None and cx.check.startswith("phase VisitPhase") and "not shown diagonal" in cx.reason

@@ -513,9 +513,9 @@ def verify_gadgets(
                 n = checker.junction(g, max(kind.work, mixers[g.left.kind][1], mixers[g.right.kind][1]))
                 checks.append(Check(checker.label(g), "mixer", "exhaustive", n, True, mult))
             else:
-                inner = _mixers_in(g)[0]
-                checks.append(Check(checker.label(g), "mixer", "covered", 0, True, mult,
-                                    f"within {checker.label(inner)}"))  # fmt: skip
+                rotation = isinstance(g, MixerRotation)
+                inner = "each partial mixer's check" if rotation else checker.label(_mixers_in(g)[0])
+                checks.append(Check(checker.label(g), "mixer", "covered", 0, True, mult, f"within {inner}"))
             tick()
         for kind, mult in graph.parts["phase"].items():
             how, n, detail = _check_phase(kind, beta)
