@@ -31,6 +31,7 @@ Random circuits:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
 from collections.abc import Collection, Iterator, Sequence
@@ -245,14 +246,19 @@ def scenarios(
         return Scenario(grid, tuple(robots), tuple(obs), Objective(obstacles="soft"))
 
 
-def feasible_paths(scenario: Scenario, robot: int, limit: int = 20_000) -> st.SearchStrategy[int]:
+@functools.lru_cache(maxsize=64)
+def _path_pool(scenario: Scenario, robot: int, limit: int) -> tuple[int, ...]:
+    return tuple(itertools.islice(iter_paths(scenario, robot), limit))
+
+
+def feasible_paths(scenario: Scenario, robot: int, limit: int = 2_000) -> st.SearchStrategy[int]:
     """One of the robot's feasible paths (an edge mask; :func:`qcpp.problem.paths.iter_paths` order), drawn from
-    its first ``limit`` paths (every path on small grids)."""
-    return st.sampled_from(list(itertools.islice(iter_paths(scenario, robot), limit)))
+    its first ``limit`` paths (every path on small grids; the pool is enumerated once per scenario and robot)."""
+    return st.sampled_from(_path_pool(scenario, robot, limit))
 
 
 @st.composite
-def feasible_assignments(draw: st.DrawFn, scenario: Scenario, limit: int = 20_000) -> tuple[int, ...]:
+def feasible_assignments(draw: st.DrawFn, scenario: Scenario, limit: int = 2_000) -> tuple[int, ...]:
     """One feasible path per robot (see :func:`feasible_paths`)."""
     return tuple(draw(feasible_paths(scenario, r, limit)) for r in range(scenario.num_robots))
 

@@ -114,7 +114,11 @@ def _apply(
         new_owners.append(owners[keep])
         new_keys.append(base[keep] | offsets[o])
         new_amps.append(a[keep])
-    return _combine(np.concatenate(new_owners), np.concatenate(new_keys), np.concatenate(new_amps))
+    owners, keys, amps = np.concatenate(new_owners), np.concatenate(new_keys), np.concatenate(new_amps)
+    if len(local) and (local == local[0]).all():  # every entry had the same bits here: no two outputs coincide
+        keep = np.abs(amps) >= PRUNE
+        return owners[keep], keys[keep], amps[keep]
+    return _combine(owners, keys, amps)
 
 
 def _combine(owners: np.ndarray, keys: np.ndarray, amps: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
