@@ -36,7 +36,7 @@ span of feasible assignments.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
-    >>> r = verify_gadgets(default_scenario(6, 6, 2), p=2)
+    >>> r = verify_gadgets(default_scenario(4, 4, 2), p=2)
     >>> r.holds, sorted({c.part for c in r.checks})
     (True, ['initial_state', 'mixer', 'phase', 'rule'])
 """
