@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
-from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
+from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, abstract_program, partial_mixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import GATE_SPECS, Gate
@@ -109,9 +109,13 @@ def _check_rule(
     scenario: Scenario, robot: int, plaq: Plaquette, logic: SbfLogic, picture: LocalPicture,
     outer: tuple[tuple[int, ...], ...],
 ) -> int:  # fmt: skip
-    """Check the program on every locally feasible input; returns how many there were (raises :class:`_Failure`)."""
+    """Check the program on every locally feasible input; returns how many there were (raises :class:`_Failure`).
+
+    The program is read in the form the gates are checked against (:func:`_program_value` of the partial mixer's
+    abstract program), and must agree with the rule's own :meth:`~qcpp.problem.sbf.SbfLogic.evaluate` there."""
     edges = list(plaq.edges) + [e for o in outer for e in o]
     sizes = [len(o) for o in outer]
+    program, slots = abstract_program(logic, plaq)
     count = 0
     for bits in itertools.product((0, 1), repeat=len(edges)):
         pbits, rest, obits = bits[:4], list(bits[4:]), []
@@ -122,7 +126,17 @@ def _check_rule(
             continue
         count += 1
         mask = sum(1 << e for e, b in zip(edges, bits, strict=True) if b)
-        if not logic.evaluate(mask):
+        allowed = _program_value(program, pbits, [(mask >> e) & 1 for e in slots])
+        if allowed != logic.evaluate(mask):
+            raise _Failure(
+                Counterexample(
+                    "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
+                    tuple(plaq.corners), (edge_names(scenario, mask),), (edge_names(scenario, mask),), (), 0.0,
+                    "the partial mixer's abstract program and the rule's program disagree",
+                ),
+                "rule",
+            )
+        if not allowed:
             continue
         if exact_rule_value(pbits, [sum(o) for o in obits], picture.endpoints, picture.diagonal):
             continue
