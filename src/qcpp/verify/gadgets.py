@@ -306,8 +306,8 @@ class _MixerChecker:
             out = got.of_input(bad)
             allowed = _program_value(program, [(bad >> i) & 1 for i in range(4)], [(bad >> i) & 1 for i in range(4, k)])
             key_out = max((key for key in out if key != bad), key=lambda key: abs(out[key]), default=bad)
-            reason = (f"the gadget does not do what its program says (the program {'allows' if allowed else 'forbids'}"
-                      " the flip on this input)")  # fmt: skip
+            want = "cos(b/2)|x> - i sin(b/2)|x xor plaquette>" if allowed else "|x> (the flip is forbidden here)"
+            reason = f"the gadget does not do what its program says: expected {want} with clean ancillas"
             raise self.fail(subject, m, self.label(m), bad, key_out, data, abs(out.get(key_out, 0)), reason)
         if self.fused:  # the closing junction alone cleans what the opening one made
             opened = inputs.run(g for g in lowered[0])

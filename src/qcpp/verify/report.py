@@ -61,8 +61,8 @@ class Counterexample:
         input_paths: The input: per robot its path as edges (state method), or the set edges of the gadget's
             local input for ``robot`` (gadget method).
         output_paths: The offending output, in the same form.
-        dirty_ancillas: Ancilla qubits left in ``|1>`` in the offending output (empty if the data left the
-            feasible set).
+        dirty_ancillas: Ancilla qubits left in ``|1>`` in the offending output (state method: qubits of the circuit;
+            gadget method: positions among the gadget's local qubits, data first).
         amplitude: Modulus of the offending output amplitude.
         reason: One sentence on what went wrong.
     """
