@@ -98,11 +98,12 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.cli.commands.compile",
     "qcpp.cli.commands.estimate",
     "qcpp.cli.commands.validate",
+    "qcpp.cli.commands.verify",
     "qcpp.cli.commands.export",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
-NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "seed": 0}
+NUMERIC_OPTIONS: dict[str, int] = {"p": 1, "maxiter": 1, "max_amplitudes": 1, "seed": 0, "samples": 1}
 """Integer parameters checked in every command, by parameter name: the smallest value allowed."""
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -293,6 +294,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.simulate.evaluate", "METHODS"),
     "validate.backend": _lazy("qcpp.simulate.validate", "BACKENDS"),
+    "verify.method": _lazy("qcpp.verify.report", "METHODS"),
     "estimate.fmt": _lazy("qcpp.estimators.tables", "FORMATS"),
     "estimate.compare": lambda: ("paper",),
     "estimate.depth": _lazy("qcpp.estimators.estimate", "DEPTH_MODES"),
