@@ -1,7 +1,7 @@
 """Test inputs (needs hypothesis: the ``testing`` extra, ``pip install 'qcpp[testing]'``): hypothesis strategies for
 random gates and circuits, for scenarios, feasible paths and plaquette flips (:func:`scenarios`,
 :func:`feasible_paths`, :func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer
-variant against the SBF rules and :func:`qcpp.verify.verify`). The plain scenario lists the estimate == compiled
+variant against the SBF rules and :func:`qcpp.verification.verify`). The plain scenario lists the estimate == compiled
 checks run on are in :mod:`qcpp.estimators.crosscheck`.
 
 An optional module for property tests: no production module imports it (hypothesis is optional).

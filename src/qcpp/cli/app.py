@@ -294,7 +294,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.simulate.evaluate", "METHODS"),
     "validate.backend": _lazy("qcpp.simulate.validate", "BACKENDS"),
-    "verify.method": _lazy("qcpp.verify.report", "METHODS"),
+    "verify.method": _lazy("qcpp.verification.report", "METHODS"),
     "estimate.fmt": _lazy("qcpp.estimators.tables", "FORMATS"),
     "estimate.compare": lambda: ("paper",),
     "estimate.depth": _lazy("qcpp.estimators.estimate", "DEPTH_MODES"),
