@@ -1,4 +1,4 @@
-"""What :func:`qcpp.verification.verify` reports: the checks it ran and, when feasibility is not preserved, a counterexample.
+"""What :func:`qcpp.verification.verify` reports: the checks it ran and, when feasibility fails, a counterexample.
 
 A report is plain data (frozen dataclasses of numbers, strings and tuples) with :meth:`VerifyReport.to_dict` for
 ``qcpp verify --json``. :attr:`VerifyReport.holds` is true when every check held; then

@@ -9,8 +9,9 @@ in ``[0.1, pi - 0.1]`` (no rotation is the identity by accident). Its parts are 
   seed;
 * ``circuit``: the whole circuit from ``|0...0>``.
 
-A unit holds when, for every input, every output amplitude larger than :data:`~qcpp.verification.common.TOLERANCE` lies
-on a feasible assignment with every ancilla in ``|0>``. The inputs run together (:class:`qcpp.verification.batch.Batch`),
+A unit holds when, for every input, every output amplitude larger than :data:`~qcpp.verification.common.TOLERANCE`
+lies on a feasible assignment with every ancilla in ``|0>``. The inputs run together
+(:class:`qcpp.verification.batch.Batch`),
 one amplitude list per input, so a failure names its input. Since each unit maps every feasible basis state into
 the span of feasible assignments, so does any product of them (linearity): with every input checked, the whole
 circuit keeps every feasible superposition feasible.
