@@ -134,9 +134,6 @@ def fault_tolerant_from_cost(
         synthesis: rotation synthesis model (:func:`rotation_t_cost`).
         toffoli_t: T per full Toffoli, 7 or 4.
 
-    Returns:
-        The :class:`FaultTolerantEstimate`.
-
     Raises:
         ValueError: a bad ``epsilon``, ``synthesis`` or ``toffoli_t``.
     """

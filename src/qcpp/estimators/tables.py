@@ -104,9 +104,6 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         est: an estimate.
         compare_paper: add the paper's estimate and the ratios.
         doubling: the reading of the paper's doubling (:func:`qcpp.estimators.paper.paper_partial_mixer`).
-
-    Returns:
-        The row.
     """
     pt, c, ft, d, plan = est.point, est.cost, est.fault_tolerant, est.depth, est.options.plan
     row: dict[str, Any] = {

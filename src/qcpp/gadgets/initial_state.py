@@ -74,9 +74,6 @@ def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: 
         strings: Distinct bit strings; bit ``i`` of each belongs to ``qubits[i]``.
         qubits: The qubits, in bit order.
         ancilla: A clean qubit, needed only when a rotation has two or more conditions.
-
-    Returns:
-        The gate list.
     """
     if len(set(strings)) != len(strings) or not strings:
         raise ValueError("need a non-empty list of distinct bit strings")
@@ -198,9 +195,6 @@ def initial_state_gates(
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
             descent (``local_search``, ``local_search_mix``).
         ancilla: Clean qubit for multiply-controlled rotations (``representatives`` only).
-
-    Returns:
-        The gate list.
     """
     v = scenario.edges_per_robot
     out: list[Gate] = []

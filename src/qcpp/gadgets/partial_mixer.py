@@ -169,9 +169,6 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
         program: every step but the last has two literals and writes a fresh temporary; literals read even
             parities of the plaquette edges, outer slots or temporaries.
         target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
-
-    Returns:
-        The plan.
     """
     inner, final = program.steps[:-1], program.steps[-1]
     if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
@@ -489,9 +486,6 @@ def partial_mixer(
         logic_offset: Qubit index of the first ``logic`` ancilla.
         rule: ``exact`` (parity basis) or ``paper`` (controlled-X network).
         target: ``nisq`` or ``ft`` (see :func:`plan_parity_mixer`).
-
-    Returns:
-        The gadget.
     """
     logic = sbf_logic(scenario, robot, plaquette, rule)
     if logic.never:

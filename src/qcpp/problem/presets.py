@@ -67,9 +67,6 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
         rows, cols: grid size (at least 2 each).
         robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
 
-    Returns:
-        The scenario.
-
     Raises:
         ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, or a grid smaller than 2x2.
     """

@@ -136,9 +136,6 @@ def evaluate(
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
 
-    Returns:
-        The :class:`Evaluation`.
-
     Raises:
         ValueError: unknown method or rule, angles that do not fit, too many qubits for ``statevector``, or
             a mixer the subspace simulator cannot represent (:class:`~qcpp.simulate.subspace.NonUnitaryMixerError`).

@@ -620,9 +620,6 @@ class TensorCircuit:
         Args:
             state: A basis state (see :func:`state_bits`).
 
-        Returns:
-            The amplitude.
-
         Raises:
             ContractionTooWideError: if the contraction exceeds ``max_width``.
         """
@@ -778,9 +775,6 @@ def contract_sliced(
         client: A ``dask.distributed.Client`` (``None``: in-process).
         chunk: Slices per dask task.
 
-    Returns:
-        The contracted value.
-
     Example:
         >>> import quimb.tensor as qtn
         >>> tn = qtn.TensorNetwork([qtn.rand_tensor([2, 2], ["a", "b"], seed=1), qtn.rand_tensor([2, 2], ["b", "a"])])
@@ -818,9 +812,6 @@ def dask_client(address: str) -> Any:
 
     Args:
         address: ``'local'`` or a scheduler address.
-
-    Returns:
-        The connected client.
 
     Raises:
         OSError: the scheduler cannot be reached within 10 s.

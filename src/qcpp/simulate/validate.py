@@ -232,9 +232,6 @@ def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> 
     Args:
         max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
 
-    Returns:
-        The :class:`ValidationSize`.
-
     Example:
         >>> from qcpp.problem.presets import default_scenario
         >>> size = validate_size(default_scenario(4, 4, 2))
