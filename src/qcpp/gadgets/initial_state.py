@@ -22,12 +22,9 @@ With ``K = 1`` this is just the X gates of the single path.
 over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`): one
 basis state, prepared like ``initial_path`` by X gates.
 
-``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (the descent of ``local_search``;
-one path where the descent leaves the robot on its initial path), the product over robots. It keeps the initial
-paths' weight, which the mixer can still move, beside the descent's low cost. Prepared by the decision tree
-above with two strings: X on the bits both paths set, RY(pi/2) on the lowest bit where they differ, and a
-CNOT from it (0- or 1-controlled) onto every other differing bit; no ancilla. Every basis state with weight is
-a feasible assignment (each robot on one of two feasible paths).
+``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (one path where they agree), the
+product over robots: the descent's low cost beside the initial paths' weight, which the mixer can still move.
+Prepared by the decision tree with two strings (X, one RY(pi/2), CNOTs; no ancilla).
 
 Example:
     >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
