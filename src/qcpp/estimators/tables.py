@@ -18,11 +18,9 @@ A row is a plain dict (:func:`make_row`) with
   ``ratio_single_qubit``;
 * ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
 
-Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
-columns as a Markdown table), ``csv`` (every
-scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
-``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
-``table``.
+Formats: ``table`` (rich, the main columns that fit the terminal, :func:`render`), ``md``, ``csv`` (every scalar
+column plus ``section.<name>.<field>``), ``json`` and ``jsonl``; :func:`render_stream` yields text as rows arrive
+for every format but ``table``.
 
 Example:
     >>> from qcpp.estimators.estimate import Point, estimate_point
