@@ -21,9 +21,10 @@ from dataclasses import dataclass
 
 from qcpp.estimators.estimate import layer_costs, registers_for
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
+from qcpp.problem.limits import SizeError
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "predict_size"]
+__all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "check_size", "predict_size"]
 
 BYTES_PER_GATE = 300
 """Peak bytes per lowered gate while building, lowering and writing (Python tuples, with the allocator's overhead)."""
@@ -66,3 +67,28 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     gates = lc.cost(p).total
     qubits = sum(size for _, size in registers_for(scenario, p, options))
     return SizePrediction(gates, qubits, gates * BYTES_PER_GATE)
+
+
+def check_size(
+    scenario: Scenario, p: int, options: PlanOptions, max_gates: int, override: str, force: bool = False
+) -> SizePrediction:
+    """The predicted size; unless ``force``, refuse a circuit predicted to exceed ``max_gates`` lowered gates (the
+    guard of ``qcpp compile`` and ``qcpp.compile``).
+
+    Args:
+        scenario, p, options: The circuit.
+        max_gates: The limit.
+        override: How the caller lifts the limit, for the message (``raise it with --max-gates N, or pass
+            --force``).
+        force: Do not refuse.
+
+    Returns:
+        The prediction.
+
+    Raises:
+        qcpp.problem.limits.SizeError: one line naming the predicted size, the limit and ``override``.
+    """
+    size = predict_size(scenario, p, options)
+    if not force and not size.fits(max_gates):
+        raise SizeError("", f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates ({override})")
+    return size

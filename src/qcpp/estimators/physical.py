@@ -29,6 +29,8 @@ from __future__ import annotations
 import re
 from dataclasses import asdict, dataclass
 
+from qcpp.errors import QcppError
+
 __all__ = [
     "DEFAULT_ERROR_BUDGET",
     "DEFAULT_QEC_SCHEME",
@@ -59,7 +61,7 @@ DEFAULT_QEC_SCHEME = "surface_code"
 DEFAULT_ERROR_BUDGET = 1e-3
 
 
-class PhysicalEstimateError(ValueError):
+class PhysicalEstimateError(QcppError):
     """The estimator refused the input (e.g. the code distance it needs exceeds its maximum)."""
 
 

@@ -32,6 +32,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from functools import cached_property, partial
 
+from qcpp.errors import OptionError
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.blocks import StatePrep
 from qcpp.gadgets.initial_state import initial_path_count
@@ -277,13 +278,13 @@ class QaoaPlan:
             names: The names a user binds.
 
         Raises:
-            ValueError: naming the unknown names and listing the known ones.
+            qcpp.errors.OptionError: naming the unknown names and listing the known ones.
         """
         known = set(self.parameter_names)
         unknown = sorted(set(names) - known)
         if unknown:
             have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-            raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+            raise OptionError("", f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""

@@ -18,7 +18,6 @@ progress on stderr.
 from __future__ import annotations
 
 import json
-import math
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
@@ -31,12 +30,12 @@ from rich.table import Table
 from qcpp.cli.commands.plan_flags import LayersFlag, ScenarioArg, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
+from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, check_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_stream import write_qasm_sections
-from qcpp.plan.compile import compile_scenario, compile_summary, parse_bindings
+from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.scenario import Scenario, load_scenario
 
@@ -109,10 +108,7 @@ def compile_command(
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
-    bindings = parse_bindings([*(bind or []), *extra])
-    for name, value in bindings.items():
-        if not math.isfinite(value):
-            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
     to_stdout = qasm == "-"
     if to_stdout and as_json:
         raise ValueError("--qasm - and --json both write to standard output; choose one")
@@ -210,37 +206,15 @@ def _routed(
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
-    circuit = result.routed.circuit
     if qasm is not None:
-        write_qasm(circuit, qasm, version)  # type: ignore[arg-type]
-    base = result.compiled.summary()
-    summary = {
-        **base,
-        "qubits": circuit.num_qubits,
-        "gates": dict(sorted(circuit.count_ops().items())),
-        "total_gates": len(circuit),
-        "lowered": lowered,
-        "registers": {r.name: r.size for r in circuit.registers},
-        "seconds": result.seconds,
-        **result.summary(),
-        "device_note": (
-            f"device {result.routed.device.name} ({result.routed.device.num_qubits} qubits; "
-            f"{result.logical_qubits} used); layouts: logical qubit i -> physical qubit"
-        ),
-    }
-    return summary, result.compiled.phase_explain
+        write_qasm(result.routed.circuit, qasm, version)  # type: ignore[arg-type]
+    return result.compile_summary(), result.compiled.phase_explain
 
 
 def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
-    """The predicted size; unless ``force``, refuse (ValueError: one line, exit 2) a circuit predicted to exceed
-    ``max_gates`` lowered gates."""
-    size = predict_size(s, p, options)
-    if not force and not size.fits(max_gates):
-        raise ValueError(
-            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
-            "(raise it with --max-gates N, or pass --force)"
-        )
-    return size
+    """The predicted size; unless ``force``, refuse (one line, exit 2) a circuit predicted to exceed ``max_gates``
+    lowered gates."""
+    return check_size(s, p, options, max_gates, "raise it with --max-gates N, or pass --force", force)
 
 
 def _stream(
