@@ -186,9 +186,6 @@ def circuits(
         names: gate names to use.
         max_controls: most controls of an ``mcx``.
         symbolic: allow symbolic angles (over :data:`SYMBOLS`).
-
-    Returns:
-        The circuit.
     """
     n = draw(st.integers(min_qubits, max_qubits))
     n_anc = draw(st.integers(0, min(2, n - 1)))

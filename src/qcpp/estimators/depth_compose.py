@@ -369,9 +369,6 @@ class LayeredDepth:
             sections: the plan's sections, in circuit order.
             registers: the lowered circuit's registers (``work`` included).
             initial: name of the state preparation's section.
-
-        Returns:
-            The :class:`LayeredDepth`.
         """
         init: list[MatrixStep] = []
         layer: list[MatrixStep] = []

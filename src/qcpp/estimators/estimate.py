@@ -208,9 +208,6 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
     Args:
         scenario: the scenario.
         options: circuit construction options.
-
-    Returns:
-        The call graph.
     """
     return _plan(scenario, options).call_graph()
 
@@ -423,9 +420,6 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     Args:
         point: the point.
         options: what to estimate and how.
-
-    Returns:
-        The :class:`Estimate`.
 
     Raises:
         qcpp.problem.errors.ScenarioError: the grid cannot host the robots.

@@ -66,9 +66,6 @@ def points_from_options(
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
 
-    Returns:
-        The :class:`PointSet`.
-
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
             range can host the robots).
@@ -182,9 +179,6 @@ def formula_report(fmt: Format = "table") -> str:
 
     Args:
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
-
-    Returns:
-        The text.
 
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'

@@ -1,18 +1,15 @@
 """Junctions: the uncompute of one partial mixer fused with the compute of the next, as a gadget of its own.
 
-Consecutive partial mixers share qubits: every one uses the same clean ``logic`` temporaries, and neighbouring
-plaquettes share an edge and outer edges. Lowered one by one, the end of one and the start of the next can
-cancel: ``and_dg(a, b, t)`` followed by ``and(a', b, t)`` on the same temporary and second control loses
-``h h``, ``tdg t``, ``cx(b, t) cx(b, t)`` and ``t tdg`` (2 CX, 4 one-qubit gates); on a temporary alone the
-``h h`` and ``tdg t`` still go. A per-gadget lowering leaves all of that to a later optimiser. So a layer of
-parity-basis partial mixers ``m_0, ..., m_{n-1}`` is cut at its rotations instead:
+Consecutive partial mixers share qubits (the same clean ``logic`` temporaries, shared edges), so the end of
+one and the start of the next can cancel (``and_dg(a, b, t)`` then ``and(a', b, t)`` loses 2 CX and 4 one-qubit
+gates), which a per-gadget lowering would leave to a later optimiser. So a layer of parity-basis partial mixers
+``m_0, ..., m_{n-1}`` is cut at its rotations instead:
 
     Junction(-, m_0)  Rotation(m_0)  Junction(m_0, m_1)  Rotation(m_1)  ...  Rotation(m_{n-1})  Junction(m_{n-1}, -)
 
 where ``Junction(l, r)`` emits the mirrored leaves of ``l`` then the compute leaves of ``r`` (one section, so
-the peephole pass cancels across the old boundary) and ``Rotation(m)`` the controlled rotation of ``m``. Every
-piece is exact on its own terms: the gates are those of the unfused partial mixers, in the same order, so the
-unitary is the same and every ancilla is clean after each rotation's mirror as before.
+the peephole pass cancels across the old boundary) and ``Rotation(m)`` the controlled rotation of ``m``. The
+gates are those of the unfused partial mixers in the same order: same unitary, same clean ancillas.
 
 **Cost without emitting.** A junction's lowered gates are fixed by its :attr:`MixerJunction.kind`: the two
 partial mixers' kinds (their plans) and which qubits they share (:attr:`MixerJunction.overlap`: for each qubit

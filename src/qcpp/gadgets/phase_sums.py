@@ -215,18 +215,10 @@ class _LocalFirst:
     Every bit of a column of at least three bits keeps its tightest triple (itself and its two nearest bits of the
     column, by distance then curve key) and that triple's score (diameter, then farther from the sink, then curve
     key); the next adder is the least score of a column (or of any column: then the least ``(score, column)``).
-    What keeps it fast, with the same choice as rescanning every bit:
-
-    * each column's bits are filed in buckets of :data:`_CELL` lattice units, and a bit's two nearest bits are
-      searched ring by ring of buckets until no farther ring can hold a nearer bit (a column smaller than the
-      rings is scanned whole);
-    * an adder removes two bits of column ``k``: only the bits whose triple held one of them change (each bit
-      lists the bits whose triple holds it); it adds a carry to column ``k + 1``: only the bits whose second
-      nearest bit lies farther than the carry change, found through a second index that files every bit by the
-      distance to its second nearest bit (class ``j``: below ``2^j``) in buckets of ``2^j``, so only the 3 x 3
-      buckets around the carry of every class are looked at;
-    * the scores sit in one heap per column; an entry whose bit was refreshed or removed since is dropped when it
-      comes to the top.
+    It makes the same choice as rescanning every bit, in time that does not grow with the columns: bits are
+    filed in buckets of :data:`_CELL` lattice units (nearest bits searched ring by ring), an adder updates only
+    the bits whose triple it touched or whose second-nearest bit lies farther than its carry (a second index by
+    that distance), and the scores sit in one lazily pruned heap per column.
 
     Args:
         cols: Column -> qubit -> site, changed in place by :meth:`remove` and :meth:`add`.
@@ -397,13 +389,9 @@ def spatial_popcount_layout(
     neighbours along a Hilbert curve over the grid, and is a star around its carry ancilla.
 
     Each column is sorted by the Hilbert key of its bits' sites and reduced in passes: consecutive triples go
-    through :func:`star_full_adder`, whose sum stays on the middle bit and whose carry (a fresh ancilla, sited
-    with that bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in
-    the plane (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to
-    regions. Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two
-    bits, a half adder, :func:`star_half_adder`, ends a column with two), whatever the order. Each adder costs
-    one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
-    that keeps the grid's geometry never puts side by side.
+    through :func:`star_full_adder` (sum on the middle bit, carry on a fresh ancilla sited with it, joining the
+    next column), so pass ``k`` adds up compact regions of about ``3^k`` bits and only ``O(log)`` partial sums
+    travel far. Each adder costs one CX more than :func:`popcount_layout`'s: no gate joins two data bits.
 
     A full adder is symmetric in its three inputs, so any of them may keep the sum: without a ``sink`` the middle
     one (along the curve) does. With a ``sink`` (the ``medial`` layout) the adders are chosen *local first*: the

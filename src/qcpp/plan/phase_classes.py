@@ -15,12 +15,10 @@ distinct parts:
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
 
-Coefficients are vectors over one robot's edges (numpy); the endpoint and corner identities are applied by the
-very function the feasible cost uses (:func:`qcpp.problem.feasible_cost.reduce_on_paths`) on the few edges they
-touch. Every construction is the plan's own decision (:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer`
-answers only where no choice couples groups (every class picks a gadget over couplings, and the balance's
-arithmetic is its first candidate and provably beats its couplings); elsewhere it returns ``None`` and
-:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
+The endpoint and corner identities are applied by the feasible cost's own function
+(:func:`qcpp.problem.feasible_cost.reduce_on_paths`), every construction is the plan's own decision
+(:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer` answers only where no choice couples groups; elsewhere
+it returns ``None`` and :meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario

@@ -1,11 +1,9 @@
 """The phase separator laid out by place: adder trees over neighbouring edges, node gadgets with nearby ancillas.
 
-On an all-to-all machine it does not matter which bits an adder takes or which clean ancilla a node's visit
-gadget borrows. On a nearest-neighbour device it does: the ``pooled`` layout (:meth:`PhasePlan.gadgets
-<qcpp.plan.phase.PhasePlan.gadgets>` as planned) adds each robot's edges in the order of their variable
-indices, so the adders of the balance term's popcount join bits from far apart rows, and hands the visit
-gadgets the pool's ancillas round robin, so one ancilla serves nodes at both ends of the grid. A router then
-moves qubits across the device for every such gate.
+On a nearest-neighbour device it matters which bits an adder takes and which ancilla a node's visit gadget
+borrows: the ``pooled`` layout (as planned) adds each robot's edges in variable order, joining bits from far
+apart rows, and hands out the pool's ancillas round robin, so a router moves qubits across the device for every
+such gate.
 
 :func:`spatial_phase` is a pass over the planned gadgets (``phase_layout="spatial"`` in
 :class:`~qcpp.plan.options.PlanOptions`) that changes which qubits play which role and the shape of the adders:
