@@ -33,7 +33,7 @@ from qcpp.problem.limits import check_layers
 from qcpp.problem.presets import max_default_robots
 from qcpp.problem.scenario import load_scenario
 
-__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "formula_report", "points_from_options"]
+__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 
 DEFAULT_GRID = "3x3"
 
@@ -126,7 +126,7 @@ def estimate_report(
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rows = (_row(est, compare_paper, doubling, device, stage) for est in sweep(points, options))
+    rows = estimate_rows(points, options, compare_paper, doubling, device, stage)
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -134,6 +134,27 @@ def estimate_report(
     kept = list(rows)
     plot_rows(kept, plot)
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
+
+
+def estimate_rows(
+    points: Iterable[Point],
+    options: EstimateOptions = DEFAULT_OPTIONS,
+    compare_paper: bool = False,
+    doubling: Doubling = "partial-mixer",
+    device: str | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> Iterator[dict[str, Any]]:
+    """The rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, plus the routed fields with a
+    ``device``), one per point, lazily: what :func:`estimate_report` renders and ``qcpp.estimate`` returns.
+
+    Args:
+        points, options, compare_paper, doubling, device, stage: As :func:`estimate_report`.
+
+    Yields:
+        One row per point, in order.
+    """
+    for est in sweep(points, options):
+        yield _row(est, compare_paper, doubling, device, stage)
 
 
 def _row(
@@ -168,7 +189,7 @@ def formula_report(fmt: Format = "table") -> str:
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
     """
-    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+    import sympy as sp  # slow to import: only the formulas need it, not the estimates
 
     from qcpp.estimators.formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
 

@@ -1,7 +1,7 @@
 """Routed counts of ``compile --device grid`` as a sum over classes of windows, without routing the circuit.
 
-On a square-grid device with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of the
-lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`qcpp.layout.medial.allocate_ancillas` gives its
+On a square-grid device with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of
+the lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`qcpp.layout.medial.allocate_ancillas` gives its
 ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few
 whose window routes to the fewest gates), :func:`qcpp.routing.bridge.bridge_far_phases` relays its far ``rzz``
 phases through clean device qubits where that routes cheaper, and :func:`qcpp.routing.sabre.route_windows` routes

@@ -16,8 +16,9 @@ all-to-all counts are unchanged.
 
 **Choice** (:func:`cell_mixers`). On a heavy-hex lattice device with the cell layout, each partial mixer's
 section is replaced by the variant whose window routes to the fewest two-qubit gates from home, allocated and routed
-exactly as :func:`qcpp.pipeline.device_compile.medial_compile` then does it (:func:`qcpp.layout.medial.allocate_ancillas` with
-compile's search, :func:`qcpp.routing.sabre.route_window`), the default plan on ties. Then the operands of one AND
+exactly as :func:`qcpp.pipeline.device_compile.medial_compile` then does it
+(:func:`qcpp.layout.medial.allocate_ancillas` with compile's search, :func:`qcpp.routing.sabre.route_window`), the
+default plan on ties. Then the operands of one AND
 at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
 fewer, until none does: the same logic, but a lowered AND uses its first operand twice
 (:func:`qcpp.ir.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE

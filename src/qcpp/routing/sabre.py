@@ -380,8 +380,9 @@ _PATCH_CENTRES: list[set[int]] = []
 keys a translated window on the lattice around them)."""
 
 PATCH_WATCH: list[set[int]] = []
-"""Sets that collect the device qubits of every patch routed while they are listed: :mod:`qcpp.estimators.window_classes`
-lists one while it allocates, relays and routes a window on a crop of the device (allocation search and relays
+"""Sets that collect the device qubits of every patch routed while they are listed:
+:mod:`qcpp.estimators.window_classes` lists one while it allocates, relays and routes a window on a crop of the device
+(allocation search and relays
 route candidates too), and the crop answers for the device only if no patch reached a side the crop cut.
 Listed and unlisted by :func:`watching_patches`."""
 
