@@ -35,7 +35,7 @@ from pathlib import Path
 
 from qcpp.estimators.crosscheck import crosscheck
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
+from qcpp.problem.scenario_io import save_scenario
 from qcpp.testing import crosscheck_cases
 
 ROOT = Path(__file__).resolve().parents[1]

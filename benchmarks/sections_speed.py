@@ -37,7 +37,7 @@ from pathlib import Path
 from estimate_speed import _export
 
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
+from qcpp.problem.scenario_io import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = "10x10/4,16x16/8,20x20/8,30x30/8"

@@ -52,7 +52,8 @@ from qcpp.ir.gates import (
 from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASES, PlanOptions
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.sbf import RULES
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = [
     "ALL_GATE_NAMES",
