@@ -42,10 +42,11 @@ from qcpp.estimators.physical import (
     physical_estimate,
 )
 from qcpp.gadgets.phase_sums import SumsShape
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Register
 from qcpp.ir.cost import Cost
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS, SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
+from qcpp.plan.call_graph import SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.plan.qaoa import QaoaPlan, qaoa_circuit, qaoa_plan
 from qcpp.problem.presets import default_scenario

@@ -97,7 +97,7 @@ the crop that is not a device edge (one more than the routing patch's radius).""
 ROUTED_CLASSES: dict[Hashable, _Cost] = {}
 """What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
 durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
-cache of routed windows, next to :data:`qcpp.plan.call_graph.COSTS` (the kinds' costs), not in it: its key is a
+cache of routed windows, next to :data:`qcpp.gadgets.pricing.COSTS` (the kinds' costs), not in it: its key is a
 window with its neighbourhood on one device, not a gadget kind."""
 
 ROUTED_CLASSES_LIMIT = 1 << 14

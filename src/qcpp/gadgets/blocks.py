@@ -59,6 +59,10 @@ class StatePrep:
             return ("x_layer", len(self.gates))
         return ("state_prep", self.gates)
 
+    def needs(self) -> tuple[int, int]:
+        """No temporaries; the lowering of an mcx with ``k`` controls needs ``k - 2`` work ancillas."""
+        return 0, max([0, *(len(g.qubits) - 3 for g in self.gates if g.name == "mcx")])
+
     @cached_property
     def _lowered(self) -> tuple[Cost, Cost]:
         c = Circuit([("q", self.num_qubits)], [Section("initial_state", self.gates)])

@@ -52,11 +52,11 @@ from qcpp.gadgets.partial_mixer import (
     plan_parity_mixer,
     plan_slots,
 )
+from qcpp.gadgets.pricing import PricedByKind
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
-from qcpp.plan.call_graph import PricedByKind
 
 __all__ = ["MixerJunction", "MixerRotation", "mixer_pieces"]
 
@@ -83,6 +83,10 @@ class MixerRotation:
     def logical_cost(self) -> Cost:
         """The same (a rotation has no AND)."""
         return leaf_logical_cost(self.mixer.plan.rotation[0])
+
+    def needs(self) -> tuple[int, int]:
+        """Those of its partial mixer (the rotation runs while the mixer's temporaries are computed)."""
+        return self.mixer.needs()
 
     def emit(self) -> list[Gate]:
         """The rotation's gates."""
@@ -123,6 +127,11 @@ class MixerJunction(PricedByKind):
 
     def _kind_costs(self) -> tuple[Cost, Cost]:
         return _junction_costs(self.kind)  # type: ignore[arg-type]
+
+    def needs(self) -> tuple[int, int]:
+        """The larger needs of its two sides (one side at least is present)."""
+        sides = [m.needs() for m in (self.left, self.right) if m is not None]
+        return max(t for t, _ in sides), max(w for _, w in sides)
 
     def emit(self) -> list[Gate]:
         """The mirrored leaves of ``left``, then the compute leaves of ``right``."""

@@ -429,6 +429,10 @@ class _PartialMixerBase:
         """Logic temporaries used (from ``logic_offset`` on)."""
         return self.plan.num_temps
 
+    def needs(self) -> tuple[int, int]:
+        """The plan's logic temporaries and the work ancillas of its mcx leaves (:func:`mixer_work_need`)."""
+        return self.num_temps, mixer_work_need([self])  # type: ignore[list-item]
+
     @property
     def slot_qubits(self) -> tuple[int, ...]:
         """The qubit of every slot, in :func:`plan_slots` order (plaquette edges, outer edges, temporaries)."""

@@ -114,6 +114,10 @@ class IsingPhase:
         """The same (no AND in this construction)."""
         return self.cost()
 
+    def needs(self) -> tuple[int, int]:
+        """None: rotations only."""
+        return 0, 0
+
     def emit(self) -> list[Gate]:
         """The RZ gates, then the RZZ gates."""
         g = self.gamma

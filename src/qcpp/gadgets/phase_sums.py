@@ -731,6 +731,10 @@ class SumsPhase:
         """Clean ancillas needed: one per adder carry and per copy."""
         return self.shape.num_ancillas
 
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
+
     def phase(self, registers: list[list[int | None]] | None = None) -> tuple[float, IsingPhase]:
         """``(c0, the RZ/RZZ gadget)`` of ``g`` on the register bits (abstract labels when not given)."""
         sh = self.shape
@@ -831,6 +835,10 @@ class SumsRegister:
     def num_ancillas(self) -> int:
         """Tree ancillas (the register is separate)."""
         return sum(self._count[:3])
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     @property
     def width(self) -> int:
@@ -949,6 +957,10 @@ class SumsAccumulate:
     def num_ancillas(self) -> int:
         """Tree ancillas plus carries."""
         return sum(self._count[:3]) + max(len(self.accumulator) - 1, 0)
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     def _costs(self) -> tuple[int, Cost]:
         fa, ha, cp, present = self._count
