@@ -36,6 +36,7 @@ from collections import Counter, deque
 from collections.abc import Callable, Hashable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 from qcpp.gadgets.buckets import bucket, ring
 from qcpp.gadgets.phase_ising import IsingPhase, ising_form
@@ -44,7 +45,15 @@ from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, and_, cx, x
 
 __all__ = [
-    "Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "manhattan", "spatial_popcount_layout"
+    "Sink",
+    "Site",
+    "SumsKind",
+    "SumsPhase",
+    "SumsShape",
+    "column_counts",
+    "hilbert_key",
+    "manhattan",
+    "spatial_popcount_layout",
 ]
 
 
@@ -684,6 +693,19 @@ class SumsShape:
         return self._phase_cost
 
 
+class SumsKind(NamedTuple):
+    """Kind key of :class:`SumsPhase` (and of the plan's deferred balance arithmetic): the cost depends on the
+    shape only.
+
+    Attributes:
+        gadget: ``"sums"``.
+        shape: the :class:`SumsShape`.
+    """
+
+    gadget: str
+    shape: SumsShape
+
+
 @dataclass(frozen=True)
 class SumsPhase:
     """Compute integer sums into registers, phase a quadratic function of them, uncompute.
@@ -710,8 +732,8 @@ class SumsPhase:
     sinks: tuple[Sink | None, ...] = ()
 
     @property
-    def kind(self) -> Hashable:
-        return ("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
+    def kind(self) -> SumsKind:
+        return SumsKind("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
 
     @cached_property
     def shape(self) -> SumsShape:
