@@ -59,7 +59,7 @@ def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) ->
     registers = tuple(plan.circuit().registers)
     for k, m in enumerate(mixers):
         m = dataclasses.replace(m, beta=Angle.symbol("beta_0"))
-        plans = relabelled_plans(m.kind[1], m.kind[2])  # type: ignore[index]
+        plans = relabelled_plans(m.kind.program, m.kind.target)  # type: ignore[union-attr]
         assert plans[0] == m.plan and len(plans) > 1
         swapped = [v for p in plans[:4] for v in _operand_swaps(p)]
         assert swapped

@@ -19,10 +19,11 @@ from hypothesis import strategies as st
 from qcpp.devices.device import get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rx, ry
-from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape, tiling
+from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import tiling
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.routing.sabre import mirror_length, route_windows

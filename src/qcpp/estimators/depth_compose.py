@@ -36,9 +36,9 @@ from qcpp.estimators.depth import Depth
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS
 
 __all__ = [
     "ANCHORS",

@@ -31,7 +31,7 @@ from qcpp.estimators.tables import FORMATS, Format, make_row, render_stream
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_layers
 from qcpp.problem.presets import max_default_robots
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 

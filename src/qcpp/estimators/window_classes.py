@@ -79,7 +79,6 @@ from qcpp.ir.gates import Gate
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing import sabre as routing
 from qcpp.routing.bridge import bridge_far_phases
@@ -97,7 +96,7 @@ the crop that is not a device edge (one more than the routing patch's radius).""
 ROUTED_CLASSES: dict[Hashable, _Cost] = {}
 """What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
 durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
-cache of routed windows, next to :data:`qcpp.plan.call_graph.COSTS` (the kinds' costs), not in it: its key is a
+cache of routed windows, next to :data:`qcpp.gadgets.pricing.COSTS` (the kinds' costs), not in it: its key is a
 window with its neighbourhood on one device, not a gadget kind."""
 
 ROUTED_CLASSES_LIMIT = 1 << 14
@@ -467,12 +466,13 @@ def routed_sum(
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
     from qcpp.pipeline.device_compile import SEARCH, medial_device
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     dev = medial_device(scenario, device, arrangement)
     if dev is None:
         return None
-    opts = dataclasses.replace(for_device(options, device), fuse=False)
+    opts = dataclasses.replace(device_plan_options(options, device, layout_method="medial"), fuse=False)
     plan = qaoa_plan(scenario, 1 if p else 0, opts)
     n_data = scenario.num_variables
     registers = plan.registers

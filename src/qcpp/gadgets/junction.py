@@ -37,23 +37,40 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 from qcpp.gadgets.leaves import leaf_cost, leaf_logical_cost
 from qcpp.gadgets.partial_mixer import (
     McxPartialMixer,
     MixerPlan,
+    ParityMixerKind,
     ParityPartialMixer,
     emit_plan,
     plan_parity_mixer,
     plan_slots,
 )
+from qcpp.gadgets.pricing import PricedByKind
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
-from qcpp.plan.call_graph import PricedByKind
 
-__all__ = ["MixerJunction", "MixerRotation", "mixer_pieces"]
+__all__ = ["JunctionKind", "MixerJunction", "MixerRotation", "mixer_pieces"]
+
+
+class JunctionKind(NamedTuple):
+    """Kind key of a :class:`MixerJunction`: equal kinds, equal gates up to qubit names.
+
+    Attributes:
+        gadget: ``"mixer_junction"``.
+        left, right: the kinds of the partial mixers that end and start here (``None`` at an open end).
+        overlap: :attr:`MixerJunction.overlap`.
+    """
+
+    gadget: str
+    left: ParityMixerKind | None
+    right: ParityMixerKind | None
+    overlap: tuple[int, ...]
 
 
 @dataclass(frozen=True)
@@ -78,6 +95,10 @@ class MixerRotation:
     def logical_cost(self) -> Cost:
         """The same (a rotation has no AND)."""
         return leaf_logical_cost(self.mixer.plan.rotation[0])
+
+    def needs(self) -> tuple[int, int]:
+        """Those of its partial mixer (the rotation runs while the mixer's temporaries are computed)."""
+        return self.mixer.needs()
 
     def emit(self) -> list[Gate]:
         """The rotation's gates."""
@@ -107,17 +128,22 @@ class MixerJunction(PricedByKind):
         return tuple(where.get(qb, -1) for qb in self.right.slot_qubits)
 
     @cached_property
-    def kind(self) -> Hashable:
+    def kind(self) -> JunctionKind:
         """The two partial mixers' kinds and :attr:`overlap`: equal kinds, equal gates up to qubit names."""
-        return (
+        return JunctionKind(
             "mixer_junction",
-            None if self.left is None else self.left.kind,
-            None if self.right is None else self.right.kind,
+            None if self.left is None else self.left.kind,  # type: ignore[arg-type]
+            None if self.right is None else self.right.kind,  # type: ignore[arg-type]
             self.overlap,
         )
 
     def _kind_costs(self) -> tuple[Cost, Cost]:
-        return _junction_costs(self.kind)  # type: ignore[arg-type]
+        return _junction_costs(self.kind)
+
+    def needs(self) -> tuple[int, int]:
+        """The larger needs of its two sides (one side at least is present)."""
+        sides = [m.needs() for m in (self.left, self.right) if m is not None]
+        return max(t for t, _ in sides), max(w for _, w in sides)
 
     def emit(self) -> list[Gate]:
         """The mirrored leaves of ``left``, then the compute leaves of ``right``."""
@@ -126,27 +152,26 @@ class MixerJunction(PricedByKind):
         return [*tail, *head]
 
 
-def _plan(kind: Hashable) -> MixerPlan:
-    tag, program, target = kind  # type: ignore[misc]
-    assert tag == "parity", kind
-    return plan_parity_mixer(program, target)
+def _plan(kind: ParityMixerKind) -> MixerPlan:
+    assert kind.gadget == "parity", kind
+    return plan_parity_mixer(kind.program, kind.target)
 
 
-def _junction_costs(kind: tuple) -> tuple[Cost, Cost]:
+def _junction_costs(kind: JunctionKind) -> tuple[Cost, Cost]:
     """Lowered and logical cost of a junction kind, from its canonical gate list: the left plan's slots on qubits
     ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on fresh qubits
     otherwise."""
-    _, left_kind, right_kind, overlap = kind
+    left_kind, right_kind, overlap = kind.left, kind.right, kind.overlap
     gates: list[Gate] = []
     n = 0
     if left_kind is not None:
         plan = _plan(left_kind)
-        slots = plan_slots(plan, left_kind[1].num_outer)
+        slots = plan_slots(plan, left_kind.program.num_outer)
         gates += emit_plan(plan, {s: i for i, s in enumerate(slots)}, 0.0)[2]
         n = len(slots)
     if right_kind is not None:
         plan = _plan(right_kind)
-        slots = plan_slots(plan, right_kind[1].num_outer)
+        slots = plan_slots(plan, right_kind.program.num_outer)
         qubit = {}
         for s, shared in zip(slots, overlap or (-1,) * len(slots), strict=True):
             if shared < 0:

@@ -34,9 +34,10 @@ Example:
 from __future__ import annotations
 
 import heapq
-from collections.abc import Callable, Hashable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 from qcpp.gadgets.leaves import ccrx_gates, leaf_cost, leaf_logical_cost
 from qcpp.ir.angles import Param
@@ -47,8 +48,10 @@ from qcpp.problem.sbf import Lit, Rule, SbfLogic, sbf_logic
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
+    "McxMixerKind",
     "McxPartialMixer",
     "MixerPlan",
+    "ParityMixerKind",
     "ParityPartialMixer",
     "emit_plan",
     "logic_width",
@@ -393,19 +396,45 @@ def emit_plan(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> tuple[lis
     return compute, rotation, mirror
 
 
+class ParityMixerKind(NamedTuple):
+    """Kind key of a :class:`ParityPartialMixer`: equal programs and targets, equal plans and costs.
+
+    Attributes:
+        gadget: ``"parity"``.
+        program: the abstract program (:func:`abstract_program`).
+        target: what the plan was searched for (:func:`plan_parity_mixer`).
+    """
+
+    gadget: str
+    program: AbstractProgram
+    target: Target
+
+
+class McxMixerKind(NamedTuple):
+    """Kind key of a :class:`McxPartialMixer`: equal programs, equal plans and costs.
+
+    Attributes:
+        gadget: ``"mcx"``.
+        program: the abstract program (:func:`abstract_program`).
+    """
+
+    gadget: str
+    program: AbstractProgram
+
+
 @dataclass(frozen=True)
 class _PartialMixerBase:
     """Shared fields: the plan (cost) and where its slots live (emission)."""
 
     plan: MixerPlan
-    kind_key: Hashable
+    kind_key: ParityMixerKind | McxMixerKind
     plaquette_qubits: tuple[int, int, int, int]
     outer_qubits: tuple[int, ...]
     logic_offset: int
     beta: Param
 
     @property
-    def kind(self) -> Hashable:
+    def kind(self) -> ParityMixerKind | McxMixerKind:
         """The abstract program and target: equal kinds have equal plans and costs."""
         return self.kind_key
 
@@ -421,6 +450,10 @@ class _PartialMixerBase:
     def num_temps(self) -> int:
         """Logic temporaries used (from ``logic_offset`` on)."""
         return self.plan.num_temps
+
+    def needs(self) -> tuple[int, int]:
+        """The plan's logic temporaries and the work ancillas of its mcx leaves (:func:`mixer_work_need`)."""
+        return self.num_temps, mixer_work_need([self])  # type: ignore[list-item]
 
     @property
     def slot_qubits(self) -> tuple[int, ...]:
@@ -491,9 +524,10 @@ def partial_mixer(
     outer_q = tuple(scenario.variable_index(robot, e) for e in outer)
     if rule == "exact":
         plan = plan_parity_mixer(program, target)
-        return ParityPartialMixer(plan, ("parity", program, target), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+        kind = ParityMixerKind("parity", program, target)
+        return ParityPartialMixer(plan, kind, data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
     plan = plan_mcx_mixer(program)
-    return McxPartialMixer(plan, ("mcx", program), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+    return McxPartialMixer(plan, McxMixerKind("mcx", program), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
 
 
 def logic_width(scenario: Scenario, rule: Rule = "exact", target: Target = "nisq") -> int:

@@ -36,6 +36,7 @@ from collections import Counter, deque
 from collections.abc import Callable, Hashable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 from qcpp.gadgets.buckets import bucket, ring
 from qcpp.gadgets.phase_ising import IsingPhase, ising_form
@@ -44,7 +45,15 @@ from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, and_, cx, x
 
 __all__ = [
-    "Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "manhattan", "spatial_popcount_layout"
+    "Sink",
+    "Site",
+    "SumsKind",
+    "SumsPhase",
+    "SumsShape",
+    "column_counts",
+    "hilbert_key",
+    "manhattan",
+    "spatial_popcount_layout",
 ]
 
 
@@ -666,6 +675,19 @@ class SumsShape:
         return self._phase_cost
 
 
+class SumsKind(NamedTuple):
+    """Kind key of :class:`SumsPhase` (and of the plan's deferred balance arithmetic): the cost depends on the
+    shape only.
+
+    Attributes:
+        gadget: ``"sums"``.
+        shape: the :class:`SumsShape`.
+    """
+
+    gadget: str
+    shape: SumsShape
+
+
 @dataclass(frozen=True)
 class SumsPhase:
     """Compute integer sums into registers, phase a quadratic function of them, uncompute.
@@ -692,8 +714,8 @@ class SumsPhase:
     sinks: tuple[Sink | None, ...] = ()
 
     @property
-    def kind(self) -> Hashable:
-        return ("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
+    def kind(self) -> SumsKind:
+        return SumsKind("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
 
     @cached_property
     def shape(self) -> SumsShape:
@@ -712,6 +734,10 @@ class SumsPhase:
     def num_ancillas(self) -> int:
         """Clean ancillas needed: one per adder carry and per copy."""
         return self.shape.num_ancillas
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     def phase(self, registers: list[list[int | None]] | None = None) -> tuple[float, IsingPhase]:
         """``(c0, the RZ/RZZ gadget)`` of ``g`` on the register bits (abstract labels when not given)."""
@@ -813,6 +839,10 @@ class SumsRegister:
     def num_ancillas(self) -> int:
         """Tree ancillas (the register is separate)."""
         return sum(self._count[:3])
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     @property
     def width(self) -> int:
@@ -931,6 +961,10 @@ class SumsAccumulate:
     def num_ancillas(self) -> int:
         """Tree ancillas plus carries."""
         return sum(self._count[:3]) + max(len(self.accumulator) - 1, 0)
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     def _costs(self) -> tuple[int, Cost]:
         fa, ha, cp, present = self._count

@@ -217,7 +217,7 @@ def cell_mixers(
         if stage is not None:
             stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
         seen += 1
-        program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
+        program, target = gadget.kind.program, gadget.kind.target  # type: ignore[union-attr]
         plans = relabelled_plans(program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included
             continue

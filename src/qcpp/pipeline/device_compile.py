@@ -58,19 +58,17 @@ from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import (
     CELL_LARGE_WINDOW_SEEDS,
     CELL_LARGE_WINDOW_TRIALS,
-    CELL_PHASE_LAYOUT,
     heavy_hex_distance,
     hex_distance,
     hex_placement,
-    is_hex_lattice,
 )
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from qcpp.layout.placement import distances, localize_ancillas, place
 from qcpp.layout.placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
 from qcpp.pipeline.cellmixer import cell_mixers
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.sabre import (
@@ -88,7 +86,6 @@ __all__ = [
     "DeviceCompileResult",
     "compile_for_device",
     "device_for",
-    "device_plan_options",
     "greedy_route",
     "hex_device",
     "layout_device",
@@ -219,28 +216,6 @@ def best_layout(
         candidates.append(qiskit_sabre_layout(circuit, device, seed))
     scored = [(route(forward, device, lay, seed=seed).swaps, i) for i, lay in enumerate(candidates)]
     return candidates[min(scored)[1]]
-
-
-def device_plan_options(options: PlanOptions, device: str | Device, layout_method: str = "medial") -> PlanOptions:
-    """The plan options :func:`compile_for_device` compiles with: ``phase_layout`` ``auto`` settled for the device
-    (:func:`qcpp.plan.phase_layout.for_device`: spatial on a sparse coupling map), and on a heavy-hex lattice
-    with a geometric layout the cells' balance sinks (:data:`qcpp.layout.heavy_hex.CELL_PHASE_LAYOUT`).
-
-    Args:
-        options: The requested plan options.
-        device: The device (a spec or a :class:`Device`).
-        layout_method: :data:`LAYOUT_METHODS`; ``greedy`` keeps :func:`for_device`'s choice.
-
-    Returns:
-        The settled options.
-
-    Example:
-        >>> device_plan_options(DEFAULT_PLAN, "heavy-hex:5").phase_layout
-        'medial'
-    """
-    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
-        return replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
-    return for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
 
 
 def compile_for_device(

@@ -20,7 +20,7 @@ import typer
 
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.cli.progress import Progress
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "verify_command"]
 
