@@ -43,7 +43,7 @@ from qcpp.pipeline.device_compile import compile_for_device, medial_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
-from qcpp.routing.sabre import coupling_map
+from qcpp.routing.routed_circuit import coupling_map
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OBSTACLE = {
@@ -131,7 +131,7 @@ def arrangements() -> None:
 def cells(quick: bool, prefix: str = "") -> None:
     """The heavy-hex cell layout (``layout_method="medial"`` on the unsized ``heavy-hex``) on every scenario: routed
     CX per part against the part's unrouted CX, next to the greedy routing on the smallest lattice that holds the
-    circuit (what ``auto`` compares on circuits of at most ``AUTO_COMPARE_MAX_TWOQ`` two-qubit gates)."""
+    circuit (what ``auto`` compares on circuits of at most ``auto_compare_max_twoq`` two-qubit gates)."""
     print("| scenario | cells: device | cells cx | phase: routed / a2a | mixer: routed / a2a | greedy: device "
           "| greedy cx |")  # fmt: skip
     print("|---|---|---:|---:|---:|---|---:|")

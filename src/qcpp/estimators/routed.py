@@ -16,7 +16,7 @@
   1. ``compile``: the lowered circuit has at most :data:`EXACT_MAX_GATES` gates. It is compiled and routed
      exactly as ``qcpp compile --device`` does; every figure is exact.
   2. ``window sum``: a square-grid device that holds the medial layout (the layout compile takes on grids
-     above :data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ` two-qubit gates) with at most
+     above :attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq` two-qubit gates) with at most
      :data:`qcpp.estimators.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, and windows needing the whole device
      within :data:`WINDOW_SUM_WORK` (with several robots every visit gadget does: then the sum is no faster than
      compile, and only small devices get it). The routed circuit's windows are summed
@@ -250,7 +250,7 @@ def _routed_fields(
     total_gates: int | None, stage: Callable[[str], None] | None,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.sabre import duration_s, esp
+    from qcpp.routing.native import duration_s, esp
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -293,7 +293,8 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str, stage: Calla
     """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
     :data:`~qcpp.estimators.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
     from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
-    from qcpp.pipeline.device_compile import AUTO_COMPARE_MAX_TWOQ, medial_device
+    from qcpp.pipeline.device_compile import medial_device
+    from qcpp.routing.options import DEFAULT_ROUTING
 
     dev = medial_device(scenario, device)
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
@@ -301,7 +302,7 @@ def _window_sum(scenario: Scenario, p: int, plan: Any, device: str, stage: Calla
     summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
-    if summed.compiled_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+    if summed.compiled_ops.get("cx", 0) <= DEFAULT_ROUTING.auto_compare_max_twoq:
         return None  # compile would also try the greedy layout on so few two-qubit gates
     return summed
 
