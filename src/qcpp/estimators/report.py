@@ -32,6 +32,7 @@ from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_layers
 from qcpp.problem.presets import max_default_robots
 from qcpp.problem.scenario import load_scenario
+from qcpp.routing.context import RoutingContext
 
 __all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "formula_report", "points_from_options"]
 
@@ -126,7 +127,8 @@ def estimate_report(
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rows = (_row(est, compare_paper, doubling, device, stage) for est in sweep(points, options))
+    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
+    rows = (_row(est, compare_paper, doubling, device, stage, context) for est in sweep(points, options))
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -138,7 +140,7 @@ def estimate_report(
 
 def _row(
     est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
-    stage: Callable[[str], None] | None = None,
+    stage: Callable[[str], None] | None = None, context: RoutingContext | None = None,
 ) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)
     if device is None:
@@ -148,7 +150,7 @@ def _row(
     c = est.cost
     extra = routed_fields(
         est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-        one_qubit=c.single_qubit, total_gates=c.total, stage=stage,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage, context=context,
     )  # fmt: skip
     return {**row, **extra}
 
