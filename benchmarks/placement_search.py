@@ -7,8 +7,8 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
 ``compile --device heavy-hex`` routes it), columns:
 
 * ``a2a cx``: the lowered, fused circuit's CX (what ``qcpp compile --lowered`` writes; the ratio goal's base);
-* ``one routing``: :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing, every SWAP three CX (the greedy
-  path before the search);
+* ``one routing``: :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing, every SWAP three
+  CX (the greedy path before the search);
 * ``fused``: the same routing with SWAPs fused into an adjacent ``cx`` on their pair (``route(fuse=True)``);
 * ``search L``: :func:`qcpp.layout.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
   starts (``placement_seeds`` routing seeds for the ``placement_refine`` best,

@@ -1,15 +1,117 @@
-"""qcpp: circuit compiler and resource estimator for QAOA multi-robot coverage path planning.
+"""qcpp: a gate-level circuit compiler and resource estimator for QAOA multi-robot coverage path planning.
 
-The importable libraries are ``qcpp.problem`` (problem model and classical solvers), ``qcpp`` (QAOA
-circuits), ``simulate`` and ``estimators``; this package is the command line on top of them
-(:mod:`qcpp.cli.app`, commands in :mod:`qcpp.cli.commands`). Run ``qcpp --help`` or ``python -m qcpp --help``.
+The public Python API is the names of this module (:data:`__all__`); the command line ``qcpp`` (``python -m qcpp``)
+is built on the same code, so both give the same numbers and the same one-line errors.
+
+Example:
+    >>> import qcpp
+    >>> s = qcpp.grid_scenario(3, 3, robots=1, obstacles=[(1, 1)])
+    >>> est = qcpp.estimate(s, p=1)
+    >>> est.qubits, est.cx
+    (15, 106)
+    >>> c = qcpp.compile(s, p=1, lowered=True)
+    >>> c.counts()["cx"] == est.cx
+    True
+    >>> qcpp.estimate(s, p=0)
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: p: must be at least 1, got 0
+
+The names load on first use (:pep:`562`): ``import qcpp`` and the command line's start-up stay light.
 """
 
 from __future__ import annotations
 
+import importlib
 from importlib.metadata import PackageNotFoundError, version
+from typing import TYPE_CHECKING, Any
 
 try:
     __version__ = version("qcpp")
 except PackageNotFoundError:  # pragma: no cover - running from a source tree that is not installed
     __version__ = "0+unknown"
+
+if TYPE_CHECKING:
+    from qcpp.api.compiling import Compiled, compile
+    from qcpp.api.devices import Device, DeviceError, device, devices
+    from qcpp.api.estimates import Estimate, estimate
+    from qcpp.api.scenarios import (
+        Scenario,
+        ScenarioError,
+        default_scenario,
+        grid_scenario,
+        load_scenario,
+        save_scenario,
+    )
+    from qcpp.api.solving import simulate_qaoa, solve, train_qaoa
+    from qcpp.errors import OptionError, QcppError
+    from qcpp.ir.angles import UnboundParameterError
+    from qcpp.problem.limits import SizeError, allow_large
+
+_EXPORTS: dict[str, str] = {
+    "Compiled": "qcpp.api.compiling",
+    "compile": "qcpp.api.compiling",
+    "Device": "qcpp.api.devices",
+    "DeviceError": "qcpp.api.devices",
+    "device": "qcpp.api.devices",
+    "devices": "qcpp.devices",  # the package is callable: qcpp.devices() lists the shipped devices
+    "Estimate": "qcpp.api.estimates",
+    "estimate": "qcpp.api.estimates",
+    "Scenario": "qcpp.api.scenarios",
+    "ScenarioError": "qcpp.api.scenarios",
+    "default_scenario": "qcpp.api.scenarios",
+    "grid_scenario": "qcpp.api.scenarios",
+    "load_scenario": "qcpp.api.scenarios",
+    "save_scenario": "qcpp.api.scenarios",
+    "simulate_qaoa": "qcpp.api.solving",
+    "solve": "qcpp.api.solving",
+    "train_qaoa": "qcpp.api.solving",
+    "OptionError": "qcpp.errors",
+    "QcppError": "qcpp.errors",
+    "UnboundParameterError": "qcpp.ir.angles",
+    "SizeError": "qcpp.problem.limits",
+    "allow_large": "qcpp.problem.limits",
+}
+"""Public name -> the module that defines it."""
+
+__all__ = [
+    "Compiled",
+    "Device",
+    "DeviceError",
+    "Estimate",
+    "OptionError",
+    "QcppError",
+    "Scenario",
+    "ScenarioError",
+    "SizeError",
+    "UnboundParameterError",
+    "__version__",
+    "allow_large",
+    "compile",
+    "default_scenario",
+    "device",
+    "devices",
+    "estimate",
+    "grid_scenario",
+    "load_scenario",
+    "save_scenario",
+    "simulate_qaoa",
+    "solve",
+    "train_qaoa",
+]
+"""The public API (the command line is ``qcpp``, :mod:`qcpp.cli.app`)."""
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'qcpp' has no attribute {name!r}")
+    loaded = importlib.import_module(module)
+    value = loaded if name == "devices" else getattr(loaded, name)
+    if name != "devices":  # importing the package sets qcpp.devices itself
+        globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

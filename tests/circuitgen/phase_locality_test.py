@@ -22,7 +22,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.crosscheck import Case, crosscheck, interior_endpoints
 from qcpp.gadgets.phase_sums import (
     SumsPhase,
     column_counts,
@@ -41,7 +41,6 @@ from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import Case, interior_endpoints
 
 from ..qcpp.clirun import run
 from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets

@@ -16,6 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 from qcpp.estimators.counts import count_gates
+from qcpp.estimators.crosscheck import interior_endpoints
 from qcpp.estimators.window_classes import routed_sum
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
@@ -23,7 +24,6 @@ from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.native import duration_s, esp
-from qcpp.testing import interior_endpoints
 
 from .conftest import scenarios
 

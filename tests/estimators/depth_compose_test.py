@@ -7,6 +7,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from qcpp.estimators.crosscheck import crosscheck_cases, with_obstacles
 from qcpp.estimators.depth import Depth, depths
 from qcpp.estimators.depth_compose import (
     LayeredDepth,
@@ -33,7 +34,6 @@ from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import crosscheck_cases, with_obstacles
 
 OPTIONS = [
     PlanOptions(),

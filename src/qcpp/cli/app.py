@@ -50,6 +50,7 @@ from typer.core import TyperCommand, TyperGroup
 
 from qcpp import __version__
 from qcpp.cli.interrupt import report_interrupted, stop_requested
+from qcpp.errors import OptionError, check_count, choice_reason
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import OVERRIDE_FLAG, allow_large, check_layers
 
@@ -153,15 +154,17 @@ def _check_options(kwargs: dict[str, Any]) -> None:
             continue
         param = next((q for q in ctx.command.params if q.name == name), None) if ctx else None
         flag = _param_name(param) if param is not None else name
-        if value < low:
-            raise _click_exc.BadParameter(f"must be at least {low}, got {value}", ctx=ctx, param=param)
+        try:
+            check_count(value, flag, low)  # the Python API's check too: the same reason after the name
+        except OptionError as exc:
+            raise _click_exc.BadParameter(exc.reason, ctx=ctx, param=param) from None
         if name == "p":
             check_layers(value, flag)
     for param in ctx.command.params if ctx else ():  # choice options: one check, one message, every command
         value, key = kwargs.get(param.name or ""), f"{ctx.command.name}.{param.name}"  # type: ignore[union-attr]
         values = None if value in (None, param.default) or key in LIBRARY_CHECKED else choices_of(*key.split("."))
         if values is not None and str(value) not in values:
-            raise _click_exc.BadParameter(f"expected {' or '.join(values)}, got {value!r}", ctx=ctx, param=param)
+            raise _click_exc.BadParameter(choice_reason(value, values), ctx=ctx, param=param)
 
 
 @contextlib.contextmanager
@@ -467,7 +470,7 @@ def _finish_stdout(code: Any) -> Any:
         typer.echo(f"error: cannot write standard output: {reason}", err=True)
         return EXIT_USAGE
     if not code and _reader_gone():
-        return 1  # ``| head -1`` took its line and left: the rest was written into the pipe but never read
+        return 1  # the reader (``| head -1``) left: the rest was written into the pipe but never read
     return code
 
 

@@ -40,6 +40,8 @@ from functools import cache
 from importlib import resources
 from typing import Any
 
+from qcpp.errors import QcppError
+
 __all__ = [
     "FAMILIES", "Device", "DeviceError", "device_names", "get_device", "heavy_hex_coordinates", "named_device",
 ]
@@ -50,7 +52,7 @@ FAMILIES = ("grid", "heavy-hex", "all-to-all")
 _DATA_PACKAGE = "qcpp.devices.data"
 
 
-class DeviceError(ValueError):
+class DeviceError(QcppError):
     """A device name or size that does not exist or cannot hold the circuit (one line, for the CLI)."""
 
 

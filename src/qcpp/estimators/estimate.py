@@ -20,15 +20,17 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Literal
 
+from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.estimators.depth import Depth, depths
 from qcpp.estimators.depth_compose import LayeredDepth, gadget_depth, known_depth
 from qcpp.estimators.fault_tolerant import (
     DEFAULT_EPSILON,
+    TOFFOLI_T_CHOICES,
     FaultTolerantEstimate,
     SynthesisModel,
     fault_tolerant_from_cost,
@@ -37,6 +39,8 @@ from qcpp.estimators.physical import (
     DEFAULT_ERROR_BUDGET,
     DEFAULT_QEC_SCHEME,
     DEFAULT_QUBIT_MODEL,
+    QEC_SCHEMES,
+    QUBIT_MODELS,
     LogicalCounts,
     PhysicalEstimate,
     physical_estimate,
@@ -59,6 +63,7 @@ __all__ = [
     "Estimate",
     "EstimateOptions",
     "Point",
+    "checked_estimate_options",
     "estimate_depth",
     "estimate_point",
     "layer_costs",
@@ -98,13 +103,66 @@ class EstimateOptions:
 DEFAULT_OPTIONS = EstimateOptions()
 
 
+def checked_estimate_options(
+    plan: PlanOptions = DEFAULT_PLAN,
+    *,
+    epsilon: float = DEFAULT_EPSILON,
+    toffoli_t: int = 7,
+    depth: str = "auto",
+    depth_budget: int = DEFAULT_DEPTH_BUDGET,
+    physical: bool = False,
+    qubit_model: str = DEFAULT_QUBIT_MODEL,
+    qec_scheme: str = DEFAULT_QEC_SCHEME,
+    error_budget: float = DEFAULT_ERROR_BUDGET,
+    flag: Callable[[str], str] = lambda name: name,
+) -> EstimateOptions:
+    """:class:`EstimateOptions` from user input, every value checked: what ``qcpp estimate`` and
+    ``qcpp.estimate`` both call, so that a bad value gets one message in both.
+
+    Args:
+        plan: The circuit construction options.
+        epsilon, toffoli_t, depth, depth_budget, physical, qubit_model, qec_scheme, error_budget: As
+            :class:`EstimateOptions`.
+        flag: How an option is named in a message (the command line: ``--epsilon``; Python: ``epsilon``).
+
+    Returns:
+        The options.
+
+    Raises:
+        qcpp.errors.OptionError: naming the option (``epsilon: must be in (0, 1), got 2.0``).
+
+    Example:
+        >>> checked_estimate_options(epsilon=1e-4).epsilon
+        0.0001
+        >>> checked_estimate_options(depth_budget=-1, flag=lambda n: "--" + n.replace("_", "-"))
+        Traceback (most recent call last):
+        ...
+        qcpp.errors.OptionError: --depth-budget: must be at least 0, got -1
+    """
+    for name, value in (("epsilon", epsilon), ("error_budget", error_budget)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 < value < 1.0:
+            raise OptionError(flag(name), f"must be in (0, 1), got {value!r}")
+    check_count(depth_budget, flag("depth_budget"), 0)
+    for name, value, allowed in (
+        ("depth", depth, DEPTH_MODES), ("toffoli_t", toffoli_t, TOFFOLI_T_CHOICES),
+        ("qubit_model", qubit_model, QUBIT_MODELS), ("qec_scheme", qec_scheme, QEC_SCHEMES),
+    ):  # fmt: skip
+        check_choice(value, allowed, flag(name))
+    if not isinstance(physical, bool):
+        raise OptionError(flag("physical"), f"expected True or False, got {physical!r}")
+    return EstimateOptions(
+        plan=plan, epsilon=float(epsilon), toffoli_t=toffoli_t, depth=depth,  # type: ignore[arg-type]
+        depth_budget=depth_budget, physical=physical, qubit_model=qubit_model, qec_scheme=qec_scheme,
+        error_budget=float(error_budget),
+    )  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Point:
     """One circuit: the default scenario of a grid and robot count (or a given scenario) with ``p`` layers.
 
     Attributes:
         rows, cols, robots: the grid and robot count.
-        p: QAOA layers.
         scenario_json: canonical JSON text of a given scenario, or ``None`` for
             :func:`qcpp.problem.presets.default_scenario`.
     """

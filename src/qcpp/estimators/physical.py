@@ -11,7 +11,7 @@ al. 2022, "Assessing requirements to scale to practical quantum advantage", arXi
 * ``ccixCount``: logical ANDs computed into clean ancillas (``and``: Gidney's temporary AND is a CCiX);
 * ``measurementCount``: AND uncomputes by measurement (``and_dg``) plus the final read-out of every data qubit.
 
-The estimator (``qdk.estimator.LogicalCounts(...).estimate(params)``, local, about 2 ms per call) returns
+The estimator (``qdk.estimator.LogicalCounts(...).estimate(params)``, local) returns
 physical qubits, runtime, code distance and the T-factory layout. The qubit model is one of the estimator's
 documented presets (:data:`QUBIT_MODELS`; default ``qubit_gate_ns_e3``: gate-based, 50 ns gates, 1e-3 error
 rates), the QEC scheme ``surface_code`` (``floquet_code`` only for the Majorana models) and the total error
@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import re
 from dataclasses import asdict, dataclass
+
+from qcpp.errors import QcppError
 
 __all__ = [
     "DEFAULT_ERROR_BUDGET",
@@ -59,7 +61,7 @@ DEFAULT_QEC_SCHEME = "surface_code"
 DEFAULT_ERROR_BUDGET = 1e-3
 
 
-class PhysicalEstimateError(ValueError):
+class PhysicalEstimateError(QcppError):
     """The estimator refused the input (e.g. the code distance it needs exceeds its maximum)."""
 
 

@@ -34,7 +34,7 @@ from qcpp.problem.presets import max_default_robots
 from qcpp.problem.scenario import load_scenario
 from qcpp.routing.context import RoutingContext
 
-__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "formula_report", "points_from_options"]
+__all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 
 DEFAULT_GRID = "3x3"
 
@@ -127,8 +127,7 @@ def estimate_report(
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
-    rows = (_row(est, compare_paper, doubling, device, stage, context) for est in sweep(points, options))
+    rows = estimate_rows(points, options, compare_paper, doubling, device, stage)
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -136,6 +135,28 @@ def estimate_report(
     kept = list(rows)
     plot_rows(kept, plot)
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
+
+
+def estimate_rows(
+    points: Iterable[Point],
+    options: EstimateOptions = DEFAULT_OPTIONS,
+    compare_paper: bool = False,
+    doubling: Doubling = "partial-mixer",
+    device: str | None = None,
+    stage: Callable[[str], None] | None = None,
+) -> Iterator[dict[str, Any]]:
+    """The rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, plus the routed fields with a
+    ``device``), one per point, lazily: what :func:`estimate_report` renders and ``qcpp.estimate`` returns.
+
+    Args:
+        points, options, compare_paper, doubling, device, stage: As :func:`estimate_report`.
+
+    Yields:
+        One row per point, in order.
+    """
+    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
+    for est in sweep(points, options):
+        yield _row(est, compare_paper, doubling, device, stage, context)
 
 
 def _row(
@@ -170,7 +191,7 @@ def formula_report(fmt: Format = "table") -> str:
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
     """
-    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+    import sympy as sp  # slow to import: only the formulas need it, not the estimates
 
     from qcpp.estimators.formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
 

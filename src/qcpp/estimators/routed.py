@@ -4,8 +4,8 @@
 
 * ``device`` (its name; a family without a size is the member ``qcpp compile --device`` picks: for ``grid`` the
   smallest square grid that holds the medial layout, :func:`qcpp.pipeline.device_compile.medial_device`, for
-  ``heavy-hex`` the smallest lattice that holds the cell layout, :func:`qcpp.pipeline.device_compile.hex_device` (or, where
-  compile finds the greedy routing cheaper on a small circuit, the smallest with the row's qubits), otherwise
+  ``heavy-hex`` the smallest lattice that holds the cell layout, :func:`qcpp.pipeline.device_compile.hex_device` (or,
+  where compile finds the greedy routing cheaper on a small circuit, the smallest with the row's qubits), otherwise
   the smallest member with the row's qubits), ``fits``
   (the device's largest connected component has the row's qubits);
 * ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``;

@@ -6,7 +6,7 @@ the :class:`Gadget` protocol:
 * ``emit()`` - the gadget's gates in the high-level IR (:mod:`qcpp.ir.gates`), in time order;
 * ``cost()`` - the :class:`~qcpp.ir.cost.Cost` of those gates after :func:`qcpp.lowering.passes.lower`,
   computed from the gadget's parameters alone (a closed form or a sum over the gadgets it calls), never by
-  emitting. ``tests/qcpp/gadgets_test.py`` asserts, for every kind the compiler emits, that
+  emitting. Invariant (tested for every kind the compiler emits):
   ``cost() == Cost.count(lower(<circuit of emit()>))``;
 * ``logical_cost()`` - the same for ``lower(..., basis=LOGICAL_BASIS)``: ``and``/``and_dg``/``ccx`` kept whole,
   which is what the fault-tolerant view prices (an AND costs 4 T, its uncompute a measurement and no T);

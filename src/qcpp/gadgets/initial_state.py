@@ -19,8 +19,8 @@ circuit is a binary decision tree over the qubits (the sparse form of Grover-Rud
 With ``K = 1`` this is just the X gates of the single path.
 
 ``local_search``: a classical warm start. Every robot on its path of the local minimum that steepest descent
-over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`; a few
-milliseconds on 5x5): one basis state, prepared like ``initial_path`` by X gates.
+over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`): one
+basis state, prepared like ``initial_path`` by X gates.
 
 ``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (the descent of ``local_search``;
 one path where the descent leaves the robot on its initial path), the product over robots. It keeps the initial
@@ -161,8 +161,6 @@ def start_paths(scenario: Scenario, robot: int, initial: str, rule: Rule = "exac
     starts from.
 
     Args:
-        scenario: The scenario.
-        robot: Robot index.
         initial: One of :data:`qcpp.plan.options.INITIAL_STATES` (see the module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
             descent (``local_search``, ``local_search_mix``).
@@ -195,7 +193,6 @@ def initial_state_gates(
     """The initial-state preparation on the data qubits (variable ``i`` on qubit ``i``).
 
     Args:
-        scenario: The scenario.
         initial: ``initial_path``, ``representatives``, ``local_search`` or ``local_search_mix`` (see the
             module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the

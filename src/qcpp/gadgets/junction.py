@@ -17,10 +17,8 @@ unitary is the same and every ancilla is clean after each rotation's mirror as b
 **Cost without emitting.** A junction's lowered gates are fixed by its :attr:`MixerJunction.kind`: the two
 partial mixers' kinds (their plans) and which qubits they share (:attr:`MixerJunction.overlap`: for each qubit
 slot of the right one, the slot of the left one on the same qubit). The cost of a kind is computed once, by
-lowering the kind's own canonical gate list (a few dozen gates on at most 22 qubits) and cached, and reused for
-every junction of that kind (a grid has a handful); ``tests/qcpp/junction_test.py`` checks it against
-the lowered count of every junction the compiler emits on a sweep of scenarios. The call graph lists the
-junctions and rotations themselves (:mod:`qcpp.plan.mixer_classes` counts them by class).
+lowering the kind's own canonical gate list, cached and reused for every junction of that kind (a grid has a
+handful). The call graph lists the junctions and rotations themselves.
 
 The ``paper`` rule's controlled-X network (:class:`~qcpp.gadgets.partial_mixer.McxPartialMixer`) is not
 fused: it is lowered leaf by leaf on purpose (see its ``emit_blocks``).

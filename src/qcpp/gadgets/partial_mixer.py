@@ -485,9 +485,6 @@ def partial_mixer(
     """The partial-mixer gadget of ``robot`` on ``plaquette`` (``None`` when the flip is never allowed).
 
     Args:
-        scenario: The scenario.
-        robot: Robot index.
-        plaquette: The plaquette.
         beta: The mixing angle (e.g. ``Angle.symbol("beta_0")``).
         logic_offset: Qubit index of the first ``logic`` ancilla.
         rule: ``exact`` (parity basis) or ``paper`` (controlled-X network).

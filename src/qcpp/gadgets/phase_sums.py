@@ -405,21 +405,15 @@ def spatial_popcount_layout(
     one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
     that keeps the grid's geometry never puts side by side.
 
-    A full adder is symmetric in its three inputs, so any of them may keep the sum. Without a ``sink`` the middle
-    one (along the curve) does. With a ``sink`` (the ``medial`` layout) the adders are chosen *local first*
-    instead of in passes: the next full adder is always the tightest triple (a bit and its two nearest bits of the
-    same column, of least diameter: the largest distance between two of the three; on ties the one whose bit lies
-    farther from the sink) of any column that holds three bits, the input nearest the sink keeps the
-    sum and the carry joins the next column where it was made; when no column holds three bits, the columns are
-    finished in order (a half adder's carry may give the next column a third bit), a half adder keeping its sum
-    on the bit nearer the sink. Small neighbourhoods are added up first, in every column at once (so a carry
-    meets the next column's bits of its own neighbourhood), then ever larger ones, and the partial sums, and
-    the register bits they end in, drift towards the sink: :func:`qcpp.plan.phase_layout.balance_sinks` puts
-    it where a robot's patch meets the patches of the robots its register is phased with, so the register phase
-    (every register bit with every other) joins bits that sit close together. Every full adder still removes two
-    bits of its column and every column still ends with one bit (after a half adder where two are left), so the
-    counts per column are :func:`column_counts`' whatever the order. On the medial layout local first routes the
-    balance window to fewer CX than the passes did (README, "Ours vs Qiskit O3/SABRE").
+    A full adder is symmetric in its three inputs, so any of them may keep the sum: without a ``sink`` the middle
+    one (along the curve) does. With a ``sink`` (the ``medial`` layout) the adders are chosen *local first*: the
+    next full adder is always the tightest triple of any column that holds three bits (a bit and its two nearest
+    bits of the same column, of least diameter; on ties the one farther from the sink), the input nearest the sink
+    keeps the sum and the carry joins the next column where it was made; then the columns are finished in order,
+    a half adder keeping its sum on the bit nearer the sink. Small neighbourhoods are added up first, so the
+    partial sums and the register bits drift towards the sink, which
+    :func:`qcpp.plan.phase_layout.balance_sinks` puts where the robots whose registers are phased together meet.
+    The counts per column stay :func:`column_counts`' whatever the order.
 
     Args:
         form: ``(qubit, integer weight)`` pairs.

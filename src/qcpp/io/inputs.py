@@ -2,8 +2,8 @@
 
 A regular file is read as usual. Anything else that can be opened for reading -- a FIFO (``mkfifo s.toml``), a
 pipe (``/dev/stdin`` of ``cmd | qcpp ...``), a character device (``/dev/zero``, a terminal) -- is read without
-blocking: every wait for more data is limited to :data:`INPUT_WAIT` seconds (a FIFO nobody writes to used to
-block the command for ever), and reading stops at ``max_bytes + 1`` bytes (``/dev/zero`` used to fill the
+blocking: every wait for more data is limited to :data:`INPUT_WAIT` seconds (so a FIFO nobody writes to cannot
+block the command for ever), and reading stops at ``max_bytes + 1`` bytes (so ``/dev/zero`` cannot fill the
 memory). Sockets and directories fail as the system says.
 
 Example:

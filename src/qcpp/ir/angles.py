@@ -25,6 +25,8 @@ from collections.abc import Iterable, Mapping
 from numbers import Real
 from typing import Literal, TypeAlias
 
+from qcpp.errors import QcppError
+
 __all__ = [
     "Angle",
     "Param",
@@ -36,7 +38,7 @@ __all__ = [
 ]
 
 
-class UnboundParameterError(ValueError):
+class UnboundParameterError(QcppError):
     """A numeric value was needed but some symbols have no value.
 
     Attributes:
@@ -91,7 +93,6 @@ def mixer_symbol(layer: int, robot: int, plaquette: int) -> str:
 
     Args:
         layer: QAOA layer ``k``.
-        robot: Robot index.
         plaquette: Plaquette index (row-major, :attr:`qcpp.problem.grid.Plaquette.index`).
 
     Returns:

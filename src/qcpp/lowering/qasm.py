@@ -34,15 +34,11 @@ gates and emitted only if used:
 Every IR gate name must have an entry in :data:`QASM_FORMS` (a test checks that it covers
 :data:`qcpp.ir.gates.GATE_SPECS`); a gate name without one raises ``ValueError``.
 
-Naming: every custom name starts with ``qcpp_``, so none collides with Qiskit's importers.
-This matters: ``qiskit.qasm2.loads`` by default knows only the original ``qelib1.inc`` (no
-``rzz``, ``cry``, ``c3x``, ...), while with ``custom_instructions=LEGACY_CUSTOM_INSTRUCTIONS``
-it *replaces* a file's own ``gate rzz``/``c3x``/... definition by Qiskit's class of that name
-(checked with Qiskit 2.6); ``qiskit.qasm3.loads`` knows ``stdgates.inc`` only (no ``rzz``,
-no ``cu1``). To compare counts, map Qiskit's ``count_ops()`` names back with
-:func:`ir_gate_name` (``qcpp_rzz`` -> ``rzz``, ``qcpp_mcx3_101`` -> ``mcx``, and Qiskit's own
-names of a loaded modifier statement: ``mcx``, ``mcx_o5``, ``ccx_o1``, ``cx_o0`` -> ``mcx``);
-lowered circuits use standard names only, so their counts match directly.
+Naming: every custom name starts with ``qcpp_``, so none collides with Qiskit's importers
+(``qiskit.qasm2.loads`` with ``LEGACY_CUSTOM_INSTRUCTIONS`` *replaces* a file's own ``gate
+rzz``/``c3x`` definition by its own class of that name). To compare counts, map Qiskit's
+``count_ops()`` names back with :func:`ir_gate_name` (``qcpp_rzz`` -> ``rzz``, ``mcx_o5`` ->
+``mcx``, ...); lowered circuits use standard names only, so their counts match directly.
 
 Parameters: numbers are written with ``repr`` precision (round-trip exact). OpenQASM 2 needs
 every symbol bound (:class:`UnboundParameterError` otherwise). OpenQASM 3 declares each

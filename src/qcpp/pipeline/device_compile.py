@@ -112,6 +112,26 @@ class DeviceCompileResult:
         """Qubits of the logical circuit that was routed."""
         return self.logical.num_qubits
 
+    def compile_summary(self) -> dict[str, Any]:
+        """What ``qcpp compile --device --json`` prints: the routed circuit's
+        :func:`~qcpp.plan.compile.compile_summary` fields (qubits, gates, registers of the device) with
+        :meth:`summary`'s and a ``device_note``."""
+        circuit, device = self.routed.circuit, self.routed.device
+        return {
+            **self.compiled.summary(),
+            "qubits": circuit.num_qubits,
+            "gates": dict(sorted(circuit.count_ops().items())),
+            "total_gates": len(circuit),
+            "lowered": self.lowered,
+            "registers": {r.name: r.size for r in circuit.registers},
+            "seconds": self.seconds,
+            **self.summary(),
+            "device_note": (
+                f"device {device.name} ({device.num_qubits} qubits; {self.logical_qubits} used); "
+                "layouts: logical qubit i -> physical qubit"
+            ),
+        }
+
     def summary(self) -> dict[str, Any]:
         """JSON-ready: ``device``, ``initial_layout``, ``final_layout``, ``routed`` (gates, two-qubit count, swaps,
         ESP with its model, duration in seconds)."""

@@ -9,11 +9,13 @@ Example:
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from qcpp.errors import OptionError
 from qcpp.ir.circuit import Circuit, Register
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
@@ -100,8 +102,6 @@ def compile_scenario(
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
     Args:
-        scenario: The scenario.
-        p: QAOA layers.
         options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`).
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
@@ -151,4 +151,39 @@ def parse_bindings(items: list[str]) -> dict[str, float]:
             if name in out:
                 raise ValueError(f"--bind: {name} is given twice ({out[name]:g} and {number:g}); bind each name once")
             out[name] = number
+    return out
+
+
+def check_binding_values(bindings: Mapping[str, object], flag: str = "--bind") -> dict[str, float]:
+    """``bindings`` as ``{name: float}`` if every name is text and every value a finite number (the check of
+    ``qcpp compile --bind`` and of ``qcpp.compile(bind=...)``; the names are checked against the circuit's
+    symbols when it is built, :meth:`qcpp.plan.qaoa.QaoaPlan.check_bindings`).
+
+    Args:
+        bindings: Symbol name -> value.
+        flag: The option's name in messages.
+
+    Returns:
+        The bindings, values as floats.
+
+    Raises:
+        qcpp.errors.OptionError: naming the option and the symbol.
+
+    Example:
+        >>> check_binding_values({"gamma_0": 1})
+        {'gamma_0': 1.0}
+        >>> check_binding_values({"beta_0": float("nan")}, "bind")
+        Traceback (most recent call last):
+        ...
+        qcpp.errors.OptionError: bind: beta_0 needs a finite number, got nan
+    """
+    if not isinstance(bindings, Mapping):
+        raise OptionError(flag, f"expected a mapping of symbol name to value, got {bindings!r}")
+    out: dict[str, float] = {}
+    for name, value in bindings.items():
+        if not isinstance(name, str):
+            raise OptionError(flag, f"expected symbol names as text, got {name!r}")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise OptionError(flag, f"{name} needs a finite number, got {value!r}")
+        out[name] = float(value)
     return out

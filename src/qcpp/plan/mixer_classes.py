@@ -172,7 +172,6 @@ def mixer_part(
 
     Args:
         scenario: a scenario without obstacles.
-        rule: SBF rule.
         target: ``nisq`` or ``ft``.
         fuse: list rotations and junctions (the circuit's default), or the partial mixers themselves.
         sizes: count the classes for a grid of ``sizes = (rows, cols)`` nodes (sympy expressions, for the

@@ -12,7 +12,7 @@ Example:
     >>> PlanOptions(rule="fast")
     Traceback (most recent call last):
     ...
-    ValueError: rule: expected exact or paper, got 'fast'
+    qcpp.errors.OptionError: rule: expected exact or paper, got 'fast'
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from qcpp.errors import OptionError, choice_reason
 from qcpp.ir.cost import TARGETS, Target
 from qcpp.problem.sbf import RULES, Rule
 
@@ -39,8 +40,8 @@ OPTIMIZE: tuple[Optimize, ...] = ("cx", "depth")
 PhaseLayout = Literal["auto", "pooled", "spatial", "medial"]
 PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial", "medial")
 LAYOUT_METHODS = ("auto", "medial", "greedy")
-"""How :func:`qcpp.pipeline.device_compile.compile_for_device` lays a circuit onto a device (here, not in hardware, so that
-the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
+"""How :func:`qcpp.pipeline.device_compile.compile_for_device` lays a circuit onto a device (here, not in hardware,
+so that the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
 :mod:`qcpp.layout.medial` with windows routed home (:func:`qcpp.routing.windows.route_windows`); ``greedy``:
 :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing of the whole circuit; ``auto``: medial where the
 device is a square grid that holds it, else greedy; on such a grid a circuit of at most
@@ -50,7 +51,8 @@ two-qubit gates win."""
 
 @dataclass(frozen=True)
 class PlanOptions:
-    """The construction choices of one QAOA circuit (every field is checked on construction).
+    """The construction choices of one QAOA circuit (every field is checked on construction: a bad value raises
+    :class:`~qcpp.errors.OptionError` naming the field).
 
     Attributes:
         rule: SBF logic rule: ``exact`` (default) or ``paper``.
@@ -97,12 +99,12 @@ class PlanOptions:
         ):  # fmt: skip
             value = getattr(self, name)
             if value not in allowed:
-                raise ValueError(f"{name}: expected {' or '.join(allowed)}, got {value!r}")
+                raise OptionError(name, choice_reason(value, allowed))
         budget = self.ancilla_budget
         if budget is not None and (not isinstance(budget, int) or isinstance(budget, bool) or budget < 0):
-            raise ValueError(f"ancilla_budget: expected an integer >= 0, got {budget!r}")
+            raise OptionError("ancilla_budget", f"expected an integer >= 0, got {budget!r}")
         if not isinstance(self.fuse, bool):
-            raise ValueError(f"fuse: expected True or False, got {self.fuse!r}")
+            raise OptionError("fuse", f"expected True or False, got {self.fuse!r}")
 
 
 DEFAULT_PLAN = PlanOptions()

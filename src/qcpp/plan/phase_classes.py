@@ -1,7 +1,7 @@
 """The phase separator's call graph without planning it term by term: classes of nodes and edges on an open grid.
 
-:func:`qcpp.plan.phase.phase_plan` prices every term group variable by variable (0.1-1 s per scenario at
-20x20-40x40, too slow for a sweep). On a grid without obstacles and with uniform edge lengths the plan has few
+:func:`qcpp.plan.phase.phase_plan` prices every term group variable by variable (too slow for a sweep over
+large grids). On a grid without obstacles and with uniform edge lengths the plan has few
 distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
@@ -85,7 +85,7 @@ def _layer(
     """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
     ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
     # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
-    # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+    # per scenario fragment the allocator's arenas and inflate a long sweep's peak memory)
     num_ancillas = max([0, *(need for _, _, need in parts), balance.shape.num_ancillas if balance else 0])
     pool = range(s.num_variables, s.num_variables + num_ancillas)
     out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]

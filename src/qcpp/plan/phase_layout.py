@@ -12,18 +12,14 @@ moves qubits across the device for every such gate.
 
 * every :class:`~qcpp.gadgets.phase_sums.SumsPhase` gets the site of each data qubit (the midpoint of its
   edge on the doubled lattice: node ``(r, c)`` at ``(2r, 2c)``) and reduces each column of its popcount along a
-  Hilbert curve (:func:`~qcpp.gadgets.phase_sums.spatial_popcount_layout`): full adders take three
-  neighbouring bits, pass ``k`` sums regions of about ``3^k`` bits, so partial sums merge up a quad-tree-like
-  hierarchy and each carry ancilla belongs to the region it sums. Each adder is a star around its carry
-  ancilla (:func:`~qcpp.gadgets.phase_sums.star_full_adder`): no gate joins two data qubits, which a
-  layout that keeps the grid's geometry (edge qubits at edge midpoints) never puts side by side. That costs one
-  CX more per adder each way (``2 (F + A)`` per balance gadget, a kind of its own, counted by the estimators);
+  Hilbert curve (:func:`~qcpp.gadgets.phase_sums.spatial_popcount_layout`), each adder a star around its carry
+  ancilla so no gate joins two data qubits (one CX more per adder each way, a kind of its own);
 * every :class:`~qcpp.gadgets.phase_visits.VisitPhase` borrows the pool ancillas whose home (the region
   of the adder that uses them, or the node that first borrowed them) is nearest its node, preferring ancillas no
   other node borrowed (same gates).
 
 The plan itself (which construction each term group gets, how many ancillas) is unchanged: it is chosen on the
-all-to-all count. ``benchmarks/routing_phase.py`` measures what the pass buys on devices.
+all-to-all count.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario

@@ -32,6 +32,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from functools import cached_property, partial
 
+from qcpp.errors import OptionError
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.blocks import StatePrep
 from qcpp.gadgets.initial_state import initial_path_count
@@ -75,8 +76,6 @@ class QaoaPlan:
     """The QAOA circuit as gadgets: what :func:`qaoa_circuit` emits, and its cost without emitting it.
 
     Attributes:
-        scenario: The scenario.
-        p: Layers.
         options: How it is built (:class:`~qcpp.plan.options.PlanOptions`).
     """
 
@@ -279,13 +278,13 @@ class QaoaPlan:
             names: The names a user binds.
 
         Raises:
-            ValueError: naming the unknown names and listing the known ones.
+            qcpp.errors.OptionError: naming the unknown names and listing the known ones.
         """
         known = set(self.parameter_names)
         unknown = sorted(set(names) - known)
         if unknown:
             have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-            raise ValueError(f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+            raise OptionError("", f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""
@@ -310,7 +309,6 @@ def qaoa_circuit(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
     Args:
-        scenario: The scenario.
         p: Number of layers (>= 0).
         options: How it is built (rule, initial state, target, phase separator, ancilla budget, fusion; see
             :class:`~qcpp.plan.options.PlanOptions`).

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from qcpp.errors import QcppError
 
-class ScenarioError(ValueError):
+
+class ScenarioError(QcppError):
     """A scenario is malformed or infeasible.
 
     The message always starts with the field it is about, e.g.

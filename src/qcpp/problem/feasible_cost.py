@@ -22,7 +22,7 @@ things, so a phase separator needs far less than the whole-space Ising Hamiltoni
   :attr:`FeasibleCost.linear` and :attr:`FeasibleCost.constant`). Otherwise the group keeps real weights.
 
 Nothing here builds the ``O((re)^2)`` whole-space Hamiltonian: building this representation is linear in the
-number of variables (30x30 with 8 robots in well under a second).
+number of variables.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -302,9 +302,6 @@ def length_unit(lengths: Sequence[float]) -> float | None:
 
 def feasible_cost(scenario: Scenario) -> FeasibleCost:
     """Build the feasible-subspace representation of the scenario's cost (see the module docstring).
-
-    Args:
-        scenario: The scenario.
 
     Returns:
         A :class:`FeasibleCost` equal to :func:`qcpp.problem.cost.cost` on every feasible assignment.

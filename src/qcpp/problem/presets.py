@@ -13,7 +13,7 @@ robot  start             goal
 3      bottom-right      top-left
 ====== ================= =================
 
-(the placement of every release so far, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
+(stable, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
 start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from the top-left corner,
 the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots - 4`` extra robots
 take nodes ``floor((i + 1/2) M / k)``, ``i = 0..k-1``. Starts are therefore distinct (goals too, the reflection
@@ -33,14 +33,17 @@ Example:
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+from typing import Any
+
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid
-from qcpp.problem.scenario import Robot, Scenario
+from qcpp.problem.scenario import Robot, Scenario, scenario_from_dict
 
-__all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "max_default_robots"]
+__all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "grid_scenario", "max_default_robots"]
 
 MAX_DEFAULT_ROBOTS = 4
-"""Robots placed in the corners; more go to the other boundary nodes (kept for callers of earlier releases)."""
+"""Robots placed in the corners; more go to the other boundary nodes."""
 
 Node = tuple[int, int]
 
@@ -92,3 +95,83 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
         starts += [others[(2 * i + 1) * m // (2 * extra)] for i in range(extra)]
     placed = tuple(Robot(s, (rows - 1 - s[0], cols - 1 - s[1])) for s in starts)
     return Scenario(Grid(rows, cols), placed, name=f"default {rows}x{cols}, {robots} robot(s)")
+
+
+def grid_scenario(
+    rows: int,
+    cols: int,
+    *,
+    robots: int | Sequence[tuple[Node, Node]] | None = None,
+    obstacles: Iterable[Node] = (),
+    hard_obstacles: bool = False,
+) -> Scenario:
+    """A scenario on a ``rows x cols`` grid: the one builder behind ``qcpp.grid_scenario`` and the command line's
+    ``--grid RxC --robots N --obstacle R,C --hard-obstacles``.
+
+    With an integer ``robots`` (or ``None``: one robot) and no obstacles this is :func:`default_scenario`
+    itself; obstacles are added to the default placement, and every objective setting is the default except
+    ``obstacles = "hard"`` with ``hard_obstacles``.
+
+    Args:
+        rows, cols: Grid size (at least 2 each).
+        robots: A robot count (the default placement of the module docstring), or ``(start, goal)`` pairs of
+            ``(row, col)`` nodes, one per robot.
+        obstacles: Obstacle nodes ``(row, col)``, in any order.
+        hard_obstacles: Remove the edges touching an obstacle from the variables (``soft``, the paper's, keeps
+            them as variables that only cost).
+
+    Returns:
+        The scenario (validated).
+
+    Raises:
+        ScenarioError: naming the field: a robot or obstacle off the grid (``robots[1].goal: (5, 0) is outside
+            the 3x3 grid``), an obstacle on a robot's endpoint, more robots than the default placement holds, ...
+
+    Example:
+        >>> grid_scenario(3, 4, robots=2) == default_scenario(3, 4, 2)
+        True
+        >>> s = grid_scenario(3, 3, robots=[((0, 0), (2, 2))], obstacles=[(1, 1)])
+        >>> s.obstacles, s.objective.obstacles
+        (((1, 1),), 'soft')
+        >>> grid_scenario(3, 3, robots=[((0, 0), (3, 0))])
+        Traceback (most recent call last):
+        ...
+        qcpp.problem.errors.ScenarioError: robots[0].goal: (3, 0) is outside the 3x3 grid
+    """
+    count = 1 if robots is None else robots
+    blocked = _nodes(obstacles, "grid.obstacles")
+    if isinstance(count, int) and not isinstance(count, bool):
+        placed = default_scenario(rows, cols, count)
+        if not blocked and not hard_obstacles:
+            return placed
+        pairs = [(rb.start, rb.goal) for rb in placed.robots]
+        name = f"{rows}x{cols}, {count} robot(s)"
+    elif isinstance(count, (str, bytes)) or not isinstance(count, Sequence):
+        raise ScenarioError("robots", f"expected a robot count or (start, goal) pairs, got {robots!r}")
+    else:
+        pairs = []
+        for i, pair in enumerate(count):
+            if isinstance(pair, (str, bytes)) or not isinstance(pair, Sequence) or len(pair) != 2:
+                raise ScenarioError(f"robots[{i}]", f"expected a (start, goal) pair of (row, col) nodes, got {pair!r}")
+            pairs.append((pair[0], pair[1]))
+        name = f"{rows}x{cols}, {len(pairs)} robot(s)"
+    if blocked:
+        name += f", {len(blocked)} obstacle(s)"
+    data = {
+        "name": name,
+        "grid": {"rows": rows, "cols": cols, "obstacles": blocked},
+        "robots": [{"start": _plain(start), "goal": _plain(goal)} for start, goal in pairs],
+        "objective": {"obstacles": "hard" if hard_obstacles else "soft"},
+    }
+    return scenario_from_dict(data)
+
+
+def _plain(node: Any) -> Any:
+    """A node as the file format's list (anything else as given, for the scenario's own message)."""
+    return list(node) if isinstance(node, tuple) else node
+
+
+def _nodes(nodes: Iterable[Node], field: str) -> list[Any]:
+    if isinstance(nodes, (str, bytes)) or not isinstance(nodes, Iterable):
+        raise ScenarioError(field, f"expected (row, col) nodes, got {nodes!r}")
+    return [_plain(n) for n in nodes]

@@ -111,6 +111,12 @@ class Scenario:
     def __post_init__(self) -> None:
         _validate(self)
 
+    def _repr_svg_(self) -> str:
+        """The grid drawn for notebooks (:func:`qcpp.problem.drawing.scenario_svg`)."""
+        from qcpp.problem.drawing import scenario_svg
+
+        return scenario_svg(self)
+
     # ----- derived data (cached; the dataclass is frozen so this never goes stale) -----
 
     @cached_property

@@ -248,7 +248,6 @@ def per_robot_bqm(scenario: Scenario, penalty: float | None = None) -> Bqm:
     """The ``per-robot`` form: the cost plus per-robot degree penalties with visit bits (module docstring).
 
     Args:
-        scenario: The scenario.
         penalty: The weight ``P`` (``None``: :func:`penalty_rule`'s).
 
     Returns:
@@ -429,7 +428,6 @@ def penalty_rule(scenario: Scenario, upper_bound: float | None = None) -> Penalt
     exhaustively on small grids.
 
     Args:
-        scenario: The scenario.
         upper_bound: The cost of any feasible assignment (smaller gives a smaller ``P``); ``None``: the best
             of the initial paths and a short SBF annealing run (:data:`RULE_ANNEAL_ITERATIONS` iterations, seed 0,
             deterministic).

@@ -68,7 +68,6 @@ class Evaluation:
 
     Attributes:
         method: ``subspace``, ``statevector`` or ``tensor``.
-        p: Layers.
         angles: ``[gamma_0, beta_0, ...]``.
         expectation: ``<C>``.
         p_optimum: Probability of reading an optimal feasible assignment.
@@ -131,7 +130,6 @@ def evaluate(
     """Simulate the QAOA state at the given (or seeded random) angles with ``method``.
 
     Args:
-        scenario: The scenario.
         p: Layers (>= 1).
         method: ``subspace``, ``statevector`` or ``tensor``.
         angles: ``2p`` angles; ``None`` for random ones from ``seed``.

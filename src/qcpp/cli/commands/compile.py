@@ -4,32 +4,20 @@ Examples::
 
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
-    qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
-Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
-written straight to, a missing folder is an error (checked before compiling).
-
-Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
-handler as one line on stderr and exit code 2.
-
-Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one section of its plan at a time
-(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is the
-same, byte for byte, as writing the whole circuit.
-
-Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
-costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
-(default :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
-refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
-
-Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
-built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total).
+Output files follow :mod:`qcpp.io.atomic` (written whole or not at all; a missing folder is an error, checked
+before compiling). ``--qasm`` streams one plan section at a time
+(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is
+byte-identical to writing the whole circuit. Before building anything the lowered gate count is predicted
+(:func:`qcpp.estimators.guard.predict_size`, exact) and a circuit over ``--max-gates`` is refused in one line
+naming the override (``--max-gates N`` or ``--force``), exit 2. Large circuits and every ``--qasm`` write show
+progress on stderr.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
@@ -42,12 +30,12 @@ from rich.table import Table
 from qcpp.cli.commands.plan_flags import LayersFlag, ScenarioArg, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
+from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, check_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_stream import write_qasm_sections
-from qcpp.plan.compile import compile_scenario, compile_summary, parse_bindings
+from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.scenario import Scenario, load_scenario
 
@@ -55,7 +43,7 @@ __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
 STREAM_ABOVE_GATES = 100_000
 """Circuits predicted to have at least this many lowered gates are built section by section with progress on
-stderr (about 4 s of compiling at 25,000 gates per second), even without ``--qasm``; smaller ones are built whole."""
+stderr (a compile long enough to want it), even without ``--qasm``; smaller ones are built whole."""
 
 HELP = (
     "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
@@ -112,7 +100,7 @@ def compile_command(
     ] = "auto",
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    if device is None:  # routing flags without a device used to be ignored without a word
+    if device is None:  # routing flags without a device are refused, not silently ignored
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
         if local_ancillas:
@@ -120,10 +108,7 @@ def compile_command(
     extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
-    bindings = parse_bindings([*(bind or []), *extra])
-    for name, value in bindings.items():
-        if not math.isfinite(value):
-            raise ValueError(f"--bind: {name} needs a finite number, got {value}")
+    bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
     to_stdout = qasm == "-"
     if to_stdout and as_json:
         raise ValueError("--qasm - and --json both write to standard output; choose one")
@@ -221,37 +206,15 @@ def _routed(
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
-    circuit = result.routed.circuit
     if qasm is not None:
-        write_qasm(circuit, qasm, version)  # type: ignore[arg-type]
-    base = result.compiled.summary()
-    summary = {
-        **base,
-        "qubits": circuit.num_qubits,
-        "gates": dict(sorted(circuit.count_ops().items())),
-        "total_gates": len(circuit),
-        "lowered": lowered,
-        "registers": {r.name: r.size for r in circuit.registers},
-        "seconds": result.seconds,
-        **result.summary(),
-        "device_note": (
-            f"device {result.routed.device.name} ({result.routed.device.num_qubits} qubits; "
-            f"{result.logical_qubits} used); layouts: logical qubit i -> physical qubit"
-        ),
-    }
-    return summary, result.compiled.phase_explain
+        write_qasm(result.routed.circuit, qasm, version)  # type: ignore[arg-type]
+    return result.compile_summary(), result.compiled.phase_explain
 
 
 def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
-    """The predicted size; unless ``force``, refuse (ValueError: one line, exit 2) a circuit predicted to exceed
-    ``max_gates`` lowered gates."""
-    size = predict_size(s, p, options)
-    if not force and not size.fits(max_gates):
-        raise ValueError(
-            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
-            "(raise it with --max-gates N, or pass --force)"
-        )
-    return size
+    """The predicted size; unless ``force``, refuse (one line, exit 2) a circuit predicted to exceed ``max_gates``
+    lowered gates."""
+    return check_size(s, p, options, max_gates, "raise it with --max-gates N, or pass --force", force)
 
 
 def _stream(

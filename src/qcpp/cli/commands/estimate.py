@@ -143,7 +143,7 @@ def estimate(
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: qcpp.estimators.report pulls in sympy, which would slow every other command's start-up
-    from qcpp.estimators.estimate import EstimateOptions
+    from qcpp.estimators.estimate import checked_estimate_options
     from qcpp.estimators.report import estimate_report, formula_report, points_from_options
 
     if as_json:
@@ -151,14 +151,10 @@ def estimate(
     if formula:
         typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
         return
-    checks = [
-        (not 0.0 < epsilon < 1.0, f"bad --epsilon {epsilon}: must be in (0, 1)"),
-        (depth_budget < 0, f"bad --depth-budget {depth_budget}: must be >= 0"),
-        (not 0.0 < error_budget < 1.0, f"bad --error-budget {error_budget}: must be in (0, 1)"),
-    ]  # fmt: skip
-    for bad, message in checks:
-        if bad:
-            raise ValueError(message)
+    settings = checked_estimate_options(
+        options, epsilon=epsilon, toffoli_t=toffoli_t, depth=depth, depth_budget=depth_budget, physical=physical,
+        qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget, flag=_flag,
+    )  # fmt: skip
     if device is not None:
         from qcpp.devices.device import DeviceError, get_device
 
@@ -175,17 +171,6 @@ def estimate(
             "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
             err=True,
         )
-    settings = EstimateOptions(
-        plan=options,
-        epsilon=epsilon,
-        toffoli_t=toffoli_t,
-        depth=depth,  # type: ignore[arg-type]
-        depth_budget=depth_budget,
-        physical=physical,
-        qubit_model=qubit_model,
-        qec_scheme=qec_scheme,
-        error_budget=error_budget,
-    )
     # progress unless the rows themselves stream to a terminal (a table waits for every row; a pipe shows nothing)
     show = fmt == "table" or plot is not None or not _is_terminal(sys.stdout)
     # a sweep of many rows is known to be long: its first line comes at once, not after a second
@@ -222,6 +207,11 @@ def estimate(
         typer.echo(f"wrote {plot}", err=True)
     if explain:
         _explain(points.points, options)
+
+
+def _flag(name: str) -> str:
+    """An option's flag as messages name it: ``depth_budget`` -> ``--depth-budget``."""
+    return "--" + name.replace("_", "-")
 
 
 def _explain(points: Sequence[Any], plan: Any) -> None:

@@ -62,7 +62,8 @@ def parse_angles(text: str) -> list[float]:
 
 def _guard(s: Scenario, path: Path) -> None:
     """Refuse (one line, exit 2) a feasible subspace over the validation limit
-    (:data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory); ``--allow-large`` lifts it."""
+    (:data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory);
+    ``--allow-large`` lifts it."""
     from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
     from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, validate_size
 

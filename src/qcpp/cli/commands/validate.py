@@ -47,8 +47,8 @@ HELP = (
 
 
 def _check_dask_address(text: str) -> None:
-    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (it used to
-    fail after the simulation with dask's own message, which named no flag).
+    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (dask's own
+    message, after the simulation, would name no flag).
 
     Example:
         >>> _check_dask_address("tcp://127.0.0.1:8786")

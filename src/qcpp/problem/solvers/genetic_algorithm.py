@@ -18,8 +18,7 @@
   of binary tournaments drawn without replacement from the rest.
 
 With the defaults (population 192, 40 generations) this is close to a beam search over the SBF move graph
-whose randomness is in the initial population and the crossover; it found the exhaustive optimum for 20
-of 20 seeds on each of four two-robot 4x4 and 5x5 test scenarios (``benchmarks/solvers_speed.py``).
+whose randomness is in the initial population and the crossover.
 
 The trace is the best cost after each generation; ``components_visited`` lists, per robot, the components
 of every individual ever scored.
@@ -68,7 +67,6 @@ def genetic(
     """Evolve assignments with SBF mutations and path-swapping crossover (see the module docstring).
 
     Args:
-        scenario: The scenario.
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         population: Individuals kept after each selection.
         generations: Number of generations.

@@ -1,0 +1,76 @@
+"""Argument checks of the public API, shared with the command line where it checks the same thing.
+
+Every check raises a :class:`~qcpp.errors.QcppError` subclass whose message names the argument as Python spells
+it (``p``, ``rule``) and gives the reason the command line gives after its flag (``-p/--layers``, ``--rule``).
+
+Example:
+    >>> check_layers_arg(2)
+    2
+    >>> check_layers_arg(0)
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: p: must be at least 1, got 0
+    >>> plan_options_arg({"rule": "paper"}).rule
+    'paper'
+    >>> plan_options_arg({"colour": "red"})
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: colour: unknown plan option (known: rule, initial, target, phase, optimize, \
+ancilla_budget, fuse, phase_layout, angles)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import fields
+from typing import Any
+
+from qcpp.api.scenarios import Scenario
+from qcpp.errors import OptionError, check_count
+from qcpp.plan.options import PlanOptions
+from qcpp.problem.limits import check_layers
+
+__all__ = ["PLAN_OPTION_NAMES", "check_layers_arg", "check_scenario_arg", "plan_options_arg"]
+
+PLAN_OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in fields(PlanOptions))
+"""The keyword arguments ``**plan_options`` of ``qcpp.estimate`` and ``qcpp.compile`` accept (the fields of
+:class:`~qcpp.plan.options.PlanOptions`)."""
+
+
+def check_layers_arg(p: object, name: str = "p") -> int:
+    """``p`` if it is a layer count the command line accepts too (an integer from 1 to
+    :data:`qcpp.problem.limits.MAX_LAYERS`, unless :func:`qcpp.problem.limits.allow_large` is in effect).
+
+    Raises:
+        qcpp.errors.OptionError: not an integer, or below 1.
+        qcpp.problem.limits.SizeError: over the layer limit.
+    """
+    layers = check_count(p, name, 1)
+    check_layers(layers, name)
+    return layers
+
+
+def plan_options_arg(options: Mapping[str, Any]) -> PlanOptions:
+    """The :class:`~qcpp.plan.options.PlanOptions` of keyword arguments (``rule="paper"``, ...).
+
+    Raises:
+        qcpp.errors.OptionError: an unknown name (listing the known ones) or a bad value (naming the option, with
+            the reason ``qcpp compile`` and ``qcpp estimate`` give for the flag).
+    """
+    for name in options:
+        if name not in PLAN_OPTION_NAMES:
+            raise OptionError(name, f"unknown plan option (known: {', '.join(PLAN_OPTION_NAMES)})")
+    return PlanOptions(**options)
+
+
+def check_scenario_arg(scenario: object, name: str = "scenario") -> Scenario:
+    """``scenario`` if it is a :class:`~qcpp.problem.scenario.Scenario`.
+
+    Raises:
+        qcpp.errors.OptionError: anything else (a file name: load it with ``qcpp.load_scenario`` first).
+    """
+    if not isinstance(scenario, Scenario):
+        raise OptionError(
+            name, f"expected a Scenario (qcpp.grid_scenario or qcpp.load_scenario), got {type(scenario).__name__}"
+        )
+    return scenario

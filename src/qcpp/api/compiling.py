@@ -1,0 +1,200 @@
+"""``qcpp.compile``: the QAOA circuit of a scenario, optionally lowered, bound and routed onto a device.
+
+The circuit is built by the code ``qcpp compile`` runs (:func:`qcpp.plan.compile.compile_scenario`, and with a
+device :func:`qcpp.pipeline.device_compile.compile_for_device`), so :meth:`Compiled.counts` and
+:meth:`Compiled.to_dict` equal that command's ``--json`` for the same scenario and options (timing aside), and
+:meth:`Compiled.to_qasm` its ``--qasm`` file.
+
+Example:
+    >>> from qcpp.api.scenarios import grid_scenario
+    >>> c = compile(grid_scenario(3, 3, robots=1), lowered=True, bind={"gamma_0": 0.3})
+    >>> c.qubits, c.counts()["cx"], c.symbols
+    (15, 106, ('beta_0',))
+    >>> c.to_qasm(version=2)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    qcpp.ir.angles.UnboundParameterError: unbound symbols (...): beta_0; bind them first
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.scenarios import Scenario
+from qcpp.errors import OptionError, check_choice, check_count
+
+if TYPE_CHECKING:
+    from qcpp.devices.device import Device
+    from qcpp.ir.circuit import Circuit
+
+__all__ = ["Compiled", "compile"]
+
+QASM_VERSIONS = (3, 2)
+
+
+@dataclass(frozen=True)
+class Compiled:
+    """A compiled QAOA circuit.
+
+    Attributes:
+        scenario: The scenario compiled.
+        p: QAOA layers.
+        circuit: The circuit (:class:`qcpp.ir.circuit.Circuit`): high level, lowered to
+            ``{cx, x, h, rz, t, tdg, s, sdg}``, or routed (qubit ``i`` = the device's physical qubit ``i``; the
+            device's native gates unless ``lowered``).
+        lowered: Whether the circuit was lowered.
+        device: The device routed onto, or ``None``.
+        initial_layout: With a device: logical qubit ``i`` -> physical qubit at the start (else ``None``).
+        final_layout: With a device: logical qubit ``i`` -> physical qubit at the end (else ``None``).
+    """
+
+    scenario: Scenario
+    p: int
+    circuit: Circuit
+    lowered: bool
+    device: Device | None = None
+    initial_layout: list[int] | None = None
+    final_layout: list[int] | None = None
+    _summary: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def qubits(self) -> int:
+        """Qubits of the circuit (with a device: the device's)."""
+        return self.circuit.num_qubits
+
+    @property
+    def symbols(self) -> tuple[str, ...]:
+        """The unbound angle symbols (``gamma_0``, ``beta_0``, ...), in layer order."""
+        return self.circuit.symbols
+
+    def counts(self) -> dict[str, int]:
+        """Gate name -> count, sorted by name: ``qcpp compile --json``'s ``gates``."""
+        return dict(sorted(self.circuit.count_ops().items()))
+
+    def to_dict(self) -> dict[str, Any]:
+        """What ``qcpp compile --json`` prints for the same scenario and options, without ``seconds``."""
+        return {k: v for k, v in self._summary.items() if k != "seconds"}
+
+    def to_qasm(self, version: int = 3) -> str:
+        """OpenQASM text: ``3`` (unbound symbols become ``input float[64]``) or ``2`` (every symbol bound).
+
+        Raises:
+            qcpp.errors.OptionError: a version other than 2 or 3.
+            qcpp.ir.angles.UnboundParameterError: ``version=2`` with unbound symbols (naming them).
+        """
+        from qcpp.lowering.qasm import iter_qasm
+
+        check_choice(version, QASM_VERSIONS, "version")
+        return "".join(iter_qasm(self.circuit, int(version)))  # type: ignore[arg-type]
+
+    def write_qasm(self, path: str | os.PathLike[str], version: int = 3) -> None:
+        """Write :meth:`to_qasm` to ``path``, whole or not at all (an error leaves no partial file).
+
+        Raises:
+            As :meth:`to_qasm`; :class:`qcpp.io.atomic.OutputError` for a destination that cannot be written.
+        """
+        from qcpp.lowering.qasm import write_qasm
+
+        check_choice(version, QASM_VERSIONS, "version")
+        write_qasm(self.circuit, path, int(version))  # type: ignore[arg-type]
+
+    def to_qiskit(self) -> Any:
+        """The circuit as a ``qiskit.QuantumCircuit``, through Qiskit's own OpenQASM 3 loader (unbound symbols
+        become Qiskit ``Parameter`` objects of the same names)."""
+        import qiskit.qasm3
+
+        return qiskit.qasm3.loads(self.to_qasm(3))
+
+    def __repr__(self) -> str:
+        where = f" on {self.device.name}" if self.device is not None else ""
+        form = "lowered" if self.lowered else "high level"
+        total = sum(self.circuit.count_ops().values())
+        g = self.scenario.grid
+        return (
+            f"<Compiled {g.rows}x{g.cols}, {self.scenario.num_robots} robot(s), p={self.p}, {form}{where}: "
+            f"{self.qubits} qubits, {total} gates>"
+        )
+
+
+def compile(
+    scenario: Scenario,
+    p: int = 1,
+    *,
+    device: str | None = None,
+    lowered: bool = False,
+    bind: Mapping[str, float] | None = None,
+    layout: str = "auto",
+    local_ancillas: bool = False,
+    max_gates: int | None = None,
+    **plan_options: Any,
+) -> Compiled:
+    """Compile the constrained-mixer QAOA circuit of ``scenario`` (what ``qcpp compile`` does).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers (at least 1).
+        device: Route onto this device (``qcpp.devices()``, or ``grid[:RxC]``, ``heavy-hex[:D]``,
+            ``all-to-all[:N]``); the circuit is then in the device's qubits and native gates.
+        lowered: Lower to CX and one-qubit gates (with a device: keep CX + one-qubit gates).
+        bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
+        layout, local_ancillas: With a device: ``auto``, ``medial`` or ``greedy``; region-local ancillas.
+        max_gates: Refuse circuits predicted to exceed this many lowered gates (default: ``qcpp compile``'s
+            limit, :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`).
+        **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
+            :class:`~qcpp.plan.options.PlanOptions`).
+
+    Returns:
+        The :class:`Compiled` circuit.
+
+    Raises:
+        qcpp.errors.OptionError: a bad ``p``, option or binding value, an unknown plan option, or a symbol in
+            ``bind`` the circuit does not have (naming them).
+        qcpp.devices.device.DeviceError: an unknown device.
+        qcpp.problem.limits.SizeError: a circuit predicted over ``max_gates``.
+        qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
+    """
+    from qcpp.devices.device import get_device
+    from qcpp.estimators.guard import DEFAULT_MAX_GATES, check_size
+    from qcpp.plan.compile import check_binding_values, compile_scenario
+    from qcpp.plan.options import LAYOUT_METHODS
+    from qcpp.problem.cost_range import check_cost_range
+
+    s = check_scenario_arg(scenario)
+    layers = check_layers_arg(p)
+    options = plan_options_arg(plan_options)
+    bindings = check_binding_values(bind if bind is not None else {}, "bind")
+    check_choice(layout, LAYOUT_METHODS, "layout")
+    for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas)):
+        if not isinstance(flag, bool):
+            raise OptionError(name, f"expected True or False, got {flag!r}")
+    if device is None:
+        if layout != "auto":
+            raise OptionError("layout", f"{layout!r} applies with a device only (no device given)")
+        if local_ancillas:
+            raise OptionError("local_ancillas", "applies with a device only (no device given)")
+    elif not isinstance(device, str):
+        raise OptionError("device", f"expected a device name, got {device!r}")
+    else:
+        get_device(device)  # an unknown name fails before any work
+    limit = DEFAULT_MAX_GATES if max_gates is None else check_count(max_gates, "max_gates", 0)
+    check_cost_range(s)  # what the command line checks when it loads a file
+    check_size(s, layers, options, limit, "raise it with max_gates=N")
+    if device is None:
+        result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings)
+        return Compiled(s, layers, result.circuit, lowered, _summary=result.summary())
+    from qcpp.pipeline.device_compile import compile_for_device
+
+    routed = compile_for_device(
+        s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
+        layout_method=layout,
+    )  # fmt: skip
+    r = routed.routed
+    return Compiled(
+        s, layers, r.circuit, lowered, r.device, list(r.initial_layout), list(r.final_layout),
+        _summary=routed.compile_summary(),
+    )  # fmt: skip
+

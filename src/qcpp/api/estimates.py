@@ -1,0 +1,213 @@
+"""``qcpp.estimate``: the resource counts of one scenario's QAOA circuit, the row ``qcpp estimate --json`` prints.
+
+The estimate goes through the command's own code (:func:`qcpp.estimators.report.estimate_rows`), so
+:meth:`Estimate.to_dict` is that command's JSON row for the same scenario and options. A scenario equal to the
+default placement of its grid and robot count (``qcpp.grid_scenario(rows, cols, robots=N)``) is the row of
+``qcpp estimate --grid RxC --robots N`` (``scenario: "default"``); any other is the row of ``--scenario FILE``
+(``scenario: "file"``).
+
+Example:
+    >>> from qcpp.api.scenarios import grid_scenario
+    >>> est = estimate(grid_scenario(3, 3, robots=1), p=2)
+    >>> est.qubits, est.cx, est.depth_kind
+    (15, 212, 'exact')
+    >>> est.to_dict()["cx"] == est.cx
+    True
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from html import escape
+from typing import Any, Generic, TypeVar, overload
+
+from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.scenarios import Scenario, default_scenario
+from qcpp.errors import OptionError, check_choice
+
+__all__ = ["Estimate", "estimate"]
+
+T = TypeVar("T")
+
+
+class _Column(Generic[T]):
+    """An attribute of :class:`Estimate` that reads the row's column of its own name."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    @overload
+    def __get__(self, obj: None, owner: type) -> _Column[T]: ...
+    @overload
+    def __get__(self, obj: Estimate, owner: type) -> T: ...
+    def __get__(self, obj: Estimate | None, owner: type) -> T | _Column[T]:
+        if obj is None:
+            return self
+        return obj._row[self.name]  # type: ignore[no-any-return]
+
+
+class Estimate:
+    """One row of ``qcpp estimate --json``: every column is an attribute (``est.cx``, ``est.ft_total_t``,
+    ``est.routed_twoq`` with a device, ``est.physical_qubits`` with ``physical=True``, ``est.paper_cx`` with
+    ``compare_paper=True``). The columns are documented in :mod:`qcpp.estimators.tables`.
+
+    Immutable; ``to_dict()`` gives the row (a fresh copy each call); a notebook shows it as a table.
+    """
+
+    __slots__ = ("_row",)
+
+    rows = _Column[int]()
+    cols = _Column[int]()
+    robots = _Column[int]()
+    p = _Column[int]()
+    rule = _Column[str]()
+    target = _Column[str]()
+    scenario = _Column[str]()
+    qubits = _Column[int]()
+    data_qubits = _Column[int]()
+    ancillas = _Column[int]()
+    gates = _Column[int]()
+    cx = _Column[int]()
+    single_qubit = _Column[int]()
+    two_qubit = _Column[int]()
+    t = _Column[int]()
+    rotations = _Column[int]()
+    depth = _Column["int | None"]()
+    two_qubit_depth = _Column["int | None"]()
+    rotation_depth = _Column["int | None"]()
+    depth_kind = _Column["str | None"]()
+    toffoli = _Column[int]()
+    ft_total_t = _Column[int]()
+    sections = _Column["dict[str, dict[str, int]]"]()
+
+    def __init__(self, row: dict[str, Any]) -> None:
+        object.__setattr__(self, "_row", json.loads(json.dumps(row)))  # the JSON's values, nothing shared
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"an Estimate is immutable (cannot set {name!r})")
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self._row[name]
+        except KeyError:
+            raise AttributeError(
+                f"an Estimate has no column {name!r} (its columns: {', '.join(self.columns)})"
+            ) from None
+
+    def __dir__(self) -> list[str]:
+        return sorted({*super().__dir__(), *self._row})
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Estimate) and self._row == other._row
+
+    def __hash__(self) -> int:
+        return hash(json.dumps(self._row, sort_keys=True))
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The row's columns, in the command's order (``sections`` included)."""
+        return tuple(self._row)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The row: equal to ``qcpp estimate --json``'s for the same scenario and options."""
+        return json.loads(json.dumps(self._row))
+
+    def __iter__(self) -> Iterator[tuple[str, Any]]:
+        return iter(self.to_dict().items())
+
+    def __repr__(self) -> str:
+        g = f"{self.rows}x{self.cols}, {self.robots} robot(s), p={self.p}"
+        depth = f"{self.depth} ({self.depth_kind})" if self.depth is not None else "not computed"
+        return f"<Estimate {g}: {self.qubits} qubits, {self.cx} CX, {self.t} T, depth {depth}>"
+
+    def _repr_html_(self) -> str:
+        """The row as a two-column HTML table (column, value), numbers right-aligned."""
+        cells = []
+        for name, value in self._row.items():
+            if name == "sections":
+                continue
+            shown = "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(value))
+            cells.append(
+                f"<tr><td style='text-align:left'>{escape(name)}</td>"
+                f"<td style='text-align:right'>{escape(shown)}</td></tr>"
+            )
+        head = escape(repr(self)[1:-1])
+        return f"<table><caption>{head}</caption><tr><th>column</th><th>value</th></tr>{''.join(cells)}</table>"
+
+
+def estimate(
+    scenario: Scenario,
+    p: int = 1,
+    *,
+    device: str | None = None,
+    compare_paper: bool = False,
+    paper_doubling: str = "partial-mixer",
+    epsilon: float = 1e-3,
+    toffoli_t: int = 7,
+    depth: str = "auto",
+    depth_budget: int = 20_000,
+    physical: bool = False,
+    qubit_model: str = "qubit_gate_ns_e3",
+    qec_scheme: str = "surface_code",
+    error_budget: float = 1e-3,
+    **plan_options: Any,
+) -> Estimate:
+    """Resource counts of the lowered QAOA circuit of ``scenario`` with ``p`` layers, without building it.
+
+    The options are those of ``qcpp estimate`` (``--device``, ``--compare paper``, ``--epsilon``, ...), with the
+    same defaults and checks.
+
+    Args:
+        scenario: The scenario (``qcpp.grid_scenario`` or ``qcpp.load_scenario``).
+        p: QAOA layers (at least 1).
+        device: Add the routed figures on this device (``qcpp.devices()``, or ``grid[:RxC]``,
+            ``heavy-hex[:D]``, ``all-to-all[:N]``); this compiles and routes the circuit.
+        compare_paper: Add the paper's estimates and the ratios.
+        paper_doubling: Reading of the paper's doubling: ``partial-mixer`` or ``logic``.
+        epsilon, toffoli_t: The fault-tolerant model (rotation synthesis precision; T per Toffoli: 7 or 4).
+        depth, depth_budget: ``auto``, ``exact``, ``bound`` or ``none``; the budget of ``auto``.
+        physical, qubit_model, qec_scheme, error_budget: Physical estimates of the QDK resource estimator.
+        **plan_options: How the circuit is built: ``rule``, ``initial``, ``target``, ``phase``, ``optimize``,
+            ``ancilla_budget``, ``phase_layout``, ``angles`` (:class:`~qcpp.plan.options.PlanOptions`).
+
+    Returns:
+        The :class:`Estimate`.
+
+    Raises:
+        qcpp.errors.OptionError: a bad ``p`` or option (named), or an unknown plan option.
+        qcpp.devices.device.DeviceError: an unknown device.
+        qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
+    """
+    from qcpp.devices.device import get_device
+    from qcpp.estimators.estimate import Point, checked_estimate_options
+    from qcpp.estimators.paper import DOUBLINGS
+    from qcpp.estimators.report import estimate_rows
+    from qcpp.problem.cost_range import check_cost_range
+
+    s = check_scenario_arg(scenario)
+    layers = check_layers_arg(p)
+    plan = plan_options_arg(plan_options)
+    settings = checked_estimate_options(
+        plan, epsilon=epsilon, toffoli_t=toffoli_t, depth=depth, depth_budget=depth_budget, physical=physical,
+        qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget,
+    )  # fmt: skip
+    check_choice(paper_doubling, DOUBLINGS, "paper_doubling")
+    if not isinstance(compare_paper, bool):
+        raise OptionError("compare_paper", f"expected True or False, got {compare_paper!r}")
+    if device is not None:
+        if not isinstance(device, str):
+            raise OptionError("device", f"expected a device name, got {device!r}")
+        get_device(device)  # an unknown name fails before any work
+    check_cost_range(s)  # what the command line checks when it loads a file
+    point = _point(s, layers, Point)
+    row = next(estimate_rows([point], settings, compare_paper, paper_doubling, device))  # type: ignore[arg-type]
+    return Estimate(row)
+
+
+def _point(s: Scenario, p: int, point_type: Any) -> Any:
+    """The command line's point for ``s``: ``--grid/--robots`` for a default placement, else ``--scenario``."""
+    g = s.grid
+    if s.num_robots <= 2 * (g.rows + g.cols) - 4 and s == default_scenario(g.rows, g.cols, s.num_robots):
+        return point_type(g.rows, g.cols, s.num_robots, p)
+    return point_type.from_scenario(s, p)

@@ -1,0 +1,200 @@
+"""``qcpp.solve``, ``qcpp.train_qaoa`` and ``qcpp.simulate_qaoa``: the solvers and simulators of ``qcpp solve`` and
+``qcpp simulate``, with their checks.
+
+Example:
+    >>> from qcpp.api.scenarios import grid_scenario
+    >>> s = grid_scenario(3, 3, robots=1)
+    >>> solve(s, "cpsat").cost.total == solve(s, "dfs").cost.total
+    True
+    >>> round(simulate_qaoa(s, 1, angles=[0.0, 0.0]).amplitudes_held, 6)
+    1.0
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+from qcpp.api.checks import check_layers_arg, check_scenario_arg
+from qcpp.api.scenarios import Scenario
+from qcpp.errors import OptionError, check_choice, check_count
+
+if TYPE_CHECKING:
+    from qcpp.problem.solvers import Solution
+    from qcpp.simulate.evaluate import Evaluation
+    from qcpp.simulate.qaoa_solver import QaoaSolution
+
+__all__ = ["SOLVE_METHODS", "simulate_qaoa", "solve", "train_qaoa"]
+
+SOLVE_METHODS: tuple[str, ...] = ("dfs", "cpsat", "anneal", "genetic", "qaoa", "qubo")
+"""The methods of :func:`solve` (those of ``qcpp solve --method``)."""
+
+_QAOA_DEFAULTS: dict[str, Any] = {
+    "p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
+    "mixer_warm": False,
+}  # fmt: skip
+
+
+def solve(
+    scenario: Scenario,
+    method: str = "cpsat",
+    *,
+    seed: int = 0,
+    rule: str = "exact",
+    time_limit: float | None = None,
+    **qaoa_options: Any,
+) -> Solution:
+    """Solve ``scenario`` with ``method`` (``qcpp solve --method``) and return its answer.
+
+    Args:
+        scenario: The scenario.
+        method: ``dfs`` (exhaustive), ``cpsat`` (OR-Tools CP-SAT, the optimum with a proof), ``anneal``,
+            ``genetic``, ``qaoa`` (trained on the feasible-subspace simulator; :func:`train_qaoa`) or ``qubo``.
+        seed: Random seed (stochastic methods).
+        rule: SBF rule of the local moves and of the QAOA mixer: ``exact`` or ``paper``.
+        time_limit: ``cpsat``: seconds before it stops with its best (default: until proven optimal).
+        **qaoa_options: ``qaoa`` only: the options of :func:`train_qaoa` (``p``, ``optimizer``, ...).
+
+    Returns:
+        The :class:`~qcpp.problem.solvers.Solution` (paths as edge masks per robot, cost and its parts).
+
+    Raises:
+        qcpp.errors.OptionError: an unknown method or option, or an option of another method.
+    """
+    s = check_scenario_arg(scenario)
+    check_choice(method, SOLVE_METHODS, "method")
+    check_choice(rule, ("exact", "paper"), "rule")
+    check_count(seed, "seed", 0)
+    if method != "qaoa" and qaoa_options:
+        name = next(iter(qaoa_options))
+        if name not in _QAOA_DEFAULTS:
+            raise OptionError(name, f"unknown option of solve (qaoa's: {', '.join(_QAOA_DEFAULTS)})")
+        raise OptionError(name, f"applies to method='qaoa' only (got method={method!r})")
+    if time_limit is not None:
+        if method != "cpsat":
+            raise OptionError("time_limit", f"applies to method='cpsat' only (got method={method!r})")
+        if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
+            raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
+    if method == "qaoa":
+        return train_qaoa(s, seed=seed, rule=rule, **qaoa_options).solution
+    from qcpp.problem.cost_range import check_cost_range
+
+    check_cost_range(s)
+    if method == "cpsat":
+        from qcpp.problem.solvers import cpsat
+
+        return cpsat(s, seed=seed, time_limit=time_limit).solution
+    if method == "qubo":
+        from qcpp.qubo.solve import solve_qubo
+
+        return solve_qubo(s, seed=seed, rule=rule).solution  # type: ignore[arg-type]
+    from qcpp.problem.solvers import SOLVERS
+
+    return SOLVERS[method](s, seed=seed, rule=rule, progress=None)  # type: ignore[arg-type]
+
+
+def train_qaoa(
+    scenario: Scenario,
+    p: int = 1,
+    *,
+    optimizer: str = "layerwise",
+    objective: str = "gibbs",
+    maxiter: int = 200,
+    initial: str = "initial_path",
+    mixer_warm: bool = False,
+    seed: int = 0,
+    rule: str = "exact",
+) -> QaoaSolution:
+    """Train a depth-``p`` QAOA on the exact feasible-subspace simulator and read off its most probable assignment
+    (``qcpp solve --method qaoa``).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        optimizer: ``layerwise`` (L-BFGS-B for p = 1, 2, ... in turn, warm-started), ``multi-angle``, or one
+            ``nesterov``, ``cobyla`` or ``lbfgsb`` run at depth ``p``.
+        objective: ``gibbs``, ``cvar`` or ``expectation``.
+        maxiter: Optimiser steps per run.
+        initial: Initial state (:data:`qcpp.plan.options.INITIAL_STATES`).
+        mixer_warm: ``layerwise``: also start every level from the mixer-only warm start.
+        seed, rule: Random seed of the initial angles; SBF rule of the mixer.
+
+    Returns:
+        The :class:`~qcpp.simulate.qaoa_solver.QaoaSolution` (``.solution``, ``.angles``, ``.probability``,
+        ``.p_optimum``, ``.trace``).
+
+    Raises:
+        qcpp.errors.OptionError: a bad value, naming the option.
+        qcpp.problem.errors.ScenarioError: weights whose phases the simulator cannot represent exactly.
+    """
+    from qcpp.plan.options import INITIAL_STATES
+    from qcpp.problem.cost_range import check_phase_range
+    from qcpp.simulate.objectives import OBJECTIVES
+    from qcpp.simulate.qaoa_solver import QAOA_OPTIMIZERS, solve_qaoa
+
+    s = check_scenario_arg(scenario)
+    layers = check_layers_arg(p)
+    check_choice(optimizer, QAOA_OPTIMIZERS, "optimizer")
+    check_choice(objective, OBJECTIVES, "objective")
+    check_choice(initial, INITIAL_STATES, "initial")
+    check_choice(rule, ("exact", "paper"), "rule")
+    check_count(maxiter, "maxiter", 1)
+    check_count(seed, "seed", 0)
+    if not isinstance(mixer_warm, bool):
+        raise OptionError("mixer_warm", f"expected True or False, got {mixer_warm!r}")
+    if mixer_warm and optimizer != "layerwise":
+        raise OptionError("mixer_warm", f"applies to optimizer='layerwise' only (got optimizer={optimizer!r})")
+    check_phase_range(s)
+    return solve_qaoa(
+        s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter, initial=initial,  # type: ignore[arg-type]
+        mixer_warm=mixer_warm, seed=seed, rule=rule,  # type: ignore[arg-type]
+    )  # fmt: skip
+
+
+def simulate_qaoa(
+    scenario: Scenario,
+    p: int = 1,
+    *,
+    angles: Sequence[float] | None = None,
+    method: str = "subspace",
+    seed: int = 0,
+    rule: str = "exact",
+) -> Evaluation:
+    """Evaluate the QAOA state at given (or seeded random) angles (``qcpp simulate``).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        angles: ``2p`` angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``; ``None``: random from ``seed``.
+        method: ``subspace`` (exact feasible-subspace simulator), ``statevector`` (the compiled circuit's dense
+            state) or ``tensor`` (tensor network).
+        seed, rule: Seed of the random angles; SBF rule of the mixer.
+
+    Returns:
+        The :class:`~qcpp.simulate.evaluate.Evaluation` (``expectation``, ``p_optimum``, ``amplitudes_held``, ...).
+
+    Raises:
+        qcpp.errors.OptionError: a bad value, naming the option (``angles`` of the wrong length or not finite).
+    """
+    from qcpp.problem.cost_range import check_phase_range
+    from qcpp.simulate.evaluate import METHODS, evaluate
+
+    s = check_scenario_arg(scenario)
+    layers = check_layers_arg(p)
+    check_choice(method, METHODS, "method")
+    check_choice(rule, ("exact", "paper"), "rule")
+    check_count(seed, "seed", 0)
+    values = None
+    if angles is not None:
+        if isinstance(angles, (str, bytes)) or not isinstance(angles, Sequence):
+            raise OptionError("angles", f"expected a sequence of numbers, got {angles!r}")
+        values = []
+        for a in angles:
+            if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
+                raise OptionError("angles", f"{a!r} is not a finite number")
+            values.append(float(a))
+        if len(values) != 2 * layers:
+            raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
+    check_phase_range(s)
+    return evaluate(s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

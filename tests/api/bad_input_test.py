@@ -1,0 +1,159 @@
+"""Bad calls to the public API raise the documented :class:`qcpp.QcppError` subclass, with a one-line message that
+gives the reason the command line gives for the same mistake; no public function leaves a partial file behind."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import qcpp
+from tests.qcpp.clirun import run
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+S = qcpp.grid_scenario(3, 3, robots=1)
+
+
+def error_of(call: Callable[[], Any], kind: type[Exception]) -> str:
+    """The message of the error ``call`` raises, checked: ``kind`` (a QcppError, so a ValueError), one line."""
+    with pytest.raises(kind) as info:
+        call()
+    assert isinstance(info.value, qcpp.QcppError) and isinstance(info.value, ValueError)
+    message = str(info.value)
+    assert message and "\n" not in message
+    return message
+
+
+def cli_error(*args: str) -> str:
+    """The CLI's one error line for ``args``, without ``error: `` and the ``(see ...)`` hint."""
+    res = run(*args)
+    assert res.exit_code == 2, res.output
+    line = res.stderr.strip()
+    assert line.startswith("error: ") and "\n" not in line
+    return line.removeprefix("error: ").split(" (see '")[0]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "flag_args", "name"),
+    [
+        ({"p": 0}, ("-p", "0"), "p"),
+        ({"rule": "fast"}, ("--rule", "fast"), "rule"),
+        ({"ancilla_budget": -1}, ("--ancilla-budget", "-1"), "ancilla_budget"),
+        ({"p": 1001}, ("-p", "1001"), "p"),
+    ],
+)
+def test_compile_and_estimate_options_give_the_cli_s_reason(
+    kwargs: dict[str, Any], flag_args: tuple[str, ...], name: str
+) -> None:
+    cli = cli_error("compile", str(EXAMPLES / "paper_3x3.toml"), *flag_args)
+    _, _, reason = cli.partition(": ")
+    p = kwargs.get("p", 1)
+    rest = {k: v for k, v in kwargs.items() if k != "p"}
+    for fn in (qcpp.compile, qcpp.estimate):
+        message = error_of(lambda fn=fn: fn(S, p, **rest), qcpp.QcppError)
+        assert message == f"{name}: {reason}"
+
+
+@pytest.mark.parametrize("p", ["1", 1.0, True, None])
+def test_a_p_that_is_not_an_integer_names_p(p: Any) -> None:
+    assert error_of(lambda: qcpp.estimate(S, p), qcpp.OptionError) == f"p: expected an integer, got {p!r}"
+
+
+def test_an_unknown_plan_option_is_named() -> None:
+    message = error_of(lambda: qcpp.compile(S, colour="red"), qcpp.OptionError)
+    assert message.startswith("colour: unknown plan option (known: rule, initial,")
+
+
+def test_an_unknown_symbol_in_bind_has_the_cli_s_message() -> None:
+    cli = cli_error("compile", str(EXAMPLES / "paper_3x3.toml"), "--bind", "delta_0=1")
+    s = qcpp.load_scenario(EXAMPLES / "paper_3x3.toml")
+    assert error_of(lambda: qcpp.compile(s, bind={"delta_0": 1.0}), qcpp.OptionError) == cli
+    assert "delta_0" in cli
+
+
+def test_a_binding_that_is_not_a_finite_number_is_named() -> None:
+    cli = cli_error("compile", str(EXAMPLES / "paper_3x3.toml"), "--bind", "gamma_0=inf")
+    message = error_of(lambda: qcpp.compile(S, bind={"gamma_0": float("inf")}), qcpp.OptionError)
+    assert message == "bind" + cli.removeprefix("--bind")
+
+
+def test_an_unknown_device_has_the_cli_s_message() -> None:
+    cli = cli_error("compile", str(EXAMPLES / "paper_3x3.toml"), "--device", "ibm_nowhere")
+    assert error_of(lambda: qcpp.compile(S, device="ibm_nowhere"), qcpp.DeviceError) == cli
+    assert error_of(lambda: qcpp.estimate(S, device="ibm_nowhere"), qcpp.DeviceError) == cli
+    assert error_of(lambda: qcpp.device("ibm_nowhere"), qcpp.DeviceError) == cli
+
+
+def test_a_robot_off_the_grid_names_the_robot_and_the_grid(tmp_path: Path) -> None:
+    path = tmp_path / "off.toml"
+    path.write_text('[grid]\nrows = 3\ncols = 3\n\n[[robots]]\nstart = [0, 0]\ngoal = [3, 0]\n')
+    cli = cli_error("compile", str(path))
+    message = error_of(lambda: qcpp.grid_scenario(3, 3, robots=[((0, 0), (3, 0))]), qcpp.ScenarioError)
+    assert message == "robots[0].goal: (3, 0) is outside the 3x3 grid"
+    assert cli == f"off.toml: {message}"
+
+
+def test_an_obstacle_off_the_grid_or_on_a_robot_is_named() -> None:
+    message = error_of(lambda: qcpp.grid_scenario(3, 3, robots=1, obstacles=[(5, 5)]), qcpp.ScenarioError)
+    assert message == "grid.obstacles[0]: (5, 5) is outside the 3x3 grid"
+    message = error_of(lambda: qcpp.grid_scenario(3, 3, robots=1, obstacles=[(0, 0)]), qcpp.ScenarioError)
+    assert message == "robots[0].start: (0, 0) is an obstacle"
+    message = error_of(lambda: qcpp.grid_scenario(2, 2, robots=5), qcpp.ScenarioError)
+    assert message.startswith("robots: the default placement fits 1 to 4 robots on a 2x2 grid")
+
+
+def test_openqasm_2_of_an_unbound_circuit_names_the_symbols(tmp_path: Path) -> None:
+    cli = cli_error("compile", str(EXAMPLES / "paper_3x3.toml"), "--qasm-version", "2", "--qasm", str(tmp_path / "x"))
+    c = qcpp.compile(qcpp.load_scenario(EXAMPLES / "paper_3x3.toml"))
+    assert error_of(lambda: c.to_qasm(version=2), qcpp.UnboundParameterError) == cli
+    assert "gamma_0, beta_0" in cli
+    assert error_of(lambda: c.to_qasm(version=4), qcpp.OptionError) == "version: expected 3 or 2, got 4"
+
+
+def test_estimate_settings_give_the_cli_s_reason() -> None:
+    cli = cli_error("estimate", "--epsilon", "2")
+    assert error_of(lambda: qcpp.estimate(S, epsilon=2.0), qcpp.OptionError) == cli.removeprefix("--")
+    assert error_of(lambda: qcpp.estimate(S, depth="deep"), qcpp.OptionError).startswith("depth: expected auto or")
+
+
+@pytest.mark.parametrize(
+    ("call", "start"),
+    [
+        (lambda: qcpp.estimate("examples/paper_3x3.toml"), "scenario: expected a Scenario"),
+        (lambda: qcpp.compile(S, layout="greedy"), "layout: 'greedy' applies with a device only"),
+        (lambda: qcpp.solve(S, "magic"), "method: expected dfs or cpsat"),
+        (lambda: qcpp.solve(S, "dfs", p=2), "p: applies to method='qaoa' only"),
+        (lambda: qcpp.solve(S, "anneal", time_limit=5), "time_limit: applies to method='cpsat' only"),
+        (lambda: qcpp.train_qaoa(S, 1, optimizer="adam"), "optimizer: expected layerwise or"),
+        (lambda: qcpp.simulate_qaoa(S, 2, angles=[0.1, 0.2]), "angles: p = 2 needs 4 angles"),
+        (lambda: qcpp.simulate_qaoa(S, 1, angles=[0.1, float("nan")]), "angles: nan is not a finite number"),
+        (lambda: qcpp.compile(S, max_gates=10), "refusing to build"),
+    ],
+)
+def test_other_bad_calls_raise_one_line_errors(call: Callable[[], Any], start: str) -> None:
+    assert error_of(call, qcpp.QcppError).startswith(start)
+
+
+def test_no_partial_file_after_an_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    c = qcpp.compile(S)
+    target = tmp_path / "out.qasm"
+    error_of(lambda: c.write_qasm(target, version=2), qcpp.UnboundParameterError)
+    assert list(tmp_path.iterdir()) == []
+    target.write_text("kept\n")
+
+    import qcpp.lowering.qasm as qasm_module
+
+    def interrupted(*args: Any, **kwargs: Any) -> Any:
+        yield "OPENQASM 3.0;\n"
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(qasm_module, "iter_qasm", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        c.write_qasm(target)
+    assert target.read_text() == "kept\n" and list(tmp_path.iterdir()) == [target]
+    named = qcpp.grid_scenario(3, 3, robots=1)
+    bad = type(named)(named.grid, named.robots, name="\ud800")  # a lone surrogate: TOML cannot hold it
+    error_of(lambda: qcpp.save_scenario(bad, tmp_path / "s.toml"), qcpp.ScenarioError)
+    assert list(tmp_path.iterdir()) == [target]
