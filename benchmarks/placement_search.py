@@ -11,12 +11,14 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
   CX (the greedy path before the search);
 * ``fused``: the same routing with SWAPs fused into an adjacent ``cx`` on their pair (``route(fuse=True)``);
 * ``search L``: :func:`qcpp.layout.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
-  starts (``SEARCH_SEEDS`` routing seeds for the ``SEARCH_REFINE`` best): routed CX, CX / a2a, and the CPU
-  seconds of the search (the process's CPU time: SABRE's trials run on threads), its cache cleared first.
-  The default budget is ``SEARCH_LAYOUTS``;
+  starts (``placement_seeds`` routing seeds for the ``placement_refine`` best,
+  :class:`qcpp.routing.options.RoutingOptions`): routed CX, CX / a2a, and the CPU seconds of the search (the
+  process's CPU time: SABRE's trials run on threads), in a fresh routing context. The default budget is
+  ``placement_layouts``;
 * ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
-  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
-  path with the default search), the search's cache cleared first.
+  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the
+  greedy
+  path with the default search), in a fresh routing context.
 """
 
 from __future__ import annotations
@@ -59,13 +61,11 @@ def main() -> None:
         fused = route(circuit, device, start, fuse=True).circuit.count_ops()["cx"]
         cells = []
         for budget in BUDGETS:
-            placement_search._SEARCH_CACHE.clear()
             t = time.process_time()
             cx = placement_search.search_route(circuit, device, starts=(start,), layouts=budget).circuit
             seconds = time.process_time() - t
             n = cx.count_ops()["cx"]
             cells.append(f"{n:,}, {n / a2a:.2f}, {seconds:.2f}")
-        placement_search._SEARCH_CACHE.clear()
         t = time.process_time()
         compile_for_device(s, 1, family, lowered=True, bindings=BIND)
         compile_s = time.process_time() - t

@@ -42,11 +42,11 @@ PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial", "medial")
 LAYOUT_METHODS = ("auto", "medial", "greedy")
 """How :func:`qcpp.pipeline.device_compile.compile_for_device` lays a circuit onto a device (here, not in hardware,
 so that the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
-:mod:`qcpp.layout.medial` with windows routed home (:func:`qcpp.routing.sabre.route_windows`); ``greedy``:
+:mod:`qcpp.layout.medial` with windows routed home (:func:`qcpp.routing.windows.route_windows`); ``greedy``:
 :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing of the whole circuit; ``auto``: medial where the
 device is a square grid that holds it, else greedy; on such a grid a circuit of at most
-:data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit
-gates win."""
+:attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq` two-qubit gates is routed both ways and the fewer
+two-qubit gates win."""
 
 
 @dataclass(frozen=True)

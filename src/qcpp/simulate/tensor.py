@@ -45,7 +45,7 @@ import os
 import threading
 import time
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -63,12 +63,14 @@ with warnings.catch_warnings():
 
 __all__ = [
     "DEFAULT_MAX_WIDTH",
+    "PATH_OPTIMIZERS",
     "RAW_MCX_MAX_QUBITS",
     "BasisState",
     "CacheFolderWarning",
     "ContractionInfo",
     "ContractionTooWideError",
     "MPSCircuit",
+    "OptimizerCache",
     "TensorCircuit",
     "contract_sliced",
     "dask_client",
@@ -174,8 +176,45 @@ def default_cache_dir() -> Path:
     return Path(base) / "qcpp" / "cotengra"
 
 
-_OPTIMIZERS: dict[tuple[Any, ...], ctg.ReusableHyperOptimizer] = {}
-_OPTIMIZERS_LOCK = threading.Lock()
+class OptimizerCache:
+    """The process's cotengra path optimizers, one per cache directory and settings (:func:`path_optimizer`).
+
+    A ``ReusableHyperOptimizer`` keeps the paths it found in memory and on disk; sharing one per directory lets
+    every contraction of the process reuse them (the only process-wide state of this module). Thread-safe;
+    :meth:`clear` forgets the instances (their on-disk paths stay), for tests.
+
+    Example:
+        >>> cache = OptimizerCache()
+        >>> made = cache.get(("key",), lambda: object())
+        >>> cache.get(("key",), lambda: object()) is made, len(cache)
+        (True, 1)
+        >>> cache.clear(); len(cache)
+        0
+    """
+
+    def __init__(self) -> None:
+        self._optimizers: dict[tuple[Any, ...], Any] = {}
+        self._lock = threading.Lock()
+
+    def get(self, key: tuple[Any, ...], make: Callable[[], Any]) -> Any:
+        """The optimizer of ``key``, made by ``make()`` the first time."""
+        with self._lock:
+            opt = self._optimizers.get(key)
+            if opt is None:
+                opt = self._optimizers[key] = make()
+            return opt
+
+    def clear(self) -> None:
+        """Forget every optimizer."""
+        with self._lock:
+            self._optimizers.clear()
+
+    def __len__(self) -> int:
+        return len(self._optimizers)
+
+
+PATH_OPTIMIZERS = OptimizerCache()
+"""The process-wide :class:`OptimizerCache` of :func:`path_optimizer`."""
 
 
 def path_optimizer(
@@ -210,22 +249,21 @@ def path_optimizer(
     """
     path = Path(directory) if directory is not None else default_cache_dir()
     key = (str(path.absolute()), max_repeats, max_time, parallel)
-    with _OPTIMIZERS_LOCK:
-        opt = _OPTIMIZERS.get(key)
-        if opt is None:
-            usable = _usable_cache(path)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
-                opt = ctg.ReusableHyperOptimizer(
-                    max_repeats=max_repeats,
-                    max_time=max_time,
-                    parallel=parallel,
-                    directory=str(usable) if usable is not None else None,  # None: in memory only
-                    hash_method="b",
-                    progbar=False,
-                )
-            _OPTIMIZERS[key] = opt
-        return opt
+
+    def make() -> ctg.ReusableHyperOptimizer:
+        usable = _usable_cache(path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
+            return ctg.ReusableHyperOptimizer(
+                max_repeats=max_repeats,
+                max_time=max_time,
+                parallel=parallel,
+                directory=str(usable) if usable is not None else None,  # None: in memory only
+                hash_method="b",
+                progbar=False,
+            )
+
+    return PATH_OPTIMIZERS.get(key, make)  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------------------------------------------ conversion
