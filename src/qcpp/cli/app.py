@@ -99,6 +99,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.cli.commands.estimate",
     "qcpp.cli.commands.validate",
     "qcpp.cli.commands.export",
+    "qcpp.cli.commands.scenario",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
