@@ -97,6 +97,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.cli.commands.validate",
     "qcpp.cli.commands.verify",
     "qcpp.cli.commands.export",
+    "qcpp.cli.commands.scenario",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
