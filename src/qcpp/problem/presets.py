@@ -67,7 +67,8 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
     """The default scenario for a ``rows x cols`` grid and ``robots`` robots (see the module docstring).
 
     Args:
-        rows, cols: grid size (at least 2 each).
+        rows: grid rows (at least 2).
+        cols: grid columns (at least 2).
         robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
 
     Raises:
@@ -107,7 +108,8 @@ def grid_scenario(
     ``obstacles = "hard"`` with ``hard_obstacles``.
 
     Args:
-        rows, cols: Grid size (at least 2 each).
+        rows: Grid rows (at least 2).
+        cols: Grid columns (at least 2).
         robots: A robot count (the default placement of the module docstring), or ``(start, goal)`` pairs of
             ``(row, col)`` nodes, one per robot.
         obstacles: Obstacle nodes ``(row, col)``, in any order.
