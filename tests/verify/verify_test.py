@@ -14,6 +14,7 @@ from qcpp.estimators.crosscheck import interior_endpoints, with_obstacles
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
 from qcpp.gadgets.phase_visits import VisitPhase
 from qcpp.ir.gates import Gate, mcx
+from qcpp.plan.options import PlanOptions
 from qcpp.problem.paths import is_feasible
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
@@ -90,6 +91,21 @@ def test_gadget_method_certifies_what_the_state_method_checks() -> None:
     assert verify_state(s, p=1).holds
 
 
+@pytest.mark.parametrize(
+    "options",
+    [PlanOptions(target="ft"), PlanOptions(fuse=False), PlanOptions(phase="whole-space"), PlanOptions(angles="multi")],
+    ids=["ft", "unfused", "whole-space", "multi-angles"],
+)
+def test_both_methods_hold_for_other_constructions(options: PlanOptions) -> None:
+    s = default_scenario(3, 3, 2)
+    for method in ("state", "gadgets"):
+        report = verify(s, p=1, method=method, options=options)  # type: ignore[arg-type]
+        assert_exhaustive_hold(report)
+    if not options.fuse:
+        kinds = [c.subject for c in verify_gadgets(s, p=1, options=options).checks if c.part == "mixer"]
+        assert kinds and all(k.startswith("ParityPartialMixer") for k in kinds)
+
+
 # ------------------------------------------------------------------------------------------------ the paper rule
 def test_paper_rule_leak_on_2x3_is_found_by_the_state_method() -> None:
     s = leak_scenario()
@@ -147,6 +163,7 @@ def test_bad_input_to_the_library_is_a_value_error() -> None:
 def test_auto_picks_state_where_every_input_fits_and_gadgets_beyond() -> None:
     assert choose_method(default_scenario(3, 3, 2), 1) == "state"
     assert choose_method(default_scenario(3, 3, 2), 1, samples=10) == "gadgets"
+    assert choose_method(default_scenario(3, 3, 2), 1, PlanOptions(rule="paper")) == "state"
     assert choose_method(default_scenario(8, 8, 3), 1) == "gadgets"
 
 
