@@ -106,6 +106,20 @@ def test_both_methods_hold_for_other_constructions(options: PlanOptions) -> None
         assert kinds and all(k.startswith("ParityPartialMixer") for k in kinds)
 
 
+@pytest.mark.parametrize("initial", ["representatives", "local_search_mix"])
+def test_both_methods_check_other_initial_states(initial: str) -> None:
+    for method in ("state", "gadgets"):
+        report = verify(default_scenario(3, 3, 1), p=1, method=method, options=PlanOptions(initial=initial))  # type: ignore[arg-type]
+        assert_exhaustive_hold(report)
+
+
+@pytest.mark.parametrize("mode", ["soft", "hard"])
+def test_gadget_method_on_obstacles(mode: str) -> None:
+    s = with_obstacles(default_scenario(4, 4, 2), mode)
+    assert s is not None
+    assert_exhaustive_hold(verify(s, p=2, method="gadgets"))
+
+
 # ------------------------------------------------------------------------------------------------ the paper rule
 def test_paper_rule_leak_on_2x3_is_found_by_the_state_method() -> None:
     s = leak_scenario()
