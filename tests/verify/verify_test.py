@@ -165,6 +165,19 @@ def test_cli_exit_codes_and_json(tmp_path: Path) -> None:
         assert res.exit_code == 2 and res.stderr.startswith("error: ") and len(res.stderr.splitlines()) == 1
 
 
+def test_cli_reports_progress_on_stderr(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    path = tmp_path / "leak.json"
+    path.write_text(json.dumps(LEAK))
+    env = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}
+    res = CliRunner().invoke(app, ["verify", str(path), "--method", "gadgets", "--json"], env=env)
+    assert res.exit_code == 0, res.output
+    lines = [line for line in res.stderr.splitlines() if line.startswith("verify leak.json: ")]
+    assert len(lines) >= 3 and "checks" in lines[-1]
+    assert json.loads(res.stdout)["method"] == "gadgets"  # stdout stays one JSON object
+
+
 def test_bad_input_to_the_library_is_a_value_error() -> None:
     s = leak_scenario()
     for kwargs in ({"p": 0}, {"rule": "loose"}, {"method": "fast"}, {"samples": 0}):
