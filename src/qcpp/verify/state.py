@@ -284,7 +284,7 @@ def verify_state(
     counterexample = None
     for name, unit, inputs in units:
         gates = [g for pc in unit for g in pc.gates]
-        how = "exhaustive" if (exhaustive or len(inputs) == 1) else "sampled"
+        how = "sampled" if inputs is keys and not exhaustive else "exhaustive"  # |0...0> is one input: all of them
         held = True
         for chunk in _chunks(inputs):
             out = Batch.of_inputs(chunk).run(gates)
