@@ -187,13 +187,6 @@ def test_bad_input_to_the_library_is_a_value_error() -> None:
         verify(default_scenario(6, 6, 2), p=1, method="state")
 
 
-def test_the_package_is_callable() -> None:
-    import qcpp.verify
-
-    report = qcpp.verify(leak_scenario(), p=1, rule="paper")  # type: ignore[operator]
-    assert not report.holds and report.counterexample is not None
-
-
 def test_auto_picks_state_where_every_input_fits_and_gadgets_beyond() -> None:
     assert choose_method(default_scenario(3, 3, 2), 1) == "state"
     assert choose_method(default_scenario(3, 3, 2), 1, samples=10) == "gadgets"

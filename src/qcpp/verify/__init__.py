@@ -17,17 +17,10 @@ superposition of feasible assignments with clean ancillas. Two methods check tha
     ``state`` when every feasible input can be checked (at most ``samples`` of them, at most 62 qubits), else
     ``gadgets``.
 
-The package itself is callable: ``qcpp.verify(scenario, p=...)`` is :func:`verify` (the public API's ``verify``; a
-function of that name could not live beside this package in :mod:`qcpp`, since importing the package sets the
-attribute ``qcpp.verify``; as with :mod:`qcpp.devices`).
-
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
     >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 3}, "robots": [{"start": [0, 2], "goal": [1, 1]}]})
     >>> verify(s, p=1).holds
-    True
-    >>> import qcpp.verify
-    >>> qcpp.verify(s, p=1).holds
     True
     >>> report = verify(s, p=1, rule="paper")     # the paper's rule lets a path leave the feasible set
     >>> report.holds, report.method, report.counterexample.plaquette
@@ -35,9 +28,6 @@ Example:
 """
 
 from __future__ import annotations
-
-import sys
-from types import ModuleType
 
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.paths import count_paths
@@ -127,22 +117,3 @@ def verify(
     return verify_gadgets(scenario, p, seed=seed, progress=progress, options=options)
 
 
-class _Package(ModuleType):
-    """This package's module type: calling it runs :func:`verify`."""
-
-    def __call__(
-        self,
-        scenario: Scenario,
-        p: int = 1,
-        rule: Rule = "exact",
-        method: Method = "auto",
-        samples: int = DEFAULT_SAMPLES,
-        seed: int = 0,
-        progress: ProgressFn | None = None,
-        options: PlanOptions | None = None,
-    ) -> VerifyReport:
-        """:func:`verify` (the same arguments)."""
-        return verify(scenario, p, rule, method, samples, seed, progress, options)
-
-
-sys.modules[__name__].__class__ = _Package
