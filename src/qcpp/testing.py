@@ -2,7 +2,7 @@
 
 Strategies for scenarios, feasible paths and plaquette flips (:func:`scenarios`, :func:`feasible_paths`,
 :func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer variant against the SBF rules
-and :func:`qcpp.verify.verify`), and for random angles, gates and circuits of the IR.
+and :func:`qcpp.verify`), and for random angles, gates and circuits of the IR.
 
 An optional module for property tests of the IR and of code built on it: no production module imports it. The
 plain scenario lists the estimate == compiled checks run on are in :mod:`qcpp.estimators.crosscheck`.

@@ -37,7 +37,8 @@ from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
