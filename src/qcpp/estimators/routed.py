@@ -112,9 +112,8 @@ LAYOUT_BOUND_MODEL = (
 MIXER_SPAN = {"grid": 8, "heavy-hex": 12}
 """Per device family, the largest distance between two qubits of one partial mixer's window (data homes and
 allocated ancillas) that the bound assumes in the geometric layout (medial grid, heavy-hex cells): the mixer's
-gates are charged ``1 + 6 (span - 1)`` each instead of the device diameter's. Measured at most 7 and 10 on every
-default scenario up to 5x5 with 3 robots (``tests/estimators/routed_test.py`` checks it and that the mixer's share
-of the bound is at least its routed gates)."""
+gates are charged ``1 + 6 (span - 1)`` each instead of the device diameter's (the tests check the span and that
+the mixer's share of the bound is at least its routed gates)."""
 
 COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
 SUM_MODEL = (

@@ -9,7 +9,7 @@ robots' patches are *tiled* by default (side by side, ``down x across`` patches 
 every partial mixer acts on one robot, so tiling keeps each partial mixer inside its own patch. The other
 arrangement, ``interleave``, puts the ``k`` copies of every site side by side (a ``down x across`` block per
 medial site), which brings the phase separator's per-node cross-robot terms together but stretches every
-plaquette; measured, it routes to more CX in both parts (``python benchmarks/routing.py --arrangements``).
+plaquette, and routes to more CX in both parts.
 
 **Allocation** (:func:`allocate_ancillas`). Every section of a circuit compiled with ``fuse=False`` returns its
 ancillas to |0> at both ends (``docs/architecture.md``, "Sections"), so each section may use *any* free device

@@ -10,7 +10,7 @@ Two passes on an emitted, lowered circuit (plain functions, ``circuit -> circuit
   sections' centroids, ``k`` as large as the device's spare qubits allow); each region gets its own pool of
   ``local_cap`` ancillas, appended as register ``local``. Larger sections (the phase separator's arithmetic over
   all edges) keep the shared ancillas. The gate order is unchanged, so the operator is unchanged; sections of
-  different regions now act on disjoint qubits when their data qubits are disjoint, so they may run side by
+  different regions then act on disjoint qubits when their data qubits are disjoint, so they may run side by
   side (ASAP), which is a reordering of commuting gates only. No partial mixers that share a qubit are reordered.
 * :func:`place` maps logical qubits to physical qubits: greedily, heaviest-interacting first, each qubit onto
   the free physical qubit of the device's largest connected component that minimises the interaction-weighted

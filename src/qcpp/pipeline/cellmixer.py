@@ -31,10 +31,7 @@ default plan is left as compiled. The cost is compile time: every variant is all
 (most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
 translations, :func:`qcpp.routing.windows.route_window`, so equal windows of other plaquettes and the final
 allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
-scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
-
-Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
-plaquette".
+scored again, and the A* runs once per relabelled program).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario

@@ -18,8 +18,7 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
 * **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
   :attr:`~qcpp.routing.options.RoutingOptions.auto_compare_max_twoq`; on the unsized ``heavy-hex`` it is then
-  routed on the smallest lattice that holds the circuit, where it needs no room for the cells: measured, it wins on
-  every default up to 3x3 with three robots, the cells from 4x4 with two robots on): optionally region-local
+  routed on the smallest lattice that holds the circuit, where it needs no room for the cells): optionally region-local
   ancillas (:func:`qcpp.layout.placement.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout`
   (our greedy placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins)
   and one SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
@@ -40,7 +39,7 @@ Example:
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
     >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
-    >>> r.layout_method, r.routed.device.name  # cheaper than the cells on heavy-hex:7 (287 vs 344 CX)
+    >>> r.layout_method, r.routed.device.name  # cheaper here than the cells on a larger lattice
     ('greedy', 'heavy-hex:3')
     >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
     >>> cells.routed.device.name
@@ -431,7 +430,7 @@ def medial_compile(
     and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
     is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
     column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
-    the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`; ``tile`` measured better).
+    the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`).
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
     ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's

@@ -105,7 +105,7 @@ def load_scenario(
 
 MAX_NESTING = 64
 """Deepest bracket nesting :func:`load_scenario` parses (a scenario needs 5; Python's parsers recurse per level,
-so ``[[[[...]]]]`` 100,000 deep used to end in a ``RecursionError`` traceback)."""
+so deeper input would end in a ``RecursionError``)."""
 
 _STRINGS = {
     "JSON": re.compile(r'"(?:[^"\\]|\\.)*"'),
