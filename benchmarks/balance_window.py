@@ -19,7 +19,7 @@ from __future__ import annotations
 import sys
 import time
 
-from qcpp.layout.placement import distances
+from qcpp.devices.device import distances
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
 from qcpp.routing import sabre as routing

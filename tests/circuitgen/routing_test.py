@@ -289,7 +289,7 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
     again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
     routing, and replays the patches the routing saw into PATCH_WATCH."""
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
     from qcpp.routing import sabre as routing
     from qcpp.routing.sabre import PATCH_WATCH, Positions, route_window
 

@@ -15,10 +15,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from qcpp.devices.device import get_device, heavy_hex_coordinates
+from qcpp.devices.device import distances, get_device, heavy_hex_coordinates
 from qcpp.gadgets.partial_mixer import plan_parity_mixer
 from qcpp.layout import medial
-from qcpp.layout.placement import distances
 from qcpp.pipeline import cellmixer
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario

@@ -57,11 +57,11 @@ from __future__ import annotations
 
 from functools import cache
 
-from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_qubits
+from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
-    "CELL_LARGE_WINDOW_SEEDS", "CELL_LARGE_WINDOW_TRIALS", "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
+    "CELL_LARGE_WINDOW_SEEDS", "CELL_LARGE_WINDOW_TRIALS", "CELL_PHASE_LAYOUT", "hex_distance",
     "hex_placement", "hex_sites", "is_hex_lattice",
 ]  # fmt: skip
 
@@ -80,19 +80,6 @@ that window's routed CX by (seeds, trials): (8, 16) 2,488; (32, 16) 2,434; (8, 6
 
 CELL_LARGE_WINDOW_TRIALS = 64
 """SABRE's trials per seed on the cells' large window (16 elsewhere, :data:`qcpp.routing.sabre.DEFAULT_TRIALS`)."""
-
-
-def heavy_hex_distance(device: Device) -> int | None:
-    """``d`` if the device's coupling is :func:`qcpp.devices.device.heavy_hex_coupling` ``(d)`` (the unsized family's
-    lattice, qubit indices as there), else ``None`` (named Heron devices have another layout)."""
-    if device.is_all_to_all or device.family != "heavy-hex":
-        return None
-    d = 3
-    while heavy_hex_qubits(d) < device.num_qubits:
-        d += 2
-    if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
-        return None
-    return d
 
 
 def is_hex_lattice(spec: str | Device) -> bool:
@@ -185,8 +172,8 @@ def _placed(scenario: Scenario, d: int, arrangement: tuple[int, int]) -> tuple[i
 
 def hex_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a heavy-hex lattice device, or ``None`` if
-    the device is not one (:func:`heavy_hex_distance`) or the layout does not fit. Of the ``down x across``
-    stackings of the robots' patches that fit, the one that needs the smallest lattice (the lattice is about twice
+    the device is not one (:func:`qcpp.devices.device.heavy_hex_distance`) or the layout does not fit. Of the
+    ``down x across`` stackings of the robots' patches that fit, the one that needs the smallest lattice (the lattice is about twice
     as tall as wide in cells, so robots are stacked down first).
 
     Args:

@@ -56,11 +56,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from qcpp.devices.device import Device, heavy_hex_coordinates
+from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartialMixer, Slot, plan_parity_mixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.layout.heavy_hex import heavy_hex_distance
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan

@@ -490,8 +490,7 @@ class _Lattice:
     @classmethod
     def of(cls, device: Device) -> _Lattice | None:
         """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
-        from qcpp.devices.device import heavy_hex_coordinates
-        from qcpp.layout.heavy_hex import heavy_hex_distance
+        from qcpp.devices.device import heavy_hex_coordinates, heavy_hex_distance
 
         d = heavy_hex_distance(device)
         if d is None:
@@ -959,7 +958,7 @@ def route_windows(
     Returns:
         The :class:`RoutedCircuit` (``initial_layout == final_layout == layout``).
     """
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
 
     gates, section_of, home, measured_ = _flatten(circuit, device, layout, measured)
     if dist is None:
