@@ -94,7 +94,7 @@ def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[li
         source: Physical qubit whose value is copied.
         target: Physical qubit the copy must end near.
         clean: Physical qubits that are |0> (the chain's holders).
-        dist: All-pairs device distances (:func:`qcpp.layout.placement.distances`).
+        dist: All-pairs device distances (:func:`qcpp.devices.device.distances`).
 
     Returns:
         ``(CX pairs (control, target) in order, the holder)``, or ``None`` when ``source`` is within two steps

@@ -951,7 +951,7 @@ def route_windows(
         seed: SABRE's seed.
         measured: Logical qubits measured at the end (default: the ``data`` register, else all).
         trials: SABRE's trials per window.
-        dist: The device's all-pairs distances (:func:`qcpp.layout.placement.distances`), if already known.
+        dist: The device's all-pairs distances (:func:`qcpp.devices.device.distances`), if already known.
         large_seeds, large_trials: SABRE seeds a large window tries (default :data:`LARGE_WINDOW_SEEDS`) and
             SABRE's trials per seed there (default ``trials``).
 

@@ -208,7 +208,7 @@ def robot_basis(
         scenario: The scenario.
         robot: Robot index.
         rule: SBF rule, ``exact`` or ``paper``.
-        initial: One of :data:`~qcpp.plan.options.INITIAL_STATES` (see the module docstring).
+        initial: One of :data:`~qcpp.gadgets.initial_state.INITIAL_STATES` (see the module docstring).
 
     Returns:
         The :class:`RobotBasis`.
