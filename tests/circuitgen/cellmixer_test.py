@@ -18,13 +18,12 @@ import importlib
 import numpy as np
 import pytest
 
-from qcpp.devices.device import get_device
+from qcpp.devices.device import distances, get_device
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import rx, ry
 from qcpp.layout.heavy_hex import hex_placement
-from qcpp.layout.placement import distances
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.cellmixer import _operand_swaps, _window_cx, cell_mixers, relabelled_plans
 from qcpp.pipeline.device_compile import hex_device

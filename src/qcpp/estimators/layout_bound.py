@@ -187,7 +187,7 @@ def gate_distances(device: Device, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     if shape is not None:
         cols = shape[1]
         return np.abs(a // cols - b // cols) + np.abs(a % cols - b % cols)
-    from qcpp.layout.heavy_hex import heavy_hex_distance
+    from qcpp.devices.device import heavy_hex_distance
 
     lattice = heavy_hex_distance(device)
     if lattice is not None:

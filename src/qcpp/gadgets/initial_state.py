@@ -35,13 +35,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Literal
 
 from qcpp.ir.gates import Gate, cry, mcx, ry, x
-from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.paths import edges_of, initial_path, path_bits
 from qcpp.problem.sbf import Rule, representatives
 from qcpp.problem.scenario import Scenario
+
+Initial = Literal["initial_path", "representatives", "local_search", "local_search_mix"]
+INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives", "local_search", "local_search_mix")
+"""The initial states :func:`initial_state_gates` prepares (see the module docstring)."""
 
 
 def _conditioned(
@@ -155,7 +158,7 @@ def start_paths(scenario: Scenario, robot: int, initial: str, rule: Rule = "exac
     starts from.
 
     Args:
-        initial: One of :data:`qcpp.plan.options.INITIAL_STATES` (see the module docstring).
+        initial: One of :data:`INITIAL_STATES` (see the module docstring).
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
             descent (``local_search``, ``local_search_mix``).
 

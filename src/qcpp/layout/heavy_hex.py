@@ -53,11 +53,11 @@ from __future__ import annotations
 
 from functools import cache
 
-from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_qubits
+from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
-    "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
+    "CELL_PHASE_LAYOUT", "hex_distance",
     "hex_placement", "hex_sites", "is_hex_lattice",
 ]  # fmt: skip
 
@@ -65,19 +65,6 @@ CELL_PHASE_LAYOUT = "medial"
 """The phase separator's layout that ``phase_layout="auto"`` settles on for a heavy-hex lattice (the cell layout):
 the balance sums drift to sinks where the robots' patches meet (:func:`qcpp.plan.phase_layout.balance_sinks`),
 as on square grids; same gates and counts as ``spatial``."""
-
-
-def heavy_hex_distance(device: Device) -> int | None:
-    """``d`` if the device's coupling is :func:`qcpp.devices.device.heavy_hex_coupling` ``(d)`` (the unsized family's
-    lattice, qubit indices as there), else ``None`` (named Heron devices have another layout)."""
-    if device.is_all_to_all or device.family != "heavy-hex":
-        return None
-    d = 3
-    while heavy_hex_qubits(d) < device.num_qubits:
-        d += 2
-    if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
-        return None
-    return d
 
 
 def is_hex_lattice(spec: str | Device) -> bool:
@@ -170,9 +157,9 @@ def _placed(scenario: Scenario, d: int, arrangement: tuple[int, int]) -> tuple[i
 
 def hex_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a heavy-hex lattice device, or ``None`` if
-    the device is not one (:func:`heavy_hex_distance`) or the layout does not fit. Of the ``down x across``
-    stackings of the robots' patches that fit, the one that needs the smallest lattice (the lattice is about twice
-    as tall as wide in cells, so robots are stacked down first).
+    the device is not one (:func:`qcpp.devices.device.heavy_hex_distance`) or the layout does not fit. Of the
+    ``down x across`` stackings of the robots' patches that fit, the one that needs the smallest lattice (the
+    lattice is about twice as tall as wide in cells, so robots are stacked down first).
 
     Args:
         scenario: The scenario.

@@ -137,7 +137,7 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
 
 
 def _distances(device: Device) -> np.ndarray:
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
 
     return distances(device)
 

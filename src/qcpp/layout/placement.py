@@ -36,12 +36,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from qcpp.devices.device import Device
+from qcpp.devices.device import Device, distances
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["DEFAULT_LOCAL_CAP", "distances", "localize_ancillas", "place"]
+__all__ = ["DEFAULT_LOCAL_CAP", "localize_ancillas", "place"]
 
 DEFAULT_LOCAL_CAP = 8
 """Ancillas per local pool: the most any partial mixer or per-node phase gadget of the default grids uses."""
@@ -117,13 +117,6 @@ def localize_ancillas(circuit: Circuit, scenario: Scenario, spare: int, local_ca
         gates = [Gate(g[0], tuple(rename.get(q, q) for q in g[1]), g[2], g[3]) for g in sec.gates]
         sections.append(Section(sec.name, gates))
     return Circuit([*circuit.registers, Register("local", k * local_cap)], sections)
-
-
-def distances(device: Device) -> np.ndarray:
-    """All-pairs shortest-path lengths of the coupling graph (``inf`` between components)."""
-    from scipy.sparse.csgraph import shortest_path
-
-    return shortest_path(device.graph(), directed=False, unweighted=True)
 
 
 def _largest_component(dist: np.ndarray) -> np.ndarray:

@@ -54,15 +54,11 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
-from qcpp.devices.device import Device, get_device
+from qcpp.devices.device import Device, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.layout.heavy_hex import (
-    heavy_hex_distance,
-    hex_distance,
-    hex_placement,
-)
+from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
-from qcpp.layout.placement import distances, localize_ancillas, place
+from qcpp.layout.placement import localize_ancillas, place
 from qcpp.layout.placement_search import qiskit_sabre_layout, search_route
 from qcpp.pipeline.cellmixer import cell_mixers
 from qcpp.pipeline.device_plan import device_plan_options

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from qcpp.errors import OptionError, choice_reason
+from qcpp.gadgets.initial_state import INITIAL_STATES, Initial
 from qcpp.ir.cost import TARGETS, Target
 from qcpp.problem.sbf import RULES, Rule
 
@@ -29,8 +30,6 @@ __all__ = [
     "Initial", "PhaseLayout", "PlanOptions",
 ]
 
-Initial = Literal["initial_path", "representatives", "local_search", "local_search_mix"]
-INITIAL_STATES: tuple[Initial, ...] = ("initial_path", "representatives", "local_search", "local_search_mix")
 Angles = Literal["layer", "multi"]
 ANGLES: tuple[Angles, ...] = ("layer", "multi")
 Phase = Literal["feasible", "whole-space"]

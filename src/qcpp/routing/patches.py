@@ -13,7 +13,7 @@ watches (:meth:`~qcpp.routing.context.RoutingContext.saw_patch`).
 
 Example:
     >>> from qcpp.devices.device import get_device
-    >>> from qcpp.layout.placement import distances
+    >>> from qcpp.devices.device import distances
     >>> from qcpp.routing.context import RoutingContext
     >>> dev = get_device("grid:1x6")
     >>> context = RoutingContext()
@@ -97,8 +97,7 @@ class Lattice:
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
         """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
-        from qcpp.devices.device import heavy_hex_coordinates
-        from qcpp.layout.heavy_hex import heavy_hex_distance
+        from qcpp.devices.device import heavy_hex_coordinates, heavy_hex_distance
 
         d = heavy_hex_distance(device)
         if d is None:

@@ -143,7 +143,7 @@ def solve_qaoa(
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
         initial: Initial state: ``initial_path`` (default), ``representatives``, ``local_search`` or
-            ``local_search_mix`` (:data:`qcpp.plan.options.INITIAL_STATES`).
+            ``local_search_mix`` (:data:`qcpp.gadgets.initial_state.INITIAL_STATES`).
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`qcpp.simulate.training.train`).
