@@ -13,7 +13,8 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
 * ``search L``: :func:`qcpp.layout.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
   starts (``placement_seeds`` routing seeds for the ``placement_refine`` best,
   :class:`qcpp.routing.options.RoutingOptions`): routed CX, CX / a2a, and the CPU seconds of the search (the
-  process's CPU time: SABRE's trials run on threads), in a fresh routing context. The default budget is ``placement_layouts``;
+  process's CPU time: SABRE's trials run on threads), in a fresh routing context. The default budget is
+  ``placement_layouts``;
 * ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
   (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
   path with the default search), in a fresh routing context.
