@@ -16,7 +16,8 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
   process's CPU time: SABRE's trials run on threads), in a fresh routing context. The default budget is
   ``placement_layouts``;
 * ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
-  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
+  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the
+  greedy
   path with the default search), in a fresh routing context.
 """
 
@@ -31,9 +32,9 @@ from routing import BIND, scenarios  # the routing benchmark's (this script's di
 from qcpp.devices.device import get_device
 from qcpp.layout import placement_search
 from qcpp.pipeline.device_compile import best_layout, compile_for_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.sabre import route
 
@@ -52,7 +53,7 @@ def main() -> None:
     print("|---|---|---:|---:|---:|" + "---:|" * (len(BUDGETS) + 1))
     for label, s in one_robot():
         a2a = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit.count_ops()["cx"]
-        options = replace(for_device(DEFAULT_PLAN, family), fuse=False)
+        options = replace(device_plan_options(DEFAULT_PLAN, family, layout_method="greedy"), fuse=False)
         circuit = compile_scenario(s, 1, options, lowered=True, bindings=BIND).circuit
         device = get_device(family, min_qubits=circuit.num_qubits)
         start = best_layout(circuit, device)

@@ -42,7 +42,8 @@ from qcpp.lowering.qasm import to_qasm2
 from qcpp.pipeline.device_compile import compile_for_device, medial_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.routed_circuit import coupling_map
 

@@ -1,7 +1,23 @@
-"""Hypothesis strategies for random angles, gates and circuits of the IR (needs the ``test`` extra).
+"""Hypothesis strategies for property tests (needs hypothesis: the ``testing`` extra, ``pip install 'qcpp[testing]'``).
+
+Strategies for scenarios, feasible paths and plaquette flips (:func:`scenarios`, :func:`feasible_paths`,
+:func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer variant against the SBF rules
+and :func:`qcpp.verify`), and for random angles, gates and circuits of the IR.
 
 An optional module for property tests of the IR and of code built on it: no production module imports it. The
 plain scenario lists the estimate == compiled checks run on are in :mod:`qcpp.estimators.crosscheck`.
+
+A property test of feasibility preservation, in the form a mixer variant would use:
+
+>>> from hypothesis import given, settings
+>>> from qcpp.problem.paths import is_feasible
+>>> @settings(max_examples=20)
+... @given(plaquette_flips(scenarios(max_side=4), rule="exact"))
+... def exact_flips_stay_feasible(flip):
+...     assert not flip.allowed or is_feasible(flip.scenario, flip.robot, flip.result)
+>>> exact_flips_stay_feasible()
+
+Random circuits:
 
 >>> from hypothesis import given, settings
 >>> @settings(max_examples=5)
@@ -13,8 +29,11 @@ plain scenario lists the estimate == compiled checks run on are in :mod:`qcpp.es
 
 from __future__ import annotations
 
+import functools
+import itertools
 import math
 from collections.abc import Collection, Sequence
+from dataclasses import dataclass
 
 from hypothesis import strategies as st
 
@@ -43,14 +62,24 @@ from qcpp.ir.gates import (
     tdg,
     x,
 )
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid
+from qcpp.problem.paths import iter_paths
+from qcpp.problem.sbf import Rule, sbf_logic
+from qcpp.problem.scenario import Objective, Robot, Scenario
 
 __all__ = [
     "ALL_GATE_NAMES",
     "CLEAN_TARGET_NAMES",
     "SYMBOLS",
+    "PlaquetteFlip",
     "angles",
     "circuits",
+    "feasible_assignments",
+    "feasible_paths",
     "gates",
+    "plaquette_flips",
+    "scenarios",
 ]
 
 CLEAN_TARGET_NAMES = frozenset({"and", "and_dg"})
@@ -166,3 +195,99 @@ def circuits(
         body = draw(st.lists(gates(n, names, max_controls=max_controls, symbolic=symbolic), max_size=max_gates))
         sections.append(Section(draw(st.sampled_from([f"phase_{i}", f"mixer_{i}", "initial_state"])), body))
     return Circuit(regs, sections)
+
+
+# --- scenarios, feasible paths and plaquette flips -------------------------------------------------------------
+@st.composite
+def scenarios(
+    draw: st.DrawFn, min_side: int = 2, max_side: int = 5, max_robots: int = 1, obstacles: bool = True
+) -> Scenario:
+    """A random valid scenario: sides ``min_side..max_side``, up to three obstacles (soft or hard mode, when
+    ``obstacles``), ``1..max_robots`` robots with distinct starts and random goals.
+
+    A hard-mode scenario whose goal is cut off falls back to soft mode, so every draw is valid.
+    """
+    rows = draw(st.integers(min_side, max_side))
+    cols = draw(st.integers(min_side, max_side))
+    grid = Grid(rows, cols)
+    nodes = list(grid.nodes)
+    n_obs = draw(st.integers(0, min(3, len(nodes) - 2))) if obstacles else 0
+    obs = sorted(draw(st.lists(st.sampled_from(nodes), min_size=n_obs, max_size=n_obs, unique=True)))
+    free = [n for n in nodes if n not in obs]
+    robots: list[Robot] = []
+    starts: set[tuple[int, int]] = set()
+    for _ in range(draw(st.integers(1, min(max_robots, len(free))))):
+        start = draw(st.sampled_from([n for n in free if n not in starts]))
+        goal = draw(st.sampled_from([n for n in free if n != start]))
+        starts.add(start)
+        robots.append(Robot(start, goal))
+    mode = draw(st.sampled_from(["soft", "hard"]))
+    try:
+        return Scenario(grid, tuple(robots), tuple(obs), Objective(obstacles=mode))
+    except ScenarioError:  # a goal cut off by hard obstacles
+        return Scenario(grid, tuple(robots), tuple(obs), Objective(obstacles="soft"))
+
+
+@functools.lru_cache(maxsize=64)
+def _path_pool(scenario: Scenario, robot: int, limit: int) -> tuple[int, ...]:
+    return tuple(itertools.islice(iter_paths(scenario, robot), limit))
+
+
+def feasible_paths(scenario: Scenario, robot: int, limit: int = 2_000) -> st.SearchStrategy[int]:
+    """One of the robot's feasible paths (an edge mask; :func:`qcpp.problem.paths.iter_paths` order), drawn from
+    its first ``limit`` paths (every path on small grids; the pool is enumerated once per scenario and robot)."""
+    return st.sampled_from(_path_pool(scenario, robot, limit))
+
+
+@st.composite
+def feasible_assignments(draw: st.DrawFn, scenario: Scenario, limit: int = 2_000) -> tuple[int, ...]:
+    """One feasible path per robot (see :func:`feasible_paths`)."""
+    return tuple(draw(feasible_paths(scenario, r, limit)) for r in range(scenario.num_robots))
+
+
+@dataclass(frozen=True)
+class PlaquetteFlip:
+    """One SBF move tried on a feasible path.
+
+    Attributes:
+        scenario: The scenario.
+        robot: The robot moved.
+        path: Its feasible path (edge mask) before the move.
+        plaquette: Index of the plaquette flipped.
+        rule: The rule asked.
+        allowed: Whether the rule allows the flip on ``path``.
+        result: ``path`` with the plaquette's four edges flipped (whether allowed or not).
+    """
+
+    scenario: Scenario
+    robot: int
+    path: int
+    plaquette: int
+    rule: Rule
+    allowed: bool
+    result: int
+
+
+@st.composite
+def plaquette_flips(
+    draw: st.DrawFn, scenario: Scenario | st.SearchStrategy[Scenario], rule: Rule = "exact",
+    allowed_only: bool = False,
+) -> PlaquetteFlip:  # fmt: skip
+    """A random robot, one of its feasible paths and a plaquette, with what ``rule`` says of flipping it there.
+
+    Args:
+        draw: supplied by hypothesis.
+        scenario: A scenario, or a strategy for one (e.g. :func:`scenarios`).
+        rule: ``exact`` or ``paper``.
+        allowed_only: Only draw flips the rule allows (rejects the others: keep it for rules that allow some).
+    """
+    s = draw(scenario) if isinstance(scenario, st.SearchStrategy) else scenario
+    robot = draw(st.integers(0, s.num_robots - 1))
+    path = draw(feasible_paths(s, robot))
+    plaq = draw(st.sampled_from(s.grid.plaquettes))
+    allowed = sbf_logic(s, robot, plaq, rule).evaluate(path)
+    if allowed_only:
+        from hypothesis import assume
+
+        assume(allowed)
+    return PlaquetteFlip(s, robot, path, plaq.index, rule, allowed, path ^ plaq.edge_mask)

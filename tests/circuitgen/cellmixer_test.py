@@ -18,13 +18,12 @@ import importlib
 import numpy as np
 import pytest
 
-from qcpp.devices.device import get_device
+from qcpp.devices.device import distances, get_device
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import rx, ry
 from qcpp.layout.heavy_hex import hex_placement
-from qcpp.layout.placement import distances
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.cellmixer import _operand_swaps, _window_cx, cell_mixers, relabelled_plans
 from qcpp.pipeline.device_compile import hex_device
@@ -61,7 +60,7 @@ def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) ->
     registers = tuple(plan.circuit().registers)
     for k, m in enumerate(mixers):
         m = dataclasses.replace(m, beta=Angle.symbol("beta_0"))
-        plans = relabelled_plans(m.kind[1], m.kind[2])  # type: ignore[index]
+        plans = relabelled_plans(m.kind.program, m.kind.target)  # type: ignore[union-attr]
         assert plans[0] == m.plan and len(plans) > 1
         swapped = [v for p in plans[:4] for v in _operand_swaps(p)]
         assert swapped

@@ -17,10 +17,10 @@ import importlib
 import pytest
 from hypothesis import given, settings
 
-from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling
+from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
-from qcpp.layout.heavy_hex import heavy_hex_distance, hex_distance, hex_placement
+from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.pipeline.device_compile import compile_for_device, hex_device, layout_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario

@@ -303,7 +303,7 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
     again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
     routing, and replays the patches the routing saw into the context's open watches."""
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
     from qcpp.routing.context import RoutingContext
     from qcpp.routing.options import DEFAULT_ROUTING
     from qcpp.routing.windows import Positions, route_window

@@ -21,7 +21,7 @@ from typer.testing import CliRunner
 from qcpp.cli.app import app
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.validate import validate
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"

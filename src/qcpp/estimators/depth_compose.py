@@ -36,9 +36,9 @@ from qcpp.estimators.depth import Depth
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS
 
 __all__ = [
     "ANCHORS",
@@ -177,7 +177,7 @@ or ``None`` when the kind cannot be anchored."""
 _OWN_DEPTH = COSTS.table("own depth", _CACHE_LIMIT)
 """Per kind, in the kinds' one cache: anchor key -> the gadget's own :class:`~qcpp.estimators.depth.Depth`."""
 _STRUCTURE_TABLE = "transfer by structure"
-"""The name of :data:`~qcpp.plan.call_graph.COSTS`' table of lowered gate structure (qubits renamed by first
+"""The name of :data:`~qcpp.gadgets.pricing.COSTS`' table of lowered gate structure (qubits renamed by first
 appearance) -> transfer matrix: keyed by gates, not by kind (a run of an arithmetic gadget, or a state
 preparation), in a table of its own."""
 
@@ -365,9 +365,6 @@ class LayeredDepth:
             sections: the plan's sections, in circuit order.
             registers: the lowered circuit's registers (``work`` included).
             initial: name of the state preparation's section.
-
-        Returns:
-            The :class:`LayeredDepth`.
         """
         init: list[MatrixStep] = []
         layer: list[MatrixStep] = []

@@ -24,7 +24,7 @@
      ESP are exact (``routed_kind`` ``exact``); depth, two-qubit depth and duration are the sums of the
      windows' own, an upper bound (``routed_depth_kind`` ``bound``).
   3. ``bound`` (no routing is run): the circuit compile would route (its phase separator laid out as the
-     device compile lays it out, :func:`qcpp.plan.phase_layout.for_device`: ``spatial`` on sparse devices;
+     device compile lays it out, :func:`qcpp.pipeline.device_plan.device_plan_options`;
      unfused, every gadget a section),
      every two-qubit gate routed by a SWAP chain to its partner and back along a shortest path, at most
      ``1 + 6 (d - 1)`` two-qubit gates for qubits ``d`` apart. Where the device holds the geometric layout,
@@ -112,9 +112,8 @@ LAYOUT_BOUND_MODEL = (
 MIXER_SPAN = {"grid": 8, "heavy-hex": 12}
 """Per device family, the largest distance between two qubits of one partial mixer's window (data homes and
 allocated ancillas) that the bound assumes in the geometric layout (medial grid, heavy-hex cells): the mixer's
-gates are charged ``1 + 6 (span - 1)`` each instead of the device diameter's. Measured at most 7 and 10 on every
-default scenario up to 5x5 with 3 robots (``tests/estimators/routed_test.py`` checks it and that the mixer's share
-of the bound is at least its routed gates)."""
+gates are charged ``1 + 6 (span - 1)`` each instead of the device diameter's (the tests check the span and that
+the mixer's share of the bound is at least its routed gates)."""
 
 COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
 SUM_MODEL = (
@@ -341,11 +340,11 @@ def _bound_of_compiled(
 
     from qcpp.estimators.layout_bound import layout_twoq_bound
     from qcpp.pipeline.device_compile import layout_device
-    from qcpp.plan.phase_layout import for_device
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     # compile --device routes the unfused circuit (every gadget a section) with the device's phase layout
-    laid = qaoa_plan(scenario, p, dataclasses.replace(for_device(plan, device), fuse=False))
+    laid = qaoa_plan(scenario, p, dataclasses.replace(device_plan_options(plan, device), fuse=False))
     cost = laid.cost()
     placed = layout_twoq_bound(scenario, p, plan, device, stage=stage)
     if placed is not None:

@@ -78,7 +78,6 @@ from qcpp.ir.gates import Gate
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
@@ -466,12 +465,13 @@ def routed_sum(
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
     from qcpp.pipeline.device_compile import medial_device
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     dev = medial_device(scenario, device, arrangement)
     if dev is None:
         return None
-    opts = dataclasses.replace(for_device(options, device), fuse=False)
+    opts = dataclasses.replace(device_plan_options(options, device, layout_method="medial"), fuse=False)
     plan = qaoa_plan(scenario, 1 if p else 0, opts)
     n_data = scenario.num_variables
     registers = plan.registers

@@ -9,7 +9,7 @@ robots' patches are *tiled* by default (side by side, ``down x across`` patches 
 every partial mixer acts on one robot, so tiling keeps each partial mixer inside its own patch. The other
 arrangement, ``interleave``, puts the ``k`` copies of every site side by side (a ``down x across`` block per
 medial site), which brings the phase separator's per-node cross-robot terms together but stretches every
-plaquette; measured, it routes to more CX in both parts (``python benchmarks/routing.py --arrangements``).
+plaquette, and routes to more CX in both parts.
 
 **Allocation** (:func:`allocate_ancillas`). Every section of a circuit compiled with ``fuse=False`` returns its
 ancillas to |0> at both ends (``docs/architecture.md``, "Sections"), so each section may use *any* free device
@@ -47,13 +47,14 @@ from qcpp.devices.device import Device, grid_coupling
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.layout.heavy_hex import hex_placement
+from qcpp.plan.phase_layout import tiling
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import has_rzz
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_window_cx
 
-__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
+__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape"]
 
 
 def grid_shape(device: Device) -> tuple[int, int] | None:
@@ -68,20 +69,6 @@ def grid_shape(device: Device) -> tuple[int, int] | None:
         if n % rows == 0 and len(device.coupling) == edges and device.coupling == grid_coupling(rows, cols):
             return rows, cols
     return None
-
-
-def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
-    """Patches per device row and column for ``k`` patches of shape ``patch``: the near-square arrangement
-    ``(down, across)`` of smallest bounding square, then smallest area."""
-    best: tuple[tuple[int, int], tuple[int, int]] | None = None
-    for across in range(1, k + 1):
-        down = -(-k // across)
-        h, w = down * patch[0], across * patch[1]
-        key = (max(h, w), h * w)
-        if best is None or key < best[0]:
-            best = (key, (down, across))
-    assert best is not None
-    return best[1]
 
 
 ARRANGEMENTS = ("tile", "interleave")
@@ -104,8 +91,8 @@ def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, in
 def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
     device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
-    patches than :func:`tiling`'s). On a heavy-hex lattice device: :func:`qcpp.layout.heavy_hex.hex_placement`
-    (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
+    patches than :func:`~qcpp.plan.phase_layout.tiling`'s). On a heavy-hex lattice device:
+    :func:`qcpp.layout.heavy_hex.hex_placement` (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
 
     Args:
         scenario: The scenario.
@@ -150,7 +137,7 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
 
 
 def _distances(device: Device) -> np.ndarray:
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
 
     return distances(device)
 

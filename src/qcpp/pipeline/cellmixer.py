@@ -31,10 +31,7 @@ default plan is left as compiled. The cost is compile time: every variant is all
 (most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
 translations, :func:`qcpp.routing.windows.route_window`, so equal windows of other plaquettes and the final
 allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
-scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
-
-Measured (``python benchmarks/routing.py --cells``): see docs/resource-estimates.md, "Heavy-hex: one cell per
-plaquette".
+scored again, and the A* runs once per relabelled program).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -57,11 +54,10 @@ from collections.abc import Callable, Hashable, Mapping, Sequence
 
 import numpy as np
 
-from qcpp.devices.device import Device, heavy_hex_coordinates
+from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartialMixer, Slot, plan_parity_mixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.layout.heavy_hex import heavy_hex_distance
 from qcpp.layout.medial import allocate_ancillas
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
@@ -236,7 +232,7 @@ def cell_mixers(
         if stage is not None:
             stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
         seen += 1
-        program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
+        program, target = gadget.kind.program, gadget.kind.target  # type: ignore[union-attr]
         plans = _relabelled(context, program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included
             continue

@@ -18,8 +18,7 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
 * **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
   :attr:`~qcpp.routing.options.RoutingOptions.auto_compare_max_twoq`; on the unsized ``heavy-hex`` it is then
-  routed on the smallest lattice that holds the circuit, where it needs no room for the cells: measured, it wins on
-  every default up to 3x3 with three robots, the cells from 4x4 with two robots on): optionally region-local
+  routed on the smallest lattice that holds the circuit, where it needs no room for the cells): optionally region-local
   ancillas (:func:`qcpp.layout.placement.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout`
   (our greedy placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins)
   and one SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
@@ -40,7 +39,7 @@ Example:
     >>> sorted(r.routed.circuit.count_ops())
     ['cz', 'rx', 'rz']
     >>> r = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex")
-    >>> r.layout_method, r.routed.device.name  # cheaper than the cells on heavy-hex:7 (287 vs 344 CX)
+    >>> r.layout_method, r.routed.device.name  # cheaper here than the cells on a larger lattice
     ('greedy', 'heavy-hex:3')
     >>> cells = compile_for_device(default_scenario(3, 3, 1), p=1, device="heavy-hex", layout_method="medial")
     >>> cells.routed.device.name
@@ -55,16 +54,16 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
-from qcpp.devices.device import Device, get_device
+from qcpp.devices.device import Device, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT, heavy_hex_distance, hex_distance, hex_placement, is_hex_lattice
+from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
-from qcpp.layout.placement import distances, localize_ancillas, place
+from qcpp.layout.placement import localize_ancillas, place
 from qcpp.layout.placement_search import qiskit_sabre_layout, search_route
 from qcpp.pipeline.cellmixer import cell_mixers
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
@@ -78,7 +77,6 @@ __all__ = [
     "DeviceCompileResult",
     "compile_for_device",
     "device_for",
-    "device_plan_options",
     "greedy_route",
     "hex_device",
     "layout_device",
@@ -212,28 +210,6 @@ def best_layout(
     scored = [(route(forward, device, lay, seed=seed, trials=options.trials).swaps, i)
               for i, lay in enumerate(candidates)]  # fmt: skip
     return candidates[min(scored)[1]]
-
-
-def device_plan_options(options: PlanOptions, device: str | Device, layout_method: str = "medial") -> PlanOptions:
-    """The plan options :func:`compile_for_device` compiles with: ``phase_layout`` ``auto`` settled for the device
-    (:func:`qcpp.plan.phase_layout.for_device`: spatial on a sparse coupling map), and on a heavy-hex lattice
-    with a geometric layout the cells' balance sinks (:data:`qcpp.layout.heavy_hex.CELL_PHASE_LAYOUT`).
-
-    Args:
-        options: The requested plan options.
-        device: The device (a spec or a :class:`Device`).
-        layout_method: :data:`LAYOUT_METHODS`; ``greedy`` keeps :func:`for_device`'s choice.
-
-    Returns:
-        The settled options.
-
-    Example:
-        >>> device_plan_options(DEFAULT_PLAN, "heavy-hex:5").phase_layout
-        'medial'
-    """
-    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
-        return replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
-    return for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
 
 
 def compile_for_device(
@@ -450,7 +426,7 @@ def medial_compile(
     and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
     is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
     column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
-    the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`; ``tile`` measured better).
+    the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`).
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
     ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's

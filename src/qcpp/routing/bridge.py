@@ -331,7 +331,7 @@ def bridge_far_phases(
         ``(circuit, layout)``: registers ``data`` and ``site`` (every other physical qubit used, ascending),
         and logical qubit -> physical qubit.
     """
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
 
     d = distances(device) if dist is None else dist
     context = RoutingContext() if context is None else context

@@ -13,7 +13,7 @@ watches (:meth:`~qcpp.routing.context.RoutingContext.saw_patch`).
 
 Example:
     >>> from qcpp.devices.device import get_device
-    >>> from qcpp.layout.placement import distances
+    >>> from qcpp.devices.device import distances
     >>> from qcpp.routing.context import RoutingContext
     >>> dev = get_device("grid:1x6")
     >>> context = RoutingContext()
@@ -98,8 +98,7 @@ class Lattice:
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
         """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
-        from qcpp.devices.device import heavy_hex_coordinates
-        from qcpp.layout.heavy_hex import heavy_hex_distance
+        from qcpp.devices.device import heavy_hex_coordinates, heavy_hex_distance
 
         d = heavy_hex_distance(device)
         if d is None:
@@ -254,8 +253,8 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
     arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
     first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
-    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which took longer than the routing of a
-    window. ``tests/circuitgen/routing_test.py`` checks both give the same routing."""
+    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
+    Both give the same routing."""
     try:
         from qiskit._accelerate.nlayout import NLayout
         from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing

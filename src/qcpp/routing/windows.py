@@ -283,7 +283,7 @@ def route_windows(
     Returns:
         The :class:`~qcpp.routing.routed_circuit.RoutedCircuit` (``initial_layout == final_layout == layout``).
     """
-    from qcpp.layout.placement import distances
+    from qcpp.devices.device import distances
 
     context = RoutingContext() if context is None else context
     gates, section_of, home, measured_ = checked_inputs(circuit, device, layout, measured)

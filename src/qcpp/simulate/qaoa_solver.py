@@ -143,7 +143,7 @@ def solve_qaoa(
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
         initial: Initial state: ``initial_path`` (default), ``representatives``, ``local_search`` or
-            ``local_search_mix`` (:data:`qcpp.plan.options.INITIAL_STATES`).
+            ``local_search_mix`` (:data:`qcpp.gadgets.initial_state.INITIAL_STATES`).
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`qcpp.simulate.training.train`).
@@ -152,9 +152,6 @@ def solve_qaoa(
             (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
-
-    Returns:
-        The :class:`QaoaSolution`.
 
     Raises:
         ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,

@@ -185,10 +185,7 @@ def robot_basis(
 
     Args:
         rule: SBF rule, ``exact`` or ``paper``.
-        initial: One of :data:`~qcpp.plan.options.INITIAL_STATES` (see the module docstring).
-
-    Returns:
-        The :class:`RobotBasis`.
+        initial: One of :data:`~qcpp.gadgets.initial_state.INITIAL_STATES` (see the module docstring).
 
     Raises:
         ValueError: for an unknown rule or initial state.

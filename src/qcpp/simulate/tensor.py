@@ -432,15 +432,12 @@ def collapse_ancilla_blocks(
 ) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
     """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
 
-    A section that touches an ancilla (a partial mixer: compute, controlled rotation, uncompute) becomes the
-    matrix ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches; if ``T`` is not unitary (the section
-    leaves an ancilla dirty, e.g. one leaf of a longer construction) the following sections are added until it
-    is. A unitary ``T`` of an isometry ``S (I ⊗ |0>)`` proves that no amplitude leaks into dirty ancillas
-    (``||T psi||^2 = 1``), so on inputs with clean ancillas the circuit equals the product of these operators,
-    exactly: the logic compute/uncompute pairs simplify away before any path search. A block on more than
-    :data:`MAX_BLOCK_DATA_QUBITS` data qubits (the phase separator's arithmetic) is kept as its diagonal
-    ``<x, 0|S|x, 0>`` instead, accepted only if every entry has modulus 1 (then ``S`` maps each ``|x, 0>`` to a
-    phase times itself).
+    A section that touches an ancilla becomes ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches (the
+    following sections added until ``T`` is unitary). A unitary ``T`` proves that no amplitude leaks into dirty
+    ancillas, so on inputs with clean ancillas the circuit equals the product of these operators, exactly, and
+    the compute/uncompute pairs vanish before any path search. A block on more than
+    :data:`MAX_BLOCK_DATA_QUBITS` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
+    entry has modulus 1.
 
     Args:
         circuit: A bound circuit whose ancillas start in |0>.
@@ -658,9 +655,6 @@ class TensorCircuit:
         Args:
             state: A basis state (see :func:`state_bits`).
 
-        Returns:
-            The amplitude.
-
         Raises:
             ContractionTooWideError: if the contraction exceeds ``max_width``.
         """
@@ -803,10 +797,9 @@ def contract_sliced(
 ) -> complex:
     """Contract a closed tensor network to a scalar by cotengra slicing, the slices on a dask cluster if given.
 
-    Slicing fixes some indices to each of their values: every slice is an independent, smaller contraction
-    (largest intermediate at most ``target_size`` entries) and the result is their sum. With a
-    ``dask.distributed.Client`` the arrays are scattered to the workers once and the slices are submitted in
-    chunks of ``chunk`` (default: about four chunks per worker thread); without one they run in this process.
+    Every slice (some indices fixed) is an independent, smaller contraction and the result is their sum. With a
+    ``dask.distributed.Client`` the arrays are scattered once and the slices submitted in chunks; without one
+    they run in this process.
 
     Args:
         tn: A quimb ``TensorNetwork`` with no open index.
@@ -815,9 +808,6 @@ def contract_sliced(
         target_slices: Or: at least this many slices.
         client: A ``dask.distributed.Client`` (``None``: in-process).
         chunk: Slices per dask task.
-
-    Returns:
-        The contracted value.
 
     Example:
         >>> import quimb.tensor as qtn
@@ -856,9 +846,6 @@ def dask_client(address: str) -> Any:
 
     Args:
         address: ``'local'`` or a scheduler address.
-
-    Returns:
-        The connected client.
 
     Raises:
         OSError: the scheduler cannot be reached within 10 s.

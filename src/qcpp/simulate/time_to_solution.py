@@ -127,9 +127,6 @@ def qaoa_on_device(
         target: Success probability to reach.
         esp: Estimated success probability of one shot on the device (1: ideal).
 
-    Returns:
-        The :class:`QaoaTime`.
-
     Example:
         >>> t = qaoa_on_device(0.5, estimates=10, shots_per_estimate=100, shot_time=1e-6)
         >>> t.shots, t.training_shots, round(t.seconds, 9)
