@@ -389,3 +389,30 @@ def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject)
     assert [(i.operation.name, [fast.find_bit(q).index for q in i.qubits]) for i in fast.data] == [
         (i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data
     ]
+
+
+def test_the_patch_radius_comes_from_the_options_and_a_cleared_context_routes_afresh() -> None:
+    """RoutingOptions.window_radius decides the patches (qubits 0 and 4 of a line: within two couplings their
+    neighbourhood connects them, within one it does not and the part is routed on the whole line), each setting
+    memoised apart; a cleared RoutingContext forgets its memos and routes the window to the same ops."""
+    from dataclasses import replace
+
+    from qcpp.layout.placement import distances
+    from qcpp.routing.context import RoutingContext
+    from qcpp.routing.options import DEFAULT_ROUTING
+    from qcpp.routing.windows import Positions, route_window
+
+    dev = get_device("grid:1x9")
+    dist = distances(dev)
+    pairs = [(0, 4), (0, 4)]
+    context = RoutingContext()
+    with context.watching() as wide:
+        ops = route_window(pairs, Positions.identity(9), dev, dist, 0, DEFAULT_ROUTING, context)  # type: ignore[arg-type]
+    with context.watching() as narrow:
+        route_window(pairs, Positions.identity(9), dev, dist, 0, replace(DEFAULT_ROUTING, window_radius=1), context)  # type: ignore[arg-type]
+    assert wide.whole_component == 0 and wide.qubits == set(range(7))
+    assert narrow.whole_component > 0 and narrow.qubits == set(range(9))
+    assert context.windows and context.patch_indexes
+    context.clear()
+    assert not context.windows and not context.patch_indexes
+    assert route_window(pairs, Positions.identity(9), dev, dist, 0, DEFAULT_ROUTING, context) == ops  # type: ignore[arg-type]

@@ -105,11 +105,8 @@ def test_routed_sum_equals_compile_on_more_random_scenarios(s: Scenario) -> None
     "shape", [(3, 10, 1), pytest.param((10, 10, 1), marks=pytest.mark.heavy)], ids=["3x10/1", "10x10/1"]
 )
 def test_windows_sharing_a_class_route_as_compile_routes_each(shape: tuple[int, int, int]) -> None:
-    from qcpp.estimators.window_classes import ROUTED_CLASSES
-
-    ROUTED_CLASSES.clear()  # each class routed here, from this scenario's own representative
     s = default_scenario(*shape)
-    summed = routed_sum(s, 1)
+    summed = routed_sum(s, 1, context=RoutingContext())  # each class routed here, from this scenario's representative
     assert summed is not None and len(summed.classes) < summed.windows  # translated windows share a class
     _assert_sum_equals_compile(s, 1)
 
@@ -140,12 +137,11 @@ def test_routed_sum_equals_compile_where_compile_takes_seconds(rows: int, cols: 
 
 
 def test_windows_over_the_whole_device_budget_are_bounded() -> None:
-    from qcpp.estimators.window_classes import ROUTED_CLASSES
-
     s = default_scenario(3, 3, 2)
-    exact = routed_sum(s, 1)
-    ROUTED_CLASSES.clear()  # else the whole-device windows are known already and cost no work
-    bounded = routed_sum(s, 1, whole_device_work=0)
+    context = RoutingContext()
+    exact = routed_sum(s, 1, context=context)
+    assert routed_sum(s, 1, whole_device_work=0, context=context) == exact  # known already: no work to bound
+    bounded = routed_sum(s, 1, whole_device_work=0)  # a fresh context: the whole-device windows cost work
     assert exact is not None and bounded is not None
     assert exact.exact and not bounded.exact and bounded.bounded_windows > 0
     assert bounded.log_esp is None and bounded.two_qubit > exact.two_qubit

@@ -177,7 +177,7 @@ or ``None`` when the kind cannot be anchored."""
 _OWN_DEPTH = COSTS.table("own depth", _CACHE_LIMIT)
 """Per kind, in the kinds' one cache: anchor key -> the gadget's own :class:`~qcpp.estimators.depth.Depth`."""
 _STRUCTURE_TABLE = "transfer by structure"
-"""The name of :data:`~qcpp.plan.call_graph.COSTS`' table of lowered gate structure (qubits renamed by first
+"""The name of :data:`~qcpp.gadgets.pricing.COSTS`' table of lowered gate structure (qubits renamed by first
 appearance) -> transfer matrix: keyed by gates, not by kind (a run of an arithmetic gadget, or a state
 preparation), in a table of its own."""
 

@@ -32,15 +32,15 @@ argmin over every free device qubit and the relay's cheapest chain over every cl
 than a proof (a site outside the crop is farther from every qubit inside than its projection on the crop's side; ties
 go by row-major index, whose order the crop keeps); the tests are the evidence. Otherwise the class is split by its
 members' signatures at twice the margin (their larger crops may differ) and each part is tried again, up to the whole
-device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature and gate set), so a sweep over
-scenarios routes each class once. Windows that need the whole device -- the phase separator's balance and coupling
-gadgets, and with several robots every node's visit gadget (the tiled layout puts a node's copies in every robot's
-patch, far apart) -- are routed together on the whole device, one SABRE run each as in compile, while it has at most
-:data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing needs its dense distance matrix); above that they are *bounded*: every
-two-qubit gate of theirs is charged a SWAP chain to its partner and back along a shortest path (``1 + 6 (D - 1)`` CX
-for a device of diameter ``D``), a routing of that window that returns home, not SABRE's. So the sum is fast where
-windows are local (one robot: 30x30 at ``p = 3`` in seconds); with several robots it routes every visit gadget on the
-whole device, as compile does, and is no faster than compile.
+device. A class's routed cost is kept in the run's :attr:`~qcpp.routing.context.RoutingContext.window_classes` (per
+signature and gate set), so a sweep over scenarios routes each class once. Windows that need the whole device -- the
+phase separator's balance and coupling gadgets, and with several robots every node's visit gadget (the tiled layout
+puts a node's copies in every robot's patch, far apart) -- are routed together on the whole device, one SABRE run each
+as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing needs its dense distance matrix);
+above that they are *bounded*: every two-qubit gate of theirs is charged a SWAP chain to its partner and back along a
+shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a routing of that window that returns home, not
+SABRE's. So the sum is fast where windows are local (one robot: 30x30 at ``p = 3`` in seconds); with several robots it
+routes every visit gadget on the whole device, as compile does, and is no faster than compile.
 
 What is exact when no window is bounded (``tests/qcpp/window_classes_test.py`` checks each against
 ``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
@@ -85,7 +85,7 @@ from qcpp.routing.native import native_gates, one_qubit_name
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_windows
 
-__all__ = ["GUARD", "MARGIN", "ROUTED_CLASSES", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
+__all__ = ["GUARD", "MARGIN", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
 
 MARGIN = 5
 """Sites around a window's data qubits that its first crop keeps (doubled while the crop does not answer)."""
@@ -94,14 +94,10 @@ GUARD = 3
 """A crop answers if the representative's ancilla homes and routed gates keep this many sites from every side of
 the crop that is not a device edge (one more than the routing patch's radius)."""
 
-ROUTED_CLASSES: dict[Hashable, _Cost] = {}
-"""What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
-durations, SABRE's seed, the :class:`~qcpp.routing.options.RoutingOptions`): a sweep routes each class once. The
-cache of routed windows, next to :data:`qcpp.gadgets.pricing.COSTS` (the kinds' costs), not in it: its key is a
-window with its neighbourhood on one device, not a gadget kind."""
-
 ROUTED_CLASSES_LIMIT = 1 << 14
-"""Entries :data:`ROUTED_CLASSES` holds before it starts over."""
+"""Entries the run's memo of routed classes (:attr:`~qcpp.routing.context.RoutingContext.window_classes`: what one
+routed window of a class costs, per signature and device gate set: native gates, durations, SABRE's seed, the
+:class:`~qcpp.routing.options.RoutingOptions`) holds before it starts over."""
 
 WHOLE_DEVICE_MAX_QUBITS = 4_096
 """Largest device a window spanning it is routed on (routing needs the device's dense distance matrix); windows
@@ -547,7 +543,7 @@ def routed_sum(
         if len(entries) % 25 == 0:  # a line now and then, not one per class
             say(f"routing window classes ({len(entries):,} done, {len(pending):,} to go)")
         margin, sig, group = pending.pop()
-        hit = ROUTED_CLASSES.get((sig, device_key))
+        hit = context.window_classes.get((sig, device_key))
         _, template, sites, _ = group[0]
         crop = signature(group[0], margin)[1]
         if hit is None and any(crop.open_sides):
@@ -570,11 +566,11 @@ def routed_sum(
         assert batch is not None, "the whole device answers for itself"
         for i, r in zip(whole_batch, batch, strict=True):
             results[i] = _summary(r, dev)
-    if len(ROUTED_CLASSES) > ROUTED_CLASSES_LIMIT:
-        ROUTED_CLASSES.clear()
+    if len(context.window_classes) > ROUTED_CLASSES_LIMIT:
+        context.window_classes.clear()
     for (sig, _), result in zip(entries, results, strict=True):
         if result is not None:
-            ROUTED_CLASSES[(sig, device_key)] = result
+            context.window_classes[(sig, device_key)] = result
 
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []

@@ -73,6 +73,8 @@ class RoutingContext:
         cell_choices: The cells' plan choice per cell class (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         plans: The A*'s plan per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         relabelled: The relabelled plans per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
+        window_classes: The routed cost of a window class per signature and device
+            (:func:`qcpp.estimators.window_classes.routed_sum`).
         watches: The open watches (:meth:`watching`).
         centres: Open sets collecting the qubits every patch routed was grown around
             (:func:`qcpp.routing.windows.route_window` keys a translated window on the lattice around them).
@@ -91,13 +93,14 @@ class RoutingContext:
         self.cell_choices: dict[Hashable, Any] = {}
         self.plans: dict[Hashable, Any] = {}
         self.relabelled: dict[Hashable, Any] = {}
+        self.window_classes: dict[Hashable, Any] = {}
         self.watches: list[PatchWatch] = []
         self.centres: list[set[int]] = []
 
     def clear(self) -> None:
         """Forget every memo (open watches stay open)."""
         for memo in (self.windows, self.sabre_passes, self.allocations, self.placements, self.cell_choices,
-                     self.plans, self.relabelled):  # fmt: skip
+                     self.plans, self.relabelled, self.window_classes):  # fmt: skip
             memo.clear()
         for kept in (self.patch_indexes, self.within_two, self.free_sites):
             kept.clear()

@@ -43,7 +43,8 @@ SABRE_PASSES_KEPT = 4096
 class PatchIndex:
     """Per device (its distances and the patches' radius): the device's neighbour lists, and every patch computed so
     far (keyed by the positions it was grown around) with whether it is a whole component and its couplings in
-    local indices (a search asks for the same patches thousands of times)."""
+    local indices (a search asks for the same patches thousands of times); with ``translate``, its :class:`Lattice`
+    where the device is a heavy-hex lattice (else :attr:`lattice` is ``None``)."""
 
     def __init__(self, device: Device, dist: Any, radius: int, translate: bool = True) -> None:
         self.device = device
