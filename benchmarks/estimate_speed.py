@@ -33,10 +33,9 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.crosscheck import crosscheck, crosscheck_cases
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
-from qcpp.testing import crosscheck_cases
+from qcpp.problem.scenario_io import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 

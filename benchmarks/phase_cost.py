@@ -110,7 +110,8 @@ def main(argv: list[str]) -> int:
             cells.append(f"{few.num_ancillas} | {few_cx:,} | {few_cx / today:.3f}")
         print(f"| {rows}x{cols} | {robots} | {plan.num_ancillas} | {phase_cost(s).cx:,} | " + " | ".join(cells) + " |")
     print()
-    print("Depth of the lowered phase separator (ASAP layers, as ``qcpp.estimators.counts``; two-qubit depth in brackets):")
+    print("Depth of the lowered phase separator (ASAP layers, as ``qcpp.estimators.counts``;"
+          " two-qubit depth in brackets):")
     print()
     print("| grid | robots | today | ours (``optimize=cx``) | ours (``optimize=depth``) |")
     print("|---|---:|---:|---:|---:|")

@@ -4,8 +4,8 @@ Run: ``python benchmarks/routing_phase.py [--quick]`` (``--quick``: 3x3/1, 4x4/2
 and a hard obstacle).
 
 Per scenario (p = 1, angles bound), device family (the smallest square grid and the smallest heavy-hex that
-:func:`qcpp.pipeline.device_compile.compile_for_device` picks) and phase layout (``PlanOptions.phase_layout``: ``pooled``,
-today's default, or ``spatial``, :mod:`qcpp.plan.phase_layout`), columns:
+:func:`qcpp.pipeline.device_compile.compile_for_device` picks) and phase layout (``PlanOptions.phase_layout``:
+``pooled``, today's default, or ``spatial``, :mod:`qcpp.plan.phase_layout`), columns:
 
 * ``a2a phase`` / ``a2a all``: CX of the lowered, unrouted circuit that ``compile_for_device`` routes (unfused
   mixer), phase separator sections and whole circuit;
@@ -23,13 +23,13 @@ from __future__ import annotations
 import sys
 import time
 
+from qcpp.estimators.crosscheck import interior_endpoints
 from qcpp.ir.circuit import Circuit
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import interior_endpoints
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OBSTACLES_HARD = {

@@ -2,13 +2,13 @@
 
 Run: ``python benchmarks/routing_verdict.py [--quick]`` (``--quick``: p = 1 only).
 
-Table 1, per named device and p = 1..3: among the default scenarios (grids R x C, 2 <= R <= C <= 12, robots
-1..4, every ``--ancilla-budget`` in :data:`BUDGETS`), the one with the most decision variables (data qubits)
-whose qubit count fits the device's largest connected component; among its fitting budgets the one of fewest
-lowered CX (so the walk trades qubits for two-qubit gates only where qubits are short). That scenario is then
-compiled and routed exactly as ``qcpp compile --device NAME`` does (:func:`qcpp.pipeline.device_compile.compile_for_device`),
-and the table shows its routed native two-qubit gates, duration (``-``: the device's source publishes no gate
-times) and ESP (product of (1 - error) over native gates and of (1 - readout error) over the data qubits).
+Table 1, per named device and p = 1..3: among the default scenarios (grids R x C, 2 <= R <= C <= 12, robots 1..4, every
+``--ancilla-budget`` in :data:`BUDGETS`), the one with the most decision variables (data qubits) whose qubit count fits
+the device's largest connected component; among its fitting budgets the one of fewest lowered CX (so the walk trades
+qubits for two-qubit gates only where qubits are short). That scenario is then compiled and routed exactly as ``qcpp
+compile --device NAME`` does (:func:`qcpp.pipeline.device_compile.compile_for_device`), and the table shows its routed
+native two-qubit gates, duration (``-``: the device's source publishes no gate times) and ESP (product of (1 - error)
+over native gates and of (1 - readout error) over the data qubits).
 
 Table 2: which small default scenarios (p = 1..3) reach ESP >= 0.1 on each device (routed the same way).
 """
@@ -25,7 +25,7 @@ from qcpp.estimators.routed import _largest_component
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario, max_default_robots
-from qcpp.routing.sabre import duration_s, esp
+from qcpp.routing.native import duration_s, esp
 
 BUDGETS = (None, 64, 48, 32, 16, 0)
 """Ancilla budgets walked (``None``: the phase separator's default, fewest CX)."""

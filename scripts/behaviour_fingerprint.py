@@ -7,8 +7,8 @@ Run it before and after a refactoring that must not change behaviour and diff th
     python scripts/behaviour_fingerprint.py > after.txt && diff before.txt after.txt
 
 Every case drives the ``qcpp`` command line (the interface users have), so the script runs unchanged across changes
-of the import paths. Timing fields and output paths are dropped from JSON before hashing. ``--quick`` keeps the cases that finish in
-a few seconds each.
+of the import paths. Timing fields and output paths are dropped from JSON before hashing.
+``--quick`` keeps the cases that finish in a few seconds each.
 """
 
 from __future__ import annotations

@@ -25,7 +25,8 @@ MODULES = _modules()
 
 
 def test_the_module_list_is_complete() -> None:
-    expected = {"qcpp.plan.qaoa", "qcpp.problem.sbf", "qcpp.estimators.estimate", "qcpp.simulate.subspace", "qcpp.cli.app"}
+    expected = {"qcpp.plan.qaoa", "qcpp.problem.sbf", "qcpp.estimators.estimate", "qcpp.simulate.subspace",
+                "qcpp.cli.app"}
     assert expected <= set(MODULES)
 
 

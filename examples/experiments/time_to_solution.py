@@ -29,8 +29,8 @@ The criterion (:mod:`qcpp.simulate.time_to_solution`): the time to reach an opti
 * **QAOA on today's devices** (``devices``: the IBM Heron snapshots ``ibm_fez`` and ``ibm_torino``, the square
   grid ``google_willow`` and the trapped-ion ``quantinuum_helios``): the same trained state and training, the
   depth-``p`` circuit compiled and routed onto the device by the estimator
-  (:func:`qcpp.estimators.routed.routed_fields`, i.e. :func:`qcpp.pipeline.device_compile.compile_for_device`: exact routed
-  counts), and the device's noise and time. **Model: a shot succeeds with probability P(optimum) x ESP**, ESP =
+  (:func:`qcpp.estimators.routed.routed_fields`, i.e. :func:`qcpp.pipeline.device_compile.compile_for_device`: exact
+  routed counts), and the device's noise and time. **Model: a shot succeeds with probability P(optimum) x ESP**, ESP =
   the product of ``1 - error`` over every native gate and readout of the routed circuit (an error anywhere ruins
   the shot; optimistic: no idle decoherence, crosstalk or leakage, training counted at its noiseless number of
   estimates). Shot time: the routed circuit's ASAP schedule with the device's gate durations plus one readout
@@ -299,7 +299,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "qaoa": {"p": cfg.qaoa_p, "training": "layerwise", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
                  "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS,
                  "shots_per_estimate": SHOTS_PER_ESTIMATE, "gate_model": GATE_MODEL, "device": "ideal all-to-all"},
-        "qaoa_device": {"compile": "qcpp.estimators.routed.routed_fields (qcpp.pipeline.device_compile.compile_for_device)",
+        "qaoa_device": {"compile": "qcpp.estimators.routed.routed_fields"
+                                   " (qcpp.pipeline.device_compile.compile_for_device)",
                         "plan": "default", "success_model": "P(opt) x ESP", "esp_model": ESP_MODEL,
                         "duration_model": "device durations where published, else gate_model on the routed depths "
                                           "(assumed)"},
@@ -339,8 +340,9 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "compiler's exact depth; training = objective estimates (a gradient = 1 + 4p estimates) x "
         f"{SHOTS_PER_ESTIMATE} shots, all at the final depth's shot time.",
         f"QAOA on devices ({', '.join(cfg.devices)}): the same trained state and training; the depth-{cfg.qaoa_p} "
-        "circuit compiled and routed onto the device (qcpp.estimators.routed.routed_fields = qcpp.pipeline.device_compile."
-        "compile_for_device, default plan). SUCCESS PER SHOT = P(opt) x ESP: an error anywhere ruins the shot "
+        "circuit compiled and routed onto the device (qcpp.estimators.routed.routed_fields = "
+        "qcpp.pipeline.device_compile.compile_for_device, default plan). SUCCESS PER SHOT = P(opt) x ESP: "
+        "an error anywhere ruins the shot "
         f"(ESP: {ESP_MODEL}); optimistic: no idle decoherence, training at its noiseless number of estimates. "
         "Shot time: the routed schedule with the device's gate and readout durations ('device': the IBM "
         "snapshots); google_willow and quantinuum_helios publish no gate durations, so theirs is the ideal gate "

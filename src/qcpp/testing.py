@@ -1,8 +1,23 @@
-"""Test inputs (needs the ``test`` extra): hypothesis strategies for random gates and circuits, and the scenarios
-and plan options the estimate == compiled cross-checks run on (:func:`crosscheck_cases`, :func:`every_plan_option`,
-:func:`with_obstacles`, :func:`interior_endpoints`; checked by :func:`qcpp.estimators.crosscheck.crosscheck`).
+"""Hypothesis strategies for property tests (needs hypothesis: the ``testing`` extra, ``pip install 'qcpp[testing]'``).
 
-Used by the property tests and the benchmarks, and available to code built on the IR.
+Strategies for scenarios, feasible paths and plaquette flips (:func:`scenarios`, :func:`feasible_paths`,
+:func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer variant against the SBF rules
+and :func:`qcpp.verify`), and for random angles, gates and circuits of the IR.
+
+An optional module for property tests of the IR and of code built on it: no production module imports it. The
+plain scenario lists the estimate == compiled checks run on are in :mod:`qcpp.estimators.crosscheck`.
+
+A property test of feasibility preservation, in the form a mixer variant would use:
+
+>>> from hypothesis import given, settings
+>>> from qcpp.problem.paths import is_feasible
+>>> @settings(max_examples=20)
+... @given(plaquette_flips(scenarios(max_side=4), rule="exact"))
+... def exact_flips_stay_feasible(flip):
+...     assert not flip.allowed or is_feasible(flip.scenario, flip.robot, flip.result)
+>>> exact_flips_stay_feasible()
+
+Random circuits:
 
 >>> from hypothesis import given, settings
 >>> @settings(max_examples=5)
@@ -14,18 +29,16 @@ Used by the property tests and the benchmarks, and available to code built on th
 
 from __future__ import annotations
 
-import dataclasses
+import functools
 import itertools
 import math
-from collections.abc import Collection, Iterator, Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 from hypothesis import strategies as st
 
 from qcpp.ir.angles import Angle, Param
 from qcpp.ir.circuit import Circuit, Register, Section
-from qcpp.ir.cost import TARGETS
 from qcpp.ir.gates import (
     GATE_SPECS,
     Gate,
@@ -49,23 +62,24 @@ from qcpp.ir.gates import (
     tdg,
     x,
 )
-from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASES, PlanOptions
-from qcpp.problem.presets import default_scenario, max_default_robots
-from qcpp.problem.sbf import RULES
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.errors import ScenarioError
+from qcpp.problem.grid import Grid
+from qcpp.problem.paths import iter_paths
+from qcpp.problem.sbf import Rule, sbf_logic
+from qcpp.problem.scenario import Objective, Robot, Scenario
 
 __all__ = [
     "ALL_GATE_NAMES",
     "CLEAN_TARGET_NAMES",
     "SYMBOLS",
-    "Case",
+    "PlaquetteFlip",
     "angles",
     "circuits",
-    "crosscheck_cases",
-    "every_plan_option",
+    "feasible_assignments",
+    "feasible_paths",
     "gates",
-    "interior_endpoints",
-    "with_obstacles",
+    "plaquette_flips",
+    "scenarios",
 ]
 
 CLEAN_TARGET_NAMES = frozenset({"and", "and_dg"})
@@ -183,95 +197,97 @@ def circuits(
     return Circuit(regs, sections)
 
 
-# --- scenarios and options the estimate == compiled cross-checks run on --------------------------------------
+# --- scenarios, feasible paths and plaquette flips -------------------------------------------------------------
+@st.composite
+def scenarios(
+    draw: st.DrawFn, min_side: int = 2, max_side: int = 5, max_robots: int = 1, obstacles: bool = True
+) -> Scenario:
+    """A random valid scenario: sides ``min_side..max_side``, up to three obstacles (soft or hard mode, when
+    ``obstacles``), ``1..max_robots`` robots with distinct starts and random goals.
+
+    A hard-mode scenario whose goal is cut off falls back to soft mode, so every draw is valid.
+    """
+    rows = draw(st.integers(min_side, max_side))
+    cols = draw(st.integers(min_side, max_side))
+    grid = Grid(rows, cols)
+    nodes = list(grid.nodes)
+    n_obs = draw(st.integers(0, min(3, len(nodes) - 2))) if obstacles else 0
+    obs = sorted(draw(st.lists(st.sampled_from(nodes), min_size=n_obs, max_size=n_obs, unique=True)))
+    free = [n for n in nodes if n not in obs]
+    robots: list[Robot] = []
+    starts: set[tuple[int, int]] = set()
+    for _ in range(draw(st.integers(1, min(max_robots, len(free))))):
+        start = draw(st.sampled_from([n for n in free if n not in starts]))
+        goal = draw(st.sampled_from([n for n in free if n != start]))
+        starts.add(start)
+        robots.append(Robot(start, goal))
+    mode = draw(st.sampled_from(["soft", "hard"]))
+    try:
+        return Scenario(grid, tuple(robots), tuple(obs), Objective(obstacles=mode))
+    except ScenarioError:  # a goal cut off by hard obstacles
+        return Scenario(grid, tuple(robots), tuple(obs), Objective(obstacles="soft"))
+
+
+@functools.lru_cache(maxsize=64)
+def _path_pool(scenario: Scenario, robot: int, limit: int) -> tuple[int, ...]:
+    return tuple(itertools.islice(iter_paths(scenario, robot), limit))
+
+
+def feasible_paths(scenario: Scenario, robot: int, limit: int = 2_000) -> st.SearchStrategy[int]:
+    """One of the robot's feasible paths (an edge mask; :func:`qcpp.problem.paths.iter_paths` order), drawn from
+    its first ``limit`` paths (every path on small grids; the pool is enumerated once per scenario and robot)."""
+    return st.sampled_from(_path_pool(scenario, robot, limit))
+
+
+@st.composite
+def feasible_assignments(draw: st.DrawFn, scenario: Scenario, limit: int = 2_000) -> tuple[int, ...]:
+    """One feasible path per robot (see :func:`feasible_paths`)."""
+    return tuple(draw(feasible_paths(scenario, r, limit)) for r in range(scenario.num_robots))
+
+
 @dataclass(frozen=True)
-class Case:
-    """One scenario, ``p`` and construction options to cross-check."""
+class PlaquetteFlip:
+    """One SBF move tried on a feasible path.
+
+    Attributes:
+        scenario: The scenario.
+        robot: The robot moved.
+        path: Its feasible path (edge mask) before the move.
+        plaquette: Index of the plaquette flipped.
+        rule: The rule asked.
+        allowed: Whether the rule allows the flip on ``path``.
+        result: ``path`` with the plaquette's four edges flipped (whether allowed or not).
+    """
 
     scenario: Scenario
-    p: int
-    plan: PlanOptions = DEFAULT_PLAN
-
-    @property
-    def label(self) -> str:
-        """Short text for reports."""
-        g = self.scenario.grid
-        extra = "" if self.plan == DEFAULT_PLAN else " " + "/".join(str(v) for v in dataclasses.astuple(self.plan))
-        return f"{self.scenario.name or f'{g.rows}x{g.cols}'} p{self.p}{extra}"
+    robot: int
+    path: int
+    plaquette: int
+    rule: Rule
+    allowed: bool
+    result: int
 
 
-
-
-def with_obstacles(scenario: Scenario, mode: str) -> Scenario | None:
-    """``scenario`` with obstacles on the interior nodes ``(1, 1)`` and ``(rows-2, cols-2)`` (``None`` if the
-    grid has no interior node), in ``soft`` or ``hard`` mode."""
-    g = scenario.grid
-    if g.rows < 3 or g.cols < 3:
-        return None
-    d = scenario_to_dict(scenario)
-    d["grid"]["obstacles"] = sorted({(1, 1), (g.rows - 2, g.cols - 2)})
-    d.setdefault("objective", {})["obstacles"] = mode
-    d["name"] = f"{scenario.name}, {mode} obstacles"
-    return scenario_from_dict(d)
-
-
-def interior_endpoints(rows: int = 3, cols: int = 4, obstacles: str | None = None) -> Scenario:
-    """Two robots, each with an endpoint inside the grid (off its boundary), optionally with an obstacle at
-    ``(rows - 2, 1)`` in ``soft`` or ``hard`` mode (needs ``rows >= 4``: away from the endpoints)."""
-    d = {
-        "name": f"{rows}x{cols} interior endpoints",
-        "grid": {"rows": rows, "cols": cols},
-        "robots": [{"start": [1, 1], "goal": [rows - 1, cols - 1]}, {"start": [0, cols - 1], "goal": [1, cols - 2]}],
-    }
-    if obstacles is not None:
-        d["grid"]["obstacles"] = [[rows - 2, 1]]  # type: ignore[index]
-        d["objective"] = {"obstacles": obstacles}
-        d["name"] += f", {obstacles} obstacle"
-    return scenario_from_dict(d)
-
-
-def every_plan_option(budgets: tuple[int | None, ...] = (None, 0, 3)) -> Iterator[PlanOptions]:
-    """Every combination of the plan flags a user can pass (``--rule``, ``--initial``, ``--target``,
-    ``--phase``, ``--optimize``), each with every ancilla budget of ``budgets``."""
-    for rule, initial, target, phase, optimize, budget in itertools.product(
-        RULES, INITIAL_STATES, TARGETS, PHASES, OPTIMIZE, budgets
-    ):
-        yield PlanOptions(rule, initial, target, phase, optimize, budget)
-
-
-def crosscheck_cases(full: bool = False) -> Iterator[Case]:
-    """The scenarios to cross-check (a sample, or all of them with ``full``).
+@st.composite
+def plaquette_flips(
+    draw: st.DrawFn, scenario: Scenario | st.SearchStrategy[Scenario], rule: Rule = "exact",
+    allowed_only: bool = False,
+) -> PlaquetteFlip:  # fmt: skip
+    """A random robot, one of its feasible paths and a plaquette, with what ``rule`` says of flipping it there.
 
     Args:
-        full: every default grid 2x2..8x8 with 1..6 robots at p = 1, and p = 2, 3 on grids of up to 16 nodes,
-            plus obstacles (soft and hard), the example files (``examples/`` of the source tree, if present) and
-            the ``paper`` rule and ``ft`` target (about 400 cases, minutes); otherwise a sample of each kind
-            (seconds).
-
-    Yields:
-        The cases.
+        draw: supplied by hypothesis.
+        scenario: A scenario, or a strategy for one (e.g. :func:`scenarios`).
+        rule: ``exact`` or ``paper``.
+        allowed_only: Only draw flips the rule allows (rejects the others: keep it for rules that allow some).
     """
-    grids = [(r, c) for r in range(2, 9) for c in range(2, 9)] if full else [(2, 2), (2, 5), (3, 3), (4, 3)]
-    robots = range(1, 7) if full else (1, 2, 5)
-    for r, c in grids:
-        for k in robots:
-            if k > max_default_robots(r, c):
-                continue
-            s = default_scenario(r, c, k)
-            for p in (1, 2, 3) if (full and r * c <= 16) or (not full and k == 2) else (1,):
-                yield Case(s, p)
-    for r, c in [(3, 3), (4, 4), (3, 5), (5, 5), (6, 4)] if full else [(3, 4)]:
-        for k in (1, 2, 3) if full else (2,):
-            for mode in ("soft", "hard"):
-                s = with_obstacles(default_scenario(r, c, k), mode)
-                if s is not None:
-                    yield Case(s, 1)
-                    if not full:
-                        yield Case(s, 2)
-    for s, p in [(default_scenario(3, 3, 1), 2), (default_scenario(3, 4, 2), 1)]:
-        yield Case(s, p, PlanOptions(rule="paper"))
-        yield Case(s, p, PlanOptions(target="ft"))
-    folder = Path(__file__).resolve().parents[2] / "examples"
-    if full and folder.is_dir():
-        for path in sorted(folder.glob("*.toml")):
-            yield Case(load_scenario(path), 1)
+    s = draw(scenario) if isinstance(scenario, st.SearchStrategy) else scenario
+    robot = draw(st.integers(0, s.num_robots - 1))
+    path = draw(feasible_paths(s, robot))
+    plaq = draw(st.sampled_from(s.grid.plaquettes))
+    allowed = sbf_logic(s, robot, plaq, rule).evaluate(path)
+    if allowed_only:
+        from hypothesis import assume
+
+        assume(allowed)
+    return PlaquetteFlip(s, robot, path, plaq.index, rule, allowed, path ^ plaq.edge_mask)

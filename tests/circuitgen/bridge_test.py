@@ -16,10 +16,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from qcpp.devices.device import get_device
+from qcpp.devices.device import distances, get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rz
-from qcpp.layout.placement import distances
 from qcpp.routing.bridge import bridge_far_phases, copy_chain
 
 from .routing_test import _permuted, _statevector

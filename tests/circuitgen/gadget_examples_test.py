@@ -6,12 +6,12 @@ import dataclasses
 
 import pytest
 
+from qcpp.estimators.crosscheck import every_plan_option, interior_endpoints
 from qcpp.ir.cost import Cost
 from qcpp.plan.gadget_examples import REGISTRY, check_gadget, gadget_examples
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
-from qcpp.testing import every_plan_option, interior_endpoints
 
 EXAMPLES = list(gadget_examples())
 
@@ -54,6 +54,9 @@ def test_the_checker_finds_a_wrong_cost() -> None:
 
         def logical_cost(self) -> Cost:
             return self.inner.logical_cost()  # type: ignore[attr-defined]
+
+        def needs(self) -> tuple[int, int]:
+            return self.inner.needs()  # type: ignore[attr-defined,no-any-return]
 
         def emit(self) -> list:
             return self.inner.emit()  # type: ignore[attr-defined]

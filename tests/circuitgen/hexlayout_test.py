@@ -17,15 +17,15 @@ import importlib
 import pytest
 from hypothesis import given, settings
 
-from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling
+from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
-from qcpp.layout.heavy_hex import heavy_hex_distance, hex_distance, hex_placement
+from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.pipeline.device_compile import compile_for_device, hex_device, layout_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.routing.sabre import RoutedCircuit
+from qcpp.routing.routed_circuit import RoutedCircuit
 
 from .conftest import scenarios
 from .medial_test import BIND, OBSTACLE_INTERIOR

@@ -22,7 +22,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.crosscheck import Case, crosscheck, interior_endpoints
 from qcpp.gadgets.phase_sums import (
     SumsPhase,
     column_counts,
@@ -41,7 +41,6 @@ from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import Case, interior_endpoints
 
 from ..qcpp.clirun import run
 from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets
@@ -235,7 +234,7 @@ def test_cli_phase_layout_flag_changes_no_count() -> None:
 
 def test_device_compiles_default_to_the_spatial_layout() -> None:
     from qcpp.pipeline.device_compile import compile_for_device
-    from qcpp.plan.phase_layout import for_device
+    from qcpp.pipeline.device_plan import device_plan_options
 
     s = interior_endpoints(4, 4, "hard")
     spatial = Cost.count(lower(qaoa_circuit(s, 1, PlanOptions(fuse=False, phase_layout="spatial"))).gates)
@@ -245,9 +244,11 @@ def test_device_compiles_default_to_the_spatial_layout() -> None:
     assert Cost.count(compile_for_device(s, 1, "all-to-all", lowered=True).compiled.circuit.gates) == pooled
     explicit = compile_for_device(s, 1, "grid", PlanOptions(phase_layout="pooled"), lowered=True)
     assert Cost.count(explicit.compiled.circuit.gates) == pooled
-    assert for_device(PlanOptions(), "quantinuum_helios").phase_layout == "pooled"
+    assert device_plan_options(PlanOptions(), "quantinuum_helios").phase_layout == "pooled"
     devices = ("grid", "google_willow", "heavy-hex", "ibm_fez")
-    assert [for_device(PlanOptions(), d).phase_layout for d in devices] == ["medial", "medial", "spatial", "spatial"]
+    settled = [device_plan_options(PlanOptions(), d).phase_layout for d in devices]
+    assert settled == ["medial", "medial", "medial", "spatial"]  # heavy-hex: the cells' balance sinks
+    assert device_plan_options(PlanOptions(), "heavy-hex", layout_method="greedy").phase_layout == "spatial"
     assert qaoa_plan(s, 1).cost() == qaoa_plan(s, 1, PlanOptions(phase_layout="pooled")).cost()  # auto unrouted
 
 

@@ -7,6 +7,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from qcpp.estimators.crosscheck import crosscheck_cases, with_obstacles
 from qcpp.estimators.depth import Depth, depths
 from qcpp.estimators.depth_compose import (
     LayeredDepth,
@@ -25,6 +26,7 @@ from qcpp.estimators.estimate import (
     exact_depth,
     layer_costs,
 )
+from qcpp.gadgets.phase_sums import SumsKind
 from qcpp.ir.circuit import Register
 from qcpp.ir.cost import Cost
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
@@ -33,7 +35,6 @@ from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import crosscheck_cases, with_obstacles
 
 OPTIONS = [
     PlanOptions(),
@@ -225,7 +226,7 @@ def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: in
     s = default_scenario(rows, cols, robots)
     layer = phase_layer(s)
     assert layer is not None
-    balance = next(k.example for k, _ in layer.kinds() if k.key[0] == "sums")
+    balance = next(k.example for k, _ in layer.kinds() if isinstance(k.key, SumsKind))
     shape = balance.shape
     assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
     gadget = balance.build()

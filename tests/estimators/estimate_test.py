@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from qcpp.estimators.counts import count
-from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.crosscheck import Case, crosscheck, crosscheck_cases, with_obstacles
 from qcpp.estimators.depth import Depth, depths
 from qcpp.estimators.estimate import (
     EstimateOptions,
@@ -22,7 +22,6 @@ from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import default_scenario
-from qcpp.testing import Case, crosscheck_cases, with_obstacles
 
 
 @pytest.mark.parametrize("case", list(crosscheck_cases()), ids=lambda c: c.label)

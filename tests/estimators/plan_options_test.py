@@ -12,13 +12,12 @@ import dataclasses
 import pytest
 
 from qcpp.estimators.counts import count
-from qcpp.estimators.crosscheck import crosscheck
+from qcpp.estimators.crosscheck import Case, crosscheck, every_plan_option, interior_endpoints
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.presets import default_scenario
-from qcpp.testing import Case, every_plan_option, interior_endpoints
 
 ALL = list(every_plan_option())
 

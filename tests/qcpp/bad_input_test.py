@@ -23,7 +23,7 @@ import qcpp.io.atomic
 from qcpp.cli.app import app
 from qcpp.lowering.qasm import to_qasm3
 from qcpp.plan.qaoa import qaoa_circuit
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 from .clirun import run
 

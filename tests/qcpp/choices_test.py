@@ -33,7 +33,7 @@ CASES = _cases()
 
 
 def test_every_command_has_choice_options() -> None:
-    assert {name for name, *_ in CASES} == {"solve", "simulate", "compile", "estimate", "validate", "export"}
+    assert {name for name, *_ in CASES} == {"solve", "simulate", "compile", "estimate", "validate", "verify", "export"}
 
 
 @pytest.mark.parametrize(("command", "flag", "param", "integer"), CASES, ids=[f"{c} {f}" for c, f, *_ in CASES])

@@ -17,7 +17,7 @@ from qcpp.cli.commands.solve import SOLVE_METHODS
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = str(REPO / "examples" / "paper_3x3.toml")
-COMMANDS = ["solve", "simulate", "compile", "estimate", "validate"]
+COMMANDS = ["solve", "simulate", "compile", "estimate", "validate", "verify"]
 
 
 def _help(*args: str) -> str:

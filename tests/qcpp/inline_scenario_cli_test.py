@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 import qcpp
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 from .clirun import assert_one_line_error, run
 

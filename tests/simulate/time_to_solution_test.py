@@ -1,4 +1,5 @@
-"""qcpp.simulate.time_to_solution (the 99% criterion) and examples/experiments/time_to_solution.py: quick mode, helpers."""
+"""qcpp.simulate.time_to_solution (the 99% criterion) and examples/experiments/time_to_solution.py:
+quick mode, helpers."""
 
 from __future__ import annotations
 

@@ -141,7 +141,8 @@ def compile(
             ``all-to-all[:N]``); the circuit is then in the device's qubits and native gates.
         lowered: Lower to CX and one-qubit gates (with a device: keep CX + one-qubit gates).
         bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
-        layout, local_ancillas: With a device: ``auto``, ``medial`` or ``greedy``; region-local ancillas.
+        layout: With a device: ``auto``, ``medial`` or ``greedy``.
+        local_ancillas: With a device: region-local ancillas.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: ``qcpp compile``'s
             limit, :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;

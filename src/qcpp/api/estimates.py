@@ -165,9 +165,14 @@ def estimate(
             ``heavy-hex[:D]``, ``all-to-all[:N]``); this compiles and routes the circuit.
         compare_paper: Add the paper's estimates and the ratios.
         paper_doubling: Reading of the paper's doubling: ``partial-mixer`` or ``logic``.
-        epsilon, toffoli_t: The fault-tolerant model (rotation synthesis precision; T per Toffoli: 7 or 4).
-        depth, depth_budget: ``auto``, ``exact``, ``bound`` or ``none``; the budget of ``auto``.
-        physical, qubit_model, qec_scheme, error_budget: Physical estimates of the QDK resource estimator.
+        epsilon: The fault-tolerant model's rotation synthesis precision.
+        toffoli_t: The fault-tolerant model's T per Toffoli: 7 or 4.
+        depth: ``auto``, ``exact``, ``bound`` or ``none``.
+        depth_budget: The lowered gates per layer up to which ``auto`` computes the exact depth.
+        physical: Add the physical estimates of the QDK resource estimator.
+        qubit_model: The QDK qubit model of the physical estimates.
+        qec_scheme: The QDK error-correction scheme of the physical estimates.
+        error_budget: The QDK error budget of the physical estimates.
         **plan_options: How the circuit is built: ``rule``, ``initial``, ``target``, ``phase``, ``optimize``,
             ``ancilla_budget``, ``phase_layout``, ``angles`` (:class:`~qcpp.plan.options.PlanOptions`).
 

@@ -126,7 +126,8 @@ def train_qaoa(
         maxiter: Optimiser steps per run.
         initial: Initial state (:data:`qcpp.plan.options.INITIAL_STATES`).
         mixer_warm: ``layerwise``: also start every level from the mixer-only warm start.
-        seed, rule: Random seed of the initial angles; SBF rule of the mixer.
+        seed: Random seed of the initial angles.
+        rule: SBF rule of the mixer.
 
     Returns:
         The :class:`~qcpp.simulate.qaoa_solver.QaoaSolution` (``.solution``, ``.angles``, ``.probability``,
@@ -181,7 +182,8 @@ def simulate_qaoa(
         angles: ``2p`` angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``; ``None``: random from ``seed``.
         method: ``subspace`` (exact feasible-subspace simulator), ``statevector`` (the compiled circuit's dense
             state) or ``tensor`` (tensor network).
-        seed, rule: Seed of the random angles; SBF rule of the mixer.
+        seed: Seed of the random angles.
+        rule: SBF rule of the mixer.
 
     Returns:
         The :class:`~qcpp.simulate.evaluate.Evaluation` (``expectation``, ``p_optimum``, ``amplitudes_held``, ...).

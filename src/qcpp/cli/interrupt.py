@@ -2,29 +2,21 @@
 
 How (installed by :func:`qcpp.cli.app.main`, i.e. only for the real command line, never on import):
 
-1. SIGTERM gets the same treatment as SIGINT: Python raises ``KeyboardInterrupt`` in the main thread. The CLI
-   (:class:`qcpp.cli.app.QcppGroup`) turns it into the line ``interrupted`` on stderr and exit code 130. On the way
-   out, ``with`` blocks clean up: :func:`qcpp.io.atomic.atomic_open` removes its temporary file (the
-   destination keeps its old content); ``qcpp estimate`` ends after the row it is writing (it has no worker
-   processes and no cache: rows are cheap to recompute).
-2. A watchdog thread wakes on the signal itself (:func:`signal.set_wakeup_fd`, written by the C-level handler
-   even while the main thread is inside a long native call). If the process is still alive
-   :data:`GRACE_SECONDS` later -- the main thread stuck in native code, or a cleanup step hanging -- it removes
-   pending temporary files, terminates child processes, prints ``interrupted`` (if nobody did) and ends the
-   process with :func:`os._exit` (130). A ``KeyboardInterrupt`` that the signal raised inside a finaliser
-   (``__del__``, where Python prints "Exception ignored ... Traceback" and goes on) is not printed; the watchdog
-   ends that process.
-3. Forked children (worker processes) ignore SIGINT and get the default SIGTERM: a terminal's Ctrl-C reaches the
-   whole process group, and workers must neither print tracebacks nor keep running after the parent is gone;
-   the parent stops them.
-4. The line ``interrupted`` is written once, under a lock: the watchdog waits for a main thread that is writing
-   it right now instead of ending the process between "reported" and "written" (an exit 130 with an empty
-   stderr, seen once under load). :func:`stop_requested` tells the CLI that a stop signal arrived, so an
-   exception that the signal caused (a ``KeyboardInterrupt`` inside a C extension's import surfaces as
-   ``ImportError``) is reported as ``interrupted``, not as a traceback or an error line.
-5. :func:`announce_ready`: with the environment variable ``QCPP_READY`` set (to anything but empty or ``0``),
-   the CLI prints one line ``ready: <what>`` on stderr once its signal handling is installed and the command's
-   work has started (imports done). Tests that interrupt a real process wait for that line instead of sleeping.
+1. SIGTERM is treated as SIGINT: ``KeyboardInterrupt`` in the main thread, which the CLI
+   (:class:`qcpp.cli.app.QcppGroup`) turns into the line ``interrupted`` and exit code 130; ``with`` blocks clean up
+   on the way out (:func:`qcpp.io.atomic.atomic_open` removes its temporary file).
+2. A watchdog thread wakes on the signal itself (:func:`signal.set_wakeup_fd`, written even while the main thread is
+   inside a long native call). If the process is still alive :data:`GRACE_SECONDS` later it removes pending
+   temporary files, terminates child processes, prints ``interrupted`` (if nobody did) and ends the process with
+   :func:`os._exit` (130).
+3. Forked children ignore SIGINT and get the default SIGTERM (a terminal's Ctrl-C reaches the whole process group;
+   the parent stops them).
+4. ``interrupted`` is written once, under a lock, so the watchdog never ends the process between "reported" and
+   "written". :func:`stop_requested` lets the CLI report an exception the signal caused (e.g. an ``ImportError``
+   from a ``KeyboardInterrupt`` inside a C extension's import) as ``interrupted``.
+5. :func:`announce_ready`: with ``QCPP_READY`` set (not empty or ``0``) the CLI prints ``ready: <what>`` on stderr
+   once its signal handling is installed and the command's work has started, so tests that interrupt a real
+   process wait for that line instead of sleeping.
 
 Example:
     >>> report_interrupted.__name__

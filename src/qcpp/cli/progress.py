@@ -1,24 +1,15 @@
 """Progress of long commands on stderr: a bar on a terminal, a line every few seconds on a pipe or file.
 
-One helper for every command that can run long (``estimate`` tables, ``compile``, ``solve -m dfs``,
-``validate``): :class:`Progress`, a context manager that knows the task, its size (when known), how far the work
-got and which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM on stdout stay clean.
+:class:`Progress` is a context manager that knows the task, its size (when known), how far the work got and
+which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM on stdout stay clean.
 
-* **Terminal** (stderr is a TTY): a transient rich bar (description, bar, done/total, elapsed, time left),
-  redrawn by rich's own thread, erased when the work ends.
-* **Pipe or file**: nothing for the first :data:`FIRST_LINE_AFTER` seconds (quick commands stay silent), then one
-  line every :data:`DEFAULT_INTERVAL` seconds, written by a heartbeat thread, so a stage that is one long native
-  call (a tensor contraction, a path search) still shows that it is alive::
-
-      estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left
-      validate: simulating the feasible subspace, 12 s elapsed
-
-  and, if any line was printed, a last one when the work ends (``estimate: 60,807 rows done in 75 s``).
-* The environment variable ``QCPP_PROGRESS`` picks the form: ``auto`` (default, as above), ``bar``, ``lines`` or
-  ``off``; ``QCPP_PROGRESS_INTERVAL`` sets the seconds between lines (``0``: a line at every step and stage,
-  synchronously, from the first one: what the tests use, so they never depend on timing).
-* Entering a :class:`Progress` also calls :func:`qcpp.cli.interrupt.announce_ready` (the ``ready: <task>`` line that
-  ``QCPP_READY=1`` turns on): the work has started.
+* **Terminal** (stderr is a TTY): a transient rich bar, erased when the work ends.
+* **Pipe or file**: nothing for the first :data:`FIRST_LINE_AFTER` seconds, then one line every
+  :data:`DEFAULT_INTERVAL` seconds from a heartbeat thread (so one long native call still shows it is alive),
+  e.g. ``estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left``, and a last line when it ends.
+* ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
+  seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
+* Entering a :class:`Progress` calls :func:`qcpp.cli.interrupt.announce_ready`.
 
 Library code never imports this module: it takes plain callbacks (``progress(done, total)``,
 :data:`qcpp.problem.solvers.ProgressFn`; ``stage(text)``), and the command passes :meth:`Progress.update` and
@@ -74,7 +65,7 @@ FIRST_LINE_AFTER = 1.0
 """Seconds of work before the first progress line on a pipe (quicker commands print none)."""
 
 HEARTBEAT_JOIN_SECONDS = 1.0
-"""How long leaving a :class:`Progress` waits for its heartbeat thread (a loaded machine may not run it sooner)."""
+"""How long leaving a :class:`Progress` waits for its heartbeat thread."""
 
 T = TypeVar("T")
 

@@ -65,7 +65,6 @@ def render_ascii(scenario: Scenario, paths: Sequence[int] | None = None, *, lege
     """The grid with obstacles, endpoints and (optionally) one path per robot as text (legend: module docstring).
 
     Args:
-        scenario: The scenario.
         paths: One edge mask per robot, or ``None`` for just the grid, obstacles and endpoints.
         legend: Append the legend and one line per robot (its start, goal and edge count).
 
@@ -138,13 +137,9 @@ def plot_paths(
     goals are stars, in the robot's colour; obstacles are black crosses on grey squares.
 
     Args:
-        scenario: The scenario.
         paths: One edge mask per robot (or ``None``: grid, obstacles and endpoints only).
         file: Output path; the format follows the suffix (``.png``, ``.svg``, ``.pdf``, ...).
         title: Figure title (default: the scenario's name, else its size).
-
-    Returns:
-        The written path.
 
     Raises:
         ValueError: if the number of paths is wrong or the format is unknown to matplotlib.
@@ -227,15 +222,10 @@ def plot_trace(
     Args:
         trace: Cost after each iteration / generation.
         file: Output path (format from the suffix).
-        title: Figure title.
         optimum: If given, drawn as a dashed horizontal line (e.g. the exhaustive optimum).
-        xlabel: Label of the horizontal axis.
         label: Legend label of the trace.
         steps: Draw the trace as steps (a best-so-far value holds until the next improvement) or as a line
             (an objective that moves every iteration, such as QAOA's training).
-
-    Returns:
-        The written path.
 
     Raises:
         ValueError: if ``trace`` is empty or the format is unknown.

@@ -16,7 +16,7 @@ A :class:`Device` is a frozen value. Two kinds exist:
 
 Couplings are undirected (every device here has a symmetric two-qubit gate). Per-qubit and per-coupling values
 are tuples aligned with ``range(num_qubits)`` and :attr:`Device.coupling`; a duration is ``None`` where the
-source publishes none (then :func:`qcpp.routing.sabre.duration_s` is ``None`` too).
+source publishes none (then :func:`qcpp.routing.native.duration_s` is ``None`` too).
 
 Example:
     >>> d = get_device("grid:2x3")
@@ -43,7 +43,8 @@ from typing import Any
 from qcpp.errors import QcppError
 
 __all__ = [
-    "FAMILIES", "Device", "DeviceError", "device_names", "get_device", "heavy_hex_coordinates", "named_device",
+    "FAMILIES", "Device", "DeviceError", "device_names", "distances", "get_device", "heavy_hex_coordinates",
+    "heavy_hex_distance", "named_device",
 ]
 
 FAMILIES = ("grid", "heavy-hex", "all-to-all")
@@ -195,6 +196,34 @@ def heavy_hex_coordinates(distance: int) -> tuple[tuple[int, int], ...]:
             coords += [(2 * g + 1, 4 * j + 1) for j in range((d - 1) // 2)] + [(2 * g + 1, 2 * d - 2)]
     coords += [(2 * i, 2 * j + 1) for i in range(d) for j in range(d - 1)]  # flag qubits
     return tuple(coords)
+
+
+def heavy_hex_distance(device: Device) -> int | None:
+    """``d`` if the device's coupling is :func:`heavy_hex_coupling` ``(d)`` (the unsized family's lattice, qubit
+    indices as there), else ``None`` (named Heron devices have another layout).
+
+    >>> [heavy_hex_distance(get_device(s)) for s in ("heavy-hex:5", "ibm_fez", "grid:3x3")]
+    [5, None, None]
+    """
+    if device.is_all_to_all or device.family != "heavy-hex":
+        return None
+    d = 3
+    while heavy_hex_qubits(d) < device.num_qubits:
+        d += 2
+    if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
+        return None
+    return d
+
+
+def distances(device: Device) -> Any:
+    """All-pairs shortest-path lengths of the coupling graph, a ``numpy`` array (``inf`` between components).
+
+    >>> distances(get_device("grid:2x2"))[0].tolist()
+    [0.0, 1.0, 1.0, 2.0]
+    """
+    from scipy.sparse.csgraph import shortest_path
+
+    return shortest_path(device.graph(), directed=False, unweighted=True)
 
 
 def _uniform(template: Device, name: str, n: int, coupling: tuple[tuple[int, int], ...], family: str) -> Device:

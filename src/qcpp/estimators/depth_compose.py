@@ -1,38 +1,19 @@
 """Exact ASAP depths of a circuit built from gadgets, without building the circuit: max-plus transfer profiles.
 
-ASAP layering (:func:`qcpp.estimators.depth.depths`) is a longest-path computation. Every gate sets the level of its
-qubits to ``max(levels of its qubits) + c`` (``c`` = 1 for every gate in ``depth``; 1 for two-qubit gates and 0
-for the others in ``two_qubit_depth``; 0 for multi-qubit gates in ``rotation_depth``, whose only adding gate is a
-one-qubit ``rz``), and a one-qubit gate adds its ``c`` to its qubit. Both are max-plus linear maps, so a whole
-gadget is one: with ``f`` the levels of its ``k`` qubits before it, the levels after it are
+ASAP layering (:func:`qcpp.estimators.depth.depths`) is a longest-path computation: every gate sets the level of its
+qubits to ``max(levels of its qubits) + c`` (``c`` per depth kind: every gate for ``depth``, two-qubit gates for
+``two_qubit_depth``, ``rz`` for ``rotation_depth``). That is a max-plus linear map, so a whole gadget is one: with
+``f`` the levels of its ``k`` qubits before it, the levels after it are ``f'[j] = max_i (f[i] + D[i][j])``,
+``D[i][j]`` the most levels on a path from its input on qubit ``i`` to its output on qubit ``j`` (``-inf`` if none).
+Composing the maps section by section from zeros gives exactly the levels of the concatenated lowered gates
+(lowering never crosses a section boundary, so each gadget is lowered alone, as the compiler does).
 
-    ``f'[j] = max_i (f[i] + D[i][j])``,
-
-``D[i][j]`` the most levels on a path from the gadget's input on its qubit ``i`` to its output on qubit ``j``
-(``-inf`` if there is no path; ``D[j][j] >= 0``: a qubit always reaches itself). Composing these maps section by
-section, starting from zeros, gives exactly the levels :func:`~qcpp.estimators.depth.depths` computes on the
-concatenated lowered gates, and the depth is the largest level. Lowering never crosses a section boundary
-(``docs/architecture.md``), so each gadget is lowered alone, as the compiler does.
-
-A gadget's ``D`` (:func:`transfer_profile`, the three depths stacked into one block-diagonal matrix) is computed
-once from its lowered gates and cached:
-
-* *anchored* gadgets (partial mixers, their junctions and rotations, visit-bit phase gadgets; :data:`ANCHORS`)
-  name their qubits in a fixed slot order, and their kind fixes their gates up to those slots, so ``D`` is
-  cached per kind (on slots) across every scenario: a gadget costs one dictionary look-up.
-  ``tests/estimators/depth_compose_test.py`` checks the premise on every gadget of many scenarios (the cached
-  profile equals the gadget's own);
-* any other gadget (state preparation, RZ/RZZ and arithmetic phase gadgets, gadget kinds added later) is emitted
-  and lowered once per scenario: its ``D`` is cached per lowered structure (gates with qubits renamed by first
-  appearance); a gadget on more than :data:`MATRIX_QUBITS` qubits is cut into consecutive runs of gates on at most
-  that many qubits, one matrix per run (composing runs is exact like composing gadgets; the runs of an
-  arithmetic phase gadget repeat a few structures many times).
-
-:class:`LayeredDepth` holds one scenario's steps (the state preparation, then one layer: layers differ only in
-their angles) and carries the frontier from ``p`` to ``p + 1``, so a sweep over ``p = 1..P`` propagates ``P``
-layers in all. Cost: one small numpy step per gadget (or run) and layer (a ``3k x 3k`` matrix, ``k`` the gadget's
-qubits), plus the emission and lowering of the non-anchored gadgets once per scenario
-(``benchmarks/depth_speed.py``).
+A gadget's ``D`` (:func:`transfer_profile`, the three depths in one block-diagonal matrix) is computed once and
+cached: per kind for *anchored* gadgets (:data:`ANCHORS`: their kind fixes their gates up to their qubit slots,
+so a gadget costs one look-up across every scenario), per lowered structure for the others; a gadget on more than
+:data:`MATRIX_QUBITS` qubits is cut into runs of gates on at most that many qubits, one matrix per run.
+:class:`LayeredDepth` holds one scenario's state preparation and one layer and carries the frontier from ``p`` to
+``p + 1``, so a sweep over ``p = 1..P`` propagates ``P`` layers in all.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -55,9 +36,9 @@ from qcpp.estimators.depth import Depth
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS
 
 __all__ = [
     "ANCHORS",
@@ -195,15 +176,10 @@ _ANCHORED = COSTS.table("anchored profile", _CACHE_LIMIT)
 or ``None`` when the kind cannot be anchored."""
 _OWN_DEPTH = COSTS.table("own depth", _CACHE_LIMIT)
 """Per kind, in the kinds' one cache: anchor key -> the gadget's own :class:`~qcpp.estimators.depth.Depth`."""
-_BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
-"""Lowered gate structure (qubits renamed by first appearance) -> transfer matrix: keyed by gates, not by kind (a
-run of an arithmetic gadget, or a state preparation), so not in the kinds' cache."""
-
-
-def _remember(cache: dict, key: Hashable, value: Any) -> None:
-    if len(cache) >= _CACHE_LIMIT:
-        cache.clear()
-    cache[key] = value
+_STRUCTURE_TABLE = "transfer by structure"
+"""The name of :data:`~qcpp.plan.call_graph.COSTS`' table of lowered gate structure (qubits renamed by first
+appearance) -> transfer matrix: keyed by gates, not by kind (a run of an arithmetic gadget, or a state
+preparation), in a table of its own."""
 
 
 def _work_start(registers: Sequence[Register]) -> int:
@@ -304,11 +280,12 @@ def gadget_steps(gadget: Any, registers: Sequence[Register]) -> list[MatrixStep]
     if hit is not None:
         return [MatrixStep(_index(hit[0], n), hit[1])] if hit[0] else []
     out = []
+    by_structure = COSTS.table(_STRUCTURE_TABLE, _CACHE_LIMIT)
     for key, qubits, run in _runs(lowered_gates(gadget, registers), MATRIX_QUBITS):
-        matrix = _BY_STRUCTURE.get(key)
+        matrix = by_structure.get(key)
         if matrix is None:
             matrix = transfer_profile(run, qubits)
-            _remember(_BY_STRUCTURE, key, matrix)
+            COSTS.remember(_STRUCTURE_TABLE, key, matrix)
         out.append(MatrixStep(_index(qubits, n), matrix))
     return out
 
@@ -388,9 +365,6 @@ class LayeredDepth:
             sections: the plan's sections, in circuit order.
             registers: the lowered circuit's registers (``work`` included).
             initial: name of the state preparation's section.
-
-        Returns:
-            The :class:`LayeredDepth`.
         """
         init: list[MatrixStep] = []
         layer: list[MatrixStep] = []

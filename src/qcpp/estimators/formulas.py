@@ -6,8 +6,7 @@ Every expression equals the exact count of
 counting (:func:`part_terms`) run with symbolic sides, as Qualtran's ``build_call_graph`` returns
 ``{And(): n - 1}``: nothing here describes the circuit a second time. The default (``feasible``) phase separator
 costs bit lengths of path-length sums, which have no polynomial form, and ASAP depth does not decompose into
-per-part sums, so neither has a formula; ``tests/estimators/formulas_test.py`` checks every quantity on every grid
-from 2x2 to 8x8, 1-4 robots, p = 1, and p = 2, 3 on a subset.
+per-part sums, so neither has a formula.
 
 * A side of 2, 3 or 4 nodes is its own case; a side of ``>= 5`` nodes is read from a representative side of 6
   whose classes (first, last, between: :func:`qcpp.plan.mixer_classes.index_classes`) are those of every longer

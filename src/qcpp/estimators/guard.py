@@ -1,15 +1,10 @@
 """Size guard: predict what building a circuit takes, from the plan's cost, before building it.
 
-``qcpp compile`` must materialise the circuit (to lower it and write OpenQASM), so it first asks the plan what
-the lowered circuit costs (:func:`qcpp.estimators.estimate.layer_costs`: no gate is built) and refuses when the
-prediction exceeds a limit. The memory model is measured, not guessed: an IR gate of a built circuit takes
-about :data:`BYTES_PER_GATE` bytes at the peak of building and lowering (Python tuples; ``tracemalloc`` on
-6x6/3 and 8x8/4 lowered circuits: 221-238 bytes, rounded up for the allocator's overhead). The high-level
-circuit has fewer gates than the lowered one, so the lowered count bounds both.
-
-:data:`DEFAULT_MAX_GATES` (10 million lowered gates) keeps a whole built circuit near 3 GB, well inside a 24 GB
-machine with the lowering's copies, and a compile under about seven minutes (streamed OpenQASM is written at
-about 25,000 gates per second: ``qcpp compile`` of 8x8 / 4 robots / p = 16, 866,184 gates, 36 s, 154 MB peak).
+``qcpp compile`` must materialise the circuit (to lower it and write OpenQASM), so it first asks the plan what the
+lowered circuit costs (:func:`qcpp.estimators.estimate.layer_costs`: no gate is built) and refuses when the
+prediction exceeds a limit. An IR gate takes about :data:`BYTES_PER_GATE` bytes at the peak of building and
+lowering; the high-level circuit has fewer gates than the lowered one, so the lowered count bounds both.
+:data:`DEFAULT_MAX_GATES` keeps a whole built circuit at a few GB and a compile within minutes.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -32,7 +27,7 @@ from qcpp.problem.scenario import Scenario
 __all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "check_size", "predict_size"]
 
 BYTES_PER_GATE = 300
-"""Peak bytes per lowered gate while building, lowering and writing (measured: see the module docstring)."""
+"""Peak bytes per lowered gate while building, lowering and writing (Python tuples, with the allocator's overhead)."""
 
 DEFAULT_MAX_GATES = 10_000_000
 """Largest circuit ``qcpp compile`` builds without ``--force`` or a higher ``--max-gates``: about 3 GB predicted."""
@@ -66,11 +61,7 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
 
     Args:
         scenario: the scenario.
-        p: QAOA layers.
         options: circuit construction options.
-
-    Returns:
-        The :class:`SizePrediction`.
     """
     lc = layer_costs(scenario, options)
     gates = lc.cost(p).total

@@ -66,7 +66,7 @@ def layout_twoq_bound(
     """
     from qcpp.layout.medial import medial_placement
     from qcpp.lowering.passes import lower
-    from qcpp.pipeline.device_compile import device_plan_options
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     homes = medial_placement(scenario, device)
@@ -187,7 +187,7 @@ def gate_distances(device: Device, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     if shape is not None:
         cols = shape[1]
         return np.abs(a // cols - b // cols) + np.abs(a % cols - b % cols)
-    from qcpp.layout.heavy_hex import heavy_hex_distance
+    from qcpp.devices.device import heavy_hex_distance
 
     lattice = heavy_hex_distance(device)
     if lattice is not None:

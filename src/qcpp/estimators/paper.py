@@ -1,28 +1,19 @@
 """The paper's own resource estimates, exactly as its section "Resource estimates" states them.
 
-The paper (``/work/shared/paper/quantum-cpp-paper.tex``) estimates one QAOA layer for ``r`` robots on an
-``m x n`` grid with ``e = m(n-1) + n(m-1)`` edges:
+The paper (arXiv:2407.08767) estimates one QAOA layer for ``r`` robots on an ``m x n`` grid with
+``e = m(n-1) + n(m-1)`` edges:
 
-* qubits: ``N_Q ~ r e`` data qubits, plus "eight ancillary qubits per robot" for the mixer logic: both are
-  reported (:attr:`PaperEstimate.data_qubits` and :attr:`PaperEstimate.qubits` = ``r e + 8 r``; the paper's
-  own 3x3 experiment says "Twenty qubits (12 decision variable qubits + 8 ancillary qubits)");
-* phase separator: ``r e`` single-qubit gates (one RZ per linear term), and per quadratic term 2 CNOT + 1 RZ,
-  "requiring a total of ``re(re+1)`` CNOT gates and ``re(re+1)/2`` single-qubit gates" (the count of all
-  pairs ``i <= j``, diagonal included);
-* mixer: ``r(m-1)(n-1)`` partial mixers, each with f1 = one 5-qubit Toffoli, f2 = two 5-qubit Toffolis,
-  f3 = four 3-qubit Toffolis and one 7-qubit Toffoli for f; an ``(l+1)``-qubit Toffoli is ``4(l-2)``
-  3-qubit Toffolis for ``l >= 3`` (Barenco et al.), each 3-qubit Toffoli 6 CNOT + 9 single-qubit gates: so
-  ``8 + 2*8 + 4*1 + 16 = 44`` Toffolis, 264 CNOT and 396 single-qubit gates;
-* the controlled SBF rotation: the figure's SBF circuit has 8 H, 6 CNOT and 1 RZ; the paper's "controlled Z
-  operation ... 2 Z rotations and 2 CNOT gates" replaces that RZ, giving 8 CNOT and 10 single-qubit gates;
-* "the total gate requirement is twice of the controlled partial mixer": by default (``doubling="partial-
-  mixer"``, the literal reading) the *whole* partial mixer (logic and controlled SBF) is doubled: 544 CNOT and
-  812 single-qubit gates; ``doubling="logic"`` doubles only the logic (536 CNOT, 802 single-qubit gates).
+* qubits: ``N_Q ~ r e`` data qubits plus "eight ancillary qubits per robot" (:attr:`PaperEstimate.data_qubits`,
+  :attr:`PaperEstimate.qubits` = ``r e + 8 r``);
+* phase separator: ``r e`` single-qubit gates and, per quadratic term, 2 CNOT + 1 RZ: "a total of ``re(re+1)``
+  CNOT gates and ``re(re+1)/2`` single-qubit gates";
+* mixer: ``r(m-1)(n-1)`` partial mixers of 44 three-qubit Toffolis (an ``(l+1)``-qubit Toffoli is ``4(l-2)`` of
+  them, Barenco et al.), each 6 CNOT + 9 single-qubit gates, plus the controlled SBF rotation (8 CNOT, 10
+  single-qubit gates); "twice of the controlled partial mixer" doubles the whole partial mixer by default (544 CNOT,
+  812 single-qubit gates) or only its logic with ``doubling="logic"`` (536, 802).
 
-The paper gives one layer. For ``p`` layers we multiply the layer by ``p`` and add the initial state as the
-paper describes it (basis encoding of each robot's initial path): one X gate per edge of the path,
-``r (m + n - 2)`` single-qubit gates. Every reading is discussed in ``docs/paper-notes.md`` ("Resource
-estimates: the paper's formulas").
+For ``p`` layers the layer is multiplied by ``p`` and the initial state added (one X per edge of each robot's
+initial path, ``r (m + n - 2)`` gates). Each reading is discussed in ``docs/paper-notes.md``.
 
 Example (3x3 grid, one robot: e = 12):
     >>> est = paper_estimate(3, 3, 1)
@@ -105,9 +96,6 @@ def paper_partial_mixer(doubling: Doubling = "partial-mixer") -> PaperPartialMix
         doubling: what "twice of the controlled partial mixer" doubles: ``partial-mixer`` (everything,
             default) or ``logic`` (only the Toffoli logic; the controlled SBF rotation once).
 
-    Returns:
-        The :class:`PaperPartialMixer`.
-
     >>> pm = paper_partial_mixer()
     >>> pm.toffolis, pm.logic_cx, pm.logic_single_qubit, pm.sbf_cx, pm.sbf_single_qubit
     (44, 264, 396, 8, 10)
@@ -188,9 +176,6 @@ def paper_estimate(
         robots: number of robots ``r``.
         p: number of QAOA layers.
         doubling: see :func:`paper_partial_mixer`.
-
-    Returns:
-        The :class:`PaperEstimate`.
 
     >>> paper_estimate(2, 2, 1).cx   # re = 4: phase 4*5 = 20 CNOT, one partial mixer 544
     564

@@ -11,7 +11,7 @@ al. 2022, "Assessing requirements to scale to practical quantum advantage", arXi
 * ``ccixCount``: logical ANDs computed into clean ancillas (``and``: Gidney's temporary AND is a CCiX);
 * ``measurementCount``: AND uncomputes by measurement (``and_dg``) plus the final read-out of every data qubit.
 
-The estimator (``qdk.estimator.LogicalCounts(...).estimate(params)``, local, about 2 ms per call) returns
+The estimator (``qdk.estimator.LogicalCounts(...).estimate(params)``, local) returns
 physical qubits, runtime, code distance and the T-factory layout. The qubit model is one of the estimator's
 documented presets (:data:`QUBIT_MODELS`; default ``qubit_gate_ns_e3``: gate-based, 50 ns gates, 1e-3 error
 rates), the QEC scheme ``surface_code`` (``floquet_code`` only for the Majorana models) and the total error
@@ -124,9 +124,6 @@ def physical_estimate(
         qubit_model: one of :data:`QUBIT_MODELS`.
         qec_scheme: one of :data:`QEC_SCHEMES`.
         error_budget: total error budget, ``0 < error_budget < 1``.
-
-    Returns:
-        The :class:`PhysicalEstimate`.
 
     Raises:
         ValueError: an unknown model or scheme, or a budget outside (0, 1).

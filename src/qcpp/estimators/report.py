@@ -31,7 +31,8 @@ from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, rend
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_layers
 from qcpp.problem.presets import grid_scenario, max_default_robots
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
+from qcpp.routing.context import RoutingContext
 
 __all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 
@@ -70,9 +71,6 @@ def points_from_options(
         obstacles, hard_obstacles: obstacles on every grid of the range (``--obstacle``, ``--hard-obstacles``): each
             point is then the scenario :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "file"``
             in its row, as a scenario file's), not a default one.
-
-    Returns:
-        The :class:`PointSet`.
 
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
@@ -169,13 +167,14 @@ def estimate_rows(
     Yields:
         One row per point, in order.
     """
+    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
     for est in sweep(points, options):
-        yield _row(est, compare_paper, doubling, device, stage)
+        yield _row(est, compare_paper, doubling, device, stage, context)
 
 
 def _row(
     est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
-    stage: Callable[[str], None] | None = None,
+    stage: Callable[[str], None] | None = None, context: RoutingContext | None = None,
 ) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)
     if device is None:
@@ -185,7 +184,7 @@ def _row(
     c = est.cost
     extra = routed_fields(
         est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-        one_qubit=c.single_qubit, total_gates=c.total, stage=stage,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage, context=context,
     )  # fmt: skip
     return {**row, **extra}
 
@@ -200,13 +199,10 @@ def formula_report(fmt: Format = "table") -> str:
     Args:
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
 
-    Returns:
-        The text.
-
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
     """
-    import sympy as sp  # ~0.3 s: only the formulas need it, not the estimates
+    import sympy as sp  # slow to import: only the formulas need it, not the estimates
 
     from qcpp.estimators.formulas import FORMULA_DOMAIN, QUANTITIES, V_EXPR, formula_table
 

@@ -2,8 +2,7 @@
 
 Each point costs one lookup in the plan's layer costs (:func:`qcpp.estimators.estimate.layer_costs`, cached per
 scenario, so the ``p`` values of one grid and robot count share one plan), so a sweep runs in this process, in
-order, yielding each estimate as soon as it is ready: no process pool and no on-disk cache (earlier releases
-needed both because they built and lowered every circuit).
+order, yielding each estimate as soon as it is ready (no circuit is built, so no process pool or disk cache).
 
 Grids too small for a robot count (the default placement hosts ``2 (rows + cols) - 4`` robots, see
 :mod:`qcpp.problem.presets`) are left out of :func:`grid_points`; :func:`skipped_points` counts them so that the

@@ -18,11 +18,9 @@ A row is a plain dict (:func:`make_row`) with
   ``ratio_single_qubit``;
 * ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
 
-Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
-columns as a Markdown table), ``csv`` (every
-scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
-``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
-``table``.
+Formats: ``table`` (rich, the main columns that fit the terminal, :func:`render`), ``md``, ``csv`` (every scalar
+column plus ``section.<name>.<field>``), ``json`` and ``jsonl``; :func:`render_stream` yields text as rows arrive
+for every format but ``table``.
 
 Example:
     >>> from qcpp.estimators.estimate import Point, estimate_point
@@ -106,9 +104,6 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         est: an estimate.
         compare_paper: add the paper's estimate and the ratios.
         doubling: the reading of the paper's doubling (:func:`qcpp.estimators.paper.paper_partial_mixer`).
-
-    Returns:
-        The row.
     """
     pt, c, ft, d, plan = est.point, est.cost, est.fault_tolerant, est.depth, est.options.plan
     row: dict[str, Any] = {

@@ -1,8 +1,8 @@
 """Leaf gadgets: the gates a construction is built from, each with its lowered cost in closed form.
 
 Every construction of :mod:`qcpp.gadgets` is a sequence of these leaves (with a mirror image for the
-uncompute), so its cost is a sum of the closed forms below; ``tests/qcpp/gadgets_test.py`` checks each
-closed form against the count of the leaf's own lowered gates.
+uncompute), so its cost is a sum of the closed forms below (each equal to the count of the leaf's own lowered
+gates).
 
 ===========  ===========================================  =====================================
 leaf         what                                         lowered cost
@@ -15,7 +15,7 @@ leaf         what                                         lowered cost
 ``mcx(k)``   k >= 3 positive controls, clean work         (k - 2) ANDs + their mirrors + 1 ccx
 ``crx``      controlled RX(theta)                         2 cx, 2 h, 2 rz
 ``ccrx``     doubly controlled RX(theta) (phase poly.)    4 cx, 2 h, 4 rz
-``csbf``     RX(theta) on X⊗4 controlled (the old form)   8 cx, 8 h, 2 rz
+``csbf``     RX(theta) on X⊗4 controlled (paper rule)     8 cx, 8 h, 2 rz
 ===========  ===========================================  =====================================
 
 ``ccrx`` is ``H_t exp(-i theta/2 a b Z_t) H_t`` with ``a b Z_t = (Z_t - Z_a Z_t - Z_b Z_t + Z_a Z_b Z_t) / 4``:

@@ -2,8 +2,8 @@
 
 A regular file is read as usual. Anything else that can be opened for reading -- a FIFO (``mkfifo s.toml``), a
 pipe (``/dev/stdin`` of ``cmd | qcpp ...``), a character device (``/dev/zero``, a terminal) -- is read without
-blocking: every wait for more data is limited to :data:`INPUT_WAIT` seconds (a FIFO nobody writes to used to
-block the command for ever), and reading stops at ``max_bytes + 1`` bytes (``/dev/zero`` used to fill the
+blocking: every wait for more data is limited to :data:`INPUT_WAIT` seconds (so a FIFO nobody writes to cannot
+block the command for ever), and reading stops at ``max_bytes + 1`` bytes (so ``/dev/zero`` cannot fill the
 memory). Sockets and directories fail as the system says.
 
 Example:
@@ -61,9 +61,6 @@ def read_bounded(path: str | os.PathLike[str], max_bytes: int, *, wait: float | 
         path: The file (symbolic links followed).
         max_bytes: The largest content the caller accepts; one byte more is read so that it can tell.
         wait: Longest wait, in seconds, for more data from a FIFO, pipe or device (``None``: :data:`INPUT_WAIT`).
-
-    Returns:
-        The bytes read.
 
     Raises:
         InputError: the file cannot be opened, or a FIFO/pipe/device gave no data for ``wait`` seconds.

@@ -21,17 +21,13 @@ A plaquette's four edges are then four of its cell's twelve qubits, all on its d
 the top-left vertex and, on the bottom row line, the bottom-left, bottom-middle and bottom-right vertices (two
 steps apart along the row line, the top edge two steps from the left one over the left bridge); an odd gap is
 its mirror image. Both bridges and all six degree-2 qubits of a cell hold no data: they are free for its partial
-mixer's ancillas. Measured with the partial mixers planned for the cells (:mod:`qcpp.pipeline.cellmixer`), ``python
-benchmarks/routing.py --cells``, p = 1: 4x4/2 5,620 -> 5,558 routed CX and 6x6/3 38,540 -> 37,050 against the
-previous placement (horizontal edges on the sides' midpoints, ``H = 4``); of nine placements of the two edge
-kinds on vertices, midpoints and bridges tried on 4x4/2 without the planned mixers (an experiment not kept in the
-repository), this one and the previous one routed to the fewest CX (5,830 and 5,876).
+mixer's ancillas.
 
 Each robot's patch spans ``R`` row lines and ``4 C`` columns; the ``k`` patches are stacked ``down x across``
 (offsets ``Y = R * row``, ``X = 4 C * column``), choosing the stacking that needs the smallest lattice. The rest
 of the pipeline is the square grid's (:func:`qcpp.pipeline.device_compile.medial_compile`): local ancillas with search
 (:func:`qcpp.layout.medial.allocate_ancillas`), relays (:mod:`qcpp.routing.bridge`) and windows routed home
-(:func:`qcpp.routing.sabre.route_windows`).
+(:func:`qcpp.routing.windows.route_windows`).
 
 The geometry costs more than on a square grid: a cell is a 12-qubit cycle with no qubit at its centre, so a
 plaquette's four edges are 2 to 6 steps apart (2, 2 and 2 around the cell from the top edge, 4, 4 and 6 across
@@ -57,42 +53,18 @@ from __future__ import annotations
 
 from functools import cache
 
-from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_qubits
+from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
-    "CELL_LARGE_WINDOW_SEEDS", "CELL_LARGE_WINDOW_TRIALS", "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
+    "CELL_PHASE_LAYOUT", "hex_distance",
     "hex_placement", "hex_sites", "is_hex_lattice",
 ]  # fmt: skip
 
 CELL_PHASE_LAYOUT = "medial"
 """The phase separator's layout that ``phase_layout="auto"`` settles on for a heavy-hex lattice (the cell layout):
 the balance sums drift to sinks where the robots' patches meet (:func:`qcpp.plan.phase_layout.balance_sinks`),
-as on square grids; same gates and counts as ``spatial``. Measured with the cells' planned mixers and
-:data:`CELL_LARGE_WINDOW_SEEDS`, p = 1, routed CX of the phase separator, ``spatial`` -> ``medial``: see
-docs/resource-estimates.md ("Heavy-hex: one cell per plaquette")."""
-
-CELL_LARGE_WINDOW_SEEDS = 32
-"""SABRE seeds the balance arithmetic's one large window tries on the cells (:func:`qcpp.routing.sabre.route_window`;
-8 elsewhere), with :data:`CELL_LARGE_WINDOW_TRIALS` trials each. Measured on 4x4/2 (p = 1, ``medial`` phase layout),
-that window's routed CX by (seeds, trials): (8, 16) 2,488; (32, 16) 2,434; (8, 64) 2,460; (16, 64) 2,444;
-(32, 64) 2,388; (64, 64) 2,386; (128, 64) 2,372 at five times (32, 64)'s time."""
-
-CELL_LARGE_WINDOW_TRIALS = 64
-"""SABRE's trials per seed on the cells' large window (16 elsewhere, :data:`qcpp.routing.sabre.DEFAULT_TRIALS`)."""
-
-
-def heavy_hex_distance(device: Device) -> int | None:
-    """``d`` if the device's coupling is :func:`qcpp.devices.device.heavy_hex_coupling` ``(d)`` (the unsized family's
-    lattice, qubit indices as there), else ``None`` (named Heron devices have another layout)."""
-    if device.is_all_to_all or device.family != "heavy-hex":
-        return None
-    d = 3
-    while heavy_hex_qubits(d) < device.num_qubits:
-        d += 2
-    if heavy_hex_qubits(d) != device.num_qubits or device.coupling != heavy_hex_coupling(d)[1]:
-        return None
-    return d
+as on square grids; same gates and counts as ``spatial``."""
 
 
 def is_hex_lattice(spec: str | Device) -> bool:
@@ -185,9 +157,9 @@ def _placed(scenario: Scenario, d: int, arrangement: tuple[int, int]) -> tuple[i
 
 def hex_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a heavy-hex lattice device, or ``None`` if
-    the device is not one (:func:`heavy_hex_distance`) or the layout does not fit. Of the ``down x across``
-    stackings of the robots' patches that fit, the one that needs the smallest lattice (the lattice is about twice
-    as tall as wide in cells, so robots are stacked down first).
+    the device is not one (:func:`qcpp.devices.device.heavy_hex_distance`) or the layout does not fit. Of the
+    ``down x across`` stackings of the robots' patches that fit, the one that needs the smallest lattice (the
+    lattice is about twice as tall as wide in cells, so robots are stacked down first).
 
     Args:
         scenario: The scenario.

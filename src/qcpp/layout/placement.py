@@ -10,7 +10,7 @@ Two passes on an emitted, lowered circuit (plain functions, ``circuit -> circuit
   sections' centroids, ``k`` as large as the device's spare qubits allow); each region gets its own pool of
   ``local_cap`` ancillas, appended as register ``local``. Larger sections (the phase separator's arithmetic over
   all edges) keep the shared ancillas. The gate order is unchanged, so the operator is unchanged; sections of
-  different regions now act on disjoint qubits when their data qubits are disjoint, so they may run side by
+  different regions then act on disjoint qubits when their data qubits are disjoint, so they may run side by
   side (ASAP), which is a reordering of commuting gates only. No partial mixers that share a qubit are reordered.
 * :func:`place` maps logical qubits to physical qubits: greedily, heaviest-interacting first, each qubit onto
   the free physical qubit of the device's largest connected component that minimises the interaction-weighted
@@ -36,12 +36,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from qcpp.devices.device import Device
+from qcpp.devices.device import Device, distances
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["DEFAULT_LOCAL_CAP", "distances", "localize_ancillas", "place"]
+__all__ = ["DEFAULT_LOCAL_CAP", "localize_ancillas", "place"]
 
 DEFAULT_LOCAL_CAP = 8
 """Ancillas per local pool: the most any partial mixer or per-node phase gadget of the default grids uses."""
@@ -117,13 +117,6 @@ def localize_ancillas(circuit: Circuit, scenario: Scenario, spare: int, local_ca
         gates = [Gate(g[0], tuple(rename.get(q, q) for q in g[1]), g[2], g[3]) for g in sec.gates]
         sections.append(Section(sec.name, gates))
     return Circuit([*circuit.registers, Register("local", k * local_cap)], sections)
-
-
-def distances(device: Device) -> np.ndarray:
-    """All-pairs shortest-path lengths of the coupling graph (``inf`` between components)."""
-    from scipy.sparse.csgraph import shortest_path
-
-    return shortest_path(device.graph(), directed=False, unweighted=True)
 
 
 def _largest_component(dist: np.ndarray) -> np.ndarray:

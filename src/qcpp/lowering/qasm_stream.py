@@ -3,7 +3,7 @@
 :func:`write_qasm_sections` takes the register layout and a *factory* of sections (called twice: the first
 pass collects what the header needs, the symbols and the custom gate definitions; the second writes), and
 never holds more than one section. The file equals :func:`qcpp.lowering.qasm.write_qasm` of the whole circuit
-byte for byte (``tests/qcpp/compile_guard_test.py`` checks it), and is written atomically (whole or not at all).
+byte for byte, and is written atomically (whole or not at all).
 
 Example:
     >>> import os, tempfile

@@ -102,14 +102,9 @@ def compile_scenario(
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
     Args:
-        scenario: The scenario.
-        p: QAOA layers.
         options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`).
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
-
-    Returns:
-        The :class:`CompileResult`.
 
     Raises:
         ValueError: if ``bindings`` names a symbol the circuit does not have.

@@ -172,15 +172,11 @@ def mixer_part(
 
     Args:
         scenario: a scenario without obstacles.
-        rule: SBF rule.
         target: ``nisq`` or ``ft``.
         fuse: list rotations and junctions (the circuit's default), or the partial mixers themselves.
         sizes: count the classes for a grid of ``sizes = (rows, cols)`` nodes (sympy expressions, for the
             closed forms of :mod:`qcpp.estimators.formulas`): the scenario then stands for every grid with the same
             endpoints near its corners (sides of at least 5 nodes where symbolic).
-
-    Returns:
-        The :class:`MixerPart`.
 
     Raises:
         ValueError: the scenario has obstacles.

@@ -221,19 +221,15 @@ def phase_plan(
     """Choose the phase separator's constructions for a scenario.
 
     Args:
-        scenario: The scenario.
         target: ``nisq`` (minimise CX) or ``ft`` (minimise T, rotations priced at :data:`ROTATION_T_COST`).
         representation: ``feasible`` (exact on feasible assignments, cheap) or ``whole-space`` (the exact Ising
-            Hamiltonian, today's RZ/RZZ circuit).
+            Hamiltonian's RZ/RZZ circuit).
         optimize: ``cx`` (cheapest under the target) or ``depth`` (couplings only: shallow RZZ layers, no
             arithmetic).
         ancilla_budget: Most clean ancillas the plan may use (``None``: no limit). Constructions that need more
             are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
             sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
             variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
-
-    Returns:
-        The :class:`PhasePlan`.
 
     Raises:
         ValueError: for an unknown option.

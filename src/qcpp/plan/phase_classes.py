@@ -1,7 +1,7 @@
 """The phase separator's call graph without planning it term by term: classes of nodes and edges on an open grid.
 
-:func:`qcpp.plan.phase.phase_plan` prices every term group variable by variable (0.1-1 s per scenario at
-20x20-40x40, too slow for a sweep). On a grid without obstacles and with uniform edge lengths the plan has few
+:func:`qcpp.plan.phase.phase_plan` prices every term group variable by variable (too slow for a sweep over
+large grids). On a grid without obstacles and with uniform edge lengths the plan has few
 distinct parts:
 
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
@@ -15,12 +15,10 @@ distinct parts:
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
 
-Coefficients are vectors over one robot's edges (numpy); the endpoint and corner identities are applied by the
-very function the feasible cost uses (:func:`qcpp.problem.feasible_cost.reduce_on_paths`) on the few edges they
-touch. Every construction is the plan's own decision (:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer`
-answers only where no choice couples groups (every class picks a gadget over couplings, and the balance's
-arithmetic is its first candidate and provably beats its couplings); elsewhere it returns ``None`` and
-:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
+The endpoint and corner identities are applied by the feasible cost's own function
+(:func:`qcpp.problem.feasible_cost.reduce_on_paths`), every construction is the plan's own decision
+(:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer` answers only where no choice couples groups; elsewhere
+it returns ``None`` and :meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -44,8 +42,8 @@ from itertools import repeat
 import numpy as np
 
 from qcpp.gadgets import Gadget
-from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
-from qcpp.gadgets.phase_sums import SumsPhase, SumsShape
+from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingKind, IsingPhase, ising_cost
+from qcpp.gadgets.phase_sums import SumsKind, SumsPhase, SumsShape
 from qcpp.plan.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from qcpp.plan.mixer_classes import Count, boundary, class_counts
 from qcpp.plan.phase import coupling_products, phase_plan
@@ -85,7 +83,7 @@ def _layer(
     """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
     ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
     # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
-    # per scenario fragmented the allocator's arenas: a 60,840-row sweep's peak memory doubled)
+    # per scenario fragment the allocator's arenas and inflate a long sweep's peak memory)
     num_ancillas = max([0, *(need for _, _, need in parts), balance.shape.num_ancillas if balance else 0])
     pool = range(s.num_variables, s.num_variables + num_ancillas)
     out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]
@@ -97,14 +95,15 @@ def _layer(
                 return phase_plan(s, representation="whole-space").gadgets("gamma")[0]
             return IsingPhase("gamma", tuple(zip(range(rotations), repeat(1.0))), ())
 
-        out.insert(0, (GadgetKind.of(Deferred(("ising", rotations, couplings), rz, rz, ising)), 1))
+        out.insert(0, (GadgetKind.of(Deferred(IsingKind("ising", rotations, couplings), rz, rz, ising)), 1))
     if balance is not None:
         shape = balance.shape
 
         def arithmetic() -> Gadget:
             return replace(balance.gadget(), ancillas=tuple(pool))
 
-        deferred = Deferred(("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
+        kind = SumsKind("sums", shape)
+        deferred = Deferred(kind, shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
         out.append((GadgetKind.of(deferred), 1))
     return PhaseLayer(tuple(out), num_ancillas)
 

@@ -34,7 +34,7 @@ from functools import cached_property, partial
 
 from qcpp.errors import OptionError
 from qcpp.gadgets import Gadget
-from qcpp.gadgets.blocks import StatePrep
+from qcpp.gadgets.blocks import StatePrep, XLayerKind
 from qcpp.gadgets.initial_state import initial_path_count
 from qcpp.gadgets.junction import mixer_pieces
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
@@ -76,8 +76,6 @@ class QaoaPlan:
     """The QAOA circuit as gadgets: what :func:`qaoa_circuit` emits, and its cost without emitting it.
 
     Attributes:
-        scenario: The scenario.
-        p: Layers.
         options: How it is built (:class:`~qcpp.plan.options.PlanOptions`).
     """
 
@@ -209,7 +207,7 @@ class QaoaPlan:
             # built from the scenario, not from this plan: a closure over the plan, which holds the call graph,
             # would be a reference cycle, freed only by full collections (2x the sweep's GC time and memory)
             build = partial(StatePrep.build, s, o.initial, o.rule, None)
-            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, build))
+            prep = GadgetKind(XLayerKind("x_layer", n), Deferred(XLayerKind("x_layer", n), xs, xs, build))
         else:
             prep = GadgetKind.of(self.state_prep)
         if classes:
@@ -311,7 +309,6 @@ def qaoa_circuit(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     """Build the parameterised QAOA circuit (high level: and/and_dg, crx, cx, x, rz, rzz, mcx, csbf, ...).
 
     Args:
-        scenario: The scenario.
         p: Number of layers (>= 0).
         options: How it is built (rule, initial state, target, phase separator, ancilla budget, fusion; see
             :class:`~qcpp.plan.options.PlanOptions`).

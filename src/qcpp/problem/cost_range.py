@@ -5,8 +5,7 @@ format with a finite exact range:
 
 * ``dfs``, ``anneal``, ``genetic``, ``qaoa`` (and the estimators' phase-separator reductions) in float64: every
   integer up to ``2**53`` is a float, beyond it two costs that differ by 1 can round to the same number, and
-  beyond about ``1e308`` they overflow to ``inf``/``nan`` (which used to leak as ``RuntimeWarning`` lines and an
-  ``index -1`` error);
+  beyond about ``1e308`` they overflow to ``inf``/``nan``;
 * the QAOA circuit's simulated phases ``exp(-i gamma C)`` (``solve -m qaoa``, ``simulate``, ``validate``): a
   float error that grows like ``|C| * 2**-53``, exact to the simulators' 1e-8 only up to about ``2**26``
   (:data:`PHASE_COST_LIMIT`, :func:`check_phase_range`);

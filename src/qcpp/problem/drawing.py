@@ -11,11 +11,29 @@ Example:
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from html import escape
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-if TYPE_CHECKING:
-    from qcpp.problem.scenario import Scenario
+from qcpp.problem.grid import Grid, Node
+
+
+class _Robot(Protocol):
+    start: Node
+    goal: Node
+
+
+class Drawable(Protocol):
+    """What the drawing reads of a :class:`~qcpp.problem.scenario.Scenario` (so this module, which the scenario's
+    ``_repr_svg_`` imports, need not import the scenario)."""
+
+    grid: Grid
+    name: str
+    obstacles: Sequence[Node]
+    robots: Sequence[_Robot]
+
+    @property
+    def num_robots(self) -> int: ...
 
 __all__ = ["ROBOT_COLOURS", "scenario_svg"]
 
@@ -25,7 +43,7 @@ ROBOT_COLOURS: tuple[str, ...] = (
 """Robot ``r`` is drawn in colour ``r`` (modulo their number): matplotlib's ``tab10``."""
 
 
-def scenario_svg(scenario: Scenario, cell: int = 40) -> str:
+def scenario_svg(scenario: Drawable, cell: int = 40) -> str:
     """The SVG of ``scenario`` (see the module docstring).
 
     Args:

@@ -1,6 +1,6 @@
 """Size guards: refuse absurd requests before building anything, naming the size and the override.
 
-A 10000x10000 scenario used to grow to 11 GB before anything useful happened. Every place that builds a
+Without a guard a huge grid grows to many GB before anything useful happens. Every place that builds a
 scenario (file, dict, preset) calls :func:`check_grid_size` first; commands with a layer count call
 :func:`check_layers`. Both raise :class:`SizeError` (a :class:`~qcpp.problem.errors.ScenarioError`, so the CLI
 prints it as one line with exit code 2) unless large requests are allowed: the CLI's ``--allow-large`` flag

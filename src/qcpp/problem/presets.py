@@ -13,13 +13,10 @@ robot  start             goal
 3      bottom-right      top-left
 ====== ================= =================
 
-(the placement of every release so far, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
-start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from the top-left corner,
-the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots - 4`` extra robots
-take nodes ``floor((i + 1/2) M / k)``, ``i = 0..k-1``. Starts are therefore distinct (goals too, the reflection
-being one-to-one), and a grid hosts up to :func:`max_default_robots` ``= 2(rows + cols) - 4`` robots, one per
-boundary node. No obstacles; every objective setting is the default (:class:`qcpp.problem.scenario.Objective`).
-Anything else: write a scenario file.
+Robots ``4, 5, ...`` start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from
+the top-left corner, the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots -
+4`` extra robots take nodes ``floor((i + 1/2) M / k)``. Starts (and goals) are distinct, and a grid hosts up to
+:func:`max_default_robots` ``= 2(rows + cols) - 4`` robots. No obstacles; default objective.
 
 Example:
     >>> s = default_scenario(3, 4, 2)
@@ -43,7 +40,7 @@ from qcpp.problem.scenario import Robot, Scenario, scenario_from_dict
 __all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "grid_scenario", "max_default_robots"]
 
 MAX_DEFAULT_ROBOTS = 4
-"""Robots placed in the corners; more go to the other boundary nodes (kept for callers of earlier releases)."""
+"""Robots placed in the corners; more go to the other boundary nodes."""
 
 Node = tuple[int, int]
 
@@ -70,11 +67,9 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
     """The default scenario for a ``rows x cols`` grid and ``robots`` robots (see the module docstring).
 
     Args:
-        rows, cols: grid size (at least 2 each).
+        rows: grid rows (at least 2).
+        cols: grid columns (at least 2).
         robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
-
-    Returns:
-        The scenario.
 
     Raises:
         ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, or a grid smaller than 2x2.
@@ -113,7 +108,8 @@ def grid_scenario(
     ``obstacles = "hard"`` with ``hard_obstacles``.
 
     Args:
-        rows, cols: Grid size (at least 2 each).
+        rows: Grid rows (at least 2).
+        cols: Grid columns (at least 2).
         robots: A robot count (the default placement of the module docstring), or ``(start, goal)`` pairs of
             ``(row, col)`` nodes, one per robot.
         obstacles: Obstacle nodes ``(row, col)``, in any order.

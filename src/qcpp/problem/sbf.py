@@ -14,21 +14,18 @@ Whether it may be applied is a boolean function of the robot's edges near the pl
     the result is feasible. With ``q_v`` the number of plaquette edges at corner ``v`` in the path:
 
     * no plaquette edge set: never (the flip adds a closed 4-cycle);
-    * two opposite plaquette edges (``1010``/``0101``): the flip reconnects two distant pieces of the path,
-      and whether that leaves a loop depends on the order in which the path visits them, which no local
-      function can see. Allowed only when the robot's start and goal are diagonal corners of the plaquette
-      (then it is always feasible); forbidden otherwise;
+    * two opposite plaquette edges (``1010``/``0101``): whether the flip leaves a loop depends on the order in
+      which the path visits them, which no local function can see; allowed only when the robot's start and
+      goal are diagonal corners of the plaquette (then it is always feasible);
     * otherwise: every corner with ``q_v = 0`` must be free (not the robot's start or goal and no outer
       edge set), because the flip gives it two new edges.
 
     On every feasible path this is "the flip is feasible" except for the opposite-edges case, where feasible
-    flips are missed; :mod:`tests.gridcover.sbf_test` shows both facts exhaustively and counts the misses.
+    flips are missed (the tests show both exhaustively on small grids).
 
-Each rule is compiled, per robot and plaquette, into a :class:`SbfLogic`: a short straight-line program of
-"XOR an AND of literals into a bit" steps (exactly what multi-controlled X gates compute). What is known
-when compiling (boundary corners with fewer outer edges, edges that are not variables in ``hard`` mode,
-which corners are the robot's endpoints) is folded into the program, and for ``exact`` the remaining
-function is simplified using what a feasible path cannot look like (see :func:`_exact_logic`).
+Each rule is compiled, per robot and plaquette, into a :class:`SbfLogic`: a straight-line program of "XOR an
+AND of literals into a bit" steps (what multi-controlled X gates compute), with everything known at compile time
+(boundary corners, fixed edges, the robot's endpoints) folded in.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -101,7 +98,6 @@ class SbfLogic:
 
     Attributes:
         rule: ``exact`` or ``paper``.
-        robot: Robot index.
         plaquette: Plaquette index.
         num_temps: Temporary bits used (ancillas in the circuit); all start at 0.
         output: The temporary holding the result.
@@ -158,8 +154,6 @@ def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule =
 
     Args:
         scenario: The scenario (obstacle mode and endpoints are folded in).
-        robot: Robot index.
-        plaquette: The plaquette.
         rule: ``exact`` (default) or ``paper``.
 
     Returns:
@@ -300,13 +294,13 @@ def _paper_logic(
 
 
 def direct_exact_logic(scenario: Scenario, robot: int, plaquette: Plaquette) -> SbfLogic:
-    """The exact rule as a network on plain edges (qcpp 0.1's form), for comparisons only.
+    """The exact rule as a network on plain edges (without the parity basis), for comparisons only.
 
     It reads the plaquette edges themselves (``blocked[v] = NOT e1 AND NOT e2 [AND o_v]``, a 4-literal pattern
     test) instead of corner parities, which is what a circuit without the parity basis (the paper's structure:
     multi-controlled X gates into ancillas, then the controlled XXXX rotation) computes. On every feasible path
-    it equals :func:`sbf_logic` with ``rule="exact"`` (``tests/qcpp/problem/sbf_test.py``); the benchmarks build
-    the paper-structured comparison circuit from it. The three levels:
+    it equals :func:`sbf_logic` with ``rule="exact"``; the benchmarks build the paper-structured comparison
+    circuit from it. The three levels:
 
     * ``blocked[v] = (corner v has no plaquette edge) AND (v is busy)`` for every corner that can be busy:
       the robot's endpoints (always busy) and non-endpoint corners with two variable outer edges. On a

@@ -128,8 +128,7 @@ def sample_bqm(
     """Sample ``model`` with dwave-samplers: ``(bits (reads, n) in the model's variable order, energies)``.
 
     Tabu search is bounded by ``tabu_restarts`` restarts per read, not by time, so a seed gives the same samples
-    on any machine; ``tabu_ms`` is only a safety cap per read (10 s by default, never reached on the study's
-    scenarios).
+    on any machine; ``tabu_ms`` is only a safety cap per read.
 
     Raises:
         MissingAnnealer: without dimod / dwave-samplers.
@@ -203,7 +202,6 @@ def solve_qubo(
     """Sample the ``per-robot`` QUBO, decode, drop cycles, polish (see the module docstring).
 
     Args:
-        scenario: The scenario.
         penalty: Degree penalty ``P`` (``None``: :func:`qcpp.qubo.model.penalty_rule`).
         sampler: ``sa`` (simulated annealing, ``sweeps`` per read) or ``tabu`` (``tabu_restarts`` per read).
         reads: Number of reads.

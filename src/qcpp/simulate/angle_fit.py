@@ -3,8 +3,8 @@
 :func:`fit_angles` fits QAOA angles to ``<C>``, ``CVaR_alpha`` or, as a reference that needs the optimum and so
 is no algorithm, ``P(optimum)`` itself (the most any angles at that depth put on the optimum, as far as the
 local optimiser finds). :meth:`AngleFit.from_training` reads gradient-based runs
-(:func:`qcpp.simulate.training.train`) as a fit. The default training is :func:`qcpp.simulate.layerwise.train_layerwise`.
-Example: at :func:`fit_angles`.
+(:func:`qcpp.simulate.training.train`) as a fit. The default training is
+:func:`qcpp.simulate.layerwise.train_layerwise`. Example: at :func:`fit_angles`.
 """
 
 from __future__ import annotations
@@ -32,7 +32,6 @@ class AngleFit:
     """The outcome of :func:`fit_angles`.
 
     Attributes:
-        p: Layers.
         objective: ``expectation``, ``cvar`` or ``p_optimum`` (the last maximised, the others minimised).
         alpha: CVaR tail mass (used only by ``cvar``).
         initial_angles: Start of the best restart.
@@ -42,7 +41,6 @@ class AngleFit:
         trace: The objective at every evaluation of the best restart, in order.
         evaluations: Simulations over all restarts (the final metrics included).
         restarts: Number of starts tried.
-        seconds: Wall-clock time.
     """
 
     p: int
@@ -104,7 +102,6 @@ def fit_angles(
     """Fit QAOA angles to a function of the exact state with COBYLA, from each start; keep the best.
 
     Args:
-        qaoa: The simulator.
         starts: One or more start vectors ``[gamma_0, beta_0, ...]`` (all the same length ``2p``).
         objective: ``expectation`` (``<C>``), ``cvar`` (``CVaR_alpha``, see :func:`cvar`) or ``p_optimum``
             (maximised; a reference only, it needs the optimum).

@@ -64,7 +64,6 @@ def anneal_success(
     """Run :func:`qcpp.problem.solvers.anneal` at each iteration budget from each seed; count optimal results.
 
     Args:
-        scenario: The scenario.
         budgets: Iteration budgets (each >= 1; ``cycles`` is lowered to the budget when it would exceed it).
         seeds: Seeds (one run per seed and budget).
         optimum: The optimal total cost (e.g. from :func:`qcpp.problem.solvers.dfs`).

@@ -11,7 +11,7 @@ input whose ancillas are |0>; equal up to a global phase counts as equivalent on
 Whole QAOA circuits can be checked at once (:func:`check_equivalence`) or section by section
 (:func:`check_sections`): the lowering never moves a gate across a section boundary and every section returns
 the ancillas to |0>, so equal sections compose into an equal circuit; QCEC's alternating checker stays fast on
-each section, while on a whole 30-qubit, p = 2 circuit it can take minutes.
+each section, where a whole wide circuit can be slow.
 
 Requires ``qiskit`` and ``mqt.qcec`` (the ``test`` extra).
 
@@ -151,9 +151,6 @@ def check_equivalence(
         global_phase_ok: Accept ``equivalent_up_to_global_phase`` (our lowering is exact, so default no).
         timeout: QCEC's timeout in seconds (``no_information`` when hit).
         **options: Further QCEC configuration options.
-
-    Returns:
-        The :class:`EquivalenceResult`.
     """
     from mqt import qcec
 

@@ -10,19 +10,17 @@
   2020; :func:`qcpp.simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
-With ``mixer_warm=True`` (an option, not the default) every level also starts from the mixer-only warm start
-(:func:`qcpp.simulate.mixer_only.train_mixer_only`: betas trained with every gamma 0, where the state is a product
-over robots and the objective costs one pass over the cost levels) with the linear ramp's gammas; the gammas
-must not start at 0, where every objective is stationary in them (``tests/simulate/mixer_warm_test.py``).
+With ``mixer_warm=True`` every level also starts from the mixer-only warm start
+(:func:`qcpp.simulate.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
+stationary in them).
 
 At every level the best run (lowest objective) is kept and warm-starts the next. Every simulation is counted;
-:meth:`LayerwiseResult.circuit_estimates` converts them to what a device would have to estimate (a gradient
-by central finite differences costs ``2 * 2p`` objective estimates beside the value: the parameter-shift rule
-does not apply as is because every angle drives many gates), and :meth:`LayerwiseResult.shots` multiplies
-by a number of shots per estimate.
+:meth:`LayerwiseResult.circuit_estimates` converts them to a device's objective estimates (a central-difference
+gradient costs ``2 * 2p``: the parameter-shift rule does not apply as is because every angle drives many gates),
+:meth:`LayerwiseResult.shots` multiplies by the shots per estimate.
 
 Defaults (objective ``gibbs`` with ``eta = 5 / sigma``, 2 random starts at ``p = 1``, at most 200 L-BFGS-B
-iterations per run) were chosen once on two_robots_4x4 and are used unchanged on every scenario.
+iterations per run) are the same for every scenario: nothing is tuned per instance.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -163,7 +161,6 @@ def train_layerwise(
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
 
     Args:
-        qaoa: The simulator.
         p: The final number of layers (>= 1).
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         random_starts: Seeded random starts at ``p = 1`` beside the linear ramp (>= 0).
@@ -173,9 +170,6 @@ def train_layerwise(
         eta: Gibbs inverse temperature (``gibbs``); default ``5 / sigma``.
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
-
-    Returns:
-        The :class:`LayerwiseResult`.
 
     Raises:
         ValueError: ``p < 1``, ``random_starts < 0``, a negative ``maxiter``, or a bad objective parameter.

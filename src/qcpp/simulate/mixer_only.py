@@ -1,39 +1,28 @@
 """Mixer-only QAOA (every gamma 0), where the state is a product over robots: the warm start and multi-angle.
 
-With ``gamma_k = 0`` the phase separators are the identity and each robot's partial mixers act on that robot's
-axis only, so the state stays the product ``psi_0(betas) (x) psi_1(betas) (x) ...`` of per-robot vectors of the
-robot's basis size (a few thousand paths on 5x5, against tens of millions of assignments). The measured cost's
-distribution of that product state is still the full one: ``w_v = sum_{x: C(x) = v} prod_r |psi_r(x_r)|^2``,
-one pass over the cost levels without any complex state (:func:`product_objective`). The derivative in
-``|psi_r|^2`` contracts the same pass with the other robots' probabilities, and one adjoint sweep per robot over
-its own small vector turns it into the derivative in the betas (:func:`robot_states_gradient`). The objectives
-are the full training's (default ``gibbs``), so training knows nothing a device running the mixer-only circuit
-could not estimate from shots; it never looks up the optimum.
+With ``gamma_k = 0`` the phase separators are the identity and each robot's partial mixers act on its own axis,
+so the state is the product of per-robot vectors of the robot's basis size (thousands of paths rather than
+millions of assignments). The measured cost's distribution of that product is still the full one,
+``w_v = sum_{x: C(x) = v} prod_r |psi_r(x_r)|^2``, computed in one pass over the cost levels
+(:func:`product_objective`); one adjoint sweep per robot turns its derivative into the betas' gradient
+(:func:`robot_states_gradient`). The objectives are the full training's (default ``gibbs``): training never
+looks up the optimum.
 
 The betas come in two shapes, one kernel (:func:`robot_states`) for both:
 
-* **One beta per layer** (the warm start, :func:`train_mixer_only`). Why it was tried: every objective of the
-  measured cost is even in the gammas and in the betas (``F(gamma, beta) = F(-gamma, beta) = F(gamma, -beta)``:
-  complex conjugation maps the angles to their negatives, and the move graph is bipartite, a move toggling one
-  plaquette, so a diagonal parity sign flips the betas; neither changes a probability). Its gradient in the
-  betas is therefore 0 at ``beta = 0`` and the layer-by-layer default training can stay there (two_robots_5x5
-  from ``local_search_mix``: ``P(optimum)`` <= 5.4e-111 at every p). The warm start finds betas that spread
-  each robot over its paths towards cheap assignments. The same symmetry makes the gradient in the gammas 0 at
-  gammas 0, so the full training must start the gammas elsewhere (:func:`qcpp.simulate.layerwise.train_layerwise`
-  with ``mixer_warm=True`` uses the linear ramp's). :func:`mixer_only_ceiling` is a diagnostic: the best
-  ``P(optimum)`` over these angles, found by maximising it directly (it uses the optimum).
+* **One beta per layer** (the warm start, :func:`train_mixer_only`). Every objective of the measured cost is even
+  in the gammas and in the betas, so its gradient vanishes at ``beta = 0`` and at ``gamma = 0``: a layer-by-layer
+  training can stay stuck there. The warm start finds betas that spread each robot over its paths towards cheap
+  assignments, and the full training starts its gammas elsewhere
+  (:func:`qcpp.simulate.layerwise.train_layerwise` with ``mixer_warm=True``). :func:`mixer_only_ceiling` is a
+  diagnostic: the best ``P(optimum)`` over these angles, found by maximising it directly (it uses the optimum).
 * **One beta per partial mixer and layer** (multi-angle QAOA, Herrman et al. 2022, Sci. Rep. 12, 6781:
-  :func:`train_multi_angle`; one beta per layer is this with the betas of a layer tied). The compiled circuit
-  with ``PlanOptions(angles="multi")`` has the symbol :func:`qcpp.ir.angles.mixer_symbol` ``(k, r, q)`` on
-  partial mixer ``(r, q)`` of layer ``k``, the same gates as the one-beta-per-layer circuit. The angle vector is
-  layer-major, then robot, then plaquette ascending, over the *sites* of :func:`mixer_sites`: the partial mixers
-  whose flip is allowed on some path the mixer reaches (the compiled circuit's other partial mixers act as the
-  identity on every reachable state; :func:`bindings` sets them to 0). What it finds
-  (``docs/results/multi_angle.md``): with a beta at pi a partial mixer is a deterministic SBF flip, at 0 the
-  identity, so a layer can apply any subset of the flips in plaquette order. On two_robots_4x4 the trained
-  circuit is such a sequence of flips onto the optimum; on two_robots_5x5 (p >= 4) a robot's state spreads over
-  several paths on the way and is interfered back onto the optimal one. Many starts end on a worse local
-  minimum, where the gradient vanishes; the random starts are what finds the optimum.
+  :func:`train_multi_angle`). The circuit compiled with ``PlanOptions(angles="multi")`` has the symbol
+  :func:`qcpp.ir.angles.mixer_symbol` ``(k, r, q)`` on partial mixer ``(r, q)`` of layer ``k``. The angle vector
+  is layer-major, then robot, then plaquette, over the *sites* of :func:`mixer_sites` (the partial mixers whose
+  flip is allowed on some reachable path; :func:`bindings` sets the others to 0). A beta at pi is a deterministic
+  flip and 0 the identity, so a layer can apply any subset of the flips; many starts end in a worse local
+  minimum, and the random starts are what finds the optimum.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -132,7 +121,6 @@ class MixerWarmStart:
     """The outcome of :func:`train_mixer_only` at one depth.
 
     Attributes:
-        p: Number of layers.
         betas: The trained betas (the gammas are all 0).
         initial_value: The objective at the start of the kept run.
         value: The objective of the product state at ``betas``.
@@ -196,7 +184,6 @@ def robot_states_gradient(
     """``d/dbetas sum_r <psi_r| diag(weights[r]) |psi_r>`` for :func:`robot_states` (adjoint sweep per robot).
 
     Args:
-        qaoa: The simulator.
         betas: As in :func:`robot_states`.
         weights: Per robot, a real weight per basis path (``dF/d|psi_r|^2`` of an objective ``F``).
 
@@ -344,7 +331,6 @@ def train_mixer_only(
     the better run. Deterministic.
 
     Args:
-        qaoa: The simulator.
         p: The largest depth (>= 1).
         objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with :func:`qcpp.simulate.objectives.make_objective`
             defaults for this scenario) or an objective object.
@@ -383,7 +369,6 @@ class MixerCeiling:
     """The best ``P(optimum)`` found over mixer-only angles at one depth (:func:`mixer_only_ceiling`).
 
     Attributes:
-        p: Number of layers.
         betas: The betas that reach it (gammas 0).
         p_optimum: ``P(optimum)`` of the product state at ``betas``.
         starts: Random starts tried.
@@ -435,7 +420,6 @@ def best_p_optimum(
     """The largest ``P(optimum)`` of the product state that L-BFGS-B finds on its exact gradient (uses the optimum).
 
     Args:
-        qaoa: The simulator.
         shape: Of the betas: ``(p,)`` for one beta per layer, ``(p, sites)`` for multi-angle (:func:`robot_states`).
         x0s: Flat start vectors.
         maxiter: L-BFGS-B iterations per start (``None``: scipy's default).
@@ -476,7 +460,6 @@ def mixer_only_ceiling(
     that the phase separators' share of a trained ``P(optimum)`` can be read off.
 
     Args:
-        qaoa: The simulator.
         p: The largest depth (>= 1).
         starts: Random starts per depth (>= 1).
         seed: Seed of ``numpy.random.default_rng``.
@@ -525,9 +508,7 @@ def multi_robot_states(qaoa: SubspaceQAOA, betas: Sequence[float] | np.ndarray, 
     (:func:`robot_states` of the betas as a ``(p, sites)`` array).
 
     Args:
-        qaoa: The simulator.
         betas: ``p * len(mixer_sites(qaoa))`` betas, layer-major (see the module docstring).
-        p: Number of layers.
 
     Returns:
         One complex vector per robot; their outer product is the circuit's state on the reachable basis.
@@ -572,7 +553,6 @@ class MultiAngleResult:
     """The outcome of :func:`train_multi_angle` at one depth.
 
     Attributes:
-        p: Number of layers.
         betas: The trained betas (layer-major; ``p * len(mixer_sites)``), every gamma 0.
         value: The objective at ``betas``.
         expectation: ``<C>`` there.
@@ -608,7 +588,6 @@ def train_multi_angle(
     """Train the multi-angle mixer-only betas of depth ``p`` (gammas 0) with L-BFGS-B from several starts.
 
     Args:
-        qaoa: The simulator.
         p: Number of layers (>= 1).
         objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with
             :func:`qcpp.simulate.objectives.make_objective`'s defaults for this scenario) or an objective object.

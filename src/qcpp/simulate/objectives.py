@@ -8,7 +8,7 @@ adjoint sweep. All are in units of the cost:
 
 ``expectation``
     ``<C> = sum_v w_v v``. Rewards every improvement equally; on rugged landscapes it settles for a state
-    spread over many mediocre assignments (two_robots_4x4: it never leaves the initial paths at p <= 2).
+    spread over many mediocre assignments.
 ``cvar``
     ``CVaR_alpha``: the mean cost of the cheapest ``alpha`` of the probability mass (Barkoutsos et al.,
     Quantum 4, 256, 2020), the boundary level taken fractionally. It stops rewarding once ``alpha`` of the

@@ -1,23 +1,18 @@
 """QAOA as a solver: train on the subspace simulator, answer with the most probable assignment.
 
-:func:`solve_qaoa` trains the angles (:func:`qcpp.simulate.training.train`) and returns a :class:`QaoaSolution`:
-a regular :class:`qcpp.problem.solvers.Solution` (method ``qaoa``; paths = the most probable assignment of the
-trained state; ``trace`` = the training's ``<C>`` per iteration; ``evaluated`` = simulations made in
-training) plus the QAOA-specific numbers (that assignment's probability, ``p``, the angles, the training
-result). :func:`qaoa_method` adapts it to the uniform :class:`qcpp.problem.solvers.SolveMethod` signature so
-front ends can list it beside ``dfs``/``anneal``/``genetic``; qcpp.problem itself never imports this module.
+:func:`solve_qaoa` trains the angles and returns a :class:`QaoaSolution`: a regular
+:class:`qcpp.problem.solvers.Solution` (method ``qaoa``; paths = the most probable assignment of the trained state;
+``trace`` = the objective per iteration; ``evaluated`` = simulations made) plus that assignment's probability,
+``p``, the angles and the training result. :func:`qaoa_method` adapts it to the
+:class:`qcpp.problem.solvers.SolveMethod` signature so front ends can list it beside ``dfs``/``anneal``/``genetic``
+(qcpp.problem itself never imports this module).
 
-Training (``optimizer=``): ``layerwise`` (default) is :func:`qcpp.simulate.layerwise.train_layerwise`, L-BFGS-B
-on the exact gradient layer by layer ``p = 1 .. p`` with INTERP / zero-layer warm starts and
-``random_starts`` seeded random starts at ``p = 1`` (``seed`` seeds them). ``nesterov``, ``cobyla`` and
-``lbfgsb`` are one run of :func:`qcpp.simulate.training.train` at depth ``p`` from ``init`` (``random`` from
-``seed`` by default). ``multi-angle`` trains the multi-angle mixer-only circuit (one beta per partial mixer and
-layer, every gamma 0: ``PlanOptions(angles="multi")``) layer by layer with
-:func:`qcpp.simulate.mixer_only.train_multi_angle_layers` (constant, previous-depth and
-:data:`~qcpp.simulate.mixer_only.MULTI_RANDOM_STARTS` seeded random starts per depth); ``angles`` are then its
-``p x partial mixers`` betas and ``bindings`` the compiled circuit's symbol values. Every optimiser minimises
-``objective`` (:mod:`qcpp.simulate.objectives`; default ``gibbs``), and ``trace`` holds its values (``multi-angle``:
-the value each start ended on, depth by depth).
+Training (``optimizer=``): ``layerwise`` (default, :func:`qcpp.simulate.layerwise.train_layerwise`); ``nesterov``,
+``cobyla`` and ``lbfgsb``: one run of :func:`qcpp.simulate.training.train` at depth ``p`` from ``init``;
+``multi-angle``: the multi-angle mixer-only circuit (``PlanOptions(angles="multi")``) trained by
+:func:`qcpp.simulate.mixer_only.train_multi_angle_layers`, whose ``angles`` are the ``p x partial mixers`` betas and
+``bindings`` the compiled circuit's symbol values. Every optimiser minimises ``objective``
+(:mod:`qcpp.simulate.objectives`; default ``gibbs``).
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -143,13 +138,12 @@ def solve_qaoa(
     """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
 
     Args:
-        scenario: The scenario.
         p: Layers (>= 1).
         optimizer: ``layerwise`` (default), or one run of ``nesterov``, ``cobyla`` or ``lbfgsb``.
         objective: ``gibbs`` (default), ``cvar`` or ``expectation``.
         init: Initial angles of a single run: ``random`` (from ``seed``), ``linear-ramp`` or ``interp``.
         initial: Initial state: ``initial_path`` (default), ``representatives``, ``local_search`` or
-            ``local_search_mix`` (:data:`qcpp.plan.options.INITIAL_STATES`).
+            ``local_search_mix`` (:data:`qcpp.gadgets.initial_state.INITIAL_STATES`).
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
         maxiter: Optimiser budget per run (see :func:`qcpp.simulate.training.train`).
@@ -158,9 +152,6 @@ def solve_qaoa(
             (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
-
-    Returns:
-        The :class:`QaoaSolution`.
 
     Raises:
         ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,

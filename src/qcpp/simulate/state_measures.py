@@ -40,7 +40,6 @@ def cost_distribution(qaoa: SubspaceQAOA, state: np.ndarray | Sequence[float]) -
     """The distribution of the measured cost: sorted distinct cost values and their probabilities.
 
     Args:
-        qaoa: The simulator.
         state: A state array of shape ``qaoa.dims`` (complex), or angles to simulate.
 
     Returns:
@@ -79,7 +78,6 @@ def cvar(qaoa: SubspaceQAOA, state: np.ndarray | Sequence[float], alpha: float) 
     boundary level is taken fractionally, so the value is exact (not a sample estimate).
 
     Args:
-        qaoa: The simulator.
         state: A state array of shape ``qaoa.dims`` (complex), or angles to simulate.
         alpha: Tail mass in ``(0, 1]``.
 
@@ -146,7 +144,6 @@ def layers_to_reach(qaoa: SubspaceQAOA, assignment: Sequence[int], max_layers: i
     (accidental cancellations aside).
 
     Args:
-        qaoa: The simulator.
         assignment: One edge mask per robot.
         max_layers: Give up after this many layers.
 

@@ -2,53 +2,33 @@
 
 The simulated operator is the compiled circuit's (:mod:`qcpp.plan.qaoa`) on its data register:
 
-* **Basis.** Data qubit ``i`` is decision variable ``i`` (:mod:`qcpp.problem.scenario`), so a computational
-  basis state is an *assignment*: one edge mask per robot. The mixer never leaves the set of paths reachable
-  from the initial support by allowed SBF moves, so each robot ``r`` gets the basis ``bases[r]`` of those
-  paths (:func:`qcpp.problem.sbf.reachable_paths` from every initial path, unioned, in BFS order) and the state
-  is a complex array of shape ``(n_0, ..., n_{R-1})`` over their product.
-* **Initial state.** ``initial="initial_path"`` (default): every robot on
-  :func:`~qcpp.problem.paths.initial_path`. ``initial="representatives"``: every robot in the uniform real
-  superposition of :func:`~qcpp.problem.sbf.representatives` (one path per move-graph component), the product
-  over robots; this differs from the default only when the move graph splits (e.g. hard obstacles), and then
-  the bases hold every component. ``initial="local_search"``: every robot on its path of the classical warm
-  start :func:`qcpp.problem.solvers.descent.local_search` (the local minimum of steepest descent over SBF moves
-  from the initial paths), the same component as the initial path, so the same basis in another order.
-  ``initial="local_search_mix"``: every robot in ``(|initial path> + |descent path>) / sqrt 2`` (one path where
-  the descent does not move it), the product over robots; same basis.
-* **Layer k** (angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``): the phase separator multiplies the
-  amplitude of ``x`` by ``exp(-i gamma_k (C(x) - phase_offset))``, with ``C`` the cost (equal to
-  :func:`~qcpp.problem.hamiltonian.ising_hamiltonian` on basis states) and ``phase_offset`` the constant the
-  compiled phase separator leaves out as a global phase: by default (``"feasible"``) the reference constant of
-  :func:`qcpp.plan.phase.phase_plan` (the feasible-subspace representation), ``"whole-space"`` the Ising
-  constant ``c0`` (the whole-space RZ/RZZ circuit), or a number (``0.0`` for plain ``exp(-i gamma C)``).
-  Then the mixer: for robot ``r = 0..R-1`` and
-  plaquette ``q = 0..P-1`` (row-major), if ``sbf_logic(scenario, r, q, rule).evaluate(path_r)`` the pair
-  ``(x, x with path_r flipped on q)`` is rotated by ``exp(-i beta_k X / 2)``:
-  ``|x> -> cos(beta_k/2)|x> - i sin(beta_k/2)|x'>``; otherwise ``x`` is untouched.
+* **Basis.** Data qubit ``i`` is decision variable ``i``, so a basis state is an *assignment* (one edge mask per
+  robot). The mixer never leaves the paths reachable from the initial support by allowed SBF moves, so robot ``r``
+  gets the basis ``bases[r]`` of those paths (:func:`qcpp.problem.sbf.reachable_paths`, BFS order) and the state
+  is a complex array of shape ``(n_0, ..., n_{R-1})``.
+* **Initial state.** ``initial_path`` (default): every robot on :func:`~qcpp.problem.paths.initial_path`;
+  ``representatives``: the uniform superposition of :func:`~qcpp.problem.sbf.representatives` (one path per
+  move-graph component; the bases then hold every component); ``local_search``: the path of the classical warm
+  start :func:`qcpp.problem.solvers.descent.local_search`; ``local_search_mix``: ``(|initial> + |descent>)/sqrt 2``
+  per robot. Each is a product over robots.
+* **Layer k** (angles ``[gamma_0, beta_0, gamma_1, ...]``): the phase separator multiplies the amplitude of ``x``
+  by ``exp(-i gamma_k (C(x) - phase_offset))``, ``C`` the cost and ``phase_offset`` the constant the compiled
+  circuit leaves out as a global phase (``"feasible"``: the reference constant of
+  :func:`qcpp.plan.phase.phase_plan`; ``"whole-space"``: the Ising constant; or a number). Then for robot ``r``
+  and plaquette ``q`` (row-major), where ``sbf_logic(scenario, r, q, rule)`` allows the flip, the pair
+  ``(x, x')`` is rotated by ``exp(-i beta_k X / 2)``.
 
-Each partial mixer is thus a set of disjoint 2x2 rotations on pairs of one robot's basis, applied along that
-robot's axis. By default (``kernels="auto"``) compiled numba kernels (:mod:`qcpp.simulate.subspace_kernels`) apply
-a whole layer's rotations block by block (four lines at a time, vectorised) in one pass over the state, in
-parallel for large states; the BLAS path
-(``kernels="blas"``) calls ``zrot`` on the two contiguous runs of amplitudes that share the other robots' paths
-(axes whose runs are short go through a transposed scratch buffer). The tests compare the two. The cost diagonal is
-built once from :func:`qcpp.problem.cost.separable_cost` (unary vectors plus pairwise matrices) and kept as a
-``uint8``/``uint16`` level per amplitude plus a table of the few hundred distinct cost values, so a phase
-separator is a table look-up. Gradients are exact (adjoint differentiation: one forward and one backward
-sweep).
+Each partial mixer is a set of disjoint 2x2 rotations along one robot's axis, applied by compiled numba kernels
+(:mod:`qcpp.simulate.subspace_kernels`, ``kernels="auto"``) or by BLAS ``zrot`` (``kernels="blas"``; the tests
+compare the two). The cost diagonal is stored as a small integer level per amplitude plus a table of the distinct
+cost values, so a phase separator is a table look-up. Gradients are exact (adjoint differentiation).
 
-**The paper rule.** A partial mixer is a unitary on the data register only if the rule's relation is
-symmetric (``allowed(x)`` iff ``allowed(x')``); the ``exact`` rule is, on feasible paths. The ``paper`` rule
-can flip a plaquette so that an endpoint corner gains two edges, leaving the feasible set; the SBF moves
-that follow can then produce a plaquette with all four edges set, whose flip is allowed while the flip back
-(no edge set) is not. There the compiled circuit leaves its logic ancillas entangled with the data and no
-pure data-register state exists, so :class:`SubspaceQAOA` raises :class:`NonUnitaryMixerError` (use a
-gate-level simulator to see what the circuit does). When the relation is symmetric on the reachable set the
-paper rule is simulated exactly, infeasible edge sets included as ordinary basis states (flagged in
-:attr:`SubspaceQAOA.feasible`, and excluded from the optimum of :meth:`SubspaceQAOA.p_optimum`). On every
-single-robot scenario up to 3x4 with at most one obstacle, the paper rule's reachable set either stays
-feasible or is asymmetric.
+**The paper rule.** A partial mixer is unitary on the data register only if the rule's relation is symmetric
+(``allowed(x)`` iff ``allowed(x')``). The ``paper`` rule can leave the feasible set and reach a plaquette whose
+flip is allowed while the flip back is not; there the compiled circuit leaves its logic ancillas entangled with
+the data, and :class:`SubspaceQAOA` raises :class:`NonUnitaryMixerError`. Where the relation is symmetric the
+paper rule is simulated exactly, infeasible edge sets included (flagged in :attr:`SubspaceQAOA.feasible` and
+excluded from the optimum of :meth:`SubspaceQAOA.p_optimum`).
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -119,7 +99,6 @@ class RobotBasis:
     """One robot's reachable paths and the rotations of each partial mixer on them.
 
     Attributes:
-        robot: Robot index.
         paths: The basis: edge masks in BFS order (the initial support first; with one initial path exactly
             :func:`qcpp.problem.sbf.reachable_paths`).
         feasible: ``(n,)`` bool, whether each path is a feasible start-goal path.
@@ -206,13 +185,8 @@ def robot_basis(
     evaluated on whole BFS levels at once with :func:`evaluate_logic`.
 
     Args:
-        scenario: The scenario.
-        robot: Robot index.
         rule: SBF rule, ``exact`` or ``paper``.
-        initial: One of :data:`~qcpp.plan.options.INITIAL_STATES` (see the module docstring).
-
-    Returns:
-        The :class:`RobotBasis`.
+        initial: One of :data:`~qcpp.gadgets.initial_state.INITIAL_STATES` (see the module docstring).
 
     Raises:
         ValueError: for an unknown rule or initial state.
@@ -341,7 +315,6 @@ class SubspaceQAOA:
     """The constrained-mixer QAOA on the product of the robots' reachable path sets.
 
     Args:
-        scenario: The scenario.
         rule: SBF rule of the mixer, ``exact`` (default) or ``paper`` (see the module docstring).
         initial: ``initial_path`` (default), ``representatives``, ``local_search`` or ``local_search_mix``.
         phase_offset: The phase separator is ``exp(-i gamma (C - phase_offset))``: a number, ``"feasible"``
@@ -624,7 +597,6 @@ class SubspaceQAOA:
         """Measure the state ``shots`` times in the computational basis.
 
         Args:
-            angles: QAOA angles.
             shots: Number of samples (>= 0).
             seed: Seed of ``numpy.random.default_rng``; the same seed gives the same list.
 
@@ -652,7 +624,6 @@ class SubspaceQAOA:
         """The state as ``{basis state: amplitude}`` for comparison with a gate-level simulator.
 
         Args:
-            angles: QAOA angles.
             key: ``index`` = data-register basis index ``sum_i x_i 2^i`` (qubit ``i`` least significant, as
                 qiskit's ``Statevector`` of the data register; with ancillas above the data qubits and back in
                 |0> the index is the same); ``bits`` = a string whose character ``i`` is variable ``i``;

@@ -1,24 +1,15 @@
 """Compiled (numba) kernels of the feasible-subspace simulator: partial mixers and the tabulated phase.
 
-A robot's mixer in one QAOA layer is an ordered list of disjoint 2x2 rotations per plaquette, applied along the
-robot's axis of the state array viewed as ``(pre, n, post)``: the ``pre * post`` *lines* ``x[a, :, col]``
-(every basis path of the robot, the other robots' paths fixed) each get the same rotations. The BLAS path of
-:mod:`qcpp.simulate.subspace` calls ``zrot`` once per pair, which streams the whole array through memory once per
-plaquette. These kernels walk the array once per layer instead: they take :data:`LANES` (4) lines at a time,
-copy them into a block with one 64-byte row per basis path (``[re_0..re_3, im_0..im_3]``, a few hundred KiB
-that stay in cache), apply every plaquette's rotations to the block, and copy back. The four lanes of a
-rotation are written out one by one so that LLVM's SLP vectoriser (switched on for these kernels only) makes
-each a single vector operation; blocks are independent and run in parallel (numba's threading layer,
-``prange``, ``CHUNKS_PER_THREAD`` work items per thread, each allocating its blocks once). The backward kernel
-un-applies the rotations to two arrays at once and accumulates ``sum Im <y|G|x>`` on the way.
+A robot's mixer in one layer is a list of disjoint 2x2 rotations per plaquette, applied to every *line*
+``x[a, :, col]`` of the state viewed as ``(pre, n, post)``. The BLAS path streams the whole array once per
+plaquette; these kernels walk it once per layer: :data:`LANES` lines at a time are copied into a cache-sized block
+(one ``[re_0..re_3, im_0..im_3]`` row per basis path), every plaquette's rotations applied, and copied back.
+Lanes are written out so LLVM's SLP vectoriser makes each rotation one vector operation; blocks run in parallel
+(``prange``). The backward kernel un-applies the rotations to two arrays at once and accumulates
+``sum Im <y|G|x>``. The phase separator multiplies each amplitude by its cost level's table entry.
 
-The phase separator multiplies each amplitude by its cost level's entry of a table, in parallel blocks. (Fusing
-it into a mixer pass was tried and measured slower: the level look-ups in the gather cost more than the pass
-they save.)
-
-Rotation of a pair ``(i, j)``: ``x_i <- c x_i + s x_j``, ``x_j <- s x_i + c x_j`` with ``c`` real and ``s``
-imaginary (``s = -i sin(beta / 2)`` forward, ``+i sin(beta / 2)`` backward), as ``zrot(c, s)``, with the real
-and imaginary parts spelled out.
+Rotation of a pair ``(i, j)``: ``x_i <- c x_i + s x_j``, ``x_j <- s x_i + c x_j``, ``c`` real, ``s`` imaginary
+(``-i sin(beta / 2)`` forward, ``+i sin(beta / 2)`` backward), as BLAS ``zrot(c, s)``.
 
 ``AVAILABLE`` is False when numba cannot be imported; :mod:`qcpp.simulate.subspace` then uses its BLAS path.
 
@@ -50,8 +41,8 @@ __all__ = [
 AVAILABLE = numba is not None
 LANES = 4
 """Lines (robot-axis rows ``x[a, :, col]``) rotated together: a block of ``n`` basis paths by 4 lines is one
-64-byte row ``[re_0..re_3, im_0..im_3]`` per path (550 KiB for the 8,590 paths of a 5x5 robot, within a core's
-L2 cache), and every rotation is 4-wide arithmetic."""
+64-byte row ``[re_0..re_3, im_0..im_3]`` per path (small enough to stay in a core's L2 cache), and every rotation is
+4-wide arithmetic."""
 
 
 def _rotate_pair(b: np.ndarray, i: int, j: int, c: float, sg: float) -> None:

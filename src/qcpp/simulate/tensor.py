@@ -1,46 +1,27 @@
 """Tensor-network simulation of compiled circuits (quimb + cotengra): amplitudes, projector probabilities, samples.
 
-Use it to validate circuits that are too wide for the dense simulator (20-40 qubits) one basis state at a time.
-
-* :func:`to_quimb` converts any :class:`~qcpp.ir.circuit.Circuit` (lowered basis or high-level gates) into a
-  ``quimb.tensor.Circuit`` started from a computational basis state.
-* :class:`TensorCircuit` wraps one bound circuit: :meth:`~TensorCircuit.amplitude` ``<y|U|x>``,
-  :meth:`~TensorCircuit.probability` of fixed values on some qubits (e.g. every ancilla in |0>) and
-  :meth:`~TensorCircuit.sample`.
+For circuits too wide for the dense simulator (20-40 qubits), one basis state at a time. :func:`to_quimb` converts
+any :class:`~qcpp.ir.circuit.Circuit` into a ``quimb.tensor.Circuit``; :class:`TensorCircuit` wraps one bound
+circuit (:meth:`~TensorCircuit.amplitude` ``<y|U|x>``, :meth:`~TensorCircuit.probability` of fixed values on some
+qubits, :meth:`~TensorCircuit.sample`); :class:`MPSCircuit` answers the same from a matrix product state.
 
 Conventions:
 
-* A basis state is an ``int`` (bit ``i`` = qubit ``i``, Qiskit's order, as :mod:`qcpp.simulate.statevector`), a string
-  whose character ``i`` is qubit ``i`` (quimb's order), or a sequence of 0/1 per qubit, qubit 0 first.
-* Gates: quimb's native ``H X T TDG S SDG RX RY RZ CX CZ CRZ CRY RZZ CCX`` (each has the same matrix as ours, with
-  the qubits in the same order: control first); ``mcx`` with more than two controls as quimb's controlled ``X``
-  (negative controls conjugated by ``X``); ``sbf``, ``csbf`` and mixed-polarity ``mcx`` up to
-  :data:`RAW_MCX_MAX_QUBITS` qubits as raw matrices from :func:`qcpp.ir.gates.unitary`, whose first listed
-  qubit is the *least* significant bit: quimb reads the first qubit of a raw gate as the most significant, so
-  those gates are applied on the reversed qubit list.
-* Gates are added uncontracted (``gate_contract=False``): measured on the 30- and 40-qubit QAOA circuits, this
-  converts 10-20x faster than quimb's default ``'auto-split-gate'`` and gives the same amplitudes (to 1e-11);
-  quimb's controlled gates need a split mode, so they alone get ``'auto-split-gate'``.
-
-How the numbers are computed (measured on a 2-core machine, see ``benchmarks/tensor_speed.py``):
-
-* **Amplitudes.** The state network ``U|x>`` is simplified once per bound circuit (quimb's ``ADCRS``, cached),
-  then each amplitude fixes every output index and contracts the rest with a cotengra path. The fixed network
-  has the same structure for every bit string, so the path is found once and reused through the shared
-  :func:`path_optimizer` (``hash_method='b'``, independent of quimb's random index names; its on-disk cache
-  serves later processes too). At p = 1 this takes 0.03 s (18 qubits) to 0.1 s (40 qubits) per amplitude, about
-  10x faster than ``quimb.Circuit.amplitude``, which re-simplifies the whole network for each bit string. At
-  p = 2 the widths grow (22 at 18 qubits, 21-27 at 30 qubits, with the ``labels`` path finder that cotengra uses
-  without the optional ``kahypar``): seconds per amplitude, minutes of path search.
-* **Projector probabilities** ``<psi| P |psi>`` with ``P`` fixing some qubits (:meth:`TensorCircuit.probability`)
-  contract the closed network ``bra | ket`` with those outputs fixed on both sides. Do not simplify the ket with
-  its outputs open first: quimb's diagonal reduction turns output indices into hyper-indices, and the norm of
-  such a ket built by conjugating it came out wrong (0.58 instead of 1) in our tests; the closed network is
-  simplified instead. Its width grows quickly (measured for "all ancillas 0": 15 at 18 qubits p = 1, 37 at 30
-  qubits p = 1, 81 at 18 qubits p = 2), so every contraction is rehearsed first and refused beyond ``max_width``
-  (:class:`ContractionTooWideError`) rather than exhausting memory. :class:`MPSCircuit` gets the same
-  probabilities from the whole state in seconds while the bond dimension stays small.
-* Everything is contracted in complex128 (quimb's marginals default to complex64, which gave 1.0000072 for 1).
+* A basis state is an ``int`` (bit ``i`` = qubit ``i``, as :mod:`qcpp.simulate.statevector`), a string whose
+  character ``i`` is qubit ``i`` (quimb's order), or a sequence of 0/1 per qubit, qubit 0 first.
+* Gates with a quimb native of the same matrix and qubit order map to it; ``mcx`` with more than two controls is
+  quimb's controlled ``X`` (negative controls conjugated by ``X``); ``sbf``, ``csbf`` and mixed-polarity ``mcx`` up
+  to :data:`RAW_MCX_MAX_QUBITS` qubits are raw matrices from :func:`qcpp.ir.gates.unitary` applied on the reversed
+  qubit list (quimb reads a raw gate's first qubit as the most significant, ours as the least).
+* Gates are added uncontracted (``gate_contract=False``: much faster to build, same amplitudes); quimb's
+  controlled gates need a split mode and get ``'auto-split-gate'``.
+* Amplitudes: ``U|x>`` is simplified once per bound circuit, then each amplitude fixes the outputs and contracts
+  with a path from the shared :func:`path_optimizer`, keyed by the network's structure, so one path search serves
+  every bit string (and later processes, through its on-disk cache).
+* Probabilities contract the closed network ``bra | ket`` with the fixed outputs on both sides (simplifying the
+  open ket first turns outputs into hyper-indices and gives wrong norms). Every contraction is rehearsed first and
+  refused beyond ``max_width`` (:class:`ContractionTooWideError`) rather than exhausting memory.
+* Everything is contracted in complex128 (quimb's complex64 marginals are too coarse for validation).
 
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section
@@ -64,7 +45,7 @@ import os
 import threading
 import time
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -83,12 +64,14 @@ with warnings.catch_warnings():
 
 __all__ = [
     "DEFAULT_MAX_WIDTH",
+    "PATH_OPTIMIZERS",
     "RAW_MCX_MAX_QUBITS",
     "BasisState",
     "CacheFolderWarning",
     "ContractionInfo",
     "ContractionTooWideError",
     "MPSCircuit",
+    "OptimizerCache",
     "TensorCircuit",
     "contract_sliced",
     "dask_client",
@@ -127,7 +110,7 @@ _NATIVE = {
 _SIMPLIFY = "ADCRS"
 _ATOL = 1e-12
 _SIMPLIFY_DIAGONAL = "ADR"
-"""With a 2^k-entry diagonal block in the network: column reduction and splitting on it take minutes at k = 22."""
+"""Simplification with a 2^k-entry diagonal block in the network (column reduction and splitting on it are slow)."""
 
 
 class CacheFolderWarning(UserWarning):
@@ -194,8 +177,45 @@ def default_cache_dir() -> Path:
     return Path(base) / "qcpp" / "cotengra"
 
 
-_OPTIMIZERS: dict[tuple[Any, ...], ctg.ReusableHyperOptimizer] = {}
-_OPTIMIZERS_LOCK = threading.Lock()
+class OptimizerCache:
+    """The process's cotengra path optimizers, one per cache directory and settings (:func:`path_optimizer`).
+
+    A ``ReusableHyperOptimizer`` keeps the paths it found in memory and on disk; sharing one per directory lets
+    every contraction of the process reuse them (the only process-wide state of this module). Thread-safe;
+    :meth:`clear` forgets the instances (their on-disk paths stay), for tests.
+
+    Example:
+        >>> cache = OptimizerCache()
+        >>> made = cache.get(("key",), lambda: object())
+        >>> cache.get(("key",), lambda: object()) is made, len(cache)
+        (True, 1)
+        >>> cache.clear(); len(cache)
+        0
+    """
+
+    def __init__(self) -> None:
+        self._optimizers: dict[tuple[Any, ...], Any] = {}
+        self._lock = threading.Lock()
+
+    def get(self, key: tuple[Any, ...], make: Callable[[], Any]) -> Any:
+        """The optimizer of ``key``, made by ``make()`` the first time."""
+        with self._lock:
+            opt = self._optimizers.get(key)
+            if opt is None:
+                opt = self._optimizers[key] = make()
+            return opt
+
+    def clear(self) -> None:
+        """Forget every optimizer."""
+        with self._lock:
+            self._optimizers.clear()
+
+    def __len__(self) -> int:
+        return len(self._optimizers)
+
+
+PATH_OPTIMIZERS = OptimizerCache()
+"""The process-wide :class:`OptimizerCache` of :func:`path_optimizer`."""
 
 
 def path_optimizer(
@@ -230,22 +250,21 @@ def path_optimizer(
     """
     path = Path(directory) if directory is not None else default_cache_dir()
     key = (str(path.absolute()), max_repeats, max_time, parallel)
-    with _OPTIMIZERS_LOCK:
-        opt = _OPTIMIZERS.get(key)
-        if opt is None:
-            usable = _usable_cache(path)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
-                opt = ctg.ReusableHyperOptimizer(
-                    max_repeats=max_repeats,
-                    max_time=max_time,
-                    parallel=parallel,
-                    directory=str(usable) if usable is not None else None,  # None: in memory only
-                    hash_method="b",
-                    progbar=False,
-                )
-            _OPTIMIZERS[key] = opt
-        return opt
+
+    def make() -> ctg.ReusableHyperOptimizer:
+        usable = _usable_cache(path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
+            return ctg.ReusableHyperOptimizer(
+                max_repeats=max_repeats,
+                max_time=max_time,
+                parallel=parallel,
+                directory=str(usable) if usable is not None else None,  # None: in memory only
+                hash_method="b",
+                progbar=False,
+            )
+
+    return PATH_OPTIMIZERS.get(key, make)  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------------------------------------------ conversion
@@ -414,15 +433,12 @@ def collapse_ancilla_blocks(
 ) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
     """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
 
-    A section that touches an ancilla (a partial mixer: compute, controlled rotation, uncompute) becomes the
-    matrix ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches; if ``T`` is not unitary (the section
-    leaves an ancilla dirty, e.g. one leaf of a longer construction) the following sections are added until it
-    is. A unitary ``T`` of an isometry ``S (I ⊗ |0>)`` proves that no amplitude leaks into dirty ancillas
-    (``||T psi||^2 = 1``), so on inputs with clean ancillas the circuit equals the product of these operators,
-    exactly: the logic compute/uncompute pairs simplify away before any path search. A block on more than
-    :data:`MAX_BLOCK_DATA_QUBITS` data qubits (the phase separator's arithmetic) is kept as its diagonal
-    ``<x, 0|S|x, 0>`` instead, accepted only if every entry has modulus 1 (then ``S`` maps each ``|x, 0>`` to a
-    phase times itself).
+    A section that touches an ancilla becomes ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches (the
+    following sections added until ``T`` is unitary). A unitary ``T`` proves that no amplitude leaks into dirty
+    ancillas, so on inputs with clean ancillas the circuit equals the product of these operators, exactly, and
+    the compute/uncompute pairs vanish before any path search. A block on more than
+    :data:`MAX_BLOCK_DATA_QUBITS` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
+    entry has modulus 1.
 
     Args:
         circuit: A bound circuit whose ancillas start in |0>.
@@ -479,7 +495,6 @@ class TensorCircuit:
     """One bound circuit as a tensor network, with cached simplification and shared contraction paths.
 
     Args:
-        circuit: Any circuit.
         bindings: Symbol values (the circuit must end up fully bound).
         psi0_bits: Initial basis state; default all zeros.
         optimizer: A cotengra path optimizer; default :func:`path_optimizer` of ``cache_dir``.
@@ -641,9 +656,6 @@ class TensorCircuit:
         Args:
             state: A basis state (see :func:`state_bits`).
 
-        Returns:
-            The amplitude.
-
         Raises:
             ContractionTooWideError: if the contraction exceeds ``max_width``.
         """
@@ -653,7 +665,6 @@ class TensorCircuit:
         """:meth:`amplitude` of each state (the contraction path is found once and reused).
 
         Args:
-            states: Basis states.
             open_qubits: Contract with these qubits' output indices left open: one contraction then gives the
                 ``2**len(open_qubits)`` amplitudes of all states that agree on the other qubits (e.g. the last
                 robot's data qubits: one contraction per assignment of the other robots). A group whose open
@@ -702,8 +713,7 @@ class TensorCircuit:
         tn = base.copy()
         inds = [tn.site_ind(where[q]) for q in opened]
         # fix the other outputs by attaching basis vectors, not by selecting and simplifying again: the network
-        # then has the same structure for every key and one cached path serves them all (re-simplifying after
-        # the selection gave a different network per key: a new path search each, 2-50 s at 38 qubits, p = 2)
+        # then has the same structure for every key and one cached path serves them all
         for q, b in enumerate(key):
             if q in where and q not in opened:
                 tn.add_tensor(qtn.Tensor(np.eye(2, dtype=np.complex128)[b], inds=(tn.site_ind(where[q]),)))
@@ -788,10 +798,9 @@ def contract_sliced(
 ) -> complex:
     """Contract a closed tensor network to a scalar by cotengra slicing, the slices on a dask cluster if given.
 
-    Slicing fixes some indices to each of their values: every slice is an independent, smaller contraction
-    (largest intermediate at most ``target_size`` entries) and the result is their sum. With a
-    ``dask.distributed.Client`` the arrays are scattered to the workers once and the slices are submitted in
-    chunks of ``chunk`` (default: about four chunks per worker thread); without one they run in this process.
+    Every slice (some indices fixed) is an independent, smaller contraction and the result is their sum. With a
+    ``dask.distributed.Client`` the arrays are scattered once and the slices submitted in chunks; without one
+    they run in this process.
 
     Args:
         tn: A quimb ``TensorNetwork`` with no open index.
@@ -800,9 +809,6 @@ def contract_sliced(
         target_slices: Or: at least this many slices.
         client: A ``dask.distributed.Client`` (``None``: in-process).
         chunk: Slices per dask task.
-
-    Returns:
-        The contracted value.
 
     Example:
         >>> import quimb.tensor as qtn
@@ -824,7 +830,7 @@ def contract_sliced(
     else:
         threads = max(1, sum(client.nthreads().values()))
         step = chunk or max(1, math.ceil(n / (4 * threads)))
-        # hash=False: with content keys two different tensors came back as one here (a wrong amplitude, measured)
+        # hash=False: content keys can merge two different tensors into one (a wrong amplitude)
         remote = client.scatter(arrays, broadcast=True, hash=False)
         futures = [
             client.submit(_slice_sum, sliced, remote, i, min(i + step, n), pure=False) for i in range(0, n, step)
@@ -841,9 +847,6 @@ def dask_client(address: str) -> Any:
 
     Args:
         address: ``'local'`` or a scheduler address.
-
-    Returns:
-        The connected client.
 
     Raises:
         OSError: the scheduler cannot be reached within 10 s.
@@ -890,21 +893,19 @@ class MPSCircuit:
     """A circuit simulated gate by gate as a matrix product state (quimb's ``CircuitMPS``), then queried.
 
     The whole state is kept, so every amplitude and every projector probability is cheap afterwards; the cost is
-    in the bond dimension, which stays small while few basis states carry the amplitude (the QAOA states here:
-    bond 5-22 on 30-40 qubits). Singular values are truncated below ``cutoff`` (quimb's default relative
-    squared-sum rule), so results are exact up to about ``cutoff`` per gate: an independent check of the exact
-    contractions of :class:`TensorCircuit`, not a replacement.
+    in the bond dimension, which stays small while few basis states carry the amplitude. Singular values are truncated
+    below ``cutoff`` (quimb's default relative squared-sum rule), so results are exact up to about ``cutoff`` per gate:
+    an independent check of the exact contractions of :class:`TensorCircuit`, not a replacement.
 
     Args:
-        circuit: Any circuit.
         bindings: Symbol values.
         psi0_bits: Initial basis state; default all zeros.
         layout: Site order, ``layout[site] = qubit`` (a permutation); default the identity. Putting qubits that
             interact with everything (ancillas) in the middle of the chain shortens the swap chains of non-local
-            gates (5x faster on the 2-robot circuits).
+            gates.
         cutoff: Singular value cutoff.
         bond_limit: Stop with :class:`ContractionTooWideError` once a bond exceeds this (the run time grows with
-            the cube of the bond: measured 21 at 38 qubits p = 1, several minutes and growing at p = 2).
+            the cube of the bond).
 
     Attributes:
         max_bond: Largest bond dimension seen after any gate.

@@ -1,43 +1,32 @@
 """Training QAOA angles on the exact feasible-subspace simulator.
 
-``train(qaoa, p, optimizer=..., init=..., seed=..., maxiter=...)`` minimises the expectation value
-``E(angles) = <psi(angles)| C |psi(angles)>`` of a :class:`~qcpp.simulate.subspace.SubspaceQAOA` over the flat
-angle vector ``[gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}]`` and returns a :class:`TrainingResult`.
+``train(qaoa, p, optimizer=..., init=..., seed=..., maxiter=...)`` minimises ``E(angles) = <psi| C |psi>`` of a
+:class:`~qcpp.simulate.subspace.SubspaceQAOA` over ``[gamma_0, beta_0, ..., gamma_{p-1}, beta_{p-1}]`` and returns
+a :class:`TrainingResult` (deterministic given the seed: the simulator is exact).
 
 Optimisers (``optimizer=``):
 
 ``nesterov`` (the paper's)
-    Gradient descent with Nesterov momentum, in PennyLane's form: ``a <- m a + eta grad f(x - m a)``,
-    ``x <- x - a``, with step ``eta = 0.1`` and momentum ``m = 0.9`` by default and the exact adjoint gradient.
-    ``f = E / sigma`` by default (``normalize=True``), the paper's ``f = E`` with ``normalize=False``.
-    Runs exactly ``maxiter`` steps; the trace holds ``E`` at the starting point and after every step.
-``cobyla``
-    ``scipy.optimize.minimize(method="COBYLA")``, derivative-free; ``maxiter`` bounds the function
-    evaluations and the trace holds every evaluation in order.
-``lbfgsb``
-    ``scipy.optimize.minimize(method="L-BFGS-B", jac=True)`` with the exact gradient; the trace holds ``E``
-    at the start and after every iteration.
+    Gradient descent with Nesterov momentum in PennyLane's form (``a <- m a + eta grad f(x - m a)``, ``x <- x - a``;
+    ``eta = 0.1``, ``m = 0.9``) on the exact adjoint gradient of ``f = E / sigma`` (``normalize=True``) or ``E``.
+    Runs exactly ``maxiter`` steps.
+``cobyla`` / ``lbfgsb``
+    ``scipy.optimize.minimize`` with ``COBYLA`` (derivative-free, ``maxiter`` bounds the evaluations) or
+    ``L-BFGS-B`` (exact gradient).
 
-Initial angles (``init=``; ``sigma`` is the standard deviation of the cost over the simulator's basis
-assignments, so ``gamma * sigma`` is the typical phase spread the separator creates):
+Initial angles (``init=``; ``sigma`` is the standard deviation of the cost over the basis, so ``gamma * sigma`` is
+the typical phase spread), or an explicit start vector:
 
 ``random``
-    ``gamma_k ~ U[0, pi / sigma)``, ``beta_k ~ U[0, pi)`` from ``numpy.random.default_rng(seed)``. The gamma
-    range reaches phase differences of about pi between typical costs (larger gammas mostly alias); beta in
-    ``[0, pi)`` runs each SBF rotation ``exp(-i beta X / 2)`` from the identity to a full swap.
+    ``gamma_k ~ U[0, pi / sigma)``, ``beta_k ~ U[0, pi)`` (larger gammas mostly alias; beta in ``[0, pi)`` runs each
+    SBF rotation ``exp(-i beta X / 2)`` from the identity to a full swap).
 ``linear-ramp``
-    The annealing-inspired ramp: with ``t_k = (k + 1/2) / p``, ``gamma_k = 0.75 t_k / sigma`` and
-    ``beta_k = 1.5 (1 - t_k)`` (the usual ``0.75 (1 - t_k)`` for a mixer ``exp(-i beta X)``, doubled because
-    the SBF rotation is ``exp(-i beta X / 2)``). Deterministic.
+    ``t_k = (k + 1/2) / p``, ``gamma_k = 0.75 t_k / sigma``, ``beta_k = 1.5 (1 - t_k)`` (the usual ramp, doubled
+    because the SBF rotation is ``exp(-i beta X / 2)``).
 ``interp``
-    INTERP (Zhou et al., PRX 10, 021067, 2020): train ``p = 1`` from the linear ramp, then for each
-    ``p' = 2..p`` start from the interpolation (:func:`interp_angles`) of the optimum at ``p' - 1``. The
-    lower levels' results are kept in :attr:`TrainingResult.stages`; evaluations and seconds add up over all
-    levels.
-
-An explicit start vector can be passed as ``init`` instead of a name.
-
-Everything is deterministic given the seed (the simulator is exact), so a result's trace is reproducible.
+    INTERP (Zhou et al., PRX 10, 021067, 2020): ``p = 1`` from the linear ramp, then each depth from the
+    interpolation (:func:`interp_angles`) of the optimum one below; the lower depths are kept in
+    :attr:`TrainingResult.stages`.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -243,7 +232,6 @@ def train(
     """Optimise the ``2p`` angles to minimise the expectation value.
 
     Args:
-        qaoa: The simulator.
         p: Number of layers (>= 1).
         optimizer: ``nesterov`` (default), ``cobyla`` or ``lbfgsb``.
         init: ``linear-ramp`` (default), ``random``, ``interp``, or an explicit vector of ``2p`` angles.
@@ -258,9 +246,6 @@ def train(
             are in units of ``E`` either way.
         objective: What to minimise: ``expectation`` (default), ``cvar``, ``gibbs`` (with their defaults, see
             :func:`qcpp.simulate.objectives.make_objective`) or an objective object; the trace holds its values.
-
-    Returns:
-        The :class:`TrainingResult`.
 
     Raises:
         ValueError: for an unknown optimiser or initialisation, ``p < 1``, or an explicit vector of the wrong

@@ -2,61 +2,39 @@
 
 :func:`validate` compiles the **lowered** circuit of a scenario (:func:`qcpp.plan.compile.compile_scenario`), binds
 angles (given, or seeded random in ``[0.1, pi - 0.1]``; ``[gamma_0, beta_0, gamma_1, ...]``), runs it from
-``|0...0>`` (its ``initial_state`` section prepares the initial paths) with one gate-level simulator and checks:
+``|0...0>`` with one gate-level simulator and checks:
 
-1. **ancilla probability**: the probability that every ancilla (the ``logic`` and ``work`` registers, all qubits
-   after the data) is measured in |0> is 1 to ``tolerance``;
-2. **amplitudes**: for every feasible assignment (per robot :func:`qcpp.problem.paths.enumerate_paths`, together with
-   the subspace simulator's basis, which under the ``paper`` rule may hold infeasible edge sets; product over
-   robots) the amplitude of the basis state "data qubits = the assignment's bits
-   (:func:`qcpp.problem.paths.assignment_bits`), ancillas 0" equals the amplitude of
-   :class:`qcpp.simulate.subspace.SubspaceQAOA` (0 for an assignment outside its basis) to ``tolerance``.
+1. **ancilla probability**: the probability that every ancilla (all qubits after the data) is measured in |0> is 1
+   to ``tolerance``;
+2. **amplitudes**: for every feasible assignment (and every basis state of the subspace simulator, which under the
+   ``paper`` rule may hold infeasible edge sets) the amplitude of "data qubits = the assignment's bits, ancillas
+   0" equals :class:`qcpp.simulate.subspace.SubspaceQAOA`'s to ``tolerance``.
 
 Backends:
 
-``statevector``
-    The dense state (:func:`qcpp.simulate.statevector.simulate_statevector`, up to 26 qubits): both checks exactly, every
-    assignment.
-``sparse``
-    The sparse state (:func:`qcpp.simulate.sparse.simulate_sparse`): the same, at any width while the support stays small.
+``statevector`` / ``sparse``
+    The dense state (up to 26 qubits) or the sparse state (any width while the support stays small): both checks
+    exactly, every assignment.
 ``tensor``
-    Two independent tensor-network methods (:mod:`qcpp.simulate.tensor`):
-
-    * exact contraction (:class:`~qcpp.simulate.tensor.TensorCircuit`) of ``<y|U|0>`` for every assignment, or for a
-      seeded random sample of ``max_amplitudes`` of them when there are more. The contraction runs on the data
-      qubits alone: each partial mixer (compute, controlled rotation, uncompute on the ancillas) is first
-      contracted into one operator on its data qubits, proven unitary, which shows it returns the ancillas to
-      |0> (:func:`qcpp.simulate.tensor.collapse_ancilla_blocks`); the last robot's qubits stay open, so one
-      contraction gives the amplitudes of every assignment that shares the other robots' paths. For that blocking
-      this backend compiles the partial mixers unfused (``fuse=False``: one section per partial mixer, clean
-      ancillas at both ends); the other backends check the default, fused circuit
-      (:mod:`qcpp.gadgets.junction`);
-    * the matrix product state of the whole circuit (:class:`~qcpp.simulate.tensor.MPSCircuit`, ancillas placed in the
-      middle of the chain, singular values cut below 1e-13): the ancilla probability ``<psi|P_0|psi>`` and the
-      amplitudes of *every* assignment. With ``mps=False`` the ancilla probability comes from an exact contraction
-      of ``<psi|P_0|psi>`` instead (refused beyond :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH`; then the check is
-      reported as skipped), or, when every assignment was contracted, from the lower bound
-      ``sum |amplitude|^2 <= P(ancillas 0) <= 1``.
-
+    Two independent tensor-network methods (:mod:`qcpp.simulate.tensor`): exact contraction of ``<y|U|0>`` on the
+    data qubits alone, each partial mixer first contracted into one operator proven unitary
+    (:func:`qcpp.simulate.tensor.collapse_ancilla_blocks`, which needs the unfused circuit, ``fuse=False``), for
+    every assignment or a seeded sample of ``max_amplitudes``; and the matrix product state of the whole circuit
+    (:class:`~qcpp.simulate.tensor.MPSCircuit`) for the ancilla probability and every amplitude. With ``mps=False``
+    the ancilla probability comes from an exact contraction (skipped beyond
+    :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH`) or the bound ``sum |amplitude|^2 <= P(ancillas 0) <= 1``.
 ``qcec``
-    Not a simulation: MQT QCEC (:mod:`qcpp.simulate.equivalence`, needs ``mqt.qcec`` and ``qiskit``) proves the lowered
-    circuit equal to the high-level circuit at the same angles on every input with clean ancillas, section by
-    section (one ``equivalence`` check; ``skipped`` if QCEC gives no proof in time).
+    Not a simulation: MQT QCEC (:mod:`qcpp.simulate.equivalence`) proves the lowered circuit equal to the
+    high-level one at the same angles on every input with clean ancillas, section by section.
+``auto`` (the default of ``qcpp validate``)
+    :func:`choose_backend`: ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS` qubits, else ``sparse``. The
+    tensor path search can be slow, so it runs only when asked.
 
-``auto`` (what ``qcpp validate`` uses unless ``--backend`` is given)
-    Picks what fits the machine (:func:`choose_backend`): ``statevector`` up to :data:`AUTO_STATEVECTOR_QUBITS`
-    qubits (a 16 MB state), else ``sparse`` (its state holds about as many amplitudes as the feasible subspace;
-    at p = 1 far fewer). The tensor contraction's path search alone can take minutes, so it runs only when asked.
-
-Size: every backend compares against the exact feasible-subspace state, whose size is the number of feasible
-assignments (the product of the robots' path counts). :func:`validate_size` predicts it first, counting paths
-no further than needed (no circuit is planned for that: ``auto`` picks its backend from the compiled circuit's
-width), and :func:`validate` refuses (:class:`ValidationTooLargeError`, one line naming the
-size and the limit) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted peak over
-the memory budget, instead of trying for minutes and running out of memory (two robots on 5x5 have 73.8 million
-feasible assignments: 9.4 GB).
-
-Every check reports what it compared; :attr:`ValidationReport.passed` is true when no check failed.
+Size: the reference is the exact feasible-subspace state (the product of the robots' path counts).
+:func:`validate_size` predicts it without planning a circuit, and :func:`validate` refuses
+(:class:`ValidationTooLargeError`) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted
+peak over the memory budget rather than running out of memory. :attr:`ValidationReport.passed` is true when no
+check failed.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -111,8 +89,7 @@ BYTES_PER_ASSIGNMENT = 500
 """Peak memory per feasible assignment, roughly: the subspace state and Hamiltonian, the assignment tuples, their
 basis-state indices and reference amplitudes, the sparse state."""
 MPS_BOND_LIMIT = 32
-"""The ``tensor`` backend's MPS stops (the contraction check notes it) beyond this bond: 21 at 38 qubits p = 1; at p = 2
-it passes 32 after 37 s and 64 only after several minutes."""
+"""The ``tensor`` backend's MPS stops beyond this bond (the check notes it): its run time grows with the bond's cube."""
 
 
 @dataclass(frozen=True)
@@ -147,8 +124,6 @@ class ValidationReport:
     Attributes:
         scenario: Scenario name.
         backend: Simulator used.
-        p: QAOA layers.
-        rule: SBF rule.
         seed: Seed of the random angles and of the amplitude sample (``None``: angles given, no sample).
         angles: ``[gamma_0, beta_0, ...]``.
         qubits: Qubits of the lowered circuit.
@@ -256,11 +231,7 @@ def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> 
     """Predict a validation's size without building anything (counting paths no further than needed).
 
     Args:
-        scenario: The scenario.
         max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
-
-    Returns:
-        The :class:`ValidationSize`.
 
     Example:
         >>> from qcpp.problem.presets import default_scenario
@@ -357,7 +328,6 @@ def validate(
     """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (>= 1).
         backend: ``tensor``, ``statevector`` or ``sparse`` (see the module docstring).
         angles: ``[gamma_0, beta_0, ...]`` (``2p`` values); default :func:`random_angles` of ``seed``.
@@ -366,8 +336,7 @@ def validate(
         tolerance: Allowed deviation of each check.
         max_amplitudes: ``tensor``: contract at most this many assignments exactly (a seeded random sample when
             there are more; ``None``: all; 0: none). A contraction wider than
-            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` is reported as skipped (seen at p = 2 on 30 qubits: width
-            21-27 without the optional ``kahypar``; the MPS checks still run).
+            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` is reported as skipped (the MPS checks still run).
         mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude); it is dropped
             (with a note on the contraction check) once its bond exceeds :data:`MPS_BOND_LIMIT`, and the ancilla
             probability then comes from the contracted, verified-unitary ancilla blocks.
@@ -499,8 +468,7 @@ def validate(
 
 def _open_qubits(scenario: Scenario) -> list[int]:
     """Data qubits left open in each exact contraction: the last robot's (one contraction per assignment of the
-    other robots: 0.01 s each at 38 qubits p = 1, 3-6 s at p = 2), or every data qubit of a small single-robot
-    scenario."""
+    other robots), or every data qubit of a small single-robot scenario."""
     n, per = scenario.num_variables, scenario.edges_per_robot
     if scenario.num_robots > 1:
         return list(range(n - per, n))

@@ -5,26 +5,15 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
     qcpp compile --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --lowered --json
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
-    qcpp compile examples/two_robots_4x4.toml -p 2 --lowered --json
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
-Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
-written straight to, a missing folder is an error (checked before compiling).
-
-Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
-handler as one line on stderr and exit code 2.
-
-Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one section of its plan at a time
-(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is the
-same, byte for byte, as writing the whole circuit.
-
-Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
-costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
-(default :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
-refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
-
-Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
-built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total).
+Output files follow :mod:`qcpp.io.atomic` (written whole or not at all; a missing folder is an error, checked
+before compiling). ``--qasm`` streams one plan section at a time
+(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is
+byte-identical to writing the whole circuit. Before building anything the lowered gate count is predicted
+(:func:`qcpp.estimators.guard.predict_size`, exact) and a circuit over ``--max-gates`` is refused in one line
+naming the override (``--max-gates N`` or ``--force``), exit 2. Large circuits and every ``--qasm`` write show
+progress on stderr.
 """
 
 from __future__ import annotations
@@ -58,13 +47,14 @@ from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
 STREAM_ABOVE_GATES = 100_000
 """Circuits predicted to have at least this many lowered gates are built section by section with progress on
-stderr (about 4 s of compiling at 25,000 gates per second), even without ``--qasm``; smaller ones are built whole."""
+stderr (a compile long enough to want it), even without ``--qasm``; smaller ones are built whole."""
 
 HELP = (
     "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
@@ -137,7 +127,7 @@ def compile_command(
         scenario = None
     if grid is None and scenario is None:
         raise ValueError("give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]")
-    if device is None:  # routing flags without a device used to be ignored without a word
+    if device is None:  # routing flags without a device are refused, not silently ignored
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
         if local_ancillas:

@@ -22,7 +22,8 @@ import typer
 
 from qcpp.cli.commands.inline_scenario import GridFlag, HardObstaclesFlag, ObstacleFlag, RobotCountFlag, inline_scenario
 from qcpp.io.atomic import check_output
-from qcpp.problem.scenario import save_scenario, scenario_to_dict, scenario_to_toml
+from qcpp.problem.scenario import scenario_to_dict
+from qcpp.problem.scenario_io import save_scenario, scenario_to_toml
 
 __all__ = ["register", "scenario_command"]
 

@@ -4,26 +4,15 @@ Examples::
 
     qcpp solve examples/paper_3x3.toml --method dfs
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
-    qcpp solve examples/two_robots_5x5.toml --method genetic --rule paper --json
     qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
-    qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --optimizer lbfgsb --objective cvar
     qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
 
-Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); ``--method``
-accepts exactly its keys. Adding a method is one entry: a function
-``f(scenario, *, seed, rule, progress) -> qcpp.problem.solvers.Solution`` stored under its name.
-
-``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
-solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
-:data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
-:func:`qcpp.simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
-
-``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
-proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
-
-``dfs`` predicts its size first (:func:`qcpp.problem.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
-memory, time) and refuses a search over the limits in one line naming that size and ``--allow-large``. Every method
-shows progress on stderr (:mod:`qcpp.cli.progress`).
+Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); adding one is one
+entry ``f(scenario, *, seed, rule, progress) -> Solution``. ``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on
+first use) is registered here, not in :data:`qcpp.problem.solvers.SOLVERS`, because it lives in a higher layer; it
+alone takes :data:`QAOA_DEFAULTS`. ``cpsat`` alone takes ``--time-limit`` and reports its proof. ``dfs`` predicts
+its size first and refuses a search over the limits in one line naming ``--allow-large``. Every method shows
+progress on stderr (:mod:`qcpp.cli.progress`).
 """
 
 from __future__ import annotations
@@ -45,7 +34,8 @@ from qcpp.cli.progress import Progress
 from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 
 __all__ = [

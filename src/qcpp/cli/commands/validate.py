@@ -32,7 +32,7 @@ from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "validate_command"]
 
@@ -47,8 +47,8 @@ HELP = (
 
 
 def _check_dask_address(text: str) -> None:
-    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (it used to
-    fail after the simulation with dask's own message, which named no flag).
+    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (dask's own
+    message, after the simulation, would name no flag).
 
     Example:
         >>> _check_dask_address("tcp://127.0.0.1:8786")

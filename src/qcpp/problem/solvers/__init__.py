@@ -77,7 +77,7 @@ def _cpsat(scenario: Scenario, *, seed: int, rule: Rule, progress: ProgressFn | 
 
 
 def __getattr__(name: str) -> Any:
-    # OR-Tools takes ~0.3 s to import: cpsat and CpSatResult load on first use, not with the package
+    # OR-Tools is slow to import: cpsat and CpSatResult load on first use, not with the package
     if name not in ("cpsat", "CpSatResult"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     module = importlib.import_module("qcpp.problem.solvers.cpsat")

@@ -6,18 +6,14 @@ among those its SBF rule allows (:meth:`~qcpp.problem.solvers.moves.MoveSpace.ra
 accepted by the Metropolis rule (always if the cost does not rise, else with probability
 ``exp(-delta / T)``) and the temperature cools geometrically, ``T_k = t0 * cooling**k``. A run of
 ``iterations`` is split into ``cycles`` annealing cycles (default 10): each reheats to ``t0`` and restarts
-from the best state of the run so far (reheating found the optimum in more seeds than one long cycle on
-the two-robot 4x4 and 5x5 test scenarios at the same budget).
+from the best state of the run so far (reheating escapes local minima that one long cycle stays in).
 
-Defaults: 20,000 iterations; ``t0`` is calibrated as the mean absolute cost change of a 50-move random walk
-from the start (1.0 if it never changes the cost); ``cooling`` makes the temperature fall by a factor
-1000 over one cycle. ``evaluated`` counts every cost lookup, the calibration walk's included.
+Defaults: 20,000 iterations; ``t0`` the mean absolute cost change of a 50-move random walk from the start;
+``cooling`` lowers the temperature 1000-fold over one cycle. ``evaluated`` counts every cost lookup.
 
-Components: when a robot's feasible paths split into several move-graph components (hard obstacles, or
-the ``paper`` rule), no sequence of moves crosses between them. The annealer therefore **restarts from
-every combination of component representatives** (initial paths first), each run with the full
-``iterations`` and the same schedule; the trace is the global best-so-far over the runs, concatenated
-(length ``iterations x restarts``). ``components_visited`` lists the components each robot's state was in.
+When a robot's feasible paths split into several move-graph components (hard obstacles, the ``paper`` rule),
+the annealer **restarts from every combination of component representatives**, each run with the full
+``iterations``; the trace is the global best-so-far over the runs, concatenated.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -59,7 +55,6 @@ def anneal(
     """Simulated annealing over feasible paths with SBF moves (see the module docstring).
 
     Args:
-        scenario: The scenario.
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         iterations: Iterations per restart (one proposal each).
         t0: Initial temperature (``None``: calibrated from random moves).

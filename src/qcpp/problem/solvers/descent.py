@@ -8,8 +8,7 @@ lowest robot, then the lowest plaquette. It is deterministic, has no parameters,
 
 This is the warm start of the QAOA's ``local_search`` initial state (:mod:`qcpp.gadgets.initial_state`,
 :mod:`qcpp.simulate.subspace`): the circuit prepares the descent's paths instead of the initial paths. It is a
-heuristic, not a solver: it stops at the first local minimum (two_robots_5x5: cost -6 in 7 steps, the optimum
-is -16).
+heuristic, not a solver: it stops at the first local minimum, which can be far from the optimum.
 
 Each step scores the flips of one robot against the other robots' fixed paths with the cost's own per-robot
 decomposition (:func:`qcpp.problem.cost.separable_cost`, the one the subspace simulator uses), so a step costs a few
@@ -51,7 +50,6 @@ class LocalSearch:
         initial_cost: The initial paths' total cost.
         steps: Flips taken (each one robot, one plaquette).
         evaluated: Assignments scored (every allowed flip at every step, plus the start).
-        seconds: Wall-clock time.
         trace: The cost after each step, the start first.
     """
 
@@ -69,11 +67,7 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
     """Steepest descent over allowed SBF flips from the initial paths (see the module docstring).
 
     Args:
-        scenario: The scenario.
         rule: SBF rule deciding which flips are allowed (flips to infeasible paths are skipped).
-
-    Returns:
-        The :class:`LocalSearch`.
     """
     t0 = time.perf_counter()
     start = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))

@@ -6,25 +6,21 @@ are then scored with numpy in blocks, in lexicographic order of the path index t
 
 * robot 0's paths are taken a slice at a time and :func:`~qcpp.problem.cost.separable_cost` is called on
   ``[slice, all of robot 1's paths, ...]``, so its pairwise matrices with robot 0 have ``slice`` rows instead
-  of all of them (for two robots on 5x5 that is what keeps memory at a few hundred MB instead of several
-  copies of a 72-million-entry matrix);
+  of all of them (which bounds the memory of two robots on large grids);
 * within a slice, the index tuples of robots ``0 .. R-2`` are walked a block at a time and for each block
   the costs of *all* paths of the last robot are computed as one ``(block, n_last)`` array.
 
 Blocks and slices hold at most ``chunk_elements`` floats (pairwise matrices between robots ``1 .. R-1``
 are whole, so three or more robots are only practical on small grids).
 
-Ties: among assignments whose computed total is exactly the minimum, the one with the lowest index tuple
-``(i_0, i_1, ...)`` in lexicographic order (robot 0 most significant; indices in
-:func:`~qcpp.problem.paths.enumerate_paths` order) is returned. The number of assignments within ``1e-9`` of
-the optimum is reported in ``notes``.
+Ties: the lowest index tuple ``(i_0, i_1, ...)`` in lexicographic order wins; the number of assignments within
+``1e-9`` of the optimum is reported in ``notes``.
 
 Size: the search is exponential in the number of robots. :func:`dfs_paths` enumerates the paths under limits
 (:data:`MAX_DFS_ASSIGNMENTS`, :data:`MAX_DFS_PATHS`, a memory budget): it first counts every robot's paths up to
-:data:`PRECHECK_PATHS` (milliseconds), so a request that is far too large (6x6 with 3 robots: over 4,096 paths
-each, 6.9e10 assignments) is refused at once with a :class:`DfsTooLargeError` naming the predicted size
-(:class:`DfsSize`), instead of enumerating for half a minute and then running out of memory; :func:`dfs`
-takes the enumerated lists.
+:data:`PRECHECK_PATHS`, so a request that is far too large is refused at once with a :class:`DfsTooLargeError`
+naming the predicted size (:class:`DfsSize`) instead of enumerating and running out of memory; :func:`dfs` takes
+the enumerated lists.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -61,17 +57,16 @@ MAX_DFS_ASSIGNMENTS = 1_000_000_000
 """Most assignments :func:`dfs_paths` allows by default: about two minutes of scoring."""
 
 MAX_DFS_PATHS = 2_000_000
-"""Most paths of one robot :func:`dfs_paths` enumerates by default: about 40 s and 2 GB."""
+"""Most paths of one robot :func:`dfs_paths` enumerates by default (about 2 GB of path lists)."""
 
 PRECHECK_PATHS = 4096
 """Every robot's paths are first counted up to this many (milliseconds) to refuse hopeless requests at once."""
 
 ASSIGNMENTS_PER_SECOND = 8e6
-"""Scoring speed used for the predicted time (two robots on 5x5: 73.8 M assignments in 8.3 s on a loaded 2-core
-machine)."""
+"""Scoring speed used for the predicted time (a conservative figure for the numpy block scoring)."""
 
 PATHS_PER_SECOND = 5e4
-"""Path enumeration speed used for the predicted time (8,512 paths of a 5x5 corner robot in 0.17 s)."""
+"""Path enumeration speed used for the predicted time."""
 
 
 @dataclass(frozen=True)
@@ -167,7 +162,6 @@ def dfs_paths(
     enumeration :func:`dfs` needs anyway: at most ``robots * PRECHECK_PATHS`` paths counted.
 
     Args:
-        scenario: The scenario.
         max_assignments: Most combinations allowed (``None``: no limit).
         max_paths: Most paths of one robot allowed (``None``: no limit).
         max_bytes: Memory budget of :attr:`DfsSize.bytes` (``None``: no limit).
@@ -237,7 +231,6 @@ def dfs(
     """The optimal assignment by exhaustive search (see the module docstring for the method and ties).
 
     Args:
-        scenario: The scenario.
         chunk_elements: Upper bound on the float64 elements of one scored block and of one robot-0 slice's
             pairwise matrices (default 8M = 64 MB).
         progress: Called as ``progress(done, total)`` in combinations after every block.

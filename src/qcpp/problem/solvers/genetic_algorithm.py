@@ -1,10 +1,8 @@
 """The paper's genetic algorithm: a population of assignments evolved by SBF mutations.
 
-* **Initial population**: the initial paths (the paper's horizontal-then-vertical heuristic), then one
-  individual per other combination of move-graph component representatives (so every component is
-  seeded; the population is larger than ``population`` if there are more combinations), then random
-  mutants of the initial assignment (1 to ``2 * (rows + cols)`` random allowed flips) until ``population``
-  distinct individuals exist or no new ones turn up.
+* **Initial population**: the initial paths, one individual per other combination of move-graph component
+  representatives (every component seeded), then random mutants of the initial assignment (1 to
+  ``2 * (rows + cols)`` allowed flips) until ``population`` distinct individuals exist or no new ones turn up.
 * **Mutation** (every generation, on every member): ``mutation="all"`` (default) is the paper's step
   literally, "apply the SBF operation on all four-node sub-grids and add the offspring": every single
   allowed flip of every robot of every member. ``mutation="random"`` instead makes ``children`` mutants per
@@ -18,8 +16,7 @@
   of binary tournaments drawn without replacement from the rest.
 
 With the defaults (population 192, 40 generations) this is close to a beam search over the SBF move graph
-whose randomness is in the initial population and the crossover; it found the exhaustive optimum for 20
-of 20 seeds on each of four two-robot 4x4 and 5x5 test scenarios (``benchmarks/solvers_speed.py``).
+whose randomness is in the initial population and the crossover.
 
 The trace is the best cost after each generation; ``components_visited`` lists, per robot, the components
 of every individual ever scored.
@@ -68,7 +65,6 @@ def genetic(
     """Evolve assignments with SBF mutations and path-swapping crossover (see the module docstring).
 
     Args:
-        scenario: The scenario.
         seed: Seed of ``numpy.random.default_rng``; the same seed gives the same trace.
         population: Individuals kept after each selection.
         generations: Number of generations.

@@ -49,7 +49,6 @@ class MoveSpace:
     """Allowed SBF neighbours of every robot's paths, and (optionally) the move-graph components.
 
     Args:
-        scenario: The scenario.
         rule: SBF rule (``exact`` or ``paper``).
         components: ``all``, ``initial`` or ``auto`` (see the module docstring).
 
@@ -210,9 +209,6 @@ def search_solution(
         space: The move space searched (scenario, rule, components, those visited).
         seed: The seed used.
         notes: Free-text notes.
-
-    Returns:
-        The solution.
     """
     return Solution(
         method=method,

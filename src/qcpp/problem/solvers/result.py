@@ -71,7 +71,6 @@ def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool =
 
     Args:
         scenario: The scenario the solution belongs to (needed to walk the paths).
-        sol: The solution.
         include_trace: Whether to include the (possibly long) ``trace`` list.
 
     Returns:

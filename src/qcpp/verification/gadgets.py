@@ -1,0 +1,552 @@
+"""The gadget method: certify feasibility preservation from the plan's call graph, at any grid size.
+
+The circuit is its call graph expanded (:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph`): every gadget it emits is one of
+a few kinds (equal kinds, equal gates up to qubit names), so checking every kind on every one of its local inputs
+checks the whole circuit. Four groups of checks, each a :class:`~qcpp.verification.report.Check`:
+
+``rule`` (one per local picture of the scenario, :class:`qcpp.problem.sbf.LocalPicture`)
+    The rule's compiled program (:func:`qcpp.problem.sbf.sbf_logic`) on every *locally feasible* input of the
+    plaquette: the four plaquette edges and every variable outer edge of its corners, with each corner's degree 1
+    at the robot's endpoints and 0 or 2 elsewhere (every feasible path looks like one of these near the
+    plaquette). Wherever the program allows the flip, the ``exact`` rule's specification
+    (:func:`qcpp.problem.sbf.exact_rule_value`) must allow it too; that specification only allows flips whose result
+    is again a feasible path. A failure is a local counterexample: the flip leaves a corner with a wrong degree
+    (no feasible path survives it), or it joins opposite edges and may close a loop.
+``mixer`` (one per partial-mixer kind, junction kind and rotation kind)
+    The lowered gates of each partial-mixer kind on **all** ``2^k`` inputs of its ``k`` data qubits (plaquette
+    and outer edges it reads), ancillas ``|0>``: where the kind's program allows the flip, exactly
+    ``cos(b/2)|x> - i sin(b/2)|x xor plaquette>``, elsewhere ``|x>``, with every ancilla back in ``|0>``. In a
+    fused layer (:mod:`qcpp.gadgets.junction`) the partial mixer is its opening junction, rotation and closing
+    junction, and the closing junction alone must clean the state the opening one made; every junction kind
+    ``J(l, r)`` must turn the state ``l``'s opening made into the one ``r``'s opening makes, on every input.
+    Then the fused layer equals the product of the partial mixers, each an SBF rotation where its program allows
+    it. Every partial mixer of the scenario must be of a checked kind (a coverage check).
+``phase`` (one per phase-separator kind)
+    Structurally: every gate of the gadget is diagonal or a permutation, and the permutations alone cancel in
+    pairs (compute, phase, mirrored uncompute); then the gadget is diagonal in the computational basis, which
+    keeps every basis state and returns every ancilla to ``|0>``. Kinds with at most :data:`EXHAUSTIVE_PHASE_QUBITS`
+    data qubits are also run lowered on every input.
+``initial_state``
+    The state preparation run from ``|0...0>``: every robot on a feasible path, ancillas ``|0>``.
+
+A partial mixer's program is what the rule check certifies and what the mixer checks hold the gates to, so
+together they show: on every feasible path, each partial mixer either does nothing or rotates into a feasible path,
+with clean ancillas; the phase separator only changes phases; so every layer, and the whole circuit, keeps the
+span of feasible assignments.
+
+Example:
+    >>> from qcpp.problem.presets import default_scenario
+    >>> r = verify_gadgets(default_scenario(4, 4, 2), p=2)
+    >>> r.holds, sorted({c.part for c in r.checks})
+    (True, ['initial_state', 'mixer', 'phase', 'rule'])
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import random
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from qcpp.gadgets.junction import MixerJunction, MixerRotation
+from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, abstract_program, partial_mixer
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import GATE_SPECS, Gate
+from qcpp.lowering.passes import WORK_REGISTER, lower
+from qcpp.plan.call_graph import Deferred, GadgetKind
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import qaoa_plan
+from qcpp.problem.grid import Plaquette
+from qcpp.problem.paths import is_feasible
+from qcpp.problem.sbf import LocalPicture, Rule, SbfLogic, exact_rule_value, sbf_logic
+from qcpp.problem.scenario import Scenario
+from qcpp.verification.batch import MAX_QUBITS, Batch
+from qcpp.verification.common import (
+    TOLERANCE,
+    FeasibleTest,
+    ProgressFn,
+    edge_names,
+    gadget_label,
+    kind_text,
+    plaquette_picture,
+    random_angle,
+)
+from qcpp.verification.report import Check, Counterexample, VerifyReport
+from qcpp.verification.state import _scenario_name
+
+__all__ = ["EXHAUSTIVE_PHASE_QUBITS", "verify_gadgets"]
+
+EXHAUSTIVE_PHASE_QUBITS = 12
+"""Phase kinds with at most this many data qubits are also run, lowered, on every data input."""
+
+Mixer = ParityPartialMixer | McxPartialMixer
+_CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))  # corner a, b, c, d -> its plaquette edges in (ab, bc, cd, da)
+
+
+class _Failure(Exception):
+    """A check found a counterexample."""
+
+    def __init__(self, counterexample: Counterexample, part: str = "mixer") -> None:
+        super().__init__(counterexample.reason)
+        self.counterexample, self.part = counterexample, part
+
+
+# --------------------------------------------------------------------------------------------- the rule, per picture
+def _degrees(pbits: Sequence[int], obits: Sequence[Sequence[int]]) -> list[int]:
+    return [pbits[i] + pbits[j] + sum(o) for (i, j), o in zip(_CORNER_EDGES, obits, strict=True)]
+
+
+def _locally_feasible(degrees: Sequence[int], endpoints: Sequence[bool]) -> bool:
+    return all(d == 1 if e else d in (0, 2) for d, e in zip(degrees, endpoints, strict=True))
+
+
+def _check_rule(
+    scenario: Scenario, robot: int, plaq: Plaquette, logic: SbfLogic, picture: LocalPicture,
+    outer: tuple[tuple[int, ...], ...],
+) -> int:  # fmt: skip
+    """Check the program on every locally feasible input; returns how many there were (raises :class:`_Failure`).
+
+    The program is read in the form the gates are checked against (:func:`_program_value` of the partial mixer's
+    abstract program), and must agree with the rule's own :meth:`~qcpp.problem.sbf.SbfLogic.evaluate` there."""
+    edges = list(plaq.edges) + [e for o in outer for e in o]
+    sizes = [len(o) for o in outer]
+    program, slots = abstract_program(logic, plaq)
+    count = 0
+    for bits in itertools.product((0, 1), repeat=len(edges)):
+        pbits, rest, obits = bits[:4], list(bits[4:]), []
+        for n in sizes:
+            obits.append(rest[:n])
+            rest = rest[n:]
+        if not _locally_feasible(_degrees(pbits, obits), picture.endpoints):
+            continue
+        count += 1
+        mask = sum(1 << e for e, b in zip(edges, bits, strict=True) if b)
+        allowed = _program_value(program, pbits, [(mask >> e) & 1 for e in slots])
+        if allowed != logic.evaluate(mask):
+            raise _Failure(
+                Counterexample(
+                    "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
+                    tuple(plaq.corners), (edge_names(scenario, mask),), (edge_names(scenario, mask),), (), 0.0,
+                    "the partial mixer's abstract program and the rule's program disagree",
+                ),
+                "rule",
+            )
+        if not allowed:
+            continue
+        if exact_rule_value(pbits, [sum(o) for o in obits], picture.endpoints, picture.diagonal):
+            continue
+        flipped = [1 - b for b in pbits]
+        degrees = _degrees(flipped, obits)
+        names = "abcd"
+        wrong = [
+            f"corner {names[v]} {plaq.corners[v]} gets degree {d}"
+            for v, (d, e) in enumerate(zip(degrees, picture.endpoints, strict=True))
+            if not (d == 1 if e else d in (0, 2))
+        ]
+        reason = (
+            f"the rule allows a flip that leaves the feasible set: {wrong[0]}" if wrong
+            else "the rule allows a flip of opposite edges, which may close a loop"
+        )  # fmt: skip
+        raise _Failure(
+            Counterexample(
+                "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
+                tuple(plaq.corners), (edge_names(scenario, mask),), (edge_names(scenario, mask ^ plaq.edge_mask),),
+                (), 1.0, reason,
+            ),
+            "rule",
+        )
+    return count
+
+
+# ------------------------------------------------------------------------------------------- gates, per gadget kind
+def _lowered(blocks: Sequence[Sequence[Gate]], work: int, beta: float) -> list[list[Gate]]:
+    """Each block lowered as a section of its own (as the circuit lowers its gadgets), every symbol bound to
+    ``beta``."""
+    top = max((q + 1 for b in blocks for g in b for q in g.qubits), default=1)
+    registers: list[tuple[str, int]] = [("q", top)] + ([(WORK_REGISTER, work)] if work else [])
+    circuit = lower(Circuit(registers, [Section(f"b{i}", tuple(b)) for i, b in enumerate(blocks)]))
+    circuit = circuit.bind({s: beta for s in circuit.symbols})
+    return [list(sec.gates) for sec in circuit.sections]
+
+
+def _compact(blocks: Sequence[Sequence[Gate]], data: Sequence[int]) -> tuple[list[list[Gate]], int]:
+    """Renumber qubits: ``data`` to ``0..k-1`` in order, every other qubit after them. Returns the blocks and the
+    number of qubits."""
+    where = {q: i for i, q in enumerate(data)}
+    for b in blocks:
+        for g in b:
+            for q in g.qubits:
+                where.setdefault(q, len(where))
+    if len(where) > MAX_QUBITS:
+        raise ValueError(f"a gadget touches {len(where)} qubits; at most {MAX_QUBITS} can be simulated")
+    return [[g._replace(qubits=tuple(where[q] for q in g.qubits)) for g in b] for b in blocks], len(where)
+
+
+def _first_difference(got: Batch, want: Batch) -> int | None:
+    """The first input whose outputs differ (beyond the tolerance), or ``None``."""
+
+    def table(b: Batch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        keep = np.abs(b.amps) > TOLERANCE
+        o, k, a = b.owners[keep], b.keys[keep], b.amps[keep]
+        order = np.lexsort((k, o))
+        return o[order], k[order], a[order]
+
+    go, gk, ga = table(got)
+    wo, wk, wa = table(want)
+    if len(go) == len(wo) and (go == wo).all() and (gk == wk).all():
+        close = np.abs(ga - wa) <= TOLERANCE
+        if close.all():
+            return None
+        return int(go[np.argmin(close)])
+    owners = np.union1d(go, wo)
+    for o in owners:  # the first input that differs
+        a, b = got.of_input(int(o)), want.of_input(int(o))
+        keys = {k for k, v in a.items() if abs(v) > TOLERANCE} | {k for k, v in b.items() if abs(v) > TOLERANCE}
+        if any(abs(a.get(k, 0) - b.get(k, 0)) > TOLERANCE for k in keys):
+            return int(o)
+    return None  # pragma: no cover - the tables differ, so some input does
+
+
+def _program_value(program: Any, pbits: Sequence[int], obits: Sequence[int]) -> bool:
+    """An abstract SBF program (:class:`qcpp.gadgets.partial_mixer.AbstractProgram`) on local bits."""
+    temps: dict[int, bool] = {}
+    for target, lits in zip(program.targets, program.steps, strict=True):
+        ok = True
+        for tag, what, value in lits:
+            if tag == "form":
+                v = sum(pbits[i] for i in range(4) if (what >> i) & 1) % 2 == 1
+            elif tag == "slot":
+                v = bool(obits[what[1]])
+            else:
+                v = temps.get(what, False)
+            if v != value:
+                ok = False
+                break
+        if ok:
+            temps[target] = not temps.get(target, False)
+    return temps.get(program.targets[-1], False)
+
+
+class _MixerChecker:
+    """Checks partial-mixer kinds and junction kinds on their gates (see the module docstring)."""
+
+    def __init__(
+        self, scenario: Scenario, fused: bool, beta: float, where: dict[Any, tuple[int, Plaquette]],
+        pictures: dict[Any, str],
+    ) -> None:  # fmt: skip
+        self.scenario, self.fused, self.beta, self.where = scenario, fused, beta, where
+        self.pictures = dict(pictures)
+
+    def picture_of(self, kind: Any) -> str:
+        """The local picture of a partial-mixer kind on this scenario (a number for a kind it does not have)."""
+        if kind not in self.pictures:
+            self.pictures[kind] = f"kind {len(self.pictures) + 1}"
+        return self.pictures[kind]
+
+    def label(self, gadget: Any) -> str:
+        """A short name for reports (:func:`~qcpp.verification.common.gadget_label`)."""
+        return gadget_label(gadget, self.picture_of)
+
+    @staticmethod
+    def data(m: Mixer) -> tuple[int, ...]:
+        return (*m.plaquette_qubits, *m.outer_qubits)
+
+    def opening(self, m: Mixer) -> list[Gate]:
+        return MixerJunction(None, m).emit()  # type: ignore[arg-type]
+
+    def fail(self, subject: str, m: Mixer | None, kind: str, key_in: int, key_out: int, data: Sequence[int],
+             amp: float, reason: str) -> _Failure:  # fmt: skip
+        """A counterexample on local inputs, named on the scenario's plaquette of that kind if it has one."""
+        robot, plaq = self.where.get(m.kind, (None, None)) if m is not None else (None, None)
+        ins = outs = ((),)
+        if plaq is not None and m is not None:  # local bits -> the scenario's edges (slot order: plaquette, outer)
+            logic_outer = _outer_slots(self.scenario, robot, plaq, m)  # type: ignore[arg-type]
+            edges = list(plaq.edges) + logic_outer
+            ins = (edge_names(self.scenario, sum(1 << e for i, e in enumerate(edges) if (key_in >> i) & 1)),)
+            outs = (edge_names(self.scenario, sum(1 << e for i, e in enumerate(edges) if (key_out >> i) & 1)),)
+        dirty = tuple(i for i in range(len(data), 64) if (key_out >> i) & 1)
+        cx = Counterexample("gadgets", subject, kind, robot, None if plaq is None else tuple(plaq.corners), ins, outs,
+                            dirty, amp, reason)  # fmt: skip
+        return _Failure(cx)
+
+    def partial_mixer(self, m: Mixer, work: int) -> int:
+        """Check one partial-mixer kind on all its local inputs; returns their number."""
+        data = self.data(m)
+        if self.fused:
+            assert isinstance(m, ParityPartialMixer)
+            blocks = [self.opening(m), MixerRotation(m).emit(), MixerJunction(m, None).emit()]
+        else:
+            blocks = m.emit_blocks()
+        lowered, _ = _compact(_lowered(blocks, work, self.beta), data)
+        k = len(data)
+        inputs = Batch.of_inputs(np.arange(1 << k, dtype=np.int64))
+        got = inputs.run(g for b in lowered for g in b)
+        program = m.kind[1]  # type: ignore[index]
+        c, s = math.cos(self.beta / 2), -1j * math.sin(self.beta / 2)
+        owners, keys, amps = [], [], []
+        for d in range(1 << k):
+            bits = [(d >> i) & 1 for i in range(k)]
+            if _program_value(program, bits[:4], bits[4:]):
+                owners += [d, d]
+                keys += [d, d ^ 0b1111]
+                amps += [c, s]
+            else:
+                owners.append(d)
+                keys.append(d)
+                amps.append(1.0)
+        want = Batch(np.array(owners, dtype=np.int64), np.array(keys, dtype=np.int64), np.array(amps, dtype=complex))
+        bad = _first_difference(got, want)
+        subject = self.label(m)
+        if bad is not None:
+            out = got.of_input(bad)
+            allowed = _program_value(program, [(bad >> i) & 1 for i in range(4)], [(bad >> i) & 1 for i in range(4, k)])
+            key_out = max((key for key in out if key != bad), key=lambda key: abs(out[key]), default=bad)
+            want = "cos(b/2)|x> - i sin(b/2)|x xor plaquette>" if allowed else "|x> (the flip is forbidden here)"
+            reason = f"the gadget does not do what its program says: expected {want} with clean ancillas"
+            raise self.fail(subject, m, self.label(m), bad, key_out, data, abs(out.get(key_out, 0)), reason)
+        if self.fused:  # the closing junction alone cleans what the opening one made
+            opened = inputs.run(g for g in lowered[0])
+            closed = opened.run(lowered[2])
+            bad = _first_difference(closed, inputs)
+            if bad is not None:
+                out = closed.of_input(bad)
+                key_out = max(out, key=lambda key: abs(out[key]))
+                raise self.fail(subject, m, self.label(MixerJunction(m, None)), bad, key_out, data, abs(out[key_out]),
+                                "the closing junction does not undo the opening one")  # fmt: skip
+        return 1 << k
+
+    def junction(self, j: MixerJunction, work: int) -> int:
+        """Check ``J(l, r)``: from the state ``l``'s opening makes, the one ``r``'s opening makes, on every input of
+        both partial mixers' data qubits; returns the number of inputs."""
+        left, right = j.left, j.right
+        assert left is not None and right is not None
+        data = list(dict.fromkeys((*self.data(left), *self.data(right))))
+        blocks = [self.opening(left), j.emit(), self.opening(right)]
+        lowered, _ = _compact(_lowered(blocks, work, self.beta), data)
+        inputs = Batch.of_inputs(np.arange(1 << len(data), dtype=np.int64))
+        got = inputs.run(lowered[0]).run(lowered[1])
+        want = inputs.run(lowered[2])
+        bad = _first_difference(got, want)
+        if bad is not None:
+            out = got.of_input(bad)
+            key_out = max(out, key=lambda key: abs(out[key]))
+            raise self.fail(self.label(j), left, self.label(j), bad, key_out, data, abs(out[key_out]),
+                            "the junction does not turn one partial mixer's computed state into the next one's")
+        return 1 << len(data)
+
+
+def _outer_slots(scenario: Scenario, robot: int, plaq: Plaquette, m: Mixer) -> list[int]:
+    """The grid edges of a partial mixer's outer slots on the scenario's ``plaq`` (the edges of the qubits of the
+    scenario's own partial mixer of that kind, which has the same slots)."""
+    own = partial_mixer(scenario, robot, plaq, 0.0, scenario.num_variables, m.kind[1].rule)  # type: ignore[index]
+    assert own is not None
+    return [scenario.variable_of(q)[1] for q in own.outer_qubits]
+
+
+# ------------------------------------------------------------------------------------------------------ phase kinds
+def _cancelling_skeleton(gates: Sequence[Gate]) -> str | None:
+    """``None`` if every gate is diagonal or a permutation and the permutations cancel in pairs; else why not."""
+    stack: list[Gate] = []
+    for g in gates:
+        spec = GATE_SPECS[g.name]
+        if spec.diagonal:
+            continue
+        if not spec.permutation:
+            return f"{g.name} on {g.qubits} is neither diagonal nor a permutation"
+        if stack and stack[-1] == g.inverse():
+            stack.pop()
+        else:
+            stack.append(g)
+    if not stack:
+        return None
+    return f"{len(stack)} permutation gates do not cancel (first: {stack[0].name} on {stack[0].qubits})"
+
+
+def _check_phase(kind: GadgetKind, beta: float) -> tuple[str, int, str]:
+    """Check one phase kind: ``(how, inputs, detail)``; raises :class:`_Failure`."""
+    g = kind.example.build() if isinstance(kind.example, Deferred) else kind.example
+    gates = list(g.emit())
+    why = _cancelling_skeleton(gates)
+    if why is not None:
+        raise _Failure(Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),), (),
+                                      0.0, f"not shown diagonal: {why}"), "phase")  # fmt: skip
+    ancillas = {q for gt in gates if gt.name in ("and", "and_dg") for q in gt.qubits[-1:]}
+    data = sorted({q for gt in gates for q in gt.qubits} - ancillas)
+    if len(data) > EXHAUSTIVE_PHASE_QUBITS:
+        return "structural", 0, "diagonal and permutation gates; the permutations cancel in pairs"
+    lowered, _ = _compact(_lowered([gates], kind.work, beta), data)
+    inputs = Batch.of_inputs(np.arange(1 << len(data), dtype=np.int64))
+    got = inputs.run(lowered[0])
+    keep = np.abs(got.amps) > TOLERANCE
+    moved = keep & (got.keys != got.owners)
+    if moved.any():
+        i = int(np.flatnonzero(moved)[0])
+        dirty = tuple(q for q in range(len(data), 64) if (int(got.keys[i]) >> q) & 1)
+        reason = "the lowered phase gadget moves a basis state"
+        cx = Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),), dirty,
+                            float(abs(got.amps[i])), reason)  # fmt: skip
+        raise _Failure(cx, "phase")
+    return "exhaustive", 1 << len(data), "also structural: diagonal and permutation gates that cancel in pairs"
+
+
+# ---------------------------------------------------------------------------------------------------- initial state
+def _check_initial(scenario: Scenario, kind: GadgetKind, num_qubits: int, registers: tuple) -> int:
+    g = kind.example.build() if isinstance(kind.example, Deferred) else kind.example
+    gates = list(g.emit())
+    test = FeasibleTest(scenario)
+    if all(GATE_SPECS[gt.name].permutation for gt in gates):
+        key = 0
+        for gt in gates:
+            controls, state, target = gt.qubits[:-1], gt[3] or "1" * (len(gt.qubits) - 1), gt.qubits[-1]
+            if all(((key >> c) & 1) == int(b) for c, b in zip(controls, state, strict=True)):
+                key ^= 1 << target
+        outs = [key]
+    else:
+        if num_qubits > MAX_QUBITS:
+            raise ValueError(f"the state preparation is not classical and the circuit has {num_qubits} qubits: "
+                             "check it with --method state on a smaller scenario")  # fmt: skip
+        low = lower(Circuit(registers, [Section("initial_state", tuple(gates))]))
+        out = Batch.of_inputs([0]).run(low.gates)
+        outs = [int(k) for k, a in zip(out.keys, out.amps) if abs(a) > TOLERANCE]
+    for key in outs:
+        masks = test.masks(key)
+        bad = [r for r, m in enumerate(masks) if not is_feasible(scenario, r, m)]
+        if bad or key >> scenario.num_variables:
+            raise _Failure(Counterexample(
+                "gadgets", "initial_state", kind_text(g), bad[0] if bad else None, None, ((),),
+                tuple(edge_names(scenario, m) for m in masks), test.dirty(key), 1.0,
+                f"robot {bad[0]} does not start on a feasible path" if bad else "an ancilla is left in |1>",
+            ), "initial_state")  # fmt: skip
+    return 1
+
+
+# ------------------------------------------------------------------------------------------------------------ verify
+def _mixers_in(g: Any) -> list[Any]:
+    """The partial mixers a mixer-part gadget is made of (a junction's sides, a rotation's mixer, or itself)."""
+    if isinstance(g, MixerJunction):
+        return [m for m in (g.left, g.right) if m is not None]
+    if isinstance(g, MixerRotation):
+        return [g.mixer]
+    return [g]
+
+
+def verify_gadgets(
+    scenario: Scenario,
+    p: int,
+    rule: Rule = "exact",
+    *,
+    seed: int = 0,
+    progress: ProgressFn | None = None,
+    options: PlanOptions | None = None,
+) -> VerifyReport:
+    """Certify feasibility preservation kind by kind (see the module docstring).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers (>= 1; every layer has the same kinds).
+        rule: The SBF rule to compile with.
+        seed: Seed of the rotation angle the mixer kinds are checked at.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`; its rule replaces ``rule``).
+        progress: Called as ``progress(done, total)`` over the checks.
+
+    Returns:
+        The :class:`~qcpp.verification.report.VerifyReport` (method ``gadgets``); every check is exhaustive on its
+        local inputs or structural, so when it holds it holds for every feasible input.
+    """
+    start = time.perf_counter()
+    if p < 1:
+        raise ValueError(f"p must be at least 1, got {p}")
+    options = PlanOptions(rule=rule) if options is None else options
+    rule = options.rule
+    plan = qaoa_plan(scenario, p, options)
+    graph = plan.call_graph()
+    beta = random_angle(random.Random(seed))
+    checks: list[Check] = []
+    counterexample = None
+
+    # the scenario's pictures (the rule) and the partial-mixer kind of every plaquette (coverage)
+    pictures: dict[LocalPicture, tuple[int, Plaquette, SbfLogic, tuple[tuple[int, ...], ...]]] = {}
+    where: dict[Any, tuple[int, Plaquette]] = {}
+    picture_count: dict[LocalPicture, int] = {}
+    scenario_kinds: dict[Any, tuple[int, Plaquette]] = {}
+    beta_sym = Angle.symbol("beta")
+    for r in range(scenario.num_robots):
+        for q in scenario.grid.plaquettes:
+            logic = sbf_logic(scenario, r, q, rule)
+            if logic.never:
+                continue
+            picture, outer = plaquette_picture(scenario, r, q)
+            picture_count[picture] = picture_count.get(picture, 0) + 1
+            if picture not in pictures:
+                pictures[picture] = (r, q, logic, outer)
+                m = partial_mixer(scenario, r, q, beta_sym, scenario.num_variables, rule, options.target)
+                if m is not None:
+                    scenario_kinds.setdefault(m.kind, (r, q))
+    where.update(scenario_kinds)
+    kind_pictures = {kd: plaquette_picture(scenario, r, q)[0].label for kd, (r, q) in scenario_kinds.items()}
+
+    mixer_kinds = graph.parts["mixer"]
+    fused = any(isinstance(k.example, MixerJunction | MixerRotation) for k in mixer_kinds)
+    mixers: dict[Any, tuple[Mixer, int]] = {}
+    for kind in mixer_kinds:
+        g = kind.example
+        for m in _mixers_in(g):
+            if m is not None and m.kind not in mixers:
+                mixers[m.kind] = (m, GadgetKind.of(m).work)
+    work_items = len(pictures) + len(mixers) + len(mixer_kinds) + len(graph.parts["phase"]) + 1
+    done = 0
+
+    def tick() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, work_items)
+
+    checker = _MixerChecker(scenario, fused, beta, where, kind_pictures)
+    try:
+        for picture, (r, q, logic, outer) in pictures.items():
+            n = _check_rule(scenario, r, q, logic, picture, outer)
+            checks.append(Check(f"rule {rule} {picture.label}", "rule", "exhaustive", n, True, picture_count[picture],
+                                "locally feasible inputs"))  # fmt: skip
+            tick()
+        for m, work in mixers.values():
+            n = checker.partial_mixer(m, work)
+            checks.append(Check(checker.label(m), "mixer", "exhaustive", n, True, 1,
+                                "opening junction, rotation, closing junction" if fused else "all blocks"))  # fmt: skip
+            tick()
+        missing = [kd for kd in scenario_kinds if kd not in mixers]
+        if missing:
+            r, q = scenario_kinds[missing[0]]
+            raise _Failure(Counterexample("gadgets", "coverage", repr(missing[0])[:100], r, tuple(q.corners), ((),),
+                                          ((),), (), 0.0, "a partial mixer of the scenario is of no checked kind"))
+        for kind, mult in mixer_kinds.items():
+            g = kind.example
+            if isinstance(g, MixerJunction) and g.left is not None and g.right is not None:
+                n = checker.junction(g, max(kind.work, mixers[g.left.kind][1], mixers[g.right.kind][1]))
+                checks.append(Check(checker.label(g), "mixer", "exhaustive", n, True, mult))
+            else:
+                rotation = isinstance(g, MixerRotation)
+                inner = "each partial mixer's check" if rotation else checker.label(_mixers_in(g)[0])
+                checks.append(Check(checker.label(g), "mixer", "covered", 0, True, mult, f"within {inner}"))
+            tick()
+        for kind, mult in graph.parts["phase"].items():
+            how, n, detail = _check_phase(kind, beta)
+            checks.append(Check(kind_text(kind.example), "phase", how, n, True, mult, detail))
+            tick()
+        for kind, mult in graph.parts["initial_state"].items():
+            n = _check_initial(scenario, kind, plan.num_qubits, plan.registers)
+            checks.append(Check(kind_text(kind.example), "initial_state", "exhaustive", n, True, mult,
+                                "from |0...0>"))  # fmt: skip
+        tick()
+    except _Failure as failure:
+        counterexample = failure.counterexample
+        checks.append(Check(counterexample.check, failure.part, "exhaustive", 0, False))
+    return VerifyReport(
+        _scenario_name(scenario), p, rule, "gadgets", counterexample is None, tuple(checks), counterexample,
+        time.perf_counter() - start, seed,
+    )  # fmt: skip
