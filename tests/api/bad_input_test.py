@@ -157,3 +157,30 @@ def test_no_partial_file_after_an_error(tmp_path: Path, monkeypatch: pytest.Monk
     bad = type(named)(named.grid, named.robots, name="\ud800")  # a lone surrogate: TOML cannot hold it
     error_of(lambda: qcpp.save_scenario(bad, tmp_path / "s.toml"), qcpp.ScenarioError)
     assert list(tmp_path.iterdir()) == [target]
+
+
+def test_the_simulators_keep_the_cli_s_size_guards(monkeypatch: pytest.MonkeyPatch) -> None:
+    import qcpp.problem.solvers.exhaustive as exhaustive
+    import qcpp.simulate.guards as guards
+
+    s = qcpp.grid_scenario(3, 3, robots=2)
+    monkeypatch.setattr(guards, "memory_budget", lambda: 64)  # 64 bytes: not even one state fits
+    message = error_of(lambda: qcpp.train_qaoa(s, 1, maxiter=1), qcpp.SizeError)
+    assert message.startswith("scenario: training QAOA on") and "qcpp.allow_large()" in message
+    message = error_of(lambda: qcpp.simulate_qaoa(s, 1), qcpp.SizeError)
+    assert message.startswith("scenario: simulating") and "memory budget" in message
+    monkeypatch.setattr(exhaustive, "MAX_DFS_ASSIGNMENTS", 1)
+    assert "over the limit of 1 assignments" in error_of(lambda: qcpp.solve(s, "dfs"), qcpp.QcppError)
+    with qcpp.allow_large():  # the override lifts every guard
+        assert qcpp.simulate_qaoa(s, 1, angles=[0.1, 0.2]).p == 1
+        assert qcpp.solve(s, "dfs").cost.total == pytest.approx(qcpp.solve(s, "cpsat").cost.total)
+
+
+def test_an_estimate_point_cannot_mislabel_its_scenario() -> None:
+    from qcpp.estimators.estimate import Point
+
+    s = qcpp.grid_scenario(10, 10, robots=3)
+    good = Point.from_scenario(s, 1)
+    assert (good.rows, good.cols, good.robots) == (10, 10, 3)
+    message = error_of(lambda: Point(4, 4, 1, 1, good.scenario_json), qcpp.OptionError)
+    assert message.startswith("scenario_json: the scenario is 10x10 with 3 robot(s), but the point says 4x4 with 1")

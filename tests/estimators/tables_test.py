@@ -102,7 +102,10 @@ def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
     assert "paper_cx" in table and str(rows[1]["cx"]) in table
     with pytest.raises(ValueError):
         render(rows, "xml")  # type: ignore[arg-type]
-    assert set(FORMATS) == {"table", "md", "csv", "json", "jsonl"}
+    assert set(FORMATS) == {"table", "md", "csv", "json", "jsonl", "latex"}
+    latex = render(rows, "latex").splitlines()
+    assert latex[3].startswith("rows & cols &")
+    assert latex[5].split(" & ")[MAIN_COLUMNS.index("cx")] == str(rows[0]["cx"])
 
 
 def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]

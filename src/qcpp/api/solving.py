@@ -30,6 +30,9 @@ __all__ = ["SOLVE_METHODS", "simulate_qaoa", "solve", "train_qaoa"]
 SOLVE_METHODS: tuple[str, ...] = ("dfs", "cpsat", "anneal", "genetic", "qaoa", "qubo")
 """The methods of :func:`solve` (those of ``qcpp solve --method``)."""
 
+_OVERRIDE = "run it inside qcpp.allow_large()"
+"""How the API lifts a size guard (the command line: ``--allow-large``)."""
+
 _QAOA_DEFAULTS: dict[str, Any] = {
     "p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
     "mixer_warm": False,
@@ -61,6 +64,7 @@ def solve(
 
     Raises:
         qcpp.errors.OptionError: an unknown method or option, or an option of another method.
+        qcpp.problem.solvers.exhaustive.DfsTooLargeError: ``dfs`` over the limits of ``qcpp solve -m dfs``.
     """
     s = check_scenario_arg(scenario)
     check_choice(method, SOLVE_METHODS, "method")
@@ -81,6 +85,10 @@ def solve(
     from qcpp.problem.cost_range import check_cost_range
 
     check_cost_range(s)
+    if method == "dfs":  # within the limits of qcpp solve -m dfs (qcpp.allow_large() lifts them)
+        from qcpp.problem.solvers.exhaustive import budgeted_dfs_paths, dfs
+
+        return dfs(s, paths=budgeted_dfs_paths(s))
     if method == "cpsat":
         from qcpp.problem.solvers import cpsat
 
@@ -128,9 +136,12 @@ def train_qaoa(
     Raises:
         qcpp.errors.OptionError: a bad value, naming the option.
         qcpp.problem.errors.ScenarioError: weights whose phases the simulator cannot represent exactly.
+        qcpp.problem.limits.SizeError: a feasible subspace whose state does not fit in half the available memory
+            (inside ``qcpp.allow_large()`` nothing is refused).
     """
     from qcpp.plan.options import INITIAL_STATES
     from qcpp.problem.cost_range import check_phase_range
+    from qcpp.simulate.guards import check_training_size
     from qcpp.simulate.objectives import OBJECTIVES
     from qcpp.simulate.qaoa_solver import QAOA_OPTIMIZERS, solve_qaoa
 
@@ -147,6 +158,7 @@ def train_qaoa(
     if mixer_warm and optimizer != "layerwise":
         raise OptionError("mixer_warm", f"applies to optimizer='layerwise' only (got optimizer={optimizer!r})")
     check_phase_range(s)
+    check_training_size(s, "scenario", _OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'")
     return solve_qaoa(
         s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter, initial=initial,  # type: ignore[arg-type]
         mixer_warm=mixer_warm, seed=seed, rule=rule,  # type: ignore[arg-type]
@@ -178,9 +190,12 @@ def simulate_qaoa(
 
     Raises:
         qcpp.errors.OptionError: a bad value, naming the option (``angles`` of the wrong length or not finite).
+        qcpp.problem.limits.SizeError: a feasible subspace over the limits of ``qcpp simulate`` (inside
+            ``qcpp.allow_large()`` nothing is refused).
     """
     from qcpp.problem.cost_range import check_phase_range
     from qcpp.simulate.evaluate import METHODS, evaluate
+    from qcpp.simulate.guards import check_simulation_size
 
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)
@@ -199,4 +214,6 @@ def simulate_qaoa(
         if len(values) != 2 * layers:
             raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
     check_phase_range(s)
+    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
+        check_simulation_size(s, "scenario", _OVERRIDE)
     return evaluate(s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

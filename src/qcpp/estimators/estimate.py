@@ -164,6 +164,9 @@ def checked_estimate_options(
 class Point:
     """One circuit: the default scenario of a grid and robot count (or a given scenario) with ``p`` layers.
 
+    A given scenario must have the point's grid and robot count (the rows label them): build such a point with
+    :meth:`from_scenario`; a mismatch raises :class:`~qcpp.errors.OptionError`.
+
     Attributes:
         rows, cols, robots: the grid and robot count.
         scenario_json: canonical JSON text of a given scenario, or ``None`` for
@@ -175,6 +178,19 @@ class Point:
     robots: int
     p: int
     scenario_json: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.scenario_json is None:
+            return
+        data = json.loads(self.scenario_json)
+        grid, robots = data.get("grid", {}), data.get("robots", [])
+        given = (grid.get("rows"), grid.get("cols"), len(robots))
+        if given != (self.rows, self.cols, self.robots):
+            raise OptionError(
+                "scenario_json",
+                f"the scenario is {given[0]}x{given[1]} with {given[2]} robot(s), but the point says "
+                f"{self.rows}x{self.cols} with {self.robots} (use Point.from_scenario)",
+            )
 
     def build_scenario(self) -> Scenario:
         """The scenario of this point."""

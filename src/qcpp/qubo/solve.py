@@ -32,6 +32,7 @@ from typing import Literal
 
 import numpy as np
 
+from qcpp.errors import QcppError
 from qcpp.problem.cost import cost_parts
 from qcpp.problem.paths import edges_of, is_feasible
 from qcpp.problem.scenario import Scenario
@@ -64,7 +65,7 @@ DEFAULT_TABU_MS = 10_000
 DEFAULT_POLISH = 100
 
 
-class MissingAnnealer(ValueError):
+class MissingAnnealer(QcppError):
     """dimod or dwave-samplers is not installed (a ``ValueError``: the CLI prints it as one line, exit 2)."""
 
 

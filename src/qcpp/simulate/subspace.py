@@ -54,6 +54,7 @@ import numpy as np
 from scipy.linalg.blas import zdotc
 from scipy.linalg.lapack import zrot
 
+from qcpp.errors import QcppError
 from qcpp.gadgets.initial_state import start_paths
 from qcpp.plan.options import INITIAL_STATES, Initial
 from qcpp.plan.phase import phase_plan
@@ -85,7 +86,7 @@ _DIRECT_MIN = 64  # rotate rows in place when the axis' contiguous run (post) is
 _MAX_LEVELS = 1 << 16  # distinct cost values kept as a uint8/uint16 level array
 
 
-class NonUnitaryMixerError(ValueError):
+class NonUnitaryMixerError(QcppError):
     """The SBF rule allows a flip whose reverse it forbids, on a path the mixer reaches.
 
     The compiled partial mixer is then not a unitary on the data register (its logic ancillas end entangled

@@ -52,6 +52,7 @@ from typing import Any
 
 import numpy as np
 
+from qcpp.errors import QcppError
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate, controlled_x_pattern, unitary
 from qcpp.simulate.statevector import bound_circuit
@@ -136,7 +137,7 @@ def _usable_cache(path: Path) -> Path | None:
         return None
 
 
-class ContractionTooWideError(ValueError):
+class ContractionTooWideError(QcppError):
     """A contraction would need an intermediate tensor larger than the allowed width (``2**width`` entries)."""
 
 

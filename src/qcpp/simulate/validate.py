@@ -56,6 +56,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from qcpp.errors import QcppError
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
@@ -222,7 +223,7 @@ class ValidationSize:
         return f"at least {self.assignments:,} feasible assignments (at least {gb:.1f} GB; paths counted: {paths})"
 
 
-class ValidationTooLargeError(ValueError):
+class ValidationTooLargeError(QcppError):
     """A validation over the limits of :func:`validate` (one line naming the size and the limit)."""
 
 

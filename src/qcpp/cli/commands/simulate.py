@@ -62,23 +62,11 @@ def parse_angles(text: str) -> list[float]:
 
 
 def _guard(s: Scenario, path: Path) -> None:
-    """Refuse (one line, exit 2) a feasible subspace over the validation limit
-    (:data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory);
-    ``--allow-large`` lifts it."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, validate_size
+    """Refuse (one line, exit 2) a feasible subspace over the simulators' limits
+    (:func:`qcpp.simulate.guards.check_simulation_size`); ``--allow-large`` lifts it."""
+    from qcpp.simulate.guards import check_simulation_size
 
-    if large_allowed():
-        return
-    size = validate_size(s, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
-    budget = memory_budget()
-    if size.assignments > MAX_VALIDATE_ASSIGNMENTS or (budget is not None and size.bytes > budget):
-        limit = (
-            f"the limit of {MAX_VALIDATE_ASSIGNMENTS:,} feasible assignments"
-            if size.assignments > MAX_VALIDATE_ASSIGNMENTS
-            else f"the memory budget of {budget / 1e9:.1f} GB"  # type: ignore[operator]
-        )
-        raise ValueError(f"{path}: simulating {size.describe()}: over {limit}; pass {OVERRIDE_FLAG} to try anyway")
+    check_simulation_size(s, str(path))
 
 
 def simulate_command(

@@ -116,21 +116,13 @@ def solve_help() -> str:
 
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
     """The robots' paths for ``dfs``, after the size prediction (refused over the limits, one line)."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.problem.solvers import exhaustive
-    from qcpp.problem.solvers.exhaustive import DfsTooLargeError, dfs_paths
+    from qcpp.problem.limits import OVERRIDE_FLAG
+    from qcpp.problem.solvers.exhaustive import DfsTooLargeError, budgeted_dfs_paths
 
     with Progress(description) as bar:
         bar.stage("counting and enumerating paths")
         try:
-            if large_allowed():
-                return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
-            return dfs_paths(
-                scenario,
-                max_assignments=exhaustive.MAX_DFS_ASSIGNMENTS,
-                max_paths=exhaustive.MAX_DFS_PATHS,
-                max_bytes=memory_budget(),
-            )
+            return budgeted_dfs_paths(scenario)
         except DfsTooLargeError as exc:
             raise ValueError(
                 f"{exc}; pass {OVERRIDE_FLAG} to run it anyway, or use --method cpsat (exact, with a time limit) "
@@ -138,31 +130,13 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
             ) from None
 
 
-STATE_BYTES_PER_ASSIGNMENT = 16
-"""One complex128 amplitude per feasible assignment: the least one QAOA state of the subspace simulator holds."""
-
-
 def _qaoa_guard(scenario: Scenario, path: Path, description: str) -> None:
-    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold even one state in the memory
-    budget (half the available memory); ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory
-    after the path enumeration and 3 robots on 6x6 enumerated paths for minutes first."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.simulate.validate import validate_size
+    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold one state in the memory budget
+    (:func:`qcpp.simulate.guards.check_training_size`); ``--allow-large`` lifts it."""
+    from qcpp.simulate.guards import check_training_size
 
-    budget = memory_budget()
-    if large_allowed() or budget is None:
-        return
     with Progress(description) as bar:
-        bar.stage("counting feasible assignments")
-        size = validate_size(scenario, max_assignments=budget // STATE_BYTES_PER_ASSIGNMENT)
-    need = size.assignments * STATE_BYTES_PER_ASSIGNMENT
-    if need > budget:
-        counted = " x ".join(f"{n:,}" for n in size.paths_per_robot)
-        raise ValueError(
-            f"{path}: training QAOA on {'at least ' if not size.exact else ''}{size.assignments:,} feasible "
-            f"assignments (paths counted: {counted}): one state needs at least {need / 1e9:.1f} GB, over the memory "
-            f"budget of {budget / 1e9:.1f} GB; pass {OVERRIDE_FLAG} to try anyway, or use --method cpsat or anneal"
-        )
+        check_training_size(scenario, str(path), stage=bar.stage)
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:

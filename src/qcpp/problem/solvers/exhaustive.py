@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from qcpp.errors import QcppError
 from qcpp.problem.cost import cost_parts, separable_cost
 from qcpp.problem.cost_range import check_cost_range
 from qcpp.problem.limits import format_duration
@@ -129,7 +130,7 @@ class DfsSize:
         )
 
 
-class DfsTooLargeError(ValueError):
+class DfsTooLargeError(QcppError):
     """An exhaustive search over a limit of :func:`dfs_paths`; ``size`` is the prediction, the message one line."""
 
     def __init__(self, size: DfsSize, reason: str) -> None:
@@ -201,6 +202,23 @@ def dfs_paths(
         _check(size(counts, complete), max_assignments, max_paths, max_bytes)
         lists.append(pl)
     return lists
+
+
+def budgeted_dfs_paths(scenario: Scenario) -> list[list[int]]:
+    """:func:`dfs_paths` within the limits ``qcpp solve -m dfs`` and ``qcpp.solve(s, "dfs")`` keep:
+    :data:`MAX_DFS_ASSIGNMENTS`, :data:`MAX_DFS_PATHS` and the memory budget
+    (:func:`qcpp.problem.limits.memory_budget`), none inside :func:`qcpp.problem.limits.allow_large`.
+
+    Raises:
+        DfsTooLargeError: a search over the limits (before doing it).
+    """
+    from qcpp.problem.limits import large_allowed, memory_budget
+
+    if large_allowed():
+        return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
+    return dfs_paths(
+        scenario, max_assignments=MAX_DFS_ASSIGNMENTS, max_paths=MAX_DFS_PATHS, max_bytes=memory_budget()
+    )
 
 
 def dfs(
