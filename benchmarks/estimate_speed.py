@@ -35,7 +35,7 @@ from pathlib import Path
 
 from qcpp.estimators.crosscheck import crosscheck, crosscheck_cases
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
+from qcpp.problem.scenario_io import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 

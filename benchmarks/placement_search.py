@@ -11,12 +11,14 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
   CX (the greedy path before the search);
 * ``fused``: the same routing with SWAPs fused into an adjacent ``cx`` on their pair (``route(fuse=True)``);
 * ``search L``: :func:`qcpp.layout.placement_search.search_route` from that layout with ``L`` ``SabreLayout``
-  starts (``SEARCH_SEEDS`` routing seeds for the ``SEARCH_REFINE`` best): routed CX, CX / a2a, and the CPU
-  seconds of the search (the process's CPU time: SABRE's trials run on threads), its cache cleared first.
-  The default budget is ``SEARCH_LAYOUTS``;
+  starts (``placement_seeds`` routing seeds for the ``placement_refine`` best,
+  :class:`qcpp.routing.options.RoutingOptions`): routed CX, CX / a2a, and the CPU seconds of the search (the
+  process's CPU time: SABRE's trials run on threads), in a fresh routing context. The default budget is
+  ``placement_layouts``;
 * ``compile s``: CPU seconds of what ``qcpp compile --device FAMILY --lowered`` runs
-  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the greedy
-  path with the default search), the search's cache cleared first.
+  (:func:`qcpp.pipeline.device_compile.compile_for_device`, ``auto``: on heavy-hex the cell layout too, then the
+  greedy
+  path with the default search), in a fresh routing context.
 """
 
 from __future__ import annotations
@@ -30,9 +32,9 @@ from routing import BIND, scenarios  # the routing benchmark's (this script's di
 from qcpp.devices.device import get_device
 from qcpp.layout import placement_search
 from qcpp.pipeline.device_compile import best_layout, compile_for_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.sabre import route
 
@@ -51,7 +53,7 @@ def main() -> None:
     print("|---|---|---:|---:|---:|" + "---:|" * (len(BUDGETS) + 1))
     for label, s in one_robot():
         a2a = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit.count_ops()["cx"]
-        options = replace(for_device(DEFAULT_PLAN, family), fuse=False)
+        options = replace(device_plan_options(DEFAULT_PLAN, family, layout_method="greedy"), fuse=False)
         circuit = compile_scenario(s, 1, options, lowered=True, bindings=BIND).circuit
         device = get_device(family, min_qubits=circuit.num_qubits)
         start = best_layout(circuit, device)
@@ -59,13 +61,11 @@ def main() -> None:
         fused = route(circuit, device, start, fuse=True).circuit.count_ops()["cx"]
         cells = []
         for budget in BUDGETS:
-            placement_search._SEARCH_CACHE.clear()
             t = time.process_time()
             cx = placement_search.search_route(circuit, device, starts=(start,), layouts=budget).circuit
             seconds = time.process_time() - t
             n = cx.count_ops()["cx"]
             cells.append(f"{n:,}, {n / a2a:.2f}, {seconds:.2f}")
-        placement_search._SEARCH_CACHE.clear()
         t = time.process_time()
         compile_for_device(s, 1, family, lowered=True, bindings=BIND)
         compile_s = time.process_time() - t

@@ -55,7 +55,7 @@ def run_child(name: str, depths: list[int], repeat: int) -> dict[str, Any]:
     """Measure one scenario in this process (called in a child)."""
     import numpy as np
 
-    from qcpp.problem.scenario import load_scenario
+    from qcpp.problem.scenario_io import load_scenario
     from qcpp.simulate.objectives import make_objective
     from qcpp.simulate.subspace import SubspaceQAOA
     from qcpp.simulate.training import cost_scale, initial_angles

@@ -21,8 +21,8 @@ from dataclasses import replace
 
 from qcpp.estimators import layout_bound, routed
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
 
@@ -43,7 +43,7 @@ def _row(shape: tuple[int, int, int], device: str, p: int, exact: bool) -> str:
     dev = layout_device(s, device)
     assert dev is not None
     plan = PlanOptions()
-    cx = qaoa_plan(s, p, replace(for_device(plan, dev), fuse=False)).cost().two_qubit
+    cx = qaoa_plan(s, p, replace(device_plan_options(plan, dev), fuse=False)).cost().two_qubit
     real = layout_bound.layout_twoq_bound
     layout_bound.layout_twoq_bound = lambda *_a, **_k: None  # type: ignore[assignment]  # the previous bound
     try:

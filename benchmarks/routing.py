@@ -42,8 +42,10 @@ from qcpp.lowering.qasm import to_qasm2
 from qcpp.pipeline.device_compile import compile_for_device, medial_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
-from qcpp.routing.sabre import coupling_map
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.routed_circuit import coupling_map
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 OBSTACLE = {
@@ -52,6 +54,9 @@ OBSTACLE = {
     "robots": [{"start": [1, 1], "goal": [2, 3]}],
     "objective": {"obstacles": "hard"},
 }
+
+CONTEXT = RoutingContext()
+"""The routing memos of this run: later rows find equal windows and the plans' searches routed already."""
 
 
 def scenarios(quick: bool) -> list[tuple[str, Scenario]]:
@@ -82,17 +87,17 @@ def row(label: str, s: Scenario, family: str) -> str:
     fused = compile_scenario(s, 1, lowered=True, bindings=BIND).circuit
     if family == "heavy-hex":  # what `qcpp compile --device heavy-hex` writes, and the others on its device
         start = time.perf_counter()
-        compiled = compile_for_device(s, 1, family, lowered=True, bindings=BIND)
+        compiled = compile_for_device(s, 1, family, lowered=True, bindings=BIND, context=CONTEXT)
         seconds = time.perf_counter() - start
         device = compiled.routed.device
     else:
         device = medial_device(s, family) or get_device(family, min_qubits=fused.num_qubits)
     o3, o3_s = qiskit_o3(fused, device)
-    greedy = compile_for_device(s, 1, device, lowered=True, bindings=BIND, layout_method="greedy")
+    greedy = compile_for_device(s, 1, device, lowered=True, bindings=BIND, layout_method="greedy", context=CONTEXT)
     greedy_cx = greedy.routed.circuit.count_ops()["cx"]
     if family != "heavy-hex":
         start = time.perf_counter()
-        compiled = compile_for_device(s, 1, device, lowered=True, bindings=BIND)
+        compiled = compile_for_device(s, 1, device, lowered=True, bindings=BIND, context=CONTEXT)
         seconds = time.perf_counter() - start
     cx = compiled.routed.circuit.count_ops()["cx"]
     a2a = fused.count_ops()["cx"]
@@ -121,7 +126,7 @@ def arrangements() -> None:
     for label, s in (("4x4/2", default_scenario(4, 4, 2)), ("5x5/2", default_scenario(5, 5, 2)),
                      ("6x6/3", default_scenario(6, 6, 3))):  # fmt: skip
         for arrangement in ARRANGEMENTS:
-            r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, arrangement=arrangement)
+            r = compile_for_device(s, 1, "grid", lowered=True, bindings=BIND, arrangement=arrangement, context=CONTEXT)
             routed, a2a = _by_part(r.routed.circuit), _by_part(r.compiled.circuit)
             cells = " | ".join(f"{routed[k]:,} / {a2a[k]:,} = {routed[k] / a2a[k]:.2f}" for k in ("phase", "mixer"))
             total = r.routed.circuit.count_ops()["cx"]
@@ -131,19 +136,19 @@ def arrangements() -> None:
 def cells(quick: bool, prefix: str = "") -> None:
     """The heavy-hex cell layout (``layout_method="medial"`` on the unsized ``heavy-hex``) on every scenario: routed
     CX per part against the part's unrouted CX, next to the greedy routing on the smallest lattice that holds the
-    circuit (what ``auto`` compares on circuits of at most ``AUTO_COMPARE_MAX_TWOQ`` two-qubit gates)."""
+    circuit (what ``auto`` compares on circuits of at most ``auto_compare_max_twoq`` two-qubit gates)."""
     print("| scenario | cells: device | cells cx | phase: routed / a2a | mixer: routed / a2a | greedy: device "
           "| greedy cx |")  # fmt: skip
     print("|---|---|---:|---:|---:|---|---:|")
     for label, s in scenarios(quick):
         if not label.startswith(prefix):
             continue
-        r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="medial")
+        r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="medial", context=CONTEXT)
         routed, a2a = _by_part(r.routed.circuit), _by_part(r.compiled.circuit)
         parts = " | ".join(
             f"{routed[k]:,} / {a2a[k]:,} = {routed[k] / a2a[k]:.2f}" if a2a[k] else "-" for k in ("phase", "mixer")
         )
-        g = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="greedy")
+        g = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND, layout_method="greedy", context=CONTEXT)
         print(f"| {label} | {r.routed.device.name} | {r.routed.circuit.count_ops()['cx']:,} | {parts} "
               f"| {g.routed.device.name} | {g.routed.circuit.count_ops()['cx']:,} |", flush=True)  # fmt: skip
 

@@ -25,7 +25,7 @@ from qcpp.estimators.routed import _largest_component
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario, max_default_robots
-from qcpp.routing.sabre import duration_s, esp
+from qcpp.routing.native import duration_s, esp
 
 BUDGETS = (None, 64, 48, 32, 16, 0)
 """Ancilla budgets walked (``None``: the phase separator's default, fewest CX)."""

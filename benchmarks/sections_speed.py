@@ -4,7 +4,7 @@ Run: ``python benchmarks/sections_speed.py [--sizes 10x10/4,16x16/8,20x20/8,30x3
 [--limit S]``.
 
 Each row builds exactly the sections ``qcpp compile --device`` and the routed estimate build before routing:
-``qaoa_plan(default_scenario(rows, cols, robots), 1, for_device(PlanOptions(), device)).sections()``, on
+``qaoa_plan(default_scenario(rows, cols, robots), 1, device_plan_options(PlanOptions(), device)).sections()``, on
 ``grid`` (the ``medial`` phase layout: local-first adders drifting to the balance sinks,
 :func:`qcpp.gadgets.phase_sums.spatial_popcount_layout`) and ``heavy-hex`` (the ``spatial`` layout:
 passes along the Hilbert curve), in a fresh process with the tree's ``src`` first on the path. Printed per row:
@@ -37,7 +37,7 @@ from pathlib import Path
 from estimate_speed import _export
 
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
+from qcpp.problem.scenario_io import save_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = "10x10/4,16x16/8,20x20/8,30x30/8"
@@ -47,11 +47,11 @@ CHILD = """
 import hashlib, sys, time
 from qcpp.gadgets.phase_sums import SumsPhase
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.phase_layout import for_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
 rows, cols, robots, device = int(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
-plan = qaoa_plan(default_scenario(rows, cols, robots), 1, for_device(PlanOptions(), device))
+plan = qaoa_plan(default_scenario(rows, cols, robots), 1, device_plan_options(PlanOptions(), device))
 wall, cpu = time.perf_counter(), time.process_time()
 sections = list(plan.sections())
 wall, cpu = time.perf_counter() - wall, time.process_time() - cpu

@@ -26,7 +26,8 @@ import time
 from pathlib import Path
 
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, cpsat, dfs, genetic
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -13,7 +13,8 @@ import numpy as np
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.paths import assignment_bits, enumerate_paths
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.sparse import basis_from_bits
 from qcpp.simulate.statevector import simulate_statevector
 

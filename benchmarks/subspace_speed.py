@@ -72,7 +72,8 @@ def _timed(fn: Any) -> tuple[Any, float, float]:
 
 def run_one(name: str, p: int, kernels: str) -> dict[str, Any]:
     """Measure one scenario in this process (called in a child)."""
-    from qcpp.problem.scenario import load_scenario, scenario_from_dict
+    from qcpp.problem.scenario import scenario_from_dict
+    from qcpp.problem.scenario_io import load_scenario
     from qcpp.simulate.subspace import SubspaceQAOA
 
     spec = SCENARIOS[name]

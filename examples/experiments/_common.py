@@ -24,7 +24,7 @@ def two_robot_cases(quick: bool) -> list[tuple[str, Any]]:
     """The two-robot scenarios of the mixer-only studies, each with the source its rows record: two_robots_4x4,
     and unless ``quick`` also the open 4x4 and two_robots_5x5."""
     from qcpp.problem.presets import default_scenario
-    from qcpp.problem.scenario import load_scenario
+    from qcpp.problem.scenario_io import load_scenario
 
     cases: list[tuple[str, Any]] = [("examples/two_robots_4x4.toml", load_scenario(EXAMPLES / "two_robots_4x4.toml"))]
     if not quick:

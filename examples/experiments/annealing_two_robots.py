@@ -30,7 +30,7 @@ import numpy as np
 from _common import EXAMPLES, Table, command_line, parse, pyplot, record, save_figure, write_records, write_results
 
 from qcpp.cli.render import plot_paths, render_ascii
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, dfs
 
 NAME = "annealing_two_robots"

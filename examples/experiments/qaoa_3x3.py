@@ -40,7 +40,7 @@ from _common import (
 
 from qcpp.cli.render import plot_paths, render_ascii
 from qcpp.problem.paths import initial_path, path_to_nodes
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, dfs
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.training import cost_scale, most_probable, train

@@ -50,7 +50,8 @@ from _common import EXAMPLES, REPO, Table, command_line, parse, pyplot, save_fig
 import qcpp
 from qcpp.io.atomic import write_text_atomic
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_to_dict
+from qcpp.problem.scenario import Scenario, scenario_to_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers.descent import local_search
 from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, train_layerwise
 from qcpp.simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, OBJECTIVES

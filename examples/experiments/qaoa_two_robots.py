@@ -56,7 +56,7 @@ from _common import (
     write_results,
 )
 
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
 from qcpp.simulate.angle_fit import OBJECTIVES, AngleFit, fit_angles
 from qcpp.simulate.annealing_runs import AnnealSuccess, anneal_success

@@ -47,6 +47,8 @@ if TYPE_CHECKING:
     from qcpp.errors import OptionError, QcppError
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
+    from qcpp.problem.paths import is_feasible
+    from qcpp.verification import VerifyReport, verify
 
 _EXPORTS: dict[str, str] = {
     "Compiled": "qcpp.api.compiling",
@@ -71,6 +73,9 @@ _EXPORTS: dict[str, str] = {
     "UnboundParameterError": "qcpp.ir.angles",
     "SizeError": "qcpp.problem.limits",
     "allow_large": "qcpp.problem.limits",
+    "is_feasible": "qcpp.problem.paths",
+    "VerifyReport": "qcpp.verification",
+    "verify": "qcpp.verification",
 }
 """Public name -> the module that defines it."""
 
@@ -85,6 +90,7 @@ __all__ = [
     "ScenarioError",
     "SizeError",
     "UnboundParameterError",
+    "VerifyReport",
     "__version__",
     "allow_large",
     "compile",
@@ -93,11 +99,13 @@ __all__ = [
     "devices",
     "estimate",
     "grid_scenario",
+    "is_feasible",
     "load_scenario",
     "save_scenario",
     "simulate_qaoa",
     "solve",
     "train_qaoa",
+    "verify",
 ]
 """The public API (the command line is ``qcpp``, :mod:`qcpp.cli.app`)."""
 

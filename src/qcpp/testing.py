@@ -1,10 +1,11 @@
-"""Test inputs (needs hypothesis: the ``testing`` extra, ``pip install 'qcpp[testing]'``): hypothesis strategies for
-random gates and circuits, for scenarios, feasible paths and plaquette flips (:func:`scenarios`,
-:func:`feasible_paths`, :func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer
-variant against the SBF rules and :func:`qcpp.verify.verify`). The plain scenario lists the estimate == compiled
-checks run on are in :mod:`qcpp.estimators.crosscheck`.
+"""Hypothesis strategies for property tests (needs hypothesis: the ``testing`` extra, ``pip install 'qcpp[testing]'``).
 
-An optional module for property tests: no production module imports it (hypothesis is optional).
+Strategies for scenarios, feasible paths and plaquette flips (:func:`scenarios`, :func:`feasible_paths`,
+:func:`feasible_assignments`, :func:`plaquette_flips`: property-test your own mixer variant against the SBF rules
+and :func:`qcpp.verify`), and for random angles, gates and circuits of the IR.
+
+An optional module for property tests of the IR and of code built on it: no production module imports it. The
+plain scenario lists the estimate == compiled checks run on are in :mod:`qcpp.estimators.crosscheck`.
 
 A property test of feasibility preservation, in the form a mixer variant would use:
 
@@ -65,11 +66,7 @@ from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid
 from qcpp.problem.paths import iter_paths
 from qcpp.problem.sbf import Rule, sbf_logic
-from qcpp.problem.scenario import (
-    Objective,
-    Robot,
-    Scenario,
-)
+from qcpp.problem.scenario import Objective, Robot, Scenario
 
 __all__ = [
     "ALL_GATE_NAMES",

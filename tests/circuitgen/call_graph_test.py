@@ -7,9 +7,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.cost import Cost
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
-from qcpp.plan.call_graph import COSTS, CallGraph, GadgetKind
+from qcpp.plan.call_graph import CallGraph, GadgetKind
 from qcpp.plan.mixer_classes import mixer_part
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan

@@ -26,12 +26,14 @@ from qcpp.ir.gates import rx, ry
 from qcpp.layout.heavy_hex import hex_placement
 from qcpp.layout.placement import distances
 from qcpp.lowering.passes import lower
-from qcpp.pipeline.cellmixer import _CHOICE_CACHE, _operand_swaps, _window_cx, cell_mixers, relabelled_plans
+from qcpp.pipeline.cellmixer import _operand_swaps, _window_cx, cell_mixers, relabelled_plans
 from qcpp.pipeline.device_compile import hex_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING
 from qcpp.simulate.statevector import simulate_statevector
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
@@ -59,7 +61,7 @@ def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) ->
     registers = tuple(plan.circuit().registers)
     for k, m in enumerate(mixers):
         m = dataclasses.replace(m, beta=Angle.symbol("beta_0"))
-        plans = relabelled_plans(m.kind[1], m.kind[2])  # type: ignore[index]
+        plans = relabelled_plans(m.kind.program, m.kind.target)  # type: ignore[union-attr]
         assert plans[0] == m.plan and len(plans) > 1
         swapped = [v for p in plans[:4] for v in _operand_swaps(p)]
         assert swapped
@@ -79,8 +81,7 @@ def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape
     homes = hex_placement(s, dev)
     assert homes is not None
     dist = distances(dev)
-    _CHOICE_CACHE.clear()  # every choice made here, on this circuit
-    planned = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND)
+    planned = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND)  # a fresh context: every choice made here
     assert [sec.name for sec in planned.sections] == [sec.name for sec in circuit.sections]
     changed = 0
     for old, new in zip(circuit.sections, planned.sections, strict=True):
@@ -89,7 +90,9 @@ def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape
             continue
         changed += 1
         assert sum(len(g[1]) == 2 for g in new.gates) == sum(len(g[1]) == 2 for g in old.gates)
-        assert _window_cx(new, circuit, homes, dev, dist, True) <= _window_cx(old, circuit, homes, dev, dist, True)
+        context = RoutingContext()
+        assert (_window_cx(new, circuit, homes, dev, dist, DEFAULT_ROUTING, context)
+                <= _window_cx(old, circuit, homes, dev, dist, DEFAULT_ROUTING, context))  # fmt: skip
     assert changed > 0
     grid = get_device("grid:9x9")
     assert cell_mixers(s, OPTIONS, circuit, grid, homes, distances(grid), BIND) is circuit

@@ -55,6 +55,9 @@ def test_the_checker_finds_a_wrong_cost() -> None:
         def logical_cost(self) -> Cost:
             return self.inner.logical_cost()  # type: ignore[attr-defined]
 
+        def needs(self) -> tuple[int, int]:
+            return self.inner.needs()  # type: ignore[attr-defined,no-any-return]
+
         def emit(self) -> list:
             return self.inner.emit()  # type: ignore[attr-defined]
 

@@ -25,7 +25,7 @@ from qcpp.pipeline.device_compile import compile_for_device, hex_device, layout_
 from qcpp.plan.compile import compile_scenario
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.routing.sabre import RoutedCircuit
+from qcpp.routing.routed_circuit import RoutedCircuit
 
 from .conftest import scenarios
 from .medial_test import BIND, OBSTACLE_INTERIOR

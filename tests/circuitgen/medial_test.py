@@ -19,13 +19,14 @@ from hypothesis import strategies as st
 from qcpp.devices.device import get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rx, ry
-from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape, tiling
+from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
+from qcpp.plan.phase_layout import tiling
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.routing.sabre import mirror_length, route_windows
+from qcpp.routing.windows import mirror_length, route_windows
 
 from .conftest import scenarios
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling, _permuted, _statevector
@@ -121,7 +122,8 @@ def test_the_allocation_search_never_routes_a_window_to_more_gates() -> None:
     """The search keeps a section's greedy allocation unless its window routes to fewer two-qubit gates; on
     3x3/1 it finds fewer for some partial mixers."""
     from qcpp.layout.placement import distances
-    from qcpp.routing.sabre import Positions, route_window, window_cx
+    from qcpp.routing.sabre import window_cx
+    from qcpp.routing.windows import Positions, route_window
 
     s = default_scenario(3, 3, 1)
     dev = get_device("grid:5x5")
@@ -230,7 +232,7 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     same count, and the routed circuit's count is the sum of its windows' counts."""
     from qcpp.layout.placement import distances
     from qcpp.plan.qaoa import qaoa_plan
-    from qcpp.routing.sabre import Positions, route_window
+    from qcpp.routing.windows import Positions, route_window
 
     s = default_scenario(8, 8, 1)
     dev = get_device("grid:15x15")

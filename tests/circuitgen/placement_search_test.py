@@ -9,6 +9,7 @@ equal to the count it writes, the result independent of its cache (so ``estimate
 from __future__ import annotations
 
 import doctest
+from dataclasses import replace
 
 import pytest
 from hypothesis import given, settings
@@ -23,7 +24,10 @@ from qcpp.pipeline.device_compile import best_layout, compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
-from qcpp.routing.sabre import RoutedCircuit, coupling_map, route
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
+from qcpp.routing.sabre import route
 
 from .routing_qcec_test import aligned
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling
@@ -72,7 +76,7 @@ def test_fused_whole_circuit_routing_is_exact_and_scored_as_written(
     for g in logical.gates:
         if len(g[1]) == 2:
             qc.cx(layout[g[1][0]], layout[g[1][1]])
-    score = placement_search._routed_cx(circuit_to_dag(qc), coupling_map(dev), seed)
+    score = placement_search._routed_cx(circuit_to_dag(qc), coupling_map(dev), seed, DEFAULT_ROUTING.trials)
     assert score == two_qubit_count(fused.circuit)
 
 
@@ -80,47 +84,43 @@ def _mixer_circuit(shape: tuple[int, int, int]) -> Circuit:
     return compile_scenario(default_scenario(*shape), 1, PlanOptions(fuse=False), lowered=True, bindings=BIND).circuit
 
 
-def test_search_is_no_worse_than_its_start_and_independent_of_its_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_search_is_no_worse_than_its_start_and_independent_of_its_cache() -> None:
     c = _mixer_circuit((2, 3, 1))
     dev = get_device("heavy-hex:3")
     start = best_layout(c, dev)
     one = route(c, dev, start, fuse=True)
-    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
-    found = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
+    context = RoutingContext()
+    found = search_route(c, dev, starts=(start,), layouts=6, seeds=2, context=context)
     assert _on_coupling(found)
     assert two_qubit_count(found.circuit) <= two_qubit_count(one.circuit)
-    assert len(placement_search._SEARCH_CACHE) == 1
-    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})  # afresh: the same choice, gate for gate
-    again = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
+    assert len(context.placements) == 1
+    again = search_route(c, dev, starts=(start,), layouts=6, seeds=2)  # afresh: the same choice, gate for gate
     assert list(again.circuit.gates) == list(found.circuit.gates) and again.initial_layout == found.initial_layout
-    cached = search_route(c, dev, starts=(start,), layouts=6, seeds=2)
-    assert list(cached.circuit.gates) == list(found.circuit.gates)
+    cached = search_route(c, dev, starts=(start,), layouts=6, seeds=2, context=context)
+    assert list(cached.circuit.gates) == list(found.circuit.gates) and len(context.placements) == 1
     with pytest.raises(ValueError, match="at least one layout"):
         search_route(c, dev, layouts=0)
 
 
-def test_compile_searches_small_circuits_only(monkeypatch: pytest.MonkeyPatch) -> None:
-    calls: list[int] = []
-    real = placement_search.search_route
-
-    def spy(circuit: Circuit, *args: object, **kwargs: object) -> RoutedCircuit:
-        calls.append(two_qubit_count(circuit))
-        return real(circuit, *args, **kwargs)  # type: ignore[arg-type]
-
-    import qcpp.pipeline.device_compile as hardware
-
-    monkeypatch.setattr(hardware, "search_route", spy)
+def test_compile_searches_small_circuits_only() -> None:
     s = default_scenario(2, 3, 1)
-    compile_for_device(s, 1, "heavy-hex:3", lowered=True, bindings=BIND, layout_method="greedy")
-    assert len(calls) == 1 and calls[0] <= placement_search.SEARCH_MAX_TWOQ
-    monkeypatch.setattr(hardware, "SEARCH_MAX_TWOQ", calls[0] - 1)
-    r = compile_for_device(s, 1, "heavy-hex:3", lowered=True, bindings=BIND, layout_method="greedy")
-    assert len(calls) == 1 and r.routed.num_fused == 0  # above the limit: one routing, no fused SWAPs
-    compile_for_device(s, 1, "all-to-all:12", lowered=True, bindings=BIND)
-    assert len(calls) == 1  # nothing to search on all-to-all
+
+    def searched(device: str, routing: RoutingOptions = DEFAULT_ROUTING) -> tuple[list[int], RoutedCircuit]:
+        """The two-qubit counts of the circuits compile's placement search ran on (its memo's keys), and the
+        routed circuit."""
+        context = RoutingContext()
+        r = compile_for_device(s, 1, device, lowered=True, bindings=BIND, layout_method="greedy", routing=routing,
+                               context=context)  # fmt: skip
+        return [len(key[0]) for key in context.placements], r.routed
+
+    calls, _ = searched("heavy-hex:3")
+    assert len(calls) == 1 and calls[0] <= DEFAULT_ROUTING.placement_max_twoq
+    fewer, routed = searched("heavy-hex:3", replace(DEFAULT_ROUTING, placement_max_twoq=calls[0] - 1))
+    assert fewer == [] and routed.num_fused == 0  # above the limit: one routing, no fused SWAPs
+    assert searched("all-to-all:12")[0] == []  # nothing to search on all-to-all
 
 
-def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated() -> None:
     """3x3/1 on the unsized heavy-hex: the search's routing is within 3x the all-to-all CX (#21's goal; one
     SABRE routing from the best layout wrote 354 = 3.34x), and estimate --device reports it exactly, with the
     search redone from scratch (no cached choice)."""
@@ -129,11 +129,9 @@ def test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated(monkeypat
 
     s = default_scenario(3, 3, 1)
     a2a = compile_scenario(s, 1, lowered=True).circuit.count_ops()["cx"]
-    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
-    r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND)
+    r = compile_for_device(s, 1, "heavy-hex", lowered=True, bindings=BIND)  # in a routing context of its own
     assert r.layout_method == "greedy" and _on_coupling(r.routed)
     assert r.routed.circuit.count_ops()["cx"] <= 3 * a2a
-    monkeypatch.setattr(placement_search, "_SEARCH_CACHE", {})
     f = routed_fields(s, 1, DEFAULT_PLAN, "heavy-hex", r.logical_qubits, a2a, 0)
     assert f["routed_kind"] == "exact" and f["device"] == r.routed.device.name
     assert f["routed_twoq"] == r.summary()["routed"]["two_qubit"]  # native: one cz per cx

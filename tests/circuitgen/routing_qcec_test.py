@@ -13,7 +13,7 @@ from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, rz
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
-from qcpp.routing.sabre import RoutedCircuit
+from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.simulate.equivalence import check_equivalence
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}

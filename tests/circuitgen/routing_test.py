@@ -29,7 +29,9 @@ from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.routing.sabre import RoutedCircuit, esp, route, to_native
+from qcpp.routing.native import esp, to_native
+from qcpp.routing.routed_circuit import RoutedCircuit
+from qcpp.routing.sabre import route
 from qcpp.simulate.equivalence import to_qiskit
 from qcpp.simulate.statevector import simulate_statevector
 
@@ -37,7 +39,19 @@ BIND = {"gamma_0": 0.37, "beta_0": 0.81}
 
 
 @pytest.mark.parametrize(
-    "module", ["qcpp.devices.device", "qcpp.routing.sabre", "qcpp.layout.placement", "qcpp.pipeline.device_compile"]
+    "module",
+    [
+        "qcpp.devices.device",
+        "qcpp.routing.sabre",
+        "qcpp.routing.routed_circuit",
+        "qcpp.routing.windows",
+        "qcpp.routing.patches",
+        "qcpp.routing.native",
+        "qcpp.routing.options",
+        "qcpp.routing.context",
+        "qcpp.layout.placement",
+        "qcpp.pipeline.device_compile",
+    ],
 )
 def test_doctests(module: str) -> None:
     result = doctest.testmod(importlib.import_module(module))
@@ -269,13 +283,13 @@ def test_esp_matches_an_independent_computation_on_qiskits_transpiled_circuit() 
 )
 def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) -> None:
     """Two CX for a SWAP and the CX beside it instead of four, and the circuit is unchanged up to the layouts."""
-    from qcpp.routing.sabre import _assemble
+    from qcpp.routing.sabre import assemble
 
     logical = Circuit([("data", 3)], [Section("s", gates)])
     windows = ([0] * len(gates), [0] * len(ops))  # one window, as route_windows hands it over
     dev = get_device("grid:1x3")
-    assert _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2)).fused == ()  # route()
-    routed = _assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2), None, windows)
+    assert assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2)).fused == ()  # route()
+    routed = assemble(list(gates), ["s"] * len(gates), (0, 1, 2), 3, ops, dev, (0, 1, 2), None, windows)
     assert routed.fused == (("s", 1),) and routed.swaps == 1
     assert routed.circuit.count_ops()["cx"] == logical.count_ops()["cx"] + 3 - 2
     assert _on_coupling(routed)
@@ -288,10 +302,11 @@ def test_a_swap_next_to_a_cx_on_its_pair_is_fused(gates: list[Gate], ops: list) 
 def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> None:
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
     again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
-    routing, and replays the patches the routing saw into PATCH_WATCH."""
+    routing, and replays the patches the routing saw into the context's open watches."""
     from qcpp.layout.placement import distances
-    from qcpp.routing import sabre as routing
-    from qcpp.routing.sabre import PATCH_WATCH, Positions, route_window
+    from qcpp.routing.context import RoutingContext
+    from qcpp.routing.options import DEFAULT_ROUTING
+    from qcpp.routing.windows import Positions, route_window
 
     dev = get_device(data.draw(st.sampled_from(["grid:4x4", "heavy-hex:3"])))
     dist = distances(dev)
@@ -301,23 +316,20 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     pairs = [tuple(data.draw(st.lists(st.integers(0, n - 1), min_size=2, max_size=2, unique=True))) for _ in range(k)]
     pairs += pairs[::-1]  # a compute and its mirror
 
-    def routed() -> tuple[list, set[int], int]:
-        seen: set[int] = set()
-        before = routing.WHOLE_COMPONENT_PATCHES
-        PATCH_WATCH.append(seen)
-        try:
-            ops = route_window(pairs, Positions(tuple(homes), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
-        finally:
-            PATCH_WATCH.remove(seen)
-        return ops, seen, routing.WHOLE_COMPONENT_PATCHES - before
+    context = RoutingContext()
 
-    routing._WINDOW_CACHE.clear()
+    def routed() -> tuple[list, set[int], int]:
+        with context.watching() as watch:
+            pos = Positions(tuple(homes), dev.num_qubits)
+            ops = route_window(pairs, pos, dev, dist, 0, DEFAULT_ROUTING, context)  # type: ignore[arg-type]
+        return ops, watch.qubits, watch.whole_component
+
     cold = routed()
     assert cold[1]  # the routing saw a patch
     assert routed() == cold  # warm: the memo's answer
     renamed = [(n - 1 - a, n - 1 - b) for a, b in pairs]  # the same physical pairs, the qubits named backwards
-    ops = route_window(renamed, Positions(tuple(homes[::-1]), dev.num_qubits), dev, dist)  # type: ignore[arg-type]
-    assert ops == cold[0]
+    pos = Positions(tuple(homes[::-1]), dev.num_qubits)
+    assert route_window(renamed, pos, dev, dist, 0, DEFAULT_ROUTING, context) == cold[0]  # type: ignore[arg-type]
 
 
 def _window_cx_reference(ops: list) -> int:
@@ -353,13 +365,15 @@ def test_window_cx_equals_its_reference(ops: list) -> None:
 @settings(max_examples=20, deadline=None)
 @given(st.data())
 def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject) -> None:
-    """_run_sabre (Qiskit's routing call with the arguments SabreSwap builds) gives the pass's own routing."""
+    """run_sabre (Qiskit's routing call with the arguments SabreSwap builds) gives the pass's own routing."""
     from qiskit import QuantumCircuit
     from qiskit.converters import circuit_to_dag, dag_to_circuit
     from qiskit.transpiler import PassManager
     from qiskit.transpiler.passes import SabreSwap
 
-    from qcpp.routing.sabre import _run_sabre, _sabre_pass, coupling_map
+    from qcpp.routing.context import RoutingContext
+    from qcpp.routing.patches import run_sabre, sabre_pass
+    from qcpp.routing.routed_circuit import coupling_map
 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
     size = dev.num_qubits
@@ -368,9 +382,9 @@ def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject)
         a, b = data.draw(st.permutations(range(size)))[:2]
         qc.cx(a, b)
     seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
-    ours, _ = _sabre_pass(tuple(dev.coupling), size)
+    ours, _ = sabre_pass(RoutingContext(), tuple(dev.coupling), size)
     ours.seed, ours.trials = seed, trials
-    fast = dag_to_circuit(_run_sabre(ours, circuit_to_dag(qc), size))
+    fast = dag_to_circuit(run_sabre(ours, circuit_to_dag(qc), size))
     reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
     assert [(i.operation.name, [fast.find_bit(q).index for q in i.qubits]) for i in fast.data] == [
         (i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data

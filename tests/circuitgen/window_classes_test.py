@@ -1,9 +1,9 @@
 """The routed sum over window classes equals what ``compile --device grid`` writes (medial layout).
 
-Each case computes :func:`qcpp.estimators.window_classes.routed_sum`, forgets every routing the process remembers
-(SABRE's window cache), then compiles the circuit routed on the same device and compares the two-qubit count, the
-one-qubit count, the native gate counts by name and the ESP; the sum's depth and duration must bound the
-circuit's.
+Each case computes :func:`qcpp.estimators.window_classes.routed_sum` (in its own routing context, so none of its
+memoised routings or allocation searches reaches the compile), then compiles the circuit routed on the same device and
+compares the two-qubit count, the one-qubit count, the native gate counts by name and the ESP; the sum's depth and
+duration must bound the circuit's.
 """
 
 from __future__ import annotations
@@ -18,13 +18,12 @@ from hypothesis import HealthCheck, given, settings
 from qcpp.estimators.counts import count_gates
 from qcpp.estimators.crosscheck import interior_endpoints
 from qcpp.estimators.window_classes import routed_sum
-from qcpp.layout import medial
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
-from qcpp.routing import sabre as routing
-from qcpp.routing.sabre import duration_s, esp
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.native import duration_s, esp
 
 from .conftest import scenarios
 
@@ -40,9 +39,8 @@ DEFAULT = PlanOptions()
 def _assert_sum_equals_compile(s: Scenario, p: int, options: PlanOptions = DEFAULT, device: str = "grid") -> None:
     summed = routed_sum(s, p, options, device)
     assert summed is not None
-    routing._WINDOW_CACHE.clear()  # the compile routes every window afresh: determinism, not a shared memo
-    medial._SEARCH_CACHE.clear()  # and searches every allocation afresh: the sum's searches do not seed compile's
-    r = compile_for_device(s, p, device, options, bindings=None, layout_method="medial")
+    # a fresh context: compile routes every window and searches every allocation afresh (determinism, not a memo)
+    r = compile_for_device(s, p, device, options, bindings=None, layout_method="medial", context=RoutingContext())
     routed = r.routed
     assert routed.device.name == summed.device.name
     ops = routed.circuit.count_ops()
@@ -162,9 +160,10 @@ def test_windows_over_the_whole_device_budget_are_bounded() -> None:
 @pytest.mark.parametrize(
     "with_5x5", [False, pytest.param(True, marks=pytest.mark.heavy)], ids=["4x4 interior, 3x4/2", "and 5x5/1"]
 )
-def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.MonkeyPatch, with_5x5: bool) -> None:
-    """Compile and the sum share the allocation search's cache (per section up to translation): both are exact
-    only if every section with one key searches to the same answer, on the device and on any crop of it."""
+def test_the_allocation_search_answers_by_its_cache_key(with_5x5: bool) -> None:
+    """The allocation search's memo (per section up to translation) may serve compile and the sum in one context:
+    both are exact only if every section with one key searches to the same answer, on the device and on any crop
+    of it."""
 
     answers: dict = {}  # type: ignore[type-arg]
     conflicts = []
@@ -179,9 +178,10 @@ def test_the_allocation_search_answers_by_its_cache_key(monkeypatch: pytest.Monk
             if answers.setdefault(key, value) != value:
                 conflicts.append((key, answers[key], value))
 
-    monkeypatch.setattr(medial, "_SEARCH_CACHE", Fresh())
+    context = RoutingContext()
+    context.allocations = Fresh()
     small = [interior_endpoints(4, 4, "soft"), default_scenario(3, 4, 2)]
     for s in [default_scenario(5, 5, 1), *small] if with_5x5 else small:
-        routed_sum(s, 1)
-        compile_for_device(s, 1, "grid", layout_method="medial")
+        routed_sum(s, 1, context=context)
+        compile_for_device(s, 1, "grid", layout_method="medial", context=context)
     assert len(answers) > 10 and not conflicts

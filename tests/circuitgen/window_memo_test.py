@@ -1,12 +1,13 @@
 """The routed-window memo up to the heavy-hex lattice's translations, and the cells' plan-choice memos, change no
-answer (:class:`qcpp.routing.sabre._Lattice`, :func:`qcpp.routing.sabre.route_window`,
+answer (:class:`qcpp.routing.patches.Lattice`, :func:`qcpp.routing.windows.route_window`,
 :func:`qcpp.pipeline.cellmixer.cell_mixers`).
 
 Evidence: a window routed after its translation was memoised gives the ops, patches and whole-component count of
 the same window routed from a cold memo, on random windows and translations of a heavy-hex lattice (interior and
 boundary), and the translated entry is used where the lattice around both is the same; a heavy-hex compile with
-every memo of this speed-up gives the circuit, routing and plan choices of the compile without them (2x3/1 on the
-cells in the default run; 4x4/2 and 5x5/3 on heavy-hex and on a grid in the heavy run).
+every memo of this speed-up gives the circuit, routing and plan choices of the compile without them (a
+``RoutingContext(reuse=False)``; 2x3/1 on the cells in the default run; 4x4/2 and 5x5/3 on heavy-hex and on a grid
+in the heavy run).
 """
 
 from __future__ import annotations
@@ -16,14 +17,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from qcpp.devices.device import get_device, heavy_hex_coordinates
-from qcpp.gadgets.partial_mixer import plan_parity_mixer
-from qcpp.layout import medial
 from qcpp.layout.placement import distances
-from qcpp.pipeline import cellmixer
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
-from qcpp.routing import sabre as routing
-from qcpp.routing.sabre import PATCH_WATCH, Positions, route_window
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING
+from qcpp.routing.windows import Positions, route_window
 
 DEVICE = get_device("heavy-hex:13")
 DIST = distances(DEVICE)
@@ -31,16 +30,11 @@ COORDS = heavy_hex_coordinates(13)
 AT = {c: i for i, c in enumerate(COORDS)}
 
 
-def _routed(pairs: list[tuple[int, int]]) -> tuple[list, set[int], int]:
+def _routed(pairs: list[tuple[int, int]], context: RoutingContext) -> tuple[list, set[int], int]:
     """The window of physical ``pairs`` routed from home: its ops, the patches it saw, its whole-component parts."""
-    seen: set[int] = set()
-    before = routing.WHOLE_COMPONENT_PATCHES
-    PATCH_WATCH.append(seen)
-    try:
-        ops = route_window(pairs, Positions.identity(DEVICE.num_qubits), DEVICE, DIST)
-    finally:
-        del PATCH_WATCH[next(i for i, w in enumerate(PATCH_WATCH) if w is seen)]
-    return ops, seen, routing.WHOLE_COMPONENT_PATCHES - before
+    with context.watching() as watch:
+        ops = route_window(pairs, Positions.identity(DEVICE.num_qubits), DEVICE, DIST, 0, DEFAULT_ROUTING, context)
+    return ops, watch.qubits, watch.whole_component
 
 
 @st.composite
@@ -68,11 +62,10 @@ def test_a_window_routed_after_its_translation_routes_as_from_a_cold_memo(
     windows: tuple[list[tuple[int, int]], list[tuple[int, int]]],
 ) -> None:
     pairs, moved = windows
-    routing._WINDOW_CACHE.clear()
-    cold = _routed(moved)
-    routing._WINDOW_CACHE.clear()
-    _routed(pairs)
-    assert _routed(moved) == cold
+    cold = _routed(moved, RoutingContext())
+    warm = RoutingContext()
+    _routed(pairs, warm)
+    assert _routed(moved, warm) == cold
 
 
 def test_an_interior_window_is_answered_by_its_translation() -> None:
@@ -80,29 +73,27 @@ def test_an_interior_window_is_answered_by_its_translation() -> None:
     base = AT[(10, 8)]
     pairs = [(base, AT[(10, 12)]), (AT[(10, 12)], AT[(12, 10)]), (AT[(10, 12)], base)]
     moved = [tuple(AT[(COORDS[q][0] + 4, COORDS[q][1] + 4)] for q in pr) for pr in pairs]
-    routing._WINDOW_CACHE.clear()
-    first = _routed(pairs)  # type: ignore[arg-type]
-    size = len(routing._WINDOW_CACHE)
-    second = _routed(moved)  # type: ignore[arg-type]
-    assert len(routing._WINDOW_CACHE) == size
+    context = RoutingContext()
+    first = _routed(pairs, context)  # type: ignore[arg-type]
+    size = len(context.windows)
+    second = _routed(moved, context)  # type: ignore[arg-type]
+    assert len(context.windows) == size
     shift = {q: AT[(COORDS[q][0] + 4, COORDS[q][1] + 4)] for q in first[1]}
     assert second[0] == [(name, (shift[a], shift[b])) for name, (a, b) in first[0]]
     assert second[1] == set(shift.values()) and second[2] == first[2] == 0
 
 
-def _compiled(shape: tuple[int, int, int], device: str, memos: bool, monkeypatch: pytest.MonkeyPatch) -> tuple:
-    """The routed circuit, layouts and partial-mixer sections of a compile, with or without the memos."""
-    with monkeypatch.context() as m:
-        if not memos:
-            m.setattr(routing._Lattice, "of", classmethod(lambda cls, device: None))
-            m.setattr(cellmixer, "_planned", plan_parity_mixer)
-        routing._WINDOW_CACHE.clear()
-        routing._PATCH_INDEX.clear()
-        cellmixer._CHOICE_CACHE.clear()
-        cellmixer.relabelled_plans.cache_clear()
-        medial._SEARCH_CACHE.clear()
-        result = compile_for_device(default_scenario(*shape), 1, device, lowered=True, layout_method="medial")
-        routing._PATCH_INDEX.clear()
+def _compiled(shape: tuple[int, int, int], device: str, memos: bool) -> tuple:
+    """The routed circuit, layouts and partial-mixer sections of a compile, with or without the memos that answer
+    one query from another's (windows up to the lattice's translations, the A* of equal relabelled programs)."""
+    context = RoutingContext(reuse=memos)
+    result = compile_for_device(default_scenario(*shape), 1, device, lowered=True, layout_method="medial",
+                                context=context)  # fmt: skip
+    if memos and device == "heavy-hex":  # windows kept up to translation, one A* shared by equal programs
+        assert any(key[2] == "translated" for key in context.windows if key[0] == "window")
+        assert len(context.plans) < sum(24 for _ in context.relabelled)
+    if not memos:
+        assert not context.plans and all(index.lattice is None for index in context.patch_indexes)
     routed = result.routed
     return ([(g[0], g[1]) for g in routed.circuit.gates], routed.initial_layout, routed.swaps, routed.fused,
             [(s.name, [(g[0], g[1]) for g in s.gates]) for s in result.logical.sections])  # fmt: skip
@@ -119,21 +110,22 @@ def _compiled(shape: tuple[int, int, int], device: str, memos: bool, monkeypatch
     ],
     ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "5x5/3-heavy-hex", "4x4/2-grid", "5x5/3-grid"],
 )
-def test_the_memos_change_no_choice(shape: tuple[int, int, int], device: str, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_memos_change_no_choice(shape: tuple[int, int, int], device: str) -> None:
     """The allocation search, the cells' plan choice and the routing pick what they pick without the memos."""
-    assert _compiled(shape, device, True, monkeypatch) == _compiled(shape, device, False, monkeypatch)
+    assert _compiled(shape, device, True) == _compiled(shape, device, False)
 
 
 @settings(max_examples=20, deadline=None)
 @given(st.data())
 def test_a_patch_routing_reads_sabre_as_the_pass_writes_it(data: st.DataObject) -> None:
-    """_sabre_local's events (read off SABRE's routed DAG) are the SWAPs and gates of the SabreSwap pass's circuit,
+    """sabre_local's events (read off SABRE's routed DAG) are the SWAPs and gates of the SabreSwap pass's circuit,
     in its order."""
     from qiskit import QuantumCircuit
     from qiskit.transpiler import PassManager
     from qiskit.transpiler.passes import SabreSwap
 
-    from qcpp.routing.sabre import _sabre_local, coupling_map
+    from qcpp.routing.patches import sabre_local
+    from qcpp.routing.routed_circuit import coupling_map
 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
     size = dev.num_qubits
@@ -143,8 +135,7 @@ def test_a_patch_routing_reads_sabre_as_the_pass_writes_it(data: st.DataObject) 
     for a, b in pairs:
         qc.cx(a, b)
     reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
-    routing._WINDOW_CACHE.clear()
-    events = _sabre_local(tuple(dev.coupling), size, pairs, seed, trials)  # type: ignore[arg-type]
+    events = sabre_local(RoutingContext(), tuple(dev.coupling), size, pairs, seed, trials)  # type: ignore[arg-type]
     where = list(range(size))  # position -> the qubit that started there
     replayed = []
     for kind, what in events:

@@ -26,6 +26,7 @@ from qcpp.estimators.estimate import (
     exact_depth,
     layer_costs,
 )
+from qcpp.gadgets.phase_sums import SumsKind
 from qcpp.ir.circuit import Register
 from qcpp.ir.cost import Cost
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
@@ -225,7 +226,7 @@ def test_arithmetic_bound_from_its_shape_is_above_the_gadgets_own_depth(rows: in
     s = default_scenario(rows, cols, robots)
     layer = phase_layer(s)
     assert layer is not None
-    balance = next(k.example for k, _ in layer.kinds() if k.key[0] == "sums")
+    balance = next(k.example for k, _ in layer.kinds() if isinstance(k.key, SumsKind))
     shape = balance.shape
     assert Cost.sum(c + u for c, u in shape.halves()) + shape.phase_cost() == shape.cost()
     gadget = balance.build()

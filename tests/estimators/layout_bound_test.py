@@ -12,8 +12,8 @@ from qcpp.estimators.layout_bound import gate_distances, hex_path_lengths, layou
 from qcpp.layout.placement import distances
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.device_compile import layout_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
 
@@ -60,12 +60,9 @@ def test_later_layers_cost_what_the_first_costs(shape: tuple[int, int, int], dev
     s = default_scenario(*shape)
     dev = layout_device(s, device)
     assert dev is not None
-    from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT
     from qcpp.layout.medial import medial_placement
 
-    plan = for_device(PlanOptions(), dev)
-    if device == "heavy-hex":
-        plan = replace(plan, phase_layout=CELL_PHASE_LAYOUT)
+    plan = device_plan_options(PlanOptions(), dev)
     homes = medial_placement(s, dev)
     assert homes is not None
     circuit = lower(qaoa_plan(s, 3, replace(plan, fuse=False)).circuit())
@@ -86,7 +83,7 @@ def test_every_section_gets_distinct_free_qubits_for_its_ancillas(monkeypatch: p
 
     homes = medial_placement(s, dev)
     assert homes is not None
-    circuit = lower(qaoa_plan(s, 1, replace(for_device(PlanOptions(), dev), fuse=False)).circuit())
+    circuit = lower(qaoa_plan(s, 1, replace(device_plan_options(PlanOptions(), dev), fuse=False)).circuit())
     seen: list[tuple[np.ndarray, np.ndarray]] = []
     real = layout_bound.gate_distances
 
@@ -151,7 +148,6 @@ def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
     """Built gate by gate from the placement (an independent shortest-path routine), the routing the bound
     describes is valid and costs exactly the bound on a grid, at most it on heavy-hex (path lengths)."""
     from qcpp.estimators import layout_bound
-    from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT
     from qcpp.layout.medial import medial_placement
 
     s = default_scenario(*shape)
@@ -159,9 +155,7 @@ def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
     assert dev is not None
     homes = medial_placement(s, dev)
     assert homes is not None
-    plan = for_device(PlanOptions(), dev)
-    if device == "heavy-hex":
-        plan = replace(plan, phase_layout=CELL_PHASE_LAYOUT)
+    plan = device_plan_options(PlanOptions(), dev)
     circuit = lower(qaoa_plan(s, 1, replace(plan, fuse=False)).circuit())
     seen: list[tuple[np.ndarray, np.ndarray]] = []
     real = layout_bound.gate_distances

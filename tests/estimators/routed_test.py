@@ -12,15 +12,14 @@ from qcpp.devices.device import get_device
 from qcpp.estimators import layout_bound, routed
 from qcpp.estimators.layout_bound import layout_twoq_bound
 from qcpp.estimators.routed import diameter_bound, routed_fields
-from qcpp.layout import medial
 from qcpp.layout.placement import distances
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
-from qcpp.routing import sabre as routing
-from qcpp.routing.sabre import esp
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.native import esp
 
 
 def _fields(s, p, device, **kw):  # type: ignore[no-untyped-def]
@@ -40,9 +39,7 @@ def test_the_window_sum_gives_compiles_counts_and_esp(
     f = _fields(s, 1, "grid")
     assert f["routed_kind"] == "exact" and f["routed_depth_kind"] == "bound"
     assert f["routed_model"] == routed.SUM_MODEL
-    medial._SEARCH_CACHE.clear()  # compile searches and routes afresh: the sum's answers do not seed compile's
-    routing._WINDOW_CACHE.clear()
-    r = compile_for_device(s, 1, "grid")
+    r = compile_for_device(s, 1, "grid", context=RoutingContext())  # searched and routed afresh, apart from the sum
     assert r.layout_method == "medial" and f["device"] == r.routed.device.name
     summary = r.summary()["routed"]
     assert f["routed_twoq"] == summary["two_qubit"]
@@ -64,7 +61,7 @@ def test_the_bound_counts_the_circuit_the_device_compile_routes(
     f = _fields(s, 1, "heavy-hex")
     assert f["routed_kind"] == "bound" and f["routed_model"] == routed.BOUND_MODEL
     per = 1 + 6 * (diameter_bound(dev) - 1)
-    laid = qaoa_plan(s, 1, replace(for_device(PlanOptions(), "heavy-hex"), fuse=False))
+    laid = qaoa_plan(s, 1, replace(device_plan_options(PlanOptions(), "heavy-hex"), fuse=False))
     spatial = laid.cost().two_qubit
     pooled = qaoa_plan(s, 1, PlanOptions(phase_layout="pooled", fuse=False)).cost().two_qubit
     assert spatial > pooled  # star adders: the row's own (pooled) count would not bound the device circuit

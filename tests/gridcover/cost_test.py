@@ -37,7 +37,8 @@ from qcpp.problem.paths import (
     shortest_path,
 )
 from qcpp.problem.sbf import allowed_moves
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario_io import load_scenario
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

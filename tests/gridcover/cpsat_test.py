@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 from qcpp.problem.cost import cost_parts
 from qcpp.problem.paths import enumerate_paths, is_feasible
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, CpSatResult, cpsat, dfs, solve
 from qcpp.problem.solvers.cpsat import exact_rational, scenario_symmetries
 

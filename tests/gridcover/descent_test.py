@@ -10,7 +10,8 @@ from hypothesis import strategies as st
 
 from qcpp.problem.cost import cost
 from qcpp.problem.paths import initial_path, is_feasible
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers.descent import local_search
 from qcpp.problem.solvers.moves import MoveSpace
 

@@ -26,7 +26,8 @@ from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid, Node, node_symmetries
 from qcpp.problem.paths import enumerate_paths, initial_path, is_feasible
 from qcpp.problem.sbf import move_components, reachable_paths, representatives, sbf_logic
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
 NOTES = ROOT / "docs" / "paper-notes.md"

@@ -8,7 +8,7 @@ import pytest
 
 from qcpp.problem.paths import initial_path, path_from_nodes
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import cpsat
 from qcpp.qubo.solve import INSTALL_HINT, MissingAnnealer, drop_cycles, require_annealer, solve_qubo
 

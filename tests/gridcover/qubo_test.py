@@ -18,7 +18,8 @@ from qcpp.problem.cost import cost, cost_parts_bits
 from qcpp.problem.hamiltonian import ising_hamiltonian
 from qcpp.problem.paths import assignment_bits, enumerate_paths, is_feasible
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import cpsat, dfs
 from qcpp.qubo.model import (
     RULE_MARGIN,

@@ -13,19 +13,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from qcpp.io.atomic import write_text_atomic
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid
-from qcpp.problem.scenario import (
-    Objective,
-    Robot,
-    Scenario,
-    load_scenario,
-    save_scenario,
-    scenario_from_dict,
-    scenario_to_dict,
-    scenario_to_toml,
-    write_text_atomic,
-)
+from qcpp.problem.scenario import Objective, Robot, Scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario_io import load_scenario, save_scenario, scenario_to_toml
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

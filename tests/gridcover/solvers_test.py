@@ -14,7 +14,8 @@ import pytest
 from qcpp.problem.cost import cost, cost_parts
 from qcpp.problem.paths import enumerate_paths, initial_path, is_feasible, path_to_nodes
 from qcpp.problem.sbf import move_components
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, anneal, dfs, genetic, solution_to_dict, solve
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

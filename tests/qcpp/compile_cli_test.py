@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 from qcpp.cli.app import app
 from qcpp.plan.qaoa import qaoa_circuit
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.statevector import simulate_statevector
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"

@@ -16,7 +16,7 @@ from qcpp.lowering.qasm import to_qasm2, to_qasm3
 from qcpp.plan.compile import compile_scenario, parse_bindings
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import load_scenario, save_scenario
+from qcpp.problem.scenario_io import load_scenario, save_scenario
 
 EXAMPLE = "examples/paper_3x3.toml"
 

@@ -19,7 +19,7 @@ from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import save_scenario
+from qcpp.problem.scenario_io import save_scenario
 
 
 def _app() -> typer.Typer:

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 import qcpp.io.inputs
-from qcpp.problem.scenario import MAX_NESTING
+from qcpp.problem.scenario_io import MAX_NESTING
 
 from .clirun import assert_one_line_error, run
 
@@ -222,7 +222,7 @@ def test_simulating_commands_take_the_narrower_phase_range(tmp_path: Path) -> No
     refuse it (their phases would carry 4e-8 of float error: benchmarks/cost_range.py, validate fails); at the
     largest value the refusal allows, validate passes."""
     from qcpp.problem.cost_range import PHASE_COST_LIMIT, largest_allowed
-    from qcpp.problem.scenario import load_scenario
+    from qcpp.problem.scenario_io import load_scenario
 
     path = tmp_path / "long.toml"
     path.write_text(TWO_ROBOTS + "edge_length = 1e4\n")

@@ -13,7 +13,7 @@ from qcpp.estimators.counts import count
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 from .clirun import assert_one_line_error, run
 

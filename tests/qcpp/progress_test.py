@@ -20,7 +20,7 @@ from qcpp.cli.app import app
 from qcpp.cli.progress import FIRST_LINE_AFTER, Progress, progress_mode
 from qcpp.problem.paths import count_paths, enumerate_paths
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import exhaustive
 from qcpp.problem.solvers.exhaustive import DfsTooLargeError, dfs, dfs_paths
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from qcpp.cli.commands.simulate import parse_angles
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.training import initial_angles
 

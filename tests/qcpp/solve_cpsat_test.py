@@ -9,7 +9,7 @@ import pytest
 
 from qcpp.problem.cost import cost_parts
 from qcpp.problem.paths import is_feasible, path_from_nodes
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
 
 from .clirun import assert_one_line_error, run

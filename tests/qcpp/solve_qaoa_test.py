@@ -10,7 +10,7 @@ import pytest
 from qcpp.cli.commands.solve import SOLVE_METHODS, sparkline
 from qcpp.cli.render import render_ascii
 from qcpp.problem.paths import path_from_nodes
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
 from qcpp.simulate.qaoa_solver import solve_qaoa
 from qcpp.simulate.subspace import SubspaceQAOA

@@ -13,7 +13,8 @@ import pytest
 
 from qcpp.problem.cost import cost
 from qcpp.problem.paths import enumerate_paths
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, dfs
 from qcpp.simulate.angle_fit import AngleFit, fit_angles
 from qcpp.simulate.annealing_runs import anneal_success

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from qcpp.problem.scenario import load_scenario, scenario_from_dict
+from qcpp.problem.scenario import scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, extend_angles, train_layerwise
 from qcpp.simulate.objectives import make_objective
 from qcpp.simulate.subspace import SubspaceQAOA

@@ -11,7 +11,8 @@ from qcpp.ir.angles import mixer_symbol
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.mixer_only import (
     bindings,
     mixer_sites,

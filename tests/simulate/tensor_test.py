@@ -21,7 +21,7 @@ from typer.testing import CliRunner
 from qcpp.cli.app import app
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.validate import validate
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
@@ -165,3 +165,17 @@ def test_a_block_that_leaves_an_ancilla_dirty_is_not_collapsed() -> None:
     fixed = Circuit([("d", 2), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 2)]), Section("t", [ccx(0, 1, 2)])])
     [(qubits, op)] = collapse_ancilla_blocks(fixed, [2])
     assert qubits == (0, 1) and op.shape == (4, 4)
+
+
+def test_path_optimizers_are_shared_per_directory_until_the_cache_is_cleared(tmp_path: Path) -> None:
+    """path_optimizer hands out one optimizer per directory and settings (its paths are reused by every contraction
+    of the process) until PATH_OPTIMIZERS.clear(), after which a new one is built."""
+    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+
+    first = path_optimizer(tmp_path / "a")
+    assert path_optimizer(tmp_path / "a") is first
+    assert path_optimizer(tmp_path / "b") is not first
+    assert path_optimizer(tmp_path / "a", max_repeats=4) is not first
+    PATH_OPTIMIZERS.clear()
+    assert len(PATH_OPTIMIZERS) == 0
+    assert path_optimizer(tmp_path / "a") is not first

@@ -10,7 +10,8 @@ import pytest
 
 from qcpp.problem.cost import cost
 from qcpp.problem.paths import enumerate_paths, initial_path
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.training import (
     TrainingResult,

@@ -10,14 +10,15 @@ import pytest
 from hypothesis import given, settings
 
 from qcpp.cli.app import app
+from qcpp.estimators.crosscheck import interior_endpoints, with_obstacles
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
 from qcpp.gadgets.phase_visits import VisitPhase
 from qcpp.ir.gates import Gate, mcx
 from qcpp.problem.paths import is_feasible
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.testing import interior_endpoints, plaquette_flips, scenarios, with_obstacles
-from qcpp.verify import choose_method, verify, verify_gadgets, verify_state
+from qcpp.testing import plaquette_flips, scenarios
+from qcpp.verification import choose_method, verify, verify_gadgets, verify_state
 
 LEAK = {"grid": {"rows": 2, "cols": 3}, "robots": [{"start": [0, 2], "goal": [1, 1]}]}
 LEAK_PLAQUETTE = ((0, 1), (0, 2), (1, 2), (1, 1))

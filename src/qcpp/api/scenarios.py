@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import default_scenario, grid_scenario
-from qcpp.problem.scenario import Scenario, load_scenario, save_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario, save_scenario
 
 __all__ = ["Scenario", "ScenarioError", "default_scenario", "grid_scenario", "load_scenario", "save_scenario"]

@@ -8,13 +8,10 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
 * A :class:`~qcpp.problem.errors.ScenarioError`, ``ValueError``, ``OSError`` or ``MemoryError`` escaping a command
   becomes **one line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback
   (:func:`handle_errors`). Anything else is a bug and keeps its traceback.
-* Usage errors found while parsing (unknown option, a number that is not a number, a missing argument) are the
-  same one line plus a hint, ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')``,
-  exit code 2 (:class:`QcppGroup`), instead of click's framed box.
-* Numeric options are checked by name, the same way in every command (:data:`NUMERIC_OPTIONS`): ``-p`` and
-  ``--maxiter``, ``--max-amplitudes`` must be at least 1 (a zero-work request is refused, not
-  silently done), ``--seed`` at least 0; ``-p`` also at most :data:`qcpp.problem.limits.MAX_LAYERS`. So are
-  choice options (:data:`CHOICES`): ``error: --rule: expected exact or paper, got 'fast' (see ...)``.
+* Usage errors found while parsing are the same one line plus a hint,
+  ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')`` (:class:`QcppGroup`).
+* Numeric options are checked by name in every command (:data:`NUMERIC_OPTIONS`: e.g. ``-p`` at least 1 and at
+  most :data:`qcpp.problem.limits.MAX_LAYERS`, ``--seed`` at least 0), choice options by :data:`CHOICES`.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.cli.interrupt`).
 * ``--allow-large`` (every command) lifts the size guards of :mod:`qcpp.problem.limits`.
 
@@ -100,6 +97,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.cli.commands.validate",
     "qcpp.cli.commands.verify",
     "qcpp.cli.commands.export",
+    "qcpp.cli.commands.scenario",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
 
@@ -294,7 +292,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.simulate.evaluate", "METHODS"),
     "validate.backend": _lazy("qcpp.simulate.validate", "BACKENDS"),
-    "verify.method": _lazy("qcpp.verify.report", "METHODS"),
+    "verify.method": _lazy("qcpp.verification.report", "METHODS"),
     "estimate.fmt": _lazy("qcpp.estimators.tables", "FORMATS"),
     "estimate.compare": lambda: ("paper",),
     "estimate.depth": _lazy("qcpp.estimators.estimate", "DEPTH_MODES"),

@@ -141,9 +141,6 @@ def plot_paths(
         file: Output path; the format follows the suffix (``.png``, ``.svg``, ``.pdf``, ...).
         title: Figure title (default: the scenario's name, else its size).
 
-    Returns:
-        The written path.
-
     Raises:
         ValueError: if the number of paths is wrong or the format is unknown to matplotlib.
         OSError: if the file cannot be written.
@@ -229,9 +226,6 @@ def plot_trace(
         label: Legend label of the trace.
         steps: Draw the trace as steps (a best-so-far value holds until the next improvement) or as a line
             (an objective that moves every iteration, such as QAOA's training).
-
-    Returns:
-        The written path.
 
     Raises:
         ValueError: if ``trace`` is empty or the format is unknown.

@@ -16,7 +16,7 @@ A :class:`Device` is a frozen value. Two kinds exist:
 
 Couplings are undirected (every device here has a symmetric two-qubit gate). Per-qubit and per-coupling values
 are tuples aligned with ``range(num_qubits)`` and :attr:`Device.coupling`; a duration is ``None`` where the
-source publishes none (then :func:`qcpp.routing.sabre.duration_s` is ``None`` too).
+source publishes none (then :func:`qcpp.routing.native.duration_s` is ``None`` too).
 
 Example:
     >>> d = get_device("grid:2x3")

@@ -130,9 +130,6 @@ def count_gates(gates: Iterable[tuple[Any, ...]], num_qubits: int) -> GateCount:
         gates: gate tuples ``(name, qubits, ...)`` (:class:`~qcpp.ir.gates.Gate` or plain tuples).
         num_qubits: one more than the largest qubit index used.
 
-    Returns:
-        The statistics.
-
     >>> count_gates([("h", (0,)), ("cx", (0, 1)), ("ccx", (0, 1, 2)), ("cx", (1, 2))], 3).two_qubit_depth
     2
     """
@@ -148,9 +145,6 @@ def count(circuit: Circuit) -> ResourceCount:
 
     Args:
         circuit: any circuit; symbolic angles are fine.
-
-    Returns:
-        The :class:`ResourceCount`.
 
     >>> from qcpp.ir.circuit import CircuitBuilder
     >>> from qcpp.ir.gates import cx, x

@@ -29,7 +29,8 @@ from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASES, Pl
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.sbf import RULES
-from qcpp.problem.scenario import Scenario, load_scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["Case", "crosscheck", "crosscheck_cases", "every_plan_option", "interior_endpoints", "with_obstacles"]
 

@@ -36,9 +36,9 @@ from qcpp.estimators.depth import Depth
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, plan_slots
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS
 
 __all__ = [
     "ANCHORS",
@@ -176,15 +176,10 @@ _ANCHORED = COSTS.table("anchored profile", _CACHE_LIMIT)
 or ``None`` when the kind cannot be anchored."""
 _OWN_DEPTH = COSTS.table("own depth", _CACHE_LIMIT)
 """Per kind, in the kinds' one cache: anchor key -> the gadget's own :class:`~qcpp.estimators.depth.Depth`."""
-_BY_STRUCTURE: dict[Hashable, np.ndarray] = {}
-"""Lowered gate structure (qubits renamed by first appearance) -> transfer matrix: keyed by gates, not by kind (a
-run of an arithmetic gadget, or a state preparation), so not in the kinds' cache."""
-
-
-def _remember(cache: dict, key: Hashable, value: Any) -> None:
-    if len(cache) >= _CACHE_LIMIT:
-        cache.clear()
-    cache[key] = value
+_STRUCTURE_TABLE = "transfer by structure"
+"""The name of :data:`~qcpp.plan.call_graph.COSTS`' table of lowered gate structure (qubits renamed by first
+appearance) -> transfer matrix: keyed by gates, not by kind (a run of an arithmetic gadget, or a state
+preparation), in a table of its own."""
 
 
 def _work_start(registers: Sequence[Register]) -> int:
@@ -285,11 +280,12 @@ def gadget_steps(gadget: Any, registers: Sequence[Register]) -> list[MatrixStep]
     if hit is not None:
         return [MatrixStep(_index(hit[0], n), hit[1])] if hit[0] else []
     out = []
+    by_structure = COSTS.table(_STRUCTURE_TABLE, _CACHE_LIMIT)
     for key, qubits, run in _runs(lowered_gates(gadget, registers), MATRIX_QUBITS):
-        matrix = _BY_STRUCTURE.get(key)
+        matrix = by_structure.get(key)
         if matrix is None:
             matrix = transfer_profile(run, qubits)
-            _remember(_BY_STRUCTURE, key, matrix)
+            COSTS.remember(_STRUCTURE_TABLE, key, matrix)
         out.append(MatrixStep(_index(qubits, n), matrix))
     return out
 
@@ -369,9 +365,6 @@ class LayeredDepth:
             sections: the plan's sections, in circuit order.
             registers: the lowered circuit's registers (``work`` included).
             initial: name of the state preparation's section.
-
-        Returns:
-            The :class:`LayeredDepth`.
         """
         init: list[MatrixStep] = []
         layer: list[MatrixStep] = []

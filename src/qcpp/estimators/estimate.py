@@ -45,11 +45,14 @@ from qcpp.estimators.physical import (
     PhysicalEstimate,
     physical_estimate,
 )
+from qcpp.gadgets.blocks import XLayerKind
+from qcpp.gadgets.phase_ising import IsingKind
 from qcpp.gadgets.phase_sums import SumsShape
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.circuit import Register
 from qcpp.ir.cost import Cost
 from qcpp.lowering.passes import WORK_REGISTER, lower
-from qcpp.plan.call_graph import COSTS, SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
+from qcpp.plan.call_graph import SCENARIOS_KEPT, CallGraph, Deferred, GadgetKind
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.plan.qaoa import QaoaPlan, qaoa_circuit, qaoa_plan
 from qcpp.problem.presets import default_scenario
@@ -208,9 +211,6 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
     Args:
         scenario: the scenario.
         options: circuit construction options.
-
-    Returns:
-        The call graph.
     """
     return _plan(scenario, options).call_graph()
 
@@ -335,10 +335,11 @@ def kind_depth_bound(kind: GadgetKind) -> Depth:
 
 def _kind_depth_bound(kind: GadgetKind) -> Depth:
     ex = kind.example
-    if isinstance(ex, Deferred) and kind.key[0] == "ising" and not kind.key[2]:  # type: ignore[index]
+    key = kind.key
+    if isinstance(ex, Deferred) and isinstance(key, IsingKind) and not key.couplings:
         return Depth(1, 0, 1) if kind.cost().total else Depth()  # one rz on each of distinct data qubits
-    if kind.key[0] == "x_layer":  # type: ignore[index]  # X gates on distinct qubits: one layer
-        return Depth(1, 0, 0) if kind.key[1] else Depth()  # type: ignore[index]
+    if isinstance(key, XLayerKind):  # X gates on distinct qubits: one layer
+        return Depth(1, 0, 0) if key.count else Depth()
     d = known_depth(ex)
     if d is not None:
         return d
@@ -423,9 +424,6 @@ def estimate_point(point: Point, options: EstimateOptions = DEFAULT_OPTIONS) -> 
     Args:
         point: the point.
         options: what to estimate and how.
-
-    Returns:
-        The :class:`Estimate`.
 
     Raises:
         qcpp.problem.errors.ScenarioError: the grid cannot host the robots.

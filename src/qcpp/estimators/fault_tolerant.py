@@ -15,12 +15,9 @@ The input is a *logical cost* (:meth:`qcpp.gadgets.Gadget.logical_cost`, or
    **4 T** with ``toffoli_t=4`` (Jones 2013, "Low-overhead constructions for the fault-tolerant Toffoli gate",
    PRA 87, 022328: one ancilla and a measurement).
 4. **Explicit ``t``/``tdg``** count 1 T each; ``s``, ``h``, ``cx``, ``x`` are Clifford (0 T).
-5. **Rotations**: each ``rz`` (every ``rz`` of a lowered circuit has an arbitrary angle: Clifford and T phases
-   are lowered to ``s``/``t`` gates) is approximated to precision epsilon with about
-   ``3 log2(1/epsilon) + O(log log(1/epsilon))`` T gates (Ross & Selinger, "Optimal ancilla-free Clifford+T
-   approximation of z-rotations", Quantum Inf. Comput. 16, 901 (2016), arXiv:1403.2975). We use the leading
-   term ``ceil(3 log2(1/epsilon))`` (model ``ross-selinger``); model ``selinger`` uses the earlier
-   ``4 log2(1/epsilon) + 10`` (Selinger, Quantum Inf. Comput. 15, 159 (2015), arXiv:1212.6253).
+5. **Rotations**: each ``rz`` (an arbitrary angle: Clifford and T phases are lowered to ``s``/``t``) costs
+   ``ceil(3 log2(1/epsilon))`` T (model ``ross-selinger``, the leading term of Ross & Selinger,
+   arXiv:1403.2975) or ``4 log2(1/epsilon) + 10`` (model ``selinger``, arXiv:1212.6253).
 
 Example:
     >>> from qcpp.ir.cost import Cost
@@ -133,9 +130,6 @@ def fault_tolerant_from_cost(
         epsilon: synthesis precision per rotation.
         synthesis: rotation synthesis model (:func:`rotation_t_cost`).
         toffoli_t: T per full Toffoli, 7 or 4.
-
-    Returns:
-        The :class:`FaultTolerantEstimate`.
 
     Raises:
         ValueError: a bad ``epsilon``, ``synthesis`` or ``toffoli_t``.

@@ -62,9 +62,6 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     Args:
         scenario: the scenario.
         options: circuit construction options.
-
-    Returns:
-        The :class:`SizePrediction`.
     """
     lc = layer_costs(scenario, options)
     gates = lc.cost(p).total

@@ -66,7 +66,7 @@ def layout_twoq_bound(
     """
     from qcpp.layout.medial import medial_placement
     from qcpp.lowering.passes import lower
-    from qcpp.pipeline.device_compile import device_plan_options
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     homes = medial_placement(scenario, device)

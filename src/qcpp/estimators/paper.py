@@ -96,9 +96,6 @@ def paper_partial_mixer(doubling: Doubling = "partial-mixer") -> PaperPartialMix
         doubling: what "twice of the controlled partial mixer" doubles: ``partial-mixer`` (everything,
             default) or ``logic`` (only the Toffoli logic; the controlled SBF rotation once).
 
-    Returns:
-        The :class:`PaperPartialMixer`.
-
     >>> pm = paper_partial_mixer()
     >>> pm.toffolis, pm.logic_cx, pm.logic_single_qubit, pm.sbf_cx, pm.sbf_single_qubit
     (44, 264, 396, 8, 10)
@@ -179,9 +176,6 @@ def paper_estimate(
         robots: number of robots ``r``.
         p: number of QAOA layers.
         doubling: see :func:`paper_partial_mixer`.
-
-    Returns:
-        The :class:`PaperEstimate`.
 
     >>> paper_estimate(2, 2, 1).cx   # re = 4: phase 4*5 = 20 CNOT, one partial mixer 544
     564

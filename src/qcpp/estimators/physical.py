@@ -125,9 +125,6 @@ def physical_estimate(
         qec_scheme: one of :data:`QEC_SCHEMES`.
         error_budget: total error budget, ``0 < error_budget < 1``.
 
-    Returns:
-        The :class:`PhysicalEstimate`.
-
     Raises:
         ValueError: an unknown model or scheme, or a budget outside (0, 1).
         PhysicalEstimateError: the estimator cannot meet the budget (its message, one line).

@@ -27,11 +27,12 @@ from qcpp.estimators.estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions,
 from qcpp.estimators.paper import Doubling
 from qcpp.estimators.plots import plot_rows
 from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
-from qcpp.estimators.tables import FORMATS, Format, make_row, render_stream
+from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, render_stream
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_layers
-from qcpp.problem.presets import max_default_robots
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.presets import grid_scenario, max_default_robots
+from qcpp.problem.scenario_io import load_scenario
+from qcpp.routing.context import RoutingContext
 
 __all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 
@@ -56,6 +57,8 @@ def points_from_options(
     robots: str | None,
     p: str,
     scenario: str | os.PathLike[str] | None = None,
+    obstacles: Sequence[tuple[int, int]] = (),
+    hard_obstacles: bool = False,
 ) -> PointSet:
     """Points from the CLI's option texts.
 
@@ -65,9 +68,9 @@ def points_from_options(
         robots: ``N`` or ``A..B``; ``None`` means ``1``. Must be ``None`` with ``scenario``.
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
-
-    Returns:
-        The :class:`PointSet`.
+        obstacles, hard_obstacles: obstacles on every grid of the range (``--obstacle``, ``--hard-obstacles``): each
+            point is then the scenario :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "file"``
+            in its row, as a scenario file's), not a default one.
 
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
@@ -79,6 +82,9 @@ def points_from_options(
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
+        if obstacles or hard_obstacles:
+            flag = "--obstacle" if obstacles else "--hard-obstacles"
+            raise ValueError(f"--scenario gives the obstacles: do not combine it with {flag}")
         s = load_scenario(scenario, check_range=True)
         return PointSet([Point.from_scenario(s, k) for k in layers], 0)
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
@@ -91,6 +97,14 @@ def points_from_options(
             f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
             f"at most {most} there: one per boundary node); use --scenario for other placements",
         )
+    if obstacles or hard_obstacles:  # every point's own scenario, built as qcpp.grid_scenario builds it
+        points = [
+            Point.from_scenario(
+                grid_scenario(pt.rows, pt.cols, robots=pt.robots, obstacles=obstacles, hard_obstacles=hard_obstacles),
+                pt.p,
+            )
+            for pt in points
+        ]
     return PointSet(points, skipped_points(grids, ks, layers))
 
 
@@ -153,13 +167,14 @@ def estimate_rows(
     Yields:
         One row per point, in order.
     """
+    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
     for est in sweep(points, options):
-        yield _row(est, compare_paper, doubling, device, stage)
+        yield _row(est, compare_paper, doubling, device, stage, context)
 
 
 def _row(
     est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
-    stage: Callable[[str], None] | None = None,
+    stage: Callable[[str], None] | None = None, context: RoutingContext | None = None,
 ) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)
     if device is None:
@@ -169,7 +184,7 @@ def _row(
     c = est.cost
     extra = routed_fields(
         est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-        one_qubit=c.single_qubit, total_gates=c.total, stage=stage,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage, context=context,
     )  # fmt: skip
     return {**row, **extra}
 
@@ -178,13 +193,11 @@ def formula_report(fmt: Format = "table") -> str:
     """The formulas of :mod:`qcpp.estimators.formulas` as text.
 
     ``table``: pretty-printed structured forms (data qubits with ``V``); ``md``: LaTeX in Markdown; ``csv``:
-    ``name,expression`` (explicit forms); ``json``: ``{"domain", "abbreviations", "formulas", "structured"}``.
+    ``name,expression`` (explicit forms); ``json``: ``{"domain", "abbreviations", "formulas", "structured"}``;
+    ``latex``: an ``align*`` environment of the structured forms.
 
     Args:
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
-
-    Returns:
-        The text.
 
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
@@ -210,6 +223,11 @@ def formula_report(fmt: Format = "table") -> str:
         out = [f"Domain: {FORMULA_DOMAIN}.", "", f"$V = {sp.latex(V_EXPR)}$", ""]
         out += [f"* `{k}`: ${sp.latex(structured[k])}$" for k in QUANTITIES]
         return "\n".join(out) + "\n"
+    if fmt == "latex":
+        lines = [f"V &= {sp.latex(V_EXPR)}"]
+        lines += [rf"\mathrm{{{latex_escape(k)}}} &= {sp.latex(structured[k])}" for k in QUANTITIES]
+        body = " \\\\\n".join(lines)
+        return "\n".join([f"% Domain: {FORMULA_DOMAIN}.", r"\begin{align*}", body, r"\end{align*}"]) + "\n"
     if fmt == "table":
         out = [f"Domain: {FORMULA_DOMAIN}.", f"where V = {abbrev['V']} (edges per robot)"]
         for k in QUANTITIES:

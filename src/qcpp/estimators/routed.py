@@ -16,7 +16,7 @@
   1. ``compile``: the lowered circuit has at most :data:`EXACT_MAX_GATES` gates. It is compiled and routed
      exactly as ``qcpp compile --device`` does; every figure is exact.
   2. ``window sum``: a square-grid device that holds the medial layout (the layout compile takes on grids
-     above :data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ` two-qubit gates) with at most
+     above :attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq` two-qubit gates) with at most
      :data:`qcpp.estimators.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, and windows needing the whole device
      within :data:`WINDOW_SUM_WORK` (with several robots every visit gadget does: then the sum is no faster than
      compile, and only small devices get it). The routed circuit's windows are summed
@@ -24,7 +24,7 @@
      ESP are exact (``routed_kind`` ``exact``); depth, two-qubit depth and duration are the sums of the
      windows' own, an upper bound (``routed_depth_kind`` ``bound``).
   3. ``bound`` (no routing is run): the circuit compile would route (its phase separator laid out as the
-     device compile lays it out, :func:`qcpp.plan.phase_layout.for_device`: ``spatial`` on sparse devices;
+     device compile lays it out, :func:`qcpp.pipeline.device_plan.device_plan_options`;
      unfused, every gadget a section),
      every two-qubit gate routed by a SWAP chain to its partner and back along a shortest path, at most
      ``1 + 6 (d - 1)`` two-qubit gates for qubits ``d`` apart. Where the device holds the geometric layout,
@@ -60,6 +60,7 @@ import numpy as np
 from qcpp.devices.device import Device, get_device
 from qcpp.estimators.counts import count_gates
 from qcpp.problem.scenario import Scenario
+from qcpp.routing.context import RoutingContext
 
 __all__ = [
     "BOUND_MODEL",
@@ -221,6 +222,7 @@ def routed_fields(
     one_qubit: int,
     total_gates: int | None = None,
     stage: Callable[[str], None] | None = None,
+    context: RoutingContext | None = None,
 ) -> dict[str, Any]:
     """The routed figures of one estimate row (see the module docs).
 
@@ -234,12 +236,15 @@ def routed_fields(
         total_gates: The row's lowered gate count (default ``cx + one_qubit``), for the exact/bound choice.
         stage: Called with each stage of the routing as it starts (``3x3 r1 p1 on grid:5x5: routing 6 windows``),
             and with ``""`` when the row is done: progress inside a row that takes long.
+        context: The routing memos of the run (:class:`qcpp.routing.context.RoutingContext`; default: a fresh one),
+            shared by the rows of one estimate.
 
     Returns:
         The fields to add to the row.
     """
+    context = RoutingContext() if context is None else context
     try:
-        return _routed_fields(scenario, p, plan, device, qubits, cx, one_qubit, total_gates, stage)
+        return _routed_fields(scenario, p, plan, device, qubits, cx, one_qubit, total_gates, stage, context)
     finally:
         if stage is not None:
             stage("")
@@ -247,10 +252,10 @@ def routed_fields(
 
 def _routed_fields(
     scenario: Scenario, p: int, plan: Any, device: str, qubits: int, cx: int, one_qubit: int,
-    total_gates: int | None, stage: Callable[[str], None] | None,
+    total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.sabre import duration_s, esp
+    from qcpp.routing.native import duration_s, esp
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -265,13 +270,13 @@ def _routed_fields(
                 "duration_s", "esp", "esp_model")  # fmt: skip
         return {**out, **dict.fromkeys(none)}
     if (total_gates if total_gates is not None else cx + one_qubit) > EXACT_MAX_GATES:
-        summed = _window_sum(scenario, p, plan, device, say)
+        summed = _window_sum(scenario, p, plan, device, say, context)
         if summed is not None:
             out["device"] = summed.device.name
             return {**out, **_summed_fields(summed, ESP_MODEL)}
         return {**out, **_bound_of_compiled(scenario, p, plan, dev, say)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
-    result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say)
+    result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
     routed = result.routed
     out["device"] = routed.device.name
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
@@ -289,19 +294,22 @@ def _routed_fields(
     }
 
 
-def _window_sum(scenario: Scenario, p: int, plan: Any, device: str, stage: Callable[[str], None] | None) -> Any:
+def _window_sum(
+    scenario: Scenario, p: int, plan: Any, device: str, stage: Callable[[str], None] | None, context: RoutingContext
+) -> Any:
     """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
     :data:`~qcpp.estimators.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
     from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
-    from qcpp.pipeline.device_compile import AUTO_COMPARE_MAX_TWOQ, medial_device
+    from qcpp.pipeline.device_compile import medial_device
+    from qcpp.routing.options import DEFAULT_ROUTING
 
     dev = medial_device(scenario, device)
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
         return None
-    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage)
+    summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage, context=context)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
-    if summed.compiled_ops.get("cx", 0) <= AUTO_COMPARE_MAX_TWOQ:
+    if summed.compiled_ops.get("cx", 0) <= DEFAULT_ROUTING.auto_compare_max_twoq:
         return None  # compile would also try the greedy layout on so few two-qubit gates
     return summed
 
@@ -333,11 +341,11 @@ def _bound_of_compiled(
 
     from qcpp.estimators.layout_bound import layout_twoq_bound
     from qcpp.pipeline.device_compile import layout_device
-    from qcpp.plan.phase_layout import for_device
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     # compile --device routes the unfused circuit (every gadget a section) with the device's phase layout
-    laid = qaoa_plan(scenario, p, dataclasses.replace(for_device(plan, device), fuse=False))
+    laid = qaoa_plan(scenario, p, dataclasses.replace(device_plan_options(plan, device), fuse=False))
     cost = laid.cost()
     placed = layout_twoq_bound(scenario, p, plan, device, stage=stage)
     if placed is not None:

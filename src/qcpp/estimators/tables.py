@@ -18,11 +18,9 @@ A row is a plain dict (:func:`make_row`) with
   ``ratio_single_qubit``;
 * ``sections``: per-layer lowered costs of ``initial_state``, ``phase`` (one layer) and ``mixer`` (one layer).
 
-Formats: ``table`` (rich, the main columns that fit the terminal width, see :func:`render`), ``md`` (the same
-columns as a Markdown table), ``csv`` (every
-scalar column plus ``section.<name>.<field>`` columns), ``json`` (a list of row objects, sections nested) and
-``jsonl`` (one row object per line). :func:`render_stream` yields text as rows arrive for every format but
-``table``.
+Formats: ``table`` (rich, the main columns that fit the terminal, :func:`render`), ``md``, ``csv`` (every scalar
+column plus ``section.<name>.<field>``), ``json`` and ``jsonl``; :func:`render_stream` yields text as rows arrive
+for every format but ``table``.
 
 Example:
     >>> from qcpp.estimators.estimate import Point, estimate_point
@@ -54,16 +52,18 @@ __all__ = [
     "PAPER_COLUMNS",
     "PHYSICAL_COLUMNS",
     "Format",
+    "latex_escape",
     "make_row",
     "make_rows",
     "render",
+    "render_latex",
     "render_stream",
     "table_columns",
     "terminal_width",
 ]
 
-Format = Literal["table", "md", "csv", "json", "jsonl"]
-FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json", "jsonl")
+Format = Literal["table", "md", "csv", "json", "jsonl", "latex"]
+FORMATS: tuple[Format, ...] = ("table", "md", "csv", "json", "jsonl", "latex")
 
 MAIN_COLUMNS: tuple[str, ...] = (
     "rows",
@@ -104,9 +104,6 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         est: an estimate.
         compare_paper: add the paper's estimate and the ratios.
         doubling: the reading of the paper's doubling (:func:`qcpp.estimators.paper.paper_partial_mixer`).
-
-    Returns:
-        The row.
     """
     pt, c, ft, d, plan = est.point, est.cost, est.fault_tolerant, est.depth, est.options.plan
     row: dict[str, Any] = {
@@ -208,6 +205,9 @@ def render_stream(
     if fmt == "table":
         yield render(list(rows), "table", width=width, columns=columns, wide=wide)
         return
+    if fmt == "latex":  # the column alignment depends on every row
+        yield render_latex(list(rows), columns)
+        return
     first = True
     fields: list[str] = []
     cols: list[str] = []
@@ -234,6 +234,62 @@ def render_stream(
     elif fmt == "md" and first:
         cols = _columns(None)
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+
+
+_LATEX_SPECIAL = {
+    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{", "}": r"\}",
+    "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
+}  # fmt: skip
+
+
+def latex_escape(text: str) -> str:
+    r"""``text`` with LaTeX's special characters escaped.
+
+    >>> print(latex_escape("two_qubit & 50%"))
+    two\_qubit \& 50\%
+    """
+    return "".join(_LATEX_SPECIAL.get(ch, ch) for ch in text)
+
+
+def _is_number(v: Any) -> bool:
+    return v is None or (isinstance(v, (int, float)) and not isinstance(v, bool))
+
+
+def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None = None) -> str:
+    r"""Rows as a LaTeX ``tabular`` with booktabs rules (``\usepackage{booktabs}``): the columns of the ``md``
+    format (or ``columns``), numbers right-aligned, text left-aligned, LaTeX's special characters escaped.
+
+    Args:
+        rows: rows from :func:`make_rows`.
+        columns: exactly these columns (checked as :func:`table_columns` checks them).
+
+    Returns:
+        The text (ending with a newline).
+
+    Example:
+        >>> rows = [{"rows": 3, "cols": 3, "cx": 106, "depth_kind": "exact"}]
+        >>> print(render_latex(rows, ["rows", "cx", "depth_kind"]), end="")
+        % qcpp estimate: exact resource counts of the lowered circuit; needs \usepackage{booktabs}
+        \begin{tabular}{rrl}
+        \toprule
+        rows & cx & depth\_kind \\
+        \midrule
+        3 & 106 & exact \\
+        \bottomrule
+        \end{tabular}
+    """
+    cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
+    align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
+    out = [
+        r"% qcpp estimate: exact resource counts of the lowered circuit; needs \usepackage{booktabs}",
+        r"\begin{tabular}{" + align + "}",
+        r"\toprule",
+        " & ".join(latex_escape(c) for c in cols) + r" \\",
+        r"\midrule",
+    ]
+    out += [" & ".join(latex_escape(_cell(r.get(c))) for c in cols) + r" \\" for r in rows]
+    out += [r"\bottomrule", r"\end{tabular}"]
+    return "\n".join(out) + "\n"
 
 
 DROP_ORDER: tuple[str, ...] = (

@@ -2,14 +2,14 @@
 
 On a square-grid device with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of
 the lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`qcpp.layout.medial.allocate_ancillas` gives its
-ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few
-whose window routes to the fewest gates), :func:`qcpp.routing.bridge.bridge_far_phases` relays its far ``rzz``
-phases through clean device qubits where that routes cheaper, and :func:`qcpp.routing.sabre.route_windows` routes
-it with SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides
-per section, from the section's gates, the data homes and the clean qubits around it (a section's ancillas and
-relay holders are |0> at both ends). So a window's routed gates depend only on its own gates and on the device
-around it, and the routed circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the
-windows into classes of equal *signature*:
+ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few whose
+window routes to the fewest gates), :func:`qcpp.routing.bridge.bridge_far_phases` relays its far ``rzz`` phases
+through clean device qubits where that routes cheaper, and :func:`qcpp.routing.windows.route_windows` routes it with
+SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides per section,
+from the section's gates, the data homes and the clean qubits around it (a section's ancillas and relay holders are
+|0> at both ends). So a window's routed gates depend only on its own gates and on the device around it, and the routed
+circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the windows into classes of equal
+*signature*:
 
 * the window's lowered gates, its qubits named by first use (data or ancilla: which ancilla does not matter, the
   allocation re-homes every ancilla per section) -- lowered once per pattern of high-level gates;
@@ -18,30 +18,29 @@ windows into classes of equal *signature*:
   (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take; every
   other site is clean, a candidate ancilla or relay holder).
 
-One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device
-of the crop's shape) by the very functions compile runs (:func:`qcpp.pipeline.device_compile.medial_compile`), and its
-routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of
-layer 0 with other angles). A crop answers for the whole device when nothing the representative touches comes
-within :data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every
-routed gate, SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations
-and the relay's with-and-without comparison included (:data:`qcpp.routing.sabre.PATCH_WATCH`) -- reaches such a
-side (else the crop clipped a patch the device would not clip), and no part of it was routed on its whole
-connected component (the router's fallback where the qubits' neighbourhoods do not connect them,
-:data:`qcpp.routing.sabre.WHOLE_COMPONENT_PATCHES`: that routing sees the whole device). For the allocation's
-argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument
-rather than a proof (a site outside the crop is farther from every qubit inside than its projection on the
-crop's side; ties go by row-major index, whose order the crop keeps); the tests are the evidence.
-Otherwise the class is split by its members' signatures at twice the margin (their larger crops may differ) and
-each part is tried again, up to the whole device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature
-and gate set), so a sweep over scenarios routes each class once. Windows that need the whole
-device -- the phase separator's balance and coupling gadgets, and with several robots every node's visit gadget
-(the tiled layout puts a node's copies in every robot's patch, far apart) -- are routed together on the whole
-device, one SABRE run each as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing
-needs its dense distance matrix); above that they are *bounded*: every two-qubit gate of theirs is charged a SWAP
-chain to its partner and back along a shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a
-routing of that window that returns home, not SABRE's. So the sum is fast where windows are local (one robot:
-30x30 at ``p = 3`` in seconds); with several robots it routes every visit gadget on the whole device, as compile
-does, and is no faster than compile.
+One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device of
+the crop's shape) by the very functions compile runs (:func:`qcpp.pipeline.device_compile.medial_compile`), and its
+routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of layer
+0 with other angles). A crop answers for the whole device when nothing the representative touches comes within
+:data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every routed gate,
+SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations and the relay's
+with-and-without comparison included (:meth:`qcpp.routing.context.RoutingContext.watching`) -- reaches such a side
+(else the crop clipped a patch the device would not clip), and no part of it was routed on its whole connected
+component (the router's fallback where the qubits' neighbourhoods do not connect them,
+:attr:`qcpp.routing.context.PatchWatch.whole_component`: that routing sees the whole device). For the allocation's
+argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument rather
+than a proof (a site outside the crop is farther from every qubit inside than its projection on the crop's side; ties
+go by row-major index, whose order the crop keeps); the tests are the evidence. Otherwise the class is split by its
+members' signatures at twice the margin (their larger crops may differ) and each part is tried again, up to the whole
+device. A class's routed cost is kept in :data:`ROUTED_CLASSES` (per signature and gate set), so a sweep over
+scenarios routes each class once. Windows that need the whole device -- the phase separator's balance and coupling
+gadgets, and with several robots every node's visit gadget (the tiled layout puts a node's copies in every robot's
+patch, far apart) -- are routed together on the whole device, one SABRE run each as in compile, while it has at most
+:data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing needs its dense distance matrix); above that they are *bounded*: every
+two-qubit gate of theirs is charged a SWAP chain to its partner and back along a shortest path (``1 + 6 (D - 1)`` CX
+for a device of diameter ``D``), a routing of that window that returns home, not SABRE's. So the sum is fast where
+windows are local (one robot: 30x30 at ``p = 3`` in seconds); with several robots it routes every visit gadget on the
+whole device, as compile does, and is no faster than compile.
 
 What is exact when no window is bounded (``tests/qcpp/window_classes_test.py`` checks each against
 ``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
@@ -79,11 +78,12 @@ from qcpp.ir.gates import Gate
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
-from qcpp.routing import sabre as routing
 from qcpp.routing.bridge import bridge_far_phases
-from qcpp.routing.sabre import DEFAULT_TRIALS, _native_gates, _one_qubit_name, route_windows
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.native import native_gates, one_qubit_name
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.windows import route_windows
 
 __all__ = ["GUARD", "MARGIN", "ROUTED_CLASSES", "WHOLE_DEVICE_MAX_QUBITS", "RoutedSum", "WindowClass", "routed_sum"]
 
@@ -96,8 +96,8 @@ the crop that is not a device edge (one more than the routing patch's radius).""
 
 ROUTED_CLASSES: dict[Hashable, _Cost] = {}
 """What one routed window of a class costs (:class:`_Cost`), per signature and device gate set (native gates,
-durations, SABRE's seed and trials, whether compile searches allocations): a sweep routes each class once. The
-cache of routed windows, next to :data:`qcpp.plan.call_graph.COSTS` (the kinds' costs), not in it: its key is a
+durations, SABRE's seed, the :class:`~qcpp.routing.options.RoutingOptions`): a sweep routes each class once. The
+cache of routed windows, next to :data:`qcpp.gadgets.pricing.COSTS` (the kinds' costs), not in it: its key is a
 window with its neighbourhood on one device, not a gadget kind."""
 
 ROUTED_CLASSES_LIMIT = 1 << 14
@@ -145,7 +145,7 @@ class RoutedSum:
         lowered_ops: Lowered gate counts by name (before routing, after compile's relays of far phases; a bounded
             window counts its gates before relays, which add CX only: the relays are decided by routing).
         compiled_ops: Lowered gate counts by name of the compiled circuit, before allocation and relays (what
-            compile's ``auto`` layout compares with :data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ`).
+            compile's ``auto`` layout compares with :attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq`).
         swaps: SWAPs of the routed windows.
         native_ops: Native gate counts by name of the routed windows (bounded windows not included).
         two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP), bounded windows
@@ -287,18 +287,16 @@ def _inside(crop: _Crop, sites: np.ndarray, guard: int = GUARD) -> bool:
 
 def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
-    trials: int | None,
+    options: RoutingOptions, context: RoutingContext,
 ) -> list[_Routed] | str | None:  # fmt: skip
     """Allocate, relay and route windows on ``crop`` as compile does on the device
     (:func:`qcpp.pipeline.device_compile.medial_compile`: :func:`~qcpp.layout.medial.allocate_ancillas` with its search,
-    :func:`~qcpp.routing.bridge.bridge_far_phases`, :func:`~qcpp.routing.sabre.route_windows`), one section each
+    :func:`~qcpp.routing.bridge.bridge_far_phases`, :func:`~qcpp.routing.windows.route_windows`), one section each
     (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
     section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
     if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
     device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
     answers)."""
-    from qcpp.pipeline.device_compile import SEARCH
-
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
     homes = np.flatnonzero(sub.ravel())
@@ -321,14 +319,15 @@ def _route_on(
         sections.append(Section(f"w{w}", [Gate(name, tuple(slot[t] for t in qs), (), None)
                                           for name, qs in template.gates]))  # fmt: skip
     registers = [Register("data", n_data)] + ([Register("anc", width)] if width else [])
-    with routing.watching_patches() as watch:  # the search's and the relays' candidate patches included
+    with context.watching() as watch:  # the search's and the relays' candidate patches included
         try:
             logical, layout = allocate_ancillas(Circuit(registers, sections), [int(h) for h in homes], dev, dist,
-                                                search=SEARCH)  # fmt: skip
+                                                options.allocation_search, options, context)  # fmt: skip
         except ValueError:  # more ancillas than free qubits in the crop
             return None
-        logical, layout = bridge_far_phases(logical, layout, dev, dist)
-        routed = route_windows(logical, dev, layout, seed=seed, measured=(), trials=trials, dist=dist)
+        logical, layout = bridge_far_phases(logical, layout, dev, dist, options=options, context=context)
+        routed = route_windows(logical, dev, layout, seed=seed, measured=(), dist=dist, options=options,
+                               context=context)  # fmt: skip
     if watch.whole_component and any(crop.open_sides):
         return "whole"  # routed on the whole crop: the device beyond it would change the routing
     touched = {q for g in routed.circuit.gates if len(g[1]) == 2 for q in g[1]} | set(layout[n_data:])
@@ -345,7 +344,7 @@ def _route_on(
         lowered = tuple((g[0], tuple(g[1])) for g in sec.gates)
         gates = by_name.get(f"w{w}", [])
         cx = sum(1 for g in gates if len(g[1]) == 2) - sum(1 for _, qs in lowered if len(qs) == 2)
-        merged = fused.get(f"w{w}", 0)  # each SWAP adds 3 CX, 2 fewer where fused with a CX (routing._assemble)
+        merged = fused.get(f"w{w}", 0)  # each SWAP adds 3 CX, 2 fewer where fused with a CX (routing.sabre.assemble)
         out.append(_Routed((cx + 2 * merged) // 3, lowered, gates, merged))
     return out
 
@@ -414,8 +413,8 @@ def _native_counts(lowered: Counter[str], swaps: int, device: Device, fused: int
     for name, k in counts.items():
         qs = (0, 1) if name == "cx" or name == "cz" else (0,)
         params = (math.pi / 2,) if name in ("rz", "rx") else ()
-        for g in _native_gates(Gate(name, qs, params, None), twoq, native_x):
-            out[_one_qubit_name(device, g) if len(g[1]) == 1 else g[0]] += k
+        for g in native_gates(Gate(name, qs, params, None), twoq, native_x):
+            out[one_qubit_name(device, g) if len(g[1]) == 1 else g[0]] += k
     return out
 
 
@@ -440,10 +439,11 @@ def routed_sum(
     device: str | Device = "grid",
     *,
     seed: int = 0,
-    trials: int | None = DEFAULT_TRIALS,
     arrangement: str = "tile",
     whole_device_work: int | None = None,
     stage: Callable[[str], None] | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> RoutedSum | None:
     """The routed figures of ``compile_for_device(scenario, p, device, options, layout_method="medial")`` as a sum
     over window classes (see the module docs), or ``None`` where the medial layout does not apply (not a square
@@ -454,11 +454,13 @@ def routed_sum(
         p: QAOA layers.
         options: The plan options, as given to compile (``phase_layout="auto"`` is settled for the device).
         device: A device name or :class:`Device` (the unsized ``grid`` is sized as compile sizes it).
-        seed, trials: SABRE's seed and trials per window (compile's defaults).
+        seed: SABRE's seed (compile's default).
         arrangement: The medial layout's robot arrangement.
         whole_device_work: At most this many (windows routed on the whole device x device qubits): above it, such
             windows are bounded instead (:attr:`RoutedSum.exact` is then ``False``); ``None``: no limit.
         stage: Called with the stage as it starts (``routing window classes (12 done, 30 to go)``).
+        routing: The routing settings, as given to compile.
+        context: The run's memos (default: a fresh one).
 
     Returns:
         The :class:`RoutedSum`, or ``None``.
@@ -466,13 +468,14 @@ def routed_sum(
     Raises:
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
-    from qcpp.pipeline.device_compile import SEARCH, medial_device
+    from qcpp.pipeline.device_compile import medial_device
+    from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
     dev = medial_device(scenario, device, arrangement)
     if dev is None:
         return None
-    opts = dataclasses.replace(for_device(options, device), fuse=False)
+    opts = dataclasses.replace(device_plan_options(options, device, layout_method="medial"), fuse=False)
     plan = qaoa_plan(scenario, 1 if p else 0, opts)
     n_data = scenario.num_variables
     registers = plan.registers
@@ -532,7 +535,8 @@ def routed_sum(
     # needs a larger crop is split by its members' signatures at the larger margin
     timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
         dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
-    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, trials, SEARCH)
+    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, routing)
+    context = RoutingContext() if context is None else context
     entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
     results: list[_Cost | None] = []
     whole_batch: list[int] = []
@@ -547,7 +551,7 @@ def routed_sum(
         _, template, sites, _ = group[0]
         crop = signature(group[0], margin)[1]
         if hit is None and any(crop.open_sides):
-            routed = _route_on([(template, sites)], crop, occupied, seed, trials)
+            routed = _route_on([(template, sites)], crop, occupied, seed, routing, context)
             if routed is None or routed == "whole":
                 wider = whole if routed == "whole" else 2 * margin  # no crop short of the device answers
                 pending.extend((wider, s2, g2) for s2, g2 in grouped(group, wider).items())
@@ -562,7 +566,7 @@ def routed_sum(
     if whole_batch:
         say(f"routing {len(whole_batch):,} window classes on the whole device")
         crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
-        batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, trials)
+        batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, routing, context)
         assert batch is not None, "the whole device answers for itself"
         for i, r in zip(whole_batch, batch, strict=True):
             results[i] = _summary(r, dev)
@@ -627,14 +631,14 @@ def routed_sum(
 
 def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[int, ...]], ...]:
     """The native gates (device gate name, roles ``0``/``1`` of the lowered gate's qubits) one lowered gate
-    becomes (:func:`qcpp.routing.sabre.to_native`)."""
+    becomes (:func:`qcpp.routing.native.to_native`)."""
     return _expansion_of(name, arity, device.two_qubit_gate, tuple(device.native_gates))
 
 
 @lru_cache(maxsize=256)
 def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> tuple[tuple[str, tuple[int, ...]], ...]:
     params = (math.pi / 2,) if name in ("rz", "rx") else ()
-    gates = _native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
+    gates = native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
     sx = "sx" in native
     return tuple(("sx" if sx and g[0] == "rx" else g[0], tuple(g[1])) for g in gates)
 

@@ -11,7 +11,10 @@ the :class:`Gadget` protocol:
 * ``logical_cost()`` - the same for ``lower(..., basis=LOGICAL_BASIS)``: ``and``/``and_dg``/``ccx`` kept whole,
   which is what the fault-tolerant view prices (an AND costs 4 T, its uncompute a measurement and no T);
 * ``kind`` - a hashable key: two gadgets with equal kinds have equal costs. Estimates sum
-  ``cost(kind) * multiplicity`` over a circuit's call graph and never materialise a gate list.
+  ``cost(kind) * multiplicity`` over a circuit's call graph and never materialise a gate list;
+* ``needs()`` - ``(logic temporaries, work ancillas)``: the clean ancillas the gadget uses and the ``work``
+  ancillas the lowering of its multi-controlled X gates adds. Equal kinds have equal needs, so the call graph
+  (:class:`qcpp.plan.call_graph.GadgetKind`) records them per kind.
 
 Example:
     >>> from qcpp.gadgets import Gadget
@@ -45,6 +48,10 @@ class Gadget(Protocol):
 
     def logical_cost(self) -> Cost:
         """Cost with ``and``/``and_dg``/``ccx`` kept whole, without emitting."""
+        ...
+
+    def needs(self) -> tuple[int, int]:
+        """``(logic temporaries, work ancillas)`` the gadget's gates and their lowering use."""
         ...
 
     def emit(self) -> Sequence[Gate]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 from qcpp.gadgets.initial_state import initial_state_gates
 from qcpp.ir.circuit import Circuit, Section
@@ -23,7 +24,19 @@ from qcpp.lowering.passes import LOGICAL_BASIS, lower
 from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["StatePrep"]
+__all__ = ["StatePrep", "XLayerKind"]
+
+
+class XLayerKind(NamedTuple):
+    """Kind key of a state preparation that is one layer of X gates on distinct qubits.
+
+    Attributes:
+        gadget: ``"x_layer"``.
+        count: the number of X gates.
+    """
+
+    gadget: str
+    count: int
 
 
 @dataclass(frozen=True)
@@ -56,8 +69,12 @@ class StatePrep:
         """``("x_layer", n)`` for ``n`` X gates on distinct qubits (equal up to qubit names), else the gate list
         itself (a state preparation is one of a kind)."""
         if all(g.name == "x" for g in self.gates) and len({g.qubits for g in self.gates}) == len(self.gates):
-            return ("x_layer", len(self.gates))
+            return XLayerKind("x_layer", len(self.gates))
         return ("state_prep", self.gates)
+
+    def needs(self) -> tuple[int, int]:
+        """No temporaries; the lowering of an mcx with ``k`` controls needs ``k - 2`` work ancillas."""
+        return 0, max([0, *(len(g.qubits) - 3 for g in self.gates if g.name == "mcx")])
 
     @cached_property
     def _lowered(self) -> tuple[Cost, Cost]:

@@ -22,12 +22,9 @@ With ``K = 1`` this is just the X gates of the single path.
 over allowed SBF flips reaches from the initial paths (:func:`qcpp.problem.solvers.descent.local_search`): one
 basis state, prepared like ``initial_path`` by X gates.
 
-``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (the descent of ``local_search``;
-one path where the descent leaves the robot on its initial path), the product over robots. It keeps the initial
-paths' weight, which the mixer can still move, beside the descent's low cost. Prepared by the decision tree
-above with two strings: X on the bits both paths set, RY(pi/2) on the lowest bit where they differ, and a
-CNOT from it (0- or 1-controlled) onto every other differing bit; no ancilla. Every basis state with weight is
-a feasible assignment (each robot on one of two feasible paths).
+``local_search_mix``: per robot ``(|initial path> + |descent path>) / sqrt 2`` (one path where they agree), the
+product over robots: the descent's low cost beside the initial paths' weight, which the mixer can still move.
+Prepared by the decision tree with two strings (X, one RY(pi/2), CNOTs; no ancilla).
 
 Example:
     >>> [g.name for g in superposition_gates([0b01, 0b10], [0, 1], ancilla=2)]
@@ -74,9 +71,6 @@ def superposition_gates(strings: Sequence[int], qubits: Sequence[int], ancilla: 
         strings: Distinct bit strings; bit ``i`` of each belongs to ``qubits[i]``.
         qubits: The qubits, in bit order.
         ancilla: A clean qubit, needed only when a rotation has two or more conditions.
-
-    Returns:
-        The gate list.
     """
     if len(set(strings)) != len(strings) or not strings:
         raise ValueError("need a non-empty list of distinct bit strings")
@@ -198,9 +192,6 @@ def initial_state_gates(
         rule: SBF rule deciding the move-graph components (``representatives``) or the allowed flips of the
             descent (``local_search``, ``local_search_mix``).
         ancilla: Clean qubit for multiply-controlled rotations (``representatives`` only).
-
-    Returns:
-        The gate list.
     """
     v = scenario.edges_per_robot
     out: list[Gate] = []

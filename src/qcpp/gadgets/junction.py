@@ -1,18 +1,15 @@
 """Junctions: the uncompute of one partial mixer fused with the compute of the next, as a gadget of its own.
 
-Consecutive partial mixers share qubits: every one uses the same clean ``logic`` temporaries, and neighbouring
-plaquettes share an edge and outer edges. Lowered one by one, the end of one and the start of the next can
-cancel: ``and_dg(a, b, t)`` followed by ``and(a', b, t)`` on the same temporary and second control loses
-``h h``, ``tdg t``, ``cx(b, t) cx(b, t)`` and ``t tdg`` (2 CX, 4 one-qubit gates); on a temporary alone the
-``h h`` and ``tdg t`` still go. A per-gadget lowering leaves all of that to a later optimiser. So a layer of
-parity-basis partial mixers ``m_0, ..., m_{n-1}`` is cut at its rotations instead:
+Consecutive partial mixers share qubits (the same clean ``logic`` temporaries, shared edges), so the end of
+one and the start of the next can cancel (``and_dg(a, b, t)`` then ``and(a', b, t)`` loses 2 CX and 4 one-qubit
+gates), which a per-gadget lowering would leave to a later optimiser. So a layer of parity-basis partial mixers
+``m_0, ..., m_{n-1}`` is cut at its rotations instead:
 
     Junction(-, m_0)  Rotation(m_0)  Junction(m_0, m_1)  Rotation(m_1)  ...  Rotation(m_{n-1})  Junction(m_{n-1}, -)
 
 where ``Junction(l, r)`` emits the mirrored leaves of ``l`` then the compute leaves of ``r`` (one section, so
-the peephole pass cancels across the old boundary) and ``Rotation(m)`` the controlled rotation of ``m``. Every
-piece is exact on its own terms: the gates are those of the unfused partial mixers, in the same order, so the
-unitary is the same and every ancilla is clean after each rotation's mirror as before.
+the peephole pass cancels across the old boundary) and ``Rotation(m)`` the controlled rotation of ``m``. The
+gates are those of the unfused partial mixers in the same order: same unitary, same clean ancillas.
 
 **Cost without emitting.** A junction's lowered gates are fixed by its :attr:`MixerJunction.kind`: the two
 partial mixers' kinds (their plans) and which qubits they share (:attr:`MixerJunction.overlap`: for each qubit
@@ -40,23 +37,40 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 from qcpp.gadgets.leaves import leaf_cost, leaf_logical_cost
 from qcpp.gadgets.partial_mixer import (
     McxPartialMixer,
     MixerPlan,
+    ParityMixerKind,
     ParityPartialMixer,
     emit_plan,
     plan_parity_mixer,
     plan_slots,
 )
+from qcpp.gadgets.pricing import PricedByKind
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
-from qcpp.plan.call_graph import PricedByKind
 
-__all__ = ["MixerJunction", "MixerRotation", "mixer_pieces"]
+__all__ = ["JunctionKind", "MixerJunction", "MixerRotation", "mixer_pieces"]
+
+
+class JunctionKind(NamedTuple):
+    """Kind key of a :class:`MixerJunction`: equal kinds, equal gates up to qubit names.
+
+    Attributes:
+        gadget: ``"mixer_junction"``.
+        left, right: the kinds of the partial mixers that end and start here (``None`` at an open end).
+        overlap: :attr:`MixerJunction.overlap`.
+    """
+
+    gadget: str
+    left: ParityMixerKind | None
+    right: ParityMixerKind | None
+    overlap: tuple[int, ...]
 
 
 @dataclass(frozen=True)
@@ -81,6 +95,10 @@ class MixerRotation:
     def logical_cost(self) -> Cost:
         """The same (a rotation has no AND)."""
         return leaf_logical_cost(self.mixer.plan.rotation[0])
+
+    def needs(self) -> tuple[int, int]:
+        """Those of its partial mixer (the rotation runs while the mixer's temporaries are computed)."""
+        return self.mixer.needs()
 
     def emit(self) -> list[Gate]:
         """The rotation's gates."""
@@ -110,17 +128,22 @@ class MixerJunction(PricedByKind):
         return tuple(where.get(qb, -1) for qb in self.right.slot_qubits)
 
     @cached_property
-    def kind(self) -> Hashable:
+    def kind(self) -> JunctionKind:
         """The two partial mixers' kinds and :attr:`overlap`: equal kinds, equal gates up to qubit names."""
-        return (
+        return JunctionKind(
             "mixer_junction",
-            None if self.left is None else self.left.kind,
-            None if self.right is None else self.right.kind,
+            None if self.left is None else self.left.kind,  # type: ignore[arg-type]
+            None if self.right is None else self.right.kind,  # type: ignore[arg-type]
             self.overlap,
         )
 
     def _kind_costs(self) -> tuple[Cost, Cost]:
-        return _junction_costs(self.kind)  # type: ignore[arg-type]
+        return _junction_costs(self.kind)
+
+    def needs(self) -> tuple[int, int]:
+        """The larger needs of its two sides (one side at least is present)."""
+        sides = [m.needs() for m in (self.left, self.right) if m is not None]
+        return max(t for t, _ in sides), max(w for _, w in sides)
 
     def emit(self) -> list[Gate]:
         """The mirrored leaves of ``left``, then the compute leaves of ``right``."""
@@ -129,27 +152,26 @@ class MixerJunction(PricedByKind):
         return [*tail, *head]
 
 
-def _plan(kind: Hashable) -> MixerPlan:
-    tag, program, target = kind  # type: ignore[misc]
-    assert tag == "parity", kind
-    return plan_parity_mixer(program, target)
+def _plan(kind: ParityMixerKind) -> MixerPlan:
+    assert kind.gadget == "parity", kind
+    return plan_parity_mixer(kind.program, kind.target)
 
 
-def _junction_costs(kind: tuple) -> tuple[Cost, Cost]:
+def _junction_costs(kind: JunctionKind) -> tuple[Cost, Cost]:
     """Lowered and logical cost of a junction kind, from its canonical gate list: the left plan's slots on qubits
     ``0..``, the right plan's on the left's where :attr:`MixerJunction.overlap` says so and on fresh qubits
     otherwise."""
-    _, left_kind, right_kind, overlap = kind
+    left_kind, right_kind, overlap = kind.left, kind.right, kind.overlap
     gates: list[Gate] = []
     n = 0
     if left_kind is not None:
         plan = _plan(left_kind)
-        slots = plan_slots(plan, left_kind[1].num_outer)
+        slots = plan_slots(plan, left_kind.program.num_outer)
         gates += emit_plan(plan, {s: i for i, s in enumerate(slots)}, 0.0)[2]
         n = len(slots)
     if right_kind is not None:
         plan = _plan(right_kind)
-        slots = plan_slots(plan, right_kind[1].num_outer)
+        slots = plan_slots(plan, right_kind.program.num_outer)
         qubit = {}
         for s, shared in zip(slots, overlap or (-1,) * len(slots), strict=True):
             if shared < 0:

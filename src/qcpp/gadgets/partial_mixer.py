@@ -9,23 +9,19 @@ qubits maps ``XXXX`` to ``X`` on one *carrier* qubit: after ``L`` the carrier ho
 four edges and the other three hold even ones (corner parities ``s_v = e1 XOR e2`` or the opposite-edge parities
 ``ab XOR cd``, ``bc XOR da``), which the flip leaves unchanged. The exact rule's program reads only such parities,
 outer edges and temporaries, so the move condition ``f`` is computed once with clean relative-phase ANDs
-(3 CX each, :func:`qcpp.ir.gates.and_`), ``RX(beta)`` is applied to the carrier controlled by ``f`` (``crx``,
-or for ``target="nisq"`` the last AND merged into a two-control phase polynomial ``ccrx``: 4 CX instead of
-3 + 3 + 2), and everything is mirrored. The CNOTs of ``L`` are not fixed: :func:`plan_parity_mixer` searches
-(A* over the GF(2) states of the four qubits) for the fewest CNOTs that bring every parity the program
-reads onto some qubit at the moment it is read and leave the state rotation-ready at the end; extra CNOTs between
-ANDs are allowed. A polarity tracker puts an X on a qubit only right before a read that needs the other value,
-so no two gates of the result cancel and the cost is a plain sum of leaf costs.
+(:func:`qcpp.ir.gates.and_`), ``RX(beta)`` is applied to the carrier controlled by ``f`` (``crx``, or for
+``target="nisq"`` the last AND merged into a two-control phase polynomial ``ccrx``), and everything is mirrored.
+:func:`plan_parity_mixer` searches (A* over GF(2) states) for the fewest CNOTs of ``L`` that bring every parity
+onto some qubit when it is read; X gates are placed only right before a read that needs them, so no two gates of
+the result cancel and the cost is a plain sum of leaf costs.
 
 **Controlled-X network** (:class:`McxPartialMixer`, the ``paper`` rule, kept for the comparison with the
 paper). Each program step is a multi-controlled X (``x``/``cx``/``ccx``/clean-AND ladder) into a ``logic``
 temporary, then ``csbf`` (``XXXX`` rotation controlled by the output; 8 CX), then the mirror.
 
-The cost of both is computed from the plan (a short list of leaf kinds), never from emitted gates; the plan is
-cached per *kind* (the program with grid edges replaced by local positions), so a circuit's cost is a sum over
-its partial-mixer kinds. In a circuit, consecutive parity-basis partial mixers are fused at their boundaries
-(:mod:`qcpp.gadgets.junction`, built from :meth:`_PartialMixerBase.parts`): the layer is then listed as
-junction and rotation kinds.
+The cost of both is computed from the plan (a short list of leaf kinds), cached per *kind* (the program with
+grid edges replaced by local positions), never from emitted gates. In a circuit, consecutive parity-basis
+partial mixers are fused at their boundaries (:mod:`qcpp.gadgets.junction`).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -38,9 +34,10 @@ Example:
 from __future__ import annotations
 
 import heapq
-from collections.abc import Callable, Hashable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 from qcpp.gadgets.leaves import ccrx_gates, leaf_cost, leaf_logical_cost
 from qcpp.ir.angles import Param
@@ -51,8 +48,10 @@ from qcpp.problem.sbf import Lit, Rule, SbfLogic, sbf_logic
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
+    "McxMixerKind",
     "McxPartialMixer",
     "MixerPlan",
+    "ParityMixerKind",
     "ParityPartialMixer",
     "emit_plan",
     "logic_width",
@@ -169,9 +168,6 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
         program: every step but the last has two literals and writes a fresh temporary; literals read even
             parities of the plaquette edges, outer slots or temporaries.
         target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
-
-    Returns:
-        The plan.
     """
     inner, final = program.steps[:-1], program.steps[-1]
     if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
@@ -400,19 +396,45 @@ def emit_plan(plan: MixerPlan, qubit: dict[Slot, int], beta: Param) -> tuple[lis
     return compute, rotation, mirror
 
 
+class ParityMixerKind(NamedTuple):
+    """Kind key of a :class:`ParityPartialMixer`: equal programs and targets, equal plans and costs.
+
+    Attributes:
+        gadget: ``"parity"``.
+        program: the abstract program (:func:`abstract_program`).
+        target: what the plan was searched for (:func:`plan_parity_mixer`).
+    """
+
+    gadget: str
+    program: AbstractProgram
+    target: Target
+
+
+class McxMixerKind(NamedTuple):
+    """Kind key of a :class:`McxPartialMixer`: equal programs, equal plans and costs.
+
+    Attributes:
+        gadget: ``"mcx"``.
+        program: the abstract program (:func:`abstract_program`).
+    """
+
+    gadget: str
+    program: AbstractProgram
+
+
 @dataclass(frozen=True)
 class _PartialMixerBase:
     """Shared fields: the plan (cost) and where its slots live (emission)."""
 
     plan: MixerPlan
-    kind_key: Hashable
+    kind_key: ParityMixerKind | McxMixerKind
     plaquette_qubits: tuple[int, int, int, int]
     outer_qubits: tuple[int, ...]
     logic_offset: int
     beta: Param
 
     @property
-    def kind(self) -> Hashable:
+    def kind(self) -> ParityMixerKind | McxMixerKind:
         """The abstract program and target: equal kinds have equal plans and costs."""
         return self.kind_key
 
@@ -428,6 +450,10 @@ class _PartialMixerBase:
     def num_temps(self) -> int:
         """Logic temporaries used (from ``logic_offset`` on)."""
         return self.plan.num_temps
+
+    def needs(self) -> tuple[int, int]:
+        """The plan's logic temporaries and the work ancillas of its mcx leaves (:func:`mixer_work_need`)."""
+        return self.num_temps, mixer_work_need([self])  # type: ignore[list-item]
 
     @property
     def slot_qubits(self) -> tuple[int, ...]:
@@ -489,9 +515,6 @@ def partial_mixer(
         logic_offset: Qubit index of the first ``logic`` ancilla.
         rule: ``exact`` (parity basis) or ``paper`` (controlled-X network).
         target: ``nisq`` or ``ft`` (see :func:`plan_parity_mixer`).
-
-    Returns:
-        The gadget.
     """
     logic = sbf_logic(scenario, robot, plaquette, rule)
     if logic.never:
@@ -501,9 +524,10 @@ def partial_mixer(
     outer_q = tuple(scenario.variable_index(robot, e) for e in outer)
     if rule == "exact":
         plan = plan_parity_mixer(program, target)
-        return ParityPartialMixer(plan, ("parity", program, target), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+        kind = ParityMixerKind("parity", program, target)
+        return ParityPartialMixer(plan, kind, data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
     plan = plan_mcx_mixer(program)
-    return McxPartialMixer(plan, ("mcx", program), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
+    return McxPartialMixer(plan, McxMixerKind("mcx", program), data, outer_q, logic_offset, beta)  # type: ignore[arg-type]
 
 
 def logic_width(scenario: Scenario, rule: Rule = "exact", target: Target = "nisq") -> int:

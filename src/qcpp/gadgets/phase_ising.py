@@ -26,13 +26,13 @@ from __future__ import annotations
 
 from collections.abc import Collection, Hashable, Mapping
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import NamedTuple, TypeVar
 
 from qcpp.ir.angles import Angle
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, rz, rzz
 
-__all__ = ["COEFFICIENT_TOLERANCE", "IsingPhase", "ising_cost", "ising_form"]
+__all__ = ["COEFFICIENT_TOLERANCE", "IsingKind", "IsingPhase", "ising_cost", "ising_form"]
 
 #: Coefficients smaller than this (absolute) are zero: they only arise from float round-off.
 COEFFICIENT_TOLERANCE = 1e-12
@@ -88,6 +88,20 @@ def ising_cost(linear: int, couplings: int) -> Cost:
     return Cost.of(cx=2 * couplings, rz=linear + couplings)
 
 
+class IsingKind(NamedTuple):
+    """Kind key of :class:`IsingPhase` (and of the plan's deferred data-qubit rotations): its term counts.
+
+    Attributes:
+        gadget: ``"ising"``.
+        linear: RZ gates (linear terms).
+        couplings: RZZ gates (couplings).
+    """
+
+    gadget: str
+    linear: int
+    couplings: int
+
+
 @dataclass(frozen=True)
 class IsingPhase:
     """``exp(-i gamma (sum h_q Z_q + sum J_qp Z_q Z_p))`` as RZ then RZZ gates.
@@ -103,8 +117,8 @@ class IsingPhase:
     couplings: tuple[tuple[int, int, float], ...]
 
     @property
-    def kind(self) -> Hashable:
-        return ("ising", len(self.linear), len(self.couplings))
+    def kind(self) -> IsingKind:
+        return IsingKind("ising", len(self.linear), len(self.couplings))
 
     def cost(self) -> Cost:
         """2 CX and one rotation per coupling, one rotation per linear term (:func:`ising_cost`)."""
@@ -113,6 +127,10 @@ class IsingPhase:
     def logical_cost(self) -> Cost:
         """The same (no AND in this construction)."""
         return self.cost()
+
+    def needs(self) -> tuple[int, int]:
+        """None: rotations only."""
+        return 0, 0
 
     def emit(self) -> list[Gate]:
         """The RZ gates, then the RZZ gates."""

@@ -36,6 +36,7 @@ from collections import Counter, deque
 from collections.abc import Callable, Hashable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 from qcpp.gadgets.buckets import bucket, ring
 from qcpp.gadgets.phase_ising import IsingPhase, ising_form
@@ -44,7 +45,15 @@ from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, and_, cx, x
 
 __all__ = [
-    "Sink", "Site", "SumsPhase", "SumsShape", "column_counts", "hilbert_key", "manhattan", "spatial_popcount_layout"
+    "Sink",
+    "Site",
+    "SumsKind",
+    "SumsPhase",
+    "SumsShape",
+    "column_counts",
+    "hilbert_key",
+    "manhattan",
+    "spatial_popcount_layout",
 ]
 
 
@@ -215,18 +224,10 @@ class _LocalFirst:
     Every bit of a column of at least three bits keeps its tightest triple (itself and its two nearest bits of the
     column, by distance then curve key) and that triple's score (diameter, then farther from the sink, then curve
     key); the next adder is the least score of a column (or of any column: then the least ``(score, column)``).
-    What keeps it fast, with the same choice as rescanning every bit:
-
-    * each column's bits are filed in buckets of :data:`_CELL` lattice units, and a bit's two nearest bits are
-      searched ring by ring of buckets until no farther ring can hold a nearer bit (a column smaller than the
-      rings is scanned whole);
-    * an adder removes two bits of column ``k``: only the bits whose triple held one of them change (each bit
-      lists the bits whose triple holds it); it adds a carry to column ``k + 1``: only the bits whose second
-      nearest bit lies farther than the carry change, found through a second index that files every bit by the
-      distance to its second nearest bit (class ``j``: below ``2^j``) in buckets of ``2^j``, so only the 3 x 3
-      buckets around the carry of every class are looked at;
-    * the scores sit in one heap per column; an entry whose bit was refreshed or removed since is dropped when it
-      comes to the top.
+    It makes the same choice as rescanning every bit, in time that does not grow with the columns: bits are
+    filed in buckets of :data:`_CELL` lattice units (nearest bits searched ring by ring), an adder updates only
+    the bits whose triple it touched or whose second-nearest bit lies farther than its carry (a second index by
+    that distance), and the scores sit in one lazily pruned heap per column.
 
     Args:
         cols: Column -> qubit -> site, changed in place by :meth:`remove` and :meth:`add`.
@@ -397,13 +398,9 @@ def spatial_popcount_layout(
     neighbours along a Hilbert curve over the grid, and is a star around its carry ancilla.
 
     Each column is sorted by the Hilbert key of its bits' sites and reduced in passes: consecutive triples go
-    through :func:`star_full_adder`, whose sum stays on the middle bit and whose carry (a fresh ancilla, sited
-    with that bit) joins the next column. Pass ``k`` adds up regions of about ``3^k`` bits that are compact in
-    the plane (a quad-tree-like merge), so only ``O(log)`` partial sums travel far and the ancillas belong to
-    regions. Column by column the reduction is the one :func:`column_counts` counts (each full adder removes two
-    bits, a half adder, :func:`star_half_adder`, ends a column with two), whatever the order. Each adder costs
-    one CX more than the in-line ones of :func:`popcount_layout`: no gate joins two data bits, which a layout
-    that keeps the grid's geometry never puts side by side.
+    through :func:`star_full_adder` (sum on the middle bit, carry on a fresh ancilla sited with it, joining the
+    next column), so pass ``k`` adds up compact regions of about ``3^k`` bits and only ``O(log)`` partial sums
+    travel far. Each adder costs one CX more than :func:`popcount_layout`'s: no gate joins two data bits.
 
     A full adder is symmetric in its three inputs, so any of them may keep the sum: without a ``sink`` the middle
     one (along the curve) does. With a ``sink`` (the ``medial`` layout) the adders are chosen *local first*: the
@@ -678,6 +675,19 @@ class SumsShape:
         return self._phase_cost
 
 
+class SumsKind(NamedTuple):
+    """Kind key of :class:`SumsPhase` (and of the plan's deferred balance arithmetic): the cost depends on the
+    shape only.
+
+    Attributes:
+        gadget: ``"sums"``.
+        shape: the :class:`SumsShape`.
+    """
+
+    gadget: str
+    shape: SumsShape
+
+
 @dataclass(frozen=True)
 class SumsPhase:
     """Compute integer sums into registers, phase a quadratic function of them, uncompute.
@@ -704,8 +714,8 @@ class SumsPhase:
     sinks: tuple[Sink | None, ...] = ()
 
     @property
-    def kind(self) -> Hashable:
-        return ("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
+    def kind(self) -> SumsKind:
+        return SumsKind("sums", self.shape)  # the cost depends on the shape only (qubits and term order aside)
 
     @cached_property
     def shape(self) -> SumsShape:
@@ -724,6 +734,10 @@ class SumsPhase:
     def num_ancillas(self) -> int:
         """Clean ancillas needed: one per adder carry and per copy."""
         return self.shape.num_ancillas
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     def phase(self, registers: list[list[int | None]] | None = None) -> tuple[float, IsingPhase]:
         """``(c0, the RZ/RZZ gadget)`` of ``g`` on the register bits (abstract labels when not given)."""
@@ -825,6 +839,10 @@ class SumsRegister:
     def num_ancillas(self) -> int:
         """Tree ancillas (the register is separate)."""
         return sum(self._count[:3])
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     @property
     def width(self) -> int:
@@ -943,6 +961,10 @@ class SumsAccumulate:
     def num_ancillas(self) -> int:
         """Tree ancillas plus carries."""
         return sum(self._count[:3]) + max(len(self.accumulator) - 1, 0)
+
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
 
     def _costs(self) -> tuple[int, Cost]:
         fa, ha, cp, present = self._count

@@ -32,16 +32,16 @@ from collections.abc import Hashable
 from dataclasses import dataclass
 
 from qcpp.gadgets.phase_ising import IsingPhase, ising_form
+from qcpp.gadgets.pricing import PricedByKind
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, and_, x
-from qcpp.plan.call_graph import PricedByKind
 
 __all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas", "with_ands"]
 
 
 def _visit_costs(sizes: tuple[int, ...], products: bool, nonzero: bool) -> tuple[Cost, Cost]:
     """``(cost, logical cost)`` of a :class:`VisitPhase`: they depend on its kind only (so :meth:`VisitPhase.cost`
-    looks them up per kind in :data:`~qcpp.plan.call_graph.COSTS`; a 30x30 plan prices thousands of nodes)."""
+    looks them up per kind in :data:`~qcpp.gadgets.pricing.COSTS`; a 30x30 plan prices thousands of nodes)."""
     g = VisitPhase("g", 1.0 if nonzero else 0.0, tuple(tuple(range(k)) for k in sizes), (), products)
     ands, xs = g._counts()
     ph = g.phase()[1].cost()
@@ -89,6 +89,10 @@ class VisitPhase(PricedByKind):
     def kind(self) -> Hashable:
         # a zero coefficient emits no rotation: equal kinds must mean equal gates and costs
         return ("visits", tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)
+
+    def needs(self) -> tuple[int, int]:
+        """The clean ancillas of :func:`visit_ancillas`, no work ancillas."""
+        return visit_ancillas(tuple(len(v) for v in self.visitors), self.products), 0
 
     def _layout(self) -> tuple[list[Gate], list[tuple[int, bool]]]:
         """The compute gates and, per visitor, ``(qubit, holds the complement)``."""

@@ -3,10 +3,8 @@
 The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every other output path):
 
 * **Regular files** (or a new path): the content goes to a temporary file in the destination's folder, is
-  flushed to disk, gets the permissions a plain ``open(path, "w")`` would give (an existing file's mode, else
-  ``0o666`` less the umask; ``mkstemp`` alone would leave ``0o600``) and is renamed over the destination with
-  :func:`os.replace`. On any error (or Ctrl-C) the temporary file is removed and the destination is left as it
-  was.
+  flushed, gets the permissions a plain ``open(path, "w")`` would give, and is renamed over the destination
+  (:func:`os.replace`). On any error (or Ctrl-C) the temporary file is removed and the destination is unchanged.
 * **Symbolic links** are followed: the file the link points to is replaced, the link stays a link.
 * **Existing non-regular files** (a device such as ``/dev/null`` or ``/dev/full``, a FIFO) are written straight
   to, never replaced. A FIFO must get a reader within :data:`FIFO_WAIT` seconds.

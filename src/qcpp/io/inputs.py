@@ -62,9 +62,6 @@ def read_bounded(path: str | os.PathLike[str], max_bytes: int, *, wait: float | 
         max_bytes: The largest content the caller accepts; one byte more is read so that it can tell.
         wait: Longest wait, in seconds, for more data from a FIFO, pipe or device (``None``: :data:`INPUT_WAIT`).
 
-    Returns:
-        The bytes read.
-
     Raises:
         InputError: the file cannot be opened, or a FIFO/pipe/device gave no data for ``wait`` seconds.
         OSError: other read errors (directories: ``IsADirectoryError``).

@@ -157,9 +157,6 @@ class Angle:
             name: symbol name (an identifier, e.g. ``"gamma_0"``).
             coeff: its coefficient.
 
-        Returns:
-            The angle.
-
         >>> Angle.symbol("gamma_0", 0.5)
         Angle('0.5*gamma_0')
         """
@@ -358,9 +355,6 @@ def format_float(x: float) -> str:
     Args:
         x: a finite float.
 
-    Returns:
-        The literal.
-
     >>> format_float(0.1), format_float(1e-5), format_float(-2.0)
     ('0.1', '1.0e-05', '-2.0')
     """
@@ -379,9 +373,6 @@ def format_angle(value: float | Angle, style: Literal["qasm2", "qasm3"] = "qasm3
         value: a number or an :class:`Angle`.
         style: ``"qasm2"`` needs a bound value (numbers only); ``"qasm3"`` writes symbols as
             an affine expression, e.g. ``2.5*gamma_0 + 0.1``.
-
-    Returns:
-        The expression text.
 
     Raises:
         UnboundParameterError: ``style="qasm2"`` and the angle has symbols.

@@ -261,9 +261,6 @@ class Circuit:
 
         Args:
             other: circuit to run after this one.
-
-        Returns:
-            The combined circuit.
         """
         a, b = self._registers, other._registers
         if a[: len(b)] == b:

@@ -51,9 +51,6 @@ class Cost:
         Args:
             counts: name -> count.
             **named: more name -> count pairs (added).
-
-        Returns:
-            The cost.
         """
         total: dict[str, int] = {}
         for src in (counts or {}), named:

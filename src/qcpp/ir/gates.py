@@ -178,9 +178,6 @@ class Gate(NamedTuple):
     def inverse(self) -> Gate:
         """The inverse gate (from the ``inverse`` rule of the spec table).
 
-        Returns:
-            The inverse gate.
-
         >>> t(0).inverse().name, rx(0.3, 0).inverse().params
         ('tdg', (-0.3,))
         """
@@ -301,9 +298,6 @@ def rz(theta: Param, q: int) -> Gate:
     Args:
         theta: angle (number or :class:`Angle`).
         q: qubit.
-
-    Returns:
-        The gate.
 
     >>> rz(Angle.symbol("gamma_0"), 2)
     Gate(name='rz', qubits=(2,), params=(Angle('gamma_0'),), ctrl_state=None)

@@ -31,7 +31,7 @@ Each robot's patch spans ``R`` row lines and ``4 C`` columns; the ``k`` patches 
 (offsets ``Y = R * row``, ``X = 4 C * column``), choosing the stacking that needs the smallest lattice. The rest
 of the pipeline is the square grid's (:func:`qcpp.pipeline.device_compile.medial_compile`): local ancillas with search
 (:func:`qcpp.layout.medial.allocate_ancillas`), relays (:mod:`qcpp.routing.bridge`) and windows routed home
-(:func:`qcpp.routing.sabre.route_windows`).
+(:func:`qcpp.routing.windows.route_windows`).
 
 The geometry costs more than on a square grid: a cell is a 12-qubit cycle with no qubit at its centre, so a
 plaquette's four edges are 2 to 6 steps apart (2, 2 and 2 around the cell from the top edge, 4, 4 and 6 across
@@ -61,7 +61,7 @@ from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_couplin
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
-    "CELL_LARGE_WINDOW_SEEDS", "CELL_LARGE_WINDOW_TRIALS", "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
+    "CELL_PHASE_LAYOUT", "heavy_hex_distance", "hex_distance",
     "hex_placement", "hex_sites", "is_hex_lattice",
 ]  # fmt: skip
 
@@ -69,17 +69,8 @@ CELL_PHASE_LAYOUT = "medial"
 """The phase separator's layout that ``phase_layout="auto"`` settles on for a heavy-hex lattice (the cell layout):
 the balance sums drift to sinks where the robots' patches meet (:func:`qcpp.plan.phase_layout.balance_sinks`),
 as on square grids; same gates and counts as ``spatial``. Measured with the cells' planned mixers and
-:data:`CELL_LARGE_WINDOW_SEEDS`, p = 1, routed CX of the phase separator, ``spatial`` -> ``medial``: see
-docs/resource-estimates.md ("Heavy-hex: one cell per plaquette")."""
-
-CELL_LARGE_WINDOW_SEEDS = 32
-"""SABRE seeds the balance arithmetic's one large window tries on the cells (:func:`qcpp.routing.sabre.route_window`;
-8 elsewhere), with :data:`CELL_LARGE_WINDOW_TRIALS` trials each. Measured on 4x4/2 (p = 1, ``medial`` phase layout),
-that window's routed CX by (seeds, trials): (8, 16) 2,488; (32, 16) 2,434; (8, 64) 2,460; (16, 64) 2,444;
-(32, 64) 2,388; (64, 64) 2,386; (128, 64) 2,372 at five times (32, 64)'s time."""
-
-CELL_LARGE_WINDOW_TRIALS = 64
-"""SABRE's trials per seed on the cells' large window (16 elsewhere, :data:`qcpp.routing.sabre.DEFAULT_TRIALS`)."""
+:attr:`~qcpp.routing.options.RoutingOptions.cell_large_window_seeds`, p = 1, routed CX of the phase separator,
+``spatial`` -> ``medial``: see docs/resource-estimates.md ("Heavy-hex: one cell per plaquette")."""
 
 
 def heavy_hex_distance(device: Device) -> int | None:

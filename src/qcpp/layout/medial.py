@@ -47,11 +47,14 @@ from qcpp.devices.device import Device, grid_coupling
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.layout.heavy_hex import hex_placement
+from qcpp.plan.phase_layout import tiling
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import has_rzz
-from qcpp.routing.sabre import DEFAULT_TRIALS
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.windows import route_window_cx
 
-__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape", "tiling"]
+__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape"]
 
 
 def grid_shape(device: Device) -> tuple[int, int] | None:
@@ -66,20 +69,6 @@ def grid_shape(device: Device) -> tuple[int, int] | None:
         if n % rows == 0 and len(device.coupling) == edges and device.coupling == grid_coupling(rows, cols):
             return rows, cols
     return None
-
-
-def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
-    """Patches per device row and column for ``k`` patches of shape ``patch``: the near-square arrangement
-    ``(down, across)`` of smallest bounding square, then smallest area."""
-    best: tuple[tuple[int, int], tuple[int, int]] | None = None
-    for across in range(1, k + 1):
-        down = -(-k // across)
-        h, w = down * patch[0], across * patch[1]
-        key = (max(h, w), h * w)
-        if best is None or key < best[0]:
-            best = (key, (down, across))
-    assert best is not None
-    return best[1]
 
 
 ARRANGEMENTS = ("tile", "interleave")
@@ -102,8 +91,8 @@ def medial_shape(scenario: Scenario, arrangement: str = "tile") -> tuple[int, in
 def medial_placement(scenario: Scenario, device: Device, arrangement: str = "tile") -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a square-grid device, or ``None`` if the
     device is not a square grid or the layout does not fit (``tile`` also tries the other arrangements of
-    patches than :func:`tiling`'s). On a heavy-hex lattice device: :func:`qcpp.layout.heavy_hex.hex_placement`
-    (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
+    patches than :func:`~qcpp.plan.phase_layout.tiling`'s). On a heavy-hex lattice device:
+    :func:`qcpp.layout.heavy_hex.hex_placement` (one heavy-hex cell per plaquette; ``arrangement`` does not apply).
 
     Args:
         scenario: The scenario.
@@ -218,31 +207,12 @@ def _ranked(key: np.ndarray, rank: int) -> int:
     return j if np.isfinite(rest[j]) else int(np.argmin(key))
 
 
-SEARCH_RANKS = 4
-"""With ``search``, each ancilla of a small section is also tried on its 2nd .. (1 + this)-th best free qubit."""
-
-SEARCH_TRIALS = DEFAULT_TRIALS
-"""SABRE trials per window the search routes: those of the final routing, so the window it keeps routes as measured."""
-
-SEARCH_ROUNDS = 2
-"""Rounds of the search: each round tries every ancilla on each of its ranks with the others as found so far."""
-
-SEARCH_MAX_PAIRS = 200
-"""Sections with more two-qubit gates than this keep the greedy allocation (the balance arithmetic's one window)."""
-
-
-_SEARCH_CACHE: dict[tuple, tuple[int, ...]] = {}
-
-SEARCH_MARGIN = 2
-"""Device rows and columns around a section's data that its search result depends on (ancillas land within
-two steps of their partners, windows are routed on the qubits within two steps of theirs)."""
-
-
 def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, taken: np.ndarray, device: Device,
-                order: list[int]) -> tuple | None:  # fmt: skip
+                order: list[int], margin: int) -> tuple | None:  # fmt: skip
     """What the search's answer for a section depends on, up to translation on a square grid: its gates (data
     qubits as positions relative to the section's data, ancillas by order of first use), the occupied sites and
-    the device's border within :data:`SEARCH_MARGIN` of that data (``None``: not a square grid)."""
+    the device's border within ``margin`` of that data
+    (:attr:`~qcpp.routing.options.RoutingOptions.search_margin`; ``None``: not a square grid)."""
     shape = grid_shape(device)
     if shape is None:
         return None
@@ -262,8 +232,8 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
         return ("a", slot[q])
 
     body = tuple((g[0], tuple(rel(q) for q in g[1])) for g in gates if len(g[1]) == 2)
-    lo_r, hi_r = max(0, r0 - SEARCH_MARGIN), min(rows - 1, r1 + SEARCH_MARGIN)
-    lo_c, hi_c = max(0, c0 - SEARCH_MARGIN), min(cols - 1, c1 + SEARCH_MARGIN)
+    lo_r, hi_r = max(0, r0 - margin), min(rows - 1, r1 + margin)
+    lo_c, hi_c = max(0, c0 - margin), min(cols - 1, c1 + margin)
     box = taken.reshape(rows, cols)[lo_r : hi_r + 1, lo_c : hi_c + 1]
     shift = np.array([lo_r - r0, lo_c - c0])
     occupied = tuple(tuple(int(v) for v in rc_) for rc_ in np.argwhere(box) + shift)
@@ -272,23 +242,21 @@ def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, t
 
 
 def _routed_cost(twoq: Sequence[tuple[int, int]], home: dict[int, int], data_where: dict[int, int], device: Device,
-                 dist: np.ndarray) -> int:  # fmt: skip
-    """Two-qubit gates of a section's window routed from home (as :func:`qcpp.routing.sabre.route_windows`):
-    ``twoq`` its two-qubit gates' qubits, ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
-    from qcpp.routing.sabre import route_window_cx
-
+                 dist: np.ndarray, options: RoutingOptions, context: RoutingContext) -> int:  # fmt: skip
+    """Two-qubit gates of a section's window routed from home (as :func:`qcpp.routing.windows.route_windows` with
+    ``options``, so the window the search keeps routes as measured): ``twoq`` its two-qubit gates' qubits,
+    ``data_where`` the homes of its data qubits, ``home`` its ancillas'."""
     where = {**data_where, **home}
     pairs = [(where[a], where[b]) for a, b in twoq]
-    return route_window_cx(pairs, None, device, dist, trials=SEARCH_TRIALS)
+    return route_window_cx(pairs, None, device, dist, 0, options, context)
 
 
-_FREE_SITES: list[tuple] = []
-
-
-def _free_sites(device: Device, d: np.ndarray, data_homes: tuple[int, ...]) -> tuple[np.ndarray, ...]:
-    """The occupied mask, the free qubits in the data's component and every qubit's distances to them; the last
-    answer is kept (the cells' plan choice allocates one section at a time on the same homes)."""
-    for dev, dist, homes, answer in _FREE_SITES:
+def _free_sites(
+    context: RoutingContext, device: Device, d: np.ndarray, data_homes: tuple[int, ...]
+) -> tuple[np.ndarray, ...]:
+    """The occupied mask, the free qubits in the data's component and every qubit's distances to them; the context
+    keeps the last answer (the cells' plan choice allocates one section at a time on the same homes)."""
+    for dev, dist, homes, answer in context.free_sites:
         if dev is device and dist is d and homes == data_homes:
             return answer
     taken = np.zeros(device.num_qubits, dtype=bool)
@@ -298,13 +266,13 @@ def _free_sites(device: Device, d: np.ndarray, data_homes: tuple[int, ...]) -> t
     to_free = np.ascontiguousarray(d[:, free])  # row p: distances from p to the free qubits
     for a in (taken, free, to_free):
         a.flags.writeable = False  # shared between calls
-    _FREE_SITES[:] = [(device, d, data_homes, (taken, free, to_free))]
+    context.free_sites[:] = [(device, d, data_homes, (taken, free, to_free))]
     return taken, free, to_free
 
 
 def allocate_ancillas(
     circuit: Circuit, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None,
-    search: bool = False,
+    search: bool = False, options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
 ) -> tuple[Circuit, tuple[int, ...]]:  # fmt: skip
     """Give every section's ancillas the nearest free device qubits (see the module docs).
 
@@ -314,12 +282,15 @@ def allocate_ancillas(
         data_homes: Physical qubit of every data qubit.
         device: The device.
         dist: Its all-pairs distances (:func:`qcpp.layout.placement.distances`), if already known.
-        search: For every section of at most :data:`SEARCH_MAX_PAIRS` two-qubit gates and no ``rzz`` (phase
+        search: For every section of at most ``options.search_max_pairs`` two-qubit gates and no ``rzz`` (phase
             sections are left to :func:`qcpp.routing.bridge.bridge_far_phases`; in practice: the partial mixers),
-            also try each ancilla on its 2nd .. (1 + :data:`SEARCH_RANKS`)-th best free qubit (the later ones
-            placed greedily after it), :data:`SEARCH_ROUNDS` rounds, and keep the allocation whose window routes
-            to the fewest two-qubit gates (the greedy one on ties). The answer is cached per section up to
-            translation on a square grid (:func:`_search_key`).
+            also try each ancilla on its 2nd .. (1 + ``options.search_ranks``)-th best free qubit (the later ones
+            placed greedily after it), ``options.search_rounds`` rounds, and keep the allocation whose window
+            routes to the fewest two-qubit gates (the greedy one on ties). The answer is memoised in ``context``
+            per section up to translation on a square grid (:func:`_search_key`).
+        options: The search's settings (:class:`~qcpp.routing.options.RoutingOptions`); its windows are routed
+            with them.
+        context: The run's memos and watches (default: a fresh one).
 
     Returns:
         ``(circuit, layout)``: the circuit with registers ``data`` and ``site`` (the physical qubits used as
@@ -329,8 +300,9 @@ def allocate_ancillas(
         ValueError: a section needs more ancillas than the device has free qubits (in the data's component).
     """
     d = _distances(device) if dist is None else dist
+    context = RoutingContext() if context is None else context
     n_data = len(data_homes)
-    taken, free, to_free = _free_sites(device, d, tuple(int(h) for h in data_homes))
+    taken, free, to_free = _free_sites(context, device, d, tuple(int(h) for h in data_homes))
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:
@@ -342,20 +314,22 @@ def allocate_ancillas(
         centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
         home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data)
         twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
-        if search and order and twoq <= SEARCH_MAX_PAIRS and not device.is_all_to_all and not has_rzz(sec.gates):
-            key = _search_key(sec.gates, data_homes, n_data, taken, device, order)
-            ranks = _SEARCH_CACHE.get(key) if key is not None else None
+        if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
+                and not has_rzz(sec.gates)):  # fmt: skip
+            shape_key = _search_key(sec.gates, data_homes, n_data, taken, device, order, options.search_margin)
+            key = None if shape_key is None else (shape_key, options)
+            ranks = context.allocations.get(key) if key is not None else None
             if ranks is None:
                 twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
                 data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
                 ranks = [0] * len(order)
-                best = _routed_cost(twoq, home, data_where, device, d)  # type: ignore[arg-type]
+                best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
                 tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
-                for _ in range(SEARCH_ROUNDS):
+                for _ in range(options.search_rounds):
                     improved = False
                     prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
                     for i in range(len(order)):
-                        for r in range(1 + min(SEARCH_RANKS, len(free) - 1)):
+                        for r in range(1 + min(options.search_ranks, len(free) - 1)):
                             if r == ranks[i]:
                                 continue
                             trial = [*ranks[:i], r, *ranks[i + 1 :]]
@@ -366,7 +340,8 @@ def allocate_ancillas(
                                 placed = tuple(other.items())
                                 cost = tried.get(placed)
                                 if cost is None:
-                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d)  # type: ignore[arg-type]
+                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d, options,
+                                                                        context)  # type: ignore[arg-type]
                                 tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
@@ -376,7 +351,7 @@ def allocate_ancillas(
                         break
                 ranks = tuple(ranks)
                 if key is not None:
-                    _SEARCH_CACHE[key] = ranks
+                    context.allocations[key] = ranks
             if any(ranks):
                 home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data, ranks)
         used.update(home.values())

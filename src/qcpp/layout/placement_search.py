@@ -11,7 +11,7 @@ greedy placement, Qiskit's ``SabreLayout`` from one random start or another; ``b
   does worse than the single greedy routing), then
 * ``layouts`` runs of Qiskit's ``SabreLayout``, each from one random start (seeds ``seed, seed + 1, ...``),
 
-each with SABRE routing seed ``seed`` and the :data:`SEARCH_REFINE` cheapest also with ``seeds - 1`` more,
+each with SABRE routing seed ``seed`` and the ``placement_refine`` cheapest also with ``seeds - 1`` more,
 whole-circuit, with SWAPs fused into an adjacent ``cx`` on their pair (:func:`qcpp.routing.sabre.route`
 ``fuse=True``: ``cx a b`` then ``SWAP a b`` is two ``cx``), and keeps the routed circuit with the fewest
 two-qubit gates (ties: the first layout in that order, then the lowest seed). Every seed is fixed and every
@@ -20,8 +20,9 @@ same on every machine and ``qcpp estimate --device`` (which compiles small rows)
 ``qcpp compile --device`` writes. The routed circuit is an ordinary SABRE routing of the unchanged gates: the
 checks of :mod:`qcpp.routing.sabre` (coupling edges, statevector and QCEC equivalence up to the layouts) apply.
 
-Compile searches only on circuits of at most :data:`SEARCH_MAX_TWOQ` two-qubit gates (its cost grows with the
-gate count times ``layouts x seeds``; larger circuits keep one routing from the best layout).
+Compile searches only on circuits of at most :attr:`~qcpp.routing.options.RoutingOptions.placement_max_twoq`
+two-qubit gates (its cost grows with the gate count times ``layouts x seeds``; larger circuits keep one routing from
+the best layout). The settings come in one :class:`~qcpp.routing.options.RoutingOptions` value.
 
 Example:
     >>> from dataclasses import replace
@@ -44,35 +45,12 @@ from typing import Any
 
 from qcpp.devices.device import Device
 from qcpp.ir.circuit import Circuit
-from qcpp.routing.sabre import DEFAULT_TRIALS, RoutedCircuit, coupling_map, route, window_cx
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
+from qcpp.routing.sabre import route, window_cx
 
-__all__ = [
-    "SEARCH_LAYOUTS",
-    "SEARCH_MAX_TWOQ",
-    "SEARCH_REFINE",
-    "SEARCH_SEEDS",
-    "qiskit_sabre_layout",
-    "search_route",
-    "two_qubit_count",
-]
-
-SEARCH_MAX_TWOQ = 400
-"""Compile searches placements on circuits of at most this many two-qubit gates (one robot up to p = 3 on 3x3;
-the time-to-solution study's p = 5 circuits, 540+ CX, keep one routing)."""
-
-SEARCH_LAYOUTS = 24
-"""``SabreLayout`` starts per search (measured: ``benchmarks/routing.py --search``)."""
-
-SEARCH_SEEDS = 4
-"""SABRE routing seeds per layout: every layout is routed with the first, the :data:`SEARCH_REFINE` cheapest
-with all."""
-
-SEARCH_REFINE = 6
-"""Layouts routed with every seed: the cheapest after the first seed."""
-
-SABRE_LAYOUT_TRIALS = 1
-"""Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the machine's CPU count, which would make
-the layout depend on the machine)."""
+__all__ = ["qiskit_sabre_layout", "search_route", "two_qubit_count"]
 
 
 def two_qubit_count(circuit: Circuit) -> int:
@@ -80,14 +58,17 @@ def two_qubit_count(circuit: Circuit) -> int:
     return sum(1 for g in circuit.gates if len(g[1]) == 2)
 
 
-def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tuple[int, ...]:
-    """Qiskit's ``SabreLayout`` (forward-backward SABRE from :data:`SABRE_LAYOUT_TRIALS` random starts) on the
+def qiskit_sabre_layout(
+    circuit: Circuit, device: Device, seed: int = 0, options: RoutingOptions = DEFAULT_ROUTING
+) -> tuple[int, ...]:
+    """Qiskit's ``SabreLayout`` (forward-backward SABRE from ``options.sabre_layout_trials`` random starts) on the
     two-qubit gates of ``circuit``.
 
     Args:
         circuit: A lowered circuit.
         device: The target (at least ``circuit.num_qubits`` qubits).
         seed: ``SabreLayout``'s seed.
+        options: The routing settings.
 
     Returns:
         Logical qubit ``i`` -> physical qubit.
@@ -100,8 +81,8 @@ def qiskit_sabre_layout(circuit: Circuit, device: Device, seed: int = 0) -> tupl
     for g in circuit.gates:
         if len(g[1]) == 2:
             qc.cx(*g[1])
-    sabre = SabreLayout(coupling_map(device), seed=seed, skip_routing=True, layout_trials=SABRE_LAYOUT_TRIALS,
-                        swap_trials=SABRE_LAYOUT_TRIALS)  # fmt: skip
+    sabre = SabreLayout(coupling_map(device), seed=seed, skip_routing=True, layout_trials=options.sabre_layout_trials,
+                        swap_trials=options.sabre_layout_trials)  # fmt: skip
     pm = PassManager([sabre])
     pm.run(qc)
     layout = pm.property_set["layout"]
@@ -114,8 +95,10 @@ def search_route(
     starts: Sequence[Sequence[int]] = (),
     seed: int = 0,
     measured: Sequence[int] | None = None,
-    layouts: int = SEARCH_LAYOUTS,
-    seeds: int = SEARCH_SEEDS,
+    layouts: int | None = None,
+    seeds: int | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> RoutedCircuit:
     """The cheapest whole-circuit SABRE routing over ``starts`` and ``layouts`` ``SabreLayout`` runs, SWAPs fused
     (module docs).
@@ -126,9 +109,12 @@ def search_route(
         starts: Layouts to try first (logical qubit ``i`` -> physical qubit).
         seed: First seed of ``SabreLayout`` and of the routings.
         measured: Logical qubits measured at the end (:func:`qcpp.routing.sabre.route`).
-        layouts: ``SabreLayout`` runs (seeds ``seed .. seed + layouts - 1``).
-        seeds: Routing seeds (``seed .. seed + seeds - 1``): every layout is routed with the first, the
-            :data:`SEARCH_REFINE` cheapest with all.
+        layouts: ``SabreLayout`` runs (seeds ``seed .. seed + layouts - 1``; default ``options.placement_layouts``).
+        seeds: Routing seeds (``seed .. seed + seeds - 1``; default ``options.placement_seeds``): every layout is
+            routed with the first, the ``options.placement_refine`` cheapest with all.
+        options: The search's settings.
+        context: The run's memos (default: a fresh one): the winner is memoised per circuit, device and settings,
+            so compiling the same circuit again in the run routes only the winner.
 
     Returns:
         The routed circuit with the fewest two-qubit gates (ties: the first layout in the order above, then the
@@ -137,22 +123,20 @@ def search_route(
     Raises:
         ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
     """
+    layouts = options.placement_layouts if layouts is None else layouts
+    seeds = options.placement_seeds if seeds is None else seeds
     if (not starts and layouts < 1) or seeds < 1:
         raise ValueError("search_route needs at least one layout and one seed")
+    context = RoutingContext() if context is None else context
     pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
     key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
-           seeds)  # fmt: skip
-    choice = _SEARCH_CACHE.get(key)
+           seeds, options)  # fmt: skip
+    choice = context.placements.get(key)
     if choice is None:
-        choice = _search(pairs, circuit, device, starts, seed, layouts, seeds)
-        _SEARCH_CACHE[key] = choice
+        choice = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
+        context.placements[key] = choice
     layout, routing_seed = choice
-    return route(circuit, device, layout, seed=routing_seed, measured=measured, fuse=True)
-
-
-_SEARCH_CACHE: dict[tuple, tuple[tuple[int, ...], int]] = {}
-"""The winning ``(layout, routing seed)`` per search (two-qubit gates, device, starts, seeds): compiling the same
-circuit again routes only the winner."""
+    return route(circuit, device, layout, seed=routing_seed, measured=measured, trials=options.trials, fuse=True)
 
 
 def _search(
@@ -163,9 +147,10 @@ def _search(
     seed: int,
     layouts: int,
     seeds: int,
+    options: RoutingOptions,
 ) -> tuple[tuple[int, ...], int]:
     """The ``(layout, routing seed)`` of :func:`search_route`'s cheapest routing: every layout routed with ``seed``,
-    then the :data:`SEARCH_REFINE` cheapest of them with the other seeds. A candidate is scored by
+    then the ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
     :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
     :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit."""
     from qiskit import QuantumCircuit
@@ -174,7 +159,7 @@ def _search(
     cmap = coupling_map(device)
     candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
     for i in range(layouts):
-        layout = qiskit_sabre_layout(circuit, device, seed + i)
+        layout = qiskit_sabre_layout(circuit, device, seed + i, options)
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
     dags = []
@@ -183,18 +168,18 @@ def _search(
         for a, b in pairs:
             qc.cx(layout[a], layout[b])
         dags.append(circuit_to_dag(qc))
-    first = sorted((_routed_cx(dag, cmap, seed), i) for i, dag in enumerate(dags))
+    first = sorted((_routed_cx(dag, cmap, seed, options.trials), i) for i, dag in enumerate(dags))
     best = (first[0][0], first[0][1], seed)
-    for _, i in first[:SEARCH_REFINE]:
+    for _, i in first[: options.placement_refine]:
         for s in range(seed + 1, seed + seeds):
-            best = min(best, (_routed_cx(dags[i], cmap, s), i, s))
+            best = min(best, (_routed_cx(dags[i], cmap, s, options.trials), i, s))
     return candidates[best[1]], best[2]
 
 
-def _routed_cx(dag: Any, cmap: Any, seed: int) -> int:
+def _routed_cx(dag: Any, cmap: Any, seed: int, trials: int | None) -> int:
     """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses them."""
     from qiskit.transpiler.passes import SabreSwap
 
-    out = SabreSwap(cmap, heuristic="decay", seed=seed, trials=DEFAULT_TRIALS).run(dag)
+    out = SabreSwap(cmap, heuristic="decay", seed=seed, trials=trials).run(dag)
     index = {q: i for i, q in enumerate(out.qubits)}
     return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])

@@ -452,9 +452,6 @@ def peephole(circuit: Circuit) -> Circuit:
     Args:
         circuit: any circuit.
 
-    Returns:
-        The simplified circuit.
-
     >>> from qcpp.ir.gates import h, rz, x
     >>> c = Circuit([("data", 1)], [Section("s", [h(0), x(0), x(0), h(0), rz(0.1, 0), rz(0.2, 0)])])
     >>> [str(g) for g in peephole(c).gates]
@@ -482,9 +479,6 @@ def lower(circuit: Circuit, basis: Iterable[str] = DEFAULT_BASIS, peephole: bool
         circuit: any circuit.
         basis: target gate names (default :data:`DEFAULT_BASIS`).
         peephole: run :func:`peephole` at the end.
-
-    Returns:
-        The lowered circuit.
     """
     basis = _check_basis(basis)
     out = lower_to_basis(lower_mcx(circuit) if "mcx" not in basis else circuit, basis)

@@ -4,15 +4,11 @@ One qubit register ``q[n]``: IR qubit ``i`` is ``q[i]``. Each IR gate becomes ex
 QASM statement, so the gate counts of a file equal the IR counts (see :func:`ir_gate_name`).
 A ``// section <name>`` comment opens each section.
 
-Gates with a standard equivalent are written with their standard name: in OpenQASM 2 the
-gates of the *original* ``qelib1.inc`` (``x h t tdg s sdg rz rx ry cx cz crz ccx``), in
-OpenQASM 3 those of ``stdgates.inc`` (the same plus ``cry crx``). In OpenQASM 3 a
-multi-controlled X is one statement with control modifiers, one run of equal polarity per
-modifier, e.g. ``mcx([0, 1, 2, 3], 4, "1101")`` is ``ctrl(2) @ negctrl @ ctrl @ x
-q[0],q[1],q[2],q[3],q[4];``: ``qiskit.qasm3.loads`` turns it into one ``MCXGate`` (with
-``ctrl_state``), so a Qiskit user's transpiler synthesises it with its own MCX methods.
-Every other gate gets a ``gate`` definition at the top of the file, built only from standard
-gates and emitted only if used:
+Gates with a standard equivalent keep their standard name (OpenQASM 2: the *original*
+``qelib1.inc``; OpenQASM 3: ``stdgates.inc``). In OpenQASM 3 a multi-controlled X is one
+statement with control modifiers, e.g. ``mcx([0, 1, 2, 3], 4, "1101")`` is ``ctrl(2) @ negctrl
+@ ctrl @ x q[0],q[1],q[2],q[3],q[4];`` (one ``MCXGate`` for ``qiskit.qasm3.loads``). Every
+other gate gets a ``gate`` definition from standard gates, emitted only if used:
 
 =============================== =========================================================
 ``qcpp_rzz(θ) a,b``              cx, rz, cx
@@ -31,8 +27,7 @@ gates and emitted only if used:
                                  controlled phases and 2^(n-1)-2 cx
 =============================== =========================================================
 
-Every IR gate name must have an entry in :data:`QASM_FORMS` (a test checks that it covers
-:data:`qcpp.ir.gates.GATE_SPECS`); a gate name without one raises ``ValueError``.
+Every IR gate name has an entry in :data:`QASM_FORMS`; a name without one raises ``ValueError``.
 
 Naming: every custom name starts with ``qcpp_``, so none collides with Qiskit's importers
 (``qiskit.qasm2.loads`` with ``LEGACY_CUSTOM_INSTRUCTIONS`` *replaces* a file's own ``gate
@@ -40,12 +35,10 @@ rzz``/``c3x`` definition by its own class of that name). To compare counts, map 
 ``count_ops()`` names back with :func:`ir_gate_name` (``qcpp_rzz`` -> ``rzz``, ``mcx_o5`` ->
 ``mcx``, ...); lowered circuits use standard names only, so their counts match directly.
 
-Parameters: numbers are written with ``repr`` precision (round-trip exact). OpenQASM 2 needs
-every symbol bound (:class:`UnboundParameterError` otherwise). OpenQASM 3 declares each
-unbound symbol as ``input float[64] <name>;`` (``qiskit.qasm3.loads`` turns these into
-``Parameter`` objects) and writes affine expressions such as ``rz(2.5*gamma_0 + 0.1)``.
-Like Qiskit, ``rz`` is read as RZ(θ) = diag(e^{-iθ/2}, e^{iθ/2}) (the OpenQASM 2 paper's
-``qelib1.inc`` defines it as ``u1``, which differs by a global phase).
+Parameters are written with ``repr`` precision (round-trip exact). OpenQASM 2 needs every
+symbol bound (:class:`UnboundParameterError` otherwise); OpenQASM 3 declares each unbound
+symbol as ``input float[64] <name>;`` and writes affine expressions such as
+``rz(2.5*gamma_0 + 0.1)``. ``rz`` is RZ(θ) = diag(e^{-iθ/2}, e^{iθ/2}), as in Qiskit.
 
 >>> from qcpp.ir.circuit import CircuitBuilder
 >>> from qcpp.ir.gates import h, mcx, rzz

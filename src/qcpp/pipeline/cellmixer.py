@@ -17,18 +17,19 @@ all-to-all counts are unchanged.
 **Choice** (:func:`cell_mixers`). On a heavy-hex lattice device with the cell layout, each partial mixer's
 section is replaced by the variant whose window routes to the fewest two-qubit gates from home, allocated and routed
 exactly as :func:`qcpp.pipeline.device_compile.medial_compile` then does it
-(:func:`qcpp.layout.medial.allocate_ancillas` with compile's search, :func:`qcpp.routing.sabre.route_window`), the
+(:func:`qcpp.layout.medial.allocate_ancillas` with compile's search, :func:`qcpp.routing.windows.route_window`), the
 default plan on ties. Then the operands of one AND
 at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
 fewer, until none does: the same logic, but a lowered AND uses its first operand twice
 (:func:`qcpp.ir.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE
-brings together. The choice is cached per *cell class* (the gadget's kind, its data qubits' coordinates relative to
-an anchor on the lattice's translation grid, and the occupied and existing qubits within :data:`MARGIN` of them), so
-the interior plaquettes of a large grid are scored once. A cached choice is only a choice: the chosen section is
-routed afresh by compile, so the written circuit and its counts stay exact. A kind whose relabellings all give the
+brings together. The choice is memoised in the run's :class:`~qcpp.routing.context.RoutingContext` per *cell class*
+(the gadget's kind, its data qubits' coordinates relative to an anchor on the lattice's translation grid, and the
+occupied and existing qubits within :data:`MARGIN` of them), so the interior plaquettes of a large grid are scored
+once. A cached choice is only a choice: the chosen section is routed afresh by compile, so the written circuit and
+its counts stay exact. A kind whose relabellings all give the
 default plan is left as compiled. The cost is compile time: every variant is allocated with the search and routed
 (most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
-translations, :func:`qcpp.routing.sabre.route_window`, so equal windows of other plaquettes and the final
+translations, :func:`qcpp.routing.windows.route_window`, so equal windows of other plaquettes and the final
 allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
 scored again, and the A* runs once per relabelled program; docs/resource-estimates.md quotes the times).
 
@@ -53,7 +54,6 @@ from __future__ import annotations
 import dataclasses
 import itertools
 from collections.abc import Callable, Hashable, Mapping, Sequence
-from functools import lru_cache
 
 import numpy as np
 
@@ -62,18 +62,20 @@ from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartial
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import heavy_hex_distance
+from qcpp.layout.medial import allocate_ancillas
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.scenario import Scenario
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.windows import Positions, route_window_cx
 
 __all__ = ["MARGIN", "cell_mixers", "relabelled_plans"]
 
 MARGIN = 6
 """Lattice coordinates around a partial mixer's data whose qubits (present, occupied) key its cell class: the
 allocation puts its ancillas within two steps of their partners and a window routes within two steps of them."""
-
-_CHOICE_CACHE: dict[Hashable, MixerPlan] = {}
 
 
 def _relabel_program(program: AbstractProgram, sigma: Sequence[int]) -> AbstractProgram:
@@ -101,28 +103,26 @@ def _relabel_plan(plan: MixerPlan, sigma: Sequence[int]) -> MixerPlan:
     return MixerPlan(compute, rotation, plan.num_temps)
 
 
-@lru_cache(maxsize=4096)
-def _planned(program: AbstractProgram, target: str) -> MixerPlan:
-    """:func:`plan_parity_mixer`, memoised: the relabellings of one plaquette's program are often relabellings of
-    another's (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings), and each is one A*."""
-    return plan_parity_mixer(program, target)  # type: ignore[arg-type]
-
-
-@lru_cache(maxsize=1024)
-def relabelled_plans(program: AbstractProgram, target: str = "nisq") -> tuple[MixerPlan, ...]:
+def relabelled_plans(
+    program: AbstractProgram,
+    target: str = "nisq",
+    planner: Callable[[AbstractProgram, str], MixerPlan] = plan_parity_mixer,  # type: ignore[assignment]
+) -> tuple[MixerPlan, ...]:
     """The distinct parity-basis plans of ``program`` found under the 24 relabellings of the plaquette's positions
     (see the module docs), the default plan (:func:`plan_parity_mixer`) first.
 
     Args:
         program: An ``exact`` rule's abstract program.
         target: ``nisq`` or ``ft``.
+        planner: The A* (:func:`plan_parity_mixer`, or a memoised one: the relabellings of one plaquette's program
+            are often relabellings of another's).
 
     Returns:
         The plans, each with the default plan's two-qubit gates count.
     """
     out: list[MixerPlan] = []
     for sigma in itertools.permutations(range(4)):
-        plan = _relabel_plan(_planned(_relabel_program(program, sigma), target), sigma)
+        plan = _relabel_plan(planner(_relabel_program(program, sigma), target), sigma)
         if plan not in out:
             out.append(plan)
     return tuple(out)
@@ -160,14 +160,30 @@ def _class_key(gadget: ParityPartialMixer, homes: Sequence[int], coords: Sequenc
 
 
 def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device: Device, dist: np.ndarray,
-               search: bool) -> int:  # fmt: skip
+               routing: RoutingOptions, context: RoutingContext) -> int:  # fmt: skip
     """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it."""
-    from qcpp.layout.medial import allocate_ancillas
-    from qcpp.routing.sabre import Positions, route_window_cx
-
-    logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist, search=search)
+    logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist,
+                                        routing.allocation_search, routing, context)  # fmt: skip
     pairs = [g[1] for g in logical.sections[0].gates if len(g[1]) == 2]
-    return route_window_cx(pairs, Positions(tuple(layout), device.num_qubits), device, dist)  # type: ignore[arg-type]
+    where = Positions(tuple(layout), device.num_qubits)
+    return route_window_cx(pairs, where, device, dist, 0, routing, context)  # type: ignore[arg-type]
+
+
+def _relabelled(context: RoutingContext, program: AbstractProgram, target: str) -> tuple[MixerPlan, ...]:
+    """:func:`relabelled_plans`, memoised in ``context``, with the A* of each relabelled program memoised there too
+    where the context reuses answers (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings)."""
+    hit = context.relabelled.get((program, target))
+    if hit is None:
+        plans = context.plans
+
+        def memoised(relabelled: AbstractProgram, target: str) -> MixerPlan:
+            if (relabelled, target) not in plans:
+                plans[relabelled, target] = plan_parity_mixer(relabelled, target)  # type: ignore[arg-type]
+            return plans[relabelled, target]  # type: ignore[no-any-return]
+
+        planner = memoised if context.reuse else plan_parity_mixer
+        hit = context.relabelled[program, target] = relabelled_plans(program, target, planner)  # type: ignore[arg-type]
+    return hit  # type: ignore[no-any-return]
 
 
 def cell_mixers(
@@ -179,6 +195,8 @@ def cell_mixers(
     dist: np.ndarray,
     bindings: Mapping[str, float] | None = None,
     stage: Callable[[str], None] | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> Circuit:
     """``circuit`` with every parity-basis partial mixer's section replaced by its cheapest variant on ``device``
     (see the module docs); unchanged where ``device`` is not a heavy-hex lattice or the circuit is not the plan's.
@@ -192,12 +210,13 @@ def cell_mixers(
         dist: The device's all-pairs distances.
         bindings: The angle values the circuit was bound with.
         stage: Called before each partial mixer's choice with ``choosing partial-mixer plans on the cells (i / n)``.
+        routing: The settings compile allocates and routes with.
+        context: The run's memos (default: a fresh one): choices are memoised there per cell class.
 
     Returns:
         The circuit, with the same sections in the same order.
     """
-    from qcpp.pipeline.device_compile import SEARCH
-
+    context = RoutingContext() if context is None else context
     d = heavy_hex_distance(device)
     if d is None or options.rule != "exact" or options.fuse:
         return circuit
@@ -217,8 +236,8 @@ def cell_mixers(
         if stage is not None:
             stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
         seen += 1
-        program, target = gadget.kind[1], gadget.kind[2]  # type: ignore[index]
-        plans = relabelled_plans(program, target)
+        program, target = gadget.kind.program, gadget.kind.target  # type: ignore[union-attr]
+        plans = _relabelled(context, program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included
             continue
 
@@ -233,11 +252,11 @@ def cell_mixers(
                  costs: dict[MixerPlan, int] = costs) -> int:  # fmt: skip
             if plan not in costs:
                 section = sections[i] if plan == gadget.plan else variant(plan)
-                costs[plan] = _window_cx(section, circuit, homes, device, dist, SEARCH)
+                costs[plan] = _window_cx(section, circuit, homes, device, dist, routing, context)
             return costs[plan]
 
-        key = (_class_key(gadget, homes, coords, occupied), SEARCH)
-        chosen = _CHOICE_CACHE.get(key)
+        key = (_class_key(gadget, homes, coords, occupied), routing)
+        chosen = context.cell_choices.get(key)
         if chosen is None:
             best, k = min((cost(plan), j) for j, plan in enumerate(plans))
             chosen = plans[k]
@@ -248,7 +267,7 @@ def cell_mixers(
                     c = cost(swapped)
                     if c < best:
                         best, chosen, improved = c, swapped, True
-            _CHOICE_CACHE[key] = chosen
+            context.cell_choices[key] = chosen
         if chosen != gadget.plan:
             sections[i] = variant(chosen)
     return Circuit(circuit.registers, sections)

@@ -12,23 +12,25 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   qubits nearest its data as ancillas (for the partial mixers, the sites whose window routes to the fewest
   gates among the nearest few), :func:`qcpp.routing.bridge.bridge_far_phases` relays far ``rzz`` phases (a node's
   visit bits of different robots) through clean device qubits where that routes cheaper than SWAPs, and
-  :func:`qcpp.routing.sabre.route_windows` routes every section with
+  :func:`qcpp.routing.windows.route_windows` routes every section with
   Qiskit's SABRE on the patch around it, uncompute mirrored, every qubit back home at the section's end (so
   ``initial_layout == final_layout``); on a large square grid the layout leaves mostly empty (a long strip's),
   all of this runs on the sub-grid around the layout, with the same result (:func:`_cropped`);
 * **greedy** (any device; the fallback, and for small circuits where it routes to fewer two-qubit gates,
-  :data:`AUTO_COMPARE_MAX_TWOQ`; on the unsized ``heavy-hex`` it is then routed on the smallest lattice that holds
-  the circuit, where it needs no room for the cells: measured, it wins on every default up to 3x3 with three
-  robots, the cells from 4x4 with two robots on): optionally region-local ancillas
-  (:func:`qcpp.layout.placement.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout` (our greedy
-  placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins) and one
-  SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
-  :data:`qcpp.layout.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, a placement search from that layout
-  instead (:func:`greedy_route`: many ``SabreLayout`` starts and SABRE seeds, SWAPs fused with an adjacent
+  :attr:`~qcpp.routing.options.RoutingOptions.auto_compare_max_twoq`; on the unsized ``heavy-hex`` it is then
+  routed on the smallest lattice that holds the circuit, where it needs no room for the cells: measured, it wins on
+  every default up to 3x3 with three robots, the cells from 4x4 with two robots on): optionally region-local
+  ancillas (:func:`qcpp.layout.placement.localize_ancillas`, ``local_ancillas=True``), then :func:`best_layout`
+  (our greedy placement refined forward-backward with SABRE, or Qiskit's ``SabreLayout``: the fewest SWAPs wins)
+  and one SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
+  :attr:`~qcpp.routing.options.RoutingOptions.placement_max_twoq` two-qubit gates, a placement search from that
+  layout instead (:func:`greedy_route`: many ``SabreLayout`` starts and SABRE seeds, SWAPs fused with an adjacent
   ``cx``, the fewest CX kept; deterministic).
 
 Unless ``lowered``, the routed circuit is translated to the device's native gates
-(:func:`qcpp.routing.sabre.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken.
+(:func:`qcpp.routing.native.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken. Every
+setting of routing, allocation and the searches comes in one :class:`~qcpp.routing.options.RoutingOptions` value and
+the memos of the run in one :class:`~qcpp.routing.context.RoutingContext`, both passed down explicitly.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -56,39 +58,30 @@ from typing import Any
 from qcpp.devices.device import Device, get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import (
-    CELL_LARGE_WINDOW_SEEDS,
-    CELL_LARGE_WINDOW_TRIALS,
-    CELL_PHASE_LAYOUT,
     heavy_hex_distance,
     hex_distance,
     hex_placement,
-    is_hex_lattice,
 )
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from qcpp.layout.placement import distances, localize_ancillas, place
-from qcpp.layout.placement_search import SEARCH_LAYOUTS, SEARCH_MAX_TWOQ, qiskit_sabre_layout, search_route
+from qcpp.layout.placement_search import qiskit_sabre_layout, search_route
 from qcpp.pipeline.cellmixer import cell_mixers
+from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
-from qcpp.plan.phase_layout import for_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
-from qcpp.routing.sabre import (
-    RoutedCircuit,
-    duration_s,
-    embed_routed,
-    esp,
-    route,
-    route_windows,
-    to_native,
-    watching_patches,
-)
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.native import duration_s, esp, to_native
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
+from qcpp.routing.sabre import route
+from qcpp.routing.windows import route_windows
 
 __all__ = [
     "DeviceCompileResult",
     "compile_for_device",
     "device_for",
-    "device_plan_options",
     "greedy_route",
     "hex_device",
     "layout_device",
@@ -168,7 +161,8 @@ ROUTERS = {
     "medial": "geometric layout (medial on a square grid, one cell per plaquette on heavy-hex) with local ancillas, "
     "far phases relayed through clean qubits; qiskit SabreSwap per section, each section returning home",
     "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout; "
-    f"on circuits of at most {SEARCH_MAX_TWOQ} two-qubit gates the fewest CX over that layout and {SEARCH_LAYOUTS} "
+    f"on circuits of at most {DEFAULT_ROUTING.placement_max_twoq} two-qubit gates the fewest CX over that layout and "
+    f"{DEFAULT_ROUTING.placement_layouts} "
     "SabreLayout starts, SWAPs fused with an adjacent cx",
 }
 
@@ -200,9 +194,10 @@ def best_layout(
     refine_rounds: int = 3,
     seed: int = 0,
     layouts: tuple[str, ...] = LAYOUTS,
+    options: RoutingOptions = DEFAULT_ROUTING,
 ) -> tuple[int, ...]:
     """The layout of fewest routed SWAPs among: our placement and its forward-backward SABRE refinements
-    (``"ours"``), and Qiskit's ``SabreLayout`` (``"qiskit"``)."""
+    (``"ours"``), and Qiskit's ``SabreLayout`` (``"qiskit"``), routed with ``options``' trials."""
     if device.is_all_to_all:
         return place(circuit, device)
     forward = _two_qubit_only(circuit)
@@ -212,35 +207,14 @@ def best_layout(
         candidates.append(layout)
         backward = _two_qubit_only(circuit, reverse=True)
         for _ in range(refine_rounds):
-            ahead = route(forward, device, layout, seed=seed)
-            layout = route(backward, device, ahead.final_layout, seed=seed).final_layout
+            ahead = route(forward, device, layout, seed=seed, trials=options.trials)
+            layout = route(backward, device, ahead.final_layout, seed=seed, trials=options.trials).final_layout
             candidates.append(layout)
     if "qiskit" in layouts:
-        candidates.append(qiskit_sabre_layout(circuit, device, seed))
-    scored = [(route(forward, device, lay, seed=seed).swaps, i) for i, lay in enumerate(candidates)]
+        candidates.append(qiskit_sabre_layout(circuit, device, seed, options))
+    scored = [(route(forward, device, lay, seed=seed, trials=options.trials).swaps, i)
+              for i, lay in enumerate(candidates)]  # fmt: skip
     return candidates[min(scored)[1]]
-
-
-def device_plan_options(options: PlanOptions, device: str | Device, layout_method: str = "medial") -> PlanOptions:
-    """The plan options :func:`compile_for_device` compiles with: ``phase_layout`` ``auto`` settled for the device
-    (:func:`qcpp.plan.phase_layout.for_device`: spatial on a sparse coupling map), and on a heavy-hex lattice
-    with a geometric layout the cells' balance sinks (:data:`qcpp.layout.heavy_hex.CELL_PHASE_LAYOUT`).
-
-    Args:
-        options: The requested plan options.
-        device: The device (a spec or a :class:`Device`).
-        layout_method: :data:`LAYOUT_METHODS`; ``greedy`` keeps :func:`for_device`'s choice.
-
-    Returns:
-        The settled options.
-
-    Example:
-        >>> device_plan_options(DEFAULT_PLAN, "heavy-hex:5").phase_layout
-        'medial'
-    """
-    if options.phase_layout == "auto" and layout_method != "greedy" and is_hex_lattice(device):
-        return replace(options, phase_layout=CELL_PHASE_LAYOUT)  # the cells' balance sinks
-    return for_device(options, device)  # phase_layout "auto": spatial on a device with a sparse coupling map
 
 
 def compile_for_device(
@@ -257,6 +231,8 @@ def compile_for_device(
     layout_method: str = "auto",
     arrangement: str = "tile",
     stage: Callable[[str], None] | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -276,6 +252,8 @@ def compile_for_device(
         arrangement: The medial layout's robot arrangement, ``tile`` or ``interleave``.
         stage: Called with the name of each stage as it starts (``choosing partial-mixer plans on the cells
             (3 / 18)``), for progress on a long compile.
+        routing: Every setting of routing, allocation and the searches.
+        context: The memos of the run (default: a fresh one; a caller compiling many circuits may share one).
 
     Returns:
         The :class:`DeviceCompileResult`.
@@ -285,6 +263,7 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
+    context = RoutingContext() if context is None else context
     options = device_plan_options(options, device, layout_method)
     say = stage or (lambda _text: None)
     say("compiling the circuit")
@@ -295,16 +274,17 @@ def compile_for_device(
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
         geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
-                                   options=replace(options, fuse=False), bindings=bindings, stage=stage)  # fmt: skip
+                                   options=replace(options, fuse=False), bindings=bindings, stage=stage,
+                                   routing=routing, context=context)  # fmt: skip
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
-            if layout_method == "auto" and _two_qubit(circuit) <= AUTO_COMPARE_MAX_TWOQ:
+            if layout_method == "auto" and _two_qubit(circuit) <= routing.auto_compare_max_twoq:
                 other = routed.device
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
                 say(f"routing the whole circuit on {other.name} to compare")
-                greedy = _greedy_compare(circuit, other, seed=seed, layouts=layouts, measured=measured)
+                greedy = _greedy_compare(circuit, other, seed, layouts, measured, routing, context)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             if not lowered:
@@ -333,7 +313,7 @@ def compile_for_device(
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
     say(f"routing the whole circuit on {dev.name}")
-    routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured)
+    routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured, options=routing, context=context)
     if not lowered:
         routed = to_native(routed)
     return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
@@ -345,48 +325,37 @@ def greedy_route(
     seed: int = 0,
     layouts: tuple[str, ...] = LAYOUTS,
     measured: range | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> RoutedCircuit:
     """The ``greedy`` path's routing of the whole circuit: from :func:`best_layout`, one SABRE routing; on circuits
-    of at most :data:`qcpp.layout.placement_search.SEARCH_MAX_TWOQ` two-qubit gates, the cheapest of a placement
-    search that starts with that layout (:func:`qcpp.layout.placement_search.search_route`: many layouts and
-    seeds, SWAPs fused with an adjacent ``cx``)."""
-    layout = best_layout(circuit, device, seed=seed, layouts=layouts)
-    if device.is_all_to_all or _two_qubit(circuit) > SEARCH_MAX_TWOQ:
-        return route(circuit, device, layout, seed=seed, measured=measured)
-    return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured)
-
-
-GREEDY_COMPARE_MAX_QUBITS = 1_024
-"""``auto`` routes its greedy comparison on the medial grid itself up to this many qubits; on a larger one (a long
-strip's square medial grid: 2x50 with one robot needs 99x99) on its top-left sub-grid with the circuit's qubits
-(:func:`_greedy_compare`): a routing of the whole circuit costs SABRE and the placement a dense distance matrix
-of every device qubit (on 99x99, over a minute, for a 149-qubit circuit)."""
+    of at most ``options.placement_max_twoq`` two-qubit gates, the cheapest of a placement search that starts with
+    that layout (:func:`qcpp.layout.placement_search.search_route`: many layouts and seeds, SWAPs fused with an
+    adjacent ``cx``; memoised in ``context``)."""
+    layout = best_layout(circuit, device, seed=seed, layouts=layouts, options=options)
+    if device.is_all_to_all or _two_qubit(circuit) > options.placement_max_twoq:
+        return route(circuit, device, layout, seed=seed, measured=measured, trials=options.trials)
+    return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured, options=options,
+                        context=context)  # fmt: skip
 
 
 def _greedy_compare(
-    circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range | None
-) -> RoutedCircuit:
+    circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range | None,
+    options: RoutingOptions, context: RoutingContext,
+) -> RoutedCircuit:  # fmt: skip
     """:func:`greedy_route` of ``circuit`` on ``device``, or, on a square grid of more than
-    :data:`GREEDY_COMPARE_MAX_QUBITS` qubits, on its top-left sub-grid of about ``sqrt(n) x sqrt(n)`` sites for
-    ``n`` circuit qubits, written on ``device`` (a sub-grid is an induced subgraph: every routed gate is on a
-    coupling of ``device``)."""
+    ``options.greedy_compare_max_qubits`` qubits (a long strip's square medial grid: a routing of the whole circuit
+    costs SABRE and the placement a dense distance matrix of every device qubit), on its top-left sub-grid of about
+    ``sqrt(n) x sqrt(n)`` sites for ``n`` circuit qubits, written on ``device`` (a sub-grid is an induced subgraph:
+    every routed gate is on a coupling of ``device``)."""
     shape = grid_shape(device)
-    if shape is None or device.num_qubits <= GREEDY_COMPARE_MAX_QUBITS:
-        return greedy_route(circuit, device, seed=seed, layouts=layouts, measured=measured)
+    if shape is None or device.num_qubits <= options.greedy_compare_max_qubits:
+        return greedy_route(circuit, device, seed, layouts, measured, options, context)
     n = circuit.num_qubits
     rows = min(shape[0], math.isqrt(n - 1) + 1)
     cols = min(shape[1], -(-n // rows))
     sub, sites = _top_left(device, rows, cols)
-    return embed_routed(greedy_route(circuit, sub, seed=seed, layouts=layouts, measured=measured), device, sites)
-
-
-SEARCH = True
-"""Medial allocation searches the partial mixers' ancilla sites (:func:`qcpp.layout.medial.allocate_ancillas`)."""
-
-AUTO_COMPARE_MAX_TWOQ = 2_000
-"""Below this many lowered two-qubit gates ``auto`` also tries ``greedy`` on the medial device (cheap there, and
-on tiny circuits, 2x2/1 and 2x3/1, one routing of the whole circuit needs fewer SWAPs than windows that return
-home)."""
+    return embed_routed(greedy_route(circuit, sub, seed, layouts, measured, options, context), device, sites)
 
 
 def _two_qubit(c: Circuit) -> int:
@@ -455,6 +424,8 @@ def medial_compile(
     options: PlanOptions | None = None,
     bindings: Mapping[str, float] | None = None,
     stage: Callable[[str], None] | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> tuple[Circuit, RoutedCircuit] | None:
     """The geometric layout (medial on square grids, one cell per plaquette on heavy-hex lattices), local ancillas
     and home-returning windows for ``circuit`` (lowered, ``fuse=False``) on ``spec``, or ``None`` where the device
@@ -463,61 +434,57 @@ def medial_compile(
     the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`; ``tile`` measured better).
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
-    ``stage`` is called with the name of each stage as it starts.
+    ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's
+    settings and the run's memos (default: a fresh context).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
     say = stage or (lambda _text: None)
+    context = RoutingContext() if context is None else context
     dev = layout_device(scenario, spec, arrangement)
     while dev is not None:
         homes = medial_placement(scenario, dev, arrangement)
         assert homes is not None
-        cropped = _cropped(dev, homes)
+        cropped = _cropped(dev, homes, routing)
         if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
             sub, sites = cropped
-            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say)
+            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say, routing,
+                                     context)  # fmt: skip
             if on_crop is not None:
                 return on_crop[0], embed_routed(on_crop[1], dev, sites)
         dist = distances(dev)
         planned = circuit
         if options is not None and dev.family == "heavy-hex":
-            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say)
+            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say, routing=routing,
+                                  context=context)  # fmt: skip
         say(f"allocating ancillas on {dev.name}")
         try:
-            logical, layout = allocate_ancillas(planned, homes, dev, dist, search=SEARCH)
+            logical, layout = allocate_ancillas(planned, homes, dev, dist, routing.allocation_search, routing, context)
         except ValueError:
             if spec not in ("grid", "heavy-hex"):
                 raise
             dev = _grown(dev)
             continue
-        return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+        return _relay_and_route(logical, layout, dev, dist, seed, measured, say, routing, context)
     return None
 
 
-CROP_MIN_QUBITS = 1_024
-"""Square grids of more qubits whose medial layout leaves rows or columns far from every home are routed on the
-part around the layout (:func:`_cropped`)."""
-
-CROP_PAD = 6
-"""Free rows and columns a crop keeps beyond the homes' bounding box: more than an allocated ancilla, a relay
-holder (two sites from its qubit) or a routing patch (two sites around a window's qubits) reaches."""
-
-
-def _cropped(dev: Device, homes: tuple[int, ...]) -> tuple[Device, list[int]] | None:
-    """The top-left sub-grid of a ``grid:RxC`` device of more than :data:`CROP_MIN_QUBITS` qubits that holds the
-    homes with :data:`CROP_PAD` rows and columns to spare, and its sites on ``dev`` (row-major, so indices keep
-    their order), if it has at most half the device's qubits; else ``None``.
+def _cropped(dev: Device, homes: tuple[int, ...], options: RoutingOptions) -> tuple[Device, list[int]] | None:
+    """The top-left sub-grid of a ``grid:RxC`` device of more than ``options.crop_min_qubits`` qubits that holds
+    the homes with ``options.crop_pad`` rows and columns to spare, and its sites on ``dev`` (row-major, so indices
+    keep their order), if it has at most half the device's qubits; else ``None``.
 
     The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
     relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
     as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
-    strip: 768 MB, tens of seconds). ``tests/qcpp/hardware_crop_test.py`` compares both."""
+    strip: 768 MB, tens of seconds). ``tests/circuitgen/hardware_crop_test.py`` compares both."""
     shape = grid_shape(dev)
-    if shape is None or dev.num_qubits <= CROP_MIN_QUBITS or not dev.name.startswith("grid:"):
+    if shape is None or dev.num_qubits <= options.crop_min_qubits or not dev.name.startswith("grid:"):
         return None
     rows_of, cols_of = zip(*(divmod(h, shape[1]) for h in homes), strict=True)
-    rows, cols = min(shape[0], max(rows_of) + 1 + CROP_PAD), min(shape[1], max(cols_of) + 1 + CROP_PAD)
+    pad = options.crop_pad
+    rows, cols = min(shape[0], max(rows_of) + 1 + pad), min(shape[1], max(cols_of) + 1 + pad)
     if 2 * rows * cols > dev.num_qubits:
         return None
     return _top_left(dev, rows, cols)
@@ -533,7 +500,7 @@ def _top_left(dev: Device, rows: int, cols: int) -> tuple[Device, list[int]]:
 
 def _route_on_crop(
     circuit: Circuit, sub: Device, homes: list[int], dev: Device, seed: int, measured: range | None,
-    say: Callable[[str], None],
+    say: Callable[[str], None], options: RoutingOptions, context: RoutingContext,
 ) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
     """:func:`_medial_route` on the crop ``sub`` of ``dev``, or ``None`` where the device beyond the crop could
     have changed it: a section wants more free qubits than the crop has, a routing patch (the allocation search's
@@ -542,9 +509,9 @@ def _route_on_crop(
     :mod:`qcpp.estimators.window_classes` makes of its crops."""
     shape, full = grid_shape(sub), grid_shape(dev)
     assert shape is not None and full is not None
-    with watching_patches() as watch:
+    with context.watching() as watch:
         try:
-            logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say)
+            logical, routed = _medial_route(circuit, sub, tuple(homes), seed, measured, say, options, context)
         except ValueError:
             return None
     last_row = shape[0] < full[0] and any(q // shape[1] == shape[0] - 1 for q in watch.qubits)
@@ -556,24 +523,24 @@ def _route_on_crop(
 
 def _medial_route(
     circuit: Circuit, dev: Device, homes: tuple[int, ...], seed: int, measured: range | None,
-    say: Callable[[str], None],
+    say: Callable[[str], None], options: RoutingOptions, context: RoutingContext,
 ) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
     """Allocation, relays and windows of the medial path on a square grid ``dev`` with data ``homes``."""
     dist = distances(dev)
     say(f"allocating ancillas on {dev.name}")
-    logical, layout = allocate_ancillas(circuit, homes, dev, dist, search=SEARCH)
-    return _relay_and_route(logical, layout, dev, dist, seed, measured, say)
+    logical, layout = allocate_ancillas(circuit, homes, dev, dist, options.allocation_search, options, context)
+    return _relay_and_route(logical, layout, dev, dist, seed, measured, say, options, context)
 
 
 def _relay_and_route(
     logical: Circuit, layout: tuple[int, ...], dev: Device, dist: Any, seed: int, measured: range | None,
-    say: Callable[[str], None],
+    say: Callable[[str], None], options: RoutingOptions, context: RoutingContext,
 ) -> tuple[Circuit, RoutedCircuit]:  # fmt: skip
-    """Relays of far phases (:func:`qcpp.routing.bridge.bridge_far_phases`) and the windows routed home."""
+    """Relays of far phases (:func:`qcpp.routing.bridge.bridge_far_phases`) and the windows routed home (with the
+    cells' large-window search on a heavy-hex lattice)."""
     say("relaying far phases")
-    logical, layout = bridge_far_phases(logical, layout, dev, dist)
+    logical, layout = bridge_far_phases(logical, layout, dev, dist, options=options, context=context)
     say(f"routing {len(logical.sections):,} windows")
-    cells = dev.family == "heavy-hex"
-    return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist,
-                                  large_seeds=CELL_LARGE_WINDOW_SEEDS if cells else None,
-                                  large_trials=CELL_LARGE_WINDOW_TRIALS if cells else None)  # fmt: skip
+    windows = options.for_cells() if dev.family == "heavy-hex" else options
+    return logical, route_windows(logical, dev, layout, seed=seed, measured=measured, dist=dist, options=windows,
+                                  context=context)  # fmt: skip

@@ -8,8 +8,8 @@ emits on another. A :class:`CallGraph` (:meth:`qcpp.plan.qaoa.QaoaPlan.call_grap
 their multiplicities and the shared registers' widths; every count the estimators report is a sum over it.
 
 Everything known per kind (its costs; the estimators' per-kind depth facts as named tables) is looked up by the
-kind's key in one explicit cache, :data:`COSTS`. The other memos hold other concepts: per-scenario results (at
-most :data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
+kind's key in one explicit cache, :data:`qcpp.gadgets.pricing.COSTS`. The other memos hold other concepts:
+per-scenario results (at most :data:`SCENARIOS_KEPT` scenarios each), geometry (local pictures), per-shape decisions of
 :mod:`qcpp.plan.phase_choice`, constructions keyed by their inputs (the partial mixers' searched plans,
 ``depth_compose``'s transfer matrices per gate structure), leaf gate costs and the symbolic formula tables.
 
@@ -32,88 +32,18 @@ from functools import cached_property
 from typing import Any
 
 from qcpp.gadgets import Gadget
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.cost import Cost
 
-__all__ = ["COSTS", "PARTS", "SCENARIOS_KEPT", "CallGraph", "CostCache", "Deferred", "GadgetKind", "PricedByKind"]
+__all__ = ["PARTS", "SCENARIOS_KEPT", "CallGraph", "Deferred", "GadgetKind"]
 
 PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
 """The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
 
 
-class CostCache:
-    """What is known per kind key, computed once: named tables, the costs one of them (see the module docstring).
-
-    Example:
-        >>> from qcpp.gadgets.phase_ising import IsingPhase
-        >>> g = IsingPhase("gamma", ((0, 1.0),), ())
-        >>> cache = CostCache()
-        >>> cache.costs(g.kind, lambda: (g.cost(), g.logical_cost())) == (g.cost(), g.logical_cost()), len(cache)
-        (True, 1)
-        >>> cache.remember("own depth", g.kind, 1); cache.table("own depth")[g.kind], len(cache)
-        (1, 2)
-    """
-
-    def __init__(self, limit: int = 1 << 16) -> None:
-        self._tables: dict[str, dict[Hashable, Any]] = {}
-        self._limits: dict[str, int] = {}
-        self._costs = self.table("costs", limit)  # a long sweep meets few kinds; a bound keeps memory flat anyway
-
-    def costs(self, key: Hashable, compute: Callable[[], tuple[Cost, Cost]]) -> tuple[Cost, Cost]:
-        """``(cost, logical cost)`` of the kind ``key``, from ``compute()`` the first time (a :class:`GadgetKind`
-        asks its example; a gadget class that prices itself per kind, itself)."""
-        hit = self._costs.get(key)
-        if hit is None:
-            hit = compute()
-            self.remember("costs", key, hit)
-        return hit
-
-    def table(self, name: str, limit: int = 1 << 12) -> dict[Hashable, Any]:
-        """The table ``name`` (per kind key; created empty with at most ``limit`` entries on first use). Read it
-        directly (one dictionary look-up on a hot path); write with :meth:`remember`."""
-        if name not in self._tables:
-            self._tables[name], self._limits[name] = {}, limit
-        return self._tables[name]
-
-    def remember(self, name: str, key: Hashable, value: Any) -> None:
-        """Store ``value`` for ``key`` in the table ``name`` (which starts again when full: a bound on memory)."""
-        table = self.table(name)
-        if len(table) >= self._limits[name]:
-            table.clear()
-        table[key] = value
-
-    def clear(self) -> None:
-        """Forget everything (tests that count work); the tables stay the same objects."""
-        for table in self._tables.values():
-            table.clear()
-
-    def __len__(self) -> int:
-        return sum(len(t) for t in self._tables.values())
-
-
-COSTS = CostCache()
-"""The process-wide cost cache of :class:`GadgetKind`."""
-
 SCENARIOS_KEPT = 8
 """How many scenarios each per-scenario memo keeps: a sweep asks ``p = 1..P`` of one scenario in a row, and a kept
 scenario keeps its plan and its grid's tables alive (megabytes each at 40x40)."""
-
-
-class PricedByKind:
-    """Mixin of a gadget class whose cost depends on its :attr:`kind` only: it prices itself (``_kind_costs() ->
-    (cost, logical cost)``) once per kind in :data:`COSTS`."""
-
-    kind: Hashable
-
-    def _kind_costs(self) -> tuple[Cost, Cost]:
-        raise NotImplementedError
-
-    def cost(self) -> Cost:
-        """Lowered cost (computed once per kind)."""
-        return COSTS.costs(self.kind, self._kind_costs)[0]
-
-    def logical_cost(self) -> Cost:
-        """Cost with ANDs and Toffolis kept whole (computed once per kind)."""
-        return COSTS.costs(self.kind, self._kind_costs)[1]
 
 
 class _HashedKey:
@@ -151,16 +81,16 @@ class GadgetKind:
 
     @classmethod
     def of(cls, gadget: Gadget) -> GadgetKind:
-        """The kind of a gadget (its needs read from the gadget; see :func:`needs`)."""
-        temporaries, work = needs(gadget)
+        """The kind of a gadget (its needs read from the gadget: :meth:`Gadget.needs <qcpp.gadgets.Gadget.needs>`)."""
+        temporaries, work = gadget.needs()
         return cls(gadget.kind, gadget, temporaries, work)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_hashed", _HashedKey(self.key))  # keys can be long tuples: hash them once
 
     def costs(self) -> tuple[Cost, Cost]:
-        """``(lowered cost, logical cost)``: from :data:`COSTS`, or a :class:`Deferred` example's own (its key is
-        one scenario's: no entry)."""
+        """``(lowered cost, logical cost)``: from :data:`~qcpp.gadgets.pricing.COSTS`, or a :class:`Deferred`
+        example's own (its key is one scenario's: no entry)."""
         if isinstance(self.example, Deferred):
             return self.example.lowered, self.example.logical
         return COSTS.costs(self._hashed, self._priced)  # type: ignore[attr-defined]
@@ -175,7 +105,8 @@ class GadgetKind:
 
     @property
     def cache_key(self) -> Hashable:
-        """The key (hashed once, holding no example) by which :data:`COSTS` and its tables know this kind."""
+        """The key (hashed once, holding no example) by which :data:`~qcpp.gadgets.pricing.COSTS` and its tables
+        know this kind."""
         return self._hashed  # type: ignore[attr-defined,no-any-return]
 
     def _priced(self) -> tuple[Cost, Cost]:
@@ -215,31 +146,13 @@ class Deferred:
         """Logical cost."""
         return self.logical
 
+    def needs(self) -> tuple[int, int]:
+        """``(num_ancillas, 0)``: the built gadget's clean ancillas, no work ancillas."""
+        return self.num_ancillas, 0
+
     def emit(self) -> Sequence[Any]:
         """The built gadget's gates."""
         return self.build().emit()
-
-
-def needs(gadget: Any) -> tuple[int, int]:
-    """``(logic temporaries, work ancillas)`` of a gadget: partial mixers and their pieces from their plan, phase
-    gadgets from their ``num_ancillas``, the state preparation from its multi-controlled X gates."""
-    from qcpp.gadgets.junction import MixerJunction, MixerRotation
-    from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, mixer_work_need
-    from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
-
-    if isinstance(gadget, ParityPartialMixer | McxPartialMixer):
-        return gadget.num_temps, mixer_work_need([gadget])
-    if isinstance(gadget, MixerRotation):
-        return needs(gadget.mixer)
-    if isinstance(gadget, MixerJunction):
-        sides = [needs(m) for m in (gadget.left, gadget.right) if m is not None]  # one side at least
-        return max(t for t, _ in sides), max(w for _, w in sides)
-    if isinstance(gadget, VisitPhase):
-        return visit_ancillas(tuple(len(v) for v in gadget.visitors), gadget.products), 0
-    gates = getattr(gadget, "gates", None)
-    if gates is not None:  # the state preparation: its mcx gates' lowering needs k - 2 work ancillas
-        return 0, max([0, *(len(g.qubits) - 3 for g in gates if g.name == "mcx")])  # k controls: k - 2
-    return int(getattr(gadget, "num_ancillas", 0)), 0
 
 
 @dataclass(frozen=True)

@@ -106,9 +106,6 @@ def compile_scenario(
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
 
-    Returns:
-        The :class:`CompileResult`.
-
     Raises:
         ValueError: if ``bindings`` names a symbol the circuit does not have.
     """

@@ -178,9 +178,6 @@ def mixer_part(
             closed forms of :mod:`qcpp.estimators.formulas`): the scenario then stands for every grid with the same
             endpoints near its corners (sides of at least 5 nodes where symbolic).
 
-    Returns:
-        The :class:`MixerPart`.
-
     Raises:
         ValueError: the scenario has obstacles.
     """

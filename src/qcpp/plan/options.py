@@ -42,11 +42,11 @@ PHASE_LAYOUTS: tuple[PhaseLayout, ...] = ("auto", "pooled", "spatial", "medial")
 LAYOUT_METHODS = ("auto", "medial", "greedy")
 """How :func:`qcpp.pipeline.device_compile.compile_for_device` lays a circuit onto a device (here, not in hardware,
 so that the CLI can check ``--layout`` without importing the router). ``medial``: the geometric layout of
-:mod:`qcpp.layout.medial` with windows routed home (:func:`qcpp.routing.sabre.route_windows`); ``greedy``:
+:mod:`qcpp.layout.medial` with windows routed home (:func:`qcpp.routing.windows.route_windows`); ``greedy``:
 :func:`qcpp.pipeline.device_compile.best_layout` and one SABRE routing of the whole circuit; ``auto``: medial where the
 device is a square grid that holds it, else greedy; on such a grid a circuit of at most
-:data:`qcpp.pipeline.device_compile.AUTO_COMPARE_MAX_TWOQ` two-qubit gates is routed both ways and the fewer two-qubit
-gates win."""
+:attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq` two-qubit gates is routed both ways and the fewer
+two-qubit gates win."""
 
 
 @dataclass(frozen=True)
@@ -74,9 +74,9 @@ class PlanOptions:
             over neighbouring edges, node gadgets with nearby ancillas, 2 CX more per adder:
             :mod:`qcpp.plan.phase_layout`; fewer routed CX on grids and heavy-hex), ``medial`` (``spatial``
             with each robot's balance sums drifting to where the medial layout's robot patches meet:
-            :func:`qcpp.plan.phase_layout.balance_sinks`; same gates and counts) or ``auto`` (default: when
-            :func:`qcpp.pipeline.device_compile.compile_for_device` routes onto a device that is not all-to-all,
-            ``medial`` on a square grid and ``spatial`` elsewhere; ``pooled`` everywhere else).
+            :func:`qcpp.plan.phase_layout.balance_sinks`; same gates and counts) or ``auto`` (default: the plan
+            builds it as ``pooled``; a compile routed onto a device settles it for the device with
+            :func:`qcpp.pipeline.device_plan.device_plan_options`).
         angles: the mixer's parameters: ``layer`` (default; one ``beta_k`` per layer) or ``multi`` (multi-angle
             QAOA: one beta per partial mixer and layer, :func:`qcpp.ir.angles.mixer_symbol`). Same gates and
             counts, only the symbols differ (``--mixer-angles`` of compile and estimate).

@@ -231,9 +231,6 @@ def phase_plan(
             sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
             variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
 
-    Returns:
-        The :class:`PhasePlan`.
-
     Raises:
         ValueError: for an unknown option.
     """

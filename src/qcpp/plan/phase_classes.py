@@ -15,12 +15,10 @@ distinct parts:
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
 
-Coefficients are vectors over one robot's edges (numpy); the endpoint and corner identities are applied by the
-very function the feasible cost uses (:func:`qcpp.problem.feasible_cost.reduce_on_paths`) on the few edges they
-touch. Every construction is the plan's own decision (:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer`
-answers only where no choice couples groups (every class picks a gadget over couplings, and the balance's
-arithmetic is its first candidate and provably beats its couplings); elsewhere it returns ``None`` and
-:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
+The endpoint and corner identities are applied by the feasible cost's own function
+(:func:`qcpp.problem.feasible_cost.reduce_on_paths`), every construction is the plan's own decision
+(:mod:`qcpp.plan.phase_choice`), and :func:`phase_layer` answers only where no choice couples groups; elsewhere
+it returns ``None`` and :meth:`qcpp.plan.qaoa.QaoaPlan.call_graph` lists the planned gadgets instead.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -44,8 +42,8 @@ from itertools import repeat
 import numpy as np
 
 from qcpp.gadgets import Gadget
-from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_cost
-from qcpp.gadgets.phase_sums import SumsPhase, SumsShape
+from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingKind, IsingPhase, ising_cost
+from qcpp.gadgets.phase_sums import SumsKind, SumsPhase, SumsShape
 from qcpp.plan.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from qcpp.plan.mixer_classes import Count, boundary, class_counts
 from qcpp.plan.phase import coupling_products, phase_plan
@@ -97,14 +95,15 @@ def _layer(
                 return phase_plan(s, representation="whole-space").gadgets("gamma")[0]
             return IsingPhase("gamma", tuple(zip(range(rotations), repeat(1.0))), ())
 
-        out.insert(0, (GadgetKind.of(Deferred(("ising", rotations, couplings), rz, rz, ising)), 1))
+        out.insert(0, (GadgetKind.of(Deferred(IsingKind("ising", rotations, couplings), rz, rz, ising)), 1))
     if balance is not None:
         shape = balance.shape
 
         def arithmetic() -> Gadget:
             return replace(balance.gadget(), ancillas=tuple(pool))
 
-        deferred = Deferred(("sums", shape), shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
+        kind = SumsKind("sums", shape)
+        deferred = Deferred(kind, shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
         out.append((GadgetKind.of(deferred), 1))
     return PhaseLayer(tuple(out), num_ancillas)
 

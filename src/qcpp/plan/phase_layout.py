@@ -1,11 +1,9 @@
 """The phase separator laid out by place: adder trees over neighbouring edges, node gadgets with nearby ancillas.
 
-On an all-to-all machine it does not matter which bits an adder takes or which clean ancilla a node's visit
-gadget borrows. On a nearest-neighbour device it does: the ``pooled`` layout (:meth:`PhasePlan.gadgets
-<qcpp.plan.phase.PhasePlan.gadgets>` as planned) adds each robot's edges in the order of their variable
-indices, so the adders of the balance term's popcount join bits from far apart rows, and hands the visit
-gadgets the pool's ancillas round robin, so one ancilla serves nodes at both ends of the grid. A router then
-moves qubits across the device for every such gate.
+On a nearest-neighbour device it matters which bits an adder takes and which ancilla a node's visit gadget
+borrows: the ``pooled`` layout (as planned) adds each robot's edges in variable order, joining bits from far
+apart rows, and hands out the pool's ancillas round robin, so a router moves qubits across the device for every
+such gate.
 
 :func:`spatial_phase` is a pass over the planned gadgets (``phase_layout="spatial"`` in
 :class:`~qcpp.plan.options.PlanOptions`) that changes which qubits play which role and the shape of the adders:
@@ -41,16 +39,13 @@ import dataclasses
 import heapq
 from collections.abc import Iterable, Sequence
 
-from qcpp.devices.device import Device, get_device
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.buckets import bucket, ring
 from qcpp.gadgets.phase_sums import Sink, Site, SumsPhase, manhattan
 from qcpp.gadgets.phase_visits import VisitPhase
-from qcpp.layout.medial import tiling
-from qcpp.plan.options import PlanOptions
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["balance_sinks", "for_device", "placed_sums", "spatial_phase", "variable_sites"]
+__all__ = ["balance_sinks", "placed_sums", "spatial_phase", "tiling", "variable_sites"]
 
 NEW_HOME_PENALTY = 4
 """Lattice units (two per grid step) an ancilla another node already borrowed counts as farther away: a node
@@ -69,24 +64,23 @@ def variable_sites(scenario: Scenario) -> dict[int, Site]:
     return {i: sites[scenario.variable_of(i)[1]] for i in range(scenario.num_variables)}
 
 
-def for_device(options: PlanOptions, device: str | Device) -> PlanOptions:
-    """``options`` with ``phase_layout="auto"`` settled for a compile routed onto ``device``: ``medial`` on a
-    square-grid device (where :mod:`qcpp.layout.medial` tiles the robots' patches, so the balance sums have
-    somewhere to drift to), ``spatial`` on any other device that does not couple every pair of its qubits, else
-    ``pooled`` (the fewest CX); an explicit choice stays. (The balance sinks assume the medial tiling: on
-    heavy-hex's greedy layout they routed 4x4/2 and 5x5/2 to more CX.)
+def tiling(k: int, patch: tuple[int, int]) -> tuple[int, int]:
+    """Patches per row and column for ``k`` patches of shape ``patch``: the near-square arrangement
+    ``(down, across)`` of smallest bounding square, then smallest area (the robots' copies of the grid in the
+    medial layout, :mod:`qcpp.layout.medial`, and the balance sinks of :func:`balance_sinks`).
 
-    >>> [for_device(PlanOptions(), d).phase_layout for d in ("grid", "heavy-hex:5", "all-to-all", "ibm_fez")]
-    ['medial', 'spatial', 'pooled', 'spatial']
-    >>> for_device(PlanOptions(phase_layout="pooled"), "grid").phase_layout
-    'pooled'
+    >>> tiling(2, (5, 5)), tiling(3, (5, 5)), tiling(3, (1, 1))
+    ((2, 1), (2, 2), (2, 2))
     """
-    if options.phase_layout != "auto":
-        return options
-    # a family without a size: its 4-qubit member tells its shape (every family member has the same kind)
-    dev = device if isinstance(device, Device) else get_device(device, min_qubits=4)
-    layout = "pooled" if dev.is_all_to_all else "medial" if dev.family == "grid" else "spatial"
-    return dataclasses.replace(options, phase_layout=layout)
+    best: tuple[tuple[int, int], tuple[int, int]] | None = None
+    for across in range(1, k + 1):
+        down = -(-k // across)
+        h, w = down * patch[0], across * patch[1]
+        key = (max(h, w), h * w)
+        if best is None or key < best[0]:
+            best = (key, (down, across))
+    assert best is not None
+    return best[1]
 
 
 def placed_sums(gadgets: Sequence[Gadget], scenario: Scenario, sinks: bool = False) -> tuple[Gadget, ...]:
@@ -112,7 +106,7 @@ def balance_sinks(
 ) -> tuple[Sink | None, ...]:
     """Per form of a balance gadget (``robots[a]``: the robot whose edges form ``a`` sums, ``-1`` for none), the
     point of that robot's copy of the grid (doubled lattice) its popcount's sums should drift to: where its
-    patch of the medial layout's tiling (:func:`qcpp.layout.medial.tiling`) is nearest the centre of the patches
+    patch of the medial layout's tiling (:func:`tiling`) is nearest the centre of the patches
     of itself and the robots whose sums ``matrix`` couples with it. On two robots that is the middle of the side
     their patches share, so their registers, which the register phase couples bit by bit, end next to each
     other. ``None`` for a form coupled with no other robot (one robot: no sink).

@@ -34,7 +34,7 @@ from functools import cached_property, partial
 
 from qcpp.errors import OptionError
 from qcpp.gadgets import Gadget
-from qcpp.gadgets.blocks import StatePrep
+from qcpp.gadgets.blocks import StatePrep, XLayerKind
 from qcpp.gadgets.initial_state import initial_path_count
 from qcpp.gadgets.junction import mixer_pieces
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
@@ -207,7 +207,7 @@ class QaoaPlan:
             # built from the scenario, not from this plan: a closure over the plan, which holds the call graph,
             # would be a reference cycle, freed only by full collections (2x the sweep's GC time and memory)
             build = partial(StatePrep.build, s, o.initial, o.rule, None)
-            prep = GadgetKind(("x_layer", n), Deferred(("x_layer", n), xs, xs, build))
+            prep = GadgetKind(XLayerKind("x_layer", n), Deferred(XLayerKind("x_layer", n), xs, xs, build))
         else:
             prep = GadgetKind.of(self.state_prep)
         if classes:

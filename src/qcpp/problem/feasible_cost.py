@@ -1,9 +1,8 @@
 """The cost as a cheap representation that is exact on every feasible assignment (not on the whole space).
 
-QAOA with the constrained mixer only ever holds feasible states: every robot on a simple start-goal path. On
-those states many terms of the cost (:mod:`qcpp.problem.cost`) are constant, linear or products of very few
-things, so a phase separator needs far less than the whole-space Ising Hamiltonian. Facts used (``r`` a robot,
-``v`` a node, ``S_rv`` the number of robot ``r``'s edges at ``v``):
+The constrained mixer only ever holds feasible states (every robot on a simple start-goal path), on which many
+terms of the cost are constant, linear or products of few things. Facts used (``r`` a robot, ``v`` a node,
+``S_rv`` the number of robot ``r``'s edges at ``v``):
 
 * **Dead edges.** A non-endpoint node has ``S_rv`` 0 or 2, so an edge whose other end is a non-endpoint node
   with no other usable edge is never used; pruning such leaves repeatedly gives :attr:`FeasibleCost.dead`.

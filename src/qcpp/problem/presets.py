@@ -13,13 +13,10 @@ robot  start             goal
 3      bottom-right      top-left
 ====== ================= =================
 
-(stable, so the numbers for 1-4 robots stay comparable). Robots ``4, 5, ...``
-start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from the top-left corner,
-the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots - 4`` extra robots
-take nodes ``floor((i + 1/2) M / k)``, ``i = 0..k-1``. Starts are therefore distinct (goals too, the reflection
-being one-to-one), and a grid hosts up to :func:`max_default_robots` ``= 2(rows + cols) - 4`` robots, one per
-boundary node. No obstacles; every objective setting is the default (:class:`qcpp.problem.scenario.Objective`).
-Anything else: write a scenario file.
+Robots ``4, 5, ...`` start on the non-corner boundary nodes, spread evenly: walking the boundary clockwise from
+the top-left corner, the ``M = 2(rows + cols) - 8`` non-corner nodes are numbered ``0..M-1`` and the ``k = robots -
+4`` extra robots take nodes ``floor((i + 1/2) M / k)``. Starts (and goals) are distinct, and a grid hosts up to
+:func:`max_default_robots` ``= 2(rows + cols) - 4`` robots. No obstacles; default objective.
 
 Example:
     >>> s = default_scenario(3, 4, 2)
@@ -73,9 +70,6 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
         rows: grid rows (at least 2).
         cols: grid columns (at least 2).
         robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
-
-    Returns:
-        The scenario.
 
     Raises:
         ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, or a grid smaller than 2x2.

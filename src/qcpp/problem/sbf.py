@@ -14,21 +14,18 @@ Whether it may be applied is a boolean function of the robot's edges near the pl
     the result is feasible. With ``q_v`` the number of plaquette edges at corner ``v`` in the path:
 
     * no plaquette edge set: never (the flip adds a closed 4-cycle);
-    * two opposite plaquette edges (``1010``/``0101``): the flip reconnects two distant pieces of the path,
-      and whether that leaves a loop depends on the order in which the path visits them, which no local
-      function can see. Allowed only when the robot's start and goal are diagonal corners of the plaquette
-      (then it is always feasible); forbidden otherwise;
+    * two opposite plaquette edges (``1010``/``0101``): whether the flip leaves a loop depends on the order in
+      which the path visits them, which no local function can see; allowed only when the robot's start and
+      goal are diagonal corners of the plaquette (then it is always feasible);
     * otherwise: every corner with ``q_v = 0`` must be free (not the robot's start or goal and no outer
       edge set), because the flip gives it two new edges.
 
     On every feasible path this is "the flip is feasible" except for the opposite-edges case, where feasible
     flips are missed (the tests show both exhaustively on small grids).
 
-Each rule is compiled, per robot and plaquette, into a :class:`SbfLogic`: a short straight-line program of
-"XOR an AND of literals into a bit" steps (exactly what multi-controlled X gates compute). What is known
-when compiling (boundary corners with fewer outer edges, edges that are not variables in ``hard`` mode,
-which corners are the robot's endpoints) is folded into the program, and for ``exact`` the remaining
-function is simplified using what a feasible path cannot look like (see :func:`_exact_logic`).
+Each rule is compiled, per robot and plaquette, into a :class:`SbfLogic`: a straight-line program of "XOR an
+AND of literals into a bit" steps (what multi-controlled X gates compute), with everything known at compile time
+(boundary corners, fixed edges, the robot's endpoints) folded in.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict

@@ -1,8 +1,9 @@
 """Scenarios: a grid, robots with start and goal, obstacles, and the objective's settings.
 
-A scenario is an immutable value. It loads from TOML or JSON files and from plain dicts, validates
-everything on the way in (raising :class:`~qcpp.problem.errors.ScenarioError` naming the field), and saves
-back losslessly (``load(save(s)) == s``).
+A scenario is an immutable value. It is built from plain dicts (the file format's dict form), validates
+everything on the way in (raising :class:`~qcpp.problem.errors.ScenarioError` naming the field), and converts
+back losslessly (``scenario_from_dict(scenario_to_dict(s)) == s``). Files are read and written by
+:mod:`qcpp.problem.scenario_io`.
 
 Variable indexing (the data-qubit order of every circuit): the decision variable ``x[r, e]`` for robot
 ``r`` and grid edge ``e`` has index ``r * V + k``, where ``k`` is the position of ``e`` in
@@ -20,33 +21,18 @@ Example:
 
 from __future__ import annotations
 
-import json
 import math
-import os
-import re
-import sys
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
 
-from qcpp.io.atomic import write_text_atomic
-from qcpp.io.inputs import InputError, read_bounded
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid, Node
 from qcpp.problem.limits import check_grid_size
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
-MAX_SCENARIO_BYTES = 16 << 20
-"""Largest scenario file :func:`load_scenario` reads (16 MiB)."""
 
 ObstacleMode = Literal["soft", "hard"]
 BalanceMode = Literal["chain", "all-pairs"]
@@ -92,7 +78,7 @@ class Objective:
 @dataclass(frozen=True)
 class Scenario:
     """A complete coverage-path-planning instance. Build it with :func:`scenario_from_dict` or
-    :func:`load_scenario` (which validate); the constructor itself validates too.
+    :func:`~qcpp.problem.scenario_io.load_scenario` (which validate); the constructor itself validates too.
 
     Attributes:
         grid: The grid.
@@ -325,7 +311,7 @@ def _reachable(g: Grid, blocked: frozenset[Node], a: Node, b: Node) -> bool:
     return False
 
 
-# ---------------------------------------------------------------- dict / file conversion
+# ---------------------------------------------------------------- dict conversion
 
 _TOP_KEYS = {"name", "grid", "robots", "objective"}
 _GRID_KEYS = {"rows", "cols", "obstacles"}
@@ -501,190 +487,3 @@ def scenario_to_dict(s: Scenario) -> dict[str, Any]:
         "degree_target": ob.degree_target,
     }
     return out
-
-
-def load_scenario(
-    path: str | os.PathLike[str], *, check_range: bool = False, phases: bool = False
-) -> Scenario:
-    """Load a scenario from a ``.toml`` or ``.json`` file.
-
-    The file is UTF-8, with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most
-    :data:`MAX_NESTING` levels deep, and no object/table may give a key twice (JSON parsers would silently keep
-    the last value). FIFOs, pipes and devices are read with a time limit (:func:`qcpp.io.inputs.read_bounded`).
-
-    Args:
-        path: The file.
-        check_range: Also refuse weights the solvers cannot represent exactly
-            (:func:`qcpp.problem.cost_range.check_cost_range`; the command line does).
-        phases: With ``check_range``: the narrower range in which the QAOA circuit's phases are exact to the
-            simulators' tolerance (:data:`qcpp.problem.cost_range.PHASE_COST_LIMIT`; ``solve -m qaoa``,
-            ``simulate``, ``validate``).
-
-    Raises:
-        ScenarioError: if the file is missing, unreadable, not valid TOML/JSON, or describes a bad scenario
-            (the field is prefixed by the file name; a grid over :data:`qcpp.problem.limits.MAX_GRID_NODES`
-            nodes is refused unless :func:`qcpp.problem.limits.allow_large` is in effect).
-    """
-    p = Path(path)
-    kind = p.suffix.lower()
-    try:
-        if not p.is_dir() and kind not in (".json", ".toml"):  # before opening: a FIFO is never waited on
-            os.stat(p)  # a missing file is "cannot read", not "unknown type"
-            raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
-        raw = read_bounded(p, MAX_SCENARIO_BYTES)  # bounded: /dev/zero or a huge file must not fill the memory
-        if len(raw) > MAX_SCENARIO_BYTES:
-            raise ScenarioError(str(p), f"the file is larger than {MAX_SCENARIO_BYTES >> 20} MiB; not a scenario")
-        text = raw.decode("utf-8-sig")  # a leading UTF-8 byte order mark is not content
-    except InputError as exc:
-        raise ScenarioError(str(p), f"cannot read the file: {exc.reason}") from None
-    except OSError as exc:
-        raise ScenarioError(str(p), f"cannot read the file ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid UTF-8 text ({exc.reason} at byte {exc.start})") from None
-    fmt = kind[1:].upper()
-    depth = nesting_depth(text, fmt)
-    if depth > MAX_NESTING:
-        raise ScenarioError(
-            str(p), f"not a scenario: brackets nested {depth:,} levels deep (at most {MAX_NESTING}; a scenario needs 5)"
-        )
-    try:
-        data = json.loads(text, object_pairs_hook=_unique_keys) if fmt == "JSON" else tomllib.loads(text)
-    except _DuplicateKeyError as exc:
-        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
-    except json.JSONDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid TOML: {_toml_reason(text, exc)}") from None
-    try:
-        s = scenario_from_dict(data)
-        if check_range:
-            from qcpp.problem.cost_range import check_cost_range, check_phase_range  # they import this module
-
-            check_phase_range(s) if phases else check_cost_range(s)
-        return s
-    except ScenarioError as exc:
-        raise ScenarioError(f"{p.name}: {exc.field}", exc.reason) from None
-
-
-MAX_NESTING = 64
-"""Deepest bracket nesting :func:`load_scenario` parses (a scenario needs 5; Python's parsers recurse per level,
-so ``[[[[...]]]]`` 100,000 deep used to end in a ``RecursionError`` traceback)."""
-
-_STRINGS = {
-    "JSON": re.compile(r'"(?:[^"\\]|\\.)*"'),
-    "TOML": re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'),
-}
-
-
-def nesting_depth(text: str, fmt: str) -> int:
-    """The deepest nesting of ``[``/``{`` brackets in JSON or TOML ``text``, outside strings and comments.
-
-    Example:
-        >>> nesting_depth('{"a": [[1, 2], "]]]"]}', "JSON"), nesting_depth("a = [[1]] # [[[", "TOML")
-        (3, 2)
-    """
-    bare = _STRINGS[fmt].sub("", text).encode("utf-8", "surrogatepass")
-    codes = np.frombuffer(bare, dtype=np.uint8)
-    steps = np.isin(codes, (ord("["), ord("{"))).astype(np.int64) - np.isin(codes, (ord("]"), ord("}")))
-    return int(np.cumsum(steps).max(initial=0))
-
-
-class _DuplicateKeyError(ValueError):
-    pass
-
-
-def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    """``json.loads``'s object hook: a dict, refusing a key given twice in one object."""
-    out: dict[str, Any] = {}
-    for key, value in pairs:
-        if key in out:
-            keys = ", ".join(json.dumps(k) for k in dict(pairs))
-            raise _DuplicateKeyError(
-                f"the key {json.dumps(key)} appears twice in one object (keys {keys}); give each key once"
-            )
-        out[key] = value
-    return out
-
-
-_TOML_AT = re.compile(r"\(at line (\d+), column \d+\)|\(at end of document\)")
-
-
-def _toml_reason(text: str, exc: Exception) -> str:
-    """tomllib's message, with the key named when it is a key given twice (tomllib only gives a position)."""
-    message = str(exc)
-    declared = re.match(r"Cannot declare \(((?:'[^']*',? ?)+)\) twice \(at line (\d+)", message)
-    if declared:
-        table = ".".join(re.findall(r"'([^']*)'", declared.group(1)))
-        return f"the table [{table}] is declared twice (line {declared.group(2)}); declare each table once"
-    if not message.startswith("Cannot overwrite a value"):
-        return message
-    where = _TOML_AT.search(message)
-    lines = text.splitlines()
-    if where is None or not lines:
-        return message
-    if where.group(1):
-        index = int(where.group(1)) - 1
-    else:  # at the end: the last line with content
-        index = max((i for i, line in enumerate(lines) if line.strip()), default=0)
-    index = min(index, len(lines) - 1)
-    key = lines[index].split("=", 1)[0].strip()
-    table = next((line.strip() for line in reversed(lines[:index]) if line.strip().startswith("[")), "")
-    inside = f" in {table}" if table else ""
-    return f"the key {key}{inside} is given twice (line {index + 1}); give each key once"
-
-
-def _toml_value(v: Any) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, str):
-        return _toml_string(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    raise TypeError(f"cannot write {v!r} as TOML")
-
-
-def _toml_string(v: str) -> str:
-    """A TOML basic string. Not ``json.dumps``: JSON escapes characters beyond U+FFFF as surrogate pairs,
-    which TOML rejects. Quote, backslash and control characters are escaped, everything else is literal."""
-    out = ['"']
-    for ch in v:
-        o = ord(ch)
-        if ch in '"\\':
-            out.append("\\" + ch)
-        elif o < 0x20 or o == 0x7F:
-            out.append(f"\\u{o:04X}")
-        elif 0xD800 <= o <= 0xDFFF:
-            raise ScenarioError("name", f"contains the lone surrogate U+{o:04X}, which TOML cannot hold (save as JSON)")
-        else:
-            out.append(ch)
-    out.append('"')
-    return "".join(out)
-
-
-def scenario_to_toml(s: Scenario) -> str:
-    """TOML text of ``s`` in the documented file format."""
-    d = scenario_to_dict(s)
-    lines = []
-    if "name" in d:
-        lines.append(f"name = {_toml_value(d['name'])}\n")
-    lines.append("[grid]")
-    lines += [f"{k} = {_toml_value(v)}" for k, v in d["grid"].items()]
-    for rb in d["robots"]:
-        lines += ["", "[[robots]]", f"start = {_toml_value(rb['start'])}", f"goal = {_toml_value(rb['goal'])}"]
-    lines += ["", "[objective]"]
-    lines += [f"{k} = {_toml_value(v)}" for k, v in d["objective"].items()]
-    return "\n".join(lines) + "\n"
-
-
-def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
-    """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically."""
-    p = Path(path)
-    if p.suffix.lower() == ".json":
-        text = json.dumps(scenario_to_dict(s), indent=2) + "\n"
-    elif p.suffix.lower() == ".toml":
-        text = scenario_to_toml(s)
-    else:
-        raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
-    write_text_atomic(p, text)

@@ -13,22 +13,15 @@ Variable labels (any tool can decode them):
 
 The two forms:
 
-* ``paper``: exactly qcpp's cost, :func:`qcpp.problem.cost.quadratic_cost` (the Ising Hamiltonian of
-  :mod:`qcpp.problem.hamiltonian` under ``x = (1 - Z)/2``). Its degree term ``(D_v - t_v)^2`` counts the edges at a
-  node summed over all robots, so with two or more robots it does not force each robot onto a path: robots can
-  split or share degrees, and its ground state can be infeasible (docs/qubo.md; the smallest counterexample is
-  in ``tests/qcpp/problem/qubo_test.py``).
+* ``paper``: exactly qcpp's cost, :func:`qcpp.problem.cost.quadratic_cost`. Its degree term counts a node's
+  edges over all robots, so with two or more robots its ground state can be infeasible (docs/qubo.md).
 * ``per-robot`` (default): the ``paper`` cost plus per-robot degree penalties with visit bits,
-  ``P (S_rv - 2 y_rv)^2`` at every node ``v`` that is not an end of robot ``r`` and ``P (S_rv - 1)^2`` at
-  robot ``r``'s start and goal (``S_rv`` = robot ``r``'s edges at ``v``). The penalties are zero exactly when
-  every robot has degree 1 at its ends and 0 or 2 elsewhere (with ``y_rv = S_rv / 2``): on every feasible
-  assignment the energy is the cost, so the feasible optimum is unchanged. A path plus separate cycles also has
-  zero penalty (degree penalties cannot see connectivity); decoders drop the cycles.
+  ``P (S_rv - 2 y_rv)^2`` at every node ``v`` that is not an end of robot ``r`` and ``P (S_rv - 1)^2`` at its
+  start and goal (``S_rv`` = robot ``r``'s edges at ``v``): zero exactly when every robot has degree 1 at its
+  ends and 0 or 2 elsewhere, so on every feasible assignment the energy is the cost. A path plus separate cycles
+  also has zero penalty (degrees cannot see connectivity); decoders drop the cycles.
 
-The penalty weight ``P`` (:func:`penalty_rule`): ``P = UB - LB + G + 1`` with ``UB`` the cost of a feasible
-assignment, ``LB`` a lower bound of the cost over zero-penalty local configurations and ``G`` the most a single
-node can gain locally by breaking its degree rule. Then every assignment with a non-zero penalty has energy at
-least ``UB + 1`` > the optimum: no infeasible degree pattern beats the optimum (proof in :func:`penalty_rule`).
+With ``P`` from :func:`penalty_rule` every assignment with a non-zero penalty has energy above the optimum.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario

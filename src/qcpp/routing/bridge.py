@@ -3,7 +3,7 @@
 A lowered ``rzz`` is ``cx a b; rz b; cx a b``. When ``a`` and ``b`` sit far apart on the device (a node's visit
 bits of two robots live in different robot patches of the medial layout; :mod:`qcpp.layout.medial`), a router
 moves one of them next to the other with SWAPs (3 CX per step) and, in a window that returns home
-(:func:`qcpp.routing.sabre.route_windows`), moves it back: about ``6 d`` CX for distance ``d``. The phase only
+(:func:`qcpp.routing.windows.route_windows`), moves it back: about ``6 d`` CX for distance ``d``. The phase only
 needs the *value* of ``a`` next to ``b``: copy it into a clean device qubit ``h`` next to ``b`` along a chain of
 clean qubits, apply ``cx h b; rz b; cx h b``, and undo the chain (its CX in reverse order). A chain step into
 a clean neighbour is one CX (``cx u v``: ``v = u``); a step into a clean qubit two steps away goes through any
@@ -19,11 +19,11 @@ member of least total distance to the others), so a node visited by three robots
 :func:`bridge_far_phases` rewrites a circuit section by section (every section is clean at both ends, so any
 device qubit that is neither a data qubit's home nor used by the section is |0> inside it) and keeps a
 rewritten section only where its window routes to fewer two-qubit gates than the original one (both routed
-from home with :func:`qcpp.routing.sabre.route_window`, as :func:`~qcpp.routing.sabre.route_windows` will):
+from home with :func:`qcpp.routing.windows.route_window`, as :func:`~qcpp.routing.windows.route_windows` will):
 never worse, window by window. Sections of more than :data:`MAX_PAIRS` two-qubit gates are left alone. The gates
 of the section other than the far phases, and their order, are
 unchanged; on every input whose non-data device qubits start in |0> the rewritten circuit equals the original
-one (``tests/qcpp/bridge_test.py``: basis-state and statevector checks, QCEC on routed circuits).
+one (``tests/circuitgen/bridge_test.py``: basis-state and statevector checks, QCEC on routed circuits).
 
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section
@@ -48,6 +48,10 @@ import numpy as np
 from qcpp.devices.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.sabre import window_cx
+from qcpp.routing.windows import Positions, route_window
 
 __all__ = ["bridge_far_phases", "copy_chain", "has_rzz"]
 
@@ -64,15 +68,12 @@ def _bridged_cx(c: int, t: int, dist: Any) -> list[tuple[int, int]]:
     return [(c, m), (m, t), (c, m), (m, t)]
 
 
-_WITHIN_TWO: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
-
-
-def _within_two(dist: Any) -> dict[int, list[tuple[int, int]]]:
-    """Per qubit asked about so far, the other qubits one or two steps away with their distance, ascending (kept
-    for the last distance matrix: a relay pass asks for chains on one device)."""
-    if not _WITHIN_TWO or _WITHIN_TWO[0][0] is not dist:
-        _WITHIN_TWO[:] = [(dist, {})]
-    return _WITHIN_TWO[0][1]
+def _within_two(context: RoutingContext, dist: Any) -> dict[int, list[tuple[int, int]]]:
+    """Per qubit asked about so far, the other qubits one or two steps away with their distance, ascending (the
+    context keeps them for the last distance matrix: a relay pass asks for chains on one device)."""
+    if not context.within_two or context.within_two[0][0] is not dist:
+        context.within_two[:] = [(dist, {})]
+    return context.within_two[0][1]
 
 
 def _near(u: int, dist: Any, within: dict[int, list[tuple[int, int]]]) -> list[tuple[int, int]]:
@@ -83,7 +84,9 @@ def _near(u: int, dist: Any, within: dict[int, list[tuple[int, int]]]) -> list[t
     return hit
 
 
-def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[list[tuple[int, int]], int] | None:
+def copy_chain(
+    source: int, target: int, clean: set[int], dist: Any, within: dict[int, list[tuple[int, int]]] | None = None
+) -> tuple[list[tuple[int, int]], int] | None:
     """The cheapest chain copying ``source`` into a clean qubit (the *holder*) within two steps of ``target``.
 
     Chain steps are CX into a clean neighbour (1 CX) or into a clean qubit two steps away (4 CX, through any
@@ -95,6 +98,8 @@ def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[li
         target: Physical qubit the copy must end near.
         clean: Physical qubits that are |0> (the chain's holders).
         dist: All-pairs device distances (:func:`qcpp.layout.placement.distances`).
+        within: Per qubit, the qubits one or two steps away with their distance, for ``dist`` (filled as asked;
+            default: a fresh table).
 
     Returns:
         ``(CX pairs (control, target) in order, the holder)``, or ``None`` when ``source`` is within two steps
@@ -102,7 +107,7 @@ def copy_chain(source: int, target: int, clean: set[int], dist: Any) -> tuple[li
     """
     if dist[source, target] <= 2:
         return None
-    within = _within_two(dist)
+    within = {} if within is None else within
     best: dict[int, int] = {source: 0}
     back: dict[int, tuple[int, int]] = {}
     heap = [(0, source)]
@@ -209,7 +214,9 @@ SWAP_CX = 3
 """CX of a SWAP: a router brings a far qubit next to its partner and back for about ``2 x 3 (d - 1)`` CX."""
 
 
-def _relay_block(block: Sequence[Gate], clean: set[int], dist: Any) -> list[Gate] | None:
+def _relay_block(
+    block: Sequence[Gate], clean: set[int], dist: Any, within: dict[int, list[tuple[int, int]]]
+) -> list[Gate] | None:
     """A run of ``rzz`` and ``rz`` (diagonal: no qubit's value changes inside it) with far ``rzz`` relayed.
 
     Copies made for one ``rzz`` stay until the end of the run and serve later ``rzz`` on the same qubit (a
@@ -241,7 +248,7 @@ def _relay_block(block: Sequence[Gate], clean: set[int], dist: Any) -> list[Gate
             value, other = (a, b)[side], (b, a)[side]
             if dist[value, hub[value]] < dist[other, hub[other]]:
                 continue  # copies travel towards the hub, where the run's other terms can reuse them
-            found = copy_chain(s, t, clean, dist)
+            found = copy_chain(s, t, clean, dist, within)
             if found is not None:
                 chain, holder = found
                 cost = 2 * len(chain) + 2 * len(_bridged_cx(holder, t, dist))
@@ -269,7 +276,9 @@ def _relay_block(block: Sequence[Gate], clean: set[int], dist: Any) -> list[Gate
     return out
 
 
-def _rewrite(gates: list[Gate], clean: set[int], dist: Any) -> list[Gate] | None:
+def _rewrite(
+    gates: list[Gate], clean: set[int], dist: Any, within: dict[int, list[tuple[int, int]]]
+) -> list[Gate] | None:
     """The section's gates (physical qubits) with far ``rzz`` relayed by copy chains (``None``: none)."""
     out: list[Gate] = []
     changed = False
@@ -280,23 +289,30 @@ def _rewrite(gates: list[Gate], clean: set[int], dist: Any) -> list[Gate] | None
             out.append(gates[i])
             i += 1
             continue
-        new = _relay_block(gates[i:j], clean, dist)
+        new = _relay_block(gates[i:j], clean, dist, within)
         out += gates[i:j] if new is None else new
         changed |= new is not None
         i = j
     return out if changed else None
 
 
-def _routed_twoq(gates: Sequence[Gate], device: Device, dist: Any) -> int:
-    from qcpp.routing.sabre import Positions, route_window, window_cx
-
+def _routed_twoq(
+    gates: Sequence[Gate], device: Device, dist: Any, options: RoutingOptions, context: RoutingContext
+) -> int:
+    """Two-qubit gates of the section's window (physical qubits) routed from home."""
     pairs = [g[1] for g in gates if len(g[1]) == 2]
-    ops = route_window(pairs, Positions.identity(device.num_qubits), device, dist)  # type: ignore[arg-type]
+    ops = route_window(pairs, Positions.identity(device.num_qubits), device, dist, 0, options, context)  # type: ignore[arg-type]
     return window_cx(ops)
 
 
 def bridge_far_phases(
-    circuit: Circuit, layout: Sequence[int], device: Device, dist: Any = None, only_if_cheaper: bool = True
+    circuit: Circuit,
+    layout: Sequence[int],
+    device: Device,
+    dist: Any = None,
+    only_if_cheaper: bool = True,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
 ) -> tuple[Circuit, tuple[int, ...]]:
     """Relay far ``rzz`` phases through clean device qubits where that routes to fewer gates (module docs).
 
@@ -308,6 +324,8 @@ def bridge_far_phases(
         dist: Its all-pairs distances, if already known.
         only_if_cheaper: Keep a rewritten section only where its window routes to fewer two-qubit gates
             (``False``: keep every rewrite; for tests).
+        options: The routing settings the windows are compared with (those of the final routing).
+        context: The run's memos and watches (default: a fresh one).
 
     Returns:
         ``(circuit, layout)``: registers ``data`` and ``site`` (every other physical qubit used, ascending),
@@ -316,6 +334,8 @@ def bridge_far_phases(
     from qcpp.layout.placement import distances
 
     d = distances(device) if dist is None else dist
+    context = RoutingContext() if context is None else context
+    within = _within_two(context, d)
     first = circuit.registers[0] if circuit.registers else None
     n_data = first.size if first is not None and first.name == "data" else 0
     homes = [int(p) for p in layout[:n_data]]
@@ -325,8 +345,11 @@ def bridge_far_phases(
     for sec in circuit.sections:
         gates = [Gate(g[0], tuple(int(layout[q]) for q in g[1]), g[2], g[3]) for g in sec.gates]
         used = {q for g in gates for q in g[1]}
-        new = _rewrite(gates, spare - used, d) if sum(len(g[1]) == 2 for g in gates) <= MAX_PAIRS else None
-        if new is not None and (not only_if_cheaper or _routed_twoq(new, device, d) < _routed_twoq(gates, device, d)):
+        new = _rewrite(gates, spare - used, d, within) if sum(len(g[1]) == 2 for g in gates) <= MAX_PAIRS else None
+        if new is not None and (
+            not only_if_cheaper
+            or _routed_twoq(new, device, d, options, context) < _routed_twoq(gates, device, d, options, context)
+        ):
             gates = new
         sections.append((sec.name, gates))
     sites = sorted({q for _, gates in sections for g in gates for q in g[1]} - set(homes))

@@ -151,9 +151,6 @@ def check_equivalence(
         global_phase_ok: Accept ``equivalent_up_to_global_phase`` (our lowering is exact, so default no).
         timeout: QCEC's timeout in seconds (``no_information`` when hit).
         **options: Further QCEC configuration options.
-
-    Returns:
-        The :class:`EquivalenceResult`.
     """
     from mqt import qcec
 

@@ -14,14 +14,11 @@ Methods:
 
 Every method reports the same numbers for the same angles:
 
-* ``expectation``: ``<C>`` of the measured data register. Gate-level methods sum ``|amplitude|^2 C(x)`` over
-  the basis states they hold (``C`` from :func:`qcpp.problem.cost.cost_parts_bits`, defined on every bit string);
-  ``tensor`` computes only the feasible assignments with clean ancillas and reports ``<C>`` over them divided
-  by ``amplitudes_held`` (the same number whenever the circuit keeps its state there).
-* ``p_optimum``: probability that the data register reads an optimal feasible assignment.
-* ``amplitudes_held``: total probability on feasible assignments with every ancilla back in ``|0>``: 1 for
-  ``subspace`` by construction, *measured* for the gate-level methods (1 up to rounding when the circuit is
-  right; less if the mixer leaked out of the feasible set or left ancillas dirty).
+* ``expectation``: ``<C>`` of the measured data register (``tensor``: over the feasible assignments with clean
+  ancillas, divided by ``amplitudes_held``);
+* ``p_optimum``: probability that the data register reads an optimal feasible assignment;
+* ``amplitudes_held``: total probability on feasible assignments with every ancilla back in ``|0>`` (1 for
+  ``subspace`` by construction; for the gate-level methods 1 up to rounding when the circuit is right).
 
 Random angles (no ``angles`` given): :func:`qcpp.simulate.training.initial_angles` with ``init="random"`` on the
 exact-rule subspace simulator, so the same seed gives the same angles for every method.
@@ -135,9 +132,6 @@ def evaluate(
         angles: ``2p`` angles; ``None`` for random ones from ``seed``.
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
-
-    Returns:
-        The :class:`Evaluation`.
 
     Raises:
         ValueError: unknown method or rule, angles that do not fit, too many qubits for ``statevector``, or

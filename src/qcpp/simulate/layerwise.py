@@ -171,9 +171,6 @@ def train_layerwise(
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
 
-    Returns:
-        The :class:`LayerwiseResult`.
-
     Raises:
         ValueError: ``p < 1``, ``random_starts < 0``, a negative ``maxiter``, or a bad objective parameter.
     """

@@ -153,9 +153,6 @@ def solve_qaoa(
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
 
-    Returns:
-        The :class:`QaoaSolution`.
-
     Raises:
         ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,
             ``mixer_warm`` with another optimiser than ``layerwise``, or a mixer the subspace simulator cannot

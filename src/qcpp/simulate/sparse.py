@@ -37,9 +37,6 @@ def basis_from_bits(bits: Sequence[int | bool]) -> int:
     Args:
         bits: one truth value per qubit, qubit 0 first.
 
-    Returns:
-        The index.
-
     >>> basis_from_bits([1, 0, 1])
     5
     """

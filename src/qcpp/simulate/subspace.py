@@ -187,9 +187,6 @@ def robot_basis(
         rule: SBF rule, ``exact`` or ``paper``.
         initial: One of :data:`~qcpp.plan.options.INITIAL_STATES` (see the module docstring).
 
-    Returns:
-        The :class:`RobotBasis`.
-
     Raises:
         ValueError: for an unknown rule or initial state.
         NonUnitaryMixerError: if the rule's relation is not symmetric on the reachable paths.

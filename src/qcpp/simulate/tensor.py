@@ -45,7 +45,7 @@ import os
 import threading
 import time
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -63,12 +63,14 @@ with warnings.catch_warnings():
 
 __all__ = [
     "DEFAULT_MAX_WIDTH",
+    "PATH_OPTIMIZERS",
     "RAW_MCX_MAX_QUBITS",
     "BasisState",
     "CacheFolderWarning",
     "ContractionInfo",
     "ContractionTooWideError",
     "MPSCircuit",
+    "OptimizerCache",
     "TensorCircuit",
     "contract_sliced",
     "dask_client",
@@ -174,8 +176,45 @@ def default_cache_dir() -> Path:
     return Path(base) / "qcpp" / "cotengra"
 
 
-_OPTIMIZERS: dict[tuple[Any, ...], ctg.ReusableHyperOptimizer] = {}
-_OPTIMIZERS_LOCK = threading.Lock()
+class OptimizerCache:
+    """The process's cotengra path optimizers, one per cache directory and settings (:func:`path_optimizer`).
+
+    A ``ReusableHyperOptimizer`` keeps the paths it found in memory and on disk; sharing one per directory lets
+    every contraction of the process reuse them (the only process-wide state of this module). Thread-safe;
+    :meth:`clear` forgets the instances (their on-disk paths stay), for tests.
+
+    Example:
+        >>> cache = OptimizerCache()
+        >>> made = cache.get(("key",), lambda: object())
+        >>> cache.get(("key",), lambda: object()) is made, len(cache)
+        (True, 1)
+        >>> cache.clear(); len(cache)
+        0
+    """
+
+    def __init__(self) -> None:
+        self._optimizers: dict[tuple[Any, ...], Any] = {}
+        self._lock = threading.Lock()
+
+    def get(self, key: tuple[Any, ...], make: Callable[[], Any]) -> Any:
+        """The optimizer of ``key``, made by ``make()`` the first time."""
+        with self._lock:
+            opt = self._optimizers.get(key)
+            if opt is None:
+                opt = self._optimizers[key] = make()
+            return opt
+
+    def clear(self) -> None:
+        """Forget every optimizer."""
+        with self._lock:
+            self._optimizers.clear()
+
+    def __len__(self) -> int:
+        return len(self._optimizers)
+
+
+PATH_OPTIMIZERS = OptimizerCache()
+"""The process-wide :class:`OptimizerCache` of :func:`path_optimizer`."""
 
 
 def path_optimizer(
@@ -210,22 +249,21 @@ def path_optimizer(
     """
     path = Path(directory) if directory is not None else default_cache_dir()
     key = (str(path.absolute()), max_repeats, max_time, parallel)
-    with _OPTIMIZERS_LOCK:
-        opt = _OPTIMIZERS.get(key)
-        if opt is None:
-            usable = _usable_cache(path)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
-                opt = ctg.ReusableHyperOptimizer(
-                    max_repeats=max_repeats,
-                    max_time=max_time,
-                    parallel=parallel,
-                    directory=str(usable) if usable is not None else None,  # None: in memory only
-                    hash_method="b",
-                    progbar=False,
-                )
-            _OPTIMIZERS[key] = opt
-        return opt
+
+    def make() -> ctg.ReusableHyperOptimizer:
+        usable = _usable_cache(path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
+            return ctg.ReusableHyperOptimizer(
+                max_repeats=max_repeats,
+                max_time=max_time,
+                parallel=parallel,
+                directory=str(usable) if usable is not None else None,  # None: in memory only
+                hash_method="b",
+                progbar=False,
+            )
+
+    return PATH_OPTIMIZERS.get(key, make)  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------------------------------------------ conversion
@@ -394,15 +432,12 @@ def collapse_ancilla_blocks(
 ) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
     """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
 
-    A section that touches an ancilla (a partial mixer: compute, controlled rotation, uncompute) becomes the
-    matrix ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches; if ``T`` is not unitary (the section
-    leaves an ancilla dirty, e.g. one leaf of a longer construction) the following sections are added until it
-    is. A unitary ``T`` of an isometry ``S (I ⊗ |0>)`` proves that no amplitude leaks into dirty ancillas
-    (``||T psi||^2 = 1``), so on inputs with clean ancillas the circuit equals the product of these operators,
-    exactly: the logic compute/uncompute pairs simplify away before any path search. A block on more than
-    :data:`MAX_BLOCK_DATA_QUBITS` data qubits (the phase separator's arithmetic) is kept as its diagonal
-    ``<x, 0|S|x, 0>`` instead, accepted only if every entry has modulus 1 (then ``S`` maps each ``|x, 0>`` to a
-    phase times itself).
+    A section that touches an ancilla becomes ``T = (I ⊗ <0|) S (I ⊗ |0>)`` on the data qubits it touches (the
+    following sections added until ``T`` is unitary). A unitary ``T`` proves that no amplitude leaks into dirty
+    ancillas, so on inputs with clean ancillas the circuit equals the product of these operators, exactly, and
+    the compute/uncompute pairs vanish before any path search. A block on more than
+    :data:`MAX_BLOCK_DATA_QUBITS` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
+    entry has modulus 1.
 
     Args:
         circuit: A bound circuit whose ancillas start in |0>.
@@ -620,9 +655,6 @@ class TensorCircuit:
         Args:
             state: A basis state (see :func:`state_bits`).
 
-        Returns:
-            The amplitude.
-
         Raises:
             ContractionTooWideError: if the contraction exceeds ``max_width``.
         """
@@ -765,10 +797,9 @@ def contract_sliced(
 ) -> complex:
     """Contract a closed tensor network to a scalar by cotengra slicing, the slices on a dask cluster if given.
 
-    Slicing fixes some indices to each of their values: every slice is an independent, smaller contraction
-    (largest intermediate at most ``target_size`` entries) and the result is their sum. With a
-    ``dask.distributed.Client`` the arrays are scattered to the workers once and the slices are submitted in
-    chunks of ``chunk`` (default: about four chunks per worker thread); without one they run in this process.
+    Every slice (some indices fixed) is an independent, smaller contraction and the result is their sum. With a
+    ``dask.distributed.Client`` the arrays are scattered once and the slices submitted in chunks; without one
+    they run in this process.
 
     Args:
         tn: A quimb ``TensorNetwork`` with no open index.
@@ -777,9 +808,6 @@ def contract_sliced(
         target_slices: Or: at least this many slices.
         client: A ``dask.distributed.Client`` (``None``: in-process).
         chunk: Slices per dask task.
-
-    Returns:
-        The contracted value.
 
     Example:
         >>> import quimb.tensor as qtn
@@ -818,9 +846,6 @@ def dask_client(address: str) -> Any:
 
     Args:
         address: ``'local'`` or a scheduler address.
-
-    Returns:
-        The connected client.
 
     Raises:
         OSError: the scheduler cannot be reached within 10 s.

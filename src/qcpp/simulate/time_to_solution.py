@@ -12,7 +12,7 @@ One criterion for every method:
   every shot takes the circuit's time plus readout (:func:`shot_seconds` on an ideal device, the routed
   circuit's schedule on a real one), so ``TTS = (training shots + shots) x shot time`` (:func:`qaoa_on_device`).
 
-The noise model of a device is the estimated success probability ``ESP`` (:func:`qcpp.routing.sabre.esp`: the
+The noise model of a device is the estimated success probability ``ESP`` (:func:`qcpp.routing.native.esp`: the
 product of ``1 - error`` over every gate and readout of the routed circuit): **a shot succeeds with probability
 ``P(optimum) x ESP``**, i.e. an error anywhere ruins the shot and an error-free shot samples the ideal state.
 This is optimistic (no idle decoherence, crosstalk or leakage; training is counted at its noiseless number of
@@ -126,9 +126,6 @@ def qaoa_on_device(
         shot_time: Seconds per shot.
         target: Success probability to reach.
         esp: Estimated success probability of one shot on the device (1: ideal).
-
-    Returns:
-        The :class:`QaoaTime`.
 
     Example:
         >>> t = qaoa_on_device(0.5, estimates=10, shots_per_estimate=100, shot_time=1e-6)

@@ -247,9 +247,6 @@ def train(
         objective: What to minimise: ``expectation`` (default), ``cvar``, ``gibbs`` (with their defaults, see
             :func:`qcpp.simulate.objectives.make_objective`) or an objective object; the trace holds its values.
 
-    Returns:
-        The :class:`TrainingResult`.
-
     Raises:
         ValueError: for an unknown optimiser or initialisation, ``p < 1``, or an explicit vector of the wrong
             length.

@@ -232,9 +232,6 @@ def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> 
     Args:
         max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
 
-    Returns:
-        The :class:`ValidationSize`.
-
     Example:
         >>> from qcpp.problem.presets import default_scenario
         >>> size = validate_size(default_scenario(4, 4, 2))
@@ -338,8 +335,7 @@ def validate(
         tolerance: Allowed deviation of each check.
         max_amplitudes: ``tensor``: contract at most this many assignments exactly (a seeded random sample when
             there are more; ``None``: all; 0: none). A contraction wider than
-            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` is reported as skipped (seen at p = 2 on 30 qubits: width
-            21-27 without the optional ``kahypar``; the MPS checks still run).
+            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` is reported as skipped (the MPS checks still run).
         mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude); it is dropped
             (with a note on the contraction check) once its bond exceeds :data:`MPS_BOND_LIMIT`, and the ancilla
             probability then comes from the contracted, verified-unitary ancilla blocks.

@@ -3,6 +3,7 @@
 Examples::
 
     qcpp compile examples/paper_3x3.toml -p 1 --qasm out.qasm3 --qasm-version 3
+    qcpp compile --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --lowered --json
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
@@ -21,13 +22,22 @@ import json
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
+from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 from rich.console import Console
 from rich.table import Table
 
-from qcpp.cli.commands.plan_flags import LayersFlag, ScenarioArg, with_plan_flags
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    check_inline_only,
+    inline_scenario,
+)
+from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
 from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, check_size
@@ -37,7 +47,8 @@ from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -54,7 +65,10 @@ HELP = (
 @with_plan_flags
 def compile_command(
     options: PlanOptions,
-    scenario: ScenarioArg,
+    scenario: Annotated[
+        Path | None,
+        typer.Argument(help="Scenario file (.toml or .json); or give it inline with --grid.", show_default=False),
+    ] = None,
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
@@ -98,14 +112,26 @@ def compile_command(
             "SABRE routing of the whole circuit).",
         ),
     ] = "auto",
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
+    check_inline_only(grid, robots, obstacle, hard_obstacles)
+    extra = list(assignments or [])
+    if grid is not None and scenario is not None:
+        if not (bind and "=" in str(scenario)):
+            raise ValueError(f"--grid gives the scenario: do not give the scenario file {str(scenario)!r} too")
+        extra.insert(0, str(scenario))  # NAME=VALUE after --bind, taken for the (absent) file argument
+        scenario = None
+    if grid is None and scenario is None:
+        raise ValueError("give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]")
     if device is None:  # routing flags without a device are refused, not silently ignored
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
         if local_ancillas:
             raise ValueError("--local-ancillas: applies with --device only (no device given)")
-    extra = list(assignments or [])
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
@@ -114,7 +140,12 @@ def compile_command(
         raise ValueError("--qasm - and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
-    s = load_scenario(scenario, check_range=True)
+    if scenario is not None:
+        s = load_scenario(scenario, check_range=True)
+        label = scenario.name
+    else:
+        s = inline_scenario(grid, robots, obstacle, hard_obstacles)  # type: ignore[arg-type]
+        label = s.name
     size = _guard(s, p, options, max_gates, force)
     if device is not None:
         summary, phase_explain = _routed(
@@ -142,7 +173,7 @@ def compile_command(
     form = "lowered" if lowered else "high level"
     if device is not None:
         form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
-    table = Table(title=f"{scenario.name}: p={p}, rule={options.rule}, target={options.target}, {form}")
+    table = Table(title=f"{label}: p={p}, rule={options.rule}, target={options.target}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():

@@ -13,6 +13,7 @@ Examples::
     qcpp estimate --grid 10x10 --robots 4 --physical --qubit-model qubit_maj_ns_e6 --qec-scheme floquet_code
     qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
     qcpp estimate --scenario examples/two_robots.toml -p 2 --json
+    qcpp estimate --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --format latex
     qcpp estimate --formula
 """
 
@@ -27,6 +28,7 @@ from typing import Annotated, Any
 
 import typer
 
+from qcpp.cli.commands.inline_scenario import HardObstaclesFlag, ObstacleFlag, parse_obstacles
 from qcpp.cli.commands.plan_flags import with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
@@ -75,7 +77,9 @@ def estimate(
         ),
     ] = False,
     compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
-    fmt: Annotated[str, typer.Option("--format", help="Output: table, md, csv, json or jsonl.")] = "table",
+    fmt: Annotated[
+        str, typer.Option("--format", help="Output: table, md, csv, json, jsonl or latex (booktabs).")
+    ] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
     plot: Annotated[
         str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
@@ -140,6 +144,8 @@ def estimate(
             "fits, routed_kind exact|bound): grid[:RxC], heavy-hex[:D], all-to-all[:N] or a named device.",
         ),
     ] = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: qcpp.estimators.report pulls in sympy, which would slow every other command's start-up
@@ -164,7 +170,9 @@ def estimate(
             raise ValueError(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
-    points = points_from_options(grid, robots, p, scenario)  # a bad range or file: one line, exit 2 (qcpp.cli.app)
+    obstacles = parse_obstacles(obstacle)
+    # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
+    points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles)
     if points.skipped:
         typer.echo(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "

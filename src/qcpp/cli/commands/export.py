@@ -22,7 +22,7 @@ import typer
 from qcpp.cli.commands.plan_flags import ScenarioArg
 from qcpp.cli.progress import Progress
 from qcpp.io.atomic import check_output, write_text_atomic
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.qubo.export import EXPORT_FORMATS, export_text
 from qcpp.qubo.model import FORMS, bqm_for
 from qcpp.qubo.solve import INSTALL_HINT

@@ -143,9 +143,6 @@ def plan_options(
         rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles: the flags' values
             (``angles`` is ``--mixer-angles``).
 
-    Returns:
-        The options.
-
     Raises:
         ValueError: one line naming the flag (``--initial: expected ..., got ...``).
     """

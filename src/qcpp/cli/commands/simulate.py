@@ -26,7 +26,8 @@ from rich.table import Table
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["parse_angles", "register", "simulate_command"]
 

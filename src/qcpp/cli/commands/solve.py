@@ -34,7 +34,8 @@ from qcpp.cli.progress import Progress
 from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 
 __all__ = [

@@ -32,7 +32,7 @@ from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "validate_command"]
 

@@ -1,4 +1,4 @@
-"""``qcpp verify``: does the compiled circuit keep every feasible path feasible? (see :mod:`qcpp.verify`).
+"""``qcpp verify``: does the compiled circuit keep every feasible path feasible? (see :mod:`qcpp.verification`).
 
 Examples::
 
@@ -8,7 +8,7 @@ Examples::
 
 Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s), the output,
 the gadget and its plaquette), 2 on bad input (one line on stderr). Progress goes to stderr
-(:mod:`qcpp.cli.progress`); ``--json`` prints :meth:`qcpp.verify.VerifyReport.to_dict` on stdout.
+(:mod:`qcpp.cli.progress`); ``--json`` prints :meth:`qcpp.verification.VerifyReport.to_dict` on stdout.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import typer
 
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
 from qcpp.cli.progress import Progress
-from qcpp.problem.scenario import load_scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "verify_command"]
 
@@ -44,7 +44,7 @@ def verify_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of text.")] = False,
 ) -> None:
     """Verify feasibility preservation (see ``qcpp verify --help``)."""
-    from qcpp.verify import verify
+    from qcpp.verification import verify
 
     s = load_scenario(scenario, check_range=True)
     with Progress(f"verify {scenario.name}", unit="checks") as bar:

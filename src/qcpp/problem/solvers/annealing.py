@@ -8,15 +8,12 @@ accepted by the Metropolis rule (always if the cost does not rise, else with pro
 ``iterations`` is split into ``cycles`` annealing cycles (default 10): each reheats to ``t0`` and restarts
 from the best state of the run so far (reheating escapes local minima that one long cycle stays in).
 
-Defaults: 20,000 iterations; ``t0`` is calibrated as the mean absolute cost change of a 50-move random walk
-from the start (1.0 if it never changes the cost); ``cooling`` makes the temperature fall by a factor
-1000 over one cycle. ``evaluated`` counts every cost lookup, the calibration walk's included.
+Defaults: 20,000 iterations; ``t0`` the mean absolute cost change of a 50-move random walk from the start;
+``cooling`` lowers the temperature 1000-fold over one cycle. ``evaluated`` counts every cost lookup.
 
-Components: when a robot's feasible paths split into several move-graph components (hard obstacles, or
-the ``paper`` rule), no sequence of moves crosses between them. The annealer therefore **restarts from
-every combination of component representatives** (initial paths first), each run with the full
-``iterations`` and the same schedule; the trace is the global best-so-far over the runs, concatenated
-(length ``iterations x restarts``). ``components_visited`` lists the components each robot's state was in.
+When a robot's feasible paths split into several move-graph components (hard obstacles, the ``paper`` rule),
+the annealer **restarts from every combination of component representatives**, each run with the full
+``iterations``; the trace is the global best-so-far over the runs, concatenated.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict

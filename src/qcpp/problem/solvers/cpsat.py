@@ -16,9 +16,8 @@ what feasible paths look like rather than in the edge bits alone:
 * **Balance.** ``L_r - L_s`` in integer units; with ``alpha1 > 0`` its square is the epigraph of the chords
   (exact at integers), otherwise an exact product constraint.
 * **Implied constraints** that strengthen the relaxation: degree equations per node and robot, ``edges =
-  visited nodes - 1``, and the grid's two-colouring: a path alternates colours, so the visited nodes of each
-  colour differ by exactly what the endpoints' colours dictate; the number of edges is the Manhattan distance
-  plus twice an integer variable (its parity, explicit).
+  visited nodes - 1``, the grid's two-colouring (a path alternates colours) and the edge count's parity
+  (Manhattan distance plus twice an integer).
 * **Crossing cut**: two robots whose four endpoints lie on the outer boundary in interleaved order must share a
   node (planarity), which tightens the bound of the corner-to-corner placements.
 * **Symmetry** (off by default, ``symmetry_breaking=True``): lex-leader constraints for the grid rotations and
@@ -27,12 +26,10 @@ what feasible paths look like rather than in the edge bits alone:
 CP-SAT runs with ``linearization_level = 2`` (the circuit and chord constraints fully in the LP, for a much
 tighter root bound) and one worker by default (one thread, as the other solvers).
 
-Integer objective: every weight (``alpha``, ``w_e``, ``d_e``) is read as the rational with the smallest
-denominator (at most :data:`MAX_DENOMINATOR`) that is *exactly* the same float, and the objective is multiplied
-by the least common denominator. When that is impossible (a weight like ``0.1 + 0.2``, or coefficients beyond
-what CP-SAT can hold), :func:`cpsat` raises ``ValueError`` rather than optimise a rounded objective.
-
-The returned paths are re-scored with :func:`qcpp.problem.cost.cost_parts` like every solver's.
+Integer objective: every weight is read as the rational of smallest denominator (at most
+:data:`MAX_DENOMINATOR`) that is *exactly* the same float, and the objective is scaled by the least common
+denominator; where that is impossible :func:`cpsat` raises ``ValueError`` rather than optimise a rounded
+objective. The returned paths are re-scored with :func:`qcpp.problem.cost.cost_parts` like every solver's.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict

@@ -68,9 +68,6 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
 
     Args:
         rule: SBF rule deciding which flips are allowed (flips to infeasible paths are skipped).
-
-    Returns:
-        The :class:`LocalSearch`.
     """
     t0 = time.perf_counter()
     start = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))

@@ -13,10 +13,8 @@ are then scored with numpy in blocks, in lexicographic order of the path index t
 Blocks and slices hold at most ``chunk_elements`` floats (pairwise matrices between robots ``1 .. R-1``
 are whole, so three or more robots are only practical on small grids).
 
-Ties: among assignments whose computed total is exactly the minimum, the one with the lowest index tuple
-``(i_0, i_1, ...)`` in lexicographic order (robot 0 most significant; indices in
-:func:`~qcpp.problem.paths.enumerate_paths` order) is returned. The number of assignments within ``1e-9`` of
-the optimum is reported in ``notes``.
+Ties: the lowest index tuple ``(i_0, i_1, ...)`` in lexicographic order wins; the number of assignments within
+``1e-9`` of the optimum is reported in ``notes``.
 
 Size: the search is exponential in the number of robots. :func:`dfs_paths` enumerates the paths under limits
 (:data:`MAX_DFS_ASSIGNMENTS`, :data:`MAX_DFS_PATHS`, a memory budget): it first counts every robot's paths up to

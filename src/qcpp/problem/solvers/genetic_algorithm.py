@@ -1,10 +1,8 @@
 """The paper's genetic algorithm: a population of assignments evolved by SBF mutations.
 
-* **Initial population**: the initial paths (the paper's horizontal-then-vertical heuristic), then one
-  individual per other combination of move-graph component representatives (so every component is
-  seeded; the population is larger than ``population`` if there are more combinations), then random
-  mutants of the initial assignment (1 to ``2 * (rows + cols)`` random allowed flips) until ``population``
-  distinct individuals exist or no new ones turn up.
+* **Initial population**: the initial paths, one individual per other combination of move-graph component
+  representatives (every component seeded), then random mutants of the initial assignment (1 to
+  ``2 * (rows + cols)`` allowed flips) until ``population`` distinct individuals exist or no new ones turn up.
 * **Mutation** (every generation, on every member): ``mutation="all"`` (default) is the paper's step
   literally, "apply the SBF operation on all four-node sub-grids and add the offspring": every single
   allowed flip of every robot of every member. ``mutation="random"`` instead makes ``children`` mutants per

@@ -209,9 +209,6 @@ def search_solution(
         space: The move space searched (scenario, rule, components, those visited).
         seed: The seed used.
         notes: Free-text notes.
-
-    Returns:
-        The solution.
     """
     return Solution(
         method=method,

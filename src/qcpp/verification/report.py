@@ -1,4 +1,4 @@
-"""What :func:`qcpp.verify.verify` reports: the checks it ran and, when feasibility is not preserved, a counterexample.
+"""What :func:`qcpp.verification.verify` reports: the checks it ran and, when feasibility fails, a counterexample.
 
 A report is plain data (frozen dataclasses of numbers, strings and tuples) with :meth:`VerifyReport.to_dict` for
 ``qcpp verify --json``. :attr:`VerifyReport.holds` is true when every check held; then
@@ -98,7 +98,7 @@ class Counterexample:
 
 @dataclass(frozen=True)
 class VerifyReport:
-    """The outcome of :func:`qcpp.verify.verify`.
+    """The outcome of :func:`qcpp.verification.verify`.
 
     Attributes:
         scenario: The scenario's name (or ``RxC``).

@@ -9,8 +9,9 @@ in ``[0.1, pi - 0.1]`` (no rotation is the identity by accident). Its parts are 
   seed;
 * ``circuit``: the whole circuit from ``|0...0>``.
 
-A unit holds when, for every input, every output amplitude larger than :data:`~qcpp.verify.common.TOLERANCE` lies
-on a feasible assignment with every ancilla in ``|0>``. The inputs run together (:class:`qcpp.verify.batch.Batch`),
+A unit holds when, for every input, every output amplitude larger than :data:`~qcpp.verification.common.TOLERANCE`
+lies on a feasible assignment with every ancilla in ``|0>``. The inputs run together
+(:class:`qcpp.verification.batch.Batch`),
 one amplitude list per input, so a failure names its input. Since each unit maps every feasible basis state into
 the span of feasible assignments, so does any product of them (linearity): with every input checked, the whole
 circuit keeps every feasible superposition feasible.
@@ -49,8 +50,8 @@ from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.paths import count_paths, iter_paths
 from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
-from qcpp.verify.batch import MAX_QUBITS, Batch
-from qcpp.verify.common import (
+from qcpp.verification.batch import MAX_QUBITS, Batch
+from qcpp.verification.common import (
     TOLERANCE,
     FeasibleTest,
     ProgressFn,
@@ -60,7 +61,7 @@ from qcpp.verify.common import (
     plaquette_of_qubits,
     random_angle,
 )
-from qcpp.verify.report import Check, Counterexample, VerifyReport
+from qcpp.verification.report import Check, Counterexample, VerifyReport
 
 __all__ = ["DEFAULT_SAMPLES", "state_fits", "verify_state"]
 
@@ -81,7 +82,7 @@ class _Piece:
 
 
 def state_fits(scenario: Scenario, p: int, rule: Rule = "exact") -> bool:
-    """Whether the state method can run: the lowered circuit has at most :data:`~qcpp.verify.batch.MAX_QUBITS`
+    """Whether the state method can run: the lowered circuit has at most :data:`~qcpp.verification.batch.MAX_QUBITS`
     qubits (a basis state is one 64-bit key)."""
     return qaoa_plan(scenario, p, PlanOptions(rule=rule)).num_qubits <= MAX_QUBITS
 
@@ -247,10 +248,10 @@ def verify_state(
         progress: Called as ``progress(done, total)`` over all inputs of all units.
 
     Returns:
-        The :class:`~qcpp.verify.report.VerifyReport` (method ``state``).
+        The :class:`~qcpp.verification.report.VerifyReport` (method ``state``).
 
     Raises:
-        ValueError: the lowered circuit is wider than :data:`~qcpp.verify.batch.MAX_QUBITS` qubits, or ``p < 1``.
+        ValueError: the lowered circuit is wider than :data:`~qcpp.verification.batch.MAX_QUBITS` qubits, or ``p < 1``.
     """
     start = time.perf_counter()
     if p < 1:

@@ -2,7 +2,7 @@
 
 The circuit is its call graph expanded (:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph`): every gadget it emits is one of
 a few kinds (equal kinds, equal gates up to qubit names), so checking every kind on every one of its local inputs
-checks the whole circuit. Four groups of checks, each a :class:`~qcpp.verify.report.Check`:
+checks the whole circuit. Four groups of checks, each a :class:`~qcpp.verification.report.Check`:
 
 ``rule`` (one per local picture of the scenario, :class:`qcpp.problem.sbf.LocalPicture`)
     The rule's compiled program (:func:`qcpp.problem.sbf.sbf_logic`) on every *locally feasible* input of the
@@ -65,8 +65,8 @@ from qcpp.problem.grid import Plaquette
 from qcpp.problem.paths import is_feasible
 from qcpp.problem.sbf import LocalPicture, Rule, SbfLogic, exact_rule_value, sbf_logic
 from qcpp.problem.scenario import Scenario
-from qcpp.verify.batch import MAX_QUBITS, Batch
-from qcpp.verify.common import (
+from qcpp.verification.batch import MAX_QUBITS, Batch
+from qcpp.verification.common import (
     TOLERANCE,
     FeasibleTest,
     ProgressFn,
@@ -76,8 +76,8 @@ from qcpp.verify.common import (
     plaquette_picture,
     random_angle,
 )
-from qcpp.verify.report import Check, Counterexample, VerifyReport
-from qcpp.verify.state import _scenario_name
+from qcpp.verification.report import Check, Counterexample, VerifyReport
+from qcpp.verification.state import _scenario_name
 
 __all__ = ["EXHAUSTIVE_PHASE_QUBITS", "verify_gadgets"]
 
@@ -249,7 +249,7 @@ class _MixerChecker:
         return self.pictures[kind]
 
     def label(self, gadget: Any) -> str:
-        """A short name for reports (:func:`~qcpp.verify.common.gadget_label`)."""
+        """A short name for reports (:func:`~qcpp.verification.common.gadget_label`)."""
         return gadget_label(gadget, self.picture_of)
 
     @staticmethod
@@ -453,7 +453,7 @@ def verify_gadgets(
         progress: Called as ``progress(done, total)`` over the checks.
 
     Returns:
-        The :class:`~qcpp.verify.report.VerifyReport` (method ``gadgets``); every check is exhaustive on its
+        The :class:`~qcpp.verification.report.VerifyReport` (method ``gadgets``); every check is exhaustive on its
         local inputs or structural, so when it holds it holds for every feasible input.
     """
     start = time.perf_counter()

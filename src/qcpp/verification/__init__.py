@@ -4,11 +4,11 @@ A constrained-mixer QAOA circuit is only correct if it never puts amplitude on a
 every ancilla to ``|0>``: on every feasible assignment (one feasible path per robot, ancillas clean) it must give a
 superposition of feasible assignments with clean ancillas. Two methods check that:
 
-``state`` (:mod:`qcpp.verify.state`)
+``state`` (:mod:`qcpp.verification.state`)
     Runs the compiled, lowered circuit (random nonzero angles) on every feasible assignment, or a seeded sample,
     part by part (state preparation, each layer's phase separator and mixer, the whole circuit), and looks at
     every output amplitude. A counterexample is a real input of the real circuit. Up to 62 qubits.
-``gadgets`` (:mod:`qcpp.verify.gadgets`)
+``gadgets`` (:mod:`qcpp.verification.gadgets`)
     Checks every gadget kind of the plan's call graph on all its local inputs (and the SBF rule on every local
     picture of the scenario); the circuit is its call graph expanded, so this certifies the whole circuit at any
     size (a 30x30 field with 8 robots takes seconds). A counterexample is local: one gadget kind, one plaquette,
@@ -32,10 +32,10 @@ from __future__ import annotations
 from qcpp.problem.paths import count_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
-from qcpp.verify.common import ProgressFn
-from qcpp.verify.gadgets import verify_gadgets
-from qcpp.verify.report import METHODS, Check, Counterexample, Method, VerifyReport
-from qcpp.verify.state import DEFAULT_SAMPLES, state_fits, verify_state
+from qcpp.verification.common import ProgressFn
+from qcpp.verification.gadgets import verify_gadgets
+from qcpp.verification.report import METHODS, Check, Counterexample, Method, VerifyReport
+from qcpp.verification.state import DEFAULT_SAMPLES, state_fits, verify_state
 
 __all__ = [
     "DEFAULT_SAMPLES",
@@ -88,7 +88,7 @@ def verify(
         progress: Called as ``progress(done, total)`` while checking.
 
     Returns:
-        The :class:`~qcpp.verify.report.VerifyReport`; ``holds`` is false with a ``counterexample`` when the
+        The :class:`~qcpp.verification.report.VerifyReport`; ``holds`` is false with a ``counterexample`` when the
         circuit does not preserve feasibility.
 
     Raises:

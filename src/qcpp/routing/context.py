@@ -1,0 +1,124 @@
+"""The memos of one compile or estimate run, and the patch watches open in it: the routing's only mutable state.
+
+A device compile routes the same windows many times (the ancilla allocation's candidates, the heavy-hex cells'
+plan variants, the far-phase relays' with-and-without comparison, the final routing), so every answer that is a
+pure function of its key is memoised: routed windows (on their physical pairs and the options, on a heavy-hex
+lattice up to the lattice's translations), SABRE's routing of a patch, each device's patches and SABRE passes, the
+allocation and placement searches' winners, the cells' plan choices. :class:`RoutingContext` owns all of them; a
+compile creates one (or takes the caller's, so an estimate sweep can share it) and passes it down, so no answer
+depends on what ran before in the process, and dropping the context frees the memory.
+
+Watches (:meth:`RoutingContext.watching`) collect the device qubits of every patch routed inside a block and how
+many window parts were routed on their whole connected component (a window spanning far-apart qubits: that routing
+depends on the whole device): a routing on a crop of the device answers for the device only if no patch reached a
+side the crop cut (:mod:`qcpp.estimators.window_classes`, :func:`qcpp.pipeline.device_compile.medial_compile`).
+
+Example:
+    >>> context = RoutingContext()
+    >>> with context.watching() as watch:
+    ...     context.saw_patch((3, 4), whole=True)
+    >>> watch.qubits, watch.whole_component
+    ({3, 4}, 1)
+    >>> context.saw_patch((5,), whole=False)  # no watch open: nothing collects it
+    >>> watch.qubits
+    {3, 4}
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Hashable, Iterable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["PatchWatch", "RoutingContext"]
+
+
+@dataclass
+class PatchWatch:
+    """What the routings inside one :meth:`RoutingContext.watching` block did.
+
+    Attributes:
+        qubits: The device qubits of every patch routed (memoised windows included).
+        whole_component: Window parts routed on their whole connected component.
+    """
+
+    qubits: set[int] = field(default_factory=set)
+    whole_component: int = 0
+
+
+class RoutingContext:
+    """The memos and open watches of one run (module docs); not shared between threads.
+
+    Args:
+        reuse: Whether a window may be answered by another window's routing: on a heavy-hex lattice, by the
+            routing of its translation (:class:`qcpp.routing.patches.Lattice`), and a heavy-hex cell's relabelled
+            parity program by the A* of an equal program (:func:`qcpp.pipeline.cellmixer.cell_mixers`). ``False``
+            memoises windows on their physical pairs only and plans every program afresh: the same answers,
+            slower (``tests/circuitgen/window_memo_test.py`` compares both).
+        window_limit: Entries :attr:`windows` holds before a routed window's entry starts it over (a bound on
+            memory: every entry is a pure function of its key, so starting over changes no answer).
+
+    Attributes:
+        windows: Routed windows and SABRE's routings of patches (:mod:`qcpp.routing.windows`,
+            :func:`qcpp.routing.patches.sabre_local`).
+        patch_indexes: The last few devices' patch indexes (:func:`qcpp.routing.patches.patch_index`).
+        sabre_passes: A ``SabreSwap`` pass per patch shape (:func:`qcpp.routing.patches.sabre_pass`).
+        within_two: The last distance matrix and, per qubit, the qubits within two steps
+            (:func:`qcpp.routing.bridge.copy_chain`).
+        allocations: The allocation search's ranks per section class (:func:`qcpp.layout.medial.allocate_ancillas`).
+        free_sites: The last ``(device, distances, homes)``'s free sites (:func:`qcpp.layout.medial.allocate_ancillas`).
+        placements: The placement search's winner per circuit and device
+            (:func:`qcpp.layout.placement_search.search_route`).
+        cell_choices: The cells' plan choice per cell class (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
+        plans: The A*'s plan per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
+        relabelled: The relabelled plans per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
+        watches: The open watches (:meth:`watching`).
+        centres: Open sets collecting the qubits every patch routed was grown around
+            (:func:`qcpp.routing.windows.route_window` keys a translated window on the lattice around them).
+    """
+
+    def __init__(self, *, reuse: bool = True, window_limit: int = 1 << 18) -> None:
+        self.reuse = reuse
+        self.window_limit = window_limit
+        self.windows: dict[Hashable, Any] = {}
+        self.patch_indexes: list[Any] = []
+        self.sabre_passes: dict[Hashable, tuple[Any, int]] = {}
+        self.within_two: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
+        self.allocations: dict[Hashable, tuple[int, ...]] = {}
+        self.free_sites: list[tuple[Any, ...]] = []
+        self.placements: dict[Hashable, tuple[tuple[int, ...], int]] = {}
+        self.cell_choices: dict[Hashable, Any] = {}
+        self.plans: dict[Hashable, Any] = {}
+        self.relabelled: dict[Hashable, Any] = {}
+        self.watches: list[PatchWatch] = []
+        self.centres: list[set[int]] = []
+
+    def clear(self) -> None:
+        """Forget every memo (open watches stay open)."""
+        for memo in (self.windows, self.sabre_passes, self.allocations, self.placements, self.cell_choices,
+                     self.plans, self.relabelled):  # fmt: skip
+            memo.clear()
+        for kept in (self.patch_indexes, self.within_two, self.free_sites):
+            kept.clear()
+
+    @contextlib.contextmanager
+    def watching(self) -> Iterator[PatchWatch]:
+        """Collect the patches routed inside the block; blocks nest (each collects everything inside it).
+
+        Returns:
+            A context manager giving the :class:`PatchWatch` it fills.
+        """
+        watch = PatchWatch()
+        self.watches.append(watch)
+        try:
+            yield watch
+        finally:  # by identity: equal watches may be open at once
+            del self.watches[next(i for i, w in enumerate(self.watches) if w is watch)]
+
+    def saw_patch(self, qubits: Iterable[int], whole: int) -> None:
+        """Tell every open watch that a routing used the device ``qubits`` with ``whole`` parts routed on their whole
+        connected component."""
+        for watch in self.watches:
+            watch.qubits.update(qubits)
+            watch.whole_component += int(whole)

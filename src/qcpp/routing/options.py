@@ -1,0 +1,113 @@
+"""How a device is routed: one frozen value with every setting of routing, allocation, placement and their searches.
+
+:class:`RoutingOptions` is created once per compile or estimate (:data:`DEFAULT_ROUTING` unless the caller asks for
+another) and passed down explicitly to every router and search: no module constant is read at run time, so two
+runs with equal options route alike, and memos (:class:`qcpp.routing.context.RoutingContext`) key on the options
+value itself. The defaults are the measured settings (``docs/resource-estimates.md``, ``benchmarks/routing.py``).
+
+Example:
+    >>> from dataclasses import replace
+    >>> DEFAULT_ROUTING.trials, DEFAULT_ROUTING.window_radius
+    (16, 2)
+    >>> cells = DEFAULT_ROUTING.for_cells()
+    >>> cells.large_window_seeds, cells.large_window_trials
+    (32, 64)
+    >>> replace(DEFAULT_ROUTING, trials=4) == DEFAULT_ROUTING
+    False
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+__all__ = ["DEFAULT_ROUTING", "DEFAULT_TRIALS", "RoutingOptions"]
+
+DEFAULT_TRIALS = 16
+"""SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count, which would make
+the routing depend on the machine)."""
+
+
+@dataclass(frozen=True)
+class RoutingOptions:
+    """Every setting of routing onto a device (hashable: memo keys use it).
+
+    Attributes:
+        trials: SABRE's trials per routing (``None``: Qiskit's default).
+        window_radius: A window is routed on the device qubits within this many couplings of its qubits' positions
+            (more if that patch is not connected): its routed cost then depends only on its neighbourhood.
+        window_seeds: SABRE seeds tried per part of a window (the fewest SWAPs wins).
+        large_window_pairs: Windows whose compute has at least this many two-qubit gates (the balance arithmetic's
+            one window) try :attr:`large_window_seeds` seeds (and, up to :attr:`large_window_max_pairs`, also
+            :attr:`wide_window_seeds` seeds of :attr:`wide_window_trials` trials); the try whose whole window
+            (compute, register phase, uncompute) routes to the fewest CX wins, the first on ties: SABRE picks the
+            fewest SWAPs for the compute alone, but where the compute leaves the register bits decides what the
+            phase between them costs.
+        large_window_seeds: Seeds tried per large window.
+        large_window_trials: SABRE's trials per seed on a large window (``None``: :attr:`trials`).
+        wide_window_seeds: Seeds of the wider search, tried after the :attr:`large_window_seeds` ones; the tries
+            include the narrower search's, so a window never routes to more CX than without it.
+        wide_window_trials: SABRE's trials per routing of the wider search (at least :attr:`trials`).
+        large_window_max_pairs: Windows whose compute has more two-qubit gates than this get no wider search (its
+            time grows with the window's size).
+        cell_large_window_seeds: :attr:`large_window_seeds` on the heavy-hex cells (:meth:`for_cells`).
+        cell_large_window_trials: :attr:`large_window_trials` on the heavy-hex cells.
+        allocation_search: Whether the medial allocation searches the partial mixers' ancilla sites
+            (:func:`qcpp.layout.medial.allocate_ancillas` ``search``).
+        search_ranks: Each ancilla of a searched section is also tried on its 2nd .. (1 + this)-th best free qubit.
+        search_rounds: Rounds of the allocation search (each tries every ancilla on each of its ranks).
+        search_max_pairs: Sections with more two-qubit gates keep the greedy allocation.
+        search_margin: Device rows and columns around a section's data that its search result depends on (its
+            ancillas land within two steps of their partners, its window routes within two steps of them).
+        placement_max_twoq: The greedy path searches placements on circuits of at most this many two-qubit gates
+            (:func:`qcpp.layout.placement_search.search_route`); larger circuits keep one routing.
+        placement_layouts: ``SabreLayout`` starts per placement search.
+        placement_seeds: SABRE routing seeds per layout of the placement search (the first for every layout, all
+            for the :attr:`placement_refine` cheapest).
+        placement_refine: Layouts of the placement search routed with every seed.
+        sabre_layout_trials: Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the CPU count).
+        auto_compare_max_twoq: Below this many lowered two-qubit gates the ``auto`` layout also tries ``greedy``
+            on the geometric layout's device (one routing of a tiny circuit may need fewer SWAPs than windows).
+        greedy_compare_max_qubits: ``auto`` routes its greedy comparison on the medial grid itself up to this many
+            qubits, on its top-left sub-grid holding the circuit's qubits beyond (a dense distance matrix of every
+            device qubit is costly).
+        crop_min_qubits: Square grids of more qubits whose medial layout leaves rows or columns far from every home
+            are routed on the part around the layout.
+        crop_pad: Free rows and columns such a crop keeps beyond the homes' bounding box (more than an ancilla, a
+            relay holder or a routing patch reaches).
+    """
+
+    trials: int | None = DEFAULT_TRIALS
+    window_radius: int = 2
+    window_seeds: int = 1
+    large_window_pairs: int = 200
+    large_window_seeds: int = 8
+    large_window_trials: int | None = None
+    wide_window_seeds: int = 16
+    wide_window_trials: int = 128
+    large_window_max_pairs: int = 1_000
+    cell_large_window_seeds: int = 32
+    cell_large_window_trials: int = 64
+    allocation_search: bool = True
+    search_ranks: int = 4
+    search_rounds: int = 2
+    search_max_pairs: int = 200
+    search_margin: int = 2
+    placement_max_twoq: int = 400
+    placement_layouts: int = 24
+    placement_seeds: int = 4
+    placement_refine: int = 6
+    sabre_layout_trials: int = 1
+    auto_compare_max_twoq: int = 2_000
+    greedy_compare_max_qubits: int = 1_024
+    crop_min_qubits: int = 1_024
+    crop_pad: int = 6
+
+    def for_cells(self) -> RoutingOptions:
+        """These options with the heavy-hex cells' large-window search (:attr:`cell_large_window_seeds` seeds of
+        :attr:`cell_large_window_trials` trials)."""
+        return replace(self, large_window_seeds=self.cell_large_window_seeds,
+                       large_window_trials=self.cell_large_window_trials)  # fmt: skip
+
+
+DEFAULT_ROUTING = RoutingOptions()
+"""The measured settings: what ``qcpp compile --device`` and ``qcpp estimate --device`` route with."""

@@ -1,0 +1,293 @@
+"""The device qubits a window part is routed on (its *patch*), and SABRE run on a patch.
+
+A part of a window (:mod:`qcpp.routing.windows`) is routed on the device qubits within
+:attr:`~qcpp.routing.options.RoutingOptions.window_radius` couplings of its qubits' positions, grown to the whole
+connected component when that neighbourhood does not connect them (:func:`local_patch`): the routed cost of a
+window then depends only on its neighbourhood. :func:`sabre_local` runs Qiskit's ``SabreSwap`` on a patch, relabelled
+``0 .. size-1``, and reads its routed DAG directly (``("gate", k)`` for the ``k``-th pair done, ``("swap", (x, y))``);
+it is called as the pass calls it, without the pass's per-run checks (:func:`run_sabre`), with one pass per patch
+shape (:func:`sabre_pass`). Per device a :class:`PatchIndex` keeps its neighbour lists and every patch computed;
+on a heavy-hex lattice its :class:`Lattice` lets a window's memo entry answer its translations. Everything memoised
+lives in the caller's :class:`~qcpp.routing.context.RoutingContext`, and every patch routed is reported to its open
+watches (:meth:`~qcpp.routing.context.RoutingContext.saw_patch`).
+
+Example:
+    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.layout.placement import distances
+    >>> from qcpp.routing.context import RoutingContext
+    >>> dev = get_device("grid:1x6")
+    >>> context = RoutingContext()
+    >>> local_patch(context, {0, 1}, dev, distances(dev), radius=2)
+    ((0, 1, 2, 3), ((0, 1), (1, 2), (2, 3)))
+    >>> sabre_local(context, ((0, 1), (1, 2)), 3, ((0, 2),), seed=0, trials=1)
+    (('swap', (1, 2)), ('gate', 0))
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+from typing import Any
+
+from qcpp.devices.device import Device
+from qcpp.routing.context import RoutingContext
+
+__all__ = ["Coord", "Lattice", "PatchIndex", "local_patch", "patch_index", "run_sabre", "sabre_local", "sabre_pass"]
+
+PATCH_INDEXES_KEPT = 8
+"""Devices (with their distances and radius) whose :class:`PatchIndex` a context keeps."""
+
+SABRE_PASSES_KEPT = 4096
+"""``SabreSwap`` passes a context keeps before it starts over."""
+
+
+class PatchIndex:
+    """Per device (its distances and the patches' radius): the device's neighbour lists, and every patch computed so
+    far (keyed by the positions it was grown around) with whether it is a whole component and its couplings in
+    local indices (a search asks for the same patches thousands of times)."""
+
+    def __init__(self, device: Device, dist: Any, radius: int, translate: bool = True) -> None:
+        self.device = device
+        self.dist = dist
+        self.radius = radius
+        self.neighbours: list[list[int]] = [[] for _ in range(device.num_qubits)]
+        self.edges_of: list[list[int]] = [[] for _ in range(device.num_qubits)]  # indices into device.coupling
+        for e, (a, b) in enumerate(device.coupling):
+            self.neighbours[a].append(b)
+            self.neighbours[b].append(a)
+            self.edges_of[a].append(e)
+            self.edges_of[b].append(e)
+        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+        self.token = object()  # names the device in memo keys without keeping its distances alive
+        self.lattice = Lattice.of(device, radius) if translate else None
+
+
+Coord = tuple[int, int]
+
+
+class Lattice:
+    """A heavy-hex lattice device's qubits on their ``(y, x)`` coordinates
+    (:func:`qcpp.devices.device.heavy_hex_coordinates`), for the translation-invariant window memo
+    (:func:`qcpp.routing.windows.route_window`).
+
+    A translation by multiples of :attr:`PERIOD` in both coordinates maps the infinite lattice onto itself, and
+    (checked when built, :meth:`of`) the device's couplings are exactly its qubits one step apart and its index
+    order is ``(kind, y, x)`` with the kind (data, bridge, flag) given by the coordinates' parities. A patch
+    (the qubits within ``radius`` couplings of the qubits it is grown around, :func:`local_patch`) is then
+    decided by which coordinates within ``radius`` steps of those qubits hold a qubit (:meth:`around`): a
+    path of that many couplings stays there. So a window whose qubits are such a translation of a routed window's
+    (:meth:`canonical`), with the same coordinates held around the qubits that routing grew its patches from (the
+    compute's qubits, then where the compute left the middle's), gets the same patches, local indices and
+    couplings, and SABRE routes it alike: one routing answers both, translated. A window routed on its whole
+    component depends on the whole device: it is memoised on its physical pairs instead."""
+
+    PERIOD = 4
+
+    def __init__(self, coords: Sequence[Coord], radius: int) -> None:
+        import numpy as np
+
+        self.radius = radius
+
+        self.y = [c[0] for c in coords]
+        self.x = [c[1] for c in coords]
+        self.at = {c: i for i, c in enumerate(coords)}
+        pad = 2 * radius  # so that a box around any qubits never leaves the array
+        self.present = np.zeros((max(self.y) + 1 + 2 * pad, max(self.x) + 1 + 2 * pad), dtype=np.uint8)
+        self.present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+
+    @classmethod
+    def of(cls, device: Device, radius: int) -> Lattice | None:
+        """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
+        from qcpp.devices.device import heavy_hex_coordinates
+        from qcpp.layout.heavy_hex import heavy_hex_distance
+
+        d = heavy_hex_distance(device)
+        if d is None:
+            return None
+        coords = heavy_hex_coordinates(d)
+        at = {c: i for i, c in enumerate(coords)}
+        steps = {tuple(sorted((i, at[n]))) for i, (y, x) in enumerate(coords) for n in ((y + 1, x), (y, x + 1))
+                 if n in at}  # fmt: skip
+        kind = [1 if y % 2 else 2 * (x % 2) for y, x in coords]  # data 0, bridge 1, flag 2
+        order = sorted(range(len(coords)), key=lambda i: (kind[i], coords[i]))
+        if steps != {tuple(sorted(e)) for e in device.coupling} or order != list(range(len(coords))):
+            return None  # pragma: no cover - another numbering: the physical memo only
+        return cls(coords, radius)
+
+    def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
+        """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
+        :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
+        pairs'."""
+        flat = [q for pair in pairs for q in pair]
+        ys = [self.y[q] for q in flat]
+        xs = [self.x[q] for q in flat]
+        y0, x0 = min(ys), min(xs)
+        ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
+        return (tuple(y - ay for y in ys), tuple(x - ax for x in xs)), (ay, ax)
+
+    def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
+        """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
+        ``shift``, and which of them hold a qubit: every patch grown around the centres (the qubits within
+        :attr:`radius` couplings, their couplings, whether they connect the centres) is decided there."""
+        import numpy as np
+
+        r = self.radius
+        steps = np.array([(dy, dx) for dy in range(-r, r + 1) for dx in range(-r, r + 1) if abs(dy) + abs(dx) <= r])
+        at = np.array([(self.y[q], self.x[q]) for q in centres])
+        coords = np.unique((at[:, None, :] + steps[None, :, :]).reshape(-1, 2), axis=0) - np.array(shift)
+        ys, xs = coords[:, 0].copy(), coords[:, 1].copy()
+        return ys, xs, self.holds(ys, xs, shift)
+
+    def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
+        """Which of the coordinates ``(ys, xs)`` plus ``shift`` hold a qubit."""
+        pad = 2 * self.radius
+        return self.present[ys + (shift[0] + pad), xs + (shift[1] + pad)].tobytes()
+
+    def moved(self, q: int, by: Coord) -> int:
+        """The qubit at qubit ``q``'s coordinates plus ``by``."""
+        return self.at[(self.y[q] + by[0], self.x[q] + by[1])]
+
+
+def patch_index(context: RoutingContext, device: Device, dist: Any, radius: int) -> PatchIndex:
+    """The context's :class:`PatchIndex` of ``device`` with these distances (by identity) and ``radius``."""
+    for index in context.patch_indexes:
+        if index.device is device and index.dist is dist and index.radius == radius:
+            return index  # type: ignore[no-any-return]
+    index = PatchIndex(device, dist, radius, translate=context.reuse)
+    context.patch_indexes.insert(0, index)
+    del context.patch_indexes[PATCH_INDEXES_KEPT:]
+    return index
+
+
+def local_patch(
+    context: RoutingContext, positions: set[int], device: Device, dist: Any, radius: int
+) -> tuple[tuple[int, ...], tuple[tuple[int, int], ...]]:
+    """The device qubits within ``radius`` couplings of ``positions`` (ascending), grown to the whole connected
+    component when that neighbourhood does not connect them, and the patch's couplings (in
+    :attr:`Device.coupling`'s order) as pairs of indices into it.
+
+    Memoised per device in ``context``; every call reports the patch to the context's open watches and
+    ``positions`` to its open centre sets."""
+    index = patch_index(context, device, dist, radius)
+    for centres in context.centres:
+        centres.update(positions)
+    key = tuple(sorted(positions))
+    hit = index.patches.get(key)
+    if hit is None:
+        import numpy as np
+
+        rows = dist[list(key)]
+        near = np.flatnonzero((rows <= radius).any(axis=0))
+        inside = {int(p) for p in near}
+        seen = {key[0]}
+        todo = [key[0]]
+        while todo:  # the component of the first position in the neighbourhood
+            p = todo.pop()
+            for q in index.neighbours[p]:
+                if q in inside and q not in seen:
+                    seen.add(q)
+                    todo.append(q)
+        linked = any(q in inside for p in inside for q in index.neighbours[p])  # no edge, no patch
+        whole = not linked or not seen.issuperset(key)
+        patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
+        local = {p: i for i, p in enumerate(patch)}
+        edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
+        coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
+                         if a in local and b in local)  # fmt: skip
+        hit = (patch, whole, coupling)
+        index.patches[key] = hit
+    patch, whole, coupling = hit
+    context.saw_patch(patch, whole)
+    return patch, coupling
+
+
+def sabre_local(
+    context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[tuple[int, int], ...],
+    seed: int, trials: int | None,
+) -> tuple[tuple, ...]:  # fmt: skip
+    """SABRE on a patch (qubits ``0 .. size-1``): ``("gate", k)`` (the ``k``-th pair, done) and ``("swap", (x, y))``
+    in order, memoised in ``context`` per ``(patch, pairs, seed, trials)`` so equal neighbourhoods route equally."""
+    key = (coupling, size, pairs, seed, trials)
+    hit = context.windows.get(key)
+    if hit is not None:
+        return hit  # type: ignore[no-any-return]
+    from qiskit import QuantumRegister
+    from qiskit.circuit.library import CXGate
+    from qiskit.dagcircuit import DAGCircuit
+
+    dag = DAGCircuit()
+    reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
+    dag.add_qreg(reg)
+    gate = CXGate()
+    for a, b in pairs:
+        dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
+    sabre, default_trials = sabre_pass(context, coupling, size)
+    sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
+    out = run_sabre(sabre, dag, size)
+    queues: dict[int, list[int]] = {}
+    for k, (a, b) in enumerate(pairs):
+        queues.setdefault(a, []).append(k)
+        queues.setdefault(b, []).append(k)
+    who = list(range(size))  # position -> the qubit that started there
+    ptr = dict.fromkeys(queues, 0)
+    events: list[tuple] = []
+    index = {q: i for i, q in enumerate(out.qubits)}
+    for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
+        x, y = (index[q] for q in node.qargs)
+        if node.name == "swap":
+            who[x], who[y] = who[y], who[x]
+            events.append(("swap", (x, y)))
+            continue
+        a, b = who[x], who[y]
+        k = queues[a][ptr[a]]
+        if queues[b][ptr[b]] != k:
+            raise AssertionError("SABRE reordered the gates of a qubit")  # pragma: no cover
+        ptr[a] += 1
+        ptr[b] += 1
+        events.append(("gate", k))
+    result = tuple(events)
+    context.windows[key] = result
+    return result
+
+
+def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
+    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
+    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
+    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
+    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which took longer than the routing of a
+    window. ``tests/circuitgen/routing_test.py`` checks both give the same routing."""
+    try:
+        from qiskit._accelerate.nlayout import NLayout
+        from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
+
+        if sabre._routing_target is None:
+            sabre._routing_target = RoutingTarget.from_target(sabre.target)
+        heuristic = (
+            Heuristic(attempt_limit=10 * size)
+            .with_basic(1.0, SetScaling.Constant)
+            .with_lookahead([0.5 / size], SetScaling.Constant)
+            .with_decay(0.001, 5)
+        )  # SabreSwap.run's "decay"
+        layout = NLayout.generate_trivial_layout(size)
+    except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
+        sabre.property_set["final_layout"] = None
+        return sabre.run(dag)
+    out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
+    return out
+
+
+def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
+    """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
+    routing tables, which takes longer than the routing of a window, so the context keeps a pass per patch (its
+    seed and trials set per run)."""
+    key: Hashable = (coupling, size)
+    hit = context.sabre_passes.get(key)
+    if hit is None:
+        from qiskit.transpiler import CouplingMap
+        from qiskit.transpiler.passes import SabreSwap
+
+        if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
+            context.sabre_passes.clear()
+        cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
+        sabre = SabreSwap(cmap, heuristic="decay", trials=None)
+        hit = context.sabre_passes[key] = (sabre, sabre.trials)
+    return hit

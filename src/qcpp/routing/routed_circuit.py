@@ -1,0 +1,83 @@
+"""A circuit routed onto a device's physical qubits, and the device's couplings as Qiskit sees them.
+
+:class:`RoutedCircuit` is what every router of :mod:`qcpp.routing` returns: IR qubit ``i`` is physical qubit ``i``
+(so OpenQASM's ``q[i]`` is physical ``i``), with the layouts the routing started and ended with and the SWAPs it
+inserted. Routing never reorders the gates of one logical qubit, so the routed circuit equals the original up to
+the layouts: ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>.
+
+Example:
+    >>> from qcpp.devices.device import get_device
+    >>> sorted(coupling_map(get_device("grid:1x3")).get_edges())
+    [(0, 1), (1, 0), (1, 2), (2, 1)]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from qcpp.devices.device import Device
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.ir.gates import Gate
+
+__all__ = ["RoutedCircuit", "coupling_map", "embed_routed"]
+
+
+@dataclass(frozen=True)
+class RoutedCircuit:
+    """A circuit on a device's physical qubits.
+
+    Attributes:
+        circuit: IR qubit ``i`` = physical qubit ``i`` (one register ``q`` of ``device.num_qubits``).
+        device: The device.
+        initial_layout: Logical qubit ``i`` of the input circuit -> physical qubit at the start.
+        final_layout: Logical qubit ``i`` -> physical qubit at the end.
+        swaps: SWAPs inserted (each three ``cx`` in :attr:`circuit`, or two with the ``cx`` it is fused with).
+        measured: Logical qubits measured at the end (the data qubits), for :func:`qcpp.routing.native.esp`.
+        fused: Per section name, how many of its SWAPs are fused with a ``cx`` of that section on the same pair
+            of qubits (:func:`qcpp.routing.sabre.assemble`: ``cx`` + SWAP is two ``cx``, not four): :attr:`circuit` has
+            ``3 swaps - 2 fused`` more ``cx`` than the logical circuit.
+    """
+
+    circuit: Circuit
+    device: Device
+    initial_layout: tuple[int, ...]
+    final_layout: tuple[int, ...]
+    swaps: int
+    measured: tuple[int, ...]
+    fused: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def num_fused(self) -> int:
+        """SWAPs fused with a ``cx`` (each saves two ``cx``)."""
+        return sum(k for _, k in self.fused)
+
+
+def embed_routed(routed: RoutedCircuit, device: Device, sites: Sequence[int]) -> RoutedCircuit:
+    """``routed`` (on a device whose coupling graph is the subgraph of ``device`` induced by ``sites``, its
+    qubit ``i`` on ``sites[i]``) written on ``device``'s qubits: the same gates, SWAPs and layouts, relabelled.
+
+    Example:
+        >>> from qcpp.devices.device import get_device
+        >>> from qcpp.ir.gates import cx
+        >>> from qcpp.routing.sabre import route
+        >>> small = route(Circuit([("data", 2)], [Section("s", [cx(0, 1)])]), get_device("grid:1x2"), (0, 1))
+        >>> big = embed_routed(small, get_device("grid:3x3"), [4, 5])
+        >>> [g[1] for g in big.circuit.gates], big.initial_layout
+        ([(4, 5)], (4, 5))
+    """
+    to = tuple(sites)
+    sections = [Section(sec.name, [Gate(g[0], tuple(to[q] for q in g[1]), g[2], g[3]) for g in sec.gates])
+                for sec in routed.circuit.sections]  # fmt: skip
+    return RoutedCircuit(Circuit([Register("q", device.num_qubits)], sections), device,
+                         tuple(to[p] for p in routed.initial_layout), tuple(to[p] for p in routed.final_layout),
+                         routed.swaps, routed.measured, routed.fused)  # fmt: skip
+
+
+def coupling_map(device: Device) -> Any:
+    """The device's couplings as a Qiskit ``CouplingMap`` (both directions)."""
+    from qiskit.transpiler import CouplingMap
+
+    edges = [list(e) for e in device.coupling] + [[b, a] for a, b in device.coupling]
+    return CouplingMap(edges)

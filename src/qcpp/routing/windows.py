@@ -1,0 +1,305 @@
+"""Routing section by section, every window returning each qubit home: the medial path's router.
+
+:func:`route_windows` routes every section of a lowered circuit (a gadget: compute, rotate, uncompute) as a
+*window* from the same home layout back to it (:func:`route_window`): SABRE routes the compute on the device qubits
+around the section (a patch, :mod:`qcpp.routing.patches`), then the middle, whose SWAPs are then undone, and the
+uncompute replays the compute's routed ops backwards. The result has ``initial_layout == final_layout``, and each
+section's routed cost depends only on its gates and its neighbourhood on the device (the routed cost of a gadget
+kind is fixed where the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Large windows (the
+balance arithmetic) try several seeds and keep the whole window's cheapest
+(:attr:`~qcpp.routing.options.RoutingOptions.large_window_pairs`).
+
+Searches route the same windows many times (the ancilla allocation's candidates, the heavy-hex cells' plan
+variants, the relays' comparison), so a routed window is memoised in the run's
+:class:`~qcpp.routing.context.RoutingContext` on its physical pairs, its seed and the
+:class:`~qcpp.routing.options.RoutingOptions` (on a heavy-hex lattice up to the lattice's translations, where the
+qubits around the window are the same: :class:`~qcpp.routing.patches.Lattice`), with the patches its routing saw,
+replayed into the context's open watches on a hit.
+
+Example:
+    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.ir.circuit import Circuit, Section
+    >>> from qcpp.ir.gates import cx
+    >>> c = Circuit([("data", 3)], [Section("g", [cx(0, 2), cx(0, 2)])])
+    >>> r = route_windows(c, get_device("grid:1x3"), (0, 1, 2))
+    >>> r.initial_layout == r.final_layout, r.swaps
+    (True, 2)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from qcpp.devices.device import Device
+from qcpp.ir.circuit import Circuit
+from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.patches import Coord, local_patch, patch_index, sabre_local
+from qcpp.routing.routed_circuit import RoutedCircuit
+from qcpp.routing.sabre import assemble, checked_inputs, window_cx
+
+__all__ = ["Positions", "mirror_length", "route_window", "route_window_cx", "route_windows"]
+
+
+def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
+    """The largest ``m <= len(pairs) / 2`` such that the last ``m`` pairs are the first ``m`` reversed (as
+    unordered pairs): a gadget's uncompute mirrors its compute.
+
+    >>> mirror_length([(0, 1), (1, 2), (2, 3), (2, 1), (1, 0)])
+    2
+    """
+    m = 0
+    n = len(pairs)
+    while m < n // 2 and sorted(pairs[m]) == sorted(pairs[n - 1 - m]):
+        m += 1
+    return m
+
+
+class Positions:
+    """Where every logical qubit is (``where``: logical -> physical) and who is on every physical qubit (``who``:
+    physical -> logical, -1 for a free qubit) while windows are routed; ``swap`` moves both."""
+
+    def __init__(self, layout: tuple[int, ...], size: int) -> None:
+        self.where = list(layout)
+        self.who = [-1] * size
+        for lq, p in enumerate(layout):
+            self.who[p] = lq
+
+    @classmethod
+    def identity(cls, size: int) -> Positions:
+        """Every physical qubit holding the logical qubit of its own number."""
+        pos = cls.__new__(cls)
+        pos.where = list(range(size))
+        pos.who = list(range(size))
+        return pos
+
+    def swap(self, p: int, q: int) -> None:
+        a, b = self.who[p], self.who[q]
+        self.who[p], self.who[q] = b, a
+        if a >= 0:
+            self.where[a] = q
+        if b >= 0:
+            self.where[b] = p
+
+
+def _route_part(
+    context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int,
+    trials: int | None, options: RoutingOptions,
+) -> list[tuple]:  # fmt: skip
+    """Route logical ``pairs`` from the current positions (``pos`` is not changed): ``("gate", k)`` and physical
+    ``("swap", (p, q))`` in order."""
+    if not pairs:
+        return []
+    if device.is_all_to_all:
+        return [("gate", k) for k in range(len(pairs))]
+    patch, coupling = local_patch(context, {pos.where[q] for pr in pairs for q in pr}, device, dist,
+                                  options.window_radius)  # fmt: skip
+    local = {p: i for i, p in enumerate(patch)}
+    lpairs = tuple((local[pos.where[a]], local[pos.where[b]]) for a, b in pairs)
+    best = min(
+        (sabre_local(context, coupling, len(patch), lpairs, seed + i, trials) for i in range(options.window_seeds)),
+        key=lambda evs: sum(ev[0] == "swap" for ev in evs),
+    )
+    return [("swap", (patch[ev[1][0]], patch[ev[1][1]])) if ev[0] == "swap" else ev for ev in best]
+
+
+def _play(
+    events: Sequence[tuple], pairs: Sequence[tuple[int, int]], pos: Positions
+) -> list[tuple[str, tuple[int, int]]]:
+    """Apply ``events`` to ``pos``: SWAPs move qubits, ``("gate", k)`` becomes ``("cx", pairs[k] at their
+    positions)``."""
+    out: list[tuple[str, tuple[int, int]]] = []
+    for ev in events:
+        if ev[0] == "swap":
+            pos.swap(*ev[1])
+            out.append(ev)  # type: ignore[arg-type]
+        else:
+            a, b = pairs[ev[1]]
+            out.append(("cx", (pos.where[a], pos.where[b])))
+    return out
+
+
+def route_window(
+    pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
+    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
+    """One window's routed ops (``("cx", (p, q))``, ``("swap", (p, q))``), leaving every qubit where it was: the
+    compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
+    in reverse, then the uncompute replays the compute's routed ops backwards (pair ``k`` of the compute is pair
+    ``n - 1 - k`` of the uncompute).
+
+    Args:
+        pairs: The window's two-qubit gates on logical qubits.
+        pos: Where every logical qubit is (unchanged on return).
+        device: The target.
+        dist: The device's all-pairs distances (:func:`qcpp.layout.placement.distances`).
+        seed: SABRE's first seed.
+        options: The routing settings (trials, patch radius, the large windows' search).
+        context: The run's memos and watches (default: a fresh one).
+
+    Returns:
+        The ops. They depend only on where the pairs' qubits are (the physical pairs), the device, ``seed`` and
+        ``options``, so they are memoised on those (module docs).
+    """
+    context = RoutingContext() if context is None else context
+    entry, by = _memo_window(context, pairs, pos, device, dist, seed, options)
+    if by is None:
+        return list(entry[0])
+    moved = patch_index(context, device, dist, options.window_radius).lattice.moved  # type: ignore[union-attr]
+    return [(name, (moved(a, by), moved(b, by))) for name, (a, b) in entry[0]]
+
+
+def route_window_cx(
+    pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int = 0,
+    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+) -> int:  # fmt: skip
+    """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only); ``pos``
+    ``None``: every qubit on the physical qubit of its number (``pairs`` are physical)."""
+    context = RoutingContext() if context is None else context
+    return _memo_window(context, pairs, pos, device, dist, seed, options)[0][1]  # type: ignore[no-any-return]
+
+
+def _memo_window(
+    context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any,
+    seed: int, options: RoutingOptions,
+) -> tuple[tuple[Any, ...], Coord | None]:  # fmt: skip
+    """:func:`route_window`'s memo entry ``(ops, window_cx, patch qubits, whole-component parts, ...)`` and the
+    lattice translation that takes its qubits to this window's (``None``: none needed)."""
+    if device.is_all_to_all:
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
+        ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options)
+        return (tuple(ops), cx_, frozenset(), 0), None
+    index = patch_index(context, device, dist, options.window_radius)
+    if pos is None:
+        physical = tuple(pairs)
+    else:
+        where = pos.where
+        physical = tuple((where[a], where[b]) for a, b in pairs)
+    settings = (seed, options)
+    lattice = index.lattice
+    key: tuple = ("window", index.token, physical, settings)
+    shift = None
+    translated: list = []
+    if lattice is not None and physical:
+        rel, shift = lattice.canonical(physical)
+        translated = context.windows.setdefault(("window", index.token, "translated", rel, settings), [])
+    hit = None
+    for ys, xs, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
+        if lattice.holds(ys, xs, shift) == holds:  # type: ignore[union-attr, arg-type]
+            hit = entry
+            break
+    else:  # routed on its whole component, or no lattice: memoised on its physical pairs
+        hit = context.windows.get(key)
+    if hit is None:
+        pos = Positions.identity(device.num_qubits) if pos is None else pos
+        centres: set[int] = set()
+        context.centres.append(centres)
+        try:
+            with context.watching() as watch:
+                ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options)
+        finally:
+            del context.centres[next(i for i, c in enumerate(context.centres) if c is centres)]
+        if len(context.windows) >= context.window_limit:
+            context.windows.clear()
+        hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
+        if lattice is not None and shift is not None and not watch.whole_component:
+            translated.append((*lattice.around(centres, shift), hit))
+            context.windows[("window", index.token, "translated", rel, settings)] = translated
+        else:
+            hit = context.windows[key] = (*hit[:4], None)
+        return hit, None
+    by = None if hit[4] is None or hit[4] == shift else (shift[0] - hit[4][0], shift[1] - hit[4][1])  # type: ignore[index]
+    if context.watches:
+        seen = hit[2] if by is None else {lattice.moved(q, by) for q in hit[2]}  # type: ignore[union-attr]
+        context.saw_patch(seen, hit[3])
+    return hit, by
+
+
+def _route_window(
+    context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int,
+    options: RoutingOptions,
+) -> tuple[list[tuple[str, tuple[int, int]]], int]:  # fmt: skip
+    """:func:`route_window` without its memo, and the ops' :func:`~qcpp.routing.sabre.window_cx`."""
+    m = mirror_length(pairs)
+    trials = options.trials
+    large = m >= options.large_window_pairs
+    base_trials = options.large_window_trials if large and options.large_window_trials else trials
+    tries = [(s, base_trials) for s in range(seed, seed + (options.large_window_seeds if large else 1))]
+    if options.large_window_pairs <= m <= options.large_window_max_pairs and trials is not None:  # a wider search
+        tries += [(s, max(trials, options.wide_window_trials)) for s in range(seed, seed + options.wide_window_seeds)]
+    best: list[tuple[str, tuple[int, int]]] | None = None
+    best_cx = 0
+    for s, t in tries:  # each try returns every qubit home, so ``pos`` is unchanged between tries
+        ops = _window_ops(context, pairs, m, pos, device, dist, s, t, options)
+        cx_ = window_cx(ops)
+        if best is None or cx_ < best_cx:
+            best, best_cx = ops, cx_
+    assert best is not None
+    return best, best_cx
+
+
+def _window_ops(
+    context: RoutingContext, pairs: list[tuple[int, int]], m: int, pos: Positions, device: Device, dist: Any,
+    seed: int, trials: int | None, options: RoutingOptions,
+) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
+    """:func:`route_window` with one seed (``m``: the compute's length)."""
+    n = len(pairs)
+    compute = _route_part(context, pairs[:m], pos, device, dist, seed, trials, options)
+    ops = _play(compute, pairs, pos)
+    middle = _route_part(context, pairs[m : n - m], pos, device, dist, seed, trials, options)
+    ops += _play(middle, pairs[m : n - m], pos)
+    ops += _play([ev for ev in reversed(middle) if ev[0] == "swap"], pairs, pos)
+    mirrored = pairs[::-1]  # the uncompute's k-th pair from the end is mirrored[k]
+    ops += _play(list(reversed(compute)), mirrored, pos)
+    return ops
+
+
+def route_windows(
+    circuit: Circuit,
+    device: Device,
+    layout: Sequence[int],
+    seed: int = 0,
+    measured: Sequence[int] | None = None,
+    dist: Any = None,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
+) -> RoutedCircuit:
+    """Route every section as a window that returns every qubit home (:func:`route_window`): the routed
+    circuit's final layout is its initial layout, and a window's routed cost depends only on its gates and the
+    device around its qubits.
+
+    Args:
+        circuit: Lowered, one section per gadget.
+        device: The target.
+        layout: Logical qubit ``i`` -> physical qubit (the home of every qubit).
+        seed: SABRE's seed.
+        measured: Logical qubits measured at the end (default: the ``data`` register, else all).
+        dist: The device's all-pairs distances (:func:`qcpp.layout.placement.distances`), if already known.
+        options: The routing settings (:meth:`~qcpp.routing.options.RoutingOptions.for_cells` on the heavy-hex
+            cells).
+        context: The run's memos and watches (default: a fresh one).
+
+    Returns:
+        The :class:`~qcpp.routing.routed_circuit.RoutedCircuit` (``initial_layout == final_layout == layout``).
+    """
+    from qcpp.layout.placement import distances
+
+    context = RoutingContext() if context is None else context
+    gates, section_of, home, measured_ = checked_inputs(circuit, device, layout, measured)
+    if dist is None:
+        dist = distances(device)
+    pos = Positions(home, device.num_qubits)
+    ops: list[tuple[str, tuple[int, int]]] = []
+    owners: list[str] = []
+    op_window: list[int] = []
+    gate_window: list[int] = []
+    for w, sec in enumerate(circuit.sections):
+        pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
+        window = route_window(pairs, pos, device, dist, seed, options, context)  # type: ignore[arg-type]
+        ops += window
+        owners += [sec.name] * len(window)
+        op_window += [w] * len(window)
+        gate_window += [w] * len(sec.gates)
+    return assemble(gates, section_of, home, device.num_qubits, ops, device, measured_, owners,
+                    (gate_window, op_window))  # fmt: skip
