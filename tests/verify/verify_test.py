@@ -14,6 +14,7 @@ from qcpp.estimators.crosscheck import interior_endpoints, with_obstacles
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
 from qcpp.gadgets.phase_visits import VisitPhase
 from qcpp.ir.gates import Gate, mcx
+from qcpp.plan.options import PlanOptions
 from qcpp.problem.paths import is_feasible
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
@@ -90,6 +91,35 @@ def test_gadget_method_certifies_what_the_state_method_checks() -> None:
     assert verify_state(s, p=1).holds
 
 
+@pytest.mark.parametrize(
+    "options",
+    [PlanOptions(target="ft"), PlanOptions(fuse=False), PlanOptions(phase="whole-space"), PlanOptions(angles="multi")],
+    ids=["ft", "unfused", "whole-space", "multi-angles"],
+)
+def test_both_methods_hold_for_other_constructions(options: PlanOptions) -> None:
+    s = default_scenario(3, 3, 2)
+    for method in ("state", "gadgets"):
+        report = verify(s, p=1, method=method, options=options)  # type: ignore[arg-type]
+        assert_exhaustive_hold(report)
+    if not options.fuse:
+        kinds = [c.subject for c in verify_gadgets(s, p=1, options=options).checks if c.part == "mixer"]
+        assert kinds and all(k.startswith("ParityPartialMixer") for k in kinds)
+
+
+@pytest.mark.parametrize("initial", ["representatives", "local_search_mix"])
+def test_both_methods_check_other_initial_states(initial: str) -> None:
+    for method in ("state", "gadgets"):
+        report = verify(default_scenario(3, 3, 1), p=1, method=method, options=PlanOptions(initial=initial))  # type: ignore[arg-type]
+        assert_exhaustive_hold(report)
+
+
+@pytest.mark.parametrize("mode", ["soft", "hard"])
+def test_gadget_method_on_obstacles(mode: str) -> None:
+    s = with_obstacles(default_scenario(4, 4, 2), mode)
+    assert s is not None
+    assert_exhaustive_hold(verify(s, p=2, method="gadgets"))
+
+
 # ------------------------------------------------------------------------------------------------ the paper rule
 def test_paper_rule_leak_on_2x3_is_found_by_the_state_method() -> None:
     s = leak_scenario()
@@ -135,6 +165,19 @@ def test_cli_exit_codes_and_json(tmp_path: Path) -> None:
         assert res.exit_code == 2 and res.stderr.startswith("error: ") and len(res.stderr.splitlines()) == 1
 
 
+def test_cli_reports_progress_on_stderr(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    path = tmp_path / "leak.json"
+    path.write_text(json.dumps(LEAK))
+    env = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}
+    res = CliRunner().invoke(app, ["verify", str(path), "--method", "gadgets", "--json"], env=env)
+    assert res.exit_code == 0, res.output
+    lines = [line for line in res.stderr.splitlines() if line.startswith("verify leak.json: ")]
+    assert len(lines) >= 3 and "checks" in lines[-1]
+    assert json.loads(res.stdout)["method"] == "gadgets"  # stdout stays one JSON object
+
+
 def test_bad_input_to_the_library_is_a_value_error() -> None:
     s = leak_scenario()
     for kwargs in ({"p": 0}, {"rule": "loose"}, {"method": "fast"}, {"samples": 0}):
@@ -147,6 +190,7 @@ def test_bad_input_to_the_library_is_a_value_error() -> None:
 def test_auto_picks_state_where_every_input_fits_and_gadgets_beyond() -> None:
     assert choose_method(default_scenario(3, 3, 2), 1) == "state"
     assert choose_method(default_scenario(3, 3, 2), 1, samples=10) == "gadgets"
+    assert choose_method(default_scenario(3, 3, 2), 1, PlanOptions(rule="paper")) == "state"
     assert choose_method(default_scenario(8, 8, 3), 1) == "gadgets"
 
 

@@ -29,6 +29,7 @@ Example:
 
 from __future__ import annotations
 
+from qcpp.plan.options import PlanOptions
 from qcpp.problem.paths import count_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
@@ -51,7 +52,9 @@ __all__ = [
 ]
 
 
-def choose_method(scenario: Scenario, p: int, rule: Rule = "exact", samples: int = DEFAULT_SAMPLES) -> Method:
+def choose_method(
+    scenario: Scenario, p: int, options: PlanOptions | None = None, samples: int = DEFAULT_SAMPLES
+) -> Method:
     """What ``auto`` runs: ``state`` when the circuit fits a 64-bit basis key and there are at most ``samples``
     feasible assignments (so every one is checked), else ``gadgets``.
 
@@ -64,7 +67,7 @@ def choose_method(scenario: Scenario, p: int, rule: Rule = "exact", samples: int
         total *= count_paths(scenario, r, cap=samples + 1)
         if total > samples:
             return "gadgets"
-    return "state" if state_fits(scenario, p, rule) else "gadgets"
+    return "state" if state_fits(scenario, p, options) else "gadgets"
 
 
 def verify(
@@ -75,6 +78,7 @@ def verify(
     samples: int = DEFAULT_SAMPLES,
     seed: int = 0,
     progress: ProgressFn | None = None,
+    options: PlanOptions | None = None,
 ) -> VerifyReport:
     """Check that the compiled QAOA circuit of ``scenario`` preserves feasibility (see the module docstring).
 
@@ -86,6 +90,8 @@ def verify(
         samples: ``state``: most feasible inputs per part (a seeded sample when there are more).
         seed: Seed of the angles and of any sample.
         progress: Called as ``progress(done, total)`` while checking.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`: target, fusion, initial state,
+            phase separator, ...); its rule replaces ``rule``. Default: ``PlanOptions(rule=rule)``.
 
     Returns:
         The :class:`~qcpp.verification.report.VerifyReport`; ``holds`` is false with a ``counterexample`` when the
@@ -103,10 +109,11 @@ def verify(
         raise ValueError(f"p must be an integer of at least 1, got {p!r}")
     if samples < 1:
         raise ValueError(f"samples must be at least 1, got {samples}")
+    options = PlanOptions(rule=rule) if options is None else options
     if method == "auto":
-        method = choose_method(scenario, p, rule, samples)
+        method = choose_method(scenario, p, options, samples)
     if method == "state":
-        return verify_state(scenario, p, rule, samples=samples, seed=seed, progress=progress)
-    return verify_gadgets(scenario, p, rule, seed=seed, progress=progress)
+        return verify_state(scenario, p, samples=samples, seed=seed, progress=progress, options=options)
+    return verify_gadgets(scenario, p, seed=seed, progress=progress, options=options)
 
 

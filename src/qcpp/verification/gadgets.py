@@ -442,6 +442,7 @@ def verify_gadgets(
     *,
     seed: int = 0,
     progress: ProgressFn | None = None,
+    options: PlanOptions | None = None,
 ) -> VerifyReport:
     """Certify feasibility preservation kind by kind (see the module docstring).
 
@@ -450,6 +451,7 @@ def verify_gadgets(
         p: QAOA layers (>= 1; every layer has the same kinds).
         rule: The SBF rule to compile with.
         seed: Seed of the rotation angle the mixer kinds are checked at.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`; its rule replaces ``rule``).
         progress: Called as ``progress(done, total)`` over the checks.
 
     Returns:
@@ -459,7 +461,8 @@ def verify_gadgets(
     start = time.perf_counter()
     if p < 1:
         raise ValueError(f"p must be at least 1, got {p}")
-    options = PlanOptions(rule=rule)
+    options = PlanOptions(rule=rule) if options is None else options
+    rule = options.rule
     plan = qaoa_plan(scenario, p, options)
     graph = plan.call_graph()
     beta = random_angle(random.Random(seed))

@@ -81,10 +81,10 @@ class _Piece:
     gates: tuple[Gate, ...]
 
 
-def state_fits(scenario: Scenario, p: int, rule: Rule = "exact") -> bool:
+def state_fits(scenario: Scenario, p: int, options: PlanOptions | None = None) -> bool:
     """Whether the state method can run: the lowered circuit has at most :data:`~qcpp.verification.batch.MAX_QUBITS`
     qubits (a basis state is one 64-bit key)."""
-    return qaoa_plan(scenario, p, PlanOptions(rule=rule)).num_qubits <= MAX_QUBITS
+    return qaoa_plan(scenario, p, options or PlanOptions()).num_qubits <= MAX_QUBITS
 
 
 def _scenario_name(s: Scenario) -> str:
@@ -236,6 +236,7 @@ def verify_state(
     samples: int = DEFAULT_SAMPLES,
     seed: int = 0,
     progress: ProgressFn | None = None,
+    options: PlanOptions | None = None,
 ) -> VerifyReport:
     """Check feasibility preservation on the compiled circuit (see the module docstring).
 
@@ -245,6 +246,7 @@ def verify_state(
         rule: The SBF rule to compile with.
         samples: Most feasible inputs per unit (all of them when there are no more; a seeded sample otherwise).
         seed: Seed of the angles and of the sample.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`; its rule replaces ``rule``).
         progress: Called as ``progress(done, total)`` over all inputs of all units.
 
     Returns:
@@ -256,7 +258,8 @@ def verify_state(
     start = time.perf_counter()
     if p < 1:
         raise ValueError(f"p must be at least 1, got {p}")
-    options = PlanOptions(rule=rule)
+    options = PlanOptions(rule=rule) if options is None else options
+    rule = options.rule
     plan = qaoa_plan(scenario, p, options)
     if plan.num_qubits > MAX_QUBITS:
         raise ValueError(
@@ -282,7 +285,7 @@ def verify_state(
     counterexample = None
     for name, unit, inputs in units:
         gates = [g for pc in unit for g in pc.gates]
-        how = "exhaustive" if (exhaustive or len(inputs) == 1) else "sampled"
+        how = "sampled" if inputs is keys and not exhaustive else "exhaustive"  # |0...0> is one input: all of them
         held = True
         for chunk in _chunks(inputs):
             out = Batch.of_inputs(chunk).run(gates)
