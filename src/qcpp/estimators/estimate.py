@@ -124,8 +124,14 @@ def checked_estimate_options(
 
     Args:
         plan: The circuit construction options.
-        epsilon, toffoli_t, depth, depth_budget, physical, qubit_model, qec_scheme, error_budget: As
-            :class:`EstimateOptions`.
+        epsilon: Rotation synthesis precision of the fault-tolerant model.
+        toffoli_t: T per Toffoli of the fault-tolerant model: 7 or 4.
+        depth: ``auto``, ``exact``, ``bound`` or ``none``.
+        depth_budget: The lowered gates per layer up to which ``auto`` computes the exact depth.
+        physical: Add the physical estimates of the QDK resource estimator.
+        qubit_model: The QDK qubit model.
+        qec_scheme: The QDK error-correction scheme.
+        error_budget: The QDK error budget.
         flag: How an option is named in a message (the command line: ``--epsilon``; Python: ``epsilon``).
 
     Returns:

@@ -76,7 +76,9 @@ def check_size(
     guard of ``qcpp compile`` and ``qcpp.compile``).
 
     Args:
-        scenario, p, options: The circuit.
+        scenario: The scenario.
+        p: QAOA layers.
+        options: How the circuit is built.
         max_gates: The limit.
         override: How the caller lifts the limit, for the message (``raise it with --max-gates N, or pass
             --force``).

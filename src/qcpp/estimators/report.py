@@ -68,9 +68,11 @@ def points_from_options(
         robots: ``N`` or ``A..B``; ``None`` means ``1``. Must be ``None`` with ``scenario``.
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
-        obstacles, hard_obstacles: obstacles on every grid of the range (``--obstacle``, ``--hard-obstacles``): each
-            point is then the scenario :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "file"``
-            in its row, as a scenario file's), not a default one.
+        obstacles: obstacles on every grid of the range (``--obstacle``): each point is then the scenario
+            :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "file"`` in its row, as a scenario
+            file's), not a default one.
+        hard_obstacles: the obstacles remove the edges touching them from the variables (``--hard-obstacles``;
+            a non-default scenario even without obstacles).
 
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
@@ -162,7 +164,12 @@ def estimate_rows(
     ``device``), one per point, lazily: what :func:`estimate_report` renders and ``qcpp.estimate`` returns.
 
     Args:
-        points, options, compare_paper, doubling, device, stage: As :func:`estimate_report`.
+        points: The points (consumed lazily, in order).
+        options: What to estimate.
+        compare_paper: Add the paper's estimates and ratios.
+        doubling: Reading of the paper's doubling.
+        device: Add the routed figures on this device.
+        stage: Called with the stage of a row's routing as it starts (``""`` when the row is done).
 
     Yields:
         One row per point, in order.

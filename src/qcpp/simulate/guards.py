@@ -70,7 +70,8 @@ def check_training_size(
     Args:
         scenario: The scenario.
         where: What the message starts with (the scenario file, or ``scenario``).
-        override, alternatives: How to lift the guard and what else to do, for the message.
+        override: How to lift the guard, for the message.
+        alternatives: What else to do, for the message.
         stage: Called with the stage (``counting feasible assignments``) for a progress display.
 
     Raises:
