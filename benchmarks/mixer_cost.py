@@ -18,7 +18,7 @@ Columns (all CX per layer, p = 1, default scenarios and a few with obstacles / i
   ancillas;
 * ``ours``: our lowered circuit's CX (read off the emitted circuit), and ``ours / qiskit``;
 * ``qiskit O3 on ours``: Qiskit O3 applied to our own high-level circuit (ANDs given to Qiskit as its ``RCCXGate``
-  plus ``sdg``, the exact gadget we use): it never beats our lowering (``tests/qcpp/junction_test.py``).
+  plus ``sdg``, the exact gadget we use): it never beats our lowering (``tests/compiler/junction_test.py``).
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ it does not place, go on the boundary, see :func:`boundary_scenario`):
   summing its part of the call graph (:func:`phase_cost`, listed from the planned gadgets).
 
 Every figure is an exact count of lowered gates: the call graph's sums, as every estimate reports them
-(``tests/qcpp/phase_test.py`` checks the gadgets' costs against the emitted, lowered gates).
+(``tests/compiler/phase_test.py`` checks the gadgets' costs against the emitted, lowered gates).
 """
 
 from __future__ import annotations

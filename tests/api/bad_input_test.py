@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 
 import qcpp
-from tests.qcpp.clirun import run
+from tests.cli.clirun import run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 S = qcpp.grid_scenario(3, 3, robots=1)

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 import qcpp
-from tests.qcpp.clirun import run
+from tests.cli.clirun import run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

@@ -42,7 +42,7 @@ shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a routing o
 SABRE's. So the sum is fast where windows are local (one robot: 30x30 at ``p = 3`` in seconds); with several robots it
 routes every visit gadget on the whole device, as compile does, and is no faster than compile.
 
-What is exact when no window is bounded (``tests/qcpp/window_classes_test.py`` checks each against
+What is exact when no window is bounded (``tests/compiler/window_classes_test.py`` checks each against
 ``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
 relays (and before them, :attr:`RoutedSum.compiled_ops`) and native gate counts by name, hence the two-qubit and
 one-qubit counts, and the estimated success probability on devices with uniform error rates (a product over

@@ -180,7 +180,7 @@ def _ccx(g: Gate) -> list[Gate]:
 
 
 # Qiskit's RCCX (a Toffoli up to relative phases, 3 CX) then S-dagger on the target: on a target in |0> this
-# is exactly |a, b, 0> -> |a, b, a AND b> (tests/qcpp/lowering_test.py checks every input).
+# is exactly |a, b, 0> -> |a, b, a AND b> (tests/compiler/lowering_test.py checks every input).
 def _and_body(a: int, b: int, t: int) -> list[Gate]:
     return [
         _g("h", (t,)), _g("t", (t,)), _g("cx", (b, t)), _g("tdg", (t,)), _g("cx", (a, t)),

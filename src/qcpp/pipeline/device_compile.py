@@ -473,7 +473,7 @@ def _cropped(dev: Device, homes: tuple[int, ...], options: RoutingOptions) -> tu
     The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
     relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
     as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
-    strip: 768 MB, tens of seconds). ``tests/circuitgen/hardware_crop_test.py`` compares both."""
+    strip: 768 MB, tens of seconds). ``tests/compiler/hardware_crop_test.py`` compares both."""
     shape = grid_shape(dev)
     if shape is None or dev.num_qubits <= options.crop_min_qubits or not dev.name.startswith("grid:"):
         return None

@@ -247,7 +247,7 @@ def _exact_logic(
 
     Every literal reads a corner parity, an outer edge or a temporary, never a single plaquette edge, so the
     function is unchanged by the flip: the circuit computes it once, rotates and uncomputes.
-    ``tests/qcpp/problem/sbf_test.py`` checks it against :func:`exact_rule_value` on every feasible path.
+    ``tests/problem/sbf_test.py`` checks it against :func:`exact_rule_value` on every feasible path.
     """
     steps: list[XorStep] = []
     final: list[Lit] = []

@@ -417,7 +417,7 @@ def penalty_rule(scenario: Scenario, upper_bound: float | None = None) -> Penalt
     ``G = max(0, max_v (good_v - bad_v))``, an assignment with ``m >= 1`` invalid nodes has energy at least
     ``LB + m (P - G) >= LB + P - G = UB + 1 > optimum`` (as ``P >= G``). Valid degrees with a wrong visit bit
     only add penalty. So every assignment with a non-zero penalty has energy ``>= UB + 1`` (:data:`RULE_MARGIN`),
-    while every feasible one has energy equal to its cost. ``tests/qcpp/problem/qubo_test.py`` checks this
+    while every feasible one has energy equal to its cost. ``tests/problem/qubo_test.py`` checks this
     exhaustively on small grids.
 
     Args:

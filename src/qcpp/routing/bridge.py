@@ -23,7 +23,7 @@ from home with :func:`qcpp.routing.windows.route_window`, as :func:`~qcpp.routin
 never worse, window by window. Sections of more than :data:`MAX_PAIRS` two-qubit gates are left alone. The gates
 of the section other than the far phases, and their order, are
 unchanged; on every input whose non-data device qubits start in |0> the rewritten circuit equals the original
-one (``tests/circuitgen/bridge_test.py``: basis-state and statevector checks, QCEC on routed circuits).
+one (``tests/compiler/bridge_test.py``: basis-state and statevector checks, QCEC on routed circuits).
 
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section

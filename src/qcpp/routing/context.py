@@ -55,7 +55,7 @@ class RoutingContext:
             routing of its translation (:class:`qcpp.routing.patches.Lattice`), and a heavy-hex cell's relabelled
             parity program by the A* of an equal program (:func:`qcpp.pipeline.cellmixer.cell_mixers`). ``False``
             memoises windows on their physical pairs only and plans every program afresh: the same answers,
-            slower (``tests/circuitgen/window_memo_test.py`` compares both).
+            slower (``tests/compiler/window_memo_test.py`` compares both).
         window_limit: Entries :attr:`windows` holds before a routed window's entry starts it over (a bound on
             memory: every entry is a pure function of its key, so starting over changes no answer).
 

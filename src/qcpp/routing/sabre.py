@@ -11,7 +11,7 @@ two qubits (nothing between them on either) is fused with it into two ``cx`` ins
 routed window by window (:func:`qcpp.routing.windows.route_windows`) and in :func:`route` with ``fuse=True``
 (:attr:`RoutedCircuit.fused` counts them); :func:`window_cx` counts the CX of routed ops without assembling them.
 Routing never reorders the gates of one logical qubit, so the routed circuit equals the original up to the
-layouts (``tests/circuitgen/routing_test.py`` checks it with a statevector and with QCEC).
+layouts (``tests/compiler/routing_test.py`` checks it with a statevector and with QCEC).
 
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section

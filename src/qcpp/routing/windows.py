@@ -5,7 +5,7 @@
 around the section (a patch, :mod:`qcpp.routing.patches`), then the middle, whose SWAPs are then undone, and the
 uncompute replays the compute's routed ops backwards. The result has ``initial_layout == final_layout``, and each
 section's routed cost depends only on its gates and its neighbourhood on the device (the routed cost of a gadget
-kind is fixed where the layout is translation-invariant: ``tests/circuitgen/medial_test.py``). Large windows (the
+kind is fixed where the layout is translation-invariant: ``tests/compiler/medial_test.py``). Large windows (the
 balance arithmetic) try several seeds and keep the whole window's cheapest
 (:attr:`~qcpp.routing.options.RoutingOptions.large_window_pairs`).
 

@@ -401,7 +401,7 @@ def validate(
 
     # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
     # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
-    # differs by cancelled inverse pairs only, tests/qcpp/junction_test.py)
+    # differs by cancelled inverse pairs only, tests/compiler/junction_test.py)
     fuse = backend != "tensor"
     at("compiling the lowered circuit")
     circuit = compile_scenario(scenario, p, PlanOptions(rule=rule, fuse=fuse), lowered=True, bindings=bindings).circuit

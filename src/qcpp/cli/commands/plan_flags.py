@@ -3,7 +3,7 @@ and the flags every scenario command declares alike (:data:`ScenarioArg`, :data:
 
 Both commands take an ``options: PlanOptions`` parameter and are decorated with :func:`with_plan_flags`, which
 puts the plan flags in its place and builds the options with :func:`plan_options`, so the two accept exactly the
-same flags with the same help, defaults and checks (``tests/qcpp/plan_flags_test.py`` compares them).
+same flags with the same help, defaults and checks (``tests/cli/plan_flags_test.py`` compares them).
 
 Example:
     >>> plan_options("exact", "representatives", "ft", "feasible", "cx", None).initial

@@ -6,7 +6,7 @@ ancillas (statevector: both partial mixers of 2x3/1 in the default run, every on
 heavy-hex lattice :func:`~qcpp.pipeline.cellmixer.cell_mixers` changes only partial-mixer sections, keeps their
 two-qubit counts, changes at least one (2x3/1; 2x3/2 in the heavy run), and every changed window routes to no more
 two-qubit gates than the default one; elsewhere it changes nothing. The routed circuits that use it are checked
-against the compiled circuit in ``tests/qcpp/hexlayout_test.py`` (statevector and QCEC).
+against the compiled circuit in ``tests/compiler/hexlayout_test.py`` (statevector and QCEC).
 """
 
 from __future__ import annotations

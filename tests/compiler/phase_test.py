@@ -1,6 +1,6 @@
 """The compiled phase separator: exact on feasible states, ancillas clean on every input, costs as reported.
 
-* For every scenario of the sweep (``tests/qcpp/problem/feasible_cost_test.py``: grids up to 4x4, 1-3 robots,
+* For every scenario of the sweep (``tests/problem/feasible_cost_test.py``: grids up to 4x4, 1-3 robots,
   obstacles, both balance and degree modes, non-default weights) and both targets: on feasible assignments
   (a sample here, all of them in the ``heavy`` test) the lowered circuit of ``phase_plan(s).gadgets(...)``
   maps the basis state to itself, ancillas back at 0, with phase ``exp(-i gamma (C(x) - reference_constant))``
@@ -36,8 +36,8 @@ from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
 from qcpp.simulate.sparse import simulate_sparse
 
-from ..gridcover.conftest import scenario_dicts
-from ..gridcover.feasible_cost_test import sweep
+from ..problem.conftest import scenario_dicts
+from ..problem.feasible_cost_test import sweep
 
 
 def gadgets_cost(plan: PhasePlan, logical: bool = False) -> Cost:
@@ -143,7 +143,7 @@ def test_feasible_beats_whole_space_and_explains_itself() -> None:
 
 
 def test_non_integer_lengths_fall_back_to_couplings() -> None:
-    from ..gridcover.conftest import make_scenario
+    from ..problem.conftest import make_scenario
 
     s = make_scenario(3, 3, [((0, 0), (2, 2)), ((0, 2), (2, 0))], edge_lengths=[[[0, 0], [0, 1], 2**0.5]])
     plan = phase_plan(s)

@@ -171,7 +171,7 @@ def test_auto_keeps_the_cheaper_of_cells_and_greedy(shape: tuple[int, int, int])
     assert n >= s.num_variables
 
 
-@pytest.mark.heavy  # the default run has tests/qcpp/device_cli_test.py's estimate == compile on heavy-hex (3x3/1)
+@pytest.mark.heavy  # the default run has tests/cli/device_cli_test.py's estimate == compile on heavy-hex (3x3/1)
 @pytest.mark.parametrize("shape", [(3, 3, 1), (3, 3, 2), (4, 4, 2)])
 def test_estimate_device_heavy_hex_equals_compile(shape: tuple[int, int, int]) -> None:
     from qcpp.estimators.estimate import DEFAULT_PLAN

@@ -4,7 +4,7 @@ emitted, lowered gates; and every partial-mixer kind is exact on every feasible 
 * ``test_reported_cost_equals_lowered_count_for_every_kind``: all partial-mixer kinds (both rules, both
   targets) that occur on a sweep of scenarios (every grid 2x2..6x6 with 1..4 default robots, obstacles soft and
   hard, interior and boundary endpoints), plus the state preparation and the phase-separator gadgets of both
-  representations and targets (per phase gadget kind: ``tests/qcpp/phase_test.py``), and every leaf.
+  representations and targets (per phase gadget kind: ``tests/compiler/phase_test.py``), and every leaf.
 * ``test_every_partial_mixer_kind_is_exact_on_every_feasible_local_input``: for every start/goal pair on
   2x2..4x4 (and obstacle variants), every feasible path and every plaquette, the local input of the partial
   mixer (its plaquette edges and the outer edges it reads) is collected per kind; each distinct (kind, local

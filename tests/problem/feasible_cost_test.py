@@ -27,7 +27,7 @@ TOL = 1e-8
 
 
 def sweep() -> list[Scenario]:
-    """The sweep shared with ``tests/qcpp/phase_test.py``: grids up to 4x4, 1-3 robots, both obstacle
+    """The sweep shared with ``tests/compiler/phase_test.py``: grids up to 4x4, 1-3 robots, both obstacle
     modes, both balance modes, both degree-target modes, non-default weights and lengths."""
     out = [default_scenario(r, c, k) for r, c, k in [(2, 2, 1), (3, 3, 1), (3, 3, 2), (3, 4, 2), (4, 4, 2), (4, 4, 3)]]
     robots3 = [((0, 0), (3, 3)), ((0, 3), (3, 0)), ((1, 2), (3, 3))]

@@ -16,7 +16,7 @@ from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
-from tests.circuitgen.conftest import scenarios
+from tests.compiler.conftest import scenarios
 
 OPTIONS = [
     PlanOptions(),

@@ -10,7 +10,7 @@ Whole 2-robot circuits are proven section by section (:func:`qcpp.simulate.equiv
 whole-circuit check of a 27-qubit circuit ends at its timeout with ``probably_equivalent``, while each section
 takes well under a second. Sections compose because the lowering never moves a gate across a section boundary and
 every block of sections that check_sections compares returns the ancillas to |0> (one section, or the run of
-fused partial-mixer pieces between two clean points: ``tests/qcpp/mixer_test.py``, ``gadgets_test.py``,
+fused partial-mixer pieces between two clean points: ``tests/compiler/mixer_test.py``, ``gadgets_test.py``,
 ``junction_test.py``), so the lowered circuit equals the high-level one on the clean-ancilla inputs.
 """
 
@@ -38,7 +38,7 @@ def compact(m):  # type: ignore[no-untyped-def]
 
 @pytest.fixture(scope="module")
 def kinds() -> dict:
-    from tests.circuitgen.gadgets_test import mixer_kinds
+    from tests.compiler.gadgets_test import mixer_kinds
 
     return mixer_kinds()
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.qcpp.clirun import assert_one_line_error, run
+from tests.cli.clirun import assert_one_line_error, run
 
 SCEN = "examples/two_robots_4x4.toml"
 

@@ -42,7 +42,7 @@ from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 
-from ..qcpp.clirun import run
+from ..cli.clirun import run
 from .phase_test import check_states, check_sums_phase_on_random_inputs, sample_combos, sums_gadgets
 
 SPATIAL = PlanOptions(phase_layout="spatial")
