@@ -20,7 +20,7 @@ import sys
 import time
 from dataclasses import replace
 
-from qcpp.devices.device import distances
+from qcpp.hardware.device import distances
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.options import DEFAULT_ROUTING

@@ -29,7 +29,7 @@ from dataclasses import replace
 
 from routing import BIND, scenarios  # the routing benchmark's (this script's directory is on the path)
 
-from qcpp.devices.device import get_device
+from qcpp.hardware.device import get_device
 from qcpp.layout import placement_search
 from qcpp.pipeline.device_compile import best_layout, compile_for_device
 from qcpp.pipeline.device_plan import device_plan_options

@@ -34,8 +34,8 @@ from __future__ import annotations
 import sys
 import time
 
-from qcpp.devices.device import Device, get_device
 from qcpp.estimators.counts import count_gates
+from qcpp.hardware.device import Device, get_device
 from qcpp.ir.circuit import Circuit
 from qcpp.layout.medial import ARRANGEMENTS
 from qcpp.lowering.qasm import to_qasm2

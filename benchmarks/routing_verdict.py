@@ -19,9 +19,9 @@ import sys
 import time
 from dataclasses import dataclass
 
-from qcpp.devices.device import device_names, named_device
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
 from qcpp.estimators.routed import _largest_component
+from qcpp.hardware.device import device_names, named_device
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario, max_default_robots

@@ -1,6 +1,6 @@
 """Convert IBM Heron calibration snapshots (qiskit-ibm-runtime's fake backends) into qcpp device files, once.
 
-Writes ``src/qcpp/devices/data/ibm_fez.json`` and ``ibm_torino.json``: the coupling map (couplers whose
+Writes ``src/qcpp/hardware/data/ibm_fez.json`` and ``ibm_torino.json``: the coupling map (couplers whose
 CZ error the snapshot gives as 1.0, i.e. marked faulty, are dropped), per-qubit sx / x errors and durations,
 per-coupler CZ error and duration, per-qubit readout error and duration. ``rz`` is virtual (error 0,
 duration 0). qiskit-ibm-runtime is needed only here, not by qcpp::

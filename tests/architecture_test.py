@@ -7,7 +7,7 @@ edge to ``a.b`` when that is a module, else to ``a``; relative imports are resol
 Layers, lowest first (a subpackage may import only the ones listed in :data:`ALLOWED` for it)::
 
     io < problem < qubo                                     the problem model and its file guards
-    ir < lowering < gadgets < plan < devices < routing < layout < pipeline < testing
+    ir < lowering < gadgets < plan < hardware < routing < layout < pipeline < testing
        < estimators | simulate | verification < api < cli
 
 ``errors``, ``io`` and ``problem`` may be imported by anything above them (the compiler builds circuits *of* a
@@ -35,7 +35,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "qcpp"
 
 _BASE = frozenset({"__init__", "errors", "io", "problem"})
-_COMPILER = ("ir", "lowering", "gadgets", "plan", "devices", "routing", "layout", "pipeline", "testing")
+_COMPILER = ("ir", "lowering", "gadgets", "plan", "hardware", "routing", "layout", "pipeline", "testing")
 _USES = ("estimators", "simulate", "verification")
 
 
@@ -164,7 +164,7 @@ GRAPH = import_graph(MODULES)
 
 def test_the_parser_sees_module_and_function_level_imports() -> None:
     # routing imports the device's geometry inside a function; the plan imports gadgets at module level
-    assert GRAPH.has_edge("qcpp.routing.sabre", "qcpp.devices.device")
+    assert GRAPH.has_edge("qcpp.routing.sabre", "qcpp.hardware.device")
     assert GRAPH.has_edge("qcpp.plan.call_graph", "qcpp.gadgets")
     assert GRAPH.number_of_edges() > 300
 

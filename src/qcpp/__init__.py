@@ -56,7 +56,7 @@ _EXPORTS: dict[str, str] = {
     "Device": "qcpp.api.devices",
     "DeviceError": "qcpp.api.devices",
     "device": "qcpp.api.devices",
-    "devices": "qcpp.devices",  # the package is callable: qcpp.devices() lists the shipped devices
+    "devices": "qcpp.api.devices",
     "Estimate": "qcpp.api.estimates",
     "estimate": "qcpp.api.estimates",
     "Scenario": "qcpp.api.scenarios",
@@ -115,9 +115,8 @@ def __getattr__(name: str) -> Any:
     if module is None:
         raise AttributeError(f"module 'qcpp' has no attribute {name!r}")
     loaded = importlib.import_module(module)
-    value = loaded if name == "devices" else getattr(loaded, name)
-    if name != "devices":  # importing the package sets qcpp.devices itself
-        globals()[name] = value
+    value = getattr(loaded, name)
+    globals()[name] = value
     return value
 
 

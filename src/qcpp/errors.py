@@ -2,7 +2,7 @@
 
 :class:`QcppError` derives from ``ValueError``, so ``except ValueError`` keeps working; its subclasses say what
 was wrong (:class:`~qcpp.problem.errors.ScenarioError` for a scenario, :class:`OptionError` for an option such as
-``p`` or a plan option, :class:`~qcpp.devices.device.DeviceError` for a device,
+``p`` or a plan option, :class:`~qcpp.hardware.device.DeviceError` for a device,
 :class:`~qcpp.ir.angles.UnboundParameterError` for symbols without a value). Every message is one line, the same
 line the command line prints after ``error:`` for the same mistake.
 

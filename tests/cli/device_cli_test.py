@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from qiskit import qasm2
 
-from qcpp.devices.device import get_device
+from qcpp.hardware.device import get_device
 
 from .clirun import assert_one_line_error, run
 

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from qcpp.devices.device import distances, get_device
+from qcpp.hardware.device import distances, get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rz
 from qcpp.routing.bridge import bridge_far_phases, copy_chain

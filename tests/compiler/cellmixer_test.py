@@ -18,8 +18,8 @@ import importlib
 import numpy as np
 import pytest
 
-from qcpp.devices.device import distances, get_device
 from qcpp.gadgets.partial_mixer import ParityPartialMixer
+from qcpp.hardware.device import distances, get_device
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import rx, ry

@@ -17,7 +17,7 @@ import importlib
 import pytest
 from hypothesis import given, settings
 
-from qcpp.devices.device import get_device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_distance
+from qcpp.hardware.device import get_device, heavy_hex_coordinates, heavy_hex_coupling, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
@@ -33,7 +33,7 @@ from .routing_test import _assert_equal_up_to_layouts, _on_coupling
 
 
 def test_doctests() -> None:
-    for name in ("qcpp.layout.heavy_hex", "qcpp.devices.device"):
+    for name in ("qcpp.layout.heavy_hex", "qcpp.hardware.device"):
         result = doctest.testmod(importlib.import_module(name))
         assert result.failed == 0 and result.attempted > 0
 

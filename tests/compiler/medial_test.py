@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from qcpp.devices.device import get_device
+from qcpp.hardware.device import get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rx, ry
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
@@ -121,7 +121,7 @@ def test_allocation_renames_ancillas_only_and_keeps_the_state(search: bool) -> N
 def test_the_allocation_search_never_routes_a_window_to_more_gates() -> None:
     """The search keeps a section's greedy allocation unless its window routes to fewer two-qubit gates; on
     3x3/1 it finds fewer for some partial mixers."""
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
     from qcpp.routing.sabre import window_cx
     from qcpp.routing.windows import Positions, route_window
 
@@ -230,7 +230,7 @@ def test_a_partial_mixer_kinds_routed_cost_is_fixed_in_the_interior() -> None:
     """Windows return home, so a section's routed cost depends only on its gates and its neighbourhood: every
     interior partial mixer of one kind (plaquettes two or more rows and columns from the border) routes to the
     same count, and the routed circuit's count is the sum of its windows' counts."""
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
     from qcpp.plan.qaoa import qaoa_plan
     from qcpp.routing.windows import Positions, route_window
 

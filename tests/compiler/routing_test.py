@@ -20,7 +20,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from qiskit import transpile
 
-from qcpp.devices.device import DeviceError, device_names, get_device, heavy_hex_qubits, named_device
+from qcpp.hardware.device import DeviceError, device_names, get_device, heavy_hex_qubits, named_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rx, ry
 from qcpp.layout.placement import localize_ancillas, place
@@ -41,7 +41,7 @@ BIND = {"gamma_0": 0.37, "beta_0": 0.81}
 @pytest.mark.parametrize(
     "module",
     [
-        "qcpp.devices.device",
+        "qcpp.hardware.device",
         "qcpp.routing.sabre",
         "qcpp.routing.routed_circuit",
         "qcpp.routing.windows",
@@ -94,7 +94,7 @@ def test_bad_device_names_are_one_clear_error(bad: str) -> None:
 @pytest.mark.parametrize("name", device_names())
 def test_named_devices_state_source_date_and_consistent_data(name: str) -> None:
     d = named_device(name)
-    raw = json.loads((Path(__file__).resolve().parents[2] / "src/qcpp/devices/data" / f"{name}.json").read_text())
+    raw = json.loads((Path(__file__).resolve().parents[2] / "src/qcpp/hardware/data" / f"{name}.json").read_text())
     assert raw["source"] and raw["date"] and d.source == raw["source"]
     assert d.two_qubit_gate in d.native_gates
     assert all(0 <= e < 1 for e in d.error_2q) and all(0 <= e < 1 for e in d.readout_error)
@@ -303,7 +303,7 @@ def test_a_memoised_window_is_the_window_routed_afresh(data: st.DataObject) -> N
     """route_window's memo (and the per-device patches and SABRE passes it reuses) changes nothing: a window routed
     again from a warm cache, or at the same physical pairs under other logical names, gives the ops of a cold
     routing, and replays the patches the routing saw into the context's open watches."""
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
     from qcpp.routing.context import RoutingContext
     from qcpp.routing.options import DEFAULT_ROUTING
     from qcpp.routing.windows import Positions, route_window

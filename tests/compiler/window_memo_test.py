@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from qcpp.devices.device import distances, get_device, heavy_hex_coordinates
+from qcpp.hardware.device import distances, get_device, heavy_hex_coordinates
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext

@@ -7,8 +7,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from qcpp.devices.device import distances, get_device
 from qcpp.estimators.layout_bound import gate_distances, hex_path_lengths, layout_twoq_bound, section_charges
+from qcpp.hardware.device import distances, get_device
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.device_compile import layout_device
 from qcpp.pipeline.device_plan import device_plan_options

@@ -8,10 +8,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from qcpp.devices.device import distances, get_device
 from qcpp.estimators import layout_bound, routed
 from qcpp.estimators.layout_bound import layout_twoq_bound
 from qcpp.estimators.routed import diameter_bound, routed_fields
+from qcpp.hardware.device import distances, get_device
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
 from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions

@@ -28,7 +28,7 @@ from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 
 if TYPE_CHECKING:
-    from qcpp.devices.device import Device
+    from qcpp.hardware.device import Device
     from qcpp.ir.circuit import Circuit
 
 __all__ = ["Compiled", "compile"]
@@ -154,12 +154,12 @@ def compile(
     Raises:
         qcpp.errors.OptionError: a bad ``p``, option or binding value, an unknown plan option, or a symbol in
             ``bind`` the circuit does not have (naming them).
-        qcpp.devices.device.DeviceError: an unknown device.
+        qcpp.hardware.device.DeviceError: an unknown device.
         qcpp.problem.limits.SizeError: a circuit predicted over ``max_gates``.
         qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
     """
-    from qcpp.devices.device import get_device
     from qcpp.estimators.guard import DEFAULT_MAX_GATES, check_size
+    from qcpp.hardware.device import get_device
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
     from qcpp.problem.cost_range import check_cost_range

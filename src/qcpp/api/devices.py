@@ -9,7 +9,7 @@ Example:
 
 from __future__ import annotations
 
-from qcpp.devices.device import Device, DeviceError, device_names, get_device
+from qcpp.hardware.device import Device, DeviceError, device_names, get_device
 
 __all__ = ["Device", "DeviceError", "device", "devices"]
 

@@ -181,13 +181,13 @@ def estimate(
 
     Raises:
         qcpp.errors.OptionError: a bad ``p`` or option (named), or an unknown plan option.
-        qcpp.devices.device.DeviceError: an unknown device.
+        qcpp.hardware.device.DeviceError: an unknown device.
         qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
     """
-    from qcpp.devices.device import get_device
     from qcpp.estimators.estimate import Point, checked_estimate_options
     from qcpp.estimators.paper import DOUBLINGS
     from qcpp.estimators.report import estimate_rows
+    from qcpp.hardware.device import get_device
     from qcpp.problem.cost_range import check_cost_range
 
     s = check_scenario_arg(scenario)

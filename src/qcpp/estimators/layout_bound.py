@@ -23,7 +23,7 @@ sum is the initial state's sections plus ``p`` times the first layer's.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> from qcpp.estimators.estimate import DEFAULT_PLAN
     >>> b = layout_twoq_bound(default_scenario(3, 3, 1), 1, DEFAULT_PLAN, get_device("grid:5x5"))
     >>> b is not None and b >= 106
@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.problem.scenario import Scenario
 
 __all__ = ["gate_distances", "hex_path_lengths", "layout_twoq_bound", "section_charges"]
@@ -177,7 +177,7 @@ def gate_distances(device: Device, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         ValueError: a pair in different components.
 
     Example:
-        >>> from qcpp.devices.device import get_device
+        >>> from qcpp.hardware.device import get_device
         >>> gate_distances(get_device("grid:3x3"), np.array([0, 0]), np.array([8, 1])).tolist()
         [4, 1]
     """
@@ -187,7 +187,7 @@ def gate_distances(device: Device, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     if shape is not None:
         cols = shape[1]
         return np.abs(a // cols - b // cols) + np.abs(a % cols - b % cols)
-    from qcpp.devices.device import heavy_hex_distance
+    from qcpp.hardware.device import heavy_hex_distance
 
     lattice = heavy_hex_distance(device)
     if lattice is not None:
@@ -211,7 +211,7 @@ def gate_distances(device: Device, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _bridge_below(g: np.ndarray, x: np.ndarray, d: int) -> np.ndarray:
     """The largest bridge column ``<= x`` in gap ``g`` of ``heavy-hex:d`` (``-1``: none). Even gaps have bridges
     at ``0, 3, 7, .., 2 d - 3``, odd ones at ``1, 5, .., 2 d - 3 - 2`` and ``2 d - 2``
-    (:func:`qcpp.devices.device.heavy_hex_coordinates`)."""
+    (:func:`qcpp.hardware.device.heavy_hex_coordinates`)."""
     even = np.where(x >= 3, 3 + 4 * ((np.minimum(x, 2 * d - 3) - 3) // 4), np.where(x >= 0, 0, -1))
     odd = np.where(x >= 2 * d - 2, 2 * d - 2, np.where(x >= 1, 1 + 4 * ((np.minimum(x, 2 * d - 5) - 1) // 4), -1))
     return np.where(g % 2 == 0, even, odd)
@@ -254,13 +254,13 @@ def hex_path_lengths(d: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     (one step), whichever gives the shorter path; the row lines are joined as in :func:`_line_path`.
 
     Example:
-        >>> from qcpp.devices.device import heavy_hex_coordinates
+        >>> from qcpp.hardware.device import heavy_hex_coordinates
         >>> xy = heavy_hex_coordinates(3)
         >>> q = {c: i for i, c in enumerate(xy)}
         >>> hex_path_lengths(3, np.array([q[0, 0], q[0, 0]]), np.array([q[0, 4], q[4, 4]])).tolist()
         [4, 8]
     """
-    from qcpp.devices.device import heavy_hex_coordinates
+    from qcpp.hardware.device import heavy_hex_coordinates
 
     xy = np.array(heavy_hex_coordinates(d), dtype=np.int64)
     pairs, inverse = np.unique(np.stack([np.minimum(a, b), np.maximum(a, b)]), axis=1, return_inverse=True)

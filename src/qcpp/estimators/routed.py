@@ -57,8 +57,8 @@ from typing import Any
 
 import numpy as np
 
-from qcpp.devices.device import Device, get_device
 from qcpp.estimators.counts import count_gates
+from qcpp.hardware.device import Device, get_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
 
@@ -132,7 +132,7 @@ def diameter_bound(device: Device) -> int:
     snapshot with dead couplers) the largest of the pieces' bounds, each from a qubit of its own.
 
     Example:
-        >>> from qcpp.devices.device import get_device
+        >>> from qcpp.hardware.device import get_device
         >>> diameter_bound(get_device("grid:3x3"))  # the 3x3 grid's diameter is 4
         4
     """
@@ -229,7 +229,7 @@ def routed_fields(
         scenario: The row's scenario.
         p: QAOA layers.
         plan: The row's :class:`qcpp.estimators.estimate.PlanOptions`.
-        device: A device name (:func:`qcpp.devices.device.get_device`).
+        device: A device name (:func:`qcpp.hardware.device.get_device`).
         qubits, cx, one_qubit: The row's lowered counts (``cx + one_qubit`` picks the way unless ``total_gates``
             is given; the bound recounts the circuit compile routes, whose phase layout may differ from the row's).
         total_gates: The row's lowered gate count (default ``cx + one_qubit``), for the exact/bound choice.

@@ -71,8 +71,8 @@ from typing import Any
 
 import numpy as np
 
-from qcpp.devices.device import Device, get_device
 from qcpp.gadgets.partial_mixer import McxPartialMixer
+from qcpp.hardware.device import Device, get_device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement

@@ -1,6 +1,6 @@
 """A geometry-preserving placement on heavy-hex devices: one heavy-hex cell per plaquette.
 
-The heavy-hex lattice (:func:`qcpp.devices.device.heavy_hex_coordinates`) is a honeycomb with a qubit on every
+The heavy-hex lattice (:func:`qcpp.hardware.device.heavy_hex_coordinates`) is a honeycomb with a qubit on every
 vertex (degree 3) and on every side's midpoint (degree 2): row lines of qubits, joined by *bridge* qubits every
 four columns, shifted by two columns from one gap between row lines to the next. Its cells are 12-qubit
 hexagons; two cells side by side share a bridge, a cell shares a row-line side with each of the two cells above
@@ -37,7 +37,7 @@ that routes cheapest on its cell.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
-    >>> from qcpp.devices.device import get_device, heavy_hex_coordinates
+    >>> from qcpp.hardware.device import get_device, heavy_hex_coordinates
     >>> s = default_scenario(3, 3, 1)
     >>> hex_distance(s)
     7
@@ -53,7 +53,7 @@ from __future__ import annotations
 
 from functools import cache
 
-from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
+from qcpp.hardware.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
@@ -157,7 +157,7 @@ def _placed(scenario: Scenario, d: int, arrangement: tuple[int, int]) -> tuple[i
 
 def hex_placement(scenario: Scenario, device: Device) -> tuple[int, ...] | None:
     """Home of every data qubit (variable index -> physical qubit) on a heavy-hex lattice device, or ``None`` if
-    the device is not one (:func:`qcpp.devices.device.heavy_hex_distance`) or the layout does not fit. Of the
+    the device is not one (:func:`qcpp.hardware.device.heavy_hex_distance`) or the layout does not fit. Of the
     ``down x across`` stackings of the robots' patches that fit, the one that needs the smallest lattice (the
     lattice is about twice as tall as wide in cells, so robots are stacked down first).
 

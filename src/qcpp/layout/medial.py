@@ -26,7 +26,7 @@ logical qubit to its home.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> s = default_scenario(3, 3, 1)
     >>> medial_shape(s)
     (5, 5)
@@ -43,7 +43,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from qcpp.devices.device import Device, grid_coupling
+from qcpp.hardware.device import Device, grid_coupling
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.layout.heavy_hex import hex_placement
@@ -58,7 +58,7 @@ __all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape"
 
 
 def grid_shape(device: Device) -> tuple[int, int] | None:
-    """``(rows, cols)`` if the device's coupling is the square lattice of :func:`qcpp.devices.device.grid_coupling`
+    """``(rows, cols)`` if the device's coupling is the square lattice of :func:`qcpp.hardware.device.grid_coupling`
     (qubit ``r * cols + c``), else ``None``."""
     if device.is_all_to_all or device.family != "grid":
         return None
@@ -137,7 +137,7 @@ def medial_placement(scenario: Scenario, device: Device, arrangement: str = "til
 
 
 def _distances(device: Device) -> np.ndarray:
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
 
     return distances(device)
 

@@ -21,7 +21,7 @@ Example:
     >>> from qcpp.problem.presets import default_scenario
     >>> from qcpp.plan.compile import compile_scenario
     >>> from qcpp.plan.options import PlanOptions
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> s = default_scenario(3, 3, 1)
     >>> c = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True).circuit
     >>> local = localize_ancillas(c, s, spare=16)
@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from qcpp.devices.device import Device, distances
+from qcpp.hardware.device import Device, distances
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 from qcpp.problem.scenario import Scenario

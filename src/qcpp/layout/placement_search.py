@@ -28,7 +28,7 @@ Example:
     >>> from dataclasses import replace
     >>> from qcpp.problem.presets import default_scenario
     >>> from qcpp.plan.compile import compile_scenario
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> from qcpp.plan.options import PlanOptions
     >>> c = compile_scenario(default_scenario(2, 3, 1), 1, PlanOptions(fuse=False), lowered=True).circuit
     >>> dev = get_device("heavy-hex:3")
@@ -43,7 +43,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions

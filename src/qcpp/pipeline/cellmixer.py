@@ -54,8 +54,8 @@ from collections.abc import Callable, Hashable, Mapping, Sequence
 
 import numpy as np
 
-from qcpp.devices.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartialMixer, Slot, plan_parity_mixer
+from qcpp.hardware.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.medial import allocate_ancillas

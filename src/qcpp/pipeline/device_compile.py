@@ -54,7 +54,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
-from qcpp.devices.device import Device, distances, get_device, heavy_hex_distance
+from qcpp.hardware.device import Device, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
@@ -234,7 +234,7 @@ def compile_for_device(
     Args:
         scenario: The scenario.
         p: QAOA layers.
-        device: A :class:`Device` or a name for :func:`qcpp.devices.device.get_device` (a family without a size
+        device: A :class:`Device` or a name for :func:`qcpp.hardware.device.get_device` (a family without a size
             gets its smallest member that holds the circuit).
         options: How the circuit is built; routing always compiles it unfused (``fuse=False``: every partial
             mixer clean at both ends, so its ancillas can be placed and checked section by section).
@@ -254,7 +254,7 @@ def compile_for_device(
         The :class:`DeviceCompileResult`.
 
     Raises:
-        qcpp.devices.device.DeviceError: an unknown device.
+        qcpp.hardware.device.DeviceError: an unknown device.
         ValueError: the device is too small.
     """
     start = time.perf_counter()

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from qcpp.devices.device import Device, get_device
+from qcpp.hardware.device import Device, get_device
 from qcpp.layout.heavy_hex import CELL_PHASE_LAYOUT, is_hex_lattice
 from qcpp.plan.options import PlanOptions
 
@@ -38,7 +38,7 @@ def device_plan_options(options: PlanOptions, device: str | Device, layout_metho
 
     Args:
         options: The requested plan options.
-        device: The device (a spec for :func:`qcpp.devices.device.get_device`, or a :class:`Device`; a family
+        device: The device (a spec for :func:`qcpp.hardware.device.get_device`, or a :class:`Device`; a family
             without a size is known by its smallest member, every member being of the same kind).
         layout_method: How compile lays the circuit out (:data:`qcpp.plan.options.LAYOUT_METHODS`): ``greedy``
             places no cells, so a heavy-hex lattice gets ``spatial``.

@@ -28,7 +28,7 @@ one (``tests/compiler/bridge_test.py``: basis-state and statevector checks, QCEC
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section
     >>> from qcpp.ir.gates import cx, rz
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> c = Circuit([("data", 2)], [Section("phase", [cx(0, 1), rz(0.4, 1), cx(0, 1)])])
     >>> out, layout = bridge_far_phases(c, (0, 8), get_device("grid:1x9"))
     >>> layout  # the copy of qubit 0 travels over the clean qubits 1..7
@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
 from qcpp.routing.context import RoutingContext
@@ -331,7 +331,7 @@ def bridge_far_phases(
         ``(circuit, layout)``: registers ``data`` and ``site`` (every other physical qubit used, ascending),
         and logical qubit -> physical qubit.
     """
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
 
     d = distances(device) if dist is None else dist
     context = RoutingContext() if context is None else context

@@ -12,7 +12,7 @@ modelled. :func:`duration_s` is the ASAP schedule's length with the device's per
 readout, or ``None`` where the device publishes no durations.
 
 Example:
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> from qcpp.ir.circuit import Circuit, Section
     >>> from qcpp.ir.gates import cx
     >>> from qcpp.routing.sabre import route
@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cz, rx, rz, rzz
 from qcpp.routing.routed_circuit import RoutedCircuit

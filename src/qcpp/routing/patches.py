@@ -12,8 +12,8 @@ lives in the caller's :class:`~qcpp.routing.context.RoutingContext`, and every p
 watches (:meth:`~qcpp.routing.context.RoutingContext.saw_patch`).
 
 Example:
-    >>> from qcpp.devices.device import get_device
-    >>> from qcpp.devices.device import distances
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.hardware.device import distances
     >>> from qcpp.routing.context import RoutingContext
     >>> dev = get_device("grid:1x6")
     >>> context = RoutingContext()
@@ -28,7 +28,7 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 from typing import Any
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
 
 __all__ = ["Coord", "Lattice", "PatchIndex", "local_patch", "patch_index", "run_sabre", "sabre_local", "sabre_pass"]
@@ -67,7 +67,7 @@ Coord = tuple[int, int]
 
 class Lattice:
     """A heavy-hex lattice device's qubits on their ``(y, x)`` coordinates
-    (:func:`qcpp.devices.device.heavy_hex_coordinates`), for the translation-invariant window memo
+    (:func:`qcpp.hardware.device.heavy_hex_coordinates`), for the translation-invariant window memo
     (:func:`qcpp.routing.windows.route_window`).
 
     A translation by multiples of :attr:`PERIOD` in both coordinates maps the infinite lattice onto itself, and
@@ -98,7 +98,7 @@ class Lattice:
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
         """The lattice of a heavy-hex lattice device, or ``None`` (another device, or one the checks reject)."""
-        from qcpp.devices.device import heavy_hex_coordinates, heavy_hex_distance
+        from qcpp.hardware.device import heavy_hex_coordinates, heavy_hex_distance
 
         d = heavy_hex_distance(device)
         if d is None:

@@ -6,7 +6,7 @@ inserted. Routing never reorders the gates of one logical qubit, so the routed c
 the layouts: ``routed = P_final . original . P_initial^-1`` on inputs whose unused physical qubits are |0>.
 
 Example:
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> sorted(coupling_map(get_device("grid:1x3")).get_edges())
     [(0, 1), (1, 0), (1, 2), (2, 1)]
 """
@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 
@@ -59,7 +59,7 @@ def embed_routed(routed: RoutedCircuit, device: Device, sites: Sequence[int]) ->
     qubit ``i`` on ``sites[i]``) written on ``device``'s qubits: the same gates, SWAPs and layouts, relabelled.
 
     Example:
-        >>> from qcpp.devices.device import get_device
+        >>> from qcpp.hardware.device import get_device
         >>> from qcpp.ir.gates import cx
         >>> from qcpp.routing.sabre import route
         >>> small = route(Circuit([("data", 2)], [Section("s", [cx(0, 1)])]), get_device("grid:1x2"), (0, 1))

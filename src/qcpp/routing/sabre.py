@@ -16,7 +16,7 @@ layouts (``tests/compiler/routing_test.py`` checks it with a statevector and wit
 Example:
     >>> from qcpp.ir.circuit import Circuit, Section
     >>> from qcpp.ir.gates import cx, h
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> c = Circuit([("data", 3)], [Section("s", [h(0), cx(0, 1), cx(0, 2), cx(1, 2)])])
     >>> r = route(c, get_device("grid:1x3"), initial_layout=(0, 1, 2))
     >>> r.circuit.num_qubits, r.swaps, r.initial_layout, r.final_layout
@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
 from qcpp.routing.options import DEFAULT_TRIALS

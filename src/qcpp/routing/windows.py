@@ -17,7 +17,7 @@ qubits around the window are the same: :class:`~qcpp.routing.patches.Lattice`), 
 replayed into the context's open watches on a hit.
 
 Example:
-    >>> from qcpp.devices.device import get_device
+    >>> from qcpp.hardware.device import get_device
     >>> from qcpp.ir.circuit import Circuit, Section
     >>> from qcpp.ir.gates import cx
     >>> c = Circuit([("data", 3)], [Section("g", [cx(0, 2), cx(0, 2)])])
@@ -31,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from qcpp.devices.device import Device
+from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
@@ -283,7 +283,7 @@ def route_windows(
     Returns:
         The :class:`~qcpp.routing.routed_circuit.RoutedCircuit` (``initial_layout == final_layout == layout``).
     """
-    from qcpp.devices.device import distances
+    from qcpp.hardware.device import distances
 
     context = RoutingContext() if context is None else context
     gates, section_of, home, measured_ = checked_inputs(circuit, device, layout, measured)

@@ -162,7 +162,7 @@ def estimate(
         qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget, flag=_flag,
     )  # fmt: skip
     if device is not None:
-        from qcpp.devices.device import DeviceError, get_device
+        from qcpp.hardware.device import DeviceError, get_device
 
         try:
             get_device(device)

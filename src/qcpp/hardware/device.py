@@ -8,7 +8,7 @@ A :class:`Device` is a frozen value. Two kinds exist:
   error rates and durations are those of a named device of the same architecture (grid: Google Willow's
   published means; heavy-hex: the medians of the IBM Fez snapshot; all-to-all: Quantinuum Helios's published
   means), so a family member is "that device, grown or shrunk to size";
-* **named devices** read from ``qcpp/devices/data/<name>.json``, each file naming its source and date:
+* **named devices** read from ``qcpp/hardware/data/<name>.json``, each file naming its source and date:
   ``ibm_fez`` and ``ibm_torino`` (IBM Heron calibration snapshots, converted once from qiskit-ibm-runtime's fake
   backends by ``scripts/convert_ibm_backends.py``; couplers the snapshot marks faulty, error 1, are dropped),
   ``google_willow`` (square grid, published spec-sheet means) and ``quantinuum_helios`` (all-to-all trapped
@@ -50,7 +50,7 @@ __all__ = [
 FAMILIES = ("grid", "heavy-hex", "all-to-all")
 """Device families of any size (``NAME[:SIZE]``)."""
 
-_DATA_PACKAGE = "qcpp.devices.data"
+_DATA_PACKAGE = "qcpp.hardware.data"
 
 
 class DeviceError(QcppError):
