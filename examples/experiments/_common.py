@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,14 +49,31 @@ class Options:
         return self.out / "results"
 
 
+def fresh_output_folder() -> Path:
+    """A new folder name under the current directory (``qcpp-experiments-<date>-<time>``, numbered if taken): the
+    scripts never overwrite the committed ``docs/results`` and ``docs/figures`` unless asked with ``--out docs``."""
+    stem = Path.cwd() / f"qcpp-experiments-{time.strftime('%Y%m%d-%H%M%S')}"
+    out, n = stem, 1
+    while out.exists():
+        n += 1
+        out = stem.with_name(f"{stem.name}-{n}")
+    return out
+
+
 def parse(description: str, argv: Sequence[str] | None) -> Options:
-    """``[--quick] [--out DIR] [--seed N]``; outputs go to ``DIR/figures`` and ``DIR/results`` (default docs/)."""
+    """``[--quick] [--out DIR] [--seed N]``; outputs go to ``DIR/figures`` and ``DIR/results`` (default: a fresh
+    folder under the current directory, :func:`fresh_output_folder`; ``--out docs`` regenerates the committed
+    results)."""
     ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--quick", action="store_true", help="reduced run (seconds), for the smoke test")
-    ap.add_argument("--out", type=Path, default=REPO / "docs", help="output root (figures/ and results/ below it)")
+    ap.add_argument(
+        "--out", type=Path, default=None,
+        help="output root (figures/ and results/ below it); default: a new qcpp-experiments-* folder here; "
+        "--out docs regenerates the committed results",
+    )  # fmt: skip
     ap.add_argument("--seed", type=int, default=0, help="base seed")
     ns = ap.parse_args(argv)
-    opts = Options(quick=ns.quick, out=ns.out, seed=ns.seed)
+    opts = Options(quick=ns.quick, out=fresh_output_folder() if ns.out is None else ns.out, seed=ns.seed)
     opts.figures.mkdir(parents=True, exist_ok=True)
     opts.results.mkdir(parents=True, exist_ok=True)
     return opts
