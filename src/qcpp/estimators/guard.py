@@ -7,9 +7,12 @@ about :data:`BYTES_PER_GATE` bytes at the peak of building and lowering (Python 
 6x6/3 and 8x8/4 lowered circuits: 221-238 bytes, rounded up for the allocator's overhead). The high-level
 circuit has fewer gates than the lowered one, so the lowered count bounds both.
 
-:data:`DEFAULT_MAX_GATES` (10 million lowered gates) keeps a whole built circuit near 3 GB, well inside a 24 GB
-machine with the lowering's copies, and a compile under about seven minutes (streamed OpenQASM is written at
-about 25,000 gates per second: ``qcpp compile`` of 8x8 / 4 robots / p = 16, 866,184 gates, 36 s, 154 MB peak).
+:func:`compile_need` turns that into the peak memory of a ``qcpp compile`` process and its time, for
+:func:`qcpp.problem.limits.check_need`: :data:`BASE_BYTES` plus :data:`BYTES_PER_GATE` per gate held at once --
+every gate when the circuit is built whole, one layer's gates when it is streamed section by section (the peak
+does not grow with ``p``: ``qcpp compile`` of 8x8 / 4 robots / p = 16 --qasm, 866,184 gates, 154 MB peak) -- and
+:data:`GATES_PER_SECOND` (streamed OpenQASM: that compile took 36 s). :data:`DEFAULT_MAX_GATES` is the fixed limit
+the command used before it predicted memory; ``--max-gates N`` still sets one.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -26,15 +29,30 @@ from dataclasses import dataclass
 
 from qcpp.estimators.estimate import layer_costs, registers_for
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
+from qcpp.problem.limits import Need
 from qcpp.problem.scenario import Scenario
 
-__all__ = ["BYTES_PER_GATE", "DEFAULT_MAX_GATES", "SizePrediction", "predict_size"]
+__all__ = [
+    "BASE_BYTES",
+    "BYTES_PER_GATE",
+    "DEFAULT_MAX_GATES",
+    "GATES_PER_SECOND",
+    "SizePrediction",
+    "compile_need",
+    "predict_size",
+]
 
 BYTES_PER_GATE = 300
 """Peak bytes per lowered gate while building, lowering and writing (measured: see the module docstring)."""
 
 DEFAULT_MAX_GATES = 10_000_000
-"""Largest circuit ``qcpp compile`` builds without ``--force`` or a higher ``--max-gates``: about 3 GB predicted."""
+"""A gate limit of about 3 GB for a whole built circuit (for callers that want a fixed limit)."""
+
+BASE_BYTES = 58_000_000
+"""Peak resident memory of a ``qcpp compile`` process on a small scenario (interpreter and imports)."""
+
+GATES_PER_SECOND = 25_000
+"""Lowered gates built and written per second (streamed OpenQASM), for the predicted time."""
 
 
 @dataclass(frozen=True)
@@ -75,3 +93,33 @@ def predict_size(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN
     gates = lc.cost(p).total
     qubits = sum(size for _, size in registers_for(scenario, p, options))
     return SizePrediction(gates, qubits, gates * BYTES_PER_GATE)
+
+
+def compile_need(
+    scenario: Scenario,
+    p: int,
+    options: PlanOptions = DEFAULT_PLAN,
+    *,
+    streamed: bool,
+    size: SizePrediction | None = None,
+) -> Need:
+    """Predicted peak memory and time of ``qcpp compile`` (see the module docstring).
+
+    Args:
+        scenario: The scenario.
+        p: QAOA layers.
+        options: Circuit construction options.
+        streamed: Whether the circuit is built and written section by section (else whole).
+        size: :func:`predict_size` of the same arguments, if already known.
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> s = default_scenario(6, 6, 3)
+        >>> whole, streamed = compile_need(s, 8, streamed=False), compile_need(s, 8, streamed=True)
+        >>> whole.bytes > streamed.bytes, whole.seconds == streamed.seconds
+        (True, True)
+    """
+    size = predict_size(scenario, p, options) if size is None else size
+    held = predict_size(scenario, 1, options).gates if streamed and p > 1 else size.gates
+    what = f"compiling {size.gates:,} gates on {size.qubits:,} qubits"
+    return Need(what, BASE_BYTES + BYTES_PER_GATE * held, size.gates / GATES_PER_SECOND)

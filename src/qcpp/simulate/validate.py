@@ -15,10 +15,11 @@ angles (given, or seeded random in ``[0.1, pi - 0.1]``; ``[gamma_0, beta_0, gamm
 Backends:
 
 ``statevector``
-    The dense state (:func:`qcpp.simulate.statevector.simulate_statevector`, up to 26 qubits): both checks exactly, every
-    assignment.
+    The dense state (:func:`qcpp.simulate.statevector.simulate_statevector`, up to 26 qubits): both checks exactly,
+    every assignment.
 ``sparse``
-    The sparse state (:func:`qcpp.simulate.sparse.simulate_sparse`): the same, at any width while the support stays small.
+    The sparse state (:func:`qcpp.simulate.sparse.simulate_sparse`): the same, at any width while the support stays
+    small.
 ``tensor``
     Two independent tensor-network methods (:mod:`qcpp.simulate.tensor`):
 

@@ -18,9 +18,10 @@ Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one
 same, byte for byte, as writing the whole circuit.
 
 Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
-costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate); a circuit over ``--max-gates``
-(default :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`: 10 million, about 3 GB and seven minutes of compiling) is
-refused with one line naming the predicted size and the override (``--max-gates N`` or ``--force``), exit 2.
+costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate) and with it the peak memory
+and time (:func:`qcpp.estimators.guard.compile_need`); a compile that would not fit in the available memory or
+would run for more than an hour is refused with one line naming the prediction, the limit and the override
+(``--allow-large`` or ``--force``), exit 2. ``--max-gates N`` refuses circuits over ``N`` lowered gates instead.
 
 Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
 built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total).
@@ -42,7 +43,7 @@ from rich.table import Table
 from qcpp.cli.commands.plan_flags import LayersFlag, ScenarioArg, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, predict_size
+from qcpp.estimators.guard import SizePrediction, compile_need, predict_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
@@ -84,10 +85,16 @@ def compile_command(
     ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
     max_gates: Annotated[
-        int,
-        typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
-    ] = DEFAULT_MAX_GATES,
-    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
+        int | None,
+        typer.Option(
+            "--max-gates",
+            help="Refuse circuits predicted to exceed this many lowered gates (default: refuse only what would not "
+            "fit in the available memory or would run for more than an hour).",
+            min=0,
+            show_default=False,
+        ),
+    ] = None,
+    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates or the size guard.")] = False,
     device: Annotated[
         str | None,
         typer.Option(
@@ -130,7 +137,7 @@ def compile_command(
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     s = load_scenario(scenario, check_range=True)
-    size = _guard(s, p, options, max_gates, force)
+    size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
@@ -242,15 +249,26 @@ def _routed(
     return summary, result.compiled.phase_explain
 
 
-def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
-    """The predicted size; unless ``force``, refuse (ValueError: one line, exit 2) a circuit predicted to exceed
-    ``max_gates`` lowered gates."""
+def _guard(
+    s: Scenario, p: int, options: PlanOptions, max_gates: int | None, force: bool, *, routed: bool, to_qasm: bool
+) -> SizePrediction:
+    """The predicted size; unless ``force``, refuse (one line, exit 2) a circuit predicted to exceed ``max_gates``
+    lowered gates or, without ``max_gates``, one that would not fit in memory or would run for hours
+    (:func:`qcpp.problem.limits.check_need`, lifted by ``--allow-large``)."""
+    from qcpp.problem.limits import check_need
+
     size = predict_size(s, p, options)
-    if not force and not size.fits(max_gates):
-        raise ValueError(
-            f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
-            "(raise it with --max-gates N, or pass --force)"
-        )
+    if force:
+        return size
+    if max_gates is not None:
+        if not size.fits(max_gates):
+            raise ValueError(
+                f"refusing to build {size.describe()}: over the limit of {max_gates:,} gates "
+                "(raise it with --max-gates N, or pass --force)"
+            )
+        return size
+    streamed = not routed and (to_qasm or size.gates >= STREAM_ABOVE_GATES)  # as the command builds it below
+    check_need(compile_need(s, p, options, streamed=streamed, size=size))
     return size
 
 

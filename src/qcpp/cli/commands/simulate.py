@@ -60,23 +60,15 @@ def parse_angles(text: str) -> list[float]:
     return out
 
 
-def _guard(s: Scenario, path: Path) -> None:
-    """Refuse (one line, exit 2) a feasible subspace over the validation limit
-    (:data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS`, or half the available memory); ``--allow-large`` lifts it."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, validate_size
+def _guard(s: Scenario, path: Path, p: int, method: str) -> None:
+    """Refuse (one line, exit 2) a simulation predicted to need more memory than is available or to run for
+    hours (:func:`qcpp.simulate.footprint.simulate_need`, :func:`qcpp.problem.limits.check_need`);
+    ``--allow-large`` lifts it."""
+    from qcpp.problem.limits import check_need, large_allowed
+    from qcpp.simulate.footprint import simulate_need
 
-    if large_allowed():
-        return
-    size = validate_size(s, max_assignments=MAX_VALIDATE_ASSIGNMENTS)
-    budget = memory_budget()
-    if size.assignments > MAX_VALIDATE_ASSIGNMENTS or (budget is not None and size.bytes > budget):
-        limit = (
-            f"the limit of {MAX_VALIDATE_ASSIGNMENTS:,} feasible assignments"
-            if size.assignments > MAX_VALIDATE_ASSIGNMENTS
-            else f"the memory budget of {budget / 1e9:.1f} GB"  # type: ignore[operator]
-        )
-        raise ValueError(f"{path}: simulating {size.describe()}: over {limit}; pass {OVERRIDE_FLAG} to try anyway")
+    if not large_allowed():
+        check_need(simulate_need(s, p, method), field=str(path))
 
 
 def simulate_command(
@@ -99,8 +91,7 @@ def simulate_command(
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
         raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
     s = load_scenario(scenario, check_range=True, phases=True)
-    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
-        _guard(s, scenario)
+    _guard(s, scenario, p, method)
     with Progress(f"simulate {scenario.name}") as bar:
         bar.stage(f"simulating ({method})")
         res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

@@ -22,8 +22,10 @@ solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOL
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
 
 ``dfs`` predicts its size first (:func:`qcpp.problem.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
-memory, time) and refuses a search over the limits in one line naming that size and ``--allow-large``. Every method
-shows progress on stderr (:mod:`qcpp.cli.progress`).
+memory, time) and refuses a search that would not fit in the available memory or would run for more than
+:data:`qcpp.problem.limits.MAX_SECONDS`, in one line naming that size and ``--allow-large``; ``qaoa`` refuses a
+subspace simulator that would not fit (:func:`qcpp.simulate.footprint.training_need`). Every method shows progress
+on stderr (:mod:`qcpp.cli.progress`).
 """
 
 from __future__ import annotations
@@ -126,8 +128,7 @@ def solve_help() -> str:
 
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
     """The robots' paths for ``dfs``, after the size prediction (refused over the limits, one line)."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.problem.solvers import exhaustive
+    from qcpp.problem.limits import MAX_SECONDS, OVERRIDE_FLAG, available_memory, large_allowed
     from qcpp.problem.solvers.exhaustive import DfsTooLargeError, dfs_paths
 
     with Progress(description) as bar:
@@ -135,11 +136,12 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
         try:
             if large_allowed():
                 return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
-            return dfs_paths(
+            return dfs_paths(  # refused only if it would not fit in memory or would run for hours
                 scenario,
-                max_assignments=exhaustive.MAX_DFS_ASSIGNMENTS,
-                max_paths=exhaustive.MAX_DFS_PATHS,
-                max_bytes=memory_budget(),
+                max_assignments=None,
+                max_paths=None,
+                max_bytes=available_memory(),
+                max_seconds=MAX_SECONDS,
             )
         except DfsTooLargeError as exc:
             raise ValueError(
@@ -148,31 +150,20 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
             ) from None
 
 
-STATE_BYTES_PER_ASSIGNMENT = 16
-"""One complex128 amplitude per feasible assignment: the least one QAOA state of the subspace simulator holds."""
+def _qaoa_guard(scenario: Scenario, path: Path, description: str, p: int) -> None:
+    """Refuse (one line, exit 2) a QAOA training whose subspace simulator would not fit in the available memory
+    (:func:`qcpp.simulate.footprint.training_need`; no time model: the optimiser decides how long it runs);
+    ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory after the path enumeration and
+    3 robots on 6x6 enumerated paths for minutes first."""
+    from qcpp.problem.limits import check_need, large_allowed
+    from qcpp.simulate.footprint import training_need
 
-
-def _qaoa_guard(scenario: Scenario, path: Path, description: str) -> None:
-    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold even one state in the memory
-    budget (half the available memory); ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory
-    after the path enumeration and 3 robots on 6x6 enumerated paths for minutes first."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.simulate.validate import validate_size
-
-    budget = memory_budget()
-    if large_allowed() or budget is None:
+    if large_allowed():
         return
     with Progress(description) as bar:
         bar.stage("counting feasible assignments")
-        size = validate_size(scenario, max_assignments=budget // STATE_BYTES_PER_ASSIGNMENT)
-    need = size.assignments * STATE_BYTES_PER_ASSIGNMENT
-    if need > budget:
-        counted = " x ".join(f"{n:,}" for n in size.paths_per_robot)
-        raise ValueError(
-            f"{path}: training QAOA on {'at least ' if not size.exact else ''}{size.assignments:,} feasible "
-            f"assignments (paths counted: {counted}): one state needs at least {need / 1e9:.1f} GB, over the memory "
-            f"budget of {budget / 1e9:.1f} GB; pass {OVERRIDE_FLAG} to try anyway, or use --method cpsat or anneal"
-        )
+        need = training_need(scenario, p)
+    check_need(need, field=str(path))
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
@@ -261,7 +252,7 @@ def solve_command(
     exact = None
     description = f"{method} on {scenario.name}"
     if method == "qaoa":
-        _qaoa_guard(s, scenario, description)
+        _qaoa_guard(s, scenario, description, p)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
     with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
         progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
