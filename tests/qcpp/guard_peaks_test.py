@@ -85,6 +85,7 @@ HEAVY: list[Case] = [
     ("solve", (4, 4, 3), ("-m", "dfs"), dfs_bytes),
     ("solve", "two_robots_5x5.toml", ("-m", "dfs"), dfs_bytes),
     ("solve", (4, 5, 2), ("-m", "qaoa", "--maxiter", "2"), lambda s: training_need(s, 1).bytes),
+    ("solve", (4, 4, 3), ("-m", "qaoa", "--maxiter", "2"), lambda s: training_need(s, 1).bytes),
     ("validate", "two_robots_4x4.toml", (), validate_need_bytes),
     ("compile", (6, 6, 3), ("-p", "4", "--lowered", "--qasm", "{tmp}/out.qasm"),
      lambda s: compile_need(s, 4, DEFAULT_PLAN, streamed=True).bytes),
