@@ -13,6 +13,7 @@ Usage::
     python benchmarks/signal_tests_under_load.py                 # 20 runs beside 2 CPU-bound jobs
     python benchmarks/signal_tests_under_load.py --runs 3 -k qcec # 3 runs of the tests matching 'qcec'
     python benchmarks/signal_tests_under_load.py --list           # only print the selected tests
+    python benchmarks/signal_tests_under_load.py --runs 2 --skip guard_peaks   # without the memory measurements
 
 Exit code 0 when every run of every selected test passed (or was skipped), 1 otherwise.
 """
@@ -82,10 +83,11 @@ def select_tests(path: Path) -> list[str]:
     return out
 
 
-def all_selected(keyword: str | None) -> list[str]:
-    """Every selected test under ``tests/`` (optionally only ids containing ``keyword``)."""
+def all_selected(keyword: str | None, skip: list[str] | None = None) -> list[str]:
+    """Every selected test under ``tests/`` (optionally only ids containing ``keyword``, none containing an item
+    of ``skip``)."""
     ids = [t for p in sorted((REPO / "tests").rglob("*_test.py")) for t in select_tests(p)]
-    return [t for t in ids if keyword is None or keyword in t]
+    return [t for t in ids if (keyword is None or keyword in t) and not any(s in t for s in skip or [])]
 
 
 def _outcomes(junit: Path) -> dict[str, str]:
@@ -110,10 +112,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--runs", type=int, default=20, help="runs in a row (default 20)")
     parser.add_argument("--hogs", type=int, default=2, help="CPU-bound jobs beside the tests (default 2)")
     parser.add_argument("-k", dest="keyword", default=None, help="only test ids containing this text")
+    parser.add_argument("--skip", action="append", default=[], help="leave out test ids containing this (repeat)")
     parser.add_argument("--keep", type=Path, default=None, help="folder for the output of failed runs")
     parser.add_argument("--list", action="store_true", help="print the selected tests and stop")
     args = parser.parse_args(argv)
-    tests = all_selected(args.keyword)
+    tests = all_selected(args.keyword, args.skip)
     if args.list or not tests:
         print("\n".join(tests) or "no test selected")
         return 0
