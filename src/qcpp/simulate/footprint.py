@@ -16,9 +16,12 @@ models are linear in the sizes that dominate, with coefficients fitted to measur
   and the cost diagonal (a 2-core machine under load; 5x5, p = 1: 17-46 s);
 * the gate-level methods (``statevector``, ``tensor``) also list every feasible assignment with its bits
   (:data:`ASSIGNMENT_LIST_BYTES` per assignment plus 8 bytes per decision variable);
-* **validate** holds the subspace state and, per feasible assignment, a tuple of paths, its basis-state index
-  and reference amplitude: :data:`VALIDATE_BYTES_PER_ASSIGNMENT` (the same per-assignment Python work bounds its
-  time: :data:`VALIDATE_SECONDS_PER_ASSIGNMENT`);
+* **validate** holds the subspace state, per feasible assignment a tuple of paths, its basis-state index and
+  reference amplitude, and the simulated circuit's state (the sparse backend's grows with the feasible subspace):
+  :data:`VALIDATE_BYTES_PER_ASSIGNMENT` and :data:`VALIDATE_SECONDS_PER_ASSIGNMENT`. Measured: 0.19 GB and 28 s
+  for 33,856 assignments (two robots, 4x4, sparse); 952,576 (two robots, 4x5, sparse) had reached 1.64 GB and had
+  not finished after 53 minutes on a 2-core machine under a load average of 22 (stopped there, so both figures
+  are lower bounds);
 * **training** (``qcpp solve --method qaoa``): :data:`TRAINING_BYTES_PER_AMPLITUDE` per amplitude and
   :data:`TRAINING_PAIR_BYTES` per pairwise cost entry. Measured: 0.33 GB for 952,576 amplitudes (two robots, 4x5),
   0.42 GB for 6,229,504 (three robots, 4x4); two scenarios for two coefficients, so the fit is exact there and a
@@ -70,12 +73,12 @@ SUBSPACE_SECONDS_PER_AMPLITUDE = 3e-7
 ASSIGNMENT_LIST_BYTES = 200
 """Per feasible assignment listed by the gate-level methods: its tuple, bits and cost (plus 8 per variable)."""
 
-VALIDATE_BYTES_PER_ASSIGNMENT = 500
+VALIDATE_BYTES_PER_ASSIGNMENT = 1600
 """Per feasible assignment of a validation: the subspace state, the assignment tuples, their basis-state
-indices (Python integers) and reference amplitudes, the comparison."""
+indices (Python integers) and reference amplitudes, the sparse state of the circuit, the comparison."""
 
-VALIDATE_SECONDS_PER_ASSIGNMENT = 2e-5
-"""Per feasible assignment of a validation: the Python loops that list, index and compare them."""
+VALIDATE_SECONDS_PER_ASSIGNMENT = 1e-3
+"""Per feasible assignment of a validation: the circuit simulation (sparse state) and the Python loops."""
 
 TRAINING_BYTES_PER_AMPLITUDE = 34
 """Per amplitude of the subspace simulator while training (the state and the adjoint gradient's)."""
@@ -130,13 +133,13 @@ def simulate_need(scenario: Scenario, p: int, method: str = "subspace", size: Va
 
 
 def validate_need(scenario: Scenario, size: ValidationSize | None = None) -> Need:
-    """Predicted peak memory and time of ``qcpp validate`` before its circuit simulation (the reference state
-    and the comparison; the simulated circuit adds its own state, bounded by the backend).
+    """Predicted peak memory and time of ``qcpp validate`` (the reference state, the comparison and the
+    sparse state of the circuit; a fit to few measurements, see the module docstring).
 
     Example:
         >>> from qcpp.problem.presets import default_scenario
         >>> round(validate_need(default_scenario(4, 4, 2)).bytes / 1e9, 2)
-        0.22
+        0.26
     """
     size = feasible_size(scenario) if size is None else size
     a = size.assignments
