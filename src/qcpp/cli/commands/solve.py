@@ -155,7 +155,7 @@ def _qaoa_guard(scenario: Scenario, path: Path, description: str, p: int) -> Non
     (:func:`qcpp.simulate.footprint.training_need`; no time model: the optimiser decides how long it runs);
     ``--allow-large`` lifts it. Without it 3 robots on 5x5 ran out of memory after the path enumeration and
     3 robots on 6x6 enumerated paths for minutes first."""
-    from qcpp.problem.limits import check_need, large_allowed
+    from qcpp.problem.limits import SizeError, check_need, large_allowed
     from qcpp.simulate.footprint import training_need
 
     if large_allowed():
@@ -163,7 +163,10 @@ def _qaoa_guard(scenario: Scenario, path: Path, description: str, p: int) -> Non
     with Progress(description) as bar:
         bar.stage("counting feasible assignments")
         need = training_need(scenario, p)
-    check_need(need, field=str(path))
+    try:
+        check_need(need, field=str(path))
+    except SizeError as exc:
+        raise ValueError(f"{exc}, or use --method cpsat or anneal") from None
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
