@@ -136,25 +136,29 @@ def test_an_exception_the_signal_caused_is_reported_as_interrupted(monkeypatch: 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:
     """QCEC's native check holds the interpreter lock for minutes on two_robots_4x4; it runs in a child process,
-    so the signal is handled at once. The signal goes after the QCEC stage's first heartbeat line (the stage is
-    under way; without the child, QCEC in the same process printed none for 11 minutes and ignored SIGTERM)."""
+    so the signal is handled at once. The signal goes once the validation names the QCEC stage, which it does
+    when the child has received the circuits (an observable readiness signal; a heartbeat line could come while
+    the child was still being started, and a signal there once left a child printing a traceback)."""
     pytest.importorskip("mqt.qcec")
     import queue
     import threading
 
-    proc = start(["validate", "examples/two_robots_4x4.toml", "--backend", "qcec"], {"QCPP_PROGRESS": "lines"})
+    from qcpp.simulate.validate import QCEC_STAGE
+
+    env = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}  # a line at every stage
+    proc = start(["validate", "examples/two_robots_4x4.toml", "--backend", "qcec"], env)
     assert proc.stderr is not None
     lines: queue.Queue[str] = queue.Queue()
     reader = threading.Thread(target=lambda: [lines.put(line) for line in iter(proc.stderr.readline, "")],
                               daemon=True)  # fmt: skip
     reader.start()
     seen: list[str] = []
-    while sum("(qcec)" in line for line in seen) < 2:  # the stage's line, then a heartbeat
+    while not any(QCEC_STAGE in line for line in seen):
         try:
             seen.append(lines.get(timeout=HUNG))
         except queue.Empty:
             proc.kill()
-            pytest.fail(f"no heartbeat of the QCEC stage within {HUNG:g} s: {''.join(seen)!r}")
+            pytest.fail(f"the QCEC stage did not start within {HUNG:g} s: {''.join(seen)!r}")
     proc.send_signal(sig)
     try:
         proc.wait(timeout=HUNG)
@@ -167,6 +171,47 @@ def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:
     err = "".join(seen)
     assert proc.returncode == 130, err
     assert err.strip().splitlines()[-1] == "interrupted" and "Traceback" not in err, err
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_the_qcec_child_starts_leaves_no_traceback(sig: signal.Signals) -> None:
+    """The signal lands in the parent at the worst moment: the QCEC child's interpreter is launched and its
+    arguments are not yet written (the signal is sent from inside the launch, so where it lands is certain, not
+    timing). The start finishes, then the signal is handled, and the child is terminated without a word."""
+    pytest.importorskip("mqt.qcec")
+    script = (
+        "import multiprocessing, multiprocessing.util, os, signal, sys\n"
+        "from qcpp.ir.circuit import Circuit, Section\n"
+        "from qcpp.ir.gates import mcx\n"
+        "from qcpp.lowering.passes import lower\n"
+        "from qcpp.simulate.equivalence import check_sections_interruptibly\n"
+        "signal.signal(signal.SIGTERM, signal.default_int_handler)\n"
+        "launch = multiprocessing.util.spawnv_passfds\n"
+        "def spawn(*args):\n"
+        "    pid = launch(*args)\n"
+        "    if 'spawn_main' in repr(args[1]):\n"  # the QCEC child (not the resource tracker)
+        f"        os.kill(os.getpid(), {int(sig)})\n"
+        "    return pid\n"
+        "multiprocessing.util.spawnv_passfds = spawn\n"
+        "high = Circuit([('data', 5)], [Section('s', [mcx([0, 1, 2, 3], 4, '1011')])])\n"
+        "try:\n"
+        "    check_sections_interruptibly(high, lower(high), 5)\n"
+        "    print('not stopped')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('children left:', len(multiprocessing.active_children()))\n"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script],
+        cwd=REPO,
+        env={**os.environ, "PYTHONPATH": str(REPO / "src")},
+        capture_output=True,
+        text=True,
+        timeout=HUNG,
+        check=False,
+    )
+    assert proc.stdout == "children left: 0\n", proc.stdout + proc.stderr
+    assert proc.stderr == "", proc.stderr
 
 
 def test_a_signal_that_lands_in_a_finaliser_still_stops_without_a_traceback() -> None:

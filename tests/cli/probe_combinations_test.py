@@ -46,4 +46,4 @@ def test_qaoa_training_too_big_for_memory_is_refused_before_enumerating(tmp_path
     for optimizer in ("layerwise", "multi-angle"):
         res = run("solve", str(path), "-m", "qaoa", "--optimizer", optimizer)
         assert_one_line_error(res, "three_5x5.toml: training QAOA on at least", "feasible assignments",
-                              "over the memory budget", "--allow-large")
+                              "GB available", "--allow-large")

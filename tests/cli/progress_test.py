@@ -231,20 +231,29 @@ def test_hopeless_dfs_is_refused_at_once_naming_the_size_and_the_override(
     s = default_scenario(rows, cols, robots)
     path = write_scenario(tmp_path / "s.toml", rows, cols, [(r.start, r.goal) for r in s.robots])
     res = invoke("solve", path, "-m", "dfs")
-    assert_one_line_error(res, "paths per robot", "assignments", "GB", "over the limit", "--allow-large")
+    assert_one_line_error(res, "paths per robot", "assignments", "GB", "over the run-time limit of 60 min",
+                          "--allow-large")  # fmt: skip
 
 
-def test_dfs_refuses_too_many_paths_or_too_much_memory_and_allow_large_lifts_it(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
+def test_dfs_refuses_what_does_not_fit_in_the_memory_available_and_allow_large_lifts_it(tmp_path: Path) -> None:
     path = write_scenario(tmp_path / "s.toml", 4, 4, [((0, 0), (3, 3))])  # 184 paths
-    monkeypatch.setattr(exhaustive, "MAX_DFS_PATHS", 100)
-    assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the limit of 100 paths per robot", "--allow-large")
-    res = invoke("solve", path, "-m", "dfs", "--allow-large", "--json")
+    small = {"QCPP_MEMORY_AVAILABLE": "1M"}
+    assert_one_line_error(invoke("solve", path, "-m", "dfs", env=small), "GB of memory available", "--allow-large")
+    res = invoke("solve", path, "-m", "dfs", "--allow-large", "--json", env=small)
     assert res.exit_code == 0 and json.loads(res.stdout)["evaluated"] == 184
-    monkeypatch.setattr("qcpp.problem.limits.memory_budget", lambda share=0.5: 1000)
-    monkeypatch.setattr(exhaustive, "MAX_DFS_PATHS", 10**6)
-    assert_one_line_error(invoke("solve", path, "-m", "dfs"), "over the memory budget", "--allow-large")
+    res = invoke("solve", path, "-m", "dfs", "--json")  # the machine's memory: a small search runs
+    assert res.exit_code == 0 and json.loads(res.stdout)["evaluated"] == 184
+
+
+def test_dfs_of_two_robots_on_5x5_is_not_refused() -> None:
+    """73.8 million assignments: about 0.4 GB and half a minute, so it runs without an override (the fixed
+    limits it replaced refused 2 million paths or a billion assignments, whatever the machine)."""
+    s = load_scenario(EXAMPLES / "two_robots_5x5.toml")
+    counts = [count_paths(s, r) for r in range(s.num_robots)]
+    size = exhaustive.DfsSize(tuple(counts), (True, True), s.edges_per_robot, s.grid.num_nodes)
+    assert size.bytes < 10**9 and size.seconds < 600
+    lists = dfs_paths(s, max_assignments=None, max_paths=None, max_bytes=24 * 10**9, max_seconds=3600.0)
+    assert [len(pl) for pl in lists] == counts
 
 
 def test_dfs_size_is_a_lower_bound_until_counted() -> None:
@@ -272,18 +281,34 @@ def test_validate_picks_a_backend_that_fits() -> None:
     assert "backend=sparse (auto), 80 qubits" in " ".join(big.stdout.split())  # the choice is in the title
 
 
-def test_validate_refuses_a_reference_state_that_does_not_fit(monkeypatch: pytest.MonkeyPatch) -> None:
-    res = invoke("validate", str(EXAMPLES / "two_robots_5x5.toml"))  # 73.8 M feasible assignments
-    assert_one_line_error(res, "two_robots_5x5.toml", "feasible assignments", "GB", "over the limit", "--allow-large")
-    monkeypatch.setattr("qcpp.problem.limits.memory_budget", lambda share=0.5: 1000)
-    res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"))
-    assert_one_line_error(res, "31,684 feasible assignments", "over the memory budget", "--allow-large")
+def test_validate_refuses_a_reference_state_that_does_not_fit() -> None:
+    res = invoke("validate", str(EXAMPLES / "two_robots_5x5.toml"), env={"QCPP_MEMORY_AVAILABLE": "24G"})
+    assert_one_line_error(res, "two_robots_5x5.toml", "73,788,100 feasible assignments", "predicted peak",
+                          "over the 24.0 GB available", "--allow-large")  # fmt: skip
+    res = invoke("validate", str(EXAMPLES / "two_robots_4x4.toml"), env={"QCPP_MEMORY_AVAILABLE": "1000"})
+    assert_one_line_error(res, "two_robots_4x4.toml", "validating at least", "over the 0.0 GB available",
+                          "--allow-large")  # fmt: skip
 
 
-def test_simulate_refuses_a_subspace_that_does_not_fit() -> None:
-    res = invoke("simulate", str(EXAMPLES / "two_robots_5x5.toml"))
-    assert_one_line_error(res, "two_robots_5x5.toml", "simulating at least", "feasible assignments", "--allow-large")
+def test_simulate_refuses_only_what_does_not_fit_or_runs_for_hours() -> None:
+    five = str(EXAMPLES / "two_robots_5x5.toml")
+    res = invoke("simulate", five, env={"QCPP_MEMORY_AVAILABLE": "2G"})  # it peaks at about 3.1 GB
+    assert_one_line_error(res, "two_robots_5x5.toml", "73,788,100 feasible assignments", "predicted peak 3.1 GB",
+                          "over the 2.0 GB available", "--allow-large")  # fmt: skip
+    res = invoke("simulate", five, "-p", "500", env={"QCPP_MEMORY_AVAILABLE": "24G"})
+    assert_one_line_error(res, "two_robots_5x5.toml", "predicted to run for about", "h (peak 3.1 GB",
+                          "over the limit of 1 h", "--allow-large")  # fmt: skip
     assert invoke("simulate", str(EXAMPLES / "two_robots_4x4.toml"), "--json").exit_code == 0
+
+
+def test_the_two_robot_5x5_simulation_fits_a_24_gb_machine() -> None:
+    """It peaks at 3.1 GB in under a minute: the guard lets it run (the check itself, without simulating)."""
+    from qcpp.problem.limits import check_need
+    from qcpp.simulate.footprint import simulate_need
+
+    need = simulate_need(load_scenario(EXAMPLES / "two_robots_5x5.toml"), 1)
+    assert 2.5e9 < need.bytes < 4e9 and need.seconds is not None and need.seconds < 600
+    check_need(need, available=24 * 10**9)
 
 
 def test_a_new_stage_is_written_at_once_on_a_pipe_past_the_first_line_delay(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -143,8 +143,8 @@ def compile(
         bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
         layout: With a device: ``auto``, ``medial`` or ``greedy``.
         local_ancillas: With a device: region-local ancillas.
-        max_gates: Refuse circuits predicted to exceed this many lowered gates (default: ``qcpp compile``'s
-            limit, :data:`qcpp.estimators.guard.DEFAULT_MAX_GATES`).
+        max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
+            only what would not fit in the available memory or would run for hours).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
             :class:`~qcpp.plan.options.PlanOptions`).
 
@@ -155,10 +155,11 @@ def compile(
         qcpp.errors.OptionError: a bad ``p``, option or binding value, an unknown plan option, or a symbol in
             ``bind`` the circuit does not have (naming them).
         qcpp.hardware.device.DeviceError: an unknown device.
-        qcpp.problem.limits.SizeError: a circuit predicted over ``max_gates``.
+        qcpp.problem.limits.SizeError: a circuit predicted over ``max_gates``, or (without it) one that would not fit
+            in the available memory or would run for hours (lifted inside :func:`qcpp.allow_large`).
         qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
     """
-    from qcpp.estimators.guard import DEFAULT_MAX_GATES, check_size
+    from qcpp.estimators.guard import check_size
     from qcpp.hardware.device import get_device
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
@@ -181,9 +182,11 @@ def compile(
         raise OptionError("device", f"expected a device name, got {device!r}")
     else:
         get_device(device)  # an unknown name fails before any work
-    limit = DEFAULT_MAX_GATES if max_gates is None else check_count(max_gates, "max_gates", 0)
+    limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_cost_range(s)  # what the command line checks when it loads a file
-    check_size(s, layers, options, limit, "raise it with max_gates=N")
+    check_size(
+        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint="run it inside qcpp.allow_large()"
+    )
     if device is None:
         result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings)
         return Compiled(s, layers, result.circuit, lowered, _summary=result.summary())

@@ -158,7 +158,7 @@ def train_qaoa(
     if mixer_warm and optimizer != "layerwise":
         raise OptionError("mixer_warm", f"applies to optimizer='layerwise' only (got optimizer={optimizer!r})")
     check_phase_range(s)
-    check_training_size(s, "scenario", _OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'")
+    check_training_size(s, "scenario", _OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'", p=layers)
     return solve_qaoa(
         s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter, initial=initial,  # type: ignore[arg-type]
         mixer_warm=mixer_warm, seed=seed, rule=rule,  # type: ignore[arg-type]
@@ -214,6 +214,5 @@ def simulate_qaoa(
         if len(values) != 2 * layers:
             raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
     check_phase_range(s)
-    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
-        check_simulation_size(s, "scenario", _OVERRIDE)
+    check_simulation_size(s, "scenario", _OVERRIDE, p=layers, method=method)
     return evaluate(s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

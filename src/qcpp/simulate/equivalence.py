@@ -26,9 +26,12 @@ Example:
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -218,7 +221,13 @@ def _clean_blocks(high: Circuit) -> list[tuple[int, int]]:
 
 
 def check_sections_interruptibly(
-    high: Circuit, low: Circuit, num_plain: int, *, global_phase_ok: bool = False, **options: Any
+    high: Circuit,
+    low: Circuit,
+    num_plain: int,
+    *,
+    global_phase_ok: bool = False,
+    started: Callable[[], None] | None = None,
+    **options: Any,
 ) -> EquivalenceResult:
     """:func:`check_sections` in a child process, so that Ctrl-C and SIGTERM stop it at once.
 
@@ -228,8 +237,17 @@ def check_sections_interruptibly(
     terminated. The child starts by ``spawn`` (no copy of the parent's threads or locks), which costs its imports
     (about a second).
 
+    A signal may arrive at any moment, so the start is arranged to leave nothing behind wherever it lands: the
+    child is started with two small arguments while SIGINT and SIGTERM are held (:func:`_signals_held`: a
+    ``spawn`` start interrupted between launching the interpreter and writing its arguments left a child that
+    printed a traceback about truncated pickle data); the circuits follow over the pipe once the child is known
+    to the parent, which terminates it if the sending is interrupted, and a child that receives no whole job
+    ends silently.
+
     Args:
         high, low, num_plain, global_phase_ok, options: as for :func:`check_sections`.
+        started: Called once the child holds the circuits and QCEC is about to run (a readiness signal for
+            progress and for tests that interrupt the check).
 
     Returns:
         The :class:`EquivalenceResult` of :func:`check_sections`.
@@ -240,44 +258,92 @@ def check_sections_interruptibly(
     import multiprocessing
 
     ctx = multiprocessing.get_context("spawn")
-    receiver, sender = ctx.Pipe(duplex=False)
-    kwargs = {"global_phase_ok": global_phase_ok, **options}
-    args = (sender, os.getpid(), high, low, num_plain, kwargs)
-    child = ctx.Process(target=_sections_in_child, args=args, daemon=True)
-    child.start()
-    sender.close()
+    conn, child_end = ctx.Pipe(duplex=True)
+    child = ctx.Process(target=_sections_in_child, args=(child_end, os.getpid()), daemon=True)
+    launched = False
     try:
-        while not receiver.poll(0.1):
-            if not child.is_alive() and not receiver.poll(0):
-                raise RuntimeError(f"the QCEC process ended without an answer (exit code {child.exitcode})")
-        ok, value = receiver.recv()
+        with _signals_held():
+            child.start()
+            launched = True
+        child_end.close()
+        conn.send((high, low, num_plain, {"global_phase_ok": global_phase_ok, **options}))
+        while True:
+            while not conn.poll(0.1):
+                if not child.is_alive() and not conn.poll(0):
+                    raise RuntimeError(f"the QCEC process ended without an answer (exit code {child.exitcode})")
+            kind, value = conn.recv()
+            if kind != "started":
+                break
+            if started is not None:
+                started()
     finally:
-        if child.is_alive():
-            child.terminate()
-        child.join(5)
-        if child.is_alive():  # pragma: no cover - a child that ignores SIGTERM
-            child.kill()
-            child.join()
-        receiver.close()
-    if not ok:
+        if launched:
+            if child.is_alive():
+                child.terminate()
+            child.join(5)
+            if child.is_alive():  # pragma: no cover - a child that ignores SIGTERM
+                child.kill()
+                child.join()
+        conn.close()
+        child_end.close()
+    if kind == "error":
         raise value
     return value
 
 
-def _sections_in_child(
-    sender: Any, parent: int, high: Circuit, low: Circuit, num_plain: int, kwargs: dict[str, Any]
-) -> None:
-    """The child of :func:`check_sections_interruptibly`: send ``(True, result)`` or ``(False, exception)``.
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM inside the block and deliver the first one that arrived when it ends.
+
+    In the main thread only (elsewhere Python runs no signal handler anyway). The handlers in place are put back
+    first, then the held signal is raised again, so it is handled exactly as it would have been, one block later.
+    SIGINT is also blocked in the calling thread, so a process started inside the block inherits it blocked: a
+    terminal's Ctrl-C reaches the whole process group, and the parent, not the child, must handle it (it
+    terminates the child with SIGTERM, which stays open).
+
+    Example:
+        >>> with _signals_held():
+        ...     pass
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held: list[int] = []
+    previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    for s in previous:
+        signal.signal(s, lambda signum, frame: held.append(signum))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hasattr(signal, "pthread_sigmask") else None
+    try:
+        yield
+    finally:
+        if mask is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+        if held:
+            signal.raise_signal(held[0])
+
+
+def _sections_in_child(conn: Any, parent: int) -> None:
+    """The child of :func:`check_sections_interruptibly`: receive the job, say ``started``, send ``("result",
+    result)`` or ``("error", exception)``.
 
     It dies with its parent: a parent killed outright (``kill -9``) cannot terminate it, and QCEC would otherwise
-    run on alone for minutes (Linux ``PR_SET_PDEATHSIG``; elsewhere the parent's ``terminate`` only)."""
+    run on alone for minutes (Linux ``PR_SET_PDEATHSIG``; elsewhere the parent's ``terminate`` only). A job that
+    never arrives whole (the parent was interrupted while sending it) ends the child silently."""
     _die_with_parent(parent)
     try:
-        sender.send((True, check_sections(high, low, num_plain, **kwargs)))
+        high, low, num_plain, kwargs = conn.recv()
+    except Exception:  # EOF or truncated data: the parent stopped while sending
+        os._exit(1)
+    try:
+        conn.send(("started", None))
+        conn.send(("result", check_sections(high, low, num_plain, **kwargs)))
     except Exception as exc:  # handed to the parent, which raises it
-        sender.send((False, exc))
+        with contextlib.suppress(Exception):
+            conn.send(("error", exc))
     finally:
-        sender.close()
+        conn.close()
 
 
 def _die_with_parent(parent: int) -> None:

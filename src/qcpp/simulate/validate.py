@@ -439,7 +439,7 @@ def validate(
         got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
         checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
     elif backend == "qcec":
-        checks.append(_qcec_check(scenario, p, rule, bindings, circuit))
+        checks.append(_qcec_check(scenario, p, rule, bindings, circuit, at))
     else:
         from qcpp.simulate.tensor import dask_client
 
@@ -475,14 +475,21 @@ def _open_qubits(scenario: Scenario) -> list[int]:
     return list(range(n)) if n <= 20 else []
 
 
-def _qcec_check(scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any) -> Check:
+QCEC_STAGE = "checking the sections with QCEC"
+"""The stage :func:`validate` names once the QCEC child process holds the circuits (``qcec`` backend)."""
+
+
+def _qcec_check(
+    scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any, stage: Callable[[str], None]
+) -> Check:
     from qcpp.plan.compile import compile_scenario
     from qcpp.plan.options import PlanOptions
     from qcpp.simulate.equivalence import check_sections_interruptibly
 
     t0 = time.perf_counter()
     high = compile_scenario(scenario, p, PlanOptions(rule=rule), bindings=bindings).circuit
-    r = check_sections_interruptibly(high, low, scenario.num_variables)  # QCEC holds the GIL: Ctrl-C needs a child
+    # QCEC holds the GIL: Ctrl-C needs a child; the stage is named once the child holds the circuits
+    r = check_sections_interruptibly(high, low, scenario.num_variables, started=lambda: stage(QCEC_STAGE))
     note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"
     for message in r.messages:  # QCEC's own warnings, captured instead of leaking, in our words where known
         if "alternating checker cannot handle" in message:

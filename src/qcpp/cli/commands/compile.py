@@ -7,13 +7,24 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
 
-Output files follow :mod:`qcpp.io.atomic` (written whole or not at all; a missing folder is an error, checked
-before compiling). ``--qasm`` streams one plan section at a time
-(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is
-byte-identical to writing the whole circuit. Before building anything the lowered gate count is predicted
-(:func:`qcpp.estimators.guard.predict_size`, exact) and a circuit over ``--max-gates`` is refused in one line
-naming the override (``--max-gates N`` or ``--force``), exit 2. Large circuits and every ``--qasm`` write show
-progress on stderr.
+Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
+written straight to, a missing folder is an error (checked before compiling).
+
+Library errors (bad scenario, unbound symbols for OpenQASM 2, unwritable file) surface through the CLI's shared
+handler as one line on stderr and exit code 2.
+
+Writing ``--qasm`` streams: the circuit is built, lowered, bound and written one section of its plan at a time
+(:func:`qcpp.lowering.qasm_stream.write_qasm_sections`), so peak memory does not grow with ``p``; the file is the
+same, byte for byte, as writing the whole circuit.
+
+Size guard: before building anything, the lowered circuit's gate count is predicted from the plan's gadget
+costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate) and with it the peak memory
+and time (:func:`qcpp.estimators.guard.compile_need`); a compile that would not fit in the available memory or
+would run for more than an hour is refused with one line naming the prediction, the limit and the override
+(``--allow-large`` or ``--force``), exit 2. ``--max-gates N`` refuses circuits over ``N`` lowered gates instead.
+
+Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
+built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total).
 """
 
 from __future__ import annotations
@@ -40,7 +51,7 @@ from qcpp.cli.commands.inline_scenario import (
 from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.estimators.guard import DEFAULT_MAX_GATES, SizePrediction, check_size
+from qcpp.estimators.guard import SizePrediction, check_size, predict_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
@@ -86,10 +97,16 @@ def compile_command(
     ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of a table.")] = False,
     max_gates: Annotated[
-        int,
-        typer.Option("--max-gates", help="Refuse circuits predicted to exceed this many lowered gates.", min=0),
-    ] = DEFAULT_MAX_GATES,
-    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates.")] = False,
+        int | None,
+        typer.Option(
+            "--max-gates",
+            help="Refuse circuits predicted to exceed this many lowered gates (default: refuse only what would not "
+            "fit in the available memory or would run for more than an hour).",
+            min=0,
+            show_default=False,
+        ),
+    ] = None,
+    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates or the size guard.")] = False,
     device: Annotated[
         str | None,
         typer.Option(
@@ -146,7 +163,7 @@ def compile_command(
     else:
         s = inline_scenario(grid, robots, obstacle, hard_obstacles)  # type: ignore[arg-type]
         label = s.name
-    size = _guard(s, p, options, max_gates, force)
+    size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
@@ -242,10 +259,15 @@ def _routed(
     return result.compile_summary(), result.compiled.phase_explain
 
 
-def _guard(s: Scenario, p: int, options: PlanOptions, max_gates: int, force: bool) -> SizePrediction:
+def _guard(
+    s: Scenario, p: int, options: PlanOptions, max_gates: int | None, force: bool, *, routed: bool, to_qasm: bool
+) -> SizePrediction:
     """The predicted size; unless ``force``, refuse (one line, exit 2) a circuit predicted to exceed ``max_gates``
-    lowered gates."""
-    return check_size(s, p, options, max_gates, "raise it with --max-gates N, or pass --force", force)
+    lowered gates or, without ``max_gates``, one that would not fit in memory or would run for hours
+    (:func:`qcpp.estimators.guard.check_size`, lifted by ``--allow-large``)."""
+    streamed = not routed and (to_qasm or predict_size(s, p, options).gates >= STREAM_ABOVE_GATES)
+    override = "raise it with --max-gates N, or pass --force"
+    return check_size(s, p, options, max_gates, override, force, streamed=streamed)
 
 
 def _stream(

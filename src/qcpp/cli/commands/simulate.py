@@ -61,12 +61,12 @@ def parse_angles(text: str) -> list[float]:
     return out
 
 
-def _guard(s: Scenario, path: Path) -> None:
-    """Refuse (one line, exit 2) a feasible subspace over the simulators' limits
-    (:func:`qcpp.simulate.guards.check_simulation_size`); ``--allow-large`` lifts it."""
+def _guard(s: Scenario, path: Path, p: int, method: str) -> None:
+    """Refuse (one line, exit 2) a simulation predicted to need more memory than is available or to run for
+    hours (:func:`qcpp.simulate.guards.check_simulation_size`); ``--allow-large`` lifts it."""
     from qcpp.simulate.guards import check_simulation_size
 
-    check_simulation_size(s, str(path))
+    check_simulation_size(s, str(path), p=p, method=method)
 
 
 def simulate_command(
@@ -89,8 +89,7 @@ def simulate_command(
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
         raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
     s = load_scenario(scenario, check_range=True, phases=True)
-    if method == "subspace" or values is None:  # seeded angles come from the subspace simulator too
-        _guard(s, scenario)
+    _guard(s, scenario, p, method)
     with Progress(f"simulate {scenario.name}") as bar:
         bar.stage(f"simulating ({method})")
         res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

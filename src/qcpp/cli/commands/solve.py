@@ -7,12 +7,23 @@ Examples::
     qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
     qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
 
-Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); adding one is one
-entry ``f(scenario, *, seed, rule, progress) -> Solution``. ``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on
-first use) is registered here, not in :data:`qcpp.problem.solvers.SOLVERS`, because it lives in a higher layer; it
-alone takes :data:`QAOA_DEFAULTS`. ``cpsat`` alone takes ``--time-limit`` and reports its proof. ``dfs`` predicts
-its size first and refuses a search over the limits in one line naming ``--allow-large``. Every method shows
-progress on stderr (:mod:`qcpp.cli.progress`).
+Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); ``--method``
+accepts exactly its keys. Adding a method is one entry: a function
+``f(scenario, *, seed, rule, progress) -> qcpp.problem.solvers.Solution`` stored under its name.
+
+``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
+solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
+:data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
+:func:`qcpp.simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
+
+``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
+proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
+
+``dfs`` predicts its size first (:func:`qcpp.problem.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
+memory, time) and refuses a search that would not fit in the available memory or would run for more than
+:data:`qcpp.problem.limits.MAX_SECONDS`, in one line naming that size and ``--allow-large``; ``qaoa`` refuses a
+subspace simulator that would not fit (:func:`qcpp.simulate.footprint.training_need`). Every method shows progress
+on stderr (:mod:`qcpp.cli.progress`).
 """
 
 from __future__ import annotations
@@ -130,13 +141,13 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
             ) from None
 
 
-def _qaoa_guard(scenario: Scenario, path: Path, description: str) -> None:
-    """Refuse (one line, exit 2) a QAOA training whose feasible subspace cannot hold one state in the memory budget
+def _qaoa_guard(scenario: Scenario, path: Path, description: str, p: int) -> None:
+    """Refuse (one line, exit 2) a QAOA training whose subspace simulator would not fit in the available memory
     (:func:`qcpp.simulate.guards.check_training_size`); ``--allow-large`` lifts it."""
     from qcpp.simulate.guards import check_training_size
 
     with Progress(description) as bar:
-        check_training_size(scenario, str(path), stage=bar.stage)
+        check_training_size(scenario, str(path), stage=bar.stage, p=p)
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
@@ -225,7 +236,7 @@ def solve_command(
     exact = None
     description = f"{method} on {scenario.name}"
     if method == "qaoa":
-        _qaoa_guard(s, scenario, description)
+        _qaoa_guard(s, scenario, description, p)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
     with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
         progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json

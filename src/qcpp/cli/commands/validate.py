@@ -9,8 +9,9 @@ Examples::
 
 The default backend is ``auto``: the one that fits (:func:`qcpp.simulate.validate.choose_backend`: the dense statevector
 up to 20 qubits, else the sparse state). The size (feasible assignments, the reference state's size) is predicted
-first and a validation over :data:`qcpp.simulate.validate.MAX_VALIDATE_ASSIGNMENTS` or half the available memory is
-refused in one line naming the size and ``--allow-large``. The stages show as progress on stderr
+first (:func:`qcpp.simulate.footprint.validate_need`: peak memory and time) and a validation that would not fit in
+the available memory or would run for hours is refused in one line naming the prediction, the limit and
+``--allow-large`` (:func:`qcpp.problem.limits.check_need`). The stages show as progress on stderr
 (:mod:`qcpp.cli.progress`).
 
 Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
@@ -97,8 +98,9 @@ def validate_command(
     ] = None,
 ) -> None:
     """Validate a compiled circuit (see ``qcpp validate --help``)."""
-    from qcpp.problem.limits import OVERRIDE_FLAG, large_allowed, memory_budget
-    from qcpp.simulate.validate import MAX_VALIDATE_ASSIGNMENTS, ValidationTooLargeError, validate
+    from qcpp.problem.limits import check_need, large_allowed
+    from qcpp.simulate.footprint import validate_need
+    from qcpp.simulate.validate import validate
 
     if dask is not None and backend == "auto":
         backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
@@ -118,24 +120,23 @@ def validate_command(
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
     s = load_scenario(scenario, check_range=True, phases=True)
-    large = large_allowed()
     with Progress(f"validate {scenario.name}") as bar:
-        try:
-            report = validate(
-                s,
-                p,
-                backend=backend,  # type: ignore[arg-type]
-                angles=values,
-                seed=seed,
-                rule=rule,  # type: ignore[arg-type]
-                max_amplitudes=max_amplitudes,
-                dask=dask,
-                max_assignments=None if large else MAX_VALIDATE_ASSIGNMENTS,
-                max_bytes=None if large else memory_budget(),
-                stage=bar.stage,
-            )
-        except ValidationTooLargeError as exc:
-            raise ValueError(f"{scenario}: {exc}; pass {OVERRIDE_FLAG} to try anyway") from None
+        if not large_allowed():
+            bar.stage("predicting the size")
+            check_need(validate_need(s), field=str(scenario))
+        report = validate(
+            s,
+            p,
+            backend=backend,  # type: ignore[arg-type]
+            angles=values,
+            seed=seed,
+            rule=rule,  # type: ignore[arg-type]
+            max_amplitudes=max_amplitudes,
+            dask=dask,
+            max_assignments=None,  # checked above, from the memory and time it would take
+            max_bytes=None,
+            stage=bar.stage,
+        )
     chosen = f"{report.backend} (auto)" if backend == "auto" else report.backend  # said in the table's title
     backend = report.backend
     skipped = [c.name for c in report.checks if c.status == "skipped"]

@@ -68,6 +68,9 @@ ASSIGNMENTS_PER_SECOND = 8e6
 PATHS_PER_SECOND = 5e4
 """Path enumeration speed used for the predicted time."""
 
+BASE_BYTES = 55_000_000
+"""Peak resident memory of a ``qcpp solve --method dfs`` process on a tiny scenario (interpreter and imports)."""
+
 
 @dataclass(frozen=True)
 class DfsSize:
@@ -99,16 +102,19 @@ class DfsSize:
 
     @property
     def bytes(self) -> int:
-        """Peak memory of :func:`dfs`, roughly: the path lists with their bit and degree matrices (twice, for
-        the temporaries), the whole pairwise matrices between robots 1.. (three arrays each while they are
-        summed), robot 0's slices of its pairwise matrices and the scored block."""
+        """Peak resident memory of a process running :func:`dfs`: :data:`BASE_BYTES`, the path lists with their
+        bit and degree matrices (twice, for the temporaries), the whole pairwise matrices between robots 1..
+        (three arrays each while they are summed), robot 0's slices of its pairwise matrices and the scored block.
+        Measured ``qcpp solve --method dfs`` peaks: 0.054 GB (one robot, 3x3), 0.079 GB (two robots, 4x5),
+        0.154 GB (three robots, 4x4), 0.396 GB (two robots, 5x5); ``tests/qcpp/guard_peaks_test.py`` checks
+        the prediction within 1.5x."""
         counts = self.paths_per_robot
         per_path = 9 * self.edges_per_robot + 8 * self.nodes + 60
         lists = 2 * sum(counts) * per_path
         rest = counts[1:]
         whole = sum(a * b for a, b in itertools.combinations(rest, 2))
         sliced = min(counts[0], max(1, self.chunk_elements // max(1, math.prod(rest)))) * sum(rest) if rest else 0
-        return lists + 24 * (whole + sliced) + 16 * min(self.chunk_elements, self.assignments)
+        return BASE_BYTES + lists + 24 * (whole + sliced) + 16 * min(self.chunk_elements, self.assignments)
 
     @property
     def seconds(self) -> float:
@@ -120,7 +126,7 @@ class DfsSize:
 
         Example:
             >>> DfsSize((12, 178), (True, False), 12, 9).describe()
-            'paths per robot 12 x at least 178 = at least 2,136 assignments (at least 0.0 GB, 0 s)'
+            'paths per robot 12 x at least 178 = at least 2,136 assignments (at least 0.1 GB, 0 s)'
         """
         at_least = "" if self.exact else "at least "
         paths = " x ".join(f"{'' if ok else 'at least '}{n:,}" for n, ok in zip(self.paths_per_robot, self.complete))
@@ -138,13 +144,17 @@ class DfsTooLargeError(QcppError):
         self.size = size
 
 
-def _check(size: DfsSize, max_assignments: int | None, max_paths: int | None, max_bytes: int | None) -> None:
+def _check(
+    size: DfsSize, max_assignments: int | None, max_paths: int | None, max_bytes: int | None, max_seconds: float | None
+) -> None:
     if max_assignments is not None and size.assignments > max_assignments:
         raise DfsTooLargeError(size, f"over the limit of {max_assignments:,} assignments")
     if max_paths is not None and max(size.paths_per_robot) > max_paths:
         raise DfsTooLargeError(size, f"over the limit of {max_paths:,} paths per robot")
     if max_bytes is not None and size.bytes > max_bytes:
-        raise DfsTooLargeError(size, f"over the memory budget of {max_bytes / 1e9:.1f} GB")
+        raise DfsTooLargeError(size, f"over the {max_bytes / 1e9:.1f} GB of memory available")
+    if max_seconds is not None and size.seconds > max_seconds:
+        raise DfsTooLargeError(size, f"over the run-time limit of {format_duration(max_seconds)}")
 
 
 def dfs_paths(
@@ -153,6 +163,7 @@ def dfs_paths(
     max_assignments: int | None = MAX_DFS_ASSIGNMENTS,
     max_paths: int | None = MAX_DFS_PATHS,
     max_bytes: int | None = None,
+    max_seconds: float | None = None,
     chunk_elements: int = DEFAULT_CHUNK_ELEMENTS,
 ) -> list[list[int]]:
     """Every robot's paths for :func:`dfs`, refusing a search over the limits before doing it.
@@ -164,7 +175,10 @@ def dfs_paths(
     Args:
         max_assignments: Most combinations allowed (``None``: no limit).
         max_paths: Most paths of one robot allowed (``None``: no limit).
-        max_bytes: Memory budget of :attr:`DfsSize.bytes` (``None``: no limit).
+        max_bytes: Memory budget of :attr:`DfsSize.bytes` (``None``: no limit); it also caps the paths
+            enumerated for one robot (no more than their lists could hold).
+        max_seconds: Longest predicted run time, :attr:`DfsSize.seconds` (``None``: no limit); it also caps the
+            assignments.
         chunk_elements: As in :func:`dfs` (for the memory prediction).
 
     Returns:
@@ -189,35 +203,45 @@ def dfs_paths(
     def size(counts: Sequence[int], complete: Sequence[bool]) -> DfsSize:
         return DfsSize(tuple(counts), tuple(complete), e, v, chunk_elements)
 
+    # enumeration stops where a limit is known to be passed: a robot's path list alone (with its temporaries)
+    # must fit in max_bytes, and the assignments scored within max_seconds
+    path_caps = [c for c in (max_paths, None if max_bytes is None else max_bytes // (2 * (9 * e + 8 * v + 60)))
+                 if c is not None]  # fmt: skip
+    assignment_caps = [c for c in (max_assignments,
+                                   None if max_seconds is None else int(max_seconds * ASSIGNMENTS_PER_SECOND))
+                       if c is not None]  # fmt: skip
+    path_cap = min(path_caps) if path_caps else None
+    assignment_cap = min(assignment_caps) if assignment_caps else None
     counts = [count_paths(scenario, r, PRECHECK_PATHS + 1) for r in robots]
     complete = [c <= PRECHECK_PATHS for c in counts]
-    _check(size(counts, complete), max_assignments, max_paths, max_bytes)
+    _check(size(counts, complete), max_assignments, max_paths, max_bytes, max_seconds)
     lists: list[list[int]] = []
     for r in robots:
         others = math.prod(counts[:r] + counts[r + 1 :])
-        caps = [c for c in (max_paths, None if max_assignments is None else max_assignments // others) if c is not None]
+        caps = [c for c in (path_cap, None if assignment_cap is None else assignment_cap // others) if c is not None]
         cap = min(caps) if caps else None
         pl = list(itertools.islice(iter_paths(scenario, r), None if cap is None else cap + 1))
         counts[r], complete[r] = len(pl), cap is None or len(pl) <= cap
-        _check(size(counts, complete), max_assignments, max_paths, max_bytes)
+        _check(size(counts, complete), max_assignments, max_paths, max_bytes, max_seconds)
         lists.append(pl)
     return lists
 
 
 def budgeted_dfs_paths(scenario: Scenario) -> list[list[int]]:
-    """:func:`dfs_paths` within the limits ``qcpp solve -m dfs`` and ``qcpp.solve(s, "dfs")`` keep:
-    :data:`MAX_DFS_ASSIGNMENTS`, :data:`MAX_DFS_PATHS` and the memory budget
-    (:func:`qcpp.problem.limits.memory_budget`), none inside :func:`qcpp.problem.limits.allow_large`.
+    """:func:`dfs_paths` within the limits ``qcpp solve -m dfs`` and ``qcpp.solve(s, "dfs")`` keep: refused only if
+    the search would not fit in the available memory (:func:`qcpp.problem.limits.available_memory`) or would run
+    for more than :data:`qcpp.problem.limits.MAX_SECONDS`; nothing is refused inside
+    :func:`qcpp.problem.limits.allow_large`.
 
     Raises:
         DfsTooLargeError: a search over the limits (before doing it).
     """
-    from qcpp.problem.limits import large_allowed, memory_budget
+    from qcpp.problem.limits import MAX_SECONDS, available_memory, large_allowed
 
     if large_allowed():
         return dfs_paths(scenario, max_assignments=None, max_paths=None, max_bytes=None)
     return dfs_paths(
-        scenario, max_assignments=MAX_DFS_ASSIGNMENTS, max_paths=MAX_DFS_PATHS, max_bytes=memory_budget()
+        scenario, max_assignments=None, max_paths=None, max_bytes=available_memory(), max_seconds=MAX_SECONDS
     )
 
 
