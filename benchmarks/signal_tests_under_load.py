@@ -35,7 +35,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 MARKERS = re.compile(r"(?<![\w.])(signal|subprocess|threading|multiprocessing)\b|\b(Popen|Thread|os\.kill)\b")
 """Source text that makes a test (or a helper it calls) one that touches signals, subprocesses or threads."""
-WHOLE_FILES = ("tests/qcpp/progress_test.py",)
+WHOLE_FILES = ("tests/cli/progress_test.py",)
 """Files whose every test runs a thread inside the code under test (the progress heartbeat)."""
 
 

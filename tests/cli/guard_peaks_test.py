@@ -23,7 +23,8 @@ from qcpp.estimators.guard import compile_need
 from qcpp.plan.options import DEFAULT_PLAN
 from qcpp.problem.paths import count_paths
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, load_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers.exhaustive import DfsSize
 from qcpp.simulate.footprint import simulate_need, training_need, validate_need
 

@@ -3,7 +3,7 @@
 Every figure is the peak resident memory of a whole ``qcpp`` process, as ``/usr/bin/time -v`` reports it, so a
 guard can compare it with the memory the machine has available (:func:`qcpp.problem.limits.check_need`). The
 models are linear in the sizes that dominate, with coefficients fitted to measured peaks
-(``tests/qcpp/guard_peaks_test.py`` checks them, each within 1.5x):
+(``tests/cli/guard_peaks_test.py`` checks them, each within 1.5x):
 
 * the feasible subspace holds ``A`` amplitudes, the product of the robots' path counts (a bound on the
   simulator's reachable basis: :func:`qcpp.simulate.validate.validate_size` counts them without enumerating);
