@@ -160,17 +160,17 @@ def test_no_partial_file_after_an_error(tmp_path: Path, monkeypatch: pytest.Monk
 
 
 def test_the_simulators_keep_the_cli_s_size_guards(monkeypatch: pytest.MonkeyPatch) -> None:
-    import qcpp.problem.solvers.exhaustive as exhaustive
-    import qcpp.simulate.guards as guards
+    from qcpp.problem.limits import MEMORY_ENV
 
     s = qcpp.grid_scenario(3, 3, robots=2)
-    monkeypatch.setattr(guards, "memory_budget", lambda: 64)  # 64 bytes: not even one state fits
+    monkeypatch.setenv(MEMORY_ENV, "1M")  # 1 MB available: no process fits
     message = error_of(lambda: qcpp.train_qaoa(s, 1, maxiter=1), qcpp.SizeError)
     assert message.startswith("scenario: training QAOA on") and "qcpp.allow_large()" in message
     message = error_of(lambda: qcpp.simulate_qaoa(s, 1), qcpp.SizeError)
-    assert message.startswith("scenario: simulating") and "memory budget" in message
-    monkeypatch.setattr(exhaustive, "MAX_DFS_ASSIGNMENTS", 1)
-    assert "over the limit of 1 assignments" in error_of(lambda: qcpp.solve(s, "dfs"), qcpp.QcppError)
+    assert message.startswith("scenario: simulating") and "GB available" in message
+    assert "of memory available" in error_of(lambda: qcpp.solve(s, "dfs"), qcpp.QcppError)
+    message = error_of(lambda: qcpp.compile(s, 1), qcpp.SizeError)
+    assert message.startswith("compiling") and "qcpp.allow_large()" in message
     with qcpp.allow_large():  # the override lifts every guard
         assert qcpp.simulate_qaoa(s, 1, angles=[0.1, 0.2]).p == 1
         assert qcpp.solve(s, "dfs").cost.total == pytest.approx(qcpp.solve(s, "cpsat").cost.total)
