@@ -12,7 +12,7 @@ Examples::
     qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format jsonl > sweep.jsonl
     qcpp estimate --grid 10x10 --robots 4 --physical --qubit-model qubit_maj_ns_e6 --qec-scheme floquet_code
     qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
-    qcpp estimate --scenario examples/two_robots.toml -p 2 --json
+    qcpp estimate --scenario examples/two_robots_4x4.toml -p 2 --json
     qcpp estimate --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --format latex
     qcpp estimate --formula
 """
