@@ -299,8 +299,7 @@ def _window_sum(
     """The window sum where it is exact and affordable (a square grid holding the medial layout, at most
     :data:`~qcpp.estimators.window_classes.WHOLE_DEVICE_MAX_QUBITS` qubits, uniform error rates), else ``None``."""
     from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
-    from qcpp.pipeline.device_compile import medial_device
-    from qcpp.routing.options import DEFAULT_ROUTING
+    from qcpp.pipeline.device_compile import auto_tries_greedy, medial_device
 
     dev = medial_device(scenario, device)
     if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
@@ -308,8 +307,8 @@ def _window_sum(
     summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage, context=context)
     if summed is None or not summed.exact or summed.log_esp is None:
         return None  # bounded windows, or per-qubit error rates: the ESP is not a sum over classes
-    if summed.compiled_ops.get("cx", 0) <= DEFAULT_ROUTING.auto_compare_max_twoq:
-        return None  # compile would also try the greedy layout on so few two-qubit gates
+    if auto_tries_greedy(summed.compiled_ops.get("cx", 0)):
+        return None  # compile would also try the greedy layout: the sum predicts the geometric layout only
     return summed
 
 

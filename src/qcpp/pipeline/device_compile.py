@@ -75,6 +75,7 @@ from qcpp.routing.windows import route_windows
 
 __all__ = [
     "DeviceCompileResult",
+    "auto_tries_greedy",
     "compile_for_device",
     "device_for",
     "greedy_route",
@@ -274,7 +275,7 @@ def compile_for_device(
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
-            if layout_method == "auto" and _two_qubit(circuit) <= routing.auto_compare_max_twoq:
+            if layout_method == "auto" and auto_tries_greedy(_two_qubit(circuit), routing):
                 other = routed.device
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
@@ -351,6 +352,19 @@ def _greedy_compare(
     cols = min(shape[1], -(-n // rows))
     sub, sites = _top_left(device, rows, cols)
     return embed_routed(greedy_route(circuit, sub, seed, layouts, measured, options, context), device, sites)
+
+
+def auto_tries_greedy(two_qubit: int, routing: RoutingOptions = DEFAULT_ROUTING) -> bool:
+    """Whether the ``auto`` layout, on a device that holds the geometric layout, also routes a circuit of
+    ``two_qubit`` lowered two-qubit gates greedily and keeps the fewer routed two-qubit gates (one routing of a
+    small circuit may need fewer SWAPs than its windows). Above ``routing.auto_compare_max_twoq`` ``auto`` is the
+    geometric layout, so what predicts that layout's routing predicts ``auto``'s.
+
+    Example:
+        >>> auto_tries_greedy(2_000), auto_tries_greedy(2_001)
+        (True, False)
+    """
+    return two_qubit <= routing.auto_compare_max_twoq
 
 
 def _two_qubit(c: Circuit) -> int:
