@@ -79,6 +79,7 @@ __all__ = [
     "compile_for_device",
     "device_for",
     "greedy_route",
+    "grown_device",
     "hex_device",
     "layout_device",
     "medial_device",
@@ -415,8 +416,14 @@ def layout_device(scenario: Scenario, spec: str | Device, arrangement: str = "ti
     return medial_device(scenario, spec, arrangement)
 
 
-def _grown(dev: Device) -> Device:
-    """The next bigger member of an unsized family (a section needs more free qubits)."""
+def grown_device(dev: Device) -> Device:
+    """The next bigger member of the unsized family ``grid`` or ``heavy-hex`` (a section needs more free qubits):
+    one more row and column, two more in distance.
+
+    Example:
+        >>> grown_device(get_device("grid:5x5")).name, grown_device(get_device("heavy-hex:3")).name
+        ('grid:6x6', 'heavy-hex:5')
+    """
     if dev.family == "heavy-hex":
         return get_device(f"heavy-hex:{int(dev.name.split(':')[1]) + 2}")
     side = int(dev.name.split("x")[-1]) + 1
@@ -473,7 +480,7 @@ def medial_compile(
         except ValueError:
             if spec not in ("grid", "heavy-hex"):
                 raise
-            dev = _grown(dev)
+            dev = grown_device(dev)
             continue
         return _relay_and_route(logical, layout, dev, dist, seed, measured, say, routing, context)
     return None
