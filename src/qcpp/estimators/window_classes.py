@@ -54,7 +54,7 @@ from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.native import native_gates, one_qubit_name
+from qcpp.routing.native import native_gates
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_windows
 
@@ -359,15 +359,11 @@ def _native_counts(lowered: Counter[str], swaps: int, device: Device, fused: int
     """Native gates (by the device's gate name, ``sx`` for ``rx(pi/2)``) of lowered gates plus SWAPs (3 CX each, 2
     fewer for each of the ``fused`` ones)."""
     out: Counter[str] = Counter()
-    twoq = device.two_qubit_gate
-    native_x = "x" in device.native_gates
     counts = Counter(lowered)
     counts["cx"] += 3 * swaps - 2 * fused
     for name, k in counts.items():
-        qs = (0, 1) if name == "cx" or name == "cz" else (0,)
-        params = (math.pi / 2,) if name in ("rz", "rx") else ()
-        for g in native_gates(Gate(name, qs, params, None), twoq, native_x):
-            out[one_qubit_name(device, g) if len(g[1]) == 1 else g[0]] += k
+        for native, _ in _expansion(name, 2 if name in ("cx", "cz") else 1, device):
+            out[native] += k
     return out
 
 
