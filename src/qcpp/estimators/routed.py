@@ -215,9 +215,12 @@ def _window_sum(
 ) -> Any:
     """The window sum where it predicts compile (the ``auto`` layout is the medial one) within
     :data:`WINDOW_SUM_WORK` and the ESP is a sum over classes (uniform error rates), else ``None``."""
-    from qcpp.estimators.window_classes import routed_sum
-    from qcpp.pipeline.device_compile import auto_tries_greedy
+    from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
+    from qcpp.pipeline.device_compile import auto_tries_greedy, medial_device
 
+    dev = medial_device(scenario, device)
+    if dev is None or dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS:
+        return None  # its whole-device windows could not be routed: not worth summing the others
     summed = routed_sum(scenario, p, plan, device, whole_device_work=WINDOW_SUM_WORK, stage=stage, context=context)
     if summed is None or summed.log_esp is None or auto_tries_greedy(summed.compiled_ops.get("cx", 0)):
         return None
