@@ -6,8 +6,8 @@ Per row (size/robots) and device (``grid``, ``heavy-hex``, ``ibm_fez``; the unsi
 sizes them, :func:`qcpp.pipeline.device_compile.layout_device`): the path the estimate takes (its ``routed_model``),
 the two-qubit count of the circuit compile routes before routing (``circuit cx``), then each path's routed
 two-qubit count with its wall seconds: ``compile`` (``qcpp compile --device``, exact; the ``--compare`` rows, p = 1),
-the window-class sum (:func:`qcpp.estimators.window_classes.routed_sum`, exact where it answers: square grids, within
-the estimate's whole-device budget; ``-`` where it does not) and the bound
+the window-class sum (:func:`qcpp.estimators.window_classes.routed_sum`, exact where it answers: square grids of at
+most ``WHOLE_DEVICE_MAX_QUBITS`` qubits, within the estimate's whole-device budget; ``-`` elsewhere) and the bound
 (:func:`qcpp.estimators.layout_bound.layout_twoq_bound`: the geometric layout where the device holds it, else a
 breadth-first ball). The ``--sizes`` rows are at p = 3 and skip compile. The load average is printed (shared
 cores: the seconds vary with it).
@@ -21,7 +21,7 @@ import time
 from dataclasses import replace
 
 from qcpp.estimators import routed
-from qcpp.estimators.window_classes import routed_sum
+from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
 from qcpp.hardware.device import get_device
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
 from qcpp.pipeline.device_plan import device_plan_options
@@ -64,8 +64,10 @@ def _row(shape: tuple[int, int, int], device: str, p: int, exact: bool) -> str |
         n = sum(len(g[1]) == 2 for g in r.routed.circuit.gates)
         compiled = f"{n:,} ({r.routed.device.name}, {r.layout_method}, {sec:.0f} s)"
     context = RoutingContext()
-    summed, sec = _timed(lambda: routed_sum(s, p, plan, device, whole_device_work=routed.WINDOW_SUM_WORK,
-                                            context=context))  # fmt: skip
+    summed, sec = None, 0.0
+    if device == "grid" and dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:  # as the estimate asks it
+        summed, sec = _timed(lambda: routed_sum(s, p, plan, device, whole_device_work=routed.WINDOW_SUM_WORK,
+                                                context=context))  # fmt: skip
     window = "-" if summed is None else f"{summed.two_qubit:,} ({sec:.1f} s)"
     if path != "compile":  # the estimate's own choice (its classes known already: no routing again)
         path = "window sum" if routed._window_sum(s, p, plan, device, None, context) is not None else "bound"
