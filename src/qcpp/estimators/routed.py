@@ -3,10 +3,10 @@
 :func:`routed_fields` adds to an estimate row ``device`` (a family without a size is the member
 ``qcpp compile --device`` picks: :func:`qcpp.pipeline.device_compile.layout_device` for ``grid`` and ``heavy-hex``,
 else the smallest member with the row's qubits), ``fits`` (the device's largest connected component holds the
-row's qubits and the circuit compile routes), ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``,
-``duration_s``, ``esp``, ``esp_model``, and ``routed_kind`` (of the two-qubit count and the ESP) and
-``routed_depth_kind`` (of the depths and the duration), each ``exact`` (what ``qcpp compile --device`` writes) or
-``bound``. ``routed_model`` names the first way that applies:
+row's qubits; for the bound also every section of the circuit compile routes), ``routed_twoq``, ``routed_depth``,
+``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, and ``routed_kind`` (of the two-qubit count and the
+ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact`` (what ``qcpp compile --device``
+writes) or ``bound``. ``routed_model`` names the first way that applies:
 
 1. ``compile``: at most :data:`EXACT_MAX_GATES` lowered gates; compiled and routed as ``qcpp compile --device``
    does, every figure exact.
