@@ -246,13 +246,9 @@ def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     options: RoutingOptions, context: RoutingContext,
 ) -> list[_Routed] | str | None:  # fmt: skip
-    """Allocate, relay and route windows on ``crop`` as compile does on the device
-    (:func:`qcpp.pipeline.device_compile.medial_compile`: :func:`~qcpp.layout.medial.allocate_ancillas` with its search,
-    :func:`~qcpp.routing.bridge.bridge_far_phases`, :func:`~qcpp.routing.windows.route_windows`), one section each
-    (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
-    section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
-    if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
-    device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
+    """Allocate, relay and route windows on ``crop`` with compile's functions, one section each: per window its
+    lowered gates after the relays and its routed gates (on the crop's qubits); ``None`` if the crop does not
+    answer for the device (module docs), ``"whole"`` if a part was routed on its whole component (no crop
     answers)."""
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
