@@ -429,7 +429,7 @@ def _operator_leak(op: np.ndarray) -> float:
 
 
 def collapse_ancilla_blocks(
-    circuit: Circuit, ancillas: Sequence[int], atol: float = 1e-9
+    circuit: Circuit, ancillas: Sequence[int], atol: float = 1e-9, max_block_data_qubits: int = MAX_BLOCK_DATA_QUBITS
 ) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
     """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
 
@@ -437,18 +437,19 @@ def collapse_ancilla_blocks(
     following sections added until ``T`` is unitary). A unitary ``T`` proves that no amplitude leaks into dirty
     ancillas, so on inputs with clean ancillas the circuit equals the product of these operators, exactly, and
     the compute/uncompute pairs vanish before any path search. A block on more than
-    :data:`MAX_BLOCK_DATA_QUBITS` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
+    ``max_block_data_qubits`` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
     entry has modulus 1.
 
     Args:
         circuit: A bound circuit whose ancillas start in |0>.
         ancillas: The ancilla qubits (the rest are data, renumbered ``0..`` in order).
         atol: Tolerance of the unitarity check.
+        max_block_data_qubits: Largest block kept as a dense operator (:data:`MAX_BLOCK_DATA_QUBITS`).
 
     Returns:
         ``[(data qubits, gate, matrix or diagonal vector), ...]`` in time order (qubits renumbered; a matrix or
         vector has its first qubit most significant, as quimb's raw gates), or ``None`` if some block would exceed
-        :data:`MAX_DIAGONAL_DATA_QUBITS`, or :data:`MAX_BLOCK_DATA_QUBITS` without being diagonal.
+        :data:`MAX_DIAGONAL_DATA_QUBITS`, or ``max_block_data_qubits`` without being diagonal.
 
     Example:
         >>> from qcpp.ir.circuit import Circuit, Section
@@ -472,7 +473,7 @@ def collapse_ancilla_blocks(
             touched = sorted({q for g in gates for q in g[1]})
             data = [q for q in touched if q not in anc]
             used = [q for q in touched if q in anc]
-            if len(data) <= MAX_BLOCK_DATA_QUBITS:
+            if len(data) <= max_block_data_qubits:
                 t = _block_operator(gates, data, used)
             elif len(data) <= MAX_DIAGONAL_DATA_QUBITS:
                 t = _block_diagonal(gates, data, used)
