@@ -168,6 +168,8 @@ def visit_choice(
     Returns:
         The :class:`VisitChoice`: in the order couplings, visit bits, visit pairs, a visit gadget (only for
         ``optimize="cx"`` and within the budget) replaces the pick so far when it scores no worse and costs differ.
+
+    Pure memo (argument-determined, read-only): ``visit_choice.cache_clear()`` empties it.
     """
     coup = coupling_cost(new_couplings)
     costs: dict[str, tuple[Cost, Cost]] = {}
@@ -197,6 +199,8 @@ def hamming_choice(
 
     Returns:
         The gadget on qubits ``0 .. n - 1`` (no ancillas; place it with :func:`dataclasses.replace`), or ``None``.
+
+    Pure memo (argument-determined, read-only): ``hamming_choice.cache_clear()`` empties it.
     """
     if target != "ft" or optimize != "cx" or n < 3:
         return None

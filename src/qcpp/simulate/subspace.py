@@ -294,7 +294,8 @@ def angle_bindings(angles: Sequence[float] | np.ndarray) -> dict[str, float]:
 @cache
 def _check_lapack_in_place() -> None:
     """The kernels rely on f2py handing ``zrot`` the caller's buffer (``overwrite_x=1`` on a contiguous
-    complex128 array); make sure this build of scipy does, once per process."""
+    complex128 array); make sure this build of scipy does, once per process
+    (``_check_lapack_in_place.cache_clear()`` checks again)."""
     x = np.array([1.0, 0.0], dtype=np.complex128)
     zrot(x, x, 0.0, 1.0 + 0j, 1, 0, 1, 1, 1, 1, 1)
     if not np.allclose(x, [0.0, -1.0]):
