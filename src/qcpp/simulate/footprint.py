@@ -112,7 +112,6 @@ def simulate_need(scenario: Scenario, p: int, method: str = "subspace", size: Va
     """Predicted peak memory and time of ``qcpp simulate`` (see the module docstring).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers.
         method: ``subspace``, ``statevector`` or ``tensor`` (the last two also list every feasible assignment).
         size: The path counts, if already known (default :func:`feasible_size`).
