@@ -103,8 +103,7 @@ def boundary(r: int, c: int, rows: int, cols: int) -> int:
 @lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
 def _signature(k: int, rows: int, cols: int, robot: Robot | None) -> LocalPicture:
     """The local picture of plaquette ``k`` (row-major) on an open grid (``robot``: whose endpoints it shows).
-
-    Pure memo (argument-determined, read-only): ``_signature.cache_clear()`` empties it."""
+    Pure memo: ``_signature.cache_clear()`` empties it."""
     i, j = divmod(k, cols - 1)
     corners = (i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j)
     ends = (None, None) if robot is None else (robot.start, robot.goal)
@@ -187,8 +186,7 @@ def mixer_part(
     Raises:
         ValueError: the scenario has obstacles.
 
-    Pure memo (argument-determined, read-only): ``mixer_part.cache_clear()`` empties it.
-    """
+    Pure memo: ``mixer_part.cache_clear()`` empties it."""
     if scenario.obstacles:
         raise ValueError("signature counting needs a grid without obstacles")
     rows, cols = scenario.grid.rows, scenario.grid.cols

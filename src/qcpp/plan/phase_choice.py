@@ -169,8 +169,7 @@ def visit_choice(
         The :class:`VisitChoice`: in the order couplings, visit bits, visit pairs, a visit gadget (only for
         ``optimize="cx"`` and within the budget) replaces the pick so far when it scores no worse and costs differ.
 
-    Pure memo (argument-determined, read-only): ``visit_choice.cache_clear()`` empties it.
-    """
+    Pure memo: ``visit_choice.cache_clear()`` empties it."""
     coup = coupling_cost(new_couplings)
     costs: dict[str, tuple[Cost, Cost]] = {}
     pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
@@ -200,8 +199,7 @@ def hamming_choice(
     Returns:
         The gadget on qubits ``0 .. n - 1`` (no ancillas; place it with :func:`dataclasses.replace`), or ``None``.
 
-    Pure memo (argument-determined, read-only): ``hamming_choice.cache_clear()`` empties it.
-    """
+    Pure memo: ``hamming_choice.cache_clear()`` empties it."""
     if target != "ft" or optimize != "cx" or n < 3:
         return None
     hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))

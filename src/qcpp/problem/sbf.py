@@ -167,7 +167,7 @@ def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule =
 
 @lru_cache(maxsize=65536)
 def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -> SbfLogic:
-    """Pure memo (argument-determined, read-only): ``_sbf_logic_cached.cache_clear()`` empties it."""
+    """Pure memo: ``_sbf_logic_cached.cache_clear()`` empties it."""
     plaq = scenario.grid.plaquettes[pindex]
     local = _neighbourhood(scenario, robot, plaq)
     if local is None:
