@@ -145,9 +145,10 @@ def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_n
     for (_, d), (_, m) in zip(diagonals, matrices):  # the phases are the verified operator's diagonal
         np.testing.assert_allclose(m, np.diag(d), atol=1e-12)
     dense = simulate_statevector(c)
-    tc = tensor.TensorCircuit(c, cache_dir=tmp_path, ancillas=[3])
-    np.testing.assert_allclose(tc.amplitudes(range(16)), dense, atol=1e-12)
-    assert tc.block_leak is not None and tc.block_leak < 1e-12
+    for width in (1, tensor.MAX_BLOCK_DATA_QUBITS):  # the blocks as their phases, then as matrices
+        tc = tensor.TensorCircuit(c, cache_dir=tmp_path, ancillas=[3], max_block_data_qubits=width)
+        np.testing.assert_allclose(tc.amplitudes(range(16)), dense, atol=1e-12)
+        assert tc.block_leak is not None and tc.block_leak < 1e-12
     # a clean-ancilla Toffoli on the data is unitary but not diagonal: too wide for a matrix, so not collapsed
     toffoli = Circuit(regs, [mix, Section("t", [ccx(0, 1, 3), cx(3, 2), ccx(0, 1, 3)])])
     assert tensor.collapse_ancilla_blocks(toffoli, [3], max_block_data_qubits=1) is None

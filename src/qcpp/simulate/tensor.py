@@ -503,6 +503,8 @@ class TensorCircuit:
             ``work``): amplitudes are then contracted on the data qubits alone, each block that uses ancillas
             contracted first into one verified-unitary operator (:func:`collapse_ancilla_blocks`); an amplitude
             with an ancilla bit set is exactly 0. If a block cannot be collapsed, the full network is used.
+        max_block_data_qubits: Widest ancilla block collapsed into a dense operator; wider ones are kept as their
+            diagonal (:func:`collapse_ancilla_blocks`).
 
     Example:
         >>> from qcpp.ir.circuit import Circuit, Section
@@ -523,8 +525,10 @@ class TensorCircuit:
         max_width: float = DEFAULT_MAX_WIDTH,
         client: Any = None,
         ancillas: Sequence[int] = (),
+        max_block_data_qubits: int = MAX_BLOCK_DATA_QUBITS,
     ) -> None:
         self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
+        self.max_block_data_qubits = max_block_data_qubits
         self.num_qubits = self.circuit.num_qubits
         self.psi0_bits = state_bits(psi0_bits if psi0_bits is not None else 0, self.num_qubits)
         self.quimb = to_quimb(self.circuit, psi0_bits=self.psi0_bits)
@@ -545,7 +549,7 @@ class TensorCircuit:
         """The data-only quimb circuit of :func:`collapse_ancilla_blocks`, or ``None``."""
         if not self.ancillas or any(self.psi0_bits[q] for q in self.ancillas):
             return None
-        ops = collapse_ancilla_blocks(self.circuit, self.ancillas)
+        ops = collapse_ancilla_blocks(self.circuit, self.ancillas, max_block_data_qubits=self.max_block_data_qubits)
         if ops is None:
             return None
         anc = set(self.ancillas)
