@@ -114,7 +114,16 @@ def test_qcec_prints_nothing_of_its_own_and_claims_no_tolerance(capfd: pytest.Ca
 @pytest.mark.heavy
 def test_dask_says_it_ran(capfd: pytest.CaptureFixture[str]) -> None:
     pytest.importorskip("dask.distributed")
-    res = CliRunner().invoke(app, ["validate", EXAMPLE, "--dask", "local"])
+    import socket
+
+    # another cluster's dashboard on dask's default port: ours must neither complain nor take it
+    with socket.socket() as busy:
+        try:
+            busy.bind(("127.0.0.1", 8787))
+            busy.listen()
+        except OSError:
+            pass  # already held by some other process: the same condition
+        res = CliRunner().invoke(app, ["validate", EXAMPLE, "--dask", "local"])
     assert res.exit_code == 0, res.output
     assert "Dask (" in res.stdout
     native = capfd.readouterr()

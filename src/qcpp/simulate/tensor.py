@@ -851,7 +851,9 @@ def dask_client(address: str) -> Any:
     # matters itself (how many contractions ran on the cluster), so only errors get through
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if address == "local":
-        return Client(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None)
+        # ":0": the dashboard takes a free port; the default (also with None) asks for 8787 and warns when another
+        # cluster holds it
+        return Client(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0")
     try:
         return Client(address, timeout="10s")
     except OSError as exc:
