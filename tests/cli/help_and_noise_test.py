@@ -1,10 +1,14 @@
 """Help text, shell completion, third-party noise and the cache folder: choice options list their choices,
 ``solve --help`` lists every method, completion is installable, QCEC/Dask/warnings never leak their own lines,
-and an unusable cache folder is named (once) as the cache folder."""
+an unusable cache folder is named (once) as the cache folder, and no process (a test run, the CLI) ends with
+nanobind's leak report."""
 
 from __future__ import annotations
 
 import json
+import os
+import subprocess
+import sys
 import warnings
 from pathlib import Path
 
@@ -119,3 +123,38 @@ def test_dask_says_it_ran(capfd: pytest.CaptureFixture[str]) -> None:
     assert "Dask (" in res.stdout
     native = capfd.readouterr()
     assert "8787" not in native.err + res.stderr and "distributed." not in native.err + res.stderr
+
+
+_LIVE_CYCLE = """
+import gc, sys
+from mqt.core.ir import QuantumComputation
+cache = {"circuit": QuantumComputation(2)}
+cache["self"] = cache  # a live cycle holding a nanobind object, as the session's caches hold circuits
+if sys.argv[1] == "survivors":
+    from tests.shutdown import freeze_survivors
+    freeze_survivors()
+else:
+    gc.collect()
+    gc.freeze()
+"""
+
+
+@pytest.mark.parametrize(("how", "leaks"), [("survivors", False), ("plain freeze", True)])
+def test_a_test_run_ends_without_nanobind_leak_reports(how: str, leaks: bool) -> None:
+    """The test session's end (:func:`tests.shutdown.freeze_survivors`) leaves nanobind nothing to report; a plain
+    :func:`gc.freeze` (the control) makes it print its report, so the check can see one."""
+    pytest.importorskip("mqt.core")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(REPO), *sys.path])}
+    res = subprocess.run([sys.executable, "-c", _LIVE_CYCLE, how], capture_output=True, text=True, env=env,
+                         cwd=REPO, check=True)  # fmt: skip
+    assert ("nanobind" in res.stderr) is leaks, res.stderr[:500]
+
+
+@pytest.mark.heavy
+def test_the_cli_ends_without_nanobind_leak_reports() -> None:
+    pytest.importorskip("mqt.qcec")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    res = subprocess.run([sys.executable, "-m", "qcpp", "validate", EXAMPLE, "--backend", "qcec"],
+                         capture_output=True, text=True, env=env, check=False)  # fmt: skip
+    assert res.returncode == 0, res.stderr
+    assert "nanobind" not in res.stderr + res.stdout
