@@ -67,6 +67,7 @@ __all__ = [
     "COMMAND_MODULES",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
+    "HELP",
     "LIBRARY_CHECKED",
     "LIBRARY_ERRORS",
     "NUMERIC_OPTIONS",
@@ -373,8 +374,8 @@ PANELS: dict[str, str] = {
     "method": "Method", "seed": "Method", "optimizer": "Method", "objective": "Method", "maxiter": "Method",
     "mixer_warm": "Method", "time_limit": "Method", "backend": "Method", "max_amplitudes": "Method",
     "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
-    "solve.rule": "Method", "solve.initial": "Method", "simulate.rule": "Method", "simulate.angles": "Method",
-    "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
+    "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "simulate.rule": "Method",
+    "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
     # estimate's models
     "depth": "Estimates", "depth_budget": "Estimates", "epsilon": "Estimates", "toffoli_t": "Estimates",
     "paper_doubling": "Estimates", "physical": "Estimates", "qubit_model": "Estimates",
@@ -491,9 +492,20 @@ class QcppTyper(typer.Typer):
         return decorator
 
 
+HELP = """QAOA multi-robot coverage path planning: solve scenarios, compile circuits, estimate resources.
+
+Examples:
+  qcpp scenario --grid 5x5 --robots 2 --obstacle 2,1 -o field.toml
+  qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format md
+  qcpp compile field.toml -p 2 --lowered --qasm field.qasm
+  qcpp solve field.toml --method cpsat
+
+'qcpp COMMAND --help' shows a command's options and more examples.
+"""
+
 app = QcppTyper(
     name="qcpp",
-    help="QAOA multi-robot coverage path planning: solve scenarios, compile circuits, estimate resources.",
+    help=HELP,
     no_args_is_help=True,
     add_completion=True,
     pretty_exceptions_show_locals=False,
@@ -507,7 +519,7 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
+@app.callback(help=HELP)
 def _root(
     version: Annotated[
         bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version and exit.")

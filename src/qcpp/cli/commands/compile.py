@@ -67,10 +67,16 @@ STREAM_ABOVE_GATES = 100_000
 """Circuits predicted to have at least this many lowered gates are built section by section with progress on
 stderr (a compile long enough to want it), even without ``--qasm``; smaller ones are built whole."""
 
-HELP = (
-    "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
-    "angles (--bind gamma_0=0.3 beta_0=0.7 ...) and write OpenQASM (written whole or not at all)."
-)
+HELP = """Compile a scenario's QAOA circuit; lower it, bind angles, route it, write OpenQASM.
+
+Examples:
+  qcpp compile examples/paper_3x3.toml -p 2 --lowered --qasm out.qasm
+  qcpp compile --grid 5x5 --robots 2 --obstacle 2,1 --json
+  qcpp compile examples/paper_3x3.toml --bind gamma_0=0.3 beta_0=0.7 --qasm -
+  qcpp compile examples/paper_3x3.toml --device heavy-hex --qasm routed.qasm
+
+Files are written whole or not at all.
+"""
 
 
 @with_plan_flags
