@@ -11,8 +11,9 @@ What the plot shows depends on what the rows vary (the reading that needs no leg
 The paper's estimates (:mod:`qcpp.estimators.paper`) are drawn only when asked (``compare_paper=True``), as dashed
 lines in the colour of the same robot count; the paper estimates qubits, data qubits, CNOTs and single-qubit gates
 only, so for any other metric the plot shows ours alone (with a warning). The y axis names the metric, its column
-and its unit; log scale when the values span a factor of 20 or more. Rows without a value for the metric (``depth``
-with ``--depth none``, ``duration_s`` on a device without gate times) are left out.
+and its unit (log scale when the values span a factor of 20 or more), the legend the column and the unit, the
+title the metric and what the rows hold fixed. Rows without a value for the metric (``depth`` with ``--depth
+none``, ``duration_s`` on a device without gate times) are left out.
 
 Example:
     >>> import tempfile, os
@@ -197,11 +198,12 @@ def draw_rows(
         theirs = _series(here, x, lambda r: _paper_value(r, paper)) if paper is not None else {}
         for i, (k, (xs, ys)) in enumerate(ours.items()):
             colour = colours[i % len(colours)]
-            who = _robots(k) if x != "robots" else "qcpp"
-            ax.plot(xs, ys, "o-", ms=4, color=colour, label=f"ours, {who}" if paper else who)
+            who = _robots(k) if x != "robots" else ""
+            ours_label = ", ".join(filter(None, ("ours" if paper else "", who))) or "qcpp"
+            ax.plot(xs, ys, "o-", ms=4, color=colour, label=ours_label)
             if k in theirs:
                 pxs, pys = theirs[k]
-                ax.plot(pxs, pys, "x--", ms=5, color=colour, alpha=0.75, label=f"paper, {who}")
+                ax.plot(pxs, pys, "x--", ms=5, color=colour, alpha=0.75, label=", ".join(filter(None, ("paper", who))))
         if x == "nodes":
             log_x = max(nodes) >= 8 * min(nodes)
             if log_x:
@@ -221,9 +223,9 @@ def draw_rows(
             ax.set_title(f"p = {p}", fontsize=10)
     for row in grid:
         row[0].set_ylabel(m.axis_label + (", log scale" if log_y else ""))
-    axes[0].legend(fontsize=7, ncol=2 if len(axes[0].lines) > 8 else 1, title=m.axis_label, title_fontsize=7)
-    where = _where(sel, x, layers)
-    fig.suptitle(f"{m.label} ({m.column}){where}, rule {rule}" + (": ours vs the paper's estimate" if paper else ""))
+    legend_title = m.column + (f" [{m.unit}]" if m.unit else "")
+    axes[0].legend(fontsize=7, ncol=2 if len(axes[0].lines) > 8 else 1, title=legend_title, title_fontsize=7)
+    fig.suptitle(f"{m.label}{_where(sel, x, layers)}" + (f", rule {rule}" if rule != "exact" else ""))
     return fig
 
 

@@ -37,7 +37,7 @@ HELP = """Resource counts of the lowered QAOA circuit, from its gadgets' costs, 
 Examples:
   qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format latex
   qcpp estimate --grid 2x2..6x6 --robots 1..3 --compare paper --plot cx.png
-  qcpp estimate --grid 3x3..9x9 --robots 2 -p 1..3 --metric t --plot t.png
+  qcpp estimate --grid 3x3..7x7 --robots 2 -p 1..3 --metric t --plot t.png
   qcpp estimate --scenario examples/two_robots_4x4.toml --physical --json
 
 Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
