@@ -117,9 +117,9 @@ def compile_command(
         str | None,
         typer.Option(
             "--device",
-            help="Route onto a device: grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) "
-            "or a named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios). Writes q[i] = physical "
-            "qubit i in the device's native gates (--lowered: CX + one-qubit gates).",
+            help="Route onto grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) or a "
+            "named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios); the circuit's qubits are then "
+            "the device's, its gates native.",
         ),
     ] = None,
     local_ancillas: Annotated[
@@ -129,10 +129,8 @@ def compile_command(
         str,
         typer.Option(
             "--layout",
-            help="With --device: auto (the geometric layout on square grids and heavy-hex lattices that hold it, "
-            "greedy where that routes cheaper on a small circuit or elsewhere), medial (geometric layout: medial on "
-            "grids, one cell per plaquette on heavy-hex; local ancillas, every gadget routed home) or greedy (one "
-            "SABRE routing of the whole circuit).",
+            help="With --device: medial (the geometric layout, every gadget routed home), greedy (one SABRE "
+            "routing of the whole circuit) or auto (medial where it fits and routes cheaper).",
         ),
     ] = "auto",
     grid: GridFlag = None,
