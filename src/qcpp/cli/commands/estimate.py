@@ -190,7 +190,7 @@ def estimate(
     held: list[str] = []  # the table: printed once the progress display is gone
     with bar:
         pieces = estimate_report(
-            bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
+            bar.iterate(points.points, then=_after_rows(fmt, plot)),
             fmt=fmt,  # type: ignore[arg-type]
             options=settings,
             compare_paper=compare == "paper",
@@ -219,6 +219,13 @@ def estimate(
         typer.echo(f"wrote {plot}", err=True)
     if explain:
         _explain(points.points, options)
+
+
+def _after_rows(fmt: str, plot: str | None) -> str | None:
+    """The progress stage once every row is estimated: the plot is drawn first, then the table rendered."""
+    if plot is not None:
+        return "drawing the plot"
+    return "rendering the table" if fmt == "table" else None
 
 
 def _check_metric(metric: str | None, *, plot: str | None, physical: bool, device: str | None, depth: str) -> None:
