@@ -1,0 +1,139 @@
+"""Heavy-hex compile time against Qiskit O3's on the same circuit and coupling map, side by side in one run.
+
+Run: ``python benchmarks/hex_compile_speed.py [--repeats N] [CASE ...]`` (cases ``ROWSxCOLS/ROBOTS`` of the
+default scenarios, or a scenario file; default ``5x5/2 4x4/2``). Per case and repeat, two fresh processes, one
+after the other:
+
+* **qcpp**: ``qcpp.compile(scenario, device="heavy-hex")``, what ``qcpp compile --grid 5x5 --robots 2 --device
+  heavy-hex`` runs (the smallest heavy-hex lattice that holds the cell layout, native gates);
+* **Qiskit O3**: ``qiskit.transpile(lowered, coupling_map=<the same lattice's couplings, both directions>,
+  optimization_level=3, seed_transpiler=0)``, where ``lowered`` is the unrouted circuit of ``qcpp compile
+  --lowered`` loaded by Qiskit's OpenQASM 3 reader (built before the clock starts).
+
+Each process imports everything first (qcpp, Qiskit, SciPy) and then times only the call, wall
+(``time.perf_counter``) and CPU (``time.process_time``, this process only: both compilers run in-process; Qiskit's
+Rust passes may use more than one thread, which CPU time counts and wall time hides). Fresh processes keep
+in-process memos of one repeat (qcpp's A* cache, Qiskit's) out of the next. The table gives medians over the
+repeats, the ratio qcpp / Qiskit of the median CPU and wall times, the two-qubit gates of each result (a SWAP counts
+3) and the load average before and after (the machine is shared: CPU time is the steadier figure).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+from typing import Any
+
+DEFAULT_CASES = ("5x5/2", "4x4/2")
+
+
+def _scenario(case: str) -> Any:
+    """The scenario of a case: ``RxC/K`` is the default scenario (as ``--grid RxC --robots K``), else a file."""
+    if "/" in case and "x" in case.split("/")[0] and not os.path.exists(case):
+        from qcpp.problem.presets import default_scenario
+
+        grid, robots = case.split("/")
+        rows, cols = (int(v) for v in grid.split("x"))
+        return default_scenario(rows, cols, int(robots))
+    from qcpp.problem.scenario_io import load_scenario
+
+    return load_scenario(case)
+
+
+def _warm_imports() -> None:
+    """Import what either compiler loads lazily, so the clock measures the compile only."""
+    import qiskit  # noqa: F401
+    import qiskit.qasm3  # noqa: F401
+    import scipy.sparse.csgraph  # noqa: F401
+    from qiskit.transpiler import CouplingMap  # noqa: F401
+
+    import qcpp.pipeline.device_compile  # noqa: F401
+
+
+def _timed(fn: Any) -> tuple[Any, float, float]:
+    wall, cpu = time.perf_counter(), time.process_time()
+    out = fn()
+    return out, time.perf_counter() - wall, time.process_time() - cpu
+
+
+def _worker_qcpp(case: str) -> dict[str, Any]:
+    import qcpp
+
+    _warm_imports()
+    scenario = _scenario(case)
+    out, wall, cpu = _timed(lambda: qcpp.compile(scenario, 1, device="heavy-hex"))
+    summary = out.to_dict()
+    return {"wall": wall, "cpu": cpu, "device": out.device.name, "twoq": summary["routed"]["two_qubit"],
+            "layout": summary["routed"]["layout"], "coupling": [list(e) for e in out.device.coupling]}  # fmt: skip
+
+
+def _worker_qiskit(case: str, coupling: list[list[int]]) -> dict[str, Any]:
+    import qiskit
+    from qiskit.transpiler import CouplingMap
+
+    import qcpp
+
+    _warm_imports()
+    circuit = qcpp.compile(_scenario(case), 1, lowered=True).to_qiskit()
+    cmap = CouplingMap([*coupling, *([b, a] for a, b in coupling)])
+    out, wall, cpu = _timed(
+        lambda: qiskit.transpile(circuit, coupling_map=cmap, optimization_level=3, seed_transpiler=0)
+    )
+    ops = out.count_ops()
+    twoq = sum(n for name, n in ops.items() if name != "swap" and _arity(out, name) == 2) + 3 * ops.get("swap", 0)
+    return {"wall": wall, "cpu": cpu, "twoq": twoq}
+
+
+def _arity(circuit: Any, name: str) -> int:
+    return next(len(inst.qubits) for inst in circuit.data if inst.operation.name == name)
+
+
+def _run(args: list[str]) -> dict[str, Any]:
+    out = subprocess.run([sys.executable, __file__, "--worker", *args], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])  # type: ignore[no-any-return]
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("cases", nargs="*", default=list(DEFAULT_CASES))
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--worker", nargs="+", help=argparse.SUPPRESS)
+    a = parser.parse_args(argv)
+    if a.worker:
+        kind, case, *rest = a.worker
+        result = _worker_qcpp(case) if kind == "qcpp" else _worker_qiskit(case, json.loads(rest[0]))
+        print(json.dumps(result))
+        return 0
+    import qiskit
+
+    import qcpp
+
+    print(f"qcpp from {os.path.dirname(qcpp.__file__)}, Qiskit {qiskit.__version__}, {os.cpu_count()} cores, "
+          f"{a.repeats} repeats, medians; load average before: {os.getloadavg()[0]:.1f}")  # fmt: skip
+    print()
+    print("| case | device | qcpp CPU s | qcpp wall s | Qiskit O3 CPU s | Qiskit O3 wall s | CPU ratio | "
+          "wall ratio | qcpp 2q | Qiskit O3 2q |")  # fmt: skip
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for case in a.cases:
+        ours: list[dict[str, Any]] = []
+        theirs: list[dict[str, Any]] = []
+        for _ in range(a.repeats):
+            ours.append(_run(["qcpp", case]))
+            theirs.append(_run(["qiskit", case, json.dumps(ours[0]["coupling"])]))
+        q = {k: statistics.median(r[k] for r in ours) for k in ("cpu", "wall")}
+        k = {k: statistics.median(r[k] for r in theirs) for k in ("cpu", "wall")}
+        print(f"| {case} | {ours[0]['device']} ({ours[0]['layout']}) | {q['cpu']:.1f} | {q['wall']:.1f} | "
+              f"{k['cpu']:.1f} | {k['wall']:.1f} | {q['cpu'] / k['cpu']:.1f}x | {q['wall'] / k['wall']:.1f}x | "
+              f"{ours[0]['twoq']:,} | {theirs[0]['twoq']:,} |", flush=True)  # fmt: skip
+    print()
+    print(f"load average after: {os.getloadavg()[0]:.1f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
