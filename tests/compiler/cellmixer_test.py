@@ -14,18 +14,26 @@ from __future__ import annotations
 import dataclasses
 import doctest
 import importlib
+import itertools
 
 import numpy as np
 import pytest
 
-from qcpp.gadgets.partial_mixer import ParityPartialMixer
+from qcpp.gadgets.partial_mixer import ParityPartialMixer, ParitySearch, plan_parity_mixer
 from qcpp.hardware.device import distances, get_device
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import rx, ry
 from qcpp.layout.heavy_hex import hex_placement
 from qcpp.lowering.passes import lower
-from qcpp.pipeline.cellmixer import _operand_swaps, _window_cx, cell_mixers, relabelled_plans
+from qcpp.pipeline.cellmixer import (
+    _operand_swaps,
+    _relabel_plan,
+    _relabel_program,
+    _window_cx,
+    cell_mixers,
+    relabelled_plans,
+)
 from qcpp.pipeline.device_compile import hex_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
@@ -69,6 +77,26 @@ def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) ->
             assert variant.cost().cx == m.plan.cost().cx
             got = _state(dataclasses.replace(m, plan=variant), registers, s.num_variables, seed=k)
             assert np.allclose(got, want, atol=1e-9)
+
+
+@pytest.mark.parametrize("shape", [(3, 3, 1), pytest.param((4, 4, 2), marks=pytest.mark.heavy)], ids=["3x3/1", "4x4/2"])
+def test_relabelled_plans_are_the_relabelled_programs_own_plans(shape: tuple[int, int, int]) -> None:
+    """The shared search in the relabelled move order finds exactly the plan the A* finds on the relabelled
+    program (mapped back), for every relabelling of every partial mixer's program and both targets; the memo of
+    relabelled programs' plans changes nothing."""
+    s = default_scenario(*shape)
+    programs = {g.kind.program for _, g in qaoa_plan(s, 1, OPTIONS).sections() if isinstance(g, ParityPartialMixer)}
+    known: dict = {}
+    for program, target in itertools.product(sorted(programs, key=repr), ("nisq", "ft")):
+        own = []
+        for sigma in itertools.permutations(range(4)):
+            plan = _relabel_plan(plan_parity_mixer(_relabel_program(program, sigma), target), sigma)
+            if plan not in own:
+                own.append(plan)
+        assert relabelled_plans(program, target) == tuple(own)
+        assert relabelled_plans(program, target, known) == tuple(own)
+        assert ParitySearch(program, target).plan() == plan_parity_mixer(program, target)  # type: ignore[arg-type]
+    assert known
 
 
 @pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((2, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "2x3/2"])

@@ -48,11 +48,13 @@ from qcpp.problem.sbf import Lit, Rule, SbfLogic, sbf_logic
 from qcpp.problem.scenario import Scenario
 
 __all__ = [
+    "MOVES",
     "McxMixerKind",
     "McxPartialMixer",
     "MixerPlan",
     "ParityMixerKind",
     "ParityPartialMixer",
+    "ParitySearch",
     "emit_plan",
     "logic_width",
     "partial_mixer",
@@ -153,39 +155,62 @@ def _carrier(forms: tuple[int, ...]) -> int | None:
     return odd[0] if len(odd) == 1 else None
 
 
-@lru_cache(maxsize=1024)
-def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> MixerPlan:
-    """Cheapest parity-basis partial mixer for an abstract ``exact`` program (see the module docstring).
+MOVES: tuple[tuple[int, int], ...] = tuple((c, t) for c in range(4) for t in range(4) if c != t)
+"""The A*'s CNOTs ``(control, target)`` on the plaquette positions, in the order :func:`plan_parity_mixer` tries
+them from each state (the first of equally cheap plans it meets depends on this order)."""
 
-    The search is an A* over the GF(2) states of the four plaquette qubits (one CNOT per edge of the
-    search graph). ANDs are placed greedily (an AND costs 3 CNOTs whenever it is done, and its temporary stays
-    available), so only the CNOTs of the linear network are searched: every inner step is done as soon as its
-    parities are on some qubit, and every literal of the output AND is folded into the AND chain as soon as it
-    is available. For ``nisq`` one temporary literal is held back and becomes the second control of the
-    rotation (``ccrx``); with no temporary literal and at most two corner literals, both control it directly.
+
+class ParitySearch:
+    """The A* of :func:`plan_parity_mixer` for one program, runnable with any order of the CNOTs tried from each
+    state (:meth:`plan`); each state's expansion (the greedy ANDs after each CNOT, the bound, the goal test) is
+    computed once and shared by every run, so the runs of one program under several orders cost little more than
+    one.
+
+    Running it with the order of :data:`MOVES` relabelled is the A* of the program with its plaquette positions
+    relabelled, plan mapped back: the search graphs are isomorphic (the ANDs and reads follow the inner steps' and
+    output literals' order, which a relabelling keeps) and the heap breaks ties by push order, so both searches
+    pop the same states in the same order (:func:`qcpp.pipeline.cellmixer.relabelled_plans` relies on it;
+    ``tests/compiler/cellmixer_test.py`` compares the two).
 
     Args:
-        program: every step but the last has two literals and writes a fresh temporary; literals read even
-            parities of the plaquette edges, outer slots or temporaries.
-        target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
+        program: As :func:`plan_parity_mixer`'s.
+        target: ``nisq`` or ``ft``.
 
-    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it."""
-    inner, final = program.steps[:-1], program.steps[-1]
-    if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
-        raise ValueError("parity-basis mixers need two-literal inner steps, each into a fresh temporary")
-    if any(kind == "form" and bin(ref).count("1") % 2 for lits in program.steps for kind, ref, _ in lits):  # type: ignore[arg-type]
-        raise ValueError("parity-basis mixers read only even parities (the flip must not change them)")
-    n_inner, n_final = len(inner), len(final)
-    temp_lits = [j for j, lit in enumerate(final) if lit[0] != "form"]
-    if target == "nisq" and temp_lits:
-        reserved = {temp_lits[-1]}
-    elif target == "nisq" and n_final <= 2:
-        reserved = set(range(n_final))  # corner literals only: they control the rotation directly
-    else:
-        reserved = set()
-    all_inner = (1 << n_inner) - 1
+    Raises:
+        ValueError: a program the parity basis cannot plan (as :func:`plan_parity_mixer`).
 
-    def present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> s = default_scenario(2, 3, 1)
+        >>> program, _ = abstract_program(sbf_logic(s, 0, s.grid.plaquettes[0], "exact"), s.grid.plaquettes[0])
+        >>> search = ParitySearch(program, "nisq")
+        >>> search.plan() == plan_parity_mixer(program, "nisq")
+        True
+        >>> search.plan(MOVES[::-1]).cost() == search.plan().cost()
+        True
+    """
+
+    def __init__(self, program: AbstractProgram, target: Target = "nisq") -> None:
+        inner, final = program.steps[:-1], program.steps[-1]
+        if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
+            raise ValueError("parity-basis mixers need two-literal inner steps, each into a fresh temporary")
+        if any(kind == "form" and bin(ref).count("1") % 2 for lits in program.steps for kind, ref, _ in lits):  # type: ignore[arg-type]
+            raise ValueError("parity-basis mixers read only even parities (the flip must not change them)")
+        self.program = program
+        self.target = target
+        self._inner, self._final = inner, final
+        temp_lits = [j for j, lit in enumerate(final) if lit[0] != "form"]
+        if target == "nisq" and temp_lits:
+            self._reserved = {temp_lits[-1]}
+        elif target == "nisq" and len(final) <= 2:
+            self._reserved = set(range(len(final)))  # corner literals only: they control the rotation directly
+        else:
+            self._reserved = set()
+        self._all_inner = (1 << len(inner)) - 1
+        self._expanded: dict[tuple, tuple[bool, list[tuple[tuple, tuple, int]]]] = {}
+
+    @staticmethod
+    def _present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
         kind, ref, _ = lit
         if kind == "form":
             return ref in forms
@@ -193,8 +218,9 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
             return bool(done >> ref & 1)  # type: ignore[operator]
         return True
 
-    def closure(forms: tuple[int, ...], done: int, absorbed: int) -> tuple[int, int, tuple]:
+    def _closure(self, forms: tuple[int, ...], done: int, absorbed: int) -> tuple[int, int, tuple]:
         """Greedy ANDs: inner steps whose literals are present, then output literals into the chain."""
+        present, inner, final, reserved = self._present, self._inner, self._final, self._reserved
         events: list[tuple[str, tuple[int, ...]]] = []
         while True:
             progressed = False
@@ -205,7 +231,7 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
                     progressed = True
             ready = [
                 j
-                for j in range(n_final)
+                for j in range(len(final))
                 if j not in reserved and not absorbed >> j & 1 and present(final[j], forms, done)
             ]
             if ready and (absorbed or len(ready) >= 2):
@@ -221,48 +247,92 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
                 break
         return done, absorbed, tuple(events)
 
-    def missing(forms: tuple[int, ...], done: int, absorbed: int) -> int:
+    def _missing(self, forms: tuple[int, ...], done: int, absorbed: int) -> int:
         """Admissible A* bound: each CNOT changes one qubit, so it brings at most one absent parity."""
-        need = {ref for i, lits in enumerate(inner) if not done >> i & 1 for kind, ref, _ in lits if kind == "form"}
-        need.update(ref for j, (kind, ref, _) in enumerate(final) if kind == "form" and not absorbed >> j & 1)
+        need = {ref for i, lits in enumerate(self._inner) if not done >> i & 1 for kind, ref, _ in lits
+                if kind == "form"}  # fmt: skip
+        need.update(ref for j, (kind, ref, _) in enumerate(self._final) if kind == "form" and not absorbed >> j & 1)
         return len(need.difference(forms))
 
-    start = (1, 2, 4, 8)
-    d0, a0, e0 = closure(start, 0, 0)
-    init = (start, d0, a0)
-    dist = {init: 0}
-    parent: dict[tuple, tuple] = {init: (None, ("start", None, e0))}
-    heap = [(missing(*init), 0, 0, init)]
-    counter = 0
-    goal = None
-    while heap:
-        _, g, _, state = heapq.heappop(heap)
-        if g > dist[state]:
-            continue
+    def _expand(self, state: tuple) -> tuple[bool, list[tuple[tuple, tuple, int]]]:
+        """Whether ``state`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the state it
+        leads to, the ANDs done on the way and that state's bound."""
+        hit = self._expanded.get(state)
+        if hit is not None:
+            return hit
         forms, done, absorbed = state
-        if done == all_inner and _carrier(forms) is not None:
-            remaining = [j for j in range(n_final) if not absorbed >> j & 1]
+        goal = False
+        if done == self._all_inner and _carrier(forms) is not None:
+            remaining = [j for j in range(len(self._final)) if not absorbed >> j & 1]
             controls = len(remaining) + (1 if absorbed else 0)
-            if controls <= (2 if target == "nisq" else 1) and all(present(final[j], forms, done) for j in remaining):
+            goal = controls <= (2 if self.target == "nisq" else 1) and all(
+                self._present(self._final[j], forms, done) for j in remaining
+            )
+        successors: list = [None] * 16
+        for c, t in MOVES:
+            nf = list(forms)
+            nf[t] ^= forms[c]
+            nforms = tuple(nf)
+            nd, na, events = self._closure(nforms, done, absorbed)
+            successors[c * 4 + t] = ((nforms, nd, na), events, self._missing(nforms, nd, na))
+        hit = self._expanded[state] = (goal, successors)
+        return hit
+
+    def plan(self, moves: Sequence[tuple[int, int]] = MOVES) -> MixerPlan:
+        """The first cheapest plan the A* meets trying the CNOTs of each state in the order ``moves`` (a
+        permutation of :data:`MOVES`).
+
+        Raises:
+            ValueError: no plan exists.
+        """
+        start = (1, 2, 4, 8)
+        d0, a0, e0 = self._closure(start, 0, 0)
+        init = (start, d0, a0)
+        dist = {init: 0}
+        parent: dict[tuple, tuple] = {init: (None, ("start", None, e0))}
+        heap = [(self._missing(*init), 0, 0, init)]
+        counter = 0
+        goal = None
+        order = [(c * 4 + t, (c, t)) for c, t in moves]
+        while heap:
+            _, g, _, state = heapq.heappop(heap)
+            if g > dist[state]:
+                continue
+            is_goal, successors = self._expand(state)
+            if is_goal:
                 goal = state
                 break
-        for c in range(4):
-            for t in range(4):
-                if c == t:
-                    continue
-                nf = list(forms)
-                nf[t] ^= forms[c]
-                nforms = tuple(nf)
-                nd, na, events = closure(nforms, done, absorbed)
-                nstate = (nforms, nd, na)
-                if g + 1 < dist.get(nstate, 1 << 30):
-                    dist[nstate] = g + 1
-                    parent[nstate] = (state, ("cx", (c, t), events))
+            g1 = g + 1
+            for k, move in order:
+                nstate, events, bound = successors[k]
+                if g1 < dist.get(nstate, 1 << 30):
+                    dist[nstate] = g1
+                    parent[nstate] = (state, ("cx", move, events))
                     counter += 1
-                    heapq.heappush(heap, (g + 1 + missing(*nstate), g + 1, counter, nstate))
-    if goal is None:
-        raise ValueError("no parity-basis plan found")
-    return _build_plan(program, goal, parent, target)
+                    heapq.heappush(heap, (g1 + bound, g1, counter, nstate))
+        if goal is None:
+            raise ValueError("no parity-basis plan found")
+        return _build_plan(self.program, goal, parent, self.target)
+
+
+@lru_cache(maxsize=1024)
+def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> MixerPlan:
+    """Cheapest parity-basis partial mixer for an abstract ``exact`` program (see the module docstring).
+
+    The search is an A* over the GF(2) states of the four plaquette qubits (one CNOT per edge of the
+    search graph; :class:`ParitySearch`). ANDs are placed greedily (an AND costs 3 CNOTs whenever it is done, and
+    its temporary stays available), so only the CNOTs of the linear network are searched: every inner step is done
+    as soon as its parities are on some qubit, and every literal of the output AND is folded into the AND chain as
+    soon as it is available. For ``nisq`` one temporary literal is held back and becomes the second control of the
+    rotation (``ccrx``); with no temporary literal and at most two corner literals, both control it directly.
+
+    Args:
+        program: every step but the last has two literals and writes a fresh temporary; literals read even
+            parities of the plaquette edges, outer slots or temporaries.
+        target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
+
+    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it."""
+    return ParitySearch(program, target).plan()
 
 
 def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Target) -> MixerPlan:

@@ -54,7 +54,14 @@ from collections.abc import Callable, Hashable, Mapping, Sequence
 
 import numpy as np
 
-from qcpp.gadgets.partial_mixer import AbstractProgram, MixerPlan, ParityPartialMixer, Slot, plan_parity_mixer
+from qcpp.gadgets.partial_mixer import (
+    MOVES,
+    AbstractProgram,
+    MixerPlan,
+    ParityPartialMixer,
+    ParitySearch,
+    Slot,
+)
 from qcpp.hardware.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
@@ -102,23 +109,36 @@ def _relabel_plan(plan: MixerPlan, sigma: Sequence[int]) -> MixerPlan:
 def relabelled_plans(
     program: AbstractProgram,
     target: str = "nisq",
-    planner: Callable[[AbstractProgram, str], MixerPlan] = plan_parity_mixer,  # type: ignore[assignment]
+    known: dict[Hashable, MixerPlan] | None = None,
 ) -> tuple[MixerPlan, ...]:
     """The distinct parity-basis plans of ``program`` found under the 24 relabellings of the plaquette's positions
     (see the module docs), the default plan (:func:`plan_parity_mixer`) first.
 
+    The A* of a relabelled program is the program's own A* with its CNOTs tried in the relabelled order
+    (:class:`~qcpp.gadgets.partial_mixer.ParitySearch`), so the 24 runs share one search's states.
+
     Args:
         program: An ``exact`` rule's abstract program.
         target: ``nisq`` or ``ft``.
-        planner: The A* (:func:`plan_parity_mixer`, or a memoised one: the relabellings of one plaquette's program
-            are often relabellings of another's).
+        known: The plans of relabelled programs, keyed ``(relabelled program, target)``, read and filled (the
+            relabellings of one plaquette's program are often relabellings of another's); ``None``: none.
 
     Returns:
         The plans, each with the default plan's two-qubit gates count.
     """
+    search = ParitySearch(program, target)  # type: ignore[arg-type]
     out: list[MixerPlan] = []
     for sigma in itertools.permutations(range(4)):
-        plan = _relabel_plan(planner(_relabel_program(program, sigma), target), sigma)
+        back = [0] * 4
+        for k in range(4):
+            back[sigma[k]] = k
+        key = (_relabel_program(program, sigma), target) if known is not None else None
+        if key is not None and key in known:  # type: ignore[operator]
+            plan = _relabel_plan(known[key], sigma)  # type: ignore[index]
+        else:  # the relabelled program's A*: position sigma[k] there is position k here
+            plan = search.plan([(back[c], back[t]) for c, t in MOVES])
+            if key is not None:
+                known[key] = _relabel_plan(plan, back)  # type: ignore[index]
         if plan not in out:
             out.append(plan)
     return tuple(out)
@@ -166,19 +186,12 @@ def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device:
 
 
 def _relabelled(context: RoutingContext, program: AbstractProgram, target: str) -> tuple[MixerPlan, ...]:
-    """:func:`relabelled_plans`, memoised in ``context``, with the A* of each relabelled program memoised there too
+    """:func:`relabelled_plans`, memoised in ``context``, with the plan of each relabelled program memoised there too
     where the context reuses answers (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings)."""
     hit = context.relabelled.get((program, target))
     if hit is None:
-        plans = context.plans
-
-        def memoised(relabelled: AbstractProgram, target: str) -> MixerPlan:
-            if (relabelled, target) not in plans:
-                plans[relabelled, target] = plan_parity_mixer(relabelled, target)  # type: ignore[arg-type]
-            return plans[relabelled, target]  # type: ignore[no-any-return]
-
-        planner = memoised if context.reuse else plan_parity_mixer
-        hit = context.relabelled[program, target] = relabelled_plans(program, target, planner)  # type: ignore[arg-type]
+        known = context.plans if context.reuse else None
+        hit = context.relabelled[program, target] = relabelled_plans(program, target, known)
     return hit  # type: ignore[no-any-return]
 
 
