@@ -79,28 +79,44 @@ class Compiled:
         """What ``qcpp compile --json`` prints for the same scenario and options, without ``seconds``."""
         return {k: v for k, v in self._summary.items() if k != "seconds"}
 
-    def to_qasm(self, version: int = 3) -> str:
+    def to_qasm(self, version: int = 3, profile: str = "default") -> str:
         """OpenQASM text: ``3`` (unbound symbols become ``input float[64]``) or ``2`` (every symbol bound).
 
+        Args:
+            version: 3 or 2.
+            profile: The OpenQASM 3 export profile (:mod:`qcpp.lowering.qasm_profiles`): ``default`` (the most
+                faithful: ``include "stdgates.inc"``, qcpp's gate definitions; Qiskit, Cirq, the QDK), ``portable``
+                (no include, no gate definitions: Amazon Braket's local simulator and PennyLane's ``from_qasm3``)
+                or ``braket`` (Braket's native gate names). Every profile is the same unitary.
+
         Raises:
-            qcpp.errors.OptionError: a version other than 2 or 3.
+            qcpp.errors.OptionError: a version other than 2 or 3, an unknown profile, or a profile other than
+                ``default`` with version 2.
             qcpp.ir.angles.UnboundParameterError: ``version=2`` with unbound symbols (naming them).
+
+        Example:
+            >>> from qcpp.api.scenarios import grid_scenario
+            >>> text = compile(grid_scenario(2, 2, robots=1)).to_qasm(profile="portable")
+            >>> text.splitlines()[:3]
+            ['OPENQASM 3.0;', 'input float[64] beta_0;', 'qubit[4] q;']
         """
-        from qcpp.lowering.qasm import iter_qasm
+        from qcpp.lowering.qasm_profiles import check_profile, iter_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
-        return "".join(iter_qasm(self.circuit, int(version)))  # type: ignore[arg-type]
+        check_profile(profile, version)
+        return "".join(iter_qasm_profile(self.circuit, int(version), profile))  # type: ignore[arg-type]
 
-    def write_qasm(self, path: str | os.PathLike[str], version: int = 3) -> None:
+    def write_qasm(self, path: str | os.PathLike[str], version: int = 3, profile: str = "default") -> None:
         """Write :meth:`to_qasm` to ``path``, whole or not at all (an error leaves no partial file).
 
         Raises:
             As :meth:`to_qasm`; :class:`qcpp.io.atomic.OutputError` for a destination that cannot be written.
         """
-        from qcpp.lowering.qasm import write_qasm
+        from qcpp.lowering.qasm_profiles import check_profile, write_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
-        write_qasm(self.circuit, path, int(version))  # type: ignore[arg-type]
+        check_profile(profile, version)
+        write_qasm_profile(self.circuit, path, int(version), profile)  # type: ignore[arg-type]
 
     def to_qiskit(self) -> Any:
         """The circuit as a ``qiskit.QuantumCircuit``, through Qiskit's own OpenQASM 3 loader (unbound symbols

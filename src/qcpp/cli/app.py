@@ -284,6 +284,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "optimize": _lazy("qcpp.plan.options", "OPTIMIZE"),
     "initial": _lazy("qcpp.plan.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
+    "qasm_profile": _lazy("qcpp.lowering.qasm_profiles", "PROFILES"),
     "solve.method": _lazy("qcpp.cli.commands.solve", "SOLVE_METHODS"),
     "solve.optimizer": _lazy("qcpp.simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
     "phase_layout": _lazy("qcpp.plan.options", "PHASE_LAYOUTS"),
