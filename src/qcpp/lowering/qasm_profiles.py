@@ -108,10 +108,9 @@ PROFILE_HEADS: Mapping[str, Mapping[str, str]] = MappingProxyType(
 gate without an entry is written as its exact decomposition, except ``mcx`` (see :func:`_mcx_head`)."""
 
 # Braket's native gate names: a symbol must not shadow one in the braket profile
-_BRAKET_NAMES = frozenset(
-    """i h x y z s si t ti v vi rx ry rz phaseshift cnot cy cz cv swap iswap pswap xy xx yy zz ccnot cswap
-    cphaseshift cphaseshift00 cphaseshift01 cphaseshift10 ecr gpi gpi2 ms prx unitary""".split()
-)
+_BRAKET_TEXT = """i h x y z s si t ti v vi rx ry rz phaseshift cnot cy cz cv swap iswap pswap xy xx yy zz ccnot cswap
+    cphaseshift cphaseshift00 cphaseshift01 cphaseshift10 ecr gpi gpi2 ms prx unitary"""
+_BRAKET_NAMES = frozenset(_BRAKET_TEXT.split())
 
 _CHUNK = 1 << 15  # gates per text chunk
 
