@@ -231,4 +231,3 @@ def write_qasm_profile(
     with atomic_open(path) as f:
         for chunk in chunks:
             f.write(chunk)
-
