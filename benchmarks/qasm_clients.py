@@ -138,7 +138,8 @@ def fidelity(reference: np.ndarray, state: np.ndarray) -> float:
     state = np.asarray(state, dtype=complex).reshape(-1)
     if state.shape != reference.shape:
         raise ValueError(f"state has {state.size} amplitudes, qcpp's {reference.size}")
-    return float(abs(np.vdot(reference, state)) ** 2 / (np.vdot(state, state).real * np.vdot(reference, reference).real))
+    norms = np.vdot(state, state).real * np.vdot(reference, reference).real
+    return float(abs(np.vdot(reference, state)) ** 2 / norms)
 
 
 # --- clients beside qcpp ---------------------------------------------------------------------------------------
@@ -339,7 +340,7 @@ def client_versions(cache: Path) -> dict[str, str]:
             out[dist] = version(dist)
         except PackageNotFoundError:
             out[dist] = "not installed"
-    for client, pins in PINS.items():
+    for pins in PINS.values():
         for pin in pins:
             out[pin.split("==")[0]] = pin.split("==")[1] + " (own venv)"
     return out
