@@ -19,8 +19,8 @@ from qcpp.api.compiling import Compiled
 from qcpp.api.compiling import compile as qcpp_compile
 from qcpp.api.scenarios import grid_scenario
 from qcpp.errors import OptionError
-from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir import gates as g
+from qcpp.ir.circuit import Circuit, Section
 from qcpp.lowering.qasm import to_qasm3
 from qcpp.lowering.qasm_profiles import PROFILES, QasmProfileError, to_qasm3_profile
 from qcpp.simulate.statevector import simulate_statevector
