@@ -7,8 +7,8 @@ qcpp writes each scenario's p = 1 circuit in every profile (:data:`qcpp.lowering
 file unchanged to each client:
 
 * beside qcpp (this interpreter): Qiskit (``qiskit.qasm3.loads``), Cirq (``cirq.contrib.qasm_import``), the QDK
-  (``qdk.openqasm.import_openqasm``), pyqasm (``loads``, ``validate``, ``unroll``), openqasm3 (the reference
-  parser, ``parse``);
+  (``qdk.openqasm.import_openqasm``; and its resource estimator, ``qdk.openqasm.estimate``), pyqasm (``loads``,
+  ``validate``, ``unroll``), openqasm3 (the reference parser, ``parse``);
 * in their own virtual environments under the cache folder (default ``~/.cache/qcpp-qasm-clients``; their pins
   conflict with qcpp's quimb and dask), created and filled with :data:`PINS` on first use: Amazon Braket's local
   simulator (``LocalSimulator("braket_sv")`` on ``braket.ir.openqasm.Program``) and PennyLane's ``from_qasm3``
@@ -176,6 +176,13 @@ def qdk_client(text: str, case: Case) -> np.ndarray | None:
     return little_endian(np.asarray(qsharp.dump_machine().as_dense_state()), case.qubits)
 
 
+def qdk_estimate_client(text: str, case: Case) -> np.ndarray | None:
+    from qdk import openqasm
+
+    openqasm.estimate(text)  # the QDK's resource estimator (default qubit model and QEC scheme)
+    return None
+
+
 def pyqasm_client(text: str, case: Case) -> np.ndarray | None:
     import pyqasm
 
@@ -196,6 +203,7 @@ LOCAL: dict[str, Callable[[str, Case], np.ndarray | None]] = {
     "qiskit": qiskit_client,
     "cirq": cirq_client,
     "qdk": qdk_client,
+    "qdk estimate": qdk_estimate_client,
     "pyqasm": pyqasm_client,
     "openqasm3": openqasm3_client,
 }
