@@ -63,8 +63,9 @@ from qcpp.io.atomic import atomic_open
 from qcpp.ir.angles import Param, format_angle
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate
+from qcpp.lowering import qasm as _qasm
 from qcpp.lowering.passes import decompose_gate
-from qcpp.lowering.qasm import Version, _check_symbol_names, iter_qasm
+from qcpp.lowering.qasm import Version, _check_symbol_names
 
 __all__ = [
     "PROFILES",
@@ -194,7 +195,7 @@ def iter_qasm_profile(circuit: Circuit, version: Version = 3, profile: Profile =
     """
     check_profile(profile, version)
     if profile == "default":
-        return iter_qasm(circuit, version)
+        return _qasm.iter_qasm(circuit, version)  # looked up at call time: the one emitter of the default text
     symbols = circuit.symbols
     _check_symbols(symbols)
     seen: set[tuple[str, int]] = set()
