@@ -89,6 +89,8 @@ class LayerwiseResult:
         mixer_evaluations: Product-state objective evaluations (each with its gradient) of the mixer-only warm
             start (``mixer_warm=True``; 0 otherwise); each is counted in :attr:`circuit_estimates` as
             ``1 + 2p`` estimates of the mixer-only circuit (central differences over its ``p`` betas).
+        level_estimates: :attr:`circuit_estimates` accumulated up to and including each level (the training a
+            run stopped at that depth would have needed; the last entry is :attr:`circuit_estimates`).
     """
 
     objective: str
@@ -99,6 +101,7 @@ class LayerwiseResult:
     circuit_estimates: int
     seconds: float
     mixer_evaluations: int = 0
+    level_estimates: tuple[int, ...] = ()
 
     @property
     def best(self) -> TrainingResult:
@@ -137,6 +140,7 @@ class LayerwiseResult:
             "circuit_estimates": self.circuit_estimates,
             "seconds": self.seconds,
             "mixer_evaluations": self.mixer_evaluations,
+            "level_estimates": list(self.level_estimates),
             "levels": [
                 {k: v for k, v in asdict(lv).items() if k not in ("stages", "trace", "initial_angles")}
                 | {"iterations": len(lv.trace) - 1}
@@ -178,6 +182,7 @@ def train_layerwise(
     t0 = time.perf_counter()
     obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta)
     levels: list[TrainingResult] = []
+    level_estimates: list[int] = []
     runs = evaluations = gradients = estimates = mixer_evaluations = 0
     warm = train_mixer_only(qaoa, p, obj) if mixer_warm else []
     for level in range(1, p + 1):
@@ -205,7 +210,8 @@ def train_layerwise(
                 best = run
         assert best is not None
         levels.append(best)
+        level_estimates.append(estimates)
         if progress is not None:
             progress(level, p)
     return LayerwiseResult(obj.name, tuple(levels), runs, evaluations, gradients, estimates, time.perf_counter() - t0,
-                           mixer_evaluations)
+                           mixer_evaluations, tuple(level_estimates))
