@@ -27,7 +27,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import statistics
 import sys
 import time
 from collections.abc import Sequence
@@ -65,7 +64,7 @@ class Config:
 
 
 FULL = Config(("3x3/1", "3x3/2", "4x4/1", "4x4/2", "5x5/1", "3x3/3"), 0.1, 30, 8, 8, 2000, 10, 10.0,
-              {"random_starts": 6, "hops": 4, "maxiter": 60})
+              {"random_starts": 4, "hops": 2, "maxiter": 50})
 QUICK = Config(("3x3/1", "3x3/2"), 0.1, 3, 3, 3, 500, 3, 2.0, {"random_starts": 1, "hops": 1, "maxiter": 20})
 
 
@@ -82,7 +81,7 @@ def parse_cell(text: str) -> tuple[int, int, int]:
     return out
 
 
-def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str]:
+def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str, str]:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="reduced run (under 2 minutes), for the smoke test")
     ap.add_argument("--out", type=Path, default=None,
@@ -96,6 +95,7 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="a running Dask scheduler (default: a LocalCluster on this machine)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes, one thread each")
+    ap.add_argument("--name", default=NAME, help=f"results/NAME.md, .json and figures/NAME.png (default {NAME})")
     ns = ap.parse_args(argv)
     for name in ("instances", "p_max", "workers"):
         value = getattr(ns, name)
@@ -114,8 +114,12 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
         command += f" --p-max {ns.p_max}"
     if ns.seed:
         command += f" --seed {ns.seed}"
+    if not ns.name.replace("_", "").isalnum():
+        ap.error(f"--name takes letters, digits and underscores, got {ns.name!r}")
+    if ns.name != NAME:
+        command += f" --name {ns.name}"
     opts = Options(quick=ns.quick, out=fresh_output_folder() if ns.out is None else ns.out, seed=ns.seed)
-    return opts, cfg, ns.scheduler, ns.workers, command
+    return opts, cfg, ns.scheduler, ns.workers, command, ns.name
 
 
 def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
@@ -208,10 +212,8 @@ def result_rows(results: list[dict[str, Any]], cfg: Config) -> list[dict[str, An
 def quartiles(values: Sequence[float]) -> tuple[float, float, float]:
     """Median and the lower and upper quartiles (numpy's linear interpolation; inf allowed)."""
     a = np.asarray(values, dtype=float)
-    if np.isinf(a).any():  # percentiles of values with inf: order statistics, no interpolation through inf
-        q = np.percentile(a, [50, 25, 75], method="lower")
-    else:
-        q = np.percentile(a, [50, 25, 75])
+    # with an inf among the values: order statistics (no interpolation through inf, which gives nan)
+    q = np.percentile(a, [50, 25, 75], method="lower" if np.isinf(a).any() else "linear")
     return float(q[0]), float(q[1]), float(q[2])
 
 
@@ -277,7 +279,7 @@ def verdict_table(rows: list[dict[str, Any]], cfg: Config) -> Table:
     return t
 
 
-def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config) -> None:
+def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = NAME) -> None:
     plt = pyplot()
     fig, axes = plt.subplots(1, len(cfg.cells), figsize=(4.2 * len(cfg.cells), 3.6), sharey=True, squeeze=False)
     ps = list(range(1, cfg.p_max + 1))
@@ -296,12 +298,12 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config) -> None:
     axes[0][0].set_ylabel("P(optimum): median, quartile band")
     axes[0][-1].legend(frameon=False, fontsize=8)
     fig.tight_layout()
-    save_figure(fig, opts.figures / f"{NAME}.png")
+    save_figure(fig, opts.figures / f"{name}.png")
     plt.close(fig)
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
-    opts, cfg, scheduler, workers, command = parse_args(argv)
+    opts, cfg, scheduler, workers, command, name = parse_args(argv)
     t_all = time.perf_counter()
     tasks = instances_of(cfg)
     try:
@@ -314,7 +316,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     opts.figures.mkdir(parents=True, exist_ok=True)
     opts.results.mkdir(parents=True, exist_ok=True)
     tables = [quality_table(rows, cfg), tts_table(rows, cfg), verdict_table(rows, cfg)]
-    where = "a LocalCluster of %d single-threaded workers" % workers if scheduler is None else "a Dask cluster"
+    where = f"a LocalCluster of {workers} single-threaded workers" if scheduler is None else "a Dask cluster"
     notes = [
         f"qcpp {qcpp.__version__}. Ensembles: qcpp.ensemble(rows, cols, robots, density={cfg.density:g}, "
         f"count={cfg.instances}, seed={cfg.seed}): random distinct endpoints, soft obstacles; every instance "
@@ -333,12 +335,12 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         f"Tasks run on {where}; the 2-core machine was shared with other jobs, so wall-clock times are "
         f"inflated. Whole study: {seconds:.0f} s.",
     ]
-    write_results(opts, NAME, command, tables, notes)
+    write_results(opts, name, command, tables, notes)
     dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
             "rows": rows}
-    write_text_atomic(opts.results / f"{NAME}.json", json.dumps(dump, indent=1) + "\n")
-    print(f"wrote {opts.results / f'{NAME}.json'}")
-    figure(opts, rows, cfg)
+    write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
+    print(f"wrote {opts.results / f'{name}.json'}")
+    figure(opts, rows, cfg, name)
     return {"config": cfg, "rows": rows, "results": results, "seconds": seconds}
 
 
