@@ -158,7 +158,10 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Config, sched
             for fut in as_completed(futures):
                 r = fut.result()
                 results[fut.key] = r
-                bar.update(job, advance=1, description=f"{r['cell']} #{r['index']} ({r['seconds']:.0f} s)")
+                done = f"{r['cell']} #{r['index']} ({r['seconds']:.0f} s)"
+                bar.update(job, advance=1, description=done)
+                if not bar.console.is_terminal:  # a log: one line per finished instance
+                    print(f"{len(results)}/{len(tasks)} {done}", file=sys.stderr, flush=True)
         return [results[f.key] for f in futures]
     except KeyboardInterrupt:
         client.cancel(futures, force=True)

@@ -10,6 +10,11 @@
   2020; :func:`qcpp.simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
+With ``restart_every_level=True`` every level ``p > 1`` also starts from the linear ramp at depth ``p`` and from
+``random_starts`` seeded random angles (``seed + 1000 p + k``): the best angles at ``p - 1`` are often a basis
+state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path), where every
+objective is stationary in the new layer, so the two warm starts above cannot leave it.
+
 With ``mixer_warm=True`` every level also starts from the mixer-only warm start
 (:func:`qcpp.simulate.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
 stationary in them).
@@ -160,6 +165,7 @@ def train_layerwise(
     alpha: float = CVAR_ALPHA,
     eta: float | None = None,
     mixer_warm: bool = False,
+    restart_every_level: bool = False,
     progress: Callable[[int, int], None] | None = None,
 ) -> LayerwiseResult:
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
@@ -173,6 +179,8 @@ def train_layerwise(
         alpha: CVaR tail mass (``cvar``).
         eta: Gibbs inverse temperature (``gibbs``); default ``5 / sigma``.
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
+        restart_every_level: Also start every level ``p > 1`` from the linear ramp and ``random_starts`` random
+            angles (see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
 
     Raises:
@@ -192,6 +200,10 @@ def train_layerwise(
         else:
             prev = np.array(levels[-1].angles)
             starts = [interp_angles(prev), extend_angles(prev)]
+            if restart_every_level:
+                starts.append(initial_angles(qaoa, level, "linear-ramp"))
+                starts += [initial_angles(qaoa, level, "random", seed=seed + 1000 * level + k)
+                           for k in range(random_starts)]
         if warm:
             x0 = initial_angles(qaoa, level, "linear-ramp")
             x0[1::2] = warm[level - 1].betas
