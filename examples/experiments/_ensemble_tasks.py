@@ -106,3 +106,26 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
         })
     return {"dimension": q.dimension, "optimum_in_basis": in_basis, "training_seconds_simulated": train_s,
             "search_seconds": search_s, "levels": levels}
+
+
+
+def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
+    """The candidate schedule ``train_layerwise(..., **cfg["candidate"])`` on one scenario, to depth
+    ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds."""
+    from qcpp.problem.scenario import scenario_from_dict
+    from qcpp.problem.solvers import dfs
+    from qcpp.simulate.layerwise import train_layerwise
+    from qcpp.simulate.subspace import SubspaceQAOA
+
+    t_all = time.perf_counter()
+    s = scenario_from_dict(scenario)
+    q = SubspaceQAOA(s)
+    optimum = dfs(s).cost.total
+    in_basis = abs(q.optimum()[0] - optimum) <= 1e-6 * max(1.0, abs(optimum))
+    t0 = time.perf_counter()
+    res = train_layerwise(q, cfg["p_max"], **cfg["candidate"])
+    return {"cell": cell, "index": index, "scenario": scenario, "optimum_in_basis": in_basis,
+            "training_seconds": time.perf_counter() - t0,
+            "p_opt": [lv.p_optimum if in_basis else 0.0 for lv in res.levels],
+            "angles": [list(lv.angles) for lv in res.levels], "expectation": [lv.expectation for lv in res.levels],
+            "circuit_estimates": list(res.level_estimates), "seconds": time.perf_counter() - t_all}

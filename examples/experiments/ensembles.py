@@ -132,9 +132,10 @@ def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
     return out
 
 
-def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Config, scheduler: str | None,
-                workers: int) -> list[dict[str, Any]]:
-    """Every task on the cluster, with a progress bar; returns the results in task order. Ctrl-C cancels."""
+def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, scheduler: str | None,
+                workers: int, fn: Any = None) -> list[dict[str, Any]]:
+    """``fn(cell, index, scenario, asdict(cfg))`` (default ``_ensemble_tasks.run_instance``) for every task on the
+    cluster, with a progress bar; returns the results in task order. Ctrl-C cancels the tasks."""
     import cloudpickle
     from dask.distributed import Client, LocalCluster, as_completed
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
@@ -149,8 +150,9 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Config, sched
     futures = []
     try:
         payload = asdict(cfg)
-        futures = [client.submit(_ensemble_tasks.run_instance, cell, i, s, payload, key=f"{NAME}-{cell}-{i}",
-                                 pure=False) for cell, i, s in tasks]
+        fn = _ensemble_tasks.run_instance if fn is None else fn
+        futures = [client.submit(fn, cell, i, s, payload, key=f"{fn.__name__}-{cell}-{i}", pure=False)
+                   for cell, i, s in tasks]
         results: dict[str, dict[str, Any]] = {}
         columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
         with Progress(*columns, transient=False) as bar:

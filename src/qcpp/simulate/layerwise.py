@@ -11,8 +11,8 @@
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
 With ``restart_every_level=True`` every level ``p > 1`` also starts from the linear ramp at depth ``p`` and from
-``random_starts`` seeded random angles (``seed + 1000 p + k``): the best angles at ``p - 1`` are often a basis
-state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path), where every
+``random_starts`` seeded random angles (seeds ``seed + 1000 p + k``): the best angles at ``p - 1`` are often a
+basis state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path), where every
 objective is stationary in the new layer, so the two warm starts above cannot leave it.
 
 With ``mixer_warm=True`` every level also starts from the mixer-only warm start
