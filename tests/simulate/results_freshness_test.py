@@ -398,3 +398,27 @@ def test_ensemble_derived_columns(name: str) -> None:
         levels.sort(key=lambda r: r["p"])
         assert all(b["best_p_opt"] >= a["best_p_opt"] - 1e-12 for a, b in zip(levels, levels[1:]))
         assert all(b["circuit_estimates"] > a["circuit_estimates"] for a, b in zip(levels, levels[1:]))
+
+
+@pytest.mark.skipif(not (RESULTS / "training_restarts.json").exists(), reason="no committed training_restarts")
+def test_training_restarts_rows_match_their_reference_and_angles() -> None:
+    """The candidate schedule's records: the reference study's default and best found copied faithfully, the
+    candidate's P(optimum) and <C> at its recorded angles (a few instances; ``heavy``-sized states are not
+    needed: these are 3x3 instances)."""
+    data = _load("training_restarts")
+    assert _current(data["qcpp_version"]) and "--quick" not in data["command"]
+    assert data["command"].startswith("python examples/experiments/training_restarts.py")
+    ref = {(r["cell"], r["index"], r["p"]): r for r in _load(Path(data["config"]["reference"]).stem)["rows"]
+           if r["method"] == "qaoa"}
+    checked = 0
+    for r in data["rows"]:
+        b = ref[(r["cell"], r["index"], r["p"])]
+        assert r["scenario"] == b["scenario"] and r["options"]["restart_every_level"] is True
+        assert (r["default_p_opt"], r["best_p_opt"], r["default_circuit_estimates"]) == (
+            b["p_opt"], b["best_p_opt"], b["circuit_estimates"])
+        if r["index"] < CHEAP_ENSEMBLE_INSTANCES:
+            q = _qaoa(_key(r))
+            assert q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label("tr", r)
+            assert q.expectation(r["angles"]) == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9)
+            checked += 1
+    assert checked > 0
