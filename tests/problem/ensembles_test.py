@@ -25,7 +25,7 @@ def _fits(rows: int, cols: int, robots: int, density: float) -> bool:
     return round(density * rows * cols) + 2 * robots <= rows * cols
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=15, deadline=None)
 @given(cells, seeds, st.integers(0, 50))
 def test_every_instance_is_feasible_and_as_asked(cell: tuple, seed: int, index: int) -> None:
     rows, cols, robots, density, mode = cell
@@ -43,7 +43,7 @@ def test_every_instance_is_feasible_and_as_asked(cell: tuple, seed: int, index: 
     assert scenario_from_dict(scenario_to_dict(s)) == s
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=10, deadline=None)
 @given(cells, seeds)
 def test_a_seed_names_the_same_instances(cell: tuple, seed: int) -> None:
     rows, cols, robots, density, mode = cell
@@ -55,7 +55,7 @@ def test_a_seed_names_the_same_instances(cell: tuple, seed: int) -> None:
     assert a[2] == random_scenario(rows, cols, robots, density, seed=seed, index=2, obstacles=mode)
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=10, deadline=None)
 @given(st.tuples(st.integers(3, 4), st.integers(3, 4), st.integers(1, 2), st.sampled_from([0.0, 0.1, 0.2])),
        seeds, seeds)
 def test_different_seeds_draw_different_ensembles(cell: tuple, seed: int, other: int) -> None:
