@@ -8,7 +8,9 @@
   where compile finds the greedy routing cheaper on a small circuit, the smallest with the row's qubits), otherwise
   the smallest member with the row's qubits), ``fits``
   (the device's largest connected component has the row's qubits);
-* ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``;
+* ``routed_twoq``, ``routed_depth``, ``routed_twoq_depth``, ``duration_s``, ``esp`` and ``esp_model``, and
+  ``esp_idle`` (ESP with idle decoherence, :func:`qcpp.routing.native.esp_idle`; exact rows on devices with T1 /
+  T2 only, else ``None``);
 * ``routed_kind`` (the two-qubit count and the ESP) and ``routed_depth_kind`` (the depths and the duration), each
   ``exact`` (equal to what ``qcpp compile --device`` writes) or ``bound``; ``routed_model`` says how they were
   obtained. Three ways, the first that applies:
@@ -90,6 +92,7 @@ ROUTED_COLUMNS: tuple[str, ...] = (
     "routed_twoq_depth",
     "duration_s",
     "esp",
+    "esp_idle",
 )
 """Columns the ``table`` format adds with ``--device``."""
 
@@ -208,6 +211,7 @@ def _bound(
         "duration_s": duration,
         "esp": math.exp(log_esp),
         "esp_model": model,
+        "esp_idle": None,
     }
 
 
@@ -254,7 +258,7 @@ def _routed_fields(
     total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.native import duration_s, esp
+    from qcpp.routing.native import duration_s, esp, esp_idle
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -266,7 +270,7 @@ def _routed_fields(
     out: dict[str, Any] = {"device": dev.name, "fits": fits}
     if not fits:
         none = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
-                "duration_s", "esp", "esp_model")  # fmt: skip
+                "duration_s", "esp", "esp_model", "esp_idle")  # fmt: skip
         return {**out, **dict.fromkeys(none)}
     if (total_gates if total_gates is not None else cx + one_qubit) > EXACT_MAX_GATES:
         summed = _window_sum(scenario, p, plan, device, say, context)
@@ -290,6 +294,7 @@ def _routed_fields(
         "duration_s": duration_s(routed),
         "esp": esp(routed),
         "esp_model": ESP_MODEL,
+        "esp_idle": esp_idle(routed),
     }
 
 
@@ -325,6 +330,7 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
         "duration_s": summed.duration_bound_s,
         "esp": summed.esp,
         "esp_model": esp_model,
+        "esp_idle": None,
     }
 
 

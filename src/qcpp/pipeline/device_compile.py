@@ -67,7 +67,7 @@ from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.native import duration_s, esp, to_native
+from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 from qcpp.routing.sabre import route
@@ -132,7 +132,8 @@ class DeviceCompileResult:
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready: ``device``, ``initial_layout``, ``final_layout``, ``routed`` (gates, two-qubit count, swaps,
-        ESP with its model, duration in seconds)."""
+        ESP of the gates with its model, ESP with idle decoherence (``esp_idle``, ``None`` on devices without
+        T1 / T2) with its model, duration in seconds)."""
         r = self.routed
         native = r if not self.lowered else to_native(r)
         ops = r.circuit.count_ops()
@@ -147,6 +148,8 @@ class DeviceCompileResult:
                 "swaps": r.swaps,
                 "esp": esp(native),
                 "esp_model": ESP_MODEL,
+                "esp_idle": esp_idle(native),
+                "esp_idle_model": f"esp x {IDLE_MODEL}",
                 "duration_s": duration_s(native),
             },
         }

@@ -202,8 +202,9 @@ def compile_command(
     if device is not None:
         routed = summary["routed"]
         duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
+        idle = "" if routed.get("esp_idle") is None else f" ({routed['esp_idle']:.3g} with idle decoherence)"
         console.print(
-            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}, "
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}{idle}, "
             f"duration {duration}; {summary['device_note']}"
         )
     if summary["symbols"]:
