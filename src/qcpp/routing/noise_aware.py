@@ -42,7 +42,7 @@ __all__ = [
 EMBEDDINGS_KEPT = 2
 """Embeddings :func:`embedding_sites` returns (its model's best; the caller rescoring them exactly)."""
 
-MAPPINGS_PER_ANCHOR = 20
+MAPPINGS_PER_ANCHOR = 10
 """Embeddings VF2 enumerates per anchor qubit."""
 
 
