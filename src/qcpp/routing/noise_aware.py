@@ -36,7 +36,8 @@ from qcpp.routing.native import esp, esp_idle, idle_times_s, one_qubit_name
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 
 __all__ = [
-    "EMBEDDINGS_KEPT", "MAPPINGS_PER_ANCHOR", "embed_in", "embedding_sites", "embeddings", "log_score", "post_layout",
+    "EMBEDDINGS_KEPT", "MAPPINGS_PER_ANCHOR", "MAX_PATTERN_QUBITS", "embed_in", "embedding_sites", "embeddings",
+    "log_score", "post_layout",
 ]
 
 EMBEDDINGS_KEPT = 2
@@ -44,6 +45,10 @@ EMBEDDINGS_KEPT = 2
 
 MAPPINGS_PER_ANCHOR = 10
 """Embeddings VF2 enumerates per anchor qubit."""
+
+MAX_PATTERN_QUBITS = 64
+"""Circuits using more qubits get no search (they fill most of a device: few embeddings exist, and VF2 from every
+anchor would cost seconds each)."""
 
 
 def log_score(routed: RoutedCircuit) -> float:
@@ -64,7 +69,8 @@ def embedding_sites(
 ) -> list[tuple[int, ...]]:  # fmt: skip
     """The ``keep`` best-scoring embeddings found of ``routed``'s coupling subgraph in ``device`` (module docs),
     best first, as ``sites``: qubit ``i`` of ``routed`` -> qubit of ``device`` (distinct; qubits ``routed`` leaves
-    unused fill the free sites in order). Empty if none is found (or ``routed`` has more qubits than ``device``).
+    unused fill the free sites in order). Empty if none is found, or ``routed`` has more qubits than ``device`` or
+    uses more than :data:`MAX_PATTERN_QUBITS`.
 
     The search: the circuit's qubits (those its gates or layouts touch) are ordered breadth-first from the busiest;
     for every device qubit as the anchor of the first, rustworkx's VF2 (the subgraph isomorphism Qiskit's
@@ -82,6 +88,8 @@ def embedding_sites(
     if device.is_all_to_all or m > n:
         return []
     used_set = {q for g in routed.circuit.gates for q in g[1]} | set(routed.initial_layout) | set(routed.final_layout)
+    if len(used_set) > MAX_PATTERN_QUBITS:
+        return []
     pairs: dict[tuple[int, int], int] = {}
     ones: dict[str, dict[int, int]] = {}
     for g in routed.circuit.gates:
