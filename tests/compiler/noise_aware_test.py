@@ -195,3 +195,24 @@ def test_ranked_routes_start_with_the_search_winner() -> None:
     assert list(ranked[0].circuit.gates) == list(one.circuit.gates) and ranked[0].initial_layout == one.initial_layout
     counts = [two_qubit_count(r.circuit) for r in ranked]
     assert counts == sorted(counts) and len(ranked) == 3
+
+
+@pytest.mark.heavy  # compiles 3x3/1 on both IBM snapshots with every candidate (tens of seconds)
+@pytest.mark.parametrize("name", ["ibm_fez", "ibm_torino"])
+def test_compile_on_a_named_device_is_never_worse_than_qiskit_o3(name: str) -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.presets import default_scenario
+    from qcpp.routing.qiskit_o3 import qiskit_o3
+
+    s, bind = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}
+    dev = named_device(name)
+    by_esp = compile_for_device(s, 1, name, bindings=bind)
+    by_twoq = compile_for_device(s, 1, name, bindings=bind, optimize_for="twoq")
+    peers = [qiskit_o3(by_esp.compiled.circuit, dev, seed, range(s.num_variables)) for seed in range(3)]
+    assert by_esp.optimize_for == "esp" and by_esp.chosen in {c["name"] for c in by_esp.candidates}
+    assert esp_idle(by_esp.routed) >= max(esp_idle(p) for p in peers)
+    twoq = [sum(1 for g in r.circuit.gates if len(g[1]) == 2) for r in (by_twoq.routed, *peers)]
+    assert twoq[0] <= min(twoq[1:])
+    summary = by_esp.summary()["routed"]
+    assert summary["esp_idle"] < summary["esp"] and summary["chosen"] == by_esp.chosen
