@@ -17,7 +17,7 @@ Both tables give the ESP of the gates alone and with idle decoherence (:data:`qc
 ``-`` where the device's source publishes no T1 / T2).
 
 ``--calibrated`` (p = 1, angles bound): on ibm_fez and ibm_torino, for :data:`CALIBRATED` (one-robot 3x3 and 3x4,
-two-robot 3x3 without and with an obstacle (soft, the default objective), and with interior endpoints), what
+two-robot 3x3 without and with a hard obstacle, and with interior endpoints), what
 ``qcpp compile --device NAME`` writes (``--optimize-for esp``, the default there, and ``--optimize-for twoq``) against
 ``qiskit.transpile(optimization_level=3)`` of the same lowered circuit onto the calibrated target built from our
 device file (:func:`qcpp.routing.target.device_target`), seeds 0-2, the best seed for each figure: two-qubit gates,
@@ -107,9 +107,9 @@ CALIBRATED: tuple[tuple[str, Scenario], ...] = (
     ("3x3/1", default_scenario(3, 3, 1)),
     ("3x4/1", default_scenario(3, 4, 1)),
     ("3x3/2", default_scenario(3, 3, 2)),
-    ("3x3/2, obstacle", scenario_from_dict({"name": "3x3/2, obstacle at the centre",
-                                            "grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
-                                            "robots": TWO_ROBOTS})),
+    ("3x3/2, obstacle", scenario_from_dict({"name": "3x3/2, hard obstacle at (1, 2)",
+                                            "grid": {"rows": 3, "cols": 3, "obstacles": [[1, 2]]},
+                                            "robots": TWO_ROBOTS, "objective": {"obstacles": "hard"}})),
     ("3x3/2, interior", scenario_from_dict({"name": "3x3/2, interior endpoints", "grid": {"rows": 3, "cols": 3},
                                             "robots": [{"start": [1, 1], "goal": [0, 2]},
                                                        {"start": [1, 0], "goal": [2, 2]}]})),
