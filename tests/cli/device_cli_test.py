@@ -103,7 +103,7 @@ def test_compile_layout_choice_is_reported() -> None:
 @pytest.mark.parametrize(
     ("args", "fragment"),
     [
-        (("--device", "ibm_fez", "--optimize-for", "depth"), "optimize for one of esp, twoq"),
+        (("--device", "ibm_fez", "--optimize-for", "depth"), "--optimize-for: expected esp or twoq, got 'depth'"),
         (("--optimize-for", "esp"), "--optimize-for esp: applies with --device only"),
     ],
 )
