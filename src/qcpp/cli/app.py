@@ -293,6 +293,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "solve.optimizer": _lazy("qcpp.simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
     "phase_layout": _lazy("qcpp.plan.options", "PHASE_LAYOUTS"),
     "compile.layout": _lazy("qcpp.plan.options", "LAYOUT_METHODS"),
+    "compile.optimize_for": _lazy("qcpp.pipeline.candidates", "OPTIMIZE_FOR"),
     "compile.angles": _lazy("qcpp.plan.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.simulate.evaluate", "METHODS"),

@@ -4,9 +4,10 @@
 ``qcpp compile --device`` picks: :func:`qcpp.pipeline.device_compile.layout_device` for ``grid`` and ``heavy-hex``,
 else the smallest member with the row's qubits), ``fits`` (the device's largest connected component holds the
 row's qubits; for the bound also every section of the circuit compile routes), ``routed_twoq``, ``routed_depth``,
-``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, and ``routed_kind`` (of the two-qubit count and the
-ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact`` (what ``qcpp compile --device``
-writes) or ``bound``. ``routed_model`` names the first way that applies:
+``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, ``esp_idle`` (ESP with idle decoherence,
+:func:`qcpp.routing.native.esp_idle`; exact rows on devices with T1 / T2 only, else ``None``), and ``routed_kind``
+(of the two-qubit count and the ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact``
+(what ``qcpp compile --device`` writes) or ``bound``. ``routed_model`` names the first way that applies:
 
 1. ``compile``: at most :data:`EXACT_MAX_GATES` lowered gates; compiled and routed as ``qcpp compile --device``
    does, every figure exact.
@@ -67,6 +68,7 @@ ROUTED_COLUMNS: tuple[str, ...] = (
     "routed_twoq_depth",
     "duration_s",
     "esp",
+    "esp_idle",
 )
 """Columns the ``table`` format adds with ``--device``."""
 
@@ -90,7 +92,7 @@ SUM_MODEL = (
     "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 _NONE = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
-         "duration_s", "esp", "esp_model")  # fmt: skip
+         "duration_s", "esp", "esp_model", "esp_idle")  # fmt: skip
 
 
 def _largest_component(device: Device) -> int:
@@ -128,6 +130,7 @@ def _bound(device: Device, twoq: int, one_qubit: int, data_qubits: int, model: s
         "duration_s": duration,
         "esp": math.exp(log_esp),
         "esp_model": model,
+        "esp_idle": None,
     }
 
 
@@ -174,7 +177,7 @@ def _routed_fields(
     total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.native import duration_s, esp
+    from qcpp.routing.native import duration_s, esp, esp_idle
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -207,6 +210,7 @@ def _routed_fields(
         "duration_s": duration_s(routed),
         "esp": esp(routed),
         "esp_model": ESP_MODEL,
+        "esp_idle": esp_idle(routed),
     }
 
 
@@ -239,6 +243,7 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
         "duration_s": summed.duration_bound_s,
         "esp": summed.esp,
         "esp_model": esp_model,
+        "esp_idle": None,
     }
 
 

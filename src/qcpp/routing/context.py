@@ -68,7 +68,7 @@ class RoutingContext:
             (:func:`qcpp.routing.bridge.copy_chain`).
         allocations: The allocation search's ranks per section class (:func:`qcpp.layout.medial.allocate_ancillas`).
         free_sites: The last ``(device, distances, homes)``'s free sites (:func:`qcpp.layout.medial.allocate_ancillas`).
-        placements: The placement search's winner per circuit and device
+        placements: The placement search's routings, cheapest first, per circuit and device
             (:func:`qcpp.layout.placement_search.search_route`).
         cell_choices: The cells' plan choice per cell class (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         plans: The A*'s plan per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
@@ -89,7 +89,7 @@ class RoutingContext:
         self.within_two: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
         self.allocations: dict[Hashable, tuple[int, ...]] = {}
         self.free_sites: list[tuple[Any, ...]] = []
-        self.placements: dict[Hashable, tuple[tuple[int, ...], int]] = {}
+        self.placements: dict[Hashable, list[tuple[int, tuple[int, ...], int]]] = {}
         self.cell_choices: dict[Hashable, Any] = {}
         self.plans: dict[Hashable, Any] = {}
         self.relabelled: dict[Hashable, Any] = {}

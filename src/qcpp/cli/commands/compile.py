@@ -144,6 +144,17 @@ def compile_command(
             "routing of the whole circuit) or auto (medial where it fits and routes cheaper).",
         ),
     ] = "auto",
+    optimize_for: Annotated[
+        str | None,
+        typer.Option(
+            "--optimize-for",
+            help="With --device: the figure the routing is chosen by on a named device, esp (success probability "
+            "with idle decoherence; the default there) or twoq (fewest two-qubit gates); the candidates are qcpp's "
+            "own routings, Qiskit O3 on the calibrated target, and both moved onto the best-calibrated qubits. The "
+            "families (grid, heavy-hex, all-to-all) keep their single routing.",
+            show_default=False,
+        ),
+    ] = None,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
     obstacle: ObstacleFlag = None,
@@ -164,6 +175,8 @@ def compile_command(
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
         if local_ancillas:
             raise ValueError("--local-ancillas: applies with --device only (no device given)")
+        if optimize_for is not None:
+            raise ValueError(f"--optimize-for {optimize_for}: applies with --device only (no device given)")
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
@@ -182,7 +195,8 @@ def compile_command(
     size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:
         summary, phase_explain = _routed(
-            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile
+            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
+            optimize_for,
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -220,10 +234,14 @@ def compile_command(
     if device is not None:
         routed = summary["routed"]
         duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
+        idle = "" if routed.get("esp_idle") is None else f" ({routed['esp_idle']:.3g} with idle decoherence)"
         console.print(
-            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}, "
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}{idle}, "
             f"duration {duration}; {summary['device_note']}"
         )
+        if routed.get("candidates"):
+            console.print(f"chosen by {routed['optimize_for']}: {routed['chosen']} "
+                          f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them)")  # fmt: skip
     if summary["symbols"]:
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
@@ -264,6 +282,7 @@ def _routed(
     version: int,
     layout: str = "auto",
     profile: Profile = "default",
+    optimize_for: str | None = None,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM; the
     summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
@@ -272,7 +291,8 @@ def _routed(
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
-                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
+                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
+                                    optimize_for=optimize_for)  # fmt: skip
     if qasm is not None:
         write_qasm_profile(result.routed.circuit, qasm, version, profile)  # type: ignore[arg-type]
     return result.compile_summary(), result.compiled.phase_explain
