@@ -123,6 +123,8 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
     [
         (lambda: qcpp.estimate("examples/paper_3x3.toml"), "scenario: expected a Scenario"),
         (lambda: qcpp.compile(S, layout="greedy"), "layout: 'greedy' applies with a device only"),
+        (lambda: qcpp.compile(S, optimize_for="esp"), "optimize_for: applies with a device only"),
+        (lambda: qcpp.compile(S, device="ibm_fez", optimize_for="fidelity"), "optimize_for: expected esp or twoq"),
         (lambda: qcpp.solve(S, "magic"), "method: expected dfs or cpsat"),
         (lambda: qcpp.solve(S, "dfs", p=2), "p: applies to method='qaoa' only"),
         (lambda: qcpp.solve(S, "anneal", time_limit=5), "time_limit: applies to method='cpsat' only"),

@@ -145,6 +145,7 @@ def compile(
     bind: Mapping[str, float] | None = None,
     layout: str = "auto",
     local_ancillas: bool = False,
+    optimize_for: str | None = None,
     max_gates: int | None = None,
     **plan_options: Any,
 ) -> Compiled:
@@ -158,6 +159,8 @@ def compile(
         bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
         layout: With a device: ``auto``, ``medial`` or ``greedy``.
         local_ancillas: With a device: region-local ancillas.
+        optimize_for: With a named device: choose the routed candidate by ``esp`` (success probability with idle
+            decoherence; the default there) or ``twoq`` (fewest two-qubit gates); ``qcpp compile --optimize-for``.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
@@ -176,6 +179,7 @@ def compile(
     """
     from qcpp.estimators.guard import check_size
     from qcpp.hardware.device import get_device
+    from qcpp.pipeline.candidates import OPTIMIZE_FOR
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
     from qcpp.problem.cost_range import check_cost_range
@@ -185,6 +189,8 @@ def compile(
     options = plan_options_arg(plan_options)
     bindings = check_binding_values(bind if bind is not None else {}, "bind")
     check_choice(layout, LAYOUT_METHODS, "layout")
+    if optimize_for is not None:
+        check_choice(optimize_for, OPTIMIZE_FOR, "optimize_for")
     for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas)):
         if not isinstance(flag, bool):
             raise OptionError(name, f"expected True or False, got {flag!r}")
@@ -193,6 +199,8 @@ def compile(
             raise OptionError("layout", f"{layout!r} applies with a device only (no device given)")
         if local_ancillas:
             raise OptionError("local_ancillas", "applies with a device only (no device given)")
+        if optimize_for is not None:
+            raise OptionError("optimize_for", "applies with a device only (no device given)")
     elif not isinstance(device, str):
         raise OptionError("device", f"expected a device name, got {device!r}")
     else:
@@ -209,7 +217,7 @@ def compile(
 
     routed = compile_for_device(
         s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
-        layout_method=layout,
+        layout_method=layout, optimize_for=optimize_for,
     )  # fmt: skip
     r = routed.routed
     return Compiled(
