@@ -136,7 +136,10 @@ def test_each_kind_is_routed_once_and_its_route_serves_every_gadget_of_the_kind(
     plan = bound_plan(s, 2, PlanOptions(), dev)
     context = RoutingContext()
     shared = placed_blocks(plan, homes, dev, context.kind_routes)
-    gadgets = [g for name, g in plan.sections() if name in ("initial_state", "phase_0", "mixer_0")]
+    first = list(plan.sections(layers=1))
+    assert [n for n, _ in first] == [n for n, _ in plan.sections()][: len(first)]
+    assert {n for n, _ in first} == {"initial_state", "phase_0", "mixer_0"}
+    gadgets = [g for _, g in first]
     assert len(context.kind_routes) == len({g.kind for g in gadgets}) < len(gadgets)
 
     class Forgetful(dict):  # type: ignore[type-arg]

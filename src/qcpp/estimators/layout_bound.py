@@ -68,10 +68,6 @@ __all__ = [
 _DIJKSTRA_CHUNK = 256
 """Sources per batched breadth-first search on a non-grid device (a chunk's rows are dense: 256 x qubits)."""
 
-_FIRST_LAYER = ("initial_state", "phase_0", "mixer_0")
-"""The sections the bound places: the state preparation and the first layer."""
-
-
 def bound_plan(scenario: Scenario, p: int, options: PlanOptions, device: Device | str) -> QaoaPlan:
     """The plan of the circuit compile routes on ``device``: ``options`` settled for the device
     (:func:`qcpp.pipeline.device_plan.device_plan_options`), unfused (every gadget lowered on its own).
@@ -231,9 +227,7 @@ def placed_blocks(
     is_home = np.zeros(device.num_qubits, dtype=bool)
     is_home[home] = True
     out: list[PlacedBlock] = []
-    for name, gadget in plan.sections():
-        if name not in _FIRST_LAYER:
-            break
+    for name, gadget in plan.sections(layers=1):
         qubits = _first_use(gadget.emit())
         route = routes.get(gadget.kind)
         if route is None:

@@ -158,11 +158,12 @@ class QaoaPlan:
         return sum(r.size for r in self.registers)
 
     # -- the call graph
-    def sections(self) -> Iterator[tuple[str, Gadget]]:
+    def sections(self, layers: int | None = None) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and the mixer's pieces (:meth:`_mixer_layer`)."""
+        separator and the mixer's pieces (:meth:`_mixer_layer`); only the first ``layers`` layers if given (a
+        layer's gadgets are planned as a whole when it starts)."""
         yield "initial_state", self.state_prep
-        for k in range(self.p):
+        for k in range(self.p if layers is None else min(layers, self.p)):
             assert self.phase_plan is not None
             for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
