@@ -68,6 +68,7 @@ __all__ = [
 _DIJKSTRA_CHUNK = 256
 """Sources per batched breadth-first search on a non-grid device (a chunk's rows are dense: 256 x qubits)."""
 
+
 def bound_plan(scenario: Scenario, p: int, options: PlanOptions, device: Device | str) -> QaoaPlan:
     """The plan of the circuit compile routes on ``device``: ``options`` settled for the device
     (:func:`qcpp.pipeline.device_plan.device_plan_options`), unfused (every gadget lowered on its own).
@@ -88,7 +89,7 @@ class BlockRoute:
     """One lowered section of a gadget kind, in its own labels: label ``i`` is the ``i``-th qubit its gates meet.
 
     Attributes:
-        source: Per label, its position among the gadget's qubits (:func:`_first_use` of its high-level gates),
+        source: Per label, its position among the gadget's qubits (:func:`_own_labels` of its gates),
             ``-1`` for a ``work`` qubit the lowering adds.
         data: The labels that are data qubits.
         ancillas: ``(ancilla label, label it goes beside)`` in order of first use: beside its first partner
@@ -110,17 +111,19 @@ class KindRoute:
     """What the routed bound needs of a gadget kind (see the module docs).
 
     Attributes:
+        gates: The gadget's high-level gates with its qubits named by :func:`_own_labels` and without angles.
         data: Per qubit of the gadget (in order of first use), whether it is a data qubit.
         blocks: Its lowered sections (:func:`qcpp.plan.qaoa.gadget_blocks`) in order.
     """
 
+    gates: tuple[Hashable, ...]
     data: np.ndarray
     blocks: tuple[BlockRoute, ...]
 
-    def fits(self, qubits: Sequence[int], n_data: int) -> bool:
-        """Whether a gadget of this kind on ``qubits`` (in order of first use) has its data qubits where the
-        example had them (the kind's contract; a gadget that breaks it gets a route of its own)."""
-        return len(qubits) == len(self.data) and bool(((np.asarray(qubits) < n_data) == self.data).all())
+    def fits(self, gates: tuple[Hashable, ...], qubits: Sequence[int], n_data: int) -> bool:
+        """Whether a gadget with these :func:`_own_labels` has this route: the same gates up to qubit names (the
+        kind's contract), its data qubits where the route has them. One that does not gets a route of its own."""
+        return gates == self.gates and bool(((np.asarray(qubits) < n_data) == self.data).all())
 
 
 @dataclass(frozen=True)
@@ -138,13 +141,12 @@ class PlacedBlock:
     route: BlockRoute
 
 
-def _first_use(gates: Sequence[Any]) -> list[int]:
-    """The qubits of ``gates`` in order of first use."""
-    seen: dict[int, None] = {}
-    for g in gates:
-        for q in g[1]:
-            seen.setdefault(q, None)
-    return list(seen)
+def _own_labels(gates: Sequence[Any]) -> tuple[tuple[Hashable, ...], list[int]]:
+    """``(gates, qubits)``: ``gates`` with qubit ``i`` standing for the ``i``-th qubit they meet and without angles
+    (what equal kinds share), and those qubits in order."""
+    own: dict[int, int] = {}
+    named = tuple((g[0], tuple(own.setdefault(q, len(own)) for q in g[1]), g[3]) for g in gates)
+    return named, list(own)
 
 
 def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
@@ -171,7 +173,8 @@ def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
     from qcpp.plan.qaoa import gadget_blocks
 
     blocks = gadget_blocks(gadget)
-    own = {q: i for i, q in enumerate(_first_use([g for b in blocks for g in b]))}
+    gates, qubits = _own_labels([g for b in blocks for g in b])
+    own = {q: i for i, q in enumerate(qubits)}
     routes = []
     for sec in lower(Circuit(registers, [Section("g", tuple(b)) for b in blocks])).sections:
         label: dict[int, int] = {}
@@ -191,14 +194,14 @@ def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
                     placed.add(q)
             if len(qs) == 2:
                 pairs.append((label.setdefault(qs[0], len(label)), label.setdefault(qs[1], len(label))))
-        qubits = list(label)
+        met = list(label)
         unique, counts = np.unique(np.array(pairs, dtype=np.int64).reshape(-1, 2), axis=0, return_counts=True)
         routes.append(BlockRoute(
-            source=np.array([own.get(q, -1) for q in qubits], dtype=np.int64),
-            data=np.flatnonzero(np.array(qubits, dtype=np.int64) < n_data),
+            source=np.array([own.get(q, -1) for q in met], dtype=np.int64),
+            data=np.flatnonzero(np.array(met, dtype=np.int64) < n_data),
             ancillas=tuple(ancillas), pairs=unique.reshape(-1, 2), counts=counts.astype(np.int64),
         ))  # fmt: skip
-    return KindRoute(np.array([q < n_data for q in own], dtype=bool), tuple(routes))
+    return KindRoute(gates, np.array([q < n_data for q in qubits], dtype=bool), tuple(routes))
 
 
 def placed_blocks(
@@ -228,11 +231,11 @@ def placed_blocks(
     is_home[home] = True
     out: list[PlacedBlock] = []
     for name, gadget in plan.sections(layers=1):
-        qubits = _first_use(gadget.emit())
+        gates, qubits = _own_labels(gadget.emit())
         route = routes.get(gadget.kind)
         if route is None:
             route = routes[gadget.kind] = kind_route(gadget, registers, n_data)
-        if not route.fits(qubits, n_data):
+        if not route.fits(gates, qubits, n_data):
             route = kind_route(gadget, registers, n_data)
         mine = np.asarray(qubits, dtype=np.int64)
         for block in route.blocks:
