@@ -182,8 +182,6 @@ def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
         ancillas: list[tuple[int, int]] = []
         pairs: list[tuple[int, int]] = []
         first_data = next((q for g in sec.gates for q in g[1] if q < n_data), None)
-        if first_data is not None:
-            label[first_data] = 0
         for g in sec.gates:
             qs = g[1]
             for q in qs:
