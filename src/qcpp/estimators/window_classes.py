@@ -633,6 +633,7 @@ def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[
 
 @lru_cache(maxsize=256)
 def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> tuple[tuple[str, tuple[int, ...]], ...]:
+    """Pure memo: ``_expansion_of.cache_clear()`` empties it."""
     params = (math.pi / 2,) if name in ("rz", "rx") else ()
     gates = native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
     sx = "sx" in native
