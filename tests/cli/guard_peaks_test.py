@@ -72,10 +72,8 @@ def dfs_bytes(s: Scenario) -> int:
 
 Case = tuple[str, tuple[int, int, int] | str, tuple[str, ...], Callable[[Scenario], int]]
 
-CASES: list[Case] = [
-    ("simulate", "paper_3x3.toml", (), lambda s: simulate_need(s, 1).bytes),
+CASES: list[Case] = [  # one per guard but training (a process each: 1.5-3.5 s of CPU); the rest under HEAVY
     ("simulate", (4, 5, 2), (), lambda s: simulate_need(s, 1).bytes),
-    ("solve", "two_robots_4x4.toml", ("-m", "dfs"), dfs_bytes),
     ("solve", (3, 5, 3), ("-m", "dfs"), dfs_bytes),
     ("compile", "paper_3x3.toml", ("-p", "2", "--json"), lambda s: compile_need(s, 2, streamed=False).bytes),
     ("validate", "paper_3x3.toml", (), validate_need_bytes := (lambda s: validate_need(s).bytes)),
@@ -84,7 +82,9 @@ TRAIN = ("-m", "qaoa", "--optimizer", "lbfgsb", "--maxiter", "1")
 """One short L-BFGS-B run: the peak is the first gradient's (the layerwise default's is the same, at more CPU)."""
 
 HEAVY: list[Case] = [
+    ("simulate", "paper_3x3.toml", (), lambda s: simulate_need(s, 1).bytes),
     ("simulate", (4, 4, 3), (), lambda s: simulate_need(s, 1).bytes),
+    ("solve", "two_robots_4x4.toml", ("-m", "dfs"), dfs_bytes),
     ("simulate", "two_robots_5x5.toml", (), lambda s: simulate_need(s, 1).bytes),
     ("solve", (4, 4, 3), ("-m", "dfs"), dfs_bytes),
     ("solve", "two_robots_5x5.toml", ("-m", "dfs"), dfs_bytes),
