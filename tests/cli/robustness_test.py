@@ -204,16 +204,20 @@ def test_a_scenario_file_over_the_size_limit_is_refused_unread(tmp_path: Path) -
     assert_one_line_error(qcpp("simulate", path), "big.toml")
 
 
-def test_five_thousand_robots_on_a_3x3_grid(tmp_path: Path) -> None:
+ONE_LOADER = ["solve", *(pytest.param(c, marks=pytest.mark.heavy) for c in ("simulate", "compile"))]
+"""Every command reads a scenario through one loader: the default run asks one of them, the heavy step the others."""
+
+
+@pytest.mark.parametrize("command", ONE_LOADER)
+def test_five_thousand_robots_on_a_3x3_grid(tmp_path: Path, command: str) -> None:
     path = tmp_path / "crowd.toml"
     path.write_text("[grid]\nrows = 3\ncols = 3\n" + "[[robots]]\nstart = [0, 0]\ngoal = [2, 2]\n" * 5000,
                     encoding="utf-8")  # fmt: skip
-    for command in ("solve", "simulate", "compile"):
-        assert_one_line_error(qcpp(command, path), "5000 robots do not fit on the 9 free nodes")
+    assert_one_line_error(qcpp(command, path), "5000 robots do not fit on the 9 free nodes")
 
 
-def test_a_1x40_strip(tmp_path: Path) -> None:
+@pytest.mark.parametrize("command", ONE_LOADER)
+def test_a_1x40_strip(tmp_path: Path, command: str) -> None:
     path = tmp_path / "strip.toml"
     path.write_text("[grid]\nrows = 1\ncols = 40\n[[robots]]\nstart = [0, 0]\ngoal = [0, 39]\n", encoding="utf-8")
-    for command in ("solve", "simulate", "compile"):
-        assert_one_line_error(qcpp(command, path), "grid.rows", "at least 2x2, got 1x40")
+    assert_one_line_error(qcpp(command, path), "grid.rows", "at least 2x2, got 1x40")
