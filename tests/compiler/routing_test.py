@@ -54,8 +54,9 @@ BIND = {"gamma_0": 0.37, "beta_0": 0.81}
     ],
 )
 def test_doctests(module: str) -> None:
-    result = doctest.testmod(importlib.import_module(module))
-    assert result.failed == 0 and result.attempted > 0
+    """These modules have examples (tests/doctests_test.py runs every module's, so here they are counted)."""
+    tests = doctest.DocTestFinder().find(importlib.import_module(module))
+    assert sum(len(t.examples) for t in tests) > 0
 
 
 # --- devices -----------------------------------------------------------------------------------------------

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
+from qcpp.problem.limits import API_OVERRIDE
 
 if TYPE_CHECKING:
     from qcpp.hardware.device import Device
@@ -208,7 +209,7 @@ def compile(
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_cost_range(s)  # what the command line checks when it loads a file
     check_size(
-        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint="run it inside qcpp.allow_large()"
+        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE
     )
     if device is None:
         result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings)
