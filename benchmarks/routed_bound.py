@@ -8,9 +8,10 @@ the two-qubit count of the circuit compile routes before routing (``circuit cx``
 two-qubit count with its wall seconds: ``compile`` (``qcpp compile --device``, exact; the ``--compare`` rows, p = 1),
 the window-class sum (:func:`qcpp.estimators.window_classes.routed_sum`, exact where it answers: square grids of at
 most ``WHOLE_DEVICE_MAX_QUBITS`` qubits, within the estimate's whole-device budget; ``-`` elsewhere) and the bound
-(:func:`qcpp.estimators.layout_bound.layout_twoq_bound`: the geometric layout where the device holds it, else a
-breadth-first ball). The ``--sizes`` rows are at p = 3 and skip compile. The load average is printed (shared
-cores: the seconds vary with it).
+(:func:`qcpp.estimators.layout_bound.layout_twoq_bound` on the plan the row builds once: a sum over its gadgets,
+each charged by its kind's route; the geometric layout where the device holds it, else a breadth-first ball). The
+``--sizes`` rows are at p = 3 and skip compile. The load average is printed (shared cores: the seconds vary with
+it).
 """
 
 from __future__ import annotations
@@ -18,13 +19,12 @@ from __future__ import annotations
 import argparse
 import os
 import time
-from dataclasses import replace
 
 from qcpp.estimators import routed
+from qcpp.estimators.layout_bound import bound_plan
 from qcpp.estimators.window_classes import WHOLE_DEVICE_MAX_QUBITS, routed_sum
 from qcpp.hardware.device import get_device
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
-from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
@@ -51,7 +51,7 @@ def _timed(run):  # type: ignore[no-untyped-def]
 def _row(shape: tuple[int, int, int], device: str, p: int, exact: bool) -> str | None:
     s = default_scenario(*shape)
     plan = PlanOptions()
-    laid = qaoa_plan(s, p, replace(device_plan_options(plan, device), fuse=False))
+    laid = bound_plan(s, p, plan, device)  # the circuit compile routes, the bound's plan
     sized = device in ("grid", "heavy-hex")
     dev = layout_device(s, device) if sized else get_device(device, min_qubits=laid.num_qubits)
     if dev is None or dev.num_qubits < laid.num_qubits:
@@ -71,7 +71,7 @@ def _row(shape: tuple[int, int, int], device: str, p: int, exact: bool) -> str |
     window = "-" if summed is None else f"{summed.two_qubit:,} ({sec:.1f} s)"
     if path != "compile":  # the estimate's own choice (its classes known already: no routing again)
         path = "window sum" if routed._window_sum(s, p, plan, device, None, context) is not None else "bound"
-    bound, sec = _timed(lambda: routed._bound_of_compiled(s, p, plan, dev, sized))
+    bound, sec = _timed(lambda: routed._bound_of_compiled(laid, dev, sized, context=context))
     kind = "layout" if bound["routed_model"] == routed.LAYOUT_BOUND_MODEL else "ball"
     name = f"{shape[0]}x{shape[1]}/{shape[2]}"
     return (f"| {name} | {bound['device']} | {p} | {path} | {laid.cost().two_qubit:,} | {compiled} | {window} | "

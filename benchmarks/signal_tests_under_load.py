@@ -14,6 +14,7 @@ Usage::
     python benchmarks/signal_tests_under_load.py --runs 3 -k qcec # 3 runs of the tests matching 'qcec'
     python benchmarks/signal_tests_under_load.py --list           # only print the selected tests
     python benchmarks/signal_tests_under_load.py --runs 2 --skip guard_peaks   # without the memory measurements
+    python benchmarks/signal_tests_under_load.py --minutes 90    # as many of the 20 runs as start within 90 min
 
 Exit code 0 when every run of every selected test passed (or was skipped), 1 otherwise.
 """
@@ -115,6 +116,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--skip", action="append", default=[], help="leave out test ids containing this (repeat)")
     parser.add_argument("--keep", type=Path, default=None, help="folder for the output of failed runs")
     parser.add_argument("--list", action="store_true", help="print the selected tests and stop")
+    parser.add_argument("--minutes", type=float, default=None,
+                        help="start no further run after this many minutes (the table counts the runs made)")
     args = parser.parse_args(argv)
     tests = all_selected(args.keyword, args.skip)
     if args.list or not tests:
@@ -126,8 +129,12 @@ def main(argv: list[str] | None = None) -> int:
     counts: dict[str, Counter[str]] = {}
     hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.hogs)]
     start = time.monotonic()
+    done = 0
     try:
         for run in range(1, args.runs + 1):
+            if args.minutes is not None and run > 1 and time.monotonic() - start > 60 * args.minutes:
+                print(f"stopping after {done} run(s): the {args.minutes:g}-minute budget is spent", flush=True)
+                break
             junit = keep / f"run{run}.xml"
             cmd = [sys.executable, "-m", "pytest", "-n", "0", "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
                    f"--junitxml={junit}", *tests]
@@ -140,6 +147,7 @@ def main(argv: list[str] | None = None) -> int:
                 (keep / f"run{run}.log").write_text(res.stdout + res.stderr, encoding="utf-8")
             else:
                 junit.unlink(missing_ok=True)
+            done += 1
             print(f"run {run}/{args.runs}: exit {res.returncode}, {len(outcomes)} tests, "
                   f"{len(failed)} failed{': ' + ', '.join(failed) if failed else ''}", flush=True)
     finally:
@@ -147,7 +155,7 @@ def main(argv: list[str] | None = None) -> int:
             hog.kill()
             hog.wait()
     width = max(len(n) for n in counts) if counts else 4
-    print(f"\n{len(tests)} test functions selected; {args.runs} run(s) beside {args.hogs} CPU-bound job(s) on "
+    print(f"\n{len(tests)} test functions selected; {done} run(s) beside {args.hogs} CPU-bound job(s) on "
           f"{os.cpu_count()} cores, {time.monotonic() - start:.0f} s; failed runs kept in {keep}")
     print(f"{'test':<{width}}  passed  failed  skipped")
     for name in sorted(counts):

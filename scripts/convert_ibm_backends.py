@@ -2,10 +2,11 @@
 
 Writes ``src/qcpp/hardware/data/ibm_fez.json`` and ``ibm_torino.json``: the coupling map (couplers whose
 CZ error the snapshot gives as 1.0, i.e. marked faulty, are dropped), per-qubit sx / x errors and durations,
-per-coupler CZ error and duration, per-qubit readout error and duration. ``rz`` is virtual (error 0,
-duration 0). qiskit-ibm-runtime is needed only here, not by qcpp::
+per-coupler CZ error and duration, per-qubit readout error and duration, per-qubit T1 and T2 (seconds, ``null``
+where the snapshot has none). ``rz`` is virtual (error 0, duration 0). qiskit-ibm-runtime is needed only here,
+not by qcpp::
 
-    pip install qiskit-ibm-runtime
+    pip install qiskit-ibm-runtime==0.51.0
     python scripts/convert_ibm_backends.py
 """
 
@@ -15,7 +16,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-OUT = Path(__file__).resolve().parent.parent / "src" / "qcpp" / "devices" / "data"
+OUT = Path(__file__).resolve().parent.parent / "src" / "qcpp" / "hardware" / "data"
 
 
 def convert(backend: Any) -> dict:
@@ -37,6 +38,10 @@ def convert(backend: Any) -> dict:
 
     def per_qubit(name: str, attr: str) -> list[float]:
         return [getattr(target[name][(q,)], attr) for q in range(n)]
+
+    def coherence(attr: str) -> list[float | None]:
+        props = target.qubit_properties or [None] * n
+        return [None if p is None or getattr(p, attr) is None else float(getattr(p, attr)) for p in props]
 
     date = str(backend.properties().last_update_date)
     return {
@@ -62,6 +67,8 @@ def convert(backend: Any) -> dict:
         },
         "readout_error": per_qubit("measure", "error"),
         "readout_duration_s": per_qubit("measure", "duration"),
+        "t1_s": coherence("t1"),
+        "t2_s": coherence("t2"),
     }
 
 

@@ -106,11 +106,13 @@ class Table:
             for r in self.rows:
                 print("\t".join(str(c) for c in r))
             return
-        t = RichTable(title=self.title)
+        from rich.markup import escape
+
+        t = RichTable(title=escape(self.title))
         for h in self.headers:
-            t.add_column(h)
+            t.add_column(escape(h))
         for r in self.rows:
-            t.add_row(*(str(c) for c in r))
+            t.add_row(*(escape(str(c)) for c in r))
         Console(width=max(120, min(200, 20 * len(self.headers)))).print(t)
 
 

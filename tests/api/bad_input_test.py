@@ -53,7 +53,7 @@ def test_compile_and_estimate_options_give_the_cli_s_reason(
     rest = {k: v for k, v in kwargs.items() if k != "p"}
     for fn in (qcpp.compile, qcpp.estimate):
         message = error_of(lambda fn=fn: fn(S, p, **rest), qcpp.QcppError)
-        assert message == f"{name}: {reason}"
+        assert message == f"{name}: {reason}".replace("pass --allow-large", "run it inside qcpp.allow_large()")
 
 
 @pytest.mark.parametrize("p", ["1", 1.0, True, None])
@@ -123,6 +123,8 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
     [
         (lambda: qcpp.estimate("examples/paper_3x3.toml"), "scenario: expected a Scenario"),
         (lambda: qcpp.compile(S, layout="greedy"), "layout: 'greedy' applies with a device only"),
+        (lambda: qcpp.compile(S, optimize_for="esp"), "optimize_for: applies with a device only"),
+        (lambda: qcpp.compile(S, device="ibm_fez", optimize_for="fidelity"), "optimize_for: expected esp or twoq"),
         (lambda: qcpp.solve(S, "magic"), "method: expected dfs or cpsat"),
         (lambda: qcpp.solve(S, "dfs", p=2), "p: applies to method='qaoa' only"),
         (lambda: qcpp.solve(S, "anneal", time_limit=5), "time_limit: applies to method='cpsat' only"),
@@ -130,6 +132,11 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
         (lambda: qcpp.simulate_qaoa(S, 2, angles=[0.1, 0.2]), "angles: p = 2 needs 4 angles"),
         (lambda: qcpp.simulate_qaoa(S, 1, angles=[0.1, float("nan")]), "angles: nan is not a finite number"),
         (lambda: qcpp.compile(S, max_gates=10), "refusing to build"),
+        (lambda: qcpp.verify(S, 0), "p: must be at least 1, got 0"),
+        (lambda: qcpp.verify(S, 1.0), "p: expected an integer, got 1.0"),
+        (lambda: qcpp.verify(S, rule="fast"), "rule: expected exact or paper, got 'fast'"),
+        (lambda: qcpp.verify(S, 1001), "p: 1,001 layers is over the limit of 1,000; run it inside qcpp.allow_large()"),
+        (lambda: qcpp.grid_scenario("3", 3), "grid.rows: expected an integer, got '3'"),
     ],
 )
 def test_other_bad_calls_raise_one_line_errors(call: Callable[[], Any], start: str) -> None:

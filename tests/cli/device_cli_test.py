@@ -98,3 +98,14 @@ def test_compile_layout_choice_is_reported() -> None:
         summary = json.loads(res.stdout)
         assert summary["routed"]["layout"] == layout
         assert (summary["initial_layout"] == summary["final_layout"]) == (layout == "medial")
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (("--device", "ibm_fez", "--optimize-for", "depth"), "--optimize-for: expected esp or twoq, got 'depth'"),
+        (("--optimize-for", "esp"), "--optimize-for esp: applies with --device only"),
+    ],
+)
+def test_compile_bad_optimize_for_is_one_line(args: tuple[str, ...], fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, *args), fragment)

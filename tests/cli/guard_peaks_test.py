@@ -72,25 +72,41 @@ def dfs_bytes(s: Scenario) -> int:
 
 Case = tuple[str, tuple[int, int, int] | str, tuple[str, ...], Callable[[Scenario], int]]
 
-CASES: list[Case] = [
-    ("simulate", "paper_3x3.toml", (), lambda s: simulate_need(s, 1).bytes),
+CASES: list[Case] = [  # one per guard but training (a process each: 1.5-3.5 s of CPU); the rest under HEAVY
     ("simulate", (4, 5, 2), (), lambda s: simulate_need(s, 1).bytes),
-    ("solve", "two_robots_4x4.toml", ("-m", "dfs"), dfs_bytes),
     ("solve", (3, 5, 3), ("-m", "dfs"), dfs_bytes),
     ("compile", "paper_3x3.toml", ("-p", "2", "--json"), lambda s: compile_need(s, 2, streamed=False).bytes),
     ("validate", "paper_3x3.toml", (), validate_need_bytes := (lambda s: validate_need(s).bytes)),
 ]
+TRAIN = ("-m", "qaoa", "--optimizer", "lbfgsb", "--maxiter", "1")
+"""One short L-BFGS-B run: the peak is the first gradient's (the layerwise default's is the same, at more CPU)."""
+
 HEAVY: list[Case] = [
+    ("simulate", "paper_3x3.toml", (), lambda s: simulate_need(s, 1).bytes),
     ("simulate", (4, 4, 3), (), lambda s: simulate_need(s, 1).bytes),
+    ("solve", "two_robots_4x4.toml", ("-m", "dfs"), dfs_bytes),
     ("simulate", "two_robots_5x5.toml", (), lambda s: simulate_need(s, 1).bytes),
     ("solve", (4, 4, 3), ("-m", "dfs"), dfs_bytes),
     ("solve", "two_robots_5x5.toml", ("-m", "dfs"), dfs_bytes),
-    ("solve", (4, 5, 2), ("-m", "qaoa", "--maxiter", "2"), lambda s: training_need(s, 1).bytes),
-    ("solve", (4, 4, 3), ("-m", "qaoa", "--maxiter", "2"), lambda s: training_need(s, 1).bytes),
+    # training: 171,396 amplitudes, 0.22 GB; 952,576 (two robots), 0.25 GB; 1,953,125 (three robots), 0.31 GB
+    ("solve", (3, 6, 2), TRAIN, lambda s: training_need(s, 1).bytes),
+    ("solve", (4, 5, 2), TRAIN, lambda s: training_need(s, 1).bytes),
+    ("solve", (3, 5, 3), TRAIN, lambda s: training_need(s, 1).bytes),
+    ("solve", (4, 4, 3), TRAIN, lambda s: training_need(s, 1).bytes),
+    # validate: 15,625 assignments (two robots), 54,872 (three robots), 33,856 (two robots, obstacles); left out
+    # for its minutes of CPU: 3x6 with two robots, 171,396 assignments, peaked at 0.38 GB (predicted 0.48 GB)
+    ("validate", (3, 5, 2), (), validate_need_bytes),
+    ("validate", (3, 4, 3), (), validate_need_bytes),
     ("validate", "two_robots_4x4.toml", (), validate_need_bytes),
+    # compile: a whole circuit of two robots at p = 3, and streamed circuits of p = 6 and p = 4
+    ("compile", "two_robots_4x4.toml", ("-p", "3", "--json"), lambda s: compile_need(s, 3, streamed=False).bytes),
+    ("compile", (5, 5, 2), ("-p", "6", "--lowered", "--qasm", "{tmp}/out.qasm"),
+     lambda s: compile_need(s, 6, DEFAULT_PLAN, streamed=True).bytes),
     ("compile", (6, 6, 3), ("-p", "4", "--lowered", "--qasm", "{tmp}/out.qasm"),
      lambda s: compile_need(s, 4, DEFAULT_PLAN, streamed=True).bytes),
 ]
+"""With :data:`CASES`, every guard's model (simulate, solve by dfs, training, validate, compile) is checked on at
+least three scenarios, the models fitted to two coefficients on more than two."""
 
 
 def _run_case(tmp_path: Path, case: Case) -> None:

@@ -187,6 +187,7 @@ def test_a_signal_while_the_qcec_child_starts_leaves_no_traceback(sig: signal.Si
         "from qcpp.lowering.passes import lower\n"
         "from qcpp.simulate.equivalence import check_sections_interruptibly\n"
         "signal.signal(signal.SIGTERM, signal.default_int_handler)\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"  # as the CLI: a background job gets SIG_IGN
         "launch = multiprocessing.util.spawnv_passfds\n"
         "def spawn(*args):\n"
         "    pid = launch(*args)\n"

@@ -23,6 +23,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.cli.clirun import run
+
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
 PAPER = EXAMPLES / "paper_3x3.toml"
@@ -96,8 +98,8 @@ def test_four_concurrent_writers_of_one_file_leave_one_whole_output(tmp_path: Pa
     text = out.read_text(encoding="utf-8")
     singles = []
     for p in layers:
-        single = tmp_path / f"single{p}.qasm"
-        assert qcpp("compile", PAPER, "-p", p, "--qasm", single).returncode == 0
+        single = tmp_path / f"single{p}.qasm"  # the reference outputs in-process (no interpreter start each)
+        assert run("compile", str(PAPER), "-p", p, "--qasm", str(single)).exit_code == 0
         singles.append(single.read_text(encoding="utf-8"))
     assert text in singles
     assert sorted(f.name for f in tmp_path.iterdir()) == sorted(["out.qasm", *(f"single{p}.qasm" for p in layers)])
@@ -202,16 +204,20 @@ def test_a_scenario_file_over_the_size_limit_is_refused_unread(tmp_path: Path) -
     assert_one_line_error(qcpp("simulate", path), "big.toml")
 
 
-def test_five_thousand_robots_on_a_3x3_grid(tmp_path: Path) -> None:
+ONE_LOADER = ["solve", *(pytest.param(c, marks=pytest.mark.heavy) for c in ("simulate", "compile"))]
+"""Every command reads a scenario through one loader: the default run asks one of them, the heavy step the others."""
+
+
+@pytest.mark.parametrize("command", ONE_LOADER)
+def test_five_thousand_robots_on_a_3x3_grid(tmp_path: Path, command: str) -> None:
     path = tmp_path / "crowd.toml"
     path.write_text("[grid]\nrows = 3\ncols = 3\n" + "[[robots]]\nstart = [0, 0]\ngoal = [2, 2]\n" * 5000,
                     encoding="utf-8")  # fmt: skip
-    for command in ("solve", "simulate", "compile"):
-        assert_one_line_error(qcpp(command, path), "5000 robots do not fit on the 9 free nodes")
+    assert_one_line_error(qcpp(command, path), "5000 robots do not fit on the 9 free nodes")
 
 
-def test_a_1x40_strip(tmp_path: Path) -> None:
+@pytest.mark.parametrize("command", ONE_LOADER)
+def test_a_1x40_strip(tmp_path: Path, command: str) -> None:
     path = tmp_path / "strip.toml"
     path.write_text("[grid]\nrows = 1\ncols = 40\n[[robots]]\nstart = [0, 0]\ngoal = [0, 39]\n", encoding="utf-8")
-    for command in ("solve", "simulate", "compile"):
-        assert_one_line_error(qcpp(command, path), "grid.rows", "at least 2x2, got 1x40")
+    assert_one_line_error(qcpp(command, path), "grid.rows", "at least 2x2, got 1x40")

@@ -1,20 +1,29 @@
-"""The layout bound's pieces: path lengths on heavy-hex lattices, distances on grids, layers, the placement."""
+"""The layout bound's pieces: path lengths on heavy-hex lattices, distances on grids, the kind sum, the placement."""
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
-from qcpp.estimators.layout_bound import gate_distances, hex_path_lengths, layout_twoq_bound, section_charges
-from qcpp.hardware.device import distances, get_device
+from qcpp.estimators.layout_bound import (
+    PlacedBlock,
+    bound_plan,
+    gate_distances,
+    hex_path_lengths,
+    layout_twoq_bound,
+    placed_blocks,
+)
+from qcpp.hardware.device import Device, distances, get_device
+from qcpp.layout.medial import medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.device_compile import layout_device
-from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
+from qcpp.routing.context import RoutingContext
+from tests.compiler.conftest import scenarios
 
 
 def _all_pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -52,67 +61,124 @@ def test_gate_distances_are_at_least_breadth_first_distances(name: str) -> None:
         assert (got == exact).all()
 
 
-@pytest.mark.parametrize(("shape", "device"), [((3, 3, 2), "grid"), ((2, 3, 1), "heavy-hex")])
-def test_later_layers_cost_what_the_first_costs(shape: tuple[int, int, int], device: str) -> None:
-    """The bound builds one layer and counts it p times: the same as placing every section of the p-layer
-    circuit."""
+def _free_nearest(start: int, neighbours: dict[int, list[int]], homes: set[int], taken: set[int]) -> int:
+    """Breadth first from ``start``, neighbours in index order: the first qubit neither a home nor taken."""
+    order, seen = [start], {start}
+    for u in order:
+        if u not in homes and u not in taken:
+            return u
+        for v in neighbours[u]:
+            if v not in seen:
+                seen.add(v)
+                order.append(v)
+    raise AssertionError("no free qubit")
+
+
+def _reference_bound(scenario: Scenario, p: int, dev: Device) -> int:
+    """The module docs' placement written out on every lowered section of the ``p``-layer circuit, gate by gate:
+    no kinds, no layers counted ``p`` times."""
+    homes = medial_placement(scenario, dev)
+    assert homes is not None
+    n = len(homes)
+    neighbours: dict[int, list[int]] = {q: [] for q in range(dev.num_qubits)}
+    for x, y in dev.coupling:
+        neighbours[x].append(y)
+        neighbours[y].append(x)
+    neighbours = {q: sorted(set(vs)) for q, vs in neighbours.items()}
+    first, second = [], []
+    for sec in lower(bound_plan(scenario, p, PlanOptions(), dev).circuit()).sections:
+        placed: dict[int, int] = {}
+        first_data = next((q for g in sec.gates for q in g[1] if q < n), 0)
+        for g in sec.gates:
+            for q in g[1]:
+                if q >= n and q not in placed:
+                    near = next((x for x in g[1] if x != q and (x < n or x in placed)), first_data)
+                    at = homes[near] if near < n else placed[near]
+                    placed[q] = _free_nearest(at, neighbours, set(homes), set(placed.values()))
+            if len(g[1]) == 2:
+                x, y = (homes[q] if q < n else placed[q] for q in g[1])
+                first.append(x)
+                second.append(y)
+    d = gate_distances(dev, np.array(first, dtype=np.int64), np.array(second, dtype=np.int64))
+    return int((1 + 6 * (d - 1)).sum())
+
+
+@pytest.mark.parametrize(("shape", "device", "p"), [((3, 3, 2), "grid", 3), ((2, 3, 1), "heavy-hex", 2)])
+def test_the_kind_sum_is_the_placement_of_every_section(shape: tuple[int, int, int], device: str, p: int) -> None:
+    """Kind by kind, one layer counted ``p`` times: the same as placing every section of the ``p``-layer circuit."""
     s = default_scenario(*shape)
     dev = layout_device(s, device)
     assert dev is not None
-    from qcpp.layout.medial import medial_placement
+    assert layout_twoq_bound(bound_plan(s, p, PlanOptions(), dev), dev) == _reference_bound(s, p, dev)
 
-    plan = device_plan_options(PlanOptions(), dev)
+
+@given(scenarios(max_side=4, max_robots=2), st.integers(0, 2), st.sampled_from(["grid", "heavy-hex"]))
+@settings(max_examples=8)
+def test_the_kind_sum_is_the_placement_of_every_section_on_random_scenarios(s: Scenario, p: int, device: str) -> None:
+    dev = layout_device(s, device)
+    assume(dev is not None and medial_placement(s, dev) is not None)
+    assert dev is not None
+    assert layout_twoq_bound(bound_plan(s, p, PlanOptions(), dev), dev) == _reference_bound(s, p, dev)
+
+
+def _gates(block: PlacedBlock) -> list[tuple[int, int, int]]:
+    """A placed section's two-qubit gates: ``(device qubit, device qubit, how many)``, sorted."""
+    pairs = block.where[block.route.pairs].tolist()
+    return sorted((a, b, int(n)) for (a, b), n in zip(pairs, block.route.counts, strict=True))
+
+
+def test_each_kind_is_routed_once_and_its_route_serves_every_gadget_of_the_kind() -> None:
+    s = default_scenario(4, 4, 2)
+    dev = layout_device(s, "grid")
+    assert dev is not None
     homes = medial_placement(s, dev)
     assert homes is not None
-    circuit = lower(qaoa_plan(s, 3, replace(plan, fuse=False)).circuit())
-    charges = section_charges(circuit.sections, homes, dev)
-    assert charges is not None
-    assert layout_twoq_bound(s, 3, PlanOptions(), dev) == sum(c for _, c in charges)
+    plan = bound_plan(s, 2, PlanOptions(), dev)
+    context = RoutingContext()
+    shared = placed_blocks(plan, homes, dev, context.kind_routes)
+    first = list(plan.sections(layers=1))
+    assert [n for n, _ in first] == [n for n, _ in plan.sections()][: len(first)]
+    assert {n for n, _ in first} == {"initial_state", "phase_0", "mixer_0"}
+    gadgets = [g for _, g in first]
+    assert len(context.kind_routes) == len({g.kind for g in gadgets}) < len(gadgets)
+
+    class Forgetful(dict):  # type: ignore[type-arg]
+        def __setitem__(self, key: object, value: object) -> None:
+            pass  # every gadget gets a route read from its own gates
+
+    own = placed_blocks(plan, homes, dev, Forgetful())
+    assert shared is not None and own is not None and len(shared) == len(own)
+    for x, y in zip(shared, own, strict=True):
+        assert x.multiplicity == y.multiplicity
+        assert _gates(x) == _gates(y)
+    before = len(context.kind_routes)
+    assert layout_twoq_bound(plan, dev, context) is not None and len(context.kind_routes) == before
 
 
-def test_every_section_gets_distinct_free_qubits_for_its_ancillas(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_every_section_gets_distinct_free_qubits_for_its_ancillas() -> None:
     """The placement the charges use: data at their homes, ancillas on qubits no data qubit and no other ancilla
-    of the section holds, each gate charged 1 + 6 (d - 1) at its distance there."""
-    from qcpp.estimators import layout_bound
-
+    of the section holds; every two-qubit gate of the circuit is charged once, at 1 + 6 (d - 1)."""
     s = default_scenario(3, 3, 2)
     dev = layout_device(s, "grid")
     assert dev is not None
-    from qcpp.layout.medial import medial_placement
-
     homes = medial_placement(s, dev)
     assert homes is not None
-    circuit = lower(qaoa_plan(s, 1, replace(device_plan_options(PlanOptions(), dev), fuse=False)).circuit())
-    seen: list[tuple[np.ndarray, np.ndarray]] = []
-    real = layout_bound.gate_distances
-
-    def spy(device, a, b):  # type: ignore[no-untyped-def]
-        seen.append((a, b))
-        return real(device, a, b)
-
-    monkeypatch.setattr(layout_bound, "gate_distances", spy)
-    charges = section_charges(circuit.sections, homes, dev)
-    assert charges is not None
-    a, b = seen[0]
+    plan = bound_plan(s, 2, PlanOptions(), dev)
+    blocks = placed_blocks(plan, homes, dev)
+    assert blocks is not None
     dist = distances(dev)
-    assert (a != b).all()
-    assert sum(c for _, c in charges) == int((1 + 6 * (dist[a, b] - 1)).sum())
-    start = 0
-    n_data = len(homes)
-    for sec in circuit.sections:  # map each section's qubits back through the gates' order
-        pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
-        where: dict[int, int] = {}
-        for (x, y), pa, pb in zip(pairs, a[start : start + len(pairs)], b[start : start + len(pairs)], strict=True):
-            for q, at in ((x, int(pa)), (y, int(pb))):
-                assert where.setdefault(q, at) == at  # one place per qubit in a section
-        start += len(pairs)
-        for q, at in where.items():
-            if q < n_data:
-                assert at == homes[q]
-            else:
-                assert at not in homes
-        assert len(set(where.values())) == len(where)
-    assert start == len(a)
+    total = charged = 0
+    for block in blocks:
+        where, route = block.where, block.route
+        assert len(set(where.tolist())) == len(where)  # one place per qubit in a section
+        assert set(where[route.data].tolist()) <= set(homes)
+        ancillas = np.setdiff1d(np.arange(len(where)), route.data)
+        assert not set(where[ancillas].tolist()) & set(homes)
+        a, b = where[route.pairs[:, 0]], where[route.pairs[:, 1]]
+        total += block.multiplicity * int(route.counts.sum())
+        charged += block.multiplicity * int((route.counts * (1 + 6 * (dist[a, b] - 1))).sum())
+    assert total == plan.cost().two_qubit
+    assert charged == layout_twoq_bound(plan, dev)
 
 
 def _swap_chain_routing(device_coupling: tuple[tuple[int, int], ...], n: int, pairs: np.ndarray) -> int:
@@ -142,26 +208,19 @@ def _swap_chain_routing(device_coupling: tuple[tuple[int, int], ...], n: int, pa
 
 @pytest.mark.parametrize(("shape", "device"), [((2, 3, 1), "grid"), ((2, 3, 1), "heavy-hex")])
 def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
-    monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int, int], device: str
+    shape: tuple[int, int, int], device: str
 ) -> None:
     """Built gate by gate from the placement (an independent shortest-path routine), the routing the bound
     describes is valid and costs exactly the bound on a grid, at most it on heavy-hex (path lengths)."""
-    from qcpp.estimators import layout_bound
-    from qcpp.layout.medial import medial_placement
-
     s = default_scenario(*shape)
     dev = layout_device(s, device)
     assert dev is not None
     homes = medial_placement(s, dev)
     assert homes is not None
-    plan = device_plan_options(PlanOptions(), dev)
-    circuit = lower(qaoa_plan(s, 1, replace(plan, fuse=False)).circuit())
-    seen: list[tuple[np.ndarray, np.ndarray]] = []
-    real = layout_bound.gate_distances
-    monkeypatch.setattr(layout_bound, "gate_distances", lambda d, a, b: seen.append((a, b)) or real(d, a, b))
-    charges = section_charges(circuit.sections, homes, dev)
-    assert charges is not None
-    bound = sum(c for _, c in charges)
-    assert bound == layout_twoq_bound(s, 1, PlanOptions(), dev)
-    routed = _swap_chain_routing(dev.coupling, dev.num_qubits, np.stack(seen[0], axis=1))
+    plan = bound_plan(s, 1, PlanOptions(), dev)
+    blocks = placed_blocks(plan, homes, dev)
+    assert blocks is not None
+    pairs = np.concatenate([np.repeat(x.where[x.route.pairs], x.multiplicity * x.route.counts, axis=0) for x in blocks])
+    bound = layout_twoq_bound(plan, dev)
+    routed = _swap_chain_routing(dev.coupling, dev.num_qubits, pairs)
     assert routed == bound if device == "grid" else routed <= bound

@@ -6,18 +6,23 @@ import math
 from dataclasses import replace
 
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from qcpp.estimators import layout_bound, routed
-from qcpp.estimators.layout_bound import compact_placement, layout_twoq_bound
+from qcpp.estimators.layout_bound import bound_plan, compact_placement, layout_twoq_bound
 from qcpp.estimators.routed import routed_fields
 from qcpp.hardware.device import get_device
+from qcpp.layout.medial import medial_placement
 from qcpp.pipeline.device_compile import compile_for_device, layout_device
 from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.presets import default_scenario
+from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.native import esp
+from tests.compiler.conftest import scenarios
 
 
 def _fields(s, p, device, **kw):  # type: ignore[no-untyped-def]
@@ -52,7 +57,8 @@ def test_the_bound_counts_the_circuit_the_device_compile_routes(
     s = default_scenario(*shape)
     f = _fields(s, 1, "heavy-hex")
     assert f["routed_kind"] == "bound" and f["routed_model"] == routed.LAYOUT_BOUND_MODEL
-    assert f["routed_twoq"] == layout_twoq_bound(s, 1, PlanOptions(), get_device(f["device"]))
+    dev = get_device(f["device"])
+    assert f["routed_twoq"] == layout_twoq_bound(bound_plan(s, 1, PlanOptions(), dev), dev)
     laid = qaoa_plan(s, 1, replace(device_plan_options(PlanOptions(), "heavy-hex"), fuse=False))
     pooled = qaoa_plan(s, 1, PlanOptions(phase_layout="pooled", fuse=False)).cost().two_qubit
     assert laid.cost().two_qubit > pooled  # star adders: the row's own (pooled) count would not bound the device's
@@ -88,13 +94,31 @@ def test_the_bound_grows_an_unsized_device_as_compile_does(monkeypatch: pytest.M
     """Where a section wants more free qubits than the device has: the unsized family grows, a named device does
     not fit."""
     s = default_scenario(3, 3, 1)
+    small, big = get_device("grid:5x5"), get_device("grid:6x6")
+    plan = bound_plan(s, 1, PlanOptions(), small)
     real = layout_bound.layout_twoq_bound
     monkeypatch.setattr(layout_bound, "layout_twoq_bound",
-                        lambda s, p, plan, dev, stage=None: None if dev.name == "grid:5x5" else real(s, p, plan, dev))
-    grown = routed._bound_of_compiled(s, 1, PlanOptions(), get_device("grid:5x5"), grows=True)
-    assert grown["device"] == "grid:6x6" and grown["routed_twoq"] == real(s, 1, PlanOptions(), get_device("grid:6x6"))
-    kept = routed._bound_of_compiled(s, 1, PlanOptions(), get_device("grid:5x5"))
+                        lambda plan, dev, *args: None if dev.name == "grid:5x5" else real(plan, dev, *args))
+    grown = routed._bound_of_compiled(plan, small, grows=True)
+    assert grown["device"] == "grid:6x6" and grown["routed_twoq"] == real(plan, big)
+    kept = routed._bound_of_compiled(plan, small)
     assert kept["fits"] is False and kept["routed_twoq"] is None
+
+
+def test_a_bound_row_builds_its_plan_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The bound's cost, placement and grown devices all read the one plan the row builds."""
+    import qcpp.plan.qaoa
+
+    monkeypatch.setattr(routed, "EXACT_MAX_GATES", 0)
+    s = default_scenario(3, 4, 2)
+    row = qaoa_plan(s, 1, PlanOptions())
+    cost = row.cost()
+    built: list[int] = []
+    real = qcpp.plan.qaoa.qaoa_plan
+    monkeypatch.setattr(qcpp.plan.qaoa, "qaoa_plan", lambda *args: built.append(1) or real(*args))
+    f = routed_fields(s, 1, PlanOptions(), "heavy-hex", qubits=row.num_qubits, cx=cost.two_qubit,
+                      one_qubit=cost.single_qubit, total_gates=cost.total)  # fmt: skip
+    assert f["routed_model"] == routed.LAYOUT_BOUND_MODEL and len(built) == 1
 
 
 def test_off_the_layout_the_data_sit_in_the_largest_piece() -> None:
@@ -129,7 +153,7 @@ def test_the_bound_is_at_least_what_compile_routes(shape: tuple[int, int, int], 
     s = default_scenario(*shape)
     r = compile_for_device(s, 1, device, layout_method="medial", lowered=True)
     dev = r.routed.device
-    f = routed._bound_of_compiled(s, 1, PlanOptions(), dev)
+    f = routed._bound_of_compiled(bound_plan(s, 1, PlanOptions(), dev), dev)
     assert f["routed_model"] == routed.LAYOUT_BOUND_MODEL
     assert sum(len(g[1]) == 2 for g in r.routed.circuit.gates) <= f["routed_twoq"]
     assert f["esp"] <= esp(compile_for_device(s, 1, dev, layout_method="medial").routed)
@@ -163,9 +187,23 @@ def test_the_layout_bound_is_at_least_what_compile_device_routes(
     r = compile_for_device(s, p, device, lowered=True)
     compiled = sum(len(g[1]) == 2 for sec in r.routed.circuit.sections for g in sec.gates)
     dev = layout_device(s, device)
-    f = routed._bound_of_compiled(s, p, PlanOptions(), dev)
+    assert dev is not None
+    f = routed._bound_of_compiled(bound_plan(s, p, PlanOptions(), dev), dev)
     assert f["routed_model"] == routed.LAYOUT_BOUND_MODEL
     assert compiled <= f["routed_twoq"]
+
+
+@pytest.mark.heavy
+@given(scenarios(max_side=3, max_robots=2), st.integers(1, 2), st.sampled_from(["grid", "heavy-hex"]))
+@settings(max_examples=6)
+def test_the_layout_bound_is_at_least_what_compile_routes_on_random_scenarios(s: Scenario, p: int, device: str) -> None:
+    """As above on random small scenarios (obstacles, robots anywhere)."""
+    dev = layout_device(s, device)
+    assume(dev is not None and medial_placement(s, dev) is not None)
+    assert dev is not None
+    r = compile_for_device(s, p, device, lowered=True)
+    compiled = sum(len(g[1]) == 2 for sec in r.routed.circuit.sections for g in sec.gates)
+    assert compiled <= routed._bound_of_compiled(bound_plan(s, p, PlanOptions(), dev), dev, grows=True)["routed_twoq"]
 
 
 def test_charging_one_step_less_per_gate_falls_below_compile(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -175,10 +213,12 @@ def test_charging_one_step_less_per_gate_falls_below_compile(monkeypatch: pytest
     r = compile_for_device(s, 1, "grid", lowered=True)
     compiled = sum(len(g[1]) == 2 for sec in r.routed.circuit.sections for g in sec.gates)
     dev = layout_device(s, "grid")
-    assert compiled <= layout_twoq_bound(s, 1, PlanOptions(), dev)
+    assert dev is not None
+    plan = bound_plan(s, 1, PlanOptions(), dev)
+    assert compiled <= layout_twoq_bound(plan, dev)
     real = layout_bound.gate_distances
     monkeypatch.setattr(layout_bound, "gate_distances", lambda *args: real(*args) - 1)
-    assert layout_twoq_bound(s, 1, PlanOptions(), dev) < compiled
+    assert layout_twoq_bound(plan, dev) < compiled
 
 
 def test_a_long_row_names_its_routing_stages() -> None:

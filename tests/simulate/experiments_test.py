@@ -6,6 +6,7 @@ import importlib.util
 import itertools
 import json
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -266,6 +267,7 @@ def _load(name: str):  # type: ignore[no-untyped-def]
     spec = importlib.util.spec_from_file_location(f"experiment_{name}", SCRIPTS / f"{name}.py")
     assert spec and spec.loader
     mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod  # dataclasses look their module up while the script is executed
     spec.loader.exec_module(mod)
     return mod
 
@@ -339,3 +341,27 @@ def test_doctests(module: str) -> None:
     import importlib
 
     assert doctest.testmod(importlib.import_module(f"qcpp.simulate.{module}")).failed == 0
+
+
+# ---------------------------------------------------------------- the ensemble study
+
+
+def test_ensemble_cells_parse_and_bad_ones_are_refused() -> None:
+    import argparse
+
+    mod = _load("ensembles")
+    assert mod.parse_cell("3x4/2") == (3, 4, 2)
+    for bad in ("3x3", "3x3/0", "1x3/1", "axb/1"):
+        with pytest.raises(argparse.ArgumentTypeError, match="cell"):
+            mod.parse_cell(bad)
+    assert mod.quartiles([1.0, 2.0, 3.0, 4.0, 5.0]) == (3.0, 2.0, 4.0)
+    assert mod.quartiles([1.0, math.inf, math.inf]) == (math.inf, 1.0, math.inf)
+
+
+@pytest.mark.heavy
+def test_ensembles_quick_mode(tmp_path: Path) -> None:
+    out = _check_quick_mode("ensembles", ["ensembles.png"], tmp_path)
+    rows = [r for r in out["rows"] if r["method"] == "qaoa"]
+    assert {r["cell"] for r in rows} == {"3x3/1", "3x3/2"} and {r["p"] for r in rows} == {1, 2, 3}
+    assert all(r["best_p_opt"] >= r["p_opt"] - 1e-12 for r in rows)
+    assert {r["method"] for r in out["rows"]} == {"dfs", "cpsat", "anneal", "genetic", "qaoa"}

@@ -301,3 +301,124 @@ def test_time_to_solution_csv_holds_the_json_rows() -> None:
     for a, b in zip(table, rows):
         assert a["instance"] == b["instance"] and a["method"] == b["method"]
         assert json.loads(a["scenario"]) == b["scenario"] and json.loads(a["options"]) == b["options"]
+
+
+# ---------------------------------------------------------------- the ensemble study (experiments/ensembles.py)
+
+ENSEMBLE_FILES = tuple(sorted(p.stem for p in RESULTS.glob("ensembles*.json")))
+CHEAP_ENSEMBLE_INSTANCES = 2
+"""Instances per cell whose states the default run recomputes (and the first one's circuits; ``heavy``: every
+instance's states and circuits)."""
+
+
+@pytest.mark.parametrize("name", ENSEMBLE_FILES)
+def test_ensemble_rows_are_the_generators_instances(name: str) -> None:
+    """Every row records its scenario, options and version; the scenario is the seeded generator's instance."""
+    from qcpp.problem.ensembles import random_scenario
+
+    data = _load(name)
+    assert _current(data["qcpp_version"]), f"regenerate docs/results/{name}.* for qcpp {qcpp.__version__}"
+    assert data["command"].startswith("python examples/experiments/ensembles.py"), data["command"]
+    assert "--quick" not in data["command"] and data["rows"]
+    if name != "ensembles":
+        assert f"--name {name}" in data["command"]
+    md = (RESULTS / f"{name}.md").read_text()
+    assert f"qcpp {data['qcpp_version']}" in md and "quick mode" not in md
+    cfg = data["config"]
+    for r in data["rows"]:
+        assert _current(r["qcpp_version"]) and isinstance(r["options"], dict)
+        rows_, cols_, robots = (int(x) for x in r["cell"].replace("/", "x").split("x"))
+        want = random_scenario(rows_, cols_, robots, cfg["density"], seed=cfg["seed"], index=r["index"])
+        assert _scenario(_key(r)) == want, _label(name, r)
+    cells = {r["cell"] for r in data["rows"]}
+    assert cells == set(cfg["cells"]) and len(data["rows"]) == len(cells) * cfg["instances"] * (4 + cfg["p_max"])
+
+
+def _check_ensemble_states(name: str, heavy: bool) -> int:
+    checked = 0
+    for r in _load(name)["rows"]:
+        if r["method"] != "qaoa" or not (heavy or r["index"] < CHEAP_ENSEMBLE_INSTANCES):
+            continue
+        q = _qaoa(_key(r))
+        assert len(r["angles"]) == len(r["best_angles"]) == 2 * r["p"], _label(name, r)
+        scale = 1.0 if r["optimum_in_basis"] else 0.0  # outside the QAOA's basis the optimum has probability 0
+        assert scale * q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label(name, r)
+        assert scale * q.p_optimum(r["best_angles"]) == pytest.approx(r["best_p_opt"], rel=1e-6, abs=1e-12)
+        assert q.expectation(r["angles"]) == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9), _label(name, r)
+        if heavy or r["index"] == 0:
+            want = _circuit(_key(r), int(r["p"]))
+            assert {k: r[k] for k in want} == want, _label(name, r)
+        checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("name", ENSEMBLE_FILES)
+def test_ensemble_recorded_angles_and_circuits(name: str) -> None:
+    assert _check_ensemble_states(name, heavy=False) > 0
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("name", ENSEMBLE_FILES)
+def test_ensemble_recorded_angles_and_circuits_every_row(name: str) -> None:
+    assert _check_ensemble_states(name, heavy=True) > 0
+
+
+@pytest.mark.parametrize("name", ENSEMBLE_FILES)
+def test_ensemble_derived_columns(name: str) -> None:
+    """The exhaustive optimum, SA/GA success counts, the QAOA's shots and times, and the search's invariants:
+    never below the default (it starts from the default's angles) unless a level below reached the ceiling,
+    never lower at a greater depth, and within the ceiling's upper bound."""
+    from qcpp.problem.solvers import dfs
+
+    rows = _load(name)["rows"]
+    qaoa_rows: dict[str, list[dict[str, Any]]] = {}
+    for r in rows:
+        if r["method"] == "dfs":
+            sol = dfs(_scenario(_key(r)))
+            assert (sol.cost.total, sol.evaluated) == (r["optimum"], r["assignments"]), _label(name, r)
+        elif r["method"] in ("anneal", "genetic"):
+            assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
+            assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
+            assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
+        elif r["method"] == "qaoa":
+            o = r["options"]
+            shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
+            assert r["shot_us"] == pytest.approx(shot * 1e6) and r["p"] == o["p"]
+            assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
+            assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
+            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
+            assert r["best_sampling_99"] == pytest.approx(shots_for(min(1.0, r["best_p_opt"])) * shot)
+            assert r["best_p_opt"] <= r["ceiling_upper"] + 1e-12
+            if r["best_start"] == "reached":  # a level below reached the ceiling (0.999): the search stopped there
+                assert r["best_p_opt"] >= 1 - r["options"]["search"].get("tolerance", 1e-3) - 1e-9
+            else:
+                assert r["p_opt"] <= r["best_p_opt"] + 1e-12, _label(name, r)
+            qaoa_rows.setdefault(r["instance"], []).append(r)
+    for levels in qaoa_rows.values():
+        levels.sort(key=lambda r: r["p"])
+        assert all(b["best_p_opt"] >= a["best_p_opt"] - 1e-12 for a, b in zip(levels, levels[1:]))
+        assert all(b["circuit_estimates"] > a["circuit_estimates"] for a, b in zip(levels, levels[1:]))
+
+
+@pytest.mark.skipif(not (RESULTS / "training_restarts.json").exists(), reason="no committed training_restarts")
+def test_training_restarts_rows_match_their_reference_and_angles() -> None:
+    """The candidate schedule's records: the reference study's default and best found copied faithfully, the
+    candidate's P(optimum) and <C> at its recorded angles (a few instances; ``heavy``-sized states are not
+    needed: these are 3x3 instances)."""
+    data = _load("training_restarts")
+    assert _current(data["qcpp_version"]) and "--quick" not in data["command"]
+    assert data["command"].startswith("python examples/experiments/training_restarts.py")
+    ref = {(r["cell"], r["index"], r["p"]): r for r in _load(Path(data["config"]["reference"]).stem)["rows"]
+           if r["method"] == "qaoa"}
+    checked = 0
+    for r in data["rows"]:
+        b = ref[(r["cell"], r["index"], r["p"])]
+        assert r["scenario"] == b["scenario"] and r["options"]["restart_every_level"] is True
+        assert (r["default_p_opt"], r["best_p_opt"], r["default_circuit_estimates"]) == (
+            b["p_opt"], b["best_p_opt"], b["circuit_estimates"])
+        if r["index"] < CHEAP_ENSEMBLE_INSTANCES:
+            q = _qaoa(_key(r))
+            assert q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label("tr", r)
+            assert q.expectation(r["angles"]) == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9)
+            checked += 1
+    assert checked > 0

@@ -28,7 +28,7 @@ from typing import Any
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_count
 from qcpp.plan.options import PlanOptions
-from qcpp.problem.limits import check_layers
+from qcpp.problem.limits import API_OVERRIDE, check_layers
 
 __all__ = ["PLAN_OPTION_NAMES", "check_layers_arg", "check_scenario_arg", "plan_options_arg"]
 
@@ -46,7 +46,7 @@ def check_layers_arg(p: object, name: str = "p") -> int:
         qcpp.problem.limits.SizeError: over the layer limit.
     """
     layers = check_count(p, name, 1)
-    check_layers(layers, name)
+    check_layers(layers, name, API_OVERRIDE)
     return layers
 
 

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
+from qcpp.problem.limits import API_OVERRIDE
 
 if TYPE_CHECKING:
     from qcpp.hardware.device import Device
@@ -79,28 +80,44 @@ class Compiled:
         """What ``qcpp compile --json`` prints for the same scenario and options, without ``seconds``."""
         return {k: v for k, v in self._summary.items() if k != "seconds"}
 
-    def to_qasm(self, version: int = 3) -> str:
+    def to_qasm(self, version: int = 3, profile: str = "default") -> str:
         """OpenQASM text: ``3`` (unbound symbols become ``input float[64]``) or ``2`` (every symbol bound).
 
+        Args:
+            version: 3 or 2.
+            profile: The OpenQASM 3 export profile (:mod:`qcpp.lowering.qasm_profiles`): ``default`` (the most
+                faithful: ``include "stdgates.inc"``, qcpp's gate definitions; Qiskit, Cirq, the QDK), ``portable``
+                (no include, no gate definitions: Amazon Braket's local simulator and PennyLane's ``from_qasm3``)
+                or ``braket`` (Braket's native gate names). Every profile is the same unitary.
+
         Raises:
-            qcpp.errors.OptionError: a version other than 2 or 3.
+            qcpp.errors.OptionError: a version other than 2 or 3, an unknown profile, or a profile other than
+                ``default`` with version 2.
             qcpp.ir.angles.UnboundParameterError: ``version=2`` with unbound symbols (naming them).
+
+        Example:
+            >>> from qcpp.api.scenarios import grid_scenario
+            >>> text = compile(grid_scenario(2, 2, robots=1)).to_qasm(profile="portable")
+            >>> text.splitlines()[:3]
+            ['OPENQASM 3.0;', 'input float[64] beta_0;', 'qubit[4] q;']
         """
-        from qcpp.lowering.qasm import iter_qasm
+        from qcpp.lowering.qasm_profiles import check_profile, iter_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
-        return "".join(iter_qasm(self.circuit, int(version)))  # type: ignore[arg-type]
+        check_profile(profile, version)
+        return "".join(iter_qasm_profile(self.circuit, int(version), profile))  # type: ignore[arg-type]
 
-    def write_qasm(self, path: str | os.PathLike[str], version: int = 3) -> None:
+    def write_qasm(self, path: str | os.PathLike[str], version: int = 3, profile: str = "default") -> None:
         """Write :meth:`to_qasm` to ``path``, whole or not at all (an error leaves no partial file).
 
         Raises:
             As :meth:`to_qasm`; :class:`qcpp.io.atomic.OutputError` for a destination that cannot be written.
         """
-        from qcpp.lowering.qasm import write_qasm
+        from qcpp.lowering.qasm_profiles import check_profile, write_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
-        write_qasm(self.circuit, path, int(version))  # type: ignore[arg-type]
+        check_profile(profile, version)
+        write_qasm_profile(self.circuit, path, int(version), profile)  # type: ignore[arg-type]
 
     def to_qiskit(self) -> Any:
         """The circuit as a ``qiskit.QuantumCircuit``, through Qiskit's own OpenQASM 3 loader (unbound symbols
@@ -129,6 +146,7 @@ def compile(
     bind: Mapping[str, float] | None = None,
     layout: str = "auto",
     local_ancillas: bool = False,
+    optimize_for: str | None = None,
     max_gates: int | None = None,
     **plan_options: Any,
 ) -> Compiled:
@@ -142,6 +160,8 @@ def compile(
         bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
         layout: With a device: ``auto``, ``medial`` or ``greedy``.
         local_ancillas: With a device: region-local ancillas.
+        optimize_for: With a named device: choose the routed candidate by ``esp`` (success probability with idle
+            decoherence; the default there) or ``twoq`` (fewest two-qubit gates); ``qcpp compile --optimize-for``.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
@@ -160,6 +180,7 @@ def compile(
     """
     from qcpp.estimators.guard import check_size
     from qcpp.hardware.device import get_device
+    from qcpp.pipeline.candidates import OPTIMIZE_FOR
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
     from qcpp.problem.cost_range import check_cost_range
@@ -169,6 +190,8 @@ def compile(
     options = plan_options_arg(plan_options)
     bindings = check_binding_values(bind if bind is not None else {}, "bind")
     check_choice(layout, LAYOUT_METHODS, "layout")
+    if optimize_for is not None:
+        check_choice(optimize_for, OPTIMIZE_FOR, "optimize_for")
     for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas)):
         if not isinstance(flag, bool):
             raise OptionError(name, f"expected True or False, got {flag!r}")
@@ -177,6 +200,8 @@ def compile(
             raise OptionError("layout", f"{layout!r} applies with a device only (no device given)")
         if local_ancillas:
             raise OptionError("local_ancillas", "applies with a device only (no device given)")
+        if optimize_for is not None:
+            raise OptionError("optimize_for", "applies with a device only (no device given)")
     elif not isinstance(device, str):
         raise OptionError("device", f"expected a device name, got {device!r}")
     else:
@@ -184,7 +209,7 @@ def compile(
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_cost_range(s)  # what the command line checks when it loads a file
     check_size(
-        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint="run it inside qcpp.allow_large()"
+        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE
     )
     if device is None:
         result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings)
@@ -193,7 +218,7 @@ def compile(
 
     routed = compile_for_device(
         s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
-        layout_method=layout,
+        layout_method=layout, optimize_for=optimize_for,
     )  # fmt: skip
     r = routed.routed
     return Compiled(

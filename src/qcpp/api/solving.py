@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from qcpp.api.checks import check_layers_arg, check_scenario_arg
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
+from qcpp.problem.limits import API_OVERRIDE
 
 if TYPE_CHECKING:
     from qcpp.problem.solvers import Solution
@@ -29,9 +30,6 @@ __all__ = ["SOLVE_METHODS", "simulate_qaoa", "solve", "train_qaoa"]
 
 SOLVE_METHODS: tuple[str, ...] = ("dfs", "cpsat", "anneal", "genetic", "qaoa", "qubo")
 """The methods of :func:`solve` (those of ``qcpp solve --method``)."""
-
-_OVERRIDE = "run it inside qcpp.allow_large()"
-"""How the API lifts a size guard (the command line: ``--allow-large``)."""
 
 _QAOA_DEFAULTS: dict[str, Any] = {
     "p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
@@ -156,7 +154,7 @@ def train_qaoa(
     if mixer_warm and optimizer != "layerwise":
         raise OptionError("mixer_warm", f"applies to optimizer='layerwise' only (got optimizer={optimizer!r})")
     check_phase_range(s)
-    check_training_size(s, "scenario", _OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'", p=layers)
+    check_training_size(s, "scenario", API_OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'", p=layers)
     return solve_qaoa(
         s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter, initial=initial,  # type: ignore[arg-type]
         mixer_warm=mixer_warm, seed=seed, rule=rule,  # type: ignore[arg-type]
@@ -211,5 +209,5 @@ def simulate_qaoa(
         if len(values) != 2 * layers:
             raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
     check_phase_range(s)
-    check_simulation_size(s, "scenario", _OVERRIDE, p=layers, method=method)
+    check_simulation_size(s, "scenario", API_OVERRIDE, p=layers, method=method)
     return evaluate(s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]

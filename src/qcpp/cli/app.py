@@ -288,10 +288,12 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "optimize": _lazy("qcpp.plan.options", "OPTIMIZE"),
     "initial": _lazy("qcpp.plan.options", "INITIAL_STATES"),
     "qasm_version": lambda: (3, 2),
+    "qasm_profile": _lazy("qcpp.lowering.qasm_profiles", "PROFILES"),
     "solve.method": _lazy("qcpp.cli.commands.solve", "SOLVE_METHODS"),
     "solve.optimizer": _lazy("qcpp.simulate.qaoa_solver", "QAOA_OPTIMIZERS"),
     "phase_layout": _lazy("qcpp.plan.options", "PHASE_LAYOUTS"),
     "compile.layout": _lazy("qcpp.plan.options", "LAYOUT_METHODS"),
+    "compile.optimize_for": _lazy("qcpp.pipeline.candidates", "OPTIMIZE_FOR"),
     "compile.angles": _lazy("qcpp.plan.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.simulate.evaluate", "METHODS"),

@@ -1,7 +1,8 @@
-"""A sound routed two-qubit bound: every gate of the circuit compile routes charged at its own distance.
+"""A sound routed two-qubit bound, gadget kind by gadget kind: every gate compile routes charged at its own distance.
 
-The circuit is the one ``qcpp compile --device`` routes (lowered, unfused: every section returns its ancillas
-to |0>, its phase separator laid out as compile lays it out on the device). Its qubits are placed once:
+The circuit is the one ``qcpp compile --device`` routes (:func:`bound_plan`: lowered, unfused, its phase separator
+laid out as compile lays it out on the device; every section returns its ancillas to |0>). Its qubits are placed
+once:
 
 * each data qubit at its home in the geometric layout compile uses where the device holds it
   (:func:`qcpp.layout.medial.medial_placement`: the medial grid on square grids, one cell per plaquette on heavy-hex
@@ -17,14 +18,21 @@ the gate, and SWAP back the same way, which restores the layout exactly. Every g
 ``1 + 6 (d - 1)`` two-qubit gates with ``d`` its distance *in that placement*, and the sum over the gates is the
 two-qubit count of a routing compile could write: an upper bound on the best routing of that circuit (not on
 SABRE's, which ``tests/estimators/routed_test.py`` checks it exceeds on every scenario small enough to route).
-The layers after the first have the first's gates (only the angles differ), so the sum is the initial state's
-sections plus ``p`` times the first layer's.
+
+The sum runs over the plan's gadgets as the call graph's estimates do: the state preparation once, each gadget of
+the first layer ``p`` times (later layers have its gates, only the angles differ). What a gadget's charge needs of
+its gates depends on its kind only (equal kinds have equal gates up to qubit names), so it is worked out once per
+kind (:func:`kind_route`, memoised in the run's :class:`~qcpp.routing.context.RoutingContext`): per lowered
+section, which of the gadget's qubits each gate meets, which ancilla goes beside which qubit, and how many gates
+each pair of qubits has. A gadget's charge is then that route at the distances between the device qubits its own
+qubits are placed on.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
     >>> from qcpp.hardware.device import get_device
     >>> from qcpp.estimators.estimate import DEFAULT_PLAN
-    >>> b = layout_twoq_bound(default_scenario(3, 3, 1), 1, DEFAULT_PLAN, get_device("grid:5x5"))
+    >>> dev = get_device("grid:5x5")
+    >>> b = layout_twoq_bound(bound_plan(default_scenario(3, 3, 1), 1, DEFAULT_PLAN, dev), dev)
     >>> b is not None and b >= 106
     True
 """
@@ -33,54 +41,249 @@ from __future__ import annotations
 
 import dataclasses
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Hashable, MutableMapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from qcpp.hardware.device import Device
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import QaoaPlan
 from qcpp.problem.scenario import Scenario
+from qcpp.routing.context import RoutingContext
 
-__all__ = ["gate_distances", "hex_path_lengths", "layout_twoq_bound", "section_charges"]
+__all__ = [
+    "BlockRoute",
+    "KindRoute",
+    "PlacedBlock",
+    "bound_plan",
+    "gate_distances",
+    "hex_path_lengths",
+    "kind_route",
+    "layout_twoq_bound",
+    "placed_blocks",
+]
 
 _DIJKSTRA_CHUNK = 256
 """Sources per batched breadth-first search on a non-grid device (a chunk's rows are dense: 256 x qubits)."""
 
 
+def bound_plan(scenario: Scenario, p: int, options: PlanOptions, device: Device | str) -> QaoaPlan:
+    """The plan of the circuit compile routes on ``device``: ``options`` settled for the device
+    (:func:`qcpp.pipeline.device_plan.device_plan_options`), unfused (every gadget lowered on its own).
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> bound_plan(default_scenario(3, 3, 1), 2, PlanOptions(), "grid").options.phase_layout
+        'medial'
+    """
+    from qcpp.pipeline.device_plan import device_plan_options
+    from qcpp.plan.qaoa import qaoa_plan
+
+    return qaoa_plan(scenario, p, dataclasses.replace(device_plan_options(options, device), fuse=False))
+
+
+@dataclass(frozen=True)
+class BlockRoute:
+    """One lowered section of a gadget kind, in its own labels: label ``i`` is the ``i``-th qubit its gates meet.
+
+    Attributes:
+        source: Per label, its position among the gadget's qubits (:func:`_own_labels` of its gates),
+            ``-1`` for a ``work`` qubit the lowering adds.
+        data: The labels that are data qubits.
+        ancillas: ``(ancilla label, label it goes beside)`` in order of first use: beside its first partner
+            already placed, else the section's first data qubit; ``-1``: the section meets no data qubit (data qubit
+            0's home).
+        pairs: The distinct label pairs of its two-qubit gates, shape ``(k, 2)``.
+        counts: How many two-qubit gates each pair has.
+    """
+
+    source: np.ndarray
+    data: np.ndarray
+    ancillas: tuple[tuple[int, int], ...]
+    pairs: np.ndarray
+    counts: np.ndarray
+
+
+@dataclass(frozen=True)
+class KindRoute:
+    """What the routed bound needs of a gadget kind (see the module docs).
+
+    Attributes:
+        gates: The gadget's high-level gates with its qubits named by :func:`_own_labels` and without angles.
+        data: Per qubit of the gadget (in order of first use), whether it is a data qubit.
+        blocks: Its lowered sections (:func:`qcpp.plan.qaoa.gadget_blocks`) in order.
+    """
+
+    gates: tuple[Hashable, ...]
+    data: np.ndarray
+    blocks: tuple[BlockRoute, ...]
+
+    def fits(self, gates: tuple[Hashable, ...], qubits: Sequence[int], n_data: int) -> bool:
+        """Whether a gadget with these :func:`_own_labels` has this route: the same gates up to qubit names (the
+        kind's contract), its data qubits where the route has them. One that does not gets a route of its own."""
+        return gates == self.gates and bool(((np.asarray(qubits) < n_data) == self.data).all())
+
+
+@dataclass(frozen=True)
+class PlacedBlock:
+    """A lowered section of the circuit placed on the device.
+
+    Attributes:
+        multiplicity: How often the circuit holds it (1 for the state preparation, ``p`` for a layer's).
+        where: The device qubit of each label of its :class:`BlockRoute`.
+        route: The section's route.
+    """
+
+    multiplicity: int
+    where: np.ndarray
+    route: BlockRoute
+
+
+def _own_labels(gates: Sequence[Any]) -> tuple[tuple[Hashable, ...], list[int]]:
+    """``(gates, qubits)``: ``gates`` with qubit ``i`` standing for the ``i``-th qubit they meet and without angles
+    (what equal kinds share), and those qubits in order."""
+    own: dict[int, int] = {}
+    named = tuple((g[0], tuple(own.setdefault(q, len(own)) for q in g[1]), g[3]) for g in gates)
+    return named, list(own)
+
+
+def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
+    """The :class:`KindRoute` of ``gadget``'s kind, read from its lowered gates.
+
+    Args:
+        gadget: A planned gadget.
+        registers: The circuit's registers (``work`` included), as the compiler lowers it.
+        n_data: The data qubits (qubits ``< n_data``).
+
+    Returns:
+        The route (in the gadget's own labels: any gadget of the kind takes it).
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> plan = bound_plan(default_scenario(3, 3, 1), 1, PlanOptions(), "grid")
+        >>> mixer = next(g for name, g in plan.sections() if name == "mixer_0")
+        >>> route = kind_route(mixer, plan.registers, plan.scenario.num_variables)
+        >>> len(route.blocks), int(route.blocks[0].counts.sum()) == mixer.cost().two_qubit
+        (1, True)
+    """
+    from qcpp.ir.circuit import Circuit, Section
+    from qcpp.lowering.passes import lower
+    from qcpp.plan.qaoa import gadget_blocks
+
+    blocks = gadget_blocks(gadget)
+    gates, qubits = _own_labels([g for b in blocks for g in b])
+    own = {q: i for i, q in enumerate(qubits)}
+    routes = []
+    for sec in lower(Circuit(registers, [Section("g", tuple(b)) for b in blocks])).sections:
+        label: dict[int, int] = {}
+        placed: set[int] = set()
+        ancillas: list[tuple[int, int]] = []
+        pairs: list[tuple[int, int]] = []
+        first_data = next((q for g in sec.gates for q in g[1] if q < n_data), None)
+        for g in sec.gates:
+            qs = g[1]
+            for q in qs:
+                if q >= n_data and q not in placed:
+                    near = next((x for x in qs if x != q and (x < n_data or x in placed)), first_data)
+                    beside = -1 if near is None else label.setdefault(near, len(label))
+                    ancillas.append((label.setdefault(q, len(label)), beside))
+                    placed.add(q)
+            if len(qs) == 2:
+                pairs.append((label.setdefault(qs[0], len(label)), label.setdefault(qs[1], len(label))))
+        met = list(label)
+        unique, counts = np.unique(np.array(pairs, dtype=np.int64).reshape(-1, 2), axis=0, return_counts=True)
+        routes.append(BlockRoute(
+            source=np.array([own.get(q, -1) for q in met], dtype=np.int64),
+            data=np.flatnonzero(np.array(met, dtype=np.int64) < n_data),
+            ancillas=tuple(ancillas), pairs=unique.reshape(-1, 2), counts=counts.astype(np.int64),
+        ))  # fmt: skip
+    return KindRoute(gates, np.array([q < n_data for q in qubits], dtype=bool), tuple(routes))
+
+
+def placed_blocks(
+    plan: QaoaPlan, homes: Sequence[int], device: Device, routes: MutableMapping[Hashable, KindRoute] | None = None
+) -> list[PlacedBlock] | None:
+    """The circuit's sections placed as the module docs describe: the state preparation's and the first layer's,
+    each gadget's from its kind's route (taken from ``routes`` or worked out and stored there).
+
+    Args:
+        plan: The circuit (:func:`bound_plan`).
+        homes: Physical qubit of every data qubit.
+        device: The device.
+        routes: Kind routes by kind key (:attr:`qcpp.routing.context.RoutingContext.kind_routes`; default: this
+            call's own).
+
+    Returns:
+        The placed sections in circuit order, or ``None`` if a section needs more ancillas than there are free
+        qubits.
+    """
+    routes = {} if routes is None else routes
+    n_data, registers = len(homes), plan.registers
+    graph = device.graph()
+    graph = (graph + graph.T).tocsr()  # both directions of every coupling
+    indptr, indices = graph.indptr.tolist(), graph.indices.tolist()
+    home = np.asarray(homes, dtype=np.int64)
+    is_home = np.zeros(device.num_qubits, dtype=bool)
+    is_home[home] = True
+    out: list[PlacedBlock] = []
+    for name, gadget in plan.sections(layers=1):
+        gates, qubits = _own_labels(gadget.emit())
+        route = routes.get(gadget.kind)
+        if route is None:
+            route = routes[gadget.kind] = kind_route(gadget, registers, n_data)
+        if not route.fits(gates, qubits, n_data):
+            route = kind_route(gadget, registers, n_data)
+        mine = np.asarray(qubits, dtype=np.int64)
+        for block in route.blocks:
+            where = np.zeros(len(block.source), dtype=np.int64)
+            where[block.data] = home[mine[block.source[block.data]]]
+            taken: set[int] = set()
+            for ancilla, beside in block.ancillas:
+                spot = _nearest_free(int(where[beside]) if beside >= 0 else int(home[0]), indptr, indices, is_home,
+                                     taken)  # fmt: skip
+                if spot is None:
+                    return None
+                where[ancilla] = spot
+                taken.add(spot)
+            out.append(PlacedBlock(1 if name == "initial_state" else plan.p, where, block))
+    return out
+
+
 def layout_twoq_bound(
-    scenario: Scenario, p: int, plan: Any, device: Device, stage: Callable[[str], None] | None = None
+    plan: QaoaPlan, device: Device, context: RoutingContext | None = None, stage: Callable[[str], None] | None = None
 ) -> int | None:
     """The two-qubit count of the gate-by-gate SWAP routing from one placement (see the module docs).
 
     Args:
-        scenario: The scenario.
-        p: QAOA layers.
-        plan: Its :class:`qcpp.plan.options.PlanOptions`.
+        plan: The circuit compile routes (:func:`bound_plan`).
         device: The device (not all-to-all: there every gate costs one, and the coupling graph is large).
+        context: The run's memos (its :attr:`~qcpp.routing.context.RoutingContext.kind_routes`; default: a fresh
+            one).
         stage: Called with each stage's name as it starts, for progress.
 
     Returns:
         The bound, or ``None`` where a section needs more free qubits than the device's piece holding its data has.
     """
     from qcpp.layout.medial import medial_placement
-    from qcpp.lowering.passes import lower
-    from qcpp.pipeline.device_plan import device_plan_options
-    from qcpp.plan.qaoa import qaoa_plan
 
-    say = stage or (lambda _text: None)
-    settled = device_plan_options(plan, device)
-    say("building one layer for the layout bound")
-    circuit = lower(qaoa_plan(scenario, 1, dataclasses.replace(settled, fuse=False)).circuit())
-    homes = medial_placement(scenario, device)
+    homes = medial_placement(plan.scenario, device)
     if homes is None:
-        homes = compact_placement(device, scenario.num_variables)
+        homes = compact_placement(device, plan.scenario.num_variables)
         if homes is None:
             return None
-    say(f"placing {len(circuit.sections):,} sections' ancillas for the layout bound")
-    charges = section_charges(circuit.sections, homes, device)
-    if charges is None:
+    if stage is not None:
+        stage("placing the gadgets' ancillas for the layout bound")
+    routes = (RoutingContext() if context is None else context).kind_routes
+    blocks = placed_blocks(plan, homes, device, routes)
+    if blocks is None:
         return None
-    return sum(c if name.startswith("initial") else p * c for name, c in charges)
+    none = [np.zeros(0, np.int64)]
+    first = np.concatenate([x.where[x.route.pairs[:, 0]] for x in blocks] or none)
+    second = np.concatenate([x.where[x.route.pairs[:, 1]] for x in blocks] or none)
+    weight = np.concatenate([x.multiplicity * x.route.counts for x in blocks] or none)
+    return int((weight * (1 + 6 * (gate_distances(device, first, second) - 1))).sum())
 
 
 def compact_placement(device: Device, n: int) -> tuple[int, ...] | None:
@@ -101,63 +304,6 @@ def compact_placement(device: Device, n: int) -> tuple[int, ...] | None:
     start = device.num_qubits // 2 if labels[device.num_qubits // 2] == labels[largest[0]] else int(largest[0])
     order = breadth_first_order(device.graph(), start, directed=False, return_predecessors=False)
     return tuple(int(q) for q in order[:n])
-
-
-def section_charges(
-    sections: Sequence[Any], homes: Sequence[int], device: Device
-) -> list[tuple[str, int]] | None:
-    """Per section, its name and the two-qubit gates its gates cost routed one by one from the placement of the
-    module docs, or ``None`` if a section needs more ancillas than there are free qubits.
-
-    Args:
-        sections: The lowered circuit's sections (gates ``(name, qubits, ...)``; qubits ``< len(homes)`` data).
-        homes: Physical qubit of every data qubit.
-        device: The device.
-
-    Returns:
-        ``[(section name, charge), ...]`` in order.
-    """
-    n_data = len(homes)
-    graph = device.graph()
-    graph = (graph + graph.T).tocsr()  # both directions of every coupling
-    indptr, indices = graph.indptr.tolist(), graph.indices.tolist()
-    is_home = np.zeros(device.num_qubits, dtype=bool)
-    is_home[list(homes)] = True
-    home_list = [int(h) for h in homes]
-    names: list[str] = []
-    firsts: list[np.ndarray] = []
-    seconds: list[np.ndarray] = []
-    for sec in sections:
-        where: dict[int, int] = {}  # ancilla -> physical qubit, this section
-        taken: set[int] = set()
-        pairs: list[tuple[int, int]] = []
-        first_data = next((q for g in sec.gates for q in g[1] if q < n_data), 0)
-        for g in sec.gates:
-            qs = g[1]
-            for q in qs:
-                if q >= n_data and q not in where:
-                    near = next((x for x in qs if x != q and (x < n_data or x in where)), None)
-                    if near is None:
-                        near = first_data
-                    at = home_list[near] if near < n_data else where[near]
-                    spot = _nearest_free(at, indptr, indices, is_home, taken)
-                    if spot is None:
-                        return None
-                    where[q] = spot
-                    taken.add(spot)
-            if len(qs) == 2:
-                a, b = qs
-                pairs.append((home_list[a] if a < n_data else where[a], home_list[b] if b < n_data else where[b]))
-        names.append(sec.name)
-        arr = np.array(pairs, dtype=np.int64).reshape(-1, 2)
-        firsts.append(arr[:, 0])
-        seconds.append(arr[:, 1])
-    sizes = [len(a) for a in firsts]
-    d = gate_distances(device, np.concatenate(firsts or [np.zeros(0, np.int64)]),
-                       np.concatenate(seconds or [np.zeros(0, np.int64)]))  # fmt: skip
-    per_gate = 1 + 6 * (d - 1)
-    bounds = np.cumsum([0, *sizes])
-    return [(name, int(per_gate[lo:hi].sum())) for name, lo, hi in zip(names, bounds[:-1], bounds[1:], strict=True)]
 
 
 def _nearest_free(

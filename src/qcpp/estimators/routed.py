@@ -4,9 +4,10 @@
 ``qcpp compile --device`` picks: :func:`qcpp.pipeline.device_compile.layout_device` for ``grid`` and ``heavy-hex``,
 else the smallest member with the row's qubits), ``fits`` (the device's largest connected component holds the
 row's qubits; for the bound also every section of the circuit compile routes), ``routed_twoq``, ``routed_depth``,
-``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, and ``routed_kind`` (of the two-qubit count and the
-ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact`` (what ``qcpp compile --device``
-writes) or ``bound``. ``routed_model`` names the first way that applies:
+``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, ``esp_idle`` (ESP with idle decoherence,
+:func:`qcpp.routing.native.esp_idle`; exact rows on devices with T1 / T2 only, else ``None``), and ``routed_kind``
+(of the two-qubit count and the ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact``
+(what ``qcpp compile --device`` writes) or ``bound``. ``routed_model`` names the first way that applies:
 
 1. ``compile``: at most :data:`EXACT_MAX_GATES` lowered gates; compiled and routed as ``qcpp compile --device``
    does, every figure exact.
@@ -67,6 +68,7 @@ ROUTED_COLUMNS: tuple[str, ...] = (
     "routed_twoq_depth",
     "duration_s",
     "esp",
+    "esp_idle",
 )
 """Columns the ``table`` format adds with ``--device``."""
 
@@ -90,7 +92,7 @@ SUM_MODEL = (
     "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 _NONE = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
-         "duration_s", "esp", "esp_model")  # fmt: skip
+         "duration_s", "esp", "esp_model", "esp_idle")  # fmt: skip
 
 
 def _largest_component(device: Device) -> int:
@@ -128,6 +130,7 @@ def _bound(device: Device, twoq: int, one_qubit: int, data_qubits: int, model: s
         "duration_s": duration,
         "esp": math.exp(log_esp),
         "esp_model": model,
+        "esp_idle": None,
     }
 
 
@@ -173,8 +176,9 @@ def _routed_fields(
     scenario: Scenario, p: int, plan: Any, device: str, qubits: int, cx: int, one_qubit: int,
     total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
 ) -> dict[str, Any]:  # fmt: skip
+    from qcpp.estimators.layout_bound import bound_plan
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.native import duration_s, esp
+    from qcpp.routing.native import duration_s, esp, esp_idle
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -190,7 +194,8 @@ def _routed_fields(
         summed = _window_sum(scenario, p, plan, device, say, context)
         if summed is not None:
             return {**out, "device": summed.device.name, **_summed_fields(summed, ESP_MODEL)}
-        return {**out, **_bound_of_compiled(scenario, p, plan, dev, device in ("grid", "heavy-hex"), say)}
+        laid = bound_plan(scenario, p, plan, dev)
+        return {**out, **_bound_of_compiled(laid, dev, device in ("grid", "heavy-hex"), say, context)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
     routed = result.routed
@@ -207,6 +212,7 @@ def _routed_fields(
         "duration_s": duration_s(routed),
         "esp": esp(routed),
         "esp_model": ESP_MODEL,
+        "esp_idle": esp_idle(routed),
     }
 
 
@@ -239,32 +245,32 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
         "duration_s": summed.duration_bound_s,
         "esp": summed.esp,
         "esp_model": esp_model,
+        "esp_idle": None,
     }
 
 
 def _bound_of_compiled(
-    scenario: Scenario, p: int, plan: Any, device: Device, grows: bool = False,
-    stage: Callable[[str], None] | None = None,
+    plan: Any, device: Device, grows: bool = False, stage: Callable[[str], None] | None = None,
+    context: RoutingContext | None = None,
 ) -> dict[str, Any]:  # fmt: skip
-    """:func:`_bound` of the circuit compile routes on ``device`` (unfused, its phase layout), every two-qubit gate
-    at its distance in :func:`qcpp.estimators.layout_bound.layout_twoq_bound`'s placement (on an all-to-all device,
-    one). ``grows``: ``device`` is the member of an unsized family, grown as compile grows it while a section lacks
-    free qubits; otherwise such a row does not fit (compile would not route it)."""
-    import dataclasses
-
+    """:func:`_bound` of the circuit compile routes on ``device`` (``plan``:
+    :func:`qcpp.estimators.layout_bound.bound_plan`), every two-qubit gate at its distance in
+    :func:`qcpp.estimators.layout_bound.layout_twoq_bound`'s placement (on an all-to-all device, one). ``grows``:
+    ``device`` is the member of an unsized family, grown as compile grows it while a section lacks free qubits;
+    otherwise such a row does not fit (compile would not route it)."""
     from qcpp.estimators.layout_bound import layout_twoq_bound
     from qcpp.layout.medial import medial_placement
     from qcpp.pipeline.device_compile import grown_device
-    from qcpp.pipeline.device_plan import device_plan_options
-    from qcpp.plan.qaoa import qaoa_plan
 
-    cost = qaoa_plan(scenario, p, dataclasses.replace(device_plan_options(plan, device), fuse=False)).cost()
-    twoq = cost.two_qubit if device.is_all_to_all else layout_twoq_bound(scenario, p, plan, device, stage=stage)
+    context = RoutingContext() if context is None else context
+    cost = plan.cost()
+    twoq = cost.two_qubit if device.is_all_to_all else layout_twoq_bound(plan, device, context, stage)
     while twoq is None and grows:
         device = grown_device(device)
-        twoq = layout_twoq_bound(scenario, p, plan, device, stage=stage)
+        twoq = layout_twoq_bound(plan, device, context, stage)
     if twoq is None:
         return {"fits": False, **dict.fromkeys(_NONE)}
+    scenario = plan.scenario
     geometric = not device.is_all_to_all and medial_placement(scenario, device) is not None
     model = LAYOUT_BOUND_MODEL if geometric else BALL_BOUND_MODEL
     return {"device": device.name,

@@ -16,7 +16,10 @@ A :class:`Device` is a frozen value. Two kinds exist:
 
 Couplings are undirected (every device here has a symmetric two-qubit gate). Per-qubit and per-coupling values
 are tuples aligned with ``range(num_qubits)`` and :attr:`Device.coupling`; a duration is ``None`` where the
-source publishes none (then :func:`qcpp.routing.native.duration_s` is ``None`` too).
+source publishes none (then :func:`qcpp.routing.native.duration_s` is ``None`` too). Coherence times ``t1_s`` /
+``t2_s`` (seconds, per qubit, an entry ``None`` where the snapshot has none) exist for the IBM snapshots and the
+heavy-hex family (their medians); devices whose sources publish none (Willow, Helios, the grid and all-to-all
+families) have ``None``.
 
 Example:
     >>> d = get_device("grid:2x3")
@@ -26,6 +29,8 @@ Example:
     'heavy-hex:5'
     >>> get_device("ibm_fez").num_qubits
     156
+    >>> get_device("ibm_fez").t1_s[0] > 0, get_device("google_willow").t1_s
+    (True, None)
 """
 
 from __future__ import annotations
@@ -76,6 +81,8 @@ class Device:
         source: Where the figures come from.
         date: Date of the figures (calibration snapshot or publication).
         family: ``grid``, ``heavy-hex``, ``all-to-all`` (the architecture, also for named devices).
+        t1_s: Energy-relaxation time T1 per qubit in seconds (an entry ``None``: unknown); ``None``: no data.
+        t2_s: Dephasing time T2 (Hahn echo, as the snapshots report it) per qubit in seconds; as ``t1_s``.
     """
 
     name: str
@@ -92,6 +99,8 @@ class Device:
     source: str
     date: str
     family: str
+    t1_s: tuple[float | None, ...] | None = None
+    t2_s: tuple[float | None, ...] | None = None
 
     def __post_init__(self) -> None:
         n = self.num_qubits
@@ -99,6 +108,8 @@ class Device:
             raise ValueError(f"{self.name}: a coupling is not (a, b) with 0 <= a < b < {n}")
         if len(self.error_2q) != len(self.coupling) or len(self.readout_error) != n:
             raise ValueError(f"{self.name}: per-coupling or per-qubit data of the wrong length")
+        if any(t is not None and len(t) != n for t in (self.t1_s, self.t2_s)):
+            raise ValueError(f"{self.name}: T1 or T2 data of the wrong length")
 
     @property
     def is_all_to_all(self) -> bool:
@@ -238,6 +249,11 @@ def _uniform(template: Device, name: str, n: int, coupling: tuple[tuple[int, int
     d1 = None if template.duration_1q_s is None else tuple((g, (med(v),) * n) for g, v in template.duration_1q_s)
     d2 = None if template.duration_2q_s is None else (med(template.duration_2q_s),) * len(coupling)
     ro = None if template.readout_duration_s is None else (med(template.readout_duration_s),) * n
+
+    def med_times(values: tuple[float | None, ...] | None) -> tuple[float | None, ...] | None:
+        known = [v for v in values or () if v is not None]
+        return (statistics.median(known),) * n if known else None
+
     return Device(
         name=name,
         num_qubits=n,
@@ -253,6 +269,8 @@ def _uniform(template: Device, name: str, n: int, coupling: tuple[tuple[int, int
         source=f"{family} lattice; figures: medians of {template.name} ({template.source})",
         date=template.date,
         family=family,
+        t1_s=med_times(template.t1_s),
+        t2_s=med_times(template.t2_s),
     )
 
 
@@ -309,6 +327,14 @@ def device_names() -> tuple[str, ...]:
     return tuple(sorted(f.name[: -len(".json")] for f in files if f.name.endswith(".json")))
 
 
+def _times(value: list[float | None] | None, n: int) -> tuple[float | None, ...] | None:
+    if value is None:
+        return None
+    if len(value) != n:
+        raise ValueError(f"expected {n} coherence times, got {len(value)}")
+    return tuple(None if v is None else float(v) for v in value)
+
+
 def _per(value: float | list[float] | None, n: int) -> tuple[float, ...] | None:
     if value is None:
         return None
@@ -355,6 +381,8 @@ def named_device(name: str) -> Device:
         source=raw["source"],
         date=raw["date"],
         family=raw["family"],
+        t1_s=_times(raw.get("t1_s"), n),
+        t2_s=_times(raw.get("t2_s"), n),
     )
 
 

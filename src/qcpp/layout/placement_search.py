@@ -50,7 +50,7 @@ from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
 from qcpp.routing.sabre import route, window_cx
 
-__all__ = ["qiskit_sabre_layout", "search_route", "two_qubit_count"]
+__all__ = ["qiskit_sabre_layout", "ranked_routes", "search_route", "two_qubit_count"]
 
 
 def two_qubit_count(circuit: Circuit) -> int:
@@ -131,12 +131,39 @@ def search_route(
     pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
     key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
            seeds, options)  # fmt: skip
-    choice = context.placements.get(key)
-    if choice is None:
-        choice = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
-        context.placements[key] = choice
-    layout, routing_seed = choice
+    ranked = context.placements.get(key)
+    if ranked is None:
+        ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
+        context.placements[key] = ranked
+    layout, routing_seed = ranked[0][1:]
     return route(circuit, device, layout, seed=routing_seed, measured=measured, trials=options.trials, fuse=True)
+
+
+def ranked_routes(
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]] = (),
+    seed: int = 0,
+    measured: Sequence[int] | None = None,
+    count: int = 6,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
+) -> list[RoutedCircuit]:
+    """The ``count`` cheapest distinct routings of :func:`search_route`'s search (fewest two-qubit gates first; the
+    first is :func:`search_route`'s), for a caller that scores them by more than their two-qubit count (the
+    calibrated candidates of :mod:`qcpp.pipeline.candidates`). Arguments as :func:`search_route`, with its default
+    numbers of layouts and seeds."""
+    layouts, seeds = options.placement_layouts, options.placement_seeds
+    context = RoutingContext() if context is None else context
+    pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
+    key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
+           seeds, options)  # fmt: skip
+    ranked = context.placements.get(key)
+    if ranked is None:
+        ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
+        context.placements[key] = ranked
+    return [route(circuit, device, layout, seed=s, measured=measured, trials=options.trials, fuse=True)
+            for _, layout, s in ranked[:count]]  # fmt: skip
 
 
 def _search(
@@ -148,9 +175,10 @@ def _search(
     layouts: int,
     seeds: int,
     options: RoutingOptions,
-) -> tuple[tuple[int, ...], int]:
-    """The ``(layout, routing seed)`` of :func:`search_route`'s cheapest routing: every layout routed with ``seed``,
-    then the ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
+) -> list[tuple[int, tuple[int, ...], int]]:
+    """``(two-qubit gates, layout, routing seed)`` of every routing :func:`search_route` tries, cheapest first (the
+    first is its choice; one entry per layout and seed): every layout routed with ``seed``, then the
+    ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
     :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
     :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit."""
     from qiskit import QuantumCircuit
@@ -169,11 +197,11 @@ def _search(
             qc.cx(layout[a], layout[b])
         dags.append(circuit_to_dag(qc))
     first = sorted((_routed_cx(dag, cmap, seed, options.trials), i) for i, dag in enumerate(dags))
-    best = (first[0][0], first[0][1], seed)
+    tried = [(cx, i, seed) for cx, i in first]
     for _, i in first[: options.placement_refine]:
         for s in range(seed + 1, seed + seeds):
-            best = min(best, (_routed_cx(dags[i], cmap, s, options.trials), i, s))
-    return candidates[best[1]], best[2]
+            tried.append((_routed_cx(dags[i], cmap, s, options.trials), i, s))
+    return [(cx, candidates[i], s) for cx, i, s in sorted(tried)]
 
 
 def _routed_cx(dag: Any, cmap: Any, seed: int, trials: int | None) -> int:

@@ -419,7 +419,11 @@ def to_qasm2(circuit: Circuit) -> str:
 
 
 def to_qasm3(circuit: Circuit) -> str:
-    """OpenQASM 3.0 text (``include "stdgates.inc"``); unbound symbols become inputs."""
+    """OpenQASM 3.0 text (``include "stdgates.inc"``); unbound symbols become inputs.
+
+    Clients that reject the include or the gate definitions (Amazon Braket, PennyLane) take one of the profiles of
+    :mod:`qcpp.lowering.qasm_profiles`.
+    """
     return "".join(iter_qasm(circuit, 3))
 
 

@@ -29,13 +29,14 @@ from qcpp.io.atomic import atomic_open
 from qcpp.ir.angles import Angle, UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, rz
-from qcpp.lowering.qasm import Version, iter_qasm
+from qcpp.lowering.qasm import Version
+from qcpp.lowering.qasm_profiles import Profile, iter_qasm_profile
 
 __all__ = ["write_qasm_sections"]
 
 
 def _header(
-    registers: Sequence[Register], make_sections: Callable[[], Iterable[Section]], version: Version
+    registers: Sequence[Register], make_sections: Callable[[], Iterable[Section]], version: Version, profile: Profile
 ) -> tuple[str, tuple[str, ...]]:
     """The header of the whole circuit, from one gate per definition-relevant kind and one rz per symbol."""
     reps: dict[tuple[str, int, str | None], Gate] = {}
@@ -50,7 +51,7 @@ def _header(
     if version == 2 and ordered:
         raise UnboundParameterError(ordered, "OpenQASM 2 has no symbolic parameters")
     skeleton = [*reps.values(), *(rz(Angle.symbol(s), 0) for s in ordered)]
-    return next(iter_qasm(Circuit(registers, [Section("header", skeleton)]), version)), ordered
+    return next(iter_qasm_profile(Circuit(registers, [Section("header", skeleton)]), version, profile)), ordered
 
 
 def write_qasm_sections(
@@ -58,6 +59,7 @@ def write_qasm_sections(
     make_sections: Callable[[], Iterable[Section]],
     path: str | os.PathLike[str],
     version: Version = 3,
+    profile: Profile = "default",
 ) -> tuple[dict[str, int], tuple[str, ...]]:
     """Stream the circuit ``Circuit(registers, make_sections())`` to an OpenQASM file, one section at a time.
 
@@ -66,21 +68,24 @@ def write_qasm_sections(
         make_sections: returns a fresh iterable of the sections, in order (called twice).
         path: destination file.
         version: 2 or 3.
+        profile: the OpenQASM 3 export profile (:mod:`qcpp.lowering.qasm_profiles`); the file equals
+            :func:`qcpp.lowering.qasm_profiles.write_qasm_profile` of the whole circuit.
 
     Returns:
         Gates per name (in order of first appearance) and the unbound symbols (ordered as :attr:`Circuit.symbols`).
 
     Raises:
         UnboundParameterError: ``version == 2`` and some section has unbound symbols (before any file is made).
+        qcpp.errors.OptionError: an unknown profile, or a profile other than ``default`` with version 2.
     """
     registers = tuple(registers)
-    header, symbols = _header(registers, make_sections, version)
+    header, symbols = _header(registers, make_sections, version, profile)
     ops: Counter[str] = Counter()
     with atomic_open(path) as f:
         f.write(header)
         for sec in make_sections():
             ops.update(g[0] for g in sec.gates)
-            chunks = iter_qasm(Circuit(registers, [sec]), version)
+            chunks = iter_qasm_profile(Circuit(registers, [sec]), version, profile)
             next(chunks)  # this section's own header
             for chunk in chunks:
                 f.write(chunk)

@@ -59,7 +59,14 @@ from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
 from qcpp.layout.placement import localize_ancillas, place
-from qcpp.layout.placement_search import qiskit_sabre_layout, search_route
+from qcpp.layout.placement_search import qiskit_sabre_layout, ranked_routes, search_route
+from qcpp.pipeline.candidates import (
+    OPTIMIZE_FOR,
+    calibrated_candidates,
+    choose,
+    default_objective,
+    is_calibrated,
+)
 from qcpp.pipeline.cellmixer import cell_mixers
 from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.plan.compile import CompileResult, compile_scenario
@@ -67,7 +74,7 @@ from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.native import duration_s, esp, to_native
+from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 from qcpp.routing.sabre import route
@@ -98,6 +105,10 @@ class DeviceCompileResult:
         seconds: Wall time of everything.
         layout_method: ``medial`` (geometric layout: medial on square grids, cells on heavy-hex lattices;
             windows routed home) or ``greedy`` (:func:`best_layout`).
+        optimize_for: The figure the routing was chosen by (``esp`` or ``twoq``).
+        chosen: The candidate that won (:mod:`qcpp.pipeline.candidates`; ``qcpp``: compile's own routing).
+        candidates: Every candidate's ``{name, two_qubit, esp, esp_idle}`` (empty where there was one: the
+            families).
     """
 
     compiled: CompileResult
@@ -106,6 +117,9 @@ class DeviceCompileResult:
     lowered: bool
     seconds: float
     layout_method: str = "greedy"
+    optimize_for: str = "twoq"
+    chosen: str = "qcpp"
+    candidates: tuple[dict[str, Any], ...] = ()
 
     @property
     def logical_qubits(self) -> int:
@@ -134,7 +148,8 @@ class DeviceCompileResult:
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready: ``device``, ``initial_layout``, ``final_layout``, ``routed`` (gates, two-qubit count, swaps,
-        ESP with its model, duration in seconds)."""
+        ESP of the gates with its model, ESP with idle decoherence (``esp_idle``, ``None`` on devices without
+        T1 / T2) with its model, duration in seconds)."""
         r = self.routed
         native = r if not self.lowered else to_native(r)
         ops = r.circuit.count_ops()
@@ -149,6 +164,11 @@ class DeviceCompileResult:
                 "swaps": r.swaps,
                 "esp": esp(native),
                 "esp_model": ESP_MODEL,
+                "esp_idle": esp_idle(native),
+                "esp_idle_model": f"esp x {IDLE_MODEL}",
+                "optimize_for": self.optimize_for,
+                "chosen": self.chosen,
+                "candidates": list(self.candidates),
                 "duration_s": duration_s(native),
             },
         }
@@ -162,6 +182,7 @@ ROUTERS = {
     f"{DEFAULT_ROUTING.placement_layouts} "
     "SabreLayout starts, SWAPs fused with an adjacent cx",
 }
+"""What each layout method routes with (on a named device, the chosen candidate may be another: ``chosen``)."""
 
 ESP_MODEL = (
     "product of (1 - gate error) over every native gate and (1 - readout error) over the measured data qubits; "
@@ -230,6 +251,7 @@ def compile_for_device(
     stage: Callable[[str], None] | None = None,
     routing: RoutingOptions = DEFAULT_ROUTING,
     context: RoutingContext | None = None,
+    optimize_for: str | None = None,
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -251,6 +273,9 @@ def compile_for_device(
             (3 / 18)``), for progress on a long compile.
         routing: Every setting of routing, allocation and the searches.
         context: The memos of the run (default: a fresh one; a caller compiling many circuits may share one).
+        optimize_for: On a named device, the figure the routed candidates are chosen by (:data:`OPTIMIZE_FOR`:
+            ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
+            devices). The families keep compile's single routing.
 
     Returns:
         The :class:`DeviceCompileResult`.
@@ -260,6 +285,8 @@ def compile_for_device(
         ValueError: the device is too small.
     """
     start = time.perf_counter()
+    if optimize_for is not None and optimize_for not in OPTIMIZE_FOR:
+        raise ValueError(f"optimize for one of {', '.join(OPTIMIZE_FOR)}, not {optimize_for!r}")
     context = RoutingContext() if context is None else context
     options = device_plan_options(options, device, layout_method)
     say = stage or (lambda _text: None)
@@ -284,10 +311,8 @@ def compile_for_device(
                 greedy = _greedy_compare(circuit, other, seed, layouts, measured, routing, context)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
-            if not lowered:
-                routed = to_native(routed)
-            seconds = time.perf_counter() - start
-            return DeviceCompileResult(compiled, logical, routed, lowered, seconds, method)
+            objective = default_objective(routed.device) if optimize_for is None else optimize_for
+            return _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -310,10 +335,39 @@ def compile_for_device(
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
     say(f"routing the whole circuit on {dev.name}")
-    routed = greedy_route(circuit, dev, seed=seed, layouts=layouts, measured=measured, options=routing, context=context)
-    if not lowered:
-        routed = to_native(routed)
-    return DeviceCompileResult(compiled, circuit, routed, lowered, time.perf_counter() - start, "greedy")
+    objective = default_objective(dev) if optimize_for is None else optimize_for
+    count = CALIBRATED_ROUTINGS if is_calibrated(dev) else 1
+    ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
+    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say)
+
+
+CALIBRATED_ROUTINGS = 4
+"""On a named device, compile's own routings the candidates start from (the placement search's cheapest few)."""
+
+
+def _finish(
+    compiled: CompileResult, logical: Circuit, ours: list[RoutedCircuit], circuit: Circuit, lowered: bool,
+    start: float, method: str, objective: str, measured: range, say: Callable[[str], None],
+) -> DeviceCompileResult:  # fmt: skip
+    """The result: on a named device the best of :func:`qcpp.pipeline.candidates.calibrated_candidates` (from
+    ``ours``, compile's routings of ``logical``, and Qiskit's O3 of ``circuit`` unless ``lowered``) by
+    ``objective``; elsewhere ``ours[0]``."""
+    device = ours[0].device
+    if not is_calibrated(device):
+        routed = ours[0] if lowered else to_native(ours[0])
+        return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
+                                   optimize_for=objective)  # fmt: skip
+    say(f"scoring routed candidates on {device.name} (ESP, two-qubit gates, Qiskit O3)")
+    candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured)
+    pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
+    chosen = choose(pool, objective)
+    routed = chosen.lowered if lowered else chosen.native
+    assert routed is not None
+    if chosen.lowered is None:  # Qiskit's: it routed the compiled circuit itself
+        logical = circuit
+    return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
+                               optimize_for=objective, chosen=chosen.name,
+                               candidates=tuple(c.summary() for c in candidates))  # fmt: skip
 
 
 def greedy_route(
@@ -329,11 +383,29 @@ def greedy_route(
     of at most ``options.placement_max_twoq`` two-qubit gates, the cheapest of a placement search that starts with
     that layout (:func:`qcpp.layout.placement_search.search_route`: many layouts and seeds, SWAPs fused with an
     adjacent ``cx``; memoised in ``context``)."""
+    return greedy_routes(circuit, device, seed, layouts, measured, options, context, count=1)[0]
+
+
+def greedy_routes(
+    circuit: Circuit,
+    device: Device,
+    seed: int = 0,
+    layouts: tuple[str, ...] = LAYOUTS,
+    measured: range | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
+    count: int = 1,
+) -> list[RoutedCircuit]:
+    """:func:`greedy_route`'s routing first, then (where it runs the placement search) up to ``count - 1`` of the
+    search's next cheapest (:func:`qcpp.layout.placement_search.ranked_routes`)."""
     layout = best_layout(circuit, device, seed=seed, layouts=layouts, options=options)
     if device.is_all_to_all or _two_qubit(circuit) > options.placement_max_twoq:
-        return route(circuit, device, layout, seed=seed, measured=measured, trials=options.trials)
-    return search_route(circuit, device, starts=(layout,), seed=seed, measured=measured, options=options,
-                        context=context)  # fmt: skip
+        return [route(circuit, device, layout, seed=seed, measured=measured, trials=options.trials)]
+    if count == 1:
+        return [search_route(circuit, device, starts=(layout,), seed=seed, measured=measured, options=options,
+                             context=context)]  # fmt: skip
+    return ranked_routes(circuit, device, starts=(layout,), seed=seed, measured=measured, count=count,
+                         options=options, context=context)  # fmt: skip
 
 
 def _greedy_compare(

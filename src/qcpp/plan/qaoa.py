@@ -28,7 +28,7 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property, partial
 
@@ -41,6 +41,7 @@ from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, part
 from qcpp.ir.angles import Angle, mixer_symbol, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.cost import Cost
+from qcpp.ir.gates import Gate
 from qcpp.lowering.passes import WORK_REGISTER, lower
 from qcpp.plan.call_graph import CallGraph, Deferred, GadgetKind
 from qcpp.plan.mixer_classes import MixerPart, mixer_part
@@ -157,11 +158,12 @@ class QaoaPlan:
         return sum(r.size for r in self.registers)
 
     # -- the call graph
-    def sections(self) -> Iterator[tuple[str, Gadget]]:
+    def sections(self, layers: int | None = None) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and the mixer's pieces (:meth:`_mixer_layer`)."""
+        separator and the mixer's pieces (:meth:`_mixer_layer`); only the first ``layers`` layers if given (a
+        layer's gadgets are planned as a whole when it starts)."""
         yield "initial_state", self.state_prep
-        for k in range(self.p):
+        for k in range(self.p if layers is None else min(layers, self.p)):
             assert self.phase_plan is not None
             for g in self._phase_gadgets(f"gamma_{k}"):
                 yield f"phase_{k}", g
@@ -253,8 +255,7 @@ class QaoaPlan:
         ``work`` register is already among :attr:`registers` (what streaming OpenQASM writes)."""
         registers = self.registers
         for name, g in self.sections():
-            blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
-            secs = [Section(name, tuple(b)) for b in blocks]
+            secs = [Section(name, tuple(b)) for b in gadget_blocks(g)]
             yield from lower(Circuit(registers, secs)).sections if lowered else secs
 
     @property
@@ -290,6 +291,19 @@ class QaoaPlan:
         """The high-level circuit (one section per gadget)."""
         regs = [r for r in self.registers if r.name != WORK_REGISTER]
         return Circuit(regs, list(self.emit_sections()))
+
+
+def gadget_blocks(gadget: Gadget) -> list[Sequence[Gate]]:
+    """The gate blocks of a planned gadget that the circuit holds as sections of their own (lowered one by one):
+    one per leaf and the rotation for a controlled-X partial mixer (``emit_blocks()``), else the whole gadget.
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> _, g = next(qaoa_plan(default_scenario(3, 3, 1), 1).sections())
+        >>> gadget_blocks(g) == [g.emit()]
+        True
+    """
+    return gadget.emit_blocks() if isinstance(gadget, McxPartialMixer) else [gadget.emit()]
 
 
 def qaoa_plan(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> QaoaPlan:

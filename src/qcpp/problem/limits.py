@@ -45,6 +45,7 @@ from dataclasses import dataclass
 from qcpp.problem.errors import ScenarioError
 
 __all__ = [
+    "API_OVERRIDE",
     "MAX_GRID_NODES",
     "MAX_LAYERS",
     "MAX_SECONDS",
@@ -71,6 +72,9 @@ MAX_LAYERS = 1000
 
 OVERRIDE_FLAG = "--allow-large"
 """The CLI flag that lifts every limit of this module."""
+
+API_OVERRIDE = "run it inside qcpp.allow_large()"
+"""How a caller of the Python API lifts the limits (:func:`allow_large`), for the messages the API's guards give."""
 
 MAX_SECONDS = 3600.0
 """Work predicted to run longer than this (an hour) is refused: it would run for hours, not minutes."""
@@ -246,38 +250,51 @@ def allow_large(enabled: bool = True) -> Iterator[None]:
         _ALLOWED.reset(token)
 
 
-def check_grid_size(rows: int, cols: int, field: str = "grid") -> None:
+def check_grid_size(rows: int, cols: int, field: str = "grid", override: str = "") -> None:
     """Refuse a grid of more than :data:`MAX_GRID_NODES` nodes (unless :func:`large_allowed`).
 
     Args:
         rows, cols: the grid size.
         field: the field named in the error.
+        override: How to lift the limit, for the message (default: the CLI's ``pass --allow-large``;
+            :data:`API_OVERRIDE` for the Python API).
 
     Raises:
         SizeError: the grid is too large.
     """
     nodes = rows * cols
     if nodes > MAX_GRID_NODES and not large_allowed():
+        lift = override or f"pass {OVERRIDE_FLAG}"
         raise SizeError(
             field,
             f"a {rows}x{cols} grid has {nodes:,} nodes, over the limit of {MAX_GRID_NODES:,} (50x50); "
-            f"pass {OVERRIDE_FLAG} to build it anyway",
+            f"{lift} to build it anyway",
         )
 
 
-def check_layers(p: int, flag: str = "-p") -> None:
+def check_layers(p: int, flag: str = "-p", override: str = "") -> None:
     """Refuse more than :data:`MAX_LAYERS` QAOA layers (unless :func:`large_allowed`).
+
+    Args:
+        p: The layer count.
+        flag: The option named in the error (``-p``, or ``p`` for the Python API).
+        override: How to lift the limit, for the message (default: the CLI's ``pass --allow-large``;
+            :data:`API_OVERRIDE` for the Python API).
 
     Raises:
         SizeError: too many layers.
 
     Example:
         >>> check_layers(3)
+        >>> check_layers(5000, "p", API_OVERRIDE)
+        Traceback (most recent call last):
+        ...
+        qcpp.problem.limits.SizeError: p: 5,000 layers is over the limit of 1,000; run it inside qcpp.allow_large() \
+to run it anyway
     """
     if p > MAX_LAYERS and not large_allowed():
-        raise SizeError(
-            flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; pass {OVERRIDE_FLAG} to run it anyway"
-        )
+        lift = override or f"pass {OVERRIDE_FLAG}"
+        raise SizeError(flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; {lift} to run it anyway")
 
 
 def format_duration(seconds: float) -> str:

@@ -72,9 +72,13 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
         robots: number of robots, ``1 .. max_default_robots(rows, cols)``.
 
     Raises:
-        ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, or a grid smaller than 2x2.
+        ScenarioError: fewer than 1 robot, more than the grid's boundary nodes, a grid smaller than 2x2, or rows
+            or cols not an integer.
     """
-    if not isinstance(rows, int) or not isinstance(cols, int) or rows < 2 or cols < 2:
+    for name, value in (("grid.rows", rows), ("grid.cols", cols)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ScenarioError(name, f"expected an integer, got {value!r}")
+    if rows < 2 or cols < 2:
         raise ScenarioError("grid", f"the grid must be at least 2x2, got {rows}x{cols}")
     limit = max_default_robots(rows, cols)
     if not isinstance(robots, int) or isinstance(robots, bool) or not 1 <= robots <= limit:

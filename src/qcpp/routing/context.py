@@ -4,9 +4,10 @@ A device compile routes the same windows many times (the ancilla allocation's ca
 plan variants, the far-phase relays' with-and-without comparison, the final routing), so every answer that is a
 pure function of its key is memoised: routed windows (on their physical pairs and the options, on a heavy-hex
 lattice up to the lattice's translations), SABRE's routing of a patch, each device's patches and SABRE passes, the
-allocation and placement searches' winners, the cells' plan choices. :class:`RoutingContext` owns all of them; a
-compile creates one (or takes the caller's, so an estimate sweep can share it) and passes it down, so no answer
-depends on what ran before in the process, and dropping the context frees the memory.
+allocation and placement searches' winners, the cells' plan choices, what the routed bound needs of each gadget
+kind. :class:`RoutingContext` owns all of them; a compile creates one (or takes the caller's, so an estimate sweep
+can share it) and passes it down, so no answer depends on what ran before in the process, and dropping the context
+frees the memory.
 
 Watches (:meth:`RoutingContext.watching`) collect the device qubits of every patch routed inside a block and how
 many window parts were routed on their whole connected component (a window spanning far-apart qubits: that routing
@@ -68,13 +69,15 @@ class RoutingContext:
             (:func:`qcpp.routing.bridge.copy_chain`).
         allocations: The allocation search's ranks per section class (:func:`qcpp.layout.medial.allocate_ancillas`).
         free_sites: The last ``(device, distances, homes)``'s free sites (:func:`qcpp.layout.medial.allocate_ancillas`).
-        placements: The placement search's winner per circuit and device
+        placements: The placement search's routings, cheapest first, per circuit and device
             (:func:`qcpp.layout.placement_search.search_route`).
         cell_choices: The cells' plan choice per cell class (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         plans: The A*'s plan per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         relabelled: The relabelled plans per parity program and target (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
         window_classes: The routed cost of a window class per signature and device
             (:func:`qcpp.estimators.window_classes.routed_sum`).
+        kind_routes: What the routed bound needs of each gadget kind, per kind key
+            (:func:`qcpp.estimators.layout_bound.kind_route`).
         watches: The open watches (:meth:`watching`).
         centres: Open sets collecting the qubits every patch routed was grown around
             (:func:`qcpp.routing.windows.route_window` keys a translated window on the lattice around them).
@@ -89,18 +92,19 @@ class RoutingContext:
         self.within_two: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
         self.allocations: dict[Hashable, tuple[int, ...]] = {}
         self.free_sites: list[tuple[Any, ...]] = []
-        self.placements: dict[Hashable, tuple[tuple[int, ...], int]] = {}
+        self.placements: dict[Hashable, list[tuple[int, tuple[int, ...], int]]] = {}
         self.cell_choices: dict[Hashable, Any] = {}
         self.plans: dict[Hashable, Any] = {}
         self.relabelled: dict[Hashable, Any] = {}
         self.window_classes: dict[Hashable, Any] = {}
+        self.kind_routes: dict[Hashable, Any] = {}
         self.watches: list[PatchWatch] = []
         self.centres: list[set[int]] = []
 
     def clear(self) -> None:
         """Forget every memo (open watches stay open)."""
         for memo in (self.windows, self.sabre_passes, self.allocations, self.placements, self.cell_choices,
-                     self.plans, self.relabelled, self.window_classes):  # fmt: skip
+                     self.plans, self.relabelled, self.window_classes, self.kind_routes):  # fmt: skip
             memo.clear()
         for kept in (self.patch_indexes, self.within_two, self.free_sites):
             kept.clear()

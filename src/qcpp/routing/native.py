@@ -8,8 +8,18 @@ it); ``t, tdg, s, sdg`` are ``rz`` of their angle; ``x`` stays ``x`` where nativ
 :func:`esp` is the estimated success probability: the product of ``(1 - error)`` over every gate of the
 native circuit (per qubit / per coupling, from the device data) and of ``(1 - readout error)`` over the
 measured qubits (the data qubits at their final positions). Idle decoherence, crosstalk and leakage are not
-modelled. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
+modelled there. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
 readout, or ``None`` where the device publishes no durations.
+
+:func:`esp_idle` multiplies :func:`esp` by an idle-decoherence factor (:data:`IDLE_MODEL`): in the same ASAP
+schedule, a qubit's idle time ``t`` is the time between the start of its first timed gate and the end of its last
+(for a measured qubit: the end of the schedule, when all are read out together) that its own gates do not fill.
+Each idle qubit contributes the average gate fidelity of the amplitude- and phase-damping (thermal relaxation at
+zero temperature) channel over ``t``, ``F = (3 + exp(-t/T1) + 2 exp(-t/T2)) / 6`` with ``T2`` capped at ``2 T1``
+(the physical limit; some snapshots report more): the figure gate errors are reported in (``1 - F``, randomised
+benchmarking), so gate and idle factors multiply alike. Before its first gate a qubit is in ``|0>`` (no decay);
+after its last an ancilla is back in ``|0>``. Virtual gates (``rz``, duration 0) do not start or end the window.
+Qubits whose T1 or T2 is unknown contribute 1; a device without durations or coherence times has no idle figure.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -20,6 +30,8 @@ Example:
     >>> sorted(to_native(routed).circuit.count_ops().items())
     [('cz', 1), ('rx', 2), ('rz', 4)]
     >>> 0 < esp(to_native(routed)) < 1
+    True
+    >>> esp_idle(to_native(routed)) is None  # the grid family's source publishes no T1 / T2
     True
 """
 
@@ -32,7 +44,17 @@ from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cz, rx, rz, rzz
 from qcpp.routing.routed_circuit import RoutedCircuit
 
-__all__ = ["duration_s", "esp", "native_gates", "one_qubit_name", "to_native"]
+__all__ = [
+    "IDLE_MODEL", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "native_gates", "one_qubit_name",
+    "to_native",
+]
+
+IDLE_MODEL = (
+    "idle decoherence: per qubit, the average fidelity (3 + exp(-t/T1) + 2 exp(-t/T2)) / 6 of amplitude and phase "
+    "damping over its idle time t (T2 <= 2 T1) in the ASAP schedule with the device's gate durations, from its "
+    "first to its last timed gate (measured qubits: to the readout at the end)"
+)
+"""The idle-decoherence model of :func:`esp_idle` (module docs)."""
 
 # --- native gates ------------------------------------------------------------------------------------------
 _HALF_PI = math.pi / 2
@@ -137,3 +159,89 @@ def duration_s(routed: RoutedCircuit) -> float | None:
             free[q] += d1[one_qubit_name(device, g)][q]
     readout = max((device.readout_duration_s[routed.final_layout[lq]] for lq in routed.measured), default=0.0)
     return max(free, default=0.0) + readout
+
+
+def _schedule(routed: RoutedCircuit) -> tuple[list[float], list[float | None], list[float]] | None:
+    """ASAP schedule of a native routed circuit: per qubit the end of its last gate, the start of its first timed
+    gate (``None``: none) and the time its own gates fill; ``None`` where the device publishes no durations."""
+    device = routed.device
+    if device.duration_1q_s is None or device.duration_2q_s is None:
+        return None
+    d1 = dict(device.duration_1q_s)
+    edge = device.edge_index()
+    n = device.num_qubits
+    free, first, busy = [0.0] * n, [None] * n, [0.0] * n
+    first_time: list[float | None] = first  # type: ignore[assignment]
+    for g in routed.circuit.gates:
+        qs = g[1]
+        if len(qs) == 2:
+            a, b = qs
+            start = max(free[a], free[b])
+            d = device.duration_2q_s[edge[qs]]
+            free[a] = free[b] = start + d
+            if d > 0:
+                for q in qs:
+                    busy[q] += d
+                    if first_time[q] is None:
+                        first_time[q] = start
+        else:
+            q = qs[0]
+            d = d1[one_qubit_name(device, g)][q]
+            if d > 0:
+                if first_time[q] is None:
+                    first_time[q] = free[q]
+                busy[q] += d
+            free[q] += d
+    return free, first_time, busy
+
+
+def idle_times_s(routed: RoutedCircuit) -> tuple[float, ...] | None:
+    """Per physical qubit, its idle time in seconds in the ASAP schedule (module docs; ``None``: no durations).
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> from qcpp.ir.circuit import Circuit, Section
+        >>> from qcpp.ir.gates import cz, rx
+        >>> dev = get_device("ibm_fez")
+        >>> c = Circuit([("q", dev.num_qubits)], [Section("s", [rx(1.0, 0), cz(0, 1), rx(1.0, 1), cz(0, 1)])])
+        >>> t = idle_times_s(RoutedCircuit(c, dev, (0, 1), (0, 1), 0, (0,)))
+        >>> math.isclose(t[0], dict(dev.duration_1q_s)["sx"][1])  # qubit 0 waits while qubit 1 has its sx
+        True
+        >>> t[1], t[2]  # qubit 1 is never idle between its first and last gate; qubit 2 has none
+        (0.0, 0.0)
+    """
+    sched = _schedule(routed)
+    if sched is None:
+        return None
+    free, first, busy = sched
+    end = max(free, default=0.0)
+    last = list(free)
+    for lq in routed.measured:
+        last[routed.final_layout[lq]] = end
+    return tuple(0.0 if f is None else max(0.0, last[q] - f - busy[q]) for q, f in enumerate(first))
+
+
+def idle_fidelity(t: float, t1: float, t2: float) -> float:
+    """Average fidelity of amplitude and phase damping over ``t`` seconds (:data:`IDLE_MODEL`), ``T2 <= 2 T1``.
+
+    >>> idle_fidelity(0.0, 1e-4, 1e-4), round(idle_fidelity(1e-4, 1e-4, 1e-4), 6)
+    (1.0, 0.68394)
+    """
+    t2 = min(t2, 2 * t1)
+    return (3 + math.exp(-t / t1) + 2 * math.exp(-t / t2)) / 6
+
+
+def esp_idle(routed: RoutedCircuit) -> float | None:
+    """:func:`esp` times the idle-decoherence factor of :data:`IDLE_MODEL` (``None``: the device has no durations or
+    no T1 / T2)."""
+    device = routed.device
+    if device.t1_s is None or device.t2_s is None:
+        return None
+    idle = idle_times_s(routed)
+    if idle is None:
+        return None
+    log = math.log(esp(routed)) if esp(routed) > 0 else -math.inf
+    for t, t1, t2 in zip(idle, device.t1_s, device.t2_s, strict=True):
+        if t > 0 and t1 is not None and t2 is not None:
+            log += math.log(idle_fidelity(t, t1, t2))
+    return math.exp(log)

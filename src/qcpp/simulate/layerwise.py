@@ -10,6 +10,11 @@
   2020; :func:`qcpp.simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
+With ``restart_every_level=True`` every level ``p > 1`` also starts from the linear ramp at depth ``p`` and from
+``random_starts`` seeded random angles (seeds ``seed + 1000 p + k``): the best angles at ``p - 1`` are often a
+basis state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path), where every
+objective is stationary in the new layer, so the two warm starts above cannot leave it.
+
 With ``mixer_warm=True`` every level also starts from the mixer-only warm start
 (:func:`qcpp.simulate.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
 stationary in them).
@@ -89,6 +94,8 @@ class LayerwiseResult:
         mixer_evaluations: Product-state objective evaluations (each with its gradient) of the mixer-only warm
             start (``mixer_warm=True``; 0 otherwise); each is counted in :attr:`circuit_estimates` as
             ``1 + 2p`` estimates of the mixer-only circuit (central differences over its ``p`` betas).
+        level_estimates: :attr:`circuit_estimates` accumulated up to and including each level (the training a
+            run stopped at that depth would have needed; the last entry is :attr:`circuit_estimates`).
     """
 
     objective: str
@@ -99,6 +106,7 @@ class LayerwiseResult:
     circuit_estimates: int
     seconds: float
     mixer_evaluations: int = 0
+    level_estimates: tuple[int, ...] = ()
 
     @property
     def best(self) -> TrainingResult:
@@ -137,6 +145,7 @@ class LayerwiseResult:
             "circuit_estimates": self.circuit_estimates,
             "seconds": self.seconds,
             "mixer_evaluations": self.mixer_evaluations,
+            "level_estimates": list(self.level_estimates),
             "levels": [
                 {k: v for k, v in asdict(lv).items() if k not in ("stages", "trace", "initial_angles")}
                 | {"iterations": len(lv.trace) - 1}
@@ -156,6 +165,7 @@ def train_layerwise(
     alpha: float = CVAR_ALPHA,
     eta: float | None = None,
     mixer_warm: bool = False,
+    restart_every_level: bool = False,
     progress: Callable[[int, int], None] | None = None,
 ) -> LayerwiseResult:
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
@@ -169,6 +179,8 @@ def train_layerwise(
         alpha: CVaR tail mass (``cvar``).
         eta: Gibbs inverse temperature (``gibbs``); default ``5 / sigma``.
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
+        restart_every_level: Also start every level ``p > 1`` from the linear ramp and ``random_starts`` random
+            angles (see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
 
     Raises:
@@ -178,6 +190,7 @@ def train_layerwise(
     t0 = time.perf_counter()
     obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta)
     levels: list[TrainingResult] = []
+    level_estimates: list[int] = []
     runs = evaluations = gradients = estimates = mixer_evaluations = 0
     warm = train_mixer_only(qaoa, p, obj) if mixer_warm else []
     for level in range(1, p + 1):
@@ -187,6 +200,10 @@ def train_layerwise(
         else:
             prev = np.array(levels[-1].angles)
             starts = [interp_angles(prev), extend_angles(prev)]
+            if restart_every_level:
+                starts.append(initial_angles(qaoa, level, "linear-ramp"))
+                starts += [initial_angles(qaoa, level, "random", seed=seed + 1000 * level + k)
+                           for k in range(random_starts)]
         if warm:
             x0 = initial_angles(qaoa, level, "linear-ramp")
             x0[1::2] = warm[level - 1].betas
@@ -205,7 +222,8 @@ def train_layerwise(
                 best = run
         assert best is not None
         levels.append(best)
+        level_estimates.append(estimates)
         if progress is not None:
             progress(level, p)
     return LayerwiseResult(obj.name, tuple(levels), runs, evaluations, gradients, estimates, time.perf_counter() - t0,
-                           mixer_evaluations)
+                           mixer_evaluations, tuple(level_estimates))

@@ -699,6 +699,30 @@ class SubspaceQAOA:
             energy += float(np.vdot(pflat[sl], lflat[sl]).real)
         return energy, self._backward(psi, lam, gammas, betas)
 
+    def p_optimum_and_gradient(self, angles: Sequence[float] | np.ndarray) -> tuple[float, np.ndarray]:
+        """``(P(optimum), dP(optimum)/dangles)`` by one adjoint sweep: the observable is the projector onto
+        :meth:`optimum`'s assignments (``lambda = P psi``), so this needs the optimum and is a reference for
+        studies of what angles can reach, not a training objective.
+
+        Example:
+            >>> from qcpp.problem.scenario import scenario_from_dict
+            >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
+            >>> q = SubspaceQAOA(s)
+            >>> x, h = np.array([0.2, 0.9]), 1e-6
+            >>> v, g = q.p_optimum_and_gradient(x)
+            >>> numeric = (q.p_optimum(x + [0, h]) - q.p_optimum(x - [0, h])) / (2 * h)
+            >>> round(v - q.p_optimum(x), 12), bool(abs(g[1] - numeric) < 1e-6)
+            (0.0, True)
+        """
+        gammas, betas = split_angles(angles)
+        self._build_cost()
+        psi = self.state(angles)
+        _, flat = self.optimum()
+        lam = np.zeros_like(psi)
+        lam.reshape(-1)[flat] = psi.reshape(-1)[flat]
+        value = self.p_optimum_from_state(psi)
+        return value, self._backward(psi, lam, gammas, betas)
+
     def cost_distribution_index(self) -> tuple[np.ndarray, np.ndarray]:
         """``(values, index)``: the sorted distinct costs (or, for integer costs, every integer between the
         extremes) and, per amplitude (shape :attr:`dims`), the position of its cost in ``values``.

@@ -29,7 +29,9 @@ Example:
 
 from __future__ import annotations
 
+from qcpp.errors import check_choice, check_count
 from qcpp.plan.options import PlanOptions
+from qcpp.problem.limits import API_OVERRIDE, check_layers
 from qcpp.problem.paths import count_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
@@ -97,17 +99,16 @@ def verify(
         circuit does not preserve feasibility.
 
     Raises:
-        ValueError: an unknown rule or method, ``p < 1``, ``samples < 1``, or ``state`` on a circuit wider than 62
-            qubits.
+        qcpp.errors.OptionError: an unknown rule or method, or ``p`` or ``samples`` not an integer of at least 1
+            (the messages of the other public functions: ``p: must be at least 1, got 0``).
+        qcpp.problem.limits.SizeError: ``p`` over :data:`qcpp.problem.limits.MAX_LAYERS` outside
+            :func:`qcpp.problem.limits.allow_large`.
+        ValueError: ``state`` on a circuit wider than 62 qubits.
     """
-    if rule not in RULES:
-        raise ValueError(f"unknown rule {rule!r} (expected one of {', '.join(RULES)})")
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r} (expected one of {', '.join(METHODS)})")
-    if not isinstance(p, int) or isinstance(p, bool) or p < 1:
-        raise ValueError(f"p must be an integer of at least 1, got {p!r}")
-    if samples < 1:
-        raise ValueError(f"samples must be at least 1, got {samples}")
+    check_choice(rule, RULES, "rule")
+    check_choice(method, METHODS, "method")
+    check_layers(check_count(p, "p"), "p", API_OVERRIDE)
+    check_count(samples, "samples")
     options = PlanOptions(rule=rule) if options is None else options
     if method == "auto":
         method = choose_method(scenario, p, options, samples)

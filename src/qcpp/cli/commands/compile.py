@@ -6,6 +6,7 @@ Examples::
     qcpp compile --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --lowered --json
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
+    qcpp compile examples/paper_3x3.toml --qasm out.qasm3 --qasm-profile portable   # for Braket, PennyLane
 
 Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
 written straight to, a missing folder is an error (checked before compiling).
@@ -55,6 +56,7 @@ from qcpp.estimators.guard import SizePrediction, check_size, predict_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.lowering.qasm_profiles import Profile, check_profile, write_qasm_profile
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
@@ -98,6 +100,15 @@ def compile_command(
         str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
     ] = None,
     qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
+    qasm_profile: Annotated[
+        str,
+        typer.Option(
+            "--qasm-profile",
+            help="OpenQASM 3 export profile: default (include stdgates.inc and qcpp's gate definitions; Qiskit, "
+            "Cirq, the QDK), portable (no include, no gate definitions: Amazon Braket's local simulator, PennyLane's "
+            "from_qasm3) or braket (Braket's native gate names). Same unitary in each.",
+        ),
+    ] = "default",
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -133,6 +144,17 @@ def compile_command(
             "routing of the whole circuit) or auto (medial where it fits and routes cheaper).",
         ),
     ] = "auto",
+    optimize_for: Annotated[
+        str | None,
+        typer.Option(
+            "--optimize-for",
+            help="With --device: the figure the routing is chosen by on a named device, esp (success probability "
+            "with idle decoherence; the default there) or twoq (fewest two-qubit gates); the candidates are qcpp's "
+            "own routings, Qiskit O3 on the calibrated target, and both moved onto the best-calibrated qubits. The "
+            "families (grid, heavy-hex, all-to-all) keep their single routing.",
+            show_default=False,
+        ),
+    ] = None,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
     obstacle: ObstacleFlag = None,
@@ -153,9 +175,12 @@ def compile_command(
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
         if local_ancillas:
             raise ValueError("--local-ancillas: applies with --device only (no device given)")
+        if optimize_for is not None:
+            raise ValueError(f"--optimize-for {optimize_for}: applies with --device only (no device given)")
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
+    check_profile(qasm_profile, qasm_version, "--qasm-profile", "--qasm-version")
     to_stdout = qasm == "-"
     if to_stdout and as_json:
         raise ValueError("--qasm - and --json both write to standard output; choose one")
@@ -170,7 +195,8 @@ def compile_command(
     size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:
         summary, phase_explain = _routed(
-            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout
+            s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
+            optimize_for,
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -179,12 +205,14 @@ def compile_command(
         total = size.gates * passes if lowered else None
         big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
-            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar)
+            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar, qasm_profile)
     else:
         result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
         summary, phase_explain = result.summary(), result.phase_explain
     if qasm is not None:  # written by _routed or _stream
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
+        if qasm_profile != "default":
+            summary["qasm"]["profile"] = qasm_profile
     if explain:
         summary["phase_explain"] = phase_explain
     if as_json:
@@ -206,16 +234,21 @@ def compile_command(
     if device is not None:
         routed = summary["routed"]
         duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
+        idle = "" if routed.get("esp_idle") is None else f" ({routed['esp_idle']:.3g} with idle decoherence)"
         console.print(
-            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}, "
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}{idle}, "
             f"duration {duration}; {summary['device_note']}"
         )
+        if routed.get("candidates"):
+            console.print(f"chosen by {routed['optimize_for']}: {routed['chosen']} "
+                          f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them)")  # fmt: skip
     if summary["symbols"]:
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
     if qasm is not None:
         where = "standard output" if to_stdout else qasm
-        console.print(f"wrote {where} (OpenQASM {qasm_version})", markup=False, soft_wrap=True)  # a path stays whole
+        form = f"OpenQASM {qasm_version}" + (f", {qasm_profile} profile" if qasm_profile != "default" else "")
+        console.print(f"wrote {where} ({form})", markup=False, soft_wrap=True)  # a path stays whole
     if explain:
         print_table(console, explain_table(phase_explain))
 
@@ -248,18 +281,20 @@ def _routed(
     qasm: str | None,
     version: int,
     layout: str = "auto",
+    profile: Profile = "default",
+    optimize_for: str | None = None,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM; the
     summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
-    from qcpp.lowering.qasm import write_qasm
     from qcpp.pipeline.device_compile import compile_for_device
 
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
-                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage)  # fmt: skip
+                                    local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
+                                    optimize_for=optimize_for)  # fmt: skip
     if qasm is not None:
-        write_qasm(result.routed.circuit, qasm, version)  # type: ignore[arg-type]
+        write_qasm_profile(result.routed.circuit, qasm, version, profile)  # type: ignore[arg-type]
     return result.compile_summary(), result.compiled.phase_explain
 
 
@@ -283,6 +318,7 @@ def _stream(
     qasm: str | None,
     version: int,
     progress: Progress,
+    profile: Profile = "default",
 ) -> tuple[dict[str, Any], list[dict]]:
     """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
     independent of ``p``); return the summary :meth:`qcpp.plan.compile.CompileResult.summary` would give and the
@@ -310,7 +346,7 @@ def _stream(
             progress.advance(len(out.gates))
 
     if qasm is not None:
-        ops, symbols = write_qasm_sections(registers, sections, qasm, version)  # type: ignore[arg-type]
+        ops, symbols = write_qasm_sections(registers, sections, qasm, version, profile)  # type: ignore[arg-type]
     else:
         ops, symbols = _count_sections(registers, sections())
     summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)

@@ -1,0 +1,353 @@
+"""QAOA and the classical solvers on seeded random ensembles: P(optimum) by depth, the training's gap, 99% times.
+
+Instances: :func:`qcpp.ensemble` cells ``RxC/N`` (grid, robots) at obstacle density ``density`` (soft obstacles,
+random distinct endpoints, every instance feasible), ``instances`` per cell, seeded by ``--seed``. Per instance
+(``_ensemble_tasks.run_instance``, one Dask task each):
+
+* **DFS, CP-SAT, SA, GA, QAOA**: the time to the optimum with 99% probability under the rules of
+  ``time_to_solution.py`` (QAOA: the default training to a depth fixed in advance, training shots counted,
+  projected on an ideal all-to-all device), at every depth ``p = 1 .. p_max``;
+* **training quality apart from ansatz quality**: at every depth the default training's ``P(optimum)`` beside the
+  best any angles gave in an expensive search that knows the optimum (:func:`qcpp.simulate.angle_search.
+  search_p_optimum`: L-BFGS-B on ``P(optimum)`` from the default's angles, the level below's best (extended and
+  INTERP), ``random_starts`` random angles and ``hops`` basin-hopping steps, at most ``maxiter`` iterations each),
+  and the upper bound on the ansatz's ceiling (0 below the depth at which an optimum can carry amplitude, else 1).
+
+Summaries: medians and quartiles over each cell's instances. The tasks run on a Dask cluster: a
+``dask.distributed.LocalCluster`` of ``--workers`` single-threaded processes by default, or the scheduler at
+``--scheduler ADDRESS``. Ctrl-C cancels the tasks and writes nothing.
+
+Outputs (only when every task finished): ``results/ensembles.md``, ``results/ensembles.json`` (one record per
+instance and method, and per instance and depth for QAOA) and ``figures/ensembles.png``.
+Run: ``python examples/experiments/ensembles.py [--quick] [--cells 3x3/1 3x3/2] [--instances N] [--p-max P]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import _ensemble_tasks
+import numpy as np
+from _common import Options, Table, fresh_output_folder, pyplot, save_figure, write_results
+
+import qcpp
+from qcpp.io.atomic import write_text_atomic
+from qcpp.problem.ensembles import ensemble
+from qcpp.problem.scenario import scenario_to_dict
+
+NAME = "ensembles"
+TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Config:
+    cells: tuple[str, ...]
+    density: float
+    instances: int
+    p_max: int
+    runs: int
+    sa_iterations: int
+    ga_generations: int
+    cpsat_limit: float
+    search: dict[str, float]
+    seed: int = 0
+
+
+FULL = Config(("3x3/1", "3x3/2", "4x4/1", "4x4/2", "5x5/1", "3x3/3"), 0.1, 30, 8, 8, 2000, 10, 10.0,
+              {"random_starts": 4, "hops": 2, "maxiter": 50})
+QUICK = Config(("3x3/1", "3x3/2"), 0.1, 3, 3, 3, 500, 3, 2.0, {"random_starts": 1, "hops": 1, "maxiter": 20})
+
+
+def parse_cell(text: str) -> tuple[int, int, int]:
+    """``RxC/N`` -> ``(rows, cols, robots)``; one clear line on bad input."""
+    try:
+        grid, robots = text.split("/")
+        rows, cols = grid.lower().split("x")
+        out = (int(rows), int(cols), int(robots))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a cell is RxC/N (e.g. 3x3/2), got {text!r}") from None
+    if min(out[:2]) < 2 or out[2] < 1:
+        raise argparse.ArgumentTypeError(f"a cell needs a grid of at least 2x2 and one robot, got {text!r}")
+    return out
+
+
+def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str, str]:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="reduced run (under 2 minutes), for the smoke test")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output root (figures/ and results/ below it); default: a new qcpp-experiments-* folder "
+                         "here; --out docs regenerates the committed results")
+    ap.add_argument("--seed", type=int, default=0, help="the ensembles' seed (and the search's)")
+    ap.add_argument("--cells", nargs="+", type=parse_cell, default=None, metavar="RxC/N",
+                    help="ensemble cells (default: all of the full study, or 3x3/1 3x3/2 with --quick)")
+    ap.add_argument("--instances", type=int, default=None, help="instances per cell (default 30; quick 3)")
+    ap.add_argument("--p-max", type=int, default=None, help="deepest QAOA (default 8; quick 3)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="a running Dask scheduler (default: a LocalCluster on this machine)")
+    ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes, one thread each")
+    ap.add_argument("--name", default=NAME, help=f"results/NAME.md, .json and figures/NAME.png (default {NAME})")
+    ns = ap.parse_args(argv)
+    for name in ("instances", "p_max", "workers"):
+        value = getattr(ns, name)
+        if value is not None and value < 1:
+            ap.error(f"--{name.replace('_', '-')} must be at least 1, got {value}")
+    cfg = replace(QUICK if ns.quick else FULL, seed=ns.seed)
+    command = "python examples/experiments/ensembles.py" + (" --quick" if ns.quick else "")
+    if ns.cells is not None:
+        cfg = replace(cfg, cells=tuple(f"{r}x{c}/{n}" for r, c, n in ns.cells))
+        command += " --cells " + " ".join(cfg.cells)
+    if ns.instances is not None:
+        cfg = replace(cfg, instances=ns.instances)
+        command += f" --instances {ns.instances}"
+    if ns.p_max is not None:
+        cfg = replace(cfg, p_max=ns.p_max)
+        command += f" --p-max {ns.p_max}"
+    if ns.seed:
+        command += f" --seed {ns.seed}"
+    if not ns.name.replace("_", "").isalnum():
+        ap.error(f"--name takes letters, digits and underscores, got {ns.name!r}")
+    if ns.name != NAME:
+        command += f" --name {ns.name}"
+    opts = Options(quick=ns.quick, out=fresh_output_folder() if ns.out is None else ns.out, seed=ns.seed)
+    return opts, cfg, ns.scheduler, ns.workers, command, ns.name
+
+
+def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
+    """``(cell, index, scenario dict)`` of every instance, cells in order."""
+    out = []
+    for cell in cfg.cells:
+        rows, cols, robots = parse_cell(cell)
+        for i, s in enumerate(ensemble(rows, cols, robots, cfg.density, count=cfg.instances, seed=cfg.seed)):
+            out.append((cell, i, scenario_to_dict(s)))
+    return out
+
+
+def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, scheduler: str | None,
+                workers: int, fn: Any = None) -> list[dict[str, Any]]:
+    """``fn(cell, index, scenario, asdict(cfg))`` (default ``_ensemble_tasks.run_instance``) for every task on the
+    cluster, with a progress bar; returns the results in task order. Ctrl-C cancels the tasks."""
+    import cloudpickle
+    from dask.distributed import Client, LocalCluster, as_completed
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    cloudpickle.register_pickle_by_value(_ensemble_tasks)  # workers need qcpp, not this folder
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+        client = Client(cluster)
+    else:
+        client = Client(scheduler)
+    futures = []
+    try:
+        payload = asdict(cfg)
+        fn = _ensemble_tasks.run_instance if fn is None else fn
+        futures = [client.submit(fn, cell, i, s, payload, key=f"{fn.__name__}-{cell}-{i}", pure=False)
+                   for cell, i, s in tasks]
+        results: dict[str, dict[str, Any]] = {}
+        columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
+        with Progress(*columns, transient=False) as bar:
+            job = bar.add_task(f"{len(tasks)} instances", total=len(tasks))
+            for fut in as_completed(futures):
+                r = fut.result()
+                results[fut.key] = r
+                done = f"{r['cell']} #{r['index']} ({r['seconds']:.0f} s)"
+                bar.update(job, advance=1, description=done)
+                if not bar.console.is_terminal:  # a log: one line per finished instance
+                    print(f"{len(results)}/{len(tasks)} {done}", file=sys.stderr, flush=True)
+        return [results[f.key] for f in futures]
+    except KeyboardInterrupt:
+        client.cancel(futures, force=True)
+        raise
+    finally:
+        client.close(timeout=5)
+        if cluster is not None:
+            cluster.close(timeout=5)
+
+
+# ---------------------------------------------------------------------------------------------- records
+
+
+def result_rows(results: list[dict[str, Any]], cfg: Config) -> list[dict[str, Any]]:
+    """One record per instance and classical method, and per instance and depth for QAOA."""
+    from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
+    from qcpp.simulate.objectives import GIBBS_SCALE
+    from qcpp.simulate.time_to_solution import GATE_MODEL
+
+    options = {
+        "dfs": {},
+        "cpsat": {"workers": 1, "time_limit": cfg.cpsat_limit},
+        "anneal": {"iterations": cfg.sa_iterations, "components": "initial", "seeds": cfg.runs},
+        "genetic": {"generations": cfg.ga_generations, "components": "initial", "seeds": cfg.runs},
+        "qaoa": {"training": "layerwise", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
+                 "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS,
+                 "shots_per_estimate": SHOTS_PER_ESTIMATE, "gate_model": GATE_MODEL, "device": "ideal all-to-all",
+                 "search": cfg.search | {"seed": cfg.seed}},
+    }
+    rows = []
+    for r in results:
+        base = {"cell": r["cell"], "index": r["index"], "instance": f"{r['cell']} #{r['index']}",
+                "scenario": r["scenario"], "qcpp_version": qcpp.__version__, "optimum": r["optimum"],
+                "ensemble": {"density": cfg.density, "seed": cfg.seed}}
+        d, c = r["dfs"], r["cpsat"]
+        rows.append({**base, "method": "dfs", "options": options["dfs"], **d, "tts_99": d["seconds"]})
+        first = next((s for s, v in c["improvements"] if v <= r["optimum"] + TOL), None)
+        rows.append({**base, "method": "cpsat", "options": options["cpsat"], **c, "tts_99": first})
+        for m in ("anneal", "genetic"):
+            rows.append({**base, "method": m, "options": options[m], **r[m]})
+        q = r["qaoa"]
+        for lv in q["levels"]:
+            rows.append({**base, "method": "qaoa", "options": options["qaoa"] | {"p": lv["p"]},
+                         "dimension": q["dimension"], "optimum_in_basis": q["optimum_in_basis"], **lv})
+    return rows
+
+
+# ---------------------------------------------------------------------------------------------- summaries
+
+
+def quartiles(values: Sequence[float]) -> tuple[float, float, float]:
+    """Median and the lower and upper quartiles (numpy's linear interpolation; inf allowed)."""
+    a = np.asarray(values, dtype=float)
+    # with an inf among the values: order statistics (no interpolation through inf, which gives nan)
+    q = np.percentile(a, [50, 25, 75], method="lower" if np.isinf(a).any() else "linear")
+    return float(q[0]), float(q[1]), float(q[2])
+
+
+def _mqq(values: Sequence[float], fmt: str = "{:.3g}") -> str:
+    m, lo, hi = quartiles(values)
+    return f"{fmt.format(m)} [{fmt.format(lo)}, {fmt.format(hi)}]"
+
+
+def quality_table(rows: list[dict[str, Any]], cfg: Config) -> Table:
+    t = Table("P(optimum) by depth: the default training beside the best found by the expensive search "
+              "(median [lower quartile, upper quartile] over the cell's instances)",
+              ["cell", "p", "instances", "default P(opt)", "best found P(opt)", "default / best",
+               "default >= best/2", "ceiling bound 0 (unreachable)"])
+    for cell in cfg.cells:
+        for p in range(1, cfg.p_max + 1):
+            sel = [r for r in rows if r["method"] == "qaoa" and r["cell"] == cell and r["p"] == p]
+            if not sel:
+                continue
+            ratios = [r["p_opt"] / r["best_p_opt"] for r in sel if r["best_p_opt"] > 1e-12]
+            half = sum(r["p_opt"] >= 0.5 * r["best_p_opt"] - 1e-12 for r in sel)
+            t.add(cell, p, len(sel), _mqq([r["p_opt"] for r in sel]), _mqq([r["best_p_opt"] for r in sel]),
+                  _mqq(ratios) if ratios else "-", f"{half} of {len(sel)} ({100 * half / len(sel):.0f}%)",
+                  sum(r["ceiling_upper"] == 0 for r in sel))
+    return t
+
+
+def tts_table(rows: list[dict[str, Any]], cfg: Config) -> Table:
+    t = Table("Time to the optimum with 99% probability, seconds (median [quartiles]); QAOA: default training to "
+              "a depth fixed in advance, projected on an IDEAL all-to-all device, training counted",
+              ["cell", "method", "instances", "99% time s", "reached (finite)"])
+    for cell in cfg.cells:
+        for m, label in (("dfs", "DFS"), ("cpsat", "CP-SAT first optimum"), ("anneal", "SA"), ("genetic", "GA")):
+            vals = [math.inf if r["tts_99"] is None else r["tts_99"] for r in rows
+                    if r["method"] == m and r["cell"] == cell]
+            if vals:
+                t.add(cell, label, len(vals), _mqq(vals), sum(math.isfinite(v) for v in vals))
+        for p in range(1, cfg.p_max + 1):
+            vals = [r["tts_99"] for r in rows if r["method"] == "qaoa" and r["cell"] == cell and r["p"] == p]
+            if vals:
+                t.add(cell, f"QAOA p={p}", len(vals), _mqq(vals), sum(math.isfinite(v) for v in vals))
+    return t
+
+
+def best_classical(rows: list[dict[str, Any]], instance: str) -> float:
+    vals = [r["tts_99"] for r in rows if r["instance"] == instance and r["method"] in ("dfs", "cpsat", "anneal",
+                                                                                      "genetic")]
+    return min(math.inf if v is None else v for v in vals)
+
+
+def verdict_table(rows: list[dict[str, Any]], cfg: Config) -> Table:
+    t = Table("QAOA (ideal device, training counted) against the fastest classical method per instance: "
+              "ratio of 99% times (median [quartiles]) and how often QAOA is faster",
+              ["cell", "p", "QAOA / best classical", "QAOA faster on", "QAOA sampling only (best angles, no "
+               "training) / best classical"])
+    for cell in cfg.cells:
+        for p in range(1, cfg.p_max + 1):
+            sel = [r for r in rows if r["method"] == "qaoa" and r["cell"] == cell and r["p"] == p]
+            if not sel:
+                continue
+            ratio = [r["tts_99"] / best_classical(rows, r["instance"]) for r in sel]
+            ideal = [r["best_sampling_99"] / best_classical(rows, r["instance"]) for r in sel]
+            t.add(cell, p, _mqq(ratio), f"{sum(x < 1 for x in ratio)} of {len(sel)}", _mqq(ideal))
+    return t
+
+
+def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = NAME) -> None:
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(cfg.cells), figsize=(4.2 * len(cfg.cells), 3.6), sharey=True, squeeze=False)
+    ps = list(range(1, cfg.p_max + 1))
+    for ax, cell in zip(axes[0], cfg.cells):
+        for key, colour, label in (("p_opt", "tab:blue", "default training"),
+                                   ("best_p_opt", "tab:orange", "best found (expensive search)")):
+            stats = [quartiles([r[key] for r in rows if r["method"] == "qaoa" and r["cell"] == cell
+                                and r["p"] == p] or [math.nan]) for p in ps]
+            med, lo, hi = zip(*stats)
+            ax.plot(ps, med, marker="o", color=colour, label=label)
+            ax.fill_between(ps, lo, hi, color=colour, alpha=0.2)
+        ax.set_title(f"{cell}, density {cfg.density:g}, {cfg.instances} instances", fontsize=9)
+        ax.set_xlabel("p")
+        ax.set_ylim(-0.02, 1.02)
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("P(optimum): median, quartile band")
+    axes[0][-1].legend(frameon=False, fontsize=8)
+    fig.tight_layout()
+    save_figure(fig, opts.figures / f"{name}.png")
+    plt.close(fig)
+
+
+def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
+    opts, cfg, scheduler, workers, command, name = parse_args(argv)
+    t_all = time.perf_counter()
+    tasks = instances_of(cfg)
+    try:
+        results = run_on_dask(tasks, cfg, scheduler, workers)
+    except KeyboardInterrupt:
+        print("interrupted: nothing written", file=sys.stderr)
+        raise SystemExit(130) from None
+    seconds = time.perf_counter() - t_all
+    rows = result_rows(results, cfg)
+    opts.figures.mkdir(parents=True, exist_ok=True)
+    opts.results.mkdir(parents=True, exist_ok=True)
+    tables = [quality_table(rows, cfg), tts_table(rows, cfg), verdict_table(rows, cfg)]
+    where = f"a LocalCluster of {workers} single-threaded workers" if scheduler is None else "a Dask cluster"
+    notes = [
+        f"qcpp {qcpp.__version__}. Ensembles: qcpp.ensemble(rows, cols, robots, density={cfg.density:g}, "
+        f"count={cfg.instances}, seed={cfg.seed}): random distinct endpoints, soft obstacles; every instance "
+        "feasible.",
+        "Rules of time_to_solution.py: DFS its run time; CP-SAT (1 worker, limit "
+        f"{cfg.cpsat_limit:g} s) when it first found the optimum; SA ({cfg.sa_iterations} iterations) and GA "
+        f"({cfg.ga_generations} generations) over {cfg.runs} seeded runs: mean run time x runs needed for 99% "
+        "('inf': no run succeeded). QAOA: default training (Gibbs objective, L-BFGS-B layer by layer) to a depth "
+        "fixed in advance; IDEAL ALL-TO-ALL DEVICE PROJECTION (the compiler's exact depth, training shots = "
+        "objective estimates x shots per estimate, all at the final depth's shot time).",
+        f"Best found: qcpp.simulate.angle_search.search_p_optimum per depth, budget {cfg.search} (L-BFGS-B on "
+        "P(optimum) with its exact gradient from the default's angles, the level below's best extended and "
+        "INTERP, random starts and basin-hopping steps; a level that reaches 0.999 ends the search). It knows the "
+        "optimum: a yardstick for the training, no algorithm. The ansatz's ceiling at p lies between the best "
+        "found and its upper bound (0 below the depth at which an optimum can carry amplitude, else 1).",
+        f"Tasks run on {where}; the 2-core machine was shared with other jobs, so wall-clock times are "
+        f"inflated. Whole study: {seconds:.0f} s.",
+    ]
+    write_results(opts, name, command, tables, notes)
+    dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
+            "rows": rows}
+    write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
+    print(f"wrote {opts.results / f'{name}.json'}")
+    figure(opts, rows, cfg, name)
+    return {"config": cfg, "rows": rows, "results": results, "seconds": seconds}
+
+
+if __name__ == "__main__":
+    main()

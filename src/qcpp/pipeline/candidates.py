@@ -1,0 +1,164 @@
+"""Routed candidates on a named device, and the choice among them by the figure the user asks for.
+
+On a named device (a calibration snapshot or a published spec sheet: per-qubit and per-coupler errors), compile
+does not stop at its own routing. :func:`calibrated_candidates` collects:
+
+* ``qcpp``: the routing of compile's own path, and, on circuits small enough for the placement search, the next
+  cheapest routings of that search (``qcpp #2`` ...: a few more two-qubit gates on other qubits may run with fewer
+  errors);
+* ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
+  ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
+  Qiskit's by the chosen figure;
+* ``... + our placement`` (``#2`` ...): each of those moved onto the best embeddings of its coupling subgraph by
+  our ESP model (:func:`qcpp.routing.noise_aware.embedding_sites`: the same gates on better qubits and couplers).
+
+:func:`choose` keeps the best by ``optimize_for`` (:data:`OPTIMIZE_FOR`): ``esp`` the highest ESP (with idle
+decoherence, :func:`qcpp.routing.native.esp_idle`, where the device has T1 / T2; else the gate-only
+:func:`~qcpp.routing.native.esp`), ties to fewer two-qubit gates; ``twoq`` the fewest two-qubit gates, ties to the
+higher ESP; remaining ties to the first candidate in the order above. :func:`default_objective` is ``esp`` on named
+devices and ``twoq`` on the families (``grid``, ``heavy-hex``, ``all-to-all``: uniform figures, where the count
+decides), where compile keeps its single routing.
+
+Example:
+    >>> from qcpp.hardware.device import get_device
+    >>> default_objective(get_device("ibm_fez")), default_objective(get_device("heavy-hex:5"))
+    ('esp', 'twoq')
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+from qcpp.hardware.device import Device, device_names
+from qcpp.ir.circuit import Circuit
+from qcpp.routing.native import esp, esp_idle, to_native
+from qcpp.routing.noise_aware import embedding_sites
+from qcpp.routing.qiskit_o3 import qiskit_o3
+from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
+
+__all__ = [
+    "OPTIMIZE_FOR", "QISKIT_SEEDS", "RoutedCandidate", "calibrated_candidates", "choose", "default_objective",
+    "is_calibrated",
+]
+
+OPTIMIZE_FOR = ("esp", "twoq")
+"""Figures compile can optimise for: ``esp`` (success probability) or ``twoq`` (two-qubit gates)."""
+
+QISKIT_SEEDS = 3
+"""Qiskit O3 runs per compile on a named device (``seed_transpiler`` 0, 1, 2)."""
+
+
+@dataclass(frozen=True)
+class RoutedCandidate:
+    """One routed circuit compile may return.
+
+    Attributes:
+        name: Where it comes from (``qcpp``, ``qcpp #2 + our placement``, ``qiskit O3 seed 1``).
+        native: The routed circuit in the device's native gates.
+        lowered: The same routing in CX + one-qubit gates (``None``: the candidate exists only in native gates,
+            Qiskit's).
+    """
+
+    name: str
+    native: RoutedCircuit
+    lowered: RoutedCircuit | None = None
+
+    @cached_property
+    def twoq(self) -> int:
+        """Native two-qubit gates."""
+        return sum(1 for g in self.native.circuit.gates if len(g[1]) == 2)
+
+    @cached_property
+    def esp(self) -> float:
+        """Gate-only ESP (:func:`qcpp.routing.native.esp`)."""
+        return esp(self.native)
+
+    @cached_property
+    def esp_idle(self) -> float | None:
+        """ESP with idle decoherence (:func:`qcpp.routing.native.esp_idle`; ``None``: no T1 / T2)."""
+        return esp_idle(self.native)
+
+    def summary(self) -> dict[str, object]:
+        """JSON-ready ``{name, two_qubit, esp, esp_idle}``."""
+        return {"name": self.name, "two_qubit": self.twoq, "esp": self.esp, "esp_idle": self.esp_idle}
+
+
+def is_calibrated(device: Device) -> bool:
+    """A named device (its own figures per qubit and coupler), not a family member, not all-to-all (nothing to
+    place: every pair is coupled)."""
+    return device.name in device_names() and not device.is_all_to_all
+
+
+def default_objective(device: Device) -> str:
+    """``esp`` on named devices, ``twoq`` on the families (module docs)."""
+    return "esp" if device.name in device_names() else "twoq"
+
+
+def _key(c: RoutedCandidate, optimize_for: str) -> tuple[float, float]:
+    figure = c.esp if c.esp_idle is None else c.esp_idle
+    log = math.log(figure) if figure > 0 else -math.inf
+    return (log, -c.twoq) if optimize_for == "esp" else (-c.twoq, log)
+
+
+def choose(candidates: Sequence[RoutedCandidate], optimize_for: str) -> RoutedCandidate:
+    """The best candidate by ``optimize_for`` (module docs; ties: the first).
+
+    Raises:
+        ValueError: no candidates, or an unknown figure.
+
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.ir.circuit import Circuit, Section
+    >>> from qcpp.ir.gates import cx
+    >>> from qcpp.routing.sabre import route
+    >>> dev = get_device("ibm_fez")
+    >>> c = Circuit([("data", 2)], [Section("s", [cx(0, 1)])])
+    >>> bad, good = (RoutedCandidate(n, to_native(route(c, dev, lay))) for n, lay in (("a", (0, 2)), ("b", (0, 1))))
+    >>> choose([bad, good], "esp").name, choose([bad, good], "twoq").name
+    ('b', 'b')
+    """
+    if optimize_for not in OPTIMIZE_FOR:
+        raise ValueError(f"optimize for one of {', '.join(OPTIMIZE_FOR)}, not {optimize_for!r}")
+    if not candidates:
+        raise ValueError("choose: no candidates")
+    return max(enumerate(candidates), key=lambda ic: (_key(ic[1], optimize_for), -ic[0]))[1]
+
+
+def calibrated_candidates(
+    ours: Sequence[RoutedCircuit],
+    device: Device,
+    qiskit_circuit: Circuit | None = None,
+    measured: Sequence[int] | None = None,
+    qiskit_seeds: int = QISKIT_SEEDS,
+) -> list[RoutedCandidate]:
+    """The candidates of the module docs.
+
+    Args:
+        ours: Compile's own routings on ``device``, its choice first (CX + one-qubit gates, or native).
+        device: The named device.
+        qiskit_circuit: The lowered logical circuit for Qiskit's O3 (``None``: no Qiskit candidates).
+        measured: Logical qubits measured at the end.
+        qiskit_seeds: Qiskit O3 seeds.
+
+    Returns:
+        The candidates, in the order of the module docs.
+    """
+    out: list[RoutedCandidate] = []
+    for i, routed in enumerate(ours):
+        native = to_native(routed)
+        name = "qcpp" if i == 0 else f"qcpp #{i + 1}"
+        out.append(RoutedCandidate(name, native, routed))
+        for j, sites in enumerate(embedding_sites(native, device)):
+            label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
+            out.append(RoutedCandidate(label, embed_routed(native, device, sites), embed_routed(routed, device, sites)))
+    if qiskit_circuit is not None:
+        for seed in range(qiskit_seeds):
+            theirs = qiskit_o3(qiskit_circuit, device, seed, measured)
+            name = f"qiskit O3 seed {seed}"
+            out.append(RoutedCandidate(name, theirs))
+            for j, sites in enumerate(embedding_sites(theirs, device)):
+                label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
+                out.append(RoutedCandidate(label, embed_routed(theirs, device, sites)))
+    return out

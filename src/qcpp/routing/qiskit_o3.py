@@ -1,0 +1,163 @@
+"""Qiskit's own preset pipeline as a routing candidate: ``transpile(optimization_level=3)`` onto the device's
+calibrated ``Target`` (:func:`qcpp.routing.target.device_target`), read back as a
+:class:`~qcpp.routing.routed_circuit.RoutedCircuit` in the device's native gates.
+
+With the calibrated target, Qiskit's O3 lays the circuit out noise-aware (``VF2Layout`` where the circuit embeds
+without SWAPs, else ``SabreLayout`` and ``VF2PostLayout``, both scored by the target's errors), routes with SABRE and
+optimises (two-qubit block resynthesis, one-qubit merging). Compile keeps it as one candidate beside its own routings
+(:mod:`qcpp.pipeline.candidates`), so the routed circuit is never worse than Qiskit's by the figure the user picks.
+
+The circuit goes to Qiskit as written (lowered gates; symbols as Qiskit ``Parameter``\\s, read back as the same
+affine angles) without measurements, so O3 keeps the whole unitary (a final measurement would let it drop diagonal
+gates before it): the result equals the input up to the layouts, as every routed circuit of :mod:`qcpp.routing`.
+``sx`` is read back as ``rx(pi/2)`` (the IR's name for it, :mod:`qcpp.routing.native`; equal up to a global
+phase). The SWAPs Qiskit inserted are counted from the circuit between its routing and its translation stage.
+
+Example:
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.ir.circuit import Circuit, Section
+    >>> from qcpp.ir.gates import cx, h
+    >>> c = Circuit([("data", 3)], [Section("s", [h(0), cx(0, 1), cx(0, 2), cx(1, 2)])])
+    >>> r = qiskit_o3(c, get_device("ibm_fez"), seed=0)
+    >>> sorted(r.circuit.count_ops()), r.circuit.num_qubits, len(r.initial_layout)
+    (['cz', 'rx', 'rz'], 156, 3)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from qcpp.hardware.device import Device
+from qcpp.ir.angles import Angle
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.ir.gates import Gate, cz, rx, rz, x
+from qcpp.routing.routed_circuit import RoutedCircuit
+from qcpp.routing.target import device_target
+
+__all__ = ["from_qiskit_angle", "qiskit_o3", "to_qiskit_lowered"]
+
+_SIMPLE = {"x", "h", "t", "tdg", "s", "sdg", "cx", "cz", "sx"}
+_ANGLED = {"rz", "rx", "ry", "rzz"}
+
+
+def to_qiskit_lowered(circuit: Circuit) -> Any:
+    """A Qiskit circuit of a lowered circuit (one- and two-qubit gates of :data:`_SIMPLE` and :data:`_ANGLED`), an
+    unbound symbol as the Qiskit ``Parameter`` of the same name.
+
+    Raises:
+        ValueError: a gate this converter does not know.
+    """
+    from qiskit import QuantumCircuit
+    from qiskit.circuit import Parameter
+
+    params: dict[str, Any] = {}
+
+    def angle(value: Any) -> Any:
+        if not isinstance(value, Angle) or not value.terms:
+            return float(value)
+        out: Any = value.constant
+        for name, coeff in value.terms:
+            out = out + coeff * params.setdefault(name, Parameter(name))
+        return out
+
+    qc = QuantumCircuit(circuit.num_qubits)
+    for name, qubits, params_, _ in circuit.gates:
+        if name in _SIMPLE:
+            getattr(qc, name)(*qubits)
+        elif name in _ANGLED:
+            getattr(qc, name)(angle(params_[0]), *qubits)
+        else:
+            raise ValueError(f"to_qiskit_lowered: no Qiskit form for gate {name!r} (lower the circuit first)")
+    return qc
+
+
+def from_qiskit_angle(value: Any) -> float | Angle:
+    """A Qiskit gate parameter as the IR's angle: a float, or an affine :class:`~qcpp.ir.angles.Angle` of the
+    expression's parameters.
+
+    Raises:
+        ValueError: the expression is not affine in its parameters.
+
+    >>> from qiskit.circuit import Parameter
+    >>> g = Parameter("gamma_0")
+    >>> from_qiskit_angle(0.5 - 2 * g)
+    Angle('-2.0*gamma_0 + 0.5')
+    """
+    from qiskit.circuit import ParameterExpression
+
+    if not isinstance(value, ParameterExpression) or not value.parameters:
+        return float(value)
+    zero = {p: 0.0 for p in value.parameters}
+    constant = float(value.bind(zero))
+    terms = []
+    for p in value.parameters:
+        grad = value.gradient(p)
+        if isinstance(grad, ParameterExpression) and grad.parameters:
+            raise ValueError(f"from_qiskit_angle: {value} is not affine in {p}")
+        terms.append((p.name, float(grad)))
+    return Angle(constant, terms)
+
+
+def _routed_gates(qc: Any) -> list[Gate]:
+    """The native gates of a circuit Qiskit translated to the target (``cz rz sx x``, or ``rzz rx``)."""
+    out: list[Gate] = []
+    index = {q: i for i, q in enumerate(qc.qubits)}
+    for inst in qc.data:
+        op, qs = inst.operation, tuple(index[q] for q in inst.qubits)
+        name = op.name
+        if name == "cz":
+            out.append(cz(*qs))
+        elif name == "rz":
+            out.append(rz(from_qiskit_angle(op.params[0]), qs[0]))
+        elif name == "sx":
+            out.append(rx(math.pi / 2, qs[0]))
+        elif name == "x":
+            out.append(x(qs[0]))
+        elif name == "rx":
+            out.append(rx(from_qiskit_angle(op.params[0]), qs[0]))
+        elif name == "rzz":
+            out.append(Gate("rzz", qs, (from_qiskit_angle(op.params[0]),), None))
+        elif name in ("barrier", "delay"):
+            continue
+        else:
+            raise ValueError(f"qiskit_o3: Qiskit wrote {name!r}, not a native gate of the target")
+    return out
+
+
+def qiskit_o3(
+    circuit: Circuit, device: Device, seed: int = 0, measured: Sequence[int] | None = None
+) -> RoutedCircuit:
+    """``transpile(circuit, target=device_target(device), optimization_level=3, seed_transpiler=seed)`` as a routed
+    circuit in native gates (module docs).
+
+    Args:
+        circuit: A lowered circuit on at most ``device.num_qubits`` qubits.
+        device: The target device.
+        seed: Qiskit's ``seed_transpiler``.
+        measured: Logical qubits measured at the end (default: the ``data`` register, else all).
+
+    Returns:
+        The routed circuit (``initial_layout`` / ``final_layout`` from Qiskit's ``TranspileLayout``).
+    """
+    from qiskit import transpile
+
+    if measured is None:
+        data = next((r.size for r in circuit.registers if r.name == "data"), circuit.num_qubits)
+        measured = range(data)
+    swaps: list[int] = []
+
+    def count_swaps(pass_: Any, dag: Any, **_: Any) -> None:
+        n = dag.count_ops().get("swap", 0)
+        if n:
+            swaps.append(n)
+
+    qc = to_qiskit_lowered(circuit)
+    out = transpile(qc, target=device_target(device), optimization_level=3, seed_transpiler=seed,
+                    callback=count_swaps)  # fmt: skip
+    n = circuit.num_qubits
+    initial = tuple(out.layout.initial_index_layout(filter_ancillas=True)[:n]) if out.layout else tuple(range(n))
+    final = tuple(out.layout.final_index_layout(filter_ancillas=True)[:n]) if out.layout else initial
+    routed = Circuit([Register("q", device.num_qubits)], [Section("qiskit_o3", _routed_gates(out))])
+    return RoutedCircuit(routed, device, initial, final, swaps[-1] if swaps else 0, tuple(measured))

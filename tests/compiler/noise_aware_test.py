@@ -1,0 +1,218 @@
+"""The ESP with idle decoherence, the calibrated Qiskit target and the choice among routed candidates."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from qcpp.hardware.device import Device
+from qcpp.ir.circuit import Circuit, Register, Section
+from qcpp.ir.gates import cz, rx, rz
+from qcpp.routing.native import esp, esp_idle, idle_fidelity, idle_times_s
+from qcpp.routing.routed_circuit import RoutedCircuit
+
+US = 1e-6
+
+
+def toy_device(t1: tuple[float | None, ...] | None = (100 * US, 200 * US, None),
+               t2: tuple[float | None, ...] | None = (50 * US, 500 * US, 100 * US)) -> Device:  # fmt: skip
+    """Three qubits on a line, every figure chosen by hand."""
+    return Device(
+        name="toy", num_qubits=3, coupling=((0, 1), (1, 2)), native_gates=("cz", "rz", "sx", "x"),
+        two_qubit_gate="cz",
+        error_1q=(("rz", (0.0,) * 3), ("sx", (0.001, 0.002, 0.003)), ("x", (0.001, 0.002, 0.003))),
+        error_2q=(0.01, 0.02), readout_error=(0.05, 0.0, 0.1),
+        duration_1q_s=(("rz", (0.0,) * 3), ("sx", (1 * US,) * 3), ("x", (1 * US,) * 3)),
+        duration_2q_s=(2 * US, 3 * US), readout_duration_s=(1 * US,) * 3,
+        source="by hand", date="-", family="grid", t1_s=t1, t2_s=t2,
+    )  # fmt: skip
+
+
+def toy_routed(device: Device) -> RoutedCircuit:
+    # q0: sx [0, 1], cz01 [1, 3], then waits for the readout at 6: idle 3 us
+    # q1: cz01 [1, 3], cz12 [3, 6]: never idle;  q2: sx [0, 1], rz (virtual), cz12 [3, 6]: idle 2 us (T1 unknown)
+    gates = [rx(math.pi / 2, 0), rx(math.pi / 2, 2), rz(0.3, 2), cz(0, 1), cz(1, 2)]
+    circuit = Circuit([Register("q", 3)], [Section("s", gates)])
+    return RoutedCircuit(circuit, device, (0, 1, 2), (0, 1, 2), 0, (0, 2))
+
+
+def test_idle_times_follow_the_asap_schedule_by_hand() -> None:
+    t = idle_times_s(toy_routed(toy_device()))
+    assert t is not None
+    assert [round(x / US, 9) for x in t] == [3.0, 0.0, 2.0]
+
+
+def test_esp_with_idle_decoherence_is_the_hand_computed_product() -> None:
+    routed = toy_routed(toy_device())
+    gates = (1 - 0.001) * (1 - 0.003) * (1 - 0.01) * (1 - 0.02) * (1 - 0.05) * (1 - 0.1)
+    assert esp(routed) == pytest.approx(gates, rel=1e-12)
+    idle_q0 = (3 + math.exp(-3 / 100) + 2 * math.exp(-3 / 50)) / 6  # q2 idles too, but its T1 is unknown
+    assert esp_idle(routed) == pytest.approx(gates * idle_q0, rel=1e-12)
+
+
+def test_t2_is_capped_at_twice_t1_and_no_coherence_data_means_no_idle_figure() -> None:
+    assert idle_fidelity(5 * US, 100 * US, 1000 * US) == idle_fidelity(5 * US, 100 * US, 200 * US)
+    assert idle_fidelity(5 * US, 100 * US, 150 * US) < idle_fidelity(5 * US, 100 * US, 200 * US) < 1
+    assert esp_idle(toy_routed(toy_device(t1=None, t2=None))) is None
+
+
+# --- the calibrated target, Qiskit's O3 as a candidate, placement by our ESP model ---------------------------
+def test_the_target_carries_the_device_files_calibration() -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.routing.target import device_target
+
+    dev = named_device("ibm_torino")
+    t = device_target(dev)
+    a, b = dev.coupling[5]
+    assert t["cz"][(a, b)].error == t["cz"][(b, a)].error == dev.error_2q[5]
+    assert t["cz"][(a, b)].duration == dev.duration_2q_s[5]
+    assert t["sx"][(3,)].error == dict(dev.error_1q)["sx"][3] and t["rz"][(3,)].error == 0.0
+    assert t["measure"][(3,)].error == dev.readout_error[3]
+    assert (t.qubit_properties[3].t1, t.qubit_properties[3].t2) == (dev.t1_s[3], dev.t2_s[3])
+    assert len(t["cz"]) == 2 * len(dev.coupling)
+
+
+def _state_up_to_layouts(routed: RoutedCircuit, logical: Circuit) -> float:
+    """|<P_final U P_init^-1 psi | routed psi>| for a random product input on the logical qubits."""
+    import numpy as np
+
+    from qcpp.ir.gates import ry
+    from qcpp.simulate.statevector import simulate_statevector
+
+    rng = np.random.default_rng(5)
+    n, big = logical.num_qubits, routed.circuit.num_qubits
+    angles = rng.uniform(0, 3, n)
+    prep = Section("prep", [ry(float(a), q) for q, a in enumerate(angles)])
+    want = simulate_statevector(Circuit(logical.registers, [prep, *logical.sections]))
+    moved = Section("prep", [ry(float(a), routed.initial_layout[q]) for q, a in enumerate(angles)])
+    got = simulate_statevector(Circuit(routed.circuit.registers, [moved, *routed.circuit.sections]))
+    idx = np.arange(2**n)
+    phys = np.zeros_like(idx)
+    for lq in range(n):
+        phys |= ((idx >> lq) & 1) << routed.final_layout[lq]
+    placed = np.zeros(2**big, dtype=complex)
+    placed[phys] = want
+    return float(abs(np.vdot(placed, got)))
+
+
+def test_qiskit_o3_reads_back_a_circuit_equal_up_to_the_layouts_with_symbols_kept() -> None:
+    from qcpp.hardware.device import get_device
+    from qcpp.ir.angles import Angle
+    from qcpp.ir.gates import cx, h
+    from qcpp.routing.qiskit_o3 import qiskit_o3
+
+    gamma = Angle.symbol("gamma_0", 2.0) + 0.25
+    gates = [h(0), cx(0, 1), cx(0, 2), rz(gamma, 2), cx(1, 2), cx(0, 2), rx(0.4, 1), cx(2, 0)]
+    logical = Circuit([Register("data", 3)], [Section("s", gates)])
+    routed = qiskit_o3(logical, get_device("grid:2x3"), seed=1)
+    assert {"gamma_0"} == {name for g in routed.circuit.gates for p in g[2] if isinstance(p, Angle)
+                           for name, _ in p.terms}  # fmt: skip
+    edges = routed.device.edge_index()
+    assert all(len(g[1]) == 1 or g[1] in edges for g in routed.circuit.gates)
+    bound = {"gamma_0": 0.7}
+    on = Circuit(routed.circuit.registers, [Section(s.name, [g.bind(bound) if g[2] else g for g in s.gates])
+                                              for s in routed.circuit.sections])  # fmt: skip
+    ref = Circuit(logical.registers, [Section("s", [g.bind(bound) if g[2] else g for g in gates])])
+    assert _state_up_to_layouts(RoutedCircuit(on, routed.device, routed.initial_layout, routed.final_layout, 0,
+                                              routed.measured), ref) == pytest.approx(1.0, abs=1e-9)  # fmt: skip
+
+
+def test_placement_moves_a_circuit_onto_the_best_coupler_by_hand() -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.routing.noise_aware import post_layout
+
+    dev = named_device("ibm_fez")
+    worst = max(range(len(dev.coupling)), key=lambda i: dev.error_2q[i])
+    a, b = dev.coupling[worst]
+    circuit = Circuit([Register("q", dev.num_qubits)], [Section("s", [cz(a, b)] * 10)])
+    moved = post_layout(RoutedCircuit(circuit, dev, (a, b), (a, b), 0, ()))
+    best = min(range(len(dev.coupling)), key=lambda i: dev.error_2q[i])
+    # no one-qubit gates, nothing measured, never idle: the ESP is the coupler's (1 - e)^10 alone
+    assert tuple(sorted(next(iter(moved.circuit.gates))[1])) == dev.coupling[best]
+    assert esp(moved) == pytest.approx((1 - dev.error_2q[best]) ** 10)
+
+
+def test_qiskit_wins_where_it_is_better() -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.ir.gates import cx, h
+    from qcpp.pipeline.candidates import calibrated_candidates, choose
+    from qcpp.routing.sabre import route
+
+    dev = named_device("ibm_fez")
+    logical = Circuit([Register("data", 3)], [Section("s", [h(0), cx(0, 1), cx(1, 2), cx(0, 2), cx(0, 1)])])
+    import numpy as np
+
+    from qcpp.hardware.device import distances
+
+    d = distances(dev)[0]
+    reach = np.where(np.isfinite(d))[0]
+    ends = (0, int(reach[np.argmax(d[reach])]), int(reach[np.argsort(d[reach])[len(reach) // 2]]))
+    far = route(logical, dev, ends, seed=0)  # our "routing" from a layout across the device: many SWAPs
+    cands = calibrated_candidates([far], dev, qiskit_circuit=logical, measured=range(3), qiskit_seeds=1)
+    names = [c.name for c in cands]
+    assert names[0] == "qcpp" and "qiskit O3 seed 0" in names
+    for figure in ("twoq", "esp"):
+        chosen = choose(cands, figure)
+        assert chosen.name.startswith("qiskit O3"), (figure, [(c.name, c.twoq, c.esp) for c in cands])
+        assert chosen.twoq == min(c.twoq for c in cands) < cands[0].twoq
+        assert chosen.lowered is None  # Qiskit's exists in native gates only
+
+
+def test_choice_ranks_by_the_asked_figure_and_refuses_others() -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.candidates import RoutedCandidate, choose
+
+    dev = named_device("ibm_fez")
+    i_best = min(range(len(dev.coupling)), key=lambda i: dev.error_2q[i])
+    i_worst = max(range(len(dev.coupling)), key=lambda i: dev.error_2q[i])
+
+    def cand(name: str, edge: tuple[int, int], k: int) -> RoutedCandidate:
+        c = Circuit([Register("q", dev.num_qubits)], [Section("s", [cz(*edge)] * k)])
+        return RoutedCandidate(name, RoutedCircuit(c, dev, edge, edge, 0, ()))
+
+    few_bad, more_good = cand("few", dev.coupling[i_worst], 2), cand("more", dev.coupling[i_best], 3)
+    assert (1 - dev.error_2q[i_best]) ** 3 > (1 - dev.error_2q[i_worst]) ** 2  # the snapshot has a faulty-ish coupler
+    assert choose([few_bad, more_good], "twoq").name == "few"
+    assert choose([few_bad, more_good], "esp").name == "more"
+    with pytest.raises(ValueError, match="optimize for"):
+        choose([few_bad], "depth")
+
+
+def test_ranked_routes_start_with_the_search_winner() -> None:
+    from qcpp.hardware.device import get_device
+    from qcpp.layout.placement_search import ranked_routes, search_route, two_qubit_count
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import PlanOptions
+    from qcpp.problem.presets import default_scenario
+    from qcpp.routing.options import RoutingOptions
+
+    c = compile_scenario(default_scenario(2, 3, 1), 1, PlanOptions(fuse=False), lowered=True).circuit
+    dev = get_device("heavy-hex:3")
+    opts = RoutingOptions(placement_layouts=4, placement_seeds=2, placement_refine=2)
+    ranked = ranked_routes(c, dev, count=3, options=opts)
+    one = search_route(c, dev, options=opts)
+    assert list(ranked[0].circuit.gates) == list(one.circuit.gates) and ranked[0].initial_layout == one.initial_layout
+    counts = [two_qubit_count(r.circuit) for r in ranked]
+    assert counts == sorted(counts) and len(ranked) == 3
+
+
+@pytest.mark.heavy  # compiles 3x3/1 on both IBM snapshots with every candidate (tens of seconds)
+@pytest.mark.parametrize("name", ["ibm_fez", "ibm_torino"])
+def test_compile_on_a_named_device_is_never_worse_than_qiskit_o3(name: str) -> None:
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.presets import default_scenario
+    from qcpp.routing.qiskit_o3 import qiskit_o3
+
+    s, bind = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}
+    dev = named_device(name)
+    by_esp = compile_for_device(s, 1, name, bindings=bind)
+    by_twoq = compile_for_device(s, 1, name, bindings=bind, optimize_for="twoq")
+    peers = [qiskit_o3(by_esp.compiled.circuit, dev, seed, range(s.num_variables)) for seed in range(3)]
+    assert by_esp.optimize_for == "esp" and by_esp.chosen in {c["name"] for c in by_esp.candidates}
+    assert esp_idle(by_esp.routed) >= max(esp_idle(p) for p in peers)
+    twoq = [sum(1 for g in r.circuit.gates if len(g[1]) == 2) for r in (by_twoq.routed, *peers)]
+    assert twoq[0] <= min(twoq[1:])
+    summary = by_esp.summary()["routed"]
+    assert summary["esp_idle"] < summary["esp"] and summary["chosen"] == by_esp.chosen
