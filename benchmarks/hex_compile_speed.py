@@ -47,7 +47,7 @@ def _scenario(case: str) -> Any:
 
 def _warm_imports() -> None:
     """Import what either compiler loads lazily, so the clock measures the compile only."""
-    import qiskit  # noqa: F401
+    import qiskit
     import qiskit.qasm3  # noqa: F401
     import scipy.sparse.csgraph  # noqa: F401
     from qiskit.transpiler import CouplingMap  # noqa: F401
