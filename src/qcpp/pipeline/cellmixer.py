@@ -31,7 +31,7 @@ default plan is left as compiled. The cost is compile time: every variant is all
 (most of a heavy-hex compile's time; the routed windows are memoised on their physical gates up to the lattice's
 translations, :func:`qcpp.routing.windows.route_window`, so equal windows of other plaquettes and the final
 allocation and routing of the chosen variants are mostly look-ups; a variant met again in the exchanges is not
-scored again, and the A* runs once per relabelled program).
+scored again, and the 24 relabelled A* runs of a program share one search's states).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
