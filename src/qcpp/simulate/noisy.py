@@ -17,9 +17,9 @@ The noise model (:func:`device_noise_model`), per physical qubit and coupler of 
 * read-out: a symmetric bit flip of the file's read-out error on each measured data qubit.
 
 Only the qubits the routed circuit touches are simulated (renumbered ``0..k-1``): up to
-:data:`DENSITY_MATRIX_QUBITS` by aer's density-matrix method (``P(optimum)`` exact), beyond by its
-matrix-product-state method with sampled noise (``shots`` trajectories; ``P(optimum)`` then carries a binomial
-error, :attr:`NoisyResult.stderr`).
+:data:`DENSITY_MATRIX_QUBITS` by aer's density-matrix method (``P(optimum)`` exact), up to
+:data:`STATEVECTOR_QUBITS` by state-vector trajectories, beyond by its matrix-product-state method, both with
+sampled noise (``shots`` trajectories; ``P(optimum)`` then carries a binomial error, :attr:`NoisyResult.stderr`).
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -49,6 +49,8 @@ from qcpp.routing.routed_circuit import RoutedCircuit
 __all__ = [
     "DENSITY_MATRIX_QUBITS",
     "EXTRA",
+    "METHODS",
+    "STATEVECTOR_QUBITS",
     "NoisyResult",
     "active_qubits",
     "device_noise_model",
@@ -61,7 +63,13 @@ EXTRA = "noise"
 """The optional extra that installs qiskit-aer (``pip install 'qcpp[noise]'``)."""
 
 DENSITY_MATRIX_QUBITS = 10
-"""Active qubits up to which the density matrix is simulated (4^10 amplitudes); beyond, MPS trajectories."""
+"""Active qubits up to which the density matrix is simulated (4^10 entries)."""
+
+STATEVECTOR_QUBITS = 24
+"""Active qubits up to which trajectories run on state vectors (2^24 amplitudes, 256 MiB); beyond, on MPS."""
+
+METHODS = ("density_matrix", "statevector", "matrix_product_state")
+"""aer's methods :func:`simulate_noisy` uses."""
 
 
 class NoisyBackendMissing(QcppError, ImportError):
@@ -90,7 +98,7 @@ class NoisyResult:
     Attributes:
         p_optimum: probability that the measured data register is an optimal assignment.
         stderr: its standard error (0 for the exact density-matrix method).
-        method: aer's method: ``density_matrix`` or ``matrix_product_state``.
+        method: aer's method (:data:`METHODS`).
         qubits: active qubits simulated.
         shots: trajectories sampled (0: exact probabilities).
         noise: whether the device's noise was applied.
@@ -265,7 +273,7 @@ def simulate_noisy(
         noise: apply the device's noise (``False``: the ideal circuit, the same code path).
         shots: trajectories for the sampling method.
         seed: aer's seed.
-        method: ``density_matrix`` or ``matrix_product_state`` (default: by the active qubit count).
+        method: one of :data:`METHODS` (default: by the active qubit count, see the module docstring).
 
     Returns:
         The :class:`NoisyResult`.
@@ -279,9 +287,12 @@ def simulate_noisy(
 
     qubits = active_qubits(routed)
     n = len(qubits)
-    chosen = method or ("density_matrix" if n <= DENSITY_MATRIX_QUBITS else "matrix_product_state")
-    if chosen not in ("density_matrix", "matrix_product_state"):
-        raise ValueError(f"unknown method {chosen!r} (expected density_matrix or matrix_product_state)")
+    chosen = method or (
+        "density_matrix" if n <= DENSITY_MATRIX_QUBITS else "statevector" if n <= STATEVECTOR_QUBITS
+        else "matrix_product_state"
+    )  # fmt: skip
+    if chosen not in METHODS:
+        raise ValueError(f"unknown method {chosen!r} (expected one of {', '.join(METHODS)})")
     qc = noisy_circuit(routed, qubits, idle=noise)
     model = device_noise_model(routed.device, qubits) if noise else None
     sim = AerSimulator(method=chosen, noise_model=model, seed_simulator=seed)
