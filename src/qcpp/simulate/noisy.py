@@ -261,6 +261,7 @@ def simulate_noisy(
     optimal: Collection[int],
     *,
     noise: bool = True,
+    idle: bool = True,
     shots: int = 2000,
     seed: int = 0,
     method: str | None = None,
@@ -271,6 +272,7 @@ def simulate_noisy(
         routed: a routed circuit in the device's native gates (:func:`qcpp.routing.native.to_native`), angles bound.
         optimal: the optimal assignments as data-register integers (bit ``i`` = data qubit ``i``).
         noise: apply the device's noise (``False``: the ideal circuit, the same code path).
+        idle: with ``noise``, also the idle relaxation (``False``: gate and read-out errors only).
         shots: trajectories for the sampling method.
         seed: aer's seed.
         method: one of :data:`METHODS` (default: by the active qubit count, see the module docstring).
@@ -293,7 +295,7 @@ def simulate_noisy(
     )  # fmt: skip
     if chosen not in METHODS:
         raise ValueError(f"unknown method {chosen!r} (expected one of {', '.join(METHODS)})")
-    qc = noisy_circuit(routed, qubits, idle=noise)
+    qc = noisy_circuit(routed, qubits, idle=noise and idle)
     model = device_noise_model(routed.device, qubits) if noise else None
     sim = AerSimulator(method=chosen, noise_model=model, seed_simulator=seed)
     targets = set(optimal)
