@@ -49,7 +49,8 @@ def main() -> None:
     layers = (1,) if args.quick else (1, 2, 3)
     trained: dict[tuple[int, int, int, int], tuple[dict[str, float], float, list[int]]] = {}
     print("| device | p | scenario | routed 2q | active qubits | ESP | P(opt) ideal | P(opt) routed, no noise "
-          "| ESP x P(opt) | P(opt) noisy | noisy / (ESP x P(opt)) | P(opt) noisy, no idle relaxation | method |")  # fmt: skip
+          "| ESP x P(opt) | P(opt) noisy | noisy / (ESP x P(opt)) | P(opt) noisy, no idle relaxation "
+          "| method |")  # fmt: skip
     print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name in device_names():
         for p in layers:
