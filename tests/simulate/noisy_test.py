@@ -3,7 +3,9 @@ read-out error give the analytic P(optimum)."""
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import sys
 
 import pytest
 
@@ -11,10 +13,9 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
 from qcpp.routing.routed_circuit import RoutedCircuit
+from qcpp.simulate.noisy import NoisyBackendMissing, active_qubits, device_noise_model, require_aer, simulate_noisy
 
-pytest.importorskip("qiskit_aer")
-
-from qcpp.simulate.noisy import active_qubits, device_noise_model, simulate_noisy
+needs_aer = pytest.mark.skipif(importlib.util.find_spec("qiskit_aer") is None, reason="qiskit-aer (extra 'noise')")
 
 E_X = (0.01, 0.03, 0.02)
 E_CZ = (0.05, 0.04)
@@ -62,6 +63,7 @@ def _analytic_p111() -> float:
     return sum(p * math.prod(1 - r if b else r for b, r in zip(bits, READOUT)) for bits, p in probs.items())
 
 
+@needs_aer
 def test_zero_noise_equals_the_ideal_circuit() -> None:
     routed = _routed(_device(with_noise=False))
     assert active_qubits(routed) == (0, 1, 2)
@@ -72,6 +74,7 @@ def test_zero_noise_equals_the_ideal_circuit() -> None:
     assert simulate_noisy(routed, [0b011], noise=True).p_optimum == pytest.approx(0.0, abs=1e-9)
 
 
+@needs_aer
 def test_depolarising_and_readout_errors_give_the_analytic_value() -> None:
     routed = _routed(_device())
     expected = _analytic_p111()
@@ -83,7 +86,17 @@ def test_depolarising_and_readout_errors_give_the_analytic_value() -> None:
     assert abs(sampled.p_optimum - expected) < 4 * sampled.stderr + 1e-3
 
 
+@needs_aer
 def test_noise_model_covers_only_the_active_qubits() -> None:
     model = device_noise_model(_device(), (0, 1, 2))
     assert sorted(model.noise_qubits) == [0, 1, 2]
     assert {"x", "cz", "measure"} <= set(model.noise_instructions)
+
+
+def test_missing_aer_is_one_line_naming_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "qiskit_aer", None)  # import fails as if not installed
+    with pytest.raises(NoisyBackendMissing, match=r"qcpp\[noise\]") as info:
+        require_aer()
+    assert "\n" not in str(info.value)
+    with pytest.raises(NoisyBackendMissing):
+        simulate_noisy(_routed(_device()), [0b111])

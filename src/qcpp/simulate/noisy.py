@@ -27,10 +27,12 @@ Example:
     >>> from qcpp.ir.gates import Gate
     >>> from qcpp.routing.native import to_native
     >>> from qcpp.routing.sabre import route
-    >>> x = Circuit([("data", 2)], [Section("s", [Gate("x", (0,), (), None), Gate("cx", (0, 1), (), None)])])
-    >>> routed = to_native(route(x, get_device("grid:1x2"), (0, 1)))
-    >>> r = simulate_noisy(routed, [0b11], noise=False)  # doctest: +SKIP
-    >>> r.p_optimum, r.method  # doctest: +SKIP
+    >>> bell = Circuit([("data", 2)], [Section("s", [Gate("h", (0,), (), None), Gate("cx", (0, 1), (), None)])])
+    >>> routed = to_native(route(bell, get_device("grid:2x2"), (0, 1)))
+    >>> active_qubits(routed)
+    (0, 1)
+    >>> r = simulate_noisy(routed, [0b00, 0b11], noise=False)  # doctest: +SKIP
+    >>> round(r.p_optimum, 9), r.method  # doctest: +SKIP
     (1.0, 'density_matrix')
 """
 
