@@ -15,16 +15,18 @@ import time
 from pathlib import Path
 
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.estimators.plots import PLOT_METRICS
 from qcpp.io.atomic import save_figure_atomic
 from qcpp.problem.presets import max_default_robots
 
 ROOT = Path(__file__).resolve().parents[1]
 PANELS = (
-    ("qubits", "logical qubits"),
-    ("cx", "CNOT gates (lowered)"),
-    ("t", "T gates (logical-AND model, eps 1e-3)"),
-    ("physical", "physical qubits (QDK estimator, qubit_gate_ns_e3)"),
+    ("qubits", "logical qubits", "qubits"),
+    ("cx", "CNOT gates (lowered)", "cx"),
+    ("t", "T gates (logical-AND model, eps 1e-3)", "ft_total_t"),
+    ("physical", "physical qubits (QDK estimator, qubit_gate_ns_e3)", "physical_qubits"),
 )
+"""Series key, panel title, and the estimate column it plots (its axis label: qcpp.estimators.plots.PLOT_METRICS)."""
 
 
 def sizes(max_side: int) -> list[int]:
@@ -61,7 +63,7 @@ def main(argv: list[str]) -> int:
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(2, 2, figsize=(12, 9))
-    for ax, (key, label) in zip(axes.flat, PANELS):
+    for ax, (key, label, column) in zip(axes.flat, PANELS):
         for robots, s in data.items():
             ax.plot(s["n"], s[key], "o-", ms=3, label=f"{robots} robot{'s' if robots > 1 else ''}")
         ax.set_xscale("log")
@@ -70,6 +72,7 @@ def main(argv: list[str]) -> int:
         ax.set_xticks(ticks, [str(n) for n in ticks])
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("grid side n (n x n grid, log scale)")
+        ax.set_ylabel(PLOT_METRICS[column].axis_label + ", log scale")
         ax.set_title(label)
         ax.grid(True, which="both", alpha=0.3)
     axes[0][0].legend(fontsize=8, ncol=2)

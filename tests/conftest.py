@@ -9,16 +9,18 @@
 * At the session's end pytest collects garbage five times over (to report exceptions raised in finalizers); with
   the session's caches of compiled circuits alive that re-scanned millions of objects five times. One collection
   here finds today's garbage; :func:`gc.freeze` then moves what survived it (live objects) out of the collector's
-  sight, so pytest's collections scan only what finalizers left behind.
+  sight, so pytest's collections scan only what finalizers left behind; the freeze ends at exit, so that the
+  interpreter frees the survivors as usual (:mod:`tests.shutdown`: else nanobind extensions report them as leaks).
 """
 
 from __future__ import annotations
 
-import gc
 import os
 
 import pytest
 from hypothesis import HealthCheck, settings
+
+from tests.shutdown import freeze_survivors
 
 settings.register_profile("timeless", deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile("timeless")
@@ -27,6 +29,5 @@ os.environ["QCPP_PROGRESS"] = "off"
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
-    """Collect once, then freeze the survivors (see the module docstring)."""
-    gc.collect()
-    gc.freeze()
+    """Collect once, then freeze the survivors until exit (see the module docstring)."""
+    freeze_survivors()

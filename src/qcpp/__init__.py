@@ -34,7 +34,7 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree th
 if TYPE_CHECKING:
     from qcpp.api.compiling import Compiled, compile
     from qcpp.api.devices import Device, DeviceError, device, devices
-    from qcpp.api.estimates import Estimate, estimate
+    from qcpp.api.estimates import Estimate, estimate, plot_estimates
     from qcpp.api.scenarios import (
         Scenario,
         ScenarioError,
@@ -59,6 +59,7 @@ _EXPORTS: dict[str, str] = {
     "devices": "qcpp.api.devices",
     "Estimate": "qcpp.api.estimates",
     "estimate": "qcpp.api.estimates",
+    "plot_estimates": "qcpp.api.estimates",
     "Scenario": "qcpp.api.scenarios",
     "ScenarioError": "qcpp.api.scenarios",
     "default_scenario": "qcpp.api.scenarios",
@@ -101,6 +102,7 @@ __all__ = [
     "grid_scenario",
     "is_feasible",
     "load_scenario",
+    "plot_estimates",
     "save_scenario",
     "simulate_qaoa",
     "solve",

@@ -230,6 +230,7 @@ def scenarios(
 
 @functools.lru_cache(maxsize=64)
 def _path_pool(scenario: Scenario, robot: int, limit: int) -> tuple[int, ...]:
+    """Pure memo: ``_path_pool.cache_clear()`` empties it."""
     return tuple(itertools.islice(iter_paths(scenario, robot), limit))
 
 

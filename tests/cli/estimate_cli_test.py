@@ -96,6 +96,36 @@ def test_plot_is_written_atomically(run, tmp_path: Path) -> None:  # type: ignor
     assert len(json.loads(res.stdout)) == 8
 
 
+def test_plot_metric_and_every_p(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    out = tmp_path / "t.png"
+    res = run("--grid", "2x2..3x3", "-p", "1..2", "--depth", "none", "--metric", "t", "--plot", str(out), "--json")
+    assert res.exit_code == 0, res.output
+    assert out.read_bytes()[:4] == b"\x89PNG" and f"wrote {out}" in res.stderr
+    assert sorted({r["p"] for r in json.loads(res.stdout)}) == [1, 2]
+
+
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (("--metric", "cnots", "--plot", "x.png"), ("--metric: expected qubits or", "cx or", "esp, got 'cnots'")),
+        (("--metric", "t"), ("--metric: applies with --plot only",)),
+        (("--metric", "physical_qubits", "--plot", "x.png"), ("--metric: physical_qubits needs --physical",)),
+        (("--metric", "routed_twoq", "--plot", "x.png"), ("--metric: routed_twoq needs --device",)),
+        (("--metric", "depth", "--depth", "none", "--plot", "x.png"), ("--metric: depth needs a depth",)),
+    ],
+)
+def test_bad_metric_is_one_line_before_any_work(run, tmp_path: Path, args: tuple[str, ...],  # type: ignore[no-untyped-def]
+                                                fragments: tuple[str, ...]) -> None:  # fmt: skip
+    args = tuple(str(tmp_path / a) if a.endswith(".png") else a for a in args)
+    res = run("--grid", "2x2", *args)
+    assert res.exit_code == 2 and res.stdout == "", res.output
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    for fragment in fragments:
+        assert fragment in lines[0]
+    assert not list(tmp_path.iterdir())
+
+
 def test_scenario_file_and_rule(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     path = tmp_path / "s.toml"
     save_scenario(default_scenario(2, 3, 2), path)

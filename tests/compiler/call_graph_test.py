@@ -138,3 +138,13 @@ def test_gadgets_priced_per_kind_and_depth_facts_share_the_one_cache() -> None:
     assert len(COSTS.table("own depth")) == 2
     COSTS.clear()
     assert len(COSTS) == 0 and all(known_depth(g) is None for g in found.values())
+
+
+def test_mixer_class_representatives_live_in_the_one_cache() -> None:
+    COSTS.clear()
+    before = mixer_part(default_scenario(5, 4, 2), "exact", "nisq", True, None)
+    assert all(len(COSTS.table(t)) > 0 for t in ("mixer representative", "mixer kinds", "mixer junction"))
+    COSTS.clear()
+    assert len(COSTS) == 0
+    mixer_part.cache_clear()
+    assert mixer_part(default_scenario(5, 4, 2), "exact", "nisq", True, None) == before  # rebuilt, equal kinds

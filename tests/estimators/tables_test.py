@@ -1,4 +1,4 @@
-"""Rows, text formats (streamed and whole) and the plot."""
+"""Rows, text formats (streamed and whole) and the plots."""
 
 from __future__ import annotations
 
@@ -9,9 +9,10 @@ from pathlib import Path
 
 import pytest
 
+from qcpp.errors import OptionError
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
 from qcpp.estimators.paper import paper_estimate
-from qcpp.estimators.plots import plot_rows
+from qcpp.estimators.plots import PLOT_METRICS, draw_rows, plot_rows
 from qcpp.estimators.tables import FORMATS, MAIN_COLUMNS, make_row, make_rows, render, render_stream
 
 REQUIRED = {
@@ -117,3 +118,62 @@ def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: i
     with pytest.raises(ValueError):
         plot_rows([], tmp_path / "empty.png")
     assert not (tmp_path / "empty.png").exists()
+
+
+def _lines(fig) -> list[tuple[str, str, list[float], list[float]]]:  # type: ignore[no-untyped-def]
+    """(panel title, curve label, xs, ys) of every curve of a figure's visible panels."""
+    return [
+        (ax.get_title(), line.get_label(), list(line.get_xdata()), list(line.get_ydata()))
+        for ax in fig.axes if ax.get_visible() for line in ax.lines
+    ]  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def sweep_rows() -> list[dict]:  # type: ignore[type-arg]
+    points = [Point(r, c, k, p) for r, c in ((2, 2), (2, 3), (3, 3)) for k in (1, 2) for p in (1, 2)]
+    return make_rows([estimate_point(pt, EstimateOptions(depth="none")) for pt in points if k_fits(pt)], True)
+
+
+def k_fits(pt: Point) -> bool:
+    return pt.robots <= 2 * (pt.rows + pt.cols) - 4
+
+
+def test_plot_draws_every_p_in_its_own_panel_and_the_paper_only_when_asked(sweep_rows) -> None:  # type: ignore[no-untyped-def]
+    fig = draw_rows(sweep_rows, "cx")
+    curves = _lines(fig)
+    assert {title for title, *_ in curves} == {"p = 1", "p = 2"}
+    assert not any("paper" in label for _, label, *_ in curves)  # ours only, unless asked
+    for title, label, xs, ys in curves:
+        p, robots = int(title.split("= ")[1]), int(label.split()[0])
+        want = {r["rows"] * r["cols"]: r["cx"] for r in sweep_rows if r["p"] == p and r["robots"] == robots}
+        assert dict(zip(xs, ys)) == want  # every point of that p and robot count, at its node count
+    assert "cx" in fig.axes[0].get_ylabel() and "gates" in fig.axes[0].get_ylabel()
+    compared = _lines(draw_rows(sweep_rows, "qubits", compare_paper=True))
+    paper = [curve for curve in compared if curve[1].startswith("paper, ")]
+    assert len(paper) == 4  # one dashed curve per robot count and panel
+    for title, label, xs, ys in paper:
+        p, robots = int(title.split("= ")[1]), int(label.split()[1])
+        want = {r["rows"] * r["cols"]: r["paper_qubits"] for r in sweep_rows if r["p"] == p and r["robots"] == robots}
+        assert dict(zip(xs, ys)) == want
+
+
+def test_plot_of_one_grid_is_against_p_and_names_the_metric(sweep_rows) -> None:  # type: ignore[no-untyped-def]
+    rows = [r for r in sweep_rows if (r["rows"], r["cols"]) == (3, 3)]
+    fig = draw_rows(rows, "t")
+    (ax,) = [a for a in fig.axes if a.get_visible()]
+    assert ax.get_xlabel() == "QAOA layers p" and ax.get_ylabel().startswith("T gates (lowered): t [gates]")
+    assert {label for label in (line.get_label() for line in ax.lines)} == {"1 robot", "2 robots"}
+    with pytest.warns(UserWarning, match="no estimate of t"):
+        draw_rows(rows, "t", compare_paper=True)
+
+
+def test_plot_refuses_unknown_metrics_and_missing_columns(sweep_rows) -> None:  # type: ignore[no-untyped-def]
+    with pytest.raises(OptionError, match=r"metric: expected qubits or .* or esp, got 'cnots'"):
+        draw_rows(sweep_rows, "cnots")
+    with pytest.raises(ValueError, match=r"no row has a value for depth .*--depth none"):
+        draw_rows(sweep_rows, "depth")  # estimated with depth="none"
+    with pytest.raises(ValueError, match=r"routed_twoq .*--device"):
+        draw_rows(sweep_rows, "routed_twoq")
+    for name, metric in PLOT_METRICS.items():  # the metrics name real columns (and real paper columns)
+        assert metric.needs in ("physical", "device") or name in sweep_rows[0], name
+        assert metric.paper is None or metric.paper in sweep_rows[0], name

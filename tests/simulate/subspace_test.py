@@ -275,25 +275,25 @@ def test_non_integer_costs_use_the_distinct_value_table() -> None:
     assert np.abs(subspace_as_dense(q, angles) - dense_reference(FRACTIONAL_2x3, angles)).max() < 1e-10
 
 
-def test_float_diagonal_fallback(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_float_diagonal_fallback() -> None:
     """Too many distinct costs for a level table: the float64 diagonal is used, with the same results."""
     import qcpp.simulate.subspace as sub
 
-    monkeypatch.setattr(sub, "_MAX_LEVELS", 2)
-    assert sub._compress(np.array([0.5, 1.5, 2.25, 0.5])) is None
+    assert sub._compress(np.array([0.5, 1.5, 2.25, 0.5]), 2) is None
+    assert sub._compress(np.array([0.5, 1.5, 2.25, 0.5]), 3) is not None
     for s in (FRACTIONAL_2x3, TWO_2x3):
-        q = SubspaceQAOA(s)
+        q = SubspaceQAOA(s, max_levels=2)
         assert q.cost_levels() is None
         angles = np.array([0.21, 1.3, 0.4, 0.7])
         assert np.abs(subspace_as_dense(q, list(angles)) - dense_reference(s, list(angles))).max() < 1e-10
-        monkeypatch.setattr(sub, "_MAX_LEVELS", 1 << 16)
         ref = SubspaceQAOA(s)
         assert ref.cost_levels() is not None
         assert np.isclose(q.expectation(angles), ref.expectation(angles), rtol=1e-12)
         assert np.allclose(q.gradient(angles), ref.gradient(angles), rtol=1e-10, atol=1e-12)
         assert np.array_equal(q.cost_diagonal(), ref.cost_diagonal())
         assert cost_scale(q) == pytest.approx(cost_scale(ref), rel=1e-12)
-        monkeypatch.setattr(sub, "_MAX_LEVELS", 2)
+    with pytest.raises(ValueError, match="max_levels"):
+        SubspaceQAOA(TWO_2x3, max_levels=sub.MAX_LEVELS + 1)
 
 
 def test_norm_is_preserved() -> None:

@@ -123,9 +123,7 @@ def test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes(tmp_
     np.testing.assert_allclose(tc.amplitudes(states, open_qubits=opened), dense[states], atol=1e-10)
 
 
-def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_not(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
+def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_not(tmp_path: Path) -> None:
     import numpy as np
 
     import qcpp.simulate.tensor as tensor
@@ -133,23 +131,27 @@ def test_a_wide_diagonal_block_is_kept_as_its_phases_and_a_wide_permutation_is_n
     from qcpp.ir.gates import ccx, cx, h, rz
     from qcpp.simulate.statevector import simulate_statevector
 
-    monkeypatch.setattr(tensor, "MAX_BLOCK_DATA_QUBITS", 1)  # every ancilla block here is "too wide" for a matrix
     regs = [("d", 3), ("a", 1)]
     mix = Section("h", [h(0), h(1), h(2)])
     # compute x0 AND x1 into the ancilla, phase it, uncompute: diagonal on the data, ancilla clean
     phase = Section("p", [ccx(0, 1, 3), rz(0.7, 3), cx(3, 2), rz(0.3, 2), cx(3, 2), ccx(0, 1, 3), rz(0.2, 0)])
     c = Circuit(regs, [mix, phase, mix, phase, Section("t", [h(1), rz(0.4, 2)])])
-    ops = tensor.collapse_ancilla_blocks(c, [3])
-    diagonals = [op for _, op in ops if isinstance(op, np.ndarray)]
-    assert len(diagonals) == 2 and all(op.shape == (8,) for op in diagonals)
+    narrow = tensor.collapse_ancilla_blocks(c, [3], max_block_data_qubits=1)  # every block "too wide" for a matrix
+    wide = tensor.collapse_ancilla_blocks(c, [3])
+    diagonals = [(qs, op) for qs, op in narrow if isinstance(op, np.ndarray)]
+    matrices = [(qs, op) for qs, op in wide if isinstance(op, np.ndarray)]
+    assert len(diagonals) == 2 and all(op.shape == (8,) for _, op in diagonals)
+    assert [qs for qs, _ in diagonals] == [qs for qs, _ in matrices]
+    for (_, d), (_, m) in zip(diagonals, matrices):  # the phases are the verified operator's diagonal
+        np.testing.assert_allclose(m, np.diag(d), atol=1e-12)
     dense = simulate_statevector(c)
-    tc = tensor.TensorCircuit(c, cache_dir=tmp_path, ancillas=[3])
-    np.testing.assert_allclose(tc.amplitudes(range(16)), dense, atol=1e-12)
-    assert tc.block_leak is not None and tc.block_leak < 1e-12
+    for width in (1, tensor.MAX_BLOCK_DATA_QUBITS):  # the blocks as their phases, then as matrices
+        tc = tensor.TensorCircuit(c, cache_dir=tmp_path, ancillas=[3], max_block_data_qubits=width)
+        np.testing.assert_allclose(tc.amplitudes(range(16)), dense, atol=1e-12)
+        assert tc.block_leak is not None and tc.block_leak < 1e-12
     # a clean-ancilla Toffoli on the data is unitary but not diagonal: too wide for a matrix, so not collapsed
     toffoli = Circuit(regs, [mix, Section("t", [ccx(0, 1, 3), cx(3, 2), ccx(0, 1, 3)])])
-    assert tensor.collapse_ancilla_blocks(toffoli, [3]) is None
-    monkeypatch.setattr(tensor, "MAX_BLOCK_DATA_QUBITS", 11)
+    assert tensor.collapse_ancilla_blocks(toffoli, [3], max_block_data_qubits=1) is None
     [_, _, _, (qubits, op)] = tensor.collapse_ancilla_blocks(toffoli, [3])
     assert qubits == (0, 1, 2) and op.shape == (8, 8)
 

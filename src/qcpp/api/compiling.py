@@ -135,7 +135,6 @@ def compile(
     """Compile the constrained-mixer QAOA circuit of ``scenario`` (what ``qcpp compile`` does).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (at least 1).
         device: Route onto this device (``qcpp.devices()``, or ``grid[:RxC]``, ``heavy-hex[:D]``,
             ``all-to-all[:N]``); the circuit is then in the device's qubits and native gates.

@@ -20,13 +20,19 @@ from __future__ import annotations
 import json
 from collections.abc import Iterator
 from html import escape
-from typing import Any, Generic, TypeVar, overload
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.scenarios import Scenario, default_scenario
 from qcpp.errors import OptionError, check_choice
 
-__all__ = ["Estimate", "estimate"]
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Iterable
+
+    from matplotlib.figure import Figure
+
+__all__ = ["Estimate", "estimate", "plot_estimates"]
 
 T = TypeVar("T")
 
@@ -208,6 +214,54 @@ def estimate(
     point = _point(s, layers, Point)
     row = next(estimate_rows([point], settings, compare_paper, paper_doubling, device))  # type: ignore[arg-type]
     return Estimate(row)
+
+
+def plot_estimates(
+    estimates: Iterable[Estimate | dict[str, Any]],
+    metric: str = "cx",
+    *,
+    compare_paper: bool = False,
+    path: str | os.PathLike[str] | None = None,
+    figsize: tuple[float, float] | None = None,
+) -> Figure:
+    """Plot one column of several estimates: the plot of ``qcpp estimate --plot FILE --metric METRIC``.
+
+    Against the grid's node count with one panel per ``p`` when the estimates cover several grid sizes, else
+    against ``p`` (one grid), else against the robot count; one curve per robot count. Style it with matplotlib's
+    ``rcParams`` before the call (fonts, sizes), or through the returned figure.
+
+    Args:
+        estimates: :class:`Estimate` objects (or their ``to_dict()`` rows), of one SBF rule.
+        metric: The column to draw: ``cx``, ``qubits``, ``t``, ``depth``, ``ft_total_t``, ... (every choice:
+            :data:`qcpp.estimators.plots.PLOT_METRICS`); ``physical_*`` need estimates made with ``physical=True``,
+            the routed columns (``routed_twoq``, ``esp``, ...) a ``device``.
+        compare_paper: Also draw the paper's estimate of the metric as dashed curves (qubits, data_qubits, cx and
+            single_qubit: the quantities the paper estimates; for any other metric a warning says it has none).
+        path: Also save the figure here (PNG, PDF, SVG, ... by the suffix), whole or not at all.
+        figsize: The figure's size in inches.
+
+    Returns:
+        The ``matplotlib.figure.Figure``.
+
+    Raises:
+        qcpp.errors.OptionError: an unknown metric (the message lists the choices).
+        ValueError: no estimates, or none with a value for the metric.
+
+    Example:
+        >>> from qcpp.api.scenarios import grid_scenario
+        >>> ests = [estimate(grid_scenario(3, 3, robots=1), p=k, depth="none") for k in (1, 2)]
+        >>> fig = plot_estimates(ests, "cx")
+        >>> fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()
+        ('QAOA layers p', 'CNOT gates: cx [gates]')
+    """
+    from qcpp.estimators.plots import draw_rows
+    from qcpp.io.atomic import save_figure_atomic
+
+    rows = [e.to_dict() if isinstance(e, Estimate) else dict(e) for e in estimates]
+    fig = draw_rows(rows, metric, compare_paper=compare_paper, figsize=figsize)
+    if path is not None:
+        save_figure_atomic(fig, path, dpi=150, bbox_inches="tight")
+    return fig
 
 
 def _point(s: Scenario, p: int, point_type: Any) -> Any:

@@ -51,7 +51,6 @@ def solve(
     """Solve ``scenario`` with ``method`` (``qcpp solve --method``) and return its answer.
 
     Args:
-        scenario: The scenario.
         method: ``dfs`` (exhaustive), ``cpsat`` (OR-Tools CP-SAT, the optimum with a proof), ``anneal``,
             ``genetic``, ``qaoa`` (trained on the feasible-subspace simulator; :func:`train_qaoa`) or ``qubo``.
         seed: Random seed (stochastic methods).
@@ -118,7 +117,6 @@ def train_qaoa(
     (``qcpp solve --method qaoa``).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers.
         optimizer: ``layerwise`` (L-BFGS-B for p = 1, 2, ... in turn, warm-started), ``multi-angle``, or one
             ``nesterov``, ``cobyla`` or ``lbfgsb`` run at depth ``p``.
@@ -177,7 +175,6 @@ def simulate_qaoa(
     """Evaluate the QAOA state at given (or seeded random) angles (``qcpp simulate``).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers.
         angles: ``2p`` angles ``[gamma_0, beta_0, gamma_1, beta_1, ...]``; ``None``: random from ``seed``.
         method: ``subspace`` (exact feasible-subspace simulator), ``statevector`` (the compiled circuit's dense

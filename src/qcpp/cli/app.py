@@ -37,6 +37,7 @@ import functools
 import importlib
 import inspect
 import os
+import re
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -62,12 +63,15 @@ except ImportError:  # pragma: no cover - older typer on the real click
 
 __all__ = [
     "CHOICES",
+    "CHOICES_IN_METAVAR",
     "COMMAND_MODULES",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
+    "HELP",
     "LIBRARY_CHECKED",
     "LIBRARY_ERRORS",
     "NUMERIC_OPTIONS",
+    "PANELS",
     "QcppCommand",
     "QcppGroup",
     "QcppTyper",
@@ -324,12 +328,27 @@ def choices_of(command: str, param: str) -> tuple[str, ...] | None:
     return tuple(str(v) for v in source()) if source is not None else None
 
 
+CHOICES_IN_METAVAR = 16
+"""Choice lists up to this many characters show as the metavar ``[a|b|c]``; longer ones go into the option's help
+text (``One of: a, b, c.``, unless it names each already), where they wrap across the wide column instead of
+widening the narrow one."""
+
+
 def _show_choices(command: Any) -> None:
-    """Set each choice option's metavar to ``[a|b|c]`` (at help time: the values may need heavy imports)."""
+    """Show each choice option's values (at help time: the values may need heavy imports): as the metavar
+    ``[a|b|c]``, or, if that is longer than :data:`CHOICES_IN_METAVAR`, at the end of its help text."""
     for param in command.params:
         values = choices_of(command.name or "", param.name or "") if _is_option(param) else None
-        if values:
-            param.metavar = "[" + "|".join(values) + "]"
+        if not values:
+            continue
+        shown = "[" + "|".join(values) + "]"
+        if len(shown) <= CHOICES_IN_METAVAR:
+            param.metavar = shown
+            continue
+        own = param.__dict__.setdefault("_own_help", param.help or "")
+        param.metavar = "<str>"
+        named = all(re.search(rf"(?<![\w-]){re.escape(v)}(?![\w-])", own) for v in values)
+        param.help = own if named else f"{own} One of: {', '.join(values)}.".strip()
 
 
 def _complete_choices(command: Any) -> None:
@@ -344,16 +363,73 @@ def _complete_choices(command: Any) -> None:
             param._custom_shell_complete = complete
 
 
+PANELS: dict[str, str] = {
+    # what the command works on
+    "scenario": "Scenario", "grid": "Scenario", "robots": "Scenario", "obstacle": "Scenario",
+    "hard_obstacles": "Scenario", "p": "Scenario",
+    # how the circuit is built (compile, estimate: qcpp.cli.commands.plan_flags)
+    "rule": "Plan", "initial": "Plan", "target": "Plan", "phase": "Plan", "optimize": "Plan",
+    "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "lowered": "Plan", "bind": "Plan",
+    # the run of the other commands
+    "method": "Method", "seed": "Method", "optimizer": "Method", "objective": "Method", "maxiter": "Method",
+    "mixer_warm": "Method", "time_limit": "Method", "backend": "Method", "max_amplitudes": "Method",
+    "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
+    "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "simulate.rule": "Method",
+    "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
+    # estimate's models
+    "depth": "Estimates", "depth_budget": "Estimates", "epsilon": "Estimates", "toffoli_t": "Estimates",
+    "paper_doubling": "Estimates", "physical": "Estimates", "qubit_model": "Estimates",
+    "qec_scheme": "Estimates", "error_budget": "Estimates",
+    "device": "Device/routing", "local_ancillas": "Device/routing", "layout": "Device/routing",
+    # what is written where
+    "as_json": "Output", "fmt": "Output", "columns": "Output", "wide": "Output", "compare": "Output",
+    "plot": "Output", "metric": "Output", "plot_trace_file": "Output", "qasm": "Output", "qasm_version": "Output",
+    "qasm_profile": "Output", "out": "Output", "output": "Output", "explain": "Output", "formula": "Output",
+    "max_gates": "Advanced", "force": "Advanced", "allow_large": "Advanced", "help": "Advanced",
+}  # fmt: skip
+"""The help panel of each option, by parameter name (``command.param`` first): every command groups its options
+alike, in the panels' order here (``tests/cli/help_and_noise_test.py`` checks that no option is left out)."""
+
+_PANEL_ORDER = tuple(dict.fromkeys(PANELS.values()))
+
+
+def _panel(command: str, param: Parameter) -> str | None:
+    return PANELS.get(f"{command}.{param.name}") or PANELS.get(param.name or "")
+
+
+def _set_panels(command: Any, params: Sequence[Parameter]) -> None:
+    """Put each option into its panel (:data:`PANELS`); arguments stay in typer's ``Arguments`` panel."""
+    for param in params:
+        panel = _panel(command.name or "", param) if _is_option(param) else None
+        if panel is not None:
+            param.rich_help_panel = panel  # type: ignore[attr-defined]
+
+
 class QcppCommand(_TidyHelp, TyperCommand):
-    """A typer command whose help shows flags as flags and choice options' values (:data:`CHOICES`)."""
+    """A typer command whose help shows flags as flags, choice options' values (:data:`CHOICES`) and the options
+    in panels (:data:`PANELS`)."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         _complete_choices(self)
 
+    def get_help_option(self, ctx: Context) -> Any:
+        option = super().get_help_option(ctx)
+        if option is not None:
+            _set_panels(self, [option])
+        return option
+
     def format_help(self, ctx: Context, formatter: Any) -> None:
         _show_choices(self)
-        super().format_help(ctx, formatter)
+        _set_panels(self, self.params)
+        kept = self.params
+        rank = {name: i for i, name in enumerate(_PANEL_ORDER)}
+        # typer prints the panels in the order of their first option: list the options panel by panel
+        self.params = sorted(kept, key=lambda q: rank.get(getattr(q, "rich_help_panel", None) or "", -1))
+        try:
+            super().format_help(ctx, formatter)
+        finally:
+            self.params = kept
 
 
 class QcppGroup(_TidyHelp, TyperGroup):
@@ -416,9 +492,20 @@ class QcppTyper(typer.Typer):
         return decorator
 
 
+HELP = """QAOA multi-robot coverage path planning: solve scenarios, compile circuits, estimate resources.
+
+Examples:
+  qcpp scenario --grid 5x5 --robots 2 --obstacle 2,1 -o field.toml
+  qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format md
+  qcpp compile field.toml -p 2 --lowered --qasm field.qasm
+  qcpp solve field.toml --method cpsat
+
+'qcpp COMMAND --help' shows a command's options and more examples.
+"""
+
 app = QcppTyper(
     name="qcpp",
-    help="QAOA multi-robot coverage path planning: solve scenarios, compile circuits, estimate resources.",
+    help=HELP,
     no_args_is_help=True,
     add_completion=True,
     pretty_exceptions_show_locals=False,
@@ -432,7 +519,7 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
+@app.callback(help=HELP)
 def _root(
     version: Annotated[
         bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version and exit.")

@@ -217,12 +217,14 @@ class Point:
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
 def _scenario(rows: int, cols: int, robots: int, text: str | None) -> Scenario:
+    """Pure memo: ``_scenario.cache_clear()`` empties it."""
     return default_scenario(rows, cols, robots) if text is None else scenario_from_dict(json.loads(text))
 
 
 @lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
 def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan:
-    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths."""
+    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths.
+    Pure memo: ``_plan.cache_clear()`` empties it."""
     return qaoa_plan(scenario, layers, options)
 
 
@@ -305,7 +307,7 @@ def compiled_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PL
 @lru_cache(maxsize=SCENARIOS_KEPT)
 def layered_depth(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayeredDepth:
     """The scenario's :class:`~qcpp.estimators.depth_compose.LayeredDepth` (cached: consecutive points of a sweep,
-    ``p = 1, 2, ...`` of one scenario, carry one frontier)."""
+    ``p = 1, 2, ...`` of one scenario, carry one frontier). Pure memo: ``layered_depth.cache_clear()`` empties it."""
     plan = _plan(scenario, options)
     return LayeredDepth.from_sections(plan.sections(), tuple(plan.registers))
 
@@ -374,7 +376,8 @@ def _kind_depth_bound(kind: GadgetKind) -> Depth:
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
 def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
-    """The state preparation's depth bound and one layer's (see :func:`depth_bound`)."""
+    """The state preparation's depth bound and one layer's (see :func:`depth_bound`).
+    Pure memo: ``_layer_depth_bounds.cache_clear()`` empties it."""
     graph = _plan(scenario, options).call_graph()
     sums = {"initial_state": [0, 0, 0], "layer": [0, 0, 0]}  # plain integers: a sum over thousands of kinds
     for part, kind, n in graph.kinds():

@@ -135,7 +135,8 @@ def part_terms(part: str, rows_case: int, cols_case: int, num_robots: int) -> Co
 
     Returns:
         ``(count, term)`` pairs; a count is a sympy expression in ``rows``, ``cols``.
-    """
+
+    Pure memo: ``part_terms.cache_clear()`` empties it."""
     nr, nc = _REPRESENTATIVE[rows_case], _REPRESENTATIVE[cols_case]
     sizes = (rows if rows_case == 5 else sp.Integer(nr), cols if cols_case == 5 else sp.Integer(nc))
     s = default_scenario(nr, nc, num_robots)
@@ -240,7 +241,8 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
 
     Returns:
         name -> expression.
-    """
+
+    Pure memo: ``formula_table.cache_clear()`` empties it."""
 
     def circuit(metric: Metric) -> sp.Expr:  # the state preparation once, then p layers
         return _layer(metric, ("initial_state",)) + p * _layer(metric)
@@ -276,6 +278,7 @@ def formula_table(structured: bool = False) -> dict[str, sp.Expr]:
 
 @lru_cache(maxsize=1)
 def _compiled() -> dict[str, Callable[..., object]]:
+    """Pure memo: ``_compiled.cache_clear()`` empties it."""
     return {
         name: sp.lambdify((rows, cols, robots, p), expr, modules=[{"Min": min, "Max": max}, "math"])
         for name, expr in formula_table().items()

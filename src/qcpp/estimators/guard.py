@@ -11,8 +11,8 @@ circuit has fewer gates than the lowered one, so the lowered count bounds both.
 :func:`qcpp.problem.limits.check_need`: :data:`BASE_BYTES` plus :data:`BYTES_PER_GATE` per gate held at once --
 every gate when the circuit is built whole, one layer's gates when it is streamed section by section (the peak
 does not grow with ``p``: ``qcpp compile`` of 8x8 / 4 robots / p = 16 --qasm, 866,184 gates, 154 MB peak) -- and
-:data:`GATES_PER_SECOND` (streamed OpenQASM: that compile took 36 s). :data:`DEFAULT_MAX_GATES` is the fixed limit
-the command used before it predicted memory; ``--max-gates N`` still sets one.
+:data:`GATES_PER_SECOND` (streamed OpenQASM: that compile took 36 s). ``--max-gates N`` sets a fixed gate limit
+instead (:data:`DEFAULT_MAX_GATES` for callers that want one).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario

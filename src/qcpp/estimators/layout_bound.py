@@ -1,10 +1,11 @@
-"""A sound routed two-qubit bound from the geometric layout: every gate charged at its own distance.
+"""A sound routed two-qubit bound: every gate of the circuit compile routes charged at its own distance.
 
 The circuit is the one ``qcpp compile --device`` routes (lowered, unfused: every section returns its ancillas
 to |0>, its phase separator laid out as compile lays it out on the device). Its qubits are placed once:
 
-* each data qubit at its home in the geometric layout compile uses (:func:`qcpp.layout.medial.medial_placement`:
-  the medial grid on square grids, one cell per plaquette on heavy-hex lattices);
+* each data qubit at its home in the geometric layout compile uses where the device holds it
+  (:func:`qcpp.layout.medial.medial_placement`: the medial grid on square grids, one cell per plaquette on heavy-hex
+  lattices); on any other device, in breadth-first order from a middle qubit of its largest connected component;
 * per section, each ancilla (in order of first use) on the free device qubit nearest (breadth first, ties by
   qubit number) to a qubit it meets that is already placed (its first such partner in gate order; else the
   section's first data qubit), free meaning neither a data home nor taken by another ancilla of the same section.
@@ -16,10 +17,8 @@ the gate, and SWAP back the same way, which restores the layout exactly. Every g
 ``1 + 6 (d - 1)`` two-qubit gates with ``d`` its distance *in that placement*, and the sum over the gates is the
 two-qubit count of a routing compile could write: an upper bound on the best routing of that circuit (not on
 SABRE's, which ``tests/estimators/routed_test.py`` checks it exceeds on every scenario small enough to route).
-
-Distances: the Manhattan distance on a full square grid (its exact shortest path), breadth-first distances on
-any other coupling graph. The layers after the first have the first's gates (only the angles differ), so the
-sum is the initial state's sections plus ``p`` times the first layer's.
+The layers after the first have the first's gates (only the angles differ), so the sum is the initial state's
+sections plus ``p`` times the first layer's.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -51,36 +50,57 @@ _DIJKSTRA_CHUNK = 256
 def layout_twoq_bound(
     scenario: Scenario, p: int, plan: Any, device: Device, stage: Callable[[str], None] | None = None
 ) -> int | None:
-    """The two-qubit count of the gate-by-gate SWAP routing from the geometric layout (see the module docs).
+    """The two-qubit count of the gate-by-gate SWAP routing from one placement (see the module docs).
 
     Args:
         scenario: The scenario.
         p: QAOA layers.
         plan: Its :class:`qcpp.plan.options.PlanOptions`.
-        device: The device (a square grid or heavy-hex lattice that holds the geometric layout).
+        device: The device (not all-to-all: there every gate costs one, and the coupling graph is large).
         stage: Called with each stage's name as it starts, for progress.
 
     Returns:
-        The bound, or ``None`` where the device holds no geometric layout or a section needs more free qubits
-        than it has.
+        The bound, or ``None`` where a section needs more free qubits than the device's piece holding its data has.
     """
     from qcpp.layout.medial import medial_placement
     from qcpp.lowering.passes import lower
     from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
-    homes = medial_placement(scenario, device)
-    if homes is None:
-        return None
     say = stage or (lambda _text: None)
     settled = device_plan_options(plan, device)
     say("building one layer for the layout bound")
     circuit = lower(qaoa_plan(scenario, 1, dataclasses.replace(settled, fuse=False)).circuit())
+    homes = medial_placement(scenario, device)
+    if homes is None:
+        homes = compact_placement(device, scenario.num_variables)
+        if homes is None:
+            return None
     say(f"placing {len(circuit.sections):,} sections' ancillas for the layout bound")
     charges = section_charges(circuit.sections, homes, device)
     if charges is None:
         return None
     return sum(c if name.startswith("initial") else p * c for name, c in charges)
+
+
+def compact_placement(device: Device, n: int) -> tuple[int, ...] | None:
+    """``n`` qubits of ``device``'s largest connected component in breadth-first order from its middle qubit (by
+    number; a square grid's centre), or ``None`` if the component has fewer.
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> compact_placement(get_device("grid:3x3"), 5)
+        (4, 5, 7, 1, 3)
+    """
+    from scipy.sparse.csgraph import breadth_first_order, connected_components
+
+    _, labels = connected_components(device.graph(), directed=False)
+    largest = np.flatnonzero(labels == np.bincount(labels).argmax())
+    if len(largest) < n:
+        return None
+    start = device.num_qubits // 2 if labels[device.num_qubits // 2] == labels[largest[0]] else int(largest[0])
+    order = breadth_first_order(device.graph(), start, directed=False, return_predecessors=False)
+    return tuple(int(q) for q in order[:n])
 
 
 def section_charges(

@@ -1,10 +1,19 @@
-"""Plot of the exact counts against the paper's estimates (matplotlib, Agg backend, saved atomically).
+"""Plots of estimate rows: one metric (a numeric column of ``qcpp estimate``'s row) against the grid, ``p`` or robots.
 
-Two panels share the x axis, the grid size as its number of nodes ``rows * cols``: the CNOT count and the qubit
-count, on log-log axes. Each robot count gets one colour; our exact counts are solid lines with dots, the
-paper's estimates (:mod:`qcpp.estimators.paper`, ``re + 8r`` qubits) dashed lines with crosses. When several grids
-have the same number of nodes (``3x4`` and ``4x3``), their mean is plotted. Only the smallest ``p`` and the first
-SBF rule of the rows are drawn (named in the title).
+What the plot shows depends on what the rows vary (the reading that needs no legend to decode):
+
+* several grid sizes: the metric against the grid's number of nodes ``rows * cols`` (log axis when the sizes span
+  a factor of 8 or more), one curve per robot count, **one panel per p** (panels share the y axis, so the growth
+  with ``p`` reads across them). Grids with the same number of nodes (``3x4`` and ``4x3``) are averaged.
+* one grid size and several ``p``: the metric against ``p``, one curve per robot count, one panel;
+* one grid and one ``p``: the metric against the robot count.
+
+The paper's estimates (:mod:`qcpp.estimators.paper`) are drawn only when asked (``compare_paper=True``), as dashed
+lines in the colour of the same robot count; the paper estimates qubits, data qubits, CNOTs and single-qubit gates
+only, so for any other metric the plot shows ours alone (with a warning). The y axis names the metric, its column
+and its unit (log scale when the values span a factor of 20 or more), the legend the column and the unit, the
+title the metric and what the rows hold fixed. Rows without a value for the metric (``depth`` with ``--depth
+none``, ``duration_s`` on a device without gate times) are left out.
 
 Example:
     >>> import tempfile, os
@@ -12,79 +21,248 @@ Example:
     >>> from qcpp.estimators.tables import make_rows
     >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1)), estimate_point(Point(2, 3, 1, 1))], True)
     >>> path = os.path.join(tempfile.mkdtemp(), "plot.png")
-    >>> plot_rows(rows, path) == path, os.path.getsize(path) > 1000
+    >>> plot_rows(rows, path, metric="t") == path, os.path.getsize(path) > 1000
     (True, True)
+    >>> plot_metric("cnots")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: metric: expected qubits or data_qubits or ... or esp, got 'cnots'
 """
 
 from __future__ import annotations
 
 import os
+import warnings
 from collections import defaultdict
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Literal
 
+from qcpp.errors import check_choice
 from qcpp.estimators.paper import paper_estimate
 from qcpp.io.atomic import save_figure_atomic
 
-__all__ = ["plot_rows"]
+__all__ = ["PLOT_METRICS", "PlotMetric", "draw_rows", "plot_metric", "plot_rows"]
+
+Needs = Literal["physical", "device", "depth"]
 
 
-def _series(rows: Sequence[dict[str, Any]], key: str) -> dict[int, tuple[list[int], list[float]]]:
-    acc: dict[int, dict[int, list[float]]] = defaultdict(lambda: defaultdict(list))
+@dataclass(frozen=True)
+class PlotMetric:
+    """A column of the estimate row that a plot can show.
+
+    Attributes:
+        column: the row's column (``cx``).
+        label: what it counts, for the axis (``CNOT gates``).
+        unit: its unit (``gates``, ``qubits``, ``s``; empty for a probability).
+        needs: what must be estimated for the column to exist: ``physical`` (``--physical``), ``device``
+            (``--device``) or ``depth`` (a ``--depth`` other than ``none``); ``None``: always there.
+        paper: the column of the paper's estimate of the same quantity (``paper_cx``), if the paper gives one.
+    """
+
+    column: str
+    label: str
+    unit: str
+    needs: Needs | None = None
+    paper: str | None = None
+
+    @property
+    def axis_label(self) -> str:
+        """``CNOT gates: cx [gates]``: what, which column, which unit."""
+        return f"{self.label}: {self.column}" + (f" [{self.unit}]" if self.unit else "")
+
+
+PLOT_METRICS: dict[str, PlotMetric] = {
+    m.column: m
+    for m in (
+        PlotMetric("qubits", "logical qubits", "qubits", paper="paper_qubits"),
+        PlotMetric("data_qubits", "data qubits", "qubits", paper="paper_data_qubits"),
+        PlotMetric("ancillas", "ancilla qubits", "qubits"),
+        PlotMetric("gates", "gates (lowered)", "gates"),
+        PlotMetric("cx", "CNOT gates", "gates", paper="paper_cx"),
+        PlotMetric("single_qubit", "single-qubit gates", "gates", paper="paper_single_qubit"),
+        PlotMetric("two_qubit", "two-qubit gates", "gates"),
+        PlotMetric("t", "T gates (lowered)", "gates"),
+        PlotMetric("rotations", "arbitrary-angle rotations", "gates"),
+        PlotMetric("depth", "circuit depth", "layers", needs="depth"),
+        PlotMetric("two_qubit_depth", "two-qubit depth", "layers", needs="depth"),
+        PlotMetric("rotation_depth", "rotation depth", "layers", needs="depth"),
+        PlotMetric("toffoli", "Toffoli-class gates", "gates"),
+        PlotMetric("ft_total_t", "T gates, fault-tolerant model", "gates"),
+        PlotMetric("physical_qubits", "physical qubits", "qubits", needs="physical"),
+        PlotMetric("physical_runtime_s", "physical runtime", "s", needs="physical"),
+        PlotMetric("physical_t_factories", "T factories", "factories", needs="physical"),
+        PlotMetric("routed_twoq", "two-qubit gates after routing", "gates", needs="device"),
+        PlotMetric("routed_depth", "depth after routing", "layers", needs="device"),
+        PlotMetric("routed_twoq_depth", "two-qubit depth after routing", "layers", needs="device"),
+        PlotMetric("duration_s", "duration on the device", "s", needs="device"),
+        PlotMetric("esp", "estimated success probability", "", needs="device"),
+    )
+}
+"""The metrics a plot can show, by column name (the columns are described in :mod:`qcpp.estimators.tables`)."""
+
+
+def plot_metric(name: str, flag: str = "metric") -> PlotMetric:
+    """The metric of that name.
+
+    Raises:
+        qcpp.errors.OptionError: an unknown name, naming ``flag`` and listing :data:`PLOT_METRICS`.
+    """
+    check_choice(name, PLOT_METRICS, flag)
+    return PLOT_METRICS[name]
+
+
+def _paper_value(row: dict[str, Any], column: str) -> float:
+    if column in row:
+        return float(row[column])
+    est = paper_estimate(row["rows"], row["cols"], row["robots"], row["p"])
+    return float(getattr(est, column.removeprefix("paper_")))
+
+
+def _series(rows: Sequence[dict[str, Any]], x: str, value: Any) -> dict[int, tuple[list[float], list[float]]]:
+    """robots -> (xs, ys): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), same-x rows averaged."""
+    acc: dict[int, dict[float, list[float]]] = defaultdict(lambda: defaultdict(list))
     for r in rows:
-        acc[r["robots"]][r["rows"] * r["cols"]].append(float(r[key]))
-    return {k: (sorted(v), [sum(v[n]) / len(v[n]) for n in sorted(v)]) for k, v in sorted(acc.items())}
+        y = value(r)
+        if y is None:
+            continue
+        key = 0 if x == "robots" else r["robots"]  # against robots: one curve
+        at = r["rows"] * r["cols"] if x == "nodes" else r[x]
+        acc[key][at].append(float(y))
+    return {k: (sorted(v), [sum(v[a]) / len(v[a]) for a in sorted(v)]) for k, v in sorted(acc.items())}
 
 
-def plot_rows(rows: Sequence[dict[str, Any]], path: str | os.PathLike[str]) -> str:
-    """Draw the comparison plot and save it atomically as PNG (temporary file + ``os.replace``).
+def _robots(k: int) -> str:
+    return f"{k} robot{'s' if k != 1 else ''}"
+
+
+def draw_rows(
+    rows: Sequence[dict[str, Any]],
+    metric: str = "cx",
+    *,
+    compare_paper: bool = False,
+    figsize: tuple[float, float] | None = None,
+) -> Any:
+    """Draw ``metric`` of ``rows`` (the layout of the module docstring) on a new matplotlib figure.
 
     Args:
-        rows: rows from :func:`qcpp.estimators.tables.make_rows` (paper columns are computed if absent).
-        path: output file.
+        rows: rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, ``Estimate.to_dict()``), of
+            one SBF rule (the first row's; others are left out).
+        metric: one of :data:`PLOT_METRICS`.
+        compare_paper: also draw the paper's estimates of the metric (computed if the rows lack them).
+        figsize: the figure's size in inches (default: about 5.5 by 4 per panel).
+
+    Returns:
+        The ``matplotlib.figure.Figure`` (not attached to pyplot: nothing to close).
+
+    Raises:
+        qcpp.errors.OptionError: an unknown metric.
+        ValueError: no rows, or no row with a value for the metric (naming the option it needs).
+    """
+    m = plot_metric(metric)
+    if not rows:
+        raise ValueError("nothing to plot: no rows")
+    rule = rows[0].get("rule", "exact")
+    sel = [r for r in rows if r.get("rule", "exact") == rule]
+    if not any(r.get(m.column) is not None for r in sel):
+        need = {"physical": " (estimate with --physical)", "device": " (estimate with --device)",
+                "depth": " (the depth was not computed: --depth none?)"}.get(m.needs or "", "")  # fmt: skip
+        raise ValueError(f"nothing to plot: no row has a value for {m.column}{need}")
+    paper = m.paper if compare_paper else None
+    if compare_paper and m.paper is None:
+        warnings.warn(f"the paper gives no estimate of {m.column}: the plot shows ours only", stacklevel=2)
+
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    nodes = {r["rows"] * r["cols"] for r in sel}
+    layers = sorted({r["p"] for r in sel})
+    x = "nodes" if len(nodes) > 1 else "p" if len(layers) > 1 else "robots"
+    panels = layers if x == "nodes" else [None]
+    ncols = min(len(panels), 3)
+    nrows = -(-len(panels) // ncols)
+    fig = Figure(figsize=figsize or (0.6 + 4.4 * ncols, 0.5 + 3.6 * nrows), layout="constrained")
+    grid = fig.subplots(nrows, ncols, sharey=True, squeeze=False)
+    axes = list(grid.flat)
+    for spare in axes[len(panels):]:
+        spare.set_visible(False)
+    colours = [f"C{i}" for i in range(10)]
+    values = [float(r[m.column]) for r in sel if r.get(m.column) is not None]
+    if paper is not None:
+        values += [_paper_value(r, paper) for r in sel]
+    positive = [v for v in values if v > 0]
+    log_y = bool(positive) and len(positive) == len(values) and max(positive) >= 20 * min(positive)
+    for ax, p in zip(axes, panels):
+        here = [r for r in sel if p is None or r["p"] == p]
+        ours = _series(here, x, lambda r: r.get(m.column))
+        theirs = _series(here, x, lambda r: _paper_value(r, paper)) if paper is not None else {}
+        for i, (k, (xs, ys)) in enumerate(ours.items()):
+            colour = colours[i % len(colours)]
+            who = _robots(k) if x != "robots" else ""
+            ours_label = ", ".join(filter(None, ("ours" if paper else "", who))) or "qcpp"
+            ax.plot(xs, ys, "o-", ms=4, color=colour, label=ours_label)
+            if k in theirs:
+                pxs, pys = theirs[k]
+                ax.plot(pxs, pys, "x--", ms=5, color=colour, alpha=0.75, label=", ".join(filter(None, ("paper", who))))
+        if x == "nodes":
+            log_x = max(nodes) >= 8 * min(nodes)
+            if log_x:
+                ax.set_xscale("log")
+                ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+                ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+                ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.set_xlabel("grid nodes (rows x cols)" + (", log scale" if log_x else ""))
+        else:
+            ax.set_xlabel("QAOA layers p" if x == "p" else "robots")
+            ticks = sorted({r[x] for r in here})
+            ax.set_xticks(ticks if len(ticks) <= 12 else ticks[:: -(-len(ticks) // 12)])
+        if log_y:
+            ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        if p is not None and len(panels) > 1:
+            ax.set_title(f"p = {p}", fontsize=10)
+    for row in grid:
+        row[0].set_ylabel(m.axis_label + (", log scale" if log_y else ""))
+    legend_title = m.column + (f" [{m.unit}]" if m.unit else "")
+    axes[0].legend(fontsize=7, ncol=2 if len(axes[0].lines) > 8 else 1, title=legend_title, title_fontsize=7)
+    fig.suptitle(f"{m.label}{_where(sel, x, layers)}" + (f", rule {rule}" if rule != "exact" else ""))
+    return fig
+
+
+def _where(rows: Sequence[dict[str, Any]], x: str, layers: list[int]) -> str:
+    """The fixed part of the rows, for the title: the grid when it does not vary, ``p`` when one."""
+    parts = []
+    if x != "nodes":
+        grids = sorted({f"{r['rows']}x{r['cols']}" for r in rows})
+        parts.append(f"{', '.join(grids)} grid")
+    if len(layers) == 1:
+        parts.append(f"p = {layers[0]}")
+    return (", " + ", ".join(parts)) if parts else ""
+
+
+def plot_rows(
+    rows: Sequence[dict[str, Any]],
+    path: str | os.PathLike[str],
+    metric: str = "cx",
+    *,
+    compare_paper: bool = False,
+) -> str:
+    """Draw ``metric`` of ``rows`` (:func:`draw_rows`) and save it atomically (temporary file + ``os.replace``;
+    the format from the suffix, default PNG).
+
+    Args:
+        rows: rows of ``qcpp estimate``.
+        path: output file (its folder must exist).
+        metric: one of :data:`PLOT_METRICS`.
+        compare_paper: also draw the paper's estimates.
 
     Returns:
         The path written, as a string.
 
     Raises:
-        ValueError: no rows.
+        ValueError: as :func:`draw_rows`.
     """
-    if not rows:
-        raise ValueError("nothing to plot: no rows")
-    import matplotlib
-
-    matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
-
-    p_min = min(r["p"] for r in rows)
-    rule = rows[0].get("rule", "exact")
-    sel = [dict(r) for r in rows if r["p"] == p_min and r.get("rule", "exact") == rule]
-    for r in sel:
-        if "paper_cx" not in r:
-            est = paper_estimate(r["rows"], r["cols"], r["robots"], r["p"])
-            r["paper_cx"], r["paper_qubits"] = est.cx, est.qubits
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    panels = (("cx", "paper_cx", "CNOT count"), ("qubits", "paper_qubits", "qubits"))
-    for ax, (ours, paper, label) in zip(axes, panels):
-        ours_s, paper_s = _series(sel, ours), _series(sel, paper)
-        for i, (k, (xs, ys)) in enumerate(ours_s.items()):
-            colour = colours[i % len(colours)]
-            ax.plot(xs, ys, "o-", color=colour, label=f"ours, {k} robot{'s' if k > 1 else ''}")
-            pxs, pys = paper_s[k]
-            ax.plot(pxs, pys, "x--", color=colour, alpha=0.7, label=f"paper, {k} robot{'s' if k > 1 else ''}")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("grid size: nodes = rows x cols (log scale)")
-        ax.set_ylabel(label)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.set_title(f"{label}: ours (lowered) vs the paper's estimate")
-    axes[0].legend(fontsize=7, ncol=2)
-    fig.suptitle(f"QAOA coverage path planning, p = {p_min}, rule = {rule}")
-    fig.tight_layout()
+    fig = draw_rows(rows, metric, compare_paper=compare_paper)
     target = os.fspath(path)
-    try:  # the folder must exist (qcpp.io.atomic: one rule for every output option)
-        save_figure_atomic(fig, target, dpi=120)
-    finally:
-        plt.close(fig)
+    save_figure_atomic(fig, target, dpi=120)  # the folder must exist (qcpp.io.atomic: one rule for every output)
     return target

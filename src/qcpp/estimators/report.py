@@ -121,6 +121,7 @@ def estimate_report(
     wide: bool = False,
     device: str | None = None,
     stage: Callable[[str], None] | None = None,
+    metric: str = "cx",
 ) -> Iterator[str]:
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
@@ -129,13 +130,15 @@ def estimate_report(
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
         options: what to estimate.
         compare_paper: add the paper's estimates and ratios.
-        plot: also write the comparison plot (PNG) here; then the rows are printed after the plot is written
-            (a failed plot prints nothing), not streamed.
+        plot: also write the plot of ``metric`` here (:func:`qcpp.estimators.plots.plot_rows`; with the paper's
+            curves when ``compare_paper``); then the rows are printed after the plot is written (a failed plot
+            prints nothing), not streamed.
         doubling: reading of the paper's doubling.
         columns, wide: the ``table`` format's columns (:func:`qcpp.estimators.tables.render`).
         device: add the routed figures on this device (:func:`qcpp.estimators.routed.routed_fields`).
         stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
             row is done).
+        metric: the column the plot shows (:data:`qcpp.estimators.plots.PLOT_METRICS`).
 
     Yields:
         Text pieces (see :func:`qcpp.estimators.tables.render_stream`).
@@ -148,7 +151,7 @@ def estimate_report(
         return
     # a plot needs every row: draw it first, so that a failed plot prints nothing
     kept = list(rows)
-    plot_rows(kept, plot)
+    plot_rows(kept, plot, metric, compare_paper=compare_paper)
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
 
 

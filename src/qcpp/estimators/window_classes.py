@@ -1,62 +1,35 @@
-"""Routed counts of ``compile --device grid`` as a sum over classes of windows, without routing the circuit.
+"""Routed counts of ``compile --device grid`` (medial layout) as a sum over classes of windows, without routing
+the whole circuit.
 
-On a square-grid device with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of
-the lowered circuit (one gadget, ``fuse=False``) is a *window*: :func:`qcpp.layout.medial.allocate_ancillas` gives its
-ancillas free device qubits near its data (searching, for the partial mixers, the sites among the nearest few whose
-window routes to the fewest gates), :func:`qcpp.routing.bridge.bridge_far_phases` relays its far ``rzz`` phases
-through clean device qubits where that routes cheaper, and :func:`qcpp.routing.windows.route_windows` routes it with
-SABRE on the device qubits around it and brings every qubit home at its end. Each of the three decides per section,
-from the section's gates, the data homes and the clean qubits around it (a section's ancillas and relay holders are
-|0> at both ends). So a window's routed gates depend only on its own gates and on the device around it, and the routed
-circuit's gate counts are the sum of its windows' counts. :func:`routed_sum` groups the windows into classes of equal
-*signature*:
+On a square grid with the medial layout (:func:`qcpp.pipeline.device_compile.medial_compile`) every section of the
+lowered, unfused circuit is a *window*: its ancillas are allocated near its data
+(:func:`qcpp.layout.medial.allocate_ancillas`), its far phases relayed (:func:`qcpp.routing.bridge.bridge_far_phases`)
+and it is routed by SABRE on the device around it, every qubit home at its end
+(:func:`qcpp.routing.windows.route_windows`). All three decide from the window's gates, the data homes and the clean
+qubits around it, so the routed circuit's counts are the sum of its windows'. :func:`routed_sum` groups windows by
+*signature* (lowered gates with qubits named by first use, data homes relative to their bounding box, and the
+device cropped :data:`MARGIN` sites around that box), routes one representative per class on its crop with
+compile's own functions, and multiplies (layer ``k``'s windows are layer 0's with other angles).
 
-* the window's lowered gates, its qubits named by first use (data or ancilla: which ancilla does not matter, the
-  allocation re-homes every ancilla per section) -- lowered once per pattern of high-level gates;
-* the homes of its data qubits relative to an anchor (the top-left corner of their bounding box);
-* the device around them: a crop of the device, the data qubits' bounding box grown by :data:`MARGIN` sites
-  (clipped at the device's edges), with every data home in the crop (the qubits allocation must not take; every
-  other site is clean, a candidate ancilla or relay holder).
+Invariant: a crop answers for the device only if nothing the representative touches (ancilla and relay homes,
+routed gates, every routing patch of the searches: :meth:`qcpp.routing.context.RoutingContext.watching`) comes within
+:data:`GUARD` sites of a side that is not a device edge and no part was routed on its whole connected component;
+otherwise the class is split at twice the margin, up to the whole device. Windows that need the whole device (the
+balance and coupling gadgets; with several robots every visit gadget) are routed on it, one SABRE run each, as
+compile does, up to :data:`WHOLE_DEVICE_MAX_QUBITS` qubits and the caller's work budget; beyond either the sum is
+``None``. So the sum is fast where windows are local (one robot) and no faster than compile where they are not.
 
-One representative per class is allocated (with compile's search), relayed and routed *on its crop* (a grid device of
-the crop's shape) by the very functions compile runs (:func:`qcpp.pipeline.device_compile.medial_compile`), and its
-routed counts are multiplied by the class's multiplicity (layers repeat: the windows of layer ``k`` are those of layer
-0 with other angles). A crop answers for the whole device when nothing the representative touches comes within
-:data:`GUARD` sites of a side of the crop that is not a device edge (ancilla and relay homes and every routed gate,
-SWAPs included), no routing patch of any routing done for it -- the search's candidate allocations and the relay's
-with-and-without comparison included (:meth:`qcpp.routing.context.RoutingContext.watching`) -- reaches such a side
-(else the crop clipped a patch the device would not clip), and no part of it was routed on its whole connected
-component (the router's fallback where the qubits' neighbourhoods do not connect them,
-:attr:`qcpp.routing.context.PatchWatch.whole_component`: that routing sees the whole device). For the allocation's
-argmin over every free device qubit and the relay's cheapest chain over every clean one, that is an argument rather
-than a proof (a site outside the crop is farther from every qubit inside than its projection on the crop's side; ties
-go by row-major index, whose order the crop keeps); the tests are the evidence. Otherwise the class is split by its
-members' signatures at twice the margin (their larger crops may differ) and each part is tried again, up to the whole
-device. A class's routed cost is kept in the run's :attr:`~qcpp.routing.context.RoutingContext.window_classes` (per
-signature and gate set), so a sweep over scenarios routes each class once. Windows that need the whole device -- the
-phase separator's balance and coupling gadgets, and with several robots every node's visit gadget (the tiled layout
-puts a node's copies in every robot's patch, far apart) -- are routed together on the whole device, one SABRE run each
-as in compile, while it has at most :data:`WHOLE_DEVICE_MAX_QUBITS` qubits (routing needs its dense distance matrix);
-above that they are *bounded*: every two-qubit gate of theirs is charged a SWAP chain to its partner and back along a
-shortest path (``1 + 6 (D - 1)`` CX for a device of diameter ``D``), a routing of that window that returns home, not
-SABRE's. So the sum is fast where windows are local (one robot: 30x30 at ``p = 3`` in seconds); with several robots it
-routes every visit gadget on the whole device, as compile does, and is no faster than compile.
-
-What is exact when no window is bounded (``tests/compiler/window_classes_test.py`` checks each against
-``compile_for_device(..., layout_method="medial")`` on many small scenarios): the lowered gate counts after the
-relays (and before them, :attr:`RoutedSum.compiled_ops`) and native gate counts by name, hence the two-qubit and
-one-qubit counts, and the estimated success probability on devices with uniform error rates (a product over
-gates, so its logarithm is a sum over classes). Depth and duration are not
-sums: windows on disjoint qubits overlap in the ASAP schedule. The sum of the windows' own depths (durations) is
-an upper bound (the windows run one after another in the worst case) once each one-qubit gate that follows its
-qubit's last two-qubit gate in a window adds one level: the router defers such a gate to just before the qubit's
-next two-qubit gate, in a later window, and one inserted one-qubit gate deepens a circuit by at most one.
+Exact (``tests/compiler/window_classes_test.py`` compares with ``compile_for_device(..., layout_method="medial")``):
+lowered and native gate counts by name, SWAPs, and the ESP on devices with uniform error rates (its logarithm is a
+sum over classes). Depth and duration are upper bounds: the windows' own, summed, plus one level per one-qubit gate
+that trails its qubit's last two-qubit gate in a window (the router defers it into a later window). The argument
+and its evidence: ``docs/resource-estimates.md``, "The routed cost as a sum over window classes".
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
     >>> s = routed_sum(default_scenario(3, 3, 1), 1, device="grid")
-    >>> s.device.name, s.windows, s.bounded_windows, s.two_qubit > 106
-    ('grid:5x5', 6, 0, True)
+    >>> s.device.name, s.windows, s.two_qubit > 106
+    ('grid:5x5', 6, True)
 """
 
 from __future__ import annotations
@@ -81,7 +54,7 @@ from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.native import native_gates, one_qubit_name
+from qcpp.routing.native import native_gates
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_windows
 
@@ -100,8 +73,8 @@ routed window of a class costs, per signature and device gate set: native gates,
 :class:`~qcpp.routing.options.RoutingOptions`) holds before it starts over."""
 
 WHOLE_DEVICE_MAX_QUBITS = 4_096
-"""Largest device a window spanning it is routed on (routing needs the device's dense distance matrix); windows
-on larger devices whose crop is the whole device are bounded (see the module docs)."""
+"""Largest device a window spanning it is routed on (routing needs the device's dense distance matrix): on a
+larger one, a window whose crop is the whole device makes the sum ``None``."""
 
 
 @dataclass(frozen=True)
@@ -110,21 +83,19 @@ class WindowClass:
 
     Attributes:
         multiplicity: Windows in the class (each layer's counted once per layer).
-        lowered_ops: Lowered gate counts by name of one window (after the relays if routed, before if bounded).
-        swaps: SWAPs its routing inserts (``None``: bounded, not routed).
-        two_qubit_bound: Routed two-qubit gates charged to one bounded window (``None`` if routed).
-        native_ops: Native gate counts by device gate name of one routed window (``None`` if bounded).
-        depth, two_qubit_depth: ASAP depth of one routed native window (``None`` if bounded).
-        duration_s: ASAP length of one routed native window in seconds (``None``: bounded or no durations).
+        lowered_ops: Lowered gate counts by name of one window, after the relays.
+        swaps: SWAPs its routing inserts.
+        native_ops: Native gate counts by device gate name of one routed window.
+        depth, two_qubit_depth: ASAP depths of one routed native window.
+        duration_s: ASAP length of one routed native window in seconds (``None``: no durations).
     """
 
     multiplicity: int
     lowered_ops: tuple[tuple[str, int], ...]
-    swaps: int | None
-    two_qubit_bound: int | None
-    native_ops: tuple[tuple[str, int], ...] | None
-    depth: int | None
-    two_qubit_depth: int | None
+    swaps: int
+    native_ops: tuple[tuple[str, int], ...]
+    depth: int
+    two_qubit_depth: int
     duration_s: float | None
 
 
@@ -137,17 +108,13 @@ class RoutedSum:
         p: QAOA layers.
         windows: Windows of the whole circuit (state preparation + ``p`` layers).
         classes: The :class:`WindowClass` es.
-        bounded_windows: Windows that were bounded, not routed (0: every count is exact).
-        lowered_ops: Lowered gate counts by name (before routing, after compile's relays of far phases; a bounded
-            window counts its gates before relays, which add CX only: the relays are decided by routing).
+        lowered_ops: Lowered gate counts by name (after compile's relays of far phases).
         compiled_ops: Lowered gate counts by name of the compiled circuit, before allocation and relays (what
-            compile's ``auto`` layout compares with :attr:`qcpp.routing.options.RoutingOptions.auto_compare_max_twoq`).
+            :func:`qcpp.pipeline.device_compile.auto_tries_greedy` decides on).
         swaps: SWAPs of the routed windows.
-        native_ops: Native gate counts by name of the routed windows (bounded windows not included).
-        two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP), bounded windows
-            included at their bound.
-        one_qubit: Native one-qubit gates of the routed windows (bounded windows: 6 per two-qubit gate plus 3 per
-            lowered one-qubit gate, an upper bound).
+        native_ops: Native gate counts by name.
+        two_qubit: Routed two-qubit gates (native two-qubit gates = lowered CX + 3 per SWAP).
+        one_qubit: Native one-qubit gates.
         log_esp: Natural log of the estimated success probability (``None``: the device's errors are not uniform).
         depth_bound, two_qubit_depth_bound: Sums of the windows' own depths (the depth also counts each one-qubit
             gate the router defers into a later window once).
@@ -158,7 +125,6 @@ class RoutedSum:
     p: int
     windows: int
     classes: tuple[WindowClass, ...]
-    bounded_windows: int
     lowered_ops: dict[str, int]
     compiled_ops: dict[str, int]
     swaps: int
@@ -169,11 +135,6 @@ class RoutedSum:
     depth_bound: int
     two_qubit_depth_bound: int
     duration_bound_s: float | None
-
-    @property
-    def exact(self) -> bool:
-        """Every window routed (the counts and the ESP are those of the circuit compile writes)."""
-        return self.bounded_windows == 0
 
     @property
     def esp(self) -> float | None:
@@ -285,13 +246,9 @@ def _route_on(
     windows: Sequence[tuple[_Template, Sequence[tuple[int, int]]]], crop: _Crop, occupied: np.ndarray, seed: int,
     options: RoutingOptions, context: RoutingContext,
 ) -> list[_Routed] | str | None:  # fmt: skip
-    """Allocate, relay and route windows on ``crop`` as compile does on the device
-    (:func:`qcpp.pipeline.device_compile.medial_compile`: :func:`~qcpp.layout.medial.allocate_ancillas` with its search,
-    :func:`~qcpp.routing.bridge.bridge_far_phases`, :func:`~qcpp.routing.windows.route_windows`), one section each
-    (windows are independent: each starts and ends with every qubit home, and allocation and relays decide per
-    section): per window its lowered gates after the relays and its routed gates (on the crop's qubits); ``None``
-    if the crop does not answer for the device (see the module docs), ``"whole"`` if the window needs the whole
-    device (a part routed on its whole component, in the search's, the relay's or the final routing: no crop
+    """Allocate, relay and route windows on ``crop`` with compile's functions, one section each: per window its
+    lowered gates after the relays and its routed gates (on the crop's qubits); ``None`` if the crop does not
+    answer for the device (module docs), ``"whole"`` if a part was routed on its whole component (no crop
     answers)."""
     dev, dist = _grid(crop.rows, crop.cols)
     sub = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
@@ -394,23 +351,15 @@ def _trailing(lowered: Sequence[tuple[str, tuple[int, ...]]], device: Device) ->
     return count, count * max((d for _, per in device.duration_1q_s for d in per), default=0.0)
 
 
-def _bound_per_gate(shape: tuple[int, int]) -> int:
-    return 1 + 6 * (shape[0] + shape[1] - 2 - 1)
-
-
 def _native_counts(lowered: Counter[str], swaps: int, device: Device, fused: int = 0) -> Counter[str]:
     """Native gates (by the device's gate name, ``sx`` for ``rx(pi/2)``) of lowered gates plus SWAPs (3 CX each, 2
     fewer for each of the ``fused`` ones)."""
     out: Counter[str] = Counter()
-    twoq = device.two_qubit_gate
-    native_x = "x" in device.native_gates
     counts = Counter(lowered)
     counts["cx"] += 3 * swaps - 2 * fused
     for name, k in counts.items():
-        qs = (0, 1) if name == "cx" or name == "cz" else (0,)
-        params = (math.pi / 2,) if name in ("rz", "rx") else ()
-        for g in native_gates(Gate(name, qs, params, None), twoq, native_x):
-            out[one_qubit_name(device, g) if len(g[1]) == 1 else g[0]] += k
+        for native, _ in _expansion(name, 2 if name in ("cx", "cz") else 1, device):
+            out[native] += k
     return out
 
 
@@ -443,7 +392,8 @@ def routed_sum(
 ) -> RoutedSum | None:
     """The routed figures of ``compile_for_device(scenario, p, device, options, layout_method="medial")`` as a sum
     over window classes (see the module docs), or ``None`` where the medial layout does not apply (not a square
-    grid, or too small for it).
+    grid, or too small for it) or a window needs the whole device beyond :data:`WHOLE_DEVICE_MAX_QUBITS` qubits or
+    ``whole_device_work``.
 
     Args:
         scenario: The scenario.
@@ -452,8 +402,8 @@ def routed_sum(
         device: A device name or :class:`Device` (the unsized ``grid`` is sized as compile sizes it).
         seed: SABRE's seed (compile's default).
         arrangement: The medial layout's robot arrangement.
-        whole_device_work: At most this many (windows routed on the whole device x device qubits): above it, such
-            windows are bounded instead (:attr:`RoutedSum.exact` is then ``False``); ``None``: no limit.
+        whole_device_work: At most this many (windows routed on the whole device x device qubits), else ``None``
+            is returned as soon as the budget is exceeded; ``None``: no limit.
         stage: Called with the stage as it starts (``routing window classes (12 done, 30 to go)``).
         routing: The routing settings, as given to compile.
         context: The run's memos (default: a fresh one).
@@ -464,7 +414,7 @@ def routed_sum(
     Raises:
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
-    from qcpp.pipeline.device_compile import medial_device
+    from qcpp.pipeline.device_compile import grown_device, medial_device
     from qcpp.pipeline.device_plan import device_plan_options
     from qcpp.plan.qaoa import qaoa_plan
 
@@ -491,8 +441,7 @@ def routed_sum(
         if device != "grid":
             raise ValueError(f"a section needs {need} ancillas; device {dev.name} has {dev.num_qubits - n_data} "
                              "free qubits")  # fmt: skip
-        side = int(dev.name.split("x")[-1]) + 1
-        dev = get_device(f"grid:{side}x{side}")
+        dev = grown_device(dev)
     shape = grid_shape(dev)
     assert shape is not None
     homes = medial_placement(scenario, dev, arrangement)
@@ -536,6 +485,7 @@ def routed_sum(
     entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
     results: list[_Cost | None] = []
     whole_batch: list[int] = []
+    work = math.inf if whole_device_work is None else whole_device_work
     whole = max(shape)  # a margin whose crop is the whole device
     pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
     say = stage or (lambda _text: None)
@@ -553,12 +503,12 @@ def routed_sum(
                 pending.extend((wider, s2, g2) for s2, g2 in grouped(group, wider).items())
                 continue
             hit = _summary(routed[0], dev)  # type: ignore[index]
-        elif hit is None and dev.num_qubits <= WHOLE_DEVICE_MAX_QUBITS:  # routed with the others below
+        elif hit is None:  # routed with the others below
             whole_batch.append(len(entries))
+            if dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS or len(whole_batch) * dev.num_qubits > work:
+                return None
         entries.append((sig, group))
         results.append(hit)
-    if whole_device_work is not None and len(whole_batch) * dev.num_qubits > whole_device_work:
-        whole_batch = []  # over budget: those windows are bounded, not routed
     if whole_batch:
         say(f"routing {len(whole_batch):,} window classes on the whole device")
         crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
@@ -569,33 +519,21 @@ def routed_sum(
     if len(context.window_classes) > ROUTED_CLASSES_LIMIT:
         context.window_classes.clear()
     for (sig, _), result in zip(entries, results, strict=True):
-        if result is not None:
-            context.window_classes[(sig, device_key)] = result
+        context.window_classes[(sig, device_key)] = result
 
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []
     lowered: Counter[str] = Counter()
     compiled: Counter[str] = Counter()
     native: Counter[str] = Counter()
-    swaps = bounded = windows = two_bound = one_bound = depth = depth2 = 0
+    swaps = windows = depth = depth2 = 0
     duration: float | None = 0.0
-    for i, (_, group) in enumerate(entries):
+    for (_, group), result in zip(entries, results, strict=True):
+        assert result is not None
         weight = sum(m[0] for m in group)
         template = group[0][1]
         windows += weight
         compiled.update({k: v * weight for k, v in template.ops})
-        result = results[i]
-        if result is None:
-            ops = Counter(dict(template.ops))  # the window before relays: the bound does not relay
-            lowered.update({k: v * weight for k, v in ops.items()})
-            cx = ops.get("cx", 0)
-            charged = cx * _bound_per_gate(shape)
-            bounded += weight
-            two_bound += weight * charged
-            one_bound += weight * (6 * charged + 3 * (sum(ops.values()) - cx))
-            out.append(WindowClass(weight, template.ops, None, charged, None, None, None, None))
-            duration = None
-            continue
         ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
         lowered.update({k: v * weight for k, v in ops.items()})
         counts = _native_counts(ops, result.swaps, dev, result.fused)
@@ -609,19 +547,19 @@ def routed_sum(
             duration += weight * (result.duration_s + result.late_s)
         else:
             duration = None
-        out.append(WindowClass(weight, result.lowered_ops, result.swaps, None, tuple(sorted(counts.items())),
+        out.append(WindowClass(weight, result.lowered_ops, result.swaps, tuple(sorted(counts.items())),
                                result.depth, result.two_qubit_depth, result.duration_s))  # fmt: skip
     twoq_name = dev.two_qubit_gate
-    two = native.get(twoq_name, 0) + two_bound
-    one = sum(v for k, v in native.items() if k != twoq_name) + one_bound
+    two = native.get(twoq_name, 0)
+    one = sum(v for k, v in native.items() if k != twoq_name)
     log_esp = None
-    if log_errors is not None and not bounded:
+    if log_errors is not None:
         log_esp = sum(v * log_errors.get(k, 0.0) for k, v in native.items()) + n_data * log_errors["readout"]
     if duration is not None and dev.readout_duration_s:
         duration += max(dev.readout_duration_s)
     elif duration is not None:
         duration = None
-    return RoutedSum(dev, p, windows, tuple(out), bounded, dict(lowered), dict(compiled), swaps, dict(native), two,
+    return RoutedSum(dev, p, windows, tuple(out), dict(lowered), dict(compiled), swaps, dict(native), two,
                      one, log_esp, depth, depth2, duration)  # fmt: skip
 
 
@@ -633,6 +571,7 @@ def _expansion(name: str, arity: int, device: Device) -> tuple[tuple[str, tuple[
 
 @lru_cache(maxsize=256)
 def _expansion_of(name: str, arity: int, twoq: str, native: tuple[str, ...]) -> tuple[tuple[str, tuple[int, ...]], ...]:
+    """Pure memo: ``_expansion_of.cache_clear()`` empties it."""
     params = (math.pi / 2,) if name in ("rz", "rx") else ()
     gates = native_gates(Gate(name, tuple(range(arity)), params, None), twoq, "x" in native)
     sx = "sx" in native

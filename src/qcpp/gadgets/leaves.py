@@ -69,13 +69,15 @@ def leaf_cost(name: str, k: int = 0) -> Cost:
 
     Returns:
         The cost in the default basis.
-    """
+
+    Pure memo: ``leaf_cost.cache_clear()`` empties it."""
     return _cost(name, k, _FIXED)
 
 
 @cache
 def leaf_logical_cost(name: str, k: int = 0) -> Cost:
-    """Like :func:`leaf_cost` with ANDs, their uncomputes and Toffolis kept whole (the fault-tolerant view)."""
+    """Like :func:`leaf_cost` with ANDs, their uncomputes and Toffolis kept whole (the fault-tolerant view).
+    Pure memo: ``leaf_logical_cost.cache_clear()`` empties it."""
     return _cost(name, k, _LOGICAL)
 
 

@@ -168,7 +168,8 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
         program: every step but the last has two literals and writes a fresh temporary; literals read even
             parities of the plaquette edges, outer slots or temporaries.
         target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
-    """
+
+    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it."""
     inner, final = program.steps[:-1], program.steps[-1]
     if any(len(lits) != 2 for lits in inner) or program.targets != tuple(range(len(program.steps))):
         raise ValueError("parity-basis mixers need two-literal inner steps, each into a fresh temporary")
@@ -332,7 +333,8 @@ def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Tar
 
 @lru_cache(maxsize=1024)
 def plan_mcx_mixer(program: AbstractProgram) -> MixerPlan:
-    """The controlled-X network plan (any rule; used for ``paper``): one multi-controlled X per step."""
+    """The controlled-X network plan (any rule; used for ``paper``): one multi-controlled X per step.
+    Pure memo: ``plan_mcx_mixer.cache_clear()`` empties it."""
     ops: list[tuple[str, tuple[Slot, ...]]] = []
     polarity: dict[Slot, bool] = {}
     for target_temp, lits in zip(program.targets, program.steps):

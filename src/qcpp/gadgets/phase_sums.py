@@ -510,7 +510,7 @@ def _abstract_phase(
     linear: tuple[float, ...],
 ) -> tuple[float, IsingPhase]:
     """The phase on abstract register labels ``(form, column)``: it depends on the registers' shape only, which
-    many gadgets share (memoised: a sweep prices thousands)."""
+    many gadgets share (memoised: a sweep prices thousands). Pure memo: ``_abstract_phase.cache_clear()`` empties it."""
     registers = [[(a, k) if p else None for k, p in enumerate(pr)] for a, pr in enumerate(presents)]
     return _register_phase(gamma, registers, list(offs), matrix, linear)  # type: ignore[arg-type]
 

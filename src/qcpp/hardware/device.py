@@ -139,6 +139,7 @@ class Device:
 
 @cache
 def _edge_index(device: Device) -> dict[tuple[int, int], int]:
+    """Pure memo: ``_edge_index.cache_clear()`` empties it."""
     out: dict[tuple[int, int], int] = {}
     for i, (a, b) in enumerate(device.coupling):
         out[(a, b)] = out[(b, a)] = i
@@ -168,7 +169,7 @@ def heavy_hex_coupling(distance: int) -> tuple[int, tuple[tuple[int, int], ...]]
     """IBM's heavy-hex lattice of code distance ``distance`` (odd): ``(5 d^2 - 2 d - 1) / 2`` qubits.
 
     Built by Qiskit's ``CouplingMap.from_heavy_hex`` (the lattice of IBM's devices).
-    """
+    Pure memo: ``heavy_hex_coupling.cache_clear()`` empties it."""
     from qiskit.transpiler import CouplingMap
 
     cm = CouplingMap.from_heavy_hex(distance, bidirectional=False)
@@ -197,7 +198,8 @@ def heavy_hex_coordinates(distance: int) -> tuple[tuple[int, int], ...]:
 
     >>> heavy_hex_coordinates(3)[:5], heavy_hex_coordinates(3)[9:13]
     (((0, 0), (0, 2), (0, 4), (2, 0), (2, 2)), ((1, 0), (1, 3), (3, 1), (3, 4)))
-    """
+
+    Pure memo: ``heavy_hex_coordinates.cache_clear()`` empties it."""
     d = distance
     coords: list[tuple[int, int]] = [(2 * i, 2 * j) for i in range(d) for j in range(d)]  # data qubits
     for g in range(d - 1):  # syndrome (bridge) qubits, (d + 1) / 2 per gap
@@ -349,7 +351,8 @@ def named_device(name: str) -> Device:
 
     Raises:
         DeviceError: no such file.
-    """
+
+    Pure memo: ``named_device.cache_clear()`` empties it."""
     if name not in device_names():
         raise DeviceError(f"unknown device {name!r} (known: {', '.join(device_names())}; families: {_family_list()})")
     raw = json.loads(resources.files(_DATA_PACKAGE).joinpath(f"{name}.json").read_text())

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Mapping
+from functools import lru_cache
 from numbers import Real
 from typing import Literal, TypeAlias
 
@@ -54,9 +55,15 @@ class UnboundParameterError(QcppError):
 Terms: TypeAlias = tuple[tuple[str, float], ...]
 
 _SYMBOL_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_VALID_NAMES: set[str] = set()  # names already checked against _SYMBOL_RE
 _LAYER_RE = re.compile(r"^(.*?)_(\d+)$")
 _KIND_ORDER = {"gamma": 0, "beta": 1}
+
+
+@lru_cache(maxsize=1 << 12)
+def _is_symbol_name(name: str) -> bool:
+    """Whether ``name`` is an identifier (pure memo: a circuit names few symbols many times;
+    ``_is_symbol_name.cache_clear()`` empties it)."""
+    return _SYMBOL_RE.match(name) is not None
 
 
 def symbol_sort_key(name: str) -> tuple[int, int, int, str]:
@@ -160,10 +167,8 @@ class Angle:
         >>> Angle.symbol("gamma_0", 0.5)
         Angle('0.5*gamma_0')
         """
-        if name not in _VALID_NAMES:
-            if not isinstance(name, str) or not _SYMBOL_RE.match(name):
-                raise ValueError(f"invalid symbol name {name!r}")
-            _VALID_NAMES.add(name)
+        if not isinstance(name, str) or not _is_symbol_name(name):
+            raise ValueError(f"invalid symbol name {name!r}")
         if type(coeff) is not float:
             coeff = _check_number(coeff)
         return _make(0.0, ((name, coeff),) if coeff != 0.0 else ())

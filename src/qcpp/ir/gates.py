@@ -513,6 +513,7 @@ def _controlled(u: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=64)
 def _permutation_matrix(k: int, state: str) -> np.ndarray:
+    """Pure memo: ``_permutation_matrix.cache_clear()`` empties it."""
     dim = 1 << (k + 1)
     want = sum(1 << i for i, c in enumerate(state) if c == "1")
     cmask = (1 << k) - 1

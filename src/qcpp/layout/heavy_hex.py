@@ -136,6 +136,8 @@ def hex_distance(scenario: Scenario) -> int:
 
 @cache
 def _index(d: int) -> dict[tuple[int, int], int]:
+    """Qubit index of each coordinate of the distance-``d`` lattice (pure memo of a value callers only read;
+    ``_index.cache_clear()`` empties it)."""
     return {xy: q for q, xy in enumerate(heavy_hex_coordinates(d))}
 
 

@@ -75,9 +75,11 @@ from qcpp.routing.windows import route_windows
 
 __all__ = [
     "DeviceCompileResult",
+    "auto_tries_greedy",
     "compile_for_device",
     "device_for",
     "greedy_route",
+    "grown_device",
     "hex_device",
     "layout_device",
     "medial_device",
@@ -274,7 +276,7 @@ def compile_for_device(
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
-            if layout_method == "auto" and _two_qubit(circuit) <= routing.auto_compare_max_twoq:
+            if layout_method == "auto" and auto_tries_greedy(_two_qubit(circuit), routing):
                 other = routed.device
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
@@ -353,6 +355,19 @@ def _greedy_compare(
     return embed_routed(greedy_route(circuit, sub, seed, layouts, measured, options, context), device, sites)
 
 
+def auto_tries_greedy(two_qubit: int, routing: RoutingOptions = DEFAULT_ROUTING) -> bool:
+    """Whether the ``auto`` layout, on a device that holds the geometric layout, also routes a circuit of
+    ``two_qubit`` lowered two-qubit gates greedily and keeps the fewer routed two-qubit gates (one routing of a
+    small circuit may need fewer SWAPs than its windows). Above ``routing.auto_compare_max_twoq`` ``auto`` is the
+    geometric layout, so what predicts that layout's routing predicts ``auto``'s.
+
+    Example:
+        >>> auto_tries_greedy(2_000), auto_tries_greedy(2_001)
+        (True, False)
+    """
+    return two_qubit <= routing.auto_compare_max_twoq
+
+
 def _two_qubit(c: Circuit) -> int:
     return sum(1 for g in c.gates if len(g[1]) == 2)
 
@@ -401,8 +416,14 @@ def layout_device(scenario: Scenario, spec: str | Device, arrangement: str = "ti
     return medial_device(scenario, spec, arrangement)
 
 
-def _grown(dev: Device) -> Device:
-    """The next bigger member of an unsized family (a section needs more free qubits)."""
+def grown_device(dev: Device) -> Device:
+    """The next bigger member of the unsized family ``grid`` or ``heavy-hex`` (a section needs more free qubits):
+    one more row and column, two more in distance.
+
+    Example:
+        >>> grown_device(get_device("grid:5x5")).name, grown_device(get_device("heavy-hex:3")).name
+        ('grid:6x6', 'heavy-hex:5')
+    """
     if dev.family == "heavy-hex":
         return get_device(f"heavy-hex:{int(dev.name.split(':')[1]) + 2}")
     side = int(dev.name.split("x")[-1]) + 1
@@ -459,7 +480,7 @@ def medial_compile(
         except ValueError:
             if spec not in ("grid", "heavy-hex"):
                 raise
-            dev = _grown(dev)
+            dev = grown_device(dev)
             continue
         return _relay_and_route(logical, layout, dev, dist, seed, measured, say, routing, context)
     return None

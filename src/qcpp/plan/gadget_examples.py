@@ -89,6 +89,7 @@ def check_gadget(g: Gadget) -> list[str]:
 # --- the examples -------------------------------------------------------------------------------------------------
 @cache
 def _scenarios() -> tuple[Scenario, ...]:
+    """Pure memo: ``_scenarios.cache_clear()`` empties it."""
     interior = scenario_from_dict(
         {
             "grid": {"rows": 4, "cols": 4, "obstacles": [[2, 1]]},
@@ -101,6 +102,7 @@ def _scenarios() -> tuple[Scenario, ...]:
 
 @cache
 def _gadgets(options: Any, arithmetic: bool) -> tuple[Gadget, ...]:
+    """Pure memo: ``_gadgets.cache_clear()`` empties it."""
     from qcpp.plan.qaoa import qaoa_plan
 
     out: list[Gadget] = []

@@ -7,7 +7,8 @@ row and column are the first, the last or neither, so one robot's partial mixers
 ``O(robots)`` work per scenario, whatever the grid size. The junctions between consecutive partial mixers
 (:mod:`qcpp.gadgets.junction`) are counted the same way: a junction's kind depends on the two pictures and
 on the second plaquette's offset (``far`` beyond two rows or columns, or across robots). Each picture's partial
-mixer and each junction class's kind is built once, on a real plaquette, for every later scenario.
+mixer and each junction class's kind is built once, on a real plaquette, and kept for every later scenario in
+named tables of the process cache :data:`qcpp.gadgets.pricing.COSTS` (``COSTS.clear()`` forgets them).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -27,6 +28,7 @@ from typing import Any
 
 from qcpp.gadgets.junction import MixerJunction, MixerRotation
 from qcpp.gadgets.partial_mixer import McxPartialMixer, ParityPartialMixer, partial_mixer
+from qcpp.gadgets.pricing import COSTS
 from qcpp.ir.angles import Angle
 from qcpp.plan.call_graph import SCENARIOS_KEPT, GadgetKind
 from qcpp.problem.sbf import LocalPicture
@@ -100,7 +102,8 @@ def boundary(r: int, c: int, rows: int, cols: int) -> int:
 
 @lru_cache(maxsize=1 << 16)  # a sweep asks about the same few pictures again and again
 def _signature(k: int, rows: int, cols: int, robot: Robot | None) -> LocalPicture:
-    """The local picture of plaquette ``k`` (row-major) on an open grid (``robot``: whose endpoints it shows)."""
+    """The local picture of plaquette ``k`` (row-major) on an open grid (``robot``: whose endpoints it shows).
+    Pure memo: ``_signature.cache_clear()`` empties it."""
     i, j = divmod(k, cols - 1)
     corners = (i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j)
     ends = (None, None) if robot is None else (robot.start, robot.goal)
@@ -113,21 +116,22 @@ def _touched(robot: Robot, rows: int, cols: int) -> set[int]:
             if 0 <= i < rows - 1 and 0 <= j < cols - 1}  # fmt: skip
 
 
-_REPRESENTATIVE: dict[tuple[LocalPicture, str, str], Mixer | None] = {}
-"""A partial mixer per picture, rule and target (``None``: no flip is ever allowed), for every later scenario."""
-_KINDS: dict[Hashable, tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]] = {}
-_JUNCTION: dict[tuple[Hashable, str, str], GadgetKind] = {}
-"""The kind of each junction class, rule and target (from its first realisation), for every later scenario."""
+# Names of the per-kind tables of the process cache COSTS (qcpp.gadgets.pricing; COSTS.clear() forgets them):
+_REPRESENTATIVE = "mixer representative"  # (picture, rule, target) -> partial mixer (None: no flip ever allowed)
+_KINDS = "mixer kinds"  # partial-mixer kind -> (kind, rotation, opening junction, closing junction)
+_JUNCTION = "mixer junction"  # (junction class, rule, target) -> kind, from the class's first realisation
 
 
 def _kinds_of(m: Mixer) -> tuple[GadgetKind, GadgetKind, GadgetKind, GadgetKind]:
     """A representative's kinds: itself, its rotation, the layer's opening junction into it and the closing one
     out of it (kept per partial-mixer kind)."""
-    if m.kind not in _KINDS:
+    kinds = COSTS.table(_KINDS).get(m.kind)
+    if kinds is None:
         parity = isinstance(m, ParityPartialMixer)
         pieces = (m, MixerRotation(m), MixerJunction(None, m), MixerJunction(m, None)) if parity else (m,) * 4
-        _KINDS[m.kind] = tuple(GadgetKind.of(g) for g in pieces)  # type: ignore[assignment]
-    return _KINDS[m.kind]
+        kinds = tuple(GadgetKind.of(g) for g in pieces)
+        COSTS.remember(_KINDS, m.kind, kinds)
+    return kinds  # type: ignore[no-any-return]
 
 
 def _placed(scenario: Scenario, robot: int, k: int, rule: str, target: str) -> Mixer | None:
@@ -142,10 +146,11 @@ def _mixer(
     """The partial mixer of the picture ``sig`` (``None``: no flip is ever allowed), built the first time on
     ``where = (robot, plaquette)`` of this scenario (``None``: a plaquette whose plain picture it is) and kept for
     every later scenario."""
-    if (sig, rule, target) not in _REPRESENTATIVE:
+    known = COSTS.table(_REPRESENTATIVE)
+    if (sig, rule, target) not in known:
         robot, k = where or _realise(scenario, sig, plain, 1)  # type: ignore[arg-type]
-        _REPRESENTATIVE[sig, rule, target] = _placed(scenario, robot, k, rule, target)
-    return _REPRESENTATIVE[sig, rule, target]
+        COSTS.remember(_REPRESENTATIVE, (sig, rule, target), _placed(scenario, robot, k, rule, target))
+    return known[sig, rule, target]  # type: ignore[no-any-return]
 
 
 def _realise(scenario: Scenario, key: Hashable, plain: Callable[[int], Hashable], span: int) -> tuple[int, int]:
@@ -180,7 +185,8 @@ def mixer_part(
 
     Raises:
         ValueError: the scenario has obstacles.
-    """
+
+    Pure memo: ``mixer_part.cache_clear()`` empties it."""
     if scenario.obstacles:
         raise ValueError("signature counting needs a grid without obstacles")
     rows, cols = scenario.grid.rows, scenario.grid.cols
@@ -262,14 +268,16 @@ def _junction_kinds(
     for (key, at), n in counts.items():
         if n == 0:
             continue
-        if (key, rule, target) not in _JUNCTION:
+        kind = COSTS.table(_JUNCTION).get((key, rule, target))
+        if kind is None:
             if at is None:  # a plain class, realised by a pair no robot's endpoint touches
                 robot, k = _realise(scenario, key, plain, 2)
                 at = (robot, k, robot, k + 1)
             ra, a, rb, b = at
             junction = MixerJunction(_placed(scenario, ra, a, rule, target), _placed(scenario, rb, b, rule, target))
-            _JUNCTION[(key, rule, target)] = GadgetKind.of(junction)
-        out.append((_JUNCTION[(key, rule, target)], n))
+            kind = GadgetKind.of(junction)
+            COSTS.remember(_JUNCTION, (key, rule, target), kind)
+        out.append((kind, n))
     if ends:
         out.append((_kinds_of(mixer(*ends[0][:2]))[2], 1))  # type: ignore[arg-type]
         out.append((_kinds_of(mixer(ends[-1][0], ends[-1][2]))[3], 1))  # type: ignore[arg-type]

@@ -168,7 +168,8 @@ def visit_choice(
     Returns:
         The :class:`VisitChoice`: in the order couplings, visit bits, visit pairs, a visit gadget (only for
         ``optimize="cx"`` and within the budget) replaces the pick so far when it scores no worse and costs differ.
-    """
+
+    Pure memo: ``visit_choice.cache_clear()`` empties it."""
     coup = coupling_cost(new_couplings)
     costs: dict[str, tuple[Cost, Cost]] = {}
     pick: tuple[VisitName, tuple[Cost, Cost], VisitPhase | None] = ("couplings", (coup, coup), None)
@@ -197,7 +198,8 @@ def hamming_choice(
 
     Returns:
         The gadget on qubits ``0 .. n - 1`` (no ancillas; place it with :func:`dataclasses.replace`), or ``None``.
-    """
+
+    Pure memo: ``hamming_choice.cache_clear()`` empties it."""
     if target != "ft" or optimize != "cx" or n < 3:
         return None
     hw = SumsPhase("gamma", (tuple((q, 1) for q in range(n)),), ((0.0,),), (coefficient,))

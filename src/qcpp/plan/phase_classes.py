@@ -145,6 +145,7 @@ class _Grid:
 
 @lru_cache(maxsize=8)
 def _grid(grid: Grid, edges: tuple[int, ...]) -> _Grid:
+    """Pure memo: ``_grid.cache_clear()`` empties it."""
     u = np.array([grid.edge_nodes[e][0] for e in edges], dtype=np.int64)
     v = np.array([grid.edge_nodes[e][1] for e in edges], dtype=np.int64)
     degree = np.bincount(u, minlength=grid.num_nodes) + np.bincount(v, minlength=grid.num_nodes)
@@ -194,7 +195,8 @@ def phase_layer(
 
     Returns:
         The :class:`PhaseLayer`, or ``None``.
-    """
+
+    Pure memo: ``phase_layer.cache_clear()`` empties it."""
     s, grid = scenario, scenario.grid
     ob = s.objective
     if representation == "whole-space":  # one IsingPhase, whatever the other options

@@ -75,7 +75,6 @@ def cost_parts_bits(scenario: Scenario, bits: np.ndarray) -> np.ndarray:
     """Cost parts of many assignments at once.
 
     Args:
-        scenario: The scenario.
         bits: ``(N, num_variables)`` 0/1 array (variable-index order), or one such row.
 
     Returns:
@@ -218,7 +217,6 @@ def separable_cost(scenario: Scenario, path_lists: Sequence[Sequence[int]]) -> S
     """Decompose the weighted total over candidate paths (one list of edge masks per robot).
 
     Args:
-        scenario: The scenario.
         path_lists: For each robot, its candidate paths (e.g. :func:`~qcpp.problem.paths.enumerate_paths`).
 
     Returns:

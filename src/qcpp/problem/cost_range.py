@@ -196,7 +196,6 @@ def check_cost_range(scenario: Scenario, *, limit: float = COST_LIMIT, solver: s
     """Refuse weights whose costs the solvers cannot represent exactly (see the module docstring).
 
     Args:
-        scenario: The scenario.
         limit: The largest cost magnitude allowed (:data:`COST_LIMIT`; ``cpsat`` passes ``2**53 / scale``).
         solver: Named in the message when the limit is a solver's own (``"cpsat (objective scaled by 4)"``).
 

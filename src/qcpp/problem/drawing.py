@@ -47,7 +47,6 @@ def scenario_svg(scenario: Drawable, cell: int = 40) -> str:
     """The SVG of ``scenario`` (see the module docstring).
 
     Args:
-        scenario: The scenario.
         cell: Pixels between neighbouring nodes.
 
     Returns:

@@ -200,8 +200,6 @@ def count_paths(scenario: Scenario, robot: int, cap: int | None = None) -> int:
     """How many paths :func:`enumerate_paths` gives, counting no further than ``cap``.
 
     Args:
-        scenario: The scenario.
-        robot: The robot.
         cap: Stop counting here (``None``: count them all). The work is proportional to the count returned.
 
     Returns:

@@ -39,7 +39,7 @@ Example:
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Literal as TypingLiteral
@@ -167,6 +167,7 @@ def sbf_logic(scenario: Scenario, robot: int, plaquette: Plaquette, rule: Rule =
 
 @lru_cache(maxsize=65536)
 def _sbf_logic_cached(scenario: Scenario, robot: int, pindex: int, rule: Rule) -> SbfLogic:
+    """Pure memo: ``_sbf_logic_cached.cache_clear()`` empties it."""
     plaq = scenario.grid.plaquettes[pindex]
     local = _neighbourhood(scenario, robot, plaq)
     if local is None:
@@ -384,22 +385,27 @@ def reachable_paths(
 ) -> list[int]:
     """All paths reachable from ``start`` (default: :func:`~qcpp.problem.paths.initial_path`) by allowed SBF
     moves, in breadth-first order. With the ``paper`` rule this can include infeasible edge sets."""
-    if start is None:
-        start = initial_path(scenario, robot)
-    plaqs = scenario.grid.plaquettes
-    logics = [sbf_logic(scenario, robot, q, rule) for q in plaqs]
-    seen = {start}
+    return _breadth_first(initial_path(scenario, robot) if start is None else start,
+                          _moves(scenario, robot, rule), set())
+
+
+def _moves(scenario: Scenario, robot: int, rule: Rule) -> Callable[[int], Iterator[int]]:
+    """``moves(mask)``: the masks one allowed flip away, plaquettes ascending."""
+    flips = [(q.edge_mask, sbf_logic(scenario, robot, q, rule)) for q in scenario.grid.plaquettes]
+    return lambda m: (m ^ edges for edges, logic in flips if logic.evaluate(m))
+
+
+def _breadth_first(start: int, moves: Callable[[int], Iterable[int]], seen: set[int]) -> list[int]:
+    """``start`` and every mask reached from it by ``moves`` and not in ``seen``, breadth first (``seen`` grows)."""
     order = [start]
-    queue = deque([start])
+    seen.add(start)
+    queue = deque(order)
     while queue:
-        m = queue.popleft()
-        for q, lg in zip(plaqs, logics):
-            if lg.evaluate(m):
-                n = m ^ q.edge_mask
-                if n not in seen:
-                    seen.add(n)
-                    order.append(n)
-                    queue.append(n)
+        for n in moves(queue.popleft()):
+            if n not in seen:
+                seen.add(n)
+                order.append(n)
+                queue.append(n)
     return order
 
 
@@ -413,29 +419,11 @@ def move_components(scenario: Scenario, robot: int, rule: Rule = "exact") -> lis
     """
     paths = enumerate_paths(scenario, robot)
     feasible = set(paths)
-    plaqs = scenario.grid.plaquettes
-    logics = [sbf_logic(scenario, robot, q, rule) for q in plaqs]
+    step = _moves(scenario, robot, rule)
     init = initial_path(scenario, robot)
-    seeds = [init] + [p for p in paths if p != init]
     assigned: set[int] = set()
-    comps: list[list[int]] = []
-    for seed in seeds:
-        if seed in assigned:
-            continue
-        comp = [seed]
-        assigned.add(seed)
-        queue = deque([seed])
-        while queue:
-            m = queue.popleft()
-            for q, lg in zip(plaqs, logics):
-                if lg.evaluate(m):
-                    n = m ^ q.edge_mask
-                    if n in feasible and n not in assigned:
-                        assigned.add(n)
-                        comp.append(n)
-                        queue.append(n)
-        comps.append(comp)
-    return comps
+    return [_breadth_first(seed, lambda m: (n for n in step(m) if n in feasible), assigned)
+            for seed in [init, *(p for p in paths if p != init)] if seed not in assigned]
 
 
 def representatives(scenario: Scenario, robot: int, rule: Rule = "exact") -> tuple[int, ...]:

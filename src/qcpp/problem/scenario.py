@@ -81,7 +81,6 @@ class Scenario:
     :func:`~qcpp.problem.scenario_io.load_scenario` (which validate); the constructor itself validates too.
 
     Attributes:
-        grid: The grid.
         robots: The robots, in order (robot ``r`` is the ``r``-th).
         obstacles: Obstacle nodes, sorted row-major.
         objective: The objective's settings.

@@ -7,25 +7,15 @@ models are linear in the sizes that dominate, with coefficients fitted to measur
 
 * the feasible subspace holds ``A`` amplitudes, the product of the robots' path counts (a bound on the
   simulator's reachable basis: :func:`qcpp.simulate.validate.validate_size` counts them without enumerating);
-* **simulate** (the subspace simulator, :class:`qcpp.simulate.subspace.SubspaceQAOA`): the state, the cost levels,
-  the probabilities and the temporaries of the phase separator take :data:`SUBSPACE_BYTES_PER_AMPLITUDE` per
-  amplitude; the pairwise cost matrices between robots (:func:`qcpp.problem.cost.separable_cost`, float64 with
-  their temporaries) :data:`PAIR_BYTES` per entry. Measured: 0.20 GB for a few amplitudes; 0.23 GB for 952,576
-  (two robots, 4x5); 0.37 GB for 6,229,504 (three robots, 4x4); 3.07 GB for 73,788,100 (two robots, 5x5).
-  Time: :data:`SUBSPACE_SECONDS_PER_AMPLITUDE` per amplitude and layer plus the same again once for the basis
-  and the cost diagonal (a 2-core machine under load; 5x5, p = 1: 17-46 s);
+* **simulate** (:class:`qcpp.simulate.subspace.SubspaceQAOA`): :data:`SUBSPACE_BYTES_PER_AMPLITUDE` per amplitude,
+  :data:`PAIR_BYTES` per entry of the pairwise cost matrices between robots
+  (:func:`qcpp.problem.cost.separable_cost`); :data:`SUBSPACE_SECONDS_PER_AMPLITUDE` per amplitude and layer plus
+  once more for the basis and the cost diagonal;
 * the gate-level methods (``statevector``, ``tensor``) also list every feasible assignment with its bits
   (:data:`ASSIGNMENT_LIST_BYTES` per assignment plus 8 bytes per decision variable);
-* **validate** holds the subspace state, per feasible assignment a tuple of paths, its basis-state index and
-  reference amplitude, and the simulated circuit's state (the sparse backend's grows with the feasible subspace):
-  :data:`VALIDATE_BYTES_PER_ASSIGNMENT` and :data:`VALIDATE_SECONDS_PER_ASSIGNMENT`. Measured: 0.19 GB and 28 s
-  for 33,856 assignments (two robots, 4x4, sparse); 952,576 (two robots, 4x5, sparse) had reached 1.64 GB and had
-  not finished after 53 minutes on a 2-core machine under a load average of 22 (stopped there, so both figures
-  are lower bounds);
+* **validate**: :data:`VALIDATE_BYTES_PER_ASSIGNMENT` and :data:`VALIDATE_SECONDS_PER_ASSIGNMENT`;
 * **training** (``qcpp solve --method qaoa``): :data:`TRAINING_BYTES_PER_AMPLITUDE` per amplitude and
-  :data:`TRAINING_PAIR_BYTES` per pairwise cost entry. Measured: 0.33 GB for 952,576 amplitudes (two robots, 4x5),
-  0.42 GB for 6,229,504 (three robots, 4x4); two scenarios for two coefficients, so the fit is exact there and a
-  guess beyond them.
+  :data:`TRAINING_PAIR_BYTES` per pairwise cost entry.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -112,7 +102,6 @@ def simulate_need(scenario: Scenario, p: int, method: str = "subspace", size: Va
     """Predicted peak memory and time of ``qcpp simulate`` (see the module docstring).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers.
         method: ``subspace``, ``statevector`` or ``tensor`` (the last two also list every feasible assignment).
         size: The path counts, if already known (default :func:`feasible_size`).

@@ -29,7 +29,6 @@ def check_simulation_size(
     (:func:`qcpp.simulate.footprint.simulate_need`).
 
     Args:
-        scenario: The scenario.
         where: What the message starts with (the scenario file, or ``scenario``).
         override: How to lift the guard, for the message (default: the CLI's ``pass --allow-large``).
         p: QAOA layers.
@@ -57,7 +56,6 @@ def check_training_size(
     (:func:`qcpp.simulate.footprint.training_need`; no time model: the optimiser decides how long it runs).
 
     Args:
-        scenario: The scenario.
         where: What the message starts with (the scenario file, or ``scenario``).
         override: How to lift the guard, for the message (default: the CLI's ``pass --allow-large``).
         alternatives: What else to do, for the message.

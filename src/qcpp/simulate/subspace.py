@@ -83,7 +83,8 @@ Kernels = Literal["auto", "numba", "blas"]
 _CHUNK = 1 << 18  # elements per chunk of the element-wise loops
 _DEFAULT_BUFFER = 1 << 22  # complex amplitudes (64 MiB) in the transposed buffer of a short-stride axis
 _DIRECT_MIN = 64  # rotate rows in place when the axis' contiguous run (post) is at least this long
-_MAX_LEVELS = 1 << 16  # distinct cost values kept as a uint8/uint16 level array
+MAX_LEVELS = 1 << 16
+"""Most distinct cost values a level table holds (a ``uint16`` level per amplitude)."""
 
 
 class NonUnitaryMixerError(QcppError):
@@ -293,7 +294,8 @@ def angle_bindings(angles: Sequence[float] | np.ndarray) -> dict[str, float]:
 @cache
 def _check_lapack_in_place() -> None:
     """The kernels rely on f2py handing ``zrot`` the caller's buffer (``overwrite_x=1`` on a contiguous
-    complex128 array); make sure this build of scipy does, once per process."""
+    complex128 array); make sure this build of scipy does, once per process
+    (``_check_lapack_in_place.cache_clear()`` checks again)."""
     x = np.array([1.0, 0.0], dtype=np.complex128)
     zrot(x, x, 0.0, 1.0 + 0j, 1, 0, 1, 1, 1, 1, 1)
     if not np.allclose(x, [0.0, -1.0]):
@@ -326,9 +328,11 @@ class SubspaceQAOA:
         kernels: How the partial mixers run: ``numba`` (lane-blocked, vectorised, parallel;
             :mod:`qcpp.simulate.subspace_kernels`),
             ``blas`` (one ``zrot`` call per pair and run) or ``auto`` (default: numba when importable).
+        max_levels: Most distinct costs kept as a level table (:meth:`cost_levels`; at most :data:`MAX_LEVELS`);
+            more are kept as a float64 diagonal, with the same results.
 
     Raises:
-        ValueError: for an unknown rule or initial state.
+        ValueError: for an unknown rule or initial state, or ``max_levels`` outside ``1 .. MAX_LEVELS``.
         NonUnitaryMixerError: see :func:`robot_basis`.
 
     Attributes:
@@ -352,7 +356,10 @@ class SubspaceQAOA:
         phase_offset: float | Literal["feasible", "whole-space"] | None = None,
         buffer: int = _DEFAULT_BUFFER,
         kernels: Kernels = "auto",
+        max_levels: int = MAX_LEVELS,
     ) -> None:
+        if not 1 <= max_levels <= MAX_LEVELS:
+            raise ValueError(f"max_levels must be 1 .. {MAX_LEVELS}, got {max_levels}")
         if kernels not in ("auto", "numba", "blas"):
             raise ValueError(f"unknown kernels {kernels!r} (expected auto, numba or blas)")
         if kernels == "numba" and not subspace_kernels.AVAILABLE:
@@ -368,6 +375,7 @@ class SubspaceQAOA:
         )
         self.phase_offset = _phase_offset(scenario, phase_offset)
         self.buffer = max(1, int(buffer))
+        self.max_levels = max_levels
         self._pair_lists = tuple(tuple((i.tolist(), j.tolist()) for _, i, j in b.pairs) for b in self.robot_bases)
         self._pair_arrays = tuple(
             (np.concatenate([i for _, i, _ in b.pairs]).astype(np.intp),
@@ -454,7 +462,7 @@ class SubspaceQAOA:
     def cost_levels(self) -> tuple[np.ndarray, np.ndarray] | None:
         """``(values, levels)`` with ``cost_diagonal() == values[levels]``: a sorted table of costs (the distinct
         values, or for integer costs every integer from the minimum to the maximum) and a ``uint8``/``uint16``
-        array of shape :attr:`dims`; ``None`` when the table would exceed 65,536 values."""
+        array of shape :attr:`dims`; ``None`` when the table would exceed :attr:`max_levels` values."""
         self._build_cost()
         if self._levels is None:
             return None
@@ -482,7 +490,7 @@ class SubspaceQAOA:
             shape = [1] * nr
             shape[r], shape[s] = dims[r], dims[s]
             diag += m.reshape(shape)
-        compact = _compress(diag.reshape(-1))
+        compact = _compress(diag.reshape(-1), self.max_levels)
         if compact is None:
             diag.flags.writeable = False
             self._diag = diag
@@ -908,14 +916,14 @@ def _abs2(a: np.ndarray) -> np.ndarray:
     return out
 
 
-def _compress(flat: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+def _compress(flat: np.ndarray, max_levels: int = MAX_LEVELS) -> tuple[np.ndarray, np.ndarray] | None:
     """A sorted value table and a uint8/uint16 level per element (``table[levels] == flat`` exactly), or
-    ``None`` when more than :data:`_MAX_LEVELS` values are needed.
+    ``None`` when more than ``max_levels`` values are needed.
 
     Integer-valued costs (the default objective's) take a fast path: the table is every integer from the
     minimum to the maximum and a level is ``cost - minimum``. Otherwise the table is the distinct values."""
     lo, hi = float(flat.min()), float(flat.max())
-    if hi - lo < _MAX_LEVELS and lo == np.rint(lo):
+    if hi - lo < max_levels and lo == np.rint(lo):
         size = int(hi - lo) + 1
         levels = np.empty(flat.size, dtype=np.uint8 if size <= 256 else np.uint16)
         for sl in _chunks(flat.size):
@@ -933,7 +941,7 @@ def _compress(flat: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
             ch = ch[values[pos] != ch]
         if ch.size:
             values = np.union1d(values, ch)
-            if values.size > _MAX_LEVELS:
+            if values.size > max_levels:
                 return None
     levels = np.empty(flat.size, dtype=np.uint8 if values.size <= 256 else np.uint16)
     for sl in _chunks(flat.size):

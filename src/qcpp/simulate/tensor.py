@@ -90,23 +90,8 @@ DEFAULT_MAX_WIDTH = 27
 RAW_MCX_MAX_QUBITS = 8
 """An ``mcx`` with mixed control polarity on at most this many qubits becomes one raw ``2^k x 2^k`` matrix."""
 
-_NATIVE = {
-    "x": "X",
-    "h": "H",
-    "t": "T",
-    "tdg": "TDG",
-    "s": "S",
-    "sdg": "SDG",
-    "rx": "RX",
-    "ry": "RY",
-    "rz": "RZ",
-    "cx": "CX",
-    "cz": "CZ",
-    "crz": "CRZ",
-    "cry": "CRY",
-    "rzz": "RZZ",
-    "ccx": "CCX",
-}
+_NATIVE = {n: n.upper() for n in ("x", "h", "t", "tdg", "s", "sdg", "rx", "ry", "rz", "cx", "cz", "crz", "cry")}
+_NATIVE |= {"rzz": "RZZ", "ccx": "CCX"}  # quimb gates of the same matrix and qubit order
 _SIMPLIFY = "ADCRS"
 _ATOL = 1e-12
 _SIMPLIFY_DIAGONAL = "ADR"
@@ -386,13 +371,16 @@ def _block_operator(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequen
     uni = _block_network(gates, data, ancillas)
     k = len(data)
     uni.astype_("complex128")
-    outs = [f"k{i}" for i in range(k)]
-    ins = [f"b{i}" for i in range(k)]
+    outs, ins = [f"k{i}" for i in range(k)], [f"b{i}" for i in range(k)]
+    return _contract_small(uni, [*outs, *ins]).to_dense(outs, ins)
+
+
+def _contract_small(tn: Any, output_inds: Sequence[str]) -> Any:
+    """``tn`` contracted to one tensor on a greedy path (small blocks: no search)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        t = uni.contract(all, output_inds=[*outs, *ins], optimize="greedy")  # small blocks: no search
-    t = t if isinstance(t, qtn.Tensor) else qtn.Tensor(np.asarray(t), inds=())
-    return t.to_dense(outs, ins)
+        t = tn.contract(all, output_inds=output_inds, optimize="greedy")
+    return t if isinstance(t, qtn.Tensor) else qtn.Tensor(np.asarray(t), inds=())
 
 
 MAX_DIAGONAL_DATA_QUBITS = 24
@@ -414,11 +402,7 @@ def _block_diagonal(gates: Sequence[Gate], data: Sequence[int], ancillas: Sequen
     uni.astype_("complex128")
     outs = [f"x{i}" for i in range(k)]
     uni.full_simplify_(seq=_SIMPLIFY, output_inds=outs, atol=_ATOL)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        t = uni.contract(all, output_inds=outs, optimize="greedy")
-    t = t if isinstance(t, qtn.Tensor) else qtn.Tensor(np.asarray(t), inds=())
-    return np.asarray(t.to_dense(outs)).reshape(-1)
+    return np.asarray(_contract_small(uni, outs).to_dense(outs)).reshape(-1)
 
 
 def _operator_leak(op: np.ndarray) -> float:
@@ -429,7 +413,7 @@ def _operator_leak(op: np.ndarray) -> float:
 
 
 def collapse_ancilla_blocks(
-    circuit: Circuit, ancillas: Sequence[int], atol: float = 1e-9
+    circuit: Circuit, ancillas: Sequence[int], atol: float = 1e-9, max_block_data_qubits: int = MAX_BLOCK_DATA_QUBITS
 ) -> list[tuple[tuple[int, ...], Gate | np.ndarray]] | None:
     """The circuit as operators on its data qubits alone, every block that uses ancillas contracted to one matrix.
 
@@ -437,18 +421,19 @@ def collapse_ancilla_blocks(
     following sections added until ``T`` is unitary). A unitary ``T`` proves that no amplitude leaks into dirty
     ancillas, so on inputs with clean ancillas the circuit equals the product of these operators, exactly, and
     the compute/uncompute pairs vanish before any path search. A block on more than
-    :data:`MAX_BLOCK_DATA_QUBITS` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
+    ``max_block_data_qubits`` data qubits is kept as its diagonal ``<x, 0|S|x, 0>``, accepted only if every
     entry has modulus 1.
 
     Args:
         circuit: A bound circuit whose ancillas start in |0>.
         ancillas: The ancilla qubits (the rest are data, renumbered ``0..`` in order).
         atol: Tolerance of the unitarity check.
+        max_block_data_qubits: Largest block kept as a dense operator (:data:`MAX_BLOCK_DATA_QUBITS`).
 
     Returns:
         ``[(data qubits, gate, matrix or diagonal vector), ...]`` in time order (qubits renumbered; a matrix or
         vector has its first qubit most significant, as quimb's raw gates), or ``None`` if some block would exceed
-        :data:`MAX_DIAGONAL_DATA_QUBITS`, or :data:`MAX_BLOCK_DATA_QUBITS` without being diagonal.
+        :data:`MAX_DIAGONAL_DATA_QUBITS`, or ``max_block_data_qubits`` without being diagonal.
 
     Example:
         >>> from qcpp.ir.circuit import Circuit, Section
@@ -472,7 +457,7 @@ def collapse_ancilla_blocks(
             touched = sorted({q for g in gates for q in g[1]})
             data = [q for q in touched if q not in anc]
             used = [q for q in touched if q in anc]
-            if len(data) <= MAX_BLOCK_DATA_QUBITS:
+            if len(data) <= max_block_data_qubits:
                 t = _block_operator(gates, data, used)
             elif len(data) <= MAX_DIAGONAL_DATA_QUBITS:
                 t = _block_diagonal(gates, data, used)
@@ -491,6 +476,17 @@ def collapse_ancilla_blocks(
 # ------------------------------------------------------------------------------------------------ simulation
 
 
+def _projector(psi: Any, fix: Mapping[str, int], num_qubits: int) -> Any:
+    """The closed network ``bra | ket`` of ``<psi| P |psi>``, ``P`` fixing the site indices ``fix`` on both sides
+    (the other outputs joined; fixing before simplifying keeps the norms right)."""
+    ket = qtn.TensorNetwork([t.copy() for t in psi.tensors])
+    ket.isel_(fix)
+    keep = {psi.site_ind(q) for q in range(num_qubits)} - set(fix)
+    bra = ket.conj()
+    bra.reindex_({ix: qtn.rand_uuid() for ix in bra.ind_map if ix not in keep})
+    return qtn.TensorNetwork([*bra.tensors, *ket.tensors], virtual=True)
+
+
 class TensorCircuit:
     """One bound circuit as a tensor network, with cached simplification and shared contraction paths.
 
@@ -507,6 +503,8 @@ class TensorCircuit:
             ``work``): amplitudes are then contracted on the data qubits alone, each block that uses ancillas
             contracted first into one verified-unitary operator (:func:`collapse_ancilla_blocks`); an amplitude
             with an ancilla bit set is exactly 0. If a block cannot be collapsed, the full network is used.
+        max_block_data_qubits: Widest ancilla block collapsed into a dense operator; wider ones are kept as their
+            diagonal (:func:`collapse_ancilla_blocks`).
 
     Example:
         >>> from qcpp.ir.circuit import Circuit, Section
@@ -527,8 +525,10 @@ class TensorCircuit:
         max_width: float = DEFAULT_MAX_WIDTH,
         client: Any = None,
         ancillas: Sequence[int] = (),
+        max_block_data_qubits: int = MAX_BLOCK_DATA_QUBITS,
     ) -> None:
         self.circuit = bound_circuit(circuit, bindings, "tensor-network simulation")
+        self.max_block_data_qubits = max_block_data_qubits
         self.num_qubits = self.circuit.num_qubits
         self.psi0_bits = state_bits(psi0_bits if psi0_bits is not None else 0, self.num_qubits)
         self.quimb = to_quimb(self.circuit, psi0_bits=self.psi0_bits)
@@ -549,7 +549,7 @@ class TensorCircuit:
         """The data-only quimb circuit of :func:`collapse_ancilla_blocks`, or ``None``."""
         if not self.ancillas or any(self.psi0_bits[q] for q in self.ancillas):
             return None
-        ops = collapse_ancilla_blocks(self.circuit, self.ancillas)
+        ops = collapse_ancilla_blocks(self.circuit, self.ancillas, max_block_data_qubits=self.max_block_data_qubits)
         if ops is None:
             return None
         anc = set(self.ancillas)
@@ -594,12 +594,7 @@ class TensorCircuit:
         """Closed network ``<psi| P |psi>`` with ``P`` fixing ``qubit -> value``, simplified."""
         fix = self._check_fixed(fixed)
         psi = self.quimb.psi
-        ket = qtn.TensorNetwork([t.copy() for t in psi.tensors])
-        ket.isel_({psi.site_ind(q): b for q, b in fix.items()})
-        keep = {psi.site_ind(q) for q in range(self.num_qubits) if q not in fix}
-        bra = ket.conj()
-        bra.reindex_({ix: qtn.rand_uuid() for ix in bra.ind_map if ix not in keep})
-        tn = qtn.TensorNetwork([*bra.tensors, *ket.tensors], virtual=True)
+        tn = _projector(psi, {psi.site_ind(q): b for q, b in fix.items()}, self.num_qubits)
         tn.full_simplify_(seq=_SIMPLIFY, atol=_ATOL, output_inds=(), equalize_norms=True)
         tn.astype_("complex128")
         return tn
@@ -840,10 +835,9 @@ def contract_sliced(
 
 
 def dask_client(address: str) -> Any:
-    """A ``dask.distributed.Client``: ``'local'`` starts a ``LocalCluster`` (one process per core, one thread
-    each), anything else is a scheduler address such as ``tcp://10.0.0.5:8786``.
-
-    Close it when done (``with dask_client(...) as client:``; closing a local client also stops its cluster).
+    """A ``dask.distributed.Client``: ``'local'`` starts a ``LocalCluster`` of its own (one process per core, one
+    thread each; closing the client stops it), anything else is a scheduler address such as ``tcp://10.0.0.5:8786``.
+    Close it when done (``with dask_client(...) as client:``).
 
     Args:
         address: ``'local'`` or a scheduler address.
@@ -851,42 +845,19 @@ def dask_client(address: str) -> Any:
     Raises:
         OSError: the scheduler cannot be reached within 10 s.
     """
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
 
     # distributed logs through `logging` to stderr (a busy dashboard port, a slow worker): the CLI reports what
     # matters itself (how many contractions ran on the cluster), so only errors get through
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if address == "local":
-        cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None)
-        client = Client(cluster)
-        return _ClosingClient(client, cluster)
+        # ":0": the dashboard takes a free port; the default (also with None) asks for 8787 and warns when another
+        # cluster holds it
+        return Client(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0")
     try:
-        client = Client(address, timeout="10s")
+        return Client(address, timeout="10s")
     except OSError as exc:
         raise OSError(f"dask scheduler {address!r} unreachable: {exc}") from exc
-    return _ClosingClient(client, None)
-
-
-class _ClosingClient:
-    """A dask client that also closes its own LocalCluster (context manager)."""
-
-    def __init__(self, client: Any, cluster: Any) -> None:
-        self.client = client
-        self.cluster = cluster
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self.client, name)
-
-    def close(self) -> None:
-        self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
-
-    def __enter__(self) -> _ClosingClient:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
 
 
 class MPSCircuit:
@@ -973,14 +944,7 @@ class MPSCircuit:
             if int(b) not in (0, 1) or int(q) not in self._site:
                 raise ValueError(f"bad fixed value {q!r}: {b!r}")
             fix[psi.site_ind(self._site[int(q)])] = int(b)
-        ket = qtn.TensorNetwork([t.copy() for t in psi.tensors])
-        ket.isel_(fix)
-        keep = {psi.site_ind(i) for i in range(self.num_qubits)} - set(fix)
-        bra = ket.conj()
-        bra.reindex_({ix: qtn.rand_uuid() for ix in bra.ind_map if ix not in keep})
-        value = qtn.TensorNetwork([*bra.tensors, *ket.tensors], virtual=True).contract(
-            all, output_inds=(), optimize="greedy"
-        )
+        value = _projector(psi, fix, self.num_qubits).contract(all, output_inds=(), optimize="greedy")
         return float(np.real(value))
 
     def zero_probability(self, qubits: Iterable[int]) -> float:

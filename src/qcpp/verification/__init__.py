@@ -83,7 +83,6 @@ def verify(
     """Check that the compiled QAOA circuit of ``scenario`` preserves feasibility (see the module docstring).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (>= 1).
         rule: The SBF rule the mixer is compiled with (``exact`` or ``paper``).
         method: ``state``, ``gadgets`` or ``auto``.

@@ -447,7 +447,6 @@ def verify_gadgets(
     """Certify feasibility preservation kind by kind (see the module docstring).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (>= 1; every layer has the same kinds).
         rule: The SBF rule to compile with.
         seed: Seed of the rotation angle the mixer kinds are checked at.

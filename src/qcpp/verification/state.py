@@ -241,7 +241,6 @@ def verify_state(
     """Check feasibility preservation on the compiled circuit (see the module docstring).
 
     Args:
-        scenario: The scenario.
         p: QAOA layers (>= 1).
         rule: The SBF rule to compile with.
         samples: Most feasible inputs per unit (all of them when there are no more; a seeded sample otherwise).

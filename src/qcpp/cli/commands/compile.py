@@ -67,10 +67,16 @@ STREAM_ABOVE_GATES = 100_000
 """Circuits predicted to have at least this many lowered gates are built section by section with progress on
 stderr (a compile long enough to want it), even without ``--qasm``; smaller ones are built whole."""
 
-HELP = (
-    "Compile a scenario's constrained-mixer QAOA circuit; optionally lower it to CNOT + single-qubit gates, bind "
-    "angles (--bind gamma_0=0.3 beta_0=0.7 ...) and write OpenQASM (written whole or not at all)."
-)
+HELP = """Compile a scenario's QAOA circuit; lower it, bind angles, route it, write OpenQASM.
+
+Examples:
+  qcpp compile examples/paper_3x3.toml -p 2 --lowered --qasm out.qasm
+  qcpp compile --grid 5x5 --robots 2 --obstacle 2,1 --json
+  qcpp compile examples/paper_3x3.toml --bind gamma_0=0.3 beta_0=0.7 --qasm -
+  qcpp compile examples/paper_3x3.toml --device heavy-hex --qasm routed.qasm
+
+Files are written whole or not at all.
+"""
 
 
 @with_plan_flags
@@ -111,9 +117,9 @@ def compile_command(
         str | None,
         typer.Option(
             "--device",
-            help="Route onto a device: grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) "
-            "or a named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios). Writes q[i] = physical "
-            "qubit i in the device's native gates (--lowered: CX + one-qubit gates).",
+            help="Route onto grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) or a "
+            "named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios); the circuit's qubits are then "
+            "the device's, its gates native.",
         ),
     ] = None,
     local_ancillas: Annotated[
@@ -123,10 +129,8 @@ def compile_command(
         str,
         typer.Option(
             "--layout",
-            help="With --device: auto (the geometric layout on square grids and heavy-hex lattices that hold it, "
-            "greedy where that routes cheaper on a small circuit or elsewhere), medial (geometric layout: medial on "
-            "grids, one cell per plaquette on heavy-hex; local ancillas, every gadget routed home) or greedy (one "
-            "SABRE routing of the whole circuit).",
+            help="With --device: medial (the geometric layout, every gadget routed home), greedy (one SABRE "
+            "routing of the whole circuit) or auto (medial where it fits and routes cheaper).",
         ),
     ] = "auto",
     grid: GridFlag = None,

@@ -5,16 +5,7 @@ every format but ``table``). Bad input gives exit code 2 and one line ``error: <
 of the CLI's shared handler (:mod:`qcpp.cli.app`), which also catches anything the command itself does not (e.g. an
 unwritable ``--plot`` path). ``register(app)`` adds the command.
 
-Examples::
-
-    qcpp estimate --grid 3x3 --robots 1
-    qcpp estimate --grid 30x30 --robots 8 -p 3 --json
-    qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format jsonl > sweep.jsonl
-    qcpp estimate --grid 10x10 --robots 4 --physical --qubit-model qubit_maj_ns_e6 --qec-scheme floquet_code
-    qcpp estimate --grid 2x2..8x8 --robots 1..4 -p 1..3 --compare paper --format md
-    qcpp estimate --scenario examples/two_robots_4x4.toml -p 2 --json
-    qcpp estimate --grid 10x10 --robots 2 --obstacle 4,4 --obstacle 5,6 --format latex
-    qcpp estimate --formula
+Examples: see :data:`HELP` (``qcpp estimate --help``; ``tests/cli/help_and_noise_test.py`` runs them).
 """
 
 from __future__ import annotations
@@ -32,6 +23,7 @@ from qcpp.cli.commands.inline_scenario import HardObstaclesFlag, ObstacleFlag, p
 from qcpp.cli.commands.plan_flags import with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
+from qcpp.errors import OptionError
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import PlanOptions
 
@@ -40,12 +32,16 @@ __all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
 LONG_SWEEP_ROWS = 200
 """Sweeps of at least this many rows print their first progress line at once (on a pipe), not after a second."""
 
-HELP = (
-    "Resource counts of the lowered QAOA circuit (qubits, gates, CNOT, T, depth), summed from the costs of its "
-    "gadgets without building it; labelled fault-tolerant estimates; physical estimates with --physical (QDK "
-    "resource estimator). Ranges: --grid AxB..CxD means every rows in A..C and every cols in B..D; --robots and "
-    "-p take N or A..B; grids too small for a robot count are skipped (counted once on stderr)."
-)
+HELP = """Resource counts of the lowered QAOA circuit, from its gadgets' costs, without building it.
+
+Examples:
+  qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format latex
+  qcpp estimate --grid 2x2..6x6 --robots 1..3 --compare paper --plot cx.png
+  qcpp estimate --grid 3x3..7x7 --robots 2 -p 1..3 --metric t --plot t.png
+  qcpp estimate --scenario examples/two_robots_4x4.toml --physical --json
+
+Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
+"""
 
 
 @with_plan_flags
@@ -55,38 +51,47 @@ def estimate(
         str | None,
         typer.Option(
             "--grid",
-            help="ROWSxCOLS, AxB..CxD (every rows in A..C, cols in B..D) or a comma list of these; default 3x3.",
+            help="ROWSxCOLS, a range AxB..CxD or a comma list (default 3x3).",
         ),
     ] = None,
     robots: Annotated[
         str | None,
         typer.Option(
             "--robots",
-            help="Robots: N or A..B (default 1). Default placement: corners, then the other boundary nodes "
-            "(up to 2(rows+cols)-4 robots); --scenario for anything else.",
+            help="N or A..B robots in the default placement (default 1).",
         ),
     ] = None,
     p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
     scenario: Annotated[
-        Path | None, typer.Option("--scenario", help="Estimate this scenario file instead of the default ones.")
+        Path | None, typer.Option("--scenario", help="A scenario file instead of --grid/--robots.")
     ] = None,
     explain: Annotated[
         bool,
         typer.Option(
-            "--explain", help="Also show, per scenario, which phase construction each term group got and why (stderr)."
+            "--explain", help="Also show the phase construction of each term group, and why (stderr)."
         ),
     ] = False,
-    compare: Annotated[str | None, typer.Option("--compare", help="Add the paper's estimates: paper.")] = None,
+    compare: Annotated[
+        str | None, typer.Option("--compare", help="Add the paper's estimates (columns, and curves in --plot).")
+    ] = None,
     fmt: Annotated[
-        str, typer.Option("--format", help="Output: table, md, csv, json, jsonl or latex (booktabs).")
+        str, typer.Option("--format", help="table, md, csv, json, jsonl or latex (booktabs).")
     ] = "table",
     as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
     plot: Annotated[
-        str | None, typer.Option("--plot", help="Also write the comparison plot (PNG) here (its folder must exist).")
+        str | None, typer.Option("--plot", help="Also plot --metric against the grid (or p) to this PNG/PDF/SVG.")
+    ] = None,
+    metric: Annotated[
+        str | None,
+        typer.Option(
+            "--metric",
+            help="The plotted column: cx (default), qubits, t, depth, ft_total_t, physical_qubits, routed_twoq, ...",
+            show_default=False,
+        ),
     ] = None,
     columns: Annotated[
         str | None,
-        typer.Option("--columns", help="Table columns, comma-separated (any CSV column; default: what fits)."),
+        typer.Option("--columns", help="Table columns, comma-separated (default: what fits)."),
     ] = None,
     wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
@@ -94,54 +99,51 @@ def estimate(
         str,
         typer.Option(
             "--depth",
-            help="Depth: exact (composed from per-gadget transfer profiles, equal to the compiled circuit's), bound "
-            "(an upper bound from per-gadget depths and gate counts), none, or auto (exact when one layer has at "
-            "most --depth-budget gates, else bound). The depth_kind column says which.",
+            help="auto: exact up to --depth-budget gates per layer, else an upper bound (column depth_kind).",
         ),
     ] = "auto",
     depth_budget: Annotated[
         int,
         typer.Option(
             "--depth-budget",
-            help="auto: exact depths when the state preparation plus one layer has at most this many lowered gates.",
+            help="Lowered gates per layer up to which auto depths are exact.",
         ),
     ] = 20_000,
     epsilon: Annotated[
-        float, typer.Option("--epsilon", help="Rotation synthesis precision of the fault-tolerant columns.")
+        float, typer.Option("--epsilon", help="Rotation synthesis precision (fault-tolerant columns).")
     ] = 1e-3,
     toffoli_t: Annotated[
-        int, typer.Option("--toffoli-t", help="T per full Toffoli: 7 (ancilla-free) or 4 (Jones 2013).")
+        int, typer.Option("--toffoli-t", help="T per Toffoli: 7 (ancilla-free) or 4 (Jones 2013).")
     ] = 7,
     physical: Annotated[
-        bool, typer.Option("--physical", help="Add physical estimates from the QDK resource estimator.")
+        bool, typer.Option("--physical", help="Add physical estimates (QDK resource estimator).")
     ] = False,
     qubit_model: Annotated[
         str,
         typer.Option(
             "--qubit-model",
-            help="QDK qubit preset: qubit_gate_ns_e3, qubit_gate_ns_e4, qubit_gate_us_e3, qubit_gate_us_e4, "
-            "qubit_maj_ns_e4, qubit_maj_ns_e6.",
+            help="QDK qubit preset.",
         ),
     ] = "qubit_gate_ns_e3",
     qec_scheme: Annotated[
-        str, typer.Option("--qec-scheme", help="QDK QEC scheme: surface_code or floquet_code (Majorana only).")
+        str, typer.Option("--qec-scheme", help="QDK QEC scheme: surface_code or floquet_code (Majorana).")
     ] = "surface_code",
     error_budget: Annotated[
-        float, typer.Option("--error-budget", help="Total error budget of the physical estimate.")
+        float, typer.Option("--error-budget", help="Error budget of the physical estimate.")
     ] = 1e-3,
     paper_doubling: Annotated[
         str,
         typer.Option(
             "--paper-doubling",
-            help="What the paper's 'twice of the controlled partial mixer' doubles: partial-mixer or logic.",
+            help="What the paper's 'twice of the controlled partial mixer' doubles.",
         ),
     ] = "partial-mixer",
     device: Annotated[
         str | None,
         typer.Option(
             "--device",
-            help="Add routed figures on a device (routed_twoq, routed_depth, routed_twoq_depth, duration_s, esp, "
-            "fits, routed_kind exact|bound): grid[:RxC], heavy-hex[:D], all-to-all[:N] or a named device.",
+            help="Add routed figures (routed_twoq, esp, ...) on grid[:RxC], heavy-hex[:D], all-to-all[:N] or a "
+            "named device.",
         ),
     ] = None,
     obstacle: ObstacleFlag = None,
@@ -170,6 +172,7 @@ def estimate(
             raise ValueError(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
+    _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
     points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles)
@@ -187,7 +190,7 @@ def estimate(
     held: list[str] = []  # the table: printed once the progress display is gone
     with bar:
         pieces = estimate_report(
-            bar.iterate(points.points, then="rendering the table" if fmt == "table" else None),
+            bar.iterate(points.points, then=_after_rows(fmt, plot)),
             fmt=fmt,  # type: ignore[arg-type]
             options=settings,
             compare_paper=compare == "paper",
@@ -197,6 +200,7 @@ def estimate(
             wide=wide,
             device=device,
             stage=bar.stage,
+            metric=metric or "cx",
         )
         for piece in pieces:
             if fmt == "table":
@@ -215,6 +219,30 @@ def estimate(
         typer.echo(f"wrote {plot}", err=True)
     if explain:
         _explain(points.points, options)
+
+
+def _after_rows(fmt: str, plot: str | None) -> str | None:
+    """The progress stage once every row is estimated: the plot is drawn first, then the table rendered."""
+    if plot is not None:
+        return "drawing the plot"
+    return "rendering the table" if fmt == "table" else None
+
+
+def _check_metric(metric: str | None, *, plot: str | None, physical: bool, device: str | None, depth: str) -> None:
+    """Refuse a ``--metric`` without ``--plot``, unknown (listing the metrics), or whose column this run lacks."""
+    if metric is None:
+        return
+    if plot is None:
+        raise OptionError("--metric", "applies with --plot only (no --plot given)")
+    from qcpp.estimators.plots import plot_metric
+
+    needs = plot_metric(metric, "--metric").needs
+    if needs == "physical" and not physical:
+        raise OptionError("--metric", f"{metric} needs --physical")
+    if needs == "device" and device is None:
+        raise OptionError("--metric", f"{metric} needs --device")
+    if needs == "depth" and depth == "none":
+        raise OptionError("--metric", f"{metric} needs a depth (--depth is none)")
 
 
 def _flag(name: str) -> str:

@@ -29,11 +29,16 @@ from qcpp.qubo.solve import INSTALL_HINT
 
 __all__ = ["HELP", "export_command", "register"]
 
-HELP = (
-    "Write the scenario's cost as a binary quadratic model: dimod BQM JSON, Ising (h, J, offset; x = (1 - Z)/2), "
-    "QUBO coefficient list, or an LP/MPS mixed-integer program. --form per-robot (default) adds per-robot degree "
-    "penalties with visit bits (zero on feasible paths); --form paper is exactly the paper's cost."
-)
+HELP = """Write the scenario's cost as a QUBO, Ising model, dimod BQM or LP/MPS program.
+
+Examples:
+  qcpp export examples/two_robots_4x4.toml --format ising --out ising.json
+  qcpp export examples/two_robots_4x4.toml -f qubo --form paper -o qubo.json
+  qcpp export examples/two_robots_5x5.toml --format mps --out model.mps
+
+--form per-robot adds degree penalties with visit bits (zero on feasible
+paths); --form paper is exactly the paper's cost. Ising: x = (1 - Z)/2.
+"""
 
 
 def export_command(

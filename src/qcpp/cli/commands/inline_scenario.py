@@ -63,7 +63,7 @@ HardObstaclesFlag = Annotated[
     bool,
     typer.Option(
         "--hard-obstacles",
-        help="Obstacles remove the edges touching them from the variables (default: soft, the paper's: they cost).",
+        help="Obstacles remove their edges (default: soft, the paper's: they cost).",
     ),
 ]
 

@@ -24,7 +24,7 @@ from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
 
-from qcpp.plan.options import INITIAL_STATES, PlanOptions
+from qcpp.plan.options import PlanOptions
 
 __all__ = [
     "PLAN_FLAGS",
@@ -44,49 +44,43 @@ __all__ = [
 
 ScenarioArg = Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)]
 LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
-RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule: exact or paper.")]
+RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule.")]
 InitialFlag = Annotated[
     str,
     typer.Option(
         "--initial",
-        help=f"Initial state: {', '.join(INITIAL_STATES)} (local_search: the paths of a steepest descent over SBF "
-        "moves, a classical warm start; local_search_mix: per robot the initial and the descent path in equal "
-        "superposition).",
+        help="Initial state: initial_path, representatives, local_search (a classical warm start) or "
+        "local_search_mix (both paths in superposition).",
     ),
 ]
 TargetFlag = Annotated[
     str,
     typer.Option(
         "--target",
-        help="Cost model the constructions are chosen for: nisq (fewest CNOTs; arbitrary rotations are cheap) "
-        "or ft (fewest T and rotations).",
+        help="Choose constructions for nisq (fewest CNOTs) or ft (fewest T and rotations).",
     ),
 ]
 PhaseFlag = Annotated[
     str,
     typer.Option(
         "--phase",
-        help="Phase separator: feasible (exact on every feasible assignment, O(re log re) CNOTs) or whole-space "
-        "(the Ising Hamiltonian, O((re)^2)).",
+        help="Phase separator: feasible (exact on feasible paths) or whole-space (the Ising one).",
     ),
 ]
 OptimizeFlag = Annotated[
-    str, typer.Option("--optimize", help="Phase separator: cx (cheapest) or depth (shallow coupling layers).")
+    str, typer.Option("--optimize", help="Phase separator: fewest CX, or shallow coupling layers.")
 ]
 AncillaBudgetFlag = Annotated[
     int | None,
-    typer.Option("--ancilla-budget", help="Most ancillas the phase separator may use (fewer cost more CNOTs)."),
+    typer.Option("--ancilla-budget", help="Most ancillas of the phase separator (fewer cost more CX)."),
 ]
 
 PhaseLayoutFlag = Annotated[
     str,
     typer.Option(
         "--phase-layout",
-        help="How the phase separator sits on the grid: pooled (fewest CX all-to-all), spatial (star-shaped "
-        "adders over neighbouring edges, node gadgets with nearby ancillas: fewer routed CX on grids and "
-        "heavy-hex), medial (spatial, each robot's balance sums drifting to where the robots' patches meet) or "
-        "auto (with --device onto a device that is not all-to-all: medial on a square grid, else spatial; "
-        "else pooled).",
+        help="Phase separator layout: pooled (fewest CX), spatial or medial (fewer routed CX), or auto (medial "
+        "or spatial with a --device).",
     ),
 ]
 
@@ -94,8 +88,7 @@ AnglesFlag = Annotated[
     str,
     typer.Option(
         "--mixer-angles",
-        help="Mixer parameters: layer (one beta_k per layer) or multi (multi-angle QAOA: one "
-        "beta_r<robot>_q<plaquette>_<k> per partial mixer and layer; same gates, so the same counts).",
+        help="Mixer angles: one per layer, or one per partial mixer (multi-angle QAOA; same gates).",
     ),
 ]
 

@@ -27,10 +27,16 @@ from qcpp.problem.scenario_io import save_scenario, scenario_to_toml
 
 __all__ = ["register", "scenario_command"]
 
-HELP = (
-    "Print (or write with -o) the scenario of --grid RxC --robots N --obstacle R,C: the file compile, estimate, "
-    "solve and simulate read, with the default robot placement spelled out."
-)
+HELP = """Print (or write with -o) the scenario file of --grid, --robots and --obstacle.
+
+Examples:
+  qcpp scenario --grid 5x5 --robots 2
+  qcpp scenario --grid 10x10 --robots 3 --obstacle 4,4 -o field.toml
+  qcpp scenario --grid 4x4 --obstacle 1,1 --hard-obstacles --json
+
+The file spells out the default robot placement; compile, estimate, solve
+and the other commands read it.
+"""
 
 
 def scenario_command(

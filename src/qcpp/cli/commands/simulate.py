@@ -31,11 +31,16 @@ from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["parse_angles", "register", "simulate_command"]
 
-HELP = (
-    "Evaluate QAOA angles (given with --angles, or seeded random) with the feasible-subspace simulator, the "
-    "dense statevector of the compiled circuit, or the tensor-network backend: expectation <C>, probability "
-    "of the optimum, and the probability held on feasible assignments with clean ancillas."
-)
+HELP = """Evaluate QAOA angles: expectation <C>, probability of the optimum, feasible probability.
+
+Examples:
+  qcpp simulate examples/paper_3x3.toml -p 1 --angles 0.3,1.2
+  qcpp simulate examples/paper_3x3.toml -p 2 --method statevector --json
+  qcpp simulate examples/two_robots_4x4.toml -p 3 --seed 4
+
+Methods: subspace = the feasible-subspace simulator; statevector = the
+compiled circuit's dense state; tensor = a tensor network (quimb).
+"""
 
 
 def parse_angles(text: str) -> list[float]:

@@ -5,7 +5,7 @@ Examples::
     qcpp solve examples/paper_3x3.toml --method dfs
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
     qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
-    qcpp solve examples/two_robots_5x5.toml --method cpsat --time-limit 60 --json
+    qcpp solve examples/two_robots_5x5.toml --method cpsat --json
 
 Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.SolveMethod`); ``--method``
 accepts exactly its keys. Adding a method is one entry: a function
@@ -102,12 +102,11 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
 
 METHOD_HELP = {
     "dfs": "exhaustive search, the exact optimum",
-    "cpsat": "OR-Tools CP-SAT, the optimum with a proof (or a bound and gap at --time-limit)",
+    "cpsat": "OR-Tools CP-SAT: the optimum with a proof (a bound at --time-limit)",
     "anneal": "simulated annealing with SBF moves (the paper's baseline)",
     "genetic": "the paper's genetic algorithm with SBF mutations",
-    "qaoa": "QAOA trained on the feasible-subspace simulator, answering with its most probable assignment",
-    "qubo": "tabu search on the QUBO, repaired and polished with SBF moves "
-    "(needs the annealing extra: dimod, dwave-samplers)",
+    "qaoa": "QAOA trained on the subspace simulator: its most probable answer",
+    "qubo": "tabu search on the QUBO, repaired by SBF moves (extra: annealing)",
 }
 """One line per method for ``qcpp solve --help`` (a method registered without one is still listed)."""
 
@@ -119,10 +118,18 @@ def solve_help() -> str:
         >>> all(name in solve_help() for name in SOLVE_METHODS)
         True
     """
-    methods = "; ".join(f"{name} = {METHOD_HELP.get(name, 'see its documentation')}" for name in SOLVE_METHODS)
-    return (
-        f"Solve a scenario with --method ({methods}) and print the paths on the grid, the cost and its parts."
-    )
+    methods = "\n".join(f"  {name} = {METHOD_HELP.get(name, 'see its documentation')}" for name in SOLVE_METHODS)
+    return f"""Solve a scenario ({', '.join(SOLVE_METHODS)}) and show the paths, the cost and its parts.
+
+Examples:
+  qcpp solve examples/paper_3x3.toml --method dfs
+  qcpp solve examples/two_robots_4x4.toml -m anneal --seed 3 --plot paths.png
+  qcpp solve examples/two_robots_5x5.toml --method cpsat --json
+  qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --plot-trace trace.png
+
+Methods (--method):
+{methods}
+"""
 
 
 def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:

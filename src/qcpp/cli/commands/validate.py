@@ -37,14 +37,17 @@ from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "validate_command"]
 
-HELP = (
-    "Compile the lowered QAOA circuit, run it with a gate-level simulator (auto = statevector up to 20 qubits, "
-    "else sparse; tensor = quimb exact contraction + MPS; statevector; sparse) at given or seeded random angles, "
-    "and check that the ancillas end in |0> and every "
-    "feasible assignment's amplitude equals the exact feasible-subspace simulator's; or (qcec) prove the lowered "
-    "circuit equal to the high-level one with MQT QCEC. Exit 0 only if every check ran and passed; 1 if one "
-    "failed or was skipped (INCOMPLETE)."
-)
+HELP = """Run the compiled, lowered circuit and compare it with the exact subspace simulator.
+
+Examples:
+  qcpp validate examples/paper_3x3.toml -p 2 --backend tensor
+  qcpp validate examples/two_robots_4x4.toml --backend sparse --json
+  qcpp validate examples/paper_3x3.toml --backend qcec
+
+Checks that the ancillas end in |0> and every feasible amplitude matches;
+qcec proves the lowered circuit equal to the high-level one (MQT QCEC).
+Exit 0: every check ran and passed; 1: one failed or was skipped.
+"""
 
 
 def _check_dask_address(text: str) -> None:

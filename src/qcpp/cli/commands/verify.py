@@ -24,12 +24,17 @@ from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "verify_command"]
 
-HELP = (
-    "Check that the compiled circuit maps every feasible assignment into the span of feasible assignments with "
-    "clean ancillas: state = run the lowered circuit on every feasible input (or --samples of them); gadgets = "
-    "check every gadget kind of the call graph on all its local inputs (certifies any size); auto = state where "
-    "every input fits, else gadgets. Exit 0 holds, 1 counterexample, 2 bad input."
-)
+HELP = """Check that the compiled circuit keeps every feasible path feasible (clean ancillas).
+
+Examples:
+  qcpp verify examples/paper_3x3.toml -p 2
+  qcpp verify examples/paper_3x3.toml --method state --samples 200 --json
+  qcpp verify examples/two_robots_5x5.toml -p 3 --method gadgets
+
+Methods: state = run the lowered circuit on every feasible input (or a
+sample); gadgets = every gadget kind on all its local inputs (any size).
+Exit 0: holds; 1: a counterexample; 2: bad input.
+"""
 
 
 def verify_command(

@@ -68,7 +68,8 @@ def local_search(scenario: Scenario, rule: Rule = "exact") -> LocalSearch:
 
     Args:
         rule: SBF rule deciding which flips are allowed (flips to infeasible paths are skipped).
-    """
+
+    Pure memo: ``local_search.cache_clear()`` empties it."""
     t0 = time.perf_counter()
     start = tuple(initial_path(scenario, r) for r in range(scenario.num_robots))
     paths, trace, evaluated = steepest_descent(scenario, start, MoveSpace(scenario, rule, "initial"))

@@ -104,10 +104,8 @@ class DfsSize:
     def bytes(self) -> int:
         """Peak resident memory of a process running :func:`dfs`: :data:`BASE_BYTES`, the path lists with their
         bit and degree matrices (twice, for the temporaries), the whole pairwise matrices between robots 1..
-        (three arrays each while they are summed), robot 0's slices of its pairwise matrices and the scored block.
-        Measured ``qcpp solve --method dfs`` peaks: 0.054 GB (one robot, 3x3), 0.079 GB (two robots, 4x5),
-        0.154 GB (three robots, 4x4), 0.396 GB (two robots, 5x5); ``tests/cli/guard_peaks_test.py`` checks
-        the prediction within 1.5x."""
+        (three arrays each while they are summed), robot 0's slices of its pairwise matrices and the scored block
+        (``tests/cli/guard_peaks_test.py`` checks it against measured peaks, within 1.5x)."""
         counts = self.paths_per_robot
         per_path = 9 * self.edges_per_robot + 8 * self.nodes + 60
         lists = 2 * sum(counts) * per_path
