@@ -6,6 +6,10 @@
 * Progress lines (:mod:`qcpp.cli.progress`) appear after a second of work on a pipe, so whether a command printed one
   depends on the machine's load: they are off (``QCPP_PROGRESS=off``, inherited by subprocesses); the tests of
   progress itself turn them on with ``QCPP_PROGRESS_INTERVAL=0`` (a line at every step, no clock involved).
+* The README's test command has a time budget (four minutes on two cores beside a CPU-bound job), so the default
+  tests that each take about two CPU-seconds or more run with the heavy step instead (:data:`SLOW_DEFAULT`: CI
+  runs both steps, so every assertion still runs on every change); each behaviour they check keeps faster tests
+  in the default run (other parameters of the same test, or the unit tests of the same module).
 * At the session's end pytest collects garbage five times over (to report exceptions raised in finalizers); with
   the session's caches of compiled circuits alive that re-scanned millions of objects five times. One collection
   here finds today's garbage; :func:`gc.freeze` then moves what survived it (live objects) out of the collector's
@@ -26,6 +30,84 @@ settings.register_profile("timeless", deadline=None, suppress_health_check=[Heal
 settings.load_profile("timeless")
 
 os.environ["QCPP_PROGRESS"] = "off"
+
+SLOW_DEFAULT = frozenset(
+    {
+        "tests/api/cli_equality_test.py::test_routed_layouts_are_the_cli_s",
+        "tests/cli/compile_cli_test.py::test_default_qasm3_loads_in_qiskit_and_gives_our_state",
+        "tests/cli/device_cli_test.py::test_estimate_device_adds_routed_fields_equal_to_compile",
+        "tests/cli/device_cli_test.py::test_estimate_device_too_small_and_bound",
+        "tests/cli/estimate_cli_test.py::test_formula",
+        "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak[simulate-default-4x5x2]",
+        "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak[validate-default-paper_3x3.toml]",
+        "tests/cli/help_and_noise_test.py::test_an_unusable_cache_folder_is_named_once_and_the_run_proceeds[env0]",
+        "tests/cli/help_and_noise_test.py::test_qcec_prints_nothing_of_its_own_and_claims_no_tolerance",
+        "tests/cli/robustness_test.py::test_a_scenario_file_over_the_size_limit_is_refused_unread",
+        "tests/cli/robustness_test.py::test_an_address_space_limit_below_the_need_is_refused_before_the_work",
+        "tests/cli/robustness_test.py::test_four_concurrent_writers_of_one_file_leave_one_whole_output",
+        "tests/cli/robustness_test.py::test_no_color_and_a_dumb_terminal_print_no_escape_codes",
+        "tests/cli/robustness_test.py::test_no_home_and_an_unusable_cache_folder",
+        "tests/cli/robustness_test.py::test_the_c_locale_with_non_ascii_paths",
+        "tests/cli/startup_imports_test.py::test_the_probe_sees_a_heavy_import",
+        "tests/cli/table_records_test.py::test_estimate_table_never_cuts_a_number",
+        "tests/cli/table_width_test.py::test_no_table_line_is_wider_than_the_width",
+        "tests/cli/table_width_test.py::test_the_issue_command_fits_100_columns",
+        "tests/cli/table_width_test.py::test_wider_terminals_show_at_least_as_many_columns",
+        "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_for_any_endpoints",
+        "tests/compiler/gadgets_test.py::test_every_partial_mixer_kind_is_exact_on_every_feasible_local_input",
+        "tests/compiler/gadgets_test.py::test_reported_cost_equals_lowered_count_for_every_kind",
+        "tests/compiler/junction_test.py::test_qiskit_o3_never_beats_our_lowering[3x3/1]",
+        "tests/compiler/lowering_test.py::test_peephole_keeps_unitary_and_never_increases_counts",
+        "tests/compiler/medial_test.py::test_estimate_device_grid_equals_compile",
+        "tests/compiler/mixer_test.py::test_lowered_full_mixer_equals_high_level_on_basis_states[5-5-robots3]",
+        "tests/compiler/phase_locality_test.py::test_device_compiles_default_to_the_spatial_layout",
+        "tests/compiler/placement_search_test.py::test_heavy_hex_one_robot_meets_the_ratio_goal_exactly_as_estimated",
+        "tests/compiler/qcec_test.py::test_every_partial_mixer_kind_is_proven_equivalent_to_its_lowering",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x3/3 p1]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x4/2 pooled]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[4x4 soft interior p2 depth]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[4x4/2 budget 0]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[4x4/2 p2]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_on_random_scenarios",
+        "tests/compiler/window_classes_test.py::test_the_allocation_search_answers_by_its_cache_key"
+        "[4x4 interior, 3x4/2]",
+        "tests/compiler/window_classes_test.py::test_windows_of_one_class_share_one_routing",
+        "tests/compiler/window_memo_test.py::test_a_window_routed_after_its_translation_routes_as_from_a_cold_memo",
+        "tests/doctests_test.py::test_docstring_examples[qcpp.pipeline.device_compile]",
+        "tests/estimators/formulas_test.py::test_every_published_quantity_has_a_formula",
+        "tests/estimators/formulas_test.py::test_structured_and_explicit_forms_agree",
+        "tests/estimators/routed_test.py::test_the_window_sum_gives_compiles_counts_and_esp[4x5/2]",
+        "tests/problem/cpsat_test.py::test_equals_dfs_on_random_scenarios",
+        "tests/problem/explorability_test.py::test_hard_obstacle_components[3-4]",
+        "tests/problem/explorability_test.py::test_hard_obstacle_components[4-4]",
+        "tests/problem/qubo_solve_test.py::test_qubo_method_returns_the_proven_optimum[two_robots_5x5.toml]",
+        "tests/problem/sbf_test.py::test_exact_sound_and_complete_with_hard_obstacles",
+        "tests/problem/scenario_test.py::test_round_trip",
+        "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_3x3-figures0]",
+        "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_two_robots-figures2]",
+        "tests/simulate/layerwise_test.py::test_mixer_warm_option_adds_one_start_per_level_and_counts_it",
+        "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router",
+        "tests/simulate/sparse_test.py::test_sparse_agrees_with_statevector",
+        "tests/simulate/statevector_test.py::test_twenty_qubits",
+        "tests/simulate/tensor_test.py::test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes",
+        "tests/simulate/time_to_solution_test.py::test_quick_mode_on_the_3x3_instances",
+    }
+)
+"""Tests (node ids) that run with ``-m heavy`` although their functions carry no marker: see the module docstring."""
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark the tests of :data:`SLOW_DEFAULT` heavy (before ``-m`` selects), and refuse entries that name no test
+    when the whole suite is collected, so the list cannot rot."""
+    found = set()
+    for item in items:
+        if item.nodeid in SLOW_DEFAULT:
+            item.add_marker(pytest.mark.heavy)
+            found.add(item.nodeid)
+    whole_suite = not config.args or [os.path.normpath(a) for a in config.args] == ["tests"]
+    if whole_suite and not config.option.keyword and found != SLOW_DEFAULT:
+        raise pytest.UsageError(f"SLOW_DEFAULT names no collected test: {sorted(SLOW_DEFAULT - found)}")
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import asdict, dataclass
+from typing import Any
 
 from qcpp.errors import QcppError
 
@@ -40,7 +41,9 @@ __all__ = [
     "LogicalCounts",
     "PhysicalEstimate",
     "PhysicalEstimateError",
+    "estimator_params",
     "physical_estimate",
+    "physical_from_result",
 ]
 
 QUBIT_MODELS: tuple[str, ...] = (
@@ -129,21 +132,38 @@ def physical_estimate(
         ValueError: an unknown model or scheme, or a budget outside (0, 1).
         PhysicalEstimateError: the estimator cannot meet the budget (its message, one line).
     """
+    params = estimator_params(qubit_model, qec_scheme, error_budget)
+    from qdk.estimator import EstimatorError
+    from qdk.estimator import LogicalCounts as QdkLogicalCounts
+
+    try:
+        res = QdkLogicalCounts(counts.to_qdk()).estimate(params)
+    except EstimatorError as exc:  # a BaseException subclass in qdk: catch it by name
+        message = " ".join(str(exc).split())
+        raise PhysicalEstimateError(f"QDK resource estimator ({qubit_model}, {qec_scheme}): {message}") from None
+    return physical_from_result(res, qubit_model, qec_scheme, error_budget)
+
+
+def estimator_params(qubit_model: str, qec_scheme: str, error_budget: float) -> dict[str, Any]:
+    """The QDK estimator's parameters for a model, every value checked.
+
+    Raises:
+        ValueError: an unknown model or scheme, or a budget outside (0, 1).
+
+    >>> estimator_params("qubit_gate_ns_e3", "surface_code", 1e-3)["qecScheme"]
+    {'name': 'surface_code'}
+    """
     if qubit_model not in QUBIT_MODELS:
         raise ValueError(f"unknown qubit model {qubit_model!r} (expected one of {', '.join(QUBIT_MODELS)})")
     if qec_scheme not in QEC_SCHEMES:
         raise ValueError(f"unknown QEC scheme {qec_scheme!r} (expected one of {', '.join(QEC_SCHEMES)})")
     if not 0.0 < error_budget < 1.0:
         raise ValueError(f"error budget must be in (0, 1), got {error_budget!r}")
-    from qdk.estimator import EstimatorError
-    from qdk.estimator import LogicalCounts as QdkLogicalCounts
+    return {"qubitParams": {"name": qubit_model}, "qecScheme": {"name": qec_scheme}, "errorBudget": error_budget}
 
-    params = {"qubitParams": {"name": qubit_model}, "qecScheme": {"name": qec_scheme}, "errorBudget": error_budget}
-    try:
-        res = QdkLogicalCounts(counts.to_qdk()).estimate(params)
-    except EstimatorError as exc:  # a BaseException subclass in qdk: catch it by name
-        message = " ".join(str(exc).split())
-        raise PhysicalEstimateError(f"QDK resource estimator ({qubit_model}, {qec_scheme}): {message}") from None
+
+def physical_from_result(res: Any, qubit_model: str, qec_scheme: str, error_budget: float) -> PhysicalEstimate:
+    """The :class:`PhysicalEstimate` of a QDK estimator result (from logical counts or from a program)."""
     pc = res["physicalCounts"]
     bd = pc["breakdown"]
     return PhysicalEstimate(

@@ -1,0 +1,329 @@
+"""Noisy simulation of a routed circuit with the noise model of its device file (qiskit-aer, the extra ``noise``).
+
+The check of the ESP model (:func:`qcpp.routing.native.esp`: a shot succeeds only when no gate and no read-out
+fails): simulate the routed native circuit under a noise model built from the same device file and read
+``P(optimum)``, the probability that the measured data register is an optimal assignment, beside
+``ESP x P(optimum, ideal)``.
+
+The noise model (:func:`device_noise_model`), per physical qubit and coupler of the device file:
+
+* every native gate: its reported error ``e`` as an average gate infidelity, realised as in qiskit-aer's device
+  models (``qiskit_aer.noise.device.basic_device_gate_errors``): thermal relaxation over the gate's duration (where
+  the file has T1, T2 and durations) composed with the depolarising channel that brings the total to ``e``;
+  ``rz`` is virtual (error 0, no duration);
+* idling: where the file has durations and T1/T2, the circuit is scheduled ASAP (as
+  :func:`qcpp.routing.native.duration_s`) and every wait of a qubit, up to the common read-out at the end, gets
+  thermal relaxation for that time (:func:`noisy_circuit`);
+* read-out: a symmetric bit flip of the file's read-out error on each measured data qubit.
+
+Only the qubits the routed circuit touches are simulated (renumbered ``0..k-1``): up to
+:data:`DENSITY_MATRIX_QUBITS` by aer's density-matrix method (``P(optimum)`` exact), up to
+:data:`STATEVECTOR_QUBITS` by state-vector trajectories, beyond by its matrix-product-state method, both with
+sampled noise (``shots`` trajectories; ``P(optimum)`` then carries a binomial error, :attr:`NoisyResult.stderr`).
+
+Example:
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.ir.circuit import Circuit, Section
+    >>> from qcpp.ir.gates import Gate
+    >>> from qcpp.routing.native import to_native
+    >>> from qcpp.routing.sabre import route
+    >>> bell = Circuit([("data", 2)], [Section("s", [Gate("h", (0,), (), None), Gate("cx", (0, 1), (), None)])])
+    >>> routed = to_native(route(bell, get_device("grid:2x2"), (0, 1)))
+    >>> active_qubits(routed)
+    (0, 1)
+    >>> r = simulate_noisy(routed, [0b00, 0b11], noise=False)  # doctest: +SKIP
+    >>> round(r.p_optimum, 9), r.method  # doctest: +SKIP
+    (1.0, 'density_matrix')
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from qcpp.errors import QcppError
+from qcpp.hardware.device import Device
+from qcpp.routing.native import one_qubit_name
+from qcpp.routing.routed_circuit import RoutedCircuit
+
+__all__ = [
+    "DENSITY_MATRIX_QUBITS",
+    "EXTRA",
+    "METHODS",
+    "STATEVECTOR_QUBITS",
+    "NoisyResult",
+    "active_qubits",
+    "device_noise_model",
+    "noisy_circuit",
+    "require_aer",
+    "simulate_noisy",
+]
+
+EXTRA = "noise"
+"""The optional extra that installs qiskit-aer (``pip install 'qcpp[noise]'``)."""
+
+DENSITY_MATRIX_QUBITS = 10
+"""Active qubits up to which the density matrix is simulated (4^10 entries)."""
+
+STATEVECTOR_QUBITS = 24
+"""Active qubits up to which trajectories run on state vectors (2^24 amplitudes, 256 MiB); beyond, on MPS."""
+
+METHODS = ("density_matrix", "statevector", "matrix_product_state")
+"""aer's methods :func:`simulate_noisy` uses."""
+
+
+class NoisyBackendMissing(QcppError, ImportError):
+    """qiskit-aer is not installed."""
+
+
+def require_aer() -> Any:
+    """The ``qiskit_aer`` module, or a one-line error naming the extra that installs it.
+
+    Raises:
+        NoisyBackendMissing: qiskit-aer is not installed.
+    """
+    try:
+        import qiskit_aer
+    except ImportError:
+        raise NoisyBackendMissing(
+            f"noisy simulation needs qiskit-aer: pip install 'qcpp[{EXTRA}]' (or pip install qiskit-aer)"
+        ) from None
+    return qiskit_aer
+
+
+@dataclass(frozen=True)
+class NoisyResult:
+    """One noisy simulation.
+
+    Attributes:
+        p_optimum: probability that the measured data register is an optimal assignment.
+        stderr: its standard error (0 for the exact density-matrix method).
+        method: aer's method (:data:`METHODS`).
+        qubits: active qubits simulated.
+        shots: trajectories sampled (0: exact probabilities).
+        noise: whether the device's noise was applied.
+    """
+
+    p_optimum: float
+    stderr: float
+    method: str
+    qubits: int
+    shots: int
+    noise: bool
+
+
+def active_qubits(routed: RoutedCircuit) -> tuple[int, ...]:
+    """The physical qubits the routed circuit acts on or measures, ascending."""
+    used = {q for g in routed.circuit.gates for q in g[1]}
+    used.update(routed.final_layout[lq] for lq in routed.measured)
+    return tuple(sorted(used))
+
+
+def _times(device: Device) -> tuple[list[float | None], list[float | None]] | None:
+    if device.t1_s is None or device.t2_s is None:
+        return None
+    return list(device.t1_s), list(device.t2_s)
+
+
+def device_noise_model(device: Device, qubits: Sequence[int], relaxation: bool = True) -> Any:
+    """The aer ``NoiseModel`` of ``device`` on physical ``qubits``, renumbered ``0..len(qubits)-1``.
+
+    Args:
+        device: the device (its file's errors, durations and T1/T2).
+        qubits: physical qubits, in the order of the simulated circuit's qubits.
+        relaxation: add thermal relaxation during gates where T1/T2 and durations are known.
+
+    Returns:
+        A ``qiskit_aer.noise.NoiseModel`` with errors on ``cz``/``rzz``, ``sx``/``x``/``rx`` and ``measure``.
+    """
+    require_aer()
+    from qiskit.circuit import Parameter
+    from qiskit.circuit.library import CZGate, RXGate, RZZGate, SXGate, XGate
+    from qiskit.circuit.measure import Measure
+    from qiskit.transpiler import InstructionProperties, QubitProperties, Target
+    from qiskit_aer.noise import NoiseModel
+    from qiskit_aer.noise.device import basic_device_gate_errors, basic_device_readout_errors
+
+    index = {p: i for i, p in enumerate(qubits)}
+    times = _times(device) if relaxation else None
+    props = [
+        QubitProperties(t1=times[0][p], t2=times[1][p]) if times else QubitProperties() for p in qubits
+    ]  # fmt: skip
+    target = Target(num_qubits=len(qubits), qubit_properties=props)
+    durations_1q = dict(device.duration_1q_s) if device.duration_1q_s is not None else {}
+    gate_of = {"sx": SXGate(), "x": XGate(), "rx": RXGate(Parameter("theta"))}
+    for name, errors in device.error_1q:
+        if name not in gate_of:
+            continue  # rz: virtual, error 0
+        d = durations_1q.get(name)
+        target.add_instruction(
+            gate_of[name],
+            {(index[p],): InstructionProperties(duration=d[p] if d else None, error=errors[p]) for p in qubits},
+        )
+    two = CZGate() if device.two_qubit_gate == "cz" else RZZGate(Parameter("theta"))
+    pairs: dict[tuple[int, int], InstructionProperties] = {}
+    for k, (a, b) in enumerate(device.coupling):
+        if a in index and b in index:
+            d2 = device.duration_2q_s[k] if device.duration_2q_s is not None else None
+            prop = InstructionProperties(duration=d2, error=device.error_2q[k])
+            pairs[(index[a], index[b])] = pairs[(index[b], index[a])] = prop
+    if pairs:
+        target.add_instruction(two, pairs)
+    target.add_instruction(
+        Measure(), {(index[p],): InstructionProperties(error=device.readout_error[p]) for p in qubits}
+    )
+    model = NoiseModel(basis_gates=["cz", "rzz", "rz", "sx", "x", "rx"])
+    for name, qs, error in basic_device_gate_errors(target=target, thermal_relaxation=times is not None):
+        model.add_quantum_error(error, name, qs, warnings=False)
+    for qs, error in basic_device_readout_errors(target=target):
+        model.add_readout_error(error, qs, warnings=False)
+    return model
+
+
+def _gate_duration(device: Device, g: tuple[Any, ...], edge: dict[tuple[int, int], int]) -> float:
+    qs = g[1]
+    if len(qs) == 2:
+        return device.duration_2q_s[edge[qs]] if device.duration_2q_s is not None else 0.0
+    if device.duration_1q_s is None:
+        return 0.0
+    d = dict(device.duration_1q_s).get(one_qubit_name(device, g))
+    return d[qs[0]] if d else 0.0
+
+
+def noisy_circuit(routed: RoutedCircuit, qubits: Sequence[int], idle: bool = True) -> Any:
+    """The routed native circuit as a Qiskit circuit on ``qubits`` (renumbered), measured into the data bits.
+
+    Classical bit ``i`` holds logical data qubit ``i`` (:attr:`RoutedCircuit.measured`) read at its final physical
+    qubit. With ``idle`` (and T1/T2 and durations in the device file) every wait of a qubit in the ASAP schedule,
+    up to the read-out of all at the end, gets a thermal-relaxation channel of that length.
+
+    Raises:
+        ValueError: a gate that is not native on the device.
+    """
+    require_aer()
+    from qiskit import QuantumCircuit
+    from qiskit_aer.noise import thermal_relaxation_error
+
+    device = routed.device
+    index = {p: i for i, p in enumerate(qubits)}
+    times = _times(device) if idle and device.duration_2q_s is not None and device.duration_1q_s is not None else None
+    edge = device.edge_index()
+    qc = QuantumCircuit(len(qubits), len(routed.measured))
+    free = [0.0] * len(qubits)
+
+    def wait(i: int, until: float) -> None:
+        gap = until - free[i]
+        if times is not None and gap > 0:
+            p = qubits[i]
+            t1, t2 = times[0][p], times[1][p]
+            t1 = math.inf if t1 is None else t1
+            t2 = min(2 * t1, math.inf if t2 is None else t2)
+            qc.append(thermal_relaxation_error(t1, t2, gap).to_instruction(), [i])
+        free[i] = max(free[i], until)
+
+    for g in routed.circuit.gates:
+        name, qs, params = g[0], g[1], g[2]
+        local = [index[q] for q in qs]
+        start = max(free[i] for i in local)
+        for i in local:
+            wait(i, start)
+        if len(qs) == 2:
+            if name != device.two_qubit_gate:
+                raise ValueError(f"noisy_circuit: {name} is not native on {device.name}")
+            if name == "cz":
+                qc.cz(*local)
+            else:
+                qc.rzz(float(params[0]), *local)
+        elif name == "rz":
+            qc.rz(float(params[0]), local[0])
+        elif name == "x":
+            qc.x(local[0])
+        elif name == "rx":
+            if one_qubit_name(device, g) == "sx" and abs(float(params[0]) - math.pi / 2) < 1e-12:
+                qc.sx(local[0])
+            else:
+                qc.rx(float(params[0]), local[0])
+        else:
+            raise ValueError(f"noisy_circuit: {name} is not native on {device.name} (use to_native)")
+        end = start + _gate_duration(device, g, edge)
+        for i in local:
+            free[i] = end
+    last = max(free, default=0.0)
+    for bit, lq in enumerate(routed.measured):
+        i = index[routed.final_layout[lq]]
+        wait(i, last)
+        qc.measure(i, bit)
+    return qc
+
+
+def simulate_noisy(
+    routed: RoutedCircuit,
+    optimal: Collection[int],
+    *,
+    noise: bool = True,
+    idle: bool = True,
+    shots: int = 2000,
+    seed: int = 0,
+    method: str | None = None,
+) -> NoisyResult:
+    """``P(optimum)`` of a routed native circuit under its device's noise (see the module docstring).
+
+    Args:
+        routed: a routed circuit in the device's native gates (:func:`qcpp.routing.native.to_native`), angles bound.
+        optimal: the optimal assignments as data-register integers (bit ``i`` = data qubit ``i``).
+        noise: apply the device's noise (``False``: the ideal circuit, the same code path).
+        idle: with ``noise``, also the idle relaxation (``False``: gate and read-out errors only).
+        shots: trajectories for the sampling method.
+        seed: aer's seed.
+        method: one of :data:`METHODS` (default: by the active qubit count, see the module docstring).
+
+    Returns:
+        The :class:`NoisyResult`.
+
+    Raises:
+        NoisyBackendMissing: qiskit-aer is not installed.
+        ValueError: an unknown method, or a gate that is not native.
+    """
+    require_aer()
+    from qiskit_aer import AerSimulator
+
+    qubits = active_qubits(routed)
+    n = len(qubits)
+    chosen = method or (
+        "density_matrix" if n <= DENSITY_MATRIX_QUBITS else "statevector" if n <= STATEVECTOR_QUBITS
+        else "matrix_product_state"
+    )  # fmt: skip
+    if chosen not in METHODS:
+        raise ValueError(f"unknown method {chosen!r} (expected one of {', '.join(METHODS)})")
+    qc = noisy_circuit(routed, qubits, idle=noise and idle)
+    model = device_noise_model(routed.device, qubits) if noise else None
+    sim = AerSimulator(method=chosen, noise_model=model, seed_simulator=seed)
+    targets = set(optimal)
+    if chosen == "density_matrix":
+        exact = qc.remove_final_measurements(inplace=False)
+        bits = [qc.find_bit(instr.qubits[0]).index for instr in qc.data if instr.operation.name == "measure"]
+        exact.save_density_matrix()
+        dm = sim.run(exact).result().data()["density_matrix"]
+        probs = dm.probabilities(bits)
+        if noise and model is not None:
+            probs = _apply_readout(probs, [routed.device.readout_error[routed.final_layout[lq]]
+                                          for lq in routed.measured])  # fmt: skip
+        p = float(sum(probs[k] for k in targets if k < len(probs)))
+        return NoisyResult(min(1.0, max(0.0, p)), 0.0, chosen, n, 0, noise)
+    counts = sim.run(qc, shots=shots).result().get_counts()
+    hits = sum(c for key, c in counts.items() if int(key.replace(" ", ""), 2) in targets)
+    p = hits / shots
+    return NoisyResult(p, math.sqrt(max(p * (1 - p), 1.0 / shots) / shots), chosen, n, shots, noise)
+
+
+def _apply_readout(probs: Any, errors: Sequence[float]) -> Any:
+    """Apply independent symmetric read-out flips (bit ``i`` flips with ``errors[i]``) to a distribution."""
+    import numpy as np
+
+    p = np.asarray(probs, dtype=float).reshape([2] * len(errors))  # axis 0 = the highest bit
+    for i, e in enumerate(errors):
+        axis = len(errors) - 1 - i
+        p = (1 - e) * p + e * np.flip(p, axis=axis)
+    return p.reshape(-1)
