@@ -127,14 +127,7 @@ def search_route(
     seeds = options.placement_seeds if seeds is None else seeds
     if (not starts and layouts < 1) or seeds < 1:
         raise ValueError("search_route needs at least one layout and one seed")
-    context = RoutingContext() if context is None else context
-    pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
-    key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
-           seeds, options)  # fmt: skip
-    ranked = context.placements.get(key)
-    if ranked is None:
-        ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
-        context.placements[key] = ranked
+    ranked = _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
     layout, routing_seed = ranked[0][1:]
     return route(circuit, device, layout, seed=routing_seed, measured=measured, trials=options.trials, fuse=True)
 
@@ -154,6 +147,22 @@ def ranked_routes(
     calibrated candidates of :mod:`qcpp.pipeline.candidates`). Arguments as :func:`search_route`, with its default
     numbers of layouts and seeds."""
     layouts, seeds = options.placement_layouts, options.placement_seeds
+    ranked = _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
+    return [route(circuit, device, layout, seed=s, measured=measured, trials=options.trials, fuse=True)
+            for _, layout, s in ranked[:count]]  # fmt: skip
+
+
+def _ranked(
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]],
+    seed: int,
+    layouts: int,
+    seeds: int,
+    options: RoutingOptions,
+    context: RoutingContext | None,
+) -> list[tuple[int, tuple[int, ...], int]]:
+    """:func:`_search`'s ranking of (cost, layout, seed), memoised in ``context.placements``."""
     context = RoutingContext() if context is None else context
     pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
     key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
@@ -162,8 +171,7 @@ def ranked_routes(
     if ranked is None:
         ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
         context.placements[key] = ranked
-    return [route(circuit, device, layout, seed=s, measured=measured, trials=options.trials, fuse=True)
-            for _, layout, s in ranked[:count]]  # fmt: skip
+    return ranked
 
 
 def _search(
