@@ -7,7 +7,7 @@
   depends on the machine's load: they are off (``QCPP_PROGRESS=off``, inherited by subprocesses); the tests of
   progress itself turn them on with ``QCPP_PROGRESS_INTERVAL=0`` (a line at every step, no clock involved).
 * The README's test command has a time budget (four minutes on two cores beside a CPU-bound job), so the default
-  tests that each take about two CPU-seconds or more run with the heavy step instead (:data:`SLOW_DEFAULT`: CI
+  tests that each take about a CPU-second or more run with the heavy step instead (:data:`SLOW_DEFAULT`: CI
   runs both steps, so every assertion still runs on every change); each behaviour they check keeps faster tests
   in the default run (other parameters of the same test, or the unit tests of the same module).
 * At the session's end pytest collects garbage five times over (to report exceptions raised in finalizers); with
@@ -91,6 +91,71 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/statevector_test.py::test_twenty_qubits",
         "tests/simulate/tensor_test.py::test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes",
         "tests/simulate/time_to_solution_test.py::test_quick_mode_on_the_3x3_instances",
+        "tests/api/bad_input_test.py::test_openqasm_2_of_an_unbound_circuit_names_the_symbols",
+        "tests/cli/bad_input_test.py::test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was"
+        "[estimate --grid 2x2 --plot /dev/full]",
+        "tests/cli/bad_input_test.py::test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was"
+        "[solve ex.toml -m dfs --plot /dev/full]",
+        "tests/cli/closed_stdout_test.py::test_broken_pipe_exits_quietly[estimate-json]",
+        "tests/cli/closed_stdout_test.py::test_closed_stdout_exits_quietly[solve]",
+        "tests/cli/estimate_cli_test.py::test_plot_is_written_atomically",
+        "tests/cli/export_cli_test.py::test_solve_qubo_finds_the_optimum_of_two_robots_4x4",
+        "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak"
+        "[compile--p 2-paper_3x3.toml]",
+        "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak"
+        "[solve--m dfs-3x5x3]",
+        "tests/cli/interrupt_test.py::test_interrupting_a_single_process_command[15]",
+        "tests/cli/interrupt_test.py::test_interrupting_a_single_process_command[2]",
+        "tests/cli/interrupt_test.py::test_signal_stops_a_streaming_sweep_with_whole_rows[15]",
+        "tests/cli/interrupt_test.py::test_signal_stops_a_streaming_sweep_with_whole_rows[2]",
+        "tests/cli/interrupt_test.py::test_the_ready_line_is_off_by_default",
+        "tests/cli/progress_test.py::test_validate_picks_a_backend_that_fits",
+        "tests/cli/robustness_test.py::test_duplicated_obstacles_are_refused_by_name",
+        "tests/cli/robustness_test.py::test_output_in_a_read_only_mount_is_one_line",
+        "tests/cli/robustness_test.py::test_output_under_proc_is_one_line_before_any_work[/proc/qcpp-out.qasm]",
+        "tests/cli/robustness_test.py::test_output_under_proc_is_one_line_before_any_work[/proc/self/qcpp/out.qasm]",
+        "tests/cli/startup_imports_test.py::test_cpsat_loads_ortools_only_when_used",
+        "tests/cli/startup_imports_test.py::test_start_up_loads_no_heavy_library[args1]",
+        "tests/cli/test_extras_test.py::test_no_production_module_imports_a_test_only_library",
+        "tests/compiler/gadget_examples_test.py::test_every_gadget_class_a_plan_emits_is_registered",
+        "tests/compiler/junction_test.py::test_fused_circuit_matches_the_subspace_simulator[3x3/2]",
+        "tests/compiler/lowering_test.py::test_lower_equals_original_on_clean_work_subspace",
+        "tests/compiler/medial_test.py::test_auto_keeps_the_fewer_two_qubit_gates_on_small_circuits[shape2]",
+        "tests/compiler/phase_classes_test.py::test_random_scenarios_and_plan_options_equal_the_plan",
+        "tests/compiler/phase_locality_test.py::test_placed_sums_gadget_cost_and_exactness",
+        "tests/compiler/phase_test.py::test_sums_gadget_cost_and_exactness",
+        "tests/compiler/qasm_test.py::test_every_gate_against_qiskit_high_level_and_lowered",
+        "tests/compiler/qasm_test.py::test_pytket_reads_lowered_qasm2_with_same_counts_and_state",
+        "tests/compiler/qasm_test.py::test_random_circuits_against_qiskit",
+        "tests/compiler/qcec_test.py::test_validate_cli_qcec_backend",
+        "tests/compiler/routing_qcec_test.py::test_qcec_proves_routed_equal_to_unrouted[google_willow]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x3/1 paper rule]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x3/2 p1]",
+        "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x4 interior p1]",
+        "tests/compiler/window_classes_test.py::test_windows_sharing_a_class_route_as_compile_routes_each[3x10/1]",
+        "tests/estimators/formulas_test.py::test_phase_terms_are_the_call_graphs_counting_run_symbolically[5-5]",
+        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
+        "[4x3-0]",
+        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
+        "[4x3-1]",
+        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
+        "[4x3-2]",
+        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
+        "[4x3-3]",
+        "tests/estimators/routed_test.py::test_the_bound_counts_the_circuit_the_device_compile_routes[3x4/2]",
+        "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[3x4/2-grid]",
+        "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[4x4/1-grid]",
+        "tests/problem/cost_test.py::test_evaluators_agree_on_random_bits",
+        "tests/problem/explorability_test.py::test_exact_rule_reaches_every_path_from_the_initial_path[4-4]",
+        "tests/problem/explorability_test.py::test_paper_rule_restricted_to_feasible_moves_is_connected_too[4-4]",
+        "tests/problem/qubo_solve_test.py::test_qubo_method_returns_the_proven_optimum[two_robots_4x4.toml]",
+        "tests/problem/qubo_test.py::test_the_rule_holds_on_random_objectives",
+        "tests/problem/sbf_test.py::test_exact_is_sound[4-4]",
+        "tests/problem/sbf_test.py::test_rules_ignore_the_direction",
+        "tests/simulate/experiments_test.py::test_script_quick_mode[annealing_two_robots-figures1]",
+        "tests/simulate/multi_angle_test.py::test_the_solver_answers_with_the_product_state_and_bindings_of_t"
+        "he_compiled_circuit",
+        "tests/simulate/tensor_test.py::test_validate_cli_json_and_exit_codes",
     }
 )
 """Tests (node ids) that run with ``-m heavy`` although their functions carry no marker: see the module docstring."""
