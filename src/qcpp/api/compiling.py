@@ -98,8 +98,11 @@ class Compiled:
         Example:
             >>> from qcpp.api.scenarios import grid_scenario
             >>> text = compile(grid_scenario(2, 2, robots=1)).to_qasm(profile="portable")
-            >>> text.splitlines()[:3]
-            ['OPENQASM 3.0;', 'input float[64] beta_0;', 'qubit[4] q;']
+            >>> for line in text.splitlines()[:3]:
+            ...     print(line)
+            OPENQASM 3.0;
+            input float[64] beta_0;
+            qubit[4] q;
         """
         from qcpp.lowering.qasm_profiles import check_profile, iter_qasm_profile
 
