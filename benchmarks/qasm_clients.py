@@ -186,9 +186,13 @@ def qdk_estimate_client(text: str, case: Case) -> np.ndarray | None:
 def pyqasm_client(text: str, case: Case) -> np.ndarray | None:
     import pyqasm
 
-    module = pyqasm.loads(text)
-    module.validate()
-    module.unroll()
+    limit = getattr(sys, "tracebacklimit", None)
+    try:
+        module = pyqasm.loads(text)
+        module.validate()
+        module.unroll()
+    finally:  # pyqasm sets sys.tracebacklimit = 0 for the whole process when it raises
+        sys.tracebacklimit = limit  # type: ignore[assignment]
     return None
 
 

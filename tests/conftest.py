@@ -15,11 +15,16 @@
   here finds today's garbage; :func:`gc.freeze` then moves what survived it (live objects) out of the collector's
   sight, so pytest's collections scan only what finalizers left behind; the freeze ends at exit, so that the
   interpreter frees the survivors as usual (:mod:`tests.shutdown`: else nanobind extensions report them as leaks).
+* pyqasm sets ``sys.tracebacklimit = 0`` for the whole process whenever it raises; every later traceback in that
+  worker is then empty, and Hypothesis's ``find`` fails with an ``IndexError`` reading it. Every test leaves
+  ``sys.tracebacklimit`` as it found it (:func:`_keep_the_traceback_limit`).
 """
 
 from __future__ import annotations
 
 import os
+import sys
+from collections.abc import Iterator
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -30,6 +35,17 @@ settings.register_profile("timeless", deadline=None, suppress_health_check=[Heal
 settings.load_profile("timeless")
 
 os.environ["QCPP_PROGRESS"] = "off"
+
+
+@pytest.fixture(autouse=True)
+def _keep_the_traceback_limit() -> Iterator[None]:
+    """Undo a library's process-wide ``sys.tracebacklimit`` (pyqasm sets it to 0 when it raises)."""
+    had, limit = hasattr(sys, "tracebacklimit"), getattr(sys, "tracebacklimit", None)
+    yield
+    if had:
+        sys.tracebacklimit = limit
+    elif hasattr(sys, "tracebacklimit"):
+        del sys.tracebacklimit
 
 SLOW_DEFAULT = frozenset(
     {
