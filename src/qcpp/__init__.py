@@ -47,6 +47,7 @@ if TYPE_CHECKING:
     )
     from qcpp.api.solving import simulate_qaoa, solve, train_qaoa
     from qcpp.errors import OptionError, QcppError
+    from qcpp.io.atomic import OutputError
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.problem.paths import is_feasible
@@ -74,6 +75,7 @@ _EXPORTS: dict[str, str] = {
     "solve": "qcpp.api.solving",
     "train_qaoa": "qcpp.api.solving",
     "OptionError": "qcpp.errors",
+    "OutputError": "qcpp.io.atomic",
     "QcppError": "qcpp.errors",
     "UnboundParameterError": "qcpp.ir.angles",
     "SizeError": "qcpp.problem.limits",
@@ -90,6 +92,7 @@ __all__ = [
     "DeviceError",
     "Estimate",
     "OptionError",
+    "OutputError",
     "QcppError",
     "Scenario",
     "ScenarioError",

@@ -216,7 +216,12 @@ def scenario_to_toml(s: Scenario) -> str:
 
 
 def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
-    """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically."""
+    """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically: the file is whole or absent.
+
+    Raises:
+        ScenarioError: the suffix is neither ``.toml`` nor ``.json``.
+        OutputError: the destination cannot be written (an :class:`OSError`: the environment, not the input).
+    """
     p = Path(path)
     if p.suffix.lower() == ".json":
         text = json.dumps(scenario_to_dict(s), indent=2) + "\n"
