@@ -235,30 +235,37 @@ def test_exhaustive_search_and_seeded_annealing_rows() -> None:
     assert checked >= 4
 
 
+def _check_solver_formulas(r: dict[str, Any]) -> None:
+    """The columns both time-to-solution studies derive by formula from a row's own fields: an anneal or genetic
+    row's successes, tries and time for 99%; a QAOA row's time per shot, shots and time for 99% (and its ``p``)."""
+    if r["method"] in ("anneal", "genetic"):
+        assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
+        assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
+        assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
+    elif r["method"] == "qaoa":
+        o = r["options"]
+        shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
+        assert r["shot_us"] == pytest.approx(shot * 1e6) and r["p"] == o["p"]
+        assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
+        assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
+        assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
+
+
 def test_time_to_solution_derived_columns() -> None:
     rows = _load("time_to_solution")["rows"]
     methods = {r["method"] for r in rows}
     assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa", "qaoa_device"}
     ideal = {(r["instance"], r["p"]): r for r in rows if r["method"] == "qaoa"}
     for r in rows:
+        _check_solver_formulas(r)
         if r["method"] == "dfs":
             s = _scenario(_key(r))
             if r["size"] <= 4:  # the path counts, by enumeration where it is cheap
                 assert r["assignments"] == math.prod(len(enumerate_paths(s, k)) for k in range(s.num_robots))
             if r["attempted"]:
                 assert r["tts_99"] == r["seconds"]
-        elif r["method"] in ("anneal", "genetic"):
-            assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
-            assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
-            assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
         elif r["method"] == "qaoa":
-            o = r["options"]
-            shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
-            assert r["shot_us"] == pytest.approx(shot * 1e6)
-            assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
-            assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
-            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
-            assert r["p"] == o["p"] and r["p_opt"] == pytest.approx(r["p_opt_by_level"][-1])
+            assert r["p_opt"] == pytest.approx(r["p_opt_by_level"][-1])
         elif r["method"] == "qaoa_device":
             twin = ideal[(r["instance"], r["p"])]  # the same trained state and training
             assert (r["p_opt"], r["training_shots"]) == (twin["p_opt"], twin["training_shots"])
@@ -344,20 +351,12 @@ def test_ensemble_derived_columns(name: str) -> None:
     rows = _load(name)["rows"]
     qaoa_rows: dict[str, list[dict[str, Any]]] = {}
     for r in rows:
+        _check_solver_formulas(r)
         if r["method"] == "dfs":
             sol = dfs(_scenario(_key(r)))
             assert (sol.cost.total, sol.evaluated) == (r["optimum"], r["assignments"]), _label(name, r)
-        elif r["method"] in ("anneal", "genetic"):
-            assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
-            assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
-            assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
         elif r["method"] == "qaoa":
-            o = r["options"]
-            shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
-            assert r["shot_us"] == pytest.approx(shot * 1e6) and r["p"] == o["p"]
-            assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
-            assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
-            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
+            shot = shot_seconds(r["depth"], r["two_qubit_depth"], r["options"]["gate_model"])
             assert r["best_sampling_99"] == pytest.approx(shots_for(min(1.0, r["best_p_opt"])) * shot)
             assert r["best_p_opt"] <= r["ceiling_upper"] + 1e-12
             if r["best_start"] == "reached":  # a level below reached the ceiling (0.999): the search stopped there
