@@ -40,6 +40,19 @@ def start(args: list[str], env: dict[str, str] | None = None) -> subprocess.Pope
     )
 
 
+def run_script(script: str) -> subprocess.CompletedProcess[str]:
+    """Run ``python -c script`` against this checkout's ``src`` and wait for it (at most :data:`HUNG` seconds)."""
+    return subprocess.run(
+        [sys.executable, "-c", script],
+        cwd=REPO,
+        env={**os.environ, "PYTHONPATH": str(REPO / "src")},
+        capture_output=True,
+        text=True,
+        timeout=HUNG,
+        check=False,
+    )
+
+
 def wait_until_ready(proc: subprocess.Popen[str]) -> list[str]:
     """Read stderr until the CLI's ``ready: ...`` line (its work has started); return the lines read."""
     assert proc.stderr is not None
@@ -202,15 +215,7 @@ def test_a_signal_while_the_qcec_child_starts_leaves_no_traceback(sig: signal.Si
         "except KeyboardInterrupt:\n"
         "    print('children left:', len(multiprocessing.active_children()))\n"
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", script],
-        cwd=REPO,
-        env={**os.environ, "PYTHONPATH": str(REPO / "src")},
-        capture_output=True,
-        text=True,
-        timeout=HUNG,
-        check=False,
-    )
+    proc = run_script(script)
     assert proc.stdout == "children left: 0\n", proc.stdout + proc.stderr
     assert proc.stderr == "", proc.stderr
 
@@ -237,13 +242,6 @@ def test_a_signal_that_lands_in_a_finaliser_still_stops_without_a_traceback() ->
         "    interrupt.report_interrupted()\n"
         "    os._exit(interrupt.EXIT_CODE)\n"
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", script],
-        cwd=REPO,
-        env={**os.environ, "PYTHONPATH": str(REPO / "src")},
-        capture_output=True,
-        text=True,
-        timeout=HUNG,
-    )
+    proc = run_script(script)
     assert proc.returncode == 130 and proc.stdout == "", proc
     assert proc.stderr == "interrupted\n", proc.stderr

@@ -20,6 +20,7 @@ from qcpp.layout.medial import medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.device_compile import layout_device
 from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import QaoaPlan
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
@@ -121,6 +122,17 @@ def test_the_kind_sum_is_the_placement_of_every_section_on_random_scenarios(s: S
     assert layout_twoq_bound(bound_plan(s, p, PlanOptions(), dev), dev) == _reference_bound(s, p, dev)
 
 
+def _placed(shape: tuple[int, int, int], device: str, p: int) -> tuple[Device, tuple[int, ...], QaoaPlan]:
+    """The default scenario of ``shape`` on the ``device`` family sized for it: the device, the medial placement's
+    homes and the bound's plan of ``p`` layers."""
+    s = default_scenario(*shape)
+    dev = layout_device(s, device)
+    assert dev is not None
+    homes = medial_placement(s, dev)
+    assert homes is not None
+    return dev, homes, bound_plan(s, p, PlanOptions(), dev)
+
+
 def _gates(block: PlacedBlock) -> list[tuple[int, int, int]]:
     """A placed section's two-qubit gates: ``(device qubit, device qubit, how many)``, sorted."""
     pairs = block.where[block.route.pairs].tolist()
@@ -128,12 +140,7 @@ def _gates(block: PlacedBlock) -> list[tuple[int, int, int]]:
 
 
 def test_each_kind_is_routed_once_and_its_route_serves_every_gadget_of_the_kind() -> None:
-    s = default_scenario(4, 4, 2)
-    dev = layout_device(s, "grid")
-    assert dev is not None
-    homes = medial_placement(s, dev)
-    assert homes is not None
-    plan = bound_plan(s, 2, PlanOptions(), dev)
+    dev, homes, plan = _placed((4, 4, 2), "grid", 2)
     context = RoutingContext()
     shared = placed_blocks(plan, homes, dev, context.kind_routes)
     first = list(plan.sections(layers=1))
@@ -158,12 +165,7 @@ def test_each_kind_is_routed_once_and_its_route_serves_every_gadget_of_the_kind(
 def test_every_section_gets_distinct_free_qubits_for_its_ancillas() -> None:
     """The placement the charges use: data at their homes, ancillas on qubits no data qubit and no other ancilla
     of the section holds; every two-qubit gate of the circuit is charged once, at 1 + 6 (d - 1)."""
-    s = default_scenario(3, 3, 2)
-    dev = layout_device(s, "grid")
-    assert dev is not None
-    homes = medial_placement(s, dev)
-    assert homes is not None
-    plan = bound_plan(s, 2, PlanOptions(), dev)
+    dev, homes, plan = _placed((3, 3, 2), "grid", 2)
     blocks = placed_blocks(plan, homes, dev)
     assert blocks is not None
     dist = distances(dev)
@@ -212,12 +214,7 @@ def test_the_swap_chain_routing_of_the_placement_costs_at_most_the_bound(
 ) -> None:
     """Built gate by gate from the placement (an independent shortest-path routine), the routing the bound
     describes is valid and costs exactly the bound on a grid, at most it on heavy-hex (path lengths)."""
-    s = default_scenario(*shape)
-    dev = layout_device(s, device)
-    assert dev is not None
-    homes = medial_placement(s, dev)
-    assert homes is not None
-    plan = bound_plan(s, 1, PlanOptions(), dev)
+    dev, homes, plan = _placed(shape, device, 1)
     blocks = placed_blocks(plan, homes, dev)
     assert blocks is not None
     pairs = np.concatenate([np.repeat(x.where[x.route.pairs], x.multiplicity * x.route.counts, axis=0) for x in blocks])

@@ -20,6 +20,8 @@ from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, CpSatResult, cpsat, dfs, solve
 from qcpp.problem.solvers.cpsat import exact_rational, scenario_symmetries
 
+from .solvers_test import TWO_ROBOTS_3X3
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
@@ -49,10 +51,7 @@ def check_against_dfs(s: Scenario, **options: Any) -> CpSatResult:
 @pytest.mark.parametrize(
     ("robots", "obstacles", "mode", "objective"),
     [
-        ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [], "soft", {}),
-        ([((0, 0), (2, 2)), ((0, 2), (2, 0))], [(1, 1)], "soft", {"balance": "all-pairs"}),
-        ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [(1, 1)], "hard", {}),
-        ([((0, 0), (0, 2)), ((2, 2), (1, 0))], [(0, 1)], "soft", {"degree_target": "paper", "alpha": [2, 1, 3]}),
+        *TWO_ROBOTS_3X3,
         # negative alphas: the balance square as an exact product, the degree term as a table
         ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [(1, 1)], "soft", {"alpha": [1, -0.5, -0.25]}),
         ([((0, 0), (2, 1)), ((1, 2), (2, 0))], [(1, 1)], "soft",

@@ -41,15 +41,17 @@ def assert_feasible(s: Scenario, paths: tuple[int, ...]) -> None:
 # ----------------------------------------------------------------------------- dfs
 
 
-@pytest.mark.parametrize(
-    ("robots", "obstacles", "mode", "objective"),
-    [
-        ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [], "soft", {}),
-        ([((0, 0), (2, 2)), ((0, 2), (2, 0))], [(1, 1)], "soft", {"balance": "all-pairs"}),
-        ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [(1, 1)], "hard", {}),
-        ([((0, 0), (0, 2)), ((2, 2), (1, 0))], [(0, 1)], "soft", {"degree_target": "paper", "alpha": [2, 1, 3]}),
-    ],
-)
+TWO_ROBOTS_3X3 = [
+    ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [], "soft", {}),
+    ([((0, 0), (2, 2)), ((0, 2), (2, 0))], [(1, 1)], "soft", {"balance": "all-pairs"}),
+    ([((0, 0), (2, 2)), ((2, 0), (0, 2))], [(1, 1)], "hard", {}),
+    ([((0, 0), (0, 2)), ((2, 2), (1, 0))], [(0, 1)], "soft", {"degree_target": "paper", "alpha": [2, 1, 3]}),
+]
+"""Two-robot 3x3 scenarios ``(robots, obstacles, obstacle mode, objective keys)``: open, a soft and a hard
+obstacle, other balance and degree objectives (the exact solvers' sweeps: dfs here, CP-SAT in ``cpsat_test``)."""
+
+
+@pytest.mark.parametrize(("robots", "obstacles", "mode", "objective"), TWO_ROBOTS_3X3)
 def test_dfs_equals_brute_force_two_robots_3x3(build, robots, obstacles, mode, objective) -> None:
     s = build(3, 3, robots, obstacles, mode, **objective)
     best, idx = brute_force(s)
@@ -100,17 +102,10 @@ def example(request) -> tuple[Scenario, float]:  # type: ignore[no-untyped-def]
     return s, dfs(s).cost.total
 
 
-def test_anneal_defaults_find_the_dfs_optimum(example) -> None:
+@pytest.mark.parametrize("search", [anneal, genetic], ids=["anneal", "genetic"])
+def test_local_search_defaults_find_the_dfs_optimum(example, search) -> None:
     s, optimum = example
-    sol = anneal(s)
-    assert sol.cost.total == pytest.approx(optimum)
-    assert sol.cost == cost_parts(s, sol.paths)
-    assert_feasible(s, sol.paths)
-
-
-def test_genetic_defaults_find_the_dfs_optimum(example) -> None:
-    s, optimum = example
-    sol = genetic(s)
+    sol = search(s)
     assert sol.cost.total == pytest.approx(optimum)
     assert sol.cost == cost_parts(s, sol.paths)
     assert_feasible(s, sol.paths)

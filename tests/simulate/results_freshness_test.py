@@ -149,7 +149,12 @@ def test_circuit_columns_match_the_compiler(name: str) -> None:
     assert checked > 0
 
 
-def _check_device_rows(heavy: bool) -> int:
+CHEAP_OR_EVERY_ROW = (pytest.param(False, id="cheap"), pytest.param(True, id="every_row", marks=pytest.mark.heavy))
+"""The ``heavy`` argument of a recomputation: the default run checks the cheap rows, the heavy step every row."""
+
+
+@pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
+def test_device_rows_match_the_router(heavy: bool) -> None:
     checked = 0
     for r in _rows("time_to_solution", heavy, lambda r: r.get("instance") in CHEAP_DEVICE_INSTANCES):
         if r["method"] != "qaoa_device":
@@ -163,19 +168,11 @@ def _check_device_rows(heavy: bool) -> int:
             assert r["duration_model"] == "device"
             assert r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
         checked += 1
-    return checked
+    assert checked > 0
 
 
-def test_device_rows_match_the_router() -> None:
-    assert _check_device_rows(heavy=False) > 0
-
-
-@pytest.mark.heavy
-def test_device_rows_match_the_router_every_row() -> None:
-    assert _check_device_rows(heavy=True) > 0
-
-
-def _check_states(heavy: bool) -> int:
+@pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
+def test_recorded_angles_give_the_recorded_state(heavy: bool) -> None:
     checked = 0
     for name in ("time_to_solution", "qaoa_3x3", "qaoa_two_robots", "qaoa_training", "mixer_warm_start"):
         for r in _load(name)["rows"]:
@@ -190,19 +187,11 @@ def _check_states(heavy: bool) -> int:
             if e is not None:
                 assert q.expectation(r["angles"]) == pytest.approx(e, rel=1e-6, abs=1e-9), _label(name, r)
             checked += 1
-    return checked
+    assert checked > 0
 
 
-def test_recorded_angles_give_the_recorded_state() -> None:
-    assert _check_states(heavy=False) > 0
-
-
-@pytest.mark.heavy
-def test_recorded_angles_give_the_recorded_state_every_row() -> None:
-    assert _check_states(heavy=True) > 0
-
-
-def _check_multi_angle_states(heavy: bool) -> int:
+@pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
+def test_recorded_multi_angle_betas_give_the_recorded_state(heavy: bool) -> None:
     """Multi-angle rows (gammas 0, a product state: cheap even at 4x4): P(optimum) and ``<C>`` from the betas."""
     import numpy as np
 
@@ -220,16 +209,7 @@ def _check_multi_angle_states(heavy: bool) -> int:
         assert p_optimum_and_gradients(probs, optima)[0] == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), r["p"]
         assert product_objective(q, probs, Expectation())[1] == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9)
         checked += 1
-    return checked
-
-
-def test_recorded_multi_angle_betas_give_the_recorded_state() -> None:
-    assert _check_multi_angle_states(heavy=False) > 0
-
-
-@pytest.mark.heavy
-def test_recorded_multi_angle_betas_give_the_recorded_state_every_row() -> None:
-    assert _check_multi_angle_states(heavy=True) > 0
+    assert checked > 0
 
 
 def test_exhaustive_search_and_seeded_annealing_rows() -> None:
@@ -255,30 +235,37 @@ def test_exhaustive_search_and_seeded_annealing_rows() -> None:
     assert checked >= 4
 
 
+def _check_solver_formulas(r: dict[str, Any]) -> None:
+    """The columns both time-to-solution studies derive by formula from a row's own fields: an anneal or genetic
+    row's successes, tries and time for 99%; a QAOA row's time per shot, shots and time for 99% (and its ``p``)."""
+    if r["method"] in ("anneal", "genetic"):
+        assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
+        assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
+        assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
+    elif r["method"] == "qaoa":
+        o = r["options"]
+        shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
+        assert r["shot_us"] == pytest.approx(shot * 1e6) and r["p"] == o["p"]
+        assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
+        assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
+        assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
+
+
 def test_time_to_solution_derived_columns() -> None:
     rows = _load("time_to_solution")["rows"]
     methods = {r["method"] for r in rows}
     assert methods == {"dfs", "cpsat", "anneal", "genetic", "qaoa", "qaoa_device"}
     ideal = {(r["instance"], r["p"]): r for r in rows if r["method"] == "qaoa"}
     for r in rows:
+        _check_solver_formulas(r)
         if r["method"] == "dfs":
             s = _scenario(_key(r))
             if r["size"] <= 4:  # the path counts, by enumeration where it is cheap
                 assert r["assignments"] == math.prod(len(enumerate_paths(s, k)) for k in range(s.num_robots))
             if r["attempted"]:
                 assert r["tts_99"] == r["seconds"]
-        elif r["method"] in ("anneal", "genetic"):
-            assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
-            assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
-            assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
         elif r["method"] == "qaoa":
-            o = r["options"]
-            shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
-            assert r["shot_us"] == pytest.approx(shot * 1e6)
-            assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
-            assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
-            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
-            assert r["p"] == o["p"] and r["p_opt"] == pytest.approx(r["p_opt_by_level"][-1])
+            assert r["p_opt"] == pytest.approx(r["p_opt_by_level"][-1])
         elif r["method"] == "qaoa_device":
             twin = ideal[(r["instance"], r["p"])]  # the same trained state and training
             assert (r["p_opt"], r["training_shots"]) == (twin["p_opt"], twin["training_shots"])
@@ -334,7 +321,9 @@ def test_ensemble_rows_are_the_generators_instances(name: str) -> None:
     assert cells == set(cfg["cells"]) and len(data["rows"]) == len(cells) * cfg["instances"] * (4 + cfg["p_max"])
 
 
-def _check_ensemble_states(name: str, heavy: bool) -> int:
+@pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
+@pytest.mark.parametrize("name", ENSEMBLE_FILES)
+def test_ensemble_recorded_angles_and_circuits(name: str, heavy: bool) -> None:
     checked = 0
     for r in _load(name)["rows"]:
         if r["method"] != "qaoa" or not (heavy or r["index"] < CHEAP_ENSEMBLE_INSTANCES):
@@ -349,18 +338,7 @@ def _check_ensemble_states(name: str, heavy: bool) -> int:
             want = _circuit(_key(r), int(r["p"]))
             assert {k: r[k] for k in want} == want, _label(name, r)
         checked += 1
-    return checked
-
-
-@pytest.mark.parametrize("name", ENSEMBLE_FILES)
-def test_ensemble_recorded_angles_and_circuits(name: str) -> None:
-    assert _check_ensemble_states(name, heavy=False) > 0
-
-
-@pytest.mark.heavy
-@pytest.mark.parametrize("name", ENSEMBLE_FILES)
-def test_ensemble_recorded_angles_and_circuits_every_row(name: str) -> None:
-    assert _check_ensemble_states(name, heavy=True) > 0
+    assert checked > 0
 
 
 @pytest.mark.parametrize("name", ENSEMBLE_FILES)
@@ -373,20 +351,12 @@ def test_ensemble_derived_columns(name: str) -> None:
     rows = _load(name)["rows"]
     qaoa_rows: dict[str, list[dict[str, Any]]] = {}
     for r in rows:
+        _check_solver_formulas(r)
         if r["method"] == "dfs":
             sol = dfs(_scenario(_key(r)))
             assert (sol.cost.total, sol.evaluated) == (r["optimum"], r["assignments"]), _label(name, r)
-        elif r["method"] in ("anneal", "genetic"):
-            assert r["successes"] == sum(c <= r["optimum"] + 1e-9 for c in r["run_costs"])
-            assert r["tries_99"] == tries_for(r["successes"] / r["runs"])
-            assert r["tts_99"] == pytest.approx(r["run_seconds"] * r["tries_99"])
         elif r["method"] == "qaoa":
-            o = r["options"]
-            shot = shot_seconds(r["depth"], r["two_qubit_depth"], o["gate_model"])
-            assert r["shot_us"] == pytest.approx(shot * 1e6) and r["p"] == o["p"]
-            assert r["shots_99"] == shots_for(min(1.0, r["p_opt"]))
-            assert r["training_shots"] == r["circuit_estimates"] * o["shots_per_estimate"]
-            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
+            shot = shot_seconds(r["depth"], r["two_qubit_depth"], r["options"]["gate_model"])
             assert r["best_sampling_99"] == pytest.approx(shots_for(min(1.0, r["best_p_opt"])) * shot)
             assert r["best_p_opt"] <= r["ceiling_upper"] + 1e-12
             if r["best_start"] == "reached":  # a level below reached the ceiling (0.999): the search stopped there

@@ -27,7 +27,8 @@ Example:
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass
+from collections.abc import Mapping
+from dataclasses import MISSING, asdict, dataclass, fields
 from typing import Any
 
 from qcpp.errors import QcppError
@@ -82,7 +83,32 @@ class LogicalCounts:
 
     def to_qdk(self) -> dict[str, int]:
         """The ``qdk.estimator.LogicalCounts`` dict: the fields, named in camelCase (``numQubits``, ...)."""
-        return {re.sub(r"_(\w)", lambda m: m[1].upper(), k): v for k, v in asdict(self).items()}
+        return {_camel(k): v for k, v in asdict(self).items()}
+
+    @classmethod
+    def from_qdk(cls, counts: Mapping[str, Any]) -> LogicalCounts:
+        """The counts of a QDK ``logicalCounts`` dict, named as :meth:`to_qdk` names them (its inverse).
+
+        A count the dict leaves out is 0, but ``numQubits`` (the one field without a default) must be there
+        (``KeyError`` otherwise).
+
+        Example:
+            >>> LogicalCounts.from_qdk({"numQubits": 3, "tCount": 4}) == LogicalCounts(num_qubits=3, t_count=4)
+            True
+            >>> c = LogicalCounts(5, 1, 2, 3, 4, 5, 6)
+            >>> LogicalCounts.from_qdk(c.to_qdk()) == c
+            True
+        """
+        values: dict[str, int] = {}
+        for f in fields(cls):
+            key = _camel(f.name)
+            values[f.name] = int(counts[key] if f.default is MISSING else counts.get(key, 0))
+        return cls(**values)
+
+
+def _camel(name: str) -> str:
+    """``num_qubits`` -> ``numQubits``: the QDK's spelling of a field name."""
+    return re.sub(r"_(\w)", lambda m: m[1].upper(), name)
 
 
 @dataclass(frozen=True)

@@ -118,16 +118,7 @@ def qdk_read(
     with warnings.catch_warnings():  # qdk 1.3x marks this estimator as legacy (qdk.qre is its successor)
         warnings.simplefilter("ignore", DeprecationWarning)
         res = openqasm.estimate(source, params)
-    lc: dict[str, Any] = res["logicalCounts"]
-    counts = LogicalCounts(
-        num_qubits=int(lc["numQubits"]),
-        t_count=int(lc.get("tCount", 0)),
-        rotation_count=int(lc.get("rotationCount", 0)),
-        rotation_depth=int(lc.get("rotationDepth", 0)),
-        ccz_count=int(lc.get("cczCount", 0)),
-        ccix_count=int(lc.get("ccixCount", 0)),
-        measurement_count=int(lc.get("measurementCount", 0)),
-    )
+    counts = LogicalCounts.from_qdk(res["logicalCounts"])
     bd = res["physicalCounts"]["breakdown"]
     return QdkReading(
         counts=counts,

@@ -1,4 +1,5 @@
-"""What both methods share: angles, feasibility of decoded basis states, naming edges, gadgets and plaquettes."""
+"""What both methods share: the plan checked, angles, feasibility of decoded basis states, naming edges, gadgets and
+plaquettes."""
 
 from __future__ import annotations
 
@@ -9,9 +10,11 @@ from typing import Any
 
 import numpy as np
 
+from qcpp.plan.options import PlanOptions
+from qcpp.plan.qaoa import QaoaPlan, qaoa_plan
 from qcpp.problem.grid import Plaquette
 from qcpp.problem.paths import edges_of, is_feasible
-from qcpp.problem.sbf import LocalPicture
+from qcpp.problem.sbf import LocalPicture, Rule
 from qcpp.problem.scenario import Scenario
 
 ProgressFn = Callable[[int, int], None]
@@ -19,6 +22,27 @@ ProgressFn = Callable[[int, int], None]
 
 TOLERANCE = 1e-9
 """Amplitudes at most this large (in modulus) count as zero; larger ones are compared to this precision."""
+
+
+def verified_plan(scenario: Scenario, p: int, rule: Rule, options: PlanOptions | None) -> QaoaPlan:
+    """The plan of the circuit a verifier checks: built with ``options``, or ``PlanOptions(rule=rule)`` when there
+    are none (so ``options``' rule replaces ``rule``; the report names ``plan.options.rule``).
+
+    Raises:
+        ValueError: ``p < 1`` (a circuit without layers has no mixer to check).
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> verified_plan(default_scenario(2, 2, 1), 1, "paper", None).options.rule
+        'paper'
+        >>> verified_plan(default_scenario(2, 2, 1), 0, "exact", None)
+        Traceback (most recent call last):
+        ...
+        ValueError: p must be at least 1, got 0
+    """
+    if p < 1:
+        raise ValueError(f"p must be at least 1, got {p}")
+    return qaoa_plan(scenario, p, PlanOptions(rule=rule) if options is None else options)
 
 
 def random_angle(rng: random.Random) -> float:

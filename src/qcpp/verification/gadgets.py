@@ -60,7 +60,6 @@ from qcpp.ir.gates import GATE_SPECS, Gate
 from qcpp.lowering.passes import WORK_REGISTER, lower
 from qcpp.plan.call_graph import Deferred, GadgetKind
 from qcpp.plan.options import PlanOptions
-from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.grid import Plaquette
 from qcpp.problem.paths import is_feasible
 from qcpp.problem.sbf import LocalPicture, Rule, SbfLogic, exact_rule_value, sbf_logic
@@ -75,6 +74,7 @@ from qcpp.verification.common import (
     kind_text,
     plaquette_picture,
     random_angle,
+    verified_plan,
 )
 from qcpp.verification.report import Check, Counterexample, VerifyReport
 from qcpp.verification.state import _scenario_name
@@ -458,11 +458,8 @@ def verify_gadgets(
         local inputs or structural, so when it holds it holds for every feasible input.
     """
     start = time.perf_counter()
-    if p < 1:
-        raise ValueError(f"p must be at least 1, got {p}")
-    options = PlanOptions(rule=rule) if options is None else options
-    rule = options.rule
-    plan = qaoa_plan(scenario, p, options)
+    plan = verified_plan(scenario, p, rule, options)
+    options, rule = plan.options, plan.options.rule
     graph = plan.call_graph()
     beta = random_angle(random.Random(seed))
     checks: list[Check] = []

@@ -60,6 +60,7 @@ from qcpp.verification.common import (
     picture_label,
     plaquette_of_qubits,
     random_angle,
+    verified_plan,
 )
 from qcpp.verification.report import Check, Counterexample, VerifyReport
 
@@ -255,11 +256,8 @@ def verify_state(
         ValueError: the lowered circuit is wider than :data:`~qcpp.verification.batch.MAX_QUBITS` qubits, or ``p < 1``.
     """
     start = time.perf_counter()
-    if p < 1:
-        raise ValueError(f"p must be at least 1, got {p}")
-    options = PlanOptions(rule=rule) if options is None else options
-    rule = options.rule
-    plan = qaoa_plan(scenario, p, options)
+    plan = verified_plan(scenario, p, rule, options)
+    options, rule = plan.options, plan.options.rule
     if plan.num_qubits > MAX_QUBITS:
         raise ValueError(
             f"the state method needs at most {MAX_QUBITS} qubits; this circuit has {plan.num_qubits} "
