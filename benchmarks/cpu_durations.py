@@ -8,7 +8,10 @@ subprocesses it waited for (:func:`os.times`), and prints the slowest and the to
 
 ``CPU_DURATIONS_TOP`` (default 30) sets how many tests are listed; ``CPU_DURATIONS_OUT=path`` also writes every
 test's seconds to ``path`` (one ``seconds node-id`` line each, slowest first), to compare two trees. Under
-pytest-xdist each worker times its own tests and the controller prints nothing.
+pytest-xdist each worker times its own tests, prints nothing and writes ``path.<worker>`` (``path.gw0``, ...):
+
+    CPU_DURATIONS_OUT=/tmp/heavy PYTHONPATH=src:benchmarks python -m pytest -p cpu_durations -m heavy -n 2 -q
+    cat /tmp/heavy.gw* | sort -rn | head -40
 """
 
 from __future__ import annotations
@@ -33,6 +36,14 @@ def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None) -> 
     _SECONDS.append((_cpu() - start, item.nodeid))
 
 
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    out = os.environ.get("CPU_DURATIONS_OUT")
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    if out and _SECONDS:
+        with open(f"{out}.{worker}" if worker else out, "w", encoding="utf-8") as f:
+            f.writelines(f"{seconds:.3f} {node}\n" for seconds, node in sorted(_SECONDS, reverse=True))
+
+
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     if not _SECONDS:
         return
@@ -42,7 +53,3 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     for seconds, node in rows[:top]:
         terminalreporter.write_line(f"{seconds:7.2f} s  {node}")
     terminalreporter.write_line(f"total: {sum(s for s, _ in rows):.1f} CPU seconds over {len(rows)} tests")
-    out = os.environ.get("CPU_DURATIONS_OUT")
-    if out:
-        with open(out, "w", encoding="utf-8") as f:
-            f.writelines(f"{seconds:.3f} {node}\n" for seconds, node in rows)

@@ -1,4 +1,4 @@
-"""Time the README's test command with a CPU-bound job running beside it (issue 18: under 4 minutes on 2 cores).
+"""Time the README's test command with a CPU-bound job running beside it (its budget: 4 minutes on 2 cores).
 
 Starts ``--hogs`` busy-looping Python processes, runs ``python -m pytest -n 2 -m "not heavy"`` (the README's
 command) and prints its summary line, the wall time, the CPU time of the test run (every worker and subprocess
