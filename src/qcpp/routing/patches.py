@@ -87,7 +87,8 @@ class Lattice:
         import numpy as np
 
         self.radius = radius
-
+        self.diamond = tuple((dy, dx) for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
+                           if abs(dy) + abs(dx) <= radius)  # fmt: skip
         self.y = [c[0] for c in coords]
         self.x = [c[1] for c in coords]
         self.at = {c: i for i, c in enumerate(coords)}
@@ -126,15 +127,15 @@ class Lattice:
 
     def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
-        ``shift``, and which of them hold a qubit: every patch grown around the centres (the qubits within
-        :attr:`radius` couplings, their couplings, whether they connect the centres) is decided there."""
+        ``shift`` (ascending by ``(y, x)``), and which of them hold a qubit: every patch grown around the centres
+        (the qubits within :attr:`radius` couplings, their couplings, whether they connect the centres) is decided
+        there."""
         import numpy as np
 
-        r = self.radius
-        steps = np.array([(dy, dx) for dy in range(-r, r + 1) for dx in range(-r, r + 1) if abs(dy) + abs(dx) <= r])
-        at = np.array([(self.y[q], self.x[q]) for q in centres])
-        coords = np.unique((at[:, None, :] + steps[None, :, :]).reshape(-1, 2), axis=0) - np.array(shift)
-        ys, xs = coords[:, 0].copy(), coords[:, 1].copy()
+        sy, sx = shift
+        coords = sorted({(self.y[q] - sy + dy, self.x[q] - sx + dx) for q in centres for dy, dx in self.diamond})
+        ys = np.fromiter((c[0] for c in coords), dtype=np.intp, count=len(coords))
+        xs = np.fromiter((c[1] for c in coords), dtype=np.intp, count=len(coords))
         return ys, xs, self.holds(ys, xs, shift)
 
     def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
@@ -218,8 +219,10 @@ def sabre_local(
     reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
     dag.add_qreg(reg)
     gate = CXGate()
+    bits = list(reg)
+    apply = dag.apply_operation_back
     for a, b in pairs:
-        dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
+        apply(gate, (bits[a], bits[b]), (), check=False)
     sabre, default_trials = sabre_pass(context, coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
     out = run_sabre(sabre, dag, size)
@@ -232,7 +235,8 @@ def sabre_local(
     events: list[tuple] = []
     index = {q: i for i, q in enumerate(out.qubits)}
     for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
-        x, y = (index[q] for q in node.qargs)
+        qargs = node.qargs
+        x, y = index[qargs[0]], index[qargs[1]]
         if node.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
@@ -254,7 +258,9 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
     first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
     do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
-    Both give the same routing."""
+    Both give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
+    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
+    threads costs more CPU than it saves."""
     try:
         from qiskit._accelerate.nlayout import NLayout
         from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
@@ -271,14 +277,18 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
         sabre.property_set["final_layout"] = None
         return sabre.run(dag)
-    out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
+    try:
+        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed, False)
+    except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
+        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
     return out
 
 
 def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
     """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
     routing tables, which takes longer than the routing of a window, so the context keeps a pass per patch (its
-    seed and trials set per run)."""
+    seed and trials set per run). The pass is given the ``Target`` it would build from the coupling map
+    (:func:`_routing_target`)."""
     key: Hashable = (coupling, size)
     hit = context.sabre_passes.get(key)
     if hit is None:
@@ -288,6 +298,30 @@ def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], s
         if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
             context.sabre_passes.clear()
         cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-        sabre = SabreSwap(cmap, heuristic="decay", trials=None)
+        sabre = SabreSwap(_routing_target(cmap), heuristic="decay", trials=None)
         hit = context.sabre_passes[key] = (sabre, sabre.trials)
     return hit
+
+
+def _routing_target(cmap: Any) -> Any:
+    """``Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)``, the target ``SabreSwap(cmap)``
+    builds: the same instructions on the same qubits and couplings, added in the same order (so the same coupling
+    graph, whose neighbour order SABRE's choice of SWAP follows), without ``from_configuration``'s table of every
+    standard gate, which takes longer to build than a window takes to route.
+
+    >>> from qiskit.transpiler import CouplingMap, Target
+    >>> cmap = CouplingMap([[0, 1], [1, 2], [1, 0], [2, 1]])
+    >>> reference = Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)
+    >>> ours = _routing_target(cmap)
+    >>> [(name, list(ours[name])) for name in ours] == [(name, list(reference[name])) for name in reference]
+    True
+    """
+    from qiskit.circuit import Parameter
+    from qiskit.circuit.library import CXGate, UGate
+    from qiskit.transpiler import Target
+
+    target = Target(num_qubits=len(cmap.graph))
+    target.add_instruction(UGate(Parameter("θ"), Parameter("φ"), Parameter("λ")),
+                           properties=dict.fromkeys((q,) for q in range(target.num_qubits)), name="u")  # fmt: skip
+    target.add_instruction(CXGate(), properties=dict.fromkeys(cmap.get_edges()), name="cx")
+    return target
