@@ -87,14 +87,18 @@ class Lattice:
         import numpy as np
 
         self.radius = radius
-        self.diamond = tuple((dy, dx) for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
-                           if abs(dy) + abs(dx) <= radius)  # fmt: skip
         self.y = [c[0] for c in coords]
         self.x = [c[1] for c in coords]
         self.at = {c: i for i, c in enumerate(coords)}
         pad = 2 * radius  # so that a box around any qubits never leaves the array
-        self.present = np.zeros((max(self.y) + 1 + 2 * pad, max(self.x) + 1 + 2 * pad), dtype=np.uint8)
-        self.present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+        self.width = max(self.x) + 1 + 2 * pad
+        present = np.zeros((max(self.y) + 1 + 2 * pad, self.width), dtype=np.uint8)
+        present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+        self.present = present.ravel()  # a coordinate (y, x) is cell (y + pad) * width + x + pad
+        self.cell = [(y + pad) * self.width + x + pad for y, x in coords]
+        steps = [dy * self.width + dx for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
+                 if abs(dy) + abs(dx) <= radius]  # fmt: skip
+        self.diamond = [frozenset(c + step for step in steps) for c in self.cell]  # cells within radius steps
 
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
@@ -118,30 +122,30 @@ class Lattice:
         """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
         :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
         pairs'."""
-        flat = [q for pair in pairs for q in pair]
-        ys = [self.y[q] for q in flat]
-        xs = [self.x[q] for q in flat]
+        from itertools import chain
+        from operator import itemgetter
+
+        get = itemgetter(*chain.from_iterable(pairs))  # two qubits or more (one pair at least): a tuple
+        ys, xs = get(self.y), get(self.x)
         y0, x0 = min(ys), min(xs)
         ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
-        return (tuple(y - ay for y in ys), tuple(x - ax for x in xs)), (ay, ax)
+        off = ay * self.width + ax
+        return tuple([c - off for c in get(self.cell)]), (ay, ax)
 
-    def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
+    def around(self, centres: set[int], shift: Coord) -> tuple[Any, bytes]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
-        ``shift`` (ascending by ``(y, x)``), and which of them hold a qubit: every patch grown around the centres
-        (the qubits within :attr:`radius` couplings, their couplings, whether they connect the centres) is decided
-        there."""
+        ``shift`` (as cells of :attr:`present` less the shift's, ascending), and which of them hold a qubit:
+        every patch grown around the centres (the qubits within :attr:`radius` couplings, their couplings, whether
+        they connect the centres) is decided there."""
         import numpy as np
 
-        sy, sx = shift
-        coords = sorted({(self.y[q] - sy + dy, self.x[q] - sx + dx) for q in centres for dy, dx in self.diamond})
-        ys = np.fromiter((c[0] for c in coords), dtype=np.intp, count=len(coords))
-        xs = np.fromiter((c[1] for c in coords), dtype=np.intp, count=len(coords))
-        return ys, xs, self.holds(ys, xs, shift)
+        cells = np.array(sorted(frozenset().union(*(self.diamond[q] for q in centres))), dtype=np.intp)
+        cells -= shift[0] * self.width + shift[1]
+        return cells, self.holds(cells, shift)
 
-    def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
-        """Which of the coordinates ``(ys, xs)`` plus ``shift`` hold a qubit."""
-        pad = 2 * self.radius
-        return self.present[ys + (shift[0] + pad), xs + (shift[1] + pad)].tobytes()
+    def holds(self, cells: Any, shift: Coord) -> bytes:
+        """Which of the coordinates ``cells`` (as :meth:`around` gives them) plus ``shift`` hold a qubit."""
+        return self.present[cells + (shift[0] * self.width + shift[1])].tobytes()  # type: ignore[no-any-return]
 
     def moved(self, q: int, by: Coord) -> int:
         """The qubit at qubit ``q``'s coordinates plus ``by``."""

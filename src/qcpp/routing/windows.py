@@ -185,8 +185,8 @@ def _memo_window(
         rel, shift = lattice.canonical(physical)
         translated = context.windows.setdefault(("window", index.token, "translated", rel, settings), [])
     hit = None
-    for ys, xs, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
-        if lattice.holds(ys, xs, shift) == holds:  # type: ignore[union-attr, arg-type]
+    for cells, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
+        if lattice.holds(cells, shift) == holds:  # type: ignore[union-attr, arg-type]
             hit = entry
             break
     else:  # routed on its whole component, or no lattice: memoised on its physical pairs
