@@ -164,32 +164,56 @@ def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], di
     return order, partners, data_in
 
 
-def _place_ancillas(
+def _ancilla_keys(
     order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
-    free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
-    start: dict[int, int] | None = None,
+    data_homes: Sequence[int], n_data: int,
+) -> tuple[list[np.ndarray], list[list[tuple[int, float]]]]:  # fmt: skip
+    """Per ancilla of ``order``: the part of its placement key (:func:`_place_ancillas`) that the other ancillas do
+    not change (``centre`` plus 1e6 x its weighted distances to its data partners' homes), and its ancilla partners
+    with their weights x 1e6. The search places a section's ancillas hundreds of times: this part is summed once.
+    The keys are sums of integers, so exact in any order."""
+    base: list[np.ndarray] = []
+    links: list[list[tuple[int, float]]] = []
+    for q in order:
+        key = centre.copy()
+        linked = []
+        for partner, w in partners[q].items():
+            if partner < n_data:
+                key += (w * 1e6) * to_free[data_homes[partner]]
+            else:
+                linked.append((partner, w * 1e6))
+        key.flags.writeable = False
+        base.append(key)
+        links.append(linked)
+    return base, links
+
+
+def _place_ancillas(
+    order: list[int], base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+    free: np.ndarray, ranks: Sequence[int] = (), start: dict[int, int] | None = None,
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
-    meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
-    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
-    device qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the
-    search varies one ancilla at a time and places those before it once)."""
+    meets that are already placed, ties by the distance to the section's data (the key ``base[i]`` plus 1e6 x
+    the weighted distances to the ancilla partners ``links[i]`` placed before it, :func:`_ancilla_keys`: sums of
+    integers, so exactly cost * 1e6 + centre); ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its ``r``-th
+    best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from device
+    qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the search
+    varies one ancilla at a time and places those before it once)."""
     home = dict(start) if start else {}
     busy = np.searchsorted(free, list(home.values())).tolist() if home else []
     for i in range(len(home), len(order)):
-        q = order[i]
-        key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
-        for partner, w in partners[q].items():
-            at = data_homes[partner] if partner < n_data else home.get(partner)
+        key = base[i].copy()
+        for partner, w in links[i]:
+            at = home.get(partner)
             if at is not None:
-                key += (w * 1e6) * to_free[at]
+                key += w * to_free[at]
         key[busy] = np.inf
         rank = ranks[i] if i < len(ranks) else 0
         j = _ranked(key, rank) if rank else int(np.argmin(key))
         if not np.isfinite(key[j]):
             j = int(np.argmin(key))
         busy.append(j)
-        home[q] = int(free[j])
+        home[order[i]] = int(free[j])
     return home
 
 
@@ -312,7 +336,8 @@ def allocate_ancillas(
                 f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
             )
         centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
-        home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data)
+        base, links = _ancilla_keys(order, partners, centre, to_free, data_homes, n_data)
+        home = _place_ancillas(order, base, links, to_free, free)
         twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
         if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
                 and not has_rzz(sec.gates)):  # fmt: skip
@@ -335,8 +360,7 @@ def allocate_ancillas(
                             trial = [*ranks[:i], r, *ranks[i + 1 :]]
                             cost = tried.get(tuple(trial))
                             if cost is None:
-                                other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
-                                                        trial, prefix)  # fmt: skip
+                                other = _place_ancillas(order, base, links, to_free, free, trial, prefix)
                                 placed = tuple(other.items())
                                 cost = tried.get(placed)
                                 if cost is None:
@@ -345,15 +369,14 @@ def allocate_ancillas(
                                 tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
-                        prefix = _place_ancillas(order[: i + 1], partners, centre, to_free, free, data_homes, n_data,
-                                                 ranks, prefix)  # fmt: skip
+                        prefix = _place_ancillas(order[: i + 1], base, links, to_free, free, ranks, prefix)
                     if not improved:
                         break
                 ranks = tuple(ranks)
                 if key is not None:
                     context.allocations[key] = ranks
             if any(ranks):
-                home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data, ranks)
+                home = _place_ancillas(order, base, links, to_free, free, ranks)
         used.update(home.values())
         renamed.append((sec.name, home))
     sites = sorted(used)
