@@ -31,7 +31,10 @@ from typing import Any
 from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
 
-__all__ = ["Coord", "Lattice", "PatchIndex", "local_patch", "patch_index", "run_sabre", "sabre_local", "sabre_pass"]
+__all__ = [
+    "Coord", "Lattice", "PatchIndex", "indexed_patch", "local_patch", "patch_index", "run_sabre", "sabre_local",
+    "sabre_pass",
+]  # fmt: skip
 
 PATCH_INDEXES_KEPT = 8
 """Devices (with their distances and radius) whose :class:`PatchIndex` a context keeps."""
@@ -57,7 +60,8 @@ class PatchIndex:
             self.neighbours[b].append(a)
             self.edges_of[a].append(e)
             self.edges_of[b].append(e)
-        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+        # per positions grown around: (patch, whole component, couplings in local indices, local index of a qubit)
+        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...], dict]] = {}
         self.token = object()  # names the device in memo keys without keeping its distances alive
         self.lattice = Lattice.of(device, radius) if translate else None
 
@@ -172,6 +176,14 @@ def local_patch(
 
     Memoised per device in ``context``; every call reports the patch to the context's open watches and
     ``positions`` to its open centre sets."""
+    patch, coupling, _ = indexed_patch(context, positions, device, dist, radius)
+    return patch, coupling
+
+
+def indexed_patch(
+    context: RoutingContext, positions: set[int], device: Device, dist: Any, radius: int
+) -> tuple[tuple[int, ...], tuple[tuple[int, int], ...], dict[int, int]]:
+    """:func:`local_patch` and the patch's local index of each of its qubits (not to be changed: memoised)."""
     index = patch_index(context, device, dist, radius)
     for centres in context.centres:
         centres.update(positions)
@@ -198,11 +210,11 @@ def local_patch(
         edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
         coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
                          if a in local and b in local)  # fmt: skip
-        hit = (patch, whole, coupling)
+        hit = (patch, whole, coupling, local)
         index.patches[key] = hit
-    patch, whole, coupling = hit
+    patch, whole, coupling, local = hit
     context.saw_patch(patch, whole)
-    return patch, coupling
+    return patch, coupling, local
 
 
 def sabre_local(
