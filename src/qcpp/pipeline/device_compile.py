@@ -73,7 +73,7 @@ from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
-from qcpp.routing.context import RoutingContext
+from qcpp.routing.context import RoutingContext, collector_paused
 from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
@@ -523,11 +523,23 @@ def medial_compile(
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
     ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's
-    settings and the run's memos (default: a fresh context).
+    settings and the run's memos (default: a fresh context). Python's cyclic garbage collector is paused meanwhile
+    (:func:`qcpp.routing.context.collector_paused`: its passes over the memos are a sixth of a heavy-hex compile).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
+    with collector_paused():
+        return _medial_compile(scenario, circuit, spec, seed, measured, arrangement, options, bindings, stage, routing,
+                               context)  # fmt: skip
+
+
+def _medial_compile(
+    scenario: Scenario, circuit: Circuit, spec: str | Device, seed: int, measured: range | None, arrangement: str,
+    options: PlanOptions | None, bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None,
+    routing: RoutingOptions, context: RoutingContext | None,
+) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
+    """:func:`medial_compile`'s work, run with the cyclic garbage collector paused."""
     say = stage or (lambda _text: None)
     context = RoutingContext() if context is None else context
     dev = layout_device(scenario, spec, arrangement)
