@@ -193,21 +193,15 @@ def _place_ancillas(
     free: np.ndarray, ranks: Sequence[int] = (), start: dict[int, int] | None = None,
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
-    meets that are already placed, ties by the distance to the section's data (the key ``base[i]`` plus 1e6 x
-    the weighted distances to the ancilla partners ``links[i]`` placed before it, :func:`_ancilla_keys`: sums of
-    integers, so exactly cost * 1e6 + centre); ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its ``r``-th
-    best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from device
-    qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the search
-    varies one ancilla at a time and places those before it once)."""
+    meets that are already placed, ties by the distance to the section's data (:func:`_ancilla_key`);
+    ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its ``r``-th best qubit instead (the search of
+    :func:`allocate_ancillas`). ``to_free[p]``: the distances from device qubit ``p`` to the free qubits.
+    ``start``: the first ancillas' placement, as this placed them (the search varies one ancilla at a time and
+    places those before it once)."""
     home = dict(start) if start else {}
     busy = np.searchsorted(free, list(home.values())).tolist() if home else []
     for i in range(len(home), len(order)):
-        key = base[i].copy()
-        for partner, w in links[i]:
-            at = home.get(partner)
-            if at is not None:
-                key += w * to_free[at]
-        key[busy] = np.inf
+        key = _ancilla_key(i, base, links, to_free, home, busy)
         rank = ranks[i] if i < len(ranks) else 0
         j = _ranked(key, rank) if rank else int(np.argmin(key))
         if not np.isfinite(key[j]):
@@ -215,6 +209,45 @@ def _place_ancillas(
         busy.append(j)
         home[order[i]] = int(free[j])
     return home
+
+
+def _ancilla_key(i: int, base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+                 home: dict[int, int], busy: Sequence[int]) -> np.ndarray:  # fmt: skip
+    """The placement key of the ``i``-th ancilla over the free qubits, the ancillas before it at ``home`` (on the
+    free qubits ``busy``, there infinite): ``base[i]`` plus 1e6 x the weighted distances to its ancilla partners
+    ``links[i]`` (:func:`_ancilla_keys`; sums of integers, so exactly cost * 1e6 + centre)."""
+    key = base[i].copy()
+    for partner, w in links[i]:
+        at = home.get(partner)
+        if at is not None:
+            key += w * to_free[at]
+    key[busy] = np.inf
+    return key
+
+
+def _choices(key: np.ndarray, ranks: int) -> list[int]:
+    """Where :func:`_place_ancillas` puts an ancilla of this key with rank ``0 .. ranks``: the ``r``-th finite
+    entry of the stable order (ties by index), else the first minimum (one pass per rank for all of them).
+
+    >>> _choices(np.array([3.0, 1.0, 2.0, 1.0, np.inf]), 4)
+    [1, 3, 2, 0, 1]
+    """
+    rest = key.copy()
+    first = int(np.argmin(key))
+    out = []
+    for _ in range(ranks + 1):
+        j = int(np.argmin(rest))
+        out.append(j if np.isfinite(rest[j]) else first)
+        rest[j] = np.inf
+    return out
+
+
+def _prefix_choices(i: int, base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+                    free: np.ndarray, prefix: dict[int, int], top: int) -> list[int]:  # fmt: skip
+    """:func:`_choices` of the ``i``-th ancilla, the ancillas before it at ``prefix``: what
+    :func:`_place_ancillas` does with it for each rank ``0 .. top``, its key built once for all of them."""
+    busy = np.searchsorted(free, list(prefix.values())).tolist() if prefix else []
+    return _choices(_ancilla_key(i, base, links, to_free, prefix, busy), top)
 
 
 def _ranked(key: np.ndarray, rank: int) -> int:
@@ -350,17 +383,22 @@ def allocate_ancillas(
                 ranks = [0] * len(order)
                 best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
                 tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
+                top = min(options.search_ranks, len(free) - 1)
                 for _ in range(options.search_rounds):
                     improved = False
                     prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
                     for i in range(len(order)):
-                        for r in range(1 + min(options.search_ranks, len(free) - 1)):
+                        choices = None  # where the i-th ancilla goes by rank (the ancillas before it at prefix)
+                        for r in range(1 + top):
                             if r == ranks[i]:
                                 continue
                             trial = [*ranks[:i], r, *ranks[i + 1 :]]
                             cost = tried.get(tuple(trial))
                             if cost is None:
-                                other = _place_ancillas(order, base, links, to_free, free, trial, prefix)
+                                if choices is None:
+                                    choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                                other = _place_ancillas(order, base, links, to_free, free, trial,
+                                                        {**prefix, order[i]: int(free[choices[r]])})  # fmt: skip
                                 placed = tuple(other.items())
                                 cost = tried.get(placed)
                                 if cost is None:
@@ -369,7 +407,9 @@ def allocate_ancillas(
                                 tried[tuple(trial)] = cost
                             if cost < best:
                                 best, ranks, improved = cost, trial, True
-                        prefix = _place_ancillas(order[: i + 1], base, links, to_free, free, ranks, prefix)
+                        if choices is None:
+                            choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                        prefix = {**prefix, order[i]: int(free[choices[ranks[i]]])}
                     if not improved:
                         break
                 ranks = tuple(ranks)
