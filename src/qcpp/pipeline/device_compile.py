@@ -277,6 +277,9 @@ def compile_for_device(
             ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
             devices). The families keep compile's single routing.
 
+    Python's cyclic garbage collector is paused meanwhile (:func:`qcpp.routing.context.collector_paused`: the
+    searches' memos hold hundreds of thousands of objects, which its passes would traverse again and again).
+
     Returns:
         The :class:`DeviceCompileResult`.
 
@@ -284,6 +287,18 @@ def compile_for_device(
         qcpp.hardware.device.DeviceError: an unknown device.
         ValueError: the device is too small.
     """
+    with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
+        return _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
+                                   layout_method, arrangement, stage, routing, context, optimize_for)  # fmt: skip
+
+
+def _compile_for_device(
+    scenario: Scenario, p: int, device: str | Device, options: PlanOptions, lowered: bool,
+    bindings: Mapping[str, float] | None, local_ancillas: bool, seed: int, layouts: tuple[str, ...],
+    layout_method: str, arrangement: str, stage: Callable[[str], None] | None, routing: RoutingOptions,
+    context: RoutingContext | None, optimize_for: str | None,
+) -> DeviceCompileResult:  # fmt: skip
+    """:func:`compile_for_device`'s work (run with the cyclic garbage collector paused)."""
     start = time.perf_counter()
     if optimize_for is not None and optimize_for not in OPTIMIZE_FOR:
         raise ValueError(f"optimize for one of {', '.join(OPTIMIZE_FOR)}, not {optimize_for!r}")
@@ -523,23 +538,11 @@ def medial_compile(
     With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
     partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
     ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's
-    settings and the run's memos (default: a fresh context). Python's cyclic garbage collector is paused meanwhile
-    (:func:`qcpp.routing.context.collector_paused`: its passes over the memos are a sixth of a heavy-hex compile).
+    settings and the run's memos (default: a fresh context).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
     """
-    with collector_paused():
-        return _medial_compile(scenario, circuit, spec, seed, measured, arrangement, options, bindings, stage, routing,
-                               context)  # fmt: skip
-
-
-def _medial_compile(
-    scenario: Scenario, circuit: Circuit, spec: str | Device, seed: int, measured: range | None, arrangement: str,
-    options: PlanOptions | None, bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None,
-    routing: RoutingOptions, context: RoutingContext | None,
-) -> tuple[Circuit, RoutedCircuit] | None:  # fmt: skip
-    """:func:`medial_compile`'s work, run with the cyclic garbage collector paused."""
     say = stage or (lambda _text: None)
     context = RoutingContext() if context is None else context
     dev = layout_device(scenario, spec, arrangement)

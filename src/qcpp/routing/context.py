@@ -138,8 +138,8 @@ def collector_paused() -> Iterator[None]:
     cycle holds), and restore it as it was.
 
     A device compile's searches allocate millions of short-lived tuples and keep hundreds of thousands in the
-    context's memos; the collector's passes over them find next to nothing and cost a sixth of a heavy-hex compile.
-    Whatever cycles the block leaves are collected by the first pass after it.
+    context's memos; the collector's passes traverse them again and again and find next to nothing. Whatever
+    cycles the block leaves are collected by the first pass after it.
 
     >>> import gc
     >>> with collector_paused():
