@@ -249,10 +249,15 @@ def sabre_local(
     who = list(range(size))  # position -> the qubit that started there
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
-    index = {q: i for i, q in enumerate(out.qubits)}
+    # register q's bits in its order know their place (cheaper than hashing them); else look them up
+    registered = [getattr(q, "_index", None) for q in out.qubits] == list(range(size))
+    index = None if registered else {q: i for i, q in enumerate(out.qubits)}
     for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
         qargs = node.qargs
-        x, y = index[qargs[0]], index[qargs[1]]
+        if index is None:
+            x, y = qargs[0]._index, qargs[1]._index
+        else:  # pragma: no cover - another Qiskit's bits
+            x, y = index[qargs[0]], index[qargs[1]]
         if node.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
