@@ -51,7 +51,10 @@ def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     """
     m = 0
     n = len(pairs)
-    while m < n // 2 and sorted(pairs[m]) == sorted(pairs[n - 1 - m]):
+    while m < n // 2:
+        (a, b), (c, d) = pairs[m], pairs[n - 1 - m]
+        if not ((a == c and b == d) or (a == d and b == c)):
+            break
         m += 1
     return m
 
