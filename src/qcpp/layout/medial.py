@@ -54,7 +54,7 @@ from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_window_cx
 
-__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape"]
+__all__ = ["allocate_ancillas", "allocate_section", "grid_shape", "medial_placement", "medial_shape"]
 
 
 def grid_shape(device: Device) -> tuple[int, int] | None:
@@ -363,60 +363,7 @@ def allocate_ancillas(
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:
-        order, partners, data_in = _section_ancillas(sec.gates, n_data)
-        if len(order) > len(free):
-            raise ValueError(
-                f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
-            )
-        centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
-        base, links = _ancilla_keys(order, partners, centre, to_free, data_homes, n_data)
-        home = _place_ancillas(order, base, links, to_free, free)
-        twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
-        if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
-                and not has_rzz(sec.gates)):  # fmt: skip
-            shape_key = _search_key(sec.gates, data_homes, n_data, taken, device, order, options.search_margin)
-            key = None if shape_key is None else (shape_key, options)
-            ranks = context.allocations.get(key) if key is not None else None
-            if ranks is None:
-                twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
-                data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
-                ranks = [0] * len(order)
-                best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
-                tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
-                top = min(options.search_ranks, len(free) - 1)
-                for _ in range(options.search_rounds):
-                    improved = False
-                    prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
-                    for i in range(len(order)):
-                        choices = None  # where the i-th ancilla goes by rank (the ancillas before it at prefix)
-                        for r in range(1 + top):
-                            if r == ranks[i]:
-                                continue
-                            trial = [*ranks[:i], r, *ranks[i + 1 :]]
-                            cost = tried.get(tuple(trial))
-                            if cost is None:
-                                if choices is None:
-                                    choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
-                                other = _place_ancillas(order, base, links, to_free, free, trial,
-                                                        {**prefix, order[i]: int(free[choices[r]])})  # fmt: skip
-                                placed = tuple(other.items())
-                                cost = tried.get(placed)
-                                if cost is None:
-                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d, options,
-                                                                        context)  # type: ignore[arg-type]
-                                tried[tuple(trial)] = cost
-                            if cost < best:
-                                best, ranks, improved = cost, trial, True
-                        if choices is None:
-                            choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
-                        prefix = {**prefix, order[i]: int(free[choices[ranks[i]]])}
-                    if not improved:
-                        break
-                ranks = tuple(ranks)
-                if key is not None:
-                    context.allocations[key] = ranks
-            if any(ranks):
-                home = _place_ancillas(order, base, links, to_free, free, ranks)
+        home = _section_homes(sec, data_homes, device, d, search, options, context, taken, free, to_free)
         used.update(home.values())
         renamed.append((sec.name, home))
     sites = sorted(used)
@@ -429,3 +376,83 @@ def allocate_ancillas(
     registers = [Register("data", n_data)] + ([Register("site", len(sites))] if sites else [])
     layout = (*(int(p) for p in data_homes), *sites)
     return Circuit(registers, sections), tuple(layout)
+
+
+def allocate_section(
+    section: Section, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None,
+    search: bool = False, options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+) -> dict[int, int]:
+    """The physical qubit of each ancilla of one section, as :func:`allocate_ancillas` allocates it (same
+    arguments; a section's ancillas do not depend on the other sections'), without building the renamed circuit:
+    what the cells' plan choice needs of every candidate section (:mod:`qcpp.pipeline.cellmixer`).
+
+    Returns:
+        Logical ancilla (a qubit ``>= len(data_homes)`` of ``section``) -> physical qubit.
+    """
+    d = _distances(device) if dist is None else dist
+    context = RoutingContext() if context is None else context
+    taken, free, to_free = _free_sites(context, device, d, tuple(int(h) for h in data_homes))
+    return _section_homes(section, data_homes, device, d, search, options, context, taken, free, to_free)
+
+
+def _section_homes(
+    sec: Section, data_homes: Sequence[int], device: Device, d: np.ndarray, search: bool, options: RoutingOptions,
+    context: RoutingContext, taken: np.ndarray, free: np.ndarray, to_free: np.ndarray,
+) -> dict[int, int]:  # fmt: skip
+    """:func:`allocate_section` with the free sites known (:func:`_free_sites`)."""
+    n_data = len(data_homes)
+    order, partners, data_in = _section_ancillas(sec.gates, n_data)
+    if len(order) > len(free):
+        raise ValueError(
+            f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
+        )
+    centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
+    base, links = _ancilla_keys(order, partners, centre, to_free, data_homes, n_data)
+    home = _place_ancillas(order, base, links, to_free, free)
+    twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
+    if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
+            and not has_rzz(sec.gates)):  # fmt: skip
+        shape_key = _search_key(sec.gates, data_homes, n_data, taken, device, order, options.search_margin)
+        key = None if shape_key is None else (shape_key, options)
+        ranks = context.allocations.get(key) if key is not None else None
+        if ranks is None:
+            twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
+            data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
+            ranks = [0] * len(order)
+            best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
+            tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
+            top = min(options.search_ranks, len(free) - 1)
+            for _ in range(options.search_rounds):
+                improved = False
+                prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
+                for i in range(len(order)):
+                    choices = None  # where the i-th ancilla goes by rank (the ancillas before it at prefix)
+                    for r in range(1 + top):
+                        if r == ranks[i]:
+                            continue
+                        trial = [*ranks[:i], r, *ranks[i + 1 :]]
+                        cost = tried.get(tuple(trial))
+                        if cost is None:
+                            if choices is None:
+                                choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                            other = _place_ancillas(order, base, links, to_free, free, trial,
+                                                    {**prefix, order[i]: int(free[choices[r]])})  # fmt: skip
+                            placed = tuple(other.items())
+                            cost = tried.get(placed)
+                            if cost is None:
+                                cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d, options,
+                                                                    context)  # type: ignore[arg-type]
+                            tried[tuple(trial)] = cost
+                        if cost < best:
+                            best, ranks, improved = cost, trial, True
+                    if choices is None:
+                        choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                    prefix = {**prefix, order[i]: int(free[choices[ranks[i]]])}
+                if not improved:
+                    break
+            ranks = tuple(ranks)
+            if key is not None:
+                context.allocations[key] = ranks
+        if any(ranks):
+            home = _place_ancillas(order, base, links, to_free, free, ranks)
+    return home
