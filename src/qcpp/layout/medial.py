@@ -39,6 +39,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -203,9 +204,9 @@ def _place_ancillas(
     for i in range(len(home), len(order)):
         key = _ancilla_key(i, base, links, to_free, home, busy)
         rank = ranks[i] if i < len(ranks) else 0
-        j = _ranked(key, rank) if rank else int(np.argmin(key))
-        if not np.isfinite(key[j]):
-            j = int(np.argmin(key))
+        j = _ranked(key, rank) if rank else int(key.argmin())
+        if not math.isfinite(key[j]):
+            j = int(key.argmin())
         busy.append(j)
         home[order[i]] = int(free[j])
     return home
@@ -216,11 +217,16 @@ def _ancilla_key(i: int, base: list[np.ndarray], links: list[list[tuple[int, flo
     """The placement key of the ``i``-th ancilla over the free qubits, the ancillas before it at ``home`` (on the
     free qubits ``busy``, there infinite): ``base[i]`` plus 1e6 x the weighted distances to its ancilla partners
     ``links[i]`` (:func:`_ancilla_keys`; sums of integers, so exactly cost * 1e6 + centre)."""
-    key = base[i].copy()
+    key = None  # a fresh array: base[i] is shared
     for partner, w in links[i]:
         at = home.get(partner)
         if at is not None:
-            key += w * to_free[at]
+            if key is None:
+                key = base[i] + w * to_free[at]
+            else:
+                key += w * to_free[at]
+    if key is None:
+        key = base[i].copy()
     key[busy] = np.inf
     return key
 
@@ -233,11 +239,11 @@ def _choices(key: np.ndarray, ranks: int) -> list[int]:
     [1, 3, 2, 0, 1]
     """
     rest = key.copy()
-    first = int(np.argmin(key))
+    first = int(key.argmin())
     out = []
     for _ in range(ranks + 1):
-        j = int(np.argmin(rest))
-        out.append(j if np.isfinite(rest[j]) else first)
+        j = int(rest.argmin())
+        out.append(j if math.isfinite(rest[j]) else first)
         rest[j] = np.inf
     return out
 
@@ -259,9 +265,9 @@ def _ranked(key: np.ndarray, rank: int) -> int:
     """
     rest = key.copy()
     for _ in range(rank):
-        rest[int(np.argmin(rest))] = np.inf
-    j = int(np.argmin(rest))
-    return j if np.isfinite(rest[j]) else int(np.argmin(key))
+        rest[int(rest.argmin())] = np.inf
+    j = int(rest.argmin())
+    return j if math.isfinite(rest[j]) else int(key.argmin())
 
 
 def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, taken: np.ndarray, device: Device,
