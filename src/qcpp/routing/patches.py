@@ -100,6 +100,8 @@ class Lattice:
         present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
         self.present = present.ravel()  # a coordinate (y, x) is cell (y + pad) * width + x + pad
         self.cell = [(y + pad) * self.width + x + pad for y, x in coords]
+        self.span = 2 * (max(self.x) + self.PERIOD) + 1  # (y, x) is code y * span + x, unique for |x| < span / 2
+        self.code = [y * self.span + x for y, x in coords]
         steps = [dy * self.width + dx for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
                  if abs(dy) + abs(dx) <= radius]  # fmt: skip
         self.diamond = [frozenset(c + step for step in steps) for c in self.cell]  # cells within radius steps
@@ -125,16 +127,15 @@ class Lattice:
     def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
         """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
         :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
-        pairs'."""
+        pairs' (the first qubit's coordinates rounded down to multiples of :attr:`PERIOD`: a translation by such
+        a multiple moves it by the same)."""
         from itertools import chain
-        from operator import itemgetter
 
-        get = itemgetter(*chain.from_iterable(pairs))  # two qubits or more (one pair at least): a tuple
-        ys, xs = get(self.y), get(self.x)
-        y0, x0 = min(ys), min(xs)
-        ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
-        off = ay * self.width + ax
-        return tuple([c - off for c in get(self.cell)]), (ay, ax)
+        q = pairs[0][0]
+        ay, ax = self.y[q] - self.y[q] % self.PERIOD, self.x[q] - self.x[q] % self.PERIOD
+        off = ay * self.span + ax
+        code = self.code
+        return tuple([code[q] - off for q in chain.from_iterable(pairs)]), (ay, ax)
 
     def around(self, centres: set[int], shift: Coord) -> tuple[Any, bytes]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
