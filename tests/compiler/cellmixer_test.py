@@ -118,8 +118,8 @@ def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape
         changed += 1
         assert sum(len(g[1]) == 2 for g in new.gates) == sum(len(g[1]) == 2 for g in old.gates)
         context = RoutingContext()
-        assert (_window_cx(new, circuit, homes, dev, dist, DEFAULT_ROUTING, context)
-                <= _window_cx(old, circuit, homes, dev, dist, DEFAULT_ROUTING, context))  # fmt: skip
+        assert (_window_cx(new, homes, dev, dist, DEFAULT_ROUTING, context)
+                <= _window_cx(old, homes, dev, dist, DEFAULT_ROUTING, context))  # fmt: skip
     assert changed > 0
     grid = get_device("grid:9x9")
     assert cell_mixers(s, OPTIONS, circuit, grid, homes, distances(grid), BIND) is circuit

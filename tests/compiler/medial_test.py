@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from qcpp.hardware.device import get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, h, rx, ry
-from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
+from qcpp.layout.medial import allocate_ancillas, allocate_section, grid_shape, medial_placement, medial_shape
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
@@ -139,6 +139,25 @@ def test_the_allocation_search_never_routes_a_window_to_more_gates() -> None:
     greedy, searched = costs
     assert all(b <= a for a, b in zip(greedy, searched, strict=True))
     assert sum(searched) < sum(greedy)
+
+
+@pytest.mark.parametrize("device", ["grid:3x5", "heavy-hex:7"])
+def test_a_section_alone_gets_the_ancillas_the_whole_allocation_gives_it(device: str) -> None:
+    """allocate_section (what the cells' plan choice asks of each candidate) puts every ancilla of a section where
+    allocate_ancillas puts it among all the sections, with and without the search."""
+    s = default_scenario(2, 3, 1)
+    logical = _unfused(s)
+    dev = get_device(device)
+    homes = medial_placement(s, dev)
+    assert homes is not None
+    n_data = s.num_variables
+    for search in (False, True):
+        local, layout = allocate_ancillas(logical, homes, dev, search=search)
+        for before, after in zip(logical.sections, local.sections, strict=True):
+            alone = allocate_section(before, homes, dev, search=search)
+            whole = {q: layout[r] for g, h in zip(before.gates, after.gates, strict=True)
+                     for q, r in zip(g[1], h[1], strict=True) if q >= n_data}  # fmt: skip
+            assert alone == whole
 
 
 def test_partial_mixer_ancillas_sit_next_to_their_plaquette() -> None:

@@ -39,6 +39,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -54,7 +55,7 @@ from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_window_cx
 
-__all__ = ["allocate_ancillas", "grid_shape", "medial_placement", "medial_shape"]
+__all__ = ["allocate_ancillas", "allocate_section", "grid_shape", "medial_placement", "medial_shape"]
 
 
 def grid_shape(device: Device) -> tuple[int, int] | None:
@@ -164,33 +165,95 @@ def _section_ancillas(gates: Sequence[Gate], n_data: int) -> tuple[list[int], di
     return order, partners, data_in
 
 
-def _place_ancillas(
+def _ancilla_keys(
     order: list[int], partners: dict[int, dict[int, int]], centre: np.ndarray, to_free: np.ndarray,
-    free: np.ndarray, data_homes: Sequence[int], n_data: int, ranks: Sequence[int] = (),
-    start: dict[int, int] | None = None,
+    data_homes: Sequence[int], n_data: int,
+) -> tuple[list[np.ndarray], list[list[tuple[int, float]]]]:  # fmt: skip
+    """Per ancilla of ``order``: the part of its placement key (:func:`_place_ancillas`) that the other ancillas do
+    not change (``centre`` plus 1e6 x its weighted distances to its data partners' homes), and its ancilla partners
+    with their weights x 1e6. The search places a section's ancillas hundreds of times: this part is summed once.
+    The keys are sums of integers, so exact in any order."""
+    base: list[np.ndarray] = []
+    links: list[list[tuple[int, float]]] = []
+    for q in order:
+        key = centre.copy()
+        linked = []
+        for partner, w in partners[q].items():
+            if partner < n_data:
+                key += (w * 1e6) * to_free[data_homes[partner]]
+            else:
+                linked.append((partner, w * 1e6))
+        key.flags.writeable = False
+        base.append(key)
+        links.append(linked)
+    return base, links
+
+
+def _place_ancillas(
+    order: list[int], base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+    free: np.ndarray, ranks: Sequence[int] = (), start: dict[int, int] | None = None,
 ) -> dict[int, int]:  # fmt: skip
     """Each ancilla (in ``order``) on the free qubit of least interaction-weighted distance to the qubits it
-    meets that are already placed, ties by ``centre``; ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its
-    ``r``-th best qubit instead (the search of :func:`allocate_ancillas`). ``to_free[p]``: the distances from
-    device qubit ``p`` to the free qubits. ``start``: the first ancillas' placement, as this placed them (the
-    search varies one ancilla at a time and places those before it once)."""
+    meets that are already placed, ties by the distance to the section's data (:func:`_ancilla_key`);
+    ``ranks[i] = r > 0`` puts ancilla ``order[i]`` on its ``r``-th best qubit instead (the search of
+    :func:`allocate_ancillas`). ``to_free[p]``: the distances from device qubit ``p`` to the free qubits.
+    ``start``: the first ancillas' placement, as this placed them (the search varies one ancilla at a time and
+    places those before it once)."""
     home = dict(start) if start else {}
     busy = np.searchsorted(free, list(home.values())).tolist() if home else []
     for i in range(len(home), len(order)):
-        q = order[i]
-        key = centre.copy()  # + 1e6 x the weighted distance: sums of integers, so exactly (cost * 1e6 + centre)
-        for partner, w in partners[q].items():
-            at = data_homes[partner] if partner < n_data else home.get(partner)
-            if at is not None:
-                key += (w * 1e6) * to_free[at]
-        key[busy] = np.inf
+        key = _ancilla_key(i, base, links, to_free, home, busy)
         rank = ranks[i] if i < len(ranks) else 0
-        j = _ranked(key, rank) if rank else int(np.argmin(key))
-        if not np.isfinite(key[j]):
-            j = int(np.argmin(key))
+        j = _ranked(key, rank) if rank else int(key.argmin())
+        if not math.isfinite(key[j]):
+            j = int(key.argmin())
         busy.append(j)
-        home[q] = int(free[j])
+        home[order[i]] = int(free[j])
     return home
+
+
+def _ancilla_key(i: int, base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+                 home: dict[int, int], busy: Sequence[int]) -> np.ndarray:  # fmt: skip
+    """The placement key of the ``i``-th ancilla over the free qubits, the ancillas before it at ``home`` (on the
+    free qubits ``busy``, there infinite): ``base[i]`` plus 1e6 x the weighted distances to its ancilla partners
+    ``links[i]`` (:func:`_ancilla_keys`; sums of integers, so exactly cost * 1e6 + centre)."""
+    key = None  # a fresh array: base[i] is shared
+    for partner, w in links[i]:
+        at = home.get(partner)
+        if at is not None:
+            if key is None:
+                key = base[i] + w * to_free[at]
+            else:
+                key += w * to_free[at]
+    if key is None:
+        key = base[i].copy()
+    key[busy] = np.inf
+    return key
+
+
+def _choices(key: np.ndarray, ranks: int) -> list[int]:
+    """Where :func:`_place_ancillas` puts an ancilla of this key with rank ``0 .. ranks``: the ``r``-th finite
+    entry of the stable order (ties by index), else the first minimum (one pass per rank for all of them).
+
+    >>> _choices(np.array([3.0, 1.0, 2.0, 1.0, np.inf]), 4)
+    [1, 3, 2, 0, 1]
+    """
+    rest = key.copy()
+    first = int(key.argmin())
+    out = []
+    for _ in range(ranks + 1):
+        j = int(rest.argmin())
+        out.append(j if math.isfinite(rest[j]) else first)
+        rest[j] = np.inf
+    return out
+
+
+def _prefix_choices(i: int, base: list[np.ndarray], links: list[list[tuple[int, float]]], to_free: np.ndarray,
+                    free: np.ndarray, prefix: dict[int, int], top: int) -> list[int]:  # fmt: skip
+    """:func:`_choices` of the ``i``-th ancilla, the ancillas before it at ``prefix``: what
+    :func:`_place_ancillas` does with it for each rank ``0 .. top``, its key built once for all of them."""
+    busy = np.searchsorted(free, list(prefix.values())).tolist() if prefix else []
+    return _choices(_ancilla_key(i, base, links, to_free, prefix, busy), top)
 
 
 def _ranked(key: np.ndarray, rank: int) -> int:
@@ -202,9 +265,9 @@ def _ranked(key: np.ndarray, rank: int) -> int:
     """
     rest = key.copy()
     for _ in range(rank):
-        rest[int(np.argmin(rest))] = np.inf
-    j = int(np.argmin(rest))
-    return j if np.isfinite(rest[j]) else int(np.argmin(key))
+        rest[int(rest.argmin())] = np.inf
+    j = int(rest.argmin())
+    return j if math.isfinite(rest[j]) else int(key.argmin())
 
 
 def _search_key(gates: Sequence[Gate], data_homes: Sequence[int], n_data: int, taken: np.ndarray, device: Device,
@@ -306,54 +369,7 @@ def allocate_ancillas(
     renamed: list[tuple[str, dict[int, int]]] = []  # per section: ancilla -> physical qubit
     used: set[int] = set()
     for sec in circuit.sections:
-        order, partners, data_in = _section_ancillas(sec.gates, n_data)
-        if len(order) > len(free):
-            raise ValueError(
-                f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
-            )
-        centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
-        home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data)
-        twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
-        if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
-                and not has_rzz(sec.gates)):  # fmt: skip
-            shape_key = _search_key(sec.gates, data_homes, n_data, taken, device, order, options.search_margin)
-            key = None if shape_key is None else (shape_key, options)
-            ranks = context.allocations.get(key) if key is not None else None
-            if ranks is None:
-                twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
-                data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
-                ranks = [0] * len(order)
-                best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
-                tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
-                for _ in range(options.search_rounds):
-                    improved = False
-                    prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
-                    for i in range(len(order)):
-                        for r in range(1 + min(options.search_ranks, len(free) - 1)):
-                            if r == ranks[i]:
-                                continue
-                            trial = [*ranks[:i], r, *ranks[i + 1 :]]
-                            cost = tried.get(tuple(trial))
-                            if cost is None:
-                                other = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data,
-                                                        trial, prefix)  # fmt: skip
-                                placed = tuple(other.items())
-                                cost = tried.get(placed)
-                                if cost is None:
-                                    cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d, options,
-                                                                        context)  # type: ignore[arg-type]
-                                tried[tuple(trial)] = cost
-                            if cost < best:
-                                best, ranks, improved = cost, trial, True
-                        prefix = _place_ancillas(order[: i + 1], partners, centre, to_free, free, data_homes, n_data,
-                                                 ranks, prefix)  # fmt: skip
-                    if not improved:
-                        break
-                ranks = tuple(ranks)
-                if key is not None:
-                    context.allocations[key] = ranks
-            if any(ranks):
-                home = _place_ancillas(order, partners, centre, to_free, free, data_homes, n_data, ranks)
+        home = _section_homes(sec, data_homes, device, d, search, options, context, taken, free, to_free)
         used.update(home.values())
         renamed.append((sec.name, home))
     sites = sorted(used)
@@ -366,3 +382,83 @@ def allocate_ancillas(
     registers = [Register("data", n_data)] + ([Register("site", len(sites))] if sites else [])
     layout = (*(int(p) for p in data_homes), *sites)
     return Circuit(registers, sections), tuple(layout)
+
+
+def allocate_section(
+    section: Section, data_homes: Sequence[int], device: Device, dist: np.ndarray | None = None,
+    search: bool = False, options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+) -> dict[int, int]:
+    """The physical qubit of each ancilla of one section, as :func:`allocate_ancillas` allocates it (same
+    arguments; a section's ancillas do not depend on the other sections'), without building the renamed circuit:
+    what the cells' plan choice needs of every candidate section (:mod:`qcpp.pipeline.cellmixer`).
+
+    Returns:
+        Logical ancilla (a qubit ``>= len(data_homes)`` of ``section``) -> physical qubit.
+    """
+    d = _distances(device) if dist is None else dist
+    context = RoutingContext() if context is None else context
+    taken, free, to_free = _free_sites(context, device, d, tuple(int(h) for h in data_homes))
+    return _section_homes(section, data_homes, device, d, search, options, context, taken, free, to_free)
+
+
+def _section_homes(
+    sec: Section, data_homes: Sequence[int], device: Device, d: np.ndarray, search: bool, options: RoutingOptions,
+    context: RoutingContext, taken: np.ndarray, free: np.ndarray, to_free: np.ndarray,
+) -> dict[int, int]:  # fmt: skip
+    """:func:`allocate_section` with the free sites known (:func:`_free_sites`)."""
+    n_data = len(data_homes)
+    order, partners, data_in = _section_ancillas(sec.gates, n_data)
+    if len(order) > len(free):
+        raise ValueError(
+            f"section {sec.name} needs {len(order)} ancillas; device {device.name} has {len(free)} free qubits"
+        )
+    centre = to_free[[data_homes[q] for q in sorted(data_in)]].sum(axis=0) if data_in else np.zeros(len(free))
+    base, links = _ancilla_keys(order, partners, centre, to_free, data_homes, n_data)
+    home = _place_ancillas(order, base, links, to_free, free)
+    twoq = sum(1 for g in sec.gates if len(g[1]) == 2)
+    if (search and order and twoq <= options.search_max_pairs and not device.is_all_to_all
+            and not has_rzz(sec.gates)):  # fmt: skip
+        shape_key = _search_key(sec.gates, data_homes, n_data, taken, device, order, options.search_margin)
+        key = None if shape_key is None else (shape_key, options)
+        ranks = context.allocations.get(key) if key is not None else None
+        if ranks is None:
+            twoq = [g[1] for g in sec.gates if len(g[1]) == 2]
+            data_where = {q: int(data_homes[q]) for qs in twoq for q in qs if q < n_data}
+            ranks = [0] * len(order)
+            best = _routed_cost(twoq, home, data_where, device, d, options, context)  # type: ignore[arg-type]
+            tried: dict[tuple, int] = {tuple(ranks): best, tuple(home.items()): best}  # a later round repeats
+            top = min(options.search_ranks, len(free) - 1)
+            for _ in range(options.search_rounds):
+                improved = False
+                prefix: dict[int, int] = {}  # the ancillas before the i-th, placed by the current ranks
+                for i in range(len(order)):
+                    choices = None  # where the i-th ancilla goes by rank (the ancillas before it at prefix)
+                    for r in range(1 + top):
+                        if r == ranks[i]:
+                            continue
+                        trial = [*ranks[:i], r, *ranks[i + 1 :]]
+                        cost = tried.get(tuple(trial))
+                        if cost is None:
+                            if choices is None:
+                                choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                            other = _place_ancillas(order, base, links, to_free, free, trial,
+                                                    {**prefix, order[i]: int(free[choices[r]])})  # fmt: skip
+                            placed = tuple(other.items())
+                            cost = tried.get(placed)
+                            if cost is None:
+                                cost = tried[placed] = _routed_cost(twoq, other, data_where, device, d, options,
+                                                                    context)  # type: ignore[arg-type]
+                            tried[tuple(trial)] = cost
+                        if cost < best:
+                            best, ranks, improved = cost, trial, True
+                    if choices is None:
+                        choices = _prefix_choices(i, base, links, to_free, free, prefix, top)
+                    prefix = {**prefix, order[i]: int(free[choices[ranks[i]]])}
+                if not improved:
+                    break
+            ranks = tuple(ranks)
+            if key is not None:
+                context.allocations[key] = ranks
+        if any(ranks):
+            home = _place_ancillas(order, base, links, to_free, free, ranks)
+    return home

@@ -65,14 +65,14 @@ from qcpp.gadgets.partial_mixer import (
 from qcpp.hardware.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.layout.medial import allocate_ancillas
+from qcpp.layout.medial import allocate_section
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.windows import Positions, route_window_cx
+from qcpp.routing.windows import route_window_cx
 
 __all__ = ["MARGIN", "cell_mixers", "relabelled_plans"]
 
@@ -175,14 +175,15 @@ def _class_key(gadget: ParityPartialMixer, homes: Sequence[int], coords: Sequenc
     return gadget.kind, tuple((y - ay, x - ax) for y, x in data), around
 
 
-def _window_cx(section: Section, circuit: Circuit, homes: Sequence[int], device: Device, dist: np.ndarray,
+def _window_cx(section: Section, homes: Sequence[int], device: Device, dist: np.ndarray,
                routing: RoutingOptions, context: RoutingContext) -> int:  # fmt: skip
-    """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it."""
-    logical, layout = allocate_ancillas(Circuit(circuit.registers, [section]), homes, device, dist,
-                                        routing.allocation_search, routing, context)  # fmt: skip
-    pairs = [g[1] for g in logical.sections[0].gates if len(g[1]) == 2]
-    where = Positions(tuple(layout), device.num_qubits)
-    return route_window_cx(pairs, where, device, dist, 0, routing, context)  # type: ignore[arg-type]
+    """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it
+    (:func:`~qcpp.layout.medial.allocate_section`, what :func:`~qcpp.layout.medial.allocate_ancillas` does per
+    section), the window given by its physical pairs."""
+    home = allocate_section(section, homes, device, dist, routing.allocation_search, routing, context)
+    n_data = len(homes)
+    pairs = [tuple(int(homes[q]) if q < n_data else home[q] for q in g[1]) for g in section.gates if len(g[1]) == 2]
+    return route_window_cx(pairs, None, device, dist, 0, routing, context)  # type: ignore[arg-type]
 
 
 def _relabelled(context: RoutingContext, program: AbstractProgram, target: str) -> tuple[MixerPlan, ...]:
@@ -261,7 +262,7 @@ def cell_mixers(
                  costs: dict[MixerPlan, int] = costs) -> int:  # fmt: skip
             if plan not in costs:
                 section = sections[i] if plan == gadget.plan else variant(plan)
-                costs[plan] = _window_cx(section, circuit, homes, device, dist, routing, context)
+                costs[plan] = _window_cx(section, homes, device, dist, routing, context)
             return costs[plan]
 
         key = (_class_key(gadget, homes, coords, occupied), routing)

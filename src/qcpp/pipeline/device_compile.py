@@ -73,7 +73,7 @@ from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
-from qcpp.routing.context import RoutingContext
+from qcpp.routing.context import RoutingContext, collector_paused
 from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
@@ -277,6 +277,9 @@ def compile_for_device(
             ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
             devices). The families keep compile's single routing.
 
+    Python's cyclic garbage collector is paused meanwhile (:func:`qcpp.routing.context.collector_paused`: the
+    searches' memos hold hundreds of thousands of objects, which its passes would traverse again and again).
+
     Returns:
         The :class:`DeviceCompileResult`.
 
@@ -284,6 +287,18 @@ def compile_for_device(
         qcpp.hardware.device.DeviceError: an unknown device.
         ValueError: the device is too small.
     """
+    with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
+        return _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
+                                   layout_method, arrangement, stage, routing, context, optimize_for)  # fmt: skip
+
+
+def _compile_for_device(
+    scenario: Scenario, p: int, device: str | Device, options: PlanOptions, lowered: bool,
+    bindings: Mapping[str, float] | None, local_ancillas: bool, seed: int, layouts: tuple[str, ...],
+    layout_method: str, arrangement: str, stage: Callable[[str], None] | None, routing: RoutingOptions,
+    context: RoutingContext | None, optimize_for: str | None,
+) -> DeviceCompileResult:  # fmt: skip
+    """:func:`compile_for_device`'s work (run with the cyclic garbage collector paused)."""
     start = time.perf_counter()
     if optimize_for is not None and optimize_for not in OPTIMIZE_FOR:
         raise ValueError(f"optimize for one of {', '.join(OPTIMIZE_FOR)}, not {optimize_for!r}")

@@ -93,10 +93,19 @@ def to_native(routed: RoutedCircuit) -> RoutedCircuit:
     """The routed circuit in the device's native gates (equal up to a global phase); see the module docs."""
     twoq = routed.device.two_qubit_gate
     native_x = "x" in routed.device.native_gates
-    sections = [
-        Section(sec.name, [n for g in sec.gates for n in native_gates(g, twoq, native_x)])
-        for sec in routed.circuit.sections
-    ]
+    forms: dict[Gate, list[Gate]] = {}  # a routed circuit repeats its fixed gates (cx, h, ...): each form once
+    sections = []
+    for sec in routed.circuit.sections:
+        gates: list[Gate] = []
+        for g in sec.gates:
+            if g[2]:  # angles: equal as numbers is not equal as written (an Angle, -0.0), so not memoised
+                gates += native_gates(g, twoq, native_x)
+                continue
+            form = forms.get(g)
+            if form is None:
+                form = forms[g] = native_gates(g, twoq, native_x)
+            gates += form
+        sections.append(Section(sec.name, gates))
     circuit = Circuit(routed.circuit.registers, sections)
     return RoutedCircuit(circuit, routed.device, routed.initial_layout, routed.final_layout, routed.swaps,
                          routed.measured)  # fmt: skip

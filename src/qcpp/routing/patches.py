@@ -31,7 +31,10 @@ from typing import Any
 from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
 
-__all__ = ["Coord", "Lattice", "PatchIndex", "local_patch", "patch_index", "run_sabre", "sabre_local", "sabre_pass"]
+__all__ = [
+    "Coord", "Lattice", "PatchIndex", "indexed_patch", "local_patch", "patch_index", "run_sabre", "sabre_local",
+    "sabre_pass",
+]  # fmt: skip
 
 PATCH_INDEXES_KEPT = 8
 """Devices (with their distances and radius) whose :class:`PatchIndex` a context keeps."""
@@ -57,7 +60,8 @@ class PatchIndex:
             self.neighbours[b].append(a)
             self.edges_of[a].append(e)
             self.edges_of[b].append(e)
-        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...]]] = {}
+        # per positions grown around: (patch, whole component, couplings in local indices, local index of a qubit)
+        self.patches: dict[tuple[int, ...], tuple[tuple[int, ...], bool, tuple[tuple[int, int], ...], dict]] = {}
         self.token = object()  # names the device in memo keys without keeping its distances alive
         self.lattice = Lattice.of(device, radius) if translate else None
 
@@ -87,13 +91,20 @@ class Lattice:
         import numpy as np
 
         self.radius = radius
-
         self.y = [c[0] for c in coords]
         self.x = [c[1] for c in coords]
         self.at = {c: i for i, c in enumerate(coords)}
         pad = 2 * radius  # so that a box around any qubits never leaves the array
-        self.present = np.zeros((max(self.y) + 1 + 2 * pad, max(self.x) + 1 + 2 * pad), dtype=np.uint8)
-        self.present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+        self.width = max(self.x) + 1 + 2 * pad
+        present = np.zeros((max(self.y) + 1 + 2 * pad, self.width), dtype=np.uint8)
+        present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
+        self.present = present.ravel()  # a coordinate (y, x) is cell (y + pad) * width + x + pad
+        self.cell = [(y + pad) * self.width + x + pad for y, x in coords]
+        self.span = 2 * (max(self.x) + self.PERIOD) + 1  # (y, x) is code y * span + x, unique for |x| < span / 2
+        self.code = [y * self.span + x for y, x in coords]
+        steps = [dy * self.width + dx for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
+                 if abs(dy) + abs(dx) <= radius]  # fmt: skip
+        self.diamond = [frozenset(c + step for step in steps) for c in self.cell]  # cells within radius steps
 
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
@@ -116,31 +127,30 @@ class Lattice:
     def canonical(self, pairs: Sequence[tuple[int, int]]) -> tuple[Hashable, Coord]:
         """A key equal for two windows' physical ``pairs`` iff one is the other translated by a multiple of
         :attr:`PERIOD`, and the translation ``(ay, ax)`` that takes the key's relative coordinates to these
-        pairs'."""
-        flat = [q for pair in pairs for q in pair]
-        ys = [self.y[q] for q in flat]
-        xs = [self.x[q] for q in flat]
-        y0, x0 = min(ys), min(xs)
-        ay, ax = y0 - y0 % self.PERIOD, x0 - x0 % self.PERIOD
-        return (tuple(y - ay for y in ys), tuple(x - ax for x in xs)), (ay, ax)
+        pairs' (the first qubit's coordinates rounded down to multiples of :attr:`PERIOD`: a translation by such
+        a multiple moves it by the same)."""
+        from itertools import chain
 
-    def around(self, centres: set[int], shift: Coord) -> tuple[Any, Any, bytes]:
+        q = pairs[0][0]
+        ay, ax = self.y[q] - self.y[q] % self.PERIOD, self.x[q] - self.x[q] % self.PERIOD
+        off = ay * self.span + ax
+        code = self.code
+        return tuple([code[q] - off for q in chain.from_iterable(pairs)]), (ay, ax)
+
+    def around(self, centres: set[int], shift: Coord) -> tuple[Any, bytes]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
-        ``shift``, and which of them hold a qubit: every patch grown around the centres (the qubits within
-        :attr:`radius` couplings, their couplings, whether they connect the centres) is decided there."""
+        ``shift`` (as cells of :attr:`present` less the shift's, ascending), and which of them hold a qubit:
+        every patch grown around the centres (the qubits within :attr:`radius` couplings, their couplings, whether
+        they connect the centres) is decided there."""
         import numpy as np
 
-        r = self.radius
-        steps = np.array([(dy, dx) for dy in range(-r, r + 1) for dx in range(-r, r + 1) if abs(dy) + abs(dx) <= r])
-        at = np.array([(self.y[q], self.x[q]) for q in centres])
-        coords = np.unique((at[:, None, :] + steps[None, :, :]).reshape(-1, 2), axis=0) - np.array(shift)
-        ys, xs = coords[:, 0].copy(), coords[:, 1].copy()
-        return ys, xs, self.holds(ys, xs, shift)
+        cells = np.array(sorted(frozenset().union(*(self.diamond[q] for q in centres))), dtype=np.intp)
+        cells -= shift[0] * self.width + shift[1]
+        return cells, self.holds(cells, shift)
 
-    def holds(self, ys: Any, xs: Any, shift: Coord) -> bytes:
-        """Which of the coordinates ``(ys, xs)`` plus ``shift`` hold a qubit."""
-        pad = 2 * self.radius
-        return self.present[ys + (shift[0] + pad), xs + (shift[1] + pad)].tobytes()
+    def holds(self, cells: Any, shift: Coord) -> bytes:
+        """Which of the coordinates ``cells`` (as :meth:`around` gives them) plus ``shift`` hold a qubit."""
+        return self.present[cells + (shift[0] * self.width + shift[1])].tobytes()  # type: ignore[no-any-return]
 
     def moved(self, q: int, by: Coord) -> int:
         """The qubit at qubit ``q``'s coordinates plus ``by``."""
@@ -167,6 +177,14 @@ def local_patch(
 
     Memoised per device in ``context``; every call reports the patch to the context's open watches and
     ``positions`` to its open centre sets."""
+    patch, coupling, _ = indexed_patch(context, positions, device, dist, radius)
+    return patch, coupling
+
+
+def indexed_patch(
+    context: RoutingContext, positions: set[int], device: Device, dist: Any, radius: int
+) -> tuple[tuple[int, ...], tuple[tuple[int, int], ...], dict[int, int]]:
+    """:func:`local_patch` and the patch's local index of each of its qubits (not to be changed: memoised)."""
     index = patch_index(context, device, dist, radius)
     for centres in context.centres:
         centres.update(positions)
@@ -193,11 +211,11 @@ def local_patch(
         edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
         coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
                          if a in local and b in local)  # fmt: skip
-        hit = (patch, whole, coupling)
+        hit = (patch, whole, coupling, local)
         index.patches[key] = hit
-    patch, whole, coupling = hit
+    patch, whole, coupling, local = hit
     context.saw_patch(patch, whole)
-    return patch, coupling
+    return patch, coupling, local
 
 
 def sabre_local(
@@ -218,8 +236,10 @@ def sabre_local(
     reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
     dag.add_qreg(reg)
     gate = CXGate()
+    bits = list(reg)
+    apply = dag.apply_operation_back
     for a, b in pairs:
-        dag.apply_operation_back(gate, (reg[a], reg[b]), (), check=False)
+        apply(gate, (bits[a], bits[b]), (), check=False)
     sabre, default_trials = sabre_pass(context, coupling, size)
     sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
     out = run_sabre(sabre, dag, size)
@@ -230,9 +250,15 @@ def sabre_local(
     who = list(range(size))  # position -> the qubit that started there
     ptr = dict.fromkeys(queues, 0)
     events: list[tuple] = []
-    index = {q: i for i, q in enumerate(out.qubits)}
+    # register q's bits in its order know their place (cheaper than hashing them); else look them up
+    registered = [getattr(q, "_index", None) for q in out.qubits] == list(range(size))
+    index = None if registered else {q: i for i, q in enumerate(out.qubits)}
     for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
-        x, y = (index[q] for q in node.qargs)
+        qargs = node.qargs
+        if index is None:
+            x, y = qargs[0]._index, qargs[1]._index
+        else:  # pragma: no cover - another Qiskit's bits
+            x, y = index[qargs[0]], index[qargs[1]]
         if node.name == "swap":
             who[x], who[y] = who[y], who[x]
             events.append(("swap", (x, y)))
@@ -254,7 +280,9 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
     first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
     do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
-    Both give the same routing."""
+    Both give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
+    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
+    threads costs more CPU than it saves."""
     try:
         from qiskit._accelerate.nlayout import NLayout
         from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
@@ -271,14 +299,18 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
     except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
         sabre.property_set["final_layout"] = None
         return sabre.run(dag)
-    out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
+    try:
+        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed, False)
+    except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
+        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
     return out
 
 
 def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
     """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
     routing tables, which takes longer than the routing of a window, so the context keeps a pass per patch (its
-    seed and trials set per run)."""
+    seed and trials set per run). The pass is given the ``Target`` it would build from the coupling map
+    (:func:`_routing_target`)."""
     key: Hashable = (coupling, size)
     hit = context.sabre_passes.get(key)
     if hit is None:
@@ -288,6 +320,30 @@ def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], s
         if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
             context.sabre_passes.clear()
         cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-        sabre = SabreSwap(cmap, heuristic="decay", trials=None)
+        sabre = SabreSwap(_routing_target(cmap), heuristic="decay", trials=None)
         hit = context.sabre_passes[key] = (sabre, sabre.trials)
     return hit
+
+
+def _routing_target(cmap: Any) -> Any:
+    """``Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)``, the target ``SabreSwap(cmap)``
+    builds: the same instructions on the same qubits and couplings, added in the same order (so the same coupling
+    graph, whose neighbour order SABRE's choice of SWAP follows), without ``from_configuration``'s table of every
+    standard gate, which takes longer to build than a window takes to route.
+
+    >>> from qiskit.transpiler import CouplingMap, Target
+    >>> cmap = CouplingMap([[0, 1], [1, 2], [1, 0], [2, 1]])
+    >>> reference = Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)
+    >>> ours = _routing_target(cmap)
+    >>> [(name, list(ours[name])) for name in ours] == [(name, list(reference[name])) for name in reference]
+    True
+    """
+    from qiskit.circuit import Parameter
+    from qiskit.circuit.library import CXGate, UGate
+    from qiskit.transpiler import Target
+
+    target = Target(num_qubits=len(cmap.graph))
+    target.add_instruction(UGate(Parameter("θ"), Parameter("φ"), Parameter("λ")),
+                           properties=dict.fromkeys((q,) for q in range(target.num_qubits)), name="u")  # fmt: skip
+    target.add_instruction(CXGate(), properties=dict.fromkeys(cmap.get_edges()), name="cx")
+    return target

@@ -35,7 +35,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.patches import Coord, local_patch, patch_index, sabre_local
+from qcpp.routing.patches import Coord, indexed_patch, patch_index, sabre_local
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.sabre import assemble, checked_inputs, window_cx
 
@@ -51,7 +51,10 @@ def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
     """
     m = 0
     n = len(pairs)
-    while m < n // 2 and sorted(pairs[m]) == sorted(pairs[n - 1 - m]):
+    while m < n // 2:
+        (a, b), (c, d) = pairs[m], pairs[n - 1 - m]
+        if not ((a == c and b == d) or (a == d and b == c)):
+            break
         m += 1
     return m
 
@@ -93,30 +96,41 @@ def _route_part(
         return []
     if device.is_all_to_all:
         return [("gate", k) for k in range(len(pairs))]
-    patch, coupling = local_patch(context, {pos.where[q] for pr in pairs for q in pr}, device, dist,
-                                  options.window_radius)  # fmt: skip
-    local = {p: i for i, p in enumerate(patch)}
-    lpairs = tuple((local[pos.where[a]], local[pos.where[b]]) for a, b in pairs)
-    best = min(
-        (sabre_local(context, coupling, len(patch), lpairs, seed + i, trials) for i in range(options.window_seeds)),
-        key=lambda evs: sum(ev[0] == "swap" for ev in evs),
-    )
+    where = pos.where
+    patch, coupling, local = indexed_patch(context, {where[q] for pr in pairs for q in pr}, device, dist,
+                                           options.window_radius)  # fmt: skip
+    lpairs = tuple([(local[where[a]], local[where[b]]) for a, b in pairs])
+    if options.window_seeds == 1:
+        best = sabre_local(context, coupling, len(patch), lpairs, seed, trials)
+    else:
+        best = min(
+            (sabre_local(context, coupling, len(patch), lpairs, seed + i, trials) for i in range(options.window_seeds)),
+            key=lambda evs: sum(ev[0] == "swap" for ev in evs),
+        )
     return [("swap", (patch[ev[1][0]], patch[ev[1][1]])) if ev[0] == "swap" else ev for ev in best]
 
 
 def _play(
     events: Sequence[tuple], pairs: Sequence[tuple[int, int]], pos: Positions
 ) -> list[tuple[str, tuple[int, int]]]:
-    """Apply ``events`` to ``pos``: SWAPs move qubits, ``("gate", k)`` becomes ``("cx", pairs[k] at their
-    positions)``."""
+    """Apply ``events`` to ``pos``: SWAPs move qubits (as :meth:`Positions.swap`), ``("gate", k)`` becomes
+    ``("cx", pairs[k] at their positions)``."""
     out: list[tuple[str, tuple[int, int]]] = []
+    append = out.append
+    where, who = pos.where, pos.who
     for ev in events:
         if ev[0] == "swap":
-            pos.swap(*ev[1])
-            out.append(ev)  # type: ignore[arg-type]
+            p, q = ev[1]
+            a, b = who[p], who[q]
+            who[p], who[q] = b, a
+            if a >= 0:
+                where[a] = q
+            if b >= 0:
+                where[b] = p
+            append(ev)  # type: ignore[arg-type]
         else:
             a, b = pairs[ev[1]]
-            out.append(("cx", (pos.where[a], pos.where[b])))
+            append(("cx", (where[a], where[b])))
     return out
 
 
@@ -185,8 +199,8 @@ def _memo_window(
         rel, shift = lattice.canonical(physical)
         translated = context.windows.setdefault(("window", index.token, "translated", rel, settings), [])
     hit = None
-    for ys, xs, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
-        if lattice.holds(ys, xs, shift) == holds:  # type: ignore[union-attr, arg-type]
+    for cells, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
+        if lattice.holds(cells, shift) == holds:  # type: ignore[union-attr, arg-type]
             hit = entry
             break
     else:  # routed on its whole component, or no lattice: memoised on its physical pairs
