@@ -102,7 +102,7 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_3x3-figures0]",
         "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_two_robots-figures2]",
         "tests/simulate/layerwise_test.py::test_mixer_warm_option_adds_one_start_per_level_and_counts_it",
-        "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[cheap]",
+        "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/1]",
         "tests/simulate/sparse_test.py::test_sparse_agrees_with_statevector",
         "tests/simulate/statevector_test.py::test_twenty_qubits",
         "tests/simulate/tensor_test.py::test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes",

@@ -153,11 +153,19 @@ CHEAP_OR_EVERY_ROW = (pytest.param(False, id="cheap"), pytest.param(True, id="ev
 """The ``heavy`` argument of a recomputation: the default run checks the cheap rows, the heavy step every row."""
 
 
-@pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
-def test_device_rows_match_the_router(heavy: bool) -> None:
+def _device_instances() -> list[Any]:
+    """One parameter per time-to-solution instance with device rows: the cheap ones in the default run, every other
+    one in the heavy step. One test per instance, so that the heavy step's two workers share the recompilations
+    (the largest instances take minutes each)."""
+    names = dict.fromkeys(r["instance"] for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device")
+    return [pytest.param(n, id=n, marks=() if n in CHEAP_DEVICE_INSTANCES else pytest.mark.heavy) for n in names]
+
+
+@pytest.mark.parametrize("instance", _device_instances())
+def test_device_rows_match_the_router(instance: str) -> None:
     checked = 0
-    for r in _rows("time_to_solution", heavy, lambda r: r.get("instance") in CHEAP_DEVICE_INSTANCES):
-        if r["method"] != "qaoa_device":
+    for r in _load("time_to_solution")["rows"]:
+        if r["method"] != "qaoa_device" or r["instance"] != instance:
             continue
         want = _routed(_key(r), int(r["p"]), r["device"])
         assert r["device"] == want["device"] and r["fits"] == want["fits"], _label("time_to_solution", r)
