@@ -49,11 +49,13 @@ def _keep_the_traceback_limit() -> Iterator[None]:
 
 SLOW_DEFAULT = frozenset(
     {
+        "tests/api/interrupt_cache_test.py::test_an_interrupted_estimate_leaves_the_caches_sound[40]",
         "tests/api/cli_equality_test.py::test_routed_layouts_are_the_cli_s",
         "tests/cli/compile_cli_test.py::test_default_qasm3_loads_in_qiskit_and_gives_our_state",
         "tests/cli/device_cli_test.py::test_estimate_device_adds_routed_fields_equal_to_compile",
         "tests/cli/device_cli_test.py::test_estimate_device_too_small_and_bound",
         "tests/cli/estimate_cli_test.py::test_formula",
+        "tests/cli/inline_scenario_cli_test.py::test_formulas_come_as_latex_too",
         "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak[simulate-default-4x5x2]",
         "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak[validate-default-paper_3x3.toml]",
         "tests/cli/help_and_noise_test.py::test_an_unusable_cache_folder_is_named_once_and_the_run_proceeds[env0]",

@@ -79,7 +79,8 @@ def test_every_variant_is_the_same_partial_mixer(shape: tuple[int, int, int]) ->
             assert np.allclose(got, want, atol=1e-9)
 
 
-@pytest.mark.parametrize("shape", [(3, 3, 1), pytest.param((4, 4, 2), marks=pytest.mark.heavy)], ids=["3x3/1", "4x4/2"])
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((3, 3, 1), marks=pytest.mark.heavy),
+                                   pytest.param((4, 4, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "3x3/1", "4x4/2"])
 def test_relabelled_plans_are_the_relabelled_programs_own_plans(shape: tuple[int, int, int]) -> None:
     """The shared search in the relabelled move order finds exactly the plan the A* finds on the relabelled
     program (mapped back), for every relabelling of every partial mixer's program and both targets; the memo of
