@@ -8,6 +8,9 @@ training, other seeds) should give medians within a factor of 2 of the committed
 * per method: the median time to the optimum with 99% probability (DFS, CP-SAT, SA, GA; QAOA at every depth).
   The classical times are wall-clock measurements, so they also move with the machine's load on the two days.
 
+Medians as the study computes them (its ``quartiles``: numpy's linear interpolation, order statistics when an
+infinite time is among the values).
+
 It prints one row per median (committed, fresh, fresh / committed, within 2x) and a summary line; exit code 0 when
 every median is within 2x (two infinite medians agree: neither draw reached the optimum there).
 
@@ -22,11 +25,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import statistics
 import sys
 from collections import defaultdict
 from pathlib import Path
 from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples" / "experiments"))
+from ensembles import quartiles  # the study's own median
 
 Key = tuple[str, str, int]
 """(cell, quantity, p): ``p`` is 0 for the classical methods."""
@@ -59,7 +64,7 @@ def medians(path: Path) -> tuple[dict[Key, float], dict[str, Any]]:
             values[(cell, "QAOA 99% s", p)].append(float(r["tts_99"]))
         elif method in CLASSICAL:
             values[(cell, f"{method} 99% s", 0)].append(float(r["tts_99"]))
-    return {k: statistics.median(v) for k, v in values.items()}, data.get("config", {})
+    return {k: quartiles(v)[0] for k, v in values.items()}, data.get("config", {})
 
 
 def ratio(committed: float, fresh: float) -> float:
