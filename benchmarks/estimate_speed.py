@@ -12,7 +12,7 @@ the runs) and whether both trees printed the same bytes; the load average is pri
 Each command runs in its own process
 (``python -m qcpp``,
 measured from outside: wall clock, and peak resident memory from ``getrusage`` of that child), so start-up is
-included. Prints one table with the goals of issue 10:
+included. Prints one table with the speed and memory goals:
 
 * ``qcpp estimate --grid 30x30 --robots 8 -p 3 --json``: < 5 s wall, < 1 GB peak;
 * ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv`` (60,840 requested rows; grids too

@@ -1,4 +1,4 @@
-"""Time and memory of one exact QAOA training gradient, per scenario and depth p (issue #19, part A).
+"""Time and memory of one exact QAOA training gradient, per scenario and depth p.
 
 What the default training (:func:`qcpp.simulate.layerwise.train_layerwise`) computes at every L-BFGS-B step is
 :meth:`qcpp.simulate.subspace.SubspaceQAOA.objective_and_gradient` of the Gibbs objective: one forward sweep, the

@@ -13,7 +13,7 @@ Per scenario (p = 1, angles bound), device family (the smallest square grid and 
   1 where fused with a CX on their pair; a SWAP counts to the section of the gate before it), phase separator
   sections and whole circuit;
 * ``ratio``: routed / a2a of the same circuit; ``vs pooled a2a``: routed over the *pooled* circuit's a2a count
-  (the spatial adders cost 2 CX more per adder all-to-all, so this is the fair figure for issue #21's goal of
+  (the spatial adders cost 2 CX more per adder all-to-all, so this is the fair figure for the goal of
   routed / all-to-all <= 2 on a grid and <= 3 on heavy-hex);
 * ``s``: seconds of ``compile_for_device``.
 """

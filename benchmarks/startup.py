@@ -1,4 +1,4 @@
-"""Time the CLI's start-up (issue 18): wall and CPU seconds of short commands, and the slowest imports.
+"""Time the CLI's start-up: wall and CPU seconds of short commands, and the slowest imports.
 
 Runs each command ``--repeat`` times (default 5) as ``python -m qcpp ...`` in a fresh interpreter and prints the
 median wall time and the median CPU time (user + system of the child), then the five imports with the largest

@@ -18,7 +18,7 @@ Usage::
     python benchmarks/subspace_speed.py            # all scenarios, p = 1
     python benchmarks/subspace_speed.py --quick    # skip the 72-million-amplitude 5x5 case
     python benchmarks/subspace_speed.py --p 2 --only 4x4-two
-    python benchmarks/subspace_speed.py --p 5 --only 5x5-example   # issue #19: gradient in < 30 s, < 4 GB
+    python benchmarks/subspace_speed.py --p 5 --only 5x5-example   # goal: gradient in < 30 s, < 4 GB
 """
 
 from __future__ import annotations

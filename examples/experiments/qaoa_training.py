@@ -6,7 +6,7 @@ p = 1, the Gibbs objective with ``eta = 5 / sigma``. Nothing is tuned per scenar
 
 Tables:
 
-1. ``examples/two_robots_4x4.toml`` (issue #19's goal: P(optimum) >= 0.2 at some p <= 8): one training to
+1. ``examples/two_robots_4x4.toml`` (the goal: P(optimum) >= 0.2 at some p <= 8): one training to
    p = 8, the kept run at each depth: the objective, ``<C>``, P(optimum), iterations, and the running totals of
    simulations, device objective estimates (a gradient = 1 + 4p estimates) and wall seconds.
 2. The three objectives (``gibbs``, ``cvar`` with alpha 0.2, ``expectation``) with the same schedule on
@@ -21,7 +21,7 @@ Tables:
    ``initial_path`` and ``local_search`` states, and table 3's ``local_search_mix`` angles of the open 4x4 (gammas
    scaled the same way) from ``local_search_mix``; the notes give the warm start's cost, time and distance to
    the optimum in SBF moves and in mixer layers (:func:`qcpp.simulate.state_measures.layers_to_reach`).
-5. ``examples/two_robots_5x5.toml``, the default training to p = 5 from ``local_search_mix`` (issue #19's 5x5
+5. ``examples/two_robots_5x5.toml``, the default training to p = 5 from ``local_search_mix`` (the 5x5
    goal: P(optimum) >= 0.05 at some p <= 5), the kept run at each depth with its iterations and time.
 
 Every row records its scenario (file), its options and the qcpp version (``results/qaoa_training.json``); the
