@@ -15,6 +15,10 @@ Usage::
     python benchmarks/signal_tests_under_load.py --list           # only print the selected tests
     python benchmarks/signal_tests_under_load.py --runs 2 --skip guard_peaks   # without the memory measurements
     python benchmarks/signal_tests_under_load.py --minutes 90    # as many of the 20 runs as start within 90 min
+    python benchmarks/signal_tests_under_load.py --workers 2     # each run on two pytest-xdist workers
+
+``--workers 2`` runs each pass of the tests on two pytest-xdist workers beside the same CPU-bound jobs: each test
+then shares the two cores with three other busy processes instead of two, a harsher load than one worker.
 
 Exit code 0 when every run of every selected test passed (or was skipped), 1 otherwise.
 """
@@ -112,6 +116,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=20, help="runs in a row (default 20)")
     parser.add_argument("--hogs", type=int, default=2, help="CPU-bound jobs beside the tests (default 2)")
+    parser.add_argument("--workers", type=int, default=1,
+                        help="pytest-xdist workers per run (default 1: the tests run one after another)")
     parser.add_argument("-k", dest="keyword", default=None, help="only test ids containing this text")
     parser.add_argument("--skip", action="append", default=[], help="leave out test ids containing this (repeat)")
     parser.add_argument("--keep", type=Path, default=None, help="folder for the output of failed runs")
@@ -136,7 +142,8 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"stopping after {done} run(s): the {args.minutes:g}-minute budget is spent", flush=True)
                 break
             junit = keep / f"run{run}.xml"
-            cmd = [sys.executable, "-m", "pytest", "-n", "0", "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
+            workers = str(args.workers if args.workers > 1 else 0)
+            cmd = [sys.executable, "-m", "pytest", "-n", workers, "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
                    f"--junitxml={junit}", *tests]
             res = subprocess.run(cmd, cwd=REPO, env=env, capture_output=True, text=True, check=False)
             outcomes = _outcomes(junit)
@@ -155,8 +162,9 @@ def main(argv: list[str] | None = None) -> int:
             hog.kill()
             hog.wait()
     width = max(len(n) for n in counts) if counts else 4
-    print(f"\n{len(tests)} test functions selected; {done} run(s) beside {args.hogs} CPU-bound job(s) on "
-          f"{os.cpu_count()} cores, {time.monotonic() - start:.0f} s; failed runs kept in {keep}")
+    print(f"\n{len(tests)} test functions selected; {done} run(s) on {max(args.workers, 1)} pytest worker(s) beside "
+          f"{args.hogs} CPU-bound job(s) on {os.cpu_count()} cores, {time.monotonic() - start:.0f} s; "
+          f"failed runs kept in {keep}")
     print(f"{'test':<{width}}  passed  failed  skipped")
     for name in sorted(counts):
         c = counts[name]
