@@ -18,6 +18,10 @@
 * pyqasm sets ``sys.tracebacklimit = 0`` for the whole process whenever it raises; every later traceback in that
   worker is then empty, and Hypothesis's ``find`` fails with an ``IndexError`` reading it. Every test leaves
   ``sys.tracebacklimit`` as it found it (:func:`_keep_the_traceback_limit`).
+* pytest-xdist hands tests to its workers in collection order, so a test of minutes that is collected last keeps
+  one worker busy while the other has nothing left. The longest tests (:data:`LONGEST_FIRST`, the heavy step's
+  largest CPU costs by ``benchmarks/cpu_durations.py``) are moved to the front, longest first, and the two workers
+  share them from the start; every other test keeps its place.
 """
 
 from __future__ import annotations
@@ -179,10 +183,39 @@ SLOW_DEFAULT = frozenset(
 """Tests (node ids) that run with ``-m heavy`` although their functions carry no marker: see the module docstring."""
 
 
+LONGEST_FIRST = (
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1",
+    "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[5x5/3-heavy-hex]",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3",
+    "tests/simulate/tensor_test.py::test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one",
+    "tests/compiler/phase_classes_test.py::test_every_default_scenario_up_to_16x16_equals_the_plan",
+    "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/1",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2",
+    "tests/simulate/time_to_solution_test.py::test_quick_mode",
+    "tests/compiler/hexlayout_test.py::test_estimate_device_heavy_hex_equals_compile",
+    "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[4x4/2-heavy-hex]",
+    "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[4x4/2-heavy-hex]",
+    "tests/simulate/tensor_test.py::test_compiled_circuit_matches_subspace_simulator",
+    "tests/compiler/cellmixer_test.py::test_relabelled_plans_are_the_relabelled_programs_own_plans[4x4/2]",
+    "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_where_compile_takes_seconds",
+    "tests/estimators/depth_compose_test.py::test_exact_depth_equals_the_compiled_circuit_everywhere",
+)
+"""Node-id prefixes of the longest tests, longest first (the module docstring): an order, so a stale entry costs
+wall time, never a result."""
+
+
+def _longest_first_rank(item: pytest.Item) -> int:
+    """The place of the first :data:`LONGEST_FIRST` prefix ``item`` starts with (after them all: none)."""
+    return next((i for i, prefix in enumerate(LONGEST_FIRST) if item.nodeid.startswith(prefix)), len(LONGEST_FIRST))
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark the tests of :data:`SLOW_DEFAULT` heavy (before ``-m`` selects), and refuse entries that name no test
-    when the whole suite is collected, so the list cannot rot."""
+    when the whole suite is collected, so the list cannot rot; then move the :data:`LONGEST_FIRST` tests to the
+    front (a stable sort: every other test keeps its order)."""
     found = set()
     for item in items:
         if item.nodeid in SLOW_DEFAULT:
@@ -191,6 +224,11 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     whole_suite = not config.args or [os.path.normpath(a) for a in config.args] == ["tests"]
     if whole_suite and not config.option.keyword and found != SLOW_DEFAULT:
         raise pytest.UsageError(f"SLOW_DEFAULT names no collected test: {sorted(SLOW_DEFAULT - found)}")
+    if whole_suite and not config.option.keyword:
+        missing = [p for p in LONGEST_FIRST if not any(item.nodeid.startswith(p) for item in items)]
+        if missing:
+            raise pytest.UsageError(f"LONGEST_FIRST names no collected test: {missing}")
+    items.sort(key=_longest_first_rank)
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:

@@ -200,6 +200,7 @@ def _routed_fields(
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
     routed = result.routed
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
+    gate_esp = esp(routed)
     return {
         **out,
         "device": routed.device.name,
@@ -210,9 +211,9 @@ def _routed_fields(
         "routed_depth": gc.depth,
         "routed_twoq_depth": gc.two_qubit_depth,
         "duration_s": duration_s(routed),
-        "esp": esp(routed),
+        "esp": gate_esp,
         "esp_model": ESP_MODEL,
-        "esp_idle": esp_idle(routed),
+        "esp_idle": esp_idle(routed, gate_esp=gate_esp),
     }
 
 

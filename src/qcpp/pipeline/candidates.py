@@ -79,7 +79,7 @@ class RoutedCandidate:
     @cached_property
     def esp_idle(self) -> float | None:
         """ESP with idle decoherence (:func:`qcpp.routing.native.esp_idle`; ``None``: no T1 / T2)."""
-        return esp_idle(self.native)
+        return esp_idle(self.native, gate_esp=self.esp)
 
     def summary(self) -> dict[str, object]:
         """JSON-ready ``{name, two_qubit, esp, esp_idle}``."""

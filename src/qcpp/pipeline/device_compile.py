@@ -153,6 +153,7 @@ class DeviceCompileResult:
         r = self.routed
         native = r if not self.lowered else to_native(r)
         ops = r.circuit.count_ops()
+        gate_esp = esp(native)
         return {
             "device": r.device.summary(),
             "initial_layout": list(r.initial_layout),
@@ -162,9 +163,9 @@ class DeviceCompileResult:
                 "layout": self.layout_method,
                 "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
                 "swaps": r.swaps,
-                "esp": esp(native),
+                "esp": gate_esp,
                 "esp_model": ESP_MODEL,
-                "esp_idle": esp_idle(native),
+                "esp_idle": esp_idle(native, gate_esp=gate_esp),
                 "esp_idle_model": f"esp x {IDLE_MODEL}",
                 "optimize_for": self.optimize_for,
                 "chosen": self.chosen,

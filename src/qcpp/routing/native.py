@@ -38,6 +38,7 @@ Example:
 from __future__ import annotations
 
 import math
+from functools import cache
 
 from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
@@ -130,24 +131,38 @@ def esp(routed: RoutedCircuit) -> float:
         ValueError: a gate the device has no error figure for.
     """
     device = routed.device
-    e1 = dict(device.error_1q)
-    edge = device.edge_index()
+    two_name = device.two_qubit_gate
+    two, one = _log_fidelities(device)
+    sx = "sx" in device.native_gates
     log = 0.0
     for g in routed.circuit.gates:
         qs = g[1]
         if len(qs) == 2:
-            if g[0] != device.two_qubit_gate:
+            if g[0] != two_name:
                 raise ValueError(f"esp: {g[0]} is not native on {device.name} (use to_native)")
-            e = device.error_2q[edge[qs]]
+            log += two[qs]
         else:
-            name = one_qubit_name(device, g)
-            if name not in e1:
+            name = "sx" if sx and g[0] == "rx" else g[0]  # one_qubit_name, inlined: this loop visits every gate
+            logs = one.get(name)
+            if logs is None:
                 raise ValueError(f"esp: {name} is not native on {device.name} (use to_native)")
-            e = e1[name][qs[0]]
-        log += math.log1p(-e) if e < 1 else -math.inf
+            log += logs[qs[0]]
     for lq in routed.measured:
         log += math.log1p(-device.readout_error[routed.final_layout[lq]])
     return math.exp(log)
+
+
+@cache
+def _log_fidelities(device: Device) -> tuple[dict[tuple[int, int], float], dict[str, tuple[float, ...]]]:
+    """``log(1 - e)`` per coupler (both orders) and per one-qubit gate and qubit (``-inf`` where ``e >= 1``), the
+    terms :func:`esp` adds. Pure memo: ``_log_fidelities.cache_clear()`` empties it."""
+
+    def log1m(e: float) -> float:
+        return math.log1p(-e) if e < 1 else -math.inf
+
+    two = {pair: log1m(device.error_2q[i]) for pair, i in device.edge_index().items()}
+    one = {name: tuple(log1m(e) for e in errors) for name, errors in device.error_1q}
+    return two, one
 
 
 def duration_s(routed: RoutedCircuit) -> float | None:
@@ -240,16 +255,22 @@ def idle_fidelity(t: float, t1: float, t2: float) -> float:
     return (3 + math.exp(-t / t1) + 2 * math.exp(-t / t2)) / 6
 
 
-def esp_idle(routed: RoutedCircuit) -> float | None:
+def esp_idle(routed: RoutedCircuit, gate_esp: float | None = None) -> float | None:
     """:func:`esp` times the idle-decoherence factor of :data:`IDLE_MODEL` (``None``: the device has no durations or
-    no T1 / T2)."""
+    no T1 / T2).
+
+    Args:
+        routed: A native routed circuit.
+        gate_esp: ``esp(routed)`` where the caller has it already (a pass over every gate saved); default: computed.
+    """
     device = routed.device
     if device.t1_s is None or device.t2_s is None:
         return None
     idle = idle_times_s(routed)
     if idle is None:
         return None
-    log = math.log(esp(routed)) if esp(routed) > 0 else -math.inf
+    gate_esp = esp(routed) if gate_esp is None else gate_esp
+    log = math.log(gate_esp) if gate_esp > 0 else -math.inf
     for t, t1, t2 in zip(idle, device.t1_s, device.t2_s, strict=True):
         if t > 0 and t1 is not None and t2 is not None:
             log += math.log(idle_fidelity(t, t1, t2))

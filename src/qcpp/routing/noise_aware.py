@@ -53,8 +53,9 @@ anchor would cost seconds each)."""
 
 def log_score(routed: RoutedCircuit) -> float:
     """Natural log of the ESP :func:`post_layout` maximises: with idle decoherence where the device has T1 / T2."""
-    value = esp_idle(routed)
-    value = esp(routed) if value is None else value
+    gate_esp = esp(routed)
+    value = esp_idle(routed, gate_esp=gate_esp)
+    value = gate_esp if value is None else value
     return math.log(value) if value > 0 else -math.inf
 
 
