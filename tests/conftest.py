@@ -20,8 +20,10 @@
   ``sys.tracebacklimit`` as it found it (:func:`_keep_the_traceback_limit`).
 * pytest-xdist hands tests to its workers in collection order, so a test of minutes that is collected last keeps
   one worker busy while the other has nothing left. The longest tests (:data:`LONGEST_FIRST`, the heavy step's
-  largest CPU costs by ``benchmarks/cpu_durations.py``) are moved to the front, longest first, and the two workers
-  share them from the start; every other test keeps its place.
+  largest CPU costs by ``benchmarks/cpu_durations.py``) are moved to the front, longest first; every other test
+  keeps its place. CI's heavy step hands tests out one at a time (``--maxschedchunk 1``: by default xdist's first
+  hand-out is a block of consecutive tests per worker, which would give one worker all the long ones), so each
+  worker takes the next long test when it is free.
 """
 
 from __future__ import annotations
