@@ -27,6 +27,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import time
 from collections.abc import Sequence
@@ -310,6 +311,7 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = N
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     opts, cfg, scheduler, workers, command, name = parse_args(argv)
     t_all = time.perf_counter()
+    load_before = os.getloadavg()[0]
     tasks = instances_of(cfg)
     try:
         results = run_on_dask(tasks, cfg, scheduler, workers)
@@ -317,6 +319,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         print("interrupted: nothing written", file=sys.stderr)
         raise SystemExit(130) from None
     seconds = time.perf_counter() - t_all
+    load = (load_before, os.getloadavg()[0])
     rows = result_rows(results, cfg)
     opts.figures.mkdir(parents=True, exist_ok=True)
     opts.results.mkdir(parents=True, exist_ok=True)
@@ -337,12 +340,13 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "INTERP, random starts and basin-hopping steps; a level that reaches 0.999 ends the search). It knows the "
         "optimum: a yardstick for the training, no algorithm. The ansatz's ceiling at p lies between the best "
         "found and its upper bound (0 below the depth at which an optimum can carry amplitude, else 1).",
-        f"Tasks run on {where}; the 2-core machine was shared with other jobs, so wall-clock times are "
-        f"inflated. Whole study: {seconds:.0f} s.",
+        f"Tasks run on {where} on a {os.cpu_count()}-core machine, load average (1 min) {load[0]:.1f} at the "
+        f"start and {load[1]:.1f} at the end (the study's own workers count; other jobs inflate every wall-clock "
+        f"time). Whole study: {seconds:.0f} s.",
     ]
     write_results(opts, name, command, tables, notes)
     dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
-            "rows": rows}
+            "load_average": list(load), "rows": rows}
     write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
     print(f"wrote {opts.results / f'{name}.json'}")
     figure(opts, rows, cfg, name)
