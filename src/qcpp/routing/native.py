@@ -133,7 +133,6 @@ def esp(routed: RoutedCircuit) -> float:
     device = routed.device
     two_name = device.two_qubit_gate
     two, one = _log_fidelities(device)
-    sx = "sx" in device.native_gates
     log = 0.0
     for g in routed.circuit.gates:
         qs = g[1]
@@ -142,10 +141,9 @@ def esp(routed: RoutedCircuit) -> float:
                 raise ValueError(f"esp: {g[0]} is not native on {device.name} (use to_native)")
             log += two[qs]
         else:
-            name = "sx" if sx and g[0] == "rx" else g[0]  # one_qubit_name, inlined: this loop visits every gate
-            logs = one.get(name)
+            logs = one.get(g[0])
             if logs is None:
-                raise ValueError(f"esp: {name} is not native on {device.name} (use to_native)")
+                raise ValueError(f"esp: {one_qubit_name(device, g)} is not native on {device.name} (use to_native)")
             log += logs[qs[0]]
     for lq in routed.measured:
         log += math.log1p(-device.readout_error[routed.final_layout[lq]])
@@ -154,14 +152,20 @@ def esp(routed: RoutedCircuit) -> float:
 
 @cache
 def _log_fidelities(device: Device) -> tuple[dict[tuple[int, int], float], dict[str, tuple[float, ...]]]:
-    """``log(1 - e)`` per coupler (both orders) and per one-qubit gate and qubit (``-inf`` where ``e >= 1``), the
-    terms :func:`esp` adds. Pure memo: ``_log_fidelities.cache_clear()`` empties it."""
+    """``log(1 - e)`` per coupler (both orders) and per one-qubit IR gate name and qubit (``-inf`` where
+    ``e >= 1``; ``rx`` under the device gate :func:`one_qubit_name` gives it), the terms :func:`esp` adds. Pure
+    memo: ``_log_fidelities.cache_clear()`` empties it."""
 
     def log1m(e: float) -> float:
         return math.log1p(-e) if e < 1 else -math.inf
 
     two = {pair: log1m(device.error_2q[i]) for pair, i in device.edge_index().items()}
     one = {name: tuple(log1m(e) for e in errors) for name, errors in device.error_1q}
+    native_rx = one_qubit_name(device, rx(math.pi / 2, 0))
+    if native_rx != "rx":
+        one.pop("rx", None)  # rx is written as native_rx there: its own figure (if any) is not the one used
+        if native_rx in one:
+            one["rx"] = one[native_rx]
     return two, one
 
 
