@@ -374,7 +374,8 @@ PANELS: dict[str, str] = {
     "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "lowered": "Plan", "bind": "Plan",
     # the run of the other commands
     "method": "Method", "seed": "Method", "optimizer": "Method", "objective": "Method", "maxiter": "Method",
-    "mixer_warm": "Method", "time_limit": "Method", "backend": "Method", "max_amplitudes": "Method",
+    "mixer_warm": "Method", "restart_every_level": "Method", "gibbs_scale": "Method", "time_limit": "Method",
+    "backend": "Method", "max_amplitudes": "Method",
     "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
     "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "simulate.rule": "Method",
     "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",

@@ -28,6 +28,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -51,9 +52,9 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle_layers,
 )
-from qcpp.simulate.objectives import OBJECTIVES, Expectation, ObjectiveName
+from qcpp.simulate.objectives import GIBBS_SCALE, OBJECTIVES, Expectation, ObjectiveFn, ObjectiveName, make_objective
 from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
-from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, most_probable, train
+from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
 __all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
 
@@ -133,6 +134,8 @@ def solve_qaoa(
     maxiter: int = DEFAULT_MAXITER,
     random_starts: int = DEFAULT_RANDOM_STARTS,
     mixer_warm: bool = False,
+    restart_every_level: bool = False,
+    gibbs_scale: float = GIBBS_SCALE,
     progress: ProgressFn | None = None,
 ) -> QaoaSolution:
     """Train a depth-``p`` QAOA on the feasible-subspace simulator and read off the most probable assignment.
@@ -150,18 +153,30 @@ def solve_qaoa(
         random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
         mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
             (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
+        restart_every_level: ``layerwise``: also start every level ``p > 1`` from the linear ramp and
+            ``random_starts`` random angles (:func:`qcpp.simulate.layerwise.train_layerwise`).
+        gibbs_scale: ``gibbs``: the inverse temperature ``eta = gibbs_scale / sigma`` (``sigma``: the cost scale,
+            :func:`qcpp.simulate.training.cost_scale`). Larger values weigh the optimum's share of the
+            probability more against near-optimal assignments.
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
 
     Raises:
         ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,
-            ``mixer_warm`` with another optimiser than ``layerwise``, or a mixer the subspace simulator cannot
-            represent (``NonUnitaryMixerError``).
+            ``mixer_warm`` or ``restart_every_level`` with another optimiser than ``layerwise``, a
+            ``gibbs_scale`` that is not positive and finite or set with another objective, or a mixer the
+            subspace simulator cannot represent (``NonUnitaryMixerError``).
     """
     if optimizer not in QAOA_OPTIMIZERS:
         raise ValueError(f"unknown optimizer {optimizer!r} (expected one of {', '.join(QAOA_OPTIMIZERS)})")
     if mixer_warm and optimizer != "layerwise":
         raise ValueError(f"mixer_warm applies to the layerwise optimizer only (got {optimizer!r})")
+    if restart_every_level and optimizer != "layerwise":
+        raise ValueError(f"restart_every_level applies to the layerwise optimizer only (got {optimizer!r})")
+    if not (gibbs_scale > 0 and math.isfinite(gibbs_scale)):
+        raise ValueError(f"gibbs_scale must be positive and finite, got {gibbs_scale}")
+    if gibbs_scale != GIBBS_SCALE and objective != "gibbs":
+        raise ValueError(f"gibbs_scale applies to the gibbs objective only (got {objective!r})")
     if objective not in OBJECTIVES:
         raise ValueError(f"unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if init not in INITS:
@@ -170,23 +185,27 @@ def solve_qaoa(
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
+    obj = make_objective(objective, cost_scale(q), eta=gibbs_scale / cost_scale(q) if objective == "gibbs" else None)
     if optimizer == "multi-angle":
-        return _solve_multi_angle(q, p, objective, initial, seed, maxiter, progress, t0)
+        return _solve_multi_angle(q, p, obj, initial, seed, maxiter, progress, t0)
     schedule = None
     if optimizer == "layerwise":
         if progress is not None:
             progress(0, p)
         schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
-                                   mixer_warm=mixer_warm, progress=progress)
+                                   eta=getattr(obj, "eta", None), mixer_warm=mixer_warm,
+                                   restart_every_level=restart_every_level, progress=progress)
         result = schedule.best
         how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
+        if restart_every_level:
+            how += ", every level also from the linear ramp and random angles"
         if mixer_warm:
             how += (f", every level also from the mixer-only warm start ({schedule.mixer_evaluations} product-state "
                     "evaluations)")
     else:
         if progress is not None:
             progress(0, 1)
-        result = train(q, p, optimizer, init=init, seed=seed, maxiter=maxiter, objective=objective)  # type: ignore[arg-type]
+        result = train(q, p, optimizer, init=init, seed=seed, maxiter=maxiter, objective=obj)  # type: ignore[arg-type]
         if progress is not None:
             progress(1, 1)
         how = f"{optimizer} from {init} angles, {len(result.trace) - 1} iteration(s)"
@@ -224,7 +243,7 @@ def solve_qaoa(
 
 
 def _solve_multi_angle(
-    q: SubspaceQAOA, p: int, objective: ObjectiveName, initial: str, seed: int, maxiter: int,
+    q: SubspaceQAOA, p: int, objective: ObjectiveFn, initial: str, seed: int, maxiter: int,
     progress: ProgressFn | None, t0: float,
 ) -> QaoaSolution:
     """``optimizer="multi-angle"`` of :func:`solve_qaoa`."""
@@ -246,8 +265,8 @@ def _solve_multi_angle(
         p=p, optimizer="multi-angle", init="constant and random", seed=seed, initial_angles=(),
         angles=best.betas, initial_expectation=start_mean,
         expectation=best.expectation, initial_p_optimum=start, p_optimum=p_opt, trace=trace,
-        num_evaluations=evaluations, num_gradients=evaluations, seconds=seconds, objective=str(objective),
-        value=best.value,
+        num_evaluations=evaluations, num_gradients=evaluations, seconds=seconds,
+        objective=str(getattr(objective, "name", objective)), value=best.value,
     )
     solution = Solution(
         method="qaoa",

@@ -48,6 +48,7 @@ from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.simulate.objectives import GIBBS_SCALE
 
 __all__ = [
     "METHOD_HELP",
@@ -60,7 +61,7 @@ __all__ = [
 ]
 
 QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
-                 "mixer_warm": False}
+                 "mixer_warm": False, "restart_every_level": False, "gibbs_scale": GIBBS_SCALE}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
@@ -210,6 +211,14 @@ def solve_command(
                            "mixer-only warm start (betas trained with every gamma 0, where the state is a product "
                            "over robots).")
     ] = QAOA_DEFAULTS["mixer_warm"],
+    restart_every_level: Annotated[
+        bool, typer.Option("--restart-every-level", help="QAOA layerwise training (qaoa): also start every level "
+                           "p > 1 from the linear ramp and two random angle sets.")
+    ] = QAOA_DEFAULTS["restart_every_level"],
+    gibbs_scale: Annotated[
+        float, typer.Option("--gibbs-scale", help="QAOA gibbs objective (qaoa): inverse temperature in units of "
+                            "1/sigma (sigma: the cost's standard deviation); larger weighs the optimum more.")
+    ] = QAOA_DEFAULTS["gibbs_scale"],
     time_limit: Annotated[
         float | None,
         typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
@@ -218,7 +227,7 @@ def solve_command(
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
     qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
-                    "mixer_warm": mixer_warm}
+                    "mixer_warm": mixer_warm, "restart_every_level": restart_every_level, "gibbs_scale": gibbs_scale}
     if method != "qaoa":
         for name, value in qaoa_options.items():
             if value != QAOA_DEFAULTS[name]:
@@ -231,6 +240,12 @@ def solve_command(
             raise ValueError(f"--objective: unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
     if mixer_warm and optimizer != "layerwise":
         raise ValueError(f"--mixer-warm: applies to --optimizer layerwise only (got --optimizer {optimizer})")
+    if restart_every_level and optimizer != "layerwise":
+        raise ValueError(f"--restart-every-level: applies to --optimizer layerwise only (got --optimizer {optimizer})")
+    if not 0 < gibbs_scale < math.inf:
+        raise ValueError(f"--gibbs-scale: expected a positive finite number, got {gibbs_scale:g}")
+    if gibbs_scale != GIBBS_SCALE and objective != "gibbs":
+        raise ValueError(f"--gibbs-scale: applies to --objective gibbs only (got --objective {objective})")
     if time_limit is not None and method != "cpsat":
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
     if time_limit is not None and not 0 < time_limit < math.inf:
