@@ -57,6 +57,7 @@ __all__ = [
     "ParitySearch",
     "emit_plan",
     "logic_width",
+    "parity_search",
     "partial_mixer",
     "plan_parity_mixer",
     "plan_slots",
@@ -158,6 +159,10 @@ def _carrier(forms: tuple[int, ...]) -> int | None:
 MOVES: tuple[tuple[int, int], ...] = tuple((c, t) for c in range(4) for t in range(4) if c != t)
 """The A*'s CNOTs ``(control, target)`` on the plaquette positions, in the order :func:`plan_parity_mixer` tries
 them from each state (the first of equally cheap plans it meets depends on this order)."""
+
+
+PARITY_SEARCHES_KEPT = 64
+"""Programs whose :class:`ParitySearch` (with every state it expanded) :func:`parity_search` keeps."""
 
 
 class ParitySearch:
@@ -331,8 +336,26 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
             parities of the plaquette edges, outer slots or temporaries.
         target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
 
-    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it."""
-    return ParitySearch(program, target).plan()
+    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it (and ``parity_search.cache_clear()`` the searches)."""
+    return parity_search(program, target).plan()
+
+
+@lru_cache(maxsize=PARITY_SEARCHES_KEPT)
+def parity_search(program: AbstractProgram, target: Target = "nisq") -> ParitySearch:
+    """The :class:`ParitySearch` of a program, kept so that every run of it shares the states expanded so far
+    (:func:`plan_parity_mixer`'s run and the relabelled runs of :func:`qcpp.pipeline.cellmixer.relabelled_plans`):
+    an expansion is a pure function of its state, so a kept search plans exactly as a fresh one.
+
+    Pure memo: ``parity_search.cache_clear()`` empties it.
+
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.problem.sbf import sbf_logic
+    >>> s = default_scenario(2, 3, 1)
+    >>> program, _ = abstract_program(sbf_logic(s, 0, s.grid.plaquettes[0], "exact"), s.grid.plaquettes[0])
+    >>> parity_search(program, "nisq") is parity_search(program, "nisq")
+    True
+    """
+    return ParitySearch(program, target)
 
 
 def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Target) -> MixerPlan:
