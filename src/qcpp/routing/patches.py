@@ -88,23 +88,23 @@ class Lattice:
     PERIOD = 4
 
     def __init__(self, coords: Sequence[Coord], radius: int) -> None:
-        import numpy as np
-
         self.radius = radius
         self.y = [c[0] for c in coords]
         self.x = [c[1] for c in coords]
         self.at = {c: i for i, c in enumerate(coords)}
-        pad = 2 * radius  # so that a box around any qubits never leaves the array
+        pad = 2 * radius  # so that a box around any qubits never leaves the grid of cells
         self.width = max(self.x) + 1 + 2 * pad
-        present = np.zeros((max(self.y) + 1 + 2 * pad, self.width), dtype=np.uint8)
-        present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
-        self.present = present.ravel()  # a coordinate (y, x) is cell (y + pad) * width + x + pad
+        cells = (max(self.y) + 1 + 2 * pad) * self.width
+        # a set of cells is an integer, bit c for cell c, coordinate (y, x) being cell (y + pad) * width + x + pad;
+        # a set relative to a shift is moved up by :attr:`base` bits, so that no cell of it is negative
+        self.base = cells
         self.cell = [(y + pad) * self.width + x + pad for y, x in coords]
+        self.present = sum(1 << c for c in self.cell) << self.base  # the cells holding a qubit, moved up
         self.span = 2 * (max(self.x) + self.PERIOD) + 1  # (y, x) is code y * span + x, unique for |x| < span / 2
         self.code = [y * self.span + x for y, x in coords]
         steps = [dy * self.width + dx for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
                  if abs(dy) + abs(dx) <= radius]  # fmt: skip
-        self.diamond = [frozenset(c + step for step in steps) for c in self.cell]  # cells within radius steps
+        self.diamond = [sum(1 << (c + step) for step in steps) for c in self.cell]  # cells within radius steps
 
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
@@ -137,20 +137,21 @@ class Lattice:
         code = self.code
         return tuple([code[q] - off for q in chain.from_iterable(pairs)]), (ay, ax)
 
-    def around(self, centres: set[int], shift: Coord) -> tuple[Any, bytes]:
+    def around(self, centres: set[int], shift: Coord) -> tuple[int, int]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
-        ``shift`` (as cells of :attr:`present` less the shift's, ascending), and which of them hold a qubit:
+        ``shift`` (as a set of cells, relative to the shift's), and which of them hold a qubit (:meth:`holds`):
         every patch grown around the centres (the qubits within :attr:`radius` couplings, their couplings, whether
         they connect the centres) is decided there."""
-        import numpy as np
-
-        cells = np.array(sorted(frozenset().union(*(self.diamond[q] for q in centres))), dtype=np.intp)
-        cells -= shift[0] * self.width + shift[1]
+        cells = 0
+        diamond = self.diamond
+        for q in centres:
+            cells |= diamond[q]
+        cells = (cells << self.base) >> (shift[0] * self.width + shift[1])
         return cells, self.holds(cells, shift)
 
-    def holds(self, cells: Any, shift: Coord) -> bytes:
+    def holds(self, cells: int, shift: Coord) -> int:
         """Which of the coordinates ``cells`` (as :meth:`around` gives them) plus ``shift`` hold a qubit."""
-        return self.present[cells + (shift[0] * self.width + shift[1])].tobytes()  # type: ignore[no-any-return]
+        return cells & (self.present >> (shift[0] * self.width + shift[1]))
 
     def moved(self, q: int, by: Coord) -> int:
         """The qubit at qubit ``q``'s coordinates plus ``by``."""
@@ -195,7 +196,7 @@ def indexed_patch(
 
         rows = dist[list(key)]
         near = np.flatnonzero((rows <= radius).any(axis=0))
-        inside = {int(p) for p in near}
+        inside = set(near.tolist())
         seen = {key[0]}
         todo = [key[0]]
         while todo:  # the component of the first position in the neighbourhood
@@ -206,7 +207,7 @@ def indexed_patch(
                     todo.append(q)
         linked = any(q in inside for p in inside for q in index.neighbours[p])  # no edge, no patch
         whole = not linked or not seen.issuperset(key)
-        patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
+        patch = tuple((np.flatnonzero(np.isfinite(rows[0])) if whole else near).tolist())
         local = {p: i for i, p in enumerate(patch)}
         edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
         coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
