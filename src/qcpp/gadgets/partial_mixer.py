@@ -34,7 +34,7 @@ Example:
 from __future__ import annotations
 
 import heapq
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import NamedTuple
@@ -212,7 +212,18 @@ class ParitySearch:
         else:
             self._reserved = set()
         self._all_inner = (1 << len(inner)) - 1
-        self._expanded: dict[tuple, tuple[bool, list[tuple[tuple, tuple, int]]]] = {}
+        self._ids: dict[tuple, int] = {}  # a state's number: the search runs on numbers (hashed faster)
+        self._states: list[tuple] = []
+        self._expanded: list[tuple[bool, list[tuple[int, tuple, int]]] | None] = []
+
+    def _id(self, state: tuple) -> int:
+        """The number of ``state`` (numbered when first met)."""
+        i = self._ids.get(state)
+        if i is None:
+            i = self._ids[state] = len(self._states)
+            self._states.append(state)
+            self._expanded.append(None)
+        return i
 
     @staticmethod
     def _present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
@@ -259,13 +270,13 @@ class ParitySearch:
         need.update(ref for j, (kind, ref, _) in enumerate(self._final) if kind == "form" and not absorbed >> j & 1)
         return len(need.difference(forms))
 
-    def _expand(self, state: tuple) -> tuple[bool, list[tuple[tuple, tuple, int]]]:
-        """Whether ``state`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the state it
-        leads to, the ANDs done on the way and that state's bound."""
-        hit = self._expanded.get(state)
+    def _expand(self, sid: int) -> tuple[bool, list[tuple[int, tuple, int]]]:
+        """Whether state number ``sid`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the
+        number of the state it leads to, the ANDs done on the way and that state's bound."""
+        hit = self._expanded[sid]
         if hit is not None:
             return hit
-        forms, done, absorbed = state
+        forms, done, absorbed = self._states[sid]
         goal = False
         if done == self._all_inner and _carrier(forms) is not None:
             remaining = [j for j in range(len(self._final)) if not absorbed >> j & 1]
@@ -279,8 +290,8 @@ class ParitySearch:
             nf[t] ^= forms[c]
             nforms = tuple(nf)
             nd, na, events = self._closure(nforms, done, absorbed)
-            successors[c * 4 + t] = ((nforms, nd, na), events, self._missing(nforms, nd, na))
-        hit = self._expanded[state] = (goal, successors)
+            successors[c * 4 + t] = (self._id((nforms, nd, na)), events, self._missing(nforms, nd, na))
+        hit = self._expanded[sid] = (goal, successors)
         return hit
 
     def plan(self, moves: Sequence[tuple[int, int]] = MOVES) -> MixerPlan:
@@ -292,10 +303,10 @@ class ParitySearch:
         """
         start = (1, 2, 4, 8)
         d0, a0, e0 = self._closure(start, 0, 0)
-        init = (start, d0, a0)
+        init = self._id((start, d0, a0))
         dist = {init: 0}
-        parent: dict[tuple, tuple] = {init: (None, ("start", None, e0))}
-        heap = [(self._missing(*init), 0, 0, init)]
+        parent: dict[int, tuple] = {init: (None, ("start", None, e0))}
+        heap = [(self._missing(start, d0, a0), 0, 0, init)]
         counter = 0
         goal = None
         order = [(c * 4 + t, (c, t)) for c, t in moves]
@@ -358,7 +369,7 @@ def parity_search(program: AbstractProgram, target: Target = "nisq") -> ParitySe
     return ParitySearch(program, target)
 
 
-def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Target) -> MixerPlan:
+def _build_plan(program: AbstractProgram, goal: Hashable, parent: dict, target: Target) -> MixerPlan:
     actions = []
     state = goal
     while state is not None:
