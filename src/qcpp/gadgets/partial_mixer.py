@@ -34,7 +34,7 @@ Example:
 from __future__ import annotations
 
 import heapq
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import NamedTuple
@@ -57,6 +57,7 @@ __all__ = [
     "ParitySearch",
     "emit_plan",
     "logic_width",
+    "parity_search",
     "partial_mixer",
     "plan_parity_mixer",
     "plan_slots",
@@ -160,6 +161,10 @@ MOVES: tuple[tuple[int, int], ...] = tuple((c, t) for c in range(4) for t in ran
 them from each state (the first of equally cheap plans it meets depends on this order)."""
 
 
+PARITY_SEARCHES_KEPT = 64
+"""Programs whose :class:`ParitySearch` (with every state it expanded) :func:`parity_search` keeps."""
+
+
 class ParitySearch:
     """The A* of :func:`plan_parity_mixer` for one program, runnable with any order of the CNOTs tried from each
     state (:meth:`plan`); each state's expansion (the greedy ANDs after each CNOT, the bound, the goal test) is
@@ -207,7 +212,18 @@ class ParitySearch:
         else:
             self._reserved = set()
         self._all_inner = (1 << len(inner)) - 1
-        self._expanded: dict[tuple, tuple[bool, list[tuple[tuple, tuple, int]]]] = {}
+        self._ids: dict[tuple, int] = {}  # a state's number: the search runs on numbers (hashed faster)
+        self._states: list[tuple] = []
+        self._expanded: list[tuple[bool, list[tuple[int, tuple, int]]] | None] = []
+
+    def _id(self, state: tuple) -> int:
+        """The number of ``state`` (numbered when first met)."""
+        i = self._ids.get(state)
+        if i is None:
+            i = self._ids[state] = len(self._states)
+            self._states.append(state)
+            self._expanded.append(None)
+        return i
 
     @staticmethod
     def _present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
@@ -254,13 +270,13 @@ class ParitySearch:
         need.update(ref for j, (kind, ref, _) in enumerate(self._final) if kind == "form" and not absorbed >> j & 1)
         return len(need.difference(forms))
 
-    def _expand(self, state: tuple) -> tuple[bool, list[tuple[tuple, tuple, int]]]:
-        """Whether ``state`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the state it
-        leads to, the ANDs done on the way and that state's bound."""
-        hit = self._expanded.get(state)
+    def _expand(self, sid: int) -> tuple[bool, list[tuple[int, tuple, int]]]:
+        """Whether state number ``sid`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the
+        number of the state it leads to, the ANDs done on the way and that state's bound."""
+        hit = self._expanded[sid]
         if hit is not None:
             return hit
-        forms, done, absorbed = state
+        forms, done, absorbed = self._states[sid]
         goal = False
         if done == self._all_inner and _carrier(forms) is not None:
             remaining = [j for j in range(len(self._final)) if not absorbed >> j & 1]
@@ -274,8 +290,8 @@ class ParitySearch:
             nf[t] ^= forms[c]
             nforms = tuple(nf)
             nd, na, events = self._closure(nforms, done, absorbed)
-            successors[c * 4 + t] = ((nforms, nd, na), events, self._missing(nforms, nd, na))
-        hit = self._expanded[state] = (goal, successors)
+            successors[c * 4 + t] = (self._id((nforms, nd, na)), events, self._missing(nforms, nd, na))
+        hit = self._expanded[sid] = (goal, successors)
         return hit
 
     def plan(self, moves: Sequence[tuple[int, int]] = MOVES) -> MixerPlan:
@@ -287,10 +303,10 @@ class ParitySearch:
         """
         start = (1, 2, 4, 8)
         d0, a0, e0 = self._closure(start, 0, 0)
-        init = (start, d0, a0)
+        init = self._id((start, d0, a0))
         dist = {init: 0}
-        parent: dict[tuple, tuple] = {init: (None, ("start", None, e0))}
-        heap = [(self._missing(*init), 0, 0, init)]
+        parent: dict[int, tuple] = {init: (None, ("start", None, e0))}
+        heap = [(self._missing(start, d0, a0), 0, 0, init)]
         counter = 0
         goal = None
         order = [(c * 4 + t, (c, t)) for c, t in moves]
@@ -331,11 +347,29 @@ def plan_parity_mixer(program: AbstractProgram, target: Target = "nisq") -> Mixe
             parities of the plaquette edges, outer slots or temporaries.
         target: ``nisq`` lets the rotation take two controls (``ccrx``); ``ft`` keeps one (``crx``).
 
-    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it."""
-    return ParitySearch(program, target).plan()
+    Pure memo: ``plan_parity_mixer.cache_clear()`` empties it (and ``parity_search.cache_clear()`` the searches)."""
+    return parity_search(program, target).plan()
 
 
-def _build_plan(program: AbstractProgram, goal: tuple, parent: dict, target: Target) -> MixerPlan:
+@lru_cache(maxsize=PARITY_SEARCHES_KEPT)
+def parity_search(program: AbstractProgram, target: Target = "nisq") -> ParitySearch:
+    """The :class:`ParitySearch` of a program, kept so that every run of it shares the states expanded so far
+    (:func:`plan_parity_mixer`'s run and the relabelled runs of :func:`qcpp.pipeline.cellmixer.relabelled_plans`):
+    an expansion is a pure function of its state, so a kept search plans exactly as a fresh one.
+
+    Pure memo: ``parity_search.cache_clear()`` empties it.
+
+    >>> from qcpp.problem.presets import default_scenario
+    >>> from qcpp.problem.sbf import sbf_logic
+    >>> s = default_scenario(2, 3, 1)
+    >>> program, _ = abstract_program(sbf_logic(s, 0, s.grid.plaquettes[0], "exact"), s.grid.plaquettes[0])
+    >>> parity_search(program, "nisq") is parity_search(program, "nisq")
+    True
+    """
+    return ParitySearch(program, target)
+
+
+def _build_plan(program: AbstractProgram, goal: Hashable, parent: dict, target: Target) -> MixerPlan:
     actions = []
     state = goal
     while state is not None:

@@ -200,7 +200,7 @@ def _place_ancillas(
     ``start``: the first ancillas' placement, as this placed them (the search varies one ancilla at a time and
     places those before it once)."""
     home = dict(start) if start else {}
-    busy = np.searchsorted(free, list(home.values())).tolist() if home else []
+    busy = free.searchsorted(list(home.values())).tolist() if home else []
     for i in range(len(home), len(order)):
         key = _ancilla_key(i, base, links, to_free, home, busy)
         rank = ranks[i] if i < len(ranks) else 0
@@ -252,7 +252,7 @@ def _prefix_choices(i: int, base: list[np.ndarray], links: list[list[tuple[int, 
                     free: np.ndarray, prefix: dict[int, int], top: int) -> list[int]:  # fmt: skip
     """:func:`_choices` of the ``i``-th ancilla, the ancillas before it at ``prefix``: what
     :func:`_place_ancillas` does with it for each rank ``0 .. top``, its key built once for all of them."""
-    busy = np.searchsorted(free, list(prefix.values())).tolist() if prefix else []
+    busy = free.searchsorted(list(prefix.values())).tolist() if prefix else []
     return _choices(_ancilla_key(i, base, links, to_free, prefix, busy), top)
 
 

@@ -59,8 +59,8 @@ from qcpp.gadgets.partial_mixer import (
     AbstractProgram,
     MixerPlan,
     ParityPartialMixer,
-    ParitySearch,
     Slot,
+    parity_search,
 )
 from qcpp.hardware.device import Device, heavy_hex_coordinates, heavy_hex_distance
 from qcpp.ir.angles import Angle
@@ -115,7 +115,8 @@ def relabelled_plans(
     (see the module docs), the default plan (:func:`plan_parity_mixer`) first.
 
     The A* of a relabelled program is the program's own A* with its CNOTs tried in the relabelled order
-    (:class:`~qcpp.gadgets.partial_mixer.ParitySearch`), so the 24 runs share one search's states.
+    (:class:`~qcpp.gadgets.partial_mixer.ParitySearch`), so the 24 runs share one search's states (with
+    :func:`~qcpp.gadgets.partial_mixer.plan_parity_mixer`'s run: :func:`~qcpp.gadgets.partial_mixer.parity_search`).
 
     Args:
         program: An ``exact`` rule's abstract program.
@@ -126,7 +127,7 @@ def relabelled_plans(
     Returns:
         The plans, each with the default plan's two-qubit gates count.
     """
-    search = ParitySearch(program, target)  # type: ignore[arg-type]
+    search = parity_search(program, target)  # type: ignore[arg-type]
     out: list[MixerPlan] = []
     for sigma in itertools.permutations(range(4)):
         back = [0] * 4

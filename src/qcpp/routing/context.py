@@ -65,7 +65,8 @@ class RoutingContext:
         windows: Routed windows and SABRE's routings of patches (:mod:`qcpp.routing.windows`,
             :func:`qcpp.routing.patches.sabre_local`).
         patch_indexes: The last few devices' patch indexes (:func:`qcpp.routing.patches.patch_index`).
-        sabre_passes: A ``SabreSwap`` pass per patch shape (:func:`qcpp.routing.patches.sabre_pass`).
+        sabre_passes: A ``SabreSwap`` pass per patch shape, with what routing on it needs
+            (:func:`qcpp.routing.patches.sabre_pass`).
         within_two: The last distance matrix and, per qubit, the qubits within two steps
             (:func:`qcpp.routing.bridge.copy_chain`).
         allocations: The allocation search's ranks per section class (:func:`qcpp.layout.medial.allocate_ancillas`).
@@ -89,7 +90,7 @@ class RoutingContext:
         self.window_limit = window_limit
         self.windows: dict[Hashable, Any] = {}
         self.patch_indexes: list[Any] = []
-        self.sabre_passes: dict[Hashable, tuple[Any, int]] = {}
+        self.sabre_passes: dict[Hashable, Any] = {}
         self.within_two: list[tuple[Any, dict[int, list[tuple[int, int]]]]] = []
         self.allocations: dict[Hashable, tuple[int, ...]] = {}
         self.free_sites: list[tuple[Any, ...]] = []

@@ -26,7 +26,7 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
@@ -88,23 +88,23 @@ class Lattice:
     PERIOD = 4
 
     def __init__(self, coords: Sequence[Coord], radius: int) -> None:
-        import numpy as np
-
         self.radius = radius
         self.y = [c[0] for c in coords]
         self.x = [c[1] for c in coords]
         self.at = {c: i for i, c in enumerate(coords)}
-        pad = 2 * radius  # so that a box around any qubits never leaves the array
+        pad = 2 * radius  # so that a box around any qubits never leaves the grid of cells
         self.width = max(self.x) + 1 + 2 * pad
-        present = np.zeros((max(self.y) + 1 + 2 * pad, self.width), dtype=np.uint8)
-        present[np.array(self.y) + pad, np.array(self.x) + pad] = 1
-        self.present = present.ravel()  # a coordinate (y, x) is cell (y + pad) * width + x + pad
+        cells = (max(self.y) + 1 + 2 * pad) * self.width
+        # a set of cells is an integer, bit c for cell c, coordinate (y, x) being cell (y + pad) * width + x + pad;
+        # a set relative to a shift is moved up by :attr:`base` bits, so that no cell of it is negative
+        self.base = cells
         self.cell = [(y + pad) * self.width + x + pad for y, x in coords]
+        self.present = sum(1 << c for c in self.cell) << self.base  # the cells holding a qubit, moved up
         self.span = 2 * (max(self.x) + self.PERIOD) + 1  # (y, x) is code y * span + x, unique for |x| < span / 2
         self.code = [y * self.span + x for y, x in coords]
         steps = [dy * self.width + dx for dy in range(-radius, radius + 1) for dx in range(-radius, radius + 1)
                  if abs(dy) + abs(dx) <= radius]  # fmt: skip
-        self.diamond = [frozenset(c + step for step in steps) for c in self.cell]  # cells within radius steps
+        self.diamond = [sum(1 << (c + step) for step in steps) for c in self.cell]  # cells within radius steps
 
     @classmethod
     def of(cls, device: Device, radius: int) -> Lattice | None:
@@ -137,20 +137,21 @@ class Lattice:
         code = self.code
         return tuple([code[q] - off for q in chain.from_iterable(pairs)]), (ay, ax)
 
-    def around(self, centres: set[int], shift: Coord) -> tuple[Any, bytes]:
+    def around(self, centres: set[int], shift: Coord) -> tuple[int, int]:
         """The coordinates within :attr:`radius` steps (in ``y`` plus ``x``) of the ``centres`` qubits less
-        ``shift`` (as cells of :attr:`present` less the shift's, ascending), and which of them hold a qubit:
+        ``shift`` (as a set of cells, relative to the shift's), and which of them hold a qubit (:meth:`holds`):
         every patch grown around the centres (the qubits within :attr:`radius` couplings, their couplings, whether
         they connect the centres) is decided there."""
-        import numpy as np
-
-        cells = np.array(sorted(frozenset().union(*(self.diamond[q] for q in centres))), dtype=np.intp)
-        cells -= shift[0] * self.width + shift[1]
+        cells = 0
+        diamond = self.diamond
+        for q in centres:
+            cells |= diamond[q]
+        cells = (cells << self.base) >> (shift[0] * self.width + shift[1])
         return cells, self.holds(cells, shift)
 
-    def holds(self, cells: Any, shift: Coord) -> bytes:
+    def holds(self, cells: int, shift: Coord) -> int:
         """Which of the coordinates ``cells`` (as :meth:`around` gives them) plus ``shift`` hold a qubit."""
-        return self.present[cells + (shift[0] * self.width + shift[1])].tobytes()  # type: ignore[no-any-return]
+        return cells & (self.present >> (shift[0] * self.width + shift[1]))
 
     def moved(self, q: int, by: Coord) -> int:
         """The qubit at qubit ``q``'s coordinates plus ``by``."""
@@ -195,7 +196,7 @@ def indexed_patch(
 
         rows = dist[list(key)]
         near = np.flatnonzero((rows <= radius).any(axis=0))
-        inside = {int(p) for p in near}
+        inside = set(near.tolist())
         seen = {key[0]}
         todo = [key[0]]
         while todo:  # the component of the first position in the neighbourhood
@@ -206,7 +207,7 @@ def indexed_patch(
                     todo.append(q)
         linked = any(q in inside for p in inside for q in index.neighbours[p])  # no edge, no patch
         whole = not linked or not seen.issuperset(key)
-        patch = tuple(int(p) for p in (np.flatnonzero(np.isfinite(rows[0])) if whole else near))
+        patch = tuple((np.flatnonzero(np.isfinite(rows[0])) if whole else near).tolist())
         local = {p: i for i, p in enumerate(patch)}
         edges = sorted({e for p in patch for e in index.edges_of[p]})  # in the device's order
         coupling = tuple((local[a], local[b]) for a, b in (device.coupling[e] for e in edges)
@@ -228,31 +229,21 @@ def sabre_local(
     hit = context.windows.get(key)
     if hit is not None:
         return hit  # type: ignore[no-any-return]
-    from qiskit import QuantumRegister
-    from qiskit.circuit.library import CXGate
-    from qiskit.dagcircuit import DAGCircuit
-
-    dag = DAGCircuit()
-    reg = QuantumRegister(size, "q")  # the circuit a PassManager would hand the pass: one register q, our cx
-    dag.add_qreg(reg)
-    gate = CXGate()
-    bits = list(reg)
+    shape = _patch_sabre(context, coupling, size)
+    dag = shape.empty.copy_empty_like()  # the circuit a PassManager would hand the pass: one register q, our cx
+    gate, bits = shape.gate, shape.bits
     apply = dag.apply_operation_back
     for a, b in pairs:
         apply(gate, (bits[a], bits[b]), (), check=False)
-    sabre, default_trials = sabre_pass(context, coupling, size)
-    sabre.seed, sabre.trials = seed, default_trials if trials is None else trials
-    out = run_sabre(sabre, dag, size)
-    queues: dict[int, list[int]] = {}
+    out = _run_prepared(shape, dag, seed, shape.trials if trials is None else trials)
+    queues: list[list[int]] = [[] for _ in range(size)]  # per qubit, the pairs it is in, in order
     for k, (a, b) in enumerate(pairs):
-        queues.setdefault(a, []).append(k)
-        queues.setdefault(b, []).append(k)
+        queues[a].append(k)
+        queues[b].append(k)
     who = list(range(size))  # position -> the qubit that started there
-    ptr = dict.fromkeys(queues, 0)
+    ptr = [0] * size
     events: list[tuple] = []
-    # register q's bits in its order know their place (cheaper than hashing them); else look them up
-    registered = [getattr(q, "_index", None) for q in out.qubits] == list(range(size))
-    index = None if registered else {q: i for i, q in enumerate(out.qubits)}
+    index = shape.index
     for node in out.topological_op_nodes():  # the order dag_to_circuit writes them in
         qargs = node.qargs
         if index is None:
@@ -275,17 +266,54 @@ def sabre_local(
     return result
 
 
-def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
-    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
-    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
-    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
-    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
-    Both give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
-    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
-    threads costs more CPU than it saves."""
+class _PatchSabre(NamedTuple):
+    """What SABRE on one patch shape needs, built once (:func:`_patch_sabre`): the pass and its default trials,
+    an empty circuit of the patch's qubits (register ``q``) and those qubits, the gate routed, the prepared
+    routing call's arguments (``None``: another Qiskit, the pass runs itself) and how the routed circuit's qubits
+    give their place (``None``: by their ``_index``)."""
+
+    sabre: Any
+    trials: int
+    empty: Any
+    bits: list[Any]
+    gate: Any
+    call: tuple[Any, Any, Any] | None
+    index: dict[Any, int] | None
+
+
+def _patch_sabre(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> _PatchSabre:
+    """The context's :class:`_PatchSabre` of a patch shape: building its pass builds a Qiskit ``Target`` and its
+    routing tables, which takes longer than the routing of a window, so the context keeps one per shape."""
+    key: Hashable = (coupling, size)
+    hit = context.sabre_passes.get(key)
+    if hit is None:
+        from qiskit import QuantumRegister
+        from qiskit.circuit.library import CXGate
+        from qiskit.dagcircuit import DAGCircuit
+        from qiskit.transpiler import CouplingMap
+        from qiskit.transpiler.passes import SabreSwap
+
+        if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
+            context.sabre_passes.clear()
+        cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
+        sabre = SabreSwap(_routing_target(cmap), heuristic="decay", trials=None)
+        empty = DAGCircuit()
+        reg = QuantumRegister(size, "q")
+        empty.add_qreg(reg)
+        bits = list(reg)
+        registered = [getattr(q, "_index", None) for q in bits] == list(range(size))
+        index = None if registered else {q: i for i, q in enumerate(bits)}
+        hit = _PatchSabre(sabre, sabre.trials, empty, bits, CXGate(), _prepared_call(sabre, size), index)
+        context.sabre_passes[key] = hit
+    return hit  # type: ignore[no-any-return]
+
+
+def _prepared_call(sabre: Any, size: int) -> tuple[Any, Any, Any] | None:
+    """The routing target, heuristic and trivial layout Qiskit 2's ``sabre_routing`` takes for the pass
+    ``sabre`` on ``size`` qubits (:func:`run_sabre`), or ``None`` where Qiskit has no such call."""
     try:
         from qiskit._accelerate.nlayout import NLayout
-        from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling, sabre_routing
+        from qiskit._accelerate.sabre import Heuristic, RoutingTarget, SetScaling
 
         if sabre._routing_target is None:
             sabre._routing_target = RoutingTarget.from_target(sabre.target)
@@ -295,34 +323,46 @@ def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
             .with_lookahead([0.5 / size], SetScaling.Constant)
             .with_decay(0.001, 5)
         )  # SabreSwap.run's "decay"
-        layout = NLayout.generate_trivial_layout(size)
+        return sabre._routing_target, heuristic, NLayout.generate_trivial_layout(size)
     except (ImportError, AttributeError, TypeError):  # pragma: no cover - another Qiskit: the pass itself
+        return None
+
+
+def _run_prepared(shape: _PatchSabre, dag: Any, seed: int, trials: int) -> Any:
+    """:func:`run_sabre` with the shape's prepared call (its pass given ``seed`` and ``trials``)."""
+    sabre = shape.sabre
+    sabre.seed, sabre.trials = seed, trials
+    if shape.call is None:  # pragma: no cover - another Qiskit: the pass itself
         sabre.property_set["final_layout"] = None
         return sabre.run(dag)
+    from qiskit._accelerate.sabre import sabre_routing
+
+    target, heuristic, layout = shape.call
     try:
-        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed, False)
+        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed, False)
     except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
-        out, _ = sabre_routing(dag, sabre._routing_target, heuristic, layout, sabre.trials, sabre.seed)
+        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed)
     return out
 
 
-def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
-    """A ``SabreSwap`` pass for a patch, and its default trials: building one builds a Qiskit ``Target`` and its
-    routing tables, which takes longer than the routing of a window, so the context keeps a pass per patch (its
-    seed and trials set per run). The pass is given the ``Target`` it would build from the coupling map
-    (:func:`_routing_target`)."""
-    key: Hashable = (coupling, size)
-    hit = context.sabre_passes.get(key)
-    if hit is None:
-        from qiskit.transpiler import CouplingMap
-        from qiskit.transpiler.passes import SabreSwap
+def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
+    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
+    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
+    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
+    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
+    Both give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
+    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
+    threads costs more CPU than it saves."""
+    shape = _PatchSabre(sabre, sabre.trials, None, [], None, _prepared_call(sabre, size), None)
+    return _run_prepared(shape, dag, sabre.seed, sabre.trials)
 
-        if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
-            context.sabre_passes.clear()
-        cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-        sabre = SabreSwap(_routing_target(cmap), heuristic="decay", trials=None)
-        hit = context.sabre_passes[key] = (sabre, sabre.trials)
-    return hit
+
+def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
+    """A ``SabreSwap`` pass for a patch, and its default trials (its seed and trials are set per run): the
+    context's pass of the shape (:func:`_patch_sabre`). The pass is given the ``Target`` it would build from the
+    coupling map (:func:`_routing_target`)."""
+    shape = _patch_sabre(context, coupling, size)
+    return shape.sabre, shape.trials
 
 
 def _routing_target(cmap: Any) -> Any:

@@ -235,22 +235,20 @@ def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
     >>> window_cx([("cx", (0, 1)), ("swap", (0, 1)), ("cx", (1, 2))])  # the SWAP fuses with the cx before it
     3
     """
-    after = set()  # SWAPs whose next op on both of their qubits is one cx on their pair
-    upcoming: dict[int, int] = {}
-    for k in range(len(ops) - 1, -1, -1):
-        name, (p, q) = ops[k]
-        if name == "swap":
-            j = upcoming.get(p)
-            if j is not None and j == upcoming.get(q) and ops[j][0] == "cx":
-                after.add(k)
-        upcoming[p] = upcoming[q] = k
-    last: dict[int, int] = {}
     total = len(ops)
+    last: dict[int, int] = {}  # per qubit, its last op so far
+    get = last.get
+    charged: set[int] = set()  # SWAPs counted 3 so far: no op before them on both qubits
     for k, (name, (p, q)) in enumerate(ops):
-        if name == "swap" and k not in after:
-            j = last.get(p)
-            if j is None or j != last.get(q):
+        j = get(p)
+        both = j is not None and j == get(q)  # the op before this one on both qubits is one op, on this pair
+        if name == "swap":
+            if not both:
                 total += 2
+                charged.add(k)
+        elif both and j in charged:  # a cx right after a SWAP on its pair: they fuse
+            total -= 2
+            charged.discard(j)
         last[p] = last[q] = k
     return total
 
