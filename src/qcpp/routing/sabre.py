@@ -246,7 +246,7 @@ def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
             if not both:
                 total += 2
                 charged.add(k)
-        elif both and j in charged:  # a cx right after a SWAP on its pair: they fuse
+        elif both and name == "cx" and j in charged:  # a cx right after a SWAP on its pair: they fuse
             total -= 2
             charged.discard(j)
         last[p] = last[q] = k
