@@ -378,23 +378,39 @@ def test_ensemble_derived_columns(name: str) -> None:
         assert all(b["circuit_estimates"] > a["circuit_estimates"] for a, b in zip(levels, levels[1:]))
 
 
+@pytest.mark.heavy
+def test_training_restarts_candidate_retrains_to_its_records() -> None:
+    """The candidate's figures are what ``qcpp.train_qaoa`` with the recorded options gives: one instance trained
+    again to the recorded depth, every level's P(optimum) and angles equal to the records."""
+    data = _load("training_restarts")
+    rows = sorted((r for r in data["rows"] if r["instance"] == data["rows"][0]["instance"]), key=lambda r: r["p"])
+    options = {k: v for k, v in rows[0]["options"].items() if k in ("restart_every_level", "gibbs_scale")}
+    assert options == {"restart_every_level": True, "gibbs_scale": data["config"]["candidate"]["gibbs_scale"]}
+    res = qcpp.train_qaoa(_scenario(_key(rows[0])), len(rows), **options)
+    assert res.schedule is not None
+    for r, level in zip(rows, res.schedule.levels, strict=True):
+        assert list(level.angles) == pytest.approx(r["angles"], abs=1e-9), _label("tr", r)
+        assert level.p_optimum == pytest.approx(r["p_opt"], rel=1e-9, abs=1e-12), _label("tr", r)
+
+
 @pytest.mark.skipif(not (RESULTS / "training_restarts.json").exists(), reason="no committed training_restarts")
 def test_training_restarts_rows_match_their_reference_and_angles() -> None:
-    """The candidate schedule's records: the reference study's default and best found copied faithfully, the
-    candidate's P(optimum) and <C> at its recorded angles (a few instances; ``heavy``-sized states are not
-    needed: these are 3x3 instances)."""
+    """The candidate schedule's records: the reference studies' default and best found copied faithfully, the
+    best known their maximum with the candidate's, the candidate's P(optimum) and <C> at its recorded angles (a
+    few instances of the cells with small states)."""
     data = _load("training_restarts")
     assert _current(data["qcpp_version"]) and "--quick" not in data["command"]
     assert data["command"].startswith("python examples/experiments/training_restarts.py")
-    ref = {(r["cell"], r["index"], r["p"]): r for r in _load(Path(data["config"]["reference"]).stem)["rows"]
-           if r["method"] == "qaoa"}
+    ref = {(r["cell"], r["index"], r["p"]): r for name in data["config"]["references"]
+           for r in _load(Path(name).stem)["rows"] if r["method"] == "qaoa"}
     checked = 0
     for r in data["rows"]:
         b = ref[(r["cell"], r["index"], r["p"])]
         assert r["scenario"] == b["scenario"] and r["options"]["restart_every_level"] is True
         assert (r["default_p_opt"], r["best_p_opt"], r["default_circuit_estimates"]) == (
             b["p_opt"], b["best_p_opt"], b["circuit_estimates"])
-        if r["index"] < CHEAP_ENSEMBLE_INSTANCES:
+        assert r["best_known"] == max(r["best_p_opt"], r["p_opt"])
+        if r["index"] < CHEAP_ENSEMBLE_INSTANCES and _dimension(_key(r)) <= CHEAP_DIMENSION:
             q = _qaoa(_key(r))
             assert q.p_optimum(r["angles"]) == pytest.approx(r["p_opt"], rel=1e-6, abs=1e-12), _label("tr", r)
             assert q.expectation(r["angles"]) == pytest.approx(r["expectation"], rel=1e-6, abs=1e-9)
