@@ -396,7 +396,7 @@ def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject)
     from qiskit.transpiler.passes import SabreSwap
 
     from qcpp.routing.context import RoutingContext
-    from qcpp.routing.patches import run_sabre, sabre_pass
+    from qcpp.routing.patches import patch_sabre, run_sabre
     from qcpp.routing.routed_circuit import coupling_map
 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
@@ -406,9 +406,8 @@ def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject)
         a, b = data.draw(st.permutations(range(size)))[:2]
         qc.cx(a, b)
     seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
-    ours, _ = sabre_pass(RoutingContext(), tuple(dev.coupling), size)
-    ours.seed, ours.trials = seed, trials
-    fast = dag_to_circuit(run_sabre(ours, circuit_to_dag(qc), size))
+    shape = patch_sabre(RoutingContext(), tuple(dev.coupling), size)
+    fast = dag_to_circuit(run_sabre(shape, circuit_to_dag(qc), seed, trials))
     reference = PassManager([SabreSwap(coupling_map(dev), heuristic="decay", seed=seed, trials=trials)]).run(qc)
     assert [(i.operation.name, [fast.find_bit(q).index for q in i.qubits]) for i in fast.data] == [
         (i.operation.name, [reference.find_bit(q).index for q in i.qubits]) for i in reference.data

@@ -66,7 +66,7 @@ class RoutingContext:
             :func:`qcpp.routing.patches.sabre_local`).
         patch_indexes: The last few devices' patch indexes (:func:`qcpp.routing.patches.patch_index`).
         sabre_passes: A ``SabreSwap`` pass per patch shape, with what routing on it needs
-            (:func:`qcpp.routing.patches.sabre_pass`).
+            (:func:`qcpp.routing.patches.patch_sabre`).
         within_two: The last distance matrix and, per qubit, the qubits within two steps
             (:func:`qcpp.routing.bridge.copy_chain`).
         allocations: The allocation search's ranks per section class (:func:`qcpp.layout.medial.allocate_ancillas`).

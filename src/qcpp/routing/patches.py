@@ -6,7 +6,7 @@ connected component when that neighbourhood does not connect them (:func:`local_
 window then depends only on its neighbourhood. :func:`sabre_local` runs Qiskit's ``SabreSwap`` on a patch, relabelled
 ``0 .. size-1``, and reads its routed DAG directly (``("gate", k)`` for the ``k``-th pair done, ``("swap", (x, y))``);
 it is called as the pass calls it, without the pass's per-run checks (:func:`run_sabre`), with one pass per patch
-shape (:func:`sabre_pass`). Per device a :class:`PatchIndex` keeps its neighbour lists and every patch computed;
+shape (:func:`patch_sabre`). Per device a :class:`PatchIndex` keeps its neighbour lists and every patch computed;
 on a heavy-hex lattice its :class:`Lattice` lets a window's memo entry answer its translations. Everything memoised
 lives in the caller's :class:`~qcpp.routing.context.RoutingContext`, and every patch routed is reported to its open
 watches (:meth:`~qcpp.routing.context.RoutingContext.saw_patch`).
@@ -32,8 +32,8 @@ from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
 
 __all__ = [
-    "Coord", "Lattice", "PatchIndex", "indexed_patch", "local_patch", "patch_index", "run_sabre", "sabre_local",
-    "sabre_pass",
+    "Coord", "Lattice", "PatchIndex", "PatchSabre", "indexed_patch", "local_patch", "patch_index", "patch_sabre",
+    "run_sabre", "sabre_local",
 ]  # fmt: skip
 
 PATCH_INDEXES_KEPT = 8
@@ -229,13 +229,13 @@ def sabre_local(
     hit = context.windows.get(key)
     if hit is not None:
         return hit  # type: ignore[no-any-return]
-    shape = _patch_sabre(context, coupling, size)
+    shape = patch_sabre(context, coupling, size)
     dag = shape.empty.copy_empty_like()  # the circuit a PassManager would hand the pass: one register q, our cx
     gate, bits = shape.gate, shape.bits
     apply = dag.apply_operation_back
     for a, b in pairs:
         apply(gate, (bits[a], bits[b]), (), check=False)
-    out = _run_prepared(shape, dag, seed, shape.trials if trials is None else trials)
+    out = run_sabre(shape, dag, seed, shape.trials if trials is None else trials)
     queues: list[list[int]] = [[] for _ in range(size)]  # per qubit, the pairs it is in, in order
     for k, (a, b) in enumerate(pairs):
         queues[a].append(k)
@@ -266,8 +266,8 @@ def sabre_local(
     return result
 
 
-class _PatchSabre(NamedTuple):
-    """What SABRE on one patch shape needs, built once (:func:`_patch_sabre`): the pass and its default trials,
+class PatchSabre(NamedTuple):
+    """What SABRE on one patch shape needs, built once (:func:`patch_sabre`): the pass and its default trials,
     an empty circuit of the patch's qubits (register ``q``) and those qubits, the gate routed, the prepared
     routing call's arguments (``None``: another Qiskit, the pass runs itself) and how the routed circuit's qubits
     give their place (``None``: by their ``_index``)."""
@@ -281,8 +281,8 @@ class _PatchSabre(NamedTuple):
     index: dict[Any, int] | None
 
 
-def _patch_sabre(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> _PatchSabre:
-    """The context's :class:`_PatchSabre` of a patch shape: building its pass builds a Qiskit ``Target`` and its
+def patch_sabre(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> PatchSabre:
+    """The context's :class:`PatchSabre` of a patch shape: building its pass builds a Qiskit ``Target`` and its
     routing tables, which takes longer than the routing of a window, so the context keeps one per shape."""
     key: Hashable = (coupling, size)
     hit = context.sabre_passes.get(key)
@@ -303,7 +303,7 @@ def _patch_sabre(context: RoutingContext, coupling: tuple[tuple[int, int], ...],
         bits = list(reg)
         registered = [getattr(q, "_index", None) for q in bits] == list(range(size))
         index = None if registered else {q: i for i, q in enumerate(bits)}
-        hit = _PatchSabre(sabre, sabre.trials, empty, bits, CXGate(), _prepared_call(sabre, size), index)
+        hit = PatchSabre(sabre, sabre.trials, empty, bits, CXGate(), _prepared_call(sabre, size), index)
         context.sabre_passes[key] = hit
     return hit  # type: ignore[no-any-return]
 
@@ -328,8 +328,15 @@ def _prepared_call(sabre: Any, size: int) -> tuple[Any, Any, Any] | None:
         return None
 
 
-def _run_prepared(shape: _PatchSabre, dag: Any, seed: int, trials: int) -> Any:
-    """:func:`run_sabre` with the shape's prepared call (its pass given ``seed`` and ``trials``)."""
+def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int) -> Any:
+    """``shape.sabre.run(dag)`` (heuristic ``decay``, the pass given ``seed`` and ``trials``) without the pass's
+    per-run checks: its routing call with the arguments the pass builds (Qiskit 2's ``sabre_routing``), prepared
+    once per shape (:func:`patch_sabre`), where Qiskit has it; else the pass itself. The pass first checks that the
+    circuit's qubits lie in one component of the coupling map (a patch is grown until they do,
+    :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window. Both
+    give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
+    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
+    threads costs more CPU than it saves."""
     sabre = shape.sabre
     sabre.seed, sabre.trials = seed, trials
     if shape.call is None:  # pragma: no cover - another Qiskit: the pass itself
@@ -343,26 +350,6 @@ def _run_prepared(shape: _PatchSabre, dag: Any, seed: int, trials: int) -> Any:
     except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
         out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed)
     return out
-
-
-def run_sabre(sabre: Any, dag: Any, size: int) -> Any:
-    """``sabre.run(dag)`` (heuristic ``decay``) without the pass's per-run checks: its routing call with the
-    arguments the pass builds (Qiskit 2's ``sabre_routing``), where Qiskit has it; else the pass itself. The pass
-    first checks that the circuit's qubits lie in one component of the coupling map (a patch is grown until they
-    do, :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window.
-    Both give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
-    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
-    threads costs more CPU than it saves."""
-    shape = _PatchSabre(sabre, sabre.trials, None, [], None, _prepared_call(sabre, size), None)
-    return _run_prepared(shape, dag, sabre.seed, sabre.trials)
-
-
-def sabre_pass(context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int) -> tuple[Any, int]:
-    """A ``SabreSwap`` pass for a patch, and its default trials (its seed and trials are set per run): the
-    context's pass of the shape (:func:`_patch_sabre`). The pass is given the ``Target`` it would build from the
-    coupling map (:func:`_routing_target`)."""
-    shape = _patch_sabre(context, coupling, size)
-    return shape.sabre, shape.trials
 
 
 def _routing_target(cmap: Any) -> Any:

@@ -52,7 +52,7 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle_layers,
 )
-from qcpp.simulate.objectives import GIBBS_SCALE, OBJECTIVES, Expectation, ObjectiveFn, ObjectiveName, make_objective
+from qcpp.simulate.objectives import GIBBS_SCALE, OBJECTIVES, Expectation, Gibbs, ObjectiveFn, ObjectiveName
 from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
 from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
@@ -185,7 +185,9 @@ def solve_qaoa(
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
-    obj = make_objective(objective, cost_scale(q), eta=gibbs_scale / cost_scale(q) if objective == "gibbs" else None)
+    # a temperature other than the default needs the cost scale; the default objective is built by name, as before
+    eta = gibbs_scale / cost_scale(q) if objective == "gibbs" and gibbs_scale != GIBBS_SCALE else None
+    obj: ObjectiveName | ObjectiveFn = objective if eta is None else Gibbs(eta)
     if optimizer == "multi-angle":
         return _solve_multi_angle(q, p, obj, initial, seed, maxiter, progress, t0)
     schedule = None
@@ -193,7 +195,7 @@ def solve_qaoa(
         if progress is not None:
             progress(0, p)
         schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
-                                   eta=getattr(obj, "eta", None), mixer_warm=mixer_warm,
+                                   eta=eta, mixer_warm=mixer_warm,
                                    restart_every_level=restart_every_level, progress=progress)
         result = schedule.best
         how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
@@ -243,7 +245,7 @@ def solve_qaoa(
 
 
 def _solve_multi_angle(
-    q: SubspaceQAOA, p: int, objective: ObjectiveFn, initial: str, seed: int, maxiter: int,
+    q: SubspaceQAOA, p: int, objective: ObjectiveName | ObjectiveFn, initial: str, seed: int, maxiter: int,
     progress: ProgressFn | None, t0: float,
 ) -> QaoaSolution:
     """``optimizer="multi-angle"`` of :func:`solve_qaoa`."""
