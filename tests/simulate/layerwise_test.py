@@ -45,7 +45,7 @@ def test_each_level_is_at_least_as_good_as_the_last(two: SubspaceQAOA, objective
 
 def test_starts_and_counts(two: SubspaceQAOA) -> None:
     res = train_layerwise(two, 2, random_starts=1, seed=7, maxiter=30)
-    assert res.runs == 2 + 2  # ramp + 1 random at p = 1, interp + extended at p = 2
+    assert res.runs == 2 + 4  # ramp + 1 random at p = 1; interp, extended, ramp + 1 random at p = 2
     # the kept p = 1 run is one of the two starts, reproduced by a direct call
     obj = make_objective("gibbs", cost_scale(two))
     direct = [train(two, 1, "lbfgsb", init=x0, maxiter=30, objective=obj)
@@ -53,8 +53,12 @@ def test_starts_and_counts(two: SubspaceQAOA) -> None:
     kept = min(direct, key=lambda r: r.value)
     assert res.levels[0].angles == kept.angles and res.levels[0].trace == kept.trace
     second = [train(two, 2, "lbfgsb", init=x0, maxiter=30, objective=obj)
-              for x0 in (interp_angles(kept.angles), extend_angles(kept.angles))]
+              for x0 in (interp_angles(kept.angles), extend_angles(kept.angles), initial_angles(two, 2, "linear-ramp"),
+                         initial_angles(two, 2, "random", seed=7 + 2000))]
     assert res.levels[1].angles == min(second, key=lambda r: r.value).angles
+    single = train_layerwise(two, 2, random_starts=1, seed=7, maxiter=30, restart_every_level=False)
+    assert single.runs == 2 + 2 and single.levels[0].angles == kept.angles  # interp + extended only at p = 2
+    assert single.levels[1].angles == min(second[:2], key=lambda r: r.value).angles
     runs = [*direct, *second]
     assert res.num_evaluations == sum(r.num_evaluations for r in runs)
     assert res.num_gradients == sum(r.num_gradients for r in runs)
@@ -96,10 +100,10 @@ def test_doctests() -> None:
 
 @pytest.mark.heavy  # about 20 s on 2 cores
 def test_issue_19_goal_on_two_robots_4x4() -> None:
-    """Default training puts at least 0.2 on the optimum of two_robots_4x4 at some p <= 8 (here p = 5), where
-    training on <C> never leaves the initial paths."""
+    """The single-start schedule (docs/experiments.md section 5) puts at least 0.2 on the optimum of two_robots_4x4
+    at some p <= 8 (here p = 5), where training on <C> never leaves the initial paths."""
     q = SubspaceQAOA(load_scenario(EXAMPLES / "two_robots_4x4.toml"))
-    res = train_layerwise(q, 5)
+    res = train_layerwise(q, 5, restart_every_level=False, eta=5 / cost_scale(q))
     assert res.p_optimum >= 0.2
     assert train_layerwise(q, 2, "expectation").p_optimum < 1e-10
 

@@ -10,10 +10,10 @@
   2020; :func:`qcpp.simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
-With ``restart_every_level=True`` every level ``p > 1`` also starts from the linear ramp at depth ``p`` and from
-``random_starts`` seeded random angles (seeds ``seed + 1000 p + k``): the best angles at ``p - 1`` are often a
-basis state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path), where every
-objective is stationary in the new layer, so the two warm starts above cannot leave it.
+With ``restart_every_level=True`` (the default) every level ``p > 1`` also starts from the linear ramp at depth
+``p`` and from ``random_starts`` seeded random angles (seeds ``seed + 1000 p + k``): the best angles at ``p - 1``
+are often a basis state (``beta`` at 0 or ``pi`` leaves the initial path in place or swaps it onto another path),
+where every objective is stationary in the new layer, so the two warm starts above cannot leave it.
 
 With ``mixer_warm=True`` every level also starts from the mixer-only warm start
 (:func:`qcpp.simulate.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
@@ -24,8 +24,8 @@ At every level the best run (lowest objective) is kept and warm-starts the next.
 gradient costs ``2 * 2p``: the parameter-shift rule does not apply as is because every angle drives many gates),
 :meth:`LayerwiseResult.shots` multiplies by the shots per estimate.
 
-Defaults (objective ``gibbs`` with ``eta = 5 / sigma``, 2 random starts at ``p = 1``, at most 200 L-BFGS-B
-iterations per run) are the same for every scenario: nothing is tuned per instance.
+Defaults (objective ``gibbs`` with ``eta = 40 / sigma``, the linear ramp and 2 random starts at every level, at
+most 200 L-BFGS-B iterations per run) are the same for every scenario: nothing is tuned per instance.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -34,7 +34,7 @@ Example:
     ...                         "robots": [{"start": [0, 0], "goal": [0, 2]}]})
     >>> res = train_layerwise(SubspaceQAOA(s), 2)
     >>> [lv.p for lv in res.levels], res.p_optimum > 0.9, res.runs
-    ([1, 2], True, 5)
+    ([1, 2], True, 8)
 """
 
 from __future__ import annotations
@@ -165,7 +165,7 @@ def train_layerwise(
     alpha: float = CVAR_ALPHA,
     eta: float | None = None,
     mixer_warm: bool = False,
-    restart_every_level: bool = False,
+    restart_every_level: bool = True,
     progress: Callable[[int, int], None] | None = None,
 ) -> LayerwiseResult:
     """Train ``p = 1 .. p`` layer by layer (see the module docstring).
@@ -177,10 +177,10 @@ def train_layerwise(
         seed: Seed of the random starts (start ``k`` uses ``seed + k``).
         maxiter: L-BFGS-B iterations per run.
         alpha: CVaR tail mass (``cvar``).
-        eta: Gibbs inverse temperature (``gibbs``); default ``5 / sigma``.
+        eta: Gibbs inverse temperature (``gibbs``); default ``GIBBS_SCALE / sigma`` (``40 / sigma``).
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
         restart_every_level: Also start every level ``p > 1`` from the linear ramp and ``random_starts`` random
-            angles (see the module docstring).
+            angles (default; see the module docstring).
         progress: Called as ``progress(level, p)`` after each level.
 
     Raises:

@@ -134,7 +134,7 @@ def solve_qaoa(
     maxiter: int = DEFAULT_MAXITER,
     random_starts: int = DEFAULT_RANDOM_STARTS,
     mixer_warm: bool = False,
-    restart_every_level: bool = False,
+    restart_every_level: bool | None = None,
     gibbs_scale: float = GIBBS_SCALE,
     progress: ProgressFn | None = None,
 ) -> QaoaSolution:
@@ -154,7 +154,8 @@ def solve_qaoa(
         mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
             (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
         restart_every_level: ``layerwise``: also start every level ``p > 1`` from the linear ramp and
-            ``random_starts`` random angles (:func:`qcpp.simulate.layerwise.train_layerwise`).
+            ``random_starts`` random angles (:func:`qcpp.simulate.layerwise.train_layerwise`). ``None`` (default):
+            on for ``layerwise``, off for the single-run optimisers.
         gibbs_scale: ``gibbs``: the inverse temperature ``eta = gibbs_scale / sigma`` (``sigma``: the cost scale,
             :func:`qcpp.simulate.training.cost_scale`). Larger values weigh the optimum's share of the
             probability more against near-optimal assignments.
@@ -163,7 +164,7 @@ def solve_qaoa(
 
     Raises:
         ValueError: unknown optimiser / objective / initialisation, ``p < 1``, negative ``maxiter``,
-            ``mixer_warm`` or ``restart_every_level`` with another optimiser than ``layerwise``, a
+            ``mixer_warm`` or ``restart_every_level=True`` with another optimiser than ``layerwise``, a
             ``gibbs_scale`` that is not positive and finite or set with another objective, or a mixer the
             subspace simulator cannot represent (``NonUnitaryMixerError``).
     """
@@ -183,6 +184,7 @@ def solve_qaoa(
         raise ValueError(f"unknown init {init!r} (expected one of {', '.join(INITS)})")
     if initial not in INITIAL_STATES:
         raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
+    restarts = optimizer == "layerwise" if restart_every_level is None else restart_every_level
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
     # a temperature other than the default needs the cost scale; the default objective is built by name, as before
@@ -196,11 +198,11 @@ def solve_qaoa(
             progress(0, p)
         schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
                                    eta=eta, mixer_warm=mixer_warm,
-                                   restart_every_level=restart_every_level, progress=progress)
+                                   restart_every_level=restarts, progress=progress)
         result = schedule.best
         how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
-        if restart_every_level:
-            how += ", every level also from the linear ramp and random angles"
+        if not restarts:
+            how += ", levels p > 1 from the level below only"
         if mixer_warm:
             how += (f", every level also from the mixer-only warm start ({schedule.mixer_evaluations} product-state "
                     "evaluations)")

@@ -61,7 +61,7 @@ __all__ = [
 ]
 
 QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
-                 "mixer_warm": False, "restart_every_level": False, "gibbs_scale": GIBBS_SCALE}
+                 "mixer_warm": False, "restart_every_level": None, "gibbs_scale": GIBBS_SCALE}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
 
 
@@ -212,8 +212,9 @@ def solve_command(
                            "over robots).")
     ] = QAOA_DEFAULTS["mixer_warm"],
     restart_every_level: Annotated[
-        bool, typer.Option("--restart-every-level", help="QAOA layerwise training (qaoa): also start every level "
-                           "p > 1 from the linear ramp and two random angle sets.")
+        bool | None, typer.Option("--restart-every-level/--no-restart-every-level", help="QAOA layerwise training "
+                                  "(qaoa): also start every level p > 1 from the linear ramp and two random angle "
+                                  "sets, not only from the level below.", show_default="on for layerwise")
     ] = QAOA_DEFAULTS["restart_every_level"],
     gibbs_scale: Annotated[
         float, typer.Option("--gibbs-scale", help="QAOA gibbs objective (qaoa): inverse temperature in units of "
