@@ -217,3 +217,28 @@ def pyplot() -> Any:
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit("helper module of the experiment scripts; run one of them instead")
+
+
+STUDY_SCHEDULE: dict[str, Any] = {"restart_every_level": False, "gibbs_eta_sigma": 5.0}
+"""The training schedule of the studies of training variants (``qaoa_training``, ``mixer_warm_start``,
+``multi_angle``): levels ``p > 1`` start from the level below only, and the Gibbs objective sits at
+``eta = 5 / sigma``. Each variant there is measured against this schedule; the default schedule (restarts at every
+level, ``eta = 40 / sigma``) is the one ``ensembles.py`` and ``time_to_solution.py`` measure, and
+``training_restarts.py`` sets the two side by side on the ensembles."""
+
+
+def study_gibbs(qaoa: Any) -> Any:
+    """The Gibbs objective of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
+    from qcpp.simulate.objectives import Gibbs
+    from qcpp.simulate.training import cost_scale
+
+    return Gibbs(STUDY_SCHEDULE["gibbs_eta_sigma"] / cost_scale(qaoa))
+
+
+def study_training(qaoa: Any, p: int, objective: str = "gibbs", **options: Any) -> Any:
+    """``train_layerwise(qaoa, p, objective, **options)`` on :data:`STUDY_SCHEDULE`."""
+    from qcpp.simulate.layerwise import train_layerwise
+
+    eta = study_gibbs(qaoa).eta if objective == "gibbs" else None
+    return train_layerwise(qaoa, p, objective, restart_every_level=STUDY_SCHEDULE["restart_every_level"],  # type: ignore[arg-type]
+                           eta=eta, **options)

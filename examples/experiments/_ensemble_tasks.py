@@ -110,7 +110,7 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
 
 
 def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
-    """The candidate schedule ``train_layerwise(..., **cfg["candidate"])`` on one scenario, to depth
+    """The training ``train_layerwise(..., **cfg["alternative"])`` on one scenario, to depth
     ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds. A
     ``gibbs_scale`` entry sets the Gibbs objective's ``eta = gibbs_scale / sigma`` (``sigma``: the scenario's
     cost scale)."""
@@ -126,7 +126,7 @@ def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[st
     optimum = dfs(s).cost.total
     in_basis = abs(q.optimum()[0] - optimum) <= 1e-6 * max(1.0, abs(optimum))
     t0 = time.perf_counter()
-    options = dict(cfg["candidate"])
+    options = dict(cfg["alternative"])
     if "gibbs_scale" in options:
         options["eta"] = options.pop("gibbs_scale") / cost_scale(q)
     res = train_layerwise(q, cfg["p_max"], **options)

@@ -190,7 +190,7 @@ def result_rows(results: list[dict[str, Any]], cfg: Config) -> list[dict[str, An
         "anneal": {"iterations": cfg.sa_iterations, "components": "initial", "seeds": cfg.runs},
         "genetic": {"generations": cfg.ga_generations, "components": "initial", "seeds": cfg.runs},
         "qaoa": {"training": "layerwise", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
-                 "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS,
+                 "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS, "restart_every_level": True,
                  "shots_per_estimate": SHOTS_PER_ESTIMATE, "gate_model": GATE_MODEL, "device": "ideal all-to-all",
                  "search": cfg.search | {"seed": cfg.seed}},
     }

@@ -1,10 +1,10 @@
 """Mixer-only warm start (gammas 0) for QAOA training, and how much P(optimum) the mixer alone can give, up to 5x5.
 
-Issue #19 asks for P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5; the default training
+The goal: P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5; the single-start training
 stays at beta = 0 there (``docs/results/qaoa_training.md``, table 5). The lever tried here: with every gamma 0
 the state is a product over robots, so the betas can be trained cheaply per robot
-(:func:`qcpp.simulate.mixer_only.train_mixer_only`, the default Gibbs objective of the full cost on the product
-state; it never looks at the optimum), and the full training can start from them.
+(:func:`qcpp.simulate.mixer_only.train_mixer_only`, the Gibbs objective of the full cost on the product state;
+it never looks at the optimum), and the full training can start from them.
 
 For each scenario and p = 1..5 the table gives:
 
@@ -13,13 +13,14 @@ For each scenario and p = 1..5 the table gives:
   :data:`~qcpp.simulate.layerwise.DEFAULT_MAXITER` iterations) from those betas with the linear ramp's gammas, its
   P(optimum) and its largest ``|gamma|`` (scenarios of at most 100,000 assignments; one 5x5 gradient at p = 5
   takes 30-60 s on the shared machine, so not on two_robots_5x5);
-* **default training**: :func:`qcpp.simulate.layerwise.train_layerwise` from the initial paths, and the same with its
+* **single-start training**: :func:`qcpp.simulate.layerwise.train_layerwise` on ``STUDY_SCHEDULE`` (``_common.py``)
+  from the initial paths, and the same with its
   option ``mixer_warm=True`` (every level also starts from the mixer-only betas with the ramp's gammas; 4x4
   scenarios);
 * **mixer-only ceiling**: the largest P(optimum) found over mixer-only angles when maximising P(optimum)
   itself (:func:`qcpp.simulate.mixer_only.mixer_only_ceiling`, 60 seeded random starts per depth plus the previous
   depth's best). This diagnostic *uses the optimum*; it is not a method, it measures what any warm start with
-  gammas 0 can give, so ``default / ceiling`` is the factor the phase separators add.
+  gammas 0 can give, so ``single-start / ceiling`` is the factor the phase separators add.
 
 Every row records its scenario, options and the qcpp version; the circuit columns and (for at most 100,000
 assignments) the states are recomputed by ``tests/simulate/results_freshness_test.py``. two_robots_5x5 states
@@ -44,18 +45,21 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import (
     REPO,
+    STUDY_SCHEDULE,
     Table,
     circuit_columns,
     command_line,
     parse,
     record,
+    study_gibbs,
+    study_training,
     two_robot_cases,
     write_records,
     write_results,
 )
 
 import qcpp
-from qcpp.simulate.layerwise import DEFAULT_MAXITER, train_layerwise
+from qcpp.simulate.layerwise import DEFAULT_MAXITER
 from qcpp.simulate.mixer_only import (
     CEILING_STARTS,
     mixer_only_ceiling,
@@ -63,9 +67,9 @@ from qcpp.simulate.mixer_only import (
     robot_states,
     train_mixer_only,
 )
-from qcpp.simulate.objectives import GIBBS_SCALE, make_objective
+from qcpp.simulate.objectives import make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale, initial_angles, train
+from qcpp.simulate.training import initial_angles, train
 
 NAME = "mixer_warm_start"
 GOAL_5X5 = 0.05
@@ -96,14 +100,14 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     t_all = time.perf_counter()
     p_max = 2 if opts.quick else 5
     starts = 4 if opts.quick else CEILING_STARTS
-    options = {"initial": "initial_path", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
+    options = {"initial": "initial_path", "objective": "gibbs", **STUDY_SCHEDULE,
                "optimizer": "L-BFGS-B", "maxiter": DEFAULT_MAXITER, "ceiling_starts": starts, "seed": opts.seed}
     cases = two_robot_cases(opts.quick)
     table = Table(f"Mixer-only warm start (gammas 0) and the mixer-only ceiling, p = 1..{p_max}: P(optimum)",
                   ["scenario", "assignments", "p", "mixer-only (Gibbs)", "<C> mixer-only", "then full training",
-                   "max abs(gamma) after", "default training", "default, mixer_warm=True",
+                   "max abs(gamma) after", "single-start training", "single-start, mixer_warm=True",
                    "mixer-only ceiling (uses the optimum)",
-                   "default / ceiling"])
+                   "single-start / ceiling"])
     rows: list[dict[str, Any]] = []
     notes: list[str] = []
     out: dict[str, Any] = {}
@@ -111,12 +115,12 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         first_note = len(notes)
         t0 = time.perf_counter()
         q = SubspaceQAOA(s)
-        obj = make_objective("gibbs", cost_scale(q))
-        warm = train_mixer_only(q, p_max)
+        obj = study_gibbs(q)
+        warm = train_mixer_only(q, p_max, obj)
         ceiling = mixer_only_ceiling(q, p_max, starts=starts, seed=opts.seed)
         small = q.dimension <= FULL_TRAINING_MAX
-        default = train_layerwise(q, p_max) if small else None
-        with_warm = train_layerwise(q, p_max, mixer_warm=True) if small else None
+        default = study_training(q, p_max) if small else None
+        with_warm = study_training(q, p_max, mixer_warm=True) if small else None
         print(f"{source}: mixer-only and ceiling done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr, flush=True)
         out[source] = {"warm": warm, "ceiling": ceiling, "default": default, "with_warm": with_warm}
         for p in range(1, p_max + 1):
@@ -143,14 +147,14 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                 full_cell, gamma_cell = frow["p_opt"], float(np.max(np.abs(run.angles[0::2])))
                 lv = default.levels[p - 1]
                 drow = _state_row(q, lv.angles)
-                rows.append(record(s, {**options, "angles": "default training"}, table="default", **base, **drow,
-                                   value=lv.value))
+                rows.append(record(s, {**options, "angles": "single-start training"}, table="single_start", **base,
+                                   **drow, value=lv.value))
                 default_cell = drow["p_opt"]
                 assert with_warm is not None
                 lv = with_warm.levels[p - 1]
                 mrow = _state_row(q, lv.angles)
-                rows.append(record(s, {**options, "angles": "default training, mixer_warm=True"},
-                                   table="default_mixer_warm", **base, **mrow, value=lv.value))
+                rows.append(record(s, {**options, "angles": "single-start training, mixer_warm=True"},
+                                   table="single_start_mixer_warm", **base, **mrow, value=lv.value))
                 warm_cell = mrow["p_opt"]
                 ratio = drow["p_opt"] / crow["p_opt"] if crow["p_opt"] > 0 else "-"
             table.add(source, q.dimension, p, wrow["p_opt"], wrow["expectation"], full_cell, gamma_cell, default_cell,
@@ -160,7 +164,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                      f"product-state evaluations with gradient, {warm[-1].seconds:.1f} s; ceiling "
                      f"{sum(c.seconds for c in ceiling):.1f} s; whole scenario {time.perf_counter() - t0:.0f} s.")
         if default is not None and with_warm is not None:
-            notes.append(f"{source}: default training to p = {p_max}: {default.runs} L-BFGS-B runs, "
+            notes.append(f"{source}: single-start training to p = {p_max}: {default.runs} L-BFGS-B runs, "
                          f"{default.num_evaluations} simulations, {default.circuit_estimates} device objective "
                          f"estimates, {default.seconds:.1f} s; with mixer_warm=True: {with_warm.runs} runs, "
                          f"{with_warm.num_evaluations} simulations + {with_warm.mixer_evaluations} product-state "

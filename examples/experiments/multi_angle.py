@@ -1,6 +1,6 @@
 """Multi-angle QAOA mixers (one beta per partial mixer and layer, gammas 0): P(optimum) at p = 1..5, up to 5x5.
 
-Issue #19 asks for P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5. With one beta per layer
+The goal: P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5. With one beta per layer
 even the mixer-only ceiling is 1.64e-4 there at p = 5 (``docs/results/mixer_warm_start.md``). The lever tried
 here is multi-angle QAOA (Herrman et al. 2022, Sci. Rep. 12, 6781): every partial mixer (robot, plaquette) gets
 its own beta in every layer, the circuit ``PlanOptions(angles="multi")`` (the same gates as the default one).
@@ -8,11 +8,11 @@ its own beta in every layer, the circuit ``PlanOptions(angles="multi")`` (the sa
 For each scenario and p = 1..5 the table gives:
 
 * **trained (Gibbs)**: :func:`qcpp.simulate.mixer_only.train_multi_angle` with every gamma 0 (the state is then a
-  product over robots): L-BFGS-B on the exact gradient of the default Gibbs objective of the measured cost
-  from the 3 constant starts, the previous depth's best with a zero layer appended, and 8 seeded random
-  starts; the run with the lowest objective is kept (the training never looks up the optimum). Its
-  P(optimum), ``<C>``, the probability of its most probable assignment (1 when the state is one basis state), how
-  many of the starts ended within 0.01 of the kept objective value, the parameters, the objective
+  product over robots): L-BFGS-B on the exact gradient of the Gibbs objective of the measured cost (``eta = 5 /
+  sigma``, ``STUDY_SCHEDULE`` of ``_common.py``) from the 3 constant starts, the previous depth's best with a zero
+  layer appended, and 8 seeded random starts; the run with the lowest objective is kept (the training never looks
+  up the optimum). Its P(optimum), ``<C>``, the probability of its most probable assignment (1 when the state is
+  one basis state), how many of the starts ended within 0.01 of the kept objective value, the parameters, the objective
   evaluations (each with its gradient, every start included), the device objective estimates they would take
   (a gradient by the parameter-shift rule = 1 + 2 x parameters estimates) and the wall time;
 * **on the way**: following the trained circuit one partial mixer at a time, the most paths one robot's state
@@ -45,11 +45,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import (
     REPO,
+    STUDY_SCHEDULE,
     Table,
     circuit_columns,
     command_line,
     parse,
     record,
+    study_gibbs,
     two_robot_cases,
     write_records,
     write_results,
@@ -68,7 +70,7 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle,
 )
-from qcpp.simulate.objectives import GIBBS_SCALE, make_objective
+from qcpp.simulate.objectives import make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
 
 NAME = "multi_angle"
@@ -115,7 +117,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p_max = 2 if opts.quick else 5
     random_starts = 2 if opts.quick else MULTI_RANDOM_STARTS
     options = {"initial": "initial_path", "angles": "multi", "gammas": 0, "objective": "gibbs",
-               "gibbs_eta_sigma": GIBBS_SCALE, "optimizer": "L-BFGS-B", "maxiter": MIXER_MAXITER,
+               "gibbs_eta_sigma": STUDY_SCHEDULE["gibbs_eta_sigma"], "optimizer": "L-BFGS-B", "maxiter": MIXER_MAXITER,
                "constant_starts": list(MIXER_STARTS), "random_starts": random_starts, "seed": opts.seed}
     cases = two_robot_cases(opts.quick)
     table = Table(f"Multi-angle mixer-only QAOA (one beta per partial mixer and layer, gammas 0), p = 1..{p_max}",
@@ -129,13 +131,15 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     for source, s in cases:
         t0 = time.perf_counter()
         q = SubspaceQAOA(s)
+        objective = study_gibbs(q)
         sites = len(mixer_sites(q))
         rng = np.random.default_rng(opts.seed + 1)
         trained, ceilings = [], []
         prev: tuple[float, ...] | None = None
         prev_ceiling: np.ndarray | None = None
         for p in range(1, p_max + 1):
-            res = train_multi_angle(q, p, random_starts=random_starts, seed=opts.seed + p, previous=prev)
+            res = train_multi_angle(q, p, objective, random_starts=random_starts, seed=opts.seed + p,
+                                    previous=prev)
             prev = res.betas
             trow = _row(q, res.betas, p)
             x0s = [np.asarray(res.betas)] + [rng.uniform(0.0, 2 * np.pi, p * sites) for _ in range(CEILING_RANDOM)]

@@ -1,8 +1,9 @@
-"""QAOA's default training by depth: P(optimum) at p = 1..8 on two_robots_4x4, objectives, warm starts, 5x5.
+"""QAOA's layer-by-layer training by depth: P(optimum) at p = 1..8 on two_robots_4x4, objectives, warm starts, 5x5.
 
-Default training (:func:`qcpp.simulate.layerwise.train_layerwise`): L-BFGS-B on the exact adjoint gradient, layer by
-layer from p = 1 with INTERP and zero-layer warm starts, the linear ramp plus two seeded random starts at
-p = 1, the Gibbs objective with ``eta = 5 / sigma``. Nothing is tuned per scenario.
+The training (:func:`qcpp.simulate.layerwise.train_layerwise`) on the single-start schedule (``STUDY_SCHEDULE`` of
+``_common.py``): L-BFGS-B on the exact adjoint gradient, layer by layer from p = 1 with INTERP and zero-layer warm
+starts only, the linear ramp plus two seeded random starts at p = 1, the Gibbs objective with ``eta = 5 / sigma``.
+Nothing is tuned per scenario.
 
 Tables:
 
@@ -11,7 +12,7 @@ Tables:
    simulations, device objective estimates (a gradient = 1 + 4p estimates) and wall seconds.
 2. The three objectives (``gibbs``, ``cvar`` with alpha 0.2, ``expectation``) with the same schedule on
    3x3 corner to corner (one robot), examples/paper_3x3.toml and two_robots_4x4, at p = 3 and p = 6.
-3. Initial states compared with the same default training to p = 5: the paper's ``initial_path`` against the
+3. Initial states compared with the same training to p = 5: the paper's ``initial_path`` against the
    classical warm start ``local_search`` (:func:`qcpp.problem.solvers.descent.local_search`, steepest descent over
    SBF moves) and ``local_search_mix`` (per robot the initial and the descent path in equal superposition), on
    the scenarios of this script where the descent does not already end on the optimum (the open 4x4 with two
@@ -21,7 +22,7 @@ Tables:
    ``initial_path`` and ``local_search`` states, and table 3's ``local_search_mix`` angles of the open 4x4 (gammas
    scaled the same way) from ``local_search_mix``; the notes give the warm start's cost, time and distance to
    the optimum in SBF moves and in mixer layers (:func:`qcpp.simulate.state_measures.layers_to_reach`).
-5. ``examples/two_robots_5x5.toml``, the default training to p = 5 from ``local_search_mix`` (the 5x5
+5. ``examples/two_robots_5x5.toml``, the training to p = 5 from ``local_search_mix`` (the 5x5
    goal: P(optimum) >= 0.05 at some p <= 5), the kept run at each depth with its iterations and time.
 
 Every row records its scenario (file), its options and the qcpp version (``results/qaoa_training.json``); the
@@ -45,7 +46,18 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import EXAMPLES, REPO, Table, command_line, parse, pyplot, save_figure, write_results
+from _common import (
+    EXAMPLES,
+    REPO,
+    STUDY_SCHEDULE,
+    Table,
+    command_line,
+    parse,
+    pyplot,
+    save_figure,
+    study_training,
+    write_results,
+)
 
 import qcpp
 from qcpp.io.atomic import write_text_atomic
@@ -53,8 +65,8 @@ from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_to_dict
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers.descent import local_search
-from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, train_layerwise
-from qcpp.simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, OBJECTIVES
+from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS
+from qcpp.simulate.objectives import CVAR_ALPHA, OBJECTIVES
 from qcpp.simulate.state_measures import layers_to_reach
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.training import cost_scale
@@ -117,7 +129,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p_max = 3 if opts.quick else 8
     p_compare = (2,) if opts.quick else (3, 6)
     options = {"training": "layerwise", "optimizer": "L-BFGS-B", "maxiter": DEFAULT_MAXITER,
-               "random_starts": DEFAULT_RANDOM_STARTS, "seed": 0, "gibbs_eta_sigma": GIBBS_SCALE,
+               "random_starts": DEFAULT_RANDOM_STARTS, "seed": 0, **STUDY_SCHEDULE,
                "cvar_alpha": CVAR_ALPHA}
     rows: list[dict[str, Any]] = []
 
@@ -125,11 +137,11 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     s4 = load_scenario(four)
     q4 = SubspaceQAOA(s4)
     t0 = time.perf_counter()
-    res = train_layerwise(q4, p_max, "gibbs", progress=lambda k, p: print(f"two_robots_4x4: p = {k} done "
+    res = study_training(q4, p_max, "gibbs", progress=lambda k, p: print(f"two_robots_4x4: p = {k} done "
                                                                           f"({time.perf_counter() - t0:.0f} s)",
                                                                           file=sys.stderr, flush=True))
-    depth_table = Table(f"two_robots_4x4.toml ({q4.dimension:,} assignments, optimum {q4.optimum()[0]:g}): default "
-                        "training, the kept run at each depth",
+    depth_table = Table(f"two_robots_4x4.toml ({q4.dimension:,} assignments, optimum {q4.optimum()[0]:g}): "
+                        "single-start training, the kept run at each depth",
                         ["p", "Gibbs objective", "<C>", "P(optimum)", "iterations", "qubits", "depth", "2q depth"])
     for lv in res.levels:
         circ = circuit_columns(s4, lv.p)
@@ -151,7 +163,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     curves: dict[str, list[float]] = {}
     for path, s in cases:
         q = q4 if s is s4 else SubspaceQAOA(s)
-        by_obj = {obj: train_layerwise(q, max(p_compare), obj) for obj in OBJECTIVES}
+        by_obj = {obj: study_training(q, max(p_compare), obj) for obj in OBJECTIVES}
         if s is s4:
             curves = {obj: [lv.p_optimum for lv in r.levels] for obj, r in by_obj.items()}
         for p in p_compare:
@@ -169,7 +181,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p_warm = 2 if opts.quick else 5
     warm_options = {**options, "objective": "gibbs"}
     warm_inits = ("initial_path", "local_search", "local_search_mix")
-    warm_table = Table(f"Initial states compared (default training to p = {p_warm}): P(optimum) of the kept run",
+    warm_table = Table(f"Initial states compared (single-start training to p = {p_warm}): P(optimum) of the kept run",
                        ["scenario", "assignments", "descent cost", "optimum", "p", *warm_inits])
     warm_notes = []
     mix_source: tuple[SubspaceQAOA, Any] | None = None  # the open 4x4's local_search_mix training, for table 4
@@ -187,7 +199,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         by_init = {}
         for initial in warm_inits:
             qi = q if initial == "initial_path" else SubspaceQAOA(s, initial=initial)  # type: ignore[arg-type]
-            by_init[initial] = (qi, train_layerwise(qi, p_warm, "gibbs"))
+            by_init[initial] = (qi, study_training(qi, p_warm, "gibbs"))
         mix_source = by_init["local_search_mix"]
         for p in range(1, p_warm + 1):
             cells = []
@@ -243,16 +255,17 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             five_table.add(lv.p, *cells, circ["qubits"], circ["depth"], circ["two_qubit_depth"])
         tables.append(five_table)
 
-        # 5. two_robots_5x5: the default training from local_search_mix, p = 1..5
+        # 5. two_robots_5x5: the single-start training from local_search_mix, p = 1..5
         qm = q5["local_search_mix"]
         t0 = time.perf_counter()
-        res5 = train_layerwise(qm, 5, "gibbs", progress=lambda k, p: print(
+        res5 = study_training(qm, 5, "gibbs", progress=lambda k, p: print(
             f"two_robots_5x5 local_search_mix: p = {k} done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr,
             flush=True))
-        trained_table = Table(f"two_robots_5x5.toml: default training to p = 5 from local_search_mix (P(optimum) = "
-                              f"{qm.p_optimum([]):.4g} at p = 0, <C> = {qm.expectation([]):.4g}), the kept run at each "
-                              "depth", ["p", "Gibbs objective", "<C>", "P(optimum)", "beta", "iterations",
-                                        "simulations", "qubits", "depth", "2q depth"])
+        trained_table = Table(f"two_robots_5x5.toml: single-start training to p = 5 from local_search_mix "
+                              f"(P(optimum) = {qm.p_optimum([]):.4g} at p = 0, <C> = {qm.expectation([]):.4g}), "
+                              "the kept run at each depth",
+                              ["p", "Gibbs objective", "<C>", "P(optimum)", "beta", "iterations", "simulations",
+                               "qubits", "depth", "2q depth"])
         for lv in res5.levels:
             circ = circuit_columns(s5, lv.p, "local_search_mix")
             rows.append({"table": "five_by_five_trained", "scenario_file": _source(five),
@@ -265,8 +278,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                               " ".join(f"{b:.3g}" for b in lv.angles[1::2]), len(lv.trace) - 1, lv.num_evaluations,
                               circ["qubits"], circ["depth"], circ["two_qubit_depth"])
         tables.append(trained_table)
-        five_notes.append(f"two_robots_5x5 default training from local_search_mix to p = 5: {res5.runs} L-BFGS-B runs, "
-                          f"{res5.num_evaluations} simulations ({res5.num_gradients} with gradient), "
+        five_notes.append(f"two_robots_5x5 single-start training from local_search_mix to p = 5: {res5.runs} "
+                          f"L-BFGS-B runs, {res5.num_evaluations} simulations ({res5.num_gradients} with gradient), "
                           f"{res5.seconds:.0f} s wall; best P(optimum) {max(lv.p_optimum for lv in res5.levels):.4g}.")
         print(five_notes[-1])
         start_paths = tuple(q5["initial_path"].bases[r][0] for r in range(s5.num_robots))
@@ -291,15 +304,15 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
 
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
-    ax.plot([lv.p for lv in res.levels], [lv.p_optimum for lv in res.levels], "o-", label="gibbs (default), to p_max")
+    ax.plot([lv.p for lv in res.levels], [lv.p_optimum for lv in res.levels], "o-", label="gibbs, to p_max")
     for obj, ys in curves.items():
         if obj != "gibbs":
             ax.plot(range(1, len(ys) + 1), ys, "s--", label=obj)
-    ax.axhline(0.2, color="grey", ls=":", lw=1, label="issue #19 goal 0.2")
+    ax.axhline(0.2, color="grey", ls=":", lw=1, label="goal 0.2")
     ax.set_yscale("log")
     ax.set_xlabel("QAOA layers p")
     ax.set_ylabel("P(optimum)")
-    ax.set_title("two_robots_4x4: default layer-by-layer training", fontsize=10)
+    ax.set_title("two_robots_4x4: single-start layer-by-layer training", fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(frameon=False, fontsize=8)
     fig.tight_layout()

@@ -18,7 +18,8 @@ The criterion (:mod:`qcpp.simulate.time_to_solution`): the time to reach an opti
   independent runs (seeds 0..runs-1) at a fixed budget; a run succeeds if its best is optimal; time = mean run
   time x the runs needed for 99% at the observed rate (range: the rate's 95% Wilson interval).
 * **QAOA** where the feasible-subspace simulator holds the state (at most ``qaoa_max_dim`` assignments): the
-  default training (:func:`qcpp.simulate.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer) to
+  default training (:func:`qcpp.simulate.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer,
+  restarts at every level) to
   the depth fixed before the run, ``qaoa_p`` for every instance; ``P(optimum)`` of the trained state; the shots
   for 99%; and a **projected ideal-device time**: every shot (training shots included: objective estimates x
   ``SHOTS_PER_ESTIMATE``) at the circuit's time from the compiler's exact depth
@@ -297,7 +298,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "anneal": {"iterations": cfg.sa_iterations, "components": "initial", "seeds": cfg.runs},
         "genetic": {"generations": cfg.ga_generations, "components": "initial", "seeds": cfg.runs},
         "qaoa": {"p": cfg.qaoa_p, "training": "layerwise", "objective": "gibbs", "gibbs_eta_sigma": GIBBS_SCALE,
-                 "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS,
+                 "maxiter": DEFAULT_MAXITER, "random_starts": DEFAULT_RANDOM_STARTS, "restart_every_level": True,
                  "shots_per_estimate": SHOTS_PER_ESTIMATE, "gate_model": GATE_MODEL, "device": "ideal all-to-all"},
         "qaoa_device": {"compile": "qcpp.estimators.routed.routed_fields"
                                    " (qcpp.pipeline.device_compile.compile_for_device)",
@@ -334,7 +335,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         f"{cfg.cpsat_limit:g} s ({cfg.cpsat_named_limit:g} s on 6x6/2 and 6x6/3 without obstacles). DFS attempted "
         f"up to {cfg.dfs_max:.0e} combinations.",
         f"QAOA: depth fixed in advance at p = {cfg.qaoa_p} for every instance; default training (Gibbs objective, "
-        "eta = 5/sigma, L-BFGS-B layer by layer from p = 1). IDEAL ALL-TO-ALL DEVICE PROJECTION, not a "
+        f"eta = {GIBBS_SCALE:g}/sigma, L-BFGS-B layer by layer from p = 1, restarts at every level). IDEAL "
+        "ALL-TO-ALL DEVICE PROJECTION, not a "
         f"measurement: two-qubit layers {GATE_MODEL['t_2q_ns']:g} ns, other layers {GATE_MODEL['t_1q_ns']:g} ns, "
         f"readout {GATE_MODEL['readout_ns']:g} ns per shot, no routing, no noise, no error correction; depth = the "
         "compiler's exact depth; training = objective estimates (a gradient = 1 + 4p estimates) x "
@@ -526,7 +528,7 @@ def _verdict_table(instances: list[Instance], cfg: Config) -> Table:
 
 
 def _named_table(instances: list[Instance]) -> Table:
-    t = Table("CP-SAT on the instances the issue names (no obstacles)",
+    t = Table("CP-SAT on the 6x6 multi-robot instances (no obstacles)",
               ["instance", "limit s", "proven", "seconds", "best", "bound", "gap", "first found best at s"])
     for inst in instances:
         if (inst.n, inst.robots) in NAMED and not inst.obstacles:
