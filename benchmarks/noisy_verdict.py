@@ -5,7 +5,7 @@ defaults: 400 shots, 16 active qubits). Needs the extra ``noise`` (qiskit-aer).
 
 For every small default scenario of the verdict (:data:`SMALL` of ``benchmarks/routing_verdict.py``), every named
 device and p = 1..3: the QAOA angles are trained on qcpp's exact subspace simulator (``qcpp.train_qaoa`` with
-:data:`TRAINING`, the single-start schedule: this check compares noise models, not trainings), the circuit is
+:data:`qcpp.simulate.qaoa_solver.SINGLE_START`: this check compares noise models, not trainings), the circuit is
 compiled with them and routed as ``qcpp compile --device NAME`` does, and its ESP (:func:`qcpp.routing.native.esp`)
 computed. Every row with ESP >= 0.1 (the verdict's "feasible") is simulated
 with the device file's noise model (:mod:`qcpp.simulate.noisy`: depolarising + thermal relaxation per gate, idle
@@ -34,12 +34,10 @@ from qcpp.problem.presets import default_scenario
 from qcpp.routing.native import esp
 from qcpp.simulate.evaluate import _feasible
 from qcpp.simulate.noisy import active_qubits, simulate_noisy
+from qcpp.simulate.qaoa_solver import SINGLE_START
 
 SMALL = ((2, 2, 1), (2, 3, 1), (3, 3, 1), (3, 4, 1), (4, 4, 1), (3, 3, 2), (4, 4, 2))
 """The verdict's small default scenarios (``benchmarks/routing_verdict.py``)."""
-
-TRAINING = {"restart_every_level": False, "gibbs_scale": 5.0}
-"""Options of ``qcpp.train_qaoa`` for the angles (the single-start schedule of ``docs/experiments.md`` section 5)."""
 
 FEASIBLE_ESP = 0.1
 
@@ -62,7 +60,7 @@ def main() -> None:
                 key = (rows, cols, robots, p)
                 s = default_scenario(rows, cols, robots)
                 if key not in trained:
-                    sol = qcpp.train_qaoa(s, p, **TRAINING)
+                    sol = qcpp.train_qaoa(s, p, **SINGLE_START)
                     angles = {}
                     for k in range(p):
                         angles[f"gamma_{k}"], angles[f"beta_{k}"] = sol.angles[2 * k], sol.angles[2 * k + 1]

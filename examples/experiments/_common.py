@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from qcpp.io.atomic import save_figure_atomic, write_text_atomic
+from qcpp.simulate.qaoa_solver import SINGLE_START
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
@@ -215,30 +216,37 @@ def pyplot() -> Any:
     return plt
 
 
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit("helper module of the experiment scripts; run one of them instead")
-
-
-STUDY_SCHEDULE: dict[str, Any] = {"restart_every_level": False, "gibbs_eta_sigma": 5.0}
+STUDY_SCHEDULE: dict[str, Any] = {"restart_every_level": SINGLE_START["restart_every_level"],
+                                  "gibbs_eta_sigma": SINGLE_START["gibbs_scale"]}
 """The training schedule of the studies of training variants (``qaoa_training``, ``mixer_warm_start``,
-``multi_angle``): levels ``p > 1`` start from the level below only, and the Gibbs objective sits at
-``eta = 5 / sigma``. Each variant there is measured against this schedule; the default schedule (restarts at every
-level, ``eta = 40 / sigma``) is the one ``ensembles.py`` and ``time_to_solution.py`` measure, and
-``training_restarts.py`` sets the two side by side on the ensembles."""
+``multi_angle``), as their records name it: :data:`qcpp.simulate.qaoa_solver.SINGLE_START`, levels ``p > 1`` from
+the level below only and the Gibbs objective at ``eta = 5 / sigma``. Each variant there is measured against this
+schedule; the default schedule (restarts at every level, ``eta = 40 / sigma``) is the one ``ensembles.py`` and
+``time_to_solution.py`` measure, and ``training_restarts.py`` sets the two side by side on the ensembles."""
+
+
+def study_eta(qaoa: Any) -> float:
+    """The Gibbs inverse temperature of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
+    from qcpp.simulate.training import cost_scale
+
+    return float(SINGLE_START["gibbs_scale"] / cost_scale(qaoa))
 
 
 def study_gibbs(qaoa: Any) -> Any:
     """The Gibbs objective of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
     from qcpp.simulate.objectives import Gibbs
-    from qcpp.simulate.training import cost_scale
 
-    return Gibbs(STUDY_SCHEDULE["gibbs_eta_sigma"] / cost_scale(qaoa))
+    return Gibbs(study_eta(qaoa))
 
 
 def study_training(qaoa: Any, p: int, objective: str = "gibbs", **options: Any) -> Any:
     """``train_layerwise(qaoa, p, objective, **options)`` on :data:`STUDY_SCHEDULE`."""
     from qcpp.simulate.layerwise import train_layerwise
 
-    eta = study_gibbs(qaoa).eta if objective == "gibbs" else None
-    return train_layerwise(qaoa, p, objective, restart_every_level=STUDY_SCHEDULE["restart_every_level"],  # type: ignore[arg-type]
+    eta = study_eta(qaoa) if objective == "gibbs" else None
+    return train_layerwise(qaoa, p, objective, restart_every_level=SINGLE_START["restart_every_level"],  # type: ignore[arg-type]
                            eta=eta, **options)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit("helper module of the experiment scripts; run one of them instead")

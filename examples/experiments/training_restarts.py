@@ -44,9 +44,10 @@ from ensembles import instances_of, quartiles, run_on_dask
 
 import qcpp
 from qcpp.io.atomic import write_text_atomic
+from qcpp.simulate.qaoa_solver import SINGLE_START
 
 NAME = "training_restarts"
-ALTERNATIVE: dict[str, Any] = {"restart_every_level": False, "gibbs_scale": 5.0}
+ALTERNATIVE: dict[str, Any] = dict(SINGLE_START)
 """Options of the alternative schedule: ``qcpp.train_qaoa``'s (``gibbs_scale`` for ``eta = gibbs_scale / sigma``)."""
 REFERENCES = ("docs/results/ensembles.json", "docs/results/ensembles_4x4.json", "docs/results/ensembles_larger.json")
 

@@ -30,7 +30,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any
 
 from qcpp.problem.cost import cost_parts
@@ -56,9 +58,13 @@ from qcpp.simulate.objectives import GIBBS_SCALE, OBJECTIVES, Expectation, Gibbs
 from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
 from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
-__all__ = ["QAOA_OPTIMIZERS", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
+__all__ = ["QAOA_OPTIMIZERS", "SINGLE_START", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
 
 QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", "multi-angle", *OPTIMIZERS)
+SINGLE_START: Mapping[str, Any] = MappingProxyType({"restart_every_level": False, "gibbs_scale": 5.0})
+"""Options of :func:`solve_qaoa` (and ``qcpp.train_qaoa``) for the single-start schedule: levels ``p > 1`` start
+from the level below only, the Gibbs objective at ``eta = 5 / sigma``. The studies of training variants use it as
+their baseline; docs/ensembles.md measures the default against it."""
 
 
 @dataclass(frozen=True)
