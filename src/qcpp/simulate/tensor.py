@@ -852,8 +852,12 @@ def dask_client(address: str) -> Any:
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if address == "local":
         # ":0": the dashboard takes a free port; the default (also with None) asks for 8787 and warns when another
-        # cluster holds it
-        return Client(n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0")
+        # cluster holds it. silence_logs reaches the worker processes, whose logging is their own: at teardown a
+        # worker's heartbeat can meet the closed scheduler and log an ERROR with a traceback; a task's failure
+        # still reaches the caller as its exception
+        return Client(
+            n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.CRITICAL
+        )
     try:
         return Client(address, timeout="10s")
     except OSError as exc:
