@@ -1,8 +1,8 @@
 """QAOA and the classical solvers on seeded random ensembles: P(optimum) by depth, the training's gap, 99% times.
 
 Instances: :func:`qcpp.ensemble` cells ``RxC/N`` (grid, robots) at obstacle density ``density`` (soft obstacles,
-random distinct endpoints, every instance feasible), ``instances`` per cell, seeded by ``--seed``. Per instance
-(``_ensemble_tasks.run_instance``, one Dask task each):
+random distinct endpoints, every instance feasible), ``instances`` per cell (more where ``CELL_INSTANCES`` says),
+seeded by ``--seed``. Per instance (``_ensemble_tasks.run_instance``, one Dask task each):
 
 * **DFS, CP-SAT, SA, GA, QAOA**: the time to the optimum with 99% probability under the rules of
   ``time_to_solution.py`` (QAOA: the default training to a depth fixed in advance, training shots counted,
@@ -19,7 +19,8 @@ Summaries: medians and quartiles over each cell's instances. The tasks run on a 
 
 Outputs (only when every task finished): ``results/ensembles.md``, ``results/ensembles.json`` (one record per
 instance and method, and per instance and depth for QAOA) and ``figures/ensembles.png``.
-Run: ``python examples/experiments/ensembles.py [--quick] [--cells 3x3/1 3x3/2] [--instances N] [--p-max P]``.
+Run: ``python examples/experiments/ensembles.py [--quick] [--cells 3x3/1 3x3/2] [--instances N 3x3/1=N]
+[--p-max P]``.
 """
 
 from __future__ import annotations
@@ -48,6 +49,12 @@ from qcpp.problem.scenario import scenario_to_dict
 
 NAME = "ensembles"
 TOL = 1e-9
+CELL_INSTANCES = (("3x3/1", 300), ("3x3/2", 100))
+"""The full study's larger cells, where 30 instances do not pin the median down. On one robot on 3x3, P(optimum)
+at p = 1 and 2 has point masses at 0 (an optimum those depths cannot reach) and at 1, and the median of 30 sits on
+their edge: two seeds of 30 gave 0.2 and 0.03 at p = 1. Resampling both draws' 60 instances puts two medians of
+300 more than 2x apart in about 0.2% of the pairs and two of 30 in about a third; two robots on 3x3 at p = 1 need
+about 100. Both cells cost seconds per instance."""
 
 
 @dataclass(frozen=True)
@@ -62,10 +69,20 @@ class Config:
     cpsat_limit: float
     search: dict[str, float]
     seed: int = 0
+    cell_instances: tuple[tuple[str, int], ...] = ()
+    """``(cell, count)`` pairs that override ``instances`` for a cell."""
+
+    def instances_in(self, cell: str) -> int:
+        """The cell's instance count: its override, else ``instances``.
+
+        >>> replace(QUICK, cell_instances=(("3x3/1", 5),)).instances_in("3x3/1"), QUICK.instances_in("3x3/2")
+        (5, 3)
+        """
+        return dict(self.cell_instances).get(cell, self.instances)
 
 
 FULL = Config(("3x3/1", "3x3/2", "4x4/1", "4x4/2", "5x5/1", "3x3/3"), 0.1, 30, 8, 8, 2000, 10, 10.0,
-              {"random_starts": 4, "hops": 2, "maxiter": 50})
+              {"random_starts": 4, "hops": 2, "maxiter": 50}, cell_instances=CELL_INSTANCES)
 QUICK = Config(("3x3/1", "3x3/2"), 0.1, 3, 3, 3, 500, 3, 2.0, {"random_starts": 1, "hops": 1, "maxiter": 20})
 
 
@@ -82,6 +99,25 @@ def parse_cell(text: str) -> tuple[int, int, int]:
     return out
 
 
+def parse_count(text: str) -> tuple[str | None, int]:
+    """``N`` -> ``(None, N)``, ``RxC/R=N`` -> ``("RxC/R", N)``; one clear line on bad input.
+
+    >>> parse_count("40"), parse_count("3x3/1=300")
+    ((None, 40), ('3x3/1', 300))
+    """
+    cell, _, count = text.rpartition("=")
+    try:
+        n = int(count)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"an instance count is N or RxC/N=N (e.g. 3x3/1=300), got {text!r}") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"an instance count must be at least 1, got {text!r}")
+    if not cell:
+        return None, n
+    r, c, k = parse_cell(cell)
+    return f"{r}x{c}/{k}", n
+
+
 def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str, str]:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="reduced run (under 2 minutes), for the smoke test")
@@ -91,14 +127,16 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
     ap.add_argument("--seed", type=int, default=0, help="the ensembles' seed (and the search's)")
     ap.add_argument("--cells", nargs="+", type=parse_cell, default=None, metavar="RxC/N",
                     help="ensemble cells (default: all of the full study, or 3x3/1 3x3/2 with --quick)")
-    ap.add_argument("--instances", type=int, default=None, help="instances per cell (default 30; quick 3)")
+    ap.add_argument("--instances", nargs="+", type=parse_count, default=None, metavar="N|RxC/N=N",
+                    help="instances per cell, and per-cell overrides such as 3x3/1=300 (default 30, "
+                         + ", ".join(f"{c}={n}" for c, n in CELL_INSTANCES) + "; quick 3)")
     ap.add_argument("--p-max", type=int, default=None, help="deepest QAOA (default 8; quick 3)")
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="a running Dask scheduler (default: a LocalCluster on this machine)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes, one thread each")
     ap.add_argument("--name", default=NAME, help=f"results/NAME.md, .json and figures/NAME.png (default {NAME})")
     ns = ap.parse_args(argv)
-    for name in ("instances", "p_max", "workers"):
+    for name in ("p_max", "workers"):
         value = getattr(ns, name)
         if value is not None and value < 1:
             ap.error(f"--{name.replace('_', '-')} must be at least 1, got {value}")
@@ -108,8 +146,18 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
         cfg = replace(cfg, cells=tuple(f"{r}x{c}/{n}" for r, c, n in ns.cells))
         command += " --cells " + " ".join(cfg.cells)
     if ns.instances is not None:
-        cfg = replace(cfg, instances=ns.instances)
-        command += f" --instances {ns.instances}"
+        counts = dict(cfg.cell_instances)
+        for cell, n in ns.instances:
+            if cell is None:
+                cfg = replace(cfg, instances=n)
+                counts = {}  # a new default count replaces the default overrides; later CELL=N entries apply
+            else:
+                counts[cell] = n
+        cfg = replace(cfg, cell_instances=tuple(counts.items()))
+        command += " --instances " + " ".join(str(n) if c is None else f"{c}={n}" for c, n in ns.instances)
+        if stray := sorted(c for c, _ in ns.instances if c is not None and c not in cfg.cells):
+            ap.error(f"--instances: {', '.join(stray)} is not among the cells ({' '.join(cfg.cells)})")
+    cfg = replace(cfg, cell_instances=tuple((c, n) for c, n in cfg.cell_instances if c in cfg.cells))
     if ns.p_max is not None:
         cfg = replace(cfg, p_max=ns.p_max)
         command += f" --p-max {ns.p_max}"
@@ -128,7 +176,8 @@ def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
     out = []
     for cell in cfg.cells:
         rows, cols, robots = parse_cell(cell)
-        for i, s in enumerate(ensemble(rows, cols, robots, cfg.density, count=cfg.instances, seed=cfg.seed)):
+        count = cfg.instances_in(cell)
+        for i, s in enumerate(ensemble(rows, cols, robots, cfg.density, count=count, seed=cfg.seed)):
             out.append((cell, i, scenario_to_dict(s)))
     return out
 
@@ -297,7 +346,7 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = N
             med, lo, hi = zip(*stats)
             ax.plot(ps, med, marker="o", color=colour, label=label)
             ax.fill_between(ps, lo, hi, color=colour, alpha=0.2)
-        ax.set_title(f"{cell}, density {cfg.density:g}, {cfg.instances} instances", fontsize=9)
+        ax.set_title(f"{cell}, density {cfg.density:g}, {cfg.instances_in(cell)} instances", fontsize=9)
         ax.set_xlabel("p")
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3)
@@ -327,8 +376,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     where = f"a LocalCluster of {workers} single-threaded workers" if scheduler is None else "a Dask cluster"
     notes = [
         f"qcpp {qcpp.__version__}. Ensembles: qcpp.ensemble(rows, cols, robots, density={cfg.density:g}, "
-        f"count={cfg.instances}, seed={cfg.seed}): random distinct endpoints, soft obstacles; every instance "
-        "feasible.",
+        f"count=N, seed={cfg.seed}): random distinct endpoints, soft obstacles; every instance feasible. N: "
+        + ", ".join(f"{cell} {cfg.instances_in(cell)}" for cell in cfg.cells) + ".",
         "Rules of time_to_solution.py: DFS its run time; CP-SAT (1 worker, limit "
         f"{cfg.cpsat_limit:g} s) when it first found the optimum; SA ({cfg.sa_iterations} iterations) and GA "
         f"({cfg.ga_generations} generations) over {cfg.runs} seeded runs: mean run time x runs needed for 99% "

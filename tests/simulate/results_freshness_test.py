@@ -328,7 +328,10 @@ def test_ensemble_rows_are_the_generators_instances(name: str) -> None:
         want = random_scenario(rows_, cols_, robots, cfg["density"], seed=cfg["seed"], index=r["index"])
         assert _scenario(_key(r)) == want, _label(name, r)
     cells = {r["cell"] for r in data["rows"]}
-    assert cells == set(cfg["cells"]) and len(data["rows"]) == len(cells) * cfg["instances"] * (4 + cfg["p_max"])
+    counts = {c: cfg["instances"] for c in cfg["cells"]} | dict(cfg.get("cell_instances", ()))
+    assert cells == set(cfg["cells"]) and len(data["rows"]) == sum(counts.values()) * (4 + cfg["p_max"])
+    for cell, n in counts.items():  # instances 0 .. n-1 of each cell, once each
+        assert sorted({r["index"] for r in data["rows"] if r["cell"] == cell}) == list(range(n)), cell
 
 
 @pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
@@ -349,6 +352,20 @@ def test_ensemble_recorded_angles_and_circuits(name: str, heavy: bool) -> None:
             assert {k: r[k] for k in want} == want, _label(name, r)
         checked += 1
     assert checked > 0
+
+
+@pytest.mark.parametrize("cell", ["3x3/1", "3x3/2"])
+def test_the_default_training_retrained_gives_the_recorded_angles(cell: str) -> None:
+    """The other checks recompute states from recorded angles; this one reruns the training itself (the first
+    instance of the cell, to p = 3), so a change of the default training shows up as stale results."""
+    from qcpp.simulate.layerwise import train_layerwise
+
+    rows = {r["p"]: r for r in _load("ensembles")["rows"] if r["method"] == "qaoa" and r["cell"] == cell
+            and r["index"] == 0}
+    levels = train_layerwise(_qaoa(_key(rows[1])), 3)
+    for p, (level, estimates) in enumerate(zip(levels.levels, levels.level_estimates), start=1):
+        assert list(level.angles) == pytest.approx(rows[p]["angles"], abs=1e-6), (cell, p)
+        assert estimates == rows[p]["circuit_estimates"], (cell, p)
 
 
 @pytest.mark.parametrize("name", ENSEMBLE_FILES)
