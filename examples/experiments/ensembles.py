@@ -50,11 +50,10 @@ from qcpp.problem.scenario import scenario_to_dict
 NAME = "ensembles"
 TOL = 1e-9
 CELL_INSTANCES = (("3x3/1", 300), ("3x3/2", 100))
-"""The full study's larger cells, where 30 instances do not pin the median down. On one robot on 3x3, P(optimum)
-at p = 1 and 2 has point masses at 0 (an optimum those depths cannot reach) and at 1, and the median of 30 sits on
-their edge: two seeds of 30 gave 0.2 and 0.03 at p = 1. Resampling both draws' 60 instances puts two medians of
-300 more than 2x apart in about 0.2% of the pairs and two of 30 in about a third; two robots on 3x3 at p = 1 need
-about 100. Both cells cost seconds per instance."""
+"""The full study's larger cells, where 30 instances do not pin the median down: on 3x3, P(optimum) at p = 1 and 2
+has point masses at 0 (an optimum those depths cannot reach) and at 1, and a median of 30 can sit on their edge, so
+two seeds disagree by far more than the sampling spread of the rest (docs/ensembles.md, "Does it hold on a fresh
+draw?"). Both cells cost seconds per instance."""
 
 
 @dataclass(frozen=True)
