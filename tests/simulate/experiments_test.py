@@ -356,7 +356,8 @@ def test_ensemble_cells_parse_and_bad_ones_are_refused() -> None:
             mod.parse_cell(bad)
     cfg = mod.parse_args(["--cells", "3x3/1", "4x4/2", "--out", "unused"])[1]
     assert (cfg.instances_in("3x3/1"), cfg.instances_in("4x4/2")) == (300, 30)  # the full study's override
-    cfg, command = mod.parse_args(["--cells", "3x3/1", "3x3/2", "--instances", "5", "3x3/2=7", "--out", "u"])[1:5:3]
+    argv = ["--cells", "3x3/1", "3x3/2", "--instances", "5", "3x3/2=7", "--out", "unused"]
+    _, cfg, _, _, command, _ = mod.parse_args(argv)
     assert (cfg.instances_in("3x3/1"), cfg.instances_in("3x3/2")) == (5, 7) and "--instances 5 3x3/2=7" in command
     for bad in (["--instances", "0"], ["--instances", "3x3/1=x"], ["--cells", "3x3/2", "--instances", "3x3/1=4"]):
         with pytest.raises(SystemExit):
