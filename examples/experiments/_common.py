@@ -225,27 +225,19 @@ schedule; the default schedule (restarts at every level, ``eta = 40 / sigma``) i
 ``time_to_solution.py`` measure, and ``training_restarts.py`` sets the two side by side on the ensembles."""
 
 
-def study_eta(qaoa: Any) -> float:
-    """The Gibbs inverse temperature of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
-    from qcpp.simulate.training import cost_scale
-
-    return float(SINGLE_START["gibbs_scale"] / cost_scale(qaoa))
-
-
 def study_gibbs(qaoa: Any) -> Any:
     """The Gibbs objective of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
-    from qcpp.simulate.objectives import Gibbs
+    from qcpp.simulate.objectives import make_objective
+    from qcpp.simulate.training import cost_scale
 
-    return Gibbs(study_eta(qaoa))
+    return make_objective("gibbs", cost_scale(qaoa), gibbs_scale=SINGLE_START["gibbs_scale"])
 
 
 def study_training(qaoa: Any, p: int, objective: str = "gibbs", **options: Any) -> Any:
     """``train_layerwise(qaoa, p, objective, **options)`` on :data:`STUDY_SCHEDULE`."""
     from qcpp.simulate.layerwise import train_layerwise
 
-    eta = study_eta(qaoa) if objective == "gibbs" else None
-    return train_layerwise(qaoa, p, objective, restart_every_level=SINGLE_START["restart_every_level"],  # type: ignore[arg-type]
-                           eta=eta, **options)
+    return train_layerwise(qaoa, p, objective, **SINGLE_START, **options)  # type: ignore[arg-type]
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -111,14 +111,11 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
 
 def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
     """The training ``train_layerwise(..., **cfg["alternative"])`` on one scenario, to depth
-    ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds. A
-    ``gibbs_scale`` entry sets the Gibbs objective's ``eta = gibbs_scale / sigma`` (``sigma``: the scenario's
-    cost scale)."""
+    ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds."""
     from qcpp.problem.scenario import scenario_from_dict
     from qcpp.problem.solvers import dfs
     from qcpp.simulate.layerwise import train_layerwise
     from qcpp.simulate.subspace import SubspaceQAOA
-    from qcpp.simulate.training import cost_scale
 
     t_all = time.perf_counter()
     s = scenario_from_dict(scenario)
@@ -126,10 +123,7 @@ def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[st
     optimum = dfs(s).cost.total
     in_basis = abs(q.optimum()[0] - optimum) <= 1e-6 * max(1.0, abs(optimum))
     t0 = time.perf_counter()
-    options = dict(cfg["alternative"])
-    if "gibbs_scale" in options:
-        options["eta"] = options.pop("gibbs_scale") / cost_scale(q)
-    res = train_layerwise(q, cfg["p_max"], **options)
+    res = train_layerwise(q, cfg["p_max"], **cfg["alternative"])
     return {"cell": cell, "index": index, "scenario": scenario, "optimum_in_basis": in_basis,
             "training_seconds": time.perf_counter() - t0,
             "p_opt": [lv.p_optimum if in_basis else 0.0 for lv in res.levels],

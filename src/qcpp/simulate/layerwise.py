@@ -47,7 +47,7 @@ from typing import Any
 import numpy as np
 
 from qcpp.simulate.mixer_only import train_mixer_only
-from qcpp.simulate.objectives import CVAR_ALPHA, ObjectiveName, make_objective
+from qcpp.simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, ObjectiveName, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.training import TrainingResult, check_at_least, cost_scale, initial_angles, interp_angles, train
 
@@ -164,6 +164,7 @@ def train_layerwise(
     maxiter: int = DEFAULT_MAXITER,
     alpha: float = CVAR_ALPHA,
     eta: float | None = None,
+    gibbs_scale: float = GIBBS_SCALE,
     mixer_warm: bool = False,
     restart_every_level: bool = True,
     progress: Callable[[int, int], None] | None = None,
@@ -177,7 +178,9 @@ def train_layerwise(
         seed: Seed of the random starts (start ``k`` uses ``seed + k``).
         maxiter: L-BFGS-B iterations per run.
         alpha: CVaR tail mass (``cvar``).
-        eta: Gibbs inverse temperature (``gibbs``); default ``GIBBS_SCALE / sigma`` (``40 / sigma``).
+        eta: Gibbs inverse temperature (``gibbs``); default ``gibbs_scale / sigma``.
+        gibbs_scale: Gibbs inverse temperature in units of ``1 / sigma`` when ``eta`` is not given (default
+            ``GIBBS_SCALE``, 40).
         mixer_warm: Also start every level from the mixer-only warm start (see the module docstring).
         restart_every_level: Also start every level ``p > 1`` from the linear ramp and ``random_starts`` random
             angles (default; see the module docstring).
@@ -188,7 +191,7 @@ def train_layerwise(
     """
     check_at_least(p=(p, 1), random_starts=(random_starts, 0), maxiter=(maxiter, 0))
     t0 = time.perf_counter()
-    obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta)
+    obj = make_objective(objective, cost_scale(qaoa), alpha=alpha, eta=eta, gibbs_scale=gibbs_scale)
     levels: list[TrainingResult] = []
     level_estimates: list[int] = []
     runs = evaluations = gradients = estimates = mixer_evaluations = 0

@@ -126,7 +126,8 @@ class Gibbs:
 
 
 def make_objective(
-    name: ObjectiveName, sigma: float = 1.0, alpha: float = CVAR_ALPHA, eta: float | None = None
+    name: ObjectiveName, sigma: float = 1.0, alpha: float = CVAR_ALPHA, eta: float | None = None,
+    gibbs_scale: float = GIBBS_SCALE,
 ) -> Expectation | CVaR | Gibbs:
     """The objective called ``name`` with its defaults.
 
@@ -134,7 +135,8 @@ def make_objective(
         name: ``expectation``, ``cvar`` or ``gibbs``.
         sigma: The cost scale (standard deviation over the basis) that sets the default Gibbs ``eta``.
         alpha: CVaR tail mass.
-        eta: Gibbs inverse temperature; default ``GIBBS_SCALE / sigma``.
+        eta: Gibbs inverse temperature; default ``gibbs_scale / sigma``.
+        gibbs_scale: Gibbs inverse temperature in units of ``1 / sigma`` when ``eta`` is not given.
 
     Raises:
         ValueError: for an unknown name or out-of-range parameter.
@@ -148,5 +150,5 @@ def make_objective(
     if name == "cvar":
         return CVaR(alpha)
     if name == "gibbs":
-        return Gibbs(GIBBS_SCALE / sigma if eta is None else eta)
+        return Gibbs(gibbs_scale / sigma if eta is None else eta)
     raise ValueError(f"unknown objective {name!r} (expected one of {', '.join(OBJECTIVES)})")

@@ -54,7 +54,14 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle_layers,
 )
-from qcpp.simulate.objectives import GIBBS_SCALE, OBJECTIVES, Expectation, Gibbs, ObjectiveFn, ObjectiveName
+from qcpp.simulate.objectives import (
+    GIBBS_SCALE,
+    OBJECTIVES,
+    Expectation,
+    ObjectiveFn,
+    ObjectiveName,
+    make_objective,
+)
 from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
 from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
@@ -194,8 +201,8 @@ def solve_qaoa(
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
     # a temperature other than the default needs the cost scale; the default objective is built by name, as before
-    eta = gibbs_scale / cost_scale(q) if objective == "gibbs" and gibbs_scale != GIBBS_SCALE else None
-    obj: ObjectiveName | ObjectiveFn = objective if eta is None else Gibbs(eta)
+    obj: ObjectiveName | ObjectiveFn = (objective if gibbs_scale == GIBBS_SCALE
+                                        else make_objective(objective, cost_scale(q), gibbs_scale=gibbs_scale))
     if optimizer == "multi-angle":
         return _solve_multi_angle(q, p, obj, initial, seed, maxiter, progress, t0)
     schedule = None
@@ -203,7 +210,7 @@ def solve_qaoa(
         if progress is not None:
             progress(0, p)
         schedule = train_layerwise(q, p, objective, random_starts=random_starts, seed=seed, maxiter=maxiter,
-                                   eta=eta, mixer_warm=mixer_warm,
+                                   gibbs_scale=gibbs_scale, mixer_warm=mixer_warm,
                                    restart_every_level=restarts, progress=progress)
         result = schedule.best
         how = f"layer by layer p = 1..{p} ({schedule.runs} L-BFGS-B runs)"
