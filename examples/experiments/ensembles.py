@@ -15,12 +15,14 @@ seeded by ``--seed``. Per instance (``_ensemble_tasks.run_instance``, one Dask t
 
 Summaries: medians and quartiles over each cell's instances. The tasks run on a Dask cluster: a
 ``dask.distributed.LocalCluster`` of ``--workers`` single-threaded processes by default, or the scheduler at
-``--scheduler ADDRESS``. Ctrl-C cancels the tasks and writes nothing.
+``--scheduler ADDRESS``. Ctrl-C cancels the tasks and writes nothing. ``--reuse FILE`` takes over the records of
+an earlier run's instances that this run would compute again (:func:`reusable_rows`: same settings, qcpp version and
+scenarios), so growing a cell from 30 to 100 instances computes only the 70 new ones.
 
 Outputs (only when every task finished): ``results/ensembles.md``, ``results/ensembles.json`` (one record per
 instance and method, and per instance and depth for QAOA) and ``figures/ensembles.png``.
 Run: ``python examples/experiments/ensembles.py [--quick] [--cells 3x3/1 3x3/2] [--instances N 3x3/1=N]
-[--p-max P]``.
+[--p-max P] [--reuse results/ensembles.json]``.
 """
 
 from __future__ import annotations
@@ -49,11 +51,11 @@ from qcpp.problem.scenario import scenario_to_dict
 
 NAME = "ensembles"
 TOL = 1e-9
-CELL_INSTANCES = (("3x3/1", 300), ("3x3/2", 100))
-"""The full study's larger cells, where 30 instances do not pin the median down: on 3x3, P(optimum) at p = 1 and 2
-has point masses at 0 (an optimum those depths cannot reach) and at 1, and a median of 30 can sit on their edge, so
-two seeds disagree by far more than the sampling spread of the rest (docs/ensembles.md, "Does it hold on a fresh
-draw?"). Both cells cost seconds per instance."""
+CELL_INSTANCES = (("3x3/1", 300), ("3x3/2", 100), ("4x4/2", 100))
+"""The full study's larger cells, where 30 instances do not pin the median down: P(optimum) at p = 1 and 2 has a
+point mass at 0 (an optimum those depths cannot reach; on 3x3 also one at 1), and a median of 30 can sit on its
+edge, so two seeds disagree by far more than the sampling spread of the rest (docs/ensembles.md, "Does it hold on a
+fresh draw?"). The 3x3 cells cost seconds per instance, 4x4/2 about a minute."""
 
 
 @dataclass(frozen=True)
@@ -117,7 +119,7 @@ def parse_count(text: str) -> tuple[str | None, int]:
     return f"{r}x{c}/{k}", n
 
 
-def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str, str]:
+def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str, str, Path | None]:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="reduced run (under 2 minutes), for the smoke test")
     ap.add_argument("--out", type=Path, default=None,
@@ -134,6 +136,9 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
                     help="a running Dask scheduler (default: a LocalCluster on this machine)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes, one thread each")
     ap.add_argument("--name", default=NAME, help=f"results/NAME.md, .json and figures/NAME.png (default {NAME})")
+    ap.add_argument("--reuse", type=Path, default=None, metavar="FILE",
+                    help="an earlier run's results JSON: its records of the instances this run would compute again "
+                         "(same settings, qcpp version and scenarios) are taken over, the rest computed")
     ns = ap.parse_args(argv)
     for name in ("p_max", "workers"):
         value = getattr(ns, name)
@@ -167,7 +172,9 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
     if ns.name != NAME:
         command += f" --name {ns.name}"
     opts = Options(quick=ns.quick, out=fresh_output_folder() if ns.out is None else ns.out, seed=ns.seed)
-    return opts, cfg, ns.scheduler, ns.workers, command, ns.name
+    if ns.reuse is not None and not ns.reuse.is_file():
+        ap.error(f"--reuse: no results file at {ns.reuse}")
+    return opts, cfg, ns.scheduler, ns.workers, command, ns.name, ns.reuse
 
 
 def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
@@ -178,6 +185,58 @@ def instances_of(cfg: Config) -> list[tuple[str, int, dict[str, Any]]]:
         count = cfg.instances_in(cell)
         for i, s in enumerate(ensemble(rows, cols, robots, cfg.density, count=count, seed=cfg.seed)):
             out.append((cell, i, scenario_to_dict(s)))
+    return out
+
+
+REUSE_FREE = ("cells", "instances", "cell_instances")
+"""Config fields two runs may differ in and still share an instance's records (they choose instances, not results)."""
+
+
+class ReuseError(ValueError):
+    """A ``--reuse`` file whose records this run cannot take over (other settings, version or scenarios)."""
+
+
+def reusable_rows(data: dict[str, Any], cfg: Config,
+                  tasks: Sequence[tuple[str, int, dict[str, Any]]]) -> dict[tuple[str, int], list[dict[str, Any]]]:
+    """The records of an earlier run (``data``: its results JSON) for the tasks it already computed, by
+    ``(cell, index)``; every record of an instance, in the earlier run's order.
+
+    The study is deterministic (seeded generator, training and search; the only unseeded fields are wall-clock
+    times), so an instance computed under the same settings and qcpp version has the same records. Taking them over
+    is refused, never guessed, when the settings other than the instance counts differ, the version differs, or an
+    instance both runs share has another scenario (the generator changed).
+
+    Raises:
+        ReuseError: one line naming the first difference.
+
+    Example:
+        >>> cfg = replace(QUICK, cells=("3x3/1",), instances=2)
+        >>> tasks = [("3x3/1", 0, {"s": 0}), ("3x3/1", 1, {"s": 1})]
+        >>> rows = [{"cell": "3x3/1", "index": 0, "scenario": {"s": 0}, "method": m} for m in ("dfs", "qaoa")]
+        >>> old = {"qcpp_version": qcpp.__version__, "config": json.loads(json.dumps(asdict(cfg))), "rows": rows}
+        >>> {k: [r["method"] for r in v] for k, v in reusable_rows(old, cfg, tasks).items()}
+        {('3x3/1', 0): ['dfs', 'qaoa']}
+        >>> reusable_rows(old | {"config": old["config"] | {"seed": 1}}, cfg, tasks)
+        Traceback (most recent call last):
+        ...
+        ensembles.ReuseError: --reuse: the earlier run's seed is 1, this run's 0
+    """
+    if data.get("qcpp_version") != qcpp.__version__:
+        raise ReuseError(f"--reuse: the earlier run is qcpp {data.get('qcpp_version')}, this is {qcpp.__version__}")
+    ours = json.loads(json.dumps(asdict(cfg)))
+    theirs = data.get("config", {})
+    for key in sorted(set(ours) | set(theirs)):
+        if key not in REUSE_FREE and ours.get(key) != theirs.get(key):
+            raise ReuseError(f"--reuse: the earlier run's {key} is {theirs.get(key)}, this run's {ours.get(key)}")
+    wanted = {(cell, i): json.loads(json.dumps(s)) for cell, i, s in tasks}
+    out: dict[tuple[str, int], list[dict[str, Any]]] = {}
+    for r in data.get("rows", []):
+        key = (r["cell"], r["index"])
+        if key not in wanted:
+            continue
+        if r["scenario"] != wanted[key]:
+            raise ReuseError(f"--reuse: instance {key[0]} #{key[1]} has another scenario in the earlier run")
+        out.setdefault(key, []).append(r)
     return out
 
 
@@ -357,18 +416,30 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = N
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
-    opts, cfg, scheduler, workers, command, name = parse_args(argv)
+    opts, cfg, scheduler, workers, command, name, reuse = parse_args(argv)
     t_all = time.perf_counter()
     load_before = os.getloadavg()[0]
     tasks = instances_of(cfg)
+    reused: dict[tuple[str, int], list[dict[str, Any]]] = {}
+    earlier: dict[str, Any] = {}
+    if reuse is not None:
+        earlier = json.loads(reuse.read_text(encoding="utf-8"))
+        try:
+            reused = reusable_rows(earlier, cfg, tasks)
+        except ReuseError as err:
+            print(err, file=sys.stderr)
+            raise SystemExit(2) from None
+    todo = [t for t in tasks if (t[0], t[1]) not in reused]
     try:
-        results = run_on_dask(tasks, cfg, scheduler, workers)
+        results = run_on_dask(todo, cfg, scheduler, workers) if todo else []
     except KeyboardInterrupt:
         print("interrupted: nothing written", file=sys.stderr)
         raise SystemExit(130) from None
     seconds = time.perf_counter() - t_all
     load = (load_before, os.getloadavg()[0])
-    rows = result_rows(results, cfg)
+    computed = result_rows(results, cfg)
+    order = {(cell, i): k for k, (cell, i, _) in enumerate(tasks)}
+    rows = sorted(computed + [r for v in reused.values() for r in v], key=lambda r: order[(r["cell"], r["index"])])
     opts.figures.mkdir(parents=True, exist_ok=True)
     opts.results.mkdir(parents=True, exist_ok=True)
     tables = [quality_table(rows, cfg), tts_table(rows, cfg), verdict_table(rows, cfg)]
@@ -390,11 +461,16 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "found and its upper bound (0 below the depth at which an optimum can carry amplitude, else 1).",
         f"Tasks run on {where} on a {os.cpu_count()}-core machine, load average (1 min) {load[0]:.1f} at the "
         f"start and {load[1]:.1f} at the end (the study's own workers count; other jobs inflate every wall-clock "
-        f"time). Whole study: {seconds:.0f} s.",
+        f"time). Whole study: {seconds:.0f} s." if not reused else
+        f"time). This run computed {len(todo)} instances in {seconds:.0f} s and took over the records of "
+        f"{len(reused)} from an earlier run (`{earlier['command']}`, {earlier['seconds']:.0f} s).",
     ]
     write_results(opts, name, command, tables, notes)
     dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
             "load_average": list(load), "rows": rows}
+    if reused:
+        dump["reused"] = {"instances": len(reused), "command": earlier["command"], "seconds": earlier["seconds"],
+                          "load_average": earlier.get("load_average"), "reused": earlier.get("reused")}
     write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
     print(f"wrote {opts.results / f'{name}.json'}")
     figure(opts, rows, cfg, name)

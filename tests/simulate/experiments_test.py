@@ -354,16 +354,37 @@ def test_ensemble_cells_parse_and_bad_ones_are_refused() -> None:
     for bad in ("3x3", "3x3/0", "1x3/1", "axb/1"):
         with pytest.raises(argparse.ArgumentTypeError, match="cell"):
             mod.parse_cell(bad)
-    cfg = mod.parse_args(["--cells", "3x3/1", "4x4/2", "--out", "unused"])[1]
-    assert (cfg.instances_in("3x3/1"), cfg.instances_in("4x4/2")) == (300, 30)  # the full study's override
+    cfg = mod.parse_args(["--cells", "3x3/1", "4x4/1", "--out", "unused"])[1]
+    assert (cfg.instances_in("3x3/1"), cfg.instances_in("4x4/1")) == (300, 30)  # the full study's override
     argv = ["--cells", "3x3/1", "3x3/2", "--instances", "5", "3x3/2=7", "--out", "unused"]
-    _, cfg, _, _, command, _ = mod.parse_args(argv)
+    _, cfg, _, _, command, _, _ = mod.parse_args(argv)
     assert (cfg.instances_in("3x3/1"), cfg.instances_in("3x3/2")) == (5, 7) and "--instances 5 3x3/2=7" in command
     for bad in (["--instances", "0"], ["--instances", "3x3/1=x"], ["--cells", "3x3/2", "--instances", "3x3/1=4"]):
         with pytest.raises(SystemExit):
             mod.parse_args([*bad, "--out", "unused"])
     assert mod.quartiles([1.0, 2.0, 3.0, 4.0, 5.0]) == (3.0, 2.0, 4.0)
     assert mod.quartiles([1.0, math.inf, math.inf]) == (math.inf, 1.0, math.inf)
+
+
+def test_ensembles_reuse_takes_over_an_earlier_runs_records(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """With every instance in the earlier run, nothing is computed (no cluster starts) and the records are the
+    earlier ones; an earlier run with other settings is refused with one line and exit 2."""
+    mod = _load("ensembles")
+    committed = json.loads(Path("docs/results/ensembles.json").read_text())
+    argv = ["--cells", "3x3/2", "3x3/1", "--instances", "2", "--reuse", "docs/results/ensembles.json"]
+    out = mod.main([*argv, "--out", str(tmp_path)])
+    want = [r for cell in ("3x3/2", "3x3/1") for r in committed["rows"] if r["cell"] == cell and r["index"] < 2]
+    assert out["rows"] == want and out["results"] == []
+    written = json.loads((tmp_path / "results" / "ensembles.json").read_text())
+    assert written["reused"]["instances"] == 4 and written["reused"]["command"] == committed["command"]
+    assert "--reuse" not in written["command"]  # the records are what the recorded command computes
+    assert "took over the records of 4 from an earlier run" in (tmp_path / "results" / "ensembles.md").read_text()
+    with pytest.raises(SystemExit) as exit_:
+        mod.main([*argv, "--seed", "1", "--out", str(tmp_path / "other")])
+    assert exit_.value.code == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "--reuse: the earlier run's seed is 0, this run's 1"
+    with pytest.raises(SystemExit):
+        mod.parse_args([*argv[:-1], str(tmp_path / "missing.json"), "--out", "unused"])
 
 
 @pytest.mark.heavy
