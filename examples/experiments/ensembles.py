@@ -245,16 +245,16 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, schedule
     """``fn(cell, index, scenario, asdict(cfg))`` (default ``_ensemble_tasks.run_instance``) for every task on the
     cluster, with a progress bar; returns the results in task order. Ctrl-C cancels the tasks."""
     import cloudpickle
-    from dask.distributed import Client, LocalCluster, as_completed
+    from dask.distributed import as_completed
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
+    from qcpp.simulate.tensor import dask_client
+
     cloudpickle.register_pickle_by_value(_ensemble_tasks)  # workers need qcpp, not this folder
-    cluster = None
-    if scheduler is None:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
-        client = Client(cluster)
-    else:
-        client = Client(scheduler)
+    try:
+        client = dask_client("local" if scheduler is None else scheduler, workers=workers)
+    except OSError as err:
+        raise SystemExit(f"error: {err}") from None
     futures = []
     try:
         payload = asdict(cfg)
@@ -277,9 +277,7 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, schedule
         client.cancel(futures, force=True)
         raise
     finally:
-        client.close(timeout=5)
-        if cluster is not None:
-            cluster.close(timeout=5)
+        client.close(timeout=5)  # a local cluster closes with its client
 
 
 # ---------------------------------------------------------------------------------------------- records
@@ -443,7 +441,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     opts.figures.mkdir(parents=True, exist_ok=True)
     opts.results.mkdir(parents=True, exist_ok=True)
     tables = [quality_table(rows, cfg), tts_table(rows, cfg), verdict_table(rows, cfg)]
-    where = f"a LocalCluster of {workers} single-threaded workers" if scheduler is None else "a Dask cluster"
+    where = (f"a LocalCluster of {workers} single-threaded worker{'s' if workers > 1 else ''}" if scheduler is None
+             else "a Dask cluster")
     notes = [
         f"qcpp {qcpp.__version__}. Ensembles: qcpp.ensemble(rows, cols, robots, density={cfg.density:g}, "
         f"count=N, seed={cfg.seed}): random distinct endpoints, soft obstacles; every instance feasible. N: "

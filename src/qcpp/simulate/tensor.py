@@ -834,13 +834,14 @@ def contract_sliced(
     return complex(np.asarray(value).reshape(()))
 
 
-def dask_client(address: str) -> Any:
-    """A ``dask.distributed.Client``: ``'local'`` starts a ``LocalCluster`` of its own (one process per core, one
+def dask_client(address: str, workers: int | None = None) -> Any:
+    """A ``dask.distributed.Client``: ``'local'`` starts a ``LocalCluster`` of its own (``workers`` processes, one
     thread each; closing the client stops it), anything else is a scheduler address such as ``tcp://10.0.0.5:8786``.
     Close it when done (``with dask_client(...) as client:``).
 
     Args:
         address: ``'local'`` or a scheduler address.
+        workers: Worker processes of a local cluster (default: one per core).
 
     Raises:
         OSError: the scheduler cannot be reached within 10 s.
@@ -856,7 +857,8 @@ def dask_client(address: str) -> Any:
         # worker's heartbeat can meet the closed scheduler and log an ERROR with a traceback; a task's failure
         # still reaches the caller as its exception
         return Client(
-            n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.CRITICAL
+            n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0",
+            silence_logs=logging.CRITICAL,
         )
     try:
         return Client(address, timeout="10s")
