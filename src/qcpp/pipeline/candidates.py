@@ -36,7 +36,7 @@ from qcpp.hardware.device import Device, device_names
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.native import esp, esp_idle, to_native
 from qcpp.routing.noise_aware import embedding_sites
-from qcpp.routing.qiskit_o3 import qiskit_o3
+from qcpp.routing.qiskit_o3 import qiskit_o3_seeds
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 
 __all__ = [
@@ -154,8 +154,7 @@ def calibrated_candidates(
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
             out.append(RoutedCandidate(label, embed_routed(native, device, sites), embed_routed(routed, device, sites)))
     if qiskit_circuit is not None:
-        for seed in range(qiskit_seeds):
-            theirs = qiskit_o3(qiskit_circuit, device, seed, measured)
+        for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             name = f"qiskit O3 seed {seed}"
             out.append(RoutedCandidate(name, theirs))
             for j, sites in enumerate(embedding_sites(theirs, device)):

@@ -36,7 +36,7 @@ from qcpp.ir.gates import Gate, cz, rx, rz, x
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.target import device_target
 
-__all__ = ["from_qiskit_angle", "qiskit_o3", "to_qiskit_lowered"]
+__all__ = ["from_qiskit_angle", "qiskit_o3", "qiskit_o3_seeds", "to_qiskit_lowered"]
 
 _SIMPLE = {"x", "h", "t", "tdg", "s", "sdg", "cx", "cz", "sx"}
 _ANGLED = {"rz", "rx", "ry", "rzz"}
@@ -101,24 +101,27 @@ def from_qiskit_angle(value: Any) -> float | Angle:
 
 
 def _routed_gates(qc: Any) -> list[Gate]:
-    """The native gates of a circuit Qiskit translated to the target (``cz rz sx x``, or ``rzz rx``)."""
+    """The native gates of a circuit Qiskit translated to the target (``cz rz sx x``, or ``rzz rx``).
+
+    Read by each instruction's name and parameters (no Qiskit gate object is built), and the unparametrised gates
+    (a routed circuit repeats its ``cz`` and ``sx`` on the same qubits) made once per qubits.
+    """
     out: list[Gate] = []
     index = {q: i for i, q in enumerate(qc.qubits)}
+    fixed: dict[tuple[str, tuple[int, ...]], Gate] = {}
     for inst in qc.data:
-        op, qs = inst.operation, tuple(index[q] for q in inst.qubits)
-        name = op.name
-        if name == "cz":
-            out.append(cz(*qs))
+        name, qs = inst.name, tuple(index[q] for q in inst.qubits)
+        if name in ("cz", "sx", "x"):
+            g = fixed.get((name, qs))
+            if g is None:
+                g = fixed[name, qs] = cz(*qs) if name == "cz" else rx(math.pi / 2, qs[0]) if name == "sx" else x(qs[0])
+            out.append(g)
         elif name == "rz":
-            out.append(rz(from_qiskit_angle(op.params[0]), qs[0]))
-        elif name == "sx":
-            out.append(rx(math.pi / 2, qs[0]))
-        elif name == "x":
-            out.append(x(qs[0]))
+            out.append(rz(from_qiskit_angle(inst.params[0]), qs[0]))
         elif name == "rx":
-            out.append(rx(from_qiskit_angle(op.params[0]), qs[0]))
+            out.append(rx(from_qiskit_angle(inst.params[0]), qs[0]))
         elif name == "rzz":
-            out.append(Gate("rzz", qs, (from_qiskit_angle(op.params[0]),), None))
+            out.append(Gate("rzz", qs, (from_qiskit_angle(inst.params[0]),), None))
         elif name in ("barrier", "delay"):
             continue
         else:
@@ -141,23 +144,42 @@ def qiskit_o3(
     Returns:
         The routed circuit (``initial_layout`` / ``final_layout`` from Qiskit's ``TranspileLayout``).
     """
+    return qiskit_o3_seeds(circuit, device, (seed,), measured)[0]
+
+
+def qiskit_o3_seeds(
+    circuit: Circuit, device: Device, seeds: Sequence[int], measured: Sequence[int] | None = None
+) -> list[RoutedCircuit]:
+    """:func:`qiskit_o3` at each of ``seeds``, in order; the circuit goes to Qiskit once (``transpile`` leaves its
+    input as it was), so several seeds cost only their transpiles.
+
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.ir.gates import cx
+    >>> c = Circuit([("data", 3)], [Section("s", [cx(0, 1), cx(0, 2), cx(1, 2)])])
+    >>> dev = get_device("ibm_fez")
+    >>> qiskit_o3_seeds(c, dev, (0, 1)) == [qiskit_o3(c, dev, 0), qiskit_o3(c, dev, 1)]
+    True
+    """
     from qiskit import transpile
 
     if measured is None:
         data = next((r.size for r in circuit.registers if r.name == "data"), circuit.num_qubits)
         measured = range(data)
-    swaps: list[int] = []
-
-    def count_swaps(pass_: Any, dag: Any, **_: Any) -> None:
-        n = dag.count_ops().get("swap", 0)
-        if n:
-            swaps.append(n)
-
     qc = to_qiskit_lowered(circuit)
-    out = transpile(qc, target=device_target(device), optimization_level=3, seed_transpiler=seed,
-                    callback=count_swaps)  # fmt: skip
+    target = device_target(device)
     n = circuit.num_qubits
-    initial = tuple(out.layout.initial_index_layout(filter_ancillas=True)[:n]) if out.layout else tuple(range(n))
-    final = tuple(out.layout.final_index_layout(filter_ancillas=True)[:n]) if out.layout else initial
-    routed = Circuit([Register("q", device.num_qubits)], [Section("qiskit_o3", _routed_gates(out))])
-    return RoutedCircuit(routed, device, initial, final, swaps[-1] if swaps else 0, tuple(measured))
+    out = []
+    for seed in seeds:
+        swaps: list[int] = []
+
+        def count_swaps(pass_: Any, dag: Any, swaps: list[int] = swaps, **_: Any) -> None:
+            k = dag.count_ops().get("swap", 0)
+            if k:
+                swaps.append(k)
+
+        done = transpile(qc, target=target, optimization_level=3, seed_transpiler=seed, callback=count_swaps)
+        initial = tuple(done.layout.initial_index_layout(filter_ancillas=True)[:n]) if done.layout else tuple(range(n))
+        final = tuple(done.layout.final_index_layout(filter_ancillas=True)[:n]) if done.layout else initial
+        routed = Circuit([Register("q", device.num_qubits)], [Section("qiskit_o3", _routed_gates(done))])
+        out.append(RoutedCircuit(routed, device, initial, final, swaps[-1] if swaps else 0, tuple(measured)))
+    return out
