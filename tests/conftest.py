@@ -18,6 +18,11 @@
 * pyqasm sets ``sys.tracebacklimit = 0`` for the whole process whenever it raises; every later traceback in that
   worker is then empty, and Hypothesis's ``find`` fails with an ``IndexError`` reading it. Every test leaves
   ``sys.tracebacklimit`` as it found it (:func:`_keep_the_traceback_limit`).
+* Bytecode is cached (``sys.dont_write_bytecode = False``) even where ``PYTHONDONTWRITEBYTECODE`` is set, as it
+  is on CI's image: otherwise every worker compiles the sources of qcpp and of the tests again (half of a
+  collection's CPU time) and so does every ``python -m qcpp`` a test starts; with the caches written (in the
+  ``__pycache__`` folders git ignores) the subprocesses and later runs read them. Subprocesses keep the variable
+  as they found it: they read the caches the workers wrote.
 * pytest-xdist hands tests to its workers in collection order, so a test of minutes that is collected last keeps
   one worker busy while the other has nothing left. The longest tests (:data:`LONGEST_FIRST`, the heavy step's
   largest CPU costs by ``benchmarks/cpu_durations.py``) are moved to the front, longest first; every other test
@@ -36,6 +41,8 @@ import pytest
 from hypothesis import HealthCheck, settings
 
 from tests.shutdown import freeze_survivors
+
+sys.dont_write_bytecode = False  # before qcpp and the test modules are imported: see the module docstring
 
 settings.register_profile("timeless", deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile("timeless")
