@@ -220,6 +220,13 @@ def best_layout(
     if device.is_all_to_all:
         return place(circuit, device)
     forward = _two_qubit_only(circuit)
+    swaps: dict[tuple[int, ...], int] = {}  # forward routing's SWAPs by layout (a refinement round routes it too)
+
+    def forward_swaps(layout: tuple[int, ...]) -> int:
+        if layout not in swaps:
+            swaps[layout] = route(forward, device, layout, seed=seed, trials=options.trials).swaps
+        return swaps[layout]
+
     candidates: list[tuple[int, ...]] = []
     if "ours" in layouts:
         layout = place(circuit, device)
@@ -227,13 +234,12 @@ def best_layout(
         backward = _two_qubit_only(circuit, reverse=True)
         for _ in range(refine_rounds):
             ahead = route(forward, device, layout, seed=seed, trials=options.trials)
+            swaps.setdefault(layout, ahead.swaps)
             layout = route(backward, device, ahead.final_layout, seed=seed, trials=options.trials).final_layout
             candidates.append(layout)
     if "qiskit" in layouts:
         candidates.append(qiskit_sabre_layout(circuit, device, seed, options))
-    scored = [(route(forward, device, lay, seed=seed, trials=options.trials).swaps, i)
-              for i, lay in enumerate(candidates)]  # fmt: skip
-    return candidates[min(scored)[1]]
+    return candidates[min((forward_swaps(lay), i) for i, lay in enumerate(candidates))[1]]
 
 
 def compile_for_device(
