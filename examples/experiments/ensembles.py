@@ -240,6 +240,37 @@ def reusable_rows(data: dict[str, Any], cfg: Config,
     return out
 
 
+def dump_reused(earlier: dict[str, Any], reused: dict[tuple[str, int], Any]) -> dict[str, Any]:
+    """The provenance of records taken over from ``earlier`` (a results JSON): how many, the run's command,
+    seconds and load, and where that run took records over from in turn (``reused``: the same form, or ``None``)."""
+    return {"instances": len(reused), "command": earlier["command"], "seconds": earlier["seconds"],
+            "load_average": earlier.get("load_average"), "reused": earlier.get("reused")}
+
+
+def taken_over(provenance: dict[str, Any]) -> str:
+    """A results note's account of :func:`dump_reused`'s provenance, the earlier runs' own in turn.
+
+    >>> first = {"instances": 90, "command": "ensembles.py --cells 4x4/2", "seconds": 2786.2, "reused": None}
+    >>> text = taken_over({"instances": 160, "command": "ensembles.py", "seconds": 4495.0, "reused": first})
+    >>> for part in text.split(", which "):
+    ...     print(part)
+    took over the records of 160 instances from an earlier run (`ensembles.py`, 4495 s)
+    took over 90 from an earlier run (2786 s)
+    """
+    def load(run: dict[str, Any]) -> str:
+        pair = run.get("load_average")
+        return f", load average {pair[0]:.1f} to {pair[1]:.1f}" if pair else ""
+
+    text = (f"took over the records of {provenance['instances']} instances from an earlier run "
+            f"(`{provenance['command']}`, {provenance['seconds']:.0f} s{load(provenance)})")
+    earlier = provenance.get("reused")
+    while earlier:
+        text += (f", which took over {earlier['instances']} from an earlier run ({earlier['seconds']:.0f} s"
+                 f"{load(earlier)})")
+        earlier = earlier.get("reused")
+    return text
+
+
 def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, scheduler: str | None,
                 workers: int, fn: Any = None) -> list[dict[str, Any]]:
     """``fn(cell, index, scenario, asdict(cfg))`` (default ``_ensemble_tasks.run_instance``) for every task on the
@@ -460,16 +491,16 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "found and its upper bound (0 below the depth at which an optimum can carry amplitude, else 1).",
         f"Tasks run on {where} on a {os.cpu_count()}-core machine, load average (1 min) {load[0]:.1f} at the "
         f"start and {load[1]:.1f} at the end (the study's own workers count; other jobs inflate every wall-clock "
-        f"time). Whole study: {seconds:.0f} s." if not reused else
-        f"time). This run computed {len(todo)} instances in {seconds:.0f} s and took over the records of "
-        f"{len(reused)} from an earlier run (`{earlier['command']}`, {earlier['seconds']:.0f} s).",
+        f"time). "
+        + (f"Whole study: {seconds:.0f} s." if not reused else
+           f"This run computed {len(todo)} instances in {seconds:.0f} s and " + taken_over(dump_reused(earlier, reused))
+           + "."),
     ]
     write_results(opts, name, command, tables, notes)
     dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
             "load_average": list(load), "rows": rows}
     if reused:
-        dump["reused"] = {"instances": len(reused), "command": earlier["command"], "seconds": earlier["seconds"],
-                          "load_average": earlier.get("load_average"), "reused": earlier.get("reused")}
+        dump["reused"] = dump_reused(earlier, reused)
     write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
     print(f"wrote {opts.results / f'{name}.json'}")
     figure(opts, rows, cfg, name)

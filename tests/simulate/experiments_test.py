@@ -378,7 +378,8 @@ def test_ensembles_reuse_takes_over_an_earlier_runs_records(tmp_path: Path, caps
     written = json.loads((tmp_path / "results" / "ensembles.json").read_text())
     assert written["reused"]["instances"] == 4 and written["reused"]["command"] == committed["command"]
     assert "--reuse" not in written["command"]  # the records are what the recorded command computes
-    assert "took over the records of 4 from an earlier run" in (tmp_path / "results" / "ensembles.md").read_text()
+    assert "computed 0 instances in" in (tmp_path / "results" / "ensembles.md").read_text()
+    assert "took over the records of 4 instances from an earlier run" in (tmp_path / "results" / "ensembles.md").read_text()
     with pytest.raises(SystemExit) as exit_:
         mod.main([*argv, "--seed", "1", "--out", str(tmp_path / "other")])
     assert exit_.value.code == 2
