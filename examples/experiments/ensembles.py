@@ -452,11 +452,15 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     reused: dict[tuple[str, int], list[dict[str, Any]]] = {}
     earlier: dict[str, Any] = {}
     if reuse is not None:
-        earlier = json.loads(reuse.read_text(encoding="utf-8"))
         try:
+            earlier = json.loads(reuse.read_text(encoding="utf-8"))
             reused = reusable_rows(earlier, cfg, tasks)
         except ReuseError as err:
             print(err, file=sys.stderr)
+            raise SystemExit(2) from None
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as err:  # not JSON, or not our results
+            print(f"--reuse: {reuse} is not a results file of this study ({type(err).__name__}: {err})",
+                  file=sys.stderr)
             raise SystemExit(2) from None
     todo = [t for t in tasks if (t[0], t[1]) not in reused]
     try:

@@ -378,14 +378,24 @@ def test_ensembles_reuse_takes_over_an_earlier_runs_records(tmp_path: Path, caps
     written = json.loads((tmp_path / "results" / "ensembles.json").read_text())
     assert written["reused"]["instances"] == 4 and written["reused"]["command"] == committed["command"]
     assert "--reuse" not in written["command"]  # the records are what the recorded command computes
-    assert "computed 0 instances in" in (tmp_path / "results" / "ensembles.md").read_text()
-    assert "took over the records of 4 instances from an earlier run" in (tmp_path / "results" / "ensembles.md").read_text()
+    note = (tmp_path / "results" / "ensembles.md").read_text()
+    assert "computed 0 instances in" in note and "took over the records of 4 instances from an earlier run" in note
     with pytest.raises(SystemExit) as exit_:
         mod.main([*argv, "--seed", "1", "--out", str(tmp_path / "other")])
     assert exit_.value.code == 2
     assert capsys.readouterr().err.strip().splitlines()[-1] == "--reuse: the earlier run's seed is 0, this run's 1"
     with pytest.raises(SystemExit):
         mod.parse_args([*argv[:-1], str(tmp_path / "missing.json"), "--out", "unused"])
+    assert "--reuse: no results file at" in capsys.readouterr().err
+    other_settings = json.dumps({"qcpp_version": mod.qcpp.__version__, "config": {}})
+    for i, text in enumerate(("not json", "[1, 2]", other_settings)):
+        bad = tmp_path / f"bad{i}.json"
+        bad.write_text(text)
+        with pytest.raises(SystemExit) as exit_:
+            mod.main([*argv[:-1], str(bad), "--out", str(tmp_path / "bad")])
+        assert exit_.value.code == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("--reuse: "), err
 
 
 @pytest.mark.heavy
