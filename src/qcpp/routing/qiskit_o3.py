@@ -104,7 +104,7 @@ def _routed_gates(qc: Any) -> list[Gate]:
     """The native gates of a circuit Qiskit translated to the target (``cz rz sx x``, or ``rzz rx``).
 
     Read by each instruction's name and parameters (no Qiskit gate object is built), and the unparametrised gates
-    (a routed circuit repeats its ``cz`` and ``sx`` on the same qubits) made once per qubits.
+    (a routed circuit repeats its ``cz`` and ``sx`` on the same qubits) made once for each qubit tuple.
     """
     out: list[Gate] = []
     index = {q: i for i, q in enumerate(qc.qubits)}
@@ -153,12 +153,22 @@ def qiskit_o3_seeds(
     """:func:`qiskit_o3` at each of ``seeds``, in order; the circuit goes to Qiskit once (``transpile`` leaves its
     input as it was), so several seeds cost only their transpiles.
 
-    >>> from qcpp.hardware.device import get_device
-    >>> from qcpp.ir.gates import cx
-    >>> c = Circuit([("data", 3)], [Section("s", [cx(0, 1), cx(0, 2), cx(1, 2)])])
-    >>> dev = get_device("ibm_fez")
-    >>> qiskit_o3_seeds(c, dev, (0, 1)) == [qiskit_o3(c, dev, 0), qiskit_o3(c, dev, 1)]
-    True
+    Args:
+        circuit: A lowered circuit on at most ``device.num_qubits`` qubits.
+        device: The target device.
+        seeds: Qiskit ``seed_transpiler`` values, one routed circuit each.
+        measured: Logical qubits measured at the end (default: the ``data`` register, else all).
+
+    Returns:
+        The routed circuits, one per seed, in the order of ``seeds``.
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> from qcpp.ir.gates import cx
+        >>> c = Circuit([("data", 3)], [Section("s", [cx(0, 1), cx(0, 2), cx(1, 2)])])
+        >>> dev = get_device("ibm_fez")
+        >>> qiskit_o3_seeds(c, dev, (0, 1)) == [qiskit_o3(c, dev, 0), qiskit_o3(c, dev, 1)]
+        True
     """
     from qiskit import transpile
 
