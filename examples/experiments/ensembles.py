@@ -470,6 +470,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         raise SystemExit(130) from None
     seconds = time.perf_counter() - t_all
     load = (load_before, os.getloadavg()[0])
+    provenance = dump_reused(earlier, reused) if reused else None
     computed = result_rows(results, cfg)
     order = {(cell, i): k for k, (cell, i, _) in enumerate(tasks)}
     rows = sorted(computed + [r for v in reused.values() for r in v], key=lambda r: order[(r["cell"], r["index"])])
@@ -496,15 +497,14 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         f"Tasks run on {where} on a {os.cpu_count()}-core machine, load average (1 min) {load[0]:.1f} at the "
         f"start and {load[1]:.1f} at the end (the study's own workers count; other jobs inflate every wall-clock "
         f"time). "
-        + (f"Whole study: {seconds:.0f} s." if not reused else
-           f"This run computed {len(todo)} instances in {seconds:.0f} s and " + taken_over(dump_reused(earlier, reused))
-           + "."),
+        + (f"Whole study: {seconds:.0f} s." if provenance is None else
+           f"This run computed {len(todo)} instances in {seconds:.0f} s and {taken_over(provenance)}."),
     ]
     write_results(opts, name, command, tables, notes)
     dump = {"qcpp_version": qcpp.__version__, "command": command, "config": asdict(cfg), "seconds": seconds,
             "load_average": list(load), "rows": rows}
-    if reused:
-        dump["reused"] = dump_reused(earlier, reused)
+    if provenance:
+        dump["reused"] = provenance
     write_text_atomic(opts.results / f"{name}.json", json.dumps(dump, indent=1) + "\n")
     print(f"wrote {opts.results / f'{name}.json'}")
     figure(opts, rows, cfg, name)

@@ -200,7 +200,7 @@ def solve_qaoa(
     restarts = optimizer == "layerwise" if restart_every_level is None else restart_every_level
     t0 = time.perf_counter()
     q = SubspaceQAOA(scenario, rule=rule, initial=initial)
-    # a temperature other than the default needs the cost scale; the default objective is built by name, as before
+    # the default objective goes by name (the trainers build it); another temperature needs the cost scale
     obj: ObjectiveName | ObjectiveFn = (objective if gibbs_scale == GIBBS_SCALE
                                         else make_objective(objective, cost_scale(q), gibbs_scale=gibbs_scale))
     if optimizer == "multi-angle":
