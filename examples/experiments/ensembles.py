@@ -284,8 +284,9 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, schedule
     cloudpickle.register_pickle_by_value(_ensemble_tasks)  # workers need qcpp, not this folder
     try:
         client = dask_client("local" if scheduler is None else scheduler, workers=workers)
-    except OSError as err:
-        raise SystemExit(f"error: {err}") from None
+    except OSError as err:  # an unreachable --scheduler: one line and exit 2, as the qcpp commands do
+        print(f"error: {err}", file=sys.stderr)
+        raise SystemExit(2) from None
     futures = []
     try:
         payload = asdict(cfg)

@@ -398,6 +398,27 @@ def test_ensembles_reuse_takes_over_an_earlier_runs_records(tmp_path: Path, caps
         assert len(err) == 1 and err[0].startswith("--reuse: "), err
 
 
+def test_ensembles_unreachable_scheduler_is_one_line_and_exit_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The OSError ``dask_client`` raises for an address it cannot reach ends the script as the qcpp commands end
+    on an OSError: one line on stderr, exit 2, nothing written."""
+    import qcpp.simulate.tensor
+
+    mod = _load("ensembles")
+
+    def unreachable(address: str, workers: int | None = None) -> None:
+        raise OSError(f"dask scheduler {address!r} unreachable: timed out")
+
+    monkeypatch.setattr(qcpp.simulate.tensor, "dask_client", unreachable)
+    with pytest.raises(SystemExit) as exit_:
+        mod.main(["--cells", "3x3/1", "--instances", "1", "--scheduler", "tcp://10.0.0.5:8786", "--out", str(tmp_path)])
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["error: dask scheduler 'tcp://10.0.0.5:8786' unreachable: timed out"], err
+    assert not (tmp_path / "results").exists()
+
+
 @pytest.mark.heavy
 def test_ensembles_quick_mode(tmp_path: Path) -> None:
     out = _check_quick_mode("ensembles", ["ensembles.png"], tmp_path)
