@@ -54,8 +54,13 @@ def medians(path: Path) -> tuple[dict[Key, float], dict[str, Any]]:
         0.2
     """
     data = json.loads(path.read_text(encoding="utf-8"))
+    return medians_of(data["rows"]), data.get("config", {})
+
+
+def medians_of(rows: list[dict[str, Any]]) -> dict[Key, float]:
+    """The medians of a results file's ``rows`` by (cell, quantity, p) (:func:`medians`)."""
     values: dict[Key, list[float]] = defaultdict(list)
-    for r in data["rows"]:
+    for r in rows:
         cell, method = r["cell"], r["method"]
         if method == "qaoa":
             p = int(r["p"])
@@ -64,7 +69,7 @@ def medians(path: Path) -> tuple[dict[Key, float], dict[str, Any]]:
             values[(cell, "QAOA 99% s", p)].append(float(r["tts_99"]))
         elif method in CLASSICAL:
             values[(cell, f"{method} 99% s", 0)].append(float(r["tts_99"]))
-    return {k: quartiles(v)[0] for k, v in values.items()}, data.get("config", {})
+    return {k: quartiles(v)[0] for k, v in values.items()}
 
 
 def ratio(committed: float, fresh: float) -> float:

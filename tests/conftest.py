@@ -186,7 +186,7 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/experiments_test.py::test_script_quick_mode[annealing_two_robots-figures1]",
         "tests/simulate/multi_angle_test.py::test_the_solver_answers_with_the_product_state_and_bindings_of_t"
         "he_compiled_circuit",
-        "tests/simulate/results_freshness_test.py::test_ensemble_derived_columns[ensembles_larger]",
+        "tests/simulate/results_freshness_test.py::test_ensemble_derived_columns[ensembles-5x5/1]",
         "tests/simulate/tensor_test.py::test_validate_cli_json_and_exit_codes",
     }
 )

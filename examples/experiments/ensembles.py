@@ -201,8 +201,11 @@ def reusable_rows(data: dict[str, Any], cfg: Config,
     """The records of an earlier run (``data``: its results JSON) for the tasks it already computed, by
     ``(cell, index)``; every record of an instance, in the earlier run's order.
 
-    The study is deterministic (seeded generator, training and search; the only unseeded fields are wall-clock
-    times), so an instance computed under the same settings and qcpp version has the same records. Taking them over
+    The study is seeded throughout (generator, training and search; the only unseeded fields are wall-clock times):
+    on one machine an instance computed under the same settings and qcpp version has the same records. On another
+    machine floating-point rounding can end the deep levels' local optimizers elsewhere on a few instances
+    (``benchmarks/ensemble_rerun.py`` compares two runs), so the records taken over are those of the machine that
+    computed them. Taking them over
     is refused, never guessed, when the settings other than the instance counts differ, the version differs, or an
     instance both runs share has another scenario (the generator changed).
 
@@ -423,10 +426,16 @@ def verdict_table(rows: list[dict[str, Any]], cfg: Config) -> Table:
 
 
 def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = NAME) -> None:
+    """P(optimum) by depth per cell, three cells to a row; each panel's y axis fits its cell (the larger cells'
+    medians stay below 0.25, invisible on a shared 0..1 axis)."""
     plt = pyplot()
-    fig, axes = plt.subplots(1, len(cfg.cells), figsize=(4.2 * len(cfg.cells), 3.6), sharey=True, squeeze=False)
+    ncols = min(3, len(cfg.cells))
+    nrows = math.ceil(len(cfg.cells) / ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.2 * ncols, 3.4 * nrows), squeeze=False)
+    flat = [ax for row in axes for ax in row]
     ps = list(range(1, cfg.p_max + 1))
-    for ax, cell in zip(axes[0], cfg.cells):
+    for ax, cell in zip(flat, cfg.cells):
+        top = 0.0
         for key, colour, label in (("p_opt", "tab:blue", "default training"),
                                    ("best_p_opt", "tab:orange", "best found (expensive search)")):
             stats = [quartiles([r[key] for r in rows if r["method"] == "qaoa" and r["cell"] == cell
@@ -434,12 +443,16 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = N
             med, lo, hi = zip(*stats)
             ax.plot(ps, med, marker="o", color=colour, label=label)
             ax.fill_between(ps, lo, hi, color=colour, alpha=0.2)
+            top = max([top, *(h for h in hi if math.isfinite(h))])
         ax.set_title(f"{cell}, density {cfg.density:g}, {cfg.instances_in(cell)} instances", fontsize=9)
         ax.set_xlabel("p")
-        ax.set_ylim(-0.02, 1.02)
+        ax.set_ylim(-0.02, 1.02) if top > 0.5 else ax.set_ylim(0, max(1.1 * top, 0.01))
         ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel("P(optimum): median, quartile band")
-    axes[0][-1].legend(frameon=False, fontsize=8)
+    for ax in flat[len(cfg.cells):]:
+        ax.set_visible(False)
+    for row in axes:
+        row[0].set_ylabel("P(optimum): median, quartiles")
+    flat[0].legend(frameon=False, fontsize=8, loc="lower right")
     fig.tight_layout()
     save_figure(fig, opts.figures / f"{name}.png")
     plt.close(fig)

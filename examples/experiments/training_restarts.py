@@ -12,7 +12,7 @@ falls short of the best ``P(optimum)`` an expensive search finds for two reasons
   optimum above a spread state with ``P(optimum)`` of 0.1-0.3 (their values differ by ``-(1/eta) log
   P(optimum)``, 0.2-0.5 ``sigma``); a larger ``eta`` weighs the optimum's share more.
 
-For the first ``--instances`` instances of every cell of the reference studies (``--reference``, default the three
+For the first ``--instances`` instances of every cell of the reference studies (``--reference``, default the
 committed ensemble results: all six cells; their density, seed and depth) this script trains the alternative (one
 Dask task per instance, as ``ensembles.py``) and tabulates per cell and depth the medians and quartiles of its
 ``P(optimum)`` beside the reference's default training and best found, how often each training reaches half the
@@ -49,7 +49,7 @@ from qcpp.simulate.qaoa_solver import SINGLE_START
 NAME = "training_restarts"
 ALTERNATIVE: dict[str, Any] = dict(SINGLE_START)
 """Options of the alternative schedule: ``qcpp.train_qaoa``'s (``gibbs_scale`` for ``eta = gibbs_scale / sigma``)."""
-REFERENCES = ("docs/results/ensembles.json", "docs/results/ensembles_4x4.json", "docs/results/ensembles_larger.json")
+REFERENCES = ("docs/results/ensembles.json",)
 
 
 @dataclass(frozen=True)
@@ -70,10 +70,10 @@ def _mqq(values: Sequence[float]) -> str:
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="two instances per cell, depth 3")
+    ap.add_argument("--quick", action="store_true", help="two instances of the first two cells, depth 3")
     ap.add_argument("--out", type=Path, default=None, help="output root (default: a new qcpp-experiments-* folder)")
     ap.add_argument("--reference", nargs="+", default=list(REFERENCES), metavar="FILE",
-                    help="the ensemble studies' records (default: the three committed ones)")
+                    help="the ensemble studies' records (default: the committed one)")
     ap.add_argument("--instances", type=int, default=None, help="instances per cell (default: all of the reference)")
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="a running Dask scheduler")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes, one thread each")
@@ -96,7 +96,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         instances = min(instances, 2)
     if instances < 1:
         ap.error("--instances must be at least 1")
-    cells = tuple(cell for c in configs for cell in c["cells"])
+    cells = tuple(cell for c in configs for cell in c["cells"])[: 2 if ns.quick else None]
     cfg = Config(tuple(ns.reference), cells, rc["density"], rc["seed"], instances, p_max, ALTERNATIVE)
     command = "python examples/experiments/training_restarts.py" + (" --quick" if ns.quick else "")
     if ns.instances is not None:

@@ -434,7 +434,7 @@ def test_training_restarts_quick_mode(tmp_path: Path) -> None:
     bounding all three, and the single-start schedule's own Gibbs temperature used (with the default's starts at
     p = 1, only ``gibbs_scale`` can make its angles differ there)."""
     mod = _load("training_restarts")
-    out = mod.main(["--quick", "--out", str(tmp_path), "--reference", "docs/results/ensembles.json"])
+    out = mod.main(["--quick", "--out", str(tmp_path)])
     rows = out["rows"]
     assert {r["cell"] for r in rows} == {"3x3/1", "3x3/2"} and {r["p"] for r in rows} == {1, 2, 3}
     assert all(r["best_known"] == max(r["best_p_opt"], r["default_p_opt"], r["p_opt"]) for r in rows)
@@ -442,4 +442,4 @@ def test_training_restarts_quick_mode(tmp_path: Path) -> None:
     p1 = [r for r in rows if r["p"] == 1]
     assert any(r["angles"] != r["default_angles"] for r in p1)
     md = (tmp_path / "results" / "training_restarts.md").read_text()
-    assert "training_restarts.py --quick --reference docs/results/ensembles.json" in md and "|---|" in md
+    assert "`python examples/experiments/training_restarts.py --quick`" in md and "|---|" in md

@@ -303,9 +303,20 @@ def test_time_to_solution_csv_holds_the_json_rows() -> None:
 # ---------------------------------------------------------------- the ensemble study (experiments/ensembles.py)
 
 ENSEMBLE_FILES = tuple(sorted(p.stem for p in RESULTS.glob("ensembles*.json")))
+ENSEMBLE_CELLS = tuple(
+    pytest.param(name, cell, id=f"{name}-{cell}")
+    for name in ENSEMBLE_FILES for cell in json.loads((RESULTS / f"{name}.json").read_text())["config"]["cells"]
+)
+"""(file, cell) of every committed ensemble cell: one test per cell, so the heavy step's two workers share them."""
 CHEAP_ENSEMBLE_INSTANCES = 2
 """Instances per cell whose states the default run recomputes (and the first one's circuits; ``heavy``: every
 instance's states and circuits)."""
+
+
+@cache
+def _ensemble_rows(name: str, cell: str) -> tuple[dict[str, Any], ...]:
+    """The rows of one cell of an ensemble results file (read once per process: the file is large)."""
+    return tuple(r for r in _load(name)["rows"] if r["cell"] == cell)
 
 
 @pytest.mark.parametrize("name", ENSEMBLE_FILES)
@@ -335,10 +346,10 @@ def test_ensemble_rows_are_the_generators_instances(name: str) -> None:
 
 
 @pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
-@pytest.mark.parametrize("name", ENSEMBLE_FILES)
-def test_ensemble_recorded_angles_and_circuits(name: str, heavy: bool) -> None:
+@pytest.mark.parametrize(("name", "cell"), ENSEMBLE_CELLS)
+def test_ensemble_recorded_angles_and_circuits(name: str, cell: str, heavy: bool) -> None:
     checked = 0
-    for r in _load(name)["rows"]:
+    for r in _ensemble_rows(name, cell):
         if r["method"] != "qaoa" or not (heavy or r["index"] < CHEAP_ENSEMBLE_INSTANCES):
             continue
         q = _qaoa(_key(r))
@@ -368,14 +379,14 @@ def test_the_default_training_retrained_gives_the_recorded_angles(cell: str) -> 
         assert estimates == rows[p]["circuit_estimates"], (cell, p)
 
 
-@pytest.mark.parametrize("name", ENSEMBLE_FILES)
-def test_ensemble_derived_columns(name: str) -> None:
+@pytest.mark.parametrize(("name", "cell"), ENSEMBLE_CELLS)
+def test_ensemble_derived_columns(name: str, cell: str) -> None:
     """The exhaustive optimum, SA/GA success counts, the QAOA's shots and times, and the search's invariants:
     never below the default (it starts from the default's angles) unless a level below reached the ceiling,
     never lower at a greater depth, and within the ceiling's upper bound."""
     from qcpp.problem.solvers import dfs
 
-    rows = _load(name)["rows"]
+    rows = _ensemble_rows(name, cell)
     qaoa_rows: dict[str, list[dict[str, Any]]] = {}
     for r in rows:
         _check_solver_formulas(r)
