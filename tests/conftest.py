@@ -187,6 +187,7 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/multi_angle_test.py::test_the_solver_answers_with_the_product_state_and_bindings_of_t"
         "he_compiled_circuit",
         "tests/simulate/results_freshness_test.py::test_ensemble_derived_columns[ensembles-5x5/1]",
+        "tests/simulate/experiments_test.py::test_ensemble_devices_bad_input_is_refused_with_its_reason",
         "tests/simulate/tensor_test.py::test_validate_cli_json_and_exit_codes",
     }
 )
@@ -203,6 +204,8 @@ LONGEST_FIRST = (
     "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
     "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/1",
     "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/2]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1]",
     "tests/simulate/time_to_solution_test.py::test_quick_mode",
     "tests/compiler/hexlayout_test.py::test_estimate_device_heavy_hex_equals_compile",
     "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[4x4/2-heavy-hex]",

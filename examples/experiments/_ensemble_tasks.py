@@ -109,6 +109,40 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
 
 
 
+def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:
+    """The depth-``p`` circuit of ``scenario`` routed onto ``device`` by the estimator: routed counts, ESP and the
+    time of one shot (device durations where published, else the ideal gate model on the routed depths,
+    ``assumed``)."""
+    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+    from qcpp.estimators.routed import routed_fields
+    from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
+
+    est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="none"))
+    c = est.cost
+    f = routed_fields(scenario, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
+                      one_qubit=c.single_qubit, total_gates=c.total)
+    out = {k: f[k] for k in ("device", "fits", "routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth",
+                             "esp")}
+    if not f["fits"]:
+        return {**out, "duration_model": None, "shot_us": None}
+    if f["duration_s"] is not None:
+        return {**out, "duration_model": "device", "shot_us": f["duration_s"] * 1e6}
+    shot = shot_seconds(f["routed_depth"], f["routed_twoq_depth"], GATE_MODEL)
+    return {**out, "duration_model": "assumed", "shot_us": shot * 1e6}
+
+
+def device_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
+    """One instance's circuits at the depths ``cfg["depths"]`` routed onto each of ``cfg["devices"]``
+    (:func:`device_columns`, with ``p`` added); JSON-ready."""
+    from qcpp.problem.scenario import scenario_from_dict
+
+    t0 = time.perf_counter()
+    s = scenario_from_dict(scenario)
+    routed = [{"p": p, **device_columns(s, p, name)} for p in cfg["depths"] for name in cfg["devices"]]
+    return {"cell": cell, "index": index, "scenario": scenario, "devices": routed,
+            "seconds": time.perf_counter() - t0}
+
+
 def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
     """The training ``train_layerwise(..., **cfg["alternative"])`` on one scenario, to depth
     ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds."""

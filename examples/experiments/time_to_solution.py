@@ -65,6 +65,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numpy as np
 from _common import Table, command_line, parse, pyplot, save_figure, write_results
+from _ensemble_tasks import device_columns
 
 import qcpp
 from qcpp.io.atomic import write_text_atomic
@@ -199,27 +200,6 @@ def qaoa_circuit_columns(scenario: Scenario, p: int) -> dict[str, Any]:
     from _common import circuit_columns
 
     return circuit_columns(scenario, p)
-
-
-def device_columns(scenario: Scenario, p: int, device: str) -> dict[str, Any]:
-    """The depth-``p`` circuit routed onto ``device`` by the estimator: routed counts, ESP and the time of one
-    shot (device durations where published, else the ideal gate model on the routed depths, ``assumed``)."""
-    from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
-    from qcpp.estimators.routed import routed_fields
-    from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
-
-    est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="none"))
-    c = est.cost
-    f = routed_fields(scenario, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-                      one_qubit=c.single_qubit, total_gates=c.total)
-    out = {k: f[k] for k in ("device", "fits", "routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth",
-                             "esp")}
-    if not f["fits"]:
-        return {**out, "duration_model": None, "shot_us": None}
-    if f["duration_s"] is not None:
-        return {**out, "duration_model": "device", "shot_us": f["duration_s"] * 1e6}
-    shot = shot_seconds(f["routed_depth"], f["routed_twoq_depth"], GATE_MODEL)
-    return {**out, "duration_model": "assumed", "shot_us": shot * 1e6}
 
 
 def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | None:

@@ -419,6 +419,31 @@ def test_ensembles_unreachable_scheduler_is_one_line_and_exit_2(
     assert not (tmp_path / "results").exists()
 
 
+def test_ensemble_devices_bad_input_is_refused_with_its_reason(capsys: pytest.CaptureFixture[str]) -> None:
+    mod = _load("ensemble_devices")
+    cases = ((["--devices", "nowhere"], "--devices: unknown nowhere"), (["--cells", "5x5/3"], "--cells: 5x5/3 not in"),
+             (["--depths", "9"], "--depths: each in 1..8"), (["--instances", "0"], "--instances: 1..30"))
+    for argv, message in cases:
+        with pytest.raises(SystemExit) as exit_:
+            mod.parse_args([*argv, "--out", "unused"])
+        assert exit_.value.code == 2 and message in capsys.readouterr().err, argv
+
+
+@pytest.mark.heavy
+def test_ensemble_devices_quick_mode(tmp_path: Path) -> None:
+    """One instance at depth 1 on an all-to-all and a calibrated heavy-hex device: both fit, ESP in (0, 1], the
+    reference's figures carried over, the table written."""
+    mod = _load("ensemble_devices")
+    rows = mod.main(["--quick", "--out", str(tmp_path)])["rows"]
+    assert [(r["cell"], r["index"], r["p"], r["device"]) for r in rows] == [
+        ("3x3/1", 0, 1, "quantinuum_helios"), ("3x3/1", 0, 1, "ibm_fez")]
+    assert all(r["fits"] and 0 < r["esp"] <= 1 and r["tts_99"] > 0 for r in rows)
+    helios, fez = rows
+    assert helios["routed_twoq"] < fez["routed_twoq"]  # all-to-all needs no SWAPs
+    md = (tmp_path / "results" / "ensemble_devices.md").read_text()
+    assert "`python examples/experiments/ensemble_devices.py --quick`" in md and "| 3x3/1 | ibm_fez | 1 |" in md
+
+
 @pytest.mark.heavy
 def test_ensembles_quick_mode(tmp_path: Path) -> None:
     out = _check_quick_mode("ensembles", ["ensembles.png"], tmp_path)

@@ -408,6 +408,87 @@ def test_ensemble_derived_columns(name: str, cell: str) -> None:
         assert all(b["circuit_estimates"] > a["circuit_estimates"] for a, b in zip(levels, levels[1:]))
 
 
+# ---------------------------------------------------------------- the ensembles on named devices (ensemble_devices.py)
+
+DEVICE_FIELDS = ("device", "fits", "routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth")
+
+
+def _ensemble_device_cells() -> list[Any]:
+    """One heavy parameter per cell of the committed device rows (each recompiles every row of its cell)."""
+    if not (RESULTS / "ensemble_devices.json").exists():
+        return []
+    return [pytest.param(c, id=c, marks=pytest.mark.heavy) for c in _load("ensemble_devices")["config"]["cells"]]
+
+
+def _check_ensemble_device_row(r: dict[str, Any]) -> None:
+    """``r``'s routed figures, ESP and shot time are what the router gives its scenario, depth and device now."""
+    want = _routed(_key(r), int(r["p"]), r["device"])
+    assert {k: r[k] for k in DEVICE_FIELDS} == {k: want[k] for k in DEVICE_FIELDS}, _label("ensemble_devices", r)
+    assert r["esp"] == pytest.approx(want["esp"], rel=1e-9), _label("ensemble_devices", r)
+    if want["duration_s"] is not None:
+        assert r["duration_model"] == "device" and r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
+
+
+def test_ensemble_device_rows_of_the_first_instance_match_the_router() -> None:
+    """The default run's share: the first instance of the first cell at its shallowest depth, on every device."""
+    data = _load("ensemble_devices")
+    cell, p = data["config"]["cells"][0], min(data["config"]["depths"])
+    rows = [r for r in data["rows"] if r["cell"] == cell and r["index"] == 0 and r["p"] == p]
+    assert {r["device"] for r in rows} == set(data["config"]["devices"])
+    for r in rows:
+        _check_ensemble_device_row(r)
+
+
+HEAVY_ENSEMBLE_DEVICE_INSTANCES = 3
+"""Instances per cell whose device rows (every depth and device) the heavy step recompiles: a change of the router
+or the device data changes some of them; all of them would double the heavy step."""
+
+
+@pytest.mark.parametrize("cell", _ensemble_device_cells())
+def test_ensemble_device_rows_match_the_router(cell: str) -> None:
+    rows = [r for r in _load("ensemble_devices")["rows"]
+            if r["cell"] == cell and r["index"] < HEAVY_ENSEMBLE_DEVICE_INSTANCES]
+    assert len({r["index"] for r in rows}) == HEAVY_ENSEMBLE_DEVICE_INSTANCES
+    for r in rows:
+        _check_ensemble_device_row(r)
+
+
+def test_ensemble_device_derived_columns() -> None:
+    """Every row: one per instance, depth and device; the reference's P(optimum), estimates, ideal and classical
+    times copied faithfully; the device's shot probability, shots and 99% time by formula."""
+    data = _load("ensemble_devices")
+    assert _current(data["qcpp_version"]) and data["command"].startswith("python examples/experiments/ensemble_devices")
+    assert "--quick" not in data["command"]
+    cfg = data["config"]
+    ref = _load(Path(cfg["reference"]).stem)["rows"]
+    qaoa = {(r["cell"], r["index"], r["p"]): r for r in ref if r["method"] == "qaoa"}
+    classical: dict[tuple[str, int], float] = {}
+    for r in ref:
+        if r["method"] in ("dfs", "cpsat", "anneal", "genetic"):
+            key = (r["cell"], r["index"])
+            classical[key] = min(classical.get(key, math.inf), math.inf if r["tts_99"] is None else r["tts_99"])
+    keys = {(r["cell"], r["index"], r["p"], r["device"]) for r in data["rows"]}
+    assert len(keys) == len(data["rows"]) == len(cfg["cells"]) * cfg["instances"] * len(cfg["depths"]) * len(
+        cfg["devices"])
+    for r in data["rows"]:
+        assert _current(r["qcpp_version"]) and r["options"]["device"] == r["device"] and r["options"]["p"] == r["p"]
+        b = qaoa[(r["cell"], r["index"], r["p"])]
+        assert r["scenario"] == b["scenario"], _label("ensemble_devices", r)
+        assert (r["p_opt"], r["circuit_estimates"], r["ideal_tts_99"]) == (b["p_opt"], b["circuit_estimates"],
+                                                                           b["tts_99"])
+        assert r["best_classical_s"] == classical[(r["cell"], r["index"])]
+        if not r["fits"]:
+            assert r["tts_99"] is None
+            continue
+        if r["duration_model"] == "assumed":
+            shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
+            assert r["shot_us"] == pytest.approx(shot_us)
+        assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
+        assert r["shots_99"] == shots_for(r["p_shot"])
+        training_shots = r["circuit_estimates"] * r["options"]["shots_per_estimate"]
+        assert r["tts_99"] == pytest.approx((training_shots + r["shots_99"]) * r["shot_us"] * 1e-6)
+
+
 @pytest.mark.heavy
 def test_training_restarts_alternative_retrains_to_its_records() -> None:
     """The single-start schedule's figures are what ``qcpp.train_qaoa`` with the recorded options gives: one
