@@ -261,6 +261,17 @@ def _check_solver_formulas(r: dict[str, Any]) -> None:
         assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
 
 
+def _check_device_time(r: dict[str, Any], training_shots: int) -> None:
+    """A device row that fits: the assumed shot time from its routed depths, a shot's success ``P(optimum) x ESP``,
+    the shots for 99% and the 99% time with ``training_shots`` counted at the shot time."""
+    if r["duration_model"] == "assumed":
+        shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
+        assert r["shot_us"] == pytest.approx(shot_us)
+    assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
+    assert r["shots_99"] == shots_for(r["p_shot"])
+    assert r["tts_99"] == pytest.approx((training_shots + r["shots_99"]) * r["shot_us"] * 1e-6)
+
+
 def test_time_to_solution_derived_columns() -> None:
     rows = _load("time_to_solution")["rows"]
     methods = {r["method"] for r in rows}
@@ -280,14 +291,8 @@ def test_time_to_solution_derived_columns() -> None:
             twin = ideal[(r["instance"], r["p"])]  # the same trained state and training
             assert (r["p_opt"], r["training_shots"]) == (twin["p_opt"], twin["training_shots"])
             assert r["options"]["device"] == r["device"]
-            if not r["fits"]:
-                continue
-            if r["duration_model"] == "assumed":
-                shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
-                assert r["shot_us"] == pytest.approx(shot_us)
-            assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
-            assert r["shots_99"] == shots_for(r["p_shot"])
-            assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * r["shot_us"] * 1e-6)
+            if r["fits"]:
+                _check_device_time(r, r["training_shots"])
 
 
 def test_time_to_solution_csv_holds_the_json_rows() -> None:
@@ -480,13 +485,7 @@ def test_ensemble_device_derived_columns() -> None:
         if not r["fits"]:
             assert r["tts_99"] is None
             continue
-        if r["duration_model"] == "assumed":
-            shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
-            assert r["shot_us"] == pytest.approx(shot_us)
-        assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
-        assert r["shots_99"] == shots_for(r["p_shot"])
-        training_shots = r["circuit_estimates"] * r["options"]["shots_per_estimate"]
-        assert r["tts_99"] == pytest.approx((training_shots + r["shots_99"]) * r["shot_us"] * 1e-6)
+        _check_device_time(r, r["circuit_estimates"] * r["options"]["shots_per_estimate"])
 
 
 @pytest.mark.heavy
