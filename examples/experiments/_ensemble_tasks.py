@@ -1,4 +1,6 @@
-"""One instance of the ensemble study (``ensembles.py``): every method on one scenario, run on a Dask worker.
+"""One instance of the ensemble study (``ensembles.py``): every method on one scenario, run on a Dask worker; and
+the per-instance tasks of the studies built on it (``training_restarts.py``: :func:`train_instance`;
+``ensemble_devices.py``: :func:`device_instance`).
 
 Self-contained (it imports only ``qcpp``, numpy and the standard library) because ``ensembles.py`` ships it to the
 workers by value: a worker of a remote scheduler needs qcpp installed, not this folder.
@@ -106,7 +108,6 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
         })
     return {"dimension": q.dimension, "optimum_in_basis": in_basis, "training_seconds_simulated": train_s,
             "search_seconds": search_s, "levels": levels}
-
 
 
 def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:

@@ -446,7 +446,10 @@ def figure(opts: Options, rows: list[dict[str, Any]], cfg: Config, name: str = N
             top = max([top, *(h for h in hi if math.isfinite(h))])
         ax.set_title(f"{cell}, density {cfg.density:g}, {cfg.instances_in(cell)} instances", fontsize=9)
         ax.set_xlabel("p")
-        ax.set_ylim(-0.02, 1.02) if top > 0.5 else ax.set_ylim(0, max(1.1 * top, 0.01))
+        if top > 0.5:
+            ax.set_ylim(-0.02, 1.02)
+        else:
+            ax.set_ylim(0, max(1.1 * top, 0.01))
         ax.grid(alpha=0.3)
     for ax in flat[len(cfg.cells):]:
         ax.set_visible(False)

@@ -419,7 +419,7 @@ DEVICE_FIELDS = ("device", "fits", "routed_kind", "routed_twoq", "routed_depth",
 
 
 def _ensemble_device_cells() -> list[Any]:
-    """One heavy parameter per cell of the committed device rows (each recompiles every row of its cell)."""
+    """One heavy parameter per cell of the committed device rows (:data:`HEAVY_ENSEMBLE_DEVICE_INSTANCES`)."""
     if not (RESULTS / "ensemble_devices.json").exists():
         return []
     return [pytest.param(c, id=c, marks=pytest.mark.heavy) for c in _load("ensemble_devices")["config"]["cells"]]
