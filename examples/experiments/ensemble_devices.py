@@ -35,7 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _ensemble_tasks
 from _common import REPO, Options, Table, fresh_output_folder, write_results
 from ensembles import Config as StudyConfig
-from ensembles import instances_of, parse_cell, quartiles, run_on_dask
+from ensembles import _mqq, best_classical_times, instances_of, parse_cell, run_on_dask
 from time_to_solution import DEVICES
 
 import qcpp
@@ -48,7 +48,6 @@ CELLS = ("3x3/1", "3x3/2", "4x4/1")
 INSTANCES = 10
 DEPTHS = (1, 2, 3)
 TARGET = 0.99
-CLASSICAL = ("dfs", "cpsat", "anneal", "genetic")
 
 
 @dataclass(frozen=True)
@@ -62,14 +61,12 @@ class Config:
     devices: tuple[str, ...]
 
 
-def _mqq(values: Sequence[float]) -> str:
-    if not values:
-        return "-"
-    m, lo, hi = quartiles(values)
-    return f"{m:.3g} [{lo:.3g}, {hi:.3g}]"
+def _mqq_or_dash(values: Sequence[float]) -> str:
+    return _mqq(values) if values else "-"
 
 
-def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None, int, str]:
+def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, list[dict[str, Any]], str | None, int, str]:
+    """The options, the configuration, the reference's rows, the scheduler, the workers and the command line."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="one instance of 3x3/1 at depth 1 on two devices")
     ap.add_argument("--out", type=Path, default=None, help="output root (default: a new qcpp-experiments-* folder)")
@@ -87,7 +84,8 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
     path = Path(ns.reference) if Path(ns.reference).is_absolute() else REPO / ns.reference
     if not path.is_file():
         ap.error(f"--reference: no such file {ns.reference}")
-    rc = json.loads(path.read_text(encoding="utf-8"))["config"]
+    reference = json.loads(path.read_text(encoding="utf-8"))
+    rc = reference["config"]
     cells = tuple(f"{r}x{c}/{n}" for r, c, n in ns.cells) if ns.cells else (("3x3/1",) if ns.quick else CELLS)
     missing = [c for c in cells if c not in rc["cells"]]
     if missing:
@@ -100,7 +98,7 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
     if unknown:
         ap.error(f"--devices: unknown {', '.join(unknown)} (known: {', '.join(qcpp.devices())})")
     instances = ns.instances if ns.instances is not None else (1 if ns.quick else INSTANCES)
-    available = min(dict(rc.get("cell_instances", ())).get(c, rc["instances"]) for c in cells)
+    available = min(StudyConfig(**rc).instances_in(c) for c in cells)
     if not 1 <= instances <= available:
         ap.error(f"--instances: 1..{available} (the reference's instances in these cells)")
     cfg = Config(ns.reference, cells, rc["density"], rc["seed"], instances, depths, devices)
@@ -112,7 +110,7 @@ def parse_args(argv: Sequence[str] | None) -> tuple[Options, Config, str | None,
         + ([f"--devices {' '.join(devices)}"] if ns.devices else [])
         + ([f"--reference {ns.reference}"] if ns.reference != REFERENCE else []))
     opts = Options(quick=ns.quick, out=fresh_output_folder() if ns.out is None else ns.out, seed=rc["seed"])
-    return opts, cfg, ns.scheduler, ns.workers, command
+    return opts, cfg, reference["rows"], ns.scheduler, ns.workers, command
 
 
 def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -123,11 +121,7 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
     from qcpp.simulate.time_to_solution import qaoa_on_device
 
     qaoa = {(r["cell"], r["index"], r["p"]): r for r in reference if r["method"] == "qaoa"}
-    classical: dict[tuple[str, int], float] = {}
-    for r in reference:
-        if r["method"] in CLASSICAL:
-            key = (r["cell"], r["index"])
-            classical[key] = min(classical.get(key, math.inf), math.inf if r["tts_99"] is None else r["tts_99"])
+    classical = best_classical_times(reference)
     rows = []
     for res in results:
         for d in res["devices"]:
@@ -138,7 +132,7 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
                    "options": {"p": d["p"], "device": d["device"], "shots_per_estimate": SHOTS_PER_ESTIMATE,
                                "target": TARGET},
                    **d, "p_opt": b["p_opt"], "circuit_estimates": b["circuit_estimates"],
-                   "ideal_tts_99": b["tts_99"], "best_classical_s": classical[(res["cell"], res["index"])]}
+                   "ideal_tts_99": b["tts_99"], "best_classical_s": classical[b["instance"]]}
             t = (qaoa_on_device(b["p_opt"], b["circuit_estimates"], SHOTS_PER_ESTIMATE, d["shot_us"] * 1e-6, TARGET,
                                 esp=d["esp"]) if d["fits"] else None)
             row |= {"p_shot": t and t.p_shot, "shots_99": t and t.shots, "training_s": t and t.training_seconds,
@@ -150,9 +144,7 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     from qcpp.pipeline.device_compile import ESP_MODEL
 
-    opts, cfg, scheduler, workers, command = parse_args(argv)
-    path = Path(cfg.reference) if Path(cfg.reference).is_absolute() else REPO / cfg.reference
-    reference = json.loads(path.read_text(encoding="utf-8"))["rows"]
+    opts, cfg, reference, scheduler, workers, command = parse_args(argv)
     study = StudyConfig(cfg.cells, cfg.density, cfg.instances, max(cfg.depths), 0, 0, 0, 0.0, {}, cfg.seed)
     tasks = instances_of(study)
     load_before = os.getloadavg()[0]
@@ -175,9 +167,10 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                 sel = [r for r in rows if (r["cell"], r["device"], r["p"]) == (cell, device, p)]
                 fit = [r for r in sel if r["fits"]]
                 faster = sum(r["tts_99"] < r["best_classical_s"] for r in fit)
-                t.add(cell, device, p, f"{len(fit)} of {len(sel)}", _mqq([r["esp"] for r in fit]),
-                      _mqq([r["tts_99"] for r in fit]),
-                      _mqq([r["tts_99"] / r["ideal_tts_99"] for r in fit if math.isfinite(r["ideal_tts_99"])]),
+                t.add(cell, device, p, f"{len(fit)} of {len(sel)}", _mqq_or_dash([r["esp"] for r in fit]),
+                      _mqq_or_dash([r["tts_99"] for r in fit]),
+                      _mqq_or_dash([r["tts_99"] / r["ideal_tts_99"] for r in fit
+                                    if math.isfinite(r["ideal_tts_99"])]),
                       f"{faster} of {len(fit)}")
     notes = [f"qcpp {qcpp.__version__}. Reference: {cfg.reference} (density {cfg.density:g}, seed {cfg.seed}); the "
              f"first {cfg.instances} instances of {', '.join(cfg.cells)}; depths {', '.join(map(str, cfg.depths))}.",

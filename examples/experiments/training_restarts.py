@@ -40,7 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _ensemble_tasks
 from _common import REPO, Options, Table, fresh_output_folder, write_results
 from ensembles import Config as StudyConfig
-from ensembles import instances_of, quartiles, run_on_dask
+from ensembles import _mqq, instances_of, run_on_dask
 
 import qcpp
 from qcpp.io.atomic import write_text_atomic
@@ -61,11 +61,6 @@ class Config:
     instances: int
     p_max: int
     alternative: dict[str, Any]
-
-
-def _mqq(values: Sequence[float]) -> str:
-    m, lo, hi = quartiles(values)
-    return f"{m:.3g} [{lo:.3g}, {hi:.3g}]"
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:

@@ -308,9 +308,17 @@ def test_time_to_solution_csv_holds_the_json_rows() -> None:
 # ---------------------------------------------------------------- the ensemble study (experiments/ensembles.py)
 
 ENSEMBLE_FILES = tuple(sorted(p.stem for p in RESULTS.glob("ensembles*.json")))
+
+
+@cache
+def _ensemble_file(name: str) -> dict[str, Any]:
+    """An ensemble results file, read once per process (it is large; the tests only read it)."""
+    return _load(name)
+
+
 ENSEMBLE_CELLS = tuple(
     pytest.param(name, cell, id=f"{name}-{cell}")
-    for name in ENSEMBLE_FILES for cell in json.loads((RESULTS / f"{name}.json").read_text())["config"]["cells"]
+    for name in ENSEMBLE_FILES for cell in _ensemble_file(name)["config"]["cells"]
 )
 """(file, cell) of every committed ensemble cell: one test per cell, so the heavy step's two workers share them."""
 CHEAP_ENSEMBLE_INSTANCES = 2
@@ -321,7 +329,7 @@ instance's states and circuits)."""
 @cache
 def _ensemble_rows(name: str, cell: str) -> tuple[dict[str, Any], ...]:
     """The rows of one cell of an ensemble results file (read once per process: the file is large)."""
-    return tuple(r for r in _load(name)["rows"] if r["cell"] == cell)
+    return tuple(r for r in _ensemble_file(name)["rows"] if r["cell"] == cell)
 
 
 @pytest.mark.parametrize("name", ENSEMBLE_FILES)
@@ -329,7 +337,7 @@ def test_ensemble_rows_are_the_generators_instances(name: str) -> None:
     """Every row records its scenario, options and version; the scenario is the seeded generator's instance."""
     from qcpp.problem.ensembles import random_scenario
 
-    data = _load(name)
+    data = _ensemble_file(name)
     assert _current(data["qcpp_version"]), f"regenerate docs/results/{name}.* for qcpp {qcpp.__version__}"
     assert data["command"].startswith("python examples/experiments/ensembles.py"), data["command"]
     assert "--quick" not in data["command"] and data["rows"]
@@ -376,7 +384,7 @@ def test_the_default_training_retrained_gives_the_recorded_angles(cell: str) -> 
     instance of the cell, to p = 3), so a change of the default training shows up as stale results."""
     from qcpp.simulate.layerwise import train_layerwise
 
-    rows = {r["p"]: r for r in _load("ensembles")["rows"] if r["method"] == "qaoa" and r["cell"] == cell
+    rows = {r["p"]: r for r in _ensemble_file("ensembles")["rows"] if r["method"] == "qaoa" and r["cell"] == cell
             and r["index"] == 0}
     levels = train_layerwise(_qaoa(_key(rows[1])), 3)
     for p, (level, estimates) in enumerate(zip(levels.levels, levels.level_estimates), start=1):
@@ -465,7 +473,7 @@ def test_ensemble_device_derived_columns() -> None:
     assert _current(data["qcpp_version"]) and data["command"].startswith("python examples/experiments/ensemble_devices")
     assert "--quick" not in data["command"]
     cfg = data["config"]
-    ref = _load(Path(cfg["reference"]).stem)["rows"]
+    ref = _ensemble_file(Path(cfg["reference"]).stem)["rows"]
     qaoa = {(r["cell"], r["index"], r["p"]): r for r in ref if r["method"] == "qaoa"}
     classical: dict[tuple[str, int], float] = {}
     for r in ref:
