@@ -10,6 +10,10 @@ after the other:
   optimization_level=3, seed_transpiler=0)``, where ``lowered`` is the unrouted circuit of ``qcpp compile
   --lowered`` loaded by Qiskit's OpenQASM 3 reader (built before the clock starts).
 
+``--screen``: instead, per case, ``qcpp compile`` as above with the cells' plan choice searching the allocation of
+the default plan and :attr:`~qcpp.routing.options.RoutingOptions.cell_screen` screened variants (the default) and of
+every variant (``cell_screen=0``), side by side: times and two-qubit gates of each.
+
 Each process imports everything first (qcpp, Qiskit, SciPy) and then times only the call, wall
 (``time.perf_counter``) and CPU (``time.process_time``, this process only: both compilers run in-process; Qiskit's
 Rust passes may use more than one thread, which CPU time counts and wall time hides). Fresh processes keep
@@ -72,6 +76,35 @@ def _worker_qcpp(case: str) -> dict[str, Any]:
             "layout": summary["routed"]["layout"], "coupling": [list(e) for e in out.device.coupling]}  # fmt: skip
 
 
+def _worker_screen(case: str, screen: int) -> dict[str, Any]:
+    from dataclasses import replace
+
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.routing.options import DEFAULT_ROUTING
+
+    _warm_imports()
+    scenario = _scenario(case)
+    routing = replace(DEFAULT_ROUTING, cell_screen=screen)
+    out, wall, cpu = _timed(lambda: compile_for_device(scenario, 1, "heavy-hex", routing=routing))
+    twoq = sum(1 for g in out.routed.circuit.gates if len(g[1]) == 2)
+    return {"wall": wall, "cpu": cpu, "device": out.routed.device.name, "twoq": twoq, "layout": out.layout_method}
+
+
+def screen_table(cases: list[str], repeats: int) -> None:
+    """The ``--screen`` table (module docs)."""
+    print("| case | device | variants searched | qcpp CPU s | qcpp wall s | qcpp 2q |")
+    print("|---|---|---|---:|---:|---:|")
+    from qcpp.routing.options import DEFAULT_ROUTING
+
+    for case in cases:
+        for screen in (DEFAULT_ROUTING.cell_screen, 0):
+            runs = [_run(["screen", case, str(screen)]) for _ in range(repeats)]
+            label = f"default + {screen} screened" if screen else "every variant"
+            cpu, wall = (statistics.median(r[k] for r in runs) for k in ("cpu", "wall"))
+            print(f"| {case} | {runs[0]['device']} ({runs[0]['layout']}) | {label} | {cpu:.1f} | {wall:.1f} "
+                  f"| {runs[0]['twoq']:,} |", flush=True)  # fmt: skip
+
+
 def _worker_qiskit(case: str, coupling: list[list[int]]) -> dict[str, Any]:
     import qiskit
     from qiskit.transpiler import CouplingMap
@@ -102,11 +135,17 @@ def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("cases", nargs="*", default=list(DEFAULT_CASES))
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--screen", action="store_true", help="the cells' screened plan choice against every variant")
     parser.add_argument("--worker", nargs="+", help=argparse.SUPPRESS)
     a = parser.parse_args(argv)
     if a.worker:
         kind, case, *rest = a.worker
-        result = _worker_qcpp(case) if kind == "qcpp" else _worker_qiskit(case, json.loads(rest[0]))
+        if kind == "qcpp":
+            result = _worker_qcpp(case)
+        elif kind == "screen":
+            result = _worker_screen(case, int(rest[0]))
+        else:
+            result = _worker_qiskit(case, json.loads(rest[0]))
         print(json.dumps(result))
         return 0
     import qiskit
@@ -116,6 +155,11 @@ def main(argv: list[str]) -> int:
     print(f"qcpp from {os.path.dirname(qcpp.__file__)}, Qiskit {qiskit.__version__}, {os.cpu_count()} cores, "
           f"{a.repeats} repeats, medians; load average before: {os.getloadavg()[0]:.1f}")  # fmt: skip
     print()
+    if a.screen:
+        screen_table(a.cases, a.repeats)
+        print()
+        print(f"load average after: {os.getloadavg()[0]:.1f}")
+        return 0
     print("| case | device | qcpp CPU s | qcpp wall s | Qiskit O3 CPU s | Qiskit O3 wall s | CPU ratio | "
           "wall ratio | qcpp 2q | Qiskit O3 2q |")  # fmt: skip
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")

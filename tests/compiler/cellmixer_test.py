@@ -124,3 +124,28 @@ def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape
     assert changed > 0
     grid = get_device("grid:9x9")
     assert cell_mixers(s, OPTIONS, circuit, grid, homes, distances(grid), BIND) is circuit
+
+
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((3, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "3x3/2"])
+def test_the_screen_only_narrows_the_variants_searched(shape: tuple[int, int, int]) -> None:
+    """``cell_screen`` at least the number of variants searches every variant, as ``cell_screen=0`` does; the
+    default screen routes fewer windows and keeps the default plan among them (the test above: no changed
+    window routes to more)."""
+    s = default_scenario(*shape)
+    circuit = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND).circuit
+    dev = hex_device(s, "heavy-hex")
+    assert dev is not None
+    homes = hex_placement(s, dev)
+    assert homes is not None
+    dist = distances(dev)
+
+    def planned(screen: int) -> tuple[Circuit, int]:
+        context = RoutingContext()
+        routing = dataclasses.replace(DEFAULT_ROUTING, cell_screen=screen)
+        out = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND, routing=routing, context=context)
+        return out, len(context.windows)  # the windows routed (memo entries): the searches' work
+
+    every, searched_every = planned(0)
+    assert planned(24)[0] == every
+    _, searched_screened = planned(DEFAULT_ROUTING.cell_screen)
+    assert searched_screened < searched_every

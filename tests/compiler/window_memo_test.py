@@ -21,6 +21,7 @@ from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING
+from qcpp.routing.patches import PARALLEL_MIN_TRIALS
 from qcpp.routing.windows import Positions, route_window
 
 DEVICE = get_device("heavy-hex:13")
@@ -82,6 +83,52 @@ def test_an_interior_window_is_answered_by_its_translation() -> None:
     assert second[1] == set(shift.values()) and second[2] == first[2] == 0
 
 
+def test_options_that_differ_only_in_their_searches_share_routed_windows() -> None:
+    """A window's routing depends on :attr:`~qcpp.routing.options.RoutingOptions.window_key` only, so a search with
+    other allocation settings finds the windows routed before (the memo does not grow), and settings a routing
+    reads do not share them."""
+    from dataclasses import replace
+
+    from qcpp.routing.windows import route_window_cx
+
+    pairs = [(AT[(10, 8)], AT[(10, 12)]), (AT[(10, 12)], AT[(12, 10)]), (AT[(10, 12)], AT[(10, 8)])]
+    context = RoutingContext()
+    first = route_window_cx(pairs, None, DEVICE, DIST, 0, DEFAULT_ROUTING, context)  # type: ignore[arg-type]
+    size = len(context.windows)
+    other = replace(DEFAULT_ROUTING, search_ranks=1, allocation_search=False, cell_screen=0)
+    assert route_window_cx(pairs, None, DEVICE, DIST, 0, other, context) == first  # type: ignore[arg-type]
+    assert len(context.windows) == size
+    route_window_cx(pairs, None, DEVICE, DIST, 0, replace(DEFAULT_ROUTING, trials=4), context)  # type: ignore[arg-type]
+    assert len(context.windows) > size
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.data())
+def test_sabre_keeps_the_same_trial_on_threads(data: st.DataObject) -> None:
+    """Qiskit's SABRE routes alike with its trials on threads or one after another (what
+    :data:`~qcpp.routing.patches.PARALLEL_MIN_TRIALS` relies on)."""
+    from qiskit._accelerate.sabre import sabre_routing
+
+    from qcpp.routing.patches import patch_sabre
+
+    dev = get_device("heavy-hex:3")
+    size = dev.num_qubits
+    shape = patch_sabre(RoutingContext(), tuple(dev.coupling), size)  # type: ignore[arg-type]
+    assert shape.call is not None
+    target, heuristic, layout = shape.call
+    pairs = [tuple(data.draw(st.permutations(range(size)))[:2]) for _ in range(data.draw(st.integers(1, 60)))]
+    dag = shape.empty.copy_empty_like()
+    for a, b in pairs:
+        dag.apply_operation_back(shape.gate, (shape.bits[a], shape.bits[b]), (), check=False)
+    seed = data.draw(st.integers(0, 99))
+
+    def ops(parallel: bool) -> list:
+        out, _ = sabre_routing(dag, target, heuristic, layout, PARALLEL_MIN_TRIALS, seed, parallel)
+        return [(n.name, [q._index for q in n.qargs]) for n in out.topological_op_nodes()]
+
+    assert ops(True) == ops(False)
+
+
 def _compiled(shape: tuple[int, int, int], device: str, memos: bool) -> tuple:
     """The routed circuit, layouts and partial-mixer sections of a compile, with or without the memos that answer
     one query from another's (windows up to the lattice's translations, the A* of equal relabelled programs)."""
@@ -129,7 +176,7 @@ def test_a_patch_routing_reads_sabre_as_the_pass_writes_it(data: st.DataObject) 
     dev = get_device(data.draw(st.sampled_from(["grid:3x3", "heavy-hex:3"])))
     size = dev.num_qubits
     pairs = tuple(tuple(data.draw(st.permutations(range(size)))[:2]) for _ in range(data.draw(st.integers(1, 25))))
-    seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16]))
+    seed, trials = data.draw(st.integers(0, 9)), data.draw(st.sampled_from([1, 4, 16, PARALLEL_MIN_TRIALS]))
     qc = QuantumCircuit(size)
     for a, b in pairs:
         qc.cx(a, b)

@@ -18,7 +18,11 @@ all-to-all counts are unchanged.
 section is replaced by the variant whose window routes to the fewest two-qubit gates from home, allocated and routed
 exactly as :func:`qcpp.pipeline.device_compile.medial_compile` then does it
 (:func:`qcpp.layout.medial.allocate_ancillas` with compile's search, :func:`qcpp.routing.windows.route_window`), the
-default plan on ties. Then the operands of one AND
+default plan on ties. The allocation search is the costly part, so every variant is first routed with the greedy
+allocation and the search runs on the default plan and the
+:attr:`~qcpp.routing.options.RoutingOptions.cell_screen` variants that route cheapest that way (the chosen plan never
+routes to more than the default plan; ``benchmarks/hex_compile_speed.py --screen`` compares the choice with the
+search run on every variant). Then the operands of one AND
 at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
 fewer, until none does: the same logic, but a lowered AND uses its first operand twice
 (:func:`qcpp.ir.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE
@@ -236,6 +240,8 @@ def cell_mixers(
     named = list(plan.sections())
     if [n for n, _ in named] != [s.name for s in circuit.sections]:
         return circuit  # not the plan's circuit (e.g. p = 0 or another construction)
+    screen = routing.cell_screen if routing.allocation_search else 0
+    screen_routing = dataclasses.replace(routing, allocation_search=False)
     coords = heavy_hex_coordinates(d)
     occupied = {coords[h] for h in homes}
     sections = list(circuit.sections)
@@ -257,19 +263,26 @@ def cell_mixers(
             lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
 
-        costs: dict[MixerPlan, int] = {}  # the operand exchanges come back to plans already scored
+        lowered: dict[MixerPlan, Section] = {gadget.plan: sections[i]}
+        costs: dict[tuple[MixerPlan, bool], int] = {}  # the operand exchanges come back to plans already scored
 
-        def cost(plan: MixerPlan, gadget: ParityPartialMixer = gadget, i: int = i,
-                 costs: dict[MixerPlan, int] = costs) -> int:  # fmt: skip
-            if plan not in costs:
-                section = sections[i] if plan == gadget.plan else variant(plan)
-                costs[plan] = _window_cx(section, homes, device, dist, routing, context)
-            return costs[plan]
+        def cost(plan: MixerPlan, search: bool = True, lowered: dict[MixerPlan, Section] = lowered,
+                 costs: dict[tuple[MixerPlan, bool], int] = costs) -> int:  # fmt: skip
+            if (plan, search) not in costs:
+                if plan not in lowered:
+                    lowered[plan] = variant(plan)
+                options = routing if search else screen_routing
+                costs[plan, search] = _window_cx(lowered[plan], homes, device, dist, options, context)
+            return costs[plan, search]
 
         key = (_class_key(gadget, homes, coords, occupied), routing)
         chosen = context.cell_choices.get(key)
         if chosen is None:
-            best, k = min((cost(plan), j) for j, plan in enumerate(plans))
+            candidates = range(len(plans))
+            if screen:  # the default plan and the variants that route cheapest with the greedy allocation
+                by_greedy = sorted((cost(plan, search=False), j) for j, plan in enumerate(plans))
+                candidates = sorted({0, *(j for _, j in by_greedy[:screen])})
+            best, k = min((cost(plans[j]), j) for j in candidates)
             chosen = plans[k]
             improved = True
             while improved:  # operands exchanged one gate at a time, each kept if it routes to fewer
@@ -280,5 +293,5 @@ def cell_mixers(
                         best, chosen, improved = c, swapped, True
             context.cell_choices[key] = chosen
         if chosen != gadget.plan:
-            sections[i] = variant(chosen)
+            sections[i] = lowered[chosen] if chosen in lowered else variant(chosen)
     return Circuit(circuit.registers, sections)

@@ -51,6 +51,9 @@ class RoutingOptions:
             time grows with the window's size).
         cell_large_window_seeds: :attr:`large_window_seeds` on the heavy-hex cells (:meth:`for_cells`).
         cell_large_window_trials: :attr:`large_window_trials` on the heavy-hex cells.
+        cell_screen: The heavy-hex cells' plan choice (:func:`qcpp.pipeline.cellmixer.cell_mixers`) runs the
+            allocation search on the default plan and on this many variants, those whose windows route to the
+            fewest two-qubit gates with the greedy allocation (``0``: on every variant).
         allocation_search: Whether the medial allocation searches the partial mixers' ancilla sites
             (:func:`qcpp.layout.medial.allocate_ancillas` ``search``).
         search_ranks: Each ancilla of a searched section is also tried on its 2nd .. (1 + this)-th best free qubit.
@@ -87,6 +90,7 @@ class RoutingOptions:
     large_window_max_pairs: int = 1_000
     cell_large_window_seeds: int = 32
     cell_large_window_trials: int = 64
+    cell_screen: int = 4
     allocation_search: bool = True
     search_ranks: int = 4
     search_rounds: int = 2
@@ -101,6 +105,20 @@ class RoutingOptions:
     greedy_compare_max_qubits: int = 1_024
     crop_min_qubits: int = 1_024
     crop_pad: int = 6
+
+    @property
+    def window_key(self) -> tuple[int | None, ...]:
+        """The settings a window's routing depends on (:func:`qcpp.routing.windows.route_window`: SABRE's trials,
+        the patch radius, the seeds and the large windows' searches), so options that differ only in the
+        allocation or placement searches share routed windows in a memo.
+
+        >>> from dataclasses import replace
+        >>> replace(DEFAULT_ROUTING, search_ranks=1).window_key == DEFAULT_ROUTING.window_key
+        True
+        """
+        return (self.trials, self.window_radius, self.window_seeds, self.large_window_pairs, self.large_window_seeds,
+                self.large_window_trials, self.wide_window_seeds, self.wide_window_trials,
+                self.large_window_max_pairs)  # fmt: skip
 
     def for_cells(self) -> RoutingOptions:
         """These options with the heavy-hex cells' large-window search (:attr:`cell_large_window_seeds` seeds of

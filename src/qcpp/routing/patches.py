@@ -42,6 +42,11 @@ PATCH_INDEXES_KEPT = 8
 SABRE_PASSES_KEPT = 4096
 """``SabreSwap`` passes a context keeps before it starts over."""
 
+PARALLEL_MIN_TRIALS = 64
+"""Routings of at least this many SABRE trials run them on Qiskit's threads (the large windows' searches,
+:class:`~qcpp.routing.options.RoutingOptions`); fewer run one after another. Qiskit keeps the same trial either way
+(``tests/compiler/window_memo_test.py``), so this decides only how long a compile waits."""
+
 
 class PatchIndex:
     """Per device (its distances and the patches' radius): the device's neighbour lists, and every patch computed so
@@ -334,9 +339,9 @@ def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int) -> Any:
     once per shape (:func:`patch_sabre`), where Qiskit has it; else the pass itself. The pass first checks that the
     circuit's qubits lie in one component of the coupling map (a patch is grown until they do,
     :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window. Both
-    give the same routing. The trials run one after another (``run_in_parallel=False``): Qiskit keeps the
-    trial of fewest SWAPs, the first of them on ties, either way, and on a window of a few dozen gates starting
-    threads costs more CPU than it saves."""
+    give the same routing. The trials run one after another (``run_in_parallel=False``) unless there are at least
+    :data:`PARALLEL_MIN_TRIALS`: Qiskit keeps the trial of fewest SWAPs, the first of them on ties, either way, and
+    on a window of a few dozen gates starting threads costs more CPU than it saves."""
     sabre = shape.sabre
     sabre.seed, sabre.trials = seed, trials
     if shape.call is None:  # pragma: no cover - another Qiskit: the pass itself
@@ -346,7 +351,7 @@ def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int) -> Any:
 
     target, heuristic, layout = shape.call
     try:
-        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed, False)
+        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed, trials >= PARALLEL_MIN_TRIALS)
     except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
         out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed)
     return out

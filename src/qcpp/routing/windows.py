@@ -190,7 +190,7 @@ def _memo_window(
     else:
         where = pos.where
         physical = tuple((where[a], where[b]) for a, b in pairs)
-    settings = (seed, options)
+    settings = (seed, options.window_key)
     lattice = index.lattice
     key: tuple = ("window", index.token, physical, settings)
     shift = None
