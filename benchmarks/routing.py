@@ -1,7 +1,7 @@
 """Routed two-qubit gates: ours vs Qiskit O3/SABRE on the same coupling map, in the same run.
 
 Run: ``python benchmarks/routing.py [--quick] [--family grid|heavy-hex]`` (``--quick``: 3x3/1, 4x4/2 and the
-obstacle scenarios only; ``--family``: that device family's rows only; ``--scenario LABEL``: the rows whose
+obstacle scenarios but the 5x5 one; ``--family``: that device family's rows only; ``--scenario LABEL``: the rows whose
 scenario label starts with LABEL, e.g. ``--scenario 4x4/2``);
 ``python benchmarks/routing.py --arrangements``: the medial layout's robot arrangements (``tile``, ``interleave``)
 side by side on the multi-robot defaults, routed CX per part (phase separator, mixer) against the part's
@@ -34,6 +34,7 @@ from __future__ import annotations
 import sys
 import time
 
+from qcpp.api.scenarios import grid_scenario
 from qcpp.estimators.counts import count_gates
 from qcpp.hardware.device import Device, get_device
 from qcpp.ir.circuit import Circuit
@@ -67,7 +68,11 @@ def scenarios(quick: bool) -> list[tuple[str, Scenario]]:
     out += [
         ("obstacles_hard_4x4", load_scenario("examples/obstacles_hard_4x4.toml")),
         ("3x4 obstacle, interior", scenario_from_dict(OBSTACLE)),
+        ("4x4/2, hard obstacle", grid_scenario(4, 4, robots=2, obstacles=[(1, 2)], hard_obstacles=True)),
     ]
+    if not quick:
+        out.append(("5x5/2, 2 hard obstacles", grid_scenario(5, 5, robots=2, obstacles=[(1, 3), (2, 2)],
+                                                             hard_obstacles=True)))  # fmt: skip
     return out
 
 
