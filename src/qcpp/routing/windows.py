@@ -11,10 +11,10 @@ balance arithmetic) try several seeds and keep the whole window's cheapest
 
 Searches route the same windows many times (the ancilla allocation's candidates, the heavy-hex cells' plan
 variants, the relays' comparison), so a routed window is memoised in the run's
-:class:`~qcpp.routing.context.RoutingContext` on its physical pairs, its seed and the
-:class:`~qcpp.routing.options.RoutingOptions` (on a heavy-hex lattice up to the lattice's translations, where the
-qubits around the window are the same: :class:`~qcpp.routing.patches.Lattice`), with the patches its routing saw,
-replayed into the context's open watches on a hit.
+:class:`~qcpp.routing.context.RoutingContext` on its physical pairs, its seed and the settings its routing reads
+(:attr:`~qcpp.routing.options.RoutingOptions.window_key`; on a heavy-hex lattice up to the lattice's translations,
+where the qubits around the window are the same: :class:`~qcpp.routing.patches.Lattice`), with the patches its
+routing saw, replayed into the context's open watches on a hit.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -154,7 +154,7 @@ def route_window(
 
     Returns:
         The ops. They depend only on where the pairs' qubits are (the physical pairs), the device, ``seed`` and
-        ``options``, so they are memoised on those (module docs).
+        ``options.window_key``, so they are memoised on those (module docs).
     """
     context = RoutingContext() if context is None else context
     entry, by = _memo_window(context, pairs, pos, device, dist, seed, options)
