@@ -100,15 +100,21 @@ def test_relabelled_plans_are_the_relabelled_programs_own_plans(shape: tuple[int
     assert known
 
 
-@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((2, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "2x3/2"])
-def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape: tuple[int, int, int]) -> None:
+def _on_cells(shape: tuple[int, int, int]) -> tuple:
+    """The default scenario of ``shape``, its lowered circuit (p = 1, bound), the smallest heavy-hex lattice that
+    holds its cell layout, the layout's homes and the lattice's distances."""
     s = default_scenario(*shape)
     circuit = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND).circuit
     dev = hex_device(s, "heavy-hex")
     assert dev is not None
     homes = hex_placement(s, dev)
     assert homes is not None
-    dist = distances(dev)
+    return s, circuit, dev, homes, distances(dev)
+
+
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((2, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "2x3/2"])
+def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape: tuple[int, int, int]) -> None:
+    s, circuit, dev, homes, dist = _on_cells(shape)
     planned = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND)  # a fresh context: every choice made here
     assert [sec.name for sec in planned.sections] == [sec.name for sec in circuit.sections]
     changed = 0
@@ -131,13 +137,7 @@ def test_the_screen_only_narrows_the_variants_searched(shape: tuple[int, int, in
     """``cell_screen`` at least the number of variants searches every variant, as ``cell_screen=0`` does; the
     default screen routes fewer windows and keeps the default plan among them (the test above: no changed
     window routes to more)."""
-    s = default_scenario(*shape)
-    circuit = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND).circuit
-    dev = hex_device(s, "heavy-hex")
-    assert dev is not None
-    homes = hex_placement(s, dev)
-    assert homes is not None
-    dist = distances(dev)
+    s, circuit, dev, homes, dist = _on_cells(shape)
 
     def planned(screen: int) -> tuple[Circuit, int]:
         context = RoutingContext()
