@@ -187,6 +187,26 @@ def test_mirror_length_examples(pairs: list[tuple[int, int]]) -> None:
 
 
 @pytest.mark.parametrize(
+    "s",
+    [default_scenario(3, 4, 2),
+     scenario_from_dict({"grid": {"rows": 4, "cols": 4, "obstacles": [[1, 2]]}, "objective": {"obstacles": "hard"},
+                         "robots": [{"start": [0, 0], "goal": [3, 3]}, {"start": [0, 3], "goal": [3, 0]}]})],
+    ids=["3x4/2", "4x4/2-hard-obstacle"],
+)  # fmt: skip
+def test_the_balance_window_gets_the_large_window_search(s: Scenario) -> None:
+    """The balance arithmetic's window (the largest of a two-robot circuit on the medial grid) has a compute of at
+    least ``large_window_pairs`` gates also where a hard obstacle or a small grid shrinks it, so it is routed with
+    the several seeds and the wider search (``RoutingOptions.large_window_pairs``)."""
+    from qcpp.routing.options import DEFAULT_ROUTING
+
+    result = compile_for_device(s, 1, "grid", lowered=True, bindings={"gamma_0": 0.3, "beta_0": 0.7})
+    assert result.layout_method == "medial"
+    largest = max(result.logical.sections, key=lambda sec: sum(len(g[1]) == 2 for g in sec.gates))
+    pairs = [(g[1][0], g[1][1]) for g in largest.gates if len(g[1]) == 2]
+    assert mirror_length(pairs) >= DEFAULT_ROUTING.large_window_pairs
+
+
+@pytest.mark.parametrize(
     ("s", "device"),
     [(default_scenario(2, 3, 1), "grid:3x5"), (default_scenario(2, 2, 2), "grid:3x6")],
     ids=["2x3/1", "2x2/2"],
