@@ -37,7 +37,8 @@ class RoutingOptions:
             (more if that patch is not connected): its routed cost then depends only on its neighbourhood.
         window_seeds: SABRE seeds tried per part of a window (the fewest SWAPs wins).
         large_window_pairs: Windows whose compute has at least this many two-qubit gates (the balance arithmetic's
-            one window; a hard obstacle or a small grid leaves it 100-200 compute gates) try :attr:`large_window_seeds` seeds (and, up to :attr:`large_window_max_pairs`, also
+            one window; a hard obstacle or a small grid leaves it 100-200 compute gates) try
+            :attr:`large_window_seeds` seeds (and, up to :attr:`large_window_max_pairs`, also
             :attr:`wide_window_seeds` seeds of :attr:`wide_window_trials` trials); the try whose whole window
             (compute, register phase, uncompute) routes to the fewest CX wins, the first on ties: SABRE picks the
             fewest SWAPs for the compute alone, but where the compute leaves the register bits decides what the
