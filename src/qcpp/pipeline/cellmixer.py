@@ -263,16 +263,16 @@ def cell_mixers(
             lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
 
-        lowered: dict[MixerPlan, Section] = {gadget.plan: sections[i]}
+        emitted: dict[MixerPlan, Section] = {gadget.plan: sections[i]}  # the screen and the search share them
         costs: dict[tuple[MixerPlan, bool], int] = {}  # the operand exchanges come back to plans already scored
 
-        def cost(plan: MixerPlan, search: bool = True, lowered: dict[MixerPlan, Section] = lowered,
+        def cost(plan: MixerPlan, search: bool = True, emitted: dict[MixerPlan, Section] = emitted,
                  costs: dict[tuple[MixerPlan, bool], int] = costs) -> int:  # fmt: skip
             if (plan, search) not in costs:
-                if plan not in lowered:
-                    lowered[plan] = variant(plan)
+                if plan not in emitted:
+                    emitted[plan] = variant(plan)
                 options = routing if search else screen_routing
-                costs[plan, search] = _window_cx(lowered[plan], homes, device, dist, options, context)
+                costs[plan, search] = _window_cx(emitted[plan], homes, device, dist, options, context)
             return costs[plan, search]
 
         key = (_class_key(gadget, homes, coords, occupied), routing)
@@ -293,5 +293,5 @@ def cell_mixers(
                         best, chosen, improved = c, swapped, True
             context.cell_choices[key] = chosen
         if chosen != gadget.plan:
-            sections[i] = lowered[chosen] if chosen in lowered else variant(chosen)
+            sections[i] = emitted[chosen] if chosen in emitted else variant(chosen)
     return Circuit(circuit.registers, sections)
