@@ -30,42 +30,48 @@ COORDS = heavy_hex_coordinates(13)
 AT = {c: i for i, c in enumerate(COORDS)}
 
 
-def _routed(pairs: list[tuple[int, int]], context: RoutingContext) -> tuple[list, set[int], int]:
+def _routed(
+    pairs: list[tuple[int, int]], context: RoutingContext, commuting: bool = False
+) -> tuple[list, set[int], int]:
     """The window of physical ``pairs`` routed from home: its ops, the patches it saw, its whole-component parts."""
     with context.watching() as watch:
-        ops = route_window(pairs, Positions.identity(DEVICE.num_qubits), DEVICE, DIST, 0, DEFAULT_ROUTING, context)
+        pos = Positions.identity(DEVICE.num_qubits)
+        ops = route_window(pairs, pos, DEVICE, DIST, 0, DEFAULT_ROUTING, context, commuting)
     return ops, watch.qubits, watch.whole_component
 
 
 @st.composite
-def translated_windows(draw: st.DrawFn) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
-    """A window (a compute and its mirror, qubits near one another) and the same window moved by a multiple of
-    four in both coordinates."""
+def translated_windows(draw: st.DrawFn) -> tuple[list[tuple[int, int]], list[tuple[int, int]], bool]:
+    """A window (a compute and its mirror, qubits near one another, with or without a commuting middle between
+    them: pairs of equal pairs, :func:`qcpp.routing.commuting.commuting_blocks`), the same window moved by a
+    multiple of four in both coordinates, and whether it has the middle."""
     centre = draw(st.integers(0, DEVICE.num_qubits - 1))
     near = [q for q in range(DEVICE.num_qubits) if DIST[centre, q] <= draw(st.integers(1, 4))]
     n = min(len(near), draw(st.integers(2, 6)))
     qubits = draw(st.permutations(near))[:n]
     k = draw(st.integers(1, 10))
     pairs = [tuple(draw(st.permutations(qubits))[:2]) for _ in range(k)]
-    pairs += pairs[::-1]
+    commuting = draw(st.booleans())
+    blocks = [tuple(draw(st.permutations(qubits))[:2]) for _ in range(draw(st.integers(1, 12)) if commuting else 0)]
+    pairs += [pr for pr in blocks for _ in range(2)] + pairs[::-1]
     dy, dx = draw(st.sampled_from([(dy, dx) for dy in (-8, -4, 0, 4, 8) for dx in (-8, -4, 0, 4, 8) if dy or dx]))
     moved = {q: AT.get((COORDS[q][0] + dy, COORDS[q][1] + dx)) for q in qubits}
     if any(m is None for m in moved.values()):
         dy = dx = 0  # off the lattice: the window itself
         moved = {q: q for q in qubits}
-    return pairs, [(moved[a], moved[b]) for a, b in pairs]  # type: ignore[misc]
+    return pairs, [(moved[a], moved[b]) for a, b in pairs], commuting  # type: ignore[misc]
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(translated_windows())
 def test_a_window_routed_after_its_translation_routes_as_from_a_cold_memo(
-    windows: tuple[list[tuple[int, int]], list[tuple[int, int]]],
+    windows: tuple[list[tuple[int, int]], list[tuple[int, int]], bool],
 ) -> None:
-    pairs, moved = windows
-    cold = _routed(moved, RoutingContext())
+    pairs, moved, commuting = windows
+    cold = _routed(moved, RoutingContext(), commuting)
     warm = RoutingContext()
-    _routed(pairs, warm)
-    assert _routed(moved, warm) == cold
+    _routed(pairs, warm, commuting)
+    assert _routed(moved, warm, commuting) == cold
 
 
 def test_an_interior_window_is_answered_by_its_translation() -> None:

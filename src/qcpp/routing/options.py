@@ -50,6 +50,10 @@ class RoutingOptions:
         wide_window_trials: SABRE's trials per routing of the wider search (at least :attr:`trials`).
         large_window_max_pairs: Windows whose compute has more two-qubit gates than this get no wider search (its
             time grows with the window's size).
+        commuting_phases: A window whose middle is a run of commuting blocks (the balance arithmetic's register
+            phase, an Ising phase: :func:`qcpp.routing.commuting.commuting_blocks`) also routes that middle in any
+            order (:func:`qcpp.routing.commuting.route_blocks`); per try, whichever middle gives the whole window
+            fewer CX is kept, SABRE's on ties, so a window never routes to more CX than without it.
         cell_large_window_seeds: :attr:`large_window_seeds` on the heavy-hex cells (:meth:`for_cells`).
         cell_large_window_trials: :attr:`large_window_trials` on the heavy-hex cells.
         cell_screen: The heavy-hex cells' plan choice (:func:`qcpp.pipeline.cellmixer.cell_mixers`) runs the
@@ -89,6 +93,7 @@ class RoutingOptions:
     wide_window_seeds: int = 16
     wide_window_trials: int = 128
     large_window_max_pairs: int = 1_000
+    commuting_phases: bool = True
     cell_large_window_seeds: int = 32
     cell_large_window_trials: int = 64
     cell_screen: int = 4

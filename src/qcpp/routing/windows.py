@@ -7,7 +7,9 @@ uncompute replays the compute's routed ops backwards. The result has ``initial_l
 section's routed cost depends only on its gates and its neighbourhood on the device (the routed cost of a gadget
 kind is fixed where the layout is translation-invariant: ``tests/compiler/medial_test.py``). Large windows (the
 balance arithmetic) try several seeds and keep the whole window's cheapest
-(:attr:`~qcpp.routing.options.RoutingOptions.large_window_pairs`).
+(:attr:`~qcpp.routing.options.RoutingOptions.large_window_pairs`). A middle of commuting blocks (the register
+phase, an Ising phase: :mod:`qcpp.routing.commuting`) is also routed in any order, and the cheaper middle kept;
+:func:`route_windows` then writes the section's blocks in the order they ran.
 
 Searches route the same windows many times (the ancilla allocation's candidates, the heavy-hex cells' plan
 variants, the relays' comparison), so a routed window is memoised in the run's
@@ -28,18 +30,20 @@ Example:
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Sequence
 from typing import Any
 
 from qcpp.hardware.device import Device
-from qcpp.ir.circuit import Circuit
+from qcpp.ir.circuit import Circuit, Section
+from qcpp.routing.commuting import commuting_blocks, graph_distances, route_blocks
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.patches import Coord, indexed_patch, patch_index, sabre_local
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.sabre import assemble, checked_inputs, window_cx
 
-__all__ = ["Positions", "mirror_length", "route_window", "route_window_cx", "route_windows"]
+__all__ = ["Positions", "middle_order", "mirror_length", "route_window", "route_window_cx", "route_windows"]
 
 
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
@@ -136,7 +140,7 @@ def _play(
 
 def route_window(
     pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int = 0,
-    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None, commuting: bool = False,
 ) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
     """One window's routed ops (``("cx", (p, q))``, ``("swap", (p, q))``), leaving every qubit where it was: the
     compute (the first :func:`mirror_length` pairs) is routed by SABRE, then the middle, whose SWAPs are undone
@@ -151,13 +155,16 @@ def route_window(
         seed: SABRE's first seed.
         options: The routing settings (trials, patch radius, the large windows' search).
         context: The run's memos and watches (default: a fresh one).
+        commuting: Whether the middle is a run of commuting blocks (:func:`qcpp.routing.commuting.commuting_blocks`
+            of the window's gates after its compute): its blocks may then run in another order
+            (:attr:`~qcpp.routing.options.RoutingOptions.commuting_phases`; :func:`middle_order` reads which).
 
     Returns:
-        The ops. They depend only on where the pairs' qubits are (the physical pairs), the device, ``seed`` and
-        ``options.window_key``, so they are memoised on those (module docs).
+        The ops. They depend only on where the pairs' qubits are (the physical pairs), the device, ``seed``,
+        ``commuting`` and ``options.window_key``, so they are memoised on those (module docs).
     """
     context = RoutingContext() if context is None else context
-    entry, by = _memo_window(context, pairs, pos, device, dist, seed, options)
+    entry, by = _memo_window(context, pairs, pos, device, dist, seed, options, commuting)
     if by is None:
         return list(entry[0])
     moved = patch_index(context, device, dist, options.window_radius).lattice.moved  # type: ignore[union-attr]
@@ -166,23 +173,23 @@ def route_window(
 
 def route_window_cx(
     pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any, seed: int = 0,
-    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING, context: RoutingContext | None = None, commuting: bool = False,
 ) -> int:  # fmt: skip
     """``window_cx(route_window(...))``, memoised with the window (searches ask for the count only); ``pos``
     ``None``: every qubit on the physical qubit of its number (``pairs`` are physical)."""
     context = RoutingContext() if context is None else context
-    return _memo_window(context, pairs, pos, device, dist, seed, options)[0][1]  # type: ignore[no-any-return]
+    return _memo_window(context, pairs, pos, device, dist, seed, options, commuting)[0][1]  # type: ignore[no-any-return]
 
 
 def _memo_window(
     context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions | None, device: Device, dist: Any,
-    seed: int, options: RoutingOptions,
+    seed: int, options: RoutingOptions, commuting: bool = False,
 ) -> tuple[tuple[Any, ...], Coord | None]:  # fmt: skip
     """:func:`route_window`'s memo entry ``(ops, window_cx, patch qubits, whole-component parts, ...)`` and the
     lattice translation that takes its qubits to this window's (``None``: none needed)."""
     if device.is_all_to_all:
         pos = Positions.identity(device.num_qubits) if pos is None else pos
-        ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options)
+        ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options, commuting)
         return (tuple(ops), cx_, frozenset(), 0), None
     index = patch_index(context, device, dist, options.window_radius)
     if pos is None:
@@ -190,7 +197,7 @@ def _memo_window(
     else:
         where = pos.where
         physical = tuple((where[a], where[b]) for a, b in pairs)
-    settings = (seed, options.window_key)
+    settings = (seed, options.window_key, commuting and options.commuting_phases)
     lattice = index.lattice
     key: tuple = ("window", index.token, physical, settings)
     shift = None
@@ -211,7 +218,7 @@ def _memo_window(
         context.centres.append(centres)
         try:
             with context.watching() as watch:
-                ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options)
+                ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options, commuting)
         finally:
             del context.centres[next(i for i, c in enumerate(context.centres) if c is centres)]
         if len(context.windows) >= context.window_limit:
@@ -232,7 +239,7 @@ def _memo_window(
 
 def _route_window(
     context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any, seed: int,
-    options: RoutingOptions,
+    options: RoutingOptions, commuting: bool = False,
 ) -> tuple[list[tuple[str, tuple[int, int]]], int]:  # fmt: skip
     """:func:`route_window` without its memo, and the ops' :func:`~qcpp.routing.sabre.window_cx`."""
     m = mirror_length(pairs)
@@ -245,28 +252,94 @@ def _route_window(
     best: list[tuple[str, tuple[int, int]]] | None = None
     best_cx = 0
     for s, t in tries:  # each try returns every qubit home, so ``pos`` is unchanged between tries
-        ops = _window_ops(context, pairs, m, pos, device, dist, s, t, options)
-        cx_ = window_cx(ops)
-        if best is None or cx_ < best_cx:
-            best, best_cx = ops, cx_
+        for ops in _window_ops(context, pairs, m, pos, device, dist, s, t, options, commuting):
+            cx_ = window_cx(ops)
+            if best is None or cx_ < best_cx:
+                best, best_cx = ops, cx_
     assert best is not None
     return best, best_cx
 
 
 def _window_ops(
     context: RoutingContext, pairs: list[tuple[int, int]], m: int, pos: Positions, device: Device, dist: Any,
-    seed: int, trials: int | None, options: RoutingOptions,
-) -> list[tuple[str, tuple[int, int]]]:  # fmt: skip
-    """:func:`route_window` with one seed (``m``: the compute's length)."""
+    seed: int, trials: int | None, options: RoutingOptions, commuting: bool = False,
+) -> list[list[tuple[str, tuple[int, int]]]]:  # fmt: skip
+    """:func:`route_window` with one seed (``m``: the compute's length): the window's ops with SABRE's middle and,
+    if the middle is a run of commuting blocks, with :func:`~qcpp.routing.commuting.route_blocks`'s."""
     n = len(pairs)
+    middle_pairs = pairs[m : n - m]
     compute = _route_part(context, pairs[:m], pos, device, dist, seed, trials, options)
     ops = _play(compute, pairs, pos)
-    middle = _route_part(context, pairs[m : n - m], pos, device, dist, seed, trials, options)
-    ops += _play(middle, pairs[m : n - m], pos)
-    ops += _play([ev for ev in reversed(middle) if ev[0] == "swap"], pairs, pos)
+    middles = [_route_part(context, middle_pairs, pos, device, dist, seed, trials, options)]
+    paired = len(middle_pairs) % 2 == 0 and middle_pairs[::2] == middle_pairs[1::2]  # blocks: two equal cx each
+    if commuting and options.commuting_phases and middle_pairs and paired and not device.is_all_to_all:
+        middles.append(_route_blocks(context, middle_pairs, pos, device, dist, options))
     mirrored = pairs[::-1]  # the uncompute's k-th pair from the end is mirrored[k]
-    ops += _play(list(reversed(compute)), mirrored, pos)
-    return ops
+    out = []
+    for middle in middles:
+        window = ops + _play(middle, middle_pairs, pos)
+        window += _play([ev for ev in reversed(middle) if ev[0] == "swap"], pairs, pos)
+        out.append(window)
+    uncompute = _play(list(reversed(compute)), mirrored, pos)
+    return [window + uncompute for window in out]
+
+
+def _route_blocks(
+    context: RoutingContext, pairs: list[tuple[int, int]], pos: Positions, device: Device, dist: Any,
+    options: RoutingOptions,
+) -> list[tuple]:  # fmt: skip
+    """:func:`~qcpp.routing.commuting.route_blocks` of a commuting middle (``pairs``: its blocks' ``cx``, two per
+    block) on the patch SABRE routes it on (so the route depends only on that patch, as SABRE's does), as
+    :func:`_route_part`'s events."""
+    where = pos.where
+    patch, coupling, local = indexed_patch(context, {where[q] for pr in pairs for q in pr}, device, dist,
+                                           options.window_radius)  # fmt: skip
+    key = ("patch graph", coupling, len(patch))
+    graph = context.windows.get(key)
+    if graph is None:
+        neighbours: list[list[int]] = [[] for _ in patch]
+        for a, b in coupling:
+            neighbours[a].append(b)
+            neighbours[b].append(a)
+        graph = context.windows[key] = (neighbours, graph_distances(neighbours))
+    blocks = [(local[where[a]], local[where[b]]) for a, b in pairs[::2]]
+    events = route_blocks(blocks, graph[0], graph[1])
+    return [("swap", (patch[ev[1][0]], patch[ev[1][1]])) if ev[0] == "swap" else ev for ev in events]
+
+
+def middle_order(
+    ops: Sequence[tuple[str, tuple[int, int]]], pairs: Sequence[tuple[int, int]], pos: Positions
+) -> list[int]:
+    """The order a window's routed ``ops`` (from ``pos``) run its commuting middle's blocks in: the blocks (two
+    ``cx`` each, after the compute's :func:`mirror_length` pairs of ``pairs``) as indices into the middle, in the
+    order their first ``cx`` runs; blocks on the same two qubits keep their relative order.
+
+    >>> pos = Positions((0, 1, 2), 3)
+    >>> middle_order([("cx", (1, 2)), ("cx", (1, 2)), ("cx", (0, 1)), ("cx", (0, 1))], [(0, 1)] * 2 + [(1, 2)] * 2, pos)
+    [1, 0]
+    """
+    n = len(pairs)
+    m = mirror_length(pairs)
+    blocks: dict[frozenset[int], deque[int]] = {}
+    for j, pair in enumerate(pairs[m : n - m : 2]):
+        blocks.setdefault(frozenset(pair), deque()).append(j)
+    who = dict(enumerate(pos.who))
+    order: list[int] = []
+    open_: dict[frozenset[int], int] = {}
+    k = 0
+    for name, (p, q) in ops:
+        if name == "swap":
+            who[p], who[q] = who[q], who[p]
+            continue
+        if m <= k < n - m:
+            key = frozenset((who[p], who[q]))
+            if key in open_:
+                del open_[key]
+            else:
+                open_[key] = blocks[key].popleft()
+                order.append(open_[key])
+        k += 1
+    return order
 
 
 def route_windows(
@@ -308,12 +381,41 @@ def route_windows(
     owners: list[str] = []
     op_window: list[int] = []
     gate_window: list[int] = []
-    for w, sec in enumerate(circuit.sections):
+    sections = list(circuit.sections)
+    for w, sec in enumerate(sections):
         pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
-        window = route_window(pairs, pos, device, dist, seed, options, context)  # type: ignore[arg-type]
+        blocks = commuting_blocks(sec.gates, mirror_length(pairs)) if options.commuting_phases else None
+        window = route_window(pairs, pos, device, dist, seed, options, context, blocks is not None)  # type: ignore[arg-type]
+        if blocks is not None:
+            reordered = _reordered(sec, blocks, middle_order(window, pairs, pos))  # type: ignore[arg-type]
+            if reordered is not None:
+                sections[w] = reordered
         ops += window
         owners += [sec.name] * len(window)
         op_window += [w] * len(window)
         gate_window += [w] * len(sec.gates)
+    if sections != list(circuit.sections):
+        gates = [g for sec in sections for g in sec.gates]
     return assemble(gates, section_of, home, device.num_qubits, ops, device, measured_, owners,
                     (gate_window, op_window))  # fmt: skip
+
+
+def _reordered(section: Section, blocks: Sequence[tuple[int, int]], order: Sequence[int]) -> Section | None:
+    """``section`` with its commuting middle's blocks (gate indices, :func:`~qcpp.routing.commuting.commuting_blocks`)
+    in ``order``, each with the diagonal one-qubit gates between it and the block before it (the first block's stay
+    in place); ``None`` where every qubit meets its blocks in the same order as written (then the routed gates
+    are the same)."""
+    pairs = [frozenset(section.gates[i][1]) for i, _ in blocks]
+    per_qubit: dict[int, list[int]] = {}
+    for j in range(len(blocks)):
+        for q in pairs[j]:
+            per_qubit.setdefault(q, []).append(j)
+    rank = {j: r for r, j in enumerate(order)}
+    if all(rank[a] < rank[b] for js in per_qubit.values() for a, b in zip(js, js[1:])):
+        return None
+    gates = section.gates
+    start, end = blocks[0][0], blocks[-1][1] + 1
+    units = [gates[start : blocks[0][1] + 1]] + [gates[blocks[j - 1][1] + 1 : blocks[j][1] + 1]
+                                                  for j in range(1, len(blocks))]  # fmt: skip
+    middle = [g for j in order for g in units[j]]
+    return Section(section.name, (*gates[:start], *middle, *gates[end:]))
