@@ -402,9 +402,9 @@ def route_windows(
 
 def _reordered(section: Section, blocks: Sequence[tuple[int, int]], order: Sequence[int]) -> Section | None:
     """``section`` with its commuting middle's blocks (gate indices, :func:`~qcpp.routing.commuting.commuting_blocks`)
-    in ``order``, each with the diagonal one-qubit gates between it and the block before it (the first block's stay
-    in place); ``None`` where every qubit meets its blocks in the same order as written (then the routed gates
-    are the same)."""
+    in ``order``, each block with the diagonal one-qubit gates between it and the block written before it (the gates
+    before the first block stay where they are); ``None`` where every qubit meets its blocks in the order written
+    (the routed circuit is then the same without reordering)."""
     pairs = [frozenset(section.gates[i][1]) for i, _ in blocks]
     per_qubit: dict[int, list[int]] = {}
     for j in range(len(blocks)):
