@@ -7,12 +7,15 @@ with the unrouted circuit on every input whose ancillas and free qubits are |0>.
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate, cx, rz
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
+from qcpp.routing.options import DEFAULT_ROUTING
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.simulate.equivalence import check_equivalence
 
@@ -41,9 +44,9 @@ def aligned(routed: RoutedCircuit, n: int) -> Circuit:
     return Circuit([("data", n), ("free", big - n)], [Section("routed", gates)])
 
 
-def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = False) -> str:
+def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = False, layout_method: str = "auto") -> str:
     s = default_scenario(*scenario_args)
-    r = compile_for_device(s, 1, device, lowered=True, bindings=BIND)
+    r = compile_for_device(s, 1, device, lowered=True, bindings=BIND, layout_method=layout_method)
     n = r.logical.num_qubits
     b = aligned(r.routed, n)
     a_gates = list(r.logical.gates)
@@ -62,3 +65,18 @@ def test_qcec_proves_routed_equal_to_unrouted(device: str) -> None:
 @pytest.mark.slow
 def test_qcec_catches_a_wrong_circuit() -> None:
     assert _check((3, 3, 1), "grid:6x6", broken=True) == "not_equivalent"
+
+
+
+@pytest.mark.slow
+def test_qcec_proves_a_reordered_register_phase_equal_to_the_written_one() -> None:
+    """Two robots on the medial grid: the balance window's register phase routes to fewer CX in another order than
+    written (:mod:`qcpp.routing.commuting`), and the routed circuit is still the unrouted one."""
+    plain = dataclasses.replace(DEFAULT_ROUTING, commuting_phases=False)
+    counts = [
+        compile_for_device(default_scenario(2, 3, 2), 1, "grid", lowered=True, bindings=BIND, layout_method="medial",
+                           routing=routing).routed.circuit.count_ops()["cx"]
+        for routing in (DEFAULT_ROUTING, plain)
+    ]  # fmt: skip
+    assert counts[0] < counts[1]
+    assert _check((2, 3, 2), "grid", layout_method="medial") == "equivalent"
