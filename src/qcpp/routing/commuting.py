@@ -156,6 +156,7 @@ class _Blocks:
         return [j for j in candidates if j in self.left and dist[at[pairs[j][0]]][at[pairs[j][1]]] == 1]
 
     def run(self, j: int) -> None:
+        """Block ``j`` has run: it leaves its qubits' partners and their summed distances."""
         a, b = self.pairs[j]
         self.left.discard(j)
         for q, o in ((a, b), (b, a)):
