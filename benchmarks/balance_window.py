@@ -30,10 +30,9 @@ from dataclasses import replace
 from qcpp.hardware.device import distances
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
-from qcpp.routing.commuting import commuting_blocks
 from qcpp.routing.options import DEFAULT_ROUTING
 from qcpp.routing.sabre import window_cx
-from qcpp.routing.windows import Positions, mirror_length, route_window
+from qcpp.routing.windows import Positions, commuting_middle, route_window
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 SETTINGS = ((0, 128), (8, 128), (16, 16), (16, 128))
@@ -51,7 +50,7 @@ def cells() -> None:
     dist = distances(dev)
     window = max(r.logical.sections, key=lambda s: sum(1 for g in s.gates if len(g[1]) == 2))
     pairs = [g[1] for g in window.gates if len(g[1]) == 2]
-    commuting = commuting_blocks(window.gates, mirror_length(pairs)) is not None  # type: ignore[arg-type]
+    commuting = commuting_middle(window.gates) is not None
     print(f"4x4/2 on {dev.name}: the balance window ({len(pairs):,} two-qubit gates all-to-all)\n")
     print("| seeds | trials | balance cx | s |")
     print("|---:|---:|---:|---:|")
@@ -81,7 +80,7 @@ def main(argv: list[str]) -> None:
             dev = r.routed.device
             window = max(r.logical.sections, key=lambda s: sum(1 for g in s.gates if len(g[1]) == 2))
             pairs = [g[1] for g in window.gates if len(g[1]) == 2]
-            commuting = commuting_blocks(window.gates, mirror_length(pairs)) is not None  # type: ignore[arg-type]
+            commuting = commuting_middle(window.gates) is not None
             routed = []
             for options in (routing, replace(routing, commuting_phases=False)):
                 pos = Positions(tuple(r.routed.initial_layout), dev.num_qubits)

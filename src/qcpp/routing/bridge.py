@@ -48,11 +48,10 @@ import numpy as np
 from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
-from qcpp.routing.commuting import commuting_blocks
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.sabre import window_cx
-from qcpp.routing.windows import Positions, mirror_length, route_window
+from qcpp.routing.windows import Positions, commuting_middle, route_window
 
 __all__ = ["bridge_far_phases", "copy_chain", "has_rzz"]
 
@@ -303,7 +302,7 @@ def _routed_twoq(
     """Two-qubit gates of the section's window (physical qubits) routed from home, as
     :func:`~qcpp.routing.windows.route_windows` routes it."""
     pairs = [g[1] for g in gates if len(g[1]) == 2]
-    commuting = options.commuting_phases and commuting_blocks(gates, mirror_length(pairs)) is not None  # type: ignore[arg-type]
+    commuting = options.commuting_phases and commuting_middle(gates) is not None
     ops = route_window(pairs, Positions.identity(device.num_qubits), device, dist, 0, options, context,  # type: ignore[arg-type]
                        commuting)  # fmt: skip
     return window_cx(ops)

@@ -59,7 +59,8 @@ def commuting_blocks(gates: Sequence[Gate], compute: int) -> tuple[tuple[int, in
 
 
 def _shortest_step(neighbours: Sequence[Sequence[int]], source: int, target: int) -> int:
-    """The neighbour of ``source`` first on a shortest path to ``target`` (the lowest-numbered of them)."""
+    """A neighbour of ``source`` on a shortest path to ``target``: the one through which a breadth-first search from
+    ``target`` (neighbours in the graph's order) first reaches ``source``."""
     back = {target: target}
     todo = deque([target])
     while todo:  # breadth first from the target, so a neighbour's label says how far it is
@@ -208,22 +209,21 @@ class _Blocks:
 
 
 def graph_distances(neighbours: Sequence[Sequence[int]]) -> list[list[int]]:
-    """All-pairs distances of a graph by breadth-first search (``len(neighbours)`` between components).
+    """All-pairs distances of a graph (SciPy's unweighted shortest paths, as
+    :func:`qcpp.hardware.device.distances`), as lists of ints for fast indexing; ``len(neighbours)`` between
+    components.
 
     >>> graph_distances([[1], [0, 2], [1]])
     [[0, 1, 2], [1, 0, 1], [2, 1, 0]]
     """
+    import numpy as np
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import shortest_path
+
     n = len(neighbours)
-    rows = []
-    for source in range(n):
-        out = [n] * n
-        out[source] = 0
-        todo = deque([source])
-        while todo:
-            p = todo.popleft()
-            for r in neighbours[p]:
-                if out[r] == n:
-                    out[r] = out[p] + 1
-                    todo.append(r)
-        rows.append(out)
-    return rows
+    rows = [p for p in range(n) for _ in neighbours[p]]
+    cols = [r for p in range(n) for r in neighbours[p]]
+    graph = csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+    dist = shortest_path(graph, directed=False, unweighted=True)
+    dist[np.isinf(dist)] = n
+    return dist.astype(int).tolist()  # type: ignore[no-any-return]

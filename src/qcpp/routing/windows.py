@@ -36,6 +36,7 @@ from typing import Any
 
 from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
+from qcpp.ir.gates import Gate
 from qcpp.routing.commuting import commuting_blocks, graph_distances, route_blocks
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
@@ -43,7 +44,15 @@ from qcpp.routing.patches import Coord, indexed_patch, patch_index, sabre_local
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.sabre import assemble, checked_inputs, window_cx
 
-__all__ = ["Positions", "middle_order", "mirror_length", "route_window", "route_window_cx", "route_windows"]
+__all__ = [
+    "Positions",
+    "commuting_middle",
+    "middle_order",
+    "mirror_length",
+    "route_window",
+    "route_window_cx",
+    "route_windows",
+]
 
 
 def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
@@ -61,6 +70,18 @@ def mirror_length(pairs: Sequence[tuple[int, int]]) -> int:
             break
         m += 1
     return m
+
+
+def commuting_middle(gates: Sequence[Gate]) -> tuple[tuple[int, int], ...] | None:
+    """:func:`~qcpp.routing.commuting.commuting_blocks` of a window's middle, after its compute of
+    :func:`mirror_length` two-qubit gates: what :func:`route_windows` routes in any order (``None``: nothing).
+
+    >>> from qcpp.ir.gates import cx, rz
+    >>> commuting_middle([cx(0, 1), cx(1, 2), rz(0.3, 2), cx(1, 2), cx(2, 3), rz(0.2, 3), cx(2, 3), cx(0, 1)])
+    ((1, 3), (4, 6))
+    """
+    pairs = [g[1] for g in gates if len(g[1]) == 2]
+    return commuting_blocks(gates, mirror_length(pairs))  # type: ignore[arg-type]
 
 
 class Positions:
@@ -155,8 +176,8 @@ def route_window(
         seed: SABRE's first seed.
         options: The routing settings (trials, patch radius, the large windows' search).
         context: The run's memos and watches (default: a fresh one).
-        commuting: Whether the middle is a run of commuting blocks (:func:`qcpp.routing.commuting.commuting_blocks`
-            of the window's gates after its compute): its blocks may then run in another order
+        commuting: Whether the middle is a run of commuting blocks (:func:`commuting_middle` of the window's
+            gates): its blocks may then run in another order
             (:attr:`~qcpp.routing.options.RoutingOptions.commuting_phases`; :func:`middle_order` reads which).
 
     Returns:
@@ -384,7 +405,7 @@ def route_windows(
     sections = list(circuit.sections)
     for w, sec in enumerate(sections):
         pairs = [g[1] for g in sec.gates if len(g[1]) == 2]
-        blocks = commuting_blocks(sec.gates, mirror_length(pairs)) if options.commuting_phases else None
+        blocks = commuting_middle(sec.gates) if options.commuting_phases else None
         window = route_window(pairs, pos, device, dist, seed, options, context, blocks is not None)  # type: ignore[arg-type]
         if blocks is not None:
             reordered = _reordered(sec, blocks, middle_order(window, pairs, pos))  # type: ignore[arg-type]
