@@ -174,7 +174,7 @@ def test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was(scratch: P
         (("compile", EX, "--qasm", "fifo"), "cannot write fifo: no process opened the FIFO"),
         (("solve", EX, "-m", "dfs", "--plot", "missing/p.png"), "the folder missing does not exist"),
         (("estimate", "--grid", "2x2", "--plot", "missing/e.png"), "the folder missing does not exist"),
-        (("validate",), "Missing argument 'SCENARIO'"),
+        (("validate",), "give a scenario file, or the scenario inline with --grid"),
     ],
 )
 def test_error_lines_say_what_is_wrong(scratch: Path, args: tuple[str, ...], fragment: str) -> None:

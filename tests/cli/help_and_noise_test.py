@@ -190,7 +190,6 @@ SLOW_EXAMPLES = frozenset({
     "qcpp solve examples/two_robots_5x5.toml --method cpsat --json",
     "qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --plot-trace trace.png",
     "qcpp validate examples/paper_3x3.toml -p 2 --backend tensor",
-    "qcpp validate examples/two_robots_4x4.toml --backend sparse --json",
     "qcpp validate examples/paper_3x3.toml --backend qcec",
     "qcpp verify examples/two_robots_5x5.toml -p 3 --method gadgets",
 })

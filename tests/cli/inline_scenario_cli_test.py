@@ -1,5 +1,6 @@
 """Scenarios given inline (``--grid RxC --robots N --obstacle R,C --hard-obstacles``) are the scenarios of the
-equivalent files, in ``estimate``, ``compile`` and ``scenario``; ``estimate --format latex`` is a booktabs table."""
+equivalent files, in ``estimate``, ``scenario`` and every command that reads one scenario (``compile``, ``solve``,
+``simulate``, ``validate``, ``verify``, ``export``); ``estimate --format latex`` is a booktabs table."""
 
 from __future__ import annotations
 
@@ -84,6 +85,63 @@ def test_compile_inline_equals_compile_of_the_file(tmp_path: Path) -> None:
     assert inline == from_file
 
 
+THREE_BY_THREE_HARD = """
+name = "3x3, 2 robot(s), 1 obstacle(s)"
+
+[grid]
+rows = 3
+cols = 3
+obstacles = [[1, 1]]
+
+[[robots]]
+start = [0, 0]
+goal = [2, 2]
+
+[[robots]]
+start = [0, 2]
+goal = [2, 0]
+
+[objective]
+obstacles = "hard"
+"""
+INLINE_HARD = ("--grid", "3x3", "--robots", "2", "--obstacle", "1,1", "--hard-obstacles")
+
+# per command: its arguments after the scenario, and the JSON fields that differ by run (times)
+SCENARIO_COMMANDS = {
+    "solve": (("--method", "dfs", "--json"), ("seconds",)),
+    "simulate": (("-p", "1", "--json"), ("seconds",)),
+    "validate": (("--json",), ("seconds", "checks", "scenario")),
+    "verify": (("--json",), ("seconds", "checks", "scenario")),
+}
+
+
+@pytest.mark.parametrize("command", sorted(SCENARIO_COMMANDS))
+def test_every_scenario_command_reads_the_inline_flags_as_the_equivalent_file(command: str, tmp_path: Path) -> None:
+    path = tmp_path / "hard.toml"
+    path.write_text(THREE_BY_THREE_HARD)
+    assert qcpp.grid_scenario(3, 3, robots=2, obstacles=[(1, 1)], hard_obstacles=True) == load_scenario(path)
+    args, varying = SCENARIO_COMMANDS[command]
+    inline = json.loads(ok(command, *INLINE_HARD, *args))
+    from_file = json.loads(ok(command, str(path), *args))
+    if "scenario" not in varying:  # the file's path, or the flags that give the scenario again
+        assert from_file.pop("scenario") == str(path)
+        assert inline.pop("scenario") == " ".join(INLINE_HARD)
+    for key in varying:
+        inline.pop(key, None)
+        from_file.pop(key, None)
+    assert inline == from_file
+
+
+def test_export_inline_writes_the_file_of_the_equivalent_scenario(tmp_path: Path) -> None:
+    path = tmp_path / "hard.toml"
+    path.write_text(THREE_BY_THREE_HARD)
+    summaries = []
+    for name, scenario in (("inline.json", INLINE_HARD), ("file.json", (str(path),))):
+        summaries.append(json.loads(ok("export", *scenario, "-f", "qubo", "-o", str(tmp_path / name), "--json")))
+    assert (tmp_path / "inline.json").read_bytes() == (tmp_path / "file.json").read_bytes()
+    assert summaries[0]["scenario"] == " ".join(INLINE_HARD) and summaries[1]["scenario"] == str(path)
+
+
 def test_compile_inline_takes_bindings_after_bind() -> None:
     summary = json.loads(ok("compile", "--grid", "3x3", "--bind", "gamma_0=0.3", "beta_0=0.7", "--json"))
     assert summary["symbols"] == []
@@ -104,6 +162,12 @@ def test_compile_inline_takes_bindings_after_bind() -> None:
         (("estimate", "--grid", "3x3", "--obstacle", "3,0"), ("grid.obstacles[0]", "(3, 0)", "3x3 grid")),
         (("estimate", "--scenario", "examples/paper_3x3.toml", "--obstacle", "1,1"), ("--obstacle",)),
         (("scenario",), ("--grid",)),
+        *(((c,), ("give a scenario file", "--grid")) for c in ("solve", "simulate", "validate", "verify")),
+        *(((c, "--hard-obstacles"), ("--hard-obstacles", "applies with --grid only"))
+          for c in ("solve", "simulate", "validate", "verify")),
+        (("verify", "examples/paper_3x3.toml", "--grid", "3x3"), ("--grid gives the scenario",)),
+        (("solve", "--grid", "3x3", "--obstacle", "9,9"), ("grid.obstacles[0]", "(9, 9)", "3x3 grid")),
+        (("export", "-f", "qubo", "-o", "x.json"), ("give a scenario file", "--grid")),
         (("scenario", "--grid", "3x3", "-o", "x.yaml"), ("x.yaml", "unknown file type")),
     ],
 )

@@ -24,9 +24,9 @@ Example:
     >>> res = CliRunner().invoke(app, ["solve", "no/such/file.toml"])
     >>> res.exit_code, res.stderr.startswith("error: no/such/file.toml: cannot read the file")
     (2, True)
-    >>> res = CliRunner().invoke(app, ["solve", "x.toml", "--bogus"])
+    >>> res = CliRunner().invoke(app, ["solve", "x.toml", "--bogus-flag"])
     >>> res.exit_code, res.stderr
-    (2, "error: No such option: --bogus (see 'qcpp solve --help')\\n")
+    (2, "error: No such option: --bogus-flag (see 'qcpp solve --help')\\n")
 """
 
 from __future__ import annotations

@@ -34,7 +34,6 @@ import json
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
-from pathlib import Path
 from typing import Annotated, Any
 
 import typer
@@ -46,8 +45,9 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    ScenarioFileArg,
     check_inline_only,
-    inline_scenario,
+    given_scenario,
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
@@ -61,7 +61,6 @@ from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.scenario import Scenario
-from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -84,10 +83,7 @@ Files are written whole or not at all.
 @with_plan_flags
 def compile_command(
     options: PlanOptions,
-    scenario: Annotated[
-        Path | None,
-        typer.Argument(help="Scenario file (.toml or .json); or give it inline with --grid.", show_default=False),
-    ] = None,
+    scenario: ScenarioFileArg = None,
     assignments: Annotated[
         list[str] | None, typer.Argument(help="More NAME=VALUE bindings following --bind.", show_default=False)
     ] = None,
@@ -163,13 +159,11 @@ def compile_command(
     """Compile a scenario (see ``qcpp compile --help``)."""
     check_inline_only(grid, robots, obstacle, hard_obstacles)
     extra = list(assignments or [])
-    if grid is not None and scenario is not None:
-        if not (bind and "=" in str(scenario)):
-            raise ValueError(f"--grid gives the scenario: do not give the scenario file {str(scenario)!r} too")
+    if grid is not None and scenario is not None and bind and "=" in str(scenario):
         extra.insert(0, str(scenario))  # NAME=VALUE after --bind, taken for the (absent) file argument
         scenario = None
-    if grid is None and scenario is None:
-        raise ValueError("give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]")
+    if (grid is None) == (scenario is None):
+        given_scenario(scenario, grid, robots, obstacle, hard_obstacles)  # raises: names what is missing or extra
     if device is None:  # routing flags without a device are refused, not silently ignored
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
@@ -186,12 +180,8 @@ def compile_command(
         raise ValueError("--qasm - and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
-    if scenario is not None:
-        s = load_scenario(scenario, check_range=True)
-        label = scenario.name
-    else:
-        s = inline_scenario(grid, robots, obstacle, hard_obstacles)  # type: ignore[arg-type]
-        label = s.name
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
+    s, label = given.scenario, given.label
     size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:
         summary, phase_explain = _routed(

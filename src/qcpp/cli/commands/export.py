@@ -19,10 +19,16 @@ from typing import Annotated
 
 import typer
 
-from qcpp.cli.commands.plan_flags import ScenarioArg
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    ScenarioFileArg,
+    given_scenario,
+)
 from qcpp.cli.progress import Progress
 from qcpp.io.atomic import check_output, write_text_atomic
-from qcpp.problem.scenario_io import load_scenario
 from qcpp.qubo.export import EXPORT_FORMATS, export_text
 from qcpp.qubo.model import FORMS, bqm_for
 from qcpp.qubo.solve import INSTALL_HINT
@@ -33,7 +39,7 @@ HELP = """Write the scenario's cost as a QUBO, Ising model, dimod BQM or LP/MPS 
 
 Examples:
   qcpp export examples/two_robots_4x4.toml --format ising --out ising.json
-  qcpp export examples/two_robots_4x4.toml -f qubo --form paper -o qubo.json
+  qcpp export --grid 4x4 --robots 2 -f qubo --form paper -o qubo.json
   qcpp export examples/two_robots_5x5.toml --format mps --out model.mps
 
 --form per-robot adds degree penalties with visit bits (zero on feasible
@@ -42,17 +48,21 @@ paths); --form paper is exactly the paper's cost. Ising: x = (1 - Z)/2.
 
 
 def export_command(
-    scenario: ScenarioArg,
     fmt: Annotated[
         str, typer.Option("--format", "-f", help=f"Output format: {', '.join(EXPORT_FORMATS)}.", show_default=False)
     ],
     out: Annotated[str, typer.Option("--out", "-o", help="Output file ('-': standard output).", show_default=False)],
+    scenario: ScenarioFileArg = None,
     form: Annotated[str, typer.Option("--form", help=f"Model form: {' or '.join(FORMS)}.")] = "per-robot",
     penalty: Annotated[
         float | None,
         typer.Option("--penalty", help="Degree penalty P of the per-robot form.", show_default="the documented rule"),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")] = False,
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Export a scenario's QUBO (see ``qcpp export --help``)."""
     if penalty is not None:
@@ -68,8 +78,9 @@ def export_command(
         except ImportError:
             raise ValueError(f"--format bqm needs dimod: {INSTALL_HINT} (ising, qubo, lp, mps need nothing)") from None
     check_output(out)  # a bad destination fails before any work
-    s = load_scenario(scenario)
-    with Progress(f"export {fmt} of {scenario.name}", total=2) as bar:
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, check_range=False)
+    s = given.scenario
+    with Progress(f"export {fmt} of {given.label}", total=2) as bar:
         # the penalty rule's upper bound (a short SBF annealing run) and the MIP exports take seconds on big grids
         model = bqm_for(s, form, penalty)
         bar.advance()
@@ -77,7 +88,7 @@ def export_command(
         bar.advance()
     write_text_atomic(out, text)
     summary = {
-        "scenario": str(scenario),
+        "scenario": given.source,
         "out": out,
         "format": fmt,
         "form": model.form,

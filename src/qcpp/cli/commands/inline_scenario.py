@@ -1,9 +1,11 @@
 """The scenario given inline on the command line: ``--grid RxC --robots N --obstacle R,C ... --hard-obstacles``.
 
-``qcpp compile`` and ``qcpp scenario`` take these flags instead of a scenario file, and ``qcpp estimate`` takes
-``--obstacle`` and ``--hard-obstacles`` beside its ``--grid``/``--robots`` ranges; all of them build the scenario
-with :func:`qcpp.problem.presets.grid_scenario`, the builder of ``qcpp.grid_scenario``, so a scenario typed on the
-command line is the one the Python API builds from the same numbers.
+Every command that reads one scenario (``compile``, ``solve``, ``simulate``, ``validate``, ``verify``, ``export``)
+takes these flags instead of its scenario file (:func:`given_scenario`), ``qcpp scenario`` prints the file they
+stand for, and ``qcpp estimate`` takes ``--obstacle`` and ``--hard-obstacles`` beside its ``--grid``/``--robots``
+ranges; all of them build the scenario with :func:`qcpp.problem.presets.grid_scenario`, the builder of
+``qcpp.grid_scenario``, so a scenario typed on the command line is the one the Python API builds from the same
+numbers.
 
 Example:
     >>> s = inline_scenario("4x5", 2, ["1,1", "2,3"], hard=False)
@@ -19,31 +21,43 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from qcpp.errors import OptionError
+from qcpp.problem.cost_range import check_cost_range, check_phase_range
 from qcpp.problem.presets import grid_scenario
 from qcpp.problem.scenario import Scenario
+from qcpp.problem.scenario_io import load_scenario
 
 __all__ = [
+    "GivenScenario",
     "GridFlag",
     "HardObstaclesFlag",
     "ObstacleFlag",
     "RobotCountFlag",
+    "ScenarioFileArg",
     "check_inline_only",
+    "given_scenario",
     "inline_scenario",
     "parse_grid",
     "parse_obstacle",
     "parse_obstacles",
 ]
 
+ScenarioFileArg = Annotated[
+    Path | None,
+    typer.Argument(help="Scenario file (.toml or .json); or give it inline with --grid.", show_default=False),
+]
 GridFlag = Annotated[
     str | None,
     typer.Option(
         "--grid",
         help="ROWSxCOLS: give the scenario inline instead of a file (see 'qcpp scenario').",
+        metavar="RxC",
         show_default=False,
     ),
 ]
@@ -52,12 +66,15 @@ RobotCountFlag = Annotated[
     typer.Option(
         "--robots",
         help="With --grid: robots in the default placement (corners, then the other boundary nodes); default 1.",
+        metavar="N",
         show_default=False,
     ),
 ]
 ObstacleFlag = Annotated[
     list[str] | None,
-    typer.Option("--obstacle", help="ROW,COL: an obstacle node (repeat for more).", show_default=False),
+    typer.Option(
+        "--obstacle", help="ROW,COL: an obstacle node (repeat for more).", metavar="ROW,COL", show_default=False
+    ),
 ]
 HardObstaclesFlag = Annotated[
     bool,
@@ -125,3 +142,62 @@ def check_inline_only(grid: str | None, robots: object, obstacles: Sequence[str]
     for flag, given in (("--robots", robots is not None), ("--obstacle", bool(obstacles)), ("--hard-obstacles", hard)):
         if given:
             raise OptionError(flag, "applies with --grid only (no --grid given)")
+
+
+@dataclass(frozen=True)
+class GivenScenario:
+    """A command's scenario and how to name it.
+
+    Attributes:
+        scenario: The scenario.
+        label: For titles and progress lines: the file's name, or the inline scenario's name.
+        source: For JSON output (its ``scenario`` field): the file's path as given, or the inline flags that give
+            the scenario again (``--grid 4x4 --robots 2 --obstacle 1,1``).
+    """
+
+    scenario: Scenario
+    label: str
+    source: str
+
+
+def given_scenario(
+    path: Path | None, grid: str | None, robots: int | None, obstacles: Sequence[str] | None, hard: bool, *,
+    check_range: bool = True, phases: bool = False,
+) -> GivenScenario:  # fmt: skip
+    """The scenario of a command's file argument or of its inline flags (exactly one of the two).
+
+    Args:
+        path: The scenario file argument (``None``: not given).
+        grid, robots, obstacles, hard: ``--grid``, ``--robots``, ``--obstacle`` and ``--hard-obstacles``.
+        check_range: Refuse weights the solvers cannot represent exactly
+            (:func:`qcpp.problem.cost_range.check_cost_range`), for an inline scenario as for a file.
+        phases: With ``check_range``: the QAOA phases' narrower range
+            (:func:`qcpp.problem.cost_range.check_phase_range`).
+
+    Raises:
+        qcpp.errors.OptionError: inline flags without ``--grid``, a malformed ``--grid`` or ``--obstacle``.
+        ValueError: both a file and ``--grid``, or neither.
+        qcpp.problem.errors.ScenarioError: a file or inline scenario that cannot be (naming the field).
+
+    Example:
+        >>> g = given_scenario(None, "3x3", 2, ["1,1"], False)
+        >>> g.label, g.source
+        ('3x3, 2 robot(s), 1 obstacle(s)', '--grid 3x3 --robots 2 --obstacle 1,1')
+    """
+    check_inline_only(grid, robots, obstacles, hard)
+    if grid is not None and path is not None:
+        raise ValueError(f"--grid gives the scenario: do not give the scenario file {str(path)!r} too")
+    if grid is None:
+        if path is None:
+            raise ValueError(
+                "give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]"
+            )
+        return GivenScenario(load_scenario(path, check_range=check_range, phases=phases), path.name, str(path))
+    s = inline_scenario(grid, robots, obstacles, hard)
+    if check_range:
+        check_phase_range(s) if phases else check_cost_range(s)
+    rows, cols = parse_grid(grid)
+    flags = [f"--grid {rows}x{cols}", f"--robots {1 if robots is None else robots}"]
+    flags += [f"--obstacle {r},{c}" for r, c in parse_obstacles(obstacles)]
+    flags += ["--hard-obstacles"] if hard else []
+    return GivenScenario(s, s.name or f"{rows}x{cols}", " ".join(flags))

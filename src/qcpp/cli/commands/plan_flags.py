@@ -1,5 +1,6 @@
 """The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`;
-and the flags every scenario command declares alike (:data:`ScenarioArg`, :data:`LayersFlag`, ``--rule``).
+and the flags every scenario command declares alike (:data:`LayersFlag`, ``--rule``; the scenario argument and its
+inline flags: :mod:`qcpp.cli.commands.inline_scenario`).
 
 Both commands take an ``options: PlanOptions`` parameter and are decorated with :func:`with_plan_flags`, which
 puts the plan flags in its place and builds the options with :func:`plan_options`, so the two accept exactly the
@@ -19,7 +20,6 @@ from __future__ import annotations
 import functools
 import inspect
 from collections.abc import Callable
-from pathlib import Path
 from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
@@ -36,13 +36,11 @@ __all__ = [
     "PhaseFlag",
     "PhaseLayoutFlag",
     "RuleFlag",
-    "ScenarioArg",
     "TargetFlag",
     "plan_options",
     "with_plan_flags",
 ]
 
-ScenarioArg = Annotated[Path, typer.Argument(help="Scenario file (.toml or .json).", show_default=False)]
 LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule.")]
 InitialFlag = Annotated[

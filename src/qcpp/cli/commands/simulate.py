@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -23,11 +22,18 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    ScenarioFileArg,
+    given_scenario,
+)
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
 from qcpp.problem.scenario import Scenario
-from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["parse_angles", "register", "simulate_command"]
 
@@ -35,7 +41,7 @@ HELP = """Evaluate QAOA angles: expectation <C>, probability of the optimum, fea
 
 Examples:
   qcpp simulate examples/paper_3x3.toml -p 1 --angles 0.3,1.2
-  qcpp simulate examples/paper_3x3.toml -p 2 --method statevector --json
+  qcpp simulate --grid 3x3 --obstacle 1,1 -p 2 --method statevector --json
   qcpp simulate examples/two_robots_4x4.toml -p 3 --seed 4
 
 Methods: subspace = the feasible-subspace simulator; statevector = the
@@ -66,16 +72,16 @@ def parse_angles(text: str) -> list[float]:
     return out
 
 
-def _guard(s: Scenario, path: Path, p: int, method: str) -> None:
+def _guard(s: Scenario, source: str, p: int, method: str) -> None:
     """Refuse (one line, exit 2) a simulation predicted to need more memory than is available or to run for
     hours (:func:`qcpp.simulate.guards.check_simulation_size`); ``--allow-large`` lifts it."""
     from qcpp.simulate.guards import check_simulation_size
 
-    check_simulation_size(s, str(path), p=p, method=method)
+    check_simulation_size(s, source, p=p, method=method)
 
 
 def simulate_command(
-    scenario: ScenarioArg,
+    scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Simulator: subspace, statevector or tensor.")
@@ -86,6 +92,10 @@ def simulate_command(
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles (at least 0).")] = 0,
     rule: RuleFlag = "exact",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Evaluate QAOA angles (see ``qcpp simulate --help``)."""
     from qcpp.simulate.evaluate import evaluate  # scipy: imported when the command runs, not at start-up
@@ -93,15 +103,16 @@ def simulate_command(
     values = parse_angles(angles) if angles is not None else None
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
         raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
-    s = load_scenario(scenario, check_range=True, phases=True)
-    _guard(s, scenario, p, method)
-    with Progress(f"simulate {scenario.name}") as bar:
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True)
+    s = given.scenario
+    _guard(s, given.source, p, method)
+    with Progress(f"simulate {given.label}") as bar:
         bar.stage(f"simulating ({method})")
         res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
     if as_json:
-        typer.echo(json.dumps({"scenario": str(scenario), **res.as_dict(), "rule": rule}))
+        typer.echo(json.dumps({"scenario": given.source, **res.as_dict(), "rule": rule}))
         return
-    table = Table(title=f"{s.name or scenario.name}: p={p}, {method}", title_justify="left")
+    table = Table(title=f"{s.name or given.label}: p={p}, {method}", title_justify="left")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_row(escape("angles [g0, b0, ...]"), ", ".join(f"{a:.6g}" for a in res.angles))

@@ -2,7 +2,7 @@
 
 Examples::
 
-    qcpp solve examples/paper_3x3.toml --method dfs
+    qcpp solve --grid 3x3 --robots 2 --obstacle 1,1 --method dfs
     qcpp solve examples/two_robots_4x4.toml --method anneal --seed 3 --plot paths.png --plot-trace trace.png
     qcpp solve examples/two_robots_4x4.toml --method qaoa -p 6 --plot-trace trace.png
     qcpp solve examples/two_robots_5x5.toml --method cpsat --json
@@ -40,13 +40,20 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from qcpp.cli.commands.plan_flags import RuleFlag, ScenarioArg
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    ScenarioFileArg,
+    given_scenario,
+)
+from qcpp.cli.commands.plan_flags import RuleFlag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
-from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 from qcpp.simulate.objectives import GIBBS_SCALE
 
@@ -123,7 +130,7 @@ def solve_help() -> str:
     return f"""Solve a scenario ({', '.join(SOLVE_METHODS)}) and show the paths, the cost and its parts.
 
 Examples:
-  qcpp solve examples/paper_3x3.toml --method dfs
+  qcpp solve --grid 3x3 --robots 2 --obstacle 1,1 --method dfs
   qcpp solve examples/two_robots_4x4.toml -m anneal --seed 3 --plot paths.png
   qcpp solve examples/two_robots_5x5.toml --method cpsat --json
   qcpp solve examples/paper_3x3.toml --method qaoa -p 2 --plot-trace trace.png
@@ -149,13 +156,13 @@ def _dfs_paths(scenario: Scenario, description: str) -> list[list[int]]:
             ) from None
 
 
-def _qaoa_guard(scenario: Scenario, path: Path, description: str, p: int) -> None:
+def _qaoa_guard(scenario: Scenario, source: str, description: str, p: int) -> None:
     """Refuse (one line, exit 2) a QAOA training whose subspace simulator would not fit in the available memory
     (:func:`qcpp.simulate.guards.check_training_size`); ``--allow-large`` lifts it."""
     from qcpp.simulate.guards import check_training_size
 
     with Progress(description) as bar:
-        check_training_size(scenario, str(path), stage=bar.stage, p=p)
+        check_training_size(scenario, source, stage=bar.stage, p=p)
 
 
 def _cost_table(scenario: Scenario, sol: Solution) -> Table:
@@ -174,7 +181,7 @@ def _cost_table(scenario: Scenario, sol: Solution) -> Table:
 
 
 def solve_command(
-    scenario: ScenarioArg,
+    scenario: ScenarioFileArg = None,
     method: Annotated[
         str, typer.Option("--method", "-m", help="Solver (see above).")
     ] = "anneal",
@@ -225,6 +232,10 @@ def solve_command(
         typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
                      show_default="until proven"),
     ] = None,
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Solve a scenario (see ``qcpp solve --help``)."""
     qaoa_options = {"p": p, "optimizer": optimizer, "objective": objective, "maxiter": maxiter, "initial": initial,
@@ -254,12 +265,13 @@ def solve_command(
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
-    s = load_scenario(scenario, check_range=True, phases=method == "qaoa")
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=method == "qaoa")
+    s = given.scenario
     qaoa = None
     exact = None
-    description = f"{method} on {scenario.name}"
+    description = f"{method} on {given.label}"
     if method == "qaoa":
-        _qaoa_guard(s, scenario, description, p)
+        _qaoa_guard(s, given.source, description, p)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
     with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
         progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
@@ -280,14 +292,14 @@ def solve_command(
         else:
             sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
     if plot is not None:
-        plot_paths(s, sol.paths, plot, title=f"{s.name or scenario.name}: {method}, cost {sol.cost.total:g}")
+        plot_paths(s, sol.paths, plot, title=f"{s.name or given.label}: {method}, cost {sol.cost.total:g}")
     if plot_trace_file is not None:
         if not sol.trace:
             raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
         if qaoa is not None:
             # the training objective per iteration (in units of cost), drawn as a line
             plot_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
-                       title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or scenario.name}",
+                       title=f"qaoa p={p} ({optimizer}, {objective}) on {s.name or given.label}",
                        xlabel="training iteration", steps=False)
         else:
             unit = "generation" if method == "genetic" else "iteration"
@@ -297,9 +309,9 @@ def solve_command(
         if qaoa is not None:
             from qcpp.simulate.qaoa_solver import qaoa_to_dict
 
-            out = {"scenario": str(scenario), **qaoa_to_dict(s, qaoa)}
+            out = {"scenario": given.source, **qaoa_to_dict(s, qaoa)}
         else:
-            out = {"scenario": str(scenario), **solution_to_dict(s, sol, include_trace=False)}
+            out = {"scenario": given.source, **solution_to_dict(s, sol, include_trace=False)}
         if exact is not None:
             known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
             out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,

@@ -29,11 +29,18 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    ScenarioFileArg,
+    given_scenario,
+)
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
-from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "validate_command"]
 
@@ -41,7 +48,7 @@ HELP = """Run the compiled, lowered circuit and compare it with the exact subspa
 
 Examples:
   qcpp validate examples/paper_3x3.toml -p 2 --backend tensor
-  qcpp validate examples/two_robots_4x4.toml --backend sparse --json
+  qcpp validate --grid 2x3 --robots 2 --json
   qcpp validate examples/paper_3x3.toml --backend qcec
 
 Checks that the ancillas end in |0> and every feasible amplitude matches;
@@ -75,7 +82,7 @@ def _check_dask_address(text: str) -> None:
 
 
 def validate_command(
-    scenario: ScenarioArg,
+    scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
     backend: Annotated[
         str,
@@ -99,6 +106,10 @@ def validate_command(
             "(tcp://host:8786) or 'local' for a LocalCluster on this machine. Default: in-process.",
         ),
     ] = None,
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Validate a compiled circuit (see ``qcpp validate --help``)."""
     from qcpp.problem.limits import check_need, large_allowed
@@ -122,11 +133,12 @@ def validate_command(
             import qiskit  # noqa: F401
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
-    s = load_scenario(scenario, check_range=True, phases=True)
-    with Progress(f"validate {scenario.name}") as bar:
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True)
+    s = given.scenario
+    with Progress(f"validate {given.label}") as bar:
         if not large_allowed():
             bar.stage("predicting the size")
-            check_need(validate_need(s), field=str(scenario))
+            check_need(validate_need(s), field=given.source)
         report = validate(
             s,
             p,
@@ -150,7 +162,7 @@ def validate_command(
             out["tolerance"] = None  # QCEC decides equality exactly; it compares no amplitudes
         typer.echo(json.dumps(out))
     else:
-        table = Table(title=f"{scenario.name}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
+        table = Table(title=f"{given.label}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
             table.add_column(col, justify="left" if col in ("check", "method", "status") else "right")
         for c in report.checks:

@@ -18,9 +18,16 @@ from typing import Annotated
 
 import typer
 
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, ScenarioArg
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    ScenarioFileArg,
+    given_scenario,
+)
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
 from qcpp.cli.progress import Progress
-from qcpp.problem.scenario_io import load_scenario
 
 __all__ = ["register", "verify_command"]
 
@@ -28,7 +35,7 @@ HELP = """Check that the compiled circuit keeps every feasible path feasible (cl
 
 Examples:
   qcpp verify examples/paper_3x3.toml -p 2
-  qcpp verify examples/paper_3x3.toml --method state --samples 200 --json
+  qcpp verify --grid 3x4 --robots 2 --obstacle 1,1 --samples 200 --json
   qcpp verify examples/two_robots_5x5.toml -p 3 --method gadgets
 
 Methods: state = run the lowered circuit on every feasible input (or a
@@ -38,7 +45,7 @@ Exit 0: holds; 1: a counterexample; 2: bad input.
 
 
 def verify_command(
-    scenario: ScenarioArg,
+    scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
     rule: RuleFlag = "exact",
     method: Annotated[str, typer.Option("--method", help="state, gadgets or auto.")] = "auto",
@@ -47,12 +54,17 @@ def verify_command(
     ] = 2000,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the angles and of the sample.")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of text.")] = False,
+    grid: GridFlag = None,
+    robots: RobotCountFlag = None,
+    obstacle: ObstacleFlag = None,
+    hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Verify feasibility preservation (see ``qcpp verify --help``)."""
     from qcpp.verification import verify
 
-    s = load_scenario(scenario, check_range=True)
-    with Progress(f"verify {scenario.name}", unit="checks") as bar:
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
+    s = given.scenario
+    with Progress(f"verify {given.label}", unit="checks") as bar:
         report = verify(s, p, rule, method, samples, seed, progress=bar.update)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps(report.to_dict()))
