@@ -5,7 +5,7 @@ defaults: 400 shots, 16 active qubits). Needs the extra ``noise`` (qiskit-aer).
 
 For every small default scenario of the verdict (:data:`SMALL` of ``benchmarks/routing_verdict.py``), every named
 device and p = 1..3: the QAOA angles are trained on qcpp's exact subspace simulator (``qcpp.train_qaoa`` with
-:data:`qcpp.simulate.qaoa_solver.SINGLE_START`: this check compares noise models, not trainings), the circuit is
+:data:`qcpp.training.qaoa_solver.SINGLE_START`: this check compares noise models, not trainings), the circuit is
 compiled with them and routed as ``qcpp compile --device NAME`` does, and its ESP (:func:`qcpp.routing.native.esp`)
 computed. Every row with ESP >= 0.1 (the verdict's "feasible") is simulated
 with the device file's noise model (:mod:`qcpp.simulate.noisy`: depolarising + thermal relaxation per gate, idle
@@ -32,9 +32,9 @@ from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.native import esp
-from qcpp.simulate.evaluate import _feasible
 from qcpp.simulate.noisy import active_qubits, simulate_noisy
-from qcpp.simulate.qaoa_solver import SINGLE_START
+from qcpp.training.evaluate import _feasible
+from qcpp.training.qaoa_solver import SINGLE_START
 
 SMALL = ((2, 2, 1), (2, 3, 1), (3, 3, 1), (3, 4, 1), (4, 4, 1), (3, 3, 2), (4, 4, 2))
 """The verdict's small default scenarios (``benchmarks/routing_verdict.py``)."""

@@ -1,6 +1,6 @@
 """Time and memory of one exact QAOA training gradient, per scenario and depth p.
 
-What the default training (:func:`qcpp.simulate.layerwise.train_layerwise`) computes at every L-BFGS-B step is
+What the default training (:func:`qcpp.training.layerwise.train_layerwise`) computes at every L-BFGS-B step is
 :meth:`qcpp.simulate.subspace.SubspaceQAOA.objective_and_gradient` of the Gibbs objective: one forward sweep, the
 objective's weights, one adjoint backward sweep. This script times exactly that call, per scenario and p,
 each scenario in a fresh child process (so its peak memory is its own), after one warm-up call that loads the
@@ -56,9 +56,9 @@ def run_child(name: str, depths: list[int], repeat: int) -> dict[str, Any]:
     import numpy as np
 
     from qcpp.problem.scenario_io import load_scenario
-    from qcpp.simulate.objectives import make_objective
     from qcpp.simulate.subspace import SubspaceQAOA
-    from qcpp.simulate.training import cost_scale, initial_angles
+    from qcpp.training.objectives import make_objective
+    from qcpp.training.training import cost_scale, initial_angles
 
     path, _ = SCENARIOS[name]
     s = load_scenario(path)

@@ -8,12 +8,13 @@ Layers, lowest first (a subpackage may import only the ones listed in :data:`ALL
 
     io < problem < qubo                                     the problem model and its file guards
     ir < lowering < gadgets < plan < hardware < routing < layout < pipeline < testing
-       < estimators | simulate | verification < api < cli
+       < estimators | simulate | verification < training < api < cli
 
 ``errors``, ``io`` and ``problem`` may be imported by anything above them (the compiler builds circuits *of* a
 problem); ``qubo`` only by ``api`` and ``cli``. ``estimators``, ``simulate`` and ``verification`` are siblings:
 they count resources, run states and check feasibility, and none imports another (what they need lives below
-them), which keeps the graph acyclic by construction. ``testing`` (the hypothesis strategies) imports only the IR
+them), which keeps the graph acyclic by construction. ``training`` (QAOA angles trained and evaluated) runs the
+simulators, so it sits above ``simulate``. ``testing`` (the hypothesis strategies) imports only the IR
 and the problem; nothing in the library imports it. The package's ``__init__`` is the public facade: it re-exports
 lazily from any layer, and any layer may read its version; ``qcpp/__main__.py`` is on top.
 
@@ -50,7 +51,8 @@ def _allowed() -> dict[str, frozenset[str]]:
         table[name] = _BASE | set(_COMPILER[:i])
     for name in _USES:
         table[name] = _BASE | set(_COMPILER)
-    table["api"] = _BASE | set(_COMPILER) | {"qubo", *_USES}
+    table["training"] = _BASE | set(_COMPILER) | {"simulate"}
+    table["api"] = _BASE | set(_COMPILER) | {"qubo", *_USES, "training"}
     table["cli"] = table["api"] | {"api"}
     table["__main__"] = table["cli"] | {"cli"}
     # qcpp/__init__.py is the public facade: it re-exports (lazily) from any layer, and every layer may read its
@@ -171,6 +173,43 @@ def test_the_parser_sees_module_and_function_level_imports() -> None:
 
 def test_every_subpackage_has_a_layer() -> None:
     assert {subpackage(m) for m in MODULES} <= set(ALLOWED)
+
+
+MAX_MODULES_PER_FOLDER = 20
+"""A folder of more modules holds more than one concept: split it by concept (its ``__init__`` not counted)."""
+MAX_MODULE_LINES = 1_000
+"""A module of more lines does more than one thing."""
+
+
+def folder_sizes(root: Path = SRC) -> dict[str, int]:
+    """Modules (``.py`` files but ``__init__.py``) per folder of the package, by path relative to ``root``."""
+    sizes: dict[str, int] = {}
+    for path in (root / PACKAGE).rglob("*.py"):
+        if path.name != "__init__.py":
+            folder = path.parent.relative_to(root).as_posix()
+            sizes[folder] = sizes.get(folder, 0) + 1
+    return sizes
+
+
+def test_no_folder_holds_more_than_twenty_modules() -> None:
+    sizes = folder_sizes()
+    assert sizes["qcpp/simulate"] > 1 and sum(sizes.values()) > 100  # the count sees the package
+    assert {f: n for f, n in sizes.items() if n > MAX_MODULES_PER_FOLDER} == {}
+
+
+def test_no_module_exceeds_a_thousand_lines() -> None:
+    lines = {name: src.text.count("\n") + (not src.text.endswith("\n")) for name, src in MODULES.items()}
+    assert max(lines.values()) > 500  # the count sees the modules
+    assert {m: n for m, n in lines.items() if n > MAX_MODULE_LINES} == {}
+
+
+def test_the_folder_count_would_see_a_crowded_folder(tmp_path: Path) -> None:
+    crowded = tmp_path / PACKAGE / "crowded"
+    crowded.mkdir(parents=True)
+    for i in range(MAX_MODULES_PER_FOLDER + 1):
+        (crowded / f"m{i}.py").write_text("")
+    (crowded / "__init__.py").write_text("")
+    assert folder_sizes(tmp_path) == {f"{PACKAGE}/crowded": MAX_MODULES_PER_FOLDER + 1}
 
 
 def test_no_import_cycles() -> None:

@@ -116,7 +116,7 @@ SLOW_DEFAULT = frozenset(
         "tests/problem/scenario_test.py::test_round_trip",
         "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_3x3-figures0]",
         "tests/simulate/experiments_test.py::test_script_quick_mode[qaoa_two_robots-figures2]",
-        "tests/simulate/layerwise_test.py::test_mixer_warm_option_adds_one_start_per_level_and_counts_it",
+        "tests/training/layerwise_test.py::test_mixer_warm_option_adds_one_start_per_level_and_counts_it",
         "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/1]",
         "tests/simulate/sparse_test.py::test_sparse_agrees_with_statevector",
         "tests/simulate/statevector_test.py::test_twenty_qubits",
@@ -184,7 +184,7 @@ SLOW_DEFAULT = frozenset(
         "tests/problem/sbf_test.py::test_exact_is_sound[4-4]",
         "tests/problem/sbf_test.py::test_rules_ignore_the_direction",
         "tests/simulate/experiments_test.py::test_script_quick_mode[annealing_two_robots-figures1]",
-        "tests/simulate/multi_angle_test.py::test_the_solver_answers_with_the_product_state_and_bindings_of_t"
+        "tests/training/multi_angle_test.py::test_the_solver_answers_with_the_product_state_and_bindings_of_t"
         "he_compiled_circuit",
         "tests/simulate/results_freshness_test.py::test_ensemble_derived_columns[ensembles-5x5/1]",
         "tests/simulate/experiments_test.py::test_ensemble_devices_bad_input_is_refused_with_its_reason",

@@ -2,7 +2,7 @@
 and the per-row records (``results/<name>.json``) that ``tests/simulate/results_freshness_test.py`` recomputes.
 
 Presentation only; every computation the scripts report lives in the library (``qcpp.simulate.success``,
-``qcpp.simulate.state_measures``, ``qcpp.simulate.layerwise``, ``qcpp.simulate.training``, ``qcpp.problem.solvers``).
+``qcpp.simulate.state_measures``, ``qcpp.training.layerwise``, ``qcpp.training.training``, ``qcpp.problem.solvers``).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from qcpp.io.atomic import save_figure_atomic, write_text_atomic
-from qcpp.simulate.qaoa_solver import SINGLE_START
+from qcpp.training.qaoa_solver import SINGLE_START
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
@@ -219,7 +219,7 @@ def pyplot() -> Any:
 STUDY_SCHEDULE: dict[str, Any] = {"restart_every_level": SINGLE_START["restart_every_level"],
                                   "gibbs_eta_sigma": SINGLE_START["gibbs_scale"]}
 """The training schedule of the studies of training variants (``qaoa_training``, ``mixer_warm_start``,
-``multi_angle``), as their records name it: :data:`qcpp.simulate.qaoa_solver.SINGLE_START`, levels ``p > 1`` from
+``multi_angle``), as their records name it: :data:`qcpp.training.qaoa_solver.SINGLE_START`, levels ``p > 1`` from
 the level below only and the Gibbs objective at ``eta = 5 / sigma``. Each variant there is measured against this
 schedule; the default schedule (restarts at every level, ``eta = 40 / sigma``) is the one ``ensembles.py`` and
 ``time_to_solution.py`` measure, and ``training_restarts.py`` sets the two side by side on the ensembles."""
@@ -227,15 +227,15 @@ schedule; the default schedule (restarts at every level, ``eta = 40 / sigma``) i
 
 def study_gibbs(qaoa: Any) -> Any:
     """The Gibbs objective of :data:`STUDY_SCHEDULE` for one scenario's simulator."""
-    from qcpp.simulate.objectives import make_objective
-    from qcpp.simulate.training import cost_scale
+    from qcpp.training.objectives import make_objective
+    from qcpp.training.training import cost_scale
 
     return make_objective("gibbs", cost_scale(qaoa), gibbs_scale=SINGLE_START["gibbs_scale"])
 
 
 def study_training(qaoa: Any, p: int, objective: str = "gibbs", **options: Any) -> Any:
     """``train_layerwise(qaoa, p, objective, **options)`` on :data:`STUDY_SCHEDULE`."""
-    from qcpp.simulate.layerwise import train_layerwise
+    from qcpp.training.layerwise import train_layerwise
 
     return train_layerwise(qaoa, p, objective, **SINGLE_START, **options)  # type: ignore[arg-type]
 

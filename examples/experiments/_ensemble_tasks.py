@@ -11,11 +11,11 @@ The rules are those of ``time_to_solution.py``: the time to reach an optimal ass
 * SA and GA (``components="initial"``): ``runs`` seeded runs at a fixed budget; mean run time x the runs needed for
   99% at the observed success rate.
 * QAOA at every depth ``p = 1 .. p_max``, each a depth fixed before the run: the default training
-  (:func:`qcpp.simulate.layerwise.train_layerwise`; its level ``p`` is what training to depth ``p`` gives) and its
+  (:func:`qcpp.training.layerwise.train_layerwise`; its level ``p`` is what training to depth ``p`` gives) and its
   ``P(optimum)``; the ideal all-to-all device time of training (objective estimates up to level ``p`` x
   ``SHOTS_PER_ESTIMATE`` shots) plus the shots for 99%, every shot at the depth-``p`` circuit's time
   (:data:`qcpp.simulate.time_to_solution.GATE_MODEL`). Beside it the best ``P(optimum)`` the expensive search finds
-  (:func:`qcpp.simulate.angle_search.search_p_optimum`, warm-started from the default's angles) and the ansatz's
+  (:func:`qcpp.training.angle_search.search_p_optimum`, warm-started from the default's angles) and the ansatz's
   ceiling bound.
 
 Where a robot's paths split into move-graph components the QAOA basis (the initial path's component) may miss the
@@ -70,11 +70,11 @@ def run_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str,
 def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
     """Default training and expensive search at ``p = 1 .. cfg["p_max"]``, with the circuit and the 99% time."""
     from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
-    from qcpp.simulate.angle_search import SearchBudget, search_p_optimum
-    from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
     from qcpp.simulate.subspace import SubspaceQAOA
     from qcpp.simulate.success import shots_for
     from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
+    from qcpp.training.angle_search import SearchBudget, search_p_optimum
+    from qcpp.training.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
 
     q = SubspaceQAOA(s)
     in_basis = abs(q.optimum()[0] - optimum) <= 1e-6 * max(1.0, abs(optimum))
@@ -149,8 +149,8 @@ def train_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[st
     ``cfg["p_max"]``: ``P(optimum)``, angles and objective estimates per level, and its seconds."""
     from qcpp.problem.scenario import scenario_from_dict
     from qcpp.problem.solvers import dfs
-    from qcpp.simulate.layerwise import train_layerwise
     from qcpp.simulate.subspace import SubspaceQAOA
+    from qcpp.training.layerwise import train_layerwise
 
     t_all = time.perf_counter()
     s = scenario_from_dict(scenario)

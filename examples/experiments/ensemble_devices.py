@@ -117,8 +117,8 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
     """One record per instance, depth and device: the routed figures of ``results`` (``device_instance``'s), the
     reference's P(optimum), objective estimates, ideal 99% time and fastest classical time, and the device's 99%
     time (``None`` where the circuit does not fit)."""
-    from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE
     from qcpp.simulate.time_to_solution import qaoa_on_device
+    from qcpp.training.layerwise import SHOTS_PER_ESTIMATE
 
     qaoa = {(r["cell"], r["index"], r["p"]): r for r in reference if r["method"] == "qaoa"}
     classical = best_classical_times(reference)

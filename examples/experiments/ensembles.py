@@ -8,7 +8,7 @@ seeded by ``--seed``. Per instance (``_ensemble_tasks.run_instance``, one Dask t
   ``time_to_solution.py`` (QAOA: the default training to a depth fixed in advance, training shots counted,
   projected on an ideal all-to-all device), at every depth ``p = 1 .. p_max``;
 * **training quality apart from ansatz quality**: at every depth the default training's ``P(optimum)`` beside the
-  best any angles gave in an expensive search that knows the optimum (:func:`qcpp.simulate.angle_search.
+  best any angles gave in an expensive search that knows the optimum (:func:`qcpp.training.angle_search.
   search_p_optimum`: L-BFGS-B on ``P(optimum)`` from the default's angles, the level below's best (extended and
   INTERP), ``random_starts`` random angles and ``hops`` basin-hopping steps, at most ``maxiter`` iterations each),
   and the upper bound on the ansatz's ceiling (0 below the depth at which an optimum can carry amplitude, else 1).
@@ -320,9 +320,9 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, schedule
 
 def result_rows(results: list[dict[str, Any]], cfg: Config) -> list[dict[str, Any]]:
     """One record per instance and classical method, and per instance and depth for QAOA."""
-    from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
-    from qcpp.simulate.objectives import GIBBS_SCALE
     from qcpp.simulate.time_to_solution import GATE_MODEL
+    from qcpp.training.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
+    from qcpp.training.objectives import GIBBS_SCALE
 
     options = {
         "dfs": {},
@@ -520,7 +520,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         "('inf': no run succeeded). QAOA: default training (Gibbs objective, L-BFGS-B layer by layer) to a depth "
         "fixed in advance; IDEAL ALL-TO-ALL DEVICE PROJECTION (the compiler's exact depth, training shots = "
         "objective estimates x shots per estimate, all at the final depth's shot time).",
-        f"Best found: qcpp.simulate.angle_search.search_p_optimum per depth, budget {cfg.search} (L-BFGS-B on "
+        f"Best found: qcpp.training.angle_search.search_p_optimum per depth, budget {cfg.search} (L-BFGS-B on "
         "P(optimum) with its exact gradient from the default's angles, the level below's best extended and "
         "INTERP, random starts and basin-hopping steps; a level that reaches 0.999 ends the search). It knows the "
         "optimum: a yardstick for the training, no algorithm. The ansatz's ceiling at p lies between the best "

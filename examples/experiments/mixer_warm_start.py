@@ -3,22 +3,22 @@
 The goal: P(optimum) >= 0.05 on ``examples/two_robots_5x5.toml`` at some p <= 5; the single-start training
 stays at beta = 0 there (``docs/results/qaoa_training.md``, table 5). The lever tried here: with every gamma 0
 the state is a product over robots, so the betas can be trained cheaply per robot
-(:func:`qcpp.simulate.mixer_only.train_mixer_only`, the Gibbs objective of the full cost on the product state;
+(:func:`qcpp.training.mixer_only.train_mixer_only`, the Gibbs objective of the full cost on the product state;
 it never looks at the optimum), and the full training can start from them.
 
 For each scenario and p = 1..5 the table gives:
 
 * **mixer-only (Gibbs)**: P(optimum) and ``<C>`` of the product state at the mixer-only trained betas;
-* **then full training**: L-BFGS-B on the exact gradient (:func:`qcpp.simulate.training.train`, Gibbs, at most
-  :data:`~qcpp.simulate.layerwise.DEFAULT_MAXITER` iterations) from those betas with the linear ramp's gammas, its
+* **then full training**: L-BFGS-B on the exact gradient (:func:`qcpp.training.training.train`, Gibbs, at most
+  :data:`~qcpp.training.layerwise.DEFAULT_MAXITER` iterations) from those betas with the linear ramp's gammas, its
   P(optimum) and its largest ``|gamma|`` (scenarios of at most 100,000 assignments; one 5x5 gradient at p = 5
   takes 30-60 s on the shared machine, so not on two_robots_5x5);
-* **single-start training**: :func:`qcpp.simulate.layerwise.train_layerwise` on ``STUDY_SCHEDULE`` (``_common.py``)
+* **single-start training**: :func:`qcpp.training.layerwise.train_layerwise` on ``STUDY_SCHEDULE`` (``_common.py``)
   from the initial paths, and the same with its
   option ``mixer_warm=True`` (every level also starts from the mixer-only betas with the ramp's gammas; 4x4
   scenarios);
 * **mixer-only ceiling**: the largest P(optimum) found over mixer-only angles when maximising P(optimum)
-  itself (:func:`qcpp.simulate.mixer_only.mixer_only_ceiling`, 60 seeded random starts per depth plus the previous
+  itself (:func:`qcpp.training.mixer_only.mixer_only_ceiling`, 60 seeded random starts per depth plus the previous
   depth's best). This diagnostic *uses the optimum*; it is not a method, it measures what any warm start with
   gammas 0 can give, so ``single-start / ceiling`` is the factor the phase separators add.
 
@@ -59,17 +59,17 @@ from _common import (
 )
 
 import qcpp
-from qcpp.simulate.layerwise import DEFAULT_MAXITER
-from qcpp.simulate.mixer_only import (
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.layerwise import DEFAULT_MAXITER
+from qcpp.training.mixer_only import (
     CEILING_STARTS,
     mixer_only_ceiling,
     product_objective,
     robot_states,
     train_mixer_only,
 )
-from qcpp.simulate.objectives import make_objective
-from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import initial_angles, train
+from qcpp.training.objectives import make_objective
+from qcpp.training.training import initial_angles, train
 
 NAME = "mixer_warm_start"
 GOAL_5X5 = 0.05

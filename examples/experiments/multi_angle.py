@@ -7,7 +7,7 @@ its own beta in every layer, the circuit ``PlanOptions(angles="multi")`` (the sa
 
 For each scenario and p = 1..5 the table gives:
 
-* **trained (Gibbs)**: :func:`qcpp.simulate.mixer_only.train_multi_angle` with every gamma 0 (the state is then a
+* **trained (Gibbs)**: :func:`qcpp.training.mixer_only.train_multi_angle` with every gamma 0 (the state is then a
   product over robots): L-BFGS-B on the exact gradient of the Gibbs objective of the measured cost (``eta = 5 /
   sigma``, ``STUDY_SCHEDULE`` of ``_common.py``) from the 3 constant starts, the previous depth's best with a zero
   layer appended, and 8 seeded random starts; the run with the lowest objective is kept (the training never looks
@@ -58,7 +58,8 @@ from _common import (
 )
 
 import qcpp
-from qcpp.simulate.mixer_only import (
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.mixer_only import (
     MIXER_MAXITER,
     MIXER_STARTS,
     MULTI_RANDOM_STARTS,
@@ -70,8 +71,7 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle,
 )
-from qcpp.simulate.objectives import make_objective
-from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.objectives import make_objective
 
 NAME = "multi_angle"
 GOAL_5X5 = 0.05

@@ -43,7 +43,7 @@ from qcpp.problem.paths import initial_path, path_to_nodes
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, dfs
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale, most_probable, train
+from qcpp.training.training import cost_scale, most_probable, train
 
 NAME = "qaoa_3x3"
 STEP = 0.1  # the paper's Nesterov step

@@ -1,6 +1,6 @@
 """QAOA's layer-by-layer training by depth: P(optimum) at p = 1..8 on two_robots_4x4, objectives, warm starts, 5x5.
 
-The training (:func:`qcpp.simulate.layerwise.train_layerwise`) on the single-start schedule (``STUDY_SCHEDULE`` of
+The training (:func:`qcpp.training.layerwise.train_layerwise`) on the single-start schedule (``STUDY_SCHEDULE`` of
 ``_common.py``): L-BFGS-B on the exact adjoint gradient, layer by layer from p = 1 with INTERP and zero-layer warm
 starts only, the linear ramp plus two seeded random starts at p = 1, the Gibbs objective with ``eta = 5 / sigma``.
 Nothing is tuned per scenario.
@@ -65,11 +65,11 @@ from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario, scenario_to_dict
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers.descent import local_search
-from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS
-from qcpp.simulate.objectives import CVAR_ALPHA, OBJECTIVES
 from qcpp.simulate.state_measures import layers_to_reach
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale
+from qcpp.training.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS
+from qcpp.training.objectives import CVAR_ALPHA, OBJECTIVES
+from qcpp.training.training import cost_scale
 
 NAME = "qaoa_training"
 

@@ -58,12 +58,12 @@ from _common import (
 
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
-from qcpp.simulate.angle_fit import OBJECTIVES, AngleFit, fit_angles
 from qcpp.simulate.annealing_runs import AnnealSuccess, anneal_success
 from qcpp.simulate.state_measures import layers_to_reach, state_metrics, uniform_hit_probability
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.success import shots_for, success_probability
-from qcpp.simulate.training import initial_angles, interp_angles, train
+from qcpp.training.angle_fit import OBJECTIVES, AngleFit, fit_angles
+from qcpp.training.training import initial_angles, interp_angles, train
 
 NAME = "qaoa_two_robots"
 ALPHA = 0.2

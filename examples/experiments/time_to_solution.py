@@ -18,7 +18,7 @@ The criterion (:mod:`qcpp.simulate.time_to_solution`): the time to reach an opti
   independent runs (seeds 0..runs-1) at a fixed budget; a run succeeds if its best is optimal; time = mean run
   time x the runs needed for 99% at the observed rate (range: the rate's 95% Wilson interval).
 * **QAOA** where the feasible-subspace simulator holds the state (at most ``qaoa_max_dim`` assignments): the
-  default training (:func:`qcpp.simulate.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer,
+  default training (:func:`qcpp.training.layerwise.train_layerwise`: Gibbs objective, L-BFGS-B layer by layer,
   restarts at every level) to
   the depth fixed before the run, ``qaoa_p`` for every instance; ``P(optimum)`` of the trained state; the shots
   for 99%; and a **projected ideal-device time**: every shot (training shots included: objective estimates x
@@ -204,9 +204,9 @@ def qaoa_circuit_columns(scenario: Scenario, p: int) -> dict[str, Any]:
 
 def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | None:
     """Default training to the fixed depth, then the projected 99% time on an ideal device and on each device."""
-    from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
     from qcpp.simulate.subspace import SubspaceQAOA
     from qcpp.simulate.time_to_solution import GATE_MODEL, qaoa_on_device, shot_seconds
+    from qcpp.training.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
 
     if CORNER_PATHS[inst.n] ** inst.robots > cfg.qaoa_max_dim:
         return None
@@ -239,9 +239,9 @@ def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | No
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     from qcpp.pipeline.device_compile import ESP_MODEL
-    from qcpp.simulate.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
-    from qcpp.simulate.objectives import GIBBS_SCALE
     from qcpp.simulate.time_to_solution import GATE_MODEL
+    from qcpp.training.layerwise import DEFAULT_MAXITER, DEFAULT_RANDOM_STARTS, SHOTS_PER_ESTIMATE
+    from qcpp.training.objectives import GIBBS_SCALE
 
     opts = parse(__doc__.splitlines()[0], argv)
     cfg = QUICK if opts.quick else FULL

@@ -1,6 +1,6 @@
 """The default training against the single-start schedule on the ensembles: what restarts and a colder objective buy.
 
-The default training (:func:`qcpp.simulate.layerwise.train_layerwise`) restarts every level ``p > 1`` from the
+The default training (:func:`qcpp.training.layerwise.train_layerwise`) restarts every level ``p > 1`` from the
 linear ramp and two random angle sets and trains the Gibbs objective at ``eta = 40 / sigma``. The alternative,
 ``ALTERNATIVE``, starts every level ``p > 1`` from the level below only and trains at ``eta = 5 / sigma``. It
 falls short of the best ``P(optimum)`` an expensive search finds for two reasons, both measured here:
@@ -44,7 +44,7 @@ from ensembles import _mqq, instances_of, run_on_dask
 
 import qcpp
 from qcpp.io.atomic import write_text_atomic
-from qcpp.simulate.qaoa_solver import SINGLE_START
+from qcpp.training.qaoa_solver import SINGLE_START
 
 NAME = "training_restarts"
 ALTERNATIVE: dict[str, Any] = dict(SINGLE_START)
@@ -173,9 +173,9 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
 def _gibbs_columns(rows: list[dict[str, Any]], ref_rows: dict[tuple[str, int, int], dict[str, Any]]) -> None:
     """Add the alternative's objective (Gibbs at its ``eta``) at its own and at the best-found angles to each row."""
     from qcpp.problem.scenario import scenario_from_dict
-    from qcpp.simulate.objectives import make_objective
     from qcpp.simulate.subspace import SubspaceQAOA
-    from qcpp.simulate.training import cost_scale
+    from qcpp.training.objectives import make_objective
+    from qcpp.training.training import cost_scale
 
     cache: dict[str, Any] = {}
     for r in rows:

@@ -10,7 +10,7 @@ import pytest
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import initial_angles
+from qcpp.training.training import initial_angles
 
 from .clirun import assert_one_line_error, run
 

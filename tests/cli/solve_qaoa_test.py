@@ -12,8 +12,8 @@ from qcpp.cli.render import render_ascii
 from qcpp.problem.paths import path_from_nodes
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
-from qcpp.simulate.qaoa_solver import solve_qaoa
 from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.qaoa_solver import solve_qaoa
 
 from .clirun import assert_one_line_error, run
 
@@ -128,9 +128,9 @@ def test_restarts_and_gibbs_scale_are_the_trainers(tmp_path: Path) -> None:
     default schedule, which is ``train_layerwise``'s defaults (on a two-robot instance that no depth here solves
     with certainty, so eta matters)."""
     import qcpp
-    from qcpp.simulate.layerwise import train_layerwise
-    from qcpp.simulate.objectives import Gibbs
-    from qcpp.simulate.training import cost_scale
+    from qcpp.training.layerwise import train_layerwise
+    from qcpp.training.objectives import Gibbs
+    from qcpp.training.training import cost_scale
 
     s = qcpp.random_scenario(3, 3, 2, 0.1, seed=0, index=2)
     qcpp.save_scenario(s, tmp_path / "s.toml")

@@ -17,7 +17,6 @@ from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import anneal, dfs
-from qcpp.simulate.angle_fit import AngleFit, fit_angles
 from qcpp.simulate.annealing_runs import anneal_success
 from qcpp.simulate.state_measures import (
     cost_distribution,
@@ -28,7 +27,8 @@ from qcpp.simulate.state_measures import (
 )
 from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.success import shots_for, success_probability, tries_for, wilson_interval
-from qcpp.simulate.training import train
+from qcpp.training.angle_fit import AngleFit, fit_angles
+from qcpp.training.training import train
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPTS = REPO / "examples" / "experiments"
@@ -335,12 +335,13 @@ def _check_quick_mode(name: str, figures: list[str], tmp_path: Path):  # type: i
     return out
 
 
-@pytest.mark.parametrize("module", ["success", "state_measures", "angle_fit", "annealing_runs"])
+@pytest.mark.parametrize("module", ["simulate.success", "simulate.state_measures", "training.angle_fit",
+                                    "simulate.annealing_runs"])  # fmt: skip
 def test_doctests(module: str) -> None:
     import doctest
     import importlib
 
-    assert doctest.testmod(importlib.import_module(f"qcpp.simulate.{module}")).failed == 0
+    assert doctest.testmod(importlib.import_module(f"qcpp.{module}")).failed == 0
 
 
 # ---------------------------------------------------------------- the ensemble study

@@ -34,10 +34,10 @@ import pytest
 import qcpp
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.simulate.objectives import Gibbs
 from qcpp.simulate.success import shots_for, tries_for
 from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
-from qcpp.simulate.training import cost_scale
+from qcpp.training.objectives import Gibbs
+from qcpp.training.training import cost_scale
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
 FILES = ("time_to_solution", "qaoa_training", "qaoa_3x3", "annealing_two_robots", "qaoa_two_robots", "mixer_warm_start",
@@ -205,8 +205,8 @@ def test_recorded_multi_angle_betas_give_the_recorded_state(heavy: bool) -> None
     """Multi-angle rows (gammas 0, a product state: cheap even at 4x4): P(optimum) and ``<C>`` from the betas."""
     import numpy as np
 
-    from qcpp.simulate.mixer_only import multi_robot_states, p_optimum_and_gradients, product_objective
-    from qcpp.simulate.objectives import Expectation
+    from qcpp.training.mixer_only import multi_robot_states, p_optimum_and_gradients, product_objective
+    from qcpp.training.objectives import Expectation
 
     checked = 0
     for r in _load("multi_angle")["rows"]:
@@ -382,7 +382,7 @@ def test_ensemble_recorded_angles_and_circuits(name: str, cell: str, heavy: bool
 def test_the_default_training_retrained_gives_the_recorded_angles(cell: str) -> None:
     """The other checks recompute states from recorded angles; this one reruns the training itself (the first
     instance of the cell, to p = 3), so a change of the default training shows up as stale results."""
-    from qcpp.simulate.layerwise import train_layerwise
+    from qcpp.training.layerwise import train_layerwise
 
     rows = {r["p"]: r for r in _ensemble_file("ensembles")["rows"] if r["method"] == "qaoa" and r["cell"] == cell
             and r["index"] == 0}

@@ -20,9 +20,9 @@ from qcpp.problem.hamiltonian import ising_hamiltonian
 from qcpp.problem.paths import assignment_bits, enumerate_paths, initial_path, is_feasible, mask_from_bits, path_bits
 from qcpp.problem.sbf import SbfLogic, XorStep, move_components, reachable_paths, representatives, sbf_logic
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.simulate.objectives import make_objective
 from qcpp.simulate.subspace import NonUnitaryMixerError, SubspaceQAOA, evaluate_logic, robot_basis, split_angles
-from qcpp.simulate.training import cost_scale
+from qcpp.training.objectives import make_objective
+from qcpp.training.training import cost_scale
 
 
 def make(rows: int, cols: int, robots: list[tuple[tuple[int, int], tuple[int, int]]], **extra: object) -> Scenario:

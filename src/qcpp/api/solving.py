@@ -20,12 +20,12 @@ from qcpp.api.checks import check_layers_arg, check_scenario_arg
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
-from qcpp.simulate.objectives import GIBBS_SCALE
+from qcpp.training.objectives import GIBBS_SCALE
 
 if TYPE_CHECKING:
     from qcpp.problem.solvers import Solution
-    from qcpp.simulate.evaluate import Evaluation
-    from qcpp.simulate.qaoa_solver import QaoaSolution
+    from qcpp.training.evaluate import Evaluation
+    from qcpp.training.qaoa_solver import QaoaSolution
 
 __all__ = ["SOLVE_METHODS", "simulate_qaoa", "solve", "train_qaoa"]
 
@@ -135,7 +135,7 @@ def train_qaoa(
         rule: SBF rule of the mixer.
 
     Returns:
-        The :class:`~qcpp.simulate.qaoa_solver.QaoaSolution` (``.solution``, ``.angles``, ``.probability``,
+        The :class:`~qcpp.training.qaoa_solver.QaoaSolution` (``.solution``, ``.angles``, ``.probability``,
         ``.p_optimum``, ``.trace``).
 
     Raises:
@@ -147,8 +147,8 @@ def train_qaoa(
     from qcpp.plan.options import INITIAL_STATES
     from qcpp.problem.cost_range import check_phase_range
     from qcpp.simulate.guards import check_training_size
-    from qcpp.simulate.objectives import OBJECTIVES
-    from qcpp.simulate.qaoa_solver import QAOA_OPTIMIZERS, solve_qaoa
+    from qcpp.training.objectives import OBJECTIVES
+    from qcpp.training.qaoa_solver import QAOA_OPTIMIZERS, solve_qaoa
 
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)
@@ -201,7 +201,7 @@ def simulate_qaoa(
         rule: SBF rule of the mixer.
 
     Returns:
-        The :class:`~qcpp.simulate.evaluate.Evaluation` (``expectation``, ``p_optimum``, ``amplitudes_held``, ...).
+        The :class:`~qcpp.training.evaluate.Evaluation` (``expectation``, ``p_optimum``, ``amplitudes_held``, ...).
 
     Raises:
         qcpp.errors.OptionError: a bad value, naming the option (``angles`` of the wrong length or not finite).
@@ -209,8 +209,8 @@ def simulate_qaoa(
             ``qcpp.allow_large()`` nothing is refused).
     """
     from qcpp.problem.cost_range import check_phase_range
-    from qcpp.simulate.evaluate import METHODS, evaluate
     from qcpp.simulate.guards import check_simulation_size
+    from qcpp.training.evaluate import METHODS, evaluate
 
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)

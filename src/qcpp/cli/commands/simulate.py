@@ -1,6 +1,6 @@
 """``qcpp simulate``: evaluate QAOA angles on a scenario with one of the simulators.
 
-A thin layer over :func:`qcpp.simulate.evaluate.evaluate`: parses the options, prints a short report (or one JSON
+A thin layer over :func:`qcpp.training.evaluate.evaluate`: parses the options, prints a short report (or one JSON
 object with ``--json``). Bad input raises ``ValueError``/``ScenarioError``, which the CLI's shared handler
 turns into one line on stderr and exit code 2.
 
@@ -98,7 +98,7 @@ def simulate_command(
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Evaluate QAOA angles (see ``qcpp simulate --help``)."""
-    from qcpp.simulate.evaluate import evaluate  # scipy: imported when the command runs, not at start-up
+    from qcpp.training.evaluate import evaluate  # scipy: imported when the command runs, not at start-up
 
     values = parse_angles(angles) if angles is not None else None
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag

@@ -11,10 +11,10 @@ Methods come from :data:`SOLVE_METHODS` (name -> :class:`qcpp.problem.solvers.So
 accepts exactly its keys. Adding a method is one entry: a function
 ``f(scenario, *, seed, rule, progress) -> qcpp.problem.solvers.Solution`` stored under its name.
 
-``qaoa`` (:mod:`qcpp.simulate.qaoa_solver`, imported on first use) lives in a higher layer than the classical
+``qaoa`` (:mod:`qcpp.training.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
 :data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
-:func:`qcpp.simulate.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
+:func:`qcpp.training.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
 
 ``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
@@ -55,7 +55,7 @@ from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
-from qcpp.simulate.objectives import GIBBS_SCALE
+from qcpp.training.objectives import GIBBS_SCALE
 
 __all__ = [
     "METHOD_HELP",
@@ -74,7 +74,7 @@ QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxite
 
 def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
     """The ``qaoa`` entry with default settings (``solve_command`` passes its QAOA options itself)."""
-    from qcpp.simulate.qaoa_solver import solve_qaoa
+    from qcpp.training.qaoa_solver import solve_qaoa
 
     return solve_qaoa(scenario, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
 
@@ -246,7 +246,7 @@ def solve_command(
                 flag = "-p" if name == "p" else f"--{name.replace('_', '-')}"
                 raise ValueError(f"{flag}: applies to --method qaoa only (got --method {method})")
     if method == "qaoa":
-        from qcpp.simulate.objectives import OBJECTIVES
+        from qcpp.training.objectives import OBJECTIVES
 
         if objective not in OBJECTIVES:  # before the scenario is loaded, and naming the flag
             raise ValueError(f"--objective: unknown objective {objective!r} (expected one of {', '.join(OBJECTIVES)})")
@@ -285,7 +285,7 @@ def solve_command(
             exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress)
             sol = exact.solution
         elif method == "qaoa":
-            from qcpp.simulate.qaoa_solver import solve_qaoa
+            from qcpp.training.qaoa_solver import solve_qaoa
 
             qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
             sol = qaoa.solution
@@ -307,7 +307,7 @@ def solve_command(
 
     if as_json:
         if qaoa is not None:
-            from qcpp.simulate.qaoa_solver import qaoa_to_dict
+            from qcpp.training.qaoa_solver import qaoa_to_dict
 
             out = {"scenario": given.source, **qaoa_to_dict(s, qaoa)}
         else:

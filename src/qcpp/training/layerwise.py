@@ -2,12 +2,12 @@
 
 :func:`train_layerwise` trains ``p = 1, 2, ..., P`` in turn with L-BFGS-B on the exact adjoint gradient
 (:meth:`qcpp.simulate.subspace.SubspaceQAOA.objective_and_gradient`) of a chosen objective
-(:mod:`qcpp.simulate.objectives`; default ``gibbs``). Starts:
+(:mod:`qcpp.training.objectives`; default ``gibbs``). Starts:
 
-* ``p = 1``: the linear ramp (:func:`qcpp.simulate.training.initial_angles`) and ``random_starts`` seeded random
+* ``p = 1``: the linear ramp (:func:`qcpp.training.training.initial_angles`) and ``random_starts`` seeded random
   angles;
 * ``p > 1``: from the best angles at ``p - 1``, (a) their INTERP extension (Zhou et al., PRX 10, 021067,
-  2020; :func:`qcpp.simulate.training.interp_angles`) and (b) the same angles with a zero layer appended, which
+  2020; :func:`qcpp.training.training.interp_angles`) and (b) the same angles with a zero layer appended, which
   reproduces the ``p - 1`` state exactly, so the objective at ``p`` is never worse than at ``p - 1``.
 
 With ``restart_every_level=True`` (the default) every level ``p > 1`` also starts from the linear ramp at depth
@@ -16,7 +16,7 @@ are often a basis state (``beta`` at 0 or ``pi`` leaves the initial path in plac
 where every objective is stationary in the new layer, so the two warm starts above cannot leave it.
 
 With ``mixer_warm=True`` every level also starts from the mixer-only warm start
-(:func:`qcpp.simulate.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
+(:func:`qcpp.training.mixer_only.train_mixer_only`) with the linear ramp's gammas (not 0, where every objective is
 stationary in them).
 
 At every level the best run (lowest objective) is kept and warm-starts the next. Every simulation is counted;
@@ -46,10 +46,10 @@ from typing import Any
 
 import numpy as np
 
-from qcpp.simulate.mixer_only import train_mixer_only
-from qcpp.simulate.objectives import CVAR_ALPHA, GIBBS_SCALE, ObjectiveName, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import TrainingResult, check_at_least, cost_scale, initial_angles, interp_angles, train
+from qcpp.training.mixer_only import train_mixer_only
+from qcpp.training.objectives import CVAR_ALPHA, GIBBS_SCALE, ObjectiveName, make_objective
+from qcpp.training.training import TrainingResult, check_at_least, cost_scale, initial_angles, interp_angles, train
 
 __all__ = [
     "DEFAULT_MAXITER",
@@ -84,7 +84,7 @@ class LayerwiseResult:
 
     Attributes:
         objective: The objective's name.
-        levels: The best run at each ``p = 1 .. P`` (a :class:`~qcpp.simulate.training.TrainingResult`).
+        levels: The best run at each ``p = 1 .. P`` (a :class:`~qcpp.training.training.TrainingResult`).
         runs: Optimiser runs made over all levels and starts.
         num_evaluations: Simulations over all runs (with or without gradient).
         num_gradients: Of those, the ones that also computed the gradient.

@@ -1,4 +1,4 @@
-"""qcpp.simulate.evaluate (method dispatch) and qcpp.simulate.qaoa_solver (QAOA read as a solver)."""
+"""qcpp.training.evaluate (method dispatch) and qcpp.training.qaoa_solver (QAOA read as a solver)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ from qcpp.problem.cost import cost
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.problem.solvers import dfs, solution_to_dict
-from qcpp.simulate.evaluate import MAX_STATEVECTOR_QUBITS, evaluate, resolve_angles
-from qcpp.simulate.qaoa_solver import qaoa_method, qaoa_to_dict, solve_qaoa
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import initial_angles
+from qcpp.training.evaluate import MAX_STATEVECTOR_QUBITS, evaluate, resolve_angles
+from qcpp.training.qaoa_solver import qaoa_method, qaoa_to_dict, solve_qaoa
+from qcpp.training.training import initial_angles
 
 
 def small() -> Scenario:

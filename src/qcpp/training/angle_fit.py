@@ -3,8 +3,8 @@
 :func:`fit_angles` fits QAOA angles to ``<C>``, ``CVaR_alpha`` or, as a reference that needs the optimum and so
 is no algorithm, ``P(optimum)`` itself (the most any angles at that depth put on the optimum, as far as the
 local optimiser finds). :meth:`AngleFit.from_training` reads gradient-based runs
-(:func:`qcpp.simulate.training.train`) as a fit. The default training is
-:func:`qcpp.simulate.layerwise.train_layerwise`. Example: at :func:`fit_angles`.
+(:func:`qcpp.training.training.train`) as a fit. The default training is
+:func:`qcpp.training.layerwise.train_layerwise`. Example: at :func:`fit_angles`.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from scipy.optimize import minimize
 
 from qcpp.simulate.state_measures import StateMetrics, cvar, state_metrics
 from qcpp.simulate.subspace import SubspaceQAOA, split_angles
-from qcpp.simulate.training import TrainingResult
+from qcpp.training.training import TrainingResult
 
 __all__ = ["OBJECTIVES", "AngleFit", "fit_angles"]
 
@@ -57,13 +57,13 @@ class AngleFit:
 
     @classmethod
     def from_training(cls, qaoa: SubspaceQAOA, runs: Sequence[TrainingResult], alpha: float = 0.2) -> AngleFit:
-        """The best (lowest ``<C>``) of several :func:`qcpp.simulate.training.train` runs, as an ``expectation`` fit.
+        """The best (lowest ``<C>``) of several :func:`qcpp.training.training.train` runs, as an ``expectation`` fit.
 
         ``evaluations`` and ``seconds`` add up over all runs (plus the one simulation for the metrics).
 
         Example:
             >>> from qcpp.problem.scenario import scenario_from_dict
-            >>> from qcpp.simulate.training import train
+            >>> from qcpp.training.training import train
             >>> s = scenario_from_dict({"grid": {"rows": 3, "cols": 3}, "robots": [{"start": [0, 0], "goal": [2, 2]}]})
             >>> q = SubspaceQAOA(s)
             >>> runs = [train(q, 1, "lbfgsb", init="random", seed=k, maxiter=20) for k in range(2)]

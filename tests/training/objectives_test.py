@@ -9,9 +9,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from qcpp.problem.scenario import Scenario, scenario_from_dict
-from qcpp.simulate.objectives import OBJECTIVES, CVaR, Expectation, Gibbs, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale
+from qcpp.training.objectives import OBJECTIVES, CVaR, Expectation, Gibbs, make_objective
+from qcpp.training.training import cost_scale
 
 ONE_3x3 = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
                               "robots": [{"start": [0, 0], "goal": [2, 2]}]})
@@ -105,6 +105,6 @@ def test_bad_parameters() -> None:
 def test_doctests() -> None:
     import doctest
 
-    import qcpp.simulate.objectives
+    import qcpp.training.objectives
 
-    assert doctest.testmod(qcpp.simulate.objectives).failed == 0
+    assert doctest.testmod(qcpp.training.objectives).failed == 0

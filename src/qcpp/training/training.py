@@ -51,8 +51,8 @@ from typing import Any, Literal
 import numpy as np
 from scipy.optimize import minimize
 
-from qcpp.simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA, split_angles
+from qcpp.training.objectives import ObjectiveFn, ObjectiveName, make_objective
 
 __all__ = [
     "INITS",
@@ -95,7 +95,7 @@ class TrainingResult:
         num_gradients: Of those, the ones that also computed the gradient.
         seconds: Wall-clock time (INTERP: all levels).
         stages: For ``interp``: the results at ``p' = 1 .. p-1`` (each with its own ``stages`` empty).
-        objective: The minimised objective's name (:mod:`qcpp.simulate.objectives`); ``trace`` holds its values.
+        objective: The minimised objective's name (:mod:`qcpp.training.objectives`); ``trace`` holds its values.
         initial_value: The objective at the start.
         value: The objective at the final angles.
     """
@@ -245,7 +245,7 @@ def train(
             on costs whose gradients are in the tens (e.g. ``examples/paper_3x3.toml``). The trace and results
             are in units of ``E`` either way.
         objective: What to minimise: ``expectation`` (default), ``cvar``, ``gibbs`` (with their defaults, see
-            :func:`qcpp.simulate.objectives.make_objective`) or an objective object; the trace holds its values.
+            :func:`qcpp.training.objectives.make_objective`) or an objective object; the trace holds its values.
 
     Raises:
         ValueError: for an unknown optimiser or initialisation, ``p < 1``, or an explicit vector of the wrong

@@ -1,6 +1,6 @@
 """The most probability any angles put on the optimum, by an expensive search: a reference for the training.
 
-The default training (:func:`qcpp.simulate.layerwise.train_layerwise`) minimises an objective that does not know
+The default training (:func:`qcpp.training.layerwise.train_layerwise`) minimises an objective that does not know
 the optimum. Whether a low ``P(optimum)`` is the training's fault or the ansatz's shows only against the best
 ``P(optimum)`` the same circuit reaches at the same depth. :func:`search_p_optimum` looks for it directly, with
 the optimum known (so it is no algorithm, only a yardstick), at every depth ``p = 1 .. P``:
@@ -44,7 +44,7 @@ from scipy.optimize import minimize
 
 from qcpp.simulate.state_measures import layers_to_reach
 from qcpp.simulate.subspace import SubspaceQAOA, split_angles
-from qcpp.simulate.training import check_at_least, cost_scale, initial_angles, interp_angles
+from qcpp.training.training import check_at_least, cost_scale, initial_angles, interp_angles
 
 __all__ = ["SearchBudget", "SearchLevel", "search_p_optimum"]
 

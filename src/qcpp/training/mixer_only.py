@@ -14,7 +14,7 @@ The betas come in two shapes, one kernel (:func:`robot_states`) for both:
   in the gammas and in the betas, so its gradient vanishes at ``beta = 0`` and at ``gamma = 0``: a layer-by-layer
   training can stay stuck there. The warm start finds betas that spread each robot over its paths towards cheap
   assignments, and the full training starts its gammas elsewhere
-  (:func:`qcpp.simulate.layerwise.train_layerwise` with ``mixer_warm=True``). :func:`mixer_only_ceiling` is a
+  (:func:`qcpp.training.layerwise.train_layerwise` with ``mixer_warm=True``). :func:`mixer_only_ceiling` is a
   diagnostic: the best ``P(optimum)`` over these angles, found by maximising it directly (it uses the optimum).
 * **One beta per partial mixer and layer** (multi-angle QAOA, Herrman et al. 2022, Sci. Rep. 12, 6781:
   :func:`train_multi_angle`). The circuit compiled with ``PlanOptions(angles="multi")`` has the symbol
@@ -57,9 +57,9 @@ from qcpp.ir.angles import mixer_symbol
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.simulate import subspace_kernels
-from qcpp.simulate.objectives import ObjectiveFn, ObjectiveName, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import check_at_least, cost_scale
+from qcpp.training.objectives import ObjectiveFn, ObjectiveName, make_objective
+from qcpp.training.training import check_at_least, cost_scale
 
 __all__ = [
     "CEILING_STARTS",
@@ -227,7 +227,7 @@ def product_objective(
 
     Example:
         >>> from qcpp.problem.scenario import scenario_from_dict
-        >>> from qcpp.simulate.objectives import Expectation
+        >>> from qcpp.training.objectives import Expectation
         >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 3},
         ...                         "robots": [{"start": [0, 0], "goal": [1, 2]}, {"start": [1, 0], "goal": [0, 2]}]})
         >>> q = SubspaceQAOA(s)
@@ -332,7 +332,7 @@ def train_mixer_only(
 
     Args:
         p: The largest depth (>= 1).
-        objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with :func:`qcpp.simulate.objectives.make_objective`
+        objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with :func:`qcpp.training.objectives.make_objective`
             defaults for this scenario) or an objective object.
         maxiter: L-BFGS-B iterations per run.
 
@@ -590,7 +590,7 @@ def train_multi_angle(
     Args:
         p: Number of layers (>= 1).
         objective: ``gibbs`` (default), ``cvar``, ``expectation`` (with
-            :func:`qcpp.simulate.objectives.make_objective`'s defaults for this scenario) or an objective object.
+            :func:`qcpp.training.objectives.make_objective`'s defaults for this scenario) or an objective object.
         random_starts: Seeded uniform random starts in ``[0, 2 pi)`` (>= 0).
         seed: Seed of ``numpy.random.default_rng`` for them.
         maxiter: L-BFGS-B iterations per start.

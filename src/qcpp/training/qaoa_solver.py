@@ -7,12 +7,12 @@
 :class:`qcpp.problem.solvers.SolveMethod` signature so front ends can list it beside ``dfs``/``anneal``/``genetic``
 (qcpp.problem itself never imports this module).
 
-Training (``optimizer=``): ``layerwise`` (default, :func:`qcpp.simulate.layerwise.train_layerwise`); ``nesterov``,
-``cobyla`` and ``lbfgsb``: one run of :func:`qcpp.simulate.training.train` at depth ``p`` from ``init``;
+Training (``optimizer=``): ``layerwise`` (default, :func:`qcpp.training.layerwise.train_layerwise`); ``nesterov``,
+``cobyla`` and ``lbfgsb``: one run of :func:`qcpp.training.training.train` at depth ``p`` from ``init``;
 ``multi-angle``: the multi-angle mixer-only circuit (``PlanOptions(angles="multi")``) trained by
-:func:`qcpp.simulate.mixer_only.train_multi_angle_layers`, whose ``angles`` are the ``p x partial mixers`` betas and
+:func:`qcpp.training.mixer_only.train_multi_angle_layers`, whose ``angles`` are the ``p x partial mixers`` betas and
 ``bindings`` the compiled circuit's symbol values. Every optimiser minimises ``objective``
-(:mod:`qcpp.simulate.objectives`; default ``gibbs``).
+(:mod:`qcpp.training.objectives`; default ``gibbs``).
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -39,14 +39,15 @@ from qcpp.problem.cost import cost_parts
 from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import ProgressFn, Solution, SolveMethod, solution_to_dict
-from qcpp.simulate.layerwise import (
+from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
+from qcpp.training.layerwise import (
     DEFAULT_MAXITER,
     DEFAULT_RANDOM_STARTS,
     SHOTS_PER_ESTIMATE,
     LayerwiseResult,
     train_layerwise,
 )
-from qcpp.simulate.mixer_only import (
+from qcpp.training.mixer_only import (
     bindings,
     most_probable_multi,
     multi_robot_states,
@@ -54,7 +55,7 @@ from qcpp.simulate.mixer_only import (
     product_objective,
     train_multi_angle_layers,
 )
-from qcpp.simulate.objectives import (
+from qcpp.training.objectives import (
     GIBBS_SCALE,
     OBJECTIVES,
     Expectation,
@@ -62,8 +63,7 @@ from qcpp.simulate.objectives import (
     ObjectiveName,
     make_objective,
 )
-from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
-from qcpp.simulate.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
+from qcpp.training.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
 __all__ = ["QAOA_OPTIMIZERS", "SINGLE_START", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
 
@@ -83,9 +83,9 @@ class QaoaSolution:
         probability: Probability of ``solution.paths`` in the trained state.
         p_optimum: Probability of the optimal assignments in the trained state.
         optimum: The optimal cost over the simulator's basis.
-        training: The :class:`~qcpp.simulate.training.TrainingResult` of the answer's angles (layerwise: the run
+        training: The :class:`~qcpp.training.training.TrainingResult` of the answer's angles (layerwise: the run
             kept at the final depth).
-        schedule: The :class:`~qcpp.simulate.layerwise.LayerwiseResult` (``None`` for a single run).
+        schedule: The :class:`~qcpp.training.layerwise.LayerwiseResult` (``None`` for a single run).
         initial: The initial state trained from.
         bindings: ``multi-angle``: the compiled multi-angle circuit's symbol values (else empty).
         estimates: ``multi-angle``: the device objective estimates of its training (a gradient by the
@@ -125,7 +125,7 @@ class QaoaSolution:
 
     @property
     def circuit_estimates(self) -> int:
-        """Objective estimates a device would need (see :class:`~qcpp.simulate.layerwise.LayerwiseResult`)."""
+        """Objective estimates a device would need (see :class:`~qcpp.training.layerwise.LayerwiseResult`)."""
         if self.estimates is not None:
             return self.estimates
         if self.schedule is not None:
@@ -162,15 +162,15 @@ def solve_qaoa(
             ``local_search_mix`` (:data:`qcpp.gadgets.initial_state.INITIAL_STATES`).
         seed: Seed of the random initial angles.
         rule: SBF rule of the mixer.
-        maxiter: Optimiser budget per run (see :func:`qcpp.simulate.training.train`).
+        maxiter: Optimiser budget per run (see :func:`qcpp.training.training.train`).
         random_starts: ``layerwise``: random starts at ``p = 1`` beside the linear ramp.
         mixer_warm: ``layerwise``: also start every level from the mixer-only warm start
-            (:mod:`qcpp.simulate.mixer_only`; an option, not the default).
+            (:mod:`qcpp.training.mixer_only`; an option, not the default).
         restart_every_level: ``layerwise``: also start every level ``p > 1`` from the linear ramp and
-            ``random_starts`` random angles (:func:`qcpp.simulate.layerwise.train_layerwise`). ``None`` (default):
+            ``random_starts`` random angles (:func:`qcpp.training.layerwise.train_layerwise`). ``None`` (default):
             on for ``layerwise``, off for the single-run optimisers.
         gibbs_scale: ``gibbs``: the inverse temperature ``eta = gibbs_scale / sigma`` (``sigma``: the cost scale,
-            :func:`qcpp.simulate.training.cost_scale`). Larger values weigh the optimum's share of the
+            :func:`qcpp.training.training.cost_scale`). Larger values weigh the optimum's share of the
             probability more against near-optimal assignments.
         progress: Called as ``progress(0, p)`` before training and ``progress(k, p)`` after level ``k``
             (``progress(1, 1)`` for a single run).
@@ -312,7 +312,7 @@ def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
     """JSON-ready dict: :func:`~qcpp.problem.solvers.solution_to_dict` (without its trace) plus ``probability``,
     ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial`` (the initial state), ``objective``,
     ``expectation``, ``trace`` (the objective), ``evaluations``, ``circuit_estimates``, ``training_shots``
-    (estimates x ``shots_per_estimate``, an assumed :data:`qcpp.simulate.layerwise.SHOTS_PER_ESTIMATE`) and, for
+    (estimates x ``shots_per_estimate``, an assumed :data:`qcpp.training.layerwise.SHOTS_PER_ESTIMATE`) and, for
     ``layerwise``, ``levels`` (per depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``,
     ``iterations``) and ``mixer_evaluations`` (the mixer-only warm start's product-state evaluations, 0 without
     it)."""

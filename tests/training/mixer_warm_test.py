@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from qcpp.problem.scenario import scenario_from_dict
-from qcpp.simulate.mixer_only import product_objective, robot_states, robot_states_gradient, train_mixer_only
-from qcpp.simulate.objectives import OBJECTIVES, make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale
+from qcpp.training.mixer_only import product_objective, robot_states, robot_states_gradient, train_mixer_only
+from qcpp.training.objectives import OBJECTIVES, make_objective
+from qcpp.training.training import cost_scale
 
 TWO = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
                           "robots": [{"start": [0, 0], "goal": [2, 2]}, {"start": [0, 2], "goal": [2, 0]}]})

@@ -13,7 +13,8 @@ from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.problem.scenario_io import load_scenario
-from qcpp.simulate.mixer_only import (
+from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.mixer_only import (
     bindings,
     mixer_sites,
     multi_robot_states,
@@ -23,9 +24,8 @@ from qcpp.simulate.mixer_only import (
     robot_states_gradient,
     train_multi_angle,
 )
-from qcpp.simulate.objectives import make_objective
-from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale
+from qcpp.training.objectives import make_objective
+from qcpp.training.training import cost_scale
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -143,7 +143,7 @@ def test_the_solver_answers_with_the_product_state_and_bindings_of_the_compiled_
     """``solve_qaoa(optimizer="multi-angle")``: probability and P(optimum) of the product state; its bindings
     bind every symbol of the compiled multi-angle circuit and nothing else."""
     from qcpp.plan.compile import compile_scenario
-    from qcpp.simulate.qaoa_solver import qaoa_to_dict, solve_qaoa
+    from qcpp.training.qaoa_solver import qaoa_to_dict, solve_qaoa
 
     res = solve_qaoa(TWO_2x4, p=2, optimizer="multi-angle")
     q = SubspaceQAOA(TWO_2x4)

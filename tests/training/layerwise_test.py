@@ -10,10 +10,10 @@ import pytest
 
 from qcpp.problem.scenario import scenario_from_dict
 from qcpp.problem.scenario_io import load_scenario
-from qcpp.simulate.layerwise import SHOTS_PER_ESTIMATE, extend_angles, train_layerwise
-from qcpp.simulate.objectives import make_objective
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import cost_scale, initial_angles, interp_angles, train
+from qcpp.training.layerwise import SHOTS_PER_ESTIMATE, extend_angles, train_layerwise
+from qcpp.training.objectives import make_objective
+from qcpp.training.training import cost_scale, initial_angles, interp_angles, train
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TWO_3x3 = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 1]]},
@@ -93,9 +93,9 @@ def test_bad_arguments(two: SubspaceQAOA) -> None:
 def test_doctests() -> None:
     import doctest
 
-    import qcpp.simulate.layerwise
+    import qcpp.training.layerwise
 
-    assert doctest.testmod(qcpp.simulate.layerwise).failed == 0
+    assert doctest.testmod(qcpp.training.layerwise).failed == 0
 
 
 @pytest.mark.heavy  # about 20 s on 2 cores

@@ -8,9 +8,9 @@ import pytest
 
 from qcpp.problem.ensembles import random_scenario
 from qcpp.problem.scenario import scenario_from_dict
-from qcpp.simulate.angle_search import SearchBudget, search_p_optimum
-from qcpp.simulate.layerwise import train_layerwise
 from qcpp.simulate.subspace import SubspaceQAOA
+from qcpp.training.angle_search import SearchBudget, search_p_optimum
+from qcpp.training.layerwise import train_layerwise
 
 SMALL = SearchBudget(random_starts=2, hops=1, maxiter=25)
 

@@ -13,7 +13,7 @@ from qcpp.problem.paths import enumerate_paths, initial_path
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.subspace import SubspaceQAOA
-from qcpp.simulate.training import (
+from qcpp.training.training import (
     TrainingResult,
     cost_scale,
     initial_angles,
@@ -178,7 +178,7 @@ def test_two_robots_train() -> None:
 def test_doctests() -> None:
     import doctest
 
-    import qcpp.simulate.training
+    import qcpp.training.training
 
-    result = doctest.testmod(qcpp.simulate.training)
+    result = doctest.testmod(qcpp.training.training)
     assert result.attempted > 0 and result.failed == 0

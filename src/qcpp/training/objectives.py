@@ -18,7 +18,7 @@ adjoint sweep. All are in units of the cost:
     units of cost): the free energy at inverse temperature ``eta``. It tends to ``<C>`` as ``eta -> 0`` and to
     the cheapest cost with any weight as ``eta -> inf``; in between it keeps rewarding weight on the cheapest
     costs however much is there. Default ``eta``: ``GIBBS_SCALE / sigma`` with ``sigma`` the standard
-    deviation of the cost over all basis assignments (:func:`qcpp.simulate.training.cost_scale`), so the default
+    deviation of the cost over all basis assignments (:func:`qcpp.training.training.cost_scale`), so the default
     needs no tuning to a scenario's cost units.
 
 Example:

@@ -20,7 +20,7 @@ Every method reports the same numbers for the same angles:
 * ``amplitudes_held``: total probability on feasible assignments with every ancilla back in ``|0>`` (1 for
   ``subspace`` by construction; for the gate-level methods 1 up to rounding when the circuit is right).
 
-Random angles (no ``angles`` given): :func:`qcpp.simulate.training.initial_angles` with ``init="random"`` on the
+Random angles (no ``angles`` given): :func:`qcpp.training.training.initial_angles` with ``init="random"`` on the
 exact-rule subspace simulator, so the same seed gives the same angles for every method.
 
 Example:
@@ -49,7 +49,7 @@ from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.simulate.statevector import MAX_STATEVECTOR_QUBITS
 from qcpp.simulate.subspace import SubspaceQAOA, angle_bindings, split_angles
-from qcpp.simulate.training import check_at_least, initial_angles
+from qcpp.training.training import check_at_least, initial_angles
 
 __all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "resolve_angles"]
 
