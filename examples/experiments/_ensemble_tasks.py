@@ -111,8 +111,9 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
 
 
 def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:
-    """The depth-``p`` circuit of ``scenario`` routed onto ``device`` by the estimator: routed counts, ESP and the
-    time of one shot (device durations where published, else the ideal gate model on the routed depths,
+    """The depth-``p`` circuit of ``scenario`` routed onto ``device`` by the estimator: routed counts, ESP (of the
+    gates alone, ``esp``, and with idle decoherence where the device has T1 / T2, ``esp_idle``, else ``None``) and
+    the time of one shot (device durations where published, else the ideal gate model on the routed depths,
     ``assumed``)."""
     from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
     from qcpp.estimators.routed import routed_fields
@@ -123,13 +124,19 @@ def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:
     f = routed_fields(scenario, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
                       one_qubit=c.single_qubit, total_gates=c.total)
     out = {k: f[k] for k in ("device", "fits", "routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth",
-                             "esp")}
+                             "esp", "esp_idle")}
     if not f["fits"]:
         return {**out, "duration_model": None, "shot_us": None}
     if f["duration_s"] is not None:
         return {**out, "duration_model": "device", "shot_us": f["duration_s"] * 1e6}
     shot = shot_seconds(f["routed_depth"], f["routed_twoq_depth"], GATE_MODEL)
     return {**out, "duration_model": "assumed", "shot_us": shot * 1e6}
+
+
+def shot_esp(row: dict[str, Any]) -> float:
+    """The ESP a shot on ``row``'s device succeeds with: with idle decoherence where the device has T1 / T2
+    (``esp_idle``), else the gates' alone (``esp``)."""
+    return row["esp"] if row.get("esp_idle") is None else row["esp_idle"]
 
 
 def device_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:

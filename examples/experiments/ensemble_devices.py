@@ -4,11 +4,13 @@ The ensemble study (``ensembles.py``) projects QAOA on an ideal all-to-all devic
 ``--instances`` instances of some of its cells (``--reference``, default the committed results) and routes their
 depth-``p`` circuits onto named devices the way ``time_to_solution.py`` does (the estimator's routed circuit:
 routed counts, the estimated success probability ESP of one shot, the shot time from the device's durations where
-published). A shot succeeds with ``P(optimum) x ESP`` (the default training's ``P(optimum)`` from the reference);
+published). A shot succeeds with ``P(optimum) x ESP`` (the default training's ``P(optimum)`` from the reference;
+ESP with idle decoherence where the device has T1 / T2, the IBM snapshots, else of the gates alone);
 the 99% time counts every training shot (objective estimates x 1000 shots, at the routed shot time) and the shots
 for 99%. Beside it the ideal-device time and the fastest classical method's, both from the reference's records.
 
-It tabulates per cell, device and depth: how many instances fit, the median [quartiles] of ESP and of the device's
+It tabulates per cell, device and depth: how many instances fit, the median [quartiles] of ESP (of the gates, and
+with idle decoherence) and of the device's
 99% time, the device's time over the ideal one, and on how many instances QAOA on the device beats the fastest
 classical method. One Dask task per instance (as ``ensembles.py``).
 
@@ -134,7 +136,7 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
                    **d, "p_opt": b["p_opt"], "circuit_estimates": b["circuit_estimates"],
                    "ideal_tts_99": b["tts_99"], "best_classical_s": classical[b["instance"]]}
             t = (qaoa_on_device(b["p_opt"], b["circuit_estimates"], SHOTS_PER_ESTIMATE, d["shot_us"] * 1e-6, TARGET,
-                                esp=d["esp"]) if d["fits"] else None)
+                                esp=_ensemble_tasks.shot_esp(d)) if d["fits"] else None)
             row |= {"p_shot": t and t.p_shot, "shots_99": t and t.shots, "training_s": t and t.training_seconds,
                     "sampling_s": t and t.sampling_seconds, "tts_99": t and t.seconds}
             rows.append(row)
@@ -143,6 +145,7 @@ def device_rows(results: list[dict[str, Any]], reference: list[dict[str, Any]]) 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     from qcpp.pipeline.device_compile import ESP_MODEL
+    from qcpp.routing.native import IDLE_MODEL
 
     opts, cfg, reference, scheduler, workers, command = parse_args(argv)
     study = StudyConfig(cfg.cells, cfg.density, cfg.instances, max(cfg.depths), 0, 0, 0, 0.0, {}, cfg.seed)
@@ -160,22 +163,25 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     t = Table("QAOA on named devices: ESP and the 99% time with training counted (median [lower quartile, upper "
               "quartile] over the instances that fit), against the ideal all-to-all device and the fastest "
               "classical method per instance",
-              ["cell", "device", "p", "fit", "ESP", "99% time s", "device / ideal", "QAOA faster on"])
+              ["cell", "device", "p", "fit", "ESP", "ESP idle", "99% time s", "device / ideal", "QAOA faster on"])
     for cell in cfg.cells:
         for device in cfg.devices:
             for p in cfg.depths:
                 sel = [r for r in rows if (r["cell"], r["device"], r["p"]) == (cell, device, p)]
                 fit = [r for r in sel if r["fits"]]
                 faster = sum(r["tts_99"] < r["best_classical_s"] for r in fit)
+                idle = [r["esp_idle"] for r in fit if r["esp_idle"] is not None]
                 t.add(cell, device, p, f"{len(fit)} of {len(sel)}", _mqq_or_dash([r["esp"] for r in fit]),
-                      _mqq_or_dash([r["tts_99"] for r in fit]),
+                      _mqq_or_dash(idle), _mqq_or_dash([r["tts_99"] for r in fit]),
                       _mqq_or_dash([r["tts_99"] / r["ideal_tts_99"] for r in fit
                                     if math.isfinite(r["ideal_tts_99"])]),
                       f"{faster} of {len(fit)}")
     notes = [f"qcpp {qcpp.__version__}. Reference: {cfg.reference} (density {cfg.density:g}, seed {cfg.seed}); the "
              f"first {cfg.instances} instances of {', '.join(cfg.cells)}; depths {', '.join(map(str, cfg.depths))}.",
              "Routing: qcpp.estimators.routed.routed_fields, as time_to_solution.py (the default plan). A shot "
-             f"succeeds with P(optimum) x ESP; ESP: {ESP_MODEL}. Shot time: the device's durations where published, "
+             f"succeeds with P(optimum) x ESP. ESP of the gates: {ESP_MODEL}. Where the device has T1/T2 (the IBM "
+             f"snapshots), a shot's ESP is that times the {IDLE_MODEL} (the column ESP idle). Shot time: the "
+             "device's durations where published, "
              "else the ideal gate model on the routed depths. Training: the reference's objective estimates x 1000 "
              "shots at the routed shot time. Device / ideal: over the instances whose ideal time is finite.",
              "The fastest classical time per instance is the reference's (wall-clock, on the machine and at the "

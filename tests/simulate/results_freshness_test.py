@@ -173,7 +173,7 @@ def test_device_rows_match_the_router(instance: str) -> None:
         assert r["device"] == want["device"] and r["fits"] == want["fits"], _label("time_to_solution", r)
         for k in ("routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth"):
             assert r[k] == want[k], (_label("time_to_solution", r), k)
-        assert r["esp"] == pytest.approx(want["esp"], rel=1e-9), _label("time_to_solution", r)
+        _check_esp(r, want, "time_to_solution")
         if want["duration_s"] is not None:
             assert r["duration_model"] == "device"
             assert r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
@@ -261,13 +261,27 @@ def _check_solver_formulas(r: dict[str, Any]) -> None:
         assert r["tts_99"] == pytest.approx((r["training_shots"] + r["shots_99"]) * shot)
 
 
+def _check_esp(r: dict[str, Any], want: dict[str, Any], study: str) -> None:
+    """``r``'s ESP of the gates and with idle decoherence are the router's (``want``); idle where the device has
+    T1 / T2 (the IBM snapshots), ``None`` elsewhere."""
+    assert r["esp"] == pytest.approx(want["esp"], rel=1e-9), _label(study, r)
+    if want["esp_idle"] is None:
+        assert r["esp_idle"] is None, _label(study, r)
+    else:
+        assert r["esp_idle"] == pytest.approx(want["esp_idle"], rel=1e-9), _label(study, r)
+    assert (r["esp_idle"] is not None) == r["device"].startswith("ibm_") or not r["fits"], _label(study, r)
+
+
 def _check_device_time(r: dict[str, Any], training_shots: int) -> None:
-    """A device row that fits: the assumed shot time from its routed depths, a shot's success ``P(optimum) x ESP``,
-    the shots for 99% and the 99% time with ``training_shots`` counted at the shot time."""
+    """A device row that fits: the assumed shot time from its routed depths, a shot's success ``P(optimum) x ESP``
+    (ESP with idle decoherence where the row has it), the shots for 99% and the 99% time with ``training_shots``
+    counted at the shot time."""
     if r["duration_model"] == "assumed":
         shot_us = shot_seconds(r["routed_depth"], r["routed_twoq_depth"], GATE_MODEL) * 1e6
         assert r["shot_us"] == pytest.approx(shot_us)
-    assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * r["esp"], rel=1e-12)
+    shot_esp = r["esp"] if r["esp_idle"] is None else r["esp_idle"]
+    assert r["esp_idle"] is None or r["esp_idle"] < r["esp"]  # idling only loses
+    assert r["p_shot"] == pytest.approx(min(1.0, r["p_opt"]) * shot_esp, rel=1e-12)
     assert r["shots_99"] == shots_for(r["p_shot"])
     assert r["tts_99"] == pytest.approx((training_shots + r["shots_99"]) * r["shot_us"] * 1e-6)
 
@@ -437,7 +451,7 @@ def _check_ensemble_device_row(r: dict[str, Any]) -> None:
     """``r``'s routed figures, ESP and shot time are what the router gives its scenario, depth and device now."""
     want = _routed(_key(r), int(r["p"]), r["device"])
     assert {k: r[k] for k in DEVICE_FIELDS} == {k: want[k] for k in DEVICE_FIELDS}, _label("ensemble_devices", r)
-    assert r["esp"] == pytest.approx(want["esp"], rel=1e-9), _label("ensemble_devices", r)
+    _check_esp(r, want, "ensemble_devices")
     if want["duration_s"] is not None:
         assert r["duration_model"] == "device" and r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
 
