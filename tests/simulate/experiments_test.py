@@ -441,6 +441,8 @@ def test_ensemble_devices_quick_mode(tmp_path: Path) -> None:
     assert all(r["fits"] and 0 < r["esp"] <= 1 and r["tts_99"] > 0 for r in rows)
     helios, fez = rows
     assert helios["routed_twoq"] < fez["routed_twoq"]  # all-to-all needs no SWAPs
+    assert helios["esp_idle"] is None and 0 < fez["esp_idle"] < fez["esp"]  # idle decoherence where T1/T2 are known
+    assert fez["p_shot"] == pytest.approx(fez["p_opt"] * fez["esp_idle"])
     md = (tmp_path / "results" / "ensemble_devices.md").read_text()
     assert "`python examples/experiments/ensemble_devices.py --quick`" in md and "| 3x3/1 | ibm_fez | 1 |" in md
 
