@@ -129,6 +129,31 @@ class Compiled:
 
         return qiskit.qasm3.loads(self.to_qasm(3))
 
+    def to_cirq(self) -> Any:
+        """The circuit as a ``cirq.Circuit``: qubit ``i`` is ``cirq.LineQubit(i)``, unbound symbols are sympy symbols
+        of the same names (resolve them with ``cirq.ParamResolver``), the same unitary as :meth:`to_qiskit`'s
+        (:mod:`qcpp.lowering.toolchains`: gate for gate, or a gate's exact decomposition where Cirq has no such
+        gate).
+
+        Raises:
+            ImportError: Cirq is not installed (``pip install 'qcpp[cirq]'``).
+        """
+        from qcpp.lowering.toolchains import to_cirq
+
+        return to_cirq(self.circuit)
+
+    def to_pytket(self) -> Any:
+        """The circuit as a ``pytket.Circuit`` on :attr:`qubits` qubits: unbound symbols are sympy symbols of the same
+        names (``symbol_substitution`` binds them), the same unitary as :meth:`to_qiskit`'s
+        (:mod:`qcpp.lowering.toolchains`).
+
+        Raises:
+            ImportError: pytket is not installed (``pip install 'qcpp[pytket]'``).
+        """
+        from qcpp.lowering.toolchains import to_pytket
+
+        return to_pytket(self.circuit)
+
     def __repr__(self) -> str:
         where = f" on {self.device.name}" if self.device is not None else ""
         form = "lowered" if self.lowered else "high level"
