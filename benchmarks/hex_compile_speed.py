@@ -10,9 +10,12 @@ after the other:
   optimization_level=3, seed_transpiler=0)``, where ``lowered`` is the unrouted circuit of ``qcpp compile
   --lowered`` loaded by Qiskit's OpenQASM 3 reader (built before the clock starts).
 
-``--screen``: instead, per case, ``qcpp compile`` as above with the cells' plan choice searching the allocation of
-the default plan and :attr:`~qcpp.routing.options.RoutingOptions.cell_screen` screened variants (the default) and of
-every variant (``cell_screen=0``), side by side: times and two-qubit gates of each.
+``--screen``: instead, per case, ``qcpp compile`` as above with the cells' plan choice as by default (searching the
+allocation of the default plan and :attr:`~qcpp.routing.options.RoutingOptions.cell_screen` screened variants, and
+of the operand exchanges that pass :attr:`~qcpp.routing.options.RoutingOptions.cell_swap_screen`), with every
+exchange searched (``cell_swap_screen=False``), and with every variant and every exchange searched
+(``cell_screen=0``, ``cell_swap_screen=False``), side by side: times, two-qubit gates and a hash of the routed
+circuit's gates (equal hashes: the same circuit) of each.
 
 Each process imports everything first (qcpp, Qiskit, SciPy) and then times only the call, wall
 (``time.perf_counter``) and CPU (``time.process_time``, this process only: both compilers run in-process; Qiskit's
@@ -25,6 +28,7 @@ repeats, the ratio qcpp / Qiskit of the median CPU and wall times, the two-qubit
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import statistics
@@ -76,7 +80,7 @@ def _worker_qcpp(case: str) -> dict[str, Any]:
             "layout": summary["routed"]["layout"], "coupling": [list(e) for e in out.device.coupling]}  # fmt: skip
 
 
-def _worker_screen(case: str, screen: int) -> dict[str, Any]:
+def _worker_screen(case: str, screen: int, swap_screen: bool) -> dict[str, Any]:
     from dataclasses import replace
 
     from qcpp.pipeline.device_compile import compile_for_device
@@ -84,25 +88,30 @@ def _worker_screen(case: str, screen: int) -> dict[str, Any]:
 
     _warm_imports()
     scenario = _scenario(case)
-    routing = replace(DEFAULT_ROUTING, cell_screen=screen)
+    routing = replace(DEFAULT_ROUTING, cell_screen=screen, cell_swap_screen=swap_screen)
     out, wall, cpu = _timed(lambda: compile_for_device(scenario, 1, "heavy-hex", routing=routing))
     twoq = sum(1 for g in out.routed.circuit.gates if len(g[1]) == 2)
-    return {"wall": wall, "cpu": cpu, "device": out.routed.device.name, "twoq": twoq, "layout": out.layout_method}
+    digest = hashlib.sha256(repr(list(out.routed.circuit.gates)).encode()).hexdigest()[:12]
+    return {"wall": wall, "cpu": cpu, "device": out.routed.device.name, "twoq": twoq, "layout": out.layout_method,
+            "hash": digest}
 
 
 def screen_table(cases: list[str], repeats: int) -> None:
     """The ``--screen`` table (module docs)."""
-    print("| case | device | variants searched | qcpp CPU s | qcpp wall s | qcpp 2q |")
-    print("|---|---|---|---:|---:|---:|")
+    print("| case | device | variants searched | exchanges searched | qcpp CPU s | qcpp wall s | qcpp 2q "
+          "| gates hash |")  # fmt: skip
+    print("|---|---|---|---|---:|---:|---:|---|")
     from qcpp.routing.options import DEFAULT_ROUTING
 
     for case in cases:
-        for screen in (DEFAULT_ROUTING.cell_screen, 0):
-            runs = [_run(["screen", case, str(screen)]) for _ in range(repeats)]
+        for screen, swap_screen in ((DEFAULT_ROUTING.cell_screen, True), (DEFAULT_ROUTING.cell_screen, False),
+                                    (0, False)):  # fmt: skip
+            runs = [_run(["screen", case, str(screen), str(int(swap_screen))]) for _ in range(repeats)]
             label = f"default + {screen} screened" if screen else "every variant"
+            swaps = "screened" if swap_screen else "every exchange"
             cpu, wall = (statistics.median(r[k] for r in runs) for k in ("cpu", "wall"))
-            print(f"| {case} | {runs[0]['device']} ({runs[0]['layout']}) | {label} | {cpu:.1f} | {wall:.1f} "
-                  f"| {runs[0]['twoq']:,} |", flush=True)  # fmt: skip
+            print(f"| {case} | {runs[0]['device']} ({runs[0]['layout']}) | {label} | {swaps} | {cpu:.1f} | {wall:.1f} "
+                  f"| {runs[0]['twoq']:,} | {runs[0]['hash']} |", flush=True)  # fmt: skip
 
 
 def _worker_qiskit(case: str, coupling: list[list[int]]) -> dict[str, Any]:
@@ -143,7 +152,7 @@ def main(argv: list[str]) -> int:
         if kind == "qcpp":
             result = _worker_qcpp(case)
         elif kind == "screen":
-            result = _worker_screen(case, int(rest[0]))
+            result = _worker_screen(case, int(rest[0]), bool(int(rest[1])))
         else:
             result = _worker_qiskit(case, json.loads(rest[0]))
         print(json.dumps(result))

@@ -149,3 +149,23 @@ def test_the_screen_only_narrows_the_variants_searched(shape: tuple[int, int, in
     assert planned(24)[0] == every
     _, searched_screened = planned(DEFAULT_ROUTING.cell_screen)
     assert searched_screened < searched_every
+
+
+@pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((3, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "3x3/2"])
+def test_the_exchange_screen_searches_fewer_exchanges_and_keeps_the_default_bound(shape: tuple[int, int, int]) -> None:
+    """``cell_swap_screen`` searches an operand exchange only where it routes to no more on the current plan's
+    sites: fewer windows routed than searching every exchange, and still no chosen window above the default
+    plan's (the choice only accepts what its search routes to fewer)."""
+    s, circuit, dev, homes, dist = _on_cells(shape)
+    runs = {}
+    for screen in (True, False):
+        context = RoutingContext()
+        routing = dataclasses.replace(DEFAULT_ROUTING, cell_swap_screen=screen)
+        runs[screen] = (cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND, routing=routing, context=context),
+                        len(context.windows))  # fmt: skip
+    assert runs[True][1] < runs[False][1]
+    context = RoutingContext()
+    for old, new in zip(circuit.sections, runs[True][0].sections, strict=True):
+        if old.name.startswith("mixer"):
+            assert (_window_cx(new, homes, dev, dist, DEFAULT_ROUTING, context)
+                    <= _window_cx(old, homes, dev, dist, DEFAULT_ROUTING, context))  # fmt: skip

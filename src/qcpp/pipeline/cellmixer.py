@@ -26,7 +26,10 @@ search run on every variant). Then the operands of one AND
 at a time (its mirror follows) or the rotation's two controls are exchanged, each exchange kept if it routes to
 fewer, until none does: the same logic, but a lowered AND uses its first operand twice
 (:func:`qcpp.ir.gates.and_`) and the rotation alternates its controls, so the order decides which qubits SABRE
-brings together. The choice is memoised in the run's :class:`~qcpp.routing.context.RoutingContext` per *cell class*
+brings together. An exchange moves no ancilla, so it is first routed on the sites the search found for the plan it
+is tried against, and searched only where it routes to no more there
+(:attr:`~qcpp.routing.options.RoutingOptions.cell_swap_screen`; ``hex_compile_speed.py --screen`` compares).
+The choice is memoised in the run's :class:`~qcpp.routing.context.RoutingContext` per *cell class*
 (the gadget's kind, its data qubits' coordinates relative to an anchor on the lattice's translation grid, and the
 occupied and existing qubits within :data:`MARGIN` of them), so the interior plaquettes of a large grid are scored
 once. A cached choice is only a choice: the chosen section is routed afresh by compile, so the written circuit and
@@ -185,7 +188,24 @@ def _window_cx(section: Section, homes: Sequence[int], device: Device, dist: np.
     """Two-qubit gates of ``section``'s window routed from home, allocated as compile allocates it
     (:func:`~qcpp.layout.medial.allocate_section`, what :func:`~qcpp.layout.medial.allocate_ancillas` does per
     section), the window given by its physical pairs."""
+    return _allocated_cx(section, homes, device, dist, routing, context)[0]
+
+
+Scored = tuple[int, dict[int, int]]
+"""A section's routed CX and the sites of its ancillas (logical ancilla -> device qubit) it routed with."""
+
+
+def _allocated_cx(section: Section, homes: Sequence[int], device: Device, dist: np.ndarray,
+                  routing: RoutingOptions, context: RoutingContext) -> Scored:  # fmt: skip
+    """:func:`_window_cx` and the ancillas' sites it routed with."""
     home = allocate_section(section, homes, device, dist, routing.allocation_search, routing, context)
+    return _sited_cx(section, homes, home, device, dist, routing, context), home
+
+
+def _sited_cx(section: Section, homes: Sequence[int], home: Mapping[int, int], device: Device, dist: np.ndarray,
+              routing: RoutingOptions, context: RoutingContext) -> int:  # fmt: skip
+    """Two-qubit gates of ``section``'s window routed from home with its ancillas at ``home`` (logical ancilla ->
+    device qubit)."""
     n_data = len(homes)
     pairs = [tuple(int(homes[q]) if q < n_data else home[q] for q in g[1]) for g in section.gates if len(g[1]) == 2]
     return route_window_cx(pairs, None, device, dist, 0, routing, context)  # type: ignore[arg-type]
@@ -264,16 +284,21 @@ def cell_mixers(
             return (lowered.bind(bindings) if bindings else lowered).sections[0]
 
         emitted: dict[MixerPlan, Section] = {gadget.plan: sections[i]}  # the screen and the search share them
-        costs: dict[tuple[MixerPlan, bool], int] = {}  # the operand exchanges come back to plans already scored
+        costs: dict[tuple[MixerPlan, bool], Scored] = {}  # the operand exchanges come back to plans already scored
 
-        def cost(plan: MixerPlan, search: bool = True, emitted: dict[MixerPlan, Section] = emitted,
-                 costs: dict[tuple[MixerPlan, bool], int] = costs) -> int:  # fmt: skip
+        def section_of(plan: MixerPlan, emitted: dict[MixerPlan, Section] = emitted) -> Section:
+            if plan not in emitted:
+                emitted[plan] = variant(plan)
+            return emitted[plan]
+
+        def scored(plan: MixerPlan, search: bool = True, costs: dict[tuple[MixerPlan, bool], Scored] = costs) -> Scored:
             if (plan, search) not in costs:
-                if plan not in emitted:
-                    emitted[plan] = variant(plan)
                 options = routing if search else screen_routing
-                costs[plan, search] = _window_cx(emitted[plan], homes, device, dist, options, context)
+                costs[plan, search] = _allocated_cx(section_of(plan), homes, device, dist, options, context)
             return costs[plan, search]
+
+        def cost(plan: MixerPlan, search: bool = True) -> int:
+            return scored(plan, search)[0]
 
         key = (_class_key(gadget, homes, coords, occupied), routing)
         chosen = context.cell_choices.get(key)
@@ -287,7 +312,11 @@ def cell_mixers(
             improved = True
             while improved:  # operands exchanged one gate at a time, each kept if it routes to fewer
                 improved = False
+                at_sites, sites = scored(chosen)  # the round's plan and the sites its search routed it on
                 for swapped in _operand_swaps(chosen):
+                    if routing.cell_swap_screen and routing.allocation_search and _sited_cx(
+                            section_of(swapped), homes, sites, device, dist, routing, context) > at_sites:
+                        continue  # routes to more on the same sites: not searched
                     c = cost(swapped)
                     if c < best:
                         best, chosen, improved = c, swapped, True

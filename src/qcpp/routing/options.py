@@ -59,6 +59,11 @@ class RoutingOptions:
         cell_screen: The heavy-hex cells' plan choice (:func:`qcpp.pipeline.cellmixer.cell_mixers`) runs the
             allocation search on the default plan and on this many variants, those whose windows route to the
             fewest two-qubit gates with the greedy allocation (``0``: on every variant).
+        cell_swap_screen: The cells' plan choice searches an exchange of operands only if, with its ancillas on
+            the sites the search found for the plan it is tried against, it routes to no more CX than that plan
+            there (an exchange changes which qubits one AND or the rotation brings together, not where the
+            ancillas go); ``False``: every exchange is searched. The chosen plan still never routes to more than
+            the default plan.
         allocation_search: Whether the medial allocation searches the partial mixers' ancilla sites
             (:func:`qcpp.layout.medial.allocate_ancillas` ``search``).
         search_ranks: Each ancilla of a searched section is also tried on its 2nd .. (1 + this)-th best free qubit.
@@ -97,6 +102,7 @@ class RoutingOptions:
     cell_large_window_seeds: int = 32
     cell_large_window_trials: int = 64
     cell_screen: int = 4
+    cell_swap_screen: bool = True
     allocation_search: bool = True
     search_ranks: int = 4
     search_rounds: int = 2
