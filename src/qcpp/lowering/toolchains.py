@@ -7,11 +7,13 @@ symbols of the same names: ``gamma_0``, ``beta_0``, ...), so a sweep over the an
 **Gate for gate** where the toolchain has the gate (:data:`DIRECT`: ``x h t tdg s sdg rz rx ry cx cz crz cry rzz
 ccx`` and ``mcx``, a multi-controlled X with its control values); every other gate (``and``, ``and_dg``, ``crx``,
 ``sbf``, ``csbf``) is written as the exact decomposition qcpp's own lowering uses
-(:func:`qcpp.lowering.passes.decompose_gate`), so a lowered circuit converts one gate to one operation. Each gate
-has the matrix of :mod:`qcpp.ir.gates`, global phase included (``rz(θ) = exp(-iθZ/2)``, pytket's angles in
-half-turns: ``Rz(θ/π)``; ``rzz(θ) = exp(-iθZZ/2)`` is Cirq's ``ZZPowGate(exponent=θ/π, global_shift=-1/2)`` and
-pytket's ``ZZPhase(θ/π)``), so the converted circuit has qcpp's unitary exactly: ``tests/compiler/toolchains_test.py``
-compares state vectors with Qiskit's reading of the OpenQASM 3, phase included. Qubit ``i`` is
+(:func:`qcpp.lowering.passes.decompose_gate`; for ``and``/``and_dg`` the relative-phase Toffoli, exact on a clean
+target as the IR's contract says), so a lowered circuit converts one gate to one operation. Each gate has the
+matrix of :mod:`qcpp.ir.gates`, global phase included (``rz(θ) = exp(-iθZ/2)``, pytket's angles in half-turns:
+``Rz(θ/π)``; ``rzz(θ) = exp(-iθZZ/2)`` is Cirq's ``ZZPowGate(exponent=θ/π, global_shift=-1/2)`` and pytket's
+``ZZPhase(θ/π)``). ``tests/compiler/toolchains_test.py`` compares the unitaries of random gate sequences with an
+independent conversion (:func:`qcpp.simulate.equivalence.to_qiskit`) and the states of compiled circuits with
+Qiskit's reading of their OpenQASM 3, global phase included. Qubit ``i`` is
 ``cirq.LineQubit(i)`` and pytket's ``q[i]``; Cirq's circuit holds only the qubits its operations touch (pass
 ``qubit_order=cirq.LineQubit.range(n)`` to its simulators), pytket's all ``n``.
 
