@@ -196,8 +196,7 @@ def given_scenario(
     s = inline_scenario(grid, robots, obstacles, hard)
     if check_range:
         check_phase_range(s) if phases else check_cost_range(s)
-    rows, cols = parse_grid(grid)
-    flags = [f"--grid {rows}x{cols}", f"--robots {1 if robots is None else robots}"]
-    flags += [f"--obstacle {r},{c}" for r, c in parse_obstacles(obstacles)]
+    g = s.grid
+    flags = [f"--grid {g.rows}x{g.cols}", f"--robots {s.num_robots}", *(f"--obstacle {r},{c}" for r, c in s.obstacles)]
     flags += ["--hard-obstacles"] if hard else []
-    return GivenScenario(s, s.name or f"{rows}x{cols}", " ".join(flags))
+    return GivenScenario(s, s.name or f"{g.rows}x{g.cols}", " ".join(flags))
