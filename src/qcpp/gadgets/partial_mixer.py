@@ -149,7 +149,6 @@ class MixerPlan:
         return self._sum(leaf_logical_cost)
 
 
-
 def _carrier(forms: tuple[int, ...]) -> int | None:
     """The one qubit holding an odd form when the other three hold even ones (then XXXX = X on it)."""
     odd = [i for i, f in enumerate(forms) if bin(f).count("1") % 2]
@@ -160,6 +159,9 @@ MOVES: tuple[tuple[int, int], ...] = tuple((c, t) for c in range(4) for t in ran
 """The A*'s CNOTs ``(control, target)`` on the plaquette positions, in the order :func:`plan_parity_mixer` tries
 them from each state (the first of equally cheap plans it meets depends on this order)."""
 
+
+_G_SHIFT, _G_MASK = 32, (1 << 16) - 1  # an A* heap entry's fields: push number, g, f (ParitySearch.plan)
+_N_MASK, _F_SHIFT = (1 << _G_SHIFT) - 1, 48
 
 PARITY_SEARCHES_KEPT = 64
 """Programs whose :class:`ParitySearch` (with every state it expanded) :func:`parity_search` keeps."""
@@ -212,9 +214,27 @@ class ParitySearch:
         else:
             self._reserved = set()
         self._all_inner = (1 << len(inner)) - 1
+        # a literal as the masks it needs: parities (bit f: parity f on some qubit) and temporaries (bit i: inner
+        # step i done); an outer slot needs neither. A state's parities as such a mask decide every test below.
+        self._inner_need = [self._need(lits) for lits in inner]
+        self._final_need = [self._need((lit,)) for lit in final]
+        self._open_final = [j for j in range(len(final)) if j not in self._reserved]
         self._ids: dict[tuple, int] = {}  # a state's number: the search runs on numbers (hashed faster)
         self._states: list[tuple] = []
         self._expanded: list[tuple[bool, list[tuple[int, tuple, int]]] | None] = []
+        self._closures: dict[tuple[int, int, int], tuple[int, int, tuple]] = {}
+        self._needs: dict[tuple[int, int], int] = {}
+
+    @staticmethod
+    def _need(lits: Sequence[ALit]) -> tuple[int, int]:
+        """``(parities, temporaries)`` masks the literals ``lits`` need present."""
+        forms = temps = 0
+        for kind, ref, _ in lits:
+            if kind == "form":
+                forms |= 1 << ref  # type: ignore[operator]
+            elif kind == "temp":
+                temps |= 1 << ref  # type: ignore[operator]
+        return forms, temps
 
     def _id(self, state: tuple) -> int:
         """The number of ``state`` (numbered when first met)."""
@@ -225,31 +245,27 @@ class ParitySearch:
             self._expanded.append(None)
         return i
 
-    @staticmethod
-    def _present(lit: ALit, forms: tuple[int, ...], done: int) -> bool:
-        kind, ref, _ = lit
-        if kind == "form":
-            return ref in forms
-        if kind == "temp":
-            return bool(done >> ref & 1)  # type: ignore[operator]
-        return True
-
-    def _closure(self, forms: tuple[int, ...], done: int, absorbed: int) -> tuple[int, int, tuple]:
-        """Greedy ANDs: inner steps whose literals are present, then output literals into the chain."""
-        present, inner, final, reserved = self._present, self._inner, self._final, self._reserved
+    def _closure(self, present: int, done: int, absorbed: int) -> tuple[int, int, tuple]:
+        """Greedy ANDs: inner steps whose literals are present, then output literals into the chain (``present``:
+        the mask of parities held, bit ``f`` for parity ``f``; kept per ``(present, done, absorbed)``)."""
+        key = (present, done, absorbed)
+        hit = self._closures.get(key)
+        if hit is not None:
+            return hit
+        inner_need, final_need, open_final = self._inner_need, self._final_need, self._open_final
         events: list[tuple[str, tuple[int, ...]]] = []
         while True:
             progressed = False
-            for i, lits in enumerate(inner):
-                if not done >> i & 1 and all(present(lit, forms, done) for lit in lits):
+            for i, (forms, temps) in enumerate(inner_need):
+                if not done >> i & 1 and present & forms == forms and done & temps == temps:
                     done |= 1 << i
                     events.append(("inner", (i,)))
                     progressed = True
-            ready = [
-                j
-                for j in range(len(final))
-                if j not in reserved and not absorbed >> j & 1 and present(final[j], forms, done)
-            ]
+            ready = []
+            for j in open_final:
+                forms, temps = final_need[j]
+                if not absorbed >> j & 1 and present & forms == forms and done & temps == temps:
+                    ready.append(j)
             if ready and (absorbed or len(ready) >= 2):
                 if not absorbed:
                     events.append(("absorb", (ready[0], ready[1])))
@@ -261,14 +277,22 @@ class ParitySearch:
                 progressed = True
             if not progressed:
                 break
-        return done, absorbed, tuple(events)
+        hit = self._closures[key] = (done, absorbed, tuple(events))
+        return hit
 
-    def _missing(self, forms: tuple[int, ...], done: int, absorbed: int) -> int:
+    def _missing(self, present: int, done: int, absorbed: int) -> int:
         """Admissible A* bound: each CNOT changes one qubit, so it brings at most one absent parity."""
-        need = {ref for i, lits in enumerate(self._inner) if not done >> i & 1 for kind, ref, _ in lits
-                if kind == "form"}  # fmt: skip
-        need.update(ref for j, (kind, ref, _) in enumerate(self._final) if kind == "form" and not absorbed >> j & 1)
-        return len(need.difference(forms))
+        need = self._needs.get((done, absorbed))
+        if need is None:
+            need = 0
+            for i, (forms, _) in enumerate(self._inner_need):
+                if not done >> i & 1:
+                    need |= forms
+            for j, (forms, _) in enumerate(self._final_need):
+                if not absorbed >> j & 1:
+                    need |= forms
+            self._needs[done, absorbed] = need
+        return (need & ~present).bit_count()
 
     def _expand(self, sid: int) -> tuple[bool, list[tuple[int, tuple, int]]]:
         """Whether state number ``sid`` is a goal, and per CNOT ``c * 4 + t`` (``c != t``; ``None`` elsewhere) the
@@ -277,20 +301,24 @@ class ParitySearch:
         if hit is not None:
             return hit
         forms, done, absorbed = self._states[sid]
+        present = 1 << forms[0] | 1 << forms[1] | 1 << forms[2] | 1 << forms[3]
         goal = False
         if done == self._all_inner and _carrier(forms) is not None:
             remaining = [j for j in range(len(self._final)) if not absorbed >> j & 1]
             controls = len(remaining) + (1 if absorbed else 0)
             goal = controls <= (2 if self.target == "nisq" else 1) and all(
-                self._present(self._final[j], forms, done) for j in remaining
+                present & self._final_need[j][0] == self._final_need[j][0]
+                and done & self._final_need[j][1] == self._final_need[j][1]
+                for j in remaining
             )
         successors: list = [None] * 16
         for c, t in MOVES:
             nf = list(forms)
             nf[t] ^= forms[c]
             nforms = tuple(nf)
-            nd, na, events = self._closure(nforms, done, absorbed)
-            successors[c * 4 + t] = (self._id((nforms, nd, na)), events, self._missing(nforms, nd, na))
+            npresent = present ^ (1 << forms[t]) ^ (1 << nf[t])
+            nd, na, events = self._closure(npresent, done, absorbed)
+            successors[c * 4 + t] = (self._id((nforms, nd, na)), events, self._missing(npresent, nd, na))
         hit = self._expanded[sid] = (goal, successors)
         return hit
 
@@ -302,32 +330,47 @@ class ParitySearch:
             ValueError: no plan exists.
         """
         start = (1, 2, 4, 8)
-        d0, a0, e0 = self._closure(start, 0, 0)
+        present = 1 << 1 | 1 << 2 | 1 << 4 | 1 << 8
+        d0, a0, e0 = self._closure(present, 0, 0)
         init = self._id((start, d0, a0))
-        dist = {init: 0}
-        parent: dict[int, tuple] = {init: (None, ("start", None, e0))}
-        heap = [(self._missing(start, d0, a0), 0, 0, init)]
-        counter = 0
+        far = 1 << 30
+        dist = [far] * len(self._states)  # per state number: the fewest CNOTs found to it
+        dist[init] = 0
+        came: dict[int, tuple[int, int]] = {}  # state -> (the state before it, the CNOT c * 4 + t that led there)
+        # a heap entry is one int, (f, g, push number) in bit fields, so ties go to the earlier push; the state
+        # of push number n is pushed[n]
+        pushed = [init]
+        heap = [self._missing(present, d0, a0) << _F_SHIFT]
         goal = None
-        order = [(c * 4 + t, (c, t)) for c, t in moves]
+        order = [c * 4 + t for c, t in moves]
+        pop, push, expand, states = heapq.heappop, heapq.heappush, self._expand, self._states
         while heap:
-            _, g, _, state = heapq.heappop(heap)
+            entry = pop(heap)
+            state, g = pushed[entry & _N_MASK], entry >> _G_SHIFT & _G_MASK
             if g > dist[state]:
                 continue
-            is_goal, successors = self._expand(state)
+            is_goal, successors = expand(state)
             if is_goal:
                 goal = state
                 break
+            if len(dist) < len(states):  # the expansion numbered new states
+                dist.extend([far] * (len(states) - len(dist)))
             g1 = g + 1
-            for k, move in order:
-                nstate, events, bound = successors[k]
-                if g1 < dist.get(nstate, 1 << 30):
+            for k in order:
+                nstate, _, bound = successors[k]
+                if g1 < dist[nstate]:
                     dist[nstate] = g1
-                    parent[nstate] = (state, ("cx", move, events))
-                    counter += 1
-                    heapq.heappush(heap, (g1 + bound, g1, counter, nstate))
+                    came[nstate] = (state, k)
+                    push(heap, (g1 + bound) << _F_SHIFT | g1 << _G_SHIFT | len(pushed))
+                    pushed.append(nstate)
         if goal is None:
             raise ValueError("no parity-basis plan found")
+        parent: dict[int, tuple] = {init: (None, ("start", None, e0))}
+        state = goal
+        while state != init:
+            prev, k = came[state]
+            parent[state] = (prev, ("cx", divmod(k, 4), self._expanded[prev][1][k][1]))  # type: ignore[index]
+            state = prev
         return _build_plan(self.program, goal, parent, self.target)
 
 
