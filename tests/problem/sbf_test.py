@@ -511,21 +511,27 @@ def test_parity_program_equals_the_direct_network_on_every_feasible_path(rows: i
 
 
 def random_simple_path(s: Scenario, robot: int, rng: random.Random) -> int:
-    """A random simple start-goal path (randomised depth-first search over the free graph)."""
+    """A random simple start-goal path: the tree path of a randomised depth-first search over the free graph, which
+    visits every node once (so it ends, path or not, in linear time: a search over all simple paths runs for ever
+    when hard obstacles cut the goal off a large region)."""
     g, rb = s.grid, s.robots[robot]
     adj: dict[Node, list[tuple[Node, int]]] = {n: [] for n in g.nodes}
     for e, (a, b) in enumerate(g.edges):
         if (s.variable_mask >> e) & 1:
             adj[a].append((b, e))
             adj[b].append((a, e))
-    stack = [(rb.start, 0, frozenset([rb.start]))]
+    visited: set[Node] = set()
+    stack = [(rb.start, 0)]
     while stack:
-        node, mask, seen = stack.pop()
+        node, mask = stack.pop()
+        if node in visited:
+            continue
+        visited.add(node)  # the nodes of mask's path were all visited before it: the path stays simple
         if node == rb.goal:
             return mask
-        nxt = [(n, e) for n, e in adj[node] if n not in seen]
+        nxt = [(n, e) for n, e in adj[node] if n not in visited]
         rng.shuffle(nxt)
-        stack.extend((n, mask | 1 << e, seen | {n}) for n, e in nxt)
+        stack.extend((n, mask | 1 << e) for n, e in nxt)
     raise AssertionError("no path")
 
 
