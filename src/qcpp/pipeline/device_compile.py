@@ -76,9 +76,10 @@ from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext, collector_paused
 from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.prefetch import can_prefetch, prefetch_windows
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 from qcpp.routing.sabre import route
-from qcpp.routing.windows import route_windows
+from qcpp.routing.windows import commuting_middle, mirror_length, route_windows
 
 __all__ = [
     "DeviceCompileResult",
@@ -553,31 +554,66 @@ def medial_compile(
     say = stage or (lambda _text: None)
     context = RoutingContext() if context is None else context
     dev = layout_device(scenario, spec, arrangement)
-    while dev is not None:
-        homes = medial_placement(scenario, dev, arrangement)
-        assert homes is not None
-        cropped = _cropped(dev, homes, routing)
-        if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
-            sub, sites = cropped
-            on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say, routing,
-                                     context)  # fmt: skip
-            if on_crop is not None:
-                return on_crop[0], embed_routed(on_crop[1], dev, sites)
-        dist = distances(dev)
-        planned = circuit
-        if options is not None and dev.family == "heavy-hex":
-            planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say, routing=routing,
-                                  context=context)  # fmt: skip
-        say(f"allocating ancillas on {dev.name}")
-        try:
-            logical, layout = allocate_ancillas(planned, homes, dev, dist, routing.allocation_search, routing, context)
-        except ValueError:
-            if spec not in ("grid", "heavy-hex"):
-                raise
-            dev = grown_device(dev)
-            continue
-        return _relay_and_route(logical, layout, dev, dist, seed, measured, say, routing, context)
+    try:
+        while dev is not None:
+            homes = medial_placement(scenario, dev, arrangement)
+            assert homes is not None
+            cropped = _cropped(dev, homes, routing)
+            if cropped is not None:  # a long strip's square grid: routed on the rows around the strip, written on dev
+                sub, sites = cropped
+                on_crop = _route_on_crop(circuit, sub, [sites.index(h) for h in homes], dev, seed, measured, say,
+                                         routing, context)  # fmt: skip
+                if on_crop is not None:
+                    return on_crop[0], embed_routed(on_crop[1], dev, sites)
+            dist = distances(dev)
+            planned = circuit
+            if options is not None and dev.family == "heavy-hex":
+                _route_large_windows_ahead(circuit, homes, dev, dist, seed, routing, context)
+                planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say,
+                                      routing=routing, context=context)  # fmt: skip
+            say(f"allocating ancillas on {dev.name}")
+            try:
+                logical, layout = allocate_ancillas(
+                    planned, homes, dev, dist, routing.allocation_search, routing, context
+                )
+            except ValueError:
+                if spec not in ("grid", "heavy-hex"):
+                    raise
+                context.stop_prefetch()  # its windows were placed on this device
+                dev = grown_device(dev)
+                continue
+            return _relay_and_route(logical, layout, dev, dist, seed, measured, say, routing, context)
+    finally:  # a window routed ahead and not taken (an error, a grown device) stops here
+        context.stop_prefetch()
     return None
+
+
+def _route_large_windows_ahead(
+    circuit: Circuit, homes: tuple[int, ...], dev: Device, dist: Any, seed: int, routing: RoutingOptions,
+    context: RoutingContext,
+) -> None:  # fmt: skip
+    """Start routing the large windows of ``circuit`` (the balance arithmetic's) in a forked process
+    (:func:`qcpp.routing.prefetch.prefetch_windows`) while the cells' plan choice runs: their sections keep their
+    gates through that choice, and a section's ancillas and relays depend on that section alone
+    (:func:`~qcpp.layout.medial.allocate_ancillas`, :func:`~qcpp.routing.bridge.bridge_far_phases`), so they are
+    placed here as the final routing will place them and the windows' physical pairs are those it will route."""
+    if not routing.route_ahead or not can_prefetch():
+        return
+    windows = routing.for_cells()
+    large = [sec for sec in circuit.sections
+             if mirror_length([g[1] for g in sec.gates if len(g[1]) == 2]) >= windows.large_window_pairs]  # fmt: skip
+    if not large:
+        return
+    try:
+        logical, layout = allocate_ancillas(Circuit(circuit.registers, large), homes, dev, dist,
+                                            routing.allocation_search, routing, context)  # fmt: skip
+    except ValueError:  # too few free qubits: medial_compile grows the device
+        return
+    logical, layout = bridge_far_phases(logical, layout, dev, dist, options=routing, context=context)
+    ahead = [(tuple((layout[g[1][0]], layout[g[1][1]]) for g in sec.gates if len(g[1]) == 2),
+              windows.commuting_phases and commuting_middle(sec.gates) is not None)
+             for sec in logical.sections]  # fmt: skip
+    prefetch_windows(context, ahead, dev, dist, seed, windows)
 
 
 def _cropped(dev: Device, homes: tuple[int, ...], options: RoutingOptions) -> tuple[Device, list[int]] | None:

@@ -60,6 +60,8 @@ class RoutingContext:
             slower (``tests/compiler/window_memo_test.py`` compares both).
         window_limit: Entries :attr:`windows` holds before a routed window's entry starts it over (a bound on
             memory: every entry is a pure function of its key, so starting over changes no answer).
+        parallel_trials: Whether SABRE may run a routing's trials on several threads
+            (:func:`qcpp.routing.patches.run_sabre`; the same answer either way).
 
     Attributes:
         windows: Routed windows and SABRE's routings of patches (:mod:`qcpp.routing.windows`,
@@ -83,11 +85,17 @@ class RoutingContext:
         watches: The open watches (:meth:`watching`).
         centres: Open sets collecting the qubits every patch routed was grown around
             (:func:`qcpp.routing.windows.route_window` keys a translated window on the lattice around them).
+        prefetched: Windows being routed ahead in another process, per window key, each a handle whose
+            ``result()`` waits for what the routing gave and saw, or ``None`` if it gave nothing
+            (:func:`qcpp.routing.prefetch.prefetch_windows`); a window takes its entry on its first miss.
+        prefetch_jobs: The processes routing ahead (each with a ``stop()``; :meth:`stop_prefetch`).
+        taken_ahead: Windows answered by a process routing ahead so far.
     """
 
-    def __init__(self, *, reuse: bool = True, window_limit: int = 1 << 18) -> None:
+    def __init__(self, *, reuse: bool = True, window_limit: int = 1 << 18, parallel_trials: bool = True) -> None:
         self.reuse = reuse
         self.window_limit = window_limit
+        self.parallel_trials = parallel_trials
         self.windows: dict[Hashable, Any] = {}
         self.patch_indexes: list[Any] = []
         self.sabre_passes: dict[Hashable, Any] = {}
@@ -102,6 +110,9 @@ class RoutingContext:
         self.kind_routes: dict[Hashable, Any] = {}
         self.watches: list[PatchWatch] = []
         self.centres: list[set[int]] = []
+        self.prefetched: dict[Hashable, Any] = {}
+        self.prefetch_jobs: list[Any] = []
+        self.taken_ahead = 0
 
     def clear(self) -> None:
         """Forget every memo (open watches stay open)."""
@@ -110,6 +121,7 @@ class RoutingContext:
             memo.clear()
         for kept in (self.patch_indexes, self.within_two, self.free_sites):
             kept.clear()
+        self.stop_prefetch()
 
     @contextlib.contextmanager
     def watching(self) -> Iterator[PatchWatch]:
@@ -124,6 +136,12 @@ class RoutingContext:
             yield watch
         finally:  # by identity: equal watches may be open at once
             del self.watches[next(i for i, w in enumerate(self.watches) if w is watch)]
+
+    def stop_prefetch(self) -> None:
+        """Stop the processes routing windows ahead and forget the windows not taken."""
+        self.prefetched.clear()
+        while self.prefetch_jobs:
+            self.prefetch_jobs.pop().stop()
 
     def saw_patch(self, qubits: Iterable[int], whole: int) -> None:
         """Tell every open watch that a routing used the device ``qubits`` with ``whole`` parts routed on their whole

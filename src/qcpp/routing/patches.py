@@ -240,7 +240,7 @@ def sabre_local(
     apply = dag.apply_operation_back
     for a, b in pairs:
         apply(gate, (bits[a], bits[b]), (), check=False)
-    out = run_sabre(shape, dag, seed, shape.trials if trials is None else trials)
+    out = run_sabre(shape, dag, seed, shape.trials if trials is None else trials, context.parallel_trials)
     queues: list[list[int]] = [[] for _ in range(size)]  # per qubit, the pairs it is in, in order
     for k, (a, b) in enumerate(pairs):
         queues[a].append(k)
@@ -333,15 +333,15 @@ def _prepared_call(sabre: Any, size: int) -> tuple[Any, Any, Any] | None:
         return None
 
 
-def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int) -> Any:
+def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int, parallel: bool = True) -> Any:
     """``shape.sabre.run(dag)`` (heuristic ``decay``, the pass given ``seed`` and ``trials``) without the pass's
     per-run checks: its routing call with the arguments the pass builds (Qiskit 2's ``sabre_routing``), prepared
     once per shape (:func:`patch_sabre`), where Qiskit has it; else the pass itself. The pass first checks that the
     circuit's qubits lie in one component of the coupling map (a patch is grown until they do,
     :func:`local_patch`) and rebuilds the coupling graph to do so, which costs more than routing a window. Both
-    give the same routing. The trials run one after another (``run_in_parallel=False``) unless there are at least
-    :data:`PARALLEL_MIN_TRIALS`: Qiskit keeps the trial of fewest SWAPs, the first of them on ties, either way, and
-    on a window of a few dozen gates starting threads costs more CPU than it saves."""
+    give the same routing. The trials run one after another (``run_in_parallel=False``) unless ``parallel`` and
+    there are at least :data:`PARALLEL_MIN_TRIALS`: Qiskit keeps the trial of fewest SWAPs, the first of them on
+    ties, either way, and on a window of a few dozen gates starting threads costs more CPU than it saves."""
     sabre = shape.sabre
     sabre.seed, sabre.trials = seed, trials
     if shape.call is None:  # pragma: no cover - another Qiskit: the pass itself
@@ -351,7 +351,7 @@ def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int) -> Any:
 
     target, heuristic, layout = shape.call
     try:
-        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed, trials >= PARALLEL_MIN_TRIALS)
+        out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed, parallel and trials >= PARALLEL_MIN_TRIALS)
     except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
         out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed)
     return out

@@ -31,7 +31,7 @@ Example:
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Hashable, Sequence
 from typing import Any
 
 from qcpp.hardware.device import Device
@@ -237,9 +237,18 @@ def _memo_window(
         pos = Positions.identity(device.num_qubits) if pos is None else pos
         centres: set[int] = set()
         context.centres.append(centres)
+        ahead = context.prefetched.pop(prefetch_key(device, physical, settings), None) if context.prefetched else None
+        answer = ahead.result() if ahead is not None else None
         try:
             with context.watching() as watch:
-                ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options, commuting)
+                if answer is not None:  # routed ahead in another process: its answer, and what it saw, replayed
+                    ops, cx_, qubits, whole, around = answer
+                    context.taken_ahead += 1
+                    for open_centres in context.centres:
+                        open_centres.update(around)
+                    context.saw_patch(qubits, whole)
+                else:
+                    ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options, commuting)
         finally:
             del context.centres[next(i for i, c in enumerate(context.centres) if c is centres)]
         if len(context.windows) >= context.window_limit:
@@ -256,6 +265,31 @@ def _memo_window(
         seen = hit[2] if by is None else {lattice.moved(q, by) for q in hit[2]}  # type: ignore[union-attr]
         context.saw_patch(seen, hit[3])
     return hit, by
+
+
+def window_memoised(
+    context: RoutingContext, physical: tuple[tuple[int, int], ...], device: Device, dist: Any, seed: int,
+    options: RoutingOptions, commuting: bool = False,
+) -> bool:  # fmt: skip
+    """Whether ``context`` already holds :func:`route_window`'s answer for the window of these physical pairs
+    (as :func:`route_window_cx` with ``pos=None`` would find it)."""
+    if device.is_all_to_all:
+        return False
+    index = patch_index(context, device, dist, options.window_radius)
+    settings = (seed, options.window_key, commuting and options.commuting_phases)
+    lattice = index.lattice
+    if lattice is not None and physical:
+        rel, shift = lattice.canonical(physical)
+        for cells, holds, _ in context.windows.get(("window", index.token, "translated", rel, settings), ()):
+            if lattice.holds(cells, shift) == holds:
+                return True
+    return ("window", index.token, physical, settings) in context.windows
+
+
+def prefetch_key(device: Device, physical: tuple[tuple[int, int], ...], settings: tuple) -> Hashable:
+    """The key of a window routed ahead (:attr:`RoutingContext.prefetched`): the device, the window's physical pairs
+    and the settings its routing reads (``(seed, options.window_key, commuting phases)``)."""
+    return id(device), physical, settings
 
 
 def _route_window(

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from qcpp.io.capture import capture_native_output
+from qcpp.io.children import die_with_parent
 from qcpp.ir.circuit import Circuit
 
 __all__ = ["EquivalenceResult", "check_equivalence", "check_sections", "check_sections_interruptibly", "to_qiskit"]
@@ -331,7 +332,7 @@ def _sections_in_child(conn: Any, parent: int) -> None:
     It dies with its parent: a parent killed outright (``kill -9``) cannot terminate it, and QCEC would otherwise
     run on alone for minutes (Linux ``PR_SET_PDEATHSIG``; elsewhere the parent's ``terminate`` only). A job that
     never arrives whole (the parent was interrupted while sending it) ends the child silently."""
-    _die_with_parent(parent)
+    die_with_parent(parent)
     try:
         high, low, num_plain, kwargs = conn.recv()
     except Exception:  # EOF or truncated data: the parent stopped while sending
@@ -344,17 +345,3 @@ def _sections_in_child(conn: Any, parent: int) -> None:
             conn.send(("error", exc))
     finally:
         conn.close()
-
-
-def _die_with_parent(parent: int) -> None:
-    """Ask the kernel to SIGKILL this process when its parent dies (Linux); exit now if it already has."""
-    import ctypes
-    import signal
-
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, int(signal.SIGKILL))  # 1 = PR_SET_PDEATHSIG
-    except (OSError, AttributeError):  # pragma: no cover - not Linux
-        return
-    if os.getppid() != parent:  # the parent died before the request
-        os._exit(1)
