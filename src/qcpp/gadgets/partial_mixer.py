@@ -205,7 +205,7 @@ class ParitySearch:
             raise ValueError("parity-basis mixers read only even parities (the flip must not change them)")
         self.program = program
         self.target = target
-        self._inner, self._final = inner, final
+        self._final = final
         temp_lits = [j for j, lit in enumerate(final) if lit[0] != "form"]
         if target == "nisq" and temp_lits:
             self._reserved = {temp_lits[-1]}

@@ -43,6 +43,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import warnings
 from collections.abc import Sequence
 from typing import Any
 
@@ -122,7 +123,11 @@ class _Job:
         self._reader, writer = fork.Pipe(duplex=False)
         args = (writer, os.getpid(), windows, device, dist, seed, options, context.reuse, context.window_limit)
         self._process = fork.Process(target=_route_ahead, args=args, name="qcpp-prefetch", daemon=True)
-        self._process.start()
+        with warnings.catch_warnings():
+            # Python 3.12+ warns of fork in a process with threads (Qiskit's thread pool, once used): the copy
+            # runs only this module's routing, on its one thread, off that pool, and leaves with os._exit
+            warnings.filterwarnings("ignore", message=".*fork.*", category=DeprecationWarning)
+            self._process.start()
         writer.close()
         self._answers: dict[int, Any] = {}
         self._done = False
