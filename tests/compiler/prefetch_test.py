@@ -4,8 +4,8 @@ Evidence: random windows of a heavy-hex lattice (with and without a commuting mi
 patches seen, whole-component parts and memo entries (translated ones included, which record the qubits the
 patches were grown around) of the same windows routed in this process, and the answer came from the other process
 (this process routed no patch); a heavy-hex compile whose balance window is routed ahead is the compile without
-(3x4/2), took that window from the other process and leaves no process behind; a process that ends early leaves
-its window to be routed here; a daemonic worker does not fork.
+(3x4/2), took that window from the other process and leaves no process behind, also when interrupted; a process
+that ends early leaves its window to be routed here; a daemonic worker does not fork.
 """
 
 from __future__ import annotations
@@ -124,3 +124,21 @@ def test_a_daemonic_worker_does_not_fork() -> None:
     worker.start()
     assert out.get(timeout=60) is False
     worker.join()
+
+
+def test_an_interrupted_compile_stops_the_process_routing_ahead() -> None:
+    """Ctrl-C (a KeyboardInterrupt) during the cells' plan choice, with the balance window being routed ahead:
+    the compile stops, and so does the process, which is reaped (no process is left behind)."""
+    context = RoutingContext()
+    jobs: list[int] = []
+
+    def stage(text: str) -> None:
+        if text.startswith("choosing partial-mixer plans on the cells (1 /"):
+            jobs.append(len(context.prefetch_jobs))
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        compile_for_device(default_scenario(3, 4, 2), 1, "heavy-hex", stage=stage, context=context)
+    assert jobs == [1]  # the window was being routed ahead when the interruption came
+    assert not context.prefetch_jobs and not context.prefetched
+    assert not multiprocessing.active_children()
