@@ -3,9 +3,9 @@
 Evidence: random windows of a heavy-hex lattice (with and without a commuting middle) routed ahead give the ops,
 patches seen, whole-component parts and memo entries (translated ones included, which record the qubits the
 patches were grown around) of the same windows routed in this process, and the answer came from the other process
-(this process routed no patch); a heavy-hex compile whose balance window is routed ahead is the compile without
-(3x4/2), took that window from the other process and leaves no process behind, also when interrupted; a process
-that ends early leaves its window to be routed here; a daemonic worker does not fork.
+(this process routed no patch); a compile whose balance window is routed ahead is the compile without (3x4/2 on
+heavy-hex, 4x4/2 on the medial grid), took that window from the other process and leaves no process behind, also
+when interrupted; a process that ends early leaves its window to be routed here; a daemonic worker does not fork.
 """
 
 from __future__ import annotations
@@ -80,20 +80,23 @@ def test_a_memoised_window_is_not_routed_ahead() -> None:
     assert not context.prefetched and not context.prefetch_jobs
 
 
-def _compiled(route_ahead: bool) -> tuple[tuple, int]:
+def _compiled(shape: tuple[int, int, int], device: str, route_ahead: bool) -> tuple[tuple, int]:
     context = RoutingContext()
     routing = replace(DEFAULT_ROUTING, route_ahead=route_ahead)
-    result = compile_for_device(default_scenario(3, 4, 2), 1, "heavy-hex", routing=routing, context=context)
+    result = compile_for_device(default_scenario(*shape), 1, device, routing=routing, context=context)
     assert result.layout_method == "medial"
     routed = result.routed
     return (tuple(routed.circuit.gates), routed.initial_layout, routed.final_layout), context.taken_ahead
 
 
-def test_a_compile_routing_its_balance_window_ahead_is_the_compile_without() -> None:
-    with_ahead, taken = _compiled(True)
+@pytest.mark.parametrize(("shape", "device"), [((3, 4, 2), "heavy-hex"), ((4, 4, 2), "grid")])
+def test_a_compile_routing_its_balance_window_ahead_is_the_compile_without(
+    shape: tuple[int, int, int], device: str
+) -> None:
+    with_ahead, taken = _compiled(shape, device, True)
     assert taken == 1
     assert not multiprocessing.active_children()  # the process was stopped and reaped
-    without, none_taken = _compiled(False)
+    without, none_taken = _compiled(shape, device, False)
     assert none_taken == 0
     assert with_ahead == without
 

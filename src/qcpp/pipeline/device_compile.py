@@ -567,8 +567,8 @@ def medial_compile(
                     return on_crop[0], embed_routed(on_crop[1], dev, sites)
             dist = distances(dev)
             planned = circuit
+            _route_large_windows_ahead(circuit, homes, dev, dist, seed, routing, context)
             if options is not None and dev.family == "heavy-hex":
-                _route_large_windows_ahead(circuit, homes, dev, dist, seed, routing, context)
                 planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say,
                                       routing=routing, context=context)  # fmt: skip
             say(f"allocating ancillas on {dev.name}")
@@ -593,13 +593,14 @@ def _route_large_windows_ahead(
     context: RoutingContext,
 ) -> None:  # fmt: skip
     """Start routing the large windows of ``circuit`` (the balance arithmetic's) in a forked process
-    (:func:`qcpp.routing.prefetch.prefetch_windows`) while the cells' plan choice runs: their sections keep their
-    gates through that choice, and a section's ancillas and relays depend on that section alone
-    (:func:`~qcpp.layout.medial.allocate_ancillas`, :func:`~qcpp.routing.bridge.bridge_far_phases`), so they are
-    placed here as the final routing will place them and the windows' physical pairs are those it will route."""
+    (:func:`qcpp.routing.prefetch.prefetch_windows`) while the cells' plan choice (heavy-hex) and the ancilla
+    allocation search run: their sections keep their gates through that choice, and a section's ancillas and relays
+    depend on that section alone (:func:`~qcpp.layout.medial.allocate_ancillas`,
+    :func:`~qcpp.routing.bridge.bridge_far_phases`), so they are placed here as the final routing will place them
+    and the windows' physical pairs are those it will route."""
     if not routing.route_ahead or not can_prefetch():
         return
-    windows = routing.for_cells()
+    windows = routing.for_cells() if dev.family == "heavy-hex" else routing
     large = [sec for sec in circuit.sections
              if mirror_length([g[1] for g in sec.gates if len(g[1]) == 2]) >= windows.large_window_pairs]  # fmt: skip
     if not large:

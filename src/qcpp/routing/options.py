@@ -64,9 +64,9 @@ class RoutingOptions:
             there (an exchange changes which qubits one AND or the rotation brings together, not where the
             ancillas go); ``False``: every exchange is searched. The chosen plan still never routes to more than
             the default plan.
-        route_ahead: Whether a heavy-hex compile routes its large windows in a forked process while the cells'
-            plan is chosen (:mod:`qcpp.routing.prefetch`; on Linux with two usable cores): the same circuit
-            either way, sooner.
+        route_ahead: Whether a compile on the geometric layouts routes its large windows in a forked process
+            while the heavy-hex cells' plans are chosen and the ancillas allocated (:mod:`qcpp.routing.prefetch`;
+            on Linux with two usable cores): the same circuit either way, sooner.
         allocation_search: Whether the medial allocation searches the partial mixers' ancilla sites
             (:func:`qcpp.layout.medial.allocate_ancillas` ``search``).
         search_ranks: Each ancilla of a searched section is also tried on its 2nd .. (1 + this)-th best free qubit.

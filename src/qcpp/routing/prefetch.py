@@ -2,10 +2,11 @@
 
 A heavy-hex compile spends about a third of its time routing one window, the balance arithmetic's (a large window:
 dozens of SABRE seeds of many trials each), and another third choosing the cells' partial-mixer plans (Python, one
-core). The window does not depend on that choice (a window's routing depends only on its physical pairs and the
-device around them), so :func:`prefetch_windows` routes it on another core meanwhile, and the final routing takes
-the answer when it reaches the window (:func:`qcpp.routing.windows.route_window`). A thread would not do: Qiskit's
-routing call holds the GIL, so it would stall the plan choice for as long as it runs.
+core); a compile on the medial grid routes the same window after its ancilla allocation search. The window does
+not depend on that choice or search (a window's routing depends only on its physical pairs and the device around
+them), so :func:`prefetch_windows` routes it on another core meanwhile, and the final routing takes the answer
+when it reaches the window (:func:`qcpp.routing.windows.route_window`). A thread would not do: Qiskit's routing
+call holds the GIL, so it would stall the plan choice for as long as it runs.
 
 The answer is the one the final routing would compute: the forked process is a copy of the caller, routes with a
 :class:`~qcpp.routing.context.RoutingContext` of its own, with the same function, pairs, seed and settings, and
