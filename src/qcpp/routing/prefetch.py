@@ -17,11 +17,10 @@ hit replays it. A window the final routing never asks for is not taken;
 window is routed where it is asked for, as without prefetching.
 
 Prefetching needs ``fork`` (Linux), two usable cores and a process allowed children (:func:`can_prefetch`);
-elsewhere :func:`prefetch_windows` does nothing. The
-process runs SABRE's trials one after another (a forked copy must not use the thread pool it inherits, whose
-threads it does not have), ignores Ctrl-C (the caller stops it on its way out), dies with the caller
-(:func:`qcpp.io.children.die_with_parent`) and leaves with ``os._exit``, so no handler, buffer or temporary file
-of the caller's runs twice.
+elsewhere :func:`prefetch_windows` does nothing. The process runs SABRE's trials one after another (a forked copy
+must not use the thread pool it inherits, whose threads it does not have), ignores Ctrl-C (the caller stops it on
+its way out), dies with the caller (:func:`qcpp.io.children.die_with_parent`) and leaves with ``os._exit``, so no
+handler, buffer or temporary file of the caller's runs twice.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -52,7 +51,7 @@ from qcpp.hardware.device import Device
 from qcpp.io.children import die_with_parent
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.windows import Positions, _route_window, prefetch_key, window_memoised
+from qcpp.routing.windows import SeenRouting, prefetch_key, route_physical_window, window_memoised
 
 __all__ = ["can_prefetch", "prefetch_windows", "usable_cores"]
 
@@ -159,8 +158,8 @@ class _Answer:
     def __init__(self, job: _Job, index: int) -> None:
         self._job, self._index = job, index
 
-    def result(self) -> tuple[Any, ...] | None:
-        """``(ops, cx, qubits seen, whole-component parts, qubits patches were grown around)``, or ``None``."""
+    def result(self) -> SeenRouting | None:
+        """The window's routing and what it saw, or ``None`` (the process ended without it)."""
         return self._job.answer(self._index)  # type: ignore[no-any-return]
 
 
@@ -168,21 +167,15 @@ def _route_ahead(
     writer: Any, parent: int, windows: list[Window], device: Device, dist: Any, seed: int, options: RoutingOptions,
     reuse: bool, window_limit: int,
 ) -> None:  # fmt: skip
-    """The forked process of :func:`prefetch_windows`: each window's ops, their CX, and what the routing saw, sent
-    as ``(index, answer)``."""
+    """The forked process of :func:`prefetch_windows`: each window's :class:`~qcpp.routing.windows.SeenRouting`, sent
+    as ``(index, answer)`` as soon as it has it."""
     die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the caller stops this process when it is interrupted
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     try:
         context = RoutingContext(reuse=reuse, window_limit=window_limit, parallel_trials=False)
         for i, (pairs, commuting) in enumerate(windows):
-            around: set[int] = set()
-            context.centres.append(around)
-            with context.watching() as watch:
-                ops, cx_ = _route_window(context, list(pairs), Positions.identity(device.num_qubits), device, dist,
-                                         seed, options, commuting)  # fmt: skip
-            context.centres.pop()
-            writer.send((i, (ops, cx_, frozenset(watch.qubits), watch.whole_component, frozenset(around))))
+            writer.send((i, route_physical_window(context, pairs, device, dist, seed, options, commuting)))
         writer.close()
     finally:  # also on an error: the caller, finding no answer, routes the window itself and raises there
         os._exit(0)

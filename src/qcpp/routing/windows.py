@@ -16,7 +16,8 @@ variants, the relays' comparison), so a routed window is memoised in the run's
 :class:`~qcpp.routing.context.RoutingContext` on its physical pairs, its seed and the settings its routing reads
 (:attr:`~qcpp.routing.options.RoutingOptions.window_key`; on a heavy-hex lattice up to the lattice's translations,
 where the qubits around the window are the same: :class:`~qcpp.routing.patches.Lattice`), with the patches its
-routing saw, replayed into the context's open watches on a hit.
+routing saw, replayed into the context's open watches on a hit. A window routed ahead in another process
+(:mod:`qcpp.routing.prefetch`, :func:`route_physical_window`) is taken, and replayed alike, on its first miss.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -32,7 +33,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Hashable, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
@@ -46,12 +47,16 @@ from qcpp.routing.sabre import assemble, checked_inputs, window_cx
 
 __all__ = [
     "Positions",
+    "SeenRouting",
     "commuting_middle",
     "middle_order",
     "mirror_length",
+    "prefetch_key",
+    "route_physical_window",
     "route_window",
     "route_window_cx",
     "route_windows",
+    "window_memoised",
 ]
 
 
@@ -242,11 +247,11 @@ def _memo_window(
         try:
             with context.watching() as watch:
                 if answer is not None:  # routed ahead in another process: its answer, and what it saw, replayed
-                    ops, cx_, qubits, whole, around = answer
+                    ops, cx_ = answer.ops, answer.cx
                     context.taken_ahead += 1
                     for open_centres in context.centres:
-                        open_centres.update(around)
-                    context.saw_patch(qubits, whole)
+                        open_centres.update(answer.centres)
+                    context.saw_patch(answer.qubits, answer.whole_component)
                 else:
                     ops, cx_ = _route_window(context, pairs, pos, device, dist, seed, options, commuting)
         finally:
@@ -284,6 +289,42 @@ def window_memoised(
             if lattice.holds(cells, shift) == holds:
                 return True
     return ("window", index.token, physical, settings) in context.windows
+
+
+class SeenRouting(NamedTuple):
+    """A window routed without the window memo, and what its routing saw (:func:`route_physical_window`).
+
+    Attributes:
+        ops: The window's ops, as :func:`route_window` gives them.
+        cx: Their :func:`~qcpp.routing.sabre.window_cx`.
+        qubits: The device qubits of every patch routed.
+        whole_component: Parts routed on their whole connected component.
+        centres: The qubits the patches were grown around.
+    """
+
+    ops: list[tuple[str, tuple[int, int]]]
+    cx: int
+    qubits: frozenset[int]
+    whole_component: int
+    centres: frozenset[int]
+
+
+def route_physical_window(
+    context: RoutingContext, physical: Sequence[tuple[int, int]], device: Device, dist: Any, seed: int = 0,
+    options: RoutingOptions = DEFAULT_ROUTING, commuting: bool = False,
+) -> SeenRouting:  # fmt: skip
+    """The window of ``physical`` pairs routed from home in ``context`` without its window memo (what
+    :func:`route_window` computes on a miss), and what the routing saw, which a memo hit replays: the answer a
+    process routing ahead hands back (:mod:`qcpp.routing.prefetch`)."""
+    around: set[int] = set()
+    context.centres.append(around)
+    try:
+        with context.watching() as watch:
+            ops, cx_ = _route_window(context, list(physical), Positions.identity(device.num_qubits), device, dist,
+                                     seed, options, commuting)  # fmt: skip
+    finally:
+        del context.centres[next(i for i, c in enumerate(context.centres) if c is around)]
+    return SeenRouting(ops, cx_, frozenset(watch.qubits), watch.whole_component, frozenset(around))
 
 
 def prefetch_key(device: Device, physical: tuple[tuple[int, int], ...], settings: tuple) -> Hashable:
