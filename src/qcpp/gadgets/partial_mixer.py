@@ -170,8 +170,9 @@ PARITY_SEARCHES_KEPT = 64
 class ParitySearch:
     """The A* of :func:`plan_parity_mixer` for one program, runnable with any order of the CNOTs tried from each
     state (:meth:`plan`); each state's expansion (the greedy ANDs after each CNOT, the bound, the goal test) is
-    computed once and shared by every run, so the runs of one program under several orders cost little more than
-    one.
+    computed once and shared by every run, and the cheapest plan's length, once found, keeps later runs from pushing
+    states that cannot lie on such a plan (:meth:`plan`), so the runs of one program under several orders cost
+    little more than one.
 
     Running it with the order of :data:`MOVES` relabelled is the A* of the program with its plaquette positions
     relabelled, plan mapped back: the search graphs are isomorphic (the ANDs and reads follow the inner steps' and
@@ -224,6 +225,7 @@ class ParitySearch:
         self._expanded: list[tuple[bool, list[tuple[int, tuple, int]]] | None] = []
         self._closures: dict[tuple[int, int, int], tuple[int, int, tuple]] = {}
         self._needs: dict[tuple[int, int], int] = {}
+        self._cheapest: int | None = None  # a cheapest plan's CNOTs, once a run has found one
 
     @staticmethod
     def _need(lits: Sequence[ALit]) -> tuple[int, int]:
@@ -344,6 +346,11 @@ class ParitySearch:
         goal = None
         order = [c * 4 + t for c, t in moves]
         pop, push, expand, states = heapq.heappop, heapq.heappush, self._expand, self._states
+        # every order ends at a cheapest plan (the bound is admissible), whose goal has f = its CNOTs, and an entry
+        # of a larger f would be popped after that goal. So once a run has found it, later runs push no such entry:
+        # the others keep their order (push numbers only grow), and a state so skipped is pushed again only from a
+        # shorter path, as it would have been (a longer one has a larger f too): the same pops, the same plan
+        limit = far if self._cheapest is None else self._cheapest
         while heap:
             entry = pop(heap)
             state, g = pushed[entry & _N_MASK], entry >> _G_SHIFT & _G_MASK
@@ -358,13 +365,14 @@ class ParitySearch:
             g1 = g + 1
             for k in order:
                 nstate, _, bound = successors[k]
-                if g1 < dist[nstate]:
+                if g1 < dist[nstate] and g1 + bound <= limit:
                     dist[nstate] = g1
                     came[nstate] = (state, k)
                     push(heap, (g1 + bound) << _F_SHIFT | g1 << _G_SHIFT | len(pushed))
                     pushed.append(nstate)
         if goal is None:
             raise ValueError("no parity-basis plan found")
+        self._cheapest = dist[goal]
         parent: dict[int, tuple] = {init: (None, ("start", None, e0))}
         state = goal
         while state != init:
