@@ -1,9 +1,9 @@
 """Windows routed ahead in a forked process while the caller goes on with other work.
 
-A heavy-hex compile spends about a third of its time routing one window, the balance arithmetic's (a large window:
-dozens of SABRE seeds of many trials each), and another third choosing the cells' partial-mixer plans (Python, one
-core); a compile on the medial grid routes the same window after its ancilla allocation search. The window does
-not depend on that choice or search (a window's routing depends only on its physical pairs and the device around
+A compile on the geometric layouts routes one large window, the balance arithmetic's (dozens of SABRE seeds of many
+trials each), after a long stage in Python on one core: the heavy-hex cells' choice of partial-mixer plans, the
+medial grid's ancilla allocation search (times: ``benchmarks/hex_compile_speed.py``). The window does not depend
+on that choice or search (a window's routing depends only on its physical pairs and the device around
 them), so :func:`prefetch_windows` routes it on another core meanwhile, and the final routing takes the answer
 when it reaches the window (:func:`qcpp.routing.windows.route_window`). A thread would not do: Qiskit's routing
 call holds the GIL, so it would stall the plan choice for as long as it runs.

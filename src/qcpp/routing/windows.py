@@ -225,19 +225,7 @@ def _memo_window(
         physical = tuple((where[a], where[b]) for a, b in pairs)
     settings = (seed, options.window_key, commuting and options.commuting_phases)
     lattice = index.lattice
-    key: tuple = ("window", index.token, physical, settings)
-    shift = None
-    translated: list = []
-    if lattice is not None and physical:
-        rel, shift = lattice.canonical(physical)
-        translated = context.windows.setdefault(("window", index.token, "translated", rel, settings), [])
-    hit = None
-    for cells, holds, entry in translated:  # the same window elsewhere, with the same qubits around its patches
-        if lattice.holds(cells, shift) == holds:  # type: ignore[union-attr, arg-type]
-            hit = entry
-            break
-    else:  # routed on its whole component, or no lattice: memoised on its physical pairs
-        hit = context.windows.get(key)
+    hit, key, translated_key, shift = _memo_entry(context, index, physical, settings)
     if hit is None:
         pos = Positions.identity(device.num_qubits) if pos is None else pos
         centres: set[int] = set()
@@ -259,9 +247,8 @@ def _memo_window(
         if len(context.windows) >= context.window_limit:
             context.windows.clear()
         hit = (tuple(ops), cx_, frozenset(watch.qubits), watch.whole_component, shift)
-        if lattice is not None and shift is not None and not watch.whole_component:
-            translated.append((*lattice.around(centres, shift), hit))
-            context.windows[("window", index.token, "translated", rel, settings)] = translated
+        if translated_key is not None and not watch.whole_component:
+            context.windows.setdefault(translated_key, []).append((*lattice.around(centres, shift), hit))  # type: ignore[union-attr, arg-type]
         else:
             hit = context.windows[key] = (*hit[:4], None)
         return hit, None
@@ -270,6 +257,25 @@ def _memo_window(
         seen = hit[2] if by is None else {lattice.moved(q, by) for q in hit[2]}  # type: ignore[union-attr]
         context.saw_patch(seen, hit[3])
     return hit, by
+
+
+def _memo_entry(
+    context: RoutingContext, index: Any, physical: tuple[tuple[int, int], ...], settings: tuple
+) -> tuple[tuple | None, tuple, tuple | None, Coord | None]:  # fmt: skip
+    """The memo entry answering the window of ``physical`` pairs (``None``: none yet), its key on the physical
+    pairs, and on a lattice the key of its translation class and the translation of its pairs (else ``None``): a
+    translated entry answers where the qubits around its patches are the same; a window routed on its whole
+    component, or on no lattice, is kept on its physical pairs."""
+    key: tuple = ("window", index.token, physical, settings)
+    lattice = index.lattice
+    if lattice is None or not physical:
+        return context.windows.get(key), key, None, None
+    rel, shift = lattice.canonical(physical)
+    translated_key = ("window", index.token, "translated", rel, settings)
+    for cells, holds, entry in context.windows.get(translated_key, ()):
+        if lattice.holds(cells, shift) == holds:
+            return entry, key, translated_key, shift
+    return context.windows.get(key), key, translated_key, shift
 
 
 def window_memoised(
@@ -282,13 +288,7 @@ def window_memoised(
         return False
     index = patch_index(context, device, dist, options.window_radius)
     settings = (seed, options.window_key, commuting and options.commuting_phases)
-    lattice = index.lattice
-    if lattice is not None and physical:
-        rel, shift = lattice.canonical(physical)
-        for cells, holds, _ in context.windows.get(("window", index.token, "translated", rel, settings), ()):
-            if lattice.holds(cells, shift) == holds:
-                return True
-    return ("window", index.token, physical, settings) in context.windows
+    return _memo_entry(context, index, physical, settings)[0] is not None
 
 
 class SeenRouting(NamedTuple):
