@@ -17,6 +17,7 @@ import os
 import signal
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -53,16 +54,30 @@ def run_script(script: str) -> subprocess.CompletedProcess[str]:
     )
 
 
+def read_until(stream: object, enough: Callable[[str], bool]) -> str:
+    """Read a pipe's descriptor directly until ``enough(text so far)`` or its end; return all the text read.
+
+    Not through the pipe's file object: its buffer would keep what it read past the point asked for, and
+    ``communicate`` (which :func:`stop` uses) reads the descriptor, so those bytes would be lost to both.
+    """
+    fd = stream.fileno()  # type: ignore[attr-defined]
+    data = b""
+    while not enough(data.decode(errors="replace")):
+        chunk = os.read(fd, 65536)
+        if not chunk:
+            break
+        data += chunk
+    return data.decode()
+
+
 def wait_until_ready(proc: subprocess.Popen[str]) -> list[str]:
     """Read stderr until the CLI's ``ready: ...`` line (its work has started); return the lines read."""
     assert proc.stderr is not None
-    seen: list[str] = []
-    for line in proc.stderr:
-        seen.append(line)
-        if line.startswith("ready: "):
-            return seen
+    seen = read_until(proc.stderr, lambda text: any(line.startswith("ready: ") for line in text.splitlines()))
+    if any(line.startswith("ready: ") for line in seen.splitlines()):
+        return seen.splitlines(keepends=True)
     proc.wait()
-    pytest.fail(f"the process ended (exit {proc.returncode}) without saying it was ready: {''.join(seen)!r}")
+    pytest.fail(f"the process ended (exit {proc.returncode}) without saying it was ready: {seen!r}")
 
 
 def stop(proc: subprocess.Popen[str], sig: signal.Signals, err_before: str = "") -> str:
@@ -90,10 +105,11 @@ def stop(proc: subprocess.Popen[str], sig: signal.Signals, err_before: str = "")
 def test_signal_stops_a_streaming_sweep_with_whole_rows(sig: signal.Signals) -> None:
     proc = start([*SWEEP, "--format", "jsonl"])
     assert proc.stdout is not None
-    first = [proc.stdout.readline() for _ in range(20)]  # rows are out: the sweep is under way
-    assert all(first), f"the sweep ended early: {first}"
+    read = read_until(proc.stdout, lambda text: text.count("\n") >= 20)  # rows are out: the sweep is under way
+    first = read.splitlines(keepends=True)[:20]
+    assert len(first) == 20 and all(line.endswith("\n") for line in first), f"the sweep ended early: {first}"
     out = stop(proc, sig)
-    lines = [line for line in "".join(first).splitlines() + out.splitlines() if line]
+    lines = [line for line in (read + out).splitlines() if line]
     rows = [json.loads(line) for line in lines]  # every printed row is whole
     assert 20 <= len(rows) < 60_000
 
