@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
@@ -216,3 +218,89 @@ def test_compile_on_a_named_device_is_never_worse_than_qiskit_o3(name: str) -> N
     assert twoq[0] <= min(twoq[1:])
     summary = by_esp.summary()["routed"]
     assert summary["esp_idle"] < summary["esp"] and summary["chosen"] == by_esp.chosen
+
+
+_ONE_QUBIT = ("h", "x", "s", "sdg", "t", "tdg")
+
+
+@st.composite
+def _lowered_circuits(draw: st.DrawFn) -> list[tuple[str, tuple[int, ...], float]]:
+    """Up to 30 gates of a lowered circuit on 4 qubits: ``cx``, the fixed one-qubit gates and ``rz``/``rx``."""
+    out = []
+    for _ in range(draw(st.integers(1, 30))):
+        kind = draw(st.sampled_from(("cx", "one", "rz", "rx")))
+        if kind == "cx":
+            a, b = draw(st.lists(st.integers(0, 3), min_size=2, max_size=2, unique=True))
+            out.append(("cx", (a, b), 0.0))
+        else:
+            name = draw(st.sampled_from(_ONE_QUBIT)) if kind == "one" else kind
+            out.append((name, (draw(st.integers(0, 3)),), draw(st.floats(-3, 3))))
+    return out
+
+
+@settings(max_examples=25, deadline=None)
+@given(_lowered_circuits(), st.integers(0, 5))
+def test_qiskit_optimized_keeps_a_routed_circuit_and_its_layouts(
+    spec: list[tuple[str, tuple[int, ...], float]], seed: int
+) -> None:
+    """Our routing after Qiskit's optimisation at its layout: the same state from the same input, every gate on a
+    coupling, the layouts and SWAP count unchanged, one symbol kept as a symbol."""
+    from qcpp.hardware.device import get_device
+    from qcpp.ir import gates as G
+    from qcpp.ir.angles import Angle
+    from qcpp.routing.qiskit_o3 import qiskit_optimized
+    from qcpp.routing.sabre import route
+
+    gamma = Angle.symbol("gamma_0", 2.0) + 0.25
+    gates = [G.rz(gamma, 0)]
+    for name, qs, theta in spec:
+        gates.append(G.cx(*qs) if name == "cx" else getattr(G, name)(theta, *qs) if name in ("rz", "rx")
+                     else getattr(G, name)(*qs))  # fmt: skip
+    logical = Circuit([Register("data", 4)], [Section("s", gates)])
+    dev = get_device("grid:2x3")
+    routed = route(logical, dev, (0, 5, 2, 3), seed=seed)  # a layout with the pairs apart: SWAPs to keep
+    done = qiskit_optimized(routed)
+    assert (done.initial_layout, done.final_layout, done.swaps, done.measured) == (
+        routed.initial_layout, routed.final_layout, routed.swaps, routed.measured)  # fmt: skip
+    edges = dev.edge_index()
+    assert all(len(g[1]) == 1 or g[1] in edges for g in done.circuit.gates)
+    assert {g[0] for g in done.circuit.gates} <= {"cz", "rz", "rx", "x"}
+    symbols = {name for g in done.circuit.gates for p in g[2] if isinstance(p, Angle) for name, _ in p.terms}
+    assert symbols <= {"gamma_0"}
+    bound = {"gamma_0": 0.7}
+
+    def bind(c: Circuit) -> Circuit:
+        return Circuit(c.registers, [Section(s.name, [g.bind(bound) if g[2] else g for g in s.gates])
+                                     for s in c.sections])  # fmt: skip
+
+    ref = bind(logical)
+    for r in (routed, done):
+        moved = RoutedCircuit(bind(r.circuit), dev, r.initial_layout, r.final_layout, r.swaps, r.measured)
+        assert _state_up_to_layouts(moved, ref) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_qiskit_optimized_merges_the_one_qubit_gates_of_a_routing() -> None:
+    """3x3/1 routed on ibm_torino: gate by gate, every ``cx`` brings its Hadamards; optimised, fewer ``sx`` pulses
+    and no more ``cz``; the candidates carry it (and its placements) only where Qiskit candidates are asked for."""
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.candidates import calibrated_candidates
+    from qcpp.pipeline.device_compile import greedy_route
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import PlanOptions
+    from qcpp.problem.presets import default_scenario
+    from qcpp.routing.native import to_native
+    from qcpp.routing.qiskit_o3 import qiskit_optimized
+
+    s = default_scenario(3, 3, 1)
+    c = compile_scenario(s, 1, PlanOptions(fuse=False, phase_layout="spatial"), lowered=True,
+                         bindings={"gamma_0": 0.3, "beta_0": 0.7}).circuit  # fmt: skip
+    dev = named_device("ibm_torino")
+    routed = greedy_route(c, dev, measured=range(s.num_variables))
+    plain, done = to_native(routed).circuit.count_ops(), qiskit_optimized(routed).circuit.count_ops()
+    assert done["cz"] <= plain["cz"]
+    assert done["rx"] < 0.9 * plain["rx"], (plain, done)
+    assert esp_idle(qiskit_optimized(routed)) > esp_idle(to_native(routed))
+    with_qiskit = [x.name for x in calibrated_candidates([routed], dev, c, range(s.num_variables), qiskit_seeds=1)]
+    alone = [x.name for x in calibrated_candidates([routed], dev, None, range(s.num_variables))]
+    assert "qcpp + O3 passes" in with_qiskit and "qcpp + O3 passes + our placement" in with_qiskit
+    assert not any("O3" in name for name in alone)

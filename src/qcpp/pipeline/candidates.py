@@ -5,7 +5,10 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
 
 * ``qcpp``: the routing of compile's own path, and, on circuits small enough for the placement search, the next
   cheapest routings of that search (``qcpp #2`` ...: a few more two-qubit gates on other qubits may run with fewer
-  errors);
+  errors), written gate by gate in native gates (:func:`qcpp.routing.native.to_native`);
+* ``qcpp + O3 passes`` (``qcpp #2 + O3 passes`` ...): each of those after Qiskit's O3 optimisation at its own
+  layout (:func:`qcpp.routing.qiskit_o3.qiskit_optimized`: one-qubit runs merged, two-qubit blocks resynthesised;
+  fewer and shorter gates, so fewer errors and less idle time), where Qiskit candidates are asked for;
 * ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
   ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
   Qiskit's by the chosen figure;
@@ -36,7 +39,7 @@ from qcpp.hardware.device import Device, device_names
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.native import esp, esp_idle, to_native
 from qcpp.routing.noise_aware import embedding_sites
-from qcpp.routing.qiskit_o3 import qiskit_o3_seeds
+from qcpp.routing.qiskit_o3 import qiskit_o3_seeds, qiskit_optimized
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 
 __all__ = [
@@ -58,13 +61,16 @@ class RoutedCandidate:
     Attributes:
         name: Where it comes from (``qcpp``, ``qcpp #2 + our placement``, ``qiskit O3 seed 1``).
         native: The routed circuit in the device's native gates.
-        lowered: The same routing in CX + one-qubit gates (``None``: the candidate exists only in native gates,
-            Qiskit's).
+        lowered: The same routing in CX + one-qubit gates (``None``: the candidate exists only in native gates:
+            Qiskit's routing, or ours after Qiskit's optimisation).
+        qiskit_routed: Whether Qiskit routed the lowered logical circuit itself (its layouts index that circuit's
+            qubits; ours index those of compile's logical circuit, which may hold local ancillas).
     """
 
     name: str
     native: RoutedCircuit
     lowered: RoutedCircuit | None = None
+    qiskit_routed: bool = False
 
     @cached_property
     def twoq(self) -> int:
@@ -138,7 +144,8 @@ def calibrated_candidates(
     Args:
         ours: Compile's own routings on ``device``, its choice first (CX + one-qubit gates, or native).
         device: The named device.
-        qiskit_circuit: The lowered logical circuit for Qiskit's O3 (``None``: no Qiskit candidates).
+        qiskit_circuit: The lowered logical circuit for Qiskit's O3 (``None``: no Qiskit candidates, neither
+            Qiskit's routings nor ours after Qiskit's optimisation: those exist in native gates only).
         measured: Logical qubits measured at the end.
         qiskit_seeds: Qiskit O3 seeds.
 
@@ -154,10 +161,17 @@ def calibrated_candidates(
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
             out.append(RoutedCandidate(label, embed_routed(native, device, sites), embed_routed(routed, device, sites)))
     if qiskit_circuit is not None:
+        for i, routed in enumerate(ours):
+            name = ("qcpp" if i == 0 else f"qcpp #{i + 1}") + " + O3 passes"
+            optimized = qiskit_optimized(routed)
+            out.append(RoutedCandidate(name, optimized))
+            for j, sites in enumerate(embedding_sites(optimized, device)):
+                label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
+                out.append(RoutedCandidate(label, embed_routed(optimized, device, sites)))
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             name = f"qiskit O3 seed {seed}"
-            out.append(RoutedCandidate(name, theirs))
+            out.append(RoutedCandidate(name, theirs, qiskit_routed=True))
             for j, sites in enumerate(embedding_sites(theirs, device)):
                 label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
-                out.append(RoutedCandidate(label, embed_routed(theirs, device, sites)))
+                out.append(RoutedCandidate(label, embed_routed(theirs, device, sites), qiskit_routed=True))
     return out

@@ -181,7 +181,7 @@ ROUTERS = {
     "far phases relayed through clean qubits; qiskit SabreSwap per section, each section returning home",
     "greedy": "qiskit SabreSwap of the whole circuit from the better of our greedy layout and qiskit SabreLayout; "
     f"on circuits of at most {DEFAULT_ROUTING.placement_max_twoq} two-qubit gates the fewest CX over that layout and "
-    f"{DEFAULT_ROUTING.placement_layouts} "
+    f"{DEFAULT_ROUTING.placement_layouts} ({DEFAULT_ROUTING.calibrated_placement_layouts} on a named device) "
     "SabreLayout starts, SWAPs fused with an adjacent cx",
 }
 """What each layout method routes with (on a named device, the chosen candidate may be another: ``chosen``)."""
@@ -359,13 +359,9 @@ def _compile_for_device(
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
     say(f"routing the whole circuit on {dev.name}")
     objective = default_objective(dev) if optimize_for is None else optimize_for
-    count = CALIBRATED_ROUTINGS if is_calibrated(dev) else 1
+    count = routing.calibrated_routings if is_calibrated(dev) else 1
     ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
     return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say)
-
-
-CALIBRATED_ROUTINGS = 4
-"""On a named device, compile's own routings the candidates start from (the placement search's cheapest few)."""
 
 
 def _finish(
@@ -386,7 +382,7 @@ def _finish(
     chosen = choose(pool, objective)
     routed = chosen.lowered if lowered else chosen.native
     assert routed is not None
-    if chosen.lowered is None:  # Qiskit's: it routed the compiled circuit itself
+    if chosen.qiskit_routed:  # Qiskit routed the compiled circuit itself
         logical = circuit
     return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
                                optimize_for=objective, chosen=chosen.name,
@@ -420,7 +416,10 @@ def greedy_routes(
     count: int = 1,
 ) -> list[RoutedCircuit]:
     """:func:`greedy_route`'s routing first, then (where it runs the placement search) up to ``count - 1`` of the
-    search's next cheapest (:func:`qcpp.layout.placement_search.ranked_routes`)."""
+    search's next cheapest (:func:`qcpp.layout.placement_search.ranked_routes`). On a named device the search is
+    the wider one of :meth:`~qcpp.routing.options.RoutingOptions.for_calibrated`."""
+    if is_calibrated(device):
+        options = options.for_calibrated()
     layout = best_layout(circuit, device, seed=seed, layouts=layouts, options=options)
     if device.is_all_to_all or _two_qubit(circuit) > options.placement_max_twoq:
         return [route(circuit, device, layout, seed=seed, measured=measured, trials=options.trials)]

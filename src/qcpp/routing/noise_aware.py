@@ -29,6 +29,7 @@ Example:
 from __future__ import annotations
 
 import math
+from functools import cache
 from typing import Any
 
 from qcpp.hardware.device import Device
@@ -140,17 +141,8 @@ def embedding_sites(
             total += np.log(fid).sum(axis=1)
         return total
 
-    device_adj: dict[int, list[int]] = {q: [] for q in range(n)}
-    for a, b in device.coupling:
-        device_adj[a].append(b)
-        device_adj[b].append(a)
     found: list[tuple[int, ...]] = []
-    for anchor in range(n):
-        dev_order = _bfs_from(device_adj, anchor)
-        graph = rx.PyGraph()
-        graph.add_nodes_from(range(len(dev_order)))
-        at = {q: i for i, q in enumerate(dev_order)}
-        graph.add_edges_from_no_data([(at[a], at[b]) for a, b in device.coupling if a in at and b in at])
+    for dev_order, graph in _anchor_graphs(device):
         if len(dev_order) < len(order):
             continue
         maps = rx.vf2_mapping(graph, pattern, subgraph=True, induced=False, id_order=True, call_limit=call_limit)
@@ -172,6 +164,28 @@ def embedding_sites(
         free = iter(sorted(set(range(n)) - set(placed.values())))
         out.append(tuple(placed[i] if i in placed else next(free) for i in range(m)))
     return out
+
+
+@cache
+def _anchor_graphs(device: Device) -> tuple[tuple[tuple[int, ...], Any], ...]:
+    """Per anchor qubit of ``device``: its qubits breadth-first from that anchor (:func:`_bfs_from`) and the coupling
+    graph with node ``i`` the ``i``-th of them (so VF2 with ``id_order`` explores the anchor's region first).
+    Memoised per device (a frozen value): every search on a device reads the same graphs, never changes them."""
+    import rustworkx as rx
+
+    adjacency: dict[int, list[int]] = {q: [] for q in range(device.num_qubits)}
+    for a, b in device.coupling:
+        adjacency[a].append(b)
+        adjacency[b].append(a)
+    out = []
+    for anchor in range(device.num_qubits):
+        dev_order = _bfs_from(adjacency, anchor)
+        at = {q: i for i, q in enumerate(dev_order)}
+        graph = rx.PyGraph()
+        graph.add_nodes_from(range(len(dev_order)))
+        graph.add_edges_from_no_data([(at[a], at[b]) for a, b in device.coupling])
+        out.append((tuple(dev_order), graph))
+    return tuple(out)
 
 
 def _bfs_order(adjacency: dict[int, set[int]]) -> list[int]:

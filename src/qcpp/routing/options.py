@@ -81,6 +81,13 @@ class RoutingOptions:
             for the :attr:`placement_refine` cheapest).
         placement_refine: Layouts of the placement search routed with every seed.
         sabre_layout_trials: Random starts per ``SabreLayout`` run (explicit: Qiskit's default is the CPU count).
+        calibrated_routings: On a named (calibrated) device, compile's own routings the candidates start from: the
+            placement search's cheapest few (:func:`qcpp.pipeline.device_compile.greedy_routes`), each then
+            optimised and placed by the errors (:mod:`qcpp.pipeline.candidates`).
+        calibrated_placement_layouts: :attr:`placement_layouts` on a named device (:meth:`for_calibrated`): there
+            a routing is judged by its success probability, and a wider search finds routings whose few extra
+            SWAPs, or whose shape, sit on better qubits.
+        calibrated_placement_refine: :attr:`placement_refine` on a named device.
         auto_compare_max_twoq: Below this many lowered two-qubit gates the ``auto`` layout also tries ``greedy``
             on the geometric layout's device (one routing of a tiny circuit may need fewer SWAPs than windows).
         greedy_compare_max_qubits: ``auto`` routes its greedy comparison on the medial grid itself up to this many
@@ -117,6 +124,9 @@ class RoutingOptions:
     placement_seeds: int = 4
     placement_refine: int = 6
     sabre_layout_trials: int = 1
+    calibrated_routings: int = 12
+    calibrated_placement_layouts: int = 96
+    calibrated_placement_refine: int = 12
     auto_compare_max_twoq: int = 2_000
     greedy_compare_max_qubits: int = 1_024
     crop_min_qubits: int = 1_024
@@ -141,6 +151,16 @@ class RoutingOptions:
         :attr:`cell_large_window_trials` trials)."""
         return replace(self, large_window_seeds=self.cell_large_window_seeds,
                        large_window_trials=self.cell_large_window_trials)  # fmt: skip
+
+    def for_calibrated(self) -> RoutingOptions:
+        """These options with a named device's placement search (:attr:`calibrated_placement_layouts` starts, the
+        :attr:`calibrated_placement_refine` cheapest routed with every seed).
+
+        >>> DEFAULT_ROUTING.for_calibrated().placement_layouts, DEFAULT_ROUTING.placement_layouts
+        (96, 24)
+        """
+        return replace(self, placement_layouts=self.calibrated_placement_layouts,
+                       placement_refine=self.calibrated_placement_refine)  # fmt: skip
 
 
 DEFAULT_ROUTING = RoutingOptions()

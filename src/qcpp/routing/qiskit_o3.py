@@ -36,7 +36,7 @@ from qcpp.ir.gates import Gate, cz, rx, rz, x
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.target import device_target
 
-__all__ = ["from_qiskit_angle", "qiskit_o3", "qiskit_o3_seeds", "to_qiskit_lowered"]
+__all__ = ["from_qiskit_angle", "qiskit_o3", "qiskit_o3_seeds", "qiskit_optimized", "to_qiskit_lowered"]
 
 _SIMPLE = {"x", "h", "t", "tdg", "s", "sdg", "cx", "cz", "sx"}
 _ANGLED = {"rz", "rx", "ry", "rzz"}
@@ -193,3 +193,47 @@ def qiskit_o3_seeds(
         routed = Circuit([Register("q", device.num_qubits)], [Section("qiskit_o3", _routed_gates(done))])
         out.append(RoutedCircuit(routed, device, initial, final, swaps[-1] if swaps else 0, tuple(measured)))
     return out
+
+
+def qiskit_optimized(routed: RoutedCircuit) -> RoutedCircuit:
+    """A routed circuit (CX + one-qubit gates, on the couplings of its device) after Qiskit's O3 optimisation at
+    its own layout, in the device's native gates: ``transpile`` onto the calibrated target with the trivial initial
+    layout and no routing, so only the optimisation and translation stages change it (two-qubit blocks resynthesised,
+    runs of one-qubit gates merged into at most two ``sx``, gates that cancel removed). Every qubit stays where it
+    was, so the layouts (and SWAP count) are ``routed``'s, and the result equals ``routed`` up to a global phase.
+
+    Why: gate by gate (:func:`qcpp.routing.native.to_native`), every ``cx`` brings its own Hadamards and every ``h``,
+    ``t``, ``s`` its own pulses; merged, a routed circuit has fewer and shorter one-qubit layers, so fewer gate
+    errors and less idle time.
+
+    Args:
+        routed: A routed circuit in CX and one-qubit gates (:data:`_SIMPLE`, :data:`_ANGLED`).
+
+    Returns:
+        The optimised routed circuit.
+
+    Raises:
+        RuntimeError: Qiskit moved a qubit (it must not: no layout or routing stage runs).
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> from qcpp.ir.gates import cx, h
+        >>> from qcpp.routing.native import to_native
+        >>> dev = get_device("ibm_fez")
+        >>> c = Circuit([Register("q", dev.num_qubits)], [Section("s", [h(1), cx(0, 1), cx(0, 1), h(1)])])
+        >>> r = RoutedCircuit(c, dev, (0, 1), (0, 1), 0, (0, 1))
+        >>> sum(to_native(r).circuit.count_ops().values()), sum(qiskit_optimized(r).circuit.count_ops().values())
+        (20, 0)
+    """
+    from qiskit import transpile
+
+    device = routed.device
+    qc = to_qiskit_lowered(routed.circuit)
+    trivial = list(range(qc.num_qubits))
+    done = transpile(qc, target=device_target(device), optimization_level=3, initial_layout=trivial,
+                     routing_method="none", seed_transpiler=0)  # fmt: skip
+    if done.layout is not None and (list(done.layout.initial_index_layout()) != trivial
+                                     or list(done.layout.final_index_layout()) != trivial):  # fmt: skip
+        raise RuntimeError("qiskit_optimized: Qiskit moved qubits of a routed circuit")
+    circuit = Circuit(routed.circuit.registers, [Section("qiskit_optimized", _routed_gates(done))])
+    return RoutedCircuit(circuit, device, routed.initial_layout, routed.final_layout, routed.swaps, routed.measured)
