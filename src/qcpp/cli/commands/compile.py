@@ -146,8 +146,9 @@ def compile_command(
             "--optimize-for",
             help="With --device: the figure the routing is chosen by on a named device, esp (success probability "
             "with idle decoherence; the default there) or twoq (fewest two-qubit gates); the candidates are qcpp's "
-            "own routings, Qiskit O3 on the calibrated target, and both moved onto the best-calibrated qubits. The "
-            "families (grid, heavy-hex, all-to-all) keep their single routing.",
+            "own routings (as written and after Qiskit's O3 optimisation at their layout), Qiskit O3 on the "
+            "calibrated target, and all of these moved onto the best-calibrated qubits. The families (grid, "
+            "heavy-hex, all-to-all) keep their single routing.",
             show_default=False,
         ),
     ] = None,
