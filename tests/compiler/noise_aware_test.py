@@ -300,6 +300,13 @@ def test_qiskit_optimized_merges_the_one_qubit_gates_of_a_routing() -> None:
     assert done["cz"] <= plain["cz"]
     assert done["rx"] < 0.9 * plain["rx"], (plain, done)
     assert esp_idle(qiskit_optimized(routed)) > esp_idle(to_native(routed))
+    # one VF2 search serves both (the same couplers), each scored by its own gates: as without the memo
+    from qcpp.routing.noise_aware import embedding_sites
+
+    memo: dict[object, list[tuple[int, ...]]] = {}
+    for r in (to_native(routed), qiskit_optimized(routed)):
+        assert embedding_sites(r, dev, found_memo=memo) == embedding_sites(r, dev)
+    assert len(memo) == 1
     with_qiskit = [x.name for x in calibrated_candidates([routed], dev, c, range(s.num_variables), qiskit_seeds=1)]
     alone = [x.name for x in calibrated_candidates([routed], dev, None, range(s.num_variables))]
     assert "qcpp + O3 passes" in with_qiskit and "qcpp + O3 passes + our placement" in with_qiskit

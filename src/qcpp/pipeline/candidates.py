@@ -153,11 +153,16 @@ def calibrated_candidates(
         The candidates, in the order of the module docs.
     """
     out: list[RoutedCandidate] = []
+    found: dict[object, list[tuple[int, ...]]] = {}  # VF2's embeddings per coupling subgraph, shared by this call
+
+    def sites_of(candidate: RoutedCircuit) -> list[tuple[int, ...]]:
+        return embedding_sites(candidate, device, found_memo=found)
+
     for i, routed in enumerate(ours):
         native = to_native(routed)
         name = "qcpp" if i == 0 else f"qcpp #{i + 1}"
         out.append(RoutedCandidate(name, native, routed))
-        for j, sites in enumerate(embedding_sites(native, device)):
+        for j, sites in enumerate(sites_of(native)):
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
             out.append(RoutedCandidate(label, embed_routed(native, device, sites), embed_routed(routed, device, sites)))
     if qiskit_circuit is not None:
@@ -165,13 +170,13 @@ def calibrated_candidates(
             name = ("qcpp" if i == 0 else f"qcpp #{i + 1}") + " + O3 passes"
             optimized = qiskit_optimized(routed)
             out.append(RoutedCandidate(name, optimized))
-            for j, sites in enumerate(embedding_sites(optimized, device)):
+            for j, sites in enumerate(sites_of(optimized)):
                 label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
                 out.append(RoutedCandidate(label, embed_routed(optimized, device, sites)))
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             name = f"qiskit O3 seed {seed}"
             out.append(RoutedCandidate(name, theirs, qiskit_routed=True))
-            for j, sites in enumerate(embedding_sites(theirs, device)):
+            for j, sites in enumerate(sites_of(theirs)):
                 label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
                 out.append(RoutedCandidate(label, embed_routed(theirs, device, sites), qiskit_routed=True))
     return out

@@ -67,7 +67,7 @@ def embeddings(routed: RoutedCircuit, device: Device, keep: int = EMBEDDINGS_KEP
 
 def embedding_sites(
     routed: RoutedCircuit, device: Device, keep: int = EMBEDDINGS_KEPT, per_anchor: int = MAPPINGS_PER_ANCHOR,
-    call_limit: int = 200_000,
+    call_limit: int = 200_000, found_memo: dict[Any, list[tuple[int, ...]]] | None = None,
 ) -> list[tuple[int, ...]]:  # fmt: skip
     """The ``keep`` best-scoring embeddings found of ``routed``'s coupling subgraph in ``device`` (module docs),
     best first, as ``sites``: qubit ``i`` of ``routed`` -> qubit of ``device`` (distinct; qubits ``routed`` leaves
@@ -81,6 +81,10 @@ def embedding_sites(
     by :func:`log_score`'s model computed per qubit and coupler with the idle times of ``routed`` itself (gate
     durations differ little between qubits): ``sum count * log(1 - error)`` over couplers and one-qubit gates,
     readout of the measured qubits, and the idle factor with the anchor region's T1 / T2.
+
+    ``found_memo`` (a dict the caller owns, for one device): the embeddings VF2 enumerated, keyed by the circuit's
+    qubit order and coupling subgraph, which are all they depend on. Several circuits on the same couplers (a routing
+    before and after one-qubit merging) then share one search and are scored each by its own gates.
     """
     import numpy as np
     import rustworkx as rx
@@ -141,18 +145,23 @@ def embedding_sites(
             total += np.log(fid).sum(axis=1)
         return total
 
-    found: list[tuple[int, ...]] = []
-    for dev_order, graph in _anchor_graphs(device):
-        if len(dev_order) < len(order):
-            continue
-        maps = rx.vf2_mapping(graph, pattern, subgraph=True, induced=False, id_order=True, call_limit=call_limit)
-        for k, mapping in enumerate(maps):
-            if k >= per_anchor:
-                break
-            site = [0] * len(order)
-            for dev_node, pat_node in mapping.items():
-                site[pat_node] = dev_order[dev_node]
-            found.append(tuple(site))
+    memo_key = (tuple(order), tuple(sorted((pos[a], pos[b]) for a, b in pairs)), per_anchor, call_limit)
+    found = None if found_memo is None else found_memo.get(memo_key)
+    if found is None:
+        found = []
+        for dev_order, graph in _anchor_graphs(device):
+            if len(dev_order) < len(order):
+                continue
+            maps = rx.vf2_mapping(graph, pattern, subgraph=True, induced=False, id_order=True, call_limit=call_limit)
+            for k, mapping in enumerate(maps):
+                if k >= per_anchor:
+                    break
+                site = [0] * len(order)
+                for dev_node, pat_node in mapping.items():
+                    site[pat_node] = dev_order[dev_node]
+                found.append(tuple(site))
+        if found_memo is not None:
+            found_memo[memo_key] = found
     if not found:
         return []
     arr = np.array(sorted(set(found)), dtype=int)
