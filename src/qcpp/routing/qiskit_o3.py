@@ -6,6 +6,7 @@ With the calibrated target, Qiskit's O3 lays the circuit out noise-aware (``VF2L
 without SWAPs, else ``SabreLayout`` and ``VF2PostLayout``, both scored by the target's errors), routes with SABRE and
 optimises (two-qubit block resynthesis, one-qubit merging). Compile keeps it as one candidate beside its own routings
 (:mod:`qcpp.pipeline.candidates`), so the routed circuit is never worse than Qiskit's by the figure the user picks.
+:func:`qiskit_optimized` runs only that pipeline's optimisation on a routing of ours, at its own layout.
 
 The circuit goes to Qiskit as written (lowered gates; symbols as Qiskit ``Parameter``\\s, read back as the same
 affine angles) without measurements, so O3 keeps the whole unitary (a final measurement would let it drop diagonal
