@@ -152,31 +152,25 @@ def calibrated_candidates(
     Returns:
         The candidates, in the order of the module docs.
     """
-    out: list[RoutedCandidate] = []
     found: dict[object, list[tuple[int, ...]]] = {}  # VF2's embeddings per coupling subgraph, shared by this call
 
-    def sites_of(candidate: RoutedCircuit) -> list[tuple[int, ...]]:
-        return embedding_sites(candidate, device, found_memo=found)
-
-    for i, routed in enumerate(ours):
-        native = to_native(routed)
-        name = "qcpp" if i == 0 else f"qcpp #{i + 1}"
-        out.append(RoutedCandidate(name, native, routed))
-        for j, sites in enumerate(sites_of(native)):
+    def with_placements(name: str, native: RoutedCircuit, lowered: RoutedCircuit | None = None,
+                        qiskit_routed: bool = False) -> list[RoutedCandidate]:  # fmt: skip
+        """The candidate ``name`` and the same gates on each of its best embeddings (``name + our placement``)."""
+        placed = [RoutedCandidate(name, native, lowered, qiskit_routed)]
+        for j, sites in enumerate(embedding_sites(native, device, found_memo=found)):
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
-            out.append(RoutedCandidate(label, embed_routed(native, device, sites), embed_routed(routed, device, sites)))
+            moved = None if lowered is None else embed_routed(lowered, device, sites)
+            placed.append(RoutedCandidate(label, embed_routed(native, device, sites), moved, qiskit_routed))
+        return placed
+
+    names = ["qcpp" if i == 0 else f"qcpp #{i + 1}" for i in range(len(ours))]
+    out: list[RoutedCandidate] = []
+    for name, routed in zip(names, ours, strict=True):
+        out += with_placements(name, to_native(routed), routed)
     if qiskit_circuit is not None:
-        for i, routed in enumerate(ours):
-            name = ("qcpp" if i == 0 else f"qcpp #{i + 1}") + " + O3 passes"
-            optimized = qiskit_optimized(routed)
-            out.append(RoutedCandidate(name, optimized))
-            for j, sites in enumerate(sites_of(optimized)):
-                label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
-                out.append(RoutedCandidate(label, embed_routed(optimized, device, sites)))
+        for name, routed in zip(names, ours, strict=True):
+            out += with_placements(f"{name} + O3 passes", qiskit_optimized(routed))
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
-            name = f"qiskit O3 seed {seed}"
-            out.append(RoutedCandidate(name, theirs, qiskit_routed=True))
-            for j, sites in enumerate(sites_of(theirs)):
-                label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
-                out.append(RoutedCandidate(label, embed_routed(theirs, device, sites), qiskit_routed=True))
+            out += with_placements(f"qiskit O3 seed {seed}", theirs, qiskit_routed=True)
     return out
