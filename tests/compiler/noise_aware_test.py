@@ -311,3 +311,49 @@ def test_qiskit_optimized_merges_the_one_qubit_gates_of_a_routing() -> None:
     alone = [x.name for x in calibrated_candidates([routed], dev, None, range(s.num_variables))]
     assert "qcpp + O3 passes" in with_qiskit and "qcpp + O3 passes + our placement" in with_qiskit
     assert not any("O3" in name for name in alone)
+
+
+def test_a_routing_on_a_larger_lattice_is_placed_on_a_named_device() -> None:
+    """A routing on heavy-hex:9 (193 qubits) moves onto ibm_fez (156): distinct sites for the qubits it uses, every
+    two-qubit gate on a coupler, the same gates and layouts relabelled; the qubits it leaves unused carry nothing."""
+    from qcpp.hardware.device import get_device, named_device
+    from qcpp.ir.gates import cx, h
+    from qcpp.routing.native import to_native
+    from qcpp.routing.noise_aware import embedding_sites
+    from qcpp.routing.routed_circuit import embed_routed
+    from qcpp.routing.sabre import route
+
+    hexd, fez = get_device("heavy-hex:9"), named_device("ibm_fez")
+    a, b = hexd.coupling[40]
+    c = next(x for x in hexd.coupling if b in x and a not in x)
+    third = c[0] if c[1] == b else c[1]
+    logical = Circuit([Register("data", 3)], [Section("s", [h(0), cx(0, 1), cx(1, 2), cx(0, 2)])])
+    routed = to_native(route(logical, hexd, (a, b, third), seed=0))
+    used = {q for g in routed.circuit.gates for q in g[1]} | set(routed.initial_layout) | set(routed.final_layout)
+    sites = embedding_sites(routed, fez)
+    assert sites and routed.circuit.num_qubits > fez.num_qubits
+    for s in sites:
+        assert len(s) == routed.circuit.num_qubits and len({s[q] for q in used}) == len(used)
+        moved = embed_routed(routed, fez, s)
+        pairs = {tuple(sorted(g[1])) for g in moved.circuit.gates if len(g[1]) == 2}
+        assert pairs <= set(fez.coupling)
+        assert [g[0] for g in moved.circuit.gates] == [g[0] for g in routed.circuit.gates]
+        assert moved.initial_layout == tuple(s[q] for q in routed.initial_layout)
+
+
+@pytest.mark.heavy  # compiles 3x4/1 on ibm_torino with every candidate, and the cells on heavy-hex:9
+def test_the_cells_routed_on_a_lattice_win_the_two_qubit_count_on_an_ibm_device() -> None:
+    """One robot on 3x4: the cell layout routed on heavy-hex:9 and placed on Torino writes fewer CZ than compile's
+    own and Qiskit's routings of Torino; the result reports the cells' logical circuit (local ancillas), which its
+    layouts index (``routing_qcec_test`` proves the two equal up to the layouts)."""
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.presets import default_scenario
+
+    s, bind = default_scenario(3, 4, 1), {"gamma_0": 0.3, "beta_0": 0.7}
+    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq")
+    assert r.chosen.startswith("cells on heavy-hex:"), r.chosen
+    by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
+    others = [n for n in by_name if not n.startswith("cells")]
+    assert by_name[r.chosen] < min(by_name[n] for n in others)
+    assert r.logical.num_qubits > r.compiled.circuit.num_qubits  # the cells' local ancillas
+    assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits

@@ -76,6 +76,35 @@ def test_qcec_proves_the_native_circuit_a_named_device_gets_equal_to_its_logical
 
 
 @pytest.mark.slow
+def test_qcec_proves_the_cells_placed_on_an_ibm_device_equal_to_their_logical_circuit() -> None:
+    """One robot on 3x3: the heavy-hex cells routed on heavy-hex:7, placed on Torino and optimised by Qiskit's
+    passes (the candidate compile adds there), against the logical circuit with local ancillas it carries."""
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.candidates import calibrated_candidates
+    from qcpp.pipeline.device_compile import _cells_elsewhere
+    from qcpp.pipeline.device_plan import device_plan_options
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import DEFAULT_PLAN
+    from qcpp.routing.context import RoutingContext
+
+    s, dev = default_scenario(3, 3, 1), named_device("ibm_torino")
+    options = dataclasses.replace(device_plan_options(DEFAULT_PLAN, dev, "auto"), fuse=False)
+    circuit = compile_scenario(s, 1, options, lowered=True, bindings=BIND).circuit
+    measured = range(s.num_variables)
+    cells = _cells_elsewhere(s, circuit, dev, 0, measured, options, BIND, None, DEFAULT_ROUTING, RoutingContext())
+    assert cells is not None and cells[0].startswith("cells on heavy-hex:")
+    cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=(cells,))
+    placed = [c for c in cands if c.name.endswith("our placement + O3 passes")]
+    assert placed and all(c.logical is cells[1] for c in cands)
+    logical, routed = cells[1], placed[0].native
+    n = logical.num_qubits
+    b = aligned(routed, n)
+    a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(logical.gates))])
+    assert check_equivalence(a, b, num_plain=s.num_variables, global_phase_ok=True).criterion in (
+        "equivalent", "equivalent_up_to_global_phase")
+
+
+@pytest.mark.slow
 def test_qcec_catches_a_wrong_circuit() -> None:
     assert _check((3, 3, 1), "grid:6x6", broken=True) == "not_equivalent"
 

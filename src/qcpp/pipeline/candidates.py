@@ -9,6 +9,10 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
 * ``qcpp + O3 passes`` (``qcpp #2 + O3 passes`` ...): each of those after Qiskit's O3 optimisation at its own
   layout (:func:`qcpp.routing.qiskit_o3.qiskit_optimized`: one-qubit runs merged, two-qubit blocks resynthesised;
   fewer and shorter gates, so fewer errors and less idle time), where Qiskit candidates are asked for;
+* ``cells on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on IBM's heavy-hex devices, the cell layout
+  routed on the abstract lattice ``heavy-hex:D`` (where it is laid out by construction) and placed on the best
+  embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
+  fit; larger routings reach the lattice's edges, whose 10-cycles IBM's lattice lacks, or cross its defects);
 * ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
   ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
   Qiskit's by the chosen figure;
@@ -63,14 +67,15 @@ class RoutedCandidate:
         native: The routed circuit in the device's native gates.
         lowered: The same routing in CX + one-qubit gates (``None``: the candidate exists only in native gates:
             Qiskit's routing, or ours after Qiskit's optimisation).
-        qiskit_routed: Whether Qiskit routed the lowered logical circuit itself (its layouts index that circuit's
-            qubits; ours index those of compile's logical circuit, which may hold local ancillas).
+        logical: The logical circuit its layouts index, where that is not the one compile's own routings route
+            (``None``): Qiskit's routings index the lowered compiled circuit, the cells' routing its circuit with
+            local ancillas.
     """
 
     name: str
     native: RoutedCircuit
     lowered: RoutedCircuit | None = None
-    qiskit_routed: bool = False
+    logical: Circuit | None = None
 
     @cached_property
     def twoq(self) -> int:
@@ -138,6 +143,7 @@ def calibrated_candidates(
     qiskit_circuit: Circuit | None = None,
     measured: Sequence[int] | None = None,
     qiskit_seeds: int = QISKIT_SEEDS,
+    elsewhere: Sequence[tuple[str, Circuit, RoutedCircuit]] = (),
 ) -> list[RoutedCandidate]:
     """The candidates of the module docs.
 
@@ -148,6 +154,8 @@ def calibrated_candidates(
             Qiskit's routings nor ours after Qiskit's optimisation: those exist in native gates only).
         measured: Logical qubits measured at the end.
         qiskit_seeds: Qiskit O3 seeds.
+        elsewhere: ``(name, logical circuit, routing)`` of routings on another device (CX + one-qubit gates: the
+            cell layout on a ``heavy-hex:D`` lattice), each placed on ``device`` where its couplers embed.
 
     Returns:
         The candidates, in the order of the module docs.
@@ -155,13 +163,13 @@ def calibrated_candidates(
     found: dict[object, list[tuple[int, ...]]] = {}  # VF2's embeddings per coupling subgraph, shared by this call
 
     def with_placements(name: str, native: RoutedCircuit, lowered: RoutedCircuit | None = None,
-                        qiskit_routed: bool = False) -> list[RoutedCandidate]:  # fmt: skip
+                        logical: Circuit | None = None) -> list[RoutedCandidate]:  # fmt: skip
         """The candidate ``name`` and the same gates on each of its best embeddings (``name + our placement``)."""
-        placed = [RoutedCandidate(name, native, lowered, qiskit_routed)]
+        placed = [RoutedCandidate(name, native, lowered, logical)]
         for j, sites in enumerate(embedding_sites(native, device, found_memo=found)):
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
             moved = None if lowered is None else embed_routed(lowered, device, sites)
-            placed.append(RoutedCandidate(label, embed_routed(native, device, sites), moved, qiskit_routed))
+            placed.append(RoutedCandidate(label, embed_routed(native, device, sites), moved, logical))
         return placed
 
     names = ["qcpp" if i == 0 else f"qcpp #{i + 1}" for i in range(len(ours))]
@@ -171,6 +179,14 @@ def calibrated_candidates(
     if qiskit_circuit is not None:
         for name, routed in zip(names, ours, strict=True):
             out += with_placements(f"{name} + O3 passes", qiskit_optimized(routed))
+    for name, logical, routed in elsewhere:
+        for j, sites in enumerate(embedding_sites(to_native(routed), device, found_memo=found)):
+            label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
+            placed = embed_routed(routed, device, sites)
+            out.append(RoutedCandidate(label, to_native(placed), placed, logical))
+            if qiskit_circuit is not None:
+                out.append(RoutedCandidate(f"{label} + O3 passes", qiskit_optimized(placed), None, logical))
+    if qiskit_circuit is not None:
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
-            out += with_placements(f"qiskit O3 seed {seed}", theirs, qiskit_routed=True)
+            out += with_placements(f"qiskit O3 seed {seed}", theirs, logical=qiskit_circuit)
     return out

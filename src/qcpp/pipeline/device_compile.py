@@ -27,7 +27,10 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   ``cx``, the fewest CX kept; deterministic).
 
 Unless ``lowered``, the routed circuit is translated to the device's native gates
-(:func:`qcpp.routing.native.to_native`). :attr:`DeviceCompileResult.layout_method` says which path was taken. Every
+(:func:`qcpp.routing.native.to_native`). On a named device the result is the best of
+:func:`qcpp.pipeline.candidates.calibrated_candidates`; on IBM's heavy-hex devices ``auto`` adds to them the
+heavy-hex cells routed on the abstract lattice ``heavy-hex:D``, which the candidates place on the device where
+their couplers embed. :attr:`DeviceCompileResult.layout_method` says which path was taken. Every
 setting of routing, allocation and the searches comes in one :class:`~qcpp.routing.options.RoutingOptions` value and
 the memos of the run in one :class:`~qcpp.routing.context.RoutingContext`, both passed down explicitly.
 
@@ -361,29 +364,56 @@ def _compile_for_device(
     objective = default_objective(dev) if optimize_for is None else optimize_for
     count = routing.calibrated_routings if is_calibrated(dev) else 1
     ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
-    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say)
+    cells = None
+    if layout_method == "auto" and not local_ancillas:
+        cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context)
+    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
+                   () if cells is None else (cells,))  # fmt: skip
+
+
+def _cells_elsewhere(
+    scenario: Scenario, circuit: Circuit, device: Device, seed: int, measured: range, options: PlanOptions,
+    bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None, routing: RoutingOptions,
+    context: RoutingContext,
+) -> tuple[str, Circuit, RoutedCircuit] | None:  # fmt: skip
+    """On a named heavy-hex device, the cell layout routed on the smallest ``heavy-hex:D`` lattice that holds it
+    (:func:`medial_compile`), as ``(name, logical circuit, routing)`` for
+    :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on the device where its couplers embed: IBM's
+    lattices are heavy-hex in another numbering and shape, with defects, so the cells are not laid out on them
+    directly. ``None`` on other devices, and on circuits of more than ``routing.placement_max_twoq`` two-qubit
+    gates (their cell routings use more qubits than the embedding search takes)."""
+    if device.family != "heavy-hex" or not is_calibrated(device) or _two_qubit(circuit) > routing.placement_max_twoq:
+        return None
+    cells = medial_compile(scenario, circuit, "heavy-hex", seed=seed, measured=measured,
+                           options=replace(options, fuse=False), bindings=bindings, stage=stage, routing=routing,
+                           context=context)  # fmt: skip
+    if cells is None:
+        return None
+    logical, routed = cells
+    return f"cells on {routed.device.name}", logical, routed
 
 
 def _finish(
     compiled: CompileResult, logical: Circuit, ours: list[RoutedCircuit], circuit: Circuit, lowered: bool,
     start: float, method: str, objective: str, measured: range, say: Callable[[str], None],
+    elsewhere: tuple[tuple[str, Circuit, RoutedCircuit], ...] = (),
 ) -> DeviceCompileResult:  # fmt: skip
     """The result: on a named device the best of :func:`qcpp.pipeline.candidates.calibrated_candidates` (from
-    ``ours``, compile's routings of ``logical``, and Qiskit's O3 of ``circuit`` unless ``lowered``) by
-    ``objective``; elsewhere ``ours[0]``."""
+    ``ours``, compile's routings of ``logical``, the routings ``elsewhere`` placed on the device, and Qiskit's O3 of
+    ``circuit`` unless ``lowered``) by ``objective``; elsewhere ``ours[0]``."""
     device = ours[0].device
     if not is_calibrated(device):
         routed = ours[0] if lowered else to_native(ours[0])
         return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
                                    optimize_for=objective)  # fmt: skip
     say(f"scoring routed candidates on {device.name} (ESP, two-qubit gates, Qiskit O3)")
-    candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured)
+    candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured, elsewhere=elsewhere)
     pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
     chosen = choose(pool, objective)
     routed = chosen.lowered if lowered else chosen.native
     assert routed is not None
-    if chosen.qiskit_routed:  # Qiskit routed the compiled circuit itself
-        logical = circuit
+    if chosen.logical is not None:  # Qiskit's routing of the compiled circuit, or the cells' of theirs
+        logical = chosen.logical
     return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
                                optimize_for=objective, chosen=chosen.name,
                                candidates=tuple(c.summary() for c in candidates))  # fmt: skip

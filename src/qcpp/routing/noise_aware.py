@@ -28,6 +28,7 @@ Example:
 
 from __future__ import annotations
 
+import itertools
 import math
 from functools import cache
 from typing import Any
@@ -70,9 +71,10 @@ def embedding_sites(
     call_limit: int = 200_000, found_memo: dict[Any, list[tuple[int, ...]]] | None = None,
 ) -> list[tuple[int, ...]]:  # fmt: skip
     """The ``keep`` best-scoring embeddings found of ``routed``'s coupling subgraph in ``device`` (module docs),
-    best first, as ``sites``: qubit ``i`` of ``routed`` -> qubit of ``device`` (distinct; qubits ``routed`` leaves
-    unused fill the free sites in order). Empty if none is found, or ``routed`` has more qubits than ``device`` or
-    uses more than :data:`MAX_PATTERN_QUBITS`.
+    best first, as ``sites``: qubit ``i`` of ``routed`` -> qubit of ``device``, distinct on the qubits ``routed``
+    uses (its gates and layouts); the qubits it leaves unused fill the free sites in order, repeating them where
+    ``routed`` (on a larger lattice) has more qubits than ``device``: they carry no gates. Empty if none is found,
+    or ``routed`` uses more qubits than ``device`` has or than :data:`MAX_PATTERN_QUBITS`.
 
     The search: the circuit's qubits (those its gates or layouts touch) are ordered breadth-first from the busiest;
     for every device qubit as the anchor of the first, rustworkx's VF2 (the subgraph isomorphism Qiskit's
@@ -91,10 +93,8 @@ def embedding_sites(
 
     n = device.num_qubits
     m = routed.circuit.num_qubits
-    if device.is_all_to_all or m > n:
-        return []
     used_set = {q for g in routed.circuit.gates for q in g[1]} | set(routed.initial_layout) | set(routed.final_layout)
-    if len(used_set) > MAX_PATTERN_QUBITS:
+    if device.is_all_to_all or len(used_set) > min(n, MAX_PATTERN_QUBITS):
         return []
     pairs: dict[tuple[int, int], int] = {}
     ones: dict[str, dict[int, int]] = {}
@@ -170,7 +170,7 @@ def embedding_sites(
     out = []
     for row in best:
         placed = {q: int(arr[row, pos[q]]) for q in order}
-        free = iter(sorted(set(range(n)) - set(placed.values())))
+        free = itertools.cycle(sorted(set(range(n)) - set(placed.values())) or [placed[order[0]]])
         out.append(tuple(placed[i] if i in placed else next(free) for i in range(m)))
     return out
 

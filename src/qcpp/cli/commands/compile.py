@@ -147,7 +147,8 @@ def compile_command(
             help="With --device: the figure the routing is chosen by on a named device, esp (success probability "
             "with idle decoherence; the default there) or twoq (fewest two-qubit gates); the candidates are qcpp's "
             "own routings (as written and after Qiskit's O3 optimisation at their layout), Qiskit O3 on the "
-            "calibrated target, and all of these moved onto the best-calibrated qubits. The families (grid, "
+            "calibrated target, and all of these moved onto the best-calibrated qubits; on IBM devices also the "
+            "heavy-hex cells routed on heavy-hex:D, placed where they embed. The families (grid, "
             "heavy-hex, all-to-all) keep their single routing.",
             show_default=False,
         ),
