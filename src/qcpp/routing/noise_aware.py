@@ -7,10 +7,10 @@ others. :func:`embedding_sites` searches them with rustworkx's VF2 (the subgraph
 and ``VF2PostLayout`` use) from every device qubit as an anchor, scoring each by our own ESP model rather than
 Qiskit's average-error heuristic. :func:`post_layout` keeps, of the best found on the circuit's own device, the one
 of the highest ESP (:func:`log_score`: with idle decoherence where the device has T1 / T2), or the circuit as it
-was if none is better; :func:`embed_in` moves a circuit routed on another lattice (a geometric layout on
-``heavy-hex:D``) onto a named device's best region. A relabelled circuit is the routed circuit with every physical
-qubit renamed (:func:`qcpp.routing.routed_circuit.embed_routed`): gate for gate the same, so equal to the input up
-to the new layouts.
+was if none is better. The circuit may also be routed on another lattice (the heavy-hex cells on ``heavy-hex:D``,
+which :mod:`qcpp.pipeline.candidates` places on IBM's devices). A relabelled circuit is the routed circuit with
+every physical qubit renamed (:func:`qcpp.routing.routed_circuit.embed_routed`): gate for gate the same, so equal to
+the input up to the new layouts.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -38,7 +38,7 @@ from qcpp.routing.native import esp, esp_idle, idle_times_s, one_qubit_name
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 
 __all__ = [
-    "EMBEDDINGS_KEPT", "MAPPINGS_PER_ANCHOR", "MAX_PATTERN_QUBITS", "embed_in", "embedding_sites", "embeddings",
+    "EMBEDDINGS_KEPT", "MAPPINGS_PER_ANCHOR", "MAX_PATTERN_QUBITS", "embedding_sites", "embeddings",
     "log_score", "post_layout",
 ]
 
@@ -239,9 +239,3 @@ def post_layout(routed: RoutedCircuit, keep: int = EMBEDDINGS_KEPT) -> RoutedCir
             best, best_score = moved, score
     return best
 
-
-def embed_in(routed: RoutedCircuit, device: Device, keep: int = EMBEDDINGS_KEPT) -> RoutedCircuit | None:
-    """``routed`` (native gates, routed on another device, e.g. a ``heavy-hex:D`` lattice) on ``device``'s best
-    embedding found of its coupling subgraph by :func:`log_score`, or ``None`` where none was found."""
-    found = embeddings(routed, device, keep)
-    return max(found, key=log_score) if found else None
