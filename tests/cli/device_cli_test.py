@@ -81,7 +81,6 @@ def test_estimate_bad_device_is_one_line() -> None:
     ("device", "layout", "fragment"),
     [
         ("grid", "nope", "--layout"),
-        ("ibm_torino", "medial", "ibm_torino is heavy-hex, but in IBM's qubit numbering"),
         ("quantinuum_helios", "medial", "square-grid or heavy-hex lattice device; quantinuum_helios is neither"),
         ("heavy-hex:5", "medial", "needs heavy-hex:7"),
         ("grid:4x6", "medial", "needs a 5x5 grid"),
@@ -89,6 +88,21 @@ def test_estimate_bad_device_is_one_line() -> None:
 )
 def test_compile_bad_layout_is_one_line(device: str, layout: str, fragment: str) -> None:
     assert_one_line_error(run("compile", PAPER, "--device", device, "--layout", layout), fragment)
+
+
+@pytest.mark.slow
+def test_compile_medial_on_an_ibm_device_places_the_cells_or_says_they_do_not_embed() -> None:
+    """IBM's lattice is not a heavy-hex:D lattice: --layout medial routes the cells on one and writes them on the
+    device where their couplers embed (one robot on 3x3), else one line (one robot on 4x4)."""
+    res = run("compile", PAPER, "--device", "ibm_torino", "--layout", "medial", "--lowered", "--json", *BIND)
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)
+    routed = summary["routed"]
+    assert routed["layout"] == "medial" and routed["chosen"].startswith("cells on heavy-hex:"), routed["chosen"]
+    assert all(c["name"].startswith("cells on heavy-hex:") for c in routed["candidates"])
+    assert summary["device"]["name"] == "ibm_torino" and len(summary["initial_layout"]) > 15  # local ancillas
+    assert_one_line_error(run("compile", "--grid", "4x4", "--device", "ibm_torino", "--layout", "medial"),
+                          "do not embed in ibm_torino")  # fmt: skip
 
 
 def test_compile_layout_choice_is_reported() -> None:

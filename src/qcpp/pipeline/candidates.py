@@ -12,7 +12,8 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
 * ``cells on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on IBM's heavy-hex devices, the cell layout
   routed on the abstract lattice ``heavy-hex:D`` (where it is laid out by construction) and placed on the best
   embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
-  fit; larger routings reach the lattice's edges, whose 10-cycles IBM's lattice lacks, or cross its defects);
+  fit; larger routings use more qubits than the search takes, reach the lattice's edges, whose 10-cycles IBM's
+  lattice lacks, or need room around their cells that the device's shape and defects do not give);
 * ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
   ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
   Qiskit's by the chosen figure;

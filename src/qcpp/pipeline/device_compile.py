@@ -65,6 +65,7 @@ from qcpp.layout.placement import localize_ancillas, place
 from qcpp.layout.placement_search import qiskit_sabre_layout, ranked_routes, search_route
 from qcpp.pipeline.candidates import (
     OPTIMIZE_FOR,
+    QISKIT_SEEDS,
     calibrated_candidates,
     choose,
     default_objective,
@@ -338,7 +339,9 @@ def _compile_for_device(
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             objective = default_objective(routed.device) if optimize_for is None else optimize_for
-            return _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
+            result = _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
+            assert result is not None  # ours holds a routing
+            return result
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -346,10 +349,25 @@ def _compile_for_device(
                 raise ValueError(f"--layout medial: {scenario.grid.rows}x{scenario.grid.cols} with "
                                  f"{scenario.num_robots} robot(s) needs heavy-hex:{hex_distance(scenario)}; device "
                                  f"{dev.name} is smaller")  # fmt: skip
-            if dev.family == "heavy-hex":  # a named IBM device: heavy-hex, but not one of the lattices the cells map
-                raise ValueError(f"--layout medial: {dev.name} is heavy-hex, but in IBM's qubit numbering and shape, "
-                                 "not a heavy-hex:D lattice as Qiskit's CouplingMap.from_heavy_hex builds it (the "
-                                 "one the cell layout maps); use --device heavy-hex or --layout greedy")  # fmt: skip
+            if dev.family == "heavy-hex" and is_calibrated(dev):  # IBM's: the cells on heavy-hex:D, placed on it
+                cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing,
+                                         context, max_twoq=None)  # fmt: skip
+                assert cells is not None
+                objective = default_objective(dev) if optimize_for is None else optimize_for
+                result = _finish(compiled, cells[1], [], circuit, lowered, start, "medial", objective, measured, say,
+                                 (cells,), device=dev, qiskit_seeds=0)  # fmt: skip
+                if result is None:
+                    used = len({q for g in cells[2].circuit.gates for q in g[1]})
+                    raise ValueError(f"--layout medial: the heavy-hex cells of {scenario.grid.rows}x"
+                                     f"{scenario.grid.cols} with {scenario.num_robots} robot(s), routed on "
+                                     f"{cells[2].device.name}, use {used} qubits and do not embed in {dev.name} "
+                                     "(heavy-hex in IBM's shape, with defects); use --layout auto or "
+                                     "greedy")  # fmt: skip
+                return result
+            if dev.family == "heavy-hex":
+                raise ValueError(f"--layout medial: {dev.name} is heavy-hex, but not a heavy-hex:D lattice as "
+                                 "Qiskit's CouplingMap.from_heavy_hex builds it (the one the cell layout maps); use "
+                                 "--device heavy-hex or --layout greedy")  # fmt: skip
             if grid_shape(dev) is None:
                 raise ValueError(f"--layout medial needs a square-grid or heavy-hex lattice device; {dev.name} is "
                                  "neither")  # fmt: skip
@@ -367,22 +385,26 @@ def _compile_for_device(
     cells = None
     if layout_method == "auto" and not local_ancillas:
         cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context)
-    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
-                   () if cells is None else (cells,))  # fmt: skip
+    result = _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
+                     () if cells is None else (cells,))  # fmt: skip
+    assert result is not None  # ours holds a routing
+    return result
 
 
 def _cells_elsewhere(
     scenario: Scenario, circuit: Circuit, device: Device, seed: int, measured: range, options: PlanOptions,
     bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None, routing: RoutingOptions,
-    context: RoutingContext,
+    context: RoutingContext, max_twoq: int | None = -1,
 ) -> tuple[str, Circuit, RoutedCircuit] | None:  # fmt: skip
     """On a named heavy-hex device, the cell layout routed on the smallest ``heavy-hex:D`` lattice that holds it
     (:func:`medial_compile`), as ``(name, logical circuit, routing)`` for
     :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on the device where its couplers embed: IBM's
     lattices are heavy-hex in another numbering and shape, with defects, so the cells are not laid out on them
-    directly. ``None`` on other devices, and on circuits of more than ``routing.placement_max_twoq`` two-qubit
-    gates (their cell routings use more qubits than the embedding search takes)."""
-    if device.family != "heavy-hex" or not is_calibrated(device) or _two_qubit(circuit) > routing.placement_max_twoq:
+    directly. ``None`` on other devices, and on circuits of more than ``max_twoq`` two-qubit gates (default
+    ``routing.placement_max_twoq``: larger cell routings use more qubits than the embedding search takes; ``None``:
+    no limit, for ``--layout medial``)."""
+    limit = routing.placement_max_twoq if max_twoq == -1 else max_twoq
+    if device.family != "heavy-hex" or not is_calibrated(device) or (limit is not None and _two_qubit(circuit) > limit):
         return None
     cells = medial_compile(scenario, circuit, "heavy-hex", seed=seed, measured=measured,
                            options=replace(options, fuse=False), bindings=bindings, stage=stage, routing=routing,
@@ -397,18 +419,25 @@ def _finish(
     compiled: CompileResult, logical: Circuit, ours: list[RoutedCircuit], circuit: Circuit, lowered: bool,
     start: float, method: str, objective: str, measured: range, say: Callable[[str], None],
     elsewhere: tuple[tuple[str, Circuit, RoutedCircuit], ...] = (),
-) -> DeviceCompileResult:  # fmt: skip
-    """The result: on a named device the best of :func:`qcpp.pipeline.candidates.calibrated_candidates` (from
-    ``ours``, compile's routings of ``logical``, the routings ``elsewhere`` placed on the device, and Qiskit's O3 of
-    ``circuit`` unless ``lowered``) by ``objective``; elsewhere ``ours[0]``."""
-    device = ours[0].device
+    device: Device | None = None,
+    qiskit_seeds: int = QISKIT_SEEDS,
+) -> DeviceCompileResult | None:  # fmt: skip
+    """The result: on a named device (``device``, default ``ours[0]``'s) the best of
+    :func:`qcpp.pipeline.candidates.calibrated_candidates` (from ``ours``, compile's routings of ``logical``, the
+    routings ``elsewhere`` placed on the device, and, unless ``lowered``, all of these after Qiskit's O3 passes and
+    ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``objective``, ``None`` if there is none (``ours`` empty
+    and nothing ``elsewhere`` embeds); elsewhere ``ours[0]``."""
+    device = ours[0].device if device is None else device
     if not is_calibrated(device):
         routed = ours[0] if lowered else to_native(ours[0])
         return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
                                    optimize_for=objective)  # fmt: skip
     say(f"scoring routed candidates on {device.name} (ESP, two-qubit gates, Qiskit O3)")
-    candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured, elsewhere=elsewhere)
+    candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured, qiskit_seeds,
+                                       elsewhere=elsewhere)  # fmt: skip
     pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
+    if not pool:
+        return None
     chosen = choose(pool, objective)
     routed = chosen.lowered if lowered else chosen.native
     assert routed is not None

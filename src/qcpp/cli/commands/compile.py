@@ -136,7 +136,8 @@ def compile_command(
         str,
         typer.Option(
             "--layout",
-            help="With --device: medial (the geometric layout, every gadget routed home), greedy (one SABRE "
+            help="With --device: medial (the geometric layout, every gadget routed home; on ibm_fez and "
+            "ibm_torino the heavy-hex cells routed on heavy-hex:D and placed where they embed), greedy (one SABRE "
             "routing of the whole circuit) or auto (medial where it fits and routes cheaper).",
         ),
     ] = "auto",
