@@ -91,7 +91,8 @@ def test_qcec_proves_the_cells_placed_on_an_ibm_device_equal_to_their_logical_ci
     options = dataclasses.replace(device_plan_options(DEFAULT_PLAN, dev, "auto"), fuse=False)
     circuit = compile_scenario(s, 1, options, lowered=True, bindings=BIND).circuit
     measured = range(s.num_variables)
-    cells = _cells_elsewhere(s, circuit, dev, 0, measured, options, BIND, None, DEFAULT_ROUTING, RoutingContext())
+    cells = _cells_elsewhere(s, circuit, dev, 0, measured, options, BIND, None, DEFAULT_ROUTING, RoutingContext(),
+                             DEFAULT_ROUTING.placement_max_twoq)  # fmt: skip
     assert cells is not None and cells[0].startswith("cells on heavy-hex:")
     cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=(cells,))
     placed = [c for c in cands if c.name.endswith("our placement + O3 passes")]

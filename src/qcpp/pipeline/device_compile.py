@@ -384,7 +384,8 @@ def _compile_for_device(
     ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
     cells = None
     if layout_method == "auto" and not local_ancillas:
-        cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context)
+        cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context,
+                                 routing.placement_max_twoq)  # fmt: skip
     result = _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
                      () if cells is None else (cells,))  # fmt: skip
     assert result is not None  # ours holds a routing
@@ -394,17 +395,17 @@ def _compile_for_device(
 def _cells_elsewhere(
     scenario: Scenario, circuit: Circuit, device: Device, seed: int, measured: range, options: PlanOptions,
     bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None, routing: RoutingOptions,
-    context: RoutingContext, max_twoq: int | None = -1,
+    context: RoutingContext, max_twoq: int | None,
 ) -> tuple[str, Circuit, RoutedCircuit] | None:  # fmt: skip
     """On a named heavy-hex device, the cell layout routed on the smallest ``heavy-hex:D`` lattice that holds it
     (:func:`medial_compile`), as ``(name, logical circuit, routing)`` for
     :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on the device where its couplers embed: IBM's
     lattices are heavy-hex in another numbering and shape, with defects, so the cells are not laid out on them
-    directly. ``None`` on other devices, and on circuits of more than ``max_twoq`` two-qubit gates (default
+    directly. ``None`` on other devices, and on circuits of more than ``max_twoq`` two-qubit gates (``auto`` passes
     ``routing.placement_max_twoq``: larger cell routings use more qubits than the embedding search takes; ``None``:
     no limit, for ``--layout medial``)."""
-    limit = routing.placement_max_twoq if max_twoq == -1 else max_twoq
-    if device.family != "heavy-hex" or not is_calibrated(device) or (limit is not None and _two_qubit(circuit) > limit):
+    too_large = max_twoq is not None and _two_qubit(circuit) > max_twoq
+    if device.family != "heavy-hex" or not is_calibrated(device) or too_large:
         return None
     cells = medial_compile(scenario, circuit, "heavy-hex", seed=seed, measured=measured,
                            options=replace(options, fuse=False), bindings=bindings, stage=stage, routing=routing,

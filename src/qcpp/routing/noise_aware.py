@@ -238,4 +238,3 @@ def post_layout(routed: RoutedCircuit, keep: int = EMBEDDINGS_KEPT) -> RoutedCir
         if score > best_score:
             best, best_score = moved, score
     return best
-
