@@ -163,15 +163,21 @@ def calibrated_candidates(
     """
     found: dict[object, list[tuple[int, ...]]] = {}  # VF2's embeddings per coupling subgraph, shared by this call
 
-    def with_placements(name: str, native: RoutedCircuit, lowered: RoutedCircuit | None = None,
-                        logical: Circuit | None = None) -> list[RoutedCandidate]:  # fmt: skip
-        """The candidate ``name`` and the same gates on each of its best embeddings (``name + our placement``)."""
-        placed = [RoutedCandidate(name, native, lowered, logical)]
+    def placements(name: str, native: RoutedCircuit, lowered: RoutedCircuit | None = None,
+                   logical: Circuit | None = None) -> list[RoutedCandidate]:  # fmt: skip
+        """The same gates on each of the best embeddings of ``native``'s couplers in ``device`` (``name + our
+        placement``, ``#2``); ``native`` may be routed on another lattice."""
+        placed = []
         for j, sites in enumerate(embedding_sites(native, device, found_memo=found)):
             label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
             moved = None if lowered is None else embed_routed(lowered, device, sites)
             placed.append(RoutedCandidate(label, embed_routed(native, device, sites), moved, logical))
         return placed
+
+    def with_placements(name: str, native: RoutedCircuit, lowered: RoutedCircuit | None = None,
+                        logical: Circuit | None = None) -> list[RoutedCandidate]:  # fmt: skip
+        """The candidate ``name`` (on ``device``) and its :func:`placements`."""
+        return [RoutedCandidate(name, native, lowered, logical), *placements(name, native, lowered, logical)]
 
     names = ["qcpp" if i == 0 else f"qcpp #{i + 1}" for i in range(len(ours))]
     out: list[RoutedCandidate] = []
@@ -181,12 +187,11 @@ def calibrated_candidates(
         for name, routed in zip(names, ours, strict=True):
             out += with_placements(f"{name} + O3 passes", qiskit_optimized(routed))
     for name, logical, routed in elsewhere:
-        for j, sites in enumerate(embedding_sites(to_native(routed), device, found_memo=found)):
-            label = f"{name} + our placement" + (f" #{j + 1}" if j else "")
-            placed = embed_routed(routed, device, sites)
-            out.append(RoutedCandidate(label, to_native(placed), placed, logical))
-            if qiskit_circuit is not None:
-                out.append(RoutedCandidate(f"{label} + O3 passes", qiskit_optimized(placed), None, logical))
+        for placed in placements(name, to_native(routed), routed, logical):
+            out.append(placed)
+            if qiskit_circuit is not None and placed.lowered is not None:
+                out.append(RoutedCandidate(f"{placed.name} + O3 passes", qiskit_optimized(placed.lowered), None,
+                                           logical))  # fmt: skip
     if qiskit_circuit is not None:
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             out += with_placements(f"qiskit O3 seed {seed}", theirs, logical=qiskit_circuit)

@@ -339,9 +339,7 @@ def _compile_for_device(
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
             objective = default_objective(routed.device) if optimize_for is None else optimize_for
-            result = _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
-            assert result is not None  # ours holds a routing
-            return result
+            return _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -354,16 +352,13 @@ def _compile_for_device(
                                          context, max_twoq=None)  # fmt: skip
                 assert cells is not None
                 objective = default_objective(dev) if optimize_for is None else optimize_for
-                result = _finish(compiled, cells[1], [], circuit, lowered, start, "medial", objective, measured, say,
-                                 (cells,), device=dev, qiskit_seeds=0)  # fmt: skip
-                if result is None:
-                    used = len({q for g in cells[2].circuit.gates for q in g[1]})
-                    raise ValueError(f"--layout medial: the heavy-hex cells of {scenario.grid.rows}x"
-                                     f"{scenario.grid.cols} with {scenario.num_robots} robot(s), routed on "
-                                     f"{cells[2].device.name}, use {used} qubits and do not embed in {dev.name} "
-                                     "(heavy-hex in IBM's shape, with defects); use --layout auto or "
-                                     "greedy")  # fmt: skip
-                return result
+                used = len({q for g in cells[2].circuit.gates for q in g[1]})
+                return _finish(compiled, cells[1], [], circuit, lowered, start, "medial", objective, measured, say,
+                               (cells,), device=dev, qiskit_seeds=0,
+                               none_fit=f"--layout medial: the heavy-hex cells of {scenario.grid.rows}x"
+                               f"{scenario.grid.cols} with {scenario.num_robots} robot(s), routed on "
+                               f"{cells[2].device.name}, use {used} qubits and do not embed in {dev.name} (heavy-hex "
+                               "in IBM's shape, with defects); use --layout auto or greedy")  # fmt: skip
             if dev.family == "heavy-hex":
                 raise ValueError(f"--layout medial: {dev.name} is heavy-hex, but not a heavy-hex:D lattice as "
                                  "Qiskit's CouplingMap.from_heavy_hex builds it (the one the cell layout maps); use "
@@ -386,10 +381,8 @@ def _compile_for_device(
     if layout_method == "auto" and not local_ancillas:
         cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context,
                                  routing.placement_max_twoq)  # fmt: skip
-    result = _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
-                     () if cells is None else (cells,))  # fmt: skip
-    assert result is not None  # ours holds a routing
-    return result
+    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
+                   () if cells is None else (cells,))  # fmt: skip
 
 
 def _cells_elsewhere(
@@ -422,12 +415,15 @@ def _finish(
     elsewhere: tuple[tuple[str, Circuit, RoutedCircuit], ...] = (),
     device: Device | None = None,
     qiskit_seeds: int = QISKIT_SEEDS,
-) -> DeviceCompileResult | None:  # fmt: skip
+    none_fit: str = "no routed candidate",
+) -> DeviceCompileResult:  # fmt: skip
     """The result: on a named device (``device``, default ``ours[0]``'s) the best of
     :func:`qcpp.pipeline.candidates.calibrated_candidates` (from ``ours``, compile's routings of ``logical``, the
     routings ``elsewhere`` placed on the device, and, unless ``lowered``, all of these after Qiskit's O3 passes and
-    ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``objective``, ``None`` if there is none (``ours`` empty
-    and nothing ``elsewhere`` embeds); elsewhere ``ours[0]``."""
+    ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``objective``; elsewhere ``ours[0]``.
+
+    Raises:
+        ValueError: ``none_fit``, where there is no candidate (``ours`` empty and nothing ``elsewhere`` embeds)."""
     device = ours[0].device if device is None else device
     if not is_calibrated(device):
         routed = ours[0] if lowered else to_native(ours[0])
@@ -438,7 +434,7 @@ def _finish(
                                        elsewhere=elsewhere)  # fmt: skip
     pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
     if not pool:
-        return None
+        raise ValueError(none_fit)
     chosen = choose(pool, objective)
     routed = chosen.lowered if lowered else chosen.native
     assert routed is not None
