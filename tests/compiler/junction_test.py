@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from qcpp.gadgets.junction import MixerJunction, MixerRotation, mixer_pieces
+from qcpp.gadgets.junction import MixerJunction, MixerRotation, RotationKind, mixer_pieces
 from qcpp.gadgets.partial_mixer import ParityPartialMixer, partial_mixer
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
@@ -65,8 +65,8 @@ def test_every_junction_kind_reports_its_lowered_count() -> None:
     junctions = [g for g, _ in seen.values() if isinstance(g, MixerJunction)]
     assert len(junctions) >= 100
     assert {g.kind for g, _ in seen.values() if isinstance(g, MixerRotation)} == {
-        ("mixer_rotation", "ccrx"),
-        ("mixer_rotation", "crx"),
+        RotationKind("mixer_rotation", "ccrx"),
+        RotationKind("mixer_rotation", "crx"),
     }
     saved = []
     for g, width in seen.values():

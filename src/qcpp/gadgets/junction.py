@@ -34,7 +34,7 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Hashable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import NamedTuple
@@ -55,7 +55,7 @@ from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
 
-__all__ = ["JunctionKind", "MixerJunction", "MixerRotation", "mixer_pieces"]
+__all__ = ["JunctionKind", "MixerJunction", "MixerRotation", "RotationKind", "mixer_pieces"]
 
 
 class JunctionKind(NamedTuple):
@@ -73,6 +73,18 @@ class JunctionKind(NamedTuple):
     overlap: tuple[int, ...]
 
 
+class RotationKind(NamedTuple):
+    """Kind key of a :class:`MixerRotation`.
+
+    Attributes:
+        gadget: ``"mixer_rotation"``.
+        rotation: the leaf's name, ``"crx"`` or ``"ccrx"``.
+    """
+
+    gadget: str
+    rotation: str
+
+
 @dataclass(frozen=True)
 class MixerRotation:
     """The controlled rotation of a parity-basis partial mixer (``crx`` or ``ccrx``), between two junctions.
@@ -84,9 +96,9 @@ class MixerRotation:
     mixer: ParityPartialMixer
 
     @property
-    def kind(self) -> Hashable:
+    def kind(self) -> RotationKind:
         """The rotation leaf's name."""
-        return ("mixer_rotation", self.mixer.plan.rotation[0])
+        return RotationKind("mixer_rotation", self.mixer.plan.rotation[0])
 
     def cost(self) -> Cost:
         """Lowered cost (the leaf's closed form)."""

@@ -28,15 +28,15 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Hashable
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from qcpp.gadgets.phase_ising import IsingPhase, ising_form
 from qcpp.gadgets.pricing import PricedByKind
 from qcpp.ir.cost import Cost
 from qcpp.ir.gates import Gate, and_, x
 
-__all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "visit_ancillas", "with_ands"]
+__all__ = ["AND_COST", "AND_DG_COST", "VisitPhase", "VisitsKind", "visit_ancillas", "with_ands"]
 
 
 def _visit_costs(sizes: tuple[int, ...], products: bool, nonzero: bool) -> tuple[Cost, Cost]:
@@ -68,6 +68,22 @@ def visit_ancillas(sizes: tuple[int, ...], products: bool = False) -> int:
     return sum({2: 0, 3: 1, 4: 2}[k] for k in sizes) + (m * (m - 1) // 2 if products else 0)
 
 
+class VisitsKind(NamedTuple):
+    """Kind key of :class:`VisitPhase`: equal kinds, equal gates and costs up to qubit names.
+
+    Attributes:
+        gadget: ``"visits"``.
+        sizes: per visitor, its usable edges at the node (2 to 4).
+        products: the pairwise products are computed into ancillas (the fault-tolerant choice).
+        rotates: the coefficient is nonzero (a zero coefficient emits no rotation).
+    """
+
+    gadget: str
+    sizes: tuple[int, ...]
+    products: bool
+    rotates: bool
+
+
 @dataclass(frozen=True)
 class VisitPhase(PricedByKind):
     """Compute visit bits, phase their pairwise products, uncompute (see the module docstring).
@@ -86,9 +102,9 @@ class VisitPhase(PricedByKind):
     products: bool = False
 
     @property
-    def kind(self) -> Hashable:
-        # a zero coefficient emits no rotation: equal kinds must mean equal gates and costs
-        return ("visits", tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)
+    def kind(self) -> VisitsKind:
+        """The visitors' edge counts, ``products`` and whether the coefficient is nonzero."""
+        return VisitsKind("visits", tuple(len(v) for v in self.visitors), self.products, self.coefficient != 0)
 
     def needs(self) -> tuple[int, int]:
         """The clean ancillas of :func:`visit_ancillas`, no work ancillas."""
