@@ -39,6 +39,16 @@ def _check(s: Scenario, options: PlanOptions, p: int = 1) -> None:
     for part in ("initial_state", "phase", "mixer"):
         for kind, _ in by_classes.parts[part].items():
             assert kind.temporaries <= by_classes.logic_width and kind.work <= by_classes.work_width
+    _assert_named_keys(by_classes)
+    _assert_named_keys(listed)
+
+
+def _assert_named_keys(graph: CallGraph) -> None:
+    """Every kind key is a named tuple whose first field ``gadget`` names the gadget: read by name, not position."""
+    for kinds in graph.parts.values():
+        for kind in kinds:
+            fields = getattr(type(kind.key), "_fields", ())
+            assert fields[:1] == ("gadget",) and isinstance(kind.key.gadget, str), kind.key
 
 
 @pytest.mark.parametrize("options", OPTIONS, ids=lambda o: f"{o.rule}/{o.target}/{o.initial}/fuse={o.fuse}")
@@ -56,6 +66,13 @@ def test_classes_list_the_planned_kinds_everywhere() -> None:
             for robots in range(1, min(8, max_default_robots(rows, cols)) + 1):
                 for options in OPTIONS:
                     _check(default_scenario(rows, cols, robots), options)
+
+
+@pytest.mark.parametrize("layout", ["spatial", "medial"])
+def test_placed_phase_kinds_are_named(layout: str) -> None:
+    s = scenario_from_dict({**scenario_to_dict(default_scenario(4, 4, 2)), "grid": {"rows": 4, "cols": 4,
+                                                                                    "obstacles": [[1, 2]]}})
+    _assert_named_keys(qaoa_plan(s, 1, PlanOptions(phase_layout=layout)).call_graph())
 
 
 @pytest.mark.parametrize("rows, cols, robots", [(3, 3, 1), (3, 4, 2)])
