@@ -25,11 +25,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from qcpp.api.scenarios import grid_scenario
+from qcpp import default_scenario, grid_scenario
 from qcpp.gadgets.phase_sums import SumsPhase
 from qcpp.plan.phase_choice import ft_t_count
 from qcpp.problem.feasible_cost import SumsGroup, feasible_cost
-from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
 
 
