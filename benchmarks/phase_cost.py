@@ -1,16 +1,16 @@
-"""Phase-separator cost per QAOA layer: today's whole-space RZ/RZZ circuit against the feasible-subspace plan.
+"""Phase-separator cost per QAOA layer: the whole-space RZ/RZZ circuit against the feasible-subspace plan.
 
 Run: ``PYTHONPATH=src python benchmarks/phase_cost.py`` (about a minute; ``--quick`` stops at 10x10). Prints one
 table (markdown) for the default scenarios (:func:`qcpp.problem.presets.default_scenario`; 6 and 8 robots, which
 it does not place, go on the boundary, see :func:`boundary_scenario`):
 
 * ``paper re(re+1)``: the paper's phase-separator CNOT estimate (``re`` = decision variables);
-* ``today CX`` = 2 per nonzero coupling of :func:`qcpp.problem.hamiltonian.ising_hamiltonian` (the whole-space
+* ``whole-space CX`` = 2 per nonzero coupling of :func:`qcpp.problem.hamiltonian.ising_hamiltonian` (the whole-space
   plan, exactly what ``qcpp.plan.phase.phase_separator_gates`` emits); ``ours CX`` = the phase part of the call graph,
   :func:`phase_cost` (target ``nisq``); rotations likewise;
 * ``T (ft)``: T count of the layer's phase separator in the fault-tolerant model of
-  :func:`qcpp.plan.phase.ft_t_count` (AND 4 T, uncompute 0, rotation 30 T at eps = 1e-3), today's against the
-  ``ft`` plan;
+  :func:`qcpp.plan.phase.ft_t_count` (AND 4 T, uncompute 0, rotation 30 T at eps = 1e-3), the whole-space form's
+  against the ``ft`` plan;
 * ``ancillas``: clean ancillas the plan needs; ``plan s``: wall time of planning the phase separator and
   summing its part of the call graph (:func:`phase_cost`, listed from the planned gadgets).
 
@@ -71,7 +71,8 @@ def phase_circuit(s: Scenario, plan: PhasePlan) -> Circuit:
 
 def main(argv: list[str]) -> int:
     points = [p for p in POINTS if not ("--quick" in argv and p[0] > 10)]
-    print("| grid | robots | re | paper re(re+1) | today CX | ours CX | ratio | today rot. | ours rot. | today T (ft) "
+    print("| grid | robots | re | paper re(re+1) | whole-space CX | ours CX | ratio | whole-space rot. | ours rot. "
+          "| whole-space T (ft) "
           "| ours T (ft) | T ratio | ancillas | plan s |")  # fmt: skip
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for rows, cols, robots in points:
@@ -93,8 +94,8 @@ def main(argv: list[str]) -> int:
     print("(one robot's tree at a time, the lengths copied into small registers) and ``accumulator`` (trees of 4B")
     print("terms added into B-bit registers by a ripple-carry adder).")
     print()
-    print("| grid | robots | ancillas (no budget) | CX (no budget) | registers: ancillas | CX | ratio to today "
-          "| accumulator: ancillas | CX | ratio to today |")  # fmt: skip
+    print("| grid | robots | ancillas (no budget) | CX (no budget) | registers: ancillas | CX | ratio to whole-space "
+          "| accumulator: ancillas | CX | ratio to whole-space |")  # fmt: skip
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for rows, cols, robots in points:
         s = scenario(rows, cols, robots)
@@ -102,18 +103,18 @@ def main(argv: list[str]) -> int:
         bal = [r for r in plan.explain() if r["group"] == "balance"]
         if not bal or bal[0]["construction"] != "arithmetic":
             continue
-        today = phase_cost(s, phase="whole-space").cx
+        whole = phase_cost(s, phase="whole-space").cx
         cells = []
         for variant in ("registers", "accumulator"):
             budget = max(bal[0]["alternatives"][variant]["ancillas"], 2 * robots)
             few, few_cx = phase_plan(s, ancilla_budget=budget), phase_cost(s, ancilla_budget=budget).cx
-            cells.append(f"{few.num_ancillas} | {few_cx:,} | {few_cx / today:.3f}")
+            cells.append(f"{few.num_ancillas} | {few_cx:,} | {few_cx / whole:.3f}")
         print(f"| {rows}x{cols} | {robots} | {plan.num_ancillas} | {phase_cost(s).cx:,} | " + " | ".join(cells) + " |")
     print()
     print("Depth of the lowered phase separator (ASAP layers, as ``qcpp.estimators.counts``;"
           " two-qubit depth in brackets):")
     print()
-    print("| grid | robots | today | ours (``optimize=cx``) | ours (``optimize=depth``) |")
+    print("| grid | robots | whole-space | ours (`optimize=cx`) | ours (`optimize=depth`) |")
     print("|---|---:|---:|---:|---:|")
     for rows, cols, robots in points:
         if rows > 10:

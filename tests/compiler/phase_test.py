@@ -351,7 +351,7 @@ def _every_candidate(s: Scenario, target: str, budget: int | None) -> list[tuple
     from qcpp.problem.feasible_cost import feasible_cost
 
     fc = feasible_cost(s)
-    balance = [_sums_options(g, fc.num_variables, "cx", budget) for g in fc.sums]
+    balance = [_sums_options(g, fc.num_variables, target, "cx", budget, True) for g in fc.sums]  # type: ignore[arg-type]
     choices: list[tuple[str, ...]] = [()]
     for opts in balance:
         choices = [(*c, k) for c in choices for k in opts["options"]]

@@ -48,11 +48,13 @@ from qcpp.plan.options import Optimize, Phase
 from qcpp.plan.phase_choice import (
     EXACT_EXPANSION_LIMIT,
     ROTATION_T_COST,
+    SUMS_VARIANTS,
     coupling_cost,
     couplings_floor,
     ft_t_count,
     hamming_groups,
     plan_score,
+    prefer_folded,
     score,
     sums_constructions,
     visit_choice,
@@ -217,6 +219,7 @@ def phase_plan(
     representation: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
+    fold: bool = True,
 ) -> PhasePlan:
     """Choose the phase separator's constructions for a scenario.
 
@@ -230,6 +233,10 @@ def phase_plan(
             are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
             sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
             variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
+        fold: Let a two-robot balance's arithmetic take the difference ``G_1 - G_2`` as one form
+            (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`: one register, so fewer bit pairs to phase)
+            where that scores better. ``False`` keeps one form per robot, whose sums the ``spatial`` and
+            ``medial`` layouts place on each robot's own edges (:mod:`qcpp.plan.phase_layout`).
 
     Raises:
         ValueError: for an unknown option.
@@ -244,7 +251,7 @@ def phase_plan(
         raise ValueError(f"ancilla_budget must be a non-negative integer or None, got {ancilla_budget!r}")
     if representation == "whole-space":
         return _whole_space_plan(scenario, target, optimize)
-    return _feasible_plan(scenario, target, optimize, ancilla_budget)
+    return _feasible_plan(scenario, target, optimize, ancilla_budget, fold)
 
 
 def _register_gadgets(
@@ -345,13 +352,15 @@ def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) ->
     return PhasePlan(0, ham.c0, "whole-space", target, optimize, scenario.num_variables, lin, quad, (), (), (), (row,))
 
 
-def _feasible_plan(scenario: Scenario, target: Target, optimize: Optimize, budget: int | None) -> PhasePlan:
+def _feasible_plan(
+    scenario: Scenario, target: Target, optimize: Optimize, budget: int | None, fold: bool
+) -> PhasePlan:
     """Choose the balance construction by building the whole plan for each candidate (the couplings of the
     balance and of the node visits overlap, so the groups are not independent), the rest greedily."""
     fc = feasible_cost(scenario)
     balance: list[dict] = []
     for grp in fc.sums:
-        balance.append(_sums_options(grp, fc.num_variables, optimize, budget))
+        balance.append(_sums_options(grp, fc.num_variables, target, optimize, budget, fold))
     # candidates: every combination is too many in general; there is one balance group at most
     choices: list[tuple[str, ...]] = [()]
     for opts in balance:
@@ -399,31 +408,51 @@ def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -
     return within + sum(sizes[a] * sizes[b] for a in range(n) for b in range(a + 1, n) if abs(matrix[a][b]) > 0)
 
 
-def _sums_options(grp: SumsGroup, n: int, optimize: Optimize, budget: int | None) -> dict:
-    """The constructions a sums group may use, with their own costs and ancillas."""
+def _sums_options(
+    grp: SumsGroup, n: int, target: Target, optimize: Optimize, budget: int | None, fold: bool
+) -> dict:
+    """The constructions a sums group may use, with their own costs, ancillas and the group each builds on: its
+    own forms, or (``fold``) its one folded form where :func:`~qcpp.plan.phase_choice.prefer_folded` says so."""
     m = grp.matrix
     prods = coupling_products([len(f) for f in grp.forms], m)
-    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": []}
+    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": [], "groups": {"couplings": grp}}
     out["costs"]["couplings"] = (coupling_cost(prods), coupling_cost(prods))
     out["ancillas"]["couplings"] = 0
     if grp.integral and optimize == "cx":
-        forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
-        gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
-        out["costs"]["arithmetic"] = (gad.cost(), gad.logical_cost())
-        out["ancillas"]["arithmetic"] = gad.num_ancillas
-        reg_anc = _register_ancillas(forms, gad._active)
-        reg_gads = _register_gadgets("gamma", forms, m, tuple(range(n, n + reg_anc)))
-        out["costs"]["registers"] = (Cost.sum(g.cost() for g in reg_gads), Cost.sum(g.logical_cost() for g in reg_gads))
-        out["ancillas"]["registers"] = reg_anc
-        _, acc_anc = _accumulator_layout(forms, gad._active)
-        acc_gads, acc_c0 = _accumulator_gadgets("gamma", forms, m, tuple(range(n, n + acc_anc)))
-        out["costs"]["accumulator"] = (
-            Cost.sum(g.cost() for g in acc_gads),
-            Cost.sum(g.logical_cost() for g in acc_gads),
-        )
-        out["ancillas"]["accumulator"] = acc_anc
-        out["constants"] = {"arithmetic": gad.constant, "registers": gad.constant, "accumulator": acc_c0}
+        out["constants"] = {}
+        own = _arithmetic_variants(grp, n)
+        one = grp.folded() if fold else None
+        folded = _arithmetic_variants(one, n) if one is not None else {}
+        for variant in SUMS_VARIANTS:
+            cost, logical, anc, const = own[variant]
+            use = grp
+            if one is not None and prefer_folded(own[variant][:3], folded[variant][:3], target, budget):
+                (cost, logical, anc, const), use = folded[variant], one
+            out["costs"][variant] = (cost, logical)
+            out["ancillas"][variant] = anc
+            out["constants"][variant] = const
+            out["groups"][variant] = use
     out["options"] = list(sums_constructions(grp.integral, prods, optimize, budget, out["ancillas"].__getitem__))
+    return out
+
+
+def _arithmetic_variants(grp: SumsGroup, n: int) -> dict[str, tuple[Cost, Cost, int, float]]:
+    """Per arithmetic variant of an integral group (:data:`~qcpp.plan.phase_choice.SUMS_VARIANTS`): lowered cost,
+    logical cost, clean ancillas and the constant ``c0`` its phase leaves."""
+    m = grp.matrix
+    forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
+    gad = SumsPhase("gamma", forms, m, (0.0,) * len(forms))
+    out = {"arithmetic": (gad.cost(), gad.logical_cost(), gad.num_ancillas, gad.constant)}
+    reg_anc = _register_ancillas(forms, gad._active)
+    reg_gads = _register_gadgets("gamma", forms, m, tuple(range(n, n + reg_anc)))
+    out["registers"] = (
+        Cost.sum(g.cost() for g in reg_gads), Cost.sum(g.logical_cost() for g in reg_gads), reg_anc, gad.constant
+    )
+    _, acc_anc = _accumulator_layout(forms, gad._active)
+    acc_gads, acc_c0 = _accumulator_gadgets("gamma", forms, m, tuple(range(n, n + acc_anc)))
+    out["accumulator"] = (
+        Cost.sum(g.cost() for g in acc_gads), Cost.sum(g.logical_cost() for g in acc_gads), acc_anc, acc_c0
+    )
     return out
 
 
@@ -455,10 +484,12 @@ def _assemble(
             for k, v in eq.items():
                 quad[k] = quad.get(k, 0.0) + v
         else:
-            chosen_sums.append((grp, pick))
+            chosen_sums.append((opts["groups"][pick], pick))
             const += opts["constants"][pick]
             ancillas = max(ancillas, opts["ancillas"][pick])
         note = "" if grp.integral else " (non-integer lengths: couplings only)"
+        if len(opts["groups"][pick].forms) < len(grp.forms):
+            note = " (folded: one form of the difference)"
         alternatives = {k: _summary(*c, opts["ancillas"][k]) for k, c in costs.items() if k != pick}
         rows.append({"group": grp.name + note, "count": 1, "construction": pick,
                      "cost": _summary(*costs[pick], opts["ancillas"][pick]), "alternatives": alternatives})  # fmt: skip

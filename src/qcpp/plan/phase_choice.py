@@ -47,6 +47,7 @@ __all__ = [
     "hamming_choice",
     "hamming_groups",
     "plan_score",
+    "prefer_folded",
     "score",
     "sums_constructions",
     "visit_choice",
@@ -224,6 +225,39 @@ def hamming_groups(
             classes.setdefault(round(v, 12), (v, []))[1].append(q)
     groups = [(hamming_choice(len(qs), v, target, optimize, budget), qs) for v, qs in classes.values()]
     return [(hw, qs) for hw, qs in groups if hw is not None]
+
+
+def prefer_folded(
+    two: tuple[Cost, Cost, int], one: tuple[Cost, Cost, int], target: Target, budget: int | None
+) -> bool:
+    """Whether a balance construction takes its group folded into one form (``one``,
+    :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`) rather than as the group's own forms (``two``).
+
+    Only on the ``ft`` target, and there the one that fits the ancilla budget, then the lower :func:`score`, then
+    fewer ancillas; a tie keeps the forms. The fold's gain is in rotations (one register has fewer bit pairs to
+    phase), which the ``ft`` model prices at :data:`ROTATION_T_COST` T each. Under ``nisq`` it saves at most a
+    few CX, or costs some, while the robots' adder trees, which ran side by side on their own registers, become
+    one tree: the circuit gets deeper (``benchmarks/balance_difference.py`` prints both).
+
+    Args:
+        two, one: ``(lowered cost, logical cost, clean ancillas)`` of the same construction either way.
+        target, budget: the plan's options.
+
+    Returns:
+        ``True`` to fold.
+
+    >>> two = (Cost.of(cx=554, rz=45), Cost.of(cx=554, rz=45), 32)
+    >>> one = (Cost.of(cx=542, rz=21), Cost.of(cx=542, rz=21), 34)
+    >>> prefer_folded(two, one, "ft", None), prefer_folded(two, one, "ft", 33), prefer_folded(two, one, "nisq", None)
+    (True, False, False)
+    """
+    if target != "ft":
+        return False
+
+    def key(c: tuple[Cost, Cost, int]) -> tuple[bool, tuple[int, ...], int]:
+        return budget is not None and c[2] > budget, score(c[0], c[1], target), c[2]
+
+    return key(one) < key(two)
 
 
 def sums_constructions(

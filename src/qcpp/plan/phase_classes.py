@@ -44,12 +44,20 @@ import numpy as np
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingKind, IsingPhase, ising_cost
 from qcpp.gadgets.phase_sums import SumsKind, SumsPhase, SumsShape
+from qcpp.ir.cost import Cost
 from qcpp.plan.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from qcpp.plan.mixer_classes import Count, boundary, class_counts
 from qcpp.plan.phase import coupling_products, phase_plan
-from qcpp.plan.phase_choice import couplings_floor, hamming_groups, plan_score, sums_constructions, visit_choice
+from qcpp.plan.phase_choice import (
+    couplings_floor,
+    hamming_groups,
+    plan_score,
+    prefer_folded,
+    sums_constructions,
+    visit_choice,
+)
 from qcpp.problem.cost import balanced_pairs
-from qcpp.problem.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, length_unit, reduce_on_paths
+from qcpp.problem.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, fold_signs, length_unit, reduce_on_paths
 from qcpp.problem.grid import Grid
 from qcpp.problem.scenario import Scenario
 
@@ -125,12 +133,28 @@ class _Balance:
             negs.append((len(neg), int(-neg.sum())))
         return SumsShape(tuple(ws), tuple(negs), self.matrix, (0.0,) * len(self.weights))
 
+    def folded(self) -> _Balance | None:
+        """The term as one form over all robots' variables, as :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`
+        folds the plan's group (same terms in the same order), or ``None``."""
+        signs = fold_signs(self.matrix)
+        if signs is None:
+            return None
+        c, v = signs
+        form = np.concatenate([w * x for w, x in zip(self.weights, v, strict=True)])
+        if np.abs(form).sum() > MAX_INTEGER_TOTAL:
+            return None
+        return _Balance((form,), ((c,),))
+
     def gadget(self) -> SumsPhase:
         forms = []
         for r, w in enumerate(self.weights):
             pos = np.nonzero(w)[0]
             forms.append(tuple(zip((r * len(w) + pos).tolist(), w[pos].tolist())))
         return SumsPhase("gamma", tuple(forms), self.matrix, (0.0,) * len(forms))
+
+
+def _priced(shape: SumsShape) -> tuple[Cost, Cost, int]:
+    return shape.cost(), shape.logical_cost(), shape.num_ancillas
 
 
 @dataclass(frozen=True)
@@ -259,6 +283,9 @@ def phase_layer(
         m = balance_matrix(n_r, pairs, scale)
         sizes = [int(np.count_nonzero(w)) for w in weights]
         balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
+        one = balance.folded()
+        if one is not None and prefer_folded(_priced(balance.shape), _priced(one.shape), target, ancilla_budget):  # type: ignore[arg-type]
+            balance = one  # as the plan folds it (its other variants are the plan's to price)
         shape = balance.shape
         # only the arithmetic is counted by classes: any other first variant is left to the plan
         candidates = sums_constructions(

@@ -57,6 +57,7 @@ __all__ = [
     "VisitGroup",
     "balance_matrix",
     "feasible_cost",
+    "fold_signs",
     "length_unit",
     "live_edges",
     "reduce_on_paths",
@@ -141,6 +142,56 @@ class SumsGroup:
                             key = (i, j) if i < j else (j, i)
                             quad[key] = quad.get(key, 0.0) + c
         return lin, quad
+
+    def folded(self) -> SumsGroup | None:
+        """The same function as one form, ``c D^2`` with ``D = sum_a v_a G_a``, when ``M = c v v^T`` with every
+        ``v_a`` in ``{-1, 0, 1}`` and at least two ``v_a`` nonzero (two robots' balance ``c (G_1 - G_2)^2``); else
+        ``None``.
+
+        One register of ``D`` has fewer bit pairs to phase than two registers coupled bit by bit. ``v`` is scaled
+        so that its first nonzero entry is ``+1``; forms with ``v_a = 0`` drop out. Only integral groups fold
+        (the fold serves the arithmetic constructions), and only while ``D``'s total weight stays at most
+        :data:`MAX_INTEGER_TOTAL`.
+
+        Returns:
+            The folded group (same name, unit and integrality), or ``None``.
+
+        Example:
+            >>> g = SumsGroup("balance", (((0, 1.0), (1, 1.0)), ((2, 1.0),)), ((2.0, -2.0), (-2.0, 2.0)), True)
+            >>> g.folded().forms, g.folded().matrix
+            ((((0, 1.0), (1, 1.0), (2, -1.0)),), ((2.0,),))
+            >>> x = np.array([[1, 0, 1], [1, 1, 0], [0, 0, 1]])
+            >>> bool(np.allclose(g.evaluate(x), g.folded().evaluate(x)))
+            True
+        """
+        signs = fold_signs(self.matrix) if self.integral else None
+        if signs is None:
+            return None
+        c, v = signs
+        form = tuple((q, w * v[a]) for a, f in enumerate(self.forms) if v[a] for q, w in f)
+        if sum(abs(w) for _, w in form) > MAX_INTEGER_TOTAL:
+            return None
+        return SumsGroup(self.name, (form,), ((c,),), True, self.unit)
+
+
+def fold_signs(matrix: Sequence[Sequence[float]]) -> tuple[float, tuple[int, ...]] | None:
+    """``(c, v)`` with ``matrix = c v v^T``, every ``v_a`` in ``{-1, 0, 1}``, its first nonzero entry ``+1`` and at
+    least two nonzero; else ``None``: when a balance matrix folds into one form (:meth:`SumsGroup.folded`).
+
+    >>> fold_signs(((2.0, -2.0), (-2.0, 2.0))), fold_signs(balance_matrix(3, [(0, 1), (1, 2)], 1.0))
+    ((2.0, (1, -1)), None)
+    """
+    n = len(matrix)
+    lead = next((a for a in range(n) if abs(matrix[a][a]) > _TOL), None)
+    if lead is None:
+        return None
+    c = float(matrix[lead][lead])
+    v = tuple(round(float(matrix[lead][b]) / c) for b in range(n))
+    if any(x not in (-1, 0, 1) for x in v) or sum(1 for x in v if x) < 2:
+        return None
+    if any(abs(matrix[a][b] - c * v[a] * v[b]) > _TOL * max(1.0, abs(c)) for a in range(n) for b in range(n)):
+        return None
+    return c, v
 
 
 def _form_value(form: Sequence[tuple[int, float]], x: np.ndarray) -> np.ndarray:
