@@ -10,7 +10,8 @@ Two representations of the cost ``C``:
   (the only states the constrained mixer ever produces). Each term group gets the cheapest exact construction
   for the target (:func:`phase_plan`): the linear part as RZ gates, each node that several robots can pass as
   visit bits (:class:`~qcpp.gadgets.phase_visits.VisitPhase`) or couplings, the balance term as
-  arithmetic on path-length registers (:class:`~qcpp.gadgets.phase_sums.SumsPhase`) or couplings, and on
+  arithmetic on path-length registers (:class:`~qcpp.gadgets.phase_sums.SumsPhase`; on ``ft`` one register
+  per balanced pair, the difference of two robots' lengths) or couplings, and on
   the ``ft`` target equal-angle rotations merged by Hamming-weight phasing. ``O(re log re)`` CX.
 
 Cost models (:func:`~qcpp.plan.phase_choice.score`): ``nisq`` minimises CX, then rotations; ``ft`` minimises T
@@ -233,10 +234,12 @@ def phase_plan(
             are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
             sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
             variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
-        fold: Let a two-robot balance's arithmetic take the difference ``G_1 - G_2`` as one form
-            (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`: one register, so fewer bit pairs to phase)
-            where that scores better. ``False`` keeps one form per robot, whose sums the ``spatial`` and
-            ``medial`` layouts place on each robot's own edges (:mod:`qcpp.plan.phase_layout`).
+        fold: Let the balance's arithmetic take each balanced pair's difference ``G_a - G_b`` as one form
+            (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`: one register per pair, so far fewer bit pairs
+            to phase, one pair's ancillas at a time) where
+            :func:`~qcpp.plan.phase_choice.prefer_folded` says so (the ``ft`` target). ``False`` keeps one form
+            per robot, whose sums the ``spatial`` and ``medial`` layouts place on each robot's own edges
+            (:mod:`qcpp.plan.phase_layout`).
 
     Raises:
         ValueError: for an unknown option.
@@ -411,23 +414,27 @@ def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -
 def _sums_options(
     grp: SumsGroup, n: int, target: Target, optimize: Optimize, budget: int | None, fold: bool
 ) -> dict:
-    """The constructions a sums group may use, with their own costs, ancillas and the group each builds on: its
-    own forms, or (``fold``) its one folded form where :func:`~qcpp.plan.phase_choice.prefer_folded` says so."""
+    """The constructions a sums group may use, with their own costs, ancillas and the groups each builds on: the
+    group itself, or (``fold``) its difference forms (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`, one
+    gadget or run each, one after the other) where :func:`~qcpp.plan.phase_choice.prefer_folded` says so."""
     m = grp.matrix
     prods = coupling_products([len(f) for f in grp.forms], m)
-    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": [], "groups": {"couplings": grp}}
+    out: dict = {"prods": prods, "costs": {}, "ancillas": {}, "options": [], "groups": {"couplings": (grp,)}}
     out["costs"]["couplings"] = (coupling_cost(prods), coupling_cost(prods))
     out["ancillas"]["couplings"] = 0
     if grp.integral and optimize == "cx":
         out["constants"] = {}
         own = _arithmetic_variants(grp, n)
-        one = grp.folded() if fold else None
-        folded = _arithmetic_variants(one, n) if one is not None else {}
+        parts = grp.folded() if fold else None
+        folded = [_arithmetic_variants(part, n) for part in parts] if parts else []
         for variant in SUMS_VARIANTS:
             cost, logical, anc, const = own[variant]
-            use = grp
-            if one is not None and prefer_folded(own[variant][:3], folded[variant][:3], target, budget):
-                (cost, logical, anc, const), use = folded[variant], one
+            use: tuple[SumsGroup, ...] = (grp,)
+            if parts:
+                each = [f[variant] for f in folded]
+                one = (Cost.sum(e[0] for e in each), Cost.sum(e[1] for e in each), max(e[2] for e in each))
+                if prefer_folded((cost, logical, anc), one, target, budget):
+                    (cost, logical, anc), const, use = one, sum(e[3] for e in each), parts
             out["costs"][variant] = (cost, logical)
             out["ancillas"][variant] = anc
             out["constants"][variant] = const
@@ -484,12 +491,12 @@ def _assemble(
             for k, v in eq.items():
                 quad[k] = quad.get(k, 0.0) + v
         else:
-            chosen_sums.append((opts["groups"][pick], pick))
+            chosen_sums += [(part, pick) for part in opts["groups"][pick]]
             const += opts["constants"][pick]
             ancillas = max(ancillas, opts["ancillas"][pick])
         note = "" if grp.integral else " (non-integer lengths: couplings only)"
-        if len(opts["groups"][pick].forms) < len(grp.forms):
-            note = " (folded: one form of the difference)"
+        if opts["groups"][pick] != (grp,):
+            note = " (folded: one form per balanced pair)"
         alternatives = {k: _summary(*c, opts["ancillas"][k]) for k, c in costs.items() if k != pick}
         rows.append({"group": grp.name + note, "count": 1, "construction": pick,
                      "cost": _summary(*costs[pick], opts["ancillas"][pick]), "alternatives": alternatives})  # fmt: skip

@@ -230,17 +230,20 @@ def hamming_groups(
 def prefer_folded(
     two: tuple[Cost, Cost, int], one: tuple[Cost, Cost, int], target: Target, budget: int | None
 ) -> bool:
-    """Whether a balance construction takes its group folded into one form (``one``,
-    :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`) rather than as the group's own forms (``two``).
+    """Whether a balance construction takes its group folded into difference forms (``one``,
+    :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`: one gadget per balanced pair) rather than as the group's
+    own forms (``two``).
 
     Only on the ``ft`` target, and there the one that fits the ancilla budget, then the lower :func:`score`, then
-    fewer ancillas; a tie keeps the forms. The fold's gain is in rotations (one register has fewer bit pairs to
-    phase), which the ``ft`` model prices at :data:`ROTATION_T_COST` T each. Under ``nisq`` it saves at most a
-    few CX, or costs some, while the robots' adder trees, which ran side by side on their own registers, become
-    one tree: the circuit gets deeper (``benchmarks/balance_difference.py`` prints both).
+    fewer ancillas; a tie keeps the forms. The fold's gain is in rotations (one register per pair has far fewer
+    bit pairs to phase than registers coupled bit by bit), which the ``ft`` model prices at
+    :data:`ROTATION_T_COST` T each. Under ``nisq`` it saves a few CX on two robots, or costs some (a robot in two
+    pairs has its sum computed twice), while the robots' adder trees, which ran side by side on their own
+    registers, become one tree per pair: the circuit gets deeper (``benchmarks/balance_difference.py``).
 
     Args:
-        two, one: ``(lowered cost, logical cost, clean ancillas)`` of the same construction either way.
+        two, one: ``(lowered cost, logical cost, clean ancillas)`` of the same construction either way (``one``:
+            summed over the pairs' gadgets, the ancillas of the largest).
         target, budget: the plan's options.
 
     Returns:

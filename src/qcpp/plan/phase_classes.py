@@ -10,7 +10,9 @@ distinct parts:
   :func:`qcpp.plan.phase_choice.visit_choice`, the very function the plan asks for each of its nodes;
 * **balance**: one arithmetic gadget (:class:`~qcpp.gadgets.phase_sums.SumsPhase`) over each robot's
   reduced path-length form: weight 1 on every edge, 0 on the edges at its own start and goal (collapsed to a
-  constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor);
+  constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor); or, where the plan
+  folds it (:func:`qcpp.plan.phase_choice.prefer_folded`), one gadget per balanced pair over the difference of
+  the two robots' forms;
 * **linear**: one rotation per variable whose reduced coefficient is nonzero: ``alpha0 w`` plus the degree terms
   of its two end nodes plus the balance's linear part, reduced at the robot's endpoints and corners like the form
   (on the ``ft`` target, equal coefficients may be merged by Hamming-weight phasing, class by class).
@@ -36,7 +38,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass, replace
-from functools import cached_property, lru_cache
+from functools import cached_property, lru_cache, partial
 from itertools import repeat
 
 import numpy as np
@@ -57,7 +59,13 @@ from qcpp.plan.phase_choice import (
     visit_choice,
 )
 from qcpp.problem.cost import balanced_pairs
-from qcpp.problem.feasible_cost import MAX_INTEGER_TOTAL, balance_matrix, fold_signs, length_unit, reduce_on_paths
+from qcpp.problem.feasible_cost import (
+    MAX_INTEGER_TOTAL,
+    balance_matrix,
+    difference_pairs,
+    length_unit,
+    reduce_on_paths,
+)
 from qcpp.problem.grid import Grid
 from qcpp.problem.scenario import Scenario
 
@@ -85,14 +93,15 @@ class PhaseLayer:
 
 
 def _layer(
-    s: Scenario, rotations: int, couplings: int, parts: list[tuple[Gadget, int, int]], balance: _Balance | None,
-    whole_space: bool = False,
+    s: Scenario, rotations: int, couplings: int, parts: list[tuple[Gadget, int, int]],
+    balance: tuple[_Balance, ...] = (), whole_space: bool = False,
 ) -> PhaseLayer:
     """The :class:`PhaseLayer` of ``rotations`` data-qubit rotations and ``couplings`` (``whole_space``: those of
-    ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance."""
+    ``s``'s Ising Hamiltonian), ``(gadget on abstract qubits, count, ancillas)`` per class, and the balance's
+    arithmetic gadgets (one, or one per balanced pair when folded), in order."""
     # the ancillas as a range: each part gets a tuple of only what it uses (tuples of thousands of ints made
     # per scenario fragment the allocator's arenas and inflate a long sweep's peak memory)
-    num_ancillas = max([0, *(need for _, _, need in parts), balance.shape.num_ancillas if balance else 0])
+    num_ancillas = max([0, *(need for _, _, need in parts), *(b.shape.num_ancillas for b in balance)])
     pool = range(s.num_variables, s.num_variables + num_ancillas)
     out = [(GadgetKind.of(replace(g, ancillas=tuple(pool[:need]))), count) for g, count, need in parts]  # type: ignore[type-var]
     if rotations or couplings:
@@ -104,16 +113,18 @@ def _layer(
             return IsingPhase("gamma", tuple(zip(range(rotations), repeat(1.0))), ())
 
         out.insert(0, (GadgetKind.of(Deferred(IsingKind("ising", rotations, couplings), rz, rz, ising)), 1))
-    if balance is not None:
-        shape = balance.shape
-
-        def arithmetic() -> Gadget:
-            return replace(balance.gadget(), ancillas=tuple(pool))
-
+    for part in balance:
+        shape = part.shape
+        arithmetic = partial(_arithmetic, part, pool)  # the pool's tuple only if emitted
         kind = SumsKind("sums", shape)
         deferred = Deferred(kind, shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
         out.append((GadgetKind.of(deferred), 1))
     return PhaseLayer(tuple(out), num_ancillas)
+
+
+def _arithmetic(balance: _Balance, pool: range) -> Gadget:
+    """The balance's gadget on the layer's ancilla pool (what a :class:`Deferred` part builds when emitted)."""
+    return replace(balance.gadget(), ancillas=tuple(pool))
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,17 +144,20 @@ class _Balance:
             negs.append((len(neg), int(-neg.sum())))
         return SumsShape(tuple(ws), tuple(negs), self.matrix, (0.0,) * len(self.weights))
 
-    def folded(self) -> _Balance | None:
-        """The term as one form over all robots' variables, as :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`
-        folds the plan's group (same terms in the same order), or ``None``."""
-        signs = fold_signs(self.matrix)
-        if signs is None:
+    def folded(self) -> tuple[_Balance, ...] | None:
+        """The term as one form per balanced pair, over both robots' variables, as
+        :meth:`qcpp.problem.feasible_cost.SumsGroup.folded` folds the plan's group (same forms, terms in the same
+        order), or ``None``."""
+        pairs = difference_pairs(self.matrix)
+        if pairs is None:
             return None
-        c, v = signs
-        form = np.concatenate([w * x for w, x in zip(self.weights, v, strict=True)])
-        if np.abs(form).sum() > MAX_INTEGER_TOTAL:
-            return None
-        return _Balance((form,), ((c,),))
+        out = []
+        for a, b, w in pairs:
+            form = np.concatenate([x if r == a else -x if r == b else 0 * x for r, x in enumerate(self.weights)])
+            if np.abs(form).sum() > MAX_INTEGER_TOTAL:
+                return None
+            out.append(_Balance((form,), ((w,),)))
+        return tuple(out)
 
     def gadget(self) -> SumsPhase:
         forms = []
@@ -151,10 +165,6 @@ class _Balance:
             pos = np.nonzero(w)[0]
             forms.append(tuple(zip((r * len(w) + pos).tolist(), w[pos].tolist())))
         return SumsPhase("gamma", tuple(forms), self.matrix, (0.0,) * len(forms))
-
-
-def _priced(shape: SumsShape) -> tuple[Cost, Cost, int]:
-    return shape.cost(), shape.logical_cost(), shape.num_ancillas
 
 
 @dataclass(frozen=True)
@@ -227,7 +237,7 @@ def phase_layer(
         count = ising_count(s)
         if count is None:
             return None
-        return _layer(s, count.linear, count.couplings, [], None, whole_space=True)
+        return _layer(s, count.linear, count.couplings, [], whole_space=True)
     if s.obstacles or ob.edge_lengths:
         return None
     ends = [(grid.node_index(rb.start), grid.node_index(rb.goal)) for rb in s.robots]
@@ -264,7 +274,7 @@ def phase_layer(
         lin.append(a0 * ob.free_weight + own[g.u] + own[g.v])
     # balance
     pairs = balanced_pairs(s) if a1 != 0.0 else []
-    balance: _Balance | None = None
+    balance: tuple[_Balance, ...] = ()
     floor: int | None = None  # a lower bound on the couplings alternative's score, when it is one
     if pairs:
         unit = length_unit([ob.edge_length])
@@ -282,15 +292,20 @@ def phase_layer(
         scale = a1 * unit * unit
         m = balance_matrix(n_r, pairs, scale)
         sizes = [int(np.count_nonzero(w)) for w in weights]
-        balance = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
-        one = balance.folded()
-        if one is not None and prefer_folded(_priced(balance.shape), _priced(one.shape), target, ancilla_budget):  # type: ignore[arg-type]
-            balance = one  # as the plan folds it (its other variants are the plan's to price)
-        shape = balance.shape
+        whole = _Balance(tuple(weights), tuple(tuple(float(x) for x in row) for row in m))
+        balance = (whole,)
+        folded = whole.folded()
+        if folded is not None:
+            one = (Cost.sum(b.shape.cost() for b in folded), Cost.sum(b.shape.logical_cost() for b in folded),
+                   max(b.shape.num_ancillas for b in folded))  # fmt: skip
+            two = (whole.shape.cost(), whole.shape.logical_cost(), whole.shape.num_ancillas)
+            if prefer_folded(two, one, target, ancilla_budget):  # type: ignore[arg-type]
+                balance = folded  # as the plan folds it (its other variants are the plan's to price)
+        need = max(b.shape.num_ancillas for b in balance)
         # only the arithmetic is counted by classes: any other first variant is left to the plan
         candidates = sums_constructions(
             True, coupling_products(sizes, m), optimize, ancilla_budget,
-            lambda variant: shape.num_ancillas if variant == "arithmetic" else 0,
+            lambda variant: need if variant == "arithmetic" else 0,
         )  # fmt: skip
         if candidates[0] != "arithmetic":
             return None

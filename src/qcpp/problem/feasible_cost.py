@@ -56,8 +56,8 @@ __all__ = [
     "SumsGroup",
     "VisitGroup",
     "balance_matrix",
+    "difference_pairs",
     "feasible_cost",
-    "fold_signs",
     "length_unit",
     "live_edges",
     "reduce_on_paths",
@@ -143,55 +143,58 @@ class SumsGroup:
                             quad[key] = quad.get(key, 0.0) + c
         return lin, quad
 
-    def folded(self) -> SumsGroup | None:
-        """The same function as one form, ``c D^2`` with ``D = sum_a v_a G_a``, when ``M = c v v^T`` with every
-        ``v_a`` in ``{-1, 0, 1}`` and at least two ``v_a`` nonzero (two robots' balance ``c (G_1 - G_2)^2``); else
-        ``None``.
+    def folded(self) -> tuple[SumsGroup, ...] | None:
+        """The same function as a sum of one-form groups, ``sum_(a<b) w_ab (G_a - G_b)^2`` with ``w_ab = -M_ab``,
+        when ``M`` is symmetric and every row sums to zero (a balance matrix, :func:`balance_matrix`); else ``None``.
 
-        One register of ``D`` has fewer bit pairs to phase than two registers coupled bit by bit. ``v`` is scaled
-        so that its first nonzero entry is ``+1``; forms with ``v_a = 0`` drop out. Only integral groups fold
-        (the fold serves the arithmetic constructions), and only while ``D``'s total weight stays at most
+        One register of a difference ``G_a - G_b`` has far fewer bit pairs to phase than two registers coupled bit
+        by bit, and the gadgets of different pairs run one after the other, so they need only one pair's ancillas
+        at a time; a robot in several pairs has its sum computed once per pair. Only integral groups fold (the
+        fold serves the arithmetic constructions), and only while each difference's total weight stays at most
         :data:`MAX_INTEGER_TOTAL`.
 
         Returns:
-            The folded group (same name, unit and integrality), or ``None``.
+            Per pair ``(a, b)`` with ``M_ab != 0``, in order, the group ``w_ab D^2`` over the one form ``D = G_a -
+            G_b`` (``G_b``'s weights negated; same name, unit and integrality), or ``None``.
 
         Example:
             >>> g = SumsGroup("balance", (((0, 1.0), (1, 1.0)), ((2, 1.0),)), ((2.0, -2.0), (-2.0, 2.0)), True)
-            >>> g.folded().forms, g.folded().matrix
-            ((((0, 1.0), (1, 1.0), (2, -1.0)),), ((2.0,),))
+            >>> [(f.forms, f.matrix) for f in g.folded()]
+            [((((0, 1.0), (1, 1.0), (2, -1.0)),), ((2.0,),))]
             >>> x = np.array([[1, 0, 1], [1, 1, 0], [0, 0, 1]])
-            >>> bool(np.allclose(g.evaluate(x), g.folded().evaluate(x)))
+            >>> bool(np.allclose(g.evaluate(x), sum(f.evaluate(x) for f in g.folded())))
             True
         """
-        signs = fold_signs(self.matrix) if self.integral else None
-        if signs is None:
+        pairs = difference_pairs(self.matrix) if self.integral else None
+        if pairs is None:
             return None
-        c, v = signs
-        form = tuple((q, w * v[a]) for a, f in enumerate(self.forms) if v[a] for q, w in f)
-        if sum(abs(w) for _, w in form) > MAX_INTEGER_TOTAL:
-            return None
-        return SumsGroup(self.name, (form,), ((c,),), True, self.unit)
+        out = []
+        for a, b, w in pairs:
+            form = self.forms[a] + tuple((q, -x) for q, x in self.forms[b])
+            if sum(abs(x) for _, x in form) > MAX_INTEGER_TOTAL:
+                return None
+            out.append(SumsGroup(self.name, (form,), ((w,),), True, self.unit))
+        return tuple(out)
 
 
-def fold_signs(matrix: Sequence[Sequence[float]]) -> tuple[float, tuple[int, ...]] | None:
-    """``(c, v)`` with ``matrix = c v v^T``, every ``v_a`` in ``{-1, 0, 1}``, its first nonzero entry ``+1`` and at
-    least two nonzero; else ``None``: when a balance matrix folds into one form (:meth:`SumsGroup.folded`).
+def difference_pairs(matrix: Sequence[Sequence[float]]) -> tuple[tuple[int, int, float], ...] | None:
+    """``(a, b, w_ab)`` for ``a < b`` with ``M_ab != 0`` and ``w_ab = -M_ab``, when ``M`` is symmetric and every
+    row sums to zero, so that ``sum_ab M_ab G_a G_b = sum_(a<b) w_ab (G_a - G_b)^2``; else ``None`` (also when no
+    pair is coupled): when a balance matrix folds into difference forms (:meth:`SumsGroup.folded`).
 
-    >>> fold_signs(((2.0, -2.0), (-2.0, 2.0))), fold_signs(balance_matrix(3, [(0, 1), (1, 2)], 1.0))
-    ((2.0, (1, -1)), None)
+    >>> difference_pairs(balance_matrix(3, [(0, 1), (1, 2)], 2.0))
+    ((0, 1, 2.0), (1, 2, 2.0))
+    >>> difference_pairs(((1.0, 0.0), (0.0, 1.0))) is None
+    True
     """
     n = len(matrix)
-    lead = next((a for a in range(n) if abs(matrix[a][a]) > _TOL), None)
-    if lead is None:
+    tol = _TOL * max([1.0, *(abs(float(x)) for row in matrix for x in row)])
+    if any(abs(matrix[a][b] - matrix[b][a]) > tol for a in range(n) for b in range(a)):
         return None
-    c = float(matrix[lead][lead])
-    v = tuple(round(float(matrix[lead][b]) / c) for b in range(n))
-    if any(x not in (-1, 0, 1) for x in v) or sum(1 for x in v if x) < 2:
+    if any(abs(sum(float(x) for x in row)) > tol * n for row in matrix):
         return None
-    if any(abs(matrix[a][b] - c * v[a] * v[b]) > _TOL * max(1.0, abs(c)) for a in range(n) for b in range(n)):
-        return None
-    return c, v
+    pairs = tuple((a, b, -float(matrix[a][b])) for a in range(n) for b in range(a + 1, n) if abs(matrix[a][b]) > tol)
+    return pairs or None
 
 
 def _form_value(form: Sequence[tuple[int, float]], x: np.ndarray) -> np.ndarray:
