@@ -88,7 +88,7 @@ def test_a_balance_of_three_robots_folds_per_pair() -> None:
 @pytest.mark.parametrize("rows", [3, 4, 5])
 def test_ft_folds_the_two_robot_balance_and_nisq_does_not(rows: int) -> None:
     s = default_scenario(rows, rows, 2)
-    ft, kept = phase_plan(s, target="ft"), phase_plan(s, target="ft", fold=False)
+    ft, kept = phase_plan(s, target="ft"), phase_plan(s, target="ft", pooled=False)
     (one,) = _sums(ft)
     assert len(one.forms) == 1 and len(one.forms[0]) == sum(len(f) for f in _sums(kept)[0].forms)
     assert ft.score() < kept.score()  # the fold is taken because it is cheaper under ft
@@ -135,7 +135,7 @@ def test_three_robots_fold_into_one_gadget_per_pair_and_stay_exact(balance: str)
     plan = phase_plan(s, target="ft")
     pairs = 2 if balance == "chain" else 3
     assert [len(g.forms) for g in _sums(plan)] == [1] * pairs
-    kept = phase_plan(s, target="ft", fold=False)
+    kept = phase_plan(s, target="ft", pooled=False)
     assert plan.score() < kept.score() and plan.num_ancillas <= kept.num_ancillas
     check_states(s, plan, lowered(plan, s.num_variables), sample_combos(s, 12))
 

@@ -131,6 +131,7 @@ def _register_all() -> None:
     from qcpp.gadgets.phase_ising import IsingPhase
     from qcpp.gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
     from qcpp.gadgets.phase_visits import VisitPhase
+    from qcpp.gadgets.visit_batch import VisitBatch
     from qcpp.plan.call_graph import Deferred
     from qcpp.plan.options import PlanOptions
     from qcpp.plan.phase_classes import phase_layer
@@ -147,6 +148,7 @@ def _register_all() -> None:
     spatial = PlanOptions(phase_layout="spatial")  # same kinds, adders paired by place: examples of their own
     example(VisitPhase)(lambda: _of("VisitPhase", PlanOptions(), ft) + _of("VisitPhase", spatial, limit=2))
     example(SumsPhase)(lambda: _of("SumsPhase", PlanOptions(), ft) + _of("SumsPhase", spatial, limit=2))
+    example(VisitBatch)(lambda: _of("VisitBatch", ft))
     example(SumsRegister)(lambda: _of("SumsRegister", PlanOptions(ancilla_budget=70), arithmetic=True))
     example(SumsAccumulate)(lambda: _of("SumsAccumulate", PlanOptions(ancilla_budget=40), arithmetic=True))
 

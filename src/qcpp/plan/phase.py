@@ -42,6 +42,7 @@ from qcpp.gadgets import Gadget
 from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
 from qcpp.gadgets.phase_sums import SumsAccumulate, SumsPhase, SumsRegister
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.visit_batch import VisitBatch, visit_batch_ancillas
 from qcpp.ir.angles import Angle
 from qcpp.ir.cost import TARGETS, Cost, Target
 from qcpp.ir.gates import Gate, rz, rzz
@@ -58,6 +59,7 @@ from qcpp.plan.phase_choice import (
     prefer_folded,
     score,
     sums_constructions,
+    visit_batches,
     visit_choice,
 )
 from qcpp.problem.feasible_cost import FeasibleCost, SumsGroup, VisitGroup, feasible_cost
@@ -153,6 +155,7 @@ class PhasePlan:
     _visits: tuple[tuple[VisitGroup, bool], ...]
     _sums: tuple[tuple[SumsGroup, str], ...]
     _explain: tuple[dict, ...]
+    _visit_batches: tuple[tuple[VisitGroup, ...], ...] = ()
 
     def gadgets(self, gamma: str) -> tuple[Gadget, ...]:
         """The gadgets, each meant for its own section.
@@ -190,6 +193,7 @@ class PhasePlan:
             window = anc[start : start + need]
             start += need
             out.append(VisitPhase(gamma, grp.coefficient, grp.visitors, window, products))
+        out += [_batch_gadget(gamma, batch, anc) for batch in self._visit_batches]
         for grp, variant in self._sums:
             forms = tuple(tuple((q, int(w)) for q, w in f) for f in grp.forms)
             if variant == "registers":
@@ -220,7 +224,7 @@ def phase_plan(
     representation: Representation = "feasible",
     optimize: Optimize = "cx",
     ancilla_budget: int | None = None,
-    fold: bool = True,
+    pooled: bool = True,
 ) -> PhasePlan:
     """Choose the phase separator's constructions for a scenario.
 
@@ -234,13 +238,14 @@ def phase_plan(
             are not considered; the balance term then tries its ``registers`` variant (one tree at a time, the
             sums copied into small registers: about twice the arithmetic's CX), then its ``accumulator``
             variant (chunks added into ``B``-bit registers: ``O(robots log e)`` ancillas), then couplings.
-        fold: Let the balance's arithmetic take each balanced pair's difference ``G_a - G_b`` as one form
-            (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`: one register per pair, so far fewer bit pairs
-            to phase, one pair's ancillas at a time) where
-            :func:`~qcpp.plan.phase_choice.prefer_folded` says so (the ``ft`` target). ``False`` keeps one form
-            per robot, whose sums the ``spatial`` and ``medial`` layouts place on each robot's own edges
+        pooled: The pooled layout: constructions may gather terms from anywhere on the grid (where
+            :mod:`qcpp.plan.phase_choice` takes them, the ``ft`` target): the balance's arithmetic on each
+            balanced pair's difference ``G_a - G_b`` as one form
+            (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`: one register per pair, one pair's ancillas at a
+            time), and the node visits' pair products phased in Hamming-weight batches
+            (:class:`~qcpp.gadgets.visit_batch.VisitBatch`). ``False`` keeps each term on its own edges: a form
+            per robot and a gadget per node, which the ``spatial`` and ``medial`` layouts place
             (:mod:`qcpp.plan.phase_layout`).
-
     Raises:
         ValueError: for an unknown option.
     """
@@ -254,7 +259,7 @@ def phase_plan(
         raise ValueError(f"ancilla_budget must be a non-negative integer or None, got {ancilla_budget!r}")
     if representation == "whole-space":
         return _whole_space_plan(scenario, target, optimize)
-    return _feasible_plan(scenario, target, optimize, ancilla_budget, fold)
+    return _feasible_plan(scenario, target, optimize, ancilla_budget, pooled)
 
 
 def _register_gadgets(
@@ -356,26 +361,26 @@ def _whole_space_plan(scenario: Scenario, target: Target, optimize: Optimize) ->
 
 
 def _feasible_plan(
-    scenario: Scenario, target: Target, optimize: Optimize, budget: int | None, fold: bool
+    scenario: Scenario, target: Target, optimize: Optimize, budget: int | None, pooled: bool
 ) -> PhasePlan:
     """Choose the balance construction by building the whole plan for each candidate (the couplings of the
     balance and of the node visits overlap, so the groups are not independent), the rest greedily."""
     fc = feasible_cost(scenario)
     balance: list[dict] = []
     for grp in fc.sums:
-        balance.append(_sums_options(grp, fc.num_variables, target, optimize, budget, fold))
+        balance.append(_sums_options(grp, fc.num_variables, target, optimize, budget, pooled))
     # candidates: every combination is too many in general; there is one balance group at most
     choices: list[tuple[str, ...]] = [()]
     for opts in balance:
         choices = [(*c, k) for c in choices for k in opts["options"]]
     if len(choices) == 1:
-        return _assemble(fc, target, optimize, budget, balance, choices[0])
+        return _assemble(fc, target, optimize, budget, balance, choices[0], pooled)
     best: PhasePlan | None = None
     best_key: tuple[int, ...] | None = None
     for choice in choices:
         if best_key is not None and _couplings_floor(fc, choice, target) > best_key[0]:
             continue  # it cannot win (its floor is above a score already met): not worth assembling
-        plan = _assemble(fc, target, optimize, budget, balance, choice)
+        plan = _assemble(fc, target, optimize, budget, balance, choice, pooled)
         key = plan.score()
         if best_key is None or key < best_key:
             best, best_key = plan, key
@@ -470,6 +475,7 @@ def _assemble(
     budget: int | None,
     balance: list[dict],
     choice: tuple[str, ...],
+    pooled: bool = True,
 ) -> PhasePlan:
     n = fc.num_variables
     lin: dict[int, float] = dict(fc.linear)
@@ -523,18 +529,13 @@ def _assemble(
         chosen_costs[1].append(choice.costs[choice.construction][1])
         if choice.gadget is not None:
             chosen_visits.append((grp, choice.gadget.products))
-            const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), choice.gadget.products).constant
+            if not (choice.gadget.products and target == "ft"):  # those wait for the batches (their constant too)
+                const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), choice.gadget.products).constant
             ancillas = max(ancillas, choice.ancillas)
         else:
             for key, v in (products if products is not None else _visit_products(grp)).items():
                 quad[key] = quad.get(key, 0.0) + v
-    if fc.visits:
-        used = [k for k, r in v_rows.items() if r]
-        rows.append({
-            "group": "node visits", "count": len(fc.visits), "cost": _summary(*map(Cost.sum, chosen_costs)),
-            "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used),
-            "alternatives": {f"each by {k}": _summary(*map(Cost.sum, alt_costs[k])) for k in alt_costs},
-        })  # fmt: skip
+    visits_row = len(rows)
     # ft: equal-angle rotations of qubits without couplings merged by Hamming-weight phasing
     hamming: list[tuple[float, tuple[int, ...]]] = []
     if target == "ft" and optimize == "cx":
@@ -554,6 +555,31 @@ def _assemble(
             rows.append({"group": "equal-angle rotations", "count": len(hamming),
                          "construction": "hamming-weight phasing", "cost": _summary(hw_cost, hw_log),
                          "alternatives": {"rotations": _summary(Cost.of(rz=plain), Cost.of(rz=plain))}})  # fmt: skip
+    # ft: nodes of equal kind phased in Hamming-weight batches, in the ancillas the plan holds anyway
+    batches: list[tuple[VisitGroup, ...]] = []
+    if pooled:
+        batches, chosen_visits = _visit_batches(chosen_visits, ancillas, target, optimize, budget)
+    batched = {id(grp) for batch in batches for grp in batch}
+    for grp, products in chosen_visits:
+        if products and target == "ft":
+            const += VisitPhase("gamma", grp.coefficient, grp.visitors, (), products).constant
+    for batch in batches:
+        gad = _batch_gadget("gamma", batch, ())
+        const += gad.constant
+        chosen_costs[0].append(gad.cost())
+        chosen_costs[1].append(gad.logical_cost())
+    if batched:  # their nodes' own costs give way to the batches'
+        keep = [id(grp) not in batched for grp in fc.visits] + [True] * len(batches)
+        for costs in chosen_costs:
+            costs[:] = [c for c, k in zip(costs, keep, strict=True) if k]
+    if fc.visits:
+        used = [k for k, r in v_rows.items() if r]
+        note = f"; {len(batched)} in {len(batches)} hamming-weight batches" if batches else ""
+        rows.insert(visits_row, {
+            "group": "node visits", "count": len(fc.visits), "cost": _summary(*map(Cost.sum, chosen_costs)),
+            "construction": " + ".join(f"{k} ({v_rows[k]})" for k in used) + note,
+            "alternatives": {f"each by {k}": _summary(*map(Cost.sum, alt_costs[k])) for k in alt_costs},
+        })  # fmt: skip
     c0, h, j = ising_form(lin, quad)
     const += c0
     data_lin = tuple(sorted(h.items()))
@@ -563,5 +589,31 @@ def _assemble(
                     "cost": _summary(ising.cost(), ising.logical_cost()), "alternatives": {}})  # fmt: skip
     return PhasePlan(
         ancillas, const, "feasible", target, optimize, n, data_lin, data_quad,
-        tuple(hamming), tuple(chosen_visits), tuple(chosen_sums), tuple(rows),
+        tuple(hamming), tuple(chosen_visits), tuple(chosen_sums), tuple(rows), tuple(batches),
     )  # fmt: skip
+
+
+def _visit_batches(
+    visits: list[tuple[VisitGroup, bool]], pool: int, target: Target, optimize: Optimize, budget: int | None
+) -> tuple[list[tuple[VisitGroup, ...]], list[tuple[VisitGroup, bool]]]:
+    """The nodes whose pair products go in Hamming-weight batches (:func:`~qcpp.plan.phase_choice.visit_batches`,
+    per kind of node in order of first appearance, its nodes in their order) and the visit gadgets left, in their
+    order."""
+    kinds: dict[tuple[tuple[int, ...], float], list[VisitGroup]] = {}
+    for grp, products in visits:
+        if products:
+            kinds.setdefault((tuple(len(v) for v in grp.visitors), grp.coefficient), []).append(grp)
+    batches: list[tuple[VisitGroup, ...]] = []
+    for (sizes, coefficient), grps in kinds.items():
+        start = 0
+        for size in visit_batches(sizes, coefficient, len(grps), pool, target, optimize, budget):
+            batches.append(tuple(grps[start : start + size]))
+            start += size
+    batched = {id(grp) for batch in batches for grp in batch}
+    return batches, [(grp, products) for grp, products in visits if id(grp) not in batched]
+
+
+def _batch_gadget(gamma: str, batch: tuple[VisitGroup, ...], pool: tuple[int, ...]) -> VisitBatch:
+    """A batch's gadget on the first ancillas of ``pool`` it needs (all of them if fewer)."""
+    need = visit_batch_ancillas(tuple(len(v) for v in batch[0].visitors), len(batch))
+    return VisitBatch(gamma, batch[0].coefficient, tuple(grp.visitors for grp in batch), pool[:need])

@@ -33,6 +33,7 @@ from typing import Any, Literal
 from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE
 from qcpp.gadgets.phase_sums import SumsPhase
 from qcpp.gadgets.phase_visits import VisitPhase, visit_ancillas
+from qcpp.gadgets.visit_batch import VisitBatch, visit_batch_ancillas
 from qcpp.ir.cost import Cost, Target
 from qcpp.plan.options import Optimize
 
@@ -50,6 +51,7 @@ __all__ = [
     "prefer_folded",
     "score",
     "sums_constructions",
+    "visit_batches",
     "visit_choice",
 ]
 
@@ -187,6 +189,61 @@ def visit_choice(
     name, _, gadget = pick
     ancillas = 0 if gadget is None else visit_ancillas(sizes, gadget.products)
     return VisitChoice(name, gadget, costs, ancillas)
+
+
+@lru_cache(maxsize=1024)
+def visit_batches(
+    sizes: tuple[int, ...], coefficient: float, count: int, pool: int, target: Target, optimize: Optimize,
+    budget: int | None,
+) -> tuple[int, ...]:
+    """How the plan batches ``count`` nodes whose visit gadgets compute pair products (the ``visit pairs``
+    construction) with visitors of these sizes and this coefficient (:class:`~qcpp.gadgets.visit_batch.VisitBatch`).
+
+    Only on the ``ft`` target with ``optimize="cx"`` and a nonzero coefficient. A batch holds every node's
+    ancillas at once, so it takes as many nodes as fit in ``pool`` (the clean ancillas the phase separator has
+    anyway: its other gadgets' largest need) and in the budget: batching never adds a qubit. The nodes go in
+    batches of that size, in order; the last, smaller one only where it scores better than its nodes' own gadgets.
+
+    Args:
+        sizes: per visitor, its usable edges at each node (2 to 4).
+        coefficient: the factor of each node's ``sum_{a<b} y_a y_b``.
+        count: nodes of this kind.
+        pool: clean ancillas the batches may use.
+        target, optimize, budget: the plan's options.
+
+    Returns:
+        Nodes per batch, in order (empty: no batch); the nodes after them keep their own gadgets.
+
+    >>> visit_batches((4, 4, 4, 4), 8.0, 10, 80, "ft", "cx", None)
+    (4, 4, 2)
+    >>> visit_batches((4, 4), 8.0, 10, 80, "nisq", "cx", None)
+    ()
+
+    Pure memo: ``visit_batches.cache_clear()`` empties it."""
+    if target != "ft" or optimize != "cx" or abs(coefficient) <= COEFFICIENT_TOLERANCE or count < 1:
+        return ()
+    room = pool if budget is None else min(pool, budget)
+    lo, hi = 0, count  # the most nodes whose batch fits: visit_batch_ancillas grows with the nodes
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if visit_batch_ancillas(sizes, mid) <= room:
+            lo = mid
+        else:
+            hi = mid - 1
+    single = VisitPhase("gamma", coefficient, tuple(tuple(range(k)) for k in sizes), (), True)
+
+    def better(nodes: int) -> bool:
+        batch = VisitBatch("gamma", coefficient, (tuple(tuple(range(k)) for k in sizes),) * nodes, ())
+        return score(batch.cost(), batch.logical_cost(), target) < score(
+            nodes * single.cost(), nodes * single.logical_cost(), target
+        )
+
+    if lo < 1 or not better(lo):
+        return ()
+    out = [lo] * (count // lo)
+    if count % lo and better(count % lo):
+        out.append(count % lo)
+    return tuple(out)
 
 
 @lru_cache(maxsize=1024)

@@ -46,9 +46,12 @@ import numpy as np
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingKind, IsingPhase, ising_cost
 from qcpp.gadgets.phase_sums import SumsKind, SumsPhase, SumsShape
+from qcpp.gadgets.phase_visits import VisitPhase
+from qcpp.gadgets.visit_batch import VisitBatch, visit_batch_ancillas
 from qcpp.ir.cost import Cost
 from qcpp.plan.call_graph import SCENARIOS_KEPT, Deferred, GadgetKind
 from qcpp.plan.mixer_classes import Count, boundary, class_counts
+from qcpp.plan.options import Optimize
 from qcpp.plan.phase import coupling_products, phase_plan
 from qcpp.plan.phase_choice import (
     couplings_floor,
@@ -56,6 +59,7 @@ from qcpp.plan.phase_choice import (
     plan_score,
     prefer_folded,
     sums_constructions,
+    visit_batches,
     visit_choice,
 )
 from qcpp.problem.cost import balanced_pairs
@@ -120,6 +124,32 @@ def _layer(
         deferred = Deferred(kind, shape.cost(), shape.logical_cost(), arithmetic, shape, shape.num_ancillas)
         out.append((GadgetKind.of(deferred), 1))
     return PhaseLayer(tuple(out), num_ancillas)
+
+
+def _batched(
+    parts: list[tuple[Gadget, int, int]], pool: int, n: int, optimize: Optimize, budget: int | None
+) -> list[tuple[Gadget, int, int]]:
+    """The ``ft`` layer's visit classes in Hamming-weight batches as the plan batches its nodes
+    (:func:`qcpp.plan.phase_choice.visit_batches` per kind, in the ``pool`` ancillas): per class, its full batches,
+    the last smaller one, and the nodes left with their own gadgets. A batch's example puts node ``i``'s edges
+    after node ``i - 1``'s, modulo the ``n`` data qubits (real batches share edges too)."""
+    out: list[tuple[Gadget, int, int]] = []
+    for g, count, need in parts:
+        if not (isinstance(g, VisitPhase) and g.products):
+            out.append((g, count, need))
+            continue
+        sizes = tuple(len(v) for v in g.visitors)
+        batches = Counter(visit_batches(sizes, g.coefficient, count, pool, "ft", optimize, budget))
+        for size, times in batches.items():
+            width = sum(sizes)
+            nodes = tuple(
+                tuple(tuple((i * width + q) % n for q in v) for v in g.visitors) for i in range(size)
+            )
+            out.append((VisitBatch("gamma", g.coefficient, nodes, ()), times, visit_batch_ancillas(sizes, size)))
+        left = count - sum(size * times for size, times in batches.items())
+        if left:
+            out.append((g, left, need))
+    return out
 
 
 def _arithmetic(balance: _Balance, pool: range) -> Gadget:
@@ -321,6 +351,8 @@ def phase_layer(
         groups = hamming_groups(enumerate(values.tolist()), target, optimize, ancilla_budget)
         parts += [(hw, 1, hw.num_ancillas) for hw, _ in groups]
         values = np.delete(values, [q for _, qs in groups for q in qs])
+        pool = max([0, *(need for _, _, need in parts), *(b.shape.num_ancillas for b in balance)])
+        parts = _batched(parts, pool, s.num_variables, optimize, ancilla_budget)  # type: ignore[arg-type]
     rotations = int(np.count_nonzero(np.abs(values / 2) > COEFFICIENT_TOLERANCE))
     layer = _layer(s, rotations, 0, parts, balance)
     if floor is not None and floor <= plan_score(layer.kinds(), target)[0]:  # type: ignore[arg-type]

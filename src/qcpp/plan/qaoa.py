@@ -128,7 +128,7 @@ class QaoaPlan:
             representation=o.phase,
             optimize=o.optimize,
             ancilla_budget=o.ancilla_budget,
-            fold=o.phase_layout not in ("spatial", "medial"),  # those layouts place each robot's sum on its edges
+            pooled=o.phase_layout not in ("spatial", "medial"),  # those place each term on its own edges
         )
 
     @property
