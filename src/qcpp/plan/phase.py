@@ -11,8 +11,9 @@ Two representations of the cost ``C``:
   for the target (:func:`phase_plan`): the linear part as RZ gates, each node that several robots can pass as
   visit bits (:class:`~qcpp.gadgets.phase_visits.VisitPhase`) or couplings, the balance term as
   arithmetic on path-length registers (:class:`~qcpp.gadgets.phase_sums.SumsPhase`; on ``ft`` one register
-  per balanced pair, the difference of two robots' lengths) or couplings, and on
-  the ``ft`` target equal-angle rotations merged by Hamming-weight phasing. ``O(re log re)`` CX.
+  per balanced pair, the difference of two robots' lengths) or couplings, and on the ``ft`` target equal-angle
+  rotations merged by Hamming-weight phasing, the nodes' visit products too
+  (:class:`~qcpp.gadgets.visit_batch.VisitBatch`). ``O(re log re)`` CX.
 
 Cost models (:func:`~qcpp.plan.phase_choice.score`): ``nisq`` minimises CX, then rotations; ``ft`` minimises T
 gates with an AND at 4 T (its uncompute 0 T: measurement-based), a Toffoli at 7 T and an arbitrary rotation at
@@ -246,6 +247,7 @@ def phase_plan(
             (:class:`~qcpp.gadgets.visit_batch.VisitBatch`). ``False`` keeps each term on its own edges: a form
             per robot and a gadget per node, which the ``spatial`` and ``medial`` layouts place
             (:mod:`qcpp.plan.phase_layout`).
+
     Raises:
         ValueError: for an unknown option.
     """
@@ -417,10 +419,10 @@ def coupling_products(sizes: Sequence[int], matrix: Sequence[Sequence[float]]) -
 
 
 def _sums_options(
-    grp: SumsGroup, n: int, target: Target, optimize: Optimize, budget: int | None, fold: bool
+    grp: SumsGroup, n: int, target: Target, optimize: Optimize, budget: int | None, pooled: bool
 ) -> dict:
     """The constructions a sums group may use, with their own costs, ancillas and the groups each builds on: the
-    group itself, or (``fold``) its difference forms (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`, one
+    group itself, or (``pooled``) its difference forms (:meth:`~qcpp.problem.feasible_cost.SumsGroup.folded`, one
     gadget or run each, one after the other) where :func:`~qcpp.plan.phase_choice.prefer_folded` says so."""
     m = grp.matrix
     prods = coupling_products([len(f) for f in grp.forms], m)
@@ -430,7 +432,7 @@ def _sums_options(
     if grp.integral and optimize == "cx":
         out["constants"] = {}
         own = _arithmetic_variants(grp, n)
-        parts = grp.folded() if fold else None
+        parts = grp.folded() if pooled else None
         folded = [_arithmetic_variants(part, n) for part in parts] if parts else []
         for variant in SUMS_VARIANTS:
             cost, logical, anc, const = own[variant]

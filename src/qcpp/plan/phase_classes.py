@@ -7,7 +7,9 @@ distinct parts:
 * **node visits**: a node that ``m >= 2`` robots can pass (all robots that do not start or end there) gets a
   visit gadget whose kind depends only on the node's degree ``d`` and ``m``; so the visits cost
   ``sum over (d, m) classes of count x cost``, and a class's construction (visit bits or pairs) is the answer of
-  :func:`qcpp.plan.phase_choice.visit_choice`, the very function the plan asks for each of its nodes;
+  :func:`qcpp.plan.phase_choice.visit_choice`, the very function the plan asks for each of its nodes; on the
+  ``ft`` target a class's visit pairs go in Hamming-weight batches
+  (:func:`~qcpp.plan.phase_choice.visit_batches`, as the plan batches nodes of one kind);
 * **balance**: one arithmetic gadget (:class:`~qcpp.gadgets.phase_sums.SumsPhase`) over each robot's
   reduced path-length form: weight 1 on every edge, 0 on the edges at its own start and goal (collapsed to a
   constant), corner edges merged in pairs (a corner that is not an endpoint is a corridor); or, where the plan
