@@ -92,3 +92,23 @@ def test_batch_sizes_follow_the_pool_and_the_budget() -> None:
     assert visit_batches(sizes, 0.0, 10, 1_000, "ft", "cx", None) == ()
     batches = visit_batches(sizes, 8.0, 100, 400, "ft", "cx", None)
     assert sum(batches) <= 100 and Counter(batches).most_common(1)[0][0] == max(batches)
+
+
+def test_a_batch_refuses_nodes_that_share_an_edge() -> None:
+    with pytest.raises(ValueError, match="share no edge"):
+        VisitBatch("gamma", 8.0, (((0, 1), (2, 3)), ((1, 4), (5, 6))), ())
+    with pytest.raises(ValueError, match="same visitor sizes"):
+        VisitBatch("gamma", 8.0, (((0, 1), (2, 3)), ((4, 5, 6), (7, 8))), ())
+
+
+def test_the_plan_batches_nodes_of_one_colour() -> None:
+    s = default_scenario(6, 6, 3)
+    colour = {tuple(v): sum(divmod(g.node, s.grid.cols)) % 2 for g in _groups(s) for v in [g.visitors]}
+    for b in _batches(phase_plan(s, target="ft")):
+        assert len({colour[tuple(node)] for node in b.nodes}) == 1
+
+
+def _groups(s: Scenario) -> tuple:
+    from qcpp.problem.feasible_cost import feasible_cost
+
+    return feasible_cost(s).visits

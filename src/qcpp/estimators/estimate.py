@@ -369,13 +369,13 @@ def _kind_depth_bound(kind: GadgetKind) -> Depth:
     if d is not None:
         return d
     cost = kind.cost()
-    if isinstance(ex, VisitBatch):
-        # its nodes may share edges, and so wait for one another, however the kind's example places them: one
-        # node alone (with the phase of its own products) once per node, then the phase of all products
+    if isinstance(ex, VisitBatch) and cost.total > _OWN_DEPTH_GATES:
+        # its nodes share no edge, so their halves run side by side: one node alone (with the phase of its own
+        # products), then the phase of all products by its shape
         one = VisitBatch(ex.gamma, ex.coefficient, ex.nodes[:1], ex.ancillas)
         top = max(q + 1 for g in one.emit() for q in g.qubits)
         alone = gadget_depth(one, (Register("q", top),))
-        return replace(len(ex.nodes) * alone + _arithmetic_depth_bound(ex.hamming().shape), kind="bound")
+        return replace(alone + _arithmetic_depth_bound(ex.hamming().shape), kind="bound")
     if cost.total <= _OWN_DEPTH_GATES:
         return gadget_depth(ex.build() if isinstance(ex, Deferred) else ex, _example_registers(kind))
     shape = getattr(ex, "shape", None)

@@ -14,6 +14,9 @@ at the angle ``2 gamma coefficient``. Nodes of the grid mostly share that coeffi
    products, then one rotation per bit of the count, ``floor(log2 n) + 1`` rotations instead of ``n``);
 3. uncomputes the nodes in reverse order: every ancilla returns to |0> on every input.
 
+A batch's nodes share no edge (the plan takes nodes of one checkerboard colour), so their compute halves act on
+disjoint qubits and run side by side.
+
 With ``m`` visitors of which ``m3`` have three and ``m4`` four usable edges, each node costs ``m3 + 2 m4 +
 C(m, 2)`` ANDs and ``2 (2 m3 + 4 m4)`` CX (compute and mirror). Each rotation saved costs about one AND of the
 popcount, so on the ``ft`` model (rotation 30 T, AND 4 T) a batch of ``n`` products saves about
@@ -33,6 +36,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from itertools import accumulate
 from typing import NamedTuple
 
 from qcpp.gadgets.phase_sums import SumsPhase
@@ -85,7 +89,8 @@ class VisitBatch(PricedByKind):
         gamma: Symbol name of the layer's angle.
         coefficient: The factor of each node's ``sum_{a<b} y_a y_b`` (nonzero).
         nodes: Per node, per visitor, the qubits of its usable edges there (2 to 4); every node has the same
-            numbers of usable edges per visitor.
+            numbers of usable edges per visitor, and no two nodes share an edge (so their halves run side by
+            side, and the gadget's depth is its kind's).
         ancillas: Clean ancillas (at least :func:`visit_batch_ancillas` of them).
     """
 
@@ -97,6 +102,22 @@ class VisitBatch(PricedByKind):
     def __post_init__(self) -> None:
         if len({tuple(len(v) for v in node) for node in self.nodes}) != 1:
             raise ValueError("a visit batch needs at least one node, all with the same visitor sizes")
+        edges = [q for node in self.nodes for v in node for q in v]
+        if len(set(edges)) != len(edges):
+            raise ValueError("the nodes of a visit batch must share no edge (take nodes of one checkerboard colour)")
+
+    @classmethod
+    def of_kind(cls, sizes: tuple[int, ...], nodes: int, coefficient: float) -> VisitBatch:
+        """A batch of ``nodes`` nodes on abstract qubits (node ``i``'s edges after node ``i - 1``'s), no ancillas:
+        what a kind costs.
+
+        >>> VisitBatch.of_kind((2, 3), 2, 8.0).nodes
+        (((0, 1), (2, 3, 4)), ((5, 6), (7, 8, 9)))
+        """
+        width = sum(sizes)
+        node = tuple(tuple(range(end - k, end)) for k, end in zip(sizes, accumulate(sizes), strict=True))
+        return cls("gamma", coefficient, tuple(tuple(tuple(i * width + q for q in v) for v in node)
+                                               for i in range(nodes)), ())  # fmt: skip
 
     @property
     def _sizes(self) -> tuple[int, ...]:

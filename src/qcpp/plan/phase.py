@@ -599,14 +599,14 @@ def _visit_batches(
     visits: list[tuple[VisitGroup, bool]], pool: int, target: Target, optimize: Optimize, budget: int | None
 ) -> tuple[list[tuple[VisitGroup, ...]], list[tuple[VisitGroup, bool]]]:
     """The nodes whose pair products go in Hamming-weight batches (:func:`~qcpp.plan.phase_choice.visit_batches`,
-    per kind of node in order of first appearance, its nodes in their order) and the visit gadgets left, in their
-    order."""
-    kinds: dict[tuple[tuple[int, ...], float], list[VisitGroup]] = {}
+    per kind and colour of node in order of first appearance, its nodes in their order: nodes of one colour share
+    no edge, so a batch's nodes run side by side) and the visit gadgets left, in their order."""
+    kinds: dict[tuple[tuple[int, ...], float, int], list[VisitGroup]] = {}
     for grp, products in visits:
         if products:
-            kinds.setdefault((tuple(len(v) for v in grp.visitors), grp.coefficient), []).append(grp)
+            kinds.setdefault((tuple(len(v) for v in grp.visitors), grp.coefficient, grp.colour), []).append(grp)
     batches: list[tuple[VisitGroup, ...]] = []
-    for (sizes, coefficient), grps in kinds.items():
+    for (sizes, coefficient, _), grps in kinds.items():
         start = 0
         for size in visit_batches(sizes, coefficient, len(grps), pool, target, optimize, budget):
             batches.append(tuple(grps[start : start + size]))

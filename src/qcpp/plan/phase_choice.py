@@ -233,7 +233,7 @@ def visit_batches(
     single = VisitPhase("gamma", coefficient, tuple(tuple(range(k)) for k in sizes), (), True)
 
     def better(nodes: int) -> bool:
-        batch = VisitBatch("gamma", coefficient, (tuple(tuple(range(k)) for k in sizes),) * nodes, ())
+        batch = VisitBatch.of_kind(sizes, nodes, coefficient)
         return score(batch.cost(), batch.logical_cost(), target) < score(
             nodes * single.cost(), nodes * single.logical_cost(), target
         )

@@ -133,8 +133,9 @@ def _batched(
 ) -> list[tuple[Gadget, int, int]]:
     """The ``ft`` layer's visit classes in Hamming-weight batches as the plan batches its nodes
     (:func:`qcpp.plan.phase_choice.visit_batches` per kind, in the ``pool`` ancillas): per class, its full batches,
-    the last smaller one, and the nodes left with their own gadgets. A batch's example puts node ``i``'s edges
-    after node ``i - 1``'s, modulo the ``n`` data qubits (real batches share edges too)."""
+    the last smaller one, and the nodes left with their own gadgets (a part per class and colour). A batch's
+    example puts node ``i``'s edges after node ``i - 1``'s: its nodes, of one colour, share no edge, and they
+    fit in the ``n`` data qubits as the real nodes do."""
     out: list[tuple[Gadget, int, int]] = []
     for g, count, need in parts:
         if not (isinstance(g, VisitPhase) and g.products):
@@ -143,11 +144,9 @@ def _batched(
         sizes = tuple(len(v) for v in g.visitors)
         batches = Counter(visit_batches(sizes, g.coefficient, count, pool, "ft", optimize, budget))
         for size, times in batches.items():
-            width = sum(sizes)
-            nodes = tuple(
-                tuple(tuple((i * width + q) % n for q in v) for v in g.visitors) for i in range(size)
-            )
-            out.append((VisitBatch("gamma", g.coefficient, nodes, ()), times, visit_batch_ancillas(sizes, size)))
+            batch = replace(VisitBatch.of_kind(sizes, size, g.coefficient), gamma=g.gamma)
+            assert size * sum(sizes) <= n, (size, sizes, n)  # as many disjoint nodes as the real ones, who fit
+            out.append((batch, times, visit_batch_ancillas(sizes, size)))
         left = count - sum(size * times for size, times in batches.items())
         if left:
             out.append((g, left, need))
@@ -289,8 +288,10 @@ def phase_layer(
         c = e_v - np.where(counted, t, 0.0)
         node_term = np.where(counted, a2 * (2 * c + 2), 0.0)
         passers = n_r - e_v
-        classes = Counter(zip(g.degree[counted].tolist(), passers[counted].tolist()))
-        for (degree, m), count in sorted(classes.items()):
+        # on ft the nodes of each colour go in batches of their own (phase_choice.visit_batches), as the plan's
+        colour = np.indices((grid.rows, grid.cols)).sum(axis=0).ravel() % 2 if target == "ft" else 0 * node_term
+        classes = Counter(zip(g.degree[counted].tolist(), passers[counted].tolist(), colour[counted].tolist()))
+        for (degree, m, _), count in sorted(classes.items()):
             if m < 2:
                 continue
             # no coupling exists yet when the visits are chosen (the balance is arithmetic, checked below)

@@ -79,11 +79,14 @@ class VisitGroup:
         node: Grid node index.
         coefficient: The factor (``8 * alpha2`` for a degree term).
         visitors: Per visiting robot, the variable indices of its usable edges at the node (2 to 4 of them).
+        colour: The node's colour on the grid's checkerboard, ``(row + col) % 2``: two nodes of one colour are
+            never neighbours, so their groups share no variable.
     """
 
     node: int
     coefficient: float
     visitors: tuple[tuple[int, ...], ...]
+    colour: int = 0
 
     def evaluate(self, x: np.ndarray) -> np.ndarray:
         """Value on ``(N, n)`` 0/1 rows."""
@@ -390,7 +393,7 @@ def feasible_cost(scenario: Scenario) -> FeasibleCost:
                     lin[r][k] += a2 * (2 * c + 2)
             if len(passers) >= 2:
                 visitors = tuple(tuple(r * v_per + k for k in lives[r][vtx]) for r in passers)
-                visits.append(VisitGroup(vtx, 8.0 * a2, visitors))
+                visits.append(VisitGroup(vtx, 8.0 * a2, visitors, sum(g.nodes[vtx]) % 2))
     # balance
     sums: list[SumsGroup] = []
     pairs = balanced_pairs(s) if a1 != 0.0 else []
