@@ -95,9 +95,10 @@ def test_sweep_sampled(s: Scenario, target: str) -> None:
 
 
 @pytest.mark.heavy
+@pytest.mark.parametrize("target", ["nisq", "ft"])  # ft: the balance folded per pair, visit batches
 @pytest.mark.parametrize("s", sweep(), ids=_id)
-def test_sweep_every_feasible_assignment(s: Scenario) -> None:
-    plan = phase_plan(s)
+def test_sweep_every_feasible_assignment(s: Scenario, target: str) -> None:
+    plan = phase_plan(s, target=target)  # type: ignore[arg-type]
     circ = lowered(plan, s.num_variables)
     pl = [enumerate_paths(s, r) for r in range(s.num_robots)]
     combos = list(itertools.product(*pl))
