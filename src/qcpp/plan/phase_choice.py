@@ -4,9 +4,10 @@ The phase separator implements every term group of the feasible cost with the ch
 the target's cost model (:func:`score`). The decision depends only on the group's *shape* and the plan options,
 so it is made here, once, and asked both by :func:`qcpp.plan.phase.phase_plan` (group by group) and by
 :func:`qcpp.plan.phase_classes.phase_layer` (once per class of nodes): :func:`visit_choice` for a node several
-robots can pass, :func:`hamming_choice` for equal rotations on the ``ft`` target, :func:`sums_constructions` for
-a balance group (whose couplings interact with the visits', so the plan compares its candidates as whole plans
-by :func:`plan_score`).
+robots can pass, :func:`visit_batches` for how the ``ft`` target batches such nodes, :func:`hamming_choice` for
+equal rotations on the ``ft`` target, :func:`sums_constructions` for a balance group (whose couplings interact
+with the visits', so the plan compares its candidates as whole plans by :func:`plan_score`) and
+:func:`prefer_folded` for whether it is taken per balanced pair.
 
 Example:
     >>> c = visit_choice((4, 4, 4), 8.0, new_couplings=48, target="nisq", optimize="cx", budget=None)
