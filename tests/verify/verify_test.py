@@ -283,3 +283,17 @@ def test_gadget_method_certifies_a_30x30_field_with_8_robots_at_p_3() -> None:
     print(f"30x30, 8 robots, p = 3: gadget certification in {time.perf_counter() - start:.1f} s")
     assert_exhaustive_hold(report)
     assert {c.part for c in report.checks} == {"rule", "mixer", "phase", "initial_state"}
+
+
+def test_the_command_verifies_the_ft_circuit_and_refuses_an_unknown_target() -> None:
+    from ..cli.clirun import run
+
+    for method in ("state", "gadgets"):
+        res = run("verify", "--grid", "3x3", "--robots", "2", "--target", "ft", "--method", method, "--json")
+        assert res.exit_code == 0, res.stderr
+        report = json.loads(res.stdout)
+        assert report["target"] == "ft" and report["holds"] and report["method"] == method
+        if method == "gadgets":  # the ft circuit's own phase kinds are among those checked
+            assert any(c["subject"].startswith("VisitBatch") for c in report["checks"])
+    bad = run("verify", "--grid", "3x3", "--target", "xx")
+    assert bad.exit_code == 2 and bad.stderr.count("\n") == 1 and "--target" in bad.stderr

@@ -544,5 +544,5 @@ def verify_gadgets(
         checks.append(Check(counterexample.check, failure.part, "exhaustive", 0, False))
     return VerifyReport(
         _scenario_name(scenario), p, rule, "gadgets", counterexample is None, tuple(checks), counterexample,
-        time.perf_counter() - start, seed,
+        time.perf_counter() - start, seed, options.target,
     )  # fmt: skip

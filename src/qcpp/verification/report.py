@@ -112,6 +112,7 @@ class VerifyReport:
         counterexample: The first failure found, or ``None``.
         seconds: Wall time.
         seed: Seed of the angles (and of the sample, if inputs were sampled).
+        target: The cost model the circuit's constructions were chosen for (``nisq`` or ``ft``).
     """
 
     scenario: str
@@ -123,6 +124,7 @@ class VerifyReport:
     counterexample: Counterexample | None
     seconds: float
     seed: int
+    target: str = "nisq"
 
     @property
     def exhaustive(self) -> bool:
@@ -141,7 +143,8 @@ class VerifyReport:
         scope = "every feasible input" if self.exhaustive else "the sampled inputs"
         lines = [
             f"feasibility preservation {verdict}: {self.scenario}, p = {self.p}, rule {self.rule}, "
-            f"method {self.method} ({scope}; {self.seconds:.1f} s)"
+            + (f"target {self.target}, " if self.target != "nisq" else "")
+            + f"method {self.method} ({scope}; {self.seconds:.1f} s)"
         ]
         for c in self.checks:
             mark = "ok  " if c.held else "FAIL"

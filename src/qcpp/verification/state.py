@@ -305,5 +305,5 @@ def verify_state(
             break
     return VerifyReport(
         _scenario_name(scenario), p, rule, "state", counterexample is None, tuple(checks), counterexample,
-        time.perf_counter() - start, seed,
+        time.perf_counter() - start, seed, options.target,
     )  # fmt: skip

@@ -5,6 +5,7 @@ Examples::
     qcpp verify examples/paper_3x3.toml -p 2
     qcpp verify examples/paper_3x3.toml -p 1 --rule paper --json
     qcpp verify big.toml -p 3 --method gadgets
+    qcpp verify --grid 4x4 --robots 3 --target ft
 
 Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s), the output,
 the gadget and its plaquette), 2 on bad input (one line on stderr). Progress goes to stderr
@@ -26,7 +27,7 @@ from qcpp.cli.commands.inline_scenario import (
     ScenarioFileArg,
     given_scenario,
 )
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
+from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, TargetFlag
 from qcpp.cli.progress import Progress
 
 __all__ = ["register", "verify_command"]
@@ -37,6 +38,7 @@ Examples:
   qcpp verify examples/paper_3x3.toml -p 2
   qcpp verify --grid 3x4 --robots 2 --obstacle 1,1 --samples 200 --json
   qcpp verify examples/two_robots_5x5.toml -p 3 --method gadgets
+  qcpp verify --grid 4x4 --robots 3 --target ft
 
 Methods: state = run the lowered circuit on every feasible input (or a
 sample); gadgets = every gadget kind on all its local inputs (any size).
@@ -48,6 +50,7 @@ def verify_command(
     scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
     rule: RuleFlag = "exact",
+    target: TargetFlag = "nisq",
     method: Annotated[str, typer.Option("--method", help="state, gadgets or auto.")] = "auto",
     samples: Annotated[
         int, typer.Option("--samples", help="state: most feasible inputs per part; a seeded sample beyond.")
@@ -60,12 +63,14 @@ def verify_command(
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Verify feasibility preservation (see ``qcpp verify --help``)."""
+    from qcpp.plan.options import PlanOptions
     from qcpp.verification import verify
 
+    options = PlanOptions(rule=rule, target=target)  # type: ignore[arg-type]
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
     s = given.scenario
     with Progress(f"verify {given.label}", unit="checks") as bar:
-        report = verify(s, p, rule, method, samples, seed, progress=bar.update)  # type: ignore[arg-type]
+        report = verify(s, p, rule, method, samples, seed, progress=bar.update, options=options)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps(report.to_dict()))
     else:
