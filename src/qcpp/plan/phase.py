@@ -38,6 +38,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cache
 
 from qcpp.gadgets import Gadget
 from qcpp.gadgets.phase_ising import COEFFICIENT_TOLERANCE, IsingPhase, ising_form
@@ -433,15 +434,22 @@ def _sums_options(
         out["constants"] = {}
         own = _arithmetic_variants(grp, n)
         parts = grp.folded() if pooled else None
-        folded = [_arithmetic_variants(part, n) for part in parts] if parts else []
+
+        @cache
+        def pairs() -> list[dict[str, tuple[Cost, Cost, int, float]]]:  # priced only where the fold is considered
+            assert parts is not None
+            return [_arithmetic_variants(part, n) for part in parts]
+
+        def folded(variant: str) -> tuple[Cost, Cost, int, float]:
+            each = [p[variant] for p in pairs()]
+            return (Cost.sum(e[0] for e in each), Cost.sum(e[1] for e in each), max(e[2] for e in each),
+                    sum(e[3] for e in each))  # fmt: skip
+
         for variant in SUMS_VARIANTS:
             cost, logical, anc, const = own[variant]
             use: tuple[SumsGroup, ...] = (grp,)
-            if parts:
-                each = [f[variant] for f in folded]
-                one = (Cost.sum(e[0] for e in each), Cost.sum(e[1] for e in each), max(e[2] for e in each))
-                if prefer_folded((cost, logical, anc), one, target, budget):
-                    (cost, logical, anc), const, use = one, sum(e[3] for e in each), parts
+            if parts and prefer_folded((cost, logical, anc), lambda v=variant: folded(v)[:3], target, budget):
+                (cost, logical, anc, const), use = folded(variant), parts
             out["costs"][variant] = (cost, logical)
             out["ancillas"][variant] = anc
             out["constants"][variant] = const

@@ -286,7 +286,7 @@ def hamming_groups(
 
 
 def prefer_folded(
-    two: tuple[Cost, Cost, int], one: tuple[Cost, Cost, int], target: Target, budget: int | None
+    two: tuple[Cost, Cost, int], one: Callable[[], tuple[Cost, Cost, int]], target: Target, budget: int | None
 ) -> bool:
     """Whether a balance construction takes its group folded into difference forms (``one``,
     :meth:`qcpp.problem.feasible_cost.SumsGroup.folded`: one gadget per balanced pair) rather than as the group's
@@ -300,15 +300,16 @@ def prefer_folded(
     registers, become one tree per pair: the circuit gets deeper (``benchmarks/balance_difference.py``).
 
     Args:
-        two, one: ``(lowered cost, logical cost, clean ancillas)`` of the same construction either way (``one``:
-            summed over the pairs' gadgets, the ancillas of the largest).
+        two: ``(lowered cost, logical cost, clean ancillas)`` of the construction on the group's own forms.
+        one: gives the same of the folded construction (summed over the pairs' gadgets, the ancillas of the
+            largest); called only where the fold is considered (the ``ft`` target), so other targets price nothing.
         target, budget: the plan's options.
 
     Returns:
         ``True`` to fold.
 
     >>> two = (Cost.of(cx=554, rz=45), Cost.of(cx=554, rz=45), 32)
-    >>> one = (Cost.of(cx=542, rz=21), Cost.of(cx=542, rz=21), 34)
+    >>> one = lambda: (Cost.of(cx=542, rz=21), Cost.of(cx=542, rz=21), 34)
     >>> prefer_folded(two, one, "ft", None), prefer_folded(two, one, "ft", 33), prefer_folded(two, one, "nisq", None)
     (True, False, False)
     """
@@ -318,7 +319,7 @@ def prefer_folded(
     def key(c: tuple[Cost, Cost, int]) -> tuple[bool, tuple[int, ...], int]:
         return budget is not None and c[2] > budget, score(c[0], c[1], target), c[2]
 
-    return key(one) < key(two)
+    return key(one()) < key(two)
 
 
 def sums_constructions(

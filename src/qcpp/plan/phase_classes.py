@@ -329,9 +329,13 @@ def phase_layer(
         balance = (whole,)
         folded = whole.folded()
         if folded is not None:
-            one = (Cost.sum(b.shape.cost() for b in folded), Cost.sum(b.shape.logical_cost() for b in folded),
-                   max(b.shape.num_ancillas for b in folded))  # fmt: skip
             two = (whole.shape.cost(), whole.shape.logical_cost(), whole.shape.num_ancillas)
+
+            def one() -> tuple[Cost, Cost, int]:
+                assert folded is not None
+                return (Cost.sum(b.shape.cost() for b in folded), Cost.sum(b.shape.logical_cost() for b in folded),
+                        max(b.shape.num_ancillas for b in folded))  # fmt: skip
+
             if prefer_folded(two, one, target, ancilla_budget):  # type: ignore[arg-type]
                 balance = folded  # as the plan folds it (its other variants are the plan's to price)
         need = max(b.shape.num_ancillas for b in balance)
