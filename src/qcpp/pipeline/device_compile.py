@@ -338,8 +338,7 @@ def _compile_for_device(
                 greedy = _greedy_compare(circuit, other, seed, layouts, measured, routing, context)
                 if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = circuit, greedy, "greedy"
-            objective = default_objective(routed.device) if optimize_for is None else optimize_for
-            return _finish(compiled, logical, [routed], circuit, lowered, start, method, objective, measured, say)
+            return _finish(compiled, logical, [routed], circuit, lowered, start, method, optimize_for, measured, say)
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -351,9 +350,8 @@ def _compile_for_device(
                 cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing,
                                          context, max_twoq=None)  # fmt: skip
                 assert cells is not None
-                objective = default_objective(dev) if optimize_for is None else optimize_for
                 used = len({q for g in cells[2].circuit.gates for q in g[1]})
-                return _finish(compiled, cells[1], [], circuit, lowered, start, "medial", objective, measured, say,
+                return _finish(compiled, cells[1], [], circuit, lowered, start, "medial", optimize_for, measured, say,
                                (cells,), device=dev, qiskit_seeds=0,
                                none_fit=f"--layout medial: the heavy-hex cells of {scenario.grid.rows}x"
                                f"{scenario.grid.cols} with {scenario.num_robots} robot(s), routed on "
@@ -374,14 +372,13 @@ def _compile_for_device(
     if local_ancillas:
         circuit = localize_ancillas(circuit, scenario, dev.num_qubits - circuit.num_qubits)
     say(f"routing the whole circuit on {dev.name}")
-    objective = default_objective(dev) if optimize_for is None else optimize_for
     count = routing.calibrated_routings if is_calibrated(dev) else 1
     ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
     cells = None
     if layout_method == "auto" and not local_ancillas:
         cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context,
                                  routing.placement_max_twoq)  # fmt: skip
-    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", objective, measured, say,
+    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
                    () if cells is None else (cells,))  # fmt: skip
 
 
@@ -411,7 +408,7 @@ def _cells_elsewhere(
 
 def _finish(
     compiled: CompileResult, logical: Circuit, ours: list[RoutedCircuit], circuit: Circuit, lowered: bool,
-    start: float, method: str, objective: str, measured: range, say: Callable[[str], None],
+    start: float, method: str, optimize_for: str | None, measured: range, say: Callable[[str], None],
     elsewhere: tuple[tuple[str, Circuit, RoutedCircuit], ...] = (),
     device: Device | None = None,
     qiskit_seeds: int = QISKIT_SEEDS,
@@ -420,11 +417,13 @@ def _finish(
     """The result: on a named device (``device``, default ``ours[0]``'s) the best of
     :func:`qcpp.pipeline.candidates.calibrated_candidates` (from ``ours``, compile's routings of ``logical``, the
     routings ``elsewhere`` placed on the device, and, unless ``lowered``, all of these after Qiskit's O3 passes and
-    ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``objective``; elsewhere ``ours[0]``.
+    ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``optimize_for`` (``None``: the device's
+    :func:`~qcpp.pipeline.candidates.default_objective`); elsewhere ``ours[0]``.
 
     Raises:
         ValueError: ``none_fit``, where there is no candidate (``ours`` empty and nothing ``elsewhere`` embeds)."""
     device = ours[0].device if device is None else device
+    objective = default_objective(device) if optimize_for is None else optimize_for
     if not is_calibrated(device):
         routed = ours[0] if lowered else to_native(ours[0])
         return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
