@@ -22,6 +22,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from qcpp import grid_scenario
 from qcpp.gadgets.phase_sums import SumsPhase
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.phase import phase_plan
@@ -97,11 +98,7 @@ def test_ft_folds_the_two_robot_balance_and_nisq_does_not(rows: int) -> None:
 
 
 def _hard_obstacle() -> Scenario:
-    return scenario_from_dict({
-        "grid": {"rows": 4, "cols": 4, "obstacles": [[1, 2]]},
-        "robots": [{"start": [0, 0], "goal": [3, 3]}, {"start": [3, 0], "goal": [0, 3]}],
-        "objective": {"obstacles": "hard"},
-    })  # fmt: skip
+    return grid_scenario(4, 4, robots=[((0, 0), (3, 3)), ((3, 0), (0, 3))], obstacles=[(1, 2)], hard_obstacles=True)
 
 
 def test_the_folded_phase_is_exact_on_every_feasible_assignment() -> None:

@@ -18,6 +18,7 @@ from collections import Counter
 import numpy as np
 import pytest
 
+from qcpp.estimators.crosscheck import interior_endpoints
 from qcpp.gadgets.phase_visits import VisitPhase
 from qcpp.gadgets.visit_batch import VisitBatch, visit_batch_ancillas
 from qcpp.plan.gadget_examples import check_gadget
@@ -27,21 +28,13 @@ from qcpp.plan.phase_choice import score, visit_batches
 from qcpp.plan.qaoa import qaoa_plan
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.presets import default_scenario
-from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.problem.scenario import Scenario
 
 from .phase_test import check_states, lowered, sample_combos
 
 
 def _batches(plan: object) -> list[VisitBatch]:
     return [g for g in plan.gadgets("gamma_0") if isinstance(g, VisitBatch)]  # type: ignore[attr-defined]
-
-
-def _interior_hard() -> Scenario:
-    return scenario_from_dict({
-        "grid": {"rows": 4, "cols": 4, "obstacles": [[2, 1]]},
-        "robots": [{"start": [1, 1], "goal": [3, 3]}, {"start": [0, 3], "goal": [1, 2]}],
-        "objective": {"obstacles": "hard"},
-    })  # fmt: skip
 
 
 def test_every_feasible_assignment_of_3x3_2_gets_its_phase() -> None:
@@ -55,7 +48,7 @@ def test_every_feasible_assignment_of_3x3_2_gets_its_phase() -> None:
 
 @pytest.mark.parametrize("which", ["4x4/3", "4x4/2 interior, hard obstacle"])
 def test_sampled_assignments_get_their_phase(which: str) -> None:
-    s = default_scenario(4, 4, 3) if which == "4x4/3" else _interior_hard()
+    s = default_scenario(4, 4, 3) if which == "4x4/3" else interior_endpoints(4, 4, "hard")
     plan = phase_plan(s, target="ft")
     assert _batches(plan)
     others = [np.random.default_rng(i).integers(0, 2, s.num_variables).tolist() for i in range(3)]
