@@ -50,7 +50,7 @@ from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
 from qcpp.routing.sabre import route, window_cx
 
-__all__ = ["qiskit_sabre_layout", "ranked_routes", "search_route", "two_qubit_count"]
+__all__ = ["qiskit_sabre_layout", "ranked_routes", "search_ranking", "search_route", "two_qubit_count"]
 
 
 def two_qubit_count(circuit: Circuit) -> int:
@@ -130,6 +130,26 @@ def search_route(
     ranked = _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
     layout, routing_seed = ranked[0][1:]
     return route(circuit, device, layout, seed=routing_seed, measured=measured, trials=options.trials, fuse=True)
+
+
+def search_ranking(
+    circuit: Circuit,
+    device: Device,
+    starts: Sequence[Sequence[int]] = (),
+    seed: int = 0,
+    layouts: int | None = None,
+    seeds: int | None = None,
+    options: RoutingOptions = DEFAULT_ROUTING,
+    context: RoutingContext | None = None,
+) -> list[tuple[int, tuple[int, ...], int]]:
+    """Every routing :func:`search_route` tries (arguments as there), as ``(two-qubit gates, layout, routing
+    seed)``, cheapest first, counted without writing a circuit: for a caller that compares circuits by what the
+    search routes them to."""
+    layouts = options.placement_layouts if layouts is None else layouts
+    seeds = options.placement_seeds if seeds is None else seeds
+    if (not starts and layouts < 1) or seeds < 1:
+        raise ValueError("search_ranking needs at least one layout and one seed")
+    return _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
 
 
 def ranked_routes(

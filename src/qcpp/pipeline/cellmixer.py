@@ -81,7 +81,7 @@ from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_window_cx
 
-__all__ = ["MARGIN", "cell_mixers", "relabelled_plans"]
+__all__ = ["MARGIN", "cell_mixers", "relabelled", "relabelled_plans", "variant_section"]
 
 MARGIN = 6
 """Lattice coordinates around a partial mixer's data whose qubits (present, occupied) key its cell class: the
@@ -211,7 +211,16 @@ def _sited_cx(section: Section, homes: Sequence[int], home: Mapping[int, int], d
     return route_window_cx(pairs, None, device, dist, 0, routing, context)  # type: ignore[arg-type]
 
 
-def _relabelled(context: RoutingContext, program: AbstractProgram, target: str) -> tuple[MixerPlan, ...]:
+def variant_section(circuit: Circuit, name: str, gadget: ParityPartialMixer, plan: MixerPlan,
+                    bindings: Mapping[str, float] | None) -> Section:  # fmt: skip
+    """The lowered section ``name`` of ``circuit`` (a partial mixer's, ``gadget``) written with ``plan`` instead,
+    bound by ``bindings`` as the circuit was."""
+    g = dataclasses.replace(gadget, plan=plan, beta=Angle.symbol(name.replace("mixer", "beta")))
+    lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
+    return (lowered.bind(bindings) if bindings else lowered).sections[0]
+
+
+def relabelled(context: RoutingContext, program: AbstractProgram, target: str) -> tuple[MixerPlan, ...]:
     """:func:`relabelled_plans`, memoised in ``context``, with the plan of each relabelled program memoised there too
     where the context reuses answers (4x4/2: 144 distinct programs among the 13 programs' 312 relabellings)."""
     hit = context.relabelled.get((program, target))
@@ -274,14 +283,12 @@ def cell_mixers(
             stage(f"choosing partial-mixer plans on the cells ({seen} / {mixers})")
         seen += 1
         program, target = gadget.kind.program, gadget.kind.target  # type: ignore[union-attr]
-        plans = _relabelled(context, program, target)
+        plans = relabelled(context, program, target)
         if len(plans) < 2:  # one network only: kept as compiled, operands included
             continue
 
         def variant(plan: MixerPlan, gadget: ParityPartialMixer = gadget, name: str = name) -> Section:
-            g = dataclasses.replace(gadget, plan=plan, beta=Angle.symbol(name.replace("mixer", "beta")))
-            lowered = lower(Circuit(circuit.registers, [Section(name, tuple(g.emit()))]))
-            return (lowered.bind(bindings) if bindings else lowered).sections[0]
+            return variant_section(circuit, name, gadget, plan, bindings)
 
         emitted: dict[MixerPlan, Section] = {gadget.plan: sections[i]}  # the screen and the search share them
         costs: dict[tuple[MixerPlan, bool], Scored] = {}  # the operand exchanges come back to plans already scored

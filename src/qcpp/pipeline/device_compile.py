@@ -73,6 +73,7 @@ from qcpp.pipeline.candidates import (
 )
 from qcpp.pipeline.cellmixer import cell_mixers
 from qcpp.pipeline.device_plan import device_plan_options
+from qcpp.pipeline.routed_mixers import routed_mixers
 from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
 from qcpp.problem.scenario import Scenario
@@ -335,9 +336,12 @@ def _compile_for_device(
                 if device == "heavy-hex":  # greedy needs no room for the cells: the smallest lattice that holds it
                     other = device_for(device, circuit.num_qubits)
                 say(f"routing the whole circuit on {other.name} to compare")
-                greedy = _greedy_compare(circuit, other, seed, layouts, measured, routing, context)
-                if _two_qubit(greedy.circuit) < _two_qubit(routed.circuit):
-                    logical, routed, method = circuit, greedy, "greedy"
+                greedy_logical, greedy = _with_routed_mixers(
+                    circuit, [_greedy_compare(circuit, other, seed, layouts, measured, routing, context)],
+                    lambda c: [_greedy_compare(c, other, seed, layouts, measured, routing, context)],
+                    scenario, replace(options, fuse=False), other, bindings, routing, context, say)  # fmt: skip
+                if _two_qubit(greedy[0].circuit) < _two_qubit(routed.circuit):
+                    logical, routed, method = greedy_logical, greedy[0], "greedy"
             return _finish(compiled, logical, [routed], circuit, lowered, start, method, optimize_for, measured, say)
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
@@ -374,12 +378,34 @@ def _compile_for_device(
     say(f"routing the whole circuit on {dev.name}")
     count = routing.calibrated_routings if is_calibrated(dev) else 1
     ours = greedy_routes(circuit, dev, seed, layouts, measured, routing, context, count=count)
+    logical = circuit
+    if not local_ancillas:  # localized ancillas are no longer the plan's sections
+        logical, ours = _with_routed_mixers(
+            circuit, ours, lambda c: greedy_routes(c, dev, seed, layouts, measured, routing, context, count=count),
+            scenario, replace(options, fuse=False), dev, bindings, routing, context, say)  # fmt: skip
     cells = None
     if layout_method == "auto" and not local_ancillas:
         cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context,
                                  routing.placement_max_twoq)  # fmt: skip
-    return _finish(compiled, circuit, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
+    return _finish(compiled, logical, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
                    () if cells is None else (cells,))  # fmt: skip
+
+
+def _with_routed_mixers(
+    circuit: Circuit, routes: list[RoutedCircuit], route_again: Callable[[Circuit], list[RoutedCircuit]],
+    scenario: Scenario, options: PlanOptions, device: Device, bindings: Mapping[str, float] | None,
+    routing: RoutingOptions, context: RoutingContext, say: Callable[[str], None],
+) -> tuple[Circuit, list[RoutedCircuit]]:  # fmt: skip
+    """``(circuit, routes)``, or the circuit with its partial mixers planned for the routing
+    (:func:`qcpp.pipeline.routed_mixers.routed_mixers` on ``device``) and ``route_again`` of it, where its first
+    routing has fewer two-qubit gates than ``routes[0]``."""
+    chosen = routed_mixers(scenario, options, circuit, device, bindings, routing, context, stage=say)
+    if chosen is circuit:
+        return circuit, routes
+    again = route_again(chosen)
+    if _two_qubit(again[0].circuit) < _two_qubit(routes[0].circuit):
+        return chosen, again
+    return circuit, routes
 
 
 def _cells_elsewhere(

@@ -88,6 +88,10 @@ class RoutingOptions:
             a routing is judged by its success probability, and a wider search finds routings whose few extra
             SWAPs, or whose shape, sit on better qubits.
         calibrated_placement_refine: :attr:`placement_refine` on a named device.
+        mixer_variant_layouts: On a circuit routed whole, each partial mixer's equally cheap plans are scored by
+            a shorter placement search of this many ``SabreLayout`` starts (:mod:`qcpp.pipeline.routed_mixers`;
+            ``0``: the plan's own networks are kept).
+        mixer_variant_seeds: Routing seeds per layout of that search.
         auto_compare_max_twoq: Below this many lowered two-qubit gates the ``auto`` layout also tries ``greedy``
             on the geometric layout's device (one routing of a tiny circuit may need fewer SWAPs than windows).
         greedy_compare_max_qubits: ``auto`` routes its greedy comparison on the medial grid itself up to this many
@@ -125,6 +129,8 @@ class RoutingOptions:
     placement_refine: int = 6
     sabre_layout_trials: int = 1
     calibrated_routings: int = 12
+    mixer_variant_seeds: int = 2
+    mixer_variant_layouts: int = 8
     calibrated_placement_layouts: int = 96
     calibrated_placement_refine: int = 12
     auto_compare_max_twoq: int = 2_000
