@@ -10,7 +10,10 @@ much of what SABRE must bring together. :func:`routed_mixers` chooses them by co
 each partial mixer's section is tried with every relabelled plan and kept with the one whose whole circuit the
 search routes to the fewest two-qubit gates (a shorter search than compile's:
 :attr:`~qcpp.routing.options.RoutingOptions.mixer_variant_layouts` ``SabreLayout`` starts, each routed with
-:attr:`~qcpp.routing.options.RoutingOptions.mixer_variant_seeds` seeds), the plan already chosen on ties.
+:attr:`~qcpp.routing.options.RoutingOptions.mixer_variant_seeds` seeds), the plan already chosen on ties. Each
+scoring routes the whole circuit, so the descent stops once the circuits it has scored hold
+:attr:`~qcpp.routing.options.RoutingOptions.mixer_variant_budget` two-qubit gates in all (the first layers'
+partial mixers are chosen first; a deep or two-robot circuit keeps the plan's networks for the rest).
 
 The QAOA operator, the order of the partial mixers and the all-to-all counts are unchanged; only which of the
 equally cheap networks each partial mixer uses. Compile routes the chosen circuit with its own search and keeps it
@@ -95,6 +98,7 @@ def routed_mixers(
                               seeds=routing.mixer_variant_seeds, options=routing, context=context)[0][0]  # fmt: skip
 
     best = routed_twoq(sections)
+    scorings = routing.mixer_variant_budget // two_qubit_count(circuit) - 1  # the plan's own circuit was one
     mixers = [i for i, (_, gadget) in enumerate(named) if isinstance(gadget, ParityPartialMixer)]
     for seen, i in enumerate(mixers):
         name, gadget = named[i]
@@ -104,6 +108,9 @@ def routed_mixers(
         for plan in relabelled(context, gadget.kind.program, gadget.kind.target):
             if plan == gadget.plan:
                 continue
+            if scorings < 1:
+                return Circuit(circuit.registers, sections)
+            scorings -= 1
             trial = [*sections[:i], variant_section(circuit, name, gadget, plan, bindings), *sections[i + 1 :]]
             twoq = routed_twoq(trial)
             if twoq < best:

@@ -92,6 +92,8 @@ class RoutingOptions:
             a shorter placement search of this many ``SabreLayout`` starts (:mod:`qcpp.pipeline.routed_mixers`;
             ``0``: the plan's own networks are kept).
         mixer_variant_seeds: Routing seeds per layout of that search.
+        mixer_variant_budget: That choice stops once the circuits it has routed hold this many two-qubit gates in
+            all (each scoring routes the whole circuit; compile time grows with the circuit's size and depth).
         auto_compare_max_twoq: Below this many lowered two-qubit gates the ``auto`` layout also tries ``greedy``
             on the geometric layout's device (one routing of a tiny circuit may need fewer SWAPs than windows).
         greedy_compare_max_qubits: ``auto`` routes its greedy comparison on the medial grid itself up to this many
@@ -130,6 +132,7 @@ class RoutingOptions:
     sabre_layout_trials: int = 1
     calibrated_routings: int = 12
     mixer_variant_seeds: int = 2
+    mixer_variant_budget: int = 8_000
     mixer_variant_layouts: int = 8
     calibrated_placement_layouts: int = 96
     calibrated_placement_refine: int = 12
