@@ -24,7 +24,9 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
   and one SABRE routing of the whole circuit (:func:`qcpp.routing.sabre.route`); on circuits of at most
   :attr:`~qcpp.routing.options.RoutingOptions.placement_max_twoq` two-qubit gates, a placement search from that
   layout instead (:func:`greedy_route`: many ``SabreLayout`` starts and SABRE seeds, SWAPs fused with an adjacent
-  ``cx``, the fewest CX kept; deterministic).
+  ``cx``, the fewest CX kept; deterministic), for the circuit as compiled and for the one whose partial mixers
+  use the equally cheap networks that route cheapest (:func:`qcpp.pipeline.routed_mixers.routed_mixers`), the
+  one of fewer two-qubit gates kept.
 
 Unless ``lowered``, the routed circuit is translated to the device's native gates
 (:func:`qcpp.routing.native.to_native`). On a named device the result is the best of
@@ -105,7 +107,9 @@ class DeviceCompileResult:
 
     Attributes:
         compiled: The unrouted lowered circuit (logical qubits).
-        logical: The circuit routed (after the optional local-ancilla pass; logical qubits).
+        logical: The circuit routed (logical qubits): the compiled circuit, after the optional local-ancilla
+            pass, or with partial mixers planned for the routing (:mod:`qcpp.pipeline.routed_mixers`, the
+            heavy-hex cells' :mod:`qcpp.pipeline.cellmixer`); the same operator.
         routed: The routed circuit (native gates unless compiled ``lowered``).
         lowered: Whether the routed circuit keeps CX + one-qubit gates.
         seconds: Wall time of everything.
