@@ -18,8 +18,9 @@ partial mixers are chosen first; a deep or two-robot circuit keeps the plan's ne
 The QAOA operator, the order of the partial mixers and the all-to-all counts are unchanged; only which of the
 equally cheap networks each partial mixer uses. Compile routes the chosen circuit with its own search and keeps it
 only where it routes to fewer two-qubit gates than the plan's own circuit
-(:func:`qcpp.pipeline.device_compile.compile_for_device`), so a routing is never worse for the choice; the written
-circuit is an ordinary routing of the chosen circuit, so its counts are exact. ``python benchmarks/routing.py`` and
+(:func:`qcpp.pipeline.device_compile.compile_for_device`), so the choice never adds a two-qubit gate (on a named
+device the candidates are then the kept circuit's routings, chosen by ESP as always); the written circuit is an
+ordinary routing of the chosen circuit, so its counts are exact. ``python benchmarks/routing.py`` and
 ``python benchmarks/routing_verdict.py --calibrated`` show what it gives.
 
 Example:
@@ -71,7 +72,7 @@ def routed_mixers(
         circuit: The lowered circuit (one section per gadget; angles bound by ``bindings``).
         device: The device the circuit is routed on whole.
         bindings: The angle values the circuit was bound with.
-        routing: The settings (``mixer_variant_layouts = 0`` turns the choice off).
+        routing: The settings (``mixer_variant_layouts=0`` turns the choice off).
         context: The run's memos (default: a fresh one).
         stage: Called before each partial mixer's choice with ``choosing partial-mixer plans for the routing
             (i / n)``.
@@ -89,11 +90,10 @@ def routed_mixers(
     if [n for n, _ in named] != [s.name for s in circuit.sections]:
         return circuit  # not the plan's circuit
     context = RoutingContext() if context is None else context
-
     sections = list(circuit.sections)
 
-    def routed_twoq(sections: list[Section]) -> int:
-        candidate = Circuit(circuit.registers, sections)
+    def routed_twoq(candidate_sections: list[Section]) -> int:
+        candidate = Circuit(circuit.registers, candidate_sections)
         return search_ranking(candidate, device, layouts=routing.mixer_variant_layouts,
                               seeds=routing.mixer_variant_seeds, options=routing, context=context)[0][0]  # fmt: skip
 
