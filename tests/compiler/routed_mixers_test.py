@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from qcpp import grid_scenario
 from qcpp.hardware.device import get_device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import rx, ry
@@ -102,3 +103,6 @@ def test_nothing_to_choose_returns_the_circuit() -> None:
     assert routed_mixers(SCENARIO, OPTIONS, circuit, hex3, BIND, small) is circuit
     fused = compile_scenario(SCENARIO, 1, PlanOptions(), lowered=True, bindings=BIND).circuit
     assert routed_mixers(SCENARIO, PlanOptions(), fused, hex3, BIND) is fused
+    ring = grid_scenario(2, 2, robots=[((0, 1), (1, 0))], obstacles=[(0, 0)], hard_obstacles=True)
+    no_twoq = compile_scenario(ring, 1, OPTIONS, lowered=True, bindings=BIND).circuit  # no plaquette left: no CX
+    assert routed_mixers(ring, OPTIONS, no_twoq, get_device("grid:3x3"), BIND) is no_twoq

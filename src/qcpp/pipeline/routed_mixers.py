@@ -79,11 +79,12 @@ def routed_mixers(
 
     Returns:
         A circuit with the same sections in the same order, equal to ``circuit`` as an operator; ``circuit`` itself
-        where nothing routes cheaper, where the device is all-to-all, where the circuit has more than
-        ``routing.placement_max_twoq`` two-qubit gates, or where it is not the plan's parity-basis circuit.
+        where nothing routes cheaper, where the device is all-to-all, where the circuit has no two-qubit gate or more
+        than ``routing.placement_max_twoq``, or where it is not the plan's parity-basis circuit.
     """
+    twoq = two_qubit_count(circuit)
     if (routing.mixer_variant_layouts < 1 or device.is_all_to_all or options.rule != "exact" or options.fuse
-            or two_qubit_count(circuit) > routing.placement_max_twoq):  # fmt: skip
+            or not 0 < twoq <= routing.placement_max_twoq):  # fmt: skip
         return circuit
     layers = sorted({s.name for s in circuit.sections if s.name.startswith("mixer_")})
     named = list(qaoa_plan(scenario, len(layers), options).sections())
@@ -98,7 +99,7 @@ def routed_mixers(
                               seeds=routing.mixer_variant_seeds, options=routing, context=context)[0][0]  # fmt: skip
 
     best = routed_twoq(sections)
-    scorings = routing.mixer_variant_budget // two_qubit_count(circuit) - 1  # the plan's own circuit was one
+    scorings = routing.mixer_variant_budget // twoq - 1  # the plan's own circuit was one
     mixers = [i for i, (_, gadget) in enumerate(named) if isinstance(gadget, ParityPartialMixer)]
     for seen, i in enumerate(mixers):
         name, gadget = named[i]
@@ -112,7 +113,7 @@ def routed_mixers(
                 return Circuit(circuit.registers, sections)
             scorings -= 1
             trial = [*sections[:i], variant_section(circuit, name, gadget, plan, bindings), *sections[i + 1 :]]
-            twoq = routed_twoq(trial)
-            if twoq < best:
-                best, sections = twoq, trial
+            routed = routed_twoq(trial)
+            if routed < best:
+                best, sections = routed, trial
     return Circuit(circuit.registers, sections)
