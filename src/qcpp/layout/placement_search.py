@@ -123,12 +123,7 @@ def search_route(
     Raises:
         ValueError: nothing to try (no ``starts`` and ``layouts == 0``, or ``seeds == 0``).
     """
-    layouts = options.placement_layouts if layouts is None else layouts
-    seeds = options.placement_seeds if seeds is None else seeds
-    if (not starts and layouts < 1) or seeds < 1:
-        raise ValueError("search_route needs at least one layout and one seed")
-    ranked = _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
-    layout, routing_seed = ranked[0][1:]
+    layout, routing_seed = search_ranking(circuit, device, starts, seed, layouts, seeds, options, context)[0][1:]
     return route(circuit, device, layout, seed=routing_seed, measured=measured, trials=options.trials, fuse=True)
 
 
@@ -148,7 +143,7 @@ def search_ranking(
     layouts = options.placement_layouts if layouts is None else layouts
     seeds = options.placement_seeds if seeds is None else seeds
     if (not starts and layouts < 1) or seeds < 1:
-        raise ValueError("search_ranking needs at least one layout and one seed")
+        raise ValueError("the placement search needs at least one layout and one seed")
     return _ranked(circuit, device, starts, seed, layouts, seeds, options, context)
 
 
