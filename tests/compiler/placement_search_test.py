@@ -26,7 +26,7 @@ from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
+from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.sabre import route
 
 from .routing_qcec_test import aligned
@@ -69,14 +69,7 @@ def test_fused_whole_circuit_routing_is_exact_and_scored_as_written(
     assert two_qubit_count(fused.circuit) == cx_count + 3 * fused.swaps - 2 * fused.num_fused
     _assert_equal_up_to_layouts(logical, fused, seed=5, global_phase=False)
     # the search ranks candidates by this score without assembling them: it must be what route writes
-    from qiskit import QuantumCircuit
-    from qiskit.converters import circuit_to_dag
-
-    qc = QuantumCircuit(dev.num_qubits)
-    for g in logical.gates:
-        if len(g[1]) == 2:
-            qc.cx(layout[g[1][0]], layout[g[1][1]])
-    score = placement_search._routed_cx(circuit_to_dag(qc), coupling_map(dev), seed, DEFAULT_ROUTING.trials)
+    [(score, _, _)] = placement_search.search_ranking(logical, dev, starts=(layout,), seed=seed, layouts=0, seeds=1)
     assert score == two_qubit_count(fused.circuit)
 
 

@@ -47,7 +47,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
+from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 from qcpp.routing.sabre import route, window_cx
 
 __all__ = ["qiskit_sabre_layout", "ranked_routes", "search_ranking", "search_route", "two_qubit_count"]
@@ -73,20 +73,42 @@ def qiskit_sabre_layout(
     Returns:
         Logical qubit ``i`` -> physical qubit.
     """
-    from qiskit import QuantumCircuit
-    from qiskit.transpiler import PassManager
+    return _sabre_layouts(circuit, device, [seed], options)[0]
+
+
+def _sabre_layouts(
+    circuit: Circuit, device: Device, seeds: Sequence[int], options: RoutingOptions
+) -> list[tuple[int, ...]]:
+    """:func:`qiskit_sabre_layout` for each of ``seeds``: one pass on one DAG of the two-qubit gates, its seed set
+    per run. The pass is handed the target it would build from the (symmetric) coupling map itself, built once, not
+    per seed; the layouts are the ones a pass manager running a fresh pass per seed finds."""
+    from qiskit.passmanager import PropertySet
     from qiskit.transpiler.passes import SabreLayout
 
-    qc = QuantumCircuit(circuit.num_qubits)
-    for g in circuit.gates:
-        if len(g[1]) == 2:
-            qc.cx(*g[1])
-    sabre = SabreLayout(coupling_map(device), seed=seed, skip_routing=True, layout_trials=options.sabre_layout_trials,
-                        swap_trials=options.sabre_layout_trials)  # fmt: skip
-    pm = PassManager([sabre])
-    pm.run(qc)
-    layout = pm.property_set["layout"]
-    return tuple(int(layout[q]) for q in qc.qubits)
+    dag = _twoq_dag(circuit.num_qubits, [g[1] for g in circuit.gates if len(g[1]) == 2])
+    trials = options.sabre_layout_trials
+    sabre = SabreLayout(sabre_target(coupling_map(device)), skip_routing=True, layout_trials=trials, swap_trials=trials)
+    layouts = []
+    for seed in seeds:
+        sabre.seed, sabre.property_set = seed, PropertySet()
+        sabre.run(dag)
+        layout = sabre.property_set["layout"]
+        layouts.append(tuple(int(layout[q]) for q in dag.qubits))
+    return layouts
+
+
+def _twoq_dag(num_qubits: int, pairs: Sequence[Sequence[int]]) -> Any:
+    """A DAG of one ``cx`` per pair, in order, on ``num_qubits`` qubits (register ``q``)."""
+    from qiskit import QuantumCircuit
+    from qiskit.circuit import CircuitInstruction
+    from qiskit.circuit.library import CXGate
+    from qiskit.converters import circuit_to_dag
+
+    qc = QuantumCircuit(num_qubits)
+    cx, qubits = CXGate(), qc.qubits
+    for a, b in pairs:
+        qc._append(CircuitInstruction(cx, (qubits[a], qubits[b])))
+    return circuit_to_dag(qc, copy_operations=False)
 
 
 def search_route(
@@ -204,33 +226,28 @@ def _search(
     ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
     :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
     :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit."""
-    from qiskit import QuantumCircuit
-    from qiskit.converters import circuit_to_dag
+    from qiskit.transpiler.passes import SabreSwap
 
-    cmap = coupling_map(device)
     candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
-    for i in range(layouts):
-        layout = qiskit_sabre_layout(circuit, device, seed + i, options)
+    for layout in _sabre_layouts(circuit, device, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
-    dags = []
-    for layout in candidates:
-        qc = QuantumCircuit(device.num_qubits)
-        for a, b in pairs:
-            qc.cx(layout[a], layout[b])
-        dags.append(circuit_to_dag(qc))
-    first = sorted((_routed_cx(dag, cmap, seed, options.trials), i) for i, dag in enumerate(dags))
+    dags = [_twoq_dag(device.num_qubits, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
+    sabre = SabreSwap(sabre_target(coupling_map(device)), heuristic="decay", trials=options.trials)
+    first = sorted((_routed_cx(sabre, dag, seed), i) for i, dag in enumerate(dags))
     tried = [(cx, i, seed) for cx, i in first]
     for _, i in first[: options.placement_refine]:
         for s in range(seed + 1, seed + seeds):
-            tried.append((_routed_cx(dags[i], cmap, s, options.trials), i, s))
+            tried.append((_routed_cx(sabre, dags[i], s), i, s))
     return [(cx, candidates[i], s) for cx, i, s in sorted(tried)]
 
 
-def _routed_cx(dag: Any, cmap: Any, seed: int, trials: int | None) -> int:
-    """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses them."""
-    from qiskit.transpiler.passes import SabreSwap
+def _routed_cx(sabre: Any, dag: Any, seed: int) -> int:
+    """Two-qubit gates of ``sabre``'s (a ``SabreSwap`` pass) routing of ``dag`` (physical qubits) with ``seed``,
+    SWAPs fused as :func:`route` fuses them."""
+    from qiskit.passmanager import PropertySet
 
-    out = SabreSwap(cmap, heuristic="decay", seed=seed, trials=trials).run(dag)
+    sabre.seed, sabre.property_set = seed, PropertySet()
+    out = sabre.run(dag)
     index = {q: i for i, q in enumerate(out.qubits)}
     return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])

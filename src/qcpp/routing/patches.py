@@ -15,6 +15,7 @@ Example:
     >>> from qcpp.hardware.device import get_device
     >>> from qcpp.hardware.device import distances
     >>> from qcpp.routing.context import RoutingContext
+from qcpp.routing.routed_circuit import sabre_target
     >>> dev = get_device("grid:1x6")
     >>> context = RoutingContext()
     >>> local_patch(context, {0, 1}, dev, distances(dev), radius=2)
@@ -30,6 +31,7 @@ from typing import Any, NamedTuple
 
 from qcpp.hardware.device import Device
 from qcpp.routing.context import RoutingContext
+from qcpp.routing.routed_circuit import sabre_target
 
 __all__ = [
     "Coord", "Lattice", "PatchIndex", "PatchSabre", "indexed_patch", "local_patch", "patch_index", "patch_sabre",
@@ -301,7 +303,7 @@ def patch_sabre(context: RoutingContext, coupling: tuple[tuple[int, int], ...], 
         if len(context.sabre_passes) >= SABRE_PASSES_KEPT:
             context.sabre_passes.clear()
         cmap = CouplingMap([list(e) for e in coupling] + [[b, a] for a, b in coupling])
-        sabre = SabreSwap(_routing_target(cmap), heuristic="decay", trials=None)
+        sabre = SabreSwap(sabre_target(cmap), heuristic="decay", trials=None)
         empty = DAGCircuit()
         reg = QuantumRegister(size, "q")
         empty.add_qreg(reg)
@@ -355,27 +357,3 @@ def run_sabre(shape: PatchSabre, dag: Any, seed: int, trials: int, parallel: boo
     except TypeError:  # pragma: no cover - a Qiskit whose routing call has no run_in_parallel
         out, _ = sabre_routing(dag, target, heuristic, layout, trials, seed)
     return out
-
-
-def _routing_target(cmap: Any) -> Any:
-    """``Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)``, the target ``SabreSwap(cmap)``
-    builds: the same instructions on the same qubits and couplings, added in the same order (so the same coupling
-    graph, whose neighbour order SABRE's choice of SWAP follows), without ``from_configuration``'s table of every
-    standard gate, which takes longer to build than a window takes to route.
-
-    >>> from qiskit.transpiler import CouplingMap, Target
-    >>> cmap = CouplingMap([[0, 1], [1, 2], [1, 0], [2, 1]])
-    >>> reference = Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)
-    >>> ours = _routing_target(cmap)
-    >>> [(name, list(ours[name])) for name in ours] == [(name, list(reference[name])) for name in reference]
-    True
-    """
-    from qiskit.circuit import Parameter
-    from qiskit.circuit.library import CXGate, UGate
-    from qiskit.transpiler import Target
-
-    target = Target(num_qubits=len(cmap.graph))
-    target.add_instruction(UGate(Parameter("θ"), Parameter("φ"), Parameter("λ")),
-                           properties=dict.fromkeys((q,) for q in range(target.num_qubits)), name="u")  # fmt: skip
-    target.add_instruction(CXGate(), properties=dict.fromkeys(cmap.get_edges()), name="cx")
-    return target

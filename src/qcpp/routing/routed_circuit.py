@@ -21,7 +21,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate
 
-__all__ = ["RoutedCircuit", "coupling_map", "embed_routed"]
+__all__ = ["RoutedCircuit", "coupling_map", "embed_routed", "sabre_target"]
 
 
 @dataclass(frozen=True)
@@ -81,3 +81,28 @@ def coupling_map(device: Device) -> Any:
 
     edges = [list(e) for e in device.coupling] + [[b, a] for a, b in device.coupling]
     return CouplingMap(edges)
+
+
+def sabre_target(cmap: Any) -> Any:
+    """``Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)``, the target ``SabreSwap(cmap)``
+    and (``cmap`` symmetric) ``SabreLayout(cmap)`` build, for a caller that hands one target to many passes or runs:
+    the same instructions on the same qubits and couplings, added in the same order (so the same coupling graph,
+    whose neighbour order SABRE's choice of SWAP follows), without ``from_configuration``'s table of every standard
+    gate, which takes longer to build than a window takes to route.
+
+    >>> from qiskit.transpiler import CouplingMap, Target
+    >>> cmap = CouplingMap([[0, 1], [1, 2], [1, 0], [2, 1]])
+    >>> reference = Target.from_configuration(basis_gates=["u", "cx"], coupling_map=cmap)
+    >>> ours = sabre_target(cmap)
+    >>> [(name, list(ours[name])) for name in ours] == [(name, list(reference[name])) for name in reference]
+    True
+    """
+    from qiskit.circuit import Parameter
+    from qiskit.circuit.library import CXGate, UGate
+    from qiskit.transpiler import Target
+
+    target = Target(num_qubits=len(cmap.graph))
+    target.add_instruction(UGate(Parameter("θ"), Parameter("φ"), Parameter("λ")),
+                           properties=dict.fromkeys((q,) for q in range(target.num_qubits)), name="u")  # fmt: skip
+    target.add_instruction(CXGate(), properties=dict.fromkeys(cmap.get_edges()), name="cx")
+    return target
