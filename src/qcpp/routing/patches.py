@@ -15,7 +15,6 @@ Example:
     >>> from qcpp.hardware.device import get_device
     >>> from qcpp.hardware.device import distances
     >>> from qcpp.routing.context import RoutingContext
-from qcpp.routing.routed_circuit import sabre_target
     >>> dev = get_device("grid:1x6")
     >>> context = RoutingContext()
     >>> local_patch(context, {0, 1}, dev, distances(dev), radius=2)
