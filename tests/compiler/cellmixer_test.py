@@ -101,21 +101,21 @@ def test_relabelled_plans_are_the_relabelled_programs_own_plans(shape: tuple[int
 
 
 def _on_cells(shape: tuple[int, int, int]) -> tuple:
-    """The default scenario of ``shape``, its lowered circuit (p = 1, bound), the smallest heavy-hex lattice that
-    holds its cell layout, the layout's homes and the lattice's distances."""
+    """The plan of the default scenario of ``shape`` (p = 1), its lowered circuit (bound), the smallest heavy-hex
+    lattice that holds its cell layout, the layout's homes and the lattice's distances."""
     s = default_scenario(*shape)
-    circuit = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND).circuit
+    compiled = compile_scenario(s, 1, OPTIONS, lowered=True, bindings=BIND)
     dev = hex_device(s, "heavy-hex")
     assert dev is not None
     homes = hex_placement(s, dev)
     assert homes is not None
-    return s, circuit, dev, homes, distances(dev)
+    return compiled.plan, compiled.circuit, dev, homes, distances(dev)
 
 
 @pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((2, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "2x3/2"])
 def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape: tuple[int, int, int]) -> None:
-    s, circuit, dev, homes, dist = _on_cells(shape)
-    planned = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND)  # a fresh context: every choice made here
+    plan, circuit, dev, homes, dist = _on_cells(shape)
+    planned = cell_mixers(plan, circuit, dev, homes, dist, BIND)  # a fresh context: every choice made here
     assert [sec.name for sec in planned.sections] == [sec.name for sec in circuit.sections]
     changed = 0
     for old, new in zip(circuit.sections, planned.sections, strict=True):
@@ -129,7 +129,7 @@ def test_cell_mixers_replace_only_partial_mixers_by_no_more_costly_windows(shape
                 <= _window_cx(old, homes, dev, dist, DEFAULT_ROUTING, context))  # fmt: skip
     assert changed > 0
     grid = get_device("grid:9x9")
-    assert cell_mixers(s, OPTIONS, circuit, grid, homes, distances(grid), BIND) is circuit
+    assert cell_mixers(plan, circuit, grid, homes, distances(grid), BIND) is circuit
 
 
 @pytest.mark.parametrize("shape", [(2, 3, 1), pytest.param((3, 3, 2), marks=pytest.mark.heavy)], ids=["2x3/1", "3x3/2"])
@@ -137,12 +137,12 @@ def test_the_screen_only_narrows_the_variants_searched(shape: tuple[int, int, in
     """``cell_screen`` at least the number of variants searches every variant, as ``cell_screen=0`` does; the
     default screen routes fewer windows and keeps the default plan among them (the test above: no changed
     window routes to more)."""
-    s, circuit, dev, homes, dist = _on_cells(shape)
+    plan, circuit, dev, homes, dist = _on_cells(shape)
 
     def planned(screen: int) -> tuple[Circuit, int]:
         context = RoutingContext()
         routing = dataclasses.replace(DEFAULT_ROUTING, cell_screen=screen)
-        out = cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND, routing=routing, context=context)
+        out = cell_mixers(plan, circuit, dev, homes, dist, BIND, routing=routing, context=context)
         return out, len(context.windows)  # the windows routed (memo entries): the searches' work
 
     every, searched_every = planned(0)
@@ -156,12 +156,12 @@ def test_the_exchange_screen_searches_fewer_exchanges_and_keeps_the_default_boun
     """``cell_swap_screen`` searches an operand exchange only where it routes to no more on the current plan's
     sites: fewer windows routed than searching every exchange, and still no chosen window above the default
     plan's (the choice only accepts what its search routes to fewer)."""
-    s, circuit, dev, homes, dist = _on_cells(shape)
+    plan, circuit, dev, homes, dist = _on_cells(shape)
     runs = {}
     for screen in (True, False):
         context = RoutingContext()
         routing = dataclasses.replace(DEFAULT_ROUTING, cell_swap_screen=screen)
-        runs[screen] = (cell_mixers(s, OPTIONS, circuit, dev, homes, dist, BIND, routing=routing, context=context),
+        runs[screen] = (cell_mixers(plan, circuit, dev, homes, dist, BIND, routing=routing, context=context),
                         len(context.windows))  # fmt: skip
     assert runs[True][1] < runs[False][1]
     context = RoutingContext()

@@ -43,8 +43,8 @@ def _twoq(section: Section) -> int:
 @pytest.fixture(scope="module")
 def chosen() -> tuple[Circuit, Circuit]:
     """The plan's circuit of 3x3/1 and the one chosen for heavy-hex:3."""
-    circuit = compile_scenario(SCENARIO, 1, OPTIONS, lowered=True, bindings=BIND).circuit
-    return circuit, routed_mixers(SCENARIO, OPTIONS, circuit, get_device("heavy-hex:3"), BIND)
+    compiled = compile_scenario(SCENARIO, 1, OPTIONS, lowered=True, bindings=BIND)
+    return compiled.circuit, routed_mixers(compiled.plan, compiled.circuit, get_device("heavy-hex:3"), BIND)
 
 
 def test_doctests() -> None:
@@ -94,15 +94,18 @@ def test_compile_writes_the_chosen_circuit_and_routes_it_to_fewer() -> None:
 
 
 def test_nothing_to_choose_returns_the_circuit() -> None:
-    circuit = compile_scenario(SCENARIO, 1, OPTIONS, lowered=True, bindings=BIND).circuit
+    compiled = compile_scenario(SCENARIO, 1, OPTIONS, lowered=True, bindings=BIND)
+    plan, circuit = compiled.plan, compiled.circuit
     hex3 = get_device("heavy-hex:3")
-    assert routed_mixers(SCENARIO, OPTIONS, circuit, get_device("all-to-all:15"), BIND) is circuit
+    assert routed_mixers(plan, circuit, get_device("all-to-all:15"), BIND) is circuit
     off = replace(DEFAULT_ROUTING, mixer_variant_layouts=0)
-    assert routed_mixers(SCENARIO, OPTIONS, circuit, hex3, BIND, off) is circuit
+    assert routed_mixers(plan, circuit, hex3, BIND, off) is circuit
     small = replace(DEFAULT_ROUTING, placement_max_twoq=10)
-    assert routed_mixers(SCENARIO, OPTIONS, circuit, hex3, BIND, small) is circuit
-    fused = compile_scenario(SCENARIO, 1, PlanOptions(), lowered=True, bindings=BIND).circuit
-    assert routed_mixers(SCENARIO, PlanOptions(), fused, hex3, BIND) is fused
+    assert routed_mixers(plan, circuit, hex3, BIND, small) is circuit
+    fused = compile_scenario(SCENARIO, 1, PlanOptions(), lowered=True, bindings=BIND)
+    assert routed_mixers(fused.plan, fused.circuit, hex3, BIND) is fused.circuit
+    two_layers = compile_scenario(SCENARIO, 2, OPTIONS, lowered=True)  # not the circuit of this plan
+    assert routed_mixers(plan, two_layers.circuit, hex3) is two_layers.circuit
     ring = grid_scenario(2, 2, robots=[((0, 1), (1, 0))], obstacles=[(0, 0)], hard_obstacles=True)
-    no_twoq = compile_scenario(ring, 1, OPTIONS, lowered=True, bindings=BIND).circuit  # no plaquette left: no CX
-    assert routed_mixers(ring, OPTIONS, no_twoq, get_device("grid:3x3"), BIND) is no_twoq
+    no_twoq = compile_scenario(ring, 1, OPTIONS, lowered=True, bindings=BIND)  # no plaquette left: no CX
+    assert routed_mixers(no_twoq.plan, no_twoq.circuit, get_device("grid:3x3"), BIND) is no_twoq.circuit

@@ -74,9 +74,7 @@ from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.medial import allocate_section
 from qcpp.lowering.passes import lower
-from qcpp.plan.options import PlanOptions
-from qcpp.plan.qaoa import qaoa_plan
-from qcpp.problem.scenario import Scenario
+from qcpp.plan.qaoa import QaoaPlan
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.windows import route_window_cx
@@ -231,8 +229,7 @@ def relabelled(context: RoutingContext, program: AbstractProgram, target: str) -
 
 
 def cell_mixers(
-    scenario: Scenario,
-    options: PlanOptions,
+    plan: QaoaPlan,
     circuit: Circuit,
     device: Device,
     homes: Sequence[int],
@@ -246,9 +243,8 @@ def cell_mixers(
     (see the module docs); unchanged where ``device`` is not a heavy-hex lattice or the circuit is not the plan's.
 
     Args:
-        scenario: The scenario.
-        options: The plan options the circuit was compiled with (``fuse=False``).
-        circuit: The lowered circuit (one section per gadget; angles bound by ``bindings``).
+        plan: The plan the circuit was compiled from (:attr:`qcpp.plan.compile.CompileResult.plan`; ``fuse=False``).
+        circuit: The plan's lowered circuit (one section per gadget; angles bound by ``bindings``).
         device: The device (a heavy-hex lattice, :func:`qcpp.layout.heavy_hex.heavy_hex_distance`).
         homes: Physical qubit of every data qubit (the cell layout).
         dist: The device's all-pairs distances.
@@ -262,10 +258,8 @@ def cell_mixers(
     """
     context = RoutingContext() if context is None else context
     d = heavy_hex_distance(device)
-    if d is None or options.rule != "exact" or options.fuse:
+    if d is None or plan.options.rule != "exact" or plan.options.fuse:
         return circuit
-    layers = sorted({s.name for s in circuit.sections if s.name.startswith("mixer_")})
-    plan = qaoa_plan(scenario, len(layers), options)
     named = list(plan.sections())
     if [n for n, _ in named] != [s.name for s in circuit.sections]:
         return circuit  # not the plan's circuit (e.g. p = 0 or another construction)

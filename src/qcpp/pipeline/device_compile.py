@@ -78,6 +78,7 @@ from qcpp.pipeline.device_plan import device_plan_options
 from qcpp.pipeline.routed_mixers import routed_mixers
 from qcpp.plan.compile import CompileResult, compile_scenario
 from qcpp.plan.options import DEFAULT_PLAN, LAYOUT_METHODS, PlanOptions
+from qcpp.plan.qaoa import QaoaPlan
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext, collector_paused
@@ -330,8 +331,8 @@ def _compile_for_device(
         raise ValueError(f"layout method must be one of {', '.join(LAYOUT_METHODS)}, not {layout_method!r}")
     if layout_method != "greedy" and not local_ancillas:
         geometric = medial_compile(scenario, circuit, device, seed=seed, measured=measured, arrangement=arrangement,
-                                   options=replace(options, fuse=False), bindings=bindings, stage=stage,
-                                   routing=routing, context=context)  # fmt: skip
+                                   plan=compiled.plan, bindings=bindings, stage=stage, routing=routing,
+                                   context=context)  # fmt: skip
         if geometric is not None:
             logical, routed = geometric
             method = "medial"
@@ -343,7 +344,7 @@ def _compile_for_device(
                 greedy_logical, greedy = _with_routed_mixers(
                     circuit, [_greedy_compare(circuit, other, seed, layouts, measured, routing, context)],
                     lambda c: [_greedy_compare(c, other, seed, layouts, measured, routing, context)],
-                    scenario, replace(options, fuse=False), other, bindings, routing, context, say)  # fmt: skip
+                    compiled.plan, other, bindings, routing, context, say)  # fmt: skip
                 if _two_qubit(greedy[0].circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = greedy_logical, greedy[0], "greedy"
             return _finish(compiled, logical, [routed], circuit, lowered, start, method, optimize_for, measured, say)
@@ -355,7 +356,7 @@ def _compile_for_device(
                                  f"{scenario.num_robots} robot(s) needs heavy-hex:{hex_distance(scenario)}; device "
                                  f"{dev.name} is smaller")  # fmt: skip
             if dev.family == "heavy-hex" and is_calibrated(dev):  # IBM's: the cells on heavy-hex:D, placed on it
-                cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing,
+                cells = _cells_elsewhere(compiled.plan, circuit, dev, seed, measured, bindings, stage, routing,
                                          context, max_twoq=None)  # fmt: skip
                 assert cells is not None
                 used = len({q for g in cells[2].circuit.gates for q in g[1]})
@@ -386,10 +387,10 @@ def _compile_for_device(
     if not local_ancillas:  # localized ancillas are no longer the plan's sections
         logical, ours = _with_routed_mixers(
             circuit, ours, lambda c: greedy_routes(c, dev, seed, layouts, measured, routing, context, count=count),
-            scenario, replace(options, fuse=False), dev, bindings, routing, context, say)  # fmt: skip
+            compiled.plan, dev, bindings, routing, context, say)  # fmt: skip
     cells = None
     if layout_method == "auto" and not local_ancillas:
-        cells = _cells_elsewhere(scenario, circuit, dev, seed, measured, options, bindings, stage, routing, context,
+        cells = _cells_elsewhere(compiled.plan, circuit, dev, seed, measured, bindings, stage, routing, context,
                                  routing.placement_max_twoq)  # fmt: skip
     return _finish(compiled, logical, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
                    () if cells is None else (cells,))  # fmt: skip
@@ -397,13 +398,13 @@ def _compile_for_device(
 
 def _with_routed_mixers(
     circuit: Circuit, routes: list[RoutedCircuit], route_again: Callable[[Circuit], list[RoutedCircuit]],
-    scenario: Scenario, options: PlanOptions, device: Device, bindings: Mapping[str, float] | None,
-    routing: RoutingOptions, context: RoutingContext, say: Callable[[str], None],
+    plan: QaoaPlan, device: Device, bindings: Mapping[str, float] | None, routing: RoutingOptions,
+    context: RoutingContext, say: Callable[[str], None],
 ) -> tuple[Circuit, list[RoutedCircuit]]:  # fmt: skip
     """``(circuit, routes)``, or the circuit with its partial mixers planned for the routing
     (:func:`qcpp.pipeline.routed_mixers.routed_mixers` on ``device``) and ``route_again`` of it, where its first
     routing has fewer two-qubit gates than ``routes[0]``."""
-    chosen = routed_mixers(scenario, options, circuit, device, bindings, routing, context, stage=say)
+    chosen = routed_mixers(plan, circuit, device, bindings, routing, context, stage=say)
     if chosen is circuit:
         return circuit, routes
     again = route_again(chosen)
@@ -413,7 +414,7 @@ def _with_routed_mixers(
 
 
 def _cells_elsewhere(
-    scenario: Scenario, circuit: Circuit, device: Device, seed: int, measured: range, options: PlanOptions,
+    plan: QaoaPlan, circuit: Circuit, device: Device, seed: int, measured: range,
     bindings: Mapping[str, float] | None, stage: Callable[[str], None] | None, routing: RoutingOptions,
     context: RoutingContext, max_twoq: int | None,
 ) -> tuple[str, Circuit, RoutedCircuit] | None:  # fmt: skip
@@ -427,9 +428,8 @@ def _cells_elsewhere(
     too_large = max_twoq is not None and _two_qubit(circuit) > max_twoq
     if device.family != "heavy-hex" or not is_calibrated(device) or too_large:
         return None
-    cells = medial_compile(scenario, circuit, "heavy-hex", seed=seed, measured=measured,
-                           options=replace(options, fuse=False), bindings=bindings, stage=stage, routing=routing,
-                           context=context)  # fmt: skip
+    cells = medial_compile(plan.scenario, circuit, "heavy-hex", seed=seed, measured=measured, plan=plan,
+                           bindings=bindings, stage=stage, routing=routing, context=context)  # fmt: skip
     if cells is None:
         return None
     logical, routed = cells
@@ -616,7 +616,7 @@ def medial_compile(
     seed: int = 0,
     measured: range | None = None,
     arrangement: str = "tile",
-    options: PlanOptions | None = None,
+    plan: QaoaPlan | None = None,
     bindings: Mapping[str, float] | None = None,
     stage: Callable[[str], None] | None = None,
     routing: RoutingOptions = DEFAULT_ROUTING,
@@ -627,10 +627,10 @@ def medial_compile(
     is neither kind or does not hold it. The unsized families ``grid`` and ``heavy-hex`` grow (by one row and
     column, by two in distance) while a section needs more ancillas than the free qubits. ``arrangement``: how
     the robots' copies share a square grid (:data:`qcpp.layout.medial.ARRANGEMENTS`).
-    With ``options`` (those ``circuit`` was compiled with, and its ``bindings``), on a heavy-hex lattice every
-    partial mixer takes its cheapest equally short plan on its cell (:func:`qcpp.pipeline.cellmixer.cell_mixers`).
-    ``stage`` is called with the name of each stage as it starts; ``routing`` and ``context`` are the routing's
-    settings and the run's memos (default: a fresh context).
+    With ``plan`` (the one ``circuit`` was compiled from, :attr:`qcpp.plan.compile.CompileResult.plan`, and its
+    ``bindings``), on a heavy-hex lattice every partial mixer takes its cheapest equally short plan on its cell
+    (:func:`qcpp.pipeline.cellmixer.cell_mixers`). ``stage`` is called with the name of each stage as it starts;
+    ``routing`` and ``context`` are the routing's settings and the run's memos (default: a fresh context).
 
     Returns:
         ``(logical circuit with local ancillas, routed circuit)``.
@@ -652,8 +652,8 @@ def medial_compile(
             dist = distances(dev)
             planned = circuit
             _route_large_windows_ahead(circuit, homes, dev, dist, seed, routing, context)
-            if options is not None and dev.family == "heavy-hex":
-                planned = cell_mixers(scenario, options, circuit, dev, homes, dist, bindings, stage=say,
+            if plan is not None and dev.family == "heavy-hex":
+                planned = cell_mixers(plan, circuit, dev, homes, dist, bindings, stage=say,
                                       routing=routing, context=context)  # fmt: skip
             say(f"allocating ancillas on {dev.name}")
             try:

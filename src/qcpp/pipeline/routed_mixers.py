@@ -28,9 +28,9 @@ Example:
     >>> from qcpp.plan.compile import compile_scenario
     >>> from qcpp.plan.options import PlanOptions
     >>> from qcpp.hardware.device import get_device
-    >>> s = default_scenario(2, 3, 1)
-    >>> c = compile_scenario(s, 1, PlanOptions(fuse=False), lowered=True).circuit
-    >>> chosen = routed_mixers(s, PlanOptions(fuse=False), c, get_device("heavy-hex:3"))
+    >>> compiled = compile_scenario(default_scenario(2, 3, 1), 1, PlanOptions(fuse=False), lowered=True)
+    >>> c = compiled.circuit
+    >>> chosen = routed_mixers(compiled.plan, c, get_device("heavy-hex:3"))
     >>> [sec.name for sec in chosen.sections] == [sec.name for sec in c.sections]
     True
 """
@@ -44,9 +44,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.placement_search import search_ranking, two_qubit_count
 from qcpp.pipeline.cellmixer import relabelled, variant_section
-from qcpp.plan.options import PlanOptions
-from qcpp.plan.qaoa import qaoa_plan
-from qcpp.problem.scenario import Scenario
+from qcpp.plan.qaoa import QaoaPlan
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 
@@ -54,8 +52,7 @@ __all__ = ["routed_mixers"]
 
 
 def routed_mixers(
-    scenario: Scenario,
-    options: PlanOptions,
+    plan: QaoaPlan,
     circuit: Circuit,
     device: Device,
     bindings: Mapping[str, float] | None = None,
@@ -67,9 +64,8 @@ def routed_mixers(
     routes to the fewest two-qubit gates with on ``device`` (module docs).
 
     Args:
-        scenario: The scenario.
-        options: The plan options the circuit was compiled with (``fuse=False``).
-        circuit: The lowered circuit (one section per gadget; angles bound by ``bindings``).
+        plan: The plan the circuit was compiled from (:attr:`qcpp.plan.compile.CompileResult.plan`; ``fuse=False``).
+        circuit: The plan's lowered circuit (one section per gadget; angles bound by ``bindings``).
         device: The device the circuit is routed on whole.
         bindings: The angle values the circuit was bound with.
         routing: The settings (``mixer_variant_layouts=0`` turns the choice off).
@@ -83,11 +79,10 @@ def routed_mixers(
         than ``routing.placement_max_twoq``, or where it is not the plan's parity-basis circuit.
     """
     twoq = two_qubit_count(circuit)
-    if (routing.mixer_variant_layouts < 1 or device.is_all_to_all or options.rule != "exact" or options.fuse
-            or not 0 < twoq <= routing.placement_max_twoq):  # fmt: skip
+    if (routing.mixer_variant_layouts < 1 or device.is_all_to_all or plan.options.rule != "exact"
+            or plan.options.fuse or not 0 < twoq <= routing.placement_max_twoq):  # fmt: skip
         return circuit
-    layers = sorted({s.name for s in circuit.sections if s.name.startswith("mixer_")})
-    named = list(qaoa_plan(scenario, len(layers), options).sections())
+    named = list(plan.sections())
     if [n for n, _ in named] != [s.name for s in circuit.sections]:
         return circuit  # not the plan's circuit
     context = RoutingContext() if context is None else context
@@ -106,13 +101,13 @@ def routed_mixers(
         assert isinstance(gadget, ParityPartialMixer)
         if stage is not None:
             stage(f"choosing partial-mixer plans for the routing ({seen} / {len(mixers)})")
-        for plan in relabelled(context, gadget.kind.program, gadget.kind.target):
-            if plan == gadget.plan:
+        for network in relabelled(context, gadget.kind.program, gadget.kind.target):
+            if network == gadget.plan:
                 continue
             if scorings < 1:
                 return Circuit(circuit.registers, sections)
             scorings -= 1
-            trial = [*sections[:i], variant_section(circuit, name, gadget, plan, bindings), *sections[i + 1 :]]
+            trial = [*sections[:i], variant_section(circuit, name, gadget, network, bindings), *sections[i + 1 :]]
             routed = routed_twoq(trial)
             if routed < best:
                 best, sections = routed, trial

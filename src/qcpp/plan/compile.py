@@ -19,7 +19,7 @@ from qcpp.errors import OptionError
 from qcpp.ir.circuit import Circuit, Register
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
-from qcpp.plan.qaoa import QubitMap, qaoa_plan, qubit_map
+from qcpp.plan.qaoa import QaoaPlan, QubitMap, qaoa_plan, qubit_map
 from qcpp.problem.scenario import Scenario
 
 
@@ -33,6 +33,8 @@ class CompileResult:
         qubit_map: Data qubit -> (robot, edge); ancilla qubits.
         lowered: Whether :func:`qcpp.lowering.passes.lower` was applied.
         seconds: Wall time of building, lowering and binding.
+        plan: The plan the circuit was emitted from: its sections are ``plan.sections()``, gadget by gadget, for a
+            later pass that rewrites a gadget's section (:mod:`qcpp.pipeline.routed_mixers`).
         phase_explain: The phase plan's choice per term group (:meth:`qcpp.plan.phase.PhasePlan.explain`).
     """
 
@@ -41,6 +43,7 @@ class CompileResult:
     qubit_map: QubitMap
     lowered: bool
     seconds: float
+    plan: QaoaPlan
     phase_explain: list[dict] = field(default_factory=list)
 
     def summary(self) -> dict[str, Any]:
@@ -120,7 +123,7 @@ def compile_scenario(
         circuit = circuit.bind(bindings)
     explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
     qmap = qubit_map(scenario, circuit.num_qubits)
-    return CompileResult(scenario, circuit, qmap, lowered, time.perf_counter() - start, explain)
+    return CompileResult(scenario, circuit, qmap, lowered, time.perf_counter() - start, plan, explain)
 
 
 def parse_bindings(items: list[str]) -> dict[str, float]:
