@@ -47,6 +47,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.patches import patch_sabre, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 from qcpp.routing.sabre import route, window_cx
 
@@ -206,7 +207,7 @@ def _ranked(
            seeds, options)  # fmt: skip
     ranked = context.placements.get(key)
     if ranked is None:
-        ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options)
+        ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options, context)
         context.placements[key] = ranked
     return ranked
 
@@ -220,34 +221,33 @@ def _search(
     layouts: int,
     seeds: int,
     options: RoutingOptions,
+    context: RoutingContext,
 ) -> list[tuple[int, tuple[int, ...], int]]:
     """``(two-qubit gates, layout, routing seed)`` of every routing :func:`search_route` tries, cheapest first (the
     first is its choice; one entry per layout and seed): every layout routed with ``seed``, then the
     ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
     :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
-    :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit."""
-    from qiskit.transpiler.passes import SabreSwap
-
+    :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit. SABRE runs as
+    :func:`qcpp.routing.patches.run_sabre` runs it (the context's pass for the device's couplings, without the
+    pass's per-run checks: the same routing)."""
     candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
     for layout in _sabre_layouts(circuit, device, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
     dags = [_twoq_dag(device.num_qubits, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
-    sabre = SabreSwap(sabre_target(coupling_map(device)), heuristic="decay", trials=options.trials)
-    first = sorted((_routed_cx(sabre, dag, seed), i) for i, dag in enumerate(dags))
+    shape = patch_sabre(context, device.coupling, device.num_qubits)
+    trials = shape.trials if options.trials is None else options.trials
+
+    def routed_cx(dag: Any, seed: int) -> int:
+        """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses
+        them."""
+        out = run_sabre(shape, dag, seed, trials, context.parallel_trials)
+        index = {q: i for i, q in enumerate(out.qubits)}
+        return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])
+
+    first = sorted((routed_cx(dag, seed), i) for i, dag in enumerate(dags))
     tried = [(cx, i, seed) for cx, i in first]
     for _, i in first[: options.placement_refine]:
         for s in range(seed + 1, seed + seeds):
-            tried.append((_routed_cx(sabre, dags[i], s), i, s))
+            tried.append((routed_cx(dags[i], s), i, s))
     return [(cx, candidates[i], s) for cx, i, s in sorted(tried)]
-
-
-def _routed_cx(sabre: Any, dag: Any, seed: int) -> int:
-    """Two-qubit gates of ``sabre``'s (a ``SabreSwap`` pass) routing of ``dag`` (physical qubits) with ``seed``,
-    SWAPs fused as :func:`route` fuses them."""
-    from qiskit.passmanager import PropertySet
-
-    sabre.seed, sabre.property_set = seed, PropertySet()
-    out = sabre.run(dag)
-    index = {q: i for i, q in enumerate(out.qubits)}
-    return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])
