@@ -34,7 +34,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
 from qcpp.routing.options import DEFAULT_TRIALS
-from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map
+from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 
 __all__ = ["assemble", "checked_inputs", "route", "window_cx"]
 
@@ -67,7 +67,7 @@ def route(
         ValueError: the device is too small, the layout is not a placement, or a gate acts on 3+ qubits.
     """
     from qiskit import QuantumCircuit
-    from qiskit.transpiler import PassManager
+    from qiskit.converters import circuit_to_dag
     from qiskit.transpiler.passes import SabreSwap
 
     gates, section_of, layout, measured_ = checked_inputs(circuit, device, initial_layout, measured)
@@ -78,10 +78,11 @@ def route(
             qc.cx(layout[g[1][0]], layout[g[1][1]])
     if device.is_all_to_all or qc.size() == 0:
         routed_ops = [("cx", tuple(layout[q] for q in g[1])) for g in gates if len(g[1]) == 2]
-    else:
-        sabre = SabreSwap(coupling_map(device), heuristic="decay", seed=seed, trials=trials)
-        out = PassManager([sabre]).run(qc)
-        routed_ops = [(inst.operation.name, tuple(out.find_bit(b).index for b in inst.qubits)) for inst in out.data]
+    else:  # the pass run on the DAG, in the order a pass manager would write its circuit
+        sabre = SabreSwap(sabre_target(coupling_map(device)), heuristic="decay", seed=seed, trials=trials)
+        out = sabre.run(circuit_to_dag(qc, copy_operations=False))
+        index = {q: i for i, q in enumerate(out.qubits)}
+        routed_ops = [(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()]
     # one window for everything: a whole-circuit routing has no per-window sums to keep apart
     windows = ([0] * len(gates), [0] * len(routed_ops)) if fuse else None
     return assemble(gates, section_of, layout, big, routed_ops, device, measured_, None, windows)  # type: ignore[arg-type]
