@@ -89,9 +89,10 @@ def test_qcec_proves_the_cells_placed_on_an_ibm_device_equal_to_their_logical_ci
 
     s, dev = default_scenario(3, 3, 1), named_device("ibm_torino")
     options = dataclasses.replace(device_plan_options(DEFAULT_PLAN, dev, "auto"), fuse=False)
-    circuit = compile_scenario(s, 1, options, lowered=True, bindings=BIND).circuit
+    compiled = compile_scenario(s, 1, options, lowered=True, bindings=BIND)
+    circuit = compiled.circuit
     measured = range(s.num_variables)
-    cells = _cells_elsewhere(s, circuit, dev, 0, measured, options, BIND, None, DEFAULT_ROUTING, RoutingContext(),
+    cells = _cells_elsewhere(compiled.plan, circuit, dev, 0, measured, BIND, None, DEFAULT_ROUTING, RoutingContext(),
                              DEFAULT_ROUTING.placement_max_twoq)  # fmt: skip
     assert cells is not None and cells[0].startswith("cells on heavy-hex:")
     cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=(cells,))
