@@ -110,11 +110,12 @@ def run_qaoa(s: Any, optimum: float, cfg: dict[str, Any]) -> dict[str, Any]:
             "search_seconds": search_s, "levels": levels}
 
 
-def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:
+def device_columns(scenario: Any, p: int, device: str, context: Any = None) -> dict[str, Any]:
     """The depth-``p`` circuit of ``scenario`` routed onto ``device`` by the estimator: routed counts, ESP (of the
     gates alone, ``esp``, and with idle decoherence where the device has T1 / T2, ``esp_idle``, else ``None``) and
     the time of one shot (device durations where published, else the ideal gate model on the routed depths,
-    ``assumed``)."""
+    ``assumed``). ``context``: the routing memos to share with other rows of the scenario (a
+    :class:`qcpp.routing.context.RoutingContext`; default: a fresh one); the figures are the same either way."""
     from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
     from qcpp.estimators.routed import routed_fields
     from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
@@ -122,7 +123,7 @@ def device_columns(scenario: Any, p: int, device: str) -> dict[str, Any]:
     est = estimate_point(Point.from_scenario(scenario, p), EstimateOptions(depth="none"))
     c = est.cost
     f = routed_fields(scenario, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-                      one_qubit=c.single_qubit, total_gates=c.total)
+                      one_qubit=c.single_qubit, total_gates=c.total, context=context)
     out = {k: f[k] for k in ("device", "fits", "routed_kind", "routed_twoq", "routed_depth", "routed_twoq_depth",
                              "esp", "esp_idle")}
     if not f["fits"]:
@@ -141,12 +142,15 @@ def shot_esp(row: dict[str, Any]) -> float:
 
 def device_instance(cell: str, index: int, scenario: dict[str, Any], cfg: dict[str, Any]) -> dict[str, Any]:
     """One instance's circuits at the depths ``cfg["depths"]`` routed onto each of ``cfg["devices"]``
-    (:func:`device_columns`, with ``p`` added); JSON-ready."""
+    (:func:`device_columns`, with ``p`` added, one routing context for all: the devices share the compiles on the
+    abstract lattices); JSON-ready."""
     from qcpp.problem.scenario import scenario_from_dict
+    from qcpp.routing.context import RoutingContext
 
     t0 = time.perf_counter()
     s = scenario_from_dict(scenario)
-    routed = [{"p": p, **device_columns(s, p, name)} for p in cfg["depths"] for name in cfg["devices"]]
+    context = RoutingContext()
+    routed = [{"p": p, **device_columns(s, p, name, context)} for p in cfg["depths"] for name in cfg["devices"]]
     return {"cell": cell, "index": index, "scenario": scenario, "devices": routed,
             "seconds": time.perf_counter() - t0}
 

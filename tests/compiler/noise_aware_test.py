@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -12,6 +14,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import cz, rx, rz
 from qcpp.routing.native import esp, esp_idle, idle_fidelity, idle_times_s
+from qcpp.routing.options import DEFAULT_ROUTING
 from qcpp.routing.routed_circuit import RoutedCircuit
 
 US = 1e-6
@@ -339,6 +342,32 @@ def test_a_routing_on_a_larger_lattice_is_placed_on_a_named_device() -> None:
         assert pairs <= set(fez.coupling)
         assert [g[0] for g in moved.circuit.gates] == [g[0] for g in routed.circuit.gates]
         assert moved.initial_layout == tuple(s[q] for q in routed.initial_layout)
+
+
+@pytest.mark.heavy  # compiles 3x3/1 on ibm_fez with every candidate, twice
+def test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device() -> None:
+    """One robot on 3x3 on Fez: compile also compiles the circuit on heavy-hex:3 .. 9 (greedy layout, placement
+    search, partial mixers planned there) and offers those routings placed where they embed; the chosen one has
+    the fewest CZ, fewer than without the lattices, and the result reports the logical circuit its layouts index:
+    the lattice's partial-mixer choice, the same operator as the plan's circuit (statevector). With the lattice
+    search off there are no such candidates."""
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.presets import default_scenario
+    from qcpp.simulate.statevector import simulate_statevector
+
+    s, bind = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}
+    r = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq")
+    by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
+    lattices = {n.split(" + ")[0] for n in by_name if n.startswith("search on heavy-hex:")}
+    assert lattices and lattices <= {f"search on heavy-hex:{d}" for d in (3, 5, 7, 9)}
+    assert by_name[r.chosen] == min(by_name.values()) and r.chosen.startswith("search on heavy-hex:"), r.chosen
+    assert len(r.routed.initial_layout) == r.logical.num_qubits == r.compiled.circuit.num_qubits
+    assert list(r.logical.gates) != list(r.compiled.circuit.gates)  # the lattice's choice of parity networks
+    assert np.allclose(simulate_statevector(r.logical), simulate_statevector(r.compiled.circuit), atol=1e-9)
+    off = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq",
+                             routing=replace(DEFAULT_ROUTING, lattice_search_max_distance=0))  # fmt: skip
+    assert not any(c["name"].startswith("search on") for c in off.candidates)
+    assert by_name[r.chosen] < min(c["two_qubit"] for c in off.candidates)
 
 
 @pytest.mark.heavy  # compiles 3x4/1 on ibm_torino with every candidate, and the cells on heavy-hex:9

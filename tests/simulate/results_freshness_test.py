@@ -34,6 +34,7 @@ import pytest
 import qcpp
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.scenario import Scenario, scenario_from_dict
+from qcpp.routing.context import RoutingContext
 from qcpp.simulate.success import shots_for, tries_for
 from qcpp.simulate.time_to_solution import GATE_MODEL, shot_seconds
 from qcpp.training.objectives import Gibbs
@@ -74,6 +75,12 @@ def _circuit(text: str, p: int, initial: str = "initial_path") -> dict[str, int]
 
 @cache
 def _routed(text: str, p: int, device: str) -> dict[str, Any]:
+    return _routed_in(text, p, device, None)
+
+
+def _routed_in(text: str, p: int, device: str, context: RoutingContext | None) -> dict[str, Any]:
+    """The estimator's routed fields of the scenario ``text`` at depth ``p`` on ``device``, routed with ``context``
+    (the memos the rows of one scenario share, as the experiment shares them; the fields do not depend on it)."""
     from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
     from qcpp.estimators.routed import routed_fields
 
@@ -81,7 +88,7 @@ def _routed(text: str, p: int, device: str) -> dict[str, Any]:
     est = estimate_point(Point.from_scenario(s, p), EstimateOptions(depth="none"))
     c = est.cost
     return routed_fields(s, p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-                         one_qubit=c.single_qubit, total_gates=c.total)
+                         one_qubit=c.single_qubit, total_gates=c.total, context=context)
 
 
 @cache
@@ -447,9 +454,10 @@ def _ensemble_device_cells() -> list[Any]:
     return [pytest.param(c, id=c, marks=pytest.mark.heavy) for c in _load("ensemble_devices")["config"]["cells"]]
 
 
-def _check_ensemble_device_row(r: dict[str, Any]) -> None:
-    """``r``'s routed figures, ESP and shot time are what the router gives its scenario, depth and device now."""
-    want = _routed(_key(r), int(r["p"]), r["device"])
+def _check_ensemble_device_row(r: dict[str, Any], context: RoutingContext) -> None:
+    """``r``'s routed figures, ESP and shot time are what the router gives its scenario, depth and device now
+    (routed with ``context``, shared by the rows of ``r``'s instance as the experiment shares it)."""
+    want = _routed_in(_key(r), int(r["p"]), r["device"], context)
     assert {k: r[k] for k in DEVICE_FIELDS} == {k: want[k] for k in DEVICE_FIELDS}, _label("ensemble_devices", r)
     _check_esp(r, want, "ensemble_devices")
     if want["duration_s"] is not None:
@@ -462,8 +470,9 @@ def test_ensemble_device_rows_of_the_first_instance_match_the_router() -> None:
     cell, p = data["config"]["cells"][0], min(data["config"]["depths"])
     rows = [r for r in data["rows"] if r["cell"] == cell and r["index"] == 0 and r["p"] == p]
     assert {r["device"] for r in rows} == set(data["config"]["devices"])
+    context = RoutingContext()
     for r in rows:
-        _check_ensemble_device_row(r)
+        _check_ensemble_device_row(r, context)
 
 
 HEAVY_ENSEMBLE_DEVICE_INSTANCES = 3
@@ -476,8 +485,9 @@ def test_ensemble_device_rows_match_the_router(cell: str) -> None:
     rows = [r for r in _load("ensemble_devices")["rows"]
             if r["cell"] == cell and r["index"] < HEAVY_ENSEMBLE_DEVICE_INSTANCES]
     assert len({r["index"] for r in rows}) == HEAVY_ENSEMBLE_DEVICE_INSTANCES
+    contexts = {i: RoutingContext() for i in range(HEAVY_ENSEMBLE_DEVICE_INSTANCES)}
     for r in rows:
-        _check_ensemble_device_row(r)
+        _check_ensemble_device_row(r, contexts[r["index"]])
 
 
 def test_ensemble_device_derived_columns() -> None:

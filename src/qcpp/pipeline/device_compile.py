@@ -388,12 +388,44 @@ def _compile_for_device(
         logical, ours = _with_routed_mixers(
             circuit, ours, lambda c: greedy_routes(c, dev, seed, layouts, measured, routing, context, count=count),
             compiled.plan, dev, bindings, routing, context, say)  # fmt: skip
-    cells = None
+    elsewhere: list[tuple[str, Circuit, RoutedCircuit]] = []
     if layout_method == "auto" and not local_ancillas:
         cells = _cells_elsewhere(compiled.plan, circuit, dev, seed, measured, bindings, stage, routing, context,
                                  routing.placement_max_twoq)  # fmt: skip
+        elsewhere = ([] if cells is None else [cells]) + _searched_elsewhere(
+            compiled.plan, circuit, dev, seed, layouts, measured, bindings, routing, context, say)
     return _finish(compiled, logical, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
-                   () if cells is None else (cells,))  # fmt: skip
+                   tuple(elsewhere))  # fmt: skip
+
+
+def _searched_elsewhere(
+    plan: QaoaPlan, circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range,
+    bindings: Mapping[str, float] | None, routing: RoutingOptions, context: RoutingContext,
+    say: Callable[[str], None],
+) -> list[tuple[str, Circuit, RoutedCircuit]]:  # fmt: skip
+    """On a named heavy-hex device, ``circuit`` (at most ``routing.placement_max_twoq`` two-qubit gates) compiled
+    as the greedy path compiles it on each ``heavy-hex:D`` lattice that holds it, ``D`` up to
+    ``routing.lattice_search_max_distance``, as ``(name, logical circuit, routing)`` for
+    :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on the device where its couplers embed. Empty
+    elsewhere."""
+    if device.family != "heavy-hex" or not is_calibrated(device):
+        return []
+    if not 0 < _two_qubit(circuit) <= routing.placement_max_twoq:
+        return []
+    out = []
+    for d in range(3, routing.lattice_search_max_distance + 1, 2):
+        lattice = get_device(f"heavy-hex:{d}")
+        if lattice.num_qubits < circuit.num_qubits:
+            continue
+        say(f"routing the whole circuit on {lattice.name} to place it on {device.name}")
+
+        def routes(c: Circuit, lattice: Device = lattice) -> list[RoutedCircuit]:
+            return greedy_routes(c, lattice, seed, layouts, measured, routing, context)
+
+        logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, lattice, bindings, routing,
+                                              context, say)  # fmt: skip
+        out.append((f"search on {lattice.name}", logical, routed[0]))
+    return out
 
 
 def _with_routed_mixers(

@@ -94,6 +94,11 @@ class RoutingOptions:
         mixer_variant_seeds: Routing seeds per layout of that search.
         mixer_variant_budget: That choice stops once the circuits it has routed hold this many two-qubit gates in
             all (each scoring routes the whole circuit; compile time grows with the circuit's size and depth).
+        lattice_search_max_distance: On a named heavy-hex device, a circuit the placement search routes whole is
+            also compiled the same way (greedy layout, placement search, partial mixers planned for the routing) on
+            every defect-free ``heavy-hex:D`` lattice that holds it up to this distance, and those routings are
+            placed on the device where their couplers embed (:func:`qcpp.pipeline.device_compile.compile_for_device`;
+            ``0``: none). A lattice of another size and shape starts SABRE elsewhere, and no one size wins.
         auto_compare_max_twoq: Below this many lowered two-qubit gates the ``auto`` layout also tries ``greedy``
             on the geometric layout's device (one routing of a tiny circuit may need fewer SWAPs than windows).
         greedy_compare_max_qubits: ``auto`` routes its greedy comparison on the medial grid itself up to this many
@@ -134,6 +139,7 @@ class RoutingOptions:
     mixer_variant_seeds: int = 2
     mixer_variant_budget: int = 8_000
     mixer_variant_layouts: int = 8
+    lattice_search_max_distance: int = 9
     calibrated_placement_layouts: int = 96
     calibrated_placement_refine: int = 12
     auto_compare_max_twoq: int = 2_000
