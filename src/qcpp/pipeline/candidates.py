@@ -14,6 +14,9 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
   embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
   fit; larger routings use more qubits than the search takes, reach the lattice's edges, whose 10-cycles IBM's
   lattice lacks, or need room around their cells that the device's shape and defects do not give);
+* ``search on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on the same devices, for circuits the
+  placement search takes, the greedy path's routing on each abstract lattice ``heavy-hex:D`` that holds the circuit
+  (its own placement search and partial-mixer choice there), placed the same way where it embeds;
 * ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
   ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
   Qiskit's by the chosen figure;

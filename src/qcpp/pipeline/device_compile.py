@@ -31,10 +31,13 @@ fused one on the default grids), then takes one of two paths (``layout_method``,
 Unless ``lowered``, the routed circuit is translated to the device's native gates
 (:func:`qcpp.routing.native.to_native`). On a named device the result is the best of
 :func:`qcpp.pipeline.candidates.calibrated_candidates`; on IBM's heavy-hex devices ``auto`` adds to them the
-heavy-hex cells routed on the abstract lattice ``heavy-hex:D``, which the candidates place on the device where
-their couplers embed. :attr:`DeviceCompileResult.layout_method` says which path was taken. Every
-setting of routing, allocation and the searches comes in one :class:`~qcpp.routing.options.RoutingOptions` value and
-the memos of the run in one :class:`~qcpp.routing.context.RoutingContext`, both passed down explicitly.
+heavy-hex cells routed on the abstract lattice ``heavy-hex:D`` and, for circuits the placement search takes, the
+greedy path's routings on the defect-free lattices ``heavy-hex:3`` .. ``heavy-hex:9`` that hold the circuit
+(:attr:`~qcpp.routing.options.RoutingOptions.lattice_search_max_distance`; no one size routes cheapest for every
+circuit), which the candidates place on the device where their couplers embed.
+:attr:`DeviceCompileResult.layout_method` says which path was taken. Every setting of routing, allocation and the
+searches comes in one :class:`~qcpp.routing.options.RoutingOptions` value and the memos of the run in one
+:class:`~qcpp.routing.context.RoutingContext`, both passed down explicitly.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
