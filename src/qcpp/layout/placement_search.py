@@ -49,7 +49,7 @@ from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.patches import patch_sabre, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
-from qcpp.routing.sabre import route, window_cx
+from qcpp.routing.sabre import cx_dag, dag_ops, route, window_cx
 
 __all__ = ["qiskit_sabre_layout", "ranked_routes", "search_ranking", "search_route", "two_qubit_count"]
 
@@ -74,21 +74,22 @@ def qiskit_sabre_layout(
     Returns:
         Logical qubit ``i`` -> physical qubit.
     """
-    return _sabre_layouts(circuit, device, [seed], options)[0]
+    return _sabre_layouts(circuit, sabre_target(coupling_map(device)), [seed], options)[0]
 
 
 def _sabre_layouts(
-    circuit: Circuit, device: Device, seeds: Sequence[int], options: RoutingOptions
+    circuit: Circuit, target: Any, seeds: Sequence[int], options: RoutingOptions
 ) -> list[tuple[int, ...]]:
     """:func:`qiskit_sabre_layout` for each of ``seeds``: one pass on one DAG of the two-qubit gates, its seed set
-    per run. The pass is handed the target it would build from the (symmetric) coupling map itself, built once, not
-    per seed; the layouts are the ones a pass manager running a fresh pass per seed finds."""
+    per run. ``target`` is the one the pass would build from the device's (symmetric) coupling map itself
+    (:func:`~qcpp.routing.routed_circuit.sabre_target`), built once by the caller; the layouts are the ones a pass
+    manager running a fresh pass per seed finds."""
     from qiskit.passmanager import PropertySet
     from qiskit.transpiler.passes import SabreLayout
 
-    dag = _twoq_dag(circuit.num_qubits, [g[1] for g in circuit.gates if len(g[1]) == 2])
+    dag = cx_dag(circuit.num_qubits, [g[1] for g in circuit.gates if len(g[1]) == 2])
     trials = options.sabre_layout_trials
-    sabre = SabreLayout(sabre_target(coupling_map(device)), skip_routing=True, layout_trials=trials, swap_trials=trials)
+    sabre = SabreLayout(target, skip_routing=True, layout_trials=trials, swap_trials=trials)
     layouts = []
     for seed in seeds:
         sabre.seed, sabre.property_set = seed, PropertySet()
@@ -96,20 +97,6 @@ def _sabre_layouts(
         layout = sabre.property_set["layout"]
         layouts.append(tuple(int(layout[q]) for q in dag.qubits))
     return layouts
-
-
-def _twoq_dag(num_qubits: int, pairs: Sequence[Sequence[int]]) -> Any:
-    """A DAG of one ``cx`` per pair, in order, on ``num_qubits`` qubits (register ``q``)."""
-    from qiskit import QuantumCircuit
-    from qiskit.circuit import CircuitInstruction
-    from qiskit.circuit.library import CXGate
-    from qiskit.converters import circuit_to_dag
-
-    qc = QuantumCircuit(num_qubits)
-    cx, qubits = CXGate(), qc.qubits
-    for a, b in pairs:
-        qc._append(CircuitInstruction(cx, (qubits[a], qubits[b])))
-    return circuit_to_dag(qc, copy_operations=False)
 
 
 def search_route(
@@ -230,20 +217,18 @@ def _search(
     :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit. SABRE runs as
     :func:`qcpp.routing.patches.run_sabre` runs it (the context's pass for the device's couplings, without the
     pass's per-run checks: the same routing)."""
+    shape = patch_sabre(context, device.coupling, device.num_qubits)  # its target serves SabreLayout too
     candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
-    for layout in _sabre_layouts(circuit, device, range(seed, seed + layouts), options):
+    for layout in _sabre_layouts(circuit, shape.sabre.target, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
-    dags = [_twoq_dag(device.num_qubits, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
-    shape = patch_sabre(context, device.coupling, device.num_qubits)
+    dags = [cx_dag(device.num_qubits, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
     trials = shape.trials if options.trials is None else options.trials
 
     def routed_cx(dag: Any, seed: int) -> int:
         """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses
         them."""
-        out = run_sabre(shape, dag, seed, trials, context.parallel_trials)
-        index = {q: i for i, q in enumerate(out.qubits)}
-        return window_cx([(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()])
+        return window_cx(dag_ops(run_sabre(shape, dag, seed, trials, context.parallel_trials)))
 
     first = sorted((routed_cx(dag, seed), i) for i, dag in enumerate(dags))
     tried = [(cx, i, seed) for cx, i in first]

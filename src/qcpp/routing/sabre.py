@@ -36,7 +36,7 @@ from qcpp.ir.gates import Gate, cx
 from qcpp.routing.options import DEFAULT_TRIALS
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 
-__all__ = ["assemble", "checked_inputs", "route", "window_cx"]
+__all__ = ["assemble", "checked_inputs", "cx_dag", "dag_ops", "route", "window_cx"]
 
 
 def route(
@@ -66,26 +66,41 @@ def route(
     Raises:
         ValueError: the device is too small, the layout is not a placement, or a gate acts on 3+ qubits.
     """
-    from qiskit import QuantumCircuit
-    from qiskit.converters import circuit_to_dag
     from qiskit.transpiler.passes import SabreSwap
 
     gates, section_of, layout, measured_ = checked_inputs(circuit, device, initial_layout, measured)
     big = device.num_qubits
-    qc = QuantumCircuit(big)
-    for g in gates:
-        if len(g[1]) == 2:
-            qc.cx(layout[g[1][0]], layout[g[1][1]])
-    if device.is_all_to_all or qc.size() == 0:
-        routed_ops = [("cx", tuple(layout[q] for q in g[1])) for g in gates if len(g[1]) == 2]
+    pairs = [(layout[g[1][0]], layout[g[1][1]]) for g in gates if len(g[1]) == 2]
+    if device.is_all_to_all or not pairs:
+        routed_ops = [("cx", pair) for pair in pairs]
     else:  # the pass run on the DAG, in the order a pass manager would write its circuit
         sabre = SabreSwap(sabre_target(coupling_map(device)), heuristic="decay", seed=seed, trials=trials)
-        out = sabre.run(circuit_to_dag(qc, copy_operations=False))
-        index = {q: i for i, q in enumerate(out.qubits)}
-        routed_ops = [(node.op.name, tuple(index[q] for q in node.qargs)) for node in out.topological_op_nodes()]
+        routed_ops = dag_ops(sabre.run(cx_dag(big, pairs)))
     # one window for everything: a whole-circuit routing has no per-window sums to keep apart
     windows = ([0] * len(gates), [0] * len(routed_ops)) if fuse else None
     return assemble(gates, section_of, layout, big, routed_ops, device, measured_, None, windows)  # type: ignore[arg-type]
+
+
+def cx_dag(num_qubits: int, pairs: Sequence[Sequence[int]]) -> Any:
+    """A Qiskit DAG of one ``cx`` per pair, in order, on ``num_qubits`` qubits (one register ``q``): what SABRE
+    routes (:func:`route`, the placement search)."""
+    from qiskit import QuantumCircuit
+    from qiskit.circuit import CircuitInstruction
+    from qiskit.circuit.library import CXGate
+    from qiskit.converters import circuit_to_dag
+
+    qc = QuantumCircuit(num_qubits)
+    gate, qubits = CXGate(), qc.qubits
+    for a, b in pairs:
+        qc._append(CircuitInstruction(gate, (qubits[a], qubits[b])))  # qc.cx's checks cost more than the routing
+    return circuit_to_dag(qc, copy_operations=False)
+
+
+def dag_ops(dag: Any) -> list[tuple[str, tuple[int, ...]]]:
+    """The operations of a routed DAG in topological order as ``(name, qubit indices)``: what :func:`assemble`
+    and :func:`window_cx` read."""
+    index = {q: i for i, q in enumerate(dag.qubits)}
+    return [(node.op.name, tuple(index[q] for q in node.qargs)) for node in dag.topological_op_nodes()]
 
 
 def assemble(
