@@ -1,6 +1,6 @@
 """Which OpenQASM 3 client loads which export profile, and does it simulate qcpp's state?
 
-Run: ``python benchmarks/qasm_clients.py [--cache DIR] [--quick]``.
+Run: ``python benchmarks/qasm_clients.py [--cache DIR] [--quick | --constructs]``.
 
 qcpp writes each scenario's p = 1 circuit in every profile (:data:`qcpp.lowering.qasm_profiles.PROFILES`), bound
 (``gamma_0 = 0.3``, ``beta_0 = 0.7``) and unbound (``input float[64]``), high level and ``--lowered``, and hands each
@@ -19,6 +19,12 @@ inputs: Qiskit ``assign_parameters``, Cirq ``ParamResolver``, Braket ``inputs``,
 fidelity ``|<qcpp|client>|^2`` against :func:`qcpp.simulate.statevector.simulate_statevector` of the circuit is
 1.0 up to rounding for an exact load (global phase does not count). The first table counts files loaded and the
 lowest fidelity per client and profile; the second gives each distinct error's first line.
+
+``--constructs`` asks instead why no one profile serves every client: each client gets one tiny two-qubit file per
+way of writing a gate (:data:`CONSTRUCTS`: the standard library by include, its names without the include,
+OpenQASM 2's built-in ``CX``, the specification's built-ins ``U`` and ``ctrl @``, Braket's names, a ``gate``
+definition, an ``input`` as a gate argument), and the script prints which client loads which, with the fidelity to
+the state the file prepares, then which clients each way of writing an entangling gate reaches.
 """
 
 from __future__ import annotations
@@ -272,6 +278,84 @@ def run_venv(cache: Path, client: str, cases: list[Case], work: Path) -> dict[st
     return out
 
 
+# --- one construct per file ---------------------------------------------------------------------------------------
+BELL = np.array([1, 0, 0, 1]) / np.sqrt(2)
+PLUS0 = np.array([1, 1, 0, 0]) / np.sqrt(2)  # (|0> + |1>) on q[0], |0> on q[1]; little-endian
+CONSTRUCTS: dict[str, tuple[str, str, np.ndarray, bool]] = {
+    "std gates by include": (
+        'include "stdgates.inc";\nqubit[2] q;\nh q[0];\ncx q[0], q[1];\n', "entangler", BELL, True),
+    "std gate names, no include": ("qubit[2] q;\nh q[0];\ncx q[0], q[1];\n", "entangler", BELL, True),
+    "built-in CX (OpenQASM 2)": ("qubit[2] q;\nU(pi/2, 0, pi) q[0];\nCX q[0], q[1];\n", "entangler", BELL, True),
+    "built-ins U and ctrl @": (
+        "qubit[2] q;\nU(pi/2, 0, pi) q[0];\nctrl @ U(pi, 0, pi) q[0], q[1];\n", "entangler", BELL, True),
+    "Braket names (cnot)": ("qubit[2] q;\nh q[0];\ncnot q[0], q[1];\n", "entangler", BELL, True),
+    "built-in U alone": ("qubit[2] q;\nU(pi/2, 0, pi) q[0];\nU(0, 0, 0) q[1];\n", "one-qubit", PLUS0, True),
+    "gate definition": (
+        "gate hh a { U(pi/2, 0, pi) a; }\nqubit[2] q;\nhh q[0];\nhh q[1];\nhh q[1];\n", "one-qubit", PLUS0, True),
+    "input as gate argument": (
+        "input float[64] gamma_0;\ninput float[64] beta_0;\nqubit[2] q;\nU(gamma_0 + beta_0 + pi/2 - 1, 0, pi) q[0];\n"
+        "U(gamma_0 + beta_0 - 1, 0, 0) q[1];\n",
+        "one-qubit", PLUS0, False),
+    "gate definition, std names": (
+        "gate hh a { h a; }\nqubit[2] q;\nhh q[0];\nhh q[1];\nhh q[1];\n", "one-qubit", PLUS0, True),
+    "input as gate argument, std names": (
+        "input float[64] gamma_0;\ninput float[64] beta_0;\nqubit[2] q;\nry(gamma_0 + beta_0 + pi/2 - 1) q[0];\n"
+        "ry(gamma_0 + beta_0 - 1) q[1];\n",
+        "one-qubit", PLUS0, False),
+}  # fmt: skip
+"""Name -> (program after ``OPENQASM 3.0;``, kind, the state it prepares, bound). Each file uses one construct
+beside the fewest others and acts on both qubits (a simulator may drop an idle one); the unbound ones, given
+:data:`BIND` (``gamma_0 + beta_0 = 1``), prepare the same state."""
+
+
+def constructs(cache: Path) -> None:
+    """The ``--constructs`` tables (module docs); the QDK's estimator is left out (it reads as the QDK does, and
+    refuses a program this small for want of logical operations to estimate)."""
+    local = [name for name in LOCAL if name != "qdk estimate"]
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        cases = []
+        for i, (name, (body, _, state, bound)) in enumerate(CONSTRUCTS.items()):
+            path = work / f"construct{i}.qasm"
+            path.write_text("OPENQASM 3.0;\n" + body)
+            cases.append(Case(name, bound, True, "construct", path, 2, state))
+        outcomes: dict[tuple[str, str], Outcome] = {}
+        for client in local:
+            for c in cases:
+                outcomes[(client, c.scenario)] = run_local(client, c)
+        for client in PINS:
+            for c, o in zip(cases, run_venv(cache, client, cases, work).values(), strict=True):
+                outcomes[(client, c.scenario)] = o
+    clients = [*local, *PINS]
+    print("Cell: loaded (with the fidelity to the state the file prepares, where the client simulates) or the error's "
+          "first words.\n")  # fmt: skip
+    print("| construct | " + " | ".join(clients) + " |")
+    print("|---|" + "---|" * len(clients))
+    for c in cases:
+        row = []
+        for client in clients:
+            o = outcomes[(client, c.scenario)]
+            if o.loaded:
+                row.append("yes" if o.fidelity is None else f"yes, {o.fidelity:.6f}")
+            else:
+                row.append("no: " + (o.error or "").split(":")[0].replace("|", "/"))
+        print(f"| {c.scenario} | " + " | ".join(row) + " |")
+    print()
+    entanglers = [c for c in cases if CONSTRUCTS[c.scenario][1] == "entangler"]
+    for c in entanglers:
+        missing = [client for client in clients if not outcomes[(client, c.scenario)].loaded]
+        print(f"- {c.scenario}: refused by {', '.join(missing) or 'none'}")
+    print("\n| client | construct | error (first line) |\n|---|---|---|")
+    for client in clients:
+        for c in cases:
+            o = outcomes[(client, c.scenario)]
+            if o.error:
+                print(f"| {client} | {c.scenario} | `{o.error.replace('|', '/')[:110]}` |")
+    every = [c.scenario for c in entanglers if all(outcomes[(k, c.scenario)].loaded for k in clients)]
+    print(f"\nWays to write an entangling gate that every client loads: {', '.join(every) or 'none'}.")
+    print(f"\nclients: {', '.join(f'{k} ({v})' for k, v in client_versions(cache).items())}")
+
+
 # --- cases and the tables ---------------------------------------------------------------------------------------
 def make_cases(work: Path, scenarios: tuple[tuple[int, int, int], ...]) -> list[Case]:
     cases = []
@@ -304,7 +388,13 @@ def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "qcpp-qasm-clients")
     parser.add_argument("--quick", action="store_true", help="the 3x3 one-robot scenario only")
+    parser.add_argument("--constructs", action="store_true", help="one tiny file per way of writing a gate")
     args = parser.parse_args(argv)
+    if args.constructs:
+        cache_dir: Path = args.cache.expanduser()
+        cache_dir.mkdir(parents=True, exist_ok=True)
+        constructs(cache_dir)
+        return 0
     scenarios = SCENARIOS[:1] if args.quick else SCENARIOS
     cache: Path = args.cache.expanduser()
     cache.mkdir(parents=True, exist_ok=True)
