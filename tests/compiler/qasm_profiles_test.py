@@ -197,6 +197,26 @@ def test_cirq_and_the_qdk_need_the_include_the_other_profiles_leave_out(profile:
         import_openqasm(text, name="program")
 
 
+def test_no_entangling_gate_without_the_include_loads_in_both_cirq_and_the_qdk() -> None:
+    """Why no profile without the include can serve Cirq and the QDK (and PennyLane refuses the include): without it,
+    Cirq knows OpenQASM 2's built-in ``CX`` but not ``ctrl @``, the QDK ``ctrl @ U`` but not ``CX`` nor a standard
+    gate. ``benchmarks/qasm_clients.py --constructs`` shows the whole table, the clients in their own environments
+    included."""
+    from cirq.contrib.qasm_import import QasmException
+    from qdk.openqasm import import_openqasm
+
+    bell = np.array([1, 0, 0, 1]) / np.sqrt(2)
+    builtin_cx = "OPENQASM 3.0;\nqubit[2] q;\nU(pi/2, 0, pi) q[0];\nCX q[0], q[1];\n"
+    controlled_u = "OPENQASM 3.0;\nqubit[2] q;\nU(pi/2, 0, pi) q[0];\nctrl @ U(pi, 0, pi) q[0], q[1];\n"
+    assert fidelity(bell, cirq_state(builtin_cx, 2)) == pytest.approx(1.0, abs=1e-9)
+    with pytest.raises(QasmException, match="@"):
+        cirq_state(controlled_u, 2)
+    for text in (builtin_cx, builtin_cx.replace("CX", "cx"), builtin_cx.replace("CX", "cz")):
+        with pytest.raises(Exception, match="StdGateCalledButNotIncluded"):
+            import_openqasm(text, name="program")
+    import_openqasm(controlled_u, name="program")
+
+
 def qdk_state(text: str, n: int) -> np.ndarray:
     from qdk import qsharp
     from qdk.openqasm import ProgramType, import_openqasm
