@@ -309,8 +309,8 @@ beside the fewest others and acts on both qubits (a simulator may drop an idle o
 
 
 def constructs(cache: Path) -> None:
-    """The ``--constructs`` tables (module docs); the QDK's estimator is left out (it reads as the QDK does, and
-    refuses a program this small for want of logical operations to estimate)."""
+    """The ``--constructs`` tables (module docs). The QDK's estimator is left out: it reads the file as the QDK does,
+    then refuses a program without a magic state or a measurement (``AlgorithmHasNoResources``), as these are."""
     local = [name for name in LOCAL if name != "qdk estimate"]
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
@@ -390,14 +390,12 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--quick", action="store_true", help="the 3x3 one-robot scenario only")
     parser.add_argument("--constructs", action="store_true", help="one tiny file per way of writing a gate")
     args = parser.parse_args(argv)
-    if args.constructs:
-        cache_dir: Path = args.cache.expanduser()
-        cache_dir.mkdir(parents=True, exist_ok=True)
-        constructs(cache_dir)
-        return 0
-    scenarios = SCENARIOS[:1] if args.quick else SCENARIOS
     cache: Path = args.cache.expanduser()
     cache.mkdir(parents=True, exist_ok=True)
+    if args.constructs:
+        constructs(cache)
+        return 0
+    scenarios = SCENARIOS[:1] if args.quick else SCENARIOS
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         cases = make_cases(work, scenarios)
