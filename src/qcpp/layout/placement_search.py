@@ -47,7 +47,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.patches import patch_sabre, run_sabre
+from qcpp.routing.patches import pairs_dag, patch_sabre, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 from qcpp.routing.sabre import cx_dag, dag_ops, route, window_cx
 
@@ -222,7 +222,7 @@ def _search(
     for layout in _sabre_layouts(circuit, shape.sabre.target, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
-    dags = [cx_dag(device.num_qubits, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
+    dags = [pairs_dag(shape, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
     trials = shape.trials if options.trials is None else options.trials
 
     def routed_cx(dag: Any, seed: int) -> int:

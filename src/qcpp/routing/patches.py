@@ -225,6 +225,17 @@ def indexed_patch(
     return patch, coupling, local
 
 
+def pairs_dag(shape: PatchSabre, pairs: Sequence[Sequence[int]]) -> Any:
+    """The DAG :func:`run_sabre` routes on ``shape``'s qubits: one ``cx`` per pair, in order, on a copy of its empty
+    circuit (what a pass manager would hand the pass: one register ``q``)."""
+    dag = shape.empty.copy_empty_like()
+    gate, bits = shape.gate, shape.bits
+    apply = dag.apply_operation_back
+    for a, b in pairs:
+        apply(gate, (bits[a], bits[b]), (), check=False)
+    return dag
+
+
 def sabre_local(
     context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[tuple[int, int], ...],
     seed: int, trials: int | None,
@@ -236,12 +247,8 @@ def sabre_local(
     if hit is not None:
         return hit  # type: ignore[no-any-return]
     shape = patch_sabre(context, coupling, size)
-    dag = shape.empty.copy_empty_like()  # the circuit a PassManager would hand the pass: one register q, our cx
-    gate, bits = shape.gate, shape.bits
-    apply = dag.apply_operation_back
-    for a, b in pairs:
-        apply(gate, (bits[a], bits[b]), (), check=False)
-    out = run_sabre(shape, dag, seed, shape.trials if trials is None else trials, context.parallel_trials)
+    out = run_sabre(shape, pairs_dag(shape, pairs), seed, shape.trials if trials is None else trials,
+                    context.parallel_trials)  # fmt: skip
     queues: list[list[int]] = [[] for _ in range(size)]  # per qubit, the pairs it is in, in order
     for k, (a, b) in enumerate(pairs):
         queues[a].append(k)
