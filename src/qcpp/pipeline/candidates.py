@@ -8,7 +8,9 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
   errors), written gate by gate in native gates (:func:`qcpp.routing.native.to_native`);
 * ``qcpp + O3 passes`` (``qcpp #2 + O3 passes`` ...): each of those after Qiskit's O3 optimisation at its own
   layout (:func:`qcpp.routing.qiskit_o3.qiskit_optimized`: one-qubit runs merged, two-qubit blocks resynthesised;
-  fewer and shorter gates, so fewer errors and less idle time), where Qiskit candidates are asked for;
+  fewer and shorter gates, so fewer errors and less idle time), its SWAPs first written the way round whose ``cx``
+  cancel by commutation with the circuit's (:func:`qcpp.routing.swap_orientation.orient_swaps`: the same operator,
+  fewer CZ after the passes), where Qiskit candidates are asked for;
 * ``cells on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on IBM's heavy-hex devices, the cell layout
   routed on the abstract lattice ``heavy-hex:D`` (where it is laid out by construction) and placed on the best
   embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
@@ -49,6 +51,7 @@ from qcpp.routing.native import esp, esp_idle, to_native
 from qcpp.routing.noise_aware import embedding_sites
 from qcpp.routing.qiskit_o3 import qiskit_o3_seeds, qiskit_optimized
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
+from qcpp.routing.swap_orientation import orient_swaps
 
 __all__ = [
     "OPTIMIZE_FOR", "QISKIT_SEEDS", "RoutedCandidate", "calibrated_candidates", "choose", "default_objective",
@@ -188,13 +191,13 @@ def calibrated_candidates(
         out += with_placements(name, to_native(routed), routed)
     if qiskit_circuit is not None:
         for name, routed in zip(names, ours, strict=True):
-            out += with_placements(f"{name} + O3 passes", qiskit_optimized(routed))
+            out += with_placements(f"{name} + O3 passes", qiskit_optimized(orient_swaps(routed)))
     for name, logical, routed in elsewhere:
         for placed in placements(name, to_native(routed), routed, logical):
             out.append(placed)
             if qiskit_circuit is not None and placed.lowered is not None:
-                out.append(RoutedCandidate(f"{placed.name} + O3 passes", qiskit_optimized(placed.lowered), None,
-                                           logical))  # fmt: skip
+                out.append(RoutedCandidate(f"{placed.name} + O3 passes",
+                                           qiskit_optimized(orient_swaps(placed.lowered)), None, logical))  # fmt: skip
     if qiskit_circuit is not None:
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             out += with_placements(f"qiskit O3 seed {seed}", theirs, logical=qiskit_circuit)
