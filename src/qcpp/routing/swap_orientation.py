@@ -40,12 +40,8 @@ X_AXIS = frozenset({"x", "rx", "sx"})
 
 
 def _meets(gates: Sequence[Gate], on: list[list[int]], k: int, c: int, t: int, step: int) -> bool:
-    """Whether ``cx c t`` at index ``k`` commutes, going ``step`` (-1: back, +1: ahead), up to a ``cx c t``."""
-    return _partner(gates, on, k, c, t, step) >= 0
-
-
-def _partner(gates: Sequence[Gate], on: list[list[int]], k: int, c: int, t: int, step: int) -> int:
-    """Index of the ``cx c t`` that ``cx c t`` at index ``k`` commutes up to going ``step``, or ``-1``."""
+    """Whether ``cx c t`` at index ``k`` commutes, going ``step`` (-1: back, +1: ahead), up to a ``cx c t``
+    (``on[q]``: the indices of the gates on qubit ``q``, in order)."""
     lc, lt = on[c], on[t]
     i = bisect_left(lc, k) + step
     j = bisect_left(lt, k) + step
@@ -56,27 +52,27 @@ def _partner(gates: Sequence[Gate], on: list[list[int]], k: int, c: int, t: int,
         if 0 <= j < len(lt):
             cand.append(lt[j])
         if not cand:
-            return -1
+            return False
         g_at = max(cand) if step < 0 else min(cand)  # the next gate on c or t that way
         g = gates[g_at]
         name, qs = g[0], g[1]
         if name == "cx" and qs == (c, t):
-            return g_at
+            return True
         if len(qs) == 2:
             if name != "cx":
-                return -1
+                return False
             gc, gt = qs
             if gc == c and gt != t:
                 pass  # shares the control
             elif gt == t and gc != c:
                 pass  # shares the target
             else:
-                return -1
+                return False
         elif qs[0] == c:
             if name not in DIAGONAL:
-                return -1
+                return False
         elif name not in X_AXIS:
-            return -1
+            return False
         if 0 <= i < len(lc) and lc[i] == g_at:
             i += step
         if 0 <= j < len(lt) and lt[j] == g_at:
