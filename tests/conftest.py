@@ -189,31 +189,42 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/results_freshness_test.py::test_ensemble_derived_columns[ensembles-5x5/1]",
         "tests/simulate/experiments_test.py::test_ensemble_devices_bad_input_is_refused_with_its_reason",
         "tests/simulate/tensor_test.py::test_validate_cli_json_and_exit_codes",
+        "tests/compiler/routing_qcec_test.py::test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_"
+        "their_logical_circuits",
+        "tests/cli/device_cli_test.py::test_compile_device_writes_physical_qubits_on_couplings[ibm_torino-False]",
     }
 )
 """Tests (node ids) that run with ``-m heavy`` although their functions carry no marker: see the module docstring."""
 
 
 LONGEST_FIRST = (
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1",
-    "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[5x5/3-heavy-hex]",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3",
-    "tests/simulate/tensor_test.py::test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one",
-    "tests/compiler/phase_classes_test.py::test_every_default_scenario_up_to_16x16_equals_the_plan",
-    "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/1",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2",
-    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/2]",
-    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/1#",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2]",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2 +obst]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#",
     "tests/simulate/time_to_solution_test.py::test_quick_mode",
-    "tests/compiler/hexlayout_test.py::test_estimate_device_heavy_hex_equals_compile",
-    "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[4x4/2-heavy-hex]",
-    "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[4x4/2-heavy-hex]",
-    "tests/simulate/tensor_test.py::test_compiled_circuit_matches_subspace_simulator",
-    "tests/compiler/cellmixer_test.py::test_relabelled_plans_are_the_relabelled_programs_own_plans[4x4/2]",
-    "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_where_compile_takes_seconds",
-    "tests/estimators/depth_compose_test.py::test_exact_depth_equals_the_compiled_circuit_everywhere",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/2#",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1]",
+    "tests/compiler/phase_classes_test.py::test_every_default_scenario_up_to_16x16_equals_the_plan",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1 +obst]",
+    "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3 +obst]",
+    "tests/compiler/noise_aware_test.py::test_compile_on_a_named_device_is_never_worse_than_qiskit_o3[ibm_torino]",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3]",
+    "tests/compiler/noise_aware_test.py::test_compile_on_a_named_device_is_never_worse_than_qiskit_o3[ibm_fez]",
+    "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[5x5/3-heavy-hex]",
+    "tests/compiler/noise_aware_test.py::test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2]",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/1 +obst]",
+    "tests/simulate/tensor_test.py::test_compiled_circuit_matches_subspace_simulator[3-4-2-1-None]",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/1]",
+    "tests/compiler/noise_aware_test.py::test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2 +obst]",
+    "tests/compiler/routing_qcec_test.py::test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_th"
+    "eir_logical_circuits",
+    "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_where_compile_takes_seconds[12-12-2-1]",
+    "tests/simulate/experiments_test.py::test_ensemble_devices_quick_mode",
+    "tests/cli/device_cli_test.py::test_compile_device_writes_physical_qubits_on_couplings[ibm_torino-False]",
 )
 """Node-id prefixes of the longest tests, longest first (the module docstring): an order, so a stale entry costs
 wall time, never a result."""
