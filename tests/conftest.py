@@ -121,7 +121,6 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/sparse_test.py::test_sparse_agrees_with_statevector",
         "tests/simulate/statevector_test.py::test_twenty_qubits",
         "tests/simulate/tensor_test.py::test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes",
-        "tests/simulate/time_to_solution_test.py::test_quick_mode_on_the_3x3_instances",
         "tests/api/bad_input_test.py::test_openqasm_2_of_an_unbound_circuit_names_the_symbols",
         "tests/cli/bad_input_test.py::test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was"
         "[estimate --grid 2x2 --plot /dev/full]",

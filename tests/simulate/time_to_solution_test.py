@@ -4,7 +4,6 @@ quick mode, helpers."""
 from __future__ import annotations
 
 import csv
-import dataclasses
 import importlib.util
 import json
 import math
@@ -111,13 +110,6 @@ def test_time_to_reach_and_cpsat_best_by(tts) -> None:  # type: ignore[no-untype
     assert tts.time_to_reach(run, 0.0) is None
     res = {"improvements": [[0.1, 9.0], [0.5, 4.0], [3.0, 2.0]]}
     assert tts.cpsat_best_by(res, 0.05) is None and tts.cpsat_best_by(res, 1.0) == 4.0
-
-
-def test_quick_mode_on_the_3x3_instances(tts, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:  # type: ignore[no-untyped-def]
-    """The quick run's checks on its four 3x3 instances (1 and 2 robots, with and without an obstacle), one run of
-    each heuristic."""
-    monkeypatch.setattr(tts, "QUICK", dataclasses.replace(tts.QUICK, sizes=(3,), runs=1))
-    _assert_quick_run(tts, tmp_path)
 
 
 @pytest.mark.heavy
