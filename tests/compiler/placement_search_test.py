@@ -26,8 +26,9 @@ from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.patches import pairs_dag, patch_sabre, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit
-from qcpp.routing.sabre import route
+from qcpp.routing.sabre import dag_cx, dag_ops, route, window_cx
 
 from .routing_qcec_test import aligned
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling
@@ -71,6 +72,41 @@ def test_fused_whole_circuit_routing_is_exact_and_scored_as_written(
     # the search ranks candidates by this score without assembling them: it must be what route writes
     [(score, _, _)] = placement_search.search_ranking(logical, dev, starts=(layout,), seed=seed, layouts=0, seeds=1)
     assert score == two_qubit_count(fused.circuit)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.sampled_from(["heavy-hex:3", "grid:3x3", "grid:1x8"]), st.integers(0, 3), st.data())
+def test_the_score_read_from_the_swaps_is_the_count_of_every_operation(
+    device: str, seed: int, data: st.DataObject
+) -> None:
+    """:func:`qcpp.routing.sabre.dag_cx` (the search's score, read from the SWAPs' neighbours) equals
+    :func:`qcpp.routing.sabre.window_cx` of every routed operation, on SABRE's routings of random pairs with
+    repeats (where SWAPs fuse before and after)."""
+    dev = get_device(device)
+    n = data.draw(st.integers(2, dev.num_qubits))
+    pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(lambda p: p[0] != p[1])
+    pairs: list[tuple[int, int]] = []
+    for a, b in data.draw(st.lists(pair, min_size=1, max_size=40)):
+        pairs += [(a, b)] * data.draw(st.integers(1, 2)) + ([(b, a)] if data.draw(st.booleans()) else [])
+    shape = patch_sabre(RoutingContext(), dev.coupling, dev.num_qubits)
+    routed = run_sabre(shape, pairs_dag(shape, pairs), seed, 4)
+    ops = dag_ops(routed)
+    assert dag_cx(routed) == window_cx(ops)
+    assert len(ops) <= dag_cx(routed) <= len(ops) + 2 * sum(1 for name, _ in ops if name == "swap")
+
+
+def test_the_score_read_from_the_swaps_on_sequences_sabre_does_not_write() -> None:
+    """Two SWAPs in a row on one pair: the second fuses with the first (as :func:`window_cx` counts it), the first
+    with nothing (a SWAP after it is not a ``cx``)."""
+    from qiskit import QuantumCircuit
+    from qiskit.converters import circuit_to_dag
+
+    qc = QuantumCircuit(3)
+    qc.swap(0, 1)
+    qc.swap(0, 1)
+    qc.cx(1, 2)
+    dag = circuit_to_dag(qc)
+    assert dag_cx(dag) == window_cx(dag_ops(dag)) == 5
 
 
 def _mixer_circuit(shape: tuple[int, int, int]) -> Circuit:

@@ -49,7 +49,7 @@ from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.patches import pairs_dag, patch_sabre, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
-from qcpp.routing.sabre import cx_dag, dag_ops, route, window_cx
+from qcpp.routing.sabre import cx_dag, dag_cx, route
 
 __all__ = ["qiskit_sabre_layout", "ranked_routes", "search_ranking", "search_route", "two_qubit_count"]
 
@@ -213,7 +213,7 @@ def _search(
     """``(two-qubit gates, layout, routing seed)`` of every routing :func:`search_route` tries, cheapest first (the
     first is its choice; one entry per layout and seed): every layout routed with ``seed``, then the
     ``options.placement_refine`` cheapest of them with the other seeds. A candidate is scored by
-    :func:`qcpp.routing.sabre.window_cx` of SABRE's ops (in one window that is the two-qubit count
+    :func:`qcpp.routing.sabre.dag_cx` of SABRE's routing (in one window that is the two-qubit count
     :func:`qcpp.routing.sabre.route` writes with ``fuse=True``), without assembling the circuit. SABRE runs as
     :func:`qcpp.routing.patches.run_sabre` runs it (the context's pass for the device's couplings, without the
     pass's per-run checks: the same routing)."""
@@ -228,7 +228,7 @@ def _search(
     def routed_cx(dag: Any, seed: int) -> int:
         """Two-qubit gates of SABRE's routing of ``dag`` (physical qubits), SWAPs fused as :func:`route` fuses
         them."""
-        return window_cx(dag_ops(run_sabre(shape, dag, seed, trials, context.parallel_trials)))
+        return dag_cx(run_sabre(shape, dag, seed, trials, context.parallel_trials))
 
     first = sorted((routed_cx(dag, seed), i) for i, dag in enumerate(dags))
     tried = [(cx, i, seed) for cx, i in first]
