@@ -62,11 +62,7 @@ def _meets(gates: Sequence[Gate], on: list[list[int]], k: int, c: int, t: int, s
             if name != "cx":
                 return False
             gc, gt = qs
-            if gc == c and gt != t:
-                pass  # shares the control
-            elif gt == t and gc != c:
-                pass  # shares the target
-            else:
+            if (gc == c) == (gt == t):  # commutes only sharing just the control or just the target
                 return False
         elif qs[0] == c:
             if name not in DIAGONAL:
