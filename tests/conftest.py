@@ -105,6 +105,13 @@ SLOW_DEFAULT = frozenset(
         "tests/compiler/window_classes_test.py::test_windows_of_one_class_share_one_routing",
         "tests/compiler/window_memo_test.py::test_a_window_routed_after_its_translation_routes_as_from_a_cold_memo",
         "tests/doctests_test.py::test_docstring_examples[qcpp.pipeline.device_compile]",
+        "tests/docs_examples_test.py::test_the_page_s_python_examples_run_and_print_what_they_claim[README.md]",
+        "tests/docs_examples_test.py::test_the_page_s_python_examples_run_and_print_what_they_claim"
+        "[docs/getting-started.md]",
+        "tests/docs_examples_test.py::test_the_page_s_python_examples_run_and_print_what_they_claim"
+        "[docs/guide/compile.md]",
+        "tests/docs_examples_test.py::test_the_page_s_python_examples_run_and_print_what_they_claim"
+        "[docs/guide/hardware.md]",
         "tests/estimators/formulas_test.py::test_every_published_quantity_has_a_formula",
         "tests/estimators/formulas_test.py::test_structured_and_explicit_forms_agree",
         "tests/estimators/routed_test.py::test_the_window_sum_gives_compiles_counts_and_esp[4x5/2]",

@@ -35,6 +35,7 @@ if TYPE_CHECKING:
     from qcpp.api.compiling import Compiled, compile
     from qcpp.api.devices import Device, DeviceError, device, devices
     from qcpp.api.estimates import Estimate, estimate, plot_estimates
+    from qcpp.api.noisy import simulate_noisy
     from qcpp.api.scenarios import (
         Scenario,
         ScenarioError,
@@ -63,6 +64,7 @@ _EXPORTS: dict[str, str] = {
     "Estimate": "qcpp.api.estimates",
     "estimate": "qcpp.api.estimates",
     "plot_estimates": "qcpp.api.estimates",
+    "simulate_noisy": "qcpp.api.noisy",
     "Scenario": "qcpp.api.scenarios",
     "ScenarioError": "qcpp.api.scenarios",
     "default_scenario": "qcpp.api.scenarios",
@@ -113,6 +115,7 @@ __all__ = [
     "plot_estimates",
     "random_scenario",
     "save_scenario",
+    "simulate_noisy",
     "simulate_qaoa",
     "solve",
     "train_qaoa",

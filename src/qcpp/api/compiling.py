@@ -31,6 +31,7 @@ from qcpp.problem.limits import API_OVERRIDE
 if TYPE_CHECKING:
     from qcpp.hardware.device import Device
     from qcpp.ir.circuit import Circuit
+    from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = ["Compiled", "compile"]
 
@@ -61,6 +62,7 @@ class Compiled:
     initial_layout: list[int] | None = None
     final_layout: list[int] | None = None
     _summary: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    _routed: RoutedCircuit | None = field(default=None, repr=False, compare=False)
 
     @property
     def qubits(self) -> int:
@@ -251,6 +253,6 @@ def compile(
     r = routed.routed
     return Compiled(
         s, layers, r.circuit, lowered, r.device, list(r.initial_layout), list(r.final_layout),
-        _summary=routed.compile_summary(),
+        _summary=routed.compile_summary(), _routed=r,
     )  # fmt: skip
 

@@ -51,7 +51,7 @@ from qcpp.simulate.statevector import MAX_STATEVECTOR_QUBITS
 from qcpp.simulate.subspace import SubspaceQAOA, angle_bindings, split_angles
 from qcpp.training.training import check_at_least, initial_angles
 
-__all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "resolve_angles"]
+__all__ = ["MAX_STATEVECTOR_QUBITS", "METHODS", "Evaluation", "evaluate", "feasible_assignments", "resolve_angles"]
 
 Method = Literal["subspace", "statevector", "tensor"]
 METHODS: tuple[Method, ...] = ("subspace", "statevector", "tensor")
@@ -158,8 +158,19 @@ def _tup(x: np.ndarray) -> tuple[float, ...]:
     return tuple(float(v) for v in x)
 
 
-def _feasible(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
-    """Data-register indices of every feasible assignment and a mask of the optimal ones."""
+def feasible_assignments(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
+    """Every feasible assignment of ``scenario`` (one path per robot) and which of them are optimal.
+
+    Returns:
+        ``(indices, optimal)``: the data-register integer of each feasible assignment (bit ``i`` = variable ``i``)
+        and a boolean mask of those whose total cost is the minimum (within a relative ``1e-9``).
+
+    Example:
+        >>> from qcpp.problem.presets import default_scenario
+        >>> indices, optimal = feasible_assignments(default_scenario(2, 2, 1))
+        >>> len(indices), int(optimal.sum())
+        (2, 2)
+    """
     lists = [enumerate_paths(scenario, r) for r in range(scenario.num_robots)]
     weights = 1 << np.arange(scenario.num_variables, dtype=np.int64)
     combos = list(itertools.product(*lists))
@@ -195,7 +206,7 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
     bits = (data[:, None] >> np.arange(nd)) & 1
     costs = cost_parts_bits(scenario, bits)[:, 3]
     expectation = float(np.dot(probs[support], costs))
-    feasible, optimal = _feasible(scenario)
+    feasible, optimal = feasible_assignments(scenario)
     held = float(probs[feasible].sum())  # data index == full index when the ancillas (above the data) are 0
     p_opt = float(probs[support][np.isin(data, feasible[optimal])].sum())  # any ancilla value
     return Evaluation("statevector", p, _tup(x), expectation, p_opt, held, time.perf_counter() - t0, n, 1 << n)
@@ -210,7 +221,7 @@ def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) ->
     except ImportError as exc:  # pragma: no cover - the backend module is optional at import time
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
     compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
-    feasible, optimal = _feasible(scenario)
+    feasible, optimal = feasible_assignments(scenario)
     amps = np.asarray(tensor.TensorCircuit(compiled.circuit).amplitudes(feasible.tolist()), dtype=complex)
     probs = amps.real * amps.real + amps.imag * amps.imag
     nd = scenario.num_variables

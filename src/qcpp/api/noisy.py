@@ -1,0 +1,101 @@
+"""``qcpp.simulate_noisy``: P(optimum) of a circuit compiled for a device, under that device's noise.
+
+The check the hardware guide runs on the ESP model (``benchmarks/noisy_verdict.py``), for a user's own scenario and
+angles: the routed native circuit :func:`qcpp.compile` wrote for a named device is simulated by qiskit-aer with a
+noise model built from the same device file (:mod:`qcpp.simulate.noisy`: gate errors, thermal relaxation over the
+gates and the idle waits where the file has T1/T2 and durations, read-out errors), on the qubits it touches, and the
+probability that the measured data register is an optimal assignment is returned beside the ESP model's figure.
+
+Needs the extra ``noise`` (``pip install 'qcpp[noise]'``, qiskit-aer).
+
+Example:
+    >>> import qcpp
+    >>> s = qcpp.grid_scenario(2, 2, robots=1)
+    >>> c = qcpp.compile(s, device="ibm_fez", bind={"gamma_0": 0.0, "beta_0": 0.0})
+    >>> r = qcpp.simulate_noisy(c, noise=False)
+    >>> round(r.p_optimum, 6), r.method
+    (1.0, 'density_matrix')
+    >>> qcpp.simulate_noisy(qcpp.compile(s))
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: compiled: no device: compile with device=NAME to simulate the device's noise
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from qcpp.api.compiling import Compiled
+from qcpp.errors import OptionError, check_count
+
+if TYPE_CHECKING:
+    from qcpp.simulate.noisy import NoisyResult
+
+__all__ = ["simulate_noisy"]
+
+
+def simulate_noisy(
+    compiled: Compiled,
+    *,
+    noise: bool = True,
+    idle: bool = True,
+    shots: int = 2000,
+    seed: int = 0,
+    method: str | None = None,
+) -> NoisyResult:
+    """P(optimum) of ``compiled`` under the noise of the device it was compiled for.
+
+    Up to 10 active qubits the density matrix gives P(optimum) exactly; above, ``shots`` sampled trajectories (state
+    vectors up to 24 active qubits, matrix product states beyond) give it with a binomial standard error. The cost
+    grows as 2^(active qubits) per gate and shot: a 15-qubit circuit of a few hundred two-qubit gates takes minutes.
+
+    Args:
+        compiled: A circuit of :func:`qcpp.compile` with ``device=`` a named device, not ``lowered`` (the device's
+            native gates, whose errors the device file gives), every symbol bound (``bind=``).
+        noise: Apply the device's noise (``False``: the same circuit without noise; its P(optimum) is the ideal
+            state's, a check of the routing).
+        idle: With ``noise``, also relaxation while qubits wait (``False``: gate and read-out errors only, what the
+            ESP model charges).
+        shots: Trajectories, for the sampled methods.
+        seed: qiskit-aer's seed.
+        method: ``density_matrix``, ``statevector`` or ``matrix_product_state`` (default: by the active qubit
+            count, as above).
+
+    Returns:
+        A :class:`qcpp.simulate.noisy.NoisyResult`: ``p_optimum``, its ``stderr`` (0 when exact), the ``method``,
+        the active ``qubits`` and the ``shots``.
+
+    Raises:
+        qcpp.errors.OptionError: ``compiled`` is not a compiled circuit, has no device or is lowered; a bad
+            ``shots``, ``seed``, ``method`` or flag.
+        qcpp.ir.angles.UnboundParameterError: unbound symbols (naming them).
+        qcpp.simulate.noisy.NoisyBackendMissing: qiskit-aer is not installed (naming the extra).
+    """
+    from qcpp.ir.angles import UnboundParameterError
+    from qcpp.simulate.noisy import METHODS, require_aer
+    from qcpp.simulate.noisy import simulate_noisy as simulate
+    from qcpp.training.evaluate import feasible_assignments
+
+    if not isinstance(compiled, Compiled):
+        raise OptionError("compiled", f"expected the result of qcpp.compile, got {type(compiled).__name__}")
+    if compiled._routed is None:
+        raise OptionError("compiled", "no device: compile with device=NAME to simulate the device's noise")
+    if compiled.lowered:
+        raise OptionError(
+            "compiled", "lowered to cx: compile without lowered=True (the device's native gates carry its errors)"
+        )
+    for name, flag in (("noise", noise), ("idle", idle)):
+        if not isinstance(flag, bool):
+            raise OptionError(name, f"expected True or False, got {flag!r}")
+    count = check_count(shots, "shots")
+    chosen_seed = check_count(seed, "seed", 0)
+    if method is not None and method not in METHODS:
+        raise OptionError("method", f"unknown method {method!r} (expected one of {', '.join(METHODS)})")
+    if compiled.symbols:
+        raise UnboundParameterError(compiled.symbols, "a noisy simulation needs numbers")
+    require_aer()
+    indices, optimal = feasible_assignments(compiled.scenario)
+    return simulate(
+        compiled._routed, indices[optimal].tolist(), noise=noise, idle=idle, shots=count, seed=chosen_seed,
+        method=method,
+    )  # fmt: skip
