@@ -16,7 +16,8 @@ Columns: routed two-qubit gates, active qubits, ESP, P(optimum) of the trained s
 same read from the routed circuit without noise (aer; the routing and the conversion checked), ESP x P(optimum),
 P(optimum) under noise (+- its standard error with sampled trajectories), the ratio noisy / (ESP x P(optimum)),
 and where the device file has T1/T2 (the IBM snapshots) P(optimum) under noise without the idle relaxation (gate
-and read-out errors only, what the ESP model charges).
+and read-out errors only, what the ESP model charges), the idle-aware product (ESP with idle decoherence,
+:func:`qcpp.routing.native.esp_idle`, x P(optimum)) and the ratio of the noisy figure to it.
 """
 
 from __future__ import annotations
@@ -31,9 +32,9 @@ from qcpp.hardware.device import device_names
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
-from qcpp.routing.native import esp
+from qcpp.routing.native import esp, esp_idle
 from qcpp.simulate.noisy import active_qubits, simulate_noisy
-from qcpp.training.evaluate import _feasible
+from qcpp.training.evaluate import feasible_assignments
 from qcpp.training.qaoa_solver import SINGLE_START
 
 SMALL = ((2, 2, 1), (2, 3, 1), (3, 3, 1), (3, 4, 1), (4, 4, 1), (3, 3, 2), (4, 4, 2))
@@ -52,8 +53,8 @@ def main() -> None:
     trained: dict[tuple[int, int, int, int], tuple[dict[str, float], float, list[int]]] = {}
     print("| device | p | scenario | routed 2q | active qubits | ESP | P(opt) ideal | P(opt) routed, no noise "
           "| ESP x P(opt) | P(opt) noisy | noisy / (ESP x P(opt)) | P(opt) noisy, no idle relaxation "
-          "| method |")  # fmt: skip
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+          "| ESP idle x P(opt) | noisy / (ESP idle x P(opt)) | method |")  # fmt: skip
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name in device_names():
         for p in layers:
             for rows, cols, robots in SMALL:
@@ -64,7 +65,7 @@ def main() -> None:
                     angles = {}
                     for k in range(p):
                         angles[f"gamma_{k}"], angles[f"beta_{k}"] = sol.angles[2 * k], sol.angles[2 * k + 1]
-                    feasible, optimal = _feasible(s)
+                    feasible, optimal = feasible_assignments(s)
                     trained[key] = (angles, float(sol.p_optimum), feasible[optimal].tolist())
                 angles, ideal, targets = trained[key]
                 start = time.perf_counter()
@@ -76,8 +77,11 @@ def main() -> None:
                 twoq = sum(v for k, v in ops.items() if k in ("cz", "rzz", "cx"))
                 k = len(active_qubits(routed))
                 cells = [name, str(p), f"{rows}x{cols}/{robots}", f"{twoq:,}", str(k), f"{e:.3f}", f"{ideal:.3f}"]
+                idle_esp = esp_idle(routed, gate_esp=e)
+                idle_product = "-" if idle_esp is None else f"{idle_esp * ideal:.3f}"
                 if k > args.max_qubits:
-                    cells += ["-", f"{e * ideal:.3f}", "-", "-", "-", f"not simulated ({k} > {args.max_qubits} qubits)"]
+                    cells += ["-", f"{e * ideal:.3f}", "-", "-", "-", idle_product, "-",
+                              f"not simulated ({k} > {args.max_qubits} qubits)"]  # fmt: skip
                 else:
                     clean = simulate_noisy(routed, targets, noise=False, shots=4 * args.shots)
                     noisy = simulate_noisy(routed, targets, shots=args.shots)
@@ -87,9 +91,11 @@ def main() -> None:
                     if routed.device.t1_s is not None:  # idle relaxation applies: the run without it beside
                         g = simulate_noisy(routed, targets, idle=False, shots=args.shots)
                         gates_only = f"{g.p_optimum:.3f}" + (f" +- {g.stderr:.3f}" if g.shots else "")
+                    idle_ratio = "-" if idle_esp is None or idle_esp * ideal <= 0 else (
+                        f"{noisy.p_optimum / (idle_esp * ideal):.2f}")  # fmt: skip
                     how = noisy.method + (f", {noisy.shots} shots" if noisy.shots else "")
                     cells += [f"{clean.p_optimum:.3f}", f"{e * ideal:.3f}", f"{noisy.p_optimum:.3f}{err}",
-                              f"{ratio:.2f}", gates_only, how]  # fmt: skip
+                              f"{ratio:.2f}", gates_only, idle_product, idle_ratio, how]  # fmt: skip
                 print("| " + " | ".join(cells) + " |", flush=True)
                 seconds = time.perf_counter() - start
                 print(f"[{name} p={p} {rows}x{cols}/{robots}: {seconds:.0f} s]", file=sys.stderr, flush=True)
