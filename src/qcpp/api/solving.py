@@ -189,6 +189,7 @@ def simulate_qaoa(
     method: str = "subspace",
     seed: int = 0,
     rule: str = "exact",
+    client: Any = None,
 ) -> Evaluation:
     """Evaluate the QAOA state at given (or seeded random) angles (``qcpp simulate``).
 
@@ -199,12 +200,16 @@ def simulate_qaoa(
             state) or ``tensor`` (tensor network).
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
+        client: ``tensor`` only: a connected ``dask.distributed.Client``; contractions wider than the tensor
+            backend's memory limit (2^27 entries) are sliced and their slices run on its cluster, as
+            ``qcpp validate --dask`` does.
 
     Returns:
         The :class:`~qcpp.training.evaluate.Evaluation` (``expectation``, ``p_optimum``, ``amplitudes_held``, ...).
 
     Raises:
-        qcpp.errors.OptionError: a bad value, naming the option (``angles`` of the wrong length or not finite).
+        qcpp.errors.OptionError: a bad value, naming the option (``angles`` of the wrong length or not finite;
+            ``client`` with another method than ``tensor``).
         qcpp.problem.limits.SizeError: a feasible subspace over the limits of ``qcpp simulate`` (inside
             ``qcpp.allow_large()`` nothing is refused).
     """
@@ -217,6 +222,8 @@ def simulate_qaoa(
     check_choice(method, METHODS, "method")
     check_choice(rule, ("exact", "paper"), "rule")
     check_count(seed, "seed", 0)
+    if client is not None and method != "tensor":
+        raise OptionError("client", f"only the tensor method runs on a dask cluster, got method={method!r}")
     values = None
     if angles is not None:
         if isinstance(angles, (str, bytes)) or not isinstance(angles, Sequence):
@@ -230,4 +237,7 @@ def simulate_qaoa(
             raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
     check_phase_range(s)
     check_simulation_size(s, "scenario", API_OVERRIDE, p=layers, method=method)
-    return evaluate(s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
+    return evaluate(
+        s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule,  # type: ignore[arg-type]
+        client=client,
+    )

@@ -123,6 +123,7 @@ def evaluate(
     angles: Sequence[float] | None = None,
     seed: int | None = None,
     rule: Rule = "exact",
+    client: Any = None,
 ) -> Evaluation:
     """Simulate the QAOA state at the given (or seeded random) angles with ``method``.
 
@@ -132,6 +133,8 @@ def evaluate(
         angles: ``2p`` angles; ``None`` for random ones from ``seed``.
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
+        client: ``tensor``: a connected ``dask.distributed.Client`` that runs the slices of contractions wider than
+            :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` (:class:`~qcpp.simulate.tensor.TensorCircuit`).
 
     Raises:
         ValueError: unknown method or rule, angles that do not fit, too many qubits for ``statevector``, or
@@ -151,7 +154,7 @@ def evaluate(
         return Evaluation(method, p, _tup(x), e, popt, held, time.perf_counter() - t0, None, q.dimension)
     if method == "statevector":
         return _statevector(scenario, p, x, rule, t0)
-    return _tensor(scenario, p, x, rule, t0)
+    return _tensor(scenario, p, x, rule, t0, client)
 
 
 def _tup(x: np.ndarray) -> tuple[float, ...]:
@@ -212,7 +215,7 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
     return Evaluation("statevector", p, _tup(x), expectation, p_opt, held, time.perf_counter() - t0, n, 1 << n)
 
 
-def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) -> Evaluation:
+def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float, client: Any = None) -> Evaluation:
     from qcpp.plan.compile import compile_scenario
     from qcpp.plan.options import PlanOptions
 
@@ -222,7 +225,8 @@ def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) ->
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
     compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
     feasible, optimal = feasible_assignments(scenario)
-    amps = np.asarray(tensor.TensorCircuit(compiled.circuit).amplitudes(feasible.tolist()), dtype=complex)
+    circuit = tensor.TensorCircuit(compiled.circuit, client=client)
+    amps = np.asarray(circuit.amplitudes(feasible.tolist()), dtype=complex)
     probs = amps.real * amps.real + amps.imag * amps.imag
     nd = scenario.num_variables
     bits = (feasible[:, None] >> np.arange(nd)) & 1
