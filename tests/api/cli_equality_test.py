@@ -79,6 +79,7 @@ def test_routed_layouts_are_the_cli_s() -> None:
     assert c.counts() == summary["gates"]
     assert c.device is not None and c.device.name == summary["device"]["name"]
     assert {k: v for k, v in summary.items() if k != "seconds"} == c.to_dict()
+    assert (c.esp, c.esp_idle) == (summary["routed"]["esp"], summary["routed"]["esp_idle"])
 
 
 def test_to_qiskit_loads_the_same_gates() -> None:

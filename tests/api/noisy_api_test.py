@@ -37,6 +37,9 @@ def test_the_device_s_noise_costs_probability_and_idling_costs_more(compiled: qc
     gates_only = qcpp.simulate_noisy(compiled, idle=False).p_optimum
     with_idle = qcpp.simulate_noisy(compiled).p_optimum
     assert 0.0 < with_idle < gates_only < ideal
+    # the idle-aware ESP counts every idle decay as a lost shot: below the simulated figure
+    assert compiled.esp_idle is not None and compiled.esp is not None and compiled.esp_idle < compiled.esp
+    assert compiled.esp_idle * ideal < with_idle
 
 
 def test_bad_calls_name_what_is_wrong() -> None:
@@ -50,3 +53,4 @@ def test_bad_calls_name_what_is_wrong() -> None:
     assert error_of(lambda: qcpp.simulate_noisy(bound, shots=0), qcpp.OptionError).startswith("shots:")
     assert error_of(lambda: qcpp.simulate_noisy(bound, method="mps"), qcpp.OptionError).startswith("method:")
     assert error_of(lambda: qcpp.simulate_noisy(s), qcpp.OptionError).startswith("compiled:")  # type: ignore[arg-type]
+    assert qcpp.compile(s).esp is None and qcpp.compile(s).esp_idle is None

@@ -74,6 +74,19 @@ class Compiled:
         """The unbound angle symbols (``gamma_0``, ``beta_0``, ...), in layer order."""
         return self.circuit.symbols
 
+    @property
+    def esp(self) -> float | None:
+        """With a device: the estimated success probability of the routed circuit, the product of (1 - error) over
+        its native gates and the read-outs of the data qubits (``qcpp compile --json``'s ``routed.esp``); else
+        ``None``."""
+        return self._summary["routed"]["esp"] if self.device is not None else None
+
+    @property
+    def esp_idle(self) -> float | None:
+        """With a device that publishes T1 / T2: :attr:`esp` times the idle decoherence of the scheduled circuit
+        (``routed.esp_idle``); else ``None``."""
+        return self._summary["routed"]["esp_idle"] if self.device is not None else None
+
     def counts(self) -> dict[str, int]:
         """Gate name -> count, sorted by name: ``qcpp compile --json``'s ``gates``."""
         return dict(sorted(self.circuit.count_ops().items()))
