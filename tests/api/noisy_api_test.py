@@ -45,11 +45,11 @@ def test_the_device_s_noise_costs_probability_and_idling_costs_more(compiled: qc
 def test_bad_calls_name_what_is_wrong() -> None:
     s = qcpp.grid_scenario(2, 2, robots=1)
     assert error_of(lambda: qcpp.simulate_noisy(qcpp.compile(s)), qcpp.OptionError).startswith("compiled: no device")
-    lowered = qcpp.compile(s, device="ibm_fez", lowered=True, bind={"gamma_0": 0.1, "beta_0": 0.2})
+    lowered = qcpp.compile(s, device="quantinuum_helios", lowered=True, bind={"gamma_0": 0.1, "beta_0": 0.2})
     assert "lowered" in error_of(lambda: qcpp.simulate_noisy(lowered), qcpp.OptionError)
-    unbound = qcpp.compile(s, device="ibm_fez", bind={"gamma_0": 0.1})
+    unbound = qcpp.compile(s, device="quantinuum_helios", bind={"gamma_0": 0.1})
     assert "beta_0" in error_of(lambda: qcpp.simulate_noisy(unbound), qcpp.UnboundParameterError)
-    bound = qcpp.compile(s, device="ibm_fez", bind={"gamma_0": 0.1, "beta_0": 0.2})
+    bound = qcpp.compile(s, device="quantinuum_helios", bind={"gamma_0": 0.1, "beta_0": 0.2})
     assert error_of(lambda: qcpp.simulate_noisy(bound, shots=0), qcpp.OptionError).startswith("shots:")
     assert error_of(lambda: qcpp.simulate_noisy(bound, method="mps"), qcpp.OptionError).startswith("method:")
     assert error_of(lambda: qcpp.simulate_noisy(s), qcpp.OptionError).startswith("compiled:")  # type: ignore[arg-type]
