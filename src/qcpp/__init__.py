@@ -52,6 +52,7 @@ if TYPE_CHECKING:
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.problem.paths import is_feasible
+    from qcpp.simulate.noisy import NoisyResult
     from qcpp.verification import VerifyReport, verify
 
 _EXPORTS: dict[str, str] = {
@@ -83,6 +84,7 @@ _EXPORTS: dict[str, str] = {
     "SizeError": "qcpp.problem.limits",
     "allow_large": "qcpp.problem.limits",
     "is_feasible": "qcpp.problem.paths",
+    "NoisyResult": "qcpp.simulate.noisy",
     "VerifyReport": "qcpp.verification",
     "verify": "qcpp.verification",
 }
@@ -93,6 +95,7 @@ __all__ = [
     "Device",
     "DeviceError",
     "Estimate",
+    "NoisyResult",
     "OptionError",
     "OutputError",
     "QcppError",

@@ -62,7 +62,7 @@ def simulate_noisy(
             count, as above).
 
     Returns:
-        A :class:`qcpp.simulate.noisy.NoisyResult`: ``p_optimum``, its ``stderr`` (0 when exact), the ``method``,
+        A :class:`qcpp.NoisyResult`: ``p_optimum``, its ``stderr`` (0 when exact), the ``method``,
         the active ``qubits`` and the ``shots``.
 
     Raises:
