@@ -1,7 +1,7 @@
 """``qcpp.simulate_noisy``: P(optimum) of a circuit compiled for a device, under that device's noise.
 
 The check the hardware guide runs on the ESP model (``benchmarks/noisy_verdict.py``), for a user's own scenario and
-angles: the routed native circuit :func:`qcpp.compile` wrote for a named device is simulated by qiskit-aer with a
+angles: the routed native circuit :func:`qcpp.compile` wrote for a device is simulated by qiskit-aer with a
 noise model built from the same device file (:mod:`qcpp.simulate.noisy`: gate errors, thermal relaxation over the
 gates and the idle waits where the file has T1/T2 and durations, read-out errors), on the qubits it touches, and the
 probability that the measured data register is an optimal assignment is returned beside the ESP model's figure.
@@ -50,8 +50,9 @@ def simulate_noisy(
     grows as 2^(active qubits) per gate and shot: a 15-qubit circuit of a few hundred two-qubit gates takes minutes.
 
     Args:
-        compiled: A circuit of :func:`qcpp.compile` with ``device=`` a named device, not ``lowered`` (the device's
-            native gates, whose errors the device file gives), every symbol bound (``bind=``).
+        compiled: A circuit of :func:`qcpp.compile` with a ``device=`` (a named device's calibration snapshot, or
+            an abstract family's default errors), not ``lowered`` (the device's native gates, whose errors the
+            device gives), every symbol bound (``bind=``).
         noise: Apply the device's noise (``False``: the same circuit without noise; its P(optimum) is the ideal
             state's, a check of the routing).
         idle: With ``noise``, also relaxation while qubits wait (``False``: gate and read-out errors only, what the
