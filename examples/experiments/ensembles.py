@@ -282,7 +282,7 @@ def run_on_dask(tasks: list[tuple[str, int, dict[str, Any]]], cfg: Any, schedule
     from dask.distributed import as_completed
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from qcpp.simulate.tensor import dask_client
+    from qcpp.simulate.cluster import dask_client
 
     cloudpickle.register_pickle_by_value(_ensemble_tasks)  # workers need qcpp, not this folder
     try:

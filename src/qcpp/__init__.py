@@ -47,12 +47,14 @@ if TYPE_CHECKING:
         save_scenario,
     )
     from qcpp.api.solving import simulate_qaoa, solve, train_qaoa
+    from qcpp.api.validating import validate
     from qcpp.errors import OptionError, QcppError
     from qcpp.io.atomic import OutputError
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.problem.paths import is_feasible
     from qcpp.simulate.noisy import NoisyResult
+    from qcpp.simulate.validate import ValidationReport
     from qcpp.verification import VerifyReport, verify
 
 _EXPORTS: dict[str, str] = {
@@ -77,6 +79,7 @@ _EXPORTS: dict[str, str] = {
     "simulate_qaoa": "qcpp.api.solving",
     "solve": "qcpp.api.solving",
     "train_qaoa": "qcpp.api.solving",
+    "validate": "qcpp.api.validating",
     "OptionError": "qcpp.errors",
     "OutputError": "qcpp.io.atomic",
     "QcppError": "qcpp.errors",
@@ -85,6 +88,7 @@ _EXPORTS: dict[str, str] = {
     "allow_large": "qcpp.problem.limits",
     "is_feasible": "qcpp.problem.paths",
     "NoisyResult": "qcpp.simulate.noisy",
+    "ValidationReport": "qcpp.simulate.validate",
     "VerifyReport": "qcpp.verification",
     "verify": "qcpp.verification",
 }
@@ -103,6 +107,7 @@ __all__ = [
     "ScenarioError",
     "SizeError",
     "UnboundParameterError",
+    "ValidationReport",
     "VerifyReport",
     "__version__",
     "allow_large",
@@ -122,6 +127,7 @@ __all__ = [
     "simulate_qaoa",
     "solve",
     "train_qaoa",
+    "validate",
     "verify",
 ]
 """The public API (the command line is ``qcpp``, :mod:`qcpp.cli.app`)."""

@@ -404,14 +404,14 @@ def test_ensembles_unreachable_scheduler_is_one_line_and_exit_2(
 ) -> None:
     """The OSError ``dask_client`` raises for an address it cannot reach ends the script as the qcpp commands end
     on an OSError: one line on stderr, exit 2, nothing written."""
-    import qcpp.simulate.tensor
+    import qcpp.simulate.cluster
 
     mod = _load("ensembles")
 
     def unreachable(address: str, workers: int | None = None) -> None:
         raise OSError(f"dask scheduler {address!r} unreachable: timed out")
 
-    monkeypatch.setattr(qcpp.simulate.tensor, "dask_client", unreachable)
+    monkeypatch.setattr(qcpp.simulate.cluster, "dask_client", unreachable)
     with pytest.raises(SystemExit) as exit_:
         mod.main(["--cells", "3x3/1", "--instances", "1", "--scheduler", "tcp://10.0.0.5:8786", "--out", str(tmp_path)])
     assert exit_.value.code == 2

@@ -21,7 +21,8 @@ ancilla_budget, fuse, phase_layout, angles)
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from typing import Any
 
@@ -30,7 +31,7 @@ from qcpp.errors import OptionError, check_count
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.limits import API_OVERRIDE, check_layers
 
-__all__ = ["PLAN_OPTION_NAMES", "check_layers_arg", "check_scenario_arg", "plan_options_arg"]
+__all__ = ["PLAN_OPTION_NAMES", "check_angles_arg", "check_layers_arg", "check_scenario_arg", "plan_options_arg"]
 
 PLAN_OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in fields(PlanOptions))
 """The keyword arguments ``**plan_options`` of ``qcpp.estimate`` and ``qcpp.compile`` accept (the fields of
@@ -74,3 +75,31 @@ def check_scenario_arg(scenario: object, name: str = "scenario") -> Scenario:
             name, f"expected a Scenario (qcpp.grid_scenario or qcpp.load_scenario), got {type(scenario).__name__}"
         )
     return scenario
+
+
+def check_angles_arg(angles: object, layers: int, name: str = "angles") -> list[float] | None:
+    """``angles`` as a list of ``2 * layers`` finite floats ``[gamma_0, beta_0, ...]`` (``None`` stays ``None``).
+
+    Raises:
+        qcpp.errors.OptionError: not a sequence of numbers, a value that is not finite, or the wrong length.
+
+    Example:
+        >>> check_angles_arg((0.1, 2), 1)
+        [0.1, 2.0]
+        >>> check_angles_arg([0.1], 1)
+        Traceback (most recent call last):
+        ...
+        qcpp.errors.OptionError: angles: p = 1 needs 2 angles (g0,b0,...), got 1
+    """
+    if angles is None:
+        return None
+    if isinstance(angles, (str, bytes)) or not isinstance(angles, Sequence):
+        raise OptionError(name, f"expected a sequence of numbers, got {angles!r}")
+    values = []
+    for a in angles:
+        if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
+            raise OptionError(name, f"{a!r} is not a finite number")
+        values.append(float(a))
+    if len(values) != 2 * layers:
+        raise OptionError(name, f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
+    return values

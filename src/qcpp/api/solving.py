@@ -16,7 +16,7 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from qcpp.api.checks import check_layers_arg, check_scenario_arg
+from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
@@ -224,17 +224,7 @@ def simulate_qaoa(
     check_count(seed, "seed", 0)
     if client is not None and method != "tensor":
         raise OptionError("client", f"only the tensor method runs on a dask cluster, got method={method!r}")
-    values = None
-    if angles is not None:
-        if isinstance(angles, (str, bytes)) or not isinstance(angles, Sequence):
-            raise OptionError("angles", f"expected a sequence of numbers, got {angles!r}")
-        values = []
-        for a in angles:
-            if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
-                raise OptionError("angles", f"{a!r} is not a finite number")
-            values.append(float(a))
-        if len(values) != 2 * layers:
-            raise OptionError("angles", f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
+    values = check_angles_arg(angles, layers)
     check_phase_range(s)
     check_simulation_size(s, "scenario", API_OVERRIDE, p=layers, method=method)
     return evaluate(

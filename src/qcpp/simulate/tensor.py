@@ -39,7 +39,6 @@ Example:
 from __future__ import annotations
 
 import copy
-import logging
 import math
 import os
 import threading
@@ -74,7 +73,6 @@ __all__ = [
     "OptimizerCache",
     "TensorCircuit",
     "contract_sliced",
-    "dask_client",
     "default_cache_dir",
     "path_optimizer",
     "state_bits",
@@ -496,9 +494,10 @@ class TensorCircuit:
         optimizer: A cotengra path optimizer; default :func:`path_optimizer` of ``cache_dir``.
         cache_dir: Path cache directory for the default optimizer (default :func:`default_cache_dir`).
         max_width: Largest allowed contraction width (log2 of entries), see :class:`ContractionTooWideError`.
-        client: A ``dask.distributed.Client`` (see :func:`dask_client`): a contraction wider than ``max_width`` is
-            then sliced by cotengra into pieces of at most ``2**max_width`` entries and the slices run on the
-            cluster (:func:`contract_sliced`) instead of raising :class:`ContractionTooWideError`.
+        client: A ``dask.distributed.Client`` (see :func:`qcpp.simulate.cluster.dask_client`): a contraction
+            wider than ``max_width`` is then sliced by cotengra into pieces of at most ``2**max_width`` entries and
+            the slices run on the cluster (:func:`contract_sliced`) instead of raising
+            :class:`ContractionTooWideError`.
         ancillas: Qubits that start in |0> and that the circuit returns to |0> block by block (``logic``,
             ``work``): amplitudes are then contracted on the data qubits alone, each block that uses ancillas
             contracted first into one verified-unitary operator (:func:`collapse_ancilla_blocks`); an amplitude
@@ -832,38 +831,6 @@ def contract_sliced(
         ]
         value = sum(client.gather(futures))
     return complex(np.asarray(value).reshape(()))
-
-
-def dask_client(address: str, workers: int | None = None) -> Any:
-    """A ``dask.distributed.Client``: ``'local'`` starts a ``LocalCluster`` of its own (``workers`` processes, one
-    thread each; closing the client stops it), anything else is a scheduler address such as ``tcp://10.0.0.5:8786``.
-    Close it when done (``with dask_client(...) as client:``).
-
-    Args:
-        address: ``'local'`` or a scheduler address.
-        workers: Worker processes of a local cluster (default: one per core).
-
-    Raises:
-        OSError: the scheduler cannot be reached within 10 s.
-    """
-    from dask.distributed import Client
-
-    # distributed logs through `logging` to stderr (a busy dashboard port, a slow worker): the CLI reports what
-    # matters itself (how many contractions ran on the cluster), so only errors get through
-    logging.getLogger("distributed").setLevel(logging.ERROR)
-    if address == "local":
-        # ":0": the dashboard takes a free port; the default (also with None) asks for 8787 and warns when another
-        # cluster holds it. silence_logs reaches the worker processes, whose logging is their own: at teardown a
-        # worker's heartbeat can meet the closed scheduler and log an ERROR with a traceback; a task's failure
-        # still reaches the caller as its exception
-        return Client(
-            n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, dashboard_address=":0",
-            silence_logs=logging.CRITICAL,
-        )
-    try:
-        return Client(address, timeout="10s")
-    except OSError as exc:
-        raise OSError(f"dask scheduler {address!r} unreachable: {exc}") from exc
 
 
 class MPSCircuit:

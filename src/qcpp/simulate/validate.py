@@ -342,7 +342,7 @@ def validate(
             probability then comes from the contracted, verified-unitary ancilla blocks.
         cache_dir: ``tensor``: contraction-path cache (default :func:`qcpp.simulate.tensor.default_cache_dir`).
         dask: ``tensor``: a dask scheduler address, or ``'local'`` for a LocalCluster
-            (:func:`qcpp.simulate.tensor.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
+            (:func:`qcpp.simulate.cluster.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
             cotengra and the slices run on the cluster instead of being skipped. ``None``: in-process.
         max_assignments: Refuse more feasible assignments than this (``None``: no limit).
         max_bytes: Refuse a predicted peak (:attr:`ValidationSize.bytes`) over this (``None``: no limit).
@@ -441,7 +441,7 @@ def validate(
     elif backend == "qcec":
         checks.append(_qcec_check(scenario, p, rule, bindings, circuit, at))
     else:
-        from qcpp.simulate.tensor import dask_client
+        from qcpp.simulate.cluster import dask_client
 
         with dask_client(dask) if dask is not None else contextlib.nullcontext(None) as client:
             checks.extend(

@@ -57,30 +57,6 @@ Exit 0: every check ran and passed; 1: one failed or was skipped.
 """
 
 
-def _check_dask_address(text: str) -> None:
-    """Refuse a ``--dask`` value that is neither ``local`` nor a scheduler address, before any work (dask's own
-    message, after the simulation, would name no flag).
-
-    Example:
-        >>> _check_dask_address("tcp://127.0.0.1:8786")
-    """
-    if not text.strip():
-        raise ValueError("--dask: expected a scheduler address such as tcp://host:8786, or 'local'")
-    if text.strip() == "local":
-        return
-    try:
-        from distributed.comm import parse_address
-        from distributed.comm.addressing import parse_host_port
-    except ImportError:
-        return  # the tensor backend says that dask is missing
-    try:
-        scheme, location = parse_address(text.strip())
-        if scheme in ("tcp", "tls"):
-            parse_host_port(location)
-    except ValueError as exc:
-        raise ValueError(f"--dask: {exc} (expected a scheduler address such as tcp://host:8786, or 'local')") from None
-
-
 def validate_command(
     scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
@@ -113,6 +89,7 @@ def validate_command(
 ) -> None:
     """Validate a compiled circuit (see ``qcpp validate --help``)."""
     from qcpp.problem.limits import check_need, large_allowed
+    from qcpp.simulate.cluster import check_dask_address
     from qcpp.simulate.footprint import validate_need
     from qcpp.simulate.validate import validate
 
@@ -121,7 +98,7 @@ def validate_command(
     if dask is not None and backend != "tensor":
         raise ValueError(f"--dask: only the tensor backend uses a dask cluster, got --backend {backend}")
     if dask is not None:
-        _check_dask_address(dask)
+        check_dask_address(dask, "--dask")
     values = None
     if angles is not None:
         values = parse_angles(angles)

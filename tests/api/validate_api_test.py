@@ -1,0 +1,57 @@
+"""``qcpp.validate``: the report of ``qcpp validate --json`` for the same scenario and options (timings and the
+command's verdict aside), a circuit that breaks fails it, and bad options raise the command's one-line reasons."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+import qcpp
+from tests.api.bad_input_test import error_of
+from tests.api.cli_equality_test import cli_json
+
+S = qcpp.grid_scenario(2, 3, robots=1)
+
+
+def _untimed(d: dict[str, Any]) -> dict[str, Any]:
+    out = {k: v for k, v in d.items() if k not in ("seconds", "verdict")}
+    out["checks"] = [{k: v for k, v in c.items() if k != "seconds"} for c in d["checks"]]
+    return out
+
+
+@pytest.mark.parametrize("backend", ["statevector", "sparse"])
+def test_the_report_is_the_cli_s(backend: str) -> None:
+    cli = cli_json("validate", "--grid", "2x3", "--robots", "1", "-p", "2", "--angles", "0.3,0.8,0.5,1.1",
+                   "--backend", backend, "--json")  # fmt: skip
+    report = qcpp.validate(S, p=2, angles=[0.3, 0.8, 0.5, 1.1], backend=backend)
+    assert report.passed and cli["verdict"] == "passed"
+    assert _untimed(report.to_dict()) == _untimed(cli)  # type: ignore[arg-type]
+    assert report.checks and all(c.status == "pass" for c in report.checks)
+
+
+def test_a_circuit_that_breaks_fails_the_check(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Drop the first cx of every partial mixer's mirror: the amplitudes no longer match the subspace simulator."""
+    import qcpp.gadgets.partial_mixer as pm
+
+    parts = pm.ParityPartialMixer.parts
+
+    def broken(self: Any) -> Any:
+        compute, rotation, mirror = parts(self)
+        k = next(i for i, g in enumerate(mirror) if g[0] == "cx")
+        return compute, rotation, mirror[:k] + mirror[k + 1 :]
+
+    monkeypatch.setattr(pm.ParityPartialMixer, "parts", broken)
+    report = qcpp.validate(S, p=1, angles=[0.3, 0.8], backend="statevector")
+    assert not report.passed
+    assert any(c.status == "fail" for c in report.checks)
+
+
+def test_bad_options_name_what_is_wrong() -> None:
+    assert error_of(lambda: qcpp.validate(S, angles=[0.1]), qcpp.OptionError).startswith("angles: p = 1 needs 2")
+    assert error_of(lambda: qcpp.validate(S, max_amplitudes=0), qcpp.OptionError).startswith("max_amplitudes:")
+    message = error_of(lambda: qcpp.validate(S, backend="sparse", dask="local"), qcpp.OptionError)
+    assert message == "dask: only the tensor backend uses a dask cluster, got backend='sparse'"
+    message = error_of(lambda: qcpp.validate(S, dask="tcp://h"), qcpp.OptionError)
+    assert message.startswith("dask: ") and "missing port number" in message
+    assert error_of(lambda: qcpp.validate("s.toml"), qcpp.OptionError).startswith("scenario:")  # type: ignore[arg-type]
