@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     from qcpp.api.devices import Device, DeviceError, device, devices
     from qcpp.api.estimates import Estimate, estimate, plot_estimates
     from qcpp.api.noisy import simulate_noisy
+    from qcpp.api.qubos import qubo_model, write_qubo
     from qcpp.api.scenarios import (
         Scenario,
         ScenarioError,
@@ -53,6 +54,7 @@ if TYPE_CHECKING:
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.problem.paths import is_feasible
+    from qcpp.qubo.model import Bqm
     from qcpp.simulate.noisy import NoisyResult
     from qcpp.simulate.validate import ValidationReport
     from qcpp.verification import VerifyReport, verify
@@ -68,6 +70,9 @@ _EXPORTS: dict[str, str] = {
     "estimate": "qcpp.api.estimates",
     "plot_estimates": "qcpp.api.estimates",
     "simulate_noisy": "qcpp.api.noisy",
+    "qubo_model": "qcpp.api.qubos",
+    "write_qubo": "qcpp.api.qubos",
+    "Bqm": "qcpp.qubo.model",
     "Scenario": "qcpp.api.scenarios",
     "ScenarioError": "qcpp.api.scenarios",
     "default_scenario": "qcpp.api.scenarios",
@@ -95,6 +100,7 @@ _EXPORTS: dict[str, str] = {
 """Public name -> the module that defines it."""
 
 __all__ = [
+    "Bqm",
     "Compiled",
     "Device",
     "DeviceError",
@@ -121,6 +127,7 @@ __all__ = [
     "is_feasible",
     "load_scenario",
     "plot_estimates",
+    "qubo_model",
     "random_scenario",
     "save_scenario",
     "simulate_noisy",
@@ -129,6 +136,7 @@ __all__ = [
     "train_qaoa",
     "validate",
     "verify",
+    "write_qubo",
 ]
 """The public API (the command line is ``qcpp``, :mod:`qcpp.cli.app`)."""
 

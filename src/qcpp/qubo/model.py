@@ -180,6 +180,14 @@ class Bqm:
             for i, j, v in zip(self.quad_i.tolist(), self.quad_j.tolist(), self.quad_val.tolist(), strict=True)
         ]
 
+    def to_ising(self) -> tuple[dict[str, float], dict[tuple[str, str], float], float]:
+        """``(h, J, offset)`` of the same energies in qcpp's spins ``x = (1 - Z)/2`` (:func:`to_ising`)."""
+        return to_ising(self)
+
+    def to_dimod(self) -> Any:
+        """The model as a ``dimod.BinaryQuadraticModel`` (:func:`to_dimod`; needs dimod)."""
+        return to_dimod(self)
+
 
 def _edge_labels(s: Scenario) -> list[str]:
     g = s.grid
