@@ -10,10 +10,10 @@ and how they were obtained (``routed_kind``: ``exact`` = what ``qcpp compile --d
   size, where every window is local);
 * ``qcpp estimate --grid 2x50 --robots 1 --device grid --json`` (goal: seconds; a long strip, whose square medial
   grid is 99x99) and ``qcpp estimate --grid 8x8 --robots 3 --device heavy-hex --json`` (no goal beyond progress
-  inside the row: compiled exactly, the cells' plan choice for 147 partial mixers), both found slow by an
-  adversarial pass;
+  inside the row: compiled exactly, the cells' plan choice for 147 partial mixers), two shapes that are slow to
+  route (a long strip on a square lattice, many robots compiled exactly);
 * ``qcpp compile <6x6, 3 robots> --device grid --bind ... --qasm FILE --json`` (goal: under 30 s), and the same
-  on ``heavy-hex`` for 4x4 with 2 robots and 6x6 with 3 (no issue goal: timed because the cells' plan choice
+  on ``heavy-hex`` for 4x4 with 2 robots and 6x6 with 3 (no goal: timed because the cells' plan choice
   makes them the slowest compiles), each with the routed two-qubit count, the device and the layout it reports.
 """
 
