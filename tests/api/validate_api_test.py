@@ -45,6 +45,20 @@ def test_a_circuit_that_breaks_fails_the_check(monkeypatch: pytest.MonkeyPatch) 
     report = qcpp.validate(S, p=1, angles=[0.3, 0.8], backend="statevector")
     assert not report.passed
     assert any(c.status == "fail" for c in report.checks)
+    html = report._repr_html_()  # in a notebook the failure shows in the caption and in its row
+    assert "<caption>validation FAILED: " in html and "<td>fail</td>" in html
+    assert html.count("<tr>") == 1 + len(report.checks)
+
+
+def test_notebooks_show_the_reports_as_tables() -> None:
+    report = qcpp.validate(S, p=1, angles=[0.3, 0.8])
+    html = report._repr_html_()
+    assert html.startswith("<table><caption>validation passed: ") and html.count("<tr>") == 1 + len(report.checks)
+    assert all(f"<td>{c.name}</td><td>{c.method}</td>" in html for c in report.checks)
+    verified = qcpp.verify(S)
+    html = verified._repr_html_()
+    assert html.startswith("<table><caption>feasibility preservation holds: ")
+    assert html.count("<tr>") == 1 + len(verified.checks) and "FAILS" not in html and "<pre>" not in html
 
 
 def test_bad_options_name_what_is_wrong() -> None:

@@ -227,6 +227,9 @@ def test_the_state_method_catches_a_dropped_control(monkeypatch: pytest.MonkeyPa
     cx = report.counterexample
     assert cx is not None and cx.check == "mixer_0" and cx.kind is not None and cx.plaquette is not None
     assert cx.kind.startswith(("MixerRotation", "MixerJunction"))
+    html = report._repr_html_()  # a notebook shows the verdict, the failed row and the counterexample
+    assert "<caption>feasibility preservation FAILS: " in html and "<td>FAILS</td>" in html
+    assert "<pre>counterexample (state, mixer_0): " in html
 
 
 def test_the_gadget_method_catches_a_dropped_control(monkeypatch: pytest.MonkeyPatch) -> None:

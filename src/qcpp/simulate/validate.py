@@ -51,6 +51,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
+from html import escape
 from pathlib import Path
 from typing import Any, Literal
 
@@ -171,6 +172,23 @@ class ValidationReport:
         """Distinct assignments compared by at least one amplitude check (the largest count)."""
         counts = [c.count for c in self.checks if c.name == "amplitudes" and c.status != "skipped"]
         return max(counts) if counts else 0
+
+    def _repr_html_(self) -> str:
+        """In a notebook: the verdict as the caption and one table row per check."""
+        verdict = "passed" if self.passed else "FAILED"
+        caption = (
+            f"validation {verdict}: {self.scenario}, p = {self.p}, backend {self.backend}, {self.qubits} qubits, "
+            f"{self.gates} gates, {self.feasible_assignments} feasible assignments"
+        )
+        rows = "".join(
+            f"<tr><td>{escape(c.name)}</td><td>{escape(c.method)}</td><td style='text-align:right'>{c.value:.3g}</td>"
+            f"<td style='text-align:right'>{c.error:.3g}</td><td style='text-align:right'>{c.count}</td>"
+            f"<td>{escape(c.status)}</td><td>{escape(c.note)}</td></tr>"
+            for c in self.checks
+        )
+        head = "".join(f"<th>{h}</th>" for h in ("check", "method", "value", "error", "count", "status", ""))
+        head = f"<tr>{head}</tr>"
+        return f"<table><caption>{escape(caption)}</caption>{head}{rows}</table>"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: every field, the summary properties and ``passed``."""

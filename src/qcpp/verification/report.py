@@ -13,6 +13,7 @@ Example:
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from html import escape
 from typing import Any, Literal
 
 __all__ = ["Check", "Counterexample", "Method", "VerifyReport"]
@@ -155,3 +156,18 @@ class VerifyReport:
         if self.counterexample is not None:
             lines.append(self.counterexample.describe())
         return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        """In a notebook: the verdict as the caption, one table row per check, the counterexample below."""
+        rows = "".join(
+            f"<tr><td>{escape(c.part)}</td><td>{escape(c.subject)}</td><td>{escape(c.how)}</td>"
+            f"<td style='text-align:right'>{c.inputs}</td><td style='text-align:right'>{c.multiplicity}</td>"
+            f"<td>{'held' if c.held else 'FAILS'}</td><td>{escape(c.detail)}</td></tr>"
+            for c in self.checks
+        )
+        head = "".join(f"<th>{h}</th>" for h in ("part", "subject", "how", "inputs", "times", "result", ""))
+        head = f"<tr>{head}</tr>"
+        table = f"<table><caption>{escape(self.summary().splitlines()[0])}</caption>{head}{rows}</table>"
+        if self.counterexample is not None:
+            table += f"<pre>{escape(self.counterexample.describe())}</pre>"
+        return table
