@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterator
-from html import escape
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.scenarios import Scenario, default_scenario
 from qcpp.errors import OptionError, check_choice
+from qcpp.io.html import html_table
 
 if TYPE_CHECKING:
     import os
@@ -129,17 +129,9 @@ class Estimate:
 
     def _repr_html_(self) -> str:
         """The row as a two-column HTML table (column, value), numbers right-aligned."""
-        cells = []
-        for name, value in self._row.items():
-            if name == "sections":
-                continue
-            shown = "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(value))
-            cells.append(
-                f"<tr><td style='text-align:left'>{escape(name)}</td>"
-                f"<td style='text-align:right'>{escape(shown)}</td></tr>"
-            )
-        head = escape(repr(self)[1:-1])
-        return f"<table><caption>{head}</caption><tr><th>column</th><th>value</th></tr>{''.join(cells)}</table>"
+        rows = [(name, "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(value)))
+                for name, value in self._row.items() if name != "sections"]  # fmt: skip
+        return html_table(repr(self)[1:-1], ("column", "value"), rows, align=("left", "right"))
 
 
 def estimate(

@@ -51,13 +51,13 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
-from html import escape
 from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
 
 from qcpp.errors import QcppError
+from qcpp.io.html import html_table
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
@@ -180,15 +180,10 @@ class ValidationReport:
             f"validation {verdict}: {self.scenario}, p = {self.p}, backend {self.backend}, {self.qubits} qubits, "
             f"{self.gates} gates, {self.feasible_assignments} feasible assignments"
         )
-        rows = "".join(
-            f"<tr><td>{escape(c.name)}</td><td>{escape(c.method)}</td><td style='text-align:right'>{c.value:.3g}</td>"
-            f"<td style='text-align:right'>{c.error:.3g}</td><td style='text-align:right'>{c.count}</td>"
-            f"<td>{escape(c.status)}</td><td>{escape(c.note)}</td></tr>"
-            for c in self.checks
-        )
-        head = "".join(f"<th>{h}</th>" for h in ("check", "method", "value", "error", "count", "status", ""))
-        head = f"<tr>{head}</tr>"
-        return f"<table><caption>{escape(caption)}</caption>{head}{rows}</table>"
+        rows = [(c.name, c.method, f"{c.value:.3g}", f"{c.error:.3g}", str(c.count), c.status, c.note)
+                for c in self.checks]  # fmt: skip
+        headers = ("check", "method", "value", "error", "count", "status", "")
+        return html_table(caption, headers, rows, align=(None, None, "right", "right", "right"))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: every field, the summary properties and ``passed``."""

@@ -16,6 +16,8 @@ from dataclasses import asdict, dataclass
 from html import escape
 from typing import Any, Literal
 
+from qcpp.io.html import html_table
+
 __all__ = ["Check", "Counterexample", "Method", "VerifyReport"]
 
 Method = Literal["state", "gadgets", "auto"]
@@ -159,15 +161,10 @@ class VerifyReport:
 
     def _repr_html_(self) -> str:
         """In a notebook: the verdict as the caption, one table row per check, the counterexample below."""
-        rows = "".join(
-            f"<tr><td>{escape(c.part)}</td><td>{escape(c.subject)}</td><td>{escape(c.how)}</td>"
-            f"<td style='text-align:right'>{c.inputs}</td><td style='text-align:right'>{c.multiplicity}</td>"
-            f"<td>{'held' if c.held else 'FAILS'}</td><td>{escape(c.detail)}</td></tr>"
-            for c in self.checks
-        )
-        head = "".join(f"<th>{h}</th>" for h in ("part", "subject", "how", "inputs", "times", "result", ""))
-        head = f"<tr>{head}</tr>"
-        table = f"<table><caption>{escape(self.summary().splitlines()[0])}</caption>{head}{rows}</table>"
+        rows = [(c.part, c.subject, c.how, str(c.inputs), str(c.multiplicity), "held" if c.held else "FAILS", c.detail)
+                for c in self.checks]  # fmt: skip
+        headers = ("part", "subject", "how", "inputs", "times", "result", "")
+        table = html_table(self.summary().splitlines()[0], headers, rows, align=(None, None, None, "right", "right"))
         if self.counterexample is not None:
             table += f"<pre>{escape(self.counterexample.describe())}</pre>"
         return table
