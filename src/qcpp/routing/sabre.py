@@ -270,10 +270,12 @@ def window_cx(ops: Sequence[tuple[str, tuple[int, int]]]) -> int:
 
 
 def dag_cx(dag: Any) -> int:
-    """:func:`window_cx` of ``dag_ops(dag)``, read from the SWAPs' neighbours instead of every operation: a routed
-    DAG of ``cx`` and ``swap`` (one window) counts 1 per operation, plus 2 per SWAP that fuses with neither the
-    operation before it on both its qubits (one operation, on its pair) nor the ``cx`` after it on both. The
-    placement search scores thousands of routings by this count alone.
+    """:func:`window_cx` of ``dag_ops(dag)``, read from the runs of operations on one pair instead of every
+    operation: a routed DAG of ``cx`` and ``swap`` (one window) counts 1 per operation, plus 2 per SWAP that fuses
+    with neither the operation before it on both its qubits nor the ``cx`` after it on both. Qiskit's
+    ``collect_2q_runs`` gives the maximal runs of consecutive operations on one pair, in order, so a SWAP has an
+    operation before it on both its qubits exactly when it is not the first of its run, and the ``cx`` after it
+    on both is the second of its run. The placement search scores thousands of routings by this count alone.
 
     >>> from qiskit import QuantumCircuit
     >>> from qiskit.converters import circuit_to_dag
@@ -283,15 +285,9 @@ def dag_cx(dag: Any) -> int:
     >>> dag_cx(dag), window_cx(dag_ops(dag))
     (6, 6)
     """
-    from qiskit.dagcircuit import DAGOpNode
-
     total = dag.size()
-    for node in dag.named_nodes("swap"):
-        before = list(dag.quantum_predecessors(node))
-        if len(before) == 1 and isinstance(before[0], DAGOpNode):
-            continue  # fused with the operation before it
-        after = list(dag.quantum_successors(node))
-        if not (len(after) == 1 and isinstance(after[0], DAGOpNode) and after[0].op.name == "cx"):
+    for run in dag.collect_2q_runs():
+        if run[0].name == "swap" and not (len(run) > 1 and run[1].name == "cx"):
             total += 2  # three cx, fused with nothing
     return total
 
