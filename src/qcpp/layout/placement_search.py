@@ -47,7 +47,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.patches import pairs_dag, patch_sabre, run_sabre
+from qcpp.routing.patches import patch_sabre, placed_dags, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 from qcpp.routing.sabre import cx_dag, dag_cx, route
 
@@ -74,20 +74,20 @@ def qiskit_sabre_layout(
     Returns:
         Logical qubit ``i`` -> physical qubit.
     """
-    return _sabre_layouts(circuit, sabre_target(coupling_map(device)), [seed], options)[0]
+    dag = cx_dag(circuit.num_qubits, [g[1] for g in circuit.gates if len(g[1]) == 2])
+    return _sabre_layouts(dag, sabre_target(coupling_map(device)), [seed], options)[0]
 
 
 def _sabre_layouts(
-    circuit: Circuit, target: Any, seeds: Sequence[int], options: RoutingOptions
+    dag: Any, target: Any, seeds: Sequence[int], options: RoutingOptions
 ) -> list[tuple[int, ...]]:
-    """:func:`qiskit_sabre_layout` for each of ``seeds``: one pass on one DAG of the two-qubit gates, its seed set
-    per run. ``target`` is the one the pass would build from the device's (symmetric) coupling map itself
-    (:func:`~qcpp.routing.routed_circuit.sabre_target`), built once by the caller; the layouts are the ones a pass
-    manager running a fresh pass per seed finds."""
+    """:func:`qiskit_sabre_layout` for each of ``seeds``: one pass on ``dag`` (the circuit's two-qubit gates,
+    :func:`qcpp.routing.sabre.cx_dag`), its seed set per run. ``target`` is the one the pass would build from the
+    device's (symmetric) coupling map itself (:func:`~qcpp.routing.routed_circuit.sabre_target`), built once by the
+    caller; the layouts are the ones a pass manager running a fresh pass per seed finds."""
     from qiskit.passmanager import PropertySet
     from qiskit.transpiler.passes import SabreLayout
 
-    dag = cx_dag(circuit.num_qubits, [g[1] for g in circuit.gates if len(g[1]) == 2])
     trials = options.sabre_layout_trials
     sabre = SabreLayout(target, skip_routing=True, layout_trials=trials, swap_trials=trials)
     layouts = []
@@ -218,11 +218,12 @@ def _search(
     :func:`qcpp.routing.patches.run_sabre` runs it (the context's pass for the device's couplings, without the
     pass's per-run checks: the same routing)."""
     shape = patch_sabre(context, device.coupling, device.num_qubits)  # its target serves SabreLayout too
+    logical = cx_dag(circuit.num_qubits, pairs)
     candidates = list(dict.fromkeys(tuple(int(p) for p in s) for s in starts))
-    for layout in _sabre_layouts(circuit, shape.sabre.target, range(seed, seed + layouts), options):
+    for layout in _sabre_layouts(logical, shape.sabre.target, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
-    dags = [pairs_dag(shape, [(layout[a], layout[b]) for a, b in pairs]) for layout in candidates]
+    dags = placed_dags(shape, logical, candidates)
     trials = shape.trials if options.trials is None else options.trials
 
     def routed_cx(dag: Any, seed: int) -> int:

@@ -236,6 +236,40 @@ def pairs_dag(shape: PatchSabre, pairs: Sequence[Sequence[int]]) -> Any:
     return dag
 
 
+def placed_dags(shape: PatchSabre, logical: Any, layouts: Sequence[Sequence[int]]) -> list[Any]:
+    """:func:`pairs_dag` of ``logical``'s pairs placed by each of ``layouts`` (logical qubit ``i`` -> qubit of
+    ``shape``), for the placement search, which routes one circuit from many layouts.
+
+    Each DAG is a copy of ``logical`` (a DAG of ``cx`` on its logical qubits, :func:`qcpp.routing.sabre.cx_dag`)
+    relabelled by Qiskit's own layout routine (the one its ``ApplyLayout`` pass calls): the same gates on the same
+    qubits in the same order as :func:`pairs_dag` writes them, so SABRE routes both alike, without a Python call per
+    gate. Where Qiskit has no such routine, :func:`pairs_dag` itself.
+
+    Args:
+        shape: The device's :class:`PatchSabre` (its qubits are the device's).
+        logical: The DAG of the circuit's ``cx`` pairs on its logical qubits.
+        layouts: Placements of the logical qubits.
+
+    Returns:
+        One DAG per layout, on the device's qubits.
+    """
+    from copy import deepcopy
+
+    size = len(shape.bits)
+    try:
+        from qiskit._accelerate.apply_layout import apply_layout
+    except ImportError:  # pragma: no cover - another Qiskit
+        index = {q: i for i, q in enumerate(logical.qubits)}
+        pairs = [tuple(index[q] for q in node.qargs) for node in logical.topological_op_nodes()]
+        return [pairs_dag(shape, [(layout[a], layout[b]) for a, b in pairs]) for layout in layouts]
+    out = []
+    for layout in layouts:
+        dag = deepcopy(logical)
+        apply_layout(dag, logical.num_qubits(), size, list(layout), None)
+        out.append(dag)
+    return out
+
+
 def sabre_local(
     context: RoutingContext, coupling: tuple[tuple[int, int], ...], size: int, pairs: tuple[tuple[int, int], ...],
     seed: int, trials: int | None,
