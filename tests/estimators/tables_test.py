@@ -177,3 +177,18 @@ def test_plot_refuses_unknown_metrics_and_missing_columns(sweep_rows) -> None:  
     for name, metric in PLOT_METRICS.items():  # the metrics name real columns (and real paper columns)
         assert metric.needs in ("physical", "device") or name in sweep_rows[0], name
         assert metric.paper is None or metric.paper in sweep_rows[0], name
+
+
+def test_grids_of_one_size_keep_their_own_points_and_draw_no_line() -> None:
+    """2x6, 3x4, 4x3 and 6x2 need different circuits: each keeps its count (none averaged away), the curve that
+    holds them is points alone, and the axis label says why; a curve of distinct sizes keeps its line."""
+    grids = ((2, 6), (3, 4), (4, 3), (6, 2), (3, 3))
+    rows = make_rows([estimate_point(Point(r, c, 1, 1), EstimateOptions(depth="none")) for r, c in grids], True)
+    ((_, _, xs, ys),) = _lines(fig := draw_rows(rows, "cx"))
+    assert sorted(zip(xs, ys)) == sorted((r["rows"] * r["cols"], r["cx"]) for r in rows)
+    (line,) = fig.axes[0].lines
+    assert line.get_linestyle() == "None" and "a point each" in fig.axes[0].get_xlabel()
+    square = [r for r in rows if r["rows"] * r["cols"] != 12]
+    rows_2 = make_rows([estimate_point(Point(2, 2, 1, 1), EstimateOptions(depth="none"))], True) + square
+    (line,) = draw_rows(rows_2, "cx").axes[0].lines
+    assert line.get_linestyle() == "-"

@@ -219,8 +219,9 @@ def plot_estimates(
     """Plot one column of several estimates: the plot of ``qcpp estimate --plot FILE --metric METRIC``.
 
     Against the grid's node count with one panel per ``p`` when the estimates cover several grid sizes, else
-    against ``p`` (one grid), else against the robot count; one curve per robot count. Style it with matplotlib's
-    ``rcParams`` before the call (fonts, sizes), or through the returned figure.
+    against ``p`` (one grid), else against the robot count; one curve per robot count, one point per estimate (a
+    curve with several grids of one size, such as ``3x4`` and ``4x3``, is drawn without a line). Style it with
+    matplotlib's ``rcParams`` before the call (fonts, sizes), or through the returned figure.
 
     Args:
         estimates: :class:`Estimate` objects (or their ``to_dict()`` rows), of one SBF rule.

@@ -4,9 +4,13 @@ What the plot shows depends on what the rows vary (the reading that needs no leg
 
 * several grid sizes: the metric against the grid's number of nodes ``rows * cols`` (log axis when the sizes span
   a factor of 8 or more), one curve per robot count, **one panel per p** (panels share the y axis, so the growth
-  with ``p`` reads across them). Grids with the same number of nodes (``3x4`` and ``4x3``) are averaged.
+  with ``p`` reads across them);
 * one grid size and several ``p``: the metric against ``p``, one curve per robot count, one panel;
 * one grid and one ``p``: the metric against the robot count.
+
+Every row is its own point. Grids of one size but different shapes (``2x6``, ``3x4``, ``4x3``) need different
+circuits, so a curve that holds several of them is drawn as points alone, without a line (it would zigzag between
+the shapes), and the axis label says so.
 
 The paper's estimates (:mod:`qcpp.estimators.paper`) are drawn only when asked (``compare_paper=True``), as dashed
 lines in the colour of the same robot count; the paper estimates qubits, data qubits, CNOTs and single-qubit gates
@@ -120,16 +124,22 @@ def _paper_value(row: dict[str, Any], column: str) -> float:
 
 
 def _series(rows: Sequence[dict[str, Any]], x: str, value: Any) -> dict[int, tuple[list[float], list[float]]]:
-    """robots -> (xs, ys): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), same-x rows averaged."""
-    acc: dict[int, dict[float, list[float]]] = defaultdict(lambda: defaultdict(list))
+    """robots -> (xs, ys): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), one point per row, in
+    order of ``x`` (then of the grid's rows: ``2x6`` before ``3x4``)."""
+    acc: dict[int, list[tuple[float, int, float]]] = defaultdict(list)
     for r in rows:
         y = value(r)
         if y is None:
             continue
         key = 0 if x == "robots" else r["robots"]  # against robots: one curve
         at = r["rows"] * r["cols"] if x == "nodes" else r[x]
-        acc[key][at].append(float(y))
-    return {k: (sorted(v), [sum(v[a]) / len(v[a]) for a in sorted(v)]) for k, v in sorted(acc.items())}
+        acc[key].append((at, r["rows"], float(y)))
+    return {k: ([a for a, _, _ in sorted(v)], [y for _, _, y in sorted(v)]) for k, v in sorted(acc.items())}
+
+
+def _style(xs: Sequence[float], line: str) -> str:
+    """``line`` (``o-``), or its marker alone where two points share an ``x`` (grids of one size, module docs)."""
+    return line if len(set(xs)) == len(xs) else line.rstrip("-")
 
 
 def _robots(k: int) -> str:
@@ -196,14 +206,18 @@ def draw_rows(
         here = [r for r in sel if p is None or r["p"] == p]
         ours = _series(here, x, lambda r: r.get(m.column))
         theirs = _series(here, x, lambda r: _paper_value(r, paper)) if paper is not None else {}
+        shared = False  # a curve with two grids of one size: drawn as points
         for i, (k, (xs, ys)) in enumerate(ours.items()):
             colour = colours[i % len(colours)]
             who = _robots(k) if x != "robots" else ""
             ours_label = ", ".join(filter(None, ("ours" if paper else "", who))) or "qcpp"
-            ax.plot(xs, ys, "o-", ms=4, color=colour, label=ours_label)
+            ax.plot(xs, ys, _style(xs, "o-"), ms=4, color=colour, label=ours_label)
+            shared |= len(set(xs)) < len(xs)
             if k in theirs:
                 pxs, pys = theirs[k]
-                ax.plot(pxs, pys, "x--", ms=5, color=colour, alpha=0.75, label=", ".join(filter(None, ("paper", who))))
+                ax.plot(pxs, pys, _style(pxs, "x--"), ms=5, color=colour, alpha=0.75,
+                        label=", ".join(filter(None, ("paper", who))))
+        apart = "\nseveral grids of one size: a point each" if shared else ""
         if x == "nodes":
             log_x = max(nodes) >= 8 * min(nodes)
             if log_x:
@@ -211,9 +225,9 @@ def draw_rows(
                 ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
                 ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
                 ax.xaxis.set_minor_formatter(NullFormatter())
-            ax.set_xlabel("grid nodes (rows x cols)" + (", log scale" if log_x else ""))
+            ax.set_xlabel("grid nodes (rows x cols)" + (", log scale" if log_x else "") + apart)
         else:
-            ax.set_xlabel("QAOA layers p" if x == "p" else "robots")
+            ax.set_xlabel(("QAOA layers p" if x == "p" else "robots") + apart)
             ticks = sorted({r[x] for r in here})
             ax.set_xticks(ticks if len(ticks) <= 12 else ticks[:: -(-len(ticks) // 12)])
         if log_y:
