@@ -117,6 +117,8 @@ BAD = [
     ("estimate", "--robots", "0"),
     ("estimate", "--grid", "2x2", "--columns", "rows,nonsense"),
     ("estimate", "--grid", "2x2", "--columns", ","),
+    ("estimate", "--grid", "2x2", "--columns", "rows,cx", "--json"),
+    ("estimate", "--grid", "2x2", "--columns", "rows,nonsense", "--format", "csv"),
     # scenario files
     ("solve", "missing.toml"),
     ("solve", "folder.toml"),

@@ -64,6 +64,23 @@ def test_wide_and_columns(rows: list[dict]) -> None:
         render(rows, "table", columns=["rows", "nope"])
 
 
+def test_columns_choose_the_md_and_csv_columns_and_json_refuses_them(rows: list[dict]) -> None:
+    """``--columns`` holds for every tabular format (``csv`` also takes a section's flattened field); JSON rows are
+    ``Estimate.to_dict()`` whole, so choosing columns there is refused, never silently ignored."""
+    md = render(rows, "md", columns=["cx", "rows"]).splitlines()
+    assert md[0] == "| cx | rows |" and md[2] == f"| {rows[0]['cx']} | {rows[0]['rows']} |" and len(md) == len(rows) + 2
+    csv_lines = render(rows, "csv", columns=["rows", "section.phase.cx"]).splitlines()
+    assert csv_lines[0] == "rows,section.phase.cx"
+    assert csv_lines[1] == f"{rows[0]['rows']},{rows[0]['sections']['phase']['cx']}"
+    for fmt in ("md", "csv"):
+        with pytest.raises(ValueError, match="unknown column 'nope'"):
+            render(rows, fmt, columns=["rows", "nope"])
+    for fmt in ("json", "jsonl"):
+        with pytest.raises(ValueError, match=f"--columns: {fmt} rows keep every field"):
+            render(rows, fmt, columns=["rows"])
+    assert render(rows, "md", columns=["rows"]) != render(rows, "md")  # the choice shows
+
+
 @pytest.mark.parametrize("fmt", ["csv", "json", "md"])
 def test_machine_formats_keep_every_column_at_any_width(fmt: str) -> None:
     env = {"COLUMNS": "40"}

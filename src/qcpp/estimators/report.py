@@ -134,7 +134,7 @@ def estimate_report(
             curves when ``compare_paper``); then the rows are printed after the plot is written (a failed plot
             prints nothing), not streamed.
         doubling: reading of the paper's doubling.
-        columns, wide: the ``table`` format's columns (:func:`qcpp.estimators.tables.render`).
+        columns, wide: the columns shown (:func:`qcpp.estimators.tables.render`).
         device: add the routed figures on this device (:func:`qcpp.estimators.routed.routed_fields`).
         stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
             row is done).

@@ -176,6 +176,20 @@ def _flat(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _chosen(columns: Sequence[str], known: Sequence[str]) -> list[str]:
+    """``columns`` (each once, in order), checked against the ``known`` fields.
+
+    Raises:
+        ValueError: none, or an unknown name (listing the known ones).
+    """
+    if not columns:
+        raise ValueError("--columns: name at least one column")
+    for c in columns:
+        if c not in known:
+            raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
+    return list(dict.fromkeys(columns))
+
+
 def _csv_line(values: Iterable[Any]) -> str:
     buf = io.StringIO()
     csv.writer(buf, lineterminator="\n").writerow(list(values))
@@ -195,7 +209,9 @@ def render_stream(
     Args:
         rows: rows (any iterable, e.g. a generator over a sweep).
         fmt: one of :data:`FORMATS`.
-        width, columns, wide: the ``table`` format's options (:func:`render`).
+        width, wide: the ``table`` format's options (:func:`render`).
+        columns: exactly these columns, for ``table``, ``latex``, ``md`` and ``csv`` (``csv`` also takes the
+            sections' flattened fields, ``section.<name>.<field>``).
 
     Yields:
         Text pieces whose concatenation is :func:`render` of the same rows.
@@ -208,6 +224,9 @@ def render_stream(
     if fmt == "latex":  # the column alignment depends on every row
         yield render_latex(list(rows), columns)
         return
+    if columns is not None and fmt in ("json", "jsonl"):
+        raise ValueError(f"--columns: {fmt} rows keep every field (as Estimate.to_dict()); choose the columns with "
+                         "--format table, md, csv or latex")  # fmt: skip
     first = True
     fields: list[str] = []
     cols: list[str] = []
@@ -218,21 +237,21 @@ def render_stream(
             body = "\n".join("  " + line for line in json.dumps(row, indent=2).splitlines())
             yield ("[\n" if first else ",\n") + body
         elif fmt == "csv":
-            if first:
-                fields = list(_flat(row))  # every scalar of the row, in order, then the sections' fields
-                yield _csv_line(fields)
             flat = _flat(row)
+            if first:  # every scalar of the row, in order, then the sections' fields; or the chosen ones
+                fields = list(flat) if columns is None else _chosen(columns, list(flat))
+                yield _csv_line(fields)
             yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
         else:  # md
             if first:
-                cols = _columns(row)
+                cols = _columns(row) if columns is None else table_columns([row], columns=columns)[0]
                 yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
             yield "| " + " | ".join(_cell(row.get(c)) for c in cols) + " |\n"
         first = False
     if fmt == "json":
         yield "[]\n" if first else "\n]\n"
     elif fmt == "md" and first:
-        cols = _columns(None)
+        cols = _columns(None) if columns is None else table_columns([], columns=columns)[0]
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
 
 
@@ -363,13 +382,7 @@ def table_columns(
     """
     defaults = _columns(rows[0] if rows else None)
     if columns is not None:
-        if not columns:
-            raise ValueError("--columns: name at least one column")
-        known = [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]
-        for c in columns:
-            if c not in known:
-                raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
-        return list(dict.fromkeys(columns)), []
+        return _chosen(columns, [k for k in (rows[0] if rows else dict.fromkeys(defaults)) if k != "sections"]), []
     if wide:
         return defaults, []
     limit = terminal_width() if width is None else width
@@ -499,10 +512,11 @@ def render(
             no number is cut: when even the narrowest table does not fit, the rows are printed as records (one
             field per line, :func:`render_records`), and below their width a :class:`TooNarrowError` says
             what to do.
-        columns: ``table`` only: show exactly these columns (see :func:`table_columns`).
+        columns: show exactly these columns (:func:`table_columns`; ``md``, ``csv`` and ``latex`` too).
         wide: ``table`` only: show every default column, whatever the width.
 
-    ``md``, ``csv``, ``json`` and ``jsonl`` always keep all their columns (and stream: :func:`render_stream`).
+    ``md``, ``csv``, ``json`` and ``jsonl`` stream (:func:`render_stream`); ``json`` and ``jsonl`` keep every field
+    of every row (``columns`` with them is refused).
 
     Returns:
         The text (ending with a newline).
@@ -514,7 +528,7 @@ def render(
         '┃ rows ┃ cols ┃  cx ┃'
     """
     if fmt != "table":
-        return "".join(render_stream(rows, fmt))  # raises on an unknown format
+        return "".join(render_stream(rows, fmt, columns=columns))  # raises on an unknown format
     limit = terminal_width() if width is None else width
     shown, hidden = table_columns(rows, limit, columns, wide)
     paper = "paper_cx" in _columns(rows[0] if rows else None)

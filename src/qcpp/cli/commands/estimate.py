@@ -91,7 +91,8 @@ def estimate(
     ] = None,
     columns: Annotated[
         str | None,
-        typer.Option("--columns", help="Table columns, comma-separated (default: what fits)."),
+        typer.Option("--columns", help="Columns of table, md, csv and latex output, comma-separated (default: what "
+                     "fits; json keeps every field)."),
     ] = None,
     wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
