@@ -158,6 +158,15 @@ def test_streamed_rows_to_a_pipe_get_progress_too() -> None:
     assert res.stderr.splitlines()[0].startswith("estimate: 0 / 2 rows")
 
 
+def test_cpsat_counts_its_improving_solutions_without_a_total() -> None:
+    """CP-SAT cannot know how many improving solutions it will find: the lines count them, never ``n / 0``."""
+    res = invoke("solve", "--grid", "4x4", "--robots", "2", "--method", "cpsat", env=LINES)
+    assert res.exit_code == 0
+    counted = [line for line in res.stderr.splitlines() if "improving solutions" in line]
+    assert counted and all("/" not in line for line in res.stderr.splitlines())
+    assert counted[-1].startswith("cpsat on ") and " improving solutions done in " in counted[-1]
+
+
 # ----------------------------------------------------------------------------- compile
 
 

@@ -273,7 +273,8 @@ def solve_command(
     if method == "qaoa":
         _qaoa_guard(s, given.source, description, p)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
-    with Progress(description, unit="assignments" if method == "dfs" else "steps") as bar:
+    unit = {"dfs": "assignments", "cpsat": "improving solutions"}.get(method, "steps")
+    with Progress(description, unit=unit) as bar:
         progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
         if dfs_lists is not None:
             from qcpp.problem.solvers.exhaustive import dfs

@@ -139,7 +139,7 @@ class _Recorder(cp_model.CpSolverSolutionCallback):
     def on_solution_callback(self) -> None:
         self.events.append((time.perf_counter() - self.t_start, self.ObjectiveValue()))
         if self.progress is not None:
-            self.progress(len(self.events), 0)
+            self.progress(len(self.events), None)
 
 
 def _chords(values: list[int]) -> list[tuple[int, int]]:
@@ -394,7 +394,8 @@ def cpsat(
         linearization: CP-SAT's ``linearization_level`` (0-2).
         symmetry_breaking: Add lex-leader constraints for the grid symmetries that map the scenario onto
             itself (:func:`scenario_symmetries`). Off by default: it slows the proofs down.
-        progress: Called as ``progress(solutions found, 0)`` at every improving solution.
+        progress: Called as ``progress(solutions found, None)`` at every improving solution (how many
+            there will be is not known).
 
     Returns:
         A :class:`CpSatResult`; its ``solution.paths`` are the best paths found (the initial paths if CP-SAT

@@ -26,8 +26,9 @@ from qcpp.problem.cost import CostParts
 from qcpp.problem.paths import path_to_nodes
 from qcpp.problem.scenario import Scenario
 
-ProgressFn = Callable[[int, int], None]
-"""Progress callback ``progress(done, total)`` that solvers call now and then (units are solver-specific)."""
+ProgressFn = Callable[[int, int | None], None]
+"""Progress callback ``progress(done, total)`` that solvers call now and then (units are solver-specific; ``total``
+``None`` where it is not known: CP-SAT counts the improving solutions it finds)."""
 
 
 @dataclass(frozen=True)
