@@ -132,7 +132,7 @@ def test_scenario_file_and_rule(run, tmp_path: Path) -> None:  # type: ignore[no
     from_file = json.loads(run("--scenario", str(path), "-p", "1..2", "--json").stdout)
     default = json.loads(run("--grid", "2x3", "--robots", "2", "-p", "1..2", "--json").stdout)
     assert [r["cx"] for r in from_file] == [r["cx"] for r in default]
-    assert [r["scenario"] for r in from_file] == ["file", "file"]
+    assert [r["scenario"] for r in from_file] == ["custom", "custom"]
     paper_rule = json.loads(run("--grid", "3x3", "--rule", "paper", "--json").stdout)[0]
     exact_rule = json.loads(run("--grid", "3x3", "--json").stdout)[0]
     assert paper_rule["rule"] == "paper" and paper_rule["cx"] != exact_rule["cx"]

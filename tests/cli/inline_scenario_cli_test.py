@@ -46,14 +46,14 @@ def test_estimate_with_an_obstacle_equals_the_estimate_of_the_equivalent_toml(tm
     default = json.loads(ok("estimate", "--grid", "5x5", "--robots", "2", "--json"))
     hard = json.loads(ok("estimate", "--grid", "5x5", "--robots", "2", "--obstacle", "2,1", "--hard-obstacles",
                          "--json"))  # fmt: skip
-    assert inline[0]["scenario"] == "file" and default[0]["scenario"] == "default"
+    assert inline[0]["scenario"] == "custom" and default[0]["scenario"] == "default"
     assert hard[0]["data_qubits"] == default[0]["data_qubits"] - 2 * 4  # the obstacle's 4 edges leave each robot
 
 
 def test_obstacles_apply_to_every_grid_of_a_sweep() -> None:
     rows = json.loads(ok("estimate", "--grid", "3x3..4x4", "--robots", "1..2", "--obstacle", "1,1",
                          "--hard-obstacles", "--json"))  # fmt: skip
-    assert len(rows) == 8 and {r["scenario"] for r in rows} == {"file"}
+    assert len(rows) == 8 and {r["scenario"] for r in rows} == {"custom"}
     for row in rows:
         s = qcpp.grid_scenario(row["rows"], row["cols"], robots=row["robots"], obstacles=[(1, 1)], hard_obstacles=True)
         assert qcpp.estimate(s).to_dict() == row

@@ -3,8 +3,8 @@
 The estimate goes through the command's own code (:func:`qcpp.estimators.report.estimate_rows`), so
 :meth:`Estimate.to_dict` is that command's JSON row for the same scenario and options. A scenario equal to the
 default placement of its grid and robot count (``qcpp.grid_scenario(rows, cols, robots=N)``) is the row of
-``qcpp estimate --grid RxC --robots N`` (``scenario: "default"``); any other is the row of ``--scenario FILE``
-(``scenario: "file"``).
+``qcpp estimate --grid RxC --robots N`` (``scenario: "default"``); any other is the row of ``--scenario FILE``, or of
+the inline ``--grid``/``--robots``/``--obstacle`` options that build it (``scenario: "custom"``).
 
 Example:
     >>> from qcpp.api.scenarios import grid_scenario

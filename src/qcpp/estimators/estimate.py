@@ -213,7 +213,7 @@ class Point:
     @property
     def label(self) -> str:
         """Short text such as ``3x4 r2 p1``."""
-        return f"{self.rows}x{self.cols} r{self.robots} p{self.p}" + ("" if self.scenario_json is None else " (file)")
+        return f"{self.rows}x{self.cols} r{self.robots} p{self.p}" + ("" if self.scenario_json is None else " (custom)")
 
 
 @lru_cache(maxsize=SCENARIOS_KEPT)

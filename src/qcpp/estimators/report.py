@@ -69,7 +69,7 @@ def points_from_options(
         p: ``N`` or ``A..B`` layers.
         scenario: a scenario file to estimate instead of the default scenarios.
         obstacles: obstacles on every grid of the range (``--obstacle``): each point is then the scenario
-            :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "file"`` in its row, as a scenario
+            :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "custom"`` in its row, as a scenario
             file's), not a default one.
         hard_obstacles: the obstacles remove the edges touching them from the variables (``--hard-obstacles``;
             a non-default scenario even without obstacles).

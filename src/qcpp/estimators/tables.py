@@ -113,7 +113,7 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         "p": pt.p,
         "rule": plan.rule,
         "target": plan.target,
-        "scenario": "default" if pt.scenario_json is None else "file",
+        "scenario": "default" if pt.scenario_json is None else "custom",
         "qubits": est.qubits,
         "data_qubits": est.data_qubits,
         "ancillas": est.qubits - est.data_qubits,
