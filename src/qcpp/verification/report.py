@@ -143,7 +143,12 @@ class VerifyReport:
     def summary(self) -> str:
         """Human-readable text: verdict, checks, counterexample."""
         verdict = "holds" if self.holds else "FAILS"
-        scope = "every feasible input" if self.exhaustive else "the sampled inputs"
+        if not self.exhaustive:
+            scope = "the sampled inputs"
+        elif self.method == "gadgets":  # each kind on all its local inputs: a verdict on every feasible input
+            scope = "every gadget kind on each of its local inputs"
+        else:
+            scope = "every feasible input"
         lines = [
             f"feasibility preservation {verdict}: {self.scenario}, p = {self.p}, rule {self.rule}, "
             + (f"target {self.target}, " if self.target != "nisq" else "")
