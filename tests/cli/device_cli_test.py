@@ -40,6 +40,9 @@ def test_compile_device_writes_physical_qubits_on_couplings(tmp_path: Path, devi
     assert logical == len(summary["final_layout"]) and logical >= 15
     assert len(set(summary["initial_layout"])) == logical and max(summary["final_layout"]) < dev["qubits"]
     assert 0 < summary["routed"]["esp"] < 1 and summary["routed"]["two_qubit"] == len(two)
+    # on a named device the written routing is the best candidate, and the router's description says so
+    chose = bool(summary["routed"]["candidates"])
+    assert chose == (device == "ibm_torino") and ("chosen names it" in summary["routed"]["router"]) == chose
 
 
 @pytest.mark.parametrize(

@@ -173,7 +173,7 @@ class DeviceCompileResult:
             "initial_layout": list(r.initial_layout),
             "final_layout": list(r.final_layout),
             "routed": {
-                "router": ROUTERS[self.layout_method],
+                "router": ROUTERS[self.layout_method] + (CANDIDATES_NOTE if self.candidates else ""),
                 "layout": self.layout_method,
                 "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
                 "swaps": r.swaps,
@@ -198,6 +198,14 @@ ROUTERS = {
     "SabreLayout starts, SWAPs fused with an adjacent cx",
 }
 """What each layout method routes with (on a named device, the chosen candidate may be another: ``chosen``)."""
+
+CANDIDATES_NOTE = (
+    "; on a named device that is the first of the routed candidates, and compile writes the best of them by "
+    "optimize_for (compile's own routings; on a heavy-hex device the same search on defect-free lattices, placed on "
+    "the device; Qiskit O3's; each also placed by the device's errors and after Qiskit's O3 passes): chosen names "
+    "it, candidates lists them"
+)
+"""Appended to the router's description where compile chose among candidates (:mod:`qcpp.pipeline.candidates`)."""
 
 ESP_MODEL = (
     "product of (1 - gate error) over every native gate and (1 - readout error) over the measured data qubits; "
