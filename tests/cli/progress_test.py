@@ -335,6 +335,17 @@ def test_a_new_stage_is_written_at_once_on_a_pipe_past_the_first_line_delay(monk
     assert written.count("\n") == 1 and written.startswith("validate x: proving equivalence, ")
 
 
+def test_stages_that_change_quickly_write_at_most_one_line_per_interval(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A device estimate changes its stage many times a second: a log gets one line for them, not one each."""
+    monkeypatch.setattr(Progress, "_heartbeat", lambda self: None)
+    out = io.StringIO()
+    with Progress("estimate", stream=out, mode="lines", interval=600.0, first_after=0.0) as bar:
+        for k in range(50):
+            bar.stage(f"routing window {k} / 50")
+        written = out.getvalue()
+    assert written.count("\n") == 1 and written.startswith("estimate: routing window 0 / 50, ")
+
+
 def test_a_late_heartbeat_writes_nothing_after_the_work_ended(monkeypatch: pytest.MonkeyPatch) -> None:
     """The heartbeat passed its check, then the machine did not run it before ``__exit__`` gave up waiting
     (seen once under load: a progress line after ``interrupted``): its line is dropped, not printed last."""

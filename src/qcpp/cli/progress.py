@@ -6,7 +6,10 @@ which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM o
 * **Terminal** (stderr is a TTY): a transient rich bar, erased when the work ends.
 * **Pipe or file**: nothing for the first :data:`FIRST_LINE_AFTER` seconds, then one line every
   :data:`DEFAULT_INTERVAL` seconds from a heartbeat thread (so one long native call still shows it is alive),
-  e.g. ``estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left``, and a last line when it ends.
+  e.g. ``estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left``, and a last line when it ends. A
+  new stage is written at once where no line came for as long (a native call that holds the GIL starves the
+  heartbeat, so a stage that starts one announces itself), so a log gets at most about two lines per interval
+  however fast the stages change.
 * ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
   seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
 * Entering a :class:`Progress` calls :func:`qcpp.cli.interrupt.announce_ready`.
@@ -28,6 +31,7 @@ Example:
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import sys
 import threading
@@ -139,6 +143,7 @@ class Progress:
         self._first_after = (0.0 if self._interval == 0 else FIRST_LINE_AFTER) if first_after is None else first_after
         self._start = 0.0
         self._lines = 0
+        self._last_line = -math.inf  # when the last line was written (seconds since the start)
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -196,9 +201,12 @@ class Progress:
         changed = text != self.stage_text
         self.stage_text = text
         self._after_change()
-        if changed and self._mode == "lines" and self._interval > 0 and self._elapsed() >= self._first_after:
+        elapsed = self._elapsed()
+        if (changed and self._mode == "lines" and self._interval > 0 and elapsed >= self._first_after
+                and elapsed - self._last_line >= self._interval):  # fmt: skip
             # say so now: the next stage may be one native call that holds the GIL (QCEC, a contraction), and
-            # then the heartbeat thread cannot write until it returns
+            # then the heartbeat thread cannot write until it returns; but not again within an interval, so stages
+            # that change many times a second do not flood a log
             self._line()
 
     def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
@@ -260,6 +268,7 @@ class Progress:
                 self._mode = "off"
                 return
             self._lines += 1
+            self._last_line = self._elapsed()
 
     def _heartbeat(self) -> None:
         if self._stop.wait(self._first_after):
