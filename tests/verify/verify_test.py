@@ -300,3 +300,13 @@ def test_the_command_verifies_the_ft_circuit_and_refuses_an_unknown_target() -> 
             assert any(c["subject"].startswith("VisitBatch") for c in report["checks"])
     bad = run("verify", "--grid", "3x3", "--target", "xx")
     assert bad.exit_code == 2 and bad.stderr.count("\n") == 1 and "--target" in bad.stderr
+
+
+def test_the_summary_names_what_each_method_checked() -> None:
+    """The gadget method checks each gadget kind on its local inputs (a verdict on every feasible input by
+    composition); the state method runs the circuit on every feasible input: the first line says which."""
+    s = default_scenario(2, 3, 1)
+    gadgets = verify_gadgets(s, 1).summary().splitlines()[0]
+    state = verify_state(s, 1).summary().splitlines()[0]
+    assert "method gadgets (every gadget kind on each of its local inputs; " in gadgets
+    assert "method state (every feasible input; " in state
