@@ -49,15 +49,15 @@ if TYPE_CHECKING:
     )
     from qcpp.api.solving import simulate_qaoa, solve, train_qaoa
     from qcpp.api.validating import validate
+    from qcpp.api.verifying import is_feasible, verify
     from qcpp.errors import OptionError, QcppError
     from qcpp.io.atomic import OutputError
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.problem.limits import SizeError, allow_large
-    from qcpp.problem.paths import is_feasible
     from qcpp.qubo.model import Bqm
     from qcpp.simulate.noisy import NoisyResult
     from qcpp.simulate.validate import ValidationReport
-    from qcpp.verification import VerifyReport, verify
+    from qcpp.verification import VerifyReport
 
 _EXPORTS: dict[str, str] = {
     "Compiled": "qcpp.api.compiling",
@@ -91,11 +91,11 @@ _EXPORTS: dict[str, str] = {
     "UnboundParameterError": "qcpp.ir.angles",
     "SizeError": "qcpp.problem.limits",
     "allow_large": "qcpp.problem.limits",
-    "is_feasible": "qcpp.problem.paths",
+    "is_feasible": "qcpp.api.verifying",
     "NoisyResult": "qcpp.simulate.noisy",
     "ValidationReport": "qcpp.simulate.validate",
     "VerifyReport": "qcpp.verification",
-    "verify": "qcpp.verification",
+    "verify": "qcpp.api.verifying",
 }
 """Public name -> the module that defines it."""
 

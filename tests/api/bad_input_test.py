@@ -53,7 +53,7 @@ def test_compile_and_estimate_options_give_the_cli_s_reason(
     rest = {k: v for k, v in kwargs.items() if k != "p"}
     for fn in (qcpp.compile, qcpp.estimate):
         message = error_of(lambda fn=fn: fn(S, p, **rest), qcpp.QcppError)
-        assert message == f"{name}: {reason}".replace("pass --allow-large", "run it inside qcpp.allow_large()")
+        assert message == f"{name}: {reason}".replace("pass --allow-large", "call it in a qcpp.allow_large() block")
 
 
 @pytest.mark.parametrize("p", ["1", 1.0, True, None])
@@ -142,8 +142,17 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
         (lambda: qcpp.verify(S, 0), "p: must be at least 1, got 0"),
         (lambda: qcpp.verify(S, 1.0), "p: expected an integer, got 1.0"),
         (lambda: qcpp.verify(S, rule="fast"), "rule: expected exact or paper, got 'fast'"),
-        (lambda: qcpp.verify(S, 1001), "p: 1,001 layers is over the limit of 1,000; run it inside qcpp.allow_large()"),
+        (lambda: qcpp.verify(S, 1001),
+         "p: 1,001 layers is over the limit of 1,000; call it in a qcpp.allow_large() block to run it anyway"),
         (lambda: qcpp.grid_scenario("3", 3), "grid.rows: expected an integer, got '3'"),
+        (lambda: qcpp.verify("examples/paper_3x3.toml"), "scenario: expected a Scenario"),
+        (lambda: qcpp.verify(S, options={"rule": "paper"}), "options: expected a PlanOptions, got dict"),
+        (lambda: qcpp.verify(S, colour="red"), "colour: unknown plan option"),
+        (lambda: qcpp.is_feasible("x", 0, 0), "scenario: expected a Scenario"),
+        (lambda: qcpp.is_feasible(S, S.num_robots, 0), f"robot: the scenario has robots 0 .. {S.num_robots - 1}"),
+        (lambda: qcpp.is_feasible(S, -1, 0), "robot: must be at least 0, got -1"),
+        (lambda: qcpp.is_feasible(S, 0, "x"), "mask: expected an integer, got 'x'"),
+        (lambda: qcpp.save_scenario("x", "unwritten.toml"), "scenario: expected a Scenario"),
     ],
 )
 def test_other_bad_calls_raise_one_line_errors(call: Callable[[], Any], start: str) -> None:

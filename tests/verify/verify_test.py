@@ -310,3 +310,16 @@ def test_the_summary_names_what_each_method_checked() -> None:
     state = verify_state(s, 1).summary().splitlines()[0]
     assert "method gadgets (every gadget kind on each of its local inputs; " in gadgets
     assert "method state (every feasible input; " in state
+
+
+def test_the_public_verify_takes_the_construction_as_keywords() -> None:
+    """``qcpp.verify`` builds the circuit as ``qcpp.compile`` does from the same keywords: the paper rule leaks,
+    the fault-tolerant target is verified as such, and the keywords equal an explicit ``options`` value."""
+    import qcpp
+
+    leak = leak_scenario()
+    by_keyword = qcpp.verify(leak, 1, rule="paper", method="gadgets")
+    assert not by_keyword.holds and by_keyword.rule == "paper"
+    assert by_keyword.to_dict() | {"seconds": 0} == qcpp.verify(
+        leak, 1, method="gadgets", options=PlanOptions(rule="paper")).to_dict() | {"seconds": 0}
+    assert qcpp.verify(default_scenario(2, 3, 1), 1, target="ft").target == "ft"

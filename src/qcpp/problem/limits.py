@@ -73,7 +73,7 @@ MAX_LAYERS = 1000
 OVERRIDE_FLAG = "--allow-large"
 """The CLI flag that lifts every limit of this module."""
 
-API_OVERRIDE = "run it inside qcpp.allow_large()"
+API_OVERRIDE = "call it in a qcpp.allow_large() block"
 """How a caller of the Python API lifts the limits (:func:`allow_large`), for the messages the API's guards give."""
 
 MAX_SECONDS = 3600.0
@@ -242,7 +242,31 @@ def large_allowed() -> bool:
 
 @contextlib.contextmanager
 def allow_large(enabled: bool = True) -> Iterator[None]:
-    """Lift (``enabled=True``) or keep the limits inside the ``with`` block."""
+    """Lift (``enabled=True``) or keep (``enabled=False``) qcpp's size limits inside the ``with`` block: the API's
+    counterpart of the command line's ``--allow-large``.
+
+    The limits, each raising :class:`SizeError` before any work where lifted they would not:
+
+    * grids of more than :data:`MAX_GRID_NODES` nodes (50x50) and more than :data:`MAX_LAYERS` QAOA layers;
+    * work predicted to need more memory than the machine has available (``QCPP_MEMORY_AVAILABLE`` overrides
+      the reading), or to run for more than :data:`MAX_SECONDS` (an hour): state simulations and training,
+      exhaustive search (``solve(method="dfs")``), validation's reference states.
+
+    The setting is a context variable: it holds in the ``with`` block (and threads or tasks started inside it),
+    and the limits are back when the block ends.
+
+    Example:
+        >>> import qcpp
+        >>> s = qcpp.grid_scenario(3, 3, robots=1)
+        >>> qcpp.estimate(s, p=1001)
+        Traceback (most recent call last):
+        ...
+        qcpp.problem.limits.SizeError: p: 1,001 layers is over the limit of 1,000; call it in a qcpp.allow_large() \
+block to run it anyway
+        >>> with qcpp.allow_large():
+        ...     qcpp.estimate(s, p=1001, depth="none").p
+        1001
+    """
     token = _ALLOWED.set(enabled)
     try:
         yield
@@ -289,8 +313,8 @@ def check_layers(p: int, flag: str = "-p", override: str = "") -> None:
         >>> check_layers(5000, "p", API_OVERRIDE)
         Traceback (most recent call last):
         ...
-        qcpp.problem.limits.SizeError: p: 5,000 layers is over the limit of 1,000; run it inside qcpp.allow_large() \
-to run it anyway
+        qcpp.problem.limits.SizeError: p: 5,000 layers is over the limit of 1,000; call it in a qcpp.allow_large() \
+block to run it anyway
     """
     if p > MAX_LAYERS and not large_allowed():
         lift = override or f"pass {OVERRIDE_FLAG}"

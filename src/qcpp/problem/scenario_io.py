@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from qcpp.errors import OptionError
 from qcpp.io.atomic import write_text_atomic
 from qcpp.io.inputs import InputError, read_bounded
 from qcpp.problem.cost_range import check_cost_range, check_phase_range
@@ -219,9 +220,13 @@ def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
     """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically: the file is whole or absent.
 
     Raises:
+        qcpp.errors.OptionError: ``s`` is not a :class:`Scenario`.
         ScenarioError: the suffix is neither ``.toml`` nor ``.json``.
         OutputError: the destination cannot be written (an :class:`OSError`: the environment, not the input).
     """
+    if not isinstance(s, Scenario):
+        raise OptionError("scenario", f"expected a Scenario (qcpp.grid_scenario or qcpp.load_scenario), got "
+                                      f"{type(s).__name__}")  # fmt: skip
     p = Path(path)
     if p.suffix.lower() == ".json":
         text = json.dumps(scenario_to_dict(s), indent=2) + "\n"
