@@ -111,8 +111,8 @@ class Compiled:
             qcpp.ir.angles.UnboundParameterError: ``version=2`` with unbound symbols (naming them).
 
         Example:
-            >>> from qcpp.api.scenarios import grid_scenario
-            >>> text = compile(grid_scenario(2, 2, robots=1)).to_qasm(profile="portable")
+            >>> import qcpp
+            >>> text = qcpp.compile(qcpp.grid_scenario(2, 2, robots=1)).to_qasm(profile="portable")
             >>> for line in text.splitlines()[:3]:
             ...     print(line)
             OPENQASM 3.0;
@@ -171,7 +171,7 @@ class Compiled:
 
     def __repr__(self) -> str:
         where = f" on {self.device.name}" if self.device is not None else ""
-        form = "lowered" if self.lowered else "high level"
+        form = "lowered" if self.lowered else "native gates" if self.device is not None else "high level"
         total = sum(self.circuit.count_ops().values())
         g = self.scenario.grid
         return (

@@ -241,9 +241,9 @@ def plot_estimates(
         ValueError: no estimates, or none with a value for the metric.
 
     Example:
-        >>> from qcpp.api.scenarios import grid_scenario
-        >>> ests = [estimate(grid_scenario(3, 3, robots=1), p=k, depth="none") for k in (1, 2)]
-        >>> fig = plot_estimates(ests, "cx")
+        >>> import qcpp
+        >>> ests = [qcpp.estimate(qcpp.grid_scenario(3, 3, robots=1), p=k, depth="none") for k in (1, 2)]
+        >>> fig = qcpp.plot_estimates(ests, "cx")
         >>> fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()
         ('QAOA layers p', 'CNOT gates: cx [gates]')
     """

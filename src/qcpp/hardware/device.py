@@ -123,7 +123,8 @@ class Device:
     def graph(self) -> Any:
         """The coupling graph as a ``scipy.sparse.csr_matrix``: one unit entry per coupler (read it as undirected).
 
-        >>> get_device("grid:2x2").graph().nnz
+        >>> import qcpp
+        >>> qcpp.device("grid:2x2").graph().nnz
         4
         """
         import numpy as np

@@ -84,8 +84,9 @@ def random_scenario(
         ScenarioError: a bad argument, or no feasible draw in :data:`MAX_DRAWS` tries.
 
     Example:
-        >>> s = random_scenario(4, 4, 1, 0.2, seed=1, index=5, obstacles="hard")
-        >>> len(s.obstacles), s.objective.obstacles, s == random_scenario(4, 4, 1, 0.2, seed=1, index=5,
+        >>> import qcpp
+        >>> s = qcpp.random_scenario(4, 4, 1, 0.2, seed=1, index=5, obstacles="hard")
+        >>> len(s.obstacles), s.objective.obstacles, s == qcpp.random_scenario(4, 4, 1, 0.2, seed=1, index=5,
         ...                                                                obstacles="hard")
         (3, 'hard', True)
     """
@@ -125,8 +126,9 @@ def ensemble(
         ScenarioError: ``count < 1`` or a bad cell (see :func:`random_scenario`).
 
     Example:
-        >>> small = ensemble(4, 4, 1, 0.1, count=2, seed=3)
-        >>> small == ensemble(4, 4, 1, 0.1, count=5, seed=3)[:2]
+        >>> import qcpp
+        >>> small = qcpp.ensemble(4, 4, 1, 0.1, count=2, seed=3)
+        >>> small == qcpp.ensemble(4, 4, 1, 0.1, count=5, seed=3)[:2]
         True
     """
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:

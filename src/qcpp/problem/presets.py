@@ -128,12 +128,13 @@ def grid_scenario(
             the 3x3 grid``), an obstacle on a robot's endpoint, more robots than the default placement holds, ...
 
     Example:
-        >>> grid_scenario(3, 4, robots=2) == default_scenario(3, 4, 2)
+        >>> import qcpp
+        >>> qcpp.grid_scenario(3, 4, robots=2) == qcpp.default_scenario(3, 4, 2)
         True
-        >>> s = grid_scenario(3, 3, robots=[((0, 0), (2, 2))], obstacles=[(1, 1)])
+        >>> s = qcpp.grid_scenario(3, 3, robots=[((0, 0), (2, 2))], obstacles=[(1, 1)])
         >>> s.obstacles, s.objective.obstacles
         (((1, 1),), 'soft')
-        >>> grid_scenario(3, 3, robots=[((0, 0), (3, 0))])
+        >>> qcpp.grid_scenario(3, 3, robots=[((0, 0), (3, 0))])
         Traceback (most recent call last):
         ...
         qcpp.problem.errors.ScenarioError: robots[0].goal: (3, 0) is outside the 3x3 grid

@@ -77,10 +77,14 @@ class Objective:
 
 @dataclass(frozen=True)
 class Scenario:
-    """A complete coverage-path-planning instance. Build it with :func:`scenario_from_dict` or
-    :func:`~qcpp.problem.scenario_io.load_scenario` (which validate); the constructor itself validates too.
+    """A complete coverage-path-planning instance: a grid, robots with their endpoints, obstacles and the
+    objective. Build one with ``qcpp.grid_scenario`` (or ``qcpp.default_scenario``), read one with
+    ``qcpp.load_scenario``; every way of building one validates it (so does the constructor), and it is immutable.
 
     Attributes:
+        grid: The grid graph (:class:`~qcpp.problem.grid.Grid`): ``rows``, ``cols``, ``edges`` (node pairs, in the
+            order of the variables: bit ``e`` of a path mask is ``grid.edges[e]``) and ``plaquettes`` (the unit
+            squares a mixer move flips).
         robots: The robots, in order (robot ``r`` is the ``r``-th).
         obstacles: Obstacle nodes, sorted row-major.
         objective: The objective's settings.
@@ -136,6 +140,7 @@ class Scenario:
 
     @property
     def num_robots(self) -> int:
+        """Robots (each one path to find)."""
         return len(self.robots)
 
     @property
@@ -144,6 +149,8 @@ class Scenario:
 
     @property
     def num_variables(self) -> int:
+        """Binary variables ``x[robot, edge]`` (the circuit's data qubits): robots times the edges each may use
+        (every grid edge, less those touching a hard obstacle)."""
         return self.num_robots * self.edges_per_robot
 
     def variable_index(self, robot: int, edge: int) -> int:
