@@ -288,7 +288,7 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     Example:
         >>> rows = [{"rows": 3, "cols": 3, "cx": 106, "depth_kind": "exact"}]
         >>> print(render_latex(rows, ["rows", "cx", "depth_kind"]), end="")
-        % qcpp estimate: exact resource counts of the lowered circuit; needs \usepackage{booktabs}
+        % qcpp estimate: counts of the lowered circuit (exact; depth: see depth_kind); needs \usepackage{booktabs}
         \begin{tabular}{rrl}
         \toprule
         rows & cx & depth\_kind \\
@@ -300,7 +300,7 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
     out = [
-        r"% qcpp estimate: exact resource counts of the lowered circuit; needs \usepackage{booktabs}",
+        r"% qcpp estimate: counts of the lowered circuit (exact; depth: see depth_kind); needs \usepackage{booktabs}",
         r"\begin{tabular}{" + align + "}",
         r"\toprule",
         " & ".join(latex_escape(c) for c in cols) + r" \\",
