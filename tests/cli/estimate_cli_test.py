@@ -107,7 +107,7 @@ def test_plot_metric_and_every_p(run, tmp_path: Path) -> None:  # type: ignore[n
 @pytest.mark.parametrize(
     ("args", "fragments"),
     [
-        (("--metric", "cnots", "--plot", "x.png"), ("--metric: expected qubits or", "cx or", "esp, got 'cnots'")),
+        (("--metric", "cnots", "--plot", "x.png"), ("--metric: expected qubits or", "cx or", "esp_idle, got 'cnots'")),
         (("--metric", "t"), ("--metric: applies with --plot only",)),
         (("--metric", "physical_qubits", "--plot", "x.png"), ("--metric: physical_qubits needs --physical",)),
         (("--metric", "routed_twoq", "--plot", "x.png"), ("--metric: routed_twoq needs --device",)),

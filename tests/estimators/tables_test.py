@@ -168,7 +168,7 @@ def test_plot_of_one_grid_is_against_p_and_names_the_metric(sweep_rows) -> None:
 
 
 def test_plot_refuses_unknown_metrics_and_missing_columns(sweep_rows) -> None:  # type: ignore[no-untyped-def]
-    with pytest.raises(OptionError, match=r"metric: expected qubits or .* or esp, got 'cnots'"):
+    with pytest.raises(OptionError, match=r"metric: expected qubits or .* or esp_idle, got 'cnots'"):
         draw_rows(sweep_rows, "cnots")
     with pytest.raises(ValueError, match=r"no row has a value for depth .*--depth none"):
         draw_rows(sweep_rows, "depth")  # estimated with depth="none"

@@ -30,7 +30,7 @@ Example:
     >>> plot_metric("cnots")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    qcpp.errors.OptionError: metric: expected qubits or data_qubits or ... or esp, got 'cnots'
+    qcpp.errors.OptionError: metric: expected qubits or data_qubits or ... or esp_idle, got 'cnots'
 """
 
 from __future__ import annotations
@@ -101,6 +101,7 @@ PLOT_METRICS: dict[str, PlotMetric] = {
         PlotMetric("routed_twoq_depth", "two-qubit depth after routing", "layers", needs="device"),
         PlotMetric("duration_s", "duration on the device", "s", needs="device"),
         PlotMetric("esp", "estimated success probability", "", needs="device"),
+        PlotMetric("esp_idle", "estimated success probability with idle decoherence", "", needs="device"),
     )
 }
 """The metrics a plot can show, by column name (the columns are described in :mod:`qcpp.estimators.tables`)."""
@@ -175,7 +176,8 @@ def draw_rows(
     rule = rows[0].get("rule", "exact")
     sel = [r for r in rows if r.get("rule", "exact") == rule]
     if not any(r.get(m.column) is not None for r in sel):
-        need = {"physical": " (estimate with --physical)", "device": " (estimate with --device)",
+        need = {"physical": " (estimate with --physical, or physical=True in Python)",
+                "device": " (estimate with --device, or device= in Python)",
                 "depth": " (the depth was not computed: --depth none?)"}.get(m.needs or "", "")  # fmt: skip
         raise ValueError(f"nothing to plot: no row has a value for {m.column}{need}")
     paper = m.paper if compare_paper else None

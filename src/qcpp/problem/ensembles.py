@@ -122,6 +122,17 @@ def ensemble(
 ) -> tuple[Scenario, ...]:
     """Instances ``0 .. count-1`` of a cell (:func:`random_scenario`); a prefix of any larger ensemble.
 
+    Args:
+        rows, cols: The grid.
+        robots: Robots per instance (>= 1).
+        density: Fraction of the grid's nodes that are obstacles, in ``[0, 1)`` (:func:`random_scenario`).
+        count: Instances (at least 1).
+        seed: The ensemble's seed: the same arguments give the same instances on every machine.
+        obstacles: ``soft`` (the paper's: weights) or ``hard`` (edges touching an obstacle are not variables).
+
+    Returns:
+        The scenarios, instance ``i`` at position ``i``.
+
     Raises:
         ScenarioError: ``count < 1`` or a bad cell (see :func:`random_scenario`).
 

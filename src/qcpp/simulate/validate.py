@@ -125,6 +125,8 @@ class ValidationReport:
     Attributes:
         scenario: Scenario name.
         backend: Simulator used.
+        p: QAOA layers of the circuit checked.
+        rule: The SBF rule its mixer was compiled with (``exact`` or ``paper``).
         seed: Seed of the random angles and of the amplitude sample (``None``: angles given, no sample).
         angles: ``[gamma_0, beta_0, ...]``.
         qubits: Qubits of the lowered circuit.
