@@ -26,9 +26,9 @@ from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
-from qcpp.routing.patches import pairs_dag, patch_sabre, run_sabre
+from qcpp.routing.patches import pairs_dag, patch_sabre, placed_dags, run_sabre
 from qcpp.routing.routed_circuit import RoutedCircuit
-from qcpp.routing.sabre import dag_cx, dag_ops, route, window_cx
+from qcpp.routing.sabre import cx_dag, dag_cx, dag_ops, route, window_cx
 
 from .routing_qcec_test import aligned
 from .routing_test import _assert_equal_up_to_layouts, _on_coupling
@@ -93,6 +93,36 @@ def test_the_score_read_from_the_swaps_is_the_count_of_every_operation(
     ops = dag_ops(routed)
     assert dag_cx(routed) == window_cx(ops)
     assert len(ops) <= dag_cx(routed) <= len(ops) + 2 * sum(1 for name, _ in ops if name == "swap")
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.sampled_from(["heavy-hex:3", "grid:3x3"]), st.integers(0, 3), st.data())
+def test_placed_dags_are_the_dags_of_the_placed_pairs(device: str, seed: int, data: st.DataObject) -> None:
+    """The search's DAGs (one logical DAG copied and relabelled per layout by Qiskit's layout routine, and the
+    fallback that appends every pair) hold the placed pairs in order, and SABRE routes them as the DAG
+    :func:`pairs_dag` writes."""
+    import sys
+
+    dev = get_device(device)
+    n = data.draw(st.integers(2, dev.num_qubits))
+    pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(lambda p: p[0] != p[1])
+    pairs = data.draw(st.lists(pair, min_size=1, max_size=30))
+    layouts = [tuple(data.draw(st.permutations(range(dev.num_qubits)))[:n]) for _ in range(2)]
+    shape = patch_sabre(RoutingContext(), dev.coupling, dev.num_qubits)
+    logical = cx_dag(n, pairs)
+    fast = placed_dags(shape, logical, pairs, layouts)
+    saved = sys.modules.get("qiskit._accelerate.apply_layout")
+    sys.modules["qiskit._accelerate.apply_layout"] = None  # type: ignore[assignment]  # the import now fails
+    try:
+        fallback = placed_dags(shape, logical, pairs, layouts)
+    finally:
+        sys.modules["qiskit._accelerate.apply_layout"] = saved  # type: ignore[assignment]
+    for layout, a, b in zip(layouts, fast, fallback, strict=True):
+        want = pairs_dag(shape, [(layout[x], layout[y]) for x, y in pairs])
+        assert dag_ops(a) == dag_ops(b) == dag_ops(want)  # the same DAG (topological order: independent gates sort)
+        assert sorted(dag_ops(a)) == sorted(("cx", (layout[x], layout[y])) for x, y in pairs)
+        routed = [dag_ops(run_sabre(shape, d, seed, 2)) for d in (a, b, want)]
+        assert routed[0] == routed[1] == routed[2]
 
 
 def test_the_score_read_from_the_swaps_on_sequences_sabre_does_not_write() -> None:

@@ -223,7 +223,7 @@ def _search(
     for layout in _sabre_layouts(logical, shape.sabre.target, range(seed, seed + layouts), options):
         if layout not in candidates:  # SabreLayout may converge to a layout already found
             candidates.append(layout)
-    dags = placed_dags(shape, logical, candidates)
+    dags = placed_dags(shape, logical, pairs, candidates)
     trials = shape.trials if options.trials is None else options.trials
 
     def routed_cx(dag: Any, seed: int) -> int:

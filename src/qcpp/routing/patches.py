@@ -236,9 +236,11 @@ def pairs_dag(shape: PatchSabre, pairs: Sequence[Sequence[int]]) -> Any:
     return dag
 
 
-def placed_dags(shape: PatchSabre, logical: Any, layouts: Sequence[Sequence[int]]) -> list[Any]:
-    """:func:`pairs_dag` of ``logical``'s pairs placed by each of ``layouts`` (logical qubit ``i`` -> qubit of
-    ``shape``), for the placement search, which routes one circuit from many layouts.
+def placed_dags(
+    shape: PatchSabre, logical: Any, pairs: Sequence[Sequence[int]], layouts: Sequence[Sequence[int]]
+) -> list[Any]:
+    """:func:`pairs_dag` of ``pairs`` placed by each of ``layouts`` (logical qubit ``i`` -> qubit of ``shape``), for
+    the placement search, which routes one circuit from many layouts.
 
     Each DAG is a copy of ``logical`` (a DAG of ``cx`` on its logical qubits, :func:`qcpp.routing.sabre.cx_dag`)
     relabelled by Qiskit's own layout routine (the one its ``ApplyLayout`` pass calls): the same gates on the same
@@ -247,7 +249,8 @@ def placed_dags(shape: PatchSabre, logical: Any, layouts: Sequence[Sequence[int]
 
     Args:
         shape: The device's :class:`PatchSabre` (its qubits are the device's).
-        logical: The DAG of the circuit's ``cx`` pairs on its logical qubits.
+        logical: The DAG of ``pairs`` on the logical qubits (:func:`qcpp.routing.sabre.cx_dag`).
+        pairs: The circuit's two-qubit gates, in order, on its logical qubits.
         layouts: Placements of the logical qubits.
 
     Returns:
@@ -259,8 +262,6 @@ def placed_dags(shape: PatchSabre, logical: Any, layouts: Sequence[Sequence[int]
     try:
         from qiskit._accelerate.apply_layout import apply_layout
     except ImportError:  # pragma: no cover - another Qiskit
-        index = {q: i for i, q in enumerate(logical.qubits)}
-        pairs = [tuple(index[q] for q in node.qargs) for node in logical.topological_op_nodes()]
         return [pairs_dag(shape, [(layout[a], layout[b]) for a, b in pairs]) for layout in layouts]
     out = []
     for layout in layouts:
