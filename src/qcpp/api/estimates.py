@@ -56,7 +56,9 @@ class _Column(Generic[T]):
 class Estimate:
     """One row of ``qcpp estimate --json``: every column is an attribute (``est.cx``, ``est.ft_total_t``,
     ``est.routed_twoq`` with a device, ``est.physical_qubits`` with ``physical=True``, ``est.paper_cx`` with
-    ``compare_paper=True``). The columns are documented in :mod:`qcpp.estimators.tables`.
+    ``compare_paper=True``). What each column counts, and in which unit: the resource-estimates page of the docs
+    (docs/resource-estimates.md: "What is counted", "Fault-tolerant view", "Physical estimates", "Figures of
+    merit").
 
     Immutable; ``to_dict()`` gives the row (a fresh copy each call); a notebook shows it as a table.
     """
