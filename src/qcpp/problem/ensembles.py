@@ -123,7 +123,8 @@ def ensemble(
     """Instances ``0 .. count-1`` of a cell (:func:`random_scenario`); a prefix of any larger ensemble.
 
     Args:
-        rows, cols: The grid.
+        rows: The grid's rows.
+        cols: The grid's columns.
         robots: Robots per instance (>= 1).
         density: Fraction of the grid's nodes that are obstacles, in ``[0, 1)`` (:func:`random_scenario`).
         count: Instances (at least 1).
