@@ -135,12 +135,18 @@ def _series(rows: Sequence[dict[str, Any]], x: str, value: Any) -> dict[int, tup
         key = 0 if x == "robots" else r["robots"]  # against robots: one curve
         at = r["rows"] * r["cols"] if x == "nodes" else r[x]
         acc[key].append((at, r["rows"], float(y)))
-    return {k: ([a for a, _, _ in sorted(v)], [y for _, _, y in sorted(v)]) for k, v in sorted(acc.items())}
+    points = {k: sorted(v) for k, v in sorted(acc.items())}
+    return {k: ([a for a, _, _ in v], [y for _, _, y in v]) for k, v in points.items()}
+
+
+def _shares_x(xs: Sequence[float]) -> bool:
+    """Two points at one ``x`` (grids of one size: module docs)."""
+    return len(set(xs)) < len(xs)
 
 
 def _style(xs: Sequence[float], line: str) -> str:
-    """``line`` (``o-``), or its marker alone where two points share an ``x`` (grids of one size, module docs)."""
-    return line if len(set(xs)) == len(xs) else line.rstrip("-")
+    """``line`` (``o-``), or its marker alone where two points share an ``x`` (:func:`_shares_x`)."""
+    return line.rstrip("-") if _shares_x(xs) else line
 
 
 def _robots(k: int) -> str:
@@ -214,7 +220,7 @@ def draw_rows(
             who = _robots(k) if x != "robots" else ""
             ours_label = ", ".join(filter(None, ("ours" if paper else "", who))) or "qcpp"
             ax.plot(xs, ys, _style(xs, "o-"), ms=4, color=colour, label=ours_label)
-            shared |= len(set(xs)) < len(xs)
+            shared |= _shares_x(xs)
             if k in theirs:
                 pxs, pys = theirs[k]
                 ax.plot(pxs, pys, _style(pxs, "x--"), ms=5, color=colour, alpha=0.75,
