@@ -14,8 +14,9 @@ recomputes the cheap columns from those records with today's code and fails when
 * every column derived by formula (shots and runs for 99%, time per shot, P(opt) x ESP, the 99% times).
 
 The default run recomputes what is cheap (every circuit: the estimator takes 5 s for all files together; states
-of at most :data:`CHEAP_DIMENSION` assignments; the 3x3/1 device rows); ``-m heavy`` recomputes every device row
-and every state of at most :data:`HEAVY_DIMENSION` assignments.
+of at most :data:`CHEAP_DIMENSION` assignments; the 3x3/1 device rows); ``-m heavy`` recomputes every state of at
+most :data:`HEAVY_DIMENSION` assignments and the device rows of :func:`checked_devices` (every instance, on every
+device but one of the two calibrated IBM devices, alternating, so that both are checked within CI's time budget).
 After a compiler change, regenerate with the commands in docs/experiments.md (``python examples/experiments/
 <name>.py``; the file's ``command`` field names it).
 """
@@ -25,6 +26,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+from collections.abc import Sequence
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -50,6 +52,22 @@ HEAVY_DIMENSION = 100_000
 """States of more assignments (two_robots_5x5: 73.8 million, 1.2 GB) are not recomputed, even under ``heavy``."""
 CHEAP_DEVICE_INSTANCES = ("3x3/1",)
 """Time-to-solution instances whose routed device rows the default run recomputes (~1 s per device)."""
+CALIBRATED_DEVICES = ("ibm_fez", "ibm_torino")
+"""The devices whose compiles run Qiskit's O3 three times and our placement searches on the device and on the
+abstract lattices (tens of CPU-seconds per row): the heavy step recompiles each instance on one of them."""
+
+
+def checked_devices(devices: Sequence[str], index: int) -> tuple[str, ...]:
+    """The devices (of ``devices``) whose rows the heavy step recomputes for the ``index``-th instance of a study:
+    every device but the :data:`CALIBRATED_DEVICES` entry ``index`` does not pick (``index`` even: ``ibm_fez``,
+    odd: ``ibm_torino``), so consecutive instances check both calibrated devices and each instance costs one
+    calibrated compile per depth.
+
+    >>> checked_devices(["ibm_fez", "ibm_torino", "google_willow"], 1)
+    ('ibm_torino', 'google_willow')
+    """
+    skipped = CALIBRATED_DEVICES[(index + 1) % len(CALIBRATED_DEVICES)]
+    return tuple(d for d in devices if d != skipped)
 
 
 def _load(name: str) -> dict[str, Any]:
@@ -163,18 +181,23 @@ CHEAP_OR_EVERY_ROW = (pytest.param(False, id="cheap"), pytest.param(True, id="ev
 
 
 def _device_instances() -> list[Any]:
-    """One parameter per time-to-solution instance with device rows: the cheap ones in the default run, every other
-    one in the heavy step. One test per instance, so that the heavy step's two workers share the recompilations
-    (the largest instances take minutes each)."""
-    names = dict.fromkeys(r["instance"] for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device")
-    return [pytest.param(n, id=n, marks=() if n in CHEAP_DEVICE_INSTANCES else pytest.mark.heavy) for n in names]
+    """One parameter per time-to-solution instance with device rows, with the devices to recompute: the cheap ones
+    in the default run on every device, every other one in the heavy step on :func:`checked_devices` (by the
+    instance's place in the file). One test per instance, so that the heavy step's two workers share the
+    recompilations (the largest instances take minutes each)."""
+    rows = [r for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device"]
+    devices = tuple(dict.fromkeys(r["device"] for r in rows))
+    names = dict.fromkeys(r["instance"] for r in rows)
+    return [pytest.param(n, devices, id=n) if n in CHEAP_DEVICE_INSTANCES else
+            pytest.param(n, checked_devices(devices, i), id=n, marks=pytest.mark.heavy)
+            for i, n in enumerate(names)]  # fmt: skip
 
 
-@pytest.mark.parametrize("instance", _device_instances())
-def test_device_rows_match_the_router(instance: str) -> None:
+@pytest.mark.parametrize(("instance", "devices"), _device_instances())
+def test_device_rows_match_the_router(instance: str, devices: tuple[str, ...]) -> None:
     checked = 0
     for r in _load("time_to_solution")["rows"]:
-        if r["method"] != "qaoa_device" or r["instance"] != instance:
+        if r["method"] != "qaoa_device" or r["instance"] != instance or r["device"] not in devices:
             continue
         want = _routed(_key(r), int(r["p"]), r["device"])
         assert r["device"] == want["device"] and r["fits"] == want["fits"], _label("time_to_solution", r)
@@ -185,7 +208,7 @@ def test_device_rows_match_the_router(instance: str) -> None:
             assert r["duration_model"] == "device"
             assert r["shot_us"] == pytest.approx(want["duration_s"] * 1e6, rel=1e-9)
         checked += 1
-    assert checked > 0
+    assert checked == len(devices)
 
 
 @pytest.mark.parametrize("heavy", CHEAP_OR_EVERY_ROW)
@@ -449,7 +472,8 @@ DEVICE_FIELDS = ("device", "fits", "routed_kind", "routed_twoq", "routed_depth",
 
 def _ensemble_device_instances() -> list[Any]:
     """One heavy parameter per (cell, instance) the heavy step recompiles (:data:`HEAVY_ENSEMBLE_DEVICE_INSTANCES`
-    per cell): one test per instance, so that the heavy step's two workers share the recompilations evenly."""
+    per cell, each on :func:`checked_devices`): one test per instance, so that the heavy step's two workers share
+    the recompilations evenly."""
     if not (RESULTS / "ensemble_devices.json").exists():
         return []
     cells = _load("ensemble_devices")["config"]["cells"]
@@ -487,21 +511,24 @@ def test_ensemble_device_rows_of_the_first_instance_match_the_router() -> None:
         _check_ensemble_device_row(r, context)
 
 
-HEAVY_ENSEMBLE_DEVICE_INSTANCES = 3
-"""Instances per cell whose device rows (every depth and device) the heavy step recompiles: a change of the router
-or the device data changes some of them; all of them would double the heavy step."""
+HEAVY_ENSEMBLE_DEVICE_INSTANCES = 2
+"""Instances per cell whose device rows (every depth, on :func:`checked_devices`) the heavy step recompiles: a change
+of the router or the device data changes some of them; all of them would take most of CI's time budget."""
 
 
 @pytest.mark.parametrize(("cell", "index"), _ensemble_device_instances())
 def test_ensemble_device_rows_match_the_router(cell: str, index: int) -> None:
-    """Every row of the instance (every depth and device), routed with one context as the experiment routes them."""
+    """Every row of the instance (every depth and device) is recorded; those on :func:`checked_devices` are routed
+    again, with one context as the experiment routes them."""
     data = _load("ensemble_devices")
     rows = [r for r in data["rows"] if r["cell"] == cell and r["index"] == index]
     assert sorted((r["p"], r["device"]) for r in rows) == sorted(
         (p, d) for p in data["config"]["depths"] for d in data["config"]["devices"])
+    devices = checked_devices(data["config"]["devices"], index)
     context = RoutingContext()
     for r in rows:
-        _check_ensemble_device_row(r, context)
+        if r["device"] in devices:
+            _check_ensemble_device_row(r, context)
 
 
 def test_ensemble_device_derived_columns() -> None:

@@ -33,7 +33,7 @@ from typing import Any
 from qcpp.hardware.device import Device
 from qcpp.ir.angles import Angle
 from qcpp.ir.circuit import Circuit, Register, Section
-from qcpp.ir.gates import Gate, cz, rx, rz, x
+from qcpp.ir.gates import Gate, cz, rx, x
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.target import device_target
 
@@ -41,17 +41,24 @@ __all__ = ["from_qiskit_angle", "qiskit_o3", "qiskit_o3_seeds", "qiskit_optimize
 
 _SIMPLE = {"x", "h", "t", "tdg", "s", "sdg", "cx", "cz", "sx"}
 _ANGLED = {"rz", "rx", "ry", "rzz"}
+_STANDARD = {"x": "X", "h": "H", "t": "T", "tdg": "Tdg", "s": "S", "sdg": "Sdg", "cx": "CX", "cz": "CZ", "sx": "SX",
+             "rz": "RZ", "rx": "RX", "ry": "RY", "rzz": "RZZ"}  # fmt: skip
 
 
 def to_qiskit_lowered(circuit: Circuit) -> Any:
     """A Qiskit circuit of a lowered circuit (one- and two-qubit gates of :data:`_SIMPLE` and :data:`_ANGLED`), an
     unbound symbol as the Qiskit ``Parameter`` of the same name.
 
+    The circuit equals the one ``qc.<name>(*angles, *qubits)`` would build gate by gate: each gate is appended as
+    the same standard-gate instruction those methods append, without their argument checks where the qubits are
+    distinct indices of the circuit (any other gate goes through the method, which reports the error).
+
     Raises:
         ValueError: a gate this converter does not know.
     """
     from qiskit import QuantumCircuit
-    from qiskit.circuit import Parameter
+    from qiskit._accelerate.circuit import StandardGate
+    from qiskit.circuit import CircuitInstruction, Parameter
 
     params: dict[str, Any] = {}
 
@@ -64,11 +71,32 @@ def to_qiskit_lowered(circuit: Circuit) -> Any:
         return out
 
     qc = QuantumCircuit(circuit.num_qubits)
+    bits = dict(enumerate(qc.qubits))
+    standard = {name: getattr(StandardGate, _STANDARD[name]) for name in (*_SIMPLE, *_ANGLED)}
+    fixed: dict[tuple[str, tuple[int, ...]], Any] = {}  # an unparametrised instruction, once per qubit tuple
+    from_standard, append = CircuitInstruction.from_standard, qc._append
     for name, qubits, params_, _ in circuit.gates:
         if name in _SIMPLE:
-            getattr(qc, name)(*qubits)
+            inst = fixed.get((name, qubits))
+            if inst is None:
+                try:
+                    bs = tuple([bits[q] for q in qubits])
+                except (KeyError, TypeError):
+                    bs = ()
+                if len(set(bs)) != len(qubits) or len(qubits) != (2 if name in ("cx", "cz") else 1):
+                    getattr(qc, name)(*qubits)  # raises Qiskit's error for these qubits
+                    continue
+                inst = fixed[name, qubits] = from_standard(standard[name], bs, ())
+            append(inst, _standard_gate=True)
         elif name in _ANGLED:
-            getattr(qc, name)(angle(params_[0]), *qubits)
+            try:
+                bs = tuple([bits[q] for q in qubits])
+            except (KeyError, TypeError):
+                bs = ()
+            if len(set(bs)) != len(qubits) or len(qubits) != (2 if name == "rzz" else 1):
+                getattr(qc, name)(angle(params_[0]), *qubits)  # raises Qiskit's error for these qubits
+                continue
+            append(from_standard(standard[name], bs, [angle(params_[0])]), _standard_gate=True)
         else:
             raise ValueError(f"to_qiskit_lowered: no Qiskit form for gate {name!r} (lower the circuit first)")
     return qc
@@ -86,6 +114,8 @@ def from_qiskit_angle(value: Any) -> float | Angle:
     >>> from_qiskit_angle(0.5 - 2 * g)
     Angle('-2.0*gamma_0 + 0.5')
     """
+    if type(value) is float:
+        return value  # float(value) would return this very object
     from qiskit.circuit import ParameterExpression
 
     if not isinstance(value, ParameterExpression) or not value.parameters:
@@ -104,25 +134,35 @@ def from_qiskit_angle(value: Any) -> float | Angle:
 def _routed_gates(qc: Any) -> list[Gate]:
     """The native gates of a circuit Qiskit translated to the target (``cz rz sx x``, or ``rzz rx``).
 
-    Read by each instruction's name and parameters (no Qiskit gate object is built), and the unparametrised gates
-    (a routed circuit repeats its ``cz`` and ``sx`` on the same qubits) made once for each qubit tuple.
+    Read by each instruction's name, qubits and parameters (no Qiskit gate object is built), and the unparametrised
+    gates (a routed circuit repeats its ``cz`` and ``sx`` on the same qubits) made once for each qubit tuple. The
+    gates equal those of :func:`~qcpp.ir.gates.rz`, :func:`~qcpp.ir.gates.rx`, :func:`~qcpp.ir.gates.cz`,
+    :func:`~qcpp.ir.gates.x` on the instruction's qubit indices, angles read by :func:`from_qiskit_angle`.
     """
     out: list[Gate] = []
+    append = out.append
     index = {q: i for i, q in enumerate(qc.qubits)}
-    fixed: dict[tuple[str, tuple[int, ...]], Gate] = {}
+    fixed: dict[tuple[str, tuple[Any, ...]], Gate] = {}  # by name and Qiskit qubits
+    new = tuple.__new__
     for inst in qc.data:
-        name, qs = inst.name, tuple(index[q] for q in inst.qubits)
+        name, qubits = inst.name, inst.qubits
+        if name == "rz" or name == "rx":
+            theta = inst.params[0]
+            if type(theta) is not float:
+                theta = from_qiskit_angle(theta)
+            append(new(Gate, (name, (index[qubits[0]],), (theta,), None)))  # rz / rx without the input checks
+            continue
         if name in ("cz", "sx", "x"):
-            g = fixed.get((name, qs))
+            g = fixed.get((name, qubits))
             if g is None:
-                g = fixed[name, qs] = cz(*qs) if name == "cz" else rx(math.pi / 2, qs[0]) if name == "sx" else x(qs[0])
-            out.append(g)
-        elif name == "rz":
-            out.append(rz(from_qiskit_angle(inst.params[0]), qs[0]))
-        elif name == "rx":
-            out.append(rx(from_qiskit_angle(inst.params[0]), qs[0]))
-        elif name == "rzz":
-            out.append(Gate("rzz", qs, (from_qiskit_angle(inst.params[0]),), None))
+                qs = tuple([index[q] for q in qubits])
+                g = cz(*qs) if name == "cz" else rx(math.pi / 2, qs[0]) if name == "sx" else x(qs[0])
+                fixed[name, qubits] = g
+            append(g)
+            continue
+        qs = tuple([index[q] for q in qubits])
+        if name == "rzz":
+            append(Gate("rzz", qs, (from_qiskit_angle(inst.params[0]),), None))
         elif name in ("barrier", "delay"):
             continue
         else:
