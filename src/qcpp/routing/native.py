@@ -174,19 +174,39 @@ def duration_s(routed: RoutedCircuit) -> float | None:
     device = routed.device
     if device.duration_1q_s is None or device.duration_2q_s is None or device.readout_duration_s is None:
         return None
+    one, two = _durations(device)
     d1 = dict(device.duration_1q_s)
-    edge = device.edge_index()
     free = [0.0] * device.num_qubits
     for g in routed.circuit.gates:
         qs = g[1]
         if len(qs) == 2:
-            start = max(free[qs[0]], free[qs[1]])
-            free[qs[0]] = free[qs[1]] = start + device.duration_2q_s[edge[qs]]
+            a, b = qs
+            fa, fb = free[a], free[b]
+            start = fb if fb > fa else fa  # max(fa, fb)
+            free[a] = free[b] = start + two[qs]
         else:
             q = qs[0]
-            free[q] += d1[one_qubit_name(device, g)][q]
+            durations = one.get(g[0])
+            if durations is None:
+                durations = d1[one_qubit_name(device, g)]  # a name without durations: raises
+            d = durations[q]
+            if d != 0:  # x + 0.0 is x: no time here is -0.0 (sums from +0.0)
+                free[q] += d
     readout = max((device.readout_duration_s[routed.final_layout[lq]] for lq in routed.measured), default=0.0)
     return max(free, default=0.0) + readout
+
+
+@cache
+def _durations(device: Device) -> tuple[dict[str, tuple[float, ...]], dict[tuple[int, int], float]]:
+    """Per one-qubit IR gate name its durations per qubit (``rx`` under the device gate :func:`one_qubit_name` gives
+    it; a name the device has no durations for is missing), and per coupler (both orders) its two-qubit gate's
+    duration: the figures :func:`duration_s` and :func:`_schedule` read. Pure memo; the device has durations."""
+    d1 = dict(device.duration_1q_s or ())
+    one = {name: d1[one_qubit_name(device, Gate(name, (0,), (), None))] for name in (*d1, "rx")
+           if one_qubit_name(device, Gate(name, (0,), (), None)) in d1}  # fmt: skip
+    durations_2q = device.duration_2q_s or ()
+    two = {pair: durations_2q[i] for pair, i in device.edge_index().items()}
+    return one, two
 
 
 def _schedule(routed: RoutedCircuit) -> tuple[list[float], list[float | None], list[float]] | None:
@@ -195,8 +215,8 @@ def _schedule(routed: RoutedCircuit) -> tuple[list[float], list[float | None], l
     device = routed.device
     if device.duration_1q_s is None or device.duration_2q_s is None:
         return None
+    one, two = _durations(device)
     d1 = dict(device.duration_1q_s)
-    edge = device.edge_index()
     n = device.num_qubits
     free, first, busy = [0.0] * n, [None] * n, [0.0] * n
     first_time: list[float | None] = first  # type: ignore[assignment]
@@ -204,22 +224,30 @@ def _schedule(routed: RoutedCircuit) -> tuple[list[float], list[float | None], l
         qs = g[1]
         if len(qs) == 2:
             a, b = qs
-            start = max(free[a], free[b])
-            d = device.duration_2q_s[edge[qs]]
+            fa, fb = free[a], free[b]
+            start = fb if fb > fa else fa  # max(fa, fb)
+            d = two[qs]
             free[a] = free[b] = start + d
             if d > 0:
-                for q in qs:
-                    busy[q] += d
-                    if first_time[q] is None:
-                        first_time[q] = start
+                busy[a] += d
+                if first_time[a] is None:
+                    first_time[a] = start
+                busy[b] += d
+                if first_time[b] is None:
+                    first_time[b] = start
         else:
             q = qs[0]
-            d = d1[one_qubit_name(device, g)][q]
+            durations = one.get(g[0])
+            if durations is None:
+                durations = d1[one_qubit_name(device, g)]  # a name without durations: raises
+            d = durations[q]
             if d > 0:
                 if first_time[q] is None:
                     first_time[q] = free[q]
                 busy[q] += d
-            free[q] += d
+                free[q] += d
+            elif d != 0:  # x + 0.0 is x: no time here is -0.0 (sums from +0.0)
+                free[q] += d
     return free, first_time, busy
 
 
