@@ -28,6 +28,8 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from itertools import groupby
+from operator import itemgetter
 from typing import Any
 
 from qcpp.hardware.device import Device
@@ -100,7 +102,16 @@ def dag_ops(dag: Any) -> list[tuple[str, tuple[int, ...]]]:
     """The operations of a routed DAG in topological order as ``(name, qubit indices)``: what :func:`assemble`
     and :func:`window_cx` read."""
     index = {q: i for i, q in enumerate(dag.qubits)}
-    return [(node.op.name, tuple(index[q] for q in node.qargs)) for node in dag.topological_op_nodes()]
+    indices: dict[tuple[Any, ...], tuple[int, ...]] = {}  # per tuple of Qiskit qubits (a routing repeats its pairs)
+    out = []
+    append = out.append
+    for node in dag.topological_op_nodes():
+        qargs = node.qargs
+        qs = indices.get(qargs)
+        if qs is None:
+            qs = indices[qargs] = tuple([index[q] for q in qargs])
+        append((node.name, qs))  # the node's name is its operation's, without building the operation
+    return out
 
 
 def assemble(
@@ -140,16 +151,23 @@ def assemble(
     ptr = [0] * n
     emitted: list[tuple[str, Gate]] = []
     last_section = section_of[0] if section_of else "main"
+    new = tuple.__new__  # Gate(...) without the NamedTuple constructor's Python frame: the same value
 
     def flush(lq: int) -> None:
         nonlocal last_section
         q = queues[lq]
-        while ptr[lq] < len(q) and len(gates[q[ptr[lq]]][1]) == 1:
-            i = q[ptr[lq]]
+        k, end, p = ptr[lq], len(q), where[lq]
+        while k < end:
+            i = q[k]
             g = gates[i]
-            emit(section_of[i], Gate(g[0], (where[lq],), g[2], g[3]), window_of_gate[i])
+            if len(g[1]) != 1:
+                break
+            last_on[p] = len(emitted)  # emit(section_of[i], Gate(g[0], (p,), g[2], g[3]), window_of_gate[i])
+            emitted_append((section_of[i], new(Gate, (g[0], (p,), g[2], g[3]))))
+            window_append(window_of_gate[i])
             last_section = section_of[i]
-            ptr[lq] += 1
+            k += 1
+        ptr[lq] = k
 
     last_on: dict[int, int] = {}  # physical qubit -> index in ``emitted`` of the last gate on it
     fused: dict[str, int] = {}
@@ -158,12 +176,20 @@ def assemble(
     window_of_gate: Sequence[Any] = windows[0] if windows is not None else section_of
     window_of_op: Sequence[Any] | None = windows[1] if windows is not None else None
     emitted_window: list[Any] = []
+    emitted_append, window_append = emitted.append, emitted_window.append
+    cx_gates: dict[tuple[int, int], Gate] = {}  # cx(a, b), made once per pair
+
+    def cx_of(a: int, b: int) -> Gate:
+        g = cx_gates.get((a, b))
+        if g is None:
+            g = cx_gates[a, b] = cx(a, b)
+        return g
 
     def emit(section: str, g: Gate, window: Any) -> None:
         for q in g[1]:
             last_on[q] = len(emitted)
-        emitted.append((section, g))
-        emitted_window.append(window)
+        emitted_append((section, g))
+        window_append(window)
 
     def pending_in(lq: int, window: Any) -> bool:
         """Whether every one-qubit gate pending on ``lq`` belongs to ``window``."""
@@ -205,9 +231,15 @@ def assemble(
                     emit(owner, cx(y_, x_), window)
                     skip.add(nxt)  # type: ignore[arg-type]
                     fused[owner] = fused.get(owner, 0) + 1
-                else:
-                    for a, b in ((p1, p2), (p2, p1), (p1, p2)):
-                        emit(owner, cx(a, b), window)
+                else:  # emit(owner, cx(a, b), window) for (a, b) in (p1, p2), (p2, p1), (p1, p2)
+                    forward = cx_of(p1, p2)
+                    emitted_append((owner, forward))
+                    emitted_append((owner, cx_of(p2, p1)))
+                    emitted_append((owner, forward))
+                    window_append(window)
+                    window_append(window)
+                    window_append(window)
+                    last_on[p1] = last_on[p2] = len(emitted) - 1
             l1, l2 = who[p1], who[p2]
             who[p1], who[p2] = l2, l1
             if l1 >= 0:
@@ -222,8 +254,10 @@ def assemble(
         if queues[b][ptr[b]] != i or gates[i][1] != (a, b):
             raise AssertionError("the router reordered the gates of a qubit")  # pragma: no cover
         g = gates[i]
-        if k not in skip:
-            emit(section_of[i], Gate(g[0], (p1, p2), g[2], g[3]), window_of_gate[i])
+        if k not in skip:  # emit(section_of[i], Gate(g[0], (p1, p2), g[2], g[3]), window_of_gate[i])
+            last_on[p1] = last_on[p2] = len(emitted)
+            emitted_append((section_of[i], new(Gate, (g[0], (p1, p2), g[2], g[3]))))
+            window_append(window_of_gate[i])
         last_section = section_of[i]
         ptr[a] += 1
         ptr[b] += 1
@@ -295,9 +329,16 @@ def dag_cx(dag: Any) -> int:
 def _next_ops(ops: Sequence[tuple[str, tuple[int, ...]]]) -> list[int | None]:
     """Per op, the index of the next op that touches one of its qubits (``None``: none)."""
     seen: dict[int, int] = {}
+    get = seen.get
     out: list[int | None] = [None] * len(ops)
     for k in range(len(ops) - 1, -1, -1):
         qs = ops[k][1]
+        if len(qs) == 2:
+            p, q = qs
+            a, b = get(p), get(q)
+            out[k] = b if a is None else a if b is None or not b < a else b  # min of those seen
+            seen[p] = seen[q] = k
+            continue
         nxt = [seen[q] for q in qs if q in seen]
         out[k] = min(nxt) if nxt else None
         for q in qs:
@@ -331,15 +372,5 @@ def checked_inputs(
 
 def _sectioned(emitted: list[tuple[str, Gate]], num_qubits: int) -> Circuit:
     """The emitted ``(section name, gate)`` pairs as a circuit on one register ``q``, a section per run of a name."""
-    sections: list[Section] = []
-    run: list[Gate] = []
-    name = None
-    for sec, g in emitted:
-        if sec != name and run:
-            sections.append(Section(name, run))  # type: ignore[arg-type]
-            run = []
-        name = sec
-        run.append(g)
-    if run:
-        sections.append(Section(name, run))  # type: ignore[arg-type]
+    sections = [Section(name, [g for _, g in run]) for name, run in groupby(emitted, key=itemgetter(0))]
     return Circuit([Register("q", num_qubits)], sections)
