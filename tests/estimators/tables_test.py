@@ -192,3 +192,45 @@ def test_grids_of_one_size_keep_their_own_points_and_draw_no_line() -> None:
     rows_2 = make_rows([estimate_point(Point(2, 2, 1, 1), EstimateOptions(depth="none"))], True) + square
     (line,) = draw_rows(rows_2, "cx").axes[0].lines
     assert line.get_linestyle() == "-"
+
+
+@pytest.fixture(scope="module")
+def bound_row() -> dict:
+    """One row whose depths are bounds (``depth="bound"``), next to the exact figures of the same point."""
+    pt = Point(3, 3, 1, 1)
+    bound = make_row(estimate_point(pt, EstimateOptions(depth="bound")))
+    exact = make_row(estimate_point(pt))
+    assert bound["depth_kind"] == "bound" and exact["depth_kind"] == "exact"
+    return bound
+
+
+@pytest.mark.parametrize("width", [40, 80, 200])
+def test_the_table_marks_a_bound_depth_and_never_titles_it_exact(bound_row, width: int) -> None:  # type: ignore[no-untyped-def]
+    text = render([bound_row], "table", width=width)
+    assert f"<={bound_row['depth']}" in text  # whether or not depth_kind fits
+    assert "Exact resource counts" not in text and "upper bound" in text
+
+
+def test_exact_depths_are_unmarked_under_the_exact_title(results) -> None:  # type: ignore[no-untyped-def]
+    text = render(make_rows(results), "table", width=200)
+    assert "<=" not in text and "Exact resource counts (lowered circuit)" in text
+
+
+def test_md_and_latex_mark_a_bound_csv_and_json_keep_the_number(bound_row) -> None:  # type: ignore[no-untyped-def]
+    d, d2 = bound_row["depth"], bound_row["two_qubit_depth"]
+    md = render([bound_row], "md", columns=["rows", "depth", "two_qubit_depth"])
+    assert md.splitlines()[2] == f"| 3 | <={d} | <={d2} |"
+    latex = render([bound_row], "latex", columns=["rows", "depth"])
+    assert rf"3 & $\leq${d} \\" in latex and "see depth_kind" not in latex
+    row = next(csv.DictReader(io.StringIO(render([bound_row], "csv"))))
+    assert (row["depth"], row["depth_kind"]) == (str(d), "bound")
+    assert json.loads(render([bound_row], "json"))[0]["depth"] == d
+
+
+def test_the_hidden_columns_note_says_what_each_format_keeps(results) -> None:  # type: ignore[no-untyped-def]
+    rows = make_rows(results)
+    note = " ".join(render(rows, "table", width=60).split())
+    assert "--format md shows every table column, csv and json every field" in note
+    md_header = render(rows, "md").splitlines()[0].strip("| ").split(" | ")
+    assert md_header == list(MAIN_COLUMNS)  # every table column, no more
+    assert len(next(csv.reader(io.StringIO(render(rows, "csv"))))) > len(MAIN_COLUMNS)

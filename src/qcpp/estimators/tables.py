@@ -22,6 +22,11 @@ Formats: ``table`` (rich, the main columns that fit the terminal, :func:`render`
 column plus ``section.<name>.<field>``), ``json`` and ``jsonl``; :func:`render_stream` yields text as rows arrive
 for every format but ``table``.
 
+In the formats read by people (``table``, ``md``, ``latex``) a figure that is an upper bound is marked in its cell,
+``<=9087`` (:data:`BOUND_MARK`): the depths when ``depth_kind`` is ``bound``, the routed depths and the duration when
+``routed_depth_kind`` is ``bound`` (:data:`BOUNDED_BY`), whether or not the kind column is shown. ``csv``, ``json``
+and ``jsonl`` keep the plain number and the kind field.
+
 Example:
     >>> from qcpp.estimators.estimate import Point, estimate_point
     >>> rows = make_rows([estimate_point(Point(2, 2, 1, 1))], compare_paper=True)
@@ -46,6 +51,8 @@ from qcpp.estimators.paper import Doubling, paper_estimate
 from qcpp.ir.cost import Cost
 
 __all__ = [
+    "BOUNDED_BY",
+    "BOUND_MARK",
     "DROP_ORDER",
     "FORMATS",
     "MAIN_COLUMNS",
@@ -84,6 +91,19 @@ MAIN_COLUMNS: tuple[str, ...] = (
 
 PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
 PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
+
+BOUND_MARK = "<="
+"""Prefix of a cell (``table``, ``md``; ``latex``: ``$\\leq$``) whose figure is an upper bound, not exact."""
+
+BOUNDED_BY: dict[str, str] = {
+    "depth": "depth_kind",
+    "two_qubit_depth": "depth_kind",
+    "rotation_depth": "depth_kind",
+    "routed_depth": "routed_depth_kind",
+    "routed_twoq_depth": "routed_depth_kind",
+    "duration_s": "routed_depth_kind",
+}
+"""Columns whose figure may be an upper bound, each with the row field saying which (``exact`` or ``bound``)."""
 
 _SECTION_NAMES = ("initial_state", "phase", "mixer")
 _SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
@@ -168,6 +188,29 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
+def _is_bound(row: dict[str, Any], col: str) -> bool:
+    """Whether ``row``'s ``col`` holds an upper bound rather than an exact figure (:data:`BOUNDED_BY`)."""
+    kind = BOUNDED_BY.get(col)
+    return kind is not None and row.get(col) is not None and row.get(kind) == "bound"
+
+
+def _shown(row: dict[str, Any], col: str) -> str:
+    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell`, a bound marked :data:`BOUND_MARK`."""
+    return (BOUND_MARK if _is_bound(row, col) else "") + _cell(row.get(col))
+
+
+def _any_bound(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
+    return any(_is_bound(r, c) for r in rows for c in cols)
+
+
+def _title(paper: bool, bound: bool) -> str:
+    """The title of the ``table`` format: every count exact, and the mark of a bound when a cell has one."""
+    vs = " vs the paper" if paper else ""
+    if bound:
+        return f"Resource counts (lowered circuit){vs}: exact; {BOUND_MARK}N is an upper bound"
+    return f"Exact resource counts (lowered circuit){vs}"
+
+
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
     out = {k: v for k, v in row.items() if k != "sections"}
     for name, sec in row.get("sections", {}).items():
@@ -246,7 +289,7 @@ def render_stream(
             if first:
                 cols = _columns(row) if columns is None else table_columns([row], columns=columns)[0]
                 yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
-            yield "| " + " | ".join(_cell(row.get(c)) for c in cols) + " |\n"
+            yield "| " + " | ".join(_shown(row, c) for c in cols) + " |\n"
         first = False
     if fmt == "json":
         yield "[]\n" if first else "\n]\n"
@@ -276,7 +319,8 @@ def _is_number(v: Any) -> bool:
 
 def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None = None) -> str:
     r"""Rows as a LaTeX ``tabular`` with booktabs rules (``\usepackage{booktabs}``): the columns of the ``md``
-    format (or ``columns``), numbers right-aligned, text left-aligned, LaTeX's special characters escaped.
+    format (or ``columns``), numbers right-aligned, text left-aligned, LaTeX's special characters escaped, an upper
+    bound marked ``$\leq$`` in its cell.
 
     Args:
         rows: rows from :func:`make_rows`.
@@ -288,7 +332,7 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     Example:
         >>> rows = [{"rows": 3, "cols": 3, "cx": 106, "depth_kind": "exact"}]
         >>> print(render_latex(rows, ["rows", "cx", "depth_kind"]), end="")
-        % qcpp estimate: counts of the lowered circuit (exact; depth: see depth_kind); needs \usepackage{booktabs}
+        % qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound); needs \usepackage{booktabs}
         \begin{tabular}{rrl}
         \toprule
         rows & cx & depth\_kind \\
@@ -296,17 +340,20 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
         3 & 106 & exact \\
         \bottomrule
         \end{tabular}
+        >>> print(render_latex([{"depth": 9087, "depth_kind": "bound"}], ["depth"]).splitlines()[5])
+        $\leq$9087 \\
     """
     cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
     out = [
-        r"% qcpp estimate: counts of the lowered circuit (exact; depth: see depth_kind); needs \usepackage{booktabs}",
+        r"% qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound); needs \usepackage{booktabs}",
         r"\begin{tabular}{" + align + "}",
         r"\toprule",
         " & ".join(latex_escape(c) for c in cols) + r" \\",
         r"\midrule",
     ]
-    out += [" & ".join(latex_escape(_cell(r.get(c))) for c in cols) + r" \\" for r in rows]
+    out += [" & ".join((r"$\leq$" if _is_bound(r, c) else "") + latex_escape(_cell(r.get(c))) for c in cols) + r" \\"
+            for r in rows]  # fmt: skip
     out += [r"\bottomrule", r"\end{tabular}"]
     return "\n".join(out) + "\n"
 
@@ -336,12 +383,11 @@ def terminal_width() -> int:
 def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
     from rich.table import Table
 
-    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
-    table = Table(title=title)
+    table = Table(title=_title(paper, _any_bound(rows, cols)))
     for c in cols:
         table.add_column(c, justify="right")
     for r in rows:
-        table.add_row(*(_cell(r.get(c)) for c in cols))
+        table.add_row(*(_shown(r, c) for c in cols))
     return table
 
 
@@ -439,8 +485,8 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
         paper_cx
           2332
     """
-    cells = [[_cell(r.get(c)) for c in cols] for r in rows]
-    title = "Exact resource counts (lowered circuit)" + (" vs the paper" if paper else "")
+    cells = [[_shown(r, c) for c in cols] for r in rows]
+    title = _title(paper, _any_bound(rows, cols))
     value_w = max((len(v) for row in cells for v in row), default=0)
     need = max(0, *map(len, cols), value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *map(len, title.split()))
     if need > width:
@@ -541,7 +587,7 @@ def render(
     if hidden:
         note = (
             f"hidden to fit {limit} columns: {', '.join(hidden)} (--wide or --columns to show them; "
-            "--format csv/json/md keep every column)"
+            "--format md shows every table column, csv and json every field)"
         )
         text += draw(note, limit)
     return text
