@@ -37,13 +37,13 @@ def test_layout_auto_without_device_is_the_default_and_accepted() -> None:
 
 
 def test_qaoa_training_too_big_for_memory_is_refused_before_enumerating(tmp_path: Path) -> None:
-    """3 robots on 5x5: over 10^10 feasible assignments, so one state alone is hundreds of GB (it used to run out
-    of memory after enumerating the paths); the size counted so far is named, and the override."""
+    """3 robots on 5x5: over 10^11 feasible assignments, so one state alone is terabytes; the size is named (the
+    robots' paths counted together, 8,512 each), and the override."""
     path = tmp_path / "three_5x5.toml"
     robots = "".join(f"[[robots]]\nstart = {a}\ngoal = {b}\n" for a, b in (([0, 0], [4, 4]), ([0, 4], [4, 0]),
                                                                          ([4, 0], [0, 4])))
     path.write_text(f"[grid]\nrows = 5\ncols = 5\n{robots}")
     for optimizer in ("layerwise", "multi-angle"):
         res = run("solve", str(path), "-m", "qaoa", "--optimizer", optimizer)
-        assert_one_line_error(res, "three_5x5.toml: training QAOA on at least", "feasible assignments",
-                              "GB available", "--allow-large")
+        assert_one_line_error(res, "three_5x5.toml: training QAOA on 8,512 x 8,512 x 8,512 paths",
+                              "616,729,673,728 feasible assignments", "GB available", "--allow-large")

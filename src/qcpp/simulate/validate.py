@@ -66,6 +66,8 @@ from qcpp.simulate.statevector import MAX_STATEVECTOR_QUBITS
 __all__ = [
     "AUTO_STATEVECTOR_QUBITS",
     "BACKENDS",
+    "COUNT_CAP_GROWTH",
+    "FIRST_COUNT_CAP",
     "MAX_VALIDATE_ASSIGNMENTS",
     "Backend",
     "Check",
@@ -207,6 +209,14 @@ def _json_float(x: float) -> float | None:
     return None if math.isnan(x) else float(x)
 
 
+FIRST_COUNT_CAP = 1024
+"""Paths counted per robot in :func:`validate_size`'s first round."""
+
+COUNT_CAP_GROWTH = 16
+"""How much :func:`validate_size` raises its per-robot cap each round (so the rounds before the last cost about a
+fifteenth of it)."""
+
+
 @dataclass(frozen=True)
 class ValidationSize:
     """What a validation will hold, predicted before it starts: the feasible subspace it compares against.
@@ -245,28 +255,44 @@ class ValidationTooLargeError(QcppError):
 def validate_size(scenario: Scenario, *, max_assignments: int | None = None) -> ValidationSize:
     """Predict a validation's size without building anything (counting paths no further than needed).
 
+    With ``max_assignments``, the robots' paths are counted together, every robot up to a cap that grows
+    :data:`COUNT_CAP_GROWTH`-fold from :data:`FIRST_COUNT_CAP` per round, until the product of the counts exceeds
+    ``max_assignments`` (the counts are then lower bounds) or every count is exact. Counting is as slow as
+    enumerating (tens of thousands of paths a second), so a scenario of several robots with millions of paths each
+    is known to be too large after about ``max_assignments ** (1 / robots)`` paths per robot, not after counting
+    the first robot's paths up to ``max_assignments``.
+
     Args:
-        max_assignments: Stop counting paths once the assignments are known to exceed this (``None``: count all).
+        max_assignments: Stop counting once the assignments are known to exceed this (``None``: count all).
+
+    Returns:
+        The counts; ``exact`` false where counting stopped early (then ``assignments > max_assignments``).
 
     Example:
         >>> from qcpp.problem.presets import default_scenario
         >>> size = validate_size(default_scenario(4, 4, 2))
         >>> size.paths_per_robot, size.assignments, size.exact
         ((184, 184), 33856, True)
-        >>> validate_size(default_scenario(4, 4, 2), max_assignments=1000).exact
-        False
+        >>> small = validate_size(default_scenario(5, 5, 2), max_assignments=1000)
+        >>> small.paths_per_robot, small.exact
+        ((1024, 1024), False)
     """
     from qcpp.problem.paths import count_paths
 
-    counts: list[int] = []
-    for r in range(scenario.num_robots):
-        cap = None if max_assignments is None else max_assignments // max(1, math.prod(counts)) + 1
-        n = count_paths(scenario, r, cap)
-        counts.append(n)
-        if cap is not None and n >= cap:
-            counts += [1] * (scenario.num_robots - r - 1)  # every other robot has at least one path
-            return ValidationSize(tuple(counts), False)
-    return ValidationSize(tuple(counts), True)
+    robots = range(scenario.num_robots)
+    if max_assignments is None:
+        return ValidationSize(tuple(count_paths(scenario, r) for r in robots), True)
+    counts = [0 for _ in robots]
+    exact = [False for _ in robots]
+    cap = FIRST_COUNT_CAP
+    while True:
+        for r in robots:
+            if not exact[r]:
+                counts[r] = count_paths(scenario, r, cap)
+                exact[r] = counts[r] < cap
+        if all(exact) or math.prod(counts) > max_assignments:
+            return ValidationSize(tuple(counts), all(exact))
+        cap *= COUNT_CAP_GROWTH
 
 
 def choose_backend(qubits: int) -> Backend:
