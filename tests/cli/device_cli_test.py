@@ -126,3 +126,18 @@ def test_compile_layout_choice_is_reported() -> None:
 )
 def test_compile_bad_optimize_for_is_one_line(args: tuple[str, ...], fragment: str) -> None:
     assert_one_line_error(run("compile", PAPER, *args), fragment)
+
+
+def test_compile_device_text_shows_the_layouts_and_the_verdict() -> None:
+    """The text output prints the layouts its device note announces and reads the ESP against the verdict's bar,
+    with the same figures as ``--json``."""
+    text = run("compile", PAPER, "--device", "quantinuum_helios", *BIND)
+    assert text.exit_code == 0, text.output
+    summary = json.loads(run("compile", PAPER, "--device", "quantinuum_helios", "--json", *BIND).stdout)
+    flat = " ".join(text.stdout.split())  # rich wraps long lines at the terminal width
+    layouts = (f"initial layout {' '.join(map(str, summary['initial_layout']))}; "
+               f"final layout {' '.join(map(str, summary['final_layout']))}")  # fmt: skip
+    assert layouts in flat
+    esp = summary["routed"]["esp"]
+    assert summary["routed"]["esp_idle"] is None and f"(ESP {esp:.3g} >= 0.1: worth running)" in flat
+    assert f"verdict: about {esp:.0%} of shots run without an error" in flat

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import threading
 from pathlib import Path
 
@@ -113,6 +114,24 @@ def test_the_bar_on_a_terminal_writes_to_its_stream_only() -> None:
         for _ in bar.iterate(range(4)):
             pass
     assert out.getvalue()  # something was drawn (and erased: transient)
+
+
+def test_the_bar_keeps_its_counts_and_time_on_an_80_column_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A long task and stage are cut with an ellipsis; the count and the elapsed time stay on the line."""
+
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    monkeypatch.setenv("COLUMNS", "80")
+    out = Tty()
+    with Progress("compile 3x3, 2 robot(s), p=1, --device ibm_fez", total=4, stream=out, mode="bar") as bar:
+        bar.stage("routing the whole circuit on ibm_fez from 96 SabreLayout starts")
+        bar.advance()
+        bar._bar.refresh()  # type: ignore[union-attr]  # draw now, not at rich's next refresh
+    frames = [re.sub(r"\x1b\[[0-9;?]*[a-zA-Z]", "", f) for f in out.getvalue().split("\r") if "compile" in f]
+    assert frames and all("…" in f and "/4 0:00:0" in f for f in frames), frames
+    assert "1/4 0:00:0" in frames[-1], frames
 
 
 # ----------------------------------------------------------------------------- estimate

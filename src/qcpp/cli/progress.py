@@ -71,6 +71,9 @@ FIRST_LINE_AFTER = 1.0
 HEARTBEAT_JOIN_SECONDS = 1.0
 """How long leaving a :class:`Progress` waits for its heartbeat thread."""
 
+BAR_WIDTH = 20
+"""Characters of the bar on a terminal (rich's default, 40, leaves an 80-column terminal little room for the task)."""
+
 T = TypeVar("T")
 
 
@@ -119,6 +122,8 @@ class Progress:
         mode: ``auto``/``bar``/``lines``/``off``; default from ``QCPP_PROGRESS`` (see :func:`progress_mode`).
         interval: Seconds between lines (default ``QCPP_PROGRESS_INTERVAL`` or :data:`DEFAULT_INTERVAL`).
         first_after: Seconds before the first line (default :data:`FIRST_LINE_AFTER`; 0 with ``interval`` 0).
+        time_left: Show the time left (extrapolated from the share of steps done); ``False`` where steps differ
+            too much in cost for that to be an estimate (the counts and the elapsed time are still shown).
     """
 
     def __init__(
@@ -131,8 +136,10 @@ class Progress:
         mode: Mode | None = None,
         interval: float | None = None,
         first_after: float | None = None,
+        time_left: bool = True,
     ) -> None:
         self.task = task
+        self.time_left = time_left
         self.total = total
         self.unit = unit
         self.done = 0
@@ -234,7 +241,7 @@ class Progress:
             parts.append(self.stage_text)
         elapsed = self._elapsed()
         parts.append(f"{format_duration(elapsed)} elapsed")
-        if self.total and 0 < self.done < self.total and elapsed >= 1.0:
+        if self.time_left and self.total and 0 < self.done < self.total and elapsed >= 1.0:
             parts[-1] += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
         return f"{self.task}: {', '.join(parts)}"
 
@@ -291,17 +298,21 @@ class Progress:
         from rich.progress import (
             Progress as RichProgress,
         )
+        from rich.table import Column
 
         console = Console(file=self._stream if self._stream is not None else sys.stderr)
+        # the description takes the width the other columns leave (cut with an ellipsis), so the bar and the
+        # elapsed time stay on screen at any terminal width
         self._bar = RichProgress(
             SpinnerColumn(),
-            TextColumn("{task.description}"),
-            BarColumn(),
+            TextColumn("{task.description}", table_column=Column(ratio=1, no_wrap=True, overflow="ellipsis")),
+            BarColumn(bar_width=BAR_WIDTH),
             MofNCompleteColumn(),
             TimeElapsedColumn(),
-            TimeRemainingColumn(),
+            *([TimeRemainingColumn()] if self.time_left else []),
             console=console,
             transient=True,
+            expand=True,
         )
         self._bar_task = self._bar.add_task(self._label(), total=self.total)
         self._bar.start()

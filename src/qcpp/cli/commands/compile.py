@@ -64,6 +64,13 @@ from qcpp.problem.scenario import Scenario
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
+RUNNABLE_ESP = 0.1
+"""The verdict's bar (docs/guide/hardware.md): a routed circuit whose ESP is at least this (one shot in ten without
+an error) is worth running; below it, noise dominates the samples."""
+
+LAYOUT_SHOWN = 32
+"""Layouts of at most this many logical qubits are printed in the text output (all of them are in ``--json``)."""
+
 STREAM_ABOVE_GATES = 100_000
 """Circuits predicted to have at least this many lowered gates are built section by section with progress on
 stderr (a compile long enough to want it), even without ``--qasm``; smaller ones are built whole."""
@@ -232,6 +239,9 @@ def compile_command(
             f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}{idle}, "
             f"duration {duration}; {summary['device_note']}"
         )
+        console.print(_layouts_line(summary["initial_layout"], summary["final_layout"]))
+        console.print(esp_verdict(routed["esp"] if routed.get("esp_idle") is None else routed["esp_idle"],
+                                  idle=routed.get("esp_idle") is not None))  # fmt: skip
         if routed.get("candidates"):
             console.print(f"chosen by {routed['optimize_for']}: {routed['chosen']} "
                           f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them)")  # fmt: skip
@@ -244,6 +254,38 @@ def compile_command(
         console.print(f"wrote {where} ({form})", markup=False, soft_wrap=True)  # a path stays whole
     if explain:
         print_table(console, explain_table(phase_explain))
+
+
+def _layouts_line(initial: list[int], final: list[int]) -> str:
+    """The layouts the device note announces (logical qubit ``i`` -> physical qubit), in full up to
+    :data:`LAYOUT_SHOWN` qubits; longer ones are in ``--json``."""
+    if len(initial) > LAYOUT_SHOWN:
+        return f"layouts: {len(initial)} logical qubits each (initial_layout, final_layout in --json)"
+    return f"initial layout {' '.join(map(str, initial))}; final layout {' '.join(map(str, final))}"
+
+
+def esp_verdict(esp: float, *, idle: bool) -> str:
+    """What an ESP means for running the circuit: the share of shots without an error, against the verdict's bar
+    :data:`RUNNABLE_ESP` (docs/guide/hardware.md).
+
+    Args:
+        esp: The routed circuit's ESP (with idle decoherence where ``idle``).
+        idle: Whether ``esp`` includes idle decoherence.
+
+    Example:
+        >>> esp_verdict(0.163, idle=True)
+        'verdict: about 16% of shots run without an error (ESP with idle decoherence 0.163 >= 0.1: worth running)'
+        >>> esp_verdict(9.2e-06, idle=False)[:58]
+        'verdict: about 1 shot in 108,696 runs without an error (ES'
+    """
+    which = "ESP with idle decoherence" if idle else "ESP"
+    if esp >= 0.01:
+        one_in = f"about {esp:.0%} of shots run"
+    else:
+        one_in = "no shot runs" if esp <= 0 else f"about 1 shot in {round(1 / esp):,} runs"
+    judged = "worth running" if esp >= RUNNABLE_ESP else "noise dominates; see docs/guide/hardware.md"
+    relation = ">=" if esp >= RUNNABLE_ESP else "<"
+    return f"verdict: {one_in} without an error ({which} {esp:.3g} {relation} {RUNNABLE_ESP:g}: {judged})"
 
 
 def explain_table(rows: list[dict]) -> Table:
