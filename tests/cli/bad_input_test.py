@@ -192,6 +192,47 @@ def test_same_layer_rule_in_every_command(scratch: Path) -> None:
     assert run("estimate", "-p", "0").exit_code == 2
 
 
+def _reason(res) -> str:  # type: ignore[no-untyped-def]
+    """The error line without the ``error:`` prefix and the per-command ``(see 'qcpp X --help')`` hint."""
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.strip().splitlines()
+    return line.removeprefix("error: ").split(" (see 'qcpp ")[0]
+
+
+@pytest.mark.parametrize(
+    ("estimate_args", "other_args", "expected"),
+    [
+        (("-p", "0"), ("compile", EX, "-p", "0"), "-p/--layers: must be at least 1, got 0"),
+        (("-p", "5000"), ("compile", EX, "-p", "5000"), "-p/--layers: 5,000 layers is over the limit of 1,000"),
+        (("--grid", "0x6"), ("verify", "--grid", "0x6"), "--grid: the grid must be at least 2x2, got 0x6"),
+        (("--grid", "0x6"), ("compile", "--grid", "0x6"), "--grid: the grid must be at least 2x2, got 0x6"),
+        (("--grid", "3"), ("compile", "--grid", "3"), "--grid: expected ROWSxCOLS such as 3x4, got '3'"),
+        (("--grid", "60x60"), ("solve", "--grid", "60x60"), "--grid: a 60x60 grid has 3,600 nodes"),
+        (("--device", "ibm_foo"), ("compile", EX, "--device", "ibm_foo"), "--device: unknown device 'ibm_foo' ("),
+    ],
+)
+def test_one_wording_per_check_in_every_command(
+    scratch: Path, estimate_args: tuple[str, ...], other_args: tuple[str, ...], expected: str
+) -> None:
+    """``qcpp estimate`` (ranges) and the single-scenario commands refuse the same value with the same line: the
+    option first, then what is wrong and what was given."""
+    mine, theirs = _reason(run("estimate", *estimate_args)), _reason(run(*other_args))
+    assert mine == theirs and mine.startswith(expected), (mine, theirs)
+
+
+@pytest.mark.parametrize(
+    ("args", "expected"),
+    [
+        (("--robots", "0"), "--robots: must be at least 1, got 0"),
+        (("-p", "1..0"), "-p/--layers: the range is empty (its end is below its start), got '1..0'"),
+        (("-p", "x"), "-p/--layers: expected N or A..B, got 'x'"),
+        (("--grid", "4x4..3x3"), "--grid: the range is empty"),
+    ],
+)
+def test_estimate_range_errors_name_the_option_first(scratch: Path, args: tuple[str, ...], expected: str) -> None:
+    assert _reason(run("estimate", *args)).startswith(expected)
+
+
 def test_byte_order_mark_is_not_content(scratch: Path) -> None:
     plain = run("solve", EX, "-m", "dfs", "--json")
     bom = run("solve", "bom.toml", "-m", "dfs", "--json")

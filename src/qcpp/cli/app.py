@@ -10,6 +10,7 @@ One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 1
   (:func:`handle_errors`). Anything else is a bug and keeps its traceback.
 * Usage errors found while parsing are the same one line plus a hint,
   ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')`` (:class:`QcppGroup`).
+* ``--device`` is checked the same way in every command that takes it, before any work.
 * Numeric options are checked by name in every command (:data:`NUMERIC_OPTIONS`: e.g. ``-p`` at least 1 and at
   most :data:`qcpp.problem.limits.MAX_LAYERS`, ``--seed`` at least 0), choice options by :data:`CHOICES`.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.cli.interrupt`).
@@ -163,11 +164,27 @@ def _check_options(kwargs: dict[str, Any]) -> None:
             raise _click_exc.BadParameter(exc.reason, ctx=ctx, param=param) from None
         if name == "p":
             check_layers(value, flag)
+    _check_device(kwargs, ctx)
     for param in ctx.command.params if ctx else ():  # choice options: one check, one message, every command
         value, key = kwargs.get(param.name or ""), f"{ctx.command.name}.{param.name}"  # type: ignore[union-attr]
         values = None if value in (None, param.default) or key in LIBRARY_CHECKED else choices_of(*key.split("."))
         if values is not None and str(value) not in values:
             raise _click_exc.BadParameter(choice_reason(value, values), ctx=ctx, param=param)
+
+
+def _check_device(kwargs: dict[str, Any], ctx: Context | None) -> None:
+    """``--device`` names a device (:func:`qcpp.hardware.device.get_device`), checked before any work in every
+    command that takes it, one message everywhere: ``--device: unknown device 'x' (known: ...)``."""
+    param = next((q for q in ctx.command.params if "--device" in getattr(q, "opts", ())), None) if ctx else None
+    spec = kwargs.get(param.name or "") if param is not None else None
+    if not isinstance(spec, str):
+        return
+    from qcpp.hardware.device import DeviceError, get_device  # here: most commands never load the device data
+
+    try:
+        get_device(spec)
+    except DeviceError as exc:
+        raise _click_exc.BadParameter(str(exc), ctx=ctx, param=param) from None
 
 
 @contextlib.contextmanager

@@ -29,7 +29,7 @@ from qcpp.estimators.plots import plot_rows
 from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
 from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, render_stream
 from qcpp.problem.errors import ScenarioError
-from qcpp.problem.limits import check_layers
+from qcpp.problem.limits import check_grid_size, check_layers
 from qcpp.problem.presets import grid_scenario, max_default_robots
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.routing.context import RoutingContext
@@ -78,9 +78,9 @@ def points_from_options(
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
             range can host the robots).
     """
-    layers = parse_int_range(p, "p", 1)
+    layers = parse_int_range(p, "-p/--layers", 1)  # each error names the option as every command names it
     for k in layers:
-        check_layers(k)  # the same layer limit as every other command (--allow-large lifts it)
+        check_layers(k, "-p/--layers")  # the same layer limit as every other command (--allow-large lifts it)
     if scenario is not None:
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
@@ -89,13 +89,15 @@ def points_from_options(
             raise ValueError(f"--scenario gives the obstacles: do not combine it with {flag}")
         s = load_scenario(scenario, check_range=True)
         return PointSet([Point.from_scenario(s, k) for k in layers], 0)
-    grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID)
-    ks = parse_int_range(robots if robots is not None else "1", "robots", 1)
+    grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID, "--grid")
+    for r, c in grids:
+        check_grid_size(r, c, "--grid")  # before any scenario of a huge grid is built
+    ks = parse_int_range(robots if robots is not None else "1", "--robots", 1)
     points = grid_points(grids, ks, layers)
     if not points:
         most = max(max_default_robots(r, c) for r, c in grids)
         raise ScenarioError(
-            "robots",
+            "--robots",
             f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
             f"at most {most} there: one per boundary node); use --scenario for other placements",
         )

@@ -25,9 +25,10 @@ import gc
 import re
 from collections.abc import Iterable, Iterator
 
+from qcpp.errors import OptionError, check_count
 from qcpp.estimators.estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions, Point, estimate_point
 from qcpp.problem.limits import check_grid_size
-from qcpp.problem.presets import max_default_robots
+from qcpp.problem.presets import check_grid_shape, max_default_robots
 
 __all__ = ["grid_points", "parse_grid_range", "parse_int_range", "skipped_points", "sweep"]
 
@@ -36,45 +37,52 @@ __all__ = ["grid_points", "parse_grid_range", "parse_int_range", "skipped_points
 _GRID_RE = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
 
 
-def _grid(text: str) -> tuple[int, int]:
+def _grid(text: str, name: str) -> tuple[int, int]:
     m = _GRID_RE.match(text)
     if not m:
-        raise ValueError(f"bad grid {text!r}: expected ROWSxCOLS such as 3x4")
+        raise OptionError(name, f"expected ROWSxCOLS such as 3x4, got {text.strip()!r}")
     r, c = int(m.group(1)), int(m.group(2))
-    if r < 2 or c < 2:
-        raise ValueError(f"bad grid {text!r}: rows and cols must be at least 2")
+    check_grid_shape(r, c, name)
     return r, c
 
 
-def parse_grid_range(text: str) -> list[tuple[int, int]]:
+def parse_grid_range(text: str, name: str = "grid") -> list[tuple[int, int]]:
     """Grids of ``3x4``, ``AxB..CxD`` (every rows in A..C, every cols in B..D, rows-major order), or a
     comma-separated list of either (``3x3,4x4,5x5``; duplicates dropped, first occurrence kept).
 
     Args:
         text: the range text.
+        name: the option named first in every error (the command line's ``--grid``).
 
     Returns:
         ``(rows, cols)`` pairs.
 
     Raises:
-        ValueError: malformed text, a size below 2, or an empty range.
+        qcpp.errors.OptionError: malformed text or an empty range (``--grid: expected ROWSxCOLS such as 3x4,
+            got '3'``).
+        qcpp.problem.errors.ScenarioError: a grid below 2x2, as every command words it
+            (:func:`qcpp.problem.presets.check_grid_shape`).
 
     >>> parse_grid_range("2x3..3x4")
     [(2, 3), (2, 4), (3, 3), (3, 4)]
     >>> parse_grid_range("3x3,5x5,3x3")
     [(3, 3), (5, 5)]
+    >>> parse_grid_range("0x6", "--grid")
+    Traceback (most recent call last):
+    ...
+    qcpp.problem.errors.ScenarioError: --grid: the grid must be at least 2x2, got 0x6
     """
     if "," in text:
-        grids = [g for item in text.split(",") for g in parse_grid_range(item.strip())]
+        grids = [g for item in text.split(",") for g in parse_grid_range(item.strip(), name)]
         return list(dict.fromkeys(grids))
     parts = text.split("..")
     if len(parts) == 1:
-        return [_grid(parts[0])]
+        return [_grid(parts[0], name)]
     if len(parts) != 2:
-        raise ValueError(f"bad grid range {text!r}: expected AxB or AxB..CxD")
-    (r0, c0), (r1, c1) = _grid(parts[0]), _grid(parts[1])
+        raise OptionError(name, f"expected AxB or AxB..CxD, got {text!r}")
+    (r0, c0), (r1, c1) = _grid(parts[0], name), _grid(parts[1], name)
     if r1 < r0 or c1 < c0:
-        raise ValueError(f"bad grid range {text!r}: empty (the second grid must not be smaller)")
+        raise OptionError(name, f"the range is empty (its second grid is smaller than its first), got {text!r}")
     return [(r, c) for r in range(r0, r1 + 1) for c in range(c0, c1 + 1)]
 
 
@@ -83,29 +91,33 @@ def parse_int_range(text: str, name: str = "value", low: int = 0, high: int | No
 
     Args:
         text: the range text.
-        name: what the numbers are (for error messages).
-        low: smallest allowed value.
+        name: the option named first in every error (``-p/--layers``, ``--robots``).
+        low: smallest allowed value (checked by :func:`qcpp.errors.check_count`, as every command checks a count).
         high: largest allowed value, if any.
 
     Returns:
         The integers, ascending.
 
     Raises:
-        ValueError: malformed text, out of bounds, or an empty range.
+        qcpp.errors.OptionError: malformed text, out of bounds, or an empty range.
 
     >>> parse_int_range("1..3", "robots", 1, 4)
     [1, 2, 3]
+    >>> parse_int_range("0", "-p/--layers", 1)
+    Traceback (most recent call last):
+    ...
+    qcpp.errors.OptionError: -p/--layers: must be at least 1, got 0
     """
     m = re.match(r"^\s*(\d+)\s*(?:\.\.\s*(\d+)\s*)?$", text)
     if not m:
-        raise ValueError(f"bad {name} {text!r}: expected N or A..B")
+        raise OptionError(name, f"expected N or A..B, got {text.strip()!r}")
     a = int(m.group(1))
     b = int(m.group(2)) if m.group(2) is not None else a
     if b < a:
-        raise ValueError(f"bad {name} range {text!r}: empty")
-    if a < low or (high is not None and b > high):
-        bound = f"in {low}..{high}" if high is not None else f">= {low}"
-        raise ValueError(f"bad {name} {text!r}: must be {bound}")
+        raise OptionError(name, f"the range is empty (its end is below its start), got {text.strip()!r}")
+    check_count(a, name, low)
+    if high is not None and b > high:
+        raise OptionError(name, f"must be at most {high}, got {b}")
     return list(range(a, b + 1))
 
 

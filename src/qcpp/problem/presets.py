@@ -37,7 +37,14 @@ from qcpp.problem.errors import ScenarioError
 from qcpp.problem.grid import Grid
 from qcpp.problem.scenario import Robot, Scenario, scenario_from_dict
 
-__all__ = ["MAX_DEFAULT_ROBOTS", "boundary_nodes", "default_scenario", "grid_scenario", "max_default_robots"]
+__all__ = [
+    "MAX_DEFAULT_ROBOTS",
+    "boundary_nodes",
+    "check_grid_shape",
+    "default_scenario",
+    "grid_scenario",
+    "max_default_robots",
+]
 
 MAX_DEFAULT_ROBOTS = 4
 """Robots placed in the corners; more go to the other boundary nodes."""
@@ -63,6 +70,25 @@ def max_default_robots(rows: int, cols: int) -> int:
     return 2 * (rows + cols) - 4
 
 
+def check_grid_shape(rows: int, cols: int, field: str = "grid") -> None:
+    """Refuse a grid smaller than 2x2: the one check (and message) of every grid given by its size.
+
+    Args:
+        rows, cols: the grid size.
+        field: the field or option named in the error (``grid``, ``--grid``).
+
+    Raises:
+        ScenarioError: ``<field>: the grid must be at least 2x2, got 0x3``.
+
+    >>> check_grid_shape(0, 3, "--grid")
+    Traceback (most recent call last):
+    ...
+    qcpp.problem.errors.ScenarioError: --grid: the grid must be at least 2x2, got 0x3
+    """
+    if rows < 2 or cols < 2:
+        raise ScenarioError(field, f"the grid must be at least 2x2, got {rows}x{cols}")
+
+
 def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
     """The default scenario for a ``rows x cols`` grid and ``robots`` robots (see the module docstring).
 
@@ -78,8 +104,7 @@ def default_scenario(rows: int, cols: int, robots: int) -> Scenario:
     for name, value in (("grid.rows", rows), ("grid.cols", cols)):
         if isinstance(value, bool) or not isinstance(value, int):
             raise ScenarioError(name, f"expected an integer, got {value!r}")
-    if rows < 2 or cols < 2:
-        raise ScenarioError("grid", f"the grid must be at least 2x2, got {rows}x{cols}")
+    check_grid_shape(rows, cols)
     limit = max_default_robots(rows, cols)
     if not isinstance(robots, int) or isinstance(robots, bool) or not 1 <= robots <= limit:
         raise ScenarioError(

@@ -164,13 +164,6 @@ def estimate(
         options, epsilon=epsilon, toffoli_t=toffoli_t, depth=depth, depth_budget=depth_budget, physical=physical,
         qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget, flag=_flag,
     )  # fmt: skip
-    if device is not None:
-        from qcpp.hardware.device import DeviceError, get_device
-
-        try:
-            get_device(device)
-        except DeviceError as exc:
-            raise ValueError(f"--device: {exc}") from None
     if plot is not None:
         check_output(plot)  # a bad destination fails before the sweep, not after
     _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)

@@ -29,6 +29,7 @@ import typer
 
 from qcpp.errors import OptionError
 from qcpp.problem.cost_range import check_cost_range, check_phase_range
+from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import grid_scenario
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.scenario_io import load_scenario
@@ -84,6 +85,9 @@ HardObstaclesFlag = Annotated[
     ),
 ]
 
+_FLAG_OF_FIELD = {"grid": "--grid", "grid.rows": "--grid", "grid.cols": "--grid", "robots": "--robots"}
+"""Scenario fields an inline scenario's flags give whole: their errors name the flag."""
+
 _GRID = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
 _NODE = re.compile(r"^\s*(\d+)\s*,\s*(\d+)\s*$")
 
@@ -124,11 +128,19 @@ def inline_scenario(grid: str, robots: int | None, obstacles: Sequence[str] | No
     Raises:
         qcpp.errors.OptionError: a malformed ``--grid`` or ``--obstacle``.
         qcpp.problem.errors.ScenarioError: a scenario that cannot be (an obstacle off the grid or on a robot's
-            start or goal, more robots than the default placement holds), naming the field.
+            start or goal, more robots than the default placement holds), naming the field; a refusal of the grid's
+            size or of the robot count names the option instead (``--grid: the grid must be at least 2x2, got
+            0x3``), as ``qcpp estimate`` words it.
     """
     rows, cols = parse_grid(grid)
-    return grid_scenario(rows, cols, robots=1 if robots is None else robots, obstacles=parse_obstacles(obstacles),
-                         hard_obstacles=hard)  # fmt: skip
+    try:
+        return grid_scenario(rows, cols, robots=1 if robots is None else robots,
+                             obstacles=parse_obstacles(obstacles), hard_obstacles=hard)  # fmt: skip
+    except ScenarioError as exc:
+        flag = _FLAG_OF_FIELD.get(exc.field)
+        if flag is None:
+            raise
+        raise type(exc)(flag, exc.reason) from None
 
 
 def check_inline_only(grid: str | None, robots: object, obstacles: Sequence[str] | None, hard: bool) -> None:
