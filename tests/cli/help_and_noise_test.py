@@ -63,6 +63,38 @@ def test_choice_options_list_their_choices(command: str) -> None:
             assert all(re.search(rf"(?<![\w-]){re.escape(v)}(?![\w-])", line.split(flag, 1)[1]) for v in values), line
 
 
+def _all_commands() -> list[str]:
+    return sorted(typer.main.get_command(app).commands)  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("command", ["", *_all_commands()])
+def test_no_option_name_is_cut_at_80_columns(command: str) -> None:
+    """Every option name (``--x`` and its ``--no-x``) appears whole in ``--help`` at ``COLUMNS=80``, nothing is cut
+    with an ellipsis, and no line is wider than 80 characters."""
+    args = [command] if command else []
+    res = CliRunner().invoke(app, [*args, "--help"], env={"COLUMNS": "80"})
+    assert res.exit_code == 0, res.output
+    text = res.stdout
+    assert "…" not in text, text
+    assert max(len(line) for line in text.splitlines()) <= 80
+    group = typer.main.get_command(app)
+    params = group.commands[command].params if command else group.params  # type: ignore[attr-defined]
+    cells = {cell for line in text.splitlines() for cell in re.split(r"[\s│,]+", line) if cell}
+    for param in params:
+        if getattr(param, "hidden", False):
+            continue
+        for name in [*param.opts, *getattr(param, "secondary_opts", [])]:
+            if name.startswith("--"):
+                assert name in cells, (command, name)
+
+
+def test_a_negative_flag_has_its_own_help_row_and_the_option_keeps_both_names() -> None:
+    text = CliRunner().invoke(app, ["solve", "--help"], env={"COLUMNS": "80"}).stdout
+    row = next(line for line in text.splitlines() if "--no-restart-every-level" in line)
+    assert "The opposite of" in row and "--restart-every-level " not in row.split("--no-restart-every-level")[0]
+    assert _params("solve")["restart_every_level"].secondary_opts == ["--no-restart-every-level"]  # type: ignore[attr-defined]
+
+
 def test_solve_help_lists_every_method() -> None:
     top, own = (" ".join(text.split()) for text in (_help(), _help("solve")))  # however the help is wrapped
     for method in SOLVE_METHODS:

@@ -426,9 +426,35 @@ def _set_panels(command: Any, params: Sequence[Parameter]) -> None:
             param.rich_help_panel = panel  # type: ignore[attr-defined]
 
 
+def _one_row_per_flag(params: Sequence[Parameter]) -> list[Parameter]:
+    """``params`` for the help text, an ``--x/--no-x`` flag shown as two rows: ``--x`` with its help, then ``--no-x``
+    ("The opposite of --x."), each name in the option column.
+
+    typer gives the ``--no-x`` form a column of its own in the option's panel, which then leaves so little room at 80
+    columns that rich cuts the names (``--restart-every-…``). The copies only display; parsing keeps ``params``.
+    """
+    import copy
+
+    shown: list[Parameter] = []
+    for param in params:
+        if not (_is_option(param) and param.secondary_opts):
+            shown.append(param)
+            continue
+        negative = copy.copy(param)
+        positive = copy.copy(param)
+        positive.secondary_opts = []
+        negative.opts, negative.secondary_opts = list(param.secondary_opts), []
+        negative.help = f"The opposite of {max(param.opts, key=len)}."  # type: ignore[attr-defined]
+        negative.show_default = False  # type: ignore[attr-defined]
+        shown += [positive, negative]
+    return shown
+
+
 class QcppCommand(_TidyHelp, TyperCommand):
-    """A typer command whose help shows flags as flags, choice options' values (:data:`CHOICES`) and the options
-    in panels (:data:`PANELS`)."""
+    """A typer command whose help shows flags as flags, choice options' values (:data:`CHOICES`), the options
+    in panels (:data:`PANELS`), and each name of an ``--x/--no-x`` flag on a row of its own
+    (:func:`_one_row_per_flag`), so that no option name is cut at 80 columns.
+    """
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -446,7 +472,8 @@ class QcppCommand(_TidyHelp, TyperCommand):
         kept = self.params
         rank = {name: i for i, name in enumerate(_PANEL_ORDER)}
         # typer prints the panels in the order of their first option: list the options panel by panel
-        self.params = sorted(kept, key=lambda q: rank.get(getattr(q, "rich_help_panel", None) or "", -1))
+        shown = _one_row_per_flag(kept)
+        self.params = sorted(shown, key=lambda q: rank.get(getattr(q, "rich_help_panel", None) or "", -1))
         try:
             super().format_help(ctx, formatter)
         finally:
