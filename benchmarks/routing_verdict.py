@@ -164,8 +164,8 @@ def main() -> None:
         calibrated()
         return
     layers = (1,) if "--quick" in sys.argv else (1, 2, 3)
-    print("| device | qubits | p | largest default scenario that fits | budget | qubits used | lowered cx "
-          "| routed 2q | duration | ESP gates | ESP idle |")  # fmt: skip
+    print("| device | coupled qubits (of all) | p | largest default scenario that fits | budget | qubits used "
+          "| lowered cx | routed 2q | duration | ESP gates | ESP idle |")  # fmt: skip
     print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|")
     biggest = max(_largest_component(named_device(name)) for name in device_names())
     pool = {p: candidates(p, biggest) for p in layers}
@@ -179,7 +179,8 @@ def main() -> None:
             twoq, dur, e, ei, _ = routed(pick, p, name)
             budget = "default" if pick.budget is None else str(pick.budget)
             print(
-                f"| {name} | {usable} | {p} | {pick.label} ({pick.data_qubits} variables) | {budget} | {pick.qubits} "
+                f"| {name} | {usable} (of {dev.num_qubits}) | {p} | {pick.label} ({pick.data_qubits} variables) "
+                f"| {budget} | {pick.qubits} "
                 f"| {pick.cx:,} | {twoq:,} | {_fmt_duration(dur)} | {e:.2g} | {_fmt_esp(ei)} |",
                 flush=True,
             )
