@@ -49,7 +49,8 @@ def verify(
             or ``auto`` (``state`` where every input fits ``samples``, else ``gadgets``).
         samples: ``state``: most feasible inputs per part.
         seed: Seed of the angles and of any sample.
-        progress: Called as ``progress(done, total)`` while checking.
+        progress: Called as ``progress(done, total)`` while checking: the checks done (gadget method) or the
+            inputs run (state method). Nothing is printed without it (the state method can take a minute).
         options: The construction as one ``PlanOptions`` value (instead of keywords).
         **plan_options: How the circuit is built, as for ``qcpp.compile``: ``rule`` (``exact``, the default, or
             ``paper``), ``target`` (``nisq`` or ``ft``), ``fuse``, ``initial``, ``phase``, ...

@@ -48,6 +48,7 @@ __all__ = [
     "Method",
     "VerifyReport",
     "choose_method",
+    "resolve_method",
     "verify",
     "verify_gadgets",
     "verify_state",
@@ -72,6 +73,26 @@ def choose_method(
     return "state" if state_fits(scenario, p, options) else "gadgets"
 
 
+def resolve_method(
+    scenario: Scenario, p: int, rule: Rule, method: Method, samples: int, options: PlanOptions | None = None
+) -> Method:
+    """The method :func:`verify` runs (``auto`` resolved by :func:`choose_method`), after checking the arguments
+    as :func:`verify` does (so a caller can name what progress counts before the work starts).
+
+    Raises:
+        qcpp.errors.OptionError: an unknown rule or method, or ``p`` or ``samples`` not an integer of at least 1.
+        qcpp.problem.limits.SizeError: ``p`` over :data:`qcpp.problem.limits.MAX_LAYERS` outside
+            :func:`qcpp.problem.limits.allow_large`.
+    """
+    check_choice(rule, RULES, "rule")
+    check_choice(method, METHODS, "method")
+    check_layers(check_count(p, "p"), "p", API_OVERRIDE)
+    check_count(samples, "samples")
+    if method == "auto":
+        return choose_method(scenario, p, PlanOptions(rule=rule) if options is None else options, samples)
+    return method
+
+
 def verify(
     scenario: Scenario,
     p: int = 1,
@@ -90,7 +111,8 @@ def verify(
         method: ``state``, ``gadgets`` or ``auto``.
         samples: ``state``: most feasible inputs per part (a seeded sample when there are more).
         seed: Seed of the angles and of any sample.
-        progress: Called as ``progress(done, total)`` while checking.
+        progress: Called as ``progress(done, total)`` while checking: checks done (``gadgets``) or inputs run
+            (``state``); their costs differ too much for the share done to predict the time left.
         options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`: target, fusion, initial state,
             phase separator, ...); its rule replaces ``rule``. Default: ``PlanOptions(rule=rule)``.
 
@@ -105,13 +127,8 @@ def verify(
             :func:`qcpp.problem.limits.allow_large`.
         ValueError: ``state`` on a circuit wider than 62 qubits.
     """
-    check_choice(rule, RULES, "rule")
-    check_choice(method, METHODS, "method")
-    check_layers(check_count(p, "p"), "p", API_OVERRIDE)
-    check_count(samples, "samples")
     options = PlanOptions(rule=rule) if options is None else options
-    if method == "auto":
-        method = choose_method(scenario, p, options, samples)
+    method = resolve_method(scenario, p, rule, method, samples, options)
     if method == "state":
         return verify_state(scenario, p, samples=samples, seed=seed, progress=progress, options=options)
     return verify_gadgets(scenario, p, seed=seed, progress=progress, options=options)

@@ -10,8 +10,12 @@ checks the whole circuit. Four groups of checks, each a :class:`~qcpp.verificati
     at the robot's endpoints and 0 or 2 elsewhere (every feasible path looks like one of these near the
     plaquette). Wherever the program allows the flip, the ``exact`` rule's specification
     (:func:`qcpp.problem.sbf.exact_rule_value`) must allow it too; that specification only allows flips whose result
-    is again a feasible path. A failure is a local counterexample: the flip leaves a corner with a wrong degree
-    (no feasible path survives it), or it joins opposite edges and may close a loop.
+    is again a feasible path. A failure is a local counterexample, named by what the flip does: it leaves a corner
+    with a wrong degree, or adds all four plaquette edges (a closed loop), or removes them (the input is a closed
+    loop, which no feasible path contains), or swaps two opposite edges for the other two (which can split the
+    path into a path and a loop). Whether a feasible path of the robot contains the input is then decided where
+    that is cheap (:func:`_reach`: a closed loop never; else among the robot's first :data:`REACH_PATHS` paths),
+    and a feasible path that contains it and whose flip is not feasible becomes the counterexample's input.
 ``mixer`` (one per partial-mixer kind, junction kind and rotation kind)
     The lowered gates of each partial-mixer kind on **all** ``2^k`` inputs of its ``k`` data qubits (plaquette
     and outer edges it reads), ancillas ``|0>``: where the kind's program allows the flip, exactly
@@ -61,7 +65,7 @@ from qcpp.lowering.passes import WORK_REGISTER, lower
 from qcpp.plan.call_graph import Deferred, GadgetKind
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.grid import Plaquette
-from qcpp.problem.paths import is_feasible
+from qcpp.problem.paths import is_feasible, iter_paths
 from qcpp.problem.sbf import LocalPicture, Rule, SbfLogic, exact_rule_value, sbf_logic
 from qcpp.problem.scenario import Scenario
 from qcpp.verification.batch import MAX_QUBITS, Batch
@@ -79,21 +83,29 @@ from qcpp.verification.common import (
 from qcpp.verification.report import Check, Counterexample, VerifyReport
 from qcpp.verification.state import _scenario_name
 
-__all__ = ["EXHAUSTIVE_PHASE_QUBITS", "verify_gadgets"]
+__all__ = ["EXHAUSTIVE_PHASE_QUBITS", "REACH_PATHS", "verify_gadgets"]
 
 EXHAUSTIVE_PHASE_QUBITS = 12
 """Phase kinds with at most this many data qubits are also run, lowered, on every data input."""
+
+REACH_PATHS = 20_000
+"""A failed rule check looks for a feasible path containing its local input among this many of the robot's paths
+(about half a second); a robot with more paths leaves the question open unless the input is a closed loop."""
+
+ALL_LOCAL_INPUTS = ("The gadget method checks every locally feasible input, reachable or not; --method state runs "
+                    "the circuit on its real inputs.")  # fmt: skip
 
 Mixer = ParityPartialMixer | McxPartialMixer
 _CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))  # corner a, b, c, d -> its plaquette edges in (ab, bc, cd, da)
 
 
 class _Failure(Exception):
-    """A check found a counterexample."""
+    """A check found a counterexample after ``inputs`` inputs (the failing one included; 0 for a structural or
+    coverage check)."""
 
-    def __init__(self, counterexample: Counterexample, part: str = "mixer") -> None:
+    def __init__(self, counterexample: Counterexample, part: str = "mixer", inputs: int = 0) -> None:
         super().__init__(counterexample.reason)
-        self.counterexample, self.part = counterexample, part
+        self.counterexample, self.part, self.inputs = counterexample, part, inputs
 
 
 # --------------------------------------------------------------------------------------------- the rule, per picture
@@ -135,32 +147,97 @@ def _check_rule(
                     "the partial mixer's abstract program and the rule's program disagree",
                 ),
                 "rule",
+                count,
             )
         if not allowed:
             continue
         if exact_rule_value(pbits, [sum(o) for o in obits], picture.endpoints, picture.diagonal):
             continue
-        flipped = [1 - b for b in pbits]
-        degrees = _degrees(flipped, obits)
-        names = "abcd"
-        wrong = [
-            f"corner {names[v]} {plaq.corners[v]} gets degree {d}"
-            for v, (d, e) in enumerate(zip(degrees, picture.endpoints, strict=True))
-            if not (d == 1 if e else d in (0, 2))
-        ]
-        reason = (
-            f"the rule allows a flip that leaves the feasible set: {wrong[0]}" if wrong
-            else "the rule allows a flip of opposite edges, which may close a loop"
-        )  # fmt: skip
-        raise _Failure(
-            Counterexample(
-                "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
-                tuple(plaq.corners), (edge_names(scenario, mask),), (edge_names(scenario, mask ^ plaq.edge_mask),),
-                (), 1.0, reason,
-            ),
-            "rule",
-        )
+        raise _rule_failure(scenario, robot, plaq, logic, picture, edges, mask, pbits, obits, count)
     return count
+
+
+def _rule_failure(
+    scenario: Scenario, robot: int, plaq: Plaquette, logic: SbfLogic, picture: LocalPicture, edges: Sequence[int],
+    mask: int, pbits: Sequence[int], obits: Sequence[Sequence[int]], count: int,
+) -> _Failure:  # fmt: skip
+    """The failure of a rule check: the program allows the flip of local input ``mask`` (the ``count``-th input)
+    where the ``exact`` rule does not. The reason says what the flip does and whether a feasible path contains
+    the input (:func:`_reach`); such a path whose flip is infeasible replaces the local input and output."""
+    degrees = _degrees([1 - b for b in pbits], obits)
+    wrong = [
+        f"corner {'abcd'[v]} {plaq.corners[v]} gets degree {d}"
+        for v, (d, e) in enumerate(zip(degrees, picture.endpoints, strict=True))
+        if not (d == 1 if e else d in (0, 2))
+    ]
+    k = sum(pbits)
+    if wrong:
+        what = f"the rule allows a flip that leaves the feasible set: {wrong[0]}"
+    elif k == 4:
+        what = ("the rule allows a flip that removes all four plaquette edges, where the exact rule does not: the "
+                "input is a closed loop around the plaquette")  # fmt: skip
+    elif k == 0:
+        what = ("the rule allows a flip that adds all four plaquette edges: the output holds a closed loop around the "
+                "plaquette, which no feasible path does")  # fmt: skip
+    else:  # two opposite edges (exact_rule_value allows every other flip whose corners keep their degrees)
+        what = ("the rule allows a flip of two opposite plaquette edges into the other two, where the exact rule "
+                "does not: that can split the path into a path and a closed loop")  # fmt: skip
+    local = sum(1 << e for e in edges)
+    reachable, path, checked = _reach(scenario, robot, local, mask, plaq.edge_mask, closed_loop=k == 4)
+    leak = path is not None and not is_feasible(scenario, robot, path ^ plaq.edge_mask)
+    if leak:
+        how = "A real leak: the input shown is a feasible path with this local input, and its flip is not."
+        shown = path
+    elif reachable is False and k == 4:
+        how = f"No feasible path contains a closed loop, so none reaches this input. {ALL_LOCAL_INPUTS}"
+        shown = mask
+    elif reachable is False:
+        how = f"No feasible path of robot {robot} contains this input (all {checked:,} checked). {ALL_LOCAL_INPUTS}"
+        shown = mask
+    elif reachable:
+        how = (f"Feasible paths contain this input; those among robot {robot}'s first {checked:,} paths flip to "
+               f"feasible paths. {ALL_LOCAL_INPUTS}")  # fmt: skip
+        shown = mask
+    else:
+        how = (f"Whether a feasible path contains this input was not decided (robot {robot} has more than "
+               f"{checked:,} paths). {ALL_LOCAL_INPUTS}")  # fmt: skip
+        shown = mask
+    return _Failure(
+        Counterexample(
+            "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
+            tuple(plaq.corners), (edge_names(scenario, shown),), (edge_names(scenario, shown ^ plaq.edge_mask),),
+            (), 1.0, f"{what}. {how}", reachable,
+        ),
+        "rule",
+        count,
+    )
+
+
+def _reach(
+    scenario: Scenario, robot: int, local: int, mask: int, flip: int, closed_loop: bool
+) -> tuple[bool | None, int | None, int]:
+    """Whether a feasible path of ``robot`` equals ``mask`` on the edges of ``local``.
+
+    Returns:
+        ``(reachable, path, paths looked at)``: ``reachable`` is ``False`` for a ``closed_loop`` input (no feasible
+        path has a cycle) or when none of the robot's paths does and there are at most :data:`REACH_PATHS`, ``None``
+        when more paths were not looked at; ``path`` is the first such path whose flip (``path ^ flip``) is not
+        feasible, else the first such path, else ``None``.
+    """
+    if closed_loop:
+        return False, None, 0
+    first = None
+    checked = 0
+    for path in itertools.islice(iter_paths(scenario, robot), REACH_PATHS + 1):
+        checked += 1
+        if checked > REACH_PATHS:
+            return (True if first is not None else None), first, REACH_PATHS
+        if path & local != mask:
+            continue
+        if not is_feasible(scenario, robot, path ^ flip):
+            return True, path, checked
+        first = path if first is None else first
+    return first is not None, first, checked
 
 
 # ------------------------------------------------------------------------------------------- gates, per gadget kind
@@ -261,7 +338,8 @@ class _MixerChecker:
 
     def fail(self, subject: str, m: Mixer | None, kind: str, key_in: int, key_out: int, data: Sequence[int],
              amp: float, reason: str) -> _Failure:  # fmt: skip
-        """A counterexample on local inputs, named on the scenario's plaquette of that kind if it has one."""
+        """A counterexample on local inputs, named on the scenario's plaquette of that kind if it has one; the
+        inputs run in the order ``0, 1, ...``, so ``key_in + 1`` of them were checked."""
         robot, plaq = self.where.get(m.kind, (None, None)) if m is not None else (None, None)
         ins = outs = ((),)
         if plaq is not None and m is not None:  # local bits -> the scenario's edges (slot order: plaquette, outer)
@@ -272,7 +350,7 @@ class _MixerChecker:
         dirty = tuple(i for i in range(len(data), 64) if (key_out >> i) & 1)
         cx = Counterexample("gadgets", subject, kind, robot, None if plaq is None else tuple(plaq.corners), ins, outs,
                             dirty, amp, reason)  # fmt: skip
-        return _Failure(cx)
+        return _Failure(cx, "mixer", key_in + 1)
 
     def partial_mixer(self, m: Mixer, work: int) -> int:
         """Check one partial-mixer kind on all its local inputs; returns their number."""
@@ -390,7 +468,7 @@ def _check_phase(kind: GadgetKind, beta: float) -> tuple[str, int, str]:
         reason = "the lowered phase gadget moves a basis state"
         cx = Counterexample("gadgets", f"phase {kind_text(g)}", kind_text(g), None, None, ((),), ((),), dirty,
                             float(abs(got.amps[i])), reason)  # fmt: skip
-        raise _Failure(cx, "phase")
+        raise _Failure(cx, "phase", int(got.owners[i]) + 1)
     return "exhaustive", 1 << len(data), "also structural: diagonal and permutation gates that cancel in pairs"
 
 
@@ -421,7 +499,7 @@ def _check_initial(scenario: Scenario, kind: GadgetKind, num_qubits: int, regist
                 "gadgets", "initial_state", kind_text(g), bad[0] if bad else None, None, ((),),
                 tuple(edge_names(scenario, m) for m in masks), test.dirty(key), 1.0,
                 f"robot {bad[0]} does not start on a feasible path" if bad else "an ancilla is left in |1>",
-            ), "initial_state")  # fmt: skip
+            ), "initial_state", 1)  # fmt: skip
     return 1
 
 
@@ -541,7 +619,9 @@ def verify_gadgets(
         tick()
     except _Failure as failure:
         counterexample = failure.counterexample
-        checks.append(Check(counterexample.check, failure.part, "exhaustive", 0, False))
+        how = "structural" if failure.part == "phase" and not failure.inputs else "exhaustive"
+        checks.append(Check(counterexample.check, failure.part, how, failure.inputs, False, 1,
+                            "stopped at the first failing input" if failure.inputs else ""))  # fmt: skip
     return VerifyReport(
         _scenario_name(scenario), p, rule, "gadgets", counterexample is None, tuple(checks), counterexample,
         time.perf_counter() - start, seed, options.target,

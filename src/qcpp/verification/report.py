@@ -1,8 +1,9 @@
 """What :func:`qcpp.verification.verify` reports: the checks it ran and, when feasibility fails, a counterexample.
 
 A report is plain data (frozen dataclasses of numbers, strings and tuples) with :meth:`VerifyReport.to_dict` for
-``qcpp verify --json``. :attr:`VerifyReport.holds` is true when every check held; then
-:attr:`VerifyReport.counterexample` is ``None``.
+``qcpp verify --json`` and :meth:`VerifyReport.summary` for text (wrapped to a width, as ``qcpp verify`` prints it
+on a terminal). :attr:`VerifyReport.holds` is true when every check held; then :attr:`VerifyReport.counterexample`
+is ``None``.
 
 Example:
     >>> c = Check("mixer_0", "state", "exhaustive", 12, True)
@@ -12,6 +13,7 @@ Example:
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import asdict, dataclass
 from html import escape
 from typing import Any, Literal
@@ -24,6 +26,28 @@ Method = Literal["state", "gadgets", "auto"]
 METHODS: tuple[Method, ...] = ("state", "gadgets", "auto")
 
 Edge = tuple[tuple[int, int], tuple[int, int]]
+
+_NBSP = "\u00a0"  # joins the words of one unit (an edge ``(0, 1)-(1, 1)``) so that wrapping never splits it
+
+MIN_WIDTH = 40
+"""The narrowest width :meth:`VerifyReport.summary` wraps to (a smaller one is taken as this)."""
+
+
+def _wrap(text: str, width: int | None, first: str = "", rest: str = "") -> list[str]:
+    """``first + text`` as lines of at most ``width`` characters, continued after ``rest``; ``None``: one line.
+
+    Breaks only at plain spaces (:data:`_NBSP` holds a unit together and prints as a space), so nothing is cut:
+    only a single unit longer than the line can make a line longer."""
+    if width is None:
+        return [(first + text).replace(_NBSP, " ")]
+    lines = textwrap.wrap(text, max(width, MIN_WIDTH), initial_indent=first, subsequent_indent=rest,
+                          break_long_words=False, break_on_hyphens=False) or [first.rstrip()]  # fmt: skip
+    return [line.replace(_NBSP, " ") for line in lines]
+
+
+def _paths(ps: tuple[tuple[Edge, ...], ...]) -> str:
+    """Edge sets as text: edges ``a-b`` (each one unit for :func:`_wrap`), robots separated by ``;``."""
+    return "; ".join(" ".join(f"{a}-{b}".replace(" ", _NBSP) for a, b in p) or "(none)" for p in ps)
 
 
 @dataclass(frozen=True)
@@ -67,7 +91,11 @@ class Counterexample:
         dirty_ancillas: Ancilla qubits left in ``|1>`` in the offending output (state method: qubits of the circuit;
             gadget method: positions among the gadget's local qubits, data first).
         amplitude: Modulus of the offending output amplitude.
-        reason: One sentence on what went wrong.
+        reason: What went wrong: which flip or gadget, and why the output is not allowed.
+        reachable: Whether a feasible path of ``robot`` contains the input (the gadget method's inputs are local
+            configurations; ``None`` where that was not decided). ``True`` for the state method's layer parts,
+            whose inputs are feasible assignments; ``None`` for its ``initial_state`` and ``circuit`` (input
+            ``|0...0>``).
     """
 
     method: str
@@ -80,23 +108,26 @@ class Counterexample:
     dirty_ancillas: tuple[int, ...]
     amplitude: float
     reason: str
+    reachable: bool | None = None
 
-    def describe(self) -> str:
-        """A few human-readable lines."""
+    def describe(self, width: int | None = None) -> str:
+        """A few human-readable lines: the reason, the gadget, the input and the output.
 
-        def paths(ps: tuple[tuple[Edge, ...], ...]) -> str:
-            return "; ".join(" ".join(f"{a}-{b}" for a, b in p) or "(none)" for p in ps)
-
-        lines = [f"counterexample ({self.method}, {self.check}): {self.reason}"]
+        Args:
+            width: Characters per line (at least :data:`MIN_WIDTH`): long lines wrap at spaces, never inside an
+                edge, continued indented. ``None``: one line per item, however long.
+        """
+        out = _wrap(f"counterexample ({self.method}, {self.check}): {self.reason}", width, "", "  ")
         if self.kind:
             where = f" robot {self.robot}" if self.robot is not None else ""
-            where += f" plaquette {self.plaquette}" if self.plaquette else ""
-            lines.append(f"  gadget: {self.kind}{where}")
-        lines.append(f"  input:  {paths(self.input_paths)}")
-        lines.append(f"  output: {paths(self.output_paths)}  (|amplitude| {self.amplitude:.3g})")
+            corners = ", ".join(str(c).replace(" ", _NBSP) for c in self.plaquette or ())
+            where += f" plaquette ({corners})" if self.plaquette else ""
+            out += _wrap(f"{self.kind}{where}", width, "  gadget: ", " " * 10)
+        out += _wrap(_paths(self.input_paths), width, "  input:  ", " " * 10)
+        out += _wrap(f"{_paths(self.output_paths)}  (|amplitude| {self.amplitude:.3g})", width, "  output: ", " " * 10)
         if self.dirty_ancillas:
-            lines.append(f"  dirty ancillas: {list(self.dirty_ancillas)}")
-        return "\n".join(lines)
+            out += _wrap(str(list(self.dirty_ancillas)), width, "  dirty ancillas: ", " " * 10)
+        return "\n".join(out)
 
 
 @dataclass(frozen=True)
@@ -140,8 +171,13 @@ class VerifyReport:
         out["exhaustive"] = self.exhaustive
         return out
 
-    def summary(self) -> str:
-        """Human-readable text: verdict, checks, counterexample."""
+    @property
+    def verdict(self) -> str:
+        """One line: holds or FAILS, on what, by which method over which inputs, and the time taken."""
+        return self._verdict(" ")
+
+    def _verdict(self, space: str) -> str:
+        """:attr:`verdict`, with ``space`` between each number and its unit."""
         verdict = "holds" if self.holds else "FAILS"
         if not self.exhaustive:
             scope = "the sampled inputs"
@@ -149,19 +185,41 @@ class VerifyReport:
             scope = "every gadget kind on each of its local inputs"
         else:
             scope = "every feasible input"
-        lines = [
+        return (
             f"feasibility preservation {verdict}: {self.scenario}, p = {self.p}, rule {self.rule}, "
             + (f"target {self.target}, " if self.target != "nisq" else "")
-            + f"method {self.method} ({scope}; {self.seconds:.1f} s)"
-        ]
+            + f"method {self.method} ({scope}; {self.seconds:.1f}{space}s)"
+        )
+
+    def summary(self, width: int | None = None) -> str:
+        """Human-readable text: the :attr:`verdict`, one row per check, the counterexample.
+
+        Args:
+            width: Characters per line (at least :data:`MIN_WIDTH`; ``qcpp verify`` passes the terminal's).
+                A row that does not fit wraps at spaces, continued under its subject; no subject, edge or number
+                is cut (only a single word longer than the line could make one longer). ``None``: one line per
+                check, subjects in one aligned column.
+
+        Returns:
+            The text, without a final newline.
+        """
+        subject_w = max((len(c.subject) for c in self.checks), default=0)
+        lines = _wrap(self._verdict(_NBSP), width, "", "  ")
         for c in self.checks:
             mark = "ok  " if c.held else "FAIL"
-            count = f"{c.inputs} inputs" if c.inputs else ""
+            head = f"  {mark} {c.part:<13} "
             times = f" x{c.multiplicity}" if c.multiplicity != 1 else ""
+            count = f" {c.inputs}{_NBSP}inputs" if c.inputs else ""
             note = f"  ({c.detail})" if c.detail else ""
-            lines.append(f"  {mark} {c.part:<13} {c.subject[:60]:<60}{times} {c.how} {count}{note}".rstrip())
+            tail = f"{times} {c.how}{count}{note}"
+            one = f"{head}{c.subject:<{subject_w}}{tail}".replace(_NBSP, " ")
+            if width is None or len(one) <= width:
+                lines.append(one)
+                continue
+            indent = " " * (len(head) if width - len(head) >= 30 else 6)
+            lines += _wrap(f"{c.subject}{tail}", width, head, indent)
         if self.counterexample is not None:
-            lines.append(self.counterexample.describe())
+            lines.append(self.counterexample.describe(width))
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
@@ -169,7 +227,7 @@ class VerifyReport:
         rows = [(c.part, c.subject, c.how, str(c.inputs), str(c.multiplicity), "held" if c.held else "FAILS", c.detail)
                 for c in self.checks]  # fmt: skip
         headers = ("part", "subject", "how", "inputs", "times", "result", "")
-        table = html_table(self.summary().splitlines()[0], headers, rows, align=(None, None, None, "right", "right"))
+        table = html_table(self.verdict, headers, rows, align=(None, None, None, "right", "right"))
         if self.counterexample is not None:
             table += f"<pre>{escape(self.counterexample.describe())}</pre>"
         return table

@@ -214,7 +214,7 @@ def _counterexample(
     return Counterexample(
         "state", name, None if gadget is None else _label(scenario, gadget), robot, plaquette,
         tuple(edge_names(scenario, m) for m in ins), tuple(edge_names(scenario, m) for m in outs),
-        test.dirty(key_out), amp, reason,
+        test.dirty(key_out), amp, reason, None if name in ("initial_state", "circuit") else True,
     )  # fmt: skip
 
 

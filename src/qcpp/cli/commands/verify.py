@@ -8,13 +8,18 @@ Examples::
     qcpp verify --grid 4x4 --robots 3 --target ft
 
 Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s), the output,
-the gadget and its plaquette), 2 on bad input (one line on stderr). Progress goes to stderr
-(:mod:`qcpp.cli.progress`); ``--json`` prints :meth:`qcpp.verification.VerifyReport.to_dict` on stdout.
+the gadget and its plaquette), 2 on bad input (one line on stderr). The text report fits the terminal's width
+(``$COLUMNS``, else the terminal's, else 80, as for the other commands' tables); ``--json`` prints
+:meth:`qcpp.verification.VerifyReport.to_dict` on stdout, every field whole. Progress goes to stderr
+(:mod:`qcpp.cli.progress`): checks (gadget method) or inputs run (state method) of the total, without a time
+left, since one check or input can cost a hundred times another (the state method's mixer inputs against its
+phase inputs).
 """
 
 from __future__ import annotations
 
 import json
+import shutil
 from typing import Annotated
 
 import typer
@@ -64,17 +69,19 @@ def verify_command(
 ) -> None:
     """Verify feasibility preservation (see ``qcpp verify --help``)."""
     from qcpp.plan.options import PlanOptions
-    from qcpp.verification import verify
+    from qcpp.verification import resolve_method, verify
 
     options = PlanOptions(rule=rule, target=target)  # type: ignore[arg-type]
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
     s = given.scenario
-    with Progress(f"verify {given.label}", unit="checks") as bar:
+    method = resolve_method(s, p, rule, method, samples, options)  # type: ignore[arg-type]
+    unit = "inputs" if method == "state" else "checks"  # what progress counts
+    with Progress(f"verify {given.label}", unit=unit, time_left=False) as bar:
         report = verify(s, p, rule, method, samples, seed, progress=bar.update, options=options)  # type: ignore[arg-type]
     if as_json:
         typer.echo(json.dumps(report.to_dict()))
     else:
-        typer.echo(report.summary())
+        typer.echo(report.summary(shutil.get_terminal_size((80, 24)).columns))
     if not report.holds:
         raise typer.Exit(code=1)
 

@@ -1,0 +1,194 @@
+"""qcpp verify's report: the text fits the terminal without cutting anything, a gadget-method counterexample says
+what the flip does and whether a feasible path reaches its input, and progress shows no made-up time left."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import qcpp
+from qcpp.cli.app import app
+from qcpp.cli.progress import Progress
+from qcpp.problem.paths import is_feasible, iter_paths
+from qcpp.problem.sbf import sbf_logic
+from qcpp.verification import gadgets, verify_gadgets
+from qcpp.verification.common import plaquette_picture
+from qcpp.verification.report import Check, Counterexample, VerifyReport
+
+from .verify_test import mask_of
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def field(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """Three robots on 7x6 with four obstacles: many gadget kinds, long junction subjects."""
+    s = qcpp.grid_scenario(7, 6, robots=[((0, 0), (6, 5)), ((0, 5), (6, 0)), ((3, 0), (3, 5))],
+                           obstacles=[(2, 2), (2, 3), (4, 1), (5, 4)])  # fmt: skip
+    path = tmp_path_factory.mktemp("verify") / "field.toml"
+    qcpp.save_scenario(s, path)
+    return path
+
+
+def words(text: str) -> str:
+    """The text with every run of whitespace (line breaks and indents included) made one space."""
+    return " ".join(text.split())
+
+
+# ------------------------------------------------------------------------------------------------- width
+@pytest.mark.parametrize("rule", ["exact", "paper"])
+def test_every_line_of_the_report_fits_80_columns_and_nothing_is_cut(field: Path, rule: str) -> None:
+    res = CliRunner().invoke(app, ["verify", str(field), "-p", "1", "--rule", rule], env={"COLUMNS": "80"})
+    assert res.exit_code == (0 if rule == "exact" else 1), res.output
+    lines = res.stdout.splitlines()
+    assert len(lines) > (20 if rule == "exact" else 10) and max(map(len, lines)) <= 80, max(lines, key=len)
+    data = json.loads(CliRunner().invoke(app, ["verify", str(field), "-p", "1", "--rule", rule, "--json"]).stdout)
+    text = words(res.stdout)
+    for c in data["checks"]:  # every subject whole (a wrapped one continues on the next line)
+        assert words(c["subject"]) in text
+        assert bool(re.search(rf"(?<![0-9]){c['inputs']} inputs", text)) == bool(c["inputs"])
+    if rule == "paper":
+        cx = data["counterexample"]
+        assert words(cx["reason"]) in text
+        for a, b in cx["input_paths"][0]:  # an edge is never split across lines
+            assert f"({a[0]}, {a[1]})-({b[0]}, {b[1]})" in res.stdout
+
+
+def test_a_junction_subject_is_never_cut_mid_list(field: Path) -> None:
+    report = verify_gadgets(qcpp.load_scenario(field), 1)
+    junctions = [c.subject for c in report.checks if " overlap [" in c.subject]
+    assert junctions and all(s.endswith("]") for s in junctions)
+    for width in (None, 80, 120):
+        text = report.summary(width)
+        assert all(words(s) in words(text) for s in junctions)
+        if width is not None:
+            assert max(map(len, text.splitlines())) <= width
+    wide = report.summary().splitlines()  # no width: one line per check (and the verdict)
+    assert len(wide) == len(report.checks) + 1
+
+
+def test_a_narrow_width_wraps_every_row_and_the_counterexample() -> None:
+    cx = Counterexample("gadgets", "rule paper NNBB", "SbfLogic paper NNBB", 0, ((0, 1), (0, 2), (1, 2), (1, 1)),
+                        ((((0, 1), (0, 2)), ((0, 1), (1, 1)), ((0, 2), (1, 2)), ((1, 1), (1, 2))),), ((),), (), 1.0,
+                        "a reason " * 12, False)  # fmt: skip
+    check = Check("MixerJunction NNBB -> NNBB overlap [-1, -1, 4, 1, -1, 2, 6, 7, 8, 9]", "mixer", "exhaustive", 512,
+                  False, 6, "opening junction, rotation, closing junction")  # fmt: skip
+    report = VerifyReport("a scenario with a long name", 1, "paper", "gadgets", False, (check,), cx, 0.1, 0)
+    text = report.summary(40)
+    assert max(map(len, text.splitlines())) <= 40
+    assert words(check.subject) in words(text) and "x6 exhaustive 512 inputs" in words(text)
+    assert "(0, 1)-(0, 2)" in text and "(1, 1)-(1, 2)" in text  # edges whole
+    assert "((0, 1), (0, 2), (1, 2), (1, 1))" in words(text) and "(0,\n" not in text  # corners whole
+    assert report.verdict == report.summary().splitlines()[0]
+
+
+# ------------------------------------------------------------------------------------- gadget counterexamples
+def small_field() -> qcpp.Scenario:
+    return qcpp.grid_scenario(3, 4, robots=[((0, 0), (2, 3))], obstacles=[(1, 1)])
+
+
+def test_an_unreachable_closed_loop_input_is_named_as_such() -> None:
+    """The paper rule holds on every real input of this field, and the gadget method fails on a closed loop: the
+    report says what the flip does, that no feasible path has that input, and where the full check is."""
+    s = small_field()
+    assert qcpp.verify(s, rule="paper", method="state").holds
+    report = qcpp.verify(s, rule="paper", method="gadgets")
+    cx = report.counterexample
+    assert not report.holds and cx is not None and cx.reachable is False
+    assert len(cx.input_paths[0]) == 4 and cx.output_paths == ((),)
+    assert "removes all four plaquette edges" in cx.reason and "closed loop" in cx.reason
+    assert "no feasible path contains a closed loop" in cx.reason.lower()
+    assert "reachable or not" in cx.reason and "--method state" in cx.reason
+    assert "opposite" not in cx.reason
+    failed = report.checks[-1]
+    assert not failed.held and failed.subject == cx.check
+    exact = {c.subject.split()[-1]: c.inputs for c in verify_gadgets(s, 1).checks if c.part == "rule"}
+    assert 1 <= failed.inputs <= exact[failed.subject.split()[-1]]  # counted up to the failing input
+    assert report.to_dict()["counterexample"]["reachable"] is False
+
+
+def test_a_reachable_input_becomes_a_real_counterexample() -> None:
+    """A flip that adds a closed loop next to a feasible path: the input shown is that feasible path."""
+    s = qcpp.grid_scenario(3, 3, robots=[((0, 0), (0, 2))])
+    q = next(q for q in s.grid.plaquettes if q.corners[0] == (1, 1))
+    picture, outer = plaquette_picture(s, 0, q)
+    edges = list(q.edges) + [e for o in outer for e in o]
+    failure = gadgets._rule_failure(s, 0, q, sbf_logic(s, 0, q, "paper"), picture, edges, 0, (0, 0, 0, 0),
+                                    [[0] * len(o) for o in outer], 7)  # fmt: skip
+    cx = failure.counterexample
+    assert failure.inputs == 7 and failure.part == "rule"
+    assert cx.reachable is True and "adds all four plaquette edges" in cx.reason and "A real leak" in cx.reason
+    path, out = mask_of(s, cx.input_paths[0]), mask_of(s, cx.output_paths[0])
+    assert is_feasible(s, 0, path) and not is_feasible(s, 0, out) and path ^ out == q.edge_mask
+
+
+def test_reachability_is_decided_within_the_path_budget_and_left_open_beyond(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    s = qcpp.grid_scenario(4, 4, robots=[((0, 0), (3, 3))])  # 184 paths
+    q = next(q for q in s.grid.plaquettes if q.corners[0] == (1, 1))
+    local = sum(1 << e for e in q.edges)
+    assert gadgets._reach(s, 0, local, local, q.edge_mask, closed_loop=True) == (False, None, 0)
+    first = next(iter_paths(s, 0))
+    mask = (first & local) ^ (1 << q.edges[0])  # not the first path's local input
+    reachable, _, checked = gadgets._reach(s, 0, local, mask, q.edge_mask, closed_loop=False)
+    assert reachable is not None and checked <= 184
+    monkeypatch.setattr(gadgets, "REACH_PATHS", 1)
+    assert gadgets._reach(s, 0, local, mask, q.edge_mask, closed_loop=False) == (None, None, 1)
+
+
+def test_the_negative_control_still_fails_with_its_documented_message() -> None:
+    s = qcpp.load_scenario(ROOT / "examples" / "paper_rule_leak.toml")
+    cx = qcpp.verify(s, 1, rule="paper", method="gadgets").counterexample
+    assert cx is not None and cx.reachable is True
+    assert cx.reason.startswith("the rule allows a flip that leaves the feasible set: corner d (1, 1) gets degree 3")
+    assert is_feasible(s, 0, mask_of(s, cx.input_paths[0])) and not is_feasible(s, 0, mask_of(s, cx.output_paths[0]))
+    doc = (ROOT / "docs" / "verify.md").read_text()
+    assert words(cx.reason.split(". ")[0]) in words(doc)
+
+
+def test_a_failed_gates_check_counts_its_inputs(monkeypatch: pytest.MonkeyPatch) -> None:
+    from qcpp.problem.presets import default_scenario
+
+    from .verify_test import _drop_one_control
+
+    _drop_one_control(monkeypatch)
+    report = verify_gadgets(default_scenario(3, 3, 2), p=1)
+    failed = report.checks[-1]
+    assert not failed.held and failed.part == "mixer"
+    assert failed.inputs >= 1 and f"{failed.inputs} inputs" in words(report.summary(80))
+    assert report.to_dict()["checks"][-1]["inputs"] == failed.inputs
+
+
+# ------------------------------------------------------------------------------------------------- progress
+@pytest.mark.parametrize(("method", "unit"), [("state", "inputs"), ("gadgets", "checks")])
+def test_progress_names_what_it_counts_and_guesses_no_time_left(
+    method: str, unit: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The state method's first inputs (phase separators) cost a hundredth of the mixer's: no time left is shown,
+    even long after the start."""
+    monkeypatch.setattr(Progress, "_elapsed", lambda self: 5.0)
+    env = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}
+    res = CliRunner().invoke(app, ["verify", "--grid", "2x3", "--robots", "1", "--method", method, "--json"], env=env)
+    assert res.exit_code == 0, res.output
+    lines = [line for line in res.stderr.splitlines() if line.startswith("verify ")]
+    counts = [line for line in lines if " / " in line]
+    assert len(counts) >= 3 and all(re.search(rf" / [0-9]+ {unit} ", line) for line in counts)
+    assert f" {unit} done in " in lines[-1] and not any("left" in line for line in lines)
+
+
+def test_progress_without_time_left_still_shows_the_share_done() -> None:
+    import io
+
+    for time_left in (True, False):
+        bar = Progress("t", total=4, unit="inputs", stream=io.StringIO(), mode="lines", interval=0,
+                       time_left=time_left)  # fmt: skip
+        bar._start = 1.0  # entered long ago: two seconds elapsed and more
+        bar.update(1)
+        status = bar.status()
+        assert "1 / 4 inputs (25.0%)" in status
+        assert bool(re.search(r"about .* left", status)) == time_left
