@@ -126,6 +126,26 @@ def test_a_reachable_input_becomes_a_real_counterexample() -> None:
     assert is_feasible(s, 0, path) and not is_feasible(s, 0, out) and path ^ out == q.edge_mask
 
 
+@pytest.mark.parametrize("pbits", [(1, 0, 1, 0), (0, 1, 0, 1)])
+def test_a_flip_of_opposite_edges_is_named_and_checked_on_real_paths(pbits: tuple[int, ...]) -> None:
+    """Two opposite edges of an interior plaquette, every corner with one outer edge: the flip can split the path
+    into a path and a loop, and a feasible path where it does is the counterexample's input."""
+    s = qcpp.grid_scenario(4, 4, robots=[((0, 0), (3, 3))])
+    q = next(q for q in s.grid.plaquettes if q.corners[0] == (1, 1))
+    picture, outer = plaquette_picture(s, 0, q)
+    edges = list(q.edges) + [e for o in outer for e in o]
+    mask = sum(1 << e for e, b in zip(q.edges, pbits, strict=True) if b) | sum(1 << o[0] for o in outer)
+    obits = [[1] + [0] * (len(o) - 1) for o in outer]
+    failure = gadgets._rule_failure(s, 0, q, sbf_logic(s, 0, q, "paper"), picture, edges, mask, pbits, obits, 1)
+    cx = failure.counterexample
+    assert "two opposite plaquette edges into the other two" in cx.reason and "closed loop" in cx.reason
+    assert cx.reachable is True and "A real leak" in cx.reason
+    path, out = mask_of(s, cx.input_paths[0]), mask_of(s, cx.output_paths[0])
+    local = sum(1 << e for e in edges)
+    assert path & local == mask and is_feasible(s, 0, path) and not is_feasible(s, 0, out)
+    assert path ^ out == q.edge_mask
+
+
 def test_reachability_is_decided_within_the_path_budget_and_left_open_beyond(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:

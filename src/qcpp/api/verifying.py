@@ -50,7 +50,7 @@ def verify(
         samples: ``state``: most feasible inputs per part.
         seed: Seed of the angles and of any sample.
         progress: Called as ``progress(done, total)`` while checking: the checks done (gadget method) or the
-            inputs run (state method). Nothing is printed without it (the state method can take a minute).
+            inputs run (state method). Nothing is printed without it (the state method can take tens of seconds).
         options: The construction as one ``PlanOptions`` value (instead of keywords).
         **plan_options: How the circuit is built, as for ``qcpp.compile``: ``rule`` (``exact``, the default, or
             ``paper``), ``target`` (``nisq`` or ``ft``), ``fuse``, ``initial``, ``phase``, ...
