@@ -132,6 +132,42 @@ def test_every_scenario_command_reads_the_inline_flags_as_the_equivalent_file(co
     assert inline == from_file
 
 
+OWN_ENDPOINTS = ("--grid", "3x4", "--robot", "0,1:2,3", "--robot", "2,0:0,2", "--obstacle", "1,1")
+"""Two robots with their own start and goal (not the default placement), given inline."""
+
+
+@pytest.mark.parametrize("command", sorted(SCENARIO_COMMANDS))
+def test_robots_given_one_by_one_are_the_scenario_the_api_builds(command: str, tmp_path: Path) -> None:
+    """``--robot START:GOAL`` (repeated) is ``qcpp.grid_scenario(..., robots=[(start, goal), ...])`` in every
+    command; the JSON's ``scenario`` gives the flags back."""
+    path = tmp_path / "own.toml"
+    qcpp.save_scenario(qcpp.grid_scenario(3, 4, robots=[((0, 1), (2, 3)), ((2, 0), (0, 2))], obstacles=[(1, 1)]),
+                       path)  # fmt: skip
+    args, varying = SCENARIO_COMMANDS[command]
+    inline = json.loads(ok(command, *OWN_ENDPOINTS, *args))
+    from_file = json.loads(ok(command, str(path), *args))
+    if "scenario" not in varying:
+        assert inline.pop("scenario") == " ".join(OWN_ENDPOINTS) and from_file.pop("scenario") == str(path)
+    for key in varying:
+        inline.pop(key, None)
+        from_file.pop(key, None)
+    assert inline == from_file
+
+
+def test_robots_given_one_by_one_in_estimate_compile_and_scenario(tmp_path: Path) -> None:
+    expected = qcpp.grid_scenario(3, 4, robots=[((0, 1), (2, 3)), ((2, 0), (0, 2))], obstacles=[(1, 1)])
+    printed = tmp_path / "printed.toml"
+    printed.write_text(ok("scenario", *OWN_ENDPOINTS))
+    assert load_scenario(printed) == expected
+    rows = json.loads(ok("estimate", *OWN_ENDPOINTS, "-p", "1..2", "--json"))
+    assert rows == [qcpp.estimate(expected, p).to_dict() for p in (1, 2)]
+    compiled = json.loads(ok("compile", *OWN_ENDPOINTS, "--json"))
+    assert compiled["gates"] == json.loads(ok("compile", str(printed), "--json"))["gates"]
+    # a range of grids: the same endpoints on each (every grid must hold them)
+    rows = json.loads(ok("estimate", "--grid", "3x3..4x4", "--robot", "0,0:2,2", "--robot", "2,0:0,2", "--json"))
+    assert [(r["rows"], r["cols"], r["robots"]) for r in rows] == [(3, 3, 2), (3, 4, 2), (4, 3, 2), (4, 4, 2)]
+
+
 def test_export_inline_writes_the_file_of_the_equivalent_scenario(tmp_path: Path) -> None:
     path = tmp_path / "hard.toml"
     path.write_text(THREE_BY_THREE_HARD)
@@ -162,6 +198,14 @@ def test_compile_inline_takes_bindings_after_bind() -> None:
         (("estimate", "--grid", "3x3", "--obstacle", "3,0"), ("grid.obstacles[0]", "(3, 0)", "3x3 grid")),
         (("estimate", "--scenario", "examples/paper_3x3.toml", "--obstacle", "1,1"), ("--obstacle",)),
         (("scenario",), ("--grid",)),
+        (("compile", "--robot", "0,0:2,2"), ("--robot", "applies with --grid only")),
+        (("compile", "--grid", "3x3", "--robot", "0,0-2,2"), ("--robot", "expected START:GOAL", "'0,0-2,2'")),
+        (("compile", "--grid", "3x3", "--robot", "0,0:2,2", "--robots", "1"), ("--robot", "do not give --robots")),
+        (("compile", "--grid", "3x3", "--robot", "0,0:3,3"), ("robots[0].goal", "(3, 3)", "3x3 grid")),
+        (("scenario", "--grid", "3x3", "--robot", "1,1:1,1"), ("robots[0]",)),
+        (("estimate", "--grid", "3x3..4x4", "--robot", "0,0:3,3"), ("robots[0].goal", "(3, 3)", "3x3 grid")),
+        (("estimate", "--grid", "3x3", "--robot", "0,0:2,2", "--robots", "1"), ("--robot", "do not give --robots")),
+        (("estimate", "--scenario", "examples/paper_3x3.toml", "--robot", "0,0:2,2"), ("--robot",)),
         *(((c,), ("give a scenario file", "--grid")) for c in ("solve", "simulate", "validate", "verify")),
         *(((c, "--hard-obstacles"), ("--hard-obstacles", "applies with --grid only"))
           for c in ("solve", "simulate", "validate", "verify")),

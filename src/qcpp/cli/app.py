@@ -384,7 +384,7 @@ def _complete_choices(command: Any) -> None:
 
 PANELS: dict[str, str] = {
     # what the command works on
-    "scenario": "Scenario", "grid": "Scenario", "robots": "Scenario", "obstacle": "Scenario",
+    "scenario": "Scenario", "grid": "Scenario", "robots": "Scenario", "robot": "Scenario", "obstacle": "Scenario",
     "hard_obstacles": "Scenario", "p": "Scenario",
     # how the circuit is built (compile, estimate: qcpp.cli.commands.plan_flags)
     "rule": "Plan", "initial": "Plan", "target": "Plan", "phase": "Plan", "optimize": "Plan",

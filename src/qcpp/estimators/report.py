@@ -59,6 +59,7 @@ def points_from_options(
     scenario: str | os.PathLike[str] | None = None,
     obstacles: Sequence[tuple[int, int]] = (),
     hard_obstacles: bool = False,
+    endpoints: Sequence[tuple[tuple[int, int], tuple[int, int]]] = (),
 ) -> PointSet:
     """Points from the CLI's option texts.
 
@@ -73,6 +74,7 @@ def points_from_options(
             file's), not a default one.
         hard_obstacles: the obstacles remove the edges touching them from the variables (``--hard-obstacles``;
             a non-default scenario even without obstacles).
+        endpoints: each robot's ``(start, goal)`` on every grid of the range (``--robot``), instead of ``robots``.
 
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
@@ -81,7 +83,11 @@ def points_from_options(
     layers = parse_int_range(p, "-p/--layers", 1)  # each error names the option as every command names it
     for k in layers:
         check_layers(k, "-p/--layers")  # the same layer limit as every other command (--allow-large lifts it)
+    if endpoints and robots is not None:
+        raise ValueError("--robot gives the robots one by one: do not give --robots too")
     if scenario is not None:
+        if endpoints:
+            raise ValueError("--scenario gives the robots: do not combine it with --robot")
         if grid is not None or robots is not None:
             raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
         if obstacles or hard_obstacles:
@@ -92,24 +98,30 @@ def points_from_options(
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID, "--grid")
     for r, c in grids:
         check_grid_size(r, c, "--grid")  # before any scenario of a huge grid is built
-    ks = parse_int_range(robots if robots is not None else "1", "--robots", 1)
-    points = grid_points(grids, ks, layers)
-    if not points:
-        most = max(max_default_robots(r, c) for r, c in grids)
-        raise ScenarioError(
-            "--robots",
-            f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
-            f"at most {most} there: one per boundary node); use --scenario for other placements",
-        )
-    if obstacles or hard_obstacles:  # every point's own scenario, built as qcpp.grid_scenario builds it
+    if endpoints:  # the robots' own endpoints on every grid: not bound by the default placement's capacity
+        points, skipped = [Point(r, c, len(endpoints), k) for r, c in grids for k in layers], 0
+    else:
+        ks = parse_int_range(robots if robots is not None else "1", "--robots", 1)
+        points, skipped = grid_points(grids, ks, layers), skipped_points(grids, ks, layers)
+        if not points:
+            most = max(max_default_robots(r, c) for r, c in grids)
+            raise ScenarioError(
+                "--robots",
+                f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
+                f"at most {most} there: one per boundary node); use --robot or --scenario for other placements",
+            )
+    if obstacles or hard_obstacles or endpoints:  # every point's own scenario, built as qcpp.grid_scenario builds it
         points = [
             Point.from_scenario(
-                grid_scenario(pt.rows, pt.cols, robots=pt.robots, obstacles=obstacles, hard_obstacles=hard_obstacles),
+                grid_scenario(
+                    pt.rows, pt.cols, robots=list(endpoints) or pt.robots, obstacles=obstacles,
+                    hard_obstacles=hard_obstacles,
+                ),
                 pt.p,
             )
             for pt in points
         ]
-    return PointSet(points, skipped_points(grids, ks, layers))
+    return PointSet(points, skipped)
 
 
 def estimate_report(

@@ -45,6 +45,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     check_inline_only,
     given_scenario,
@@ -163,17 +164,19 @@ def compile_command(
     ] = None,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
     """Compile a scenario (see ``qcpp compile --help``)."""
-    check_inline_only(grid, robots, obstacle, hard_obstacles)
+    check_inline_only(grid, robots, obstacle, hard_obstacles, robot)
     extra = list(assignments or [])
     if grid is not None and scenario is not None and bind and "=" in str(scenario):
         extra.insert(0, str(scenario))  # NAME=VALUE after --bind, taken for the (absent) file argument
         scenario = None
     if (grid is None) == (scenario is None):
-        given_scenario(scenario, grid, robots, obstacle, hard_obstacles)  # raises: names what is missing or extra
+        # raises: names what is missing or extra
+        given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
     if device is None:  # routing flags without a device are refused, not silently ignored
         if layout != "auto":
             raise ValueError(f"--layout {layout}: applies with --device only (no device given)")
@@ -190,7 +193,7 @@ def compile_command(
         raise ValueError("--qasm - and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
     s, label = given.scenario, given.label
     size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
     if device is not None:

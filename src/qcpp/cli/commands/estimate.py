@@ -19,7 +19,7 @@ from typing import Annotated, Any
 
 import typer
 
-from qcpp.cli.commands.inline_scenario import HardObstaclesFlag, ObstacleFlag, parse_obstacles
+from qcpp.cli.commands.inline_scenario import HardObstaclesFlag, ObstacleFlag, RobotFlag, parse_obstacles, parse_robot
 from qcpp.cli.commands.plan_flags import with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
@@ -37,8 +37,8 @@ HELP = """Resource counts of the lowered QAOA circuit, from its gadgets' costs, 
 Examples:
   qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format latex
   qcpp estimate --grid 2x2..6x6 --robots 1..3 --compare paper --plot cx.png
-  qcpp estimate --grid 3x3..7x7 --robots 2 -p 1..3 --metric t --plot t.png
   qcpp estimate --scenario examples/two_robots_4x4.toml --physical --json
+  qcpp estimate --grid 7x6 --robot 0,0:6,5 --robot 0,5:6,0 --obstacle 2,2
 
 Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
 """
@@ -149,6 +149,7 @@ def estimate(
     ] = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
+    robot: RobotFlag = None,
 ) -> None:
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: qcpp.estimators.report pulls in sympy, which would slow every other command's start-up
@@ -169,7 +170,8 @@ def estimate(
     _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
-    points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles)
+    endpoints = [parse_robot(t) for t in robot or ()]
+    points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles, endpoints)
     if points.skipped:
         typer.echo(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "

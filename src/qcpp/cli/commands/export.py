@@ -24,6 +24,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     given_scenario,
 )
@@ -61,6 +62,7 @@ def export_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")] = False,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
@@ -78,7 +80,7 @@ def export_command(
         except ImportError:
             raise ValueError(f"--format bqm needs dimod: {INSTALL_HINT} (ising, qubo, lp, mps need nothing)") from None
     check_output(out)  # a bad destination fails before any work
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, check_range=False)
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, check_range=False, endpoints=robot)
     s = given.scenario
     with Progress(f"export {fmt} of {given.label}", total=2) as bar:
         # the penalty rule's upper bound (a short SBF annealing run) and the MIP exports take seconds on big grids

@@ -1,4 +1,5 @@
-"""The scenario given inline on the command line: ``--grid RxC --robots N --obstacle R,C ... --hard-obstacles``.
+"""The scenario given inline on the command line: ``--grid RxC --robots N --obstacle R,C ... --hard-obstacles``,
+or the robots' own endpoints with ``--robot R,C:R,C`` (repeatable) instead of ``--robots N``.
 
 Every command that reads one scenario (``compile``, ``solve``, ``simulate``, ``validate``, ``verify``, ``export``)
 takes these flags instead of its scenario file (:func:`given_scenario`), ``qcpp scenario`` prints the file they
@@ -11,6 +12,8 @@ Example:
     >>> s = inline_scenario("4x5", 2, ["1,1", "2,3"], hard=False)
     >>> (s.grid.rows, s.grid.cols), s.num_robots, s.obstacles
     ((4, 5), 2, ((1, 1), (2, 3)))
+    >>> inline_scenario("3x4", None, None, hard=False, endpoints=["0,0:2,3", "2,0:0,3"]).robots[1].goal
+    (0, 3)
     >>> parse_obstacle("2;1")
     Traceback (most recent call last):
     ...
@@ -40,6 +43,7 @@ __all__ = [
     "HardObstaclesFlag",
     "ObstacleFlag",
     "RobotCountFlag",
+    "RobotFlag",
     "ScenarioFileArg",
     "check_inline_only",
     "given_scenario",
@@ -47,6 +51,7 @@ __all__ = [
     "parse_grid",
     "parse_obstacle",
     "parse_obstacles",
+    "parse_robot",
 ]
 
 ScenarioFileArg = Annotated[
@@ -71,6 +76,16 @@ RobotCountFlag = Annotated[
         show_default=False,
     ),
 ]
+RobotFlag = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--robot",
+        help="With --grid: START:GOAL as ROW,COL:ROW,COL, one robot's own endpoints (repeat per robot; instead of "
+        "--robots).",
+        metavar="R,C:R,C",
+        show_default=False,
+    ),
+]
 ObstacleFlag = Annotated[
     list[str] | None,
     typer.Option(
@@ -90,6 +105,7 @@ _FLAG_OF_FIELD = {"grid": "--grid", "grid.rows": "--grid", "grid.cols": "--grid"
 
 _GRID = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
 _NODE = re.compile(r"^\s*(\d+)\s*,\s*(\d+)\s*$")
+_ENDPOINTS = re.compile(r"^\s*(\d+)\s*,\s*(\d+)\s*:\s*(\d+)\s*,\s*(\d+)\s*$")
 
 
 def parse_grid(text: str) -> tuple[int, int]:
@@ -116,26 +132,49 @@ def parse_obstacle(text: str) -> tuple[int, int]:
     return int(m.group(1)), int(m.group(2))
 
 
+def parse_robot(text: str) -> tuple[tuple[int, int], tuple[int, int]]:
+    """``"0,0:2,3"`` -> ``((0, 0), (2, 3))``: one robot's start and goal.
+
+    Raises:
+        qcpp.errors.OptionError: naming ``--robot``, for anything but ``ROW,COL:ROW,COL``.
+
+    Example:
+        >>> parse_robot("0,0:2,3")
+        ((0, 0), (2, 3))
+    """
+    m = _ENDPOINTS.match(text)
+    if m is None:
+        raise OptionError("--robot", f"expected START:GOAL as ROW,COL:ROW,COL such as 0,0:2,3, got {text!r}")
+    r0, c0, r1, c1 = (int(g) for g in m.groups())
+    return (r0, c0), (r1, c1)
+
+
 def parse_obstacles(texts: Sequence[str] | None) -> list[tuple[int, int]]:
     """Every ``--obstacle`` value, parsed (:func:`parse_obstacle`)."""
     return [parse_obstacle(t) for t in texts or ()]
 
 
-def inline_scenario(grid: str, robots: int | None, obstacles: Sequence[str] | None, hard: bool) -> Scenario:
-    """The scenario of ``--grid``, ``--robots``, ``--obstacle`` and ``--hard-obstacles``
-    (:func:`qcpp.problem.presets.grid_scenario`).
+def inline_scenario(
+    grid: str, robots: int | None, obstacles: Sequence[str] | None, hard: bool,
+    endpoints: Sequence[str] | None = None,
+) -> Scenario:  # fmt: skip
+    """The scenario of ``--grid``, ``--robots`` (or ``--robot``, ``endpoints``), ``--obstacle`` and
+    ``--hard-obstacles`` (:func:`qcpp.problem.presets.grid_scenario`).
 
     Raises:
-        qcpp.errors.OptionError: a malformed ``--grid`` or ``--obstacle``.
+        qcpp.errors.OptionError: a malformed ``--grid``, ``--robot`` or ``--obstacle``; ``--robot`` with
+            ``--robots``.
         qcpp.problem.errors.ScenarioError: a scenario that cannot be (an obstacle off the grid or on a robot's
             start or goal, more robots than the default placement holds), naming the field; a refusal of the grid's
             size or of the robot count names the option instead (``--grid: the grid must be at least 2x2, got
             0x3``), as ``qcpp estimate`` words it.
     """
     rows, cols = parse_grid(grid)
+    if endpoints and robots is not None:
+        raise OptionError("--robot", "gives the robots one by one: do not give --robots too")
+    placed = [parse_robot(t) for t in endpoints] if endpoints else (1 if robots is None else robots)
     try:
-        return grid_scenario(rows, cols, robots=1 if robots is None else robots,
-                             obstacles=parse_obstacles(obstacles), hard_obstacles=hard)  # fmt: skip
+        return grid_scenario(rows, cols, robots=placed, obstacles=parse_obstacles(obstacles), hard_obstacles=hard)
     except ScenarioError as exc:
         flag = _FLAG_OF_FIELD.get(exc.field)
         if flag is None:
@@ -143,15 +182,20 @@ def inline_scenario(grid: str, robots: int | None, obstacles: Sequence[str] | No
         raise type(exc)(flag, exc.reason) from None
 
 
-def check_inline_only(grid: str | None, robots: object, obstacles: Sequence[str] | None, hard: bool) -> None:
-    """Refuse ``--robots``, ``--obstacle`` or ``--hard-obstacles`` without ``--grid`` (they would be ignored).
+def check_inline_only(
+    grid: str | None, robots: object, obstacles: Sequence[str] | None, hard: bool,
+    endpoints: Sequence[str] | None = None,
+) -> None:  # fmt: skip
+    """Refuse ``--robots``, ``--robot``, ``--obstacle`` or ``--hard-obstacles`` without ``--grid`` (they would be
+    ignored).
 
     Raises:
         qcpp.errors.OptionError: naming the flag.
     """
     if grid is not None:
         return
-    for flag, given in (("--robots", robots is not None), ("--obstacle", bool(obstacles)), ("--hard-obstacles", hard)):
+    for flag, given in (("--robots", robots is not None), ("--robot", bool(endpoints)),
+                        ("--obstacle", bool(obstacles)), ("--hard-obstacles", hard)):  # fmt: skip
         if given:
             raise OptionError(flag, "applies with --grid only (no --grid given)")
 
@@ -174,7 +218,7 @@ class GivenScenario:
 
 def given_scenario(
     path: Path | None, grid: str | None, robots: int | None, obstacles: Sequence[str] | None, hard: bool, *,
-    check_range: bool = True, phases: bool = False,
+    check_range: bool = True, phases: bool = False, endpoints: Sequence[str] | None = None,
 ) -> GivenScenario:  # fmt: skip
     """The scenario of a command's file argument or of its inline flags (exactly one of the two).
 
@@ -185,6 +229,7 @@ def given_scenario(
             (:func:`qcpp.problem.cost_range.check_cost_range`), for an inline scenario as for a file.
         phases: With ``check_range``: the QAOA phases' narrower range
             (:func:`qcpp.problem.cost_range.check_phase_range`).
+        endpoints: ``--robot`` values (each robot's ``START:GOAL``), instead of ``robots``.
 
     Raises:
         qcpp.errors.OptionError: inline flags without ``--grid``, a malformed ``--grid`` or ``--obstacle``.
@@ -196,7 +241,7 @@ def given_scenario(
         >>> g.label, g.source
         ('3x3, 2 robot(s), 1 obstacle(s)', '--grid 3x3 --robots 2 --obstacle 1,1')
     """
-    check_inline_only(grid, robots, obstacles, hard)
+    check_inline_only(grid, robots, obstacles, hard, endpoints)
     if grid is not None and path is not None:
         raise ValueError(f"--grid gives the scenario: do not give the scenario file {str(path)!r} too")
     if grid is None:
@@ -205,10 +250,12 @@ def given_scenario(
                 "give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]"
             )
         return GivenScenario(load_scenario(path, check_range=check_range, phases=phases), path.name, str(path))
-    s = inline_scenario(grid, robots, obstacles, hard)
+    s = inline_scenario(grid, robots, obstacles, hard, endpoints)
     if check_range:
         check_phase_range(s) if phases else check_cost_range(s)
     g = s.grid
-    flags = [f"--grid {g.rows}x{g.cols}", f"--robots {s.num_robots}", *(f"--obstacle {r},{c}" for r, c in s.obstacles)]
+    placement = ([f"--robot {r.start[0]},{r.start[1]}:{r.goal[0]},{r.goal[1]}" for r in s.robots] if endpoints
+                 else [f"--robots {s.num_robots}"])  # fmt: skip
+    flags = [f"--grid {g.rows}x{g.cols}", *placement, *(f"--obstacle {r},{c}" for r, c in s.obstacles)]
     flags += ["--hard-obstacles"] if hard else []
     return GivenScenario(s, s.name or f"{g.rows}x{g.cols}", " ".join(flags))

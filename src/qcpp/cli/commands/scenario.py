@@ -20,17 +20,26 @@ from typing import Annotated
 
 import typer
 
-from qcpp.cli.commands.inline_scenario import GridFlag, HardObstaclesFlag, ObstacleFlag, RobotCountFlag, inline_scenario
+from qcpp.cli.commands.inline_scenario import (
+    GridFlag,
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotCountFlag,
+    RobotFlag,
+    inline_scenario,
+)
 from qcpp.io.atomic import check_output
 from qcpp.problem.scenario import scenario_to_dict
 from qcpp.problem.scenario_io import save_scenario, scenario_to_toml
 
 __all__ = ["register", "scenario_command"]
 
-HELP = """Print (or write with -o) the scenario file of --grid, --robots and --obstacle.
+HELP = """Print (or write with -o) the scenario file of --grid, --robots (or
+--robot) and --obstacle.
 
 Examples:
   qcpp scenario --grid 5x5 --robots 2
+  qcpp scenario --grid 7x6 --robot 0,0:6,5 --robot 0,5:6,0 --obstacle 2,2
   qcpp scenario --grid 10x10 --robots 3 --obstacle 4,4 -o field.toml
   qcpp scenario --grid 4x4 --obstacle 1,1 --hard-obstacles --json
 
@@ -42,6 +51,7 @@ and the other commands read it.
 def scenario_command(
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
     output: Annotated[
@@ -57,7 +67,7 @@ def scenario_command(
         raise ValueError("--json prints the scenario; with -o the file's suffix (.toml or .json) chooses the format")
     if output is not None:
         check_output(output)  # a bad destination fails before anything is built
-    s = inline_scenario(grid, robots, obstacle, hard_obstacles)
+    s = inline_scenario(grid, robots, obstacle, hard_obstacles, robot)
     if output is not None:
         save_scenario(s, output)
         typer.echo(f"wrote {output}", err=True)

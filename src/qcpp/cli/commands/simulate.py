@@ -27,6 +27,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     given_scenario,
 )
@@ -94,6 +95,7 @@ def simulate_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
@@ -103,7 +105,7 @@ def simulate_command(
     values = parse_angles(angles) if angles is not None else None
     if values is not None and len(values) != 2 * p:  # before the scenario is loaded, naming the flag
         raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True)
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True, endpoints=robot)
     s = given.scenario
     _guard(s, given.source, p, method)
     with Progress(f"simulate {given.label}") as bar:

@@ -45,6 +45,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     given_scenario,
 )
@@ -234,6 +235,7 @@ def solve_command(
     ] = None,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
@@ -265,7 +267,7 @@ def solve_command(
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=method == "qaoa")
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=method == "qaoa", endpoints=robot)
     s = given.scenario
     qaoa = None
     exact = None

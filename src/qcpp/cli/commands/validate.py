@@ -34,6 +34,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     given_scenario,
 )
@@ -84,6 +85,7 @@ def validate_command(
     ] = None,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
@@ -110,7 +112,7 @@ def validate_command(
             import qiskit  # noqa: F401
         except ImportError as exc:
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True)
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True, endpoints=robot)
     s = given.scenario
     with Progress(f"validate {given.label}") as bar:
         if not large_allowed():

@@ -29,6 +29,7 @@ from qcpp.cli.commands.inline_scenario import (
     HardObstaclesFlag,
     ObstacleFlag,
     RobotCountFlag,
+    RobotFlag,
     ScenarioFileArg,
     given_scenario,
 )
@@ -64,6 +65,7 @@ def verify_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON object instead of text.")] = False,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
+    robot: RobotFlag = None,
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
 ) -> None:
@@ -72,7 +74,7 @@ def verify_command(
     from qcpp.verification import resolve_method, verify
 
     options = PlanOptions(rule=rule, target=target)  # type: ignore[arg-type]
-    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles)
+    given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
     s = given.scenario
     method = resolve_method(s, p, rule, method, samples, options)  # type: ignore[arg-type]
     unit = "inputs" if method == "state" else "checks"  # what progress counts
