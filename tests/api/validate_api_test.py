@@ -1,5 +1,6 @@
-"""``qcpp.validate``: the report of ``qcpp validate --json`` for the same scenario and options (timings and the
-command's verdict aside), a circuit that breaks fails it, and bad options raise the command's one-line reasons."""
+"""``qcpp.validate``: the report of ``qcpp validate --json`` for the same scenario and options (timings aside: the
+verdict, ``passed`` and ``tolerance`` included), a circuit that breaks fails it, a skipped check never passes, and
+bad options raise the command's one-line reasons."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ S = qcpp.grid_scenario(2, 3, robots=1)
 
 
 def _untimed(d: dict[str, Any]) -> dict[str, Any]:
-    out = {k: v for k, v in d.items() if k not in ("seconds", "verdict")}
+    out = {k: v for k, v in d.items() if k != "seconds"}
     out["checks"] = [{k: v for k, v in c.items() if k != "seconds"} for c in d["checks"]]
     return out
 
@@ -28,6 +29,35 @@ def test_the_report_is_the_cli_s(backend: str) -> None:
     assert report.passed and cli["verdict"] == "passed"
     assert _untimed(report.to_dict()) == _untimed(cli)  # type: ignore[arg-type]
     assert report.checks and all(c.status == "pass" for c in report.checks)
+
+
+@pytest.mark.parametrize("backend", ["statevector", "qcec"])
+def test_seeded_report_equals_the_cli_json(backend: str) -> None:
+    """Seeded angles (the command's default seed 0), a file scenario: ``to_dict()`` is the ``--json`` object."""
+    if backend == "qcec":
+        pytest.importorskip("mqt.qcec")
+        pytest.importorskip("qiskit")
+    cli = cli_json("validate", "examples/paper_3x3.toml", "-p", "1", "--backend", backend, "--json")
+    report = qcpp.validate(qcpp.load_scenario("examples/paper_3x3.toml"), 1, backend=backend, seed=0)
+    d = report.to_dict()
+    assert _untimed(d) == _untimed(cli)  # type: ignore[arg-type]
+    assert d["verdict"] == "passed" and d["passed"] is True
+    assert (d["tolerance"] is None) == (backend == "qcec")
+
+
+def test_a_skipped_check_is_incomplete_not_passed() -> None:
+    """A check that did not run: the report is ``incomplete`` and ``passed`` is false (the command exits 1)."""
+    import dataclasses
+
+    import qcpp.simulate.validate as sv
+
+    report = qcpp.validate(S, p=1, angles=[0.3, 0.8], backend="statevector")
+    skipped = sv.Check("amplitudes", "tensor contraction", float("nan"), float("nan"), 0, "skipped", 0.0, "wide")
+    partial = dataclasses.replace(report, checks=(*report.checks, skipped))
+    assert report.verdict == "passed" and partial.verdict == "incomplete" and not partial.passed
+    assert partial.to_dict()["passed"] is False and partial.to_dict()["verdict"] == "incomplete"
+    assert "<caption>validation INCOMPLETE: " in partial._repr_html_()
+    assert dataclasses.replace(report, checks=()).verdict == "incomplete"
 
 
 def test_a_circuit_that_breaks_fails_the_check(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -4,8 +4,9 @@ Where :func:`qcpp.verify` shows that the mixer never leaves the feasible space, 
 computes the state the algorithm defines: at the given (or seeded random) angles its ancillas end in |0> and its
 amplitudes on the feasible assignments equal those of :class:`qcpp.simulate.subspace.SubspaceQAOA`, an
 independent simulator that never builds a circuit. The checks and backends are those of the command
-(:mod:`qcpp.simulate.validate`), and :meth:`ValidationReport.to_dict` is its ``--json`` object (timings aside;
-the command adds its ``verdict``).
+(:mod:`qcpp.simulate.validate`), and :meth:`ValidationReport.to_dict` is its ``--json`` object (timings aside),
+``verdict`` and ``passed`` included: ``passed`` is true only when every check ran and passed, as the command's exit
+code 0.
 
 Example:
     >>> import qcpp
@@ -61,7 +62,8 @@ def validate(
             ``tensor``.
 
     Returns:
-        The :class:`~qcpp.simulate.validate.ValidationReport`: ``passed`` (no check failed), ``checks`` (each
+        The :class:`~qcpp.simulate.validate.ValidationReport`: ``verdict`` (``passed``, ``failed`` or
+        ``incomplete``: a check skipped), ``passed`` (every check ran and passed), ``checks`` (each
         with its value, error, status and seconds), ``backend`` (the one that ran), ``to_dict()``.
 
     Raises:

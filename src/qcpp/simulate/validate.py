@@ -33,8 +33,9 @@ Backends:
 Size: the reference is the exact feasible-subspace state (the product of the robots' path counts).
 :func:`validate_size` predicts it without planning a circuit, and :func:`validate` refuses
 (:class:`ValidationTooLargeError`) more than ``max_assignments`` (:data:`MAX_VALIDATE_ASSIGNMENTS`) or a predicted
-peak over the memory budget rather than running out of memory. :attr:`ValidationReport.passed` is true when no
-check failed.
+peak over the memory budget rather than running out of memory. :attr:`ValidationReport.verdict` is ``passed``
+when every check ran and passed, ``failed`` when one failed, else ``incomplete`` (a check skipped, or none ran);
+:attr:`ValidationReport.passed` is true only for ``passed``.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -134,7 +135,7 @@ class ValidationReport:
         qubits: Qubits of the lowered circuit.
         gates: Gates of the lowered circuit.
         feasible_assignments: Number of assignments whose amplitudes the checks are about.
-        tolerance: Allowed deviation.
+        tolerance: Allowed deviation (the ``qcec`` backend compares no amplitudes: :meth:`to_dict` gives ``None``).
         checks: The checks, in order.
         seconds: Total wall time.
     """
@@ -153,9 +154,18 @@ class ValidationReport:
     seconds: float = 0.0
 
     @property
+    def verdict(self) -> Literal["passed", "failed", "incomplete"]:
+        """``failed`` when a check failed, else ``incomplete`` when one was skipped or none ran, else ``passed``."""
+        if any(c.status == "fail" for c in self.checks):
+            return "failed"
+        if not self.checks or any(c.status == "skipped" for c in self.checks):
+            return "incomplete"
+        return "passed"
+
+    @property
     def passed(self) -> bool:
-        """True when no check failed (skipped checks do not fail)."""
-        return all(c.status != "fail" for c in self.checks)
+        """True when every check ran and passed (:attr:`verdict` is ``passed``; a skipped check never passes)."""
+        return self.verdict == "passed"
 
     @property
     def ancilla_probability(self) -> float:
@@ -179,7 +189,7 @@ class ValidationReport:
 
     def _repr_html_(self) -> str:
         """In a notebook: the verdict as the caption and one table row per check."""
-        verdict = "passed" if self.passed else "FAILED"
+        verdict = self.verdict if self.passed else self.verdict.upper()
         caption = (
             f"validation {verdict}: {self.scenario}, p = {self.p}, backend {self.backend}, {self.qubits} qubits, "
             f"{self.gates} gates, {self.feasible_assignments} feasible assignments"
@@ -190,18 +200,22 @@ class ValidationReport:
         return html_table(caption, headers, rows, align=(None, None, "right", "right", "right"))
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: every field, the summary properties and ``passed``."""
+        """JSON-ready dict (the object ``qcpp validate --json`` prints): every field, the summary properties,
+        ``passed`` and ``verdict``; ``tolerance`` is ``None`` for the ``qcec`` backend (an exact decision)."""
         d = asdict(self)
         d["angles"] = list(self.angles)
         d["checks"] = [asdict(c) for c in self.checks]
         d.update(
             passed=self.passed,
+            verdict=self.verdict,
             ancilla_probability=_json_float(self.ancilla_probability),
             max_amplitude_error=_json_float(self.max_amplitude_error),
             amplitudes_checked=self.amplitudes_checked,
         )
         for c in d["checks"]:
             c["value"], c["error"] = _json_float(c["value"]), _json_float(c["error"])
+        if self.backend == "qcec":
+            d["tolerance"] = None  # QCEC decides equality exactly; it compares no amplitudes
         return d
 
 

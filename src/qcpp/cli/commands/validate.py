@@ -16,8 +16,9 @@ the available memory or would run for hours is refused in one line naming the pr
 
 Exit code 0 (``PASSED``) only when every check ran and passed; 1 when a check failed (``FAILED``) or could not
 run (``INCOMPLETE``, e.g. a tensor contraction too wide: a check that did not run never reports PASSED); bad
-input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` adds ``verdict`` (``passed``,
-``failed`` or ``incomplete``), and its ``passed`` is true only for ``passed``.
+input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json`` prints
+:meth:`~qcpp.simulate.validate.ValidationReport.to_dict`, the object :func:`qcpp.validate` returns: its ``verdict``
+(``passed``, ``failed`` or ``incomplete``) decides the exit code, and ``passed`` is true only for ``passed``.
 """
 
 from __future__ import annotations
@@ -134,12 +135,9 @@ def validate_command(
     chosen = f"{report.backend} (auto)" if backend == "auto" else report.backend  # said in the table's title
     backend = report.backend
     skipped = [c.name for c in report.checks if c.status == "skipped"]
-    verdict = "failed" if not report.passed else "incomplete" if skipped or not report.checks else "passed"
+    verdict = report.verdict
     if as_json:
-        out = {**report.to_dict(), "passed": verdict == "passed", "verdict": verdict}
-        if backend == "qcec":
-            out["tolerance"] = None  # QCEC decides equality exactly; it compares no amplitudes
-        typer.echo(json.dumps(out))
+        typer.echo(json.dumps(report.to_dict()))
     else:
         table = Table(title=f"{given.label}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
