@@ -53,6 +53,7 @@ if TYPE_CHECKING:
     from qcpp.errors import OptionError, QcppError
     from qcpp.io.atomic import OutputError
     from qcpp.ir.angles import UnboundParameterError
+    from qcpp.lowering.qasm_profiles import QasmProfileError
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.qubo.model import Bqm
     from qcpp.simulate.noisy import NoisyResult
@@ -87,6 +88,7 @@ _EXPORTS: dict[str, str] = {
     "validate": "qcpp.api.validating",
     "OptionError": "qcpp.errors",
     "OutputError": "qcpp.io.atomic",
+    "QasmProfileError": "qcpp.lowering.qasm_profiles",
     "QcppError": "qcpp.errors",
     "UnboundParameterError": "qcpp.ir.angles",
     "SizeError": "qcpp.problem.limits",
@@ -108,6 +110,7 @@ __all__ = [
     "NoisyResult",
     "OptionError",
     "OutputError",
+    "QasmProfileError",
     "QcppError",
     "Scenario",
     "ScenarioError",
@@ -152,4 +155,5 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *__all__})
+    """The public API (:data:`__all__`) and the module's dunders; not the helpers it imports."""
+    return sorted({*__all__, *(name for name in globals() if name.startswith("__") and name.endswith("__"))})

@@ -67,8 +67,9 @@ def test_lowered_bound_qasm2_matches_our_state_and_counts(tmp_path: Path) -> Non
 @pytest.mark.parametrize(
     ("args", "needle"),
     [
-        (["--qasm-version", "2", "--qasm", "{tmp}/x.qasm"], "unbound symbols"),
-        (["--bind", "delta_0=1"], "unknown symbol"),
+        (["--qasm-version", "2", "--qasm", "{tmp}/x.qasm"], "gamma_0, beta_0; give them with --bind NAME=VALUE"),
+        (["--qasm-version", "2", "--qasm", "{tmp}/x.qasm", "--device", "grid"], "give them with --bind NAME=VALUE"),
+        (["--bind", "delta_0=1"], "--bind: unknown symbol"),
         (["--bind", "gamma_0"], "NAME=VALUE"),
         (["--rule", "fast"], "--rule"),
     ],

@@ -42,14 +42,27 @@ __all__ = [
 class UnboundParameterError(QcppError):
     """A numeric value was needed but some symbols have no value.
 
+    Args:
+        symbols: The unbound symbol names.
+        context: What needed the numbers (``OpenQASM 2 has no symbolic parameters``), in parentheses.
+        hint: How to give them, ending the message (the command line's ``give them with --bind NAME=VALUE``).
+
     Attributes:
         symbols: the unbound symbol names, in :func:`symbol_sort_key` order.
+        context: as given.
+        hint: as given.
     """
 
-    def __init__(self, symbols: Iterable[str], context: str = "") -> None:
+    def __init__(self, symbols: Iterable[str], context: str = "", hint: str = "bind them first") -> None:
         self.symbols: tuple[str, ...] = tuple(sorted(set(symbols), key=symbol_sort_key))
+        self.context = context
+        self.hint = hint
         where = f" ({context})" if context else ""
-        super().__init__(f"unbound symbols{where}: {', '.join(self.symbols)}; bind them first")
+        super().__init__(f"unbound symbols{where}: {', '.join(self.symbols)}; {hint}")
+
+    def __reduce__(self) -> tuple[type[UnboundParameterError], tuple[tuple[str, ...], str, str]]:
+        # picklable with its arguments, so that it crosses process-pool boundaries intact
+        return (type(self), (self.symbols, self.context, self.hint))
 
 
 Terms: TypeAlias = tuple[tuple[str, float], ...]

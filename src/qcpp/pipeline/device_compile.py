@@ -281,6 +281,7 @@ def compile_for_device(
     routing: RoutingOptions = DEFAULT_ROUTING,
     context: RoutingContext | None = None,
     optimize_for: str | None = None,
+    bind_field: str = "bind",
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -305,6 +306,7 @@ def compile_for_device(
         optimize_for: On a named device, the figure the routed candidates are chosen by (:data:`OPTIMIZE_FOR`:
             ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
             devices). The families keep compile's single routing.
+        bind_field: The argument that gave ``bindings``, starting the message of an unknown symbol (``--bind``).
 
     Python's cyclic garbage collector is paused meanwhile (:func:`qcpp.routing.context.collector_paused`: the
     searches' memos hold hundreds of thousands of objects, which its passes would traverse again and again).
@@ -318,14 +320,15 @@ def compile_for_device(
     """
     with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
         return _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
-                                   layout_method, arrangement, stage, routing, context, optimize_for)  # fmt: skip
+                                   layout_method, arrangement, stage, routing, context, optimize_for,
+                                   bind_field)  # fmt: skip
 
 
 def _compile_for_device(
     scenario: Scenario, p: int, device: str | Device, options: PlanOptions, lowered: bool,
     bindings: Mapping[str, float] | None, local_ancillas: bool, seed: int, layouts: tuple[str, ...],
     layout_method: str, arrangement: str, stage: Callable[[str], None] | None, routing: RoutingOptions,
-    context: RoutingContext | None, optimize_for: str | None,
+    context: RoutingContext | None, optimize_for: str | None, bind_field: str = "bind",
 ) -> DeviceCompileResult:  # fmt: skip
     """:func:`compile_for_device`'s work (run with the cyclic garbage collector paused)."""
     start = time.perf_counter()
@@ -335,7 +338,8 @@ def _compile_for_device(
     options = device_plan_options(options, device, layout_method)
     say = stage or (lambda _text: None)
     say("compiling the circuit")
-    compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings)
+    compiled = compile_scenario(scenario, p, replace(options, fuse=False), lowered=True, bindings=bindings,
+                                bind_field=bind_field)
     circuit = compiled.circuit
     measured = range(scenario.num_variables)
     if layout_method not in LAYOUT_METHODS:

@@ -101,6 +101,7 @@ def compile_scenario(
     *,
     lowered: bool = False,
     bindings: Mapping[str, float] | None = None,
+    bind_field: str = "bind",
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
@@ -108,15 +109,16 @@ def compile_scenario(
         options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`).
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
+        bind_field: The argument that gave ``bindings``, starting the message of a bad one (``--bind`` in the CLI).
 
     Raises:
-        ValueError: if ``bindings`` names a symbol the circuit does not have.
+        qcpp.errors.OptionError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
     plan = qaoa_plan(scenario, p, options)
     circuit = plan.circuit()
     if bindings:
-        plan.check_bindings(bindings)
+        plan.check_bindings(bindings, bind_field)
     if lowered:
         circuit = lower(circuit)
     if bindings:

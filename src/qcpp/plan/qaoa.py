@@ -273,11 +273,12 @@ class QaoaPlan:
                 out.append(f"beta_{k}")
         return tuple(out)
 
-    def check_bindings(self, names: Iterable[str]) -> None:
+    def check_bindings(self, names: Iterable[str], field: str = "bind") -> None:
         """Refuse angle names the operator does not have (see :attr:`parameter_names`).
 
         Args:
             names: The names a user binds.
+            field: The argument that gave them, starting the message (``bind``; the command line's ``--bind``).
 
         Raises:
             qcpp.errors.OptionError: naming the unknown names and listing the known ones.
@@ -286,7 +287,7 @@ class QaoaPlan:
         unknown = sorted(set(names) - known)
         if unknown:
             have = ", ".join(sorted(known, key=symbol_sort_key)) or "none"
-            raise OptionError("", f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
+            raise OptionError(field, f"unknown symbol(s) {', '.join(unknown)} (this circuit has: {have})")
 
     def circuit(self) -> Circuit:
         """The high-level circuit (one section per gadget)."""

@@ -30,6 +30,7 @@ built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gate
 
 from __future__ import annotations
 
+import contextlib
 import json
 import time
 from collections import Counter
@@ -55,7 +56,7 @@ from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
 from qcpp.estimators.guard import SizePrediction, check_size, predict_size
 from qcpp.io.atomic import check_output
-from qcpp.ir.angles import symbol_sort_key
+from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_profiles import Profile, check_profile, write_qasm_profile
 from qcpp.lowering.qasm_stream import write_qasm_sections
@@ -210,7 +211,7 @@ def compile_command(
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None) as bar:
             summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar, qasm_profile)
     else:
-        result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings)
+        result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings, bind_field="--bind")
         summary, phase_explain = result.summary(), result.phase_explain
     if qasm is not None:  # written by _routed or _stream
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
@@ -330,9 +331,10 @@ def _routed(
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
-                                    optimize_for=optimize_for)  # fmt: skip
+                                    optimize_for=optimize_for, bind_field="--bind")  # fmt: skip
     if qasm is not None:
-        write_qasm_profile(result.routed.circuit, qasm, version, profile)  # type: ignore[arg-type]
+        with _bind_hint():
+            write_qasm_profile(result.routed.circuit, qasm, version, profile)  # type: ignore[arg-type]
     return result.compile_summary(), result.compiled.phase_explain
 
 
@@ -366,7 +368,7 @@ def _stream(
     start = time.perf_counter()
     progress.stage("planning the circuit")
     plan = qaoa_plan(s, p, options)
-    plan.check_bindings(bindings)
+    plan.check_bindings(bindings, "--bind")
     progress.stage("building the sections")
     # the lowered circuit has the plan's registers (work included); the high-level one has no work register
     registers = tuple(plan.registers) if lowered else tuple(r for r in plan.registers if r.name != "work")
@@ -384,11 +386,25 @@ def _stream(
             progress.advance(len(out.gates))
 
     if qasm is not None:
-        ops, symbols = write_qasm_sections(registers, sections, qasm, version, profile)  # type: ignore[arg-type]
+        with _bind_hint():
+            ops, symbols = write_qasm_sections(registers, sections, qasm, version, profile)  # type: ignore[arg-type]
     else:
         ops, symbols = _count_sections(registers, sections())
     summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)
     return summary, (plan.phase_plan.explain() if plan.phase_plan is not None else [])
+
+
+BIND_HINT = "give them with --bind NAME=VALUE"
+"""How the command line's message on unbound angles (OpenQASM 2 needs numbers) ends."""
+
+
+@contextlib.contextmanager
+def _bind_hint() -> Iterator[None]:
+    """Re-raise an :class:`~qcpp.ir.angles.UnboundParameterError` with :data:`BIND_HINT` as its ending."""
+    try:
+        yield
+    except UnboundParameterError as exc:
+        raise UnboundParameterError(exc.symbols, exc.context, BIND_HINT) from None
 
 
 def _count_sections(
