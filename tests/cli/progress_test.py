@@ -216,6 +216,21 @@ def test_writing_qasm_shows_both_passes(tmp_path: Path) -> None:
     assert "collecting symbols" in res.stderr and "writing OpenQASM" in res.stderr
 
 
+@pytest.mark.parametrize("qasm", [False, True])
+def test_writing_qasm_claims_no_time_left(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, qasm: bool) -> None:
+    """Writing costs per gate vary (the mixer sections write slower than the phase sections, both slower than
+    collecting symbols): with ``--qasm`` the lines count gates and time but promise no time left; a streamed count
+    without ``--qasm`` (uniform work) still does. The clock is fixed at 100 s, so every line could show it."""
+    monkeypatch.setattr(Progress, "_elapsed", lambda self: 100.0)
+    monkeypatch.setattr(compile_cmd, "STREAM_ABOVE_GATES", 0)  # streamed with or without --qasm
+    args = ["--qasm", str(tmp_path / "c.qasm")] if qasm else []
+    res = invoke("compile", str(EXAMPLES / "paper_3x3.toml"), "--lowered", *args, env=LINES)
+    assert res.exit_code == 0, res.stderr
+    counted = [line for line in res.stderr.splitlines() if " gates (" in line and "(0.0%)" not in line]
+    assert counted and all("100 s elapsed" in line for line in counted)
+    assert all(("left" in line) != qasm for line in counted if "(100.0%)" not in line)
+
+
 def test_a_device_compile_names_its_stages(tmp_path: Path) -> None:
     """``compile --device heavy-hex`` (the cells' plan choice can take a while): stages on stderr, stdout unchanged."""
     scen = write_scenario(tmp_path / "s.toml", 2, 3, [((0, 0), (1, 2))])
