@@ -22,6 +22,23 @@ PAPER = str(EXAMPLES / "paper_3x3.toml")
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_notes_fit_the_terminal() -> None:
+    """The notes (a QAOA run's are 200+ characters) wrap at spaces to ``COLUMNS``, every word kept."""
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import app
+
+    args = ["solve", "--grid", "3x3", "--robots", "2", "-m", "qaoa", "-p", "2"]
+    res = CliRunner().invoke(app, args, env={"COLUMNS": "80"})
+    assert res.exit_code == 0, res.output
+    lines = res.stdout.splitlines()
+    first = next(i for i, line in enumerate(lines) if line.startswith("note: p=2, "))
+    notes = lines[first:]
+    assert len(notes) > 2 and all(len(line) <= 80 for line in notes), notes
+    text = " ".join(notes)
+    assert "shots at " in text and "per estimate note: <C> " in text and text.endswith(tuple("0123456789"))
+
+
 def test_json_has_the_common_keys_and_the_qaoa_ones() -> None:
     res = run("solve", PAPER, "--method", "qaoa", "-p", "2", "--optimizer", "lbfgsb", "--seed", "3", "--json")
     assert res.exit_code == 0, res.output

@@ -351,7 +351,7 @@ def solve_command(
         verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
     for note in sol.notes:
-        console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False, soft_wrap=True)
+        console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False)  # wrapped at spaces to the width
     for path in (plot, plot_trace_file):
         if path is not None:
             typer.echo(f"wrote {path}", err=True)
