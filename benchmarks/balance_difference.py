@@ -27,6 +27,8 @@ they place each robot's sum on its own edges.
 
 from __future__ import annotations
 
+import argparse
+
 import numpy as np
 
 from qcpp import default_scenario, grid_scenario
@@ -88,6 +90,7 @@ def all_pairs(rows: int, cols: int, robots: int) -> Scenario:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     cases = [(f"{n}x{n}/2", default_scenario(n, n, 2)) for n in (3, 4, 5, 6, 8, 10, 20)]
     cases += [("4x4/2, hard obstacle", grid_scenario(4, 4, robots=2, obstacles=[(1, 2)], hard_obstacles=True)),
               ("5x5/2, 2 soft obstacles", grid_scenario(5, 5, robots=2, obstacles=[(1, 3), (2, 2)]))]  # fmt: skip

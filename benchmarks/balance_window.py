@@ -23,6 +23,7 @@ the cheapest whole window wins), columns:
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from dataclasses import replace
@@ -63,10 +64,14 @@ def cells() -> None:
 
 
 def main(argv: list[str]) -> None:
-    if "--cells" in argv:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="4x4/2 only")
+    parser.add_argument("--cells", action="store_true", help="the window of 4x4/2 on the heavy-hex cells")
+    args = parser.parse_args(argv)
+    if args.cells:
         cells()
         return
-    shapes = [(4, 4, 2)] if "--quick" in argv else [(4, 4, 2), (5, 5, 2)]
+    shapes = [(4, 4, 2)] if args.quick else [(4, 4, 2), (5, 5, 2)]
     print("| scenario | wide seeds | wide trials | balance cx | in written order | compile cx | s |")
     print("|---|---:|---:|---:|---:|---:|---:|")
     for rows, cols, robots in shapes:

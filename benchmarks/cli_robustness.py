@@ -9,6 +9,7 @@ Run:  PYTHONPATH=src python benchmarks/cli_robustness.py
 
 from __future__ import annotations
 
+import argparse
 import os
 import signal
 import subprocess
@@ -64,6 +65,7 @@ def table_widths() -> list[tuple[int, int, str]]:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     print("| command | signal | sent after (s) | exit code | seconds to exit | last stderr line |")
     print("|---|---|---:|---:|---:|---|")
     for name, args, after in CASES:

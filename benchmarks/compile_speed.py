@@ -6,6 +6,7 @@ each step; the target of the issue is build + lower + write under 10 s for 10x10
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import tempfile
@@ -29,7 +30,9 @@ def timed(fn: Callable[[], T]) -> tuple[T, float, float]:
 
 
 def main(argv: list[str]) -> int:
-    p = int(argv[0]) if argv else 1
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("p", type=int, nargs="?", default=1, help="QAOA layers (default 1)")
+    p = parser.parse_args(argv).p
     header = (
         f"{'grid':>6} {'robots':>6} {'qubits':>7} {'gates (lowered)':>16} "
         f"{'build':>13} {'lower':>13} {'write qasm3':>13} {'bind+qasm2':>13} {'total':>13}"

@@ -11,6 +11,8 @@ Run:  PYTHONPATH=src python benchmarks/cost_range.py
 
 from __future__ import annotations
 
+import argparse
+
 from qcpp.problem.cost_range import COST_LIMIT, PHASE_COST_LIMIT, cost_bound
 from qcpp.problem.scenario import scenario_from_dict
 from qcpp.simulate.validate import validate
@@ -22,6 +24,7 @@ BASE = {
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     print(f"{'edge_length':>11} {'cost bound':>11} {'<= 2^53':>8} {'<= 2^26':>8} {'max amplitude error':>20} verdict")
     for length in (1.0, 1e1, 1e2, 1e3, 1e4, 1e5):
         s = scenario_from_dict({**BASE, "objective": {"edge_length": length}})

@@ -22,6 +22,7 @@ and peak memory, about two minutes; ``--cli --sweep-only``: that table alone):
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import os
 import subprocess
@@ -133,13 +134,18 @@ def cli_sweep() -> None:
 
 
 def main(argv: list[str]) -> int:
-    stride = int(argv[argv.index("--stride") + 1]) if "--stride" in argv else 13
-    budget = int(argv[argv.index("--budget") + 1]) if "--budget" in argv else DEFAULT_OPTIONS.depth_budget
-    if "--sweep-only" not in argv:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--table-only", action="store_true", help="the per-scenario table alone")
+    parser.add_argument("--sweep-only", action="store_true", help="the sweep table alone")
+    parser.add_argument("--cli", action="store_true", help="the sweep through qcpp estimate instead")
+    parser.add_argument("--stride", type=int, default=13, help="time every N-th certain-bound grid (default 13)")
+    parser.add_argument("--budget", type=int, default=DEFAULT_OPTIONS.depth_budget, help="the sweep's depth budget")
+    args = parser.parse_args(argv)
+    if not args.sweep_only:
         per_scenario()
-    if "--table-only" not in argv and "--cli" not in argv:
-        sweep_depth(stride, budget)
-    if "--cli" in argv:
+    if not args.table_only and not args.cli:
+        sweep_depth(args.stride, args.budget)
+    if args.cli:
         cli_sweep()
     return 0
 

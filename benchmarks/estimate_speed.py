@@ -24,6 +24,7 @@ included. Prints one table with the speed and memory goals:
 
 from __future__ import annotations
 
+import argparse
 import os
 import signal
 import subprocess
@@ -137,12 +138,17 @@ def compare(rev: str, repeats: int, sweep_limit: float) -> int:
 
 
 def main(argv: list[str]) -> int:
-    if "--against" in argv:
-        repeats = int(argv[argv.index("--repeats") + 1]) if "--repeats" in argv else 2
-        limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 900.0
-        return compare(argv[argv.index("--against") + 1], repeats, limit)
-    quick = "--quick" in argv
-    sweep_limit = float(argv[argv.index("--sweep-seconds") + 1]) if "--sweep-seconds" in argv else 150.0
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="cross-check the default test run's sample only")
+    parser.add_argument("--sweep-seconds", type=float, help="interrupt the sweep after S seconds (150; 900 --against)")
+    parser.add_argument("--against", metavar="REV", help="compare this tree with revision REV")
+    parser.add_argument("--repeats", type=int, default=2, help="--against: runs per tree (default 2)")
+    args = parser.parse_args(argv)
+    if args.against is not None:
+        limit = 900.0 if args.sweep_seconds is None else args.sweep_seconds
+        return compare(args.against, args.repeats, limit)
+    quick = args.quick
+    sweep_limit = 150.0 if args.sweep_seconds is None else args.sweep_seconds
     rows = []
     wall, rss, _, code, out, _ = _run(ESTIMATE)
     ok = code == 0 and wall < 5 and rss < 1

@@ -21,6 +21,7 @@ file's gates, against the QDK's figure, and qcpp's rotation depth beside them.
 
 from __future__ import annotations
 
+import argparse
 import sys
 from dataclasses import dataclass, replace
 
@@ -127,7 +128,10 @@ def _span(values: list[float]) -> str:
 
 
 def main() -> None:
-    scenarios = SCENARIOS[:1] if "--quick" in sys.argv else SCENARIOS
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="3x3 / 1 robot only")
+    args = parser.parse_args()
+    scenarios = SCENARIOS[:1] if args.quick else SCENARIOS
     results = []
     for rows, cols, robots in scenarios:
         for target in TARGETS:

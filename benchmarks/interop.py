@@ -9,6 +9,7 @@ OpenQASM 2. The ratio is Qiskit's high-level result over qcpp's lowering (goal: 
 
 from __future__ import annotations
 
+import argparse
 import time
 
 import qiskit.qasm2 as qasm2
@@ -30,6 +31,7 @@ def _o3_cx(qc: object) -> int:
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     head = f"{'scenario':<9} {'qubits':>6} {'qcpp lowered CX':>15} {'Qiskit O3 of our QASM3':>22}"
     print(f"{head} {'ratio':>6} {'Qiskit O3 of our lowered QASM2':>30} {'seconds':>7}")
     for rows, cols, robots in CASES:

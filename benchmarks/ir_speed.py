@@ -9,6 +9,7 @@ drawn first (untimed); then it times building the circuit, ``lower``, ``to_qasm3
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from collections.abc import Callable
@@ -80,6 +81,7 @@ def build(spec: Spec) -> Circuit:
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     rows: list[tuple[str, float, float, str]] = []
 
     def timed(label: str, fn: Callable[[], T], detail: Callable[[T], str]) -> T:

@@ -23,6 +23,7 @@ Columns (all CX per layer, p = 1, default scenarios and a few with obstacles / i
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 
@@ -202,8 +203,12 @@ def kinds_table(cases: list[tuple[str, Scenario]]) -> None:
 
 
 def main(argv: list[str]) -> int:
-    quick = "--quick" in argv
-    with_qiskit = "--no-qiskit" not in argv
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="three scenarios only")
+    parser.add_argument("--no-qiskit", action="store_true", help="without the Qiskit columns")
+    args = parser.parse_args(argv)
+    quick = args.quick
+    with_qiskit = not args.no_qiskit
     cases: list[tuple[str, Scenario]] = [(f"{r}x{c}/{n}", default_scenario(r, c, n)) for r, c, n in DEFAULT]
     cases += extra_scenarios()
     if quick:

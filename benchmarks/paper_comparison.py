@@ -8,6 +8,7 @@ decomposition sizes. Every number in the two documents comes from this output.
 
 from __future__ import annotations
 
+import argparse
 import sys
 from dataclasses import dataclass
 
@@ -63,6 +64,7 @@ def _measure(rows: int, cols: int, robots: int) -> _Result:
 
 
 def main(argv: list[str]) -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args(argv)  # --help, and no other argument
     results = [_measure(r, c, k) for r, c, k in POINTS]
     print("## Totals at p = 1 (ours: exact, lowered; paper: its formulas, literal reading)")
     print("| grid | robots | qubits ours / paper | CNOT ours / paper | ratio | single-qubit ours / paper | ratio |")

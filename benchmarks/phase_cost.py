@@ -20,6 +20,7 @@ Every figure is an exact count of lowered gates: the call graph's sums, as every
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 
@@ -70,7 +71,10 @@ def phase_circuit(s: Scenario, plan: PhasePlan) -> Circuit:
 
 
 def main(argv: list[str]) -> int:
-    points = [p for p in POINTS if not ("--quick" in argv and p[0] > 10)]
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="stop at 10x10")
+    quick = parser.parse_args(argv).quick
+    points = [p for p in POINTS if not (quick and p[0] > 10)]
     print("| grid | robots | re | paper re(re+1) | whole-space CX | ours CX | ratio | whole-space rot. | ours rot. "
           "| whole-space T (ft) "
           "| ours T (ft) | T ratio | ancillas | plan s |")  # fmt: skip
@@ -125,7 +129,7 @@ def main(argv: list[str]) -> int:
             k = count(lower(phase_circuit(s, phase_plan(s, **kw))))
             cells.append(f"{k.depth:,} ({k.two_qubit_depth:,})")
         print(f"| {rows}x{cols} | {robots} | " + " | ".join(cells) + " |")
-    if "--quick" not in argv:
+    if not quick:
         rows, cols, robots = LARGE
         s = scenario(rows, cols, robots)
         t0 = time.perf_counter()

@@ -10,6 +10,7 @@ them take (the rest is left to the plan).
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from collections import Counter
@@ -26,12 +27,15 @@ WHOLE_SPACE_SAMPLE = [(10, 10, 2), (16, 16, 3), (20, 20, 4)]
 
 
 def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--no-sweep", action="store_true", help="the sample scenarios only, not the sweep")
+    args = parser.parse_args(argv)
     print(f"{'scenario':<12}{'plan ms':>10}{'classes ms':>12}{'speed-up':>10}  same cost")
     for representation, sample in (("feasible", SAMPLE), ("whole-space", WHOLE_SPACE_SAMPLE)):
         if representation != "feasible":
             print(f"--phase {representation}:")
         _compare(representation, sample)
-    if "--no-sweep" in argv:
+    if args.no_sweep:
         return 0
     return _sweep()
 

@@ -23,7 +23,7 @@ routes: unfused, the device's phase layout) on the smallest lattice of the famil
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 from dataclasses import replace
 
@@ -47,7 +47,9 @@ def one_robot() -> list[tuple[str, Scenario]]:
 
 
 def main() -> None:
-    family = sys.argv[sys.argv.index("--family") + 1] if "--family" in sys.argv else "heavy-hex"
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--family", choices=("heavy-hex", "grid"), default="heavy-hex", help="the device family")
+    family = parser.parse_args().family
     head = " | ".join(f"search {b}: cx, / a2a, s" for b in BUDGETS)
     print(f"| scenario | device | a2a cx | one routing | fused | {head} | compile s |")
     print("|---|---|---:|---:|---:|" + "---:|" * (len(BUDGETS) + 1))

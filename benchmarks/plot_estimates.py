@@ -10,6 +10,7 @@ as a Markdown table (every fourth size) and the time taken.
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from pathlib import Path
@@ -36,8 +37,12 @@ def sizes(max_side: int) -> list[int]:
 
 
 def main(argv: list[str]) -> int:
-    max_side = int(argv[0]) if argv else 40
-    out = Path(argv[1]) if len(argv) > 1 else ROOT / "docs" / "figures" / "estimates_scaling.png"
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("max_side", type=int, nargs="?", default=40, help="largest grid side (default 40)")
+    parser.add_argument("out", type=Path, nargs="?", default=ROOT / "docs" / "figures" / "estimates_scaling.png",
+                        help="the figure (default docs/figures/estimates_scaling.png)")
+    args = parser.parse_args(argv)
+    max_side, out = args.max_side, args.out
     options = EstimateOptions(depth="bound", physical=True)
     start = time.perf_counter()
     data: dict[int, dict[str, list[float]]] = {}

@@ -12,6 +12,7 @@ compile (reading a process's page tables takes its memory lock), so times are le
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import subprocess
@@ -67,11 +68,15 @@ def main(argv: list[str]) -> int:
     if argv[:1] == ["--worker"]:
         _worker(argv[1], argv[2] == "1")
         return 0
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("cases", nargs="*", default=["5x5/2", "8x8/3"], metavar="CASE",
+                        help="ROWSxCOLS/ROBOTS of a default scenario (default 5x5/2 8x8/3)")
+    argv = parser.parse_args(argv).cases
     print(f"{os.cpu_count()} cores, load average before: {os.getloadavg()[0]:.1f}")
     print()
     print("| case | device | routed ahead | peak PSS MB | with children MB | two-qubit gates |")
     print("|---|---|---|---:|---:|---:|")
-    for case in argv or ["5x5/2", "8x8/3"]:
+    for case in argv:
         for ahead in (False, True):
             r = _measure(case, ahead)
             print(f"| {case} | {r['device']} | {'yes' if ahead else 'no'} | {r['own']:,.0f} | {r['total']:,.0f} | "

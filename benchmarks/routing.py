@@ -31,7 +31,7 @@ layout, else the smallest that holds the circuit (where ``auto`` found the greed
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 
 from qcpp.api.scenarios import grid_scenario
@@ -159,17 +159,22 @@ def cells(quick: bool, prefix: str = "") -> None:
 
 
 def main() -> None:
-    if "--arrangements" in sys.argv:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer scenarios (module docs)")
+    parser.add_argument("--family", choices=("grid", "heavy-hex"), help="that device family's rows only")
+    parser.add_argument("--scenario", metavar="LABEL", default="", help="the rows whose label starts with LABEL")
+    parser.add_argument("--arrangements", action="store_true", help="the medial layout's robot arrangements")
+    parser.add_argument("--cells", action="store_true", help="the heavy-hex cell layout, routed CX per part")
+    args = parser.parse_args()
+    if args.arrangements:
         arrangements()
         return
-    prefix = sys.argv[sys.argv.index("--scenario") + 1] if "--scenario" in sys.argv else ""
-    if "--cells" in sys.argv:
-        cells("--quick" in sys.argv, prefix)
+    prefix = args.scenario
+    if args.cells:
+        cells(args.quick, prefix)
         return
-    quick = "--quick" in sys.argv
-    families = ("grid", "heavy-hex")
-    if "--family" in sys.argv:
-        families = (sys.argv[sys.argv.index("--family") + 1],)
+    quick = args.quick
+    families = ("grid", "heavy-hex") if args.family is None else (args.family,)
     print(
         "| scenario | qubits | a2a cx | device | qiskit O3 cx | greedy cx | compile cx | compile / O3 "
         "| compile / a2a | 2q depth: greedy / compile |"

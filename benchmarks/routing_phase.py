@@ -20,7 +20,7 @@ Per scenario (p = 1, angles bound), device family (the smallest square grid and 
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 
 from qcpp.estimators.crosscheck import interior_endpoints
@@ -90,7 +90,9 @@ def rows(label: str, s: Scenario, family: str) -> list[str]:
 
 
 def main() -> None:
-    quick = "--quick" in sys.argv
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer scenarios (module docs)")
+    quick = parser.parse_args().quick
     print(
         "| scenario | device | phase layout | a2a phase | routed phase | ratio | vs pooled a2a | a2a all "
         "| routed all | ratio | vs pooled a2a | s |"

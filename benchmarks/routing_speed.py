@@ -19,6 +19,7 @@ and how they were obtained (``routed_kind``: ``exact`` = what ``qcpp compile --d
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import resource
@@ -60,6 +61,7 @@ COMPILES = (
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print()
     print("| command | goal | wall (CPU) time | routed_kind | routed_depth_kind | result |")

@@ -28,7 +28,7 @@ against Qiskit O3 (seed 0) of the same lowered circuit onto that lattice's targe
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 from dataclasses import dataclass
 from typing import Any
@@ -160,10 +160,14 @@ def calibrated() -> None:
 
 
 def main() -> None:
-    if "--calibrated" in sys.argv:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="p = 1 only")
+    parser.add_argument("--calibrated", action="store_true", help="the calibrated comparison with Qiskit O3")
+    args = parser.parse_args()
+    if args.calibrated:
         calibrated()
         return
-    layers = (1,) if "--quick" in sys.argv else (1, 2, 3)
+    layers = (1,) if args.quick else (1, 2, 3)
     print("| device | coupled qubits (of all) | p | largest default scenario that fits | budget | qubits used "
           "| lowered cx | routed 2q | duration | ESP gates | ESP idle |")  # fmt: skip
     print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|")

@@ -6,6 +6,7 @@ held on feasible assignments with clean ancillas (1 up to round-off: the check t
 
 from __future__ import annotations
 
+import argparse
 import time
 
 import numpy as np
@@ -26,6 +27,7 @@ def held_on_feasible(s: Scenario, psi: np.ndarray) -> float:
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     cases = [
         ("examples/paper_3x3.toml", load_scenario("examples/paper_3x3.toml")),
         ("default 3x3, 1 robot", default_scenario(3, 3, 1)),

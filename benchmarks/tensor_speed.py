@@ -11,6 +11,7 @@ found (a second ``qcpp validate`` run).
 
 from __future__ import annotations
 
+import argparse
 import tempfile
 import time
 
@@ -21,6 +22,7 @@ CASES = ((3, 3, 1, 1, ""), (3, 3, 2, 1, ""), (3, 4, 2, 1, ""), (3, 4, 2, 1, "cac
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     cache = tempfile.mkdtemp(prefix="qcpp-tensor-speed-")
     head = f"{'scenario':<17} {'p':>1} {'qubits':>6} {'gates':>5} {'checks (method: seconds, status)':<92}"
     print(f"{head} {'max err':>8} {'total s':>7}")
