@@ -225,7 +225,7 @@ def test_one_wording_per_check_in_every_command(
     [
         (("--robots", "0"), "--robots: must be at least 1, got 0"),
         (("-p", "1..0"), "-p/--layers: the range is empty (its end is below its start), got '1..0'"),
-        (("-p", "x"), "-p/--layers: expected N or A..B, got 'x'"),
+        (("-p", "x"), "-p/--layers: expected N, A..B or a comma list of them, got 'x'"),
         (("--grid", "4x4..3x3"), "--grid: the range is empty"),
     ],
 )

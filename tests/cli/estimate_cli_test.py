@@ -255,3 +255,83 @@ def test_cli_defaults_are_the_estimators_defaults() -> None:
     from qcpp.estimators.estimate import DEFAULT_DEPTH_BUDGET
 
     assert inspect.signature(estimate).parameters["depth_budget"].default == DEFAULT_DEPTH_BUDGET
+
+
+def _run80(*args: str):  # type: ignore[no-untyped-def]
+    """``qcpp estimate ARGS`` on an 80-column terminal."""
+    return CliRunner().invoke(_app(), ["estimate", *args], env={"COLUMNS": "80"})
+
+
+def _widest(text: str) -> int:
+    return max((len(line) for line in text.splitlines()), default=0)
+
+
+def test_physical_figures_from_a_depth_bound_are_marked_approximate_not_exact() -> None:
+    args = ("--grid", "3x3", "--robots", "2", "--target", "ft", "--physical")
+    shown = ("--columns", "robots,rotation_depth,physical_qubits,physical_runtime_s")
+    bound = _run80(*args, "--depth", "bound", *shown)
+    assert bound.exit_code == 0, bound.output
+    title = " ".join(" ".join(bound.stdout.splitlines()[:3]).split())
+    assert "~N: from a depth bound" in title and "--depth exact gives the exact figure" in title
+    cells = bound.stdout.splitlines()[-2].split("│")
+    assert cells[2].strip().startswith("<=") and cells[3].strip().startswith("~") and cells[4].strip()[0] == "~"
+    exact = _run80(*args, "--depth", "exact", *shown)
+    assert exact.exit_code == 0 and "~" not in exact.stdout
+    md = _run80(*args, "--depth", "bound", "--format", "md", *shown).stdout
+    assert "| ~" in md and md.rstrip().endswith("(--depth exact gives the exact figure)")
+    latex = _run80(*args, "--depth", "bound", "--format", "latex", *shown).stdout
+    assert r"$\sim$" in latex.splitlines()[5] and r"$\sim$N: from a depth bound" in latex.splitlines()[0]
+    kinds = {d: json.loads(_run80(*args, "--depth", d, "--json").stdout)[0]["physical_depth_kind"]
+             for d in ("bound", "exact", "none")}  # fmt: skip
+    assert kinds == {"bound": "bound", "exact": "exact", "none": "rotation_count"}
+
+
+def test_the_ft_target_shows_the_fault_tolerant_columns_and_nisq_keeps_its_own() -> None:
+    from qcpp.estimators.tables import MAIN_COLUMNS
+
+    ft = _run80("--grid", "4x4", "--robots", "1..2", "--target", "ft")
+    assert ft.exit_code == 0, ft.output
+    header = next(line for line in ft.stdout.splitlines() if "┃ rows" in line)
+    assert "ft_total_t" in header and "rotation_depth" in header and _widest(ft.stdout) <= 80
+    assert "ft_*: fault-tolerant model estimates" in " ".join(ft.stdout.split())
+    assert "ft_rotations" in ft.stdout  # named in the hidden-columns note at 80 columns
+    wide = CliRunner().invoke(_app(), ["estimate", "--grid", "4x4", "--target", "ft"], env={"COLUMNS": "90"})
+    header = next(line for line in wide.stdout.splitlines() if "┃ rows" in line)
+    assert all(c in header for c in ("ft_total_t", "ft_rotations", "rotation_depth"))
+    for fmt in ("md", "latex"):
+        text = _run80("--grid", "4x4", "--target", "ft", "--format", fmt).stdout.replace("\\_", "_")
+        assert all(c in text for c in ("ft_total_t", "ft_rotations", "rotation_depth"))
+    nisq = _run80("--grid", "4x4", "--format", "md").stdout
+    assert [c.strip() for c in nisq.splitlines()[0].strip("|").split("|")] == list(MAIN_COLUMNS)
+
+
+def test_output_fits_80_columns() -> None:
+    formula = _run80("--formula")
+    assert formula.exit_code == 0 and _widest(formula.stdout) <= 80 and "qubits =" in formula.stdout
+    physical = _run80("--grid", "3x3", "--physical", "--format", "csv")
+    assert "QDK resource estimator" in physical.stderr and _widest(physical.stderr) <= 80
+    skipped = _run80("--grid", "2x2..2x3", "--robots", "5", "--format", "csv")
+    assert "skipped" in skipped.stderr and _widest(skipped.stderr) <= 80
+    too_many = _run80("--grid", "3x3", "--robots", "9")
+    assert too_many.exit_code == 2 and "--robots" in too_many.stderr and "at most 8" in too_many.stderr
+    assert len(too_many.stderr.strip().splitlines()) == 1 and _widest(too_many.stderr) <= 100
+    bogus = _run80("--columns", "ft_total")
+    assert bogus.exit_code == 2 and "--columns" in bogus.stderr and "did you mean ft_total_t" in bogus.stderr
+    assert "--format csv" in bogus.stderr and _widest(bogus.stderr) <= 100
+
+
+def test_robots_and_layers_take_comma_lists(run) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "3x3", "--robots", "1,3..4", "-p", "2,1", "--format", "csv", "--columns", "robots,p")
+    assert res.exit_code == 0, res.output
+    assert res.stdout.split() == ["robots,p", "1,1", "1,2", "3,1", "3,2", "4,1", "4,2"]
+    bad = run("--robots", "2,,8")
+    assert bad.exit_code == 2 and "--robots: expected N, A..B or a comma list of them" in bad.stderr
+
+
+@pytest.mark.parametrize(
+    "args", [("--qec-scheme", "floquet_code"), ("--qubit-model", "qubit_maj_ns_e6"), ("--error-budget", "0.01")]
+)
+def test_physical_options_without_physical_are_refused(run, args: tuple[str, ...]) -> None:  # type: ignore[no-untyped-def]
+    res = run("--grid", "3x3", *args)
+    assert res.exit_code == 2 and res.stdout == ""
+    assert res.stderr.strip() == f"error: {args[0]}: applies with --physical only (no --physical given)"

@@ -29,6 +29,15 @@ def test_parse_int_range() -> None:
             parse_int_range(bad, "robots", lo, hi)
 
 
+def test_parse_int_range_takes_comma_lists_of_counts_and_ranges() -> None:
+    assert parse_int_range("2,8", "--robots", 1) == [2, 8]
+    assert parse_int_range("8, 2..4,3", "--robots", 1) == [2, 3, 4, 8]
+    with pytest.raises(ValueError, match=r"^--robots: expected N, A\.\.B or a comma list of them, got '2,,8'$"):
+        parse_int_range("2,,8", "--robots", 1)
+    with pytest.raises(ValueError, match=r"^-p/--layers: must be at least 1, got 0$"):
+        parse_int_range("2,0", "-p/--layers", 1)
+
+
 def test_grid_points_skip_grids_too_small_for_the_robots() -> None:
     pts = grid_points([(2, 2), (2, 3)], [1, 5], [1, 2])
     assert [p.label for p in pts] == ["2x2 r1 p1", "2x2 r1 p2", "2x3 r1 p1", "2x3 r1 p2", "2x3 r5 p1", "2x3 r5 p2"]

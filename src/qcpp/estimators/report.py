@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import textwrap
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -27,7 +28,7 @@ from qcpp.estimators.estimate import DEFAULT_OPTIONS, Estimate, EstimateOptions,
 from qcpp.estimators.paper import Doubling
 from qcpp.estimators.plots import plot_rows
 from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
-from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, render_stream
+from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, render_stream, terminal_width
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_grid_size, check_layers
 from qcpp.problem.presets import grid_scenario, max_default_robots
@@ -66,8 +67,8 @@ def points_from_options(
     Args:
         grid: ``3x4``, ``AxB..CxD`` (every rows in A..C and cols in B..D) or a comma list; ``None`` means
             ``3x3``. Must be ``None`` with ``scenario``.
-        robots: ``N`` or ``A..B``; ``None`` means ``1``. Must be ``None`` with ``scenario``.
-        p: ``N`` or ``A..B`` layers.
+        robots: ``N``, ``A..B`` or a comma list of them; ``None`` means ``1``. Must be ``None`` with ``scenario``.
+        p: ``N``, ``A..B`` or a comma list of them: the layers.
         scenario: a scenario file to estimate instead of the default scenarios.
         obstacles: obstacles on every grid of the range (``--obstacle``): each point is then the scenario
             :func:`qcpp.problem.presets.grid_scenario` builds (``scenario: "custom"`` in its row, as a scenario
@@ -107,8 +108,8 @@ def points_from_options(
             most = max(max_default_robots(r, c) for r, c in grids)
             raise ScenarioError(
                 "--robots",
-                f"no grid of {grid or DEFAULT_GRID} can host {ks[0]} robots (the default placement fits "
-                f"at most {most} there: one per boundary node); use --robot or --scenario for other placements",
+                f"{grid or DEFAULT_GRID} hosts at most {most} (one per boundary node), got {min(ks)}; "
+                "use --robot or --scenario",
             )
     if obstacles or hard_obstacles or endpoints:  # every point's own scenario, built as qcpp.grid_scenario builds it
         points = [
@@ -213,7 +214,7 @@ def _row(
     return {**row, **extra}
 
 
-def formula_report(fmt: Format = "table") -> str:
+def formula_report(fmt: Format = "table", width: int | None = None) -> str:
     """The formulas of :mod:`qcpp.estimators.formulas` as text.
 
     ``table``: pretty-printed structured forms (data qubits with ``V``); ``md``: LaTeX in Markdown; ``csv``:
@@ -222,6 +223,8 @@ def formula_report(fmt: Format = "table") -> str:
 
     Args:
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
+        width: ``table`` only: the characters per line (default :func:`qcpp.estimators.tables.terminal_width`);
+            a longer formula continues on the next lines, as sympy's pretty printer breaks it.
 
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]
     'p*robots*(cols - 1)*(rows - 1)'
@@ -253,9 +256,11 @@ def formula_report(fmt: Format = "table") -> str:
         body = " \\\\\n".join(lines)
         return "\n".join([f"% Domain: {FORMULA_DOMAIN}.", r"\begin{align*}", body, r"\end{align*}"]) + "\n"
     if fmt == "table":
-        out = [f"Domain: {FORMULA_DOMAIN}.", f"where V = {abbrev['V']} (edges per robot)"]
+        limit = max(terminal_width() if width is None else width, 20)
+        out = textwrap.wrap(f"Domain: {FORMULA_DOMAIN}.", limit, break_long_words=False, break_on_hyphens=False)
+        out += textwrap.wrap(f"where V = {abbrev['V']} (edges per robot)", limit, break_on_hyphens=False)
         for k in QUANTITIES:
-            out += ["", f"{k} ="]
-            out += ["    " + line for line in sp.pretty(structured[k], use_unicode=True, wrap_line=False).splitlines()]
+            text = sp.pretty(structured[k], use_unicode=True, wrap_line=True, num_columns=limit - 4)
+            out += ["", f"{k} ="] + ["    " + line.rstrip() for line in text.splitlines()]
         return "\n".join(out) + "\n"
     raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")

@@ -10,7 +10,7 @@ caller can say so once.
 
 Range syntax (:func:`parse_grid_range`, :func:`parse_int_range`): ``3x4`` is one grid; ``AxB..CxD`` is every
 ``rows`` in ``A..C`` and every ``cols`` in ``B..D`` (rectangles included: ``2x2..4x4`` is 9 grids);
-``1..4`` is 1, 2, 3, 4.
+``1..4`` is 1, 2, 3, 4; either takes a comma list of items (``3x3,5x5``; ``1,4..6``).
 
 Example:
     >>> [e.cost.cx for e in sweep(grid_points([(2, 2)], [1, 5], [1]))]
@@ -87,7 +87,7 @@ def parse_grid_range(text: str, name: str = "grid") -> list[tuple[int, int]]:
 
 
 def parse_int_range(text: str, name: str = "value", low: int = 0, high: int | None = None) -> list[int]:
-    """Integers of ``N`` or ``A..B`` (inclusive).
+    """Integers of ``N``, ``A..B`` (inclusive) or a comma-separated list of either (``2,4..6,8``).
 
     Args:
         text: the range text.
@@ -96,25 +96,34 @@ def parse_int_range(text: str, name: str = "value", low: int = 0, high: int | No
         high: largest allowed value, if any.
 
     Returns:
-        The integers, ascending.
+        The integers, ascending, each once.
 
     Raises:
         qcpp.errors.OptionError: malformed text, out of bounds, or an empty range.
 
     >>> parse_int_range("1..3", "robots", 1, 4)
     [1, 2, 3]
+    >>> parse_int_range("8,2..3,2", "--robots", 1)
+    [2, 3, 8]
     >>> parse_int_range("0", "-p/--layers", 1)
     Traceback (most recent call last):
     ...
     qcpp.errors.OptionError: -p/--layers: must be at least 1, got 0
     """
-    m = re.match(r"^\s*(\d+)\s*(?:\.\.\s*(\d+)\s*)?$", text)
+    if "," in text:
+        return sorted({k for item in text.split(",") for k in _int_range(item, text, name, low, high)})
+    return _int_range(text, text, name, low, high)
+
+
+def _int_range(item: str, text: str, name: str, low: int, high: int | None) -> list[int]:
+    """The integers of one ``N`` or ``A..B`` item of ``text`` (:func:`parse_int_range`)."""
+    m = re.match(r"^\s*(\d+)\s*(?:\.\.\s*(\d+)\s*)?$", item)
     if not m:
-        raise OptionError(name, f"expected N or A..B, got {text.strip()!r}")
+        raise OptionError(name, f"expected N, A..B or a comma list of them, got {text.strip()!r}")
     a = int(m.group(1))
     b = int(m.group(2)) if m.group(2) is not None else a
     if b < a:
-        raise OptionError(name, f"the range is empty (its end is below its start), got {text.strip()!r}")
+        raise OptionError(name, f"the range is empty (its end is below its start), got {item.strip()!r}")
     check_count(a, name, low)
     if high is not None and b > high:
         raise OptionError(name, f"must be at most {high}, got {b}")

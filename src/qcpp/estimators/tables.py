@@ -12,7 +12,9 @@ A row is a plain dict (:func:`make_row`) with
   ``ft_rotations``, ``ft_t_per_rotation``, ``ft_epsilon``, ``ft_toffoli_t``, ``ft_t_logic``, ``ft_total_t``;
 * with ``--physical``, the QDK resource estimator's figures (:mod:`qcpp.estimators.physical`): ``physical_qubits,
   physical_runtime_s, physical_algorithm_qubits, physical_t_factory_qubits, physical_t_factories,
-  physical_t_states, physical_code_distance, physical_model`` (``qubit model / QEC scheme / error budget``);
+  physical_t_states, physical_code_distance, physical_model`` (``qubit model / QEC scheme / error budget``) and
+  ``physical_depth_kind``: the rotation depth they were computed from (``exact``; ``bound``: the upper bound of
+  ``rotation_depth``; ``rotation_count``: the rotation count, with no depth computed);
 * with ``compare_paper=True``, the paper's estimate (:mod:`qcpp.estimators.paper`): ``paper_qubits``,
   ``paper_data_qubits``, ``paper_cx``, ``paper_single_qubit`` and the ratios ``ratio_qubits``, ``ratio_cx``,
   ``ratio_single_qubit``;
@@ -24,8 +26,12 @@ for every format but ``table``.
 
 In the formats read by people (``table``, ``md``, ``latex``) a figure that is an upper bound is marked in its cell,
 ``<=9087`` (:data:`BOUND_MARK`): the depths when ``depth_kind`` is ``bound``, the routed depths and the duration when
-``routed_depth_kind`` is ``bound`` (:data:`BOUNDED_BY`), whether or not the kind column is shown. ``csv``, ``json``
-and ``jsonl`` keep the plain number and the kind field.
+``routed_depth_kind`` is ``bound`` (:data:`BOUNDED_BY`), whether or not the kind column is shown. A physical figure
+computed from a rotation depth that is not exact is neither exact nor a bound (a longer depth may lower it) and is
+marked approximate, ``~81922666`` (:data:`APPROX_MARK`, :data:`APPROXIMATE_BY`). ``csv``, ``json`` and ``jsonl`` keep
+the plain number and the kind field.
+
+The default columns depend on the target: ``ft`` adds the fault-tolerant figures (:data:`FT_COLUMNS`).
 
 Example:
     >>> from qcpp.estimators.estimate import Point, estimate_point
@@ -39,6 +45,7 @@ Example:
 from __future__ import annotations
 
 import csv
+import difflib
 import io
 import json
 import shutil
@@ -51,10 +58,14 @@ from qcpp.estimators.paper import Doubling, paper_estimate
 from qcpp.ir.cost import Cost
 
 __all__ = [
+    "APPROXIMATE_BY",
+    "APPROX_MARK",
     "BOUNDED_BY",
     "BOUND_MARK",
     "DROP_ORDER",
     "FORMATS",
+    "FT_COLUMNS",
+    "FT_DROP_ORDER",
     "MAIN_COLUMNS",
     "PAPER_COLUMNS",
     "PHYSICAL_COLUMNS",
@@ -87,7 +98,12 @@ MAIN_COLUMNS: tuple[str, ...] = (
     "two_qubit_depth",
     "depth_kind",
 )
-"""Columns of the ``table`` and ``md`` formats (plus :data:`PHYSICAL_COLUMNS` and :data:`PAPER_COLUMNS`)."""
+"""Columns of the ``table`` and ``md`` formats (plus :data:`FT_COLUMNS` with the ``ft`` target,
+:data:`PHYSICAL_COLUMNS` and :data:`PAPER_COLUMNS`)."""
+
+FT_COLUMNS: tuple[str, ...] = ("ft_total_t", "ft_rotations", "rotation_depth")
+"""Default columns added with the ``ft`` target: T count, rotations and rotation depth of the fault-tolerant model
+(``ft_total_t`` and ``ft_rotations`` after ``t``, ``rotation_depth`` after ``two_qubit_depth``)."""
 
 PAPER_COLUMNS: tuple[str, ...] = ("paper_qubits", "paper_cx", "paper_single_qubit", "ratio_cx")
 PHYSICAL_COLUMNS: tuple[str, ...] = ("ft_total_t", "physical_qubits", "physical_runtime_s", "physical_t_factories")
@@ -104,6 +120,16 @@ BOUNDED_BY: dict[str, str] = {
     "duration_s": "routed_depth_kind",
 }
 """Columns whose figure may be an upper bound, each with the row field saying which (``exact`` or ``bound``)."""
+
+APPROX_MARK = "~"
+"""Prefix of a cell (``table``, ``md``, ``latex``) whose figure is approximate: computed from a depth bound."""
+
+APPROXIMATE_BY: dict[str, str] = {
+    f"physical_{k}": "physical_depth_kind"
+    for k in ("qubits", "runtime_s", "algorithm_qubits", "t_factory_qubits", "t_factories", "t_states",
+              "code_distance")
+}  # fmt: skip
+"""Columns whose figure is approximate unless the row field named here is ``exact``."""
 
 _SECTION_NAMES = ("initial_state", "phase", "mixer")
 _SECTION_FIELDS = ("gates", "cx", "single_qubit", "t", "rotations")
@@ -152,6 +178,7 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         for k in ("runtime_s", "algorithm_qubits", "t_factory_qubits", "t_factories", "t_states", "code_distance"):
             row[f"physical_{k}"] = getattr(ph, k)
         row["physical_model"] = f"{ph.qubit_model} / {ph.qec_scheme} / budget {ph.error_budget:g}"
+        row["physical_depth_kind"] = d.kind if d else "rotation_count"  # Estimate.logical_counts's rotation depth
     if compare_paper:
         paper = paper_estimate(pt.rows, pt.cols, pt.robots, pt.p, doubling)
         row.update({f"paper_{k}": getattr(paper, k) for k in ("qubits", "data_qubits", "cx", "single_qubit")})
@@ -169,6 +196,9 @@ def make_rows(
 
 def _columns(row: dict[str, Any] | None) -> list[str]:
     cols = list(MAIN_COLUMNS)
+    if row and row.get("target") == "ft":
+        cols[cols.index("t") + 1 : cols.index("t") + 1] = list(FT_COLUMNS[:2])
+        cols.insert(cols.index("two_qubit_depth") + 1, FT_COLUMNS[2])
     if row and "physical_qubits" in row:
         cols += list(PHYSICAL_COLUMNS)
     if row and "paper_cx" in row:
@@ -177,7 +207,7 @@ def _columns(row: dict[str, Any] | None) -> list[str]:
         from qcpp.estimators.routed import ROUTED_COLUMNS
 
         cols += list(ROUTED_COLUMNS)
-    return cols
+    return list(dict.fromkeys(cols))
 
 
 def _cell(v: Any) -> str:
@@ -194,21 +224,53 @@ def _is_bound(row: dict[str, Any], col: str) -> bool:
     return kind is not None and row.get(col) is not None and row.get(kind) == "bound"
 
 
+def _is_approximate(row: dict[str, Any], col: str) -> bool:
+    """Whether ``row``'s ``col`` is approximate: computed from a depth that is not exact (:data:`APPROXIMATE_BY`)."""
+    kind = APPROXIMATE_BY.get(col)
+    return kind is not None and row.get(col) is not None and row.get(kind) != "exact"
+
+
+def _mark(row: dict[str, Any], col: str, bound: str = BOUND_MARK) -> str:
+    """The prefix of ``row``'s ``col`` cell: ``bound`` for an upper bound, :data:`APPROX_MARK` for an approximation."""
+    return bound if _is_bound(row, col) else APPROX_MARK if _is_approximate(row, col) else ""
+
+
 def _shown(row: dict[str, Any], col: str) -> str:
-    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell`, a bound marked :data:`BOUND_MARK`."""
-    return (BOUND_MARK if _is_bound(row, col) else "") + _cell(row.get(col))
+    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell`, marked by :func:`_mark`."""
+    return _mark(row, col) + _cell(row.get(col))
 
 
 def _any_bound(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
     return any(_is_bound(r, c) for r in rows for c in cols)
 
 
-def _title(paper: bool, bound: bool) -> str:
-    """The title of the ``table`` format: every count exact, and the mark of a bound when a cell has one."""
+def _any_approximate(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
+    return any(_is_approximate(r, c) for r in rows for c in cols)
+
+
+APPROX_NOTE = "~N: from a depth bound, not exact (--depth exact gives the exact figure)"
+"""What :data:`APPROX_MARK` means, in the titles and the ``md`` footnote."""
+
+
+FT_NOTE = "ft_*: fault-tolerant model estimates"
+"""Said in the title when a shown column (``ft_...``) is an estimate of the fault-tolerant model, not a count."""
+
+
+def _title(paper: bool, bound: bool, approximate: bool = False, ft: bool = False) -> str:
+    """The title of the ``table`` format: every count exact, and the meaning of each mark a cell has (and of the
+    ``ft_`` columns when ``ft``)."""
     vs = " vs the paper" if paper else ""
-    if bound:
-        return f"Resource counts (lowered circuit){vs}: exact; {BOUND_MARK}N is an upper bound"
+    notes = ([f"{BOUND_MARK}N is an upper bound"] if bound else []) + ([APPROX_NOTE] if approximate else [])
+    notes += [FT_NOTE] if ft else []
+    if notes:
+        return f"Resource counts (lowered circuit){vs}: exact; " + "; ".join(notes)
     return f"Exact resource counts (lowered circuit){vs}"
+
+
+def _marks_title(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> str:
+    """:func:`_title` of ``rows`` shown in ``cols``."""
+    ft = any(c.startswith("ft_") for c in cols)
+    return _title(paper, _any_bound(rows, cols), _any_approximate(rows, cols), ft)
 
 
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
@@ -223,13 +285,15 @@ def _chosen(columns: Sequence[str], known: Sequence[str]) -> list[str]:
     """``columns`` (each once, in order), checked against the ``known`` fields.
 
     Raises:
-        ValueError: none, or an unknown name (listing the known ones).
+        ValueError: none, or an unknown name (with the closest known name, and where every name is listed).
     """
     if not columns:
         raise ValueError("--columns: name at least one column")
     for c in columns:
         if c not in known:
-            raise ValueError(f"--columns: unknown column {c!r} (choose from {', '.join(known)})")
+            close = difflib.get_close_matches(c, known, n=1)
+            hint = f" (did you mean {close[0]}?)" if close else ""
+            raise ValueError(f"--columns: no column {c!r}{hint}; --format csv's header lists them")
     return list(dict.fromkeys(columns))
 
 
@@ -271,6 +335,7 @@ def render_stream(
         raise ValueError(f"--columns: {fmt} rows keep every field (as Estimate.to_dict()); choose the columns with "
                          "--format table, md, csv or latex")  # fmt: skip
     first = True
+    approximate = False  # an md cell marked APPROX_MARK: the table ends with a footnote saying what it means
     fields: list[str] = []
     cols: list[str] = []
     for row in rows:
@@ -290,12 +355,15 @@ def render_stream(
                 cols = _columns(row) if columns is None else table_columns([row], columns=columns)[0]
                 yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
             yield "| " + " | ".join(_shown(row, c) for c in cols) + " |\n"
+            approximate = approximate or _any_approximate([row], cols)
         first = False
     if fmt == "json":
         yield "[]\n" if first else "\n]\n"
     elif fmt == "md" and first:
         cols = _columns(None) if columns is None else table_columns([], columns=columns)[0]
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
+    elif fmt == "md" and approximate:
+        yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
 
 
 _LATEX_SPECIAL = {
@@ -345,15 +413,18 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     """
     cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
+    approx = "; " + latex_escape(APPROX_NOTE[1:]).join(["$\\sim$", ""]) if _any_approximate(rows, cols) else ""
     out = [
-        r"% qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound); needs \usepackage{booktabs}",
+        r"% qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound"
+        + approx
+        + r"); needs \usepackage{booktabs}",
         r"\begin{tabular}{" + align + "}",
         r"\toprule",
         " & ".join(latex_escape(c) for c in cols) + r" \\",
         r"\midrule",
     ]
-    out += [" & ".join((r"$\leq$" if _is_bound(r, c) else "") + latex_escape(_cell(r.get(c))) for c in cols) + r" \\"
-            for r in rows]  # fmt: skip
+    out += [" & ".join(_mark(r, c, r"$\leq$").replace(APPROX_MARK, r"$\sim$") + latex_escape(_cell(r.get(c)))
+                       for c in cols) + r" \\" for r in rows]  # fmt: skip
     out += [r"\bottomrule", r"\end{tabular}"]
     return "\n".join(out) + "\n"
 
@@ -374,6 +445,24 @@ DROP_ORDER: tuple[str, ...] = (
 )
 """Columns the ``table`` format hides first, in order, when the terminal is too narrow for all of them."""
 
+FT_DROP_ORDER: tuple[str, ...] = (
+    "physical_t_factories",
+    "two_qubit_depth",
+    "data_qubits",
+    "ancillas",
+    "paper_single_qubit",
+    "paper_qubits",
+    "depth_kind",
+    "depth",
+    "single_qubit",
+    "t",
+    "cx",
+    "ft_rotations",
+    "ratio_cx",
+)
+""":data:`DROP_ORDER` of the ``ft`` target: the fault-tolerant figures are hidden last (at 80 columns
+``ft_total_t`` and ``rotation_depth`` stay, ``ft_rotations`` needs 82)."""
+
 
 def terminal_width() -> int:
     """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
@@ -383,7 +472,7 @@ def terminal_width() -> int:
 def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:
     from rich.table import Table
 
-    table = Table(title=_title(paper, _any_bound(rows, cols)))
+    table = Table(title=_marks_title(rows, cols, paper))
     for c in cols:
         table.add_column(c, justify="right")
     for r in rows:
@@ -420,8 +509,9 @@ def table_columns(
         wide: every default column, however wide the table gets.
 
     Returns:
-        ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`PAPER_COLUMNS` when
-        comparing) minus those of :data:`DROP_ORDER` that do not fit, and the hidden ones.
+        ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`FT_COLUMNS` with the ``ft``
+        target, :data:`PHYSICAL_COLUMNS` with physical figures and :data:`PAPER_COLUMNS` when comparing) minus
+        those of :data:`DROP_ORDER` (``ft``: :data:`FT_DROP_ORDER`) that do not fit, and the hidden ones.
 
     Raises:
         ValueError: an unknown column name.
@@ -434,7 +524,7 @@ def table_columns(
     limit = terminal_width() if width is None else width
     paper = "paper_cx" in defaults
     shown = list(defaults)
-    for c in DROP_ORDER:
+    for c in FT_DROP_ORDER if rows and rows[0].get("target") == "ft" else DROP_ORDER:
         if _natural_width(rows, shown, paper) <= limit:
             break
         if c in shown:
@@ -486,7 +576,7 @@ def render_records(rows: Sequence[dict[str, Any]], cols: Sequence[str], width: i
           2332
     """
     cells = [[_shown(r, c) for c in cols] for r in rows]
-    title = _title(paper, _any_bound(rows, cols))
+    title = _marks_title(rows, cols, paper)
     value_w = max((len(v) for row in cells for v in row), default=0)
     need = max(0, *map(len, cols), value_w + 2, len(f"row {len(cells)} of {len(cells)}"), *map(len, title.split()))
     if need > width:

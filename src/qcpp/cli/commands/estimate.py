@@ -10,8 +10,10 @@ Examples: see :data:`HELP` (``qcpp estimate --help``; ``tests/cli/help_and_noise
 
 from __future__ import annotations
 
+import shutil
 import signal
 import sys
+import textwrap
 import threading
 from collections.abc import Sequence
 from pathlib import Path
@@ -58,10 +60,10 @@ def estimate(
         str | None,
         typer.Option(
             "--robots",
-            help="N or A..B robots in the default placement (default 1).",
+            help="N, A..B or a comma list of them: robots in the default placement (default 1).",
         ),
     ] = None,
-    p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N or A..B.")] = "1",
+    p: Annotated[str, typer.Option("-p", "--layers", help="QAOA layers: N, A..B or a comma list of them.")] = "1",
     scenario: Annotated[
         Path | None, typer.Option("--scenario", help="A scenario file instead of --grid/--robots.")
     ] = None,
@@ -120,18 +122,27 @@ def estimate(
         bool, typer.Option("--physical", help="Add physical estimates (QDK resource estimator).")
     ] = False,
     qubit_model: Annotated[
-        str,
+        str | None,
         typer.Option(
             "--qubit-model",
-            help="QDK qubit preset.",
+            help="With --physical: QDK qubit preset (default qubit_gate_ns_e3).",
+            show_default=False,
         ),
-    ] = "qubit_gate_ns_e3",
+    ] = None,
     qec_scheme: Annotated[
-        str, typer.Option("--qec-scheme", help="QDK QEC scheme: surface_code or floquet_code (Majorana).")
-    ] = "surface_code",
+        str | None,
+        typer.Option(
+            "--qec-scheme",
+            help="With --physical: QDK QEC scheme, surface_code (default) or floquet_code (Majorana).",
+            show_default=False,
+        ),
+    ] = None,
     error_budget: Annotated[
-        float, typer.Option("--error-budget", help="Error budget of the physical estimate.")
-    ] = 1e-3,
+        float | None,
+        typer.Option(
+            "--error-budget", help="With --physical: error budget of the estimate (default 0.001).", show_default=False
+        ),
+    ] = None,
     paper_doubling: Annotated[
         str,
         typer.Option(
@@ -154,12 +165,20 @@ def estimate(
     """Resource estimates (see ``qcpp estimate --help``)."""
     # imported here: qcpp.estimators.report pulls in sympy, which would slow every other command's start-up
     from qcpp.estimators.estimate import checked_estimate_options
+    from qcpp.estimators.physical import DEFAULT_ERROR_BUDGET, DEFAULT_QEC_SCHEME, DEFAULT_QUBIT_MODEL
     from qcpp.estimators.report import estimate_report, formula_report, points_from_options
 
     if as_json:
         fmt = "json"
+    physical_only = {"--qubit-model": qubit_model, "--qec-scheme": qec_scheme, "--error-budget": error_budget}
+    for name, value in physical_only.items():
+        if value is not None and not physical:
+            raise OptionError(name, "applies with --physical only (no --physical given)")
+    qubit_model = qubit_model if qubit_model is not None else DEFAULT_QUBIT_MODEL
+    qec_scheme = qec_scheme if qec_scheme is not None else DEFAULT_QEC_SCHEME
+    error_budget = error_budget if error_budget is not None else DEFAULT_ERROR_BUDGET
     if formula:
-        typer.echo(formula_report(fmt), nl=False)  # type: ignore[arg-type]
+        typer.echo(formula_report(fmt, width=_terminal_width()), nl=False)  # type: ignore[arg-type]
         return
     settings = checked_estimate_options(
         options, epsilon=epsilon, toffoli_t=toffoli_t, depth=depth, depth_budget=depth_budget, physical=physical,
@@ -173,10 +192,9 @@ def estimate(
     endpoints = [parse_robot(t) for t in robot or ()]
     points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles, endpoints)
     if points.skipped:
-        typer.echo(
+        _note(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "
-            "the robot count (the default placement hosts 2(rows+cols)-4 robots)",
-            err=True,
+            "the robot count (the default placement hosts 2(rows+cols)-4 robots)"
         )
     # progress unless the rows themselves stream to a terminal (a table waits for every row; a pipe shows nothing)
     show = fmt == "table" or plot is not None or not _is_terminal(sys.stdout)
@@ -206,15 +224,25 @@ def estimate(
     for piece in held:
         _write_whole(piece)
     if physical:
-        typer.echo(
+        _note(
             f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
-            f"{error_budget:g}), from the logical counts",
-            err=True,
+            f"{error_budget:g}), from the logical counts"
         )
     if plot is not None:
         typer.echo(f"wrote {plot}", err=True)
     if explain:
         _explain(points.points, options)
+
+
+def _terminal_width() -> int:
+    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
+    return shutil.get_terminal_size((80, 24)).columns
+
+
+def _note(text: str) -> None:
+    """``text`` on standard error, wrapped at spaces to the terminal's width."""
+    lines = textwrap.wrap(text, _terminal_width(), break_long_words=False, break_on_hyphens=False)
+    typer.echo("\n".join(lines), err=True)
 
 
 def _after_rows(fmt: str, plot: str | None) -> str | None:
