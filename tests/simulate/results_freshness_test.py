@@ -57,17 +57,19 @@ CALIBRATED_DEVICES = ("ibm_fez", "ibm_torino")
 abstract lattices (tens of CPU-seconds per row): the heavy step recompiles each instance on one of them."""
 
 
-def checked_devices(devices: Sequence[str], index: int) -> tuple[str, ...]:
-    """The devices (of ``devices``) whose rows the heavy step recomputes for the ``index``-th instance of a study:
-    every device but the :data:`CALIBRATED_DEVICES` entry ``index`` does not pick (``index`` even: ``ibm_fez``,
-    odd: ``ibm_torino``), so consecutive instances check both calibrated devices and each instance costs one
-    calibrated compile per depth.
+def checked_devices(devices: Sequence[str], index: int, calibrated: bool = True) -> tuple[str, ...]:
+    """The devices (of ``devices``) whose rows the heavy step recomputes for an instance: the uncalibrated ones, and
+    with ``calibrated`` the :data:`CALIBRATED_DEVICES` entry ``index`` picks (``index`` even: ``ibm_fez``, odd:
+    ``ibm_torino``), so that instances taken in turn check both calibrated devices at one calibrated compile per
+    depth each.
 
     >>> checked_devices(["ibm_fez", "ibm_torino", "google_willow"], 1)
     ('ibm_torino', 'google_willow')
+    >>> checked_devices(["ibm_fez", "ibm_torino", "google_willow"], 1, calibrated=False)
+    ('google_willow',)
     """
-    skipped = CALIBRATED_DEVICES[(index + 1) % len(CALIBRATED_DEVICES)]
-    return tuple(d for d in devices if d != skipped)
+    chosen = CALIBRATED_DEVICES[index % len(CALIBRATED_DEVICES)] if calibrated else None
+    return tuple(d for d in devices if d not in CALIBRATED_DEVICES or d == chosen)
 
 
 def _load(name: str) -> dict[str, Any]:
@@ -182,15 +184,25 @@ CHEAP_OR_EVERY_ROW = (pytest.param(False, id="cheap"), pytest.param(True, id="ev
 
 def _device_instances() -> list[Any]:
     """One parameter per time-to-solution instance with device rows, with the devices to recompute: the cheap ones
-    in the default run on every device, every other one in the heavy step on :func:`checked_devices` (by the
-    instance's place in the file). One test per instance, so that the heavy step's two workers share the
-    recompilations (the largest instances take minutes each)."""
+    in the default run on every device; every other one in the heavy step on the uncalibrated devices, and on a
+    calibrated one for one instance of each size (with or without the obstacle, in turn along the sizes, on
+    :func:`checked_devices`' device of that turn). One test per instance, so that the heavy step's two workers share
+    the recompilations (the largest instances take minutes each)."""
     rows = [r for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device"]
     devices = tuple(dict.fromkeys(r["device"] for r in rows))
-    names = dict.fromkeys(r["instance"] for r in rows)
-    return [pytest.param(n, devices, id=n) if n in CHEAP_DEVICE_INSTANCES else
-            pytest.param(n, checked_devices(devices, i), id=n, marks=pytest.mark.heavy)
-            for i, n in enumerate(names)]  # fmt: skip
+    names = list(dict.fromkeys(r["instance"] for r in rows))
+    sizes = list(dict.fromkeys(n.removesuffix(OBSTACLE_SUFFIX) for n in names))
+    params = []
+    for n in names:
+        k = sizes.index(n.removesuffix(OBSTACLE_SUFFIX))
+        calibrated = n.endswith(OBSTACLE_SUFFIX) == (k % 2 == 1)
+        params.append(pytest.param(n, devices, id=n) if n in CHEAP_DEVICE_INSTANCES else
+                      pytest.param(n, checked_devices(devices, k, calibrated), id=n, marks=pytest.mark.heavy))
+    return params
+
+
+OBSTACLE_SUFFIX = " +obst"
+"""How the time-to-solution study names the instance of a size with an obstacle."""
 
 
 @pytest.mark.parametrize(("instance", "devices"), _device_instances())
@@ -481,6 +493,14 @@ def _ensemble_device_instances() -> list[Any]:
             for c in cells for i in range(HEAVY_ENSEMBLE_DEVICE_INSTANCES)]  # fmt: skip
 
 
+def _ensemble_checked_devices(cells: Sequence[str], cell: str, index: int, devices: Sequence[str]) -> tuple[str, ...]:
+    """The devices whose rows the heavy step recomputes for instance ``index`` of ``cell``: the uncalibrated ones,
+    and for one instance per cell (``index`` = the cell's place, modulo :data:`HEAVY_ENSEMBLE_DEVICE_INSTANCES`) the
+    calibrated device of :func:`checked_devices` for the cell's place, so the cells in turn check both."""
+    place = list(cells).index(cell)
+    return checked_devices(devices, place, calibrated=index == place % HEAVY_ENSEMBLE_DEVICE_INSTANCES)
+
+
 def _check_ensemble_device_row(r: dict[str, Any], context: RoutingContext) -> None:
     """``r``'s routed figures, ESP and shot time are what the router gives its scenario, depth and device now
     (routed with ``context``, shared by the rows of ``r``'s instance as the experiment shares it)."""
@@ -512,19 +532,20 @@ def test_ensemble_device_rows_of_the_first_instance_match_the_router() -> None:
 
 
 HEAVY_ENSEMBLE_DEVICE_INSTANCES = 2
-"""Instances per cell whose device rows (every depth, on :func:`checked_devices`) the heavy step recompiles: a change
-of the router or the device data changes some of them; all of them would take most of CI's time budget."""
+"""Instances per cell whose device rows (every depth; on the uncalibrated devices, and one instance per cell on a
+calibrated one: :func:`_ensemble_checked_devices`) the heavy step recompiles: a change of the router or the device
+data changes some of them; all of them would take most of CI's time budget."""
 
 
 @pytest.mark.parametrize(("cell", "index"), _ensemble_device_instances())
 def test_ensemble_device_rows_match_the_router(cell: str, index: int) -> None:
-    """Every row of the instance (every depth and device) is recorded; those on :func:`checked_devices` are routed
-    again, with one context as the experiment routes them."""
+    """Every row of the instance (every depth and device) is recorded; those on :func:`_ensemble_checked_devices` are
+    routed again, with one context as the experiment routes them."""
     data = _load("ensemble_devices")
     rows = [r for r in data["rows"] if r["cell"] == cell and r["index"] == index]
     assert sorted((r["p"], r["device"]) for r in rows) == sorted(
         (p, d) for p in data["config"]["depths"] for d in data["config"]["devices"])
-    devices = checked_devices(data["config"]["devices"], index)
+    devices = _ensemble_checked_devices(data["config"]["cells"], cell, index, data["config"]["devices"])
     context = RoutingContext()
     for r in rows:
         if r["device"] in devices:
