@@ -32,7 +32,7 @@ from qcpp.hardware.device import device_names
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
-from qcpp.routing.native import esp, esp_idle
+from qcpp.routing.native import RUNNABLE_ESP, esp, esp_idle
 from qcpp.simulate.noisy import active_qubits, simulate_noisy
 from qcpp.training.evaluate import feasible_assignments
 from qcpp.training.qaoa_solver import SINGLE_START
@@ -40,7 +40,7 @@ from qcpp.training.qaoa_solver import SINGLE_START
 SMALL = ((2, 2, 1), (2, 3, 1), (3, 3, 1), (3, 4, 1), (4, 4, 1), (3, 3, 2), (4, 4, 2))
 """The verdict's small default scenarios (``benchmarks/routing_verdict.py``)."""
 
-FEASIBLE_ESP = 0.1
+FEASIBLE_ESP = RUNNABLE_ESP
 
 
 def main() -> None:

@@ -41,7 +41,7 @@ from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario, max_default_robots
 from qcpp.problem.scenario import Scenario, scenario_from_dict
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.native import duration_s, esp, esp_idle
+from qcpp.routing.native import RUNNABLE_ESP, duration_s, esp, esp_idle
 from qcpp.routing.qiskit_o3 import qiskit_o3
 
 BUDGETS = (None, 64, 48, 32, 16, 0)
@@ -189,7 +189,8 @@ def main() -> None:
                 flush=True,
             )
     print()
-    print("| device | p | scenarios with ESP >= 0.1 (routed 2q, ESP gates, ESP idle) | best ESP of the rest |")
+    print(f"| device | p | scenarios with ESP >= {RUNNABLE_ESP:g} (routed 2q, ESP gates, ESP idle) "
+          "| best ESP of the rest |")
     print("|---|---:|---|---|")
     for name in device_names():
         for p in layers:
@@ -197,7 +198,7 @@ def main() -> None:
             for rows, cols, robots in SMALL:
                 c = Candidate(rows, cols, robots, None, 0, 0, 0)
                 twoq, _, e, ei, _ = routed(c, p, name)
-                (good if e >= 0.1 else rest).append((e, f"{c.label} ({twoq:,}, {e:.2f}, {_fmt_esp(ei)})"))
+                (good if e >= RUNNABLE_ESP else rest).append((e, f"{c.label} ({twoq:,}, {e:.2f}, {_fmt_esp(ei)})"))
             best_rest = max(rest)[1] if rest else "-"
             print(f"| {name} | {p} | {', '.join(t for _, t in good) or 'none'} | {best_rest} |", flush=True)
 

@@ -446,16 +446,7 @@ DROP_ORDER: tuple[str, ...] = (
 """Columns the ``table`` format hides first, in order, when the terminal is too narrow for all of them."""
 
 FT_DROP_ORDER: tuple[str, ...] = (
-    "physical_t_factories",
-    "two_qubit_depth",
-    "data_qubits",
-    "ancillas",
-    "paper_single_qubit",
-    "paper_qubits",
-    "depth_kind",
-    "depth",
-    "single_qubit",
-    "t",
+    *(c for c in DROP_ORDER if c not in ("ft_total_t", "ratio_cx")),
     "cx",
     "ft_rotations",
     "ratio_cx",

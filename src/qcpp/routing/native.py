@@ -46,8 +46,8 @@ from qcpp.ir.gates import Gate, cz, rx, rz, rzz
 from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = [
-    "IDLE_MODEL", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "native_gates", "one_qubit_name",
-    "to_native",
+    "IDLE_MODEL", "RUNNABLE_ESP", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "native_gates",
+    "one_qubit_name", "to_native",
 ]
 
 IDLE_MODEL = (
@@ -56,6 +56,10 @@ IDLE_MODEL = (
     "first to its last timed gate (measured qubits: to the readout at the end)"
 )
 """The idle-decoherence model of :func:`esp_idle` (module docs)."""
+
+RUNNABLE_ESP = 0.1
+"""The verdict's bar (docs/guide/hardware.md): a routed circuit whose ESP is at least this (one shot in ten without
+an error) is worth running; below it, noise dominates the samples."""
 
 # --- native gates ------------------------------------------------------------------------------------------
 _HALF_PI = math.pi / 2

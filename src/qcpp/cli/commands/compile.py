@@ -64,12 +64,9 @@ from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.scenario import Scenario
+from qcpp.routing.native import RUNNABLE_ESP
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
-
-RUNNABLE_ESP = 0.1
-"""The verdict's bar (docs/guide/hardware.md): a routed circuit whose ESP is at least this (one shot in ten without
-an error) is worth running; below it, noise dominates the samples."""
 
 LAYOUT_SHOWN = 32
 """Layouts of at most this many logical qubits are printed in the text output (all of them are in ``--json``)."""
@@ -275,7 +272,7 @@ def _layouts_line(initial: list[int], final: list[int]) -> str:
 
 def esp_verdict(esp: float, *, idle: bool) -> str:
     """What an ESP means for running the circuit: the share of shots without an error, against the verdict's bar
-    :data:`RUNNABLE_ESP` (docs/guide/hardware.md).
+    :data:`qcpp.routing.native.RUNNABLE_ESP` (docs/guide/hardware.md).
 
     Args:
         esp: The routed circuit's ESP (with idle decoherence where ``idle``).
