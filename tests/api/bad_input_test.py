@@ -104,7 +104,7 @@ def test_a_robot_off_the_grid_names_the_robot_and_the_grid(tmp_path: Path) -> No
 
 def test_an_obstacle_off_the_grid_or_on_a_robot_is_named() -> None:
     message = error_of(lambda: qcpp.grid_scenario(3, 3, robots=1, obstacles=[(5, 5)]), qcpp.ScenarioError)
-    assert message == "grid.obstacles[0]: (5, 5) is outside the 3x3 grid"
+    assert message == "obstacles[0]: (5, 5) is outside the 3x3 grid"
     message = error_of(lambda: qcpp.grid_scenario(3, 3, robots=1, obstacles=[(0, 0)]), qcpp.ScenarioError)
     assert message == "robots[0].start: (0, 0) is an obstacle"
     message = error_of(lambda: qcpp.grid_scenario(2, 2, robots=5), qcpp.ScenarioError)
@@ -152,7 +152,9 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
         (lambda: qcpp.verify(S, rule="fast"), "rule: expected exact or paper, got 'fast'"),
         (lambda: qcpp.verify(S, 1001),
          "p: 1,001 layers is over the limit of 1,000; call it in a qcpp.allow_large() block to run it anyway"),
-        (lambda: qcpp.grid_scenario("3", 3), "grid.rows: expected an integer, got '3'"),
+        (lambda: qcpp.grid_scenario("3", 3), "rows: expected an integer, got '3'"),
+        (lambda: qcpp.grid_scenario(3, 3, obstacles=[(1, 1), (1, 1)]), "obstacles[1]: (1, 1) is listed twice"),
+        (lambda: qcpp.grid_scenario(3, 3, obstacles=5), "obstacles: expected (row, col) nodes, got 5"),
         (lambda: qcpp.verify("examples/paper_3x3.toml"), "scenario: expected a Scenario"),
         (lambda: qcpp.verify(S, options={"rule": "paper"}), "options: expected a PlanOptions, got dict"),
         (lambda: qcpp.verify(S, colour="red"), "colour: unknown plan option"),

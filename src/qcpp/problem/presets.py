@@ -149,8 +149,9 @@ def grid_scenario(
         The scenario (validated).
 
     Raises:
-        ScenarioError: naming the field: a robot or obstacle off the grid (``robots[1].goal: (5, 0) is outside
-            the 3x3 grid``), an obstacle on a robot's endpoint, more robots than the default placement holds, ...
+        ScenarioError: naming the argument: a robot or obstacle off the grid (``robots[1].goal: (5, 0) is outside
+            the 3x3 grid``, ``obstacles[0]: (3, 3) is outside the 3x3 grid``), an obstacle on a robot's endpoint,
+            more robots than the default placement holds, ...
 
     Example:
         >>> import qcpp
@@ -164,6 +165,25 @@ def grid_scenario(
         ...
         qcpp.problem.errors.ScenarioError: robots[0].goal: (3, 0) is outside the 3x3 grid
     """
+    try:
+        return _grid_scenario(rows, cols, robots, obstacles, hard_obstacles)
+    except ScenarioError as exc:
+        field = _ARGUMENT_OF_FIELD.get(exc.field, exc.field)
+        if field.startswith("grid.obstacles["):
+            field = field.removeprefix("grid.")
+        if field == exc.field:
+            raise
+        raise type(exc)(field, exc.reason) from None
+
+
+_ARGUMENT_OF_FIELD = {"grid.rows": "rows", "grid.cols": "cols", "grid.obstacles": "obstacles"}
+"""Scenario fields :func:`grid_scenario` takes as its own arguments: its errors name the argument."""
+
+
+def _grid_scenario(
+    rows: int, cols: int, robots: int | Sequence[tuple[Node, Node]] | None, obstacles: Iterable[Node],
+    hard_obstacles: bool,
+) -> Scenario:  # fmt: skip
     count = 1 if robots is None else robots
     blocked = _nodes(obstacles, "grid.obstacles")
     if isinstance(count, int) and not isinstance(count, bool):

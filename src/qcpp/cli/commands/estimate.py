@@ -21,13 +21,21 @@ from typing import Annotated, Any
 
 import typer
 
-from qcpp.cli.commands.inline_scenario import HardObstaclesFlag, ObstacleFlag, RobotFlag, parse_obstacles, parse_robot
+from qcpp.cli.commands.inline_scenario import (
+    HardObstaclesFlag,
+    ObstacleFlag,
+    RobotFlag,
+    flag_error,
+    parse_obstacles,
+    parse_robot,
+)
 from qcpp.cli.commands.plan_flags import with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import print_table
 from qcpp.errors import OptionError
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import PlanOptions
+from qcpp.problem.errors import ScenarioError
 
 __all__ = ["LONG_SWEEP_ROWS", "estimate", "register"]
 
@@ -190,7 +198,10 @@ def estimate(
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
     endpoints = [parse_robot(t) for t in robot or ()]
-    points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles, endpoints)
+    try:
+        points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles, endpoints)
+    except ScenarioError as exc:
+        raise flag_error(exc, robots, obstacle, robot) from None
     if points.skipped:
         _note(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "

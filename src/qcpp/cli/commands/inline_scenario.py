@@ -46,6 +46,7 @@ __all__ = [
     "RobotFlag",
     "ScenarioFileArg",
     "check_inline_only",
+    "flag_error",
     "given_scenario",
     "inline_scenario",
     "parse_grid",
@@ -100,7 +101,7 @@ HardObstaclesFlag = Annotated[
     ),
 ]
 
-_FLAG_OF_FIELD = {"grid": "--grid", "grid.rows": "--grid", "grid.cols": "--grid", "robots": "--robots"}
+_FLAG_OF_FIELD = {"grid": "--grid", "rows": "--grid", "cols": "--grid", "robots": "--robots"}
 """Scenario fields an inline scenario's flags give whole: their errors name the flag."""
 
 _GRID = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
@@ -174,12 +175,60 @@ def inline_scenario(
         raise OptionError("--robot", "gives the robots one by one: do not give --robots too")
     placed = [parse_robot(t) for t in endpoints] if endpoints else (1 if robots is None else robots)
     try:
-        return grid_scenario(rows, cols, robots=placed, obstacles=parse_obstacles(obstacles), hard_obstacles=hard)
+        return grid_scenario(
+            rows, cols, robots=placed, obstacles=parse_obstacles(obstacles), hard_obstacles=hard
+        )
     except ScenarioError as exc:
-        flag = _FLAG_OF_FIELD.get(exc.field)
-        if flag is None:
-            raise
-        raise type(exc)(flag, exc.reason) from None
+        raise flag_error(exc, placed, obstacles, endpoints) from None
+
+
+_ROBOT_FIELD = re.compile(r"^robots\[(\d+)\]\.(start|goal)$")
+_OBSTACLE_FIELD = re.compile(r"^obstacles\[(\d+)\]$")
+
+
+def flag_error(
+    exc: ScenarioError, robots: object, obstacles: Sequence[str] | None, endpoints: Sequence[str] | None
+) -> ScenarioError:
+    """``exc``, a refusal of an inline scenario's :func:`~qcpp.problem.presets.grid_scenario`, worded by the
+    flags the user typed.
+
+    A field a flag gives names the flag, with its value where the flag repeats (``--obstacle 7,1: (7, 1) is
+    outside the 3x3 grid``, ``--robot 0,0:5,5: goal (5, 5) is outside the 3x3 grid``); an obstacle on a
+    robot's endpoint in the default placement names the obstacle and the way out. Any other field: ``exc``.
+
+    Args:
+        exc: The builder's error.
+        robots: ``--robots`` as given (a count, a range text, or ``None``), for the message.
+        obstacles: ``--obstacle`` values as typed, in order.
+        endpoints: ``--robot`` values as typed, in order (empty: the default placement).
+
+    Returns:
+        The error to raise (same type as ``exc``).
+
+    Example:
+        >>> err = ScenarioError("obstacles[0]", "(7, 1) is outside the 3x3 grid")
+        >>> str(flag_error(err, 1, ["7,1"], None))
+        '--obstacle 7,1: (7, 1) is outside the 3x3 grid'
+    """
+    field, reason = exc.field, exc.reason
+    if field in _FLAG_OF_FIELD:
+        return type(exc)(_FLAG_OF_FIELD[field], reason)
+    if (m := _OBSTACLE_FIELD.match(field)) and obstacles:
+        return type(exc)(f"--obstacle {obstacles[int(m[1])].strip()}", reason)
+    if not (m := _ROBOT_FIELD.match(field)):
+        return exc
+    robot, end = int(m[1]), m[2]
+    if endpoints:
+        return type(exc)(f"--robot {endpoints[robot].strip()}", f"{end} {reason}")
+    for text, node in zip(obstacles or (), parse_obstacles(obstacles), strict=True):
+        if reason == f"{node} is an obstacle":
+            count = 1 if robots is None else robots
+            return type(exc)(
+                f"--obstacle {text.strip()}",
+                f"{node} is robot {robot}'s {end} in the default placement of --robots {count} (place the robots "
+                "with --robot START:GOAL)",
+            )
+    return exc
 
 
 def check_inline_only(
