@@ -69,6 +69,7 @@ __all__ = [
     "MAIN_COLUMNS",
     "PAPER_COLUMNS",
     "PHYSICAL_COLUMNS",
+    "PHYSICAL_DROP_ORDER",
     "Format",
     "latex_escape",
     "make_row",
@@ -455,6 +456,12 @@ FT_DROP_ORDER: tuple[str, ...] = (
 ``ft_total_t`` and ``rotation_depth`` stay, ``ft_rotations`` needs 82)."""
 
 
+PHYSICAL_DROP_ORDER: tuple[str, ...] = ("cx", "ft_rotations", "rotation_depth", "ft_total_t")
+"""Columns hidden after :data:`DROP_ORDER` (``ft``: :data:`FT_DROP_ORDER`) when the rows carry physical figures
+and no paper comparison: ``physical_qubits`` and ``physical_runtime_s`` are hidden last (they fit 80 columns beside
+the scenario's). A paper comparison keeps ``cx`` beside ``paper_cx`` (records when too narrow)."""
+
+
 def terminal_width() -> int:
     """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
     return shutil.get_terminal_size((80, 24)).columns
@@ -502,7 +509,8 @@ def table_columns(
     Returns:
         ``(shown, hidden)``: the default columns (:data:`MAIN_COLUMNS`, plus :data:`FT_COLUMNS` with the ``ft``
         target, :data:`PHYSICAL_COLUMNS` with physical figures and :data:`PAPER_COLUMNS` when comparing) minus
-        those of :data:`DROP_ORDER` (``ft``: :data:`FT_DROP_ORDER`) that do not fit, and the hidden ones.
+        those of :data:`DROP_ORDER` (``ft``: :data:`FT_DROP_ORDER`; then :data:`PHYSICAL_DROP_ORDER` with physical
+        figures) that do not fit, and the hidden ones.
 
     Raises:
         ValueError: an unknown column name.
@@ -515,7 +523,10 @@ def table_columns(
     limit = terminal_width() if width is None else width
     paper = "paper_cx" in defaults
     shown = list(defaults)
-    for c in FT_DROP_ORDER if rows and rows[0].get("target") == "ft" else DROP_ORDER:
+    order = FT_DROP_ORDER if rows and rows[0].get("target") == "ft" else DROP_ORDER
+    if "physical_qubits" in defaults and not paper:  # the logical figures go before the physical ones they feed
+        order = (*order, *(c for c in PHYSICAL_DROP_ORDER if c not in order))
+    for c in order:
         if _natural_width(rows, shown, paper) <= limit:
             break
         if c in shown:
