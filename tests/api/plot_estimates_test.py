@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 import qcpp
 from qcpp.estimators.plots import draw_rows
@@ -44,3 +45,21 @@ def test_bad_input_is_named() -> None:
         qcpp.plot_estimates([est], "physical_qubits")
     with pytest.raises(ValueError, match="no rows"):
         qcpp.plot_estimates([], "cx")
+
+
+def test_the_legend_covers_no_point() -> None:
+    """The legend sits beside the panels, so no point or curve lies under it (inside an axes, matplotlib's
+    ``best`` spot half covered the largest grid's one-robot point of the README's command)."""
+    ests = [
+        qcpp.estimate(qcpp.grid_scenario(n, n, robots=k), depth="none", compare_paper=True)
+        for n in (3, 4, 5, 6) for k in (1, 2, 3)
+    ]  # fmt: skip
+    fig = qcpp.plot_estimates(ests, "cx", compare_paper=True)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    (legend,) = [*fig.legends, *(ax.get_legend() for ax in fig.axes if ax.get_legend() is not None)]
+    box = legend.get_window_extent(canvas.get_renderer())
+    points = [ax.transData.transform(xy) for ax in fig.axes for line in ax.lines for xy in line.get_xydata()]
+    assert len(points) == 24
+    assert not [xy for xy in points if box.contains(*xy)]
+    assert not [ax for ax in fig.axes if ax.get_visible() and box.overlaps(ax.bbox)]  # beside, not over, the data

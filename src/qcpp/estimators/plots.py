@@ -199,7 +199,7 @@ def draw_rows(
     panels = layers if x == "nodes" else [None]
     ncols = min(len(panels), 3)
     nrows = -(-len(panels) // ncols)
-    fig = Figure(figsize=figsize or (0.6 + 4.4 * ncols, 0.5 + 3.6 * nrows), layout="constrained")
+    fig = Figure(figsize=figsize or (1.9 + 4.4 * ncols, 0.5 + 3.6 * nrows), layout="constrained")
     grid = fig.subplots(nrows, ncols, sharey=True, squeeze=False)
     axes = list(grid.flat)
     for spare in axes[len(panels):]:
@@ -246,7 +246,10 @@ def draw_rows(
     for row in grid:
         row[0].set_ylabel(m.axis_label + (", log scale" if log_y else ""))
     legend_title = m.column + (f" [{m.unit}]" if m.unit else "")
-    axes[0].legend(fontsize=7, ncol=2 if len(axes[0].lines) > 8 else 1, title=legend_title, title_fontsize=7)
+    # beside the panels, never over a point (inside, matplotlib's "best" spot still covers points in a corner)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside right upper", fontsize=7, title=legend_title, title_fontsize=7,
+               ncol=2 if len(handles) > 16 else 1)  # fmt: skip
     fig.suptitle(f"{m.label}{_where(sel, x, layers)}" + (f", rule {rule}" if rule != "exact" else ""))
     return fig
 
