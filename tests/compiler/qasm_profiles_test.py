@@ -22,7 +22,13 @@ from qcpp.errors import OptionError
 from qcpp.ir import gates as g
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.lowering.qasm import to_qasm3
-from qcpp.lowering.qasm_profiles import PROFILES, QasmProfileError, to_qasm3_profile
+from qcpp.lowering.qasm_profiles import (
+    PROFILES,
+    QasmProfileError,
+    iter_qasm_profile,
+    iter_qasm_profile_body,
+    to_qasm3_profile,
+)
 from qcpp.simulate.statevector import simulate_statevector
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
@@ -85,6 +91,15 @@ def test_other_profiles_leave_out_the_include_definitions_and_modifiers(profile:
         profile, {"x", "h", "s", "t", "si", "ti", "rx", "ry", "rz", "cz", "cnot", "ccnot"}
     )
     assert words <= allowed, words - allowed
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_the_body_of_sections_handed_out_one_at_a_time_is_the_text_after_the_header(profile: str) -> None:
+    c = compiled(2, 4, 1, True, False)
+    chunks = list(iter_qasm_profile(c.circuit, 3, profile))
+    body = iter_qasm_profile_body(iter(c.circuit.sections), c.circuit.num_qubits, 3, profile)
+    assert len(c.circuit.sections) > 1
+    assert "".join(body) == "".join(chunks[1:])
 
 
 def every_gate() -> Circuit:

@@ -63,14 +63,14 @@ from __future__ import annotations
 import itertools
 import os
 import re
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from types import MappingProxyType
 from typing import Literal
 
 from qcpp.io.atomic import atomic_open
 from qcpp.ir._perf import gc_paused
 from qcpp.ir.angles import Param, UnboundParameterError, format_angle, format_float
-from qcpp.ir.circuit import Circuit
+from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
 
 __all__ = [
@@ -79,6 +79,7 @@ __all__ = [
     "UnboundParameterError",
     "ir_gate_name",
     "iter_qasm",
+    "iter_qasm_body",
     "qasm_gate_name",
     "to_qasm2",
     "to_qasm3",
@@ -327,13 +328,29 @@ def _param_formatter(version: Version) -> Callable[[Param], str]:
     return fmt
 
 
-def _body(circuit: Circuit, version: Version) -> Iterator[str]:
-    qn = [f"q[{i}]" for i in range(circuit.num_qubits)]
+def iter_qasm_body(sections: Iterable[Section], num_qubits: int, version: Version = 3) -> Iterator[str]:
+    """The statements of ``sections`` as text chunks, each section opened by its ``// section`` comment: what
+    :func:`iter_qasm` writes after its header, with the sections taken one at a time as they come.
+
+    Args:
+        sections: the sections, in order (any iterable: a generator is consumed lazily, one section held).
+        num_qubits: the register size ``q[num_qubits]`` of the header they follow (every gate's qubits below it).
+        version: 2 or 3.
+
+    Returns:
+        An iterator of text chunks: ``"".join(iter_qasm_body(c.sections, c.num_qubits, v))`` is
+        :func:`iter_qasm` of ``c`` without its first chunk.
+
+    Raises:
+        ValueError: a gate name without an OpenQASM form. Symbols are not checked: the header of the same
+            sections checks them (:func:`iter_qasm`).
+    """
+    qn = [f"q[{i}]" for i in range(num_qubits)]  # once per body, however many sections
     heads = {name: name for name, forms in QASM_FORMS.items() if forms[version - 2] == "standard"}
     heads.update({n: CUSTOM_PREFIX + n for n, forms in QASM_FORMS.items() if forms[version - 2] == "defined"})
     pattern_heads: dict[tuple[str, str], str] = {}
     fmt = _param_formatter(version)
-    for sec in circuit.sections:
+    for sec in sections:
         gates = sec.gates
         for start in range(0, max(len(gates), 1), _CHUNK):
             lines = [f"// section {sec.name}"] if start == 0 else []
@@ -397,7 +414,7 @@ def iter_qasm(circuit: Circuit, version: Version = 3) -> Iterator[str]:
     n = circuit.num_qubits
     head.append(f"qreg q[{n}];" if version == 2 else f"qubit[{n}] q;")
     head.append("")
-    return itertools.chain(("\n".join(head),), _body(circuit, version))
+    return itertools.chain(("\n".join(head),), iter_qasm_body(circuit.sections, n, version))
 
 
 def to_qasm2(circuit: Circuit) -> str:

@@ -54,14 +54,14 @@ from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from types import MappingProxyType
 from typing import Literal
 
 from qcpp.errors import OptionError, QcppError, choice_reason
 from qcpp.io.atomic import atomic_open
 from qcpp.ir.angles import Param, format_angle
-from qcpp.ir.circuit import Circuit
+from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
 from qcpp.lowering import qasm as _qasm
 from qcpp.lowering.passes import decompose_gate
@@ -74,6 +74,7 @@ __all__ = [
     "Statement",
     "check_profile",
     "iter_qasm_profile",
+    "iter_qasm_profile_body",
     "to_qasm3_profile",
     "write_qasm_profile",
 ]
@@ -206,12 +207,40 @@ def iter_qasm_profile(circuit: Circuit, version: Version = 3, profile: Profile =
                 seen.add(key)
                 _statements(g, profile, [])
     head = ["OPENQASM 3.0;", *(f"input float[64] {s};" for s in symbols), f"qubit[{circuit.num_qubits}] q;", ""]
-    return itertools.chain(("\n".join(head),), _body(circuit, profile))
+    return itertools.chain(("\n".join(head),), _body(circuit.sections, circuit.num_qubits, profile))
 
 
-def _body(circuit: Circuit, profile: str) -> Iterator[str]:
-    qn = [f"q[{i}]" for i in range(circuit.num_qubits)]
-    for sec in circuit.sections:
+def iter_qasm_profile_body(
+    sections: Iterable[Section], num_qubits: int, version: Version = 3, profile: Profile = "default"
+) -> Iterator[str]:
+    """The statements of ``sections`` in ``profile`` as text chunks: what :func:`iter_qasm_profile` writes after
+    its header, with the sections taken one at a time as they come (``default``:
+    :func:`qcpp.lowering.qasm.iter_qasm_body`).
+
+    Args:
+        sections: the sections, in order (any iterable: a generator is consumed lazily, one section held).
+        num_qubits: the register size ``q[num_qubits]`` of the header they follow.
+        version: 2 or 3 (a profile other than ``default`` needs 3).
+        profile: one of :data:`PROFILES`.
+
+    Returns:
+        An iterator of text chunks: ``"".join(iter_qasm_profile_body(c.sections, c.num_qubits, v, profile))`` is
+        :func:`iter_qasm_profile` of ``c`` without its first chunk.
+
+    Raises:
+        qcpp.errors.OptionError: as :func:`check_profile`.
+        QasmProfileError: a gate the profile cannot write, when its section is reached. Symbols are not checked:
+            the header of the same sections checks them (:func:`iter_qasm_profile`).
+    """
+    check_profile(profile, version)
+    if profile == "default":
+        return _qasm.iter_qasm_body(sections, num_qubits, version)
+    return _body(sections, num_qubits, profile)
+
+
+def _body(sections: Iterable[Section], num_qubits: int, profile: str) -> Iterator[str]:
+    qn = [f"q[{i}]" for i in range(num_qubits)]  # once per body, however many sections
+    for sec in sections:
         gates = sec.gates
         for start in range(0, max(len(gates), 1), _CHUNK):
             lines = [f"// section {sec.name}"] if start == 0 else []

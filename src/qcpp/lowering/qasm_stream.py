@@ -1,8 +1,9 @@
 """Write OpenQASM section by section, so that peak memory does not grow with the number of sections.
 
 :func:`write_qasm_sections` takes the register layout and a *factory* of sections (called twice: the first
-pass collects what the header needs, the symbols and the custom gate definitions; the second writes), and
-never holds more than one section. The file equals :func:`qcpp.lowering.qasm.write_qasm` of the whole circuit
+pass collects what the header needs, the symbols and the custom gate definitions; the second writes the
+statements of every section in one body, :func:`qcpp.lowering.qasm_profiles.iter_qasm_profile_body`), and never
+holds more than one section. The file equals :func:`qcpp.lowering.qasm.write_qasm` of the whole circuit
 byte for byte, and is written atomically (whole or not at all).
 
 Example:
@@ -23,14 +24,14 @@ from __future__ import annotations
 
 import os
 from collections import Counter
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 
 from qcpp.io.atomic import atomic_open
 from qcpp.ir.angles import Angle, UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, rz
 from qcpp.lowering.qasm import Version
-from qcpp.lowering.qasm_profiles import Profile, iter_qasm_profile
+from qcpp.lowering.qasm_profiles import Profile, iter_qasm_profile, iter_qasm_profile_body
 
 __all__ = ["write_qasm_sections"]
 
@@ -81,12 +82,16 @@ def write_qasm_sections(
     registers = tuple(registers)
     header, symbols = _header(registers, make_sections, version, profile)
     ops: Counter[str] = Counter()
+    num_qubits = sum(r.size for r in registers)
     with atomic_open(path) as f:
         f.write(header)
-        for sec in make_sections():
-            ops.update(g[0] for g in sec.gates)
-            chunks = iter_qasm_profile(Circuit(registers, [sec]), version, profile)
-            next(chunks)  # this section's own header
-            for chunk in chunks:
-                f.write(chunk)
+        for chunk in iter_qasm_profile_body(_counted(make_sections(), ops), num_qubits, version, profile):
+            f.write(chunk)
     return dict(ops), symbols
+
+
+def _counted(sections: Iterable[Section], ops: Counter[str]) -> Iterator[Section]:
+    """``sections`` passed through, each section's gates added to ``ops`` by name as it is handed out."""
+    for sec in sections:
+        ops.update(g[0] for g in sec.gates)
+        yield sec

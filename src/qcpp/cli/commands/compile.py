@@ -206,9 +206,9 @@ def compile_command(
         # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
         total = size.gates * passes if lowered else None
         big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
-        # writing OpenQASM costs far more per gate than collecting symbols, and more in some sections than in
-        # others (a 30x30 grid's mixer sections write five times slower than its phase sections): the share of
-        # gates done does not extrapolate to the time left, so that is shown only when the sections are counted
+        # building a section costs more per gate in some sections than in others (a 30x30 grid's mixer sections
+        # build two to three times slower than its phase sections, in either walk): the share of gates done does
+        # not extrapolate to the time left, so that is shown only when the sections are counted
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None,
                       time_left=qasm is None) as bar:  # fmt: skip
             summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar, qasm_profile)
