@@ -390,3 +390,27 @@ def test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device() -> None:
     assert r.chosen.startswith("cells on heavy-hex:"), r.chosen
     assert r.logical.num_qubits > r.compiled.circuit.num_qubits  # the cells' local ancillas
     assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits
+
+
+@pytest.mark.heavy  # compiles 3x3/2 with an obstacle on ibm_torino with every candidate, by each figure
+def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
+    """Two robots on 3x3 with a hard obstacle on Torino: with ``--optimize-for twoq`` compile also runs the greedy
+    path's search on Fez and places it on Torino where it embeds; that routing has fewer CZ than every candidate of
+    the default ``esp`` compile, which does not offer it (its candidates, and so its output, are as before)."""
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.problem.scenario import scenario_from_dict
+    from qcpp.routing.context import RoutingContext
+
+    s = scenario_from_dict({"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 2]]},
+                            "robots": [{"start": [0, 0], "goal": [2, 2]}, {"start": [0, 2], "goal": [2, 0]}],
+                            "objective": {"obstacles": "hard"}})  # fmt: skip
+    bind, context = {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
+    by_esp = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context)
+    assert by_esp.optimize_for == "esp"
+    assert not any(c["name"].startswith("search on ibm_") for c in by_esp.candidates)
+    by_twoq = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq")
+    assert by_twoq.chosen.startswith("search on ibm_fez + our placement"), by_twoq.chosen
+    twoq = sum(1 for g in by_twoq.routed.circuit.gates if len(g[1]) == 2)
+    assert twoq < min(c["two_qubit"] for c in by_esp.candidates)
+    assert {tuple(sorted(g[1])) for g in by_twoq.routed.circuit.gates if len(g[1]) == 2} <= set(
+        by_twoq.routed.device.coupling)

@@ -137,3 +137,40 @@ def test_qcec_proves_a_reordered_register_phase_equal_to_the_written_one() -> No
     ]  # fmt: skip
     assert counts[0] < counts[1]
     assert _check((2, 3, 2), "grid", layout_method="medial") == "equivalent"
+
+
+OBSTACLE_3X3_2 = {"grid": {"rows": 3, "cols": 3, "obstacles": [[1, 2]]},
+                  "robots": [{"start": [0, 0], "goal": [2, 2]}, {"start": [0, 2], "goal": [2, 0]}],
+                  "objective": {"obstacles": "hard"}}  # fmt: skip
+
+
+@pytest.mark.slow
+def test_qcec_proves_a_sibling_devices_search_placed_on_an_ibm_device_equal_to_its_logical_circuit() -> None:
+    """Two robots on 3x3 with a hard obstacle: the greedy path's search on ibm_fez (``--optimize-for twoq`` adds it
+    on ibm_torino), placed on Torino and optimised by Qiskit's passes, against the logical circuit it carries (the
+    partial mixers planned on Fez: the same operator)."""
+    from qcpp.hardware.device import named_device
+    from qcpp.pipeline.candidates import calibrated_candidates
+    from qcpp.pipeline.device_compile import _searched_on_siblings
+    from qcpp.pipeline.device_plan import device_plan_options
+    from qcpp.plan.compile import compile_scenario
+    from qcpp.plan.options import DEFAULT_PLAN
+    from qcpp.problem.scenario import scenario_from_dict
+
+    s, dev = scenario_from_dict(OBSTACLE_3X3_2), named_device("ibm_torino")
+    options = dataclasses.replace(device_plan_options(DEFAULT_PLAN, dev, "auto"), fuse=False)
+    compiled = compile_scenario(s, 1, options, lowered=True, bindings=BIND)
+    circuit = compiled.circuit
+    measured = range(s.num_variables)
+    found = _searched_on_siblings(compiled.plan, circuit, dev, 0, ("ours", "qiskit"), measured, BIND,
+                                  DEFAULT_ROUTING, RoutingContext(), lambda _: None)  # fmt: skip
+    assert [name for name, _, _ in found] == ["search on ibm_fez"]
+    cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=found)
+    placed = [c for c in cands if c.name.endswith("our placement + O3 passes")]
+    assert placed and all(c.logical is found[0][1] for c in cands)
+    logical, routed = found[0][1], placed[0].native
+    n = logical.num_qubits
+    b = aligned(routed, n)
+    a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(logical.gates))])
+    assert check_equivalence(a, b, num_plain=s.num_variables, global_phase_ok=True).criterion in (
+        "equivalent", "equivalent_up_to_global_phase")

@@ -62,7 +62,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
-from qcpp.hardware.device import Device, distances, get_device, heavy_hex_distance
+from qcpp.hardware.device import Device, device_names, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
@@ -409,6 +409,9 @@ def _compile_for_device(
                                  routing.placement_max_twoq)  # fmt: skip
         elsewhere = ([] if cells is None else [cells]) + _searched_elsewhere(
             compiled.plan, circuit, dev, seed, layouts, measured, bindings, routing, context, say)
+        if (default_objective(dev) if optimize_for is None else optimize_for) == "twoq":
+            elsewhere += _searched_on_siblings(compiled.plan, circuit, dev, seed, layouts, measured, bindings,
+                                               routing, context, say)  # fmt: skip
     return _finish(compiled, logical, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
                    tuple(elsewhere))  # fmt: skip
 
@@ -440,6 +443,39 @@ def _searched_elsewhere(
         logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, lattice, bindings, routing,
                                               context, say)  # fmt: skip
         out.append((f"search on {lattice.name}", logical, routed[0]))
+    return out
+
+
+def _searched_on_siblings(
+    plan: QaoaPlan, circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...], measured: range,
+    bindings: Mapping[str, float] | None, routing: RoutingOptions, context: RoutingContext,
+    say: Callable[[str], None],
+) -> list[tuple[str, Circuit, RoutedCircuit]]:  # fmt: skip
+    """With ``--optimize-for twoq`` on a named heavy-hex device, ``circuit`` (at most ``routing.placement_max_twoq``
+    two-qubit gates) compiled as the greedy path compiles it on each *other* named heavy-hex device (its wider
+    placement search and partial mixers planned there), as ``(name, logical circuit, routing)`` for
+    :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on ``device`` where its couplers embed: the
+    devices' defects differ, so the same search starts elsewhere and now and then finds fewer SWAPs (3x3/2 with a
+    hard obstacle: 308 CZ from Fez's search placed on Torino, against 335 from Torino's own). Only for ``twoq``:
+    the default ``esp`` keeps the candidates it had. Empty elsewhere."""
+    if device.family != "heavy-hex" or not is_calibrated(device):
+        return []
+    if not 0 < _two_qubit(circuit) <= routing.placement_max_twoq:
+        return []
+    out = []
+    for name in device_names():
+        other = get_device(name)
+        if (name == device.name or other.family != "heavy-hex" or not is_calibrated(other)
+                or other.num_qubits < circuit.num_qubits):  # fmt: skip
+            continue
+        say(f"routing the whole circuit on {name} to place it on {device.name}")
+
+        def routes(c: Circuit, other: Device = other) -> list[RoutedCircuit]:
+            return greedy_routes(c, other, seed, layouts, measured, routing, context)
+
+        logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, other, bindings, routing,
+                                              context, say)  # fmt: skip
+        out.append((f"search on {name}", logical, routed[0]))
     return out
 
 
