@@ -10,9 +10,9 @@ circuit has fewer gates than the lowered one, so the lowered count bounds both.
 :func:`compile_need` turns that into the peak memory of a ``qcpp compile`` process and its time, for
 :func:`qcpp.problem.limits.check_need`: :data:`BASE_BYTES` plus :data:`BYTES_PER_GATE` per gate held at once --
 every gate when the circuit is built whole, one layer's gates when it is streamed section by section (the peak
-does not grow with ``p``: ``qcpp compile`` of 8x8 / 4 robots / p = 16 --qasm, 866,184 gates, 154 MB peak) -- and
-:data:`GATES_PER_SECOND` (streamed OpenQASM: that compile took 36 s). ``--max-gates N`` sets a fixed gate limit
-instead (:data:`DEFAULT_MAX_GATES` for callers that want one).
+does not grow with ``p``) -- and :data:`GATES_PER_SECOND`; ``benchmarks/streamed_compile.py`` prints the
+prediction beside the measured peak and time. ``--max-gates N`` sets a fixed
+gate limit instead (:data:`DEFAULT_MAX_GATES` for callers that want one).
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -52,8 +52,10 @@ DEFAULT_MAX_GATES = 10_000_000
 BASE_BYTES = 58_000_000
 """Peak resident memory of a ``qcpp compile`` process on a small scenario (interpreter and imports)."""
 
-GATES_PER_SECOND = 25_000
-"""Lowered gates built and written per second (streamed OpenQASM), for the predicted time."""
+GATES_PER_SECOND = 50_000
+"""Lowered gates built and written per second (streamed OpenQASM), for the predicted time: below the rate a
+streamed compile keeps on a loaded 2-core machine once past start-up, so the predicted time of a long compile is an
+over-estimate."""
 
 
 @dataclass(frozen=True)
