@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import qcpp
@@ -105,6 +106,25 @@ def test_solvers_and_simulators_run_through_the_api() -> None:
     assert trained.solution.cost.total >= best.cost.total - 1e-9
     ev = qcpp.simulate_qaoa(s, 1, angles=list(trained.angles))
     assert ev.expectation >= best.cost.total - 1e-9
+
+
+@pytest.mark.parametrize("initial", ["initial_path", "representatives"])
+def test_trained_bindings_compile_to_the_trained_state(initial: str) -> None:
+    """``train_qaoa(...).bindings`` binds the compiled circuit (same rule and initial state): its lowered
+    statevector reads the optimum with the probability training reports."""
+    from qcpp.training.evaluate import feasible_assignments
+    from qcpp.simulate.statevector import simulate_statevector
+
+    s = qcpp.grid_scenario(2, 3, robots=[((0, 0), (1, 2))])
+    trained = qcpp.train_qaoa(s, 2, initial=initial, maxiter=30)
+    assert set(trained.bindings) == {"gamma_0", "beta_0", "gamma_1", "beta_1"}
+    circuit = qcpp.compile(s, 2, initial=initial, bind=trained.bindings, lowered=True)
+    assert circuit.symbols == ()
+    psi = simulate_statevector(circuit.circuit)
+    probs = np.abs(psi) ** 2
+    feasible, optimal = feasible_assignments(s)
+    assert probs[feasible].sum() == pytest.approx(1.0)  # ancillas clean, every amplitude feasible
+    assert probs[feasible[optimal]].sum() == pytest.approx(trained.p_optimum, abs=1e-9)
 
 
 def test_the_public_names_load_lazily_and_are_listed() -> None:

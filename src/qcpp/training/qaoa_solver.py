@@ -39,7 +39,7 @@ from qcpp.problem.cost import cost_parts
 from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import ProgressFn, Solution, SolveMethod, solution_to_dict
-from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA
+from qcpp.simulate.subspace import INITIAL_STATES, InitialState, SubspaceQAOA, angle_bindings
 from qcpp.training.layerwise import (
     DEFAULT_MAXITER,
     DEFAULT_RANDOM_STARTS,
@@ -87,7 +87,9 @@ class QaoaSolution:
             kept at the final depth).
         schedule: The :class:`~qcpp.training.layerwise.LayerwiseResult` (``None`` for a single run).
         initial: The initial state trained from.
-        bindings: ``multi-angle``: the compiled multi-angle circuit's symbol values (else empty).
+        bindings: The trained angles as the compiled circuit's symbol values (``gamma_k``, ``beta_k``; the
+            multi-angle circuit's own symbols for ``multi-angle``): ``qcpp.compile(scenario, p, rule=...,
+            initial=..., bind=bindings)`` with the rule and initial state trained with is the trained circuit.
         estimates: ``multi-angle``: the device objective estimates of its training (a gradient by the
             parameter-shift rule = 1 + 2 x parameters estimates).
     """
@@ -252,11 +254,14 @@ def solve_qaoa(
             f"p={p}, {start}, objective {result.objective}, {how}, {evaluations} simulation(s) of {q.dimension:,} "
             f"amplitudes; on a device: {estimates:,} objective estimates, {estimates * SHOTS_PER_ESTIMATE:,} shots "
             f"at {SHOTS_PER_ESTIMATE:,} per estimate",
-            f"<C> {result.initial_expectation:.6g} -> {result.expectation:.6g}; the trained state reads an "
+            f"<C> {result.initial_expectation:.6g} at the starting angles -> {result.expectation:.6g} trained; the "
+            "trained state reads an "
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
     )
-    return QaoaSolution(solution, prob, result.p_optimum, best, result, schedule, initial)
+    return QaoaSolution(
+        solution, prob, result.p_optimum, best, result, schedule, initial, angle_bindings(result.angles)
+    )
 
 
 def _solve_multi_angle(
