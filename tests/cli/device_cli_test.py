@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -141,3 +142,24 @@ def test_compile_device_text_shows_the_layouts_and_the_verdict() -> None:
     esp = summary["routed"]["esp"]
     assert summary["routed"]["esp_idle"] is None and f"(ESP {esp:.3g} >= 0.1: worth running)" in flat
     assert f"verdict: about {esp:.0%} of shots run without an error" in flat
+
+
+@pytest.mark.heavy
+def test_compile_on_ibm_names_qiskit_o3_best_seed_and_the_physical_qubits() -> None:
+    """On a calibrated device the text output sets the chosen circuit beside Qiskit O3's best seed (read from the
+    same candidates ``--json`` lists), and the device note counts every physical qubit the routed circuit touches."""
+    args = ("compile", "--grid", "2x3", "--robot", "0,0:1,2", "--device", "ibm_torino", *BIND)
+    text = run(*args)
+    assert text.exit_code == 0, text.output
+    summary = json.loads(run(*args, "--json").stdout)
+    routed = summary["routed"]
+    seeds = [c for c in routed["candidates"] if c["name"].startswith("qiskit O3 seed ") and "+" not in c["name"]]
+    best = max(seeds, key=lambda c: (c["esp_idle"], -c["two_qubit"]))
+    flat = " ".join(text.stdout.split())
+    assert (f"Qiskit O3 (best of {len(seeds)} seeds by esp): {best['two_qubit']:,} two-qubit gates, "
+            f"ESP {best['esp']:.3g} ({best['esp_idle']:.3g} idle); chosen: "
+            f"{routed['two_qubit'] / best['two_qubit']:.2f}x its two-qubit gates") in flat  # fmt: skip
+    touched = {q for line in run(*args, "--qasm", "-").stdout.splitlines() for q in re.findall(r"q\[(\d+)\]", line)
+               if not line.startswith(("qubit", "bit", "input"))}  # fmt: skip
+    assert f"logical on {len(touched)} physical)" in summary["device_note"]
+    assert len(touched) >= len(summary["initial_layout"])

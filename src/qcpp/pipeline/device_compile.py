@@ -155,8 +155,8 @@ class DeviceCompileResult:
             "seconds": self.seconds,
             **self.summary(),
             "device_note": (
-                f"device {device.name} ({device.num_qubits} qubits; {self.logical_qubits} used); "
-                "layouts: logical qubit i -> physical qubit"
+                f"device {device.name} ({device.num_qubits} qubits; {self.logical_qubits} logical on "
+                f"{len(self.routed.active_qubits)} physical); layouts: logical qubit i -> physical qubit"
             ),
         }
 

@@ -49,6 +49,14 @@ class RoutedCircuit:
     fused: tuple[tuple[str, int], ...] = ()
 
     @property
+    def active_qubits(self) -> tuple[int, ...]:
+        """The physical qubits the circuit acts on or measures, ascending (relay and local-ancilla qubits included,
+        so there can be more than the logical circuit's)."""
+        used = {q for g in self.circuit.gates for q in g[1]}
+        used.update(self.final_layout[lq] for lq in self.measured)
+        return tuple(sorted(used))
+
+    @property
     def num_fused(self) -> int:
         """SWAPs fused with a ``cx`` (each saves two ``cx``)."""
         return sum(k for _, k in self.fused)

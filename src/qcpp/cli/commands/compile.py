@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
@@ -251,6 +252,9 @@ def compile_command(
         if routed.get("candidates"):
             console.print(f"chosen by {routed['optimize_for']}: {routed['chosen']} "
                           f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them)")  # fmt: skip
+            peer = qiskit_o3_line(routed)
+            if peer:
+                console.print(peer)
     if summary["symbols"]:
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
@@ -270,6 +274,41 @@ def _layouts_line(initial: list[int], final: list[int]) -> str:
     return f"initial layout {' '.join(map(str, initial))}; final layout {' '.join(map(str, final))}"
 
 
+def qiskit_o3_line(routed: dict[str, Any]) -> str | None:
+    """Qiskit O3's best seed against the chosen circuit, by the figure compile chose for (``--json``'s
+    ``routed``; ``None`` when no ``qiskit O3 seed`` candidate ran).
+
+    Example:
+        >>> routed = {"optimize_for": "esp", "chosen": "qcpp", "two_qubit": 269, "esp": 0.33, "esp_idle": 0.16,
+        ...           "candidates": [{"name": "qcpp", "two_qubit": 269, "esp": 0.33, "esp_idle": 0.16},
+        ...                          {"name": "qiskit O3 seed 0", "two_qubit": 303, "esp": 0.28, "esp_idle": 0.06},
+        ...                          {"name": "qiskit O3 seed 1", "two_qubit": 310, "esp": 0.27, "esp_idle": 0.05}]}
+        >>> for part in qiskit_o3_line(routed).split("; "):
+        ...     print(part)
+        Qiskit O3 (best of 2 seeds by esp): 303 two-qubit gates, ESP 0.28 (0.06 idle)
+        chosen: 0.89x its two-qubit gates, 2.67x its ESP (idle)
+    """
+    seeds = [c for c in routed["candidates"] if c["name"].startswith("qiskit O3 seed ") and "+" not in c["name"]]
+    if not seeds:
+        return None
+    idle = routed.get("esp_idle") is not None
+
+    def figure(c: dict[str, Any]) -> float:
+        return c["esp_idle"] if idle else c["esp"]
+
+    if routed["optimize_for"] == "twoq":
+        best = min(seeds, key=lambda c: (c["two_qubit"], -figure(c)))
+    else:
+        best = max(seeds, key=lambda c: (figure(c), -c["two_qubit"]))
+    esp_text = f"ESP {best['esp']:.3g}" + (f" ({best['esp_idle']:.3g} idle)" if idle else "")
+    ratio_esp = figure(routed) / figure(best) if figure(best) > 0 else math.inf
+    return (
+        f"Qiskit O3 (best of {len(seeds)} seeds by {routed['optimize_for']}): {best['two_qubit']:,} two-qubit gates, "
+        f"{esp_text}; chosen: {routed['two_qubit'] / best['two_qubit']:.2f}x its two-qubit gates, "
+        f"{ratio_esp:.3g}x its ESP{' (idle)' if idle else ''}"
+    )
+
+
 def esp_verdict(esp: float, *, idle: bool) -> str:
     """What an ESP means for running the circuit: the share of shots without an error, against the verdict's bar
     :data:`qcpp.routing.native.RUNNABLE_ESP` (docs/guide/hardware.md).
@@ -283,15 +322,25 @@ def esp_verdict(esp: float, *, idle: bool) -> str:
         'verdict: about 16% of shots run without an error (ESP with idle decoherence 0.163 >= 0.1: worth running)'
         >>> esp_verdict(9.2e-06, idle=False)[:58]
         'verdict: about 1 shot in 108,696 runs without an error (ES'
+        >>> esp_verdict(2.1e-17, idle=True)[:46]
+        'verdict: about 1 shot in 4.8e16 runs without a'
     """
     which = "ESP with idle decoherence" if idle else "ESP"
     if esp >= 0.01:
         one_in = f"about {esp:.0%} of shots run"
     else:
-        one_in = "no shot runs" if esp <= 0 else f"about 1 shot in {round(1 / esp):,} runs"
+        one_in = "no shot runs" if esp <= 0 else f"about 1 shot in {_count(1 / esp)} runs"
     judged = "worth running" if esp >= RUNNABLE_ESP else "noise dominates; see docs/guide/hardware.md"
     relation = ">=" if esp >= RUNNABLE_ESP else "<"
     return f"verdict: {one_in} without an error ({which} {esp:.3g} {relation} {RUNNABLE_ESP:g}: {judged})"
+
+
+def _count(n: float) -> str:
+    """``n`` rounded, with thousands separators up to a million, else as ``4.8e16``."""
+    if n < 1e6:
+        return f"{round(n):,}"
+    mantissa, exponent = f"{n:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
 
 
 def explain_table(rows: list[dict]) -> Table:
