@@ -214,7 +214,7 @@ FIRST_SCREEN = 25  # lines of help at 80 columns
 SLOW_EXAMPLES = frozenset({
     "qcpp solve field.toml --method cpsat",
     "qcpp estimate --grid 2x2..6x6 --robots 1..3 --compare paper --plot cx.png",
-    "qcpp estimate --scenario examples/two_robots_4x4.toml --physical --json",
+    "qcpp estimate examples/two_robots_4x4.toml --physical --json",
     "qcpp compile examples/paper_3x3.toml --device heavy-hex --qasm routed.qasm",
     "qcpp simulate examples/paper_3x3.toml -p 1 --angles 0.3,1.2",
     "qcpp solve examples/two_robots_4x4.toml -m anneal --seed 3 --plot paths.png",

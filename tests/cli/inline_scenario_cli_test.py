@@ -252,3 +252,16 @@ def test_estimate_latex_is_a_booktabs_table_of_the_json_values() -> None:
 def test_formulas_come_as_latex_too() -> None:
     text = ok("estimate", "--formula", "--format", "latex")
     assert r"\begin{align*}" in text and r"\mathrm{data\_qubits} &=" in text
+
+
+def test_estimate_takes_the_scenario_file_as_its_argument_too() -> None:
+    """``qcpp estimate FILE`` is ``qcpp estimate --scenario FILE``, as every other command takes its file; both
+    at once is refused."""
+    positional = json.loads(ok("estimate", "examples/two_robots_4x4.toml", "-p", "1..2", "--json"))
+    flagged = json.loads(ok("estimate", "--scenario", "examples/two_robots_4x4.toml", "-p", "1..2", "--json"))
+    for row in (*positional, *flagged):
+        row.pop("seconds", None)
+    assert positional == flagged and len(positional) == 2
+    assert_one_line_error(run("estimate", "examples/two_robots_4x4.toml", "--scenario", "examples/paper_3x3.toml"),
+                          "--scenario", "two_robots_4x4.toml", "given already")  # fmt: skip
+    assert_one_line_error(run("estimate", "examples/two_robots_4x4.toml", "--grid", "3x3"), "--grid")

@@ -47,7 +47,7 @@ HELP = """Resource counts of the lowered QAOA circuit, from its gadgets' costs, 
 Examples:
   qcpp estimate --grid 6x8 --robots 1..3 -p 1..3 --format latex
   qcpp estimate --grid 2x2..6x6 --robots 1..3 --compare paper --plot cx.png
-  qcpp estimate --scenario examples/two_robots_4x4.toml --physical --json
+  qcpp estimate examples/two_robots_4x4.toml --physical --json
   qcpp estimate --grid 7x6 --robot 0,0:6,5 --robot 0,5:6,0 --obstacle 2,2
 
 Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
@@ -57,6 +57,13 @@ Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
 @with_plan_flags
 def estimate(
     options: PlanOptions,
+    scenario_file: Annotated[
+        Path | None,
+        typer.Argument(
+            help="Scenario file (.toml or .json), as --scenario; or give the grid with --grid.", metavar="SCENARIO",
+            show_default=False,
+        ),
+    ] = None,
     grid: Annotated[
         str | None,
         typer.Option(
@@ -176,6 +183,10 @@ def estimate(
     from qcpp.estimators.physical import DEFAULT_ERROR_BUDGET, DEFAULT_QEC_SCHEME, DEFAULT_QUBIT_MODEL
     from qcpp.estimators.report import estimate_report, formula_report, points_from_options
 
+    if scenario_file is not None:
+        if scenario is not None:
+            raise OptionError("--scenario", f"the scenario file {str(scenario_file)!r} is given already")
+        scenario = scenario_file
     if as_json:
         fmt = "json"
     physical_only = {"--qubit-model": qubit_model, "--qec-scheme": qec_scheme, "--error-budget": error_budget}
