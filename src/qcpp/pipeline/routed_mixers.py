@@ -70,8 +70,8 @@ def routed_mixers(
         bindings: The angle values the circuit was bound with.
         routing: The settings (``mixer_variant_layouts=0`` turns the choice off).
         context: The run's memos (default: a fresh one).
-        stage: Called before each partial mixer's choice with ``choosing partial-mixer plans for the routing
-            (i / n)``.
+        stage: Called before each partial mixer's choice with ``choosing partial-mixer plans for the routing on
+            DEVICE (i / n)`` (a compile that searches several devices counts again on each, named).
 
     Returns:
         A circuit with the same sections in the same order, equal to ``circuit`` as an operator; ``circuit`` itself
@@ -100,7 +100,7 @@ def routed_mixers(
         name, gadget = named[i]
         assert isinstance(gadget, ParityPartialMixer)
         if stage is not None:
-            stage(f"choosing partial-mixer plans for the routing ({seen} / {len(mixers)})")
+            stage(f"choosing partial-mixer plans for the routing on {device.name} ({seen} / {len(mixers)})")
         for network in relabelled(context, gadget.kind.program, gadget.kind.target):
             if network == gadget.plan:
                 continue
