@@ -142,3 +142,22 @@ def test_a_scenario_draws_itself_and_an_estimate_shows_as_a_table() -> None:
     assert svg.count("<rect") == 1 + 2 and svg.count("<circle") == 2 * 2
     html = qcpp.estimate(s)._repr_html_()
     assert "<table>" in html and "<td style='text-align:right'>" in html
+
+
+def test_a_solution_gives_node_paths_and_the_cli_json() -> None:
+    """``Solution.node_paths(scenario)`` walks each robot's edge mask from start to goal, and
+    ``Solution.to_dict(scenario)`` is ``qcpp solve --json``'s object (timing aside)."""
+    s = qcpp.grid_scenario(3, 4, robots=[((0, 0), (2, 3)), ((2, 0), (0, 3))], obstacles=[(1, 1)])
+    best = qcpp.solve(s, "dfs")
+    nodes = best.node_paths(s)
+    for path, robot, mask in zip(nodes, s.robots, best.paths, strict=True):
+        assert path[0] == robot.start and path[-1] == robot.goal and len(set(path)) == len(path)
+        assert len(path) - 1 == bin(mask).count("1")
+    res = run("solve", "--grid", "3x4", "--robot", "0,0:2,3", "--robot", "2,0:0,3", "--obstacle", "1,1",
+              "-m", "dfs", "--json")  # fmt: skip
+    cli = json.loads(res.stdout)
+    api = best.to_dict(s)
+    assert [[tuple(n) for n in p] for p in cli["paths"]] == [list(p) for p in nodes]
+    for d in (cli, api):
+        d.pop("seconds")
+    assert {k: v for k, v in cli.items() if k in api} == api

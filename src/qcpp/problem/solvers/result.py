@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from qcpp.problem.cost import CostParts
+from qcpp.problem.grid import Node
 from qcpp.problem.paths import path_to_nodes
 from qcpp.problem.scenario import Scenario
 
@@ -66,6 +67,27 @@ class Solution:
     rule: str | None = None
     notes: tuple[str, ...] = ()
 
+    def node_paths(self, scenario: Scenario) -> tuple[tuple[Node, ...], ...]:
+        """Each robot's path as its ``(row, col)`` nodes from start to goal (``paths`` holds edge masks).
+
+        Args:
+            scenario: The scenario the solution belongs to.
+
+        Example:
+            >>> from qcpp.problem.presets import grid_scenario
+            >>> from qcpp.problem.solvers.exhaustive import dfs
+            >>> s = grid_scenario(2, 3, robots=[((0, 0), (0, 2))])
+            >>> dfs(s).node_paths(s)
+            (((0, 0), (0, 1), (1, 1), (1, 2), (0, 2)),)
+        """
+        return tuple(
+            tuple(path_to_nodes(scenario.grid, m, rb.start)) for m, rb in zip(self.paths, scenario.robots, strict=True)
+        )
+
+    def to_dict(self, scenario: Scenario, *, include_trace: bool = True) -> dict[str, Any]:
+        """What ``qcpp solve --json`` prints for this solution (:func:`solution_to_dict`)."""
+        return solution_to_dict(scenario, self, include_trace=include_trace)
+
 
 def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool = True) -> dict[str, Any]:
     """JSON-ready dict of ``sol``: paths as ``[row, col]`` node lists from start to goal.
@@ -81,8 +103,7 @@ def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool =
     out: dict[str, Any] = {
         "method": sol.method,
         "paths": [
-            [list(n) for n in path_to_nodes(scenario.grid, m, rb.start)]
-            for m, rb in zip(sol.paths, scenario.robots, strict=True)
+            [list(n) for n in nodes] for nodes in sol.node_paths(scenario)
         ],
         "cost": sol.cost.total,
         "cost_parts": {"c1": sol.cost.c1, "c2": sol.cost.c2, "c3": sol.cost.c3},
