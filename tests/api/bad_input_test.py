@@ -136,6 +136,8 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
         (lambda: qcpp.solve(S, "magic"), "method: expected dfs or cpsat"),
         (lambda: qcpp.solve(S, "dfs", p=2), "p: applies to method='qaoa' only"),
         (lambda: qcpp.solve(S, "anneal", time_limit=5), "time_limit: applies to method='cpsat' only"),
+        (lambda: qcpp.solve(S, "anneal", sampler="sa"), "sampler: applies to method='qubo' only"),
+        (lambda: qcpp.solve(S, "qubo", sampler="anneal"), "sampler: expected tabu or sa"),
         (lambda: qcpp.train_qaoa(S, 1, optimizer="adam"), "optimizer: expected layerwise or"),
         (lambda: qcpp.train_qaoa(S, 1, gibbs_scale=0), "gibbs_scale: expected a positive finite number, got 0"),
         (lambda: qcpp.train_qaoa(S, 1, gibbs_scale="40"), "gibbs_scale: expected a positive finite number"),

@@ -57,3 +57,14 @@ def test_bad_options_name_what_is_wrong(tmp_path: Path) -> None:
     with pytest.raises(qcpp.OutputError):
         qcpp.write_qubo(model, tmp_path / "no such folder" / "m.json", "qubo")
     assert not list(tmp_path.iterdir())
+
+
+def test_solve_passes_the_sampler_and_its_answer_is_feasible() -> None:
+    pytest.importorskip("dwave.samplers")
+    from qcpp.problem.paths import is_feasible
+
+    s = qcpp.load_scenario("examples/two_robots_4x4.toml")
+    sol = qcpp.solve(s, "qubo", sampler="sa")
+    assert sol.notes[0].endswith(", sa")
+    assert all(is_feasible(s, r, m) for r, m in enumerate(sol.paths))
+    assert qcpp.solve(s, "qubo").notes[0].endswith(", tabu")

@@ -90,6 +90,46 @@ def test_solve_qubo_finds_the_optimum_of_two_robots_4x4() -> None:
     assert any("100 reads" in n for n in out["notes"])
 
 
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (["--method", "qubo", "--sampler", "anneal"], ["--sampler", "'anneal'", "tabu, sa"]),
+        (["--method", "cpsat", "--sampler", "sa"], ["--sampler", "--method qubo only"]),
+    ],
+)
+def test_bad_sampler_is_a_one_line_error(args: list[str], fragments: list[str]) -> None:
+    assert_one_line_error(run("solve", SCEN, *args), *fragments)
+
+
+def test_solve_qubo_with_simulated_annealing_answers_feasible_paths() -> None:
+    pytest.importorskip("dwave.samplers")
+    from qcpp.problem.paths import is_feasible, path_from_nodes
+    from qcpp.problem.scenario_io import load_scenario
+
+    res = run("solve", SCEN, "--method", "qubo", "--sampler", "sa", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    s = load_scenario(SCEN)
+    masks = [path_from_nodes(s.grid, [tuple(n) for n in nodes]) for nodes in out["paths"]]
+    assert all(is_feasible(s, r, m) for r, m in enumerate(masks))
+    assert out["notes"][0].endswith(", sa") and any("100 reads" in n for n in out["notes"])
+    default = json.loads(run("solve", SCEN, "--method", "qubo", "--json").stdout)
+    assert default["notes"][0].endswith(", tabu")  # tabu stays the default
+
+
+def test_the_written_line_fits_80_columns(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import app
+
+    out = tmp_path / "a-rather-long-file-name.json"
+    res = CliRunner().invoke(app, ["export", SCEN, "-f", "qubo", "-o", str(out)], env={"COLUMNS": "80"})
+    assert res.exit_code == 0, res.output
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) >= 2 and all(len(line) <= 80 or " " not in line for line in lines), lines
+    assert " ".join(lines) == f"wrote {out}: qubo, per-robot form, 76 variables, 1112 interactions, penalty P = 11"
+
+
 def test_help() -> None:
     from typer.testing import CliRunner
 

@@ -39,6 +39,19 @@ def test_the_notes_fit_the_terminal() -> None:
     assert "shots at " in text and "per estimate note: <C> " in text and text.endswith(tuple("0123456789"))
 
 
+def test_the_probability_lines_fit_80_columns() -> None:
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import app
+
+    res = CliRunner().invoke(app, ["solve", PAPER, "-m", "qaoa", "--maxiter", "20"], env={"COLUMNS": "80"})
+    assert res.exit_code == 0, res.output
+    lines = [line for line in res.stdout.splitlines() if line.startswith(("most probable", "probability of"))]
+    assert [line.split(":")[0] for line in lines] == ["most probable assignment (drawn above)",
+                                                      "probability of an optimal assignment"]
+    assert all(len(line) <= 80 for line in lines), lines
+
+
 def test_json_has_the_common_keys_and_the_qaoa_ones() -> None:
     res = run("solve", PAPER, "--method", "qaoa", "-p", "2", "--optimizer", "lbfgsb", "--seed", "3", "--json")
     assert res.exit_code == 0, res.output

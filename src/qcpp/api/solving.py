@@ -45,6 +45,7 @@ def solve(
     seed: int = 0,
     rule: str = "exact",
     time_limit: float | None = None,
+    sampler: str | None = None,
     **qaoa_options: Any,
 ) -> Solution:
     """Solve ``scenario`` with ``method`` (``qcpp solve --method``) and return its answer.
@@ -55,6 +56,8 @@ def solve(
         seed: Random seed (stochastic methods).
         rule: SBF rule of the local moves and of the QAOA mixer: ``exact`` or ``paper``.
         time_limit: ``cpsat``: seconds before it stops with its best (default: until proven optimal).
+        sampler: ``qubo``: ``tabu`` (tabu search, one run per read; the default) or ``sa`` (simulated annealing,
+            1,000 sweeps per read), 100 reads on the per-robot QUBO (:func:`qcpp.qubo.solve.solve_qubo`).
         **qaoa_options: ``qaoa`` only: the options of :func:`train_qaoa` (``p``, ``optimizer``, ...).
 
     Returns:
@@ -78,6 +81,10 @@ def solve(
             raise OptionError("time_limit", f"applies to method='cpsat' only (got method={method!r})")
         if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
             raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
+    if sampler is not None:
+        if method != "qubo":
+            raise OptionError("sampler", f"applies to method='qubo' only (got method={method!r})")
+        check_choice(sampler, ("tabu", "sa"), "sampler")
     if method == "qaoa":
         return train_qaoa(s, seed=seed, rule=rule, **qaoa_options).solution
     from qcpp.problem.cost_range import check_cost_range
@@ -94,7 +101,7 @@ def solve(
     if method == "qubo":
         from qcpp.qubo.solve import solve_qubo
 
-        return solve_qubo(s, seed=seed, rule=rule).solution  # type: ignore[arg-type]
+        return solve_qubo(s, sampler=sampler or "tabu", seed=seed, rule=rule).solution  # type: ignore[arg-type]
     from qcpp.problem.solvers import SOLVERS
 
     return SOLVERS[method](s, seed=seed, rule=rule, progress=None)  # type: ignore[arg-type]

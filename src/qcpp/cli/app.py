@@ -394,7 +394,8 @@ PANELS: dict[str, str] = {
     "mixer_warm": "Method", "restart_every_level": "Method", "gibbs_scale": "Method", "time_limit": "Method",
     "backend": "Method", "max_amplitudes": "Method",
     "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
-    "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "simulate.rule": "Method",
+    "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "solve.sampler": "Method",
+    "simulate.rule": "Method",
     "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
     # estimate's models
     "depth": "Estimates", "depth_budget": "Estimates", "epsilon": "Estimates", "toffoli_t": "Estimates",

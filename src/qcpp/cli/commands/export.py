@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
+import textwrap
 from typing import Annotated
 
 import typer
@@ -104,11 +106,10 @@ def export_command(
         return
     extra = f", penalty P = {model.penalty:g}" if model.penalty is not None else ""
     if out != "-":
-        typer.echo(
-            f"wrote {out}: {fmt}, {model.form} form, {model.num_variables} variables, "
-            f"{model.num_interactions} interactions{extra}",
-            err=True,
-        )
+        line = (f"wrote {out}: {fmt}, {model.form} form, {model.num_variables} variables, "
+                f"{model.num_interactions} interactions{extra}")
+        width = shutil.get_terminal_size((80, 24)).columns  # $COLUMNS, else the terminal's, else 80
+        typer.echo("\n".join(textwrap.wrap(line, width, break_long_words=False, break_on_hyphens=False)), err=True)
 
 
 def register(app: typer.Typer) -> None:

@@ -16,6 +16,9 @@ solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOL
 :data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
 :func:`qcpp.training.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
 
+``qubo`` (:func:`qcpp.qubo.solve.solve_qubo`) alone takes ``--sampler`` (``tabu``, the default, or ``sa``:
+dwave-samplers' tabu search or simulated annealing on the per-robot QUBO).
+
 ``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
 proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
 
@@ -115,7 +118,7 @@ METHOD_HELP = {
     "anneal": "simulated annealing with SBF moves (the paper's baseline)",
     "genetic": "the paper's genetic algorithm with SBF mutations",
     "qaoa": "QAOA trained on the subspace simulator: its most probable answer",
-    "qubo": "tabu search on the QUBO, repaired by SBF moves (extra: annealing)",
+    "qubo": "tabu search (--sampler sa: annealing) on the QUBO, repaired by SBF moves (extra: annealing)",
 }
 """One line per method for ``qcpp solve --help`` (a method registered without one is still listed)."""
 
@@ -233,6 +236,10 @@ def solve_command(
         typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
                      show_default="until proven"),
     ] = None,
+    sampler: Annotated[
+        str, typer.Option("--sampler", help="Sampler on the QUBO (qubo): tabu (tabu search, one run per read) or sa "
+                          "(simulated annealing, 1,000 sweeps per read); 100 reads either way.")
+    ] = "tabu",
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
     robot: RobotFlag = None,
@@ -264,6 +271,13 @@ def solve_command(
         raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
     if time_limit is not None and not 0 < time_limit < math.inf:
         raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
+    if sampler != "tabu" and method != "qubo":
+        raise ValueError(f"--sampler: applies to --method qubo only (got --method {method})")
+    if method == "qubo":
+        from qcpp.qubo.solve import SAMPLERS
+
+        if sampler not in SAMPLERS:  # before the scenario is loaded, and naming the flag
+            raise ValueError(f"--sampler: unknown sampler {sampler!r} (expected one of tabu, sa)")
     for out in (plot, plot_trace_file):
         if out is not None:
             check_output(out)  # a bad destination fails before solving, not after
@@ -292,6 +306,10 @@ def solve_command(
 
             qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
             sol = qaoa.solution
+        elif method == "qubo" and SOLVE_METHODS["qubo"] is _qubo:
+            from qcpp.qubo.solve import solve_qubo
+
+            sol = solve_qubo(s, sampler=sampler, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
         else:
             sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
     if plot is not None:
@@ -336,12 +354,9 @@ def solve_command(
         details.append(f"rule {sol.rule}")
     console.print(", ".join(details), highlight=False)
     if qaoa is not None:
-        console.print(
-            f"most probable assignment (drawn above): probability {qaoa.probability:.4g}; "
-            f"probability of an optimal assignment {qaoa.p_optimum:.4g}",
-            highlight=False,
-            soft_wrap=True,
-        )
+        # two short lines, each wrapped at spaces to the terminal's width like the notes
+        console.print(f"most probable assignment (drawn above): probability {qaoa.probability:.4g}", highlight=False)
+        console.print(f"probability of an optimal assignment: {qaoa.p_optimum:.4g}", highlight=False)
         tr = qaoa.trace
         console.print(f"{objective} objective per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}",
                       highlight=False, soft_wrap=True)
