@@ -54,7 +54,7 @@ from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from types import MappingProxyType
 from typing import Literal
 
@@ -66,6 +66,7 @@ from qcpp.ir.gates import Gate
 from qcpp.lowering import qasm as _qasm
 from qcpp.lowering.passes import decompose_gate
 from qcpp.lowering.qasm import Version, _check_symbol_names
+from qcpp.lowering.qasm_measure import check_measured, with_measurements
 
 __all__ = [
     "PROFILES",
@@ -260,10 +261,21 @@ def to_qasm3_profile(circuit: Circuit, profile: Profile = "default") -> str:
 
 
 def write_qasm_profile(
-    circuit: Circuit, path: str | os.PathLike[str], version: Version = 3, profile: Profile = "default"
+    circuit: Circuit,
+    path: str | os.PathLike[str],
+    version: Version = 3,
+    profile: Profile = "default",
+    measured: Sequence[int] | None = None,
 ) -> None:
-    """Write :func:`iter_qasm_profile` to ``path`` atomically: whole or not at all."""
+    """Write :func:`iter_qasm_profile` to ``path`` atomically: whole or not at all.
+
+    Args:
+        measured: With qubits, also measure ``measured[i]`` into bit ``i`` of a classical register at the end
+            (:func:`qcpp.lowering.qasm_measure.with_measurements`); ``None`` (the default) writes no measurement.
+    """
     chunks = iter_qasm_profile(circuit, version, profile)  # argument errors surface before any file is made
+    if measured is not None:
+        chunks = with_measurements(chunks, check_measured(measured, circuit.num_qubits), version)
     with atomic_open(path) as f:
         for chunk in chunks:
             f.write(chunk)

@@ -22,6 +22,7 @@ Example:
 
 from __future__ import annotations
 
+import itertools
 import os
 from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -31,6 +32,7 @@ from qcpp.ir.angles import Angle, UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, rz
 from qcpp.lowering.qasm import Version
+from qcpp.lowering.qasm_measure import check_measured, with_measurements
 from qcpp.lowering.qasm_profiles import Profile, iter_qasm_profile, iter_qasm_profile_body
 
 __all__ = ["write_qasm_sections"]
@@ -61,6 +63,7 @@ def write_qasm_sections(
     path: str | os.PathLike[str],
     version: Version = 3,
     profile: Profile = "default",
+    measured: Sequence[int] | None = None,
 ) -> tuple[dict[str, int], tuple[str, ...]]:
     """Stream the circuit ``Circuit(registers, make_sections())`` to an OpenQASM file, one section at a time.
 
@@ -71,6 +74,8 @@ def write_qasm_sections(
         version: 2 or 3.
         profile: the OpenQASM 3 export profile (:mod:`qcpp.lowering.qasm_profiles`); the file equals
             :func:`qcpp.lowering.qasm_profiles.write_qasm_profile` of the whole circuit.
+        measured: As :func:`qcpp.lowering.qasm_profiles.write_qasm_profile`: measure ``measured[i]`` into bit ``i``
+            at the end (``None``: no measurement).
 
     Returns:
         Gates per name (in order of first appearance) and the unbound symbols (ordered as :attr:`Circuit.symbols`).
@@ -83,9 +88,13 @@ def write_qasm_sections(
     header, symbols = _header(registers, make_sections, version, profile)
     ops: Counter[str] = Counter()
     num_qubits = sum(r.size for r in registers)
+    chunks: Iterable[str] = itertools.chain(
+        (header,), iter_qasm_profile_body(_counted(make_sections(), ops), num_qubits, version, profile)
+    )
+    if measured is not None:
+        chunks = with_measurements(chunks, check_measured(measured, num_qubits), version)
     with atomic_open(path) as f:
-        f.write(header)
-        for chunk in iter_qasm_profile_body(_counted(make_sections(), ops), num_qubits, version, profile):
+        for chunk in chunks:
             f.write(chunk)
     return dict(ops), symbols
 

@@ -7,6 +7,7 @@ Examples::
     qcpp compile examples/paper_3x3.toml -p 1 --lowered --bind gamma_0=0.3 beta_0=0.7 --qasm out.qasm
     qcpp compile examples/paper_3x3.toml --qasm - > out.qasm3      # OpenQASM on stdout, the summary on stderr
     qcpp compile examples/paper_3x3.toml --qasm out.qasm3 --qasm-profile portable   # for Braket, PennyLane
+    qcpp compile --grid 2x3 --robots 1 --device ibm_fez --bind gamma_0=0.3 beta_0=0.7 --qasm fez.qasm --measure
 
 Output files follow :mod:`qcpp.io.atomic`: written whole or not at all, symlinks followed, devices and FIFOs
 written straight to, a missing folder is an error (checked before compiling).
@@ -113,6 +114,14 @@ def compile_command(
             "from_qasm3) or braket (Braket's native gate names). Same unitary in each.",
         ),
     ] = "default",
+    measure: Annotated[
+        bool,
+        typer.Option(
+            "--measure",
+            help="With --qasm: also measure every data qubit at the end into a classical register meas (data qubit "
+            "i into meas[i]; with --device from its physical qubit at the end, final_layout[i]).",
+        ),
+    ] = False,
     explain: Annotated[
         bool, typer.Option("--explain", help="Show which phase construction was chosen per term group, and why.")
     ] = False,
@@ -188,6 +197,8 @@ def compile_command(
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
     check_profile(qasm_profile, qasm_version, "--qasm-profile", "--qasm-version")
+    if measure and qasm is None:
+        raise ValueError("--measure: applies with --qasm only (no --qasm given)")
     to_stdout = qasm == "-"
     if to_stdout and as_json:
         raise ValueError("--qasm - and --json both write to standard output; choose one")
@@ -199,7 +210,7 @@ def compile_command(
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
-            optimize_for,
+            optimize_for, measure,
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -212,7 +223,8 @@ def compile_command(
         # not extrapolate to the time left, so that is shown only when the sections are counted
         with Progress(task, total=total, unit="gates", first_after=0.0 if big else None,
                       time_left=qasm is None) as bar:  # fmt: skip
-            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar, qasm_profile)
+            summary, phase_explain = _stream(s, p, options, lowered, bindings, qasm, qasm_version, bar, qasm_profile,
+                                             measure)  # fmt: skip
     else:
         result = compile_scenario(s, p, options, lowered=lowered, bindings=bindings, bind_field="--bind")
         summary, phase_explain = result.summary(), result.phase_explain
@@ -220,6 +232,8 @@ def compile_command(
         summary["qasm"] = {"path": str(qasm), "version": qasm_version}
         if qasm_profile != "default":
             summary["qasm"]["profile"] = qasm_profile
+        if measure:
+            summary["qasm"]["measured"] = "meas"  # the classical register: data qubit i into meas[i]
     if explain:
         summary["phase_explain"] = phase_explain
     if as_json:
@@ -261,6 +275,7 @@ def compile_command(
     if qasm is not None:
         where = "standard output" if to_stdout else qasm
         form = f"OpenQASM {qasm_version}" + (f", {qasm_profile} profile" if qasm_profile != "default" else "")
+        form += ", data qubits measured into meas" if measure else ""
         console.print(f"wrote {where} ({form})", markup=False, soft_wrap=True)  # a path stays whole
     if explain:
         print_table(console, explain_table(phase_explain))
@@ -373,9 +388,11 @@ def _routed(
     layout: str = "auto",
     profile: Profile = "default",
     optimize_for: str | None = None,
+    measure: bool = False,
 ) -> tuple[dict[str, Any], list[dict]]:
-    """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM; the
-    summary adds ``device``, ``initial_layout``, ``final_layout`` and ``routed``."""
+    """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM
+    (``measure``: with every data qubit measured at its physical qubit at the end); the summary adds ``device``,
+    ``initial_layout``, ``final_layout`` and ``routed``."""
     from qcpp.pipeline.device_compile import compile_for_device
 
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
@@ -385,7 +402,8 @@ def _routed(
                                     optimize_for=optimize_for, bind_field="--bind")  # fmt: skip
     if qasm is not None:
         with _bind_hint():
-            write_qasm_profile(result.routed.circuit, qasm, version, profile)  # type: ignore[arg-type]
+            measured = result.routed.final_layout[: s.num_variables] if measure else None
+            write_qasm_profile(result.routed.circuit, qasm, version, profile, measured)  # type: ignore[arg-type]
     return result.compile_summary(), result.compiled.phase_explain
 
 
@@ -410,9 +428,11 @@ def _stream(
     version: int,
     progress: Progress,
     profile: Profile = "default",
+    measure: bool = False,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Build, lower, bind and (if ``qasm`` is a path) write the circuit one plan section at a time (peak memory
-    independent of ``p``); return the summary :meth:`qcpp.plan.compile.CompileResult.summary` would give and the
+    independent of ``p``; ``measure``: the data qubits measured at the end); return the summary
+    :meth:`qcpp.plan.compile.CompileResult.summary` would give and the
     phase plan's choices. ``progress`` counts the gates of every section handed out."""
     from qcpp.plan.qaoa import qaoa_plan
 
@@ -438,7 +458,9 @@ def _stream(
 
     if qasm is not None:
         with _bind_hint():
-            ops, symbols = write_qasm_sections(registers, sections, qasm, version, profile)  # type: ignore[arg-type]
+            measured = range(s.num_variables) if measure else None
+            ops, symbols = write_qasm_sections(registers, sections, qasm, version, profile,  # type: ignore[arg-type]
+                                               measured)  # fmt: skip
     else:
         ops, symbols = _count_sections(registers, sections())
     summary = compile_summary(s, registers, ops, symbols, lowered, time.perf_counter() - start)
