@@ -33,6 +33,7 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree th
 
 if TYPE_CHECKING:
     from qcpp.api.compiling import Compiled, compile
+    from qcpp.api.decoding import DecodedCounts, decode_counts
     from qcpp.api.devices import Device, DeviceError, device, devices
     from qcpp.api.estimates import Estimate, estimate, plot_estimates
     from qcpp.api.noisy import simulate_noisy
@@ -63,6 +64,8 @@ if TYPE_CHECKING:
 _EXPORTS: dict[str, str] = {
     "Compiled": "qcpp.api.compiling",
     "compile": "qcpp.api.compiling",
+    "DecodedCounts": "qcpp.api.decoding",
+    "decode_counts": "qcpp.api.decoding",
     "Device": "qcpp.api.devices",
     "DeviceError": "qcpp.api.devices",
     "device": "qcpp.api.devices",
@@ -104,6 +107,7 @@ _EXPORTS: dict[str, str] = {
 __all__ = [
     "Bqm",
     "Compiled",
+    "DecodedCounts",
     "Device",
     "DeviceError",
     "Estimate",
@@ -121,6 +125,7 @@ __all__ = [
     "__version__",
     "allow_large",
     "compile",
+    "decode_counts",
     "default_scenario",
     "device",
     "devices",

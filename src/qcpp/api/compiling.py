@@ -29,6 +29,7 @@ from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
 
 if TYPE_CHECKING:
+    from qcpp.api.decoding import DecodedCounts
     from qcpp.hardware.device import Device
     from qcpp.ir.circuit import Circuit
     from qcpp.routing.routed_circuit import RoutedCircuit
@@ -95,7 +96,15 @@ class Compiled:
         """What ``qcpp compile --json`` prints for the same scenario and options, without ``seconds``."""
         return {k: v for k, v in self._summary.items() if k != "seconds"}
 
-    def to_qasm(self, version: int = 3, profile: str = "default") -> str:
+    @property
+    def measured_qubits(self) -> tuple[int, ...]:
+        """The circuit qubit each data qubit is read from at the end: data qubit ``i`` (variable ``i``) is measured
+        on ``measured_qubits[i]`` into classical bit ``i`` by ``measure=True`` (with a device: its physical qubit
+        at the end, ``final_layout[i]``; else circuit qubit ``i``)."""
+        n = self.scenario.num_variables
+        return tuple(self.final_layout[:n]) if self.final_layout is not None else tuple(range(n))
+
+    def to_qasm(self, version: int = 3, profile: str = "default", measure: bool = False) -> str:
         """OpenQASM text: ``3`` (unbound symbols become ``input float[64]``) or ``2`` (every symbol bound).
 
         Args:
@@ -104,6 +113,10 @@ class Compiled:
                 faithful: ``include "stdgates.inc"``, qcpp's gate definitions; Qiskit, Cirq, the QDK), ``portable``
                 (no include, no gate definitions: Amazon Braket's local simulator and PennyLane's ``from_qasm3``)
                 or ``braket`` (Braket's native gate names). Every profile is the same unitary.
+            measure: Also declare a classical register ``meas`` of one bit per data qubit and measure data qubit
+                ``i`` into ``meas[i]`` at the end, on :attr:`measured_qubits` ``[i]`` (OpenQASM 3:
+                ``meas[i] = measure q[j];``, every profile; 2: ``measure q[j] -> meas[i];``). Without it the text
+                has no measurement (and is what it was before the option existed, byte for byte).
 
         Raises:
             qcpp.errors.OptionError: a version other than 2 or 3, an unknown profile, or a profile other than
@@ -119,13 +132,20 @@ class Compiled:
             input float[64] beta_0;
             qubit[4] q;
         """
+        from qcpp.lowering.qasm_measure import with_measurements
         from qcpp.lowering.qasm_profiles import check_profile, iter_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
         check_profile(profile, version)
-        return "".join(iter_qasm_profile(self.circuit, int(version), profile))  # type: ignore[arg-type]
+        _check_flag(measure, "measure")
+        chunks = iter_qasm_profile(self.circuit, int(version), profile)  # type: ignore[arg-type]
+        if measure:
+            chunks = with_measurements(chunks, self.measured_qubits, int(version))
+        return "".join(chunks)
 
-    def write_qasm(self, path: str | os.PathLike[str], version: int = 3, profile: str = "default") -> None:
+    def write_qasm(
+        self, path: str | os.PathLike[str], version: int = 3, profile: str = "default", measure: bool = False
+    ) -> None:
         """Write :meth:`to_qasm` to ``path``, whole or not at all (an error leaves no partial file).
 
         Raises:
@@ -135,14 +155,55 @@ class Compiled:
 
         check_choice(version, QASM_VERSIONS, "version")
         check_profile(profile, version)
-        write_qasm_profile(self.circuit, path, int(version), profile)  # type: ignore[arg-type]
+        _check_flag(measure, "measure")
+        write_qasm_profile(self.circuit, path, int(version), profile,  # type: ignore[arg-type]
+                           self.measured_qubits if measure else None)  # fmt: skip
 
-    def to_qiskit(self) -> Any:
+    def to_qiskit(self, measure: bool = False) -> Any:
         """The circuit as a ``qiskit.QuantumCircuit``, through Qiskit's own OpenQASM 3 loader (unbound symbols
-        become Qiskit ``Parameter`` objects of the same names)."""
+        become Qiskit ``Parameter`` objects of the same names).
+
+        Compiled for a device whose native one-qubit gates include ``sx`` (IBM's: ``rz sx x``), not ``lowered``: each
+        ``rx(pi/2)`` of the native circuit (the IR's way of writing ``sx``, :mod:`qcpp.routing.native`) is Qiskit's
+        ``sx``, with the circuit's global phase lowered by ``pi/4`` per gate (``rx(pi/2) = e^{-i pi/4} sx``: the
+        unitary is exactly the same), so the circuit is in the device's basis as it is and its ``cz sx rz x`` counts
+        are those :attr:`esp` charges. With a device, ``qc.layout`` (a Qiskit ``TranspileLayout``) records the
+        routing: ``qc.layout.initial_index_layout(filter_ancillas=True)`` is :attr:`initial_layout`,
+        ``qc.layout.final_index_layout()`` is :attr:`final_layout`.
+
+        Args:
+            measure: Also measure every data qubit: a classical register ``meas`` with data qubit ``i`` (variable
+                ``i``) measured into ``meas[i]`` from :attr:`measured_qubits` ``[i]`` (with a device its physical
+                qubit at the end, ``final_layout[i]``), so a sampler's counts (``result[0].data.meas.get_counts()``)
+                read as the data register, clbit 0 rightmost: :meth:`decode` takes them as they are.
+        """
         import qiskit.qasm3
 
-        return qiskit.qasm3.loads(self.to_qasm(3))
+        qc = qiskit.qasm3.loads(self.to_qasm(3, measure=measure))
+        if self.device is None:
+            return qc
+        from qcpp.routing.qiskit_export import attach_layout, native_sx
+
+        if not self.lowered and "sx" in self.device.native_gates:
+            qc, _ = native_sx(qc)
+        assert self.initial_layout is not None and self.final_layout is not None
+        return attach_layout(qc, self.initial_layout, self.final_layout)
+
+    def decode(self, counts: Any, *, optimum: Any = None) -> DecodedCounts:
+        """Measured counts of this circuit's data register (``to_qiskit(measure=True)``, ``to_qasm(...,
+        measure=True)``) decoded into robot paths, feasibility and cost: :func:`qcpp.decode_counts` on
+        :attr:`scenario`.
+
+        Example:
+            >>> import qcpp
+            >>> c = qcpp.compile(qcpp.grid_scenario(2, 2, robots=1))
+            >>> d = c.decode({"0101": 3, "1111": 1})
+            >>> d.feasible_share, d.best.nodes
+            (0.75, (((0, 0), (0, 1), (1, 1)),))
+        """
+        from qcpp.api.decoding import decode_counts
+
+        return decode_counts(self.scenario, counts, optimum=optimum)
 
     def to_cirq(self) -> Any:
         """The circuit as a ``cirq.Circuit``: qubit ``i`` is ``cirq.LineQubit(i)``, unbound symbols are sympy symbols
@@ -178,6 +239,11 @@ class Compiled:
             f"<Compiled {g.rows}x{g.cols}, {self.scenario.num_robots} robot(s), p={self.p}, {form}{where}: "
             f"{self.qubits} qubits, {total} gates>"
         )
+
+
+def _check_flag(flag: object, name: str) -> None:
+    if not isinstance(flag, bool):
+        raise OptionError(name, f"expected True or False, got {flag!r}")
 
 
 def compile(
