@@ -265,3 +265,14 @@ def test_estimate_takes_the_scenario_file_as_its_argument_too() -> None:
     assert_one_line_error(run("estimate", "examples/two_robots_4x4.toml", "--scenario", "examples/paper_3x3.toml"),
                           "--scenario", "two_robots_4x4.toml", "given already")  # fmt: skip
     assert_one_line_error(run("estimate", "examples/two_robots_4x4.toml", "--grid", "3x3"), "--grid")
+
+
+def test_scenario_draw_shows_the_field_on_stderr_and_keeps_stdout_a_file() -> None:
+    args = ("scenario", "--grid", "4x5", "--robot", "0,0:3,4", "--robot", "3,0:0,4", "--obstacle", "1,1",
+            "--obstacle", "2,3")  # fmt: skip
+    drawn, plain = run(*args, "--draw"), run(*args)
+    assert drawn.exit_code == plain.exit_code == 0
+    assert drawn.stdout == plain.stdout and plain.stderr == ""
+    rows = [line for line in drawn.stderr.splitlines()[:7] if line]
+    assert rows == ["S   .   .   .   G", ".   #   .   .   .", ".   .   .   #   .", "S   .   .   .   G"]
+    assert "robot 0: (0, 0) -> (3, 4)" in drawn.stderr and "robot 1: (3, 0) -> (0, 4)" in drawn.stderr

@@ -28,6 +28,7 @@ from qcpp.cli.commands.inline_scenario import (
     RobotFlag,
     inline_scenario,
 )
+from qcpp.cli.render import render_ascii
 from qcpp.io.atomic import check_output
 from qcpp.problem.scenario import scenario_to_dict
 from qcpp.problem.scenario_io import save_scenario, scenario_to_toml
@@ -41,10 +42,11 @@ Examples:
   qcpp scenario --grid 5x5 --robots 2
   qcpp scenario --grid 7x6 --robot 0,0:6,5 --robot 0,5:6,0 --obstacle 2,2
   qcpp scenario --grid 10x10 --robots 3 --obstacle 4,4 -o field.toml
-  qcpp scenario --grid 4x4 --obstacle 1,1 --hard-obstacles --json
+  qcpp scenario --grid 4x4 --obstacle 1,1 --hard-obstacles --json --draw
 
 The file spells out the default robot placement; compile, estimate, solve
-and the other commands read it.
+and the other commands read it. --draw shows the field (qcpp solve draws
+the paths on it).
 """
 
 
@@ -59,6 +61,9 @@ def scenario_command(
         typer.Option("-o", "--output", help="Write the scenario to this file (.toml or .json) instead of printing it."),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of TOML.")] = False,
+    draw: Annotated[
+        bool, typer.Option("--draw", help="Also draw the grid (obstacles, starts, goals) on stderr.")
+    ] = False,
 ) -> None:
     """Print or write a scenario (see ``qcpp scenario --help``)."""
     if grid is None:
@@ -68,6 +73,8 @@ def scenario_command(
     if output is not None:
         check_output(output)  # a bad destination fails before anything is built
     s = inline_scenario(grid, robots, obstacle, hard_obstacles, robot)
+    if draw:  # on stderr, so the scenario text on stdout stays a file
+        typer.echo(render_ascii(s), err=True)
     if output is not None:
         save_scenario(s, output)
         typer.echo(f"wrote {output}", err=True)
