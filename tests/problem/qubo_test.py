@@ -312,6 +312,66 @@ def test_a_path_plus_a_separate_cycle_can_beat_the_optimum(build: Any) -> None:
     assert path is not None and path != masks[0] and is_feasible(s, 0, path)
 
 
+def _ground_states(s: Scenario, edge_bits: Any) -> tuple[float, list[np.ndarray]]:
+    """(lowest energy at the rule's P over the rows of ``edge_bits``, every edge bit string reaching it)."""
+    m = per_robot_bqm(s)
+    low, arg = np.inf, []
+    for x in edge_bits:
+        e = m.energy(best_auxiliaries(m, x))
+        at = x[np.abs(e - e.min()) <= 1e-9]
+        if e.min() < low - 1e-9:
+            low, arg = float(e.min()), list(at)
+        elif abs(e.min() - low) <= 1e-9:
+            arg += list(at)
+    return low, arg
+
+
+@pytest.mark.parametrize(("size", "robots"), EXHAUSTIVE, ids=lambda v: str(v))
+def test_the_ground_state_is_the_optimal_feasible_paths_where_no_cycle_pays(
+    size: tuple[int, int], robots: list[Any], build: Any
+) -> None:
+    """What qubo_model's docstring states: at the rule's P every minimum has right degrees (a start-goal path plus
+    separate cycles per robot). On these scenarios (every bit string) no cycle pays, so the minima are exactly
+    the optimal feasible assignments."""
+    s = build(*size, robots, obstacles=[(0, 1)] if size == (3, 3) else ())
+    m = per_robot_bqm(s)
+    low, arg = _ground_states(s, all_bits(s.num_variables))
+    best = dfs(s)
+    assert low == pytest.approx(best.cost.total)
+    for x in arg:
+        assert reference_penalty(s, x)[0] == 0
+        assert all(is_feasible(s, r, mk) for r, mk in enumerate(decode_edges(s, m, x)))
+    assert tuple(assignment_bits(s, best.paths)) in {tuple(x) for x in arg}
+
+
+def test_the_ground_state_is_a_path_plus_a_cycle_where_a_cycle_pays(build: Any) -> None:
+    """The other case of qubo_model's docstring: on the 2x4 scenario of the test above the minima are below the
+    optimum and none is feasible; dropping the cycles leaves feasible paths, but not the optimal ones. The minima
+    are searched among the right-degree assignments (each robot's edge sets with degree 1 at its ends and 0 or 2
+    elsewhere), since under the rule every wrong degree pattern is above the optimum
+    (test_no_infeasible_degree_pattern_beats_the_optimum_under_the_rule, test_the_rule_holds_on_random_objectives)."""
+    from qcpp.qubo.solve import drop_cycles
+
+    s = build(2, 4, [((0, 0), (0, 1)), ((0, 1), (0, 0))])
+    m = per_robot_bqm(s)
+    edges = s.variable_edges
+    right = [
+        [mask for bits in all_bits(len(edges)) for mask in [sum(1 << e for e, b in zip(edges, row) if b)
+                                                              for row in bits] if drop_cycles(s, r, mask) is not None]
+        for r in range(s.num_robots)
+    ]
+    x = np.array([assignment_bits(s, combo) for combo in itertools.product(*right)], dtype=np.uint8)
+    low, arg = _ground_states(s, [x])
+    opt = dfs(s).cost.total
+    assert low == -4.0 < opt == 8.0
+    for bits in arg:
+        masks = decode_edges(s, m, bits)
+        assert not all(is_feasible(s, r, mk) for r, mk in enumerate(masks))
+        repaired = [drop_cycles(s, r, mk) for r, mk in enumerate(masks)]
+        assert all(is_feasible(s, r, mk) for r, mk in enumerate(repaired))  # type: ignore[arg-type]
+        assert cost(s, repaired) > opt  # type: ignore[arg-type]
+
+
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(data=st.data())
 def test_the_rule_holds_on_random_objectives(data: st.DataObject, scenario_dict_strategy: Any) -> None:

@@ -36,10 +36,16 @@ def qubo_model(scenario: Scenario, *, form: str = "per-robot", penalty: float | 
     """The cost of ``scenario`` as a binary quadratic model (``qcpp export``'s model).
 
     Args:
-        form: ``per-robot`` (edge and visit variables, degree penalties that vanish on feasible paths: its minima
-            are the optimal feasible paths) or ``paper`` (the paper's cost exactly, over the edge variables).
+        form: ``per-robot`` (edge and visit variables, degree penalties that vanish on feasible paths, so every
+            feasible assignment's energy is its cost) or ``paper`` (the paper's cost exactly, over the edge
+            variables). At the rule's penalty every minimum of ``per-robot`` has right degrees: each robot's edges
+            are a start-goal path plus zero or more separate cycles, and the minimum energy is at most the feasible
+            optimum. The minima are exactly the optimal feasible assignments when no such cycle lowers the energy;
+            where one does (a cycle covers nodes or balances lengths), the minima lie below the optimum and are
+            not feasible. Dropping the cycles (:func:`qcpp.qubo.solve.drop_cycles`) then leaves feasible paths,
+            not necessarily optimal ones (docs/qubo.md, "What degree penalties cannot see: cycles").
         penalty: ``per-robot``: the degree-penalty weight ``P`` (default: the documented rule, large enough that
-            every minimum is feasible).
+            no assignment with a wrong degree has an energy at or below the feasible optimum).
 
     Returns:
         The :class:`~qcpp.qubo.model.Bqm`; its first ``num_edge_variables`` variables are the circuit's data
