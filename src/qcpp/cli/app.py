@@ -407,7 +407,7 @@ PANELS: dict[str, str] = {
     "as_json": "Output", "fmt": "Output", "columns": "Output", "wide": "Output", "compare": "Output",
     "plot": "Output", "metric": "Output", "plot_trace_file": "Output", "qasm": "Output", "qasm_version": "Output",
     "qasm_profile": "Output", "out": "Output", "output": "Output", "explain": "Output", "formula": "Output",
-    "draw": "Output",
+    "draw": "Output", "measure": "Output",
     "max_gates": "Advanced", "force": "Advanced", "allow_large": "Advanced", "help": "Advanced",
 }  # fmt: skip
 """The help panel of each option, by parameter name (``command.param`` first): every command groups its options
