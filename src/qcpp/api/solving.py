@@ -61,7 +61,8 @@ def solve(
         **qaoa_options: ``qaoa`` only: the options of :func:`train_qaoa` (``p``, ``optimizer``, ...).
 
     Returns:
-        The :class:`~qcpp.problem.solvers.Solution` (paths as edge masks per robot, cost and its parts).
+        The :class:`~qcpp.problem.solvers.Solution` (paths as edge masks per robot, cost and its parts;
+        ``node_paths(scenario)`` gives each path's nodes, ``to_dict(scenario)`` the ``qcpp solve --json`` object).
 
     Raises:
         qcpp.errors.OptionError: an unknown method or option, or an option of another method.
