@@ -251,7 +251,7 @@ def compile_command(
     table.add_row("[bold]total", f"[bold]{summary['total_gates']}")
     print_table(console, table)
     regs = ", ".join(f"{k} {v}" for k, v in summary["registers"].items())
-    console.print(f"qubits: {summary['qubits']} ({regs})")
+    console.print(f"qubits: {summary['qubits']}" + (f" ({regs})" if len(summary["registers"]) > 1 else ""))
     if device is not None:
         routed = summary["routed"]
         duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
