@@ -1,6 +1,8 @@
 """``qcpp.simulate_noisy``: the routed circuit ``qcpp.compile`` wrote for a named device, simulated by qiskit-aer
-without noise, holds the optimum with the probability the independent subspace simulator gives at the same angles;
-with the device's noise it loses some of it, more with idle relaxation than without; bad calls raise one line."""
+without noise, holds the optimum with the probability the independent subspace simulator gives at the same angles,
+exactly on every method; with the device's noise it loses some of it, more with idle relaxation than without; a
+run predicted to take hours is refused in one line, a small one runs and reports its progress; bad calls raise one
+line."""
 
 from __future__ import annotations
 
@@ -29,6 +31,42 @@ def test_without_noise_the_routed_circuit_holds_the_subspace_simulator_s_p_optim
     r = qcpp.simulate_noisy(compiled, noise=False)
     assert r.method == "density_matrix" and r.shots == 0 and r.stderr == 0.0 and r.qubits <= 10
     assert r.p_optimum == pytest.approx(ideal, abs=1e-9)
+
+
+@needs_aer
+@pytest.mark.parametrize("method", ["statevector", "matrix_product_state"])
+def test_without_noise_every_method_gives_the_exact_p_optimum(compiled: qcpp.Compiled, method: str) -> None:
+    ideal = qcpp.simulate_qaoa(S, 1, angles=[ANGLES["gamma_0"], ANGLES["beta_0"]], method="subspace").p_optimum
+    r = qcpp.simulate_noisy(compiled, noise=False, method=method, shots=20)
+    assert r.method == method and r.shots == 0 and r.stderr == 0.0 and not r.noise
+    assert r.p_optimum == pytest.approx(ideal, abs=1e-9)
+
+
+@needs_aer
+def test_a_run_predicted_to_take_hours_is_refused_and_a_small_one_runs_with_progress(
+    compiled: qcpp.Compiled,
+) -> None:
+    huge = error_of(lambda: qcpp.simulate_noisy(compiled, method="statevector", shots=10**9), qcpp.SizeError)
+    assert huge.startswith("compiled: 1,000,000,000 noisy trajectories of ")
+    assert "predicted to run for" in huge and "qcpp.allow_large()" in huge
+    calls: list[tuple[int, int]] = []
+    exact = qcpp.simulate_noisy(compiled).p_optimum  # density matrix: exact, no progress
+    sampled = qcpp.simulate_noisy(compiled, method="statevector", shots=150, progress=lambda *a: calls.append(a))
+    assert calls == [(100, 150), (150, 150)]  # runs of SHOT_BATCH shots
+    assert sampled.shots == 150 and sampled.method == "statevector" and sampled.stderr > 0
+    assert abs(sampled.p_optimum - exact) < 4 * sampled.stderr
+    again = qcpp.simulate_noisy(compiled, method="statevector", shots=150)
+    assert again == sampled  # the same seeds with or without progress
+
+
+def test_the_guard_refuses_what_would_not_fit_in_memory(monkeypatch: pytest.MonkeyPatch) -> None:
+    from qcpp.problem.limits import MEMORY_ENV
+
+    bound = qcpp.compile(qcpp.grid_scenario(2, 2, robots=1), device="quantinuum_helios",
+                         bind={"gamma_0": 0.1, "beta_0": 0.2})  # fmt: skip
+    monkeypatch.setenv(MEMORY_ENV, "1M")
+    message = error_of(lambda: qcpp.simulate_noisy(bound), qcpp.SizeError)
+    assert "density matrix" in message and "GB of memory" in message and "qcpp.allow_large()" in message
 
 
 @needs_aer

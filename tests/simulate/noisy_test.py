@@ -1,5 +1,6 @@
-"""Noisy simulation of routed circuits (qiskit-aer): zero noise is the ideal circuit, and a known depolarising and
-read-out error give the analytic P(optimum)."""
+"""Noisy simulation of routed circuits (qiskit-aer): zero noise is the ideal circuit, a known depolarising and
+read-out error give the analytic P(optimum), the shots run in batches that count what one run of every shot
+counts, and the size guard's prediction grows with the qubits and shots."""
 
 from __future__ import annotations
 
@@ -13,7 +14,16 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.ir.gates import Gate
 from qcpp.routing.routed_circuit import RoutedCircuit
-from qcpp.simulate.noisy import NoisyBackendMissing, active_qubits, device_noise_model, require_aer, simulate_noisy
+from qcpp.simulate.noisy import (
+    SHOT_BATCH,
+    NoisyBackendMissing,
+    active_qubits,
+    device_noise_model,
+    noisy_circuit,
+    noisy_need,
+    require_aer,
+    simulate_noisy,
+)
 
 needs_aer = pytest.mark.skipif(importlib.util.find_spec("qiskit_aer") is None, reason="qiskit-aer (extra 'noise')")
 
@@ -100,3 +110,37 @@ def test_missing_aer_is_one_line_naming_the_extra(monkeypatch: pytest.MonkeyPatc
     assert "\n" not in str(info.value)
     with pytest.raises(NoisyBackendMissing):
         simulate_noisy(_routed(_device()), [0b111])
+
+
+@needs_aer
+def test_shots_in_batches_count_what_one_run_of_every_shot_counts() -> None:
+    from qiskit_aer import AerSimulator
+
+    routed = _routed(_device())
+    qubits = active_qubits(routed)
+    shots = 2 * SHOT_BATCH + 37
+    one = AerSimulator(method="statevector", noise_model=device_noise_model(routed.device, qubits), seed_simulator=5)
+    counts = one.run(noisy_circuit(routed, qubits), shots=shots).result().get_counts()
+    calls: list[tuple[int, int]] = []
+    r = simulate_noisy(routed, [0b111], method="statevector", shots=shots, seed=5, progress=lambda *a: calls.append(a))
+    assert r.p_optimum * shots == counts.get("111", 0)
+    assert calls == [(SHOT_BATCH, shots), (2 * SHOT_BATCH, shots), (shots, shots)]
+
+
+def test_the_prediction_grows_with_qubits_and_shots_and_exact_runs_need_no_shots() -> None:
+    small = noisy_need(_routed(_device()), shots=1000)
+    assert "density matrix" in small.what and small.seconds is not None and small.seconds < 60
+    wide = _wide(22)
+    few, many = noisy_need(wide, shots=10), noisy_need(wide, shots=10_000)
+    assert few.seconds is not None and many.seconds is not None and many.seconds > 100 * few.seconds
+    assert noisy_need(wide, shots=10_000, noise=False) == noisy_need(wide, shots=1, noise=False)
+    assert noisy_need(_wide(26), shots=10, method="statevector").bytes > noisy_need(wide, shots=10).bytes
+    assert "matrix product state" in noisy_need(_wide(26), shots=10).what
+
+
+def _wide(n: int) -> RoutedCircuit:
+    """An x on each of ``n`` qubits of a line device (abstract: no errors needed for a prediction)."""
+    from qcpp.hardware.device import get_device
+
+    circuit = Circuit([("q", n)], [Section("s", [Gate("x", (q,), (), None) for q in range(n)])])
+    return RoutedCircuit(circuit, get_device(f"grid:{n}x1"), tuple(range(n)), tuple(range(n)), 0, tuple(range(n)))

@@ -6,7 +6,9 @@ noise model built from the same device file (:mod:`qcpp.simulate.noisy`: gate er
 gates and the idle waits where the file has T1/T2 and durations, read-out errors), on the qubits it touches, and the
 probability that the measured data register is an optimal assignment is returned beside the ESP model's figure.
 
-Needs the extra ``noise`` (``pip install 'qcpp[noise]'``, qiskit-aer).
+Needs the extra ``noise`` (``pip install 'qcpp[noise]'``, qiskit-aer). Like the other simulations it predicts its
+peak memory and run time first (:func:`qcpp.simulate.noisy.noisy_need`) and refuses, in one line naming the
+prediction, what would not fit or would run for more than an hour, unless called in a ``qcpp.allow_large()`` block.
 
 Example:
     >>> import qcpp
@@ -27,6 +29,8 @@ from typing import TYPE_CHECKING
 
 from qcpp.api.compiling import Compiled
 from qcpp.errors import OptionError, check_count
+from qcpp.problem.limits import API_OVERRIDE, check_need
+from qcpp.problem.solvers.result import ProgressFn
 
 if TYPE_CHECKING:
     from qcpp.simulate.noisy import NoisyResult
@@ -42,12 +46,16 @@ def simulate_noisy(
     shots: int = 2000,
     seed: int = 0,
     method: str | None = None,
+    progress: ProgressFn | None = None,
 ) -> NoisyResult:
     """P(optimum) of ``compiled`` under the noise of the device it was compiled for.
 
     Up to 10 active qubits the density matrix gives P(optimum) exactly; above, ``shots`` sampled trajectories (state
-    vectors up to 24 active qubits, matrix product states beyond) give it with a binomial standard error. The cost
-    grows as 2^(active qubits) per gate and shot: a 15-qubit circuit of a few hundred two-qubit gates takes minutes.
+    vectors up to 24 active qubits, matrix product states beyond) give it with a binomial standard error. Without
+    noise the final state's P(optimum) is exact on every method (no shots). A noisy trajectory is a whole
+    state-vector run: the time grows as shots x gates x 2^(active qubits) (the hardware guide lists measured times:
+    minutes for 15 active qubits and 2,000 shots, hours for 21). The run is predicted first and refused over the
+    limits of :func:`qcpp.allow_large`.
 
     Args:
         compiled: A circuit of :func:`qcpp.compile` with a ``device=`` (a named device's calibration snapshot, or
@@ -61,19 +69,23 @@ def simulate_noisy(
         seed: qiskit-aer's seed.
         method: ``density_matrix``, ``statevector`` or ``matrix_product_state`` (default: by the active qubit
             count, as above).
+        progress: Called as ``progress(done, shots)`` after each run of up to
+            :data:`qcpp.simulate.noisy.SHOT_BATCH` sampled shots (the exact methods report nothing).
 
     Returns:
         A :class:`qcpp.NoisyResult`: ``p_optimum``, its ``stderr`` (0 when exact), the ``method``,
-        the active ``qubits`` and the ``shots``.
+        the active ``qubits`` and the ``shots`` (0 when exact).
 
     Raises:
         qcpp.errors.OptionError: ``compiled`` is not a compiled circuit, has no device or is lowered; a bad
             ``shots``, ``seed``, ``method`` or flag.
         qcpp.ir.angles.UnboundParameterError: unbound symbols (naming them).
+        qcpp.SizeError: predicted to need more memory than is available or to run for more than an hour
+            (naming the prediction; lifted inside :func:`qcpp.allow_large`).
         qcpp.simulate.noisy.NoisyBackendMissing: qiskit-aer is not installed (naming the extra).
     """
     from qcpp.ir.angles import UnboundParameterError
-    from qcpp.simulate.noisy import METHODS, require_aer
+    from qcpp.simulate.noisy import METHODS, noisy_need, require_aer
     from qcpp.simulate.noisy import simulate_noisy as simulate
     from qcpp.training.evaluate import feasible_assignments
 
@@ -94,9 +106,13 @@ def simulate_noisy(
         raise OptionError("method", f"unknown method {method!r} (expected one of {', '.join(METHODS)})")
     if compiled.symbols:
         raise UnboundParameterError(compiled.symbols, "a noisy simulation needs numbers")
+    if progress is not None and not callable(progress):
+        raise OptionError("progress", f"expected a function progress(done, total), got {progress!r}")
+    check_need(noisy_need(compiled._routed, noise=noise, shots=count, method=method), field="compiled",
+               override=API_OVERRIDE)  # fmt: skip
     require_aer()
     indices, optimal = feasible_assignments(compiled.scenario)
     return simulate(
         compiled._routed, indices[optimal].tolist(), noise=noise, idle=idle, shots=count, seed=chosen_seed,
-        method=method,
+        method=method, progress=progress,
     )  # fmt: skip

@@ -20,6 +20,20 @@ Only the qubits the routed circuit touches are simulated (renumbered ``0..k-1``)
 :data:`DENSITY_MATRIX_QUBITS` by aer's density-matrix method (``P(optimum)`` exact), up to
 :data:`STATEVECTOR_QUBITS` by state-vector trajectories, beyond by its matrix-product-state method, both with
 sampled noise (``shots`` trajectories; ``P(optimum)`` then carries a binomial error, :attr:`NoisyResult.stderr`).
+Without noise every method gives the exact ``P(optimum)`` of the final state (aer's ``save_probabilities``; no
+shots).
+
+What a noisy run costs: each trajectory is a whole state-vector run of every gate and every error channel, so the
+time grows as shots x operations x 2^qubits, and the noise takes away what makes ideal sampling cheap (one run,
+then sampling the final state). The IBM files' qubits with T2 > T1 make thermal relaxation a Kraus channel that
+aer cannot sample as a mixture of unitaries, which costs further passes over the state. The shots run in batches of
+at most :data:`SHOT_BATCH` (progress is reported after each), the batch from shot ``i`` seeded ``seed + i``: aer
+seeds shot ``j`` of a run ``seed_simulator + j``, so the counts are those of one run of every shot. (aer's shot
+branching, ``shot_branching_enable``, ran 2.3x faster on 200 trajectories of 15 qubits, but gave different counts
+on every run with the same seed in qiskit-aer 0.18, so it is not used.) :func:`noisy_need` predicts the peak
+memory and time (:data:`SECONDS_PER_AMPLITUDE_OP` and its siblings; ``benchmarks/noisy_verdict.py --time``
+prints the prediction beside the measured time); :func:`qcpp.simulate_noisy` refuses what it predicts to run for
+hours.
 
 Example:
     >>> from qcpp.hardware.device import get_device
@@ -39,24 +53,33 @@ Example:
 from __future__ import annotations
 
 import math
-from collections.abc import Collection, Sequence
+import os
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from qcpp.errors import QcppError
 from qcpp.hardware.device import Device
+from qcpp.problem.limits import Need
 from qcpp.routing.native import one_qubit_name
 from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = [
+    "BASE_BYTES",
     "DENSITY_MATRIX_QUBITS",
     "EXTRA",
+    "IDEAL_SECONDS_PER_AMPLITUDE_OP",
     "METHODS",
+    "MPS_SLOWDOWN",
+    "SECONDS_PER_AMPLITUDE_OP",
+    "SHOT_BATCH",
     "STATEVECTOR_QUBITS",
     "NoisyResult",
     "active_qubits",
+    "default_method",
     "device_noise_model",
     "noisy_circuit",
+    "noisy_need",
     "require_aer",
     "simulate_noisy",
 ]
@@ -72,6 +95,27 @@ STATEVECTOR_QUBITS = 24
 
 METHODS = ("density_matrix", "statevector", "matrix_product_state")
 """aer's methods :func:`simulate_noisy` uses."""
+
+SHOT_BATCH = 100
+"""Shots per aer run of the sampled methods (progress is reported after each; the run from shot ``i`` is seeded
+``seed + i``, so the counts equal one run's)."""
+
+BASE_BYTES = 400_000_000
+"""Peak of a process that has imported qiskit and qiskit-aer and built the noise model of a small circuit."""
+
+SECONDS_PER_AMPLITUDE_OP = 1.5e-8
+"""Seconds per amplitude, operation (gate of the routed circuit, or read-out) and shot of the state-vector
+trajectories on one core, error channels included: 1.2e-8 to 1.5e-8 measured on a busy two-core machine (routed
+3x3/1 and 3x4/1 on ibm_fez, 15 and 21 active qubits); ``benchmarks/noisy_verdict.py --time`` prints the
+prediction beside the measured time."""
+
+MPS_SLOWDOWN = 40.0
+"""How much slower the matrix-product-state trajectories ran than the state-vector ones on a routed 3x3/1
+(15 active qubits on ibm_fez, 20 shots: 274 s against 6.7 s); their time is predicted as the state vector's times
+this (a rough figure: the bond dimension, not the qubit count, sets their cost)."""
+
+IDEAL_SECONDS_PER_AMPLITUDE_OP = 1e-9
+"""Seconds per amplitude and operation of one ideal run (``noise=False``: gates fused, no error channels)."""
 
 
 class NoisyBackendMissing(QcppError, ImportError):
@@ -119,6 +163,65 @@ def active_qubits(routed: RoutedCircuit) -> tuple[int, ...]:
     used = {q for g in routed.circuit.gates for q in g[1]}
     used.update(routed.final_layout[lq] for lq in routed.measured)
     return tuple(sorted(used))
+
+
+def default_method(qubits: int) -> str:
+    """aer's method for ``qubits`` active qubits: density matrix up to :data:`DENSITY_MATRIX_QUBITS`, state
+    vectors up to :data:`STATEVECTOR_QUBITS`, matrix product states beyond."""
+    if qubits <= DENSITY_MATRIX_QUBITS:
+        return "density_matrix"
+    return "statevector" if qubits <= STATEVECTOR_QUBITS else "matrix_product_state"
+
+
+def _workers(shots: int) -> int:
+    """Shots aer runs at once: one per core this process may use."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, shots))
+
+
+def noisy_need(routed: RoutedCircuit, *, noise: bool = True, shots: int = 2000, method: str | None = None) -> Need:
+    """Predicted peak memory and wall time of :func:`simulate_noisy` (see the module docstring), from the active
+    qubits ``k``, the routed circuit's operations ``g`` (gates and read-outs) and the shots: the density matrix
+    ``16 * 4^k`` bytes (twice, while its probabilities are read) and ``g * 4^k`` amplitude operations once; state
+    vectors ``16 * 2^k`` bytes per shot run in parallel (one per core) and ``shots * g * 2^k`` amplitude operations
+    spread over the cores (one run of ``g * 2^k`` without noise); matrix product states as state vectors times
+    :data:`MPS_SLOWDOWN`.
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> from qcpp.ir.circuit import Circuit, Section
+        >>> from qcpp.ir.gates import Gate
+        >>> from qcpp.routing.routed_circuit import RoutedCircuit
+        >>> gates = [Gate("x", (q,), (), None) for q in range(22)] * 100
+        >>> wide = RoutedCircuit(Circuit([("q", 22)], [Section("s", gates)]), get_device("grid:5x5"),
+        ...                      tuple(range(22)), tuple(range(22)), 0, tuple(range(22)))
+        >>> noisy_need(wide, shots=2000).seconds > 3600, noisy_need(wide, noise=False).seconds < 60
+        (True, True)
+    """
+    k = len(active_qubits(routed))
+    ops = len(routed.circuit) + len(routed.measured)
+    chosen = method or default_method(k)
+    if chosen == "density_matrix":
+        what = f"a noisy simulation of {k} active qubits by density matrix ({ops:,} operations)"
+        return Need(what, BASE_BYTES + 32 * 4**k, 1.0 + SECONDS_PER_AMPLITUDE_OP * ops * 4**k)
+    if not noise:
+        what = f"an ideal simulation of {k} active qubits by {chosen.replace('_', ' ')} ({ops:,} operations)"
+        seconds = IDEAL_SECONDS_PER_AMPLITUDE_OP * ops * 2**k
+        if chosen == "matrix_product_state":
+            return Need(what, BASE_BYTES, 1.0 + seconds * MPS_SLOWDOWN)
+        return Need(what, BASE_BYTES + 32 * 2**k, 1.0 + seconds)
+    workers = _workers(min(shots, SHOT_BATCH))
+    seconds = SECONDS_PER_AMPLITUDE_OP * shots * ops * 2**k / workers
+    if chosen == "matrix_product_state":
+        seconds *= MPS_SLOWDOWN
+    what = (f"{shots:,} noisy trajectories of {k} active qubits by {chosen.replace('_', ' ')} "
+            f"({ops:,} operations each)")  # fmt: skip
+    if chosen == "matrix_product_state":  # its memory follows the bond dimension: not modelled
+        return Need(what, BASE_BYTES, 1.0 + seconds)
+    return Need(what, BASE_BYTES + 16 * 2**k * (workers + 1), 1.0 + seconds)
 
 
 def _times(device: Device) -> tuple[list[float | None], list[float | None]] | None:
@@ -267,17 +370,21 @@ def simulate_noisy(
     shots: int = 2000,
     seed: int = 0,
     method: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> NoisyResult:
     """``P(optimum)`` of a routed native circuit under its device's noise (see the module docstring).
 
     Args:
         routed: a routed circuit in the device's native gates (:func:`qcpp.routing.native.to_native`), angles bound.
         optimal: the optimal assignments as data-register integers (bit ``i`` = data qubit ``i``).
-        noise: apply the device's noise (``False``: the ideal circuit, the same code path).
+        noise: apply the device's noise (``False``: the ideal circuit's exact ``P(optimum)``, no shots).
         idle: with ``noise``, also the idle relaxation (``False``: gate and read-out errors only).
-        shots: trajectories for the sampling method.
-        seed: aer's seed.
-        method: one of :data:`METHODS` (default: by the active qubit count, see the module docstring).
+        shots: trajectories for the sampling methods (with ``noise``).
+        seed: aer's seed (the batch of :data:`SHOT_BATCH` shots from shot ``i`` gets ``seed + i``: the counts of one
+            run of every shot).
+        method: one of :data:`METHODS` (default: by the active qubit count, :func:`default_method`).
+        progress: called as ``progress(done, shots)`` after each run of sampled shots (with ``noise``, on the
+            sampling methods; the exact methods run once and report nothing).
 
     Returns:
         The :class:`NoisyResult`.
@@ -291,29 +398,35 @@ def simulate_noisy(
 
     qubits = active_qubits(routed)
     n = len(qubits)
-    chosen = method or (
-        "density_matrix" if n <= DENSITY_MATRIX_QUBITS else "statevector" if n <= STATEVECTOR_QUBITS
-        else "matrix_product_state"
-    )  # fmt: skip
+    chosen = method or default_method(n)
     if chosen not in METHODS:
         raise ValueError(f"unknown method {chosen!r} (expected one of {', '.join(METHODS)})")
     qc = noisy_circuit(routed, qubits, idle=noise and idle)
     model = device_noise_model(routed.device, qubits) if noise else None
-    sim = AerSimulator(method=chosen, noise_model=model, seed_simulator=seed)
     targets = set(optimal)
-    if chosen == "density_matrix":
+    if chosen == "density_matrix" or not noise:  # exact: the final state's probabilities, no sampling
+        sim = AerSimulator(method=chosen, noise_model=model, seed_simulator=seed)
         exact = qc.remove_final_measurements(inplace=False)
         bits = [qc.find_bit(instr.qubits[0]).index for instr in qc.data if instr.operation.name == "measure"]
-        exact.save_density_matrix()
-        dm = sim.run(exact).result().data()["density_matrix"]
-        probs = dm.probabilities(bits)
+        if chosen == "density_matrix":
+            exact.save_density_matrix()
+            probs = sim.run(exact).result().data()["density_matrix"].probabilities(bits)
+        else:
+            exact.save_probabilities(bits)
+            probs = sim.run(exact).result().data()["probabilities"]
         if noise and model is not None:
             probs = _apply_readout(probs, [routed.device.readout_error[routed.final_layout[lq]]
                                           for lq in routed.measured])  # fmt: skip
         p = float(sum(probs[k] for k in targets if k < len(probs)))
         return NoisyResult(min(1.0, max(0.0, p)), 0.0, chosen, n, 0, noise)
-    counts = sim.run(qc, shots=shots).result().get_counts()
-    hits = sum(c for key, c in counts.items() if int(key.replace(" ", ""), 2) in targets)
+    sim = AerSimulator(method=chosen, noise_model=model)
+    hits = 0
+    for start in range(0, shots, SHOT_BATCH):
+        batch = min(SHOT_BATCH, shots - start)
+        counts = sim.run(qc, shots=batch, seed_simulator=seed + start).result().get_counts()
+        hits += sum(c for key, c in counts.items() if int(key.replace(" ", ""), 2) in targets)
+        if progress is not None:
+            progress(start + batch, shots)
     p = hits / shots
     return NoisyResult(p, math.sqrt(max(p * (1 - p), 1.0 / shots) / shots), chosen, n, shots, noise)
 
