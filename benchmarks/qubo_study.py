@@ -16,11 +16,20 @@ A third table varies the sampler's effort (reads, tabu runs per read, SA sweeps 
 5x5 and 6x6 scenarios at the rule's P, over ``--seeds`` seeds: how often a read (before polishing) and the
 polished answer reach the optimum, and the time.
 
-Prints three markdown tables: every run and the effort sweep (docs/qubo.md), and a per-scenario summary (the
-README).
+A fourth table (``--only sweeps`` prints it alone) asks how often a single read reaches the optimum on seeded
+random instances with obstacles (``qcpp.ensemble``, density 0.1, seed 0; ``--sweep-cells``, ``--sweep-instances``):
+simulated annealing at 100, 1,000 and 10,000 sweeps per read against tabu search (one run per read), 100 reads at
+the rule's P, the instance's index as the sampler's seed. Per cell and sampler: the median [quartiles] over the
+instances of the % of reads at CP-SAT's optimum after repair and before polishing, on how many instances at least
+one read was, on how many the polished answer was, and the median time per run.
 
-Run:  PYTHONPATH=src python benchmarks/qubo_study.py            (about 15 minutes on the 2-core machine)
+Prints markdown tables: every run and the effort sweep (docs/qubo.md), a per-scenario summary (the README) and
+the sweeps table (docs/qubo.md).
+
+Run:  PYTHONPATH=src python benchmarks/qubo_study.py            (about 15 minutes on the 2-core machine, and the
+                                                                sweeps table's 6 more)
       PYTHONPATH=src python benchmarks/qubo_study.py --sizes 3,4 --robots 1,2   (a quick look)
+      PYTHONPATH=src python benchmarks/qubo_study.py --only sweeps               (the sweeps table alone)
 """
 
 from __future__ import annotations
@@ -111,6 +120,66 @@ def _effort(args: argparse.Namespace, optima: dict[str, float]) -> list[str]:
     return out
 
 
+SWEEPS = [("sa", 100, "100 sweeps"), ("sa", 1000, "1000 sweeps"), ("sa", 10000, "10000 sweeps"),
+          ("tabu", 0, "1 run")]
+
+
+def _quartiles(values: list[float]) -> str:
+    import numpy as np
+
+    q1, med, q3 = np.percentile(values, [25, 50, 75])
+    return f"{med:.0f} [{q1:.0f}, {q3:.0f}]"
+
+
+def _sweeps(args: argparse.Namespace) -> list[str]:
+    """The sweeps table: % of reads at the optimum per instance of seeded random cells, SA by sweeps against tabu."""
+    import statistics
+
+    from qcpp.problem.ensembles import ensemble
+
+    out = []
+    for cell in [x for x in args.sweep_cells.split(",") if x]:
+        size, k = cell.split("/")
+        rows_, cols_ = (int(v) for v in size.split("x"))
+        instances = ensemble(rows_, cols_, int(k), 0.1, count=args.sweep_instances, seed=0)
+        stats: dict[str, list[tuple[float, bool, bool, float]]] = {label: [] for _, _, label in SWEEPS}
+        for i, s in enumerate(instances):
+            ex = cpsat(s, time_limit=args.cpsat_limit)
+            opt = ex.solution.cost.total
+            p = penalty_rule(s).penalty
+            for sampler, sweeps, label in SWEEPS:
+                print(f"{cell} #{i}: {sampler} {label} ...", file=sys.stderr, flush=True)
+                kw = {"sweeps": sweeps} if sampler == "sa" else {}
+                t0 = time.perf_counter()
+                run = solve_qubo(s, penalty=p, sampler=sampler, reads=args.reads, seed=i, **kw)  # type: ignore[arg-type]
+                secs = time.perf_counter() - t0
+                polished = abs(run.solution.cost.total - opt) <= TOL
+                at_opt = run.at_best if polished else 0
+                stats[label].append((100 * at_opt / run.reads, at_opt > 0, polished, secs))
+        n = len(instances)
+        for sampler, _, label in SWEEPS:
+            rs = stats[label]
+            out.append(f"| {cell} | {sampler} | {label} | {_quartiles([r[0] for r in rs])} | "
+                       f"{sum(r[1] for r in rs)}/{n} | {sum(r[2] for r in rs)}/{n} | "
+                       f"{statistics.median(r[3] for r in rs):.1f} |")
+    return out
+
+
+def _print_sweeps(args: argparse.Namespace) -> None:
+    t0 = time.perf_counter()
+    rows = _sweeps(args)
+    if rows:
+        print(f"\nSweeps (random instances: qcpp.ensemble, density 0.1, seed 0, {args.sweep_instances} per cell; "
+              f"per-robot form at the rule's P, {args.reads} reads per run; % of reads at the optimum after repair, "
+              "before polishing: median [quartiles] over the instances)\n")
+        print("| cell | sampler | effort per read | reads at optimum % | instances with a read at optimum | "
+              "polished at optimum | s per run (median) |")
+        print("|---|---|---|---|---:|---:|---:|")
+        print("\n".join(rows))
+        print(f"\nSweeps table: {time.perf_counter() - t0:.0f} s wall, {time.process_time() / 60:.1f} CPU minutes "
+              "in this process.")
+
+
 def _pct(k: int, n: int) -> str:
     return f"{100 * k / n:.0f}"
 
@@ -127,7 +196,14 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=3, help="SBF annealing seeds")
     ap.add_argument("--cpsat-limit", type=float, default=240.0, help="CP-SAT seconds per scenario")
     ap.add_argument("--effort", default="5x5/2,6x6/2", help="scenarios of the effort sweep ('' for none)")
+    ap.add_argument("--sweep-cells", default="4x5/2,5x5/2",
+                    help="random cells ROWSxCOLS/ROBOTS of the sweeps table ('' for none)")
+    ap.add_argument("--sweep-instances", type=int, default=20, help="instances per cell of the sweeps table")
+    ap.add_argument("--only", choices=("sweeps",), help="print only this table")
     args = ap.parse_args()
+    if args.only == "sweeps":
+        _print_sweeps(args)
+        return
     sizes = [int(x) for x in args.sizes.split(",")]
     robots = [int(x) for x in args.robots.split(",")]
     rows, summary = [], []
@@ -198,6 +274,7 @@ def main() -> None:
           "tabu per-robot | tabu polished | SBF anneal at optimum |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     print("\n".join(summary))
+    _print_sweeps(args)
 
 
 if __name__ == "__main__":
