@@ -103,11 +103,11 @@ SHOT_BATCH = 100
 BASE_BYTES = 400_000_000
 """Peak of a process that has imported qiskit and qiskit-aer and built the noise model of a small circuit."""
 
-SECONDS_PER_AMPLITUDE_OP = 1.5e-8
+SECONDS_PER_AMPLITUDE_OP = 6e-9
 """Seconds per amplitude, operation (gate of the routed circuit, or read-out) and shot of the state-vector
-trajectories on one core, error channels included: 1.2e-8 to 1.5e-8 measured on a busy two-core machine (routed
-3x3/1 and 3x4/1 on ibm_fez, 15 and 21 active qubits); ``benchmarks/noisy_verdict.py --time`` prints the
-prediction beside the measured time."""
+trajectories on one core, error channels included: 3.6e-9 to 5e-9 measured on an idle two-core machine, 1.2e-8 to
+1.5e-8 on a busy one (routed 3x3/1 and 3x4/1 on ibm_fez, 15 and 21 active qubits, 20 shots);
+``benchmarks/noisy_verdict.py --time`` prints the prediction beside the measured time."""
 
 MPS_SLOWDOWN = 40.0
 """How much slower the matrix-product-state trajectories ran than the state-vector ones on a routed 3x3/1
