@@ -70,7 +70,8 @@ def simulate_noisy(
         method: ``density_matrix``, ``statevector`` or ``matrix_product_state`` (default: by the active qubit
             count, as above).
         progress: Called as ``progress(done, shots)`` after each run of up to
-            :data:`qcpp.simulate.noisy.SHOT_BATCH` sampled shots (the exact methods report nothing).
+            :data:`qcpp.simulate.noisy.SHOT_BATCH` sampled shots, fewer where shots take seconds (about every
+            30 s: :func:`qcpp.simulate.noisy.shot_batch`); the exact methods report nothing.
 
     Returns:
         A :class:`qcpp.NoisyResult`: ``p_optimum``, its ``stderr`` (0 when exact), the ``method``,

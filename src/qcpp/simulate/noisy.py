@@ -27,7 +27,8 @@ What a noisy run costs: each trajectory is a whole state-vector run of every gat
 time grows as shots x operations x 2^qubits, and the noise takes away what makes ideal sampling cheap (one run,
 then sampling the final state). The IBM files' qubits with T2 > T1 make thermal relaxation a Kraus channel that
 aer cannot sample as a mixture of unitaries, which costs further passes over the state. The shots run in batches of
-at most :data:`SHOT_BATCH` (progress is reported after each), the batch from shot ``i`` seeded ``seed + i``: aer
+at most :data:`SHOT_BATCH`, fewer where a shot is predicted to take seconds (:func:`shot_batch`: a batch every
+:data:`PROGRESS_SECONDS` or so; progress is reported after each), the batch from shot ``i`` seeded ``seed + i``: aer
 seeds shot ``j`` of a run ``seed_simulator + j``, so the counts are those of one run of every shot. (aer's shot
 branching, ``shot_branching_enable``, ran 2.3x faster on 200 trajectories of 15 qubits, but gave different counts
 on every run with the same seed in qiskit-aer 0.18, so it is not used.) :func:`noisy_need` predicts the peak
@@ -71,6 +72,7 @@ __all__ = [
     "IDEAL_SECONDS_PER_AMPLITUDE_OP",
     "METHODS",
     "MPS_SLOWDOWN",
+    "PROGRESS_SECONDS",
     "SECONDS_PER_AMPLITUDE_OP",
     "SHOT_BATCH",
     "STATEVECTOR_QUBITS",
@@ -81,6 +83,7 @@ __all__ = [
     "noisy_circuit",
     "noisy_need",
     "require_aer",
+    "shot_batch",
     "simulate_noisy",
 ]
 
@@ -95,6 +98,9 @@ STATEVECTOR_QUBITS = 24
 
 METHODS = ("density_matrix", "statevector", "matrix_product_state")
 """aer's methods :func:`simulate_noisy` uses."""
+
+PROGRESS_SECONDS = 30.0
+"""About how long a batch of shots runs at most when shots are slow (:func:`shot_batch`)."""
 
 SHOT_BATCH = 100
 """Shots per aer run of the sampled methods (progress is reported after each; the run from shot ``i`` is seeded
@@ -180,6 +186,30 @@ def _workers(shots: int) -> int:
     except (AttributeError, OSError):
         cores = os.cpu_count() or 1
     return max(1, min(cores, shots))
+
+
+def shot_batch(routed: RoutedCircuit, shots: int, method: str) -> int:
+    """Shots per aer run: :data:`SHOT_BATCH`, or fewer (a multiple of the cores, at least one per core) where a
+    batch is predicted to run longer than :data:`PROGRESS_SECONDS`. The counts do not depend on it (aer seeds each
+    shot), only how often progress is reported.
+
+    Example:
+        >>> from qcpp.hardware.device import get_device
+        >>> from qcpp.ir.circuit import Circuit, Section
+        >>> from qcpp.ir.gates import Gate
+        >>> from qcpp.routing.routed_circuit import RoutedCircuit
+        >>> one = RoutedCircuit(Circuit([("q", 1)], [Section("s", [Gate("x", (0,), (), None)])]),
+        ...                     get_device("grid:2x2"), (0,), (0,), 0, (0,))
+        >>> shot_batch(one, 1000, "statevector")
+        100
+    """
+    k = len(active_qubits(routed))
+    per_shot = SECONDS_PER_AMPLITUDE_OP * (len(routed.circuit) + len(routed.measured)) * 2**k
+    if method == "matrix_product_state":
+        per_shot *= MPS_SLOWDOWN
+    workers = _workers(shots)
+    per_core = int(PROGRESS_SECONDS / per_shot) if per_shot > 0 else SHOT_BATCH  # shots one core runs in that time
+    return max(workers, min(SHOT_BATCH, per_core * workers))
 
 
 def noisy_need(routed: RoutedCircuit, *, noise: bool = True, shots: int = 2000, method: str | None = None) -> Need:
@@ -380,7 +410,7 @@ def simulate_noisy(
         noise: apply the device's noise (``False``: the ideal circuit's exact ``P(optimum)``, no shots).
         idle: with ``noise``, also the idle relaxation (``False``: gate and read-out errors only).
         shots: trajectories for the sampling methods (with ``noise``).
-        seed: aer's seed (the batch of :data:`SHOT_BATCH` shots from shot ``i`` gets ``seed + i``: the counts of one
+        seed: aer's seed (the batch of shots from shot ``i`` gets ``seed + i``: the counts of one
             run of every shot).
         method: one of :data:`METHODS` (default: by the active qubit count, :func:`default_method`).
         progress: called as ``progress(done, shots)`` after each run of sampled shots (with ``noise``, on the
@@ -421,8 +451,9 @@ def simulate_noisy(
         return NoisyResult(min(1.0, max(0.0, p)), 0.0, chosen, n, 0, noise)
     sim = AerSimulator(method=chosen, noise_model=model)
     hits = 0
-    for start in range(0, shots, SHOT_BATCH):
-        batch = min(SHOT_BATCH, shots - start)
+    size = shot_batch(routed, shots, chosen)
+    for start in range(0, shots, size):
+        batch = min(size, shots - start)
         counts = sim.run(qc, shots=batch, seed_simulator=seed + start).result().get_counts()
         hits += sum(c for key, c in counts.items() if int(key.replace(" ", ""), 2) in targets)
         if progress is not None:
