@@ -165,10 +165,9 @@ class NoisyResult:
 
 
 def active_qubits(routed: RoutedCircuit) -> tuple[int, ...]:
-    """The physical qubits the routed circuit acts on or measures, ascending."""
-    used = {q for g in routed.circuit.gates for q in g[1]}
-    used.update(routed.final_layout[lq] for lq in routed.measured)
-    return tuple(sorted(used))
+    """The physical qubits the routed circuit acts on or measures, ascending
+    (:attr:`~qcpp.routing.routed_circuit.RoutedCircuit.active_qubits`)."""
+    return routed.active_qubits
 
 
 def default_method(qubits: int) -> str:
