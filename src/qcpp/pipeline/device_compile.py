@@ -58,7 +58,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -426,24 +426,10 @@ def _searched_elsewhere(
     ``routing.lattice_search_max_distance``, as ``(name, logical circuit, routing)`` for
     :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on the device where its couplers embed. Empty
     elsewhere."""
-    if device.family != "heavy-hex" or not is_calibrated(device):
+    if not _searches_apply(circuit, device, routing):
         return []
-    if not 0 < _two_qubit(circuit) <= routing.placement_max_twoq:
-        return []
-    out = []
-    for d in range(3, routing.lattice_search_max_distance + 1, 2):
-        lattice = get_device(f"heavy-hex:{d}")
-        if lattice.num_qubits < circuit.num_qubits:
-            continue
-        say(f"routing the whole circuit on {lattice.name} to place it on {device.name}")
-
-        def routes(c: Circuit, lattice: Device = lattice) -> list[RoutedCircuit]:
-            return greedy_routes(c, lattice, seed, layouts, measured, routing, context)
-
-        logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, lattice, bindings, routing,
-                                              context, say)  # fmt: skip
-        out.append((f"search on {lattice.name}", logical, routed[0]))
-    return out
+    lattices = [get_device(f"heavy-hex:{d}") for d in range(3, routing.lattice_search_max_distance + 1, 2)]
+    return _searched_on(lattices, plan, circuit, device, seed, layouts, measured, bindings, routing, context, say)
 
 
 def _searched_on_siblings(
@@ -458,24 +444,39 @@ def _searched_on_siblings(
     devices' defects differ, so the same search starts elsewhere and now and then finds fewer SWAPs (3x3/2 with a
     hard obstacle: 308 CZ from Fez's search placed on Torino, against 335 from Torino's own). Only for ``twoq``:
     the default ``esp`` keeps the candidates it had. Empty elsewhere."""
-    if device.family != "heavy-hex" or not is_calibrated(device):
+    if not _searches_apply(circuit, device, routing):
         return []
-    if not 0 < _two_qubit(circuit) <= routing.placement_max_twoq:
-        return []
+    siblings = [get_device(name) for name in device_names() if name != device.name]
+    siblings = [d for d in siblings if d.family == "heavy-hex" and is_calibrated(d)]
+    return _searched_on(siblings, plan, circuit, device, seed, layouts, measured, bindings, routing, context, say)
+
+
+def _searches_apply(circuit: Circuit, device: Device, routing: RoutingOptions) -> bool:
+    """Whether the greedy path's searches on other hosts are candidates: on a named heavy-hex device, for a circuit
+    of at most ``routing.placement_max_twoq`` two-qubit gates (and at least one)."""
+    calibrated_hex = device.family == "heavy-hex" and is_calibrated(device)
+    return calibrated_hex and 0 < _two_qubit(circuit) <= routing.placement_max_twoq
+
+
+def _searched_on(
+    hosts: Sequence[Device], plan: QaoaPlan, circuit: Circuit, device: Device, seed: int, layouts: tuple[str, ...],
+    measured: range, bindings: Mapping[str, float] | None, routing: RoutingOptions, context: RoutingContext,
+    say: Callable[[str], None],
+) -> list[tuple[str, Circuit, RoutedCircuit]]:  # fmt: skip
+    """``circuit`` compiled as the greedy path compiles it (:func:`greedy_routes`, partial mixers planned for the
+    routing) on each host that holds it, in order, as ``(f"search on {host}", logical circuit, routing)``."""
     out = []
-    for name in device_names():
-        other = get_device(name)
-        if (name == device.name or other.family != "heavy-hex" or not is_calibrated(other)
-                or other.num_qubits < circuit.num_qubits):  # fmt: skip
+    for host in hosts:
+        if host.num_qubits < circuit.num_qubits:
             continue
-        say(f"routing the whole circuit on {name} to place it on {device.name}")
+        say(f"routing the whole circuit on {host.name} to place it on {device.name}")
 
-        def routes(c: Circuit, other: Device = other) -> list[RoutedCircuit]:
-            return greedy_routes(c, other, seed, layouts, measured, routing, context)
+        def routes(c: Circuit, host: Device = host) -> list[RoutedCircuit]:
+            return greedy_routes(c, host, seed, layouts, measured, routing, context)
 
-        logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, other, bindings, routing,
+        logical, routed = _with_routed_mixers(circuit, routes(circuit), routes, plan, host, bindings, routing,
                                               context, say)  # fmt: skip
-        out.append((f"search on {name}", logical, routed[0]))
+        out.append((f"search on {host.name}", logical, routed[0]))
     return out
 
 
