@@ -112,8 +112,8 @@ def test_solvers_and_simulators_run_through_the_api() -> None:
 def test_trained_bindings_compile_to_the_trained_state(initial: str) -> None:
     """``train_qaoa(...).bindings`` binds the compiled circuit (same rule and initial state): its lowered
     statevector reads the optimum with the probability training reports."""
-    from qcpp.training.evaluate import feasible_assignments
     from qcpp.simulate.statevector import simulate_statevector
+    from qcpp.training.evaluate import feasible_assignments
 
     s = qcpp.grid_scenario(2, 3, robots=[((0, 0), (1, 2))])
     trained = qcpp.train_qaoa(s, 2, initial=initial, maxiter=30)
