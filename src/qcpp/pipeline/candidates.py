@@ -55,6 +55,7 @@ from qcpp.routing.swap_orientation import orient_swaps
 
 __all__ = [
     "OPTIMIZE_FOR", "QISKIT_SEEDS", "RoutedCandidate", "calibrated_candidates", "choose", "default_objective",
+    "figure_key",
     "is_calibrated",
 ]
 
@@ -115,10 +116,16 @@ def default_objective(device: Device) -> str:
     return "esp" if device.name in device_names() else "twoq"
 
 
-def _key(c: RoutedCandidate, optimize_for: str) -> tuple[float, float]:
-    figure = c.esp if c.esp_idle is None else c.esp_idle
+def figure_key(two_qubit: int, esp: float, esp_idle: float | None, optimize_for: str) -> tuple[float, float]:
+    """The sort key :func:`choose` maximises: by ``optimize_for``, the ESP (with idle decoherence where known) then
+    fewer two-qubit gates, or fewer two-qubit gates then the ESP. Also for a candidate read from ``--json``."""
+    figure = esp if esp_idle is None else esp_idle
     log = math.log(figure) if figure > 0 else -math.inf
-    return (log, -c.twoq) if optimize_for == "esp" else (-c.twoq, log)
+    return (log, -two_qubit) if optimize_for == "esp" else (-two_qubit, log)
+
+
+def _key(c: RoutedCandidate, optimize_for: str) -> tuple[float, float]:
+    return figure_key(c.twoq, c.esp, c.esp_idle, optimize_for)
 
 
 def choose(candidates: Sequence[RoutedCandidate], optimize_for: str) -> RoutedCandidate:

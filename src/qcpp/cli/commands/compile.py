@@ -306,15 +306,14 @@ def qiskit_o3_line(routed: dict[str, Any]) -> str | None:
     seeds = [c for c in routed["candidates"] if c["name"].startswith("qiskit O3 seed ") and "+" not in c["name"]]
     if not seeds:
         return None
+    from qcpp.pipeline.candidates import figure_key
+
     idle = routed.get("esp_idle") is not None
 
     def figure(c: dict[str, Any]) -> float:
         return c["esp_idle"] if idle else c["esp"]
 
-    if routed["optimize_for"] == "twoq":
-        best = min(seeds, key=lambda c: (c["two_qubit"], -figure(c)))
-    else:
-        best = max(seeds, key=lambda c: (figure(c), -c["two_qubit"]))
+    best = max(seeds, key=lambda c: figure_key(c["two_qubit"], c["esp"], c.get("esp_idle"), routed["optimize_for"]))
     esp_text = f"ESP {best['esp']:.3g}" + (f" ({best['esp_idle']:.3g} idle)" if idle else "")
     ratio_esp = figure(routed) / figure(best) if figure(best) > 0 else math.inf
     return (
