@@ -36,7 +36,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from qcpp.estimators.tables import draw, records, title_lines
+from qcpp.estimators.tables import draw, records, terminal_width, title_lines
 from qcpp.io.atomic import save_figure_atomic
 from qcpp.problem.paths import edges_of
 from qcpp.problem.scenario import Scenario
@@ -343,3 +343,14 @@ def print_table(console: Any, table: Any) -> None:
         console.print(table)
     finally:
         table.title = title
+
+
+def echo_note(text: str) -> None:
+    """``text`` on standard error, wrapped at spaces to the terminal's width
+    (:func:`qcpp.estimators.tables.terminal_width`); no word is cut."""
+    import textwrap
+
+    import typer
+
+    lines = textwrap.wrap(text, terminal_width(), break_long_words=False, break_on_hyphens=False)
+    typer.echo("\n".join(lines), err=True)

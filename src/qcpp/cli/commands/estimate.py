@@ -10,10 +10,8 @@ Examples: see :data:`HELP` (``qcpp estimate --help``; ``tests/cli/help_and_noise
 
 from __future__ import annotations
 
-import shutil
 import signal
 import sys
-import textwrap
 import threading
 from collections.abc import Sequence
 from pathlib import Path
@@ -31,8 +29,9 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import with_plan_flags
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import print_table
+from qcpp.cli.render import echo_note, print_table
 from qcpp.errors import OptionError
+from qcpp.estimators.tables import terminal_width
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.errors import ScenarioError
@@ -197,7 +196,7 @@ def estimate(
     qec_scheme = qec_scheme if qec_scheme is not None else DEFAULT_QEC_SCHEME
     error_budget = error_budget if error_budget is not None else DEFAULT_ERROR_BUDGET
     if formula:
-        typer.echo(formula_report(fmt, width=_terminal_width()), nl=False)  # type: ignore[arg-type]
+        typer.echo(formula_report(fmt, width=terminal_width()), nl=False)  # type: ignore[arg-type]
         return
     settings = checked_estimate_options(
         options, epsilon=epsilon, toffoli_t=toffoli_t, depth=depth, depth_budget=depth_budget, physical=physical,
@@ -214,7 +213,7 @@ def estimate(
     except ScenarioError as exc:
         raise flag_error(exc, robots, obstacle, robot) from None
     if points.skipped:
-        _note(
+        echo_note(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "
             "the robot count (the default placement hosts 2(rows+cols)-4 robots)"
         )
@@ -246,7 +245,7 @@ def estimate(
     for piece in held:
         _write_whole(piece)
     if physical:
-        _note(
+        echo_note(
             f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
             f"{error_budget:g}), from the logical counts"
         )
@@ -254,17 +253,6 @@ def estimate(
         typer.echo(f"wrote {plot}", err=True)
     if explain:
         _explain(points.points, options)
-
-
-def _terminal_width() -> int:
-    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
-    return shutil.get_terminal_size((80, 24)).columns
-
-
-def _note(text: str) -> None:
-    """``text`` on standard error, wrapped at spaces to the terminal's width."""
-    lines = textwrap.wrap(text, _terminal_width(), break_long_words=False, break_on_hyphens=False)
-    typer.echo("\n".join(lines), err=True)
 
 
 def _after_rows(fmt: str, plot: str | None) -> str | None:

@@ -15,8 +15,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
-import textwrap
 from typing import Annotated
 
 import typer
@@ -31,6 +29,7 @@ from qcpp.cli.commands.inline_scenario import (
     given_scenario,
 )
 from qcpp.cli.progress import Progress
+from qcpp.cli.render import echo_note
 from qcpp.io.atomic import check_output, write_text_atomic
 from qcpp.qubo.export import EXPORT_FORMATS, export_text
 from qcpp.qubo.model import FORMS, bqm_for
@@ -108,8 +107,7 @@ def export_command(
     if out != "-":
         line = (f"wrote {out}: {fmt}, {model.form} form, {model.num_variables} variables, "
                 f"{model.num_interactions} interactions{extra}")
-        width = shutil.get_terminal_size((80, 24)).columns  # $COLUMNS, else the terminal's, else 80
-        typer.echo("\n".join(textwrap.wrap(line, width, break_long_words=False, break_on_hyphens=False)), err=True)
+        echo_note(line)
 
 
 def register(app: typer.Typer) -> None:
