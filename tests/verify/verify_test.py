@@ -236,10 +236,11 @@ def test_the_gadget_method_catches_a_dropped_control(monkeypatch: pytest.MonkeyP
     s = default_scenario(3, 3, 2)
     _drop_one_control(monkeypatch)
     report = verify_gadgets(s, p=1)
-    assert not report.holds
+    assert not report.holds and report.outcome == "fails"  # a broken gadget is a counterexample, not "undecided"
     cx = report.counterexample
     assert cx is not None and cx.method == "gadgets" and cx.kind.startswith("ParityPartialMixer")
     assert "does not do what its program says" in cx.reason
+    assert cx.reachable is True and "A feasible path contains this input" in cx.reason
 
 
 def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -252,7 +253,7 @@ def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypat
 
     monkeypatch.setattr(VisitPhase, "emit", no_uncompute)
     report = verify_gadgets(default_scenario(3, 3, 2), p=1)
-    assert not report.holds
+    assert not report.holds and report.outcome == "fails"
     cx = report.counterexample
     assert cx is not None and cx.check.startswith("phase VisitPhase") and "not shown diagonal" in cx.reason
 

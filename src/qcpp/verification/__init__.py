@@ -12,7 +12,8 @@ superposition of feasible assignments with clean ancillas. Two methods check tha
     Checks every gadget kind of the plan's call graph on all its local inputs (and the SBF rule on every local
     picture of the scenario); the circuit is its call graph expanded, so this certifies the whole circuit at any
     size (a 30x30 field with 8 robots takes seconds). A counterexample is local: one gadget kind, one plaquette,
-    one local configuration of edges.
+    one local configuration of edges; where a failing local input is on no feasible path it can find, and it
+    cannot show that none has it, the verdict is ``not_certified`` (neither a proof nor a counterexample).
 ``auto``
     ``state`` when every feasible input can be checked (at most ``samples`` of them, at most 62 qubits), else
     ``gadgets``.
@@ -37,15 +38,17 @@ from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.verification.common import ProgressFn
 from qcpp.verification.gadgets import verify_gadgets
-from qcpp.verification.report import METHODS, Check, Counterexample, Method, VerifyReport
+from qcpp.verification.report import METHODS, OUTCOMES, Check, Counterexample, Method, Outcome, VerifyReport
 from qcpp.verification.state import DEFAULT_SAMPLES, state_fits, verify_state
 
 __all__ = [
     "DEFAULT_SAMPLES",
     "METHODS",
+    "OUTCOMES",
     "Check",
     "Counterexample",
     "Method",
+    "Outcome",
     "VerifyReport",
     "choose_method",
     "resolve_method",

@@ -10,16 +10,20 @@ checks the whole circuit. Four groups of checks, each a :class:`~qcpp.verificati
     at the robot's endpoints and 0 or 2 elsewhere (every feasible path looks like one of these near the
     plaquette). Wherever the program allows the flip, the ``exact`` rule's specification
     (:func:`qcpp.problem.sbf.exact_rule_value`) must allow it too; that specification only allows flips whose result
-    is again a feasible path. A failure is a local counterexample, named by what the flip does: it leaves a corner
-    with a wrong degree, or adds all four plaquette edges (a closed loop), or removes them (the input is a closed
-    loop, which no feasible path contains), or swaps two opposite edges for the other two (which can split the
-    path into a path and a loop). Whether a feasible path of the robot contains the input is then decided where
-    that is cheap (:func:`_reach`: a closed loop never; else among the robot's first :data:`REACH_PATHS` paths),
-    and a feasible path that contains it and whose flip is not feasible becomes the counterexample's input.
+    is again a feasible path. Closed loops (all four plaquette edges set) are not checked: a feasible path is a
+    simple path, so no feasible assignment has one (see "closed loops" below). A failing input is named by what the
+    flip does: it leaves a corner with a wrong degree, or adds all four plaquette edges (a closed loop), or swaps
+    two opposite edges for the other two (which can split the path into a path and a loop). Whether a feasible
+    path of the robot contains the input is then looked up among its first :data:`REACH_PATHS` paths
+    (:class:`_PathIndex`): a feasible path that contains it and whose flip is not feasible is a counterexample (its
+    input is that path); any other failing input is *unresolved* (no feasible path shown to contain it, or none
+    shown to flip out), and the check goes on looking for a real one.
 ``mixer`` (one per partial-mixer kind, junction kind and rotation kind)
     The lowered gates of each partial-mixer kind on **all** ``2^k`` inputs of its ``k`` data qubits (plaquette
-    and outer edges it reads), ancillas ``|0>``: where the kind's program allows the flip, exactly
-    ``cos(b/2)|x> - i sin(b/2)|x xor plaquette>``, elsewhere ``|x>``, with every ancilla back in ``|0>``. In a
+    and outer edges it reads), ancillas ``|0>``, closed loops excepted: where the kind's program allows the flip,
+    exactly ``cos(b/2)|x> - i sin(b/2)|x xor plaquette>``, elsewhere ``|x>``, with every ancilla back in ``|0>``.
+    An input where the gates differ is a counterexample when a feasible path contains it on the scenario's
+    plaquette of that kind, else unresolved. In a
     fused layer (:mod:`qcpp.gadgets.junction`) the partial mixer is its opening junction, rotation and closing
     junction, and the closing junction alone must clean the state the opening one made; every junction kind
     ``J(l, r)`` must turn the state ``l``'s opening made into the one ``r``'s opening makes, on every input.
@@ -38,6 +42,19 @@ together they show: on every feasible path, each partial mixer either does nothi
 with clean ancillas; the phase separator only changes phases; so every layer, and the whole circuit, keeps the
 span of feasible assignments.
 
+Closed loops
+    Leaving out inputs with all four plaquette edges set is sound without any reachability argument: what is
+    certified is that each part maps every feasible basis state into the span of feasible ones, and a feasible
+    basis state has one simple path per robot, which contains no cycle, so its local input at a plaquette is never
+    a closed loop. By linearity only those inputs matter, whatever the gates do on the others (the paper rule's
+    gadget computes its condition from single plaquette edges, which the flip of a closed loop changes, and leaves
+    an ancilla set there). In a fused layer the state between two partial mixers is the next one's opening
+    applied to such a state, so the junction checks (on every input) compose the same way.
+
+Three outcomes (:attr:`~qcpp.verification.report.VerifyReport.outcome`): ``holds`` when every check held;
+``fails`` with a counterexample; ``not_certified`` when only unresolved inputs were found. The checks go on past
+an unresolved input so that a counterexample elsewhere is still found.
+
 Example:
     >>> from qcpp.problem.presets import default_scenario
     >>> r = verify_gadgets(default_scenario(4, 4, 2), p=2)
@@ -47,6 +64,7 @@ Example:
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import random
@@ -89,11 +107,40 @@ EXHAUSTIVE_PHASE_QUBITS = 12
 """Phase kinds with at most this many data qubits are also run, lowered, on every data input."""
 
 REACH_PATHS = 20_000
-"""A failed rule check looks for a feasible path containing its local input among this many of the robot's paths
-(about half a second); a robot with more paths leaves the question open unless the input is a closed loop."""
+"""A failed check looks for a feasible path containing its local input among this many of the robot's paths
+(about half a second); a robot with more paths leaves the question open when none of them does."""
 
 ALL_LOCAL_INPUTS = ("The gadget method checks every locally feasible input, reachable or not; --method state runs "
                     "the circuit on its real inputs.")  # fmt: skip
+
+
+class _PathIndex:
+    """The first :data:`REACH_PATHS` feasible paths of each robot, indexed by their local input on a set of edges
+    (built on the first question about that robot and edge set; only failing checks ask)."""
+
+    def __init__(self, scenario: Scenario) -> None:
+        self.scenario = scenario
+        self._paths: dict[int, tuple[list[int], bool]] = {}
+        self._by_local: dict[tuple[int, int], dict[int, list[int]]] = {}
+
+    def paths(self, robot: int) -> tuple[list[int], bool]:
+        """The robot's first paths and whether they are all of them."""
+        if robot not in self._paths:
+            found = list(itertools.islice(iter_paths(self.scenario, robot), REACH_PATHS + 1))
+            self._paths[robot] = (found[:REACH_PATHS], len(found) <= REACH_PATHS)
+        return self._paths[robot]
+
+    def containing(self, robot: int, local: int, mask: int) -> tuple[list[int], bool]:
+        """The robot's paths (among the first :data:`REACH_PATHS`) equal to ``mask`` on the edges of ``local``, and
+        whether every path of the robot was looked at."""
+        key = (robot, local)
+        if key not in self._by_local:
+            table: dict[int, list[int]] = {}
+            for path in self.paths(robot)[0]:
+                table.setdefault(path & local, []).append(path)
+            self._by_local[key] = table
+        return self._by_local[key].get(mask, []), self.paths(robot)[1]
+
 
 Mixer = ParityPartialMixer | McxPartialMixer
 _CORNER_EDGES = ((0, 3), (0, 1), (1, 2), (2, 3))  # corner a, b, c, d -> its plaquette edges in (ab, bc, cd, da)
@@ -106,6 +153,7 @@ class _Failure(Exception):
     def __init__(self, counterexample: Counterexample, part: str = "mixer", inputs: int = 0) -> None:
         super().__init__(counterexample.reason)
         self.counterexample, self.part, self.inputs = counterexample, part, inputs
+        self.leak = True  # a rule failure sets it: whether a feasible path flips out here
 
 
 # --------------------------------------------------------------------------------------------- the rule, per picture
@@ -119,22 +167,35 @@ def _locally_feasible(degrees: Sequence[int], endpoints: Sequence[bool]) -> bool
 
 def _check_rule(
     scenario: Scenario, robot: int, plaq: Plaquette, logic: SbfLogic, picture: LocalPicture,
-    outer: tuple[tuple[int, ...], ...],
-) -> int:  # fmt: skip
-    """Check the program on every locally feasible input; returns how many there were (raises :class:`_Failure`).
+    outer: tuple[tuple[int, ...], ...], index: _PathIndex, others: Sequence[tuple[int, Plaquette]] = (),
+) -> tuple[int, int, _Failure | None]:  # fmt: skip
+    """Check the program on every locally feasible input but closed loops (see the module docstring).
 
     The program is read in the form the gates are checked against (:func:`_program_value` of the partial mixer's
-    abstract program), and must agree with the rule's own :meth:`~qcpp.problem.sbf.SbfLogic.evaluate` there."""
+    abstract program), and must agree with the rule's own :meth:`~qcpp.problem.sbf.SbfLogic.evaluate` there.
+
+    A failing input is looked up on ``plaq`` and on ``others`` (the scenario's other robots and plaquettes with
+    this picture): a feasible path with that input whose flip is infeasible is a counterexample; when every
+    robot involved has at most :data:`REACH_PATHS` paths and none is found, the input is harmless on every
+    feasible path (decided); otherwise it is unresolved.
+
+    Returns:
+        ``(inputs checked, unresolved inputs, the first unresolved one's failure or None)``.
+
+    Raises:
+        _Failure: a counterexample (a failing input a feasible path contains and flips out of, or a disagreement
+            of the two programs).
+    """
     edges = list(plaq.edges) + [e for o in outer for e in o]
     sizes = [len(o) for o in outer]
     program, slots = abstract_program(logic, plaq)
-    count = 0
+    count, unresolved, first = 0, 0, None
     for bits in itertools.product((0, 1), repeat=len(edges)):
         pbits, rest, obits = bits[:4], list(bits[4:]), []
         for n in sizes:
             obits.append(rest[:n])
             rest = rest[n:]
-        if not _locally_feasible(_degrees(pbits, obits), picture.endpoints):
+        if sum(pbits) == 4 or not _locally_feasible(_degrees(pbits, obits), picture.endpoints):
             continue
         count += 1
         mask = sum(1 << e for e, b in zip(edges, bits, strict=True) if b)
@@ -153,17 +214,42 @@ def _check_rule(
             continue
         if exact_rule_value(pbits, [sum(o) for o in obits], picture.endpoints, picture.diagonal):
             continue
-        raise _rule_failure(scenario, robot, plaq, logic, picture, edges, mask, pbits, obits, count)
-    return count
+        failure = _rule_failure(scenario, robot, plaq, logic, picture, edges, mask, pbits, obits, count, index)
+        if failure.leak:
+            raise failure
+        decided = index.paths(robot)[1]  # every path of the robot looked at, none flips out here
+        if decided:  # the other places of the picture: a leak there, or every path of theirs looked at too
+            for r2, q2 in others:
+                if not index.paths(r2)[1]:
+                    decided = False
+                    break
+                outer2 = plaquette_picture(scenario, r2, q2)[1]
+                edges2 = list(q2.edges) + [e for o in outer2 for e in o]
+                mask2 = sum(1 << e for e, b in zip(edges2, bits, strict=True) if b)
+                elsewhere = _rule_failure(scenario, r2, q2, sbf_logic(scenario, r2, q2, logic.rule), picture, edges2,
+                                          mask2, pbits, obits, count, index)  # fmt: skip
+                if elsewhere.leak:
+                    raise elsewhere
+        if decided:
+            continue
+        unresolved += 1
+        if first is None and index.paths(robot)[1]:  # undecided elsewhere: say so
+            cx = failure.counterexample
+            more = (f"It is undecided on other plaquettes with picture {picture.label}, whose robots have more than "
+                    f"{REACH_PATHS:,} paths.")  # fmt: skip
+            failure.counterexample = dataclasses.replace(cx, reason=f"{cx.reason} {more}")
+        first = first or failure
+    return count, unresolved, first
 
 
 def _rule_failure(
     scenario: Scenario, robot: int, plaq: Plaquette, logic: SbfLogic, picture: LocalPicture, edges: Sequence[int],
-    mask: int, pbits: Sequence[int], obits: Sequence[Sequence[int]], count: int,
+    mask: int, pbits: Sequence[int], obits: Sequence[Sequence[int]], count: int, index: _PathIndex | None = None,
 ) -> _Failure:  # fmt: skip
-    """The failure of a rule check: the program allows the flip of local input ``mask`` (the ``count``-th input)
-    where the ``exact`` rule does not. The reason says what the flip does and whether a feasible path contains
-    the input (:func:`_reach`); such a path whose flip is infeasible replaces the local input and output."""
+    """The failure of a rule check: the program allows the flip of local input ``mask`` (the ``count``-th input;
+    not a closed loop) where the ``exact`` rule does not. The reason says what the flip does and whether a feasible
+    path contains the input (:func:`_reach`); such a path whose flip is infeasible replaces the local input and
+    output, and the failure's ``leak`` is then true (a counterexample; otherwise the input is unresolved)."""
     degrees = _degrees([1 - b for b in pbits], obits)
     wrong = [
         f"corner {'abcd'[v]} {plaq.corners[v]} gets degree {d}"
@@ -173,9 +259,6 @@ def _rule_failure(
     k = sum(pbits)
     if wrong:
         what = f"the rule allows a flip that leaves the feasible set: {wrong[0]}"
-    elif k == 4:
-        what = ("the rule allows a flip that removes all four plaquette edges, where the exact rule does not: the "
-                "input is a closed loop around the plaquette")  # fmt: skip
     elif k == 0:
         what = ("the rule allows a flip that adds all four plaquette edges: the output holds a closed loop around the "
                 "plaquette, which no feasible path does")  # fmt: skip
@@ -183,14 +266,11 @@ def _rule_failure(
         what = ("the rule allows a flip of two opposite plaquette edges into the other two, where the exact rule "
                 "does not: that can split the path into a path and a closed loop")  # fmt: skip
     local = sum(1 << e for e in edges)
-    reachable, path, checked = _reach(scenario, robot, local, mask, plaq.edge_mask, closed_loop=k == 4)
+    reachable, path, checked = _reach(scenario, robot, local, mask, plaq.edge_mask, index=index)
     leak = path is not None and not is_feasible(scenario, robot, path ^ plaq.edge_mask)
     if leak:
         how = "A real leak: the input shown is a feasible path with this local input, and its flip is not."
         shown = path
-    elif reachable is False and k == 4:
-        how = f"No feasible path contains a closed loop, so none reaches this input. {ALL_LOCAL_INPUTS}"
-        shown = mask
     elif reachable is False:
         how = f"No feasible path of robot {robot} contains this input (all {checked:,} checked). {ALL_LOCAL_INPUTS}"
         shown = mask
@@ -202,7 +282,7 @@ def _rule_failure(
         how = (f"Whether a feasible path contains this input was not decided (robot {robot} has more than "
                f"{checked:,} paths). {ALL_LOCAL_INPUTS}")  # fmt: skip
         shown = mask
-    return _Failure(
+    failure = _Failure(
         Counterexample(
             "gadgets", f"rule {logic.rule} {picture.label}", f"SbfLogic {logic.rule} {picture.label}", robot,
             tuple(plaq.corners), (edge_names(scenario, shown),), (edge_names(scenario, shown ^ plaq.edge_mask),),
@@ -211,33 +291,34 @@ def _rule_failure(
         "rule",
         count,
     )
+    failure.leak = leak
+    return failure
 
 
 def _reach(
-    scenario: Scenario, robot: int, local: int, mask: int, flip: int, closed_loop: bool
+    scenario: Scenario, robot: int, local: int, mask: int, flip: int | None, index: _PathIndex | None = None
 ) -> tuple[bool | None, int | None, int]:
     """Whether a feasible path of ``robot`` equals ``mask`` on the edges of ``local``.
 
+    Args:
+        flip: Edges the check flips (a path whose flip ``path ^ flip`` is infeasible is preferred); ``None``: any.
+        index: The paths looked up (a new :class:`_PathIndex` if none).
+
     Returns:
-        ``(reachable, path, paths looked at)``: ``reachable`` is ``False`` for a ``closed_loop`` input (no feasible
-        path has a cycle) or when none of the robot's paths does and there are at most :data:`REACH_PATHS`, ``None``
-        when more paths were not looked at; ``path`` is the first such path whose flip (``path ^ flip``) is not
-        feasible, else the first such path, else ``None``.
+        ``(reachable, path, paths looked at)``: ``reachable`` is ``False`` when none of the robot's paths does
+        and there are at most :data:`REACH_PATHS`, ``None`` when more paths were not looked at; ``path`` is the
+        first such path whose flip is not feasible, else the first such path, else ``None``.
     """
-    if closed_loop:
-        return False, None, 0
-    first = None
-    checked = 0
-    for path in itertools.islice(iter_paths(scenario, robot), REACH_PATHS + 1):
-        checked += 1
-        if checked > REACH_PATHS:
-            return (True if first is not None else None), first, REACH_PATHS
-        if path & local != mask:
-            continue
-        if not is_feasible(scenario, robot, path ^ flip):
-            return True, path, checked
-        first = path if first is None else first
-    return first is not None, first, checked
+    index = _PathIndex(scenario) if index is None else index
+    found, complete = index.containing(robot, local, mask)
+    checked = len(index.paths(robot)[0])
+    if not found:
+        return (False if complete else None), None, checked
+    if flip is not None:
+        for path in found:
+            if not is_feasible(scenario, robot, path ^ flip):
+                return True, path, checked
+    return True, found[0], checked
 
 
 # ------------------------------------------------------------------------------------------- gates, per gadget kind
@@ -289,6 +370,27 @@ def _first_difference(got: Batch, want: Batch) -> int | None:
     return None  # pragma: no cover - the tables differ, so some input does
 
 
+def _differing(got: Batch, want: Batch) -> list[int]:
+    """Every input whose outputs differ (beyond the tolerance), in order."""
+    owners = np.concatenate([got.owners, want.owners])
+    keys = np.concatenate([got.keys, want.keys])
+    amps = np.concatenate([got.amps, -want.amps])
+    if not len(owners):
+        return []
+    order = np.lexsort((keys, owners))
+    owners, keys, amps = owners[order], keys[order], amps[order]
+    start = np.ones(len(keys), dtype=bool)
+    start[1:] = (owners[1:] != owners[:-1]) | (keys[1:] != keys[:-1])
+    idx = np.flatnonzero(start)
+    summed = np.add.reduceat(amps, idx)  # got - want per (input, key)
+    return [int(o) for o in np.unique(owners[idx][np.abs(summed) > TOLERANCE])]
+
+
+def _closed_loop(key: int) -> bool:
+    """Whether a local input (plaquette edges ``ab, bc, cd, da`` in bits 0..3) is a closed loop."""
+    return key & 0b1111 == 0b1111
+
+
 def _program_value(program: Any, pbits: Sequence[int], obits: Sequence[int]) -> bool:
     """An abstract SBF program (:class:`qcpp.gadgets.partial_mixer.AbstractProgram`) on local bits."""
     temps: dict[int, bool] = {}
@@ -314,10 +416,11 @@ class _MixerChecker:
 
     def __init__(
         self, scenario: Scenario, fused: bool, beta: float, where: dict[Any, tuple[int, Plaquette]],
-        pictures: dict[Any, str],
+        pictures: dict[Any, str], index: _PathIndex, places: dict[Any, list[tuple[int, Plaquette]]] | None = None,
     ) -> None:  # fmt: skip
-        self.scenario, self.fused, self.beta, self.where = scenario, fused, beta, where
+        self.scenario, self.fused, self.beta, self.where, self.index = scenario, fused, beta, where, index
         self.pictures = dict(pictures)
+        self.places = {} if places is None else places  # kind -> every (robot, plaquette) with a mixer of it
 
     def picture_of(self, kind: Any) -> str:
         """The local picture of a partial-mixer kind on this scenario (a number for a kind it does not have)."""
@@ -336,24 +439,94 @@ class _MixerChecker:
     def opening(self, m: Mixer) -> list[Gate]:
         return MixerJunction(None, m).emit()  # type: ignore[arg-type]
 
+    def edges(self, m: Mixer, place: tuple[int, Plaquette] | None = None) -> tuple[int | None, Plaquette | None,
+                                                                                   list[int]]:  # fmt: skip
+        """A robot and plaquette of the scenario with a partial mixer of ``m``'s kind (``place``, else the first)
+        and the grid edges of its data qubits (slot order: plaquette, outer); ``(None, None, [])`` when the
+        scenario has none."""
+        robot, plaq = place or self.where.get(m.kind, (None, None))
+        if plaq is None or robot is None:
+            return None, None, []
+        return robot, plaq, list(plaq.edges) + _outer_slots(self.scenario, robot, plaq, m)
+
+    def reachable(self, m: Mixer, key: int) -> tuple[bool | None, tuple[int, Plaquette] | None]:
+        """Whether a feasible path contains local input ``key`` at some place of ``m``'s kind, and that place.
+
+        ``False`` only when every place's robot has at most :data:`REACH_PATHS` paths and none does; ``None``
+        when that was not decided (a robot with more paths is looked at only at the kind's first place)."""
+        places = self.places.get(m.kind) or ([self.where[m.kind]] if m.kind in self.where else [])
+        decided: bool | None = bool(places)
+        for place in places:
+            robot, _, edges = self.edges(m, place)
+            assert robot is not None
+            complete = self.index.paths(robot)[1]
+            if not complete and place is not places[0]:
+                return None, None
+            mask = sum(1 << e for i, e in enumerate(edges) if (key >> i) & 1)
+            if self.index.containing(robot, sum(1 << e for e in edges), mask)[0]:
+                return True, place
+            if not complete:
+                return None, None
+        return (False if decided else None), None
+
     def fail(self, subject: str, m: Mixer | None, kind: str, key_in: int, key_out: int, data: Sequence[int],
-             amp: float, reason: str) -> _Failure:  # fmt: skip
-        """A counterexample on local inputs, named on the scenario's plaquette of that kind if it has one; the
-        inputs run in the order ``0, 1, ...``, so ``key_in + 1`` of them were checked."""
-        robot, plaq = self.where.get(m.kind, (None, None)) if m is not None else (None, None)
+             amp: float, reason: str, reachable: bool | None = None,
+             place: tuple[int, Plaquette] | None = None) -> _Failure:  # fmt: skip
+        """A counterexample on local inputs, named on ``place`` (else the scenario's first plaquette of that kind,
+        if it has one); the inputs run in the order ``0, 1, ...`` (closed loops left out), so those up to
+        ``key_in`` were checked."""
+        robot, plaq, edges = self.edges(m, place) if m is not None else (None, None, [])
         ins = outs = ((),)
-        if plaq is not None and m is not None:  # local bits -> the scenario's edges (slot order: plaquette, outer)
-            logic_outer = _outer_slots(self.scenario, robot, plaq, m)  # type: ignore[arg-type]
-            edges = list(plaq.edges) + logic_outer
+        if edges:  # local bits -> the scenario's edges
             ins = (edge_names(self.scenario, sum(1 << e for i, e in enumerate(edges) if (key_in >> i) & 1)),)
             outs = (edge_names(self.scenario, sum(1 << e for i, e in enumerate(edges) if (key_out >> i) & 1)),)
         dirty = tuple(i for i in range(len(data), 64) if (key_out >> i) & 1)
         cx = Counterexample("gadgets", subject, kind, robot, None if plaq is None else tuple(plaq.corners), ins, outs,
-                            dirty, amp, reason)  # fmt: skip
-        return _Failure(cx, "mixer", key_in + 1)
+                            dirty, amp, reason, reachable)  # fmt: skip
+        return _Failure(cx, "mixer", key_in + 1 - (key_in + 1) // 16)
 
-    def partial_mixer(self, m: Mixer, work: int) -> int:
-        """Check one partial-mixer kind on all its local inputs; returns their number."""
+    def classify(self, subject: str, m: Mixer, kind: str, got: Batch, bad: Sequence[int], data: Sequence[int],
+                 what: str) -> tuple[int, _Failure | None]:  # fmt: skip
+        """Inputs ``bad`` (in order), where ``got`` is wrong, against the scenario's feasible paths
+        (:meth:`reachable`): one that a feasible path contains raises a counterexample; one that none contains
+        (decided) is harmless; the others are unresolved.
+
+        Returns:
+            ``(unresolved inputs, the first one's failure or None)``.
+
+        Raises:
+            _Failure: the counterexample.
+        """
+        first, count = None, 0
+        for key in bad:
+            reachable, place = self.reachable(m, key)
+            if reachable is False:
+                continue
+            count += 1
+            if reachable or first is None:
+                out = got.of_input(key)
+                key_out = max((k for k in out if k != key), key=lambda k: abs(out[k]), default=key)
+                if reachable:
+                    how = "A feasible path contains this input on the plaquette shown."
+                else:
+                    how = ("Unresolved: whether a feasible path contains this input was not decided (a robot has "
+                           f"more than {REACH_PATHS:,} paths). {ALL_LOCAL_INPUTS}")  # fmt: skip
+                failure = self.fail(subject, m, kind, key, key_out, data, abs(out.get(key_out, 0)), f"{what}. {how}",
+                                    reachable, place)  # fmt: skip
+                if reachable:
+                    raise failure
+                first = first or failure
+        return count, first
+
+    def partial_mixer(self, m: Mixer, work: int) -> tuple[int, int, _Failure | None]:
+        """Check one partial-mixer kind on every local input but closed loops (see the module docstring).
+
+        Returns:
+            ``(inputs checked, unresolved inputs, the first unresolved one's failure or None)``.
+
+        Raises:
+            _Failure: a counterexample (the gates wrong on an input a feasible path contains).
+        """
         data = self.data(m)
         if self.fused:
             assert isinstance(m, ParityPartialMixer)
@@ -378,25 +551,27 @@ class _MixerChecker:
                 keys.append(d)
                 amps.append(1.0)
         want = Batch(np.array(owners, dtype=np.int64), np.array(keys, dtype=np.int64), np.array(amps, dtype=complex))
-        bad = _first_difference(got, want)
+        bad = [d for d in _differing(got, want) if not _closed_loop(d)]
         subject = self.label(m)
-        if bad is not None:
-            out = got.of_input(bad)
-            allowed = _program_value(program, [(bad >> i) & 1 for i in range(4)], [(bad >> i) & 1 for i in range(4, k)])
-            key_out = max((key for key in out if key != bad), key=lambda key: abs(out[key]), default=bad)
-            want = "cos(b/2)|x> - i sin(b/2)|x xor plaquette>" if allowed else "|x> (the flip is forbidden here)"
-            reason = f"the gadget does not do what its program says: expected {want} with clean ancillas"
-            raise self.fail(subject, m, self.label(m), bad, key_out, data, abs(out.get(key_out, 0)), reason)
+        checked = (1 << k) - (1 << (k - 4))
+        if bad:
+            allowed = _program_value(program, [(bad[0] >> i) & 1 for i in range(4)],
+                                     [(bad[0] >> i) & 1 for i in range(4, k)])  # fmt: skip
+            expected = "cos(b/2)|x> - i sin(b/2)|x xor plaquette>" if allowed else "|x> (the flip is forbidden here)"
+            what = f"the gadget does not do what its program says: expected {expected} with clean ancillas"
+            count, failure = self.classify(subject, m, self.label(m), got, bad, data, what)
+            if failure is not None:
+                return checked, count, failure
         if self.fused:  # the closing junction alone cleans what the opening one made
             opened = inputs.run(g for g in lowered[0])
             closed = opened.run(lowered[2])
-            bad = _first_difference(closed, inputs)
-            if bad is not None:
-                out = closed.of_input(bad)
-                key_out = max(out, key=lambda key: abs(out[key]))
-                raise self.fail(subject, m, self.label(MixerJunction(m, None)), bad, key_out, data, abs(out[key_out]),
-                                "the closing junction does not undo the opening one")  # fmt: skip
-        return 1 << k
+            bad = [d for d in _differing(closed, inputs) if not _closed_loop(d)]
+            if bad:
+                count, failure = self.classify(subject, m, self.label(MixerJunction(m, None)), closed, bad, data,
+                                               "the closing junction does not undo the opening one")  # fmt: skip
+                if failure is not None:
+                    return checked, count, failure
+        return checked, 0, None
 
     def junction(self, j: MixerJunction, work: int) -> int:
         """Check ``J(l, r)``: from the state ``l``'s opening makes, the one ``r``'s opening makes, on every input of
@@ -533,7 +708,9 @@ def verify_gadgets(
 
     Returns:
         The :class:`~qcpp.verification.report.VerifyReport` (method ``gadgets``); every check is exhaustive on its
-        local inputs or structural, so when it holds it holds for every feasible input.
+        local inputs or structural, so when it holds it holds for every feasible input. Its ``outcome`` is
+        ``not_certified`` (``unresolved`` set, no counterexample) when checks failed only on local inputs that no
+        feasible path was shown to contain.
     """
     start = time.perf_counter()
     plan = verified_plan(scenario, p, rule, options)
@@ -542,11 +719,14 @@ def verify_gadgets(
     beta = random_angle(random.Random(seed))
     checks: list[Check] = []
     counterexample = None
+    unresolved: Counterexample | None = None
+    index = _PathIndex(scenario)
 
     # the scenario's pictures (the rule) and the partial-mixer kind of every plaquette (coverage)
     pictures: dict[LocalPicture, tuple[int, Plaquette, SbfLogic, tuple[tuple[int, ...], ...]]] = {}
     where: dict[Any, tuple[int, Plaquette]] = {}
-    picture_count: dict[LocalPicture, int] = {}
+    places: dict[LocalPicture, list[tuple[int, Plaquette]]] = {}  # every (robot, plaquette) with that picture
+    picture_kinds: dict[LocalPicture, Any] = {}
     scenario_kinds: dict[Any, tuple[int, Plaquette]] = {}
     beta_sym = Angle.symbol("beta")
     for r in range(scenario.num_robots):
@@ -555,13 +735,17 @@ def verify_gadgets(
             if logic.never:
                 continue
             picture, outer = plaquette_picture(scenario, r, q)
-            picture_count[picture] = picture_count.get(picture, 0) + 1
+            places.setdefault(picture, []).append((r, q))
             if picture not in pictures:
                 pictures[picture] = (r, q, logic, outer)
                 m = partial_mixer(scenario, r, q, beta_sym, scenario.num_variables, rule, options.target)
                 if m is not None:
                     scenario_kinds.setdefault(m.kind, (r, q))
+                    picture_kinds[picture] = m.kind
     where.update(scenario_kinds)
+    kind_places: dict[Any, list[tuple[int, Plaquette]]] = {}
+    for picture, kd in picture_kinds.items():
+        kind_places.setdefault(kd, []).extend(places[picture])
     kind_pictures = {kd: plaquette_picture(scenario, r, q)[0].label for kd, (r, q) in scenario_kinds.items()}
 
     mixer_kinds = graph.parts["mixer"]
@@ -581,17 +765,32 @@ def verify_gadgets(
         if progress is not None:
             progress(done, work_items)
 
-    checker = _MixerChecker(scenario, fused, beta, where, kind_pictures)
+    checker = _MixerChecker(scenario, fused, beta, where, kind_pictures, index, kind_places)
+
+    def open_check(subject: str, part: str, n: int, mult: int, count: int, failure: _Failure) -> Check:
+        nonlocal unresolved
+        unresolved = unresolved or failure.counterexample
+        return Check(subject, part, "exhaustive", n, False, mult,
+                     f"{count} input{'s' if count > 1 else ''} unresolved: neither shown harmless nor on a leaking "
+                     "feasible path", True)  # fmt: skip
+
     try:
         for picture, (r, q, logic, outer) in pictures.items():
-            n = _check_rule(scenario, r, q, logic, picture, outer)
-            checks.append(Check(f"rule {rule} {picture.label}", "rule", "exhaustive", n, True, picture_count[picture],
-                                "locally feasible inputs"))  # fmt: skip
+            subject = f"rule {rule} {picture.label}"
+            n, count, failure = _check_rule(scenario, r, q, logic, picture, outer, index, places[picture][1:])
+            if failure is not None:
+                checks.append(open_check(subject, "rule", n, len(places[picture]), count, failure))
+            else:
+                checks.append(Check(subject, "rule", "exhaustive", n, True, len(places[picture]),
+                                    "locally feasible inputs but closed loops"))  # fmt: skip
             tick()
         for m, work in mixers.values():
-            n = checker.partial_mixer(m, work)
-            checks.append(Check(checker.label(m), "mixer", "exhaustive", n, True, 1,
-                                "opening junction, rotation, closing junction" if fused else "all blocks"))  # fmt: skip
+            n, count, failure = checker.partial_mixer(m, work)
+            if failure is not None:
+                checks.append(open_check(checker.label(m), "mixer", n, 1, count, failure))
+            else:
+                blocks = "opening junction, rotation, closing junction" if fused else "all blocks"
+                checks.append(Check(checker.label(m), "mixer", "exhaustive", n, True, 1, blocks))
             tick()
         missing = [kd for kd in scenario_kinds if kd not in mixers]
         if missing:
@@ -623,6 +822,6 @@ def verify_gadgets(
         checks.append(Check(counterexample.check, failure.part, how, failure.inputs, False, 1,
                             "stopped at the first failing input" if failure.inputs else ""))  # fmt: skip
     return VerifyReport(
-        _scenario_name(scenario), p, rule, "gadgets", counterexample is None, tuple(checks), counterexample,
-        time.perf_counter() - start, seed, options.target,
+        _scenario_name(scenario), p, rule, "gadgets", counterexample is None and unresolved is None, tuple(checks),
+        counterexample, time.perf_counter() - start, seed, options.target, unresolved,
     )  # fmt: skip

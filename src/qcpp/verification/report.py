@@ -2,8 +2,17 @@
 
 A report is plain data (frozen dataclasses of numbers, strings and tuples) with :meth:`VerifyReport.to_dict` for
 ``qcpp verify --json`` and :meth:`VerifyReport.summary` for text (wrapped to a width, as ``qcpp verify`` prints it
-on a terminal). :attr:`VerifyReport.holds` is true when every check held; then :attr:`VerifyReport.counterexample`
-is ``None``.
+on a terminal). Its :attr:`VerifyReport.outcome` is one of three verdicts:
+
+``holds``
+    Every check held (:attr:`VerifyReport.holds` is true).
+``fails``
+    A :attr:`VerifyReport.counterexample`: an input of the circuit, or a local input contained in a feasible path,
+    where feasibility is lost.
+``not_certified``
+    No counterexample, but the gadget method met local inputs it could neither show harmless nor show on a
+    feasible path (the first is :attr:`VerifyReport.unresolved`): it can neither certify nor refute, and the
+    state method, which runs the circuit on its real inputs, decides.
 
 Example:
     >>> c = Check("mixer_0", "state", "exhaustive", 12, True)
@@ -20,14 +29,25 @@ from typing import Any, Literal
 
 from qcpp.io.html import html_table
 
-__all__ = ["Check", "Counterexample", "Method", "VerifyReport"]
+__all__ = ["OUTCOMES", "Check", "Counterexample", "Method", "Outcome", "VerifyReport"]
 
 Method = Literal["state", "gadgets", "auto"]
 METHODS: tuple[Method, ...] = ("state", "gadgets", "auto")
 
+Outcome = Literal["holds", "fails", "not_certified"]
+OUTCOMES: tuple[Outcome, ...] = ("holds", "fails", "not_certified")
+"""The verdicts of :attr:`VerifyReport.outcome` (``qcpp verify`` exits 0, 1 and 3 on them)."""
+
 Edge = tuple[tuple[int, int], tuple[int, int]]
 
 _NBSP = "\u00a0"  # joins the words of one unit (an edge ``(0, 1)-(1, 1)``) so that wrapping never splits it
+
+NOT_CERTIFIED = (
+    "Not certified: no counterexample either. The gadget method checks local inputs, and no feasible path was shown "
+    "to contain this one; --method state runs the circuit on every feasible input and decides (up to 62 qubits, "
+    "every input while there are at most --samples of them)."
+)
+"""What the text report says after an unresolved input: why there is no verdict and what decides."""
 
 MIN_WIDTH = 40
 """The narrowest width :meth:`VerifyReport.summary` wraps to (a smaller one is taken as this)."""
@@ -64,6 +84,8 @@ class Check:
         held: Whether it held.
         multiplicity: How often the kind occurs in one layer (gadget method; 1 otherwise).
         detail: A short note (what the structural proof used, which kind covers this one).
+        undecided: The check did not hold, but only on local inputs that no feasible path was shown to contain
+            (gadget method): neither a proof nor a counterexample. Always false when ``held``.
     """
 
     subject: str
@@ -73,6 +95,12 @@ class Check:
     held: bool
     multiplicity: int = 1
     detail: str = ""
+    undecided: bool = False
+
+    @property
+    def mark(self) -> str:
+        """``ok``, ``FAIL`` or ``open`` (undecided), as the text report prints it."""
+        return "ok" if self.held else "open" if self.undecided else "FAIL"
 
 
 @dataclass(frozen=True)
@@ -110,14 +138,15 @@ class Counterexample:
     reason: str
     reachable: bool | None = None
 
-    def describe(self, width: int | None = None) -> str:
+    def describe(self, width: int | None = None, heading: str = "counterexample") -> str:
         """A few human-readable lines: the reason, the gadget, the input and the output.
 
         Args:
             width: Characters per line (at least :data:`MIN_WIDTH`): long lines wrap at spaces, never inside an
                 edge, continued indented. ``None``: one line per item, however long.
+            heading: The first word (``unresolved input`` for :attr:`VerifyReport.unresolved`).
         """
-        out = _wrap(f"counterexample ({self.method}, {self.check}): {self.reason}", width, "", "  ")
+        out = _wrap(f"{heading} ({self.method}, {self.check}): {self.reason}", width, "", "  ")
         if self.kind:
             where = f" robot {self.robot}" if self.robot is not None else ""
             corners = ", ".join(str(c).replace(" ", _NBSP) for c in self.plaquette or ())
@@ -141,12 +170,14 @@ class VerifyReport:
         method: The method that ran (``state`` or ``gadgets``; ``auto`` resolved).
         holds: Every check held: the compiled circuit keeps every feasible assignment in the span of feasible
             assignments with clean ancillas (for the inputs checked; for every input when every check is
-            ``exhaustive``, ``structural`` or ``covered``).
+            ``exhaustive``, ``structural`` or ``covered``). False for both other outcomes (:attr:`outcome`).
         checks: The checks, in the order they ran.
         counterexample: The first failure found, or ``None``.
         seconds: Wall time.
         seed: Seed of the angles (and of the sample, if inputs were sampled).
         target: The cost model the circuit's constructions were chosen for (``nisq`` or ``ft``).
+        unresolved: Without a counterexample, the first local input the gadget method could neither show
+            harmless nor show on a feasible path (``reachable`` says what was found), else ``None``.
     """
 
     scenario: str
@@ -159,6 +190,15 @@ class VerifyReport:
     seconds: float
     seed: int
     target: str = "nisq"
+    unresolved: Counterexample | None = None
+
+    @property
+    def outcome(self) -> Outcome:
+        """``holds``, ``fails`` (a :attr:`counterexample`) or ``not_certified`` (only :attr:`unresolved` inputs:
+        neither a proof nor a counterexample; ``--method state`` decides where the field fits it)."""
+        if self.holds:
+            return "holds"
+        return "fails" if self.counterexample is not None or self.unresolved is None else "not_certified"
 
     @property
     def exhaustive(self) -> bool:
@@ -166,19 +206,20 @@ class VerifyReport:
         return all(c.how != "sampled" for c in self.checks)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form (what ``qcpp verify --json`` prints)."""
+        """JSON-ready form (what ``qcpp verify --json`` prints): the fields, ``outcome`` and ``exhaustive``."""
         out = asdict(self)
+        out["outcome"] = self.outcome
         out["exhaustive"] = self.exhaustive
         return out
 
     @property
     def verdict(self) -> str:
-        """One line: holds or FAILS, on what, by which method over which inputs, and the time taken."""
+        """One line: holds, FAILS or NOT CERTIFIED, on what, by which method over which inputs, and the time taken."""
         return self._verdict(" ")
 
     def _verdict(self, space: str) -> str:
         """:attr:`verdict`, with ``space`` between each number and its unit."""
-        verdict = "holds" if self.holds else "FAILS"
+        verdict = {"holds": "holds", "fails": "FAILS", "not_certified": "NOT CERTIFIED"}[self.outcome]
         if not self.exhaustive:
             scope = "the sampled inputs"
         elif self.method == "gadgets":  # each kind on all its local inputs: a verdict on every feasible input
@@ -192,7 +233,8 @@ class VerifyReport:
         )
 
     def summary(self, width: int | None = None) -> str:
-        """Human-readable text: the :attr:`verdict`, one row per check, the counterexample.
+        """Human-readable text: the :attr:`verdict`, one row per check, the counterexample or, when not certified,
+        the first unresolved input and what decides it.
 
         Args:
             width: Characters per line (at least :data:`MIN_WIDTH`; ``qcpp verify`` passes the terminal's).
@@ -206,8 +248,7 @@ class VerifyReport:
         subject_w = max((len(c.subject) for c in self.checks), default=0)
         lines = _wrap(self._verdict(_NBSP), width, "", "  ")
         for c in self.checks:
-            mark = "ok  " if c.held else "FAIL"
-            head = f"  {mark} {c.part:<13} "
+            head = f"  {c.mark:<4} {c.part:<13} "
             times = f" x{c.multiplicity}" if c.multiplicity != 1 else ""
             count = f" {c.inputs}{_NBSP}inputs" if c.inputs else ""
             note = f"  ({c.detail})" if c.detail else ""
@@ -220,14 +261,20 @@ class VerifyReport:
             lines += _wrap(f"{c.subject}{tail}", width, head, indent)
         if self.counterexample is not None:
             lines.append(self.counterexample.describe(width))
+        elif self.unresolved is not None:
+            lines.append(self.unresolved.describe(width, "unresolved input"))
+            lines += _wrap(NOT_CERTIFIED, width)
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
         """In a notebook: the verdict as the caption, one table row per check, the counterexample below."""
-        rows = [(c.part, c.subject, c.how, str(c.inputs), str(c.multiplicity), "held" if c.held else "FAILS", c.detail)
+        result = {"ok": "held", "FAIL": "FAILS", "open": "undecided"}
+        rows = [(c.part, c.subject, c.how, str(c.inputs), str(c.multiplicity), result[c.mark], c.detail)
                 for c in self.checks]  # fmt: skip
         headers = ("part", "subject", "how", "inputs", "times", "result", "")
         table = html_table(self.verdict, headers, rows, align=(None, None, None, "right", "right"))
         if self.counterexample is not None:
             table += f"<pre>{escape(self.counterexample.describe())}</pre>"
+        elif self.unresolved is not None:
+            table += f"<pre>{escape(self.unresolved.describe(heading='unresolved input'))}\n{NOT_CERTIFIED}</pre>"
         return table

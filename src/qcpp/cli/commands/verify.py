@@ -8,7 +8,10 @@ Examples::
     qcpp verify --grid 4x4 --robots 3 --target ft
 
 Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s), the output,
-the gadget and its plaquette), 2 on bad input (one line on stderr). The text report fits the terminal's width
+the gadget and its plaquette), 2 on bad input (one line on stderr), 3 when the gadget method could neither certify
+nor refute (``not_certified``: only local inputs no feasible path was shown to contain; the first is printed, with
+whether ``--method state`` can decide on this field). 3 is not 0 because nothing was certified, and not 1 because
+nothing was refuted: a script can tell "broken" from "undecided". The text report fits the terminal's width
 (``$COLUMNS``, else the terminal's, else 80, as for the other commands' tables); ``--json`` prints
 :meth:`qcpp.verification.VerifyReport.to_dict` on stdout, every field whole. Progress goes to stderr
 (:mod:`qcpp.cli.progress`): checks (gadget method) or inputs run (state method) of the total, without a time
@@ -48,7 +51,11 @@ Examples:
 
 Methods: state = run the lowered circuit on every feasible input (or a
 sample); gadgets = every gadget kind on all its local inputs (any size).
-Exit 0: holds; 1: a counterexample; 2: bad input.
+Exit 0: holds; 1: a counterexample; 2: bad input; 3: not certified (the
+gadget method found only local inputs it could not place on a feasible
+path: no proof and no counterexample; --method state decides on a field it
+can enumerate). 3 is nonzero because nothing was certified, and distinct
+from 1 so a script can tell a broken circuit from an undecided one.
 """
 
 
@@ -71,7 +78,7 @@ def verify_command(
 ) -> None:
     """Verify feasibility preservation (see ``qcpp verify --help``)."""
     from qcpp.plan.options import PlanOptions
-    from qcpp.verification import resolve_method, verify
+    from qcpp.verification import choose_method, resolve_method, verify
 
     options = PlanOptions(rule=rule, target=target)  # type: ignore[arg-type]
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
@@ -80,12 +87,30 @@ def verify_command(
     unit = "inputs" if method == "state" else "checks"  # what progress counts
     with Progress(f"verify {given.label}", unit=unit, time_left=False) as bar:
         report = verify(s, p, rule, method, samples, seed, progress=bar.update, options=options)  # type: ignore[arg-type]
+    undecided = report.outcome == "not_certified"
     if as_json:
         typer.echo(json.dumps(report.to_dict()))
     else:
-        typer.echo(report.summary(shutil.get_terminal_size((80, 24)).columns))
+        width = shutil.get_terminal_size((80, 24)).columns
+        typer.echo(report.summary(width))
+        if undecided:
+            fits = choose_method(s, p, options, samples) == "state"
+            typer.echo(echo_wrap(
+                "This field fits --method state: rerun with --method state to decide."
+                if fits else
+                "This field is too large for --method state (more than 62 qubits or more than --samples feasible "
+                "assignments): a smaller field with the same rule and endpoint pictures can be decided instead.",
+                width,
+            ))  # fmt: skip
     if not report.holds:
-        raise typer.Exit(code=1)
+        raise typer.Exit(code=3 if undecided else 1)
+
+
+def echo_wrap(text: str, width: int) -> str:
+    """``text`` wrapped at spaces to ``width`` (at least 40) columns."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, max(width, 40), break_long_words=False, break_on_hyphens=False))
 
 
 def register(app: typer.Typer) -> None:
