@@ -134,6 +134,63 @@ def test_the_bar_keeps_its_counts_and_time_on_an_80_column_terminal(monkeypatch:
     assert "1/4 0:00:0" in frames[-1], frames
 
 
+LONG_TASK = "compile 3x4, 1 robot(s), p=1, --device ibm_fez --layout medial --lowered"
+LONG_STAGE = "3x3 r1 p1 on heavy-hex:7: choosing partial-mixer plans for the routing on heavy-hex:9 (3 / 6)"
+
+
+@pytest.mark.parametrize("width", [60, 80])
+def test_lines_fit_the_width_cutting_the_task_and_stage_never_the_numbers(
+    width: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(Progress, "_elapsed", lambda self: 5.0)  # the time left shows too
+    out = io.StringIO()
+    with Progress(LONG_TASK, total=90, unit="rows", stream=out, mode="lines", interval=0, width=width) as bar:
+        bar.stage(LONG_STAGE)
+        bar.update(1)
+        bar.update(80)
+    lines = out.getvalue().splitlines()
+    assert len(lines) == 5
+    assert all(len(line) <= width for line in lines), [(len(line), line) for line in lines]
+    assert all(line.startswith("compile") and line != LONG_TASK for line in lines)
+    assert ": 1 / 90 rows (1.1%), " in lines[2] and lines[2].endswith(", 5 s elapsed, about 7 min left")
+    assert ": 80 / 90 rows (88.9%), " in lines[3] and lines[3].endswith(", 5 s elapsed, about 1 s left")
+    assert lines[1].endswith(" (3 / 6), 5 s elapsed") and " … " in lines[1]  # the stage's own counts stay
+    assert lines[-1].endswith(": 80 rows done in 5 s")
+
+
+def test_where_only_the_numbers_fit_the_line_keeps_them_and_the_first_word(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(Progress, "_elapsed", lambda self: 30.0)
+    out = io.StringIO()
+    with Progress(LONG_TASK, total=1_200, unit="rows", stream=out, mode="lines", interval=0, width=30) as bar:
+        bar.stage(LONG_STAGE)
+        bar.update(12)
+    assert out.getvalue().splitlines()[2:] == [
+        "compile…: 12 / 1,200 rows (1.0%), 30 s elapsed, about 50 min left",
+        "compile…: 12 rows done in 30 s",
+    ]
+
+
+def test_lines_are_whole_where_they_fit_and_the_width_defaults_to_columns(monkeypatch: pytest.MonkeyPatch) -> None:
+    out = io.StringIO()
+    with Progress(LONG_TASK, stream=out, mode="lines", interval=0, width=200) as bar:
+        bar.stage(LONG_STAGE)
+    assert out.getvalue().splitlines()[1].startswith(f"{LONG_TASK}: {LONG_STAGE}, ")
+    monkeypatch.setenv("COLUMNS", "50")
+    out = io.StringIO()
+    with Progress(LONG_TASK, stream=out, mode="lines", interval=0) as bar:
+        bar.stage(LONG_STAGE)
+    assert max(len(line) for line in out.getvalue().splitlines()) <= 50
+
+
+def test_a_device_compile_on_a_pipe_fits_columns(tmp_path: Path) -> None:
+    scen = write_scenario(tmp_path / "s.toml", 2, 3, [((0, 0), (1, 2))])
+    res = invoke("compile", scen, "--device", "heavy-hex", "--layout", "medial", "--lowered", "--json",
+                 env={**LINES, "COLUMNS": "60"})  # fmt: skip
+    assert res.exit_code == 0, res.stderr
+    lines = res.stderr.splitlines()
+    assert len(lines) > 3 and all(len(line) <= 60 for line in lines), lines
+
+
 # ----------------------------------------------------------------------------- estimate
 
 
@@ -235,7 +292,7 @@ def test_a_device_compile_names_its_stages(tmp_path: Path) -> None:
     """``compile --device heavy-hex`` (the cells' plan choice can take a while): stages on stderr, stdout unchanged."""
     scen = write_scenario(tmp_path / "s.toml", 2, 3, [((0, 0), (1, 2))])
     args = ["compile", scen, "--device", "heavy-hex", "--layout", "medial", "--lowered", "--json"]
-    res = invoke(*args, env=LINES)
+    res = invoke(*args, env={**LINES, "COLUMNS": "200"})  # wide enough that no task or stage is cut
     assert res.exit_code == 0, res.stderr
     quiet = invoke(*args, env={"QCPP_PROGRESS": "off"})
     assert res.stderr and not quiet.stderr

@@ -9,7 +9,10 @@ which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM o
   e.g. ``estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left``, and a last line when it ends. A
   new stage is written at once where no line came for as long (a native call that holds the GIL starves the
   heartbeat, so a stage that starts one announces itself), so a log gets at most about two lines per interval
-  however fast the stages change.
+  however fast the stages change. Every line fits the terminal's width
+  (:func:`qcpp.estimators.tables.terminal_width`: ``$COLUMNS``, else 80 on a pipe): the counts, the share and the
+  times are never cut; the task is cut at its end (down to its first word) and then the stage in its middle, where
+  a stage's own counts (``(3 / 6)``) sit at its end and stay, with ``…`` for what went.
 * ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
   seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
 * Entering a :class:`Progress` calls :func:`qcpp.cli.interrupt.announce_ready`.
@@ -33,6 +36,7 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import re
 import sys
 import threading
 import time
@@ -70,6 +74,9 @@ FIRST_LINE_AFTER = 1.0
 
 HEARTBEAT_JOIN_SECONDS = 1.0
 """How long leaving a :class:`Progress` waits for its heartbeat thread."""
+
+MIN_STAGE = 12
+"""Fewest characters a cut stage keeps in a line; with less room the line leaves the stage out."""
 
 BAR_WIDTH = 20
 """Characters of the bar on a terminal (rich's default, 40, leaves an 80-column terminal little room for the task)."""
@@ -124,6 +131,8 @@ class Progress:
         first_after: Seconds before the first line (default :data:`FIRST_LINE_AFTER`; 0 with ``interval`` 0).
         time_left: Show the time left (extrapolated from the share of steps done); ``False`` where steps differ
             too much in cost for that to be an estimate (the counts and the elapsed time are still shown).
+        width: Characters a line may take (default :func:`qcpp.estimators.tables.terminal_width`); a pipe or log
+            gets lines this wide at most, so a long task or stage does not wrap in a terminal showing the log.
     """
 
     def __init__(
@@ -137,8 +146,12 @@ class Progress:
         interval: float | None = None,
         first_after: float | None = None,
         time_left: bool = True,
+        width: int | None = None,
     ) -> None:
+        from qcpp.estimators.tables import terminal_width
+
         self.task = task
+        self.width = terminal_width() if width is None else width
         self.time_left = time_left
         self.total = total
         self.unit = unit
@@ -187,7 +200,7 @@ class Progress:
                 self._bar.stop()
         if exc_type is None and self._mode == "lines" and self._lines:
             size = f"{self.done:,} {self.unit} " if self.total is not None or self.done else ""
-            self._write(f"{self.task}: {size}done in {format_duration(self._elapsed())}")
+            self._write(_fit_line(self.task, "", [f"{size}done in {format_duration(self._elapsed())}"], self.width))
 
     # ------------------------------------------------------------------ reporting
 
@@ -230,20 +243,22 @@ class Progress:
             self.stage(then)
 
     def status(self) -> str:
-        """The current line (without a newline)."""
-        parts = []
+        """The current line (without a newline), at most :attr:`width` characters where the numbers leave room.
+
+        The line is ``task: counts, stage, elapsed time[, time left]``; when it is too long the task and then the
+        stage are shortened (see :func:`_fit_line`), never the counts or the times.
+        """
+        counts = []
         if self.total is not None:
             share = f" ({100.0 * self.done / self.total:.1f}%)" if self.total else ""
-            parts.append(f"{self.done:,} / {self.total:,} {self.unit}{share}")
+            counts.append(f"{self.done:,} / {self.total:,} {self.unit}{share}")
         elif self.done:
-            parts.append(f"{self.done:,} {self.unit}")
-        if self.stage_text:
-            parts.append(self.stage_text)
+            counts.append(f"{self.done:,} {self.unit}")
         elapsed = self._elapsed()
-        parts.append(f"{format_duration(elapsed)} elapsed")
+        times = f"{format_duration(elapsed)} elapsed"
         if self.time_left and self.total and 0 < self.done < self.total and elapsed >= 1.0:
-            parts[-1] += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
-        return f"{self.task}: {', '.join(parts)}"
+            times += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
+        return _fit_line(self.task, self.stage_text, [*counts, times], self.width)
 
     # ------------------------------------------------------------------ internals
 
@@ -316,3 +331,82 @@ class Progress:
         )
         self._bar_task = self._bar.add_task(self._label(), total=self.total)
         self._bar.start()
+
+
+def _cut_end(text: str, room: int) -> str:
+    """``text`` in at most ``room`` characters: if it is longer, its end goes, at a space where one is, for ``…``.
+
+    Example:
+        >>> _cut_end("compile 3x4, 1 robot(s), p=1", 16)
+        'compile 3x4, 1…'
+    """
+    if len(text) <= room:
+        return text
+    kept = text[: max(room - 1, 0)]
+    if " " in kept and text[len(kept)] != " ":  # no half words
+        kept = kept[: kept.rindex(" ")]
+    return kept.rstrip(" ,:") + "…"
+
+
+def _cut_middle(text: str, room: int) -> str:
+    """``text`` in at most ``room`` characters: if it is longer, whole words from its middle go for `` … ``.
+
+    The end keeps up to half the room, so a stage's own counts (``... on heavy-hex:9 (3 / 6)``) survive next to
+    its start (the row or the pass it belongs to).
+
+    Example:
+        >>> _cut_middle("3x3 r1 p1 on heavy-hex:7: choosing partial-mixer plans on the cells (13 / 18)", 30)
+        '3x3 r1 p1 on … (13 / 18)'
+    """
+    if len(text) <= room:
+        return text
+    counts = re.search(r"\([0-9,]+ / [0-9,]+\)$", text)  # ``(3 / 6)``: whole or not at all
+    group = len(counts[0]) if counts else 0
+    if room < max(7, group + 4):
+        return _cut_end(text, room)
+    start = len(text) - max((room - 3) // 2, group)
+    if start > 0 and text[start - 1] != " " and " " in text[start:-1]:  # no half words
+        start = text.index(" ", start) + 1
+    tail = text[start:]
+    head = text[: room - 3 - len(tail) + 1]
+    head = head[: head.rindex(" ")].rstrip(" ,:") if " " in head else ""
+    return f"{head} … {tail}" if head else f"… {tail}"
+
+
+def _fit_line(task: str, stage: str, numbers: list[str], width: int) -> str:
+    """The progress line ``task: numbers[0], stage, numbers[1:]`` in at most ``width`` characters if it can be.
+
+    The numbers (counts, share, elapsed time, time left) are never cut: they are what the line is for. The task is
+    cut first, at its end and down to its first word (the command, which the reader typed); then the stage, in its
+    middle, down to :data:`MIN_STAGE` characters; with less room the stage is left out. A line longer than
+    ``width`` remains only where the first word and the numbers alone are longer.
+
+    Args:
+        task: The task (``compile 3x4, 1 robot(s), p=1``).
+        stage: The stage, or ``""``.
+        numbers: The counts (if any) and then the times, each kept whole.
+        width: Characters the line may take.
+
+    Returns:
+        The line, without a newline.
+
+    Example:
+        >>> _fit_line("compile 3x4, 1 robot(s)", "routing the whole circuit", ["3 s elapsed"], 40)
+        'compile…: routing … circuit, 3 s elapsed'
+    """
+    head, rest = (numbers[:1], numbers[1:]) if len(numbers) > 1 else ([], numbers)
+
+    def line(t: str, s: str) -> str:
+        return f"{t}: {', '.join([*head, *([s] if s else []), *rest])}"
+
+    if len(line(task, stage)) <= width:
+        return line(task, stage)
+    floor = min(len(task), len(task.split(" ", 1)[0]) + 1)  # the first word and the ``…`` after it
+    if stage:
+        spare = width - len(line("", stage))  # what the task may take with the stage whole
+        short = _cut_end(task, max(spare, floor)) if spare < len(task) else task
+        stage_room = width - len(line(short, "")) - 2
+        if stage_room >= min(len(stage), MIN_STAGE):
+            return line(short, _cut_middle(stage, stage_room))
+    spare = width - len(line("", ""))
+    return line(_cut_end(task, max(spare, floor)), "")
