@@ -7,8 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from qcpp.cli.commands.solve import SOLVE_METHODS, sparkline
+from qcpp.cli.commands.solve import SOLVE_METHODS, objective_line, sparkline
 from qcpp.cli.render import render_ascii
+from qcpp.estimators.tables import terminal_width
 from qcpp.problem.paths import path_from_nodes
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.problem.solvers import dfs
@@ -78,7 +79,36 @@ def test_text_draws_the_assignment_and_the_trace() -> None:
     sol = solve_qaoa(s, maxiter=40)
     assert render_ascii(s, sol.solution.paths, legend=False) in res.stdout
     assert f"probability {sol.probability:.4g}" in res.stdout
-    assert sparkline(sol.trace) in res.stdout and "angles [g0, b0, ...]" in res.stdout
+    assert objective_line("gibbs", sol.trace, terminal_width()) in res.stdout.splitlines()
+    assert "angles [g0, b0, ...]" in res.stdout
+
+
+def test_the_objective_line_fits_the_terminal_and_keeps_its_first_and_last_values() -> None:
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import app
+
+    args = ["solve", PAPER, "-m", "qaoa", "-p", "2", "--optimizer", "cobyla", "--maxiter", "100"]
+    trace = json.loads(CliRunner().invoke(app, [*args, "--json"]).stdout)["trace"]
+    assert len(trace) > 60  # more iterations than the widest sparkline has bars
+    head, last = f"gibbs objective per iteration: {trace[0]:.6g} ", f" {trace[-1]:.6g}"
+    for columns in (50, 60, 80, 200):
+        res = CliRunner().invoke(app, args, env={"COLUMNS": str(columns)})
+        assert res.exit_code == 0, res.output
+        line = next(line for line in res.stdout.splitlines() if line.startswith("gibbs objective per iteration: "))
+        assert len(line) <= columns and line.startswith(head) and line.endswith(last), (columns, line)
+        room = min(60, columns - len(head) - len(last))
+        assert line == (head + sparkline(trace, room) + last if room >= 5 else head + last.lstrip()), (columns, line)
+
+
+def test_objective_line_shrinks_the_sparkline_then_drops_it() -> None:
+    trace = [float(i % 7) for i in range(300)]
+    shortest = len("cvar objective per iteration: 0 5")
+    lines = {w: objective_line("cvar", trace, w) for w in range(shortest, 140)}
+    assert all(len(line) <= w for w, line in lines.items())
+    assert all(line.startswith("cvar objective per iteration: 0 ") and line.endswith(" 5") for line in lines.values())
+    bars = [len(line.split(" ")[5]) if line.count(" ") == 6 else 0 for line in lines.values()]
+    assert bars == sorted(bars) and bars[-1] == 60 and 0 in bars and 5 in bars and not set(bars) & {1, 2, 3, 4}
 
 
 def test_plot_files_are_written_whole(tmp_path: Path) -> None:
@@ -210,6 +240,7 @@ def test_qaoa_is_registered_beside_the_classical_methods() -> None:
 def test_sparkline() -> None:
     assert sparkline([]) == ""
     assert sparkline([1.0, 1.0]) == "▁▁"
+    assert sparkline([1.0, 2.0], width=0) == ""
     line = sparkline(list(range(500)), width=40)
     assert len(line) == 40 and line[0] == "▁" and line[-1] == "█"
 

@@ -55,6 +55,7 @@ from qcpp.cli.commands.inline_scenario import (
 from qcpp.cli.commands.plan_flags import RuleFlag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
+from qcpp.estimators.tables import terminal_width
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
@@ -96,14 +97,21 @@ SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo
 _SPARK = "▁▂▃▄▅▆▇█"
 
 
-def sparkline(values: Sequence[float], width: int = 60) -> str:
-    """A one-line bar chart of ``values`` (resampled to at most ``width`` bars; low = short).
+SPARK_WIDTH = 60
+"""Most bars of the objective's sparkline (a wide terminal gets this many, a narrow one fewer)."""
+
+MIN_SPARK = 5
+"""Fewest bars worth drawing: with less room the objective line shows the first and last values only."""
+
+
+def sparkline(values: Sequence[float], width: int = SPARK_WIDTH) -> str:
+    """A one-line bar chart of ``values`` (resampled to at most ``width`` bars; low = short; none for ``width`` < 1).
 
     Example:
         >>> sparkline([3.0, 2.0, 1.0, 0.0])
         '█▆▃▁'
     """
-    if not values:
+    if not values or width < 1:
         return ""
     bars = min(width, len(values))
     idx = [round(i * (len(values) - 1) / max(1, bars - 1)) for i in range(bars)]
@@ -111,6 +119,31 @@ def sparkline(values: Sequence[float], width: int = 60) -> str:
     lo, hi = min(pts), max(pts)
     span = hi - lo or 1.0
     return "".join(_SPARK[round((v - lo) / span * (len(_SPARK) - 1))] for v in pts)
+
+
+def objective_line(objective: str, trace: Sequence[float], width: int) -> str:
+    """``<objective> objective per iteration: <first> <sparkline> <last>`` in at most ``width`` characters.
+
+    The two values are kept whole; the sparkline takes the room they leave, up to :data:`SPARK_WIDTH` bars, and is
+    left out with less than :data:`MIN_SPARK` (the line is then longer than ``width`` only if the words and the
+    two values alone are).
+
+    Args:
+        objective: The training objective's name (``gibbs``).
+        trace: The objective per iteration, at least one value.
+        width: Characters the line may take (the terminal's width).
+
+    Example:
+        >>> trace = [3.0 / (1 + i) for i in range(100)]
+        >>> objective_line("gibbs", trace, 50)
+        'gibbs objective per iteration: 3 █▂▁▁▁▁▁▁▁▁▁▁ 0.03'
+        >>> objective_line("gibbs", trace, 40)
+        'gibbs objective per iteration: 3 0.03'
+    """
+    first, last = f"{objective} objective per iteration: {trace[0]:.6g}", f"{trace[-1]:.6g}"
+    room = min(SPARK_WIDTH, width - len(first) - len(last) - 2)
+    return " ".join([first, *([sparkline(trace, room)] if room >= MIN_SPARK else []), last])
+
 
 METHOD_HELP = {
     "dfs": "exhaustive search, the exact optimum",
@@ -357,9 +390,7 @@ def solve_command(
         # two short lines, each wrapped at spaces to the terminal's width like the notes
         console.print(f"most probable assignment (drawn above): probability {qaoa.probability:.4g}", highlight=False)
         console.print(f"probability of an optimal assignment: {qaoa.p_optimum:.4g}", highlight=False)
-        tr = qaoa.trace
-        console.print(f"{objective} objective per iteration: {tr[0]:.6g} {sparkline(tr)} {tr[-1]:.6g}",
-                      highlight=False, soft_wrap=True)
+        console.print(objective_line(objective, qaoa.trace, terminal_width()), highlight=False, soft_wrap=True)
         console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
                       highlight=False, soft_wrap=True)
     if exact is not None:
