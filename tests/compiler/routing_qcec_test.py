@@ -46,13 +46,18 @@ def aligned(routed: RoutedCircuit, n: int) -> Circuit:
 
 
 def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = False, layout_method: str = "auto",
-           lowered: bool = True, context: RoutingContext | None = None) -> str:  # fmt: skip
+           lowered: bool = True, context: RoutingContext | None = None, every_input: bool = False,
+           chosen: str = "O3 passes", optimize_for: str | None = None) -> str:  # fmt: skip
+    """QCEC's verdict on the routed circuit against its logical circuit: on every input of the data qubits, or (a
+    candidate simplified for the all-|0> start, :mod:`qcpp.routing.known_state`, unless ``every_input``) on the
+    all-|0> input. ``chosen``: a part of the chosen candidate's name asserted where ``lowered`` is off."""
     s = default_scenario(*scenario_args)
     r = compile_for_device(s, 1, device, lowered=lowered, bindings=BIND, layout_method=layout_method,
-                           context=context)  # fmt: skip
+                           context=context, optimize_for=optimize_for)  # fmt: skip
     if not lowered:  # what compile writes on a named device: a candidate optimised by Qiskit's passes
-        assert "O3 passes" in r.chosen, r.chosen
+        assert "O3 passes" in r.chosen and chosen in r.chosen, r.chosen
         assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits
+    from_zero = "from |0>" in r.chosen and not every_input
     n = r.logical.num_qubits
     b = aligned(r.routed, n)
     a_gates = list(r.logical.gates)
@@ -60,7 +65,7 @@ def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = Fals
         a_gates.append(rz(0.1, 0))
     a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", a_gates)])
     # native gates equal the lowered ones up to a global phase (module docs of qcpp.routing.native)
-    return check_equivalence(a, b, num_plain=s.num_variables, global_phase_ok=not lowered).criterion
+    return check_equivalence(a, b, num_plain=0 if from_zero else s.num_variables, global_phase_ok=not lowered).criterion
 
 
 @pytest.mark.slow
@@ -80,12 +85,18 @@ def test_qcec_proves_the_native_circuit_a_named_device_gets_equal_to_its_logical
 @pytest.mark.slow
 def test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_their_logical_circuits() -> None:
     """ibm_torino, one robot on 3x3: the lowered routing, and the native circuit compile writes there (ours after
-    Qiskit's optimisation), each against its logical circuit. One routing context serves both compiles, so the
-    compiles on the heavy-hex lattices that they share run once."""
+    Qiskit's optimisation), each against its logical circuit; with ``--optimize-for twoq`` the written one (ours
+    simplified for the all-|0> start) equals it on the all-|0> input the device runs from, and not on every input
+    of the data qubits (it lost ``cx`` that act only on the robots' start state). One routing context serves the
+    compiles, so the compiles on the heavy-hex lattices that they share run once."""
     context = RoutingContext()
     assert _check((3, 3, 1), "ibm_torino", context=context) == "equivalent"
     written = _check((3, 3, 1), "ibm_torino", lowered=False, context=context)
     assert written in ("equivalent", "equivalent_up_to_global_phase")
+    twoq = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, chosen="from |0>", optimize_for="twoq")
+    assert twoq in ("equivalent", "equivalent_up_to_global_phase")
+    assert _check((3, 3, 1), "ibm_torino", lowered=False, context=context, every_input=True, chosen="from |0>",
+                  optimize_for="twoq") == "not_equivalent"  # fmt: skip
 
 
 @pytest.mark.slow
@@ -166,7 +177,7 @@ def test_qcec_proves_a_sibling_devices_search_placed_on_an_ibm_device_equal_to_i
     found = _searched_on_siblings(compiled.plan, circuit, dev, 0, ("ours", "qiskit"), measured, BIND,
                                   DEFAULT_ROUTING, RoutingContext(), lambda _: None)  # fmt: skip
     assert [name for name, _, _ in found] == ["search on ibm_fez"]
-    cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=found)
+    cands = calibrated_candidates([], dev, circuit, measured, qiskit_seeds=0, elsewhere=found, from_zero_start=True)
     placed = [c for c in cands if c.name.endswith("our placement + O3 passes")]
     assert placed and all(c.logical is found[0][1] for c in cands)
     logical, routed = found[0][1], placed[0].native
@@ -174,4 +185,10 @@ def test_qcec_proves_a_sibling_devices_search_placed_on_an_ibm_device_equal_to_i
     b = aligned(routed, n)
     a = Circuit([("data", n), ("free", b.num_qubits - n)], [Section("logical", list(logical.gates))])
     assert check_equivalence(a, b, num_plain=s.num_variables, global_phase_ok=True).criterion in (
+        "equivalent", "equivalent_up_to_global_phase")
+    # the same placement simplified for the all-|0> start: fewer CZ, the same state from |0...0>
+    zero = next(c for c in cands if c.name == placed[0].name.replace(" + O3 passes", " + from |0> + O3 passes"))
+    assert zero.twoq < placed[0].twoq
+    b = aligned(zero.native, n)
+    assert check_equivalence(a, b, num_plain=0, global_phase_ok=True).criterion in (
         "equivalent", "equivalent_up_to_global_phase")

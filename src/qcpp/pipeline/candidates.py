@@ -11,6 +11,12 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
   fewer and shorter gates, so fewer errors and less idle time), its SWAPs first written the way round whose ``cx``
   cancel by commutation with the circuit's (:func:`qcpp.routing.swap_orientation.orient_swaps`: the same operator,
   fewer CZ after the passes), where Qiskit candidates are asked for;
+* ``qcpp + from |0> + O3 passes`` (``qcpp #2 + from |0> + O3 passes`` ...): the same, with every ``cx`` whose
+  control is in a known basis state on the device's all-|0> start removed or written as ``x`` before the passes
+  (:func:`qcpp.routing.known_state.from_zero`: the robots' start is a basis state, so the first partial mixers and
+  the SWAPs into qubits still in |0> have many; at p = 1 the whole first phase separator acts on that basis state,
+  a global phase); these equal the logical circuit on the all-|0> input the device runs from, not as a unitary on
+  every input, so compile offers them only with ``--optimize-for twoq`` (``from_zero_start``);
 * ``cells on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on IBM's heavy-hex devices, the cell layout
   routed on the abstract lattice ``heavy-hex:D`` (where it is laid out by construction) and placed on the best
   embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
@@ -18,7 +24,8 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
   lattice lacks, or need room around their cells that the device's shape and defects do not give);
 * ``search on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on the same devices, for circuits the
   placement search takes, the greedy path's routing on each abstract lattice ``heavy-hex:D`` that holds the circuit
-  (its own placement search and partial-mixer choice there), placed the same way where it embeds;
+  (its own placement search and partial-mixer choice there), placed the same way where it embeds (these and the
+  cells' placements also ``+ from |0> + O3 passes``);
 * ``qiskit O3 seed s``: Qiskit's own ``transpile(optimization_level=3)`` onto the calibrated target, seeds
   ``0 .. QISKIT_SEEDS - 1`` (:func:`qcpp.routing.qiskit_o3.qiskit_o3`), so the result is never worse than
   Qiskit's by the chosen figure;
@@ -47,6 +54,7 @@ from functools import cached_property
 
 from qcpp.hardware.device import Device, device_names
 from qcpp.ir.circuit import Circuit
+from qcpp.routing.known_state import from_zero
 from qcpp.routing.native import esp, esp_idle, to_native
 from qcpp.routing.noise_aware import embedding_sites
 from qcpp.routing.qiskit_o3 import qiskit_o3_seeds, qiskit_optimized
@@ -158,6 +166,7 @@ def calibrated_candidates(
     measured: Sequence[int] | None = None,
     qiskit_seeds: int = QISKIT_SEEDS,
     elsewhere: Sequence[tuple[str, Circuit, RoutedCircuit]] = (),
+    from_zero_start: bool = False,
 ) -> list[RoutedCandidate]:
     """The candidates of the module docs.
 
@@ -170,6 +179,8 @@ def calibrated_candidates(
         qiskit_seeds: Qiskit O3 seeds.
         elsewhere: ``(name, logical circuit, routing)`` of routings on another device (CX + one-qubit gates: the
             cell layout on a ``heavy-hex:D`` lattice), each placed on ``device`` where its couplers embed.
+        from_zero_start: Also the ``+ from |0> + O3 passes`` candidates (with ``qiskit_circuit``; compile asks for
+            them with ``--optimize-for twoq``: equal to the logical circuit on the all-|0> input only).
 
     Returns:
         The candidates, in the order of the module docs.
@@ -198,13 +209,19 @@ def calibrated_candidates(
         out += with_placements(name, to_native(routed), routed)
     if qiskit_circuit is not None:
         for name, routed in zip(names, ours, strict=True):
-            out += with_placements(f"{name} + O3 passes", qiskit_optimized(orient_swaps(routed)))
+            oriented = orient_swaps(routed)
+            out += with_placements(f"{name} + O3 passes", qiskit_optimized(oriented))
+            if from_zero_start:
+                out += with_placements(f"{name} + from |0> + O3 passes", qiskit_optimized(from_zero(oriented)))
     for name, logical, routed in elsewhere:
         for placed in placements(name, to_native(routed), routed, logical):
             out.append(placed)
             if qiskit_circuit is not None and placed.lowered is not None:
-                out.append(RoutedCandidate(f"{placed.name} + O3 passes",
-                                           qiskit_optimized(orient_swaps(placed.lowered)), None, logical))  # fmt: skip
+                oriented = orient_swaps(placed.lowered)
+                out.append(RoutedCandidate(f"{placed.name} + O3 passes", qiskit_optimized(oriented), None, logical))
+                if from_zero_start:
+                    out.append(RoutedCandidate(f"{placed.name} + from |0> + O3 passes",
+                                               qiskit_optimized(from_zero(oriented)), None, logical))  # fmt: skip
     if qiskit_circuit is not None:
         for seed, theirs in enumerate(qiskit_o3_seeds(qiskit_circuit, device, range(qiskit_seeds), measured)):
             out += with_placements(f"qiskit O3 seed {seed}", theirs, logical=qiskit_circuit)

@@ -202,8 +202,9 @@ ROUTERS = {
 CANDIDATES_NOTE = (
     "; on a named device that is the first of the routed candidates, and compile writes the best of them by "
     "optimize_for (compile's own routings; on a heavy-hex device the same search on defect-free lattices, placed on "
-    "the device; Qiskit O3's; each also placed by the device's errors and after Qiskit's O3 passes): chosen names "
-    "it, candidates lists them"
+    "the device; Qiskit O3's; each also placed by the device's errors and after Qiskit's O3 passes; with optimize_for "
+    "twoq ours also with the cx that act on basis states from the all-|0> start removed, 'from |0>': equal to the "
+    "logical circuit on that input): chosen names it, candidates lists them"
 )
 """Appended to the router's description where compile chose among candidates (:mod:`qcpp.pipeline.candidates`)."""
 
@@ -544,7 +545,7 @@ def _finish(
                                    optimize_for=objective)  # fmt: skip
     say(f"scoring routed candidates on {device.name} (ESP, two-qubit gates, Qiskit O3)")
     candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured, qiskit_seeds,
-                                       elsewhere=elsewhere)  # fmt: skip
+                                       elsewhere=elsewhere, from_zero_start=objective == "twoq")  # fmt: skip
     pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
     if not pool:
         raise ValueError(none_fit)
