@@ -208,7 +208,7 @@ def test_the_cli_ends_without_nanobind_leak_reports() -> None:
 
 # --- usage examples in every command's help: on its first screen, and they run ------------------------------------
 
-HELP_COMMANDS = ["", "estimate", "compile", "export", "simulate", "solve", "validate", "verify", "scenario"]
+HELP_COMMANDS = ["", "estimate", "compile", "export", "simulate", "solve", "validate", "verify", "decode", "scenario"]
 FIRST_SCREEN = 25  # lines of help at 80 columns
 
 SLOW_EXAMPLES = frozenset({

@@ -102,6 +102,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "qcpp.cli.commands.validate",
     "qcpp.cli.commands.verify",
     "qcpp.cli.commands.export",
+    "qcpp.cli.commands.decode",
     "qcpp.cli.commands.scenario",
 )
 """Modules whose ``register(app)`` adds a command, in ``--help`` order."""
@@ -385,7 +386,7 @@ def _complete_choices(command: Any) -> None:
 PANELS: dict[str, str] = {
     # what the command works on
     "scenario": "Scenario", "grid": "Scenario", "robots": "Scenario", "robot": "Scenario", "obstacle": "Scenario",
-    "hard_obstacles": "Scenario", "p": "Scenario",
+    "hard_obstacles": "Scenario", "p": "Scenario", "counts": "Scenario",
     # how the circuit is built (compile, estimate: qcpp.cli.commands.plan_flags)
     "rule": "Plan", "initial": "Plan", "target": "Plan", "phase": "Plan", "optimize": "Plan",
     "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "lowered": "Plan", "bind": "Plan",
@@ -397,6 +398,7 @@ PANELS: dict[str, str] = {
     "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "solve.sampler": "Method",
     "simulate.rule": "Method",
     "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
+    "optimum": "Method",
     # estimate's models
     "depth": "Estimates", "depth_budget": "Estimates", "epsilon": "Estimates", "toffoli_t": "Estimates",
     "paper_doubling": "Estimates", "physical": "Estimates", "qubit_model": "Estimates",
@@ -407,7 +409,7 @@ PANELS: dict[str, str] = {
     "as_json": "Output", "fmt": "Output", "columns": "Output", "wide": "Output", "compare": "Output",
     "plot": "Output", "metric": "Output", "plot_trace_file": "Output", "qasm": "Output", "qasm_version": "Output",
     "qasm_profile": "Output", "out": "Output", "output": "Output", "explain": "Output", "formula": "Output",
-    "draw": "Output", "measure": "Output",
+    "draw": "Output", "measure": "Output", "top": "Output",
     "max_gates": "Advanced", "force": "Advanced", "allow_large": "Advanced", "help": "Advanced",
 }  # fmt: skip
 """The help panel of each option, by parameter name (``command.param`` first): every command groups its options

@@ -1,9 +1,9 @@
 """The scenario given inline on the command line: ``--grid RxC --robots N --obstacle R,C ... --hard-obstacles``,
 or the robots' own endpoints with ``--robot R,C:R,C`` (repeatable) instead of ``--robots N``.
 
-Every command that reads one scenario (``compile``, ``solve``, ``simulate``, ``validate``, ``verify``, ``export``)
-takes these flags instead of its scenario file (:func:`given_scenario`), ``qcpp scenario`` prints the file they
-stand for, and ``qcpp estimate`` takes ``--obstacle`` and ``--hard-obstacles`` beside its ``--grid``/``--robots``
+Every command that reads one scenario (``compile``, ``solve``, ``simulate``, ``validate``, ``verify``, ``decode``,
+``export``) takes these flags instead of its scenario file (:func:`given_scenario`), ``qcpp scenario`` prints the
+file they stand for, and ``qcpp estimate`` takes ``--obstacle`` and ``--hard-obstacles`` beside its ``--grid``/``--robots``
 ranges; all of them build the scenario with :func:`qcpp.problem.presets.grid_scenario`, the builder of
 ``qcpp.grid_scenario``, so a scenario typed on the command line is the one the Python API builds from the same
 numbers.
