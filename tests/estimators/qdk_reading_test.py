@@ -84,3 +84,38 @@ def test_qdk_reading_agrees_with_qcpp_counts(target: str) -> None:
     assert as_file.counts.rotation_depth == asap_rotation_depth(lower(circuit, peephole=False).gates, n)
     # the file writes each AND and each uncompute as 4 T gates: 4 more T states per uncompute than qcpp's model
     assert as_file.physical.t_states - est.physical.t_states == 4 * ours.ccix_count
+
+
+def test_qdk_read_silences_the_legacy_estimators_deprecation_and_nothing_else(monkeypatch: pytest.MonkeyPatch) -> None:
+    import warnings
+
+    from qdk import openqasm
+
+    text = 'OPENQASM 3.0;\ninclude "stdgates.inc";\nqubit[1] q;\nt q[0];\nrz(0.3) q[0];\n'
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        reading = qdk_read(text)
+    assert reading.counts.t_count == 1 and reading.counts.rotation_count == 1
+    assert not [w for w in seen if "deprecated" in str(w.message)], [str(w.message) for w in seen]
+
+    class Called(Exception):
+        pass
+
+    def legacy(source: str, params: object) -> None:
+        warnings.warn("This version of QRE is deprecated and will be removed", DeprecationWarning, stacklevel=2)
+        warnings.warn("another deprecation", DeprecationWarning, stacklevel=2)
+        raise Called
+
+    monkeypatch.setattr(openqasm, "estimate", legacy)
+    with warnings.catch_warnings(record=True) as seen, pytest.raises(Called):
+        warnings.simplefilter("always")
+        qdk_read(text)
+    assert [str(w.message) for w in seen] == ["another deprecation"]
+
+
+def test_qdk_read_names_the_missing_legacy_estimator(monkeypatch: pytest.MonkeyPatch) -> None:
+    from qdk import openqasm
+
+    monkeypatch.delattr(openqasm, "estimate")
+    with pytest.raises(ImportError, match=r"qdk\.openqasm\.estimate"):
+        qdk_read('OPENQASM 3.0;\nqubit[1] q;\n')
