@@ -23,15 +23,10 @@ The names load on first use (:pep:`562`): ``import qcpp`` and the command line's
 from __future__ import annotations
 
 import importlib
-from importlib.metadata import PackageNotFoundError, version
 from typing import TYPE_CHECKING, Any
 
-try:
-    __version__ = version("qcpp")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree that is not installed
-    __version__ = "0+unknown"
-
 if TYPE_CHECKING:
+    __version__: str
     from qcpp.api.compiling import Compiled, compile
     from qcpp.api.decoding import DecodedCounts, decode_counts
     from qcpp.api.devices import Device, DeviceError, device, devices
@@ -149,7 +144,21 @@ __all__ = [
 """The public API (the command line is ``qcpp``, :mod:`qcpp.cli.app`)."""
 
 
+def _version() -> str:
+    """The installed distribution's version (read on first use: :mod:`importlib.metadata` is slow to import, and
+    the console script imports this package before it can install its signal handling)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("qcpp")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree that is not installed
+        return "0+unknown"
+
+
 def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        globals()[name] = value = _version()
+        return value
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'qcpp' has no attribute {name!r}")

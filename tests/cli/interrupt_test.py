@@ -123,6 +123,33 @@ def test_interrupting_a_single_process_command(sig: signal.Signals) -> None:
     assert out == ""
 
 
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_during_start_up_is_the_same_one_line(sig: signal.Signals) -> None:
+    """``QCPP_HOLD_START`` holds the start-up right after the first handlers, before the CLI's imports: the signal
+    lands there (not by timing luck) and gives ``interrupted``, exit 130, as during the work."""
+    from qcpp.__main__ import HOLD_ENV
+
+    proc = start(["estimate", "--grid", "2x2", "--depth", "none"], env={HOLD_ENV: "1"})
+    assert proc.stderr is not None
+    seen = read_until(proc.stderr, lambda text: "ready: start-up\n" in text)
+    assert seen == "ready: start-up\n", seen
+    maps = Path(f"/proc/{proc.pid}/maps")
+    if maps.exists():  # held before the heavy imports: numpy's C extension is not loaded yet
+        assert "_multiarray_umath" not in maps.read_text()
+    out = stop(proc, sig, seen)
+    assert out == ""
+
+
+def test_the_start_up_hold_is_off_by_default() -> None:
+    """Without the hook nothing waits: the same command runs to its end (exit 0, its table on stdout)."""
+    from qcpp.__main__ import HOLD_ENV
+
+    env = {k: v for k, v in {**os.environ, "PYTHONPATH": str(REPO / "src")}.items() if k != HOLD_ENV}
+    proc = subprocess.run([sys.executable, "-m", "qcpp", "estimate", "--grid", "2x2", "--depth", "none", "--json"],
+                          cwd=REPO, env=env, capture_output=True, text=True, timeout=HUNG)  # fmt: skip
+    assert proc.returncode == 0 and "ready" not in proc.stderr and json.loads(proc.stdout), proc.stderr
+
+
 def test_the_ready_line_is_off_by_default() -> None:
     proc = subprocess.run(
         [sys.executable, "-m", "qcpp", "estimate", "--grid", "2x2", "--depth", "none"],
