@@ -8,7 +8,7 @@ sampled without noise by Qiskit's seeded ``StatevectorSampler``; the counts of t
 
 Usage::
 
-    python scripts/sample_counts.py examples/paper_3x3.toml examples/counts_3x3.json --bind gamma_0=0.2 \
+    python scripts/sample_counts.py examples/paper_3x3.toml examples/counts/3x3.json --bind gamma_0=0.2 \
         beta_0=1.4 --shots 1000 --seed 7
 """
 

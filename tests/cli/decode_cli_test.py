@@ -76,8 +76,8 @@ def test_the_text_names_the_top_outcomes_and_the_totals_within_80_columns(sample
 
 
 def test_the_help_example_file_decodes(tmp_path: Path) -> None:
-    res = run("decode", str(ROOT / "examples" / "paper_3x3.toml"), "--counts", str(ROOT / "examples" /
-              "counts_3x3.json"), "--optimum", "-6", "--json")  # fmt: skip
+    res = run("decode", str(ROOT / "examples" / "paper_3x3.toml"), "--counts", str(ROOT / "examples" / "counts" /
+              "3x3.json"), "--optimum", "-6", "--json")  # fmt: skip
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
     assert data["shots"] == 1000 and data["feasible_share"] == 1.0 and data["optimum_source"] == "given"
@@ -108,7 +108,7 @@ def test_a_bad_counts_file_is_one_line_naming_it(tmp_path: Path, content: str | 
 
 def test_missing_or_bad_options_are_one_line() -> None:
     assert_one_line_error(run("decode", *FIELD), "--counts")
-    counts = str(ROOT / "examples" / "counts_3x3.json")
+    counts = str(ROOT / "examples" / "counts" / "3x3.json")
     assert_one_line_error(run("decode", str(ROOT / "examples" / "paper_3x3.toml"), "--counts", counts, "--top", "0"),
                           "--top")  # fmt: skip
     assert_one_line_error(run("decode", str(ROOT / "examples" / "paper_3x3.toml"), "--counts", counts,

@@ -42,9 +42,9 @@ OPTIMUM_SECONDS = 10.0
 HELP = """Read measured counts (of 'qcpp compile --qasm F --measure') as paths.
 
 Examples:
-  qcpp decode examples/paper_3x3.toml --counts examples/counts_3x3.json
-  qcpp decode examples/paper_3x3.toml --counts examples/counts_3x3.json --json
-  qcpp decode --grid 3x3 --robot 0,0:0,2 --counts examples/counts_3x3.json
+  qcpp decode examples/paper_3x3.toml --counts examples/counts/3x3.json
+  qcpp decode examples/paper_3x3.toml --counts examples/counts/3x3.json --json
+  qcpp decode --grid 3x3 --robot 0,0:0,2 --counts examples/counts/3x3.json
 
 --counts FILE is JSON: an object bitstring -> shots (Qiskit's get_counts(),
 clbit 0 rightmost; hexadecimal keys '0x5' too), a list of bitstrings, one
