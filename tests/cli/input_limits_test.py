@@ -192,11 +192,18 @@ def test_a_writer_that_stalls_is_refused(tmp_path: Path, quick_input_wait: None)
         writer.join(5)
 
 
-def test_special_files_without_a_scenario_suffix_are_never_opened(tmp_path: Path) -> None:
+def test_special_files_without_a_scenario_suffix_are_read_boundedly(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A FIFO or device without a suffix is read (its format told from the content), never waited on for ever nor
+    read without end: a FIFO nobody writes to gives up after the input wait, /dev/zero at 16 MiB."""
+    monkeypatch.setattr(qcpp.io.inputs, "INPUT_WAIT", 0.2)
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
-    assert_one_line_error(run("solve", str(fifo)), "unknown file type")  # a blocking open would hang here
-    assert_one_line_error(run("solve", "/dev/zero"), "unknown file type")
+    assert_one_line_error(run("solve", str(fifo)), "fifo", "no process wrote to the FIFO")
+    assert_one_line_error(run("solve", "/dev/zero"), "/dev/zero", "16 MiB")
+    (tmp_path / "plain").write_text("[grid]\nrows = 2\ncols = 2\n")  # a regular file: the suffix decides
+    assert_one_line_error(run("solve", str(tmp_path / "plain")), "plain", "unknown file type")
 
 
 def test_other_special_files_as_scenarios(tmp_path: Path) -> None:

@@ -43,17 +43,31 @@ MAX_SCENARIO_BYTES = 16 << 20
 """Largest scenario file :func:`load_scenario` reads (16 MiB)."""
 
 
+STDIN = "-"
+"""The file name :func:`load_scenario` reads as standard input (``qcpp scenario ... | qcpp solve -``)."""
+
+STDIN_LABEL = "standard input"
+"""How messages name standard input (the name ``-`` says nothing in an error line)."""
+
+_STREAM_DIRS = ("/dev/", "/proc/")
+"""Names under these folders (``/dev/stdin``, ``/dev/fd/N`` of ``<(...)``) are streams whatever they point at."""
+
+
 def load_scenario(
     path: str | os.PathLike[str], *, check_range: bool = False, phases: bool = False
 ) -> Scenario:
-    """Load a scenario from a ``.toml`` or ``.json`` file.
+    """Load a scenario from a ``.toml`` or ``.json`` file, or from standard input (``path="-"``).
 
-    The file is UTF-8, with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most
-    :data:`MAX_NESTING` levels deep, and no object/table may give a key twice (JSON parsers would silently keep
-    the last value). FIFOs, pipes and devices are read with a time limit (:func:`qcpp.io.inputs.read_bounded`).
+    The format is the suffix's. Standard input (``-``) and files without one of the two suffixes that are not
+    regular files (a pipe such as ``/dev/stdin`` or the ``/dev/fd/N`` of a shell's ``<(...)``, a FIFO, a device)
+    are read first and their format told from the content (:func:`sniff_format`: JSON starts with ``{``, anything
+    else is read as TOML); a regular file with another suffix is refused before it is opened. The file is UTF-8,
+    with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most :data:`MAX_NESTING`
+    levels deep, and no object/table may give a key twice (JSON parsers would silently keep the last value). FIFOs,
+    pipes and devices are read with a time limit (:func:`qcpp.io.inputs.read_bounded`).
 
     Args:
-        path: The file.
+        path: The file, or ``-`` for standard input (refused when it is a terminal: nothing was piped in).
         check_range: Also refuse weights the solvers cannot represent exactly
             (:func:`qcpp.problem.cost_range.check_cost_range`; the command line does).
         phases: With ``check_range``: the narrower range in which the QAOA circuit's phases are exact to the
@@ -61,47 +75,95 @@ def load_scenario(
             ``simulate``, ``validate``).
 
     Raises:
-        ScenarioError: if the file is missing, unreadable, not valid TOML/JSON, or describes a bad scenario
-            (the field is prefixed by the file name; a grid over :data:`qcpp.problem.limits.MAX_GRID_NODES`
-            nodes is refused unless :func:`qcpp.problem.limits.allow_large` is in effect).
+        ScenarioError: if the file is missing, unreadable, empty, not valid TOML/JSON, or describes a bad scenario
+            (the field is prefixed by the file name, ``standard input`` for ``-``; a grid over
+            :data:`qcpp.problem.limits.MAX_GRID_NODES` nodes is refused unless
+            :func:`qcpp.problem.limits.allow_large` is in effect).
+
+    Example:
+        >>> import os, tempfile
+        >>> read, write = os.pipe()
+        >>> _ = os.write(write, b'{"grid": {"rows": 2, "cols": 2}, "robots": [{"start": [0, 0], "goal": [1, 1]}]}')
+        >>> os.close(write)
+        >>> load_scenario(f"/dev/fd/{read}").grid.rows  # a pipe without a suffix: JSON by its first character
+        2
+        >>> os.close(read)
     """
     p = Path(path)
-    kind = p.suffix.lower()
+    stdin = os.fspath(path) == STDIN
+    label = STDIN_LABEL if stdin else str(p)
+    kind = "" if stdin else p.suffix.lower()
     try:
-        if not p.is_dir() and kind not in (".json", ".toml"):  # before opening: a FIFO is never waited on
-            os.stat(p)  # a missing file is "cannot read", not "unknown type"
-            raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
-        raw = read_bounded(p, MAX_SCENARIO_BYTES)  # bounded: /dev/zero or a huge file must not fill the memory
+        if stdin:
+            if os.isatty(0):
+                raise ScenarioError(label, "is a terminal: pipe a scenario in (qcpp scenario ... | qcpp solve -)")
+            if os.path.exists("/dev/stdin"):  # read as any pipe is: bounded in size and in waiting
+                raw = read_bounded("/dev/stdin", MAX_SCENARIO_BYTES)
+            else:  # pragma: no cover - systems without /dev/stdin
+                raw = sys.stdin.buffer.read(MAX_SCENARIO_BYTES + 1)
+        else:
+            if not p.is_dir() and kind not in (".json", ".toml") and not _is_stream(p):  # before opening: a FIFO
+                raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")  # is never waited on
+            raw = read_bounded(p, MAX_SCENARIO_BYTES)  # bounded: /dev/zero or a huge file must not fill the memory
         if len(raw) > MAX_SCENARIO_BYTES:
-            raise ScenarioError(str(p), f"the file is larger than {MAX_SCENARIO_BYTES >> 20} MiB; not a scenario")
+            raise ScenarioError(label, f"the file is larger than {MAX_SCENARIO_BYTES >> 20} MiB; not a scenario")
         text = raw.decode("utf-8-sig")  # a leading UTF-8 byte order mark is not content
     except InputError as exc:
-        raise ScenarioError(str(p), f"cannot read the file: {exc.reason}") from None
+        raise ScenarioError(label, f"cannot read the file: {exc.reason}") from None
     except OSError as exc:
-        raise ScenarioError(str(p), f"cannot read the file ({exc.strerror or exc})") from None
+        raise ScenarioError(label, f"cannot read the file ({exc.strerror or exc})") from None
     except UnicodeDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid UTF-8 text ({exc.reason} at byte {exc.start})") from None
-    fmt = kind[1:].upper()
+        raise ScenarioError(label, f"not valid UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    if kind in (".json", ".toml"):
+        fmt = kind[1:].upper()
+    else:
+        if not text.strip():
+            raise ScenarioError(label, "empty: expected a scenario in TOML or JSON")
+        fmt = sniff_format(text)
     depth = nesting_depth(text, fmt)
     if depth > MAX_NESTING:
         raise ScenarioError(
-            str(p), f"not a scenario: brackets nested {depth:,} levels deep (at most {MAX_NESTING}; a scenario needs 5)"
+            label, f"not a scenario: brackets nested {depth:,} levels deep (at most {MAX_NESTING}; a scenario needs 5)"
         )
     try:
         data = json.loads(text, object_pairs_hook=_unique_keys) if fmt == "JSON" else tomllib.loads(text)
     except _DuplicateKeyError as exc:
-        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
+        raise ScenarioError(label, f"not valid JSON: {exc}") from None
     except json.JSONDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid JSON: {exc}") from None
+        raise ScenarioError(label, f"not valid JSON: {exc}") from None
     except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(str(p), f"not valid TOML: {_toml_reason(text, exc)}") from None
+        raise ScenarioError(label, f"not valid TOML: {_toml_reason(text, exc)}") from None
     try:
         s = scenario_from_dict(data)
         if check_range:
             check_phase_range(s) if phases else check_cost_range(s)
         return s
     except ScenarioError as exc:
-        raise ScenarioError(f"{p.name}: {exc.field}", exc.reason) from None
+        raise ScenarioError(f"{STDIN_LABEL if stdin else p.name}: {exc.field}", exc.reason) from None
+
+
+def sniff_format(text: str) -> str:
+    """``JSON`` or ``TOML``: the format of scenario ``text`` that came without a suffix.
+
+    A JSON scenario is an object, so it starts with ``{``; a TOML document cannot (it starts with a key, a table
+    header ``[...]`` or a comment), so anything else is read as TOML, and a parse error then names TOML.
+
+    Example:
+        >>> sniff_format('  {"grid": {}}'), sniff_format("[grid]"), sniff_format("# a field")
+        ('JSON', 'TOML', 'TOML')
+    """
+    return "JSON" if text.lstrip().startswith("{") else "TOML"
+
+
+def _is_stream(p: Path) -> bool:
+    """Whether ``p`` is read as a stream whose format the content tells: not a regular file (a pipe, FIFO, device;
+    a missing file raises ``FileNotFoundError``, which the caller reports as unreadable), or a name under
+    ``/dev/`` or ``/proc/`` (``/dev/stdin`` redirected from a file points at the file, which has any name)."""
+    import stat
+
+    if str(p).startswith(_STREAM_DIRS):
+        return True
+    return not stat.S_ISREG(os.stat(p).st_mode)
 
 
 MAX_NESTING = 64

@@ -3,10 +3,10 @@ or the robots' own endpoints with ``--robot R,C:R,C`` (repeatable) instead of ``
 
 Every command that reads one scenario (``compile``, ``solve``, ``simulate``, ``validate``, ``verify``, ``decode``,
 ``export``) takes these flags instead of its scenario file (:func:`given_scenario`), ``qcpp scenario`` prints the
-file they stand for, and ``qcpp estimate`` takes ``--obstacle`` and ``--hard-obstacles`` beside its ``--grid``/``--robots``
-ranges; all of them build the scenario with :func:`qcpp.problem.presets.grid_scenario`, the builder of
-``qcpp.grid_scenario``, so a scenario typed on the command line is the one the Python API builds from the same
-numbers.
+file they stand for, and ``qcpp estimate`` takes ``--obstacle`` and ``--hard-obstacles`` beside its
+``--grid``/``--robots`` ranges; all of them build the scenario with :func:`qcpp.problem.presets.grid_scenario`,
+the builder of ``qcpp.grid_scenario``, so a scenario typed on the command line is the one the Python API builds
+from the same numbers.
 
 Example:
     >>> s = inline_scenario("4x5", 2, ["1,1", "2,3"], hard=False)
@@ -35,7 +35,7 @@ from qcpp.problem.cost_range import check_cost_range, check_phase_range
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import grid_scenario
 from qcpp.problem.scenario import Scenario
-from qcpp.problem.scenario_io import load_scenario
+from qcpp.problem.scenario_io import STDIN, STDIN_LABEL, load_scenario
 
 __all__ = [
     "GivenScenario",
@@ -57,7 +57,10 @@ __all__ = [
 
 ScenarioFileArg = Annotated[
     Path | None,
-    typer.Argument(help="Scenario file (.toml or .json); or give it inline with --grid.", show_default=False),
+    typer.Argument(
+        help="Scenario file (.toml or .json; - reads standard input); or give it inline with --grid.",
+        show_default=False,
+    ),
 ]
 GridFlag = Annotated[
     str | None,
@@ -298,7 +301,8 @@ def given_scenario(
             raise ValueError(
                 "give a scenario file, or the scenario inline with --grid RxC [--robots N] [--obstacle R,C]"
             )
-        return GivenScenario(load_scenario(path, check_range=check_range, phases=phases), path.name, str(path))
+        label = STDIN_LABEL if str(path) == STDIN else path.name  # ``-``: standard input (sniffed TOML or JSON)
+        return GivenScenario(load_scenario(path, check_range=check_range, phases=phases), label, str(path))
     s = inline_scenario(grid, robots, obstacles, hard, endpoints)
     if check_range:
         check_phase_range(s) if phases else check_cost_range(s)
