@@ -59,6 +59,20 @@ def test_a_run_predicted_to_take_hours_is_refused_and_a_small_one_runs_with_prog
     assert again == sampled  # the same seeds with or without progress
 
 
+@needs_aer
+def test_progress_true_writes_the_shot_runs_on_stderr(
+    compiled: qcpp.Compiled, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``progress=True``, as on every long API call (:mod:`qcpp.api.progress`): the command line's lines."""
+    monkeypatch.setenv("QCPP_PROGRESS_INTERVAL", "0")
+    qcpp.simulate_noisy(compiled, method="statevector", shots=150, progress=True)
+    out, err = capsys.readouterr()
+    lines = err.splitlines()
+    assert out == "" and lines[0].startswith("simulate_noisy on ibm_fez: 0 / 150 shots"), err
+    assert any(line.startswith("simulate_noisy on ibm_fez: 100 / 150 shots") for line in lines), err
+    assert lines[-1].startswith("simulate_noisy on ibm_fez: 150 shots done in"), err
+
+
 def test_the_guard_refuses_what_would_not_fit_in_memory(monkeypatch: pytest.MonkeyPatch) -> None:
     from qcpp.problem.limits import MEMORY_ENV
 

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
@@ -257,6 +258,7 @@ def compile(
     local_ancillas: bool = False,
     optimize_for: str | None = None,
     max_gates: int | None = None,
+    progress: ProgressArg = None,
     **plan_options: Any,
 ) -> Compiled:
     """Compile the constrained-mixer QAOA circuit of ``scenario`` (what ``qcpp compile`` does).
@@ -273,6 +275,11 @@ def compile(
             decoherence; the default there) or ``twoq`` (fewest two-qubit gates); ``qcpp compile --optimize-for``.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
+        progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`). Without a device: the gates built so far, of ``total`` the predicted
+            lowered gates with ``lowered=True`` (``None`` for the high-level circuit, whose count is known only once
+            built); the circuit is then built section by section, the same circuit. With a device: each stage of
+            the routing as it starts (``progress(1, None)``, ``progress(2, None)``, ...; ``True`` names them).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
             :class:`~qcpp.plan.options.PlanOptions`).
 
@@ -316,19 +323,23 @@ def compile(
     else:
         get_device(device)  # an unknown name fails before any work
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
+    check_progress_arg(progress)
     check_cost_range(s)  # what the command line checks when it loads a file
-    check_size(
-        s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE
-    )
+    size = check_size(s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE)
+    task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={layers}"
     if device is None:
-        result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings)
+        # sections differ in cost per gate (a mixer section builds slower than a phase section): no time left
+        with reporting(progress, task, unit="gates", total=size.gates if lowered else None, time_left=False) as bar:
+            result = compile_scenario(s, layers, options, lowered=lowered, bindings=bindings,
+                                      progress=bar and bar.update, stage=bar and bar.stage)  # fmt: skip
         return Compiled(s, layers, result.circuit, lowered, _summary=result.summary())
     from qcpp.pipeline.device_compile import compile_for_device
 
-    routed = compile_for_device(
-        s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
-        layout_method=layout, optimize_for=optimize_for,
-    )  # fmt: skip
+    with reporting(progress, f"{task}, device {device}", unit="stages", stages=True) as bar:
+        routed = compile_for_device(
+            s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
+            layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage,
+        )  # fmt: skip
     r = routed.routed
     return Compiled(
         s, layers, r.circuit, lowered, r.device, list(r.initial_layout), list(r.final_layout),

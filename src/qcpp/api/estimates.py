@@ -22,6 +22,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario, default_scenario
 from qcpp.errors import OptionError, check_choice
 from qcpp.io.html import html_table
@@ -151,6 +152,7 @@ def estimate(
     qubit_model: str = "qubit_gate_ns_e3",
     qec_scheme: str = "surface_code",
     error_budget: float = 1e-3,
+    progress: ProgressArg = None,
     **plan_options: Any,
 ) -> Estimate:
     """Resource counts of the lowered QAOA circuit of ``scenario`` with ``p`` layers, without building it.
@@ -173,6 +175,10 @@ def estimate(
         qubit_model: The QDK qubit model of the physical estimates.
         qec_scheme: The QDK error-correction scheme of the physical estimates.
         error_budget: The QDK error budget of the physical estimates.
+        progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`) called as each stage of the ``device`` routing starts (``progress(1, None)``,
+            ...). The counts alone take milliseconds and report nothing; a sweep is a loop over calls, whose own
+            count is the progress.
         **plan_options: How the circuit is built: ``rule``, ``initial``, ``target``, ``phase``, ``optimize``,
             ``ancilla_budget``, ``phase_layout``, ``angles`` (:class:`~qcpp.plan.options.PlanOptions`).
 
@@ -204,10 +210,18 @@ def estimate(
         if not isinstance(device, str):
             raise OptionError("device", f"expected a device name, got {device!r}")
         get_device(device)  # an unknown name fails before any work
+    check_progress_arg(progress)
     check_cost_range(s)  # what the command line checks when it loads a file
     point = _point(s, layers, Point)
-    row = next(estimate_rows([point], settings, compare_paper, paper_doubling, device))  # type: ignore[arg-type]
-    return Estimate(row)
+    task = f"estimate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
+    with reporting(progress, task + (f", device {device}" if device else ""), unit="stages", stages=True) as bar:
+
+        def stage(text: str) -> None:
+            if bar is not None and text:  # "" ends a row: no stage
+                bar.stage(text)
+
+        rows = estimate_rows([point], settings, compare_paper, paper_doubling, device, stage)  # type: ignore[arg-type]
+        return Estimate(next(rows))
 
 
 def plot_estimates(

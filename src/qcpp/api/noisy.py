@@ -28,9 +28,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from qcpp.api.compiling import Compiled
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.errors import OptionError, check_count
 from qcpp.problem.limits import API_OVERRIDE, check_need
-from qcpp.problem.solvers.result import ProgressFn
 
 if TYPE_CHECKING:
     from qcpp.simulate.noisy import NoisyResult
@@ -46,7 +46,7 @@ def simulate_noisy(
     shots: int = 2000,
     seed: int = 0,
     method: str | None = None,
-    progress: ProgressFn | None = None,
+    progress: ProgressArg = None,
 ) -> NoisyResult:
     """P(optimum) of ``compiled`` under the noise of the device it was compiled for.
 
@@ -69,7 +69,8 @@ def simulate_noisy(
         seed: qiskit-aer's seed.
         method: ``density_matrix``, ``statevector`` or ``matrix_product_state`` (default: by the active qubit
             count, as above).
-        progress: Called as ``progress(done, shots)`` after each run of up to
+        progress: ``True`` for progress lines on stderr, or a function (:mod:`qcpp.api.progress`) called as
+            ``progress(done, shots)`` after each run of up to
             :data:`qcpp.simulate.noisy.SHOT_BATCH` sampled shots, fewer where shots take seconds (about every
             30 s: :func:`qcpp.simulate.noisy.shot_batch`); the exact methods report nothing.
 
@@ -107,13 +108,13 @@ def simulate_noisy(
         raise OptionError("method", f"unknown method {method!r} (expected one of {', '.join(METHODS)})")
     if compiled.symbols:
         raise UnboundParameterError(compiled.symbols, "a noisy simulation needs numbers")
-    if progress is not None and not callable(progress):
-        raise OptionError("progress", f"expected a function progress(done, total), got {progress!r}")
+    check_progress_arg(progress)
     check_need(noisy_need(compiled._routed, noise=noise, shots=count, method=method), field="compiled",
                override=API_OVERRIDE)  # fmt: skip
     require_aer()
     indices, optimal = feasible_assignments(compiled.scenario)
-    return simulate(
-        compiled._routed, indices[optimal].tolist(), noise=noise, idle=idle, shots=count, seed=chosen_seed,
-        method=method, progress=progress,
-    )  # fmt: skip
+    with reporting(progress, f"simulate_noisy on {compiled._routed.device.name}", unit="shots", total=count) as bar:
+        return simulate(
+            compiled._routed, indices[optimal].tolist(), noise=noise, idle=idle, shots=count, seed=chosen_seed,
+            method=method, progress=bar and bar.update,
+        )  # fmt: skip

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
@@ -46,6 +47,7 @@ def solve(
     rule: str = "exact",
     time_limit: float | None = None,
     sampler: str | None = None,
+    progress: ProgressArg = None,
     **qaoa_options: Any,
 ) -> Solution:
     """Solve ``scenario`` with ``method`` (``qcpp solve --method``) and return its answer.
@@ -58,6 +60,11 @@ def solve(
         time_limit: ``cpsat``: seconds before it stops with its best (default: until proven optimal).
         sampler: ``qubo``: ``tabu`` (tabu search, one run per read; the default) or ``sa`` (simulated annealing,
             1,000 sweeps per read), 100 reads on the per-robot QUBO (:func:`qcpp.qubo.solve.solve_qubo`).
+        progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`), as ``qcpp solve`` counts: ``dfs`` the assignments scored of all of them,
+            ``cpsat`` each improving solution found (``total`` ``None``), ``anneal`` and ``genetic`` their
+            iterations or generations, ``qaoa`` the levels trained (:func:`train_qaoa`), ``qubo`` its three
+            steps (building the QUBO, sampling, polishing).
         **qaoa_options: ``qaoa`` only: the options of :func:`train_qaoa` (``p``, ``optimizer``, ...).
 
     Returns:
@@ -86,26 +93,36 @@ def solve(
         if method != "qubo":
             raise OptionError("sampler", f"applies to method='qubo' only (got method={method!r})")
         check_choice(sampler, ("tabu", "sa"), "sampler")
+    check_progress_arg(progress)
     if method == "qaoa":
-        return train_qaoa(s, seed=seed, rule=rule, **qaoa_options).solution
+        return train_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options).solution
     from qcpp.problem.cost_range import check_cost_range
 
     check_cost_range(s)
+    task = f"solve {method} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
+    unit = {"dfs": "assignments", "cpsat": "improving solutions", "anneal": "iterations",
+            "genetic": "generations"}.get(method, "steps")  # fmt: skip
     if method == "dfs":  # within the limits of qcpp solve -m dfs (qcpp.allow_large() lifts them)
         from qcpp.problem.solvers.exhaustive import budgeted_dfs_paths, dfs
 
-        return dfs(s, paths=budgeted_dfs_paths(s))
+        paths = budgeted_dfs_paths(s)
+        with reporting(progress, task, unit=unit) as bar:
+            return dfs(s, paths=paths, progress=bar and bar.update)
     if method == "cpsat":
         from qcpp.problem.solvers import cpsat
 
-        return cpsat(s, seed=seed, time_limit=time_limit).solution
+        with reporting(progress, task, unit=unit) as bar:
+            return cpsat(s, seed=seed, time_limit=time_limit, progress=bar and bar.update).solution
     if method == "qubo":
         from qcpp.qubo.solve import solve_qubo
 
-        return solve_qubo(s, sampler=sampler or "tabu", seed=seed, rule=rule).solution  # type: ignore[arg-type]
+        with reporting(progress, task, unit=unit) as bar:
+            return solve_qubo(s, sampler=sampler or "tabu", seed=seed, rule=rule,  # type: ignore[arg-type]
+                              progress=bar and bar.update).solution  # fmt: skip
     from qcpp.problem.solvers import SOLVERS
 
-    return SOLVERS[method](s, seed=seed, rule=rule, progress=None)  # type: ignore[arg-type]
+    with reporting(progress, task, unit=unit) as bar:
+        return SOLVERS[method](s, seed=seed, rule=rule, progress=bar and bar.update)  # type: ignore[arg-type]
 
 
 def train_qaoa(
@@ -121,6 +138,7 @@ def train_qaoa(
     gibbs_scale: float = GIBBS_SCALE,
     seed: int = 0,
     rule: str = "exact",
+    progress: ProgressArg = None,
 ) -> QaoaSolution:
     """Train a depth-``p`` QAOA on the exact feasible-subspace simulator and read off its most probable assignment
     (``qcpp solve --method qaoa``).
@@ -141,6 +159,9 @@ def train_qaoa(
             default (40) and the restarts are the schedule docs/ensembles.md measures.
         seed: Random seed of the initial angles.
         rule: SBF rule of the mixer.
+        progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`): ``progress(0, p)`` before training and ``progress(k, p)`` once level ``k``
+            is trained (``layerwise``; a single-run optimiser reports ``(0, 1)`` and ``(1, 1)``).
 
     Returns:
         The :class:`~qcpp.training.qaoa_solver.QaoaSolution` (``.solution``, ``.angles``, ``.probability``,
@@ -180,13 +201,17 @@ def train_qaoa(
         raise OptionError("gibbs_scale", f"expected a positive finite number, got {gibbs_scale!r}")
     if gibbs_scale != GIBBS_SCALE and objective != "gibbs":
         raise OptionError("gibbs_scale", f"applies to objective='gibbs' only (got objective={objective!r})")
+    check_progress_arg(progress)
     check_phase_range(s)
     check_training_size(s, "scenario", API_OVERRIDE, "use qcpp.solve(scenario, 'cpsat') or 'anneal'", p=layers)
-    return solve_qaoa(
-        s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter, initial=initial,  # type: ignore[arg-type]
-        mixer_warm=mixer_warm, restart_every_level=restart_every_level, gibbs_scale=float(gibbs_scale),
-        seed=seed, rule=rule,  # type: ignore[arg-type]
-    )  # fmt: skip
+    task = f"train_qaoa p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
+    # a level costs more than the one below it: the share of levels done does not extrapolate to the time left
+    with reporting(progress, task, unit="levels", time_left=False) as bar:
+        return solve_qaoa(
+            s, p=layers, optimizer=optimizer, objective=objective, maxiter=maxiter,  # type: ignore[arg-type]
+            initial=initial, mixer_warm=mixer_warm, restart_every_level=restart_every_level,  # type: ignore[arg-type]
+            gibbs_scale=float(gibbs_scale), seed=seed, rule=rule, progress=bar and bar.update,  # type: ignore[arg-type]
+        )  # fmt: skip
 
 
 def simulate_qaoa(

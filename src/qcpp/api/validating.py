@@ -25,6 +25,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
 from qcpp.problem.limits import API_OVERRIDE
@@ -45,6 +46,7 @@ def validate(
     rule: str = "exact",
     max_amplitudes: int = 256,
     dask: str | None = None,
+    progress: ProgressArg = None,
 ) -> ValidationReport:
     """Check the compiled circuit of ``scenario`` against the feasible-subspace simulator (``qcpp validate``).
 
@@ -60,6 +62,9 @@ def validate(
         dask: ``tensor``: a dask scheduler address (``tcp://host:8786``) or ``local`` (a cluster on this machine);
             contractions too wide for one process are sliced and run there. Giving it with ``auto`` picks
             ``tensor``.
+        progress: ``True`` for progress lines on stderr naming each stage (``compiling the lowered circuit``,
+            ``simulating the circuit (tensor)``, ...), or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`) called as each stage starts: ``progress(1, None)``, ``progress(2, None)``, ...
 
     Returns:
         The :class:`~qcpp.simulate.validate.ValidationReport`: ``verdict`` (``passed``, ``failed`` or
@@ -99,9 +104,14 @@ def validate(
             import mqt.qcec  # noqa: F401
         except ImportError as exc:
             raise OptionError("backend", f"qcec needs mqt.qcec (pip install 'qcpp[test]'): {exc}") from None
+    check_progress_arg(progress)
     check_phase_range(s)
-    check_need(validate_need(s), field="scenario", override=API_OVERRIDE)
-    return run(
-        s, layers, backend=backend, angles=values, seed=seed, rule=rule,  # type: ignore[arg-type]
-        max_amplitudes=max_amplitudes, dask=dask, max_assignments=None, max_bytes=None,
-    )  # fmt: skip
+    task = f"validate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
+    with reporting(progress, task, unit="stages", stages=True) as bar:
+        if bar is not None:
+            bar.stage("predicting the size")
+        check_need(validate_need(s), field="scenario", override=API_OVERRIDE)
+        return run(
+            s, layers, backend=backend, angles=values, seed=seed, rule=rule,  # type: ignore[arg-type]
+            max_amplitudes=max_amplitudes, dask=dask, max_assignments=None, max_bytes=None, stage=bar and bar.stage,
+        )  # fmt: skip

@@ -17,10 +17,10 @@ from __future__ import annotations
 from typing import Any
 
 from qcpp.api.checks import check_scenario_arg, plan_options_arg
+from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.errors import OptionError, check_count
 from qcpp.plan.options import PlanOptions
 from qcpp.problem import paths
-from qcpp.problem.solvers.result import ProgressFn
 from qcpp.verification import DEFAULT_SAMPLES, VerifyReport
 from qcpp.verification import verify as _verify
 
@@ -34,7 +34,7 @@ def verify(
     method: str = "auto",
     samples: int = DEFAULT_SAMPLES,
     seed: int = 0,
-    progress: ProgressFn | None = None,
+    progress: ProgressArg = None,
     options: PlanOptions | None = None,
     **plan_options: Any,
 ) -> VerifyReport:
@@ -49,8 +49,9 @@ def verify(
             or ``auto`` (``state`` where every input fits ``samples``, else ``gadgets``).
         samples: ``state``: most feasible inputs per part.
         seed: Seed of the angles and of any sample.
-        progress: Called as ``progress(done, total)`` while checking: the checks done (gadget method) or the
-            inputs run (state method). Nothing is printed without it (the state method can take tens of seconds).
+        progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
+            (:mod:`qcpp.api.progress`) called while checking: the checks done (gadget method) or the inputs run
+            (state method). Nothing is printed without it (the state method can take tens of seconds).
         options: The construction as one ``PlanOptions`` value (instead of keywords).
         **plan_options: How the circuit is built, as for ``qcpp.compile``: ``rule`` (``exact``, the default, or
             ``paper``), ``target`` (``nisq`` or ``ft``), ``fuse``, ``initial``, ``phase``, ...
@@ -74,7 +75,10 @@ def verify(
             raise OptionError("options", f"expected a PlanOptions, got {type(options).__name__}")
     else:
         options = plan_options_arg(plan_options)
-    return _verify(s, p, options.rule, method, samples, seed, progress, options)  # type: ignore[arg-type]
+    check_progress_arg(progress)
+    task = f"verify p={p} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
+    with reporting(progress, task, unit="checks") as bar:
+        return _verify(s, p, options.rule, method, samples, seed, bar and bar.update, options)  # type: ignore[arg-type]
 
 
 def is_feasible(scenario: Any, robot: int, mask: int) -> bool:

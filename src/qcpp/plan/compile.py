@@ -11,16 +11,19 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from qcpp.errors import OptionError
 from qcpp.ir.circuit import Circuit, Register
-from qcpp.lowering.passes import lower
+from qcpp.lowering.passes import WORK_REGISTER, lower
 from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.plan.qaoa import QaoaPlan, QubitMap, qaoa_plan, qubit_map
 from qcpp.problem.scenario import Scenario
+
+if TYPE_CHECKING:
+    from qcpp.problem.solvers.result import ProgressFn
 
 
 @dataclass(frozen=True)
@@ -102,6 +105,8 @@ def compile_scenario(
     lowered: bool = False,
     bindings: Mapping[str, float] | None = None,
     bind_field: str = "bind",
+    progress: ProgressFn | None = None,
+    stage: Callable[[str], None] | None = None,
 ) -> CompileResult:
     """Build (and optionally lower and bind) the QAOA circuit of a scenario.
 
@@ -110,17 +115,40 @@ def compile_scenario(
         lowered: Lower to the CNOT + single-qubit basis.
         bindings: Values for some or all of the symbols ``gamma_k``, ``beta_k``.
         bind_field: The argument that gave ``bindings``, starting the message of a bad one (``--bind`` in the CLI).
+        progress: Called as ``progress(gates, None)`` after each section is built (lowered, if ``lowered``), with
+            the gates built so far. With it (or ``stage``) the circuit is built section by section
+            (:meth:`~qcpp.plan.qaoa.QaoaPlan.emit_sections`, lowered one by one), the same circuit as lowering
+            the whole one.
+        stage: Called with ``planning the circuit`` and ``building the sections`` as each starts.
 
     Raises:
         qcpp.errors.OptionError: if ``bindings`` names a symbol the circuit does not have.
     """
     start = time.perf_counter()
+    if stage is not None:
+        stage("planning the circuit")
     plan = qaoa_plan(scenario, p, options)
-    circuit = plan.circuit()
-    if bindings:
-        plan.check_bindings(bindings, bind_field)
-    if lowered:
-        circuit = lower(circuit)
+    if progress is None and stage is None:
+        circuit = plan.circuit()
+        if bindings:
+            plan.check_bindings(bindings, bind_field)
+        if lowered:
+            circuit = lower(circuit)
+    else:
+        if bindings:
+            plan.check_bindings(bindings, bind_field)
+        if stage is not None:
+            stage("building the sections")
+        # the lowered circuit has the plan's registers (work included); the high-level one has no work register
+        registers = plan.registers if lowered else tuple(r for r in plan.registers if r.name != WORK_REGISTER)
+        sections = []
+        built = 0
+        for sec in plan.emit_sections(lowered):
+            sections.append(sec)
+            built += len(sec.gates)
+            if progress is not None:
+                progress(built, None)
+        circuit = Circuit(registers, sections)
     if bindings:
         circuit = circuit.bind(bindings)
     explain = plan.phase_plan.explain() if plan.phase_plan is not None else []
