@@ -28,11 +28,47 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = ["OptionError", "QcppError", "check_choice", "check_count", "choice_reason"]
+__all__ = [
+    "MissingExtraError",
+    "OptionError",
+    "QcppError",
+    "check_choice",
+    "check_count",
+    "choice_reason",
+    "missing_extra",
+]
 
 
 class QcppError(ValueError):
     """Bad input to qcpp (a scenario, an option, a device name, ...): the message is one line saying what and why."""
+
+
+class MissingExtraError(QcppError, ImportError):
+    """An optional dependency is not installed (Cirq, pytket, qiskit-aer, dimod, ...): the message names what
+    needs it, what is missing and the extra that installs it (:func:`missing_extra`).
+
+    A :class:`QcppError` (so the command line prints it as one line, exit 2, and ``except qcpp.QcppError`` catches
+    every refusal) and an ``ImportError`` (so ``except ImportError`` around an optional feature keeps working).
+    """
+
+
+def missing_extra(what: str, needs: str, extra: str, missing: str | None = None) -> MissingExtraError:
+    """The error of an optional dependency that is not installed, worded alike for the API and the command line.
+
+    Args:
+        what: What needs it, as any caller reads it (``to_cirq``, ``the QUBO samplers``).
+        needs: The packages (``cirq-core``, ``dimod and dwave-samplers``).
+        extra: The qcpp extra that installs them (``cirq``).
+        missing: The module that failed to import (``ImportError.name``), if known.
+
+    Example:
+        >>> print(missing_extra("to_cirq", "cirq-core", "cirq", "cirq"))
+        to_cirq needs cirq-core (cirq is missing): pip install 'qcpp[cirq]'
+        >>> isinstance(missing_extra("x", "y", "z"), ImportError)
+        True
+    """
+    gone = f" ({missing} is missing)" if missing else ""
+    return MissingExtraError(f"{what} needs {needs}{gone}: pip install 'qcpp[{extra}]'")
 
 
 class OptionError(QcppError):

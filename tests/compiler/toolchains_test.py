@@ -180,5 +180,7 @@ def test_without_the_toolchain_the_error_names_the_extra(monkeypatch: pytest.Mon
                                                          extra: str) -> None:  # fmt: skip
     monkeypatch.setitem(sys.modules, module, None)  # import raises ImportError
     c = qcpp.compile(qcpp.grid_scenario(2, 2, robots=1), p=1)
-    with pytest.raises(ImportError, match=rf"{method} needs .*pip install 'qcpp\[{extra}\]'"):
+    with pytest.raises(ImportError, match=rf"^{method} needs .*pip install 'qcpp\[{extra}\]'$") as info:
         getattr(c, method)()
+    # one refusal type for every missing extra, as qubo's and simulate_noisy's: a QcppError (one line in the CLI)
+    assert isinstance(info.value, qcpp.QcppError) and "\n" not in str(info.value)

@@ -213,7 +213,8 @@ class Compiled:
         gate).
 
         Raises:
-            ImportError: Cirq is not installed (``pip install 'qcpp[cirq]'``).
+            qcpp.errors.MissingExtraError: Cirq is not installed (``pip install 'qcpp[cirq]'``); a
+                ``qcpp.QcppError`` and an ``ImportError``.
         """
         from qcpp.lowering.toolchains import to_cirq
 
@@ -225,7 +226,8 @@ class Compiled:
         (:mod:`qcpp.lowering.toolchains`).
 
         Raises:
-            ImportError: pytket is not installed (``pip install 'qcpp[pytket]'``).
+            qcpp.errors.MissingExtraError: pytket is not installed (``pip install 'qcpp[pytket]'``); a
+                ``qcpp.QcppError`` and an ``ImportError``.
         """
         from qcpp.lowering.toolchains import to_pytket
 

@@ -51,7 +51,7 @@ from qcpp import __version__
 from qcpp.cli.interrupt import report_interrupted, stop_requested
 from qcpp.errors import OptionError, check_count, choice_reason
 from qcpp.problem.errors import ScenarioError
-from qcpp.problem.limits import OVERRIDE_FLAG, allow_large, check_layers
+from qcpp.problem.limits import OVERRIDE_FLAG, allow_large, check_layers, lift_wording
 
 try:  # typer >= 0.25 ships its own copy of click
     from typer._click import exceptions as _click_exc
@@ -229,8 +229,8 @@ def handle_errors(fn: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         large = kwargs["allow_large"] if own_flag else kwargs.pop("allow_large", False)
         try:
-            _check_options(kwargs)
-            with allow_large(bool(large)), one_line_warnings():
+            with allow_large(bool(large)), lift_wording(f"pass {OVERRIDE_FLAG}"), one_line_warnings():
+                _check_options(kwargs)
                 return fn(*args, **kwargs)
         except BrokenPipeError:  # the reader of stdout left: typer exits quietly (code 1)
             raise

@@ -18,7 +18,7 @@ Qiskit's reading of their OpenQASM 3, global phase included. Qubit ``i`` is
 ``qubit_order=cirq.LineQubit.range(n)`` to its simulators), pytket's all ``n``.
 
 Cirq and pytket are optional (``pip install 'qcpp[cirq]'``, ``'qcpp[pytket]'``); without them the converters raise
-``ImportError`` naming the extra.
+:class:`qcpp.errors.MissingExtraError` (a ``QcppError`` and an ``ImportError``) naming the extra.
 
 Example:
     >>> from qcpp.ir.angles import Angle
@@ -38,6 +38,7 @@ import math
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from qcpp.errors import MissingExtraError, missing_extra
 from qcpp.ir.angles import Angle, Param
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate
@@ -74,8 +75,8 @@ def _angle(value: Param, half_turns: bool = False) -> Any:
     return expr / sympy.pi if half_turns else expr
 
 
-def _missing(what: str, extra: str, exc: ImportError) -> ImportError:
-    return ImportError(f"{what} needs {extra} (pip install 'qcpp[{extra.split('-')[0]}]'): {exc}")
+def _missing(what: str, package: str, exc: ImportError) -> MissingExtraError:
+    return missing_extra(what, package, package.split("-")[0], exc.name)
 
 
 def to_cirq(circuit: Circuit) -> Any:
@@ -89,7 +90,7 @@ def to_cirq(circuit: Circuit) -> Any:
         The ``cirq.Circuit``, its operations in the order of ``circuit``'s gates (decompositions in place).
 
     Raises:
-        ImportError: Cirq is not installed.
+        qcpp.errors.MissingExtraError: Cirq is not installed (also an ``ImportError``).
     """
     try:
         import cirq
@@ -130,7 +131,7 @@ def to_pytket(circuit: Circuit) -> Any:
         multi-controlled X with a control on ``|0>`` is conjugated by X on that control).
 
     Raises:
-        ImportError: pytket is not installed.
+        qcpp.errors.MissingExtraError: pytket is not installed (also an ``ImportError``).
     """
     try:
         import pytket

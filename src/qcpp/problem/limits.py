@@ -22,7 +22,8 @@ Example:
     ...     check_grid_size(10000, 10000)
     ... except SizeError as exc:
     ...     print(exc.reason)
-    a 10000x10000 grid has 100,000,000 nodes, over the limit of 2,500 (50x50); pass --allow-large to build it anyway
+    a 10000x10000 grid has 100,000,000 nodes, over the limit of 2,500 (50x50); call it in a qcpp.allow_large() block \
+to build it anyway
     >>> with allow_large():
     ...     check_grid_size(10000, 10000)
     >>> need = Need("simulating 5 amplitudes", bytes=3 * 10**9, seconds=7200.0)
@@ -58,8 +59,10 @@ __all__ = [
     "check_grid_size",
     "check_layers",
     "check_need",
+    "default_lift",
     "format_duration",
     "large_allowed",
+    "lift_wording",
     "memory_budget",
     "parse_bytes",
 ]
@@ -83,6 +86,7 @@ MEMORY_ENV = "QCPP_MEMORY_AVAILABLE"
 """Environment variable that sets the available memory the guards compare with (bytes, or ``512M``, ``24G``)."""
 
 _ALLOWED: ContextVar[bool] = ContextVar("qcpp_allow_large", default=False)
+_LIFT: ContextVar[str] = ContextVar("qcpp_size_lift", default=API_OVERRIDE)
 
 
 class SizeError(ScenarioError):
@@ -207,7 +211,7 @@ def check_need(need: Need, *, available: int | None = None, field: str = "", ove
         need: The prediction.
         available: The memory to compare with (default :func:`available_memory`; unknown: memory not checked).
         field: What the error is about (a file or a flag), printed first.
-        override: How to lift the limit, for the message (default: ``pass --allow-large``).
+        override: How to lift the limit, for the message (default: :func:`default_lift`).
 
     Raises:
         SizeError: the work would not fit, or would run for hours.
@@ -219,7 +223,7 @@ def check_need(need: Need, *, available: int | None = None, field: str = "", ove
         return
     memory = available_memory() if available is None else available
     lead = "at least " if need.at_least else ""
-    lift = override or f"pass {OVERRIDE_FLAG}"
+    lift = override or default_lift()
     if memory is not None and need.bytes > memory:
         raise SizeError(
             field,
@@ -238,6 +242,32 @@ def check_need(need: Need, *, available: int | None = None, field: str = "", ove
 def large_allowed() -> bool:
     """Whether the limits are lifted in the current context."""
     return _ALLOWED.get()
+
+
+def default_lift() -> str:
+    """How a refusal without an explicit ``override`` says to lift the limit: for the caller in charge, the Python
+    API's :data:`API_OVERRIDE` unless a :func:`lift_wording` block (the command line's ``pass --allow-large``) is
+    in effect, so one check words its message for whoever called it."""
+    return _LIFT.get()
+
+
+@contextlib.contextmanager
+def lift_wording(text: str) -> Iterator[None]:
+    """Inside the ``with`` block, refusals without an explicit ``override`` say ``text`` (the command line runs
+    every command in ``lift_wording("pass --allow-large")``).
+
+    Example:
+        >>> with lift_wording(f"pass {OVERRIDE_FLAG}"):
+        ...     default_lift()
+        'pass --allow-large'
+        >>> default_lift()
+        'call it in a qcpp.allow_large() block'
+    """
+    token = _LIFT.set(text)
+    try:
+        yield
+    finally:
+        _LIFT.reset(token)
 
 
 @contextlib.contextmanager
@@ -280,15 +310,14 @@ def check_grid_size(rows: int, cols: int, field: str = "grid", override: str = "
     Args:
         rows, cols: the grid size.
         field: the field named in the error.
-        override: How to lift the limit, for the message (default: the CLI's ``pass --allow-large``;
-            :data:`API_OVERRIDE` for the Python API).
+        override: How to lift the limit, for the message (default: :func:`default_lift`, the caller's wording).
 
     Raises:
         SizeError: the grid is too large.
     """
     nodes = rows * cols
     if nodes > MAX_GRID_NODES and not large_allowed():
-        lift = override or f"pass {OVERRIDE_FLAG}"
+        lift = override or default_lift()
         raise SizeError(
             field,
             f"a {rows}x{cols} grid has {nodes:,} nodes, over the limit of {MAX_GRID_NODES:,} (50x50); "
@@ -302,8 +331,7 @@ def check_layers(p: int, flag: str = "-p", override: str = "") -> None:
     Args:
         p: The layer count.
         flag: The option named in the error (``-p``, or ``p`` for the Python API).
-        override: How to lift the limit, for the message (default: the CLI's ``pass --allow-large``;
-            :data:`API_OVERRIDE` for the Python API).
+        override: How to lift the limit, for the message (default: :func:`default_lift`, the caller's wording).
 
     Raises:
         SizeError: too many layers.
@@ -317,7 +345,7 @@ def check_layers(p: int, flag: str = "-p", override: str = "") -> None:
 block to run it anyway
     """
     if p > MAX_LAYERS and not large_allowed():
-        lift = override or f"pass {OVERRIDE_FLAG}"
+        lift = override or default_lift()
         raise SizeError(flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; {lift} to run it anyway")
 
 

@@ -32,7 +32,7 @@ from typing import Literal
 
 import numpy as np
 
-from qcpp.errors import QcppError
+from qcpp.errors import MissingExtraError, missing_extra
 from qcpp.problem.cost import cost_parts
 from qcpp.problem.paths import edges_of, is_feasible
 from qcpp.problem.scenario import Scenario
@@ -65,8 +65,9 @@ DEFAULT_TABU_MS = 10_000
 DEFAULT_POLISH = 100
 
 
-class MissingAnnealer(QcppError):
-    """dimod or dwave-samplers is not installed (a ``ValueError``: the CLI prints it as one line, exit 2)."""
+class MissingAnnealer(MissingExtraError):
+    """dimod or dwave-samplers is not installed (a ``ValueError``: the CLI prints it as one line, exit 2; and an
+    ``ImportError``)."""
 
 
 def require_annealer() -> None:
@@ -75,9 +76,8 @@ def require_annealer() -> None:
         import dimod  # noqa: F401
         import dwave.samplers  # noqa: F401
     except ImportError as exc:
-        raise MissingAnnealer(
-            f"--method qubo needs dimod and dwave-samplers ({exc.name or 'a module'} is missing): {INSTALL_HINT}"
-        ) from None
+        raise MissingAnnealer(str(missing_extra("the qubo method", "dimod and dwave-samplers", "annealing",
+                                                exc.name))) from None  # fmt: skip
 
 
 def drop_cycles(scenario: Scenario, robot: int, mask: int) -> int | None:

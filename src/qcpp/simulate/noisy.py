@@ -59,7 +59,7 @@ from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from qcpp.errors import QcppError
+from qcpp.errors import MissingExtraError
 from qcpp.hardware.device import Device
 from qcpp.problem.limits import Need
 from qcpp.routing.native import one_qubit_name
@@ -124,7 +124,7 @@ IDEAL_SECONDS_PER_AMPLITUDE_OP = 1e-9
 """Seconds per amplitude and operation of one ideal run (``noise=False``: gates fused, no error channels)."""
 
 
-class NoisyBackendMissing(QcppError, ImportError):
+class NoisyBackendMissing(MissingExtraError):
     """qiskit-aer is not installed."""
 
 
