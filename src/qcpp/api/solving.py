@@ -55,6 +55,8 @@ def solve(
     Args:
         method: ``dfs`` (exhaustive), ``cpsat`` (OR-Tools CP-SAT, the optimum with a proof), ``anneal``,
             ``genetic``, ``qaoa`` (trained on the feasible-subspace simulator; :func:`train_qaoa`) or ``qubo``.
+            The default is ``cpsat`` (a script gets the proven optimum); ``qcpp solve`` defaults to ``anneal``, the
+            paper's heuristic (docs/guide/solve.md says why they differ).
         seed: Random seed (stochastic methods).
         rule: SBF rule of the local moves and of the QAOA mixer: ``exact`` or ``paper``.
         time_limit: ``cpsat``: seconds before it stops with its best (default: until proven optimal).
