@@ -45,6 +45,7 @@ from typing import Any, Literal
 from qcpp.errors import check_choice
 from qcpp.estimators.paper import paper_estimate
 from qcpp.io.atomic import save_figure_atomic
+from qcpp.io.caches import use_writable_matplotlib_config
 
 __all__ = ["PLOT_METRICS", "PlotMetric", "draw_rows", "plot_metric", "plot_rows"]
 
@@ -190,6 +191,7 @@ def draw_rows(
     if compare_paper and m.paper is None:
         warnings.warn(f"the paper gives no estimate of {m.column}: the plot shows ours only", stacklevel=2)
 
+    use_writable_matplotlib_config()  # before matplotlib picks its folders
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 

@@ -28,6 +28,9 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from qcpp.io.caches import use_writable_numba_cache
+
+use_writable_numba_cache()  # before numba decorates cache=True kernels: a read-only install still gets a cache
 try:
     import numba
 except ImportError:  # pragma: no cover - numba comes with quimb, a core dependency

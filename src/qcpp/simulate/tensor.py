@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import copy
 import math
-import os
 import threading
 import time
 import warnings
@@ -52,10 +51,12 @@ from typing import Any
 import numpy as np
 
 from qcpp.errors import QcppError
+from qcpp.io.caches import cache_root, prepare_folder, use_writable_numba_cache
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate, controlled_x_pattern, unitary
 from qcpp.simulate.statevector import bound_circuit
 
+use_writable_numba_cache()  # quimb decorates its cache=True numba kernels when imported
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
     import cotengra as ctg
@@ -103,14 +104,9 @@ class CacheFolderWarning(UserWarning):
 def _usable_cache(path: Path) -> Path | None:
     """``path`` created if need be and writable, else ``None`` after one :class:`CacheFolderWarning`."""
     try:
-        path.mkdir(parents=True, exist_ok=True)
-        probe = path / f".probe-{os.getpid()}"
-        probe.write_bytes(b"")
-        probe.unlink()
-        return path
+        return prepare_folder(path)
     except OSError as exc:
-        source = "QCPP_CACHE_DIR" if os.environ.get("QCPP_CACHE_DIR") else "XDG_CACHE_HOME" if os.environ.get(
-            "XDG_CACHE_HOME") else "the home folder"
+        source = cache_root()[1]
         warnings.warn(
             f"the contraction-path cache folder {path} (from {source}) cannot be used "
             f"({exc.strerror or exc}); running without the on-disk cache (set QCPP_CACHE_DIR to a writable folder)",
@@ -153,11 +149,7 @@ def default_cache_dir() -> Path:
         >>> default_cache_dir().name
         'cotengra'
     """
-    env = os.environ.get("QCPP_CACHE_DIR")
-    if env:
-        return Path(env) / "cotengra"
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "qcpp" / "cotengra"
+    return cache_root()[0] / "cotengra"
 
 
 class OptimizerCache:
