@@ -38,6 +38,7 @@ from typing import Any
 
 from qcpp.estimators.tables import draw, records, terminal_width, title_lines
 from qcpp.io.atomic import save_figure_atomic
+from qcpp.io.caches import use_writable_matplotlib_config
 from qcpp.problem.paths import edges_of
 from qcpp.problem.scenario import Scenario
 
@@ -154,6 +155,7 @@ def plot_paths(
         >>> out.read_bytes()[:8] == b"\\x89PNG\\r\\n\\x1a\\n"
         True
     """
+    use_writable_matplotlib_config()  # before matplotlib picks its folders
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
@@ -237,6 +239,7 @@ def plot_trace(
         >>> out.stat().st_size > 0
         True
     """
+    use_writable_matplotlib_config()  # before matplotlib picks its folders
     from matplotlib.figure import Figure
 
     if len(trace) == 0:
@@ -343,6 +346,39 @@ def print_table(console: Any, table: Any) -> None:
         console.print(table)
     finally:
         table.title = title
+
+
+def json_text(value: Any) -> str:
+    """``value`` as one line of strict JSON, file names decoded: a name Python read in a non-UTF-8 locale
+    (``LC_ALL=C``) holds its undecodable bytes as lone surrogates (``caf\\udcc3\\udca9.toml``), which JSON
+    escapes into text no strict reader accepts; such a string is read as UTF-8 again (``café.toml``), with
+    U+FFFD for bytes that are not UTF-8.
+
+    Example:
+        >>> json_text({"scenario": "caf\\udcc3\\udca9.toml", "n": [1, "x"]})
+        '{"scenario": "caf\\\\u00e9.toml", "n": [1, "x"]}'
+    """
+    import json
+
+    return json.dumps(_decoded(value))
+
+
+def _decoded(value: Any) -> Any:
+    if isinstance(value, str):
+        try:
+            value.encode("utf-8")
+        except UnicodeEncodeError:  # lone surrogates: bytes the locale could not decode
+            try:
+                raw = value.encode("utf-8", "surrogateescape")
+            except UnicodeEncodeError:  # a surrogate that stands for no byte
+                raw = value.encode("utf-8", "replace")
+            return raw.decode("utf-8", "replace")
+        return value
+    if isinstance(value, dict):
+        return {_decoded(k): _decoded(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_decoded(v) for v in value]
+    return value
 
 
 def echo_note(text: str) -> None:

@@ -49,6 +49,7 @@ import difflib
 import io
 import json
 import shutil
+import sys
 import textwrap
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, Literal
@@ -478,11 +479,42 @@ def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool
     return table
 
 
-def draw(renderable: Any, width: int) -> str:
-    """``renderable`` (a rich table, text, ...) as rich prints it on a ``width``-character plain console."""
+class _Text(io.StringIO):
+    """A text buffer that tells rich which encoding the text is for (rich draws ASCII boxes for a non-UTF one)."""
+
+    def __init__(self, encoding: str) -> None:
+        super().__init__()
+        self._encoding = encoding
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return self._encoding
+
+
+def stdout_encoding() -> str:
+    """The encoding of standard output (``utf-8`` if it has none): what text drawn for it must fit."""
+    return getattr(sys.stdout, "encoding", None) or "utf-8"
+
+
+def draw(renderable: Any, width: int, encoding: str | None = None) -> str:
+    """``renderable`` (a rich table, text, ...) as rich prints it on a ``width``-character plain console.
+
+    Args:
+        renderable: What to draw.
+        width: Characters per line.
+        encoding: The encoding the text will be written in (default :func:`stdout_encoding`): for one that is not
+            UTF (the C locale's ``ascii``) rich draws boxes with ``+``, ``-`` and ``|``, as when it prints to such
+            a stream itself.
+
+    Example:
+        >>> from rich.table import Table
+        >>> t = Table("a")
+        >>> draw(t, 10, "ascii").splitlines()[0]
+        '+---+'
+    """
     from rich.console import Console
 
-    buf = io.StringIO()
+    buf = _Text(encoding or stdout_encoding())
     Console(file=buf, width=width, force_terminal=False, color_system=None).print(renderable)
     return buf.getvalue()
 

@@ -33,7 +33,6 @@ the time left only when no OpenQASM is written, as writing costs per gate vary t
 from __future__ import annotations
 
 import contextlib
-import json
 import math
 import time
 from collections import Counter
@@ -56,7 +55,7 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import print_table
+from qcpp.cli.render import json_text, print_table
 from qcpp.estimators.guard import SizePrediction, check_size, predict_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
@@ -237,7 +236,7 @@ def compile_command(
     if explain:
         summary["phase_explain"] = phase_explain
     if as_json:
-        typer.echo(json.dumps(summary))
+        typer.echo(json_text(summary))
         return
     console = Console(stderr=to_stdout)  # with --qasm -, stdout is the OpenQASM text only
     form = "lowered" if lowered else "high level"

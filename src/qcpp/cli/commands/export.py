@@ -13,7 +13,6 @@ docs/qubo.md. The file is written whole or not at all; ``--out -`` writes to sta
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated
 
@@ -29,7 +28,7 @@ from qcpp.cli.commands.inline_scenario import (
     given_scenario,
 )
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import echo_note
+from qcpp.cli.render import echo_note, json_text
 from qcpp.io.atomic import check_output, write_text_atomic
 from qcpp.qubo.export import EXPORT_FORMATS, export_text
 from qcpp.qubo.model import FORMS, bqm_for
@@ -101,7 +100,7 @@ def export_command(
         "interactions": model.num_interactions,
     }
     if as_json:
-        typer.echo(json.dumps(summary))
+        typer.echo(json_text(summary))
         return
     extra = f", penalty P = {model.penalty:g}" if model.penalty is not None else ""
     if out != "-":

@@ -13,7 +13,6 @@ Examples::
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated
 
@@ -33,7 +32,7 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import print_table
+from qcpp.cli.render import json_text, print_table
 from qcpp.problem.scenario import Scenario
 
 __all__ = ["parse_angles", "register", "simulate_command"]
@@ -112,7 +111,7 @@ def simulate_command(
         bar.stage(f"simulating ({method})")
         res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
     if as_json:
-        typer.echo(json.dumps({"scenario": given.source, **res.as_dict(), "rule": rule}))
+        typer.echo(json_text({"scenario": given.source, **res.as_dict(), "rule": rule}))
         return
     table = Table(title=f"{s.name or given.label}: p={p}, {method}", title_justify="left")
     table.add_column("quantity")

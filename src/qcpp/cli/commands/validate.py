@@ -23,7 +23,6 @@ input is one line on stderr and exit code 2 (the CLI's shared handler). ``--json
 
 from __future__ import annotations
 
-import json
 from typing import Annotated
 
 import typer
@@ -42,7 +41,7 @@ from qcpp.cli.commands.inline_scenario import (
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import print_table
+from qcpp.cli.render import json_text, print_table
 
 __all__ = ["register", "validate_command"]
 
@@ -137,7 +136,7 @@ def validate_command(
     skipped = [c.name for c in report.checks if c.status == "skipped"]
     verdict = report.verdict
     if as_json:
-        typer.echo(json.dumps(report.to_dict()))
+        typer.echo(json_text(report.to_dict()))
     else:
         table = Table(title=f"{given.label}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
