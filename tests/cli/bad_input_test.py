@@ -141,10 +141,8 @@ BAD = [
     ("compile", EX, "--qasm", "loop"),
     ("solve", EX, "-m", "dfs", "--plot", "missing/p.png"),
     ("solve", EX, "-m", "anneal", "--plot-trace", "missing/t.png"),
-    ("solve", EX, "-m", "dfs", "--plot", "/dev/full"),
     ("estimate", "--grid", "2x2", "--plot", "missing/e.png"),
-    ("estimate", "--grid", "2x2", "--plot", "/dev/full"),
-    ("estimate", "--grid", "2x2", "--plot", "fifo"),
+    # a full disk or a FIFO without a reader under --plot: output_checks_test.py (the printed result stays)
 ]
 
 

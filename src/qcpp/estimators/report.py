@@ -146,13 +146,14 @@ def estimate_report(
         options: what to estimate.
         compare_paper: add the paper's estimates and ratios.
         plot: also write the plot of ``metric`` here (:func:`qcpp.estimators.plots.plot_rows`; with the paper's
-            curves when ``compare_paper``); then the rows are printed after the plot is written (a failed plot
-            prints nothing), not streamed.
+            curves when ``compare_paper``). The rows are then estimated before any is rendered (the plot needs
+            them all), and the plot is written after the last piece is yielded, so a plot that cannot be written
+            (a full disk) fails after the consumer has every row.
         doubling: reading of the paper's doubling.
         columns, wide: the columns shown (:func:`qcpp.estimators.tables.render`).
         device: add the routed figures on this device (:func:`qcpp.estimators.routed.routed_fields`).
         stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
-            row is done).
+            row is done), and with ``drawing the plot`` before the plot is drawn.
         metric: the column the plot shows (:data:`qcpp.estimators.plots.PLOT_METRICS`).
 
     Yields:
@@ -164,10 +165,11 @@ def estimate_report(
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
-    # a plot needs every row: draw it first, so that a failed plot prints nothing
-    kept = list(rows)
-    plot_rows(kept, plot, metric, compare_paper=compare_paper)
+    kept = list(rows)  # a plot needs every row
     yield from render_stream(kept, fmt, columns=columns, wide=wide)
+    if stage is not None:
+        stage("drawing the plot")
+    plot_rows(kept, plot, metric, compare_paper=compare_paper)
 
 
 def estimate_rows(

@@ -11,6 +11,10 @@ The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every 
 * ``-`` means standard output.
 * **Missing folders are not created**: writing ``out/x.qasm`` when ``out`` does not exist is an error (as for
   ``cp`` or a compiler's ``-o``), so a typo in a folder name never silently makes a new tree.
+* :func:`check_output` finds every unwritable place before the work starts: a missing folder, and a folder where
+  no file can be created (read-only folder or file system, ``/proc``), by creating the same temporary file the
+  write would create and removing it at once (unnamed where the system allows, so nothing shows in the folder);
+  with ``figure=True`` also an image type matplotlib cannot write.
 * Every failure is an :class:`OutputError` (an ``OSError``) whose message names the path **as the caller gave
   it**, e.g. ``cannot write out/x.qasm: the folder out does not exist`` -- never the temporary name.
 
@@ -47,6 +51,7 @@ __all__ = [
     "atomic_open",
     "check_output",
     "discard_pending",
+    "figure_formats",
     "save_figure_atomic",
     "write_text_atomic",
 ]
@@ -98,13 +103,18 @@ def _existing(real: str) -> os.stat_result | None:
         return None
 
 
-def check_output(path: str | os.PathLike[str]) -> None:
+def check_output(path: str | os.PathLike[str], *, figure: bool = False) -> None:
     """Fail early (before any expensive work) if ``path`` cannot be an output file.
 
-    Checks that the destination is not a folder and that its folder exists. It does not create anything.
+    Checks that the destination is not a folder, that its folder exists and that a file can be created in it (the
+    write renames a temporary file over the destination): a read-only folder or file system fails here, not after
+    the work. The probe is a temporary file removed at once; nothing is left behind. A device or FIFO, written
+    straight to, is not probed.
 
     Args:
         path: the destination as given by the user (``-`` is standard output and always fine).
+        figure: ``path`` is an image for :func:`save_figure_atomic`: its suffix must name a format matplotlib
+            writes (none: PNG).
 
     Raises:
         OutputError: naming ``path``.
@@ -122,6 +132,8 @@ def check_output(path: str | os.PathLike[str]) -> None:
         return
     if not target:
         raise OutputError(target, "empty file name")
+    if figure:
+        _check_figure_format(target)
     real = os.path.realpath(target)
     try:
         st = _existing(real)
@@ -130,13 +142,42 @@ def check_output(path: str | os.PathLike[str]) -> None:
     if st is not None:
         if stat.S_ISDIR(st.st_mode):
             raise OutputError(target, "it is a folder", errno.EISDIR)
-        return
+        if not stat.S_ISREG(st.st_mode):
+            return  # a device or FIFO: written straight to
     folder = os.path.dirname(real)
+    given = os.path.dirname(target) or "."
     if not os.path.isdir(folder):
-        given = os.path.dirname(target) or "."
         if os.path.isdir(given):  # a symlink into a missing folder
             raise OutputError(target, f"it links into the folder {folder}, which does not exist", errno.ENOENT)
         raise OutputError(target, f"the folder {given} does not exist", errno.ENOENT)
+    try:
+        tempfile.TemporaryFile(dir=folder, prefix=f".{os.path.basename(real)}.", suffix=".tmp").close()
+    except OSError as exc:
+        shown = given if os.path.realpath(given) == folder else folder
+        raise OutputError(target, f"the folder {shown} is not writable ({_reason(exc)})", exc.errno) from None
+
+
+def figure_formats() -> list[str]:
+    """The image suffixes matplotlib writes (``png``, ``svg``, ``pdf``, ...), from matplotlib itself."""
+    from qcpp.io.caches import use_writable_matplotlib_config
+
+    use_writable_matplotlib_config()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return sorted(FigureCanvasBase.get_supported_filetypes())
+
+
+def _check_figure_format(target: str) -> None:
+    suffix = Path(target).suffix[1:].lower()
+    if not suffix:
+        return  # PNG
+    formats = figure_formats()
+    if suffix not in formats:
+        common = [f for f in ("png", "svg", "pdf") if f in formats]
+        rest = [f for f in formats if f not in common]
+        raise OutputError(
+            target, f"unsupported image type .{suffix} (expected {', '.join(common + rest)})", errno.EINVAL
+        )
 
 
 def _open_fifo(real: str, target: str) -> int:

@@ -203,7 +203,7 @@ def estimate(
         qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget, flag=_flag,
     )  # fmt: skip
     if plot is not None:
-        check_output(plot)  # a bad destination fails before the sweep, not after
+        check_output(plot, figure=True)  # a bad destination or image type fails before the sweep, not after
     _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
@@ -222,28 +222,30 @@ def estimate(
     # a sweep of many rows is known to be long: its first line comes at once, not after a second
     first = 0.0 if len(points.points) >= LONG_SWEEP_ROWS else None
     bar = Progress("estimate", total=len(points.points), unit="rows", mode=None if show else "off", first_after=first)
-    held: list[str] = []  # the table: printed once the progress display is gone
-    with bar:
-        pieces = estimate_report(
-            bar.iterate(points.points, then=_after_rows(fmt, plot)),
-            fmt=fmt,  # type: ignore[arg-type]
-            options=settings,
-            compare_paper=compare == "paper",
-            plot=plot,
-            doubling=paper_doubling,  # type: ignore[arg-type]
-            columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
-            wide=wide,
-            device=device,
-            stage=bar.stage,
-            metric=metric or "cx",
-        )
-        for piece in pieces:
-            if fmt == "table":
-                held.append(piece)
-            else:
-                _write_whole(piece)
-    for piece in held:
-        _write_whole(piece)
+    held: list[str] = []  # the table: printed once the progress display is gone, also when the plot then fails
+    try:
+        with bar:
+            pieces = estimate_report(
+                bar.iterate(points.points, then=_after_rows(fmt, plot)),
+                fmt=fmt,  # type: ignore[arg-type]
+                options=settings,
+                compare_paper=compare == "paper",
+                plot=plot,  # written after the last piece
+                doubling=paper_doubling,  # type: ignore[arg-type]
+                columns=[c.strip() for c in columns.split(",") if c.strip()] if columns is not None else None,
+                wide=wide,
+                device=device,
+                stage=bar.stage,
+                metric=metric or "cx",
+            )
+            for piece in pieces:
+                if fmt == "table":
+                    held.append(piece)
+                else:
+                    _write_whole(piece)
+    finally:
+        for piece in held:
+            _write_whole(piece)
     if physical:
         echo_note(
             f"physical figures: estimates of the QDK resource estimator ({qubit_model}, {qec_scheme}, error budget "
@@ -256,10 +258,11 @@ def estimate(
 
 
 def _after_rows(fmt: str, plot: str | None) -> str | None:
-    """The progress stage once every row is estimated: the plot is drawn first, then the table rendered."""
-    if plot is not None:
-        return "drawing the plot"
-    return "rendering the table" if fmt == "table" else None
+    """The progress stage once every row is estimated: the table is rendered, then the plot drawn (the report
+    says ``drawing the plot`` when it starts)."""
+    if fmt == "table":
+        return "rendering the table"
+    return "rendering the rows" if plot is not None else None
 
 
 def _check_metric(metric: str | None, *, plot: str | None, physical: bool, device: str | None, depth: str) -> None:

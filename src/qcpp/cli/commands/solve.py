@@ -31,12 +31,11 @@ on stderr (:mod:`qcpp.cli.progress`).
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
@@ -54,13 +53,17 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import RuleFlag
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import plot_paths, plot_trace, print_table, render_ascii
+from qcpp.cli.render import json_text, plot_paths, plot_trace, print_table, render_ascii
 from qcpp.estimators.tables import terminal_width
 from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
 from qcpp.training.objectives import GIBBS_SCALE
+
+if TYPE_CHECKING:
+    from qcpp.problem.solvers.cpsat import CpSatResult
+    from qcpp.training.qaoa_solver import QaoaSolution
 
 __all__ = [
     "METHOD_HELP",
@@ -313,7 +316,7 @@ def solve_command(
             raise ValueError(f"--sampler: unknown sampler {sampler!r} (expected one of tabu, sa)")
     for out in (plot, plot_trace_file):
         if out is not None:
-            check_output(out)  # a bad destination fails before solving, not after
+            check_output(out, figure=True)  # a bad destination or image type fails before solving, not after
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=method == "qaoa", endpoints=robot)
     s = given.scenario
     qaoa = None
@@ -345,11 +348,14 @@ def solve_command(
             sol = solve_qubo(s, sampler=sampler, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
         else:
             sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
+    if plot_trace_file is not None and not sol.trace:
+        raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
+    _print_result(s, sol, method, qaoa, exact, objective, as_json, given.source)
+    # the plots last: a plot that cannot be written (a full disk) leaves the printed result standing
     if plot is not None:
         plot_paths(s, sol.paths, plot, title=f"{s.name or given.label}: {method}, cost {sol.cost.total:g}")
+        typer.echo(f"wrote {plot}", err=True)
     if plot_trace_file is not None:
-        if not sol.trace:
-            raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
         if qaoa is not None:
             # the training objective per iteration (in units of cost), drawn as a line
             plot_trace(qaoa.trace, plot_trace_file, optimum=qaoa.optimum, label=f"{objective} objective",
@@ -358,21 +364,27 @@ def solve_command(
         else:
             unit = "generation" if method == "genetic" else "iteration"
             plot_trace(sol.trace, plot_trace_file, title=f"{method}: best cost so far", xlabel=unit)
+        typer.echo(f"wrote {plot_trace_file}", err=True)
 
+
+def _print_result(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | None, exact: CpSatResult | None,
+                  objective: str, as_json: bool, source: str) -> None:  # fmt: skip
+    """The solution on standard output: one JSON object, or the drawing, the cost table and the details."""
     if as_json:
         if qaoa is not None:
             from qcpp.training.qaoa_solver import qaoa_to_dict
 
-            out = {"scenario": given.source, **qaoa_to_dict(s, qaoa)}
+            out = {"scenario": source, **qaoa_to_dict(s, qaoa)}
         else:
-            out = {"scenario": given.source, **solution_to_dict(s, sol, include_trace=False)}
+            out = {"scenario": source, **solution_to_dict(s, sol, include_trace=False)}
         if exact is not None:
             known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
             out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,
                        gap=exact.gap if known else None, status=exact.status)
         if sol.trace:
             out["trace_length"] = len(sol.trace)
-        typer.echo(json.dumps(out))
+        typer.echo(json_text(out))
+        sys.stdout.flush()
         return
     console = Console()
     console.print(render_ascii(s, sol.paths), markup=False, highlight=False)
@@ -398,9 +410,6 @@ def solve_command(
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
     for note in sol.notes:
         console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False)  # wrapped at spaces to the width
-    for path in (plot, plot_trace_file):
-        if path is not None:
-            typer.echo(f"wrote {path}", err=True)
     sys.stdout.flush()
 
 
