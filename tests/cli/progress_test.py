@@ -462,3 +462,25 @@ def test_a_late_heartbeat_writes_nothing_after_the_work_ended(monkeypatch: pytes
     assert bar._thread is not None
     bar._thread.join(30)
     assert stream.getvalue().splitlines()[-1] == "interrupted", stream.getvalue()
+
+
+def test_the_stage_says_when_numba_compiles() -> None:
+    """The first run after installing spends up to a minute compiling numba kernels; the progress says so while
+    it does (numba's ``numba:compile`` events, which fire only for a kernel not in numba's cache)."""
+    import numba
+
+    from qcpp.cli.progress import COMPILING
+
+    out = io.StringIO()
+    with Progress("validate", stream=out, mode="lines", interval=0) as bar:
+        bar.stage("simulating the circuit (tensor)")
+        assert numba.njit(lambda x: x + 1)(1) == 2  # a new function: compiled now, never cached
+        bar.stage("checking")
+    lines = out.getvalue().splitlines()
+    compiling = [i for i, line in enumerate(lines) if COMPILING in line]
+    assert compiling, lines
+    assert "simulating the circuit (tensor)" in lines[compiling[0] - 1]
+    assert COMPILING not in lines[-2] and "checking" in lines[-2]
+    from numba.core import event
+
+    assert not any(type(listener).__name__ == "_Compiles" for listener in event._registered["numba:compile"])

@@ -16,6 +16,9 @@ which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM o
 * ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
   seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
 * Entering a :class:`Progress` calls :func:`qcpp.cli.interrupt.announce_ready`.
+* While numba compiles (the first run after installing compiles the simulators' kernels, up to a minute), the
+  stage shown is :data:`COMPILING`: once numba is imported the progress listens to its ``numba:compile`` events
+  (numba's event API), which fire only when a kernel is not in numba's on-disk cache.
 
 Library code never imports this module: it takes plain callbacks (``progress(done, total)``,
 :data:`qcpp.problem.solvers.ProgressFn`; ``stage(text)``), and the command passes :meth:`Progress.update` and
@@ -47,6 +50,7 @@ from typing import Any, Literal, TextIO, TypeVar
 from qcpp.problem.limits import format_duration
 
 __all__ = [
+    "COMPILING",
     "DEFAULT_INTERVAL",
     "FIRST_LINE_AFTER",
     "INTERVAL_ENV",
@@ -80,6 +84,9 @@ MIN_STAGE = 12
 
 BAR_WIDTH = 20
 """Characters of the bar on a terminal (rich's default, 40, leaves an 80-column terminal little room for the task)."""
+
+COMPILING = "compiling numba kernels (first run only)"
+"""Shown as the stage while numba compiles: the first run after installing can spend a minute there."""
 
 T = TypeVar("T")
 
@@ -169,6 +176,8 @@ class Progress:
         self._thread: threading.Thread | None = None
         self._bar: Any = None
         self._bar_task: Any = None
+        self._compiles = 0  # numba compilations running now (nested: a kernel compiles the ones it calls)
+        self._listener: Any = None  # our numba:compile listener, once numba is imported
 
     # ------------------------------------------------------------------ context
 
@@ -191,6 +200,12 @@ class Progress:
         self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None
     ) -> None:
         self._stop.set()
+        if self._listener is not None:
+            from numba.core import event
+
+            with contextlib.suppress(Exception):
+                event.unregister("numba:compile", self._listener)
+            self._listener = None
         if self._thread is not None:
             self._thread.join(timeout=HEARTBEAT_JOIN_SECONDS)
         with self._lock:  # a heartbeat line being written now ends before the caller's last line (``interrupted``)
@@ -221,13 +236,8 @@ class Progress:
         changed = text != self.stage_text
         self.stage_text = text
         self._after_change()
-        elapsed = self._elapsed()
-        if (changed and self._mode == "lines" and self._interval > 0 and elapsed >= self._first_after
-                and elapsed - self._last_line >= self._interval):  # fmt: skip
-            # say so now: the next stage may be one native call that holds the GIL (QCEC, a contraction), and
-            # then the heartbeat thread cannot write until it returns; but not again within an interval, so stages
-            # that change many times a second do not flood a log
-            self._line()
+        if changed:
+            self._announce()
 
     def iterate(self, items: Iterable[T], then: str | None = None) -> Iterator[T]:
         """Yield ``items``, counting one step as each is handed out (done = items handed out before it).
@@ -258,12 +268,58 @@ class Progress:
         times = f"{format_duration(elapsed)} elapsed"
         if self.time_left and self.total and 0 < self.done < self.total and elapsed >= 1.0:
             times += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
-        return _fit_line(self.task, self.stage_text, [*counts, times], self.width)
+        return _fit_line(self.task, self._stage(), [*counts, times], self.width)
 
     # ------------------------------------------------------------------ internals
 
     def _elapsed(self) -> float:
         return time.monotonic() - self._start if self._start else 0.0
+
+    def _stage(self) -> str:
+        """The stage as shown: :attr:`stage_text`, or :data:`COMPILING` while numba compiles (in its place: an
+        80-column line has no room for both)."""
+        self._listen_to_numba()
+        return COMPILING if self._compiles else self.stage_text
+
+    def _listen_to_numba(self) -> None:
+        """Register for numba's compile events once numba is imported (never imported here: most commands do
+        without it, and importing it takes a good part of a second)."""
+        if (self._listener is not None or self._mode == "off" or not self._start or self._stop.is_set()
+                or "numba.core.event" not in sys.modules):  # fmt: skip
+            return  # listening only between entering and leaving: __exit__ unregisters
+        from numba.core import event
+
+        progress = self
+
+        class _Compiles(event.Listener):  # type: ignore[misc]
+            def on_start(self, ev: Any) -> None:
+                progress._compiling(+1)
+
+            def on_end(self, ev: Any) -> None:
+                progress._compiling(-1)
+
+        self._listener = _Compiles()
+        event.register("numba:compile", self._listener)
+
+    def _compiling(self, delta: int) -> None:
+        """A numba compilation started (+1) or ended (-1); the shown stage changes when the first starts and the
+        last ends. Never raises: it runs inside numba's compiler."""
+        with contextlib.suppress(Exception):
+            before = self._compiles
+            self._compiles = max(0, before + delta)  # one that started before we listened ends unseen
+            if (before == 0) != (self._compiles == 0) and not self._stop.is_set():
+                self._after_change()
+                self._announce()
+
+    def _announce(self) -> None:
+        """Write the line now when the stage changed and no line came for an interval."""
+        elapsed = self._elapsed()
+        if (self._mode == "lines" and self._interval > 0 and elapsed >= self._first_after
+                and elapsed - self._last_line >= self._interval):  # fmt: skip
+            # say so now: the next stage may be one native call that holds the GIL (QCEC, a contraction), and
+            # then the heartbeat thread cannot write until it returns; but not again within an interval, so stages
+            # that change many times a second do not flood a log
+            self._line()
 
     def _after_change(self) -> None:
         if self._mode == "bar" and self._bar is not None:
@@ -273,7 +329,8 @@ class Progress:
             self._line()
 
     def _label(self) -> str:
-        return f"{self.task}: {self.stage_text}" if self.stage_text else self.task
+        stage = self._stage()
+        return f"{self.task}: {stage}" if stage else self.task
 
     def _line(self, unless_stopped: bool = False) -> None:
         self._write(self.status(), unless_stopped)
