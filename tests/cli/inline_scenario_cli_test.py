@@ -68,6 +68,7 @@ def test_the_scenario_command_prints_and_writes_what_the_inline_flags_build(tmp_
     assert "start = [0, 0]" in printed.read_text()  # the default placement, visible
     ok("scenario", *args, "-o", str(tmp_path / "written.json"))
     assert load_scenario(tmp_path / "written.json") == expected
+    assert ok("scenario", *args, "-o", "/dev/null") == ""  # a device is written to, not an unknown file type
     as_json = tmp_path / "printed.json"
     as_json.write_text(ok("scenario", *args, "--json"))
     assert load_scenario(as_json) == expected

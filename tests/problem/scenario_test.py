@@ -327,6 +327,25 @@ def test_save_rejects_unknown_suffix_and_leaves_nothing(tmp_path: Path) -> None:
     assert list(tmp_path.iterdir()) == []
 
 
+def test_save_writes_a_device_or_fifo_straight_to_in_toml(tmp_path: Path) -> None:
+    """``/dev/null`` and a FIFO have no suffix: they are written to (TOML), not refused as an unknown type."""
+    import os
+    import threading
+
+    s = scenario_from_dict(BASE)
+    save_scenario(s, "/dev/null")
+    fifo = tmp_path / "out"
+    os.mkfifo(fifo)
+    got: list[str] = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_text()))
+    reader.start()
+    save_scenario(s, fifo)
+    reader.join(10)
+    assert got == [scenario_to_toml(s)]
+    with pytest.raises(ScenarioError, match="unknown file type"):
+        save_scenario(s, tmp_path / "plain")  # a regular file (new) still needs a suffix
+
+
 def test_write_text_atomic_replaces_whole_file(tmp_path: Path) -> None:
     p = tmp_path / "f.txt"
     p.write_text("old content that is longer", encoding="utf-8")

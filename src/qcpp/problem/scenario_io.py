@@ -155,6 +155,17 @@ def sniff_format(text: str) -> str:
     return "JSON" if text.lstrip().startswith("{") else "TOML"
 
 
+def _is_device(p: Path) -> bool:
+    """Whether ``p`` exists and is not a regular file or a folder (a device, a FIFO): written straight to."""
+    import stat
+
+    try:
+        mode = os.stat(p).st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
 def _is_stream(p: Path) -> bool:
     """Whether ``p`` is read as a stream whose format the content tells: not a regular file (a pipe, FIFO, device;
     a missing file raises ``FileNotFoundError``, which the caller reports as unreadable), or a name under
@@ -281,9 +292,12 @@ def scenario_to_toml(s: Scenario) -> str:
 def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
     """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically: the file is whole or absent.
 
+    An existing device or FIFO (``/dev/null``, ``/dev/stdout``, ``mkfifo``) is written straight to
+    (:func:`qcpp.io.atomic.write_text_atomic`), in TOML unless its name ends in ``.json``.
+
     Raises:
         qcpp.errors.OptionError: ``s`` is not a :class:`Scenario`.
-        ScenarioError: the suffix is neither ``.toml`` nor ``.json``.
+        ScenarioError: the suffix is neither ``.toml`` nor ``.json`` (and the destination is no device or FIFO).
         OutputError: the destination cannot be written (an :class:`OSError`: the environment, not the input).
     """
     if not isinstance(s, Scenario):
@@ -292,7 +306,7 @@ def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
     p = Path(path)
     if p.suffix.lower() == ".json":
         text = json.dumps(scenario_to_dict(s), indent=2) + "\n"
-    elif p.suffix.lower() == ".toml":
+    elif p.suffix.lower() == ".toml" or _is_device(p):
         text = scenario_to_toml(s)
     else:
         raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
