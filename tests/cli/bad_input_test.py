@@ -119,6 +119,7 @@ BAD = [
     ("estimate", "--grid", "2x2", "--columns", ","),
     ("estimate", "--grid", "2x2", "--columns", "rows,cx", "--json"),
     ("estimate", "--grid", "2x2", "--columns", "rows,nonsense", "--format", "csv"),
+    ("estimate", "--grid", "2x2", "--json", "--format", "csv"),  # two formats asked for: refused, not JSON
     # scenario files
     ("solve", "missing.toml"),
     ("solve", "folder.toml"),

@@ -61,6 +61,19 @@ def test_lines_count_steps_name_stages_and_end_with_a_summary() -> None:
     assert all(line.startswith("job: ") for line in lines)
 
 
+def test_one_step_is_singular() -> None:
+    """``1 row done``, ``1 improving solution``: not ``1 rows``."""
+    out = io.StringIO()
+    with Progress("job", total=1, unit="rows", stream=out, mode="lines", interval=0) as bar:
+        bar.advance()
+    assert out.getvalue().splitlines()[-1].startswith("job: 1 row done in ")
+    out = io.StringIO()
+    with Progress("cpsat", unit="improving solutions", stream=out, mode="lines", interval=0) as bar:
+        bar.update(1)
+    lines = out.getvalue().splitlines()
+    assert lines[-2].startswith("cpsat: 1 improving solution, ") and "1 improving solution done in" in lines[-1]
+
+
 def test_off_prints_nothing_and_an_error_skips_the_summary() -> None:
     out = io.StringIO()
     with Progress("job", total=2, stream=out, mode="off") as bar:

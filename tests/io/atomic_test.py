@@ -29,6 +29,20 @@ def test_existing_file_keeps_its_mode(tmp_path: Path) -> None:
     assert stat.S_IMODE(p.stat().st_mode) == 0o640
 
 
+def test_existing_file_keeps_its_group_where_the_writer_may_set_it(tmp_path: Path) -> None:
+    p = tmp_path / "g.txt"
+    p.write_text("old")
+    mine = p.stat().st_gid
+    others = [g for g in ([*os.getgroups(), 65534] if os.geteuid() == 0 else os.getgroups()) if g != mine]
+    if not others:
+        pytest.skip("the user belongs to one group only (and is not root): no other group to keep")
+    os.chown(p, -1, others[0])
+    p.chmod(0o640)
+    write_text_atomic(p, "new")
+    assert p.read_text() == "new" and p.stat().st_gid == others[0]  # a new file, given the old one's group
+    assert stat.S_IMODE(p.stat().st_mode) == 0o640
+
+
 def test_failure_leaves_destination_and_no_temp_file(tmp_path: Path) -> None:
     p = tmp_path / "c.txt"
     p.write_text("old")

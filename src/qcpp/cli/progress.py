@@ -214,7 +214,7 @@ class Progress:
             with contextlib.suppress(Exception):
                 self._bar.stop()
         if exc_type is None and self._mode == "lines" and self._lines:
-            size = f"{self.done:,} {self.unit} " if self.total is not None or self.done else ""
+            size = f"{_counted(self.done, self.unit)} " if self.total is not None or self.done else ""
             self._write(_fit_line(self.task, "", [f"{size}done in {format_duration(self._elapsed())}"], self.width))
 
     # ------------------------------------------------------------------ reporting
@@ -263,7 +263,7 @@ class Progress:
             share = f" ({100.0 * self.done / self.total:.1f}%)" if self.total else ""
             counts.append(f"{self.done:,} / {self.total:,} {self.unit}{share}")
         elif self.done:
-            counts.append(f"{self.done:,} {self.unit}")
+            counts.append(_counted(self.done, self.unit))
         elapsed = self._elapsed()
         times = f"{format_duration(elapsed)} elapsed"
         if self.time_left and self.total and 0 < self.done < self.total and elapsed >= 1.0:
@@ -388,6 +388,16 @@ class Progress:
         )
         self._bar_task = self._bar.add_task(self._label(), total=self.total)
         self._bar.start()
+
+
+def _counted(n: int, unit: str) -> str:
+    """``n`` of ``unit`` (a plural): ``1 row``, ``3 rows``, ``1 improving solution``.
+
+    Example:
+        >>> _counted(1, "rows"), _counted(1_234, "rows"), _counted(1, "improving solutions"), _counted(0, "steps")
+        ('1 row', '1,234 rows', '1 improving solution', '0 steps')
+    """
+    return f"{n:,} {unit[:-1] if n == 1 and unit.endswith('s') else unit}"
 
 
 def _cut_end(text: str, room: int) -> str:

@@ -6,6 +6,12 @@ The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every 
   flushed, gets the permissions a plain ``open(path, "w")`` would give, and is renamed over the destination
   (:func:`os.replace`). On any error (or Ctrl-C) the temporary file is removed and the destination is unchanged.
 * **Symbolic links** are followed: the file the link points to is replaced, the link stays a link.
+* What a replaced file keeps: its permission bits and, where the writer may set it (a member of the group, or
+  root), its group; its owner becomes the writer, and it is a new file (inode): **hard links** to the old one keep
+  the old content, as with any editor that saves by renaming.
+* A process killed outright (SIGKILL, a power cut) between creating and renaming the temporary file leaves it in
+  the destination's folder as a hidden ``.NAME.XXXXXXXX.tmp`` (Ctrl-C and SIGTERM remove it); it is never read or
+  reused, and is safe to delete.
 * **Existing non-regular files** (a device such as ``/dev/null`` or ``/dev/full``, a FIFO) are written straight
   to, never replaced. A FIFO must get a reader within :data:`FIFO_WAIT` seconds.
 * ``-`` means standard output.
@@ -273,7 +279,10 @@ def atomic_open(path: str | os.PathLike[str], mode: Literal["w", "wb"] = "w") ->
             yield f
             f.flush()
             os.fsync(f.fileno())
-        os.chmod(tmp, file_mode)
+            if st is not None and st.st_gid != os.fstat(f.fileno()).st_gid:
+                with contextlib.suppress(OSError):  # allowed for a member of the group (and root) only
+                    os.fchown(f.fileno(), -1, st.st_gid)
+        os.chmod(tmp, file_mode)  # after the chown, which may clear the setgid bit
         os.replace(tmp, real)
     except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):

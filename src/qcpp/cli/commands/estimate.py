@@ -187,6 +187,8 @@ def estimate(
             raise OptionError("--scenario", f"the scenario file {str(scenario_file)!r} is given already")
         scenario = scenario_file
     if as_json:
+        if fmt not in ("table", "json"):  # table is the default: only a format asked for conflicts
+            raise OptionError("--json", f"is --format json; do not combine it with --format {fmt}")
         fmt = "json"
     physical_only = {"--qubit-model": qubit_model, "--qec-scheme": qec_scheme, "--error-budget": error_budget}
     for name, value in physical_only.items():
