@@ -32,6 +32,14 @@ def fez() -> qcpp.Compiled:
     return c
 
 
+@pytest.fixture(scope="module")
+def fez_zero() -> qcpp.Compiled:
+    """The same compile with ``zero_start=True``: a routing simplified for the all-|0> start wins (far fewer CZ)."""
+    c = qcpp.compile(qcpp.grid_scenario(2, 3, robots=1), device="ibm_fez", bind=ANGLES, zero_start=True)
+    assert c.zero_start and not c.equal_on_every_input and "from |0>" in c.to_dict()["routed"]["chosen"]
+    return c
+
+
 def _compact(qc: QuantumCircuit) -> tuple[QuantumCircuit, dict[int, int]]:
     """``qc`` on the qubits its instructions touch only (same order, same classical registers, same global phase),
     and physical qubit -> its index there."""
@@ -118,6 +126,17 @@ def test_lowered_routed_keeps_cx_and_rx() -> None:
 
 # --- end to end: sample the routed circuit, decode the paths ---------------------------------------------------
 def test_sampled_routed_circuit_decodes_to_feasible_paths_at_the_ideal_p_optimum(fez: qcpp.Compiled) -> None:
+    _decodes_at_the_ideal_p_optimum(fez)
+
+
+def test_a_zero_start_compile_decodes_to_feasible_paths_at_the_ideal_p_optimum(fez_zero: qcpp.Compiled) -> None:
+    """Run as it is, from the device's all-|0> start, the circuit simplified for that start samples what the
+    logical circuit does."""
+    _decodes_at_the_ideal_p_optimum(fez_zero)
+
+
+def _decodes_at_the_ideal_p_optimum(fez: qcpp.Compiled) -> None:
+    """The routed circuit's data register has the subspace simulator's P(optimum), exactly and sampled (decoded)."""
     s = fez.scenario
     ideal = qcpp.simulate_qaoa(s, 1, angles=[ANGLES["gamma_0"], ANGLES["beta_0"]]).p_optimum
     assert 0.05 < ideal < 0.95
@@ -137,6 +156,35 @@ def test_sampled_routed_circuit_decodes_to_feasible_paths_at_the_ideal_p_optimum
     stderr = math.sqrt(ideal * (1 - ideal) / SHOTS)
     assert abs(decoded.p_optimum - ideal) <= 5 * stderr
     assert decoded.best is not None and decoded.best_cost == qcpp.solve(s).cost.total and decoded.best.optimal
+
+
+# --- zero_start: routings simplified for the all-|0> start, only when asked ----------------------------------------
+@pytest.mark.parametrize("optimize_for", ["esp", "twoq"])
+def test_zero_start_off_offers_only_unitary_keeping_candidates_and_on_offers_and_chooses_cheaper_ones(
+    optimize_for: str,
+) -> None:
+    """Off (the default), no candidate is simplified for the all-|0> start, by either figure; on, they are offered
+    and one is written: fewer CZ than every unitary-keeping candidate, and the same state from |0...0> as the
+    logical circuit (statevector, up to global phase, each logical qubit at its final physical qubit)."""
+    s = qcpp.grid_scenario(2, 2, robots=1)
+    off = qcpp.compile(s, device="ibm_fez", bind=ANGLES, optimize_for=optimize_for)
+    assert not off.zero_start and off.equal_on_every_input
+    assert off.to_dict()["routed"]["zero_start"] is False and off.to_dict()["routed"]["equal_on_every_input"]
+    assert not any("from |0>" in c["name"] for c in off.to_dict()["routed"]["candidates"])
+    on = qcpp.compile(s, device="ibm_fez", bind=ANGLES, optimize_for=optimize_for, zero_start=True)
+    routed = on.to_dict()["routed"]
+    assert on.zero_start and routed["zero_start"] is True
+    assert "from |0>" in routed["chosen"] and not on.equal_on_every_input, routed["chosen"]
+    keeping = [c["two_qubit"] for c in routed["candidates"] if "from |0>" not in c["name"]]
+    assert sorted(keeping) == sorted(c["two_qubit"] for c in off.to_dict()["routed"]["candidates"])
+    assert routed["two_qubit"] < min(keeping)
+    # the state from |0...0>: the logical circuit on the final physical qubits, |0> on the others
+    small, index = _compact(on.to_qiskit())
+    logical = qcpp.compile(s, lowered=True, bind=ANGLES).to_qiskit()
+    expected = QuantumCircuit(small.num_qubits)
+    expected.compose(logical, [index[p] for p in on.final_layout], inplace=True)
+    fidelity = abs(np.vdot(Statevector(expected).data, Statevector(small).data))
+    assert math.isclose(fidelity, 1.0, abs_tol=1e-9)
 
 
 # --- the decoder -----------------------------------------------------------------------------------------------

@@ -54,6 +54,9 @@ class Compiled:
         device: The device routed onto, or ``None``.
         initial_layout: With a device: logical qubit ``i`` -> physical qubit at the start (else ``None``).
         final_layout: With a device: logical qubit ``i`` -> physical qubit at the end (else ``None``).
+
+    With ``zero_start=True`` the circuit may equal the logical one on the all-|0> input only
+    (:attr:`equal_on_every_input`): run it as it is, with no gates before it.
     """
 
     scenario: Scenario
@@ -88,6 +91,18 @@ class Compiled:
         """With a device that publishes T1 / T2: :attr:`esp` times the idle decoherence of the scheduled circuit
         (``routed.esp_idle``); else ``None``."""
         return self._summary["routed"]["esp_idle"] if self.device is not None else None
+
+    @property
+    def zero_start(self) -> bool:
+        """Whether it was compiled with ``zero_start=True`` (routings simplified for the all-|0> start offered)."""
+        return bool(self._summary["routed"]["zero_start"]) if self.device is not None else False
+
+    @property
+    def equal_on_every_input(self) -> bool:
+        """Whether the circuit equals the logical circuit on every input (as a unitary, up to the layouts): false
+        where ``zero_start`` chose a routing simplified for the all-|0> start (``routed.equal_on_every_input``),
+        which equals it on that input only, so no gates may run before it."""
+        return bool(self._summary["routed"]["equal_on_every_input"]) if self.device is not None else True
 
     def counts(self) -> dict[str, int]:
         """Gate name -> count, sorted by name: ``qcpp compile --json``'s ``gates``."""
@@ -259,6 +274,7 @@ def compile(
     layout: str = "auto",
     local_ancillas: bool = False,
     optimize_for: str | None = None,
+    zero_start: bool = False,
     max_gates: int | None = None,
     progress: ProgressArg = None,
     **plan_options: Any,
@@ -275,6 +291,9 @@ def compile(
         local_ancillas: With a device: region-local ancillas.
         optimize_for: With a named device: choose the routed candidate by ``esp`` (success probability with idle
             decoherence; the default there) or ``twoq`` (fewest two-qubit gates); ``qcpp compile --optimize-for``.
+        zero_start: With a named device (not ``lowered``): also offer routings simplified for the all-|0> start
+            the device runs from, by either figure; the circuit then equals the logical one on that input only
+            (:attr:`Compiled.equal_on_every_input`): put no gates before it. ``qcpp compile --zero-start``.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
         progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
@@ -298,7 +317,7 @@ def compile(
     """
     from qcpp.estimators.guard import check_size
     from qcpp.hardware.device import get_device
-    from qcpp.pipeline.candidates import OPTIMIZE_FOR
+    from qcpp.pipeline.candidates import OPTIMIZE_FOR, zero_start_refusal
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
     from qcpp.problem.cost_range import check_cost_range
@@ -310,7 +329,7 @@ def compile(
     check_choice(layout, LAYOUT_METHODS, "layout")
     if optimize_for is not None:
         check_choice(optimize_for, OPTIMIZE_FOR, "optimize_for")
-    for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas)):
+    for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas), ("zero_start", zero_start)):
         if not isinstance(flag, bool):
             raise OptionError(name, f"expected True or False, got {flag!r}")
     if device is None:
@@ -324,6 +343,9 @@ def compile(
         raise OptionError("device", f"expected a device name, got {device!r}")
     else:
         get_device(device)  # an unknown name fails before any work
+    refusal = zero_start_refusal(device, lowered) if zero_start else None
+    if refusal is not None:
+        raise OptionError("zero_start", refusal)
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_progress_arg(progress)
     check_cost_range(s)  # what the command line checks when it loads a file
@@ -340,7 +362,7 @@ def compile(
     with reporting(progress, f"{task}, device {device}", unit="stages", stages=True) as bar:
         routed = compile_for_device(
             s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
-            layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage,
+            layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage, zero_start=zero_start,
         )  # fmt: skip
     r = routed.routed
     return Compiled(

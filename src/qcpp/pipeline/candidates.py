@@ -16,7 +16,8 @@ does not stop at its own routing. :func:`calibrated_candidates` collects:
   (:func:`qcpp.routing.known_state.from_zero`: the robots' start is a basis state, so the first partial mixers and
   the SWAPs into qubits still in |0> have many; at p = 1 the whole first phase separator acts on that basis state,
   a global phase); these equal the logical circuit on the all-|0> input the device runs from, not as a unitary on
-  every input, so compile offers them only with ``--optimize-for twoq`` (``from_zero_start``);
+  every input (no gates may run before them), so compile offers them only when asked, ``--zero-start``
+  (``from_zero_start``), with either figure;
 * ``cells on heavy-hex:D + our placement`` (``#2``; ``+ O3 passes``): on IBM's heavy-hex devices, the cell layout
   routed on the abstract lattice ``heavy-hex:D`` (where it is laid out by construction) and placed on the best
   embeddings of its coupling subgraph in the device, where it has one (the cells of a one-robot 3x3 or 3x4 grid
@@ -52,7 +53,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
-from qcpp.hardware.device import Device, device_names
+from qcpp.hardware.device import Device, device_names, get_device
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.known_state import from_zero
 from qcpp.routing.native import esp, esp_idle, to_native
@@ -62,9 +63,8 @@ from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 from qcpp.routing.swap_orientation import orient_swaps
 
 __all__ = [
-    "OPTIMIZE_FOR", "QISKIT_SEEDS", "RoutedCandidate", "calibrated_candidates", "choose", "default_objective",
-    "figure_key",
-    "is_calibrated",
+    "FROM_ZERO", "OPTIMIZE_FOR", "QISKIT_SEEDS", "RoutedCandidate", "calibrated_candidates", "choose",
+    "default_objective", "figure_key", "is_calibrated", "zero_start_refusal",
 ]
 
 OPTIMIZE_FOR = ("esp", "twoq")
@@ -72,6 +72,10 @@ OPTIMIZE_FOR = ("esp", "twoq")
 
 QISKIT_SEEDS = 3
 """Qiskit O3 runs per compile on a named device (``seed_transpiler`` 0, 1, 2)."""
+
+FROM_ZERO = "from |0>"
+"""The part of a candidate's name that marks it simplified for the all-|0> start (equal to the logical circuit on
+that input only)."""
 
 
 @dataclass(frozen=True)
@@ -117,6 +121,30 @@ def is_calibrated(device: Device) -> bool:
     """A named device (its own figures per qubit and coupler), not a family member, not all-to-all (nothing to
     place: every pair is coupled)."""
     return device.name in device_names() and not device.is_all_to_all
+
+
+def zero_start_refusal(device: str | Device | None, lowered: bool, lowered_field: str = "lowered") -> str | None:
+    """Why compile's ``zero_start`` (the ``+ from |0>`` candidates) does not apply to a compile onto ``device``, in
+    one line after the option's name; ``None`` where it applies: on a named device with couplers
+    (:func:`is_calibrated`: where compile chooses among candidates), for the native-gate circuit (those candidates
+    exist after Qiskit's passes only, so not ``lowered``, which ``lowered_field`` names).
+
+    Example:
+        >>> zero_start_refusal("ibm_fez", False) is None
+        True
+        >>> zero_start_refusal("grid", False)
+        'applies with a named device with couplers only (google_willow, ibm_fez, ibm_torino), not grid'
+    """
+    named = [n for n in sorted(device_names()) if is_calibrated(get_device(n))]
+    if device is None:
+        return "applies with a named device only (no device given)"
+    name = device if isinstance(device, str) else device.name
+    if name not in named:
+        return f"applies with a named device with couplers only ({', '.join(named)}), not {name}"
+    if lowered:
+        return (f"applies to the native-gate circuit only, not with {lowered_field} (its candidates are after "
+                "Qiskit's passes)")  # fmt: skip
+    return None
 
 
 def default_objective(device: Device) -> str:
@@ -180,7 +208,7 @@ def calibrated_candidates(
         elsewhere: ``(name, logical circuit, routing)`` of routings on another device (CX + one-qubit gates: the
             cell layout on a ``heavy-hex:D`` lattice), each placed on ``device`` where its couplers embed.
         from_zero_start: Also the ``+ from |0> + O3 passes`` candidates (with ``qiskit_circuit``; compile asks for
-            them with ``--optimize-for twoq``: equal to the logical circuit on the all-|0> input only).
+            them with ``--zero-start``: equal to the logical circuit on the all-|0> input only).
 
     Returns:
         The candidates, in the order of the module docs.

@@ -62,6 +62,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
+from qcpp.errors import OptionError
 from qcpp.hardware.device import Device, device_names, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
@@ -69,12 +70,14 @@ from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, 
 from qcpp.layout.placement import localize_ancillas, place
 from qcpp.layout.placement_search import qiskit_sabre_layout, ranked_routes, search_route
 from qcpp.pipeline.candidates import (
+    FROM_ZERO,
     OPTIMIZE_FOR,
     QISKIT_SEEDS,
     calibrated_candidates,
     choose,
     default_objective,
     is_calibrated,
+    zero_start_refusal,
 )
 from qcpp.pipeline.cellmixer import cell_mixers
 from qcpp.pipeline.device_plan import device_plan_options
@@ -123,6 +126,7 @@ class DeviceCompileResult:
         chosen: The candidate that won (:mod:`qcpp.pipeline.candidates`; ``qcpp``: compile's own routing).
         candidates: Every candidate's ``{name, two_qubit, esp, esp_idle}`` (empty where there was one: the
             families).
+        zero_start: Whether the candidates simplified for the all-|0> start were offered (``zero_start``).
     """
 
     compiled: CompileResult
@@ -134,11 +138,20 @@ class DeviceCompileResult:
     optimize_for: str = "twoq"
     chosen: str = "qcpp"
     candidates: tuple[dict[str, Any], ...] = ()
+    zero_start: bool = False
 
     @property
     def logical_qubits(self) -> int:
         """Qubits of the logical circuit that was routed."""
         return self.logical.num_qubits
+
+    @property
+    def equal_on_every_input(self) -> bool:
+        """Whether the routed circuit equals the logical circuit on every input (as a unitary, up to the layouts),
+        not only on the all-|0> start: false where the chosen candidate is simplified for that start
+        (``zero_start``, :data:`~qcpp.pipeline.candidates.FROM_ZERO` in its name); then no gate may run before
+        it."""
+        return FROM_ZERO not in self.chosen
 
     def compile_summary(self) -> dict[str, Any]:
         """What ``qcpp compile --device --json`` prints: the routed circuit's
@@ -173,7 +186,7 @@ class DeviceCompileResult:
             "initial_layout": list(r.initial_layout),
             "final_layout": list(r.final_layout),
             "routed": {
-                "router": ROUTERS[self.layout_method] + (CANDIDATES_NOTE if self.candidates else ""),
+                "router": ROUTERS[self.layout_method] + (candidates_note(self.zero_start) if self.candidates else ""),
                 "layout": self.layout_method,
                 "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
                 "swaps": r.swaps,
@@ -182,6 +195,8 @@ class DeviceCompileResult:
                 "esp_idle": esp_idle(native, gate_esp=gate_esp),
                 "esp_idle_model": f"esp x {IDLE_MODEL}",
                 "optimize_for": self.optimize_for,
+                "zero_start": self.zero_start,
+                "equal_on_every_input": self.equal_on_every_input,
                 "chosen": self.chosen,
                 "candidates": list(self.candidates),
                 "duration_s": duration_s(native),
@@ -202,11 +217,22 @@ ROUTERS = {
 CANDIDATES_NOTE = (
     "; on a named device that is the first of the routed candidates, and compile writes the best of them by "
     "optimize_for (compile's own routings; on a heavy-hex device the same search on defect-free lattices, placed on "
-    "the device; Qiskit O3's; each also placed by the device's errors and after Qiskit's O3 passes; with optimize_for "
-    "twoq ours also with the cx that act on basis states from the all-|0> start removed, 'from |0>': equal to the "
-    "logical circuit on that input): chosen names it, candidates lists them"
+    "the device; Qiskit O3's; each also placed by the device's errors and after Qiskit's O3 passes{zero}): chosen "
+    "names it, candidates lists them"
 )
-"""Appended to the router's description where compile chose among candidates (:mod:`qcpp.pipeline.candidates`)."""
+"""Appended to the router's description where compile chose among candidates (:mod:`qcpp.pipeline.candidates`;
+``{zero}``: :data:`ZERO_START_NOTE` with ``zero_start``)."""
+
+ZERO_START_NOTE = (
+    "; with zero_start ours also with the cx that act on basis states from the all-|0> start removed, 'from |0>': "
+    "equal to the logical circuit on that input only"
+)
+"""The ``zero_start`` candidates in :data:`CANDIDATES_NOTE`."""
+
+
+def candidates_note(zero_start: bool) -> str:
+    """:data:`CANDIDATES_NOTE` for a compile with or without ``zero_start``."""
+    return CANDIDATES_NOTE.format(zero=ZERO_START_NOTE if zero_start else "")
 
 ESP_MODEL = (
     "product of (1 - gate error) over every native gate and (1 - readout error) over the measured data qubits; "
@@ -283,6 +309,7 @@ def compile_for_device(
     context: RoutingContext | None = None,
     optimize_for: str | None = None,
     bind_field: str = "bind",
+    zero_start: bool = False,
 ) -> DeviceCompileResult:
     """Compile ``scenario`` and route it onto ``device`` (steps in the module docs).
 
@@ -308,6 +335,10 @@ def compile_for_device(
             ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
             devices). The families keep compile's single routing.
         bind_field: The argument that gave ``bindings``, starting the message of an unknown symbol (``--bind``).
+        zero_start: On a named device, also offer compile's routings simplified for the all-|0> start the device
+            runs from (:func:`qcpp.routing.known_state.from_zero`; ``+ from |0> + O3 passes``), with either figure:
+            the written circuit then equals the logical one on that input only, so no gates may run before it
+            (:attr:`DeviceCompileResult.equal_on_every_input`). Off, the candidates keep the unitary.
 
     Python's cyclic garbage collector is paused meanwhile (:func:`qcpp.routing.context.collector_paused`: the
     searches' memos hold hundreds of thousands of objects, which its passes would traverse again and again).
@@ -317,19 +348,25 @@ def compile_for_device(
 
     Raises:
         qcpp.hardware.device.DeviceError: an unknown device.
+        qcpp.errors.OptionError: ``zero_start`` where it does not apply (not a named device with couplers, or
+            ``lowered``: :func:`~qcpp.pipeline.candidates.zero_start_refusal`).
         ValueError: the device is too small.
     """
+    if zero_start:
+        refusal = zero_start_refusal(device, lowered)
+        if refusal is not None:
+            raise OptionError("zero_start", refusal)
     with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
         return _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
                                    layout_method, arrangement, stage, routing, context, optimize_for,
-                                   bind_field)  # fmt: skip
+                                   bind_field, zero_start)  # fmt: skip
 
 
 def _compile_for_device(
     scenario: Scenario, p: int, device: str | Device, options: PlanOptions, lowered: bool,
     bindings: Mapping[str, float] | None, local_ancillas: bool, seed: int, layouts: tuple[str, ...],
     layout_method: str, arrangement: str, stage: Callable[[str], None] | None, routing: RoutingOptions,
-    context: RoutingContext | None, optimize_for: str | None, bind_field: str = "bind",
+    context: RoutingContext | None, optimize_for: str | None, bind_field: str = "bind", zero_start: bool = False,
 ) -> DeviceCompileResult:  # fmt: skip
     """:func:`compile_for_device`'s work (run with the cyclic garbage collector paused)."""
     start = time.perf_counter()
@@ -363,7 +400,8 @@ def _compile_for_device(
                     compiled.plan, other, bindings, routing, context, say)  # fmt: skip
                 if _two_qubit(greedy[0].circuit) < _two_qubit(routed.circuit):
                     logical, routed, method = greedy_logical, greedy[0], "greedy"
-            return _finish(compiled, logical, [routed], circuit, lowered, start, method, optimize_for, measured, say)
+            return _finish(compiled, logical, [routed], circuit, lowered, start, method, optimize_for, measured, say,
+                           zero_start=zero_start)  # fmt: skip
         if layout_method == "medial":
             rows, cols = medial_shape(scenario, arrangement)
             dev = device if isinstance(device, Device) else get_device(device, min_qubits=circuit.num_qubits)
@@ -377,7 +415,7 @@ def _compile_for_device(
                 assert cells is not None
                 used = len({q for g in cells[2].circuit.gates for q in g[1]})
                 return _finish(compiled, cells[1], [], circuit, lowered, start, "medial", optimize_for, measured, say,
-                               (cells,), device=dev, qiskit_seeds=0,
+                               (cells,), device=dev, qiskit_seeds=0, zero_start=zero_start,
                                none_fit=f"--layout medial: the heavy-hex cells of {scenario.grid.rows}x"
                                f"{scenario.grid.cols} with {scenario.num_robots} robot(s), routed on "
                                f"{cells[2].device.name}, use {used} qubits and do not embed in {dev.name} (heavy-hex "
@@ -414,7 +452,7 @@ def _compile_for_device(
             elsewhere += _searched_on_siblings(compiled.plan, circuit, dev, seed, layouts, measured, bindings,
                                                routing, context, say)  # fmt: skip
     return _finish(compiled, logical, ours, circuit, lowered, start, "greedy", optimize_for, measured, say,
-                   tuple(elsewhere))  # fmt: skip
+                   tuple(elsewhere), zero_start=zero_start)  # fmt: skip
 
 
 def _searched_elsewhere(
@@ -528,12 +566,14 @@ def _finish(
     device: Device | None = None,
     qiskit_seeds: int = QISKIT_SEEDS,
     none_fit: str = "no routed candidate",
+    zero_start: bool = False,
 ) -> DeviceCompileResult:  # fmt: skip
     """The result: on a named device (``device``, default ``ours[0]``'s) the best of
     :func:`qcpp.pipeline.candidates.calibrated_candidates` (from ``ours``, compile's routings of ``logical``, the
     routings ``elsewhere`` placed on the device, and, unless ``lowered``, all of these after Qiskit's O3 passes and
     ``qiskit_seeds`` Qiskit O3 routings of ``circuit``) by ``optimize_for`` (``None``: the device's
-    :func:`~qcpp.pipeline.candidates.default_objective`); elsewhere ``ours[0]``.
+    :func:`~qcpp.pipeline.candidates.default_objective`), with the candidates simplified for the all-|0> start
+    where ``zero_start``; elsewhere ``ours[0]``.
 
     Raises:
         ValueError: ``none_fit``, where there is no candidate (``ours`` empty and nothing ``elsewhere`` embeds)."""
@@ -542,10 +582,10 @@ def _finish(
     if not is_calibrated(device):
         routed = ours[0] if lowered else to_native(ours[0])
         return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
-                                   optimize_for=objective)  # fmt: skip
+                                   optimize_for=objective, zero_start=zero_start)  # fmt: skip
     say(f"scoring routed candidates on {device.name} (ESP, two-qubit gates, Qiskit O3)")
     candidates = calibrated_candidates(ours, device, None if lowered else circuit, measured, qiskit_seeds,
-                                       elsewhere=elsewhere, from_zero_start=objective == "twoq")  # fmt: skip
+                                       elsewhere=elsewhere, from_zero_start=zero_start)  # fmt: skip
     pool = [c for c in candidates if c.lowered is not None] if lowered else candidates
     if not pool:
         raise ValueError(none_fit)
@@ -556,7 +596,7 @@ def _finish(
         logical = chosen.logical
     return DeviceCompileResult(compiled, logical, routed, lowered, time.perf_counter() - start, method,
                                optimize_for=objective, chosen=chosen.name,
-                               candidates=tuple(c.summary() for c in candidates))  # fmt: skip
+                               candidates=tuple(c.summary() for c in candidates), zero_start=zero_start)  # fmt: skip
 
 
 def greedy_route(
