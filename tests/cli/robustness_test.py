@@ -148,6 +148,49 @@ def test_no_color_and_a_dumb_terminal_print_no_escape_codes() -> None:
         assert not ANSI.search(res.stdout) and not ANSI.search(res.stderr), args
 
 
+SGR = re.compile(r"\x1b\[([0-9;]*)m")
+
+
+def _colour_codes(text: str) -> list[str]:
+    """The SGR sequences in ``text`` that set a colour (30-49, 90-107: foreground and background)."""
+    found = []
+    for match in SGR.finditer(text):
+        params = [int(p) for p in match.group(1).split(";") if p]
+        if any(30 <= p <= 49 or 90 <= p <= 107 for p in params):
+            found.append(match.group(0))
+    return found
+
+
+def test_no_color_on_a_terminal_prints_no_colour() -> None:
+    """``NO_COLOR=1`` asks for no colour (no-color.org): none on a terminal, where bold text and the progress bar
+    (cursor movements) stay; ``TERM=dumb`` is what turns every escape code off (the test above)."""
+    import pty
+
+    leader, follower = pty.openpty()
+    env = {**os.environ, "PYTHONPATH": str(REPO / "src"), "NO_COLOR": "1", "TERM": "xterm-256color",
+           "QCPP_PROGRESS": "auto", "MPLBACKEND": "Agg"}  # fmt: skip
+    proc = subprocess.Popen([sys.executable, "-m", "qcpp", "solve", str(PAPER), "-m", "dfs"], cwd=REPO, env=env,
+                            stdin=subprocess.DEVNULL, stdout=follower, stderr=follower)  # fmt: skip
+    os.close(follower)
+    chunks = []
+    try:
+        while True:
+            try:
+                chunk = os.read(leader, 65536)
+            except OSError:  # EIO: every writer closed the terminal
+                break
+            if not chunk:
+                break
+            chunks.append(chunk)
+    finally:
+        os.close(leader)
+        proc.wait(timeout=600)
+    text = b"".join(chunks).decode("utf-8", errors="replace")
+    assert proc.returncode == 0, text
+    assert "assignments scored" in text
+    assert _colour_codes(text) == [], text
+
+
 # ----------------------------------------------------------------------------- memory limits
 
 
