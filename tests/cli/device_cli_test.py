@@ -129,6 +129,38 @@ def test_compile_bad_optimize_for_is_one_line(args: tuple[str, ...], fragment: s
     assert_one_line_error(run("compile", PAPER, *args), fragment)
 
 
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (("--zero-start",), "--zero-start: applies with a named --device only (no device given)"),
+        (("--device", "grid", "--zero-start"), "--zero-start: applies with a named device with couplers only"),
+        (("--device", "quantinuum_helios", "--zero-start"), "not quantinuum_helios"),
+        (("--device", "ibm_fez", "--lowered", "--zero-start"), "--zero-start: applies to the native-gate circuit"),
+    ],
+)
+def test_compile_zero_start_off_a_named_device_is_one_line(args: tuple[str, ...], fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, *args), fragment)
+
+
+@pytest.mark.slow
+def test_compile_zero_start_says_so_in_json_and_text() -> None:
+    """``--zero-start`` is ``routed.zero_start`` in ``--json``; where a routing simplified for the all-|0> start is
+    written, ``routed.equal_on_every_input`` is false and the text prints one note saying so; without the option
+    neither."""
+    small = ("--grid", "2x2", "--robots", "1", "--device", "ibm_fez", *BIND)
+    for zero in (False, True):
+        flag = ("--zero-start",) if zero else ()
+        res = run("compile", *small, *flag, "--json")
+        assert res.exit_code == 0, res.output
+        routed = json.loads(res.stdout)["routed"]
+        assert routed["zero_start"] is zero and routed["equal_on_every_input"] is not zero, routed["chosen"]
+        assert any("from |0>" in c["name"] for c in routed["candidates"]) is zero
+        text = run("compile", *small, *flag)
+        assert text.exit_code == 0, text.output
+        flat = " ".join(text.stdout.split())
+        assert ("equals the logical circuit only from that start" in flat) is zero
+
+
 def test_compile_device_text_shows_the_layouts_and_the_verdict() -> None:
     """The text output prints the layouts its device note announces and reads the ESP against the verdict's bar,
     with the same figures as ``--json``."""

@@ -404,7 +404,7 @@ PANELS: dict[str, str] = {
     "paper_doubling": "Estimates", "physical": "Estimates", "qubit_model": "Estimates",
     "qec_scheme": "Estimates", "error_budget": "Estimates",
     "device": "Device/routing", "local_ancillas": "Device/routing", "layout": "Device/routing",
-    "optimize_for": "Device/routing",
+    "optimize_for": "Device/routing", "zero_start": "Device/routing",
     # what is written where
     "as_json": "Output", "fmt": "Output", "columns": "Output", "wide": "Output", "compare": "Output",
     "plot": "Output", "metric": "Output", "plot_trace_file": "Output", "qasm": "Output", "qasm_version": "Output",

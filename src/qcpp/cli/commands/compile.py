@@ -170,6 +170,14 @@ def compile_command(
             show_default=False,
         ),
     ] = None,
+    zero_start: Annotated[
+        bool,
+        typer.Option(
+            "--zero-start",
+            help="On a named device, also offer routings simplified for the all-|0> start the device runs from; the "
+            "circuit then equals the logical one only on that input: put no gates before it.",
+        ),
+    ] = False,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
     robot: RobotFlag = None,
@@ -192,6 +200,12 @@ def compile_command(
             raise ValueError("--local-ancillas: applies with --device only (no device given)")
         if optimize_for is not None:
             raise ValueError(f"--optimize-for {optimize_for}: applies with --device only (no device given)")
+    if zero_start:
+        from qcpp.pipeline.candidates import zero_start_refusal
+
+        refusal = zero_start_refusal(device, lowered, "--lowered")
+        if refusal is not None:
+            raise ValueError(f"--zero-start: {refusal.replace('named device only', 'named --device only')}")
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
@@ -209,7 +223,7 @@ def compile_command(
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
-            optimize_for, measure,
+            optimize_for, measure, zero_start,
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -268,6 +282,9 @@ def compile_command(
             peer = qiskit_o3_line(routed)
             if peer:
                 console.print(peer)
+        if not routed.get("equal_on_every_input", True):
+            console.print("note: simplified for the all-|0> start (--zero-start): equals the logical circuit only "
+                          "from that start; put no gates before it")  # fmt: skip
     if summary["symbols"]:
         console.print(f"unbound symbols: {', '.join(summary['symbols'])}")
     console.print(f"time: {summary['seconds']:.3f} s")
@@ -387,17 +404,20 @@ def _routed(
     profile: Profile = "default",
     optimize_for: str | None = None,
     measure: bool = False,
+    zero_start: bool = False,
 ) -> tuple[dict[str, Any], list[dict]]:
     """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM
     (``measure``: with every data qubit measured at its physical qubit at the end); the summary adds ``device``,
-    ``initial_layout``, ``final_layout`` and ``routed``."""
+    ``initial_layout``, ``final_layout`` and ``routed`` (``zero_start``: also the candidates simplified for the
+    all-|0> start)."""
     from qcpp.pipeline.device_compile import compile_for_device
 
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
-                                    optimize_for=optimize_for, bind_field="--bind")  # fmt: skip
+                                    optimize_for=optimize_for, bind_field="--bind",
+                                    zero_start=zero_start)  # fmt: skip
     if qasm is not None:
         with _bind_hint():
             measured = result.routed.final_layout[: s.num_variables] if measure else None
