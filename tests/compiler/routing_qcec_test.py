@@ -47,15 +47,17 @@ def aligned(routed: RoutedCircuit, n: int) -> Circuit:
 
 def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = False, layout_method: str = "auto",
            lowered: bool = True, context: RoutingContext | None = None, every_input: bool = False,
-           chosen: str = "O3 passes", optimize_for: str | None = None) -> str:  # fmt: skip
+           chosen: str = "O3 passes", optimize_for: str | None = None, zero_start: bool = False) -> str:  # fmt: skip
     """QCEC's verdict on the routed circuit against its logical circuit: on every input of the data qubits, or (a
     candidate simplified for the all-|0> start, :mod:`qcpp.routing.known_state`, unless ``every_input``) on the
     all-|0> input. ``chosen``: a part of the chosen candidate's name asserted where ``lowered`` is off."""
     s = default_scenario(*scenario_args)
     r = compile_for_device(s, 1, device, lowered=lowered, bindings=BIND, layout_method=layout_method,
-                           context=context, optimize_for=optimize_for)  # fmt: skip
+                           context=context, optimize_for=optimize_for, zero_start=zero_start)  # fmt: skip
     if not lowered:  # what compile writes on a named device: a candidate optimised by Qiskit's passes
         assert "O3 passes" in r.chosen and chosen in r.chosen, r.chosen
+    if not zero_start:  # the candidates all keep the unitary
+        assert r.equal_on_every_input and not any("from |0>" in c["name"] for c in r.candidates), r.candidates
         assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits
     from_zero = "from |0>" in r.chosen and not every_input
     n = r.logical.num_qubits
@@ -85,18 +87,22 @@ def test_qcec_proves_the_native_circuit_a_named_device_gets_equal_to_its_logical
 @pytest.mark.slow
 def test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_their_logical_circuits() -> None:
     """ibm_torino, one robot on 3x3: the lowered routing, and the native circuit compile writes there (ours after
-    Qiskit's optimisation), each against its logical circuit; with ``--optimize-for twoq`` the written one (ours
-    simplified for the all-|0> start) equals it on the all-|0> input the device runs from, and not on every input
-    of the data qubits (it lost ``cx`` that act only on the robots' start state). One routing context serves the
-    compiles, so the compiles on the heavy-hex lattices that they share run once."""
+    Qiskit's optimisation), each against its logical circuit; with ``--optimize-for twoq`` alone the written one
+    still equals it on every input, and with ``--zero-start`` too (ours simplified for the all-|0> start) it equals
+    it on the all-|0> input the device runs from, and not on every input of the data qubits (it lost ``cx`` that act
+    only on the robots' start state). One routing context serves the compiles, so the compiles on the heavy-hex
+    lattices that they share run once."""
     context = RoutingContext()
     assert _check((3, 3, 1), "ibm_torino", context=context) == "equivalent"
     written = _check((3, 3, 1), "ibm_torino", lowered=False, context=context)
     assert written in ("equivalent", "equivalent_up_to_global_phase")
-    twoq = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, chosen="from |0>", optimize_for="twoq")
+    twoq = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, optimize_for="twoq")
     assert twoq in ("equivalent", "equivalent_up_to_global_phase")
+    zero = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, chosen="from |0>", optimize_for="twoq",
+                  zero_start=True)  # fmt: skip
+    assert zero in ("equivalent", "equivalent_up_to_global_phase")
     assert _check((3, 3, 1), "ibm_torino", lowered=False, context=context, every_input=True, chosen="from |0>",
-                  optimize_for="twoq") == "not_equivalent"  # fmt: skip
+                  optimize_for="twoq", zero_start=True) == "not_equivalent"  # fmt: skip
 
 
 @pytest.mark.slow
