@@ -33,6 +33,7 @@ from qcpp.cli.commands.inline_scenario import (
     ScenarioFileArg,
     given_scenario,
 )
+from qcpp.cli.render import json_text
 
 __all__ = ["HELP", "OPTIMUM_SECONDS", "decode_command", "read_counts", "register"]
 
@@ -193,7 +194,7 @@ def decode_command(
     if as_json:
         out = {"scenario": given.label, "counts_file": str(counts), "distinct": len(decoded.outcomes),
                **decoded.to_dict(), "optimum_source": source if source in ("given", "cpsat") else None}  # fmt: skip
-        typer.echo(json.dumps(out))
+        typer.echo(json_text(out))
         return
     typer.echo(_text(decoded, given.label, str(counts), source, top))
 

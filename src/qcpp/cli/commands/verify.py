@@ -21,7 +21,6 @@ phase inputs).
 
 from __future__ import annotations
 
-import json
 import shutil
 from typing import Annotated
 
@@ -38,6 +37,7 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, TargetFlag
 from qcpp.cli.progress import Progress
+from qcpp.cli.render import json_text
 
 __all__ = ["register", "verify_command"]
 
@@ -89,7 +89,7 @@ def verify_command(
         report = verify(s, p, rule, method, samples, seed, progress=bar.update, options=options)  # type: ignore[arg-type]
     undecided = report.outcome == "not_certified"
     if as_json:
-        typer.echo(json.dumps(report.to_dict()))
+        typer.echo(json_text(report.to_dict()))
     else:
         width = shutil.get_terminal_size((80, 24)).columns
         typer.echo(report.summary(width))
