@@ -98,16 +98,21 @@ def test_machine_formats_keep_every_column_at_any_width(fmt: str) -> None:
         assert all(c in narrow.stdout.splitlines()[0] for c in (*MAIN_COLUMNS, *PAPER_COLUMNS))
 
 
+@pytest.mark.parametrize("physical", [True, False])
 @pytest.mark.parametrize("target", ["nisq", "ft"])
-def test_physical_figures_stay_a_table_at_80_columns(target: str) -> None:
-    """With ``--physical`` the logical figures give way first: at 80 columns the table keeps the scenario,
-    ``physical_qubits`` and ``physical_runtime_s`` (not one field per line), and the note names the rest."""
-    args = ["estimate", "--grid", "3x3,4x4", "--robots", "1", "--physical", "--target", target]
+def test_cx_stays_in_the_table_at_80_columns(target: str, physical: bool) -> None:
+    """docs/cli.md: the identity columns, ``qubits`` and ``cx`` are always shown; with ``--physical`` the
+    logical figures give way first and ``physical_qubits`` stays too (a table, not one field per line), and the
+    note names the rest (``physical_runtime_s`` among them at 80 columns)."""
+    args = ["estimate", "--grid", "3x3,5x5", "--robots", "2", "--target", target] + (["--physical"] if physical else [])
     res = CliRunner().invoke(app, args, env={"COLUMNS": "80"})
     assert res.exit_code == 0, res.stderr
     assert max(widths(res.stdout)) <= 80 and "row 1 of 2" not in res.stdout
     header = next(line for line in res.stdout.splitlines() if "rows" in line)
-    assert all(c in header for c in ("rows", "cols", "robots", "qubits", "physical_qubits", "physical_runtime_s"))
-    assert "hidden to fit 80 columns" in res.stdout and "cx" in res.stdout.split("hidden to fit")[1]
+    assert all(f" {c} " in header for c in ("rows", "cols", "robots", "qubits", "cx"))
+    hidden = res.stdout.split("hidden to fit 80 columns")[1]
+    assert " cx," not in hidden
+    if physical:
+        assert "physical_qubits" in header and "physical_runtime_s" in hidden
     wide = CliRunner().invoke(app, args, env={"COLUMNS": "250"})
-    assert "physical_t_factories" in wide.stdout and "hidden" not in wide.stdout
+    assert "hidden" not in wide.stdout and (not physical or "physical_t_factories" in wide.stdout)
