@@ -286,6 +286,27 @@ def test_writing_qasm_shows_both_passes(tmp_path: Path) -> None:
     assert "collecting symbols" in res.stderr and "writing OpenQASM" in res.stderr
 
 
+@pytest.mark.parametrize("lowered", [False, True])
+def test_writing_qasm_counts_each_gate_once_per_pass(tmp_path: Path, lowered: bool) -> None:
+    """The OpenQASM writer walks the sections twice (header, then text): each pass counts from 0 to the circuit's
+    gate count, so the total shown and the last count equal the summary's ``total_gates`` (lowered: predicted
+    exactly; high level: the first pass's count), never twice it."""
+    args = ["compile", str(EXAMPLES / "two_robots_4x4.toml"), "-p", "2", "--json", "--qasm", str(tmp_path / "c.qasm")]
+    res = invoke(*args, *(["--lowered"] if lowered else []), env={**LINES, "COLUMNS": "200"})
+    assert res.exit_code == 0, res.stderr
+    gates = json.loads(res.stdout)["total_gates"]
+    lines = res.stderr.splitlines()
+    counts = [(int(m[1].replace(",", "")), m[2]) for m in (re.search(r": ([\d,]+)(?: / ([\d,]+))? gates", line)
+                                                           for line in lines) if m]  # fmt: skip
+    assert counts and max(done for done, _ in counts) == gates
+    totals = {total for _, total in counts if total is not None}
+    assert totals == {f"{gates:,}"}
+    writing = [line for line in lines if "writing OpenQASM (pass 2 / 2)" in line]
+    assert writing[0].split(": ")[1].startswith(f"0 / {gates:,} gates")
+    assert writing[-1].split(": ")[1].startswith(f"{gates:,} / {gates:,} gates (100.0%)")
+    assert lines[-1].startswith(f"compile 4x4, 2 robot(s), p=2: {gates:,} gates done")
+
+
 @pytest.mark.parametrize("qasm", [False, True])
 def test_writing_qasm_claims_no_time_left(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, qasm: bool) -> None:
     """Writing costs per gate vary (the mixer sections write slower than the phase sections, both slower than

@@ -27,7 +27,8 @@ would run for more than an hour is refused with one line naming the prediction, 
 
 Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
 built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total;
-the time left only when no OpenQASM is written, as writing costs per gate vary too much to extrapolate).
+writing OpenQASM takes two passes over the sections, each counting the circuit's gates from 0; the time left only
+when no OpenQASM is written, as writing costs per gate vary too much to extrapolate).
 """
 
 from __future__ import annotations
@@ -227,9 +228,9 @@ def compile_command(
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
-        passes = 2 if qasm is not None else 1  # writing OpenQASM walks the sections twice (header, then text)
-        # the prediction counts lowered gates: the high-level circuit's count is not known before it is built
-        total = size.gates * passes if lowered else None
+        # the prediction counts lowered gates: the high-level circuit's count is not known before it is built (a
+        # written circuit's second pass takes the first pass's count as its total)
+        total = size.gates if lowered else None
         big = size.gates >= STREAM_ABOVE_GATES  # known to be long: the first line comes at once
         # building a section costs more per gate in some sections than in others (a 30x30 grid's mixer sections
         # build two to three times slower than its phase sections, in either walk): the share of gates done does
@@ -465,10 +466,14 @@ def _stream(
     walks = 0
 
     def sections() -> Iterator[Section]:
+        # writing OpenQASM walks the sections twice (the header's symbols and gate definitions, then the text):
+        # each pass counts the circuit's gates once, from 0, so the count ends at the circuit's gate count
         nonlocal walks
         walks += 1
+        if walks > 1:
+            progress.update(0, progress.done)  # the first pass counted every gate: the total, known now
         if qasm is not None:
-            progress.stage("collecting symbols" if walks == 1 else "writing OpenQASM")
+            progress.stage(("collecting symbols" if walks == 1 else "writing OpenQASM") + f" (pass {walks} / 2)")
         for sec in plan.emit_sections(lowered):
             out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
             yield out
