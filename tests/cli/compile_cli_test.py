@@ -81,3 +81,13 @@ def test_errors_are_one_line_and_exit_2(tmp_path: Path, args: list[str], needle:
     assert needle in err
     assert len(err.strip().splitlines()) == 1
     assert not (tmp_path / "x.qasm").exists()
+
+
+@pytest.mark.parametrize(
+    "args", [("--qasm-version", "2"), ("--qasm-version", "3"), ("--qasm-profile", "portable"), ("--measure",)]
+)
+def test_qasm_flags_without_qasm_are_refused(args: tuple[str, ...]) -> None:
+    """Like the other "applies with" flags: an OpenQASM flag with no file to shape is refused, not ignored."""
+    code, out, err = run("compile", str(EXAMPLE), *args)
+    assert code == 2 and out == ""
+    assert err.strip() == f"error: {args[0]}: applies with --qasm only (no --qasm given)"

@@ -335,3 +335,14 @@ def test_physical_options_without_physical_are_refused(run, args: tuple[str, ...
     res = run("--grid", "3x3", *args)
     assert res.exit_code == 2 and res.stdout == ""
     assert res.stderr.strip() == f"error: {args[0]}: applies with --physical only (no --physical given)"
+
+
+@pytest.mark.parametrize("positional", [True, False])
+def test_a_scenario_file_with_grid_is_refused_naming_how_it_was_given(run, positional: bool) -> None:  # type: ignore[no-untyped-def]
+    """A file given positionally is named as the file in the message, not as ``--scenario`` (not given)."""
+    path = "examples/two_robots_4x4.toml"
+    res = run(path, "--grid", "6x6") if positional else run("--scenario", path, "--grid", "6x6")
+    assert res.exit_code == 2 and res.stdout == ""
+    named = f"the scenario file {path!r}" if positional else "--scenario"
+    expected = f"error: {named} gives the grid and the robots: do not combine it with --grid or --robots"
+    assert res.stderr.strip() == expected

@@ -61,6 +61,8 @@ def points_from_options(
     obstacles: Sequence[tuple[int, int]] = (),
     hard_obstacles: bool = False,
     endpoints: Sequence[tuple[tuple[int, int], tuple[int, int]]] = (),
+    *,
+    scenario_named: str = "--scenario",
 ) -> PointSet:
     """Points from the CLI's option texts.
 
@@ -76,6 +78,8 @@ def points_from_options(
         hard_obstacles: the obstacles remove the edges touching them from the variables (``--hard-obstacles``;
             a non-default scenario even without obstacles).
         endpoints: each robot's ``(start, goal)`` on every grid of the range (``--robot``), instead of ``robots``.
+        scenario_named: how the messages name the scenario file as the user gave it (``--scenario``, or
+            ``the scenario file 'a.toml'`` for a positional file).
 
     Raises:
         ValueError: a malformed range (``qcpp.problem.errors.ScenarioError`` for a bad file, or when no grid of the
@@ -88,12 +92,14 @@ def points_from_options(
         raise ValueError("--robot gives the robots one by one: do not give --robots too")
     if scenario is not None:
         if endpoints:
-            raise ValueError("--scenario gives the robots: do not combine it with --robot")
+            raise ValueError(f"{scenario_named} gives the robots: do not combine it with --robot")
         if grid is not None or robots is not None:
-            raise ValueError("--scenario gives the grid and the robots: do not combine it with --grid or --robots")
+            raise ValueError(
+                f"{scenario_named} gives the grid and the robots: do not combine it with --grid or --robots"
+            )
         if obstacles or hard_obstacles:
             flag = "--obstacle" if obstacles else "--hard-obstacles"
-            raise ValueError(f"--scenario gives the obstacles: do not combine it with {flag}")
+            raise ValueError(f"{scenario_named} gives the obstacles: do not combine it with {flag}")
         s = load_scenario(scenario, check_range=True)
         return PointSet([Point.from_scenario(s, k) for k in layers], 0)
     grids = parse_grid_range(grid if grid is not None else DEFAULT_GRID, "--grid")

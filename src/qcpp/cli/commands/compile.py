@@ -104,7 +104,9 @@ def compile_command(
     qasm: Annotated[
         str | None, typer.Option("--qasm", help="Write OpenQASM to this file (- for standard output).")
     ] = None,
-    qasm_version: Annotated[int, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3.")] = 3,
+    qasm_version: Annotated[
+        int | None, typer.Option("--qasm-version", help="OpenQASM version: 2 or 3 (default 3).", show_default=False)
+    ] = None,
     qasm_profile: Annotated[
         str,
         typer.Option(
@@ -210,9 +212,14 @@ def compile_command(
     if extra and not bind:
         raise ValueError(f"unexpected argument {extra[0]!r} (bindings go after --bind)")
     bindings = check_binding_values(parse_bindings([*(bind or []), *extra]))
+    if qasm is None:  # the OpenQASM flags without --qasm are refused, not silently ignored
+        qasm_only = {"--qasm-version": qasm_version is not None, "--qasm-profile": qasm_profile != "default",
+                     "--measure": measure}  # fmt: skip
+        for flag, given_flag in qasm_only.items():
+            if given_flag:
+                raise ValueError(f"{flag}: applies with --qasm only (no --qasm given)")
+    qasm_version = 3 if qasm_version is None else qasm_version
     check_profile(qasm_profile, qasm_version, "--qasm-profile", "--qasm-version")
-    if measure and qasm is None:
-        raise ValueError("--measure: applies with --qasm only (no --qasm given)")
     to_stdout = qasm == "-"
     if to_stdout and as_json:
         raise ValueError("--qasm - and --json both write to standard output; choose one")

@@ -182,6 +182,7 @@ def estimate(
     from qcpp.estimators.physical import DEFAULT_ERROR_BUDGET, DEFAULT_QEC_SCHEME, DEFAULT_QUBIT_MODEL
     from qcpp.estimators.report import estimate_report, formula_report, points_from_options
 
+    scenario_named = "--scenario" if scenario_file is None else f"the scenario file {str(scenario_file)!r}"
     if scenario_file is not None:
         if scenario is not None:
             raise OptionError("--scenario", f"the scenario file {str(scenario_file)!r} is given already")
@@ -211,7 +212,9 @@ def estimate(
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
     endpoints = [parse_robot(t) for t in robot or ()]
     try:
-        points = points_from_options(grid, robots, p, scenario, obstacles, hard_obstacles, endpoints)
+        points = points_from_options(
+            grid, robots, p, scenario, obstacles, hard_obstacles, endpoints, scenario_named=scenario_named
+        )
     except ScenarioError as exc:
         raise flag_error(exc, robots, obstacle, robot) from None
     if points.skipped:
