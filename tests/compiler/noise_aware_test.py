@@ -396,8 +396,9 @@ def test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device() -> None:
 def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
     """Two robots on 3x3 with a hard obstacle on Torino: with ``--optimize-for twoq`` compile also runs the greedy
     path's search on Fez and places it on Torino where it embeds; after Qiskit's passes that routing has fewer CZ
-    than every candidate of the default ``esp`` compile, which offers neither it nor the candidates simplified for
-    the all-|0> start (its candidates, and so its output, are as before)."""
+    than every candidate of the default ``esp`` compile, which does not offer it (its candidates, and so its output,
+    are as before). Neither offers the candidates simplified for the all-|0> start unless ``zero_start``; with it,
+    the twoq compile offers them for the sibling's placement too and writes one of them, with fewer CZ still."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.scenario import scenario_from_dict
     from qcpp.routing.context import RoutingContext
@@ -407,13 +408,20 @@ def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
                             "objective": {"obstacles": "hard"}})  # fmt: skip
     bind, context = {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
     by_esp = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context)
-    assert by_esp.optimize_for == "esp"
+    assert by_esp.optimize_for == "esp" and not by_esp.zero_start
     assert not any(c["name"].startswith("search on ibm_") or "from |0>" in c["name"] for c in by_esp.candidates)
     by_twoq = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq")
-    sibling = min(c["two_qubit"] for c in by_twoq.candidates
-                  if c["name"].startswith("search on ibm_fez + our placement") and "from |0>" not in c["name"])
-    assert sibling < min(c["two_qubit"] for c in by_esp.candidates)
+    assert not any("from |0>" in c["name"] for c in by_twoq.candidates) and by_twoq.equal_on_every_input
+    assert by_twoq.chosen.startswith("search on ibm_fez + our placement"), by_twoq.chosen
     twoq = sum(1 for g in by_twoq.routed.circuit.gates if len(g[1]) == 2)
-    assert twoq <= min(c["two_qubit"] for c in by_esp.candidates) and twoq <= sibling
+    assert twoq < min(c["two_qubit"] for c in by_esp.candidates)
     assert {tuple(sorted(g[1])) for g in by_twoq.routed.circuit.gates if len(g[1]) == 2} <= set(
         by_twoq.routed.device.coupling)
+    zero = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq",
+                              zero_start=True)  # fmt: skip
+    assert zero.zero_start and "from |0>" in zero.chosen and not zero.equal_on_every_input, zero.chosen
+    assert any(c["name"].startswith("search on ibm_fez + our placement") and "from |0>" in c["name"]
+               for c in zero.candidates)  # fmt: skip
+    assert sum(1 for g in zero.routed.circuit.gates if len(g[1]) == 2) < twoq
+    assert {tuple(sorted(g[1])) for g in zero.routed.circuit.gates if len(g[1]) == 2} <= set(
+        zero.routed.device.coupling)
