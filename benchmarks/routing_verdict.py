@@ -21,9 +21,14 @@ two-robot 3x3 without and with a hard obstacle, and with interior endpoints), wh
 ``qcpp compile --device NAME`` writes (``--optimize-for esp``, the default there, and ``--optimize-for twoq``) against
 ``qiskit.transpile(optimization_level=3)`` of the same lowered circuit onto the calibrated target built from our
 device file (:func:`qcpp.routing.target.device_target`), seeds 0-2, the best seed for each figure: two-qubit gates,
-ESP of the gates and ESP with idle decoherence, each as qcpp / Qiskit, and the candidate compile chose; beside the
-``twoq`` count, the fewest two-qubit gates of the candidates that equal the logical circuit on every input (not
-simplified for the all-|0> start, :mod:`qcpp.routing.known_state`): what the routing alone gives. Then the
+ESP of the gates and ESP with idle decoherence, each as qcpp / Qiskit, and the candidate compile chose; the
+``twoq`` count (every candidate equal to the logical circuit on every input, as Qiskit's passes keep it); then the
+same with ``--zero-start`` (also the candidates simplified for the all-|0> start, :mod:`qcpp.routing.known_state`:
+equal to the logical circuit on that input only, a different scope), its ``twoq`` count and the ESP with idle
+decoherence ``--optimize-for esp --zero-start`` chooses. One ``--optimize-for twoq --zero-start`` compile gives all
+three: its candidates are those of the compile without the option plus the simplified ones, so the fewest two-qubit
+gates among the others is what ``twoq`` alone writes, and the highest ESP with idle decoherence among all but the
+searches on the sibling device (which only ``twoq`` runs) what ``esp --zero-start`` writes. Then the
 compile time of ``qcpp compile --grid 5x5 --robots 2 --device heavy-hex`` (:func:`compile_for_device`, unbound)
 against Qiskit O3 (seed 0) of the same lowered circuit onto that lattice's target, in the same run.
 """
@@ -127,15 +132,17 @@ def calibrated() -> None:
     """The ``--calibrated`` tables (module docs)."""
     context = RoutingContext()
     print("| device | scenario | CZ: qcpp / O3 | ESP gates: qcpp / O3 | ESP idle: qcpp / O3 | chosen (esp) "
-          "| CZ (twoq): qcpp / O3 | CZ (twoq, equal on every input): qcpp / O3 | qcpp s / O3 s |")  # fmt: skip
-    print("|---|---|---:|---:|---:|---|---:|---:|---:|")
+          "| CZ (twoq): qcpp / O3 | CZ (twoq, --zero-start): qcpp / O3 | ESP idle (esp, --zero-start): qcpp / O3 "
+          "| qcpp s / O3 s |")  # fmt: skip
+    print("|---|---|---:|---:|---:|---|---:|---:|---:|---:|")
     for name in ("ibm_fez", "ibm_torino"):
         dev = named_device(name)
         for label, s in CALIBRATED:
             start = time.perf_counter()
             ours = compile_for_device(s, 1, name, bindings=BIND, context=context)
             ours_s = time.perf_counter() - start
-            by_twoq = compile_for_device(s, 1, name, bindings=BIND, context=context, optimize_for="twoq")
+            zero = compile_for_device(s, 1, name, bindings=BIND, context=context, optimize_for="twoq",
+                                      zero_start=True)  # fmt: skip
             start = time.perf_counter()
             peers = [qiskit_o3(ours.compiled.circuit, dev, seed, range(s.num_variables)) for seed in range(3)]
             peer_s = (time.perf_counter() - start) / 3
@@ -143,13 +150,14 @@ def calibrated() -> None:
             o3_esp = max(esp(r) for r in peers)
             o3_idle = max(esp_idle(r) or 0.0 for r in peers)
             q, e, ei = _twoq(ours.routed), esp(ours.routed), esp_idle(ours.routed) or 0.0
-            qt = _twoq(by_twoq.routed)
-            qu = min(c["two_qubit"] for c in by_twoq.candidates if "from |0>" not in c["name"])
+            qu = min(c["two_qubit"] for c in zero.candidates if "from |0>" not in c["name"])  # twoq alone
+            qz = _twoq(zero.routed)
+            ez = max(c["esp_idle"] or 0.0 for c in zero.candidates if not c["name"].startswith("search on ibm_"))
             chosen = ours.chosen.replace("|", "\\|")  # a markdown cell
             print(f"| {name} | {label} | {q:,} / {o3_twoq:,} = {q / o3_twoq:.2f} | {e:.3g} / {o3_esp:.3g} = "
                   f"{e / o3_esp:.2f} | {ei:.3g} / {o3_idle:.3g} = {ei / o3_idle:.2f} | {chosen} "
-                  f"| {qt:,} / {o3_twoq:,} = {qt / o3_twoq:.2f} | {qu:,} / {o3_twoq:,} = {qu / o3_twoq:.2f} "
-                  f"| {ours_s:.1f} / {peer_s:.1f} |", flush=True)
+                  f"| {qu:,} / {o3_twoq:,} = {qu / o3_twoq:.2f} | {qz:,} / {o3_twoq:,} = {qz / o3_twoq:.2f} "
+                  f"| {ez:.3g} / {o3_idle:.3g} = {ez / o3_idle:.2f} | {ours_s:.1f} / {peer_s:.1f} |", flush=True)
     print()
     print("| compile | qcpp s | Qiskit O3 s (same circuit, same lattice) | ratio | qcpp 2q | O3 2q |")
     print("|---|---:|---:|---:|---:|---:|")
