@@ -277,3 +277,25 @@ def test_scenario_draw_shows_the_field_on_stderr_and_keeps_stdout_a_file() -> No
     rows = [line for line in drawn.stderr.splitlines()[:7] if line]
     assert rows == ["S   .   .   .   G", ".   #   .   .   .", ".   .   .   #   .", "S   .   .   .   G"]
     assert "robot 0: (0, 0) -> (3, 4)" in drawn.stderr and "robot 1: (3, 0) -> (0, 4)" in drawn.stderr
+
+
+@pytest.mark.parametrize("command", ["compile", "verify", "simulate", "validate"])
+@pytest.mark.parametrize(
+    ("flag", "value", "named"),
+    [("-p", "1..3", "-p/--layers"), ("-p", "1,2", "-p/--layers"), ("--robots", "1..3", "--robots"),
+     ("--robots", "1,4,8", "--robots")],
+)  # fmt: skip
+def test_a_range_for_a_single_circuit_command_is_one_line(command: str, flag: str, value: str, named: str) -> None:
+    """``qcpp estimate`` takes ranges and lists; a command that builds one circuit says so, naming the flag."""
+    res = run(command, "--grid", "4x4", "--robots", "1", flag, value)
+    assert res.exit_code == 2 and res.stdout == ""
+    assert res.stderr.strip() == (
+        f"error: {named}: one value only, got {value!r}: this command builds one circuit; ranges (A..B) and comma "
+        f"lists are for qcpp estimate (see 'qcpp {command} --help')"
+    )
+
+
+def test_a_grid_range_for_compile_names_estimate() -> None:
+    res = run("compile", "--grid", "3x3..5x5")
+    assert res.exit_code == 2
+    assert "one grid only: ranges (A..B) and comma lists are for qcpp estimate" in res.stderr

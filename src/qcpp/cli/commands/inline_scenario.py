@@ -23,7 +23,7 @@ Example:
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated
@@ -36,6 +36,42 @@ from qcpp.problem.errors import ScenarioError
 from qcpp.problem.presets import grid_scenario
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.scenario_io import STDIN, STDIN_LABEL, load_scenario
+
+RANGES_NOTE = "ranges (A..B) and comma lists are for qcpp estimate"
+"""Said when a single-circuit command is given a range or a list where it takes one value."""
+
+
+def is_range_or_list(text: str) -> bool:
+    """Whether ``text`` reads as ``qcpp estimate``'s range ``A..B`` or comma list rather than one value."""
+    return ".." in text or "," in text
+
+
+def one_whole_number(flag: str) -> Callable[[str], int]:
+    """A typer ``parser`` for an option of a single-circuit command that takes one whole number (``-p``,
+    ``--robots``): a range or a comma list is refused naming ``flag`` and :data:`RANGES_NOTE`.
+
+    >>> one_whole_number("-p/--layers")(" 3 ")
+    3
+    >>> try:
+    ...     one_whole_number("-p/--layers")("1..3")
+    ... except typer.BadParameter as exc:
+    ...     print(exc.message)
+    one value only, got '1..3': this command builds one circuit; ranges (A..B) and comma lists are for qcpp estimate
+    """
+
+    def parse(text: str) -> int:
+        if isinstance(text, int):  # a default value
+            return text
+        if is_range_or_list(text):
+            raise typer.BadParameter(f"one value only, got {text!r}: this command builds one circuit; {RANGES_NOTE}")
+        try:
+            return int(text.strip())
+        except ValueError:
+            raise typer.BadParameter(f"{text!r} is not a whole number") from None
+
+    parse.__name__ = f"one_whole_number({flag})"
+    return parse
+
 
 __all__ = [
     "GivenScenario",
@@ -78,6 +114,7 @@ RobotCountFlag = Annotated[
         help="With --grid: robots in the default placement (corners, then the other boundary nodes); default 1.",
         metavar="N",
         show_default=False,
+        parser=one_whole_number("--robots"),
     ),
 ]
 RobotFlag = Annotated[
@@ -120,7 +157,8 @@ def parse_grid(text: str) -> tuple[int, int]:
     """
     m = _GRID.match(text)
     if m is None:
-        raise OptionError("--grid", f"expected ROWSxCOLS such as 3x4, got {text!r}")
+        note = f"; one grid only: {RANGES_NOTE}" if is_range_or_list(text) else ""
+        raise OptionError("--grid", f"expected ROWSxCOLS such as 3x4, got {text!r}{note}")
     return int(m.group(1)), int(m.group(2))
 
 

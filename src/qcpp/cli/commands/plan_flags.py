@@ -24,6 +24,7 @@ from typing import Annotated, Any, TypeVar, get_type_hints
 
 import typer
 
+from qcpp.cli.commands.inline_scenario import one_whole_number
 from qcpp.plan.options import PlanOptions
 
 __all__ = [
@@ -41,7 +42,9 @@ __all__ = [
     "with_plan_flags",
 ]
 
-LayersFlag = Annotated[int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).")]
+LayersFlag = Annotated[
+    int, typer.Option("-p", "--layers", help="QAOA layers (at least 1).", parser=one_whole_number("-p/--layers"))
+]
 RuleFlag = Annotated[str, typer.Option("--rule", help="SBF logic rule.")]
 InitialFlag = Annotated[
     str,
