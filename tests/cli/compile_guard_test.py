@@ -80,3 +80,52 @@ def test_streamed_compile_rejects_unknown_bindings(tmp_path: Path) -> None:
     out = tmp_path / "s.qasm"
     res = CliRunner().invoke(app, ["compile", EXAMPLE, "-p", "1", "--qasm", str(out), "--bind", "gamma_7=1"])
     assert res.exit_code == 2 and "gamma_7" in res.stderr and not out.exists()
+
+
+def _slow(monkeypatch: pytest.MonkeyPatch, seconds_per_gate: float) -> None:
+    """Make the time model predict ``seconds_per_gate`` per lowered gate (no work is slower for it)."""
+    import qcpp.estimators.guard as guard
+
+    monkeypatch.setattr(guard, "GATES_PER_SECOND", 1.0 / seconds_per_gate)
+
+
+def test_allow_large_lifts_the_grid_limit_not_the_size_guard(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``--allow-large`` lets a grid past 50x50 through to the prediction, which still refuses a compile over an
+    hour or over the memory available (naming ``--force``, not ``--allow-large``); the 51x51 circuit is never
+    built here."""
+    args = ["compile", "--grid", "51x51", "--robots", "1", "--lowered"]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2 and "over the limit of 2,500 (50x50)" in res.stderr and "--allow-large" in res.stderr
+    _slow(monkeypatch, 1.0)  # thousands of gates: hours
+    res = CliRunner().invoke(app, [*args, "--allow-large"])
+    assert res.exit_code == 2 and res.stdout == ""
+    line = res.stderr.strip()
+    assert "50x50" not in line and "over the limit of 1 h; pass --force to run it anyway" in line, line
+    res = CliRunner().invoke(app, [*args, "--allow-large"], env={"QCPP_MEMORY_AVAILABLE": "1000"})
+    assert res.exit_code == 2 and "GB available; pass --force to try anyway" in res.stderr, res.stderr
+
+
+def test_force_lifts_the_size_guard(monkeypatch: pytest.MonkeyPatch) -> None:
+    _slow(monkeypatch, 100.0)  # 288 gates: about 8 h
+    res = CliRunner().invoke(app, ["compile", EXAMPLE, "--lowered"])
+    assert res.exit_code == 2 and "pass --force to run it anyway" in res.stderr
+    assert CliRunner().invoke(app, ["compile", EXAMPLE, "--lowered", "--allow-large"]).exit_code == 2
+    assert CliRunner().invoke(app, ["compile", EXAMPLE, "--lowered", "--force", "--json"]).exit_code == 0
+
+
+@pytest.mark.parametrize("json_out", [False, True])
+def test_a_long_compile_prints_its_prediction_first(monkeypatch: pytest.MonkeyPatch, json_out: bool) -> None:
+    """Predicted over a minute: one note on stderr with the time and the peak memory, in text mode only."""
+    _slow(monkeypatch, 1.0)  # 288 gates: about 5 min, under the hour
+    res = CliRunner().invoke(app, ["compile", EXAMPLE, "--lowered", *(["--json"] if json_out else [])],
+                             env={"QCPP_PROGRESS": "off", "COLUMNS": "200"})  # fmt: skip
+    assert res.exit_code == 0, res.stderr
+    notes = [line for line in res.stderr.splitlines() if line.startswith("note: ")]
+    if json_out:
+        assert notes == [] and json.loads(res.stdout)["total_gates"] == 288
+    else:
+        assert notes == ["note: compiling 288 gates on 15 qubits: predicted to run for about 5 min, peak 0.1 GB of "
+                         "memory"]  # fmt: skip
+    _slow(monkeypatch, 0.1)  # about 30 s: no note
+    res = CliRunner().invoke(app, ["compile", EXAMPLE, "--lowered"], env={"QCPP_PROGRESS": "off"})
+    assert res.exit_code == 0 and "note:" not in res.stderr

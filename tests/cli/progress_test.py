@@ -301,7 +301,7 @@ def test_writing_qasm_counts_each_gate_once_per_pass(tmp_path: Path, lowered: bo
     assert counts and max(done for done, _ in counts) == gates
     totals = {total for _, total in counts if total is not None}
     assert totals == {f"{gates:,}"}
-    writing = [line for line in lines if "writing OpenQASM (pass 2 / 2)" in line]
+    writing = [line for line in lines if "pass 2 / 2: writing OpenQASM" in line]
     assert writing[0].split(": ")[1].startswith(f"0 / {gates:,} gates")
     assert writing[-1].split(": ")[1].startswith(f"{gates:,} / {gates:,} gates (100.0%)")
     assert lines[-1].startswith(f"compile 4x4, 2 robot(s), p=2: {gates:,} gates done")

@@ -23,7 +23,11 @@ Size guard: before building anything, the lowered circuit's gate count is predic
 costs (:func:`qcpp.estimators.guard.predict_size`, exact, without building a gate) and with it the peak memory
 and time (:func:`qcpp.estimators.guard.compile_need`); a compile that would not fit in the available memory or
 would run for more than an hour is refused with one line naming the prediction, the limit and the override
-(``--allow-large`` or ``--force``), exit 2. ``--max-gates N`` refuses circuits over ``N`` lowered gates instead.
+(``--force``), exit 2. ``--max-gates N`` refuses circuits over ``N`` lowered gates instead. ``--allow-large``
+lifts the grid and layer limits only (grids over 50x50, ``p`` over 1000): a large grid is still refused when its
+compile would not fit or would run for hours, so asking for a big field never starts an unbounded run by
+accident. In text mode a compile predicted to run for more than :data:`NOTE_ABOVE_SECONDS` says so first, on
+stderr (the predicted time and peak memory).
 
 Progress: a circuit predicted at :data:`STREAM_ABOVE_GATES` lowered gates or more, and every ``--qasm`` write, is
 built section by section with progress on stderr (:mod:`qcpp.cli.progress`: gates handed out of the predicted total;
@@ -56,8 +60,8 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import json_text, print_table
-from qcpp.estimators.guard import SizePrediction, check_size, predict_size
+from qcpp.cli.render import echo_note, json_text, print_table
+from qcpp.estimators.guard import SizePrediction, check_size, compile_need, predict_size
 from qcpp.io.atomic import check_output
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
@@ -65,10 +69,15 @@ from qcpp.lowering.qasm_profiles import Profile, check_profile, write_qasm_profi
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
+from qcpp.problem.limits import allow_large as lifted_limits
+from qcpp.problem.limits import format_duration
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.native import RUNNABLE_ESP
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
+
+NOTE_ABOVE_SECONDS = 60.0
+"""A compile predicted to run longer than this prints its prediction (time, peak memory) before the work."""
 
 LAYOUT_SHOWN = 32
 """Layouts of at most this many logical qubits are printed in the text output (all of them are in ``--json``)."""
@@ -138,7 +147,21 @@ def compile_command(
             show_default=False,
         ),
     ] = None,
-    force: Annotated[bool, typer.Option("--force", help="Build even past --max-gates or the size guard.")] = False,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="Build even past --max-gates or the size guard (predicted over the available memory or an hour).",
+        ),
+    ] = False,
+    allow_large: Annotated[
+        bool,
+        typer.Option(
+            "--allow-large",
+            help="Lift the grid and layer limits (grids over 50x50, p over 1000); the size guard (memory, an hour) "
+            "still holds: --force lifts it.",
+        ),
+    ] = False,
     device: Annotated[
         str | None,
         typer.Option(
@@ -193,6 +216,7 @@ def compile_command(
     if grid is not None and scenario is not None and bind and "=" in str(scenario):
         extra.insert(0, str(scenario))  # NAME=VALUE after --bind, taken for the (absent) file argument
         scenario = None
+    del allow_large  # read by the CLI's handler (qcpp.cli.app.handle_errors): the grid and layer limits only
     if (grid is None) == (scenario is None):
         # raises: names what is missing or extra
         given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
@@ -227,7 +251,12 @@ def compile_command(
         check_output(qasm)  # a bad destination fails before the compile, not after
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
     s, label = given.scenario, given.label
-    size = _guard(s, p, options, max_gates, force, routed=device is not None, to_qasm=qasm is not None)
+    streamed = device is None and (qasm is not None or predict_size(s, p, options).gates >= STREAM_ABOVE_GATES)
+    size = _guard(s, p, options, max_gates, force, streamed=streamed)
+    need = compile_need(s, p, options, streamed=streamed, size=size)
+    if not as_json and need.seconds is not None and need.seconds > NOTE_ABOVE_SECONDS:
+        echo_note(f"note: {need.what}: predicted to run for about {format_duration(need.seconds)}, peak "
+                  f"{need.bytes / 1e9:.1f} GB of memory")  # fmt: skip
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
@@ -434,14 +463,15 @@ def _routed(
 
 
 def _guard(
-    s: Scenario, p: int, options: PlanOptions, max_gates: int | None, force: bool, *, routed: bool, to_qasm: bool
+    s: Scenario, p: int, options: PlanOptions, max_gates: int | None, force: bool, *, streamed: bool
 ) -> SizePrediction:
     """The predicted size; unless ``force``, refuse (one line, exit 2) a circuit predicted to exceed ``max_gates``
     lowered gates or, without ``max_gates``, one that would not fit in memory or would run for hours
-    (:func:`qcpp.estimators.guard.check_size`, lifted by ``--allow-large``)."""
-    streamed = not routed and (to_qasm or predict_size(s, p, options).gates >= STREAM_ABOVE_GATES)
+    (:func:`qcpp.estimators.guard.check_size`). Only ``--force`` lifts it: ``--allow-large`` (the grid and layer
+    limits) does not, so a grid past 50x50 is still refused when its compile would not fit or would run for hours."""
     override = "raise it with --max-gates N, or pass --force"
-    return check_size(s, p, options, max_gates, override, force, streamed=streamed)
+    with lifted_limits(False):
+        return check_size(s, p, options, max_gates, override, force, streamed=streamed, allow_large_hint="pass --force")
 
 
 def _stream(
@@ -480,7 +510,7 @@ def _stream(
         if walks > 1:
             progress.update(0, progress.done)  # the first pass counted every gate: the total, known now
         if qasm is not None:
-            progress.stage(("collecting symbols" if walks == 1 else "writing OpenQASM") + f" (pass {walks} / 2)")
+            progress.stage(f"pass {walks} / 2: " + ("collecting symbols" if walks == 1 else "writing OpenQASM"))
         for sec in plan.emit_sections(lowered):
             out = Circuit(registers, [sec]).bind(bindings).sections[0] if bindings else sec
             yield out
