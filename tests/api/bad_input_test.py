@@ -126,6 +126,18 @@ def test_estimate_settings_give_the_cli_s_reason() -> None:
     assert error_of(lambda: qcpp.estimate(S, depth="deep"), qcpp.OptionError).startswith("depth: expected auto or")
 
 
+def test_a_qec_scheme_the_qubit_model_lacks_is_refused_before_the_qdk() -> None:
+    """floquet_code on a gate-based model: one line naming both and the compatible models, in the CLI and the API
+    alike (the QDK's own error was ``InvalidFaultToleranceProtocol``)."""
+    cli = cli_error("estimate", "--grid", "3x3", "--physical", "--qec-scheme", "floquet_code")
+    assert cli == ("--qec-scheme: floquet_code needs a Majorana qubit model (--qubit-model qubit_maj_ns_e4 or "
+                   "qubit_maj_ns_e6), got qubit_gate_ns_e3")  # fmt: skip
+    api = error_of(lambda: qcpp.estimate(S, physical=True, qec_scheme="floquet_code"), qcpp.OptionError)
+    assert api == cli.replace("--qubit-model", "qubit_model").replace("--qec-scheme", "qec_scheme")
+    est = qcpp.estimate(S, physical=True, qubit_model="qubit_maj_ns_e4", qec_scheme="floquet_code")
+    assert est.physical_qubits > 0 and "floquet_code" in est.physical_model
+
+
 @pytest.mark.parametrize(
     ("call", "start"),
     [

@@ -43,6 +43,7 @@ from qcpp.estimators.physical import (
     QUBIT_MODELS,
     LogicalCounts,
     PhysicalEstimate,
+    model_scheme_error,
     physical_estimate,
 )
 from qcpp.gadgets.blocks import XLayerKind
@@ -158,6 +159,9 @@ def checked_estimate_options(
         ("qubit_model", qubit_model, QUBIT_MODELS), ("qec_scheme", qec_scheme, QEC_SCHEMES),
     ):  # fmt: skip
         check_choice(value, allowed, flag(name))
+    pair = model_scheme_error(qubit_model, qec_scheme, flag("qubit_model"))
+    if pair is not None:  # before the QDK is called, which would fail with its own error name
+        raise OptionError(flag("qec_scheme"), pair)
     if not isinstance(physical, bool):
         raise OptionError(flag("physical"), f"expected True or False, got {physical!r}")
     return EstimateOptions(

@@ -39,10 +39,12 @@ __all__ = [
     "DEFAULT_QUBIT_MODEL",
     "QEC_SCHEMES",
     "QUBIT_MODELS",
+    "SCHEME_MODELS",
     "LogicalCounts",
     "PhysicalEstimate",
     "PhysicalEstimateError",
     "estimator_params",
+    "model_scheme_error",
     "physical_estimate",
     "physical_from_result",
 ]
@@ -59,6 +61,29 @@ QUBIT_MODELS: tuple[str, ...] = (
 
 QEC_SCHEMES: tuple[str, ...] = ("surface_code", "floquet_code")
 """The estimator's predefined QEC schemes (``qdk.estimator.QECScheme``); ``floquet_code`` needs a Majorana model."""
+
+SCHEME_MODELS: dict[str, tuple[str, ...]] = {
+    "surface_code": QUBIT_MODELS,
+    "floquet_code": tuple(m for m in QUBIT_MODELS if m.startswith("qubit_maj_")),
+}
+"""The qubit models each QEC scheme supports (the estimator refuses ``floquet_code`` on a gate-based model:
+``InvalidFaultToleranceProtocol``); :func:`model_scheme_error` checks a pair before the estimator is called."""
+
+
+def model_scheme_error(qubit_model: str, qec_scheme: str, model_flag: str = "qubit_model") -> str | None:
+    """Why the estimator cannot use ``qec_scheme`` with ``qubit_model`` (naming both and the compatible models),
+    or ``None`` when it can (or when either is not a known name: the choice checks say so).
+
+    >>> model_scheme_error("qubit_gate_ns_e3", "floquet_code", "--qubit-model")
+    'floquet_code needs a Majorana qubit model (--qubit-model qubit_maj_ns_e4 or qubit_maj_ns_e6), got qubit_gate_ns_e3'
+    >>> model_scheme_error("qubit_maj_ns_e4", "surface_code") is None
+    True
+    """
+    allowed = SCHEME_MODELS.get(qec_scheme)
+    if allowed is None or qubit_model not in QUBIT_MODELS or qubit_model in allowed:
+        return None
+    return f"{qec_scheme} needs a Majorana qubit model ({model_flag} {' or '.join(allowed)}), got {qubit_model}"
+
 
 DEFAULT_QUBIT_MODEL = "qubit_gate_ns_e3"
 DEFAULT_QEC_SCHEME = "surface_code"
@@ -155,7 +180,8 @@ def physical_estimate(
         error_budget: total error budget, ``0 < error_budget < 1``.
 
     Raises:
-        ValueError: an unknown model or scheme, or a budget outside (0, 1).
+        ValueError: an unknown model or scheme, a scheme the model does not support (:data:`SCHEME_MODELS`), or a
+            budget outside (0, 1).
         PhysicalEstimateError: the estimator cannot meet the budget (its message, one line).
     """
     params = estimator_params(qubit_model, qec_scheme, error_budget)
@@ -174,7 +200,8 @@ def estimator_params(qubit_model: str, qec_scheme: str, error_budget: float) -> 
     """The QDK estimator's parameters for a model, every value checked.
 
     Raises:
-        ValueError: an unknown model or scheme, or a budget outside (0, 1).
+        ValueError: an unknown model or scheme, a scheme the model does not support (:data:`SCHEME_MODELS`), or a
+            budget outside (0, 1).
 
     >>> estimator_params("qubit_gate_ns_e3", "surface_code", 1e-3)["qecScheme"]
     {'name': 'surface_code'}
@@ -183,6 +210,9 @@ def estimator_params(qubit_model: str, qec_scheme: str, error_budget: float) -> 
         raise ValueError(f"unknown qubit model {qubit_model!r} (expected one of {', '.join(QUBIT_MODELS)})")
     if qec_scheme not in QEC_SCHEMES:
         raise ValueError(f"unknown QEC scheme {qec_scheme!r} (expected one of {', '.join(QEC_SCHEMES)})")
+    pair = model_scheme_error(qubit_model, qec_scheme)
+    if pair is not None:
+        raise ValueError(pair)
     if not 0.0 < error_budget < 1.0:
         raise ValueError(f"error budget must be in (0, 1), got {error_budget!r}")
     return {"qubitParams": {"name": qubit_model}, "qecScheme": {"name": qec_scheme}, "errorBudget": error_budget}
