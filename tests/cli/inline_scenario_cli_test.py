@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 import qcpp
+from qcpp.estimators.tables import latex_header
 from qcpp.problem.scenario_io import load_scenario
 
 from .clirun import assert_one_line_error, run
@@ -237,17 +238,22 @@ def test_estimate_latex_is_a_booktabs_table_of_the_json_values() -> None:
     spec = re.fullmatch(r"\\begin\{tabular\}\{([rl]+)\}", lines[1])
     assert spec is not None
     assert lines[2] == r"\toprule" and lines[4] == r"\midrule" and lines[-2:] == [r"\bottomrule", r"\end{tabular}"]
-    header = [h.replace(r"\_", "_") for h in lines[3].removesuffix(r" \\").split(" & ")]
+    by_header = {latex_header(k): k for k in rows[0]}  # readable headers with units, one per column
+    header = [by_header[h] for h in lines[3].removesuffix(r" \\").split(" & ")]
+    assert {"rows", "cx", "paper_cx"} <= set(header) and lines[3].startswith("rows & cols & robots & $p$ & qubits")
     body = [line.removesuffix(r" \\").split(" & ") for line in lines[5:-2]]
     assert len(body) == len(rows) == 4
     for cells, row in zip(body, rows, strict=True):
         for name, cell in zip(header, cells, strict=True):
             value = row[name]
-            assert cell == (f"{value:.4g}" if isinstance(value, float) else str(value))
+            if isinstance(value, int) and not isinstance(value, bool):  # thousands grouped in plain LaTeX
+                assert cell.replace("{,}", "") == str(value) and (value < 1000) == ("{,}" not in cell), cell
+            else:
+                assert cell == (f"{value:.4g}" if isinstance(value, float) else str(value))
     for name, align in zip(header, spec.group(1), strict=True):
         assert align == ("l" if isinstance(rows[0][name], str) else "r"), name  # numbers right-aligned
     chosen = ok(*args, "--format", "latex", "--columns", "rows,cx,ratio_cx").splitlines()
-    assert chosen[1] == r"\begin{tabular}{rrr}" and chosen[3] == r"rows & cx & ratio\_cx \\"
+    assert chosen[1] == r"\begin{tabular}{rrr}" and chosen[3] == r"rows & CNOTs & CNOTs / paper \\"
 
 
 def test_formulas_come_as_latex_too() -> None:

@@ -105,8 +105,8 @@ def test_markdown_and_table(results) -> None:  # type: ignore[no-untyped-def]
         render(rows, "xml")  # type: ignore[arg-type]
     assert set(FORMATS) == {"table", "md", "csv", "json", "jsonl", "latex"}
     latex = render(rows, "latex").splitlines()
-    assert latex[3].startswith("rows & cols &")
-    assert latex[5].split(" & ")[MAIN_COLUMNS.index("cx")] == str(rows[0]["cx"])
+    assert latex[3].startswith("rows & cols & robots & $p$ & qubits & data qubits & ancillas & CNOTs &")
+    assert latex[5].split(" & ")[MAIN_COLUMNS.index("cx")] == f"{rows[0]['cx']:,}".replace(",", "{,}")
 
 
 def test_plot_is_written_atomically(results, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
@@ -221,7 +221,7 @@ def test_md_and_latex_mark_a_bound_csv_and_json_keep_the_number(bound_row) -> No
     md = render([bound_row], "md", columns=["rows", "depth", "two_qubit_depth"])
     assert md.splitlines()[2] == f"| 3 | <={d} | <={d2} |"
     latex = render([bound_row], "latex", columns=["rows", "depth"])
-    assert rf"3 & $\leq${d} \\" in latex and "see depth_kind" not in latex
+    assert rf"3 & $\leq${d:,} \\".replace(",", "{,}") in latex and "see depth_kind" not in latex
     row = next(csv.DictReader(io.StringIO(render([bound_row], "csv"))))
     assert (row["depth"], row["depth_kind"]) == (str(d), "bound")
     assert json.loads(render([bound_row], "json"))[0]["depth"] == d

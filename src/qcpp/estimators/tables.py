@@ -67,12 +67,15 @@ __all__ = [
     "FORMATS",
     "FT_COLUMNS",
     "FT_DROP_ORDER",
+    "LATEX_HEADERS",
     "MAIN_COLUMNS",
     "PAPER_COLUMNS",
     "PHYSICAL_COLUMNS",
     "PHYSICAL_DROP_ORDER",
     "Format",
     "latex_escape",
+    "latex_header",
+    "latex_number",
     "make_row",
     "make_rows",
     "render",
@@ -387,10 +390,77 @@ def _is_number(v: Any) -> bool:
     return v is None or (isinstance(v, (int, float)) and not isinstance(v, bool))
 
 
+LATEX_HEADERS: dict[str, str] = {
+    "p": "$p$",
+    "data_qubits": "data qubits",
+    "cx": "CNOTs",
+    "single_qubit": "1-qubit gates",
+    "two_qubit": "2-qubit gates",
+    "t": "T gates",
+    "two_qubit_depth": "2-qubit depth",
+    "rotation_depth": "rotation depth",
+    "depth_kind": "depth kind",
+    "toffoli": "Toffolis",
+    "ft_total_t": "T (FT model)",
+    "ft_rotations": "rotations (FT model)",
+    "ft_and": "ANDs (FT model)",
+    "ft_toffoli_full": "Toffolis (FT model)",
+    "ft_measurements": "measurements (FT model)",
+    "ft_t_per_rotation": "T per rotation (FT model)",
+    "ft_epsilon": "$\\epsilon$ (FT model)",
+    "ft_toffoli_t": "T per Toffoli (FT model)",
+    "ft_t_logic": "T of logic (FT model)",
+    "physical_qubits": "physical qubits",
+    "physical_runtime_s": "runtime (s)",
+    "physical_algorithm_qubits": "algorithm qubits (physical)",
+    "physical_t_factory_qubits": "T-factory qubits (physical)",
+    "physical_t_factories": "T factories",
+    "physical_t_states": "T states",
+    "physical_code_distance": "code distance",
+    "physical_model": "physical model",
+    "physical_depth_kind": "physical depth kind",
+    "paper_qubits": "paper qubits",
+    "paper_data_qubits": "paper data qubits",
+    "paper_cx": "paper CNOTs",
+    "paper_single_qubit": "paper 1-qubit gates",
+    "ratio_qubits": "qubits / paper",
+    "ratio_cx": "CNOTs / paper",
+    "ratio_single_qubit": "1-qubit gates / paper",
+    "duration_s": "duration (s)",
+}
+"""The ``latex`` format's header of a column, in LaTeX (:func:`latex_header`): what it counts, with its unit where it
+is not a count (``runtime (s)``)."""
+
+
+def latex_header(column: str) -> str:
+    r"""The ``latex`` header of ``column``: :data:`LATEX_HEADERS`, else its name with spaces for underscores.
+
+    >>> latex_header("physical_runtime_s"), latex_header("routed_twoq")
+    ('runtime (s)', 'routed twoq')
+    """
+    return LATEX_HEADERS.get(column) or latex_escape(column.replace("_", " "))
+
+
+def latex_number(v: Any) -> str:
+    r"""A number as a ``latex`` cell: thousands grouped with ``{,}`` (plain LaTeX, no package), a float below
+    1,000 to 4 significant digits; ``None`` is empty, anything else escaped text.
+
+    >>> latex_number(13267530), latex_number(0.02615), latex_number(12345.6), latex_number(0.5), latex_number(None)
+    ('13{,}267{,}530', '0.02615', '12{,}346', '0.5', '')
+    """
+    if v is None:
+        return ""
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return latex_escape(str(v))
+    text = f"{v:,}" if isinstance(v, int) else f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
+    return text.replace(",", "{,}")
+
+
 def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None = None) -> str:
     r"""Rows as a LaTeX ``tabular`` with booktabs rules (``\usepackage{booktabs}``): the columns of the ``md``
-    format (or ``columns``), numbers right-aligned, text left-aligned, LaTeX's special characters escaped, an upper
-    bound marked ``$\leq$`` in its cell.
+    format (or ``columns``) under readable headers with units (:func:`latex_header`), numbers right-aligned with
+    thousands grouped (:func:`latex_number`, plain LaTeX), text left-aligned, LaTeX's special characters escaped, an
+    upper bound marked ``$\leq$`` in its cell and an approximate figure ``$\sim$``.
 
     Args:
         rows: rows from :func:`make_rows`.
@@ -400,18 +470,18 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
         The text (ending with a newline).
 
     Example:
-        >>> rows = [{"rows": 3, "cols": 3, "cx": 106, "depth_kind": "exact"}]
+        >>> rows = [{"rows": 30, "cols": 30, "cx": 1379440, "depth_kind": "exact"}]
         >>> print(render_latex(rows, ["rows", "cx", "depth_kind"]), end="")
         % qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound); needs \usepackage{booktabs}
         \begin{tabular}{rrl}
         \toprule
-        rows & cx & depth\_kind \\
+        rows & CNOTs & depth kind \\
         \midrule
-        3 & 106 & exact \\
+        30 & 1{,}379{,}440 & exact \\
         \bottomrule
         \end{tabular}
         >>> print(render_latex([{"depth": 9087, "depth_kind": "bound"}], ["depth"]).splitlines()[5])
-        $\leq$9087 \\
+        $\leq$9{,}087 \\
     """
     cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
@@ -422,10 +492,10 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
         + r"); needs \usepackage{booktabs}",
         r"\begin{tabular}{" + align + "}",
         r"\toprule",
-        " & ".join(latex_escape(c) for c in cols) + r" \\",
+        " & ".join(latex_header(c) for c in cols) + r" \\",
         r"\midrule",
     ]
-    out += [" & ".join(_mark(r, c, r"$\leq$").replace(APPROX_MARK, r"$\sim$") + latex_escape(_cell(r.get(c)))
+    out += [" & ".join(_mark(r, c, r"$\leq$").replace(APPROX_MARK, r"$\sim$") + latex_number(r.get(c))
                        for c in cols) + r" \\" for r in rows]  # fmt: skip
     out += [r"\bottomrule", r"\end{tabular}"]
     return "\n".join(out) + "\n"
