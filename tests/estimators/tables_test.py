@@ -234,3 +234,23 @@ def test_the_hidden_columns_note_says_what_each_format_keeps(results) -> None:  
     md_header = render(rows, "md").splitlines()[0].strip("| ").split(" | ")
     assert md_header == list(MAIN_COLUMNS)  # every table column, no more
     assert len(next(csv.reader(io.StringIO(render(rows, "csv"))))) > len(MAIN_COLUMNS)
+
+
+def test_plot_draws_points_from_a_depth_bound_hollow_and_says_so() -> None:
+    """A physical figure computed from a depth bound is approximate: hollow marker, legend entry; exact rows have
+    neither."""
+    from qcpp.estimators.plots import BOUND_LABEL, draw_rows
+
+    def rows(kinds: list[str]) -> list[dict]:
+        return [{"rows": n, "cols": n, "robots": 1, "p": 1, "rule": "exact", "physical_qubits": 1000 * n,
+                 "physical_depth_kind": kind} for n, kind in zip((3, 6, 10), kinds, strict=True)]  # fmt: skip
+
+    def hollow_and_legend(fig) -> tuple[int, list[str]]:  # type: ignore[no-untyped-def]
+        ax = fig.axes[0]
+        hollow = sum(len(line.get_xdata()) for line in ax.get_lines() if line.get_markerfacecolor() == "white")
+        return hollow, [t.get_text() for t in fig.legends[0].get_texts()]
+
+    hollow, legend = hollow_and_legend(draw_rows(rows(["exact", "bound", "bound"]), "physical_qubits"))
+    assert hollow == 2 and BOUND_LABEL in legend
+    hollow, legend = hollow_and_legend(draw_rows(rows(["exact"] * 3), "physical_qubits"))
+    assert hollow == 0 and BOUND_LABEL not in legend

@@ -8,7 +8,9 @@ What the plot shows depends on what the rows vary (the reading that needs no leg
 * one grid size and several ``p``: the metric against ``p``, one curve per robot count, one panel;
 * one grid and one ``p``: the metric against the robot count.
 
-Every row is its own point. Grids of one size but different shapes (``2x6``, ``3x4``, ``4x3``) need different
+Every row is its own point; a point that is not exact because a depth bound stood for the depth (a ``bound``
+depth, or a physical figure computed from one, marked ``<=`` or ``~`` in the table) is drawn hollow, and the legend
+says so (:data:`BOUND_LABEL`). Grids of one size but different shapes (``2x6``, ``3x4``, ``4x3``) need different
 circuits, so a curve that holds several of them is drawn as points alone, without a line (it would zigzag between
 the shapes), and the axis label says so.
 
@@ -47,7 +49,11 @@ from qcpp.estimators.paper import paper_estimate
 from qcpp.io.atomic import save_figure_atomic
 from qcpp.io.caches import use_writable_matplotlib_config
 
-__all__ = ["PLOT_METRICS", "PlotMetric", "draw_rows", "plot_metric", "plot_rows"]
+__all__ = ["BOUND_LABEL", "PLOT_METRICS", "PlotMetric", "draw_rows", "from_depth_bound", "plot_metric", "plot_rows"]
+
+BOUND_LABEL = "hollow: from a depth bound"
+"""The legend entry of the hollow markers: points not exact because a depth bound stood for the depth
+(:func:`from_depth_bound`; the table marks the same cells ``~`` or ``<=``)."""
 
 Needs = Literal["physical", "device", "depth"]
 
@@ -125,19 +131,40 @@ def _paper_value(row: dict[str, Any], column: str) -> float:
     return float(getattr(est, column.removeprefix("paper_")))
 
 
-def _series(rows: Sequence[dict[str, Any]], x: str, value: Any) -> dict[int, tuple[list[float], list[float]]]:
-    """robots -> (xs, ys): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), one point per row, in
-    order of ``x`` (then of the grid's rows: ``2x6`` before ``3x4``)."""
-    acc: dict[int, list[tuple[float, int, float]]] = defaultdict(list)
+def _series(
+    rows: Sequence[dict[str, Any]], x: str, value: Any, column: str | None = None
+) -> dict[int, tuple[list[float], list[float], list[bool]]]:
+    """robots -> (xs, ys, from_bound): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), one point per
+    row, in order of ``x`` (then of the grid's rows: ``2x6`` before ``3x4``); ``from_bound`` says which points of
+    ``column`` come from a depth bound (:func:`from_depth_bound`)."""
+    acc: dict[int, list[tuple[float, int, float, bool]]] = defaultdict(list)
     for r in rows:
         y = value(r)
         if y is None:
             continue
         key = 0 if x == "robots" else r["robots"]  # against robots: one curve
         at = r["rows"] * r["cols"] if x == "nodes" else r[x]
-        acc[key].append((at, r["rows"], float(y)))
+        acc[key].append((at, r["rows"], float(y), column is not None and from_depth_bound(r, column)))
     points = {k: sorted(v) for k, v in sorted(acc.items())}
-    return {k: ([a for a, _, _ in v], [y for _, _, y in v]) for k, v in points.items()}
+    return {k: ([a for a, _, _, _ in v], [y for _, _, y, _ in v], [b for *_, b in v]) for k, v in points.items()}
+
+
+def from_depth_bound(row: dict[str, Any], column: str) -> bool:
+    """Whether ``row``'s ``column`` is not exact because a depth bound stands for the depth: the depth itself (an
+    upper bound) or a physical figure computed from it (approximate); drawn as a hollow marker.
+
+    >>> from_depth_bound({"physical_qubits": 9, "physical_depth_kind": "bound"}, "physical_qubits")
+    True
+    >>> from_depth_bound({"depth": 9, "depth_kind": "exact"}, "depth"), from_depth_bound({"cx": 9}, "cx")
+    (False, False)
+    """
+    from qcpp.estimators.tables import APPROXIMATE_BY, BOUNDED_BY
+
+    if row.get(column) is None:
+        return False
+    if column in BOUNDED_BY:
+        return row.get(BOUNDED_BY[column]) == "bound"
+    return column in APPROXIMATE_BY and row.get(APPROXIMATE_BY[column]) != "exact"
 
 
 def _shares_x(xs: Sequence[float]) -> bool:
@@ -212,19 +239,25 @@ def draw_rows(
         values += [_paper_value(r, paper) for r in sel]
     positive = [v for v in values if v > 0]
     log_y = bool(positive) and len(positive) == len(values) and max(positive) >= 20 * min(positive)
+    approximate = False  # a hollow marker drawn: the legend says what it means
     for ax, p in zip(axes, panels):
         here = [r for r in sel if p is None or r["p"] == p]
-        ours = _series(here, x, lambda r: r.get(m.column))
+        ours = _series(here, x, lambda r: r.get(m.column), m.column)
         theirs = _series(here, x, lambda r: _paper_value(r, paper)) if paper is not None else {}
         shared = False  # a curve with two grids of one size: drawn as points
-        for i, (k, (xs, ys)) in enumerate(ours.items()):
+        for i, (k, (xs, ys, bound)) in enumerate(ours.items()):
             colour = colours[i % len(colours)]
             who = _robots(k) if x != "robots" else ""
             ours_label = ", ".join(filter(None, ("ours" if paper else "", who))) or "qcpp"
             ax.plot(xs, ys, _style(xs, "o-"), ms=4, color=colour, label=ours_label)
+            if any(bound):  # not exact: hollow markers over the filled ones
+                bx = [a for a, b in zip(xs, bound) if b]
+                by = [y for y, b in zip(ys, bound) if b]
+                ax.plot(bx, by, "o", ms=4, color=colour, markerfacecolor="white", zorder=3)
+                approximate = True
             shared |= _shares_x(xs)
             if k in theirs:
-                pxs, pys = theirs[k]
+                pxs, pys, _ = theirs[k]
                 ax.plot(pxs, pys, _style(pxs, "x--"), ms=5, color=colour, alpha=0.75,
                         label=", ".join(filter(None, ("paper", who))))
         apart = "\nseveral grids of one size: a point each" if shared else ""
@@ -250,6 +283,11 @@ def draw_rows(
     legend_title = m.column + (f" [{m.unit}]" if m.unit else "")
     # beside the panels, never over a point (inside, matplotlib's "best" spot still covers points in a corner)
     handles, labels = axes[0].get_legend_handles_labels()
+    if approximate:
+        from matplotlib.lines import Line2D
+
+        handles.append(Line2D([], [], ls="", marker="o", ms=4, color="0.3", markerfacecolor="white"))
+        labels.append(BOUND_LABEL)
     fig.legend(handles, labels, loc="outside right upper", fontsize=7, title=legend_title, title_fontsize=7,
                ncol=2 if len(handles) > 16 else 1)  # fmt: skip
     fig.suptitle(f"{m.label}{_where(sel, x, layers)}" + (f", rule {rule}" if rule != "exact" else ""))
