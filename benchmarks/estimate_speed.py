@@ -17,7 +17,8 @@ included. Prints one table with the speed and memory goals:
 * ``qcpp estimate --grid 30x30 --robots 8 -p 3 --json``: < 5 s wall, < 1 GB peak;
 * ``qcpp estimate --grid 2x2..40x40 --robots 1..8 -p 1..5 --format csv`` (60,840 requested rows; grids too
   small for the robots are skipped): < 120 s, with the time to the first row (rows stream out as computed);
-* ``qcpp compile`` of a 40x40 / 8 robots / p = 5 scenario: refused within 10 s, one line, exit 2;
+* ``qcpp compile`` of a 50x50 / 8 robots / p = 40 scenario (predicted over an hour): refused within 10 s, one line,
+  exit 2; and the prediction for 40x40 / 8 robots / p = 5, which the guard lets run (printed, not run: minutes);
 * counts from gadgets == counts of the compiled circuit (:mod:`qcpp.estimators.crosscheck`): 0 mismatches, on every
   cross-check case (``--quick``: the sample the default test run uses), on all cores (minutes).
 """
@@ -35,6 +36,7 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from qcpp.estimators.crosscheck import crosscheck, crosscheck_cases
+from qcpp.estimators.guard import compile_need
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario_io import save_scenario
 
@@ -161,13 +163,14 @@ def main(argv: list[str]) -> int:
     rows.append(("estimate 2x2..40x40 / 1..8 / p=1..5 csv", f"{wall:.1f} s", f"{rss:.2f} GB", "< 120 s", ok))
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "big.toml"
-        save_scenario(default_scenario(40, 40, 8), path)
-        wall, rss, _, code, out, err = _run(["compile", str(path), "-p", "5", "--lowered", "--qasm", f"{tmp}/o.qasm"])
+        save_scenario(default_scenario(50, 50, 8), path)
+        wall, rss, _, code, out, err = _run(["compile", str(path), "-p", "40", "--lowered", "--qasm", f"{tmp}/o.qasm"])
     lines = err.strip().splitlines()
     ok = code == 2 and wall < 10 and len(lines) == 1
-    rows.append(("compile 40x40 / 8 robots / p=5 (refused)", f"{wall:.2f} s", f"{rss:.2f} GB", "< 10 s, exit 2, 1 line",
-                 ok))  # fmt: skip
+    rows.append(("compile 50x50 / 8 robots / p=40 (refused)", f"{wall:.2f} s", f"{rss:.2f} GB",
+                 "< 10 s, exit 2, 1 line", ok))  # fmt: skip
     refusal = lines[0] if lines else ""
+    runs = compile_need(default_scenario(40, 40, 8), 5, streamed=True)  # what `qcpp compile ... --qasm` predicts
     t0 = time.perf_counter()
     cases = list(crosscheck_cases(full=not quick))
     with ProcessPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
@@ -184,6 +187,7 @@ def main(argv: list[str]) -> int:
     print()
     print(f"sweep: {note}")
     print(f"refusal: {refusal}")
+    print(f"runs: compile 40x40 / 8 robots / p=5 --lowered --qasm: {runs.what}, predicted {runs.describe()}")
     print(f"cross-check: {len(mismatches)} mismatches over {len(cases)} cases" + ("" if not quick else " (--quick)"))
     for m in mismatches[:10]:
         print("  " + m)

@@ -4,15 +4,18 @@ Run: ``python benchmarks/ft_vs_qdk.py [--quick]`` (``--quick``: 3x3/1 only). Mod
 error budget 1e-3 (the defaults of ``qcpp estimate --physical``); circuits: default scenarios at p = 1, targets
 nisq and ft, angles gamma_0 = 0.3, beta_0 = 0.7.
 
-Three estimates of each circuit (:mod:`qcpp.estimators.qdk_reading`):
+Four estimates of each circuit (:mod:`qcpp.estimators.qdk_reading`):
 
 * **qcpp**: ``qcpp estimate --physical`` (its logical counts, exact depths, handed to the QDK estimator);
-* **QDK, file**: the QDK reading the OpenQASM 3 file ``qcpp compile --bind`` writes (ANDs and their uncomputes
-  written unitarily, no measurement);
+* **QDK, file (--bind)**: the QDK reading the OpenQASM 3 file ``qcpp compile --bind`` writes (high level: the
+  multi-controlled gates as qcpp's gate definitions, which the QDK decomposes its own way; ANDs and their
+  uncomputes written unitarily, no measurement);
+* **QDK, file (--lowered --bind)**: the QDK reading the file ``qcpp compile --lowered --bind`` writes (qcpp's own
+  decomposition into {cx, x, h, rz, t, tdg, s, sdg}: the gate counts of qcpp's tables);
 * **QDK, logical-AND**: the QDK reading the same circuit written in the logical-AND model
   (:func:`~qcpp.estimators.qdk_reading.logical_and_qasm`: AND = ``ccx``, uncompute by measurement, data read out).
 
-Table 1: per term, qcpp / QDK (logical-AND) and qcpp / QDK (file), min..max over the circuits. Table 2: every
+Table 1: per term, qcpp / QDK (logical-AND) and qcpp / QDK (each file), min..max over the circuits. Table 2: every
 figure. Table 3: the QDK estimator fed qcpp's counts with only the rotation depth replaced by the QDK's, against
 the QDK's own estimate of the logical-AND text: the rotation depth is then the whole difference. Table 4: the QDK's
 rotation-depth rule re-implemented in Python (:func:`~qcpp.estimators.qdk_reading.asap_rotation_depth`) on the
@@ -91,8 +94,8 @@ def _terms_of_reading(r: QdkReading) -> Terms:
     )  # fmt: skip
 
 
-def run(rows: int, cols: int, robots: int, target: str) -> tuple[Terms, Terms, Terms, dict[str, int]]:
-    """(qcpp, QDK file, QDK logical-AND) terms and the rotation-depth check of one circuit."""
+def run(rows: int, cols: int, robots: int, target: str) -> tuple[Terms, Terms, Terms, Terms, dict[str, int]]:
+    """(qcpp, QDK file, QDK logical-AND, QDK lowered file) terms and the rotation-depth check of one circuit."""
     plan = PlanOptions(target=target)  # type: ignore[arg-type]
     est = estimate_point(Point(rows, cols, robots, 1), EstimateOptions(plan=plan, depth="exact", physical=True))
     counts, ph = est.logical_counts, est.physical
@@ -104,6 +107,8 @@ def run(rows: int, cols: int, robots: int, target: str) -> tuple[Terms, Terms, T
     )  # fmt: skip
     circuit = compile_scenario(default_scenario(rows, cols, robots), 1, plan, bindings=ANGLES).circuit
     as_file = qdk_read(to_qasm3(circuit))
+    scenario = default_scenario(rows, cols, robots)
+    lowered_file = qdk_read(to_qasm3(compile_scenario(scenario, 1, plan, lowered=True, bindings=ANGLES).circuit))
     logical_and = qdk_read(logical_and_qasm(lower(circuit, basis=LOGICAL_BASIS)))
     swapped = physical_estimate(replace(counts, rotation_depth=logical_and.counts.rotation_depth))
     check = {
@@ -115,7 +120,7 @@ def run(rows: int, cols: int, robots: int, target: str) -> tuple[Terms, Terms, T
         "qdk_la_qubits": logical_and.physical.physical_qubits,
         "qdk_la_runtime_ns": round(logical_and.physical.runtime_s * 1e9),
     }
-    return ours, _terms_of_reading(as_file), _terms_of_reading(logical_and), check
+    return ours, _terms_of_reading(as_file), _terms_of_reading(logical_and), _terms_of_reading(lowered_file), check
 
 
 def _ratio(a: float, b: float) -> float:
@@ -139,21 +144,25 @@ def main() -> None:
             results.append((label, *run(rows, cols, robots, target)))
             print(f"[{label} done]", file=sys.stderr, flush=True)
 
-    print("| term | qcpp / QDK (logical-AND) | within 5% | qcpp / QDK (file) |")
-    print("|---|---:|---|---:|")
+    print("| term | qcpp / QDK (logical-AND) | within 5% | qcpp / QDK (file, --bind) | qcpp / QDK (file, --lowered "
+          "--bind) |")  # fmt: skip
+    print("|---|---:|---|---:|---:|")
     for key, name in TERM_NAMES.items():
-        la = [_ratio(getattr(o, key), getattr(q, key)) for _, o, _, q, _ in results]
-        fl = [_ratio(getattr(o, key), getattr(f, key)) for _, o, f, _, _ in results]
+        la = [_ratio(getattr(o, key), getattr(q, key)) for _, o, _, q, _, _ in results]
+        fl = [_ratio(getattr(o, key), getattr(f, key)) for _, o, f, _, _, _ in results]
+        lw = [_ratio(getattr(o, key), getattr(w, key)) for _, o, _, _, w, _ in results]
         ok = "yes" if all(abs(r - 1) <= 0.05 for r in la) else "no"
-        print(f"| {name} | {_span(la)} | {ok} | {_span(fl)} |")
+        print(f"| {name} | {_span(la)} | {ok} | {_span(fl)} | {_span(lw)} |")
 
     print()
     cols = ("qubits", "t_states", "rotation_depth", "measurements", "toffolis", "explicit_t", "cycles",
             "code_distance", "t_factories", "physical_qubits", "runtime_us")  # fmt: skip
     print("| circuit | estimate | " + " | ".join(TERM_NAMES[c] for c in cols) + " |")
     print("|---|---|" + "---:|" * len(cols))
-    for label, ours, as_file, logical_and, _ in results:
-        for who, t in (("qcpp", ours), ("QDK, logical-AND", logical_and), ("QDK, file", as_file)):
+    for label, ours, as_file, logical_and, lowered_file, _ in results:
+        readings = (("qcpp", ours), ("QDK, logical-AND", logical_and), ("QDK, file (--bind)", as_file),
+                    ("QDK, file (--lowered --bind)", lowered_file))  # fmt: skip
+        for who, t in readings:
             cells = [f"{getattr(t, c):,.0f}" if c == "runtime_us" else f"{getattr(t, c):,}" for c in cols]
             print(f"| {label} | {who} | " + " | ".join(cells) + " |")
 
