@@ -17,10 +17,16 @@ NEEDS = {"estimate": [], "export": [PAPER, "--format", "qubo", "--out", "-"]}
 """Arguments a command needs besides the option under test (default: the scenario file)."""
 
 
+def _integer(param: object) -> bool:
+    """An integer option, whatever its default (``--qasm-version``'s is ``None``: not given)."""
+    annotation = getattr(getattr(param, "type_descriptor", None), "annotation", None)
+    return isinstance(getattr(param, "default", None), int) or annotation is int
+
+
 def _cases() -> list[tuple[str, str, str, bool]]:
     commands = typer.main.get_command(app).commands  # type: ignore[attr-defined]
     return [
-        (name, param.opts[0], param.name, isinstance(param.default, int))
+        (name, param.opts[0], param.name, _integer(param))
         for name, command in commands.items()
         for param in command.params
         if param.param_type_name == "option"

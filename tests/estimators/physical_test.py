@@ -60,6 +60,10 @@ def test_bad_options(kwargs: dict) -> None:
 
 
 def test_estimator_refusals_are_value_errors_with_one_line() -> None:
-    with pytest.raises(PhysicalEstimateError) as info:
-        physical_estimate(COUNTS, qec_scheme="floquet_code")  # floquet needs Majorana qubits
-    assert isinstance(info.value, ValueError) and "\n" not in str(info.value)
+    with pytest.raises(ValueError, match="floquet_code needs a Majorana qubit model") as info:
+        physical_estimate(COUNTS, qec_scheme="floquet_code")  # refused before the QDK: it needs Majorana qubits
+    assert "\n" not in str(info.value) and "qubit_gate_ns_e3" in str(info.value)
+    with pytest.raises(PhysicalEstimateError) as qdk:  # the QDK's own refusal: no code distance reaches the budget
+        physical_estimate(COUNTS, error_budget=1e-30)
+    message = str(qdk.value)
+    assert isinstance(qdk.value, ValueError) and "\n" not in message and "QDK resource estimator" in message
