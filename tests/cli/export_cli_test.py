@@ -78,7 +78,7 @@ def test_without_dimod_bqm_says_what_to_install_and_the_rest_still_works(
     assert not out.exists()
     for fmt in ("ising", "qubo", "lp"):
         assert run("export", SCEN, "--format", fmt, "--out", str(out)).exit_code == 0
-    assert_one_line_error(run("solve", SCEN, "--method", "qubo"), "--method qubo", "pip install 'qcpp[annealing]'")
+    assert_one_line_error(run("solve", SCEN, "--method", "qubo"), "the qubo method", "pip install 'qcpp[annealing]'")
 
 
 def test_solve_qubo_finds_the_optimum_of_two_robots_4x4() -> None:
