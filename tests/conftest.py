@@ -129,10 +129,6 @@ SLOW_DEFAULT = frozenset(
         "tests/simulate/statevector_test.py::test_twenty_qubits",
         "tests/simulate/tensor_test.py::test_collapsed_ancilla_blocks_and_open_qubits_give_the_dense_amplitudes",
         "tests/api/bad_input_test.py::test_openqasm_2_of_an_unbound_circuit_names_the_symbols",
-        "tests/cli/bad_input_test.py::test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was"
-        "[estimate --grid 2x2 --plot /dev/full]",
-        "tests/cli/bad_input_test.py::test_bad_input_is_one_line_exit_2_and_leaves_everything_as_it_was"
-        "[solve ex.toml -m dfs --plot /dev/full]",
         "tests/cli/closed_stdout_test.py::test_broken_pipe_exits_quietly[estimate-json]",
         "tests/cli/closed_stdout_test.py::test_closed_stdout_exits_quietly[solve]",
         "tests/cli/estimate_cli_test.py::test_plot_is_written_atomically",
