@@ -188,6 +188,38 @@ def test_an_exception_the_signal_caused_is_reported_as_interrupted(monkeypatch: 
     assert res.exit_code == 130 and res.stderr == "interrupted\n" and res.stdout == ""
 
 
+def test_an_interrupt_while_typer_builds_the_context_is_reported(monkeypatch: pytest.MonkeyPatch) -> None:
+    """typer turns a ``KeyboardInterrupt`` outside the command (its lazy imports while it parses the options) into
+    a silent exit code 130; the group says ``interrupted`` then too (the trial's signal probe found exits 130 with
+    no line)."""
+    import threading
+
+    import typer
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import QcppTyper
+
+    def boom(value: bool) -> None:
+        if value:
+            interrupt._requested.append(signal.SIGINT)  # what the handler records before it raises
+            raise KeyboardInterrupt
+
+    app = QcppTyper()
+
+    @app.callback()
+    def top(flag: bool = typer.Option(False, "--boom", callback=boom)) -> None:
+        """A group option whose parsing is interrupted."""
+
+    @app.command("run")
+    def run_() -> None:
+        """A command."""
+
+    monkeypatch.setattr(interrupt, "_requested", [])
+    monkeypatch.setattr(interrupt, "_reported", threading.Event())
+    res = CliRunner().invoke(app, ["--boom", "run"])
+    assert res.exit_code == 130 and res.stderr == "interrupted\n" and res.stdout == ""
+
+
 @pytest.mark.heavy
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:

@@ -523,6 +523,10 @@ class QcppGroup(_TidyHelp, TyperGroup):
         except KeyboardInterrupt:
             report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
+        if rv == EXIT_INTERRUPTED and stop_requested():
+            # typer >= 0.2x turns a KeyboardInterrupt outside invoke (its lazy imports while it builds the
+            # context) into Exit(130), which standalone_mode=False returns silently: say it, as everywhere else
+            report_interrupted()
         sys.exit(rv if isinstance(rv, int) and not isinstance(rv, bool) else 0)
 
 
