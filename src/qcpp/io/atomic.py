@@ -14,7 +14,9 @@ The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every 
   reused, and is safe to delete.
 * **Existing non-regular files** (a device such as ``/dev/null`` or ``/dev/full``, a FIFO) are written straight
   to, never replaced. A FIFO must get a reader within :data:`FIFO_WAIT` seconds.
-* ``-`` means standard output.
+* ``-`` means standard output, and so do its names :data:`STDOUT_NAMES` (``/dev/stdout``, ...): written to the
+  process's standard output whatever it is redirected to (a terminal, a pipe or a regular file, which a rename
+  through ``/proc`` could not replace).
 * **Missing folders are not created**: writing ``out/x.qasm`` when ``out`` does not exist is an error (as for
   ``cp`` or a compiler's ``-o``), so a typo in a folder name never silently makes a new tree.
 * :func:`check_output` finds every unwritable place before the work starts: a missing folder, and a folder where
@@ -53,6 +55,7 @@ from typing import IO, Any, Literal
 
 __all__ = [
     "FIFO_WAIT",
+    "STDOUT_NAMES",
     "OutputError",
     "atomic_open",
     "check_output",
@@ -93,6 +96,10 @@ def _wrap(target: str, exc: OSError) -> OutputError:
     return exc if isinstance(exc, OutputError) else OutputError(target, _reason(exc), exc.errno)
 
 
+STDOUT_NAMES = frozenset({"/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"})
+"""Paths that name standard output: written as ``-`` is."""
+
+
 def _target_mode(path: str) -> int:
     try:
         return stat.S_IMODE(os.stat(path).st_mode)
@@ -118,7 +125,8 @@ def check_output(path: str | os.PathLike[str], *, figure: bool = False) -> None:
     straight to, is not probed.
 
     Args:
-        path: the destination as given by the user (``-`` is standard output and always fine).
+        path: the destination as given by the user (``-`` and :data:`STDOUT_NAMES` are standard output and always
+            fine).
         figure: ``path`` is an image for :func:`save_figure_atomic`: its suffix must name a format matplotlib
             writes (none: PNG).
 
@@ -134,7 +142,7 @@ def check_output(path: str | os.PathLike[str], *, figure: bool = False) -> None:
         cannot write /: it is a folder
     """
     target = os.fspath(path)
-    if target == "-":
+    if target == "-" or target in STDOUT_NAMES:
         return
     if not target:
         raise OutputError(target, "empty file name")
@@ -256,7 +264,7 @@ def atomic_open(path: str | os.PathLike[str], mode: Literal["w", "wb"] = "w") ->
         OutputError: the destination cannot be written (the message names ``path``).
     """
     target = os.fspath(path)
-    if target == "-":
+    if target == "-" or target in STDOUT_NAMES:
         with _stdout(mode) as f:
             yield f
         return

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from qcpp.errors import OptionError
-from qcpp.io.atomic import write_text_atomic
+from qcpp.io.atomic import STDOUT_NAMES, write_text_atomic
 from qcpp.io.inputs import InputError, read_bounded
 from qcpp.problem.cost_range import check_cost_range, check_phase_range
 from qcpp.problem.errors import ScenarioError
@@ -292,8 +292,9 @@ def scenario_to_toml(s: Scenario) -> str:
 def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
     """Save ``s`` as ``.toml`` or ``.json`` (by the suffix), atomically: the file is whole or absent.
 
-    An existing device or FIFO (``/dev/null``, ``/dev/stdout``, ``mkfifo``) is written straight to
-    (:func:`qcpp.io.atomic.write_text_atomic`), in TOML unless its name ends in ``.json``.
+    An existing device or FIFO (``/dev/null``, ``mkfifo``) and standard output (``/dev/stdout``, whatever it is
+    redirected to) are written straight to (:func:`qcpp.io.atomic.write_text_atomic`), in TOML unless the name
+    ends in ``.json``.
 
     Raises:
         qcpp.errors.OptionError: ``s`` is not a :class:`Scenario`.
@@ -306,7 +307,7 @@ def save_scenario(s: Scenario, path: str | os.PathLike[str]) -> None:
     p = Path(path)
     if p.suffix.lower() == ".json":
         text = json.dumps(scenario_to_dict(s), indent=2) + "\n"
-    elif p.suffix.lower() == ".toml" or _is_device(p):
+    elif p.suffix.lower() == ".toml" or _is_device(p) or str(p) in STDOUT_NAMES:
         text = scenario_to_toml(s)
     else:
         raise ScenarioError(str(p), "unknown file type (expected .toml or .json)")
