@@ -137,6 +137,41 @@ SLOW_DEFAULT = frozenset(
         "[compile--p 2-paper_3x3.toml]",
         "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak"
         "[solve--m dfs-3x5x3]",
+        "tests/io/caches_test.py::test_a_read_only_install_and_home_still_load_the_kernels",
+        "tests/cli/device_cli_test.py::test_compile_zero_start_says_so_in_json_and_text",
+        "tests/api/hardware_run_test.py::test_zero_start_off_offers_only_unitary_keeping_candidates_and_on_offers_and_chooses_cheaper_ones"
+        "[twoq]",
+        "tests/api/hardware_run_test.py::test_zero_start_off_offers_only_unitary_keeping_candidates_and_on_offers_and_chooses_cheaper_ones"
+        "[esp]",
+        "tests/api/hardware_run_test.py::test_a_zero_start_compile_decodes_to_feasible_paths_at_the_ideal_p_optimum",
+        "tests/verify/verify_report_test.py::test_the_gadget_method_agrees_with_the_state_method_on_every_one_robot_3x3_field",
+        "tests/compiler/first_phase_test.py::test_gamma_0_is_a_global_phase_on_a_basis_state[initial_path-2]",
+        "tests/compiler/first_phase_test.py::test_gamma_0_is_a_global_phase_on_a_basis_state[local_search-1]",
+        "tests/compiler/first_phase_test.py::test_a_superposition_of_paths_sees_gamma_0",
+        "tests/compiler/prefetch_test.py::test_a_compile_routing_its_balance_window_ahead_is_the_compile_without"
+        "[shape0-heavy-hex]",
+        "tests/cli/estimate_cli_test.py::test_output_fits_80_columns",
+        "tests/compiler/routing_qcec_test.py::test_qcec_proves_the_cells_placed_on_an_ibm_device_equal_to_their_logical_circuit",
+        "tests/cli/inline_scenario_cli_test.py::test_robots_given_one_by_one_are_the_scenario_the_api_builds[verify]",
+        "tests/compiler/routing_qcec_test.py::test_qcec_proves_the_native_circuit_a_named_device_gets_equal_to_its_logical_circuit"
+        "[google_willow]",
+        "tests/problem/explorability_test.py::test_smallest_split_is_documented",
+        "tests/compiler/prefetch_test.py::test_a_compile_routing_its_balance_window_ahead_is_the_compile_without"
+        "[shape1-grid]",
+        "tests/verify/verify_report_test.py::test_every_line_of_the_report_fits_80_columns_and_nothing_is_cut[exact]",
+        "tests/api/cli_equality_test.py::test_an_estimate_with_a_device_has_the_routed_columns_of_the_cli",
+        "tests/api/noisy_api_test.py::test_a_run_predicted_to_take_hours_is_refused_and_a_small_one_runs_with_progress",
+        "tests/estimators/routed_test.py::test_off_the_geometric_layout_the_bound_is_at_least_what_compile_routes"
+        "[2x3/1-ibm_fez]",
+        "tests/problem/explorability_test.py::test_component_count_is_symmetric[3x4]",
+        "tests/compiler/toolchains_test.py::test_a_routed_native_circuit_keeps_its_two_qubit_gates",
+        "tests/cli/stdin_scenario_test.py::test_a_pipeline_of_two_commands",
+        "tests/cli/locale_output_test.py::test_json_names_a_non_ascii_file_in_the_c_locale",
+        "tests/estimators/routed_test.py::test_the_layout_bound_is_at_least_what_compile_device_routes[2-3x3x1-grid]",
+        "tests/compiler/routed_mixers_test.py::test_compile_writes_the_chosen_circuit_and_routes_it_to_fewer",
+        "tests/compiler/known_state_test.py::test_same_state_from_zero_and_never_more_cx",
+        "tests/cli/device_cli_test.py::test_compile_medial_on_an_ibm_device_places_the_cells_or_says_they_do_not_embed",
+        "tests/compiler/routing_qcec_test.py::test_qcec_proves_routed_equal_to_unrouted[heavy-hex:5]",
         "tests/cli/interrupt_test.py::test_interrupting_a_single_process_command[15]",
         "tests/cli/interrupt_test.py::test_interrupting_a_single_process_command[2]",
         "tests/cli/interrupt_test.py::test_signal_stops_a_streaming_sweep_with_whole_rows[15]",
