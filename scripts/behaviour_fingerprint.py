@@ -46,8 +46,15 @@ COMPILES = [
     "examples/paper_3x3.toml -p 1 --device heavy-hex",
     "examples/paper_3x3.toml -p 1 --device ibm_fez",
     "examples/two_robots_4x4.toml -p 1 --device grid",
+    "examples/paper_3x3.toml -p 1 --device ibm_fez --optimize-for twoq",
+    "examples/paper_3x3.toml -p 1 --device ibm_fez --zero-start",
 ]
-SLOW = {"--grid 30x30 --robots 8 -p 3 --device grid", "examples/two_robots_4x4.toml -p 1 --device grid"}
+SLOW = {
+    "--grid 30x30 --robots 8 -p 3 --device grid",
+    "examples/two_robots_4x4.toml -p 1 --device grid",
+    "examples/paper_3x3.toml -p 1 --device ibm_fez --optimize-for twoq",
+    "examples/paper_3x3.toml -p 1 --device ibm_fez --zero-start",
+}
 
 
 def _scrub(value: object) -> object:
