@@ -474,7 +474,7 @@ def test_stages_that_change_quickly_write_at_most_one_line_per_interval(monkeypa
 def test_a_late_heartbeat_writes_nothing_after_the_work_ended(monkeypatch: pytest.MonkeyPatch) -> None:
     """The heartbeat passed its check, then the machine did not run it before ``__exit__`` gave up waiting
     (seen once under load: a progress line after ``interrupted``): its line is dropped, not printed last."""
-    from qcpp.cli import progress as progress_module
+    from qcpp.io import progress as progress_module
 
     monkeypatch.setattr(progress_module, "HEARTBEAT_JOIN_SECONDS", 0.01)
     stream = io.StringIO()

@@ -4,7 +4,7 @@
 Every one of them takes the same three kinds of value:
 
 * ``None`` or ``False`` (the default): nothing is reported;
-* ``True``: a progress line on stderr, as the command line writes on a pipe (:class:`qcpp.cli.progress.Progress`
+* ``True``: a progress line on stderr, as the command line writes on a pipe (:class:`qcpp.io.progress.Progress`
   in its ``lines`` form): nothing for the first second, then a line every few seconds
   (``QCPP_PROGRESS_INTERVAL``) with the counts, the stage and the elapsed time, and a last line when it ends. In a
   notebook the lines appear under the cell;
@@ -113,7 +113,7 @@ def reporting(
     if progress is None or progress is False:
         yield None
     elif progress is True:
-        from qcpp.cli.progress import Progress  # the command line's lines: one format for a log and a notebook
+        from qcpp.io.progress import Progress  # the command line's lines: one format for a log and a notebook
 
         with Progress(task, total=total, unit=unit, mode="lines", time_left=time_left) as bar:
             yield bar

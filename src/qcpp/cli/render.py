@@ -383,7 +383,7 @@ def _decoded(value: Any) -> Any:
 
 def echo_note(text: str) -> None:
     """``text`` on standard error, wrapped at spaces to the terminal's width
-    (:func:`qcpp.estimators.tables.terminal_width`); no word is cut."""
+    (:func:`qcpp.io.text.terminal_width`); no word is cut."""
     import textwrap
 
     import typer

@@ -231,7 +231,7 @@ def formula_report(fmt: Format = "table", width: int | None = None) -> str:
 
     Args:
         fmt: one of :data:`qcpp.estimators.tables.FORMATS`.
-        width: ``table`` only: the characters per line (default :func:`qcpp.estimators.tables.terminal_width`);
+        width: ``table`` only: the characters per line (default :func:`qcpp.io.text.terminal_width`);
             a longer formula continues on the next lines, as sympy's pretty printer breaks it.
 
     >>> json.loads(formula_report("json"))["formulas"]["partial_mixers"]

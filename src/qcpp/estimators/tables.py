@@ -48,7 +48,6 @@ import csv
 import difflib
 import io
 import json
-import shutil
 import sys
 import textwrap
 from collections.abc import Iterable, Iterator, Sequence
@@ -56,6 +55,7 @@ from typing import Any, Literal
 
 from qcpp.estimators.estimate import Estimate
 from qcpp.estimators.paper import Doubling, paper_estimate
+from qcpp.io.text import terminal_width
 from qcpp.ir.cost import Cost
 
 __all__ = [
@@ -532,11 +532,6 @@ PHYSICAL_DROP_ORDER: tuple[str, ...] = ("ft_rotations", "rotation_depth", "ft_to
 and no paper comparison: ``physical_qubits`` is never hidden, ``physical_runtime_s`` last (at 80 columns the
 scenario's columns, ``qubits``, ``cx`` and ``physical_qubits`` fit). A table that does not fit even so is printed
 as records."""
-
-
-def terminal_width() -> int:
-    """``$COLUMNS`` if set, else the width of the terminal on stdout, else 80."""
-    return shutil.get_terminal_size((80, 24)).columns
 
 
 def _rich_table(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> Any:

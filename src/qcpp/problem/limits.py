@@ -43,6 +43,7 @@ from collections.abc import Iterator
 from contextvars import ContextVar
 from dataclasses import dataclass
 
+from qcpp.io.text import format_duration
 from qcpp.problem.errors import ScenarioError
 
 __all__ = [
@@ -347,19 +348,3 @@ block to run it anyway
     if p > MAX_LAYERS and not large_allowed():
         lift = override or default_lift()
         raise SizeError(flag, f"{p:,} layers is over the limit of {MAX_LAYERS:,}; {lift} to run it anyway")
-
-
-def format_duration(seconds: float) -> str:
-    """A duration as people read it (in refusals and progress lines): ``12 s``, ``4 min``, ``2.5 h``, ``9 days``.
-
-    Example:
-        >>> format_duration(12.4), format_duration(250), format_duration(9000), format_duration(8e5)
-        ('12 s', '4 min', '2.5 h', '9 days')
-    """
-    if seconds < 120:
-        return f"{seconds:.0f} s"
-    if seconds < 7200:
-        return f"{seconds / 60:.0f} min"
-    if seconds < 2 * 86400:
-        return f"{seconds / 3600:.1f} h"
-    return f"{seconds / 86400:,.0f} days"

@@ -18,7 +18,7 @@ from qcpp.problem.sbf import LocalPicture, Rule
 from qcpp.problem.scenario import Scenario
 
 ProgressFn = Callable[[int, int], None]
-"""``progress(done, total)``: how far a check got (the CLI passes :meth:`qcpp.cli.progress.Progress.update`)."""
+"""``progress(done, total)``: how far a check got (the CLI passes :meth:`qcpp.io.progress.Progress.update`)."""
 
 TOLERANCE = 1e-9
 """Amplitudes at most this large (in modulus) count as zero; larger ones are compared to this precision."""
