@@ -208,6 +208,18 @@ def test_decode_counts_reads_paths_feasibility_and_cost_per_robot() -> None:
     assert qcpp.decode_counts(s, counts).p_optimum is None
 
 
+
+def test_an_outcome_with_no_shots_is_not_an_outcome() -> None:
+    """A counts file may list outcomes at 0 shots (a histogram over every bitstring): none was measured, so none is
+    an outcome, nor the best feasible one (an optimal path at 0 shots was reported as the best measured)."""
+    s = qcpp.grid_scenario(2, 3, robots=2)
+    indices, optimal = feasible_assignments(s)
+    n = s.num_variables
+    good, other = int(indices[optimal][0]), int(indices[~optimal][0])
+    d = qcpp.decode_counts(s, {format(good, f"0{n}b"): 0, format(other, f"0{n}b"): 4}, optimum=qcpp.solve(s))
+    assert [(o.bits, o.shots) for o in d.outcomes] == [(format(other, f"0{n}b"), 4)]
+    assert d.best is not None and d.best.shots == 4 and d.p_optimum == 0 and d.best_cost > qcpp.solve(s).cost.total
+
 class _BitArrayLike:  # what SamplerV2's result[0].data.meas offers
     def get_counts(self) -> dict[str, int]:
         return {"0101": 2}

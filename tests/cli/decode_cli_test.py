@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import pytest
@@ -113,3 +114,18 @@ def test_missing_or_bad_options_are_one_line() -> None:
                           "--top")  # fmt: skip
     assert_one_line_error(run("decode", str(ROOT / "examples" / "paper_3x3.toml"), "--counts", counts,
                               "--time-limit", "0"), "--time-limit")  # fmt: skip
+
+
+def test_an_endless_or_silent_counts_file_is_one_line(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``--counts /dev/zero`` read until the memory ran out, and a FIFO nobody writes to waited for ever: the file is
+    read as a scenario file is (:func:`qcpp.io.inputs.read_bounded`: bounded in size and in waiting)."""
+    from qcpp.cli.commands import decode
+
+    monkeypatch.setattr(decode, "MAX_COUNTS_BYTES", 1 << 16)  # /dev/zero stops after 64 KiB, not 256 MiB
+    assert_one_line_error(run("decode", *FIELD, "--counts", "/dev/zero", "--optimum", "-1"), "/dev/zero",
+                          "larger than")  # fmt: skip
+    monkeypatch.setattr("qcpp.io.inputs.INPUT_WAIT", 0.05)
+    fifo = tmp_path / "counts.json"
+    os.mkfifo(fifo)
+    assert_one_line_error(run("decode", *FIELD, "--counts", str(fifo), "--optimum", "-1"), str(fifo),
+                          "no process wrote to the FIFO")  # fmt: skip

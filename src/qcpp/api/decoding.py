@@ -77,7 +77,7 @@ class DecodedCounts:
     """Measured counts decoded (:func:`decode_counts`).
 
     Attributes:
-        outcomes: Every distinct outcome, most shots first (ties: by bits).
+        outcomes: Every distinct outcome measured (one shot or more), most shots first (ties: by bits).
         shots: The shots counted.
         feasible_share: The share of shots whose outcome is feasible.
         best: The feasible outcome of lowest cost (ties: most shots), or ``None`` where no shot was feasible.
@@ -173,6 +173,7 @@ def decode_counts(scenario: Scenario, counts: Any, *, optimum: Any = None) -> De
             raise OptionError("counts", f"shots of {key!r} must be a non-negative integer, got {shots!r}")
         value = _register(key, n)
         merged[value] = merged.get(value, 0) + int(shots)
+    merged = {v: k for v, k in merged.items() if k}  # an outcome listed at 0 shots was never measured
     total = sum(merged.values())
     if total == 0:
         raise OptionError("counts", "no shots")

@@ -35,7 +35,11 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.render import json_text
 
-__all__ = ["HELP", "OPTIMUM_SECONDS", "decode_command", "read_counts", "register"]
+__all__ = ["HELP", "MAX_COUNTS_BYTES", "OPTIMUM_SECONDS", "decode_command", "read_counts", "register"]
+
+MAX_COUNTS_BYTES = 256 << 20
+"""Largest counts file :func:`read_counts` reads (256 MiB: a million shots of a 100-qubit register is about 100 MiB
+as a list of bitstrings)."""
 
 OPTIMUM_SECONDS = 10.0
 """CP-SAT's default time for the optimum (``--time-limit``): without a proof by then, no P(optimum)."""
@@ -74,9 +78,12 @@ def _key_problem(key: str, n: int) -> str | None:
 def read_counts(path: Path, num_bits: int) -> dict[str, int]:
     """The counts in a JSON file (see the module docstring), checked against a data register of ``num_bits``.
 
+    The file is read as a scenario file is (:func:`qcpp.io.inputs.read_bounded`): at most
+    :data:`MAX_COUNTS_BYTES`, and a FIFO, pipe or device that sends nothing for a few seconds is refused.
+
     Raises:
-        ValueError: one line starting with the file's name: unreadable, not JSON, not counts, a key that is
-            not a bitstring of ``num_bits`` bits (or a hexadecimal register value), a count that is not a
+        ValueError: one line starting with the file's name: unreadable, too large, not JSON, not counts, a key
+            that is not a bitstring of ``num_bits`` bits (or a hexadecimal register value), a count that is not a
             non-negative integer, or no shots.
 
     Example:
@@ -86,10 +93,18 @@ def read_counts(path: Path, num_bits: int) -> dict[str, int]:
         >>> read_counts(f, 2)
         {'01': 2, '10': 1}
     """
+    from qcpp.io.inputs import InputError, read_bounded
+
     try:
-        text = path.read_text(encoding="utf-8")
+        raw = read_bounded(path, MAX_COUNTS_BYTES)  # bounded: /dev/zero or a silent FIFO must not hang or fill memory
+    except InputError as e:
+        raise ValueError(f"{path}: cannot read the file: {e.reason}") from None
     except OSError as e:
         raise ValueError(f"{path}: cannot read the file ({e.strerror or e})") from None
+    if len(raw) > MAX_COUNTS_BYTES:
+        raise ValueError(f"{path}: the file is larger than {MAX_COUNTS_BYTES >> 20} MiB; not counts")
+    try:
+        text = raw.decode("utf-8-sig")  # a leading byte order mark is not content
     except UnicodeDecodeError:
         raise ValueError(f"{path}: not a text file (expected JSON counts)") from None
     try:
