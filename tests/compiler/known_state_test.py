@@ -1,10 +1,10 @@
 """A routed circuit simplified for the all-|0> start (:mod:`qcpp.routing.known_state`).
 
-Evidence: on random circuits of ``cx``, ``x``, ``h``, ``rz``, ``t`` and SWAPs (hypothesis) and on placement-search
-routings of the one-robot 2x3 and 3x3 circuits on heavy-hex:3, the simplified circuit prepares the same state from
-|0...0> as the input (statevector), keeps the layouts and section names and has no more ``cx``; on the routings it
-removes many (the robots' start is a basis state). A circuit with a superposition on every control keeps every
-``cx``, and the doctests show a SWAP into |0> losing its third ``cx``.
+Evidence: on random circuits of ``cx``, ``x``, ``h``, ``rx``, ``rz``, ``s``, ``t``, ``cz``, ``rzz`` and SWAPs
+(hypothesis) and on placement-search routings of the one-robot 2x3 and 3x3 circuits on heavy-hex:3, the simplified
+circuit prepares the same state from |0...0> as the input (statevector), keeps the layouts and section names and has
+no more ``cx``; on the routings it removes many (the robots' start is a basis state). A circuit with a superposition
+on every control keeps every ``cx``, and the doctests show a SWAP into |0> losing its third ``cx``.
 """
 
 from __future__ import annotations
@@ -19,7 +19,8 @@ from hypothesis import strategies as st
 
 from qcpp.hardware.device import get_device
 from qcpp.ir.circuit import Circuit, Section
-from qcpp.ir.gates import Gate, cx, h, rz, t, x
+from qcpp.ir.gates import Gate, cx, cz, h, rx, rz, rzz, t, x
+from qcpp.ir.gates import s as s_gate
 from qcpp.layout.placement_search import search_route
 from qcpp.plan.compile import compile_scenario
 from qcpp.plan.options import PlanOptions
@@ -48,21 +49,25 @@ def _cx_count(c: Circuit) -> int:
 
 _N = 4
 _gate = st.one_of(
-    st.tuples(st.sampled_from(["x", "h", "t"]), st.integers(0, _N - 1)),
-    st.tuples(st.just("rz"), st.integers(0, _N - 1)),
-    st.tuples(st.sampled_from(["cx", "swap"]), st.integers(0, _N - 1), st.integers(1, _N - 1)),
+    st.tuples(st.sampled_from(["x", "h", "t", "s", "rz", "rx"]), st.integers(0, _N - 1)),
+    st.tuples(st.sampled_from(["cx", "swap", "cz", "rzz"]), st.integers(0, _N - 1), st.integers(1, _N - 1)),
 )
 
 
 def _build(spec: list[tuple]) -> list[Gate]:
+    """The gates of ``spec``: every kind :func:`from_zero` tells apart (``x``; one-qubit diagonal ``t``, ``s``,
+    ``rz``; other one-qubit ``h``, ``rx``; ``cx`` and SWAPs of three; two-qubit diagonal ``cz``, ``rzz``)."""
     gates: list[Gate] = []
     for item in spec:
         name, a = item[0], item[1]
-        if name in ("cx", "swap"):
+        if len(item) == 3:
             b = (a + item[2]) % _N
-            gates += [cx(a, b)] if name == "cx" else [cx(a, b), cx(b, a), cx(a, b)]
+            two = {"cx": [cx(a, b)], "swap": [cx(a, b), cx(b, a), cx(a, b)], "cz": [cz(a, b)],
+                   "rzz": [rzz(0.61, a, b)]}  # fmt: skip
+            gates += two[name]
         else:
-            gates.append({"x": x, "h": h, "t": t}[name](a) if name != "rz" else rz(0.37, a))
+            one = {"x": x(a), "h": h(a), "t": t(a), "s": s_gate(a), "rz": rz(0.37, a), "rx": rx(0.83, a)}
+            gates.append(one[name])
     return gates
 
 
@@ -87,6 +92,28 @@ def test_a_cx_on_a_basis_state_control_becomes_x_or_goes() -> None:
     assert [(g[0], g[1]) for g in from_zero(r).circuit.gates] == [("x", (0,)), ("x", (1,)), ("h", (2,)),
                                                                    ("x", (2,))]  # fmt: skip
 
+
+@pytest.mark.parametrize(
+    ("gates", "last"),
+    [
+        # cx 0 1 onto |0> relates x1 = x0; an x on either side flips the relation, so cx 1 0 leaves 0 in |1>
+        ([h(0), cx(0, 1), x(0), cx(1, 0), cx(0, 3)], ("x", (3,))),
+        ([h(0), cx(0, 1), x(1), cx(1, 0), cx(0, 3)], ("x", (3,))),
+        # the relation goes when 1 changes otherwise (cx 2 1 from a superposition; h on 1) or 0 does (h on 0)
+        ([h(0), cx(0, 1), h(2), cx(2, 1), cx(1, 0), cx(0, 3)], ("cx", (0, 3))),
+        ([h(0), cx(0, 1), h(1), cx(1, 0), cx(0, 3)], ("cx", (0, 3))),
+        ([h(0), cx(0, 1), h(0), cx(1, 0), cx(0, 3)], ("cx", (0, 3))),
+    ],
+)
+def test_a_relation_between_two_qubits_holds_while_neither_changes_otherwise(
+    gates: list[Gate], last: tuple[str, tuple[int, ...]]
+) -> None:
+    """The relations the random circuits rarely build and then break: a stale one would drop the last ``cx``."""
+    r = _routed(gates, 4)
+    z = from_zero(r)
+    *_, final = z.circuit.gates
+    assert (final[0], final[1]) == last
+    assert np.allclose(simulate_statevector(z.circuit), simulate_statevector(r.circuit), atol=1e-9)
 
 @pytest.fixture(scope="module")
 def routings() -> list[RoutedCircuit]:
