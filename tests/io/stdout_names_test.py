@@ -24,3 +24,21 @@ def test_dev_stdout_redirected_to_a_file_gets_the_output(tmp_path: Path, args: l
                              timeout=120, check=False)  # fmt: skip
     assert run.returncode == 0, run.stderr
     assert out.read_text().splitlines()[0] == first_line
+
+
+@pytest.mark.parametrize("name", ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"])
+def test_every_name_of_standard_output_keeps_it_for_the_written_text(name: str) -> None:
+    """``--qasm /dev/stdout`` is ``--qasm -``: standard output holds the OpenQASM text only (the summary table went
+    there after it), and ``--json`` beside it is refused (JSON and OpenQASM were interleaved); the same for
+    ``export --out NAME --json``."""
+    from typer.testing import CliRunner
+
+    from qcpp.cli.app import app
+
+    res = CliRunner().invoke(app, ["compile", "--grid", "2x2", "--qasm", name])
+    assert res.exit_code == 0, res.output
+    assert res.stdout.startswith("OPENQASM 3.0;") and "time:" not in res.stdout and "time:" in res.stderr
+    for args in (["compile", "--grid", "2x2", "--qasm", name, "--json"],
+                 ["export", "--grid", "2x2", "--out", name, "--json"]):  # fmt: skip
+        res = CliRunner().invoke(app, args)
+        assert res.exit_code == 2 and res.stdout == "" and res.stderr.startswith("error: "), (args, res.output)

@@ -61,6 +61,7 @@ __all__ = [
     "check_output",
     "discard_pending",
     "figure_formats",
+    "is_stdout",
     "save_figure_atomic",
     "write_text_atomic",
 ]
@@ -98,6 +99,18 @@ def _wrap(target: str, exc: OSError) -> OutputError:
 
 STDOUT_NAMES = frozenset({"/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"})
 """Paths that name standard output: written as ``-`` is."""
+
+
+def is_stdout(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` is standard output: ``-`` or one of :data:`STDOUT_NAMES`. A command that writes a file there
+    keeps its own text off standard output (its summary on stderr, ``--json`` refused), whichever name was given.
+
+    Example:
+        >>> is_stdout("-"), is_stdout("/dev/stdout"), is_stdout("out.qasm")
+        (True, True, False)
+    """
+    target = os.fspath(path)
+    return target == "-" or target in STDOUT_NAMES
 
 
 def _target_mode(path: str) -> int:
@@ -142,7 +155,7 @@ def check_output(path: str | os.PathLike[str], *, figure: bool = False) -> None:
         cannot write /: it is a folder
     """
     target = os.fspath(path)
-    if target == "-" or target in STDOUT_NAMES:
+    if is_stdout(target):
         return
     if not target:
         raise OutputError(target, "empty file name")
@@ -264,7 +277,7 @@ def atomic_open(path: str | os.PathLike[str], mode: Literal["w", "wb"] = "w") ->
         OutputError: the destination cannot be written (the message names ``path``).
     """
     target = os.fspath(path)
-    if target == "-" or target in STDOUT_NAMES:
+    if is_stdout(target):
         with _stdout(mode) as f:
             yield f
         return
@@ -320,7 +333,7 @@ def save_figure_atomic(fig: Any, path: str | os.PathLike[str], **savefig: Any) -
     """``fig.savefig`` (format from the suffix, default PNG) into ``path``, whole or not at all."""
     target = Path(path)
     fmt = target.suffix[1:].lower() or "png"
-    if os.fspath(path) == "-":
+    if is_stdout(path):
         fmt = "png"
     with atomic_open(path, "wb") as f:
         fig.savefig(f, format=fmt, **savefig)

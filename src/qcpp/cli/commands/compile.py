@@ -62,7 +62,7 @@ from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, json_text, print_table
 from qcpp.estimators.guard import SizePrediction, check_size, compile_need, predict_size
-from qcpp.io.atomic import check_output
+from qcpp.io.atomic import check_output, is_stdout
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.lowering.qasm_profiles import Profile, check_profile, write_qasm_profile
@@ -244,9 +244,9 @@ def compile_command(
                 raise ValueError(f"{flag}: applies with --qasm only (no --qasm given)")
     qasm_version = 3 if qasm_version is None else qasm_version
     check_profile(qasm_profile, qasm_version, "--qasm-profile", "--qasm-version")
-    to_stdout = qasm == "-"
+    to_stdout = qasm is not None and is_stdout(qasm)  # -, /dev/stdout, ...: stdout holds the text only
     if to_stdout and as_json:
-        raise ValueError("--qasm - and --json both write to standard output; choose one")
+        raise ValueError(f"--qasm {qasm} and --json both write to standard output; choose one")
     if qasm is not None:
         check_output(qasm)  # a bad destination fails before the compile, not after
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)

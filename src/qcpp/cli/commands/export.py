@@ -29,7 +29,7 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, json_text
-from qcpp.io.atomic import check_output, write_text_atomic
+from qcpp.io.atomic import check_output, is_stdout, write_text_atomic
 from qcpp.qubo.export import EXPORT_FORMATS, export_text
 from qcpp.qubo.model import FORMS, bqm_for
 from qcpp.qubo.solve import INSTALL_HINT
@@ -72,7 +72,7 @@ def export_command(
             raise ValueError(f"--penalty: applies to --form per-robot only (got --form {form})")
         if not (math.isfinite(penalty) and penalty > 0):
             raise ValueError(f"--penalty: expected a positive finite number, got {penalty:g}")
-    if as_json and out == "-":
+    if as_json and is_stdout(out):
         raise ValueError("--json: the summary goes to standard output, so --out must name a file")
     if fmt == "bqm":
         try:
@@ -103,7 +103,7 @@ def export_command(
         typer.echo(json_text(summary))
         return
     extra = f", penalty P = {model.penalty:g}" if model.penalty is not None else ""
-    if out != "-":
+    if not is_stdout(out):
         line = (f"wrote {out}: {fmt}, {model.form} form, {model.num_variables} variables, "
                 f"{model.num_interactions} interactions{extra}")
         echo_note(line)
