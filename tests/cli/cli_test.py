@@ -131,7 +131,10 @@ def test_every_registered_command_gets_the_error_handler() -> None:
     assert_one_line_error(runner.invoke(demo, ["boom", "os"]), "x.png")
     assert_one_line_error(runner.invoke(demo, ["boom", "memory"]), "out of memory")
     assert_one_line_error(runner.invoke(demo, ["boom", "--bogus"]), "No such option: --bogus")
-    res = runner.invoke(demo, ["boom", "bug"])  # a bug is not an input error: it is not swallowed
+    res = runner.invoke(demo, ["boom", "bug"], env={"QCPP_DEBUG": ""})  # a bug is not an input error: exit 1
+    assert (res.exit_code, res.stderr) == (1, "error: internal error: RuntimeError: bug (set QCPP_DEBUG=1 for the "
+                                              "traceback; please report it)\n")
+    res = runner.invoke(demo, ["boom", "bug"], env={"QCPP_DEBUG": "1"})  # the traceback, for a bug report
     assert res.exit_code == 1 and isinstance(res.exception, RuntimeError)
     assert isinstance(demo, typer.Typer)
 

@@ -3,11 +3,15 @@
 Every command is a thin layer: it parses options, calls library functions and prints (human-readable by
 default, one JSON object on stdout with ``--json``; progress and messages go to stderr).
 
-One error style everywhere (exit codes: 0 done, 1 a check failed, 2 bad input, 130 interrupted):
+One error style everywhere (exit codes: 0 done, 1 a check failed or an internal error, 2 bad input, 130
+interrupted):
 
 * A :class:`~qcpp.problem.errors.ScenarioError`, ``ValueError``, ``OSError`` or ``MemoryError`` escaping a command
   becomes **one line** on stderr, ``error: <message>``, and exit code 2 -- never a traceback
-  (:func:`handle_errors`). Anything else is a bug and keeps its traceback.
+  (:func:`handle_errors`).
+* Anything else is a bug in qcpp: one line ``error: internal error: <type>: <message> (set QCPP_DEBUG=1 for the
+  traceback; please report it)`` and exit code 1 (:func:`internal_error_line`); with ``QCPP_DEBUG=1``
+  (:data:`DEBUG_ENV`) the exception propagates with its traceback (:class:`QcppGroup`).
 * Usage errors found while parsing are the same one line plus a hint,
   ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')`` (:class:`QcppGroup`).
 * ``--device`` is checked the same way in every command that takes it, before any work.
@@ -66,6 +70,8 @@ __all__ = [
     "CHOICES",
     "CHOICES_IN_METAVAR",
     "COMMAND_MODULES",
+    "DEBUG_ENV",
+    "EXIT_INTERNAL",
     "EXIT_INTERRUPTED",
     "EXIT_USAGE",
     "HELP",
@@ -80,6 +86,7 @@ __all__ = [
     "choices_of",
     "error_line",
     "handle_errors",
+    "internal_error_line",
     "main",
     "one_line_warnings",
     "usage_error_line",
@@ -90,6 +97,12 @@ EXIT_USAGE = 2
 
 EXIT_INTERRUPTED = 130
 """Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell convention)."""
+
+EXIT_INTERNAL = 1
+"""Exit code of an internal error (a bug in qcpp, not bad input: that is :data:`EXIT_USAGE`)."""
+
+DEBUG_ENV = "QCPP_DEBUG"
+"""Environment variable: set (not empty or ``0``), an internal error shows its Python traceback instead of one line."""
 
 LIBRARY_ERRORS: tuple[type[BaseException], ...] = (ScenarioError, ValueError, OSError)
 """Exceptions that mean bad input or environment (exit code 2 with one line), not a bug (traceback)."""
@@ -119,6 +132,24 @@ def error_line(exc: BaseException | str) -> str:
     """``exc`` as one line of text (newlines folded; the exception type if it has no message)."""
     text = " ".join(part.strip() for part in str(exc).splitlines() if part.strip())
     return text or (type(exc).__name__ if isinstance(exc, BaseException) else "error")
+
+
+def internal_error_line(exc: BaseException) -> str:
+    """The one line of an unexpected exception (a bug): its type and message, and how to see the traceback.
+
+    Example:
+        >>> internal_error_line(RuntimeError("no\\nway"))
+        'error: internal error: RuntimeError: no way (set QCPP_DEBUG=1 for the traceback; please report it)'
+        >>> internal_error_line(KeyError())
+        'error: internal error: KeyError (set QCPP_DEBUG=1 for the traceback; please report it)'
+    """
+    text = error_line(exc) if str(exc).strip() else ""
+    what = f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+    return f"error: internal error: {what} (set {DEBUG_ENV}=1 for the traceback; please report it)"
+
+
+def _debugging() -> bool:
+    return os.environ.get(DEBUG_ENV, "").strip() not in ("", "0")
 
 
 def _is_option(param: Parameter) -> bool:
@@ -485,7 +516,8 @@ class QcppCommand(_TidyHelp, TyperCommand):
 
 
 class QcppGroup(_TidyHelp, TyperGroup):
-    """The top-level group: one-line usage errors (exit 2) and ``interrupted`` (exit 130)."""
+    """The top-level group: one-line usage errors (exit 2), ``interrupted`` (exit 130), and one line for any other
+    exception, a bug (exit 1; its traceback with ``QCPP_DEBUG=1``)."""
 
     def invoke(self, ctx: Context) -> Any:
         try:
@@ -523,6 +555,14 @@ class QcppGroup(_TidyHelp, TyperGroup):
         except KeyboardInterrupt:
             report_interrupted()
             sys.exit(EXIT_INTERRUPTED)
+        except Exception as exc:  # not bad input (handle_errors took that) nor a click exit: a bug
+            if stop_requested():  # outside invoke (typer building the context): what the signal broke
+                report_interrupted()
+                sys.exit(EXIT_INTERRUPTED)
+            if _debugging():
+                raise
+            typer.echo(internal_error_line(exc), err=True)
+            sys.exit(EXIT_INTERNAL)
         if rv == EXIT_INTERRUPTED and stop_requested():
             # typer >= 0.2x turns a KeyboardInterrupt outside invoke (its lazy imports while it builds the
             # context) into Exit(130), which standalone_mode=False returns silently: say it, as everywhere else
