@@ -11,6 +11,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -119,3 +120,42 @@ def test_the_api_reads_standard_input_too(expected: float) -> None:
                          env={**os.environ, "PYTHONPATH": str(REPO / "src")}, timeout=HUNG, check=False)  # fmt: skip
     assert res.returncode == 0, res.stderr.decode()
     assert float(res.stdout) == expected
+
+
+_SLOW_READER = """
+import sys
+import qcpp.io.inputs
+qcpp.io.inputs.INPUT_WAIT = 0.05  # a named FIFO nobody writes to is given up on after this
+import qcpp
+print("reading", file=sys.stderr, flush=True)
+print(qcpp.load_scenario(sys.argv[1]).grid.rows)
+"""
+
+
+@pytest.mark.parametrize("name", ["-", "/dev/stdin", "fd"])
+def test_a_slow_writer_in_a_pipeline_is_waited_for(name: str) -> None:
+    """``slow-producer | qcpp solve -`` (or ``/dev/stdin``, or a ``<(...)`` descriptor): the pipe's writer exists
+    from the start, so its data is waited for as long as it takes, as ``cat`` waits; the time limit is for a named
+    FIFO nobody may ever open. The writer here starts writing well after the reader's limit."""
+    read, write = os.pipe()
+    if name == "fd":
+        args, stdin, fds, name = [f"/dev/fd/{read}"], subprocess.DEVNULL, (read,), f"/dev/fd/{read}"
+    else:
+        args, stdin, fds = [name], read, ()
+    proc = subprocess.Popen([sys.executable, "-c", _SLOW_READER, *args], stdin=stdin, pass_fds=fds,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=REPO,
+                            env={**os.environ, "PYTHONPATH": str(REPO / "src")})  # fmt: skip
+    os.close(read)
+    try:
+        assert proc.stderr is not None and proc.stderr.readline() == b"reading\n"
+        time.sleep(0.5)  # ten times the reader's limit: the writer is slow, not gone
+        os.write(write, EXAMPLE.read_bytes())
+        os.close(write)
+        write = -1
+        out, err = proc.communicate(timeout=HUNG)
+    finally:
+        if write >= 0:
+            os.close(write)
+        proc.kill()
+        proc.wait()
+    assert proc.returncode == 0 and out == b"3\n", err.decode()

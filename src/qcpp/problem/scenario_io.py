@@ -63,8 +63,9 @@ def load_scenario(
     are read first and their format told from the content (:func:`sniff_format`: JSON starts with ``{``, anything
     else is read as TOML); a regular file with another suffix is refused before it is opened. The file is UTF-8,
     with or without a byte order mark, at most :data:`MAX_SCENARIO_BYTES`, nested at most :data:`MAX_NESTING`
-    levels deep, and no object/table may give a key twice (JSON parsers would silently keep the last value). FIFOs,
-    pipes and devices are read with a time limit (:func:`qcpp.io.inputs.read_bounded`).
+    levels deep, and no object/table may give a key twice (JSON parsers would silently keep the last value). FIFOs
+    and devices are read with a time limit, a pipe the process was handed (standard input, ``/dev/fd/N``) for as
+    long as its writer takes (:func:`qcpp.io.inputs.read_bounded`).
 
     Args:
         path: The file, or ``-`` for standard input (refused when it is a terminal: nothing was piped in).
