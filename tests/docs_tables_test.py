@@ -40,7 +40,9 @@ def pasted_tables(text: str) -> list[tuple[int, str, str]]:
         m = _COMMAND.match(line.strip())
         if not m:
             continue
-        j = next(k for k in range(i + 1, len(lines)) if lines[k].strip())
+        j = next((k for k in range(i + 1, len(lines)) if lines[k].strip()), len(lines))
+        if j == len(lines) or not lines[j].startswith("|"):
+            continue  # the command is named in prose, not above its table
         end = next((k for k in range(j, len(lines)) if not lines[k].startswith("|")), len(lines))
         out.append((i + 1, m.group(1), "\n".join(lines[j:end])))
     return out
@@ -56,6 +58,7 @@ def markdown_rows(table: str) -> list[dict[str, str]]:
 def test_the_parser_finds_a_pasted_table() -> None:
     text = "x\n\n`qcpp estimate --grid 2x2 --format md`\n\n| a |\n|---|\n| 1 |\n\nmore\n"
     assert pasted_tables(text) == [(3, "qcpp estimate --grid 2x2 --format md", "| a |\n|---|\n| 1 |")]
+    assert pasted_tables("`qcpp estimate --grid 2x2 --format md`\n(prose)\n\n| a |\n") == []
     assert markdown_rows("| a | b |\n|---|---|\n| 1 | 2 |") == [{"a": "1", "b": "2"}]
 
 
