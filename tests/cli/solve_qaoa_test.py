@@ -297,3 +297,15 @@ def test_multi_angle_reaches_the_optimum_of_two_robots_4x4_and_binds(tmp_path: P
 
 def test_bad_angles_flag_is_one_line() -> None:
     assert_one_line_error(run("compile", PAPER, "--mixer-angles", "many"), "--mixer-angles", "layer or multi", "many")
+
+
+@pytest.mark.parametrize(("initial", "noted"), [("initial_path", True), ("local_search", True),
+                                                ("local_search_mix", False)])
+def test_a_basis_state_start_notes_that_gamma_0_does_nothing(initial: str, noted: bool) -> None:
+    """From a basis state the first phase separator is a global phase: the text says so, JSON keeps its keys."""
+    args = ["solve", PAPER, "--method", "qaoa", "--maxiter", "5", "--initial", initial]
+    res = run(*args)
+    assert res.exit_code == 0, res.output
+    assert ("g0 has no effect" in res.stdout) is noted, res.stdout
+    out = json.loads(run(*args, "--json").stdout)
+    assert "g0 has no effect" not in json.dumps(out) and out["initial"] == initial

@@ -14,7 +14,11 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``qaoa`` (:mod:`qcpp.training.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
 :data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
-:func:`qcpp.training.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
+:func:`qcpp.training.qaoa_solver.qaoa_details` to the JSON and a trace sparkline to the text.
+
+The JSON is ``scenario`` (the file or flags given) followed by
+:func:`qcpp.problem.solvers.solution_to_dict` of the answer, which is what ``qcpp.solve(...).to_dict(scenario)``
+returns for the same method and options: one builder for both.
 
 ``qubo`` (:func:`qcpp.qubo.solve.solve_qubo`) alone takes ``--sampler`` (``tabu``, the default, or ``sa``:
 dwave-samplers' tabu search or simulated annealing on the per-robot QUBO).
@@ -78,6 +82,12 @@ __all__ = [
 QAOA_DEFAULTS = {"p": 1, "optimizer": "layerwise", "objective": "gibbs", "maxiter": 200, "initial": "initial_path",
                  "mixer_warm": False, "restart_every_level": None, "gibbs_scale": GIBBS_SCALE}
 """Defaults of the QAOA-only options (any other value with another method is an error)."""
+
+BASIS_STARTS = ("initial_path", "local_search")
+"""Initial states that are one basis state (X gates only), whatever the scenario."""
+BASIS_START_NOTE = ("note: g0 has no effect: from a basis-state start the first phase separator is a global "
+                    "phase (p counts it as a layer; at p = 1 the state does not depend on the cost)")
+"""The line the text output adds after the angles when the initial state is in :data:`BASIS_STARTS`."""
 
 
 def _qaoa(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | None) -> Solution:
@@ -371,19 +381,8 @@ def _print_result(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | 
                   objective: str, as_json: bool, source: str) -> None:  # fmt: skip
     """The solution on standard output: one JSON object, or the drawing, the cost table and the details."""
     if as_json:
-        if qaoa is not None:
-            from qcpp.training.qaoa_solver import qaoa_to_dict
-
-            out = {"scenario": source, **qaoa_to_dict(s, qaoa)}
-        else:
-            out = {"scenario": source, **solution_to_dict(s, sol, include_trace=False)}
-        if exact is not None:
-            known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
-            out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,
-                       gap=exact.gap if known else None, status=exact.status)
-        if sol.trace:
-            out["trace_length"] = len(sol.trace)
-        typer.echo(json_text(out))
+        # the method's own fields (cpsat's proof, qaoa's training) ride in sol.details: qcpp.solve's to_dict is this
+        typer.echo(json_text({"scenario": source, **solution_to_dict(s, sol)}))
         sys.stdout.flush()
         return
     console = Console()
@@ -405,6 +404,8 @@ def _print_result(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | 
         console.print(objective_line(objective, qaoa.trace, terminal_width()), highlight=False, soft_wrap=True)
         console.print("angles [g0, b0, ...]: " + ", ".join(f"{a:.4f}" for a in qaoa.angles), markup=False,
                       highlight=False, soft_wrap=True)
+        if qaoa.initial in BASIS_STARTS:
+            console.print(BASIS_START_NOTE, markup=False, highlight=False)
     if exact is not None:
         verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
