@@ -120,6 +120,9 @@ BAD = [
     ("estimate", "--grid", "2x2", "--columns", "rows,cx", "--json"),
     ("estimate", "--grid", "2x2", "--columns", "rows,nonsense", "--format", "csv"),
     ("estimate", "--grid", "2x2", "--json", "--format", "csv"),  # two formats asked for: refused, not JSON
+    ("estimate", "--grid", "2x2", "--json", "--format", "table"),  # table is the default, but this one was asked for
+    ("estimate", "--grid", "2x2", "--format", "md", "--json"),
+    ("estimate", "--grid", "2x2", "--format", "json", "--json"),
     # scenario files
     ("solve", "missing.toml"),
     ("solve", "folder.toml"),

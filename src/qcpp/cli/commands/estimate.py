@@ -91,9 +91,10 @@ def estimate(
         str | None, typer.Option("--compare", help="Add the paper's estimates (columns, and curves in --plot).")
     ] = None,
     fmt: Annotated[
-        str, typer.Option("--format", help="table, md, csv, json, jsonl or latex (booktabs).")
-    ] = "table",
-    as_json: Annotated[bool, typer.Option("--json", help="Same as --format json.")] = False,
+        str | None,
+        typer.Option("--format", help="table, md, csv, json, jsonl or latex (booktabs).", show_default="table"),
+    ] = None,  # None: not given (table), so that --json can refuse any --format given with it
+    as_json: Annotated[bool, typer.Option("--json", help="Same as --format json (not both).")] = False,
     plot: Annotated[
         str | None, typer.Option("--plot", help="Also plot --metric against the grid (or p) to this PNG/PDF/SVG.")
     ] = None,
@@ -187,10 +188,9 @@ def estimate(
         if scenario is not None:
             raise OptionError("--scenario", f"the scenario file {str(scenario_file)!r} is given already")
         scenario = scenario_file
-    if as_json:
-        if fmt not in ("table", "json"):  # table is the default: only a format asked for conflicts
-            raise OptionError("--json", f"is --format json; do not combine it with --format {fmt}")
-        fmt = "json"
+    if as_json and fmt is not None:  # two formats asked for, even the same one: refused, not one chosen
+        raise OptionError("--json", f"is --format json; do not combine it with --format {fmt}")
+    fmt = "json" if as_json else fmt or "table"
     physical_only = {"--qubit-model": qubit_model, "--qec-scheme": qec_scheme, "--error-budget": error_budget}
     for name, value in physical_only.items():
         if value is not None and not physical:
