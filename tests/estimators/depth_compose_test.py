@@ -44,6 +44,7 @@ OPTIONS = [
     PlanOptions(optimize="depth"),
     PlanOptions(initial="representatives"),
     PlanOptions(ancilla_budget=0),
+    PlanOptions(first_phase=False),  # the first layer without its phase separator: a frontier of its own
 ]
 
 
@@ -204,6 +205,14 @@ def test_frontier_carried_over_p_equals_a_fresh_computation() -> None:
         assert carried.depth(p) == fresh == in_turn[p] == compiled_depth(s, p)
     with pytest.raises(ValueError):
         carried.depth(-1)
+
+
+def test_frontier_without_the_first_phase_separator_carries_the_first_layer_alone() -> None:
+    s, options = default_scenario(4, 3, 2), PlanOptions(first_phase=False)
+    plan = qaoa_plan(s, 2, options)  # layer 0 (no phase separator) and layer 1, which repeats
+    carried = LayeredDepth.from_sections(plan.sections(), tuple(plan.registers))
+    assert [carried.depth(p) for p in range(4)] == [compiled_depth(s, p, options) for p in range(4)]
+    assert carried.depth(1) != compiled_depth(s, 1)  # the check can fail: with it, layer 0 is deeper
 
 
 # --- the bound and the policy ---------------------------------------------------------------------------------------

@@ -11,12 +11,13 @@ import dataclasses
 
 import pytest
 
+from qcpp.errors import OptionError
 from qcpp.estimators.counts import count
-from qcpp.estimators.crosscheck import Case, crosscheck, every_plan_option, interior_endpoints
+from qcpp.estimators.crosscheck import Case, crosscheck, every_plan_option, interior_endpoints, with_obstacles
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
-from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
 from qcpp.problem.presets import default_scenario
 
 ALL = list(every_plan_option())
@@ -50,6 +51,9 @@ ONE_AT_A_TIME = [
     PlanOptions(ancilla_budget=5),
     PlanOptions(angles="multi"),
     PlanOptions(phase="whole-space", target="ft", optimize="depth", ancilla_budget=0),
+    PlanOptions(first_phase=False),
+    PlanOptions(initial="local_search", first_phase=False),
+    PlanOptions(phase="whole-space", target="ft", phase_layout="spatial", first_phase=False),
 ]
 
 
@@ -72,3 +76,24 @@ def test_crosscheck_compares_the_whole_space_circuit_with_the_whole_space_estima
     assert crosscheck(Case(s, 1, whole)) == []
     est = estimate_point(Point.from_scenario(s, 1), EstimateOptions(plan=whole, depth="none"))
     assert est.cost.cx == count(lower(qaoa_circuit(s, 1, whole))).cx != count(lower(qaoa_circuit(s, 1))).cx
+
+
+@pytest.mark.parametrize("initial", INITIAL_STATES)
+def test_without_the_first_phase_separator_the_estimate_equals_compiled_or_the_start_is_refused(initial: str) -> None:
+    """On hard obstacles a robot's paths split into components and its descent path leaves its initial one, so
+    ``representatives`` and ``local_search_mix`` start from a superposition here: refused, naming the option."""
+    s = interior_endpoints(4, 3, "hard")
+    options = PlanOptions(initial=initial, first_phase=False)  # type: ignore[arg-type]
+    if initial in ("representatives", "local_search_mix"):
+        with pytest.raises(OptionError, match=f"^first_phase: .*initial state {initial} prepares a superposition"):
+            crosscheck(Case(s, 2, options))
+    else:
+        assert crosscheck(Case(s, 2, options)) == []
+
+
+def test_a_mixed_start_whose_paths_agree_is_a_basis_state_and_may_omit_the_first_phase_separator() -> None:
+    s = with_obstacles(default_scenario(3, 4, 2), "hard")
+    assert s is not None
+    options = PlanOptions(initial="local_search_mix", first_phase=False)
+    assert qaoa_plan(s, 1, options).basis_start  # each robot's descent stays on its initial path: X gates only
+    assert crosscheck(Case(s, 2, options)) == []

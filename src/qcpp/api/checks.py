@@ -16,7 +16,7 @@ Example:
     Traceback (most recent call last):
     ...
     qcpp.errors.OptionError: colour: unknown plan option (known: rule, initial, target, phase, optimize, \
-ancilla_budget, fuse, phase_layout, angles)
+ancilla_budget, fuse, phase_layout, angles, first_phase)
 """
 
 from __future__ import annotations

@@ -180,7 +180,8 @@ def estimate(
             ...). The counts alone take milliseconds and report nothing; a sweep is a loop over calls, whose own
             count is the progress.
         **plan_options: How the circuit is built: ``rule``, ``initial``, ``target``, ``phase``, ``optimize``,
-            ``ancilla_budget``, ``phase_layout``, ``angles`` (:class:`~qcpp.plan.options.PlanOptions`).
+            ``ancilla_budget``, ``phase_layout``, ``angles``, ``first_phase`` (``False``: no first phase separator,
+            exact from a basis-state start; :class:`~qcpp.plan.options.PlanOptions`).
 
     Returns:
         The :class:`Estimate`.

@@ -340,17 +340,25 @@ def _depth(levels: np.ndarray, n: int) -> Depth:
 
 
 class LayeredDepth:
-    """Exact depths of ``initial steps + p x layer steps`` for any ``p``, carried from ``p`` to ``p + 1``.
+    """Exact depths of ``initial steps + p x layer steps`` for any ``p``, carried from ``p`` to ``p + 1`` (the
+    first layer's steps may differ: ``first``, the layer without its phase separator).
 
     Build it with :meth:`from_sections`. :meth:`depth` answers any ``p``: the depths of every ``p`` it has passed
     are kept (three integers each), the frontier only for the largest, so asking ``p = 1, 2, ..., P`` in turn
     propagates ``P`` layers in all, and asking a smaller ``p`` afterwards costs nothing.
     """
 
-    def __init__(self, num_qubits: int, initial: Sequence[MatrixStep], layer: Sequence[MatrixStep]) -> None:
+    def __init__(
+        self,
+        num_qubits: int,
+        initial: Sequence[MatrixStep],
+        layer: Sequence[MatrixStep],
+        first: Sequence[MatrixStep] | None = None,
+    ) -> None:
         self.num_qubits = num_qubits
         self.initial = tuple(initial)
         self.layer = tuple(layer)
+        self.first = self.layer if first is None else tuple(first)
         self._levels: np.ndarray | None = None
         self._depths: list[Depth] = []
 
@@ -358,8 +366,10 @@ class LayeredDepth:
     def from_sections(
         cls, sections: Iterable[tuple[str, Any]], registers: Sequence[Register], initial: str = "initial_state"
     ) -> LayeredDepth:
-        """From ``(section name, gadget)`` of a plan with ONE layer (:meth:`qcpp.plan.qaoa.QaoaPlan.sections`):
-        the gadgets of section ``initial`` form the state preparation, all others the layer.
+        """From ``(section name, gadget)`` of a plan with ONE layer (:meth:`qcpp.plan.qaoa.QaoaPlan.sections`), or
+        with TWO whose first differs from every later one (no phase separator): the gadgets of section ``initial``
+        form the state preparation, those of layer 0 (names ending ``_0``) the first layer, those of layer 1 the
+        layer repeated after it (the first one, if there is no layer 1).
 
         Args:
             sections: the plan's sections, in circuit order.
@@ -367,10 +377,13 @@ class LayeredDepth:
             initial: name of the state preparation's section.
         """
         init: list[MatrixStep] = []
-        layer: list[MatrixStep] = []
+        first: list[MatrixStep] = []
+        later: list[MatrixStep] = []
         for name, gadget in sections:
-            (init if name == initial else layer).extend(gadget_steps(gadget, registers))
-        return cls(sum(r.size for r in registers), init, layer)
+            (init if name == initial else first if name.endswith("_0") else later).extend(
+                gadget_steps(gadget, registers)
+            )
+        return cls(sum(r.size for r in registers), init, later or first, first)
 
     def depth(self, p: int) -> Depth:
         """Exact depths of the state preparation and ``p`` layers."""
@@ -382,6 +395,6 @@ class LayeredDepth:
             _propagate(self._levels, self.initial)
             self._depths.append(_depth(self._levels, n))
         while len(self._depths) <= p:
-            _propagate(self._levels, self.layer)
+            _propagate(self._levels, self.first if len(self._depths) == 1 else self.layer)
             self._depths.append(_depth(self._levels, n))
         return self._depths[p]

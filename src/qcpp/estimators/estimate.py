@@ -1,8 +1,9 @@
 """Resource estimates of one QAOA circuit from its gadgets' costs, without building a gate list.
 
 :func:`estimate_point` sums the circuit's call graph (:meth:`qcpp.plan.qaoa.QaoaPlan.call_graph`): layers are
-alike up to their angles, so ``p`` layers cost ``initial state + p * (phase separator + mixer)`` and one plan with
-``p = 1`` serves every ``p`` (:func:`layer_costs`). :mod:`qcpp.estimators.crosscheck` checks these numbers against
+alike up to their angles, so ``p`` layers cost ``initial state + p * (phase separator + mixer)`` (one phase
+separator fewer with ``PlanOptions(first_phase=False)``) and one plan with ``p = 1`` serves every ``p``
+(:func:`layer_costs`). :mod:`qcpp.estimators.crosscheck` checks these numbers against
 the compiled, lowered circuit. Depth cannot be summed (ASAP layering overlaps consecutive pieces), so it is
 ``exact`` (composed from per-kind transfer profiles, :mod:`qcpp.estimators.depth_compose`, the frontier carried from
 ``p`` to ``p + 1``: :func:`layered_depth`; ``depth="auto"`` when the state preparation plus one layer has at most
@@ -226,11 +227,18 @@ def _scenario(rows: int, cols: int, robots: int, text: str | None) -> Scenario:
     return default_scenario(rows, cols, robots) if text is None else scenario_from_dict(json.loads(text))
 
 
-@lru_cache(maxsize=2 * SCENARIOS_KEPT)  # plans with 0 and 1 layers
+@lru_cache(maxsize=3 * SCENARIOS_KEPT)  # plans with 0, 1 and 2 layers
 def _plan(scenario: Scenario, options: PlanOptions, layers: int = 1) -> QaoaPlan:
-    """The plan with ``layers`` (0 or 1) layers, shared by the costs, the registers and the depths.
+    """The plan with ``layers`` (0, 1, or 2 without the first phase separator: the first layer then differs from
+    the others) layers, shared by the costs, the registers and the depths.
     Pure memo: ``_plan.cache_clear()`` empties it."""
     return qaoa_plan(scenario, layers, options)
+
+
+def _alike_from(options: PlanOptions) -> int:
+    """The layers after which every circuit has the same registers and its layers repeat alike: 1, or 2 without
+    the first phase separator (its first layer has no phase separator, every later one has)."""
+    return 1 if options.first_phase else 2
 
 
 def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> CallGraph:
@@ -246,7 +254,8 @@ def layer_costs(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> Call
 
 def registers_for(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> tuple[tuple[str, int], ...]:
     """``(name, size)`` of the lowered circuit's registers with ``p`` layers (no gate is built)."""
-    plan = _plan(scenario, options) if p else _plan(scenario, options, 0)  # the cache keys by the args given
+    layers = min(p, _alike_from(options))
+    plan = _plan(scenario, options) if layers == 1 else _plan(scenario, options, layers)  # the cache keys by the args
     return tuple((r.name, r.size) for r in plan.registers)
 
 
@@ -313,7 +322,8 @@ def compiled_depth(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PL
 def layered_depth(scenario: Scenario, options: PlanOptions = DEFAULT_PLAN) -> LayeredDepth:
     """The scenario's :class:`~qcpp.estimators.depth_compose.LayeredDepth` (cached: consecutive points of a sweep,
     ``p = 1, 2, ...`` of one scenario, carry one frontier). Pure memo: ``layered_depth.cache_clear()`` empties it."""
-    plan = _plan(scenario, options)
+    layers = _alike_from(options)
+    plan = _plan(scenario, options) if layers == 1 else _plan(scenario, options, layers)
     return LayeredDepth.from_sections(plan.sections(), tuple(plan.registers))
 
 
@@ -387,17 +397,17 @@ def _kind_depth_bound(kind: GadgetKind) -> Depth:
 
 
 @lru_cache(maxsize=SCENARIOS_KEPT)
-def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> tuple[Depth, Depth]:
-    """The state preparation's depth bound and one layer's (see :func:`depth_bound`).
-    Pure memo: ``_layer_depth_bounds.cache_clear()`` empties it."""
+def _layer_depth_bounds(scenario: Scenario, options: PlanOptions) -> dict[str, Depth]:
+    """The depth bound of each part: the state preparation's, one layer's phase separator's and mixer's (see
+    :func:`depth_bound`). Pure memo: ``_layer_depth_bounds.cache_clear()`` empties it."""
     graph = _plan(scenario, options).call_graph()
-    sums = {"initial_state": [0, 0, 0], "layer": [0, 0, 0]}  # plain integers: a sum over thousands of kinds
+    sums = {part: [0, 0, 0] for part in graph.parts}  # plain integers: a sum over thousands of kinds
     for part, kind, n in graph.kinds():
-        d, total = kind_depth_bound(kind), sums["initial_state" if part == "initial_state" else "layer"]
+        d, total = kind_depth_bound(kind), sums[part]
         total[0] += n * d.depth
         total[1] += n * d.two_qubit_depth
         total[2] += n * d.rotation_depth
-    return Depth(*sums["initial_state"], "bound"), Depth(*sums["layer"], "bound")  # type: ignore[arg-type]
+    return {part: Depth(*total, "bound") for part, total in sums.items()}  # type: ignore[arg-type]
 
 
 def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
@@ -415,15 +425,17 @@ def _arithmetic_depth_bound(shape: SumsShape) -> Depth:
 
 def depth_bound(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -> Depth:
     """An upper bound on the depths of ``p`` layers: ASAP layering can only shorten a concatenation, so the sum
-    over the call graph of each kind's :func:`kind_depth_bound` times its multiplicity, one layer ``p`` times.
+    over the call graph of each kind's :func:`kind_depth_bound` times its multiplicity, one layer ``p`` times (its
+    phase separator ``p - 1`` times without the first).
 
     >>> from qcpp.problem.presets import default_scenario
     >>> s = default_scenario(3, 3, 1)
     >>> depth_bound(s, 2).depth >= exact_depth(s, 2).depth
     True
     """
-    init, layer = _layer_depth_bounds(scenario, options)
-    return replace(init + p * layer, kind="bound")
+    part = _layer_depth_bounds(scenario, options)
+    total = part["initial_state"] + p * part["mixer"] + options.phase_layers(p) * part["phase"]
+    return replace(total, kind="bound")
 
 
 def estimate_depth(
@@ -445,9 +457,9 @@ def estimate_depth(
     'exact'
     """
     mode = options.depth
-    if mode == "auto":
+    if mode == "auto":  # the state preparation and one whole layer (also without the first phase separator)
         lc = graph if graph is not None else layer_costs(scenario, options.plan)
-        mode = "exact" if lc.cost(1).total <= options.depth_budget else "bound"
+        mode = "exact" if sum(c.total for c in lc.cost_by_part().values()) <= options.depth_budget else "bound"
     if mode == "exact":
         return exact_depth(scenario, p, options.plan)
     if mode == "bound":

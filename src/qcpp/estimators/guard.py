@@ -123,7 +123,10 @@ def compile_need(
         (True, True)
     """
     size = predict_size(scenario, p, options) if size is None else size
-    held = predict_size(scenario, 1, options).gates if streamed and p > 1 else size.gates
+    # streamed: the state preparation and one whole layer (a later one, with its phase separator, also without the
+    # first phase separator)
+    one_layer = sum(c.total for c in layer_costs(scenario, options).cost_by_part().values())
+    held = min(one_layer, size.gates) if streamed and p > 1 else size.gates
     what = f"compiling {size.gates:,} gates on {size.qubits:,} qubits"
     return Need(what, BASE_BYTES + BYTES_PER_GATE * held, size.gates / GATES_PER_SECOND)
 

@@ -38,7 +38,8 @@ from qcpp.ir.cost import Cost
 __all__ = ["PARTS", "SCENARIOS_KEPT", "CallGraph", "Deferred", "GadgetKind"]
 
 PARTS: tuple[str, ...] = ("initial_state", "phase", "mixer")
-"""The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator and the mixer."""
+"""The parts of a QAOA circuit: the state preparation once, then ``p`` times the phase separator (``p - 1`` times
+without the first: :attr:`CallGraph.first_phase`) and the mixer."""
 
 
 SCENARIOS_KEPT = 8
@@ -160,17 +161,28 @@ class CallGraph:
     """Per part, the gadget kinds of the circuit and how many of each (see the module docstring).
 
     Attributes:
-        parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer).
-        logic_width, work_width: the shared clean ``logic`` register and the ``work`` register the lowering adds.
+        parts: ``{part: {kind: multiplicity}}`` for :data:`PARTS` (``phase`` and ``mixer``: one layer; ``phase``
+            is one phase separator's kinds also where the plan's circuit has none: ``first_phase=False`` at
+            ``p = 1``).
+        logic_width, work_width: the shared clean ``logic`` register and the ``work`` register the lowering adds
+            (of the plan's own ``p``).
+        first_phase: whether the first layer has its phase separator
+            (:attr:`qcpp.plan.options.PlanOptions.first_phase`): ``p`` layers hold ``p`` phase separators, or
+            ``p - 1``.
     """
 
     parts: Mapping[str, Mapping[GadgetKind, int]]
     logic_width: int
     work_width: int
+    first_phase: bool = True
 
     @classmethod
     def build(
-        cls, parts: Mapping[str, Iterable[tuple[GadgetKind, int]]], logic_width: int, work_width: int
+        cls,
+        parts: Mapping[str, Iterable[tuple[GadgetKind, int]]],
+        logic_width: int,
+        work_width: int,
+        first_phase: bool = True,
     ) -> CallGraph:
         """Merge ``(kind, multiplicity)`` pairs per part (equal kinds add up; zero multiplicities are dropped)."""
         merged: dict[str, Mapping[GadgetKind, int]] = {}
@@ -179,18 +191,23 @@ class CallGraph:
             for kind, n in parts.get(name, ()):
                 counts[kind] += n
             merged[name] = {k: n for k, n in counts.items() if n}
-        return cls(merged, logic_width, work_width)
+        return cls(merged, logic_width, work_width, first_phase)
 
     def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
         """Lowered (or logical) cost per part: ``initial_state``, one layer's ``phase`` and ``mixer``."""
         return dict(self._sums[logical][0])
 
     def cost(self, p: int, logical: bool = False) -> Cost:
-        """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer)."""
+        """Cost of the circuit with ``p`` layers: state preparation + ``p`` x (phase separator + mixer), less one
+        phase separator without the first (:attr:`first_phase`)."""
         hit = self._totals.get((p, logical))
         if hit is None:  # an estimate asks each p more than once
             parts, layer = self._sums[logical]
-            hit = self._totals[p, logical] = parts["initial_state"] + p * layer
+            if self.first_phase or not p:
+                hit = parts["initial_state"] + p * layer
+            else:
+                hit = parts["initial_state"] + p * parts["mixer"] + (p - 1) * parts["phase"]
+            self._totals[p, logical] = hit
         return hit
 
     @cached_property

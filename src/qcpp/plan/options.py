@@ -79,6 +79,12 @@ class PlanOptions:
         angles: the mixer's parameters: ``layer`` (default; one ``beta_k`` per layer) or ``multi`` (multi-angle
             QAOA: one beta per partial mixer and layer, :func:`qcpp.ir.angles.mixer_symbol`). Same gates and
             counts, only the symbols differ (``--mixer-angles`` of compile and estimate).
+        first_phase: build the first layer's phase separator (default). ``False`` omits it (``--skip-first-phase``):
+            the circuit is the state preparation, ``mixer_0``, then ``phase_k`` and ``mixer_k`` for ``k = 1..p-1``.
+            Exact only from a basis state, where ``exp(-i gamma_0 C)`` is a global phase
+            (``docs/paper-notes.md``); :func:`qcpp.plan.qaoa.qaoa_plan` refuses a start that is a superposition.
+            ``gamma_0`` stays a parameter name with no gate. Not the default: the paper's circuit has ``p``
+            phase separators, and the tables compare like for like with it.
     """
 
     rule: Rule = "exact"
@@ -90,6 +96,7 @@ class PlanOptions:
     fuse: bool = True
     phase_layout: PhaseLayout = "auto"
     angles: Angles = "layer"
+    first_phase: bool = True
 
     def __post_init__(self) -> None:
         for name, allowed in (
@@ -104,6 +111,19 @@ class PlanOptions:
             raise OptionError("ancilla_budget", f"expected an integer >= 0, got {budget!r}")
         if not isinstance(self.fuse, bool):
             raise OptionError("fuse", f"expected True or False, got {self.fuse!r}")
+        if not isinstance(self.first_phase, bool):
+            raise OptionError("first_phase", f"expected True or False, got {self.first_phase!r}")
+
+    def phase_layers(self, p: int) -> int:
+        """How many phase separators a circuit of ``p`` layers has: ``p``, or ``p - 1`` without the first.
+
+        Example:
+            >>> PlanOptions().phase_layers(3), PlanOptions(first_phase=False).phase_layers(3)
+            (3, 2)
+            >>> PlanOptions(first_phase=False).phase_layers(0)
+            0
+        """
+        return p if self.first_phase else max(p - 1, 0)
 
 
 DEFAULT_PLAN = PlanOptions()

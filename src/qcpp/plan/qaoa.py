@@ -8,6 +8,9 @@ their rotations into :class:`~qcpp.gadgets.junction.MixerJunction` sections); an
 ``beta_k`` (with ``PlanOptions(angles="multi")`` one beta per partial mixer and layer instead,
 :func:`~qcpp.ir.angles.mixer_symbol`), bound later with ``Circuit.bind``. :class:`QaoaPlan` holds the same
 circuit as gadgets, and :meth:`QaoaPlan.call_graph` lists it as gadget kinds, which every count sums.
+With ``PlanOptions(first_phase=False)`` there is no section ``phase_0`` (``gamma_0`` names no gate): on the basis
+state the preparation gives, the first phase separator is a global phase, and :func:`qaoa_plan` refuses any
+other start (:attr:`QaoaPlan.basis_start`).
 
 On the feasible assignments it reaches, the circuit applied to |0...0> gives
 ``prod_k U_M(beta_k) exp(-i gamma_k (C - K)) |x_0>``, ``K`` = :attr:`QaoaPlan.reference_constant`: the operator
@@ -83,6 +86,25 @@ class QaoaPlan:
     scenario: Scenario
     p: int
     options: PlanOptions = DEFAULT_PLAN
+
+    def __post_init__(self) -> None:
+        if not self.options.first_phase and not self.basis_start:
+            raise OptionError(
+                "first_phase",
+                "the first phase separator can be omitted from a basis state only, and the initial state "
+                f"{self.options.initial} prepares a superposition of paths here (initial_path and local_search "
+                "always start from one)",
+            )
+
+    @property
+    def basis_start(self) -> bool:
+        """Whether the state preparation gives a basis state (X gates only: ``initial_path``, ``local_search``,
+        and ``representatives`` or ``local_search_mix`` where every robot has one path to put in superposition),
+        on which the first phase separator is a global phase (:attr:`PlanOptions.first_phase
+        <qcpp.plan.options.PlanOptions.first_phase>`)."""
+        if self.options.initial in ("initial_path", "local_search"):  # X gates by construction: nothing built
+            return True
+        return all(g.name == "x" for g in self.state_prep.gates)
 
     # -- layout
     @cached_property
@@ -161,15 +183,40 @@ class QaoaPlan:
     # -- the call graph
     def sections(self, layers: int | None = None) -> Iterator[tuple[str, Gadget]]:
         """``(section name, gadget)`` in circuit order: the state preparation, then per layer the phase
-        separator and the mixer's pieces (:meth:`_mixer_layer`); only the first ``layers`` layers if given (a
-        layer's gadgets are planned as a whole when it starts)."""
+        separator (none in layer 0 without :attr:`~qcpp.plan.options.PlanOptions.first_phase`) and the mixer's
+        pieces (:meth:`_mixer_layer`); only the first ``layers`` layers if given (a layer's gadgets are planned as a
+        whole when it starts)."""
         yield "initial_state", self.state_prep
         for k in range(self.p if layers is None else min(layers, self.p)):
             assert self.phase_plan is not None
-            for g in self._phase_gadgets(f"gamma_{k}"):
-                yield f"phase_{k}", g
+            if k or self.options.first_phase:
+                for g in self._phase_gadgets(f"gamma_{k}"):
+                    yield f"phase_{k}", g
             for g in self._mixer_layer(k):
                 yield f"mixer_{k}", g
+
+    def layer_sections(self, p: int | None = None) -> Iterator[tuple[str, Gadget, int]]:
+        """``(section name, gadget, multiplicity)``: sections that stand for the whole circuit of ``p`` layers
+        (default: this plan's ``p``; the plan needs at least ``min(p, 2)`` layers without the first phase
+        separator, else ``min(p, 1)``), each with how many like it that circuit has (layers differ in their angles
+        only): the state preparation once, layer 0's mixer ``p`` times and its phase separator ``p`` times, or,
+        without the first, layer 1's phase separator ``p - 1`` times.
+
+        Example:
+            >>> from qcpp.problem.presets import default_scenario
+            >>> plan = qaoa_plan(default_scenario(3, 3, 1), 2, PlanOptions(first_phase=False))
+            >>> sorted({(name, n) for name, _, n in plan.layer_sections(5)})
+            [('initial_state', 1), ('mixer_0', 5), ('phase_1', 4)]
+        """
+        p = self.p if p is None else p
+        o = self.options
+        for name, g in self.sections(layers=1 if o.first_phase else 2):
+            if name == "initial_state":
+                yield name, g, 1
+            elif name.endswith("_0"):
+                yield name, g, p
+            elif name.startswith("phase_"):  # layer 1's, without the first phase separator
+                yield name, g, o.phase_layers(p)
 
     def _phase_gadgets(self, gamma: str) -> tuple[Gadget, ...]:
         """One layer's phase separator gadgets, laid out as :attr:`PlanOptions.phase_layout` asks."""
@@ -183,10 +230,11 @@ class QaoaPlan:
 
     def call_graph(self, by_classes: bool = True) -> CallGraph:
         """The circuit as gadget kinds with multiplicities, per part (``phase`` and ``mixer``: one layer's, empty
-        ``phase`` for ``p = 0``), nothing emitted: counted by classes of plaquettes (:mod:`qcpp.plan.mixer_classes`)
-        and of nodes (:mod:`qcpp.plan.phase_classes`) on a grid without obstacles, ``O(robots)`` per scenario,
-        else (or where :func:`~qcpp.plan.phase_classes.phase_layer` leaves a choice to the plan) listed from the
-        planned gadgets.
+        ``phase`` for ``p = 0``; :meth:`~qcpp.plan.call_graph.CallGraph.cost` counts ``p - 1`` phase separators without
+        :attr:`~qcpp.plan.options.PlanOptions.first_phase`), nothing emitted: counted by classes of plaquettes
+        (:mod:`qcpp.plan.mixer_classes`) and of nodes (:mod:`qcpp.plan.phase_classes`) on a grid without obstacles,
+        ``O(robots)`` per scenario, else (or where :func:`~qcpp.plan.phase_classes.phase_layer` leaves a choice to the
+        plan) listed from the planned gadgets.
 
         Args:
             by_classes: count by classes where that is exact (default); ``False`` lists the planned gadgets
@@ -232,18 +280,22 @@ class QaoaPlan:
                     gadgets = placed_sums(gadgets, s)
                 phase = [(GadgetKind.of(g), 1) for g in gadgets]
                 phase_width = self.phase_plan.num_ancillas
+        if not o.phase_layers(self.p):  # listed for the sums over p, but no phase separator is in this circuit
+            phase_width = 0
         logic = max(mixer.logic_width, phase_width, 1 if o.initial == "representatives" else 0)
         work = max(mixer.work_need if self.p else 0, prep.work)
         parts = {"initial_state": [(prep, 1)], "phase": phase, "mixer": mixer.kinds}
-        return CallGraph.build(parts, logic, work)
+        return CallGraph.build(parts, logic, work, o.first_phase)
 
     def cost_by_part(self, logical: bool = False) -> dict[str, Cost]:
         """Cost of the state preparation and of ONE layer's phase separator and mixer (keys ``initial_state``,
-        ``phase``, ``mixer``); multiply the last two by ``p`` for the circuit."""
+        ``phase``, ``mixer``); multiply the mixer by ``p`` and the phase separator by
+        :meth:`PlanOptions.phase_layers(p) <qcpp.plan.options.PlanOptions.phase_layers>` for the circuit."""
         return self.call_graph().cost_by_part(logical)
 
     def cost(self) -> Cost:
-        """Lowered cost of the whole circuit: state preparation + ``p`` x (phase separator + mixer)."""
+        """Lowered cost of the whole circuit: state preparation + ``p`` x (phase separator + mixer), one phase
+        separator fewer without the first."""
         return self.call_graph().cost(self.p)
 
     def logical_cost(self) -> Cost:
@@ -263,7 +315,8 @@ class QaoaPlan:
     def parameter_names(self) -> tuple[str, ...]:
         """The operator's angles in circuit order: per layer ``gamma_k``, then ``beta_k`` or (``angles="multi"``)
         one :func:`~qcpp.ir.angles.mixer_symbol` per partial mixer. A name may have no gate (a phase separator
-        left empty by a constant cost) and is still a valid binding."""
+        left empty by a constant cost, or ``gamma_0`` without the first phase separator) and is still a valid
+        binding."""
         out: list[str] = []
         for k in range(self.p):
             out.append(f"gamma_{k}")
@@ -313,6 +366,8 @@ def qaoa_plan(scenario: Scenario, p: int, options: PlanOptions = DEFAULT_PLAN) -
 
     Raises:
         ValueError: ``p`` is not a non-negative integer.
+        qcpp.errors.OptionError: ``first_phase=False`` with a start that is not a basis state
+            (:attr:`QaoaPlan.basis_start`).
     """
     if not isinstance(p, int) or isinstance(p, bool) or p < 0:
         raise ValueError(f"p must be a non-negative integer, got {p!r}")
