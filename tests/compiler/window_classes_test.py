@@ -78,6 +78,9 @@ CASES = {
     "4x4/2 budget 0": (lambda: default_scenario(4, 4, 2), 1, PlanOptions(ancilla_budget=0)),
     "3x4/2 pooled": (lambda: default_scenario(3, 4, 2), 1, PlanOptions(phase_layout="pooled")),
     "3x3/1 p0": (lambda: default_scenario(3, 3, 1), 0, PlanOptions()),
+    # without the first phase separator: layer 1's phase separator stands for p - 1 (none at p = 1)
+    "3x3/2 p1 no first phase": (lambda: default_scenario(3, 3, 2), 1, PlanOptions(first_phase=False)),
+    "3x3/2 p3 no first phase": (lambda: default_scenario(3, 3, 2), 3, PlanOptions(first_phase=False)),
 }
 
 

@@ -19,7 +19,7 @@ from qcpp.hardware.device import Device, distances, get_device
 from qcpp.layout.medial import medial_placement
 from qcpp.lowering.passes import lower
 from qcpp.pipeline.device_compile import layout_device
-from qcpp.plan.options import PlanOptions
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.plan.qaoa import QaoaPlan
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario import Scenario
@@ -75,7 +75,7 @@ def _free_nearest(start: int, neighbours: dict[int, list[int]], homes: set[int],
     raise AssertionError("no free qubit")
 
 
-def _reference_bound(scenario: Scenario, p: int, dev: Device) -> int:
+def _reference_bound(scenario: Scenario, p: int, dev: Device, options: PlanOptions = DEFAULT_PLAN) -> int:
     """The module docs' placement written out on every lowered section of the ``p``-layer circuit, gate by gate:
     no kinds, no layers counted ``p`` times."""
     homes = medial_placement(scenario, dev)
@@ -87,7 +87,7 @@ def _reference_bound(scenario: Scenario, p: int, dev: Device) -> int:
         neighbours[y].append(x)
     neighbours = {q: sorted(set(vs)) for q, vs in neighbours.items()}
     first, second = [], []
-    for sec in lower(bound_plan(scenario, p, PlanOptions(), dev).circuit()).sections:
+    for sec in lower(bound_plan(scenario, p, options, dev).circuit()).sections:
         placed: dict[int, int] = {}
         first_data = next((q for g in sec.gates for q in g[1] if q < n), 0)
         for g in sec.gates:
@@ -111,6 +111,16 @@ def test_the_kind_sum_is_the_placement_of_every_section(shape: tuple[int, int, i
     dev = layout_device(s, device)
     assert dev is not None
     assert layout_twoq_bound(bound_plan(s, p, PlanOptions(), dev), dev) == _reference_bound(s, p, dev)
+
+
+@pytest.mark.parametrize("p", [1, 3])
+def test_the_kind_sum_without_the_first_phase_separator_is_the_placement_of_every_section(p: int) -> None:
+    """Layer 1's phase separator counted ``p - 1`` times, layer 0's mixer ``p`` times: the ``p``-layer circuit."""
+    s, options = default_scenario(3, 3, 2), PlanOptions(first_phase=False)
+    dev = layout_device(s, "grid")
+    assert dev is not None
+    bound = layout_twoq_bound(bound_plan(s, p, options, dev), dev)
+    assert bound == _reference_bound(s, p, dev, options) < _reference_bound(s, p, dev)
 
 
 @given(scenarios(max_side=4, max_robots=2), st.integers(0, 2), st.sampled_from(["grid", "heavy-hex"]))

@@ -19,13 +19,13 @@ the gate, and SWAP back the same way, which restores the layout exactly. Every g
 two-qubit count of a routing compile could write: an upper bound on the best routing of that circuit (not on
 SABRE's, which ``tests/estimators/routed_test.py`` checks it exceeds on every scenario small enough to route).
 
-The sum runs over the plan's gadgets as the call graph's estimates do: the state preparation once, each gadget of
-the first layer ``p`` times (later layers have its gates, only the angles differ). What a gadget's charge needs of
-its gates depends on its kind only (equal kinds have equal gates up to qubit names), so it is worked out once per
-kind (:func:`kind_route`, memoised in the run's :class:`~qcpp.routing.context.RoutingContext`): per lowered
-section, which of the gadget's qubits each gate meets, which ancilla goes beside which qubit, and how many gates
-each pair of qubits has. A gadget's charge is then that route at the distances between the device qubits its own
-qubits are placed on.
+The sum runs over the plan's gadgets as the call graph's estimates do: the state preparation once, each gadget of the
+first layer ``p`` times (later layers have its gates, only the angles differ; without the first phase separator, layer
+1's phase separator ``p - 1`` times: :meth:`qcpp.plan.qaoa.QaoaPlan.layer_sections`). What a gadget's charge needs of
+its gates depends on its kind only (equal kinds have equal gates up to qubit names), so it is worked out once per kind
+(:func:`kind_route`, memoised in the run's :class:`~qcpp.routing.context.RoutingContext`): per lowered section, which of
+the gadget's qubits each gate meets, which ancilla goes beside which qubit, and how many gates each pair of qubits has.
+A gadget's charge is then that route at the distances between the device qubits its own qubits are placed on.
 
 Example:
     >>> from qcpp.problem.presets import default_scenario
@@ -205,8 +205,9 @@ def kind_route(gadget: Any, registers: Sequence[Any], n_data: int) -> KindRoute:
 def placed_blocks(
     plan: QaoaPlan, homes: Sequence[int], device: Device, routes: MutableMapping[Hashable, KindRoute] | None = None
 ) -> list[PlacedBlock] | None:
-    """The circuit's sections placed as the module docs describe: the state preparation's and the first layer's,
-    each gadget's from its kind's route (taken from ``routes`` or worked out and stored there).
+    """The circuit's sections placed as the module docs describe: those of
+    :meth:`~qcpp.plan.qaoa.QaoaPlan.layer_sections` with their multiplicities, each gadget's from its kind's route
+    (taken from ``routes`` or worked out and stored there).
 
     Args:
         plan: The circuit (:func:`bound_plan`).
@@ -228,7 +229,7 @@ def placed_blocks(
     is_home = np.zeros(device.num_qubits, dtype=bool)
     is_home[home] = True
     out: list[PlacedBlock] = []
-    for name, gadget in plan.sections(layers=1):
+    for _, gadget, multiplicity in plan.layer_sections():
         gates, qubits = _own_labels(gadget.emit())
         route = routes.get(gadget.kind)
         if route is None:
@@ -247,7 +248,7 @@ def placed_blocks(
                     return None
                 where[ancilla] = spot
                 taken.add(spot)
-            out.append(PlacedBlock(1 if name == "initial_state" else plan.p, where, block))
+            out.append(PlacedBlock(multiplicity, where, block))
     return out
 
 

@@ -184,14 +184,14 @@ def _lower_template(block: Sequence[Gate], order: list[int], registers: Sequence
     return _Template(tuple(gates), is_data, tuple(sorted(Counter(g[0] for g in low.gates).items())))
 
 
-def _windows(plan: Any, n_data: int) -> list[tuple[int, Sequence[Gate], str]]:
-    """``(layer multiplicity flag, block, section name)``: the state preparation's blocks (flag 0) and layer 0's
-    (flag 1)."""
+def _windows(plan: Any, p: int) -> list[tuple[int, Sequence[Gate], str]]:
+    """``(multiplicity, block, section name)``: the blocks of the sections that stand for the circuit of ``p``
+    layers, each with how many like it that circuit has (:meth:`qcpp.plan.qaoa.QaoaPlan.layer_sections`)."""
     out = []
-    for name, g in plan.sections():
+    for name, g, n in plan.layer_sections(p):
         blocks = g.emit_blocks() if isinstance(g, McxPartialMixer) else [g.emit()]
         for b in blocks:
-            out.append((0 if name == "initial_state" else 1, b, name))
+            out.append((n, b, name))
     return out
 
 
@@ -422,20 +422,20 @@ def routed_sum(
     if dev is None:
         return None
     opts = dataclasses.replace(device_plan_options(options, device, layout_method="medial"), fuse=False)
-    plan = qaoa_plan(scenario, 1 if p else 0, opts)
+    plan = qaoa_plan(scenario, min(p, 1 if opts.first_phase else 2), opts)  # its layers stand for all p
     n_data = scenario.num_variables
     registers = plan.registers
     templates: dict[Hashable, _Template] = {}  # per pattern of high-level gates (angles included)
     shared: dict[Hashable, _Template] = {}  # per lowered gates without angles: what routing sees
     blocks = []
-    for layered, block, _ in _windows(plan, n_data):
+    for weight, block, _ in _windows(plan, p):
         key, order = _pattern(block, n_data)
         template = templates.get(key)
         if template is None:
             template = templates[key] = _lower_template(block, order, registers, n_data)
         template = shared.setdefault((template.gates, template.is_data), template)  # angles do not route
         data = [q for q, is_data in zip(order, template.is_data, strict=False) if is_data]
-        blocks.append((layered, template, data))
+        blocks.append((weight, template, data))
     need = max((sum(not x for x in t.is_data) for _, t, _ in blocks), default=0)
     while dev.num_qubits - n_data < need:  # compile grows the unsized grid while a section lacks free qubits
         if device != "grid":
@@ -452,8 +452,7 @@ def routed_sum(
 
     # a window: (weight, template, its data qubits' sites, their bounding box)
     members: list[tuple[int, _Template, list[tuple[int, int]], tuple[int, int, int, int]]] = []
-    for layered, template, data in blocks:
-        weight = p if layered else 1
+    for weight, template, data in blocks:
         if weight:
             rs, cs = rows_of[data], cols_of[data]
             box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max())) if len(data) else None
