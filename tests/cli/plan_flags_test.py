@@ -13,6 +13,7 @@ from qcpp.estimators.counts import count
 from qcpp.lowering.passes import lower
 from qcpp.plan.options import PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
+from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario_io import load_scenario
 
 from .clirun import assert_one_line_error, run
@@ -32,7 +33,7 @@ def test_compile_and_estimate_take_the_same_plan_flags() -> None:
     for flag in PLAN_FLAGS:
         assert flag in compile_flags and compile_flags[flag] == estimate_flags[flag], flag
     plan_like = {"--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--fuse",
-                 "--phase-layout", "--mixer-angles"}
+                 "--phase-layout", "--mixer-angles", "--skip-first-phase"}
     assert set(compile_flags) & plan_like == set(estimate_flags) & plan_like == set(PLAN_FLAGS)
 
 
@@ -58,3 +59,32 @@ def test_estimate_with_representatives_equals_the_compiled_circuit() -> None:
     res = run("compile", EXAMPLE, "-p", "2", "--initial", "representatives", "--lowered", "--json")
     compiled = json.loads(res.stdout)
     assert compiled["gates"]["cx"] == row["cx"] and compiled["qubits"] == row["qubits"]
+
+
+def test_skip_first_phase_estimates_the_compiled_circuit_and_the_rows_say_so() -> None:
+    grid = ["--grid", "3x3", "--robots", "2", "-p", "2"]  # two robots: the phase separator has CX
+    res = run("estimate", *grid, "--skip-first-phase", "--json")
+    assert res.exit_code == 0, res.output
+    row = json.loads(res.stdout)[0]
+    rc = count(lower(qaoa_circuit(default_scenario(3, 3, 2), 2, PlanOptions(first_phase=False))))
+    assert row["first_phase"] is False
+    assert (row["qubits"], row["cx"], row["single_qubit"]) == (rc.qubits, rc.cx, rc.single_qubit)
+    assert row["depth"] == rc.depth
+    default = json.loads(run("estimate", *grid, "--json").stdout)[0]
+    assert "first_phase" not in default and default["cx"] > row["cx"]  # the default's rows keep their fields
+    res = run("compile", *grid, "--skip-first-phase", "--lowered", "--json", "--bind", "gamma_0=0.3")
+    assert res.exit_code == 0, res.output
+    compiled = json.loads(res.stdout)
+    assert compiled["first_phase"] is False and "gamma_0" not in compiled["symbols"]
+    assert compiled["gates"]["cx"] == row["cx"] and compiled["qubits"] == row["qubits"]
+
+
+@pytest.mark.parametrize("command", ["compile", "estimate"])
+def test_skip_first_phase_from_a_superposition_is_one_line_naming_the_flag(command: str) -> None:
+    # one robot corner to corner: its descent path leaves its initial path, so the mixed start is a superposition
+    res = run(command, "--grid", "3x3", "--robots", "1", "--initial", "local_search_mix", "--skip-first-phase")
+    assert_one_line_error(res, "--skip-first-phase", "local_search_mix")
+
+
+def test_skip_first_phase_refuses_the_closed_forms() -> None:
+    assert_one_line_error(run("estimate", "--formula", "--skip-first-phase"), "--skip-first-phase", "--formula")

@@ -284,3 +284,25 @@ def test_write_qasm_writes_the_profile_text(tmp_path: object) -> None:
     with pytest.raises(OptionError):
         c.write_qasm(Path(str(tmp_path)) / "d.qasm", version=2, profile="braket")
     assert not (Path(str(tmp_path)) / "d.qasm").exists()
+
+
+def test_clients_load_the_unbound_circuit_without_the_first_phase_separator() -> None:
+    """Without the first phase separator ``gamma_0`` names no gate, so the unbound text declares no input for it:
+    Qiskit, Cirq and the QDK load it as they load the default's, and with the angles bound it gives qcpp's state
+    (a ``gamma_0`` among the values binds nothing)."""
+    import qiskit.qasm3
+    from qdk import qsharp
+    from qdk.openqasm import import_openqasm
+    from qiskit.quantum_info import Statevector
+
+    s, bind = grid_scenario(2, 4, robots=1), {**BIND, "gamma_1": 0.5, "beta_1": 0.4}
+    c = qcpp_compile(s, 2, lowered=True, first_phase=False)
+    text = c.to_qasm()
+    assert "gamma_0" not in text and "input float[64] gamma_1;" in text
+    ref = simulate_statevector(qcpp_compile(s, 2, lowered=True, bind=bind, first_phase=False).circuit)
+    assert fidelity(ref, cirq_state(text, c.qubits, bind)) == pytest.approx(1.0, abs=1e-9)
+    loaded = qiskit.qasm3.loads(text)
+    bound = loaded.assign_parameters({q: bind[q.name] for q in loaded.parameters})
+    assert fidelity(ref, np.asarray(Statevector(bound).data)) == pytest.approx(1.0, abs=1e-9)
+    qsharp.init()
+    import_openqasm(text, name="program")  # unbound: inputs as parameters

@@ -420,7 +420,8 @@ PANELS: dict[str, str] = {
     "hard_obstacles": "Scenario", "p": "Scenario", "counts": "Scenario",
     # how the circuit is built (compile, estimate: qcpp.cli.commands.plan_flags)
     "rule": "Plan", "initial": "Plan", "target": "Plan", "phase": "Plan", "optimize": "Plan",
-    "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "lowered": "Plan", "bind": "Plan",
+    "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "skip_first_phase": "Plan", "lowered": "Plan",
+    "bind": "Plan",
     # the run of the other commands
     "method": "Method", "seed": "Method", "optimizer": "Method", "objective": "Method", "maxiter": "Method",
     "mixer_warm": "Method", "restart_every_level": "Method", "gibbs_scale": "Method", "time_limit": "Method",

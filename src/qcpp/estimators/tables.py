@@ -2,7 +2,8 @@
 
 A row is a plain dict (:func:`make_row`) with
 
-* the point and options: ``rows, cols, robots, p, rule, target, scenario``;
+* the point and options: ``rows, cols, robots, p, rule, target, scenario``; ``first_phase`` (``False``) only in a
+  row built without the first phase separator (:attr:`qcpp.plan.options.PlanOptions.first_phase`);
 * exact counts of the lowered circuit, from the gadgets' costs: ``qubits, data_qubits, ancillas, gates, cx,
   single_qubit, two_qubit, t, rotations``; ``depth, two_qubit_depth, rotation_depth`` with ``depth_kind``
   (``exact``: computed on the compiled circuit; ``bound``: an upper bound, see :mod:`qcpp.estimators.estimate`;
@@ -165,6 +166,7 @@ def make_row(est: Estimate, compare_paper: bool = False, doubling: Doubling = "p
         "rule": plan.rule,
         "target": plan.target,
         "scenario": "default" if pt.scenario_json is None else "custom",
+        **({} if plan.first_phase else {"first_phase": False}),  # the default's rows keep their columns
         "qubits": est.qubits,
         "data_qubits": est.data_qubits,
         "ancillas": est.qubits - est.data_qubits,

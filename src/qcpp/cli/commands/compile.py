@@ -58,7 +58,7 @@ from qcpp.cli.commands.inline_scenario import (
     check_inline_only,
     given_scenario,
 )
-from qcpp.cli.commands.plan_flags import LayersFlag, with_plan_flags
+from qcpp.cli.commands.plan_flags import LayersFlag, check_start, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, json_text, print_table
 from qcpp.estimators.guard import SizePrediction, check_size, compile_need, predict_size
@@ -251,6 +251,7 @@ def compile_command(
         check_output(qasm)  # a bad destination fails before the compile, not after
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, endpoints=robot)
     s, label = given.scenario, given.label
+    check_start(s, options)
     streamed = device is None and (qasm is not None or predict_size(s, p, options).gates >= STREAM_ABOVE_GATES)
     size = _guard(s, p, options, max_gates, force, streamed=streamed)
     need = compile_need(s, p, options, streamed=streamed, size=size)
@@ -286,6 +287,8 @@ def compile_command(
             summary["qasm"]["measured"] = "meas"  # the classical register: data qubit i into meas[i]
     if explain:
         summary["phase_explain"] = phase_explain
+    if not options.first_phase:  # as estimate's rows say it; the default's summary keeps its keys
+        summary["first_phase"] = False
     if as_json:
         typer.echo(json_text(summary))
         return
@@ -293,7 +296,8 @@ def compile_command(
     form = "lowered" if lowered else "high level"
     if device is not None:
         form = f"routed on {summary['device']['name']}, {'lowered' if lowered else 'native gates'}"
-    table = Table(title=f"{label}: p={p}, rule={options.rule}, target={options.target}, {form}")
+    skipped = "" if options.first_phase else ", no first phase separator"
+    table = Table(title=f"{label}: p={p}, rule={options.rule}, target={options.target}{skipped}, {form}")
     table.add_column("gate")
     table.add_column("count", justify="right")
     for name, n in summary["gates"].items():

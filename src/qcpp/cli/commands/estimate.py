@@ -27,7 +27,7 @@ from qcpp.cli.commands.inline_scenario import (
     parse_obstacles,
     parse_robot,
 )
-from qcpp.cli.commands.plan_flags import with_plan_flags
+from qcpp.cli.commands.plan_flags import check_start, with_plan_flags
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, print_table
 from qcpp.errors import OptionError
@@ -199,6 +199,9 @@ def estimate(
     qec_scheme = qec_scheme if qec_scheme is not None else DEFAULT_QEC_SCHEME
     error_budget = error_budget if error_budget is not None else DEFAULT_ERROR_BUDGET
     if formula:
+        if not options.first_phase:
+            raise OptionError("--skip-first-phase", "the closed forms (--formula) are of the paper's p phase "
+                              "separators; estimate the points instead")  # fmt: skip
         typer.echo(formula_report(fmt, width=terminal_width()), nl=False)  # type: ignore[arg-type]
         return
     settings = checked_estimate_options(
@@ -217,6 +220,8 @@ def estimate(
         )
     except ScenarioError as exc:
         raise flag_error(exc, robots, obstacle, robot) from None
+    for s in dict.fromkeys(point.build_scenario() for point in points.points):
+        check_start(s, options)
     if points.skipped:
         echo_note(
             f"skipped {points.skipped} of {points.skipped + len(points.points)} points: the grid is too small for "

@@ -20,12 +20,16 @@ from __future__ import annotations
 import functools
 import inspect
 from collections.abc import Callable
-from typing import Annotated, Any, TypeVar, get_type_hints
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar, get_type_hints
 
 import typer
 
 from qcpp.cli.commands.inline_scenario import one_whole_number
+from qcpp.errors import OptionError
 from qcpp.plan.options import PlanOptions
+
+if TYPE_CHECKING:
+    from qcpp.problem.scenario import Scenario
 
 __all__ = [
     "PLAN_FLAGS",
@@ -37,7 +41,10 @@ __all__ = [
     "PhaseFlag",
     "PhaseLayoutFlag",
     "RuleFlag",
+    "SkipFirstPhaseFlag",
     "TargetFlag",
+    "check_start",
+    "plan_flag_message",
     "plan_options",
     "with_plan_flags",
 ]
@@ -93,16 +100,32 @@ AnglesFlag = Annotated[
     ),
 ]
 
+SkipFirstPhaseFlag = Annotated[
+    bool,
+    typer.Option(
+        "--skip-first-phase",
+        help="Omit the first phase separator: on a basis-state start (initial_path, local_search) it is a global "
+        "phase, so the state is the same (gamma_0 stays a name with no gate).",
+    ),
+]
+
 PLAN_FLAGS: tuple[str, ...] = (
     "--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--phase-layout", "--mixer-angles",
+    "--skip-first-phase",
 )
 """The flags above, in :class:`~qcpp.plan.options.PlanOptions` field order."""
 
 _PARAMETERS: tuple[tuple[str, Any], ...] = (
     ("rule", RuleFlag), ("initial", InitialFlag), ("target", TargetFlag), ("phase", PhaseFlag),
     ("optimize", OptimizeFlag), ("ancilla_budget", AncillaBudgetFlag), ("phase_layout", PhaseLayoutFlag),
-    ("angles", AnglesFlag),
+    ("angles", AnglesFlag), ("skip_first_phase", SkipFirstPhaseFlag),
 )  # fmt: skip
+_DEFAULTS: dict[str, Any] = {"skip_first_phase": False}
+"""The flags that are no field of :class:`~qcpp.plan.options.PlanOptions` (``--skip-first-phase`` is
+``first_phase=False``), with their defaults."""
+
+FLAG_OF_FIELD: dict[str, str] = {"angles": "--mixer-angles", "first_phase": "--skip-first-phase"}
+"""The plan flags whose name is not their field's (``ancilla_budget`` is ``--ancilla-budget``)."""
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -112,7 +135,11 @@ def with_plan_flags(command: F) -> F:
     those of :class:`~qcpp.plan.options.PlanOptions`), called with the options they build (:func:`plan_options`).
     """
     defaults, keyword = PlanOptions(), inspect.Parameter.KEYWORD_ONLY
-    flags = [inspect.Parameter(name, keyword, default=getattr(defaults, name), annotation=a) for name, a in _PARAMETERS]
+    flags = [
+        inspect.Parameter(name, keyword, default=_DEFAULTS[name] if name in _DEFAULTS else getattr(defaults, name),
+                          annotation=a)
+        for name, a in _PARAMETERS
+    ]  # fmt: skip
     sig = inspect.signature(command, eval_str=True)
     hints = get_type_hints(command, include_extras=True)
 
@@ -129,13 +156,14 @@ def with_plan_flags(command: F) -> F:
 
 def plan_options(
     rule: str, initial: str, target: str, phase: str, optimize: str, ancilla_budget: int | None,
-    phase_layout: str = "auto", angles: str = "layer",
+    phase_layout: str = "auto", angles: str = "layer", skip_first_phase: bool = False,
 ) -> PlanOptions:
     """The :class:`~qcpp.plan.options.PlanOptions` of the plan flags.
 
     Args:
         rule, initial, target, phase, optimize, ancilla_budget, phase_layout, angles: the flags' values
             (``angles`` is ``--mixer-angles``).
+        skip_first_phase: ``--skip-first-phase`` (``first_phase=False``).
 
     Raises:
         ValueError: one line naming the flag (``--initial: expected ..., got ...``).
@@ -143,9 +171,37 @@ def plan_options(
     try:
         return PlanOptions(
             rule, initial, target, phase, optimize, ancilla_budget, phase_layout=phase_layout,  # type: ignore[arg-type]
-            angles=angles,  # type: ignore[arg-type]
+            angles=angles, first_phase=not skip_first_phase,  # type: ignore[arg-type]
         )
     except ValueError as exc:
-        field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
-        flag = "--mixer-angles" if field == "angles" else f"--{field.replace('_', '-')}"
-        raise ValueError(f"{flag}: {problem}") from None
+        raise ValueError(plan_flag_message(exc)) from None
+
+
+def plan_flag_message(exc: ValueError) -> str:
+    """A plan option's message (``field: problem``, :class:`~qcpp.errors.OptionError`) with the field named by its
+    flag, as the command line says it: ``first_phase: ...`` is ``--skip-first-phase: ...``.
+
+    Example:
+        >>> from qcpp.errors import OptionError
+        >>> plan_flag_message(OptionError("ancilla_budget", "expected an integer >= 0, got -1"))
+        '--ancilla-budget: expected an integer >= 0, got -1'
+    """
+    field, _, problem = str(exc).partition(": ")  # PlanOptions names the field first
+    return f"{FLAG_OF_FIELD.get(field, '--' + field.replace('_', '-'))}: {problem}"
+
+
+def check_start(scenario: Scenario, options: PlanOptions) -> None:
+    """Refuse ``--skip-first-phase`` where the scenario's start is not a basis state, before any work: the check of
+    :func:`qcpp.plan.qaoa.qaoa_plan`, its message naming the flag.
+
+    Raises:
+        qcpp.errors.OptionError: ``--skip-first-phase: ...`` naming the initial state.
+    """
+    if options.first_phase:
+        return
+    from qcpp.plan.qaoa import qaoa_plan  # here: the plan is not loaded by every command's start-up
+
+    try:
+        qaoa_plan(scenario, 0, options)  # builds the state preparation only
+    except OptionError as exc:
+        raise OptionError("--skip-first-phase", exc.reason) from None
