@@ -14,7 +14,8 @@ which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM o
   however fast the stages change. Every line fits the terminal's width
   (:func:`qcpp.io.text.terminal_width`: ``$COLUMNS``, else 80 on a pipe): the counts, the share and the
   times are never cut; the task is cut at its end (down to its first word) and then the stage in its middle, where
-  a stage's own counts (``(3 / 6)``) sit at its end and stay, with ``…`` for what went.
+  a stage's own counts (``(3 / 6)``) sit at its end and stay, with ``…`` for what went. Cuts fall between words
+  where a boundary is within :data:`WORD_REACH` characters; only a longer word (a path) is cut inside.
 * ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
   seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
 * While numba compiles (the first run after installing compiles the simulators' kernels, up to a minute), the
@@ -81,6 +82,10 @@ HEARTBEAT_JOIN_SECONDS = 1.0
 
 MIN_STAGE = 12
 """Fewest characters a cut stage keeps in a line; with less room the line leaves the stage out."""
+
+WORD_REACH = 20
+"""A line cut short ends at a word boundary found within this many characters before the cut, so no word is split;
+where none is (a long path or name), the word is cut, and the ``…`` shows it."""
 
 BAR_WIDTH = 20
 """Characters of the bar on a terminal (rich's default, 40, leaves an 80-column terminal little room for the task)."""
@@ -395,8 +400,36 @@ def _counted(n: int, unit: str) -> str:
     return f"{n:,} {unit[:-1] if n == 1 and unit.endswith('s') else unit}"
 
 
+def _word_prefix(text: str, room: int, may_be_empty: bool = False) -> str:
+    """The start of ``text`` in at most ``room`` characters, ending between two words where the cut would fall
+    inside one and a space is within :data:`WORD_REACH` characters before it (else the word is cut); trailing
+    spaces, commas and colons go.
+
+    Args:
+        text: The text.
+        room: Characters the start may take.
+        may_be_empty: The start of ``text`` counts as a word boundary too (where something else shows the text).
+
+    Example:
+        >>> _word_prefix("routing the whole circuit", 15), _word_prefix("examples/a_very_long_file_name.toml", 15)
+        ('routing the', 'examples/a_very')
+        >>> _word_prefix("simulating the subspace", 8), _word_prefix("simulating the subspace", 8, may_be_empty=True)
+        ('simulati', '')
+    """
+    if len(text) <= room:
+        return text
+    kept = text[: max(room, 0)]
+    space = kept.rfind(" ")
+    if space < 0 and may_be_empty:
+        space = 0
+    if text[len(kept)] != " " and space >= 0 and len(kept) - space <= WORD_REACH:  # no half words
+        kept = kept[:space]
+    return kept.rstrip(" ,:")
+
+
 def _cut_end(text: str, room: int) -> str:
-    """``text`` in at most ``room`` characters: if it is longer, its end goes, at a space where one is, for ``…``.
+    """``text`` in at most ``room`` characters: if it is longer, its end goes for ``…``, at a word boundary where
+    one is near (:func:`_word_prefix`).
 
     Example:
         >>> _cut_end("compile 3x4, 1 robot(s), p=1", 16)
@@ -404,21 +437,21 @@ def _cut_end(text: str, room: int) -> str:
     """
     if len(text) <= room:
         return text
-    kept = text[: max(room - 1, 0)]
-    if " " in kept and text[len(kept)] != " ":  # no half words
-        kept = kept[: kept.rindex(" ")]
-    return kept.rstrip(" ,:") + "…"
+    return _word_prefix(text, room - 1) + "…"
 
 
 def _cut_middle(text: str, room: int) -> str:
     """``text`` in at most ``room`` characters: if it is longer, whole words from its middle go for `` … ``.
 
     The end keeps up to half the room, so a stage's own counts (``... on heavy-hex:9 (3 / 6)``) survive next to
-    its start (the row or the pass it belongs to).
+    its start (the row or the pass it belongs to). The end starts at a word; where the room for it falls inside
+    the last word, the end goes instead (:func:`_cut_end`), so no piece of a word is left after the ``…``.
 
     Example:
         >>> _cut_middle("3x3 r1 p1 on heavy-hex:7: choosing partial-mixer plans on the cells (13 / 18)", 30)
         '3x3 r1 p1 on … (13 / 18)'
+        >>> _cut_middle("routing the whole circuit", 12)
+        'routing the…'
     """
     if len(text) <= room:
         return text
@@ -427,11 +460,15 @@ def _cut_middle(text: str, room: int) -> str:
     if room < max(7, group + 4):
         return _cut_end(text, room)
     start = len(text) - max((room - 3) // 2, group)
-    if start > 0 and text[start - 1] != " " and " " in text[start:-1]:  # no half words
-        start = text.index(" ", start) + 1
+    if start > 0 and text[start - 1] != " ":  # the end would start inside a word: at the next one, if any
+        space = text.find(" ", start, len(text) - 1)
+        if space < 0:
+            return _cut_end(text, room)
+        start = space + 1
     tail = text[start:]
-    head = text[: room - 3 - len(tail) + 1]
-    head = head[: head.rindex(" ")].rstrip(" ,:") if " " in head else ""
+    head = _word_prefix(text, room - 3 - len(tail), may_be_empty=True)
+    if head and text[len(head)] not in " ,:":
+        return f"{head}… {tail}"  # a long word cut: the ``…`` right after it marks the cut
     return f"{head} … {tail}" if head else f"… {tail}"
 
 
