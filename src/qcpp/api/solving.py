@@ -71,7 +71,9 @@ def solve(
 
     Returns:
         The :class:`~qcpp.problem.solvers.Solution` (paths as edge masks per robot, cost and its parts;
-        ``node_paths(scenario)`` gives each path's nodes, ``to_dict(scenario)`` the ``qcpp solve --json`` object).
+        ``node_paths(scenario)`` gives each path's nodes, ``to_dict(scenario)`` the ``qcpp solve --json`` object
+        of the same method and options, ``cpsat``'s proof and ``qaoa``'s training included: the command's
+        ``scenario`` field aside, the same dict).
 
     Raises:
         qcpp.errors.OptionError: an unknown method or option, or an option of another method.

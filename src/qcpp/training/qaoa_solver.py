@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
@@ -65,7 +65,9 @@ from qcpp.training.objectives import (
 )
 from qcpp.training.training import INITS, OPTIMIZERS, Init, TrainingResult, cost_scale, most_probable, train
 
-__all__ = ["QAOA_OPTIMIZERS", "SINGLE_START", "QaoaSolution", "qaoa_method", "qaoa_to_dict", "solve_qaoa"]
+__all__ = [
+    "QAOA_OPTIMIZERS", "SINGLE_START", "QaoaSolution", "qaoa_details", "qaoa_method", "qaoa_to_dict", "solve_qaoa",
+]
 
 QAOA_OPTIMIZERS: tuple[str, ...] = ("layerwise", "multi-angle", *OPTIMIZERS)
 SINGLE_START: Mapping[str, Any] = MappingProxyType({"restart_every_level": False, "gibbs_scale": 5.0})
@@ -259,9 +261,9 @@ def solve_qaoa(
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
         ),
     )
-    return QaoaSolution(
+    return _with_details(QaoaSolution(
         solution, prob, result.p_optimum, best, result, schedule, initial, angle_bindings(result.angles)
-    )
+    ))
 
 
 def _solve_multi_angle(
@@ -309,41 +311,52 @@ def _solve_multi_angle(
             f"{optimum:g}) with probability {p_opt:.4g}",
         ),
     )
-    return QaoaSolution(solution, prob, p_opt, optimum, training, None, initial, bindings(q, best.betas, p),
-                        estimates)
+    return _with_details(QaoaSolution(solution, prob, p_opt, optimum, training, None, initial,
+                                      bindings(q, best.betas, p), estimates))
+
+
+def qaoa_details(res: QaoaSolution) -> tuple[tuple[str, Any], ...]:
+    """The JSON fields a QAOA answer adds to :func:`~qcpp.problem.solvers.solution_to_dict` (its
+    ``Solution.details``, which :func:`solve_qaoa` sets): ``probability``, ``p_optimum``, ``p``, ``angles``,
+    ``optimizer``, ``initial`` (the initial state), ``objective``, ``expectation``, ``trace`` (the objective),
+    ``evaluations``, ``circuit_estimates``, ``training_shots`` (estimates x ``shots_per_estimate``, an assumed
+    :data:`qcpp.training.layerwise.SHOTS_PER_ESTIMATE`), ``bindings`` (when there are any) and, for ``layerwise``,
+    ``mixer_evaluations`` (the mixer-only warm start's product-state evaluations, 0 without it) and ``levels`` (per
+    depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``, ``iterations``)."""
+    out: list[tuple[str, Any]] = [
+        ("probability", res.probability),
+        ("p_optimum", res.p_optimum),
+        ("p", res.p),
+        ("angles", list(res.angles)),
+        ("optimizer", res.optimizer),
+        ("initial", res.initial),
+        ("objective", res.training.objective),
+        ("expectation", res.training.expectation),
+        ("trace", list(res.trace)),
+        ("evaluations", res.num_evaluations),
+        ("circuit_estimates", res.circuit_estimates),
+        ("training_shots", res.circuit_estimates * SHOTS_PER_ESTIMATE),
+        ("shots_per_estimate", SHOTS_PER_ESTIMATE),
+    ]
+    if res.bindings:
+        out.append(("bindings", dict(res.bindings)))
+    if res.schedule is not None:
+        out.append(("mixer_evaluations", res.schedule.mixer_evaluations))
+        out.append(("levels", [{"p": lv.p, "value": lv.value, "expectation": lv.expectation,
+                                "p_optimum": lv.p_optimum, "iterations": len(lv.trace) - 1}
+                               for lv in res.schedule.levels]))
+    return tuple(out)
+
+
+def _with_details(res: QaoaSolution) -> QaoaSolution:
+    """``res`` whose solution carries :func:`qaoa_details`: ``qcpp.solve(s, "qaoa").to_dict(s)`` has them."""
+    return replace(res, solution=replace(res.solution, details=qaoa_details(res)))
 
 
 def qaoa_to_dict(scenario: Scenario, res: QaoaSolution) -> dict[str, Any]:
-    """JSON-ready dict: :func:`~qcpp.problem.solvers.solution_to_dict` (without its trace) plus ``probability``,
-    ``p_optimum``, ``p``, ``angles``, ``optimizer``, ``initial`` (the initial state), ``objective``,
-    ``expectation``, ``trace`` (the objective), ``evaluations``, ``circuit_estimates``, ``training_shots``
-    (estimates x ``shots_per_estimate``, an assumed :data:`qcpp.training.layerwise.SHOTS_PER_ESTIMATE`) and, for
-    ``layerwise``, ``levels`` (per depth: ``p``, objective ``value``, ``expectation``, ``p_optimum``,
-    ``iterations``) and ``mixer_evaluations`` (the mixer-only warm start's product-state evaluations, 0 without
-    it)."""
-    out = solution_to_dict(scenario, res.solution, include_trace=False)
-    out.update(
-        probability=res.probability,
-        p_optimum=res.p_optimum,
-        p=res.p,
-        angles=list(res.angles),
-        optimizer=res.optimizer,
-        initial=res.initial,
-        objective=res.training.objective,
-        expectation=res.training.expectation,
-        trace=list(res.trace),
-        evaluations=res.num_evaluations,
-        circuit_estimates=res.circuit_estimates,
-        training_shots=res.circuit_estimates * SHOTS_PER_ESTIMATE,
-        shots_per_estimate=SHOTS_PER_ESTIMATE,
-    )
-    if res.bindings:
-        out["bindings"] = dict(res.bindings)
-    if res.schedule is not None:
-        out["mixer_evaluations"] = res.schedule.mixer_evaluations
-        out["levels"] = [{"p": lv.p, "value": lv.value, "expectation": lv.expectation, "p_optimum": lv.p_optimum,
-                          "iterations": len(lv.trace) - 1} for lv in res.schedule.levels]
-    return out
+    """JSON-ready dict: :func:`~qcpp.problem.solvers.solution_to_dict` with the fields of :func:`qaoa_details`
+    (``res.solution.to_dict(scenario)`` for an answer of :func:`solve_qaoa`)."""
+    return solution_to_dict(scenario, replace(res.solution, details=qaoa_details(res)))
 
 
 def qaoa_method(

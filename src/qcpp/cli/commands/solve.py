@@ -14,7 +14,11 @@ accepts exactly its keys. Adding a method is one entry: a function
 ``qaoa`` (:mod:`qcpp.training.qaoa_solver`, imported on first use) lives in a higher layer than the classical
 solvers, so it is registered here rather than in :data:`qcpp.problem.solvers.SOLVERS`. It alone takes the options of
 :data:`QAOA_DEFAULTS` (their help says what they do) and adds the fields of
-:func:`qcpp.training.qaoa_solver.qaoa_to_dict` to the JSON and a trace sparkline to the text.
+:func:`qcpp.training.qaoa_solver.qaoa_details` to the JSON and a trace sparkline to the text.
+
+The JSON is ``scenario`` (the file or flags given) followed by
+:func:`qcpp.problem.solvers.solution_to_dict` of the answer, which is what ``qcpp.solve(...).to_dict(scenario)``
+returns for the same method and options: one builder for both.
 
 ``qubo`` (:func:`qcpp.qubo.solve.solve_qubo`) alone takes ``--sampler`` (``tabu``, the default, or ``sa``:
 dwave-samplers' tabu search or simulated annealing on the per-robot QUBO).
@@ -377,19 +381,8 @@ def _print_result(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | 
                   objective: str, as_json: bool, source: str) -> None:  # fmt: skip
     """The solution on standard output: one JSON object, or the drawing, the cost table and the details."""
     if as_json:
-        if qaoa is not None:
-            from qcpp.training.qaoa_solver import qaoa_to_dict
-
-            out = {"scenario": source, **qaoa_to_dict(s, qaoa)}
-        else:
-            out = {"scenario": source, **solution_to_dict(s, sol, include_trace=False)}
-        if exact is not None:
-            known = math.isfinite(exact.bound)  # JSON has no infinity: no bound is null
-            out.update(proven_optimal=exact.proven_optimal, bound=exact.bound if known else None,
-                       gap=exact.gap if known else None, status=exact.status)
-        if sol.trace:
-            out["trace_length"] = len(sol.trace)
-        typer.echo(json_text(out))
+        # the method's own fields (cpsat's proof, qaoa's training) ride in sol.details: qcpp.solve's to_dict is this
+        typer.echo(json_text({"scenario": source, **solution_to_dict(s, sol)}))
         sys.stdout.flush()
         return
     console = Console()

@@ -485,5 +485,13 @@ def cpsat(
         trace=tuple(v for _, v in improvements),
         seed=seed,
         notes=(*notes, f"bound {bound:g}, gap {max(0.0, parts.total - bound):g}"),
+        details=_details(proven, bound, max(0.0, parts.total - bound), status_name),
     )
     return CpSatResult(sol, proven, bound, status_name, improvements, scale)
+
+
+def _details(proven: bool, bound: float, gap: float, status: str) -> tuple[tuple[str, object], ...]:
+    """The JSON fields of a CP-SAT answer (``Solution.details``): JSON has no infinity, so no bound is ``null``."""
+    known = math.isfinite(bound)
+    return (("proven_optimal", proven), ("bound", bound if known else None), ("gap", gap if known else None),
+            ("status", status))

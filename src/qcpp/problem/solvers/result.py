@@ -18,8 +18,9 @@ Example:
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from qcpp.problem.cost import CostParts
@@ -52,6 +53,10 @@ class Solution:
         seed: The random seed (stochastic solvers), else ``None``.
         rule: The SBF rule used for moves (local searches), else ``None``.
         notes: Free-text remarks (tie-breaking, skipped moves, ...).
+        details: The method's own JSON-ready fields as ``(name, value)`` pairs, in output order, which
+            :func:`solution_to_dict` adds (``cpsat``: ``proven_optimal``, ``bound``, ``gap``, ``status``; ``qaoa``:
+            :func:`qcpp.training.qaoa_solver.qaoa_details`); ``dict(sol.details)`` reads them. Pairs rather than a
+            dict keep the value immutable at its top level; the values may be lists (angles, levels).
     """
 
     method: str
@@ -66,6 +71,7 @@ class Solution:
     seed: int | None = None
     rule: str | None = None
     notes: tuple[str, ...] = ()
+    details: tuple[tuple[str, Any], ...] = field(default=(), hash=False)  # values may be lists: not hashable
 
     def node_paths(self, scenario: Scenario) -> tuple[tuple[Node, ...], ...]:
         """Each robot's path as its ``(row, col)`` nodes from start to goal (``paths`` holds edge masks).
@@ -84,21 +90,25 @@ class Solution:
             tuple(path_to_nodes(scenario.grid, m, rb.start)) for m, rb in zip(self.paths, scenario.robots, strict=True)
         )
 
-    def to_dict(self, scenario: Scenario, *, include_trace: bool = True) -> dict[str, Any]:
-        """What ``qcpp solve --json`` prints for this solution (:func:`solution_to_dict`)."""
+    def to_dict(self, scenario: Scenario, *, include_trace: bool = False) -> dict[str, Any]:
+        """What ``qcpp solve --json`` prints for this solution, but its ``scenario`` field (the file or flags the
+        command was given): :func:`solution_to_dict`. Timing (``seconds``) differs from run to run."""
         return solution_to_dict(scenario, self, include_trace=include_trace)
 
 
-def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool = True) -> dict[str, Any]:
-    """JSON-ready dict of ``sol``: paths as ``[row, col]`` node lists from start to goal.
+def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool = False) -> dict[str, Any]:
+    """JSON-ready dict of ``sol``: paths as ``[row, col]`` node lists from start to goal. The one builder of the
+    object ``qcpp solve --json`` prints (after its ``scenario`` field) and :meth:`Solution.to_dict` returns.
 
     Args:
         scenario: The scenario the solution belongs to (needed to walk the paths).
-        include_trace: Whether to include the (possibly long) ``trace`` list.
+        include_trace: Whether to include the (possibly long) ``trace`` list (``trace_length`` is always there
+            when the trace is not empty).
 
     Returns:
-        A dict with ``method``, ``paths``, ``cost``, ``cost_parts`` (``c1``, ``c2``, ``c3``), ``seconds``,
-        ``evaluated`` and every non-empty optional field of :class:`Solution`.
+        A fresh dict with ``method``, ``paths``, ``cost``, ``cost_parts`` (``c1``, ``c2``, ``c3``), ``seconds``,
+        ``evaluated``, every non-empty optional field of :class:`Solution`, the method's ``details`` and
+        ``trace_length``.
     """
     out: dict[str, Any] = {
         "method": sol.method,
@@ -124,4 +134,7 @@ def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool =
         out["trace"] = list(sol.trace)
     if sol.notes:
         out["notes"] = list(sol.notes)
+    out.update(copy.deepcopy(dict(sol.details)))  # a fresh copy: the caller may edit its dict
+    if sol.trace:
+        out["trace_length"] = len(sol.trace)
     return out
