@@ -101,6 +101,61 @@ def test_an_unknown_image_type_is_one_line_before_any_work(tmp_path: Path, monke
     assert list(tmp_path.iterdir()) == []
 
 
+def _programs(folder: Path, *names: str) -> str:
+    """A ``PATH`` of one folder holding executables ``names`` (scripts that do nothing)."""
+    folder.mkdir(exist_ok=True)
+    for name in names:
+        (folder / name).write_text("#!/bin/sh\n")
+        (folder / name).chmod(0o755)
+    return str(folder)
+
+
+def test_check_output_refuses_a_figure_whose_tex_programs_are_missing(tmp_path: Path,
+                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    """matplotlib runs TeX only when it saves the figure, after the work: the check finds it missing first."""
+    import matplotlib
+
+    out = tmp_path / "out"
+    out.mkdir()
+    monkeypatch.setenv("PATH", "")
+    with matplotlib.rc_context({"text.usetex": False, "pgf.texsystem": "xelatex"}):
+        with pytest.raises(OutputError, match=r"out\.pgf: a \.pgf figure needs xelatex \(matplotlib's pgf\.tex"):
+            check_output(out / "out.pgf", figure=True)
+        for fine in ("out.png", "out.pdf", "out.svg", "noext"):
+            check_output(out / fine, figure=True)  # matplotlib alone
+        monkeypatch.setenv("PATH", _programs(tmp_path / "bin", "xelatex"))
+        check_output(out / "out.pgf", figure=True)
+    lualatex = matplotlib.rc_context({"text.usetex": False, "pgf.texsystem": "lualatex"})
+    with lualatex, pytest.raises(OutputError, match=r"needs lualatex"):
+        check_output(out / "out.pgf", figure=True)
+    monkeypatch.setenv("PATH", "")
+    with matplotlib.rc_context({"text.usetex": True}):
+        with pytest.raises(OutputError, match=r"needs latex \(matplotlib's text\.usetex\) and dvipng"):
+            check_output(out / "out.png", figure=True)
+        with pytest.raises(OutputError, match=r"\.pdf figure needs latex \(matplotlib's text\.usetex\), not found"):
+            check_output(out / "out.pdf", figure=True)
+        monkeypatch.setenv("PATH", _programs(tmp_path / "bin", "latex", "dvipng"))
+        check_output(out / "out.png", figure=True)
+    assert list(out.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("solve", EX, "-m", "dfs", "--plot", "p.pgf"),
+        ("estimate", "--grid", "2x2..3x3", "--plot", "e.pgf"),
+    ],
+    ids=["solve --plot", "estimate --plot"],
+)
+def test_a_pgf_plot_without_tex_is_one_line_before_any_work(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                            progress_lines: None, args: tuple[str, ...]) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("PATH", "")
+    res = run(*args)
+    assert_one_line_error(res, args[-1], "needs xelatex", "not found on PATH")  # no progress line: nothing ran
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize(
     ("args", "printed"),
     [

@@ -22,7 +22,8 @@ The rules (one behaviour for ``--qasm``, ``--plot``, ``--plot-trace`` and every 
 * :func:`check_output` finds every unwritable place before the work starts: a missing folder, and a folder where
   no file can be created (read-only folder or file system, ``/proc``), by creating the same temporary file the
   write would create and removing it at once (unnamed where the system allows, so nothing shows in the folder);
-  with ``figure=True`` also an image type matplotlib cannot write.
+  with ``figure=True`` also an image type matplotlib cannot write, or one it writes only with TeX programs that are
+  not on ``PATH`` (``.pgf``, or ``text.usetex`` set: :func:`figure_programs`).
 * Every failure is an :class:`OutputError` (an ``OSError``) whose message names the path **as the caller gave
   it**, e.g. ``cannot write out/x.qasm: the folder out does not exist`` -- never the temporary name.
 
@@ -45,6 +46,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import shutil
 import stat
 import sys
 import tempfile
@@ -61,6 +63,7 @@ __all__ = [
     "check_output",
     "discard_pending",
     "figure_formats",
+    "figure_programs",
     "is_stdout",
     "save_figure_atomic",
     "write_text_atomic",
@@ -141,7 +144,8 @@ def check_output(path: str | os.PathLike[str], *, figure: bool = False) -> None:
         path: the destination as given by the user (``-`` and :data:`STDOUT_NAMES` are standard output and always
             fine).
         figure: ``path`` is an image for :func:`save_figure_atomic`: its suffix must name a format matplotlib
-            writes (none: PNG).
+            writes (none: PNG), and the programs matplotlib runs for it (:func:`figure_programs`) must be on
+            ``PATH``.
 
     Raises:
         OutputError: naming ``path``.
@@ -194,17 +198,57 @@ def figure_formats() -> list[str]:
     return sorted(FigureCanvasBase.get_supported_filetypes())
 
 
+RASTER_FORMATS = frozenset({"png", "jpg", "jpeg", "tif", "tiff", "webp", "gif", "avif", "raw", "rgba"})
+"""Image types matplotlib draws as pixels (Agg): with ``text.usetex`` their text goes through ``dvipng``."""
+
+
+def figure_programs(fmt: str) -> tuple[tuple[str, str], ...]:
+    """The outside programs matplotlib runs to write a figure as ``fmt``, each with the setting that asks for it.
+
+    ``.pgf`` measures its text with ``rcParams["pgf.texsystem"]`` (``xelatex`` by default; ``lualatex``,
+    ``pdflatex``); with ``rcParams["text.usetex"]`` every type needs ``latex``, and the pixel types
+    (:data:`RASTER_FORMATS`) ``dvipng`` as well. Every other figure is drawn by matplotlib alone.
+
+    Args:
+        fmt: The image type, a suffix without the dot (``pgf``, ``png``).
+
+    Returns:
+        ``(program, why)`` pairs, in the order matplotlib needs them; empty for most types.
+
+    Example:
+        >>> import matplotlib
+        >>> with matplotlib.rc_context({"pgf.texsystem": "lualatex", "text.usetex": False}):
+        ...     figure_programs("pgf"), figure_programs("svg")
+        ((('lualatex', "matplotlib's pgf.texsystem"),), ())
+    """
+    from qcpp.io.caches import use_writable_matplotlib_config
+
+    use_writable_matplotlib_config()
+    import matplotlib
+
+    if fmt == "pgf":  # the pgf backend typesets with its own TeX system whatever text.usetex says
+        return ((str(matplotlib.rcParams["pgf.texsystem"]), "matplotlib's pgf.texsystem"),)
+    if not matplotlib.rcParams["text.usetex"]:
+        return ()
+    why = "matplotlib's text.usetex"
+    return (("latex", why), ("dvipng", why)) if fmt in RASTER_FORMATS else (("latex", why),)
+
+
 def _check_figure_format(target: str) -> None:
     suffix = Path(target).suffix[1:].lower()
-    if not suffix:
-        return  # PNG
     formats = figure_formats()
-    if suffix not in formats:
+    if suffix and suffix not in formats:
         common = [f for f in ("png", "svg", "pdf") if f in formats]
         rest = [f for f in formats if f not in common]
         raise OutputError(
             target, f"unsupported image type .{suffix} (expected {', '.join(common + rest)})", errno.EINVAL
         )
+    fmt = suffix or "png"
+    missing = [(program, why) for program, why in figure_programs(fmt) if shutil.which(program) is None]
+    if missing:  # found now, not after the work: matplotlib runs them only when it saves the figure
+        programs = " and ".join(f"{program} ({why})" for program, why in missing)
+        advice = "install TeX, or write .pdf, .svg or .png" if fmt == "pgf" else "install them, or turn text.usetex off"
+        raise OutputError(target, f"a .{fmt} figure needs {programs}, not found on PATH: {advice}", errno.ENOENT)
 
 
 def _open_fifo(real: str, target: str) -> int:
