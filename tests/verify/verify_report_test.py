@@ -67,8 +67,8 @@ def test_a_junction_subject_is_never_cut_mid_list(field: Path) -> None:
         assert all(words(s) in words(text) for s in junctions)
         if width is not None:
             assert max(map(len, text.splitlines())) <= width
-    wide = report.summary().splitlines()  # no width: one line per check (and the verdict)
-    assert len(wide) == len(report.checks) + 1
+    wide = report.summary().splitlines()  # no width: one line per check (and the verdict, and the pictures' letters)
+    assert len(wide) == len(report.checks) + 2
 
 
 def test_a_narrow_width_wraps_every_row_and_the_counterexample() -> None:

@@ -22,6 +22,7 @@ Example:
 
 from __future__ import annotations
 
+import re
 import textwrap
 from dataclasses import asdict, dataclass
 from html import escape
@@ -49,6 +50,18 @@ NOT_CERTIFIED = (
 )
 """What the text report says after an unresolved input: why there is no verdict and what decides."""
 
+CORNER_LETTERS = "E the robot's start or goal, B two outer edges, N fewer"
+"""What a corner's letter in a local picture means (:attr:`qcpp.problem.sbf.LocalPicture.label`)."""
+
+PICTURES = (
+    f"pictures (four corner letters, as NNEN): a plaquette's corners a, b, c, d in order, {CORNER_LETTERS}; a "
+    "final D: start and goal on diagonal corners"
+)
+"""The line the text report adds under checks whose subjects name local pictures."""
+
+_PICTURE = re.compile(r"\b[EBN]{4}D?\b")
+"""A local picture's label in a subject or gadget name (four corner letters, then ``D`` if diagonal)."""
+
 MIN_WIDTH = 40
 """The narrowest width :meth:`VerifyReport.summary` wraps to (a smaller one is taken as this)."""
 
@@ -65,9 +78,23 @@ def _wrap(text: str, width: int | None, first: str = "", rest: str = "") -> list
     return [line.replace(_NBSP, " ") for line in lines]
 
 
-def _paths(ps: tuple[tuple[Edge, ...], ...]) -> str:
-    """Edge sets as text: edges ``a-b`` (each one unit for :func:`_wrap`), robots separated by ``;``."""
-    return "; ".join(" ".join(f"{a}-{b}".replace(" ", _NBSP) for a, b in p) or "(none)" for p in ps)
+def _edges(p: tuple[Edge, ...]) -> str:
+    """An edge set as text: edges ``a-b``, each one unit for :func:`_wrap`; ``(none)`` when empty."""
+    return " ".join(f"{a}-{b}".replace(" ", _NBSP) for a, b in p) or "(none)"
+
+
+def _picture_line(kind: str, plaquette: tuple[tuple[int, int], ...] | None) -> str | None:
+    """The corner codes in ``kind`` in words: the one picture spelled out on ``plaquette``'s corners, else the
+    letters' meaning (a junction names two pictures); ``None`` when ``kind`` names none."""
+    codes = sorted(set(_PICTURE.findall(kind)))
+    if not codes:
+        return None
+    if len(codes) > 1 or plaquette is None or len(plaquette) != 4:
+        return PICTURES
+    code = codes[0]
+    corners = ", ".join(f"{c} {letter}".replace(" ", _NBSP) for c, letter in zip(plaquette, code, strict=False))
+    diagonal = "; D: start and goal on diagonal corners" if code.endswith("D") else ""
+    return f"{code} = corners {corners}{diagonal} ({CORNER_LETTERS})"
 
 
 @dataclass(frozen=True)
@@ -138,8 +165,35 @@ class Counterexample:
     reason: str
     reachable: bool | None = None
 
+    def path_robots(self, paths: tuple[tuple[Edge, ...], ...]) -> tuple[int | None, ...]:
+        """Whose edges each entry of ``paths`` (:attr:`input_paths` or :attr:`output_paths`) is: with several
+        entries, or by the state method, entry ``r`` is robot ``r``'s; the gadget method's one entry is
+        :attr:`robot`'s (``None``: no robot's, as for a phase gadget's input).
+
+        Example:
+            >>> cx = Counterexample("gadgets", "rule paper NENED", None, 1, None, ((),), ((),), (), 1.0, "")
+            >>> cx.path_robots(cx.input_paths)
+            (1,)
+        """
+        if self.method == "state" or len(paths) > 1:
+            return tuple(range(len(paths)))
+        return (self.robot,) * len(paths)
+
+    def _labelled(self, paths: tuple[tuple[Edge, ...], ...], first: str, width: int | None,
+                  tail: str = "") -> list[str]:  # fmt: skip
+        """``paths`` as lines, each robot's edges after ``robot k:`` on a line of its own, ``tail`` after the last."""
+        out: list[str] = []
+        robots = self.path_robots(paths)
+        for i, (r, p) in enumerate(zip(robots, paths, strict=True)):
+            label = "" if r is None else f"robot{_NBSP}{r}: "
+            end = tail if i == len(paths) - 1 else ""
+            out += _wrap(f"{label}{_edges(p)}{end}", width, first if i == 0 else " " * len(first),
+                         " " * (len(first) + len(label)))  # fmt: skip
+        return out or _wrap(tail.strip(), width, first)
+
     def describe(self, width: int | None = None, heading: str = "counterexample") -> str:
-        """A few human-readable lines: the reason, the gadget, the input and the output.
+        """A few human-readable lines: the reason, the gadget (and its local picture's corners in words), the input
+        and the output, each robot's edges on lines of their own after ``robot k:``.
 
         Args:
             width: Characters per line (at least :data:`MIN_WIDTH`): long lines wrap at spaces, never inside an
@@ -152,8 +206,11 @@ class Counterexample:
             corners = ", ".join(str(c).replace(" ", _NBSP) for c in self.plaquette or ())
             where += f" plaquette ({corners})" if self.plaquette else ""
             out += _wrap(f"{self.kind}{where}", width, "  gadget: ", " " * 10)
-        out += _wrap(_paths(self.input_paths), width, "  input:  ", " " * 10)
-        out += _wrap(f"{_paths(self.output_paths)}  (|amplitude| {self.amplitude:.3g})", width, "  output: ", " " * 10)
+            picture = _picture_line(self.kind, self.plaquette)
+            if picture is not None:
+                out += _wrap(picture, width, "  picture: ", " " * 11)
+        out += self._labelled(self.input_paths, "  input:  ", width)
+        out += self._labelled(self.output_paths, "  output: ", width, f"  (|amplitude| {self.amplitude:.3g})")
         if self.dirty_ancillas:
             out += _wrap(str(list(self.dirty_ancillas)), width, "  dirty ancillas: ", " " * 10)
         return "\n".join(out)
@@ -259,6 +316,8 @@ class VerifyReport:
                 continue
             indent = " " * (len(head) if width - len(head) >= 30 else 6)
             lines += _wrap(f"{c.subject}{tail}", width, head, indent)
+        if any(_PICTURE.search(c.subject) for c in self.checks):
+            lines += _wrap(PICTURES, width, "  ", "  ")
         if self.counterexample is not None:
             lines.append(self.counterexample.describe(width))
         elif self.unresolved is not None:

@@ -7,10 +7,12 @@ Examples::
     qcpp verify big.toml -p 3 --method gadgets
     qcpp verify --grid 4x4 --robots 3 --target ft
 
-Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s), the output,
-the gadget and its plaquette), 2 on bad input (one line on stderr), 3 when the gadget method could neither certify
-nor refute (``not_certified``: only local inputs no feasible path was shown to contain; the first is printed, with
-whether ``--method state`` can decide on this field). 3 is not 0 because nothing was certified, and not 1 because
+Exit code 0 when feasibility preservation holds, 1 with a counterexample (printed: the input path(s) and the
+output, each robot's edges after ``robot k:``, the gadget, its plaquette and its local picture's corner letters in
+words; then the input and the output drawn on the grid as ``qcpp solve`` draws paths), 2 on bad input (one line on
+stderr), 3 when the gadget method could neither certify nor refute (``not_certified``: only local inputs no
+feasible path was shown to contain; the first is printed, and drawn, with whether ``--method state`` can decide on
+this field). 3 is not 0 because nothing was certified, and not 1 because
 nothing was refuted: a script can tell "broken" from "undecided". The text report fits the terminal's width
 (``$COLUMNS``, else the terminal's, else 80, as for the other commands' tables); ``--json`` prints
 :meth:`qcpp.verification.VerifyReport.to_dict` on stdout, every field whole. Progress goes to stderr
@@ -37,9 +39,11 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag, TargetFlag
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import json_text
+from qcpp.cli.render import json_text, render_ascii
+from qcpp.problem.scenario import Scenario
+from qcpp.verification.report import Counterexample
 
-__all__ = ["register", "verify_command"]
+__all__ = ["drawn_counterexample", "register", "verify_command"]
 
 HELP = """Check that the compiled circuit keeps every feasible path feasible (clean ancillas).
 
@@ -93,6 +97,10 @@ def verify_command(
     else:
         width = shutil.get_terminal_size((80, 24)).columns
         typer.echo(report.summary(width))
+        shown = report.counterexample or report.unresolved
+        drawing = drawn_counterexample(s, shown, width) if shown is not None else None
+        if drawing:
+            typer.echo(drawing)
         if undecided:
             fits = choose_method(s, p, options, samples) == "state"
             typer.echo(echo_wrap(
@@ -104,6 +112,43 @@ def verify_command(
             ))  # fmt: skip
     if not report.holds:
         raise typer.Exit(code=3 if undecided else 1)
+
+
+def drawn_counterexample(scenario: Scenario, cx: Counterexample, width: int) -> str | None:
+    """The counterexample's input and output drawn on the grid, as ``qcpp solve`` draws paths
+    (:func:`qcpp.cli.render.render_ascii`: ``-k-`` / ``k`` an edge of robot ``k``; its legend after the input, with
+    each robot's input edge count).
+
+    Returns:
+        The text, or ``None`` where there is nothing to draw (no edges: a phase gadget's input) or the grid is wider
+        than ``width`` (the report says every edge in words anyway). The legend is left out where it is wider.
+
+    Example:
+        >>> from qcpp.problem.presets import grid_scenario
+        >>> s = grid_scenario(2, 2, robots=[((0, 0), (1, 1))])
+        >>> cx = Counterexample("state", "mixer_0", None, 0, None, ((((0, 0), (0, 1)), ((0, 1), (1, 1))),),
+        ...                     ((((0, 0), (1, 0)),),), (), 1.0, "robot 0's path leaves the feasible set")
+        >>> print(drawn_counterexample(s, cx, 80).splitlines()[:4])
+        ['input, drawn:', '  S-0-o', '      0', '  .   G']
+    """
+    grid = scenario.grid
+    if 4 * (grid.cols - 1) + 3 > width:
+        return None
+    drawings = []
+    for name, paths in (("input", cx.input_paths), ("output", cx.output_paths)):
+        masks = [0] * scenario.num_robots
+        for robot, edges in zip(cx.path_robots(paths), paths, strict=True):
+            if robot is None or not 0 <= robot < scenario.num_robots:
+                continue
+            for u, v in edges:
+                masks[robot] |= 1 << grid.edge_index(tuple(u), tuple(v))  # type: ignore[arg-type]
+        if not any(masks):
+            continue
+        lines = render_ascii(scenario, masks, legend=name == "input").splitlines()
+        if max(map(len, lines)) + 2 > width:  # the legend's long lines: left out on a narrow terminal
+            lines = render_ascii(scenario, masks, legend=False).splitlines()
+        drawings += [f"{name}, drawn:", *(f"  {line}" if line else "" for line in lines)]
+    return "\n".join(drawings) or None
 
 
 def echo_wrap(text: str, width: int) -> str:
