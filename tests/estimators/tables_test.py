@@ -254,3 +254,20 @@ def test_plot_draws_points_from_a_depth_bound_hollow_and_says_so() -> None:
     assert hollow == 2 and BOUND_LABEL in legend
     hollow, legend = hollow_and_legend(draw_rows(rows(["exact"] * 3), "physical_qubits"))
     assert hollow == 0 and BOUND_LABEL not in legend
+
+
+def test_a_table_without_the_first_phase_separator_says_so() -> None:
+    """Rows counted with ``p - 1`` phase separators are named in the table title, under an md table and in the LaTeX
+    comment (so a ratio to the paper's ``p`` is not read as like for like); the default circuit's tables are not."""
+    from qcpp.plan.options import PlanOptions
+
+    point = Point(3, 3, 2, 1)
+    skipped = make_rows([estimate_point(point, EstimateOptions(plan=PlanOptions(first_phase=False)))], True)
+    default = make_rows([estimate_point(point)], True)
+    assert skipped[0]["first_phase"] is False and "first_phase" not in default[0]
+    assert skipped[0]["cx"] < default[0]["cx"]
+    note = "without the first phase separator"
+    for fmt in ("table", "md", "latex"):
+        assert note in render(skipped, fmt, width=200), fmt
+        assert note not in render(default, fmt, width=200), fmt
+    assert note in "".join(render_stream(iter(skipped), "md"))

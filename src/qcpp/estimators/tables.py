@@ -263,21 +263,40 @@ FT_NOTE = "ft_*: fault-tolerant model estimates"
 """Said in the title when a shown column (``ft_...``) is an estimate of the fault-tolerant model, not a count."""
 
 
-def _title(paper: bool, bound: bool, approximate: bool = False, ft: bool = False) -> str:
+NO_FIRST_PHASE_NOTE = "without the first phase separator (--skip-first-phase)"
+"""Said in the title (and under an ``md`` or LaTeX table) when a row counts ``p - 1`` phase separators."""
+
+
+def _without_first_phase(rows: Iterable[dict[str, Any]]) -> bool:
+    """Whether a row was counted without the first phase separator (its ``first_phase`` field is ``False``; rows of
+    the default circuit carry no such field)."""
+    return any(r.get("first_phase") is False for r in rows)
+
+
+def _title(
+    paper: bool, bound: bool, approximate: bool = False, ft: bool = False, no_first_phase: bool = False
+) -> str:
     """The title of the ``table`` format: every count exact, and the meaning of each mark a cell has (and of the
-    ``ft_`` columns when ``ft``)."""
+    ``ft_`` columns when ``ft``); a circuit without its first phase separator is named, so that a ratio to the
+    paper's ``p`` phase separators is not read as like for like.
+
+    Example:
+        >>> _title(True, False, no_first_phase=True)
+        'Exact resource counts (lowered circuit, without the first phase separator (--skip-first-phase)) vs the paper'
+    """
     vs = " vs the paper" if paper else ""
+    what = f"lowered circuit, {NO_FIRST_PHASE_NOTE}" if no_first_phase else "lowered circuit"
     notes = ([f"{BOUND_MARK}N is an upper bound"] if bound else []) + ([APPROX_NOTE] if approximate else [])
     notes += [FT_NOTE] if ft else []
     if notes:
-        return f"Resource counts (lowered circuit){vs}: exact; " + "; ".join(notes)
-    return f"Exact resource counts (lowered circuit){vs}"
+        return f"Resource counts ({what}){vs}: exact; " + "; ".join(notes)
+    return f"Exact resource counts ({what}){vs}"
 
 
 def _marks_title(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> str:
     """:func:`_title` of ``rows`` shown in ``cols``."""
     ft = any(c.startswith("ft_") for c in cols)
-    return _title(paper, _any_bound(rows, cols), _any_approximate(rows, cols), ft)
+    return _title(paper, _any_bound(rows, cols), _any_approximate(rows, cols), ft, _without_first_phase(rows))
 
 
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
@@ -343,6 +362,7 @@ def render_stream(
                          "--format table, md, csv or latex")  # fmt: skip
     first = True
     approximate = False  # an md cell marked APPROX_MARK: the table ends with a footnote saying what it means
+    no_first_phase = False  # a row without the first phase separator: the md table ends saying so
     fields: list[str] = []
     cols: list[str] = []
     for row in rows:
@@ -363,6 +383,7 @@ def render_stream(
                 yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
             yield "| " + " | ".join(_shown(row, c) for c in cols) + " |\n"
             approximate = approximate or _any_approximate([row], cols)
+            no_first_phase = no_first_phase or _without_first_phase([row])
         first = False
     if fmt == "json":
         yield "[]\n" if first else "\n]\n"
@@ -371,6 +392,8 @@ def render_stream(
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
     elif fmt == "md" and approximate:
         yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
+    if fmt == "md" and no_first_phase:
+        yield "\nCounted " + NO_FIRST_PHASE_NOTE + ".\n"
 
 
 _LATEX_SPECIAL = {
@@ -488,6 +511,7 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     cols = table_columns(rows, columns=columns)[0] if columns is not None else _columns(rows[0] if rows else None)
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
     approx = "; " + latex_escape(APPROX_NOTE[1:]).join(["$\\sim$", ""]) if _any_approximate(rows, cols) else ""
+    approx += "; " + latex_escape(NO_FIRST_PHASE_NOTE) if _without_first_phase(rows) else ""
     out = [
         r"% qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound"
         + approx
