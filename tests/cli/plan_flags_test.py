@@ -88,3 +88,15 @@ def test_skip_first_phase_from_a_superposition_is_one_line_naming_the_flag(comma
 
 def test_skip_first_phase_refuses_the_closed_forms() -> None:
     assert_one_line_error(run("estimate", "--formula", "--skip-first-phase"), "--skip-first-phase", "--formula")
+
+
+def test_compile_explain_says_when_the_circuit_has_no_phase_separator() -> None:
+    """At p = 1 without the first phase separator the explained phase plan is in no layer of the circuit: the title
+    says so; at p = 2 the plan is layer 1's, and the title is the usual one."""
+    titles = {}
+    for p in ("1", "2"):
+        res = run("compile", "--grid", "3x3", "--robots", "2", "-p", p, "--skip-first-phase", "--explain")
+        assert res.exit_code == 0, res.output
+        text = " ".join(res.stdout.split())  # the title may wrap at the runner's width
+        titles[p] = text[text.index("phase separator: construction") :][:120]
+    assert "this circuit has none" in titles["1"] and "this circuit has none" not in titles["2"]

@@ -335,7 +335,7 @@ def compile_command(
         form += ", data qubits measured into meas" if measure else ""
         console.print(f"wrote {where} ({form})", markup=False, soft_wrap=True)  # a path stays whole
     if explain:
-        print_table(console, explain_table(phase_explain))
+        print_table(console, explain_table(phase_explain, in_circuit=options.phase_layers(p) > 0))
 
 
 def _layouts_line(initial: list[int], final: list[int]) -> str:
@@ -414,9 +414,12 @@ def _count(n: float) -> str:
     return f"{mantissa}e{int(exponent)}"
 
 
-def explain_table(rows: list[dict]) -> Table:
-    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs."""
-    table = Table(title="phase separator: construction per term group (cost of one layer)")
+def explain_table(rows: list[dict], in_circuit: bool = True) -> Table:
+    """The phase plan's choices: per term group, the construction, its cost and the alternatives' costs;
+    ``in_circuit=False`` says the compiled circuit has no phase separator (``--skip-first-phase`` at ``p = 1``), so
+    the plan is shown for what a later layer would use."""
+    none = "; this circuit has none: --skip-first-phase at p = 1" if not in_circuit else ""
+    table = Table(title=f"phase separator: construction per term group (cost of one layer{none})")
     for col in ("group", "count", "chosen", "cx", "rotations", "T (ft)", "alternatives (cx / rotations / T)"):
         table.add_column(col, justify="right" if col in ("count", "cx", "rotations", "T (ft)") else "left")
     for row in rows:
