@@ -187,3 +187,18 @@ def test_a_fifo_without_a_reader_under_plot_leaves_the_printed_table(tmp_path: P
     res = run("estimate", "--grid", "2x2", "--plot", "fifo")
     assert res.exit_code == 2 and "| rows |" in res.stdout.replace("┃", "|"), res.output
     assert "cannot write fifo: no process opened the FIFO" in res.stderr
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("estimate", "--grid", "3x3", "--plot", "-"),
+        ("estimate", "--grid", "3x3", "--plot", "/dev/stdout"),
+        ("solve", "--grid", "3x3", "--plot", "-"),
+        ("solve", "--grid", "3x3", "-m", "anneal", "--plot-trace", "/dev/stdout"),
+    ],
+)
+def test_a_plot_to_standard_output_is_one_line_before_any_work(args: tuple[str, ...]) -> None:
+    """The command prints its table or JSON on standard output: image bytes there would corrupt both."""
+    res = run(*args)
+    assert_one_line_error(res, args[-1], "standard output holds the command's text")

@@ -37,7 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from qcpp.estimators.tables import draw, records, terminal_width, title_lines
-from qcpp.io.atomic import save_figure_atomic
+from qcpp.io.atomic import OutputError, check_output, is_stdout, save_figure_atomic
 from qcpp.io.caches import use_writable_matplotlib_config
 from qcpp.problem.paths import edges_of
 from qcpp.problem.scenario import Scenario
@@ -60,6 +60,26 @@ def _check_paths(scenario: Scenario, paths: Sequence[int] | None) -> Sequence[in
     if len(paths) != scenario.num_robots:
         raise ValueError(f"expected {scenario.num_robots} paths (one per robot), got {len(paths)}")
     return paths
+
+
+def check_figure_output(path: str | os.PathLike[str]) -> None:
+    """Fail early if ``path`` cannot take a command's figure (:func:`qcpp.io.atomic.check_output` with
+    ``figure=True``), and refuse standard output: every command that draws also prints its text or JSON there, and
+    image bytes among it serve neither a reader nor a parser.
+
+    Raises:
+        OutputError: naming ``path``.
+
+    Example:
+        >>> try:
+        ...     check_figure_output("-")
+        ... except OutputError as exc:
+        ...     print(exc)
+        cannot write -: standard output holds the command's text; give the image a file name
+    """
+    if is_stdout(os.fspath(path)):
+        raise OutputError(os.fspath(path), "standard output holds the command's text; give the image a file name")
+    check_output(path, figure=True)
 
 
 def render_ascii(scenario: Scenario, paths: Sequence[int] | None = None, *, legend: bool = True) -> str:

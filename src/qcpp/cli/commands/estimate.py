@@ -29,10 +29,9 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import check_start, with_plan_flags
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import echo_note, print_table
+from qcpp.cli.render import check_figure_output, echo_note, print_table
 from qcpp.errors import OptionError
 from qcpp.estimators.tables import terminal_width
-from qcpp.io.atomic import check_output
 from qcpp.plan.options import PlanOptions
 from qcpp.problem.errors import ScenarioError
 
@@ -209,7 +208,7 @@ def estimate(
         qubit_model=qubit_model, qec_scheme=qec_scheme, error_budget=error_budget, flag=_flag,
     )  # fmt: skip
     if plot is not None:
-        check_output(plot, figure=True)  # a bad destination or image type fails before the sweep, not after
+        check_figure_output(plot)  # a bad destination or image type fails before the sweep, not after
     _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)

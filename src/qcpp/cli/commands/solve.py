@@ -57,9 +57,8 @@ from qcpp.cli.commands.inline_scenario import (
 )
 from qcpp.cli.commands.plan_flags import RuleFlag
 from qcpp.cli.progress import Progress
-from qcpp.cli.render import json_text, plot_paths, plot_trace, print_table, render_ascii
+from qcpp.cli.render import check_figure_output, json_text, plot_paths, plot_trace, print_table, render_ascii
 from qcpp.estimators.tables import terminal_width
-from qcpp.io.atomic import check_output
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
@@ -326,7 +325,7 @@ def solve_command(
             raise ValueError(f"--sampler: unknown sampler {sampler!r} (expected one of tabu, sa)")
     for out in (plot, plot_trace_file):
         if out is not None:
-            check_output(out, figure=True)  # a bad destination or image type fails before solving, not after
+            check_figure_output(out)  # a bad destination or image type fails before solving, not after
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=method == "qaoa", endpoints=robot)
     s = given.scenario
     qaoa = None
