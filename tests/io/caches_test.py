@@ -150,3 +150,16 @@ def test_the_contraction_path_cache_is_not_made_in_a_missing_home(tmp_path: Path
     finally:
         PATH_OPTIMIZERS.clear()
     assert not home.exists()
+
+
+def test_an_untrusted_temp_folder_leaves_no_folder_behind(tmp_path: Path) -> None:
+    """With ``qcpp-<uid>`` not private, each process takes a fresh folder: it goes when the process exits."""
+    planted = tmp_path / f"qcpp-{os.getuid()}"
+    planted.mkdir()
+    planted.chmod(0o777)
+    code = "from qcpp.io.caches import private_temp_folder; print(private_temp_folder('numba'))"
+    env = {**os.environ, "TMPDIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    used = Path(done.stdout.strip())
+    assert used.parent.parent == tmp_path and used.parent != planted  # the fresh folder was used
+    assert not used.parent.exists() and sorted(tmp_path.iterdir()) == [planted]

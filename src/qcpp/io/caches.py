@@ -27,9 +27,11 @@ Example:
 
 from __future__ import annotations
 
+import atexit
 import errno
 import importlib.util
 import os
+import shutil
 import stat
 import sys
 import tempfile
@@ -112,7 +114,8 @@ def private_temp_folder(name: str) -> Path:
     """``<temp>/qcpp-<uid>/<name>``, a folder only this user can write (created mode 0700).
 
     The ``qcpp-<uid>`` folder is trusted only if it is a real folder (not a link) owned by this user and closed to
-    others; otherwise a fresh ``mkdtemp`` folder is used (not kept across runs, but never someone else's).
+    others; otherwise a fresh ``mkdtemp`` folder is used, never someone else's, and removed when the process exits
+    (nothing can reuse it, so nothing is left behind run after run).
 
     Raises:
         OSError: the temporary folder cannot be written at all.
@@ -127,6 +130,7 @@ def private_temp_folder(name: str) -> Path:
             raise PermissionError(errno.EPERM, "not a private folder", str(base))
     except OSError:
         base = Path(tempfile.mkdtemp(prefix="qcpp-"))
+        atexit.register(shutil.rmtree, base, ignore_errors=True)
     return prepare_folder(base / name)
 
 
