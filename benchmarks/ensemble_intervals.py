@@ -43,7 +43,7 @@ import json
 import math
 import sys
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -135,6 +135,15 @@ def qaoa_rows(rows: list[dict[str, Any]]) -> dict[tuple[str, int], list[dict[str
     return out
 
 
+def levels(q: dict[tuple[str, int], list[dict[str, Any]]], cells: Sequence[str],
+           depths: Sequence[int]) -> Iterator[tuple[str, int, list[dict[str, Any]]]]:
+    """``(cell, p, records)`` for every cell and depth shown that has QAOA records, cell by cell."""
+    for cell in cells:
+        for p in depths:
+            if q.get((cell, p)):
+                yield cell, p, q[(cell, p)]
+
+
 def tts(r: dict[str, Any]) -> float:
     return math.inf if r["tts_99"] is None else float(r["tts_99"])
 
@@ -183,16 +192,12 @@ def main(argv: Sequence[str] | None = None) -> None:
           "found, and its 95% interval")
     print()
     out = []
-    for cell in cells:
-        for p in depths:
-            sel = q.get((cell, p), [])
-            if not sel:
-                continue
-            d, b = [r["p_opt"] for r in sel], [r["best_p_opt"] for r in sel]
-            hits = [r["p_opt"] >= 0.5 * r["best_p_opt"] - 1e-12 for r in sel]
-            lo, hi = bootstrap_share(hits, rng)
-            out.append((cell, p, quartile_text(d), interval(d, rng), quartile_text(b), interval(b, rng),
-                        f"{100 * sum(hits) / len(hits):.0f}% ({100 * lo:.0f}-{100 * hi:.0f}%)"))
+    for cell, p, sel in levels(q, cells, depths):
+        d, b = [r["p_opt"] for r in sel], [r["best_p_opt"] for r in sel]
+        hits = [r["p_opt"] >= 0.5 * r["best_p_opt"] - 1e-12 for r in sel]
+        lo, hi = bootstrap_share(hits, rng)
+        out.append((cell, p, quartile_text(d), interval(d, rng), quartile_text(b), interval(b, rng),
+                    f"{100 * sum(hits) / len(hits):.0f}% ({100 * lo:.0f}-{100 * hi:.0f}%)"))
     print(table(["cell", "p", "default P(opt)", "95% interval", "best found P(opt)", "95% interval",
                  "default >= half the best found"], out))
     print()
@@ -219,14 +224,10 @@ def main(argv: Sequence[str] | None = None) -> None:
     print()
     classical = best_classical(rows)
     out = []
-    for cell in cells:
-        for p in depths:
-            sel = q.get((cell, p), [])
-            if not sel:
-                continue
-            ratio = [r["best_sampling_99"] / classical[r["instance"]] for r in sel]
-            out.append((cell, p, quartile_text(ratio), interval(ratio, rng),
-                        f"{sum(x < 1 for x in ratio)} of {len(ratio)}"))
+    for cell, p, sel in levels(q, cells, depths):
+        ratio = [r["best_sampling_99"] / classical[r["instance"]] for r in sel]
+        below = f"{sum(x < 1 for x in ratio)} of {len(ratio)}"
+        out.append((cell, p, quartile_text(ratio), interval(ratio, rng), below))
     print(table(["cell", "p", "sampling / best classical", "95% interval", "below 1"], out))
     if args.no_ar:
         return
