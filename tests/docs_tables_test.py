@@ -66,8 +66,14 @@ def test_the_parser_finds_a_pasted_table() -> None:
 def test_a_pasted_table_is_what_its_command_prints(page: Path) -> None:
     tables = pasted_tables(page.read_text(encoding="utf-8"))
     assert tables, f"{page.relative_to(ROOT)} names no qcpp estimate command above a table"
+    lines = page.read_text(encoding="utf-8").splitlines()
     for line, command, table in tables:
-        assert table == run(command).strip(), f"{page.relative_to(ROOT)}:{line}: the table differs from `{command}`"
+        printed = run(command).strip().splitlines()
+        rows = "\n".join(x for x in printed if x.startswith("|"))
+        assert table == rows, f"{page.relative_to(ROOT)}:{line}: the table differs from `{command}`"
+        after = lines[line + table.count("\n") + 2 : line + table.count("\n") + 8]  # the lines under the table
+        for note in (x for x in printed if x.strip() and not x.startswith("|")):  # a footnote: the page has it too
+            assert note in after, f"{page.relative_to(ROOT)}:{line}: `{command}` ends with {note!r}; paste it too"
 
 
 @pytest.mark.parametrize("page", HEADLINE, ids=lambda p: str(p.relative_to(ROOT)))
