@@ -50,7 +50,9 @@ if TYPE_CHECKING:
     from qcpp.io.atomic import OutputError
     from qcpp.ir.angles import UnboundParameterError
     from qcpp.lowering.qasm_profiles import QasmProfileError
+    from qcpp.plan.options import PlanOptions
     from qcpp.problem.limits import SizeError, allow_large
+    from qcpp.problem.solvers import Solution
     from qcpp.qubo.model import Bqm
     from qcpp.simulate.noisy import NoisyResult
     from qcpp.simulate.validate import ValidationReport
@@ -87,6 +89,8 @@ _EXPORTS: dict[str, str] = {
     "OptionError": "qcpp.errors",
     "OutputError": "qcpp.io.atomic",
     "QasmProfileError": "qcpp.lowering.qasm_profiles",
+    "PlanOptions": "qcpp.plan.options",
+    "Solution": "qcpp.problem.solvers",
     "QcppError": "qcpp.errors",
     "UnboundParameterError": "qcpp.ir.angles",
     "SizeError": "qcpp.problem.limits",
@@ -109,11 +113,13 @@ __all__ = [
     "NoisyResult",
     "OptionError",
     "OutputError",
+    "PlanOptions",
     "QasmProfileError",
     "QcppError",
     "Scenario",
     "ScenarioError",
     "SizeError",
+    "Solution",
     "UnboundParameterError",
     "ValidationReport",
     "VerifyReport",

@@ -41,3 +41,16 @@ def test_every_exported_error_is_a_qcpp_error_listed_in_the_api_docs() -> None:
     for name in errors:
         assert issubclass(getattr(qcpp, name), (qcpp.QcppError, OSError)), name
         assert f"`{name}`" in text, name
+
+
+def test_plan_options_and_solution_are_public_and_are_what_the_api_takes_and_returns() -> None:
+    from qcpp.plan.options import PlanOptions
+    from qcpp.problem.solvers import Solution
+
+    assert qcpp.PlanOptions is PlanOptions and qcpp.Solution is Solution
+    assert {"PlanOptions", "Solution"} <= set(qcpp.__all__) & set(dir(qcpp))
+    s = qcpp.grid_scenario(2, 3, robots=1)
+    assert isinstance(qcpp.solve(s), qcpp.Solution)
+    assert qcpp.verify(s, options=qcpp.PlanOptions(target="ft")).holds
+    text = DOCS.read_text(encoding="utf-8")
+    assert "`PlanOptions`" in text and "`Solution`" in text

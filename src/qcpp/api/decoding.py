@@ -97,6 +97,22 @@ class DecodedCounts:
         """The cost of :attr:`best` (``None``: no feasible shot)."""
         return None if self.best is None else self.best.cost
 
+    def __repr__(self) -> str:
+        """The summary, not the outcomes (thousands of them after a hardware run; :meth:`to_dict` has them all).
+
+        Example:
+            >>> import qcpp
+            >>> s = qcpp.grid_scenario(2, 2, robots=1)
+            >>> qcpp.decode_counts(s, {"0101": 60, "1010": 30, "1111": 10}, optimum=qcpp.solve(s))
+            DecodedCounts(shots=100, outcomes=3, feasible_share=0.9, best_cost=2, p_optimum=0.9)
+        """
+        return (
+            f"DecodedCounts(shots={self.shots}, outcomes={len(self.outcomes)}, "
+            f"feasible_share={self.feasible_share:.4g}, "
+            f"best_cost={self.best_cost if self.best_cost is None else format(self.best_cost, '.6g')}, "
+            f"p_optimum={self.p_optimum if self.p_optimum is None else format(self.p_optimum, '.4g')})"
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict: the summary and every outcome."""
         return {
