@@ -64,6 +64,9 @@ SLOW_DEFAULT = frozenset(
     {
         "tests/api/interrupt_cache_test.py::test_an_interrupted_estimate_leaves_the_caches_sound[40]",
         "tests/api/cli_equality_test.py::test_routed_layouts_are_the_cli_s",
+        "tests/api/validate_api_test.py::test_validate_s_plan_options_are_the_cli_s_plan_flags",
+        "tests/api/validate_api_test.py::test_plan_options_are_validated_against_the_subspace_simulator"
+        "[target=ft,initial=local_search,first_phase=False,phase=whole-space]",
         "tests/cli/compile_cli_test.py::test_default_qasm3_loads_in_qiskit_and_gives_our_state",
         "tests/cli/device_cli_test.py::test_estimate_device_adds_routed_fields_equal_to_compile",
         "tests/cli/device_cli_test.py::test_estimate_device_too_small_and_bound",

@@ -99,3 +99,46 @@ def test_bad_options_name_what_is_wrong() -> None:
     message = error_of(lambda: qcpp.validate(S, dask="tcp://h"), qcpp.OptionError)
     assert message.startswith("dask: ") and "missing port number" in message
     assert error_of(lambda: qcpp.validate("s.toml"), qcpp.OptionError).startswith("scenario:")  # type: ignore[arg-type]
+
+
+ONE_ROBOT_3x3 = qcpp.grid_scenario(3, 3, robots=1)  # its local-search path is not its initial path
+
+
+@pytest.mark.parametrize(
+    "options",
+    [{"target": "ft"}, {"initial": "local_search"}, {"first_phase": False},
+     {"target": "ft", "initial": "local_search", "first_phase": False, "phase": "whole-space"}],
+    ids=lambda o: ",".join(f"{k}={v}" for k, v in o.items()),
+)  # fmt: skip
+def test_plan_options_are_validated_against_the_subspace_simulator(options: dict[str, Any]) -> None:
+    """The circuit built with the options (its qubits and gates are the compiled ones) matches a reference that
+    follows them: the initial state's, the phase constant's, no first phase separator."""
+    report = qcpp.validate(ONE_ROBOT_3x3, p=2, angles=[0.3, 0.8, 0.5, 1.1], backend="statevector", **options)
+    compiled = qcpp.compile(ONE_ROBOT_3x3, p=2, lowered=True, **options)
+    assert report.passed and report.plan == options
+    assert (report.qubits, report.gates) == (compiled.qubits, sum(compiled.counts().values()))
+
+
+def test_validate_s_plan_options_are_the_cli_s_plan_flags() -> None:
+    cli = cli_json("validate", "--grid", "3x3", "--robots", "1", "-p", "2", "--angles", "0.3,0.8,0.5,1.1",
+                   "--target", "ft", "--initial", "local_search", "--skip-first-phase", "--json")  # fmt: skip
+    report = qcpp.validate(ONE_ROBOT_3x3, p=2, angles=[0.3, 0.8, 0.5, 1.1], target="ft", initial="local_search",
+                           first_phase=False)  # fmt: skip
+    assert cli["plan"] == {"initial": "local_search", "target": "ft", "first_phase": False}
+    assert _untimed(report.to_dict()) == _untimed(cli)  # type: ignore[arg-type]
+
+
+def test_plan_options_validate_cannot_check_are_refused_in_one_line() -> None:
+    from qcpp.estimators.crosscheck import interior_endpoints
+    from qcpp.simulate.validate import check_validatable
+    from tests.cli.clirun import assert_one_line_error, run
+
+    message = error_of(lambda: qcpp.validate(S, colour="red"), qcpp.OptionError)
+    assert message.startswith("colour: unknown plan option")
+    split = interior_endpoints(4, 3, "hard")  # representatives start in a superposition here
+    message = error_of(lambda: qcpp.validate(split, initial="representatives", first_phase=False), qcpp.OptionError)
+    assert message.startswith("first_phase: ") and "representatives prepares a superposition" in message
+    with pytest.raises(qcpp.OptionError, match=r"^angles: the subspace simulator has one beta per layer, not multi$"):
+        check_validatable(qcpp.PlanOptions(angles="multi"))
+    assert_one_line_error(run("validate", "--grid", "2x3", "--robots", "1", "--mixer-angles", "multi"),
+                          "--mixer-angles")  # fmt: skip

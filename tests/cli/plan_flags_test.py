@@ -28,13 +28,14 @@ def _flags(command: str) -> dict[str, tuple[str | None, object]]:
     return {name: (o.help, o.default) for o in cmd.params for name in o.opts if name.startswith("--")}
 
 
-def test_compile_and_estimate_take_the_same_plan_flags() -> None:
-    compile_flags, estimate_flags = _flags("compile"), _flags("estimate")
+def test_compile_estimate_and_validate_take_the_same_plan_flags() -> None:
+    compile_flags, estimate_flags, validate_flags = _flags("compile"), _flags("estimate"), _flags("validate")
     for flag in PLAN_FLAGS:
-        assert flag in compile_flags and compile_flags[flag] == estimate_flags[flag], flag
+        assert flag in compile_flags and compile_flags[flag] == estimate_flags[flag] == validate_flags[flag], flag
     plan_like = {"--rule", "--initial", "--target", "--phase", "--optimize", "--ancilla-budget", "--fuse",
                  "--phase-layout", "--mixer-angles", "--skip-first-phase"}
     assert set(compile_flags) & plan_like == set(estimate_flags) & plan_like == set(PLAN_FLAGS)
+    assert set(validate_flags) & plan_like == set(PLAN_FLAGS)
 
 
 @pytest.mark.parametrize("command", ["compile", "estimate"])

@@ -22,9 +22,9 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg
+from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
@@ -43,10 +43,10 @@ def validate(
     backend: str = "auto",
     angles: Sequence[float] | None = None,
     seed: int = 0,
-    rule: str = "exact",
     max_amplitudes: int = 256,
     dask: str | None = None,
     progress: ProgressArg = None,
+    **plan_options: Any,
 ) -> ValidationReport:
     """Check the compiled circuit of ``scenario`` against the feasible-subspace simulator (``qcpp validate``).
 
@@ -57,7 +57,6 @@ def validate(
             (MQT QCEC proves the lowered circuit equal to the high-level one; needs the ``test`` extra).
         angles: ``2p`` angles ``[gamma_0, beta_0, ...]``; ``None``: seeded random ones.
         seed: Seed of the random angles and of the tensor backend's amplitude sample.
-        rule: SBF rule of the mixer, ``exact`` or ``paper``.
         max_amplitudes: ``tensor``: contract at most this many amplitudes exactly (a seeded sample of them).
         dask: ``tensor``: a dask scheduler address (``tcp://host:8786``) or ``local`` (a cluster on this machine);
             contractions too wide for one process are sliced and run there. Giving it with ``auto`` picks
@@ -65,6 +64,10 @@ def validate(
         progress: ``True`` for progress lines on stderr naming each stage (``compiling the lowered circuit``,
             ``simulating the circuit (tensor)``, ...), or a function ``progress(done, total)``
             (:mod:`qcpp.api.progress`) called as each stage starts: ``progress(1, None)``, ``progress(2, None)``, ...
+        **plan_options: How the circuit is built, as for :func:`qcpp.compile`: ``rule``, ``initial``, ``target``,
+            ``phase``, ``optimize``, ``ancilla_budget``, ``phase_layout``, ``first_phase``, ``fuse``
+            (:class:`~qcpp.plan.options.PlanOptions`); the reference simulation follows them. Not ``angles``
+            (here the angle values): the simulator has one beta per layer.
 
     Returns:
         The :class:`~qcpp.simulate.validate.ValidationReport`: ``verdict`` (``passed``, ``failed`` or
@@ -72,8 +75,9 @@ def validate(
         with its value, error, status and seconds), ``backend`` (the one that ran), ``to_dict()``.
 
     Raises:
-        qcpp.errors.OptionError: a bad option (naming it); ``dask`` with a backend other than ``tensor``; the
-            ``qcec`` backend without mqt.qcec.
+        qcpp.errors.OptionError: a bad option (naming it), an unknown plan option; ``first_phase=False`` with a
+            start that is a superposition; ``dask`` with a backend other than ``tensor``; the ``qcec`` backend
+            without mqt.qcec.
         qcpp.problem.limits.SizeError: a feasible subspace whose reference state would not fit in the available
             memory or would take hours (lifted inside :func:`qcpp.allow_large`).
         qcpp.problem.errors.ScenarioError: weights the QAOA phases cannot represent exactly.
@@ -87,7 +91,7 @@ def validate(
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)
     check_choice(backend, BACKENDS, "backend")
-    check_choice(rule, ("exact", "paper"), "rule")
+    options = plan_options_arg(plan_options)
     check_count(seed, "seed", 0)
     check_count(max_amplitudes, "max_amplitudes", 1)
     values = check_angles_arg(angles, layers)
@@ -106,12 +110,16 @@ def validate(
             raise OptionError("backend", f"qcec needs mqt.qcec (pip install 'qcpp[test]'): {exc}") from None
     check_progress_arg(progress)
     check_phase_range(s)
+    if not options.first_phase:
+        from qcpp.plan.qaoa import qaoa_plan
+
+        qaoa_plan(s, 0, options)  # refuses a start that is a superposition, before any work
     task = f"validate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
     with reporting(progress, task, unit="stages", stages=True) as bar:
         if bar is not None:
             bar.stage("predicting the size")
         check_need(validate_need(s), field="scenario", override=API_OVERRIDE)
         return run(
-            s, layers, backend=backend, angles=values, seed=seed, rule=rule,  # type: ignore[arg-type]
+            s, layers, backend=backend, angles=values, seed=seed, options=options,  # type: ignore[arg-type]
             max_amplitudes=max_amplitudes, dask=dask, max_assignments=None, max_bytes=None, stage=bar and bar.stage,
         )  # fmt: skip

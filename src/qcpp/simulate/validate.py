@@ -47,6 +47,7 @@ Example:
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import itertools
 import math
 import time
@@ -57,8 +58,9 @@ from typing import Any, Literal
 
 import numpy as np
 
-from qcpp.errors import QcppError
+from qcpp.errors import OptionError, QcppError
 from qcpp.io.html import html_table
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.sbf import RULES, Rule
 from qcpp.problem.scenario import Scenario
@@ -75,6 +77,7 @@ __all__ = [
     "ValidationReport",
     "ValidationSize",
     "ValidationTooLargeError",
+    "check_validatable",
     "choose_backend",
     "random_angles",
     "validate",
@@ -138,6 +141,8 @@ class ValidationReport:
         tolerance: Allowed deviation (the ``qcec`` backend compares no amplitudes: :meth:`to_dict` gives ``None``).
         checks: The checks, in order.
         seconds: Total wall time.
+        plan: The plan options of the circuit checked that differ from the default (field -> value; ``rule`` is
+            its own field).
     """
 
     scenario: str
@@ -152,6 +157,7 @@ class ValidationReport:
     tolerance: float
     checks: tuple[Check, ...] = field(default_factory=tuple)
     seconds: float = 0.0
+    plan: dict[str, Any] = field(default_factory=dict)
 
     @property
     def verdict(self) -> Literal["passed", "failed", "incomplete"]:
@@ -379,6 +385,7 @@ def validate(
     max_assignments: int | None = MAX_VALIDATE_ASSIGNMENTS,
     max_bytes: int | None = None,
     stage: Callable[[str], None] | None = None,
+    options: PlanOptions | None = None,
 ) -> ValidationReport:
     """Check a compiled circuit's ancillas and amplitudes against the feasible-subspace simulator.
 
@@ -402,6 +409,11 @@ def validate(
         max_assignments: Refuse more feasible assignments than this (``None``: no limit).
         max_bytes: Refuse a predicted peak (:attr:`ValidationSize.bytes`) over this (``None``: no limit).
         stage: Called with a few words as each stage starts (``compiling the lowered circuit``), for progress.
+        options: How the circuit is built (:class:`~qcpp.plan.options.PlanOptions`; default
+            ``PlanOptions(rule=rule)``); its rule replaces ``rule``. The reference is simulated with the same rule,
+            initial state and phase constant (:attr:`qcpp.plan.qaoa.QaoaPlan.reference_constant`); with
+            ``first_phase=False`` the reference has ``gamma_0 = 0`` (the circuit has no first phase separator).
+            :func:`check_validatable` says which options the simulator cannot check.
 
     Returns:
         The :class:`ValidationReport` (its ``backend`` is the one that ran: ``auto`` resolved).
@@ -410,9 +422,9 @@ def validate(
         ValidationTooLargeError: over ``max_assignments`` or ``max_bytes``.
         ValueError: bad backend, rule, ``p`` or angles; the statevector backend beyond 26 qubits; a ``paper``-rule
             mixer that is not unitary on the data (:class:`qcpp.simulate.subspace.NonUnitaryMixerError`).
+        qcpp.errors.OptionError: a plan option the simulator cannot check (:func:`check_validatable`).
     """
     from qcpp.plan.compile import compile_scenario
-    from qcpp.plan.options import PlanOptions
     from qcpp.simulate.subspace import SubspaceQAOA, angle_bindings
 
     t_start = time.perf_counter()
@@ -420,6 +432,9 @@ def validate(
         raise ValueError(f"unknown backend {backend!r} (expected one of {', '.join(BACKENDS)})")
     if rule not in RULES:
         raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    options = PlanOptions(rule=rule) if options is None else options
+    check_validatable(options)
+    rule = options.rule
     if not isinstance(p, int) or p < 1:
         raise ValueError(f"p must be a positive integer, got {p!r}")
     if not tolerance > 0:
@@ -444,22 +459,23 @@ def validate(
             f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
         )
 
+    # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
+    # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
+    # differs by cancelled inverse pairs only, tests/compiler/junction_test.py)
+    built = dataclasses.replace(options, fuse=False) if backend == "tensor" else options
+    at("compiling the lowered circuit")
+    compiled = compile_scenario(scenario, p, built, lowered=True, bindings=bindings)
+    circuit = compiled.circuit
+
     at("simulating the feasible subspace")
-    sub = SubspaceQAOA(scenario, rule)
-    psi_sub = sub.state(x)
+    sub = SubspaceQAOA(scenario, rule, options.initial, phase_offset=compiled.plan.reference_constant)
+    psi_sub = sub.state(x if options.first_phase else np.concatenate([[0.0], x[1:]]))  # no gate: gamma_0 = 0
     assignments = _assignments(scenario, sub.bases)
     ref = np.zeros(len(assignments), dtype=np.complex128)
     for k, masks in enumerate(assignments):
         with contextlib.suppress(KeyError):  # outside the subspace basis: amplitude 0
             ref[k] = psi_sub[sub.index_of(masks)]
     index = np.array([sub.data_index(m) for m in assignments], dtype=object)  # ancillas (above the data) are 0
-
-    # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
-    # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
-    # differs by cancelled inverse pairs only, tests/compiler/junction_test.py)
-    fuse = backend != "tensor"
-    at("compiling the lowered circuit")
-    circuit = compile_scenario(scenario, p, PlanOptions(rule=rule, fuse=fuse), lowered=True, bindings=bindings).circuit
     n, nq = scenario.num_variables, circuit.num_qubits
     if backend == "auto":  # compiled fused, as every backend but tensor (which auto never picks)
         backend = choose_backend(nq)
@@ -494,7 +510,7 @@ def validate(
         got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
         checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
     elif backend == "qcec":
-        checks.append(_qcec_check(scenario, p, rule, bindings, circuit, at))
+        checks.append(_qcec_check(scenario, p, options, bindings, circuit, at))
     else:
         from qcpp.simulate.cluster import dask_client
 
@@ -518,7 +534,34 @@ def validate(
         tolerance=tolerance,
         checks=tuple(checks),
         seconds=time.perf_counter() - t_start,
+        plan={
+            f.name: getattr(options, f.name)
+            for f in dataclasses.fields(options)
+            if f.name not in ("rule", "fuse") and getattr(options, f.name) != getattr(DEFAULT_PLAN, f.name)
+        },
     )
+
+
+def check_validatable(options: PlanOptions) -> None:
+    """Refuse plan options whose circuit :func:`validate` cannot compare with the subspace simulator.
+
+    Every option but one is checked: the simulator prepares every initial state, takes the phase constant of any
+    phase separator (``target``, ``phase``, ``optimize``, ``ancilla_budget``, ``phase_layout`` change gates, not the
+    state) and, without the first phase separator, runs with ``gamma_0 = 0``. ``angles="multi"`` is refused: the
+    simulator has one beta per layer, the multi-angle circuit one per partial mixer.
+
+    Raises:
+        qcpp.errors.OptionError: one line naming the option.
+
+    Example:
+        >>> check_validatable(PlanOptions(target="ft", first_phase=False))
+        >>> check_validatable(PlanOptions(angles="multi"))
+        Traceback (most recent call last):
+        ...
+        qcpp.errors.OptionError: angles: the subspace simulator has one beta per layer, not multi
+    """
+    if options.angles != "layer":
+        raise OptionError("angles", f"the subspace simulator has one beta per layer, not {options.angles}")
 
 
 def _open_qubits(scenario: Scenario) -> list[int]:
@@ -535,14 +578,14 @@ QCEC_STAGE = "checking the sections with QCEC"
 
 
 def _qcec_check(
-    scenario: Scenario, p: int, rule: Rule, bindings: dict[str, float], low: Any, stage: Callable[[str], None]
+    scenario: Scenario, p: int, options: PlanOptions, bindings: dict[str, float], low: Any,
+    stage: Callable[[str], None],
 ) -> Check:
     from qcpp.plan.compile import compile_scenario
-    from qcpp.plan.options import PlanOptions
     from qcpp.simulate.equivalence import check_sections_interruptibly
 
     t0 = time.perf_counter()
-    high = compile_scenario(scenario, p, PlanOptions(rule=rule), bindings=bindings).circuit
+    high = compile_scenario(scenario, p, options, bindings=bindings).circuit
     # QCEC holds the GIL: Ctrl-C needs a child; the stage is named once the child holds the circuits
     r = check_sections_interruptibly(high, low, scenario.num_variables, started=lambda: stage(QCEC_STAGE))
     note = f"QCEC: lowered == high-level on clean ancillas, {r.sections} sections ({r.criterion})"

@@ -1,9 +1,9 @@
-"""The plan flags shared by ``qcpp compile`` and ``qcpp estimate``: one definition, one :class:`PlanOptions`;
-and the flags every scenario command declares alike (:data:`LayersFlag`, ``--rule``; the scenario argument and its
-inline flags: :mod:`qcpp.cli.commands.inline_scenario`).
+"""The plan flags shared by ``qcpp compile``, ``qcpp estimate`` and ``qcpp validate``: one definition, one
+:class:`PlanOptions`; and the flags every scenario command declares alike (:data:`LayersFlag`, ``--rule``; the
+scenario argument and its inline flags: :mod:`qcpp.cli.commands.inline_scenario`).
 
-Both commands take an ``options: PlanOptions`` parameter and are decorated with :func:`with_plan_flags`, which
-puts the plan flags in its place and builds the options with :func:`plan_options`, so the two accept exactly the
+Each command takes an ``options: PlanOptions`` parameter and is decorated with :func:`with_plan_flags`, which
+puts the plan flags in its place and builds the options with :func:`plan_options`, so they accept exactly the
 same flags with the same help, defaults and checks (``tests/cli/plan_flags_test.py`` compares them).
 
 Example:
@@ -170,8 +170,9 @@ def plan_options(
     """
     try:
         return PlanOptions(
-            rule, initial, target, phase, optimize, ancilla_budget, phase_layout=phase_layout,  # type: ignore[arg-type]
-            angles=angles, first_phase=not skip_first_phase,  # type: ignore[arg-type]
+            rule=rule, initial=initial, target=target, phase=phase, optimize=optimize,  # type: ignore[arg-type]
+            ancilla_budget=ancilla_budget, phase_layout=phase_layout, angles=angles,  # type: ignore[arg-type]
+            first_phase=not skip_first_phase,
         )
     except ValueError as exc:
         raise ValueError(plan_flag_message(exc)) from None

@@ -38,10 +38,12 @@ from qcpp.cli.commands.inline_scenario import (
     ScenarioFileArg,
     given_scenario,
 )
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
+from qcpp.cli.commands.plan_flags import LayersFlag, check_start, plan_flag_message, with_plan_flags
 from qcpp.cli.commands.simulate import parse_angles
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import json_text, print_table
+from qcpp.errors import OptionError
+from qcpp.plan.options import PlanOptions
 
 __all__ = ["register", "validate_command"]
 
@@ -53,23 +55,25 @@ Examples:
   qcpp validate examples/paper_3x3.toml --backend qcec
 
 Checks that the ancillas end in |0> and every feasible amplitude matches;
+the plan flags are those of compile and estimate (not --mixer-angles multi);
 qcec proves the lowered circuit equal to the high-level one (MQT QCEC).
 Exit 0: every check ran and passed; 1: one failed or was skipped.
 """
 
 
+@with_plan_flags
 def validate_command(
+    options: PlanOptions,
     scenario: ScenarioFileArg = None,
     p: LayersFlag = 1,
     backend: Annotated[
         str,
         typer.Option("--backend", help="auto (what fits: statevector or sparse), tensor, statevector, sparse or qcec."),
     ] = "auto",
-    angles: Annotated[
+    angle_values: Annotated[
         str | None, typer.Option("--angles", help="g0,b0,g1,b1,... (default: seeded random angles).")
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles and the amplitude sample.")] = 0,
-    rule: RuleFlag = "exact",
     max_amplitudes: Annotated[
         int,
         typer.Option("--max-amplitudes", help="tensor: contract at most this many amplitudes exactly (at least 1)."),
@@ -93,8 +97,12 @@ def validate_command(
     from qcpp.problem.limits import check_need, large_allowed
     from qcpp.simulate.cluster import check_dask_address
     from qcpp.simulate.footprint import validate_need
-    from qcpp.simulate.validate import validate
+    from qcpp.simulate.validate import check_validatable, validate
 
+    try:
+        check_validatable(options)
+    except OptionError as exc:
+        raise ValueError(plan_flag_message(exc)) from None
     if dask is not None and backend == "auto":
         backend = "tensor"  # only the tensor backend contracts on a cluster: asking for one picks it
     if dask is not None and backend != "tensor":
@@ -102,8 +110,8 @@ def validate_command(
     if dask is not None:
         check_dask_address(dask, "--dask")
     values = None
-    if angles is not None:
-        values = parse_angles(angles)
+    if angle_values is not None:
+        values = parse_angles(angle_values)
         if len(values) != 2 * p:
             raise ValueError(f"--angles: p = {p} needs {2 * p} angles (g0,b0,...), got {len(values)}")
     if backend == "qcec":
@@ -114,6 +122,7 @@ def validate_command(
             raise ValueError(f"--backend qcec needs mqt.qcec and qiskit (pip install 'qcpp[test]'): {exc}") from None
     given = given_scenario(scenario, grid, robots, obstacle, hard_obstacles, phases=True, endpoints=robot)
     s = given.scenario
+    check_start(s, options)
     with Progress(f"validate {given.label}") as bar:
         if not large_allowed():
             bar.stage("predicting the size")
@@ -124,7 +133,7 @@ def validate_command(
             backend=backend,  # type: ignore[arg-type]
             angles=values,
             seed=seed,
-            rule=rule,  # type: ignore[arg-type]
+            options=options,
             max_amplitudes=max_amplitudes,
             dask=dask,
             max_assignments=None,  # checked above, from the memory and time it would take
