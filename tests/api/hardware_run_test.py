@@ -178,6 +178,10 @@ def test_zero_start_off_offers_only_unitary_keeping_candidates_and_on_offers_and
     keeping = [c["two_qubit"] for c in routed["candidates"] if "from |0>" not in c["name"]]
     assert sorted(keeping) == sorted(c["two_qubit"] for c in off.to_dict()["routed"]["candidates"])
     assert routed["two_qubit"] < min(keeping)
+    note = "// simplified for the all-|0> start"  # the file says where it is valid, in every version and profile
+    assert all(on.to_qasm(v, measure=True).splitlines()[1].startswith(note) for v in (2, 3))
+    assert on.to_qasm(3, profile="braket").splitlines()[1].startswith(note)
+    assert not any(note in off.to_qasm(v) for v in (2, 3))
     # the state from |0...0>: the logical circuit on the final physical qubits, |0> on the others
     small, index = _compact(on.to_qiskit())
     logical = qcpp.compile(s, lowered=True, bind=ANGLES).to_qiskit()

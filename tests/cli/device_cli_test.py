@@ -7,9 +7,11 @@ import re
 from pathlib import Path
 
 import pytest
+import qiskit.qasm3
 from qiskit import qasm2
 
 from qcpp.hardware.device import get_device
+from qcpp.lowering.qasm_profiles import ZERO_START_NOTE
 
 from .clirun import assert_one_line_error, run
 
@@ -143,15 +145,19 @@ def test_compile_zero_start_off_a_named_device_is_one_line(args: tuple[str, ...]
 
 
 @pytest.mark.slow
-def test_compile_zero_start_says_so_in_json_and_text() -> None:
+def test_compile_zero_start_says_so_in_json_and_text(tmp_path: Path) -> None:
     """``--zero-start`` is ``routed.zero_start`` in ``--json``; where a routing simplified for the all-|0> start is
-    written, ``routed.equal_on_every_input`` is false and the text prints one note saying so; without the option
-    neither."""
+    written, ``routed.equal_on_every_input`` is false, the text prints one note saying so, and the OpenQASM file says
+    so in a comment under its version line (it loads in Qiskit all the same); without the option none of these."""
     small = ("--grid", "2x2", "--robots", "1", "--device", "ibm_fez", *BIND)
     for zero in (False, True):
         flag = ("--zero-start",) if zero else ()
-        res = run("compile", *small, *flag, "--json")
+        qasm = tmp_path / f"zero_{zero}.qasm"
+        res = run("compile", *small, *flag, "--json", "--qasm", str(qasm))
         assert res.exit_code == 0, res.output
+        lines = qasm.read_text().splitlines()
+        assert (lines[1] == f"// {ZERO_START_NOTE}") is zero and sum(ZERO_START_NOTE in x for x in lines) == zero
+        assert qiskit.qasm3.loads(qasm.read_text()).num_qubits > 0
         routed = json.loads(res.stdout)["routed"]
         assert routed["zero_start"] is zero and routed["equal_on_every_input"] is not zero, routed["chosen"]
         assert any("from |0>" in c["name"] for c in routed["candidates"]) is zero

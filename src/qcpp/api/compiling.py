@@ -149,7 +149,7 @@ class Compiled:
             qubit[4] q;
         """
         from qcpp.lowering.qasm_measure import with_measurements
-        from qcpp.lowering.qasm_profiles import check_profile, iter_qasm_profile
+        from qcpp.lowering.qasm_profiles import ZERO_START_NOTE, check_profile, iter_qasm_profile, with_note
 
         check_choice(version, QASM_VERSIONS, "version")
         check_profile(profile, version)
@@ -157,7 +157,7 @@ class Compiled:
         chunks = iter_qasm_profile(self.circuit, int(version), profile)  # type: ignore[arg-type]
         if measure:
             chunks = with_measurements(chunks, self.measured_qubits, int(version))
-        return "".join(chunks)
+        return "".join(with_note(chunks, None if self.equal_on_every_input else ZERO_START_NOTE))
 
     def write_qasm(
         self, path: str | os.PathLike[str], version: int = 3, profile: str = "default", measure: bool = False
@@ -167,13 +167,14 @@ class Compiled:
         Raises:
             As :meth:`to_qasm`; :class:`qcpp.io.atomic.OutputError` for a destination that cannot be written.
         """
-        from qcpp.lowering.qasm_profiles import check_profile, write_qasm_profile
+        from qcpp.lowering.qasm_profiles import ZERO_START_NOTE, check_profile, write_qasm_profile
 
         check_choice(version, QASM_VERSIONS, "version")
         check_profile(profile, version)
         _check_flag(measure, "measure")
         write_qasm_profile(self.circuit, path, int(version), profile,  # type: ignore[arg-type]
-                           self.measured_qubits if measure else None)  # fmt: skip
+                           self.measured_qubits if measure else None,
+                           None if self.equal_on_every_input else ZERO_START_NOTE)  # fmt: skip
 
     def to_qiskit(self, measure: bool = False) -> Any:
         """The circuit as a ``qiskit.QuantumCircuit``, through Qiskit's own OpenQASM 3 loader (unbound symbols

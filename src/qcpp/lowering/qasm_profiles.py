@@ -70,6 +70,7 @@ from qcpp.lowering.qasm_measure import check_measured, with_measurements
 
 __all__ = [
     "PROFILES",
+    "ZERO_START_NOTE",
     "Profile",
     "QasmProfileError",
     "Statement",
@@ -77,6 +78,7 @@ __all__ = [
     "iter_qasm_profile",
     "iter_qasm_profile_body",
     "to_qasm3_profile",
+    "with_note",
     "write_qasm_profile",
 ]
 
@@ -260,22 +262,54 @@ def to_qasm3_profile(circuit: Circuit, profile: Profile = "default") -> str:
     return "".join(iter_qasm_profile(circuit, 3, profile))
 
 
+ZERO_START_NOTE = (
+    "simplified for the all-|0> start (qcpp --zero-start): equal to the logical circuit on that input only; "
+    "put no gates before it"
+)
+"""The comment under the version line of a circuit that equals its logical circuit on the all-|0> input only."""
+
+
+def with_note(chunks: Iterable[str], note: str | None) -> Iterator[str]:
+    """The chunks of an OpenQASM text with ``// note`` as its second line (under ``OPENQASM ...;``), so a file
+    that is valid only under a condition says so wherever it is taken; ``None`` passes the chunks through.
+
+    Example:
+        >>> chunks = ["OPENQASM 3.0;", chr(10), "qubit[1] q;", chr(10), "x q[0];", chr(10)]
+        >>> print("".join(with_note(["".join(chunks[:4]), "".join(chunks[4:])], "from |0> only")), end="")
+        OPENQASM 3.0;
+        // from |0> only
+        qubit[1] q;
+        x q[0];
+    """
+    it = iter(chunks)
+    if note is None:
+        yield from it
+        return
+    first = next(it, "")
+    head, sep, rest = first.partition("\n")
+    yield f"{head}\n// {note}" + (sep + rest if sep else "\n")
+    yield from it
+
+
 def write_qasm_profile(
     circuit: Circuit,
     path: str | os.PathLike[str],
     version: Version = 3,
     profile: Profile = "default",
     measured: Sequence[int] | None = None,
+    note: str | None = None,
 ) -> None:
     """Write :func:`iter_qasm_profile` to ``path`` atomically: whole or not at all.
 
     Args:
         measured: With qubits, also measure ``measured[i]`` into bit ``i`` of a classical register at the end
             (:func:`qcpp.lowering.qasm_measure.with_measurements`); ``None`` (the default) writes no measurement.
+        note: A comment line put under the version line (:func:`with_note`; e.g. :data:`ZERO_START_NOTE`).
     """
     chunks = iter_qasm_profile(circuit, version, profile)  # argument errors surface before any file is made
     if measured is not None:
         chunks = with_measurements(chunks, check_measured(measured, circuit.num_qubits), version)
+    chunks = with_note(chunks, note)
     with atomic_open(path) as f:
         for chunk in chunks:
             f.write(chunk)

@@ -65,7 +65,7 @@ from qcpp.estimators.guard import SizePrediction, check_size, compile_need, pred
 from qcpp.io.atomic import check_output, is_stdout
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
-from qcpp.lowering.qasm_profiles import Profile, check_profile, write_qasm_profile
+from qcpp.lowering.qasm_profiles import ZERO_START_NOTE, Profile, check_profile, write_qasm_profile
 from qcpp.lowering.qasm_stream import write_qasm_sections
 from qcpp.plan.compile import check_binding_values, compile_scenario, compile_summary, parse_bindings
 from qcpp.plan.options import PlanOptions
@@ -465,7 +465,8 @@ def _routed(
     if qasm is not None:
         with _bind_hint():
             measured = result.routed.final_layout[: s.num_variables] if measure else None
-            write_qasm_profile(result.routed.circuit, qasm, version, profile, measured)  # type: ignore[arg-type]
+            note = None if result.equal_on_every_input else ZERO_START_NOTE
+            write_qasm_profile(result.routed.circuit, qasm, version, profile, measured, note)  # type: ignore[arg-type]
     return result.compile_summary(), result.compiled.phase_explain
 
 
