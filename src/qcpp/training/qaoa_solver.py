@@ -137,6 +137,13 @@ class QaoaSolution:
         t = self.training
         return t.num_evaluations + 4 * t.p * t.num_gradients
 
+    @property
+    def training_shots(self) -> int:
+        """Shots a device would spend on the training: :attr:`circuit_estimates` x
+        :data:`~qcpp.training.layerwise.SHOTS_PER_ESTIMATE` (an assumed shots per objective estimate), the
+        ``training_shots`` of ``qcpp solve -m qaoa --json``."""
+        return self.circuit_estimates * SHOTS_PER_ESTIMATE
+
 
 def solve_qaoa(
     scenario: Scenario,
@@ -335,7 +342,7 @@ def qaoa_details(res: QaoaSolution) -> tuple[tuple[str, Any], ...]:
         ("trace", list(res.trace)),
         ("evaluations", res.num_evaluations),
         ("circuit_estimates", res.circuit_estimates),
-        ("training_shots", res.circuit_estimates * SHOTS_PER_ESTIMATE),
+        ("training_shots", res.training_shots),
         ("shots_per_estimate", SHOTS_PER_ESTIMATE),
     ]
     if res.bindings:
