@@ -211,14 +211,6 @@ SLOW_DEFAULT = frozenset(
         "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile[3x4 interior p1]",
         "tests/compiler/window_classes_test.py::test_windows_sharing_a_class_route_as_compile_routes_each[3x10/1]",
         "tests/estimators/formulas_test.py::test_phase_terms_are_the_call_graphs_counting_run_symbolically[5-5]",
-        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
-        "[4x3-0]",
-        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
-        "[4x3-1]",
-        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
-        "[4x3-2]",
-        "tests/estimators/plan_options_test.py::test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints"
-        "[4x3-3]",
         "tests/estimators/routed_test.py::test_the_bound_counts_the_circuit_the_device_compile_routes[3x4/2]",
         "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[3x4/2-grid]",
         "tests/estimators/routed_test.py::test_the_bound_is_at_least_what_compile_routes[4x4/1-grid]",

@@ -6,7 +6,7 @@ import dataclasses
 
 import pytest
 
-from qcpp.estimators.crosscheck import every_plan_option, interior_endpoints
+from qcpp.estimators.crosscheck import every_plan_option, interior_endpoints, one_plan_option_at_a_time
 from qcpp.ir.cost import Cost
 from qcpp.plan.gadget_examples import REGISTRY, check_gadget, gadget_examples
 from qcpp.plan.options import PlanOptions
@@ -28,8 +28,10 @@ def test_every_class_has_examples() -> None:
 
 def test_every_gadget_class_a_plan_emits_is_registered() -> None:
     emitted: set[type] = set()
+    gadget_fields = ("rule", "initial", "target", "phase", "optimize", "ancilla_budget")  # which gadgets are built
+    plans = [*every_plan_option((None, 0), gadget_fields), *one_plan_option_at_a_time((None, 0))]  # and how placed
     for s in (default_scenario(3, 3, 2), interior_endpoints(4, 4, "soft")):
-        for options in every_plan_option(budgets=(None, 0)):
+        for options in plans:
             if options.initial == "representatives" and s.grid.rows > 3:
                 continue  # exhaustive path enumeration: small grids only
             emitted |= {type(g) for _, g in qaoa_plan(s, 1, options).sections()}

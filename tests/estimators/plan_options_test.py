@@ -2,56 +2,103 @@
 
 The estimate (:func:`qcpp.estimators.estimate.estimate_point`) and the compiled circuit take the same
 :class:`~qcpp.plan.options.PlanOptions`; :func:`qcpp.estimators.crosscheck.crosscheck` compares qubits, registers,
-gate counts (whole circuit, per part, logical) and exact depths.
+gate counts (whole circuit, per part, logical) and exact depths. The default run checks every value of every field
+one at a time (:func:`~qcpp.estimators.crosscheck.one_plan_option_at_a_time`) on hard obstacles and interior
+endpoints, and over two layers on three scenarios; the heavy step checks every combination of every field
+(:func:`~qcpp.estimators.crosscheck.every_plan_option`) on 4x3 and of the fields that choose gadgets
+(:data:`GADGET_FIELDS`) on 4x4.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 
 from qcpp.errors import OptionError
 from qcpp.estimators.counts import count
-from qcpp.estimators.crosscheck import Case, crosscheck, every_plan_option, interior_endpoints, with_obstacles
+from qcpp.estimators.crosscheck import (
+    Case,
+    crosscheck,
+    every_plan_option,
+    interior_endpoints,
+    one_plan_option_at_a_time,
+    plan_option_values,
+    with_obstacles,
+)
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
+from qcpp.ir.cost import TARGETS
 from qcpp.lowering.passes import lower
-from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, PlanOptions
+from qcpp.plan.options import ANGLES, DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASE_LAYOUTS, PHASES, PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit, qaoa_plan
 from qcpp.problem.presets import default_scenario
+from qcpp.problem.sbf import RULES
 
 ALL = list(every_plan_option())
+GADGET_FIELDS = ("rule", "initial", "target", "phase", "optimize", "ancilla_budget")
+"""The fields that choose which gadgets are built; ``fuse``, ``phase_layout``, ``angles`` and ``first_phase``
+shape, place, name or drop the same gadgets."""
+GADGETS = list(every_plan_option(fields=GADGET_FIELDS))
 
 
-def test_every_plan_option_lists_each_combination_once() -> None:
-    assert len(ALL) == len(set(ALL)) == 2 * len(INITIAL_STATES) * 2 * 2 * 2 * 3
+def test_the_values_are_every_field_s_checked_values() -> None:
+    """The values come from the fields' types; here they equal the tuples ``PlanOptions`` checks against, so a
+    value added to one and not the other fails, and a new field without values fails too."""
+    values = plan_option_values()
+    assert list(values) == [f.name for f in dataclasses.fields(PlanOptions)]
+    assert (values["rule"], values["initial"], values["target"], values["phase"], values["optimize"]) == (
+        RULES, INITIAL_STATES, TARGETS, PHASES, OPTIMIZE
+    )
+    assert (values["phase_layout"], values["angles"]) == (PHASE_LAYOUTS, ANGLES)
+    assert values["fuse"] == values["first_phase"] == (True, False) and values["ancilla_budget"] == (None, 0, 3)
+    assert all(v[0] == getattr(DEFAULT_PLAN, name) for name, v in values.items())
 
 
+def test_every_plan_option_lists_each_combination_of_every_field_once() -> None:
+    values = plan_option_values()
+    assert len(ALL) == len(set(ALL)) == math.prod(len(v) for v in values.values())
+    for name, vs in values.items():
+        assert {getattr(o, name) for o in ALL} == set(vs), name
+    assert len(GADGETS) == len(set(GADGETS)) == math.prod(len(values[n]) for n in GADGET_FIELDS)
+    one = list(one_plan_option_at_a_time())
+    assert len(one) == len(set(one)) == 1 + sum(len(v) - 1 for v in values.values())
+    assert all(sum(getattr(o, n) != getattr(DEFAULT_PLAN, n) for n in values) == 1 for o in one[1:])
+
+
+def _crosscheck_or_refused(s: object, options: PlanOptions) -> list[str]:
+    """:func:`crosscheck`, or ``[]`` where the scenario's start is a superposition and ``first_phase=False``
+    is refused as documented."""
+    try:
+        return crosscheck(Case(s, 1, options))  # type: ignore[arg-type]
+    except OptionError as exc:
+        assert not options.first_phase and "prepares a superposition" in str(exc), (options, exc)
+        return []
+
+
+def test_estimate_equals_compiled_for_every_option_one_at_a_time_on_hard_obstacles_and_interior_endpoints() -> None:
+    s = interior_endpoints(4, 3, "hard")
+    assert s.obstacles and any(0 < rb.start[0] < 3 and 0 < rb.start[1] < 2 for rb in s.robots)
+    assert [m for o in one_plan_option_at_a_time() for m in _crosscheck_or_refused(s, o)] == []
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("part", range(8))
+def test_estimate_equals_compiled_for_every_combination_of_every_field_on_4x3(part: int) -> None:
+    s = interior_endpoints(4, 3, "hard")
+    assert [m for o in ALL[part::8] for m in _crosscheck_or_refused(s, o)] == []
+
+
+@pytest.mark.heavy
 @pytest.mark.parametrize("part", range(4))
-@pytest.mark.parametrize("shape", [(4, 3), pytest.param((4, 4), marks=pytest.mark.heavy)], ids=["4x3", "4x4"])
-def test_estimate_equals_compiled_for_every_combination_on_hard_obstacles_and_interior_endpoints(
-    shape: tuple[int, int], part: int
-) -> None:
-    rows, cols = shape
-    s = interior_endpoints(rows, cols, "hard")
-    assert s.obstacles and any(0 < rb.start[0] < rows - 1 and 0 < rb.start[1] < cols - 1 for rb in s.robots)
-    assert [m for o in ALL[part::4] for m in crosscheck(Case(s, 1, o))] == []
+def test_estimate_equals_compiled_for_every_gadget_combination_on_4x4(part: int) -> None:
+    s = interior_endpoints(4, 4, "hard")
+    assert [m for o in GADGETS[part::4] for m in _crosscheck_or_refused(s, o)] == []
 
 
 ONE_AT_A_TIME = [
-    DEFAULT_PLAN,
-    PlanOptions(rule="paper"),
-    PlanOptions(initial="representatives"),
-    PlanOptions(initial="local_search"),
-    PlanOptions(initial="local_search_mix"),
-    PlanOptions(target="ft"),
-    PlanOptions(phase="whole-space"),
-    PlanOptions(optimize="depth"),
-    PlanOptions(ancilla_budget=0),
-    PlanOptions(ancilla_budget=5),
-    PlanOptions(angles="multi"),
+    *one_plan_option_at_a_time(budgets=(None, 0, 5)),
     PlanOptions(phase="whole-space", target="ft", optimize="depth", ancilla_budget=0),
-    PlanOptions(first_phase=False),
     PlanOptions(initial="local_search", first_phase=False),
     PlanOptions(phase="whole-space", target="ft", phase_layout="spatial", first_phase=False),
 ]
@@ -97,3 +144,9 @@ def test_a_mixed_start_whose_paths_agree_is_a_basis_state_and_may_omit_the_first
     options = PlanOptions(initial="local_search_mix", first_phase=False)
     assert qaoa_plan(s, 1, options).basis_start  # each robot's descent stays on its initial path: X gates only
     assert crosscheck(Case(s, 2, options)) == []
+
+
+def test_plan_options_take_keywords_only_so_a_new_field_cannot_shift_the_others() -> None:
+    with pytest.raises(TypeError):
+        PlanOptions("paper")  # type: ignore[misc]
+    assert PlanOptions(rule="paper").rule == "paper"

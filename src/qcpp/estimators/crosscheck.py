@@ -4,7 +4,8 @@
 anything (registers, gate counts of the whole circuit, of each part and layer, logical gate counts, and ``exact``
 depths) with :func:`qcpp.estimators.counts.count` of the compiled circuit, lowered to the basis and to
 ``LOGICAL_BASIS``. :func:`crosscheck_cases` lists the scenarios the tests and ``benchmarks/estimate_speed.py`` check;
-:func:`every_plan_option`, :func:`with_obstacles` and :func:`interior_endpoints` build more of them. Plain values
+:func:`every_plan_option`, :func:`one_plan_option_at_a_time`, :func:`with_obstacles` and
+:func:`interior_endpoints` build more of them. Plain values
 only, so production code may import this module (the random inputs of property tests live in :mod:`qcpp.testing`).
 
 Example:
@@ -17,23 +18,27 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import typing
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Literal
 
 from qcpp.estimators.counts import count
 from qcpp.estimators.depth import depths
 from qcpp.estimators.estimate import EstimateOptions, Point, estimate_point
-from qcpp.ir.cost import TARGETS, Cost
+from qcpp.ir.cost import Cost
 from qcpp.lowering.passes import LOGICAL_BASIS, lower
-from qcpp.plan.options import DEFAULT_PLAN, INITIAL_STATES, OPTIMIZE, PHASES, PlanOptions
+from qcpp.plan.options import DEFAULT_PLAN, PlanOptions
 from qcpp.plan.qaoa import qaoa_circuit
 from qcpp.problem.presets import default_scenario, max_default_robots
-from qcpp.problem.sbf import RULES
 from qcpp.problem.scenario import Scenario, scenario_from_dict, scenario_to_dict
 from qcpp.problem.scenario_io import load_scenario
 
-__all__ = ["Case", "crosscheck", "crosscheck_cases", "every_plan_option", "interior_endpoints", "with_obstacles"]
+__all__ = [
+    "Case", "crosscheck", "crosscheck_cases", "every_plan_option", "interior_endpoints", "one_plan_option_at_a_time",
+    "plan_option_values", "with_obstacles",
+]
 
 
 @dataclass(frozen=True)
@@ -80,13 +85,60 @@ def interior_endpoints(rows: int = 3, cols: int = 4, obstacles: str | None = Non
     return scenario_from_dict(d)
 
 
-def every_plan_option(budgets: tuple[int | None, ...] = (None, 0, 3)) -> Iterator[PlanOptions]:
-    """Every combination of the plan flags a user can pass (``--rule``, ``--initial``, ``--target``,
-    ``--phase``, ``--optimize``), each with every ancilla budget of ``budgets``."""
-    for rule, initial, target, phase, optimize, budget in itertools.product(
-        RULES, INITIAL_STATES, TARGETS, PHASES, OPTIMIZE, budgets
-    ):
-        yield PlanOptions(rule, initial, target, phase, optimize, budget)
+def plan_option_values(budgets: tuple[int | None, ...] = (None, 0, 3)) -> dict[str, tuple[object, ...]]:
+    """Every value of every :class:`~qcpp.plan.options.PlanOptions` field, the default first: a ``Literal``
+    field's values from its type (a value added to the type is covered here too), a ``bool`` field's ``True`` and
+    ``False``, and ``ancilla_budget`` those of ``budgets``.
+
+    Raises:
+        TypeError: a field of another type (say how to cover it here).
+
+    Example:
+        >>> values = plan_option_values()
+        >>> values["initial"], values["first_phase"], values["ancilla_budget"]
+        (('initial_path', 'representatives', 'local_search', 'local_search_mix'), (True, False), (None, 0, 3))
+    """
+    hints = typing.get_type_hints(PlanOptions)
+    out: dict[str, tuple[object, ...]] = {}
+    for f in dataclasses.fields(PlanOptions):
+        hint, default = hints[f.name], getattr(DEFAULT_PLAN, f.name)
+        if typing.get_origin(hint) is Literal:
+            values: tuple[object, ...] = typing.get_args(hint)
+        elif hint is bool:
+            values = (True, False)
+        elif f.name == "ancilla_budget":
+            values = budgets
+        else:
+            raise TypeError(f"plan_option_values: no values for field {f.name} of type {hint}")
+        out[f.name] = (default, *(v for v in values if v != default))
+    return out
+
+
+def every_plan_option(
+    budgets: tuple[int | None, ...] = (None, 0, 3), fields: tuple[str, ...] | None = None
+) -> Iterator[PlanOptions]:
+    """Every combination of the values of ``fields`` (:func:`plan_option_values`; default: every field of
+    :class:`~qcpp.plan.options.PlanOptions`, which is every plan flag and ``fuse``), the other fields at their
+    defaults. Print the count with ``python -c "from qcpp.estimators.crosscheck import every_plan_option as e;
+    print(len(list(e())))"``.
+
+    Some combinations are refused by a scenario whose start is a superposition (``first_phase=False`` with
+    ``representatives`` or ``local_search_mix``, :attr:`qcpp.plan.qaoa.QaoaPlan.basis_start`): :func:`crosscheck`
+    raises :class:`~qcpp.errors.OptionError` for them.
+    """
+    values = plan_option_values(budgets)
+    names = tuple(values) if fields is None else fields
+    for combo in itertools.product(*(values[name] for name in names)):
+        yield PlanOptions(**dict(zip(names, combo)))  # type: ignore[arg-type]
+
+
+def one_plan_option_at_a_time(budgets: tuple[int | None, ...] = (None, 0, 3)) -> Iterator[PlanOptions]:
+    """The default plan, then every other value of every field (:func:`plan_option_values`) with the other fields
+    at their defaults: each option against the default, far fewer than :func:`every_plan_option`."""
+    yield DEFAULT_PLAN
+    for name, values in plan_option_values(budgets).items():
+        for value in values[1:]:
+            yield PlanOptions(**{name: value})  # type: ignore[arg-type]
 
 
 def crosscheck_cases(full: bool = False) -> Iterator[Case]:
@@ -94,9 +146,10 @@ def crosscheck_cases(full: bool = False) -> Iterator[Case]:
 
     Args:
         full: every default grid 2x2..8x8 with 1..6 robots at p = 1, and p = 2, 3 on grids of up to 16 nodes,
-            plus obstacles (soft and hard), the example files (``examples/`` of the source tree, if present) and
-            the ``paper`` rule and ``ft`` target (about 400 cases, minutes); otherwise a sample of each kind
-            (seconds).
+            plus obstacles (soft and hard), the example files (``examples/`` of the source tree, if present),
+            the ``paper`` rule, the ``ft`` target and no first phase separator (minutes; count them with
+            ``python -c "from qcpp.estimators.crosscheck import crosscheck_cases as c; print(len(list(c(True))))"``);
+            otherwise a sample of each kind (seconds).
 
     Yields:
         The cases.

@@ -48,10 +48,11 @@ device is a square grid that holds it, else greedy; on such a grid a circuit of 
 two-qubit gates win."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class PlanOptions:
     """The construction choices of one QAOA circuit (every field is checked on construction: a bad value raises
-    :class:`~qcpp.errors.OptionError` naming the field).
+    :class:`~qcpp.errors.OptionError` naming the field). Keyword arguments only: a field added later cannot shift
+    the others' values.
 
     Attributes:
         rule: SBF logic rule: ``exact`` (default) or ``paper``.
