@@ -258,3 +258,56 @@ def test_the_cycle_check_fails_on_a_circle() -> None:
     through_init = {"qcpp.gadgets.bad": Source("import qcpp.gadgets\n", False)}
     modules = {**MODULES, **through_init}
     assert not any("qcpp.gadgets.bad" in c for c in import_cycles(import_graph(modules), modules))
+
+
+ARCHITECTURE = Path(__file__).resolve().parents[1] / "docs" / "architecture.md"
+
+
+def pictured_layers(text: str) -> tuple[list[str], set[str], set[str]]:
+    """The subpackages of the first picture in ``docs/architecture.md``, top first; the siblings (``├─┬``,
+    ``│ ├``, ``│ └`` lines); and those beside the stack."""
+    block = text.split("```\n", 2)[1]
+    names, siblings, beside = [], set(), set()
+    for line in block.splitlines()[1:]:
+        parts = line.replace("│", " ").split()
+        if not parts or parts[0] not in ("├─", "└─", "├─┬", "├", "└"):
+            continue
+        names.append(parts[1])
+        if parts[0] in ("├─┬", "├", "└"):
+            siblings.add(parts[1])
+        if parts[2:4] == ["beside", "the"]:
+            beside.add(parts[1])
+    return names, siblings, beside
+
+
+def picture_mismatches(text: str) -> list[str]:
+    """Where the picture and :data:`ALLOWED` differ: a subpackage may import exactly those the picture lists below
+    it, but for siblings (none imports another) and what is beside the stack (imported by api and cli only);
+    ``training`` runs ``simulate`` alone of the siblings."""
+    names, siblings, beside = pictured_layers(text)
+    out = []
+    if sorted(names) != sorted(set(ALLOWED) - {"__init__", "__main__", "testing"}):
+        out.append(f"pictured subpackages {names}")
+    if siblings != set(_USES) or beside != {"qubo"}:
+        out.append(f"siblings {sorted(siblings)}, beside the stack {sorted(beside)}")
+    for i, name in enumerate(names):
+        below = set(names[i + 1 :])
+        if name in siblings:
+            below -= siblings
+        if name == "training":
+            below -= siblings - {"simulate"}
+        if name not in ("api", "cli"):
+            below -= beside
+        if name in ALLOWED and ALLOWED[name] - {"__init__", "testing"} != below:
+            out.append(f"{name}: pictured above {sorted(below)}, allowed {sorted(ALLOWED[name])}")
+    return out
+
+
+def test_the_architecture_picture_is_the_layers_of_this_test() -> None:
+    assert picture_mismatches(ARCHITECTURE.read_text(encoding="utf-8")) == []
+
+
+def test_the_picture_check_sees_a_sibling_drawn_as_a_layer() -> None:
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    assert picture_mismatches(text.replace(" │ ├ simulate", " ├─ simulate", 1))
+    assert picture_mismatches(text.replace(" ├─ qubo             beside the stack:", " ├─ qubo ", 1))
