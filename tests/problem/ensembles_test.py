@@ -30,7 +30,8 @@ def _fits(rows: int, cols: int, robots: int, density: float) -> bool:
 def test_every_instance_is_feasible_and_as_asked(cell: tuple, seed: int, index: int) -> None:
     rows, cols, robots, density, mode = cell
     if not _fits(rows, cols, robots, density):
-        with pytest.raises(ScenarioError, match="density"):
+        field = "robots" if 2 * robots > rows * cols else "density"  # the obstacles' fault only when they cause it
+        with pytest.raises(ScenarioError, match=f"^{field}: "):
             random_scenario(rows, cols, robots, density, seed=seed, index=index, obstacles=mode)
         return
     s = random_scenario(rows, cols, robots, density, seed=seed, index=index, obstacles=mode)
@@ -84,7 +85,7 @@ def test_hard_obstacles_never_cut_a_robot_off() -> None:
     ("kwargs", "field"),
     [({"rows": 1}, "rows"), ({"robots": 0}, "robots"), ({"density": 1.0}, "density"), ({"density": -0.1}, "density"),
      ({"seed": -1}, "seed"), ({"index": 1.5}, "index"), ({"obstacles": "wall"}, "obstacles"),
-     ({"robots": 5}, "density")],
+     ({"robots": 5}, "robots"), ({"robots": 4, "density": 0.2}, "density")],
 )
 def test_bad_arguments_name_their_field(kwargs: dict, field: str) -> None:
     args = {"rows": 3, "cols": 3, "robots": 1, "density": 0.1} | kwargs
@@ -96,3 +97,14 @@ def test_bad_arguments_name_their_field(kwargs: dict, field: str) -> None:
 def test_count_must_be_positive() -> None:
     with pytest.raises(ScenarioError, match="count"):
         ensemble(3, 3, 1, count=0)
+
+
+def test_too_many_robots_name_robots_and_too_many_obstacles_name_density() -> None:
+    import qcpp
+
+    with pytest.raises(qcpp.ScenarioError) as robots:
+        qcpp.random_scenario(3, 3, robots=9)
+    assert str(robots.value) == "robots: 9 robots need 18 distinct endpoints, a 3x3 grid has 9 nodes"
+    with pytest.raises(qcpp.ScenarioError) as density:
+        qcpp.random_scenario(3, 3, robots=4, density=0.2)  # 8 endpoints fit on 9 nodes; 2 obstacles do not
+    assert str(density.value) == "density: 2 obstacles and 8 endpoints do not fit on the 9 nodes of a 3x3 grid"

@@ -42,17 +42,29 @@ def obstacle_count(rows: int, cols: int, robots: int, density: float) -> int:
     """Obstacles of a cell: ``round(density * rows * cols)``.
 
     Raises:
-        ScenarioError: ``density`` outside ``[0, 1)``, or too many obstacles and endpoints for the grid.
+        ScenarioError: ``density`` outside ``[0, 1)``; ``robots`` whose endpoints alone do not fit on the grid;
+            ``density`` where the obstacles leave too few nodes for the endpoints.
 
     Example:
         >>> obstacle_count(4, 4, 2, 0.1), obstacle_count(3, 3, 1, 0.0)
         (2, 0)
+        >>> obstacle_count(3, 3, 5, 0.0)
+        Traceback (most recent call last):
+        ...
+        qcpp.problem.errors.ScenarioError: robots: 5 robots need 10 distinct endpoints, a 3x3 grid has 9 nodes
     """
     if isinstance(density, bool) or not isinstance(density, (int, float)) or not 0 <= density < 1:
         raise ScenarioError("density", f"must be a number in [0, 1), got {density!r}")
-    k = round(density * rows * cols)
-    if k + 2 * robots > rows * cols:
-        raise ScenarioError("density", f"{k} obstacles and {2 * robots} endpoints do not fit on a {rows}x{cols} grid")
+    k, nodes = round(density * rows * cols), rows * cols
+    if 2 * robots > nodes:
+        raise ScenarioError(
+            "robots", f"{robots} robots need {2 * robots} distinct endpoints, a {rows}x{cols} grid has {nodes} nodes"
+        )
+    if k + 2 * robots > nodes:
+        raise ScenarioError(
+            "density", f"{k} obstacles and {2 * robots} endpoints do not fit on the {nodes} nodes of a {rows}x{cols} "
+            "grid"
+        )
     return k
 
 
