@@ -256,7 +256,7 @@ class QaoaPlan:
             n = initial_path_count(s)
             xs = Cost.of(x=n)
             # built from the scenario, not from this plan: a closure over the plan, which holds the call graph,
-            # would be a reference cycle, freed only by full collections (2x the sweep's GC time and memory)
+            # would be a reference cycle, freed only by full collections (a sweep's plans would pile up until one)
             build = partial(StatePrep.build, s, o.initial, o.rule, None)
             prep = GadgetKind(XLayerKind("x_layer", n), Deferred(XLayerKind("x_layer", n), xs, xs, build))
         else:

@@ -30,8 +30,8 @@ aer cannot sample as a mixture of unitaries, which costs further passes over the
 at most :data:`SHOT_BATCH`, fewer where a shot is predicted to take seconds (:func:`shot_batch`: a batch every
 :data:`PROGRESS_SECONDS` or so; progress is reported after each), the batch from shot ``i`` seeded ``seed + i``: aer
 seeds shot ``j`` of a run ``seed_simulator + j``, so the counts are those of one run of every shot. (aer's shot
-branching, ``shot_branching_enable``, ran 2.3x faster on 200 trajectories of 15 qubits, but gave different counts
-on every run with the same seed in qiskit-aer 0.18, so it is not used.) :func:`noisy_need` predicts the peak
+branching, ``shot_branching_enable``, is not used: it can give different counts on runs with the same seed, and
+the counts must follow from the seed.) :func:`noisy_need` predicts the peak
 memory and time (:data:`SECONDS_PER_AMPLITUDE_OP` and its siblings; ``benchmarks/noisy_verdict.py --time``
 prints the prediction beside the measured time); :func:`qcpp.simulate_noisy` refuses what it predicts to run for
 hours.
@@ -111,14 +111,14 @@ BASE_BYTES = 400_000_000
 
 SECONDS_PER_AMPLITUDE_OP = 6e-9
 """Seconds per amplitude, operation (gate of the routed circuit, or read-out) and shot of the state-vector
-trajectories on one core, error channels included: 3.6e-9 to 5e-9 measured on an idle two-core machine, 1.2e-8 to
-1.5e-8 on a busy one (routed 3x3/1 and 3x4/1 on ibm_fez, 15 and 21 active qubits, 20 shots);
-``benchmarks/noisy_verdict.py --time`` prints the prediction beside the measured time."""
+trajectories on one core, error channels included: the rate :func:`noisy_need` predicts with; the real rate
+depends on the machine and its load (``benchmarks/noisy_verdict.py --time`` prints the prediction beside the
+measured time)."""
 
 MPS_SLOWDOWN = 40.0
-"""How much slower the matrix-product-state trajectories ran than the state-vector ones on a routed 3x3/1
-(15 active qubits on ibm_fez, 20 shots: 274 s against 6.7 s); their time is predicted as the state vector's times
-this (a rough figure: the bond dimension, not the qubit count, sets their cost)."""
+"""How much slower the matrix-product-state trajectories are taken to run than the state-vector ones: their time
+is predicted as the state vector's times this. A rough factor: the bond dimension, not the qubit count, sets
+their cost, so it only keeps a prediction from calling a matrix-product-state run cheap."""
 
 IDEAL_SECONDS_PER_AMPLITUDE_OP = 1e-9
 """Seconds per amplitude and operation of one ideal run (``noise=False``: gates fused, no error channels)."""
