@@ -142,3 +142,12 @@ def test_plan_options_validate_cannot_check_are_refused_in_one_line() -> None:
         check_validatable(qcpp.PlanOptions(angles="multi"))
     assert_one_line_error(run("validate", "--grid", "2x3", "--robots", "1", "--mixer-angles", "multi"),
                           "--mixer-angles")  # fmt: skip
+
+
+def test_the_cli_s_table_names_the_plan_options_that_are_not_the_default() -> None:
+    from tests.cli.clirun import run
+
+    res = run("validate", "--grid", "2x3", "--robots", "1", "--target", "ft", "--skip-first-phase")
+    assert res.exit_code == 0, res.output
+    assert "p=1, target=ft, first_phase=False, backend=" in " ".join(res.stdout.split())
+    assert "target=" not in run("validate", "--grid", "2x3", "--robots", "1").stdout

@@ -147,7 +147,10 @@ def validate_command(
     if as_json:
         typer.echo(json_text(report.to_dict()))
     else:
-        table = Table(title=f"{given.label}: p={p}, backend={chosen}, {report.qubits} qubits, {report.gates} gates")
+        plan = "".join(f", {k}={v}" for k, v in report.plan.items())  # the plan options that are not the default
+        table = Table(
+            title=f"{given.label}: p={p}{plan}, backend={chosen}, {report.qubits} qubits, {report.gates} gates"
+        )
         for col in ("check", "method", "value", "error", "count", "status", "seconds"):
             table.add_column(col, justify="left" if col in ("check", "method", "status") else "right")
         for c in report.checks:
