@@ -418,7 +418,7 @@ PANELS: dict[str, str] = {
     # what the command works on
     "scenario": "Scenario", "grid": "Scenario", "robots": "Scenario", "robot": "Scenario", "obstacle": "Scenario",
     "hard_obstacles": "Scenario", "p": "Scenario", "counts": "Scenario",
-    # how the circuit is built (compile, estimate: qcpp.cli.commands.plan_flags)
+    # how the circuit is built (compile, estimate, validate: qcpp.cli.commands.plan_flags)
     "rule": "Plan", "initial": "Plan", "target": "Plan", "phase": "Plan", "optimize": "Plan",
     "ancilla_budget": "Plan", "phase_layout": "Plan", "angles": "Plan", "skip_first_phase": "Plan", "lowered": "Plan",
     "bind": "Plan",
@@ -429,7 +429,7 @@ PANELS: dict[str, str] = {
     "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
     "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "solve.sampler": "Method",
     "simulate.rule": "Method",
-    "simulate.angles": "Method", "validate.rule": "Method", "validate.angles": "Method", "verify.rule": "Method",
+    "simulate.angles": "Method", "validate.angle_values": "Method", "verify.rule": "Method",
     "optimum": "Method",
     # estimate's models
     "depth": "Estimates", "depth_budget": "Estimates", "epsilon": "Estimates", "toffoli_t": "Estimates",
