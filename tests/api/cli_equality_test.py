@@ -131,7 +131,7 @@ def test_the_public_names_load_lazily_and_are_listed() -> None:
     assert set(qcpp.__all__) <= set(dir(qcpp))
     for name in qcpp.__all__:
         assert getattr(qcpp, name) is not None
-    assert qcpp.devices() == ("google_willow", "ibm_fez", "ibm_torino", "quantinuum_helios")
+    assert {"google_willow", "ibm_fez", "ibm_torino", "quantinuum_helios"} <= set(qcpp.devices())
     with pytest.raises(AttributeError, match="no attribute 'nope'"):
         qcpp.nope  # noqa: B018
 

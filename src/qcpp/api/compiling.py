@@ -269,7 +269,7 @@ def compile(
     scenario: Scenario,
     p: int = 1,
     *,
-    device: str | None = None,
+    device: str | Device | None = None,
     lowered: bool = False,
     bind: Mapping[str, float] | None = None,
     layout: str = "auto",
@@ -285,7 +285,8 @@ def compile(
     Args:
         p: QAOA layers (at least 1).
         device: Route onto this device (``qcpp.devices()``, or ``grid[:RxC]``, ``heavy-hex[:D]``,
-            ``all-to-all[:N]``); the circuit is then in the device's qubits and native gates.
+            ``all-to-all[:N]``, a device file's path such as ``"mine.json"``, or a :class:`~qcpp.Device`); the
+            circuit is then in the device's qubits and native gates.
         lowered: Lower to CX and one-qubit gates (with a device: keep CX + one-qubit gates).
         bind: Values of some or all symbols (``{"gamma_0": 0.3, "beta_0": 0.7}``).
         layout: With a device: ``auto``, ``medial`` or ``greedy``.
@@ -311,13 +312,13 @@ def compile(
     Raises:
         qcpp.errors.OptionError: a bad ``p``, option or binding value, an unknown plan option, or a symbol in
             ``bind`` the circuit does not have (naming them).
-        qcpp.hardware.device.DeviceError: an unknown device.
+        qcpp.hardware.device.DeviceError: an unknown device, or a device file that cannot be read or is malformed.
         qcpp.problem.limits.SizeError: a circuit predicted over ``max_gates``, or (without it) one that would not fit
             in the available memory or would run for hours (lifted inside :func:`qcpp.allow_large`).
         qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
     """
     from qcpp.estimators.guard import check_size
-    from qcpp.hardware.device import get_device
+    from qcpp.hardware.device import device_arg, device_label
     from qcpp.pipeline.candidates import OPTIMIZE_FOR, zero_start_refusal
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
@@ -340,10 +341,8 @@ def compile(
             raise OptionError("local_ancillas", "applies with a device only (no device given)")
         if optimize_for is not None:
             raise OptionError("optimize_for", "applies with a device only (no device given)")
-    elif not isinstance(device, str):
-        raise OptionError("device", f"expected a device name, got {device!r}")
     else:
-        get_device(device)  # an unknown name fails before any work
+        device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
     refusal = zero_start_refusal(device, lowered) if zero_start else None
     if refusal is not None:
         raise OptionError("zero_start", refusal)
@@ -360,7 +359,7 @@ def compile(
         return Compiled(s, layers, result.circuit, lowered, _summary=result.summary())
     from qcpp.pipeline.device_compile import compile_for_device
 
-    with reporting(progress, f"{task}, device {device}", unit="stages", stages=True) as bar:
+    with reporting(progress, f"{task}, device {device_label(device)}", unit="stages", stages=True) as bar:
         routed = compile_for_device(
             s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
             layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage, zero_start=zero_start,

@@ -21,11 +21,13 @@ def devices() -> tuple[str, ...]:
 
 
 def device(name: str) -> Device:
-    """The device ``name`` (a shipped device or a family member such as ``grid:5x5``).
+    """The device ``name``: a shipped device, a family member such as ``grid:5x5``, or a device file's path (ends
+    in ``.json`` or contains ``/``; the format: the hardware guide's "Device files").
 
     Raises:
-        DeviceError: an unknown name, with the message ``qcpp compile --device`` prints.
+        DeviceError: an unknown name or a malformed device file, with the message ``qcpp compile --device``
+            prints (a file's names the file and the field).
     """
     if not isinstance(name, str):
-        raise DeviceError(f"expected a device name, got {name!r}")
+        raise DeviceError(f"expected a device name or a device file's path, got {type(name).__name__}")
     return get_device(name)

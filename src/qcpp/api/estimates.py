@@ -33,6 +33,8 @@ if TYPE_CHECKING:
 
     from matplotlib.figure import Figure
 
+    from qcpp.hardware.device import Device
+
 __all__ = ["Estimate", "estimate", "plot_estimates"]
 
 T = TypeVar("T")
@@ -141,7 +143,7 @@ def estimate(
     scenario: Scenario,
     p: int = 1,
     *,
-    device: str | None = None,
+    device: str | Device | None = None,
     compare_paper: bool = False,
     paper_doubling: str = "partial-mixer",
     epsilon: float = 1e-3,
@@ -164,7 +166,8 @@ def estimate(
         scenario: The scenario (``qcpp.grid_scenario`` or ``qcpp.load_scenario``).
         p: QAOA layers (at least 1).
         device: Add the routed figures on this device (``qcpp.devices()``, or ``grid[:RxC]``,
-            ``heavy-hex[:D]``, ``all-to-all[:N]``); this compiles and routes the circuit.
+            ``heavy-hex[:D]``, ``all-to-all[:N]``, a device file's path, or a :class:`~qcpp.Device`); this compiles
+            and routes the circuit.
         compare_paper: Add the paper's estimates and the ratios.
         paper_doubling: Reading of the paper's doubling: ``partial-mixer`` or ``logic``.
         epsilon: The fault-tolerant model's rotation synthesis precision.
@@ -188,13 +191,13 @@ def estimate(
 
     Raises:
         qcpp.errors.OptionError: a bad ``p`` or option (named), or an unknown plan option.
-        qcpp.hardware.device.DeviceError: an unknown device.
+        qcpp.hardware.device.DeviceError: an unknown device, or a device file that cannot be read or is malformed.
         qcpp.problem.errors.ScenarioError: weights the circuit cannot represent exactly.
     """
     from qcpp.estimators.estimate import Point, checked_estimate_options
     from qcpp.estimators.paper import DOUBLINGS
     from qcpp.estimators.report import estimate_rows
-    from qcpp.hardware.device import get_device
+    from qcpp.hardware.device import device_arg, device_label
     from qcpp.problem.cost_range import check_cost_range
 
     s = check_scenario_arg(scenario)
@@ -208,14 +211,14 @@ def estimate(
     if not isinstance(compare_paper, bool):
         raise OptionError("compare_paper", f"expected True or False, got {compare_paper!r}")
     if device is not None:
-        if not isinstance(device, str):
-            raise OptionError("device", f"expected a device name, got {device!r}")
-        get_device(device)  # an unknown name fails before any work
+        device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
     check_progress_arg(progress)
     check_cost_range(s)  # what the command line checks when it loads a file
     point = _point(s, layers, Point)
     task = f"estimate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
-    with reporting(progress, task + (f", device {device}" if device else ""), unit="stages", stages=True) as bar:
+    if device is not None:
+        task += f", device {device_label(device)}"
+    with reporting(progress, task, unit="stages", stages=True) as bar:
 
         def stage(text: str) -> None:
             if bar is not None and text:  # "" ends a row: no stage

@@ -29,6 +29,7 @@ from qcpp.estimators.paper import Doubling
 from qcpp.estimators.plots import plot_rows
 from qcpp.estimators.sweep import grid_points, parse_grid_range, parse_int_range, skipped_points, sweep
 from qcpp.estimators.tables import FORMATS, Format, latex_escape, make_row, render_stream, terminal_width
+from qcpp.hardware.device import Device, device_arg
 from qcpp.problem.errors import ScenarioError
 from qcpp.problem.limits import check_grid_size, check_layers
 from qcpp.problem.presets import grid_scenario, max_default_robots
@@ -140,7 +141,7 @@ def estimate_report(
     doubling: Doubling = "partial-mixer",
     columns: Sequence[str] | None = None,
     wide: bool = False,
-    device: str | None = None,
+    device: str | Device | None = None,
     stage: Callable[[str], None] | None = None,
     metric: str = "cx",
 ) -> Iterator[str]:
@@ -183,7 +184,7 @@ def estimate_rows(
     options: EstimateOptions = DEFAULT_OPTIONS,
     compare_paper: bool = False,
     doubling: Doubling = "partial-mixer",
-    device: str | None = None,
+    device: str | Device | None = None,
     stage: Callable[[str], None] | None = None,
 ) -> Iterator[dict[str, Any]]:
     """The rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, plus the routed fields with a
@@ -201,12 +202,13 @@ def estimate_rows(
         One row per point, in order.
     """
     context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
+    device = None if device is None else device_arg(device)  # a device file read once for every row
     for est in sweep(points, options):
         yield _row(est, compare_paper, doubling, device, stage, context)
 
 
 def _row(
-    est: Estimate, compare_paper: bool, doubling: Doubling, device: str | None,
+    est: Estimate, compare_paper: bool, doubling: Doubling, device: str | Device | None,
     stage: Callable[[str], None] | None = None, context: RoutingContext | None = None,
 ) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)

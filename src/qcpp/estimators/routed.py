@@ -138,7 +138,7 @@ def routed_fields(
     scenario: Scenario,
     p: int,
     plan: Any,
-    device: str,
+    device: str | Device,
     qubits: int,
     cx: int,
     one_qubit: int,
@@ -152,7 +152,7 @@ def routed_fields(
         scenario: The row's scenario.
         p: QAOA layers.
         plan: The row's :class:`qcpp.estimators.estimate.PlanOptions`.
-        device: A device name (:func:`qcpp.hardware.device.get_device`).
+        device: A device name or :class:`Device` (:func:`qcpp.hardware.device.get_device`).
         qubits, cx, one_qubit: The row's lowered counts (``cx + one_qubit`` picks the way unless ``total_gates``
             is given; the bound recounts the circuit compile routes, whose phase layout may differ from the row's).
         total_gates: The row's lowered gate count (default ``cx + one_qubit``), for the exact/bound choice.
@@ -173,7 +173,7 @@ def routed_fields(
 
 
 def _routed_fields(
-    scenario: Scenario, p: int, plan: Any, device: str, qubits: int, cx: int, one_qubit: int,
+    scenario: Scenario, p: int, plan: Any, device: str | Device, qubits: int, cx: int, one_qubit: int,
     total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.estimators.layout_bound import bound_plan
@@ -218,7 +218,8 @@ def _routed_fields(
 
 
 def _window_sum(
-    scenario: Scenario, p: int, plan: Any, device: str, stage: Callable[[str], None] | None, context: RoutingContext
+    scenario: Scenario, p: int, plan: Any, device: str | Device, stage: Callable[[str], None] | None,
+    context: RoutingContext,
 ) -> Any:
     """The window sum where it predicts compile (the ``auto`` layout is the medial one) within
     :data:`WINDOW_SUM_WORK` and the ESP is a sum over classes (uniform error rates), else ``None``."""

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import statistics
 from collections.abc import Sequence
@@ -48,8 +49,9 @@ from typing import Any
 from qcpp.errors import QcppError
 
 __all__ = [
-    "FAMILIES", "Device", "DeviceError", "device_names", "distances", "get_device", "heavy_hex_coordinates",
-    "heavy_hex_distance", "named_device",
+    "FAMILIES", "IBM_DEVICES", "Device", "DeviceError", "device_arg", "device_file", "device_from_json",
+    "device_label", "device_names", "distances", "get_device", "heavy_hex_coordinates", "heavy_hex_distance",
+    "is_device_path", "is_named", "named_device",
 ]
 
 FAMILIES = ("grid", "heavy-hex", "all-to-all")
@@ -317,33 +319,175 @@ def _family_device(family: str, size: str | None, min_qubits: int) -> Device:
     return _uniform(template, f"all-to-all:{n}", n, coupling, family)
 
 
-# --- named devices -----------------------------------------------------------------------------------------
+# --- named devices and device files -----------------------------------------------------------------------
 def device_names() -> tuple[str, ...]:
     """Names of the devices shipped as data files.
 
-    >>> device_names()
-    ('google_willow', 'ibm_fez', 'ibm_torino', 'quantinuum_helios')
+    >>> {"google_willow", "ibm_fez", "ibm_torino", "quantinuum_helios"} <= set(device_names())
+    True
     """
     files = resources.files(_DATA_PACKAGE).iterdir()
     return tuple(sorted(f.name[: -len(".json")] for f in files if f.name.endswith(".json")))
 
 
-def _times(value: list[float | None] | None, n: int) -> tuple[float | None, ...] | None:
+IBM_DEVICES = ("ibm_fez", "ibm_torino")
+"""The shipped IBM Heron snapshots (heavy-hex with defects): the hosts of ``--optimize-for twoq``'s searches on
+the other IBM device, a fixed list so that a device file added elsewhere changes no other device's results."""
+
+DEVICE_FILE_MAX_BYTES = 64 << 20
+"""The largest device file read (a 10,000-qubit device with every per-qubit field is a few megabytes)."""
+
+_REQUIRED = ("family", "source", "date", "num_qubits", "native_gates", "two_qubit_gate", "coupling", "gate_error",
+             "readout_error")  # fmt: skip
+_OPTIONAL = ("name", "gate_duration_s", "readout_duration_s", "t1_s", "t2_s")
+
+
+def _is_number(v: object) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _fail(where: str, field: str, reason: str) -> DeviceError:
+    return DeviceError(f"{where}: {field}: {reason}")
+
+
+def _per(value: object, n: int, where: str, field: str, unit: str, *, unit_range: bool = False,
+         optional: bool = False) -> tuple[float, ...] | None:  # fmt: skip
+    """One number for all, or a list of ``n`` numbers (``unit``: ``qubit`` or ``coupler``); errors in [0, 1],
+    durations at least 0."""
+    if value is None and optional:
+        return None
+    if _is_number(value):
+        values: list = [value] * n
+    elif isinstance(value, list):
+        if len(value) != n:
+            raise _fail(where, field, f"expected {n} values (one per {unit}), got {len(value)}")
+        values = value
+    else:
+        raise _fail(where, field, f"expected a number or a list of {n} numbers (one per {unit}), got "
+                    f"{type(value).__name__}")  # fmt: skip
+    for i, v in enumerate(values):
+        top = 1.0 if unit_range else math.inf
+        if not _is_number(v) or not 0 <= v <= top:
+            span = "between 0 and 1" if unit_range else "a number at least 0"
+            raise _fail(where, f"{field}[{i}]" if isinstance(value, list) else field, f"expected {span}, got {v!r}")
+    return tuple(float(v) for v in values)
+
+
+def _times(value: object, n: int, where: str, field: str) -> tuple[float | None, ...] | None:
     if value is None:
         return None
-    if len(value) != n:
-        raise ValueError(f"expected {n} coherence times, got {len(value)}")
+    if not isinstance(value, list) or len(value) != n:
+        got = f"{len(value)} values" if isinstance(value, list) else type(value).__name__
+        raise _fail(where, field, f"expected a list of {n} values (one per qubit, null where unknown), got {got}")
+    for i, v in enumerate(value):
+        if v is not None and (not _is_number(v) or v <= 0):
+            raise _fail(where, f"{field}[{i}]", f"expected seconds (a number over 0) or null, got {v!r}")
     return tuple(None if v is None else float(v) for v in value)
 
 
-def _per(value: float | list[float] | None, n: int) -> tuple[float, ...] | None:
-    if value is None:
-        return None
-    if isinstance(value, (int, float)):
-        return (float(value),) * n
-    if len(value) != n:
-        raise ValueError(f"expected {n} values, got {len(value)}")
-    return tuple(float(v) for v in value)
+def _coupling(raw: object, n: int, where: str) -> tuple[tuple[int, int], ...]:
+    """The couplers in file order, each ``(min, max)``."""
+    if raw == "all":
+        return tuple((a, b) for a in range(n) for b in range(a + 1, n))
+    if not isinstance(raw, list):
+        raise _fail(where, "coupling", f"expected \"all\" or a list of [a, b] qubit pairs, got {type(raw).__name__}")
+    out: list[tuple[int, int]] = []
+    seen: set[tuple[int, int]] = set()
+    for i, pair in enumerate(raw):
+        ok = isinstance(pair, list) and len(pair) == 2 and all(type(q) is int and 0 <= q < n for q in pair)
+        if not ok or pair[0] == pair[1]:
+            raise _fail(where, f"coupling[{i}]", f"expected [a, b], two different qubits 0..{n - 1}, got {pair!r}")
+        edge = (min(pair), max(pair))
+        if edge in seen:
+            raise _fail(where, f"coupling[{i}]", f"the coupler {list(edge)} is listed twice")
+        seen.add(edge)
+        out.append(edge)
+    return tuple(out)
+
+
+def device_from_json(raw: object, name: str, where: str) -> Device:
+    """The :class:`Device` of a device file's JSON value ``raw`` (format: ``docs/guide/hardware.md``), validated.
+
+    Couplers may be listed in any order and either way round: each is sorted together with its own CZ error and
+    duration (:attr:`Device.coupling` is sorted; the per-coupler values follow their coupler).
+
+    Args:
+        raw: The parsed JSON.
+        name: The device's name.
+        where: What names the file in a message (its path).
+
+    Raises:
+        DeviceError: a missing, unknown or malformed field, one line ``<where>: <field>: <reason>``.
+
+    Example:
+        >>> d = device_from_json({"family": "grid", "source": "example", "date": "2026-01-01", "num_qubits": 3,
+        ...     "native_gates": ["cz", "rz", "sx", "x"], "two_qubit_gate": "cz", "coupling": [[1, 2], [0, 1]],
+        ...     "gate_error": {"cz": [0.5, 0.01], "rz": 0, "sx": 1e-4, "x": 1e-4}, "readout_error": 0.01},
+        ...     "mine", "mine.json")
+        >>> d.coupling, d.error_2q
+        (((0, 1), (1, 2)), (0.01, 0.5))
+    """
+    if not isinstance(raw, dict):
+        raise DeviceError(f"{where}: expected a JSON object of device fields, got {type(raw).__name__}")
+    missing = [k for k in _REQUIRED if k not in raw]
+    if missing:
+        raise DeviceError(f"{where}: missing field{'s' if len(missing) > 1 else ''} {', '.join(missing)}")
+    unknown = sorted(set(raw) - set(_REQUIRED) - set(_OPTIONAL))
+    if unknown:
+        raise DeviceError(f"{where}: unknown field {unknown[0]!r} (fields: {', '.join(_REQUIRED + _OPTIONAL)})")
+    for key in ("source", "date"):
+        if not isinstance(raw[key], str) or not raw[key].strip():
+            raise _fail(where, key, f"expected a non-empty string, got {raw[key]!r}")
+    if raw["family"] not in FAMILIES:
+        raise _fail(where, "family", f"expected one of {', '.join(FAMILIES)}, got {raw['family']!r}")
+    n = raw["num_qubits"]
+    if type(n) is not int or n < 1:
+        raise _fail(where, "num_qubits", f"expected a whole number at least 1, got {n!r}")
+    gates = raw["native_gates"]
+    if not isinstance(gates, list) or not gates or not all(isinstance(g, str) and g for g in gates):
+        raise _fail(where, "native_gates", f"expected a list of gate names, got {gates!r}")
+    twoq = raw["two_qubit_gate"]
+    if twoq not in ("cz", "rzz") or twoq not in gates:
+        raise _fail(where, "two_qubit_gate", f"expected cz or rzz, one of native_gates, got {twoq!r}")
+    edges = _coupling(raw["coupling"], n, where)
+    m = len(edges)
+    errors = raw["gate_error"]
+    if not isinstance(errors, dict):
+        raise _fail(where, "gate_error", f"expected an object {{gate: error}}, got {type(errors).__name__}")
+    for g in gates:
+        if g not in errors:
+            raise _fail(where, f"gate_error.{g}", "missing (every native gate needs an error; rz: 0 if virtual)")
+    durations = raw.get("gate_duration_s") or {}
+    if not isinstance(durations, dict):
+        raise _fail(where, "gate_duration_s", f"expected null or an object {{gate: seconds}}, got "
+                    f"{type(durations).__name__}")  # fmt: skip
+    one = tuple(g for g in gates if g != twoq)
+    e1 = tuple((g, _per(errors[g], n, where, f"gate_error.{g}", "qubit", unit_range=True)) for g in one)
+    e2 = _per(errors[twoq], m, where, f"gate_error.{twoq}", "coupler", unit_range=True)
+    d1 = tuple((g, _per(durations.get(g), n, where, f"gate_duration_s.{g}", "qubit", optional=True)) for g in one)
+    d2 = _per(durations.get(twoq), m, where, f"gate_duration_s.{twoq}", "coupler", optional=True)
+    readout = _per(raw["readout_error"], n, where, "readout_error", "qubit", unit_range=True)
+    readout_s = _per(raw.get("readout_duration_s"), n, where, "readout_duration_s", "qubit", optional=True)
+    order = sorted(range(m), key=edges.__getitem__)  # each coupler keeps its own error and duration
+    assert e2 is not None and readout is not None
+    return Device(
+        name=name,
+        num_qubits=n,
+        coupling=tuple(edges[i] for i in order),
+        native_gates=tuple(gates),
+        two_qubit_gate=twoq,
+        error_1q=e1,  # type: ignore[arg-type]
+        error_2q=tuple(e2[i] for i in order),
+        readout_error=readout,
+        duration_1q_s=d1 if all(v is not None for _, v in d1) else None,  # type: ignore[arg-type]
+        duration_2q_s=None if d2 is None else tuple(d2[i] for i in order),
+        readout_duration_s=readout_s,
+        source=raw["source"],
+        date=raw["date"],
+        family=raw["family"],
+        t1_s=_times(raw.get("t1_s"), n, where, "t1_s"),
+        t2_s=_times(raw.get("t2_s"), n, where, "t2_s"),
+    )
 
 
 @cache
@@ -355,63 +499,123 @@ def named_device(name: str) -> Device:
 
     Pure memo: ``named_device.cache_clear()`` empties it."""
     if name not in device_names():
-        raise DeviceError(f"unknown device {name!r} (known: {', '.join(device_names())}; families: {_family_list()})")
+        raise DeviceError(f"unknown device {name!r} (known: {', '.join(device_names())}; families: {_family_list()}; "
+                          "or a device file's path)")  # fmt: skip
     raw = json.loads(resources.files(_DATA_PACKAGE).joinpath(f"{name}.json").read_text())
-    n = int(raw["num_qubits"])
-    if raw["coupling"] == "all":
-        coupling = tuple((a, b) for a in range(n) for b in range(a + 1, n))
-    else:
-        coupling = tuple(sorted((min(a, b), max(a, b)) for a, b in raw["coupling"]))
-    m = len(coupling)
-    errors, durations = raw["gate_error"], raw.get("gate_duration_s") or {}
-    twoq = raw["two_qubit_gate"]
-    one = tuple(g for g in raw["native_gates"] if g != twoq)
-    d1 = tuple((g, _per(durations[g], n)) for g in one) if all(durations.get(g) is not None for g in one) else None
-    return Device(
-        name=name,
-        num_qubits=n,
-        coupling=coupling,
-        native_gates=tuple(raw["native_gates"]),
-        two_qubit_gate=twoq,
-        error_1q=tuple((g, _per(errors[g], n)) for g in one),  # type: ignore[misc]
-        error_2q=_per(errors[twoq], m),  # type: ignore[arg-type]
-        readout_error=_per(raw["readout_error"], n),  # type: ignore[arg-type]
-        duration_1q_s=d1,  # type: ignore[arg-type]
-        duration_2q_s=_per(durations.get(twoq), m),
-        readout_duration_s=_per(raw.get("readout_duration_s"), n),
-        source=raw["source"],
-        date=raw["date"],
-        family=raw["family"],
-        t1_s=_times(raw.get("t1_s"), n),
-        t2_s=_times(raw.get("t2_s"), n),
-    )
+    return device_from_json(raw, name, f"{name}.json")
+
+
+def is_device_path(spec: str) -> bool:
+    """Whether ``--device SPEC`` names a device file: it ends in ``.json`` or contains a path separator.
+
+    >>> is_device_path("./mine.json"), is_device_path("cal/heron"), is_device_path("ibm_fez")
+    (True, True, False)
+    """
+    return spec.endswith(".json") or "/" in spec or (os.altsep or "/") in spec or os.sep in spec
+
+
+def device_file(path: str | os.PathLike[str]) -> Device:
+    """The device described by the JSON file ``path`` (format: ``docs/guide/hardware.md``), validated.
+
+    Its name is the file's ``name`` field, or else the file name without ``.json``; it must not be a family's
+    (``grid:3x3``) or a shipped device's name, so that a name in a report means one device.
+
+    Raises:
+        DeviceError: the file cannot be read, is not JSON, or a field is missing, unknown or malformed (one line
+            naming the file and the field).
+    """
+    from qcpp.io.inputs import read_bounded
+
+    where = os.fspath(path)
+    try:
+        data = read_bounded(where, DEVICE_FILE_MAX_BYTES)
+    except OSError as exc:
+        raise DeviceError(f"{where}: cannot read the device file ({exc.strerror or exc})") from None
+    if len(data) > DEVICE_FILE_MAX_BYTES:
+        raise DeviceError(f"{where}: over {DEVICE_FILE_MAX_BYTES >> 20} MB, too large for a device file")
+    try:
+        raw = json.loads(data)
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        at = f" (line {exc.lineno}, column {exc.colno})" if isinstance(exc, json.JSONDecodeError) else ""
+        raise DeviceError(f"{where}: not a JSON device file{at}") from None
+    stem = os.path.basename(where).removesuffix(".json")
+    name = raw.get("name", stem) if isinstance(raw, dict) else stem
+    device = device_from_json(raw, str(name), where)  # the fields first: a copied file's name is the last step
+    if not isinstance(name, str) or not name or any(c.isspace() for c in name):
+        raise _fail(where, "name", f"expected a name without spaces, got {name!r}")
+    if name.partition(":")[0] in FAMILIES or name in device_names():
+        taken = "a family's" if name.partition(":")[0] in FAMILIES else "a shipped device's"
+        raise _fail(where, "name", f"{name!r} is {taken} name; give the device a name of its own")
+    return device
+
+
+def is_named(device: Device) -> bool:
+    """A named device (shipped, or from a device file: its own figures), not a family member.
+
+    >>> is_named(get_device("ibm_fez")), is_named(get_device("grid:3x3"))
+    (True, False)
+    """
+    return device.name.partition(":")[0] not in FAMILIES
 
 
 def _family_list() -> str:
     return "grid[:RxC], heavy-hex[:D], all-to-all[:N]"
 
 
-def get_device(spec: str, min_qubits: int = 1) -> Device:
-    """A device by name: a family member ``grid[:RxC]``, ``heavy-hex[:D]``, ``all-to-all[:N]`` or a named device.
+def get_device(spec: str | Device, min_qubits: int = 1) -> Device:
+    """A device: a family member ``grid[:RxC]``, ``heavy-hex[:D]``, ``all-to-all[:N]``, a named device, a device
+    file's path (:func:`is_device_path`, read by :func:`device_file`) or a :class:`Device` (returned as it is).
 
     Args:
-        spec: The name.
+        spec: The name, path or device.
         min_qubits: For a family without a size: the smallest member with at least this many qubits.
 
     Returns:
         The :class:`Device`.
 
     Raises:
-        DeviceError: an unknown name or a malformed size (one line naming both).
+        DeviceError: an unknown name or a malformed size (one line naming both); a device file that cannot be read
+            or is malformed (naming the file and the field).
 
     >>> get_device("grid", min_qubits=10).name
     'grid:4x4'
     >>> get_device("all-to-all", min_qubits=7).num_qubits
     7
     """
+    if isinstance(spec, Device):
+        return spec
+    if not isinstance(spec, str):
+        raise DeviceError(f"expected a device name, a device file's path or a Device, got {type(spec).__name__}")
+    if is_device_path(spec):
+        return device_file(spec)
     family, sep, size = spec.strip().partition(":")
     if family in FAMILIES:
         return _family_device(family, size if sep else None, min_qubits)
     if sep:
-        raise DeviceError(f"unknown device {spec!r} (families: {_family_list()}; named: {', '.join(device_names())})")
+        raise DeviceError(f"unknown device {spec!r} (families: {_family_list()}; named: {', '.join(device_names())}; "
+                          "or a device file's path)")  # fmt: skip
     return named_device(family)
+
+
+def device_arg(spec: str | Device) -> str | Device:
+    """A ``device`` argument checked before any work: a device file's path becomes its :class:`Device` (read once,
+    validated); a name stays a name (checked: a family without a size is sized by the circuit later); a
+    :class:`Device` stays itself.
+
+    Raises:
+        DeviceError: as :func:`get_device`; any other type (named by its type, never its value).
+
+    >>> device_arg("grid"), device_arg(get_device("grid:2x2")).name
+    ('grid', 'grid:2x2')
+    """
+    dev = get_device(spec)
+    return spec if isinstance(spec, str) and not is_device_path(spec) else dev
+
+
+def device_label(spec: str | Device) -> str:
+    """How messages and progress lines name a device argument: the name, never a device's whole value.
+
+    >>> device_label("heavy-hex"), device_label(get_device("grid:2x2"))
+    ('heavy-hex', 'grid:2x2')
+    """
+    return spec.name if isinstance(spec, Device) else spec

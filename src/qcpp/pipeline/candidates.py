@@ -53,7 +53,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
-from qcpp.hardware.device import Device, device_names, get_device
+from qcpp.hardware.device import Device, device_label, device_names, get_device, is_named
 from qcpp.ir.circuit import Circuit
 from qcpp.routing.known_state import from_zero
 from qcpp.routing.native import esp, esp_idle, to_native
@@ -118,9 +118,9 @@ class RoutedCandidate:
 
 
 def is_calibrated(device: Device) -> bool:
-    """A named device (its own figures per qubit and coupler), not a family member, not all-to-all (nothing to
-    place: every pair is coupled)."""
-    return device.name in device_names() and not device.is_all_to_all
+    """A named device (shipped or from a device file: its own figures per qubit and coupler), not a family
+    member, not all-to-all (nothing to place: every pair is coupled)."""
+    return is_named(device) and not device.is_all_to_all
 
 
 def zero_start_refusal(device: str | Device | None, lowered: bool, lowered_field: str = "lowered") -> str | None:
@@ -133,14 +133,14 @@ def zero_start_refusal(device: str | Device | None, lowered: bool, lowered_field
         >>> zero_start_refusal("ibm_fez", False) is None
         True
         >>> zero_start_refusal("grid", False)
-        'applies with a named device with couplers only (google_willow, ibm_fez, ibm_torino), not grid'
+        'applies with a named device with couplers only (google_willow, ibm_fez, ibm_torino, a device file), not grid'
     """
-    named = [n for n in sorted(device_names()) if is_calibrated(get_device(n))]
     if device is None:
         return "applies with a named device only (no device given)"
-    name = device if isinstance(device, str) else device.name
-    if name not in named:
-        return f"applies with a named device with couplers only ({', '.join(named)}), not {name}"
+    if not is_calibrated(get_device(device)):
+        named = [n for n in sorted(device_names()) if is_calibrated(get_device(n))]
+        return (f"applies with a named device with couplers only ({', '.join(named)}, a device file), not "
+                f"{device_label(device)}")  # fmt: skip
     if lowered:
         return (f"applies to the native-gate circuit only, not with {lowered_field} (its candidates are after "
                 "Qiskit's passes)")  # fmt: skip
@@ -149,7 +149,7 @@ def zero_start_refusal(device: str | Device | None, lowered: bool, lowered_field
 
 def default_objective(device: Device) -> str:
     """``esp`` on named devices, ``twoq`` on the families (module docs)."""
-    return "esp" if device.name in device_names() else "twoq"
+    return "esp" if is_named(device) else "twoq"
 
 
 def figure_key(two_qubit: int, esp: float, esp_idle: float | None, optimize_for: str) -> tuple[float, float]:

@@ -63,7 +63,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from qcpp.errors import OptionError
-from qcpp.hardware.device import Device, device_names, distances, get_device, heavy_hex_distance
+from qcpp.hardware.device import IBM_DEVICES, Device, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
@@ -477,7 +477,8 @@ def _searched_on_siblings(
     say: Callable[[str], None],
 ) -> list[tuple[str, Circuit, RoutedCircuit]]:  # fmt: skip
     """With ``--optimize-for twoq`` on a named heavy-hex device, ``circuit`` (at most ``routing.placement_max_twoq``
-    two-qubit gates) compiled as the greedy path compiles it on each *other* named heavy-hex device (its wider
+    two-qubit gates) compiled as the greedy path compiles it on each *other* shipped IBM device
+    (:data:`~qcpp.hardware.device.IBM_DEVICES`, a fixed list: a device file changes no other device's result; its wider
     placement search and partial mixers planned there), as ``(name, logical circuit, routing)`` for
     :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on ``device`` where its couplers embed: the
     devices' defects differ, so the same search starts elsewhere and now and then finds fewer SWAPs (3x3/2 with a
@@ -485,8 +486,7 @@ def _searched_on_siblings(
     the default ``esp`` keeps the candidates it had. Empty elsewhere."""
     if not _searches_apply(circuit, device, routing):
         return []
-    siblings = [get_device(name) for name in device_names() if name != device.name]
-    siblings = [d for d in siblings if d.family == "heavy-hex" and is_calibrated(d)]
+    siblings = [get_device(name) for name in IBM_DEVICES if name != device.name]
     return _searched_on(siblings, plan, circuit, device, seed, layouts, measured, bindings, routing, context, say)
 
 

@@ -62,6 +62,7 @@ from qcpp.cli.commands.plan_flags import LayersFlag, check_start, with_plan_flag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, json_text, print_table
 from qcpp.estimators.guard import SizePrediction, check_size, compile_need, predict_size
+from qcpp.hardware.device import device_arg, device_names
 from qcpp.io.atomic import check_output, is_stdout
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
 from qcpp.ir.circuit import Circuit, Register, Section
@@ -166,9 +167,9 @@ def compile_command(
         str | None,
         typer.Option(
             "--device",
-            help="Route onto grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits) or a "
-            "named device (ibm_fez, ibm_torino, google_willow, quantinuum_helios); the circuit's qubits are then "
-            "the device's, its gates native.",
+            help="Route onto grid[:RxC], heavy-hex[:D], all-to-all[:N] (no size: the smallest that fits), a "
+            f"named device ({', '.join(device_names())}) or a device file (PATH.json; the format: the hardware "
+            "guide); the circuit's qubits are then the device's, its gates native.",
         ),
     ] = None,
     local_ancillas: Annotated[
@@ -458,7 +459,7 @@ def _routed(
 
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
-        result = compile_for_device(s, p, device, options, lowered=lowered, bindings=bindings,
+        result = compile_for_device(s, p, device_arg(device), options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
                                     optimize_for=optimize_for, bind_field="--bind",
                                     zero_start=zero_start)  # fmt: skip

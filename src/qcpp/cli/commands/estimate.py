@@ -168,8 +168,8 @@ def estimate(
         str | None,
         typer.Option(
             "--device",
-            help="Add routed figures (routed_twoq, esp, ...) on grid[:RxC], heavy-hex[:D], all-to-all[:N] or a "
-            "named device.",
+            help="Add routed figures (routed_twoq, esp, ...) on grid[:RxC], heavy-hex[:D], all-to-all[:N], a "
+            "named device or a device file (PATH.json).",
         ),
     ] = None,
     obstacle: ObstacleFlag = None,
