@@ -481,9 +481,8 @@ def _searched_on_siblings(
     (:data:`~qcpp.hardware.device.IBM_DEVICES`, a fixed list: a device file changes no other device's result; its wider
     placement search and partial mixers planned there), as ``(name, logical circuit, routing)`` for
     :func:`~qcpp.pipeline.candidates.calibrated_candidates` to place on ``device`` where its couplers embed: the
-    devices' defects differ, so the same search starts elsewhere and now and then finds fewer SWAPs (3x3/2 with a
-    hard obstacle: 308 CZ from Fez's search placed on Torino, against 335 from Torino's own). Only for ``twoq``:
-    the default ``esp`` keeps the candidates it had. Empty elsewhere."""
+    devices' defects differ, so the same search starts elsewhere and now and then finds fewer SWAPs. Only for
+    ``twoq``: the default ``esp`` keeps the candidates it had. Empty elsewhere."""
     if not _searches_apply(circuit, device, routing):
         return []
     siblings = [get_device(name) for name in IBM_DEVICES if name != device.name]
@@ -833,8 +832,8 @@ def _cropped(dev: Device, homes: tuple[int, ...], options: RoutingOptions) -> tu
 
     The medial path decides from distances and routing patches near each section's qubits (nearest free sites,
     relays within two sites, SABRE on the qubits within two sites), so on the crop it allocates, relays and routes
-    as on the device, in a fraction of the time: no dense distance matrix of every device qubit (99x99 for a 2x50
-    strip: 768 MB, tens of seconds). ``tests/compiler/hardware_crop_test.py`` compares both."""
+    as on the device, in a fraction of the time: no dense distance matrix of every device qubit (its memory grows
+    with the square of the device's qubits). ``tests/compiler/hardware_crop_test.py`` compares both."""
     shape = grid_shape(dev)
     if shape is None or dev.num_qubits <= options.crop_min_qubits or not dev.name.startswith("grid:"):
         return None
