@@ -18,7 +18,8 @@ from typer.testing import CliRunner
 
 import qcpp.cli.commands.compile as compile_cmd
 from qcpp.cli.app import app
-from qcpp.cli.progress import FIRST_LINE_AFTER, Progress, progress_mode
+from qcpp.cli.progress import Progress
+from qcpp.io.progress import FIRST_LINE_AFTER, progress_mode
 from qcpp.problem.paths import count_paths, enumerate_paths
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario_io import load_scenario
@@ -503,7 +504,7 @@ def test_the_stage_says_when_numba_compiles() -> None:
     it does (numba's ``numba:compile`` events, which fire only for a kernel not in numba's cache)."""
     import numba
 
-    from qcpp.cli.progress import COMPILING
+    from qcpp.io.progress import COMPILING
 
     out = io.StringIO()
     with Progress("validate", stream=out, mode="lines", interval=0) as bar:

@@ -19,20 +19,8 @@ from __future__ import annotations
 
 from qcpp.cli.interrupt import announce_ready
 from qcpp.io import progress as _lines
-from qcpp.io.progress import COMPILING, DEFAULT_INTERVAL, FIRST_LINE_AFTER, INTERVAL_ENV, MODE_ENV, Mode, progress_mode
-from qcpp.io.text import format_duration
 
-__all__ = [
-    "COMPILING",
-    "DEFAULT_INTERVAL",
-    "FIRST_LINE_AFTER",
-    "INTERVAL_ENV",
-    "MODE_ENV",
-    "Mode",
-    "Progress",
-    "format_duration",
-    "progress_mode",
-]
+__all__ = ["Progress"]
 
 
 class Progress(_lines.Progress):
