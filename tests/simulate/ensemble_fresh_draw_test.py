@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 from pathlib import Path
@@ -10,15 +9,13 @@ from types import ModuleType
 
 import pytest
 
+from .script_module import load_script
+
 SCRIPT = Path(__file__).resolve().parents[2] / "benchmarks" / "ensemble_fresh_draw.py"
 
 
 def _script() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("ensemble_fresh_draw", SCRIPT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script(SCRIPT, "ensemble_fresh_draw")
 
 
 def _results(path: Path, p_opts: list[float], dfs_s: float, seed: int) -> Path:

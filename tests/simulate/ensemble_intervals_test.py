@@ -8,7 +8,6 @@ print.
 from __future__ import annotations
 
 import functools
-import importlib.util
 import io
 import re
 from contextlib import redirect_stdout
@@ -18,17 +17,15 @@ from types import ModuleType
 import numpy as np
 import pytest
 
+from .script_module import load_script
+
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPT = ROOT / "benchmarks" / "ensemble_intervals.py"
 
 
 @functools.cache
 def _script() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("ensemble_intervals", SCRIPT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script(SCRIPT, "ensemble_intervals")
 
 
 @functools.cache

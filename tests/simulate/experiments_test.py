@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import importlib.util
 import itertools
 import json
 import math
-import sys
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
@@ -29,6 +28,8 @@ from qcpp.simulate.subspace import SubspaceQAOA
 from qcpp.simulate.success import shots_for, success_probability, tries_for, wilson_interval
 from qcpp.training.angle_fit import AngleFit, fit_angles
 from qcpp.training.training import train
+
+from .script_module import load_script
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPTS = REPO / "examples" / "experiments"
@@ -263,13 +264,8 @@ def test_anneal_success_counts_optimal_runs() -> None:
 # ---------------------------------------------------------------- the scripts' quick mode (smoke test)
 
 
-def _load(name: str):  # type: ignore[no-untyped-def]
-    spec = importlib.util.spec_from_file_location(f"experiment_{name}", SCRIPTS / f"{name}.py")
-    assert spec and spec.loader
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod  # dataclasses look their module up while the script is executed
-    spec.loader.exec_module(mod)
-    return mod
+def _load(name: str) -> ModuleType:
+    return load_script(SCRIPTS / f"{name}.py", f"experiment_{name}")
 
 
 @pytest.mark.slow
