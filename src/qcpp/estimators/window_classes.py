@@ -414,13 +414,45 @@ def routed_sum(
     Raises:
         ValueError: a window needs more ancillas than the (sized) device has free qubits.
     """
-    from qcpp.pipeline.device_compile import grown_device, medial_device
-    from qcpp.pipeline.device_plan import device_plan_options
-    from qcpp.plan.qaoa import qaoa_plan
+    from qcpp.pipeline.device_compile import medial_device
 
     dev = medial_device(scenario, device, arrangement)
     if dev is None:
         return None
+    n_data = scenario.num_variables
+    blocks = _templated_blocks(scenario, p, options, device)
+    dev = _sized_device(dev, device, n_data, blocks)
+    homes = _data_homes(scenario, dev, arrangement)
+    context = RoutingContext() if context is None else context
+    run = _Run(dev, homes, seed, routing, context, _device_key(dev, seed, routing))
+    classes = _routed_classes(_placed_windows(blocks, homes), run, whole_device_work, stage or (lambda _text: None))
+    if classes is None:
+        return None
+    return _summed(classes, dev, p, n_data)
+
+
+# --- the steps of routed_sum ------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Block:
+    """One window of the plan's sections, lowered: how many like it the circuit of ``p`` layers has, its
+    :class:`_Template` (shared by every window whose lowered gates route alike: angles do not route) and its data
+    qubits in the template's token order."""
+
+    weight: int
+    template: _Template
+    data: tuple[int, ...]
+
+
+def _templated_blocks(scenario: Scenario, p: int, options: PlanOptions, device: str | Device) -> list[_Block]:
+    """The windows of the unfused plan compile builds for ``device`` (medial layout), lowered once per pattern of
+    high-level gates.
+
+    Invariant: blocks whose lowered gates and data tokens are equal share one :class:`_Template` object (the first
+    one lowered), so their classes differ only by where their data sit.
+    """
+    from qcpp.pipeline.device_plan import device_plan_options
+    from qcpp.plan.qaoa import qaoa_plan
+
     opts = dataclasses.replace(device_plan_options(options, device, layout_method="medial"), fuse=False)
     plan = qaoa_plan(scenario, min(p, 1 if opts.first_phase else 2), opts)  # its layers stand for all p
     n_data = scenario.num_variables
@@ -434,14 +466,41 @@ def routed_sum(
         if template is None:
             template = templates[key] = _lower_template(block, order, registers, n_data)
         template = shared.setdefault((template.gates, template.is_data), template)  # angles do not route
-        data = [q for q, is_data in zip(order, template.is_data, strict=False) if is_data]
-        blocks.append((weight, template, data))
-    need = max((sum(not x for x in t.is_data) for _, t, _ in blocks), default=0)
+        data = tuple(q for q, is_data in zip(order, template.is_data, strict=False) if is_data)
+        blocks.append(_Block(weight, template, data))
+    return blocks
+
+
+def _sized_device(dev: Device, device: str | Device, n_data: int, blocks: Sequence[_Block]) -> Device:
+    """``dev`` grown as compile grows the unsized ``grid`` until every block's ancillas fit beside the data.
+
+    Raises:
+        ValueError: a block needs more ancillas than a device other than the unsized ``grid`` has free qubits.
+    """
+    from qcpp.pipeline.device_compile import grown_device
+
+    need = max((sum(not x for x in b.template.is_data) for b in blocks), default=0)
     while dev.num_qubits - n_data < need:  # compile grows the unsized grid while a section lacks free qubits
         if device != "grid":
             raise ValueError(f"a section needs {need} ancillas; device {dev.name} has {dev.num_qubits - n_data} "
                              "free qubits")  # fmt: skip
         dev = grown_device(dev)
+    return dev
+
+
+@dataclass(frozen=True)
+class _Homes:
+    """The data homes of the medial layout on a square grid device: its ``shape`` (rows, columns), which sites
+    hold a data qubit (``occupied``, that shape) and each data qubit's row and column (``rows``, ``cols``)."""
+
+    shape: tuple[int, int]
+    occupied: np.ndarray
+    rows: np.ndarray
+    cols: np.ndarray
+
+
+def _data_homes(scenario: Scenario, dev: Device, arrangement: str) -> _Homes:
+    """Where the medial layout puts the scenario's data qubits on ``dev`` (a square grid large enough for it)."""
     shape = grid_shape(dev)
     assert shape is not None
     homes = medial_placement(scenario, dev, arrangement)
@@ -449,77 +508,171 @@ def routed_sum(
     occupied = np.zeros(shape, dtype=bool)
     rows_of, cols_of = np.divmod(np.array(homes, dtype=int), shape[1])
     occupied[rows_of, cols_of] = True
+    return _Homes(shape, occupied, rows_of, cols_of)
 
-    # a window: (weight, template, its data qubits' sites, their bounding box)
-    members: list[tuple[int, _Template, list[tuple[int, int]], tuple[int, int, int, int]]] = []
-    for weight, template, data in blocks:
-        if weight:
-            rs, cs = rows_of[data], cols_of[data]
-            box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max())) if len(data) else None
-            members.append((weight, template, list(zip(rs.tolist(), cs.tolist(), strict=True)), box))  # type: ignore[arg-type]
 
-    def signature(member: tuple[Any, ...], margin: int) -> tuple[Hashable, _Crop]:
-        """The window's class at ``margin``: its gates, data sites relative to their box, and the crop around."""
-        _, template, sites, box = member
-        if box is None:  # no data qubit: allocation looks at the whole device
-            box = (0, shape[0] - 1, 0, shape[1] - 1)
-        crop = _crop(box, margin, shape)
-        env = occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
-        rel = tuple((r - box[0], c - box[2]) for r, c in sites)
-        return (template.gates, template.is_data, rel, margin, crop.rows, crop.cols, box[0] - crop.top,
-                box[2] - crop.left, crop.open_sides, env.tobytes()), crop  # fmt: skip
+@dataclass(frozen=True)
+class _Window:
+    """A window placed on the device: its weight (windows like it), template, its data qubits' sites (row,
+    column) and their bounding box (top, bottom, left, right; ``None``: no data qubit)."""
 
-    def grouped(group: list[Any], margin: int) -> dict[Hashable, list[Any]]:
-        out: dict[Hashable, list[Any]] = {}
-        for m in group:
-            out.setdefault(signature(m, margin)[0], []).append(m)
-        return out
+    weight: int
+    template: _Template
+    sites: tuple[tuple[int, int], ...]
+    box: tuple[int, int, int, int] | None
 
-    # classes are resolved at the smallest margin whose crop answers for the device; a class whose representative
-    # needs a larger crop is split by its members' signatures at the larger margin
+
+def _placed_windows(blocks: Sequence[_Block], homes: _Homes) -> list[_Window]:
+    """The blocks that occur (weight > 0) with their data qubits' sites, in the blocks' order."""
+    out = []
+    for b in blocks:
+        if b.weight:
+            rs, cs = homes.rows[list(b.data)], homes.cols[list(b.data)]
+            box = (int(rs.min()), int(rs.max()), int(cs.min()), int(cs.max())) if len(b.data) else None
+            out.append(_Window(b.weight, b.template, tuple(zip(rs.tolist(), cs.tolist(), strict=True)), box))
+    return out
+
+
+def _signature(window: _Window, margin: int, homes: _Homes) -> tuple[Hashable, _Crop]:
+    """The window's class at ``margin``: its gates, data sites relative to their box, and the crop around.
+
+    Two windows with equal signatures route alike on the device (module docs), so one representative answers for
+    both wherever the crop answers.
+    """
+    shape = homes.shape
+    box = window.box
+    if box is None:  # no data qubit: allocation looks at the whole device
+        box = (0, shape[0] - 1, 0, shape[1] - 1)
+    crop = _crop(box, margin, shape)
+    env = homes.occupied[crop.top : crop.top + crop.rows, crop.left : crop.left + crop.cols]
+    rel = tuple((r - box[0], c - box[2]) for r, c in window.sites)
+    template = window.template
+    return (template.gates, template.is_data, rel, margin, crop.rows, crop.cols, box[0] - crop.top,
+            box[2] - crop.left, crop.open_sides, env.tobytes()), crop  # fmt: skip
+
+
+def _grouped(windows: Sequence[_Window], margin: int, homes: _Homes) -> dict[Hashable, list[_Window]]:
+    """The windows grouped by their :func:`_signature` at ``margin``, groups and members in first-seen order."""
+    out: dict[Hashable, list[_Window]] = {}
+    for w in windows:
+        out.setdefault(_signature(w, margin, homes)[0], []).append(w)
+    return out
+
+
+def _device_key(dev: Device, seed: int, routing: RoutingOptions) -> Hashable:
+    """What besides a class's signature decides its routed cost: the device's gate set, its durations per gate
+    name (the first of each: the crops' devices are uniform), SABRE's seed and the routing settings."""
     timing = None if dev.duration_2q_s is None or dev.duration_1q_s is None else (
-        dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))
-    device_key = (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, routing)
-    context = RoutingContext() if context is None else context
-    entries: list[tuple[Hashable, list[Any]]] = []  # resolved classes: signature, members
+        dev.duration_2q_s[:1], tuple((name, per[:1]) for name, per in dev.duration_1q_s))  # fmt: skip
+    return (dev.two_qubit_gate, tuple(dev.native_gates), timing, seed, routing)
+
+
+@dataclass(frozen=True)
+class _Run:
+    """One sum's routing: the sized device, its data homes, SABRE's seed, the routing settings, the run's memos
+    (mutable: the routed classes are remembered there) and the memo key of the device (:func:`_device_key`)."""
+
+    device: Device
+    homes: _Homes
+    seed: int
+    routing: RoutingOptions
+    context: RoutingContext
+    device_key: Hashable
+
+
+def _routed_classes(
+    windows: Sequence[_Window], run: _Run, whole_device_work: int | None, say: Callable[[str], None]
+) -> list[tuple[list[_Window], _Cost]] | None:
+    """Every window in a class with what one routed window of the class costs, classes in resolution order.
+
+    Classes are resolved at the smallest margin whose crop answers for the device (:func:`_classes_on_crops`);
+    those only the whole device answers for are routed on it in one batch (:func:`_whole_device_costs`). Every
+    class's cost is remembered in ``run.context`` (which starts over past :data:`ROUTED_CLASSES_LIMIT` entries).
+
+    Returns:
+        ``(members, cost)`` per class, or ``None`` where the whole device's windows exceed
+        :data:`WHOLE_DEVICE_MAX_QUBITS` or ``whole_device_work``.
+    """
+    found = _classes_on_crops(windows, run, whole_device_work, say)
+    if found is None:
+        return None
+    entries, results, whole_batch = found
+    if whole_batch:
+        say(f"routing {len(whole_batch):,} window classes on the whole device")
+        for i, cost in zip(whole_batch, _whole_device_costs([entries[i][1][0] for i in whole_batch], run), strict=True):
+            results[i] = cost
+    memo = run.context.window_classes
+    if len(memo) > ROUTED_CLASSES_LIMIT:
+        memo.clear()
+    for (sig, _), result in zip(entries, results, strict=True):
+        memo[(sig, run.device_key)] = result
+    out = []
+    for (_, group), result in zip(entries, results, strict=True):
+        assert result is not None
+        out.append((group, result))
+    return out
+
+
+def _classes_on_crops(
+    windows: Sequence[_Window], run: _Run, whole_device_work: int | None, say: Callable[[str], None]
+) -> tuple[list[tuple[Hashable, list[_Window]]], list[_Cost | None], list[int]] | None:
+    """Resolve the window classes: each class's signature and members, its cost where the run's memo knows it or a
+    crop answers for the device (a class whose representative needs a larger crop is split by its members'
+    signatures at twice the margin, or at the whole device), and the positions of the classes left for the whole
+    device (cost ``None`` so far).
+
+    Returns:
+        ``(entries, costs, whole-device positions)``, or ``None`` as soon as the whole device's classes exceed
+        :data:`WHOLE_DEVICE_MAX_QUBITS` or ``whole_device_work``.
+    """
+    dev, homes = run.device, run.homes
+    entries: list[tuple[Hashable, list[_Window]]] = []  # resolved classes: signature, members
     results: list[_Cost | None] = []
     whole_batch: list[int] = []
     work = math.inf if whole_device_work is None else whole_device_work
-    whole = max(shape)  # a margin whose crop is the whole device
-    pending = [(MARGIN, sig, group) for sig, group in grouped(members, MARGIN).items()]
-    say = stage or (lambda _text: None)
+    whole = max(homes.shape)  # a margin whose crop is the whole device
+    pending = [(MARGIN, sig, group) for sig, group in _grouped(windows, MARGIN, homes).items()]
     while pending:
         if len(entries) % 25 == 0:  # a line now and then, not one per class
             say(f"routing window classes ({len(entries):,} done, {len(pending):,} to go)")
         margin, sig, group = pending.pop()
-        hit = context.window_classes.get((sig, device_key))
-        _, template, sites, _ = group[0]
-        crop = signature(group[0], margin)[1]
+        hit = run.context.window_classes.get((sig, run.device_key))
+        first = group[0]
+        crop = _signature(first, margin, homes)[1]
         if hit is None and any(crop.open_sides):
-            routed = _route_on([(template, sites)], crop, occupied, seed, routing, context)
+            routed = _route_on([(first.template, first.sites)], crop, homes.occupied, run.seed, run.routing,
+                               run.context)  # fmt: skip
             if routed is None or routed == "whole":
                 wider = whole if routed == "whole" else 2 * margin  # no crop short of the device answers
-                pending.extend((wider, s2, g2) for s2, g2 in grouped(group, wider).items())
+                pending.extend((wider, s2, g2) for s2, g2 in _grouped(group, wider, homes).items())
                 continue
             hit = _summary(routed[0], dev)  # type: ignore[index]
-        elif hit is None:  # routed with the others below
+        elif hit is None:  # routed with the others on the whole device
             whole_batch.append(len(entries))
             if dev.num_qubits > WHOLE_DEVICE_MAX_QUBITS or len(whole_batch) * dev.num_qubits > work:
                 return None
         entries.append((sig, group))
         results.append(hit)
-    if whole_batch:
-        say(f"routing {len(whole_batch):,} window classes on the whole device")
-        crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
-        batch = _route_on([entries[i][1][0][1:3] for i in whole_batch], crop, occupied, seed, routing, context)
-        assert batch is not None, "the whole device answers for itself"
-        for i, r in zip(whole_batch, batch, strict=True):
-            results[i] = _summary(r, dev)
-    if len(context.window_classes) > ROUTED_CLASSES_LIMIT:
-        context.window_classes.clear()
-    for (sig, _), result in zip(entries, results, strict=True):
-        context.window_classes[(sig, device_key)] = result
+    return entries, results, whole_batch
 
+
+def _whole_device_costs(representatives: Sequence[_Window], run: _Run) -> list[_Cost]:
+    """The cost of each representative routed on the whole device, all in one routing (as compile routes them)."""
+    shape = run.homes.shape
+    crop = _crop((0, shape[0] - 1, 0, shape[1] - 1), 0, shape)
+    batch = _route_on([(w.template, w.sites) for w in representatives], crop, run.homes.occupied, run.seed,
+                      run.routing, run.context)  # fmt: skip
+    assert batch is not None, "the whole device answers for itself"
+    return [_summary(r, run.device) for r in batch]
+
+
+def _summed(classes: Sequence[tuple[list[_Window], _Cost]], dev: Device, p: int, n_data: int) -> RoutedSum:
+    """The :class:`RoutedSum` of the classes: each class's cost times its windows' total weight, plus one readout
+    (its duration, and its error in the ESP) per data qubit.
+
+    Invariant: depth and duration add each window's trailing one-qubit gates once (they wait for their qubit's
+    next two-qubit gate in a later window), so both are upper bounds; counts and the ESP are exact.
+    """
     log_errors = _uniform_log_errors(dev)
     out: list[WindowClass] = []
     lowered: Counter[str] = Counter()
@@ -527,10 +680,9 @@ def routed_sum(
     native: Counter[str] = Counter()
     swaps = windows = depth = depth2 = 0
     duration: float | None = 0.0
-    for (_, group), result in zip(entries, results, strict=True):
-        assert result is not None
-        weight = sum(m[0] for m in group)
-        template = group[0][1]
+    for group, result in classes:
+        weight = sum(m.weight for m in group)
+        template = group[0].template
         windows += weight
         compiled.update({k: v * weight for k, v in template.ops})
         ops = Counter(dict(result.lowered_ops))  # after the relays, as compile writes it
