@@ -425,39 +425,15 @@ def validate(
         qcpp.errors.OptionError: a plan option the simulator cannot check (:func:`check_validatable`).
     """
     from qcpp.plan.compile import compile_scenario
-    from qcpp.simulate.subspace import SubspaceQAOA, angle_bindings
+    from qcpp.simulate.subspace import angle_bindings
 
     t_start = time.perf_counter()
-    if backend not in BACKENDS:
-        raise ValueError(f"unknown backend {backend!r} (expected one of {', '.join(BACKENDS)})")
-    if rule not in RULES:
-        raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
-    options = PlanOptions(rule=rule) if options is None else options
-    check_validatable(options)
-    rule = options.rule
-    if not isinstance(p, int) or p < 1:
-        raise ValueError(f"p must be a positive integer, got {p!r}")
-    if not tolerance > 0:
-        raise ValueError(f"tolerance must be positive, got {tolerance}")
-    x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
-    if x.size != 2 * p or not np.all(np.isfinite(x)):
-        raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
+    options, x = _checked_request(p, backend, angles, seed, rule, tolerance, options)
     bindings = angle_bindings(x)
-
-    def at(text: str) -> None:
-        if stage is not None:
-            stage(text)
+    at = stage if stage is not None else _no_stage
 
     at("predicting the size")
-    size = validate_size(scenario, max_assignments=max_assignments)
-    if max_assignments is not None and size.assignments > max_assignments:
-        raise ValidationTooLargeError(
-            f"validating {size.describe()}: over the limit of {max_assignments:,} feasible assignments"
-        )
-    if max_bytes is not None and size.bytes > max_bytes:
-        raise ValidationTooLargeError(
-            f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
-        )
+    _check_size(scenario, max_assignments, max_bytes)
 
     # the tensor backend contracts each partial mixer into one operator on its data qubits, which needs clean
     # ancillas at both ends of it: it gets the partial mixers unfused (the same high-level gates; the fused lowering
@@ -468,7 +444,115 @@ def validate(
     circuit = compiled.circuit
 
     at("simulating the feasible subspace")
-    sub = SubspaceQAOA(scenario, rule, options.initial, phase_offset=compiled.plan.reference_constant)
+    reference = _reference(scenario, options, compiled.plan.reference_constant, x)
+    if backend == "auto":  # compiled fused, as every backend but tensor (which auto never picks)
+        backend = choose_backend(circuit.num_qubits)
+    at(f"simulating the circuit ({backend})")
+    n = scenario.num_variables
+    if backend == "statevector":
+        checks = _statevector_checks(circuit, n, reference, tolerance)
+    elif backend == "sparse":
+        checks = _sparse_checks(circuit, n, reference, tolerance)
+    elif backend == "qcec":
+        checks = [_qcec_check(scenario, p, options, bindings, circuit, at)]
+    else:
+        from qcpp.simulate.cluster import dask_client
+
+        ancillas = list(range(n, circuit.num_qubits))
+        with dask_client(dask) if dask is not None else contextlib.nullcontext(None) as client:
+            checks = _tensor_checks(scenario, circuit, ancillas, reference.index, reference.amplitudes, seed,
+                                    tolerance, max_amplitudes, mps, cache_dir, client)  # fmt: skip
+
+    return ValidationReport(
+        scenario=scenario.name,
+        backend=backend,
+        p=p,
+        rule=options.rule,
+        seed=seed if angles is None or backend == "tensor" else None,
+        angles=tuple(float(v) for v in x),
+        qubits=circuit.num_qubits,
+        gates=len(circuit),
+        feasible_assignments=len(reference.assignments),
+        tolerance=tolerance,
+        checks=tuple(checks),
+        seconds=time.perf_counter() - t_start,
+        plan=_changed_options(options),
+    )
+
+
+def _no_stage(_text: str) -> None:
+    """The stage callback of a validation nobody watches."""
+
+
+def _checked_request(
+    p: int, backend: str, angles: Sequence[float] | None, seed: int | None, rule: Rule, tolerance: float,
+    options: PlanOptions | None,
+) -> tuple[PlanOptions, np.ndarray]:  # fmt: skip
+    """The plan options and angles of a validation, its arguments checked in the order :func:`validate` documents.
+
+    Returns:
+        ``(options, angles)``: ``options`` default ``PlanOptions(rule=rule)`` (their rule wins over ``rule``), the
+        ``2p`` angles given or :func:`random_angles` of ``seed``.
+
+    Raises:
+        ValueError: an unknown backend or rule, ``p`` not a positive integer, a tolerance not positive, or not
+            ``2p`` finite angles.
+        qcpp.errors.OptionError: a plan option the simulator cannot check (:func:`check_validatable`).
+    """
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend {backend!r} (expected one of {', '.join(BACKENDS)})")
+    if rule not in RULES:
+        raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    options = PlanOptions(rule=rule) if options is None else options
+    check_validatable(options)
+    if not isinstance(p, int) or p < 1:
+        raise ValueError(f"p must be a positive integer, got {p!r}")
+    if not tolerance > 0:
+        raise ValueError(f"tolerance must be positive, got {tolerance}")
+    x = random_angles(p, seed) if angles is None else np.asarray(angles, dtype=float).reshape(-1)
+    if x.size != 2 * p or not np.all(np.isfinite(x)):
+        raise ValueError(f"expected {2 * p} finite angles [gamma_0, beta_0, ...], got {x.tolist()}")
+    return options, x
+
+
+def _check_size(scenario: Scenario, max_assignments: int | None, max_bytes: int | None) -> None:
+    """Refuse a validation over ``max_assignments`` feasible assignments or a predicted peak over ``max_bytes``
+    (``None``: no limit), predicted by :func:`validate_size` before anything is built.
+
+    Raises:
+        ValidationTooLargeError: one line naming the size and the limit it exceeds.
+    """
+    size = validate_size(scenario, max_assignments=max_assignments)
+    if max_assignments is not None and size.assignments > max_assignments:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the limit of {max_assignments:,} feasible assignments"
+        )
+    if max_bytes is not None and size.bytes > max_bytes:
+        raise ValidationTooLargeError(
+            f"validating {size.describe()}: over the memory budget of {max_bytes / 1e9:.1f} GB"
+        )
+
+
+@dataclass(frozen=True)
+class _Reference:
+    """What the circuit is compared with: every feasible assignment (and every basis state of the subspace
+    simulator) as per-robot edge masks, its amplitude in the subspace state (0 outside its basis), and its basis
+    state of the circuit (data bits set, ancillas 0; Python ints in an object array: any width).
+
+    Invariant: the three are aligned, one entry per assignment.
+    """
+
+    assignments: list[tuple[int, ...]]
+    amplitudes: np.ndarray
+    index: np.ndarray
+
+
+def _reference(scenario: Scenario, options: PlanOptions, constant: float, x: np.ndarray) -> _Reference:
+    """The exact feasible-subspace state at angles ``x`` with the circuit's rule, initial state and phase constant
+    (``gamma_0 = 0`` without the first phase separator: the circuit has no gate for it)."""
+    from qcpp.simulate.subspace import SubspaceQAOA
+
+    sub = SubspaceQAOA(scenario, options.rule, options.initial, phase_offset=constant)
     psi_sub = sub.state(x if options.first_phase else np.concatenate([[0.0], x[1:]]))  # no gate: gamma_0 = 0
     assignments = _assignments(scenario, sub.bases)
     ref = np.zeros(len(assignments), dtype=np.complex128)
@@ -476,70 +560,56 @@ def validate(
         with contextlib.suppress(KeyError):  # outside the subspace basis: amplitude 0
             ref[k] = psi_sub[sub.index_of(masks)]
     index = np.array([sub.data_index(m) for m in assignments], dtype=object)  # ancillas (above the data) are 0
-    n, nq = scenario.num_variables, circuit.num_qubits
-    if backend == "auto":  # compiled fused, as every backend but tensor (which auto never picks)
-        backend = choose_backend(nq)
-    ancillas = list(range(n, nq))
-    tol = tolerance
-    checks: list[Check] = []
-    all_note = f"all {len(assignments)} feasible assignments"
-    at(f"simulating the circuit ({backend})")
+    return _Reference(assignments, ref, index)
 
-    if backend == "statevector":
-        if nq > MAX_STATEVECTOR_QUBITS:
-            raise ValueError(
-                f"statevector: {nq} qubits exceed {MAX_STATEVECTOR_QUBITS} (2^{nq} amplitudes); use --backend tensor"
-            )
-        from qcpp.simulate.statevector import simulate_statevector
 
-        t0 = time.perf_counter()
-        sv = simulate_statevector(circuit)
-        clean = sv[: 1 << n]  # ancilla bits (above the data bits) all 0
-        checks.append(_probability_check("statevector", float(np.vdot(clean, clean).real), tol, t0, "sum over 2^n"))
-        t0 = time.perf_counter()
-        got = sv[np.array(index, dtype=np.int64)]
-        checks.append(_amplitude_check("statevector", got, ref, tol, t0, all_note))
-    elif backend == "sparse":
-        from qcpp.simulate.sparse import simulate_sparse
+def _statevector_checks(circuit: Any, n: int, reference: _Reference, tol: float) -> list[Check]:
+    """The ancilla probability and every amplitude from the dense state of ``circuit`` (``n`` data qubits).
 
-        t0 = time.perf_counter()
-        state = simulate_sparse(circuit)
-        prob = float(sum(abs(a) ** 2 for k, a in state.items() if k >> n == 0))
-        checks.append(_probability_check("sparse", prob, tol, t0, f"{len(state)} stored amplitudes"))
-        t0 = time.perf_counter()
-        got = np.array([state.get(int(k), 0j) for k in index], dtype=np.complex128)
-        checks.append(_amplitude_check("sparse", got, ref, tol, t0, all_note))
-    elif backend == "qcec":
-        checks.append(_qcec_check(scenario, p, options, bindings, circuit, at))
-    else:
-        from qcpp.simulate.cluster import dask_client
+    Raises:
+        ValueError: more than :data:`~qcpp.simulate.statevector.MAX_STATEVECTOR_QUBITS` qubits.
+    """
+    nq = circuit.num_qubits
+    if nq > MAX_STATEVECTOR_QUBITS:
+        raise ValueError(
+            f"statevector: {nq} qubits exceed {MAX_STATEVECTOR_QUBITS} (2^{nq} amplitudes); use --backend tensor"
+        )
+    from qcpp.simulate.statevector import simulate_statevector
 
-        with dask_client(dask) if dask is not None else contextlib.nullcontext(None) as client:
-            checks.extend(
-                _tensor_checks(
-                    scenario, circuit, ancillas, index, ref, seed, tol, max_amplitudes, mps, cache_dir, client
-                )
-            )
+    t0 = time.perf_counter()
+    sv = simulate_statevector(circuit)
+    clean = sv[: 1 << n]  # ancilla bits (above the data bits) all 0
+    checks = [_probability_check("statevector", float(np.vdot(clean, clean).real), tol, t0, "sum over 2^n")]
+    t0 = time.perf_counter()
+    got = sv[np.array(reference.index, dtype=np.int64)]
+    note = f"all {len(reference.assignments)} feasible assignments"
+    checks.append(_amplitude_check("statevector", got, reference.amplitudes, tol, t0, note))
+    return checks
 
-    return ValidationReport(
-        scenario=scenario.name,
-        backend=backend,
-        p=p,
-        rule=rule,
-        seed=seed if angles is None or backend == "tensor" else None,
-        angles=tuple(float(v) for v in x),
-        qubits=nq,
-        gates=len(circuit),
-        feasible_assignments=len(assignments),
-        tolerance=tolerance,
-        checks=tuple(checks),
-        seconds=time.perf_counter() - t_start,
-        plan={
-            f.name: getattr(options, f.name)
-            for f in dataclasses.fields(options)
-            if f.name not in ("rule", "fuse") and getattr(options, f.name) != getattr(DEFAULT_PLAN, f.name)
-        },
-    )
+
+def _sparse_checks(circuit: Any, n: int, reference: _Reference, tol: float) -> list[Check]:
+    """The ancilla probability and every amplitude from the sparse state of ``circuit`` (``n`` data qubits)."""
+    from qcpp.simulate.sparse import simulate_sparse
+
+    t0 = time.perf_counter()
+    state = simulate_sparse(circuit)
+    prob = float(sum(abs(a) ** 2 for k, a in state.items() if k >> n == 0))
+    checks = [_probability_check("sparse", prob, tol, t0, f"{len(state)} stored amplitudes")]
+    t0 = time.perf_counter()
+    got = np.array([state.get(int(k), 0j) for k in reference.index], dtype=np.complex128)
+    note = f"all {len(reference.assignments)} feasible assignments"
+    checks.append(_amplitude_check("sparse", got, reference.amplitudes, tol, t0, note))
+    return checks
+
+
+def _changed_options(options: PlanOptions) -> dict[str, Any]:
+    """The plan options that differ from the default (field -> value), but ``rule`` (the report's own field) and
+    ``fuse`` (a backend's choice, not the user's)."""
+    return {
+        f.name: getattr(options, f.name)
+        for f in dataclasses.fields(options)
+        if f.name not in ("rule", "fuse") and getattr(options, f.name) != getattr(DEFAULT_PLAN, f.name)
+    }
 
 
 def check_validatable(options: PlanOptions) -> None:
