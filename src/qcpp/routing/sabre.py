@@ -139,132 +139,196 @@ def assemble(
     window alone). Before a SWAP whose next operation on both qubits is a ``cx`` between them, the one-qubit
     gates pending on them (the gates before that ``cx``) are put at their positions before the SWAP, where they
     all belong to the SWAP's section, so the SWAP and the ``cx`` meet."""
-    n = len(layout)
-    queues: list[list[int]] = [[] for _ in range(n)]
-    for i, g in enumerate(gates):
-        for q in g[1]:
-            queues[q].append(i)
-    who = [-1] * big  # physical -> logical (-1: a free qubit, |0>)
-    for lq, p in enumerate(layout):
-        who[p] = lq
-    where = list(layout)
-    ptr = [0] * n
-    emitted: list[tuple[str, Gate]] = []
-    last_section = section_of[0] if section_of else "main"
-    new = tuple.__new__  # Gate(...) without the NamedTuple constructor's Python frame: the same value
+    out = _Assembly(gates, section_of, layout, big, windows)
+    following = _next_ops(routed_ops)
+    swaps = 0
+    for k, (name, (p1, p2)) in enumerate(routed_ops):
+        if name != "swap":
+            out.two_qubit(k, p1, p2)
+            continue
+        swaps += 1
+        owner = op_sections[k] if op_sections is not None else out.last_section
+        window = out.window_of_op[k] if out.window_of_op is not None else owner
+        if not out.fused_with_previous(p1, p2, owner, window):
+            nxt = following[k]
+            if nxt is None or not out.fused_with_next(p1, p2, owner, window, nxt, routed_ops[nxt]):
+                out.three_cx(p1, p2, owner, window)
+        out.swap(p1, p2)
+    for lq in range(len(layout)):
+        out.flush(lq)
+    return RoutedCircuit(_sectioned(out.emitted, big), device, layout, tuple(out.where), swaps, measured,
+                         tuple(sorted(out.fused.items())))  # fmt: skip
 
-    def flush(lq: int) -> None:
-        nonlocal last_section
-        q = queues[lq]
-        k, end, p = ptr[lq], len(q), where[lq]
+
+class _Assembly:
+    """The state of one :func:`assemble` as it walks the routed ops: our gates emitted so far (with their
+    sections and windows), where every logical qubit is, and how far each one's gates are emitted.
+
+    It is the one mutable value of an assembly, made and used up by that call.
+
+    Invariants: ``who[where[lq]] == lq`` for every logical qubit ``lq`` (``who[p] == -1``: a free physical
+    qubit, in ``|0>``); ``queues[lq][ptr[lq]:]`` are the indices of ``lq``'s gates not yet emitted, in order;
+    ``last_on[p]`` is the index in ``emitted`` of the last gate on physical qubit ``p``; ``emitted_window[j]``
+    is the window of ``emitted[j]``.
+    """
+
+    __slots__ = ("cx_gates", "emitted", "emitted_window", "fuse", "fused", "gates", "last_on", "last_section",
+                 "ptr", "queues", "section_of", "skip", "where", "who", "window_of_gate", "window_of_op")  # fmt: skip
+
+    def __init__(
+        self, gates: list[Gate], section_of: list[str], layout: tuple[int, ...], big: int,
+        windows: tuple[Sequence[int], Sequence[int]] | None,
+    ) -> None:  # fmt: skip
+        """Nothing emitted yet, every logical qubit at its ``layout`` position on a device of ``big`` qubits;
+        SWAPs are fused only where ``windows`` (each gate's and each routed op's window) is given."""
+        n = len(layout)
+        queues: list[list[int]] = [[] for _ in range(n)]
+        for i, g in enumerate(gates):
+            for q in g[1]:
+                queues[q].append(i)
+        who = [-1] * big  # physical -> logical (-1: a free qubit, |0>)
+        for lq, p in enumerate(layout):
+            who[p] = lq
+        self.gates, self.section_of, self.queues, self.who = gates, section_of, queues, who
+        self.where = list(layout)
+        self.ptr = [0] * n
+        self.emitted: list[tuple[str, Gate]] = []
+        self.emitted_window: list[Any] = []
+        self.last_section = section_of[0] if section_of else "main"
+        self.last_on: dict[int, int] = {}  # physical qubit -> index in ``emitted`` of the last gate on it
+        self.fused: dict[str, int] = {}  # section -> its SWAPs fused with a cx
+        self.skip: set[int] = set()  # ops whose ``cx`` a SWAP before them already emitted (fused)
+        self.fuse = windows is not None
+        self.window_of_gate: Sequence[Any] = windows[0] if windows is not None else section_of
+        self.window_of_op: Sequence[Any] | None = windows[1] if windows is not None else None
+        self.cx_gates: dict[tuple[int, int], Gate] = {}  # cx(a, b), made once per pair
+
+    def flush(self, lq: int) -> None:
+        """Emit the one-qubit gates pending on logical qubit ``lq`` (those before its next two-qubit gate) at its
+        current position."""
+        q, k, gates = self.queues[lq], self.ptr[lq], self.gates
+        end = len(q)
+        if k == end or len(gates[q[k]][1]) != 1:
+            return
+        p, section_of, window_of_gate = self.where[lq], self.section_of, self.window_of_gate
+        emitted, last_on = self.emitted, self.last_on
+        emitted_append, window_append = emitted.append, self.emitted_window.append
+        new = tuple.__new__  # Gate(...) without the NamedTuple constructor's Python frame: the same value
         while k < end:
             i = q[k]
             g = gates[i]
             if len(g[1]) != 1:
                 break
-            last_on[p] = len(emitted)  # emit(section_of[i], Gate(g[0], (p,), g[2], g[3]), window_of_gate[i])
+            last_on[p] = len(emitted)
             emitted_append((section_of[i], new(Gate, (g[0], (p,), g[2], g[3]))))
             window_append(window_of_gate[i])
-            last_section = section_of[i]
             k += 1
-        ptr[lq] = k
+        self.last_section = section_of[q[k - 1]]
+        self.ptr[lq] = k
 
-    last_on: dict[int, int] = {}  # physical qubit -> index in ``emitted`` of the last gate on it
-    fused: dict[str, int] = {}
-    skip: set[int] = set()  # ops whose ``cx`` a SWAP before them already emitted (fused)
-    fuse = windows is not None
-    window_of_gate: Sequence[Any] = windows[0] if windows is not None else section_of
-    window_of_op: Sequence[Any] | None = windows[1] if windows is not None else None
-    emitted_window: list[Any] = []
-    emitted_append, window_append = emitted.append, emitted_window.append
-    cx_gates: dict[tuple[int, int], Gate] = {}  # cx(a, b), made once per pair
+    def two_qubit(self, k: int, p1: int, p2: int) -> None:
+        """Routed op ``k``, a ``cx`` on physical ``p1``, ``p2``: the pending one-qubit gates of both logical
+        qubits there, then their next two-qubit gate (unless a SWAP before it already emitted it, fused)."""
+        a, b = self.who[p1], self.who[p2]
+        self.flush(a)
+        self.flush(b)
+        queues, ptr, gates = self.queues, self.ptr, self.gates
+        i = queues[a][ptr[a]]
+        if queues[b][ptr[b]] != i or gates[i][1] != (a, b):
+            raise AssertionError("the router reordered the gates of a qubit")  # pragma: no cover
+        g = gates[i]
+        if k not in self.skip:  # emit(section_of[i], Gate(g[0], (p1, p2), g[2], g[3]), window_of_gate[i])
+            emitted = self.emitted
+            self.last_on[p1] = self.last_on[p2] = len(emitted)
+            emitted.append((self.section_of[i], tuple.__new__(Gate, (g[0], (p1, p2), g[2], g[3]))))
+            self.emitted_window.append(self.window_of_gate[i])
+        self.last_section = self.section_of[i]
+        ptr[a] += 1
+        ptr[b] += 1
 
-    def cx_of(a: int, b: int) -> Gate:
-        g = cx_gates.get((a, b))
-        if g is None:
-            g = cx_gates[a, b] = cx(a, b)
-        return g
-
-    def emit(section: str, g: Gate, window: Any) -> None:
+    def emit(self, section: str, g: Gate, window: Any) -> None:
+        """Append one gate of ``section`` and ``window``."""
         for q in g[1]:
-            last_on[q] = len(emitted)
-        emitted_append((section, g))
-        window_append(window)
+            self.last_on[q] = len(self.emitted)
+        self.emitted.append((section, g))
+        self.emitted_window.append(window)
 
-    def pending_in(lq: int, window: Any) -> bool:
+    def fused_with_previous(self, p1: int, p2: int, owner: str, window: Any) -> bool:
+        """Fuse a SWAP on ``p1``, ``p2`` with the ``cx`` just before it on both (same window): ``cx a b; SWAP``
+        is written ``cx b a; cx a b``. Returns whether it did (else nothing changed)."""
+        j = self.last_on.get(p1)
+        if not self.fuse or j is None or j != self.last_on.get(p2) or self.emitted_window[j] != window:
+            return False
+        before = self.emitted[j]
+        if before[1][0] != "cx" or set(before[1][1]) != {p1, p2}:
+            return False
+        a, b = before[1][1]  # cx a b; SWAP (cx a b; cx b a; cx a b) = cx b a; cx a b
+        self.emitted[j] = (before[0], cx(b, a))
+        self.emit(owner, cx(a, b), window)
+        self.fused[owner] = self.fused.get(owner, 0) + 1
+        return True
+
+    def fused_with_next(
+        self, p1: int, p2: int, owner: str, window: Any, nxt: int, after: tuple[str, tuple[int, int]]
+    ) -> bool:
+        """Fuse a SWAP on ``p1``, ``p2`` with routed op ``nxt`` (``after``), the next op on either, where it is a
+        ``cx`` between them whose gate and pending one-qubit gates all belong to ``window``: the pending gates
+        first, then ``SWAP; cx x y`` written ``cx x y; cx y x`` (op ``nxt`` is then skipped). Returns whether it
+        did (else nothing changed)."""
+        l1, l2 = self.who[p1], self.who[p2]
+        if not (self.fuse and after[0] == "cx" and set(after[1]) == {p1, p2} and l1 >= 0 and l2 >= 0):
+            return False
+        queues, ptr, gates = self.queues, self.ptr, self.gates
+        if self.window_of_gate[queues[l1][_next_twoq(queues[l1], ptr[l1], gates)]] != window:
+            return False
+        if not (self._pending_in(l1, window) and self._pending_in(l2, window)):
+            return False
+        self.flush(l1)
+        self.flush(l2)
+        x, y = after[1]  # SWAP (cx x y; cx y x; cx x y); cx x y = cx x y; cx y x
+        self.emit(owner, cx(x, y), window)
+        self.emit(owner, cx(y, x), window)
+        self.skip.add(nxt)
+        self.fused[owner] = self.fused.get(owner, 0) + 1
+        return True
+
+    def _pending_in(self, lq: int, window: Any) -> bool:
         """Whether every one-qubit gate pending on ``lq`` belongs to ``window``."""
-        q, i = queues[lq], ptr[lq]
+        q, i, gates, window_of_gate = self.queues[lq], self.ptr[lq], self.gates, self.window_of_gate
         while i < len(q) and len(gates[q[i]][1]) == 1:
             if window_of_gate[q[i]] != window:
                 return False
             i += 1
         return True
 
-    following = _next_ops(routed_ops)
+    def three_cx(self, p1: int, p2: int, owner: str, window: Any) -> None:
+        """A SWAP fused with nothing: ``cx p1 p2; cx p2 p1; cx p1 p2`` (one ``cx`` value per pair)."""
+        forward, backward = self._cx_of(p1, p2), self._cx_of(p2, p1)
+        emitted_append, window_append = self.emitted.append, self.emitted_window.append
+        emitted_append((owner, forward))
+        emitted_append((owner, backward))
+        emitted_append((owner, forward))
+        window_append(window)
+        window_append(window)
+        window_append(window)
+        self.last_on[p1] = self.last_on[p2] = len(self.emitted) - 1
 
-    swaps = 0
-    for k, (name, (p1, p2)) in enumerate(routed_ops):
-        if name == "swap":
-            swaps += 1
-            owner = op_sections[k] if op_sections is not None else last_section
-            window = window_of_op[k] if window_of_op is not None else owner
-            j = last_on.get(p1)
-            before = emitted[j] if j is not None and j == last_on.get(p2) else None
-            if (fuse and before is not None and emitted_window[j] == window and before[1][0] == "cx"
-                    and set(before[1][1]) == {p1, p2}):  # fmt: skip
-                a, b = before[1][1]  # cx a b; SWAP (cx a b; cx b a; cx a b) = cx b a; cx a b
-                emitted[j] = (before[0], cx(b, a))
-                emit(owner, cx(a, b), window)
-                fused[owner] = fused.get(owner, 0) + 1
-            else:
-                nxt = following[k]
-                after = routed_ops[nxt] if nxt is not None else None
-                l1_, l2_ = who[p1], who[p2]
-                if (fuse and after is not None and after[0] == "cx" and set(after[1]) == {p1, p2} and l1_ >= 0
-                        and l2_ >= 0
-                        and window_of_gate[queues[l1_][_next_twoq(queues[l1_], ptr[l1_], gates)]] == window
-                        and pending_in(l1_, window) and pending_in(l2_, window)):  # fmt: skip
-                    flush(l1_)
-                    flush(l2_)
-                    x_, y_ = after[1]  # SWAP (cx x y; cx y x; cx x y); cx x y = cx x y; cx y x
-                    emit(owner, cx(x_, y_), window)
-                    emit(owner, cx(y_, x_), window)
-                    skip.add(nxt)  # type: ignore[arg-type]
-                    fused[owner] = fused.get(owner, 0) + 1
-                else:  # emit(owner, cx(a, b), window) for (a, b) in (p1, p2), (p2, p1), (p1, p2)
-                    forward = cx_of(p1, p2)
-                    emitted_append((owner, forward))
-                    emitted_append((owner, cx_of(p2, p1)))
-                    emitted_append((owner, forward))
-                    window_append(window)
-                    window_append(window)
-                    window_append(window)
-                    last_on[p1] = last_on[p2] = len(emitted) - 1
-            l1, l2 = who[p1], who[p2]
-            who[p1], who[p2] = l2, l1
-            if l1 >= 0:
-                where[l1] = p2
-            if l2 >= 0:
-                where[l2] = p1
-            continue
-        a, b = who[p1], who[p2]
-        flush(a)
-        flush(b)
-        i = queues[a][ptr[a]]
-        if queues[b][ptr[b]] != i or gates[i][1] != (a, b):
-            raise AssertionError("the router reordered the gates of a qubit")  # pragma: no cover
-        g = gates[i]
-        if k not in skip:  # emit(section_of[i], Gate(g[0], (p1, p2), g[2], g[3]), window_of_gate[i])
-            last_on[p1] = last_on[p2] = len(emitted)
-            emitted_append((section_of[i], new(Gate, (g[0], (p1, p2), g[2], g[3]))))
-            window_append(window_of_gate[i])
-        last_section = section_of[i]
-        ptr[a] += 1
-        ptr[b] += 1
-    for lq in range(n):
-        flush(lq)
-    return RoutedCircuit(_sectioned(emitted, big), device, layout, tuple(where), swaps, measured,
-                         tuple(sorted(fused.items())))  # fmt: skip
+    def _cx_of(self, a: int, b: int) -> Gate:
+        """``cx(a, b)``, made once per pair."""
+        g = self.cx_gates.get((a, b))
+        if g is None:
+            g = self.cx_gates[a, b] = cx(a, b)
+        return g
+
+    def swap(self, p1: int, p2: int) -> None:
+        """Exchange the logical qubits on physical ``p1`` and ``p2`` (either may be free)."""
+        who, where = self.who, self.where
+        l1, l2 = who[p1], who[p2]
+        who[p1], who[p2] = l2, l1
+        if l1 >= 0:
+            where[l1] = p2
+        if l2 >= 0:
+            where[l2] = p1
 
 
 def _next_twoq(queue: Sequence[int], start: int, gates: Sequence[Gate]) -> int:
