@@ -202,12 +202,15 @@ def test_sampled_inputs_are_reported_as_samples() -> None:
 
 
 # ---------------------------------------------------------------------------------------------- mutations caught
-def _drop_one_control(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Every AND of every parity-basis partial mixer loses its second control (in its compute and its mirror)."""
+def _drop_one_control(monkeypatch: pytest.MonkeyPatch, from_qubit: int = 0) -> None:
+    """Every AND of every parity-basis partial mixer on data qubits ``from_qubit`` and up (``v``: every robot but
+    the first) loses its second control (in its compute and its mirror)."""
     original = ParityPartialMixer.parts
 
     def mutated(self: ParityPartialMixer) -> tuple[list[Gate], list[Gate], list[Gate]]:
         compute, rotation, mirror = original(self)
+        if min(self.plaquette_qubits) < from_qubit:
+            return compute, rotation, mirror
         for i, g in enumerate(compute):
             if g.name == "and":
                 a, _, t = g.qubits
@@ -243,7 +246,9 @@ def test_the_gadget_method_catches_a_dropped_control(monkeypatch: pytest.MonkeyP
     assert cx.reachable is True and "A feasible path contains this input" in cx.reason
 
 
-def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypatch: pytest.MonkeyPatch) -> None:
+def _forget_last_uncompute(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every visit phase gadget loses its last ``and_dg``: the paths and their phases stay as they were, an
+    ancilla is left holding an AND."""
     original = VisitPhase.emit
 
     def no_uncompute(self: VisitPhase) -> list[Gate]:
@@ -252,10 +257,69 @@ def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypat
         return gates[:last] + gates[last + 1 :]
 
     monkeypatch.setattr(VisitPhase, "emit", no_uncompute)
+
+
+def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypatch: pytest.MonkeyPatch) -> None:
+    _forget_last_uncompute(monkeypatch)
     report = verify_gadgets(default_scenario(3, 3, 2), p=1)
     assert not report.holds and report.outcome == "fails"
     cx = report.counterexample
     assert cx is not None and cx.check.startswith("phase VisitPhase") and "not shown diagonal" in cx.reason
+
+
+def test_the_state_method_catches_an_ancilla_left_set(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A forgotten uncompute keeps every path feasible and leaves an ancilla in |1> (the next gadget that takes it
+    as clean computes garbage): only the check of the ancillas sees it, and it must fail the unit."""
+    s = default_scenario(3, 3, 2)
+    _forget_last_uncompute(monkeypatch)
+    report = verify_state(s, p=1)
+    assert not report.holds
+    cx = report.counterexample
+    assert cx is not None and cx.check == "phase_0" and cx.reason == "an ancilla is left in |1>"
+    assert cx.output_paths == cx.input_paths  # the paths are kept: the ancillas alone show the fault
+    assert cx.dirty_ancillas and min(cx.dirty_ancillas) >= s.num_variables
+
+
+def test_the_state_method_checks_the_paths_of_every_robot(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A dropped control in the second robot's partial mixers only: the state method must look at that robot's
+    path too, not only the first robot's."""
+    s = default_scenario(3, 3, 2)
+    _drop_one_control(monkeypatch, from_qubit=s.edges_per_robot)
+    report = verify_state(s, p=1)
+    assert not report.holds
+    cx = report.counterexample
+    assert cx is not None and cx.check == "mixer_0" and cx.robot == 1
+    assert "robot 1's path leaves the feasible set" in cx.reason
+    assert not is_feasible(s, 1, mask_of(s, cx.output_paths[1])) and is_feasible(s, 0, mask_of(s, cx.output_paths[0]))
+
+
+def _close_the_u_turn(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every parity-basis partial mixer starts by flipping its fourth plaquette edge where the other three are set:
+    wrong only on inputs with three of the four plaquette edges (a path turning around the plaquette), which
+    feasible paths contain; the closed loop it makes of them is no feasible path."""
+    original = ParityPartialMixer.parts
+
+    def mutated(self: ParityPartialMixer) -> tuple[list[Gate], list[Gate], list[Gate]]:
+        compute, rotation, mirror = original(self)
+        a, b, c, d = self.plaquette_qubits
+        return [mcx([a, b, c], d), *compute], rotation, mirror
+
+    monkeypatch.setattr(ParityPartialMixer, "parts", mutated)
+
+
+def test_both_methods_check_inputs_with_three_plaquette_edges(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Only closed loops (all four plaquette edges) may be left out of a partial mixer's local inputs: a fault
+    seen only where three edges are set is a counterexample for the gadget method and for the state method."""
+    s = default_scenario(3, 3, 2)
+    options = PlanOptions(fuse=False)  # each partial mixer whole: the partial-mixer check alone sees the fault
+    _close_the_u_turn(monkeypatch)
+    gadgets = verify_gadgets(s, p=1, options=options)
+    assert gadgets.outcome == "fails", gadgets.summary()
+    cx = gadgets.counterexample
+    assert cx is not None and cx.kind is not None and cx.kind.startswith("ParityPartialMixer")
+    assert "does not do what its program says" in cx.reason and cx.reachable is True
+    state = verify_state(s, p=1, options=options)
+    assert not state.holds and state.counterexample is not None and state.counterexample.check == "mixer_0"
 
 
 # ------------------------------------------------------------------------------------ strategies of qcpp.testing
