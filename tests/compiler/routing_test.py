@@ -388,6 +388,30 @@ def test_window_cx_equals_its_reference(ops: list) -> None:
     assert window_cx(ops) == _window_cx_reference(ops)
 
 
+def test_window_cx_counts_the_cx_that_assemble_writes() -> None:
+    """The searches score windows by :func:`window_cx` instead of assembling them: on every sequence of up to three
+    ``cx`` and SWAP ops on the pairs of three qubits (routed in one window, so SWAPs fuse with a ``cx`` before or
+    after them on their pair), it equals the ``cx`` that :func:`qcpp.routing.sabre.assemble` writes for the ops."""
+    import itertools
+
+    from qcpp.routing.sabre import assemble, window_cx
+
+    device = get_device("grid:2x2")
+    kinds = [(name, pair) for name in ("cx", "swap") for pair in ((0, 1), (1, 0), (1, 2), (0, 2))]
+    for length in range(1, 4):
+        for ops in itertools.product(kinds, repeat=length):
+            who, gates = [0, 1, 2, 3], []  # identity layout; a SWAP moves the logical qubits it holds
+            for name, (p, q) in ops:
+                if name == "swap":
+                    who[p], who[q] = who[q], who[p]
+                else:
+                    gates.append(cx(who[p], who[q]))
+            windows = ([0] * len(gates), [0] * len(ops))
+            routed = assemble(gates, ["s"] * len(gates), (0, 1, 2, 3), 4, list(ops), device, (), None, windows)
+            written = sum(g.name == "cx" for g in routed.circuit.gates)
+            assert window_cx(list(ops)) == written, ops
+
+
 @settings(max_examples=20, deadline=None)
 @given(st.data())
 def test_the_direct_sabre_call_routes_as_the_sabreswap_pass(data: st.DataObject) -> None:
