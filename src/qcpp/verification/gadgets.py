@@ -69,7 +69,7 @@ import itertools
 import math
 import random
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -717,14 +717,64 @@ def verify_gadgets(
     options, rule = plan.options, plan.options.rule
     graph = plan.call_graph()
     beta = random_angle(random.Random(seed))
-    checks: list[Check] = []
-    counterexample = None
-    unresolved: Counterexample | None = None
     index = _PathIndex(scenario)
+    survey = _survey(scenario, rule, options.target)
+    mixer_kinds = graph.parts["mixer"]
+    fused = any(isinstance(k.example, MixerJunction | MixerRotation) for k in mixer_kinds)
+    mixers = _partial_mixer_kinds(mixer_kinds)
+    work_items = len(survey.pictures) + len(mixers) + len(mixer_kinds) + len(graph.parts["phase"]) + 1
+    tally = _Tally(work_items, progress)
+    checker = _MixerChecker(scenario, fused, beta, dict(survey.scenario_kinds), survey.kind_pictures, index,
+                            survey.kind_places)  # fmt: skip
+    counterexample = None
+    try:
+        _check_rules(scenario, rule, survey, index, tally)
+        _check_partial_mixers(checker, mixers, fused, tally)
+        _check_coverage(survey.scenario_kinds, mixers)
+        _check_mixer_part(checker, mixer_kinds, mixers, tally)
+        for kind, mult in graph.parts["phase"].items():
+            how, n, detail = _check_phase(kind, beta)
+            tally.held(Check(kind_text(kind.example), "phase", how, n, True, mult, detail))
+        for kind, mult in graph.parts["initial_state"].items():
+            n = _check_initial(scenario, kind, plan.num_qubits, plan.registers)
+            tally.held(Check(kind_text(kind.example), "initial_state", "exhaustive", n, True, mult, "from |0...0>"),
+                       tick=False)  # fmt: skip
+        tally.tick()
+    except _Failure as failure:
+        counterexample = failure.counterexample
+        how = "structural" if failure.part == "phase" and not failure.inputs else "exhaustive"
+        tally.checks.append(Check(counterexample.check, failure.part, how, failure.inputs, False, 1,
+                                  "stopped at the first failing input" if failure.inputs else ""))  # fmt: skip
+    return VerifyReport(
+        _scenario_name(scenario), p, rule, "gadgets", counterexample is None and tally.unresolved is None,
+        tuple(tally.checks), counterexample, time.perf_counter() - start, seed, options.target, tally.unresolved,
+    )  # fmt: skip
 
-    # the scenario's pictures (the rule) and the partial-mixer kind of every plaquette (coverage)
+
+@dataclasses.dataclass(frozen=True)
+class _Survey:
+    """What the scenario's plaquettes hold, read once before the checks.
+
+    Attributes:
+        pictures: Per local picture, its first place (robot, plaquette), rule program and outer edges.
+        places: Per local picture, every (robot, plaquette) with it, the first one first.
+        scenario_kinds: Per partial-mixer kind of the scenario, the first place it stands.
+        kind_places: Per partial-mixer kind, every place of the pictures whose first place has that kind.
+        kind_pictures: Per partial-mixer kind, the label of its first place's picture.
+    """
+
+    pictures: dict[LocalPicture, tuple[int, Plaquette, SbfLogic, tuple[tuple[int, ...], ...]]]
+    places: dict[LocalPicture, list[tuple[int, Plaquette]]]
+    scenario_kinds: dict[Any, tuple[int, Plaquette]]
+    kind_places: dict[Any, list[tuple[int, Plaquette]]]
+    kind_pictures: dict[Any, str]
+
+
+def _survey(scenario: Scenario, rule: Rule, target: str) -> _Survey:
+    """The scenario's local pictures (what the rule checks run on) and the partial-mixer kind of each picture's
+    first place (what the coverage check holds the call graph's kinds to), robots and plaquettes in order;
+    plaquettes whose rule never allows a flip are left out."""
     pictures: dict[LocalPicture, tuple[int, Plaquette, SbfLogic, tuple[tuple[int, ...], ...]]] = {}
-    where: dict[Any, tuple[int, Plaquette]] = {}
     places: dict[LocalPicture, list[tuple[int, Plaquette]]] = {}  # every (robot, plaquette) with that picture
     picture_kinds: dict[LocalPicture, Any] = {}
     scenario_kinds: dict[Any, tuple[int, Plaquette]] = {}
@@ -738,90 +788,123 @@ def verify_gadgets(
             places.setdefault(picture, []).append((r, q))
             if picture not in pictures:
                 pictures[picture] = (r, q, logic, outer)
-                m = partial_mixer(scenario, r, q, beta_sym, scenario.num_variables, rule, options.target)
+                m = partial_mixer(scenario, r, q, beta_sym, scenario.num_variables, rule, target)
                 if m is not None:
                     scenario_kinds.setdefault(m.kind, (r, q))
                     picture_kinds[picture] = m.kind
-    where.update(scenario_kinds)
     kind_places: dict[Any, list[tuple[int, Plaquette]]] = {}
     for picture, kd in picture_kinds.items():
         kind_places.setdefault(kd, []).extend(places[picture])
     kind_pictures = {kd: plaquette_picture(scenario, r, q)[0].label for kd, (r, q) in scenario_kinds.items()}
+    return _Survey(pictures, places, scenario_kinds, kind_places, kind_pictures)
 
-    mixer_kinds = graph.parts["mixer"]
-    fused = any(isinstance(k.example, MixerJunction | MixerRotation) for k in mixer_kinds)
+
+def _partial_mixer_kinds(mixer_kinds: Mapping[GadgetKind, int]) -> dict[Any, tuple[Mixer, int]]:
+    """Every partial-mixer kind the mixer part is made of (inside junctions and rotations too), first seen
+    first: one partial mixer of the kind and its work qubits."""
     mixers: dict[Any, tuple[Mixer, int]] = {}
     for kind in mixer_kinds:
-        g = kind.example
-        for m in _mixers_in(g):
+        for m in _mixers_in(kind.example):
             if m is not None and m.kind not in mixers:
                 mixers[m.kind] = (m, GadgetKind.of(m).work)
-    work_items = len(pictures) + len(mixers) + len(mixer_kinds) + len(graph.parts["phase"]) + 1
-    done = 0
+    return mixers
 
-    def tick() -> None:
-        nonlocal done
-        done += 1
-        if progress is not None:
-            progress(done, work_items)
 
-    checker = _MixerChecker(scenario, fused, beta, where, kind_pictures, index, kind_places)
+class _Tally:
+    """The checks of one :func:`verify_gadgets` run so far, the first unresolved input, and the progress: the
+    run's one mutable value, so the checks that held before a failure stay in its report."""
 
-    def open_check(subject: str, part: str, n: int, mult: int, count: int, failure: _Failure) -> Check:
-        nonlocal unresolved
-        unresolved = unresolved or failure.counterexample
-        return Check(subject, part, "exhaustive", n, False, mult,
-                     f"{count} input{'s' if count > 1 else ''} unresolved: neither shown harmless nor on a leaking "
-                     "feasible path", True)  # fmt: skip
+    def __init__(self, total: int, progress: ProgressFn | None) -> None:
+        """No checks yet, ``total`` work items to report to ``progress`` (if any)."""
+        self.checks: list[Check] = []
+        self.unresolved: Counterexample | None = None
+        self.done, self.total, self.progress = 0, total, progress
 
-    try:
-        for picture, (r, q, logic, outer) in pictures.items():
-            subject = f"rule {rule} {picture.label}"
-            n, count, failure = _check_rule(scenario, r, q, logic, picture, outer, index, places[picture][1:])
-            if failure is not None:
-                checks.append(open_check(subject, "rule", n, len(places[picture]), count, failure))
-            else:
-                checks.append(Check(subject, "rule", "exhaustive", n, True, len(places[picture]),
-                                    "locally feasible inputs but closed loops"))  # fmt: skip
-            tick()
-        for m, work in mixers.values():
-            n, count, failure = checker.partial_mixer(m, work)
-            if failure is not None:
-                checks.append(open_check(checker.label(m), "mixer", n, 1, count, failure))
-            else:
-                blocks = "opening junction, rotation, closing junction" if fused else "all blocks"
-                checks.append(Check(checker.label(m), "mixer", "exhaustive", n, True, 1, blocks))
-            tick()
-        missing = [kd for kd in scenario_kinds if kd not in mixers]
-        if missing:
-            r, q = scenario_kinds[missing[0]]
-            raise _Failure(Counterexample("gadgets", "coverage", repr(missing[0])[:100], r, tuple(q.corners), ((),),
-                                          ((),), (), 0.0, "a partial mixer of the scenario is of no checked kind"))
-        for kind, mult in mixer_kinds.items():
-            g = kind.example
-            if isinstance(g, MixerJunction) and g.left is not None and g.right is not None:
-                n = checker.junction(g, max(kind.work, mixers[g.left.kind][1], mixers[g.right.kind][1]))
-                checks.append(Check(checker.label(g), "mixer", "exhaustive", n, True, mult))
-            else:
-                rotation = isinstance(g, MixerRotation)
-                inner = "each partial mixer's check" if rotation else checker.label(_mixers_in(g)[0])
-                checks.append(Check(checker.label(g), "mixer", "covered", 0, True, mult, f"within {inner}"))
-            tick()
-        for kind, mult in graph.parts["phase"].items():
-            how, n, detail = _check_phase(kind, beta)
-            checks.append(Check(kind_text(kind.example), "phase", how, n, True, mult, detail))
-            tick()
-        for kind, mult in graph.parts["initial_state"].items():
-            n = _check_initial(scenario, kind, plan.num_qubits, plan.registers)
-            checks.append(Check(kind_text(kind.example), "initial_state", "exhaustive", n, True, mult,
-                                "from |0...0>"))  # fmt: skip
-        tick()
-    except _Failure as failure:
-        counterexample = failure.counterexample
-        how = "structural" if failure.part == "phase" and not failure.inputs else "exhaustive"
-        checks.append(Check(counterexample.check, failure.part, how, failure.inputs, False, 1,
-                            "stopped at the first failing input" if failure.inputs else ""))  # fmt: skip
-    return VerifyReport(
-        _scenario_name(scenario), p, rule, "gadgets", counterexample is None and unresolved is None, tuple(checks),
-        counterexample, time.perf_counter() - start, seed, options.target, unresolved,
-    )  # fmt: skip
+    def tick(self) -> None:
+        """One work item done: report ``progress(done, total)``."""
+        self.done += 1
+        if self.progress is not None:
+            self.progress(self.done, self.total)
+
+    def held(self, check: Check, *, tick: bool = True) -> None:
+        """Record a check (and, with ``tick``, its work item done)."""
+        self.checks.append(check)
+        if tick:
+            self.tick()
+
+    def open(self, subject: str, part: str, n: int, mult: int, count: int, failure: _Failure) -> None:
+        """Record a check that failed on ``count`` inputs none of which is shown harmless or leaking (its first
+        such input becomes the run's unresolved one unless one came earlier), and its work item done."""
+        self.unresolved = self.unresolved or failure.counterexample
+        self.held(Check(subject, part, "exhaustive", n, False, mult,
+                        f"{count} input{'s' if count > 1 else ''} unresolved: neither shown harmless nor on a leaking "
+                        "feasible path", True))  # fmt: skip
+
+
+def _check_rules(scenario: Scenario, rule: Rule, survey: _Survey, index: _PathIndex, tally: _Tally) -> None:
+    """The rule check of every local picture (:func:`_check_rule`), its failing inputs looked up at every place
+    with the picture.
+
+    Raises:
+        _Failure: a counterexample.
+    """
+    for picture, (r, q, logic, outer) in survey.pictures.items():
+        subject = f"rule {rule} {picture.label}"
+        places = survey.places[picture]
+        n, count, failure = _check_rule(scenario, r, q, logic, picture, outer, index, places[1:])
+        if failure is not None:
+            tally.open(subject, "rule", n, len(places), count, failure)
+        else:
+            tally.held(Check(subject, "rule", "exhaustive", n, True, len(places),
+                             "locally feasible inputs but closed loops"))  # fmt: skip
+
+
+def _check_partial_mixers(
+    checker: _MixerChecker, mixers: Mapping[Any, tuple[Mixer, int]], fused: bool, tally: _Tally
+) -> None:
+    """The gate check of every partial-mixer kind on all its inputs (:meth:`_MixerChecker.partial_mixer`).
+
+    Raises:
+        _Failure: a counterexample.
+    """
+    for m, work in mixers.values():
+        n, count, failure = checker.partial_mixer(m, work)
+        if failure is not None:
+            tally.open(checker.label(m), "mixer", n, 1, count, failure)
+        else:
+            blocks = "opening junction, rotation, closing junction" if fused else "all blocks"
+            tally.held(Check(checker.label(m), "mixer", "exhaustive", n, True, 1, blocks))
+
+
+def _check_coverage(scenario_kinds: Mapping[Any, tuple[int, Plaquette]], mixers: Mapping[Any, Any]) -> None:
+    """Every partial-mixer kind of the scenario is among the checked ones.
+
+    Raises:
+        _Failure: the first kind that is not, at its first place.
+    """
+    missing = [kd for kd in scenario_kinds if kd not in mixers]
+    if missing:
+        r, q = scenario_kinds[missing[0]]
+        raise _Failure(Counterexample("gadgets", "coverage", repr(missing[0])[:100], r, tuple(q.corners), ((),),
+                                      ((),), (), 0.0, "a partial mixer of the scenario is of no checked kind"))
+
+
+def _check_mixer_part(
+    checker: _MixerChecker, mixer_kinds: Mapping[GadgetKind, int], mixers: Mapping[Any, tuple[Mixer, int]],
+    tally: _Tally,
+) -> None:  # fmt: skip
+    """Every kind of the mixer part: a junction between two partial mixers checked on all inputs
+    (:meth:`_MixerChecker.junction`), any other kind covered by its partial mixers' checks.
+
+    Raises:
+        _Failure: a counterexample.
+    """
+    for kind, mult in mixer_kinds.items():
+        g = kind.example
+        if isinstance(g, MixerJunction) and g.left is not None and g.right is not None:
+            n = checker.junction(g, max(kind.work, mixers[g.left.kind][1], mixers[g.right.kind][1]))
+            tally.held(Check(checker.label(g), "mixer", "exhaustive", n, True, mult))
+        else:
+            rotation = isinstance(g, MixerRotation)
+            inner = "each partial mixer's check" if rotation else checker.label(_mixers_in(g)[0])
+            tally.held(Check(checker.label(g), "mixer", "covered", 0, True, mult, f"within {inner}"))
