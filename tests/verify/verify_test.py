@@ -267,6 +267,27 @@ def test_the_gadget_method_catches_a_phase_gadget_that_is_not_diagonal(monkeypat
     assert cx is not None and cx.check.startswith("phase VisitPhase") and "not shown diagonal" in cx.reason
 
 
+def test_the_gadget_method_pairs_an_uncompute_with_its_own_compute(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A visit phase gadget whose last uncompute reads a wrong control: its permutations do not cancel, so it is not
+    shown diagonal (the structural check is all the gadget method has for phase kinds too large to run, so a pair of
+    gates must match on their qubits, not only on their names)."""
+    original = VisitPhase.emit
+
+    def wrong_control(self: VisitPhase) -> list[Gate]:
+        gates = list(original(self))
+        last = max(i for i, g in enumerate(gates) if g.name == "and_dg")
+        a, b, t = gates[last].qubits
+        other = next(q for g in gates for q in g.qubits if q not in (a, b, t))
+        gates[last] = gates[last]._replace(qubits=(a, other, t))
+        return gates
+
+    monkeypatch.setattr(VisitPhase, "emit", wrong_control)
+    report = verify_gadgets(default_scenario(3, 3, 2), p=1)
+    assert not report.holds and report.outcome == "fails"
+    cx = report.counterexample
+    assert cx is not None and cx.check.startswith("phase VisitPhase") and "not shown diagonal" in cx.reason
+
+
 def test_the_state_method_catches_an_ancilla_left_set(monkeypatch: pytest.MonkeyPatch) -> None:
     """A forgotten uncompute keeps every path feasible and leaves an ancilla in |1> (the next gadget that takes it
     as clean computes garbage): only the check of the ancillas sees it, and it must fail the unit."""
