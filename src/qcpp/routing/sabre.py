@@ -36,6 +36,7 @@ from qcpp.hardware.device import Device
 from qcpp.ir.circuit import Circuit, Register, Section
 from qcpp.ir.gates import Gate, cx
 from qcpp.routing.options import DEFAULT_TRIALS
+from qcpp.routing.positions import Positions
 from qcpp.routing.routed_circuit import RoutedCircuit, coupling_map, sabre_target
 
 __all__ = ["assemble", "checked_inputs", "cx_dag", "dag_cx", "dag_ops", "route", "window_cx"]
@@ -153,10 +154,10 @@ def assemble(
             nxt = following[k]
             if nxt is None or not out.fused_with_next(p1, p2, owner, window, nxt, routed_ops[nxt]):
                 out.three_cx(p1, p2, owner, window)
-        out.swap(p1, p2)
+        out.positions.swap(p1, p2)
     for lq in range(len(layout)):
         out.flush(lq)
-    return RoutedCircuit(_sectioned(out.emitted, big), device, layout, tuple(out.where), swaps, measured,
+    return RoutedCircuit(_sectioned(out.emitted, big), device, layout, tuple(out.positions.where), swaps, measured,
                          tuple(sorted(out.fused.items())))  # fmt: skip
 
 
@@ -166,14 +167,14 @@ class _Assembly:
 
     It is the one mutable value of an assembly, made and used up by that call.
 
-    Invariants: ``who[where[lq]] == lq`` for every logical qubit ``lq`` (``who[p] == -1``: a free physical
-    qubit, in ``|0>``); ``queues[lq][ptr[lq]:]`` are the indices of ``lq``'s gates not yet emitted, in order;
+    Invariants: ``positions`` holds every logical qubit's physical qubit and back (a free physical qubit is in
+    ``|0>``); ``queues[lq][ptr[lq]:]`` are the indices of ``lq``'s gates not yet emitted, in order;
     ``last_on[p]`` is the index in ``emitted`` of the last gate on physical qubit ``p``; ``emitted_window[j]``
     is the window of ``emitted[j]``.
     """
 
     __slots__ = ("cx_gates", "emitted", "emitted_window", "fuse", "fused", "gates", "last_on", "last_section",
-                 "ptr", "queues", "section_of", "skip", "where", "who", "window_of_gate", "window_of_op")  # fmt: skip
+                 "positions", "ptr", "queues", "section_of", "skip", "window_of_gate", "window_of_op")  # fmt: skip
 
     def __init__(
         self, gates: list[Gate], section_of: list[str], layout: tuple[int, ...], big: int,
@@ -186,11 +187,8 @@ class _Assembly:
         for i, g in enumerate(gates):
             for q in g[1]:
                 queues[q].append(i)
-        who = [-1] * big  # physical -> logical (-1: a free qubit, |0>)
-        for lq, p in enumerate(layout):
-            who[p] = lq
-        self.gates, self.section_of, self.queues, self.who = gates, section_of, queues, who
-        self.where = list(layout)
+        self.gates, self.section_of, self.queues = gates, section_of, queues
+        self.positions = Positions(layout, big)
         self.ptr = [0] * n
         self.emitted: list[tuple[str, Gate]] = []
         self.emitted_window: list[Any] = []
@@ -210,7 +208,7 @@ class _Assembly:
         end = len(q)
         if k == end or len(gates[q[k]][1]) != 1:
             return
-        p, section_of, window_of_gate = self.where[lq], self.section_of, self.window_of_gate
+        p, section_of, window_of_gate = self.positions.where[lq], self.section_of, self.window_of_gate
         emitted, last_on = self.emitted, self.last_on
         emitted_append, window_append = emitted.append, self.emitted_window.append
         new = tuple.__new__  # Gate(...) without the NamedTuple constructor's Python frame: the same value
@@ -229,7 +227,8 @@ class _Assembly:
     def two_qubit(self, k: int, p1: int, p2: int) -> None:
         """Routed op ``k``, a ``cx`` on physical ``p1``, ``p2``: the pending one-qubit gates of both logical
         qubits there, then their next two-qubit gate (unless a SWAP before it already emitted it, fused)."""
-        a, b = self.who[p1], self.who[p2]
+        who = self.positions.who
+        a, b = who[p1], who[p2]
         self.flush(a)
         self.flush(b)
         queues, ptr, gates = self.queues, self.ptr, self.gates
@@ -275,7 +274,7 @@ class _Assembly:
         ``cx`` between them whose gate and pending one-qubit gates all belong to ``window``: the pending gates
         first, then ``SWAP; cx x y`` written ``cx x y; cx y x`` (op ``nxt`` is then skipped). Returns whether it
         did (else nothing changed)."""
-        l1, l2 = self.who[p1], self.who[p2]
+        l1, l2 = self.positions.who[p1], self.positions.who[p2]
         if not (self.fuse and after[0] == "cx" and set(after[1]) == {p1, p2} and l1 >= 0 and l2 >= 0):
             return False
         queues, ptr, gates = self.queues, self.ptr, self.gates
@@ -319,16 +318,6 @@ class _Assembly:
         if g is None:
             g = self.cx_gates[a, b] = cx(a, b)
         return g
-
-    def swap(self, p1: int, p2: int) -> None:
-        """Exchange the logical qubits on physical ``p1`` and ``p2`` (either may be free)."""
-        who, where = self.who, self.where
-        l1, l2 = who[p1], who[p2]
-        who[p1], who[p2] = l2, l1
-        if l1 >= 0:
-            where[l1] = p2
-        if l2 >= 0:
-            where[l2] = p1
 
 
 def _next_twoq(queue: Sequence[int], start: int, gates: Sequence[Gate]) -> int:

@@ -42,6 +42,7 @@ from qcpp.routing.commuting import commuting_blocks, graph_distances, route_bloc
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.patches import Coord, indexed_patch, patch_index, sabre_local
+from qcpp.routing.positions import Positions
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.routing.sabre import assemble, checked_inputs, window_cx
 
@@ -87,33 +88,6 @@ def commuting_middle(gates: Sequence[Gate]) -> tuple[tuple[int, int], ...] | Non
     """
     pairs = [g[1] for g in gates if len(g[1]) == 2]
     return commuting_blocks(gates, mirror_length(pairs))  # type: ignore[arg-type]
-
-
-class Positions:
-    """Where every logical qubit is (``where``: logical -> physical) and who is on every physical qubit (``who``:
-    physical -> logical, -1 for a free qubit) while windows are routed; ``swap`` moves both."""
-
-    def __init__(self, layout: tuple[int, ...], size: int) -> None:
-        self.where = list(layout)
-        self.who = [-1] * size
-        for lq, p in enumerate(layout):
-            self.who[p] = lq
-
-    @classmethod
-    def identity(cls, size: int) -> Positions:
-        """Every physical qubit holding the logical qubit of its own number."""
-        pos = cls.__new__(cls)
-        pos.where = list(range(size))
-        pos.who = list(range(size))
-        return pos
-
-    def swap(self, p: int, q: int) -> None:
-        a, b = self.who[p], self.who[q]
-        self.who[p], self.who[q] = b, a
-        if a >= 0:
-            self.where[a] = q
-        if b >= 0:
-            self.where[b] = p
 
 
 def _route_part(
