@@ -234,7 +234,8 @@ def flag_error(
     flags the user typed.
 
     A field a flag gives names the flag, with its value where the flag repeats (``--obstacle 7,1: (7, 1) is
-    outside the 3x3 grid``, ``--robot 0,0:5,5: goal (5, 5) is outside the 3x3 grid``); an obstacle on a
+    outside the 3x3 grid``, ``--robot 0,0:5,5: goal (5, 5) is outside the 3x3 grid``); the robot count names
+    the flag that gave the robots (``--robot`` when they came one by one, else ``--robots``); an obstacle on a
     robot's endpoint in the default placement names the obstacle and the way out. Any other field: ``exc``.
 
     Args:
@@ -252,6 +253,8 @@ def flag_error(
         '--obstacle 7,1: (7, 1) is outside the 3x3 grid'
     """
     field, reason = exc.field, exc.reason
+    if field == "robots" and endpoints:
+        return type(exc)("--robot", reason)
     if field in _FLAG_OF_FIELD:
         return type(exc)(_FLAG_OF_FIELD[field], reason)
     if (m := _OBSTACLE_FIELD.match(field)) and obstacles:
