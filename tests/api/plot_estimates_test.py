@@ -63,3 +63,17 @@ def test_the_legend_covers_no_point() -> None:
     assert len(points) == 24
     assert not [xy for xy in points if box.contains(*xy)]
     assert not [ax for ax in fig.axes if ax.get_visible() and box.overlaps(ax.bbox)]  # beside, not over, the data
+
+
+def test_a_stack_of_points_is_named_by_what_sets_it_apart() -> None:
+    """Scenarios of one grid (here other hard obstacles) stack at one ``x`` as grids of one size do; the axis label
+    names each kind it holds, and never calls scenarios of one grid grids of one size."""
+    fields = [qcpp.grid_scenario(4, 4, robots=1, obstacles=obs, hard_obstacles=True) for obs in ([(1, 1)], [(2, 2)])]
+    same_grid = [qcpp.estimate(s, depth="none") for s in fields]
+    shapes = [qcpp.estimate(qcpp.grid_scenario(r, c), depth="none") for r, c in ((3, 4), (4, 3))]
+
+    def label(ests: list[qcpp.Estimate]) -> str:
+        return qcpp.plot_estimates(ests, "cx").axes[0].get_xlabel()
+
+    assert label(same_grid) == "robots\nseveral scenarios of one grid: a point each"
+    assert label([*shapes, *same_grid]).endswith("\nseveral grids of one size or scenarios of one grid: a point each")

@@ -12,7 +12,8 @@ Every row is its own point; a point that is not exact because a depth bound stoo
 depth, or a physical figure computed from one, marked ``<=`` or ``~`` in the table) is drawn hollow, and the legend
 says so (:data:`BOUND_LABEL`). Grids of one size but different shapes (``2x6``, ``3x4``, ``4x3``) need different
 circuits, so a curve that holds several of them is drawn as points alone, without a line (it would zigzag between
-the shapes), and the axis label says so.
+the shapes), and the axis label says so; so are several scenarios of one grid (other obstacles or endpoints), which
+the label names as such.
 
 The paper's estimates (:mod:`qcpp.estimators.paper`) are drawn only when asked (``compare_paper=True``), as dashed
 lines in the colour of the same robot count; the paper estimates qubits, data qubits, CNOTs and single-qubit gates
@@ -172,6 +173,43 @@ def _shares_x(xs: Sequence[float]) -> bool:
     return len(set(xs)) < len(xs)
 
 
+def _shared_x_note(rows: Sequence[dict[str, Any]], x: str) -> str:
+    """The axis label's note where points of one curve share an ``x``, naming what sets them apart.
+
+    Points of one curve (one robot count) at one ``x`` are grids of one size but other shapes (``3x4``, ``4x3``),
+    or scenarios of one grid (other obstacles or endpoints, which the rows do not name): the note says which, so
+    that a stack of points is not read as something it is not.
+
+    Args:
+        rows: the rows of one panel that have a value for the plotted metric.
+        x: the axis, as :func:`_series` takes it (``nodes``, ``p`` or ``robots``).
+
+    Returns:
+        ``""`` when no two points of a curve share an ``x``, else a second label line.
+
+    Example:
+        >>> a = {"rows": 3, "cols": 4, "robots": 1, "p": 1}
+        >>> _shared_x_note([a, {**a, "rows": 4, "cols": 3}], "nodes")
+        '\\nseveral grids of one size: a point each'
+        >>> _shared_x_note([a, a], "robots"), _shared_x_note([a], "p")
+        ('\\nseveral scenarios of one grid: a point each', '')
+    """
+    at: dict[tuple[int, int], list[tuple[int, int]]] = defaultdict(list)
+    for r in rows:
+        key = 0 if x == "robots" else r["robots"]
+        at[key, r["rows"] * r["cols"] if x == "nodes" else r[x]].append((r["rows"], r["cols"]))
+    stacks = [grids for grids in at.values() if len(grids) > 1]
+    kinds = [
+        kind
+        for kind, seen in (
+            ("grids of one size", any(len(set(g)) > 1 for g in stacks)),
+            ("scenarios of one grid", any(len(set(g)) < len(g) for g in stacks)),
+        )
+        if seen
+    ]
+    return f"\nseveral {' or '.join(kinds)}: a point each" if kinds else ""
+
+
 def _style(xs: Sequence[float], line: str) -> str:
     """``line`` (``o-``), or its marker alone where two points share an ``x`` (:func:`_shares_x`)."""
     return line.rstrip("-") if _shares_x(xs) else line
@@ -244,7 +282,6 @@ def draw_rows(
         here = [r for r in sel if p is None or r["p"] == p]
         ours = _series(here, x, lambda r: r.get(m.column), m.column)
         theirs = _series(here, x, lambda r: _paper_value(r, paper)) if paper is not None else {}
-        shared = False  # a curve with two grids of one size: drawn as points
         for i, (k, (xs, ys, bound)) in enumerate(ours.items()):
             colour = colours[i % len(colours)]
             who = _robots(k) if x != "robots" else ""
@@ -255,12 +292,11 @@ def draw_rows(
                 by = [y for y, b in zip(ys, bound) if b]
                 ax.plot(bx, by, "o", ms=4, color=colour, markerfacecolor="white", zorder=3)
                 approximate = True
-            shared |= _shares_x(xs)
             if k in theirs:
                 pxs, pys, _ = theirs[k]
                 ax.plot(pxs, pys, _style(pxs, "x--"), ms=5, color=colour, alpha=0.75,
                         label=", ".join(filter(None, ("paper", who))))
-        apart = "\nseveral grids of one size: a point each" if shared else ""
+        apart = _shared_x_note([r for r in here if r.get(m.column) is not None], x)
         if x == "nodes":
             log_x = max(nodes) >= 8 * min(nodes)
             if log_x:
