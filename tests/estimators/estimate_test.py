@@ -86,3 +86,27 @@ def test_obstacle_scenario_and_rotation_depth_against_a_direct_count() -> None:
 def test_too_many_robots_for_the_grid() -> None:
     with pytest.raises(ScenarioError):
         estimate_point(Point(2, 2, 5, 1))
+
+
+@pytest.mark.parametrize(("rows", "cols", "robots"), [(3, 4, 1), (4, 4, 2), (5, 5, 2), (4, 6, 3)])
+def test_soft_obstacles_leave_qubits_cx_t_and_depth_as_without_obstacles(rows: int, cols: int, robots: int) -> None:
+    """Soft obstacles change the cost's weights only (the estimate guide says so): any number of them, on the border
+    or inside, keeps the qubits, CNOTs, T gates and depth of the field without obstacles; hard ones shrink them."""
+    import random
+
+    import qcpp
+
+    free = qcpp.grid_scenario(rows, cols, robots=robots)
+    ends = {n for r in free.robots for n in (r.start, r.goal)}
+    cells = [(r, c) for r in range(rows) for c in range(cols) if (r, c) not in ends]
+    rng = random.Random(rows * 100 + cols * 10 + robots)
+    fields = [list(rng.sample(cells, k)) for k in (1, 2, len(cells) // 3)]
+    fields = [obs for obs in fields if obs]
+    for p in (1, 2):
+        want = qcpp.estimate(free, p=p, depth="exact")
+        for obs in fields:
+            soft = qcpp.estimate(qcpp.grid_scenario(rows, cols, robots=robots, obstacles=obs), p=p, depth="exact")
+            assert (soft.qubits, soft.cx, soft.t, soft.depth) == (want.qubits, want.cx, want.t, want.depth), obs
+        hard = qcpp.grid_scenario(rows, cols, robots=[(r.start, r.goal) for r in free.robots], obstacles=fields[0][:1],
+                                  hard_obstacles=True)  # fmt: skip
+        assert qcpp.estimate(hard, p=p).cx < want.cx
