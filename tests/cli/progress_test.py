@@ -519,3 +519,43 @@ def test_the_stage_says_when_numba_compiles() -> None:
     from numba.core import event
 
     assert not any(type(listener).__name__ == "_Compiles" for listener in event._registered["numba:compile"])
+
+
+def test_a_stage_announced_between_heartbeats_is_not_written_again_by_the_next_one(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The last row's stage (``rendering the table``) is announced at once; the heartbeat, due a moment later on
+    its own schedule, must wait an interval from that line, not write it again. Run on a scripted clock: the
+    heartbeat's waits advance it, so no timing is involved."""
+    from qcpp.io import progress as progress_module
+
+    now = [1000.0]
+    monkeypatch.setattr(progress_module, "time", type("Clock", (), {"monotonic": staticmethod(lambda: now[0])}))
+    out = io.StringIO()
+    bar = progress_module.Progress("estimate", total=12, unit="rows", stream=out, mode="lines", interval=5.0,
+                                   first_after=1.0)  # fmt: skip
+    bar._start = now[0]
+    waits: list[float] = []
+
+    class Stop:
+        """The heartbeat's stop event: each wait moves the clock; during the second, the last row ends."""
+
+        def wait(self, timeout: float) -> bool:
+            waits.append(timeout)
+            if len(waits) == 2:
+                now[0] += timeout
+                bar.update(12)
+                bar.stage("rendering the table")  # announced: no line for an interval
+                now[0] += 0.1  # the heartbeat wakes a moment later
+                return False
+            now[0] += timeout
+            return len(waits) >= 3  # the work ends during the third wait
+
+        def is_set(self) -> bool:
+            return len(waits) >= 3
+
+    bar._stop = Stop()  # type: ignore[assignment]
+    bar._heartbeat()
+    lines = out.getvalue().splitlines()
+    assert sum("rendering the table" in line for line in lines) == 1, lines
+    assert len(lines) == 2 and lines[0].startswith("estimate: 0 / 12 rows"), lines

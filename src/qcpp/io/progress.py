@@ -10,12 +10,13 @@ which stage it is in. Stdout is never touched, so ``--json``, CSV and OpenQASM o
   :data:`DEFAULT_INTERVAL` seconds from a heartbeat thread (so one long native call still shows it is alive),
   e.g. ``estimate: 1,234 / 60,807 rows (2.0%), 6 s elapsed, about 4 min left``, and a last line when it ends. A
   new stage is written at once where no line came for as long (a native call that holds the GIL starves the
-  heartbeat, so a stage that starts one announces itself), so a log gets at most about two lines per interval
-  however fast the stages change. Every line fits the terminal's width
-  (:func:`qcpp.io.text.terminal_width`: ``$COLUMNS``, else 80 on a pipe): the counts, the share and the
-  times are never cut; the task is cut at its end (down to its first word) and then the stage in its middle, where
-  a stage's own counts (``(3 / 6)``) sit at its end and stay, with ``…`` for what went. Cuts fall between words
-  where a boundary is within :data:`WORD_REACH` characters; only a longer word (a path) is cut inside.
+  heartbeat, so a stage that starts one announces itself) and the heartbeat's next line waits an interval from
+  it (not a copy of it a moment later), so a log gets about one line per interval however fast the stages change.
+  Every line fits the terminal's width (:func:`qcpp.io.text.terminal_width`: ``$COLUMNS``, else 80 on a pipe): the
+  counts, the share and the times are never cut; the task is cut at its end (down to its first word) and then the
+  stage in its middle, where a stage's own counts (``(3 / 6)``) sit at its end and stay, with ``…`` for what went.
+  Cuts fall between words where a boundary is within :data:`WORD_REACH` characters; only a longer word (a path) is
+  cut inside.
 * ``QCPP_PROGRESS`` picks the form (``auto``, ``bar``, ``lines``, ``off``); ``QCPP_PROGRESS_INTERVAL`` sets the
   seconds between lines (``0``: a line at every step, synchronously, so tests never depend on timing).
 * While numba compiles (the first run after installing compiles the simulators' kernels, up to a minute), the
@@ -350,12 +351,17 @@ class Progress:
             self._last_line = self._elapsed()
 
     def _heartbeat(self) -> None:
+        """A line every interval after the first-line delay, counted from the last line written: a stage announced
+        meanwhile (:meth:`_announce`) restarts the wait, so its line is not followed at once by the same one."""
         if self._stop.wait(self._first_after):
             return
         while not self._stop.is_set():
+            wait = self._interval - (self._elapsed() - self._last_line)
+            if wait > 0:
+                if self._stop.wait(wait):
+                    return
+                continue
             self._line(unless_stopped=True)
-            if self._stop.wait(self._interval):
-                return
 
     def _start_bar(self) -> None:
         from rich.console import Console
