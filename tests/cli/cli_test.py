@@ -149,3 +149,28 @@ def test_all_commands_registered_and_help() -> None:
 def test_python_dash_m_entry_point() -> None:
     res = subprocess.run([sys.executable, "-m", "qcpp", "--version"], capture_output=True, text=True, check=False)
     assert res.returncode == 0 and res.stdout.startswith("qcpp ")
+
+
+@pytest.mark.parametrize(
+    ("args", "flag"),
+    [
+        (["estimate", "--grid", "12x20", "--grid", "20x30"], "--grid"),
+        (["estimate", "--scenario", str(EXAMPLES / "paper_3x3.toml"), "--scenario",
+          str(EXAMPLES / "two_robots_4x4.toml")], "--scenario"),
+        (["estimate", "-p", "1", "--layers", "2"], "-p/--layers"),
+        (["compile", str(EXAMPLES / "paper_3x3.toml"), "-p", "1", "-p", "2"], "-p/--layers"),
+        (["validate", str(EXAMPLES / "paper_3x3.toml"), "-p", "1", "-p", "2"], "-p/--layers"),
+        (["verify", str(EXAMPLES / "paper_3x3.toml"), "-p", "1", "-p", "2"], "-p/--layers"),
+        (["solve", str(EXAMPLES / "paper_3x3.toml"), "--method", "dfs", "--method", "cpsat"], "--method/-m"),
+    ],
+)  # fmt: skip
+def test_an_option_of_one_value_given_twice_is_refused_not_read_as_its_last(args: list[str], flag: str) -> None:
+    """Click keeps the last of a repeated option: a sweep meant over two grids or two files would silently be of
+    one. One line, exit 2, naming the option."""
+    assert_one_line_error(run(*args), f"{flag}: given twice; give it once")
+
+
+def test_options_that_collect_their_values_and_repeated_flags_are_still_accepted() -> None:
+    res = run("estimate", "--grid", "3x3", "--robot", "0,0:2,2", "--robot", "0,2:2,0", "--wide", "--wide", "--json")
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)[0]["robots"] == 2

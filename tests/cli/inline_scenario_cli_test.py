@@ -296,7 +296,8 @@ def test_scenario_draw_shows_the_field_on_stderr_and_keeps_stdout_a_file() -> No
 )  # fmt: skip
 def test_a_range_for_a_single_circuit_command_is_one_line(command: str, flag: str, value: str, named: str) -> None:
     """``qcpp estimate`` takes ranges and lists; a command that builds one circuit says so, naming the flag."""
-    res = run(command, "--grid", "4x4", "--robots", "1", flag, value)
+    robots = [] if flag == "--robots" else ["--robots", "1"]  # given once: a repeated option is refused first
+    res = run(command, "--grid", "4x4", *robots, flag, value)
     assert res.exit_code == 2 and res.stdout == ""
     assert res.stderr.strip() == (
         f"error: {named}: one value only, got {value!r}: this command builds one circuit; ranges (A..B) and comma "

@@ -15,6 +15,7 @@ interrupted):
 * Usage errors found while parsing are the same one line plus a hint,
   ``error: -p/--layers: 'x' is not a valid integer (see 'qcpp compile --help')`` (:class:`QcppGroup`).
 * ``--device`` is checked the same way in every command that takes it, before any work.
+* An option of one value given twice (``--grid 3x3 --grid 4x4``) is refused, not read as its last value.
 * Numeric options are checked by name in every command (:data:`NUMERIC_OPTIONS`: e.g. ``-p`` at least 1 and at
   most :data:`qcpp.problem.limits.MAX_LAYERS`, ``--seed`` at least 0), choice options by :data:`CHOICES`.
 * Ctrl-C (SIGINT) or SIGTERM: one line ``interrupted`` on stderr and exit code 130 (see :mod:`qcpp.cli.interrupt`).
@@ -486,10 +487,35 @@ def _one_row_per_flag(params: Sequence[Parameter]) -> list[Parameter]:
     return shown
 
 
+def _refuse_repeated(command: Any, ctx: Context, args: Sequence[str]) -> None:
+    """Refuse an option that takes one value given more than once (``--grid 12x20 --grid 20x30``): click would
+    keep the last and drop the others unsaid, so a sweep meant over both would silently be of one. Options that
+    collect their values (``--robot``, ``--obstacle``) and flags are not refused.
+
+    Raises:
+        click's BadParameter: the first such option, naming it and how often it was given (exit 2, one line).
+    """
+    if ctx.resilient_parsing:  # shell completion parses partial lines: nothing to refuse there
+        return
+    _, _, order = command.make_parser(ctx).parse_args(args=list(args))  # its errors are super().parse_args's too
+    seen: dict[str, int] = {}
+    for param in order:
+        if not _is_option(param) or param.multiple or param.count or param.is_flag:  # type: ignore[attr-defined]
+            continue
+        name = param.name or ""
+        seen[name] = seen.get(name, 0) + 1
+        if seen[name] == 2:
+            times = sum(q is param for q in order)
+            hint = " (it takes a comma list)" if "comma" in (getattr(param, "help", None) or "") else ""
+            reason = f"given {'twice' if times == 2 else f'{times} times'}; give it once{hint}"
+            raise _click_exc.BadParameter(reason, ctx=ctx, param=param)
+
+
 class QcppCommand(_TidyHelp, TyperCommand):
     """A typer command whose help shows flags as flags, choice options' values (:data:`CHOICES`), the options
     in panels (:data:`PANELS`), and each name of an ``--x/--no-x`` flag on a row of its own
-    (:func:`_one_row_per_flag`), so that no option name is cut at 80 columns.
+    (:func:`_one_row_per_flag`), so that no option name is cut at 80 columns; an option of one value given twice
+    is refused (:func:`_refuse_repeated`).
     """
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
@@ -501,6 +527,10 @@ class QcppCommand(_TidyHelp, TyperCommand):
         if option is not None:
             _set_panels(self, [option])
         return option
+
+    def parse_args(self, ctx: Context, args: list[str]) -> list[str]:
+        _refuse_repeated(self, ctx, args)
+        return super().parse_args(ctx, args)
 
     def format_help(self, ctx: Context, formatter: Any) -> None:
         _show_choices(self)
