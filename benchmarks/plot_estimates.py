@@ -90,7 +90,8 @@ def main(argv: list[str]) -> int:
         save_figure_atomic(fig, str(out), dpi=110)
     finally:
         plt.close(fig)
-    print("| grid | robots | qubits | CNOT | T (logical AND) | physical qubits (from the depth bound, approximate) |")
+    print("| grid | robots | qubits | CNOT | T, FT model (ft_total_t) | "
+          "physical qubits (from the depth bound, approximate) |")
     print("|---|---:|---:|---:|---:|---:|")
     for robots in (1, 4, 8):
         s = data[robots]

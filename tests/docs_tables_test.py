@@ -1,7 +1,8 @@
 """Tables of the docs that a ``qcpp estimate`` command prints are what it prints today.
 
 A Markdown table right after a line that is one backquoted ``qcpp estimate ... --format md`` command (the estimate
-guide's resource table) must equal that command's output, run in process. The headline table of README.md and
+guide's resource and scaling tables, the scaling table of the resource-estimates page) must equal that command's
+output, run in process (commands of :data:`SLOW` in the heavy run). The headline table of README.md and
 docs/index.md (ours against the paper) must hold the qubits and CX of the Quick start command's rows.
 """
 
@@ -18,7 +19,10 @@ from typer.testing import CliRunner
 from qcpp.cli.app import app
 
 ROOT = Path(__file__).resolve().parents[1]
-PASTED = [ROOT / "docs" / "guide" / "estimate.md"]
+PASTED = [ROOT / "docs" / "guide" / "estimate.md", ROOT / "docs" / "resource-estimates.md"]
+SLOW = ("--physical", "--depth exact")
+"""A command with any of these runs for many seconds (the QDK estimator, exact depths of 40x40): its table is
+checked in the heavy run."""
 HEADLINE = [ROOT / "README.md", ROOT / "docs" / "index.md"]
 QUICK_START = "qcpp estimate --grid 3x3,4x4,5x5,6x6 --robots 1..3 --compare paper --format md"
 _COMMAND = re.compile(r"^`(qcpp estimate [^`]*--format md[^`]*)`$")
@@ -62,18 +66,28 @@ def test_the_parser_finds_a_pasted_table() -> None:
     assert markdown_rows("| a | b |\n|---|---|\n| 1 | 2 |") == [{"a": "1", "b": "2"}]
 
 
-@pytest.mark.parametrize("page", PASTED, ids=lambda p: str(p.relative_to(ROOT)))
-def test_a_pasted_table_is_what_its_command_prints(page: Path) -> None:
-    tables = pasted_tables(page.read_text(encoding="utf-8"))
-    assert tables, f"{page.relative_to(ROOT)} names no qcpp estimate command above a table"
+def _pasted_cases() -> list[object]:
+    """One case per page and pasted table (a page without one: a case that fails), the slow ones heavy."""
+    cases: list[object] = []
+    for page in PASTED:
+        name = str(page.relative_to(ROOT))
+        tables = pasted_tables(page.read_text(encoding="utf-8")) or [(0, "", "")]
+        for line, command, table in tables:
+            marks = [pytest.mark.heavy] if any(flag in command for flag in SLOW) else []
+            cases.append(pytest.param(page, line, command, table, marks=marks, id=f"{name}:{line}"))
+    return cases
+
+
+@pytest.mark.parametrize(("page", "line", "command", "table"), _pasted_cases())
+def test_a_pasted_table_is_what_its_command_prints(page: Path, line: int, command: str, table: str) -> None:
+    assert command, f"{page.relative_to(ROOT)} names no qcpp estimate command above a table"
     lines = page.read_text(encoding="utf-8").splitlines()
-    for line, command, table in tables:
-        printed = run(command).strip().splitlines()
-        rows = "\n".join(x for x in printed if x.startswith("|"))
-        assert table == rows, f"{page.relative_to(ROOT)}:{line}: the table differs from `{command}`"
-        after = lines[line + table.count("\n") + 2 : line + table.count("\n") + 8]  # the lines under the table
-        for note in (x for x in printed if x.strip() and not x.startswith("|")):  # a footnote: the page has it too
-            assert note in after, f"{page.relative_to(ROOT)}:{line}: `{command}` ends with {note!r}; paste it too"
+    printed = run(command).strip().splitlines()
+    rows = "\n".join(x for x in printed if x.startswith("|"))
+    assert table == rows, f"{page.relative_to(ROOT)}:{line}: the table differs from `{command}`"
+    after = lines[line + table.count("\n") + 2 : line + table.count("\n") + 8]  # the lines under the table
+    for note in (x for x in printed if x.strip() and not x.startswith("|")):  # a footnote: the page has it too
+        assert note in after, f"{page.relative_to(ROOT)}:{line}: `{command}` ends with {note!r}; paste it too"
 
 
 @pytest.mark.parametrize("page", HEADLINE, ids=lambda p: str(p.relative_to(ROOT)))
