@@ -8,6 +8,9 @@ accepted by the Metropolis rule (always if the cost does not rise, else with pro
 ``iterations`` is split into ``cycles`` annealing cycles (default 10): each reheats to ``t0`` and restarts
 from the best state of the run so far (reheating escapes local minima that one long cycle stays in).
 
+``time_limit`` (seconds) and ``stop`` (a caller's request, e.g. Ctrl-C) end the search early with the best state so
+far (:mod:`qcpp.problem.solvers.stopping`); without them the run is unchanged.
+
 Defaults: 20,000 iterations; ``t0`` the mean absolute cost change of a 50-move random walk from the start;
 ``cooling`` lowers the temperature 1000-fold over one cycle. ``evaluated`` counts every cost lookup.
 
@@ -27,6 +30,8 @@ Example:
 from __future__ import annotations
 
 import math
+import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -34,6 +39,7 @@ from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers.moves import ComponentMode, CostCache, MoveSpace, search_solution, search_start
 from qcpp.problem.solvers.result import ProgressFn, Solution
+from qcpp.problem.solvers.stopping import Clock, StopFn, stop_check, stopped_note
 
 CALIBRATION_MOVES = 50
 DEFAULT_CYCLES = 10
@@ -51,6 +57,9 @@ def anneal(
     rule: Rule = "exact",
     components: ComponentMode = "auto",
     progress: ProgressFn | None = None,
+    time_limit: float | None = None,
+    stop: StopFn | None = None,
+    clock: Clock = time.perf_counter,
 ) -> Solution:
     """Simulated annealing over feasible paths with SBF moves (see the module docstring).
 
@@ -65,13 +74,20 @@ def anneal(
         components: Move-graph component handling: ``all``, ``initial`` or ``auto``
             (see :mod:`qcpp.problem.solvers.moves`).
         progress: Called as ``progress(done, total)`` in iterations, every 1% or so.
+        time_limit: Seconds after which the search stops with the best assignment so far (``None``: none; the
+            clock starts before the move space is built). The same seed gives the same trace up to where it stops.
+        stop: Asked before every iteration; once it returns ``True`` the search stops the same way (the command
+            line's Ctrl-C).
+        clock: The clock ``time_limit`` is measured on (tests pass a fake one).
 
     Returns:
-        The best assignment seen, with ``trace``, ``seed``, ``rule`` and the component fields filled in.
+        The best assignment seen, with ``trace``, ``seed``, ``rule`` and the component fields filled in; a
+        search that stopped early says why in ``stopped`` and how far it got in a note.
 
     Raises:
         ValueError: on a non-positive ``iterations`` or ``t0``, a ``cooling`` outside ``(0, 1]``, ``cycles``
-            outside ``1 .. iterations``, or an unknown rule / component mode.
+            outside ``1 .. iterations``, a ``time_limit`` that is not a positive number, or an unknown rule /
+            component mode.
         ScenarioError: weights outside :mod:`qcpp.problem.cost_range`'s range.
 
     Example:
@@ -90,6 +106,7 @@ def anneal(
         cooling = FINAL_TEMPERATURE_RATIO ** (1.0 / (iterations // cycles))
     if not 0 < cooling <= 1:
         raise ValueError(f"cooling must be in (0, 1], got {cooling}")
+    check = stop_check(time_limit, stop, clock)
     t_start, rng, space, cost = search_start(scenario, seed, rule, components)
     starts = space.starts()
     if t0 is None:
@@ -101,14 +118,21 @@ def anneal(
     total = iterations * len(starts)
     step = max(1, total // 100)
     cycle_len = [iterations // cycles + (1 if i < iterations % cycles else 0) for i in range(cycles)]
+    stopped: str | None = None
     for start in starts:
+        if stopped:
+            break
         cur, cur_cost = start, cost(start)
         run_best, run_best_cost = cur, cur_cost
         space.visit(cur)
         for n_it in cycle_len:
+            if stopped:
+                break
             # each cycle reheats to t0 and continues from this run's best state
             cur, cur_cost, temp = run_best, run_best_cost, t0
             for _ in range(n_it):
+                if check is not None and (stopped := check()):
+                    break
                 cand = space.random_flip(cur, rng)
                 if cand is not None:
                     c = cost(cand)
@@ -127,7 +151,10 @@ def anneal(
 
     notes = [f"{len(starts)} restart(s) (one per combination of component representatives)", *space.notes()]
     notes.append(f"t0={t0:.6g}, cooling={cooling:.6g}, {len(cost)} distinct assignments scored")
-    return search_solution("anneal", best, t_start, cost, trace, space, seed, notes)
+    if stopped:
+        notes.append(stopped_note(stopped, len(trace), total, "iterations", time_limit))
+    sol = search_solution("anneal", best, t_start, cost, trace, space, seed, notes)
+    return replace(sol, stopped=stopped) if stopped else sol
 
 
 def _calibrate(space: MoveSpace, cost: CostCache, start: tuple[int, ...], rng: np.random.Generator) -> float:

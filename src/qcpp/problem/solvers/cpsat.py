@@ -42,6 +42,7 @@ Example:
 from __future__ import annotations
 
 import math
+import threading
 import time
 from dataclasses import dataclass
 from fractions import Fraction
@@ -56,12 +57,16 @@ from qcpp.problem.paths import initial_path, is_feasible, path_to_nodes
 from qcpp.problem.presets import boundary_nodes
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers.result import ProgressFn, Solution
+from qcpp.problem.solvers.stopping import INTERRUPTED, StopFn
 
 MAX_DENOMINATOR = 10**6
 """Largest denominator accepted when reading a float weight as an exact rational."""
 
 MAX_SCALE = 10**12
 """Largest common denominator of the objective (beyond it the integer objective would lose CP-SAT's precision)."""
+
+STOP_POLL_SECONDS = 0.05
+"""How often a running search asks its ``stop`` function (from a helper thread; CP-SAT itself runs in C++)."""
 
 _EPIGRAPH_MAX_STEPS = 400
 """Most integer values of a balance difference for which its square is written as chords (else a product)."""
@@ -93,9 +98,25 @@ class CpSatResult:
         """Absolute gap ``cost - bound`` (0 when proven optimal, ``inf`` without a bound)."""
         return max(0.0, self.solution.cost.total - self.bound)
 
+    @property
+    def relative_gap(self) -> float:
+        """The gap as OR-Tools measures it (its ``relative_gap_limit``): :func:`relative_gap` of cost and bound."""
+        return relative_gap(self.solution.cost.total, self.bound)
+
     def time_to_cost(self, target: float, tol: float = 1e-9) -> float | None:
         """Seconds until the first solution of cost at most ``target + tol`` was found (``None``: never)."""
         return next((t for t, c in self.improvements if c <= target + tol), None)
+
+
+def relative_gap(cost: float, bound: float) -> float:
+    """``(cost - bound) / max(1, |cost|)``: the relative gap of OR-Tools (CP-SAT's ``relative_gap_limit``, whose
+    ``max(1, .)`` keeps it finite at a cost of 0); 0 when proven optimal, ``inf`` without a bound.
+
+    Example:
+        >>> relative_gap(1336.0, -199.0), relative_gap(-20.0, -20.0), relative_gap(0.0, -3.0)
+        (1.1489520958083832, 0.0, 3.0)
+    """
+    return max(0.0, cost - bound) / max(1.0, abs(cost))
 
 
 def exact_rational(x: float, max_denominator: int = MAX_DENOMINATOR) -> Fraction:
@@ -384,18 +405,25 @@ def cpsat(
     linearization: int = 2,
     symmetry_breaking: bool = False,
     progress: ProgressFn | None = None,
+    stop: StopFn | None = None,
 ) -> CpSatResult:
     """Minimise the cost with CP-SAT (see the module docstring for the model).
 
     Args:
         time_limit: Wall-clock limit in seconds (``None``: run until the optimum is proven).
-        workers: CP-SAT search workers (threads).
+        workers: CP-SAT search workers (threads). One (the default) is deterministic: the same seed gives the
+            same answer and proof on every run; more search in parallel and may answer differently run to run.
         seed: CP-SAT's random seed.
         linearization: CP-SAT's ``linearization_level`` (0-2).
         symmetry_breaking: Add lex-leader constraints for the grid symmetries that map the scenario onto
             itself (:func:`scenario_symmetries`). Off by default: it slows the proofs down.
         progress: Called as ``progress(solutions found, None)`` at every improving solution (how many
             there will be is not known).
+        stop: A caller's stop request (the command line's Ctrl-C), asked every :data:`STOP_POLL_SECONDS` from a
+            helper thread while CP-SAT searches; once it returns ``True`` the search ends as at a time limit and
+            the result's ``solution.stopped`` is ``"interrupted"`` (unless CP-SAT had proven the optimum). With
+            ``stop`` CP-SAT does not catch SIGINT itself, so the caller's handler sees it. ``True`` before the
+            search starts: no search, the initial paths.
 
     Returns:
         A :class:`CpSatResult`; its ``solution.paths`` are the best paths found (the initial paths if CP-SAT
@@ -434,6 +462,8 @@ def cpsat(
     m.model.minimize(sum(c * v for c, v in int_terms) + offset)
     recorder = _Recorder(t_start, progress)
     solver = cp_model.CpSolver()
+    if stop is not None:
+        solver.parameters.catch_sigint_signal = False  # the caller handles the signal and asks through stop
     solver.parameters.num_workers = workers
     # OR-Tools' own search log stays off (it would print straight to stdout): our notes say what matters
     solver.parameters.log_search_progress = False
@@ -444,7 +474,9 @@ def cpsat(
     solver.parameters.linearization_level = linearization
     if time_limit is not None:
         solver.parameters.max_time_in_seconds = max(0.0, time_limit - (time.perf_counter() - t_start))
-    status = solver.solve(m.model, recorder)
+    asked = stop is not None and stop()
+    status = cp_model.UNKNOWN if asked else _solve_until_stopped(solver, m.model, recorder, stop)
+    asked = asked or (stop is not None and stop())
     status_name = solver.status_name(status)
     if status in (cp_model.MODEL_INVALID, cp_model.INFEASIBLE):
         # validate() can be the whole model (100+ lines): its first line names the problem
@@ -459,7 +491,8 @@ def cpsat(
         model_value = solver.objective_value / scale
     else:
         paths, model_value = hint, math.inf
-        notes.append("no solution found within the time limit: returning the initial paths")
+        why = "before the search was interrupted" if asked else "within the time limit"
+        notes.append(f"no solution found {why}: returning the initial paths")
     for r, p in enumerate(paths):
         if not is_feasible(scenario, r, p):
             raise RuntimeError(f"CP-SAT returned an infeasible path for robot {r}; the model is wrong")
@@ -485,13 +518,40 @@ def cpsat(
         trace=tuple(v for _, v in improvements),
         seed=seed,
         notes=(*notes, f"bound {bound:g}, gap {max(0.0, parts.total - bound):g}"),
-        details=_details(proven, bound, max(0.0, parts.total - bound), status_name),
+        details=_details(proven, bound, parts.total, status_name),
+        stopped=INTERRUPTED if asked and not proven else None,
     )
     return CpSatResult(sol, proven, bound, status_name, improvements, scale)
 
 
-def _details(proven: bool, bound: float, gap: float, status: str) -> tuple[tuple[str, object], ...]:
-    """The JSON fields of a CP-SAT answer (``Solution.details``): JSON has no infinity, so no bound is ``null``."""
+def _details(proven: bool, bound: float, cost: float, status: str) -> tuple[tuple[str, object], ...]:
+    """The JSON fields of a CP-SAT answer (``Solution.details``): JSON has no infinity, so no bound is ``null``.
+    ``gap`` is ``cost - bound``, ``relative_gap`` :func:`relative_gap`."""
     known = math.isfinite(bound)
+    gap = max(0.0, cost - bound)
     return (("proven_optimal", proven), ("bound", bound if known else None), ("gap", gap if known else None),
-            ("status", status))
+            ("relative_gap", relative_gap(cost, bound) if known else None), ("status", status))
+
+
+def _solve_until_stopped(
+    solver: cp_model.CpSolver, model: cp_model.CpModel, recorder: _Recorder, stop: StopFn | None
+) -> int:
+    """``solver.solve(model, recorder)``; with ``stop``, a helper thread asks it every :data:`STOP_POLL_SECONDS`
+    and ends the search (``stop_search``, as a time limit would) once it answers ``True``. The thread keeps asking
+    until the solve returns, so a request that comes while CP-SAT is still starting up is not lost."""
+    if stop is None:
+        return solver.solve(model, recorder)
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.wait(STOP_POLL_SECONDS):
+            if stop():
+                solver.stop_search()
+
+    watcher = threading.Thread(target=watch, name="qcpp-cpsat-stop", daemon=True)
+    watcher.start()
+    try:
+        return solver.solve(model, recorder)
+    finally:
+        done.set()
+        watcher.join()

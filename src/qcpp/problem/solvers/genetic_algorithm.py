@@ -18,6 +18,9 @@
 With the defaults (population 192, 40 generations) this is close to a beam search over the SBF move graph
 whose randomness is in the initial population and the crossover.
 
+``time_limit`` (seconds) and ``stop`` (a caller's request, e.g. Ctrl-C) end the search early with the best
+individual so far (:mod:`qcpp.problem.solvers.stopping`); without them the run is unchanged.
+
 The trace is the best cost after each generation; ``components_visited`` lists, per robot, the components
 of every individual ever scored.
 
@@ -32,6 +35,8 @@ Example:
 
 from __future__ import annotations
 
+import time
+from dataclasses import replace
 from typing import Literal
 
 import numpy as np
@@ -40,6 +45,7 @@ from qcpp.problem.sbf import Rule
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers.moves import ComponentMode, MoveSpace, search_solution, search_start
 from qcpp.problem.solvers.result import ProgressFn, Solution
+from qcpp.problem.solvers.stopping import Clock, StopFn, stop_check, stopped_note
 
 MutationMode = Literal["all", "random"]
 SelectionMode = Literal["truncation", "tournament"]
@@ -61,6 +67,9 @@ def genetic(
     rule: Rule = "exact",
     components: ComponentMode = "auto",
     progress: ProgressFn | None = None,
+    time_limit: float | None = None,
+    stop: StopFn | None = None,
+    clock: Clock = time.perf_counter,
 ) -> Solution:
     """Evolve assignments with SBF mutations and path-swapping crossover (see the module docstring).
 
@@ -78,12 +87,21 @@ def genetic(
         components: Move-graph component handling: ``all``, ``initial`` or ``auto``
             (see :mod:`qcpp.problem.solvers.moves`).
         progress: Called as ``progress(done, total)`` in generations.
+        time_limit: Seconds after which the search stops with the best individual so far (``None``: none; the
+            clock starts before the move space is built). Asked before every child is scored, so a generation
+            can be cut short; the same seed gives the same trace up to where it stops.
+        stop: Asked where ``time_limit`` is; once it returns ``True`` the search stops the same way (the command
+            line's Ctrl-C).
+        clock: The clock ``time_limit`` is measured on (tests pass a fake one).
 
     Returns:
-        The best individual ever scored, with ``trace``, ``seed``, ``rule`` and the component fields.
+        The best individual ever scored, with ``trace``, ``seed``, ``rule`` and the component fields; a search
+        that stopped early says why in ``stopped`` and how far it got in a note (the trace then ends with the
+        best after the generation it stopped in, if it had scored any child of it).
 
     Raises:
-        ValueError: on non-positive sizes, a negative ``crossover``, or an unknown mode / rule.
+        ValueError: on non-positive sizes, a negative ``crossover``, a ``time_limit`` that is not a positive
+            number, or an unknown mode / rule.
         ScenarioError: weights outside :mod:`qcpp.problem.cost_range`'s range.
 
     Example:
@@ -104,6 +122,7 @@ def genetic(
         raise ValueError(f"unknown mutation mode {mutation!r} (expected 'all' or 'random')")
     if selection not in ("truncation", "tournament"):
         raise ValueError(f"unknown selection {selection!r} (expected 'truncation' or 'tournament')")
+    check = stop_check(time_limit, stop, clock)
     t_start, rng, space, cost = search_start(scenario, seed, rule, components)
 
     def score(ind: Assignment) -> float:
@@ -116,7 +135,10 @@ def genetic(
     best, best_cost = pop[best_i], costs[best_i]
     n_cross = round(crossover * population)
     trace: list[float] = []
+    stopped: str | None = None
     for gen in range(generations):
+        if check is not None and (stopped := check()):
+            break
         offspring: list[Assignment] = []
         for ind in pop:
             if mutation == "all":
@@ -134,8 +156,19 @@ def genetic(
             offspring.append(tuple(pa if t else pb for pa, pb, t in zip(pop[a], pop[b], take)))
         merged = dict(zip(pop, costs))
         for child in offspring:
+            if check is not None and (stopped := check()):
+                break
             if child not in merged:
                 merged[child] = score(child)
+        if stopped:
+            # the generation is cut short: its best child so far counts (the first of the cheapest, as selection's
+            # stable sort would take it)
+            cheapest = min(merged.items(), key=lambda kv: kv[1])
+            if cheapest[1] < best_cost:
+                best, best_cost = cheapest
+            if len(merged) > len(pop):
+                trace.append(best_cost)
+            break
         ranked = _select(list(merged.items()), population, elite, selection, rng)
         pop = [ind for ind, _ in ranked]
         costs = [c for _, c in ranked]
@@ -151,7 +184,10 @@ def genetic(
         *space.notes(),
         f"{len(cost)} distinct assignments scored",
     ]
-    return search_solution("genetic", best, t_start, cost, trace, space, seed, notes)
+    if stopped:
+        notes.append(stopped_note(stopped, len(trace), generations, "generations", time_limit))
+    sol = search_solution("genetic", best, t_start, cost, trace, space, seed, notes)
+    return replace(sol, stopped=stopped) if stopped else sol
 
 
 def _initial_population(space: MoveSpace, size: int, rng: np.random.Generator) -> list[Assignment]:

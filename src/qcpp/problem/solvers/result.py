@@ -57,6 +57,9 @@ class Solution:
             :func:`solution_to_dict` adds (``cpsat``: ``proven_optimal``, ``bound``, ``gap``, ``status``; ``qaoa``:
             :func:`qcpp.training.qaoa_solver.qaoa_details`); ``dict(sol.details)`` reads them. Pairs rather than a
             dict keep the value immutable at its top level; the values may be lists (angles, levels).
+        stopped: ``None`` for a run that ended on its own; else why it ended early with the best found so far:
+            ``"time limit"`` or ``"interrupted"`` (:mod:`qcpp.problem.solvers.stopping`). Such an answer is no
+            optimum, whatever its cost.
     """
 
     method: str
@@ -72,6 +75,7 @@ class Solution:
     rule: str | None = None
     notes: tuple[str, ...] = ()
     details: tuple[tuple[str, Any], ...] = field(default=(), hash=False)  # values may be lists: not hashable
+    stopped: str | None = None
 
     def node_paths(self, scenario: Scenario) -> tuple[tuple[Node, ...], ...]:
         """Each robot's path as its ``(row, col)`` nodes from start to goal (``paths`` holds edge masks).
@@ -107,8 +111,8 @@ def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool =
 
     Returns:
         A fresh dict with ``method``, ``paths``, ``cost``, ``cost_parts`` (``c1``, ``c2``, ``c3``), ``seconds``,
-        ``evaluated``, every non-empty optional field of :class:`Solution`, the method's ``details`` and
-        ``trace_length``.
+        ``evaluated``, ``stopped`` (only for a run that stopped early), every non-empty optional field of
+        :class:`Solution`, the method's ``details`` and ``trace_length``.
     """
     out: dict[str, Any] = {
         "method": sol.method,
@@ -120,6 +124,8 @@ def solution_to_dict(scenario: Scenario, sol: Solution, *, include_trace: bool =
         "seconds": sol.seconds,
         "evaluated": sol.evaluated,
     }
+    if sol.stopped is not None:
+        out["stopped"] = sol.stopped
     if sol.paths_per_robot:
         out["paths_per_robot"] = list(sol.paths_per_robot)
     if sol.num_components:
