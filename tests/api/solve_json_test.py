@@ -19,6 +19,8 @@ CASES = [
     ("cpsat", {}, ()),
     ("anneal", {"seed": 3}, ("--seed", "3")),
     ("genetic", {"seed": 1}, ("--seed", "1")),
+    ("anneal", {"seed": 2, "iterations": 80}, ("--seed", "2", "--iterations", "80")),
+    ("genetic", {"generations": 3}, ("--generations", "3")),
     ("qaoa", {"p": 2, "maxiter": 30}, ("-p", "2", "--maxiter", "30")),
     ("qaoa", {"p": 1, "optimizer": "multi-angle", "maxiter": 10},
      ("-p", "1", "--optimizer", "multi-angle", "--maxiter", "10")),

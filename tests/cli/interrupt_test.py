@@ -220,6 +220,52 @@ def test_an_interrupt_while_typer_builds_the_context_is_reported(monkeypatch: py
     assert res.exit_code == 130 and res.stderr == "interrupted\n" and res.stdout == ""
 
 
+def test_a_deferred_stop_takes_the_first_signal_as_a_request_and_the_second_as_an_interrupt(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Inside :func:`interrupt.deferred_stop` (as ``qcpp solve`` runs its stoppable solvers) the first signal only
+    sets the block's event; a second raises as outside it, and the block puts the handlers back."""
+    monkeypatch.setattr(interrupt, "_installed", True)  # as after install(), without its process-wide watchdog
+    monkeypatch.setattr(interrupt, "_requested", [])
+    previous = signal.getsignal(signal.SIGINT)
+    with pytest.raises(KeyboardInterrupt), interrupt.deferred_stop() as stopped:
+        signal.raise_signal(signal.SIGINT)
+        assert stopped.is_set() and interrupt.stop_requested()
+        signal.raise_signal(signal.SIGINT)
+        pytest.fail("the second signal did not raise")
+    assert signal.getsignal(signal.SIGINT) is previous
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+@pytest.mark.parametrize("method", ["anneal", "genetic"])
+def test_a_signal_during_a_long_solve_prints_the_best_so_far(method: str, sig: signal.Signals) -> None:
+    """A search of far more steps than the test could wait for: the signal lands in it (or in its set-up, which then
+    stops before its first step), and the answer so far comes out whole, marked, before ``interrupted``."""
+    steps = ["--iterations", "1000000000"] if method == "anneal" else ["--generations", "1000000000"]
+    proc = start(["solve", "--grid", "4x4", "--robots", "2", "-m", method, *steps, "--json"])
+    before = "".join(wait_until_ready(proc))
+    out = json.loads(stop(proc, sig, before))
+    assert out["method"] == method and out["stopped"] == "interrupted"
+    assert any(n.startswith("interrupted after ") for n in out["notes"]) and len(out["paths"]) == 2
+
+
+@pytest.mark.heavy
+def test_a_signal_during_cpsat_search_prints_its_best_so_far() -> None:
+    """The signal goes once CP-SAT reported its first improving solution (a progress line at every step), so it
+    lands inside the native search, which a helper thread then stops; 3 robots on 8x8 are far from proven then."""
+    env = {"QCPP_PROGRESS": "lines", "QCPP_PROGRESS_INTERVAL": "0"}
+    proc = start(["solve", "--grid", "8x8", "--robots", "3", "-m", "cpsat", "--json"], env)
+    assert proc.stderr is not None
+    seen = read_until(proc.stderr, lambda text: "improving solution" in text)
+    if "improving solution" not in seen:
+        proc.wait()
+        pytest.fail(f"the process ended (exit {proc.returncode}) before CP-SAT found a solution: {seen!r}")
+    out = json.loads(stop(proc, signal.SIGINT, seen))
+    assert out["stopped"] == "interrupted" and out["status"] == "FEASIBLE" and out["proven_optimal"] is False
+    assert out["relative_gap"] == pytest.approx(out["gap"] / max(1.0, abs(out["cost"])))
+
+
 @pytest.mark.heavy
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_stops_a_running_qcec_check(sig: signal.Signals) -> None:

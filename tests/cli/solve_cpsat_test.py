@@ -42,6 +42,7 @@ def test_time_limit_reports_a_bound() -> None:
         assert out["cost"] == -16
     if out["bound"] is not None:  # null when CP-SAT stopped before its first solution
         assert out["bound"] <= -16 and out["gap"] == pytest.approx(out["cost"] - out["bound"])
+        assert out["relative_gap"] == pytest.approx(out["gap"] / max(1.0, abs(out["cost"])))
 
 
 def test_text_says_whether_it_is_proven() -> None:
@@ -53,7 +54,7 @@ def test_text_says_whether_it_is_proven() -> None:
 @pytest.mark.parametrize(
     ("args", "fragment"),
     [
-        (("-m", "dfs", "--time-limit", "5"), "--time-limit: applies to --method cpsat only"),
+        (("-m", "dfs", "--time-limit", "5"), "--time-limit: applies to --method cpsat, anneal or genetic only"),
         (("-m", "cpsat", "--time-limit", "0"), "--time-limit: expected a positive number"),
         (("-m", "cpsat", "--time-limit", "-3"), "--time-limit"),
         (("-m", "cpsat", "--time-limit", "inf"), "--time-limit"),

@@ -46,6 +46,9 @@ def solve(
     seed: int = 0,
     rule: str = "exact",
     time_limit: float | None = None,
+    workers: int | None = None,
+    iterations: int | None = None,
+    generations: int | None = None,
     sampler: str | None = None,
     progress: ProgressArg = None,
     **qaoa_options: Any,
@@ -59,7 +62,13 @@ def solve(
             paper's heuristic (docs/guide/solve.md says why they differ).
         seed: Random seed (stochastic methods).
         rule: SBF rule of the local moves and of the QAOA mixer: ``exact`` or ``paper``.
-        time_limit: ``cpsat``: seconds before it stops with its best (default: until proven optimal).
+        time_limit: ``cpsat``, ``anneal``, ``genetic``: seconds before the search stops with its best so far
+            (default: ``cpsat`` until proven optimal, the others all their iterations). An answer cut short says
+            so in ``stopped`` (``"time limit"``); ``cpsat``'s proof fields say how far from optimal it may be.
+        workers: ``cpsat``: CP-SAT's search threads (default 1: the same answer on every run; more may answer
+            differently from run to run).
+        iterations: ``anneal``: iterations per restart (default 20,000).
+        generations: ``genetic``: generations (default 40).
         sampler: ``qubo``: ``tabu`` (tabu search, one run per read; the default) or ``sa`` (simulated annealing,
             1,000 sweeps per read), 100 reads on the per-robot QUBO (:func:`qcpp.qubo.solve.solve_qubo`).
         progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
@@ -89,10 +98,18 @@ def solve(
             raise OptionError(name, f"unknown option of solve (qaoa's: {', '.join(_QAOA_DEFAULTS)})")
         raise OptionError(name, f"applies to method='qaoa' only (got method={method!r})")
     if time_limit is not None:
-        if method != "cpsat":
-            raise OptionError("time_limit", f"applies to method='cpsat' only (got method={method!r})")
+        if method not in ("cpsat", "anneal", "genetic"):
+            raise OptionError("time_limit",
+                              f"applies to method='cpsat', 'anneal' or 'genetic' only (got method={method!r})")
         if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
             raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
+    for name, value, owner in (("workers", workers, "cpsat"), ("iterations", iterations, "anneal"),
+                               ("generations", generations, "genetic")):  # fmt: skip
+        if value is not None:
+            if method != owner:
+                raise OptionError(name, f"applies to method={owner!r} only (got method={method!r})")
+            check_count(value, name, 1)
+    sizes = {k: v for k, v in (("iterations", iterations), ("generations", generations)) if v is not None}
     if sampler is not None:
         if method != "qubo":
             raise OptionError("sampler", f"applies to method='qubo' only (got method={method!r})")
@@ -116,7 +133,8 @@ def solve(
         from qcpp.problem.solvers import cpsat
 
         with reporting(progress, task, unit=unit) as bar:
-            return cpsat(s, seed=seed, time_limit=time_limit, progress=bar and bar.update).solution
+            return cpsat(s, seed=seed, time_limit=time_limit, workers=workers or 1,
+                         progress=bar and bar.update).solution  # fmt: skip
     if method == "qubo":
         from qcpp.qubo.solve import solve_qubo
 
@@ -125,8 +143,9 @@ def solve(
                               progress=bar and bar.update).solution  # fmt: skip
     from qcpp.problem.solvers import SOLVERS
 
+    limits = {"time_limit": time_limit, **sizes} if method in ("anneal", "genetic") else {}
     with reporting(progress, task, unit=unit) as bar:
-        return SOLVERS[method](s, seed=seed, rule=rule, progress=bar and bar.update)  # type: ignore[arg-type]
+        return SOLVERS[method](s, seed=seed, rule=rule, progress=bar and bar.update, **limits)  # type: ignore[arg-type]
 
 
 def train_qaoa(

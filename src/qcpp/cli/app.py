@@ -429,6 +429,7 @@ PANELS: dict[str, str] = {
     "backend": "Method", "max_amplitudes": "Method",
     "dask": "Method", "samples": "Method", "form": "Method", "penalty": "Method",
     "solve.rule": "Method", "solve.initial": "Method", "solve.p": "Method", "solve.sampler": "Method",
+    "solve.workers": "Method", "solve.iterations": "Method", "solve.generations": "Method",
     "simulate.rule": "Method",
     "simulate.angles": "Method", "validate.angle_values": "Method", "verify.rule": "Method",
     "optimum": "Method",

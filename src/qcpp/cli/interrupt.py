@@ -14,7 +14,13 @@ How (installed by :func:`qcpp.cli.app.main`, i.e. only for the real command line
 4. ``interrupted`` is written once, under a lock, so the watchdog never ends the process between "reported" and
    "written". :func:`stop_requested` lets the CLI report an exception the signal caused (e.g. an ``ImportError``
    from a ``KeyboardInterrupt`` inside a C extension's import) as ``interrupted``.
-5. :func:`announce_ready`: with ``QCPP_READY`` set (not empty or ``0``) the CLI prints ``ready: <what>`` on stderr
+5. :func:`deferred_stop`: a command that can answer with what it has (``qcpp solve``: the best paths found so far)
+   asks for the first signal as a flag rather than an exception: inside the block the first SIGINT or SIGTERM sets
+   the block's event (from the handler, and from the watchdog, which also reaches a main thread inside a native
+   call), and the command finishes its output and then raises ``KeyboardInterrupt`` itself (``interrupted``, exit
+   130, as everywhere). A second signal raises at once, as outside the block, and the watchdog's grace starts; the
+   watchdog also ends a block that has not finished :data:`DEFERRED_SECONDS` after the first signal.
+6. :func:`announce_ready`: with ``QCPP_READY`` set (not empty or ``0``) the CLI prints ``ready: <what>`` on stderr
    once its signal handling is installed and the command's work has started, so tests that interrupt a real
    process wait for that line instead of sleeping.
 
@@ -28,10 +34,12 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import os
+import select
 import signal
 import sys
 import threading
 import time
+from collections.abc import Iterator
 from types import FrameType
 
 from qcpp.io.atomic import discard_pending
@@ -41,6 +49,7 @@ __all__ = [
     "GRACE_SECONDS",
     "READY_ENV",
     "announce_ready",
+    "deferred_stop",
     "install",
     "report_interrupted",
     "stop_requested",
@@ -55,6 +64,10 @@ EXIT_CODE = 130
 READY_ENV = "QCPP_READY"
 """Environment variable that turns on the ``ready: <what>`` line of :func:`announce_ready`."""
 
+DEFERRED_SECONDS = 10.0
+"""How long a :func:`deferred_stop` block may take to finish its answer after the first signal before the watchdog
+ends the process (a second signal ends it sooner)."""
+
 REPORT_WAIT_SECONDS = 2.0
 """How long the watchdog waits for a main thread that is writing ``interrupted`` right now."""
 
@@ -63,6 +76,7 @@ _report_lock = threading.Lock()
 _requested: list[int] = []  # the stop signals that arrived (a list: a signal handler must not take a lock)
 _installed = False
 _STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+_deferring: list[threading.Event] = []  # the events of the open deferred_stop() blocks, innermost last
 
 
 def report_interrupted() -> None:
@@ -102,6 +116,43 @@ def announce_ready(what: str) -> None:
             sys.stderr.flush()
 
 
+@contextlib.contextmanager
+def deferred_stop() -> Iterator[threading.Event]:
+    """Within the block the first SIGINT or SIGTERM sets the yielded event instead of raising ``KeyboardInterrupt``.
+
+    The block polls the event (a solver's ``stop`` function: ``event.is_set``), finishes what it prints, and raises
+    ``KeyboardInterrupt`` after the block if the event is set, so the command still ends with ``interrupted`` and
+    exit 130. A second signal raises at once. Outside the main thread, or before :func:`install` (the API, tests),
+    the handlers are left alone and the event is never set.
+
+    Example:
+        >>> with deferred_stop() as stopped:
+        ...     stopped.is_set()
+        False
+    """
+    flag = threading.Event()
+    if not _installed or threading.current_thread() is not threading.main_thread():
+        yield flag
+        return
+    seen: list[int] = []
+
+    def record(signum: int, frame: FrameType | None) -> None:
+        _requested.append(signum)
+        seen.append(signum)
+        if len(seen) > 1:
+            raise KeyboardInterrupt
+        flag.set()
+
+    previous = {sig: signal.signal(sig, record) for sig in _STOP_SIGNALS}
+    _deferring.append(flag)
+    try:
+        yield flag
+    finally:
+        _deferring.remove(flag)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
 def _raise_interrupt(signum: int, frame: FrameType | None) -> None:
     _requested.append(signum)
     raise KeyboardInterrupt
@@ -116,7 +167,12 @@ def _unraisable(info: sys.UnraisableHookArgs) -> None:
 
 
 def _watchdog(fd: int) -> None:
+    deadline: float | None = None  # set while a deferred_stop() block finishes its answer after the first signal
     while True:
+        if deadline is not None:
+            ready, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+            if not ready:
+                break  # the block took too long: end the process as after any signal
         try:
             data = os.read(fd, 64)
         except OSError:
@@ -126,6 +182,12 @@ def _watchdog(fd: int) -> None:
         stops = [b for b in data if b in _STOP_SIGNALS]
         if stops:
             _requested.extend(stops)  # also before the main thread ran its Python-level handler
+            blocks = list(_deferring)  # a copy: the main thread may leave its block meanwhile
+            if deadline is None and len(stops) == 1 and blocks:
+                # a command that answers with what it has: let it (the flag also reaches a native call's poller)
+                blocks[-1].set()
+                deadline = time.monotonic() + DEFERRED_SECONDS
+                continue
             break
     time.sleep(GRACE_SECONDS)
     discard_pending()

@@ -23,8 +23,16 @@ returns for the same method and options: one builder for both.
 ``qubo`` (:func:`qcpp.qubo.solve.solve_qubo`) alone takes ``--sampler`` (``tabu``, the default, or ``sa``:
 dwave-samplers' tabu search or simulated annealing on the per-robot QUBO).
 
-``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) alone takes ``--time-limit`` (seconds; default: until the optimum is
-proven) and adds ``proven_optimal``, ``bound``, ``gap`` and ``status`` to the JSON and a proof line to the text.
+``cpsat`` (:func:`qcpp.problem.solvers.cpsat`) takes ``--time-limit`` (seconds; default: until the optimum is
+proven) and alone ``--workers`` (CP-SAT's threads; default 1, deterministic), and adds ``proven_optimal``, ``bound``,
+``gap``, ``relative_gap`` (:func:`qcpp.problem.solvers.cpsat.relative_gap`) and ``status`` to the JSON and a proof
+line to the text. ``anneal`` and ``genetic`` take ``--time-limit`` too, and ``--iterations`` / ``--generations``.
+
+A search that stops early (``--time-limit`` on anneal or genetic, or Ctrl-C / SIGTERM on anneal, genetic or cpsat)
+answers with the best found so far, marked: ``stopped`` in the JSON (``time limit`` or ``interrupted``) and a line in
+the text. Ctrl-C reaches these three solvers as a stop request (:func:`qcpp.cli.interrupt.deferred_stop`): the
+answer is printed whole, then ``interrupted`` on stderr and exit 130, as every command ends on a signal; a second
+Ctrl-C stops at once. The other methods stop at the first signal with no answer.
 
 ``dfs`` predicts its size first (:func:`qcpp.problem.solvers.exhaustive.dfs_paths`: paths per robot, assignments,
 memory, time) and refuses a search that would not fit in the available memory or would run for more than
@@ -35,9 +43,11 @@ on stderr (:mod:`qcpp.cli.progress`).
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
-from collections.abc import Sequence
+import threading
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -47,6 +57,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from qcpp.cli.commands.inline_scenario import (
+    GivenScenario,
     GridFlag,
     HardObstaclesFlag,
     ObstacleFlag,
@@ -56,6 +67,7 @@ from qcpp.cli.commands.inline_scenario import (
     given_scenario,
 )
 from qcpp.cli.commands.plan_flags import RuleFlag
+from qcpp.cli.interrupt import deferred_stop
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import check_figure_output, json_text, plot_paths, plot_trace, print_table, render_ascii
 from qcpp.estimators.tables import terminal_width
@@ -105,6 +117,12 @@ def _qubo(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | No
 
 SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo}
 """``--method`` name -> solver. Register new methods here (the CLI reads the keys at call time)."""
+
+TIME_LIMITED = ("cpsat", "anneal", "genetic")
+"""Methods that take ``--time-limit`` and stop on Ctrl-C with the best found so far."""
+
+STOPPED_LINE = {"time limit": "stopped at the time limit", "interrupted": "interrupted"}
+"""The text output's words for :attr:`qcpp.problem.solvers.Solution.stopped`."""
 
 _SPARK = "▁▂▃▄▅▆▇█"
 
@@ -278,8 +296,22 @@ def solve_command(
     ] = QAOA_DEFAULTS["gibbs_scale"],
     time_limit: Annotated[
         float | None,
-        typer.Option("--time-limit", help="Seconds before CP-SAT stops with its best and a bound (cpsat).",
-                     show_default="until proven"),
+        typer.Option("--time-limit", help="Seconds before the search stops with its best so far (cpsat: and a bound "
+                     "and gap; anneal, genetic: marked as stopped at the limit).",
+                     show_default="cpsat: until proven; anneal, genetic: all their iterations"),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option("--workers", help="CP-SAT search threads (cpsat). More search in parallel, but the answer and "
+                     "the time to it may then differ from run to run; 1 is deterministic.", show_default="1"),
+    ] = None,
+    iterations: Annotated[
+        int | None,
+        typer.Option("--iterations", help="Annealing iterations per restart (anneal).", show_default="20000"),
+    ] = None,
+    generations: Annotated[
+        int | None,
+        typer.Option("--generations", help="Generations of the genetic algorithm (genetic).", show_default="40"),
     ] = None,
     sampler: Annotated[
         str, typer.Option("--sampler", help="Sampler on the QUBO (qubo): tabu (tabu search, one run per read) or sa "
@@ -312,10 +344,16 @@ def solve_command(
         raise ValueError(f"--gibbs-scale: expected a positive finite number, got {gibbs_scale:g}")
     if gibbs_scale != GIBBS_SCALE and objective != "gibbs":
         raise ValueError(f"--gibbs-scale: applies to --objective gibbs only (got --objective {objective})")
-    if time_limit is not None and method != "cpsat":
-        raise ValueError(f"--time-limit: applies to --method cpsat only (got --method {method})")
+    if time_limit is not None and method not in TIME_LIMITED:
+        raise ValueError(f"--time-limit: applies to --method cpsat, anneal or genetic only (got --method {method})")
     if time_limit is not None and not 0 < time_limit < math.inf:
         raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
+    for flag, value, owner in (("--workers", workers, "cpsat"), ("--iterations", iterations, "anneal"),
+                               ("--generations", generations, "genetic")):  # fmt: skip
+        if value is not None and method != owner:
+            raise ValueError(f"{flag}: applies to --method {owner} only (got --method {method})")
+        if value is not None and value < 1:
+            raise ValueError(f"{flag}: expected a positive integer, got {value}")
     if sampler != "tabu" and method != "qubo":
         raise ValueError(f"--sampler: applies to --method qubo only (got --method {method})")
     if method == "qubo":
@@ -335,28 +373,61 @@ def solve_command(
         _qaoa_guard(s, given.source, description, p)
     dfs_lists = _dfs_paths(s, description) if method == "dfs" and SOLVE_METHODS["dfs"] is SOLVERS["dfs"] else None
     unit = {"dfs": "assignments", "cpsat": "improving solutions"}.get(method, "steps")
-    with Progress(description, unit=unit) as bar:
-        progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
-        if dfs_lists is not None:
-            from qcpp.problem.solvers.exhaustive import dfs
+    stoppable = method in TIME_LIMITED and SOLVE_METHODS[method] is SOLVERS[method]
+    # the stoppable solvers take the first Ctrl-C as a request and answer with their best so far: the block
+    # covers the answer's output too, so that it is printed whole before the command ends as interrupted
+    with deferred_stop() if stoppable else contextlib.nullcontext(threading.Event()) as stopped:
+        with Progress(description, unit=unit) as bar:
+            progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
+            if stoppable:
+                sol, exact = _stoppable(s, method, seed, rule, progress, stopped.is_set, time_limit,
+                                        {"workers": workers, "iterations": iterations, "generations": generations})
+            else:
+                sol, qaoa = _unstoppable(s, method, seed, rule, progress, dfs_lists, sampler, qaoa_options)
+        _finish(s, sol, method, qaoa, exact, objective, as_json, given, plot, plot_trace_file, p, optimizer)
+    if stopped.is_set():
+        raise KeyboardInterrupt  # the answer is out: end as every interrupted command (``interrupted``, 130)
 
-            sol = dfs(s, progress=progress, paths=dfs_lists)
-        elif method == "cpsat" and SOLVE_METHODS["cpsat"] is SOLVERS["cpsat"]:
-            from qcpp.problem.solvers import cpsat
 
-            exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress)
-            sol = exact.solution
-        elif method == "qaoa":
-            from qcpp.training.qaoa_solver import solve_qaoa
+def _stoppable(s: Scenario, method: str, seed: int, rule: str, progress: ProgressFn, stop: Callable[[], bool],
+               time_limit: float | None,
+               options: dict[str, int | None]) -> tuple[Solution, CpSatResult | None]:  # fmt: skip
+    """Run cpsat, anneal or genetic with the stop request and the options given (``None``: the solver's default)."""
+    given = {name: value for name, value in options.items() if value is not None}
+    if method == "cpsat":
+        from qcpp.problem.solvers import cpsat
 
-            qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
-            sol = qaoa.solution
-        elif method == "qubo" and SOLVE_METHODS["qubo"] is _qubo:
-            from qcpp.qubo.solve import solve_qubo
+        exact = cpsat(s, seed=seed, time_limit=time_limit, progress=progress, stop=stop, **given)
+        return exact.solution, exact
+    solver = SOLVERS[method]
+    return solver(s, seed=seed, rule=rule, progress=progress, time_limit=time_limit, stop=stop,  # type: ignore[call-arg]
+                  **given), None  # fmt: skip
 
-            sol = solve_qubo(s, sampler=sampler, seed=seed, rule=rule, progress=progress).solution  # type: ignore[arg-type]
-        else:
-            sol = SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress)  # type: ignore[arg-type]
+
+def _unstoppable(s: Scenario, method: str, seed: int, rule: str, progress: ProgressFn,
+                 dfs_lists: list[list[int]] | None, sampler: str,
+                 qaoa_options: dict[str, object]) -> tuple[Solution, QaoaSolution | None]:  # fmt: skip
+    """Run dfs, qaoa, qubo or a registered method (a signal stops them with no answer)."""
+    if dfs_lists is not None:
+        from qcpp.problem.solvers.exhaustive import dfs
+
+        return dfs(s, progress=progress, paths=dfs_lists), None
+    if method == "qaoa":
+        from qcpp.training.qaoa_solver import solve_qaoa
+
+        qaoa = solve_qaoa(s, seed=seed, rule=rule, progress=progress, **qaoa_options)  # type: ignore[arg-type]
+        return qaoa.solution, qaoa
+    if method == "qubo" and SOLVE_METHODS["qubo"] is _qubo:
+        from qcpp.qubo.solve import solve_qubo
+
+        return solve_qubo(s, sampler=sampler, seed=seed, rule=rule, progress=progress).solution, None  # type: ignore[arg-type]
+    return SOLVE_METHODS[method](s, seed=seed, rule=rule, progress=progress), None  # type: ignore[arg-type]
+
+
+def _finish(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | None, exact: CpSatResult | None,
+            objective: str, as_json: bool, given: GivenScenario, plot: Path | None, plot_trace_file: Path | None,
+            p: int, optimizer: str) -> None:  # fmt: skip
+    """Print the answer, then write the plots asked for."""
     if plot_trace_file is not None and not sol.trace:
         raise ValueError(f"--plot-trace: method {method!r} has no cost trace")
     _print_result(s, sol, method, qaoa, exact, objective, as_json, given.source)
@@ -407,7 +478,13 @@ def _print_result(s: Scenario, sol: Solution, method: str, qaoa: QaoaSolution | 
             console.print(BASIS_START_NOTE, markup=False, highlight=False)
     if exact is not None:
         verdict = "proven optimal" if exact.proven_optimal else f"not proven: bound {exact.bound:g}, gap {exact.gap:g}"
+        if not exact.proven_optimal and math.isfinite(exact.bound):
+            # OR-Tools' relative gap: (cost - bound) / max(1, |cost|)
+            verdict += f" = {100 * exact.relative_gap:.3g}% of |cost|"
         console.print(f"cpsat: {verdict} ({exact.status})", highlight=False)
+    if sol.stopped is not None:
+        console.print(f"{method}: {STOPPED_LINE.get(sol.stopped, sol.stopped)}: the best found so far, not proven "
+                      "optimal", highlight=False)
     for note in sol.notes:
         console.print(f"[dim]note: {escape(note)}[/dim]", highlight=False)  # wrapped at spaces to the width
     sys.stdout.flush()
