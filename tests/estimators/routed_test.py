@@ -227,3 +227,23 @@ def test_a_long_row_names_its_routing_stages() -> None:
     assert f["routed_kind"] == "exact"
     assert seen[0] == "2x3 r1 p1 on grid:5x5: compiling the circuit"
     assert any(text.endswith("windows") for text in seen) and seen[-1] == ""  # cleared when the row is done
+
+
+def test_the_esp_is_summed_in_log_space_so_a_long_routing_keeps_it() -> None:
+    """A routing bound of 12x20 size (1.6 million two-qubit gates) has an ESP far below the smallest double: ``esp``
+    is 0.0, ``log10_esp`` the figure, equal to the product written as a sum of log10 terms."""
+    device = get_device("heavy-hex:9")
+    twoq, one_qubit, data = 1_629_850, 120_000, 400
+    f = routed._bound(device, twoq, one_qubit, data, routed.LAYOUT_BOUND_MODEL)
+    e2, ro = max(device.error_2q), max(device.readout_error)
+    e1 = max(e for _, per_q in device.error_1q for e in per_q)
+    expected = twoq * math.log10(1 - e2) + (3 * one_qubit + 6 * twoq) * math.log10(1 - e1) + data * math.log10(1 - ro)
+    assert f["esp"] == 0.0 and f["log10_esp"] == pytest.approx(expected, abs=1e-5) and f["log10_esp"] < -308
+    assert f["log10_esp_idle"] is None and set(routed._NONE) <= set(f)
+
+
+def test_an_exact_rows_log10_esp_is_the_log_of_its_esp() -> None:
+    f = _fields(default_scenario(2, 3, 1), 1, "ibm_fez")
+    assert f["routed_kind"] == "exact" and 0 < f["esp_idle"] < f["esp"] < 1
+    assert f["log10_esp"] == pytest.approx(math.log10(f["esp"]), abs=1e-6)
+    assert f["log10_esp_idle"] == pytest.approx(math.log10(f["esp_idle"]), abs=1e-6)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -271,3 +272,46 @@ def test_a_table_without_the_first_phase_separator_says_so() -> None:
         assert note in render(skipped, fmt, width=200), fmt
         assert note not in render(default, fmt, width=200), fmt
     assert note in "".join(render_stream(iter(skipped), "md"))
+
+
+@pytest.fixture(scope="module")
+def routed_bound_row() -> dict:
+    """A row of a 12x20 field routed by the bound (``routed_kind`` ``bound``): its ESP underflows to 0.0."""
+    from qcpp.estimators import routed
+    from qcpp.hardware.device import get_device
+
+    row = make_row(estimate_point(Point(3, 3, 1, 1)))
+    bound = routed._bound(get_device("heavy-hex:9"), 1_629_850, 120_000, 400, routed.LAYOUT_BOUND_MODEL)
+    return {**row, "device": "heavy-hex:9", "fits": True, **bound}
+
+
+ROUTED = ["rows", "routed_twoq", "routed_kind", "esp", "log10_esp", "duration_s"]
+
+
+@pytest.mark.parametrize("fmt", ["table", "md", "latex"])
+def test_every_routed_bound_is_marked_the_esp_as_a_lower_bound(routed_bound_row, fmt: str) -> None:  # type: ignore[no-untyped-def]
+    """``routed_twoq`` of a bound routing is an upper bound like its duration; its ESP, computed from those gates at
+    the worst error rates, a lower bound; an ESP below the smallest double is shown from its log, not as 0."""
+    r = routed_bound_row
+    text = render([r], fmt, columns=ROUTED, width=200)
+    le, ge = (r"$\leq$", r"$\geq$") if fmt == "latex" else ("<=", ">=")
+    twoq = f"{r['routed_twoq']:,}".replace(",", "{,}") if fmt == "latex" else str(r["routed_twoq"])
+    exponent = math.floor(r["log10_esp"])
+    mantissa = f"{10 ** (r['log10_esp'] - exponent):.4g}"
+    assert f"{le}{twoq}" in text and f"{ge}{mantissa}e{exponent}" in text and f"{le}{r['duration_s']:.4g}" in text
+    assert "lower bound" in text and "upper bound" in text
+
+
+def test_routed_bounds_keep_their_numbers_in_csv_and_json(routed_bound_row) -> None:  # type: ignore[no-untyped-def]
+    r = routed_bound_row
+    row = next(csv.DictReader(io.StringIO(render([r], "csv", columns=ROUTED))))
+    assert (row["routed_twoq"], row["routed_kind"], row["esp"]) == (str(r["routed_twoq"]), "bound", "0")
+    assert float(row["log10_esp"]) == pytest.approx(r["log10_esp"], abs=0.005)
+    out = json.loads(render([r], "json"))[0]
+    assert (out["routed_twoq"], out["esp"], out["log10_esp"]) == (r["routed_twoq"], 0.0, r["log10_esp"])
+
+
+def test_an_exact_routing_is_unmarked(routed_bound_row) -> None:  # type: ignore[no-untyped-def]
+    r = {**routed_bound_row, "routed_kind": "exact", "routed_depth_kind": "exact", "esp": 0.25, "log10_esp": -0.602}
+    text = render([r], "md", columns=ROUTED)
+    assert "<=" not in text and ">=" not in text and "| 0.25 |" in text

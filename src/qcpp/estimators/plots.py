@@ -163,8 +163,8 @@ def from_depth_bound(row: dict[str, Any], column: str) -> bool:
 
     if row.get(column) is None:
         return False
-    if column in BOUNDED_BY:
-        return row.get(BOUNDED_BY[column]) == "bound"
+    if column in BOUNDED_BY:  # a depth's kind; the routed two-qubit count's bound is not from a depth bound
+        return BOUNDED_BY[column] != "routed_kind" and row.get(BOUNDED_BY[column]) == "bound"
     return column in APPROXIMATE_BY and row.get(APPROXIMATE_BY[column]) != "exact"
 
 

@@ -5,9 +5,12 @@
 else the smallest member with the row's qubits), ``fits`` (the device's largest connected component holds the
 row's qubits; for the bound also every section of the circuit compile routes), ``routed_twoq``, ``routed_depth``,
 ``routed_twoq_depth``, ``duration_s``, ``esp``, ``esp_model``, ``esp_idle`` (ESP with idle decoherence,
-:func:`qcpp.routing.native.esp_idle`; exact rows on devices with T1 / T2 only, else ``None``), and ``routed_kind``
-(of the two-qubit count and the ESP) and ``routed_depth_kind`` (of the depths and the duration), each ``exact``
-(what ``qcpp compile --device`` writes) or ``bound``. ``routed_model`` names the first way that applies:
+:func:`qcpp.routing.native.esp_idle`; exact rows on devices with T1 / T2 only, else ``None``), ``log10_esp`` and
+``log10_esp_idle`` (the same two summed in log space, :func:`qcpp.routing.native.log_esp`: finite where the ESP
+itself underflows to ``0.0``, below about ``1e-308``), and ``routed_kind`` (of the two-qubit count and the ESP)
+and ``routed_depth_kind`` (of the depths and the duration), each ``exact`` (what ``qcpp compile --device``
+writes) or ``bound``. Of a ``bound`` row the two-qubit count, the depths and the duration are upper bounds, and
+its ESP, from those gates at the worst error rates, a lower bound. ``routed_model`` names the first way that applies:
 
 1. ``compile``: at most :data:`EXACT_MAX_GATES` lowered gates; compiled and routed as ``qcpp compile --device``
    does, every figure exact.
@@ -92,7 +95,7 @@ SUM_MODEL = (
     "duration the sum of the windows' own (windows in sequence: an upper bound)"
 )
 _NONE = ("routed_kind", "routed_depth_kind", "routed_model", "routed_twoq", "routed_depth", "routed_twoq_depth",
-         "duration_s", "esp", "esp_model", "esp_idle")  # fmt: skip
+         "duration_s", "esp", "esp_model", "esp_idle", "log10_esp", "log10_esp_idle")  # fmt: skip
 
 
 def _largest_component(device: Device) -> int:
@@ -102,6 +105,16 @@ def _largest_component(device: Device) -> int:
         return device.num_qubits if device.coupling else 1
     _, labels = connected_components(device.graph(), directed=False)
     return int(np.bincount(labels).max())
+
+
+def _log10(log: float | None) -> float | None:
+    """A natural log as a base-10 one for the rows, rounded to 6 decimals (``None``: none, or ``-inf``, an ESP of
+    exactly 0 that JSON cannot write as a number).
+
+    >>> _log10(math.log(2.3e-226)), _log10(None), _log10(-math.inf)
+    (-225.638272, None, None)
+    """
+    return None if log is None or math.isinf(log) else round(log / math.log(10), 6)
 
 
 def _worst(values: Any) -> float:
@@ -131,6 +144,8 @@ def _bound(device: Device, twoq: int, one_qubit: int, data_qubits: int, model: s
         "esp": math.exp(log_esp),
         "esp_model": model,
         "esp_idle": None,
+        "log10_esp": _log10(log_esp),
+        "log10_esp_idle": None,
     }
 
 
@@ -178,7 +193,7 @@ def _routed_fields(
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.estimators.layout_bound import bound_plan
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.native import duration_s, esp, esp_idle
+    from qcpp.routing.native import duration_s, log_esp, log_esp_idle
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -200,7 +215,8 @@ def _routed_fields(
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
     routed = result.routed
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
-    gate_esp = esp(routed)
+    gate_log = log_esp(routed)
+    idle_log = log_esp_idle(routed, gate_log=gate_log)
     return {
         **out,
         "device": routed.device.name,
@@ -211,9 +227,11 @@ def _routed_fields(
         "routed_depth": gc.depth,
         "routed_twoq_depth": gc.two_qubit_depth,
         "duration_s": duration_s(routed),
-        "esp": gate_esp,
+        "esp": math.exp(gate_log),
         "esp_model": ESP_MODEL,
-        "esp_idle": esp_idle(routed, gate_esp=gate_esp),
+        "esp_idle": None if idle_log is None else math.exp(idle_log),
+        "log10_esp": _log10(gate_log),
+        "log10_esp_idle": _log10(idle_log),
     }
 
 
@@ -248,6 +266,8 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
         "esp": summed.esp,
         "esp_model": esp_model,
         "esp_idle": None,
+        "log10_esp": _log10(summed.log_esp),
+        "log10_esp_idle": None,
     }
 
 

@@ -27,7 +27,10 @@ for every format but ``table``.
 
 In the formats read by people (``table``, ``md``, ``latex``) a figure that is an upper bound is marked in its cell,
 ``<=9087`` (:data:`BOUND_MARK`): the depths when ``depth_kind`` is ``bound``, the routed depths and the duration when
-``routed_depth_kind`` is ``bound`` (:data:`BOUNDED_BY`), whether or not the kind column is shown. A physical figure
+``routed_depth_kind`` is ``bound``, the routed two-qubit count when ``routed_kind`` is ``bound``
+(:data:`BOUNDED_BY`), whether or not the kind column is shown; the ESP of such a row, computed from that bound of
+gates, is a lower bound, ``>=1.2e-05`` (:data:`LOWER_BOUND_MARK`, :data:`LOWER_BOUNDED_BY`). An ESP below the
+smallest double (``esp`` ``0.0``) is shown from its log, ``log10_esp`` (``2.818e-1235``). A physical figure
 computed from a rotation depth that is not exact is neither exact nor a bound (a longer depth may lower it) and is
 marked approximate, ``~81922666`` (:data:`APPROX_MARK`, :data:`APPROXIMATE_BY`). ``csv``, ``json`` and ``jsonl`` keep
 the plain number and the kind field.
@@ -49,6 +52,7 @@ import csv
 import difflib
 import io
 import json
+import math
 import sys
 import textwrap
 from collections.abc import Iterable, Iterator, Sequence
@@ -64,6 +68,8 @@ __all__ = [
     "APPROX_MARK",
     "BOUNDED_BY",
     "BOUND_MARK",
+    "LOWER_BOUNDED_BY",
+    "LOWER_BOUND_MARK",
     "DROP_ORDER",
     "FORMATS",
     "FT_COLUMNS",
@@ -124,8 +130,22 @@ BOUNDED_BY: dict[str, str] = {
     "routed_depth": "routed_depth_kind",
     "routed_twoq_depth": "routed_depth_kind",
     "duration_s": "routed_depth_kind",
+    "routed_twoq": "routed_kind",
 }
 """Columns whose figure may be an upper bound, each with the row field saying which (``exact`` or ``bound``)."""
+
+LOWER_BOUND_MARK = ">="
+"""Prefix of a cell (``table``, ``md``; ``latex``: ``$\\geq$``) whose figure is a lower bound, not exact."""
+
+LOWER_BOUNDED_BY: dict[str, str] = {
+    f"{log}esp{idle}": "routed_kind" for log in ("", "log10_") for idle in ("", "_idle")
+}
+"""Columns whose figure may be a lower bound, each with the row field saying which: the ESP of a ``bound`` routing
+is computed from an upper bound of its gates at the worst error rates (:mod:`qcpp.estimators.routed`), so the
+routing it bounds succeeds at least that often."""
+
+_FROM_LOG: dict[str, str] = {"esp": "log10_esp", "esp_idle": "log10_esp_idle"}
+"""Columns shown from the row's base-10 log of them where the figure itself underflowed to ``0.0``."""
 
 APPROX_MARK = "~"
 """Prefix of a cell (``table``, ``md``, ``latex``) whose figure is approximate: computed from a depth bound."""
@@ -217,11 +237,17 @@ def _columns(row: dict[str, Any] | None) -> list[str]:
     return list(dict.fromkeys(cols))
 
 
-def _cell(v: Any) -> str:
+def _cell(v: Any, col: str = "") -> str:
+    """A value as text: a float to 4 significant digits, a base-10 log (``log10_...``) to 2 decimals (its integer
+    part is the exponent, the decimals the digits).
+
+    >>> _cell(0.123456), _cell(-3714.043208, "log10_esp"), _cell(None)
+    ('0.1235', '-3714.04', '')
+    """
     if v is None:
         return ""
     if isinstance(v, float):
-        return f"{v:.4g}"
+        return f"{v:.2f}" if col.startswith("log10_") else f"{v:.4g}"
     return str(v)
 
 
@@ -231,24 +257,60 @@ def _is_bound(row: dict[str, Any], col: str) -> bool:
     return kind is not None and row.get(col) is not None and row.get(kind) == "bound"
 
 
+def _is_lower_bound(row: dict[str, Any], col: str) -> bool:
+    """Whether ``row``'s ``col`` holds a lower bound rather than an exact figure (:data:`LOWER_BOUNDED_BY`)."""
+    kind = LOWER_BOUNDED_BY.get(col)
+    return kind is not None and row.get(col) is not None and row.get(kind) == "bound"
+
+
 def _is_approximate(row: dict[str, Any], col: str) -> bool:
     """Whether ``row``'s ``col`` is approximate: computed from a depth that is not exact (:data:`APPROXIMATE_BY`)."""
     kind = APPROXIMATE_BY.get(col)
     return kind is not None and row.get(col) is not None and row.get(kind) != "exact"
 
 
-def _mark(row: dict[str, Any], col: str, bound: str = BOUND_MARK) -> str:
-    """The prefix of ``row``'s ``col`` cell: ``bound`` for an upper bound, :data:`APPROX_MARK` for an approximation."""
-    return bound if _is_bound(row, col) else APPROX_MARK if _is_approximate(row, col) else ""
+def _mark(row: dict[str, Any], col: str, bound: str = BOUND_MARK, lower: str = LOWER_BOUND_MARK) -> str:
+    """The prefix of ``row``'s ``col`` cell: ``bound`` for an upper bound, ``lower`` for a lower bound,
+    :data:`APPROX_MARK` for an approximation."""
+    if _is_bound(row, col):
+        return bound
+    return lower if _is_lower_bound(row, col) else APPROX_MARK if _is_approximate(row, col) else ""
+
+
+def _from_log(row: dict[str, Any], col: str) -> str | None:
+    """``row``'s ``col`` written from its base-10 log (:data:`_FROM_LOG`) where the figure underflowed to ``0.0``
+    and the log is known, else ``None``.
+
+    >>> _from_log({"esp": 0.0, "log10_esp": -1234.55}, "esp"), _from_log({"esp": 0.5, "log10_esp": -0.3}, "esp")
+    ('2.818e-1235', None)
+    """
+    log = row.get(_FROM_LOG.get(col, ""))
+    if row.get(col) != 0.0 or not isinstance(log, (int, float)):
+        return None
+    exponent = math.floor(log)
+    mantissa = f"{10 ** (log - exponent):.4g}"
+    if mantissa == "10":  # rounded up to the next power of ten
+        mantissa, exponent = "1", exponent + 1
+    return f"{mantissa}e{exponent}"
 
 
 def _shown(row: dict[str, Any], col: str) -> str:
-    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell`, marked by :func:`_mark`."""
-    return _mark(row, col) + _cell(row.get(col))
+    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell` (or :func:`_from_log`), marked by
+    :func:`_mark`."""
+    text = _from_log(row, col)
+    return _mark(row, col) + (text if text is not None else _cell(row.get(col), col))
 
 
 def _any_bound(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
     return any(_is_bound(r, c) for r in rows for c in cols)
+
+
+def _any_lower_bound(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
+    return any(_is_lower_bound(r, c) for r in rows for c in cols)
+
+
+LOWER_BOUND_NOTE = f"{LOWER_BOUND_MARK}N is a lower bound (the ESP of a bounded routing)"
+"""What :data:`LOWER_BOUND_MARK` means, in the titles and the ``md`` footnote."""
 
 
 def _any_approximate(rows: Iterable[dict[str, Any]], cols: Sequence[str]) -> bool:
@@ -274,7 +336,8 @@ def _without_first_phase(rows: Iterable[dict[str, Any]]) -> bool:
 
 
 def _title(
-    paper: bool, bound: bool, approximate: bool = False, ft: bool = False, no_first_phase: bool = False
+    paper: bool, bound: bool, approximate: bool = False, ft: bool = False, no_first_phase: bool = False,
+    lower: bool = False,
 ) -> str:
     """The title of the ``table`` format: every count exact, and the meaning of each mark a cell has (and of the
     ``ft_`` columns when ``ft``); a circuit without its first phase separator is named, so that a ratio to the
@@ -286,8 +349,8 @@ def _title(
     """
     vs = " vs the paper" if paper else ""
     what = f"lowered circuit, {NO_FIRST_PHASE_NOTE}" if no_first_phase else "lowered circuit"
-    notes = ([f"{BOUND_MARK}N is an upper bound"] if bound else []) + ([APPROX_NOTE] if approximate else [])
-    notes += [FT_NOTE] if ft else []
+    notes = ([f"{BOUND_MARK}N is an upper bound"] if bound else []) + ([LOWER_BOUND_NOTE] if lower else [])
+    notes += ([APPROX_NOTE] if approximate else []) + ([FT_NOTE] if ft else [])
     if notes:
         return f"Resource counts ({what}){vs}: exact; " + "; ".join(notes)
     return f"Exact resource counts ({what}){vs}"
@@ -296,7 +359,8 @@ def _title(
 def _marks_title(rows: Sequence[dict[str, Any]], cols: Sequence[str], paper: bool) -> str:
     """:func:`_title` of ``rows`` shown in ``cols``."""
     ft = any(c.startswith("ft_") for c in cols)
-    return _title(paper, _any_bound(rows, cols), _any_approximate(rows, cols), ft, _without_first_phase(rows))
+    return _title(paper, _any_bound(rows, cols), _any_approximate(rows, cols), ft, _without_first_phase(rows),
+                  _any_lower_bound(rows, cols))
 
 
 def _flat(row: dict[str, Any]) -> dict[str, Any]:
@@ -362,6 +426,7 @@ def render_stream(
                          "--format table, md, csv or latex")  # fmt: skip
     first = True
     approximate = False  # an md cell marked APPROX_MARK: the table ends with a footnote saying what it means
+    lower = False  # an md cell marked LOWER_BOUND_MARK: a footnote too
     no_first_phase = False  # a row without the first phase separator: the md table ends saying so
     fields: list[str] = []
     cols: list[str] = []
@@ -376,13 +441,15 @@ def render_stream(
             if first:  # every scalar of the row, in order, then the sections' fields; or the chosen ones
                 fields = list(flat) if columns is None else _chosen(columns, list(flat))
                 yield _csv_line(fields)
-            yield _csv_line(_cell(flat.get(k)) if isinstance(flat.get(k), float) else flat.get(k, "") for k in fields)
+            yield _csv_line(_cell(flat.get(k), k) if isinstance(flat.get(k), float) else flat.get(k, "")
+                            for k in fields)  # fmt: skip
         else:  # md
             if first:
                 cols = _columns(row) if columns is None else table_columns([row], columns=columns)[0]
                 yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
             yield "| " + " | ".join(_shown(row, c) for c in cols) + " |\n"
             approximate = approximate or _any_approximate([row], cols)
+            lower = lower or _any_lower_bound([row], cols)
             no_first_phase = no_first_phase or _without_first_phase([row])
         first = False
     if fmt == "json":
@@ -392,6 +459,8 @@ def render_stream(
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
     elif fmt == "md" and approximate:
         yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
+    if fmt == "md" and lower:  # the ESP's lower bound beside the figures' upper bounds: both marks said
+        yield "\n" + f"{BOUND_MARK}N is an upper bound; {LOWER_BOUND_NOTE}" + "\n"
     if fmt == "md" and no_first_phase:
         yield "\nCounted " + NO_FIRST_PHASE_NOTE + ".\n"
 
@@ -481,6 +550,14 @@ def latex_number(v: Any) -> str:
     return text.replace(",", "{,}")
 
 
+def _latex_cell(row: dict[str, Any], col: str) -> str:
+    """``row``'s ``col`` as a ``latex`` cell without its mark: :func:`latex_number`, or :func:`_from_log`."""
+    text = _from_log(row, col)
+    if text is None and col.startswith("log10_") and isinstance(row.get(col), float):
+        text = _cell(row.get(col), col)  # the decimals are the digits: not rounded to an integer
+    return latex_number(row.get(col)) if text is None else text
+
+
 def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None = None) -> str:
     r"""Rows as a LaTeX ``tabular`` with booktabs rules (``\usepackage{booktabs}``): the columns of the ``md``
     format (or ``columns``) under readable headers with units (:func:`latex_header`), numbers right-aligned with
@@ -512,6 +589,8 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
     align = "".join("r" if all(_is_number(r.get(c)) for r in rows) else "l" for c in cols)
     approx = "; " + latex_escape(APPROX_NOTE[1:]).join(["$\\sim$", ""]) if _any_approximate(rows, cols) else ""
     approx += "; " + latex_escape(NO_FIRST_PHASE_NOTE) if _without_first_phase(rows) else ""
+    if _any_lower_bound(rows, cols):
+        approx = r"; $\geq$N: a lower bound (the ESP of a bounded routing)" + approx
     out = [
         r"% qcpp estimate: counts of the lowered circuit (exact; $\leq$N: an upper bound"
         + approx
@@ -521,7 +600,7 @@ def render_latex(rows: Sequence[dict[str, Any]], columns: Sequence[str] | None =
         " & ".join(latex_header(c) for c in cols) + r" \\",
         r"\midrule",
     ]
-    out += [" & ".join(_mark(r, c, r"$\leq$").replace(APPROX_MARK, r"$\sim$") + latex_number(r.get(c))
+    out += [" & ".join(_mark(r, c, r"$\leq$", r"$\geq$").replace(APPROX_MARK, r"$\sim$") + _latex_cell(r, c)
                        for c in cols) + r" \\" for r in rows]  # fmt: skip
     out += [r"\bottomrule", r"\end{tabular}"]
     return "\n".join(out) + "\n"

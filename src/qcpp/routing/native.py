@@ -7,8 +7,9 @@ it); ``t, tdg, s, sdg`` are ``rz`` of their angle; ``x`` stays ``x`` where nativ
 
 :func:`esp` is the estimated success probability: the product of ``(1 - error)`` over every gate of the
 native circuit (per qubit / per coupling, from the device data) and of ``(1 - readout error)`` over the
-measured qubits (the data qubits at their final positions). Idle decoherence, crosstalk and leakage are not
-modelled there. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
+measured qubits (the data qubits at their final positions), summed as logs (:func:`log_esp`: a circuit of
+millions of gates has an ESP far below the smallest double, which :func:`esp` returns as ``0.0``). Idle decoherence,
+crosstalk and leakage are not modelled there. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
 readout, or ``None`` where the device publishes no durations.
 
 :func:`esp_idle` multiplies :func:`esp` by an idle-decoherence factor (:data:`IDLE_MODEL`): in the same ASAP
@@ -46,8 +47,8 @@ from qcpp.ir.gates import Gate, cz, rx, rz, rzz
 from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = [
-    "IDLE_MODEL", "RUNNABLE_ESP", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "native_gates",
-    "one_qubit_name", "to_native",
+    "IDLE_MODEL", "RUNNABLE_ESP", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "log_esp",
+    "log_esp_idle", "native_gates", "one_qubit_name", "to_native",
 ]
 
 IDLE_MODEL = (
@@ -126,10 +127,25 @@ def one_qubit_name(device: Device, g: Gate) -> str:
 
 
 def esp(routed: RoutedCircuit) -> float:
-    """Estimated success probability of a native routed circuit (model in the module docs).
+    """Estimated success probability of a native routed circuit (model in the module docs): ``exp`` of
+    :func:`log_esp`, so ``0.0`` where the product is below the smallest double (about ``1e-308``, reached by a few
+    hundred thousand gates); :func:`log_esp` keeps the figure there.
 
     Returns:
         ``prod (1 - e_gate) * prod_{measured} (1 - e_readout)``.
+
+    Raises:
+        ValueError: a gate the device has no error figure for.
+    """
+    return math.exp(log_esp(routed))
+
+
+def log_esp(routed: RoutedCircuit) -> float:
+    """Natural log of :func:`esp`, summed gate by gate in log space: finite however long the circuit (``-inf`` only
+    where a gate or readout used has error 1).
+
+    Returns:
+        ``sum log(1 - e_gate) + sum_{measured} log(1 - e_readout)``.
 
     Raises:
         ValueError: a gate the device has no error figure for.
@@ -151,7 +167,7 @@ def esp(routed: RoutedCircuit) -> float:
             log += logs[qs[0]]
     for lq in routed.measured:
         log += math.log1p(-device.readout_error[routed.final_layout[lq]])
-    return math.exp(log)
+    return log
 
 
 @cache
@@ -293,11 +309,26 @@ def idle_fidelity(t: float, t1: float, t2: float) -> float:
 
 def esp_idle(routed: RoutedCircuit, gate_esp: float | None = None) -> float | None:
     """:func:`esp` times the idle-decoherence factor of :data:`IDLE_MODEL` (``None``: the device has no durations or
-    no T1 / T2).
+    no T1 / T2); ``exp`` of :func:`log_esp_idle`.
 
     Args:
         routed: A native routed circuit.
         gate_esp: ``esp(routed)`` where the caller has it already (a pass over every gate saved); default: computed.
+            Where it underflowed to ``0.0`` the gates' log is computed again, so the result is as
+            :func:`log_esp_idle` makes it.
+    """
+    gate_log = math.log(gate_esp) if gate_esp is not None and gate_esp > 0 else None
+    log = log_esp_idle(routed, gate_log=gate_log)
+    return None if log is None else math.exp(log)
+
+
+def log_esp_idle(routed: RoutedCircuit, gate_log: float | None = None) -> float | None:
+    """Natural log of :func:`esp_idle`, summed in log space like :func:`log_esp` (``None``: the device has no
+    durations or no T1 / T2).
+
+    Args:
+        routed: A native routed circuit.
+        gate_log: ``log_esp(routed)`` where the caller has it already; default: computed.
     """
     device = routed.device
     if device.t1_s is None or device.t2_s is None:
@@ -305,9 +336,8 @@ def esp_idle(routed: RoutedCircuit, gate_esp: float | None = None) -> float | No
     idle = idle_times_s(routed)
     if idle is None:
         return None
-    gate_esp = esp(routed) if gate_esp is None else gate_esp
-    log = math.log(gate_esp) if gate_esp > 0 else -math.inf
+    log = log_esp(routed) if gate_log is None else gate_log
     for t, t1, t2 in zip(idle, device.t1_s, device.t2_s, strict=True):
         if t > 0 and t1 is not None and t2 is not None:
             log += math.log(idle_fidelity(t, t1, t2))
-    return math.exp(log)
+    return log
