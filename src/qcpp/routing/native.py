@@ -8,9 +8,9 @@ it); ``t, tdg, s, sdg`` are ``rz`` of their angle; ``x`` stays ``x`` where nativ
 :func:`esp` is the estimated success probability: the product of ``(1 - error)`` over every gate of the
 native circuit (per qubit / per coupling, from the device data) and of ``(1 - readout error)`` over the
 measured qubits (the data qubits at their final positions), summed as logs (:func:`log_esp`: a circuit of
-millions of gates has an ESP far below the smallest double, which :func:`esp` returns as ``0.0``). Idle decoherence,
-crosstalk and leakage are not modelled there. :func:`duration_s` is the ASAP schedule's length with the device's per-gate durations plus one
-readout, or ``None`` where the device publishes no durations.
+millions of gates has an ESP far below the smallest double, which :func:`esp` returns as ``0.0``). Idle
+decoherence, crosstalk and leakage are not modelled there. :func:`duration_s` is the ASAP schedule's length with
+the device's per-gate durations plus one readout, or ``None`` where the device publishes no durations.
 
 :func:`esp_idle` multiplies :func:`esp` by an idle-decoherence factor (:data:`IDLE_MODEL`): in the same ASAP
 schedule, a qubit's idle time ``t`` is the time between the start of its first timed gate and the end of its last
