@@ -45,7 +45,11 @@ def test_every_command_has_choice_options() -> None:
 @pytest.mark.parametrize(("command", "flag", "param", "integer"), CASES, ids=[f"{c} {f}" for c, f, *_ in CASES])
 def test_a_value_outside_the_choices_is_one_line(command: str, flag: str, param: str, integer: bool) -> None:
     value = "999" if integer else "bogus"
-    res = run(command, *NEEDS.get(command, [PAPER]), flag, value)
+    needs = list(NEEDS.get(command, [PAPER]))
+    if flag.split("/")[0] in needs:  # the option under test in place of the one needed: an option is given once
+        at = needs.index(flag.split("/")[0])
+        del needs[at : at + 2]
+    res = run(command, *needs, flag, value)
     choices = choices_of(command, param)
     assert choices is not None
     assert_one_line_error(res, flag, f"expected {' or '.join(choices)}", value)
