@@ -103,6 +103,25 @@ def test_solve_help_lists_every_method() -> None:
     assert "cpsat" in own
 
 
+def test_estimate_help_says_where_its_columns_are_defined_and_that_page_defines_every_field() -> None:
+    """``routed_twoq``, ``esp``, ``routed_kind``: the help names the pages, and the column table there lists every
+    field a row can hold (counts, fault-tolerant, paper and routed ones)."""
+    from qcpp.estimators import routed
+    from qcpp.estimators.estimate import Point, estimate_point
+    from qcpp.estimators.tables import make_row
+
+    text = " ".join(_help("estimate").split())
+    assert "docs/resource-estimates.md" in text and "docs/guide/hardware.md" in text and "routed_kind" in text
+    page = (REPO / "docs" / "resource-estimates.md").read_text(encoding="utf-8")
+    start = page.index("### Columns")
+    table = [line.split("|")[1] for line in page[start : page.index("\n## ", start)].splitlines()
+             if line.startswith("| `")]  # fmt: skip
+    named = {name for cell in table for name in re.findall(r"`([a-z0-9_]+)`", cell)}
+    fields = set(make_row(estimate_point(Point(2, 2, 1, 1)), compare_paper=True)) - {"sections"}
+    fields |= {"device", "fits", *routed._NONE}
+    assert not fields - named, f"docs/resource-estimates.md's Columns table lacks {sorted(fields - named)}"
+
+
 def test_shell_completion_is_installable_and_completes_choices() -> None:
     assert "--install-completion" in _help() and "--show-completion" in _help()
     runner = CliRunner()

@@ -49,6 +49,9 @@ Examples:
   qcpp estimate --grid 7x6 --robot 0,0:6,5 --robot 0,5:6,0 --obstacle 2,2
 
 Ranges: --grid AxB..CxD (rows A..C, cols B..D), --robots A..B, -p A..B.
+Columns defined: docs/resource-estimates.md ("Columns"); the routed ones
+(routed_twoq, esp, routed_kind exact/bound): docs/guide/hardware.md.
+In a cell, <=N is an upper bound and >=N a lower bound.
 """
 
 
@@ -108,7 +111,8 @@ def estimate(
     columns: Annotated[
         str | None,
         typer.Option("--columns", help="Columns of table, md, csv and latex output, comma-separated (default: what "
-                     "fits; json keeps every field)."),
+                     "fits; json keeps every field). Names such as rows, cols, robots, qubits, cx, t, ft_total_t, "
+                     "routed_twoq, routed_kind, esp, log10_esp; every name: the header of --format csv."),
     ] = None,
     wide: Annotated[bool, typer.Option("--wide", help="Table: every default column, however wide.")] = False,
     formula: Annotated[bool, typer.Option("--formula", help="Print the closed-form formulas and stop.")] = False,
