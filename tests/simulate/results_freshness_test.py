@@ -185,9 +185,9 @@ CHEAP_OR_EVERY_ROW = (pytest.param(False, id="cheap"), pytest.param(True, id="ev
 def _device_instances() -> list[Any]:
     """One parameter per time-to-solution instance with device rows, with the devices to recompute: the cheap ones
     in the default run on every device; every other one in the heavy step on the uncalibrated devices, and on a
-    calibrated one for one instance of each size (with or without the obstacle, in turn along the sizes, on
-    :func:`checked_devices`' device of that turn). One test per instance, so that the heavy step's two workers share
-    the recompilations (the largest instances take minutes each)."""
+    calibrated one for one instance of each of the first :data:`CALIBRATED_SIZES` sizes (with or without the
+    obstacle, in turn along the sizes, on :func:`checked_devices`' device of that turn). One test per instance, so
+    that the heavy step's two workers share the recompilations (the largest instances take minutes each)."""
     rows = [r for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device"]
     devices = tuple(dict.fromkeys(r["device"] for r in rows))
     names = list(dict.fromkeys(r["instance"] for r in rows))
@@ -195,11 +195,17 @@ def _device_instances() -> list[Any]:
     params = []
     for n in names:
         k = sizes.index(n.removesuffix(OBSTACLE_SUFFIX))
-        calibrated = n.endswith(OBSTACLE_SUFFIX) == (k % 2 == 1)
+        calibrated = k < CALIBRATED_SIZES and n.endswith(OBSTACLE_SUFFIX) == (k % 2 == 1)
         params.append(pytest.param(n, devices, id=n) if n in CHEAP_DEVICE_INSTANCES else
                       pytest.param(n, checked_devices(devices, k, calibrated), id=n, marks=pytest.mark.heavy))
     return params
 
+
+CALIBRATED_SIZES = 3
+"""Sizes (in the study's order: 3x3 with one, two and three robots first) whose calibrated IBM rows the heavy step
+recompiles, one instance each: a calibrated compile of a 4x4 or 5x5 instance takes 30-90 CPU-seconds, and the
+calibrated compile's steps (placement searches, Qiskit's O3 candidates, ESP scoring) are the ones the 3x3 rows
+exercise; the 4x4 and 5x5 instances stay recompiled on the uncalibrated devices."""
 
 OBSTACLE_SUFFIX = " +obst"
 """How the time-to-solution study names the instance of a size with an obstacle."""
@@ -532,23 +538,26 @@ def test_ensemble_device_rows_of_the_first_instance_match_the_router() -> None:
 
 
 HEAVY_ENSEMBLE_DEVICE_INSTANCES = 2
-"""Instances per cell whose device rows (every depth; on the uncalibrated devices, and one instance per cell on a
-calibrated one: :func:`_ensemble_checked_devices`) the heavy step recompiles: a change of the router or the device
-data changes some of them; all of them would take most of CI's time budget."""
+"""Instances per cell whose device rows (every depth on the uncalibrated devices, and for one instance per cell the
+shallowest depth on a calibrated one: :func:`_ensemble_checked_devices`) the heavy step recompiles: a change of
+the router or the device data changes some of them; all of them would take most of CI's time budget."""
 
 
 @pytest.mark.parametrize(("cell", "index"), _ensemble_device_instances())
 def test_ensemble_device_rows_match_the_router(cell: str, index: int) -> None:
     """Every row of the instance (every depth and device) is recorded; those on :func:`_ensemble_checked_devices` are
-    routed again, with one context as the experiment routes them."""
+    routed again, with one context as the experiment routes them: every depth on the uncalibrated devices, the
+    shallowest on the calibrated one (a calibrated compile of a deeper circuit takes 30-40 CPU-seconds and runs the
+    same steps on a longer circuit)."""
     data = _load("ensemble_devices")
     rows = [r for r in data["rows"] if r["cell"] == cell and r["index"] == index]
     assert sorted((r["p"], r["device"]) for r in rows) == sorted(
         (p, d) for p in data["config"]["depths"] for d in data["config"]["devices"])
     devices = _ensemble_checked_devices(data["config"]["cells"], cell, index, data["config"]["devices"])
+    shallowest = min(data["config"]["depths"])
     context = RoutingContext()
     for r in rows:
-        if r["device"] in devices:
+        if r["device"] in devices and (r["device"] not in CALIBRATED_DEVICES or r["p"] == shallowest):
             _check_ensemble_device_row(r, context)
 
 
