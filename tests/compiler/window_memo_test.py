@@ -156,14 +156,17 @@ def _compiled(shape: tuple[int, int, int], device: str, memos: bool) -> tuple:
     [
         ((2, 3, 1), "heavy-hex"),
         pytest.param((4, 4, 2), "heavy-hex", marks=pytest.mark.heavy),
-        pytest.param((5, 5, 3), "heavy-hex", marks=pytest.mark.heavy),
+        pytest.param((4, 4, 3), "heavy-hex", marks=pytest.mark.heavy),
         pytest.param((4, 4, 2), "grid", marks=pytest.mark.heavy),
         pytest.param((5, 5, 3), "grid", marks=pytest.mark.heavy),
     ],
-    ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "5x5/3-heavy-hex", "4x4/2-grid", "5x5/3-grid"],
+    ids=["2x3/1-heavy-hex", "4x4/2-heavy-hex", "4x4/3-heavy-hex", "4x4/2-grid", "5x5/3-grid"],
 )
 def test_the_memos_change_no_choice(shape: tuple[int, int, int], device: str) -> None:
-    """The allocation search, the cells' plan choice and the routing pick what they pick without the memos."""
+    """The allocation search, the cells' plan choice and the routing pick what they pick without the memos.
+
+    Three robots on heavy-hex run on 4x4, not 5x5: the memos answer translated windows and share one A* there too
+    (:func:`_compiled` asserts both) in under half the CPU time; 5x5 with three robots is kept on the grid."""
     assert _compiled(shape, device, True) == _compiled(shape, device, False)
 
 
