@@ -98,9 +98,11 @@ def solve(
             raise OptionError(name, f"unknown option of solve (qaoa's: {', '.join(_QAOA_DEFAULTS)})")
         raise OptionError(name, f"applies to method='qaoa' only (got method={method!r})")
     if time_limit is not None:
-        if method not in ("cpsat", "anneal", "genetic"):
-            raise OptionError("time_limit",
-                              f"applies to method='cpsat', 'anneal' or 'genetic' only (got method={method!r})")
+        from qcpp.problem.solvers.stopping import TIME_LIMITED
+
+        if method not in TIME_LIMITED:
+            methods = ", ".join(repr(m) for m in TIME_LIMITED[:-1]) + f" or {TIME_LIMITED[-1]!r}"
+            raise OptionError("time_limit", f"applies to method={methods} only (got method={method!r})")
         if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
             raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
     for name, value, owner in (("workers", workers, "cpsat"), ("iterations", iterations, "anneal"),

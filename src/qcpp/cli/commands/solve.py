@@ -74,6 +74,7 @@ from qcpp.estimators.tables import terminal_width
 from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.scenario import Scenario
 from qcpp.problem.solvers import SOLVERS, ProgressFn, Solution, SolveMethod, solution_to_dict
+from qcpp.problem.solvers.stopping import TIME_LIMITED
 from qcpp.training.objectives import GIBBS_SCALE
 
 if TYPE_CHECKING:
@@ -117,9 +118,6 @@ def _qubo(scenario: Scenario, *, seed: int, rule: str, progress: ProgressFn | No
 
 SOLVE_METHODS: dict[str, SolveMethod] = {**SOLVERS, "qaoa": _qaoa, "qubo": _qubo}
 """``--method`` name -> solver. Register new methods here (the CLI reads the keys at call time)."""
-
-TIME_LIMITED = ("cpsat", "anneal", "genetic")
-"""Methods that take ``--time-limit`` and stop on Ctrl-C with the best found so far."""
 
 STOPPED_LINE = {"time limit": "stopped at the time limit", "interrupted": "interrupted"}
 """The text output's words for :attr:`qcpp.problem.solvers.Solution.stopped`."""
@@ -345,7 +343,8 @@ def solve_command(
     if gibbs_scale != GIBBS_SCALE and objective != "gibbs":
         raise ValueError(f"--gibbs-scale: applies to --objective gibbs only (got --objective {objective})")
     if time_limit is not None and method not in TIME_LIMITED:
-        raise ValueError(f"--time-limit: applies to --method cpsat, anneal or genetic only (got --method {method})")
+        methods = ", ".join(TIME_LIMITED[:-1]) + f" or {TIME_LIMITED[-1]}"
+        raise ValueError(f"--time-limit: applies to --method {methods} only (got --method {method})")
     if time_limit is not None and not 0 < time_limit < math.inf:
         raise ValueError(f"--time-limit: expected a positive number of seconds, got {time_limit:g}")
     for flag, value, owner in (("--workers", workers, "cpsat"), ("--iterations", iterations, "anneal"),

@@ -26,8 +26,13 @@ import time
 from collections.abc import Callable
 
 __all__ = [
-    "INTERRUPTED", "TIME_LIMIT", "Clock", "StopCheck", "StopFn", "check_time_limit", "stop_check", "stopped_note",
+    "INTERRUPTED", "TIME_LIMIT", "TIME_LIMITED", "Clock", "StopCheck", "StopFn", "check_time_limit", "stop_check",
+    "stopped_note",
 ]
+
+TIME_LIMITED = ("cpsat", "anneal", "genetic")
+"""The methods that take a ``time_limit`` and a ``stop`` request and answer with the best found so far (the API's
+and the command line's checks read it)."""
 
 TIME_LIMIT = "time limit"
 """Reason of a search that reached its ``time_limit``."""
