@@ -54,6 +54,7 @@ if TYPE_CHECKING:
     from qcpp.problem.limits import SizeError, allow_large
     from qcpp.problem.solvers import Solution
     from qcpp.qubo.model import Bqm
+    from qcpp.routing.context import RoutingContext
     from qcpp.simulate.noisy import NoisyResult
     from qcpp.simulate.validate import ValidationReport
     from qcpp.verification import VerifyReport
@@ -74,6 +75,7 @@ _EXPORTS: dict[str, str] = {
     "qubo_model": "qcpp.api.qubos",
     "write_qubo": "qcpp.api.qubos",
     "Bqm": "qcpp.qubo.model",
+    "RoutingContext": "qcpp.routing.context",
     "Scenario": "qcpp.api.scenarios",
     "ScenarioError": "qcpp.api.scenarios",
     "default_scenario": "qcpp.api.scenarios",
@@ -116,6 +118,7 @@ __all__ = [
     "PlanOptions",
     "QasmProfileError",
     "QcppError",
+    "RoutingContext",
     "Scenario",
     "ScenarioError",
     "SizeError",

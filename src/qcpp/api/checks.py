@@ -103,3 +103,16 @@ def check_angles_arg(angles: object, layers: int, name: str = "angles") -> list[
     if len(values) != 2 * layers:
         raise OptionError(name, f"p = {layers} needs {2 * layers} angles (g0,b0,...), got {len(values)}")
     return values
+
+
+def check_context_arg(context: object) -> Any:
+    """``context`` as the API's ``context=`` takes it: ``None`` or a :class:`qcpp.RoutingContext`.
+
+    Raises:
+        OptionError: anything else, naming ``context``.
+    """
+    from qcpp.routing.context import RoutingContext
+
+    if context is not None and not isinstance(context, RoutingContext):
+        raise OptionError("context", f"expected a qcpp.RoutingContext or None, got {type(context).__name__}")
+    return context

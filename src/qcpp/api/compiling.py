@@ -23,7 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.checks import check_context_arg, check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario
 from qcpp.errors import OptionError, check_choice, check_count
@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from qcpp.api.decoding import DecodedCounts
     from qcpp.hardware.device import Device
     from qcpp.ir.circuit import Circuit
+    from qcpp.routing.context import RoutingContext
     from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = ["Compiled", "compile"]
@@ -278,6 +279,7 @@ def compile(
     zero_start: bool = False,
     max_gates: int | None = None,
     progress: ProgressArg = None,
+    context: RoutingContext | None = None,
     **plan_options: Any,
 ) -> Compiled:
     """Compile the constrained-mixer QAOA circuit of ``scenario`` (what ``qcpp compile`` does).
@@ -303,6 +305,9 @@ def compile(
             lowered gates with ``lowered=True`` (``None`` for the high-level circuit, whose count is known only once
             built); the circuit is then built section by section, the same circuit. With a device: each stage of
             the routing as it starts (``progress(1, None)``, ``progress(2, None)``, ...; ``True`` names them).
+        context: With a device: a :class:`~qcpp.RoutingContext` to keep the routing's searches in, shared by
+            calls that route the same circuits (``estimate`` of what was just compiled, the same compile again):
+            they are then answered from it, with the same result (default: a fresh one per call).
         **plan_options: How the circuit is built (``rule``, ``initial``, ``target``, ...;
             :class:`~qcpp.plan.options.PlanOptions`).
 
@@ -348,6 +353,7 @@ def compile(
         raise OptionError("zero_start", refusal)
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_progress_arg(progress)
+    check_context_arg(context)
     check_cost_range(s)  # what the command line checks when it loads a file
     size = check_size(s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE)
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={layers}"
@@ -363,6 +369,7 @@ def compile(
         routed = compile_for_device(
             s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
             layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage, zero_start=zero_start,
+            context=context,
         )  # fmt: skip
     r = routed.routed
     return Compiled(

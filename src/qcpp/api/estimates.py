@@ -21,7 +21,7 @@ import json
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
-from qcpp.api.checks import check_layers_arg, check_scenario_arg, plan_options_arg
+from qcpp.api.checks import check_context_arg, check_layers_arg, check_scenario_arg, plan_options_arg
 from qcpp.api.progress import ProgressArg, check_progress_arg, reporting
 from qcpp.api.scenarios import Scenario, default_scenario
 from qcpp.errors import OptionError, check_choice
@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from qcpp.hardware.device import Device
+    from qcpp.routing.context import RoutingContext
 
 __all__ = ["Estimate", "estimate", "plot_estimates"]
 
@@ -155,6 +156,7 @@ def estimate(
     qec_scheme: str = "surface_code",
     error_budget: float = 1e-3,
     progress: ProgressArg = None,
+    context: RoutingContext | None = None,
     **plan_options: Any,
 ) -> Estimate:
     """Resource counts of the lowered QAOA circuit of ``scenario`` with ``p`` layers, without building it.
@@ -182,6 +184,10 @@ def estimate(
             (:mod:`qcpp.api.progress`) called as each stage of the ``device`` routing starts (``progress(1, None)``,
             ...). The counts alone take milliseconds and report nothing; a sweep is a loop over calls, whose own
             count is the progress.
+        context: With a device: a :class:`~qcpp.RoutingContext` shared with the calls that route the same circuits
+            (``compile`` of the same scenario on the same device, a sweep over devices): their searches, and a
+            whole compile of the same circuit, are answered from it, with the same result (default: a fresh one
+            per call).
         **plan_options: How the circuit is built: ``rule``, ``initial``, ``target``, ``phase``, ``optimize``,
             ``ancilla_budget``, ``phase_layout``, ``angles``, ``first_phase`` (``False``: no first phase separator,
             exact from a basis-state start; :class:`~qcpp.plan.options.PlanOptions`).
@@ -213,6 +219,7 @@ def estimate(
     if device is not None:
         device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
     check_progress_arg(progress)
+    check_context_arg(context)
     check_cost_range(s)  # what the command line checks when it loads a file
     point = _point(s, layers, Point)
     task = f"estimate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
@@ -224,7 +231,8 @@ def estimate(
             if bar is not None and text:  # "" ends a row: no stage
                 bar.stage(text)
 
-        rows = estimate_rows([point], settings, compare_paper, paper_doubling, device, stage)  # type: ignore[arg-type]
+        rows = estimate_rows([point], settings, compare_paper, paper_doubling, device, stage,  # type: ignore[arg-type]
+                             context)  # fmt: skip
         return Estimate(next(rows))
 
 

@@ -186,6 +186,7 @@ def estimate_rows(
     doubling: Doubling = "partial-mixer",
     device: str | Device | None = None,
     stage: Callable[[str], None] | None = None,
+    context: RoutingContext | None = None,
 ) -> Iterator[dict[str, Any]]:
     """The rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, plus the routed fields with a
     ``device``), one per point, lazily: what :func:`estimate_report` renders and ``qcpp.estimate`` returns.
@@ -197,11 +198,14 @@ def estimate_rows(
         doubling: Reading of the paper's doubling.
         device: Add the routed figures on this device.
         stage: Called with the stage of a row's routing as it starts (``""`` when the row is done).
+        context: The routing memos the rows share (default: a fresh one for this sweep, keeping no whole compile:
+            its rows do not repeat).
 
     Yields:
         One row per point, in order.
     """
-    context = RoutingContext() if device is not None else None  # one run: later rows reuse the routing memos
+    if context is None and device is not None:  # one run: later rows reuse the routing memos
+        context = RoutingContext(compiles_kept=0)
     device = None if device is None else device_arg(device)  # a device file read once for every row
     for est in sweep(points, options):
         yield _row(est, compare_paper, doubling, device, stage, context)

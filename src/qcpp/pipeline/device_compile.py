@@ -63,7 +63,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from qcpp.errors import OptionError
-from qcpp.hardware.device import IBM_DEVICES, Device, distances, get_device, heavy_hex_distance
+from qcpp.hardware.device import IBM_DEVICES, Device, device_names, distances, get_device, heavy_hex_distance
 from qcpp.ir.circuit import Circuit, Section
 from qcpp.layout.heavy_hex import hex_distance, hex_placement
 from qcpp.layout.medial import allocate_ancillas, grid_shape, medial_placement, medial_shape
@@ -330,7 +330,8 @@ def compile_for_device(
         stage: Called with the name of each stage as it starts (``choosing partial-mixer plans on the cells
             (3 / 18)``), for progress on a long compile.
         routing: Every setting of routing, allocation and the searches.
-        context: The memos of the run (default: a fresh one; a caller compiling many circuits may share one).
+        context: The memos of the run (default: a fresh one; a caller compiling many circuits may share one). The
+            whole result is memoised in it too: the same call again (progress aside) returns it at once.
         optimize_for: On a named device, the figure the routed candidates are chosen by (:data:`OPTIMIZE_FOR`:
             ``esp`` or ``twoq``; default :func:`qcpp.pipeline.candidates.default_objective`: ``esp`` on named
             devices). The families keep compile's single routing.
@@ -356,10 +357,19 @@ def compile_for_device(
         refusal = zero_start_refusal(device, lowered)
         if refusal is not None:
             raise OptionError("zero_start", refusal)
+    context = RoutingContext() if context is None else context
+    named = get_device(device) if isinstance(device, str) and device in device_names() else device
+    key = (scenario, p, named, options, lowered, tuple(sorted(bindings.items())) if bindings else None,
+           local_ancillas, seed, tuple(layouts), layout_method, arrangement, routing, optimize_for, zero_start)
+    hit = context.compiles.get(key)
+    if hit is not None:
+        return hit  # type: ignore[no-any-return]
     with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
-        return _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
-                                   layout_method, arrangement, stage, routing, context, optimize_for,
-                                   bind_field, zero_start)  # fmt: skip
+        result = _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
+                                     layout_method, arrangement, stage, routing, context, optimize_for,
+                                     bind_field, zero_start)  # fmt: skip
+    context.keep_compile(key, result)
+    return result
 
 
 def _compile_for_device(

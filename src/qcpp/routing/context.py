@@ -5,7 +5,8 @@ plan variants, the far-phase relays' with-and-without comparison, the final rout
 pure function of its key is memoised: routed windows (on their physical pairs and the options, on a heavy-hex
 lattice up to the lattice's translations), SABRE's routing of a patch, each device's patches and SABRE passes, the
 allocation and placement searches' winners, the cells' plan choices, what the routed bound needs of each gadget
-kind. :class:`RoutingContext` owns all of them; a compile creates one (or takes the caller's, so an estimate sweep
+kind, and whole device compiles (so an estimate of what was just compiled routes nothing again).
+:class:`RoutingContext` owns all of them; a compile creates one (or takes the caller's, so an estimate sweep
 can share it) and passes it down, so no answer depends on what ran before in the process, and dropping the context
 frees the memory.
 
@@ -62,6 +63,8 @@ class RoutingContext:
             memory: every entry is a pure function of its key, so starting over changes no answer).
         parallel_trials: Whether SABRE may run a routing's trials on several threads
             (:func:`qcpp.routing.patches.run_sabre`; the same answer either way).
+        compiles_kept: Whole device compiles :attr:`compiles` keeps, the latest (a routed circuit may hold tens of
+            thousands of gates; ``0``: none, for a sweep whose rows never repeat).
 
     Attributes:
         windows: Routed windows and SABRE's routings of patches (:mod:`qcpp.routing.windows`,
@@ -82,6 +85,8 @@ class RoutingContext:
             (:func:`qcpp.estimators.window_classes.routed_sum`).
         kind_routes: What the routed bound needs of each gadget kind, per kind key
             (:func:`qcpp.estimators.layout_bound.kind_route`).
+        compiles: Whole device compiles per scenario, depth, device and every setting
+            (:func:`qcpp.pipeline.device_compile.compile_for_device`).
         watches: The open watches (:meth:`watching`).
         centres: Open sets collecting the qubits every patch routed was grown around
             (:func:`qcpp.routing.windows.route_window` keys a translated window on the lattice around them).
@@ -92,10 +97,13 @@ class RoutingContext:
         taken_ahead: Windows answered by a process routing ahead so far.
     """
 
-    def __init__(self, *, reuse: bool = True, window_limit: int = 1 << 18, parallel_trials: bool = True) -> None:
+    def __init__(
+        self, *, reuse: bool = True, window_limit: int = 1 << 18, parallel_trials: bool = True, compiles_kept: int = 4
+    ) -> None:
         self.reuse = reuse
         self.window_limit = window_limit
         self.parallel_trials = parallel_trials
+        self.compiles_kept = compiles_kept
         self.windows: dict[Hashable, Any] = {}
         self.patch_indexes: list[Any] = []
         self.sabre_passes: dict[Hashable, Any] = {}
@@ -108,6 +116,7 @@ class RoutingContext:
         self.relabelled: dict[Hashable, Any] = {}
         self.window_classes: dict[Hashable, Any] = {}
         self.kind_routes: dict[Hashable, Any] = {}
+        self.compiles: dict[Hashable, Any] = {}
         self.watches: list[PatchWatch] = []
         self.centres: list[set[int]] = []
         self.prefetched: dict[Hashable, Any] = {}
@@ -117,7 +126,7 @@ class RoutingContext:
     def clear(self) -> None:
         """Forget every memo (open watches stay open)."""
         for memo in (self.windows, self.sabre_passes, self.allocations, self.placements, self.cell_choices,
-                     self.plans, self.relabelled, self.window_classes, self.kind_routes):  # fmt: skip
+                     self.plans, self.relabelled, self.window_classes, self.kind_routes, self.compiles):  # fmt: skip
             memo.clear()
         for kept in (self.patch_indexes, self.within_two, self.free_sites):
             kept.clear()
@@ -136,6 +145,16 @@ class RoutingContext:
             yield watch
         finally:  # by identity: equal watches may be open at once
             del self.watches[next(i for i, w in enumerate(self.watches) if w is watch)]
+
+    def keep_compile(self, key: Hashable, result: Any) -> None:
+        """Memoise a whole device compile under ``key`` in :attr:`compiles`, forgetting the oldest beyond
+        :attr:`compiles_kept`."""
+        if self.compiles_kept < 1:
+            return
+        self.compiles.pop(key, None)
+        self.compiles[key] = result
+        while len(self.compiles) > self.compiles_kept:
+            del self.compiles[next(iter(self.compiles))]
 
     def stop_prefetch(self) -> None:
         """Stop the processes routing windows ahead and forget the windows not taken."""
