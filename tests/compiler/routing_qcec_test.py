@@ -16,9 +16,10 @@ from qcpp.ir.gates import Gate, cx, rz
 from qcpp.pipeline.device_compile import compile_for_device
 from qcpp.problem.presets import default_scenario
 from qcpp.routing.context import RoutingContext
-from qcpp.routing.options import DEFAULT_ROUTING
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.routed_circuit import RoutedCircuit
 from qcpp.simulate.equivalence import check_equivalence
+from tests.compiler.short_search import SHORT_SEARCH
 
 BIND = {"gamma_0": 0.3, "beta_0": 0.7}
 
@@ -47,13 +48,15 @@ def aligned(routed: RoutedCircuit, n: int) -> Circuit:
 
 def _check(scenario_args: tuple[int, int, int], device: str, broken: bool = False, layout_method: str = "auto",
            lowered: bool = True, context: RoutingContext | None = None, every_input: bool = False,
-           chosen: str = "O3 passes", optimize_for: str | None = None, zero_start: bool = False) -> str:  # fmt: skip
+           chosen: str = "O3 passes", optimize_for: str | None = None, zero_start: bool = False,
+           routing: RoutingOptions = DEFAULT_ROUTING) -> str:  # fmt: skip
     """QCEC's verdict on the routed circuit against its logical circuit: on every input of the data qubits, or (a
     candidate simplified for the all-|0> start, :mod:`qcpp.routing.known_state`, unless ``every_input``) on the
     all-|0> input. ``chosen``: a part of the chosen candidate's name asserted where ``lowered`` is off."""
     s = default_scenario(*scenario_args)
     r = compile_for_device(s, 1, device, lowered=lowered, bindings=BIND, layout_method=layout_method,
-                           context=context, optimize_for=optimize_for, zero_start=zero_start)  # fmt: skip
+                           context=context, optimize_for=optimize_for, zero_start=zero_start,
+                           routing=routing)  # fmt: skip
     if not lowered:  # what compile writes on a named device: a candidate optimised by Qiskit's passes
         assert "O3 passes" in r.chosen and chosen in r.chosen, r.chosen
     if not zero_start:  # the candidates all keep the unitary
@@ -91,18 +94,19 @@ def test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_their_
     still equals it on every input, and with ``--zero-start`` too (ours simplified for the all-|0> start) it equals
     it on the all-|0> input the device runs from, and not on every input of the data qubits (it lost ``cx`` that act
     only on the robots' start state). One routing context serves the compiles, so the compiles on the heavy-hex
-    lattices that they share run once."""
-    context = RoutingContext()
-    assert _check((3, 3, 1), "ibm_torino", context=context) == "equivalent"
-    written = _check((3, 3, 1), "ibm_torino", lowered=False, context=context)
+    lattices that they share run once. Equality holds whatever the searches find: they are shortened
+    (:data:`~tests.compiler.short_search.SHORT_SEARCH`; every step still runs)."""
+    context, short = RoutingContext(), SHORT_SEARCH
+    assert _check((3, 3, 1), "ibm_torino", context=context, routing=short) == "equivalent"
+    written = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, routing=short)
     assert written in ("equivalent", "equivalent_up_to_global_phase")
-    twoq = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, optimize_for="twoq")
+    twoq = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, optimize_for="twoq", routing=short)
     assert twoq in ("equivalent", "equivalent_up_to_global_phase")
     zero = _check((3, 3, 1), "ibm_torino", lowered=False, context=context, chosen="from |0>", optimize_for="twoq",
-                  zero_start=True)  # fmt: skip
+                  zero_start=True, routing=short)  # fmt: skip
     assert zero in ("equivalent", "equivalent_up_to_global_phase")
     assert _check((3, 3, 1), "ibm_torino", lowered=False, context=context, every_input=True, chosen="from |0>",
-                  optimize_for="twoq", zero_start=True) == "not_equivalent"  # fmt: skip
+                  optimize_for="twoq", zero_start=True, routing=short) == "not_equivalent"  # fmt: skip
 
 
 @pytest.mark.slow
