@@ -353,13 +353,15 @@ def test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device() -> N
     search, partial mixers planned there) and offers those routings placed where they embed; the chosen one has
     the fewest CZ, fewer than without the lattices, and the result reports the logical circuit its layouts index:
     the lattice's partial-mixer choice, the same operator as the plan's circuit (statevector). With the lattice
-    search off there are no such candidates."""
+    search off there are no such candidates (a compile sharing the first's memos: the searches on Fez itself are
+    the same)."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.presets import default_scenario
+    from qcpp.routing.context import RoutingContext
     from qcpp.simulate.statevector import simulate_statevector
 
-    s, bind = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}
-    r = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq")
+    s, bind, context = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
+    r = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq", context=context)
     by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
     lattices = {n.split(" + ")[0] for n in by_name if n.startswith("search on heavy-hex:")}
     assert lattices and lattices <= {f"search on heavy-hex:{d}" for d in (3, 5, 7, 9)}
@@ -367,7 +369,7 @@ def test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device() -> N
     assert len(r.routed.initial_layout) == r.logical.num_qubits == r.compiled.circuit.num_qubits
     assert list(r.logical.gates) != list(r.compiled.circuit.gates)  # the lattice's choice of parity networks
     assert np.allclose(simulate_statevector(r.logical), simulate_statevector(r.compiled.circuit), atol=1e-9)
-    off = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq",
+    off = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq", context=context,
                              routing=replace(DEFAULT_ROUTING, lattice_search_max_distance=0))  # fmt: skip
     assert not any(c["name"].startswith("search on heavy-hex:") for c in off.candidates)  # twoq: Torino's stays
     assert by_name[r.chosen] < min(c["two_qubit"] for c in off.candidates)
@@ -378,18 +380,20 @@ def test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device() -> None:
     """One robot on 3x4: the cell layout routed on heavy-hex:9 and placed on Torino writes fewer CZ than Qiskit's
     routings of Torino, and the chosen candidate has the fewest; with ``--layout medial`` the result reports the
     cells' logical circuit (local ancillas), which its layouts index (``routing_qcec_test`` proves the two equal up
-    to the layouts)."""
+    to the layouts). The two compiles share their memos (the cells are routed once)."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.presets import default_scenario
+    from qcpp.routing.context import RoutingContext
 
-    s, bind = default_scenario(3, 4, 1), {"gamma_0": 0.3, "beta_0": 0.7}
-    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq")
+    s, bind, context = default_scenario(3, 4, 1), {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
+    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", context=context)
     by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
     cells = [n for n in by_name if n.startswith("cells on heavy-hex:")]
     qiskit = [n for n in by_name if n.startswith("qiskit")]
     assert cells and qiskit and min(by_name[n] for n in cells) < min(by_name[n] for n in qiskit)
     assert by_name[r.chosen] == min(by_name.values())
-    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", layout_method="medial")
+    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", layout_method="medial",
+                           context=context)  # fmt: skip
     assert r.chosen.startswith("cells on heavy-hex:"), r.chosen
     assert r.logical.num_qubits > r.compiled.circuit.num_qubits  # the cells' local ancillas
     assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits

@@ -187,11 +187,13 @@ def _ranked(
     options: RoutingOptions,
     context: RoutingContext | None,
 ) -> list[tuple[int, tuple[int, ...], int]]:
-    """:func:`_search`'s ranking of (cost, layout, seed), memoised in ``context.placements``."""
+    """:func:`_search`'s ranking of (cost, layout, seed), memoised in ``context.placements`` under the settings it
+    reads (so compiles that differ in other settings share it)."""
     context = RoutingContext() if context is None else context
     pairs = tuple(g[1] for g in circuit.gates if len(g[1]) == 2)
+    settings = (options.sabre_layout_trials, options.trials, options.placement_refine)
     key = (pairs, circuit.num_qubits, device.coupling, device.num_qubits, tuple(map(tuple, starts)), seed, layouts,
-           seeds, options)  # fmt: skip
+           seeds, settings)  # fmt: skip
     ranked = context.placements.get(key)
     if ranked is None:
         ranked = _search(pairs, circuit, device, starts, seed, layouts, seeds, options, context)
