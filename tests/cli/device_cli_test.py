@@ -64,7 +64,8 @@ def test_estimate_device_adds_routed_fields_equal_to_compile() -> None:
     compiled = json.loads(run("compile", PAPER, "--device", "heavy-hex", "--json").stdout)
     assert row["device"] == compiled["device"]["name"]  # the cell layout's heavy-hex:7 or greedy's heavy-hex:3
     assert row["routed_twoq"] == compiled["routed"]["two_qubit"]
-    assert row["esp"] == pytest.approx(compiled["routed"]["esp"])
+    for figure in ("esp", "esp_idle", "log10_esp", "log10_esp_idle"):  # one computation: equal, not just close
+        assert row[figure] == compiled["routed"][figure], figure
     assert row["routed_twoq_depth"] <= row["routed_depth"]
 
 

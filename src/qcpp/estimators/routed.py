@@ -45,6 +45,7 @@ from qcpp.estimators.counts import count_gates
 from qcpp.hardware.device import Device, get_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
+from qcpp.routing.native import log10_figure
 
 __all__ = [
     "BALL_BOUND_MODEL",
@@ -107,15 +108,6 @@ def _largest_component(device: Device) -> int:
     return int(np.bincount(labels).max())
 
 
-def _log10(log: float | None) -> float | None:
-    """A natural log as a base-10 one for the rows, rounded to 6 decimals (``None``: none, or ``-inf``, an ESP of
-    exactly 0 that JSON cannot write as a number).
-
-    >>> _log10(math.log(2.3e-226)), _log10(None), _log10(-math.inf)
-    (-225.638272, None, None)
-    """
-    return None if log is None or math.isinf(log) else round(log / math.log(10), 6)
-
 
 def _worst(values: Any) -> float:
     return max(values, default=0.0)
@@ -144,7 +136,7 @@ def _bound(device: Device, twoq: int, one_qubit: int, data_qubits: int, model: s
         "esp": math.exp(log_esp),
         "esp_model": model,
         "esp_idle": None,
-        "log10_esp": _log10(log_esp),
+        "log10_esp": log10_figure(log_esp),
         "log10_esp_idle": None,
     }
 
@@ -193,7 +185,7 @@ def _routed_fields(
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.estimators.layout_bound import bound_plan
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
-    from qcpp.routing.native import duration_s, log_esp, log_esp_idle
+    from qcpp.routing.native import duration_s, esp_figures
 
     # the unsized grid and heavy-hex are sized for the geometric layout, as compile sizes them
     medial = layout_device(scenario, device) if device in ("grid", "heavy-hex") else None
@@ -215,8 +207,7 @@ def _routed_fields(
     result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
     routed = result.routed
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
-    gate_log = log_esp(routed)
-    idle_log = log_esp_idle(routed, gate_log=gate_log)
+    figures = esp_figures(routed)
     return {
         **out,
         "device": routed.device.name,
@@ -227,11 +218,11 @@ def _routed_fields(
         "routed_depth": gc.depth,
         "routed_twoq_depth": gc.two_qubit_depth,
         "duration_s": duration_s(routed),
-        "esp": math.exp(gate_log),
+        "esp": figures["esp"],
         "esp_model": ESP_MODEL,
-        "esp_idle": None if idle_log is None else math.exp(idle_log),
-        "log10_esp": _log10(gate_log),
-        "log10_esp_idle": _log10(idle_log),
+        "esp_idle": figures["esp_idle"],
+        "log10_esp": figures["log10_esp"],
+        "log10_esp_idle": figures["log10_esp_idle"],
     }
 
 
@@ -266,7 +257,7 @@ def _summed_fields(summed: Any, esp_model: str) -> dict[str, Any]:
         "esp": summed.esp,
         "esp_model": esp_model,
         "esp_idle": None,
-        "log10_esp": _log10(summed.log_esp),
+        "log10_esp": log10_figure(summed.log_esp),
         "log10_esp_idle": None,
     }
 

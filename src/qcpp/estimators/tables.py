@@ -277,11 +277,11 @@ def _mark(row: dict[str, Any], col: str, bound: str = BOUND_MARK, lower: str = L
     return lower if _is_lower_bound(row, col) else APPROX_MARK if _is_approximate(row, col) else ""
 
 
-def _from_log(row: dict[str, Any], col: str) -> str | None:
+def from_log(row: dict[str, Any], col: str) -> str | None:
     """``row``'s ``col`` written from its base-10 log (:data:`_FROM_LOG`) where the figure underflowed to ``0.0``
     and the log is known, else ``None``.
 
-    >>> _from_log({"esp": 0.0, "log10_esp": -1234.55}, "esp"), _from_log({"esp": 0.5, "log10_esp": -0.3}, "esp")
+    >>> from_log({"esp": 0.0, "log10_esp": -1234.55}, "esp"), from_log({"esp": 0.5, "log10_esp": -0.3}, "esp")
     ('2.818e-1235', None)
     """
     log = row.get(_FROM_LOG.get(col, ""))
@@ -295,9 +295,9 @@ def _from_log(row: dict[str, Any], col: str) -> str | None:
 
 
 def _shown(row: dict[str, Any], col: str) -> str:
-    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell` (or :func:`_from_log`), marked by
+    """The cell of ``row``'s ``col`` in the formats read by people: :func:`_cell` (or :func:`from_log`), marked by
     :func:`_mark`."""
-    text = _from_log(row, col)
+    text = from_log(row, col)
     return _mark(row, col) + (text if text is not None else _cell(row.get(col), col))
 
 
@@ -551,8 +551,8 @@ def latex_number(v: Any) -> str:
 
 
 def _latex_cell(row: dict[str, Any], col: str) -> str:
-    """``row``'s ``col`` as a ``latex`` cell without its mark: :func:`latex_number`, or :func:`_from_log`."""
-    text = _from_log(row, col)
+    """``row``'s ``col`` as a ``latex`` cell without its mark: :func:`latex_number`, or :func:`from_log`."""
+    text = from_log(row, col)
     if text is None and col.startswith("log10_") and isinstance(row.get(col), float):
         text = _cell(row.get(col), col)  # the decimals are the digits: not rounded to an integer
     return latex_number(row.get(col)) if text is None else text

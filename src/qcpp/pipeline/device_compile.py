@@ -88,7 +88,7 @@ from qcpp.plan.qaoa import QaoaPlan
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext, collector_paused
-from qcpp.routing.native import IDLE_MODEL, duration_s, esp, esp_idle, to_native
+from qcpp.routing.native import IDLE_MODEL, duration_s, esp_figures, to_native
 from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 from qcpp.routing.prefetch import can_prefetch, prefetch_windows
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
@@ -176,11 +176,12 @@ class DeviceCompileResult:
     def summary(self) -> dict[str, Any]:
         """JSON-ready: ``device``, ``initial_layout``, ``final_layout``, ``routed`` (gates, two-qubit count, swaps,
         ESP of the gates with its model, ESP with idle decoherence (``esp_idle``, ``None`` on devices without
-        T1 / T2) with its model, duration in seconds)."""
+        T1 / T2) with its model, both also as base-10 logs (``log10_esp``, ``log10_esp_idle``: finite where the ESP
+        underflows to 0, as in ``qcpp estimate``), duration in seconds)."""
         r = self.routed
         native = r if not self.lowered else to_native(r)
         ops = r.circuit.count_ops()
-        gate_esp = esp(native)
+        figures = esp_figures(native)
         return {
             "device": r.device.summary(),
             "initial_layout": list(r.initial_layout),
@@ -190,10 +191,12 @@ class DeviceCompileResult:
                 "layout": self.layout_method,
                 "two_qubit": sum(v for k, v in ops.items() if k in ("cx", "cz", "rzz")),
                 "swaps": r.swaps,
-                "esp": gate_esp,
+                "esp": figures["esp"],
                 "esp_model": ESP_MODEL,
-                "esp_idle": esp_idle(native, gate_esp=gate_esp),
+                "esp_idle": figures["esp_idle"],
                 "esp_idle_model": f"esp x {IDLE_MODEL}",
+                "log10_esp": figures["log10_esp"],
+                "log10_esp_idle": figures["log10_esp_idle"],
                 "optimize_for": self.optimize_for,
                 "zero_start": self.zero_start,
                 "equal_on_every_input": self.equal_on_every_input,

@@ -47,8 +47,8 @@ from qcpp.ir.gates import Gate, cz, rx, rz, rzz
 from qcpp.routing.routed_circuit import RoutedCircuit
 
 __all__ = [
-    "IDLE_MODEL", "RUNNABLE_ESP", "duration_s", "esp", "esp_idle", "idle_fidelity", "idle_times_s", "log_esp",
-    "log_esp_idle", "native_gates", "one_qubit_name", "to_native",
+    "IDLE_MODEL", "RUNNABLE_ESP", "duration_s", "esp", "esp_figures", "esp_idle", "idle_fidelity", "idle_times_s",
+    "log10_figure", "log_esp", "log_esp_idle", "native_gates", "one_qubit_name", "to_native",
 ]
 
 IDLE_MODEL = (
@@ -305,6 +305,40 @@ def idle_fidelity(t: float, t1: float, t2: float) -> float:
     """
     t2 = min(t2, 2 * t1)
     return (3 + math.exp(-t / t1) + 2 * math.exp(-t / t2)) / 6
+
+
+def log10_figure(log: float | None) -> float | None:
+    """A natural log (of an ESP) as a base-10 one for a row or a summary, rounded to 6 decimals (``None``: none, or
+    ``-inf``, an ESP of exactly 0 that JSON cannot write as a number).
+
+    >>> log10_figure(math.log(2.3e-226)), log10_figure(None), log10_figure(-math.inf)
+    (-225.638272, None, None)
+    """
+    return None if log is None or math.isinf(log) else round(log / math.log(10), 6)
+
+
+def esp_figures(routed: RoutedCircuit) -> dict[str, float | None]:
+    """The ESP of a native routed circuit as a row or summary reports it: ``esp``, ``esp_idle`` (``None`` without
+    T1 / T2) and both as base-10 logs (``log10_esp``, ``log10_esp_idle``: :func:`log10_figure`), from one pass
+    each in log space.
+
+    >>> from qcpp.hardware.device import get_device
+    >>> from qcpp.ir.circuit import Circuit, Section
+    >>> from qcpp.ir.gates import cx
+    >>> from qcpp.routing.sabre import route
+    >>> routed = to_native(route(Circuit([("data", 2)], [Section("s", [cx(0, 1)])]), get_device("ibm_fez"), (0, 1)))
+    >>> f = esp_figures(routed)
+    >>> f["esp"] == esp(routed), f["esp_idle"] == esp_idle(routed), f["log10_esp"] == log10_figure(log_esp(routed))
+    (True, True, True)
+    """
+    gate_log = log_esp(routed)
+    idle_log = log_esp_idle(routed, gate_log=gate_log)
+    return {
+        "esp": math.exp(gate_log),
+        "esp_idle": None if idle_log is None else math.exp(idle_log),
+        "log10_esp": log10_figure(gate_log),
+        "log10_esp_idle": log10_figure(idle_log),
+    }
 
 
 def esp_idle(routed: RoutedCircuit, gate_esp: float | None = None) -> float | None:

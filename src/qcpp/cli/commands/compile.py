@@ -62,6 +62,7 @@ from qcpp.cli.commands.plan_flags import LayersFlag, check_start, with_plan_flag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import echo_note, json_text, print_table
 from qcpp.estimators.guard import SizePrediction, check_size, compile_need, predict_size
+from qcpp.estimators.tables import from_log
 from qcpp.hardware.device import device_arg, device_names
 from qcpp.io.atomic import check_output, is_stdout
 from qcpp.ir.angles import UnboundParameterError, symbol_sort_key
@@ -310,10 +311,10 @@ def compile_command(
     if device is not None:
         routed = summary["routed"]
         duration = "unknown" if routed["duration_s"] is None else f"{routed['duration_s']:.6g} s"
-        idle = "" if routed.get("esp_idle") is None else f" ({routed['esp_idle']:.3g} with idle decoherence)"
+        idle = "" if routed.get("esp_idle") is None else f" ({_esp(routed, 'esp_idle')} with idle decoherence)"
         console.print(
-            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), ESP {routed['esp']:.3g}{idle}, "
-            f"duration {duration}; {summary['device_note']}"
+            f"routed: {routed['two_qubit']} two-qubit gates ({routed['swaps']} SWAPs), "
+            f"ESP {_esp(routed, 'esp')}{idle}, duration {duration}; {summary['device_note']}"
         )
         console.print(_layouts_line(summary["initial_layout"], summary["final_layout"]))
         console.print(esp_verdict(routed["esp"] if routed.get("esp_idle") is None else routed["esp_idle"],
@@ -379,6 +380,15 @@ def qiskit_o3_line(routed: dict[str, Any]) -> str | None:
         f"{esp_text}; chosen: {routed['two_qubit'] / best['two_qubit']:.2f}x its two-qubit gates, "
         f"{ratio_esp:.3g}x its ESP{' (idle)' if idle else ''}"
     )
+
+
+def _esp(routed: dict[str, Any], key: str) -> str:
+    """``routed[key]`` (an ESP) to 3 significant digits, or from its base-10 log where it underflowed to 0.
+
+    >>> _esp({"esp": 0.0, "log10_esp": -1234.55}, "esp"), _esp({"esp": 0.1234, "log10_esp": -0.9}, "esp")
+    ('2.818e-1235', '0.123')
+    """
+    return from_log(routed, key) or f"{routed[key]:.3g}"
 
 
 def esp_verdict(esp: float, *, idle: bool) -> str:
