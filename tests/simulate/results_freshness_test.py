@@ -186,8 +186,10 @@ def _device_instances() -> list[Any]:
     """One parameter per time-to-solution instance with device rows, with the devices to recompute: the cheap ones
     in the default run on every device; every other one in the heavy step on the uncalibrated devices, and on a
     calibrated one for one instance of each of the first :data:`CALIBRATED_SIZES` sizes (with or without the
-    obstacle, in turn along the sizes, on :func:`checked_devices`' device of that turn). One test per instance, so
-    that the heavy step's two workers share the recompilations (the largest instances take minutes each)."""
+    obstacle, in turn along the sizes, on :func:`checked_devices`' device of that turn). Past those sizes the
+    devices of :data:`SAMPLED_DEVICES` are recompiled for one instance of each size too, in the same turn. One test
+    per instance, so that the heavy step's two workers share the recompilations (the largest instances take minutes
+    each)."""
     rows = [r for r in _load("time_to_solution")["rows"] if r["method"] == "qaoa_device"]
     devices = tuple(dict.fromkeys(r["device"] for r in rows))
     names = list(dict.fromkeys(r["instance"] for r in rows))
@@ -195,9 +197,12 @@ def _device_instances() -> list[Any]:
     params = []
     for n in names:
         k = sizes.index(n.removesuffix(OBSTACLE_SUFFIX))
-        calibrated = k < CALIBRATED_SIZES and n.endswith(OBSTACLE_SUFFIX) == (k % 2 == 1)
+        in_turn = n.endswith(OBSTACLE_SUFFIX) == (k % 2 == 1)
+        checked = checked_devices(devices, k, calibrated=k < CALIBRATED_SIZES and in_turn)
+        if k >= CALIBRATED_SIZES and not in_turn:
+            checked = tuple(d for d in checked if d not in SAMPLED_DEVICES)
         params.append(pytest.param(n, devices, id=n) if n in CHEAP_DEVICE_INSTANCES else
-                      pytest.param(n, checked_devices(devices, k, calibrated), id=n, marks=pytest.mark.heavy))
+                      pytest.param(n, checked, id=n, marks=pytest.mark.heavy))
     return params
 
 
@@ -206,6 +211,11 @@ CALIBRATED_SIZES = 3
 recompiles, one instance each: a calibrated compile of a 4x4 or 5x5 instance takes 30-90 CPU-seconds, and the
 calibrated compile's steps (placement searches, Qiskit's O3 candidates, ESP scoring) are the ones the 3x3 rows
 exercise; the 4x4 and 5x5 instances stay recompiled on the uncalibrated devices."""
+
+SAMPLED_DEVICES = ("google_willow",)
+"""Uncalibrated devices whose compiles of the larger instances take tens of CPU-seconds (the cell layout with local
+ancillas on Willow's grid, at the study's depth): past the first :data:`CALIBRATED_SIZES` sizes the heavy step
+recompiles them for one instance per size, with or without the obstacle in turn; the same steps run on both."""
 
 OBSTACLE_SUFFIX = " +obst"
 """How the time-to-solution study names the instance of a size with an obstacle."""
