@@ -221,6 +221,8 @@ def test_md_and_latex_mark_a_bound_csv_and_json_keep_the_number(bound_row) -> No
     d, d2 = bound_row["depth"], bound_row["two_qubit_depth"]
     md = render([bound_row], "md", columns=["rows", "depth", "two_qubit_depth"])
     assert md.splitlines()[2] == f"| 3 | <={d} | <={d2} |"
+    assert md.rstrip().splitlines()[-1] == "<=N is an upper bound"  # the footnote says what the mark means
+    assert "upper bound" not in render([bound_row], "md", columns=["rows", "cx"])  # no mark shown, no footnote
     latex = render([bound_row], "latex", columns=["rows", "depth"])
     assert rf"3 & $\leq${d:,} \\".replace(",", "{,}") in latex and "see depth_kind" not in latex
     row = next(csv.DictReader(io.StringIO(render([bound_row], "csv"))))

@@ -427,6 +427,7 @@ def render_stream(
     first = True
     approximate = False  # an md cell marked APPROX_MARK: the table ends with a footnote saying what it means
     lower = False  # an md cell marked LOWER_BOUND_MARK: a footnote too
+    upper = False  # an md cell marked BOUND_MARK: a footnote saying what it means
     no_first_phase = False  # a row without the first phase separator: the md table ends saying so
     fields: list[str] = []
     cols: list[str] = []
@@ -450,6 +451,7 @@ def render_stream(
             yield "| " + " | ".join(_shown(row, c) for c in cols) + " |\n"
             approximate = approximate or _any_approximate([row], cols)
             lower = lower or _any_lower_bound([row], cols)
+            upper = upper or any(_is_bound(row, c) for c in cols)
             no_first_phase = no_first_phase or _without_first_phase([row])
         first = False
     if fmt == "json":
@@ -461,6 +463,8 @@ def render_stream(
         yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
     if fmt == "md" and lower:  # the ESP's lower bound beside the figures' upper bounds: both marks said
         yield "\n" + f"{BOUND_MARK}N is an upper bound; {LOWER_BOUND_NOTE}" + "\n"
+    elif fmt == "md" and upper:  # upper bounds alone (bounded depths)
+        yield "\n" + f"{BOUND_MARK}N is an upper bound" + "\n"
     if fmt == "md" and no_first_phase:
         yield "\nCounted " + NO_FIRST_PHASE_NOTE + ".\n"
 
