@@ -239,9 +239,9 @@ def test_the_hidden_columns_note_says_what_each_format_keeps(results) -> None:  
     assert len(next(csv.reader(io.StringIO(render(rows, "csv"))))) > len(MAIN_COLUMNS)
 
 
-def test_plot_draws_points_from_a_depth_bound_hollow_and_says_so() -> None:
-    """A physical figure computed from a depth bound is approximate: hollow marker, legend entry; exact rows have
-    neither."""
+def test_plot_draws_points_that_are_not_exact_hollow_and_says_so() -> None:
+    """A physical figure computed from a depth bound is approximate, a bounded routing's count an upper bound and
+    its ESP a lower one: hollow marker, legend entry; exact rows have neither."""
     from qcpp.estimators.plots import BOUND_LABEL, draw_rows
 
     def rows(kinds: list[str]) -> list[dict]:
@@ -257,6 +257,11 @@ def test_plot_draws_points_from_a_depth_bound_hollow_and_says_so() -> None:
     assert hollow == 2 and BOUND_LABEL in legend
     hollow, legend = hollow_and_legend(draw_rows(rows(["exact"] * 3), "physical_qubits"))
     assert hollow == 0 and BOUND_LABEL not in legend
+    routed = [{"rows": n, "cols": n, "robots": 1, "p": 1, "rule": "exact", "routed_twoq": 100 * n, "esp": 0.5 / n,
+               "routed_kind": kind} for n, kind in ((3, "exact"), (6, "bound"), (10, "bound"))]  # fmt: skip
+    for column in ("routed_twoq", "esp"):  # a bounded routing's count (upper bound) and ESP (lower bound)
+        hollow, legend = hollow_and_legend(draw_rows(routed, column))
+        assert hollow == 2 and BOUND_LABEL in legend, column
 
 
 def test_a_table_without_the_first_phase_separator_says_so() -> None:

@@ -8,12 +8,12 @@ What the plot shows depends on what the rows vary (the reading that needs no leg
 * one grid size and several ``p``: the metric against ``p``, one curve per robot count, one panel;
 * one grid and one ``p``: the metric against the robot count.
 
-Every row is its own point; a point that is not exact because a depth bound stood for the depth (a ``bound``
-depth, or a physical figure computed from one, marked ``<=`` or ``~`` in the table) is drawn hollow, and the legend
-says so (:data:`BOUND_LABEL`). Grids of one size but different shapes (``2x6``, ``3x4``, ``4x3``) need different
-circuits, so a curve that holds several of them is drawn as points alone, without a line (it would zigzag between
-the shapes), and the axis label says so; so are several scenarios of one grid (other obstacles or endpoints), which
-the label names as such.
+Every row is its own point; a point that is not exact (a bound: a ``bound`` depth, the routed figures of a bounded
+routing, its ESP a lower bound; or a physical figure computed from a depth bound: what the table marks ``<=``,
+``>=`` or ``~``) is drawn hollow, and the legend says so (:data:`BOUND_LABEL`). Grids of one size but different
+shapes (``2x6``, ``3x4``, ``4x3``) need different circuits, so a curve that holds several of them is drawn as points
+alone, without a line (it would zigzag between the shapes), and the axis label says so; so are several scenarios of
+one grid (other obstacles or endpoints), which the label names as such.
 
 The paper's estimates (:mod:`qcpp.estimators.paper`) are drawn only when asked (``compare_paper=True``), as dashed
 lines in the colour of the same robot count; the paper estimates qubits, data qubits, CNOTs and single-qubit gates
@@ -50,11 +50,11 @@ from qcpp.estimators.paper import paper_estimate
 from qcpp.io.atomic import save_figure_atomic
 from qcpp.io.caches import use_writable_matplotlib_config
 
-__all__ = ["BOUND_LABEL", "PLOT_METRICS", "PlotMetric", "draw_rows", "from_depth_bound", "plot_metric", "plot_rows"]
+__all__ = ["BOUND_LABEL", "PLOT_METRICS", "PlotMetric", "draw_rows", "not_exact", "plot_metric", "plot_rows"]
 
-BOUND_LABEL = "hollow: from a depth bound"
-"""The legend entry of the hollow markers: points not exact because a depth bound stood for the depth
-(:func:`from_depth_bound`; the table marks the same cells ``~`` or ``<=``)."""
+BOUND_LABEL = "hollow: a bound, not exact"
+"""The legend entry of the hollow markers: points that are bounds or computed from a depth bound
+(:func:`not_exact`; the table marks the same cells ``<=``, ``>=`` or ``~``)."""
 
 Needs = Literal["physical", "device", "depth"]
 
@@ -137,7 +137,7 @@ def _series(
 ) -> dict[int, tuple[list[float], list[float], list[bool]]]:
     """robots -> (xs, ys, from_bound): ``value(row)`` against ``x`` (``nodes``, ``p`` or ``robots``), one point per
     row, in order of ``x`` (then of the grid's rows: ``2x6`` before ``3x4``); ``from_bound`` says which points of
-    ``column`` come from a depth bound (:func:`from_depth_bound`)."""
+    ``column`` are not exact (:func:`not_exact`)."""
     acc: dict[int, list[tuple[float, int, float, bool]]] = defaultdict(list)
     for r in rows:
         y = value(r)
@@ -145,26 +145,31 @@ def _series(
             continue
         key = 0 if x == "robots" else r["robots"]  # against robots: one curve
         at = r["rows"] * r["cols"] if x == "nodes" else r[x]
-        acc[key].append((at, r["rows"], float(y), column is not None and from_depth_bound(r, column)))
+        acc[key].append((at, r["rows"], float(y), column is not None and not_exact(r, column)))
     points = {k: sorted(v) for k, v in sorted(acc.items())}
     return {k: ([a for a, _, _, _ in v], [y for _, _, y, _ in v], [b for *_, b in v]) for k, v in points.items()}
 
 
-def from_depth_bound(row: dict[str, Any], column: str) -> bool:
-    """Whether ``row``'s ``column`` is not exact because a depth bound stands for the depth: the depth itself (an
-    upper bound) or a physical figure computed from it (approximate); drawn as a hollow marker.
+def not_exact(row: dict[str, Any], column: str) -> bool:
+    """Whether ``row``'s ``column`` is not exact: an upper bound (a ``bound`` depth, the routed figures of a bounded
+    routing), a lower bound (that routing's ESP) or a physical figure computed from a depth bound; drawn as a
+    hollow marker, the cells the table marks.
 
-    >>> from_depth_bound({"physical_qubits": 9, "physical_depth_kind": "bound"}, "physical_qubits")
+    >>> not_exact({"physical_qubits": 9, "physical_depth_kind": "bound"}, "physical_qubits")
     True
-    >>> from_depth_bound({"depth": 9, "depth_kind": "exact"}, "depth"), from_depth_bound({"cx": 9}, "cx")
+    >>> not_exact({"routed_twoq": 90, "routed_kind": "bound"}, "routed_twoq"), not_exact({"esp": 0.2, "routed_kind":
+    ...     "bound"}, "esp")
+    (True, True)
+    >>> not_exact({"depth": 9, "depth_kind": "exact"}, "depth"), not_exact({"cx": 9}, "cx")
     (False, False)
     """
-    from qcpp.estimators.tables import APPROXIMATE_BY, BOUNDED_BY
+    from qcpp.estimators.tables import APPROXIMATE_BY, BOUNDED_BY, LOWER_BOUNDED_BY
 
     if row.get(column) is None:
         return False
-    if column in BOUNDED_BY:  # a depth's kind; the routed two-qubit count's bound is not from a depth bound
-        return BOUNDED_BY[column] != "routed_kind" and row.get(BOUNDED_BY[column]) == "bound"
+    for kinds in (BOUNDED_BY, LOWER_BOUNDED_BY):
+        if column in kinds:
+            return row.get(kinds[column]) == "bound"
     return column in APPROXIMATE_BY and row.get(APPROXIMATE_BY[column]) != "exact"
 
 
