@@ -154,6 +154,8 @@ def test_a_qec_scheme_the_qubit_model_lacks_is_refused_before_the_qdk() -> None:
         (lambda: qcpp.solve(S, "dfs", p=2), "p: applies to method='qaoa' only"),
         (lambda: qcpp.solve(S, "dfs", time_limit=5), "time_limit: applies to method='cpsat', 'anneal' or 'genetic'"),
         (lambda: qcpp.solve(S, "anneal", time_limit=0), "time_limit: expected a positive number of seconds"),
+        (lambda: qcpp.solve(S, "dfs", stop=lambda: True), "stop: applies to method='cpsat', 'anneal' or 'genetic'"),
+        (lambda: qcpp.solve(S, "genetic", stop=True), "stop: expected a function stop() -> bool, got bool"),
         (lambda: qcpp.solve(S, "anneal", workers=2), "workers: applies to method='cpsat' only"),
         (lambda: qcpp.solve(S, "genetic", generations=0), "generations: must be at least 1, got 0"),
         (lambda: qcpp.solve(S, "anneal", sampler="sa"), "sampler: applies to method='qubo' only"),

@@ -123,3 +123,16 @@ def test_cpsat_relative_gap_is_ortools_definition() -> None:
     assert relative_gap(1336.0, -199.0) == pytest.approx(1535 / 1336)
     assert relative_gap(0.5, -1.5) == 2.0  # |cost| < 1: divided by 1
     assert relative_gap(-20.0, -20.0) == 0.0
+
+
+@pytest.mark.parametrize("method", ["anneal", "genetic", "cpsat"])
+def test_the_api_s_stop_request_ends_a_search_with_its_best_so_far(method: str) -> None:
+    """``qcpp.solve(stop=...)``: what ``qcpp solve`` does on Ctrl-C, for a script (a stop that never answers
+    ``True`` changes nothing)."""
+    import qcpp
+
+    stopped = qcpp.solve(S, method, stop=after(5))
+    assert stopped.stopped == INTERRUPTED
+    assert_valid(S, stopped)
+    never, plain = qcpp.solve(S, method, stop=lambda: False), qcpp.solve(S, method)
+    assert (never.paths, never.cost, never.stopped) == (plain.paths, plain.cost, None)

@@ -13,7 +13,7 @@ Example:
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 from qcpp.api.checks import check_angles_arg, check_layers_arg, check_scenario_arg
@@ -51,6 +51,7 @@ def solve(
     generations: int | None = None,
     sampler: str | None = None,
     progress: ProgressArg = None,
+    stop: Callable[[], bool] | None = None,
     **qaoa_options: Any,
 ) -> Solution:
     """Solve ``scenario`` with ``method`` (``qcpp solve --method``) and return its answer.
@@ -76,6 +77,10 @@ def solve(
             ``cpsat`` each improving solution found (``total`` ``None``), ``anneal`` and ``genetic`` their
             iterations or generations, ``qaoa`` the levels trained (:func:`train_qaoa`), ``qubo`` its three
             steps (building the QUBO, sampling, polishing).
+        stop: ``cpsat``, ``anneal``, ``genetic``: a function the search calls between its steps (from the thread
+            that called ``solve``); once it returns ``True`` the search ends with its best so far, marked
+            ``stopped == "interrupted"`` (what ``qcpp solve`` does on Ctrl-C). For example a
+            ``threading.Event``'s ``is_set`` that another thread or a signal handler sets.
         **qaoa_options: ``qaoa`` only: the options of :func:`train_qaoa` (``p``, ``optimizer``, ...).
 
     Returns:
@@ -97,14 +102,17 @@ def solve(
         if name not in _QAOA_DEFAULTS:
             raise OptionError(name, f"unknown option of solve (qaoa's: {', '.join(_QAOA_DEFAULTS)})")
         raise OptionError(name, f"applies to method='qaoa' only (got method={method!r})")
-    if time_limit is not None:
-        from qcpp.problem.solvers.stopping import TIME_LIMITED
+    from qcpp.problem.solvers.stopping import TIME_LIMITED
 
-        if method not in TIME_LIMITED:
-            methods = ", ".join(repr(m) for m in TIME_LIMITED[:-1]) + f" or {TIME_LIMITED[-1]!r}"
-            raise OptionError("time_limit", f"applies to method={methods} only (got method={method!r})")
-        if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
-            raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
+    methods = ", ".join(repr(m) for m in TIME_LIMITED[:-1]) + f" or {TIME_LIMITED[-1]!r}"
+    for name, given in (("time_limit", time_limit), ("stop", stop)):
+        if given is not None and method not in TIME_LIMITED:
+            raise OptionError(name, f"applies to method={methods} only (got method={method!r})")
+    if time_limit is not None and (isinstance(time_limit, bool) or not isinstance(time_limit, (int, float))
+                                   or not 0 < time_limit < math.inf):  # fmt: skip
+        raise OptionError("time_limit", f"expected a positive number of seconds, got {time_limit!r}")
+    if stop is not None and not callable(stop):
+        raise OptionError("stop", f"expected a function stop() -> bool, got {type(stop).__name__}")
     for name, value, owner in (("workers", workers, "cpsat"), ("iterations", iterations, "anneal"),
                                ("generations", generations, "genetic")):  # fmt: skip
         if value is not None:
@@ -136,7 +144,7 @@ def solve(
 
         with reporting(progress, task, unit=unit) as bar:
             return cpsat(s, seed=seed, time_limit=time_limit, workers=workers or 1,
-                         progress=bar and bar.update).solution  # fmt: skip
+                         progress=bar and bar.update, stop=stop).solution  # fmt: skip
     if method == "qubo":
         from qcpp.qubo.solve import solve_qubo
 
@@ -145,7 +153,7 @@ def solve(
                               progress=bar and bar.update).solution  # fmt: skip
     from qcpp.problem.solvers import SOLVERS
 
-    limits = {"time_limit": time_limit, **sizes} if method in ("anneal", "genetic") else {}
+    limits = {"time_limit": time_limit, "stop": stop, **sizes} if method in ("anneal", "genetic") else {}
     with reporting(progress, task, unit=unit) as bar:
         return SOLVERS[method](s, seed=seed, rule=rule, progress=bar and bar.update, **limits)  # type: ignore[arg-type]
 
