@@ -459,12 +459,13 @@ def render_stream(
     elif fmt == "md" and first:
         cols = _columns(None) if columns is None else table_columns([], columns=columns)[0]
         yield "| " + " | ".join(cols) + " |\n" + "|" + "|".join("---:" for _ in cols) + "|\n"
-    elif fmt == "md" and approximate:
-        yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
+    elif fmt == "md":
+        if upper and not lower:  # upper bounds alone (a bounded depth)
+            yield "\n" + f"{BOUND_MARK}N is an upper bound" + "\n"
+        if approximate:
+            yield "\n" + APPROX_NOTE.replace("~", "\\~", 1) + "\n"
     if fmt == "md" and lower:  # the ESP's lower bound beside the figures' upper bounds: both marks said
         yield "\n" + f"{BOUND_MARK}N is an upper bound; {LOWER_BOUND_NOTE}" + "\n"
-    elif fmt == "md" and upper:  # upper bounds alone (bounded depths)
-        yield "\n" + f"{BOUND_MARK}N is an upper bound" + "\n"
     if fmt == "md" and no_first_phase:
         yield "\nCounted " + NO_FIRST_PHASE_NOTE + ".\n"
 
