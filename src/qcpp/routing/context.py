@@ -51,7 +51,20 @@ class PatchWatch:
 
 
 class RoutingContext:
-    """The memos and open watches of one run (module docs); not shared between threads.
+    """The memos and open watches of routing runs (module docs); not shared between threads.
+
+    In the public API (``qcpp.RoutingContext``) one is passed as ``context=`` to ``qcpp.compile`` and
+    ``qcpp.estimate`` calls with a device that route the same circuits: the estimate of a circuit just compiled, or
+    a table that compiles it again, is answered from it. Every memo is a pure function of its key, so the results
+    are the same with or without one; it only saves the searches' time, and holds their memory until it is dropped
+    or cleared (:meth:`clear`).
+
+    >>> import qcpp
+    >>> context = qcpp.RoutingContext()
+    >>> s = qcpp.grid_scenario(2, 2, robots=1)
+    >>> routed = qcpp.compile(s, device="heavy-hex", context=context)
+    >>> qcpp.estimate(s, device="heavy-hex", context=context).routed_twoq == routed.counts()["cz"]
+    True
 
     Args:
         reuse: Whether a window may be answered by another window's routing: on a heavy-hex lattice, by the
