@@ -11,6 +11,7 @@ from qcpp.routing.context import RoutingContext
 S = qcpp.grid_scenario(2, 2, robots=1)
 
 
+@pytest.mark.heavy  # compiles 2x2/1 on ibm_fez twice with every candidate (~8 CPU-s)
 def test_an_estimate_after_a_compile_in_one_context_is_the_estimate_alone_and_routes_nothing_again() -> None:
     context = qcpp.RoutingContext()
     compiled = qcpp.compile(S, device="ibm_fez", context=context)
@@ -25,6 +26,7 @@ def test_an_estimate_after_a_compile_in_one_context_is_the_estimate_alone_and_ro
     assert again.circuit == compiled.circuit and again.initial_layout == compiled.initial_layout
 
 
+@pytest.mark.heavy  # two compiles on ibm_fez (~3 CPU-s)
 def test_a_different_call_is_compiled_afresh() -> None:
     context = qcpp.RoutingContext()
     a = qcpp.compile(S, device="ibm_fez", context=context, optimize_for="twoq")
@@ -52,3 +54,9 @@ def test_the_latest_compiles_are_kept_and_none_where_asked() -> None:
 def test_a_context_that_is_not_one_is_refused_by_name(call: object) -> None:
     with pytest.raises(qcpp.OptionError, match=r"^context: expected a qcpp.RoutingContext or None, got dict$"):
         call(S, device="ibm_fez", context={})  # type: ignore[operator]
+
+
+@pytest.mark.parametrize("call", [qcpp.compile, qcpp.estimate])
+def test_a_context_without_a_device_is_refused_by_name(call: object) -> None:
+    with pytest.raises(qcpp.OptionError, match=r"^context: applies with a device only \(no device given\)$"):
+        call(S, context=qcpp.RoutingContext())  # type: ignore[operator]

@@ -105,8 +105,9 @@ def check_angles_arg(angles: object, layers: int, name: str = "angles") -> list[
     return values
 
 
-def check_context_arg(context: object) -> Any:
-    """``context`` as the API's ``context=`` takes it: ``None`` or a :class:`qcpp.RoutingContext`.
+def check_context_arg(context: object, device: object) -> Any:
+    """``context`` as the API's ``context=`` takes it: ``None``, or a :class:`qcpp.RoutingContext` with a
+    ``device`` (it holds routing searches; there is nothing to route without one).
 
     Raises:
         OptionError: anything else, naming ``context``.
@@ -115,4 +116,6 @@ def check_context_arg(context: object) -> Any:
 
     if context is not None and not isinstance(context, RoutingContext):
         raise OptionError("context", f"expected a qcpp.RoutingContext or None, got {type(context).__name__}")
+    if context is not None and device is None:
+        raise OptionError("context", "applies with a device only (no device given)")
     return context

@@ -353,7 +353,7 @@ def compile(
         raise OptionError("zero_start", refusal)
     limit = None if max_gates is None else check_count(max_gates, "max_gates", 0)
     check_progress_arg(progress)
-    check_context_arg(context)
+    check_context_arg(context, device)
     check_cost_range(s)  # what the command line checks when it loads a file
     size = check_size(s, layers, options, limit, "raise it with max_gates=N", allow_large_hint=API_OVERRIDE)
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={layers}"

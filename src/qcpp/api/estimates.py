@@ -219,7 +219,7 @@ def estimate(
     if device is not None:
         device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
     check_progress_arg(progress)
-    check_context_arg(context)
+    check_context_arg(context, device)
     check_cost_range(s)  # what the command line checks when it loads a file
     point = _point(s, layers, Point)
     task = f"estimate p={layers} on {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s)"
