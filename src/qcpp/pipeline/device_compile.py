@@ -360,18 +360,20 @@ def compile_for_device(
         refusal = zero_start_refusal(device, lowered)
         if refusal is not None:
             raise OptionError("zero_start", refusal)
-    context = RoutingContext() if context is None else context
-    named = get_device(device) if isinstance(device, str) and device in device_names() else device
-    key = (scenario, p, named, options, lowered, tuple(sorted(bindings.items())) if bindings else None,
-           local_ancillas, seed, tuple(layouts), layout_method, arrangement, routing, optimize_for, zero_start)
-    hit = context.compiles.get(key)
-    if hit is not None:
-        return hit  # type: ignore[no-any-return]
+    key = None
+    if context is not None:  # the caller's: the same call may have run in it
+        named = get_device(device) if isinstance(device, str) and device in device_names() else device
+        key = (scenario, p, named, options, lowered, tuple(sorted(bindings.items())) if bindings else None,
+               local_ancillas, seed, tuple(layouts), layout_method, arrangement, routing, optimize_for, zero_start)
+        hit = context.compiles.get(key)
+        if hit is not None:
+            return hit  # type: ignore[no-any-return]
     with collector_paused():  # the run's memos (in a context made here) are dropped before it resumes
         result = _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
                                      layout_method, arrangement, stage, routing, context, optimize_for,
                                      bind_field, zero_start)  # fmt: skip
-    context.keep_compile(key, result)
+    if context is not None:
+        context.keep_compile(key, result)
     return result
 
 
