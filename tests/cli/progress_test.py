@@ -184,6 +184,35 @@ def test_where_only_the_numbers_fit_the_line_keeps_them_and_the_first_word(monke
     ]
 
 
+def test_a_deadline_caps_the_time_left(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A solver stopping at its time limit (``qcpp solve --time-limit``): the time left is at most what remains of
+    it, whatever the share of steps done promises; without one, the extrapolation."""
+    monkeypatch.setattr(Progress, "_elapsed", lambda self: 30.0)
+
+    def last(deadline: float | None) -> str:
+        out = io.StringIO()
+        with Progress("anneal", total=1_200, unit="steps", stream=out, mode="lines", interval=0, width=200,
+                      deadline=deadline) as bar:  # fmt: skip
+            bar.update(12)
+        return out.getvalue().splitlines()[1]
+
+    assert last(None).endswith("30 s elapsed, about 50 min left")
+    assert last(90.0).endswith("30 s elapsed, about 60 s left")
+    assert last(20.0).endswith("30 s elapsed, about 0 s left")
+
+
+def test_the_bar_s_time_left_is_capped_by_the_deadline_too() -> None:
+    from types import SimpleNamespace
+
+    from rich.progress import TimeRemainingColumn
+
+    from qcpp.io.progress import _capped_remaining
+
+    task = SimpleNamespace(total=100, elapsed=30.0, time_remaining=3000.0)
+    assert _capped_remaining(TimeRemainingColumn, 90.0).render(task).plain == "0:01:00"
+    assert _capped_remaining(TimeRemainingColumn, None).render(task).plain == "0:50:00"
+
+
 def test_lines_are_whole_where_they_fit_and_the_width_defaults_to_columns(monkeypatch: pytest.MonkeyPatch) -> None:
     out = io.StringIO()
     with Progress(LONG_TASK, stream=out, mode="lines", interval=0, width=200) as bar:

@@ -93,7 +93,7 @@ class _Callback:
 @contextlib.contextmanager
 def reporting(
     progress: ProgressArg, task: str, *, unit: str = "steps", total: int | None = None, stages: bool = False,
-    time_left: bool = True,
+    time_left: bool = True, deadline: float | None = None,
 ) -> Iterator[Reporter | None]:  # fmt: skip
     """The :class:`Reporter` of one call's ``progress`` argument, for the duration of the ``with`` block (``None``
     when nothing is to be reported: the work then runs without hooks, as it would without the argument).
@@ -105,6 +105,8 @@ def reporting(
         total: Steps in all, if known.
         stages: For a function: count each stage as a step (calls whose work reports stages only).
         time_left: ``progress=True``: show the time left (``False`` where steps differ too much in cost).
+        deadline: ``progress=True``: seconds after the start at which the work stops (a time limit): the time left
+            shown is at most what remains until then.
 
     Raises:
         qcpp.errors.OptionError: ``progress`` is none of the accepted kinds.
@@ -115,7 +117,7 @@ def reporting(
     elif progress is True:
         from qcpp.io.progress import Progress  # the command line's lines: one format for a log and a notebook
 
-        with Progress(task, total=total, unit=unit, mode="lines", time_left=time_left) as bar:
+        with Progress(task, total=total, unit=unit, mode="lines", time_left=time_left, deadline=deadline) as bar:
             yield bar
     else:
         yield _Callback(progress, total, stages)  # type: ignore[arg-type]

@@ -154,7 +154,7 @@ def solve(
     from qcpp.problem.solvers import SOLVERS
 
     limits = {"time_limit": time_limit, "stop": stop, **sizes} if method in ("anneal", "genetic") else {}
-    with reporting(progress, task, unit=unit) as bar:
+    with reporting(progress, task, unit=unit, deadline=time_limit) as bar:
         return SOLVERS[method](s, seed=seed, rule=rule, progress=bar and bar.update, **limits)  # type: ignore[arg-type]
 
 

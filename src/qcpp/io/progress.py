@@ -144,6 +144,8 @@ class Progress:
         first_after: Seconds before the first line (default :data:`FIRST_LINE_AFTER`; 0 with ``interval`` 0).
         time_left: Show the time left (extrapolated from the share of steps done); ``False`` where steps differ
             too much in cost for that to be an estimate (the counts and the elapsed time are still shown).
+        deadline: Seconds after entering at which the work stops whatever is left (a solver's time limit): the
+            time left shown is at most what remains until then.
         width: Characters a line may take (default :func:`qcpp.io.text.terminal_width`); a pipe or log
             gets lines this wide at most, so a long task or stage does not wrap in a terminal showing the log.
     """
@@ -159,11 +161,13 @@ class Progress:
         interval: float | None = None,
         first_after: float | None = None,
         time_left: bool = True,
+        deadline: float | None = None,
         width: int | None = None,
     ) -> None:
         self.task = task
         self.width = terminal_width() if width is None else width
         self.time_left = time_left
+        self.deadline = deadline
         self.total = total
         self.unit = unit
         self.done = 0
@@ -268,7 +272,8 @@ class Progress:
         elapsed = self._elapsed()
         times = f"{format_duration(elapsed)} elapsed"
         if self.time_left and self.total and 0 < self.done < self.total and elapsed >= 1.0:
-            times += f", about {format_duration(elapsed * (self.total - self.done) / self.done)} left"
+            left = capped_left(elapsed * (self.total - self.done) / self.done, elapsed, self.deadline)
+            times += f", about {format_duration(left)} left"
         return _fit_line(self.task, self._stage(), [*counts, times], self.width)
 
     # ------------------------------------------------------------------ internals
@@ -387,13 +392,46 @@ class Progress:
             BarColumn(bar_width=BAR_WIDTH),
             MofNCompleteColumn(),
             TimeElapsedColumn(),
-            *([TimeRemainingColumn()] if self.time_left else []),
+            *([_capped_remaining(TimeRemainingColumn, self.deadline)] if self.time_left else []),
             console=console,
             transient=True,
             expand=True,
         )
         self._bar_task = self._bar.add_task(self._label(), total=self.total)
         self._bar.start()
+
+
+def capped_left(left: float, elapsed: float, deadline: float | None) -> float:
+    """``left`` seconds of work, at most what remains until ``deadline`` (seconds after the start; ``None``: none).
+
+    >>> capped_left(90.0, 50.0, 60.0), capped_left(5.0, 50.0, 60.0), capped_left(9.0, 70.0, 60.0)
+    (10.0, 5.0, 0.0)
+    """
+    return left if deadline is None else min(left, max(0.0, deadline - elapsed))
+
+
+def _capped_remaining(column: Any, deadline: float | None) -> Any:
+    """Rich's ``TimeRemainingColumn`` (the class ``column``), its time left at most what remains until ``deadline``
+    (:func:`capped_left`)."""
+    if deadline is None:
+        return column()
+
+    class Capped(column):  # type: ignore[misc, valid-type]
+        def render(self, task: Any) -> Any:
+            from rich.text import Text
+
+            left, style = task.time_remaining, "progress.remaining"
+            if task.total is None:
+                return Text("", style=style)
+            if task.elapsed is not None:
+                left = max(0.0, deadline - task.elapsed) if left is None else capped_left(left, task.elapsed, deadline)
+            if left is None:
+                return Text("-:--:--", style=style)
+            minutes, seconds = divmod(int(left), 60)
+            hours, minutes = divmod(minutes, 60)
+            return Text(f"{hours:d}:{minutes:02d}:{seconds:02d}", style=style)
+
+    return Capped()
 
 
 def _counted(n: int, unit: str) -> str:

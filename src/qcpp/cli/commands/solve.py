@@ -376,7 +376,7 @@ def solve_command(
     # the stoppable solvers take the first Ctrl-C as a request and answer with their best so far: the block
     # covers the answer's output too, so that it is printed whole before the command ends as interrupted
     with deferred_stop() if stoppable else contextlib.nullcontext(threading.Event()) as stopped:
-        with Progress(description, unit=unit) as bar:
+        with Progress(description, unit=unit, deadline=time_limit) as bar:  # the time left ends at the limit
             progress = bar.update  # a qcpp.problem.solvers.ProgressFn; stdout stays clean for --json
             if stoppable:
                 sol, exact = _stoppable(s, method, seed, rule, progress, stopped.is_set, time_limit,
