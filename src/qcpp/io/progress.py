@@ -418,20 +418,23 @@ def _capped_remaining(column: Any, deadline: float | None) -> Any:
 
     class Capped(column):  # type: ignore[misc, valid-type]
         def render(self, task: Any) -> Any:
-            from rich.text import Text
-
-            left, style = task.time_remaining, "progress.remaining"
-            if task.total is None:
-                return Text("", style=style)
+            left = task.time_remaining
             if task.elapsed is not None:
                 left = max(0.0, deadline - task.elapsed) if left is None else capped_left(left, task.elapsed, deadline)
-            if left is None:
-                return Text("-:--:--", style=style)
-            minutes, seconds = divmod(int(left), 60)
-            hours, minutes = divmod(minutes, 60)
-            return Text(f"{hours:d}:{minutes:02d}:{seconds:02d}", style=style)
+            return super().render(_WithTimeLeft(task, left))  # rich's own formatting of the capped figure
 
     return Capped()
+
+
+class _WithTimeLeft:
+    """A rich task seen with another ``time_remaining`` (every other attribute is the task's)."""
+
+    def __init__(self, task: Any, time_remaining: float | None) -> None:
+        self._task = task
+        self.time_remaining = time_remaining
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._task, name)
 
 
 def _counted(n: int, unit: str) -> str:
