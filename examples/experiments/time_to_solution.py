@@ -204,8 +204,9 @@ def qaoa_circuit_columns(scenario: Scenario, p: int) -> dict[str, Any]:
     return circuit_columns(scenario, p)
 
 
-def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | None:
-    """Default training to the fixed depth, then the projected 99% time on an ideal device and on each device."""
+def run_qaoa(inst: Instance, cfg: Config, optimum: float, context: Any = None) -> dict[str, Any] | None:
+    """Default training to the fixed depth, then the projected 99% time on an ideal device and on each device
+    (routed with ``context``, the run's routing memos, :func:`_ensemble_tasks.device_columns`)."""
     from qcpp.simulate.subspace import SubspaceQAOA
     from qcpp.simulate.time_to_solution import GATE_MODEL, qaoa_on_device, shot_seconds
     from qcpp.training.layerwise import SHOTS_PER_ESTIMATE, train_layerwise
@@ -220,7 +221,7 @@ def run_qaoa(inst: Instance, cfg: Config, optimum: float) -> dict[str, Any] | No
     dev = qaoa_on_device(res.p_optimum, res.circuit_estimates, SHOTS_PER_ESTIMATE, shot, TARGET)
     devices = []
     for name in cfg.devices:
-        d = device_columns(inst.scenario, cfg.qaoa_p, name)
+        d = device_columns(inst.scenario, cfg.qaoa_p, name, context)
         if d["fits"]:
             t = qaoa_on_device(res.p_optimum, res.circuit_estimates, SHOTS_PER_ESTIMATE, d["shot_us"] * 1e-6, TARGET,
                                esp=shot_esp(d))
@@ -250,6 +251,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     cfg = QUICK if opts.quick else FULL
     t_all = time.perf_counter()
     instances = [make_instance(n, r, ob, opts.seed) for n in cfg.sizes for r in cfg.robots for ob in (False, True)]
+    context = qcpp.RoutingContext()  # one run's routing memos: an instance with soft obstacles reuses its twin's
     for inst in instances:
         t0 = time.perf_counter()
         res = inst.results
@@ -271,7 +273,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         res["optimum"] = {"value": opt, "proven": proven}
         res["anneal_tts"] = local_summary(res["anneal"], opt)
         res["genetic_tts"] = local_summary(res["genetic"], opt)
-        res["qaoa"] = run_qaoa(inst, cfg, opt) if proven else None
+        res["qaoa"] = run_qaoa(inst, cfg, opt, context) if proven else None
         print(f"{inst.label:16} optimum {opt:g} ({'proven' if proven else 'best known'}) "
               f"in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
 

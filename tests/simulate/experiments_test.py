@@ -429,11 +429,17 @@ def test_ensemble_devices_bad_input_is_refused_with_its_reason(capsys: pytest.Ca
 @pytest.mark.heavy
 def test_ensemble_devices_quick_mode(tmp_path: Path) -> None:
     """One instance at depth 1 on an all-to-all and a calibrated heavy-hex device: both fit, ESP in (0, 1], the
-    reference's figures carried over, the table written."""
+    reference's figures carried over, the table written; and each row is the committed full run's row of that
+    instance, depth and device, field for field (so this is also the freshness check of that calibrated row:
+    results_freshness_test's ``ENSEMBLE_CALIBRATED_CELLS``)."""
     mod = _load("ensemble_devices")
     rows = mod.main(["--quick", "--out", str(tmp_path)])["rows"]
     assert [(r["cell"], r["index"], r["p"], r["device"]) for r in rows] == [
         ("3x3/1", 0, 1, "quantinuum_helios"), ("3x3/1", 0, 1, "ibm_fez")]
+    committed = {(r["cell"], r["index"], r["p"], r["device"]): r
+                 for r in json.loads((REPO / "docs" / "results" / "ensemble_devices.json").read_text())["rows"]}
+    for r in rows:
+        assert r == committed[(r["cell"], r["index"], r["p"], r["device"])], r["device"]
     assert all(r["fits"] and 0 < r["esp"] <= 1 and r["tts_99"] > 0 for r in rows)
     helios, fez = rows
     assert helios["routed_twoq"] < fez["routed_twoq"]  # all-to-all needs no SWAPs
