@@ -160,19 +160,27 @@ def layer_violations(graph: nx.DiGraph) -> list[tuple[str, str]]:
     return sorted(out)
 
 
-MODULES = _modules()
-GRAPH = import_graph(MODULES)
+@cache
+def all_modules() -> dict[str, Source]:
+    """Every module of the package (read once per test process, when a test first needs it: not at collection)."""
+    return _modules()
+
+
+@cache
+def package_graph() -> nx.DiGraph:
+    """The import graph of :func:`all_modules`."""
+    return import_graph(all_modules())
 
 
 def test_the_parser_sees_module_and_function_level_imports() -> None:
     # routing imports the device's geometry inside a function; the plan imports gadgets at module level
-    assert GRAPH.has_edge("qcpp.routing.sabre", "qcpp.hardware.device")
-    assert GRAPH.has_edge("qcpp.plan.call_graph", "qcpp.gadgets")
-    assert GRAPH.number_of_edges() > 300
+    assert package_graph().has_edge("qcpp.routing.sabre", "qcpp.hardware.device")
+    assert package_graph().has_edge("qcpp.plan.call_graph", "qcpp.gadgets")
+    assert package_graph().number_of_edges() > 300
 
 
 def test_every_subpackage_has_a_layer() -> None:
-    assert {subpackage(m) for m in MODULES} <= set(ALLOWED)
+    assert {subpackage(m) for m in all_modules()} <= set(ALLOWED)
 
 
 MAX_MODULES_PER_FOLDER = 20
@@ -198,7 +206,7 @@ def test_no_folder_holds_more_than_twenty_modules() -> None:
 
 
 def test_no_module_exceeds_a_thousand_lines() -> None:
-    lines = {name: src.text.count("\n") + (not src.text.endswith("\n")) for name, src in MODULES.items()}
+    lines = {name: src.text.count("\n") + (not src.text.endswith("\n")) for name, src in all_modules().items()}
     assert max(lines.values()) > 500  # the count sees the modules
     assert {m: n for m, n in lines.items() if n > MAX_MODULE_LINES} == {}
 
@@ -213,18 +221,18 @@ def test_the_folder_count_would_see_a_crowded_folder(tmp_path: Path) -> None:
 
 
 def test_no_import_cycles() -> None:
-    cycles = [c for c in import_cycles(GRAPH, MODULES) if c not in KNOWN_CYCLES]
+    cycles = [c for c in import_cycles(package_graph(), all_modules()) if c not in KNOWN_CYCLES]
     assert cycles == []
 
 
 def test_subpackages_import_only_lower_layers() -> None:
-    violations = [e for e in layer_violations(GRAPH) if e not in ALLOWED_EXCEPTIONS]
+    violations = [e for e in layer_violations(package_graph()) if e not in ALLOWED_EXCEPTIONS]
     assert violations == [], "imports against the layer order:\n" + "\n".join(f"{a} -> {b}" for a, b in violations)
 
 
 def test_every_tolerated_exception_still_occurs() -> None:
-    stale = [e for e in ALLOWED_EXCEPTIONS if e not in set(layer_violations(GRAPH))]
-    stale += [c for c in KNOWN_CYCLES if c not in import_cycles(GRAPH, MODULES)]
+    stale = [e for e in ALLOWED_EXCEPTIONS if e not in set(layer_violations(package_graph()))]
+    stale += [c for c in KNOWN_CYCLES if c not in import_cycles(package_graph(), all_modules())]
     assert stale == [], f"these no longer occur; remove them: {stale}"
 
 
@@ -241,9 +249,9 @@ def test_every_tolerated_exception_still_occurs() -> None:
 )
 def test_the_layer_check_fails_on_a_bad_import(added: dict[str, str], violation: tuple[str, str]) -> None:
     """The package with one module added that imports upwards (inside a function too): the check reports it."""
-    modules = {**MODULES, **{name: Source(text, False) for name, text in added.items()}}
+    modules = {**all_modules(), **{name: Source(text, False) for name, text in added.items()}}
     assert violation in layer_violations(import_graph(modules))
-    assert violation not in layer_violations(GRAPH)
+    assert violation not in layer_violations(package_graph())
 
 
 def test_the_cycle_check_fails_on_a_circle() -> None:
@@ -253,10 +261,10 @@ def test_the_cycle_check_fails_on_a_circle() -> None:
         "qcpp.gadgets.bad": Source("from qcpp.gadgets import loop\n", False),
         "qcpp.gadgets.loop": Source("def f():\n    from . import bad\n", False),
     }
-    graph = import_graph({**MODULES, **added})
-    assert ("qcpp.gadgets.bad", "qcpp.gadgets.loop") in import_cycles(graph, {**MODULES, **added})
+    graph = import_graph({**all_modules(), **added})
+    assert ("qcpp.gadgets.bad", "qcpp.gadgets.loop") in import_cycles(graph, {**all_modules(), **added})
     through_init = {"qcpp.gadgets.bad": Source("import qcpp.gadgets\n", False)}
-    modules = {**MODULES, **through_init}
+    modules = {**all_modules(), **through_init}
     assert not any("qcpp.gadgets.bad" in c for c in import_cycles(import_graph(modules), modules))
 
 

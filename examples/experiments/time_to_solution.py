@@ -104,7 +104,7 @@ class Config:
 DEVICES = ("ibm_fez", "ibm_torino", "google_willow", "quantinuum_helios")
 """Named devices (``qcpp/hardware/data``) the QAOA rows are compiled for."""
 FULL = Config((3, 4, 5, 6), (1, 2, 3), 1e6, 10.0, 30.0, 8, 2000, 10, 40_000, 5, DEVICES)
-QUICK = Config((3,), (1, 2), 1e6, 2.0, 2.0, 3, 500, 3, 200, 2, ("ibm_fez", "quantinuum_helios"))
+QUICK = Config((3,), (2,), 1e6, 2.0, 2.0, 3, 500, 3, 200, 2, ("ibm_fez", "quantinuum_helios"))
 
 
 @dataclass

@@ -114,7 +114,8 @@ def test_time_to_reach_and_cpsat_best_by(tts) -> None:  # type: ignore[no-untype
 
 @pytest.mark.heavy
 def test_quick_mode(tts, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    """The whole ``--quick`` run (3x3 with one and two robots, each with and without an obstacle: four instances)."""
+    """The whole ``--quick`` run (3x3 with two robots, with and without an obstacle: two instances; the one-robot
+    rows of the full run are recompiled by results_freshness_test)."""
     _assert_quick_run(tts, tmp_path)
 
 
