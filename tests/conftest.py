@@ -423,7 +423,6 @@ LONGEST_FIRST = (
     "tests/compiler/noise_aware_test.py::test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device",
     "tests/simulate/experiments_test.py::test_ensemble_devices_quick_mode",
     "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3]",
     "tests/compiler/noise_aware_test.py::test_searches_on_the_other_ibm_device_are_offered_only_for_twoq",
     "tests/compiler/noise_aware_test.py::test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device",
     "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2]",
@@ -439,6 +438,7 @@ LONGEST_FIRST = (
     "tests/simulate/time_to_solution_test.py::test_quick_mode",
     "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#0]",
     "tests/simulate/experiments_test.py::test_ensembles_quick_mode",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3]",
     "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak_on_large_wor"
     "k[simulate-default-two_robots_5x5.toml]",
     "tests/cli/device_cli_test.py::test_compile_device_writes_physical_qubits_on_couplings[ibm_torino-False]",

@@ -206,11 +206,14 @@ def _device_instances() -> list[Any]:
     return params
 
 
-CALIBRATED_SIZES = 3
-"""Sizes (in the study's order: 3x3 with one, two and three robots first) whose calibrated IBM rows the heavy step
-recompiles, one instance each: a calibrated compile of a 4x4 or 5x5 instance takes 30-90 CPU-seconds, and the
-calibrated compile's steps (placement searches, Qiskit's O3 candidates, ESP scoring) are the ones the 3x3 rows
-exercise; the 4x4 and 5x5 instances stay recompiled on the uncalibrated devices."""
+CALIBRATED_SIZES = 2
+"""Sizes (in the study's order: 3x3 with one and two robots first) whose calibrated IBM rows the heavy step
+recompiles, one instance each. At the study's depth (p = 5) every circuit has more two-qubit gates than the
+placement search takes (:attr:`~qcpp.routing.options.RoutingOptions.placement_max_twoq`), so a calibrated compile
+runs the same steps on each (the greedy routings, Qiskit's O3 candidates, ESP scoring) on a longer circuit: 3x3/3
+takes 18 CPU-seconds on ``ibm_fez``, a 4x4 or 5x5 instance 30-90. The calibrated placement searches run on the
+smaller circuits of the ensemble rows at depth 1 (one robot on 3x3: :data:`ENSEMBLE_CALIBRATED_CELLS`); the larger
+instances stay recompiled on the uncalibrated devices."""
 
 SAMPLED_DEVICES = ("google_willow",)
 """Uncalibrated devices whose compiles of the larger instances take tens of CPU-seconds (the cell layout with local
@@ -523,9 +526,11 @@ ENSEMBLE_CALIBRATED_CELLS = ("3x3/2",)
 """Cells whose calibrated IBM rows the heavy step recompiles here, one instance each (the second instance of 3x3/2,
 on ``ibm_torino``). The first instance of 3x3/1 on ``ibm_fez`` at depth 1 is the experiment's quick run, which
 ``experiments_test.py::test_ensemble_devices_quick_mode`` compares with its recorded row field for field. A
-calibrated compile of a 4x4 instance takes about 40 CPU-seconds and runs the steps the 3x3 rows exercise
-(placement searches on the device and on the lattices, Qiskit's O3 candidates, ESP scoring), so the 4x4 cell stays
-recompiled on the uncalibrated devices, as :data:`CALIBRATED_SIZES` keeps the time-to-solution rows."""
+calibrated compile of a 4x4 instance takes about 40 CPU-seconds and runs the steps these two rows exercise between
+them (the one-robot row's placement searches on the device and on the lattices; the two-robot row's circuit, with
+more two-qubit gates than the search takes, routed greedily; Qiskit's O3 candidates and ESP scoring in both), so
+the 4x4 cell stays recompiled on the uncalibrated devices, as :data:`CALIBRATED_SIZES` keeps the time-to-solution
+rows."""
 
 
 def _check_ensemble_device_row(r: dict[str, Any], context: RoutingContext) -> None:
