@@ -184,11 +184,13 @@ def test_compile_device_text_shows_the_layouts_and_the_verdict() -> None:
 
 
 @pytest.mark.heavy
-def test_compile_on_ibm_names_qiskit_o3_best_seed_and_the_physical_qubits() -> None:
+def test_compile_on_ibm_names_qiskit_o3_best_seed_and_the_physical_qubits(tmp_path: Path) -> None:
     """On a calibrated device the text output sets the chosen circuit beside Qiskit O3's best seed (read from the
-    same candidates ``--json`` lists), and the device note counts every physical qubit the routed circuit touches."""
+    same candidates ``--json`` lists), and the device note counts every physical qubit the routed circuit touches
+    (the circuit the text run writes with ``--qasm``)."""
     args = ("compile", "--grid", "2x3", "--robot", "0,0:1,2", "--device", "ibm_torino", *BIND)
-    text = run(*args)
+    qasm = tmp_path / "routed.qasm"
+    text = run(*args, "--qasm", str(qasm))
     assert text.exit_code == 0, text.output
     summary = json.loads(run(*args, "--json").stdout)
     routed = summary["routed"]
@@ -198,7 +200,7 @@ def test_compile_on_ibm_names_qiskit_o3_best_seed_and_the_physical_qubits() -> N
     assert (f"Qiskit O3 (best of {len(seeds)} seeds by esp): {best['two_qubit']:,} two-qubit gates, "
             f"ESP {best['esp']:.3g} ({best['esp_idle']:.3g} idle); chosen: "
             f"{routed['two_qubit'] / best['two_qubit']:.2f}x its two-qubit gates") in flat  # fmt: skip
-    touched = {q for line in run(*args, "--qasm", "-").stdout.splitlines() for q in re.findall(r"q\[(\d+)\]", line)
+    touched = {q for line in qasm.read_text().splitlines() for q in re.findall(r"q\[(\d+)\]", line)
                if not line.startswith(("qubit", "bit", "input"))}  # fmt: skip
     assert f"logical on {len(touched)} physical)" in summary["device_note"]
     assert len(touched) >= len(summary["initial_layout"])
