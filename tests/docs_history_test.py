@@ -32,7 +32,8 @@ ALLOWED = (
 
 def files() -> list[Path]:
     """The files checked: user docs and the library's source."""
-    docs = [ROOT / "README.md", *(ROOT / "docs").glob("*.md"), *(ROOT / "docs" / "guide").glob("*.md")]
+    docs = [ROOT / "README.md", ROOT / "CONTRIBUTING.md", *(ROOT / "docs").glob("*.md"),
+            *(ROOT / "docs" / "guide").glob("*.md")]  # fmt: skip
     return sorted([*docs, *(ROOT / "src").rglob("*.py")])
 
 
