@@ -251,7 +251,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     cfg = QUICK if opts.quick else FULL
     t_all = time.perf_counter()
     instances = [make_instance(n, r, ob, opts.seed) for n in cfg.sizes for r in cfg.robots for ob in (False, True)]
-    context = qcpp.RoutingContext()  # one run's routing memos: an instance with soft obstacles reuses its twin's
+    context = qcpp.RoutingContext()  # the run's routing memos: a soft-obstacle twin reuses the placement searches
     for inst in instances:
         t0 = time.perf_counter()
         res = inst.results
