@@ -212,8 +212,8 @@ recompiles, one instance each. At the study's depth (p = 5) every circuit has mo
 placement search takes (:attr:`~qcpp.routing.options.RoutingOptions.placement_max_twoq`), so a calibrated compile
 runs the same steps on each (the greedy routings, Qiskit's O3 candidates, ESP scoring) on a longer circuit: 3x3/3
 takes 18 CPU-seconds on ``ibm_fez``, a 4x4 or 5x5 instance 30-90. The calibrated placement searches run on the
-smaller circuits of the ensemble rows at depth 1 (one robot on 3x3: :data:`ENSEMBLE_CALIBRATED_CELLS`); the larger
-instances stay recompiled on the uncalibrated devices."""
+smaller circuit of the ensemble's one-robot 3x3 row at depth 1 (the ensemble experiment's quick run, see
+:data:`ENSEMBLE_CALIBRATED_CELLS`); the larger instances stay recompiled on the uncalibrated devices."""
 
 SAMPLED_DEVICES = ("google_willow",)
 """Uncalibrated devices whose compiles of the larger instances take tens of CPU-seconds (the cell layout with local
