@@ -204,7 +204,9 @@ def qaoa_circuit_columns(scenario: Scenario, p: int) -> dict[str, Any]:
     return circuit_columns(scenario, p)
 
 
-def run_qaoa(inst: Instance, cfg: Config, optimum: float, context: Any = None) -> dict[str, Any] | None:
+def run_qaoa(
+    inst: Instance, cfg: Config, optimum: float, context: qcpp.RoutingContext | None = None
+) -> dict[str, Any] | None:
     """Default training to the fixed depth, then the projected 99% time on an ideal device and on each device
     (routed with ``context``, the run's routing memos, :func:`_ensemble_tasks.device_columns`)."""
     from qcpp.simulate.subspace import SubspaceQAOA
