@@ -420,30 +420,30 @@ SLOW_DEFAULT = frozenset(
 
 
 LONGEST_FIRST = (
-    "tests/compiler/noise_aware_test.py::test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device",
-    "tests/simulate/experiments_test.py::test_ensemble_devices_quick_mode",
-    "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
-    "tests/compiler/noise_aware_test.py::test_searches_on_the_other_ibm_device_are_offered_only_for_twoq",
-    "tests/compiler/noise_aware_test.py::test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device",
     "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[4x4/2]",
-    "tests/compiler/routing_qcec_test.py::test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_th"
-    "eir_logical_circuits",
+    "tests/compiler/call_graph_test.py::test_classes_list_the_planned_kinds_everywhere",
+    "tests/simulate/experiments_test.py::test_ensemble_devices_quick_mode",
     "tests/simulate/tensor_test.py::test_compiled_circuit_matches_subspace_simulator[3-4-2-1-None]",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2 +obst]",
     "tests/compiler/phase_classes_test.py::test_every_default_scenario_up_to_16x16_equals_the_plan",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1 +obst]",
-    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#1]",
-    "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_where_compile_takes_seconds[30-30-1-1]",
-    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/2#1]",
-    "tests/simulate/time_to_solution_test.py::test_quick_mode",
-    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#0]",
-    "tests/simulate/experiments_test.py::test_ensembles_quick_mode",
-    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/3]",
-    "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak_on_large_wor"
-    "k[simulate-default-two_robots_5x5.toml]",
-    "tests/cli/device_cli_test.py::test_compile_device_writes_physical_qubits_on_couplings[ibm_torino-False]",
-    "tests/io/caches_test.py::test_a_read_only_install_and_home_still_load_the_kernels",
+    "tests/compiler/routing_qcec_test.py::test_qcec_proves_both_circuits_routed_on_a_calibrated_device_equal_to_their_lo"
+    "gical_circuits",
+    "tests/compiler/noise_aware_test.py::test_searches_on_the_other_ibm_device_are_offered_only_for_twoq",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/1#1]",
     "tests/compiler/window_memo_test.py::test_the_memos_change_no_choice[4x4/3-heavy-hex]",
+    "tests/cli/device_cli_test.py::test_compile_device_writes_physical_qubits_on_couplings[ibm_torino-False]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/2#0]",
+    "tests/io/caches_test.py::test_a_read_only_install_and_home_still_load_the_kernels",
+    "tests/compiler/noise_aware_test.py::test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[3x3/1#0]",
+    "tests/compiler/window_classes_test.py::test_routed_sum_equals_compile_on_more_random_scenarios",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[3x3/2 +obst]",
+    "tests/compiler/phase_sums_selection_test.py::test_a_16x16_8_medial_phase_layer_is_the_old_one",
+    "tests/simulate/results_freshness_test.py::test_device_rows_match_the_router[5x5/1 +obst]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#0]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_device_rows_match_the_router[4x4/1#1]",
+    "tests/simulate/results_freshness_test.py::test_ensemble_recorded_angles_and_circuits[ensembles-4x4/2-every_row]",
+    "tests/cli/guard_peaks_test.py::test_a_guards_memory_prediction_is_within_1_5x_of_the_measured_peak_on_large_work[si"
+    "mulate-default-two_robots_5x5.toml]",
 )
 """Node-id prefixes of the longest tests, longest first (the module docstring): an order, so a stale entry costs
 wall time, never a result."""

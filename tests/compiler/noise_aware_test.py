@@ -354,14 +354,17 @@ def test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device() -> N
     the fewest CZ, fewer than without the lattices, and the result reports the logical circuit its layouts index:
     the lattice's partial-mixer choice, the same operator as the plan's circuit (statevector). With the lattice
     search off there are no such candidates (a compile sharing the first's memos: the searches on Fez itself are
-    the same)."""
+    the same). Both compiles run the shorter search (:data:`SHORT_SEARCH`) on every lattice the default reaches;
+    the default search's result on a one-robot 3x3 field is the committed ensemble row that
+    ``experiments_test.py::test_ensemble_devices_quick_mode`` recompiles."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.presets import default_scenario
     from qcpp.routing.context import RoutingContext
     from qcpp.simulate.statevector import simulate_statevector
 
     s, bind, context = default_scenario(3, 3, 1), {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
-    r = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq", context=context)
+    short = replace(SHORT_SEARCH, lattice_search_max_distance=DEFAULT_ROUTING.lattice_search_max_distance)
+    r = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq", context=context, routing=short)
     by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
     lattices = {n.split(" + ")[0] for n in by_name if n.startswith("search on heavy-hex:")}
     assert lattices and lattices <= {f"search on heavy-hex:{d}" for d in (3, 5, 7, 9)}
@@ -370,7 +373,7 @@ def test_the_searches_on_defect_free_lattices_are_placed_on_an_ibm_device() -> N
     assert list(r.logical.gates) != list(r.compiled.circuit.gates)  # the lattice's choice of parity networks
     assert np.allclose(simulate_statevector(r.logical), simulate_statevector(r.compiled.circuit), atol=1e-9)
     off = compile_for_device(s, 1, "ibm_fez", bindings=bind, optimize_for="twoq", context=context,
-                             routing=replace(DEFAULT_ROUTING, lattice_search_max_distance=0))  # fmt: skip
+                             routing=replace(short, lattice_search_max_distance=0))  # fmt: skip
     assert not any(c["name"].startswith("search on heavy-hex:") for c in off.candidates)  # twoq: Torino's stays
     assert by_name[r.chosen] < min(c["two_qubit"] for c in off.candidates)
 
@@ -380,20 +383,22 @@ def test_the_cells_routed_on_a_lattice_beat_qiskit_on_an_ibm_device() -> None:
     """One robot on 3x4: the cell layout routed on heavy-hex:9 and placed on Torino writes fewer CZ than Qiskit's
     routings of Torino, and the chosen candidate has the fewest; with ``--layout medial`` the result reports the
     cells' logical circuit (local ancillas), which its layouts index (``routing_qcec_test`` proves the two equal up
-    to the layouts). The two compiles share their memos (the cells are routed once)."""
+    to the layouts). The two compiles share their memos (the cells are routed once). The cells' candidate does not
+    depend on the placement searches, so both compiles run the shorter search (:data:`SHORT_SEARCH`)."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.presets import default_scenario
     from qcpp.routing.context import RoutingContext
 
     s, bind, context = default_scenario(3, 4, 1), {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
-    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", context=context)
+    r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", context=context,
+                           routing=SHORT_SEARCH)  # fmt: skip
     by_name = {c["name"]: c["two_qubit"] for c in r.candidates}
     cells = [n for n in by_name if n.startswith("cells on heavy-hex:")]
     qiskit = [n for n in by_name if n.startswith("qiskit")]
     assert cells and qiskit and min(by_name[n] for n in cells) < min(by_name[n] for n in qiskit)
     assert by_name[r.chosen] == min(by_name.values())
     r = compile_for_device(s, 1, "ibm_torino", bindings=bind, optimize_for="twoq", layout_method="medial",
-                           context=context)  # fmt: skip
+                           context=context, routing=SHORT_SEARCH)  # fmt: skip
     assert r.chosen.startswith("cells on heavy-hex:"), r.chosen
     assert r.logical.num_qubits > r.compiled.circuit.num_qubits  # the cells' local ancillas
     assert len(r.routed.initial_layout) == len(r.routed.final_layout) == r.logical.num_qubits
@@ -405,7 +410,9 @@ def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
     path's search on Fez and places it on Torino where it embeds; after Qiskit's passes that routing has fewer CZ
     than every candidate of the default ``esp`` compile, which does not offer it (its candidates, and so its output,
     are as before). Neither offers the candidates simplified for the all-|0> start unless ``zero_start``; with it,
-    the twoq compile offers them for the sibling's placement too and writes one of them, with fewer CZ still."""
+    the twoq compile offers them for the sibling's placement too and writes one of them, with fewer CZ still. Every
+    compile runs the shorter search (:data:`SHORT_SEARCH`), on both devices: what is checked is which candidates
+    each figure offers and that the sibling's routing wins the twoq choice, not how far the searches go."""
     from qcpp.pipeline.device_compile import compile_for_device
     from qcpp.problem.scenario import scenario_from_dict
     from qcpp.routing.context import RoutingContext
@@ -414,10 +421,11 @@ def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
                             "robots": [{"start": [0, 0], "goal": [2, 2]}, {"start": [0, 2], "goal": [2, 0]}],
                             "objective": {"obstacles": "hard"}})  # fmt: skip
     bind, context = {"gamma_0": 0.3, "beta_0": 0.7}, RoutingContext()
-    by_esp = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context)
+    by_esp = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, routing=SHORT_SEARCH)
     assert by_esp.optimize_for == "esp" and not by_esp.zero_start
     assert not any(c["name"].startswith("search on ibm_") or "from |0>" in c["name"] for c in by_esp.candidates)
-    by_twoq = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq")
+    by_twoq = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq",
+                                 routing=SHORT_SEARCH)  # fmt: skip
     assert not any("from |0>" in c["name"] for c in by_twoq.candidates) and by_twoq.equal_on_every_input
     assert by_twoq.chosen.startswith("search on ibm_fez + our placement"), by_twoq.chosen
     twoq = sum(1 for g in by_twoq.routed.circuit.gates if len(g[1]) == 2)
@@ -425,7 +433,7 @@ def test_searches_on_the_other_ibm_device_are_offered_only_for_twoq() -> None:
     assert {tuple(sorted(g[1])) for g in by_twoq.routed.circuit.gates if len(g[1]) == 2} <= set(
         by_twoq.routed.device.coupling)
     zero = compile_for_device(s, 1, "ibm_torino", bindings=bind, context=context, optimize_for="twoq",
-                              zero_start=True)  # fmt: skip
+                              zero_start=True, routing=SHORT_SEARCH)  # fmt: skip
     assert zero.zero_start and "from |0>" in zero.chosen and not zero.equal_on_every_input, zero.chosen
     assert any(c["name"].startswith("search on ibm_fez + our placement") and "from |0>" in c["name"]
                for c in zero.candidates)  # fmt: skip

@@ -6,8 +6,10 @@ placements, the choice by ESP) with the search sizes of :data:`qcpp.routing.opti
 CPU-seconds for one robot on 3x3. A property that holds of whatever the searches return (a routed circuit equals
 its logical circuit; Qiskit's O3 is a candidate, so the choice is never worse than it) is checked as well with
 :data:`SHORT_SEARCH`: every step still runs, on fewer starts, a few times faster. What the default search finds is
-checked where it is the claim: the committed results (``tests/simulate/results_freshness_test.py``) and the
-named-candidate tests of ``tests/compiler/noise_aware_test.py``.
+checked where it is the claim: the committed results (``tests/simulate/results_freshness_test.py`` and the
+experiments' quick runs). The named-candidate tests of ``tests/compiler/noise_aware_test.py`` run it too where the
+candidate they name does not come from the shortened steps (the cells routed on a lattice), or wins with either
+search (the searches on the lattices, kept at the default's reach; the search on the other IBM device).
 
 >>> SHORT_SEARCH.for_calibrated().placement_layouts
 16
