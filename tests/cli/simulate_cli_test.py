@@ -17,7 +17,7 @@ from .clirun import assert_one_line_error, run
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 PAPER = str(EXAMPLES / "paper_3x3.toml")
 KEYS = {"scenario", "method", "p", "angles", "expectation", "p_optimum", "amplitudes_held", "seconds", "qubits",
-        "basis_states", "rule"}
+        "basis_states", "rule", "initial"}
 
 
 def run_json(*args: str) -> dict[str, object]:
@@ -32,6 +32,7 @@ def test_subspace_json_against_the_simulator() -> None:
     q = SubspaceQAOA(load_scenario(PAPER))
     angles = [0.3, 1.2, -0.1, 0.7]
     assert out["method"] == "subspace" and out["p"] == 2 and out["angles"] == angles
+    assert out["initial"] == "initial_path"
     assert out["expectation"] == pytest.approx(q.expectation(angles), abs=1e-12)
     assert out["p_optimum"] == pytest.approx(q.p_optimum(angles), abs=1e-12)
     assert out["amplitudes_held"] == 1.0 and out["qubits"] is None and out["basis_states"] == q.dimension

@@ -163,6 +163,44 @@ def test_representatives_on_split_move_graph() -> None:
     assert np.isclose(np.abs(psi0).sum(), len(comps) / np.sqrt(len(comps)))
 
 
+def _hard_3x4_scenarios() -> list[Scenario]:
+    """One robot, every start and goal on 3x4's boundary, one hard obstacle anywhere inside the grid."""
+    out = []
+    boundary = [(r, c) for r in range(3) for c in range(4) if r in (0, 2) or c in (0, 3)]
+    for start, goal in itertools.combinations(boundary, 2):
+        for obstacle in [(1, 1), (1, 2)]:
+            try:
+                out.append(scenario_from_dict({"grid": {"rows": 3, "cols": 4, "obstacles": [list(obstacle)]},
+                                               "objective": {"obstacles": "hard"},
+                                               "robots": [{"start": list(start), "goal": list(goal)}]}))  # fmt: skip
+            except ValueError:
+                continue  # the obstacle cuts the goal off
+    return out
+
+
+def test_the_optimum_is_the_scenario_s_even_where_the_start_does_not_reach_it() -> None:
+    """Over every one-robot 3x4 scenario with a hard obstacle: :meth:`optimum` is the exhaustive search's optimum
+    from every start, P(optimum) counts only basis assignments of that cost, and where the start's component lacks
+    it (it does on some of these scenarios) P(optimum) is 0, not the best reachable assignment's probability."""
+    from qcpp.problem.solvers import dfs
+
+    unreached = 0
+    for s in _hard_3x4_scenarios():
+        truth = dfs(s).cost.total
+        for initial in ("initial_path", "representatives", "local_search"):
+            q = SubspaceQAOA(s, initial=initial)  # type: ignore[arg-type]
+            best, flat = q.optimum()
+            assert best == pytest.approx(truth, abs=1e-9)
+            costs = q.cost_diagonal().reshape(-1)
+            assert sorted(flat.tolist()) == [i for i, c in enumerate(costs) if abs(c - truth) <= 1e-9]
+            if len(flat) == 0:
+                unreached += 1
+                assert costs.min() > truth + 1e-9  # the basis's own optimum: what P(optimum) no longer counts
+                assert q.p_optimum([0.3, 1.1]) == 0.0
+                assert not q.reaches_every_path() and initial != "representatives"
+    assert unreached > 0
+
+
 # ---------------------------------------------------------------- structural properties
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from qcpp.plan.options import INITIAL_STATES
 from qcpp.problem.cost import cost
 from qcpp.problem.paths import enumerate_paths
 from qcpp.problem.scenario import Scenario, scenario_from_dict
@@ -73,6 +74,60 @@ def test_random_angles_are_seeded_and_shared_by_the_methods() -> None:
     assert evaluate(s, 2, "subspace", seed=5).angles == tuple(a)
 
 
+def split_3x4() -> Scenario:
+    """One robot on 3x4 with a hard obstacle at (1, 1): SBF moves split its paths into two components, so the four
+    initial states are four different states (14 qubits once compiled)."""
+    return scenario_from_dict({"grid": {"rows": 3, "cols": 4, "obstacles": [[1, 1]]},
+                               "objective": {"obstacles": "hard"},
+                               "robots": [{"start": [0, 0], "goal": [2, 3]}]})  # fmt: skip
+
+
+@pytest.mark.parametrize("initial", INITIAL_STATES)
+def test_every_method_evaluates_the_given_initial_state(initial: str) -> None:
+    """The subspace simulator starts from ``initial`` and the gate-level methods compile its preparation: the
+    three agree (P(optimum) of the scenario's optimum, which only ``representatives`` reaches here), and differ
+    from the default start where the state does."""
+    s = split_3x4()
+    angles = [0.37, 1.3, -0.2, 0.8]
+    sub, sv, tn = (evaluate(s, 2, m, angles=angles, initial=initial) for m in ("subspace", "statevector", "tensor"))  # type: ignore[arg-type]
+    for other in (sv, tn):
+        assert other.p_optimum == pytest.approx(sub.p_optimum, abs=1e-9)
+        assert other.expectation == pytest.approx(sub.expectation, abs=1e-8)
+        assert other.amplitudes_held == pytest.approx(1.0, abs=1e-10)
+    default = evaluate(s, 2, "subspace", angles=angles)
+    assert (sub.expectation == pytest.approx(default.expectation, abs=1e-9)) == (initial == "initial_path")
+
+
+def test_trained_angles_simulate_to_the_trained_probability_from_the_trained_state() -> None:
+    """``qcpp solve -m qaoa --initial X`` reports P(optimum) from X: ``simulate --initial X`` at its angles gives
+    the same, the default start another."""
+    import qcpp
+
+    s = split_3x4()
+    trained = qcpp.train_qaoa(s, 1, initial="representatives", maxiter=30)
+    same = qcpp.simulate_qaoa(s, 1, angles=list(trained.angles), initial="representatives")
+    assert same.p_optimum == pytest.approx(trained.p_optimum, abs=1e-9)
+    other = qcpp.simulate_qaoa(s, 1, angles=list(trained.angles))
+    assert abs(other.p_optimum - trained.p_optimum) > 1e-3
+
+
+def test_the_cli_simulates_the_initial_state_it_is_given() -> None:
+    import json
+    import subprocess
+    import sys
+
+    import qcpp
+
+    args = ["--grid", "3x4", "--robot", "0,0:2,3", "--obstacle", "1,1", "--hard-obstacles", "-p", "1",
+            "--angles", "0.3,0.7"]  # fmt: skip
+    for initial in ("initial_path", "representatives"):
+        out = subprocess.run([sys.executable, "-m", "qcpp", "simulate", *args, "--initial", initial, "--json"],
+                             capture_output=True, text=True, check=True)  # fmt: skip
+        row = json.loads(out.stdout)
+        api = qcpp.simulate_qaoa(split_3x4(), 1, angles=[0.3, 0.7], initial=initial)
+        assert row["initial"] == initial and row["p_optimum"] == pytest.approx(api.p_optimum, abs=1e-12)
+
+
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
@@ -80,6 +135,7 @@ def test_random_angles_are_seeded_and_shared_by_the_methods() -> None:
         ({"rule": "fuzzy"}, "unknown SBF rule"),
         ({"angles": [0.1, 0.2, 0.3]}, "needs 2 angles"),
         ({"angles": [0.1, float("nan")]}, "finite"),
+        ({"initial": "uniform"}, "unknown initial state 'uniform'"),
     ],
 )
 def test_bad_input(kwargs: dict[str, object], message: str) -> None:
@@ -156,3 +212,14 @@ def test_tensor_amplitudes_agree_with_subspace() -> None:
     assert t.p_optimum == pytest.approx(a.p_optimum, abs=1e-9)
     assert t.amplitudes_held == pytest.approx(1.0, abs=1e-9)
     assert t.basis_states == len(enumerate_paths(s, 0))
+
+
+def test_qaoa_says_when_its_initial_state_cannot_reach_the_optimum() -> None:
+    """On a split move graph whose optimum lies outside the start's component, the answer reports P(optimum) 0 and
+    says why, naming the start that reaches it; from that start neither."""
+    s = split_3x4()
+    stuck = solve_qaoa(s, p=1, maxiter=20)
+    assert stuck.p_optimum == 0.0 and stuck.solution.cost.total > stuck.optimum
+    assert any("starts in none of the move-graph components" in n for n in stuck.solution.notes)
+    freed = solve_qaoa(s, p=1, maxiter=20, initial="representatives")
+    assert freed.p_optimum > 0 and not any("move-graph components" in n for n in freed.solution.notes)

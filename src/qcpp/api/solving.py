@@ -256,6 +256,7 @@ def simulate_qaoa(
     seed: int = 0,
     rule: str = "exact",
     client: Any = None,
+    initial: str = "initial_path",
 ) -> Evaluation:
     """Evaluate the QAOA state at given (or seeded random) angles (``qcpp simulate``).
 
@@ -266,6 +267,8 @@ def simulate_qaoa(
             state) or ``tensor`` (tensor network).
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
+        initial: Initial state (:data:`qcpp.plan.options.INITIAL_STATES`), as in :func:`train_qaoa`: angles
+            trained from a state are evaluated on that state.
         client: ``tensor`` only: a connected ``dask.distributed.Client``; contractions wider than the tensor
             backend's memory limit (2^27 entries) are sliced and their slices run on its cluster, as
             ``qcpp validate --dask`` does.
@@ -279,6 +282,7 @@ def simulate_qaoa(
         qcpp.problem.limits.SizeError: a feasible subspace over the limits of ``qcpp simulate`` (inside
             ``qcpp.allow_large()`` nothing is refused).
     """
+    from qcpp.plan.options import INITIAL_STATES
     from qcpp.problem.cost_range import check_phase_range
     from qcpp.simulate.guards import check_simulation_size
     from qcpp.training.evaluate import METHODS, evaluate
@@ -287,6 +291,7 @@ def simulate_qaoa(
     layers = check_layers_arg(p)
     check_choice(method, METHODS, "method")
     check_choice(rule, ("exact", "paper"), "rule")
+    check_choice(initial, INITIAL_STATES, "initial")
     check_count(seed, "seed", 0)
     if client is not None and method != "tensor":
         raise OptionError("client", f"only the tensor method runs on a dask cluster, got method={method!r}")
@@ -295,5 +300,5 @@ def simulate_qaoa(
     check_simulation_size(s, "scenario", API_OVERRIDE, p=layers, method=method)
     return evaluate(
         s, layers, method, angles=values, seed=None if values is not None else seed, rule=rule,  # type: ignore[arg-type]
-        client=client,
+        client=client, initial=initial,  # type: ignore[arg-type]
     )

@@ -506,26 +506,53 @@ class SubspaceQAOA:
         return self._values[self._levels.reshape(-1)[sl]]
 
     def optimum(self) -> tuple[float, np.ndarray]:
-        """The minimum cost over the feasible basis assignments and their flat indices (cached).
+        """The minimum cost over every feasible assignment of the scenario, and the flat indices of the basis
+        assignments that reach it (cached): the assignments :meth:`p_optimum` counts.
 
-        Ties are within ``1e-9 * max(1, |min|)``. This is the optimum over the *reachable* set, which is every
-        feasible assignment when each robot's move graph is connected (or with ``representatives``).
+        Ties are within ``1e-9 * max(1, |min|)``. Where the basis holds every feasible path
+        (:meth:`reaches_every_path`) the minimum is the basis's own. Where it does not (hard obstacles split a
+        robot's move graph and the initial state starts in fewer components than there are), the minimum is the
+        one over all components (the basis of the ``representatives`` start), and the indices are those of basis
+        assignments of that cost: none where the optimum lies in a component the state never reaches, so
+        P(optimum) is 0 there rather than the probability of the best reachable assignment.
         """
         if self._optimum is None:
-            diag = self.cost_diagonal()
-            if all(f.all() for f in self.feasible):
-                masked = diag
-            else:
-                ok = np.ones(self.dims, dtype=bool)
-                for r, f in enumerate(self.feasible):
-                    shape = [1] * len(self.dims)
-                    shape[r] = len(f)
-                    ok = ok & f.reshape(shape)
-                masked = np.where(ok, diag, np.inf)
-            best = float(masked.min())
-            tol = 1e-9 * max(1.0, abs(best))
-            self._optimum = (best, np.flatnonzero(masked.reshape(-1) <= best + tol))
+            best, flat = self._basis_optimum()
+            if not self.reaches_every_path():
+                whole, _ = SubspaceQAOA(self.scenario, self.rule, "representatives",
+                                        max_levels=self.max_levels)._basis_optimum()  # fmt: skip
+                if best > whole + 1e-9 * max(1.0, abs(whole)):
+                    best, flat = whole, np.empty(0, dtype=np.intp)
+            self._optimum = (best, flat)
         return self._optimum
+
+    def _basis_optimum(self) -> tuple[float, np.ndarray]:
+        """The minimum cost over the feasible basis assignments and their flat indices."""
+        diag = self.cost_diagonal()
+        if all(f.all() for f in self.feasible):
+            masked = diag
+        else:
+            ok = np.ones(self.dims, dtype=bool)
+            for r, f in enumerate(self.feasible):
+                shape = [1] * len(self.dims)
+                shape[r] = len(f)
+                ok = ok & f.reshape(shape)
+            masked = np.where(ok, diag, np.inf)
+        best = float(masked.min())
+        tol = 1e-9 * max(1.0, abs(best))
+        return best, np.flatnonzero(masked.reshape(-1) <= best + tol)
+
+    def reaches_every_path(self) -> bool:
+        """Whether the basis holds every feasible path of every robot. Hard obstacles can split a robot's move
+        graph into components SBF moves do not join; on free grids the exact rule reaches every path from the
+        initial one wherever ``tests/problem/explorability_test.py`` sweeps them. So the paths are counted (about as
+        long as building the basis) only with hard obstacles and a start other than ``representatives`` (one path
+        per component); elsewhere this is ``True``."""
+        if self.scenario.objective.obstacles != "hard" or self.initial == "representatives":
+            return True
+        from qcpp.problem.paths import enumerate_paths
+
+        return all(int(f.sum()) == len(enumerate_paths(self.scenario, r)) for r, f in enumerate(self.feasible))
 
     def optimal_assignments(self) -> list[tuple[int, ...]]:
         """All optimal feasible assignments (edge-mask tuples), see :meth:`optimum`."""

@@ -43,6 +43,8 @@ from typing import Any, Literal
 
 import numpy as np
 
+from qcpp.gadgets.initial_state import INITIAL_STATES, Initial
+from qcpp.plan.options import PlanOptions
 from qcpp.problem.cost import cost_parts_bits
 from qcpp.problem.paths import assignment_bits, enumerate_paths
 from qcpp.problem.sbf import RULES, Rule
@@ -124,6 +126,7 @@ def evaluate(
     seed: int | None = None,
     rule: Rule = "exact",
     client: Any = None,
+    initial: Initial = "initial_path",
 ) -> Evaluation:
     """Simulate the QAOA state at the given (or seeded random) angles with ``method``.
 
@@ -133,6 +136,9 @@ def evaluate(
         angles: ``2p`` angles; ``None`` for random ones from ``seed``.
         seed: Seed of the random angles.
         rule: SBF rule of the mixer.
+        initial: The initial state (:data:`qcpp.gadgets.initial_state.INITIAL_STATES`): the subspace simulator
+            starts from it and the gate-level methods compile its preparation, so angles trained from a state
+            are evaluated on the state they were trained from.
         client: ``tensor``: a connected ``dask.distributed.Client`` that runs the slices of contractions wider than
             :data:`qcpp.simulate.tensor.DEFAULT_MAX_WIDTH` (:class:`~qcpp.simulate.tensor.TensorCircuit`).
 
@@ -144,17 +150,20 @@ def evaluate(
         raise ValueError(f"unknown method {method!r} (expected one of {', '.join(METHODS)})")
     if rule not in RULES:
         raise ValueError(f"unknown SBF rule {rule!r} (expected one of {', '.join(RULES)})")
+    if initial not in INITIAL_STATES:
+        raise ValueError(f"unknown initial state {initial!r} (expected one of {', '.join(INITIAL_STATES)})")
     x = resolve_angles(scenario, p, angles, seed)
     t0 = time.perf_counter()
     if method == "subspace":
-        q = SubspaceQAOA(scenario, rule=rule)
+        q = SubspaceQAOA(scenario, rule=rule, initial=initial)
         psi = q.state(x)
         e, popt = q.expectation_from_state(psi), q.p_optimum_from_state(psi)
         held = float(np.sum(np.abs(psi[np.ix_(*q.feasible)]) ** 2)) if rule != "exact" else 1.0
         return Evaluation(method, p, _tup(x), e, popt, held, time.perf_counter() - t0, None, q.dimension)
+    options = PlanOptions(rule=rule, initial=initial)
     if method == "statevector":
-        return _statevector(scenario, p, x, rule, t0)
-    return _tensor(scenario, p, x, rule, t0, client)
+        return _statevector(scenario, p, x, options, t0)
+    return _tensor(scenario, p, x, options, t0, client)
 
 
 def _tup(x: np.ndarray) -> tuple[float, ...]:
@@ -183,9 +192,8 @@ def feasible_assignments(scenario: Scenario) -> tuple[np.ndarray, np.ndarray]:
     return bits @ weights, costs <= best + _OPT_TOL * max(1.0, abs(best))
 
 
-def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float) -> Evaluation:
+def _statevector(scenario: Scenario, p: int, x: np.ndarray, options: PlanOptions, t0: float) -> Evaluation:
     from qcpp.plan.compile import compile_scenario
-    from qcpp.plan.options import PlanOptions
     from qcpp.simulate.statevector import simulate_statevector
 
     if scenario.num_variables > MAX_STATEVECTOR_QUBITS:  # refuse before compiling
@@ -194,7 +202,7 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
             f"statevector: the circuit has at least {n} qubits (its data register), more than "
             f"{MAX_STATEVECTOR_QUBITS}; use --method subspace or tensor"
         )
-    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
+    compiled = compile_scenario(scenario, p, options, lowered=True, bindings=angle_bindings(x))
     n = compiled.circuit.num_qubits
     if n > MAX_STATEVECTOR_QUBITS:
         raise ValueError(
@@ -215,15 +223,16 @@ def _statevector(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: floa
     return Evaluation("statevector", p, _tup(x), expectation, p_opt, held, time.perf_counter() - t0, n, 1 << n)
 
 
-def _tensor(scenario: Scenario, p: int, x: np.ndarray, rule: Rule, t0: float, client: Any = None) -> Evaluation:
+def _tensor(
+    scenario: Scenario, p: int, x: np.ndarray, options: PlanOptions, t0: float, client: Any = None
+) -> Evaluation:
     from qcpp.plan.compile import compile_scenario
-    from qcpp.plan.options import PlanOptions
 
     try:
         from qcpp.simulate import tensor
     except ImportError as exc:  # pragma: no cover - the backend module is optional at import time
         raise ValueError(f"tensor: the tensor-network backend is unavailable ({exc})") from None
-    compiled = compile_scenario(scenario, p, PlanOptions(rule=rule), lowered=True, bindings=angle_bindings(x))
+    compiled = compile_scenario(scenario, p, options, lowered=True, bindings=angle_bindings(x))
     feasible, optimal = feasible_assignments(scenario)
     circuit = tensor.TensorCircuit(compiled.circuit, client=client)
     amps = np.asarray(circuit.amplitudes(feasible.tolist()), dtype=complex)

@@ -84,7 +84,7 @@ class QaoaSolution:
         solution: The :class:`~qcpp.problem.solvers.Solution` (method ``qaoa``).
         probability: Probability of ``solution.paths`` in the trained state.
         p_optimum: Probability of the optimal assignments in the trained state.
-        optimum: The optimal cost over the simulator's basis.
+        optimum: The optimal cost of the scenario (:meth:`qcpp.simulate.subspace.SubspaceQAOA.optimum`).
         training: The :class:`~qcpp.training.training.TrainingResult` of the answer's angles (layerwise: the run
             kept at the final depth).
         schedule: The :class:`~qcpp.training.layerwise.LayerwiseResult` (``None`` for a single run).
@@ -266,6 +266,7 @@ def solve_qaoa(
             f"<C> {result.initial_expectation:.6g} at the starting angles -> {result.expectation:.6g} trained; the "
             "trained state reads an "
             f"optimal assignment (cost {best:g}) with probability {result.p_optimum:.4g}",
+            *_unreached_optimum_note(q),
         ),
     )
     return _with_details(QaoaSolution(
@@ -316,10 +317,21 @@ def _solve_multi_angle(
             f"{SHOTS_PER_ESTIMATE:,} per estimate",
             f"<C> {start_mean:.6g} -> {best.expectation:.6g}; the trained state reads an optimal assignment (cost "
             f"{optimum:g}) with probability {p_opt:.4g}",
+            *_unreached_optimum_note(q),
         ),
     )
     return _with_details(QaoaSolution(solution, prob, p_opt, optimum, training, None, initial,
                                       bindings(q, best.betas, p), estimates))
+
+
+def _unreached_optimum_note(q: SubspaceQAOA) -> tuple[str, ...]:
+    """The note a QAOA answer adds where its initial state cannot reach the optimum (hard obstacles split a robot's
+    paths into components SBF moves do not join, and the state starts in none that holds it), else nothing."""
+    if len(q.optimum()[1]) or q.reaches_every_path():
+        return ()
+    return (f"the initial state {q.initial} starts in none of the move-graph components that hold the optimum (hard "
+            "obstacles split the paths; the mixer never joins them): P(optimum) is 0 at any angles; --initial "
+            "representatives starts in every component",)  # fmt: skip
 
 
 def qaoa_details(res: QaoaSolution) -> tuple[tuple[str, Any], ...]:

@@ -9,6 +9,7 @@ Examples::
     qcpp simulate examples/paper_3x3.toml -p 1 --angles 0.3,1.2
     qcpp simulate examples/paper_3x3.toml -p 2 --method statevector --seed 4 --json
     qcpp simulate examples/two_robots_4x4.toml -p 3 --method subspace --rule exact
+    qcpp simulate examples/obstacles_hard_4x4.toml -p 2 --initial representatives
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from qcpp.cli.commands.inline_scenario import (
     ScenarioFileArg,
     given_scenario,
 )
-from qcpp.cli.commands.plan_flags import LayersFlag, RuleFlag
+from qcpp.cli.commands.plan_flags import InitialFlag, LayersFlag, RuleFlag
 from qcpp.cli.progress import Progress
 from qcpp.cli.render import json_text, print_table
 from qcpp.problem.scenario import Scenario
@@ -91,6 +92,7 @@ def simulate_command(
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random angles (at least 0).")] = 0,
     rule: RuleFlag = "exact",
+    initial: InitialFlag = "initial_path",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
@@ -109,11 +111,13 @@ def simulate_command(
     _guard(s, given.source, p, method)
     with Progress(f"simulate {given.label}") as bar:
         bar.stage(f"simulating ({method})")
-        res = evaluate(s, p, method, angles=values, seed=None if values is not None else seed, rule=rule)  # type: ignore[arg-type]
+        angle_seed = None if values is not None else seed
+        res = evaluate(s, p, method, angles=values, seed=angle_seed, rule=rule, initial=initial)  # type: ignore[arg-type]
     if as_json:
-        typer.echo(json_text({"scenario": given.source, **res.as_dict(), "rule": rule}))
+        typer.echo(json_text({"scenario": given.source, **res.as_dict(), "rule": rule, "initial": initial}))
         return
-    table = Table(title=f"{s.name or given.label}: p={p}, {method}", title_justify="left")
+    start = "" if initial == "initial_path" else f", from {initial}"
+    table = Table(title=f"{s.name or given.label}: p={p}, {method}{start}", title_justify="left")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_row(escape("angles [g0, b0, ...]"), ", ".join(f"{a:.6g}" for a in res.angles))
