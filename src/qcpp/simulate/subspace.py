@@ -511,15 +511,15 @@ class SubspaceQAOA:
 
         Ties are within ``1e-9 * max(1, |min|)``. Where the basis holds every feasible path
         (:meth:`reaches_every_path`) the minimum is the basis's own. Where it does not (hard obstacles split a
-        robot's move graph and the initial state starts in fewer components than there are), the minimum is the
-        one over all components (the basis of the ``representatives`` start), and the indices are those of basis
-        assignments of that cost: none where the optimum lies in a component the state never reaches, so
+        robot's move graph and the start misses a component), the minimum is the one over all of them (the exact
+        rule's ``representatives`` basis: every feasible path, whatever the rule here) and the indices are the
+        basis assignments of that cost: none where the optimum lies in a component the state never reaches, so
         P(optimum) is 0 there rather than the probability of the best reachable assignment.
         """
         if self._optimum is None:
             best, flat = self._basis_optimum()
             if not self.reaches_every_path():
-                whole, _ = SubspaceQAOA(self.scenario, self.rule, "representatives",
+                whole, _ = SubspaceQAOA(self.scenario, "exact", "representatives",
                                         max_levels=self.max_levels)._basis_optimum()  # fmt: skip
                 if best > whole + 1e-9 * max(1.0, abs(whole)):
                     best, flat = whole, np.empty(0, dtype=np.intp)
