@@ -104,3 +104,21 @@ def test_a_layer_whose_phase_separator_is_empty_still_takes_its_gamma(tmp_path: 
         res = run(*args)
         assert res.exit_code == 0, (args, res.output)
     assert "unknown symbol" in run("compile", str(scenario), "--bind", "gamma_1=0.3").stderr
+
+
+def test_the_initial_state_is_the_one_given() -> None:
+    """``--initial`` reaches the simulator: on a split move graph the JSON equals the API's numbers from that state,
+    and the two states give different numbers."""
+    import qcpp
+
+    args = ["simulate", "--grid", "3x4", "--robot", "0,0:2,3", "--obstacle", "1,1", "--hard-obstacles", "-p", "1",
+            "--angles", "0.3,0.7"]  # fmt: skip
+    s = qcpp.grid_scenario(3, 4, robots=[((0, 0), (2, 3))], obstacles=[(1, 1)], hard_obstacles=True)
+    rows = {}
+    for initial in ("initial_path", "representatives"):
+        rows[initial] = run_json(*args, "--initial", initial)
+        api = qcpp.simulate_qaoa(s, 1, angles=[0.3, 0.7], initial=initial)
+        assert rows[initial]["initial"] == initial
+        assert rows[initial]["expectation"] == pytest.approx(api.expectation, abs=1e-12)
+        assert rows[initial]["p_optimum"] == pytest.approx(api.p_optimum, abs=1e-12)
+    assert rows["initial_path"]["expectation"] != pytest.approx(rows["representatives"]["expectation"], abs=1e-6)

@@ -111,23 +111,6 @@ def test_trained_angles_simulate_to_the_trained_probability_from_the_trained_sta
     assert abs(other.p_optimum - trained.p_optimum) > 1e-3
 
 
-def test_the_cli_simulates_the_initial_state_it_is_given() -> None:
-    import json
-    import subprocess
-    import sys
-
-    import qcpp
-
-    args = ["--grid", "3x4", "--robot", "0,0:2,3", "--obstacle", "1,1", "--hard-obstacles", "-p", "1",
-            "--angles", "0.3,0.7"]  # fmt: skip
-    for initial in ("initial_path", "representatives"):
-        out = subprocess.run([sys.executable, "-m", "qcpp", "simulate", *args, "--initial", initial, "--json"],
-                             capture_output=True, text=True, check=True)  # fmt: skip
-        row = json.loads(out.stdout)
-        api = qcpp.simulate_qaoa(split_3x4(), 1, angles=[0.3, 0.7], initial=initial)
-        assert row["initial"] == initial and row["p_optimum"] == pytest.approx(api.p_optimum, abs=1e-12)
-
-
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
