@@ -326,8 +326,9 @@ def _solve_multi_angle(
 
 def _unreached_optimum_note(q: SubspaceQAOA) -> tuple[str, ...]:
     """The note a QAOA answer adds where its initial state cannot reach the optimum (hard obstacles split a robot's
-    paths into components SBF moves do not join, and the state starts in none that holds it), else nothing."""
-    if len(q.optimum()[1]) or q.reaches_every_path():
+    paths into components SBF moves do not join, and the state starts in none that holds it), else nothing: where
+    :meth:`~qcpp.simulate.subspace.SubspaceQAOA.optimum` finds no basis assignment of the optimal cost."""
+    if len(q.optimum()[1]):
         return ()
     return (f"the initial state {q.initial} starts in none of the move-graph components that hold the optimum (hard "
             "obstacles split the paths; the mixer never joins them): P(optimum) is 0 at any angles; --initial "
