@@ -29,6 +29,10 @@
   keeps its place. CI's heavy step hands tests out one at a time (``--maxschedchunk 1``: by default xdist's first
   hand-out is a block of consecutive tests per worker, which would give one worker all the long ones), so each
   worker takes the next long test when it is free.
+* On pytest-xdist's workers Qiskit's Rust passes (SABRE, the O3 passes) run on one thread
+  (``RAYON_NUM_THREADS=1``, inherited by subprocesses, unless already set): the workers keep every core busy
+  already, and a thread pool per worker would only compete with the other worker for the same cores. Results do
+  not depend on it (SABRE's trials are seeded); ``python benchmarks/worker_threads.py`` measures the time it saves.
 """
 
 from __future__ import annotations
@@ -48,6 +52,8 @@ settings.register_profile("timeless", deadline=None, suppress_health_check=[Heal
 settings.load_profile("timeless")
 
 os.environ["QCPP_PROGRESS"] = "off"
+if os.environ.get("PYTEST_XDIST_WORKER"):  # before Qiskit starts its thread pool: see the module docstring
+    os.environ.setdefault("RAYON_NUM_THREADS", "1")
 
 
 @pytest.fixture(autouse=True)
