@@ -16,7 +16,8 @@ Three evaluators share one definition of the terms:
 * :func:`quadratic_cost` -- the same cost as a quadratic polynomial in the bits (the input of the Ising
   Hamiltonian);
 * :func:`separable_cost` -- the cost over lists of candidate paths as unary vectors plus pairwise matrices
-  (what exhaustive search and the feasible-subspace simulator need).
+  (what exhaustive search and the feasible-subspace simulator need), and :func:`assignment_costs`, its sum as
+  one array over every assignment of those paths.
 
 Example:
     >>> from qcpp.problem.scenario import scenario_from_dict
@@ -245,3 +246,42 @@ def separable_cost(scenario: Scenario, path_lists: Sequence[Sequence[int]]) -> S
             m = 2 * a2 * degs[r] @ degs[s].T
             pairwise[(r, s)] = pairwise[(r, s)] + m if (r, s) in pairwise else m
     return SeparableCost(const, tuple(unary), pairwise)
+
+
+def assignment_costs(scenario: Scenario, path_lists: Sequence[Sequence[int]]) -> np.ndarray:
+    """The cost of every assignment of one path per robot from ``path_lists`` (edge masks): the sum of
+    :func:`separable_cost`'s parts, built in place (for two robots the pairwise matrix becomes the result, so the
+    peak holds one full-size array; :meth:`SeparableCost.full_tensor` adds into new arrays).
+
+    Returns:
+        A writable float64 array of shape ``(len(paths) for paths in path_lists)``.
+
+    Example:
+        >>> from qcpp.problem.scenario import scenario_from_dict
+        >>> from qcpp.problem.paths import enumerate_paths
+        >>> s = scenario_from_dict({"grid": {"rows": 2, "cols": 3},
+        ...                         "robots": [{"start": [0, 0], "goal": [1, 2]}, {"start": [1, 0], "goal": [0, 2]}]})
+        >>> lists = [enumerate_paths(s, r) for r in range(2)]
+        >>> costs = assignment_costs(s, lists)
+        >>> costs.shape, bool(np.allclose(costs, separable_cost(s, lists).full_tensor()))
+        ((4, 4), True)
+    """
+    sep = separable_cost(scenario, path_lists)
+    dims = tuple(len(paths) for paths in path_lists)
+    nr = len(dims)
+    unary, pairwise, const = sep.unary, dict(sep.pairwise), sep.const
+    del sep
+    if nr == 2 and (0, 1) in pairwise:
+        costs = np.require(pairwise.pop((0, 1)), dtype=np.float64, requirements=["C", "W", "O"])
+        costs += const
+    else:
+        costs = np.full(dims, const, dtype=np.float64)
+    for r, u in enumerate(unary):
+        shape = [1] * nr
+        shape[r] = dims[r]
+        costs += u.reshape(shape)
+    for (r, s), m in pairwise.items():
+        shape = [1] * nr
+        shape[r], shape[s] = dims[r], dims[s]
+        costs += m.reshape(shape)
+    return costs

@@ -58,9 +58,9 @@ from qcpp.errors import QcppError
 from qcpp.gadgets.initial_state import start_paths
 from qcpp.plan.options import INITIAL_STATES, Initial
 from qcpp.plan.phase import phase_plan
-from qcpp.problem.cost import separable_cost
+from qcpp.problem.cost import assignment_costs
 from qcpp.problem.hamiltonian import ising_hamiltonian
-from qcpp.problem.paths import is_feasible, path_bits
+from qcpp.problem.paths import enumerate_paths, is_feasible, path_bits
 from qcpp.problem.sbf import RULES, Rule, SbfLogic, sbf_logic
 from qcpp.problem.scenario import Scenario
 from qcpp.simulate import subspace_kernels
@@ -446,8 +446,7 @@ class SubspaceQAOA:
     def cost_diagonal(self) -> np.ndarray:
         """The cost ``C`` of every basis assignment, shape :attr:`dims`, float64, read-only.
 
-        Built once from :func:`qcpp.problem.cost.separable_cost` (one full-size float array; for two robots the
-        pairwise matrix itself becomes the diagonal) and then kept as :meth:`cost_levels` when a table of at
+        Built once by :func:`qcpp.problem.cost.assignment_costs` (one full-size float array) and then kept as :meth:`cost_levels` when a table of at
         most 65,536 values covers it (it typically takes a few hundred distinct values); this method then
         expands the levels again (bit-identical values, a new array per call).
         """
@@ -472,24 +471,8 @@ class SubspaceQAOA:
     def _build_cost(self) -> None:
         if self._levels is not None or self._diag is not None:
             return
-        sep = separable_cost(self.scenario, self.bases)
+        diag = assignment_costs(self.scenario, self.bases)
         dims = self.dims
-        nr = len(dims)
-        unary, pairwise, const = sep.unary, dict(sep.pairwise), sep.const
-        del sep
-        if nr == 2 and (0, 1) in pairwise:
-            diag = np.require(pairwise.pop((0, 1)), dtype=np.float64, requirements=["C", "W", "O"])
-            diag += const
-        else:
-            diag = np.full(dims, const, dtype=np.float64)
-        for r, u in enumerate(unary):
-            shape = [1] * nr
-            shape[r] = dims[r]
-            diag += u.reshape(shape)
-        for (r, s), m in pairwise.items():
-            shape = [1] * nr
-            shape[r], shape[s] = dims[r], dims[s]
-            diag += m.reshape(shape)
         compact = _compress(diag.reshape(-1), self.max_levels)
         if compact is None:
             diag.flags.writeable = False
@@ -511,16 +494,16 @@ class SubspaceQAOA:
 
         Ties are within ``1e-9 * max(1, |min|)``. Where the basis holds every feasible path
         (:meth:`reaches_every_path`) the minimum is the basis's own. Where it does not (hard obstacles split a
-        robot's move graph and the start misses a component), the minimum is the one over all of them (the exact
-        rule's ``representatives`` basis: every feasible path, whatever the rule here) and the indices are the
-        basis assignments of that cost: none where the optimum lies in a component the state never reaches, so
+        robot's move graph and the start misses a component), the minimum is the one over every assignment of
+        enumerated paths (:func:`~qcpp.problem.paths.enumerate_paths`, whatever the rule here) and the indices are
+        the basis assignments of that cost: none where the optimum lies in a component the state never reaches, so
         P(optimum) is 0 there rather than the probability of the best reachable assignment.
         """
         if self._optimum is None:
             best, flat = self._basis_optimum()
-            if not self.reaches_every_path():
-                whole, _ = SubspaceQAOA(self.scenario, "exact", "representatives",
-                                        max_levels=self.max_levels)._basis_optimum()  # fmt: skip
+            every = self._every_path()
+            if every is not None:
+                whole = float(assignment_costs(self.scenario, every).min())
                 if best > whole + 1e-9 * max(1.0, abs(whole)):
                     best, flat = whole, np.empty(0, dtype=np.intp)
             self._optimum = (best, flat)
@@ -548,11 +531,15 @@ class SubspaceQAOA:
         initial one wherever ``tests/problem/explorability_test.py`` sweeps them. So the paths are counted (about as
         long as building the basis) only with hard obstacles and a start other than ``representatives`` (one path
         per component); elsewhere this is ``True``."""
-        if self.scenario.objective.obstacles != "hard" or self.initial == "representatives":
-            return True
-        from qcpp.problem.paths import enumerate_paths
+        return self._every_path() is None
 
-        return all(int(f.sum()) == len(enumerate_paths(self.scenario, r)) for r, f in enumerate(self.feasible))
+    def _every_path(self) -> tuple[list[int], ...] | None:
+        """Every feasible path of each robot (:func:`~qcpp.problem.paths.enumerate_paths`) where the basis misses
+        one of them (counted only where it can: :meth:`reaches_every_path`), else ``None``."""
+        if self.scenario.objective.obstacles != "hard" or self.initial == "representatives":
+            return None
+        every = tuple(enumerate_paths(self.scenario, r) for r in range(self.scenario.num_robots))
+        return None if all(int(f.sum()) == len(e) for f, e in zip(self.feasible, every)) else every
 
     def optimal_assignments(self) -> list[tuple[int, ...]]:
         """All optimal feasible assignments (edge-mask tuples), see :meth:`optimum`."""
