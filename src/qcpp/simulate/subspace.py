@@ -446,9 +446,9 @@ class SubspaceQAOA:
     def cost_diagonal(self) -> np.ndarray:
         """The cost ``C`` of every basis assignment, shape :attr:`dims`, float64, read-only.
 
-        Built once by :func:`qcpp.problem.cost.assignment_costs` (one full-size float array) and then kept as :meth:`cost_levels` when a table of at
-        most 65,536 values covers it (it typically takes a few hundred distinct values); this method then
-        expands the levels again (bit-identical values, a new array per call).
+        Built once by :func:`qcpp.problem.cost.assignment_costs` (one full-size float array) and then kept as
+        :meth:`cost_levels` when a table of at most 65,536 values covers it (it typically takes a few hundred
+        distinct values); this method then expands the levels again (bit-identical values, a new array per call).
         """
         self._build_cost()
         if self._diag is not None:
