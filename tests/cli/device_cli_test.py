@@ -135,6 +135,48 @@ def test_compile_bad_optimize_for_is_one_line(args: tuple[str, ...], fragment: s
 @pytest.mark.parametrize(
     ("args", "fragment"),
     [
+        (("--device", "ibm_fez", "--effort", "fast"), "--effort: expected full or quick, got 'fast'"),
+        (("--effort", "quick"), "--effort quick: applies with --device only (no device given)"),
+    ],
+)
+def test_compile_bad_effort_is_one_line(args: tuple[str, ...], fragment: str) -> None:
+    assert_one_line_error(run("compile", PAPER, *args), fragment)
+
+
+@pytest.mark.heavy
+def test_compile_quick_effort_drops_only_the_partial_mixer_choice() -> None:
+    """``--effort quick`` runs every stage ``full`` runs but the choice of partial-mixer plans for the routing (on
+    each host), says so in ``routed.effort`` and the text, and writes what ``qcpp.compile(..., effort="quick")``
+    returns."""
+    import qcpp
+    from qcpp.pipeline.device_compile import compile_for_device
+    from qcpp.plan.options import PlanOptions
+    from qcpp.routing.options import effort_routing
+
+    scenario = qcpp.grid_scenario(2, 2, robots=1)
+    stages = {}
+    for effort in ("full", "quick"):
+        seen: list[str] = []
+        result = compile_for_device(scenario, 1, "ibm_fez", PlanOptions(), stage=seen.append,
+                                    routing=effort_routing(effort))  # fmt: skip
+        assert result.effort == effort
+        stages[effort] = {text.split(" (")[0] for text in seen}
+    choice = {s for s in stages["full"] if s.startswith("choosing partial-mixer plans for the routing on ")}
+    assert "choosing partial-mixer plans for the routing on ibm_fez" in choice
+    assert stages["quick"] == stages["full"] - choice
+    res = run("compile", "--grid", "2x2", "--robots", "1", "--device", "ibm_fez", "--effort", "quick", "--json")
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)
+    api = qcpp.compile(scenario, device="ibm_fez", effort="quick")
+    assert summary["routed"]["effort"] == "quick" and summary["gates"] == api.counts()
+    assert summary["initial_layout"] == api.initial_layout and summary["final_layout"] == api.final_layout
+    text = run("compile", "--grid", "2x2", "--robots", "1", "--device", "ibm_fez", "--effort", "quick")
+    assert text.exit_code == 0 and "effort quick" in " ".join(text.stdout.split()), text.output
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
         (("--zero-start",), "--zero-start: applies with a named --device only (no device given)"),
         (("--device", "grid", "--zero-start"), "--zero-start: applies with a named device with couplers only"),
         (("--device", "quantinuum_helios", "--zero-start"), "not quantinuum_helios"),

@@ -277,6 +277,7 @@ def compile(
     local_ancillas: bool = False,
     optimize_for: str | None = None,
     zero_start: bool = False,
+    effort: str = "full",
     max_gates: int | None = None,
     progress: ProgressArg = None,
     context: RoutingContext | None = None,
@@ -298,6 +299,10 @@ def compile(
         zero_start: With a named device (not ``lowered``): also offer routings simplified for the all-|0> start
             the device runs from, by either figure; the circuit then equals the logical one on that input only
             (:attr:`Compiled.equal_on_every_input`): put no gates before it. ``qcpp compile --zero-start``.
+        effort: With a device: ``full`` (the default: every search) or ``quick`` (no choice of partial-mixer
+            plans for the routing, :data:`~qcpp.routing.options.QUICK_ROUTING`: a few times faster on a named
+            device, for more two-qubit gates; ``benchmarks/compile_effort.py``). ``qcpp compile --effort``;
+            ``qcpp.estimate`` routes with ``full``.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
         progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
@@ -328,6 +333,7 @@ def compile(
     from qcpp.plan.compile import check_binding_values, compile_scenario
     from qcpp.plan.options import LAYOUT_METHODS
     from qcpp.problem.cost_range import check_cost_range
+    from qcpp.routing.options import EFFORTS, effort_routing
 
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)
@@ -336,6 +342,7 @@ def compile(
     check_choice(layout, LAYOUT_METHODS, "layout")
     if optimize_for is not None:
         check_choice(optimize_for, OPTIMIZE_FOR, "optimize_for")
+    check_choice(effort, EFFORTS, "effort")
     for name, flag in (("lowered", lowered), ("local_ancillas", local_ancillas), ("zero_start", zero_start)):
         if not isinstance(flag, bool):
             raise OptionError(name, f"expected True or False, got {flag!r}")
@@ -346,6 +353,8 @@ def compile(
             raise OptionError("local_ancillas", "applies with a device only (no device given)")
         if optimize_for is not None:
             raise OptionError("optimize_for", "applies with a device only (no device given)")
+        if effort != "full":
+            raise OptionError("effort", f"{effort!r} applies with a device only (no device given)")
     else:
         device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
     refusal = zero_start_refusal(device, lowered) if zero_start else None
@@ -369,7 +378,7 @@ def compile(
         routed = compile_for_device(
             s, layers, device, options, lowered=lowered, bindings=bindings, local_ancillas=local_ancillas,
             layout_method=layout, optimize_for=optimize_for, stage=bar and bar.stage, zero_start=zero_start,
-            context=context,
+            routing=effort_routing(effort), context=context,
         )  # fmt: skip
     r = routed.routed
     return Compiled(

@@ -344,6 +344,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "phase_layout": _lazy("qcpp.plan.options", "PHASE_LAYOUTS"),
     "compile.layout": _lazy("qcpp.plan.options", "LAYOUT_METHODS"),
     "compile.optimize_for": _lazy("qcpp.pipeline.candidates", "OPTIMIZE_FOR"),
+    "compile.effort": _lazy("qcpp.routing.options", "EFFORTS"),
     "compile.angles": _lazy("qcpp.plan.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.training.evaluate", "METHODS"),
@@ -438,7 +439,7 @@ PANELS: dict[str, str] = {
     "paper_doubling": "Estimates", "physical": "Estimates", "qubit_model": "Estimates",
     "qec_scheme": "Estimates", "error_budget": "Estimates",
     "device": "Device/routing", "local_ancillas": "Device/routing", "layout": "Device/routing",
-    "optimize_for": "Device/routing", "zero_start": "Device/routing",
+    "optimize_for": "Device/routing", "zero_start": "Device/routing", "effort": "Device/routing",
     # what is written where
     "as_json": "Output", "fmt": "Output", "columns": "Output", "wide": "Output", "compare": "Output",
     "plot": "Output", "metric": "Output", "plot_trace_file": "Output", "qasm": "Output", "qasm_version": "Output",

@@ -89,7 +89,7 @@ from qcpp.problem.scenario import Scenario
 from qcpp.routing.bridge import bridge_far_phases
 from qcpp.routing.context import RoutingContext, collector_paused
 from qcpp.routing.native import IDLE_MODEL, duration_s, esp_figures, to_native
-from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions, effort_of
 from qcpp.routing.prefetch import can_prefetch, prefetch_windows
 from qcpp.routing.routed_circuit import RoutedCircuit, embed_routed
 from qcpp.routing.sabre import route
@@ -127,6 +127,8 @@ class DeviceCompileResult:
         candidates: Every candidate's ``{name, two_qubit, esp, esp_idle}`` (empty where there was one: the
             families).
         zero_start: Whether the candidates simplified for the all-|0> start were offered (``zero_start``).
+        effort: The routing settings' name (:func:`~qcpp.routing.options.effort_of`: ``full``, ``quick`` or
+            ``custom``).
     """
 
     compiled: CompileResult
@@ -139,6 +141,7 @@ class DeviceCompileResult:
     chosen: str = "qcpp"
     candidates: tuple[dict[str, Any], ...] = ()
     zero_start: bool = False
+    effort: str = "full"
 
     @property
     def logical_qubits(self) -> int:
@@ -198,6 +201,7 @@ class DeviceCompileResult:
                 "log10_esp": figures["log10_esp"],
                 "log10_esp_idle": figures["log10_esp_idle"],
                 "optimize_for": self.optimize_for,
+                "effort": self.effort,
                 "zero_start": self.zero_start,
                 "equal_on_every_input": self.equal_on_every_input,
                 "chosen": self.chosen,
@@ -372,6 +376,7 @@ def compile_for_device(
         result = _compile_for_device(scenario, p, device, options, lowered, bindings, local_ancillas, seed, layouts,
                                      layout_method, arrangement, stage, routing, context, optimize_for,
                                      bind_field, zero_start)  # fmt: skip
+    result = replace(result, effort=effort_of(routing))
     if context is not None:
         context.keep_compile(key, result)
     return result

@@ -20,7 +20,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-__all__ = ["DEFAULT_ROUTING", "DEFAULT_TRIALS", "RoutingOptions"]
+__all__ = [
+    "DEFAULT_ROUTING", "DEFAULT_TRIALS", "EFFORTS", "QUICK_ROUTING", "RoutingOptions", "effort_of", "effort_routing",
+]
 
 DEFAULT_TRIALS = 16
 """SABRE trials per routing: the best of 16 randomised routings (Qiskit's default is the CPU count, which would make
@@ -180,3 +182,37 @@ class RoutingOptions:
 
 DEFAULT_ROUTING = RoutingOptions()
 """The measured settings: what ``qcpp compile --device`` and ``qcpp estimate --device`` route with."""
+
+QUICK_ROUTING = replace(DEFAULT_ROUTING, mixer_variant_layouts=0)
+"""``qcpp compile --effort quick``: the measured settings without the partial mixers' choice for the routing
+(:mod:`qcpp.pipeline.routed_mixers`), which is most of a compile on a named device (it runs on every host the
+placement searches use); every other search stays. ``benchmarks/compile_effort.py`` prints what it costs and
+saves on the calibrated devices."""
+
+EFFORTS = ("full", "quick")
+"""The compile efforts, most thorough first: ``full`` is :data:`DEFAULT_ROUTING`, ``quick`` :data:`QUICK_ROUTING`."""
+
+
+def effort_routing(effort: str) -> RoutingOptions:
+    """The routing settings of a compile effort (:data:`EFFORTS`).
+
+    Raises:
+        ValueError: an effort not in :data:`EFFORTS`.
+
+    >>> effort_routing("full") == DEFAULT_ROUTING, effort_routing("quick").mixer_variant_layouts
+    (True, 0)
+    """
+    if effort == "full":
+        return DEFAULT_ROUTING
+    if effort == "quick":
+        return QUICK_ROUTING
+    raise ValueError(f"effort must be one of {', '.join(EFFORTS)}, not {effort!r}")
+
+
+def effort_of(routing: RoutingOptions) -> str:
+    """The name of ``routing`` among :data:`EFFORTS`, or ``custom`` (settings no effort names).
+
+    >>> effort_of(QUICK_ROUTING), effort_of(replace(DEFAULT_ROUTING, trials=4))
+    ('quick', 'custom')
+    """
+    return next((name for name in EFFORTS if effort_routing(name) == routing), "custom")

@@ -75,6 +75,7 @@ from qcpp.problem.limits import allow_large as lifted_limits
 from qcpp.problem.limits import format_duration
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.native import RUNNABLE_ESP
+from qcpp.routing.options import effort_routing
 
 __all__ = ["STREAM_ABOVE_GATES", "compile_command", "register"]
 
@@ -206,6 +207,14 @@ def compile_command(
             "circuit then equals the logical one only on that input: put no gates before it.",
         ),
     ] = False,
+    effort: Annotated[
+        str,
+        typer.Option(
+            "--effort",
+            help="With --device: full (every search) or quick (no choice of partial-mixer plans for the routing: a "
+            "few times faster on a named device, for more two-qubit gates).",
+        ),
+    ] = "full",
     grid: GridFlag = None,
     robots: RobotCountFlag = None,
     robot: RobotFlag = None,
@@ -229,6 +238,8 @@ def compile_command(
             raise ValueError("--local-ancillas: applies with --device only (no device given)")
         if optimize_for is not None:
             raise ValueError(f"--optimize-for {optimize_for}: applies with --device only (no device given)")
+    if device is None and effort != "full":
+        raise ValueError(f"--effort {effort}: applies with --device only (no device given)")
     if zero_start:
         from qcpp.pipeline.candidates import zero_start_refusal
 
@@ -263,7 +274,7 @@ def compile_command(
     if device is not None:
         summary, phase_explain = _routed(
             s, p, options, device, lowered, bindings, local_ancillas, qasm, qasm_version, layout, qasm_profile,
-            optimize_for, measure, zero_start,
+            optimize_for, measure, zero_start, effort,
         )
     elif qasm is not None or size.gates >= STREAM_ABOVE_GATES:
         task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}"
@@ -320,8 +331,9 @@ def compile_command(
         console.print(esp_verdict(routed["esp"] if routed.get("esp_idle") is None else routed["esp_idle"],
                                   idle=routed.get("esp_idle") is not None))  # fmt: skip
         if routed.get("candidates"):
+            effort = "" if routed.get("effort", "full") == "full" else f", effort {routed['effort']}"
             console.print(f"chosen by {routed['optimize_for']}: {routed['chosen']} "
-                          f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them)")  # fmt: skip
+                          f"(of {len(routed['candidates'])} candidates, Qiskit O3 among them{effort})")  # fmt: skip
             peer = qiskit_o3_line(routed)
             if peer:
                 console.print(peer)
@@ -460,19 +472,20 @@ def _routed(
     optimize_for: str | None = None,
     measure: bool = False,
     zero_start: bool = False,
+    effort: str = "full",
 ) -> tuple[dict[str, Any], list[dict]]:
     """Compile, route onto ``device`` (:func:`qcpp.pipeline.device_compile.compile_for_device`) and write OpenQASM
     (``measure``: with every data qubit measured at its physical qubit at the end); the summary adds ``device``,
     ``initial_layout``, ``final_layout`` and ``routed`` (``zero_start``: also the candidates simplified for the
-    all-|0> start)."""
+    all-|0> start; ``effort``: :func:`qcpp.routing.options.effort_routing`)."""
     from qcpp.pipeline.device_compile import compile_for_device
 
     task = f"compile {s.grid.rows}x{s.grid.cols}, {s.num_robots} robot(s), p={p}, --device {device}"
     with Progress(task) as bar:  # silent unless it takes a few seconds (the heavy-hex cells' plan choice)
         result = compile_for_device(s, p, device_arg(device), options, lowered=lowered, bindings=bindings,
                                     local_ancillas=local_ancillas, layout_method=layout, stage=bar.stage,
-                                    optimize_for=optimize_for, bind_field="--bind",
-                                    zero_start=zero_start)  # fmt: skip
+                                    optimize_for=optimize_for, bind_field="--bind", zero_start=zero_start,
+                                    routing=effort_routing(effort))  # fmt: skip
     if qasm is not None:
         with _bind_hint():
             measured = result.routed.final_layout[: s.num_variables] if measure else None
