@@ -126,20 +126,11 @@ def test_compile_layout_choice_is_reported() -> None:
     [
         (("--device", "ibm_fez", "--optimize-for", "depth"), "--optimize-for: expected esp or twoq, got 'depth'"),
         (("--optimize-for", "esp"), "--optimize-for esp: applies with --device only"),
-    ],
-)
-def test_compile_bad_optimize_for_is_one_line(args: tuple[str, ...], fragment: str) -> None:
-    assert_one_line_error(run("compile", PAPER, *args), fragment)
-
-
-@pytest.mark.parametrize(
-    ("args", "fragment"),
-    [
         (("--device", "ibm_fez", "--effort", "fast"), "--effort: expected full or quick, got 'fast'"),
         (("--effort", "quick"), "--effort quick: applies with --device only (no device given)"),
     ],
 )
-def test_compile_bad_effort_is_one_line(args: tuple[str, ...], fragment: str) -> None:
+def test_compile_bad_optimize_for_or_effort_is_one_line(args: tuple[str, ...], fragment: str) -> None:
     assert_one_line_error(run("compile", PAPER, *args), fragment)
 
 
