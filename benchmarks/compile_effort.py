@@ -37,7 +37,7 @@ def _row(case: str, device: str, effort: str) -> dict[str, Any]:
     start = time.process_time()
     compiled = qcpp.compile(scenario, p=1, device=device, bind=ANGLES, effort=effort, context=qcpp.RoutingContext())
     seconds = time.process_time() - start
-    routed = compiled._summary["routed"]
+    routed = compiled.to_dict()["routed"]
     qiskit = [c for c in routed["candidates"] if re.fullmatch(r"qiskit O3 seed \d+", c["name"])]  # as Qiskit wrote it
     return {"case": case, "device": device, "effort": effort, "cpu_s": seconds, "twoq": routed["two_qubit"],
             "esp_idle": routed["esp_idle"], "o3_twoq": min(c["two_qubit"] for c in qiskit),
