@@ -12,6 +12,7 @@ check stays in the default run.
 
 from __future__ import annotations
 
+import ast
 import json
 from pathlib import Path
 
@@ -167,6 +168,89 @@ def test_a_block_that_leaves_an_ancilla_dirty_is_not_collapsed() -> None:
     fixed = Circuit([("d", 2), ("a", 1)], [Section("s", [h(0), ccx(0, 1, 2)]), Section("t", [ccx(0, 1, 2)])])
     [(qubits, op)] = collapse_ancilla_blocks(fixed, [2])
     assert qubits == (0, 1) and op.shape == (4, 4)
+
+
+@pytest.mark.filterwarnings("ignore:Couldn't import `kahypar`")  # cotengra's note, once per process
+def test_a_cached_path_serves_only_networks_of_its_shape(tmp_path: Path) -> None:
+    """Networks that differ only in their tensors without indices (scalars, which simplification leaves in varying
+    numbers) get their own paths, in memory and from the disk cache in a later process (cotengra's own key has
+    them all share one, and the second contraction fails on an index out of range)."""
+    import numpy as np
+    import quimb.tensor as qtn
+
+    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+
+    def network(scalars: int, matrices: int = 0) -> qtn.TensorNetwork:
+        vec = [qtn.Tensor(np.array([1.0, 2.0]), inds=("i",))] * min(matrices, 1)
+        vec += [qtn.Tensor(np.array([3.0, 5.0]), inds=("i",))] * min(matrices, 1)
+        return qtn.TensorNetwork(vec + [qtn.Tensor(np.array(2.0)) for _ in range(scalars)])
+
+    shapes = [(13, 0), (6, 0), (5, 1), (2, 1)]
+    want = [2.0**s * (13.0 if m else 1.0) for s, m in shapes]
+    for _process in range(2):  # the second reads the first's paths from disk
+        PATH_OPTIMIZERS.clear()
+        opt = path_optimizer(tmp_path)
+        assert [float(network(s, m).contract(optimize=opt)) for s, m in shapes] == want
+    assert len(list(tmp_path.glob("*/*"))) == len(shapes)
+    PATH_OPTIMIZERS.clear()
+
+
+def _two_vectors_and_a_scalar():  # type: ignore[no-untyped-def]
+    import numpy as np
+    import quimb.tensor as qtn
+
+    one = qtn.Tensor(np.ones(2), inds=("i",))
+    return qtn.TensorNetwork([one, one.copy(), qtn.Tensor(np.array(2.0))])
+
+
+@pytest.mark.filterwarnings("ignore:Couldn't import `kahypar`")  # cotengra's note, once per process
+def test_a_path_file_cut_short_is_searched_again_and_replaced(tmp_path: Path) -> None:
+    """A path file cut short (a full disk or a kill in the middle of a write) counts as absent: the path is
+    searched again and the file rewritten whole (cotengra alone fails on every later contraction of that shape)."""
+    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+
+    PATH_OPTIMIZERS.clear()
+    assert float(_two_vectors_and_a_scalar().contract(optimize=path_optimizer(tmp_path))) == 4.0
+    [saved] = tmp_path.glob("*/*")
+    whole = saved.read_bytes()
+    saved.write_bytes(whole[:20])
+    PATH_OPTIMIZERS.clear()  # a later process
+    assert float(_two_vectors_and_a_scalar().contract(optimize=path_optimizer(tmp_path))) == 4.0
+    assert saved.read_bytes() == whole and [saved] == list(tmp_path.glob("*/*"))
+    PATH_OPTIMIZERS.clear()
+
+
+FULL_DISK = """
+import resource, signal, sys, warnings
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+resource.setrlimit(resource.RLIMIT_FSIZE, (0, 0))  # every write to a file fails, as on a full disk
+from qcpp.simulate.tensor import CacheFolderWarning, path_optimizer
+from tests.simulate.tensor_test import _two_vectors_and_a_scalar
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always", CacheFolderWarning)
+    opt = path_optimizer(sys.argv[1])
+    print([float(_two_vectors_and_a_scalar().contract(optimize=opt)) for _ in range(2)])
+print([str(w.message) for w in caught if w.category is CacheFolderWarning])
+"""
+
+
+def test_a_path_folder_that_cannot_be_written_keeps_paths_in_memory(tmp_path: Path) -> None:
+    """Where no path file can be written (a full disk), the contraction still answers, says once per new path why
+    the path is not saved, and leaves no file behind."""
+    import subprocess
+    import sys
+
+    repo = Path(__file__).resolve().parents[2]
+    env = {"PYTHONPATH": f"{repo / 'src'}:{repo}", "PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
+    res = subprocess.run([sys.executable, "-W", "ignore::UserWarning", "-c", FULL_DISK, str(tmp_path / "paths")],
+                         capture_output=True, text=True, env=env, timeout=300)  # fmt: skip
+    assert res.returncode == 0, res.stderr
+    results, messages = res.stdout.splitlines()
+    assert results == "[4.0, 4.0]"
+    [message] = ast.literal_eval(messages)
+    assert message.startswith(f"new contraction paths stay in memory: cannot write {tmp_path / 'paths'}")
+    assert message.endswith(": File too large")
+    assert not [p for p in (tmp_path / "paths").rglob("*") if p.is_file()]
 
 
 def test_path_optimizers_are_shared_per_directory_until_the_cache_is_cleared(tmp_path: Path) -> None:

@@ -39,7 +39,9 @@ Example:
 from __future__ import annotations
 
 import copy
+import hashlib
 import math
+import pickle
 import threading
 import time
 import warnings
@@ -51,6 +53,7 @@ from typing import Any
 import numpy as np
 
 from qcpp.errors import QcppError
+from qcpp.io.atomic import atomic_open
 from qcpp.io.caches import cache_root, prepare_folder, use_writable_numba_cache
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate, controlled_x_pattern, unitary
@@ -61,6 +64,7 @@ with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
     import cotengra as ctg
     import quimb.tensor as qtn
+    from cotengra.utils import DiskDict
 
 __all__ = [
     "DEFAULT_MAX_WIDTH",
@@ -72,6 +76,7 @@ __all__ = [
     "ContractionTooWideError",
     "MPSCircuit",
     "OptimizerCache",
+    "StructureKeyedOptimizer",
     "TensorCircuit",
     "contract_sliced",
     "default_cache_dir",
@@ -193,18 +198,94 @@ PATH_OPTIMIZERS = OptimizerCache()
 """The process-wide :class:`OptimizerCache` of :func:`path_optimizer`."""
 
 
+class _PathFiles(DiskDict):  # type: ignore[misc]
+    """cotengra's store of paths (in memory, and one file per path on disk), safe to share and to lose.
+
+    * A file is written whole or not at all (:func:`qcpp.io.atomic.atomic_open`), so another process reading it
+      meanwhile, Ctrl-C or a full disk never leaves half a path on disk.
+    * A file that cannot be read (cut short before writes were whole, or from another version) counts as absent:
+      the path is searched again and the file replaced, instead of every later contraction of that shape failing.
+    * A file that cannot be written (a full disk, a folder made read-only meanwhile) leaves the path in memory for
+      this process, with a :class:`CacheFolderWarning` that names the file and the reason.
+    """
+
+    __slots__ = ()
+
+    def __contains__(self, k: Any) -> bool:
+        if not super().__contains__(k):
+            return False
+        try:
+            self[k]  # read now (and kept in memory), so that an unreadable file counts as absent
+        except KeyError:
+            return False
+        return True
+
+    def __getitem__(self, k: Any) -> Any:
+        try:
+            return super().__getitem__(k)
+        except KeyError:
+            raise
+        except Exception as exc:  # cotengra's retries end in an error of its own on a file cut short
+            raise KeyError(k) from exc
+
+    def __setitem__(self, k: Any, v: Any) -> None:
+        self._mem_cache[k] = v
+        if self._directory is None:
+            return
+        fname = self._path.joinpath(*(k if isinstance(k, tuple) else (k,)))
+        try:
+            fname.parent.mkdir(parents=True, exist_ok=True)
+            with atomic_open(fname, "wb") as f:
+                pickle.dump(v, f)
+        except OSError as exc:
+            warnings.warn(f"new contraction paths stay in memory: {exc}", CacheFolderWarning, stacklevel=2)
+
+
+class StructureKeyedOptimizer(ctg.ReusableHyperOptimizer):  # type: ignore[misc]
+    """cotengra's ``ReusableHyperOptimizer`` keyed by the whole structure of a contraction, tensors without indices
+    included, with an on-disk store that a cut-short or unwritable file does not break (``_PathFiles``).
+
+    cotengra's ``hash_method='b'`` names each index by the tensors it joins, so a tensor with no index (a scalar,
+    which quimb's simplification leaves behind, more or fewer at other angles) is absent from the key: every network
+    of scalars alone has one key, and a path found for thirteen of them, read back for six, fails on an index out of
+    range. The key here is cotengra's with the number of tensors and the positions of the scalars added, so only
+    networks of one shape share a path. The keys differ from cotengra's, so paths cotengra cached under its own key
+    are never read back.
+
+    Example:
+        >>> import numpy as np
+        >>> opt = StructureKeyedOptimizer(methods=["greedy"], max_repeats=1, hash_method="b", progbar=False)
+        >>> scalars = lambda n: qtn.TensorNetwork([qtn.Tensor(np.array(2.0)) for _ in range(n)])
+        >>> [float(scalars(n).contract(optimize=opt)) for n in (13, 6)]
+        [8192.0, 64.0]
+    """
+
+    def __init__(self, *, directory: str | None = None, **kwargs: Any) -> None:
+        super().__init__(directory=directory, **kwargs)
+        self._cache = _PathFiles(directory)
+
+    def hash_query(self, inputs: Any, output: Any, size_dict: Any) -> tuple[Any, bool]:
+        """The contraction's key and whether no path is cached under it (cotengra's contract)."""
+        inputs = tuple(inputs)
+        base, _ = super().hash_query(inputs, output, size_dict)
+        scalars = tuple(i for i, term in enumerate(inputs) if not len(term))
+        key = hashlib.sha1(repr(("".join(base), len(inputs), scalars)).encode()).hexdigest()
+        h = (key[:2], key[2:]) if self.directory_split else key
+        return h, h not in self._cache
+
+
 def path_optimizer(
     directory: str | Path | None = None,
     *,
     max_repeats: int = 32,
     max_time: float | str = "rate:1e8",
     parallel: bool | int = False,
-) -> ctg.ReusableHyperOptimizer:
+) -> StructureKeyedOptimizer:
     """The shared cotengra path optimizer for a cache directory (one instance per process and settings).
 
-    Paths are keyed by the structure of the contraction (``hash_method='b'``: which tensors share which index
-    and the index sizes, not the index names), in memory and on disk, so the same circuit structure at new angles
-    or new bit strings reuses its path, also in a later process.
+    Paths are keyed by the structure of the contraction (:class:`StructureKeyedOptimizer`: which tensors share
+    which index, the index sizes and the tensors without indices), in memory and on disk, so the same circuit
+    structure at new angles or new bit strings reuses its path, also in a later process.
 
     Args:
         directory: On-disk cache; default :func:`default_cache_dir`.
@@ -214,7 +295,7 @@ def path_optimizer(
         parallel: cotengra's ``parallel`` (default off: no worker processes left behind).
 
     Returns:
-        A ``cotengra.ReusableHyperOptimizer`` (caching in memory only, after one :class:`CacheFolderWarning`,
+        A :class:`StructureKeyedOptimizer` (caching in memory only, after one :class:`CacheFolderWarning`,
         when the folder cannot be created or written).
 
     Example:
@@ -226,11 +307,11 @@ def path_optimizer(
     path = Path(directory) if directory is not None else default_cache_dir()
     key = (str(path.absolute()), max_repeats, max_time, parallel)
 
-    def make() -> ctg.ReusableHyperOptimizer:
+    def make() -> StructureKeyedOptimizer:
         usable = _usable_cache(path)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
-            return ctg.ReusableHyperOptimizer(
+            return StructureKeyedOptimizer(
                 max_repeats=max_repeats,
                 max_time=max_time,
                 parallel=parallel,
