@@ -147,6 +147,8 @@ def test_a_qec_scheme_the_qubit_model_lacks_is_refused_before_the_qdk() -> None:
         (lambda: qcpp.compile(S, device="ibm_fez", optimize_for="fidelity"), "optimize_for: expected esp or twoq"),
         (lambda: qcpp.compile(S, effort="quick"), "effort: 'quick' applies with a device only"),
         (lambda: qcpp.compile(S, device="ibm_fez", effort="fast"), "effort: expected full or quick"),
+        (lambda: qcpp.estimate(S, effort="quick"), "effort: 'quick' applies with a device only"),
+        (lambda: qcpp.estimate(S, device="ibm_fez", effort="fast"), "effort: expected full or quick"),
         (lambda: qcpp.compile(S, zero_start=True), "zero_start: applies with a named device only"),
         (lambda: qcpp.compile(S, device="grid", zero_start=True), "zero_start: applies with a named device with coup"),
         (lambda: qcpp.compile(S, device="quantinuum_helios", zero_start=True), "zero_start: applies with a named"),

@@ -132,6 +132,8 @@ def test_compile_layout_choice_is_reported() -> None:
 )
 def test_compile_bad_optimize_for_or_effort_is_one_line(args: tuple[str, ...], fragment: str) -> None:
     assert_one_line_error(run("compile", PAPER, *args), fragment)
+    if "--effort" in args:  # estimate takes the option from compile, with the same refusals
+        assert_one_line_error(run("estimate", "--scenario", PAPER, *args), fragment)
 
 
 @pytest.mark.heavy
@@ -163,6 +165,24 @@ def test_compile_quick_effort_drops_only_the_partial_mixer_choice() -> None:
     assert summary["initial_layout"] == api.initial_layout and summary["final_layout"] == api.final_layout
     text = run("compile", "--grid", "2x2", "--robots", "1", "--device", "ibm_fez", "--effort", "quick")
     assert text.exit_code == 0 and "effort quick" in " ".join(text.stdout.split()), text.output
+
+
+@pytest.mark.heavy
+def test_estimate_quick_effort_routes_as_compile_quick() -> None:
+    """``estimate --effort quick`` routes what ``compile --effort quick`` writes, and its ``routed_model`` says so;
+    the API's ``qcpp.estimate(..., effort="quick")`` gives the same row."""
+    import qcpp
+    from qcpp.estimators.routed import COMPILE_MODEL, COMPILE_QUICK_MODEL
+
+    scenario = qcpp.grid_scenario(2, 3, robots=1)
+    context = qcpp.RoutingContext()
+    api = qcpp.estimate(scenario, device="ibm_fez", effort="quick", context=context).to_dict()
+    compiled = qcpp.compile(scenario, device="ibm_fez", effort="quick", context=context)
+    assert api["routed_model"] == COMPILE_QUICK_MODEL != COMPILE_MODEL
+    assert api["routed_twoq"] == compiled.counts()["cz"] and api["esp_idle"] == compiled.to_dict()["routed"]["esp_idle"]
+    res = run("estimate", "--grid", "2x3", "--robots", "1", "--device", "ibm_fez", "--effort", "quick", "--json")
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout) == [api]
 
 
 @pytest.mark.parametrize(

@@ -155,6 +155,7 @@ def estimate(
     qubit_model: str = "qubit_gate_ns_e3",
     qec_scheme: str = "surface_code",
     error_budget: float = 1e-3,
+    effort: str = "full",
     progress: ProgressArg = None,
     context: RoutingContext | None = None,
     **plan_options: Any,
@@ -180,6 +181,9 @@ def estimate(
         qubit_model: The QDK qubit model of the physical estimates.
         qec_scheme: The QDK error-correction scheme of the physical estimates.
         error_budget: The QDK error budget of the physical estimates.
+        effort: With a device: ``full`` (the default: every search) or ``quick`` (no choice of partial-mixer plans
+            for the routing, as ``qcpp.compile(..., effort="quick")``; ``routed_model`` then says so). It changes
+            only rows compiled whole: small circuits, where that choice is made. ``qcpp estimate --effort``.
         progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
             (:mod:`qcpp.api.progress`) called as each stage of the ``device`` routing starts (``progress(1, None)``,
             ...). The counts alone take milliseconds and report nothing; a sweep is a loop over calls, whose own
@@ -205,6 +209,7 @@ def estimate(
     from qcpp.estimators.report import estimate_rows
     from qcpp.hardware.device import device_arg, device_label
     from qcpp.problem.cost_range import check_cost_range
+    from qcpp.routing.options import EFFORTS, effort_routing
 
     s = check_scenario_arg(scenario)
     layers = check_layers_arg(p)
@@ -216,8 +221,11 @@ def estimate(
     check_choice(paper_doubling, DOUBLINGS, "paper_doubling")
     if not isinstance(compare_paper, bool):
         raise OptionError("compare_paper", f"expected True or False, got {compare_paper!r}")
+    check_choice(effort, EFFORTS, "effort")
     if device is not None:
         device = device_arg(device)  # an unknown name or a bad file fails before any work; a file is read once
+    elif effort != "full":
+        raise OptionError("effort", f"{effort!r} applies with a device only (no device given)")
     check_progress_arg(progress)
     check_context_arg(context, device)
     check_cost_range(s)  # what the command line checks when it loads a file
@@ -232,7 +240,7 @@ def estimate(
                 bar.stage(text)
 
         rows = estimate_rows([point], settings, compare_paper, paper_doubling, device, stage,  # type: ignore[arg-type]
-                             context)  # fmt: skip
+                             context, routing=effort_routing(effort))  # fmt: skip
         return Estimate(next(rows))
 
 

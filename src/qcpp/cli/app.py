@@ -345,6 +345,7 @@ CHOICES: dict[str, Callable[[], Sequence[Any]]] = {
     "compile.layout": _lazy("qcpp.plan.options", "LAYOUT_METHODS"),
     "compile.optimize_for": _lazy("qcpp.pipeline.candidates", "OPTIMIZE_FOR"),
     "compile.effort": _lazy("qcpp.routing.options", "EFFORTS"),
+    "estimate.effort": _lazy("qcpp.routing.options", "EFFORTS"),
     "compile.angles": _lazy("qcpp.plan.options", "ANGLES"),  # --mixer-angles (simulate's --angles are values)
     "estimate.angles": _lazy("qcpp.plan.options", "ANGLES"),
     "simulate.method": _lazy("qcpp.training.evaluate", "METHODS"),

@@ -35,6 +35,7 @@ from qcpp.problem.limits import check_grid_size, check_layers
 from qcpp.problem.presets import grid_scenario, max_default_robots
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.routing.context import RoutingContext
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 
 __all__ = ["DEFAULT_GRID", "PointSet", "estimate_report", "estimate_rows", "formula_report", "points_from_options"]
 
@@ -144,6 +145,7 @@ def estimate_report(
     device: str | Device | None = None,
     stage: Callable[[str], None] | None = None,
     metric: str = "cx",
+    routing: RoutingOptions = DEFAULT_ROUTING,
 ) -> Iterator[str]:
     """Estimate ``points`` and render the rows, as a stream of text pieces.
 
@@ -162,13 +164,14 @@ def estimate_report(
         stage: called with the stage of a row's routing as it starts (progress inside a long row; ``""`` when the
             row is done), and with ``drawing the plot`` before the plot is drawn.
         metric: the column the plot shows (:data:`qcpp.estimators.plots.PLOT_METRICS`).
+        routing: the routing settings of the rows' compiles on ``device`` (:func:`estimate_rows`).
 
     Yields:
         Text pieces (see :func:`qcpp.estimators.tables.render_stream`).
     """
     if fmt not in FORMATS:
         raise ValueError(f"bad format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rows = estimate_rows(points, options, compare_paper, doubling, device, stage)
+    rows = estimate_rows(points, options, compare_paper, doubling, device, stage, routing=routing)
     if plot is None:
         yield from render_stream(rows, fmt, columns=columns, wide=wide)
         return
@@ -187,6 +190,7 @@ def estimate_rows(
     device: str | Device | None = None,
     stage: Callable[[str], None] | None = None,
     context: RoutingContext | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
 ) -> Iterator[dict[str, Any]]:
     """The rows of ``qcpp estimate`` (:func:`qcpp.estimators.tables.make_row`, plus the routed fields with a
     ``device``), one per point, lazily: what :func:`estimate_report` renders and ``qcpp.estimate`` returns.
@@ -200,6 +204,8 @@ def estimate_rows(
         stage: Called with the stage of a row's routing as it starts (``""`` when the row is done).
         context: The routing memos the rows share (default: a fresh one for this sweep, keeping no whole compile:
             its rows do not repeat).
+        routing: The routing settings of the rows' compiles on ``device`` (``qcpp estimate --effort``:
+            :func:`qcpp.routing.options.effort_routing`; :func:`qcpp.estimators.routed.routed_fields`).
 
     Yields:
         One row per point, in order.
@@ -208,12 +214,13 @@ def estimate_rows(
         context = RoutingContext(compiles_kept=0)
     device = None if device is None else device_arg(device)  # a device file read once for every row
     for est in sweep(points, options):
-        yield _row(est, compare_paper, doubling, device, stage, context)
+        yield _row(est, compare_paper, doubling, device, stage, context, routing)
 
 
 def _row(
     est: Estimate, compare_paper: bool, doubling: Doubling, device: str | Device | None,
     stage: Callable[[str], None] | None = None, context: RoutingContext | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
 ) -> dict[str, Any]:  # fmt: skip
     row = make_row(est, compare_paper, doubling)
     if device is None:
@@ -223,7 +230,7 @@ def _row(
     c = est.cost
     extra = routed_fields(
         est.point.build_scenario(), est.point.p, est.options.plan, device, qubits=est.qubits, cx=c.two_qubit,
-        one_qubit=c.single_qubit, total_gates=c.total, stage=stage, context=context,
+        one_qubit=c.single_qubit, total_gates=c.total, stage=stage, context=context, routing=routing,
     )  # fmt: skip
     return {**row, **extra}
 

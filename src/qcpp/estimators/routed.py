@@ -13,7 +13,8 @@ writes) or ``bound``. Of a ``bound`` row the two-qubit count, the depths and the
 its ESP, from those gates at the worst error rates, a lower bound. ``routed_model`` names the first way that applies:
 
 1. ``compile``: at most :data:`EXACT_MAX_GATES` lowered gates; compiled and routed as ``qcpp compile --device``
-   does, every figure exact.
+   does, every figure exact (``compile --effort quick`` where the row's routing settings are
+   :data:`qcpp.routing.options.QUICK_ROUTING`).
 2. ``window sum``: a square grid that holds the medial layout, a circuit of more two-qubit gates than compile's
    ``auto`` compares (:func:`qcpp.pipeline.device_compile.auto_tries_greedy`), and windows needing the whole device
    within :data:`WINDOW_SUM_WORK`: :func:`qcpp.estimators.window_classes.routed_sum`, compile's counts and ESP
@@ -46,6 +47,7 @@ from qcpp.hardware.device import Device, get_device
 from qcpp.problem.scenario import Scenario
 from qcpp.routing.context import RoutingContext
 from qcpp.routing.native import log10_figure
+from qcpp.routing.options import DEFAULT_ROUTING, RoutingOptions
 
 __all__ = [
     "BALL_BOUND_MODEL",
@@ -89,6 +91,9 @@ BALL_BOUND_MODEL = _BOUND_MODEL.format("the qubits nearest the device's middle q
 """``routed_model`` of the bound on any other device."""
 
 COMPILE_MODEL = "compile: the circuit qcpp compile --device writes, routed"
+COMPILE_QUICK_MODEL = "compile --effort quick: the circuit qcpp compile --device --effort quick writes, routed"
+"""``routed_model`` of an exact row routed with ``--effort quick``
+(:data:`qcpp.routing.options.QUICK_ROUTING`)."""
 SUM_MODEL = (
     "window sum: the medial layout's windows (one gadget each, routed home) summed by classes of equal gates and "
     "neighbourhood, one representative each allocated, relayed and routed as compile does it; counts and ESP "
@@ -152,6 +157,7 @@ def routed_fields(
     total_gates: int | None = None,
     stage: Callable[[str], None] | None = None,
     context: RoutingContext | None = None,
+    routing: RoutingOptions = DEFAULT_ROUTING,
 ) -> dict[str, Any]:
     """The routed figures of one estimate row (see the module docs).
 
@@ -167,13 +173,17 @@ def routed_fields(
             and with ``""`` when the row is done: progress inside a row that takes long.
         context: The routing memos of the run (:class:`qcpp.routing.context.RoutingContext`; default: a fresh one),
             shared by the rows of one estimate.
+        routing: The routing settings of an exact row's compile (:func:`qcpp.routing.options.effort_routing`;
+            ``routed_model`` names the quick effort). The window sum and the bound route as they always do: the
+            effort drops a choice made on circuits small enough to be compiled whole only.
 
     Returns:
         The fields to add to the row.
     """
     context = RoutingContext() if context is None else context
     try:
-        return _routed_fields(scenario, p, plan, device, qubits, cx, one_qubit, total_gates, stage, context)
+        return _routed_fields(scenario, p, plan, device, qubits, cx, one_qubit, total_gates, stage, context,
+                              routing)  # fmt: skip
     finally:
         if stage is not None:
             stage("")
@@ -181,7 +191,7 @@ def routed_fields(
 
 def _routed_fields(
     scenario: Scenario, p: int, plan: Any, device: str | Device, qubits: int, cx: int, one_qubit: int,
-    total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext,
+    total_gates: int | None, stage: Callable[[str], None] | None, context: RoutingContext, routing: RoutingOptions,
 ) -> dict[str, Any]:  # fmt: skip
     from qcpp.estimators.layout_bound import bound_plan
     from qcpp.pipeline.device_compile import ESP_MODEL, compile_for_device, layout_device
@@ -204,7 +214,8 @@ def _routed_fields(
         laid = bound_plan(scenario, p, plan, dev)
         return {**out, **_bound_of_compiled(laid, dev, device in ("grid", "heavy-hex"), say, context)}
     # the unsized grid goes by name: compile may grow it while a section needs more free qubits
-    result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context)
+    result = compile_for_device(scenario, p, device if medial is not None else dev, plan, stage=say, context=context,
+                                routing=routing)  # fmt: skip
     routed = result.routed
     gc = count_gates(routed.circuit.gates, routed.circuit.num_qubits)
     figures = esp_figures(routed)
@@ -213,7 +224,7 @@ def _routed_fields(
         "device": routed.device.name,
         "routed_kind": "exact",
         "routed_depth_kind": "exact",
-        "routed_model": COMPILE_MODEL,
+        "routed_model": COMPILE_QUICK_MODEL if result.effort == "quick" else COMPILE_MODEL,
         "routed_twoq": gc.two_qubit,
         "routed_depth": gc.depth,
         "routed_twoq_depth": gc.two_qubit_depth,

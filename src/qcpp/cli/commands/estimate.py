@@ -176,6 +176,14 @@ def estimate(
             "named device or a device file (PATH.json).",
         ),
     ] = None,
+    effort: Annotated[
+        str,
+        typer.Option(
+            "--effort",
+            help="With --device: full (every search) or quick (no choice of partial-mixer plans for the routing: a "
+            "few times faster on a named device, for more two-qubit gates); as qcpp compile --effort.",
+        ),
+    ] = "full",
     obstacle: ObstacleFlag = None,
     hard_obstacles: HardObstaclesFlag = False,
     robot: RobotFlag = None,
@@ -185,6 +193,7 @@ def estimate(
     from qcpp.estimators.estimate import checked_estimate_options
     from qcpp.estimators.physical import DEFAULT_ERROR_BUDGET, DEFAULT_QEC_SCHEME, DEFAULT_QUBIT_MODEL
     from qcpp.estimators.report import estimate_report, formula_report, points_from_options
+    from qcpp.routing.options import effort_routing
 
     scenario_named = "--scenario" if scenario_file is None else f"the scenario file {str(scenario_file)!r}"
     if scenario_file is not None:
@@ -214,6 +223,8 @@ def estimate(
     if plot is not None:
         check_figure_output(plot)  # a bad destination or image type fails before the sweep, not after
     _check_metric(metric, plot=plot, physical=physical, device=device, depth=depth)
+    if device is None and effort != "full":
+        raise ValueError(f"--effort {effort}: applies with --device only (no device given)")  # as compile says
     obstacles = parse_obstacles(obstacle)
     # a bad range, file or obstacle: one line, exit 2 (qcpp.cli.app)
     endpoints = [parse_robot(t) for t in robot or ()]
@@ -250,6 +261,7 @@ def estimate(
                 device=device,
                 stage=bar.stage,
                 metric=metric or "cx",
+                routing=effort_routing(effort),
             )
             for piece in pieces:
                 if fmt == "table":
