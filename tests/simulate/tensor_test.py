@@ -88,7 +88,7 @@ def test_sliced_contraction_on_a_local_dask_cluster_equals_the_unsliced_one(tmp_
     tree, info = tc._tree(tn)
     assert info.width >= 8  # wide enough that slicing has something to cut
     assert abs(contract_sliced(tn, tree, target_slices=8) - unsliced) < 1e-10  # in-process slices
-    with Client(LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None)) as client:
+    with Client(LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=":0")) as client:
         assert abs(contract_sliced(tn, tree, target_slices=8, client=client) - unsliced) < 1e-10
         # TensorCircuit slices a contraction wider than max_width and runs the slices on the cluster
         narrow = TensorCircuit(c, cache_dir=tmp_path, client=client, max_width=info.width - 3)
