@@ -137,7 +137,12 @@ def test_the_contraction_path_cache_is_not_made_in_a_missing_home(tmp_path: Path
                                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     """``HOME=/nonexistent`` (as root) made ``/nonexistent/.cache/qcpp/cotengra``: now paths stay in memory, after
     one note naming the folder."""
-    from qcpp.simulate.tensor import PATH_OPTIMIZERS, CacheFolderWarning, default_cache_dir, path_optimizer
+    from qcpp.simulate.contraction_paths import (
+        PATH_OPTIMIZERS,
+        CacheFolderWarning,
+        default_cache_dir,
+        path_optimizer,
+    )
 
     home = tmp_path / "nonexistent"
     monkeypatch.setenv("HOME", str(home))

@@ -178,7 +178,7 @@ def test_a_cached_path_serves_only_networks_of_its_shape(tmp_path: Path) -> None
     import numpy as np
     import quimb.tensor as qtn
 
-    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+    from qcpp.simulate.contraction_paths import PATH_OPTIMIZERS, path_optimizer
 
     def network(scalars: int, matrices: int = 0) -> qtn.TensorNetwork:
         vec = [qtn.Tensor(np.array([1.0, 2.0]), inds=("i",))] * min(matrices, 1)
@@ -207,7 +207,7 @@ def _two_vectors_and_a_scalar():  # type: ignore[no-untyped-def]
 def test_a_path_file_cut_short_is_searched_again_and_replaced(tmp_path: Path) -> None:
     """A path file cut short (a full disk or a kill in the middle of a write) counts as absent: the path is
     searched again and the file rewritten whole (cotengra alone fails on every later contraction of that shape)."""
-    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+    from qcpp.simulate.contraction_paths import PATH_OPTIMIZERS, path_optimizer
 
     PATH_OPTIMIZERS.clear()
     assert float(_two_vectors_and_a_scalar().contract(optimize=path_optimizer(tmp_path))) == 4.0
@@ -224,7 +224,7 @@ FULL_DISK = """
 import resource, signal, sys, warnings
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
 resource.setrlimit(resource.RLIMIT_FSIZE, (0, 0))  # every write to a file fails, as on a full disk
-from qcpp.simulate.tensor import CacheFolderWarning, path_optimizer
+from qcpp.simulate.contraction_paths import CacheFolderWarning, path_optimizer
 from tests.simulate.tensor_test import _two_vectors_and_a_scalar
 with warnings.catch_warnings(record=True) as caught:
     warnings.simplefilter("always", CacheFolderWarning)
@@ -256,7 +256,7 @@ def test_a_path_folder_that_cannot_be_written_keeps_paths_in_memory(tmp_path: Pa
 def test_path_optimizers_are_shared_per_directory_until_the_cache_is_cleared(tmp_path: Path) -> None:
     """path_optimizer hands out one optimizer per directory and settings (its paths are reused by every contraction
     of the process) until PATH_OPTIMIZERS.clear(), after which a new one is built."""
-    from qcpp.simulate.tensor import PATH_OPTIMIZERS, path_optimizer
+    from qcpp.simulate.contraction_paths import PATH_OPTIMIZERS, path_optimizer
 
     first = path_optimizer(tmp_path / "a")
     assert path_optimizer(tmp_path / "a") is first

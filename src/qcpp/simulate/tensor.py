@@ -16,8 +16,8 @@ Conventions:
 * Gates are added uncontracted (``gate_contract=False``: much faster to build, same amplitudes); quimb's
   controlled gates need a split mode and get ``'auto-split-gate'``.
 * Amplitudes: ``U|x>`` is simplified once per bound circuit, then each amplitude fixes the outputs and contracts
-  with a path from the shared :func:`path_optimizer`, keyed by the network's structure, so one path search serves
-  every bit string (and later processes, through its on-disk cache).
+  with a path from the shared :func:`~qcpp.simulate.contraction_paths.path_optimizer`, keyed by the network's
+  structure, so one path search serves every bit string (and later processes, through its on-disk cache).
 * Probabilities contract the closed network ``bra | ket`` with the fixed outputs on both sides (simplifying the
   open ket first turns outputs into hyper-indices and gives wrong norms). Every contraction is rehearsed first and
   refused beyond ``max_width`` (:class:`ContractionTooWideError`) rather than exhausting memory.
@@ -39,13 +39,10 @@ Example:
 from __future__ import annotations
 
 import copy
-import hashlib
 import math
-import pickle
-import threading
 import time
 import warnings
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -53,34 +50,26 @@ from typing import Any
 import numpy as np
 
 from qcpp.errors import QcppError
-from qcpp.io.atomic import atomic_open
-from qcpp.io.caches import cache_root, prepare_folder, use_writable_numba_cache
+from qcpp.io.caches import use_writable_numba_cache
 from qcpp.ir.circuit import Circuit
 from qcpp.ir.gates import Gate, controlled_x_pattern, unitary
+from qcpp.simulate.contraction_paths import path_optimizer
 from qcpp.simulate.statevector import bound_circuit
 
 use_writable_numba_cache()  # quimb decorates its cache=True numba kernels when imported
 with warnings.catch_warnings():
-    warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
-    import cotengra as ctg
+    warnings.simplefilter("ignore")  # cotengra (which quimb imports) warns when the optional kahypar is missing
     import quimb.tensor as qtn
-    from cotengra.utils import DiskDict
 
 __all__ = [
     "DEFAULT_MAX_WIDTH",
-    "PATH_OPTIMIZERS",
     "RAW_MCX_MAX_QUBITS",
     "BasisState",
-    "CacheFolderWarning",
     "ContractionInfo",
     "ContractionTooWideError",
     "MPSCircuit",
-    "OptimizerCache",
-    "StructureKeyedOptimizer",
     "TensorCircuit",
     "contract_sliced",
-    "default_cache_dir",
-    "path_optimizer",
     "state_bits",
     "to_quimb",
 ]
@@ -102,25 +91,6 @@ _SIMPLIFY_DIAGONAL = "ADR"
 """Simplification with a 2^k-entry diagonal block in the network (column reduction and splitting on it are slow)."""
 
 
-class CacheFolderWarning(UserWarning):
-    """The contraction-path cache folder cannot be used; paths are then cached in memory only (this process)."""
-
-
-def _usable_cache(path: Path) -> Path | None:
-    """``path`` created if need be and writable, else ``None`` after one :class:`CacheFolderWarning`."""
-    try:
-        return prepare_folder(path)
-    except OSError as exc:
-        source = cache_root()[1]
-        warnings.warn(
-            f"the contraction-path cache folder {path} (from {source}) cannot be used "
-            f"({exc.strerror or exc}); running without the on-disk cache (set QCPP_CACHE_DIR to a writable folder)",
-            CacheFolderWarning,
-            stacklevel=3,
-        )
-        return None
-
-
 class ContractionTooWideError(QcppError):
     """A contraction would need an intermediate tensor larger than the allowed width (``2**width`` entries)."""
 
@@ -140,187 +110,6 @@ class ContractionInfo:
     log10_flops: float
     num_tensors: int
     search_seconds: float
-
-
-# ------------------------------------------------------------------------------------------------ paths
-
-
-def default_cache_dir() -> Path:
-    """Where contraction paths are cached across processes.
-
-    ``$QCPP_CACHE_DIR/cotengra`` if set, else ``$XDG_CACHE_HOME/qcpp/cotengra``, else ``~/.cache/qcpp/cotengra``.
-
-    Example:
-        >>> default_cache_dir().name
-        'cotengra'
-    """
-    return cache_root()[0] / "cotengra"
-
-
-class OptimizerCache:
-    """The process's cotengra path optimizers, one per cache directory and settings (:func:`path_optimizer`).
-
-    A ``ReusableHyperOptimizer`` keeps the paths it found in memory and on disk; sharing one per directory lets
-    every contraction of the process reuse them (the only process-wide state of this module). Thread-safe;
-    :meth:`clear` forgets the instances (their on-disk paths stay), for tests.
-
-    Example:
-        >>> cache = OptimizerCache()
-        >>> made = cache.get(("key",), lambda: object())
-        >>> cache.get(("key",), lambda: object()) is made, len(cache)
-        (True, 1)
-        >>> cache.clear(); len(cache)
-        0
-    """
-
-    def __init__(self) -> None:
-        self._optimizers: dict[tuple[Any, ...], Any] = {}
-        self._lock = threading.Lock()
-
-    def get(self, key: tuple[Any, ...], make: Callable[[], Any]) -> Any:
-        """The optimizer of ``key``, made by ``make()`` the first time."""
-        with self._lock:
-            opt = self._optimizers.get(key)
-            if opt is None:
-                opt = self._optimizers[key] = make()
-            return opt
-
-    def clear(self) -> None:
-        """Forget every optimizer."""
-        with self._lock:
-            self._optimizers.clear()
-
-    def __len__(self) -> int:
-        return len(self._optimizers)
-
-
-PATH_OPTIMIZERS = OptimizerCache()
-"""The process-wide :class:`OptimizerCache` of :func:`path_optimizer`."""
-
-
-class _PathFiles(DiskDict):  # type: ignore[misc]
-    """cotengra's store of paths (in memory, and one file per path on disk), safe to share and to lose.
-
-    * A file is written whole or not at all (:func:`qcpp.io.atomic.atomic_open`), so another process reading it
-      meanwhile, Ctrl-C or a full disk never leaves half a path on disk.
-    * A file that cannot be read (cut short before writes were whole, or from another version) counts as absent:
-      the path is searched again and the file replaced, instead of every later contraction of that shape failing.
-    * A file that cannot be written (a full disk, a folder made read-only meanwhile) leaves the path in memory for
-      this process, with a :class:`CacheFolderWarning` that names the file and the reason.
-    """
-
-    __slots__ = ()
-
-    def __contains__(self, k: Any) -> bool:
-        if not super().__contains__(k):
-            return False
-        try:
-            self[k]  # read now (and kept in memory), so that an unreadable file counts as absent
-        except KeyError:
-            return False
-        return True
-
-    def __getitem__(self, k: Any) -> Any:
-        try:
-            return super().__getitem__(k)
-        except KeyError:
-            raise
-        except Exception as exc:  # cotengra's retries end in an error of its own on a file cut short
-            raise KeyError(k) from exc
-
-    def __setitem__(self, k: Any, v: Any) -> None:
-        self._mem_cache[k] = v
-        if self._directory is None:
-            return
-        fname = self._path.joinpath(*(k if isinstance(k, tuple) else (k,)))
-        try:
-            fname.parent.mkdir(parents=True, exist_ok=True)
-            with atomic_open(fname, "wb") as f:
-                pickle.dump(v, f)
-        except OSError as exc:
-            warnings.warn(f"new contraction paths stay in memory: {exc}", CacheFolderWarning, stacklevel=2)
-
-
-class StructureKeyedOptimizer(ctg.ReusableHyperOptimizer):  # type: ignore[misc]
-    """cotengra's ``ReusableHyperOptimizer`` keyed by the whole structure of a contraction, tensors without indices
-    included, with an on-disk store that a cut-short or unwritable file does not break (``_PathFiles``).
-
-    cotengra's ``hash_method='b'`` names each index by the tensors it joins, so a tensor with no index (a scalar,
-    which quimb's simplification leaves behind, more or fewer at other angles) is absent from the key: every network
-    of scalars alone has one key, and a path found for thirteen of them, read back for six, fails on an index out of
-    range. The key here is cotengra's with the number of tensors and the positions of the scalars added, so only
-    networks of one shape share a path. The keys differ from cotengra's, so paths cotengra cached under its own key
-    are never read back.
-
-    Example:
-        >>> import numpy as np
-        >>> opt = StructureKeyedOptimizer(methods=["greedy"], max_repeats=1, hash_method="b", progbar=False)
-        >>> scalars = lambda n: qtn.TensorNetwork([qtn.Tensor(np.array(2.0)) for _ in range(n)])
-        >>> [float(scalars(n).contract(optimize=opt)) for n in (13, 6)]
-        [8192.0, 64.0]
-    """
-
-    def __init__(self, *, directory: str | None = None, **kwargs: Any) -> None:
-        super().__init__(directory=directory, **kwargs)
-        self._cache = _PathFiles(directory)
-
-    def hash_query(self, inputs: Any, output: Any, size_dict: Any) -> tuple[Any, bool]:
-        """The contraction's key and whether no path is cached under it (cotengra's contract)."""
-        inputs = tuple(inputs)
-        base, _ = super().hash_query(inputs, output, size_dict)
-        scalars = tuple(i for i, term in enumerate(inputs) if not len(term))
-        key = hashlib.sha1(repr(("".join(base), len(inputs), scalars)).encode()).hexdigest()
-        h = (key[:2], key[2:]) if self.directory_split else key
-        return h, h not in self._cache
-
-
-def path_optimizer(
-    directory: str | Path | None = None,
-    *,
-    max_repeats: int = 32,
-    max_time: float | str = "rate:1e8",
-    parallel: bool | int = False,
-) -> StructureKeyedOptimizer:
-    """The shared cotengra path optimizer for a cache directory (one instance per process and settings).
-
-    Paths are keyed by the structure of the contraction (:class:`StructureKeyedOptimizer`: which tensors share
-    which index, the index sizes and the tensors without indices), in memory and on disk, so the same circuit
-    structure at new angles or new bit strings reuses its path, also in a later process.
-
-    Args:
-        directory: On-disk cache; default :func:`default_cache_dir`.
-        max_repeats: Trial paths per search.
-        max_time: Search time limit; the default ``'rate:1e8'`` stops once the search has taken longer than the
-            best path's estimated run time at 1e8 flop/s (quick for easy contractions).
-        parallel: cotengra's ``parallel`` (default off: no worker processes left behind).
-
-    Returns:
-        A :class:`StructureKeyedOptimizer` (caching in memory only, after one :class:`CacheFolderWarning`,
-        when the folder cannot be created or written).
-
-    Example:
-        >>> import tempfile
-        >>> d = tempfile.mkdtemp()
-        >>> path_optimizer(d) is path_optimizer(d)
-        True
-    """
-    path = Path(directory) if directory is not None else default_cache_dir()
-    key = (str(path.absolute()), max_repeats, max_time, parallel)
-
-    def make() -> StructureKeyedOptimizer:
-        usable = _usable_cache(path)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # "Couldn't import kahypar": the labels method is used instead
-            return StructureKeyedOptimizer(
-                max_repeats=max_repeats,
-                max_time=max_time,
-                parallel=parallel,
-                directory=str(usable) if usable is not None else None,  # None: in memory only
-                hash_method="b",
-                progbar=False,
-            )
-
-    return PATH_OPTIMIZERS.get(key, make)  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------------------------------------------ conversion
@@ -564,8 +353,10 @@ class TensorCircuit:
     Args:
         bindings: Symbol values (the circuit must end up fully bound).
         psi0_bits: Initial basis state; default all zeros.
-        optimizer: A cotengra path optimizer; default :func:`path_optimizer` of ``cache_dir``.
-        cache_dir: Path cache directory for the default optimizer (default :func:`default_cache_dir`).
+        optimizer: A cotengra path optimizer; default
+            :func:`~qcpp.simulate.contraction_paths.path_optimizer` of ``cache_dir``.
+        cache_dir: Path cache directory for the default optimizer (default
+            :func:`~qcpp.simulate.contraction_paths.default_cache_dir`).
         max_width: Largest allowed contraction width (log2 of entries), see :class:`ContractionTooWideError`.
         client: A ``dask.distributed.Client`` (see :func:`qcpp.simulate.cluster.dask_client`): a contraction
             wider than ``max_width`` is then sliced by cotengra into pieces of at most ``2**max_width`` entries and
@@ -871,7 +662,8 @@ def contract_sliced(
 
     Args:
         tn: A quimb ``TensorNetwork`` with no open index.
-        tree: Its cotengra ``ContractionTree`` (default: found with :func:`path_optimizer`).
+        tree: Its cotengra ``ContractionTree`` (default: found with
+            :func:`~qcpp.simulate.contraction_paths.path_optimizer`).
         target_size: Largest intermediate tensor (entries) of a slice.
         target_slices: Or: at least this many slices.
         client: A ``dask.distributed.Client`` (``None``: in-process).

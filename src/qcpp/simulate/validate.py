@@ -402,7 +402,8 @@ def validate(
         mps: ``tensor``: also run the matrix product state (ancilla probability, every amplitude); it is dropped
             (with a note on the contraction check) once its bond exceeds :data:`MPS_BOND_LIMIT`, and the ancilla
             probability then comes from the contracted, verified-unitary ancilla blocks.
-        cache_dir: ``tensor``: contraction-path cache (default :func:`qcpp.simulate.tensor.default_cache_dir`).
+        cache_dir: ``tensor``: contraction-path cache (default
+            :func:`qcpp.simulate.contraction_paths.default_cache_dir`).
         dask: ``tensor``: a dask scheduler address, or ``'local'`` for a LocalCluster
             (:func:`qcpp.simulate.cluster.dask_client`): contractions wider than ``DEFAULT_MAX_WIDTH`` are sliced by
             cotengra and the slices run on the cluster instead of being skipped. ``None``: in-process.
