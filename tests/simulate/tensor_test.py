@@ -15,6 +15,7 @@ from __future__ import annotations
 import ast
 import json
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
@@ -180,22 +181,23 @@ def test_a_cached_path_serves_only_networks_of_its_shape(tmp_path: Path) -> None
 
     from qcpp.simulate.contraction_paths import PATH_OPTIMIZERS, path_optimizer
 
-    def network(scalars: int, matrices: int = 0) -> qtn.TensorNetwork:
-        vec = [qtn.Tensor(np.array([1.0, 2.0]), inds=("i",))] * min(matrices, 1)
-        vec += [qtn.Tensor(np.array([3.0, 5.0]), inds=("i",))] * min(matrices, 1)
-        return qtn.TensorNetwork(vec + [qtn.Tensor(np.array(2.0)) for _ in range(scalars)])
+    def network(scalars: int, vectors: bool) -> qtn.TensorNetwork:
+        """``scalars`` tensors 2.0, after (with ``vectors``) the vectors (1, 2) and (3, 5) joined by one index."""
+        pair = [qtn.Tensor(np.array([1.0, 2.0]), inds=("i",)), qtn.Tensor(np.array([3.0, 5.0]), inds=("i",))]
+        return qtn.TensorNetwork((pair if vectors else []) + [qtn.Tensor(np.array(2.0)) for _ in range(scalars)])
 
-    shapes = [(13, 0), (6, 0), (5, 1), (2, 1)]
-    want = [2.0**s * (13.0 if m else 1.0) for s, m in shapes]
+    shapes = [(13, False), (6, False), (5, True), (2, True)]
+    want = [2.0**scalars * (13.0 if vectors else 1.0) for scalars, vectors in shapes]
     for _process in range(2):  # the second reads the first's paths from disk
         PATH_OPTIMIZERS.clear()
         opt = path_optimizer(tmp_path)
-        assert [float(network(s, m).contract(optimize=opt)) for s, m in shapes] == want
+        assert [float(network(*shape).contract(optimize=opt)) for shape in shapes] == want
     assert len(list(tmp_path.glob("*/*"))) == len(shapes)
     PATH_OPTIMIZERS.clear()
 
 
-def _two_vectors_and_a_scalar():  # type: ignore[no-untyped-def]
+def _two_vectors_and_a_scalar() -> Any:
+    """Two vectors (1, 1) joined by one index, and the scalar 2: the network contracts to 4."""
     import numpy as np
     import quimb.tensor as qtn
 
@@ -222,26 +224,29 @@ def test_a_path_file_cut_short_is_searched_again_and_replaced(tmp_path: Path) ->
 
 FULL_DISK = """
 import resource, signal, sys, warnings
+import numpy as np
+import quimb.tensor as qtn
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
 resource.setrlimit(resource.RLIMIT_FSIZE, (0, 0))  # every write to a file fails, as on a full disk
 from qcpp.simulate.contraction_paths import CacheFolderWarning, path_optimizer
-from tests.simulate.tensor_test import _two_vectors_and_a_scalar
 with warnings.catch_warnings(record=True) as caught:
     warnings.simplefilter("always", CacheFolderWarning)
     opt = path_optimizer(sys.argv[1])
-    print([float(_two_vectors_and_a_scalar().contract(optimize=opt)) for _ in range(2)])
+    one = qtn.Tensor(np.ones(2), inds=("i",))  # the network of _two_vectors_and_a_scalar
+    network = qtn.TensorNetwork([one, one.copy(), qtn.Tensor(np.array(2.0))])
+    print([float(network.copy().contract(optimize=opt)) for _ in range(2)])
 print([str(w.message) for w in caught if w.category is CacheFolderWarning])
 """
 
 
 def test_a_path_folder_that_cannot_be_written_keeps_paths_in_memory(tmp_path: Path) -> None:
-    """Where no path file can be written (a full disk), the contraction still answers, says once per new path why
-    the path is not saved, and leaves no file behind."""
+    """Where no path file can be written (a full disk), the contraction still answers, says why the new path is not
+    saved (once: the second contraction finds it in memory), and leaves no file behind."""
     import subprocess
     import sys
 
     repo = Path(__file__).resolve().parents[2]
-    env = {"PYTHONPATH": f"{repo / 'src'}:{repo}", "PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
+    env = {"PYTHONPATH": str(repo / "src"), "PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
     res = subprocess.run([sys.executable, "-W", "ignore::UserWarning", "-c", FULL_DISK, str(tmp_path / "paths")],
                          capture_output=True, text=True, env=env, timeout=300)  # fmt: skip
     assert res.returncode == 0, res.stderr
