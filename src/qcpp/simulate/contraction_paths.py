@@ -30,6 +30,7 @@ from qcpp.io.caches import cache_root, prepare_folder
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # cotengra warns at import time when the optional kahypar is missing
     import cotengra as ctg
+    from cotengra.reusable import hash_contraction
     from cotengra.utils import DiskDict
 
 __all__ = [
@@ -184,9 +185,9 @@ class StructureKeyedOptimizer(ctg.ReusableHyperOptimizer):  # type: ignore[misc]
     def hash_query(self, inputs: Any, output: Any, size_dict: Any) -> tuple[Any, bool]:
         """The contraction's key and whether no path is cached under it (cotengra's contract)."""
         inputs = tuple(inputs)
-        base, _ = super().hash_query(inputs, output, size_dict)
+        base = hash_contraction(inputs, output, size_dict, self._hash_method)
         scalars = tuple(i for i, term in enumerate(inputs) if not len(term))
-        key = hashlib.sha1(repr(("".join(base), len(inputs), scalars)).encode()).hexdigest()
+        key = hashlib.sha1(repr((base, len(inputs), scalars)).encode()).hexdigest()
         h = (key[:2], key[2:]) if self.directory_split else key
         return h, h not in self._cache
 
