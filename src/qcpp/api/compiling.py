@@ -302,7 +302,7 @@ def compile(
         effort: With a device: ``full`` (the default: every search) or ``quick`` (no choice of partial-mixer
             plans for the routing, :data:`~qcpp.routing.options.QUICK_ROUTING`: a few times faster on a named
             device, for more two-qubit gates; ``benchmarks/compile_effort.py``). ``qcpp compile --effort``;
-            ``qcpp.estimate`` routes with ``full``.
+            ``qcpp.estimate(..., effort=)`` routes its exact rows the same way.
         max_gates: Refuse circuits predicted to exceed this many lowered gates (default: as ``qcpp compile``, refuse
             only what would not fit in the available memory or would run for hours).
         progress: ``True`` for progress lines on stderr, or a function ``progress(done, total)``
