@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/compile_effort.py [--devices ibm_fez ibm_torino] [CASE ...]`` (cases ``ROWSxCOLS/ROBOTS``
 of the default scenarios; default ``3x3/1 3x4/1 3x3/2``). Per case and device, ``qcpp.compile(scenario, p=1,
-device=DEVICE, bind=ANGLES, effort=E)`` for each effort, each in a fresh :class:`qcpp.RoutingContext` (nothing
+device=DEVICE, bind=BIND, effort=E)`` for each effort, each in a fresh :class:`qcpp.RoutingContext` (nothing
 shared between the two), the objective the device's default (ESP with idle decoherence on these snapshots).
 
 The table gives, per effort, the CPU seconds of the call (this process's: SABRE's Rust passes run on the calling
@@ -22,10 +22,10 @@ import re
 import time
 from typing import Any
 
+from routing_verdict import BIND  # the verdict table's angles (this script's directory is on the path)
+
 DEFAULT_CASES = ("3x3/1", "3x4/1", "3x3/2")
 DEFAULT_DEVICES = ("ibm_fez", "ibm_torino")
-ANGLES = {"gamma_0": 0.3, "beta_0": 0.7}
-"""Bound angles (p = 1), those of ``benchmarks/routing_verdict.py``."""
 
 
 def _row(case: str, device: str, effort: str) -> dict[str, Any]:
@@ -35,7 +35,7 @@ def _row(case: str, device: str, effort: str) -> dict[str, Any]:
     rows, cols = (int(v) for v in grid.split("x"))
     scenario = qcpp.grid_scenario(rows, cols, robots=int(robots))
     start = time.process_time()
-    compiled = qcpp.compile(scenario, p=1, device=device, bind=ANGLES, effort=effort, context=qcpp.RoutingContext())
+    compiled = qcpp.compile(scenario, p=1, device=device, bind=BIND, effort=effort, context=qcpp.RoutingContext())
     seconds = time.process_time() - start
     routed = compiled.to_dict()["routed"]
     qiskit = [c for c in routed["candidates"] if re.fullmatch(r"qiskit O3 seed \d+", c["name"])]  # as Qiskit wrote it
