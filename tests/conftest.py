@@ -29,6 +29,13 @@
   keeps its place. CI's heavy step hands tests out one at a time (``--maxschedchunk 1``: by default xdist's first
   hand-out is a block of consecutive tests per worker, which would give one worker all the long ones), so each
   worker takes the next long test when it is free.
+* The README's test command distributes by groups (``--dist loadgroup``): the tests of one
+  ``pytest.mark.xdist_group`` run on one worker, the others one by one as before. Tests that run quimb are in the
+  group ``quimb``: on a fresh install numba compiles quimb's kernels the first time a process imports or runs
+  them (about 70 CPU-seconds), so the group keeps that cost on one worker, and no test module imports quimb at
+  collection. Modules whose tests share a costly module fixture (a compile for a named device) are a group each,
+  so the fixture is built once. ``python benchmarks/suite_under_load.py --cold`` measures the fresh-install case.
+  The heavy step keeps one-at-a-time hand-out (``--maxschedchunk 1``, below), where the groups do not apply.
 * On pytest-xdist's workers Qiskit's Rust passes (SABRE, the O3 passes) run on one thread
   (``RAYON_NUM_THREADS=1``, inherited by subprocesses, unless already set): the workers keep every core busy
   already, and a thread pool per worker would only compete with the other worker for the same cores. Results do

@@ -23,6 +23,9 @@ def _modules() -> list[str]:
 
 MODULES = _modules()
 
+QUIMB_MODULES = frozenset({"qcpp.simulate.tensor", "qcpp.simulate.contraction_paths"})
+"""Modules whose examples run quimb: in the xdist group of the tests that do (tests/conftest.py)."""
+
 
 def test_the_module_list_is_complete() -> None:
     expected = {"qcpp.plan.qaoa", "qcpp.problem.sbf", "qcpp.estimators.estimate", "qcpp.simulate.subspace",
@@ -30,7 +33,9 @@ def test_the_module_list_is_complete() -> None:
     assert expected <= set(MODULES)
 
 
-@pytest.mark.parametrize("name", MODULES)
+@pytest.mark.parametrize(
+    "name", [pytest.param(m, marks=pytest.mark.xdist_group("quimb")) if m in QUIMB_MODULES else m for m in MODULES]
+)
 def test_docstring_examples(name: str) -> None:
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS, report=True)
     assert result.failed == 0, f"{result.failed} of {result.attempted} examples of {name} failed (output above)"

@@ -18,6 +18,8 @@ needs_aer = pytest.mark.skipif(importlib.util.find_spec("qiskit_aer") is None, r
 S = qcpp.grid_scenario(2, 3, robots=1)
 ANGLES = {"gamma_0": 0.37, "beta_0": 0.81}
 
+pytestmark = pytest.mark.xdist_group("noisy_api")  # one worker compiles the module's circuit (tests/conftest.py)
+
 
 @pytest.fixture(scope="module")
 def compiled() -> qcpp.Compiled:

@@ -9,8 +9,9 @@ from typing import Any
 import pytest
 
 import qcpp
-import qcpp.simulate.tensor as tensor
 from tests.api.bad_input_test import error_of
+
+pytestmark = pytest.mark.xdist_group("quimb")  # one worker compiles quimb's kernels (tests/conftest.py)
 
 S = qcpp.grid_scenario(2, 3, robots=1)
 ANGLES = [0.37, 0.81]
@@ -20,6 +21,8 @@ def test_the_client_reaches_the_tensor_backend_and_the_figures_are_the_subspace_
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     from dask.distributed import Client, LocalCluster
+
+    import qcpp.simulate.tensor as tensor
 
     seen: list[Any] = []
 

@@ -104,13 +104,19 @@ def _sink_adder(cols: dict[int, list[_Bit]], k: int, triple: list[_Bit], sink: S
 def reference_popcount_layout(
     form: tuple[tuple[int, int], ...], ancillas: Iterator[int], sites: Mapping[int, Site], sink: Sink | None = None
 ) -> tuple[list[Gate], list[int | None], dict[int, Site]]:
-    """The old :func:`qcpp.gadgets.phase_sums.spatial_popcount_layout`, verbatim."""
+    """The old :func:`qcpp.gadgets.phase_sums.spatial_popcount_layout`, verbatim but for a memo of the curve
+    positions (the same keys, computed once per site)."""
     order = 1
     while order <= max((max(sites[q]) for q, _ in form), default=0):
         order <<= 1
 
+    curve: dict[Site, int] = {}  # a site's place on the curve: computed once (the search asks millions of times)
+
     def key(item: tuple[int, Site]) -> tuple[int, int]:
-        return hilbert_key(item[1][0], item[1][1], order), item[0]
+        site = item[1]
+        if site not in curve:
+            curve[site] = hilbert_key(site[0], site[1], order)
+        return curve[site], item[0]
 
     home: dict[int, Site] = {}
     gates: list[Gate] = [x(q) for q, w in form if w < 0]

@@ -1,6 +1,6 @@
 """Tensor-network validation of compiled, lowered QAOA circuits at 15-50 qubits (quimb + cotengra), slicing on dask.
 
-Everything that uses quimb lives in this one module: numba compiles quimb's kernels once per process.
+The tests that run quimb are in one xdist group (tests/conftest.py): one worker compiles its numba kernels.
 Each case compiles the lowered circuit, runs it from |0...0> at seeded random angles and checks, with two
 independent tensor methods (an MPS of the whole circuit, and exact contraction with a reused cotengra path),
 that the ancillas end in |0> (probability 1 to 1e-8) and that feasible assignments' amplitudes equal the exact
@@ -27,6 +27,8 @@ from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.validate import validate
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
+
+pytestmark = pytest.mark.xdist_group("quimb")  # one worker compiles quimb's kernels (tests/conftest.py)
 
 
 @pytest.mark.heavy  # 30 s to 2 min each on 2 cores: CI's second step

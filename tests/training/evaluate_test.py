@@ -82,6 +82,7 @@ def split_3x4() -> Scenario:
                                "robots": [{"start": [0, 0], "goal": [2, 3]}]})  # fmt: skip
 
 
+@pytest.mark.xdist_group("quimb")  # runs the tensor backend: one worker compiles quimb's kernels (tests/conftest.py)
 @pytest.mark.parametrize("initial", INITIAL_STATES)
 def test_every_method_evaluates_the_given_initial_state(initial: str) -> None:
     """The subspace simulator starts from ``initial`` and the gate-level methods compile its preparation: the
@@ -185,6 +186,7 @@ def test_qaoa_method_has_the_uniform_signature() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("quimb")
 def test_tensor_amplitudes_agree_with_subspace() -> None:
     pytest.importorskip("qcpp.simulate.tensor")
     s = small()
