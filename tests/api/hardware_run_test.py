@@ -21,9 +21,9 @@ from qcpp.routing.routed_circuit import coupling_map
 from qcpp.training.evaluate import feasible_assignments
 
 ANGLES = {"gamma_0": 0.5, "beta_0": 1.1}
+SHOTS = 20_000
 
 pytestmark = pytest.mark.xdist_group("hardware_run")  # one worker compiles the module's circuits (tests/conftest.py)
-SHOTS = 20_000
 
 
 @pytest.fixture(scope="module")
