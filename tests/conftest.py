@@ -31,11 +31,12 @@
   worker takes the next long test when it is free.
 * The README's test command distributes by groups (``--dist loadgroup``): the tests of one
   ``pytest.mark.xdist_group`` run on one worker, the others one by one as before. Tests that run quimb are in the
-  group ``quimb``: on a fresh install numba compiles quimb's kernels the first time a process imports or runs
-  them (about 70 CPU-seconds), so the group keeps that cost on one worker, and no test module imports quimb at
-  collection. Modules whose tests share a costly module fixture (a compile for a named device) are a group each,
-  so the fixture is built once. ``python benchmarks/suite_under_load.py --cold`` measures the fresh-install case.
-  The heavy step keeps one-at-a-time hand-out (``--maxschedchunk 1``, below), where the groups do not apply.
+  group ``quimb``: on a fresh install numba compiles quimb's kernels the first time a process imports or runs them
+  (about 70 CPU-seconds), so the group keeps that cost on one worker, and no test module imports quimb at collection
+  (``tensor_test.py`` checks it). Modules whose tests share a costly module fixture (a compile for a named device)
+  are a group each, so the fixture is built once. ``python benchmarks/suite_under_load.py --cold`` measures the
+  fresh-install case. The heavy step keeps one-at-a-time hand-out (``--maxschedchunk 1``, below), where the groups
+  do not apply.
 * On pytest-xdist's workers Qiskit's Rust passes (SABRE, the O3 passes) run on one thread
   (``RAYON_NUM_THREADS=1``, inherited by subprocesses, unless already set): the workers keep every core busy
   already, and a thread pool per worker would only compete with the other worker for the same cores. Results do
@@ -51,6 +52,7 @@ from collections.abc import Iterator
 import pytest
 from hypothesis import HealthCheck, settings
 
+from tests.collection_imports import QUIMB_AT_COLLECTION
 from tests.shutdown import freeze_survivors
 
 sys.dont_write_bytecode = False  # before qcpp and the test modules are imported: see the module docstring
@@ -485,6 +487,11 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         if missing:
             raise pytest.UsageError(f"LONGEST_FIRST names no collected test: {missing}")
     items.sort(key=_longest_first_rank)
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    """Record whether collection imported quimb (a test checks that none did: see the module docstring)."""
+    session.config.stash[QUIMB_AT_COLLECTION] = "quimb.tensor" in sys.modules
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:

@@ -25,10 +25,16 @@ from qcpp.plan.options import PlanOptions
 from qcpp.problem.presets import default_scenario
 from qcpp.problem.scenario_io import load_scenario
 from qcpp.simulate.validate import validate
+from tests.collection_imports import QUIMB_AT_COLLECTION
 
 EXAMPLE = Path(__file__).parents[2] / "examples" / "paper_3x3.toml"
 
 pytestmark = pytest.mark.xdist_group("quimb")  # one worker compiles quimb's kernels (tests/conftest.py)
+
+
+def test_no_test_module_imports_quimb_at_collection(pytestconfig: pytest.Config) -> None:
+    """Only the tests of the group import quimb: at collection every worker would (tests/conftest.py)."""
+    assert pytestconfig.stash[QUIMB_AT_COLLECTION] is False
 
 
 @pytest.mark.heavy  # 30 s to 2 min each on 2 cores: CI's second step
