@@ -33,7 +33,7 @@ pytestmark = pytest.mark.xdist_group("quimb")  # one worker compiles quimb's ker
 
 
 def test_no_test_module_imports_quimb_at_collection(pytestconfig: pytest.Config) -> None:
-    """Only the tests of the group import quimb: at collection every worker would (tests/conftest.py)."""
+    """No test module imports quimb at collection, where every worker would compile its kernels (tests/conftest.py)."""
     assert pytestconfig.stash[QUIMB_AT_COLLECTION] is False
 
 
