@@ -42,10 +42,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     cores = os.cpu_count() or 1
     env = {**os.environ, "PYTHONPATH": str(REPO / "src"), "MPLBACKEND": "Agg"}
-    with tempfile.TemporaryDirectory(prefix="numba-cache-") as empty:
-        if args.cold:
-            env["NUMBA_CACHE_DIR"] = empty
+    if not args.cold:
         return _run(args, cores, env)
+    with tempfile.TemporaryDirectory(prefix="numba-cache-") as empty:
+        return _run(args, cores, {**env, "NUMBA_CACHE_DIR": empty})
 
 
 def _run(args: argparse.Namespace, cores: int, env: dict[str, str]) -> int:
